@@ -1,0 +1,18 @@
+"""mechsing: find and classify the singularities of mechanisms with Lie groups.
+
+Conventions (stated once, used everywhere; see DESIGN.md):
+
+* A twist is a 6-vector ``(omega, v)``: angular part first, then the velocity
+  of the body point at the ground origin.  A wrench is ``(f, m)``: force, then
+  moment about the ground origin.  Slices :data:`mechsing.lie.ANGULAR` and
+  :data:`mechsing.lie.LINEAR` are the only place the ordering is written.
+* The Lie bracket is the commutator of 4x4 matrices; ``Ad(R, p) = [[R, 0],
+  [p^ R, R]]`` moves twists and (f, m) wrenches alike.
+* A displacement ``g = (R, p)`` acts on points as ``x -> R x + p`` and is
+  stored as a homogeneous 4x4 matrix.  A joint with ``between: [a, b]`` and
+  value q sets ``g_b = g_a . exp(sum q_i e_i)`` (spatial product of
+  exponentials, basis screws at the reference configuration in the ground frame).
+* Lengths in metres, angles in radians, pitch in metres per radian.
+"""
+
+__version__ = "0.1.0"

@@ -1,0 +1,5 @@
+import sys
+
+from mechsing.cli import main
+
+sys.exit(main())

@@ -1,0 +1,82 @@
+"""The ``mechsing`` command.
+
+Each sub-command lives in its own module of this package and exposes
+``NAME`` (the sub-command), ``HELP`` (one line), ``add_arguments(parser)`` and
+``run(args) -> int``.  Exit status: 0 success, 2 bad input, 3 a configuration
+could not be closed (DESIGN.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from collections.abc import Sequence
+
+from mechsing import __version__
+
+#: sub-command modules, in the order ``--help`` lists them
+COMMANDS = ("analyze", "solve", "catalog", "identify", "schema")
+
+
+class UserError(Exception):
+    """Bad input: printed without a traceback, exit status 2 (or ``status``)."""
+
+    def __init__(self, message: str, status: int = 2) -> None:
+        super().__init__(message)
+        self.status = status
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # argparse exits 2 already; keep its words
+        self.print_usage(sys.stderr)
+        self.exit(2, f"mechsing: error: {message}\n")
+
+
+def _load_commands() -> list:
+    mods = []
+    for name in COMMANDS:
+        try:
+            mods.append(importlib.import_module(f"mechsing.cli.{name}"))
+        except ModuleNotFoundError as exc:  # a command not built yet
+            if exc.name != f"mechsing.cli.{name}":
+                raise
+    return mods
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="mechsing",
+        description="Find and classify the singularities of mechanisms with Lie groups.",
+    )
+    parser.add_argument("--version", action="version", version=f"mechsing {__version__}")
+    parser.add_argument(
+        "-T", "--traceback", action="store_true", help="show a Python traceback on errors (debugging)"
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for mod in _load_commands():
+        p = sub.add_parser(mod.NAME, help=mod.HELP, description=mod.__doc__)
+        mod.add_arguments(p)
+        p.set_defaults(_run=mod.run)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "_run", None):
+        parser.print_help()
+        return 0
+    try:
+        return int(args._run(args))
+    except UserError as exc:
+        if args.traceback:
+            raise
+        print(f"mechsing: error: {exc}", file=sys.stderr)
+        return exc.status
+    except BrokenPipeError:
+        return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

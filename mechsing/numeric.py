@@ -1,0 +1,697 @@
+"""Precision modes, number backends, tolerances and rank decisions (the leaf layer).
+
+Every other layer of mechsing may import this module; it imports none of them.
+
+Three precision modes run the *same* formulas:
+
+``float``
+    numpy float64 arrays (fast, batched).
+``mp:N``
+    numpy object arrays of ``mpmath.mpf`` evaluated at N significant digits.
+``exact``
+    numpy object arrays of sympy numbers (rationals and algebraic expressions).
+
+A formula never branches on the mode.  It asks :func:`backend_of` for the
+backend of its input array and calls the backend's elementary functions
+(``bk.sin``, ``bk.sqrt``, ``bk.atan2`` ...), uses numpy's arithmetic and
+``np.where`` for its branches, and derives the switch point of a Taylor series
+from ``bk.eps`` (``eps ** (1/(k+1))`` for a series with k retained orders).
+In exact mode ``eps`` is 0, so a series is used only at exactly 0, where its
+value is the exact limit.
+
+Decision tolerances (is this singular value zero?) live here and nowhere else:
+:class:`Tolerances` gives the two rank thresholds ``tau_lo`` and ``tau_hi`` of
+each mode (DESIGN.md, "Rank decisions"), and :func:`decide_rank` returns a
+rank *with its margin* or ``None`` (undecided).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from typing import Any
+
+import mpmath
+import numpy as np
+import sympy
+
+__all__ = [
+    "FLOAT",
+    "Backend",
+    "Margin",
+    "Precision",
+    "RankDecision",
+    "DefinitenessDecision",
+    "Tolerances",
+    "backend_of",
+    "characteristic_length",
+    "decide_definiteness",
+    "decide_rank",
+    "parse_precision",
+    "scale_screws",
+    "screw_zero_rtol",
+    "to_float",
+]
+
+# ---------------------------------------------------------------------------
+# Decision tolerances that are not rank thresholds.  Each is a *decision*
+# (membership, identification, classification), so each lives here.
+# ---------------------------------------------------------------------------
+
+#: relative tolerance for "this screw lies in that subalgebra" / "these are equal"
+#: decisions on float data, relative to the largest entry involved.
+MEMBERSHIP_RTOL_FLOAT = 1e-9
+#: norm below which a geometric vector given by a user (an axis, a normal) is
+#: refused as near-zero (relative to the largest length of the mechanism or 1).
+NEAR_ZERO_VECTOR = 1e-9
+#: support threshold of a kernel vector (DESIGN.md: entries above 1e-9 of the largest)
+SUPPORT_RTOL = 1e-9
+#: closure acceptance in float mode, relative to the characteristic length L
+CLOSURE_RTOL_FLOAT = 1e-12
+
+
+# ---------------------------------------------------------------------------
+# Backends
+# ---------------------------------------------------------------------------
+
+
+def _objfunc(f: Callable[..., Any], nin: int) -> Callable[..., np.ndarray]:
+    """Elementwise version of a scalar function on object arrays, keeping 0-d shape."""
+    uf = np.frompyfunc(f, nin, 1)
+
+    def apply(*args: Any) -> np.ndarray:
+        out = uf(*args)
+        if not isinstance(out, np.ndarray):
+            arr = np.empty((), dtype=object)
+            arr[()] = out
+            return arr
+        return out
+
+    return apply
+
+
+@dataclass(frozen=True)
+class Backend:
+    """The number backend of one precision mode.
+
+    Attributes
+    ----------
+    name : str
+        ``"float"``, ``"mp"`` or ``"exact"``.
+    eps : number
+        Unit roundoff of the backend (0 in exact mode).  Formulas derive their
+        series switch points from it.
+    dtype : numpy dtype
+        ``float64`` or ``object``.
+    """
+
+    name: str
+    eps: Any
+    dtype: Any
+    sin: Callable[[Any], np.ndarray]
+    cos: Callable[[Any], np.ndarray]
+    sqrt: Callable[[Any], np.ndarray]
+    atan2: Callable[[Any, Any], np.ndarray]
+    convert: Callable[[Any], Any]
+    pi: Any
+
+    def asarray(self, x: Any) -> np.ndarray:
+        """Convert nested sequences / arrays / scalars to an array of this backend."""
+        if self.dtype is np.float64 or self.dtype == np.float64:
+            return np.asarray(to_float(x), dtype=np.float64)
+        a = np.asarray(x, dtype=object)
+        return _objfunc(self.convert, 1)(a) if a.size else a
+
+    def zeros(self, shape: tuple[int, ...] | int) -> np.ndarray:
+        if self.dtype == np.float64:
+            return np.zeros(shape)
+        out = np.empty(shape, dtype=object)
+        out.fill(self.convert(0))
+        return out
+
+    def eye(self, n: int) -> np.ndarray:
+        out = self.zeros((n, n))
+        for i in range(n):
+            out[i, i] = self.convert(1)
+        return out
+
+    def threshold(self, order: int) -> Any:
+        """Switch point ``eps ** (1/(order+1))`` of a series whose first neglected
+        term is of relative order ``order + 1`` (0 in exact mode)."""
+        if self.name == "exact":
+            return 0
+        if self.name == "float":
+            return float(self.eps) ** (1.0 / (order + 1))
+        return self.eps ** (mpmath.mpf(1) / (order + 1))
+
+
+def _mp_convert(x: Any) -> Any:
+    if isinstance(x, mpmath.mpf | mpmath.mpc):
+        return +x  # re-round at the current working precision
+    if isinstance(x, sympy.Basic):
+        return mpmath.mpf(sympy.N(x, mpmath.mp.dps + 5))
+    if isinstance(x, bool | np.bool_):
+        return mpmath.mpf(int(x))
+    if isinstance(x, np.floating | np.integer):
+        x = x.item()
+    return mpmath.mpf(x)
+
+
+def _exact_convert(x: Any) -> Any:
+    if isinstance(x, sympy.Basic):
+        return x
+    if isinstance(x, np.integer | int):
+        return sympy.Integer(int(x))
+    if isinstance(x, str):
+        return sympy.Rational(x)
+    if isinstance(x, np.floating | float):
+        # a float reaching exact mode is taken at its decimal repr, never its binary value
+        return sympy.Rational(repr(float(x)))
+    if isinstance(x, mpmath.mpf):
+        return sympy.Rational(mpmath.nstr(x, mpmath.mp.dps))
+    return sympy.sympify(x, strict=True)
+
+
+FLOAT = Backend(
+    name="float",
+    eps=float(np.finfo(np.float64).eps),
+    dtype=np.float64,
+    sin=np.sin,
+    cos=np.cos,
+    sqrt=np.sqrt,
+    atan2=np.arctan2,
+    convert=float,
+    pi=math.pi,
+)
+
+
+def _mp_backend() -> Backend:
+    # mpmath functions read the *current* working precision, so one backend
+    # object serves every N; Precision.context() sets N.
+    return Backend(
+        name="mp",
+        eps=mpmath.mp.eps,
+        dtype=object,
+        sin=_objfunc(mpmath.sin, 1),
+        cos=_objfunc(mpmath.cos, 1),
+        sqrt=_objfunc(mpmath.sqrt, 1),
+        atan2=_objfunc(mpmath.atan2, 2),
+        convert=_mp_convert,
+        pi=+mpmath.pi,
+    )
+
+
+def _exact_sqrt(x: Any) -> Any:
+    return sympy.sqrt(x)
+
+
+EXACT = Backend(
+    name="exact",
+    eps=0,
+    dtype=object,
+    sin=_objfunc(sympy.sin, 1),
+    cos=_objfunc(sympy.cos, 1),
+    sqrt=_objfunc(_exact_sqrt, 1),
+    atan2=_objfunc(sympy.atan2, 2),
+    convert=_exact_convert,
+    pi=sympy.pi,
+)
+
+
+def backend_of(*arrays: Any) -> Backend:
+    """The backend of the given arrays: exact if any holds a sympy number, else
+    mp if any holds an mpmath number, else float.
+
+    The mp backend works at the current ``mpmath.mp.dps`` (see
+    :meth:`Precision.context`).
+    """
+    found = FLOAT
+    for a in arrays:
+        arr = np.asarray(a) if not isinstance(a, np.ndarray) else a
+        if arr.dtype != object:
+            continue
+        for x in arr.flat:
+            if isinstance(x, sympy.Basic):
+                return EXACT
+            if isinstance(x, mpmath.mpf | mpmath.mpc):
+                found = _mp_backend()
+                break
+    return found
+
+
+def to_float(x: Any) -> Any:
+    """float64 array (or float) from any backend's array or scalar."""
+    if isinstance(x, np.ndarray) and x.dtype != object:
+        return x.astype(np.float64, copy=False)
+    if isinstance(x, list | tuple | np.ndarray):
+        arr = np.asarray(x, dtype=object)
+        out = np.empty(arr.shape, dtype=np.float64)
+        for idx, v in np.ndenumerate(arr):
+            out[idx] = _scalar_float(v)
+        return out
+    return _scalar_float(x)
+
+
+def _scalar_float(v: Any) -> float:
+    if isinstance(v, sympy.Basic):
+        return float(sympy.N(v, 20))
+    if isinstance(v, str):
+        return float(v)
+    return float(v)
+
+
+def screw_zero_rtol(bk: Backend) -> Any:
+    """Relative tolerance for "this part of a screw / displacement is zero".
+
+    1e-9 (:data:`MEMBERSHIP_RTOL_FLOAT`) in float, 10^(-N/2) at mp:N (the
+    ``tau_hi`` of the mode), exactly 0 in exact mode.
+    """
+    if bk.name == "float":
+        return MEMBERSHIP_RTOL_FLOAT
+    if bk.name == "mp":
+        return mpmath.mpf(10) ** (-(mpmath.mp.dps // 2))
+    return 0
+
+
+# ---------------------------------------------------------------------------
+# Precision policy and tolerances
+# ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Tolerances:
+    """The two rank thresholds of a precision mode, relative to sigma_max.
+
+    A rank is ``r`` when ``sigma_r >= tau_hi`` and ``sigma_{r+1} <= tau_lo``
+    (both relative to the largest singular value); a singular value strictly
+    between the two leaves the rank undecided.
+    """
+
+    tau_lo: float
+    tau_hi: float
+
+
+@dataclass(frozen=True)
+class Precision:
+    """A precision mode: ``float``, ``mp`` with ``digits`` N, ``exact`` or ``auto``.
+
+    ``auto`` decides in float and re-decides undecided verdicts at mp:50.
+    """
+
+    mode: str
+    digits: int | None = None
+
+    def __str__(self) -> str:
+        return f"mp:{self.digits}" if self.mode == "mp" else self.mode
+
+    @property
+    def tolerances(self) -> Tolerances:
+        if self.mode in ("float", "auto"):
+            return Tolerances(1e-12, 1e-9)
+        if self.mode == "mp":
+            n = self.digits or 50
+            return Tolerances(10.0 ** (10 - n), 10.0 ** (-n / 2))
+        return Tolerances(0.0, 0.0)
+
+    @property
+    def backend(self) -> Backend:
+        if self.mode == "mp":
+            with self.context():
+                return _mp_backend()
+        if self.mode == "exact":
+            return EXACT
+        return FLOAT
+
+    @contextmanager
+    def context(self) -> Iterator[None]:
+        """Set mpmath's working precision to N digits for the block (no-op otherwise)."""
+        if self.mode == "mp":
+            with mpmath.workdps(self.digits or 50):
+                yield
+        else:
+            yield
+
+    def asarray(self, x: Any) -> np.ndarray:
+        """Numbers of this mode from numbers, decimal strings or sympy numbers."""
+        with self.context():
+            return self.backend.asarray(x)
+
+    def closure_tolerance(self, length_scale: float) -> float:
+        """Closure acceptance (DESIGN.md): 1e-12 L in float, 10^(15-N) L at mp:N, 0 exact."""
+        if self.mode in ("float", "auto"):
+            return CLOSURE_RTOL_FLOAT * length_scale
+        if self.mode == "mp":
+            return 10.0 ** (15 - (self.digits or 50)) * length_scale
+        return 0.0
+
+
+def parse_precision(text: str) -> Precision:
+    """Parse ``float``, ``mp:N`` (N >= 16), ``exact`` or ``auto``.
+
+    Raises
+    ------
+    ValueError
+        with a message that says what is accepted.
+    """
+    t = text.strip().lower()
+    if t in ("float", "exact", "auto"):
+        return Precision(t)
+    if t.startswith("mp:"):
+        try:
+            n = int(t[3:])
+        except ValueError:
+            n = -1
+        if 16 <= n <= 10000:
+            return Precision("mp", n)
+    raise ValueError(
+        f"precision {text!r} is not one of auto, float, mp:N (16 <= N <= 10000) or exact"
+    )
+
+
+# ---------------------------------------------------------------------------
+# Characteristic length and scaling (DESIGN.md, "Characteristic length L")
+# ---------------------------------------------------------------------------
+
+
+def characteristic_length(points: Any, override: float | None = None) -> tuple[float, np.ndarray]:
+    """Characteristic length L and centroid c of the joints' axis points.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 3)
+        For each joint, the point of its axis nearest the origin (foot of the
+        perpendicular for R, H, C; centre for S and U).  Joints without a point
+        (P, T2, T3, G, Y, X, D) are simply not listed.
+    override : float, optional
+        The file's ``characteristic_length``.
+
+    Returns
+    -------
+    L : float
+        RMS distance of the points from their centroid; ``|c|`` if that is 0;
+        1 if that is 0 too.
+    c : ndarray, shape (3,)
+        The centroid (zeros when there are no points).
+    """
+    pts = np.asarray(to_float(points), dtype=float).reshape(-1, 3)
+    c = pts.mean(axis=0) if len(pts) else np.zeros(3)
+    if override is not None:
+        return float(override), c
+    rms = float(np.sqrt(np.mean(np.sum((pts - c) ** 2, axis=1)))) if len(pts) else 0.0
+    if rms > 0:
+        return rms, c
+    nc = float(np.linalg.norm(c))
+    if nc > 0:
+        return nc, c
+    return 1.0, c
+
+
+def scale_screws(
+    S: np.ndarray, length_scale: Any, centroid: Any = None, length_columns: Any = None
+) -> np.ndarray:
+    """Make screws commensurate before a rank decision.
+
+    Moves each screw (a *column* of ``S``, layout (omega, v)) to the centroid
+    c (``v -> v - c x omega``, i.e. Ad of the translation by -c), divides the
+    v rows by L and multiplies the columns flagged in ``length_columns`` (joint
+    coordinates that are lengths: P, slides, translations) by L.
+
+    Works on every backend (plain numpy arithmetic).
+    """
+    S = np.array(S, copy=True)
+    if centroid is not None:
+        c = np.asarray(centroid)
+        w = S[..., 0:3, :]
+        # v - c x w, columnwise
+        cx = np.stack(
+            [
+                c[1] * w[..., 2, :] - c[2] * w[..., 1, :],
+                c[2] * w[..., 0, :] - c[0] * w[..., 2, :],
+                c[0] * w[..., 1, :] - c[1] * w[..., 0, :],
+            ],
+            axis=-2,
+        )
+        S[..., 3:6, :] = S[..., 3:6, :] - cx
+    S[..., 3:6, :] = S[..., 3:6, :] / length_scale
+    if length_columns is not None:
+        mask = np.asarray(length_columns, dtype=bool)
+        S[..., :, mask] = S[..., :, mask] * length_scale
+    return S
+
+
+# ---------------------------------------------------------------------------
+# Rank and definiteness decisions with margins
+# ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Margin:
+    """How far a decision was from flipping (DESIGN.md "margin").
+
+    ``kept``: the smallest kept singular value relative to the largest (None if
+    rank 0); ``dropped``: the largest dropped one relative to the largest
+    (None if full rank); ``eig_margin`` where a quadratic form was decided.
+    In exact mode ``kept`` is the smallest non-zero pivot (30 digits).
+    """
+
+    kept: float | None
+    dropped: float | None
+    tau_lo: float
+    tau_hi: float
+    length_scale: float
+    eig_margin: float | None = None
+
+    def to_json(self) -> dict[str, Any]:
+        d: dict[str, Any] = {
+            "kept": self.kept,
+            "dropped": self.dropped,
+            "tau_lo": self.tau_lo,
+            "tau_hi": self.tau_hi,
+            "length_scale": self.length_scale,
+        }
+        if self.eig_margin is not None:
+            d["eig_margin"] = self.eig_margin
+        return d
+
+
+@dataclass(frozen=True)
+class RankDecision:
+    """A rank with its evidence.
+
+    ``rank`` is None when undecided; ``rank_bounds`` then gives (lowest, highest)
+    consistent ranks.  ``sigma`` are all singular values (absolute, in the
+    scaled metric), largest first; ``null_space`` is an orthonormal basis of
+    the (right) kernel in float (columns), when requested.
+    """
+
+    rank: int | None
+    sigma: tuple[float, ...] | None
+    margin: Margin
+    precision: str
+    rank_bounds: tuple[int, int] = (0, 0)
+    null_space: np.ndarray | None = field(default=None, compare=False, repr=False)
+    range_space: np.ndarray | None = field(default=None, compare=False, repr=False)
+
+    @property
+    def decided(self) -> bool:
+        return self.rank is not None
+
+
+def _split_rank(rel: list[float], tol: Tolerances) -> tuple[int | None, tuple[int, int]]:
+    hi = sum(1 for s in rel if s >= tol.tau_hi)
+    lo = sum(1 for s in rel if s > tol.tau_lo)
+    return (hi if hi == lo else None), (hi, lo)
+
+
+def decide_rank(
+    M: Any,
+    precision: Precision | str = "float",
+    length_scale: float = 1.0,
+    want_spaces: bool = False,
+) -> RankDecision:
+    """Rank of a (scaled) matrix with the two-threshold rule and its margin.
+
+    Parameters
+    ----------
+    M : array_like, shape (m, n)
+        Already commensurate (see :func:`scale_screws`).  Any backend.
+    precision : Precision or str
+        ``float``/``auto``: numpy SVD; ``mp:N``: mpmath SVD at N digits;
+        ``exact``: sympy exact rank.
+    length_scale : float
+        Recorded in the margin.
+    want_spaces : bool
+        Also return float orthonormal bases of the kernel and the range.
+    """
+    prec = parse_precision(precision) if isinstance(precision, str) else precision
+    tol = prec.tolerances
+    arr = np.asarray(M)
+    m, n = arr.shape if arr.ndim == 2 else (0, 0)
+    if m == 0 or n == 0:
+        ns = np.eye(n) if want_spaces else None
+        return RankDecision(
+            0, (), Margin(None, None, tol.tau_lo, tol.tau_hi, length_scale), str(prec),
+            (0, 0), ns, np.zeros((m, 0)) if want_spaces else None,
+        )
+    if prec.mode == "exact":
+        return _exact_rank(arr, prec, tol, length_scale, want_spaces)
+    if prec.mode == "mp":
+        with prec.context():
+            A = mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()])
+            sig = mpmath.svd_r(A, compute_uv=False)
+            s = sorted((abs(x) for x in sig), reverse=True)
+            smax = s[0] if s else mpmath.mpf(0)
+            rel = [float(x / smax) if smax else 0.0 for x in s]
+            sigma = tuple(float(x) for x in s)
+    else:
+        F = to_float(arr)
+        s_np = np.linalg.svd(F, compute_uv=False)
+        smax = float(s_np[0]) if len(s_np) else 0.0
+        rel = [float(x / smax) if smax > 0 else 0.0 for x in s_np]
+        sigma = tuple(float(x) for x in s_np)
+    rank, bounds = _split_rank(rel, tol)
+    kept = rel[rank - 1] if rank else None
+    if rank is None:
+        kept = rel[bounds[0] - 1] if bounds[0] else None
+    r_eff = rank if rank is not None else bounds[0]
+    dropped = rel[r_eff] if r_eff < len(rel) else None
+    if r_eff < min(m, n) and dropped is None:
+        dropped = 0.0
+    if r_eff == len(rel) and n > len(rel):
+        dropped = 0.0
+    margin = Margin(kept, dropped, tol.tau_lo, tol.tau_hi, length_scale)
+    ns = rs = None
+    if want_spaces:
+        F = to_float(arr)
+        U, _s, Vt = np.linalg.svd(F)
+        k = r_eff
+        ns = Vt[k:].T.copy()
+        rs = U[:, :k].copy()
+        if prec.mode == "mp":
+            ns, rs = _mp_spaces(arr, prec, k)
+    return RankDecision(rank, sigma, margin, str(prec), bounds, ns, rs)
+
+
+def _mp_spaces(arr: np.ndarray, prec: Precision, k: int) -> tuple[np.ndarray, np.ndarray]:
+    with prec.context():
+        A = mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()])
+        U, _S, V = mpmath.svd_r(A, full_matrices=True)
+        Vt = np.array(V.tolist(), dtype=object)
+        Um = np.array(U.tolist(), dtype=object)
+        return to_float(Vt[k:].T), to_float(Um[:, :k])
+
+
+def _exact_rank(
+    arr: np.ndarray, prec: Precision, tol: Tolerances, length_scale: float, want_spaces: bool
+) -> RankDecision:
+    M = sympy.Matrix(arr.tolist()).applyfunc(lambda x: sympy.nsimplify(x) if isinstance(x, float) else x)
+    E, pivots = M.echelon_form(with_pivots=True, simplify=True)
+    rank = len(pivots)
+    piv_vals = []
+    for row, col in enumerate(pivots):
+        piv_vals.append(abs(float(sympy.N(E[row, col], 30))))
+    kept = min(piv_vals) if piv_vals else None
+    dropped = None if rank == min(M.shape) else 0.0
+    ns = rs = None
+    if want_spaces:
+        ker = M.nullspace(simplify=True)
+        ns = (
+            _orthonormal(np.array([[float(sympy.N(x, 30)) for x in v] for v in ker]).T)
+            if ker else np.zeros((M.shape[1], 0))
+        )
+        cols = M.columnspace(simplify=True)
+        rs = (
+            _orthonormal(np.array([[float(sympy.N(x, 30)) for x in v] for v in cols]).T)
+            if cols else np.zeros((M.shape[0], 0))
+        )
+    return RankDecision(
+        rank, None, Margin(kept, dropped, 0.0, 0.0, length_scale), "exact", (rank, rank), ns, rs
+    )
+
+
+def _orthonormal(A: np.ndarray) -> np.ndarray:
+    q, _ = np.linalg.qr(A)
+    return q[:, : A.shape[1]]
+
+
+@dataclass(frozen=True)
+class DefinitenessDecision:
+    """Sign pattern of a symmetric form: ``kind`` is ``"definite"``, ``"indefinite"``,
+    ``"semidefinite"`` (a zero eigenvalue, no sign change), ``"zero"`` or ``None``
+    (undecided).  ``eig_margin`` is the smallest decided |eigenvalue| relative to
+    the largest (or the largest in exact mode)."""
+
+    kind: str | None
+    eigenvalues: tuple[float, ...]
+    eig_margin: float | None
+    n_pos: int
+    n_neg: int
+    n_zero: int
+
+
+def decide_definiteness(Q: Any, precision: Precision | str = "float", scale: float | None = None) -> DefinitenessDecision:
+    """Decide the definiteness of a symmetric matrix on its eigenvalues.
+
+    Eigenvalues are compared with ``tau_lo``/``tau_hi`` relative to ``scale``
+    (default: the largest |eigenvalue|).  An eigenvalue between the two
+    thresholds leaves the verdict undecided.
+    """
+    prec = parse_precision(precision) if isinstance(precision, str) else precision
+    tol = prec.tolerances
+    arr = np.asarray(Q)
+    n = arr.shape[0] if arr.ndim == 2 else 0
+    if n == 0:
+        return DefinitenessDecision("zero", (), None, 0, 0, 0)
+    if prec.mode == "exact":
+        M = sympy.Matrix(arr.tolist())
+        M = (M + M.T) / 2
+        # exact signature: eigenvalues of a symmetric algebraic matrix are real
+        ev = [sympy.nsimplify(e) if isinstance(e, float) else e for e in _exact_eigs(M)]
+        vals = [float(sympy.N(e, 30)) for e in ev]
+        zero = [sympy.simplify(e) == 0 for e in ev]
+        npos = sum(1 for v, z in zip(vals, zero, strict=True) if not z and v > 0)
+        nneg = sum(1 for v, z in zip(vals, zero, strict=True) if not z and v < 0)
+        nz = sum(zero)
+        nonzero = [abs(v) for v, z in zip(vals, zero, strict=True) if not z]
+        eig_margin = (min(nonzero) / max(nonzero)) if nonzero else None
+        return DefinitenessDecision(_kind(npos, nneg, nz), tuple(sorted(vals)), eig_margin, npos, nneg, nz)
+    if prec.mode == "mp":
+        with prec.context():
+            A = mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()])
+            A = (A + A.T) / 2
+            ev = mpmath.eigsy(A, eigvals_only=True)
+            vals = sorted(float(x) for x in ev)
+    else:
+        F = to_float(arr)
+        vals = sorted(float(x) for x in np.linalg.eigvalsh((F + F.T) / 2))
+    ref = scale if scale else max((abs(v) for v in vals), default=0.0)
+    if ref == 0:
+        return DefinitenessDecision("zero", tuple(vals), None, 0, 0, n)
+    rel = [v / ref for v in vals]
+    if any(tol.tau_lo < abs(r) < tol.tau_hi for r in rel):
+        return DefinitenessDecision(None, tuple(vals), None, 0, 0, 0)
+    npos = sum(1 for r in rel if r >= tol.tau_hi)
+    nneg = sum(1 for r in rel if r <= -tol.tau_hi)
+    nz = n - npos - nneg
+    decided = [abs(r) for r in rel if abs(r) >= tol.tau_hi]
+    eig_margin = min(decided) if decided else None
+    return DefinitenessDecision(_kind(npos, nneg, nz), tuple(vals), eig_margin, npos, nneg, nz)
+
+
+def _exact_eigs(M: sympy.Matrix) -> list[Any]:
+    out: list[Any] = []
+    for val, mult in M.eigenvals().items():
+        out.extend([val] * mult)
+    return out
+
+
+def _kind(npos: int, nneg: int, nz: int) -> str:
+    if npos and nneg:
+        return "indefinite"
+    if npos + nneg == 0:
+        return "zero"
+    if nz:
+        return "semidefinite"
+    return "definite"
