@@ -532,8 +532,13 @@ def decide_rank(
     if m == 0 or n == 0:
         ns = np.eye(n) if want_spaces else None
         return RankDecision(
-            0, (), Margin(None, None, tol.tau_lo, tol.tau_hi, length_scale), str(prec),
-            (0, 0), ns, np.zeros((m, 0)) if want_spaces else None,
+            0,
+            (),
+            Margin(None, None, tol.tau_lo, tol.tau_hi, length_scale),
+            str(prec),
+            (0, 0),
+            ns,
+            np.zeros((m, 0)) if want_spaces else None,
         )
     if prec.mode == "exact":
         return _exact_rank(arr, prec, tol, length_scale, want_spaces)
@@ -586,7 +591,9 @@ def _mp_spaces(arr: np.ndarray, prec: Precision, k: int) -> tuple[np.ndarray, np
 def _exact_rank(
     arr: np.ndarray, prec: Precision, tol: Tolerances, length_scale: float, want_spaces: bool
 ) -> RankDecision:
-    M = sympy.Matrix(arr.tolist()).applyfunc(lambda x: sympy.nsimplify(x) if isinstance(x, float) else x)
+    M = sympy.Matrix(arr.tolist()).applyfunc(
+        lambda x: sympy.nsimplify(x) if isinstance(x, float) else x
+    )
     E, pivots = M.echelon_form(with_pivots=True, simplify=True)
     rank = len(pivots)
     piv_vals = []
@@ -599,12 +606,14 @@ def _exact_rank(
         ker = M.nullspace(simplify=True)
         ns = (
             _orthonormal(np.array([[float(sympy.N(x, 30)) for x in v] for v in ker]).T)
-            if ker else np.zeros((M.shape[1], 0))
+            if ker
+            else np.zeros((M.shape[1], 0))
         )
         cols = M.columnspace(simplify=True)
         rs = (
             _orthonormal(np.array([[float(sympy.N(x, 30)) for x in v] for v in cols]).T)
-            if cols else np.zeros((M.shape[0], 0))
+            if cols
+            else np.zeros((M.shape[0], 0))
         )
     return RankDecision(
         rank, None, Margin(kept, dropped, 0.0, 0.0, length_scale), "exact", (rank, rank), ns, rs
@@ -631,7 +640,9 @@ class DefinitenessDecision:
     n_zero: int
 
 
-def decide_definiteness(Q: Any, precision: Precision | str = "float", scale: float | None = None) -> DefinitenessDecision:
+def decide_definiteness(
+    Q: Any, precision: Precision | str = "float", scale: float | None = None
+) -> DefinitenessDecision:
     """Decide the definiteness of a symmetric matrix on its eigenvalues.
 
     Eigenvalues are compared with ``tau_lo``/``tau_hi`` relative to ``scale``
@@ -656,7 +667,9 @@ def decide_definiteness(Q: Any, precision: Precision | str = "float", scale: flo
         nz = sum(zero)
         nonzero = [abs(v) for v, z in zip(vals, zero, strict=True) if not z]
         eig_margin = (min(nonzero) / max(nonzero)) if nonzero else None
-        return DefinitenessDecision(_kind(npos, nneg, nz), tuple(sorted(vals)), eig_margin, npos, nneg, nz)
+        return DefinitenessDecision(
+            _kind(npos, nneg, nz), tuple(sorted(vals)), eig_margin, npos, nneg, nz
+        )
     if prec.mode == "mp":
         with prec.context():
             A = mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()])

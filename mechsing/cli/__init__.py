@@ -51,7 +51,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"mechsing {__version__}")
     parser.add_argument(
-        "-T", "--traceback", action="store_true", help="show a Python traceback on errors (debugging)"
+        "-T",
+        "--traceback",
+        action="store_true",
+        help="show a Python traceback on errors (debugging)",
     )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for mod in _load_commands():

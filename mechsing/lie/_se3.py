@@ -259,7 +259,9 @@ def axis(xi: Any) -> tuple[np.ndarray, np.ndarray]:
     tr = tr.astype(bool) if tr.dtype == object else tr
     nw = bk.sqrt(safe(bk, ~rot, w2))
     nv = bk.sqrt(safe(bk, ~tr, v2))
-    u = np.where(rot[..., None], w / nw[..., None], np.where(tr[..., None], v / nv[..., None], w * 0))
+    u = np.where(
+        rot[..., None], w / nw[..., None], np.where(tr[..., None], v / nv[..., None], w * 0)
+    )
     r0 = np.where(rot[..., None], cross(w, v) / safe(bk, ~rot, w2)[..., None], w * 0)
     return u, r0
 
@@ -359,7 +361,7 @@ def _q_block(xi: np.ndarray) -> np.ndarray:
     b = np.where(small, factorial_series(bk, t2, 3), (t - s) / t**3)
     c = np.where(small, -factorial_series(bk, t2, 4), (1 - t2 / 2 - co) / t**4)
     e5 = np.where(small, -factorial_series(bk, t2, 5), (t - s - t**3 / 6) / t**5)
-    d = c - 3 * e5
+    d = np.asarray(c - 3 * e5)
     W = hat3(w)
     V = hat3(v)
     WV = W @ V

@@ -179,8 +179,16 @@ def quaternion_parts(R: Any) -> tuple[np.ndarray, np.ndarray]:
         best = np.where(better, t[..., i], best)
     big = bk.sqrt(np.where(np.asarray(best > 0).astype(bool), best, bk.convert(1))) / 2
     d = 4 * big
-    s21, s02, s10 = R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]
-    a01, a02, a12 = R[..., 0, 1] + R[..., 1, 0], R[..., 0, 2] + R[..., 2, 0], R[..., 1, 2] + R[..., 2, 1]
+    s21, s02, s10 = (
+        R[..., 2, 1] - R[..., 1, 2],
+        R[..., 0, 2] - R[..., 2, 0],
+        R[..., 1, 0] - R[..., 0, 1],
+    )
+    a01, a02, a12 = (
+        R[..., 0, 1] + R[..., 1, 0],
+        R[..., 0, 2] + R[..., 2, 0],
+        R[..., 1, 2] + R[..., 2, 1],
+    )
     cand = [
         np.stack([big, s21 / d, s02 / d, s10 / d], axis=-1),
         np.stack([s21 / d, big, a01 / d, a02 / d], axis=-1),

@@ -1,0 +1,134 @@
+"""The numeric leaf: precision modes, rank decisions with margins, scaling."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import sympy
+
+from mechsing import numeric
+from mechsing.numeric import Precision, decide_definiteness, decide_rank, parse_precision
+
+
+def test_parse_precision() -> None:
+    assert parse_precision("float") == Precision("float")
+    assert parse_precision("mp:50") == Precision("mp", 50)
+    assert parse_precision("EXACT").mode == "exact"
+    assert str(parse_precision("mp:30")) == "mp:30"
+    for bad in ("mp:", "mp:3", "double", "mp:x"):
+        with pytest.raises(ValueError, match="auto, float, mp:N"):
+            parse_precision(bad)
+
+
+def test_thresholds_follow_design() -> None:
+    assert Precision("float").tolerances == numeric.Tolerances(1e-12, 1e-9)
+    t = Precision("mp", 50).tolerances
+    assert t.tau_lo == pytest.approx(1e-40) and t.tau_hi == pytest.approx(1e-25)
+    assert Precision("exact").tolerances == numeric.Tolerances(0.0, 0.0)
+
+
+def _with_singular_values(sig: list[float], seed: int = 0) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    U, _ = np.linalg.qr(rng.normal(size=(6, 6)))
+    V, _ = np.linalg.qr(rng.normal(size=(5, 5)))
+    S = np.zeros((6, 5))
+    S[: len(sig), : len(sig)] = np.diag(sig)
+    return U @ S @ V.T
+
+
+def test_rank_decision_and_margin() -> None:
+    d = decide_rank(_with_singular_values([2.0, 1.0, 0.5, 1e-3, 1e-15]), "float", 1.7)
+    assert d.rank == 4
+    assert d.margin.kept == pytest.approx(5e-4, rel=1e-9)
+    assert d.margin.dropped < 1e-12
+    assert d.margin.length_scale == 1.7
+    assert d.sigma[0] == pytest.approx(2.0)
+
+
+def test_rank_undecided_between_thresholds() -> None:
+    d = decide_rank(_with_singular_values([1.0, 1.0, 1.0, 1.0, 1e-10]), "float")
+    assert d.rank is None and not d.decided
+    assert d.rank_bounds == (4, 5)
+    # mp:50 decides the same matrix (its tau_lo is 1e-40 ... but 1e-10 is data: rank 5)
+    m = decide_rank(_with_singular_values([1.0, 1.0, 1.0, 1.0, 1e-10]), "mp:50")
+    assert m.rank == 5
+
+
+def test_rank_full_and_zero() -> None:
+    d = decide_rank(np.eye(3), "float")
+    assert d.rank == 3 and d.margin.dropped is None and d.margin.kept == 1.0
+    z = decide_rank(np.zeros((3, 2)), "float", want_spaces=True)
+    assert z.rank == 0 and z.null_space.shape == (2, 2)
+
+
+def test_exact_rank_and_pivot_margin() -> None:
+    M = np.array([[1, 2, 3], [2, 4, 6], [1, 0, sympy.Rational(1, 3)]], dtype=object)
+    d = decide_rank(M, "exact", want_spaces=True)
+    assert d.rank == 2 and d.sigma is None
+    assert d.margin.tau_lo == 0 and d.margin.tau_hi == 0
+    assert d.margin.kept > 0
+    assert d.null_space.shape == (3, 1)
+    ns = d.null_space[:, 0]
+    assert np.allclose(np.array(M, dtype=float) @ ns, 0)
+
+
+def test_mp_rank_thresholds() -> None:
+    # at mp:50 a singular value of 1e-30 lies between tau_lo = 1e-40 and tau_hi = 1e-25
+    P = Precision("mp", 50)
+    with P.context():
+        a = P.asarray([["1", "0"], ["0", "1e-30"]])
+    d = decide_rank(a, P)
+    assert d.rank is None  # 1e-30 lies between 1e-40 and 1e-25
+    d60 = decide_rank(P.asarray([["1", "0"], ["0", "1e-45"]]), P)
+    assert d60.rank == 1
+
+
+def test_definiteness() -> None:
+    assert decide_definiteness(np.diag([1.0, 2.0])).kind == "definite"
+    assert decide_definiteness(np.diag([-1.0, -2.0])).kind == "definite"
+    ind = decide_definiteness(np.array([[0.0, 1.0], [1.0, 0.0]]))
+    assert ind.kind == "indefinite" and ind.eig_margin == pytest.approx(1.0)
+    assert decide_definiteness(np.diag([1.0, 1e-10])).kind is None
+    assert decide_definiteness(np.diag([1.0, 0.0])).kind == "semidefinite"
+    ex = decide_definiteness(np.array([[1, 2], [2, 1]], dtype=object) * sympy.Integer(1), "exact")
+    assert ex.kind == "indefinite" and ex.n_pos == 1 and ex.n_neg == 1
+
+
+def test_characteristic_length() -> None:
+    L, c = numeric.characteristic_length([[0, 0, 0], [1, 0, 0], [3, 2, 0], [4, 0, 0]])
+    assert L == pytest.approx(np.sqrt(3.25))
+    np.testing.assert_allclose(c, [2, 0.5, 0])
+    L, c = numeric.characteristic_length([[2, 0, 0]])
+    assert L == 2.0
+    assert numeric.characteristic_length(np.zeros((0, 3)))[0] == 1.0
+    assert numeric.characteristic_length([[1, 1, 1]], override=0.5)[0] == 0.5
+
+
+@pytest.mark.parametrize("k", [1e-6, 1.0, 1e6])
+def test_scaling_makes_rank_unit_free(k: float) -> None:
+    # four parallel revolute screws of a planar four-bar, lengths scaled by k
+    pts = np.array([[0, 0, 0], [1, 0, 0], [3, 2, 0], [4, 0, 0]], float) * k
+    u = np.array([0, 0, 1.0])
+    S = np.array([np.concatenate([u, np.cross(p, u)]) for p in pts]).T
+    L, c = numeric.characteristic_length(pts)
+    Ss = numeric.scale_screws(S, L, c)
+    d = decide_rank(Ss, "float", L)
+    ref = decide_rank(
+        numeric.scale_screws(S / np.array([[1], [1], [1], [k], [k], [k]]), L / k, c / k)
+    )
+    assert d.rank == 3 == ref.rank
+    # the kept singular values agree; the dropped one is rounding noise in both
+    np.testing.assert_allclose(d.sigma[:3], ref.sigma[:3], rtol=1e-10)
+    assert d.margin.dropped < 1e-12 and ref.margin.dropped < 1e-12
+
+
+def test_backends_convert_text_exactly() -> None:
+    assert Precision("exact").asarray(["0.1"])[0] == sympy.Rational(1, 10)
+    P = Precision("mp", 40)
+    with P.context():
+        x = P.asarray(["0.1"])[0]
+        import mpmath
+
+        assert abs(x - mpmath.mpf(1) / 10) < mpmath.mpf(10) ** -39
+    assert numeric.backend_of(np.zeros(3)).name == "float"
+    assert numeric.backend_of(Precision("exact").asarray([1, 2])).name == "exact"
