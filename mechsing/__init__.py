@@ -13,6 +13,24 @@ Conventions (stated once, used everywhere; see DESIGN.md):
   value q sets ``g_b = g_a . exp(sum q_i e_i)`` (spatial product of
   exponentials, basis screws at the reference configuration in the ground frame).
 * Lengths in metres, angles in radians, pitch in metres per radian.
+
+API: :func:`load` (a mechanism file), :func:`analyze` (a result whose
+``to_json()`` is the JSON contract), :mod:`mechsing.lie`,
+:func:`mechsing.subgroups.identify`.
 """
 
 __version__ = "0.1.0"
+
+__all__ = ["__version__", "analyze", "load"]
+
+
+def __getattr__(name: str):  # lazy: `mechsing --version` stays fast
+    if name == "analyze":
+        from mechsing.analysis import analyze
+
+        return analyze
+    if name == "load":
+        from mechsing.model import load
+
+        return load
+    raise AttributeError(name)

@@ -70,6 +70,10 @@ NEAR_ZERO_VECTOR = 1e-9
 SUPPORT_RTOL = 1e-9
 #: closure acceptance in float mode, relative to the characteristic length L
 CLOSURE_RTOL_FLOAT = 1e-12
+#: continuation stops when the smallest kept singular value of the closure
+#: Jacobian in the unknown joints (relative to the largest) falls below this
+#: before the target while the rank drops
+CONTINUATION_SINGULAR_RTOL = 1e-6
 
 
 # ---------------------------------------------------------------------------

@@ -41,11 +41,11 @@ def safe(bk: Backend, mask: np.ndarray, x: Any, fill: Any = 1) -> Any:
     return np.where(mask, bk.convert(fill), x)
 
 
-def _n_terms_factorial(bk: Backend, shift: int) -> int:
+@lru_cache(maxsize=64)
+def _n_terms_factorial(name: str, eps: float, shift: int) -> int:
     """Terms of sum (-1)^k t^(2k)/(2k+shift)! for |t| <= 1 to reach eps."""
-    if bk.name == "exact":
+    if name == "exact":
         return 1
-    eps = float(bk.eps)
     k = 0
     while 1.0 / math.factorial(2 * k + shift) > eps * 1e-2:
         k += 1
@@ -57,9 +57,8 @@ def factorial_series(bk: Backend, t2: Any, shift: int) -> Any:
 
     shift = 1: sin t / t; 2: (1 - cos t)/t^2; 3: (t - sin t)/t^3; and so on.
     """
-    n = _n_terms_factorial(bk, shift)
-    coeffs = _factorial_coeffs(bk.name, shift, n)
-    return horner(bk, t2, coeffs)
+    n = _n_terms_factorial(bk.name, float(bk.eps), shift)
+    return _horner(t2, _factorial_converted(bk.name, _dps(bk), shift, n))
 
 
 @lru_cache(maxsize=64)
@@ -83,21 +82,48 @@ def _bernoulli_coeffs(n: int) -> tuple[Any, ...]:
 
 def half_cot_series(bk: Backend, t2: Any) -> Any:
     """(1 - (t/2) cot(t/2)) / t^2 = 1/12 + t^2/720 + t^4/30240 + ...  (|t| < 2 pi)."""
-    return horner(bk, t2, _bernoulli_coeffs(_n_terms_bernoulli(bk)))
+    n = _n_terms_bernoulli(bk)
+    return _horner(t2, _bernoulli_converted(bk.name, _dps(bk), n))
 
 
-def horner(bk: Backend, x: Any, coeffs: tuple[Any, ...]) -> Any:
-    """sum_k coeffs[k] x^k with coefficients converted to the backend."""
-    conv = [_coef(bk, c) for c in coeffs]
+@lru_cache(maxsize=64)
+def _factorial_converted(name: str, dps: int, shift: int, n: int) -> tuple[Any, ...]:
+    return _converted(name, dps, _factorial_coeffs(name, shift, n))
+
+
+@lru_cache(maxsize=64)
+def _bernoulli_converted(name: str, dps: int, n: int) -> tuple[Any, ...]:
+    return _converted(name, dps, _bernoulli_coeffs(n))
+
+
+def _horner(x: Any, conv: tuple[Any, ...]) -> Any:
     acc = x * 0 + conv[-1]
     for c in reversed(conv[:-1]):
         acc = acc * x + c
     return acc
 
 
-def _coef(bk: Backend, c: Any) -> Any:
-    if bk.name == "exact":
-        return c
-    if bk.name == "float":
-        return float(c)
-    return bk.convert(sympy.Rational(c))
+def horner(bk: Backend, x: Any, coeffs: tuple[Any, ...]) -> Any:
+    """sum_k coeffs[k] x^k with coefficients converted to the backend."""
+    return _horner(x, _converted(bk.name, _dps(bk), tuple(coeffs)))
+
+
+def _dps(bk: Backend) -> int:
+    if bk.name != "mp":
+        return 0
+    import mpmath
+
+    return int(mpmath.mp.dps)
+
+
+@lru_cache(maxsize=256)
+def _converted(name: str, dps: int, coeffs: tuple[Any, ...]) -> tuple[Any, ...]:
+    # cached per backend and working precision: converting rationals dominates otherwise
+    if name == "exact":
+        return coeffs
+    if name == "float":
+        return tuple(float(c) for c in coeffs)
+    import mpmath
+
+    with mpmath.workdps(dps):
+        return tuple(mpmath.mpf(c.p) / c.q for c in coeffs)

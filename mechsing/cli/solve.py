@@ -1,0 +1,53 @@
+"""Close one configuration of a mechanism file and print every joint value (SI units, radians)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+NAME = "solve"
+HELP = "close a configuration and print all joint values"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("file", metavar="FILE")
+    p.add_argument("--config", required=True, metavar="NAME")
+    p.add_argument("--precision", default="float", metavar="MODE", help="float (default), mp:N or exact")
+    p.add_argument("--format", choices=("text", "json"), default="text")
+
+
+def run(args: argparse.Namespace) -> int:
+    from mechsing.cli import UserError
+    from mechsing.kinematics import solve_configuration
+    from mechsing.model import load
+    from mechsing.numeric import parse_precision
+
+    try:
+        prec = parse_precision(args.precision)
+    except ValueError as exc:
+        raise UserError(f"--precision: {exc}") from None
+    mech = load(args.file)
+    if args.config not in mech.configurations:
+        raise UserError(
+            f"{args.file}: no configuration named {args.config!r}; the file has: {', '.join(mech.configurations)}"
+        )
+    model, closed = solve_configuration(mech, args.config, prec)
+    values = model.values(closed.q)
+    if args.format == "json":
+        out = {
+            "mechanism": mech.name,
+            "configuration": args.config,
+            "precision": str(model.precision),
+            "joints": values,
+            "closure_residual": closed.residual,
+            "underdetermined": closed.underdetermined,
+            "steps": closed.steps,
+        }
+        sys.stdout.write(json.dumps(out, indent=2) + "\n")
+    else:
+        print(f"{mech.name}, configuration {args.config} ({model.precision}): residual {closed.residual:.3g} m"
+              + (", underdetermined (minimum-norm steps)" if closed.underdetermined else ""))
+        for k, v in values.items():
+            print(f"  {k}: {', '.join(repr(x) for x in v)}")
+    return 0

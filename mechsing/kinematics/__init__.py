@@ -1,0 +1,19 @@
+"""Poses by product of exponentials, closure residuals, closure by continuation."""
+
+from mechsing.kinematics.closure import (
+    ClosedConfiguration,
+    ClosureError,
+    Closer,
+    solve_configuration,
+)
+from mechsing.kinematics.model import JointKinematics, KinematicModel, axis_points
+
+__all__ = [
+    "ClosedConfiguration",
+    "Closer",
+    "ClosureError",
+    "JointKinematics",
+    "KinematicModel",
+    "axis_points",
+    "solve_configuration",
+]

@@ -1,0 +1,404 @@
+"""Closure of named configurations by continuation (DESIGN.md "Configurations").
+
+From the configuration named by ``start`` (default ``reference``: every joint
+at identity), the given values move along a straight line in small steps; at
+each step a first-order predictor and a damped Newton corrector on the group
+(each update in the joint's own subalgebra, :meth:`KinematicModel.update`)
+close the loops again, so the result stays on the starting assembly mode.
+
+* The path stops with :class:`ClosureError` naming the step when the closure
+  Jacobian in the unknown coordinates loses rank before the target.
+* A target that is itself singular is reached and accepted when Newton still
+  closes there.
+* When the given values leave the configuration undetermined, each step takes
+  the minimum-norm correction and the result says ``underdetermined``.
+* A configuration giving every value is checked, not solved.
+* Acceptance: ``1e-12 L`` in float, ``10^(15-N) L`` at mp:N (float
+  continuation, then Newton at N digits), exactly in exact mode.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import sympy
+
+from mechsing import lie
+from mechsing.cli import UserError
+from mechsing.kinematics.model import KinematicModel
+from mechsing.model import Configuration, Displacement
+from mechsing.numeric import (
+    CONTINUATION_SINGULAR_RTOL,
+    Precision,
+    decide_rank,
+    scale_screws,
+    to_float,
+)
+
+#: largest step of a given coordinate: radians, or this times L for a length
+_MAX_STEP = 0.1
+_MAX_HALVINGS = 14
+_NEWTON_ITERATIONS = 12
+
+
+class ClosureError(UserError):
+    """A configuration that cannot be closed (exit status 3 for ``analyze``)."""
+
+    def __init__(self, message: str, configuration: str, residual: float | None = None) -> None:
+        super().__init__(message, status=3)
+        self.configuration = configuration
+        self.residual = residual
+
+
+@dataclass
+class ClosedConfiguration:
+    """A closed configuration: all coordinates ``q`` (model backend), its residual (m)."""
+
+    name: str
+    q: np.ndarray
+    residual: float
+    underdetermined: bool = False
+    steps: int = 0
+    given: tuple[int, ...] = ()
+    notes: list[str] = field(default_factory=list)
+
+
+class Closer:
+    """Solves the named configurations of one kinematic model (memoised)."""
+
+    def __init__(self, model: KinematicModel) -> None:
+        self.model = model
+        self.mech = model.mech
+        self._solved: dict[str, ClosedConfiguration] = {}
+        prec = model.precision
+        self.tolerance = prec.closure_tolerance(model.length_scale)
+
+    # ---------------------------------------------------------------- public
+
+    def solve(self, name: str, _chain: tuple[str, ...] = ()) -> ClosedConfiguration:
+        if name in self._solved:
+            return self._solved[name]
+        if name in _chain:
+            raise UserError(f"configuration {name!r}: its start chain loops back on itself ({' -> '.join(_chain + (name,))})")
+        cfg = self.mech.configurations[name]
+        target, given = self._given(cfg)
+        n = self.model.n
+        if len(given) == n:
+            out = self._check(cfg, target)
+        else:
+            start_name = cfg.start if cfg.start else None
+            if start_name is None or (cfg.is_reference and not cfg.values):
+                q0 = self.model.zeros()
+            else:
+                q0 = self.solve(start_name, _chain + (name,)).q
+            out = self._continue(cfg, q0, target, given)
+        self._solved[name] = out
+        return out
+
+    # ---------------------------------------------------------------- given values
+
+    def _given(self, cfg: Configuration) -> tuple[np.ndarray, tuple[int, ...]]:
+        """Target coordinates (zeros where not given) and the indices given."""
+        m = self.model
+        target = m.zeros()
+        given: list[int] = []
+        if cfg.is_reference and not cfg.values:
+            return target, tuple(range(m.n))
+        for jname, val in cfg.values.items():
+            jk = m.joint(jname)
+            if isinstance(val, Displacement):
+                coords = self._coordinates_of_displacement(cfg, jname, val)
+            else:
+                coords = m.asarray(list(val))
+            target[jk.columns] = coords
+            given.extend(range(jk.columns.start, jk.columns.stop))
+        return target, tuple(sorted(given))
+
+    def _coordinates_of_displacement(self, cfg: Configuration, jname: str, val: Displacement) -> np.ndarray:
+        m = self.model
+        jk = m.joint(jname)
+        where = f"configuration {cfg.name!r}, joint {jname!r}" + (f" (line {val.line})" if val.line else "")
+        if jk.subgroup is None:
+            raise UserError(f"{where}: a U joint takes two angles [q1, q2], not a displacement")
+        with m.precision.context():
+            R = m.backend.eye(3) if val.rotation is None else m.asarray([list(r) for r in val.rotation])
+            Rf = to_float(R)
+            if np.max(np.abs(Rf.T @ Rf - np.eye(3))) > 1e-9 or np.linalg.det(Rf) < 0:
+                raise UserError(f"{where}: the rotation is not a rotation matrix (R^T R = I, det R = 1); give an orthonormal matrix")
+            if val.translation is None:
+                p = self._complete_translation(jk, R)
+                if p is None:
+                    raise UserError(f"{where}: give the translation too: no translation puts this rotation in the {jk.type} subgroup")
+            else:
+                p = m.asarray(list(val.translation))
+            g = lie.pose(R, p)
+            if not jk.subgroup.contains(to_float(g), length_scale=m.length_scale):
+                raise UserError(
+                    f"{where}: this displacement is not in the joint's {jk.type} subgroup; "
+                    "give a rotation and translation the joint can produce"
+                )
+            return m.coordinates_in(jk, g)
+
+    def _complete_translation(self, jk: Any, R: np.ndarray) -> np.ndarray | None:
+        # the translation of exp of the subalgebra element with that rotation and no slide
+        w = lie.log_so3(R)
+        B = to_float(jk.basis)
+        wf = to_float(w)
+        coef, *_ = np.linalg.lstsq(B[:, :3].T, wf, rcond=None)
+        if np.linalg.norm(B[:, :3].T @ coef - wf) > 1e-9 * max(1.0, np.linalg.norm(wf)):
+            return None
+        # keep only rotating basis directions (no translation slide)
+        rot = np.linalg.norm(B[:, :3], axis=1) > 0
+        coef = np.where(rot, coef, 0.0)
+        return self.model.asarray(lie.exp(coef @ B)[:3, 3])
+
+    # ---------------------------------------------------------------- checking
+
+    def _residual(self, q: np.ndarray) -> float:
+        return self.model.residual_norm(self.model.chord_residuals(q))
+
+    def _check(self, cfg: Configuration, q: np.ndarray) -> ClosedConfiguration:
+        m = self.model
+        deltas = m.chord_residuals(q)
+        if m.precision.mode == "exact":
+            bad = [
+                jk.name
+                for jk, D in zip(m.chords, deltas, strict=True)
+                if any(sympy.simplify(x) != 0 for x in (D - m.backend.eye(4)).flat)
+            ]
+            res = m.residual_norm(deltas)
+            if bad:
+                raise ClosureError(
+                    f"configuration {cfg.name!r} does not close exactly: the loop through joint {bad[0]!r} "
+                    f"leaves a residual of {res:.3g} m; give joint values that close the loops exactly, "
+                    "or leave the passive joints out so they are solved",
+                    cfg.name, res,
+                )
+            return ClosedConfiguration(cfg.name, q, 0.0, False, 0, tuple(range(m.n)))
+        res = m.residual_norm(deltas)
+        if res > self.tolerance:
+            worst = max(range(len(deltas)), key=lambda i: m.residual_norm([deltas[i]]))
+            raise ClosureError(
+                f"configuration {cfg.name!r} gives every joint value but does not close: the loop through "
+                f"joint {m.chords[worst].name!r} leaves a residual of {res:.3g} m (accepted: {self.tolerance:.1g} m); "
+                "leave the passive joints out so they are solved, or give more digits",
+                cfg.name, res,
+            )
+        return ClosedConfiguration(cfg.name, q, res, False, 0, tuple(range(m.n)))
+
+    # ---------------------------------------------------------------- continuation
+
+    def _continue(self, cfg: Configuration, q0: np.ndarray, target: np.ndarray, given: tuple[int, ...]) -> ClosedConfiguration:
+        m = self.model
+        if m.precision.mode == "exact":
+            raise UserError(
+                f"configuration {cfg.name!r}: exact precision needs every joint value given exactly "
+                f"(it gives {len(given)} of {m.n} coordinates); use --precision auto, float or mp:N"
+            )
+        fm = KinematicModel(m.mech, "float") if m.precision.mode != "float" else m
+        L = fm.length_scale
+        gmask = np.zeros(m.n, dtype=bool)
+        gmask[list(given)] = True
+        free = ~gmask
+        q = to_float(q0).copy()
+        qt = to_float(target)
+        # straight line in the given coordinates
+        span = np.abs(qt - q)[gmask]
+        scale = np.where(fm.length_columns[gmask], L, 1.0)
+        nsteps = max(1, math.ceil(float(np.max(span / scale, initial=0.0)) / _MAX_STEP))
+        q_start = q.copy()
+        t = 0.0
+        dt = 1.0 / nsteps
+        steps = 0
+        underdetermined = False
+        best_rank = None
+        while t < 1.0:
+            t_next = min(1.0, t + dt)
+            final = t_next >= 1.0
+            qg = q.copy()
+            qg[gmask] = q_start[gmask] + t_next * (qt[gmask] - q_start[gmask])
+            ok, qn, info = self._correct(fm, q, qg, gmask, final)
+            if not ok:
+                dt /= 2
+                if dt < 1.0 / nsteps / 2**_MAX_HALVINGS:
+                    raise ClosureError(
+                        f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} stopped at step "
+                        f"{steps + 1} (t = {t:.6g} of the way, residual {info['residual']:.3g} m): the given values "
+                        "cannot be followed further on this assembly mode (a singularity or a limit of motion "
+                        "lies on the path); add an intermediate configuration or change the target",
+                        cfg.name, info["residual"],
+                    )
+                continue
+            steps += 1
+            underdetermined = underdetermined or info["underdetermined"]
+            # loss of rank of the closure Jacobian in the unknowns before the target
+            if not final:
+                r = info["rank"]
+                if best_rank is not None and r is not None and r < best_rank and info["smin"] < CONTINUATION_SINGULAR_RTOL:
+                    raise ClosureError(
+                        f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} meets a "
+                        f"singularity at step {steps} (t = {t_next:.6g}): the closure Jacobian in the unknown joints "
+                        f"loses rank ({r} < {best_rank}); joint values there: {_fmt(fm, qn)}; "
+                        "choose a target on this side of the singularity, or start from a configuration beyond it",
+                        cfg.name, info["residual"],
+                    )
+                if r is not None:
+                    best_rank = r if best_rank is None else max(best_rank, r)
+            q = qn
+            t = t_next
+            dt = min(dt * 1.5, 1.0 / nsteps)
+        res = info["residual"]
+        if m.precision.mode == "mp":
+            qm, res = self._polish_mp(m, q, target, gmask)
+            q_out = qm
+        else:
+            q_out = q
+        if res > self.tolerance:
+            raise ClosureError(
+                f"configuration {cfg.name!r} does not close: residual {res:.3g} m after continuation "
+                f"(accepted: {self.tolerance:.1g} m)",
+                cfg.name, res,
+            )
+        return ClosedConfiguration(cfg.name, q_out, res, underdetermined, steps, given)
+
+    def _correct(self, fm: KinematicModel, q_prev: np.ndarray, qg: np.ndarray, gmask: np.ndarray, final: bool) -> tuple[bool, np.ndarray, dict]:
+        """Predictor (tangent) + damped Newton on the unknown coordinates."""
+        free = ~gmask
+        L = fm.length_scale
+        c = fm.centroid
+        # the float stage accepts at float's tolerance (an mp model polishes afterwards)
+        tol_final = fm.precision.closure_tolerance(L)
+        tol = tol_final if final else max(tol_final, 1e-9 * L)
+        # predictor: J_u du = -J_g dg at the previous point
+        S = fm.current_screws(q_prev)
+        J = fm.closure_jacobian(q_prev, S)
+        Js = _scaled(J, L, c, fm.length_columns)
+        dg = np.where(gmask, qg - q_prev, 0.0)
+        dgs = np.where(fm.length_columns, dg / L, dg)
+        q = q_prev.copy()
+        if np.any(free) and Js.shape[0]:
+            du = _dls(Js[:, free], -Js[:, gmask] @ dgs[gmask])
+            dus = np.zeros(fm.n)
+            dus[free] = du
+            dus = np.where(fm.length_columns, dus * L, dus)
+            q = fm.update(q_prev, np.where(gmask, dg, dus))
+        else:
+            q = fm.update(q_prev, dg)
+        q[gmask] = qg[gmask]
+        res = fm.residual_norm(fm.chord_residuals(q))
+        info: dict[str, Any] = {"residual": res, "rank": None, "smin": 1.0, "underdetermined": False}
+        polish = 0
+        for _it in range(_NEWTON_ITERATIONS):
+            if res <= tol and _it > 0:
+                # at the target, keep iterating while Newton still gains (rounding level)
+                if not final or polish >= 2:
+                    break
+                polish += 1
+            if not fm.chords:
+                break
+            deltas = fm.chord_residuals(q)
+            r = fm.chord_twists(deltas)
+            S = fm.current_screws(q)
+            J = fm.closure_jacobian(q, S)
+            Js = _scaled(J, L, c, fm.length_columns)
+            rs = _scaled(r.reshape(-1, 6).T, L, c, None).T.reshape(-1)
+            if not np.any(free):
+                break
+            du = _dls(Js[:, free], -rs)
+            d = np.zeros(fm.n)
+            d[free] = du
+            d = np.where(fm.length_columns, d * L, d)
+            qn = fm.update(q, d)
+            new = fm.residual_norm(fm.chord_residuals(qn))
+            if not np.isfinite(new) or new > 10 * max(res, tol) and _it > 2:
+                info["residual"] = new
+                return False, qn, info
+            if res <= tol and new >= res:
+                break  # polishing no longer gains
+            q, res = qn, new
+        info["residual"] = res
+        if res > tol:
+            return False, q, info
+        if np.any(free) and fm.chords:
+            Js = _scaled(fm.closure_jacobian(q), L, c, fm.length_columns)
+            dec = decide_rank(Js[:, free], "float", L)
+            rank = dec.rank if dec.rank is not None else dec.rank_bounds[0]
+            info["rank"] = rank
+            s = [x / dec.sigma[0] for x in dec.sigma] if dec.sigma and dec.sigma[0] > 0 else [0.0]
+            info["smin"] = s[min(rank, len(s)) - 1] if rank else 0.0
+            info["underdetermined"] = rank < int(np.sum(free))
+        return True, q, info
+
+    def _polish_mp(self, m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> tuple[np.ndarray, float]:
+        """Newton at N digits from the float solution (given values at full precision)."""
+        import mpmath
+
+        with m.precision.context():
+            qm = m.asarray([repr(float(x)) for x in q])
+            qm[gmask] = target[gmask]
+            free = ~gmask
+            L = m.length_scale
+            res = m.residual_norm(m.chord_residuals(qm))
+            for _ in range(8):
+                if res <= self.tolerance or not m.chords:
+                    break
+                r = m.chord_twists(m.chord_residuals(qm))
+                J = m.closure_jacobian(qm)
+                Js = _scaled(J, L, m.centroid, m.length_columns)
+                rs = _scaled(r.reshape(-1, 6).T, L, m.centroid, None).T.reshape(-1)
+                A = mpmath.matrix(Js[:, free].tolist())
+                b = mpmath.matrix([-x for x in rs])
+                du = _mp_lstsq(A, b)
+                d = m.zeros()
+                d[np.flatnonzero(free)] = np.array(du, dtype=object)
+                d = np.where(m.length_columns, d * L, d)
+                qm = m.update(qm, d)
+                res = m.residual_norm(m.chord_residuals(qm))
+            return qm, res
+
+
+def _mp_lstsq(A: Any, b: Any) -> list[Any]:
+    import mpmath
+
+    U, S, V = mpmath.svd_r(A)
+    smax = max(abs(x) for x in S) if len(S) else 0
+    out = mpmath.matrix(A.cols, 1)
+    for i in range(len(S)):
+        if S[i] > smax * mpmath.mpf(10) ** (-(mpmath.mp.dps // 2)):
+            ui = U.column(i)
+            coef = sum(ui[k] * b[k] for k in range(A.rows)) / S[i]
+            for k in range(A.cols):
+                out[k] += coef * V[i, k]
+    return [out[k] for k in range(A.cols)]
+
+
+def _scaled(M: np.ndarray, L: float, c: np.ndarray, length_columns: np.ndarray | None) -> np.ndarray:
+    """Rows of 6-blocks moved to the centroid and v/L; length columns times L."""
+    if M.shape[0] == 0:
+        return M
+    k = M.shape[0] // 6
+    blocks = [scale_screws(M[6 * i : 6 * i + 6], L, c, length_columns) for i in range(k)]
+    return np.concatenate(blocks, axis=0)
+
+
+def _dls(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Damped least squares (minimum norm), damping relative to sigma_max."""
+    U, s, Vt = np.linalg.svd(A, full_matrices=False)
+    if not len(s) or s[0] == 0:
+        return np.zeros(A.shape[1])
+    lam = 1e-7 * s[0]
+    f = s / (s * s + lam * lam)
+    return Vt.T @ (f * (U.T @ b))
+
+
+def _fmt(m: KinematicModel, q: np.ndarray) -> str:
+    return ", ".join(f"{k}={[round(x, 6) for x in v]}" for k, v in m.values(q).items())
+
+
+def solve_configuration(mech: Any, name: str, precision: Precision | str = "float") -> tuple[KinematicModel, ClosedConfiguration]:
+    """Close one named configuration; returns the model and the closed configuration."""
+    model = KinematicModel(mech, precision)
+    return model, Closer(model).solve(name)

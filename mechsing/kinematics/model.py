@@ -1,0 +1,277 @@
+"""Poses, current joint screws and closure residuals of a mechanism.
+
+Conventions (DESIGN.md):
+
+* the joint values of a mechanism are one flat vector ``q`` of all joint
+  coordinates in file order and catalog basis order
+  (:meth:`Mechanism.coordinates`);
+* a joint with ``between: [a, b]`` sets ``g_b = g_a exp(sum q_i e_i)`` with
+  ``e_i`` its reference basis screws (ground frame); a U joint sets
+  ``g_b = g_a exp(q1 R(a1, c)) exp(q2 R(a2, c))``;
+* the *velocity* of a joint is trivialised: ``u`` with relative twist
+  ``V_b - V_a = sum u_i Ad(g_a) e_i`` (``M' M^-1 = sum u_i e_i`` for the joint
+  element M), so a joint's current screws are its reference basis carried by
+  the pose of ``between[0]`` and no chart singularity reaches an analysis.  The
+  matching update of a joint element is ``M <- exp(sum d_i e_i) M`` (additive on
+  coordinates for abelian subgroups and for U joints);
+* the closure residual of a chord joint j (not in the spanning tree) is
+  ``Delta_j = g_a M_j g_b^-1`` with ``g_a``, ``g_b`` from the tree; it is the
+  identity when the loop through j closes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from mechsing import lie
+from mechsing.model import Mechanism
+from mechsing.numeric import Precision, characteristic_length, to_float
+from mechsing.subgroups import Subgroup
+
+
+@dataclass(frozen=True)
+class JointKinematics:
+    """What the kinematics needs of one joint.
+
+    ``basis``: reference screws (dof, 6) in the model's backend; ``columns``:
+    its slice of the coordinate vector; ``abelian``: coordinates add under
+    updates; ``subgroup``: the reference subgroup (None for U);
+    ``length_coordinates``: which coordinates are lengths.
+    """
+
+    name: str
+    type: str
+    a: str
+    b: str
+    basis: np.ndarray
+    columns: slice
+    abelian: bool
+    subgroup: Subgroup | None
+    length_coordinates: tuple[bool, ...]
+
+
+def axis_points(mech: Mechanism) -> list[list[Any]]:
+    """Each joint's axis point nearest the origin (R, H, C), or centre (S, U), exact."""
+    import sympy
+
+    pts = []
+    for j in mech.joints:
+        if j.type in ("R", "H", "C"):
+            u = sympy.Matrix(j.params["axis"])
+            p = sympy.Matrix(j.params["point"])
+            foot = p - u * (u.dot(p)) / u.dot(u)
+            pts.append([sympy.nsimplify(x) if isinstance(x, float) else x for x in foot])
+        elif j.type in ("S", "U"):
+            pts.append(list(j.params["point"]))
+    return pts
+
+
+class KinematicModel:
+    """Poses, screws and closure residuals of a mechanism in one precision mode.
+
+    Parameters
+    ----------
+    mech : Mechanism
+    precision : Precision or str
+        ``float``/``auto`` (numpy), ``mp:N`` or ``exact``; the reference screws
+        are built from the file's exact values in that mode.
+    """
+
+    def __init__(self, mech: Mechanism, precision: Precision | str = "float") -> None:
+        from mechsing.numeric import parse_precision
+
+        self.mech = mech
+        self.precision = parse_precision(precision) if isinstance(precision, str) else precision
+        if self.precision.mode == "auto":
+            self.precision = Precision("float")
+        self.backend = self.precision.backend
+        pts = axis_points(mech)
+        override = mech.characteristic_length
+        L, c = characteristic_length(
+            to_float(np.array(pts, dtype=object)) if pts else np.zeros((0, 3)),
+            None if override is None else float(override),
+        )
+        #: characteristic length L (m) and centroid c of the axis points (float)
+        self.length_scale: float = L
+        self.centroid: np.ndarray = c
+        self.joints: list[JointKinematics] = []
+        offset = 0
+        with self.precision.context():
+            for j in mech.joints:
+                if j.type == "U":
+                    a1, a2 = j.params["axes"]
+                    cpt = j.params["point"]
+                    r1 = Subgroup("R", axis=a1, point=cpt)
+                    r2 = Subgroup("R", axis=a2, point=cpt)
+                    B = np.concatenate([r1.basis(self.precision), r2.basis(self.precision)])
+                    jk = JointKinematics(
+                        j.name, "U", j.between[0], j.between[1], B,
+                        slice(offset, offset + 2), True, None, (False, False),
+                    )
+                else:
+                    sg = Subgroup(j.type, dict(j.params))
+                    B = sg.basis(self.precision).reshape(-1, 6)
+                    lengths = tuple(u == "m" for u in j.units)
+                    jk = JointKinematics(
+                        j.name, j.type, j.between[0], j.between[1], B,
+                        slice(offset, offset + B.shape[0]), _is_abelian(B), sg, lengths,
+                    )
+                self.joints.append(jk)
+                offset += jk.basis.shape[0]
+        self.n: int = offset
+        self._by_name = {jk.name: jk for jk in self.joints}
+        self.length_columns = np.zeros(self.n, dtype=bool)
+        for jk in self.joints:
+            self.length_columns[jk.columns] = jk.length_coordinates
+        self.chords = [self._by_name[name] for name in mech.graph.chord_joints]
+
+    # ------------------------------------------------------------------ access
+
+    def joint(self, name: str) -> JointKinematics:
+        return self._by_name[name]
+
+    def zeros(self) -> np.ndarray:
+        return self.backend.zeros(self.n)
+
+    def asarray(self, q: Any) -> np.ndarray:
+        with self.precision.context():
+            return self.backend.asarray(q)
+
+    def values(self, q: np.ndarray) -> dict[str, list[float]]:
+        """Joint values by name, floats in SI units and radians."""
+        qf = to_float(q)
+        return {jk.name: [float(x) for x in qf[jk.columns]] for jk in self.joints}
+
+    # ------------------------------------------------------------------ poses
+
+    def element(self, jk: JointKinematics, q: np.ndarray) -> np.ndarray:
+        """The joint's relative displacement M (g_b = g_a M)."""
+        qj = q[jk.columns]
+        if jk.type == "U":
+            return lie.exp(qj[0] * jk.basis[0]) @ lie.exp(qj[1] * jk.basis[1])
+        return lie.exp(qj @ jk.basis)
+
+    def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
+        """The pose of every user body (ground = identity) from the spanning tree."""
+        eye = self.backend.eye(4)
+        out: dict[str, np.ndarray] = {self.mech.ground: eye}
+        elements: dict[str, np.ndarray] = {}
+        for body, steps in sorted(self.mech.graph.tree_paths.items(), key=lambda kv: len(kv[1])):
+            if body in out or not steps:
+                continue
+            last = steps[-1]
+            if last.part is not None:
+                continue  # hidden cross bodies: see current_screws
+            prev = self._parent_pose(steps, out)
+            jk = self._by_name[last.joint]
+            if last.joint not in elements:
+                elements[last.joint] = self.element(jk, q)
+            M = elements[last.joint]
+            out[body] = prev @ (M if last.sign > 0 else lie.inverse(M))
+        return out
+
+    def _parent_pose(self, steps: tuple, out: dict[str, np.ndarray]) -> np.ndarray:
+        # the body reached by all steps but the last
+        body = self.mech.ground
+        for st in steps[:-1]:
+            jk = self._by_name[st.joint]
+            body = jk.b if st.sign > 0 else jk.a
+        return out[body]
+
+    def current_screws(self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None) -> np.ndarray:
+        """The current screw of every joint coordinate: (6, n), columns in file order."""
+        poses = self.poses(q) if poses is None else poses
+        cols = []
+        for jk in self.joints:
+            ga = poses[jk.a]
+            if jk.type == "U":
+                qa = q[jk.columns][0]
+                cols.append(lie.act_screw(ga, jk.basis[0]))
+                cols.append(lie.act_screw(ga @ lie.exp(qa * jk.basis[0]), jk.basis[1]))
+            else:
+                cols.extend(lie.act_screw(ga, jk.basis))
+        return np.stack(cols, axis=1) if cols else self.backend.zeros((6, 0))
+
+    # ------------------------------------------------------------------ closure
+
+    def chord_residuals(self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None) -> list[np.ndarray]:
+        """``Delta_j = g_a M_j g_b^-1`` for each chord joint (identity when closed)."""
+        poses = self.poses(q) if poses is None else poses
+        return [poses[jk.a] @ self.element(jk, q) @ lie.inverse(poses[jk.b]) for jk in self.chords]
+
+    def residual_norm(self, deltas: list[np.ndarray]) -> float:
+        """Closure residual as a length (m): the largest over the chords of
+        ``sqrt(|p_c|^2 + L^2 |R - I|_F^2 / 2)`` with ``p_c`` the translation of
+        Delta seen from the centroid (meaningful also near half-turns, where
+        the logarithm is not)."""
+        L = self.length_scale
+        c = self.centroid
+        worst = 0.0
+        for D in deltas:
+            Df = to_float(D)
+            R = Df[:3, :3]
+            p = Df[:3, 3] + R @ c - c
+            r = float(np.sqrt(p @ p + L * L * np.sum((R - np.eye(3)) ** 2) / 2))
+            worst = max(worst, r)
+        return worst
+
+    def closure_jacobian(self, q: np.ndarray, screws: np.ndarray | None = None) -> np.ndarray:
+        """Linearised chord closure: (6 * n_chords, n); row block j is
+        ``screws(j) + V_a - V_b`` with ``V_x`` the tree velocity of body x."""
+        S = self.current_screws(q) if screws is None else screws
+        bk = self.backend
+        rows = []
+        for jk in self.chords:
+            coef = np.zeros(self.n, dtype=int)
+            coef[jk.columns] += 1
+            for body, s in ((jk.a, 1), (jk.b, -1)):
+                for st in self.mech.graph.tree_paths[body]:
+                    coef[self._by_name[st.joint].columns] += s * st.sign
+            rows.append(S * coef[None, :])
+        if not rows:
+            return bk.zeros((0, self.n))
+        return np.concatenate(rows, axis=0)
+
+    def chord_twists(self, deltas: list[np.ndarray]) -> np.ndarray:
+        """log of each chord residual, stacked (6 * n_chords,)."""
+        if not deltas:
+            return self.backend.zeros(0)
+        return np.concatenate([lie.log(D) for D in deltas])
+
+    def update(self, q: np.ndarray, delta: np.ndarray) -> np.ndarray:
+        """Apply trivialised increments ``delta`` (one per coordinate) on the group:
+        ``M <- exp(sum d_i e_i) M`` (coordinates add for abelian joints and U)."""
+        out = np.array(q, copy=True)
+        for jk in self.joints:
+            d = delta[jk.columns]
+            if jk.abelian or not np.any(to_float(d)):
+                out[jk.columns] = q[jk.columns] + d
+                continue
+            M = lie.exp(d @ jk.basis) @ self.element(jk, q)
+            out[jk.columns] = self.coordinates_in(jk, M)
+        return out
+
+    def coordinates_in(self, jk: JointKinematics, M: np.ndarray) -> np.ndarray:
+        """First-kind coordinates of an element of the joint's subgroup (log, then the basis)."""
+        x = lie.log(M)
+        B = to_float(jk.basis)
+        coef, *_ = np.linalg.lstsq(B.T, to_float(x), rcond=None)
+        if self.backend.name == "float":
+            return coef
+        # refine in the model's backend: one Newton step on B^T c = x
+        c = self.backend.asarray(coef)
+        r = x - c @ jk.basis
+        corr, *_ = np.linalg.lstsq(B.T, to_float(r), rcond=None)
+        return c + self.backend.asarray(corr)
+
+
+def _is_abelian(B: np.ndarray) -> bool:
+    k = B.shape[0]
+    for i in range(k):
+        for j in range(i + 1, k):
+            if np.any(to_float(lie.bracket(B[i], B[j])) != 0):
+                return False
+    return True

@@ -1,0 +1,135 @@
+"""Text, Markdown and JSON renderings of an :class:`~mechsing.analysis.AnalysisResult`.
+
+JSON is deterministic: the same file gives byte-identical output (keys in a
+fixed order, floats printed by ``repr``).  Text and Markdown explain each
+finding in a sentence a student understands.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Any
+
+EXPLAIN = {
+    "serial": "the chain's screws span fewer directions than usual: it has lost a direction of motion "
+    "and now resists some wrenches with no joint effort",
+    "bifurcation": "several branches of motion cross here: the mechanism can leave this configuration "
+    "along different paths",
+    "isolated": "no motion leaves this configuration: it is a rigid, isolated assembly",
+    "degenerate": "the loops lose rank and the higher-order test cannot describe the motions here "
+    "(a cusp or tangential branches)",
+    "increased-mobility": "the joints can move instantaneously in more ways than the mechanism can "
+    "actually move (first-order motions that do not extend)",
+    "input": "an input can move while the output stays still",
+    "output": "the output can move while the inputs are locked: the mechanism loses stiffness",
+    "passive-motion": "passive joints can move while the inputs and the output stay still",
+    "impossible-input": "some input rates cannot be produced",
+    "impossible-output": "some output twists cannot be produced",
+    "constraint": "the legs' constraint wrenches lose rank: the output gains a motion outside its "
+    "generic motion type",
+    "undecided": "the precision used cannot decide a rank here (a singular value lies between the two "
+    "thresholds)",
+}
+
+
+def _clean(x: Any) -> Any:
+    """JSON-safe values: non-finite floats become null, numpy scalars plain."""
+    if isinstance(x, dict):
+        return {k: _clean(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [_clean(v) for v in x]
+    if hasattr(x, "item") and not isinstance(x, str):
+        x = x.item()
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    return x
+
+
+def to_json_text(result: Any) -> str:
+    return json.dumps(_clean(result.to_json()), indent=2) + "\n"
+
+
+def _fmt_num(x: Any) -> str:
+    if x is None:
+        return "-"
+    if isinstance(x, float):
+        return f"{x:.4g}"
+    return str(x)
+
+
+def _margin(m: dict[str, Any] | None) -> str:
+    if not m:
+        return ""
+    parts = [f"kept {_fmt_num(m.get('kept'))}", f"dropped {_fmt_num(m.get('dropped'))}"]
+    if "eig_margin" in m:
+        parts.append(f"eigenvalue margin {_fmt_num(m['eig_margin'])}")
+    return ", ".join(parts) + f" (thresholds {m['tau_lo']:g}/{m['tau_hi']:g}, L = {m['length_scale']:.4g} m)"
+
+
+def _subgroup(sg: dict[str, Any]) -> str:
+    if not sg or sg.get("type") is None:
+        return "undecided"
+    ps = ", ".join(
+        f"{k} [{', '.join(f'{v:.4g}' for v in val)}]" if isinstance(val, list) else f"{k} {val:.4g}"
+        for k, val in sg.get("params", {}).items()
+    )
+    return f"{sg['type']} (dimension {sg['dim']}{', ' + ps if ps else ''})"
+
+
+def render_text(result: Any, markdown: bool = False) -> str:
+    d = result.to_json()
+    h1, h2 = ("# ", "## ") if markdown else ("", "")
+    bullet = "- " if markdown else "  "
+    lines = [f"{h1}mechsing analysis: {d['mechanism']}", ""]
+    p = d["precision"]
+    lines.append(
+        f"Precision {p['mode']} (rank thresholds {p['tau_lo']:g} and {p['tau_hi']:g} of the largest "
+        f"singular value); characteristic length L = {p['length_scale']:.4g} m."
+    )
+    if d["properties"]:
+        lines += ["", f"{h2}Properties" if markdown else "Properties:"]
+        for prop in d["properties"]:
+            text = prop.get("explanation") or ", ".join(f"{k} {v}" for k, v in prop.items() if k != "kind")
+            lines.append(f"{bullet}{prop['kind']}: {text}")
+    for c in d["configurations"]:
+        lines += ["", f"{h2}Configuration {c['name']}" if markdown else f"Configuration {c['name']} ({c['precision']}):"]
+        if "error" in c:
+            lines.append(f"{bullet}could not be closed: {c['error']}")
+            continue
+        vals = ", ".join(f"{k} = [{', '.join(f'{x:.6g}' for x in v)}]" for k, v in c["joints"].items())
+        lines.append(f"{bullet}joint values (m, rad): {vals}")
+        lines.append(f"{bullet}closure residual {c['closure_residual']:.3g} m")
+        for lp in c["loops"]:
+            sig = ", ".join(f"{s:.4g}" for s in (lp["sigma"] or []))
+            lines.append(
+                f"{bullet}loop {'-'.join(lp['joints'])}: moves inside {_subgroup(lp['subgroup'])}; "
+                f"rank {_fmt_num(lp['rank'])}" + (f", singular values {sig}" if sig else "")
+            )
+        cr = c["closure_rank"]
+        lines.append(
+            f"{bullet}closure system: rank {_fmt_num(cr['rank'])}, nullity {_fmt_num(cr['nullity'])}; "
+            f"margin: {_margin(cr['margin'])}"
+        )
+        m = c["mobility"]
+        lines.append(
+            f"{bullet}mobility: finite {_fmt_num(m['finite'])} (generic {_fmt_num(m['generic'])}, "
+            f"instantaneous {_fmt_num(m['instantaneous'])}, group {_fmt_num(m['group'])}, "
+            f"Grubler-Kutzbach {_fmt_num(m['grubler'])})"
+        )
+        if not c["singularities"]:
+            lines.append(f"{bullet}regular: no singularity.")
+        for s in c["singularities"]:
+            who = f" (joints {', '.join(s['joints'])})" if s.get("joints") else ""
+            lines.append(f"{bullet}{s['class']}{who}: {EXPLAIN.get(s['class'], '')}.")
+            if "margin" in s:
+                lines.append(f"{bullet}  decided in {s.get('precision', c['precision'])}; margin: {_margin(s['margin'])}")
+    return "\n".join(lines) + "\n"
+
+
+def render(result: Any, fmt: str) -> str:
+    if fmt == "json":
+        return to_json_text(result)
+    if fmt == "md":
+        return render_text(result, markdown=True)
+    return render_text(result)

@@ -1,0 +1,103 @@
+"""Generic mobility: the nullity at regular points of the branch through q.
+
+The closure system's nullity is upper semicontinuous: at configurations near
+q on the same branch it can only be equal or smaller.  So mechsing moves a
+small distance along kernel directions, closes the loops again (minimum-norm
+Newton on the group, every joint free) and decides the nullity there; the
+generic value is the smallest found.  No nearby closed configuration at all
+means q is isolated (DESIGN.md: finite 0, generic null).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechsing.kinematics import KinematicModel
+from mechsing.numeric import decide_rank, scale_screws, to_float
+
+#: relative distances (radians or multiples of L) of the sample points
+SAMPLE_STEPS = (1e-3, 1e-2)
+#: random kernel directions tried per step
+SAMPLES_PER_STEP = 3
+_NEWTON = 30
+
+
+@dataclass(frozen=True)
+class NearbySample:
+    """A closed configuration near q and its decided nullity (None: undecided)."""
+
+    q: np.ndarray
+    nullity: int | None
+    distance: float
+
+
+def stacked_jacobian(model: KinematicModel, q: np.ndarray) -> np.ndarray:
+    """Commensurate chord closure Jacobian (float): rank and nullity as the stacked loop system."""
+    J = to_float(model.closure_jacobian(q))
+    if J.shape[0] == 0:
+        return J
+    blocks = [
+        scale_screws(J[6 * i : 6 * i + 6], model.length_scale, model.centroid, model.length_columns)
+        for i in range(J.shape[0] // 6)
+    ]
+    return np.concatenate(blocks, axis=0)
+
+
+def reclose(model: KinematicModel, q: np.ndarray, fixed: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+    """Minimum-norm Newton on the group from ``q`` (float), coordinates in ``fixed`` held.
+
+    Returns the configuration reached and its residual (m).
+    """
+    L = model.length_scale
+    tol = model.precision.closure_tolerance(L) if model.precision.mode == "float" else 1e-12 * L
+    free = np.ones(model.n, dtype=bool) if fixed is None else ~fixed
+    res = model.residual_norm(model.chord_residuals(q))
+    for _ in range(_NEWTON):
+        if res <= tol:
+            break
+        r = to_float(model.chord_twists(model.chord_residuals(q)))
+        J = stacked_jacobian(model, q)
+        rs = np.concatenate(
+            [scale_screws(r[6 * i : 6 * i + 6, None], L, model.centroid)[:, 0] for i in range(len(r) // 6)]
+        )
+        A = J[:, free]
+        U, s, Vt = np.linalg.svd(A, full_matrices=False)
+        keep = s > 1e-12 * (s[0] if len(s) else 0)
+        du = Vt[keep].T @ ((U[:, keep].T @ -rs) / s[keep])
+        d = np.zeros(model.n)
+        d[free] = du
+        d = np.where(model.length_columns, d * L, d)
+        qn = model.update(q, d)
+        new = model.residual_norm(model.chord_residuals(qn))
+        if not np.isfinite(new):
+            break
+        q, res = qn, new
+    return q, res
+
+
+def nearby_samples(model: KinematicModel, q: np.ndarray, kernel: np.ndarray, seed: int = 0) -> list[NearbySample]:
+    """Closed configurations at distances :data:`SAMPLE_STEPS` along random kernel
+    directions (``kernel``: commensurate, n x d, float), with their nullities."""
+    if kernel.shape[1] == 0 or not model.chords:
+        return []
+    rng = np.random.default_rng(seed)
+    L = model.length_scale
+    qf = to_float(q)
+    out: list[NearbySample] = []
+    for step in SAMPLE_STEPS:
+        for _ in range(SAMPLES_PER_STEP):
+            v = kernel @ rng.normal(size=kernel.shape[1])
+            v /= np.linalg.norm(v)
+            d = np.where(model.length_columns, step * v * L, step * v)
+            q1, res = reclose(model, model.update(qf, d))
+            if res > 1e-10 * L:
+                continue
+            dist = float(np.linalg.norm(np.where(model.length_columns, (q1 - qf) / L, q1 - qf)))
+            if dist < step / 10:
+                continue  # Newton fell back onto q: not a nearby configuration
+            dec = decide_rank(stacked_jacobian(model, q1), "float", L)
+            null = None if dec.rank is None else model.n - dec.rank
+            out.append(NearbySample(q1, null, dist))
+    return out

@@ -1,0 +1,157 @@
+"""Singularity classification of a configuration, and mechanism-level properties.
+
+Every test is measured against its value at generic configurations (DESIGN.md
+"When is a configuration singular?"): what holds everywhere becomes a
+``properties`` entry, never a singularity.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from mechsing import lie
+from mechsing.numeric import to_float
+from mechsing.singularity.serial import GENERIC_SAMPLES, chain_system, serial_finding
+
+__all__ = ["classify_configuration", "mechanism_properties", "output_chain"]
+
+
+def output_chain(mech: Any, model: Any) -> tuple[list[str], list[int]] | None:
+    """Joints and coordinate columns of the tree path from ``relative_to`` to the output body."""
+    out = mech.output
+    if out is None:
+        return None
+    paths = mech.graph.tree_paths
+    pa = list(paths[out.body])
+    pb = list(paths[out.relative_to])
+    k = 0
+    while k < min(len(pa), len(pb)) and pa[k] == pb[k]:
+        k += 1
+    joints = [st.joint for st in pa[k:]] + [st.joint for st in pb[k:]]
+    order = {j.name: i for i, j in enumerate(mech.joints)}
+    joints = sorted(set(joints), key=order.__getitem__)
+    cols: list[int] = []
+    names: list[str] = []
+    for j in joints:
+        sl = model.joint(j).columns
+        cols.extend(range(sl.start, sl.stop))
+        names.extend([j] * (sl.stop - sl.start))
+    return names, cols
+
+
+def _output_point(mech: Any, model: Any, q: np.ndarray, poses: dict[str, np.ndarray]) -> np.ndarray | None:
+    out = mech.output
+    if out is None or out.point is None:
+        return None
+    x0 = to_float(np.array(list(out.point), dtype=object))
+    return lie.act_point(to_float(poses[out.body]), x0)
+
+
+def _random_configuration(model: Any, rng: np.random.Generator) -> np.ndarray:
+    q = rng.uniform(-np.pi, np.pi, size=model.n)
+    return np.where(model.length_columns, q * model.length_scale / np.pi, q)
+
+
+def _tree_serial(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
+    chain = output_chain(mech, model)
+    if chain is None:
+        return []
+    names, cols = chain
+    q = result.internals["q"]
+    from mechsing.kinematics import KinematicModel
+
+    fm = model if model.precision.mode == "float" else KinematicModel(mech, "float")
+    qf = to_float(q)
+    poses = fm.poses(qf)
+    S = fm.current_screws(qf, poses)
+    x = _output_point(mech, fm, qf, poses)
+    here = chain_system(fm, S, cols, x, "float")
+    rng = np.random.default_rng(0)
+    generic = here.rank.rank or 0
+    for _ in range(GENERIC_SAMPLES):
+        qr = _random_configuration(fm, rng)
+        pr = fm.poses(qr)
+        sysr = chain_system(fm, fm.current_screws(qr, pr), cols, _output_point(mech, fm, qr, pr), "float")
+        if sysr.rank.rank is not None:
+            generic = max(generic, sysr.rank.rank)
+    label = {"chain": "output", "body": mech.output.body, "relative_to": mech.output.relative_to}
+    f = serial_finding(fm, here, generic, names, label, x)
+    if f is None and here.rank.rank is None:
+        return [_undecided("output screw system", here.rank)]
+    return [f] if f else []
+
+
+def _undecided(what: str, dec: Any) -> dict[str, Any]:
+    return {
+        "class": "undecided",
+        "what": what,
+        "rank_bounds": list(dec.rank_bounds),
+        "margin": dec.margin.to_json(),
+        "precision": dec.precision,
+    }
+
+
+def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
+    """Findings at one closed configuration (DESIGN.md classes)."""
+    findings: list[dict[str, Any]] = []
+    cs = result.internals["closure"]
+    if not mech.loops:
+        findings.extend(_tree_serial(mech, model, result))
+        return findings
+    if cs.rank.rank is None:
+        findings.append(_undecided("stacked closure system", cs.rank))
+        return findings
+    for ls in cs.loops:
+        if ls.rank.rank is None:
+            findings.append({**_undecided(f"loop {'-'.join(ls.loop.joints)}", ls.rank)})
+    mob = result.mobility
+    inst, gen = mob["instantaneous"], mob["generic"]
+    if gen is not None and inst is not None and inst > gen:
+        loop_joints = sorted({j for ls in cs.loops for j in ls.loop.joints}, key=[j.name for j in mech.joints].index)
+        findings.append(
+            {
+                "class": "increased-mobility",
+                "joints": loop_joints,
+                "instantaneous": inst,
+                "generic": gen,
+                "margin": cs.rank.margin.to_json(),
+                "precision": cs.rank.precision,
+            }
+        )
+    return findings
+
+
+def mechanism_properties(mech: Any, model: Any, results: list[Any]) -> list[dict[str, Any]]:
+    """Mechanism-level properties from the regular configurations analysed."""
+    props: list[dict[str, Any]] = []
+    regular = [r for r in results if r.error is None and r.mobility.get("finite") is not None and not r.singularities]
+    if not regular:
+        regular = [r for r in results if r.error is None and r.mobility.get("finite") is not None]
+    if not regular:
+        return props
+    r = regular[0]
+    mob = r.mobility
+    if mech.loops and mob.get("group") is not None and mob["finite"] > mob["group"]:
+        props.append(
+            {
+                "kind": "overconstrained",
+                "finite": mob["finite"],
+                "group": mob["group"],
+                "grubler": mob["grubler"],
+                "configuration": r.name,
+                "explanation": (
+                    f"the mechanism moves with {mob['finite']} degree(s) of freedom although its loops' "
+                    f"subgroups allow {mob['group']} (Grubler-Kutzbach gives {mob['grubler']}): its mobility "
+                    "comes from special geometry (an intersection of subgroups or metric conditions)"
+                ),
+            }
+        )
+    n_in = len(mech.input_coordinates())
+    if n_in:
+        if n_in > mob["finite"]:
+            props.append({"kind": "redundant-actuation", "inputs": n_in, "finite": mob["finite"], "configuration": r.name})
+        elif n_in < mob["finite"]:
+            props.append({"kind": "underactuated", "inputs": n_in, "finite": mob["finite"], "configuration": r.name})
+    return props

@@ -1,0 +1,159 @@
+"""Rank loss of an open chain's screw system (theory.md §4.1; DESIGN.md class ``serial``).
+
+The screw system of a chain at q is the matrix of its joints' current screws
+(columns).  For the output of a positioning task (a body point) it is the
+velocity of that point, ``v + omega x x`` (3 rows).  Its rank is compared
+with the generic rank (the largest found at random configurations); where it
+is lower the chain now *resists*, with zero joint effort, wrenches it
+generically could not: the reciprocal system grows.
+
+Reported keys (SI, (f, m) at the ground origin): ``wrenches`` -- a basis of the
+whole reciprocal system, each with unit force (unit moment for a couple) and
+first non-zero component positive; ``corank``; ``twist`` -- a lost twist with
+non-zero power against a new wrench; ``null_joint_rates`` -- a kernel vector
+(largest entry 1) and its support ``joints`` (entries above
+:data:`mechsing.numeric.SUPPORT_RTOL` of the largest).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from mechsing import lie
+from mechsing.numeric import SUPPORT_RTOL, RankDecision, decide_rank, scale_screws, to_float
+
+#: random configurations sampled to find a chain's generic rank
+GENERIC_SAMPLES = 8
+
+_SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
+
+
+@dataclass
+class ChainSystem:
+    """A chain's screw system at q: commensurate matrix, its rank decision and
+    the maps back to SI quantities."""
+
+    matrix: np.ndarray  # commensurate (rows: 6 twist or 3 point-velocity; cols: chain coordinates)
+    rank: RankDecision
+    columns: list[int]  # coordinate indices of the chain
+    point: bool  # positioning task (3 rows)
+
+
+def _unit_first_positive(v: np.ndarray) -> np.ndarray:
+    nz = np.flatnonzero(np.abs(v) > 1e-12 * max(1.0, float(np.max(np.abs(v)))))
+    if len(nz) and v[nz[0]] < 0:
+        return -v
+    return v
+
+
+def chain_matrix(model: Any, S: np.ndarray, columns: list[int], point: np.ndarray | None) -> np.ndarray:
+    """Commensurate matrix of a chain: twists (6 x k) or, for a point ``x`` (current
+    position, m), its velocity rows ``v + omega x x`` divided by L (3 x k)."""
+    L = model.length_scale
+    Sf = to_float(S)[:, columns]
+    lc = model.length_columns[columns]
+    if point is None:
+        return scale_screws(Sf, L, model.centroid, lc)
+    w, v = Sf[:3], Sf[3:]
+    vel = v + np.cross(w.T, point).T
+    vel = vel / L
+    return np.where(lc[None, :], vel * L, vel)
+
+
+def wrenches_of(model: Any, Ms: np.ndarray, null_rows: np.ndarray, point: bool) -> list[list[float]]:
+    """SI wrenches (f, m) at the ground origin from commensurate left-null vectors."""
+    L = model.length_scale
+    c = model.centroid
+    out = []
+    for y in null_rows.T:
+        if point:
+            # a force through the point: f with f . v_point = 0 for all joint motions
+            f = y / np.linalg.norm(y)
+            # the force acts at the point x: moment about the origin x x f (filled by caller)
+            out.append(np.concatenate([f, np.zeros(3)]))
+            continue
+        # commensurate twist rows are D Ad(T(-c)) S; a commensurate wrench y pairs
+        # by y . (D Ad S) = (Ad^T D y) . S, so the (m, f)-layout pairing vector is
+        # Ad^T D y and the (f, m) wrench is its swap
+        D = np.diag([1, 1, 1, 1 / L, 1 / L, 1 / L])
+        Tc = np.eye(4)
+        Tc[:3, 3] = -c
+        pair = lie.Ad(Tc).T @ (D @ y)  # pairs with twists by plain dot
+        w = _SWAP @ pair  # (f, m): f . v + m . omega = pair . S
+        f, m = w[:3], w[3:]
+        nf = np.linalg.norm(f)
+        w = w / nf if nf > 1e-12 * np.linalg.norm(m) else w / np.linalg.norm(m)
+        out.append(w)
+    return [_unit_first_positive(np.asarray(x)).tolist() for x in out]
+
+
+def twist_back(model: Any, t: np.ndarray) -> np.ndarray:
+    """SI twist at the ground origin from a commensurate one (inverse of the scaling)."""
+    L = model.length_scale
+    c = model.centroid
+    w, v = t[:3], t[3:] * L
+    # commensurate twists were moved to c: v_c = v_0 - c x w  ->  v_0 = v_c + c x w
+    return np.concatenate([w, v + np.cross(c, w)])
+
+
+def serial_finding(
+    model: Any,
+    system: ChainSystem,
+    generic_rank: int,
+    joints_of_columns: list[str],
+    label: dict[str, Any],
+    point_x: np.ndarray | None = None,
+) -> dict[str, Any] | None:
+    """The ``serial`` finding of a chain whose rank is below ``generic_rank`` (else None)."""
+    dec = system.rank
+    if dec.rank is None or dec.rank >= generic_rank:
+        return None
+    Ms = system.matrix
+    U, s, Vt = np.linalg.svd(Ms)
+    r = dec.rank
+    left_null = U[:, r:]
+    wr = wrenches_of(model, Ms, left_null, system.point)
+    if system.point and point_x is not None:
+        wr = [
+            _unit_first_positive(np.concatenate([np.array(w[:3]), np.cross(point_x, w[:3])])).tolist()
+            for w in wr
+        ]
+    lost = U[:, r]
+    if system.point:
+        twist = np.concatenate([np.zeros(3), lost * model.length_scale]).tolist()
+    else:
+        twist = twist_back(model, lost).tolist()
+    kernel = Vt[r:].T if Vt.shape[0] > r else np.zeros((Ms.shape[1], 0))
+    rates = kernel[:, 0] if kernel.shape[1] else np.zeros(Ms.shape[1])
+    lc = model.length_columns[system.columns]
+    rates = np.where(lc, rates * model.length_scale, rates)
+    big = float(np.max(np.abs(rates))) if len(rates) else 0.0
+    if big > 0:
+        rates = _unit_first_positive(rates / big)
+    support = sorted(
+        {joints_of_columns[i] for i, x in enumerate(rates) if big > 0 and abs(x) > SUPPORT_RTOL},
+        key=joints_of_columns.index,
+    )
+    finding = {
+        "class": "serial",
+        **label,
+        "joints": support,
+        "corank": generic_rank - r,
+        "rank": r,
+        "generic_rank": generic_rank,
+        "wrenches": wr,
+        "twist": twist,
+        "null_joint_rates": [float(x) for x in rates],
+        "margin": dec.margin.to_json(),
+        "precision": dec.precision,
+    }
+    return finding
+
+
+def chain_system(model: Any, S: np.ndarray, columns: list[int], point_x: np.ndarray | None, precision: Any) -> ChainSystem:
+    Ms = chain_matrix(model, S, columns, point_x)
+    dec = decide_rank(Ms, precision if str(precision) != "exact" else "float", model.length_scale)
+    return ChainSystem(Ms, dec, columns, point_x is not None)
