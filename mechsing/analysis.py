@@ -20,7 +20,7 @@ import numpy as np
 from mechsing.kinematics import Closer, ClosureError, KinematicModel
 from mechsing.model import Mechanism, load
 from mechsing.numeric import Precision, parse_precision, to_float
-from mechsing.screws import closure_system, grubler, group_mobility
+from mechsing.screws import closure_system, group_mobility, grubler
 from mechsing.screws.mobility import nearby_samples
 from mechsing.singularity import classify_configuration, mechanism_properties
 
@@ -117,7 +117,9 @@ def analyze(
             from mechsing.cli import UserError
 
             known = ", ".join(mech.configurations)
-            raise UserError(f"{mech.path or mech.name}: no configuration named {n!r}; the file has: {known}")
+            raise UserError(
+                f"{mech.path or mech.name}: no configuration named {n!r}; the file has: {known}"
+            )
     models: dict[str, tuple[KinematicModel, Closer]] = {}
 
     def stage(mode: Precision) -> tuple[KinematicModel, Closer]:
@@ -140,7 +142,9 @@ def analyze(
     return AnalysisResult(mech, prec, km0.length_scale, results, props)
 
 
-def _analyze_one(mech: Mechanism, name: str, stage: tuple[KinematicModel, Closer]) -> ConfigurationResult:
+def _analyze_one(
+    mech: Mechanism, name: str, stage: tuple[KinematicModel, Closer]
+) -> ConfigurationResult:
     model, closer = stage
     prec = model.precision
     out = ConfigurationResult(name, str(prec))
@@ -188,7 +192,14 @@ def _analyze_one(mech: Mechanism, name: str, stage: tuple[KinematicModel, Closer
     }
     out.mobility = mob
     out.internals.update(
-        {"model": model, "q": q, "closure": cs, "samples": samples, "undecided": undecided, "closed": closed}
+        {
+            "model": model,
+            "q": q,
+            "closure": cs,
+            "samples": samples,
+            "undecided": undecided,
+            "closed": closed,
+        }
     )
     out.singularities = classify_configuration(mech, model, out)
     return out

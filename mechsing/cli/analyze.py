@@ -17,11 +17,19 @@ HELP = "analyse a mechanism file (loops, ranks, mobility, singularities)"
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("file", metavar="FILE", help="mechanism file (YAML or JSON)")
-    p.add_argument("--config", action="append", metavar="NAME", help="configuration to analyse (repeatable)")
-    p.add_argument("--precision", default="auto", metavar="MODE", help="auto (default), float, mp:N or exact")
+    p.add_argument(
+        "--config", action="append", metavar="NAME", help="configuration to analyse (repeatable)"
+    )
+    p.add_argument(
+        "--precision", default="auto", metavar="MODE", help="auto (default), float, mp:N or exact"
+    )
     p.add_argument("--format", choices=("text", "json", "md"), default="text")
-    p.add_argument("-o", "--output", metavar="OUT", help="write the report to OUT instead of standard output")
-    p.add_argument("-v", "--verbose", action="store_true", help="also print what mechsing did silently")
+    p.add_argument(
+        "-o", "--output", metavar="OUT", help="write the report to OUT instead of standard output"
+    )
+    p.add_argument(
+        "-v", "--verbose", action="store_true", help="also print what mechsing did silently"
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -45,7 +53,9 @@ def run(args: argparse.Namespace) -> int:
         try:
             Path(args.output).write_text(text)
         except OSError as exc:
-            raise UserError(f"cannot write {args.output}: {exc.strerror}; choose a writable path") from None
+            raise UserError(
+                f"cannot write {args.output}: {exc.strerror}; choose a writable path"
+            ) from None
     else:
         sys.stdout.write(text)
     for c in result.configurations:

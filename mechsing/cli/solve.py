@@ -13,7 +13,9 @@ HELP = "close a configuration and print all joint values"
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("file", metavar="FILE")
     p.add_argument("--config", required=True, metavar="NAME")
-    p.add_argument("--precision", default="float", metavar="MODE", help="float (default), mp:N or exact")
+    p.add_argument(
+        "--precision", default="float", metavar="MODE", help="float (default), mp:N or exact"
+    )
     p.add_argument("--format", choices=("text", "json"), default="text")
 
 
@@ -46,8 +48,10 @@ def run(args: argparse.Namespace) -> int:
         }
         sys.stdout.write(json.dumps(out, indent=2) + "\n")
     else:
-        print(f"{mech.name}, configuration {args.config} ({model.precision}): residual {closed.residual:.3g} m"
-              + (", underdetermined (minimum-norm steps)" if closed.underdetermined else ""))
+        print(
+            f"{mech.name}, configuration {args.config} ({model.precision}): residual {closed.residual:.3g} m"
+            + (", underdetermined (minimum-norm steps)" if closed.underdetermined else "")
+        )
         for k, v in values.items():
             print(f"  {k}: {', '.join(repr(x) for x in v)}")
     return 0

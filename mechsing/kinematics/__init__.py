@@ -2,8 +2,8 @@
 
 from mechsing.kinematics.closure import (
     ClosedConfiguration,
-    ClosureError,
     Closer,
+    ClosureError,
     solve_configuration,
 )
 from mechsing.kinematics.model import JointKinematics, KinematicModel, axis_points

@@ -82,7 +82,9 @@ class Closer:
         if name in self._solved:
             return self._solved[name]
         if name in _chain:
-            raise UserError(f"configuration {name!r}: its start chain loops back on itself ({' -> '.join(_chain + (name,))})")
+            raise UserError(
+                f"configuration {name!r}: its start chain loops back on itself ({' -> '.join(_chain + (name,))})"
+            )
         cfg = self.mech.configurations[name]
         target, given = self._given(cfg)
         n = self.model.n
@@ -117,21 +119,33 @@ class Closer:
             given.extend(range(jk.columns.start, jk.columns.stop))
         return target, tuple(sorted(given))
 
-    def _coordinates_of_displacement(self, cfg: Configuration, jname: str, val: Displacement) -> np.ndarray:
+    def _coordinates_of_displacement(
+        self, cfg: Configuration, jname: str, val: Displacement
+    ) -> np.ndarray:
         m = self.model
         jk = m.joint(jname)
-        where = f"configuration {cfg.name!r}, joint {jname!r}" + (f" (line {val.line})" if val.line else "")
+        where = f"configuration {cfg.name!r}, joint {jname!r}" + (
+            f" (line {val.line})" if val.line else ""
+        )
         if jk.subgroup is None:
             raise UserError(f"{where}: a U joint takes two angles [q1, q2], not a displacement")
         with m.precision.context():
-            R = m.backend.eye(3) if val.rotation is None else m.asarray([list(r) for r in val.rotation])
+            R = (
+                m.backend.eye(3)
+                if val.rotation is None
+                else m.asarray([list(r) for r in val.rotation])
+            )
             Rf = to_float(R)
             if np.max(np.abs(Rf.T @ Rf - np.eye(3))) > 1e-9 or np.linalg.det(Rf) < 0:
-                raise UserError(f"{where}: the rotation is not a rotation matrix (R^T R = I, det R = 1); give an orthonormal matrix")
+                raise UserError(
+                    f"{where}: the rotation is not a rotation matrix (R^T R = I, det R = 1); give an orthonormal matrix"
+                )
             if val.translation is None:
                 p = self._complete_translation(jk, R)
                 if p is None:
-                    raise UserError(f"{where}: give the translation too: no translation puts this rotation in the {jk.type} subgroup")
+                    raise UserError(
+                        f"{where}: give the translation too: no translation puts this rotation in the {jk.type} subgroup"
+                    )
             else:
                 p = m.asarray(list(val.translation))
             g = lie.pose(R, p)
@@ -175,7 +189,8 @@ class Closer:
                     f"configuration {cfg.name!r} does not close exactly: the loop through joint {bad[0]!r} "
                     f"leaves a residual of {res:.3g} m; give joint values that close the loops exactly, "
                     "or leave the passive joints out so they are solved",
-                    cfg.name, res,
+                    cfg.name,
+                    res,
                 )
             return ClosedConfiguration(cfg.name, q, 0.0, False, 0, tuple(range(m.n)))
         res = m.residual_norm(deltas)
@@ -185,13 +200,16 @@ class Closer:
                 f"configuration {cfg.name!r} gives every joint value but does not close: the loop through "
                 f"joint {m.chords[worst].name!r} leaves a residual of {res:.3g} m (accepted: {self.tolerance:.1g} m); "
                 "leave the passive joints out so they are solved, or give more digits",
-                cfg.name, res,
+                cfg.name,
+                res,
             )
         return ClosedConfiguration(cfg.name, q, res, False, 0, tuple(range(m.n)))
 
     # ---------------------------------------------------------------- continuation
 
-    def _continue(self, cfg: Configuration, q0: np.ndarray, target: np.ndarray, given: tuple[int, ...]) -> ClosedConfiguration:
+    def _continue(
+        self, cfg: Configuration, q0: np.ndarray, target: np.ndarray, given: tuple[int, ...]
+    ) -> ClosedConfiguration:
         m = self.model
         if m.precision.mode == "exact":
             raise UserError(
@@ -202,7 +220,6 @@ class Closer:
         L = fm.length_scale
         gmask = np.zeros(m.n, dtype=bool)
         gmask[list(given)] = True
-        free = ~gmask
         q = to_float(q0).copy()
         qt = to_float(target)
         # straight line in the given coordinates
@@ -229,7 +246,8 @@ class Closer:
                         f"{steps + 1} (t = {t:.6g} of the way, residual {info['residual']:.3g} m): the given values "
                         "cannot be followed further on this assembly mode (a singularity or a limit of motion "
                         "lies on the path); add an intermediate configuration or change the target",
-                        cfg.name, info["residual"],
+                        cfg.name,
+                        info["residual"],
                     )
                 continue
             steps += 1
@@ -237,13 +255,19 @@ class Closer:
             # loss of rank of the closure Jacobian in the unknowns before the target
             if not final:
                 r = info["rank"]
-                if best_rank is not None and r is not None and r < best_rank and info["smin"] < CONTINUATION_SINGULAR_RTOL:
+                if (
+                    best_rank is not None
+                    and r is not None
+                    and r < best_rank
+                    and info["smin"] < CONTINUATION_SINGULAR_RTOL
+                ):
                     raise ClosureError(
                         f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} meets a "
                         f"singularity at step {steps} (t = {t_next:.6g}): the closure Jacobian in the unknown joints "
                         f"loses rank ({r} < {best_rank}); joint values there: {_fmt(fm, qn)}; "
                         "choose a target on this side of the singularity, or start from a configuration beyond it",
-                        cfg.name, info["residual"],
+                        cfg.name,
+                        info["residual"],
                     )
                 if r is not None:
                     best_rank = r if best_rank is None else max(best_rank, r)
@@ -260,11 +284,14 @@ class Closer:
             raise ClosureError(
                 f"configuration {cfg.name!r} does not close: residual {res:.3g} m after continuation "
                 f"(accepted: {self.tolerance:.1g} m)",
-                cfg.name, res,
+                cfg.name,
+                res,
             )
         return ClosedConfiguration(cfg.name, q_out, res, underdetermined, steps, given)
 
-    def _correct(self, fm: KinematicModel, q_prev: np.ndarray, qg: np.ndarray, gmask: np.ndarray, final: bool) -> tuple[bool, np.ndarray, dict]:
+    def _correct(
+        self, fm: KinematicModel, q_prev: np.ndarray, qg: np.ndarray, gmask: np.ndarray, final: bool
+    ) -> tuple[bool, np.ndarray, dict]:
         """Predictor (tangent) + damped Newton on the unknown coordinates."""
         free = ~gmask
         L = fm.length_scale
@@ -289,7 +316,12 @@ class Closer:
             q = fm.update(q_prev, dg)
         q[gmask] = qg[gmask]
         res = fm.residual_norm(fm.chord_residuals(q))
-        info: dict[str, Any] = {"residual": res, "rank": None, "smin": 1.0, "underdetermined": False}
+        info: dict[str, Any] = {
+            "residual": res,
+            "rank": None,
+            "smin": 1.0,
+            "underdetermined": False,
+        }
         polish = 0
         for _it in range(_NEWTON_ITERATIONS):
             if res <= tol and _it > 0:
@@ -332,7 +364,9 @@ class Closer:
             info["underdetermined"] = rank < int(np.sum(free))
         return True, q, info
 
-    def _polish_mp(self, m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> tuple[np.ndarray, float]:
+    def _polish_mp(
+        self, m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray
+    ) -> tuple[np.ndarray, float]:
         """Newton at N digits from the float solution (given values at full precision)."""
         import mpmath
 
@@ -375,7 +409,9 @@ def _mp_lstsq(A: Any, b: Any) -> list[Any]:
     return [out[k] for k in range(A.cols)]
 
 
-def _scaled(M: np.ndarray, L: float, c: np.ndarray, length_columns: np.ndarray | None) -> np.ndarray:
+def _scaled(
+    M: np.ndarray, L: float, c: np.ndarray, length_columns: np.ndarray | None
+) -> np.ndarray:
     """Rows of 6-blocks moved to the centroid and v/L; length columns times L."""
     if M.shape[0] == 0:
         return M
@@ -398,7 +434,9 @@ def _fmt(m: KinematicModel, q: np.ndarray) -> str:
     return ", ".join(f"{k}={[round(x, 6) for x in v]}" for k, v in m.values(q).items())
 
 
-def solve_configuration(mech: Any, name: str, precision: Precision | str = "float") -> tuple[KinematicModel, ClosedConfiguration]:
+def solve_configuration(
+    mech: Any, name: str, precision: Precision | str = "float"
+) -> tuple[KinematicModel, ClosedConfiguration]:
     """Close one named configuration; returns the model and the closed configuration."""
     model = KinematicModel(mech, precision)
     return model, Closer(model).solve(name)

@@ -108,16 +108,30 @@ class KinematicModel:
                     r2 = Subgroup("R", axis=a2, point=cpt)
                     B = np.concatenate([r1.basis(self.precision), r2.basis(self.precision)])
                     jk = JointKinematics(
-                        j.name, "U", j.between[0], j.between[1], B,
-                        slice(offset, offset + 2), True, None, (False, False),
+                        j.name,
+                        "U",
+                        j.between[0],
+                        j.between[1],
+                        B,
+                        slice(offset, offset + 2),
+                        True,
+                        None,
+                        (False, False),
                     )
                 else:
                     sg = Subgroup(j.type, dict(j.params))
                     B = sg.basis(self.precision).reshape(-1, 6)
                     lengths = tuple(u == "m" for u in j.units)
                     jk = JointKinematics(
-                        j.name, j.type, j.between[0], j.between[1], B,
-                        slice(offset, offset + B.shape[0]), _is_abelian(B), sg, lengths,
+                        j.name,
+                        j.type,
+                        j.between[0],
+                        j.between[1],
+                        B,
+                        slice(offset, offset + B.shape[0]),
+                        _is_abelian(B),
+                        sg,
+                        lengths,
                     )
                 self.joints.append(jk)
                 offset += jk.basis.shape[0]
@@ -181,7 +195,9 @@ class KinematicModel:
             body = jk.b if st.sign > 0 else jk.a
         return out[body]
 
-    def current_screws(self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None) -> np.ndarray:
+    def current_screws(
+        self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
+    ) -> np.ndarray:
         """The current screw of every joint coordinate: (6, n), columns in file order."""
         poses = self.poses(q) if poses is None else poses
         cols = []
@@ -197,7 +213,9 @@ class KinematicModel:
 
     # ------------------------------------------------------------------ closure
 
-    def chord_residuals(self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None) -> list[np.ndarray]:
+    def chord_residuals(
+        self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
+    ) -> list[np.ndarray]:
         """``Delta_j = g_a M_j g_b^-1`` for each chord joint (identity when closed)."""
         poses = self.poses(q) if poses is None else poses
         return [poses[jk.a] @ self.element(jk, q) @ lie.inverse(poses[jk.b]) for jk in self.chords]

@@ -38,7 +38,8 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.lie._so3 import cross, dot, hat3, vee3
+from mechsing.lie._so3 import cross, hat3, vee3
+from mechsing.lie._so3 import dot as _so3_dot
 from mechsing.numeric import backend_of
 
 __all__ = [
@@ -58,6 +59,11 @@ def _arr(x: Any) -> np.ndarray:
     return a if a.dtype == object else a.astype(np.float64)
 
 
+def _dot(a: Any, b: Any) -> np.ndarray:
+    """Inner product over the last axis, always an ndarray (0-d for vectors)."""
+    return np.asarray(_so3_dot(a, b))
+
+
 def _check(x: np.ndarray, tail: tuple[int, ...], name: str, what: str) -> None:
     if x.ndim < len(tail) or x.shape[x.ndim - len(tail):] != tail:
         shape = "(..., " + ", ".join(str(t) for t in tail) + ")"
@@ -74,7 +80,7 @@ def cayley_so3(a: Any) -> np.ndarray:
     _check(a, (3,), "cayley_so3", "a Gibbs vector")
     bk = backend_of(a)
     A = hat3(a)
-    den = (1 + dot(a, a))[..., None, None]
+    den = np.asarray(1 + _dot(a, a))[..., None, None]
     eye = np.broadcast_to(bk.eye(3), a.shape[:-1] + (3, 3))
     return eye + 2 * (A + A @ A) / den
 
@@ -103,7 +109,7 @@ def cayley_so3_inverse(R: Any) -> np.ndarray:
     """
     R = _arr(R)
     _check(R, (3, 3), "cayley_so3_inverse", "a rotation matrix")
-    den = 1 + R[..., 0, 0] + R[..., 1, 1] + R[..., 2, 2]
+    den = np.asarray(1 + R[..., 0, 0] + R[..., 1, 1] + R[..., 2, 2])
     bad = np.asarray(den <= 0)
     bad = bad.astype(bool) if bad.dtype != bool else bad
     if np.any(bad):
@@ -138,7 +144,7 @@ def cayley_se3(xi: Any) -> np.ndarray:
     w = xi[..., 0:3]
     v = xi[..., 3:6]
     R = cayley_so3(w)
-    p = 2 * (v + cross(w, v) + dot(w, v)[..., None] * w) / (1 + dot(w, w))[..., None]
+    p = 2 * (v + cross(w, v) + _dot(w, v)[..., None] * w) / np.asarray(1 + _dot(w, w))[..., None]
     top = np.concatenate([R, p[..., None]], axis=-1)
     row = np.concatenate([bk.zeros(3), bk.eye(1)[0]])
     bottom = np.broadcast_to(row, xi.shape[:-1] + (1, 4))

@@ -33,7 +33,8 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.lie._so3 import cross, dot, hat3, quaternion_parts
+from mechsing.lie._so3 import cross, hat3, quaternion_parts
+from mechsing.lie._so3 import dot as _so3_dot
 from mechsing.numeric import backend_of
 
 __all__ = [
@@ -63,6 +64,11 @@ def _arr(x: Any) -> np.ndarray:
     return a if a.dtype == object else a.astype(np.float64)
 
 
+def _dot(a: Any, b: Any) -> np.ndarray:
+    """Inner product over the last axis, always an ndarray (0-d for vectors)."""
+    return np.asarray(_so3_dot(a, b))
+
+
 def _mask(c: Any) -> np.ndarray:
     """Boolean ndarray of a comparison (object arrays of sympy booleans included)."""
     c = np.asarray(c)
@@ -85,9 +91,9 @@ def quat_multiply(p: Any, q: Any) -> np.ndarray:
     _check_last(q, 4, "quat_multiply", "a quaternion (w, x, y, z)")
     pw, pv = p[..., 0], p[..., 1:]
     qw, qv = q[..., 0], q[..., 1:]
-    w = pw * qw - dot(pv, qv)
+    w = pw * qw - _dot(pv, qv)
     v = pw[..., None] * qv + qw[..., None] * pv + cross(pv, qv)
-    return np.concatenate([w[..., None], v], axis=-1)
+    return np.concatenate([np.asarray(w)[..., None], v], axis=-1)
 
 
 def quat_conjugate(q: Any) -> np.ndarray:
@@ -107,7 +113,7 @@ def quat_inverse(q: Any) -> np.ndarray:
     """
     q = _arr(q)
     _check_last(q, 4, "quat_inverse", "a quaternion (w, x, y, z)")
-    n2 = dot(q, q)
+    n2 = _dot(q, q)
     if np.any(_mask(n2 == 0)):
         raise ValueError("quat_inverse: the zero quaternion has no inverse")
     return quat_conjugate(q) / n2[..., None]
@@ -125,7 +131,7 @@ def quat_rotate(q: Any, v: Any) -> np.ndarray:
     _check_last(q, 4, "quat_rotate", "a quaternion (w, x, y, z)")
     _check_last(v, 3, "quat_rotate", "a vector")
     w, u = q[..., 0], q[..., 1:]
-    n2 = dot(q, q)
+    n2 = _dot(q, q)
     uv = cross(u, v)
     return v + (2 * w[..., None] * uv + 2 * cross(u, uv)) / n2[..., None]
 
@@ -142,7 +148,7 @@ def quat_to_rotation_matrix(q: Any) -> np.ndarray:
     bk = backend_of(q)
     w = q[..., 0]
     U = hat3(q[..., 1:])
-    n2 = dot(q, q)[..., None, None]
+    n2 = _dot(q, q)[..., None, None]
     eye = np.broadcast_to(bk.eye(3), q.shape[:-1] + (3, 3))
     return eye + (2 * w[..., None, None] * U + 2 * (U @ U)) / n2
 
@@ -181,7 +187,7 @@ def quat_exp(phi: Any) -> np.ndarray:
     phi = _arr(phi)
     _check_last(phi, 3, "quat_exp", "a rotation vector")
     bk = backend_of(phi)
-    t2 = dot(phi, phi)
+    t2 = _dot(phi, phi)
     thr = bk.threshold(_SINC_HALF_ORDER)
     small = _mask(t2 <= thr * thr)
     t = bk.sqrt(np.where(small, bk.convert(1), t2))
@@ -218,7 +224,7 @@ def quat_log(q: Any) -> np.ndarray:
     neg = _mask(q[..., 0] < 0)
     q = np.where(neg[..., None], -q, q)
     w, u = q[..., 0], q[..., 1:]
-    n2 = dot(u, u)
+    n2 = _dot(u, u)
     if np.any(_mask(n2 + w * w == 0)):
         raise ValueError("quat_log: the zero quaternion is not a rotation")
     thr = bk.threshold(_ATAN_ORDER)

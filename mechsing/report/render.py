@@ -64,7 +64,10 @@ def _margin(m: dict[str, Any] | None) -> str:
     parts = [f"kept {_fmt_num(m.get('kept'))}", f"dropped {_fmt_num(m.get('dropped'))}"]
     if "eig_margin" in m:
         parts.append(f"eigenvalue margin {_fmt_num(m['eig_margin'])}")
-    return ", ".join(parts) + f" (thresholds {m['tau_lo']:g}/{m['tau_hi']:g}, L = {m['length_scale']:.4g} m)"
+    return (
+        ", ".join(parts)
+        + f" (thresholds {m['tau_lo']:g}/{m['tau_hi']:g}, L = {m['length_scale']:.4g} m)"
+    )
 
 
 def _subgroup(sg: dict[str, Any]) -> str:
@@ -90,14 +93,23 @@ def render_text(result: Any, markdown: bool = False) -> str:
     if d["properties"]:
         lines += ["", f"{h2}Properties" if markdown else "Properties:"]
         for prop in d["properties"]:
-            text = prop.get("explanation") or ", ".join(f"{k} {v}" for k, v in prop.items() if k != "kind")
+            text = prop.get("explanation") or ", ".join(
+                f"{k} {v}" for k, v in prop.items() if k != "kind"
+            )
             lines.append(f"{bullet}{prop['kind']}: {text}")
     for c in d["configurations"]:
-        lines += ["", f"{h2}Configuration {c['name']}" if markdown else f"Configuration {c['name']} ({c['precision']}):"]
+        lines += [
+            "",
+            f"{h2}Configuration {c['name']}"
+            if markdown
+            else f"Configuration {c['name']} ({c['precision']}):",
+        ]
         if "error" in c:
             lines.append(f"{bullet}could not be closed: {c['error']}")
             continue
-        vals = ", ".join(f"{k} = [{', '.join(f'{x:.6g}' for x in v)}]" for k, v in c["joints"].items())
+        vals = ", ".join(
+            f"{k} = [{', '.join(f'{x:.6g}' for x in v)}]" for k, v in c["joints"].items()
+        )
         lines.append(f"{bullet}joint values (m, rad): {vals}")
         lines.append(f"{bullet}closure residual {c['closure_residual']:.3g} m")
         for lp in c["loops"]:
@@ -123,7 +135,9 @@ def render_text(result: Any, markdown: bool = False) -> str:
             who = f" (joints {', '.join(s['joints'])})" if s.get("joints") else ""
             lines.append(f"{bullet}{s['class']}{who}: {EXPLAIN.get(s['class'], '')}.")
             if "margin" in s:
-                lines.append(f"{bullet}  decided in {s.get('precision', c['precision'])}; margin: {_margin(s['margin'])}")
+                lines.append(
+                    f"{bullet}  decided in {s.get('precision', c['precision'])}; margin: {_margin(s['margin'])}"
+                )
     return "\n".join(lines) + "\n"
 
 

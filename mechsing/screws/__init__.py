@@ -96,7 +96,9 @@ def _exact_vec(v: np.ndarray) -> np.ndarray:
     return np.array([sympy.nsimplify(float(x), rational=True) for x in v], dtype=object)
 
 
-def reduced_coordinates(model: KinematicModel, basis_rows: np.ndarray, Ss: np.ndarray) -> np.ndarray:
+def reduced_coordinates(
+    model: KinematicModel, basis_rows: np.ndarray, Ss: np.ndarray
+) -> np.ndarray:
     """Coordinates of commensurate screws ``Ss`` (6 x n) in an orthonormal basis of
     the span of ``basis_rows`` (k x 6, commensurate): (k x n).
 
@@ -151,7 +153,9 @@ def reference_loop_identification(model: KinematicModel, loop: Loop) -> Identifi
     return ident
 
 
-def _loop_subgroup(model: KinematicModel, loop: Loop, poses: dict[str, np.ndarray]) -> Identification:
+def _loop_subgroup(
+    model: KinematicModel, loop: Loop, poses: dict[str, np.ndarray]
+) -> Identification:
     """The loop's generated subgroup at this configuration (reference one, conjugated)."""
     ref = reference_loop_identification(model, loop)
     if not ref.ok or ref.subgroup is None:
@@ -164,13 +168,19 @@ def _loop_subgroup(model: KinematicModel, loop: Loop, poses: dict[str, np.ndarra
         moved = ref.subgroup.conjugate(g)
     elif model.backend.name == "mp":
         with model.precision.context():
-            moved = Subgroup(ref.subgroup.type, {k: to_float(v) for k, v in ref.subgroup.params.items()}).conjugate(gf)
+            moved = Subgroup(
+                ref.subgroup.type, {k: to_float(v) for k, v in ref.subgroup.params.items()}
+            ).conjugate(gf)
     else:
-        moved = Subgroup(ref.subgroup.type, {k: to_float(v) for k, v in ref.subgroup.params.items()}).conjugate(gf)
+        moved = Subgroup(
+            ref.subgroup.type, {k: to_float(v) for k, v in ref.subgroup.params.items()}
+        ).conjugate(gf)
     return replace(ref, subgroup=moved)
 
 
-def closure_system(model: KinematicModel, q: np.ndarray, precision: Precision | None = None) -> ClosureSystem:
+def closure_system(
+    model: KinematicModel, q: np.ndarray, precision: Precision | None = None
+) -> ClosureSystem:
     """Loop systems and the stacked closure system at ``q`` (closed)."""
     prec = precision or model.precision
     poses = model.poses(q)

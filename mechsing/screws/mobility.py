@@ -45,7 +45,9 @@ def stacked_jacobian(model: KinematicModel, q: np.ndarray) -> np.ndarray:
     return np.concatenate(blocks, axis=0)
 
 
-def reclose(model: KinematicModel, q: np.ndarray, fixed: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+def reclose(
+    model: KinematicModel, q: np.ndarray, fixed: np.ndarray | None = None
+) -> tuple[np.ndarray, float]:
     """Minimum-norm Newton on the group from ``q`` (float), coordinates in ``fixed`` held.
 
     Returns the configuration reached and its residual (m).
@@ -60,7 +62,10 @@ def reclose(model: KinematicModel, q: np.ndarray, fixed: np.ndarray | None = Non
         r = to_float(model.chord_twists(model.chord_residuals(q)))
         J = stacked_jacobian(model, q)
         rs = np.concatenate(
-            [scale_screws(r[6 * i : 6 * i + 6, None], L, model.centroid)[:, 0] for i in range(len(r) // 6)]
+            [
+                scale_screws(r[6 * i : 6 * i + 6, None], L, model.centroid)[:, 0]
+                for i in range(len(r) // 6)
+            ]
         )
         A = J[:, free]
         U, s, Vt = np.linalg.svd(A, full_matrices=False)
@@ -77,7 +82,9 @@ def reclose(model: KinematicModel, q: np.ndarray, fixed: np.ndarray | None = Non
     return q, res
 
 
-def nearby_samples(model: KinematicModel, q: np.ndarray, kernel: np.ndarray, seed: int = 0) -> list[NearbySample]:
+def nearby_samples(
+    model: KinematicModel, q: np.ndarray, kernel: np.ndarray, seed: int = 0
+) -> list[NearbySample]:
     """Closed configurations at distances :data:`SAMPLE_STEPS` along random kernel
     directions (``kernel``: commensurate, n x d, float), with their nullities."""
     if kernel.shape[1] == 0 or not model.chords:

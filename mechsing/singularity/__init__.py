@@ -41,7 +41,9 @@ def output_chain(mech: Any, model: Any) -> tuple[list[str], list[int]] | None:
     return names, cols
 
 
-def _output_point(mech: Any, model: Any, q: np.ndarray, poses: dict[str, np.ndarray]) -> np.ndarray | None:
+def _output_point(
+    mech: Any, model: Any, q: np.ndarray, poses: dict[str, np.ndarray]
+) -> np.ndarray | None:
     out = mech.output
     if out is None or out.point is None:
         return None
@@ -73,7 +75,9 @@ def _tree_serial(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
     for _ in range(GENERIC_SAMPLES):
         qr = _random_configuration(fm, rng)
         pr = fm.poses(qr)
-        sysr = chain_system(fm, fm.current_screws(qr, pr), cols, _output_point(mech, fm, qr, pr), "float")
+        sysr = chain_system(
+            fm, fm.current_screws(qr, pr), cols, _output_point(mech, fm, qr, pr), "float"
+        )
         if sysr.rank.rank is not None:
             generic = max(generic, sysr.rank.rank)
     label = {"chain": "output", "body": mech.output.body, "relative_to": mech.output.relative_to}
@@ -109,7 +113,9 @@ def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str,
     mob = result.mobility
     inst, gen = mob["instantaneous"], mob["generic"]
     if gen is not None and inst is not None and inst > gen:
-        loop_joints = sorted({j for ls in cs.loops for j in ls.loop.joints}, key=[j.name for j in mech.joints].index)
+        loop_joints = sorted(
+            {j for ls in cs.loops for j in ls.loop.joints}, key=[j.name for j in mech.joints].index
+        )
         findings.append(
             {
                 "class": "increased-mobility",
@@ -126,7 +132,11 @@ def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str,
 def mechanism_properties(mech: Any, model: Any, results: list[Any]) -> list[dict[str, Any]]:
     """Mechanism-level properties from the regular configurations analysed."""
     props: list[dict[str, Any]] = []
-    regular = [r for r in results if r.error is None and r.mobility.get("finite") is not None and not r.singularities]
+    regular = [
+        r
+        for r in results
+        if r.error is None and r.mobility.get("finite") is not None and not r.singularities
+    ]
     if not regular:
         regular = [r for r in results if r.error is None and r.mobility.get("finite") is not None]
     if not regular:
@@ -151,7 +161,21 @@ def mechanism_properties(mech: Any, model: Any, results: list[Any]) -> list[dict
     n_in = len(mech.input_coordinates())
     if n_in:
         if n_in > mob["finite"]:
-            props.append({"kind": "redundant-actuation", "inputs": n_in, "finite": mob["finite"], "configuration": r.name})
+            props.append(
+                {
+                    "kind": "redundant-actuation",
+                    "inputs": n_in,
+                    "finite": mob["finite"],
+                    "configuration": r.name,
+                }
+            )
         elif n_in < mob["finite"]:
-            props.append({"kind": "underactuated", "inputs": n_in, "finite": mob["finite"], "configuration": r.name})
+            props.append(
+                {
+                    "kind": "underactuated",
+                    "inputs": n_in,
+                    "finite": mob["finite"],
+                    "configuration": r.name,
+                }
+            )
     return props

@@ -49,7 +49,9 @@ def _unit_first_positive(v: np.ndarray) -> np.ndarray:
     return v
 
 
-def chain_matrix(model: Any, S: np.ndarray, columns: list[int], point: np.ndarray | None) -> np.ndarray:
+def chain_matrix(
+    model: Any, S: np.ndarray, columns: list[int], point: np.ndarray | None
+) -> np.ndarray:
     """Commensurate matrix of a chain: twists (6 x k) or, for a point ``x`` (current
     position, m), its velocity rows ``v + omega x x`` divided by L (3 x k)."""
     L = model.length_scale
@@ -63,7 +65,9 @@ def chain_matrix(model: Any, S: np.ndarray, columns: list[int], point: np.ndarra
     return np.where(lc[None, :], vel * L, vel)
 
 
-def wrenches_of(model: Any, Ms: np.ndarray, null_rows: np.ndarray, point: bool) -> list[list[float]]:
+def wrenches_of(
+    model: Any, Ms: np.ndarray, null_rows: np.ndarray, point: bool
+) -> list[list[float]]:
     """SI wrenches (f, m) at the ground origin from commensurate left-null vectors."""
     L = model.length_scale
     c = model.centroid
@@ -118,7 +122,9 @@ def serial_finding(
     wr = wrenches_of(model, Ms, left_null, system.point)
     if system.point and point_x is not None:
         wr = [
-            _unit_first_positive(np.concatenate([np.array(w[:3]), np.cross(point_x, w[:3])])).tolist()
+            _unit_first_positive(
+                np.concatenate([np.array(w[:3]), np.cross(point_x, w[:3])])
+            ).tolist()
             for w in wr
         ]
     lost = U[:, r]
@@ -153,7 +159,9 @@ def serial_finding(
     return finding
 
 
-def chain_system(model: Any, S: np.ndarray, columns: list[int], point_x: np.ndarray | None, precision: Any) -> ChainSystem:
+def chain_system(
+    model: Any, S: np.ndarray, columns: list[int], point_x: np.ndarray | None, precision: Any
+) -> ChainSystem:
     Ms = chain_matrix(model, S, columns, point_x)
     dec = decide_rank(Ms, precision if str(precision) != "exact" else "float", model.length_scale)
     return ChainSystem(Ms, dec, columns, point_x is not None)

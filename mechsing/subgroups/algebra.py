@@ -1,0 +1,646 @@
+"""Lie closure, identification of a subalgebra, generated subgroups,
+intersections and products (theory.md §2.3-2.6).
+
+Every rank is decided in the commensurate metric (DESIGN.md): screws are moved
+to a centre c (Ad of the translation by -c) and their v rows divided by the
+length scale L.  Both maps are Lie algebra automorphisms, so brackets are
+taken in that metric directly.  The type is looked up in the catalog by its
+structure (dimension, dimension of the rotation part, whether a pitch is
+needed); the code names no type.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from mechsing import lie
+from mechsing.numeric import (
+    Margin,
+    Precision,
+    RankDecision,
+    backend_of,
+    characteristic_length,
+    decide_rank,
+    scale_screws,
+    to_float,
+)
+from mechsing.subgroups import _linalg
+from mechsing.subgroups.instance import Subgroup, as_precision
+from mechsing.subgroups.types import _cross, load_catalog
+
+__all__ = [
+    "Identification",
+    "Intersection",
+    "Product",
+    "generate",
+    "identify",
+    "intersect",
+    "lie_closure",
+    "product",
+]
+
+#: most bracket rounds of a closure (the dimension grows at each round, up to 6)
+_MAX_ROUNDS = 6
+
+
+@dataclass
+class Identification:
+    """The outcome of :func:`identify`.
+
+    ``status`` is ``"ok"`` (``subgroup`` and ``dim`` set), ``"undecided"`` (a
+    rank or a pitch fell between the two thresholds of the precision: no type
+    is given; ``dim_bounds`` says what is consistent), or ``"ill-conditioned"``
+    (the decided ranks describe no subalgebra, e.g. dimension 5: no type is
+    given).  ``bracket_norms[i]`` is the largest norm, in the commensurate
+    metric, of the part of a bracket of round i outside the span so far
+    (orthonormal basis, so 1 is large); the first entry below ``tau_lo`` closed
+    the algebra.  ``margin`` combines every decision taken (smallest kept,
+    largest dropped singular value, relative).
+    """
+
+    status: str
+    subgroup: Subgroup | None
+    dim: int | None
+    bracket_norms: list[float]
+    margin: Margin
+    precision: str
+    message: str = ""
+    dim_bounds: tuple[int, int] | None = None
+    rotation_dim: int | None = None
+    pitch_scaled: float | None = None
+    basis: Any = field(default=None, repr=False)
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
+
+    def to_json(self) -> dict[str, Any]:
+        sub = self.subgroup.to_json() if self.subgroup is not None else {"type": None, "dim": None, "params": {}}
+        out = dict(sub)
+        out.update(
+            {
+                "bracket_norms": [float(x) for x in self.bracket_norms],
+                "margin": self.margin.to_json(),
+                "status": self.status,
+                "precision": self.precision,
+            }
+        )
+        if self.message:
+            out["message"] = self.message
+        if self.dim_bounds is not None:
+            out["dim_bounds"] = list(self.dim_bounds)
+        return out
+
+
+class _Margins:
+    def __init__(self, prec: Precision, L: float):
+        self.prec, self.L = prec, L
+        self.kept: list[float] = []
+        self.dropped: list[float] = []
+
+    def add(self, d: RankDecision) -> None:
+        m = d.margin
+        if m.kept is not None:
+            self.kept.append(float(m.kept))
+        if m.dropped is not None:
+            self.dropped.append(float(m.dropped))
+
+    def add_values(self, kept: float | None = None, dropped: float | None = None) -> None:
+        if kept is not None:
+            self.kept.append(kept)
+        if dropped is not None:
+            self.dropped.append(dropped)
+
+    def margin(self) -> Margin:
+        t = self.prec.tolerances
+        return Margin(
+            min(self.kept) if self.kept else None,
+            max(self.dropped) if self.dropped else None,
+            t.tau_lo,
+            t.tau_hi,
+            float(self.L),
+        )
+
+
+def _brackets(B: np.ndarray) -> np.ndarray:
+    k = B.shape[0]
+    pairs = [(i, j) for i in range(k) for j in range(i + 1, k)]
+    if not pairs:
+        return B[:0]
+    a = np.stack([B[i] for i, _ in pairs])
+    b = np.stack([B[j] for _, j in pairs])
+    out = lie.bracket(a, b)
+    if backend_of(out).name == "exact":
+        out = np.vectorize(_linalg.simplify, otypes=[object])(out)
+    return out
+
+
+def _residual_norm(B: np.ndarray) -> float:
+    """Largest norm, outside span(B), of the brackets of an orthonormal (float)
+    basis of span(B): what a bracket round adds, on a scale where 1 is large."""
+    fb = to_float(B)
+    if fb.shape[0] < 2:
+        return 0.0
+    q, _ = np.linalg.qr(fb.T)
+    Q = q.T
+    br = _brackets(Q)
+    res = br - (br @ q) @ q.T
+    return float(np.max(np.linalg.norm(res, axis=1)))
+
+
+def _closure(
+    S: np.ndarray, prec: Precision, L: float, margins: _Margins
+) -> tuple[np.ndarray | None, list[float], tuple[int, int] | None]:
+    """Lie closure of the rows of S (commensurate metric): basis, bracket norms,
+    and the rank bounds when a decision was undecided."""
+    dec, B = _linalg.row_space(S, prec, L)
+    margins.add(dec)
+    if B is None:
+        return None, [], dec.rank_bounds
+    norms: list[float] = []
+    for _ in range(_MAX_ROUNDS):
+        br = _brackets(B)
+        if br.shape[0] == 0:
+            break
+        norms.append(_residual_norm(B))
+        M = np.concatenate([B, br], axis=0)
+        dec, B2 = _linalg.row_space(M, prec, L)
+        margins.add(dec)
+        if B2 is None:
+            return None, norms, dec.rank_bounds
+        if B2.shape[0] == B.shape[0]:
+            break
+        B = B2
+    return B, norms, None
+
+
+def lie_closure(
+    screws: Any, length_scale: float = 1.0, precision: Any = None
+) -> tuple[np.ndarray | None, list[float]]:
+    """Basis (rows, commensurate metric around the origin) of the Lie algebra
+    generated by the screws, and the bracket norms; None when undecided."""
+    S = np.asarray(screws)
+    prec = as_precision(precision, S)
+    with prec.context():
+        X = _linalg.convert(S, prec).reshape(-1, 6)
+        Xs = scale_screws(X.T, length_scale).T
+        B, norms, _ = _closure(Xs, prec, length_scale, _Margins(prec, length_scale))
+        return B, norms
+
+
+def _centre_of(X: np.ndarray) -> np.ndarray:
+    """Mean of the axis points nearest the origin of the screws that rotate (float)."""
+    f = to_float(X)
+    w = f[:, 0:3]
+    n2 = np.sum(w * w, axis=1)
+    big = n2 > 0
+    if not np.any(big):
+        return np.zeros(3)
+    feet = np.cross(w[big], f[big, 3:6]) / n2[big, None]
+    return feet.mean(axis=0)
+
+
+def identify(
+    screws: Any,
+    length_scale: float = 1.0,
+    precision: Any = None,
+    centre: Any = None,
+) -> Identification:
+    """Type and parameters of the subgroup generated by ``screws`` (theory.md §2.3).
+
+    Parameters
+    ----------
+    screws : array_like, shape (m, 6)
+        Any spanning set, (omega, v) order; redundant or recombined screws are fine.
+    length_scale : float
+        L of the commensurate metric (the v rows are divided by it).
+    precision : str, Precision or None
+        ``float``, ``mp:N``, ``exact``, ``auto`` (float, re-decided at mp:50
+        when undecided or ill-conditioned), or None: from the data (exact for
+        sympy numbers, mp for mpmath numbers, float otherwise).
+    centre : array_like, optional
+        Point the screws are moved to before deciding; default the mean of
+        the axis points of the rotating screws (float and mp; the origin in
+        exact mode).
+
+    Returns
+    -------
+    Identification
+        Never dimension 5 and never a guess: undecided ranks or pitches give
+        ``status="undecided"``, impossible ranks ``"ill-conditioned"``.
+    """
+    S = np.asarray(screws)
+    if S.ndim == 1:
+        S = S.reshape(1, -1) if S.size else S.reshape(0, 6)
+    if S.ndim != 2 or S.shape[1] != 6:
+        raise ValueError(f"screws must have shape (m, 6), got {S.shape}")
+    if isinstance(precision, str) and precision.strip().lower() == "auto":
+        first = identify(S, length_scale, "float", centre)
+        if first.ok:
+            return first
+        second = identify(S, length_scale, "mp:50", centre)
+        second.message = (second.message + " " if second.message else "") + (
+            f"(float was {first.status}; re-decided at mp:50)"
+        )
+        return second
+    prec = as_precision(precision, S)
+    with prec.context():
+        X = _linalg.convert(S, prec)
+        bk = prec.backend
+        if centre is None:
+            c = bk.zeros(3) if prec.mode == "exact" else _linalg.convert(_centre_of(X), prec)
+        else:
+            c = _linalg.convert(np.asarray(centre), prec)
+        L = bk.convert(length_scale) if prec.mode != "exact" else _exact_scale(length_scale)
+        Xs = scale_screws(X.T, L, c).T
+        return _identify_scaled(Xs, prec, L, c)
+
+
+def _exact_scale(L: Any) -> Any:
+    import sympy
+
+    if isinstance(L, float):
+        return sympy.Rational(repr(L))
+    return sympy.sympify(L)
+
+
+def _identify_scaled(Xs: np.ndarray, prec: Precision, L: Any, c: np.ndarray) -> Identification:
+    Lf = float(to_float(L))
+    margins = _Margins(prec, Lf)
+    B, norms, bounds = _closure(Xs, prec, Lf, margins)
+
+    def result(status: str, message: str, **kw: Any) -> Identification:
+        return Identification(status, None, None, norms, margins.margin(), str(prec), message, **kw)
+
+    if B is None:
+        return result(
+            "undecided",
+            "a rank lies between the thresholds of this precision; use a higher one (mp:N or exact)",
+            dim_bounds=bounds,
+        )
+    return _classify(B, prec, L, c, margins, norms)
+
+
+def _translations(bk: Any) -> np.ndarray:
+    T = bk.zeros((3, 6))
+    for i in range(3):
+        T[i, 3 + i] = bk.convert(1)
+    return T
+
+
+def _classify(
+    B: np.ndarray, prec: Precision, L: Any, c: np.ndarray, margins: _Margins, norms: list[float]
+) -> Identification:
+    bk = prec.backend
+    Lf = float(to_float(L))
+    k = B.shape[0]
+
+    def result(status: str, message: str, **kw: Any) -> Identification:
+        return Identification(status, None, None, norms, margins.margin(), str(prec), message, **kw)
+
+    # rotation dimension r = rank([B; translations]) - 3 (well scaled: B is orthonormal)
+    dec = decide_rank(np.concatenate([B, _translations(bk)], axis=0), prec, Lf)
+    margins.add(dec)
+    if dec.rank is None:
+        return result("undecided", "the dimension of the rotation part is undecided at this precision")
+    r = dec.rank - 3
+    candidates = [t for t in load_catalog().values() if t.dimension == k and t.rotation_rank == r]
+    if not candidates:
+        return result(
+            "ill-conditioned",
+            f"the decided ranks (dimension {k}, rotations {r}) describe no subalgebra of D; "
+            "the input is too close to a degenerate one for this precision",
+            rotation_dim=r,
+        )
+    # the geometric elements the parameters are read from
+    W = B[:, 0:3]
+    geo: dict[str, Any] = {}
+    pitch = None
+    if r == 1:
+        x = _rotating_element(B, prec)
+        w, v = x[0:3], x[3:6]
+        n2 = w @ w
+        u = w / bk.sqrt(np.asarray(n2))[()]
+        geo["direction"] = u
+        geo["point"] = _cross(w, v) / n2
+        pitch = (w @ v) / n2
+    elif r == 0 and k in (1, 2):
+        vs = B[:, 3:6]
+        d = vs[0] if k == 1 else _cross(vs[0], vs[1])
+        geo["direction"] = d / bk.sqrt(np.asarray(d @ d))[()]
+    elif r == 3 and k == 3:
+        geo["point"] = _centre_of_rotations(B, prec)
+    _ = W
+    if len(candidates) > 1:
+        pitched = _decide_pitch(pitch, prec, margins)
+        if pitched is None:
+            return result(
+                "undecided",
+                f"the pitch ({float(to_float(pitch)) * Lf:.3g}) is too close to zero to decide "
+                "at this precision",
+                rotation_dim=r,
+                pitch_scaled=float(to_float(pitch)),
+            )
+        candidates = [t for t in candidates if t.pitched == pitched]
+    if len(candidates) != 1:
+        return result("ill-conditioned", "no single catalog type fits", rotation_dim=r)
+    t = candidates[0]
+    params: dict[str, Any] = {}
+    for name, kind in t.parameters:
+        if kind in ("direction", "normal"):
+            params[name] = geo["direction"]
+        elif kind == "point":
+            params[name] = geo["point"] * L + c
+        else:
+            params[name] = pitch * L
+    if prec.mode == "exact":
+        params = {n: _simplify_any(v) for n, v in params.items()}
+    sub = Subgroup(t, params)
+    # consistency: the rebuilt canonical basis spans the same space
+    Bc = scale_screws(sub.basis(prec).T, L, c).T
+    dec = decide_rank(np.concatenate([B, Bc], axis=0), prec, Lf)
+    if dec.rank != k:
+        return result(
+            "ill-conditioned",
+            f"the rebuilt {t.symbol} basis does not span the closure (rank {dec.rank})",
+            rotation_dim=r,
+        )
+    ident = Identification("ok", sub.canonical(), k, norms, margins.margin(), str(prec), "", None, r)
+    ident.pitch_scaled = None if pitch is None else float(to_float(pitch))
+    ident.basis = B
+    return ident
+
+
+def _simplify_any(v: Any) -> Any:
+    arr = np.asarray(v, dtype=object)
+    if arr.shape == ():
+        return _linalg.simplify(arr[()])
+    return np.array([_linalg.simplify(x) for x in arr], dtype=object)
+
+
+def _rotating_element(B: np.ndarray, prec: Precision) -> np.ndarray:
+    """The element of span(B) with the largest rotation part (rotations of rank 1)."""
+    W = B[:, 0:3]
+    if prec.mode == "exact":
+        i = max(range(B.shape[0]), key=lambda j: float(to_float(W[j] @ W[j])))
+        return B[i]
+    if prec.mode == "mp":
+        U, _s, _V = _linalg._svd_mp(W, prec)
+        return U[:, 0] @ B
+    U, _s, _V = np.linalg.svd(W)
+    return U[:, 0] @ B
+
+
+def _centre_of_rotations(B: np.ndarray, prec: Precision) -> np.ndarray:
+    """Least-squares N with ``omega_i x N = -v_i`` over the basis (spherical)."""
+    rows, rhs = [], []
+    for w, v in zip(B[:, 0:3], B[:, 3:6], strict=True):
+        rows.extend(lie.hat3(w).tolist())
+        rhs.extend(list(-v))
+    A = np.array(rows, dtype=B.dtype)
+    b = np.array(rhs, dtype=B.dtype)
+    return _linalg.solve_coefficients(A.T, b, prec)
+
+
+def _decide_pitch(h: Any, prec: Precision, margins: _Margins) -> bool | None:
+    """Is the (commensurate) pitch non-zero?  Two thresholds, like a rank."""
+    if prec.mode == "exact":
+        return not _linalg.is_zero(h)
+    t = prec.tolerances
+    a = abs(float(to_float(h)))
+    if a >= t.tau_hi:
+        margins.add_values(kept=min(a, 1.0))
+        return True
+    if a <= t.tau_lo:
+        margins.add_values(dropped=a)
+        return False
+    return None
+
+
+# ---------------------------------------------------------------------------
+# Generated subgroup, intersection, product
+# ---------------------------------------------------------------------------
+
+
+def _common_frame(subgroups: list[Subgroup], length_scale: float | None) -> tuple[float, np.ndarray]:
+    pts = []
+    for s in subgroups:
+        ra = s.rotation_axis("float")
+        if ra is not None:
+            pts.append(to_float(ra[1]))
+        for (_n, kind), v in zip(s.type.parameters, s.params.values(), strict=True):
+            if kind == "point" and s.type.rotation_rank == 3:
+                pts.append(to_float(v))
+    L, c = characteristic_length(np.array(pts).reshape(-1, 3))
+    return (float(length_scale) if length_scale is not None else L), c
+
+
+def _precision_of(subgroups: list[Subgroup], precision: Any) -> Precision:
+    return as_precision(precision, *[np.asarray(list(s.params.values()) or [0], dtype=object) for s in subgroups])
+
+
+def generate(subgroups: list[Subgroup], length_scale: float | None = None, precision: Any = None) -> Identification:
+    """The connected subgroup generated by the given subgroups (theory.md §2.4):
+    the Lie closure of the sum of their algebras, identified.  Default
+    length scale: the characteristic length of their axis points."""
+    subgroups = list(subgroups)
+    prec = _precision_of(subgroups, precision)
+    L, c = _common_frame(subgroups, length_scale)
+    with prec.context():
+        rows = [s.basis(prec) for s in subgroups]
+        S = np.concatenate(rows, axis=0) if rows else prec.backend.zeros((0, 6))
+        centre = None if prec.mode == "exact" else c
+        return identify(S, L, prec, centre)
+
+
+@dataclass
+class Intersection:
+    """``a ∩ b``: the identity component (``identification``) and what is known
+    of extra components: ``extra_components`` is True (a discrete set of extra
+    pieces exists, described in ``note``), False (the intersection is
+    connected) or None (not determined)."""
+
+    identification: Identification
+    extra_components: bool | None
+    note: str
+
+    @property
+    def subgroup(self) -> Subgroup | None:
+        return self.identification.subgroup
+
+    def to_json(self) -> dict[str, Any]:
+        out = self.identification.to_json()
+        out["extra_components"] = self.extra_components
+        out["note"] = self.note
+        return out
+
+
+def intersect(a: Subgroup, b: Subgroup, length_scale: float | None = None, precision: Any = None) -> Intersection:
+    """Intersection of two subgroups (theory.md §2.5).
+
+    The identity component has algebra ``a ∩ b`` (a linear intersection,
+    decided in the commensurate metric).  Extra discrete components occur
+    when a pitched subgroup (H, Y) turns whole turns: ``exp(2 pi k e)`` is the
+    translation ``2 pi k h u``; when that lies in the other subgroup but not in
+    the identity component, the note says so.
+    """
+    prec = _precision_of([a, b], precision)
+    L, c = _common_frame([a, b], length_scale)
+    with prec.context():
+        bk = prec.backend
+        cc = bk.zeros(3) if prec.mode == "exact" else _linalg.convert(c, prec)
+        LL = _exact_scale(L) if prec.mode == "exact" else bk.convert(L)
+        B1 = scale_screws(a.basis(prec).T, LL, cc).T
+        B2 = scale_screws(b.basis(prec).T, LL, cc).T
+        margins = _Margins(prec, L)
+        if B1.shape[0] == 0 or B2.shape[0] == 0:
+            inter = bk.zeros((0, 6))
+        else:
+            _d1, O1 = _linalg.row_space(B1, prec, L)
+            _d2, O2 = _linalg.row_space(B2, prec, L)
+            A = np.concatenate([O1, -O2], axis=0).T
+            dec, N = _linalg.null_space(A, prec, L)
+            margins.add(dec)
+            if N is None:
+                ident = Identification(
+                    "undecided", None, None, [], margins.margin(), str(prec),
+                    "the dimension of the intersection is undecided at this precision",
+                )
+                return Intersection(ident, None, "")
+            inter = N[:, : O1.shape[0]] @ O1
+        if inter.shape[0] == 0:
+            ident = _classify(inter, prec, LL, cc, margins, [])
+        else:
+            B, norms, bounds = _closure(inter, prec, L, margins)
+            if B is None:
+                ident = Identification(
+                    "undecided", None, None, norms, margins.margin(), str(prec),
+                    "the dimension of the intersection is undecided", bounds,
+                )
+                return Intersection(ident, None, "")
+            ident = _classify(B, prec, LL, cc, margins, norms)
+        extra, note = _discrete_pieces(a, b, ident, prec)
+        return Intersection(ident, extra, note)
+
+
+def _discrete_pieces(a: Subgroup, b: Subgroup, ident: Identification, prec: Precision) -> tuple[bool | None, str]:
+    notes = []
+    extra: bool | None = False
+    for p, q in ((a, b), (b, a)):
+        if not p.type.pitched:
+            continue
+        u, _pt, h = p.rotation_axis(prec)  # type: ignore[misc]
+        turn = p.chart(_unit_turn(p, prec))
+        if q.type.pitched and q.rotation_axis(prec) is not None:
+            u2 = q.rotation_axis(prec)[0]  # type: ignore[index]
+            if float(np.linalg.norm(np.cross(to_float(u), to_float(u2)))) < 1e-9 and not q.contains(turn):
+                extra = None
+                notes.append(
+                    f"{p.symbol} and {q.symbol} turn about parallel axes with their own pitches: "
+                    "whole-turn coincidences may add discrete pieces (not determined)"
+                )
+        if q.contains(turn) and not (ident.subgroup is not None and ident.subgroup.contains(turn)):
+            extra = True
+            notes.append(
+                f"the intersection also holds the translations by 2 pi k x {float(to_float(h)):.6g} "
+                f"along {np.round(to_float(u), 12).tolist()} (k integer): the whole turns of "
+                f"{p.symbol}; these are discrete pieces outside the identity component"
+            )
+    return extra, "; ".join(notes)
+
+
+def _unit_turn(p: Subgroup, prec: Precision) -> np.ndarray:
+    """Coordinates of exp(2 pi e) for the rotating basis screw e of p."""
+    B = p.basis(prec)
+    bk = prec.backend
+    q = bk.zeros(p.dim)
+    i = int(np.argmax(np.abs(to_float(B[:, 0:3])).sum(axis=1)))
+    n = bk.sqrt(np.asarray(B[i, 0:3] @ B[i, 0:3]))[()]
+    q[i] = 2 * bk.pi / n
+    return q
+
+
+@dataclass
+class Product:
+    """Is the set ``a·b`` a subgroup?  ``is_subgroup`` is True (then
+    ``subgroup`` is it), False (``generated`` is the subgroup it generates;
+    ``set_dimension`` the dimension of the product set near the identity), or
+    None (the algebra sum is closed but no sufficient condition was found)."""
+
+    is_subgroup: bool | None
+    subgroup: Subgroup | None
+    generated: Identification
+    set_dimension: int | None
+    note: str
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "is_subgroup": self.is_subgroup,
+            "subgroup": self.subgroup.to_json() if self.subgroup is not None else None,
+            "generated": self.generated.to_json(),
+            "set_dimension": self.set_dimension,
+            "note": self.note,
+        }
+
+
+def product(a: Subgroup, b: Subgroup, length_scale: float | None = None, precision: Any = None) -> Product:
+    """Is the product set a·b a subgroup, and which one (theory.md §2.6)?
+
+    Necessary: the linear sum of the algebras is closed under the bracket
+    (otherwise a·b is a ``set_dimension``-dimensional subset of the generated
+    subgroup).  Sufficient: some ideal n of that sum lies in one factor and
+    fills the sum together with the other factor; the ideals tried are each
+    factor's algebra and its translation part.
+    """
+    prec = _precision_of([a, b], precision)
+    L, c = _common_frame([a, b], length_scale)
+    gen = generate([a, b], L, prec)
+    with prec.context():
+        bk = prec.backend
+        cc = bk.zeros(3) if prec.mode == "exact" else _linalg.convert(c, prec)
+        LL = _exact_scale(L) if prec.mode == "exact" else bk.convert(L)
+        B1 = scale_screws(a.basis(prec).T, LL, cc).T
+        B2 = scale_screws(b.basis(prec).T, LL, cc).T
+        dec, Ssum = _linalg.row_space(np.concatenate([B1, B2], axis=0), prec, L)
+        if Ssum is None:
+            return Product(None, None, gen, None, "the dimension of the sum is undecided")
+        m = Ssum.shape[0]
+        if not gen.ok:
+            return Product(None, None, gen, m, "the generated subgroup is not decided: " + gen.message)
+        if gen.dim != m:
+            return Product(
+                False, None, gen, m,
+                f"the algebras sum to dimension {m}, not closed under the bracket: a·b is a "
+                f"{m}-dimensional subset of the generated {gen.subgroup.symbol if gen.subgroup else '?'}",
+            )
+
+        def rank(M: np.ndarray) -> int | None:
+            return decide_rank(M, prec, L).rank if M.shape[0] else 0
+
+        def ideal(n: np.ndarray) -> bool:
+            if n.shape[0] == 0:
+                return False
+            br = lie.bracket(Ssum[:, None, :], n[None, :, :]).reshape(-1, 6)
+            return rank(np.concatenate([n, br], axis=0)) == rank(n)
+
+        def translation_part(Bx: np.ndarray) -> np.ndarray:
+            if Bx.shape[0] == 0:
+                return Bx
+            A = np.concatenate([Bx, -_translations(bk)], axis=0).T
+            _d, N = _linalg.null_space(A, prec, L)
+            if N is None or N.shape[0] == 0:
+                return Bx[:0]
+            return N[:, : Bx.shape[0]] @ Bx
+
+        for n, other, what in (
+            (B1, B2, f"{a.symbol} is normal in the product"),
+            (B2, B1, f"{b.symbol} is normal in the product"),
+            (translation_part(B1), B2, f"the translations of {a.symbol} form an ideal"),
+            (translation_part(B2), B1, f"the translations of {b.symbol} form an ideal"),
+        ):
+            if ideal(n) and rank(np.concatenate([n, other], axis=0)) == m:
+                return Product(True, gen.subgroup, gen, m, what)
+        return Product(None, None, gen, m, "the sum is a subalgebra; no sufficient condition found")

@@ -1,0 +1,448 @@
+"""Subgroup instances: a catalog type with its geometric parameters.
+
+Parameters may be floats, mpmath numbers or sympy exact numbers; the instance
+keeps the backend of what it was given (exact stays exact).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import sympy
+
+from mechsing import lie
+from mechsing.numeric import (
+    NEAR_ZERO_VECTOR,
+    Backend,
+    Precision,
+    backend_of,
+    parse_precision,
+    scale_screws,
+    screw_zero_rtol,
+    to_float,
+)
+from mechsing.subgroups import _linalg
+from mechsing.subgroups.types import SubgroupType, _cross, load_catalog
+
+__all__ = ["Subgroup", "as_precision"]
+
+_VECTOR_KINDS = ("direction", "normal", "point")
+
+
+def as_precision(p: Any, *arrays: Any) -> Precision:
+    """A Precision from a Precision, a mode string, a Backend, or (None) the data."""
+    if isinstance(p, Precision):
+        return p
+    if isinstance(p, str):
+        return parse_precision(p)
+    if isinstance(p, Backend):
+        bk = p
+    else:
+        bk = backend_of(*arrays)
+    if bk.name == "exact":
+        return Precision("exact")
+    if bk.name == "mp":
+        import mpmath
+
+        return Precision("mp", mpmath.mp.dps)
+    return Precision("float")
+
+
+def _norm2(v: np.ndarray) -> Any:
+    return v[0] * v[0] + v[1] * v[1] + v[2] * v[2]
+
+
+def _first_nonzero_positive(v: np.ndarray, bk: Backend) -> np.ndarray:
+    tol = screw_zero_rtol(bk)
+    for x in v:
+        if bk.name == "exact":
+            if _linalg.is_zero(x):
+                continue
+            return -v if sympy.N(x, 30) < 0 else v
+        if abs(x) > tol:
+            return -v if x < 0 else v
+    return v
+
+
+class Subgroup:
+    """A connected Lie subgroup of D: a catalog type and its parameters.
+
+    Parameters
+    ----------
+    type : SubgroupType or str
+        The type or its symbol (``"R"``, ``"T2"`` ...).
+    params : mapping, optional
+        Parameter values by name (the mechanism-file keys of the type); may
+        also be given as keyword arguments.  Directions and normals are
+        normalised; a near-zero direction, a missing or unknown key, and a zero
+        pitch where the type forbids it raise ``ValueError``.
+
+    Examples
+    --------
+    >>> r = Subgroup("R", axis=[0, 0, 2], point=[1, 0, 0])
+    >>> r.to_json()
+    {'type': 'R', 'dim': 1, 'params': {'axis': [0.0, 0.0, 1.0], 'point': [1.0, 0.0, 0.0]}}
+    """
+
+    def __init__(self, type: SubgroupType | str, params: Mapping[str, Any] | None = None, **kw: Any):
+        t = load_catalog()[type] if isinstance(type, str) else type
+        given = dict(params or {}, **kw)
+        names = t.parameter_names
+        missing = [n for n in names if n not in given]
+        extra = [n for n in given if n not in names]
+        if missing or extra:
+            need = ", ".join(names) or "no parameters"
+            raise ValueError(
+                f"subgroup {t.symbol} takes {need}"
+                + (f"; missing {', '.join(missing)}" if missing else "")
+                + (f"; unknown {', '.join(extra)}" if extra else "")
+            )
+        raw = {n: np.asarray(given[n], dtype=object) for n in names}
+        bk = backend_of(*raw.values()) if raw else Precision("float").backend
+        self.type: SubgroupType = t
+        self.backend: Backend = bk
+        self.params: dict[str, Any] = {}
+        for name, kind in t.parameters:
+            val = raw[name]
+            if kind in _VECTOR_KINDS:
+                if val.shape != (3,):
+                    raise ValueError(f"subgroup {t.symbol}: {name} must be 3 numbers, got {given[name]!r}")
+                v = bk.asarray(val)
+                fv = to_float(v)
+                if not np.all(np.isfinite(fv)):
+                    raise ValueError(f"subgroup {t.symbol}: {name} must be finite, got {given[name]!r}")
+                if kind != "point":
+                    if np.linalg.norm(fv) <= NEAR_ZERO_VECTOR:
+                        raise ValueError(
+                            f"subgroup {t.symbol}: {name} {given[name]!r} is zero or nearly so; "
+                            "give a non-zero direction"
+                        )
+                    v = v / bk.sqrt(np.asarray(_norm2(v)))[()]
+                    if bk.name == "exact":
+                        v = np.array([_linalg.simplify(x) for x in v], dtype=object)
+                self.params[name] = v
+            else:
+                if val.shape != ():
+                    raise ValueError(f"subgroup {t.symbol}: {name} must be one number")
+                h = bk.asarray(val)[()]
+                if not np.isfinite(to_float(h)):
+                    raise ValueError(f"subgroup {t.symbol}: {name} must be finite")
+                if name in t.nonzero and (
+                    _linalg.is_zero(h) if bk.name == "exact" else abs(to_float(h)) == 0.0
+                ):
+                    raise ValueError(
+                        f"subgroup {t.symbol}: {name} must not be zero "
+                        f"(a zero {name} is a different type)"
+                    )
+                self.params[name] = h
+
+    # -- description --------------------------------------------------------
+
+    @property
+    def symbol(self) -> str:
+        return self.type.symbol
+
+    @property
+    def dim(self) -> int:
+        return self.type.dimension
+
+    def __repr__(self) -> str:
+        ps = ", ".join(f"{k}={_show(v)}" for k, v in self.params.items())
+        return f"Subgroup({self.symbol}{', ' if ps else ''}{ps})"
+
+    def _params_in(self, prec: Precision) -> dict[str, Any]:
+        if prec.backend.name == self.backend.name and prec.mode != "mp":
+            return self.params
+        out = {}
+        for k, v in self.params.items():
+            out[k] = _linalg.convert(np.asarray(v), prec)
+            if out[k].shape == ():
+                out[k] = out[k][()]
+        return out
+
+    def basis(self, precision: Any = None) -> np.ndarray:
+        """The subalgebra basis ``(dim, 6)``, catalog order, in the in-plane convention.
+
+        ``precision``: a Precision, a mode string or a Backend; default: the
+        parameters' own backend (exact parameters give an exact basis).
+        """
+        prec = as_precision(precision, *self.params.values())
+        with prec.context():
+            return self.type.basis(self._params_in(prec), prec.backend)
+
+    def scaled_basis(self, length_scale: Any = 1.0, centre: Any = None, precision: Any = None) -> np.ndarray:
+        """The basis made commensurate (DESIGN.md): moved to ``centre``, v rows / L."""
+        B = self.basis(precision)
+        return scale_screws(B.T, length_scale, centre).T
+
+    def rotation_axis(self, precision: Any = None) -> tuple[Any, Any, Any] | None:
+        """``(u, point, pitch)`` of the basis screw that rotates, for types whose
+        rotations are about one direction (R, H, C, G, Y, X); None otherwise."""
+        if self.type.rotation_rank != 1:
+            return None
+        B = self.basis(precision)
+        bk = backend_of(B)
+        i = int(np.argmax(np.abs(to_float(B[:, 0:3])).sum(axis=1)))
+        w, v = B[i, 0:3], B[i, 3:6]
+        n2 = _norm2(w)
+        return w / bk.sqrt(np.asarray(n2))[()], _cross(w, v) / n2, (w @ v) / n2
+
+    # -- moving and comparing -------------------------------------------------
+
+    def conjugate(self, g: Any) -> Subgroup:
+        """``g H g^-1``: the same type with its parameters moved by ``g`` (4x4)."""
+        g = np.asarray(g)
+        bk = backend_of(g, *self.params.values())
+        prec = as_precision(bk)
+        g = _linalg.convert(g, prec)
+        R, p = g[:3, :3], g[:3, 3]
+        new: dict[str, Any] = {}
+        for (name, kind), val in zip(self.type.parameters, self._params_in(prec).values(), strict=True):
+            if kind == "point":
+                new[name] = R @ val + p
+            elif kind in ("direction", "normal"):
+                new[name] = R @ val
+            else:
+                new[name] = val
+        if bk.name == "exact":
+            new = {k: _simp(v) for k, v in new.items()}
+        return Subgroup(self.type, new)
+
+    def canonical(self) -> Subgroup:
+        """The same subgroup with canonical parameters (theory.md §2.3): directions
+        with their first non-zero component positive, points nearest the origin
+        (a point is slid along the type's direction when the type has one)."""
+        bk = self.backend
+        new: dict[str, Any] = {}
+        direction = None
+        for name, kind in self.type.parameters:
+            val = self.params[name]
+            if kind in ("direction", "normal"):
+                val = _first_nonzero_positive(val, bk)
+                direction = val if direction is None else direction
+            new[name] = val
+        for name, kind in self.type.parameters:
+            if kind == "point" and direction is not None:
+                p = new[name]
+                new[name] = p - (p @ direction) * direction
+        if bk.name == "exact":
+            new = {k: _simp(v) for k, v in new.items()}
+        out = Subgroup.__new__(Subgroup)
+        out.type, out.backend, out.params = self.type, bk, new
+        return out
+
+    def equals(self, other: Subgroup, length_scale: float = 1.0) -> bool:
+        """Same type and same canonical parameters (relative tolerance from
+        :mod:`mechsing.numeric`; exactly in exact mode)."""
+        if not isinstance(other, Subgroup) or other.type.symbol != self.type.symbol:
+            return False
+        a, b = self.canonical(), other.canonical()
+        exact = a.backend.name == "exact" and b.backend.name == "exact"
+        tol = screw_zero_rtol(a.backend if a.backend.name != "float" else b.backend)
+        for name, kind in self.type.parameters:
+            x, y = a.params[name], b.params[name]
+            if exact:
+                d = np.atleast_1d(np.asarray(x, dtype=object) - np.asarray(y, dtype=object))
+                if not all(_linalg.is_zero(v) for v in d):
+                    return False
+                continue
+            fx, fy = np.atleast_1d(to_float(x)), np.atleast_1d(to_float(y))
+            scale = length_scale if kind in ("point", "pitch") else 1.0
+            ref = max(scale, float(np.max(np.abs(fx))), float(np.max(np.abs(fy))))
+            if float(np.max(np.abs(fx - fy))) > float(tol) * ref:
+                return False
+        return True
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Subgroup) and self.equals(other)
+
+    __hash__ = None  # type: ignore[assignment]  # equality has a tolerance
+
+    def to_json(self) -> dict[str, Any]:
+        """``{"type", "dim", "params"}`` with canonical parameters, as floats (SI)."""
+        c = self.canonical()
+        params: dict[str, Any] = {}
+        for k, v in c.params.items():
+            f = to_float(v)
+            params[k] = [float(x) + 0.0 for x in f] if np.ndim(f) else float(f) + 0.0
+        return {"type": self.symbol, "dim": self.dim, "params": params}
+
+    # -- membership -----------------------------------------------------------
+
+    def contains_screw(self, xi: Any, length_scale: float = 1.0, precision: Any = None) -> Any:
+        """Is the screw (or each screw of a batch (..., 6)) in the subalgebra?
+
+        Decided in the commensurate metric (v / ``length_scale``) on the
+        residual of the projection, relative to the screw's norm:
+        ``<= screw_zero_rtol`` (1e-9 in float), exactly in exact mode.
+        """
+        xi = np.asarray(xi)
+        prec = as_precision(precision, xi, *self.params.values())
+        with prec.context():
+            x = _linalg.convert(xi, prec).reshape(-1, 6)
+            B = self.basis(prec)
+            if prec.mode == "exact":
+                out = []  # exact rank: the length scale changes nothing
+                for row in x:
+                    M = sympy.Matrix([list(r) for r in B] + [list(row)])
+                    out.append(M.rank(simplify=True) == B.shape[0])
+                return np.array(out).reshape(xi.shape[:-1])[()] if xi.ndim > 1 else out[0]
+            Bs = to_float(scale_screws(B.T, length_scale).T)
+            xs = to_float(scale_screws(x.T, length_scale).T)
+            if Bs.shape[0]:
+                q, _ = np.linalg.qr(Bs.T)
+                res = xs - (xs @ q) @ q.T
+            else:
+                res = xs
+            tol = float(screw_zero_rtol(prec.backend))
+            ok = np.linalg.norm(res, axis=1) <= tol * np.maximum(np.linalg.norm(xs, axis=1), 1e-300)
+            ok |= np.linalg.norm(xs, axis=1) == 0
+            return ok.reshape(xi.shape[:-1])[()] if xi.ndim > 1 else bool(ok[0])
+
+    def chart(self, q: Any) -> np.ndarray:
+        """The element ``exp(sum q_i e_i)`` of canonical coordinates ``q`` (dim,)."""
+        q = np.asarray(q)
+        prec = as_precision(None, q, *self.params.values())
+        with prec.context():
+            qq = _linalg.convert(q, prec).reshape(self.dim)
+            B = self.basis(prec)
+            xi = qq @ B if self.dim else prec.backend.zeros(6)
+            return lie.exp(xi)
+
+    element = chart
+
+    def coordinates_of(self, g: Any) -> np.ndarray:
+        """Canonical coordinates q with ``chart(q) == g`` for g in the subgroup.
+
+        Angles are principal, in (-pi, pi], except where the subgroup forces a
+        global slide: when the rotating basis screw has a non-zero pitch h and
+        the translation along its axis is not in the subgroup (H, Y), the angle
+        is read from the slide, ``angle = slide / h``, so it does not wrap.
+        Spherical coordinates are the principal rotation vector (|angle| <= pi).
+        For g outside the subgroup the result is a least-squares projection;
+        :meth:`contains` checks it.  For a helical-translating (Y) element whose
+        angle is a non-zero multiple of 2 pi with a translation across the
+        axis, no first-kind coordinates exist: ``ValueError``.
+        """
+        g = np.asarray(g)
+        prec = as_precision(None, g, *self.params.values())
+        with prec.context():
+            gg = _linalg.convert(g, prec)
+            bk = prec.backend
+            B = self.basis(prec)
+            if self.dim == 0:
+                return bk.zeros(0)
+            R, p = gg[:3, :3], gg[:3, 3]
+            r = self.type.rotation_rank
+            if r == 0:
+                xi = np.concatenate([bk.zeros(3), p])
+            elif r == 3:
+                xi = lie.log(gg)
+            else:
+                return self._coordinates_one_axis(R, p, B, prec)
+            q = _linalg.solve_coefficients(B, xi, prec)
+            return q
+
+    def _coordinates_one_axis(
+        self, R: np.ndarray, p: np.ndarray, B: np.ndarray, prec: Precision
+    ) -> np.ndarray:
+        """Coordinates when all rotations are about one direction u: the angle a
+        (global when pitched), then the other coordinates from the translation
+        part of the twist ``(a u, V(a u)^-1 p)``."""
+        a, xi = self._xi_one_axis(R, p, prec)
+        bk = prec.backend
+        fw = to_float(B[:, 0:3])
+        i = int(np.argmax(np.abs(fw).sum(axis=1)))
+        others = [j for j in range(B.shape[0]) if j != i]
+        if any(np.any(fw[j] != 0) for j in others):  # not the catalog's layout: least squares
+            return _linalg.solve_coefficients(B, xi, prec)
+        q = bk.zeros(B.shape[0])
+        q[i] = a / bk.sqrt(np.asarray(B[i, 0:3] @ B[i, 0:3]))[()]
+        if others:
+            rest = _linalg.solve_coefficients(B[others], xi - q[i] * B[i], prec)
+            for j, val in zip(others, rest, strict=True):
+                q[j] = val
+        if bk.name == "exact":
+            q = np.array([_linalg.simplify(x) for x in q], dtype=object)
+        return q
+
+    def _xi_one_axis(self, R: np.ndarray, p: np.ndarray, prec: Precision) -> tuple[Any, np.ndarray]:
+        bk = prec.backend
+        u, _pt, h0 = self.rotation_axis(prec)  # type: ignore[misc]
+        slide = u @ p
+        axial = np.concatenate([bk.zeros(3), u])
+        exact = bk.name == "exact"
+        if self.type.pitched and not self.contains_screw(axial, precision=prec):
+            a = slide / h0
+        else:
+            s_vec = lie.vee3((R - R.T) / 2)
+            a = bk.atan2(np.asarray(u @ s_vec), np.asarray((R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2))[()]
+        if exact:
+            a = _linalg.simplify(a)
+        p_perp = p - slide * u
+        # V(a u) on the plane normal to u is s I + c J (J = u x): invert it.
+        if exact:
+            s = sympy.sin(a) / a if a != 0 else sympy.Integer(1)
+            c = (1 - sympy.cos(a)) / a if a != 0 else sympy.Integer(0)
+        else:
+            small = abs(to_float(a)) < bk.threshold(4)
+            aa = a if not small else bk.convert(1)
+            s = 1 - a * a / 6 if small else bk.sin(np.asarray(aa))[()] / aa
+            c = a / 2 - a * a * a / 24 if small else (1 - bk.cos(np.asarray(aa))[()]) / aa
+        det = s * s + c * c
+        Jp = _cross(u, p_perp)
+        translations_across = self.dim > 1
+        if (_linalg.is_zero(det) if exact else to_float(det) == 0.0) or not translations_across:
+            if translations_across and not all(
+                _linalg.is_zero(x) if exact else x == 0 for x in p_perp
+            ):
+                raise ValueError(
+                    f"{self.symbol}: this element turns a whole number of turns while moving "
+                    "across its axis; it has no first-kind exponential coordinates"
+                )
+            v_perp = p_perp * 0
+        else:
+            v_perp = (s * p_perp - c * Jp) / det
+        xi = np.concatenate([a * u, v_perp + slide * u])
+        return a, xi
+
+    def contains(self, g: Any, length_scale: float = 1.0) -> bool:
+        """Is the displacement ``g`` (4x4) an element of the subgroup?
+
+        Compares ``chart(coordinates_of(g))`` with g: rotation entries and
+        translation / ``length_scale`` within ``screw_zero_rtol`` (1e-9 in float)
+        times ``max(1, |p| / L)``; exactly in exact mode.
+        """
+        g = np.asarray(g)
+        prec = as_precision(None, g, *self.params.values())
+        with prec.context():
+            gg = _linalg.convert(g, prec)
+            try:
+                q = self.coordinates_of(gg)
+            except ValueError:
+                return False
+            g2 = self.chart(q)
+            d = g2 - gg
+            if prec.mode == "exact":
+                return all(_linalg.is_zero(x) for x in d.flat)
+            fd = to_float(d)
+            fp = to_float(gg[:3, 3])
+            err = max(float(np.max(np.abs(fd[:3, :3]))), float(np.max(np.abs(fd[:3, 3]))) / length_scale)
+            ref = max(1.0, float(np.linalg.norm(fp)) / length_scale)
+            return err <= float(screw_zero_rtol(prec.backend)) * ref
+
+
+def _simp(v: Any) -> Any:
+    arr = np.asarray(v, dtype=object)
+    if arr.shape == ():
+        return _linalg.simplify(arr[()])
+    return np.array([_linalg.simplify(x) for x in arr.flat], dtype=object).reshape(arr.shape)
+
+
+def _show(v: Any) -> str:
+    arr = np.asarray(v)
+    if arr.dtype == object:
+        return "[" + ", ".join(str(x) for x in arr.flat) + "]" if arr.ndim else str(arr[()])
+    return np.array2string(arr, precision=6) if arr.ndim else f"{float(arr):.6g}"

@@ -1,0 +1,406 @@
+"""The catalog of Lie subgroup types of D, read from ``catalog/*.toml``.
+
+The code knows no type by name: every type (symbol, parameters, basis,
+coordinates ...) comes from the data files, validated here.  The basis is
+written as data in a small vocabulary of vector expressions, documented in
+``catalog/README.md`` and compiled by :func:`compile_vector`:
+
+* ``0`` the zero vector; ``ex``, ``ey``, ``ez`` the coordinate axes;
+* a parameter name of kind ``direction``, ``normal`` or ``point``;
+* ``e1(NAME)``, ``e2(NAME)`` the in-plane directions of a direction/normal
+  parameter (DESIGN.md: ``e1 = normalise(a - (a.w) w)`` with ``a`` the
+  coordinate axis least aligned with ``w``, first in x, y, z order on a tie,
+  and ``e2 = w x e1``);
+* ``A x B`` the cross product of two of the above;
+* ``s * A`` a pitch parameter ``s`` times one of the above;
+* terms joined by ``+``.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+import tomllib
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from mechsing.numeric import FLOAT, Backend
+
+__all__ = [
+    "CATALOG_DIR",
+    "PARAMETER_KINDS",
+    "CatalogError",
+    "SubgroupType",
+    "catalog_dir",
+    "compile_vector",
+    "in_plane",
+    "load_catalog",
+]
+
+#: where the data files live (editable install: the repository's ``catalog/``)
+CATALOG_DIR = Path(__file__).resolve().parents[2] / "catalog"
+
+#: the parameter kinds a catalog file may use; ``pitch`` is a scalar, the others 3-vectors
+PARAMETER_KINDS = ("direction", "normal", "point", "pitch")
+#: the units a canonical coordinate may have
+COORDINATE_UNITS = ("rad", "m")
+
+_REQUIRED = {
+    "symbol": str,
+    "name": str,
+    "dimension": int,
+    "normal_in_D": bool,
+    "invariants": list,
+    "joints": list,
+    "explanation": str,
+    "parameters": list,
+    "basis": list,
+    "coordinates": list,
+}
+
+
+class CatalogError(Exception):
+    """A catalog file is missing, unreadable or malformed (names the file and the fix)."""
+
+
+# ---------------------------------------------------------------------------
+# Vector expressions of the catalog
+# ---------------------------------------------------------------------------
+
+_VectorFn = Callable[[Mapping[str, np.ndarray], Backend], np.ndarray]
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return np.array(
+        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]],
+        dtype=np.result_type(a, b),
+    )
+
+
+def in_plane(w: np.ndarray, bk: Backend) -> tuple[np.ndarray, np.ndarray]:
+    """In-plane directions ``(e1, e2)`` of a unit vector ``w`` (DESIGN.md).
+
+    ``e1 = normalise(a - (a.w) w)`` with ``a`` the coordinate axis least aligned
+    with ``w`` (smallest ``|w_i|``, first in x, y, z order on a tie) and
+    ``e2 = w x e1``.  Works on every backend.
+    """
+    mags = [abs(w[i]) for i in range(3)]
+    i = 0
+    for j in (1, 2):
+        if mags[j] < mags[i]:
+            i = j
+    a = bk.zeros(3)
+    a[i] = bk.convert(1)
+    e = a - w[i] * w
+    n = bk.sqrt(np.asarray(e @ e))[()]
+    e1 = e / n
+    if bk.name == "exact":
+        e1 = np.array([_simplify(x) for x in e1], dtype=object)
+    e2 = _cross(w, e1)
+    if bk.name == "exact":
+        e2 = np.array([_simplify(x) for x in e2], dtype=object)
+    return e1, e2
+
+
+def _simplify(x: Any) -> Any:
+    import sympy
+
+    return sympy.radsimp(sympy.nsimplify(x) if isinstance(x, float) else sympy.simplify(x))
+
+
+_ATOM = re.compile(r"^(?:(e[12])\((\w+)\)|(\w+))$")
+
+
+def compile_vector(text: str, kinds: Mapping[str, str], where: str = "") -> _VectorFn:
+    """Compile a catalog vector expression into ``f(params, backend) -> (3,) array``.
+
+    ``kinds`` maps the type's parameter names to their kinds; a name of the
+    wrong kind, an unknown name or a bad shape raises :class:`CatalogError`.
+    """
+
+    def bad(msg: str) -> CatalogError:
+        return CatalogError(f"{where}: basis expression {text!r}: {msg}")
+
+    def atom(tok: str) -> _VectorFn:
+        tok = tok.strip()
+        m = _ATOM.match(tok)
+        if not m:
+            raise bad(f"cannot read {tok!r} (expected 0, ex, ey, ez, a parameter, e1(P) or e2(P))")
+        if m.group(1):
+            which, pname = m.group(1), m.group(2)
+            if kinds.get(pname) not in ("direction", "normal"):
+                raise bad(f"{which}({pname}) needs a direction or normal parameter {pname!r}")
+            idx = 0 if which == "e1" else 1
+            return lambda p, bk: in_plane(p[pname], bk)[idx]
+        name = m.group(3)
+        if name == "0":
+            return lambda p, bk: bk.zeros(3)
+        if name in ("ex", "ey", "ez"):
+            k = "xyz".index(name[1])
+
+            def unit(p: Mapping[str, np.ndarray], bk: Backend, k: int = k) -> np.ndarray:
+                out = bk.zeros(3)
+                out[k] = bk.convert(1)
+                return out
+
+            return unit
+        if kinds.get(name) in ("direction", "normal", "point"):
+            return lambda p, bk: p[name]
+        if name in kinds:
+            raise bad(f"{name!r} is a {kinds[name]}, not a vector")
+        raise bad(f"unknown name {name!r}")
+
+    def term(tok: str) -> _VectorFn:
+        if "*" in tok:
+            s, _, rest = tok.partition("*")
+            s = s.strip()
+            if kinds.get(s) != "pitch":
+                raise bad(f"{s!r} before '*' must be a pitch parameter")
+            f = term(rest)
+            return lambda p, bk: p[s] * f(p, bk)
+        parts = re.split(r"\s+x\s+", tok.strip())
+        if len(parts) == 1:
+            return atom(parts[0])
+        if len(parts) == 2:
+            fa, fb = atom(parts[0]), atom(parts[1])
+            return lambda p, bk: _cross(fa(p, bk), fb(p, bk))
+        raise bad("at most one cross product ' x ' per term")
+
+    if not text.strip():
+        raise bad("empty")
+    terms = [term(t) for t in text.split("+")]
+
+    def value(p: Mapping[str, np.ndarray], bk: Backend) -> np.ndarray:
+        out = terms[0](p, bk)
+        for f in terms[1:]:
+            out = out + f(p, bk)
+        return np.asarray(out, dtype=bk.dtype)
+
+    return value
+
+
+# ---------------------------------------------------------------------------
+# Subgroup types
+# ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class SubgroupType:
+    """One connected Lie subgroup type of D, as the catalog describes it.
+
+    Attributes
+    ----------
+    symbol, name : str
+        Hervé's symbol (``"R"``, ``"T2"`` ...) and a readable name.
+    dimension : int
+    parameters : tuple of (name, kind)
+        In file order; the names are the mechanism-file keys.
+    nonzero : frozenset of str
+        Pitch parameters that may not be zero (H, Y).
+    normal_in_D : bool
+    invariants, joints : tuple of str
+    explanation : str
+    basis_text : tuple of (omega, v) expression strings
+    coordinates : tuple of (name, unit)
+        Canonical (first-kind exponential) coordinates of the joint value.
+    source : Path
+    """
+
+    symbol: str
+    name: str
+    dimension: int
+    parameters: tuple[tuple[str, str], ...]
+    nonzero: frozenset[str]
+    normal_in_D: bool
+    invariants: tuple[str, ...]
+    joints: tuple[str, ...]
+    explanation: str
+    basis_text: tuple[tuple[str, str], ...]
+    coordinates: tuple[tuple[str, str], ...]
+    source: Path
+    _basis_fns: tuple[tuple[_VectorFn, _VectorFn], ...] = field(repr=False, default=())
+
+    @property
+    def parameter_names(self) -> tuple[str, ...]:
+        return tuple(n for n, _ in self.parameters)
+
+    @property
+    def parameter_kinds(self) -> dict[str, str]:
+        return dict(self.parameters)
+
+    @property
+    def length_columns(self) -> np.ndarray:
+        """Boolean mask of the coordinates that are lengths (DESIGN.md scaling)."""
+        return np.array([u == "m" for _, u in self.coordinates], dtype=bool)
+
+    @property
+    def pitched(self) -> bool:
+        """True when the type carries a pitch that may not be zero (H, Y)."""
+        return bool(self.nonzero)
+
+    def basis(self, params: Mapping[str, Any], backend: Backend = FLOAT) -> np.ndarray:
+        """The subalgebra basis ``(dimension, 6)`` for already-normalised parameters.
+
+        ``params`` maps each parameter name to a backend array (3-vectors) or
+        scalar (pitch); directions must be unit vectors.
+        """
+        out = backend.zeros((self.dimension, 6))
+        for i, (fw, fv) in enumerate(self._basis_fns):
+            out[i, 0:3] = fw(params, backend)
+            out[i, 3:6] = fv(params, backend)
+        return out
+
+    @functools.cached_property
+    def rotation_rank(self) -> int:
+        """Dimension of the rotation part (projection of the algebra to so(3))."""
+        return int(np.linalg.matrix_rank(self.basis(_sample_params(self))[:, 0:3]))
+
+    def __call__(self, **params: Any) -> Any:
+        """An instance: ``load_catalog()["R"](axis=[0, 0, 1], point=[1, 0, 0])``."""
+        from mechsing.subgroups.instance import Subgroup
+
+        return Subgroup(self, params)
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "symbol": self.symbol,
+            "name": self.name,
+            "dimension": self.dimension,
+            "parameters": [{"name": n, "kind": k} for n, k in self.parameters],
+            "basis": [{"omega": w, "v": v} for w, v in self.basis_text],
+            "coordinates": [{"name": n, "unit": u} for n, u in self.coordinates],
+            "normal_in_D": self.normal_in_D,
+            "invariants": list(self.invariants),
+            "joints": list(self.joints),
+            "explanation": self.explanation.strip(),
+        }
+
+
+def _sample_params(t: SubgroupType) -> dict[str, Any]:
+    """Generic float parameters (used to compute structural facts of a type)."""
+    d = np.array([1.0, 2.0, 2.0]) / 3.0
+    out: dict[str, Any] = {}
+    for name, kind in t.parameters:
+        out[name] = {"direction": d, "normal": d, "point": np.array([0.5, -1.0, 2.0])}.get(
+            kind, 0.5
+        )
+    return out
+
+
+def _parse_type(path: Path) -> SubgroupType:
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, tomllib.TOMLDecodeError) as exc:
+        raise CatalogError(f"{path}: cannot read the catalog file ({exc})") from exc
+    where = str(path)
+    for key, typ in _REQUIRED.items():
+        if key not in data:
+            raise CatalogError(f"{where}: missing key {key!r}")
+        if not isinstance(data[key], typ) or (typ is int and isinstance(data[key], bool)):
+            raise CatalogError(f"{where}: {key!r} must be a {typ.__name__}")
+    unknown = set(data) - set(_REQUIRED)
+    if unknown:
+        raise CatalogError(f"{where}: unknown keys {sorted(unknown)}")
+    symbol = data["symbol"]
+    if symbol != path.stem:
+        raise CatalogError(f"{where}: symbol {symbol!r} must equal the file name {path.stem!r}")
+    params: list[tuple[str, str]] = []
+    nonzero: set[str] = set()
+    for p in data["parameters"]:
+        if not isinstance(p, dict) or set(p) - {"name", "kind", "nonzero"} or "name" not in p:
+            raise CatalogError(f"{where}: each parameter needs 'name' and 'kind' (and optional 'nonzero')")
+        if p.get("kind") not in PARAMETER_KINDS:
+            raise CatalogError(
+                f"{where}: parameter {p['name']!r} has kind {p.get('kind')!r}; use one of {PARAMETER_KINDS}"
+            )
+        if p.get("nonzero") and p["kind"] != "pitch":
+            raise CatalogError(f"{where}: only a pitch parameter may be 'nonzero'")
+        params.append((p["name"], p["kind"]))
+        if p.get("nonzero"):
+            nonzero.add(p["name"])
+    kinds = dict(params)
+    if len(kinds) != len(params):
+        raise CatalogError(f"{where}: duplicate parameter names")
+    fns = []
+    texts = []
+    for b in data["basis"]:
+        if not isinstance(b, dict) or set(b) != {"omega", "v"}:
+            raise CatalogError(f"{where}: each basis entry needs exactly 'omega' and 'v'")
+        fns.append((compile_vector(b["omega"], kinds, where), compile_vector(b["v"], kinds, where)))
+        texts.append((b["omega"], b["v"]))
+    coords = []
+    for c in data["coordinates"]:
+        if not isinstance(c, dict) or set(c) != {"name", "unit"} or c["unit"] not in COORDINATE_UNITS:
+            raise CatalogError(f"{where}: each coordinate needs 'name' and 'unit' in {COORDINATE_UNITS}")
+        coords.append((c["name"], c["unit"]))
+    dim = data["dimension"]
+    if not (len(fns) == len(coords) == dim):
+        raise CatalogError(
+            f"{where}: dimension {dim} but {len(fns)} basis screws and {len(coords)} coordinates"
+        )
+    t = SubgroupType(
+        symbol=symbol,
+        name=data["name"],
+        dimension=dim,
+        parameters=tuple(params),
+        nonzero=frozenset(nonzero),
+        normal_in_D=data["normal_in_D"],
+        invariants=tuple(str(x) for x in data["invariants"]),
+        joints=tuple(str(x) for x in data["joints"]),
+        explanation=data["explanation"],
+        basis_text=tuple(texts),
+        coordinates=tuple(coords),
+        source=path,
+        _basis_fns=tuple(fns),
+    )
+    B = t.basis(_sample_params(t))
+    if dim and np.linalg.matrix_rank(B) != dim:
+        raise CatalogError(f"{where}: the basis screws are not independent")
+    if t.rotation_rank not in (0, 1, 3):
+        raise CatalogError(f"{where}: rotation part of dimension {t.rotation_rank} is impossible")
+    return t
+
+
+def catalog_dir() -> Path:
+    """The catalog directory, with a clear error when it is not there."""
+    if not CATALOG_DIR.is_dir():
+        raise CatalogError(
+            f"the subgroup catalog was not found at {CATALOG_DIR}; install mechsing from its "
+            "repository with 'pip install -e .' (the README's install method) so that catalog/ "
+            "sits beside the mechsing package"
+        )
+    return CATALOG_DIR
+
+
+@functools.cache
+def _load(directory: Path, stamp: tuple[tuple[str, int, int], ...]) -> dict[str, SubgroupType]:
+    files = sorted(directory.glob("*.toml"))
+    if not files:
+        raise CatalogError(f"{directory}: no catalog files (*.toml)")
+    types = [_parse_type(f) for f in files]
+    types.sort(key=lambda t: (t.dimension, t.rotation_rank, t.pitched, t.symbol))
+    return {t.symbol: t for t in types}
+
+
+def load_catalog(directory: str | Path | None = None) -> dict[str, SubgroupType]:
+    """All subgroup types, ``symbol -> SubgroupType``, ordered by dimension.
+
+    Parameters
+    ----------
+    directory : path, optional
+        Another catalog directory (tests); default: the repository's ``catalog/``.
+
+    Raises
+    ------
+    CatalogError
+        When the directory or a file is missing or malformed.
+    """
+    d = (catalog_dir() if directory is None else Path(directory)).resolve()
+    stamp = tuple(
+        (f.name, f.stat().st_mtime_ns, f.stat().st_size) for f in sorted(d.glob("*.toml"))
+    )
+    return dict(_load(d, stamp))
