@@ -19,3 +19,13 @@ from mechsing.lie._se3 import __all__ as _se3_all
 from mechsing.lie._so3 import log_so3, quaternion_parts, vee3
 
 __all__ = [*_se3_all, "log_so3", "quaternion_parts", "vee3"]
+
+from mechsing.lie import cayley, dual, quaternion  # noqa: E402
+from mechsing.lie.cayley import *  # noqa: E402,F403
+from mechsing.lie.cayley import __all__ as _cayley_all  # noqa: E402
+from mechsing.lie.dual import *  # noqa: E402,F403
+from mechsing.lie.dual import __all__ as _dual_all  # noqa: E402
+from mechsing.lie.quaternion import *  # noqa: E402,F403
+from mechsing.lie.quaternion import __all__ as _quat_all  # noqa: E402
+
+__all__ += [*_cayley_all, *_dual_all, *_quat_all, "cayley", "dual", "quaternion"]
