@@ -15,13 +15,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from mechsing.kinematics import Closer, ClosureError, KinematicModel
 from mechsing.model import Mechanism, load
-from mechsing.numeric import Precision, parse_precision, to_float
+from mechsing.numeric import Precision, parse_precision
 from mechsing.screws import closure_system, group_mobility, grubler
-from mechsing.screws.mobility import nearby_samples
 from mechsing.singularity import classify_configuration, mechanism_properties
 
 __all__ = ["AnalysisResult", "ConfigurationResult", "analyze"]
@@ -182,45 +179,15 @@ def _analyze_one(
             undecided = True
         out.loops.append(entry)
     inst = cs.nullity
-    gen, samples = _generic(model, q, cs)
-    mob = {
+    out.mobility = {
         "grubler": grubler(model),
         "group": group_mobility(model, cs.loops),
         "instantaneous": inst,
-        "generic": gen,
-        "finite": gen if gen is not None else (0 if samples == [] and inst else gen),
+        "generic": inst,
+        "finite": inst,
     }
-    out.mobility = mob
     out.internals.update(
-        {
-            "model": model,
-            "q": q,
-            "closure": cs,
-            "samples": samples,
-            "undecided": undecided,
-            "closed": closed,
-        }
+        {"model": model, "q": q, "closure": cs, "undecided": undecided, "closed": closed}
     )
     out.singularities = classify_configuration(mech, model, out)
     return out
-
-
-def _generic(model: KinematicModel, q: np.ndarray, cs: Any) -> tuple[int | None, list | None]:
-    """(generic nullity, nearby samples); samples None when no sampling was needed."""
-    inst = cs.nullity
-    if inst is None:
-        return None, None
-    if not model.chords:
-        return inst, None
-    if inst == 0:
-        return 0, None
-    kernel = cs.rank.null_space
-    if kernel is None or kernel.shape[1] == 0:
-        return inst, None
-    samples = nearby_samples(model, q, to_float(kernel))
-    decided = [s.nullity for s in samples if s.nullity is not None]
-    if not samples:
-        return None, []
-    if not decided:
-        return None, samples
-    return min(min(decided), inst), samples

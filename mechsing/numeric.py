@@ -514,6 +514,7 @@ def decide_rank(
     precision: Precision | str = "float",
     length_scale: float = 1.0,
     want_spaces: bool = False,
+    reference: float | None = None,
 ) -> RankDecision:
     """Rank of a (scaled) matrix with the two-threshold rule and its margin.
 
@@ -528,6 +529,11 @@ def decide_rank(
         Recorded in the margin.
     want_spaces : bool
         Also return float orthonormal bases of the kernel and the range.
+    reference : float, optional
+        Magnitude the thresholds are relative to when it exceeds the largest
+        singular value: for a product ``A @ B`` with B orthonormal, pass the
+        norm of A, so that a product that is nearly zero is decided as rank 0
+        rather than judged against its own rounding noise.
     """
     prec = parse_precision(precision) if isinstance(precision, str) else precision
     tol = prec.tolerances
@@ -552,12 +558,16 @@ def decide_rank(
             sig = mpmath.svd_r(A, compute_uv=False)
             s = sorted((abs(x) for x in sig), reverse=True)
             smax = s[0] if s else mpmath.mpf(0)
+            if reference is not None and reference > smax:
+                smax = mpmath.mpf(reference)
             rel = [float(x / smax) if smax else 0.0 for x in s]
             sigma = tuple(float(x) for x in s)
     else:
         F = to_float(arr)
         s_np = np.linalg.svd(F, compute_uv=False)
         smax = float(s_np[0]) if len(s_np) else 0.0
+        if reference is not None and reference > smax:
+            smax = float(reference)
         rel = [float(x / smax) if smax > 0 else 0.0 for x in s_np]
         sigma = tuple(float(x) for x in s_np)
     rank, bounds = _split_rank(rel, tol)

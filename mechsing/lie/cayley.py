@@ -65,7 +65,7 @@ def _dot(a: Any, b: Any) -> np.ndarray:
 
 
 def _check(x: np.ndarray, tail: tuple[int, ...], name: str, what: str) -> None:
-    if x.ndim < len(tail) or x.shape[x.ndim - len(tail):] != tail:
+    if x.ndim < len(tail) or x.shape[x.ndim - len(tail) :] != tail:
         shape = "(..., " + ", ".join(str(t) for t in tail) + ")"
         raise ValueError(f"{name}: expected {what} of shape {shape}, got shape {x.shape}")
 

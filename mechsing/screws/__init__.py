@@ -51,6 +51,8 @@ class LoopSystem:
     identification: Identification
     matrix: np.ndarray
     rank: RankDecision
+    #: orthonormal commensurate basis (6 x dim h, float) of the loop's subalgebra
+    basis_float: np.ndarray = field(default_factory=lambda: np.eye(6), repr=False)
 
     @property
     def subgroup(self) -> Subgroup | None:
@@ -201,11 +203,13 @@ def closure_system(
                 Bb = model.asarray(B) if model.backend.name != "float" else to_float(B)
                 Bs = scaled_columns_rows(model, Bb)
             R = reduced_coordinates(model, Bs, Sl)
+            Qf = _orthonormal_float(to_float(Bs))
         else:
             R = Sl  # undecided subgroup: the full 6 rows (reported as such)
+            Qf = np.eye(6)
         with model.precision.context():
             dec = decide_rank(R[:, cols != 0], prec, L)
-        loops.append(LoopSystem(loop, ident, R, dec))
+        loops.append(LoopSystem(loop, ident, R, dec, Qf))
         blocks.append(R)
     if blocks:
         M = np.concatenate(blocks, axis=0)
@@ -214,6 +218,15 @@ def closure_system(
     with model.precision.context():
         dec = decide_rank(M, prec, L, want_spaces=True)
     return ClosureSystem(loops, M, dec, S)
+
+
+def _orthonormal_float(rows: np.ndarray) -> np.ndarray:
+    """Orthonormal basis (6 x k) of the span of commensurate basis rows (k x 6).
+
+    The same QR as :func:`reduced_coordinates` in float, so projections of
+    brackets match the loop's reduced closure rows."""
+    Q, _ = np.linalg.qr(np.asarray(rows, dtype=float).T)
+    return Q
 
 
 def scaled_columns_rows(model: KinematicModel, rows: np.ndarray) -> np.ndarray:

@@ -98,7 +98,10 @@ def _undecided(what: str, dec: Any) -> dict[str, Any]:
 
 
 def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
-    """Findings at one closed configuration (DESIGN.md classes)."""
+    """Findings at one closed configuration (DESIGN.md classes); also sets
+    ``result.mobility["generic"]`` and ``["finite"]`` for mechanisms with loops."""
+    from mechsing.singularity.classify import local_analysis
+
     findings: list[dict[str, Any]] = []
     cs = result.internals["closure"]
     if not mech.loops:
@@ -106,26 +109,16 @@ def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str,
         return findings
     if cs.rank.rank is None:
         findings.append(_undecided("stacked closure system", cs.rank))
+        result.mobility["generic"] = result.mobility["finite"] = None
         return findings
     for ls in cs.loops:
         if ls.rank.rank is None:
-            findings.append({**_undecided(f"loop {'-'.join(ls.loop.joints)}", ls.rank)})
-    mob = result.mobility
-    inst, gen = mob["instantaneous"], mob["generic"]
-    if gen is not None and inst is not None and inst > gen:
-        loop_joints = sorted(
-            {j for ls in cs.loops for j in ls.loop.joints}, key=[j.name for j in mech.joints].index
-        )
-        findings.append(
-            {
-                "class": "increased-mobility",
-                "joints": loop_joints,
-                "instantaneous": inst,
-                "generic": gen,
-                "margin": cs.rank.margin.to_json(),
-                "precision": cs.rank.precision,
-            }
-        )
+            findings.append(_undecided(f"loop {'-'.join(ls.loop.joints)}", ls.rank))
+    local = local_analysis(mech, model, result.internals["q"], cs)
+    result.mobility["generic"] = local.generic
+    result.mobility["finite"] = local.finite
+    result.internals["local"] = local
+    findings.extend(local.findings)
     return findings
 
 

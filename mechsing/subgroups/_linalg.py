@@ -122,4 +122,3 @@ def solve_coefficients(B: np.ndarray, x: np.ndarray, prec: Precision) -> np.ndar
 def is_zero(x: Any) -> bool:
     """Exact zero test of a sympy number."""
     return bool(sympy.simplify(x) == 0)
-

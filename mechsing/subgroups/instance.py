@@ -86,7 +86,9 @@ class Subgroup:
     {'type': 'R', 'dim': 1, 'params': {'axis': [0.0, 0.0, 1.0], 'point': [1.0, 0.0, 0.0]}}
     """
 
-    def __init__(self, type: SubgroupType | str, params: Mapping[str, Any] | None = None, **kw: Any):
+    def __init__(
+        self, type: SubgroupType | str, params: Mapping[str, Any] | None = None, **kw: Any
+    ):
         t = load_catalog()[type] if isinstance(type, str) else type
         given = dict(params or {}, **kw)
         names = t.parameter_names
@@ -108,11 +110,15 @@ class Subgroup:
             val = raw[name]
             if kind in _VECTOR_KINDS:
                 if val.shape != (3,):
-                    raise ValueError(f"subgroup {t.symbol}: {name} must be 3 numbers, got {given[name]!r}")
+                    raise ValueError(
+                        f"subgroup {t.symbol}: {name} must be 3 numbers, got {given[name]!r}"
+                    )
                 v = bk.asarray(val)
                 fv = to_float(v)
                 if not np.all(np.isfinite(fv)):
-                    raise ValueError(f"subgroup {t.symbol}: {name} must be finite, got {given[name]!r}")
+                    raise ValueError(
+                        f"subgroup {t.symbol}: {name} must be finite, got {given[name]!r}"
+                    )
                 if kind != "point":
                     if np.linalg.norm(fv) <= NEAR_ZERO_VECTOR:
                         raise ValueError(
@@ -172,7 +178,9 @@ class Subgroup:
         with prec.context():
             return self.type.basis(self._params_in(prec), prec.backend)
 
-    def scaled_basis(self, length_scale: Any = 1.0, centre: Any = None, precision: Any = None) -> np.ndarray:
+    def scaled_basis(
+        self, length_scale: Any = 1.0, centre: Any = None, precision: Any = None
+    ) -> np.ndarray:
         """The basis made commensurate (DESIGN.md): moved to ``centre``, v rows / L."""
         B = self.basis(precision)
         return scale_screws(B.T, length_scale, centre).T
@@ -199,7 +207,9 @@ class Subgroup:
         g = _linalg.convert(g, prec)
         R, p = g[:3, :3], g[:3, 3]
         new: dict[str, Any] = {}
-        for (name, kind), val in zip(self.type.parameters, self._params_in(prec).values(), strict=True):
+        for (name, kind), val in zip(
+            self.type.parameters, self._params_in(prec).values(), strict=True
+        ):
             if kind == "point":
                 new[name] = R @ val + p
             elif kind in ("direction", "normal"):
@@ -378,7 +388,9 @@ class Subgroup:
             a = slide / h0
         else:
             s_vec = lie.vee3((R - R.T) / 2)
-            a = bk.atan2(np.asarray(u @ s_vec), np.asarray((R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2))[()]
+            a = bk.atan2(np.asarray(u @ s_vec), np.asarray((R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2))[
+                ()
+            ]
         if exact:
             a = _linalg.simplify(a)
         p_perp = p - slide * u
@@ -429,7 +441,9 @@ class Subgroup:
                 return all(_linalg.is_zero(x) for x in d.flat)
             fd = to_float(d)
             fp = to_float(gg[:3, 3])
-            err = max(float(np.max(np.abs(fd[:3, :3]))), float(np.max(np.abs(fd[:3, 3]))) / length_scale)
+            err = max(
+                float(np.max(np.abs(fd[:3, :3]))), float(np.max(np.abs(fd[:3, 3]))) / length_scale
+            )
             ref = max(1.0, float(np.linalg.norm(fp)) / length_scale)
             return err <= float(screw_zero_rtol(prec.backend)) * ref
 

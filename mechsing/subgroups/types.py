@@ -312,7 +312,9 @@ def _parse_type(path: Path) -> SubgroupType:
     nonzero: set[str] = set()
     for p in data["parameters"]:
         if not isinstance(p, dict) or set(p) - {"name", "kind", "nonzero"} or "name" not in p:
-            raise CatalogError(f"{where}: each parameter needs 'name' and 'kind' (and optional 'nonzero')")
+            raise CatalogError(
+                f"{where}: each parameter needs 'name' and 'kind' (and optional 'nonzero')"
+            )
         if p.get("kind") not in PARAMETER_KINDS:
             raise CatalogError(
                 f"{where}: parameter {p['name']!r} has kind {p.get('kind')!r}; use one of {PARAMETER_KINDS}"
@@ -334,8 +336,14 @@ def _parse_type(path: Path) -> SubgroupType:
         texts.append((b["omega"], b["v"]))
     coords = []
     for c in data["coordinates"]:
-        if not isinstance(c, dict) or set(c) != {"name", "unit"} or c["unit"] not in COORDINATE_UNITS:
-            raise CatalogError(f"{where}: each coordinate needs 'name' and 'unit' in {COORDINATE_UNITS}")
+        if (
+            not isinstance(c, dict)
+            or set(c) != {"name", "unit"}
+            or c["unit"] not in COORDINATE_UNITS
+        ):
+            raise CatalogError(
+                f"{where}: each coordinate needs 'name' and 'unit' in {COORDINATE_UNITS}"
+            )
         coords.append((c["name"], c["unit"]))
     dim = data["dimension"]
     if not (len(fns) == len(coords) == dim):

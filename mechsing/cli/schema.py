@@ -1,0 +1,32 @@
+"""Print the JSON Schema (draft 2020-12) of the mechanism file format.
+
+Point an editor's YAML or JSON language server at it to get completion and
+checks while writing a mechanism file.  mechsing's own validation
+(``mechsing analyze``) checks more than the schema can (names, geometry,
+expressions) and is the authority.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+NAME = "schema"
+HELP = "print the JSON Schema of the mechanism file format"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--compact", action="store_true", help="print on one line instead of indented"
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    from mechsing.model.schema import mechanism_schema
+
+    schema = mechanism_schema()
+    if getattr(args, "compact", False):
+        print(json.dumps(schema, separators=(",", ":")))
+    else:
+        print(json.dumps(schema, indent=2))
+    return 0

@@ -1,0 +1,55 @@
+"""The mechanism: reading and validating files, and the graph model.
+
+Public API::
+
+    from mechsing.model import load, loads
+    mech = load("examples/fourbar.yaml")      # a Mechanism (or MechanismError)
+    mech.joints, mech.loops, mech.legs, mech.configurations, mech.graph.tree_paths
+
+See :mod:`mechsing.model.mechanism` for the data model,
+:mod:`mechsing.model.graph` for loops, legs and the spanning tree,
+:mod:`mechsing.model.expressions` for exact numbers and whitelisted
+expressions, and :mod:`mechsing.model.schema` for the JSON Schema.
+"""
+
+from mechsing.model.expressions import ExpressionError, parse_number
+from mechsing.model.graph import (
+    Leg,
+    Loop,
+    MechanismGraph,
+    PathStep,
+    build_graph,
+    canonical_loops,
+)
+from mechsing.model.loader import load, loads
+from mechsing.model.mechanism import (
+    Configuration,
+    Displacement,
+    InputRef,
+    Joint,
+    Mechanism,
+    MechanismError,
+    Output,
+    Units,
+)
+
+__all__ = [
+    "Configuration",
+    "Displacement",
+    "ExpressionError",
+    "InputRef",
+    "Joint",
+    "Leg",
+    "Loop",
+    "Mechanism",
+    "MechanismError",
+    "MechanismGraph",
+    "Output",
+    "PathStep",
+    "Units",
+    "build_graph",
+    "canonical_loops",
+    "load",
+    "loads",
+    "parse_number",
+]

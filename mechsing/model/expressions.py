@@ -1,0 +1,349 @@
+"""Exact numbers and whitelisted expressions from text (never ``eval``).
+
+A number written in a mechanism file (or on the ``identify`` command line)
+keeps its meaning in every precision mode: ``0.1`` is exactly 1/10, not the
+float64 nearest to it.  A quoted expression such as ``"sqrt(3)/2"`` or
+``"2*atan(1/2)"`` is an exact sympy value.
+
+The grammar is parsed with :mod:`ast` and only these nodes are accepted:
+
+* decimal numbers (``3``, ``-0.25``, ``1.5e-3``), taken from their *text*;
+* the operators ``+ - * / **``, unary ``+``/``-`` and parentheses;
+* the constant ``pi``;
+* the functions ``sqrt``, ``sin``, ``cos``, ``tan``, ``asin``, ``acos``,
+  ``atan`` (one argument) and ``atan2(y, x)``.
+
+Anything else (names, attributes, subscripts, calls of other functions,
+keyword arguments, strings, hexadecimal or complex literals, comparisons,
+lambdas ...) is refused with an :class:`ExpressionError` that names what is
+not allowed.  Sizes are bounded so that no text can make sympy build a huge
+number: the text length, the number of syntax nodes, the digits of a number,
+decimal exponents, and the exponents of ``**``.
+
+Public API: :func:`parse_number` (text to exact value), :func:`is_finite_real`.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+from typing import Any
+
+import sympy
+
+from mechsing.cli import UserError
+
+__all__ = [
+    "ALLOWED_FUNCTIONS",
+    "ExpressionError",
+    "MAX_EXPRESSION_CHARS",
+    "is_finite_real",
+    "parse_number",
+]
+
+#: longest expression text accepted
+MAX_EXPRESSION_CHARS = 1000
+#: most syntax nodes in one expression
+MAX_EXPRESSION_NODES = 200
+#: most digits of one decimal literal (mantissa)
+MAX_NUMBER_DIGITS = 400
+#: largest |decimal exponent| of a literal such as 1e-300
+MAX_DECIMAL_EXPONENT = 400
+#: largest |numerator| and denominator of the exponent of ``**``
+MAX_POWER_EXPONENT = 256
+#: largest bit length of an intermediate rational (numerator or denominator)
+MAX_RATIONAL_BITS = 8192
+
+#: whitelisted functions and their number of arguments
+ALLOWED_FUNCTIONS: dict[str, tuple[Any, int]] = {
+    "sqrt": (sympy.sqrt, 1),
+    "sin": (sympy.sin, 1),
+    "cos": (sympy.cos, 1),
+    "tan": (sympy.tan, 1),
+    "asin": (sympy.asin, 1),
+    "acos": (sympy.acos, 1),
+    "atan": (sympy.atan, 1),
+    "atan2": (sympy.atan2, 2),
+}
+
+_ALLOWED_TEXT = "numbers, + - * / **, parentheses, pi, sqrt, sin, cos, tan, asin, acos, atan, atan2"
+_DECIMAL = re.compile(r"^(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?$")
+_SIGNED_DECIMAL = re.compile(r"^[-+]?\s*(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?$")
+
+
+class ExpressionError(UserError, ValueError):
+    """A number or expression that cannot be read (exit status 2).
+
+    The message says what is wrong and what is allowed; callers that know the
+    file and line (the mechanism loader) prefix them.
+    """
+
+
+def _describe(node: ast.AST) -> str:
+    names = {
+        ast.Name: "the name",
+        ast.Attribute: "attribute access",
+        ast.Subscript: "subscripts",
+        ast.Call: "this call",
+        ast.Lambda: "lambda",
+        ast.Compare: "comparisons",
+        ast.BoolOp: "and/or",
+        ast.IfExp: "if/else",
+        ast.List: "lists",
+        ast.Tuple: "tuples",
+        ast.Dict: "dicts",
+        ast.Set: "sets",
+        ast.JoinedStr: "f-strings",
+        ast.Starred: "starred arguments",
+        ast.NamedExpr: "assignment expressions",
+    }
+    for cls, text in names.items():
+        if isinstance(node, cls):
+            return text
+    return type(node).__name__
+
+
+class _Builder:
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.shown = _short(text)
+
+    def fail(self, what: str) -> ExpressionError:
+        return ExpressionError(
+            f"expression {self.shown!r}: {what} is not allowed (allowed: {_ALLOWED_TEXT})"
+        )
+
+    def segment(self, node: ast.AST) -> str:
+        seg = ast.get_source_segment(self.text, node)
+        return seg if seg is not None else ""
+
+    def build(self, node: ast.AST) -> Any:
+        if isinstance(node, ast.Expression):
+            return self.build(node.body)
+        if isinstance(node, ast.Constant):
+            return self.number(node)
+        if isinstance(node, ast.UnaryOp):
+            if isinstance(node.op, ast.USub):
+                return self.check(-self.build(node.operand))
+            if isinstance(node.op, ast.UAdd):
+                return self.build(node.operand)
+            raise self.fail(f"the operator {type(node.op).__name__}")
+        if isinstance(node, ast.BinOp):
+            return self.binop(node)
+        if isinstance(node, ast.Name):
+            if node.id == "pi":
+                return sympy.pi
+            if node.id in ALLOWED_FUNCTIONS:
+                raise self.fail(f"{node.id} without parentheses")
+            raise self.fail(f"the name {node.id!r}")
+        if isinstance(node, ast.Call):
+            return self.call(node)
+        if isinstance(node, ast.Attribute):
+            raise self.fail(f"attribute access ({self.segment(node)!r})")
+        raise self.fail(_describe(node))
+
+    def number(self, node: ast.Constant) -> Any:
+        value = node.value
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            if isinstance(value, complex):
+                raise self.fail("a complex number")
+            raise self.fail(f"the constant {value!r}")
+        text = self.segment(node).strip()
+        if not _DECIMAL.match(text):
+            raise self.fail(f"the number {text!r} (write plain decimal digits)")
+        return decimal_text_to_rational(text, self.text)
+
+    def binop(self, node: ast.BinOp) -> Any:
+        op = node.op
+        if not isinstance(op, ast.Add | ast.Sub | ast.Mult | ast.Div | ast.Pow):
+            sym = {
+                ast.Mod: "%",
+                ast.FloorDiv: "//",
+                ast.MatMult: "@",
+                ast.BitXor: "^",
+                ast.BitAnd: "&",
+                ast.BitOr: "|",
+                ast.LShift: "<<",
+                ast.RShift: ">>",
+            }.get(type(op), type(op).__name__)
+            hint = " (use ** for powers)" if sym == "^" else ""
+            raise self.fail(f"the operator {sym}{hint}")
+        left = self.build(node.left)
+        right = self.build(node.right)
+        if isinstance(op, ast.Add):
+            return self.check(left + right)
+        if isinstance(op, ast.Sub):
+            return self.check(left - right)
+        if isinstance(op, ast.Mult):
+            return self.check(left * right)
+        if isinstance(op, ast.Div):
+            if right == 0:
+                raise ExpressionError(f"expression {self.shown!r}: division by zero")
+            return self.check(left / right)
+        return self.power(left, right)
+
+    def power(self, base: Any, exponent: Any) -> Any:
+        if not (isinstance(exponent, sympy.Rational)):
+            raise ExpressionError(
+                f"expression {self.shown!r}: the exponent of ** must be a rational number "
+                f"such as 2, -1 or 1/2 (got {exponent})"
+            )
+        p, q = int(exponent.p), int(exponent.q)
+        if abs(p) > MAX_POWER_EXPONENT or q > MAX_POWER_EXPONENT:
+            raise ExpressionError(
+                f"expression {self.shown!r}: the exponent {exponent} of ** is too large "
+                f"(at most {MAX_POWER_EXPONENT} in numerator and denominator)"
+            )
+        if base == 0 and exponent < 0:
+            raise ExpressionError(
+                f"expression {self.shown!r}: division by zero (0 to a negative power)"
+            )
+        if isinstance(base, sympy.Rational):
+            bits = max(int(base.p).bit_length(), int(base.q).bit_length())
+            if bits * abs(p) > MAX_RATIONAL_BITS:
+                raise ExpressionError(
+                    f"expression {self.shown!r}: a power in it is too large a number"
+                )
+        elif sympy.count_ops(base) * abs(p) > 4 * MAX_EXPRESSION_NODES:
+            raise ExpressionError(
+                f"expression {self.shown!r}: the power is too large an expression"
+            )
+        return self.check(sympy.Pow(base, exponent))
+
+    def call(self, node: ast.Call) -> Any:
+        if not isinstance(node.func, ast.Name):
+            raise self.fail(f"calling {self.segment(node.func)!r}")
+        name = node.func.id
+        if name not in ALLOWED_FUNCTIONS:
+            raise self.fail(f"the function {name!r}")
+        if node.keywords:
+            raise self.fail("keyword arguments")
+        func, nargs = ALLOWED_FUNCTIONS[name]
+        if len(node.args) != nargs:
+            raise ExpressionError(
+                f"expression {self.shown!r}: {name} takes {nargs} argument"
+                f"{'s' if nargs > 1 else ''}, got {len(node.args)}"
+            )
+        args = [self.build(a) for a in node.args]
+        if name == "atan2" and args[0] == 0 and args[1] == 0:
+            raise ExpressionError(f"expression {self.shown!r}: atan2(0, 0) is undefined")
+        return self.check(func(*args))
+
+    def check(self, value: Any) -> Any:
+        if isinstance(value, sympy.Rational):
+            if max(int(value.p).bit_length(), int(value.q).bit_length()) > MAX_RATIONAL_BITS:
+                raise ExpressionError(f"expression {self.shown!r}: a number in it is too large")
+        if value.has(sympy.zoo, sympy.nan, sympy.oo, -sympy.oo):
+            raise ExpressionError(f"expression {self.shown!r} is not a finite number")
+        return value
+
+
+def _short(text: str, n: int = 60) -> str:
+    return text if len(text) <= n else text[: n - 3] + "..."
+
+
+def decimal_text_to_rational(text: str, context: str | None = None) -> sympy.Rational:
+    """Exact rational of a decimal literal such as ``-1.25e-3`` (bounded sizes)."""
+    where = _short(context if context is not None else text)
+    t = text.strip()
+    sign = ""
+    if t[:1] in "+-":
+        sign, t = t[:1], t[1:].strip()
+    if not _DECIMAL.match(t):
+        raise ExpressionError(f"{where!r} is not a decimal number")
+    mant, _, exp = t.lower().partition("e")
+    if len(mant.replace(".", "")) > MAX_NUMBER_DIGITS:
+        raise ExpressionError(
+            f"the number {where!r} has too many digits (at most {MAX_NUMBER_DIGITS})"
+        )
+    if exp and abs(int(exp)) > MAX_DECIMAL_EXPONENT:
+        raise ExpressionError(
+            f"the number {where!r} has too large an exponent (at most {MAX_DECIMAL_EXPONENT})"
+        )
+    value = sympy.Rational(mant)
+    if exp:
+        value = value * sympy.Integer(10) ** int(exp)
+    return -value if sign == "-" else value
+
+
+def parse_number(text: str) -> Any:
+    """The exact sympy value of a number or whitelisted expression.
+
+    Parameters
+    ----------
+    text : str
+        ``"0.1"``, ``"-3"``, ``"1/3"``, ``"pi/2"``, ``"sqrt(3)/2"``,
+        ``"2*atan(1/2)"``, ``"atan2(1, 2)"`` ...
+
+    Returns
+    -------
+    sympy.Expr
+        An exact, real, finite value (a ``sympy.Rational`` for decimal text).
+
+    Raises
+    ------
+    ExpressionError
+        when the text is empty, too long, not valid syntax, uses anything
+        outside the whitelist, or is not a finite real number.
+    """
+    if not isinstance(text, str):
+        raise ExpressionError(
+            f"expected a number or an expression as text, got {type(text).__name__}"
+        )
+    t = text.strip()
+    if not t:
+        raise ExpressionError("an empty text is not a number")
+    if len(t) > MAX_EXPRESSION_CHARS:
+        raise ExpressionError(
+            f"expression of {len(t)} characters is too long (at most {MAX_EXPRESSION_CHARS})"
+        )
+    if _SIGNED_DECIMAL.match(t):
+        return decimal_text_to_rational(t)
+    try:
+        tree = ast.parse(t, mode="eval")
+    except (SyntaxError, ValueError) as exc:
+        raise ExpressionError(
+            f"expression {_short(t)!r} is not valid ({getattr(exc, 'msg', exc)}); "
+            f"allowed: {_ALLOWED_TEXT}"
+        ) from None
+    except (RecursionError, MemoryError):
+        raise ExpressionError(f"expression {t[:40]!r}... is nested too deeply") from None
+    count = sum(1 for _ in ast.walk(tree))
+    if count > MAX_EXPRESSION_NODES:
+        raise ExpressionError(
+            f"expression {t[:40]!r}... has {count} parts, too many (at most {MAX_EXPRESSION_NODES})"
+        )
+    try:
+        value = _Builder(t).build(tree)
+    except ExpressionError:
+        raise
+    except RecursionError:
+        raise ExpressionError(f"expression {t[:40]!r}... is nested too deeply") from None
+    value = sympy.sympify(value)
+    if not is_finite_real(value):
+        raise ExpressionError(
+            f"expression {_short(t)!r} is not a finite real number (it is {value})"
+        )
+    return value
+
+
+def is_finite_real(value: Any) -> bool:
+    """True when a sympy value is a finite real number (decided at 30 digits
+    when sympy cannot decide symbolically)."""
+    if isinstance(value, sympy.Rational):
+        return True
+    if value.has(sympy.zoo, sympy.nan, sympy.oo, -sympy.oo, sympy.I):
+        return False
+    if value.free_symbols:
+        return False
+    if value.is_extended_real is False:
+        return False
+    try:
+        num = sympy.N(value, 30)
+    except Exception:  # pragma: no cover - sympy internal failure
+        return False
+    re_, im = num.as_real_imag()
+    if not (re_.is_finite and im.is_finite):
+        return False
+    scale = max(abs(re_), sympy.Float(1))
+    return abs(im) <= sympy.Float("1e-25") * scale

@@ -1,0 +1,886 @@
+"""Reading and validating mechanism files (DESIGN.md, "The mechanism file").
+
+:func:`load` reads a YAML or JSON file, :func:`loads` a text.  Every problem
+raises :class:`~mechsing.model.mechanism.MechanismError` whose message names
+the file, the line, the item and the fix.  Numbers are read from their text
+as exact sympy values (:mod:`mechsing.model.expressions`) and converted to SI
+units and radians exactly.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+import sympy
+
+from mechsing.model.expressions import ExpressionError, parse_number
+from mechsing.model.graph import build_graph, connected_to
+from mechsing.model.mechanism import (
+    U_JOINT,
+    Configuration,
+    Displacement,
+    InputRef,
+    Joint,
+    Mechanism,
+    MechanismError,
+    Output,
+    Units,
+)
+from mechsing.model.yamlnodes import (
+    MAX_FILE_BYTES,
+    YAMLReadError,
+    YMap,
+    YScalar,
+    YSeq,
+    YValue,
+    read_yaml_text,
+)
+from mechsing.numeric import NEAR_ZERO_VECTOR
+
+__all__ = [
+    "ANGLE_UNITS",
+    "LENGTH_UNITS",
+    "MAX_BODIES",
+    "MAX_CONFIGURATIONS",
+    "MAX_JOINTS",
+    "TOP_LEVEL_KEYS",
+    "load",
+    "loads",
+]
+
+#: exact factors to metres
+LENGTH_UNITS: dict[str, Any] = {
+    "m": sympy.Integer(1),
+    "cm": sympy.Rational(1, 100),
+    "mm": sympy.Rational(1, 1000),
+}
+#: exact factors to radians
+ANGLE_UNITS: dict[str, Any] = {"rad": sympy.Integer(1), "deg": sympy.pi / 180}
+
+#: keys of the top-level mapping, in the order DESIGN.md lists them
+TOP_LEVEL_KEYS = (
+    "mechanism",
+    "units",
+    "ground",
+    "bodies",
+    "joints",
+    "inputs",
+    "output",
+    "characteristic_length",
+    "configurations",
+)
+JOINT_BASE_KEYS = ("name", "type", "between")
+U_KEYS = (("axes", "axes"), ("point", "point"))
+OUTPUT_KEYS = ("body", "relative_to", "point")
+DISPLACEMENT_KEYS = ("rotation", "translation")
+
+#: most bodies / joints / configurations in one file
+MAX_BODIES = 2000
+MAX_JOINTS = 4000
+MAX_CONFIGURATIONS = 1000
+
+_INPUT = re.compile(r"^(?P<name>[^\[\]]+?)\s*\[\s*(?P<index>-?\d+)\s*\]$")
+_NAME_HINT = "a name such as crank or link_2"
+
+
+def _catalog() -> dict[str, Any]:
+    from mechsing.subgroups import load_catalog
+
+    return load_catalog()
+
+
+# ---------------------------------------------------------------------------
+# Reading context
+# ---------------------------------------------------------------------------
+
+
+class _Reader:
+    """Validation helpers that know the file (for messages) and collect notes."""
+
+    def __init__(self, path: str | None) -> None:
+        self.path = path
+        self.notes: list[str] = []
+        self.units = Units()
+        self.scale = 1.0  # largest point coordinate (file units), for near-zero tests
+
+    def error(self, item: str | None, line: int | None, message: str) -> MechanismError:
+        return MechanismError(message, path=self.path, line=line, item=item)
+
+    # -- shapes ---------------------------------------------------------------
+
+    def mapping(self, v: YValue | None, item: str, what: str) -> YMap:
+        if not isinstance(v, YMap):
+            line = getattr(v, "line", None)
+            got = v.describe() if v is not None else "nothing"
+            raise self.error(item, line, f"{what} must be a mapping (key: value), got {got}")
+        return v
+
+    def sequence(self, v: YValue, item: str, what: str, example: str) -> YSeq:
+        if not isinstance(v, YSeq):
+            raise self.error(
+                item, v.line, f"{what} must be a list, got {v.describe()}; write e.g. {example}"
+            )
+        return v
+
+    def keys(
+        self,
+        m: YMap,
+        item: str,
+        allowed: tuple[str, ...],
+        required: tuple[str, ...] = (),
+        hint: str = "",
+    ) -> None:
+        for k, _ in m.items:
+            if k.text not in allowed:
+                extra = f" ({hint})" if hint else ""
+                close = _closest(k.text, allowed)
+                sugg = f"; did you mean {close!r}?" if close else ""
+                raise self.error(
+                    item,
+                    k.line,
+                    f"unknown key {k.text!r}{sugg} Allowed keys: {', '.join(allowed)}{extra}",
+                )
+        for r in required:
+            if m.get(r) is None:
+                raise self.error(item, m.line, f"missing key {r!r}; add it")
+
+    def name(self, v: YValue, item: str, what: str) -> str:
+        if not isinstance(v, YScalar) or v.kind == "null" or not v.text.strip():
+            got = v.describe() if isinstance(v, YScalar | YSeq | YMap) else "nothing"
+            raise self.error(
+                item,
+                getattr(v, "line", None),
+                f"{what} must be a name, got {got or 'nothing'}; give {_NAME_HINT}",
+            )
+        text = v.text.strip()
+        if len(text) > 200:
+            raise self.error(
+                item, v.line, f"{what} {text[:40]!r}... is too long (at most 200 characters)"
+            )
+        return text
+
+    # -- numbers --------------------------------------------------------------
+
+    def number(self, v: YValue | None, item: str, what: str, factor: Any = 1) -> Any:
+        line = getattr(v, "line", None)
+        if not isinstance(v, YScalar):
+            got = v.describe() if v is not None else "nothing"
+            raise self.error(item, line, f"{what} must be a number, got {got}")
+        if v.kind in ("bool", "null"):
+            raise self.error(item, line, f"{what} must be a number, got {v.text or 'nothing'!r}")
+        t = v.text.strip().lower()
+        if v.kind == "float" and t.lstrip("+-") in (".inf", ".nan"):
+            raise self.error(
+                item, line, f"{what} is {v.text}, not a finite number; give a finite value"
+            )
+        try:
+            value = parse_number(v.text)
+        except ExpressionError as exc:
+            raise self.error(item, line, f"{what}: {exc}") from None
+        return value * factor if factor != 1 else value
+
+    def vector(
+        self, v: YValue | None, item: str, what: str, factor: Any = 1
+    ) -> tuple[Any, Any, Any]:
+        line = getattr(v, "line", None)
+        if not isinstance(v, YSeq) or len(v.items) != 3:
+            got = (
+                f"{len(v.items)} entries"
+                if isinstance(v, YSeq)
+                else (v.describe() if v is not None else "nothing")
+            )
+            raise self.error(item, line, f"{what} must be a list of 3 numbers [x, y, z], got {got}")
+        x, y, z = (self.number(e, item, f"{what}[{i}]", factor) for i, e in enumerate(v.items))
+        return (x, y, z)
+
+    def direction(
+        self, v: YValue | None, item: str, what: str
+    ) -> tuple[tuple[Any, Any, Any], bool]:
+        """A unit vector from a non-zero direction; returns (unit, was_normalised)."""
+        vec = self.vector(v, item, what)
+        line = getattr(v, "line", None)
+        n2 = sum(c * c for c in vec)
+        if all(c == 0 for c in vec):
+            raise self.error(
+                item,
+                line,
+                f"{what} [0, 0, 0] is a zero vector; give a non-zero direction such as [0, 0, 1]",
+            )
+        nf = float(sympy.N(sympy.sqrt(n2), 30))
+        if not nf > NEAR_ZERO_VECTOR * max(1.0, self.scale):
+            raise self.error(
+                item,
+                line,
+                f"{what} has length {nf:.3g}, too close to zero to be a direction; "
+                "give a direction of length about 1, such as [0, 0, 1]",
+            )
+        if n2 == 1:
+            return vec, False
+        n = sympy.sqrt(n2)
+        unit = tuple(sympy.radsimp(c / n) for c in vec)
+        return (unit[0], unit[1], unit[2]), True
+
+
+def _closest(word: str, choices: tuple[str, ...]) -> str | None:
+    import difflib
+
+    m = difflib.get_close_matches(word, choices, n=1, cutoff=0.6)
+    return m[0] if m else None
+
+
+def _show(vec: tuple[Any, ...]) -> str:
+    return "[" + ", ".join(str(c) for c in vec) + "]"
+
+
+# ---------------------------------------------------------------------------
+# Public entry points
+# ---------------------------------------------------------------------------
+
+
+def load(path: str | Path) -> Mechanism:
+    """Read and validate a mechanism file (YAML or JSON).
+
+    Raises
+    ------
+    MechanismError
+        for every problem: unreadable file, malformed YAML, unknown keys,
+        invalid geometry, names, inputs, output or configurations.
+    """
+    p = Path(path)
+    shown = str(path)
+    try:
+        size = p.stat().st_size
+    except OSError as exc:
+        raise MechanismError(
+            f"cannot read the file ({exc.strerror}); check the path", path=shown
+        ) from None
+    if p.is_dir():
+        raise MechanismError("is a directory, not a mechanism file", path=shown)
+    if size > MAX_FILE_BYTES:
+        raise MechanismError(
+            f"the file has {size} bytes, more than the {MAX_FILE_BYTES} a mechanism file may have",
+            path=shown,
+        )
+    try:
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise MechanismError(f"cannot read the file ({exc.strerror})", path=shown) from None
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise MechanismError(
+            f"the file is not UTF-8 text (byte {exc.start}); save it as UTF-8", path=shown
+        ) from None
+    return loads(text, path=shown, default_name=p.stem)
+
+
+def loads(text: str, path: str | None = None, default_name: str = "mechanism") -> Mechanism:
+    """Validate a mechanism given as YAML or JSON text (``path`` only for messages)."""
+    r = _Reader(path if path is not None else "<text>")
+    if "\x00" in text:
+        raise r.error(None, None, "the file contains NUL bytes: it is not a text file")
+    try:
+        doc = read_yaml_text(text)
+    except YAMLReadError as exc:
+        raise r.error(None, exc.line, exc.message) from None
+    return _Builder(r, default_name).build(doc)
+
+
+# ---------------------------------------------------------------------------
+# The builder
+# ---------------------------------------------------------------------------
+
+
+class _Builder:
+    def __init__(self, r: _Reader, default_name: str) -> None:
+        self.r = r
+        self.default_name = default_name
+        self.catalog = _catalog()
+        self.body_lines: dict[str, int] = {}
+
+    def build(self, doc: YValue) -> Mechanism:
+        r = self.r
+        top = r.mapping(doc, None, "the file")
+        r.keys(
+            top,
+            None,
+            TOP_LEVEL_KEYS,
+            ("bodies", "joints"),
+            hint="see 'mechsing schema' for the format",
+        )
+
+        name = self.default_name
+        if top.get("mechanism") is not None:
+            name = r.name(top.get("mechanism"), "mechanism", "the mechanism name")
+        self.units(top.get("units"))
+        self.scan_scale(top.get("joints"))
+        bodies = self.bodies(top.get("bodies"))
+        ground = self.ground(top.get("ground"), bodies, top)
+        joints = self.joints(top.get("joints"), bodies)
+        self.connectivity(bodies, ground, joints)
+        graph = build_graph(bodies, ground, joints)
+        jmap = {j.name: j for j in joints}
+        inputs = self.inputs(top.get("inputs"), jmap)
+        output = self.output(top.get("output"), bodies, ground, graph)
+        char_len = None
+        if top.get("characteristic_length") is not None:
+            v = top.get("characteristic_length")
+            char_len = r.number(
+                v, "characteristic_length", "characteristic_length", r.units.length_factor
+            )
+            if not char_len > 0:
+                raise r.error(
+                    "characteristic_length",
+                    v.line,
+                    f"must be a positive length, got {char_len}; remove it or give e.g. 1",
+                )
+        configs = self.configurations(top.get("configurations"), jmap)
+        return Mechanism(
+            name=name,
+            path=r.path,
+            bodies=tuple(bodies),
+            ground=ground,
+            joints=tuple(joints),
+            inputs=tuple(inputs),
+            output=output,
+            configurations=configs,
+            characteristic_length=char_len,
+            notes=tuple(r.notes),
+            graph=graph,
+            units=r.units,
+        )
+
+    # -- units --------------------------------------------------------------
+
+    def units(self, v: YValue | None) -> None:
+        r = self.r
+        if v is None:
+            return
+        m = r.mapping(v, "units", "units")
+        r.keys(m, "units", ("length", "angle"))
+        length, angle = "m", "rad"
+        if m.get("length") is not None:
+            length = r.name(m.get("length"), "units", "units.length")
+            if length not in LENGTH_UNITS:
+                raise r.error(
+                    "units",
+                    m.key_line("length"),
+                    f"length unit {length!r} is not one of {', '.join(LENGTH_UNITS)}",
+                )
+        if m.get("angle") is not None:
+            angle = r.name(m.get("angle"), "units", "units.angle")
+            if angle not in ANGLE_UNITS:
+                raise r.error(
+                    "units",
+                    m.key_line("angle"),
+                    f"angle unit {angle!r} is not one of {', '.join(ANGLE_UNITS)}",
+                )
+        r.units = Units(length, angle, LENGTH_UNITS[length], ANGLE_UNITS[angle])
+
+    def scan_scale(self, v: YValue | None) -> None:
+        """Largest point coordinate (file units), the scale of the near-zero test."""
+        if not isinstance(v, YSeq):
+            return
+        best = 1.0
+        for jv in v.items[:MAX_JOINTS]:
+            if not isinstance(jv, YMap):
+                continue
+            p = jv.get("point")
+            if isinstance(p, YSeq):
+                for e in p.items:
+                    if isinstance(e, YScalar) and e.kind in ("int", "float"):
+                        try:
+                            best = max(best, abs(float(e.text)))
+                        except ValueError:
+                            pass
+        self.r.scale = best if best < float("inf") else 1.0
+
+    # -- bodies and ground ----------------------------------------------------
+
+    def bodies(self, v: YValue | None) -> list[str]:
+        r = self.r
+        seq = r.sequence(v, "bodies", "bodies", "bodies: [ground, crank, coupler]")
+        if not seq.items:
+            raise r.error(
+                "bodies", seq.line, "the list of bodies is empty; list at least the ground"
+            )
+        if len(seq.items) > MAX_BODIES:
+            raise r.error("bodies", seq.line, f"{len(seq.items)} bodies, more than {MAX_BODIES}")
+        out: list[str] = []
+        seen: dict[str, int] = {}
+        self.body_lines = seen
+        for e in seq.items:
+            b = r.name(e, "bodies", "a body")
+            if b in seen:
+                raise r.error(
+                    f"body {b!r}",
+                    e.line,
+                    f"listed twice (first at line {seen[b]}); give each body a different name",
+                )
+            seen[b] = e.line
+            out.append(b)
+        return out
+
+    def ground(self, v: YValue | None, bodies: list[str], top: YMap) -> str:
+        r = self.r
+        if v is None:
+            r.notes.append(f"ground defaulted to the first body, {bodies[0]!r}")
+            return bodies[0]
+        if isinstance(v, YSeq):
+            raise r.error(
+                "ground",
+                v.line,
+                "a mechanism has one ground, got a list (two grounds); name one body and "
+                "attach the others to it with joints (type E for a rigid connection)",
+            )
+        g = r.name(v, "ground", "ground")
+        if g not in bodies:
+            raise r.error(
+                "ground",
+                v.line,
+                f"{g!r} is not in bodies; add it to bodies or name one of {_few(bodies)}",
+            )
+        return g
+
+    # -- joints ---------------------------------------------------------------
+
+    def joints(self, v: YValue | None, bodies: list[str]) -> list[Joint]:
+        r = self.r
+        seq = r.sequence(
+            v,
+            "joints",
+            "joints",
+            "joints: [{name: A, type: R, between: [ground, crank], axis: [0, 0, 1], "
+            "point: [0, 0, 0]}]",
+        )
+        if len(seq.items) > MAX_JOINTS:
+            raise r.error("joints", seq.line, f"{len(seq.items)} joints, more than {MAX_JOINTS}")
+        bodyset = set(bodies)
+        out: list[Joint] = []
+        seen: dict[str, int] = {}
+        for e in seq.items:
+            j = self.joint(e, bodyset)
+            if j.name in seen:
+                raise r.error(
+                    f"joint {j.name!r}",
+                    e.line,
+                    f"defined twice (first at line {seen[j.name]}); give each joint a "
+                    "different name",
+                )
+            seen[j.name] = e.line
+            out.append(j)
+        for j in out:
+            hb = j.hidden_body
+            if hb and hb in bodyset:
+                raise r.error(
+                    f"body {hb!r}",
+                    j.line,
+                    f"clashes with the hidden body of U joint {j.name!r}; rename the body",
+                )
+        return out
+
+    def joint(self, e: YValue, bodyset: set[str]) -> Joint:
+        r = self.r
+        m = r.mapping(e, "joints", "each joint")
+        nv = m.get("name")
+        if nv is None:
+            raise r.error("joint", m.line, "missing key 'name'; give every joint a name")
+        name = r.name(nv, "joint", "the joint name")
+        item = f"joint {name!r}"
+        if "[" in name or "]" in name:
+            raise r.error(
+                item,
+                nv.line,
+                "a joint name may not contain '[' or ']' (they select "
+                "coordinates in inputs); rename it",
+            )
+        if name == "start":
+            raise r.error(item, nv.line, "'start' is reserved in configurations; rename the joint")
+        tv = m.get("type")
+        if tv is None:
+            raise r.error(item, m.line, f"missing key 'type'; give one of {self.type_list()}")
+        jtype = r.name(tv, item, "type")
+        if jtype == U_JOINT:
+            geo: tuple[tuple[str, str], ...] = U_KEYS
+            stype = None
+        elif jtype in self.catalog:
+            stype = self.catalog[jtype]
+            geo = tuple(stype.parameters)
+        else:
+            same = [t for t in (*self.catalog, U_JOINT) if t.lower() == jtype.lower()]
+            hint = f" (did you mean {same[0]!r}? types are case-sensitive)" if same else ""
+            raise r.error(
+                item, tv.line, f"unknown joint type {jtype!r}{hint}; use one of {self.type_list()}"
+            )
+        geo_keys = tuple(k for k, _ in geo)
+        allowed = JOINT_BASE_KEYS + geo_keys
+        for k, _ in m.items:
+            if k.text not in allowed:
+                takes = ", ".join(geo_keys) if geo_keys else "no geometric key"
+                raise r.error(
+                    item,
+                    k.line,
+                    f"key {k.text!r} does not belong to a joint of type {jtype} ({jtype} takes "
+                    f"{takes}); remove it or fix its name",
+                )
+        for k in ("between",) + geo_keys:
+            if m.get(k) is None:
+                raise r.error(
+                    item,
+                    m.line,
+                    f"missing key {k!r} (a joint of type {jtype} needs "
+                    f"{', '.join(('between',) + geo_keys)}); add it",
+                )
+        bv = m.get("between")
+        if not isinstance(bv, YSeq) or len(bv.items) != 2:
+            raise r.error(
+                item, bv.line, "between must be a list of two bodies, e.g. between: [ground, crank]"
+            )
+        a = r.name(bv.items[0], item, "between[0]")
+        b = r.name(bv.items[1], item, "between[1]")
+        for x, node in ((a, bv.items[0]), (b, bv.items[1])):
+            if x not in bodyset:
+                raise r.error(
+                    item,
+                    node.line,
+                    f"unknown body {x!r}; add it to bodies or use one of {_few(sorted(bodyset))}",
+                )
+        if a == b:
+            raise r.error(
+                item,
+                bv.line,
+                f"connects body {a!r} to itself; a joint is between two different bodies",
+            )
+        if jtype == U_JOINT:
+            params = self.u_params(m, item)
+            return Joint(name, U_JOINT, (a, b), params, m.line, 2, ("rad", "rad"))
+        assert stype is not None
+        params = {}
+        for key, kind in geo:
+            params[key] = self.param(m, item, jtype, key, kind, key in stype.nonzero)
+        units = tuple(u for _, u in stype.coordinates)
+        return Joint(name, jtype, (a, b), params, m.line, stype.dimension, units)
+
+    def type_list(self) -> str:
+        return ", ".join(list(self.catalog) + [U_JOINT])
+
+    def param(self, m: YMap, item: str, jtype: str, key: str, kind: str, nonzero: bool) -> Any:
+        r = self.r
+        v = m.get(key)
+        if kind in ("direction", "normal"):
+            unit, changed = r.direction(v, item, key)
+            if changed:
+                r.notes.append(
+                    f"{key} of joint {item.split(' ', 1)[1]} normalised to {_show(unit)}"
+                )
+            return unit
+        if kind == "point":
+            return r.vector(v, item, key, r.units.length_factor)
+        if kind == "pitch":
+            h = r.number(v, item, key, r.units.length_factor)
+            if nonzero and h == 0:
+                alt = {"H": "R", "Y": "G"}.get(jtype)
+                fix = f"use type {alt}" if alt else "give a non-zero pitch"
+                raise r.error(
+                    item,
+                    v.line,
+                    f"a joint of type {jtype} needs a non-zero pitch; with pitch 0 {fix}",
+                )
+            return h
+        raise r.error(item, m.line, f"the catalog gives parameter {key!r} an unknown kind {kind!r}")
+
+    def u_params(self, m: YMap, item: str) -> dict[str, Any]:
+        r = self.r
+        av = m.get("axes")
+        if not isinstance(av, YSeq) or len(av.items) != 2:
+            raise r.error(
+                item,
+                av.line,
+                "axes of a U joint must be a list of two directions "
+                "[a1, a2] (a1 fixed in between[0], a2 in between[1])",
+            )
+        a1, ch1 = r.direction(av.items[0], item, "axes[0]")
+        a2, ch2 = r.direction(av.items[1], item, "axes[1]")
+        name = item.split(" ", 1)[1]
+        if ch1:
+            r.notes.append(f"axes[0] of joint {name} normalised to {_show(a1)}")
+        if ch2:
+            r.notes.append(f"axes[1] of joint {name} normalised to {_show(a2)}")
+        cross = (
+            a1[1] * a2[2] - a1[2] * a2[1],
+            a1[2] * a2[0] - a1[0] * a2[2],
+            a1[0] * a2[1] - a1[1] * a2[0],
+        )
+        s = float(sympy.N(sympy.sqrt(sum(c * c for c in cross)), 30))
+        if all(sympy.simplify(c) == 0 for c in cross) or s < NEAR_ZERO_VECTOR:
+            raise r.error(
+                item,
+                av.line,
+                "the two axes of a U joint are parallel; a U joint needs two "
+                "intersecting, non-parallel axes (usually perpendicular)",
+            )
+        point = r.vector(m.get("point"), item, "point", r.units.length_factor)
+        return {"axes": (a1, a2), "point": point}
+
+    def connectivity(self, bodies: list[str], ground: str, joints: list[Joint]) -> None:
+        reach = connected_to(ground, bodies, joints)
+        missing = [b for b in bodies if b not in reach]
+        if missing:
+            raise self.r.error(
+                f"body {missing[0]!r}",
+                self.body_lines.get(missing[0]),
+                f"is not connected to the ground {ground!r} through joints "
+                f"(unconnected: {_few(missing)}); add a joint or remove the body",
+            )
+
+    # -- inputs and output ---------------------------------------------------
+
+    def inputs(self, v: YValue | None, jmap: dict[str, Joint]) -> list[InputRef]:
+        r = self.r
+        if v is None:
+            return []
+        seq = r.sequence(v, "inputs", "inputs", 'inputs: [A] or inputs: ["C1[1]"]')
+        out: list[InputRef] = []
+        taken: dict[tuple[str, int], int] = {}
+        for e in seq.items:
+            if not isinstance(e, YScalar) or e.kind == "null":
+                raise r.error(
+                    "inputs",
+                    e.line,
+                    'each input must be a joint name or "NAME[i]" '
+                    '(quote it in YAML: inputs: ["C1[1]"])',
+                )
+            text = e.text.strip()
+            mt = _INPUT.match(text)
+            jname, index = (
+                (mt.group("name").strip(), int(mt.group("index"))) if mt else (text, None)
+            )
+            if "[" in jname or "]" in jname:
+                raise r.error(
+                    "inputs",
+                    e.line,
+                    f'cannot read {text!r}; write "NAME[i]" with a 0-based index, e.g. "C1[1]"',
+                )
+            if jname not in jmap:
+                raise r.error(
+                    f"input {text!r}",
+                    e.line,
+                    f"unknown joint {jname!r}; use one of {_few(list(jmap))}",
+                )
+            j = jmap[jname]
+            if j.dof == 0:
+                raise r.error(
+                    f"input {text!r}",
+                    e.line,
+                    f"joint {jname!r} of type {j.type} has no coordinate to actuate",
+                )
+            if index is not None and not 0 <= index < j.dof:
+                raise r.error(
+                    f"input {text!r}",
+                    e.line,
+                    f"index {index} out of range: joint {jname!r} ({j.type}) has {j.dof} "
+                    f"coordinate{'s' if j.dof > 1 else ''}, indices 0 to {j.dof - 1}",
+                )
+            coords = range(j.dof) if index is None else (index,)
+            for c in coords:
+                if (jname, c) in taken:
+                    raise r.error(
+                        f"input {text!r}",
+                        e.line,
+                        f"coordinate {c} of joint {jname!r} is "
+                        f"already an input (line {taken[(jname, c)]}); list it once",
+                    )
+                taken[(jname, c)] = e.line
+            out.append(InputRef(jname, index))
+        return out
+
+    def output(self, v: YValue | None, bodies: list[str], ground: str, graph: Any) -> Output | None:
+        r = self.r
+        if v is None:
+            if graph.num_loops == 0:
+                deg = {b: 0 for b in bodies}
+                for j in graph.joints:
+                    deg[j.between[0]] += 1
+                    deg[j.between[1]] += 1
+                leaves = [b for b in bodies if b != ground and deg[b] == 1]
+                if len(leaves) == 1:
+                    r.notes.append(f"output defaulted to the unique leaf body {leaves[0]!r}")
+                    return Output(leaves[0], ground, None, None, True)
+            return None
+        m = r.mapping(v, "output", "output")
+        r.keys(m, "output", OUTPUT_KEYS, ("body",))
+        body = r.name(m.get("body"), "output", "output body")
+        if body not in bodies:
+            raise r.error(
+                "output", m.key_line("body"), f"unknown body {body!r}; use one of {_few(bodies)}"
+            )
+        rel = ground
+        if m.get("relative_to") is not None:
+            rel = r.name(m.get("relative_to"), "output", "relative_to")
+            if rel not in bodies:
+                raise r.error(
+                    "output",
+                    m.key_line("relative_to"),
+                    f"relative_to names unknown body {rel!r}; use one of {_few(bodies)}",
+                )
+        if rel == body:
+            raise r.error(
+                "output",
+                m.line,
+                f"the output body {body!r} is the body it is measured "
+                "relative to; name another body (relative_to defaults to the ground)",
+            )
+        point = None
+        if m.get("point") is not None:
+            point = r.vector(m.get("point"), "output", "point", r.units.length_factor)
+        return Output(body, rel, point, m.line, False)
+
+    # -- configurations --------------------------------------------------------
+
+    def configurations(self, v: YValue | None, jmap: dict[str, Joint]) -> dict[str, Configuration]:
+        r = self.r
+        out: dict[str, Configuration] = {}
+        if v is None:
+            return {"reference": Configuration("reference", {}, None, None)}
+        m = r.mapping(v, "configurations", "configurations")
+        if len(m.items) > MAX_CONFIGURATIONS:
+            raise r.error(
+                "configurations",
+                m.line,
+                f"{len(m.items)} configurations, more than {MAX_CONFIGURATIONS}",
+            )
+        starts: dict[str, tuple[str, int]] = {}
+        if m.get("reference") is None:
+            out["reference"] = Configuration("reference", {}, None, None)
+        for k, cv in m.items:
+            cname = k.text.strip()
+            if not cname or k.kind == "null":
+                raise r.error("configurations", k.line, "a configuration needs a name")
+            item = f"configuration {cname!r}"
+            if cv is None or (isinstance(cv, YScalar) and cv.kind == "null"):
+                cmap = YMap((), k.line)
+            else:
+                cmap = r.mapping(cv, item, "a configuration")
+            values: dict[str, Any] = {}
+            start: str | None = None if cname == "reference" else "reference"
+            for jk, jv in cmap.items:
+                if jk.text == "start":
+                    if cname == "reference":
+                        raise r.error(
+                            item,
+                            jk.line,
+                            "the reference configuration (all joints at "
+                            "identity) has no start; remove it",
+                        )
+                    start = r.name(jv, item, "start")
+                    starts[cname] = (start, jk.line)
+                    continue
+                if jk.text not in jmap:
+                    raise r.error(
+                        item,
+                        jk.line,
+                        f"unknown joint {jk.text!r}; use one of {_few(list(jmap))} or start",
+                    )
+                values[jk.text] = self.value(jv, jmap[jk.text], item)
+            if cname == "reference":
+                for jn, val in values.items():
+                    if isinstance(val, Displacement) or any(x != 0 for x in val):
+                        raise r.error(
+                            item,
+                            cmap.key_line(jn),
+                            "the reference configuration has every "
+                            "joint at identity (value 0); give other values in a new "
+                            "configuration",
+                        )
+            out[cname] = Configuration(cname, values, start, k.line)
+        for cname, (start, line) in starts.items():
+            if start not in out:
+                raise r.error(
+                    f"configuration {cname!r}",
+                    line,
+                    f"start names unknown configuration {start!r}; use one of {_few(list(out))}",
+                )
+        for cname in starts:
+            chain = [cname]
+            cur = out[cname].start
+            while cur is not None:
+                if cur in chain:
+                    cyc = " -> ".join(chain[chain.index(cur) :] + [cur])
+                    raise r.error(
+                        f"configuration {cname!r}",
+                        starts[cname][1],
+                        f"the start chain is a cycle ({cyc}); let one of them start from reference",
+                    )
+                chain.append(cur)
+                cur = out[cur].start
+        return out
+
+    def value(self, v: YValue, j: Joint, item: str) -> Any:
+        r = self.r
+        what = f"value of joint {j.name!r}"
+        factors = [r.units.angle_factor if u == "rad" else r.units.length_factor for u in j.units]
+        if j.dof == 0:
+            raise r.error(
+                item, v.line, f"joint {j.name!r} of type {j.type} has no coordinates; remove it"
+            )
+        if isinstance(v, YMap):
+            if j.dof < 2:
+                raise r.error(
+                    item,
+                    v.line,
+                    f"{what}: a joint of type {j.type} takes one number, not a displacement",
+                )
+            r.keys(v, item, DISPLACEMENT_KEYS, hint="a displacement value")
+            if not v.items:
+                raise r.error(item, v.line, f"{what}: give rotation and/or translation")
+            rot = None
+            if v.get("rotation") is not None:
+                rv = v.get("rotation")
+                if not isinstance(rv, YSeq) or len(rv.items) != 3:
+                    raise r.error(
+                        item,
+                        rv.line,
+                        f"{what}: rotation must be a 3x3 matrix "
+                        "[[r11, r12, r13], [r21, r22, r23], [r31, r32, r33]]",
+                    )
+                rows = tuple(
+                    r.vector(row, item, f"{what}: rotation row {i}")
+                    for i, row in enumerate(rv.items)
+                )
+                rot = (rows[0], rows[1], rows[2])
+            tr = None
+            if v.get("translation") is not None:
+                tr = r.vector(
+                    v.get("translation"), item, f"{what}: translation", r.units.length_factor
+                )
+            return Displacement(rot, tr, v.line)
+        if isinstance(v, YScalar):
+            if j.dof != 1:
+                raise r.error(
+                    item,
+                    v.line,
+                    f"{what}: a joint of type {j.type} has {j.dof} coordinates; give a "
+                    f"list of {j.dof} numbers (or a displacement)",
+                )
+            return (r.number(v, item, what, factors[0]),)
+        if isinstance(v, YSeq):
+            if len(v.items) != j.dof:
+                raise r.error(
+                    item,
+                    v.line,
+                    f"{what}: a joint of type {j.type} has {j.dof} coordinate"
+                    f"{'s' if j.dof > 1 else ''}, got {len(v.items)} values",
+                )
+            return tuple(
+                r.number(e, item, f"{what}[{i}]", factors[i]) for i, e in enumerate(v.items)
+            )
+        raise r.error(
+            item, getattr(v, "line", None), f"{what} must be a number or a list"
+        )  # pragma: no cover
+
+
+def _few(names: list[str], n: int = 8) -> str:
+    shown = ", ".join(names[:n])
+    return shown + (", ..." if len(names) > n else "")

@@ -1,0 +1,292 @@
+"""The data model of a mechanism (frozen dataclasses).
+
+All numbers are exact sympy values in SI units and radians (the file's
+``units`` already applied); directions are exact unit vectors.  Vectors are
+tuples of three exact values.  The kinematics layer converts them to the
+backend of its precision mode (``Precision.asarray``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from mechsing.cli import UserError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mechsing.model.graph import Leg, MechanismGraph
+
+__all__ = [
+    "U_JOINT",
+    "Configuration",
+    "Displacement",
+    "InputRef",
+    "Joint",
+    "Mechanism",
+    "MechanismError",
+    "Output",
+    "Units",
+]
+
+#: the type name of the composite universal joint (not a catalog subgroup)
+U_JOINT = "U"
+#: suffix of the hidden body that a U joint inserts
+CROSS_SUFFIX = ".cross"
+
+Vector = tuple[Any, Any, Any]
+
+
+class MechanismError(UserError):
+    """A mechanism file that mechsing cannot accept (exit status 2).
+
+    The message names the file, the line where it can, the item and the fix;
+    the parts are also attributes for programs and tests.
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        path: str | None = None,
+        line: int | None = None,
+        item: str | None = None,
+    ) -> None:
+        where = ""
+        if path is not None:
+            where = f"{path}:{line}: " if line is not None else f"{path}: "
+        elif line is not None:
+            where = f"line {line}: "
+        lead = f"{item}: " if item else ""
+        super().__init__(f"{where}{lead}{message}", 2)
+        self.path = path
+        self.line = line
+        self.item = item
+        self.problem = message
+
+
+@dataclass(frozen=True)
+class Units:
+    """The file's units and their exact factors to SI (metre, radian).
+
+    A pitch is a length per radian, so it takes ``length_factor`` only.
+    """
+
+    length: str = "m"
+    angle: str = "rad"
+    length_factor: Any = 1
+    angle_factor: Any = 1
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A joint between two bodies.
+
+    Attributes
+    ----------
+    name : str
+    type : str
+        A catalog symbol (``"R"``, ``"P"``, ``"C"``, ``"S"`` ... ``"D"``, ``"E"``)
+        or ``"U"`` for the composite universal joint.
+    between : (str, str)
+        ``(a, b)``: the joint value q sets ``g_b = g_a . exp(sum q_i e_i)``.
+    params : dict
+        The geometric parameters at the reference configuration in the ground
+        frame, keyed by the catalog's parameter names: a direction/normal is
+        an exact unit 3-tuple, a point a 3-tuple of lengths (m), a pitch a
+        length per radian.  For U: ``{"axes": (a1, a2), "point": c}``
+        with ``a1`` fixed in ``a`` and ``a2`` in ``b``.
+    line : int or None
+        Line of the joint in the file.
+    dof : int
+        Number of coordinates (the subgroup's dimension; 2 for U).
+    units : tuple of str
+        ``"rad"`` or ``"m"`` for each coordinate (catalog order).
+    """
+
+    name: str
+    type: str
+    between: tuple[str, str]
+    params: Mapping[str, Any] = field(default_factory=dict)
+    line: int | None = None
+    dof: int = 1
+    units: tuple[str, ...] = ("rad",)
+
+    @property
+    def is_composite(self) -> bool:
+        """True for a U joint (two revolutes through a hidden cross body)."""
+        return self.type == U_JOINT
+
+    @property
+    def hidden_body(self) -> str | None:
+        """``"<name>.cross"`` for a U joint, else None."""
+        return self.name + CROSS_SUFFIX if self.is_composite else None
+
+    def other(self, body: str) -> str:
+        """The body at the other end of the joint."""
+        a, b = self.between
+        return b if body == a else a
+
+
+@dataclass(frozen=True)
+class InputRef:
+    """An actuated joint (``index`` None: all its coordinates) or one coordinate."""
+
+    joint: str
+    index: int | None = None
+
+    def __str__(self) -> str:
+        return self.joint if self.index is None else f"{self.joint}[{self.index}]"
+
+
+@dataclass(frozen=True)
+class Output:
+    """The output: the twist of ``body`` relative to ``relative_to``.
+
+    ``point`` (SI, reference configuration, ground frame) restricts it to the
+    velocity of that body point.  ``default`` is True when mechsing chose the
+    output (the unique leaf of a mechanism without loops).
+    """
+
+    body: str
+    relative_to: str
+    point: Vector | None = None
+    line: int | None = None
+    default: bool = False
+
+
+@dataclass(frozen=True)
+class Displacement:
+    """A multi-dof joint value given as the relative displacement it produces.
+
+    ``rotation`` is a 3x3 tuple of exact values (None if omitted), ``translation``
+    a 3-tuple of lengths in SI (None if omitted).  The kinematics layer
+    completes an omitted part, checks membership in the joint's subgroup and
+    converts to coordinates.
+    """
+
+    rotation: tuple[Vector, Vector, Vector] | None = None
+    translation: Vector | None = None
+    line: int | None = None
+
+
+JointValue = tuple[Any, ...] | Displacement
+
+
+@dataclass(frozen=True)
+class Configuration:
+    """A named configuration: the joint values it gives (the others are solved).
+
+    ``values`` maps a joint name to a tuple of exact coordinates (SI, radians,
+    catalog order; length ``dof``) or a :class:`Displacement`.  ``start`` is the
+    configuration continuation starts from: ``"reference"`` when the file
+    does not say, None for the reference configuration itself (all joints at
+    identity).
+    """
+
+    name: str
+    values: Mapping[str, JointValue]
+    start: str | None = "reference"
+    line: int | None = None
+
+    @property
+    def is_reference(self) -> bool:
+        return self.name == "reference"
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """A validated mechanism.
+
+    Attributes
+    ----------
+    name : str
+        The file's ``mechanism`` (default: the file name without extension).
+    path : str or None
+        The file it was read from.
+    bodies : tuple of str
+        User bodies in file order (hidden U cross bodies are not listed; see
+        :attr:`hidden_bodies`).
+    ground : str
+    joints : tuple of Joint
+        In file order.
+    inputs : tuple of InputRef
+    output : Output or None
+        None when the file has none and none can be chosen by default.
+    configurations : dict name -> Configuration
+        File order; ``"reference"`` is always present (first if the file does
+        not list it).
+    characteristic_length : exact value or None
+        The file's override of L, in metres.
+    notes : tuple of str
+        What mechsing did silently (axes normalised, defaults chosen); ``-v``
+        prints them.
+    graph : MechanismGraph
+        Bodies, joints, loops, the spanning tree and legs.
+    units : Units
+        The file's units (values here are already in SI).
+    """
+
+    name: str
+    path: str | None
+    bodies: tuple[str, ...]
+    ground: str
+    joints: tuple[Joint, ...]
+    inputs: tuple[InputRef, ...]
+    output: Output | None
+    configurations: Mapping[str, Configuration]
+    characteristic_length: Any
+    notes: tuple[str, ...]
+    graph: MechanismGraph = field(repr=False)
+    units: Units = field(default_factory=Units)
+
+    def joint(self, name: str) -> Joint:
+        """The joint called ``name`` (KeyError if none)."""
+        for j in self.joints:
+            if j.name == name:
+                return j
+        raise KeyError(name)
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        return tuple(j.name for j in self.joints)
+
+    @property
+    def hidden_bodies(self) -> tuple[str, ...]:
+        """The hidden cross bodies of U joints, in joint order."""
+        return tuple(j.hidden_body for j in self.joints if j.hidden_body)
+
+    @property
+    def dof(self) -> int:
+        """Total joint degrees of freedom."""
+        return sum(j.dof for j in self.joints)
+
+    @property
+    def loops(self) -> tuple:
+        """The canonical loops (DESIGN.md "Loops")."""
+        return self.graph.loops
+
+    @property
+    def legs(self) -> tuple[Leg, ...]:
+        """The legs between ``output.relative_to`` and ``output.body`` (empty without output)."""
+        if self.output is None:
+            return ()
+        return self.graph.legs(self.output.body, self.output.relative_to)
+
+    def input_coordinates(self) -> tuple[tuple[str, int], ...]:
+        """Every actuated coordinate as ``(joint, index)``, inputs expanded in order."""
+        out: list[tuple[str, int]] = []
+        for ref in self.inputs:
+            if ref.index is None:
+                out.extend((ref.joint, i) for i in range(self.joint(ref.joint).dof))
+            else:
+                out.append((ref.joint, ref.index))
+        return tuple(out)
+
+    def coordinates(self) -> tuple[tuple[str, int], ...]:
+        """Every joint coordinate as ``(joint, index)`` in file and catalog order."""
+        return tuple((j.name, i) for j in self.joints for i in range(j.dof))
+
+    def source_path(self) -> Path | None:
+        return Path(self.path) if self.path else None

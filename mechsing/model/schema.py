@@ -1,0 +1,177 @@
+"""A JSON Schema (draft 2020-12) of the mechanism file, for editors.
+
+Built from the subgroup catalog (the geometric keys of each joint type) so
+that it never disagrees with the loader.  The schema checks the shape of a
+file; the loader checks everything else (names that must exist, geometry,
+expressions) and is the authority.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from mechsing.model.loader import (
+    ANGLE_UNITS,
+    DISPLACEMENT_KEYS,
+    LENGTH_UNITS,
+    U_KEYS,
+)
+from mechsing.model.mechanism import U_JOINT
+
+__all__ = ["SCHEMA_ID", "mechanism_schema"]
+
+SCHEMA_ID = "urn:mechsing:schema:mechanism-file"
+
+_KIND_REF = {
+    "direction": "#/$defs/vector",
+    "normal": "#/$defs/vector",
+    "point": "#/$defs/vector",
+    "pitch": "#/$defs/number",
+    "axes": "#/$defs/axes",
+}
+
+
+def _joint_schema(symbol: str, title: str, params: list[tuple[str, str]]) -> dict[str, Any]:
+    props: dict[str, Any] = {
+        "name": {"$ref": "#/$defs/joint_name"},
+        "type": {"const": symbol},
+        "between": {
+            "type": "array",
+            "items": {"$ref": "#/$defs/name"},
+            "minItems": 2,
+            "maxItems": 2,
+            "description": "[a, b]: the joint value q sets g_b = g_a . exp(q)",
+        },
+    }
+    for key, kind in params:
+        props[key] = {"$ref": _KIND_REF[kind]}
+    return {
+        "title": f"{symbol}: {title}",
+        "type": "object",
+        "properties": props,
+        "required": ["name", "type", "between", *[k for k, _ in params]],
+        "additionalProperties": False,
+    }
+
+
+def mechanism_schema() -> dict[str, Any]:
+    """The JSON Schema of the mechanism file format (a JSON-serialisable dict)."""
+    from mechsing.subgroups import load_catalog
+
+    catalog = load_catalog()
+    joint_variants = [_joint_schema(sym, t.name, list(t.parameters)) for sym, t in catalog.items()]
+    joint_variants.append(
+        _joint_schema(
+            U_JOINT, "universal joint (a1 fixed in between[0], a2 in between[1])", list(U_KEYS)
+        )
+    )
+    number = {
+        "description": "a number, or a quoted exact expression: numbers, + - * / **, "
+        "parentheses, pi, sqrt, sin, cos, tan, asin, acos, atan, atan2",
+        "anyOf": [
+            {"type": "number"},
+            {"type": "string", "minLength": 1, "maxLength": 1000},
+        ],
+    }
+    vector = {"type": "array", "items": {"$ref": "#/$defs/number"}, "minItems": 3, "maxItems": 3}
+    return {
+        "$schema": "https://json-schema.org/draft/2020-12/schema",
+        "$id": SCHEMA_ID,
+        "title": "mechsing mechanism file",
+        "description": "Bodies, joints (Lie subgroups of SE(3) or U), inputs, output and named "
+        "configurations. Lengths in metres and angles in radians unless units says otherwise; "
+        "pitch in length per radian.",
+        "type": "object",
+        "properties": {
+            "mechanism": {"type": "string", "description": "the mechanism's name"},
+            "units": {
+                "type": "object",
+                "properties": {
+                    "length": {"enum": list(LENGTH_UNITS)},
+                    "angle": {"enum": list(ANGLE_UNITS)},
+                },
+                "additionalProperties": False,
+            },
+            "ground": {"$ref": "#/$defs/name", "description": "default: the first body"},
+            "bodies": {
+                "type": "array",
+                "items": {"$ref": "#/$defs/name"},
+                "minItems": 1,
+                "uniqueItems": True,
+            },
+            "joints": {"type": "array", "items": {"$ref": "#/$defs/joint"}},
+            "inputs": {
+                "type": "array",
+                "items": {"type": "string", "pattern": r"^[^\[\]]+(\[[0-9]+\])?$"},
+                "description": 'joint names, or "NAME[i]" for one coordinate (0-based)',
+            },
+            "output": {
+                "type": "object",
+                "properties": {
+                    "body": {"$ref": "#/$defs/name"},
+                    "relative_to": {"$ref": "#/$defs/name"},
+                    "point": {"$ref": "#/$defs/vector"},
+                },
+                "required": ["body"],
+                "additionalProperties": False,
+            },
+            "characteristic_length": {"$ref": "#/$defs/number"},
+            "configurations": {
+                "type": "object",
+                "additionalProperties": {"$ref": "#/$defs/configuration"},
+            },
+        },
+        "required": ["bodies", "joints"],
+        "additionalProperties": False,
+        "$defs": {
+            "name": {"type": "string", "minLength": 1, "maxLength": 200},
+            "joint_name": {
+                "type": "string",
+                "minLength": 1,
+                "maxLength": 200,
+                "pattern": r"^[^\[\]]+$",
+                "not": {"const": "start"},
+            },
+            "number": number,
+            "vector": vector,
+            "axes": {
+                "type": "array",
+                "items": {"$ref": "#/$defs/vector"},
+                "minItems": 2,
+                "maxItems": 2,
+            },
+            "joint": {"oneOf": joint_variants},
+            "displacement": {
+                "type": "object",
+                "properties": {
+                    "rotation": {
+                        "type": "array",
+                        "items": {"$ref": "#/$defs/vector"},
+                        "minItems": 3,
+                        "maxItems": 3,
+                    },
+                    "translation": {"$ref": "#/$defs/vector"},
+                },
+                "minProperties": 1,
+                "additionalProperties": False,
+                "propertyNames": {"enum": list(DISPLACEMENT_KEYS)},
+            },
+            "joint_value": {
+                "anyOf": [
+                    {"$ref": "#/$defs/number"},
+                    {"type": "array", "items": {"$ref": "#/$defs/number"}, "maxItems": 6},
+                    {"$ref": "#/$defs/displacement"},
+                ]
+            },
+            "configuration": {
+                "anyOf": [
+                    {"type": "null"},
+                    {
+                        "type": "object",
+                        "properties": {"start": {"$ref": "#/$defs/name"}},
+                        "additionalProperties": {"$ref": "#/$defs/joint_value"},
+                    },
+                ]
+            },
+        },
+    }

@@ -1,0 +1,491 @@
+"""The full classification of one closed configuration of a mechanism with loops.
+
+Order of work (lazy: nothing second-order at a regular point):
+
+1. nearby regular configurations of the branch (:mod:`mechsing.screws.mobility`)
+   give every *generic* value the tests are measured against;
+2. a rank drop of the stacked closure system below its generic value runs the
+   tangent-cone test (:mod:`mechsing.singularity.cspace`) and probes each
+   candidate branch by stepping along its tangent and closing again:
+   ``bifurcation`` (several branches), ``isolated`` (cone {0} and nothing
+   nearby), ``degenerate`` (inconclusive, not a union of subspaces, or a cone
+   that disagrees with what continuation finds), ``increased-mobility`` (one
+   smooth branch of the generic dimension);
+3. with inputs and output: the ZFB classes and ``constraint``
+   (:mod:`mechsing.singularity.io`), and ``serial`` for legs that lose rank.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from mechsing.numeric import SUPPORT_RTOL, Margin, Precision, decide_rank, to_float
+from mechsing.screws import scaled_columns
+from mechsing.screws.mobility import NearbySample, nearby_samples, reclose, stacked_jacobian
+from mechsing.singularity.cspace import Cone, Expansion, loop_chains, tangent_cone
+from mechsing.singularity.io import io_quantities, leg_constraint_rank
+from mechsing.singularity.serial import chain_system, serial_finding, wrenches_of
+
+#: the higher-order forms and the input/output tests are evaluated in float64
+#: from the configuration closed at the analysis precision, and decided with
+#: float's thresholds (each finding says so in ``test_precision``)
+FLOAT_PRECISION = Precision("float")
+
+#: distances (commensurate) of the probes along a branch tangent
+BRANCH_STEPS = (3e-3, 3e-2)
+
+
+@dataclass
+class LocalAnalysis:
+    """Mobility fields and findings of one configuration."""
+
+    generic: int | None
+    finite: int | None
+    findings: list[dict[str, Any]] = field(default_factory=list)
+    samples: list[NearbySample] = field(default_factory=list)
+    cone: Cone | None = None
+    regular: bool = True
+    io_generic: dict[str, Any] = field(default_factory=dict)
+
+
+def _float_model(mech: Any, model: Any) -> Any:
+    if model.precision.mode == "float":
+        return model
+    cache = model.__dict__.setdefault("_float_twin", {})
+    if "m" not in cache:
+        from mechsing.kinematics import KinematicModel
+
+        fm = KinematicModel(mech, "float")
+        fm.__dict__["_loop_identifications"] = model.__dict__.get("_loop_identifications", {})
+        cache["m"] = fm
+    return cache["m"]
+
+
+def _stacked_float(cs: Any, Ssf: np.ndarray, model: Any) -> np.ndarray:
+    """Stacked reduced closure matrix in float, built with the same bases as the brackets."""
+    rows = []
+    for ls in cs.loops:
+        cols = np.zeros(model.n)
+        for name, sign in zip(ls.loop.joints, ls.loop.signs, strict=True):
+            cols[model.joint(name).columns] = sign
+        rows.append(ls.basis_float.T @ (Ssf * cols[None, :]))
+    return np.concatenate(rows, axis=0) if rows else np.zeros((0, model.n))
+
+
+def _si_rates(model: Any, x: np.ndarray) -> list[float]:
+    """Commensurate joint rates -> SI (length coordinates times L), largest entry 1, first non-zero positive."""
+    v = np.where(model.length_columns, x * model.length_scale, x)
+    big = float(np.max(np.abs(v))) if v.size else 0.0
+    if big == 0:
+        return [0.0 for _ in v]
+    v = v / big
+    nz = np.flatnonzero(np.abs(v) > SUPPORT_RTOL)
+    if len(nz) and v[nz[0]] < 0:
+        v = -v
+    return [float(a) + 0.0 for a in v]
+
+
+def _probe(fm: Any, q: np.ndarray, x: np.ndarray) -> tuple[int | None, float] | None:
+    """Step along commensurate direction x, close again; (nullity there, alignment)."""
+    L = fm.length_scale
+    for step in BRANCH_STEPS:
+        d = np.where(fm.length_columns, step * x * L, step * x)
+        q1, res = reclose(fm, fm.update(q, d))
+        if res > 1e-10 * L:
+            continue
+        moved = np.where(fm.length_columns, (q1 - q) / L, q1 - q)
+        dist = float(np.linalg.norm(moved))
+        if dist < step / 10:
+            continue
+        align = float(abs(moved @ x) / (dist * np.linalg.norm(x)))
+        dec = decide_rank(stacked_jacobian(fm, q1), "float", L)
+        return (None if dec.rank is None else fm.n - dec.rank), align
+    return None
+
+
+def _joints_of(mech: Any, cs: Any) -> list[str]:
+    order = [j.name for j in mech.joints]
+    return sorted({j for ls in cs.loops for j in ls.loop.joints}, key=order.index)
+
+
+def local_analysis(mech: Any, model: Any, q: np.ndarray, cs: Any) -> LocalAnalysis:
+    """Generic/finite mobility and every finding at a closed configuration with loops."""
+    inst = cs.nullity
+    prec_name = cs.rank.precision
+    if inst is None:
+        return LocalAnalysis(None, None, [], regular=False)
+    fm = _float_model(mech, model)
+    qf = to_float(q)
+    N = to_float(cs.rank.null_space) if cs.rank.null_space is not None else np.zeros((model.n, 0))
+    samples = nearby_samples(fm, qf, N) if inst > 0 else []
+    null_s = [s.nullity for s in samples if s.nullity is not None]
+    gen_s = min(null_s) if null_s else None
+    out = LocalAnalysis(inst, inst, [], samples)
+    joints = _joints_of(mech, cs)
+    margin = cs.rank.margin
+
+    def expansion() -> tuple[Expansion, np.ndarray]:
+        Ssf = to_float(scaled_columns(fm, fm.current_screws(qf)))
+        chains = loop_chains(fm, cs)
+        return Expansion(chains, Ssf), _stacked_float(cs, Ssf, fm)
+
+    if inst == 0:
+        out.generic = out.finite = 0
+    elif not samples:
+        exp, M = expansion()
+        cone = tangent_cone(exp, M, FLOAT_PRECISION)
+        out.cone = cone
+        out.regular = False
+        if cone.kind == "zero":
+            out.generic, out.finite = None, 0
+            out.findings.append(
+                _cspace("isolated", joints, cone, margin, prec_name, instantaneous=inst)
+            )
+        else:
+            found = _branches(fm, qf, cone) if cone.kind == "subspaces" else []
+            if found and any(b[1] is not None for b in found):
+                out.findings.append(
+                    _bifurcation_or_more(
+                        fm, joints, cone, found, margin, prec_name, inst, None, out
+                    )
+                )
+            else:
+                out.generic, out.finite = None, None
+                out.findings.append(
+                    _cspace(
+                        "degenerate",
+                        joints,
+                        cone,
+                        margin,
+                        prec_name,
+                        instantaneous=inst,
+                        note="rank drops, no nearby closed configuration was found, but the tangent cone is not {0}",
+                    )
+                )
+    elif gen_s is not None and inst > gen_s:
+        out.regular = False
+        exp, M = expansion()
+        cone = tangent_cone(exp, M, FLOAT_PRECISION)
+        out.cone = cone
+        out.generic = out.finite = gen_s
+        if cone.kind == "inconclusive":
+            out.findings.append(
+                _cspace(
+                    "degenerate",
+                    joints,
+                    cone,
+                    margin,
+                    prec_name,
+                    instantaneous=inst,
+                    note="; ".join(cone.notes),
+                )
+            )
+        elif cone.kind == "zero":
+            out.findings.append(
+                _cspace(
+                    "degenerate",
+                    joints,
+                    cone,
+                    margin,
+                    prec_name,
+                    instantaneous=inst,
+                    note="the tangent cone is {0} but nearby closed configurations exist (a cusp?)",
+                )
+            )
+        else:
+            found = _branches(fm, qf, cone)
+            out.findings.append(
+                _bifurcation_or_more(fm, joints, cone, found, margin, prec_name, inst, gen_s, out)
+            )
+    else:
+        out.generic = gen_s if gen_s is not None else inst
+        out.finite = out.generic
+        # shakiness: a regular point whose second-order cone is smaller than the kernel
+        if samples:
+            exp, M = expansion()
+            cone = tangent_cone(exp, M, FLOAT_PRECISION, max_order=2)
+            if (
+                cone.kind == "subspaces"
+                and len(cone.subspaces) == 1
+                and cone.subspaces[0].shape[1] < inst
+            ):
+                out.finite = cone.subspaces[0].shape[1]
+                out.cone = cone
+    # input / output / constraint, measured against the regular samples of the branch
+    if out.generic is not None and inst > 0 and samples:
+        out.findings.extend(_io_findings(mech, fm, qf, N, samples, out, joints, prec_name))
+    return out
+
+
+def _branches(fm: Any, qf: np.ndarray, cone: Cone) -> list[tuple[np.ndarray, int | None, bool]]:
+    """For each cone subspace: its tangent, the nullity found along it, smooth on both sides."""
+    res = []
+    for W in cone.subspaces:
+        x = W[:, 0]
+        fwd = _probe(fm, qf, x)
+        bwd = _probe(fm, qf, -x)
+        null = None
+        for p in (fwd, bwd):
+            if p is not None and p[0] is not None:
+                null = p[0] if null is None else max(null, p[0])
+        smooth = fwd is not None and bwd is not None and fwd[1] > 0.9 and bwd[1] > 0.9
+        res.append((x, null, smooth))
+    return res
+
+
+def _cspace(
+    cls: str, joints: list[str], cone: Cone | None, margin: Margin, prec: str, **extra: Any
+) -> dict[str, Any]:
+    m = margin.to_json()
+    if cone is not None and cone.eig_margin is not None:
+        m["eig_margin"] = cone.eig_margin
+    f: dict[str, Any] = {"class": cls, "joints": joints}
+    if cone is not None:
+        f["order"] = cone.order
+    f.update({k: v for k, v in extra.items() if v is not None})
+    f["margin"] = m
+    f["precision"] = prec
+    f["test_precision"] = "float"
+    return f
+
+
+def _bifurcation_or_more(
+    fm: Any,
+    joints: list[str],
+    cone: Cone,
+    found: list,
+    margin: Margin,
+    prec: str,
+    inst: int,
+    gen: int | None,
+    out: LocalAnalysis,
+) -> dict[str, Any]:
+    tangents = [_si_rates(fm, x) for x, _, _ in found]
+    mobilities = [n for _, n, _ in found]
+    dims = [W.shape[1] for W in cone.subspaces]
+    if len(found) >= 2:
+        known = [m for m in mobilities if m is not None]
+        if known:
+            out.generic = out.finite = max(known)
+        return _cspace(
+            "bifurcation",
+            joints,
+            cone,
+            margin,
+            prec,
+            branches=len(found),
+            branch_tangents=tangents,
+            branch_mobility=mobilities,
+            branch_dimensions=dims,
+            instantaneous=inst,
+            kinematotropic=len(set(known)) > 1 or None,
+        )
+    x, n, smooth = found[0]
+    if smooth and gen is not None and dims[0] == gen:
+        return _cspace(
+            "increased-mobility",
+            joints,
+            cone,
+            margin,
+            prec,
+            instantaneous=inst,
+            generic=gen,
+            branch_tangents=tangents,
+        )
+    why = (
+        "one candidate branch, but continuation along it does not find a smooth curve through the point "
+        "(a cusp or tangential branches)"
+        if not smooth
+        else f"the tangent cone is one space of dimension {dims[0]}, not the branch dimension {gen}"
+    )
+    return _cspace(
+        "degenerate",
+        joints,
+        cone,
+        margin,
+        prec,
+        instantaneous=inst,
+        branch_tangents=tangents,
+        note=why,
+    )
+
+
+def _io_findings(
+    mech: Any,
+    fm: Any,
+    qf: np.ndarray,
+    N: np.ndarray,
+    samples: list[NearbySample],
+    out: LocalAnalysis,
+    joints: list[str],
+    prec: str,
+) -> list[dict[str, Any]]:
+    findings: list[dict[str, Any]] = []
+    regular = [s for s in samples if s.nullity == out.generic] or samples
+    has_io = mech.output is not None and mech.inputs
+    if has_io:
+        here = io_quantities(mech, fm, qf, N)
+        gens = []
+        for s in regular:
+            Ns = decide_rank(
+                stacked_jacobian(fm, s.q), "float", fm.length_scale, want_spaces=True
+            ).null_space
+            g = io_quantities(mech, fm, s.q, Ns)
+            if g is not None:
+                gens.append(g.values())
+        if here is not None and gens:
+            hv = here.values()
+            generic = {
+                k: (min if k in ("input", "output", "passive-motion") else max)(
+                    [g[k] for g in gens if g[k] is not None], default=None
+                )
+                for k in hv
+            }
+            out.io_generic = generic
+            findings.extend(_zfb(mech, fm, here, hv, generic, prec))
+    legs = (
+        leg_constraint_rank(mech, fm, qf, _cs_of(out, fm, qf)) if mech.output is not None else None
+    )
+    if legs is not None:
+        dec, wr = legs
+        gen_ranks = []
+        for s in regular:
+            r = leg_constraint_rank(mech, fm, s.q, _cs_of(out, fm, s.q))
+            if r is not None and r[0].rank is not None:
+                gen_ranks.append(r[0].rank)
+        if dec.rank is not None and gen_ranks and dec.rank < max(gen_ranks):
+            g = max(gen_ranks)
+            Wc = np.concatenate(wr, axis=1)
+            U, _s, _ = np.linalg.svd(Wc)
+            findings.append(
+                {
+                    "class": "constraint",
+                    "joints": [j for leg in mech.legs for j in leg.joints],
+                    "rank": dec.rank,
+                    "generic_rank": g,
+                    "corank": g - dec.rank,
+                    "wrenches": wrenches_of(fm, None, U[:, : dec.rank], False),
+                    "margin": dec.margin.to_json(),
+                    "precision": dec.precision,
+                }
+            )
+    if mech.output is not None:
+        findings.extend(_leg_serial(mech, fm, qf, regular))
+    return findings
+
+
+def _cs_of(out: LocalAnalysis, fm: Any, q: np.ndarray) -> Any:
+    from mechsing.screws import closure_system
+
+    return closure_system(fm, q)
+
+
+def _zfb(
+    mech: Any, fm: Any, here: Any, hv: dict[str, Any], generic: dict[str, Any], prec: str
+) -> list[dict[str, Any]]:
+    findings = []
+    names = _coordinate_names(mech, fm)
+    sp = here.spaces
+    N = sp["N"]
+    L = fm.length_scale
+    for cls in ("input", "output", "passive-motion"):
+        v, g = hv[cls], generic[cls]
+        if v is None or g is None or v <= g:
+            continue
+        if cls == "input":
+            basis, dec = sp["zT"], here.input_motion
+        elif cls == "output":
+            basis, dec = sp["zE"], here.output_motion
+        else:
+            both = np.vstack([sp["T"] @ N / max(sp["nT"], 1e-300), sp["E"] @ N])
+            dec = decide_rank(both, "float", L, want_spaces=True, reference=1.0)
+            basis = dec.null_space
+        x = N @ basis[:, 0] if basis.size else np.zeros(fm.n)
+        rates = _si_rates(fm, x)
+        f: dict[str, Any] = {
+            "class": cls,
+            "joints": sorted(
+                {names[i] for i, r in enumerate(rates) if abs(r) > SUPPORT_RTOL},
+                key=[j.name for j in mech.joints].index,
+            ),
+            "dimension": v,
+            "generic": g,
+            "joint_rates": rates,
+        }
+        if cls == "output":
+            t = sp["T"] @ x
+            f["output_twist"] = _output_si(mech, fm, t)
+        f["margin"] = dec.margin.to_json()
+        f["precision"] = dec.precision
+        findings.append(f)
+    for cls in ("impossible-input", "impossible-output"):
+        v, g = hv[cls], generic[cls]
+        if v is None or g is None or v >= g:
+            continue
+        dec = here.input_rank if cls == "impossible-input" else here.output_rank
+        findings.append(
+            {
+                "class": cls,
+                "joints": [r.joint for r in mech.inputs] if cls == "impossible-input" else [],
+                "rank": v,
+                "generic": g,
+                "margin": dec.margin.to_json(),
+                "precision": dec.precision,
+            }
+        )
+    return findings
+
+
+def _output_si(mech: Any, fm: Any, t: np.ndarray) -> list[float]:
+    from mechsing.singularity.serial import twist_back
+
+    if mech.output.point is not None:
+        v = t * fm.length_scale
+        n = float(np.linalg.norm(v))
+        return [float(a) for a in (v / n if n else v)]
+    tw = twist_back(fm, t)
+    n = float(np.linalg.norm(tw[:3])) or float(np.linalg.norm(tw[3:])) or 1.0
+    return [float(a) + 0.0 for a in tw / n]
+
+
+def _coordinate_names(mech: Any, fm: Any) -> list[str]:
+    names = [""] * fm.n
+    for jk in fm.joints:
+        for c in range(jk.columns.start, jk.columns.stop):
+            names[c] = jk.name
+    return names
+
+
+def _leg_serial(
+    mech: Any, fm: Any, qf: np.ndarray, regular: list[NearbySample]
+) -> list[dict[str, Any]]:
+    """``serial`` for a leg whose own screw system loses rank (type I per leg)."""
+    findings = []
+    legs = mech.legs
+    if len(legs) < 2:
+        return findings
+    S = fm.current_screws(qf)
+    for i, leg in enumerate(legs):
+        cols = [
+            c
+            for j in leg.joints
+            for c in range(fm.joint(j).columns.start, fm.joint(j).columns.stop)
+        ]
+        names = [
+            fm.joint(j).name
+            for j in leg.joints
+            for _ in range(fm.joint(j).columns.stop - fm.joint(j).columns.start)
+        ]
+        here = chain_system(fm, S, cols, None, "float")
+        gen = here.rank.rank or 0
+        for s in regular:
+            r = chain_system(fm, fm.current_screws(s.q), cols, None, "float").rank.rank
+            if r is not None:
+                gen = max(gen, r)
+        f = serial_finding(fm, here, gen, names, {"chain": "leg", "leg": i + 1})
+        if f:
+            findings.append(f)
+    return findings

@@ -1,0 +1,378 @@
+"""Configuration-space singularities: the kinematic tangent cone (theory.md §3.4, §4.2).
+
+Loop closure along a loop with bodies B0 .. Bn = B0: the relative twist across
+joint k is ``zeta_k = s_k S_k u_k`` (current screws ``S_k = Ad(g_a) e``,
+trivialised rates ``u_k``, orientation sign ``s_k``).  With ``V_k = sum_{j<k}
+zeta_j`` the twist of the body before joint k relative to B0, and
+``dS/dt = [V_a, S]``:
+
+* order 1: ``sum_k zeta_k = 0``;
+* order 2: ``sum_k s_k S_k w_k + sum_k [V_k, zeta_k] = 0`` (``w = du/dt``);
+* order 3: ``sum_k s_k S_k a_k + sum_k ([V_k, A_k] + [dV_k, zeta_k] + [V_k, dzeta_k]) = 0``
+  with ``A_k = s_k S_k w_k``, ``dzeta_k = A_k + [V_k, zeta_k]``,
+  ``dV_k = sum_{j<k} dzeta_j``.
+
+Within one multi-dof joint no bracket appears (its velocity is trivialised); a U
+joint is two revolutes in sequence.  Everything is computed in the
+commensurate metric (an automorphism of se(3), so brackets commute with it)
+and projected on each loop's reduced orthonormal coordinates, like the
+stacked closure matrix M.  A tangent x in ker M extends to order 2 iff the
+quadratic part lies in range M, i.e. ``p^T Q(x) = 0`` for every left-null
+vector p: these are the quadratic forms of the second-order test.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from mechsing import lie
+from mechsing.numeric import Precision, decide_definiteness, decide_rank
+
+#: directions sampled on a candidate subspace for the order-3 test
+_ORDER3_SAMPLES = 6
+#: combinations of two forms scanned for a definite one
+_PENCIL_ANGLES = 90
+
+
+@dataclass
+class LoopChain:
+    """A loop as a sequence of elements (coordinate columns, sign) and the
+    orthonormal commensurate basis Q (6 x k) of its subalgebra."""
+
+    elements: list[tuple[list[int], int]]
+    Q: np.ndarray
+
+
+def loop_chains(model: Any, cs: Any) -> list[LoopChain]:
+    """The elements of every canonical loop, in loop order."""
+    out = []
+    for ls in cs.loops:
+        elems: list[tuple[list[int], int]] = []
+        for name, sign in zip(ls.loop.joints, ls.loop.signs, strict=True):
+            jk = model.joint(name)
+            cols = list(range(jk.columns.start, jk.columns.stop))
+            if jk.type == "U":
+                parts = [([cols[0]], sign), ([cols[1]], sign)]
+                elems.extend(parts if sign > 0 else parts[::-1])
+            else:
+                elems.append((cols, sign))
+        out.append(LoopChain(elems, ls.basis_float))
+    return out
+
+
+class Expansion:
+    """Higher-order closure terms at one configuration (float, commensurate)."""
+
+    def __init__(self, chains: list[LoopChain], Ss: np.ndarray) -> None:
+        self.chains = chains
+        self.Ss = np.asarray(Ss, dtype=float)
+
+    def _zetas(self, chain: LoopChain, u: np.ndarray) -> list[np.ndarray]:
+        return [s * (self.Ss[:, cols] @ u[cols]) for cols, s in chain.elements]
+
+    def bilinear(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """Stacked reduced ``sum_{j<k} [zeta_j(x), zeta_k(y)]`` per loop."""
+        out = []
+        for ch in self.chains:
+            zx, zy = self._zetas(ch, x), self._zetas(ch, y)
+            acc = np.zeros(6)
+            V = np.zeros(6)
+            for k in range(len(zy)):
+                acc += lie.bracket(V, zy[k])
+                V = V + zx[k]
+            out.append(ch.Q.T @ acc)
+        return np.concatenate(out) if out else np.zeros(0)
+
+    def quadratic(self, x: np.ndarray) -> np.ndarray:
+        return self.bilinear(x, x)
+
+    def third(self, u: np.ndarray, w: np.ndarray) -> np.ndarray:
+        """Stacked reduced third-order terms for tangent u and second-order rates w."""
+        out = []
+        for ch in self.chains:
+            z = self._zetas(ch, u)
+            A = self._zetas(ch, w)
+            n = len(z)
+            V = [np.zeros(6)]
+            for k in range(n - 1):
+                V.append(V[-1] + z[k])
+            dz = [A[k] + lie.bracket(V[k], z[k]) for k in range(n)]
+            dV = [np.zeros(6)]
+            for k in range(n - 1):
+                dV.append(dV[-1] + dz[k])
+            acc = np.zeros(6)
+            for k in range(n):
+                acc += lie.bracket(V[k], A[k]) + lie.bracket(dV[k], z[k]) + lie.bracket(V[k], dz[k])
+            out.append(ch.Q.T @ acc)
+        return np.concatenate(out) if out else np.zeros(0)
+
+
+@dataclass
+class Cone:
+    """The tangent cone found by the higher-order test.
+
+    ``subspaces``: list of orthonormal bases (n x d, commensurate joint rates)
+    whose union is the cone (empty list: the cone is {0}); ``kind``:
+    ``"subspaces"``, ``"zero"`` (cone {0}) or ``"inconclusive"`` (not a finite
+    union of subspaces, or undecided at every order tried); ``order``: the
+    highest order used; ``eig_margin``: the eigenvalue margin of the deciding
+    forms; ``undecided``: a definiteness fell between the thresholds.
+    """
+
+    kind: str
+    subspaces: list[np.ndarray]
+    order: int
+    eig_margin: float | None = None
+    undecided: bool = False
+    notes: list[str] = field(default_factory=list)
+
+
+def _orth(A: np.ndarray) -> np.ndarray:
+    if A.shape[1] == 0:
+        return A
+    U, s, _ = np.linalg.svd(A, full_matrices=False)
+    keep = s > 1e-10 * (s[0] if len(s) else 1)
+    return U[:, keep]
+
+
+def _forms(exp: Expansion, N: np.ndarray, P: np.ndarray) -> list[np.ndarray]:
+    """Symmetric m x m matrices p_k^T Q(N y) for each left-null vector p_k."""
+    m = N.shape[1]
+    c = P.shape[1]
+    F = np.zeros((c, m, m))
+    for a in range(m):
+        for b in range(a, m):
+            v = exp.bilinear(N[:, a], N[:, b]) + exp.bilinear(N[:, b], N[:, a])
+            val = P.T @ v / 2
+            F[:, a, b] = val
+            F[:, b, a] = val
+    return [F[k] for k in range(c)]
+
+
+def _form_basis(forms: list[np.ndarray], prec: Precision) -> list[np.ndarray]:
+    """A basis of the span of the forms (as vectors), decided with the rank rule."""
+    if not forms:
+        return []
+    m = forms[0].shape[0]
+    iu = np.triu_indices(m)
+    A = np.array([f[iu] for f in forms]).T
+    scale = max(float(np.max(np.abs(A))), 0.0)
+    if scale == 0.0:
+        return []
+    U, s, _ = np.linalg.svd(A, full_matrices=False)
+    r = int(np.sum(s > prec.tolerances.tau_hi * s[0]))
+    out = []
+    for k in range(r):
+        f = np.zeros((m, m))
+        f[iu] = U[:, k] * s[k]
+        f = f + f.T - np.diag(np.diag(f))
+        out.append(f)
+    return out
+
+
+def _restrict(forms: list[np.ndarray], B: np.ndarray) -> list[np.ndarray]:
+    return [B.T @ f @ B for f in forms]
+
+
+def _zero_set(
+    forms: list[np.ndarray], prec: Precision, depth: int = 0
+) -> tuple[str, list[np.ndarray], list[float], bool]:
+    """Common zero set of quadratic forms on R^m as a union of subspaces.
+
+    Returns (kind, subspaces as bases in R^m, eigenvalue margins, undecided).
+    kind: "subspaces" (possibly the single {0}: empty list) or "cone" (a form
+    of rank >= 3 indefinite whose zero set is no finite union of subspaces).
+    """
+    if not forms:
+        return "subspaces", [], [], False
+    m = forms[0].shape[0]
+    eye = np.eye(m)
+    if m == 0:
+        return "subspaces", [], [], False
+    basis = _form_basis(forms, prec)
+    if not basis:
+        return "subspaces", [eye], [], False
+    margins: list[float] = []
+    decisions = [decide_definiteness(f, prec) for f in basis]
+    if any(d.kind is None for d in decisions):
+        return "subspaces", [], [], True
+    # a definite combination: the cone is {0}
+    for d in decisions:
+        if d.kind == "definite":
+            return "subspaces", [], [d.eig_margin or 0.0], False
+    if len(basis) >= 2:
+        for t in np.linspace(0, math.pi, _PENCIL_ANGLES, endpoint=False):
+            d = decide_definiteness(math.cos(t) * basis[0] + math.sin(t) * basis[1], prec)
+            if d.kind == "definite":
+                return "subspaces", [], [d.eig_margin or 0.0], False
+    # split on the form of lowest rank
+    ranked = sorted(zip(basis, decisions, strict=True), key=lambda fd: fd[1].n_pos + fd[1].n_neg)
+    f, d = ranked[0]
+    rest = [g for g, _ in ranked[1:]]
+    margins.append(d.eig_margin or 0.0)
+    w, V = np.linalg.eigh((f + f.T) / 2)
+    ref = float(np.max(np.abs(w)))
+    tau = prec.tolerances.tau_hi * ref
+    pos = [i for i in range(m) if w[i] > tau]
+    neg = [i for i in range(m) if w[i] < -tau]
+    zero = [i for i in range(m) if abs(w[i]) <= tau]
+    pieces: list[np.ndarray] = []
+    if not pos or not neg:
+        # semidefinite: the zero set is the kernel
+        pieces.append(V[:, zero])
+    elif len(pos) == 1 and len(neg) == 1:
+        # rank-2 indefinite: two hyperplanes (sqrt|a| v_p . y = +- sqrt|b| v_n . y)
+        vp = math.sqrt(w[pos[0]]) * V[:, pos[0]]
+        vn = math.sqrt(-w[neg[0]]) * V[:, neg[0]]
+        for normal in (vp - vn, vp + vn):
+            B = _null_of_row(normal)
+            pieces.append(B)
+    else:
+        return "cone", [], margins, False
+    out: list[np.ndarray] = []
+    undecided = False
+    for B in pieces:
+        if B.shape[1] == 0:
+            continue
+        kind, subs, mg, und = (
+            _zero_set(_restrict(rest, B), prec, depth + 1)
+            if rest
+            else ("subspaces", [np.eye(B.shape[1])], [], False)
+        )
+        undecided = undecided or und
+        margins.extend(mg)
+        if kind == "cone":
+            return "cone", [], margins, undecided
+        out.extend(B @ S for S in subs)
+    return "subspaces", _distinct(out), margins, undecided
+
+
+def _null_of_row(r: np.ndarray) -> np.ndarray:
+    _, _, Vt = np.linalg.svd(r[None, :])
+    return Vt[1:].T
+
+
+def _distinct(spaces: list[np.ndarray]) -> list[np.ndarray]:
+    """Remove zero-dimensional, repeated and contained subspaces."""
+    spaces = [_orth(S) for S in spaces if S.shape[1] > 0]
+    spaces = [S for S in spaces if S.shape[1] > 0]
+    keep: list[np.ndarray] = []
+    for S in sorted(spaces, key=lambda s: -s.shape[1]):
+        contained = False
+        for K in keep:
+            if np.linalg.norm(S - K @ (K.T @ S)) < 1e-8:
+                contained = True
+                break
+        if not contained:
+            keep.append(S)
+    return keep
+
+
+def tangent_cone(exp: Expansion, M: np.ndarray, prec: Precision, max_order: int = 3) -> Cone:
+    """The kinematic tangent cone at a configuration (orders 2 and 3).
+
+    ``M``: the stacked commensurate closure matrix (float).
+    """
+    L = 1.0
+    dec = decide_rank(M, "float" if prec.mode != "mp" else prec, L, want_spaces=True)
+    N = dec.null_space
+    U, s, _ = np.linalg.svd(M)
+    r = dec.rank if dec.rank is not None else dec.rank_bounds[0]
+    P = U[:, r:]
+    m = N.shape[1]
+    if m == 0:
+        return Cone("zero", [], 1)
+    if P.shape[1] == 0:
+        return Cone("subspaces", [N], 1)
+    forms = _forms(exp, N, P)
+    kind, subs, margins, undecided = _zero_set(forms, prec)
+    eig = min(margins) if margins else None
+    if undecided:
+        return Cone("inconclusive", [], 2, eig, True, ["a second-order form is undecided"])
+    if kind == "cone":
+        return Cone(
+            "inconclusive",
+            [],
+            2,
+            eig,
+            False,
+            ["the second-order cone is not a finite union of subspaces"],
+        )
+    spaces = [N @ S for S in subs]
+    if not spaces:
+        return Cone("zero", [], 2, eig)
+    # order 3 on subspaces where every second-order form vanishes identically
+    order = 2
+    if max_order >= 3:
+        kept: list[np.ndarray] = []
+        for W in spaces:
+            if _forms_vanish(forms, N.T @ W, prec):
+                verdict = _order3(exp, M, N, P, W, prec)
+                order = 3
+                if verdict == "keep":
+                    kept.append(W)
+                elif verdict == "drop":
+                    continue
+                else:
+                    return Cone(
+                        "inconclusive",
+                        [],
+                        3,
+                        eig,
+                        False,
+                        ["the third-order test is inconclusive on a candidate branch"],
+                    )
+            else:
+                kept.append(W)
+        spaces = kept
+        if not spaces:
+            return Cone("zero", [], order, eig)
+    return Cone("subspaces", _distinct(spaces), order, eig)
+
+
+def _forms_vanish(forms: list[np.ndarray], B: np.ndarray, prec: Precision) -> bool:
+    ref = max((float(np.max(np.abs(f))) for f in forms), default=0.0)
+    if ref == 0:
+        return True
+    return all(
+        float(np.max(np.abs(B.T @ f @ B), initial=0.0)) <= prec.tolerances.tau_lo * ref * 1e3
+        for f in forms
+    )
+
+
+def _order3(
+    exp: Expansion, M: np.ndarray, N: np.ndarray, P: np.ndarray, W: np.ndarray, prec: Precision
+) -> str:
+    """Does every direction of W extend to order 3 ("keep"), none ("drop"), or mixed?"""
+    rng = np.random.default_rng(1)
+    Mp = np.linalg.pinv(M)
+    ok = 0
+    bad = 0
+    for _ in range(_ORDER3_SAMPLES):
+        x = W @ rng.normal(size=W.shape[1])
+        x /= np.linalg.norm(x)
+        wp = -Mp @ exp.quadratic(x)
+        base = P.T @ exp.third(x, wp)
+        Lz = np.stack(
+            [P.T @ (exp.third(x, wp + N[:, j]) - exp.third(x, wp)) for j in range(N.shape[1])],
+            axis=1,
+        )
+        scale = max(1.0, float(np.max(np.abs(Lz), initial=0.0)))
+        if Lz.size:
+            z, *_ = np.linalg.lstsq(Lz, -base, rcond=None)
+            resid = base + Lz @ z
+        else:
+            resid = base
+        if float(np.max(np.abs(resid), initial=0.0)) <= 1e-9 * scale:
+            ok += 1
+        else:
+            bad += 1
+    if bad == 0:
+        return "keep"
+    if ok == 0:
+        return "drop"
+    return "mixed"

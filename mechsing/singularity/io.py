@@ -1,0 +1,212 @@
+"""Input/output and constraint singularities (theory.md §4.5, §4.6).
+
+Complete velocity equation.  With ``N`` an orthonormal basis of the solution
+space K of the closure equations (commensurate joint rates), the output twist
+is ``t = T u`` (the output body relative to ``relative_to``, through a tree
+path; or the velocity of the output point) and the inputs ``u_a = E u``.  On
+one basis of K (Zlatanov, Fenton, Benhabib 1995):
+
+* ``input`` (RI): dim E(K cap ker T) -- input rates with the output still;
+* ``output`` (RO): dim T(K cap ker E) -- output motion with the inputs locked;
+* ``passive-motion`` (RPM): dim (K cap ker E cap ker T);
+* ``impossible-input`` (II): rank E N below its generic value;
+* ``impossible-output`` (IO): rank T N below its generic value.
+
+Each is measured against its value at regular configurations of the branch
+(the nearby samples), so what holds everywhere (an idle spin, redundancy)
+is a property, not a singularity.
+
+Constraint singularity: each leg's twist system T_i and its reciprocal
+(constraint) wrench system W_i; the legs' combined constraint system
+``W_c = sum W_i`` losing rank below its generic value lets the output move
+outside its generic motion type (Zlatanov, Bonev, Gosselin 2002).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from mechsing import lie
+from mechsing.numeric import RankDecision, decide_rank, scale_screws, to_float
+
+__all__ = ["IOQuantities", "io_quantities", "leg_constraint_rank"]
+
+
+@dataclass
+class IOQuantities:
+    """Dimensions of the ZFB subspaces at one configuration (float decisions)."""
+
+    input_motion: RankDecision  # E applied to K cap ker T
+    output_motion: RankDecision  # T applied to K cap ker E
+    passive_motion: int | None  # dim K cap ker E cap ker T
+    input_rank: RankDecision  # rank E N
+    output_rank: RankDecision  # rank T N
+    spaces: dict[str, np.ndarray]
+
+    def values(self) -> dict[str, int | None]:
+        return {
+            "input": self.input_motion.rank,
+            "output": self.output_motion.rank,
+            "passive-motion": self.passive_motion,
+            "impossible-input": self.input_rank.rank,
+            "impossible-output": self.output_rank.rank,
+        }
+
+
+def output_rows(
+    mech: Any, model: Any, q: np.ndarray, S: np.ndarray, poses: dict[str, np.ndarray]
+) -> np.ndarray | None:
+    """Commensurate output map T (6 x n twists, or 3 x n point velocities / L)."""
+    out = mech.output
+    if out is None:
+        return None
+    paths = mech.graph.tree_paths
+    coef = np.zeros(model.n)
+    for body, sgn in ((out.body, 1), (out.relative_to, -1)):
+        for st in paths[body]:
+            coef[model.joint(st.joint).columns] += sgn * st.sign
+    Sf = to_float(S)
+    L = model.length_scale
+    T = scale_screws(Sf * coef[None, :], L, model.centroid, model.length_columns)
+    if out.point is None:
+        return T
+    x0 = to_float(np.array(list(out.point), dtype=object))
+    x = lie.act_point(to_float(poses[out.body]), x0)
+    # velocity of the body point x: v + omega x x, from twists moved to the centroid:
+    # v_x = v_c + omega x (x - c); in commensurate units divide by L
+    w, vc = T[:3], T[3:]
+    d = (x - model.centroid) / L
+    return vc + np.cross(w.T, d).T
+
+
+def input_rows(mech: Any, model: Any) -> np.ndarray | None:
+    """Selection E of the actuated coordinates (rows), commensurate (lengths / L)."""
+    coords = mech.input_coordinates()
+    if not coords:
+        return None
+    E = np.zeros((len(coords), model.n))
+    for i, (j, k) in enumerate(coords):
+        E[i, model.joint(j).columns.start + k] = 1.0
+    return E
+
+
+def _null(A: np.ndarray, L: float, reference: float | None = None) -> np.ndarray:
+    if A.shape[0] == 0:
+        return np.eye(A.shape[1])
+    dec = decide_rank(A, "float", L, want_spaces=True, reference=reference)
+    return dec.null_space
+
+
+def io_quantities(mech: Any, model: Any, q: np.ndarray, N: np.ndarray) -> IOQuantities | None:
+    """ZFB quantities at q; N: commensurate kernel basis of the closure system (n x m)."""
+    qf = to_float(q)
+    fm = model
+    poses = fm.poses(qf)
+    S = fm.current_screws(qf, poses)
+    T = output_rows(mech, fm, qf, S, poses)
+    E = input_rows(mech, fm)
+    if T is None or E is None:
+        return None
+    L = fm.length_scale
+    m = N.shape[1]
+    TN = T @ N
+    EN = E @ N
+    # thresholds relative to the operators T and E themselves (N and the z are
+    # orthonormal), so a product that vanishes is rank 0, not rounding noise
+    nT = float(np.linalg.norm(T, 2)) if T.size else 0.0
+    nE = 1.0
+    zT = _null(TN, L, nT) if m else np.zeros((0, 0))
+    zE = _null(EN, L, nE) if m else np.zeros((0, 0))
+    inp = decide_rank(EN @ zT if zT.size else np.zeros((E.shape[0], 0)), "float", L, reference=nE)
+    outp = decide_rank(TN @ zE if zE.size else np.zeros((T.shape[0], 0)), "float", L, reference=nT)
+    both = np.vstack([TN / max(nT, 1e-300), EN]) if m else np.zeros((0, 0))
+    if m:
+        d = decide_rank(both, "float", L, reference=1.0)
+        passive = None if d.rank is None else m - d.rank
+    else:
+        passive = 0
+    return IOQuantities(
+        inp,
+        outp,
+        passive,
+        decide_rank(EN, "float", L, reference=nE),
+        decide_rank(TN, "float", L, reference=nT),
+        {"T": T, "E": E, "N": N, "zT": zT, "zE": zE, "nT": nT},
+    )
+
+
+def _leg_path(mech: Any, leg: Any, base: str, body: str) -> list[tuple[str, int]]:
+    """A path of (joint, sign) from base to body through the leg's joints (BFS, file order)."""
+    from collections import deque
+
+    joints = [mech.joint(j) for j in leg.joints]
+    prev: dict[str, tuple[str, str, int] | None] = {base: None}
+    queue = deque([base])
+    while queue:
+        x = queue.popleft()
+        if x == body:
+            break
+        for j in joints:
+            a, b = j.between
+            if x not in (a, b):
+                continue
+            y = b if x == a else a
+            if y in prev or (y == base):
+                continue
+            prev[y] = (x, j.name, 1 if x == a else -1)
+            queue.append(y)
+    path: list[tuple[str, int]] = []
+    x = body
+    while prev.get(x) is not None:
+        px, jn, sg = prev[x]
+        path.append((jn, sg))
+        x = px
+    return path[::-1]
+
+
+def leg_constraint_rank(
+    mech: Any, model: Any, q: np.ndarray, cs: Any
+) -> tuple[RankDecision, list[np.ndarray]] | None:
+    """Rank of the legs' combined constraint wrench system W_c, and each leg's
+    constraint wrenches (commensurate vectors y with y . twist = 0 for every
+    twist the leg lets the output make).
+
+    A leg's twist system is ``T_path K_leg``: the output twists through a path
+    of the leg's joints from the base, over the solutions ``K_leg`` of the
+    leg's own inner loops (for a serial leg, simply the span of its screws).
+    """
+    out = mech.output
+    if out is None or len(mech.legs) < 2:
+        return None
+    qf = to_float(q)
+    poses = model.poses(qf)
+    S = to_float(model.current_screws(qf, poses))
+    L = model.length_scale
+    Ss = scale_screws(S, L, model.centroid, model.length_columns)
+    wrenches = []
+    for leg in mech.legs:
+        legset = set(leg.joints)
+        cols = [
+            c
+            for j in leg.joints
+            for c in range(model.joint(j).columns.start, model.joint(j).columns.stop)
+        ]
+        inner = [ls.matrix for ls in cs.loops if set(ls.loop.joints) <= legset]
+        if inner:
+            Mi = to_float(np.concatenate(inner, axis=0))[:, cols]
+            K = _null(Mi, L)
+        else:
+            K = np.eye(len(cols))
+        coef = np.zeros(model.n)
+        for jn, sg in _leg_path(mech, leg, out.relative_to, out.body):
+            coef[model.joint(jn).columns] = sg
+        Tl = (Ss * coef[None, :])[:, cols] @ K
+        dec = decide_rank(Tl, "float", L)
+        r = dec.rank if dec.rank is not None else dec.rank_bounds[1]
+        U, _s, _ = np.linalg.svd(Tl)
+        wrenches.append(U[:, r:])
+    Wc = np.concatenate(wrenches, axis=1) if wrenches else np.zeros((6, 0))
+    return decide_rank(Wc.T if Wc.shape[1] else np.zeros((0, 6)), "float", L), wrenches
