@@ -142,6 +142,14 @@ def analyze(
 def _analyze_one(
     mech: Mechanism, name: str, stage: tuple[KinematicModel, Closer]
 ) -> ConfigurationResult:
+    # every mp:N computation must run at N digits: mpmath's precision is a context
+    with stage[0].precision.context():
+        return _analyze_one_in_context(mech, name, stage)
+
+
+def _analyze_one_in_context(
+    mech: Mechanism, name: str, stage: tuple[KinematicModel, Closer]
+) -> ConfigurationResult:
     model, closer = stage
     prec = model.precision
     out = ConfigurationResult(name, str(prec))

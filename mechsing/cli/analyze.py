@@ -60,5 +60,5 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.write(text)
     for c in result.configurations:
         if c.error:
-            print(f"mechsing: configuration {c.name!r}: {c.error}", file=sys.stderr)
+            print(f"mechsing: {c.error}", file=sys.stderr)
     return 3 if result.failed else 0

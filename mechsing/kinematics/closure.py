@@ -79,6 +79,11 @@ class Closer:
     # ---------------------------------------------------------------- public
 
     def solve(self, name: str, _chain: tuple[str, ...] = ()) -> ClosedConfiguration:
+        """Close the named configuration (memoised), at the model's precision."""
+        with self.model.precision.context():
+            return self._solve(name, _chain)
+
+    def _solve(self, name: str, _chain: tuple[str, ...] = ()) -> ClosedConfiguration:
         if name in self._solved:
             return self._solved[name]
         if name in _chain:
@@ -95,7 +100,7 @@ class Closer:
             if start_name is None or (cfg.is_reference and not cfg.values):
                 q0 = self.model.zeros()
             else:
-                q0 = self.solve(start_name, _chain + (name,)).q
+                q0 = self._solve(start_name, _chain + (name,)).q
             out = self._continue(cfg, q0, target, given)
         self._solved[name] = out
         return out
@@ -236,7 +241,9 @@ class Closer:
             t_next = min(1.0, t + dt)
             final = t_next >= 1.0
             qg = q.copy()
-            qg[gmask] = q_start[gmask] + t_next * (qt[gmask] - q_start[gmask])
+            qg[gmask] = (
+                qt[gmask] if final else q_start[gmask] + t_next * (qt[gmask] - q_start[gmask])
+            )
             ok, qn, info = self._correct(fm, q, qg, gmask, final)
             if not ok:
                 dt /= 2

@@ -28,7 +28,7 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.model import Mechanism
-from mechsing.numeric import Precision, characteristic_length, to_float
+from mechsing.numeric import Precision, characteristic_length, scale_screws, to_float
 from mechsing.subgroups import Subgroup
 
 
@@ -226,14 +226,23 @@ class KinematicModel:
         Delta seen from the centroid (meaningful also near half-turns, where
         the logarithm is not)."""
         L = self.length_scale
-        c = self.centroid
         worst = 0.0
-        for D in deltas:
-            Df = to_float(D)
-            R = Df[:3, :3]
-            p = Df[:3, 3] + R @ c - c
-            r = float(np.sqrt(p @ p + L * L * np.sum((R - np.eye(3)) ** 2) / 2))
-            worst = max(worst, r)
+        with self.precision.context():
+            if self.backend.name == "mp":
+                c = self.backend.asarray(self.centroid)
+                eye = self.backend.eye(3)
+            else:
+                c = self.centroid
+                eye = np.eye(3)
+            for D in deltas:
+                # in the model's precision: converting Delta to float first would
+                # bury an mp:N residual under float rounding of R @ c
+                Dm = D if self.backend.name == "mp" else np.array(to_float(D))
+                R = Dm[:3, :3]
+                p = Dm[:3, 3] + R @ c - c
+                E = R - eye
+                r2 = (p * p).sum() + L * L * (E * E).sum() / 2
+                worst = max(worst, float(r2) ** 0.5)
         return worst
 
     def closure_jacobian(self, q: np.ndarray, screws: np.ndarray | None = None) -> np.ndarray:
@@ -273,17 +282,25 @@ class KinematicModel:
         return out
 
     def coordinates_in(self, jk: JointKinematics, M: np.ndarray) -> np.ndarray:
-        """First-kind coordinates of an element of the joint's subgroup (log, then the basis)."""
+        """First-kind coordinates of an element of the joint's subgroup (log, then the basis).
+
+        Solved in the commensurate metric (screws moved to the centroid, v / L):
+        in raw units a joint far from the origin mixes rows of very different
+        sizes and loses the coordinates along its own axis to rounding.
+        """
         x = lie.log(M)
-        B = to_float(jk.basis)
-        coef, *_ = np.linalg.lstsq(B.T, to_float(x), rcond=None)
+        L, c = self.length_scale, self.centroid
+        B = scale_screws(to_float(jk.basis).T, L, c)
+        xs = scale_screws(to_float(x)[:, None], L, c)[:, 0]
+        coef, *_ = np.linalg.lstsq(B, xs, rcond=None)
         if self.backend.name == "float":
             return coef
-        # refine in the model's backend: one Newton step on B^T c = x
-        c = self.backend.asarray(coef)
-        r = x - c @ jk.basis
-        corr, *_ = np.linalg.lstsq(B.T, to_float(r), rcond=None)
-        return c + self.backend.asarray(corr)
+        # refine in the model's backend: one Newton step on B c = x
+        cm = self.backend.asarray(coef)
+        r = x - cm @ jk.basis
+        rs = scale_screws(to_float(r)[:, None], L, c)[:, 0]
+        corr, *_ = np.linalg.lstsq(B, rs, rcond=None)
+        return cm + self.backend.asarray(corr)
 
 
 def _is_abelian(B: np.ndarray) -> bool:

@@ -87,9 +87,9 @@ class PathStep:
     part: int | None = None
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class MechanismGraph:
-    """Graph structure of a mechanism (see the module docstring)."""
+    """Graph structure of a mechanism (see the module docstring; compared by identity)."""
 
     bodies: tuple[str, ...]
     ground: str

@@ -80,6 +80,9 @@ DISPLACEMENT_KEYS = ("rotation", "translation")
 MAX_BODIES = 2000
 MAX_JOINTS = 4000
 MAX_CONFIGURATIONS = 1000
+#: bound on loops x (bodies + joints)^2, the cost of networkx.minimum_cycle_basis
+#: (about 10 s at this bound); realistic mechanisms are far below it
+MAX_LOOP_WORK = 6_000_000
 
 _INPUT = re.compile(r"^(?P<name>[^\[\]]+?)\s*\[\s*(?P<index>-?\d+)\s*\]$")
 _NAME_HINT = "a name such as crank or link_2"
@@ -320,6 +323,15 @@ class _Builder:
         ground = self.ground(top.get("ground"), bodies, top)
         joints = self.joints(top.get("joints"), bodies)
         self.connectivity(bodies, ground, joints)
+        n_loops = len(joints) - len(bodies) + 1
+        if n_loops * (len(bodies) + len(joints)) ** 2 > MAX_LOOP_WORK:
+            raise r.error(
+                "joints",
+                top.key_line("joints"),
+                f"{len(joints)} joints among {len(bodies)} bodies with {n_loops} "
+                "independent loops is too large a mechanism for mechsing's loop "
+                "analysis; split it into smaller mechanisms",
+            )
         graph = build_graph(bodies, ground, joints)
         jmap = {j.name: j for j in joints}
         inputs = self.inputs(top.get("inputs"), jmap)
@@ -426,7 +438,6 @@ class _Builder:
     def ground(self, v: YValue | None, bodies: list[str], top: YMap) -> str:
         r = self.r
         if v is None:
-            r.notes.append(f"ground defaulted to the first body, {bodies[0]!r}")
             return bodies[0]
         if isinstance(v, YSeq):
             raise r.error(
@@ -614,7 +625,7 @@ class _Builder:
             a1[0] * a2[1] - a1[1] * a2[0],
         )
         s = float(sympy.N(sympy.sqrt(sum(c * c for c in cross)), 30))
-        if all(sympy.simplify(c) == 0 for c in cross) or s < NEAR_ZERO_VECTOR:
+        if s < NEAR_ZERO_VECTOR:  # |a1 x a2| of unit vectors: the sine of their angle
             raise r.error(
                 item,
                 av.line,

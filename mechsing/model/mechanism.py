@@ -108,7 +108,7 @@ class Joint:
     name: str
     type: str
     between: tuple[str, str]
-    params: Mapping[str, Any] = field(default_factory=dict)
+    params: Mapping[str, Any] = field(default_factory=dict, hash=False)
     line: int | None = None
     dof: int = 1
     units: tuple[str, ...] = ("rad",)
@@ -186,7 +186,7 @@ class Configuration:
     """
 
     name: str
-    values: Mapping[str, JointValue]
+    values: Mapping[str, JointValue] = field(hash=False)
     start: str | None = "reference"
     line: int | None = None
 
@@ -195,9 +195,9 @@ class Configuration:
         return self.name == "reference"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Mechanism:
-    """A validated mechanism.
+    """A validated mechanism (compared and hashed by identity).
 
     Attributes
     ----------

@@ -88,7 +88,8 @@ def scaled_columns(model: KinematicModel, S: np.ndarray) -> np.ndarray:
 
 def _L(model: KinematicModel) -> Any:
     if model.backend.name == "exact":
-        return sympy.nsimplify(model.length_scale, rational=False)
+        # any exact non-zero factor keeps exact ranks; the decimal of L as a rational
+        return sympy.Rational(repr(float(model.length_scale)))
     if model.backend.name == "mp":
         return model.backend.convert(model.length_scale)
     return model.length_scale

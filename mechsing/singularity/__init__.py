@@ -123,15 +123,17 @@ def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str,
 
 
 def mechanism_properties(mech: Any, model: Any, results: list[Any]) -> list[dict[str, Any]]:
-    """Mechanism-level properties from the regular configurations analysed."""
+    """Mechanism-level properties (DESIGN.md ``properties``), from the configurations analysed.
+
+    What holds at every regular configuration of a branch is a property, never
+    a singularity: ``overconstrained`` (finite above group), ``shaky``
+    (instantaneous above finite at regular points), ``idle-motion`` (a passive
+    motion with inputs and output still, present generically),
+    ``redundant-actuation`` and ``underactuated`` (inputs against finite).
+    """
     props: list[dict[str, Any]] = []
-    regular = [
-        r
-        for r in results
-        if r.error is None and r.mobility.get("finite") is not None and not r.singularities
-    ]
-    if not regular:
-        regular = [r for r in results if r.error is None and r.mobility.get("finite") is not None]
+    ok = [r for r in results if r.error is None and r.mobility.get("finite") is not None]
+    regular = [r for r in ok if not r.singularities] or ok
     if not regular:
         return props
     r = regular[0]
@@ -151,24 +153,69 @@ def mechanism_properties(mech: Any, model: Any, results: list[Any]) -> list[dict
                 ),
             }
         )
+    shaky = [
+        x
+        for x in regular
+        if x.mobility.get("generic") is not None
+        and x.mobility["finite"] is not None
+        and x.mobility["generic"] > x.mobility["finite"]
+    ]
+    if shaky:
+        x = shaky[0]
+        props.append(
+            {
+                "kind": "shaky",
+                "instantaneous": x.mobility["generic"],
+                "finite": x.mobility["finite"],
+                "configurations": [y.name for y in shaky],
+                "explanation": (
+                    f"at regular configurations the joints have {x.mobility['generic']} instantaneous "
+                    f"motion(s) but only {x.mobility['finite']} extend to finite motion (second-order test)"
+                ),
+            }
+        )
+    idle = 0
+    for x in regular:
+        local = x.internals.get("local")
+        dim = local.io_generic.get("passive-motion") if local is not None else None
+        if dim:
+            idle = dim
+            props.append(
+                {
+                    "kind": "idle-motion",
+                    "dimension": dim,
+                    "configuration": x.name,
+                    "explanation": (
+                        f"{dim} passive motion(s) exist with the inputs locked and the output still, at every "
+                        "regular configuration (e.g. a link spinning about its own axis)"
+                    ),
+                }
+            )
+            break
     n_in = len(mech.input_coordinates())
-    if n_in:
-        if n_in > mob["finite"]:
+    if n_in and mob["finite"] is not None:
+        # idle motions move nothing that matters: they need no actuator
+        useful = mob["finite"] - idle
+        if n_in > useful:
             props.append(
                 {
                     "kind": "redundant-actuation",
                     "inputs": n_in,
                     "finite": mob["finite"],
+                    "idle": idle,
                     "configuration": r.name,
+                    "explanation": f"{n_in} actuated coordinates drive {useful} degree(s) of freedom",
                 }
             )
-        elif n_in < mob["finite"]:
+        elif n_in < useful:
             props.append(
                 {
                     "kind": "underactuated",
                     "inputs": n_in,
                     "finite": mob["finite"],
+                    "idle": idle,
                     "configuration": r.name,
+                    "explanation": f"{n_in} actuated coordinates for {useful} degree(s) of freedom",
                 }
             )
     return props

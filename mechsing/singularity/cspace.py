@@ -180,75 +180,79 @@ def _restrict(forms: list[np.ndarray], B: np.ndarray) -> list[np.ndarray]:
 
 def _zero_set(
     forms: list[np.ndarray], prec: Precision, depth: int = 0
-) -> tuple[str, list[np.ndarray], list[float], bool]:
+) -> tuple[str, list[np.ndarray], list[bool], list[float], bool]:
     """Common zero set of quadratic forms on R^m as a union of subspaces.
 
-    Returns (kind, subspaces as bases in R^m, eigenvalue margins, undecided).
-    kind: "subspaces" (possibly the single {0}: empty list) or "cone" (a form
-    of rank >= 3 indefinite whose zero set is no finite union of subspaces).
+    Returns (kind, subspaces as bases in R^m, silent flags, eigenvalue margins,
+    undecided).  kind: "subspaces" (an empty list is the cone {0}) or "cone"
+    (an indefinite form of rank >= 3: no finite union of subspaces).  A
+    subspace is *silent* when order 2 says nothing transversal about it (every
+    form vanishes there identically, or it is the kernel of a semidefinite
+    form: a double root, where branches may be tangential); order 3 decides
+    those.
     """
     if not forms:
-        return "subspaces", [], [], False
+        return "subspaces", [], [], [], False
     m = forms[0].shape[0]
-    eye = np.eye(m)
     if m == 0:
-        return "subspaces", [], [], False
+        return "subspaces", [], [], [], False
     basis = _form_basis(forms, prec)
     if not basis:
-        return "subspaces", [eye], [], False
-    margins: list[float] = []
+        return "subspaces", [np.eye(m)], [True], [], False
     decisions = [decide_definiteness(f, prec) for f in basis]
     if any(d.kind is None for d in decisions):
-        return "subspaces", [], [], True
+        return "subspaces", [], [], [], True
     # a definite combination: the cone is {0}
     for d in decisions:
         if d.kind == "definite":
-            return "subspaces", [], [d.eig_margin or 0.0], False
+            return "subspaces", [], [], [d.eig_margin or 0.0], False
     if len(basis) >= 2:
         for t in np.linspace(0, math.pi, _PENCIL_ANGLES, endpoint=False):
             d = decide_definiteness(math.cos(t) * basis[0] + math.sin(t) * basis[1], prec)
             if d.kind == "definite":
-                return "subspaces", [], [d.eig_margin or 0.0], False
+                return "subspaces", [], [], [d.eig_margin or 0.0], False
     # split on the form of lowest rank
     ranked = sorted(zip(basis, decisions, strict=True), key=lambda fd: fd[1].n_pos + fd[1].n_neg)
     f, d = ranked[0]
     rest = [g for g, _ in ranked[1:]]
-    margins.append(d.eig_margin or 0.0)
+    margins: list[float] = [d.eig_margin or 0.0]
     w, V = np.linalg.eigh((f + f.T) / 2)
     ref = float(np.max(np.abs(w)))
     tau = prec.tolerances.tau_hi * ref
     pos = [i for i in range(m) if w[i] > tau]
     neg = [i for i in range(m) if w[i] < -tau]
     zero = [i for i in range(m) if abs(w[i]) <= tau]
-    pieces: list[np.ndarray] = []
+    pieces: list[tuple[np.ndarray, bool]] = []
     if not pos or not neg:
-        # semidefinite: the zero set is the kernel
-        pieces.append(V[:, zero])
+        # semidefinite: the zero set is the kernel, reached as a double root
+        pieces.append((V[:, zero], True))
     elif len(pos) == 1 and len(neg) == 1:
-        # rank-2 indefinite: two hyperplanes (sqrt|a| v_p . y = +- sqrt|b| v_n . y)
+        # rank-2 indefinite: two hyperplanes (sqrt|a| v_p . y = +- sqrt|b| v_n . y), crossing transversally
         vp = math.sqrt(w[pos[0]]) * V[:, pos[0]]
         vn = math.sqrt(-w[neg[0]]) * V[:, neg[0]]
         for normal in (vp - vn, vp + vn):
-            B = _null_of_row(normal)
-            pieces.append(B)
+            pieces.append((_null_of_row(normal), False))
     else:
-        return "cone", [], margins, False
+        return "cone", [], [], margins, False
     out: list[np.ndarray] = []
+    flags: list[bool] = []
     undecided = False
-    for B in pieces:
+    for B, silent in pieces:
         if B.shape[1] == 0:
             continue
-        kind, subs, mg, und = (
-            _zero_set(_restrict(rest, B), prec, depth + 1)
-            if rest
-            else ("subspaces", [np.eye(B.shape[1])], [], False)
-        )
+        if rest:
+            kind, subs, fl, mg, und = _zero_set(_restrict(rest, B), prec, depth + 1)
+        else:
+            kind, subs, fl, mg, und = "subspaces", [np.eye(B.shape[1])], [False], [], False
         undecided = undecided or und
         margins.extend(mg)
         if kind == "cone":
-            return "cone", [], margins, undecided
-        out.extend(B @ S for S in subs)
-    return "subspaces", _distinct(out), margins, undecided
+            return "cone", [], [], margins, undecided
+        for S, sflag in zip(subs, fl, strict=True):
+            out.append(B @ S)
+            flags.append(silent or sflag)
+    spaces, keep_flags = _distinct_flagged(out, flags)
+    return "subspaces", spaces, keep_flags, margins, undecided
 
 
 def _null_of_row(r: np.ndarray) -> np.ndarray:
@@ -256,20 +260,26 @@ def _null_of_row(r: np.ndarray) -> np.ndarray:
     return Vt[1:].T
 
 
-def _distinct(spaces: list[np.ndarray]) -> list[np.ndarray]:
-    """Remove zero-dimensional, repeated and contained subspaces."""
-    spaces = [_orth(S) for S in spaces if S.shape[1] > 0]
-    spaces = [S for S in spaces if S.shape[1] > 0]
-    keep: list[np.ndarray] = []
-    for S in sorted(spaces, key=lambda s: -s.shape[1]):
-        contained = False
-        for K in keep:
+def _distinct_flagged(
+    spaces: list[np.ndarray], flags: list[bool]
+) -> tuple[list[np.ndarray], list[bool]]:
+    """Remove zero-dimensional, repeated and contained subspaces (a kept space is
+    silent only if every space merged into it was)."""
+    items = [(_orth(S), f) for S, f in zip(spaces, flags, strict=True) if S.shape[1] > 0]
+    items = [(S, f) for S, f in items if S.shape[1] > 0]
+    keep: list[tuple[np.ndarray, bool]] = []
+    for S, f in sorted(items, key=lambda sf: -sf[0].shape[1]):
+        for i, (K, kf) in enumerate(keep):
             if np.linalg.norm(S - K @ (K.T @ S)) < 1e-8:
-                contained = True
+                keep[i] = (K, kf and f)
                 break
-        if not contained:
-            keep.append(S)
-    return keep
+        else:
+            keep.append((S, f))
+    return [S for S, _ in keep], [f for _, f in keep]
+
+
+def _distinct(spaces: list[np.ndarray]) -> list[np.ndarray]:
+    return _distinct_flagged(spaces, [False] * len(spaces))[0]
 
 
 def tangent_cone(exp: Expansion, M: np.ndarray, prec: Precision, max_order: int = 3) -> Cone:
@@ -289,7 +299,7 @@ def tangent_cone(exp: Expansion, M: np.ndarray, prec: Precision, max_order: int 
     if P.shape[1] == 0:
         return Cone("subspaces", [N], 1)
     forms = _forms(exp, N, P)
-    kind, subs, margins, undecided = _zero_set(forms, prec)
+    kind, subs, silent, margins, undecided = _zero_set(forms, prec)
     eig = min(margins) if margins else None
     if undecided:
         return Cone("inconclusive", [], 2, eig, True, ["a second-order form is undecided"])
@@ -305,32 +315,34 @@ def tangent_cone(exp: Expansion, M: np.ndarray, prec: Precision, max_order: int 
     spaces = [N @ S for S in subs]
     if not spaces:
         return Cone("zero", [], 2, eig)
-    # order 3 on subspaces where every second-order form vanishes identically
+    # order 3 only where order 2 is silent (forms vanish identically, or a double root)
     order = 2
-    if max_order >= 3:
+    if max_order >= 3 and any(silent):
         kept: list[np.ndarray] = []
-        for W in spaces:
-            if _forms_vanish(forms, N.T @ W, prec):
-                verdict = _order3(exp, M, N, P, W, prec)
-                order = 3
-                if verdict == "keep":
-                    kept.append(W)
-                elif verdict == "drop":
-                    continue
-                else:
-                    return Cone(
-                        "inconclusive",
-                        [],
-                        3,
-                        eig,
-                        False,
-                        ["the third-order test is inconclusive on a candidate branch"],
-                    )
-            else:
+        for W, quiet in zip(spaces, silent, strict=True):
+            if not quiet:
                 kept.append(W)
+                continue
+            order = 3
+            verdict = _order3(exp, M, N, P, W, prec)
+            if verdict == "keep":
+                kept.append(W)
+            elif verdict == "mixed":
+                return Cone(
+                    "inconclusive",
+                    [],
+                    3,
+                    eig,
+                    False,
+                    [
+                        "the third-order test keeps some directions of a candidate branch and not others"
+                    ],
+                )
         spaces = kept
         if not spaces:
             return Cone("zero", [], order, eig)
+    elif any(silent):
+        return Cone("inconclusive", [], 2, eig, False, ["order 2 is silent on a candidate branch"])
     return Cone("subspaces", _distinct(spaces), order, eig)
 
 
