@@ -108,7 +108,13 @@ def analyze(
     """Analyse a mechanism (or a file) at the named configurations (default: all)."""
     mech = mechanism if isinstance(mechanism, Mechanism) else load(str(mechanism))
     prec = parse_precision(precision) if isinstance(precision, str) else precision
-    names = list(mech.configurations) if not configs else list(configs)
+    if configs:
+        names = list(configs)
+    else:
+        # the file's configurations, in file order; the implicit reference (every
+        # joint at identity) only when the file lists none
+        names = [n for n, c in mech.configurations.items() if not (n == "reference" and c.line is None)]
+        names = names or ["reference"]
     for n in names:
         if n not in mech.configurations:
             from mechsing.cli import UserError

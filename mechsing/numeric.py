@@ -454,10 +454,14 @@ def scale_screws(
 class Margin:
     """How far a decision was from flipping (DESIGN.md "margin").
 
-    ``kept``: the smallest kept singular value relative to the largest (None if
-    rank 0); ``dropped``: the largest dropped one relative to the largest
-    (None if full rank); ``eig_margin`` where a quadratic form was decided.
-    In exact mode ``kept`` is the smallest non-zero pivot (30 digits).
+    ``kept``: the smallest kept singular value (None if rank 0); ``dropped``:
+    the largest dropped one (None when every singular value is kept), both in
+    the commensurate metric, like ``sigma``; ``sigma_max``: the largest
+    singular value, which ``tau_lo`` and ``tau_hi`` are relative to (so the
+    decision was ``kept / sigma_max >= tau_hi`` and ``dropped / sigma_max <=
+    tau_lo``).  ``eig_margin`` where a quadratic form was decided (relative to
+    its largest eigenvalue).  In exact mode ``kept`` is the smallest non-zero
+    pivot (30 digits) and there is no ``sigma_max``.
     """
 
     kept: float | None
@@ -466,6 +470,7 @@ class Margin:
     tau_hi: float
     length_scale: float
     eig_margin: float | None = None
+    sigma_max: float | None = None
 
     def to_json(self) -> dict[str, Any]:
         d: dict[str, Any] = {
@@ -475,6 +480,8 @@ class Margin:
             "tau_hi": self.tau_hi,
             "length_scale": self.length_scale,
         }
+        if self.sigma_max is not None:
+            d["sigma_max"] = self.sigma_max
         if self.eig_margin is not None:
             d["eig_margin"] = self.eig_margin
         return d
@@ -571,16 +578,10 @@ def decide_rank(
         rel = [float(x / smax) if smax > 0 else 0.0 for x in s_np]
         sigma = tuple(float(x) for x in s_np)
     rank, bounds = _split_rank(rel, tol)
-    kept = rel[rank - 1] if rank else None
-    if rank is None:
-        kept = rel[bounds[0] - 1] if bounds[0] else None
     r_eff = rank if rank is not None else bounds[0]
-    dropped = rel[r_eff] if r_eff < len(rel) else None
-    if r_eff < min(m, n) and dropped is None:
-        dropped = 0.0
-    if r_eff == len(rel) and n > len(rel):
-        dropped = 0.0
-    margin = Margin(kept, dropped, tol.tau_lo, tol.tau_hi, length_scale)
+    kept = sigma[r_eff - 1] if r_eff else None
+    dropped = sigma[r_eff] if r_eff < len(sigma) else None
+    margin = Margin(kept, dropped, tol.tau_lo, tol.tau_hi, length_scale, None, float(smax))
     ns = rs = None
     if want_spaces:
         F = to_float(arr)

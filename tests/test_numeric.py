@@ -39,8 +39,10 @@ def _with_singular_values(sig: list[float], seed: int = 0) -> np.ndarray:
 def test_rank_decision_and_margin() -> None:
     d = decide_rank(_with_singular_values([2.0, 1.0, 0.5, 1e-3, 1e-15]), "float", 1.7)
     assert d.rank == 4
-    assert d.margin.kept == pytest.approx(5e-4, rel=1e-9)
-    assert d.margin.dropped < 1e-12
+    # kept and dropped are singular values; the thresholds are relative to sigma_max
+    assert d.margin.kept == pytest.approx(1e-3, rel=1e-9)
+    assert d.margin.sigma_max == pytest.approx(2.0)
+    assert d.margin.dropped < 1e-12 * d.margin.sigma_max
     assert d.margin.length_scale == 1.7
     assert d.sigma[0] == pytest.approx(2.0)
 
@@ -57,6 +59,9 @@ def test_rank_undecided_between_thresholds() -> None:
 def test_rank_full_and_zero() -> None:
     d = decide_rank(np.eye(3), "float")
     assert d.rank == 3 and d.margin.dropped is None and d.margin.kept == 1.0
+    # a wide matrix of full row rank drops nothing either (DESIGN.md's four-bar: "dropped": null)
+    w = decide_rank(np.hstack([np.eye(3), np.ones((3, 1))]), "float")
+    assert w.rank == 3 and w.margin.dropped is None
     z = decide_rank(np.zeros((3, 2)), "float", want_spaces=True)
     assert z.rank == 0 and z.null_space.shape == (2, 2)
 

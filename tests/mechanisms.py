@@ -1,0 +1,374 @@
+"""Helpers for the analysis tests (tests/test_analyze.py).
+
+* :data:`PUBLISHED`: the published facts of every example, copied from the comment block at the top
+  of each examples/*.yaml file and from theory.md section 6 (mobility, spatial Gruebler-Kutzbach,
+  configurations that are regular points of the configuration space, published closure ranks).
+* :func:`run_cli`: ``mechsing.cli.main`` in-process with standard output captured.
+* :func:`scaled_text`: a mechanism file with every length multiplied by a factor, written from the
+  file's own text (numbers keep the text they were written with; lengths become exact expressions).
+* :func:`changepoint_family`: a Grashof change-point four-bar and configurations approaching its flat
+  (singular) configuration along both motion branches, joint values derived here in closed form with
+  mpmath, plus the closure-system singular values computed independently of mechsing from DESIGN.md's
+  definitions (characteristic length, centroid, planar reduced coordinates).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+
+# ----------------------------------------------------------------------------- published facts
+
+
+@dataclass(frozen=True)
+class Published:
+    """Facts stated in an example's header comment (and theory.md section 6)."""
+
+    mobility: int
+    grubler: int
+    #: configurations the header calls regular points of the configuration space (generic rank)
+    regular: tuple[str, ...]
+    #: loop joint sets -> (subgroup type, dim); None when the header says nothing about the loops
+    loops: dict[frozenset[str], tuple[str, int]] | None = None
+    #: configuration -> published closure rank (stacked system)
+    ranks: dict[str, int] = field(default_factory=dict)
+    #: configuration -> published rank of the single loop's screws (relative to its subgroup)
+    loop_ranks: dict[str, int] = field(default_factory=dict)
+    overconstrained: bool = False
+    serial: bool = False
+
+
+def _loop(joints: str, typ: str, dim: int) -> dict[frozenset[str], tuple[str, int]]:
+    return {frozenset(joints.split()): (typ, dim)}
+
+
+PUBLISHED: dict[str, Published] = {
+    # crank-rocker, Grashof; all three configurations regular; planar loop in G(z)
+    "fourbar.yaml": Published(
+        1, -2, ("reference", "crank-30", "crank-200"), _loop("A B C D", "G", 3)
+    ),
+    # change point: flat reference is rank 2 (bifurcation), the others regular
+    "fourbar_changepoint.yaml": Published(
+        1,
+        -2,
+        ("crank-up", "crank-120"),
+        _loop("A B C D", "G", 3),
+        ranks={"reference": 2},
+    ),
+    # parallelogram: flat configuration rank 2, elsewhere regular
+    "parallelogram.yaml": Published(
+        1,
+        -2,
+        ("reference", "crank-30", "anti-parallelogram"),
+        _loop("A B C D", "G", 3),
+        ranks={"flat": 2},
+    ),
+    # dead centres are regular points of the c-space (closure rank 3)
+    "slider_crank_crank_input.yaml": Published(
+        1,
+        -2,
+        ("reference", "crank-60", "dead-centre"),
+        _loop("A B C P", "G", 3),
+        ranks={"dead-centre": 3},
+    ),
+    "slider_crank_slider_input.yaml": Published(
+        1,
+        -2,
+        ("reference", "slider-4", "dead-centre"),
+        _loop("A B C P", "G", 3),
+        ranks={"dead-centre": 3},
+    ),
+    # spherical crank-rocker: loop in S(O), rank 3 at regular configurations
+    "spherical_4r.yaml": Published(
+        1,
+        -2,
+        ("reference", "crank-60", "crank-200"),
+        _loop("A B C D", "S", 3),
+        loop_ranks={"reference": 3, "crank-60": 3, "crank-200": 3},
+    ),
+    # Bennett: joints generate all of D, rank 3 at EVERY configuration, Gruebler -2
+    "bennett.yaml": Published(
+        1,
+        -2,
+        ("reference", "theta1-90", "q1-half", "q1-1rad"),
+        _loop("J1 J2 J3 J4", "D", 6),
+        loop_ranks={"reference": 3, "theta1-90": 3, "q1-half": 3, "q1-1rad": 3},
+        overconstrained=True,
+    ),
+    # Bricard: joints generate all of D, generic rank 5, Gruebler 0
+    "bricard.yaml": Published(
+        1,
+        0,
+        ("reference", "q1-0.4"),
+        _loop("J1 J2 J3 J4 J5 J6", "D", 6),
+        loop_ranks={"reference": 5, "q1-0.4": 5},
+        overconstrained=True,
+    ),
+    # Sarrus: rank 5 at regular poses, 4 at the stretched pose; closure of the screws is se(3)
+    # (theory.md section 3.2), Gruebler 0
+    "sarrus.yaml": Published(
+        1,
+        0,
+        ("reference", "raised", "lowered"),
+        _loop("J1 J2 J3 J4 J5 J6", "D", 6),
+        ranks={"stretched": 4},
+        loop_ranks={"reference": 5, "raised": 5, "lowered": 5, "stretched": 4},
+        overconstrained=True,
+    ),
+    # 3-RPR: mobility 3, Gruebler -3; its two loops (two of the three leg pairs: which two is a
+    # tie of the minimum cycle basis) are checked in test_planar_3rpr_loops
+    "planar_3rpr.yaml": Published(3, -3, ("reference", "stroke")),
+    # Tsai 3-UPU: mobility 3, Gruebler 3; the flat pose is constraint-singular
+    "tsai_3upu.yaml": Published(3, 3, ("reference", "raised", "lateral")),
+    # octahedral hexapod: mobility 6, Gruebler 6; centred pose regular
+    "stewart_octahedral.yaml": Published(6, 6, ("reference",)),
+    # serial arms: mobility 6, no loops (every configuration is a regular point of the c-space,
+    # which is the whole joint space)
+    "ur5.yaml": Published(
+        6, 6, ("reference", "regular", "wrist", "elbow", "shoulder"), {}, serial=True
+    ),
+    "puma560.yaml": Published(
+        6, 6, ("reference", "regular", "wrist", "elbow", "shoulder"), {}, serial=True
+    ),
+}
+
+#: degrees of freedom of each joint type (DESIGN.md: a U joint has two)
+DOF = {"R": 1, "P": 1, "H": 1, "C": 2, "U": 2, "T2": 2, "S": 3, "T3": 3, "G": 3, "Y": 3}
+DOF |= {"X": 4, "D": 6}
+
+
+def total_dof(path: Path) -> int:
+    data = yaml.safe_load(path.read_text())
+    return sum(DOF[j["type"]] for j in data["joints"])
+
+
+def all_axis_points_at_origin(path: Path) -> bool:
+    """Every joint's point is the origin (then L = 1 by DESIGN.md's fallback, at every scale)."""
+    joints = yaml.safe_load(path.read_text())["joints"]
+    return all(x == 0 for j in joints for x in j.get("point", [0, 0, 0]))
+
+
+def joint_types(path: Path) -> dict[str, str]:
+    """Joint name -> type, as written in the file."""
+    return {j["name"]: j["type"] for j in yaml.safe_load(path.read_text())["joints"]}
+
+
+def configuration_names(path: Path) -> list[str]:
+    return list(yaml.safe_load(path.read_text())["configurations"])
+
+
+# ----------------------------------------------------------------------------- running the CLI
+
+
+def run_cli(argv: list[str]) -> tuple[int, str, str]:
+    """``mechsing.cli.main(argv)`` in-process: (exit status, stdout, stderr)."""
+    from mechsing.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        rc = main(argv)
+    return rc, out.getvalue(), err.getvalue()
+
+
+# ----------------------------------------------------------------------------- scaling a file
+
+#: coordinates of a joint value that are lengths (DESIGN.md "Joint values" and bases)
+LENGTH_COORDS: dict[str, tuple[bool, ...]] = {
+    "R": (False,),
+    "P": (True,),
+    "H": (False,),
+    "C": (False, True),
+    "U": (False, False),
+    "T2": (True, True),
+    "S": (False, False, False),
+    "T3": (True, True, True),
+    "G": (False, True, True),
+    "Y": (False, True, True),
+    "X": (False, True, True, True),
+    "D": (False, False, False, True, True, True),
+}
+
+
+class _Num(str):
+    """A plain YAML number kept as its text."""
+
+
+class _KeepNumbers(yaml.SafeLoader):
+    pass
+
+
+def _keep(loader: yaml.SafeLoader, node: yaml.ScalarNode) -> _Num:
+    return _Num(loader.construct_scalar(node))
+
+
+_KeepNumbers.add_constructor("tag:yaml.org,2002:int", _keep)
+_KeepNumbers.add_constructor("tag:yaml.org,2002:float", _keep)
+
+
+class _Dumper(yaml.SafeDumper):
+    pass
+
+
+def _num_repr(dumper: yaml.SafeDumper, value: _Num) -> yaml.ScalarNode:
+    tag = dumper.resolve(yaml.ScalarNode, str(value), (True, False))  # int or float, as read
+    return dumper.represent_scalar(tag, str(value), style="")
+
+
+_Dumper.add_representer(_Num, _num_repr)
+
+
+def _scale(x: object, factor: str) -> object:
+    """A file number/expression times ``factor`` (an exact expression such as ``*1000000``)."""
+    if isinstance(x, list):
+        return [_scale(v, factor) for v in x]
+    assert isinstance(x, str), x
+    return f"({x}){factor}"
+
+
+def scaled_text(path: Path, factor: str) -> str:
+    """The mechanism file at ``path`` with every length (points, pitches, characteristic length,
+    output point, length coordinates of joint values and translations) followed by ``factor``
+    (e.g. ``"*1000000"`` or ``"/1000000"``); angles, axes and normals unchanged."""
+    data = yaml.load(path.read_text(), Loader=_KeepNumbers)  # noqa: S506 (SafeLoader subclass)
+    types = {}
+    for j in data["joints"]:
+        types[j["name"]] = j["type"]
+        for key in ("point", "pitch"):
+            if key in j:
+                j[key] = _scale(j[key], factor)
+    if "characteristic_length" in data:
+        data["characteristic_length"] = _scale(data["characteristic_length"], factor)
+    out = data.get("output")
+    if isinstance(out, dict) and "point" in out:
+        out["point"] = _scale(out["point"], factor)
+    for cfg in (data.get("configurations") or {}).values():
+        for name, value in list(cfg.items()):
+            if name == "start":
+                continue
+            if isinstance(value, dict):  # {rotation, translation}
+                if "translation" in value:
+                    value["translation"] = _scale(value["translation"], factor)
+                continue
+            lengths = LENGTH_COORDS[types[name]]
+            if isinstance(value, list):
+                cfg[name] = [
+                    _scale(v, factor) if is_len else v
+                    for v, is_len in zip(value, lengths, strict=True)
+                ]
+            elif lengths[0]:
+                cfg[name] = _scale(value, factor)
+    return yaml.dump(data, Dumper=_Dumper, sort_keys=False, width=10_000)
+
+
+# ----------------------------------------------------------------------------- transversal family
+
+#: change-point four-bar: crank a, coupler b, rocker c, ground g with a + b = g + c (Grashof s + l =
+#: p + q); flat configuration: A = (0, 0), B = (a, 0), C = (a + b, 0), D = (g, 0), where the circles
+#: of radius b about B and c about D are internally tangent (|BD| = g - a = b - c).
+CP_A, CP_B, CP_C, CP_G = 2, 7, 3, 6
+assert CP_A + CP_B == CP_G + CP_C
+
+
+def _changepoint_pose(d: mpmath.mpf, branch: int) -> tuple[list, list]:
+    """Joint points B, C and joint values (A, B, C, D) at crank angle d on a branch (+1: C above
+    the line BD, -1: below), with mpmath at the working precision.
+
+    Joint values follow DESIGN.md (g_b = g_a exp(q xi), reference = the flat configuration): the
+    crank turns by d, the coupler's absolute angle is phi2 = angle of C - B, the rocker's is
+    phi3 = angle of C - D (both 0 at the flat reference), so q = (d, phi2 - d, phi3 - phi2, -phi3).
+    """
+    a, b, c, g = (mpmath.mpf(v) for v in (CP_A, CP_B, CP_C, CP_G))
+    B = mpmath.matrix([a * mpmath.cos(d), a * mpmath.sin(d)])
+    D = mpmath.matrix([g, 0])
+    r = mpmath.norm(D - B)
+    e = (D - B) / r
+    x = (b**2 - c**2 + r**2) / (2 * r)  # foot of C on the line BD, measured from B
+    h = mpmath.sqrt(b**2 - x**2)  # distance of C from that line
+    C = B + x * e + branch * h * mpmath.matrix([-e[1], e[0]])
+    phi2 = mpmath.atan2(C[1] - B[1], C[0] - B[0])
+    phi3 = mpmath.atan2(C[1], C[0] - g)
+    return [B, C], [d, phi2 - d, phi3 - phi2, -phi3]
+
+
+def _reduced_planar_sigma(points: np.ndarray) -> np.ndarray:
+    """Singular values of the four-bar's closure system, independently of mechsing.
+
+    DESIGN.md: L = RMS distance of the axis points from their centroid c at the reference (flat)
+    configuration; screws moved to c, v rows divided by L. For an R joint with axis z through p,
+    the twist seen from c is (z, z x (c - p)), whose in-plane velocity is ((p - c)_y, -(p - c)_x);
+    G's subalgebra is spanned by the coordinate directions omega_z, v_x,
+    v_y, so any orthonormal reduced basis gives the singular values of the 3 x 4 matrix with
+    columns (1, (p - c)_y / L, -(p - c)_x / L).
+    """
+    ref = np.array([[0.0, 0.0], [CP_A, 0.0], [CP_A + CP_B, 0.0], [CP_G, 0.0]])
+    cen = ref.mean(axis=0)
+    L = float(np.sqrt(((ref - cen) ** 2).sum(axis=1).mean()))
+    rel = points - cen
+    M = np.vstack([np.ones(len(points)), rel[:, 1] / L, -rel[:, 0] / L])
+    return np.linalg.svd(M, compute_uv=False)
+
+
+def changepoint_length_scale() -> float:
+    ref = np.array([[0.0, 0.0], [CP_A, 0.0], [CP_A + CP_B, 0.0], [CP_G, 0.0]])
+    cen = ref.mean(axis=0)
+    return float(np.sqrt(((ref - cen) ** 2).sum(axis=1).mean()))
+
+
+@dataclass(frozen=True)
+class FamilyPoint:
+    name: str
+    d: float
+    branch: int
+    sigma: np.ndarray  # independent singular values (largest first)
+
+
+def _digits(x: mpmath.mpf) -> str:
+    return mpmath.nstr(x, 45, min_fixed=-5, max_fixed=5)
+
+
+def changepoint_family(exponents: list[float]) -> tuple[str, list[FamilyPoint]]:
+    """(YAML text, family points): the flat configuration as ``reference`` plus, for each crank
+    angle d = 10**-e (e in ``exponents``) and each branch, a fully given configuration (45
+    significant digits)."""
+    lines = [
+        "# Grashof change-point four-bar (a + b = g + c), generated by tests/mechanisms.py",
+        "mechanism: changepoint-family",
+        "bodies: [ground, crank, coupler, rocker]",
+        "joints:",
+        "  - {name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}",
+        f"  - {{name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [{CP_A}, 0, 0]}}",
+        f"  - {{name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [{CP_A + CP_B}, 0, 0]}}",
+        f"  - {{name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [{CP_G}, 0, 0]}}",
+        "inputs: [A]",
+        "output: {body: rocker}",
+        "configurations:",
+        "  reference: {}  # the flat configuration (d = 0): the change point",
+    ]
+    points = []
+    with mpmath.workdps(60):
+        for i, e in enumerate(exponents):
+            d = mpmath.power(10, -mpmath.mpf(e))
+            for branch, tag in ((1, "up"), (-1, "down")):
+                (B, C), q = _changepoint_pose(d, branch)
+                name = f"{tag}-{i:02d}"
+                vals = ", ".join(f'{j}: "{_digits(v)}"' for j, v in zip("ABCD", q, strict=True))
+                lines.append(f"  {name}: {{{vals}}}")
+                pts = np.array(
+                    [
+                        [0.0, 0.0],
+                        [float(B[0]), float(B[1])],
+                        [float(C[0]), float(C[1])],
+                        [CP_G, 0.0],
+                    ]
+                )
+                points.append(FamilyPoint(name, float(d), branch, _reduced_planar_sigma(pts)))
+    return "\n".join(lines) + "\n", points
