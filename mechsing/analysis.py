@@ -113,7 +113,9 @@ def analyze(
     else:
         # the file's configurations, in file order; the implicit reference (every
         # joint at identity) only when the file lists none
-        names = [n for n, c in mech.configurations.items() if not (n == "reference" and c.line is None)]
+        names = [
+            n for n, c in mech.configurations.items() if not (n == "reference" and c.line is None)
+        ]
         names = names or ["reference"]
     for n in names:
         if n not in mech.configurations:

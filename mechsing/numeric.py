@@ -74,6 +74,18 @@ CLOSURE_RTOL_FLOAT = 1e-12
 #: Jacobian in the unknown joints (relative to the largest) falls below this
 #: before the target while the rank drops
 CONTINUATION_SINGULAR_RTOL = 1e-6
+#: a continuation step is rejected (and halved) when Newton's correction is
+#: larger than this fraction of the predictor step: it may have jumped to
+#: another assembly mode
+CONTINUATION_CORRECTOR_RATIO = 0.5
+#: below this relative smallest singular value (unknown joints) a step must be
+#: reversible: stepping back must return within CONTINUATION_RETURN_RATIO of
+#: the step to the previous point (near a fold two modes are close)
+CONTINUATION_REVERSE_RTOL = 1e-2
+CONTINUATION_RETURN_RATIO = 0.1
+#: corrections and returns smaller than this (commensurate: radians, or
+#: lengths / L) are rounding, never a jump between assembly modes
+CONTINUATION_JUMP_FLOOR = 1e-9
 
 
 # ---------------------------------------------------------------------------

@@ -17,6 +17,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--precision", default="float", metavar="MODE", help="float (default), mp:N or exact"
     )
     p.add_argument("--format", choices=("text", "json"), default="text")
+    p.add_argument("-v", "--verbose", action="store_true", help="also print what mechsing did silently")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -30,6 +31,9 @@ def run(args: argparse.Namespace) -> int:
     except ValueError as exc:
         raise UserError(f"--precision: {exc}") from None
     mech = load(args.file)
+    if args.verbose:
+        for note in mech.notes:
+            print(f"mechsing: {note}", file=sys.stderr)
     if args.config not in mech.configurations:
         raise UserError(
             f"{args.file}: no configuration named {args.config!r}; the file has: {', '.join(mech.configurations)}"

@@ -31,6 +31,10 @@ from mechsing.cli import UserError
 from mechsing.kinematics.model import KinematicModel
 from mechsing.model import Configuration, Displacement
 from mechsing.numeric import (
+    CONTINUATION_CORRECTOR_RATIO,
+    CONTINUATION_JUMP_FLOOR,
+    CONTINUATION_RETURN_RATIO,
+    CONTINUATION_REVERSE_RTOL,
     CONTINUATION_SINGULAR_RTOL,
     Precision,
     decide_rank,
@@ -245,6 +249,8 @@ class Closer:
                 qt[gmask] if final else q_start[gmask] + t_next * (qt[gmask] - q_start[gmask])
             )
             ok, qn, info = self._correct(fm, q, qg, gmask, final)
+            if ok and not self._same_branch(fm, q, qn, info, gmask):
+                ok = False
             if not ok:
                 dt /= 2
                 if dt < 1.0 / nsteps / 2**_MAX_HALVINGS:
@@ -296,6 +302,37 @@ class Closer:
             )
         return ClosedConfiguration(cfg.name, q_out, res, underdetermined, steps, given)
 
+    def _same_branch(
+        self, fm: KinematicModel, q: np.ndarray, qn: np.ndarray, info: dict, gmask: np.ndarray
+    ) -> bool:
+        """Did the step stay on the assembly mode it started from?
+
+        Newton's correction must be small next to the predictor step, and near a
+        singularity (where two modes are close) the step must be reversible:
+        stepping back from ``qn`` returns to ``q``.
+        """
+        L = fm.length_scale
+
+        def comm(d: np.ndarray) -> float:
+            return float(np.linalg.norm(np.where(fm.length_columns, d / L, d)))
+
+        step = comm(info["predicted"] - q)
+        if step == 0.0:
+            return True
+        if comm(qn - info["predicted"]) > max(
+            CONTINUATION_CORRECTOR_RATIO * step, CONTINUATION_JUMP_FLOOR
+        ):
+            return False
+        if info["smin"] < CONTINUATION_REVERSE_RTOL:
+            back_target = qn.copy()
+            back_target[gmask] = q[gmask]
+            ok, qb, _ = self._correct(fm, qn, back_target, gmask, False)
+            if not ok or comm(qb - q) > max(
+                CONTINUATION_RETURN_RATIO * step, CONTINUATION_JUMP_FLOOR
+            ):
+                return False
+        return True
+
     def _correct(
         self, fm: KinematicModel, q_prev: np.ndarray, qg: np.ndarray, gmask: np.ndarray, final: bool
     ) -> tuple[bool, np.ndarray, dict]:
@@ -322,12 +359,14 @@ class Closer:
         else:
             q = fm.update(q_prev, dg)
         q[gmask] = qg[gmask]
+        predicted = q.copy()
         res = fm.residual_norm(fm.chord_residuals(q))
         info: dict[str, Any] = {
             "residual": res,
             "rank": None,
             "smin": 1.0,
             "underdetermined": False,
+            "predicted": predicted,
         }
         polish = 0
         for _it in range(_NEWTON_ITERATIONS):

@@ -70,6 +70,74 @@ def _margin(m: dict[str, Any] | None) -> str:
     )
 
 
+def _names(xs: list[str]) -> str:
+    if not xs:
+        return "no joint"
+    return ", ".join(xs[:-1]) + (" and " if len(xs) > 1 else "") + xs[-1]
+
+
+def explain(f: dict[str, Any]) -> str:
+    """One sentence a student understands, with the finding's own numbers."""
+    cls = f["class"]
+    j = _names(f.get("joints", []))
+    if cls == "serial":
+        what = f"leg {f['leg']}" if f.get("chain") == "leg" else "the chain to the output"
+        return (
+            f"{what} loses {f['corank']} direction(s) of motion (rank {f['rank']} instead of "
+            f"{f['generic_rank']}): joints {j} can move while its end stays still, and it resists "
+            f"{f['corank']} more wrench(es) than usual with no joint effort ({len(f['wrenches'])} in all)"
+        )
+    if cls == "bifurcation":
+        mobs = ", ".join("?" if m is None else str(m) for m in f.get("branch_mobility", []))
+        kin = (
+            " (branches of different mobility meet: a kinematotropic point)"
+            if f.get("kinematotropic")
+            else ""
+        )
+        return (
+            f"{f['branches']} branches of motion cross here (branch mobilities {mobs}){kin}: from this "
+            f"configuration the mechanism can leave along different paths, decided at order {f.get('order')}"
+        )
+    if cls == "isolated":
+        return (
+            f"the joints have {f.get('instantaneous')} instantaneous motion(s), but none extends to a real "
+            "motion: this assembly is rigid and no nearby configuration closes"
+        )
+    if cls == "degenerate":
+        return f"the loops lose rank and the higher-order test cannot describe the motion here ({f.get('note', '')})"
+    if cls == "increased-mobility":
+        return (
+            f"the joints have {f['instantaneous']} instantaneous motion(s) where the mechanism moves with "
+            f"{f['generic']}: the extra ones do not extend, and one smooth branch passes through"
+        )
+    if cls == "input":
+        return f"an input can move while the output stays still (moving joints: {j}): the output loses a direction"
+    if cls == "output":
+        return (
+            f"with the inputs locked the output can still move (moving joints: {j}): the mechanism loses "
+            "stiffness and actuator forces can grow without bound"
+        )
+    if cls == "passive-motion":
+        return f"passive joints {j} can move while the inputs and the output stay still"
+    if cls == "impossible-input":
+        return (
+            f"the inputs can take only {f['rank']} independent rates here instead of {f['generic']}"
+        )
+    if cls == "impossible-output":
+        return f"the output can make only {f['rank']} independent motions here instead of {f['generic']}"
+    if cls == "constraint":
+        return (
+            f"the legs' constraint wrenches drop to rank {f['rank']} (generically {f['generic_rank']}): the output "
+            "gains a motion outside its usual motion type"
+        )
+    if cls == "undecided":
+        return (
+            f"the precision used cannot decide the rank of the {f.get('what', 'system')} (it lies between "
+            f"{f['rank_bounds'][0]} and {f['rank_bounds'][1]}); try --precision mp:50 or exact"
+        )
+    return EXPLAIN.get(cls, cls)
+
+
 def _subgroup(sg: dict[str, Any]) -> str:
     if not sg or sg.get("type") is None:
         return "undecided"
@@ -132,11 +200,11 @@ def render_text(result: Any, markdown: bool = False) -> str:
         if not c["singularities"]:
             lines.append(f"{bullet}regular: no singularity.")
         for s in c["singularities"]:
-            who = f" (joints {', '.join(s['joints'])})" if s.get("joints") else ""
-            lines.append(f"{bullet}{s['class']}{who}: {EXPLAIN.get(s['class'], '')}.")
+            lines.append(f"{bullet}{s['class']}: {explain(s)}.")
             if "margin" in s:
+                sub = "  - " if markdown else "    "
                 lines.append(
-                    f"{bullet}  decided in {s.get('precision', c['precision'])}; margin: {_margin(s['margin'])}"
+                    f"{sub}decided in {s.get('precision', c['precision'])}; margin: {_margin(s['margin'])}"
                 )
     return "\n".join(lines) + "\n"
 
