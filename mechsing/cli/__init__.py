@@ -12,8 +12,13 @@ import argparse
 import importlib
 import sys
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from mechsing import __version__
+
+if TYPE_CHECKING:  # the commands import their layers lazily: `mechsing --version` stays fast
+    from mechsing.model import Mechanism
+    from mechsing.numeric import Precision
 
 #: sub-command modules, in the order ``--help`` lists them
 COMMANDS = ("analyze", "solve", "catalog", "identify", "schema")
@@ -25,6 +30,27 @@ class UserError(Exception):
     def __init__(self, message: str, status: int = 2) -> None:
         super().__init__(message)
         self.status = status
+
+
+def precision_option(text: str) -> Precision:
+    """The ``--precision`` option, or a UserError that says what is accepted."""
+    from mechsing.numeric import parse_precision
+
+    try:
+        return parse_precision(text)
+    except ValueError as exc:
+        raise UserError(f"--precision: {exc}") from None
+
+
+def load_mechanism(path: str, verbose: bool = False) -> Mechanism:
+    """Read a mechanism file; with ``verbose`` print what was done silently (axes normalised...)."""
+    from mechsing.model import load
+
+    mech = load(path)
+    if verbose:
+        for note in mech.notes:
+            print(f"mechsing: {note}", file=sys.stderr)
+    return mech
 
 
 class _Parser(argparse.ArgumentParser):

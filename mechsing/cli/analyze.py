@@ -34,19 +34,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.analysis import analyze
-    from mechsing.cli import UserError
-    from mechsing.model import load
-    from mechsing.numeric import parse_precision
+    from mechsing.cli import UserError, load_mechanism, precision_option
     from mechsing.report import render
 
-    try:
-        prec = parse_precision(args.precision)
-    except ValueError as exc:
-        raise UserError(f"--precision: {exc}") from None
-    mech = load(args.file)
-    if args.verbose:
-        for note in mech.notes:
-            print(f"mechsing: {note}", file=sys.stderr)
+    prec = precision_option(args.precision)
+    mech = load_mechanism(args.file, args.verbose)
     result = analyze(mech, args.config, prec)
     text = render(result, args.format)
     if args.output:

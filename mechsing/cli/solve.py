@@ -17,23 +17,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--precision", default="float", metavar="MODE", help="float (default), mp:N or exact"
     )
     p.add_argument("--format", choices=("text", "json"), default="text")
-    p.add_argument("-v", "--verbose", action="store_true", help="also print what mechsing did silently")
+    p.add_argument(
+        "-v", "--verbose", action="store_true", help="also print what mechsing did silently"
+    )
 
 
 def run(args: argparse.Namespace) -> int:
-    from mechsing.cli import UserError
+    from mechsing.cli import UserError, load_mechanism, precision_option
     from mechsing.kinematics import solve_configuration
-    from mechsing.model import load
-    from mechsing.numeric import parse_precision
 
-    try:
-        prec = parse_precision(args.precision)
-    except ValueError as exc:
-        raise UserError(f"--precision: {exc}") from None
-    mech = load(args.file)
-    if args.verbose:
-        for note in mech.notes:
-            print(f"mechsing: {note}", file=sys.stderr)
+    prec = precision_option(args.precision)
+    mech = load_mechanism(args.file, args.verbose)
     if args.config not in mech.configurations:
         raise UserError(
             f"{args.file}: no configuration named {args.config!r}; the file has: {', '.join(mech.configurations)}"

@@ -27,6 +27,7 @@ import numpy as np
 from mechsing.lie._series import factorial_series, half_cot_series, safe, use_series
 from mechsing.lie._so3 import (
     _asarr,
+    _mask,
     cross,
     dot,
     exp_so3,
@@ -222,8 +223,7 @@ def magnitude(xi: Any) -> np.ndarray:
     bk = backend_of(xi)
     w2 = dot(xi[..., ANGULAR], xi[..., ANGULAR])
     v2 = dot(xi[..., LINEAR], xi[..., LINEAR])
-    rot = np.asarray(w2 > 0)
-    rot = rot.astype(bool) if rot.dtype == object else rot
+    rot = _mask(w2 > 0)
     return bk.sqrt(np.where(rot, w2, v2))
 
 
@@ -232,8 +232,7 @@ def pitch(xi: Any) -> np.ndarray:
     xi = _asarr(xi)
     bk = backend_of(xi)
     w2 = dot(xi[..., ANGULAR], xi[..., ANGULAR])
-    zero = np.asarray(w2 <= 0)
-    zero = zero.astype(bool) if zero.dtype == object else zero
+    zero = _mask(w2 <= 0)
     h = dot(xi[..., ANGULAR], xi[..., LINEAR]) / safe(bk, zero, w2)
     if np.any(zero):
         h = np.where(zero, np.inf, h) if bk.name == "float" else np.where(zero, None, h)
@@ -252,11 +251,9 @@ def axis(xi: Any) -> tuple[np.ndarray, np.ndarray]:
     w = xi[..., ANGULAR]
     v = xi[..., LINEAR]
     w2 = dot(w, w)
-    rot = np.asarray(w2 > 0)
-    rot = rot.astype(bool) if rot.dtype == object else rot
+    rot = _mask(w2 > 0)
     v2 = dot(v, v)
-    tr = np.asarray(v2 > 0)
-    tr = tr.astype(bool) if tr.dtype == object else tr
+    tr = _mask(v2 > 0)
     nw = bk.sqrt(safe(bk, ~rot, w2))
     nv = bk.sqrt(safe(bk, ~tr, v2))
     u = np.where(

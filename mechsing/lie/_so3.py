@@ -20,12 +20,17 @@ from mechsing.numeric import backend_of
 
 
 def _asarr(x: Any) -> np.ndarray:
-    return x if isinstance(x, np.ndarray) else np.asarray(x, dtype=object if _is_obj(x) else float)
-
-
-def _is_obj(x: Any) -> bool:
+    """ndarray of x: object dtype if it holds non-float numbers (mp, exact), else float64."""
+    if isinstance(x, np.ndarray):
+        return x
     a = np.asarray(x)
-    return a.dtype == object
+    return a if a.dtype == object else a.astype(np.float64)
+
+
+def _mask(c: Any) -> np.ndarray:
+    """Boolean ndarray of a comparison (object arrays of sympy booleans included)."""
+    c = np.asarray(c)
+    return c.astype(bool) if c.dtype != bool else c
 
 
 def cross(a: Any, b: Any) -> np.ndarray:
@@ -43,10 +48,10 @@ def cross(a: Any, b: Any) -> np.ndarray:
 
 
 def dot(a: Any, b: Any) -> np.ndarray:
-    """Inner product over the last axis."""
+    """Inner product over the last axis, always an ndarray (0-d for two vectors)."""
     a = _asarr(a)
     b = _asarr(b)
-    return (a * b).sum(axis=-1)
+    return np.asarray((a * b).sum(axis=-1))
 
 
 def hat3(w: Any) -> np.ndarray:
@@ -173,11 +178,10 @@ def quaternion_parts(R: Any) -> tuple[np.ndarray, np.ndarray]:
     idx = np.zeros(t.shape[:-1], dtype=int)
     best = t[..., 0]
     for i in range(1, 4):
-        better = np.asarray(t[..., i] > best)
-        better = better.astype(bool) if better.dtype == object else better
+        better = _mask(t[..., i] > best)
         idx = np.where(better, i, idx)
         best = np.where(better, t[..., i], best)
-    big = bk.sqrt(np.where(np.asarray(best > 0).astype(bool), best, bk.convert(1))) / 2
+    big = bk.sqrt(np.where(_mask(best > 0), best, bk.convert(1))) / 2
     d = 4 * big
     s21, s02, s10 = (
         R[..., 2, 1] - R[..., 1, 2],
@@ -198,8 +202,7 @@ def quaternion_parts(R: Any) -> tuple[np.ndarray, np.ndarray]:
     q = cand[0]
     for i in range(1, 4):
         q = np.where((idx == i)[..., None], cand[i], q)
-    neg = np.asarray(q[..., 0] < 0)
-    neg = neg.astype(bool) if neg.dtype == object else neg
+    neg = _mask(q[..., 0] < 0)
     q = np.where(neg[..., None], -q, q)
     return q[..., 0], q[..., 1:]
 
@@ -210,8 +213,7 @@ def log_so3_parts(R: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarra
     bk = backend_of(R)
     qw, qv = quaternion_parts(R)
     n2 = dot(qv, qv)
-    zero = np.asarray(n2 <= 0)
-    zero = zero.astype(bool) if zero.dtype == object else zero
+    zero = _mask(n2 <= 0)
     n = bk.sqrt(n2)
     theta = 2 * bk.atan2(n, qw)
     # theta / n -> 2 / w as n -> 0; atan2(n, w)/n is accurate for every n > 0

@@ -38,8 +38,9 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.lie._so3 import _asarr as _arr
 from mechsing.lie._so3 import cross, hat3, vee3
-from mechsing.lie._so3 import dot as _so3_dot
+from mechsing.lie._so3 import dot as _dot
 from mechsing.numeric import backend_of
 
 __all__ = [
@@ -50,18 +51,6 @@ __all__ = [
     "cayley_so3",
     "cayley_so3_inverse",
 ]
-
-
-def _arr(x: Any) -> np.ndarray:
-    if isinstance(x, np.ndarray):
-        return x
-    a = np.asarray(x)
-    return a if a.dtype == object else a.astype(np.float64)
-
-
-def _dot(a: Any, b: Any) -> np.ndarray:
-    """Inner product over the last axis, always an ndarray (0-d for vectors)."""
-    return np.asarray(_so3_dot(a, b))
 
 
 def _check(x: np.ndarray, tail: tuple[int, ...], name: str, what: str) -> None:

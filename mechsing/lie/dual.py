@@ -38,8 +38,9 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.lie._so3 import cross, hat3, vee3
-from mechsing.lie._so3 import dot as _so3_dot
+from mechsing.lie._so3 import _asarr as _arr
+from mechsing.lie._so3 import _mask, cross, hat3, vee3
+from mechsing.lie._so3 import dot as _dot
 from mechsing.lie.quaternion import (
     quat_conjugate,
     quat_from_rotation_matrix,
@@ -71,23 +72,6 @@ __all__ = [
     "screw_displacement",
     "screw_to_dual",
 ]
-
-
-def _arr(x: Any) -> np.ndarray:
-    if isinstance(x, np.ndarray):
-        return x
-    a = np.asarray(x)
-    return a if a.dtype == object else a.astype(np.float64)
-
-
-def _dot(a: Any, b: Any) -> np.ndarray:
-    """Inner product over the last axis, always an ndarray (0-d for vectors)."""
-    return np.asarray(_so3_dot(a, b))
-
-
-def _mask(c: Any) -> np.ndarray:
-    c = np.asarray(c)
-    return c.astype(bool) if c.dtype != bool else c
 
 
 def _to_backend(x: np.ndarray, bk: Any) -> np.ndarray:

@@ -33,8 +33,9 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.lie._so3 import cross, hat3, quaternion_parts
-from mechsing.lie._so3 import dot as _so3_dot
+from mechsing.lie._so3 import _asarr as _arr
+from mechsing.lie._so3 import _mask, cross, hat3, quaternion_parts
+from mechsing.lie._so3 import dot as _dot
 from mechsing.numeric import backend_of
 
 __all__ = [
@@ -54,25 +55,6 @@ __all__ = [
 #   atan(s)/s  =  1 - s^2/3 + s^4/5          first neglected term O(s^6)
 _SINC_HALF_ORDER = 5
 _ATAN_ORDER = 5
-
-
-def _arr(x: Any) -> np.ndarray:
-    """ndarray view of x: object dtype if it holds non-float numbers, else float64."""
-    if isinstance(x, np.ndarray):
-        return x
-    a = np.asarray(x)
-    return a if a.dtype == object else a.astype(np.float64)
-
-
-def _dot(a: Any, b: Any) -> np.ndarray:
-    """Inner product over the last axis, always an ndarray (0-d for vectors)."""
-    return np.asarray(_so3_dot(a, b))
-
-
-def _mask(c: Any) -> np.ndarray:
-    """Boolean ndarray of a comparison (object arrays of sympy booleans included)."""
-    c = np.asarray(c)
-    return c.astype(bool) if c.dtype != bool else c
 
 
 def _check_last(x: np.ndarray, n: int, name: str, what: str) -> None:
