@@ -46,6 +46,8 @@ from mechsing.numeric import (
 _MAX_STEP = 0.1
 _MAX_HALVINGS = 14
 _NEWTON_ITERATIONS = 12
+#: step attempts allowed per planned step before continuation gives up
+_MAX_ATTEMPTS_PER_STEP = 20
 
 
 class ClosureError(UserError):
@@ -241,7 +243,17 @@ class Closer:
         steps = 0
         underdetermined = False
         best_rank = None
+        attempts = 0
         while t < 1.0:
+            attempts += 1
+            if attempts > _MAX_ATTEMPTS_PER_STEP * nsteps + 4 * _MAX_HALVINGS:
+                raise ClosureError(
+                    f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} makes no progress "
+                    f"after {attempts - 1} step attempts (t = {t:.6g} of the way): the path keeps meeting "
+                    "near-singular configurations; add intermediate configurations",
+                    cfg.name,
+                    None,
+                )
             t_next = min(1.0, t + dt)
             final = t_next >= 1.0
             qg = q.copy()
@@ -323,7 +335,9 @@ class Closer:
             CONTINUATION_CORRECTOR_RATIO * step, CONTINUATION_JUMP_FLOOR
         ):
             return False
-        if info["smin"] < CONTINUATION_REVERSE_RTOL:
+        # with a continuum of solutions (underdetermined) stepping back may land
+        # elsewhere on it: reversibility only means something for a determined step
+        if info["smin"] < CONTINUATION_REVERSE_RTOL and not info["underdetermined"]:
             back_target = qn.copy()
             back_target[gmask] = q[gmask]
             ok, qb, _ = self._correct(fm, qn, back_target, gmask, False)

@@ -1,0 +1,1230 @@
+"""Poses and loop closure checked against an independent computation.
+
+Everything mechsing computes here is checked by code written in this file
+from DESIGN.md's rules alone (joint-value semantics, catalog bases, in-plane
+convention, U joints): its own hat/exp (``scipy.linalg.expm`` of 4x4
+matrices; for the many products of the closed chains a closed-form Rodrigues
+exponential, itself checked against expm), its own bases, its own spanning
+tree and its own cycles (networkx), its own closed-form four-bar, its own path
+tracker (Newton with finite differences).  No test trusts the solver's
+residual.
+
+* random trees (serial arms and branching trees, every joint type): body poses;
+* random closed chains taken from the reference (planar 4R/5R/6R, spatial
+  6R/7R, Watt and Stephenson six-bars, an R-U-P-S loop): closure by
+  continuation, the product around every cycle, the assembly mode;
+* every example: every named configuration closes.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import networkx as nx
+import numpy as np
+import pytest
+import scipy.linalg
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
+
+from mechsing.kinematics import Closer, ClosureError, KinematicModel
+from mechsing.model import load, loads
+
+PI = math.pi
+EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.yaml"))
+
+SETTINGS = settings(
+    max_examples=30,
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
+)
+#: closed chains cost a continuation and an independent path tracking each
+LOOP_SETTINGS = settings(SETTINGS, max_examples=12)
+
+# ---------------------------------------------------------------------------
+# independent SE(3), bases and joint elements (DESIGN.md "Conventions")
+
+#: kind of each coordinate per joint type: "a" angle (rad), "l" length (m)
+KINDS = {
+    "R": "a",
+    "P": "l",
+    "H": "a",
+    "C": "al",
+    "T2": "ll",
+    "T3": "lll",
+    "S": "aaa",
+    "G": "all",
+    "Y": "all",
+    "X": "alll",
+    "D": "aaalll",
+    "U": "aa",
+    "E": "",
+}
+
+
+def skew(w: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+
+
+def hat(xi: np.ndarray) -> np.ndarray:
+    m = np.zeros((4, 4))
+    m[:3, :3] = skew(xi[:3])
+    m[:3, 3] = xi[3:]
+    return m
+
+
+def expt(xi: np.ndarray) -> np.ndarray:
+    """exp of a twist (omega, v) as a 4x4 matrix (scipy's Pade expm)."""
+    return scipy.linalg.expm(hat(np.asarray(xi, dtype=float)))
+
+
+def exp_rodrigues(xi: np.ndarray) -> np.ndarray:
+    """The same exponential in closed form (Rodrigues), for the path tracker
+    below, which needs many of them (checked against ``expt`` in a test)."""
+    w, v = np.asarray(xi[:3], float), np.asarray(xi[3:], float)
+    th2 = float(w @ w)
+    th = math.sqrt(th2)
+    if th < 1e-4:
+        a = 1 - th2 / 6 + th2 * th2 / 120
+        b = 0.5 - th2 / 24 + th2 * th2 / 720
+        c = 1 / 6 - th2 / 120 + th2 * th2 / 5040
+    else:
+        a = math.sin(th) / th
+        b = (1 - math.cos(th)) / th2
+        c = (th - math.sin(th)) / (th2 * th)
+    W = skew(w)
+    W2 = np.outer(w, w) - th2 * np.eye(3)
+    g = np.eye(4)
+    g[:3, :3] += a * W + b * W2
+    g[:3, 3] = v + b * (W @ v) + c * (W2 @ v)
+    return g
+
+
+def inv(g: np.ndarray) -> np.ndarray:
+    out = np.eye(4)
+    out[:3, :3] = g[:3, :3].T
+    out[:3, 3] = -g[:3, :3].T @ g[:3, 3]
+    return out
+
+
+def unit(v) -> np.ndarray:
+    v = np.asarray(v, dtype=float)
+    return v / np.linalg.norm(v)
+
+
+def in_plane(raw) -> tuple[np.ndarray, np.ndarray]:
+    """e1 = normalise(a - (a.w) w), a the coordinate axis least aligned with w
+    (first in x, y, z order on a tie, decided on the vector as written), e2 = w x e1."""
+    raw = np.asarray(raw, dtype=float)
+    mags = np.abs(raw)
+    i = 0
+    for k in (1, 2):
+        if mags[k] < mags[i]:
+            i = k
+    w = unit(raw)
+    a = np.zeros(3)
+    a[i] = 1.0
+    e1 = unit(a - w[i] * w)
+    return e1, np.cross(w, e1)
+
+
+def rev(u, p) -> np.ndarray:
+    u = unit(u)
+    return np.concatenate([u, np.cross(np.asarray(p, float), u)])
+
+
+def slide(u) -> np.ndarray:
+    return np.concatenate([np.zeros(3), unit(u)])
+
+
+def basis(jtype: str, prm: dict) -> list[np.ndarray]:
+    """The reference basis screws of a joint, from DESIGN.md (SI units)."""
+    eye = np.eye(3)
+    if jtype == "R":
+        return [rev(prm["axis"], prm["point"])]
+    if jtype == "P":
+        return [slide(prm["axis"])]
+    if jtype == "H":
+        u = unit(prm["axis"])
+        return [rev(u, prm["point"]) + np.concatenate([np.zeros(3), prm["pitch"] * u])]
+    if jtype == "C":
+        return [rev(prm["axis"], prm["point"]), slide(prm["axis"])]
+    if jtype == "T2":
+        e1, e2 = in_plane(prm["normal"])
+        return [slide(e1), slide(e2)]
+    if jtype == "T3":
+        return [slide(eye[k]) for k in range(3)]
+    if jtype == "S":
+        return [rev(eye[k], prm["point"]) for k in range(3)]
+    if jtype in ("G", "Y"):
+        n = unit(prm["normal"])
+        e1, e2 = in_plane(prm["normal"])
+        h = prm.get("pitch", 0.0)
+        return [np.concatenate([n, h * n]), slide(e1), slide(e2)]
+    if jtype == "X":
+        a = unit(prm["axis"])
+        e1, e2 = in_plane(prm["axis"])
+        return [np.concatenate([a, np.zeros(3)]), slide(e1), slide(e2), slide(a)]
+    if jtype == "D":
+        return [np.eye(6)[k] for k in range(6)]
+    if jtype == "U":
+        a1, a2 = prm["axes"]
+        return [rev(a1, prm["point"]), rev(a2, prm["point"])]
+    if jtype == "E":
+        return []
+    raise AssertionError(jtype)
+
+
+@dataclass
+class J:
+    """A joint as this file understands it (SI floats)."""
+
+    name: str
+    type: str
+    a: str
+    b: str
+    prm: dict = field(default_factory=dict)
+
+    @functools.cached_property
+    def basis(self) -> list[np.ndarray]:
+        return basis(self.type, self.prm)
+
+    def element(self, q, exp=expt) -> np.ndarray:
+        """The relative displacement M with g_b = g_a M."""
+        B = self.basis
+        q = np.asarray(q, dtype=float).reshape(-1)
+        assert len(q) == len(B)
+        if self.type == "U":
+            return exp(q[0] * B[0]) @ exp(q[1] * B[1])
+        if not B:
+            return np.eye(4)
+        return exp(sum(qi * b for qi, b in zip(q, B, strict=True)))
+
+
+def my_poses(
+    joints: list[J], ground: str, values: dict[str, np.ndarray], exp=expt
+) -> dict[str, np.ndarray]:
+    """Body poses along a breadth-first spanning tree of my own."""
+    out = {ground: np.eye(4)}
+    todo = [ground]
+    while todo:
+        body = todo.pop(0)
+        for j in joints:
+            if j.a == body and j.b not in out:
+                out[j.b] = out[body] @ j.element(values[j.name], exp)
+                todo.append(j.b)
+            elif j.b == body and j.a not in out:
+                out[j.a] = out[body] @ inv(j.element(values[j.name], exp))
+                todo.append(j.a)
+    return out
+
+
+def cycles(joints: list[J]) -> list[list[tuple[J, int]]]:
+    """A cycle basis of the mechanism: each cycle a list of (joint, +1 if crossed a->b)."""
+    H = nx.Graph()
+    by = {j.name: j for j in joints}
+    for j in joints:
+        H.add_edge(("b", j.a), ("j", j.name))
+        H.add_edge(("j", j.name), ("b", j.b))
+    out = []
+    for cyc in nx.cycle_basis(H):
+        k = next(i for i, node in enumerate(cyc) if node[0] == "b")
+        cyc = cyc[k:] + cyc[:k]
+        steps = []
+        for i in range(0, len(cyc), 2):
+            body, joint, nxt = cyc[i][1], by[cyc[i + 1][1]], cyc[(i + 2) % len(cyc)][1]
+            assert {body, nxt} == {joint.a, joint.b}
+            steps.append((joint, 1 if joint.a == body else -1))
+        out.append(steps)
+    return out
+
+
+def cycle_products(joints: list[J], values: dict[str, np.ndarray], exp=expt) -> list[np.ndarray]:
+    out = []
+    for steps in cycles(joints):
+        P = np.eye(4)
+        for j, s in steps:
+            M = j.element(values[j.name], exp)
+            P = P @ (M if s > 0 else inv(M))
+        out.append(P)
+    return out
+
+
+def closure_error(P: np.ndarray, L: float) -> float:
+    """A length: |p| and L |R - I|."""
+    return max(float(np.linalg.norm(P[:3, 3])), L * float(np.linalg.norm(P[:3, :3] - np.eye(3))))
+
+
+def assert_closes(joints: list[J], values: dict[str, np.ndarray], L: float, exp=expt) -> None:
+    prods = cycle_products(joints, values, exp)
+    for P in prods:
+        err = closure_error(P, L)
+        assert err <= 1e-10 * L, f"a loop does not close: error {err:.3g} (L = {L:.3g})"
+
+
+def mech_values(model: KinematicModel, q: np.ndarray) -> dict[str, np.ndarray]:
+    return {k: np.array(v) for k, v in model.values(q).items()}
+
+
+# ---------------------------------------------------------------------------
+# writing mechanism files
+
+UNITS = {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "rad": 1.0, "deg": PI / 180}
+
+
+def num(x: float) -> str:
+    return repr(float(x))
+
+
+def vec(v) -> str:
+    return "[" + ", ".join(num(x) for x in v) + "]"
+
+
+@dataclass
+class Spec:
+    """A mechanism file written by this test, and the SI geometry behind it."""
+
+    bodies: list[str]
+    ground: str
+    joints: list[J]
+    configurations: dict[str, dict] = field(
+        default_factory=dict
+    )  # name -> {joint: SI values, "start": ...}
+    inputs: list[str] = field(default_factory=list)
+    output: str | None = None
+    length: str = "m"
+    angle: str = "rad"
+
+    def to_file(self) -> tuple[str, dict[str, dict[str, np.ndarray]]]:
+        """The YAML text, and each configuration's values as the file gives them, in SI."""
+        lf, af = UNITS[self.length], UNITS[self.angle]
+        lines = ["mechanism: generated"]
+        if (self.length, self.angle) != ("m", "rad"):
+            lines.append(f"units: {{length: {self.length}, angle: {self.angle}}}")
+        lines.append(f"ground: {self.ground}")
+        lines.append(f"bodies: [{', '.join(self.bodies)}]")
+        lines.append("joints:")
+        for j in self.joints:
+            geo = []
+            for key, val in j.prm.items():
+                if key == "point":
+                    geo.append(f"point: {vec(np.asarray(val) / lf)}")
+                elif key == "pitch":
+                    geo.append(f"pitch: {num(val / lf)}")
+                elif key == "axes":
+                    geo.append(f"axes: [{vec(val[0])}, {vec(val[1])}]")
+                else:
+                    geo.append(f"{key}: {vec(val)}")
+            lines.append(
+                f"  - {{name: {j.name}, type: {j.type}, between: [{j.a}, {j.b}]"
+                + "".join(", " + g for g in geo)
+                + "}"
+            )
+        if self.inputs:
+            lines.append(f"inputs: [{', '.join(self.inputs)}]")
+        if self.output:
+            lines.append(f"output: {{body: {self.output}}}")
+        lines.append("configurations:")
+        lines.append("  reference: {}")
+        written: dict[str, dict[str, np.ndarray]] = {}
+        by = {j.name: j for j in self.joints}
+        for cname, vals in self.configurations.items():
+            items = []
+            si: dict[str, np.ndarray] = {}
+            for jn, v in vals.items():
+                if jn == "start":
+                    items.append(f"start: {v}")
+                    continue
+                kinds = KINDS[by[jn].type]
+                texts = [num(x / (af if k == "a" else lf)) for x, k in zip(v, kinds, strict=True)]
+                si[jn] = np.array(
+                    [float(t) * (af if k == "a" else lf) for t, k in zip(texts, kinds, strict=True)]
+                )
+                items.append(f"{jn}: " + (texts[0] if len(texts) == 1 else f"[{', '.join(texts)}]"))
+            lines.append(f"  {cname}: {{{', '.join(items)}}}")
+            written[cname] = si
+        return "\n".join(lines) + "\n", written
+
+
+def flat(mech, values: dict[str, np.ndarray]) -> np.ndarray:
+    """The flat coordinate vector in mechsing's order (file order, basis order)."""
+    return np.concatenate(
+        [np.asarray(values[j.name], float).reshape(-1) for j in mech.joints if j.dof]
+    )
+
+
+# ---------------------------------------------------------------------------
+# strategies
+
+finite = {"allow_nan": False, "allow_infinity": False}
+
+angles = st.one_of(
+    st.floats(-PI, PI, **finite),
+    st.floats(-1e-9, 1e-9, **finite),
+    st.builds(lambda e, s: s * (PI - e), st.floats(0, 1e-9, **finite), st.sampled_from([1, -1])),
+    st.sampled_from([0.0, PI, -PI, PI / 2, 1e-12, -1e-300, 2 * PI, 5.0]),
+)
+lengths = st.one_of(
+    st.floats(-3, 3, **finite),
+    st.floats(-1e-9, 1e-9, **finite),
+    st.sampled_from([0.0, 1.0, -2.5]),
+)
+coordinate_axes = st.sampled_from(
+    [
+        (0, 0, 1),
+        (1, 0, 0),
+        (0, 1, 0),
+        (0, -2, 0),
+        (1, 1, 0),
+        (1, 1, 1),
+        (-1, 1, 1),
+        (1, 2, 3),
+        (0, 3, 4),
+    ]
+)
+
+
+@st.composite
+def axes(draw) -> np.ndarray:
+    """Direction vectors as a file writes them (not normalised)."""
+    if draw(st.booleans()):
+        return np.array(draw(coordinate_axes), dtype=float)
+    v = np.array(draw(st.tuples(*[st.floats(-2, 2, **finite)] * 3)))
+    if np.linalg.norm(v) < 0.3:
+        v = v + np.array([0.3, -0.4, 0.5])
+    return v
+
+
+points = st.one_of(
+    st.tuples(*[st.floats(-5, 5, **finite)] * 3).map(np.array),
+    st.sampled_from([(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 0.0, 2.0)]).map(np.array),
+)
+pitches = st.builds(lambda h, s: s * h, st.floats(0.05, 2, **finite), st.sampled_from([1, -1]))
+
+
+@st.composite
+def rotation_vectors(draw) -> np.ndarray:
+    return unit(draw(axes())) * draw(angles)
+
+
+@st.composite
+def joint_params(draw, jtype: str) -> dict:
+    if jtype == "R" or jtype == "C":
+        return {"axis": draw(axes()), "point": draw(points)}
+    if jtype in ("P", "X"):
+        return {"axis": draw(axes())}
+    if jtype == "H":
+        return {"axis": draw(axes()), "point": draw(points), "pitch": draw(pitches)}
+    if jtype in ("T2", "G"):
+        return {"normal": draw(axes())}
+    if jtype == "Y":
+        return {"normal": draw(axes()), "pitch": draw(pitches)}
+    if jtype == "S":
+        return {"point": draw(points)}
+    if jtype == "U":
+        a1, a2 = draw(axes()), draw(axes())
+        if np.linalg.norm(np.cross(unit(a1), unit(a2))) < 0.2:
+            a2 = np.cross(a1, [1.0, 0, 0] if abs(unit(a1)[0]) < 0.7 else [0, 1.0, 0])
+        return {"axes": (a1, a2), "point": draw(points)}
+    return {}  # T3, D, E
+
+
+@st.composite
+def joint_values(draw, jtype: str) -> np.ndarray:
+    if jtype == "S":
+        return draw(rotation_vectors())
+    if jtype == "D":
+        return np.concatenate([draw(rotation_vectors()), [draw(lengths) for _ in range(3)]])
+    return np.array([draw(angles) if k == "a" else draw(lengths) for k in KINDS[jtype]])
+
+
+TREE_TYPES = ["R", "P", "H", "C", "S", "U", "T2", "T3", "G", "X", "D", "Y", "E"]
+
+
+@st.composite
+def trees(draw) -> tuple[Spec, dict[str, np.ndarray]]:
+    n = draw(st.integers(1, 8))
+    serial = draw(st.booleans())
+    parent = [None] + [k - 1 if serial else draw(st.integers(0, k - 1)) for k in range(1, n + 1)]
+    names = draw(st.permutations([f"body{k}" for k in range(n + 1)]))
+    ground = names[draw(st.integers(0, n))]
+    joints, values = [], {}
+    for k in range(1, n + 1):
+        jtype = draw(st.sampled_from(TREE_TYPES))
+        a, b = names[parent[k]], names[k]
+        if draw(st.booleans()):
+            a, b = b, a
+        j = J(f"J{k}", jtype, a, b, draw(joint_params(jtype)))
+        joints.append(j)
+        values[j.name] = draw(joint_values(jtype))
+    joints = draw(st.permutations(joints))
+    bodies = draw(st.permutations(names))
+    length, angle = draw(
+        st.sampled_from([("m", "rad"), ("mm", "deg"), ("cm", "rad"), ("m", "deg")])
+    )
+    output = draw(st.sampled_from([b for b in names if b != ground]))
+    cfg = {j.name: values[j.name] for j in joints if j.type != "E"}
+    spec = Spec(
+        list(bodies),
+        ground,
+        list(joints),
+        {"given": cfg},
+        output=output,
+        length=length,
+        angle=angle,
+    )
+    return spec
+
+
+# ---------------------------------------------------------------------------
+# 1. random trees: poses against the independent product of exponentials
+
+
+@SETTINGS
+@given(trees())
+def test_tree_poses_match_independent_product_of_exponentials(spec):
+    text, written = spec.to_file()
+    mech = loads(text)
+    values = {j.name: written["given"].get(j.name, np.zeros(0)) for j in spec.joints}
+    model = KinematicModel(mech)
+    closed = Closer(model).solve("given")
+    q = flat(mech, values)
+    # a configuration that gives every value is checked, not solved: values as given
+    assert closed.steps == 0 and not closed.underdetermined
+    np.testing.assert_allclose(closed.q, q, rtol=1e-15, atol=0)
+    theirs = model.poses(closed.q)
+    mine = my_poses(spec.joints, spec.ground, values)
+    assert set(theirs) == set(spec.bodies)
+    scale = 1.0 + max(float(np.linalg.norm(g[:3, 3])) for g in mine.values())
+    for body in spec.bodies:
+        R_err = np.max(np.abs(theirs[body][:3, :3] - mine[body][:3, :3]))
+        p_err = np.max(np.abs(theirs[body][:3, 3] - mine[body][:3, 3]))
+        assert R_err <= 1e-12, (body, R_err)
+        assert p_err <= 1e-12 * scale, (body, p_err, scale)
+        np.testing.assert_array_equal(theirs[body][3], [0, 0, 0, 1])
+
+
+def test_tree_with_every_joint_type_in_mm_and_deg():
+    """A fixed serial arm through every type (a readable regression of the property)."""
+    rng = np.random.default_rng(7)
+    types = ["R", "P", "H", "C", "S", "U", "T2", "T3", "G", "X", "D", "Y", "E"]
+    names = [f"b{k}" for k in range(len(types) + 1)]
+    joints, values = [], {}
+    for k, t in enumerate(types):
+        prm = {
+            "R": {"axis": [0, 0, 1], "point": [1, 2, 0]},
+            "P": {"axis": [1, 1, 0]},
+            "H": {"axis": [0, 1, 0], "point": [0.5, 0, 1], "pitch": 0.2},
+            "C": {"axis": [1, 0, 0], "point": [0, 1, 1]},
+            "S": {"point": [1, 1, 1]},
+            "U": {"axes": ([0, 0, 1], [1, -1, 0]), "point": [2, 0, 1]},
+            "T2": {"normal": [1, 1, 1]},
+            "T3": {},
+            "G": {"normal": [0, 1, 0]},
+            "X": {"axis": [1, 2, 3]},
+            "D": {},
+            "Y": {"normal": [0, 0, -1], "pitch": -0.3},
+            "E": {},
+        }[t]
+        for key, val in list(prm.items()):
+            if key == "axes":
+                prm[key] = tuple(np.asarray(v, float) for v in val)
+            elif key != "pitch":
+                prm[key] = np.asarray(val, float)
+        joints.append(J(f"J{t}", t, names[k], names[k + 1], prm))
+        values[f"J{t}"] = rng.uniform(-3, 3, len(KINDS[t]))
+    spec = Spec(
+        names,
+        names[0],
+        joints,
+        {"given": {k: v for k, v in values.items() if len(v)}},
+        output=names[-1],
+        length="mm",
+        angle="deg",
+    )
+    text, written = spec.to_file()
+    mech = loads(text)
+    model = KinematicModel(mech)
+    vals = {j.name: written["given"].get(j.name, np.zeros(0)) for j in joints}
+    poses = model.poses(Closer(model).solve("given").q)
+    mine = my_poses(joints, names[0], vals)
+    for b in names:
+        np.testing.assert_allclose(poses[b], mine[b], rtol=0, atol=1e-11)
+
+
+@SETTINGS
+@given(rotation_vectors(), st.tuples(lengths, lengths, lengths))
+def test_closed_form_exponential_of_this_file_agrees_with_expm(w, v):
+    xi = np.concatenate([w, v])
+    np.testing.assert_allclose(exp_rodrigues(xi), expt(xi), rtol=0, atol=1e-13)
+
+
+# ---------------------------------------------------------------------------
+# independent path tracking for closed chains
+
+
+def track(
+    joints: list[J],
+    start: dict[str, np.ndarray],
+    target: dict[str, np.ndarray],
+    L: float,
+    nsteps: int = 12,
+) -> tuple[dict[str, np.ndarray] | None, float]:
+    """Follow the given joints from ``start`` to ``target`` (straight line), the
+    others solved at each step by Gauss-Newton on the products around my cycles.
+
+    Returns the end values and the smallest relative singular value of the
+    closure Jacobian in the unknowns met on the way, start included (None when
+    a step fails).
+    """
+    unknown = [j for j in joints if j.name not in target and KINDS[j.type]]
+    sizes = [len(KINDS[j.type]) for j in unknown]
+    x = np.concatenate([start[j.name] for j in unknown])
+    cyc = cycles(joints)
+
+    def values_at(x, given):
+        vals = dict(given)
+        k = 0
+        for j, s in zip(unknown, sizes, strict=True):
+            vals[j.name] = x[k : k + s]
+            k += s
+        for j in joints:
+            vals.setdefault(j.name, np.zeros(0))
+        return vals
+
+    def F(x, given):
+        vals = values_at(x, given)
+        res = []
+        for steps in cyc:
+            P = np.eye(4)
+            for j, s in steps:
+                M = j.element(vals[j.name], exp_rodrigues)
+                P = P @ (M if s > 0 else inv(M))
+            res.append(L * (P[:3, :3] - np.eye(3)).ravel())
+            res.append(P[:3, 3])
+        return np.concatenate(res)
+
+    def jac(x, given):
+        f0 = F(x, given)
+        h = 1e-7
+        cols = []
+        for i in range(len(x)):
+            xp = x.copy()
+            xp[i] += h
+            cols.append((F(xp, given) - f0) / h)
+        return np.stack(cols, axis=1)
+
+    # the start counts too: from a singular point several branches leave
+    s = np.linalg.svd(jac(x, {k: start[k] for k in target}), compute_uv=False)
+    worst = float(s[-1] / s[0])
+    for t in np.linspace(0, 1, nsteps + 1)[1:]:
+        given_t = {k: start[k] + t * (target[k] - start[k]) for k in target}
+        x_prev = x
+        # Newton with a finite-difference Jacobian, refreshed every 4 iterations
+        for it in range(24):
+            if it % 4 == 0:
+                Jx = jac(x, given_t)
+            f = F(x, given_t)
+            if np.max(np.abs(f)) <= 1e-13 * L:
+                break
+            x = x + np.linalg.lstsq(Jx, -f, rcond=None)[0]
+        else:
+            return None, 0.0
+        if np.max(np.abs(x - x_prev)) > 0.5:
+            return None, 0.0  # too large a jump to vouch for the branch
+        s = np.linalg.svd(jac(x, given_t), compute_uv=False)
+        worst = min(worst, float(s[-1] / s[0]))
+    return values_at(x, target), worst
+
+
+def loop_joints(pts, axs, types=None, flips=None, prefix="J") -> tuple[list[str], list[J]]:
+    """A single loop ground -> l1 -> ... -> ground through the given joints."""
+    n = len(pts)
+    bodies = ["ground"] + [f"l{k}" for k in range(1, n)]
+    joints = []
+    for k in range(n):
+        a, b = bodies[k], bodies[(k + 1) % n]
+        if flips is not None and flips[k]:
+            a, b = b, a
+        t = "R" if types is None else types[k]
+        joints.append(J(f"{prefix}{k}", t, a, b, {"axis": axs[k], "point": pts[k]}))
+    return bodies, joints
+
+
+def char_length(joints: list[J]) -> float:
+    pts = [np.asarray(j.prm["point"], float) for j in joints if "point" in j.prm]
+    return max(1.0, max(float(np.linalg.norm(p)) for p in pts))
+
+
+def solve_file(spec: Spec):
+    text, written = spec.to_file()
+    mech = loads(text)
+    model = KinematicModel(mech)
+    return mech, model, Closer(model), written
+
+
+@st.composite
+def planar_frame(draw):
+    """A random plane: unit normal w and in-plane unit vectors, a random origin."""
+    w = unit(draw(axes()))
+    e1, e2 = in_plane(w)
+    c0 = draw(points)
+    return w, e1, e2, c0
+
+
+plane_xy = st.tuples(st.floats(-3, 3, **finite), st.floats(-3, 3, **finite))
+deltas = st.floats(-0.3, 0.3, **finite).filter(lambda d: abs(d) > 1e-3)
+
+
+def spread(pts2) -> bool:
+    """Points of a planar linkage that are not bunched (every pair at least 0.3 apart)."""
+    P = np.asarray(pts2)
+    return all(np.linalg.norm(P[i] - P[k]) > 0.3 for i in range(len(P)) for k in range(i))
+
+
+# ---------------------------------------------------------------------------
+# 2a. planar four-bar: against the closed-form solution and its assembly mode
+
+
+def rot2(t):
+    return np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
+
+
+def cross2(u, v):
+    return float(u[0] * v[1] - u[1] * v[0])
+
+
+def fourbar_closed_form(A, B, C, D, theta):
+    """Crank angle theta -> (coupler angle, rocker angle, sin of the angle at C)
+    on the assembly mode of the reference; or, where the loop cannot close,
+    None and by how much it misses (a length)."""
+    r1, r2 = np.linalg.norm(C - B), np.linalg.norm(C - D)
+    side = np.sign(cross2(D - B, C - B))
+    Bt = A + rot2(theta) @ (B - A)
+    d = np.linalg.norm(D - Bt)
+    if d >= r1 + r2 or d <= abs(r1 - r2):
+        return None, max(d - r1 - r2, abs(r1 - r2) - d)
+    a = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
+    h = math.sqrt(max(r1 * r1 - a * a, 0.0))
+    u = (D - Bt) / d
+    n = np.array([-u[1], u[0]])
+    Ct = Bt + a * u + side * h * n
+    psi = math.atan2(cross2(C - B, Ct - Bt), float((C - B) @ (Ct - Bt)))
+    phi = math.atan2(cross2(C - D, Ct - D), float((C - D) @ (Ct - D)))
+    sin_c = abs(cross2(Ct - Bt, D - Ct)) / (r1 * r2)
+    return (psi, phi, sin_c), 0.0
+
+
+def wrap(x):
+    return (x + PI) % (2 * PI) - PI
+
+
+@LOOP_SETTINGS
+@given(
+    planar_frame(),
+    st.lists(plane_xy, min_size=4, max_size=4).filter(spread),
+    st.lists(st.floats(-1, 1, **finite), min_size=4, max_size=4),
+    st.lists(st.booleans(), min_size=4, max_size=4),
+    deltas,
+    deltas,
+)
+def test_planar_fourbar_matches_closed_form(frame, xy, heights, flips, d1, d2):
+    """Random planar 4R (parallel axes, some reversed, points at random heights
+    along them), crank moved in two chained configurations: the solution is the
+    closed-form one on the reference's assembly mode; a crank that cannot turn
+    that far gives a ClosureError."""
+    w, e1, e2, c0 = frame
+    P2 = [np.array(p) for p in xy]
+    pts = [c0 + p[0] * e1 + p[1] * e2 + h * w for p, h in zip(P2, heights, strict=True)]
+    # the axes are parallel: w, or -w for some joints (the same line, opposite sense)
+    signs = [1 if (k % 2 == 0) else -1 for k in range(4)]
+    bodies, joints = loop_joints(pts, [s * w for s in signs], flips=flips)
+    A2, B2, C2, D2 = P2
+    # absolute crank angle (about w) per unit value of J0
+    sA = signs[0] * (-1 if flips[0] else 1)
+    first, second = d1, d1 + d2
+    spec = Spec(
+        bodies,
+        "ground",
+        joints,
+        {"first": {"J0": [first]}, "second": {"J0": [second], "start": "first"}},
+        inputs=["J0"],
+        output="l2",
+    )
+    mech, model, closer, _ = solve_file(spec)
+    L = char_length(joints)
+    status = "regular"  # of the path so far: regular, blocked or unclear
+    for cname, t0, t1 in (("first", 0.0, first), ("second", first, second)):
+        path = [fourbar_closed_form(A2, B2, C2, D2, sA * t) for t in np.linspace(t0, t1, 300)]
+        sols = [x for x, _ in path]
+        miss = max(m for _, m in path)
+        if status == "regular" and not (None not in sols and min(x[2] for x in sols) > 0.05):
+            status = "blocked" if miss > 1e-3 * L else "unclear"
+        if status == "regular":
+            closed = closer.solve(cname)
+            assert not closed.underdetermined
+            (psi, phi, _), _ = fourbar_closed_form(A2, B2, C2, D2, sA * t1)
+            angle = {"ground": 0.0, "l1": sA * t1, "l2": psi, "l3": phi}
+            vals = mech_values(model, closed.q)
+            assert vals["J0"][0] == t1
+            for j, s in zip(joints, signs, strict=True):
+                # planar rotations about parallel axes: absolute angles add
+                expected = s * (angle[j.b] - angle[j.a])
+                assert abs(wrap(vals[j.name][0] - expected)) < 1e-9, (
+                    j.name,
+                    vals[j.name],
+                    expected,
+                )
+            assert_closes(joints, vals, L, exp_rodrigues)
+        elif status == "blocked":
+            # somewhere on the way the crank cannot turn further: no closure
+            with pytest.raises(ClosureError) as exc:
+                closer.solve(cname)
+            assert exc.value.status == 3
+        else:
+            try:
+                closed = closer.solve(cname)
+            except ClosureError:
+                continue
+            assert_closes(joints, mech_values(model, closed.q), L, exp_rodrigues)
+
+
+def test_fourbar_design_md_values():
+    """DESIGN.md's four-bar at crank 30 deg: B ~ -0.712, C ~ 0.0881, D ~ 0.1003."""
+    mech = load(EXAMPLES[0].parent / "fourbar.yaml")
+    model = KinematicModel(mech)
+    vals = mech_values(model, Closer(model).solve("crank-30").q)
+    A, B, C, D = (np.array(p, float) for p in ([0, 0], [1, 0], [3, 2], [4, 0]))
+    (psi, phi, _), _ = fourbar_closed_form(A, B, C, D, PI / 6)
+    assert vals["A"][0] == pytest.approx(PI / 6, abs=1e-15)
+    assert vals["B"][0] == pytest.approx(psi - PI / 6, abs=1e-10)
+    assert vals["C"][0] == pytest.approx(phi - psi, abs=1e-10)
+    assert vals["D"][0] == pytest.approx(-phi, abs=1e-10)
+    assert (round(vals["B"][0], 3), round(vals["C"][0], 4), round(vals["D"][0], 4)) == (
+        -0.712,
+        0.0881,
+        0.1003,
+    )
+
+
+# ---------------------------------------------------------------------------
+# 2b. general closed chains against an independent tracker
+
+
+def check_against_tracker(spec: Spec, configs: list[tuple[str, str | None]], L: float):
+    """Solve each configuration with mechsing and with my tracker (from its
+    start), compare poses; regular paths must close, singular ones may fail."""
+    mech, model, closer, written = solve_file(spec)
+    zero = {j.name: np.zeros(len(KINDS[j.type])) for j in spec.joints}
+    mine_prev: dict[str, dict] = {"reference": zero}
+    ok_prev = {"reference": True}
+    for cname, start in configs:
+        start = start or "reference"
+        target = written[cname]
+        if not ok_prev[start]:
+            ok_prev[cname] = False
+            continue
+        mine, worst = track(spec.joints, mine_prev[start], target, L)
+        if mine is not None and worst > 2e-3:
+            closed = closer.solve(cname)
+            vals = mech_values(model, closed.q)
+            assert not closed.underdetermined
+            for jn, v in target.items():
+                np.testing.assert_allclose(vals[jn], v, rtol=1e-15, atol=1e-300)
+            assert_closes(spec.joints, vals, L, exp_rodrigues)
+            # the same assembly mode as my path: the same body poses
+            theirs = my_poses(spec.joints, spec.ground, vals, exp_rodrigues)
+            ref = my_poses(spec.joints, spec.ground, mine, exp_rodrigues)
+            for b in spec.bodies:
+                np.testing.assert_allclose(theirs[b], ref[b], rtol=0, atol=1e-8 * L)
+            mine_prev[cname] = mine
+            ok_prev[cname] = True
+        else:
+            # near a singularity: either closed correctly, or a ClosureError
+            try:
+                closed = closer.solve(cname)
+            except ClosureError:
+                ok_prev[cname] = False
+                continue
+            assert_closes(spec.joints, mech_values(model, closed.q), L, exp_rodrigues)
+            ok_prev[cname] = False
+
+
+@LOOP_SETTINGS
+@given(
+    planar_frame(),
+    st.integers(5, 6),
+    st.data(),
+)
+def test_planar_5r_6r_loops_close_on_their_assembly_mode(frame, n, data):
+    w, e1, e2, c0 = frame
+    xy = data.draw(st.lists(plane_xy, min_size=n, max_size=n).filter(spread))
+    flips = data.draw(st.lists(st.booleans(), min_size=n, max_size=n))
+    pts = [c0 + p[0] * e1 + p[1] * e2 for p in xy]
+    bodies, joints = loop_joints(pts, [w] * n, flips=flips)
+    ins = sorted(data.draw(st.sets(st.integers(0, n - 1), min_size=n - 3, max_size=n - 3)))
+    first = {f"J{k}": [data.draw(deltas)] for k in ins}
+    second = {f"J{k}": [v[0] + data.draw(deltas)] for k, v in zip(ins, first.values(), strict=True)}
+    spec = Spec(
+        bodies,
+        "ground",
+        joints,
+        {"first": first, "second": {**second, "start": "first"}},
+        inputs=[f"J{k}" for k in ins],
+        output="l2",
+    )
+    check_against_tracker(spec, [("first", None), ("second", "first")], char_length(joints))
+
+
+@LOOP_SETTINGS
+@given(
+    st.lists(points, min_size=7, max_size=7),
+    st.lists(axes(), min_size=7, max_size=7),
+    st.lists(st.booleans(), min_size=7, max_size=7),
+    deltas,
+)
+def test_spatial_7r_loop_closes_on_its_assembly_mode(pts, axs, flips, delta):
+    bodies, joints = loop_joints(pts, axs, flips=flips)
+    spec = Spec(bodies, "ground", joints, {"moved": {"J0": [delta]}}, inputs=["J0"], output="l3")
+    check_against_tracker(spec, [("moved", None)], char_length(joints))
+
+
+def closure_jacobian_at_reference(joints: list[J], L: float) -> np.ndarray:
+    """My closure Jacobian in every coordinate at the reference (finite
+    differences of the cycle products)."""
+    zero = {j.name: np.zeros(len(KINDS[j.type])) for j in joints}
+    cols = []
+    h = 1e-6
+    for j in joints:
+        for i in range(len(KINDS[j.type])):
+            plus = dict(zero)
+            minus = dict(zero)
+            plus[j.name] = zero[j.name].copy()
+            plus[j.name][i] = h
+            minus[j.name] = zero[j.name].copy()
+            minus[j.name][i] = -h
+            fp = np.concatenate(
+                [
+                    np.concatenate([L * P[:3, :3].ravel(), P[:3, 3]])
+                    for P in cycle_products(joints, plus, exp_rodrigues)
+                ]
+            )
+            fm = np.concatenate(
+                [
+                    np.concatenate([L * P[:3, :3].ravel(), P[:3, 3]])
+                    for P in cycle_products(joints, minus, exp_rodrigues)
+                ]
+            )
+            cols.append((fp - fm) / (2 * h))
+    return np.stack(cols, axis=1)
+
+
+@settings(LOOP_SETTINGS, max_examples=5)  # each failure costs mechsing ~0.5 s
+@given(
+    st.lists(points, min_size=6, max_size=6),
+    st.lists(axes(), min_size=6, max_size=6),
+    deltas.filter(lambda d: abs(d) > 0.05),
+)
+def test_generic_spatial_6r_is_rigid(pts, axs, delta):
+    """A generic 6R loop is a structure: its reference is isolated, so moving one
+    joint cannot be closed."""
+    bodies, joints = loop_joints(pts, axs)
+    L = char_length(joints)
+    s = np.linalg.svd(closure_jacobian_at_reference(joints, L), compute_uv=False)
+    assume(s[5] / s[0] > 1e-3)  # a generic 6R (not a Bennett-like exception)
+    spec = Spec(bodies, "ground", joints, {"moved": {"J0": [delta]}}, inputs=["J0"], output="l3")
+    mech, model, closer, _ = solve_file(spec)
+    with pytest.raises(ClosureError) as exc:
+        closer.solve("moved")
+    assert "moved" in str(exc.value)
+    assert exc.value.status == 3
+
+
+# Watt and Stephenson six-bars: links and the joints between them (ternary links T1, T2)
+SIX_BARS = {
+    "watt": [
+        ("T1", "T2"),
+        ("T1", "b1"),
+        ("T1", "b2"),
+        ("T2", "b3"),
+        ("T2", "b4"),
+        ("b1", "b3"),
+        ("b2", "b4"),
+    ],
+    "stephenson": [
+        ("T1", "b1"),
+        ("T1", "b2"),
+        ("T1", "b3"),
+        ("b1", "T2"),
+        ("b2", "b4"),
+        ("b4", "T2"),
+        ("b3", "T2"),
+    ],
+}
+
+
+@LOOP_SETTINGS
+@given(
+    st.sampled_from(sorted(SIX_BARS)),
+    planar_frame(),
+    st.lists(plane_xy, min_size=7, max_size=7).filter(spread),
+    st.sampled_from(["T1", "T2", "b1", "b2", "b3", "b4"]),
+    st.data(),
+)
+def test_watt_and_stephenson_six_bars(kind, frame, xy, ground, data):
+    w, e1, e2, c0 = frame
+    links = SIX_BARS[kind]
+    joints = []
+    for k, (a, b) in enumerate(links):
+        if data.draw(st.booleans()):
+            a, b = b, a
+        p = c0 + xy[k][0] * e1 + xy[k][1] * e2
+        joints.append(J(f"J{k}", "R", a, b, {"axis": w, "point": p}))
+    at_ground = [j.name for j in joints if ground in (j.a, j.b)]
+    inp = data.draw(st.sampled_from(at_ground))
+    d1, d2 = data.draw(deltas), data.draw(deltas)
+    bodies = data.draw(st.permutations(["T1", "T2", "b1", "b2", "b3", "b4"]))
+    spec = Spec(
+        list(bodies),
+        ground,
+        joints,
+        {"first": {inp: [d1]}, "second": {inp: [d1 + d2], "start": "first"}},
+        inputs=[inp],
+        output=next(b for b in bodies if b != ground),
+    )
+    assert len(cycles(joints)) == 2
+    check_against_tracker(spec, [("first", None), ("second", "first")], char_length(joints))
+
+
+@LOOP_SETTINGS
+@given(
+    st.lists(points, min_size=3, max_size=3),
+    axes(),
+    st.tuples(axes(), axes()),
+    axes(),
+    deltas,
+)
+def test_loop_with_u_and_p_joints(pts, r_axis, u_axes, p_axis, delta):
+    """ground -R- l1 -U- l2 -P- l3 -S- ground: 7 dof, mobility 1."""
+    a1, a2 = u_axes
+    if np.linalg.norm(np.cross(unit(a1), unit(a2))) < 0.2:
+        a2 = np.cross(a1, [1.0, 0, 0] if abs(unit(a1)[0]) < 0.7 else [0, 1.0, 0])
+    joints = [
+        J("R1", "R", "ground", "l1", {"axis": r_axis, "point": pts[0]}),
+        J("U1", "U", "l1", "l2", {"axes": (a1, a2), "point": pts[1]}),
+        J("P1", "P", "l2", "l3", {"axis": p_axis}),
+        J("S1", "S", "l3", "ground", {"point": pts[2]}),
+    ]
+    spec = Spec(
+        ["ground", "l1", "l2", "l3"],
+        "ground",
+        joints,
+        {"moved": {"R1": [delta]}, "further": {"R1": [2 * delta], "start": "moved"}},
+        inputs=["R1"],
+        output="l3",
+    )
+    check_against_tracker(spec, [("moved", None), ("further", "moved")], char_length(joints))
+
+
+def test_finer_steps_reach_the_same_solution():
+    """Continuation in one configuration or in a chain of four gives the same pose."""
+    pts = [
+        np.array(p, float)
+        for p in (
+            [0, 0, 0],
+            [1, 0, 0.5],
+            [2, 1.5, 0],
+            [1, 2.5, 1],
+            [-0.5, 2, 0],
+            [-1, 1, 0.5],
+            [-0.5, 0.3, 1],
+        )
+    ]
+    rng = np.random.default_rng(3)
+    axs = [unit(rng.normal(size=3)) for _ in pts]
+    bodies, joints = loop_joints(pts, axs)
+    cfg = {"direct": {"J0": [0.28]}}
+    prev = None
+    for k in range(1, 5):
+        name = f"step{k}"
+        cfg[name] = {"J0": [0.07 * k]} | ({"start": prev} if prev else {})
+        prev = name
+    spec = Spec(bodies, "ground", joints, cfg, inputs=["J0"], output="l3")
+    mech, model, closer, _ = solve_file(spec)
+    L = char_length(joints)
+    direct = mech_values(model, closer.solve("direct").q)
+    chained = mech_values(model, closer.solve("step4").q)
+    assert_closes(joints, direct, L, exp_rodrigues)
+    assert_closes(joints, chained, L, exp_rodrigues)
+    for jn in direct:
+        np.testing.assert_allclose(direct[jn], chained[jn], atol=1e-9)
+    mine, worst = track(joints, {j.name: np.zeros(1) for j in joints}, {"J0": np.array([0.28])}, L)
+    assert mine is not None and worst > 1e-2
+    for jn in direct:
+        np.testing.assert_allclose(direct[jn], mine[jn], atol=1e-8)
+
+
+# ---------------------------------------------------------------------------
+# 2c. fully given non-closing configurations, underdetermined configurations
+
+FOURBAR_NOT_CLOSING = """\
+mechanism: four-bar
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [1, 0, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
+  - {name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [4, 0, 0]}
+inputs: [A]
+output: {body: rocker}
+configurations:
+  reference: {}
+  crank-30: {A: 0.5235987755982988}
+  wrong: {A: 0.5, B: -0.7, C: 0.1, D: 0.1}
+"""
+
+
+def test_fully_given_configuration_that_does_not_close_is_an_error():
+    mech = loads(FOURBAR_NOT_CLOSING)
+    joints = [
+        J(
+            j.name,
+            "R",
+            *j.between,
+            {
+                "axis": np.array(j.params["axis"], float),
+                "point": np.array(j.params["point"], float),
+            },
+        )
+        for j in mech.joints
+    ]
+    vals = {"A": [0.5], "B": [-0.7], "C": [0.1], "D": [0.1]}
+    # independently: the loop is open by much more than the tolerance
+    (P,) = cycle_products(joints, vals)
+    assert closure_error(P, 1.0) > 1e-3
+    model = KinematicModel(mech)
+    with pytest.raises(ClosureError) as exc:
+        Closer(model).solve("wrong")
+    assert exc.value.status == 3
+    assert "wrong" in str(exc.value)
+    assert exc.value.residual is not None and exc.value.residual > 1e-4
+    # the other configuration still closes
+    assert_closes(joints, mech_values(model, Closer(model).solve("crank-30").q), 1.0)
+
+
+def test_analyze_exits_3_on_a_configuration_that_does_not_close(tmp_path, capsys):
+    from mechsing.cli import main
+
+    f = tmp_path / "open.yaml"
+    f.write_text(FOURBAR_NOT_CLOSING)
+    status = main(["analyze", str(f), "--format", "json", "--precision", "float"])
+    out, err = capsys.readouterr()
+    assert status == 3
+    assert "wrong" in err and "Traceback" not in err
+    import json
+
+    doc = json.loads(out)
+    by = {c["name"]: c for c in doc["configurations"]}
+    assert by["wrong"].get("error")
+    assert not by["crank-30"].get("error")
+
+
+@LOOP_SETTINGS
+@given(
+    planar_frame(),
+    st.lists(plane_xy, min_size=5, max_size=5).filter(spread),
+    st.integers(0, 4),
+    deltas,
+)
+def test_five_bar_with_one_input_is_underdetermined(frame, xy, k, delta):
+    """A planar 5R (2 dof) with one input: minimum-norm continuation, and the
+    result says ``underdetermined``.  With joint k held, its two bodies are one
+    and the rest is a four-bar whose fourth side d changes with the input: it
+    can be followed exactly when no side exceeds the sum of the others on the
+    way, and it never passes a flat (singular) shape when d stays away from
+    every |s1 +- s2 +- s3|."""
+    w, e1, e2, c0 = frame
+    pts = [c0 + p[0] * e1 + p[1] * e2 for p in xy]
+    bodies, joints = loop_joints(pts, [w] * 5)
+    spec = Spec(
+        bodies, "ground", joints, {"one": {f"J{k}": [delta]}}, inputs=[f"J{k}"], output="l2"
+    )
+    mech, model, closer, _ = solve_file(spec)
+    L = char_length(joints)
+    # independently: 2 dof at the reference (rank 3 of 5 in the plane)
+    s = np.linalg.svd(closure_jacobian_at_reference(joints, L), compute_uv=False)
+    assert s[2] / s[0] > 1e-6 and s[3] / s[0] < 1e-8
+    P = [np.array(p) for p in xy]
+    prev, here, nxt = P[(k - 1) % 5], P[k], P[(k + 1) % 5]
+    sides = [np.linalg.norm(P[(k + 1 + i) % 5] - P[(k + 2 + i) % 5]) for i in range(3)]
+    flat = [abs(sides[0] + a * sides[1] + b * sides[2]) for a in (1, -1) for b in (1, -1)]
+    # joint k turns body k+1 about P_k relative to body k, which holds P_{k-1}
+    d = np.array(
+        [np.linalg.norm(prev - here - rot2(t) @ (nxt - here)) for t in np.linspace(0, delta, 300)]
+    )
+    stuck = np.max(np.maximum(d - sum(sides), [2 * max(sides) - sum(sides) - x for x in d]))
+    margin = min(float(np.min(np.abs(d - f))) for f in flat)
+    if margin > 1e-2 * L:
+        closed = closer.solve("one")
+        assert closed.underdetermined
+        vals = mech_values(model, closed.q)
+        assert vals[f"J{k}"][0] == delta
+        assert_closes(joints, vals, L, exp_rodrigues)
+    elif stuck > 1e-3 * L:
+        # the four-bar cannot be assembled somewhere on the way
+        with pytest.raises(ClosureError):
+            closer.solve("one")
+    else:
+        try:
+            closed = closer.solve("one")
+        except ClosureError:
+            return
+        assert closed.underdetermined
+        assert_closes(joints, mech_values(model, closed.q), L, exp_rodrigues)
+
+
+# ---------------------------------------------------------------------------
+# 3. every example: every named configuration closes
+
+
+def joints_of(mech) -> list[J]:
+    out = []
+    for j in mech.joints:
+        prm = {}
+        for key, val in j.params.items():
+            if key == "axes":
+                prm[key] = tuple(np.array([float(x) for x in a]) for a in val)
+            elif key == "pitch":
+                prm[key] = float(val)
+            else:
+                prm[key] = np.array([float(x) for x in val])
+        out.append(J(j.name, j.type, j.between[0], j.between[1], prm))
+    return out
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])
+def test_every_example_configuration_closes(path):
+    mech = load(path)
+    joints = joints_of(mech)
+    model = KinematicModel(mech)
+    closer = Closer(model)
+    L = max(
+        1.0,
+        model.length_scale,
+        max((np.linalg.norm(j.prm["point"]) for j in joints if "point" in j.prm), default=0),
+    )
+    assert len(cycles(joints)) == len(mech.loops)
+    for name, cfg in mech.configurations.items():
+        closed = closer.solve(name)
+        vals = mech_values(model, closed.q)
+        for jn, v in cfg.values.items():
+            if isinstance(v, tuple):
+                np.testing.assert_allclose(vals[jn], [float(x) for x in v], rtol=1e-15, atol=1e-300)
+        assert_closes(joints, vals, L)
+        theirs = model.poses(closed.q)
+        mine = my_poses(joints, mech.ground, vals)
+        for b in mech.bodies:
+            np.testing.assert_allclose(theirs[b], mine[b], rtol=0, atol=1e-10 * L)
