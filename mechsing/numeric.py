@@ -88,6 +88,30 @@ CONTINUATION_RETURN_RATIO = 0.1
 CONTINUATION_JUMP_FLOOR = 1e-9
 
 
+#: continuation accepts intermediate steps at this residual (times L); the target
+#: itself is accepted at the precision's closure tolerance
+CONTINUATION_STEP_RTOL = 1e-9
+#: a nearby configuration found by sampling or by following a branch counts as
+#: closed at this residual (times L)
+SAMPLE_CLOSURE_RTOL = 1e-10
+#: a sample that lands closer to q than this fraction of its step is q itself
+#: (Newton fell back): not a nearby configuration
+SAMPLE_DISTINCT_RATIO = 0.1
+#: a branch probe follows its tangent when the cosine between the tangent and
+#: the displacement found is above this (a smooth branch through the point)
+BRANCH_ALIGNMENT = 0.9
+#: relative singular value below which a direction is dropped from a basis of
+#: a subspace (bases of cone pieces, orthonormalised)
+SUBSPACE_RANK_RTOL = 1e-10
+#: two orthonormal bases span nested subspaces when the projection residual is below this
+SUBSPACE_CONTAINMENT_ATOL = 1e-8
+#: the third-order condition holds on a direction when its residual, relative
+#: to the size of its linear part, is below this
+ORDER3_RESIDUAL_RTOL = 1e-9
+#: a given rotation matrix must satisfy |R^T R - I| below this (and det R > 0)
+ROTATION_ORTHONORMAL_ATOL = 1e-9
+
+
 # ---------------------------------------------------------------------------
 # Backends
 # ---------------------------------------------------------------------------

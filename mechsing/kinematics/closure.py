@@ -36,6 +36,9 @@ from mechsing.numeric import (
     CONTINUATION_RETURN_RATIO,
     CONTINUATION_REVERSE_RTOL,
     CONTINUATION_SINGULAR_RTOL,
+    CONTINUATION_STEP_RTOL,
+    MEMBERSHIP_RTOL_FLOAT,
+    ROTATION_ORTHONORMAL_ATOL,
     Precision,
     decide_rank,
     scale_screws,
@@ -147,7 +150,10 @@ class Closer:
                 else m.asarray([list(r) for r in val.rotation])
             )
             Rf = to_float(R)
-            if np.max(np.abs(Rf.T @ Rf - np.eye(3))) > 1e-9 or np.linalg.det(Rf) < 0:
+            if (
+                np.max(np.abs(Rf.T @ Rf - np.eye(3))) > ROTATION_ORTHONORMAL_ATOL
+                or np.linalg.det(Rf) < 0
+            ):
                 raise UserError(
                     f"{where}: the rotation is not a rotation matrix (R^T R = I, det R = 1); give an orthonormal matrix"
                 )
@@ -173,7 +179,9 @@ class Closer:
         B = to_float(jk.basis)
         wf = to_float(w)
         coef, *_ = np.linalg.lstsq(B[:, :3].T, wf, rcond=None)
-        if np.linalg.norm(B[:, :3].T @ coef - wf) > 1e-9 * max(1.0, np.linalg.norm(wf)):
+        if np.linalg.norm(B[:, :3].T @ coef - wf) > MEMBERSHIP_RTOL_FLOAT * max(
+            1.0, np.linalg.norm(wf)
+        ):
             return None
         # keep only rotating basis directions (no translation slide)
         rot = np.linalg.norm(B[:, :3], axis=1) > 0
@@ -356,7 +364,7 @@ class Closer:
         c = fm.centroid
         # the float stage accepts at float's tolerance (an mp model polishes afterwards)
         tol_final = fm.precision.closure_tolerance(L)
-        tol = tol_final if final else max(tol_final, 1e-9 * L)
+        tol = tol_final if final else max(tol_final, CONTINUATION_STEP_RTOL * L)
         # predictor: J_u du = -J_g dg at the previous point
         S = fm.current_screws(q_prev)
         J = fm.closure_jacobian(q_prev, S)

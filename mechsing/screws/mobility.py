@@ -15,7 +15,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechsing.kinematics import KinematicModel
-from mechsing.numeric import decide_rank, scale_screws, to_float
+from mechsing.numeric import (
+    SAMPLE_CLOSURE_RTOL,
+    SAMPLE_DISTINCT_RATIO,
+    decide_rank,
+    scale_screws,
+    to_float,
+)
 
 #: relative distances (radians or multiples of L) of the sample points
 SAMPLE_STEPS = (1e-3, 1e-2)
@@ -99,10 +105,10 @@ def nearby_samples(
             v /= np.linalg.norm(v)
             d = np.where(model.length_columns, step * v * L, step * v)
             q1, res = reclose(model, model.update(qf, d))
-            if res > 1e-10 * L:
+            if res > SAMPLE_CLOSURE_RTOL * L:
                 continue
             dist = float(np.linalg.norm(np.where(model.length_columns, (q1 - qf) / L, q1 - qf)))
-            if dist < step / 10:
+            if dist < SAMPLE_DISTINCT_RATIO * step:
                 continue  # Newton fell back onto q: not a nearby configuration
             dec = decide_rank(stacked_jacobian(model, q1), "float", L)
             null = None if dec.rank is None else model.n - dec.rank

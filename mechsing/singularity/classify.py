@@ -22,7 +22,16 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import SUPPORT_RTOL, Margin, Precision, decide_rank, to_float
+from mechsing.numeric import (
+    BRANCH_ALIGNMENT,
+    SAMPLE_CLOSURE_RTOL,
+    SAMPLE_DISTINCT_RATIO,
+    SUPPORT_RTOL,
+    Margin,
+    Precision,
+    decide_rank,
+    to_float,
+)
 from mechsing.screws import scaled_columns
 from mechsing.screws.mobility import NearbySample, nearby_samples, reclose, stacked_jacobian
 from mechsing.singularity.cspace import Cone, Expansion, loop_chains, tangent_cone
@@ -94,11 +103,11 @@ def _probe(fm: Any, q: np.ndarray, x: np.ndarray) -> tuple[int | None, float] | 
     for step in BRANCH_STEPS:
         d = np.where(fm.length_columns, step * x * L, step * x)
         q1, res = reclose(fm, fm.update(q, d))
-        if res > 1e-10 * L:
+        if res > SAMPLE_CLOSURE_RTOL * L:
             continue
         moved = np.where(fm.length_columns, (q1 - q) / L, q1 - q)
         dist = float(np.linalg.norm(moved))
-        if dist < step / 10:
+        if dist < SAMPLE_DISTINCT_RATIO * step:
             continue
         align = float(abs(moved @ x) / (dist * np.linalg.norm(x)))
         dec = decide_rank(stacked_jacobian(fm, q1), "float", L)
@@ -231,7 +240,12 @@ def _branches(fm: Any, qf: np.ndarray, cone: Cone) -> list[tuple[np.ndarray, int
         for p in (fwd, bwd):
             if p is not None and p[0] is not None:
                 null = p[0] if null is None else max(null, p[0])
-        smooth = fwd is not None and bwd is not None and fwd[1] > 0.9 and bwd[1] > 0.9
+        smooth = (
+            fwd is not None
+            and bwd is not None
+            and fwd[1] > BRANCH_ALIGNMENT
+            and bwd[1] > BRANCH_ALIGNMENT
+        )
         res.append((x, null, smooth))
     return res
 

@@ -30,7 +30,14 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
-from mechsing.numeric import Precision, decide_definiteness, decide_rank
+from mechsing.numeric import (
+    ORDER3_RESIDUAL_RTOL,
+    SUBSPACE_CONTAINMENT_ATOL,
+    SUBSPACE_RANK_RTOL,
+    Precision,
+    decide_definiteness,
+    decide_rank,
+)
 
 #: directions sampled on a candidate subspace for the order-3 test
 _ORDER3_SAMPLES = 6
@@ -135,7 +142,7 @@ def _orth(A: np.ndarray) -> np.ndarray:
     if A.shape[1] == 0:
         return A
     U, s, _ = np.linalg.svd(A, full_matrices=False)
-    keep = s > 1e-10 * (s[0] if len(s) else 1)
+    keep = s > SUBSPACE_RANK_RTOL * (s[0] if len(s) else 1)
     return U[:, keep]
 
 
@@ -270,7 +277,7 @@ def _distinct_flagged(
     keep: list[tuple[np.ndarray, bool]] = []
     for S, f in sorted(items, key=lambda sf: -sf[0].shape[1]):
         for i, (K, kf) in enumerate(keep):
-            if np.linalg.norm(S - K @ (K.T @ S)) < 1e-8:
+            if np.linalg.norm(S - K @ (K.T @ S)) < SUBSPACE_CONTAINMENT_ATOL:
                 keep[i] = (K, kf and f)
                 break
         else:
@@ -379,7 +386,7 @@ def _order3(
             resid = base + Lz @ z
         else:
             resid = base
-        if float(np.max(np.abs(resid), initial=0.0)) <= 1e-9 * scale:
+        if float(np.max(np.abs(resid), initial=0.0)) <= ORDER3_RESIDUAL_RTOL * scale:
             ok += 1
         else:
             bad += 1

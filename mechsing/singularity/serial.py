@@ -23,7 +23,14 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
-from mechsing.numeric import SUPPORT_RTOL, RankDecision, decide_rank, scale_screws, to_float
+from mechsing.numeric import (
+    MEMBERSHIP_RTOL_FLOAT,
+    SUPPORT_RTOL,
+    RankDecision,
+    decide_rank,
+    scale_screws,
+    to_float,
+)
 
 #: random configurations sampled to find a chain's generic rank
 GENERIC_SAMPLES = 8
@@ -43,7 +50,8 @@ class ChainSystem:
 
 
 def _unit_first_positive(v: np.ndarray) -> np.ndarray:
-    nz = np.flatnonzero(np.abs(v) > 1e-12 * max(1.0, float(np.max(np.abs(v)))))
+    # first component above the support threshold (DESIGN.md: first non-zero positive)
+    nz = np.flatnonzero(np.abs(v) > SUPPORT_RTOL * max(1.0, float(np.max(np.abs(v)))))
     if len(nz) and v[nz[0]] < 0:
         return -v
     return v
@@ -89,7 +97,9 @@ def wrenches_of(
         w = _SWAP @ pair  # (f, m): f . v + m . omega = pair . S
         f, m = w[:3], w[3:]
         nf = np.linalg.norm(f)
-        w = w / nf if nf > 1e-12 * np.linalg.norm(m) else w / np.linalg.norm(m)
+        # a couple when the force is zero next to the moment (unit moment, else unit force)
+        couple = nf <= MEMBERSHIP_RTOL_FLOAT * np.linalg.norm(m)
+        w = w / np.linalg.norm(m) if couple else w / nf
         out.append(w)
     return [_unit_first_positive(np.asarray(x)).tolist() for x in out]
 
