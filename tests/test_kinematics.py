@@ -445,7 +445,7 @@ TREE_TYPES = ["R", "P", "H", "C", "S", "U", "T2", "T3", "G", "X", "D", "Y", "E"]
 
 
 @st.composite
-def trees(draw) -> tuple[Spec, dict[str, np.ndarray]]:
+def trees(draw) -> Spec:
     n = draw(st.integers(1, 8))
     serial = draw(st.booleans())
     parent = [None] + [k - 1 if serial else draw(st.integers(0, k - 1)) for k in range(1, n + 1)]
@@ -553,6 +553,45 @@ def test_tree_with_every_joint_type_in_mm_and_deg():
     mine = my_poses(joints, names[0], vals)
     for b in names:
         np.testing.assert_allclose(poses[b], mine[b], rtol=0, atol=1e-11)
+
+
+def test_this_files_conventions_by_hand():
+    """The independent oracle itself, on values worked out by hand from DESIGN.md."""
+    z = np.array([0.0, 0, 1])
+    # R about z through (1, 0, 0) by pi/2 takes the origin to (1, -1, 0)
+    g = J("R", "R", "a", "b", {"axis": z, "point": np.array([1.0, 0, 0])}).element([PI / 2])
+    np.testing.assert_allclose(g[:3, 3], [1, -1, 0], atol=1e-15)
+    np.testing.assert_allclose(g[:3, :3], [[0, -1, 0], [1, 0, 0], [0, 0, 1]], atol=1e-15)
+    # H: slide = pitch x angle along the axis
+    g = J("H", "H", "a", "b", {"axis": 2 * z, "point": np.zeros(3), "pitch": 0.5}).element([PI])
+    np.testing.assert_allclose(g[:3, 3], [0, 0, 0.5 * PI], atol=1e-15)
+    # in-plane directions: w = z gives x, y; ties go to the first coordinate axis
+    for w, e1, e2 in (
+        ([0, 0, 1], [1, 0, 0], [0, 1, 0]),
+        ([0, 0, -3], [1, 0, 0], [0, -1, 0]),
+        ([1, 1, 0], [0, 0, 1], [1 / math.sqrt(2), -1 / math.sqrt(2), 0]),
+        ([1, 1, 1], [2 / math.sqrt(6), -1 / math.sqrt(6), -1 / math.sqrt(6)], None),
+    ):
+        f1, f2 = in_plane(w)
+        np.testing.assert_allclose(f1, e1, atol=1e-15)
+        np.testing.assert_allclose(f2, np.cross(unit(w), f1) if e2 is None else e2, atol=1e-15)
+    # U: first about a1 (fixed in between[0]), then about a2 carried by it
+    u = J("U", "U", "a", "b", {"axes": (z, np.array([1.0, 0, 0])), "point": np.zeros(3)})
+    g = u.element([PI / 2, PI / 2])
+    np.testing.assert_allclose(g[:3, :3] @ [0, 1, 0], [0, 0, 1], atol=1e-15)
+    # G rotates about its normal through the origin, then e1 = x, e2 = y slides
+    G = J("G", "G", "a", "b", {"normal": z})
+    np.testing.assert_allclose(G.element([0, 2, 3])[:3, 3], [2, 3, 0], atol=1e-15)
+    # D: the value is the twist itself; S: a rotation vector about the point
+    S = J("S", "S", "a", "b", {"point": np.array([1.0, 2, 3])}).element([0, 0, PI])
+    np.testing.assert_allclose(S @ [1, 2, 3, 1], [1, 2, 3, 1], atol=1e-14)
+    np.testing.assert_allclose(S @ [1, 3, 3, 1], [1, 1, 3, 1], atol=1e-14)
+    D = J("D", "D", "a", "b").element([0, 0, 0, 1, 2, 3])
+    np.testing.assert_allclose(D[:3, 3], [1, 2, 3], atol=1e-15)
+    # a path crossed from b to a uses the inverse
+    joints = [J("A", "R", "b", "a", {"axis": z, "point": np.array([1.0, 0, 0])})]
+    poses = my_poses(joints, "a", {"A": [PI / 2]})
+    np.testing.assert_allclose(poses["b"] @ [0, 0, 0, 1], [1, 1, 0, 1], atol=1e-15)
 
 
 @SETTINGS
@@ -892,6 +931,51 @@ def test_spatial_7r_loop_closes_on_its_assembly_mode(pts, axs, flips, delta):
     check_against_tracker(spec, [("moved", None)], char_length(joints))
 
 
+def test_spatial_7r_direct_continuation_keeps_the_assembly_mode():
+    """Found by the property above: a regular path (smallest relative singular
+    value of my closure Jacobian >= 7e-3 all the way) where the passive joints
+    move about three times as fast as the input.  Reaching J0 = 0.25 in one
+    configuration or through J0 = 0.125 must give the same pose, the one my
+    tracker follows (12, 50 or 200 steps agree)."""
+    pts = [
+        [1, 0, 0],
+        [0, 0, 2],
+        [-2.8593773267436347, 0, 3],
+        [0.75, 1, 0],
+        [0, 0, 0],
+        [4.25, -4.5, 0],
+        [0, 0, 0],
+    ]
+    axs = [
+        [-0.25, -1.9375, 0.75],
+        [0, 1, 0],
+        [0.109375, 0, 0.5625],
+        [0, 3, 4],
+        [0, 1, 0],
+        [0, 0, 1],
+        [1, 2, 3],
+    ]
+    bodies, joints = loop_joints(
+        [np.array(p, float) for p in pts], [np.array(a, float) for a in axs]
+    )
+    L = char_length(joints)
+    cfg = {
+        "direct": {"J0": [0.25]},
+        "half": {"J0": [0.125]},
+        "chained": {"J0": [0.25], "start": "half"},
+    }
+    spec = Spec(bodies, "ground", joints, cfg, inputs=["J0"], output="l3")
+    mech, model, closer, _ = solve_file(spec)
+    zero = {j.name: np.zeros(1) for j in joints}
+    mine, worst = track(joints, zero, {"J0": np.array([0.25])}, L, nsteps=50)
+    assert mine is not None and worst > 5e-3
+    for name in ("chained", "direct"):
+        vals = mech_values(model, closer.solve(name).q)
+        assert_closes(joints, vals, L, exp_rodrigues)
+        for jn in vals:
+            np.testing.assert_allclose(vals[jn], mine[jn], atol=1e-8, err_msg=f"{name}: {jn}")
+
+
 def closure_jacobian_at_reference(joints: list[J], L: float) -> np.ndarray:
     """My closure Jacobian in every coordinate at the reference (finite
     differences of the cycle products)."""
@@ -1211,11 +1295,7 @@ def test_every_example_configuration_closes(path):
     joints = joints_of(mech)
     model = KinematicModel(mech)
     closer = Closer(model)
-    L = max(
-        1.0,
-        model.length_scale,
-        max((np.linalg.norm(j.prm["point"]) for j in joints if "point" in j.prm), default=0),
-    )
+    L = max([1.0] + [float(np.linalg.norm(j.prm["point"])) for j in joints if "point" in j.prm])
     assert len(cycles(joints)) == len(mech.loops)
     for name, cfg in mech.configurations.items():
         closed = closer.solve(name)

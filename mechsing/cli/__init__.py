@@ -10,11 +10,19 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from mechsing import __version__
+
+# mechsing works on many tiny matrices: BLAS threads only add overhead there (and
+# on a loaded machine make a 4x4 product hundreds of times slower).  This module
+# imports no numpy, and the commands import their layers lazily, so this runs
+# before numpy is loaded; a user's own setting wins.
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
 if TYPE_CHECKING:  # the commands import their layers lazily: `mechsing --version` stays fast
     from mechsing.model import Mechanism

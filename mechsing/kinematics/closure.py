@@ -47,6 +47,8 @@ from mechsing.numeric import (
 
 #: largest step of a given coordinate: radians, or this times L for a length
 _MAX_STEP = 0.1
+#: largest predicted step of all coordinates together (commensurate norm)
+_MAX_PREDICTED_STEP = 0.15
 _MAX_HALVINGS = 14
 _NEWTON_ITERATIONS = 12
 #: step attempts allowed per planned step before continuation gives up
@@ -339,6 +341,10 @@ class Closer:
         step = comm(info["predicted"] - q)
         if step == 0.0:
             return True
+        # the whole predicted step, passive joints included, stays short: a path on
+        # which the passive joints move much faster than the given ones is cut finer
+        if step > _MAX_PREDICTED_STEP:
+            return False
         if comm(qn - info["predicted"]) > max(
             CONTINUATION_CORRECTOR_RATIO * step, CONTINUATION_JUMP_FLOOR
         ):

@@ -339,9 +339,7 @@ class _Builder:
         char_len = None
         if top.get("characteristic_length") is not None:
             v = top.get("characteristic_length")
-            char_len = r.number(
-                v, "characteristic_length", "characteristic_length", r.units.length_factor
-            )
+            char_len = r.number(v, "characteristic_length", "the length", r.units.length_factor)
             if not char_len > 0:
                 raise r.error(
                     "characteristic_length",
