@@ -206,4 +206,6 @@ def _analyze_one_in_context(
         {"model": model, "q": q, "closure": cs, "undecided": undecided, "closed": closed}
     )
     out.singularities = classify_configuration(mech, model, out)
+    if any(f["class"] == "undecided" for f in out.singularities):
+        out.internals["undecided"] = True  # auto re-decides the configuration at mp:50
     return out

@@ -88,6 +88,10 @@ CONTINUATION_RETURN_RATIO = 0.1
 CONTINUATION_JUMP_FLOOR = 1e-9
 
 
+#: largest joint value accepted in a configuration: radians, or times the
+#: characteristic length L for a length; larger is an absurd size (an angle of
+#: 1e6 rad is 160 000 turns)
+MAX_JOINT_VALUE = 1e6
 #: continuation accepts intermediate steps at this residual (times L); the target
 #: itself is accepted at the precision's closure tolerance
 CONTINUATION_STEP_RTOL = 1e-9

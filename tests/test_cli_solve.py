@@ -75,7 +75,9 @@ def test_solve_text_format_lists_every_joint(capsys):
     values = {}
     for line in lines[1:]:
         name, _, rest = line.strip().partition(":")
-        values[name] = [float(x) for x in rest.split(",")]
+        # each value is followed by its unit (rad or m)
+        values[name] = [float(x.split()[0]) for x in rest.split(",")]
+        assert all(x.split()[1] in ("rad", "m") for x in rest.split(",")), line
     expected = fourbar_expected(math.pi / 6)
     assert set(values) == set(expected)
     for k, v in expected.items():

@@ -51,5 +51,11 @@ def run(args: argparse.Namespace) -> int:
             + (", underdetermined (minimum-norm steps)" if closed.underdetermined else "")
         )
         for k, v in values.items():
-            print(f"  {k}: {', '.join(repr(x) for x in v)}")
+            units = mech.joint(k).units if k in mech.joint_names else ()
+            shown = (
+                ", ".join(f"{x!r} {u}" for x, u in zip(v, units, strict=False))
+                if units
+                else ", ".join(repr(x) for x in v)
+            )
+            print(f"  {k}: {shown}")
     return 0

@@ -37,6 +37,7 @@ from mechsing.numeric import (
     CONTINUATION_REVERSE_RTOL,
     CONTINUATION_SINGULAR_RTOL,
     CONTINUATION_STEP_RTOL,
+    MAX_JOINT_VALUE,
     MEMBERSHIP_RTOL_FLOAT,
     ROTATION_ORTHONORMAL_ATOL,
     Precision,
@@ -51,6 +52,8 @@ _MAX_STEP = 0.1
 _MAX_PREDICTED_STEP = 0.15
 _MAX_HALVINGS = 14
 _NEWTON_ITERATIONS = 12
+#: most planned steps of one continuation (a crank of 300 turns)
+_MAX_STEPS = 20000
 #: step attempts allowed per planned step before continuation gives up
 _MAX_ATTEMPTS_PER_STEP = 20
 
@@ -111,8 +114,21 @@ class Closer:
             if start_name is None or (cfg.is_reference and not cfg.values):
                 q0 = self.model.zeros()
             else:
-                q0 = self._solve(start_name, _chain + (name,)).q
-            out = self._continue(cfg, q0, target, given)
+                try:
+                    q0 = self._solve(start_name, _chain + (name,)).q
+                except ClosureError as exc:
+                    raise ClosureError(
+                        f"configuration {name!r} starts from {start_name!r}, which could not be closed: {exc}",
+                        name,
+                        exc.residual,
+                    ) from None
+            if not self.model.chords:
+                # no loop: nothing to solve; the joints not given keep their start values
+                q = np.array(q0, copy=True)
+                q[list(given)] = target[list(given)]
+                out = ClosedConfiguration(cfg.name, q, 0.0, False, 0, given)
+            else:
+                out = self._continue(cfg, q0, target, given)
         self._solved[name] = out
         return out
 
@@ -131,6 +147,20 @@ class Closer:
                 coords = self._coordinates_of_displacement(cfg, jname, val)
             else:
                 coords = m.asarray(list(val))
+            fc = np.asarray(to_float(coords), dtype=float)
+            # lengths are measured against the mechanism's own size L, angles in radians
+            bound = np.where(
+                m.length_columns[jk.columns], MAX_JOINT_VALUE * m.length_scale, MAX_JOINT_VALUE
+            )
+            if not np.all(np.isfinite(fc)) or np.any(np.abs(fc) > bound):
+                where = f"configuration {cfg.name!r}, joint {jname!r}" + (
+                    f" (line {cfg.line})" if cfg.line else ""
+                )
+                raise UserError(
+                    f"{where}: the value {[float(x) for x in fc]} (SI) is not a finite joint value of a "
+                    f"sensible size (at most {MAX_JOINT_VALUE:g} rad, or {MAX_JOINT_VALUE:g} times the "
+                    f"mechanism's size {m.length_scale:.3g} m for a length); check the value and the units"
+                )
             target[jk.columns] = coords
             given.extend(range(jk.columns.start, jk.columns.stop))
         return target, tuple(sorted(given))
@@ -192,6 +222,13 @@ class Closer:
 
     # ---------------------------------------------------------------- checking
 
+    def _loop_named(self, chord: str) -> str:
+        """'loop A-B-C-D' for the shortest canonical loop through a chord joint."""
+        loops = [lp for lp in self.mech.loops if chord in lp.joints]
+        if not loops:
+            return f"the loop through joint {chord!r}"
+        return f"loop {'-'.join(min(loops, key=len).joints)}"
+
     def _residual(self, q: np.ndarray) -> float:
         return self.model.residual_norm(self.model.chord_residuals(q))
 
@@ -207,7 +244,7 @@ class Closer:
             res = m.residual_norm(deltas)
             if bad:
                 raise ClosureError(
-                    f"configuration {cfg.name!r} does not close exactly: the loop through joint {bad[0]!r} "
+                    f"configuration {cfg.name!r} does not close exactly: {self._loop_named(bad[0])} "
                     f"leaves a residual of {res:.3g} m; give joint values that close the loops exactly, "
                     "or leave the passive joints out so they are solved",
                     cfg.name,
@@ -218,8 +255,9 @@ class Closer:
         if res > self.tolerance:
             worst = max(range(len(deltas)), key=lambda i: m.residual_norm([deltas[i]]))
             raise ClosureError(
-                f"configuration {cfg.name!r} gives every joint value but does not close: the loop through "
-                f"joint {m.chords[worst].name!r} leaves a residual of {res:.3g} m (accepted: {self.tolerance:.1g} m); "
+                f"configuration {cfg.name!r} gives every joint value but does not close: "
+                f"{self._loop_named(m.chords[worst].name)} leaves a residual of {res:.3g} m "
+                f"(accepted: {self.tolerance:.1g} m); "
                 "leave the passive joints out so they are solved, or give more digits",
                 cfg.name,
                 res,
@@ -247,6 +285,12 @@ class Closer:
         span = np.abs(qt - q)[gmask]
         scale = np.where(fm.length_columns[gmask], L, 1.0)
         nsteps = max(1, math.ceil(float(np.max(span / scale, initial=0.0)) / _MAX_STEP))
+        if nsteps > _MAX_STEPS:
+            raise UserError(
+                f"configuration {cfg.name!r}: the given values are {nsteps * _MAX_STEP:.3g} (rad, or lengths / L) "
+                f"from {cfg.start or 'reference'!r}, more than continuation follows ({_MAX_STEPS * _MAX_STEP:g}); "
+                "add intermediate configurations with start, or give values nearer the start"
+            )
         q_start = q.copy()
         t = 0.0
         dt = 1.0 / nsteps

@@ -47,8 +47,13 @@ def _output_point(
     out = mech.output
     if out is None or out.point is None:
         return None
-    x0 = to_float(np.array(list(out.point), dtype=object))
-    return lie.act_point(to_float(poses[out.body]), x0)
+    g = poses[out.body]
+    x0 = (
+        model.asarray(list(out.point))
+        if model.backend.name != "float"
+        else to_float(np.array(list(out.point), dtype=object))
+    )
+    return lie.act_point(g, x0)
 
 
 def _random_configuration(model: Any, rng: np.random.Generator) -> np.ndarray:
@@ -65,11 +70,12 @@ def _tree_serial(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
     from mechsing.kinematics import KinematicModel
 
     fm = model if model.precision.mode == "float" else KinematicModel(mech, "float")
-    qf = to_float(q)
-    poses = fm.poses(qf)
-    S = fm.current_screws(qf, poses)
-    x = _output_point(mech, fm, qf, poses)
-    here = chain_system(fm, S, cols, x, "float")
+    # decided at the analysis precision (so auto can re-decide it at mp:50) ...
+    poses = model.poses(q)
+    x = _output_point(mech, model, q, poses)
+    here = chain_system(model, model.current_screws(q, poses), cols, x, model.precision)
+    xf = None if x is None else np.asarray(to_float(x), dtype=float)
+    # ... against the generic rank found at random configurations (float)
     rng = np.random.default_rng(0)
     generic = here.rank.rank or 0
     for _ in range(GENERIC_SAMPLES):
@@ -81,7 +87,7 @@ def _tree_serial(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
         if sysr.rank.rank is not None:
             generic = max(generic, sysr.rank.rank)
     label = {"chain": "output", "body": mech.output.body, "relative_to": mech.output.relative_to}
-    f = serial_finding(fm, here, generic, names, label, x)
+    f = serial_finding(model, here, generic, names, label, xf)
     if f is None and here.rank.rank is None:
         return [_undecided("output screw system", here.rank)]
     return [f] if f else []

@@ -28,7 +28,6 @@ from mechsing.numeric import (
     SUPPORT_RTOL,
     RankDecision,
     decide_rank,
-    scale_screws,
     to_float,
 )
 
@@ -50,27 +49,33 @@ class ChainSystem:
 
 
 def _unit_first_positive(v: np.ndarray) -> np.ndarray:
-    # first component above the support threshold (DESIGN.md: first non-zero positive)
-    nz = np.flatnonzero(np.abs(v) > SUPPORT_RTOL * max(1.0, float(np.max(np.abs(v)))))
+    """First non-zero component positive (DESIGN.md), with components at rounding
+    level (below SUPPORT_RTOL of the largest) reported as 0."""
+    v = np.asarray(v, dtype=float)
+    big = max(1.0, float(np.max(np.abs(v)))) if v.size else 1.0
+    v = np.where(np.abs(v) > SUPPORT_RTOL * big, v, 0.0)
+    nz = np.flatnonzero(v)
     if len(nz) and v[nz[0]] < 0:
-        return -v
-    return v
+        v = -v
+    return v + 0.0  # no -0.0
 
 
 def chain_matrix(
     model: Any, S: np.ndarray, columns: list[int], point: np.ndarray | None
 ) -> np.ndarray:
-    """Commensurate matrix of a chain: twists (6 x k) or, for a point ``x`` (current
-    position, m), its velocity rows ``v + omega x x`` divided by L (3 x k)."""
-    L = model.length_scale
-    Sf = to_float(S)[:, columns]
-    lc = model.length_columns[columns]
+    """Commensurate matrix of a chain, in the model's backend: twists (6 x k) or,
+    for a point ``x`` (current position, m), its velocity rows ``v + omega x x``
+    divided by L (3 x k)."""
+    from mechsing.screws import _L as backend_length
+    from mechsing.screws import scaled_columns
+
     if point is None:
-        return scale_screws(Sf, L, model.centroid, lc)
-    w, v = Sf[:3], Sf[3:]
-    vel = v + np.cross(w.T, point).T
-    vel = vel / L
-    return np.where(lc[None, :], vel * L, vel)
+        return scaled_columns(model, S)[:, columns]
+    Sc = S[:, columns]
+    lc = model.length_columns[columns]
+    w, v = Sc[:3], Sc[3:]
+    vel = (v + lie.cross(w.T, point).T) / backend_length(model)
+    return np.where(lc[None, :], vel * backend_length(model), vel)
 
 
 def wrenches_of(
@@ -125,7 +130,9 @@ def serial_finding(
     dec = system.rank
     if dec.rank is None or dec.rank >= generic_rank:
         return None
-    Ms = system.matrix
+    # the rank was decided at the analysis precision; the vectors that describe
+    # the loss (wrenches, lost twist, null rates) come from a float SVD
+    Ms = np.asarray(to_float(system.matrix), dtype=float)
     U, s, Vt = np.linalg.svd(Ms)
     r = dec.rank
     left_null = U[:, r:]
@@ -161,7 +168,7 @@ def serial_finding(
         "rank": r,
         "generic_rank": generic_rank,
         "wrenches": wr,
-        "twist": twist,
+        "twist": _unit_first_positive(np.asarray(twist)).tolist(),
         "null_joint_rates": [float(x) for x in rates],
         "margin": dec.margin.to_json(),
         "precision": dec.precision,
@@ -173,5 +180,5 @@ def chain_system(
     model: Any, S: np.ndarray, columns: list[int], point_x: np.ndarray | None, precision: Any
 ) -> ChainSystem:
     Ms = chain_matrix(model, S, columns, point_x)
-    dec = decide_rank(Ms, precision if str(precision) != "exact" else "float", model.length_scale)
+    dec = decide_rank(Ms, precision, model.length_scale)
     return ChainSystem(Ms, dec, columns, point_x is not None)
