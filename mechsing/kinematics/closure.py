@@ -28,7 +28,7 @@ import sympy
 
 from mechsing import lie
 from mechsing.cli import UserError
-from mechsing.kinematics.model import KinematicModel
+from mechsing.kinematics.model import KinematicModel, scale_blocks
 from mechsing.model import Configuration, Displacement
 from mechsing.numeric import (
     CONTINUATION_CORRECTOR_RATIO,
@@ -42,7 +42,6 @@ from mechsing.numeric import (
     ROTATION_ORTHONORMAL_ATOL,
     Precision,
     decide_rank,
-    scale_screws,
     to_float,
 )
 
@@ -418,7 +417,7 @@ class Closer:
         # predictor: J_u du = -J_g dg at the previous point
         S = fm.current_screws(q_prev)
         J = fm.closure_jacobian(q_prev, S)
-        Js = _scaled(J, L, c, fm.length_columns)
+        Js = scale_blocks(J, L, c, fm.length_columns)
         dg = np.where(gmask, qg - q_prev, 0.0)
         dgs = np.where(fm.length_columns, dg / L, dg)
         q = q_prev.copy()
@@ -453,8 +452,8 @@ class Closer:
             r = fm.chord_twists(deltas)
             S = fm.current_screws(q)
             J = fm.closure_jacobian(q, S)
-            Js = _scaled(J, L, c, fm.length_columns)
-            rs = _scaled(r.reshape(-1, 6).T, L, c, None).T.reshape(-1)
+            Js = scale_blocks(J, L, c, fm.length_columns)
+            rs = scale_blocks(r.reshape(-1, 6).T, L, c, None).T.reshape(-1)
             if not np.any(free):
                 break
             du = _dls(Js[:, free], -rs)
@@ -473,7 +472,7 @@ class Closer:
         if res > tol:
             return False, q, info
         if np.any(free) and fm.chords:
-            Js = _scaled(fm.closure_jacobian(q), L, c, fm.length_columns)
+            Js = scale_blocks(fm.closure_jacobian(q), L, c, fm.length_columns)
             dec = decide_rank(Js[:, free], "float", L)
             rank = dec.rank if dec.rank is not None else dec.rank_bounds[0]
             info["rank"] = rank
@@ -499,8 +498,8 @@ class Closer:
                     break
                 r = m.chord_twists(m.chord_residuals(qm))
                 J = m.closure_jacobian(qm)
-                Js = _scaled(J, L, m.centroid, m.length_columns)
-                rs = _scaled(r.reshape(-1, 6).T, L, m.centroid, None).T.reshape(-1)
+                Js = scale_blocks(J, L, m.centroid, m.length_columns)
+                rs = scale_blocks(r.reshape(-1, 6).T, L, m.centroid, None).T.reshape(-1)
                 A = mpmath.matrix(Js[:, free].tolist())
                 b = mpmath.matrix([-x for x in rs])
                 du = _mp_lstsq(A, b)
@@ -525,17 +524,6 @@ def _mp_lstsq(A: Any, b: Any) -> list[Any]:
             for k in range(A.cols):
                 out[k] += coef * V[i, k]
     return [out[k] for k in range(A.cols)]
-
-
-def _scaled(
-    M: np.ndarray, L: float, c: np.ndarray, length_columns: np.ndarray | None
-) -> np.ndarray:
-    """Rows of 6-blocks moved to the centroid and v/L; length columns times L."""
-    if M.shape[0] == 0:
-        return M
-    k = M.shape[0] // 6
-    blocks = [scale_screws(M[6 * i : 6 * i + 6], L, c, length_columns) for i in range(k)]
-    return np.concatenate(blocks, axis=0)
 
 
 def _dls(A: np.ndarray, b: np.ndarray) -> np.ndarray:

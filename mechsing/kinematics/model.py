@@ -310,3 +310,17 @@ def _is_abelian(B: np.ndarray) -> bool:
             if np.any(to_float(lie.bracket(B[i], B[j])) != 0):
                 return False
     return True
+
+
+def scale_blocks(
+    M: np.ndarray, L: Any, c: Any, length_columns: np.ndarray | None = None
+) -> np.ndarray:
+    """Commensurate form of stacked 6-row screw blocks (closure Jacobians, residual
+    twists as one column): each block moved to the centroid c and v / L; the
+    columns flagged in ``length_columns`` multiplied by L."""
+    if M.shape[0] == 0:
+        return M
+    blocks = [
+        scale_screws(M[6 * i : 6 * i + 6], L, c, length_columns) for i in range(M.shape[0] // 6)
+    ]
+    return np.concatenate(blocks, axis=0)

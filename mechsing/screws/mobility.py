@@ -15,11 +15,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechsing.kinematics import KinematicModel
+from mechsing.kinematics.model import scale_blocks
 from mechsing.numeric import (
     SAMPLE_CLOSURE_RTOL,
     SAMPLE_DISTINCT_RATIO,
     decide_rank,
-    scale_screws,
     to_float,
 )
 
@@ -42,13 +42,7 @@ class NearbySample:
 def stacked_jacobian(model: KinematicModel, q: np.ndarray) -> np.ndarray:
     """Commensurate chord closure Jacobian (float): rank and nullity as the stacked loop system."""
     J = to_float(model.closure_jacobian(q))
-    if J.shape[0] == 0:
-        return J
-    blocks = [
-        scale_screws(J[6 * i : 6 * i + 6], model.length_scale, model.centroid, model.length_columns)
-        for i in range(J.shape[0] // 6)
-    ]
-    return np.concatenate(blocks, axis=0)
+    return scale_blocks(J, model.length_scale, model.centroid, model.length_columns)
 
 
 def reclose(
@@ -67,12 +61,7 @@ def reclose(
             break
         r = to_float(model.chord_twists(model.chord_residuals(q)))
         J = stacked_jacobian(model, q)
-        rs = np.concatenate(
-            [
-                scale_screws(r[6 * i : 6 * i + 6, None], L, model.centroid)[:, 0]
-                for i in range(len(r) // 6)
-            ]
-        )
+        rs = scale_blocks(r[:, None], L, model.centroid)[:, 0]
         A = J[:, free]
         U, s, Vt = np.linalg.svd(A, full_matrices=False)
         keep = s > 1e-12 * (s[0] if len(s) else 0)

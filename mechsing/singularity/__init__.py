@@ -67,9 +67,9 @@ def _tree_serial(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
         return []
     names, cols = chain
     q = result.internals["q"]
-    from mechsing.kinematics import KinematicModel
+    from mechsing.singularity.classify import float_model
 
-    fm = model if model.precision.mode == "float" else KinematicModel(mech, "float")
+    fm = float_model(mech, model)
     # decided at the analysis precision (so auto can re-decide it at mp:50) ...
     poses = model.poses(q)
     x = _output_point(mech, model, q, poses)

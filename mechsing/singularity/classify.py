@@ -32,7 +32,7 @@ from mechsing.numeric import (
     decide_rank,
     to_float,
 )
-from mechsing.screws import scaled_columns
+from mechsing.screws import closure_system, scaled_columns
 from mechsing.screws.mobility import NearbySample, nearby_samples, reclose, stacked_jacobian
 from mechsing.singularity.cspace import Cone, Expansion, loop_chains, tangent_cone
 from mechsing.singularity.io import io_quantities, leg_constraint_rank
@@ -60,7 +60,8 @@ class LocalAnalysis:
     io_generic: dict[str, Any] = field(default_factory=dict)
 
 
-def _float_model(mech: Any, model: Any) -> Any:
+def float_model(mech: Any, model: Any) -> Any:
+    """The model itself in float, else its float twin (built once per model)."""
     if model.precision.mode == "float":
         return model
     cache = model.__dict__.setdefault("_float_twin", {})
@@ -126,7 +127,7 @@ def local_analysis(mech: Any, model: Any, q: np.ndarray, cs: Any) -> LocalAnalys
     prec_name = cs.rank.precision
     if inst is None:
         return LocalAnalysis(None, None, [], regular=False)
-    fm = _float_model(mech, model)
+    fm = float_model(mech, model)
     qf = to_float(q)
     N = to_float(cs.rank.null_space) if cs.rank.null_space is not None else np.zeros((model.n, 0))
     samples = nearby_samples(fm, qf, N) if inst > 0 else []
@@ -225,7 +226,7 @@ def local_analysis(mech: Any, model: Any, q: np.ndarray, cs: Any) -> LocalAnalys
                 out.cone = cone
     # input / output / constraint, measured against the regular samples of the branch
     if out.generic is not None and inst > 0 and samples:
-        out.findings.extend(_io_findings(mech, fm, qf, N, samples, out, joints, prec_name))
+        out.findings.extend(_io_findings(mech, fm, qf, N, cs, samples, out, joints, prec_name))
     return out
 
 
@@ -332,6 +333,7 @@ def _io_findings(
     fm: Any,
     qf: np.ndarray,
     N: np.ndarray,
+    cs: Any,
     samples: list[NearbySample],
     out: LocalAnalysis,
     joints: list[str],
@@ -360,14 +362,12 @@ def _io_findings(
             }
             out.io_generic = generic
             findings.extend(_zfb(mech, fm, here, hv, generic, prec))
-    legs = (
-        leg_constraint_rank(mech, fm, qf, _cs_of(out, fm, qf)) if mech.output is not None else None
-    )
+    legs = leg_constraint_rank(mech, fm, qf, cs) if mech.output is not None else None
     if legs is not None:
         dec, wr = legs
         gen_ranks = []
         for s in regular:
-            r = leg_constraint_rank(mech, fm, s.q, _cs_of(out, fm, s.q))
+            r = leg_constraint_rank(mech, fm, s.q, closure_system(fm, s.q))
             if r is not None and r[0].rank is not None:
                 gen_ranks.append(r[0].rank)
         if dec.rank is not None and gen_ranks and dec.rank < max(gen_ranks):
@@ -389,12 +389,6 @@ def _io_findings(
     if mech.output is not None:
         findings.extend(_leg_serial(mech, fm, qf, regular))
     return findings
-
-
-def _cs_of(out: LocalAnalysis, fm: Any, q: np.ndarray) -> Any:
-    from mechsing.screws import closure_system
-
-    return closure_system(fm, q)
 
 
 def _zfb(
