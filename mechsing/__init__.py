@@ -15,13 +15,14 @@ Conventions (stated once, used everywhere; see DESIGN.md):
 * Lengths in metres, angles in radians, pitch in metres per radian.
 
 API: :func:`load` (a mechanism file), :func:`analyze` (a result whose
-``to_json()`` is the JSON contract), :mod:`mechsing.lie`,
+``to_json()`` is the JSON contract), :func:`scan` (batched float verdicts of
+an open chain over many configurations), :mod:`mechsing.lie`,
 :func:`mechsing.subgroups.identify`.
 """
 
 __version__ = "0.1.0"
 
-__all__ = ["__version__", "analyze", "load"]
+__all__ = ["__version__", "analyze", "load", "scan"]
 
 
 def __getattr__(name: str):  # lazy: `mechsing --version` stays fast
@@ -33,4 +34,8 @@ def __getattr__(name: str):  # lazy: `mechsing --version` stays fast
         from mechsing.model import load
 
         return load
+    if name == "scan":
+        from mechsing.scan import scan
+
+        return scan
     raise AttributeError(name)

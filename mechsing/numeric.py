@@ -114,6 +114,14 @@ SUBSPACE_CONTAINMENT_ATOL = 1e-8
 ORDER3_RESIDUAL_RTOL = 1e-9
 #: a given rotation matrix must satisfy |R^T R - I| below this (and det R > 0)
 ROTATION_ORTHONORMAL_ATOL = 1e-9
+#: batched scans (:mod:`mechsing.scan`) decide "full rank" without an SVD when
+#: the determinant bound on sigma_min / sigma_max is at least this many times
+#: float's tau_hi (room for the SVD's own rounding, which is near eps)
+SCAN_SCREEN_FACTOR = 10.0
+#: rounding allowance of that bound, in units of (matrix size) x eps: the
+#: determinant of J (or of its Gram matrix) is the exact one of a matrix within
+#: this of J (backward error of LU), so the bound is lowered by as much
+SCAN_ROUNDING_FACTOR = 16.0
 
 
 # ---------------------------------------------------------------------------

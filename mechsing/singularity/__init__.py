@@ -15,7 +15,13 @@ from mechsing import lie
 from mechsing.numeric import to_float
 from mechsing.singularity.serial import GENERIC_SAMPLES, chain_system, serial_finding
 
-__all__ = ["classify_configuration", "mechanism_properties", "output_chain"]
+__all__ = [
+    "GENERIC_SAMPLES",
+    "classify_configuration",
+    "mechanism_properties",
+    "output_chain",
+    "random_configurations",
+]
 
 
 def output_chain(mech: Any, model: Any) -> tuple[list[str], list[int]] | None:
@@ -56,9 +62,10 @@ def _output_point(
     return lie.act_point(g, x0)
 
 
-def _random_configuration(model: Any, rng: np.random.Generator) -> np.ndarray:
-    q = rng.uniform(-np.pi, np.pi, size=model.n)
-    return np.where(model.length_columns, q * model.length_scale / np.pi, q)
+def random_configurations(model: Any, count: int, seed: int = 0) -> np.ndarray:
+    """``count`` random configurations (rows): angles uniform in [-pi, pi), lengths in [-L, L)."""
+    q = np.random.default_rng(seed).uniform(-np.pi, np.pi, size=(count, model.n))
+    return np.where(model.length_columns[None, :], q * model.length_scale / np.pi, q)
 
 
 def _tree_serial(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
@@ -76,10 +83,8 @@ def _tree_serial(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
     here = chain_system(model, model.current_screws(q, poses), cols, x, model.precision)
     xf = None if x is None else np.asarray(to_float(x), dtype=float)
     # ... against the generic rank found at random configurations (float)
-    rng = np.random.default_rng(0)
     generic = here.rank.rank or 0
-    for _ in range(GENERIC_SAMPLES):
-        qr = _random_configuration(fm, rng)
+    for qr in random_configurations(fm, GENERIC_SAMPLES):
         pr = fm.poses(qr)
         sysr = chain_system(
             fm, fm.current_screws(qr, pr), cols, _output_point(mech, fm, qr, pr), "float"

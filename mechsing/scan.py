@@ -1,0 +1,449 @@
+"""Batched float scans of an open chain over many configurations.
+
+A workspace scan asks one question of each of many configurations of an open
+chain: is the output screw system of full (generic) rank there?  The answer is
+the same rank decision as :func:`mechsing.analyze` makes for the output chain
+(DESIGN.md "Rank decisions": the commensurate matrix of the chain's current
+screws, or of its output point's velocity, float thresholds ``tau_lo = 1e-12``,
+``tau_hi = 1e-9`` relative to sigma_max), made for a whole array of
+configurations at once:
+
+1. the chain's commensurate matrices J (rows 6, or 3 for a point output;
+   columns the chain's coordinates) are built for a chunk of configurations
+   with array arithmetic (closed-form exponentials of one-dof joints, batched
+   3x3 products), never a Python loop over configurations;
+2. a *screen* certifies most configurations as full rank without an SVD: with
+   m = min(rows, columns) and G the m x m Gram matrix (``J`` itself when
+   square), ``sigma_min >= |det| / (|J|_F^2 / (m - 1))^((m - 1) / 2)`` (the
+   other m - 1 singular values have their product bounded by the
+   arithmetic-geometric mean of their squares) and ``sigma_max <= |J|_F``, so
+   ``bound = |det| / (...) / |J|_F`` is a lower bound of sigma_min / sigma_max.
+   It is lowered by the backward error of the determinant
+   (:data:`~mechsing.numeric.SCAN_ROUNDING_FACTOR`) and accepted when it is
+   :data:`~mechsing.numeric.SCAN_SCREEN_FACTOR` times ``tau_hi``;
+3. only the configurations the screen cannot certify (near a singularity, or
+   a chain whose generic rank is below m) get a batched SVD and the
+   two-threshold rule.
+
+Memory is bounded by the chunk size: the configurations may come as one array
+or as an iterable of arrays (a generator never holds them all), and the result
+keeps one byte and two floats per configuration.
+
+Conventions: twists ``(omega, v)``; joint values in the mechanism's coordinate
+order (:meth:`mechsing.model.Mechanism.coordinates`), SI units and radians.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from mechsing import lie
+from mechsing.numeric import (
+    SCAN_ROUNDING_FACTOR,
+    SCAN_SCREEN_FACTOR,
+    Precision,
+    scale_screws,
+)
+
+__all__ = ["ChainScanner", "ScanResult", "scan"]
+
+#: configurations processed together (bounds the working memory: about
+#: 2 kB per configuration of a 6 x 6 chain)
+DEFAULT_CHUNK = 16384
+#: decided rank of a configuration whose rank the float thresholds cannot decide
+UNDECIDED = -1
+
+_EPS = float(np.finfo(float).eps)
+
+
+@dataclass
+class ScanResult:
+    """Verdicts of a scan, one entry per configuration.
+
+    ``rank``: the decided rank of the output screw system (``-1``: undecided,
+    a singular value between ``tau_lo`` and ``tau_hi``); ``generic_rank``: its
+    value at generic configurations; ``screened``: decided full rank by the
+    determinant bound, with no SVD; ``ratio``: sigma_min / sigma_max from the
+    SVD (NaN where the screen decided, unless the scan was asked for every
+    singular value); ``bound``: the screen's certified lower bound of that
+    ratio (0 where it certified nothing).
+    """
+
+    rank: np.ndarray
+    generic_rank: int
+    screened: np.ndarray
+    ratio: np.ndarray
+    bound: np.ndarray
+    tau_lo: float
+    tau_hi: float
+    length_scale: float
+    precision: str = "float"
+
+    @property
+    def undecided(self) -> np.ndarray:
+        return self.rank == UNDECIDED
+
+    @property
+    def singular(self) -> np.ndarray:
+        """Decided below the generic rank (undecided configurations are not singular)."""
+        return (self.rank >= 0) & (self.rank < self.generic_rank)
+
+    def __len__(self) -> int:
+        return len(self.rank)
+
+    def summary(self) -> dict[str, Any]:
+        n = len(self)
+        return {
+            "configurations": n,
+            "generic_rank": self.generic_rank,
+            "singular": int(np.count_nonzero(self.singular)),
+            "undecided": int(np.count_nonzero(self.undecided)),
+            "screened": int(np.count_nonzero(self.screened)),
+            "precision": self.precision,
+            "tau_lo": self.tau_lo,
+            "tau_hi": self.tau_hi,
+            "length_scale": self.length_scale,
+        }
+
+
+@dataclass(frozen=True)
+class _JointPlan:
+    """What the batched poses need of one joint."""
+
+    name: str
+    a: str
+    b: str
+    columns: slice
+    basis: np.ndarray  # (dof, 6) float reference screws
+    kind: str  # "one" (R, P, H), "U", or "general"
+
+
+def _exp_one(theta: np.ndarray, e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """exp(theta e) for a fixed one-dof screw e (|omega| = 1, or omega = 0): (R, p) batched.
+
+    With ``e = (u, v)``, |u| = 1: pitch ``h = u . v``, axis point ``a = u x v``,
+    ``R = I + sin K + (1 - cos) K^2`` (K = u^), ``p = (I - R) a + h theta u``;
+    with u = 0: ``R = I``, ``p = theta v``.  Both are one small matrix product
+    of the coefficients ``(sin, 1 - cos, theta)`` with fixed 3 x 9 and 3 x 3 tables.
+    """
+    n = theta.shape[0]
+    u, v = e[:3], e[3:]
+    if not np.any(u):
+        R = np.broadcast_to(np.eye(3), (n, 3, 3)).copy()
+        return R, theta[:, None] * v[None, :]
+    K = _hat3(u)
+    K2 = K @ K
+    a = np.cross(u, v)
+    h = float(u @ v)
+    coef = np.empty((n, 3))
+    np.sin(theta, out=coef[:, 0])
+    np.cos(theta, out=coef[:, 1])
+    coef[:, 1] = 1.0 - coef[:, 1]
+    coef[:, 2] = theta
+    R = coef[:, :2] @ np.stack([K.ravel(), K2.ravel()])
+    R += np.eye(3).ravel()
+    # (I - R) a = -(sin K a + (1 - cos) K^2 a)
+    p = coef @ np.stack([-(K @ a), -(K2 @ a), h * u])
+    return R.reshape(n, 3, 3), p
+
+
+def _hat3(u: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -u[2], u[1]], [u[2], 0.0, -u[0]], [-u[1], u[0], 0.0]])
+
+
+def _compose(
+    Ra: np.ndarray, pa: np.ndarray, Rb: np.ndarray, pb: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """(Ra, pa) (Rb, pb) batched."""
+    return Ra @ Rb, (Ra @ pb[:, :, None])[:, :, 0] + pa
+
+
+def _inverse(R: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    Rt = np.swapaxes(R, 1, 2)
+    return Rt, -(Rt @ p[:, :, None])[:, :, 0]
+
+
+class ChainScanner:
+    """The output chain of an open-chain mechanism, ready to scan.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        A mechanism without loops, with an output (DESIGN.md ``output``).
+    """
+
+    def __init__(self, mech: Any) -> None:
+        from mechsing.kinematics import KinematicModel
+        from mechsing.model.mechanism import MechanismError
+        from mechsing.singularity import output_chain
+
+        where = mech.path
+        if mech.loops:
+            raise MechanismError(
+                f"scan covers open chains; this mechanism has {len(mech.loops)} loop(s): "
+                "use `mechsing analyze` for closed chains",
+                path=where,
+            )
+        if mech.output is None:
+            raise MechanismError(
+                "scan needs an output: add `output: {body: NAME}` to the file", path=where
+            )
+        self.mech = mech
+        self.model = KinematicModel(mech, "float")
+        names, cols = output_chain(mech, self.model)
+        self.columns = np.array(cols, dtype=int)
+        self.n = self.model.n
+        self.point = (
+            None if mech.output.point is None else np.array([float(x) for x in mech.output.point])
+        )
+        self.rows = 3 if self.point is not None else 6
+        self.length_scale = float(self.model.length_scale)
+        self.centroid = np.asarray(self.model.centroid, dtype=float)
+        self.length_columns = np.asarray(self.model.length_columns[self.columns], dtype=bool)
+        self.tolerances = Precision("float").tolerances
+        self._plans = {}
+        for jk in self.model.joints:
+            basis = np.asarray(jk.basis, dtype=float)
+            if jk.type == "U":
+                kind = "U"
+            elif basis.shape[0] == 1:
+                kind = "one"
+            else:
+                kind = "general"
+            self._plans[jk.name] = _JointPlan(jk.name, jk.a, jk.b, jk.columns, basis, kind)
+        # the bodies whose pose the chain needs, and every body on their tree paths
+        self._chain_joints = []
+        seen = set()
+        for j in names:
+            if j not in seen:
+                seen.add(j)
+                self._chain_joints.append(self._plans[j])
+        self._generic: int | None = None
+
+    # ---------------------------------------------------------------- poses
+
+    def _element(self, plan: _JointPlan, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        q = Q[:, plan.columns]
+        if plan.kind == "one":
+            return _exp_one(q[:, 0], plan.basis[0])
+        if plan.kind == "U":
+            R1, p1 = _exp_one(q[:, 0], plan.basis[0])
+            R2, p2 = _exp_one(q[:, 1], plan.basis[1])
+            return _compose(R1, p1, R2, p2)
+        g = lie.exp(q @ plan.basis)
+        return np.ascontiguousarray(g[:, :3, :3]), np.ascontiguousarray(g[:, :3, 3])
+
+    def _poses(
+        self, Q: np.ndarray, bodies: Iterable[str]
+    ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+        """Poses (R, p) of the given bodies, batched over the rows of Q."""
+        n = Q.shape[0]
+        ground = self.mech.ground
+        eye = (np.broadcast_to(np.eye(3), (n, 3, 3)).copy(), np.zeros((n, 3)))
+        out: dict[str, tuple[np.ndarray, np.ndarray]] = {ground: eye}
+        elements: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+        paths = self.mech.graph.tree_paths
+        for body in bodies:
+            if body in out:
+                continue
+            g = eye
+            here = ground
+            for st in paths[body]:
+                plan = self._plans[st.joint]
+                nxt = plan.b if st.sign > 0 else plan.a
+                if st.part is not None:
+                    raise AssertionError("tree paths to user bodies cross whole joints")
+                if nxt in out:
+                    g = out[nxt]
+                else:
+                    if st.joint not in elements:
+                        elements[st.joint] = self._element(plan, Q)
+                    M = elements[st.joint]
+                    g = _compose(*g, *(M if st.sign > 0 else _inverse(*M)))
+                    out[nxt] = g
+                here = nxt
+            assert here == body
+        return out
+
+    # ---------------------------------------------------------------- matrices
+
+    def matrices(self, Q: np.ndarray) -> np.ndarray:
+        """The chain's commensurate matrices, shape (N, rows, columns), for the rows of Q.
+
+        Equal (to rounding) to :func:`mechsing.singularity.serial.chain_matrix`
+        of the float model at each configuration.
+        """
+        Q = np.asarray(Q, dtype=float)
+        if Q.ndim != 2 or Q.shape[1] != self.n:
+            raise ValueError(
+                f"configurations must be an array of shape (N, {self.n}) "
+                f"(joint coordinates in file order), not {Q.shape}"
+            )
+        need = {p.a for p in self._chain_joints}
+        if self.point is not None:
+            need.add(self.mech.output.body)
+        poses = self._poses(Q, sorted(need))
+        cols = []
+        for plan in self._chain_joints:
+            R, p = poses[plan.a]
+            if plan.kind == "U":
+                q1 = Q[:, plan.columns.start]
+                M1 = _exp_one(q1, plan.basis[0])
+                R2, p2 = _compose(R, p, *M1)
+                cols.append(_act(R, p, plan.basis[0]))
+                cols.append(_act(R2, p2, plan.basis[1]))
+            else:
+                for e in plan.basis:
+                    cols.append(_act(R, p, e))
+        S = np.stack(cols, axis=2)  # (N, 6, k)
+        L = self.length_scale
+        if self.point is None:
+            return scale_screws(S, L, self.centroid, self.length_columns)
+        Rb, pb = poses[self.mech.output.body]
+        x = Rb @ self.point + pb
+        w, v = S[:, :3, :], S[:, 3:, :]
+        vel = (v + np.cross(w, x[:, :, None], axis=1)) / L
+        return np.where(self.length_columns[None, None, :], vel * L, vel)
+
+    # ---------------------------------------------------------------- decisions
+
+    def _decide(self, J: np.ndarray, all_sigma: bool) -> tuple[np.ndarray, ...]:
+        """(rank, screened, ratio, bound) for a chunk of matrices."""
+        N, rows, k = J.shape
+        m = min(rows, k)
+        tol = self.tolerances
+        rank = np.full(N, UNDECIDED, dtype=np.int8)
+        ratio = np.full(N, np.nan)
+        bound = np.zeros(N)
+        screened = np.zeros(N, dtype=bool)
+        if m == 0:
+            rank[:] = 0
+            return rank, screened, ratio, bound
+        F2 = np.einsum("nij,nij->n", J, J)
+        if m >= 2:
+            if rows == k:
+                d = np.abs(np.linalg.det(J))
+                err = SCAN_ROUNDING_FACTOR * m * _EPS
+            else:
+                G = np.swapaxes(J, 1, 2) @ J if k < rows else J @ np.swapaxes(J, 1, 2)
+                d = np.sqrt(np.maximum(np.linalg.det(G), 0.0))
+                err = np.sqrt(SCAN_ROUNDING_FACTOR * m * _EPS)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                lb = d / (F2 / (m - 1)) ** ((m - 1) / 2) / np.sqrt(F2)
+            lb = np.where(F2 > 0, lb, 0.0)
+            bound = np.maximum(lb - err, 0.0)
+            screened = bound >= SCAN_SCREEN_FACTOR * tol.tau_hi
+            rank[screened] = m
+        todo = np.ones(N, dtype=bool) if all_sigma else ~screened
+        if np.any(todo):
+            s = np.linalg.svd(J[todo], compute_uv=False)  # (N', m), descending
+            smax = s[:, :1]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                rel = np.where(smax > 0, s / smax, 0.0)
+            hi = np.count_nonzero(rel >= tol.tau_hi, axis=1)
+            lo = np.count_nonzero(rel > tol.tau_lo, axis=1)
+            decided = np.where(hi == lo, hi, UNDECIDED).astype(np.int8)
+            # the screen and the SVD agree where both ran (the bound is certified)
+            rank[todo] = np.where(screened[todo], rank[todo], decided)
+            ratio[todo] = rel[:, -1]
+        return rank, screened, ratio, bound
+
+    # ---------------------------------------------------------------- scans
+
+    @property
+    def generic_rank(self) -> int:
+        """The largest rank decided at random configurations (as :func:`mechsing.analyze` does)."""
+        if self._generic is None:
+            from mechsing.singularity import GENERIC_SAMPLES, random_configurations
+
+            Q = random_configurations(self.model, GENERIC_SAMPLES)
+            r, *_ = self._decide(self.matrices(Q), all_sigma=False)
+            self._generic = int(max(0, int(r.max())))
+        return self._generic
+
+    def scan(
+        self,
+        configurations: np.ndarray | Iterable[np.ndarray],
+        *,
+        chunk: int = DEFAULT_CHUNK,
+        all_sigma: bool = False,
+    ) -> ScanResult:
+        """Decide the rank of the output screw system at every configuration.
+
+        Parameters
+        ----------
+        configurations : array (N, n) or iterable of such arrays
+            Joint coordinates in file order (radians, metres).  An iterable is
+            consumed chunk by chunk and never held whole.
+        chunk : int
+            Rows processed together.
+        all_sigma : bool
+            Run the SVD everywhere (``ratio`` for every configuration; slower).
+        """
+        ranks, scr, rat, bnd = [], [], [], []
+        for block in _chunks(configurations, chunk):
+            r, s, ra, b = self._decide(self.matrices(block), all_sigma)
+            ranks.append(r)
+            scr.append(s)
+            rat.append(ra)
+            bnd.append(b)
+        tol = self.tolerances
+
+        def cat(parts: list[np.ndarray], dtype: Any) -> np.ndarray:
+            return np.concatenate(parts) if parts else np.zeros(0, dtype=dtype)
+
+        return ScanResult(
+            cat(ranks, np.int8),
+            self.generic_rank,
+            cat(scr, bool),
+            cat(rat, float),
+            cat(bnd, float),
+            tol.tau_lo,
+            tol.tau_hi,
+            self.length_scale,
+        )
+
+
+def _act(R: np.ndarray, p: np.ndarray, e: np.ndarray) -> np.ndarray:
+    """Ad(R, p) e batched: (R w, R v + p x R w), shape (N, 6)."""
+    out = np.empty((R.shape[0], 6))
+    w = out[:, :3]
+    np.matmul(R, e[:3], out=w)
+    v = R @ e[3:]
+    v[:, 0] += p[:, 1] * w[:, 2] - p[:, 2] * w[:, 1]
+    v[:, 1] += p[:, 2] * w[:, 0] - p[:, 0] * w[:, 2]
+    v[:, 2] += p[:, 0] * w[:, 1] - p[:, 1] * w[:, 0]
+    out[:, 3:] = v
+    return out
+
+
+def _chunks(configurations: Any, chunk: int) -> Iterator[np.ndarray]:
+    if chunk < 1:
+        raise ValueError(f"chunk must be a positive number of rows, not {chunk}")
+    if isinstance(configurations, np.ndarray):
+        for i in range(0, configurations.shape[0], chunk):
+            yield configurations[i : i + chunk]
+        return
+    for block in configurations:
+        arr = np.asarray(block, dtype=float)
+        for i in range(0, arr.shape[0], chunk):
+            yield arr[i : i + chunk]
+
+
+def scan(
+    mech: Any,
+    configurations: np.ndarray | Iterable[np.ndarray],
+    *,
+    chunk: int = DEFAULT_CHUNK,
+    all_sigma: bool = False,
+) -> ScanResult:
+    """Scan an open chain (a :class:`~mechsing.model.Mechanism` or a file path); see :class:`ChainScanner`."""
+    if not hasattr(mech, "graph"):
+        from mechsing.model import load
+
+        mech = load(mech)
+    return ChainScanner(mech).scan(configurations, chunk=chunk, all_sigma=all_sigma)

@@ -1,0 +1,241 @@
+"""Batched scans of open chains (mechsing.scan, issue 7).
+
+The scan must give the verdicts of the one-configuration path (the output
+chain's commensurate matrix decided by ``decide_rank`` in float) at every
+configuration, and its determinant screen must never certify a configuration
+the SVD would not.  Independent answers: UR5's published determinant
+(``det J = -a2 a3 s3 s5 (a2 c2 + a3 c23 + d5 s234)``, examples/ur5.yaml), so the
+singular set is known in closed form; and the SVD itself for the bound.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import mechsing
+from mechsing.kinematics import KinematicModel
+from mechsing.model.mechanism import MechanismError
+from mechsing.numeric import decide_rank
+from mechsing.scan import ChainScanner, scan
+from mechsing.singularity import _output_point, output_chain, random_configurations
+from mechsing.singularity.serial import chain_matrix
+from tests.mechanisms import EXAMPLES, ROOT
+
+SERIAL_FILES = [
+    EXAMPLES / "ur5.yaml",
+    EXAMPLES / "puma560.yaml",
+    ROOT / "tests" / "data" / "serial_mixed.yaml",
+]
+
+#: UR5 DH lengths (examples/ur5.yaml header)
+A2, A3, D5 = -0.425, -0.39225, 0.09465
+
+PLANAR_3R_POINT = """\
+mechanism: planar-3r-point
+bodies: [base, l1, l2, l3]
+joints:
+  - {name: R1, type: R, between: [base, l1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: R2, type: R, between: [l1, l2], axis: [0, 0, 1], point: [1, 0, 0]}
+  - {name: R3, type: R, between: [l2, l3], axis: [0, 0, 1], point: [2, 0, 0]}
+output: {body: l3, point: [3, 0, 0]}
+"""
+
+REDUNDANT_7R = """\
+mechanism: redundant-7r
+bodies: [b0, b1, b2, b3, b4, b5, b6, b7]
+joints:
+  - {name: J1, type: R, between: [b0, b1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [b1, b2], axis: [0, 1, 0], point: [0, 0, "1/3"]}
+  - {name: J3, type: R, between: [b2, b3], axis: [0, 0, 1], point: [0, 0, "2/3"]}
+  - {name: J4, type: R, between: [b3, b4], axis: [0, 1, 0], point: [0, 0, 1]}
+  - {name: J5, type: R, between: [b4, b5], axis: [0, 0, 1], point: [0, 0, "4/3"]}
+  - {name: J6, type: R, between: [b5, b6], axis: [0, 1, 0], point: [0, 0, "5/3"]}
+  - {name: J7, type: P, between: [b6, b7], axis: [1, 0, 0]}
+"""
+
+
+def _reference_matrices(mech, Q: np.ndarray) -> list[np.ndarray]:
+    """The one-configuration path: KinematicModel poses and serial.chain_matrix."""
+    model = KinematicModel(mech, "float")
+    _, cols = output_chain(mech, model)
+    out = []
+    for q in Q:
+        poses = model.poses(q)
+        x = _output_point(mech, model, q, poses)
+        out.append(chain_matrix(model, model.current_screws(q, poses), cols, x))
+    return out
+
+
+def _write(tmp_path: Path, name: str, text: str) -> Path:
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def _ur5_near_singular() -> np.ndarray:
+    """UR5 configurations 10^-k from each published singular set, k = 0 .. 15."""
+    rows = []
+    base = np.array([0.3, -0.7, 1.1, -0.4, 0.9, 0.2])
+    for k in range(16):
+        d = 10.0**-k
+        wrist = base.copy()
+        wrist[4] = d
+        elbow = base.copy()
+        elbow[2] = math.pi - d
+        rows += [wrist, elbow]
+    # exactly singular: wrist, elbow, and both
+    for q5, q3 in ((0.0, 1.1), (0.9, 0.0), (0.0, 0.0)):
+        q = base.copy()
+        q[4], q[2] = q5, q3
+        rows.append(q)
+    return np.array(rows)
+
+
+@pytest.mark.parametrize("path", SERIAL_FILES, ids=lambda p: p.stem)
+def test_matrices_equal_the_one_configuration_path(path: Path) -> None:
+    mech = mechsing.load(path)
+    sc = ChainScanner(mech)
+    Q = random_configurations(sc.model, 40, seed=7)
+    J = sc.matrices(Q)
+    for Jk, Mk in zip(J, _reference_matrices(mech, Q), strict=True):
+        np.testing.assert_allclose(Jk, Mk, rtol=0, atol=1e-14 * np.abs(Mk).max())
+
+
+@pytest.mark.parametrize("text", [PLANAR_3R_POINT, REDUNDANT_7R], ids=["point", "7R"])
+def test_point_output_and_redundant_chain(text: str, tmp_path: Path) -> None:
+    mech = mechsing.load(_write(tmp_path, "m.yaml", text))
+    sc = ChainScanner(mech)
+    Q = random_configurations(sc.model, 30, seed=2)
+    Q[0] = 0.0  # stretched planar arm / 7R at home
+    J = sc.matrices(Q)
+    for Jk, Mk in zip(J, _reference_matrices(mech, Q), strict=True):
+        np.testing.assert_allclose(Jk, Mk, rtol=0, atol=1e-14 * max(1.0, np.abs(Mk).max()))
+    res = sc.scan(Q)
+    want = [decide_rank(M, "float").rank for M in _reference_matrices(mech, Q)]
+    assert [int(r) if r >= 0 else None for r in res.rank] == want
+
+
+def test_planar_point_generic_rank_is_two(tmp_path: Path) -> None:
+    """A planar arm's point moves in the plane: rank 2 generically (the z row is zero), rank 1
+    when stretched (closed form), and the screen, which certifies full rank only, never fires."""
+    mech = mechsing.load(_write(tmp_path, "m.yaml", PLANAR_3R_POINT))
+    res = scan(mech, np.array([[0.0, 0.0, 0.0], [0.3, 0.5, -0.2]]))
+    assert res.generic_rank == 2
+    assert res.rank.tolist() == [1, 2]
+    assert res.singular.tolist() == [True, False]
+    assert not res.screened.any()
+
+
+@pytest.mark.parametrize("path", SERIAL_FILES[:2], ids=lambda p: p.stem)
+def test_verdicts_equal_decide_rank_near_and_at_singularities(path: Path) -> None:
+    mech = mechsing.load(path)
+    sc = ChainScanner(mech)
+    Q = np.concatenate([random_configurations(sc.model, 200, seed=11), _ur5_near_singular()])
+    res = sc.scan(Q, chunk=37)
+    want = [decide_rank(M, "float") for M in _reference_matrices(mech, Q)]
+    got = [int(r) if r >= 0 else None for r in res.rank]
+    assert got == [w.rank for w in want]
+    # where the SVD ran, the ratio is the decision's sigma_min / sigma_max
+    ran = ~res.screened
+    for i in np.flatnonzero(ran):
+        s = want[i].sigma
+        assert res.ratio[i] == pytest.approx(s[-1] / s[0], rel=1e-6, abs=1e-15)
+    assert res.generic_rank == 6
+
+
+def test_ur5_singular_set_matches_the_published_determinant() -> None:
+    """Scan verdicts against UR5's closed-form det J (header of examples/ur5.yaml): configurations
+    where |det| is large are regular; the wrist, elbow and shoulder sets are singular."""
+    mech = mechsing.load(EXAMPLES / "ur5.yaml")
+    rng = np.random.default_rng(5)
+    Q = rng.uniform(-math.pi, math.pi, size=(2000, 6))
+    t2, t3, t4, t5 = Q[:, 1], Q[:, 2], Q[:, 3], Q[:, 4]
+    det = (
+        -A2
+        * A3
+        * np.sin(t3)
+        * np.sin(t5)
+        * (A2 * np.cos(t2) + A3 * np.cos(t2 + t3) + D5 * np.sin(t2 + t3 + t4))
+    )
+    res = scan(mech, Q)
+    assert not res.singular[np.abs(det) > 1e-6].any()
+    # the three published singular sets, exactly
+    sing = Q[:30].copy()
+    sing[:10, 4] = 0.0  # wrist
+    sing[10:20, 2] = math.pi  # elbow folded
+    # shoulder: theta3 = pi/2 and theta234 = 0 leave a2 c2 - a3 s2 = 0
+    sing[20:, 1] = math.atan(A2 / A3)
+    sing[20:, 2] = math.pi / 2
+    sing[20:, 3] = -sing[20:, 1] - math.pi / 2
+    res = scan(mech, sing)
+    assert (res.rank == 5).all(), res.rank
+
+
+def test_screen_bound_is_a_lower_bound() -> None:
+    mech = mechsing.load(EXAMPLES / "puma560.yaml")
+    sc = ChainScanner(mech)
+    Q = np.concatenate([random_configurations(sc.model, 500, seed=3), _ur5_near_singular()])
+    res = sc.scan(Q, all_sigma=True)
+    assert np.isfinite(res.ratio).all()
+    assert (res.bound <= res.ratio * (1 + 1e-12)).all()
+    assert res.screened.sum() > 400  # nearly every random configuration is screened
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    q=st.lists(st.floats(-4.0, 4.0), min_size=6, max_size=6),
+    scale=st.sampled_from([1e-6, 1.0, 1e6]),
+)
+def test_screen_never_disagrees_with_the_svd(q: list[float], scale: float) -> None:
+    """Property: on any configuration the screened verdict is the SVD's, and the bound holds."""
+    mech = mechsing.load(EXAMPLES / "ur5.yaml")
+    sc = ChainScanner(mech)
+    Q = np.array([q])
+    a = sc.scan(Q)
+    b = sc.scan(Q, all_sigma=True)
+    assert a.rank.tolist() == b.rank.tolist()
+    assert b.bound[0] <= b.ratio[0] * (1 + 1e-12)
+
+
+def test_chunks_and_iterables_give_the_same_result() -> None:
+    mech = mechsing.load(EXAMPLES / "ur5.yaml")
+    sc = ChainScanner(mech)
+    Q = np.concatenate([random_configurations(sc.model, 100, seed=1), _ur5_near_singular()])
+    whole = sc.scan(Q)
+    parts = sc.scan((Q[i : i + 13] for i in range(0, len(Q), 13)), chunk=5)
+    assert whole.rank.tolist() == parts.rank.tolist()
+    np.testing.assert_array_equal(whole.screened, parts.screened)
+    np.testing.assert_array_equal(whole.bound, parts.bound)
+    assert len(sc.scan(np.zeros((0, 6)))) == 0
+
+
+def test_scan_agrees_with_analyze_on_the_file_configurations() -> None:
+    for path in SERIAL_FILES[:2]:
+        mech = mechsing.load(path)
+        res = mechsing.analyze(path, precision="float").to_json()
+        sc = ChainScanner(mech)
+        model = sc.model
+        for c in res["configurations"]:
+            q = np.concatenate([np.asarray(v, dtype=float) for v in c["joints"].values()])
+            assert q.shape == (model.n,)
+            r = sc.scan(q[None, :])
+            serial = [f for f in c["singularities"] if f["class"] == "serial"]
+            assert bool(r.singular[0]) == bool(serial), (path.name, c["name"])
+            if serial:
+                assert int(r.rank[0]) == serial[0]["rank"]
+
+
+def test_refusals(tmp_path: Path) -> None:
+    with pytest.raises(MechanismError, match="open chains"):
+        ChainScanner(mechsing.load(EXAMPLES / "fourbar.yaml"))
+    mech = mechsing.load(EXAMPLES / "ur5.yaml")
+    with pytest.raises(ValueError, match=r"shape \(N, 6\)"):
+        ChainScanner(mech).matrices(np.zeros((3, 5)))
+    with pytest.raises(ValueError, match="chunk"):
+        ChainScanner(mech).scan(np.zeros((3, 6)), chunk=0)
