@@ -52,8 +52,8 @@ from mechsing.numeric import (
 __all__ = ["ChainScanner", "ScanResult", "scan"]
 
 #: configurations processed together (bounds the working memory: about
-#: 2 kB per configuration of a 6 x 6 chain)
-DEFAULT_CHUNK = 16384
+#: 2 kB per configuration of a 6 x 6 chain; small enough to stay in cache)
+DEFAULT_CHUNK = 4096
 #: decided rank of a configuration whose rank the float thresholds cannot decide
 UNDECIDED = -1
 
@@ -223,6 +223,7 @@ class ChainScanner:
                 seen.add(j)
                 self._chain_joints.append(self._plans[j])
         self._generic: int | None = None
+        self._serial = self._serial_plan()
 
     # ---------------------------------------------------------------- poses
 
@@ -283,6 +284,8 @@ class ChainScanner:
                 f"configurations must be an array of shape (N, {self.n}) "
                 f"(joint coordinates in file order), not {Q.shape}"
             )
+        if self._serial is not None:
+            return self._serial_matrices(Q)
         need = {p.a for p in self._chain_joints}
         if self.point is not None:
             need.add(self.mech.output.body)
@@ -308,6 +311,84 @@ class ChainScanner:
         w, v = S[:, :3, :], S[:, 3:, :]
         vel = (v + np.cross(w, x[:, :, None], axis=1)) / L
         return np.where(self.length_columns[None, None, :], vel * L, vel)
+
+    def _serial_plan(self) -> list[tuple[int, int, np.ndarray]] | None:
+        """The fast path: an output body reached from ground through one-dof joints, each
+        crossed forward, and those joints are the whole chain.  One entry per joint:
+        (coordinate column, its position among the chain's columns, a table of
+        fixed vectors in the commensurate frame, see :meth:`_serial_matrices`)."""
+        out = self.mech.output
+        if out.relative_to != self.mech.ground:
+            return None
+        steps = self.mech.graph.tree_paths[out.body]
+        if any(st.sign < 0 or st.part is not None for st in steps):
+            return None
+        plans = [self._plans[st.joint] for st in steps]
+        if any(p.kind != "one" for p in plans) or {p.name for p in plans} != {
+            p.name for p in self._chain_joints
+        }:
+            return None
+        order = list(self.columns)
+        L, c = self.length_scale, self.centroid
+        table = []
+        for p in plans:
+            # the screw in the commensurate frame: moved to the centroid, v / L (an
+            # automorphism of D, so exp and Ad commute with it)
+            e = scale_screws(p.basis[0][:, None], L, c)[:, 0]
+            u, v = e[:3], e[3:]
+            K = _hat3(u)
+            K2 = K @ K
+            a = np.cross(u, v)
+            h = float(u @ v)
+            # columns: K, K^2 (rotation update), K a, K^2 a (translation update), u, v
+            T = np.concatenate(
+                [K, K2, (K @ a)[:, None], (K2 @ a)[:, None], u[:, None], v[:, None]], axis=1
+            )
+            table.append((p.columns.start, order.index(p.columns.start), T, h, bool(np.any(u))))
+        return table
+
+    def _serial_matrices(self, Q: np.ndarray) -> np.ndarray:
+        """Commensurate chain matrices of a serial chain of one-dof joints.
+
+        The pose (R, P) is carried in the commensurate frame (origin at the centroid,
+        lengths / L).  For each joint, one product ``R @ [K, K^2, K a, K^2 a, u, v]``
+        gives its current screw ``(R u, R v + P x R u)`` and the next pose
+        ``R + sin R K + (1 - cos) R K^2``, ``P - sin R K a - (1 - cos) R K^2 a + h theta R u``
+        (:func:`_exp_one` composed on the right).
+        """
+        n = Q.shape[0]
+        k = len(self.columns)
+        J = np.empty((n, 6, k))
+        R = np.broadcast_to(np.eye(3), (n, 3, 3)).copy()
+        P = np.zeros((n, 3))
+        last = len(self._serial) - 1
+        for i, (col, pos, T, h, rotates) in enumerate(self._serial):
+            RT = (R.reshape(-1, 3) @ T).reshape(n, 3, T.shape[1])
+            w = RT[:, :, 8]
+            J[:, :3, pos] = w
+            J[:, 3:, pos] = RT[:, :, 9] + _cross(P, w)
+            if i == last and self.point is None:
+                break
+            th = Q[:, col]
+            if rotates:
+                s = np.sin(th)
+                c1 = 1.0 - np.cos(th)
+                R = R + s[:, None, None] * RT[:, :, 0:3] + c1[:, None, None] * RT[:, :, 3:6]
+                P = P - s[:, None] * RT[:, :, 6] - c1[:, None] * RT[:, :, 7]
+                if h:
+                    P = P + (h * th)[:, None] * w
+            else:
+                P = P + th[:, None] * RT[:, :, 9]
+        lc = self.length_columns
+        if self.point is not None:
+            x = (self.point - self.centroid) / self.length_scale
+            X = R @ x + P
+            w = J[:, :3, :]
+            vel = J[:, 3:, :] + np.cross(w, X[:, :, None], axis=1)
+            J = np.ascontiguousarray(vel)
+        if np.any(lc):
+            J[:, :, lc] *= self.length_scale
+        return J
 
     # ---------------------------------------------------------------- decisions
 
@@ -418,6 +499,15 @@ def _act(R: np.ndarray, p: np.ndarray, e: np.ndarray) -> np.ndarray:
     v[:, 1] += p[:, 2] * w[:, 0] - p[:, 0] * w[:, 2]
     v[:, 2] += p[:, 0] * w[:, 1] - p[:, 1] * w[:, 0]
     out[:, 3:] = v
+    return out
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b for (N, 3) arrays (faster than np.cross on small rows)."""
+    out = np.empty_like(b)
+    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
+    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
+    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
     return out
 
 
