@@ -49,9 +49,21 @@ __all__ = [
     "characteristic_length",
     "decide_definiteness",
     "decide_rank",
+    "eigh",
+    "lstsq",
+    "max_abs",
+    "norm",
+    "numeric_precision",
+    "order3_residual_rtol",
+    "orthonormal_columns",
     "parse_precision",
+    "pinv_truncated",
     "scale_screws",
     "screw_zero_rtol",
+    "spectral_norm",
+    "subspace_containment_atol",
+    "subspace_rank_rtol",
+    "svd",
     "to_float",
 ]
 
@@ -104,14 +116,23 @@ SAMPLE_DISTINCT_RATIO = 0.1
 #: a branch probe follows its tangent when the cosine between the tangent and
 #: the displacement found is above this (a smooth branch through the point)
 BRANCH_ALIGNMENT = 0.9
-#: relative singular value below which a direction is dropped from a basis of
-#: a subspace (bases of cone pieces, orthonormalised)
-SUBSPACE_RANK_RTOL = 1e-10
-#: two orthonormal bases span nested subspaces when the projection residual is below this
-SUBSPACE_CONTAINMENT_ATOL = 1e-8
-#: the third-order condition holds on a direction when its residual, relative
-#: to the size of its linear part, is below this
-ORDER3_RESIDUAL_RTOL = 1e-9
+#: The tolerances of the higher-order (tangent-cone) tests are placed relative to
+#: the mode's ``tau_hi`` (1e-9 in float, 10^(-N/2) at mp:N), so that they keep
+#: their meaning at every precision (see :func:`subspace_rank_rtol`,
+#: :func:`subspace_containment_atol`, :func:`order3_residual_rtol`):
+#:
+#: relative singular value below which a direction is dropped from a basis of a
+#: subspace (bases of cone pieces, orthonormalised): tau_hi / 10 (float: 1e-10)
+SUBSPACE_RANK_FACTOR = 0.1
+#: two orthonormal bases span nested subspaces when the projection residual is
+#: below 10 tau_hi (float: 1e-8)
+SUBSPACE_CONTAINMENT_FACTOR = 10.0
+#: the third-order condition holds on a direction when its residual, relative to
+#: the size of its linear part, is below tau_hi (float: 1e-9)
+ORDER3_RESIDUAL_FACTOR = 1.0
+#: digits of the higher-order and input/output tests of an ``exact`` analysis:
+#: the configuration and its screws are exact, the tests run at mp:50 (and say so)
+EXACT_TEST_DIGITS = 50
 #: a given rotation matrix must satisfy |R^T R - I| below this (and det R > 0)
 ROTATION_ORTHONORMAL_ATOL = 1e-9
 #: batched scans (:mod:`mechsing.scan`) decide "full rank" without an SVD when
@@ -422,6 +443,40 @@ def parse_precision(text: str) -> Precision:
     )
 
 
+def numeric_precision(prec: Precision) -> Precision:
+    """The precision at which the numerical tests of an analysis run.
+
+    The higher-order forms of the tangent cone and the input/output ranks are
+    computed and decided at the analysis precision when it is numerical
+    (``float``, ``mp:N``; an ``auto`` stage is float, or mp:50 after
+    escalation); an ``exact`` analysis evaluates them at
+    mp::data:`EXACT_TEST_DIGITS` from its exact configuration.
+    """
+    if prec.mode == "exact":
+        return Precision("mp", EXACT_TEST_DIGITS)
+    if prec.mode == "auto":
+        return Precision("float")
+    return prec
+
+
+def subspace_rank_rtol(prec: Precision) -> float:
+    """Relative singular value below which a direction is dropped from a basis of
+    a cone piece: :data:`SUBSPACE_RANK_FACTOR` tau_hi (1e-10 in float)."""
+    return SUBSPACE_RANK_FACTOR * prec.tolerances.tau_hi
+
+
+def subspace_containment_atol(prec: Precision) -> float:
+    """Projection residual below which an orthonormal basis lies in another's span:
+    :data:`SUBSPACE_CONTAINMENT_FACTOR` tau_hi (1e-8 in float)."""
+    return SUBSPACE_CONTAINMENT_FACTOR * prec.tolerances.tau_hi
+
+
+def order3_residual_rtol(prec: Precision) -> float:
+    """Relative residual below which a direction extends to third order:
+    :data:`ORDER3_RESIDUAL_FACTOR` tau_hi (1e-9 in float)."""
+    return ORDER3_RESIDUAL_FACTOR * prec.tolerances.tau_hi
+
+
 # ---------------------------------------------------------------------------
 # Characteristic length and scaling (DESIGN.md, "Characteristic length L")
 # ---------------------------------------------------------------------------
@@ -494,6 +549,149 @@ def scale_screws(
 
 
 # ---------------------------------------------------------------------------
+# Linear algebra on the numerical backends (float: numpy; mp: mpmath at the
+# working precision, so call these inside ``Precision.context()``).  Exact
+# arrays are decided by decide_rank / decide_definiteness, not factorised.
+# ---------------------------------------------------------------------------
+
+
+def _numerical_backend(*arrays: Any) -> Backend:
+    bk = backend_of(*arrays)
+    if bk.name == "exact":
+        raise TypeError("exact arrays have no numerical factorisation; convert them to mp first")
+    return bk
+
+
+def _object_array(M: Any, shape: tuple[int, ...]) -> np.ndarray:
+    out = np.empty(shape, dtype=object)
+    rows = M.tolist()
+    for i in range(shape[0]):
+        for j in range(shape[1]):
+            out[i, j] = rows[i][j]
+    return out
+
+
+def svd(A: Any, full_matrices: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``A = U diag(s) Vt`` in the backend of ``A``, singular values descending.
+
+    float: :func:`numpy.linalg.svd`; mp: :func:`mpmath.svd_r` at the working
+    precision, object arrays of ``mpf``.
+    """
+    arr = np.asarray(A)
+    bk = _numerical_backend(arr)
+    if bk.name == "float":
+        return np.linalg.svd(to_float(arr), full_matrices=full_matrices)
+    m, n = arr.shape
+    k = min(m, n)
+    if k == 0:
+        U = bk.eye(m) if full_matrices else bk.zeros((m, 0))
+        Vt = bk.eye(n) if full_matrices else bk.zeros((0, n))
+        return U, bk.zeros(0), Vt
+    Um, S, Vm = mpmath.svd_r(
+        mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()]),
+        full_matrices=full_matrices,
+    )
+    s = [S[i] for i in range(k)]
+    order = sorted(range(k), key=lambda i: -s[i])
+    U = _object_array(Um, (Um.rows, Um.cols))
+    Vt = _object_array(Vm, (Vm.rows, Vm.cols))
+    if order != list(range(k)):
+        U = U[:, order + list(range(k, U.shape[1]))]
+        Vt = Vt[order + list(range(k, Vt.shape[0]))]
+    sv = np.empty(k, dtype=object)
+    sv[:] = [s[i] for i in order]
+    return U, sv, Vt
+
+
+def eigh(A: Any) -> tuple[np.ndarray, np.ndarray]:
+    """Eigenvalues (ascending) and orthonormal eigenvectors (columns) of the
+    symmetric part of ``A``, in its backend (numpy ``eigh`` / mpmath ``eigsy``)."""
+    arr = np.asarray(A)
+    bk = _numerical_backend(arr)
+    if bk.name == "float":
+        F = to_float(arr)
+        return np.linalg.eigh((F + F.T) / 2)
+    n = arr.shape[0]
+    if n == 0:
+        return bk.zeros(0), bk.zeros((0, 0))
+    S = mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()])
+    E, Q = mpmath.eigsy((S + S.T) / 2)
+    w = [E[i] for i in range(n)]
+    order = sorted(range(n), key=lambda i: w[i])
+    V = _object_array(Q, (n, n))[:, order]
+    wv = np.empty(n, dtype=object)
+    wv[:] = [w[i] for i in order]
+    return wv, V
+
+
+def orthonormal_columns(A: Any) -> np.ndarray:
+    """Q of the thin QR decomposition of ``A`` (m x k, k <= m): an orthonormal
+    basis of its columns' span when they are independent (numpy / mpmath QR)."""
+    arr = np.asarray(A)
+    bk = _numerical_backend(arr)
+    if bk.name == "float":
+        Q, _ = np.linalg.qr(to_float(arr))
+        return Q
+    m, k = arr.shape
+    if k == 0:
+        return bk.zeros((m, 0))
+    Q, _ = mpmath.qr(mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()]))
+    return _object_array(Q, (m, m))[:, :k]
+
+
+def norm(A: Any) -> Any:
+    """Euclidean norm of a vector, Frobenius norm of a matrix, in its backend."""
+    arr = np.asarray(A)
+    bk = _numerical_backend(arr)
+    if bk.name == "float":
+        return np.linalg.norm(to_float(arr))
+    return mpmath.sqrt(mpmath.fsum(x * x for x in arr.flat))
+
+
+def spectral_norm(A: Any) -> Any:
+    """Largest singular value (0 for an empty matrix), in the array's backend."""
+    arr = np.asarray(A)
+    if arr.size == 0:
+        return 0.0
+    bk = _numerical_backend(arr)
+    if bk.name == "float":
+        return float(np.linalg.norm(to_float(arr), 2))
+    sig = mpmath.svd_r(
+        mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()]), compute_uv=False
+    )
+    return max(abs(sig[i]) for i in range(len(sig)))
+
+
+def max_abs(A: Any) -> Any:
+    """Largest |entry| (0 for an empty array), in the array's backend."""
+    arr = np.asarray(A)
+    if arr.size == 0:
+        return 0.0
+    return np.max(np.abs(arr))
+
+
+def lstsq(A: Any, b: Any) -> np.ndarray:
+    """Minimum-norm least-squares solution of ``A x = b``; singular values below
+    ``eps max(m, n)`` of the largest are dropped (numpy's ``rcond=None``)."""
+    arr = np.asarray(A)
+    bk = _numerical_backend(arr, b)
+    if bk.name == "float":
+        return np.linalg.lstsq(to_float(arr), to_float(b), rcond=None)[0]
+    U, s, Vt = svd(arr, full_matrices=False)
+    if len(s) == 0:
+        return bk.zeros(arr.shape[1])
+    cut = bk.eps * max(arr.shape) * s[0]
+    keep = [i for i in range(len(s)) if s[i] > cut]
+    c = np.array([(U[:, i] @ b) / s[i] for i in keep], dtype=object)
+    return Vt[keep].T @ c if keep else bk.zeros(arr.shape[1])
+
+
+def pinv_truncated(U: np.ndarray, s: np.ndarray, Vt: np.ndarray, r: int) -> np.ndarray:
+    """Pseudo-inverse of the rank-``r`` truncation of ``U diag(s) Vt`` (any backend)."""
+    return (Vt[:r].T / s[:r][None, :]) @ U[:, :r].T
+
+
+# ---------------------------------------------------------------------------
 # Rank and definiteness decisions with margins
 # ---------------------------------------------------------------------------
 
@@ -542,7 +740,9 @@ class RankDecision:
     ``rank`` is None when undecided; ``rank_bounds`` then gives (lowest, highest)
     consistent ranks.  ``sigma`` are all singular values (absolute, in the
     scaled metric), largest first; ``null_space`` is an orthonormal basis of
-    the (right) kernel in float (columns), when requested.
+    the (right) kernel (columns), ``range_space`` of the range and
+    ``left_null_space`` of its orthogonal complement, when requested: float
+    arrays, or the mode's own numbers with ``native_spaces`` at mp:N.
     """
 
     rank: int | None
@@ -552,6 +752,7 @@ class RankDecision:
     rank_bounds: tuple[int, int] = (0, 0)
     null_space: np.ndarray | None = field(default=None, compare=False, repr=False)
     range_space: np.ndarray | None = field(default=None, compare=False, repr=False)
+    left_null_space: np.ndarray | None = field(default=None, compare=False, repr=False)
 
     @property
     def decided(self) -> bool:
@@ -569,7 +770,8 @@ def decide_rank(
     precision: Precision | str = "float",
     length_scale: float = 1.0,
     want_spaces: bool = False,
-    reference: float | None = None,
+    reference: Any = None,
+    native_spaces: bool = False,
 ) -> RankDecision:
     """Rank of a (scaled) matrix with the two-threshold rule and its margin.
 
@@ -583,19 +785,29 @@ def decide_rank(
     length_scale : float
         Recorded in the margin.
     want_spaces : bool
-        Also return float orthonormal bases of the kernel and the range.
-    reference : float, optional
+        Also return orthonormal bases of the kernel, the range and the left
+        kernel (float arrays unless ``native_spaces``).
+    reference : number, optional
         Magnitude the thresholds are relative to when it exceeds the largest
         singular value: for a product ``A @ B`` with B orthonormal, pass the
         norm of A, so that a product that is nearly zero is decided as rank 0
         rather than judged against its own rounding noise.
+    native_spaces : bool
+        At mp:N, return the bases as object arrays of N-digit numbers (the
+        spaces that later mp computations need) instead of their float
+        rounding.  No effect in float and exact mode.
     """
     prec = parse_precision(precision) if isinstance(precision, str) else precision
     tol = prec.tolerances
     arr = np.asarray(M)
     m, n = arr.shape if arr.ndim == 2 else (0, 0)
     if m == 0 or n == 0:
-        ns = np.eye(n) if want_spaces else None
+        native = native_spaces and prec.mode == "mp"
+        with prec.context():
+            bk = prec.backend if native else FLOAT
+            ns = bk.eye(n) if want_spaces else None
+            rs = bk.zeros((m, 0)) if want_spaces else None
+            ls = bk.eye(m) if want_spaces else None
         return RankDecision(
             0,
             (),
@@ -603,15 +815,24 @@ def decide_rank(
             str(prec),
             (0, 0),
             ns,
-            np.zeros((m, 0)) if want_spaces else None,
+            rs,
+            ls,
         )
     if prec.mode == "exact":
         return _exact_rank(arr, prec, tol, length_scale, want_spaces)
+    Um = Vm = None
     if prec.mode == "mp":
         with prec.context():
-            A = mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()])
-            sig = mpmath.svd_r(A, compute_uv=False)
-            s = sorted((abs(x) for x in sig), reverse=True)
+            A = np.array(
+                [[_mp_convert(x) for x in row] for row in arr.tolist()], dtype=object
+            ).reshape(m, n)
+            if want_spaces:
+                # one full SVD: its singular values are those of compute_uv=False
+                Um, s_mp, Vm = svd(A)
+                s = list(s_mp)
+            else:
+                sig = mpmath.svd_r(mpmath.matrix(A.tolist()), compute_uv=False)
+                s = sorted((abs(x) for x in sig), reverse=True)
             smax = s[0] if s else mpmath.mpf(0)
             if reference is not None and reference > smax:
                 smax = mpmath.mpf(reference)
@@ -630,25 +851,17 @@ def decide_rank(
     kept = sigma[r_eff - 1] if r_eff else None
     dropped = sigma[r_eff] if r_eff < len(sigma) else None
     margin = Margin(kept, dropped, tol.tau_lo, tol.tau_hi, length_scale, None, float(smax))
-    ns = rs = None
+    ns = rs = ls = None
     if want_spaces:
-        F = to_float(arr)
-        U, _s, Vt = np.linalg.svd(F)
         k = r_eff
-        ns = Vt[k:].T.copy()
-        rs = U[:, :k].copy()
-        if prec.mode == "mp":
-            ns, rs = _mp_spaces(arr, prec, k)
-    return RankDecision(rank, sigma, margin, str(prec), bounds, ns, rs)
-
-
-def _mp_spaces(arr: np.ndarray, prec: Precision, k: int) -> tuple[np.ndarray, np.ndarray]:
-    with prec.context():
-        A = mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()])
-        U, _S, V = mpmath.svd_r(A, full_matrices=True)
-        Vt = np.array(V.tolist(), dtype=object)
-        Um = np.array(U.tolist(), dtype=object)
-        return to_float(Vt[k:].T), to_float(Um[:, :k])
+        if Um is None or Vm is None:
+            Um, _s, Vm = np.linalg.svd(to_float(arr))
+        elif not native_spaces:
+            Um, Vm = to_float(Um), to_float(Vm)
+        ns = Vm[k:].T.copy()
+        rs = Um[:, :k].copy()
+        ls = Um[:, k:]
+    return RankDecision(rank, sigma, margin, str(prec), bounds, ns, rs, ls)
 
 
 def _exact_rank(

@@ -16,21 +16,29 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-import mpmath
 import numpy as np
 import sympy
 
 from mechsing.kinematics import KinematicModel
 from mechsing.model import Loop
-from mechsing.numeric import Precision, RankDecision, decide_rank, scale_screws, to_float
+from mechsing.numeric import (
+    Precision,
+    RankDecision,
+    decide_rank,
+    orthonormal_columns,
+    scale_screws,
+    to_float,
+)
 from mechsing.subgroups import Identification, Subgroup, generate
 
 __all__ = [
     "ClosureSystem",
     "LoopSystem",
     "closure_system",
+    "commensurate_frame",
     "grubler",
     "group_mobility",
+    "loop_basis",
     "reduced_coordinates",
     "reference_loop_identification",
     "scaled_columns",
@@ -53,6 +61,10 @@ class LoopSystem:
     rank: RankDecision
     #: orthonormal commensurate basis (6 x dim h, float) of the loop's subalgebra
     basis_float: np.ndarray = field(default_factory=lambda: np.eye(6), repr=False)
+    #: the commensurate basis rows (dim h x 6) of the subalgebra in the analysis
+    #: backend, whose QR (:func:`loop_basis`) gives the reduced coordinates of
+    #: ``matrix``; None when the subgroup is undecided (the 6 rows of se(3))
+    basis_rows: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def subgroup(self) -> Subgroup | None:
@@ -71,6 +83,8 @@ class ClosureSystem:
     matrix: np.ndarray
     rank: RankDecision
     screws: np.ndarray = field(repr=False)
+    #: the commensurate screws (:func:`scaled_columns`) the loop rows are built from
+    scaled_screws: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def nullity(self) -> int | None:
@@ -80,10 +94,17 @@ class ClosureSystem:
 
 def scaled_columns(model: KinematicModel, S: np.ndarray) -> np.ndarray:
     """Commensurate screws: moved to the centroid, v / L, length columns times L."""
-    bk = model.backend
-    L = _L(model)
-    c = bk.asarray(model.centroid) if bk.name != "exact" else _exact_vec(model.centroid)
+    L, c = commensurate_frame(model)
     return scale_screws(S, L, c, model.length_columns)
+
+
+def commensurate_frame(model: KinematicModel) -> tuple[Any, np.ndarray]:
+    """The characteristic length L and the centroid c in the model's numbers, as
+    every commensurate quantity of the model uses them (exact mode: the
+    decimals of the float values, as rationals)."""
+    bk = model.backend
+    c = bk.asarray(model.centroid) if bk.name != "exact" else _exact_vec(model.centroid)
+    return _L(model), c
 
 
 def _L(model: KinematicModel) -> Any:
@@ -112,17 +133,22 @@ def reduced_coordinates(
     if k == 0:
         return model.backend.zeros((0, Ss.shape[1]))
     name = model.backend.name
-    if name == "float":
-        Q, _ = np.linalg.qr(np.asarray(basis_rows, dtype=float).T)
-        return Q.T @ Ss
-    if name == "mp":
+    if name in ("float", "mp"):
         with model.precision.context():
-            Q, _ = mpmath.qr(mpmath.matrix(basis_rows.T.tolist()))
-            Qa = np.array(Q.tolist(), dtype=object)[:, :k]
-            return Qa.T @ Ss
+            return loop_basis(basis_rows).T @ Ss
     B = sympy.Matrix(basis_rows.tolist()).T
     C = (B.T * B).inv() * B.T * sympy.Matrix(Ss.tolist())
     return np.array(C.applyfunc(sympy.simplify).tolist(), dtype=object)
+
+
+def loop_basis(basis_rows: np.ndarray | None) -> np.ndarray:
+    """Orthonormal commensurate basis (6 x k) of a loop's subalgebra from its basis
+    rows (k x 6, float or mp; the identity of se(3) when None), by the same QR
+    as the loop's reduced coordinates, in the rows' backend (call inside the
+    precision's context at mp:N)."""
+    if basis_rows is None:
+        return np.eye(6)
+    return orthonormal_columns(np.asarray(basis_rows).T)
 
 
 def reference_loop_identification(model: KinematicModel, loop: Loop) -> Identification:
@@ -204,13 +230,14 @@ def closure_system(
                 Bb = model.asarray(B) if model.backend.name != "float" else to_float(B)
                 Bs = scaled_columns_rows(model, Bb)
             R = reduced_coordinates(model, Bs, Sl)
-            Qf = _orthonormal_float(to_float(Bs))
+            Qf = loop_basis(to_float(Bs))
         else:
             R = Sl  # undecided subgroup: the full 6 rows (reported as such)
+            Bs = None
             Qf = np.eye(6)
         with model.precision.context():
             dec = decide_rank(R[:, cols != 0], prec, L)
-        loops.append(LoopSystem(loop, ident, R, dec, Qf))
+        loops.append(LoopSystem(loop, ident, R, dec, Qf, Bs))
         blocks.append(R)
     if blocks:
         M = np.concatenate(blocks, axis=0)
@@ -218,23 +245,13 @@ def closure_system(
         M = model.backend.zeros((0, model.n))
     with model.precision.context():
         dec = decide_rank(M, prec, L, want_spaces=True)
-    return ClosureSystem(loops, M, dec, S)
-
-
-def _orthonormal_float(rows: np.ndarray) -> np.ndarray:
-    """Orthonormal basis (6 x k) of the span of commensurate basis rows (k x 6).
-
-    The same QR as :func:`reduced_coordinates` in float, so projections of
-    brackets match the loop's reduced closure rows."""
-    Q, _ = np.linalg.qr(np.asarray(rows, dtype=float).T)
-    return Q
+    return ClosureSystem(loops, M, dec, S, Ss)
 
 
 def scaled_columns_rows(model: KinematicModel, rows: np.ndarray) -> np.ndarray:
     """Commensurate basis rows (k x 6): moved to the centroid and v / L (no column factor)."""
-    bk = model.backend
-    c = bk.asarray(model.centroid) if bk.name != "exact" else _exact_vec(model.centroid)
-    return scale_screws(rows.T, _L(model), c).T
+    L, c = commensurate_frame(model)
+    return scale_screws(rows.T, L, c).T
 
 
 def grubler(model: KinematicModel) -> int:

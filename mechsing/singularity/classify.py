@@ -29,19 +29,30 @@ from mechsing.numeric import (
     SUPPORT_RTOL,
     Margin,
     Precision,
+    RankDecision,
     decide_rank,
+    numeric_precision,
+    svd,
     to_float,
 )
-from mechsing.screws import closure_system, scaled_columns
+from mechsing.screws import closure_system
 from mechsing.screws.mobility import NearbySample, nearby_samples, reclose, stacked_jacobian
-from mechsing.singularity.cspace import Cone, Expansion, loop_chains, tangent_cone
+from mechsing.singularity.cspace import Cone, Expansion, closure_expansion, tangent_cone
 from mechsing.singularity.io import io_quantities, leg_constraint_rank
 from mechsing.singularity.serial import chain_system, serial_finding, wrenches_of
 
-#: the higher-order forms and the input/output tests are evaluated in float64
-#: from the configuration closed at the analysis precision, and decided with
-#: float's thresholds (each finding says so in ``test_precision``)
-FLOAT_PRECISION = Precision("float")
+
+def decision(test: str, dec: Any, generic: int | None = None) -> dict[str, Any]:
+    from mechsing.singularity import decision as make
+
+    return make(test, dec, generic)
+
+# The higher-order forms (tangent cone) and the input/output and constraint
+# ranks at q are computed and decided at the analysis precision
+# (numeric.numeric_precision: float, mp:N, mp:50 for exact), from the
+# configuration and screws of the analysis; each finding says which in
+# ``test_precision``.  The nearby samples and the branch probes that they are
+# measured against are verification by continuation and stay in float.
 
 #: distances (commensurate) of the probes along a branch tangent
 BRANCH_STEPS = (3e-3, 3e-2)
@@ -58,6 +69,9 @@ class LocalAnalysis:
     cone: Cone | None = None
     regular: bool = True
     io_generic: dict[str, Any] = field(default_factory=dict)
+    #: the rank decisions at q behind the input/output, constraint and leg tests
+    #: (``decisions`` of the JSON; :func:`mechsing.singularity.decision`)
+    decisions: list[dict[str, Any]] = field(default_factory=list)
 
 
 def float_model(mech: Any, model: Any) -> Any:
@@ -72,17 +86,6 @@ def float_model(mech: Any, model: Any) -> Any:
         fm.__dict__["_loop_identifications"] = model.__dict__.get("_loop_identifications", {})
         cache["m"] = fm
     return cache["m"]
-
-
-def _stacked_float(cs: Any, Ssf: np.ndarray, model: Any) -> np.ndarray:
-    """Stacked reduced closure matrix in float, built with the same bases as the brackets."""
-    rows = []
-    for ls in cs.loops:
-        cols = np.zeros(model.n)
-        for name, sign in zip(ls.loop.joints, ls.loop.signs, strict=True):
-            cols[model.joint(name).columns] = sign
-        rows.append(ls.basis_float.T @ (Ssf * cols[None, :]))
-    return np.concatenate(rows, axis=0) if rows else np.zeros((0, model.n))
 
 
 def _si_rates(model: Any, x: np.ndarray) -> list[float]:
@@ -123,6 +126,23 @@ def _joints_of(mech: Any, cs: Any) -> list[str]:
 
 def local_analysis(mech: Any, model: Any, q: np.ndarray, cs: Any) -> LocalAnalysis:
     """Generic/finite mobility and every finding at a closed configuration with loops."""
+    tprec = numeric_precision(model.precision)
+    with tprec.context():
+        return _local_analysis(mech, model, q, cs, tprec)
+
+
+@dataclass
+class _TestSystem:
+    """The closure system at q in the numbers of the test precision (built once)."""
+
+    exp: Expansion
+    M: np.ndarray
+    rank: RankDecision
+
+
+def _local_analysis(
+    mech: Any, model: Any, q: np.ndarray, cs: Any, tprec: Precision
+) -> LocalAnalysis:
     inst = cs.nullity
     prec_name = cs.rank.precision
     if inst is None:
@@ -136,17 +156,23 @@ def local_analysis(mech: Any, model: Any, q: np.ndarray, cs: Any) -> LocalAnalys
     out = LocalAnalysis(inst, inst, [], samples)
     joints = _joints_of(mech, cs)
     margin = cs.rank.margin
+    built: list[_TestSystem] = []
 
-    def expansion() -> tuple[Expansion, np.ndarray]:
-        Ssf = to_float(scaled_columns(fm, fm.current_screws(qf)))
-        chains = loop_chains(fm, cs)
-        return Expansion(chains, Ssf), _stacked_float(cs, Ssf, fm)
+    def system() -> _TestSystem:
+        if not built:
+            exp, M = closure_expansion(model, cs, tprec)
+            dec = decide_rank(M, tprec, 1.0, want_spaces=True, native_spaces=True)
+            built.append(_TestSystem(exp, M, dec))
+        return built[0]
+
+    def cone_of(max_order: int = 3) -> Cone:
+        ts = system()
+        return tangent_cone(ts.exp, ts.M, tprec, max_order=max_order, rank=ts.rank)
 
     if inst == 0:
         out.generic = out.finite = 0
     elif not samples:
-        exp, M = expansion()
-        cone = tangent_cone(exp, M, FLOAT_PRECISION)
+        cone = cone_of()
         out.cone = cone
         out.regular = False
         if cone.kind == "zero":
@@ -177,8 +203,7 @@ def local_analysis(mech: Any, model: Any, q: np.ndarray, cs: Any) -> LocalAnalys
                 )
     elif gen_s is not None and inst > gen_s:
         out.regular = False
-        exp, M = expansion()
-        cone = tangent_cone(exp, M, FLOAT_PRECISION)
+        cone = cone_of()
         out.cone = cone
         out.generic = out.finite = gen_s
         if cone.kind == "inconclusive":
@@ -215,8 +240,7 @@ def local_analysis(mech: Any, model: Any, q: np.ndarray, cs: Any) -> LocalAnalys
         out.finite = out.generic
         # shakiness: a regular point whose second-order cone is smaller than the kernel
         if samples:
-            exp, M = expansion()
-            cone = tangent_cone(exp, M, FLOAT_PRECISION, max_order=2)
+            cone = cone_of(max_order=2)
             if (
                 cone.kind == "subspaces"
                 and len(cone.subspaces) == 1
@@ -226,7 +250,9 @@ def local_analysis(mech: Any, model: Any, q: np.ndarray, cs: Any) -> LocalAnalys
                 out.cone = cone
     # input / output / constraint, measured against the regular samples of the branch
     if out.generic is not None and inst > 0 and samples:
-        out.findings.extend(_io_findings(mech, fm, qf, N, cs, samples, out, joints, prec_name))
+        out.findings.extend(
+            _io_findings(mech, model, fm, q, system().rank, cs, samples, out, tprec)
+        )
     return out
 
 
@@ -234,7 +260,7 @@ def _branches(fm: Any, qf: np.ndarray, cone: Cone) -> list[tuple[np.ndarray, int
     """For each cone subspace: its tangent, the nullity found along it, smooth on both sides."""
     res = []
     for W in cone.subspaces:
-        x = W[:, 0]
+        x = to_float(W[:, 0])
         fwd = _probe(fm, qf, x)
         bwd = _probe(fm, qf, -x)
         null = None
@@ -263,7 +289,8 @@ def _cspace(
     f.update({k: v for k, v in extra.items() if v is not None})
     f["margin"] = m
     f["precision"] = prec
-    f["test_precision"] = "float"
+    if cone is not None:
+        f["test_precision"] = cone.precision
     return f
 
 
@@ -330,20 +357,23 @@ def _bifurcation_or_more(
 
 def _io_findings(
     mech: Any,
+    model: Any,
     fm: Any,
-    qf: np.ndarray,
-    N: np.ndarray,
+    q: np.ndarray,
+    rank: RankDecision,
     cs: Any,
     samples: list[NearbySample],
     out: LocalAnalysis,
-    joints: list[str],
-    prec: str,
+    tprec: Precision,
 ) -> list[dict[str, Any]]:
+    """ZFB and constraint findings: decided at q at the test precision ``tprec``
+    (``rank``: the closure system's decision there, with its kernel), against
+    the values at the regular nearby samples (float)."""
     findings: list[dict[str, Any]] = []
     regular = [s for s in samples if s.nullity == out.generic] or samples
     has_io = mech.output is not None and mech.inputs
     if has_io:
-        here = io_quantities(mech, fm, qf, N)
+        here = io_quantities(mech, model, q, rank.null_space, tprec, screws=cs.screws)
         gens = []
         for s in regular:
             Ns = decide_rank(
@@ -361,8 +391,15 @@ def _io_findings(
                 for k in hv
             }
             out.io_generic = generic
-            findings.extend(_zfb(mech, fm, here, hv, generic, prec))
-    legs = leg_constraint_rank(mech, fm, qf, cs) if mech.output is not None else None
+            for test, dec in (
+                ("input", here.input_motion),
+                ("output", here.output_motion),
+                ("impossible-input", here.input_rank),
+                ("impossible-output", here.output_rank),
+            ):
+                out.decisions.append(decision(test, dec, generic[test]))
+            findings.extend(_zfb(mech, fm, here, hv, generic, tprec))
+    legs = leg_constraint_rank(mech, model, q, cs, tprec) if mech.output is not None else None
     if legs is not None:
         dec, wr = legs
         gen_ranks = []
@@ -370,10 +407,10 @@ def _io_findings(
             r = leg_constraint_rank(mech, fm, s.q, closure_system(fm, s.q))
             if r is not None and r[0].rank is not None:
                 gen_ranks.append(r[0].rank)
+        out.decisions.append(decision("constraint", dec, max(gen_ranks) if gen_ranks else None))
         if dec.rank is not None and gen_ranks and dec.rank < max(gen_ranks):
             g = max(gen_ranks)
-            Wc = np.concatenate(wr, axis=1)
-            U, _s, _ = np.linalg.svd(Wc)
+            U, _s, _ = svd(np.concatenate(wr, axis=1))
             findings.append(
                 {
                     "class": "constraint",
@@ -381,18 +418,24 @@ def _io_findings(
                     "rank": dec.rank,
                     "generic_rank": g,
                     "corank": g - dec.rank,
-                    "wrenches": wrenches_of(fm, None, U[:, : dec.rank], False),
+                    "wrenches": wrenches_of(fm, None, to_float(U[:, : dec.rank]), False),
                     "margin": dec.margin.to_json(),
                     "precision": dec.precision,
+                    "test_precision": dec.precision,
                 }
             )
     if mech.output is not None:
-        findings.extend(_leg_serial(mech, fm, qf, regular))
+        findings.extend(_leg_serial(mech, model, fm, cs, regular, out))
     return findings
 
 
 def _zfb(
-    mech: Any, fm: Any, here: Any, hv: dict[str, Any], generic: dict[str, Any], prec: str
+    mech: Any,
+    fm: Any,
+    here: Any,
+    hv: dict[str, Any],
+    generic: dict[str, Any],
+    tprec: Precision,
 ) -> list[dict[str, Any]]:
     findings = []
     names = _coordinate_names(mech, fm)
@@ -409,9 +452,9 @@ def _zfb(
             basis, dec = sp["zE"], here.output_motion
         else:
             both = np.vstack([sp["T"] @ N / max(sp["nT"], 1e-300), sp["E"] @ N])
-            dec = decide_rank(both, "float", L, want_spaces=True, reference=1.0)
+            dec = decide_rank(both, tprec, L, want_spaces=True, reference=1.0, native_spaces=True)
             basis = dec.null_space
-        x = N @ basis[:, 0] if basis.size else np.zeros(fm.n)
+        x = to_float(N @ basis[:, 0]) if basis.size else np.zeros(fm.n)
         rates = _si_rates(fm, x)
         f: dict[str, Any] = {
             "class": cls,
@@ -424,10 +467,11 @@ def _zfb(
             "joint_rates": rates,
         }
         if cls == "output":
-            t = sp["T"] @ x
+            t = to_float(sp["T"] @ (N @ basis[:, 0]))
             f["output_twist"] = _output_si(mech, fm, t)
         f["margin"] = dec.margin.to_json()
         f["precision"] = dec.precision
+        f["test_precision"] = dec.precision
         findings.append(f)
     for cls in ("impossible-input", "impossible-output"):
         v, g = hv[cls], generic[cls]
@@ -442,6 +486,7 @@ def _zfb(
                 "generic": g,
                 "margin": dec.margin.to_json(),
                 "precision": dec.precision,
+                "test_precision": dec.precision,
             }
         )
     return findings
@@ -468,14 +513,15 @@ def _coordinate_names(mech: Any, fm: Any) -> list[str]:
 
 
 def _leg_serial(
-    mech: Any, fm: Any, qf: np.ndarray, regular: list[NearbySample]
+    mech: Any, model: Any, fm: Any, cs: Any, regular: list[NearbySample], out: LocalAnalysis
 ) -> list[dict[str, Any]]:
-    """``serial`` for a leg whose own screw system loses rank (type I per leg)."""
+    """``serial`` for a leg whose own screw system loses rank (type I per leg):
+    decided at the analysis precision from the closure system's screws (as the
+    output chain of an open chain), against the float ranks at the samples."""
     findings = []
     legs = mech.legs
     if len(legs) < 2:
         return findings
-    S = fm.current_screws(qf)
     for i, leg in enumerate(legs):
         cols = [
             c
@@ -487,12 +533,14 @@ def _leg_serial(
             for j in leg.joints
             for _ in range(fm.joint(j).columns.stop - fm.joint(j).columns.start)
         ]
-        here = chain_system(fm, S, cols, None, "float")
+        with model.precision.context():
+            here = chain_system(model, cs.screws, cols, None, model.precision)
         gen = here.rank.rank or 0
         for s in regular:
             r = chain_system(fm, fm.current_screws(s.q), cols, None, "float").rank.rank
             if r is not None:
                 gen = max(gen, r)
+        out.decisions.append(decision(f"leg {i + 1} chain", here.rank, gen))
         f = serial_finding(fm, here, gen, names, {"chain": "leg", "leg": i + 1})
         if f:
             findings.append(f)

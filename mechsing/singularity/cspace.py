@@ -19,6 +19,13 @@ and projected on each loop's reduced orthonormal coordinates, like the
 stacked closure matrix M.  A tangent x in ker M extends to order 2 iff the
 quadratic part lies in range M, i.e. ``p^T Q(x) = 0`` for every left-null
 vector p: these are the quadratic forms of the second-order test.
+
+One code path for every numerical precision: the screws, loop bases, kernels,
+forms, eigen-decompositions and third-order residuals are numpy float arrays
+in float and object arrays of N-digit ``mpf`` at mp:N (run inside
+``Precision.context()``), decided with that mode's thresholds
+(:func:`mechsing.numeric.decide_rank`, :func:`~mechsing.numeric.decide_definiteness`
+and the tolerances placed relative to its ``tau_hi``).
 """
 
 from __future__ import annotations
@@ -31,13 +38,22 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.numeric import (
-    ORDER3_RESIDUAL_RTOL,
-    SUBSPACE_CONTAINMENT_ATOL,
-    SUBSPACE_RANK_RTOL,
     Precision,
+    RankDecision,
+    backend_of,
     decide_definiteness,
     decide_rank,
+    eigh,
+    lstsq,
+    max_abs,
+    norm,
+    order3_residual_rtol,
+    pinv_truncated,
+    subspace_containment_atol,
+    subspace_rank_rtol,
+    svd,
 )
+from mechsing.screws import loop_basis, scaled_columns
 
 #: directions sampled on a candidate subspace for the order-3 test
 _ORDER3_SAMPLES = 6
@@ -54,8 +70,10 @@ class LoopChain:
     Q: np.ndarray
 
 
-def loop_chains(model: Any, cs: Any) -> list[LoopChain]:
-    """The elements of every canonical loop, in loop order."""
+def loop_chains(model: Any, cs: Any, prec: Precision | None = None) -> list[LoopChain]:
+    """The elements of every canonical loop, in loop order, with the loop's basis
+    at ``prec`` (float by default; call inside ``prec.context()`` at mp:N)."""
+    prec = prec or Precision("float")
     out = []
     for ls in cs.loops:
         elems: list[tuple[list[int], int]] = []
@@ -67,16 +85,21 @@ def loop_chains(model: Any, cs: Any) -> list[LoopChain]:
                 elems.extend(parts if sign > 0 else parts[::-1])
             else:
                 elems.append((cols, sign))
-        out.append(LoopChain(elems, ls.basis_float))
+        rows = ls.basis_rows
+        Q = loop_basis(None if rows is None else prec.asarray(rows))
+        out.append(LoopChain(elems, Q))
     return out
 
 
 class Expansion:
-    """Higher-order closure terms at one configuration (float, commensurate)."""
+    """Higher-order closure terms at one configuration (commensurate), in the
+    backend of the screws ``Ss`` (float, or mp at the working precision)."""
 
     def __init__(self, chains: list[LoopChain], Ss: np.ndarray) -> None:
         self.chains = chains
-        self.Ss = np.asarray(Ss, dtype=float)
+        arr = np.asarray(Ss)
+        self.Ss = arr if arr.dtype == object else np.asarray(arr, dtype=float)
+        self.bk = backend_of(self.Ss)
 
     def _zetas(self, chain: LoopChain, u: np.ndarray) -> list[np.ndarray]:
         return [s * (self.Ss[:, cols] @ u[cols]) for cols, s in chain.elements]
@@ -86,13 +109,13 @@ class Expansion:
         out = []
         for ch in self.chains:
             zx, zy = self._zetas(ch, x), self._zetas(ch, y)
-            acc = np.zeros(6)
-            V = np.zeros(6)
+            acc = self.bk.zeros(6)
+            V = self.bk.zeros(6)
             for k in range(len(zy)):
                 acc += lie.bracket(V, zy[k])
                 V = V + zx[k]
             out.append(ch.Q.T @ acc)
-        return np.concatenate(out) if out else np.zeros(0)
+        return np.concatenate(out) if out else self.bk.zeros(0)
 
     def quadratic(self, x: np.ndarray) -> np.ndarray:
         return self.bilinear(x, x)
@@ -104,30 +127,58 @@ class Expansion:
             z = self._zetas(ch, u)
             A = self._zetas(ch, w)
             n = len(z)
-            V = [np.zeros(6)]
+            V = [self.bk.zeros(6)]
             for k in range(n - 1):
                 V.append(V[-1] + z[k])
             dz = [A[k] + lie.bracket(V[k], z[k]) for k in range(n)]
-            dV = [np.zeros(6)]
+            dV = [self.bk.zeros(6)]
             for k in range(n - 1):
                 dV.append(dV[-1] + dz[k])
-            acc = np.zeros(6)
+            acc = self.bk.zeros(6)
             for k in range(n):
                 acc += lie.bracket(V[k], A[k]) + lie.bracket(dV[k], z[k]) + lie.bracket(V[k], dz[k])
             out.append(ch.Q.T @ acc)
-        return np.concatenate(out) if out else np.zeros(0)
+        return np.concatenate(out) if out else self.bk.zeros(0)
+
+
+def closure_expansion(model: Any, cs: Any, prec: Precision) -> tuple[Expansion, np.ndarray]:
+    """The expansion and the stacked reduced closure matrix M at the configuration
+    of the closure system ``cs``, in the numbers of ``prec`` (float or mp:N).
+
+    Built from the closure system's commensurate screws and each loop's basis
+    rows (computed at the analysis precision, exact ones included), with the
+    same QR as the loops' reduced coordinates, so that the brackets and M share
+    their coordinates; at the analysis precision M is the closure matrix itself.
+    """
+    with prec.context():
+        bk = prec.backend
+        Ss0 = cs.scaled_screws
+        if Ss0 is None:
+            Ss0 = scaled_columns(model, cs.screws)
+        Ss = prec.asarray(Ss0)
+        chains = loop_chains(model, cs, prec)
+        rows = []
+        for ls, ch in zip(cs.loops, chains, strict=True):
+            signs = np.zeros(model.n)
+            for name, sign in zip(ls.loop.joints, ls.loop.signs, strict=True):
+                signs[model.joint(name).columns] = sign
+            rows.append(ch.Q.T @ (Ss * signs[None, :]))
+        M = np.concatenate(rows, axis=0) if rows else bk.zeros((0, model.n))
+        return Expansion(chains, Ss), M
 
 
 @dataclass
 class Cone:
     """The tangent cone found by the higher-order test.
 
-    ``subspaces``: list of orthonormal bases (n x d, commensurate joint rates)
-    whose union is the cone (empty list: the cone is {0}); ``kind``:
-    ``"subspaces"``, ``"zero"`` (cone {0}) or ``"inconclusive"`` (not a finite
-    union of subspaces, or undecided at every order tried); ``order``: the
-    highest order used; ``eig_margin``: the eigenvalue margin of the deciding
-    forms; ``undecided``: a definiteness fell between the thresholds.
+    ``subspaces``: list of orthonormal bases (n x d, commensurate joint rates,
+    in the numbers of the test precision) whose union is the cone (empty list:
+    the cone is {0}); ``kind``: ``"subspaces"``, ``"zero"`` (cone {0}) or
+    ``"inconclusive"`` (not a finite union of subspaces, or undecided at every
+    order tried); ``order``: the highest order used; ``eig_margin``: the
+    eigenvalue margin of the deciding forms; ``undecided``: a definiteness fell
+    between the thresholds; ``precision``: the precision of the test (``float``
+    or ``mp:N``).
     """
 
     kind: str
@@ -136,13 +187,14 @@ class Cone:
     eig_margin: float | None = None
     undecided: bool = False
     notes: list[str] = field(default_factory=list)
+    precision: str = "float"
 
 
-def _orth(A: np.ndarray) -> np.ndarray:
+def _orth(A: np.ndarray, prec: Precision) -> np.ndarray:
     if A.shape[1] == 0:
         return A
-    U, s, _ = np.linalg.svd(A, full_matrices=False)
-    keep = s > SUBSPACE_RANK_RTOL * (s[0] if len(s) else 1)
+    U, s, _ = svd(A, full_matrices=False)
+    keep = np.array([x > subspace_rank_rtol(prec) * s[0] for x in s], dtype=bool)
     return U[:, keep]
 
 
@@ -150,7 +202,7 @@ def _forms(exp: Expansion, N: np.ndarray, P: np.ndarray) -> list[np.ndarray]:
     """Symmetric m x m matrices p_k^T Q(N y) for each left-null vector p_k."""
     m = N.shape[1]
     c = P.shape[1]
-    F = np.zeros((c, m, m))
+    F = exp.bk.zeros((c, m, m))
     for a in range(m):
         for b in range(a, m):
             v = exp.bilinear(N[:, a], N[:, b]) + exp.bilinear(N[:, b], N[:, a])
@@ -165,16 +217,16 @@ def _form_basis(forms: list[np.ndarray], prec: Precision) -> list[np.ndarray]:
     if not forms:
         return []
     m = forms[0].shape[0]
+    bk = backend_of(*forms)
     iu = np.triu_indices(m)
     A = np.array([f[iu] for f in forms]).T
-    scale = max(float(np.max(np.abs(A))), 0.0)
-    if scale == 0.0:
+    if max_abs(A) == 0:
         return []
-    U, s, _ = np.linalg.svd(A, full_matrices=False)
-    r = int(np.sum(s > prec.tolerances.tau_hi * s[0]))
+    U, s, _ = svd(A, full_matrices=False)
+    r = sum(1 for x in s if x > prec.tolerances.tau_hi * s[0])
     out = []
     for k in range(r):
-        f = np.zeros((m, m))
+        f = bk.zeros((m, m))
         f[iu] = U[:, k] * s[k]
         f = f + f.T - np.diag(np.diag(f))
         out.append(f)
@@ -196,16 +248,18 @@ def _zero_set(
     subspace is *silent* when order 2 says nothing transversal about it (every
     form vanishes there identically, or it is the kernel of a semidefinite
     form: a double root, where branches may be tangential); order 3 decides
-    those.
+    those.  The forms are float or mp arrays; ``prec`` (float or mp:N, whose
+    context must be active) decides them.
     """
     if not forms:
         return "subspaces", [], [], [], False
     m = forms[0].shape[0]
     if m == 0:
         return "subspaces", [], [], [], False
+    bk = backend_of(*forms)
     basis = _form_basis(forms, prec)
     if not basis:
-        return "subspaces", [np.eye(m)], [True], [], False
+        return "subspaces", [bk.eye(m)], [True], [], False
     decisions = [decide_definiteness(f, prec) for f in basis]
     if any(d.kind is None for d in decisions):
         return "subspaces", [], [], [], True
@@ -223,9 +277,8 @@ def _zero_set(
     f, d = ranked[0]
     rest = [g for g, _ in ranked[1:]]
     margins: list[float] = [d.eig_margin or 0.0]
-    w, V = np.linalg.eigh((f + f.T) / 2)
-    ref = float(np.max(np.abs(w)))
-    tau = prec.tolerances.tau_hi * ref
+    w, V = eigh(f)
+    tau = prec.tolerances.tau_hi * max_abs(w)
     pos = [i for i in range(m) if w[i] > tau]
     neg = [i for i in range(m) if w[i] < -tau]
     zero = [i for i in range(m) if abs(w[i]) <= tau]
@@ -235,8 +288,8 @@ def _zero_set(
         pieces.append((V[:, zero], True))
     elif len(pos) == 1 and len(neg) == 1:
         # rank-2 indefinite: two hyperplanes (sqrt|a| v_p . y = +- sqrt|b| v_n . y), crossing transversally
-        vp = math.sqrt(w[pos[0]]) * V[:, pos[0]]
-        vn = math.sqrt(-w[neg[0]]) * V[:, neg[0]]
+        vp = bk.sqrt(w[pos[0]]) * V[:, pos[0]]
+        vn = bk.sqrt(-w[neg[0]]) * V[:, neg[0]]
         for normal in (vp - vn, vp + vn):
             pieces.append((_null_of_row(normal), False))
     else:
@@ -250,7 +303,7 @@ def _zero_set(
         if rest:
             kind, subs, fl, mg, und = _zero_set(_restrict(rest, B), prec, depth + 1)
         else:
-            kind, subs, fl, mg, und = "subspaces", [np.eye(B.shape[1])], [False], [], False
+            kind, subs, fl, mg, und = "subspaces", [bk.eye(B.shape[1])], [False], [], False
         undecided = undecided or und
         margins.extend(mg)
         if kind == "cone":
@@ -258,26 +311,27 @@ def _zero_set(
         for S, sflag in zip(subs, fl, strict=True):
             out.append(B @ S)
             flags.append(silent or sflag)
-    spaces, keep_flags = _distinct_flagged(out, flags)
+    spaces, keep_flags = _distinct_flagged(out, flags, prec)
     return "subspaces", spaces, keep_flags, margins, undecided
 
 
 def _null_of_row(r: np.ndarray) -> np.ndarray:
-    _, _, Vt = np.linalg.svd(r[None, :])
+    _, _, Vt = svd(r[None, :])
     return Vt[1:].T
 
 
 def _distinct_flagged(
-    spaces: list[np.ndarray], flags: list[bool]
+    spaces: list[np.ndarray], flags: list[bool], prec: Precision
 ) -> tuple[list[np.ndarray], list[bool]]:
     """Remove zero-dimensional, repeated and contained subspaces (a kept space is
     silent only if every space merged into it was)."""
-    items = [(_orth(S), f) for S, f in zip(spaces, flags, strict=True) if S.shape[1] > 0]
+    items = [(_orth(S, prec), f) for S, f in zip(spaces, flags, strict=True) if S.shape[1] > 0]
     items = [(S, f) for S, f in items if S.shape[1] > 0]
+    atol = subspace_containment_atol(prec)
     keep: list[tuple[np.ndarray, bool]] = []
     for S, f in sorted(items, key=lambda sf: -sf[0].shape[1]):
         for i, (K, kf) in enumerate(keep):
-            if np.linalg.norm(S - K @ (K.T @ S)) < SUBSPACE_CONTAINMENT_ATOL:
+            if norm(S - K @ (K.T @ S)) < atol:
                 keep[i] = (K, kf and f)
                 break
         else:
@@ -285,31 +339,47 @@ def _distinct_flagged(
     return [S for S, _ in keep], [f for _, f in keep]
 
 
-def _distinct(spaces: list[np.ndarray]) -> list[np.ndarray]:
-    return _distinct_flagged(spaces, [False] * len(spaces))[0]
+def _distinct(spaces: list[np.ndarray], prec: Precision) -> list[np.ndarray]:
+    return _distinct_flagged(spaces, [False] * len(spaces), prec)[0]
 
 
-def tangent_cone(exp: Expansion, M: np.ndarray, prec: Precision, max_order: int = 3) -> Cone:
+def tangent_cone(
+    exp: Expansion,
+    M: np.ndarray,
+    prec: Precision,
+    max_order: int = 3,
+    rank: RankDecision | None = None,
+) -> Cone:
     """The kinematic tangent cone at a configuration (orders 2 and 3).
 
-    ``M``: the stacked commensurate closure matrix (float).
+    ``M``: the stacked commensurate closure matrix, in the numbers of ``exp``
+    (see :func:`closure_expansion`); ``prec``: float or mp:N, the precision
+    every rank, definiteness and residual of the test is computed and decided
+    at (its working precision is set here); ``rank``: M's decision at ``prec``
+    with its native spaces, when already made.
     """
-    L = 1.0
-    dec = decide_rank(M, "float" if prec.mode != "mp" else prec, L, want_spaces=True)
+    with prec.context():
+        dec = rank or decide_rank(M, prec, 1.0, want_spaces=True, native_spaces=True)
+        return _tangent_cone(exp, M, dec, prec, max_order)
+
+
+def _tangent_cone(
+    exp: Expansion, M: np.ndarray, dec: RankDecision, prec: Precision, max_order: int
+) -> Cone:
+    tp = str(prec)
     N = dec.null_space
-    U, s, _ = np.linalg.svd(M)
+    P = dec.left_null_space
     r = dec.rank if dec.rank is not None else dec.rank_bounds[0]
-    P = U[:, r:]
     m = N.shape[1]
     if m == 0:
-        return Cone("zero", [], 1)
+        return Cone("zero", [], 1, precision=tp)
     if P.shape[1] == 0:
-        return Cone("subspaces", [N], 1)
+        return Cone("subspaces", [N], 1, precision=tp)
     forms = _forms(exp, N, P)
     kind, subs, silent, margins, undecided = _zero_set(forms, prec)
     eig = min(margins) if margins else None
     if undecided:
-        return Cone("inconclusive", [], 2, eig, True, ["a second-order form is undecided"])
+        return Cone("inconclusive", [], 2, eig, True, ["a second-order form is undecided"], tp)
     if kind == "cone":
         return Cone(
             "inconclusive",
@@ -318,10 +388,11 @@ def tangent_cone(exp: Expansion, M: np.ndarray, prec: Precision, max_order: int 
             eig,
             False,
             ["the second-order cone is not a finite union of subspaces"],
+            tp,
         )
     spaces = [N @ S for S in subs]
     if not spaces:
-        return Cone("zero", [], 2, eig)
+        return Cone("zero", [], 2, eig, precision=tp)
     # order 3 only where order 2 is silent (forms vanish identically, or a double root)
     order = 2
     if max_order >= 3 and any(silent):
@@ -331,7 +402,7 @@ def tangent_cone(exp: Expansion, M: np.ndarray, prec: Precision, max_order: int 
                 kept.append(W)
                 continue
             order = 3
-            verdict = _order3(exp, M, N, P, W, prec)
+            verdict = _order3(exp, M, r, N, P, W, prec)
             if verdict == "keep":
                 kept.append(W)
             elif verdict == "mixed":
@@ -344,49 +415,51 @@ def tangent_cone(exp: Expansion, M: np.ndarray, prec: Precision, max_order: int 
                     [
                         "the third-order test keeps some directions of a candidate branch and not others"
                     ],
+                    tp,
                 )
         spaces = kept
         if not spaces:
-            return Cone("zero", [], order, eig)
+            return Cone("zero", [], order, eig, precision=tp)
     elif any(silent):
-        return Cone("inconclusive", [], 2, eig, False, ["order 2 is silent on a candidate branch"])
-    return Cone("subspaces", _distinct(spaces), order, eig)
-
-
-def _forms_vanish(forms: list[np.ndarray], B: np.ndarray, prec: Precision) -> bool:
-    ref = max((float(np.max(np.abs(f))) for f in forms), default=0.0)
-    if ref == 0:
-        return True
-    return all(
-        float(np.max(np.abs(B.T @ f @ B), initial=0.0)) <= prec.tolerances.tau_lo * ref * 1e3
-        for f in forms
-    )
+        return Cone(
+            "inconclusive", [], 2, eig, False, ["order 2 is silent on a candidate branch"], tp
+        )
+    return Cone("subspaces", _distinct(spaces, prec), order, eig, precision=tp)
 
 
 def _order3(
-    exp: Expansion, M: np.ndarray, N: np.ndarray, P: np.ndarray, W: np.ndarray, prec: Precision
+    exp: Expansion,
+    M: np.ndarray,
+    r: int,
+    N: np.ndarray,
+    P: np.ndarray,
+    W: np.ndarray,
+    prec: Precision,
 ) -> str:
-    """Does every direction of W extend to order 3 ("keep"), none ("drop"), or mixed?"""
+    """Does every direction of W extend to order 3 ("keep"), none ("drop"), or mixed?
+
+    The second-order rates solve ``M w = -Q(x)`` with the pseudo-inverse of M's
+    decided rank-``r`` part (its dropped singular values are zero to the
+    precision, never inverted)."""
     rng = np.random.default_rng(1)
-    Mp = np.linalg.pinv(M)
+    U, s, Vt = svd(M)
+    Mp = pinv_truncated(U, s, Vt, r)
+    tol = order3_residual_rtol(prec)
     ok = 0
     bad = 0
     for _ in range(_ORDER3_SAMPLES):
         x = W @ rng.normal(size=W.shape[1])
-        x /= np.linalg.norm(x)
+        x = x / norm(x)
         wp = -Mp @ exp.quadratic(x)
-        base = P.T @ exp.third(x, wp)
+        t0 = exp.third(x, wp)
+        base = P.T @ t0
         Lz = np.stack(
-            [P.T @ (exp.third(x, wp + N[:, j]) - exp.third(x, wp)) for j in range(N.shape[1])],
+            [P.T @ (exp.third(x, wp + N[:, j]) - t0) for j in range(N.shape[1])],
             axis=1,
         )
-        scale = max(1.0, float(np.max(np.abs(Lz), initial=0.0)))
-        if Lz.size:
-            z, *_ = np.linalg.lstsq(Lz, -base, rcond=None)
-            resid = base + Lz @ z
-        else:
-            resid = base
-        if float(np.max(np.abs(resid), initial=0.0)) <= ORDER3_RESIDUAL_RTOL * scale:
+        scale = max(1.0, max_abs(Lz))
+        resid = base + Lz @ lstsq(Lz, -base) if Lz.size else base
+        if max_abs(resid) <= tol * scale:
             ok += 1
         else:
             bad += 1

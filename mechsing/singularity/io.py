@@ -30,21 +30,32 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
-from mechsing.numeric import RankDecision, decide_rank, scale_screws, to_float
+from mechsing.numeric import (
+    Precision,
+    RankDecision,
+    decide_rank,
+    spectral_norm,
+    svd,
+    to_float,
+)
+from mechsing.screws import commensurate_frame, scaled_columns
 
 __all__ = ["IOQuantities", "io_quantities", "leg_constraint_rank"]
+
+_FLOAT = Precision("float")
 
 
 @dataclass
 class IOQuantities:
-    """Dimensions of the ZFB subspaces at one configuration (float decisions)."""
+    """Dimensions of the ZFB subspaces at one configuration, decided at one
+    precision (float, or mp:N with every space an N-digit object array)."""
 
     input_motion: RankDecision  # E applied to K cap ker T
     output_motion: RankDecision  # T applied to K cap ker E
     passive_motion: int | None  # dim K cap ker E cap ker T
     input_rank: RankDecision  # rank E N
     output_rank: RankDecision  # rank T N
-    spaces: dict[str, np.ndarray]
+    spaces: dict[str, Any]
 
     def values(self) -> dict[str, int | None]:
         return {
@@ -59,27 +70,31 @@ class IOQuantities:
 def output_rows(
     mech: Any, model: Any, q: np.ndarray, S: np.ndarray, poses: dict[str, np.ndarray]
 ) -> np.ndarray | None:
-    """Commensurate output map T (6 x n twists, or 3 x n point velocities / L)."""
+    """Commensurate output map T (6 x n twists, or 3 x n point velocities / L), in
+    the model's numbers (the same L and centroid as its closure rows)."""
     out = mech.output
     if out is None:
         return None
     paths = mech.graph.tree_paths
-    coef = np.zeros(model.n)
+    # integer signs: a float factor would round exact screws to float digits
+    coef = np.zeros(model.n, dtype=int)
     for body, sgn in ((out.body, 1), (out.relative_to, -1)):
         for st in paths[body]:
             coef[model.joint(st.joint).columns] += sgn * st.sign
-    Sf = to_float(S)
-    L = model.length_scale
-    T = scale_screws(Sf * coef[None, :], L, model.centroid, model.length_columns)
+    T = scaled_columns(model, S * coef[None, :])
     if out.point is None:
         return T
-    x0 = to_float(np.array(list(out.point), dtype=object))
-    x = lie.act_point(to_float(poses[out.body]), x0)
+    if model.backend.name == "float":
+        x0 = to_float(np.array(list(out.point), dtype=object))
+    else:
+        x0 = model.asarray(list(out.point))
+    x = lie.act_point(poses[out.body], x0)
     # velocity of the body point x: v + omega x x, from twists moved to the centroid:
     # v_x = v_c + omega x (x - c); in commensurate units divide by L
+    L, c = commensurate_frame(model)
     w, vc = T[:3], T[3:]
-    d = (x - model.centroid) / L
-    return vc + np.cross(w.T, d).T
+    d = (x - c) / L
+    return vc + lie.cross(w.T, d).T
 
 
 def input_rows(mech: Any, model: Any) -> np.ndarray | None:
@@ -93,38 +108,59 @@ def input_rows(mech: Any, model: Any) -> np.ndarray | None:
     return E
 
 
-def _null(A: np.ndarray, L: float, reference: float | None = None) -> np.ndarray:
+def _null(A: np.ndarray, L: float, prec: Precision, reference: Any = None) -> np.ndarray:
     if A.shape[0] == 0:
-        return np.eye(A.shape[1])
-    dec = decide_rank(A, "float", L, want_spaces=True, reference=reference)
+        return prec.backend.eye(A.shape[1])
+    dec = decide_rank(A, prec, L, want_spaces=True, reference=reference, native_spaces=True)
     return dec.null_space
 
 
-def io_quantities(mech: Any, model: Any, q: np.ndarray, N: np.ndarray) -> IOQuantities | None:
-    """ZFB quantities at q; N: commensurate kernel basis of the closure system (n x m)."""
-    qf = to_float(q)
-    fm = model
-    poses = fm.poses(qf)
-    S = fm.current_screws(qf, poses)
-    T = output_rows(mech, fm, qf, S, poses)
-    E = input_rows(mech, fm)
+def io_quantities(
+    mech: Any,
+    model: Any,
+    q: np.ndarray,
+    N: np.ndarray,
+    prec: Precision = _FLOAT,
+    screws: np.ndarray | None = None,
+) -> IOQuantities | None:
+    """ZFB quantities at q, computed and decided at ``prec`` (float or mp:N).
+
+    ``N``: commensurate kernel basis of the closure system (n x m) in the numbers
+    of ``prec``; ``screws``: the current screws at q when already known (the
+    closure system's); the output map is built in the model's numbers (exact
+    ones included) and then converted, so that it shares L and the centroid
+    with the closure rows N was computed from.
+    """
+    with model.precision.context():
+        poses = model.poses(q) if screws is None or mech.output.point is not None else {}
+        S = model.current_screws(q, poses) if screws is None else screws
+        T = output_rows(mech, model, q, S, poses)
+    E = input_rows(mech, model)
     if T is None or E is None:
         return None
-    L = fm.length_scale
+    with prec.context():
+        T = prec.asarray(T)
+        return _io_quantities(T, E, N, model.length_scale, prec)
+
+
+def _io_quantities(
+    T: np.ndarray, E: np.ndarray, N: np.ndarray, L: float, prec: Precision
+) -> IOQuantities:
+    bk = prec.backend
     m = N.shape[1]
     TN = T @ N
     EN = E @ N
     # thresholds relative to the operators T and E themselves (N and the z are
     # orthonormal), so a product that vanishes is rank 0, not rounding noise
-    nT = float(np.linalg.norm(T, 2)) if T.size else 0.0
+    nT = spectral_norm(T)
     nE = 1.0
-    zT = _null(TN, L, nT) if m else np.zeros((0, 0))
-    zE = _null(EN, L, nE) if m else np.zeros((0, 0))
-    inp = decide_rank(EN @ zT if zT.size else np.zeros((E.shape[0], 0)), "float", L, reference=nE)
-    outp = decide_rank(TN @ zE if zE.size else np.zeros((T.shape[0], 0)), "float", L, reference=nT)
+    zT = _null(TN, L, prec, nT) if m else bk.zeros((0, 0))
+    zE = _null(EN, L, prec, nE) if m else bk.zeros((0, 0))
+    inp = decide_rank(EN @ zT if zT.size else np.zeros((E.shape[0], 0)), prec, L, reference=nE)
+    outp = decide_rank(TN @ zE if zE.size else np.zeros((T.shape[0], 0)), prec, L, reference=nT)
     both = np.vstack([TN / max(nT, 1e-300), EN]) if m else np.zeros((0, 0))
     if m:
-        d = decide_rank(both, "float", L, reference=1.0)
+        d = decide_rank(both, prec, L, reference=1.0)
         passive = None if d.rank is None else m - d.rank
     else:
         passive = 0
@@ -132,8 +168,8 @@ def io_quantities(mech: Any, model: Any, q: np.ndarray, N: np.ndarray) -> IOQuan
         inp,
         outp,
         passive,
-        decide_rank(EN, "float", L, reference=nE),
-        decide_rank(TN, "float", L, reference=nT),
+        decide_rank(EN, prec, L, reference=nE),
+        decide_rank(TN, prec, L, reference=nT),
         {"T": T, "E": E, "N": N, "zT": zT, "zE": zE, "nT": nT},
     )
 
@@ -168,11 +204,12 @@ def _leg_path(mech: Any, leg: Any, base: str, body: str) -> list[tuple[str, int]
 
 
 def leg_constraint_rank(
-    mech: Any, model: Any, q: np.ndarray, cs: Any
+    mech: Any, model: Any, q: np.ndarray, cs: Any, prec: Precision = _FLOAT
 ) -> tuple[RankDecision, list[np.ndarray]] | None:
     """Rank of the legs' combined constraint wrench system W_c, and each leg's
     constraint wrenches (commensurate vectors y with y . twist = 0 for every
-    twist the leg lets the output make).
+    twist the leg lets the output make), computed and decided at ``prec``
+    (float or mp:N) from the closure system ``cs`` at q.
 
     A leg's twist system is ``T_path K_leg``: the output twists through a path
     of the leg's joints from the base, over the solutions ``K_leg`` of the
@@ -181,32 +218,32 @@ def leg_constraint_rank(
     out = mech.output
     if out is None or len(mech.legs) < 2:
         return None
-    qf = to_float(q)
-    poses = model.poses(qf)
-    S = to_float(model.current_screws(qf, poses))
+    with model.precision.context():
+        Ss0 = cs.scaled_screws if cs.scaled_screws is not None else scaled_columns(model, cs.screws)
     L = model.length_scale
-    Ss = scale_screws(S, L, model.centroid, model.length_columns)
-    wrenches = []
-    for leg in mech.legs:
-        legset = set(leg.joints)
-        cols = [
-            c
-            for j in leg.joints
-            for c in range(model.joint(j).columns.start, model.joint(j).columns.stop)
-        ]
-        inner = [ls.matrix for ls in cs.loops if set(ls.loop.joints) <= legset]
-        if inner:
-            Mi = to_float(np.concatenate(inner, axis=0))[:, cols]
-            K = _null(Mi, L)
-        else:
-            K = np.eye(len(cols))
-        coef = np.zeros(model.n)
-        for jn, sg in _leg_path(mech, leg, out.relative_to, out.body):
-            coef[model.joint(jn).columns] = sg
-        Tl = (Ss * coef[None, :])[:, cols] @ K
-        dec = decide_rank(Tl, "float", L)
-        r = dec.rank if dec.rank is not None else dec.rank_bounds[1]
-        U, _s, _ = np.linalg.svd(Tl)
-        wrenches.append(U[:, r:])
-    Wc = np.concatenate(wrenches, axis=1) if wrenches else np.zeros((6, 0))
-    return decide_rank(Wc.T if Wc.shape[1] else np.zeros((0, 6)), "float", L), wrenches
+    with prec.context():
+        Ss = prec.asarray(Ss0)
+        wrenches = []
+        for leg in mech.legs:
+            legset = set(leg.joints)
+            cols = [
+                c
+                for j in leg.joints
+                for c in range(model.joint(j).columns.start, model.joint(j).columns.stop)
+            ]
+            inner = [ls.matrix for ls in cs.loops if set(ls.loop.joints) <= legset]
+            if inner:
+                Mi = prec.asarray(np.concatenate(inner, axis=0))[:, cols]
+                K = _null(Mi, L, prec)
+            else:
+                K = prec.backend.eye(len(cols))
+            coef = np.zeros(model.n)
+            for jn, sg in _leg_path(mech, leg, out.relative_to, out.body):
+                coef[model.joint(jn).columns] = sg
+            Tl = (Ss * coef[None, :])[:, cols] @ K
+            dec = decide_rank(Tl, prec, L)
+            r = dec.rank if dec.rank is not None else dec.rank_bounds[1]
+            U, _s, _ = svd(Tl)
+            wrenches.append(U[:, r:])
+        Wc = np.concatenate(wrenches, axis=1) if wrenches else prec.backend.zeros((6, 0))
+        return decide_rank(Wc.T if Wc.shape[1] else np.zeros((0, 6)), prec, L), wrenches
