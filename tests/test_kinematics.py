@@ -352,9 +352,8 @@ class Spec:
 
 def flat(mech, values: dict[str, np.ndarray]) -> np.ndarray:
     """The flat coordinate vector in mechsing's order (file order, basis order)."""
-    return np.concatenate(
-        [np.asarray(values[j.name], float).reshape(-1) for j in mech.joints if j.dof]
-    )
+    parts = [np.asarray(values[j.name], float).reshape(-1) for j in mech.joints if j.dof]
+    return np.concatenate(parts) if parts else np.zeros(0)
 
 
 # ---------------------------------------------------------------------------
