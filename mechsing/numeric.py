@@ -49,6 +49,7 @@ __all__ = [
     "characteristic_length",
     "decide_definiteness",
     "decide_rank",
+    "exact_is_zero",
     "eigh",
     "lstsq",
     "max_abs",
@@ -100,6 +101,11 @@ CONTINUATION_RETURN_RATIO = 0.1
 CONTINUATION_JUMP_FLOOR = 1e-9
 
 
+#: mp:N polishes a closed configuration with Newton at N digits until its
+#: residual is below 10^(POLISH_DIGITS_SPARE - N) L (working precision, with a
+#: few digits spare for the rounding of poses), in at most POLISH_MAX_STEPS steps
+POLISH_DIGITS_SPARE = 5
+POLISH_MAX_STEPS = 12
 #: largest joint value accepted in a configuration: radians, or times the
 #: characteristic length L for a length; larger is an absurd size (an angle of
 #: 1e6 rad is 160 000 turns)
@@ -143,6 +149,12 @@ SCAN_SCREEN_FACTOR = 10.0
 #: determinant of J (or of its Gram matrix) is the exact one of a matrix within
 #: this of J (backward error of LU), so the bound is lowered by as much
 SCAN_ROUNDING_FACTOR = 16.0
+
+
+#: exact mode first evaluates a quantity to this many digits: clearly non-zero
+#: there (above 10^-(EXACT_ZERO_DIGITS - 15) of its scale) it is not zero, and
+#: only the rest is handed to sympy to prove it zero
+EXACT_ZERO_DIGITS = 60
 
 
 # ---------------------------------------------------------------------------
@@ -984,3 +996,25 @@ def _kind(npos: int, nneg: int, nz: int) -> str:
     if nz:
         return "semidefinite"
     return "definite"
+
+
+def exact_is_zero(x: Any, scale: float = 1.0) -> bool | None:
+    """Is an exact (sympy) number zero?  True (proved), False, or None (zero to
+    :data:`EXACT_ZERO_DIGITS` digits but not proved).
+
+    Cheap first: a value clearly non-zero at 60 digits (relative to ``scale``, e.g.
+    the characteristic length for a translation) is not zero, so a configuration
+    that does not close fails at once; the rest is proved by expansion, then
+    trigonometric simplification, then ``simplify`` (in that order of cost).
+    """
+    x = sympy.sympify(x)
+    if x == 0:
+        return True
+    if x.is_number:
+        v = sympy.N(x, EXACT_ZERO_DIGITS)
+        if abs(v) > sympy.Float(10) ** (15 - EXACT_ZERO_DIGITS) * max(1.0, float(scale)):
+            return False
+    for prove in (sympy.expand, sympy.trigsimp, sympy.simplify):
+        if prove(x) == 0:
+            return True
+    return None if x.is_number else False

@@ -37,11 +37,15 @@ from mechsing.numeric import (
     CONTINUATION_REVERSE_RTOL,
     CONTINUATION_SINGULAR_RTOL,
     CONTINUATION_STEP_RTOL,
+    EXACT_ZERO_DIGITS,
     MAX_JOINT_VALUE,
     MEMBERSHIP_RTOL_FLOAT,
+    POLISH_DIGITS_SPARE,
+    POLISH_MAX_STEPS,
     ROTATION_ORTHONORMAL_ATOL,
     Precision,
     decide_rank,
+    exact_is_zero,
     to_float,
 )
 
@@ -160,9 +164,29 @@ class Closer:
                     f"sensible size (at most {MAX_JOINT_VALUE:g} rad, or {MAX_JOINT_VALUE:g} times the "
                     f"mechanism's size {m.length_scale:.3g} m for a length); check the value and the units"
                 )
+            if m.precision.mode == "exact":
+                self._refuse_transcendental(cfg, jk, coords)
             target[jk.columns] = coords
             given.extend(range(jk.columns.start, jk.columns.stop))
         return target, tuple(sorted(given))
+
+    def _refuse_transcendental(self, cfg: Configuration, jk: Any, coords: np.ndarray) -> None:
+        """Exact data (DESIGN.md): an angle of R, H, C or U must have algebraic sine and
+        cosine (a rational multiple of pi, atan/asin/acos of an algebraic number...);
+        sympy proves sin 1 transcendental, so 1 rad is refused rather than mis-checked."""
+        if jk.type not in ("R", "H", "C", "U"):
+            return
+        angles = coords if jk.type == "U" else coords[:1]
+        for v in angles:
+            if sympy.sin(v).is_algebraic is False or sympy.cos(v).is_algebraic is False:
+                where = f"configuration {cfg.name!r}, joint {jk.name!r}" + (
+                    f" (line {cfg.line})" if cfg.line else ""
+                )
+                raise UserError(
+                    f"{where}: the angle {v} is not exact data (its sine is transcendental); "
+                    'exact mode needs angles such as "pi/6", "atan(1/2)" or "2*atan(1/3)"; '
+                    "use --precision auto, float or mp:N for this configuration"
+                )
 
     def _coordinates_of_displacement(
         self, cfg: Configuration, jname: str, val: Displacement
@@ -235,12 +259,19 @@ class Closer:
         m = self.model
         deltas = m.chord_residuals(q)
         if m.precision.mode == "exact":
-            bad = [
-                jk.name
-                for jk, D in zip(m.chords, deltas, strict=True)
-                if any(sympy.simplify(x) != 0 for x in (D - m.backend.eye(4)).flat)
+            proofs = [
+                [exact_is_zero(x, m.length_scale) for x in (D - m.backend.eye(4)).flat]
+                for D in deltas
             ]
+            bad = [jk.name for jk, pr in zip(m.chords, proofs, strict=True) if False in pr]
+            unproven = [jk.name for jk, pr in zip(m.chords, proofs, strict=True) if None in pr]
             res = m.residual_norm(deltas)
+            if unproven and not bad:
+                raise UserError(
+                    f"configuration {cfg.name!r}: {self._loop_named(unproven[0])} closes to "
+                    f"{EXACT_ZERO_DIGITS} digits but sympy cannot prove that it closes exactly; "
+                    "use --precision mp:N for this configuration"
+                )
             if bad:
                 raise ClosureError(
                     f"configuration {cfg.name!r} does not close exactly: {self._loop_named(bad[0])} "
@@ -484,7 +515,14 @@ class Closer:
     def _polish_mp(
         self, m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray
     ) -> tuple[np.ndarray, float]:
-        """Newton at N digits from the float solution (given values at full precision)."""
+        """Newton at N digits from the float solution (given values at full precision).
+
+        Polished to the working precision (10^(5-N) L), not merely to the acceptance
+        tolerance 10^(15-N) L: at mp:30 the float solution (1e-16 L) is already
+        accepted, and the rank decisions that follow need the screws to N digits (a
+        dropped singular value of 1e-17 lies between mp:30's thresholds).  Stops when a
+        step no longer reduces the residual (near a singular solution Newton is slow).
+        """
         import mpmath
 
         with m.precision.context():
@@ -492,9 +530,10 @@ class Closer:
             qm[gmask] = target[gmask]
             free = ~gmask
             L = m.length_scale
+            goal = 10.0 ** (POLISH_DIGITS_SPARE - mpmath.mp.dps) * L
             res = m.residual_norm(m.chord_residuals(qm))
-            for _ in range(8):
-                if res <= self.tolerance or not m.chords:
+            for _ in range(POLISH_MAX_STEPS):
+                if res <= goal or not m.chords:
                     break
                 r = m.chord_twists(m.chord_residuals(qm))
                 J = m.closure_jacobian(qm)
@@ -506,8 +545,11 @@ class Closer:
                 d = m.zeros()
                 d[np.flatnonzero(free)] = np.array(du, dtype=object)
                 d = np.where(m.length_columns, d * L, d)
-                qm = m.update(qm, d)
-                res = m.residual_norm(m.chord_residuals(qm))
+                qn = m.update(qm, d)
+                rn = m.residual_norm(m.chord_residuals(qn))
+                if rn >= res:
+                    break
+                qm, res = qn, rn
             return qm, res
 
 
