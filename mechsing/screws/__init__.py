@@ -136,7 +136,14 @@ def reduced_coordinates(
     if name in ("float", "mp"):
         with model.precision.context():
             return loop_basis(basis_rows).T @ Ss
-    B = sympy.Matrix(basis_rows.tolist()).T
+    # each row divided by its largest entry (exactly): a translation row (0, u / L)
+    # would otherwise carry 1/L into every coordinate, and the margin (a pivot)
+    # would change with the unit of length
+    rows = []
+    for row in basis_rows.tolist():
+        big = max(row, key=lambda x: abs(float(x)))
+        rows.append([sympy.sympify(x) / abs(sympy.sympify(big)) for x in row])
+    B = sympy.Matrix(rows).T
     C = (B.T * B).inv() * B.T * sympy.Matrix(Ss.tolist())
     return np.array(C.applyfunc(sympy.simplify).tolist(), dtype=object)
 

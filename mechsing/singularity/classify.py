@@ -47,6 +47,7 @@ def decision(test: str, dec: Any, generic: int | None = None) -> dict[str, Any]:
 
     return make(test, dec, generic)
 
+
 # The higher-order forms (tangent cone) and the input/output and constraint
 # ranks at q are computed and decided at the analysis precision
 # (numeric.numeric_precision: float, mp:N, mp:50 for exact), from the
@@ -104,6 +105,7 @@ def _si_rates(model: Any, x: np.ndarray) -> list[float]:
 def _probe(fm: Any, q: np.ndarray, x: np.ndarray) -> tuple[int | None, float] | None:
     """Step along commensurate direction x, close again; (nullity there, alignment)."""
     L = fm.length_scale
+    undecided: tuple[int | None, float] | None = None
     for step in BRANCH_STEPS:
         d = np.where(fm.length_columns, step * x * L, step * x)
         q1, res = reclose(fm, fm.update(q, d))
@@ -115,8 +117,13 @@ def _probe(fm: Any, q: np.ndarray, x: np.ndarray) -> tuple[int | None, float] | 
             continue
         align = float(abs(moved @ x) / (dist * np.linalg.norm(x)))
         dec = decide_rank(stacked_jacobian(fm, q1), "float", L)
-        return (None if dec.rank is None else fm.n - dec.rank), align
-    return None
+        if dec.rank is None:
+            # closed only to ~1e-13 L, a point of the branch can leave float's rank
+            # undecided: the longer step decides it
+            undecided = (None, align)
+            continue
+        return fm.n - dec.rank, align
+    return undecided
 
 
 def _joints_of(mech: Any, cs: Any) -> list[str]:
