@@ -400,6 +400,10 @@ def test_nearly_tangent_branches_float_cannot_decide_mp50_can(tmp_path: Path) ->
     got = [normalised(x) for x in f["branch_tangents"]]
     assert 1e-7 < np.max(np.abs(got[0] - got[1])) < 1e-5
     assert_same_lines(f["branch_tangents"], expected, 1e-12)
+    # auto: an undecided form is an undecided verdict, re-decided at mp:50
+    c = by_name(run(path, "auto"))["reference"]
+    assert c["precision"] == "mp:50"
+    assert finding(c, "bifurcation")["branch_mobility"] == [1, 1]
 
 
 def test_rpr_output_singularity_is_decided_at_mp50(tmp_path: Path) -> None:

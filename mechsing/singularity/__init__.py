@@ -152,6 +152,21 @@ def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str,
     result.internals["local"] = local
     result.decisions.extend(local.decisions)
     findings.extend(local.findings)
+    # an input/output, constraint or leg rank the precision could not decide is a
+    # verdict left open: say so, and let auto re-decide the configuration at mp:50
+    for d in local.decisions:
+        if d["rank"] is None:
+            findings.append(
+                {
+                    "class": "undecided",
+                    "what": f"{d['test']} test",
+                    "rank_bounds": d.get("rank_bounds"),
+                    "margin": d["margin"],
+                    "precision": d["precision"],
+                }
+            )
+    if local.cone is not None and local.cone.undecided:
+        result.internals["undecided"] = True  # a second-order form between the thresholds
     return findings
 
 
