@@ -48,7 +48,7 @@ sys.path.insert(0, str(ROOT))
 
 import mechsing  # noqa: E402
 from mechsing.numeric import Precision, scale_screws  # noqa: E402
-from mechsing.scan import ChainScanner  # noqa: E402
+from mechsing.scanner import ChainScanner  # noqa: E402
 
 MODES = ("float", "mp:30", "mp:50", "auto", "exact")
 
@@ -282,7 +282,7 @@ _CHILD = """
 import math, os, resource, sys, time
 import numpy as np
 import mechsing
-from mechsing.scan import ChainScanner
+from mechsing.scanner import ChainScanner
 n, chunk = int(sys.argv[1]), int(sys.argv[2])
 sc = ChainScanner(mechsing.load(sys.argv[3]))
 def gen():

@@ -35,7 +35,7 @@ def __getattr__(name: str):  # lazy: `mechsing --version` stays fast
 
         return load
     if name == "scan":
-        from mechsing.scan import scan
+        from mechsing.scanner import scan
 
         return scan
     raise AttributeError(name)

@@ -141,7 +141,7 @@ ORDER3_RESIDUAL_FACTOR = 1.0
 EXACT_TEST_DIGITS = 50
 #: a given rotation matrix must satisfy |R^T R - I| below this (and det R > 0)
 ROTATION_ORTHONORMAL_ATOL = 1e-9
-#: batched scans (:mod:`mechsing.scan`) decide "full rank" without an SVD when
+#: batched scans (:mod:`mechsing.scanner`) decide "full rank" without an SVD when
 #: the determinant bound on sigma_min / sigma_max is at least this many times
 #: float's tau_hi (room for the SVD's own rounding, which is near eps)
 SCAN_SCREEN_FACTOR = 10.0

@@ -10,6 +10,7 @@ singular set is known in closed form; and the SVD itself for the bound.
 
 from __future__ import annotations
 
+import functools
 import math
 from pathlib import Path
 
@@ -22,10 +23,10 @@ import mechsing
 from mechsing.kinematics import KinematicModel
 from mechsing.model.mechanism import MechanismError
 from mechsing.numeric import decide_rank
-from mechsing.scan import ChainScanner, scan
+from mechsing.scanner import ChainScanner, scan
 from mechsing.singularity import _output_point, output_chain, random_configurations
 from mechsing.singularity.serial import chain_matrix
-from tests.mechanisms import EXAMPLES, ROOT
+from tests.mechanisms import EXAMPLES, ROOT, scaled_text
 
 SERIAL_FILES = [
     EXAMPLES / "ur5.yaml",
@@ -190,17 +191,23 @@ def test_screen_bound_is_a_lower_bound() -> None:
 @settings(max_examples=40, deadline=None)
 @given(
     q=st.lists(st.floats(-4.0, 4.0), min_size=6, max_size=6),
-    scale=st.sampled_from([1e-6, 1.0, 1e6]),
+    scale=st.sampled_from(["/1000000", "*1", "*1000000"]),
 )
-def test_screen_never_disagrees_with_the_svd(q: list[float], scale: float) -> None:
-    """Property: on any configuration the screened verdict is the SVD's, and the bound holds."""
-    mech = mechsing.load(EXAMPLES / "ur5.yaml")
+def test_screen_never_disagrees_with_the_svd(q: list[float], scale: str) -> None:
+    """Property: on any configuration of UR5, its lengths scaled by 1e-6, 1 or 1e6, the
+    screened verdict is the SVD's, and the bound holds."""
+    mech = _scaled_ur5(scale)
     sc = ChainScanner(mech)
     Q = np.array([q])
     a = sc.scan(Q)
     b = sc.scan(Q, all_sigma=True)
     assert a.rank.tolist() == b.rank.tolist()
     assert b.bound[0] <= b.ratio[0] * (1 + 1e-12)
+
+
+@functools.cache
+def _scaled_ur5(factor: str):
+    return mechsing.model.loads(scaled_text(EXAMPLES / "ur5.yaml", factor))
 
 
 def test_chunks_and_iterables_give_the_same_result() -> None:
@@ -229,6 +236,35 @@ def test_scan_agrees_with_analyze_on_the_file_configurations() -> None:
             assert bool(r.singular[0]) == bool(serial), (path.name, c["name"])
             if serial:
                 assert int(r.rank[0]) == serial[0]["rank"]
+
+
+def test_the_package_function_survives_importing_the_module() -> None:
+    """`mechsing.scan` is the function, also after `mechsing.scanner` has been imported."""
+    import mechsing.scanner
+
+    assert callable(mechsing.scan)
+    res = mechsing.scan(EXAMPLES / "ur5.yaml", [[0.1, -0.7, 1.1, -0.4, 0.9, 0.2]])
+    assert res.rank.tolist() == [6] and mechsing.scanner.scan is mechsing.scan
+
+
+def test_rows_given_as_lists_and_ragged_blocks() -> None:
+    mech = mechsing.load(EXAMPLES / "ur5.yaml")
+    sc = ChainScanner(mech)
+    rows = [[0.1, -0.7, 1.1, -0.4, 0.9, 0.2], [0.1, -0.7, 1.1, -0.4, 0.0, 0.2]]
+    assert sc.scan(rows).rank.tolist() == [6, 5]
+    blocks = [np.array(rows), np.array(rows[:1])]
+    assert sc.scan(blocks).rank.tolist() == [6, 5, 6]
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, 1e20])
+def test_values_analyze_refuses_are_refused(bad: float) -> None:
+    """Non-finite values and values above MAX_JOINT_VALUE: a ValueError naming the row
+    (numpy would fail inside the SVD, or scan an absurd configuration)."""
+    sc = ChainScanner(mechsing.load(EXAMPLES / "ur5.yaml"))
+    Q = np.zeros((3, 6))
+    Q[2, 4] = bad
+    with pytest.raises(ValueError, match="row 2"):
+        sc.scan(Q)
 
 
 def test_refusals(tmp_path: Path) -> None:

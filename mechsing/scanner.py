@@ -26,8 +26,8 @@ configurations at once:
    two-threshold rule.
 
 Memory is bounded by the chunk size: the configurations may come as one array
-or as an iterable of arrays (a generator never holds them all), and the result
-keeps one byte and two floats per configuration.
+or as an iterable of arrays (a generator never holds them all); the result
+keeps 18 bytes per configuration (rank, screened flag, ratio and bound).
 
 Conventions: twists ``(omega, v)``; joint values in the mechanism's coordinate
 order (:meth:`mechsing.model.Mechanism.coordinates`), SI units and radians.
@@ -43,6 +43,7 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.numeric import (
+    MAX_JOINT_VALUE,
     SCAN_ROUNDING_FACTOR,
     SCAN_SCREEN_FACTOR,
     Precision,
@@ -284,6 +285,18 @@ class ChainScanner:
                 f"configurations must be an array of shape (N, {self.n}) "
                 f"(joint coordinates in file order), not {Q.shape}"
             )
+        # the limits of `analyze` (numeric.MAX_JOINT_VALUE): radians, or times L for a length
+        bound = np.where(
+            self.model.length_columns, MAX_JOINT_VALUE * self.length_scale, MAX_JOINT_VALUE
+        )
+        bad = ~np.all(np.isfinite(Q) & (np.abs(Q) <= bound), axis=1)
+        if np.any(bad):
+            i = int(np.flatnonzero(bad)[0])
+            raise ValueError(
+                f"configuration row {i} has a joint value that is not finite or not of a "
+                f"sensible size (at most {MAX_JOINT_VALUE:g} rad, or {MAX_JOINT_VALUE:g} L for "
+                f"a length): {Q[i].tolist()}"
+            )
         if self._serial is not None:
             return self._serial_matrices(Q)
         need = {p.a for p in self._chain_joints}
@@ -514,6 +527,13 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def _chunks(configurations: Any, chunk: int) -> Iterator[np.ndarray]:
     if chunk < 1:
         raise ValueError(f"chunk must be a positive number of rows, not {chunk}")
+    if isinstance(configurations, (list, tuple)):
+        try:
+            arr = np.asarray(configurations, dtype=float)
+        except ValueError:  # blocks of different lengths
+            arr = None
+        if arr is not None and arr.ndim == 2:  # rows of joint values, not a list of blocks
+            configurations = arr
     if isinstance(configurations, np.ndarray):
         for i in range(0, configurations.shape[0], chunk):
             yield configurations[i : i + chunk]
