@@ -404,7 +404,12 @@ def _io_findings(
                 ("impossible-input", here.input_rank),
                 ("impossible-output", here.output_rank),
             ):
-                out.decisions.append(decision(test, dec, generic[test]))
+                d = decision(test, dec, generic[test])
+                if hv[test] is None and dec.rank is not None:
+                    # a motion space built on an undecided rank (IOQuantities.values)
+                    d["rank"] = None
+                    d["note"] = "rests on an undecided rank of the input or output map"
+                out.decisions.append(d)
             findings.extend(_zfb(mech, fm, here, hv, generic, tprec))
     legs = leg_constraint_rank(mech, model, q, cs, tprec) if mech.output is not None else None
     if legs is not None:

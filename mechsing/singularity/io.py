@@ -58,10 +58,15 @@ class IOQuantities:
     spaces: dict[str, Any]
 
     def values(self) -> dict[str, int | None]:
+        """The five dimensions; None where undecided.  K cap ker T rests on the decision
+        of rank T N and K cap ker E on that of rank E N: when those are undecided, so
+        are the motion spaces built on them (their kernel was taken at a guessed rank)."""
+        out_ok = self.output_rank.rank is not None
+        in_ok = self.input_rank.rank is not None
         return {
-            "input": self.input_motion.rank,
-            "output": self.output_motion.rank,
-            "passive-motion": self.passive_motion,
+            "input": self.input_motion.rank if out_ok else None,
+            "output": self.output_motion.rank if in_ok else None,
+            "passive-motion": self.passive_motion if (in_ok and out_ok) else None,
             "impossible-input": self.input_rank.rank,
             "impossible-output": self.output_rank.rank,
         }
