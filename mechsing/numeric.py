@@ -82,7 +82,10 @@ NEAR_ZERO_VECTOR = 1e-9
 #: support threshold of a kernel vector (DESIGN.md: entries above 1e-9 of the largest)
 SUPPORT_RTOL = 1e-9
 #: closure acceptance in float mode, relative to the characteristic length L
+#: (mp:N accepts at 10^(15-N) L, never looser than this)
 CLOSURE_RTOL_FLOAT = 1e-12
+#: fewest digits of mp:N: below 20, tau_lo = 10^(10-N) exceeds tau_hi = 10^(-N/2)
+MP_MIN_DIGITS = 20
 #: continuation stops when the smallest kept singular value of the closure
 #: Jacobian in the unknown joints (relative to the largest) falls below this
 #: before the target while the rank drops
@@ -428,12 +431,17 @@ class Precision:
         if self.mode in ("float", "auto"):
             return CLOSURE_RTOL_FLOAT * length_scale
         if self.mode == "mp":
-            return 10.0 ** (15 - (self.digits or 50)) * length_scale
+            # never looser than float's: more digits must not accept what float refuses
+            rtol = min(10.0 ** (15 - (self.digits or 50)), CLOSURE_RTOL_FLOAT)
+            return rtol * length_scale
         return 0.0
 
 
 def parse_precision(text: str) -> Precision:
-    """Parse ``float``, ``mp:N`` (N >= 16), ``exact`` or ``auto``.
+    """Parse ``float``, ``mp:N`` (20 <= N <= 10000), ``exact`` or ``auto``.
+
+    N starts at 20: below it DESIGN.md's thresholds cross (``tau_lo = 10^(10-N)``
+    exceeds ``tau_hi = 10^(-N/2)``), so no rank could be decided consistently.
 
     Raises
     ------
@@ -448,10 +456,11 @@ def parse_precision(text: str) -> Precision:
             n = int(t[3:])
         except ValueError:
             n = -1
-        if 16 <= n <= 10000:
+        if MP_MIN_DIGITS <= n <= 10000:
             return Precision("mp", n)
     raise ValueError(
-        f"precision {text!r} is not one of auto, float, mp:N (16 <= N <= 10000) or exact"
+        f"precision {text!r} is not one of auto, float, mp:N ({MP_MIN_DIGITS} <= N <= 10000) "
+        "or exact (below 20 digits the two rank thresholds of mp:N cross)"
     )
 
 
