@@ -171,21 +171,32 @@ class Closer:
         return target, tuple(sorted(given))
 
     def _refuse_transcendental(self, cfg: Configuration, jk: Any, coords: np.ndarray) -> None:
-        """Exact data (DESIGN.md): an angle of R, H, C or U must have algebraic sine and
-        cosine (a rational multiple of pi, atan/asin/acos of an algebraic number...);
-        sympy proves sin 1 transcendental, so 1 rad is refused rather than mis-checked."""
-        if jk.type not in ("R", "H", "C", "U"):
-            return
-        angles = coords if jk.type == "U" else coords[:1]
-        for v in angles:
-            if sympy.sin(v).is_algebraic is False or sympy.cos(v).is_algebraic is False:
+        """Exact data (DESIGN.md): every rotation a joint value produces must have
+        algebraic entries (angles that are rational multiples of pi, atan/asin/acos of
+        algebraic numbers and their sums).  sympy must *prove* it (``is_algebraic``
+        after expanding the trigonometric functions): 1 rad, pi*sqrt(2) or pi**2 are
+        refused rather than mis-checked."""
+        if jk.type in ("R", "H", "C", "U"):
+            angles = list(coords) if jk.type == "U" else [coords[0]]
+            entries = [f(v) for v in angles for f in (sympy.sin, sympy.cos)]
+        else:
+            rotates = any(any(x != 0 for x in row[:3]) for row in jk.basis.tolist())
+            if not rotates:
+                return
+            q = self.model.zeros()
+            q[jk.columns] = coords
+            entries = list(self.model.element(jk, q)[:3, :3].flat)
+        for x in entries:
+            if sympy.expand_trig(x).is_algebraic is not True:
                 where = f"configuration {cfg.name!r}, joint {jk.name!r}" + (
                     f" (line {cfg.line})" if cfg.line else ""
                 )
+                shown = ", ".join(str(v) for v in coords)
                 raise UserError(
-                    f"{where}: the angle {v} is not exact data (its sine is transcendental); "
-                    'exact mode needs angles such as "pi/6", "atan(1/2)" or "2*atan(1/3)"; '
-                    "use --precision auto, float or mp:N for this configuration"
+                    f"{where}: the value [{shown}] is not exact data (sympy cannot show that "
+                    'the rotation it gives is algebraic); exact mode needs angles such as "pi/6", '
+                    '"atan(1/2)" or "2*atan(1/3)"; use --precision auto, float or mp:N for this '
+                    "configuration"
                 )
 
     def _coordinates_of_displacement(
