@@ -131,3 +131,101 @@ configurations:
     # three collinear joints: the null rates are (1, -2, 1) / 2, up to normalisation
     rates = f["null_joint_rates"]
     assert rates == pytest.approx([0.5, -1.0, 0.5], abs=1e-12)
+
+
+# ---------------------------------------------------------------------------- review of issue 7
+
+#: a 3-RPR whose third leg line is moved off the common point of the other two by
+#: 10^-k / 2 (exact): the three leg lines meet within about 1e-k (legs concurrent: the
+#: output singularity of theory.md section 4.4), so the input map E N has sigma_min /
+#: sigma_max of order 10^-k
+RPR_NEAR_CONCURRENT = """mechanism: rpr-near-concurrent
+bodies: [ground, cyl1, pis1, cyl2, pis2, cyl3, pis3, platform]
+joints:
+  - {{name: Rb1, type: R, between: [ground, cyl1],   axis: [0, 0, 1], point: [0, 0, 0]}}
+  - {{name: P1, type: P, between: [cyl1, pis1],     axis: ["9/10", "3/10", 0]}}
+  - {{name: Rp1, type: R, between: [pis1, platform], axis: [0, 0, 1], point: ["9/10", "3/10", 0]}}
+  - {{name: Rb2, type: R, between: [ground, cyl2],   axis: [0, 0, 1], point: [4, 0, 0]}}
+  - {{name: P2, type: P, between: [cyl2, pis2],     axis: ["-3/2", "3/2", 0]}}
+  - {{name: Rp2, type: R, between: [pis2, platform], axis: [0, 0, 1], point: ["5/2", "3/2", 0]}}
+  - {{name: Rb3, type: R, between: [ground, cyl3],   axis: [0, 0, 1], point: [0, 4, 0]}}
+  - {{name: P3, type: P, between: [cyl3, pis3],     axis: ["3/2", "-3/2 + 10**-{k}/2", 0]}}
+  - {{name: Rp3, type: R, between: [pis3, platform], axis: [0, 0, 1], point: ["3/2", "5/2 + 10**-{k}/2", 0]}}
+inputs: [P1, P2, P3]
+output: {{body: platform}}
+configurations:
+  reference: {{}}
+"""
+
+
+def _json(tmp_path, text, capsys, *args):
+    status, out, err = _run(tmp_path, text, "--format", "json", *args, capsys=capsys)
+    assert status == 0, err
+    (c,) = json.loads(out)["configurations"]
+    return c
+
+
+def test_an_output_singularity_resting_on_an_undecided_rank_is_undecided(tmp_path, capsys) -> None:
+    """1e-10 from concurrent legs, the input map's sigma ratio lies between float's
+    thresholds: the output motion space built on it is undecided too (it was reported as a
+    decided `output` singularity), and auto re-decides the configuration at mp:50: regular."""
+    text = RPR_NEAR_CONCURRENT.format(k=10)
+    c = _json(tmp_path, text, capsys, "--precision", "float")
+    assert c["singular"] is None
+    assert {f["class"] for f in c["singularities"]} == {"undecided"}
+    tests = {d["test"]: d for d in c["decisions"]}
+    assert tests["impossible-input"]["rank"] is None and tests["output"]["rank"] is None
+    c = _json(tmp_path, text, capsys)
+    assert c["precision"] == "mp:50" and c["singular"] is False and c["singularities"] == []
+
+
+def test_mp_below_20_digits_is_refused(tmp_path, capsys) -> None:
+    """mp:N's thresholds 10^(10-N) and 10^(-N/2) cross below N = 20."""
+    status, _out, err = _run(
+        tmp_path, FOURBAR.format(configs="  q: {A: 10}"), "--precision", "mp:16", capsys=capsys
+    )
+    assert status == 2 and "20 <= N" in err
+
+
+def test_more_digits_never_accept_what_float_refuses(tmp_path, capsys) -> None:
+    """A four-bar with the crank turned 1 degree and the other joints left at 0 does not close
+    (residual 0.048 m): float refuses it, and so must mp:20 (10^(15-N) L would accept it)."""
+    text = FOURBAR.format(configs="  off: {A: 0.017453292519943295, B: 0, C: 0, D: 0}")
+    for prec in ("float", "mp:20", "mp:30"):
+        status, _out, err = _run(tmp_path, text, "--precision", prec, capsys=capsys)
+        assert status == 3 and "does not close" in err, (prec, err)
+
+
+@pytest.mark.parametrize("angle", ["pi*sqrt(2)", "atan(1/2) + 1", "pi**2", "1"])
+def test_exact_refuses_angles_it_cannot_show_exact(angle: str, tmp_path, capsys) -> None:
+    text = WRIST.format(configs=f'  w: {{W1: 0, W2: "{angle}", W3: 0}}')
+    status, _out, err = _run(tmp_path, text, "--precision", "exact", capsys=capsys)
+    assert status == 2 and "not exact data" in err and "'W2'" in err
+
+
+@pytest.mark.parametrize("angle", ["2*atan(1/2)", "pi/7 + 3*atan(1/3)", "acos(sqrt(3)/3)"])
+def test_exact_accepts_angles_with_algebraic_sine_and_cosine(angle: str, tmp_path, capsys) -> None:
+    text = WRIST.format(configs=f'  w: {{W1: 0, W2: "{angle}", W3: 0}}')
+    status, _out, err = _run(tmp_path, text, "--precision", "exact", capsys=capsys)
+    assert status == 0, err
+
+
+def test_exact_refuses_a_spherical_joint_turned_by_one_radian(tmp_path, capsys) -> None:
+    text = """mechanism: r-s
+bodies: [base, l1, l2]
+joints:
+  - {name: A, type: R, between: [base, l1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: S, between: [l1, l2], point: [1, 0, "1/2"]}
+output: {body: l2, point: [2, 0, "1/2"]}
+configurations:
+  one: {A: 0, B: [1, 0, 0]}
+  quarter: {A: 0, B: ["pi/2", 0, 0]}
+"""
+    status, _out, err = _run(
+        tmp_path, text, "--precision", "exact", "--config", "one", capsys=capsys
+    )
+    assert status == 2 and "not exact data" in err and "'B'" in err
+    status, _out, err = _run(
+        tmp_path, text, "--precision", "exact", "--config", "quarter", capsys=capsys
+    )
+    assert status == 0, err
