@@ -110,7 +110,14 @@ def analyze(
 ) -> AnalysisResult:
     """Analyse a mechanism (or a file) at the named configurations (default: all)."""
     mech = mechanism if isinstance(mechanism, Mechanism) else load(str(mechanism))
-    prec = parse_precision(precision) if isinstance(precision, str) else precision
+    if isinstance(precision, str):
+        prec = parse_precision(precision)
+    elif isinstance(precision, Precision):
+        prec = precision
+    else:
+        raise TypeError(
+            f"precision must be 'auto', 'float', 'mp:N', 'exact' or a Precision, not {precision!r}"
+        )
     if configs:
         names = list(configs)
     else:

@@ -90,7 +90,8 @@ def float_model(mech: Any, model: Any) -> Any:
 
 
 def _si_rates(model: Any, x: np.ndarray) -> list[float]:
-    """Commensurate joint rates -> SI (length coordinates times L), largest entry 1, first non-zero positive."""
+    """Commensurate joint rates -> SI (length coordinates times L), largest entry 1, first
+    non-zero positive; entries at or below SUPPORT_RTOL (outside the support) reported as 0."""
     v = np.where(model.length_columns, x * model.length_scale, x)
     big = float(np.max(np.abs(v))) if v.size else 0.0
     if big == 0:
@@ -99,6 +100,7 @@ def _si_rates(model: Any, x: np.ndarray) -> list[float]:
     nz = np.flatnonzero(np.abs(v) > SUPPORT_RTOL)
     if len(nz) and v[nz[0]] < 0:
         v = -v
+    v = np.where(np.abs(v) > SUPPORT_RTOL, v, 0.0)
     return [float(a) + 0.0 for a in v]
 
 
