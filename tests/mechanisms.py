@@ -372,3 +372,30 @@ def changepoint_family(exponents: list[float]) -> tuple[str, list[FamilyPoint]]:
                 )
                 points.append(FamilyPoint(name, float(d), branch, _reduced_planar_sigma(pts)))
     return "\n".join(lines) + "\n", points
+
+
+# ----------------------------------------------------------------------------- JSON and files
+
+
+def write(tmp_path: Path, name: str, text: str) -> Path:
+    """``text`` as ``tmp_path/name.yaml``."""
+    p = tmp_path / f"{name}.yaml"
+    p.write_text(text)
+    return p
+
+
+def by_name(result: dict) -> dict[str, dict]:
+    """The configurations of an analysis JSON, by name."""
+    return {c["name"]: c for c in result["configurations"]}
+
+
+def classes(config: dict) -> list[str]:
+    """The classes of a configuration's findings, in order."""
+    return [f["class"] for f in config["singularities"]]
+
+
+def finding(config: dict, cls: str) -> dict:
+    """The one finding of class ``cls`` (asserts there is exactly one)."""
+    found = [f for f in config["singularities"] if f["class"] == cls]
+    assert len(found) == 1, (config["name"], classes(config))
+    return found[0]

@@ -28,8 +28,10 @@ from tests.mechanisms import (
     PUBLISHED,
     ROOT,
     all_axis_points_at_origin,
+    by_name,
     changepoint_family,
     changepoint_length_scale,
+    classes,
     configuration_names,
     joint_types,
     run_cli,
@@ -56,16 +58,8 @@ def analyze_text(path: Path | str, *options: str) -> tuple[str, dict]:
     return _CACHE[key]
 
 
-def by_name(result: dict) -> dict[str, dict]:
-    return {c["name"]: c for c in result["configurations"]}
-
-
 def loop_map(config: dict) -> dict[frozenset[str], dict]:
     return {frozenset(lp["joints"]): lp for lp in config["loops"]}
-
-
-def classes(config: dict) -> list[str]:
-    return [s["class"] for s in config["singularities"]]
 
 
 def test_every_example_has_published_facts() -> None:

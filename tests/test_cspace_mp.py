@@ -31,6 +31,7 @@ from mechsing.analysis import analyze
 from mechsing.numeric import Precision
 from mechsing.singularity.cspace import Expansion, LoopChain, _zero_set, tangent_cone
 from tests import families as fam
+from tests.mechanisms import by_name, classes, finding, write
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -42,26 +43,6 @@ MP = [Precision("mp", 30), Precision("mp", 50)]
 
 def run(path: Path, precision: str) -> dict:
     return json.loads(json.dumps(analyze(path, precision=precision).to_json()))
-
-
-def by_name(result: dict) -> dict[str, dict]:
-    return {c["name"]: c for c in result["configurations"]}
-
-
-def classes(config: dict) -> list[str]:
-    return [f["class"] for f in config["singularities"]]
-
-
-def finding(config: dict, cls: str) -> dict:
-    found = [f for f in config["singularities"] if f["class"] == cls]
-    assert len(found) == 1, (config["name"], classes(config))
-    return found[0]
-
-
-def write(tmp_path: Path, name: str, text: str) -> Path:
-    p = tmp_path / f"{name}.yaml"
-    p.write_text(text)
-    return p
 
 
 def tau(n: int) -> tuple[float, float]:

@@ -53,11 +53,14 @@ from tests.mechanisms import (
     PUBLISHED,
     ROOT,
     all_axis_points_at_origin,
+    by_name,
+    classes,
     configuration_names,
     joint_types,
     run_cli,
     scaled_text,
     total_dof,
+    write,
 )
 from tests.test_examples_data import evaluate
 
@@ -81,20 +84,6 @@ def analyze_json(path: Path | str, *options: str) -> dict:
         assert "Traceback" not in err
         _CACHE[key] = json.loads(out)
     return _CACHE[key]
-
-
-def write(tmp_path: Path, name: str, text: str) -> Path:
-    p = tmp_path / f"{name}.yaml"
-    p.write_text(text)
-    return p
-
-
-def by_name(result: dict) -> dict[str, dict]:
-    return {c["name"]: c for c in result["configurations"]}
-
-
-def classes(config: dict) -> list[str]:
-    return [f["class"] for f in config["singularities"]]
 
 
 def closure_tolerance(mode: str, L: float) -> float:

@@ -37,6 +37,7 @@ import pytest
 from mechsing.analysis import analyze
 from mechsing.cli import main
 from tests import families as fam
+from tests.mechanisms import by_name, classes, finding, write
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -44,12 +45,6 @@ KS = range(1, 7)
 MARGIN_KEYS = {"kept", "dropped", "tau_lo", "tau_hi", "length_scale"}
 
 # ----------------------------------------------------------------------------- helpers
-
-
-def write(tmp_path: Path, name: str, text: str) -> Path:
-    p = tmp_path / f"{name}.yaml"
-    p.write_text(text)
-    return p
 
 
 def check_contract(result: dict) -> None:
@@ -84,20 +79,6 @@ def run_cli(path: Path, capsys: pytest.CaptureFixture[str], *options: str) -> di
     out = json.loads(captured.out)
     check_contract(out)
     return out
-
-
-def by_name(result: dict) -> dict[str, dict]:
-    return {c["name"]: c for c in result["configurations"]}
-
-
-def classes(config: dict) -> list[str]:
-    return [f["class"] for f in config["singularities"]]
-
-
-def finding(config: dict, cls: str) -> dict:
-    found = [f for f in config["singularities"] if f["class"] == cls]
-    assert len(found) == 1, (config["name"], classes(config))
-    return found[0]
 
 
 def assert_regular(config: dict, rank: int) -> None:
