@@ -35,7 +35,6 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
@@ -46,20 +45,13 @@ import numpy as np  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from _timing import median_time, timed_median  # noqa: E402
+
 import mechsing  # noqa: E402
-from mechsing.numeric import Precision, scale_screws  # noqa: E402
+from mechsing.numeric import Precision, rank_bounds, scale_screws  # noqa: E402
 from mechsing.scanner import ChainScanner  # noqa: E402
 
 MODES = ("float", "mp:30", "mp:50", "auto", "exact")
-
-
-def _median_time(f, repeat: int) -> float:
-    ts = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        f()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts)
 
 
 # =============================================================================== 1. families
@@ -148,12 +140,13 @@ def families(ks: list[int], repeat: int) -> None:
                 times, correct, first_wrong, errs = [], 0, None, []
                 for k in ks:
                     cfg = f"k{k}"
-                    ts, c = [], None
-                    for _ in range(repeat):
-                        t0 = time.perf_counter()
-                        res = mechsing.analyze(path, configs=[cfg], precision=mode)
-                        ts.append(time.perf_counter() - t0)
-                    times.append(statistics.median(ts))
+                    t, res = timed_median(
+                        lambda cfg=cfg, mode=mode, path=path: mechsing.analyze(
+                            path, configs=[cfg], precision=mode
+                        ),
+                        repeat,
+                    )
+                    times.append(t)
                     (c,) = res.to_json()["configurations"]
                     undecided = any(f["class"] == "undecided" for f in c["singularities"])
                     ok = c.get("error") is None and not c["singular"] and not undecided
@@ -199,12 +192,9 @@ def _pin_model(mech, scanner: ChainScanner):
 
 def _decide_svd(J: np.ndarray) -> np.ndarray:
     """Float two-threshold rule (DESIGN.md) on batched singular values."""
-    tol = Precision("float").tolerances
     s = np.linalg.svd(J, compute_uv=False)
-    rel = s / s[:, :1]
-    hi = np.count_nonzero(rel >= tol.tau_hi, axis=1)
-    lo = np.count_nonzero(rel > tol.tau_lo, axis=1)
-    return np.where(hi == lo, hi, -1)
+    lo_rank, hi_rank = rank_bounds(s / s[:, :1], Precision("float").tolerances)
+    return np.where(lo_rank == hi_rank, lo_rank, -1)
 
 
 def throughput(n: int, repeat: int) -> None:
@@ -217,10 +207,10 @@ def throughput(n: int, repeat: int) -> None:
     Q[: n // 100, 4] = 10.0 ** -rng.integers(0, 16, size=n // 100)
     Q[n // 100 : n // 50, 2] = 0.0
     print(f"2. float verdicts of UR5 on {n} configurations (1% near the wrist, 1% elbow-singular)")
-    t_scan = _median_time(lambda: sc.scan(Q), repeat)
+    t_scan = median_time(lambda: sc.scan(Q), repeat)
     res = sc.scan(Q)
-    t_mat = _median_time(lambda: sc.matrices(Q[:4096]), repeat) * n / min(n, 4096)
-    t_all = _median_time(lambda: sc.scan(Q, all_sigma=True), repeat)
+    t_mat = median_time(lambda: sc.matrices(Q[:4096]), repeat) * n / min(n, 4096)
+    t_all = median_time(lambda: sc.scan(Q, all_sigma=True), repeat)
     rows = [
         ("mechsing.scan (screen + SVD near singular)", t_scan),
         ("mechsing.scan, SVD everywhere", t_all),
@@ -250,8 +240,8 @@ def throughput(n: int, repeat: int) -> None:
         J0 = pin_jacobians()[:200][:, swap, :]
         J0 = scale_screws(J0, sc.length_scale, sc.centroid, sc.length_columns)
         agree = float(np.max(np.abs(J0 - sc.matrices(Q[:200]))))
-        t_pin = _median_time(pin_pipeline, repeat)
-        t_pinj = _median_time(pin_jacobians, repeat)
+        t_pin = median_time(pin_pipeline, repeat)
+        t_pinj = median_time(pin_jacobians, repeat)
         verdicts = pin_pipeline()
         differ = int(np.count_nonzero(verdicts != res.rank))
         rows += [

@@ -19,7 +19,7 @@ from mechsing.kinematics import Closer, ClosureError, KinematicModel
 from mechsing.model import Mechanism, load
 from mechsing.numeric import Precision, parse_precision
 from mechsing.screws import closure_system, group_mobility, grubler
-from mechsing.singularity import classify_configuration, decision, mechanism_properties
+from mechsing.singularity import classify_configuration, mechanism_properties
 
 __all__ = ["AnalysisResult", "ConfigurationResult", "analyze"]
 
@@ -36,7 +36,8 @@ class ConfigurationResult:
     loops: list[dict[str, Any]] = field(default_factory=list)
     mobility: dict[str, Any] = field(default_factory=dict)
     singularities: list[dict[str, Any]] = field(default_factory=list)
-    #: every rank decision made at the configuration, singular or not (see :func:`decision`)
+    #: every rank decision made at the configuration, singular or not
+    #: (:meth:`mechsing.numeric.RankDecision.record`)
     decisions: list[dict[str, Any]] = field(default_factory=list)
     underdetermined: bool = False
     error: str | None = None
@@ -189,7 +190,7 @@ def _analyze_one_in_context(
     }
     undecided = rank.rank is None
     if mech.loops:
-        out.decisions.append(decision("closure", rank))
+        out.decisions.append(rank.record("closure"))
     for ls in cs.loops:
         ident = ls.identification
         sub = ident.subgroup.to_json() if ident.ok else {"type": None, "dim": None, "params": {}}
@@ -206,7 +207,7 @@ def _analyze_one_in_context(
         if ls.rank.rank is None:
             undecided = True
         out.loops.append(entry)
-        out.decisions.append(decision(f"loop {'-'.join(ls.loop.joints)}", ls.rank))
+        out.decisions.append(ls.rank.record(f"loop {'-'.join(ls.loop.joints)}"))
     inst = cs.nullity
     out.mobility = {
         "grubler": grubler(model),

@@ -58,6 +58,7 @@ __all__ = [
     "order3_residual_rtol",
     "orthonormal_columns",
     "parse_precision",
+    "rank_bounds",
     "pinv_truncated",
     "scale_screws",
     "screw_zero_rtol",
@@ -779,11 +780,34 @@ class RankDecision:
     def decided(self) -> bool:
         return self.rank is not None
 
+    def record(self, test: str, generic: int | None = None) -> dict[str, Any]:
+        """This decision as an entry of a configuration's ``decisions`` (JSON): the test
+        (``closure``, ``loop A-B-C-D``, ``output chain``, ``leg k chain``, ``input``,
+        ``output``, ``impossible-input``, ``impossible-output``, ``constraint``), its
+        rank (with ``rank_bounds`` when undecided), the ``generic`` value it is measured
+        against where there is one, its margin and the precision that decided it."""
+        d: dict[str, Any] = {"test": test, "rank": self.rank}
+        if self.rank is None:
+            d["rank_bounds"] = list(self.rank_bounds)
+        if generic is not None:
+            d["generic"] = generic
+        d["margin"] = self.margin.to_json()
+        d["precision"] = self.precision
+        return d
+
+
+def rank_bounds(rel: Any, tol: Tolerances) -> tuple[np.ndarray, np.ndarray]:
+    """The two-threshold rule (DESIGN.md "Rank decisions") on singular values
+    relative to the largest, batched over leading axes: (lowest, highest) rank
+    consistent with them, i.e. the counts ``sigma >= tau_hi`` and ``sigma > tau_lo``.
+    The rank is decided when the two agree."""
+    r = np.asarray(rel, dtype=float)
+    return np.count_nonzero(r >= tol.tau_hi, axis=-1), np.count_nonzero(r > tol.tau_lo, axis=-1)
+
 
 def _split_rank(rel: list[float], tol: Tolerances) -> tuple[int | None, tuple[int, int]]:
-    hi = sum(1 for s in rel if s >= tol.tau_hi)
-    lo = sum(1 for s in rel if s > tol.tau_lo)
-    return (hi if hi == lo else None), (hi, lo)
+    lo_rank, hi_rank = (int(x) for x in rank_bounds(rel, tol))
+    return (lo_rank if lo_rank == hi_rank else None), (lo_rank, hi_rank)
 
 
 def decide_rank(

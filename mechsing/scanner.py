@@ -47,6 +47,7 @@ from mechsing.numeric import (
     SCAN_ROUNDING_FACTOR,
     SCAN_SCREEN_FACTOR,
     Precision,
+    rank_bounds,
     scale_screws,
 )
 
@@ -438,9 +439,8 @@ class ChainScanner:
             smax = s[:, :1]
             with np.errstate(divide="ignore", invalid="ignore"):
                 rel = np.where(smax > 0, s / smax, 0.0)
-            hi = np.count_nonzero(rel >= tol.tau_hi, axis=1)
-            lo = np.count_nonzero(rel > tol.tau_lo, axis=1)
-            decided = np.where(hi == lo, hi, UNDECIDED).astype(np.int8)
+            lo_rank, hi_rank = rank_bounds(rel, tol)
+            decided = np.where(lo_rank == hi_rank, lo_rank, UNDECIDED).astype(np.int8)
             # the screen and the SVD agree where both ran (the bound is certified)
             rank[todo] = np.where(screened[todo], rank[todo], decided)
             ratio[todo] = rel[:, -1]

@@ -18,30 +18,10 @@ from mechsing.singularity.serial import GENERIC_SAMPLES, chain_system, serial_fi
 __all__ = [
     "GENERIC_SAMPLES",
     "classify_configuration",
-    "decision",
     "mechanism_properties",
     "output_chain",
     "random_configurations",
 ]
-
-
-def decision(test: str, dec: Any, generic: int | None = None) -> dict[str, Any]:
-    """One entry of a configuration's ``decisions`` (JSON): a rank decision made there,
-    singular or not, with its margin and the precision that decided it.
-
-    ``test``: ``closure``, ``loop A-B-C-D``, ``output chain``, ``leg k chain``,
-    ``input``, ``output``, ``passive-motion`` (dimensions of the ZFB motion spaces),
-    ``impossible-input``, ``impossible-output``, ``constraint``; ``generic``: the value
-    it is measured against, where there is one.
-    """
-    d: dict[str, Any] = {"test": test, "rank": dec.rank}
-    if dec.rank is None:
-        d["rank_bounds"] = list(dec.rank_bounds)
-    if generic is not None:
-        d["generic"] = generic
-    d["margin"] = dec.margin.to_json()
-    d["precision"] = dec.precision
-    return d
 
 
 def output_chain(mech: Any, model: Any) -> tuple[list[str], list[int]] | None:
@@ -111,7 +91,7 @@ def _tree_serial(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
         )
         if sysr.rank.rank is not None:
             generic = max(generic, sysr.rank.rank)
-    result.decisions.append(decision("output chain", here.rank, generic))
+    result.decisions.append(here.rank.record("output chain", generic))
     label = {"chain": "output", "body": mech.output.body, "relative_to": mech.output.relative_to}
     f = serial_finding(model, here, generic, names, label, xf)
     if f is None and here.rank.rank is None:

@@ -41,13 +41,6 @@ from mechsing.singularity.cspace import Cone, Expansion, closure_expansion, tang
 from mechsing.singularity.io import io_quantities, leg_constraint_rank
 from mechsing.singularity.serial import chain_system, serial_finding, wrenches_of
 
-
-def decision(test: str, dec: Any, generic: int | None = None) -> dict[str, Any]:
-    from mechsing.singularity import decision as make
-
-    return make(test, dec, generic)
-
-
 # The higher-order forms (tangent cone) and the input/output and constraint
 # ranks at q are computed and decided at the analysis precision
 # (numeric.numeric_precision: float, mp:N, mp:50 for exact), from the
@@ -71,7 +64,7 @@ class LocalAnalysis:
     regular: bool = True
     io_generic: dict[str, Any] = field(default_factory=dict)
     #: the rank decisions at q behind the input/output, constraint and leg tests
-    #: (``decisions`` of the JSON; :func:`mechsing.singularity.decision`)
+    #: (``decisions`` of the JSON; :meth:`mechsing.numeric.RankDecision.record`)
     decisions: list[dict[str, Any]] = field(default_factory=list)
 
 
@@ -406,7 +399,7 @@ def _io_findings(
                 ("impossible-input", here.input_rank),
                 ("impossible-output", here.output_rank),
             ):
-                d = decision(test, dec, generic[test])
+                d = dec.record(test, generic[test])
                 if hv[test] is None and dec.rank is not None:
                     # a motion space built on an undecided rank (IOQuantities.values)
                     d["rank"] = None
@@ -421,7 +414,7 @@ def _io_findings(
             r = leg_constraint_rank(mech, fm, s.q, closure_system(fm, s.q))
             if r is not None and r[0].rank is not None:
                 gen_ranks.append(r[0].rank)
-        out.decisions.append(decision("constraint", dec, max(gen_ranks) if gen_ranks else None))
+        out.decisions.append(dec.record("constraint", max(gen_ranks) if gen_ranks else None))
         if dec.rank is not None and gen_ranks and dec.rank < max(gen_ranks):
             g = max(gen_ranks)
             U, _s, _ = svd(np.concatenate(wr, axis=1))
@@ -554,7 +547,7 @@ def _leg_serial(
             r = chain_system(fm, fm.current_screws(s.q), cols, None, "float").rank.rank
             if r is not None:
                 gen = max(gen, r)
-        out.decisions.append(decision(f"leg {i + 1} chain", here.rank, gen))
+        out.decisions.append(here.rank.record(f"leg {i + 1} chain", gen))
         f = serial_finding(fm, here, gen, names, {"chain": "leg", "leg": i + 1})
         if f:
             findings.append(f)
