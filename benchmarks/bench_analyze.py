@@ -17,10 +17,10 @@ noisy).
 from __future__ import annotations
 
 import argparse
-import statistics
 import tempfile
-import time
 from pathlib import Path
+
+from _timing import median_time
 
 from mechsing.analysis import analyze
 from mechsing.model import load
@@ -39,20 +39,11 @@ configurations:
 """
 
 
-def _median(f, repeat: int) -> float:
-    ts = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        f()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts)
-
-
 def examples(repeat: int) -> None:
     print("1. analyze (auto) per example, median wall time")
     for path in sorted((ROOT / "examples").glob("*.yaml")):
         mech = load(path)
-        t = _median(lambda mech=mech: analyze(mech), repeat)
+        t = median_time(lambda mech=mech: analyze(mech), repeat)
         n = len(analyze(mech).configurations)
         print(f"   {path.stem:28s} {t:7.2f} s  ({n} configurations, {t / n:.2f} s each)")
 
@@ -68,7 +59,7 @@ def modes(repeat: int) -> None:
         mech = load(ROOT / "examples" / file)
         base = None
         for mode in ("float", "mp:30", "mp:50", "exact"):
-            t = _median(
+            t = median_time(
                 lambda m=mode, me=mech, cf=cfg: analyze(me, [cf], m),
                 1 if mode == "exact" else repeat,
             )

@@ -11,22 +11,12 @@ and translations from 1e-9 to 1e9.
 from __future__ import annotations
 
 import argparse
-import statistics
-import time
 
 import numpy as np
+from _timing import median_time
 
 from mechsing import lie
 from mechsing.numeric import Precision
-
-
-def _median_time(f, repeat: int) -> float:
-    ts = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        f()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts)
 
 
 def _extreme_twists() -> list[tuple[str, np.ndarray]]:
@@ -58,25 +48,25 @@ def main() -> None:
     rng = np.random.default_rng(0)
     xi = rng.normal(size=(args.n, 6)) * [0.8, 0.8, 0.8, 2, 2, 2]
     g = lie.exp(xi)
-    t_exp = _median_time(lambda: lie.exp(xi), args.repeat)
-    t_log = _median_time(lambda: lie.log(g), args.repeat)
+    t_exp = median_time(lambda: lie.exp(xi), args.repeat)
+    t_log = median_time(lambda: lie.log(g), args.repeat)
     print(
         f"float batched, n={args.n}: exp {t_exp / args.n * 1e9:.0f} ns/element "
         f"({args.n / t_exp:.3g}/s), log {t_log / args.n * 1e9:.0f} ns/element ({args.n / t_log:.3g}/s)"
     )
     one = xi[0]
-    t1 = _median_time(lambda: lie.exp(one), args.repeat * 20)
+    t1 = median_time(lambda: lie.exp(one), args.repeat * 20)
     print(f"float single: exp {t1 * 1e6:.1f} us")
     P = Precision("mp", 50)
     with P.context():
         xm = P.asarray([repr(float(v)) for v in one])
-        t_mp = _median_time(lambda: lie.log(lie.exp(xm)), args.repeat)
+        t_mp = median_time(lambda: lie.log(lie.exp(xm)), args.repeat)
     print(
         f"mp:50 single exp+log: {t_mp * 1e3:.2f} ms  (ratio to float single exp: {t_mp / t1:.0f}x)"
     )
     E = Precision("exact")
     xe = E.asarray([0, 0, "1/2", 1, 2, 3])
-    t_ex = _median_time(lambda: lie.exp(xe), 3)
+    t_ex = median_time(lambda: lie.exp(xe), 3)
     print(f"exact single exp (angle 1/2 rad, symbolic sin/cos): {t_ex * 1e3:.1f} ms")
     # accuracy at the extremes against 50 digits
     worst_rt, worst_exp = (0.0, ""), (0.0, "")

@@ -1,0 +1,25 @@
+"""Wall-clock medians shared by the benchmark scripts (run as ``python benchmarks/X.py``,
+which puts this folder on the import path)."""
+
+from __future__ import annotations
+
+import statistics
+import time
+from collections.abc import Callable
+from typing import Any
+
+
+def timed_median(f: Callable[[], Any], repeat: int) -> tuple[float, Any]:
+    """Median wall time of ``repeat`` calls of ``f`` (seconds), and the last call's result."""
+    ts = []
+    out = None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = f()
+        ts.append(time.perf_counter() - t0)
+    return statistics.median(ts), out
+
+
+def median_time(f: Callable[[], Any], repeat: int) -> float:
+    """Median wall time of ``repeat`` calls of ``f`` (seconds)."""
+    return timed_median(f, repeat)[0]
