@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from mechsing.errors import working_on
 from mechsing.kinematics import Closer, ClosureError, KinematicModel
 from mechsing.model import Mechanism, load
 from mechsing.numeric import Precision, parse_precision
@@ -111,6 +112,13 @@ def analyze(
 ) -> AnalysisResult:
     """Analyse a mechanism (or a file) at the named configurations (default: all)."""
     mech = mechanism if isinstance(mechanism, Mechanism) else load(str(mechanism))
+    with working_on(file=mech.path or mech.name):
+        return _analyze(mech, configs, precision)
+
+
+def _analyze(
+    mech: Mechanism, configs: list[str] | None, precision: Precision | str
+) -> AnalysisResult:
     if isinstance(precision, str):
         prec = parse_precision(precision)
     elif isinstance(precision, Precision):
@@ -162,7 +170,8 @@ def _analyze_one(
     mech: Mechanism, name: str, stage: tuple[KinematicModel, Closer]
 ) -> ConfigurationResult:
     # every mp:N computation must run at N digits: mpmath's precision is a context
-    with stage[0].precision.context():
+    prec = stage[0].precision
+    with working_on(configuration=name, precision=str(prec)), prec.context():
         return _analyze_one_in_context(mech, name, stage)
 
 

@@ -13,7 +13,9 @@ import sympy
 from mechsing import lie
 from mechsing.numeric import EXACT, FLOAT
 from mechsing.subgroups import CatalogError, Subgroup, identify, in_plane, load_catalog
-from mechsing.subgroups.types import CATALOG_DIR
+from tests.mechanisms import ROOT
+
+CATALOG_DIR = ROOT / "catalog"  # the source of truth (the installed copy: tests/test_trust.py)
 
 CAT = load_catalog()
 RAT = sympy.Rational

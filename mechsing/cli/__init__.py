@@ -2,8 +2,10 @@
 
 Each sub-command lives in its own module of this package and exposes
 ``NAME`` (the sub-command), ``HELP`` (one line), ``add_arguments(parser)`` and
-``run(args) -> int``.  Exit status: 0 success, 2 bad input, 3 a configuration
-could not be closed (DESIGN.md).
+``run(args) -> int``.  Exit status: 0 success, 2 bad input, 3 some
+configuration could not be analysed (not closed, or stopped by exact mode's
+time limit; the others are reported), 4 an internal defect (an exception that
+escaped: one line on stderr, the traceback with ``-T``).
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from mechsing import __version__
+from mechsing.errors import UserError, current_work, forget_work
 
 # mechsing works on many tiny matrices: BLAS threads only add overhead there (and
 # on a loaded machine make a 4x4 product hundreds of times slower).  This module
@@ -28,16 +31,11 @@ if TYPE_CHECKING:  # the commands import their layers lazily: `mechsing --versio
     from mechsing.model import Mechanism
     from mechsing.numeric import Precision
 
+#: exit status of an exception that escaped (a defect of mechsing)
+INTERNAL_ERROR = 4
+
 #: sub-command modules, in the order ``--help`` lists them
 COMMANDS = ("analyze", "solve", "catalog", "identify", "schema")
-
-
-class UserError(Exception):
-    """Bad input: printed without a traceback, exit status 2 (or ``status``)."""
-
-    def __init__(self, message: str, status: int = 2) -> None:
-        super().__init__(message)
-        self.status = status
 
 
 def precision_option(text: str) -> Precision:
@@ -52,9 +50,11 @@ def precision_option(text: str) -> Precision:
 
 def load_mechanism(path: str, verbose: bool = False) -> Mechanism:
     """Read a mechanism file; with ``verbose`` print what was done silently (axes normalised...)."""
+    from mechsing.errors import working_on
     from mechsing.model import load
 
-    mech = load(path)
+    with working_on(file=path):
+        mech = load(path)
     if verbose:
         for note in mech.notes:
             print(f"mechsing: {note}", file=sys.stderr)
@@ -104,6 +104,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not getattr(args, "_run", None):
         parser.print_help()
         return 0
+    forget_work()
     try:
         return int(args._run(args))
     except UserError as exc:
@@ -113,6 +114,18 @@ def main(argv: Sequence[str] | None = None) -> int:
         return exc.status
     except BrokenPipeError:
         return 0
+    except Exception as exc:  # a defect: one line that says where, exit 4
+        if args.traceback:
+            raise
+        where = current_work() or f"mechsing {args.command}"
+        what = " ".join(str(exc).split())[:300]
+        print(
+            f"mechsing: internal error in {where}: {type(exc).__name__}: {what}. "
+            "This is a defect of mechsing, not of your input: please report it with the "
+            "file and the command (add -T after mechsing for the traceback)",
+            file=sys.stderr,
+        )
+        return INTERNAL_ERROR
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -344,7 +344,7 @@ class Closer:
             if attempts > _MAX_ATTEMPTS_PER_STEP * nsteps + 4 * _MAX_HALVINGS:
                 raise ClosureError(
                     f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} makes no progress "
-                    f"after {attempts - 1} step attempts (t = {t:.6g} of the way): the path keeps meeting "
+                    f"after {attempts - 1} step attempts ({_given_reached(fm, q, qt, gmask)}): the path keeps meeting "
                     "near-singular configurations; add intermediate configurations",
                     cfg.name,
                     None,
@@ -363,7 +363,7 @@ class Closer:
                 if dt < 1.0 / nsteps / 2**_MAX_HALVINGS:
                     raise ClosureError(
                         f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} stopped at step "
-                        f"{steps + 1} (t = {t:.6g} of the way, residual {info['residual']:.3g} m): the given values "
+                        f"{steps + 1}: {_given_reached(fm, q, qt, gmask)}; the given values "
                         "cannot be followed further on this assembly mode (a singularity or a limit of motion "
                         "lies on the path); add an intermediate configuration or change the target",
                         cfg.name,
@@ -383,7 +383,7 @@ class Closer:
                 ):
                     raise ClosureError(
                         f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} meets a "
-                        f"singularity at step {steps} (t = {t_next:.6g}): the closure Jacobian in the unknown joints "
+                        f"singularity at step {steps} ({_given_reached(fm, qn, qt, gmask)}): the closure Jacobian in the unknown joints "
                         f"loses rank ({r} < {best_rank}); joint values there: {_fmt(fm, qn)}; "
                         "choose a target on this side of the singularity, or start from a configuration beyond it",
                         cfg.name,
@@ -591,6 +591,25 @@ def _dls(A: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def _fmt(m: KinematicModel, q: np.ndarray) -> str:
     return ", ".join(f"{k}={[round(x, 6) for x in v]}" for k, v in m.values(q).items())
+
+
+def _given_reached(m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> str:
+    """The given coordinates where continuation stopped, against their targets,
+    in the file's units: ``A reached 173.13 deg (target 200 deg)``."""
+    units = m.mech.units
+    joints = {j.name: j for j in m.mech.joints}
+    parts = []
+    for col, (jname, i) in enumerate(m.mech.coordinates()):
+        if not gmask[col]:
+            continue
+        j = joints[jname]
+        length = j.units[i] == "m"
+        factor = float(units.length_factor if length else units.angle_factor)
+        unit = units.length if length else units.angle
+        label = jname if j.dof == 1 else f"{jname}[{i}]"
+        reached, goal = float(q[col]) / factor, float(target[col]) / factor
+        parts.append(f"{label} reached {reached:.6g} {unit} (target {goal:.6g} {unit})")
+    return "; ".join(parts)
 
 
 def solve_configuration(

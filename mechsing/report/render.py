@@ -131,9 +131,16 @@ def explain(f: dict[str, Any]) -> str:
             "gains a motion outside its usual motion type"
         )
     if cls == "undecided":
+        what = f.get("what", "system")
+        bounds = f.get("rank_bounds")
+        why = (
+            f"its rank lies between {bounds[0]} and {bounds[1]}"
+            if bounds
+            else f.get("note", "a singular value lies between the two thresholds")
+        )
         return (
-            f"the precision used cannot decide the rank of the {f.get('what', 'system')} (it lies between "
-            f"{f['rank_bounds'][0]} and {f['rank_bounds'][1]}); try --precision mp:50 or exact"
+            f"the precision used cannot decide the {what} ({why}); "
+            "try --precision mp:50 or exact"
         )
     return EXPLAIN.get(cls, cls)
 
@@ -195,7 +202,7 @@ def render_text(result: Any, markdown: bool = False) -> str:
         lines.append(
             f"{bullet}mobility: finite {_fmt_num(m['finite'])} (generic {_fmt_num(m['generic'])}, "
             f"instantaneous {_fmt_num(m['instantaneous'])}, group {_fmt_num(m['group'])}, "
-            f"Grubler-Kutzbach {_fmt_num(m['grubler'])})"
+            f"spatial Grubler-Kutzbach count {_fmt_num(m['grubler'])})"
         )
         if not c["singularities"]:
             lines.append(f"{bullet}regular: no singularity.")
@@ -203,8 +210,9 @@ def render_text(result: Any, markdown: bool = False) -> str:
             lines.append(f"{bullet}{s['class']}: {explain(s)}.")
             if "margin" in s:
                 sub = "  - " if markdown else "    "
+                verb = "tested" if s["class"] == "undecided" else "decided"
                 lines.append(
-                    f"{sub}decided in {s.get('precision', c['precision'])}; margin: {_margin(s['margin'])}"
+                    f"{sub}{verb} in {s.get('precision', c['precision'])}; margin: {_margin(s['margin'])}"
                 )
     return "\n".join(lines) + "\n"
 

@@ -136,15 +136,17 @@ def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str,
     # verdict left open: say so, and let auto re-decide the configuration at mp:50
     for d in local.decisions:
         if d["rank"] is None:
-            findings.append(
-                {
-                    "class": "undecided",
-                    "what": f"{d['test']} test",
-                    "rank_bounds": d.get("rank_bounds"),
-                    "margin": d["margin"],
-                    "precision": d["precision"],
-                }
-            )
+            f = {
+                "class": "undecided",
+                "what": f"{d['test']} test",
+                # null when the test rests on another test's undecided rank (see note)
+                "rank_bounds": d.get("rank_bounds"),
+                "margin": d["margin"],
+                "precision": d["precision"],
+            }
+            if "note" in d:
+                f["note"] = d["note"]
+            findings.append(f)
     if local.cone is not None and local.cone.undecided:
         result.internals["undecided"] = True  # a second-order form between the thresholds
     return findings

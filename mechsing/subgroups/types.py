@@ -1,4 +1,8 @@
-"""The catalog of Lie subgroup types of D, read from ``catalog/*.toml``.
+"""The catalog of Lie subgroup types of D, read from the package data ``mechsing.catalog``.
+
+The data files are the repository's ``catalog/*.toml``; the build maps that
+folder into the package as ``mechsing.catalog``, so an editable install and an
+installed wheel read the same files through :mod:`importlib.resources`.
 
 The code knows no type by name: every type (symbol, parameters, basis,
 coordinates ...) comes from the data files, validated here.  The basis is
@@ -19,10 +23,12 @@ written as data in a small vocabulary of vector expressions, documented in
 from __future__ import annotations
 
 import functools
+import importlib.resources
 import re
 import tomllib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from importlib.resources.abc import Traversable
 from pathlib import Path
 from typing import Any
 
@@ -31,7 +37,7 @@ import numpy as np
 from mechsing.numeric import FLOAT, Backend
 
 __all__ = [
-    "CATALOG_DIR",
+    "CATALOG_PACKAGE",
     "PARAMETER_KINDS",
     "CatalogError",
     "SubgroupType",
@@ -41,8 +47,8 @@ __all__ = [
     "load_catalog",
 ]
 
-#: where the data files live (editable install: the repository's ``catalog/``)
-CATALOG_DIR = Path(__file__).resolve().parents[2] / "catalog"
+#: the package whose data files are the catalog (the repository's ``catalog/``, mapped by the build)
+CATALOG_PACKAGE = "mechsing.catalog"
 
 #: the parameter kinds a catalog file may use; ``pitch`` is a scalar, the others 3-vectors
 PARAMETER_KINDS = ("direction", "normal", "point", "pitch")
@@ -291,12 +297,13 @@ def _sample_params(t: SubgroupType) -> dict[str, Any]:
     return out
 
 
-def _parse_type(path: Path) -> SubgroupType:
+def _parse_type(path: Traversable) -> SubgroupType:
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except (OSError, tomllib.TOMLDecodeError) as exc:
         raise CatalogError(f"{path}: cannot read the catalog file ({exc})") from exc
     where = str(path)
+    stem = path.name.removesuffix(".toml")
     for key, typ in _REQUIRED.items():
         if key not in data:
             raise CatalogError(f"{where}: missing key {key!r}")
@@ -306,8 +313,8 @@ def _parse_type(path: Path) -> SubgroupType:
     if unknown:
         raise CatalogError(f"{where}: unknown keys {sorted(unknown)}")
     symbol = data["symbol"]
-    if symbol != path.stem:
-        raise CatalogError(f"{where}: symbol {symbol!r} must equal the file name {path.stem!r}")
+    if symbol != stem:
+        raise CatalogError(f"{where}: symbol {symbol!r} must equal the file name {stem!r}")
     params: list[tuple[str, str]] = []
     nonzero: set[str] = set()
     for p in data["parameters"]:
@@ -373,25 +380,42 @@ def _parse_type(path: Path) -> SubgroupType:
     return t
 
 
-def catalog_dir() -> Path:
-    """The catalog directory, with a clear error when it is not there."""
-    if not CATALOG_DIR.is_dir():
+def catalog_dir() -> Traversable:
+    """The installed catalog (package data), with a clear error when it is not there."""
+    try:
+        root = importlib.resources.files(CATALOG_PACKAGE)
+    except ModuleNotFoundError:
+        root = None
+    if root is None or not any(f.name.endswith(".toml") for f in root.iterdir()):
         raise CatalogError(
-            f"the subgroup catalog was not found at {CATALOG_DIR}; install mechsing from its "
-            "repository with 'pip install -e .' (the README's install method) so that catalog/ "
-            "sits beside the mechsing package"
+            f"the subgroup catalog (package data {CATALOG_PACKAGE}) is missing from this "
+            "installation of mechsing; reinstall it (pip install mechsing, or pip install . "
+            "from its source)"
         )
-    return CATALOG_DIR
+    return root
+
+
+def _toml_files(directory: Traversable) -> list[Traversable]:
+    return sorted((f for f in directory.iterdir() if f.name.endswith(".toml")), key=lambda f: f.name)
+
+
+def _parse_all(files: list[Traversable], where: object) -> dict[str, SubgroupType]:
+    if not files:
+        raise CatalogError(f"{where}: no catalog files (*.toml)")
+    types = [_parse_type(f) for f in files]
+    types.sort(key=lambda t: (t.dimension, t.rotation_rank, t.pitched, t.symbol))
+    return {t.symbol: t for t in types}
+
+
+@functools.cache
+def _installed() -> dict[str, SubgroupType]:
+    root = catalog_dir()
+    return _parse_all(_toml_files(root), root)
 
 
 @functools.cache
 def _load(directory: Path, stamp: tuple[tuple[str, int, int], ...]) -> dict[str, SubgroupType]:
-    files = sorted(directory.glob("*.toml"))
-    if not files:
-        raise CatalogError(f"{directory}: no catalog files (*.toml)")
-    types = [_parse_type(f) for f in files]
-    types.sort(key=lambda t: (t.dimension, t.rotation_rank, t.pitched, t.symbol))
-    return {t.symbol: t for t in types}
+    return _parse_all(_toml_files(directory), directory)
 
 
 def load_catalog(directory: str | Path | None = None) -> dict[str, SubgroupType]:
@@ -400,14 +424,19 @@ def load_catalog(directory: str | Path | None = None) -> dict[str, SubgroupType]
     Parameters
     ----------
     directory : path, optional
-        Another catalog directory (tests); default: the repository's ``catalog/``.
+        Another catalog directory (tests; re-read when a file changes); default:
+        the installed catalog (package data ``mechsing.catalog``).
 
     Raises
     ------
     CatalogError
         When the directory or a file is missing or malformed.
     """
-    d = (catalog_dir() if directory is None else Path(directory)).resolve()
+    if directory is None:
+        return dict(_installed())
+    d = Path(directory).resolve()
+    if not d.is_dir():
+        raise CatalogError(f"{d}: the catalog directory does not exist")
     stamp = tuple(
         (f.name, f.stat().st_mtime_ns, f.stat().st_size) for f in sorted(d.glob("*.toml"))
     )

@@ -1,0 +1,191 @@
+"""Valid input gets a right answer or a clear message, never a traceback: regressions of the
+new-user trial (renderers, identify, catalog, unreachable inputs, internal defects) and the
+packaging of the catalog."""
+
+from __future__ import annotations
+
+import importlib.resources
+import json
+import math
+import tomllib
+
+import pytest
+
+from mechsing.errors import current_work, forget_work, working_on
+from tests.mechanisms import ROOT, run_cli, write
+
+SLIDER_CRANK = (ROOT / "examples" / "slider_crank_crank_input.yaml").read_text()
+
+
+# --------------------------------------------------------------------------- renderers
+
+
+@pytest.mark.parametrize("fmt", ["text", "md"])
+def test_text_and_markdown_render_a_test_left_undecided_in_float(tmp_path, fmt):
+    """Offset slider-crank, crank 1e-10 before its outer dead centre (A = 2 atan(4/3)): float
+    cannot decide the input test there; the report says so instead of crashing."""
+    text = SLIDER_CRANK.replace('crank-60: {A: "pi/3"}', 'near: {A: "2*atan(4/3) - 1e-10"}')
+    path = write(tmp_path, "near", text)
+    rc, out, err = run_cli(["analyze", str(path), "--config", "near", "--precision", "float",
+                            "--format", fmt])
+    assert rc == 0, err
+    rc_j, out_j, _ = run_cli(["analyze", str(path), "--config", "near", "--precision", "float",
+                              "--format", "json"])
+    undecided = [f for f in json.loads(out_j)["configurations"][0]["singularities"]
+                 if f["class"] == "undecided"]
+    assert undecided, "1e-10 from the dead centre, float must leave a test undecided"
+    for f in undecided:
+        assert f"cannot decide the {f['what']}" in out
+        assert f["rank_bounds"] is not None or "note" in f
+    assert "tested in float" in out and "decided in float" not in out
+
+
+def test_text_labels_the_grubler_count_as_spatial():
+    rc, out, _ = run_cli(["analyze", str(ROOT / "examples" / "fourbar.yaml"), "--config",
+                          "crank-30", "--precision", "float"])
+    assert rc == 0
+    assert "spatial Grubler-Kutzbach count -2" in out
+
+
+# --------------------------------------------------------------------------- identify, catalog
+
+
+def test_identify_without_a_screw_is_an_error_not_the_identity():
+    rc, out, err = run_cli(["identify", "--"])
+    assert rc == 2 and "at least one screw" in err and "E (dimension 0)" not in out
+
+
+def test_identify_text_in_exact_mode_shows_exact_parameters():
+    """R through (1/6, -1/6, 0) along (1, 1, 0)/sqrt 2: its Plücker coordinates are
+    w = (1, 1, 0), v = p x w = (0, 0, 1/3)."""
+    rc, out, _ = run_cli(["identify", "--", "1,1,0,0,0,1/3"])
+    assert rc == 0
+    assert "R (dimension 1)" in out
+    assert "axis: sqrt(2)/2, sqrt(2)/2, 0" in out
+    assert "point: 1/6, -1/6, 0" in out
+    assert "precision: exact" in out and "None" not in out
+
+
+def test_identify_text_in_float_never_prints_none():
+    unit = ["1,0,0,0,0,0", "0,1,0,0,0,0", "0,0,1,0,0,0", "0,0,0,1,0,0", "0,0,0,0,1,0",
+            "0,0,0,0,0,1"]
+    rc, out, _ = run_cli(["identify", "--precision", "float", "--", *unit])
+    assert rc == 0 and "None" not in out and "nothing dropped" in out
+
+
+@pytest.mark.parametrize("fmt", ["text", "json"])
+def test_catalog_explains_the_universal_joint(fmt):
+    rc, out, err = run_cli(["catalog", "U", "--format", fmt])
+    assert rc == 0, err
+    if fmt == "json":
+        (u,) = json.loads(out)
+        assert u["symbol"] == "U" and u["composite"] is True and u["of"] == ["R", "R"]
+    else:
+        assert "composite" in out and "two R joints" in out and "unknown" not in out
+
+
+# --------------------------------------------------------------------------- unreachable input
+
+ROCKER = """mechanism: triple-rocker
+units: {angle: deg}
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [0, 2, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
+  - {name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [4, 0, 0]}
+inputs: [A]
+configurations:
+  far: {A: 120}
+"""
+
+
+def test_an_unreachable_input_reports_the_value_reached_in_the_file_units(tmp_path):
+    """Non-Grashof four-bar (2 + 4 > 3 + sqrt 5): the crank AB stops where B, C, D line up,
+    |BD| = 3 + sqrt 5; by the law of cosines the angle of AB from AD is then
+    acos((4 + 16 - |BD|^2) / 16), and A (measured from AB's reference angle, 90 deg) stops there."""
+    bd = 3 + math.sqrt(5)
+    limit = math.degrees(math.acos((4 + 16 - bd**2) / 16)) - 90
+    rc, out, err = run_cli(["analyze", str(write(tmp_path, "rocker", ROCKER)), "--precision",
+                            "float"])
+    assert rc == 3
+    reached = float(err.split("A reached ")[1].split(" deg")[0])
+    assert limit - 0.05 < reached <= limit + 1e-6
+    assert "(target 120 deg)" in err and "of the way" not in err
+
+
+# --------------------------------------------------------------------------- internal defects
+
+
+def test_an_escaping_exception_is_one_line_exit_4_naming_file_and_configuration(monkeypatch):
+    import mechsing.analysis
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("svd: no convergence")
+
+    monkeypatch.setattr(mechsing.analysis, "classify_configuration", broken)
+    path = str(ROOT / "examples" / "fourbar.yaml")
+    rc, out, err = run_cli(["analyze", path, "--config", "crank-30", "--precision", "float"])
+    assert rc == 4
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert path in err and "'crank-30'" in err and "defect" in err and "-T" in err
+    with pytest.raises(RuntimeError, match="no convergence"):
+        run_cli(["-T", "analyze", path, "--config", "crank-30", "--precision", "float"])
+
+
+def test_the_work_record_names_the_innermost_context_of_the_error_only():
+    forget_work()
+    with pytest.raises(ValueError), working_on(file="a.yaml"), working_on(configuration="c1"):
+        raise ValueError
+    assert current_work() == "file 'a.yaml', configuration 'c1'"
+    forget_work()
+    with working_on(file="b.yaml"):
+        assert current_work() == "file 'b.yaml'"
+    assert current_work() == ""
+
+
+# --------------------------------------------------------------------------- packaging
+
+
+def test_the_installed_catalog_is_the_catalog_folder():
+    """The package data mechsing.catalog (what a wheel ships) holds catalog/'s files, byte for byte."""
+    installed = importlib.resources.files("mechsing.catalog")
+    source = ROOT / "catalog"
+    names = {f.name for f in installed.iterdir() if f.name.endswith(".toml")}
+    assert names == {p.name for p in source.glob("*.toml")} and names
+    for name in names:
+        assert installed.joinpath(name).read_bytes() == (source / name).read_bytes()
+
+
+def test_the_build_lists_every_package():
+    """pyproject lists the packages explicitly (to map catalog/ into mechsing.catalog): every
+    folder of mechsing/ with an __init__.py must be in the list, or a wheel would lack it."""
+    conf = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+    on_disk = {
+        ".".join(p.parent.relative_to(ROOT).parts)
+        for p in (ROOT / "mechsing").rglob("__init__.py")
+        if "__pycache__" not in p.parts
+    }
+    assert on_disk | {"mechsing.catalog"} == set(conf["packages"])
+    assert conf["package-dir"] == {"mechsing.catalog": "catalog"}
+
+
+def test_nothing_shipped_points_outside_the_project():
+    """Users get the README, `mechsing schema` and the project's own files; no message,
+    docstring or example may send them to files that are not part of the project."""
+    banned = ("../shared", "DESIGN.md", "theory.md")
+    files = [*ROOT.joinpath("mechsing").rglob("*.py"), *ROOT.joinpath("catalog").iterdir(),
+             *ROOT.joinpath("examples").iterdir(), ROOT / "README.md"]
+    offenders = [
+        f"{p.relative_to(ROOT)}: {word}"
+        for p in files
+        if p.is_file() and p.suffix in (".py", ".md", ".toml", ".yaml")
+        for word in banned
+        if word in p.read_text(encoding="utf-8")
+    ]
+    assert offenders == []
+
+
+def test_docs_show_exit_status_4():
+    text = (ROOT / "README.md").read_text()
+    assert "4 an internal defect" in text
