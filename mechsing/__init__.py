@@ -1,6 +1,6 @@
 """mechsing: find and classify the singularities of mechanisms with Lie groups.
 
-Conventions (stated once, used everywhere; see DESIGN.md):
+Conventions (stated once, used everywhere; the README says them too):
 
 * A twist is a 6-vector ``(omega, v)``: angular part first, then the velocity
   of the body point at the ground origin.  A wrench is ``(f, m)``: force, then

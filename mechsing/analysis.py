@@ -11,6 +11,7 @@ when a rank is undecided there; ``float``, ``mp:N`` and ``exact`` use one mode.
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -42,6 +43,8 @@ class ConfigurationResult:
     decisions: list[dict[str, Any]] = field(default_factory=list)
     underdetermined: bool = False
     error: str | None = None
+    #: wall-clock seconds the configuration took (escalation included); not in the JSON
+    seconds: float = field(default=0.0, compare=False)
     internals: dict[str, Any] = field(default_factory=dict, repr=False)
 
     @property
@@ -156,10 +159,12 @@ def _analyze(
     first = Precision("float") if prec.mode == "auto" else prec
     results = []
     for name in names:
+        start = time.perf_counter()
         res = _analyze_one(mech, name, stage(first))
         if prec.mode == "auto" and res.error is None and res.internals.get("undecided"):
             res = _analyze_one(mech, name, stage(Precision("mp", 50)))
             res.internals["escalated"] = True
+        res.seconds = time.perf_counter() - start
         results.append(res)
     km0 = stage(first)[0]
     props = mechanism_properties(mech, km0, results)

@@ -3,7 +3,7 @@
 A workspace scan asks one question of each of many configurations of an open
 chain: is the output screw system of full (generic) rank there?  The answer is
 the same rank decision as :func:`mechsing.analyze` makes for the output chain
-(DESIGN.md "Rank decisions": the commensurate matrix of the chain's current
+(the two-threshold rank rule: the commensurate matrix of the chain's current
 screws, or of its output point's velocity, float thresholds ``tau_lo = 1e-12``,
 ``tau_hi = 1e-9`` relative to sigma_max), made for a whole array of
 configurations at once:
@@ -175,7 +175,7 @@ class ChainScanner:
     Parameters
     ----------
     mech : Mechanism
-        A mechanism without loops, with an output (DESIGN.md ``output``).
+        A mechanism without loops, with an output (the file's ``output``).
     """
 
     def __init__(self, mech: Any) -> None:

@@ -1,6 +1,6 @@
 """The Lie group D = SE(3), its Lie algebra of screws, SO(3) and related algebras.
 
-Conventions, stated once for the whole package (DESIGN.md "Conventions"):
+Conventions, stated once for the whole package (the README's "Conventions"):
 
 * twist ``xi = (omega, v)``, shape (..., 6), angular first (:data:`ANGULAR`,
   :data:`LINEAR`); ``v`` is the velocity of the body point at the ground origin;

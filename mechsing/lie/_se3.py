@@ -1,6 +1,6 @@
 """D = SE(3) and its Lie algebra of screws (backend-generic, batched).
 
-Conventions (DESIGN.md, theory.md §0):
+Conventions (as in the README):
 
 * twist ``xi = (omega, v)`` shape (..., 6): ``omega = xi[..., ANGULAR]``, ``v =
   xi[..., LINEAR]`` the velocity of the body point at the ground origin;
@@ -105,7 +105,7 @@ def exp(xi: Any) -> np.ndarray:
     ``R = I + A W + B W^2``, ``p = (I + B W + C W^2) v`` with A = sin t/t,
     B = (1 - cos t)/t^2, C = (t - sin t)/t^3, t = |omega| (series near 0;
     any angle, also beyond pi).  Pure translations give ``p = v`` exactly.
-    References: theory.md §1.5.
+    References: the exponential of D.
     """
     xi = _asarr(xi)
     w = xi[..., ANGULAR]
@@ -130,7 +130,7 @@ def log(g: Any) -> np.ndarray:
     ``c = (1 - (t/2) cot(t/2))/t^2`` (finite at pi: 1/pi^2).
     At exactly pi the axis sign makes its largest component positive.
     ``exp(log(g)) == g`` always; ``log(exp(xi)) == xi`` for angles below pi.
-    References: theory.md §1.6.
+    References: the logarithm of D.
     """
     g = _asarr(g)
     R = rotation(g)
@@ -311,7 +311,7 @@ class Displacement:
 
 
 def classify_displacement(g: Any, length_scale: float = 1.0) -> Displacement:
-    """Chasles/Mozzi decomposition of one displacement (theory.md §1.4).
+    """Chasles/Mozzi decomposition of one displacement (Chasles-Mozzi).
 
     A rotation angle counts as zero when ``|angle| <= rtol`` and a length
     when ``<= rtol L`` (rtol from :func:`mechsing.numeric.screw_zero_rtol`).
@@ -345,7 +345,7 @@ def classify_displacement(g: Any, length_scale: float = 1.0) -> Displacement:
 
 
 def _q_block(xi: np.ndarray) -> np.ndarray:
-    """Lower-left block Q of the left Jacobian of SE(3) (theory.md §1.7, block form)."""
+    """Lower-left block Q of the left Jacobian of SE(3) (the Jacobians of exp, block form)."""
     bk = backend_of(xi)
     w = xi[..., ANGULAR]
     v = xi[..., LINEAR]
@@ -377,7 +377,7 @@ def left_jacobian(xi: Any) -> np.ndarray:
     """Left Jacobian of exp on D: (..., 6) -> (..., 6, 6), ``[[J, 0], [Q, J]]``.
 
     ``exp(xi + d) ~ exp(J_l(xi) d) exp(xi)``; ``d/dt exp(xi(t)) = hat(J_l xi') exp(xi)``.
-    Equals ``sum_k ad(xi)^k / (k+1)!``.  References: theory.md §1.7.
+    Equals ``sum_k ad(xi)^k / (k+1)!``.  References: the Jacobians of exp.
     """
     xi = _asarr(xi)
     J = left_jacobian_so3(xi[..., ANGULAR])

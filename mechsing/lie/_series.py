@@ -3,8 +3,8 @@
 Each coefficient function of the Lie layer (sin t / t, (1 - cos t)/t^2, ...)
 is a power series in t^2.  Near t = 0 the closed forms cancel (or divide by
 zero), so below a switch point they are evaluated from their series.  The
-switch point and the number of terms belong to the formula (DESIGN.md:
-"a formula's own switch to a Taylor series stays beside it"):
+switch point and the number of terms belong to the formula (a formula's own switch to a Taylor series stays
+beside it; decision tolerances live in mechsing.numeric):
 
 * float and mp: the series is used for ``t^2 <= 1`` with as many terms as make
   the truncation error smaller than the backend's ``eps``; at ``t = 1`` the

@@ -5,8 +5,8 @@ angle, right-handed; ``hat3(w) @ x == cross(w, x)``.  ``log_so3`` returns the
 angle in [0, pi]; at exactly pi the axis sign is the one whose component of
 largest magnitude is positive (first of x, y, z on a tie).
 
-References: theory.md §1.5 (exp), §1.6 (log; Shepperd's quaternion-from-matrix
-method, the atan2-based angle), §1.7 (Jacobians).
+References: the exponential of SO(3) and D (exp), their logarithm (log; Shepperd's quaternion-from-matrix
+method, the atan2-based angle), the Jacobians of exp.
 """
 
 from __future__ import annotations

@@ -27,7 +27,7 @@ Conventions
   ``cay(Ad(g) xi) = g cay(xi) g^-1``.  This is the Cayley map of the 4x4
   representation, not the one of the adjoint (6x6) representation.
 
-References: theory.md §5.4; J. M. Selig, *Geometric Fundamentals of Robotics*,
+References: exact alternatives; J. M. Selig, *Geometric Fundamentals of Robotics*,
 2nd ed., Springer 2005 (Cayley map); J. M. Selig, "Cayley maps for SE(3)",
 12th IFToMM World Congress, 2007; A. Müller, Proc. R. Soc. A 477 (2021) 20210303.
 """

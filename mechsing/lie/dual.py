@@ -23,8 +23,8 @@ Conventions
 * The **dual matrix** of a displacement is ``R + eps p^ R`` (the blocks of
   ``Ad(g)``); it maps lines ``u + eps m`` to their images.
 
-References: theory.md §5.2 item 3 (dual-number rank), §4.8 (Chevallier 1991,
-screws as a module over the dual numbers; Hao 1998), §1.2 (Klein form
+References: the length-scale problem item 3 (dual-number rank), Chevallier's dual-number approach (Chevallier 1991,
+screws as a module over the dual numbers; Hao 1998), the invariant forms of se(3) (Klein form
 ``K = -d sin(alpha)`` of two lines); J. M. McCarthy, *Introduction to
 Theoretical Kinematics*, MIT Press 1990 (dual angle, dual Rodrigues formula,
 transference principle).
@@ -281,7 +281,7 @@ def dual_angle(line1: Any, line2: Any) -> Dual:
     ``d = (p2 - p1) . n`` is the signed distance along n from line 1 to line 2
     (p1, p2 any points of the lines).  Then ``u1 . u2 + eps (u1.m2 + m1.u2) =
     cos(theta + eps d) |u1| |u2|``, i.e. the Klein form of the unit lines is
-    ``-d sin(theta)`` (theory.md §1.2).  The dual angle is symmetric in the two
+    ``-d sin(theta)`` (the invariant forms of se(3)).  The dual angle is symmetric in the two
     lines.  Intersecting lines: ``d = 0``.  Parallel or antiparallel lines
     (``u1 x u2 = 0`` exactly; theta = 0 or pi): the common normal is not
     unique and ``d >= 0`` is their distance.  Near-parallel lines have an
@@ -516,7 +516,7 @@ def _decide_relative(
 
 
 def dual_rank(screws: Any, precision: Precision | str = "float") -> DualRank:
-    """Unit-free dual rank of a set of screws (theory.md §5.2 item 3).
+    """Unit-free dual rank of a set of screws (the length-scale problem item 3).
 
     With ``A`` the omega parts and ``B`` the v parts (one screw per row),
     ``primal = rank(A)``.  With ``N`` an orthonormal basis of the combinations

@@ -22,7 +22,7 @@ Every function runs unchanged on float64 arrays, on object arrays of mpmath
 numbers (mp:N) and on object arrays of sympy numbers (exact); see
 :mod:`mechsing.numeric`.
 
-References: theory.md §1.5 (the quaternion form of exp, Sophus), §1.6
+References: the exponential of D (the quaternion form of exp, Sophus), the logarithm of D
 (Shepperd's quaternion-from-matrix method, the atan-based log of Hertzberg et
 al. 2013).
 """
@@ -148,7 +148,7 @@ def quat_from_rotation_matrix(R: Any) -> np.ndarray:
     there, as any section of the double cover must be.
 
     The result is unit to the accuracy of R's orthogonality (it is not
-    renormalised).  References: theory.md §1.6.
+    renormalised).  References: the logarithm of D.
     """
     R = _arr(R)
     if R.ndim < 2 or R.shape[-2:] != (3, 3):
@@ -184,7 +184,7 @@ def quat_exp(phi: Any) -> np.ndarray:
 def quat_log(q: Any) -> np.ndarray:
     """Rotation vector of a non-zero quaternion, angle in [0, pi]: (..., 4) -> (..., 3).
 
-    atan-based (theory.md §1.6, Hertzberg et al. 2013): with ``q`` replaced by
+    atan-based (the logarithm of D, Hertzberg et al. 2013): with ``q`` replaced by
     ``-q`` where ``w < 0``, ``n = |(x, y, z)|``, the angle is
     ``t = 2 atan2(n, w)`` and the rotation vector ``(t / n) (x, y, z)``;
     ``t / n`` switches to the series ``(2/w)(1 - s^2/3 + s^4/5)``, ``s = n/w``,

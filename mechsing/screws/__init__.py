@@ -1,12 +1,12 @@
 """Screw systems at a configuration: loops, the stacked closure system, mobility.
 
-"Model only what the scene requires" (DESIGN.md, theory.md §3.5): each loop's
+"Model only what the scene requires" (Chevallier & Lerbet): each loop's
 joint screws are expressed in reduced, orthonormal coordinates of the loop's
 generated subalgebra h (a planar loop in its g, a spherical loop in its s), so
 the loop matrix is ``dim h x n`` with no spurious zero rows, and its singular
 values are those of the commensurate screws themselves.
 
-Commensurate metric (DESIGN.md "Characteristic length"): screws are moved to
+Commensurate metric (the characteristic length L): screws are moved to
 the centroid c of the joints' axis points, their v rows divided by L, and the
 columns of length coordinates multiplied by L, before any rank decision.
 """
@@ -163,7 +163,7 @@ def reference_loop_identification(model: KinematicModel, loop: Loop) -> Identifi
 
     Decided once per loop, exactly from the file's values (falling back to
     ``auto`` when the exact decision fails).  By the invariance lemma
-    (theory.md §2.2, item 7) the loop moves inside this subgroup carried by
+    (the structure of the subgroups of D, item 7) the loop moves inside this subgroup carried by
     the pose of the loop's first body, at every configuration.
     """
     cache = model.__dict__.setdefault("_loop_identifications", {})

@@ -5,7 +5,7 @@ q on the same branch it can only be equal or smaller.  So mechsing moves a
 small distance along kernel directions, closes the loops again (minimum-norm
 Newton on the group, every joint free) and decides the nullity there; the
 generic value is the smallest found.  No nearby closed configuration at all
-means q is isolated (DESIGN.md: finite 0, generic null).
+means q is isolated (finite 0, generic null in the JSON).
 """
 
 from __future__ import annotations

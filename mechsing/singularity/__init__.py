@@ -1,7 +1,6 @@
 """Singularity classification of a configuration, and mechanism-level properties.
 
-Every test is measured against its value at generic configurations (DESIGN.md
-"When is a configuration singular?"): what holds everywhere becomes a
+Every test is measured against its value at generic configurations: what holds everywhere becomes a
 ``properties`` entry, never a singularity.
 """
 
@@ -110,7 +109,7 @@ def _undecided(what: str, dec: Any) -> dict[str, Any]:
 
 
 def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
-    """Findings at one closed configuration (DESIGN.md classes); also sets
+    """Findings at one closed configuration (the JSON contract's classes); also sets
     ``result.mobility["generic"]`` and ``["finite"]`` for mechanisms with loops."""
     from mechsing.singularity.classify import local_analysis
 
@@ -153,7 +152,7 @@ def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str,
 
 
 def mechanism_properties(mech: Any, model: Any, results: list[Any]) -> list[dict[str, Any]]:
-    """Mechanism-level properties (DESIGN.md ``properties``), from the configurations analysed.
+    """Mechanism-level properties (``properties`` of the JSON contract), from the configurations analysed.
 
     What holds at every regular configuration of a branch is a property, never
     a singularity: ``overconstrained`` (finite above group), ``shaky``

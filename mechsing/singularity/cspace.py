@@ -1,4 +1,4 @@
-"""Configuration-space singularities: the kinematic tangent cone (theory.md §3.4, §4.2).
+"""Configuration-space singularities: the kinematic tangent cone (local mobility and the kinematic tangent cone, c-space singularities).
 
 Loop closure along a loop with bodies B0 .. Bn = B0: the relative twist across
 joint k is ``zeta_k = s_k S_k u_k`` (current screws ``S_k = Ad(g_a) e``,

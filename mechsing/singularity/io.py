@@ -1,4 +1,4 @@
-"""Input/output and constraint singularities (theory.md §4.5, §4.6).
+"""Input/output and constraint singularities (Zlatanov-Fenton-Benhabib's classes, constraint singularities).
 
 Complete velocity equation.  With ``N`` an orthonormal basis of the solution
 space K of the closure equations (commensurate joint rates), the output twist

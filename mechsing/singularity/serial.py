@@ -1,4 +1,4 @@
-"""Rank loss of an open chain's screw system (theory.md §4.1; DESIGN.md class ``serial``).
+"""Rank loss of an open chain's screw system (open-chain singularities; the class ``serial``).
 
 The screw system of a chain at q is the matrix of its joints' current screws
 (columns).  For the output of a positioning task (a body point) it is the
@@ -49,7 +49,7 @@ class ChainSystem:
 
 
 def _unit_first_positive(v: np.ndarray) -> np.ndarray:
-    """First non-zero component positive (DESIGN.md), with components at rounding
+    """First non-zero component positive (the README's conventions), with components at rounding
     level (below SUPPORT_RTOL of the largest) reported as 0."""
     v = np.asarray(v, dtype=float)
     big = max(1.0, float(np.max(np.abs(v)))) if v.size else 1.0

@@ -4,7 +4,7 @@
 * :class:`Subgroup` -- a type with its geometric parameters (basis, exp
   chart, conjugation, membership, canonical comparison);
 * :func:`identify` -- type and parameters of the Lie closure of any screws;
-* :func:`generate`, :func:`intersect`, :func:`product` (theory.md §2.4-2.6).
+* :func:`generate`, :func:`intersect`, :func:`product` (generated subgroups, intersections and products).
 """
 
 from mechsing.subgroups.algebra import (

@@ -181,7 +181,7 @@ class Subgroup:
     def scaled_basis(
         self, length_scale: Any = 1.0, centre: Any = None, precision: Any = None
     ) -> np.ndarray:
-        """The basis made commensurate (DESIGN.md): moved to ``centre``, v rows / L."""
+        """The basis made commensurate (the README's conventions): moved to ``centre``, v rows / L."""
         B = self.basis(precision)
         return scale_screws(B.T, length_scale, centre).T
 
@@ -221,7 +221,7 @@ class Subgroup:
         return Subgroup(self.type, new)
 
     def canonical(self) -> Subgroup:
-        """The same subgroup with canonical parameters (theory.md §2.3): directions
+        """The same subgroup with canonical parameters (recognising a subgroup from spanning screws): directions
         with their first non-zero component positive, points nearest the origin
         (a point is slid along the type's direction when the type has one)."""
         bk = self.backend

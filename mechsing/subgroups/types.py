@@ -12,7 +12,7 @@ written as data in a small vocabulary of vector expressions, documented in
 * ``0`` the zero vector; ``ex``, ``ey``, ``ez`` the coordinate axes;
 * a parameter name of kind ``direction``, ``normal`` or ``point``;
 * ``e1(NAME)``, ``e2(NAME)`` the in-plane directions of a direction/normal
-  parameter (DESIGN.md: ``e1 = normalise(a - (a.w) w)`` with ``a`` the
+  parameter (by the conventions: ``e1 = normalise(a - (a.w) w)`` with ``a`` the
   coordinate axis least aligned with ``w``, first in x, y, z order on a tie,
   and ``e2 = w x e1``);
 * ``A x B`` the cross product of two of the above;
@@ -88,7 +88,7 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def in_plane(w: np.ndarray, bk: Backend) -> tuple[np.ndarray, np.ndarray]:
-    """In-plane directions ``(e1, e2)`` of a unit vector ``w`` (DESIGN.md).
+    """In-plane directions ``(e1, e2)`` of a unit vector ``w`` (the README's conventions).
 
     ``e1 = normalise(a - (a.w) w)`` with ``a`` the coordinate axis least aligned
     with ``w`` (smallest ``|w_i|``, first in x, y, z order on a tie) and
@@ -240,7 +240,7 @@ class SubgroupType:
 
     @property
     def length_columns(self) -> np.ndarray:
-        """Boolean mask of the coordinates that are lengths (DESIGN.md scaling)."""
+        """Boolean mask of the coordinates that are lengths (the commensurate scaling)."""
         return np.array([u == "m" for _, u in self.coordinates], dtype=bool)
 
     @property

@@ -1,0 +1,88 @@
+"""The guard: every valid file, every precision mode, every format gives an answer or a clear
+message, never a traceback.
+
+Each bundled example and each valid file of tests/data/ is analysed once per mode (float, mp:30,
+mp:50, auto, exact); the one result is rendered as text, JSON and Markdown.  The outcome must be
+what the command line would turn into exit status 0 (all analysed), 2 (bad input, e.g. exact mode
+refusing decimal data) or 3 (some configuration could not be analysed, with its ``error``); any
+other exception is a defect.  Each configuration must finish within its mode's bound (exact mode:
+its own time limit, which stops a configuration with an ``error``).  One file per mode also runs
+through the command line itself.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+import pytest
+
+from mechsing.analysis import analyze
+from mechsing.errors import UserError
+from mechsing.report import render
+from tests.mechanisms import ROOT, run_cli
+
+FILES = sorted((ROOT / "examples").glob("*.yaml")) + sorted((ROOT / "tests" / "data").glob("*.yaml"))
+MODES = ("float", "mp:30", "mp:50", "auto", "exact")
+#: the seconds a configuration may take: a hang, not a speed, is what this catches
+BOUND = {"exact": 60.0, "float": 20.0, "mp:30": 20.0, "mp:50": 20.0, "auto": 20.0}
+#: one file per mode also goes through the command line (in-process, so its exit status is seen)
+THROUGH_CLI = {
+    "float": ("fourbar.yaml", "text"),
+    "mp:30": ("bennett.yaml", "json"),
+    "mp:50": ("planar_3rpr.yaml", "md"),
+    "auto": ("ur5.yaml", "text"),
+    "exact": ("slider_crank_crank_input.yaml", "json"),
+}
+
+
+def _status(mode: str, path: Path) -> tuple[int, object]:
+    try:
+        result = analyze(path, precision=mode)
+    except UserError as exc:
+        assert exc.status == 2, exc
+        assert str(exc) and "Traceback" not in str(exc)
+        return 2, exc
+    return (3 if result.failed else 0), result
+
+
+@pytest.mark.parametrize("mode", MODES)
+@pytest.mark.parametrize("path", FILES, ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_every_file_every_mode_every_format(path: Path, mode: str) -> None:
+    start = time.perf_counter()
+    status, outcome = _status(mode, path)
+    elapsed = time.perf_counter() - start
+    if status == 2:
+        # only exact mode may refuse a valid file whole (its data are not exact)
+        assert mode == "exact", outcome
+        assert "exact" in str(outcome)
+        return
+    result = outcome
+    configs = result.configurations
+    assert configs
+    for c in configs:
+        assert c.seconds <= BOUND[mode], (c.name, c.seconds)
+        if c.error is not None:
+            assert c.error.strip() and c.name in c.error
+    assert elapsed <= BOUND[mode] * len(configs) + 30.0
+    data = json.loads(render(result, "json"))
+    assert data == json.loads(json.dumps(data))
+    assert [c["name"] for c in data["configurations"]] == [c.name for c in configs]
+    for c in data["configurations"]:
+        assert ("error" in c) or c["precision"] and c["decisions"] is not None
+    text, md = render(result, "text"), render(result, "md")
+    for c in configs:
+        assert f"Configuration {c.name}" in text and f"Configuration {c.name}" in md
+    assert md.startswith("# mechsing analysis")
+
+
+@pytest.mark.parametrize("mode", MODES)
+def test_the_command_line_in_every_mode(mode: str) -> None:
+    name, fmt = THROUGH_CLI[mode]
+    rc, out, err = run_cli(["analyze", str(ROOT / "examples" / name), "--precision", mode,
+                            "--format", fmt])
+    assert rc in (0, 3), err
+    assert "Traceback" not in err and out
+    if fmt == "json":
+        assert json.loads(out)["precision"]["mode"] == mode
