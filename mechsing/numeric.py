@@ -144,6 +144,11 @@ ORDER3_RESIDUAL_FACTOR = 1.0
 #: digits of the higher-order and input/output tests of an ``exact`` analysis:
 #: the configuration and its screws are exact, the tests run at mp:50 (and say so)
 EXACT_TEST_DIGITS = 50
+#: the reference configuration has every joint at identity: reading a file refuses a
+#: value listed there when it is farther than this from the identity (radians, rotation
+#: entries, or lengths relative to the file's largest coordinate); nearer values are
+#: decided by the analysis in its mode (to 1e-9 in float, 10^(-N/2) at mp:N, exactly)
+REFERENCE_SCREEN_RTOL = 1e-6
 #: a given rotation matrix must satisfy |R^T R - I| below this in float (and det R > 0);
 #: at mp:N below 10^(-N/2), exactly in exact mode (:func:`rotation_orthonormal_atol`)
 ROTATION_ORTHONORMAL_ATOL = 1e-9

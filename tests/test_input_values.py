@@ -23,6 +23,7 @@ import yaml
 import mechsing
 from mechsing.cli import UserError
 from mechsing.kinematics import Closer, KinematicModel
+from mechsing.model import MechanismError
 
 from .mechanisms import EXAMPLES, _Dumper, _KeepNumbers, by_name, run_cli, write
 
@@ -173,7 +174,7 @@ MODES = ["float", "auto", "mp:30"]
 def test_decimal_displacement_is_in_its_subgroup_in_every_mode(tmp_path, jtype, mode):
     params, q0 = CASES[jtype]
     g = displacement(jtype, params, q0)
-    path = write(tmp_path, "d.yaml", one_joint_file(jtype, params, displacement_text(g)))
+    path = write(tmp_path, "d", one_joint_file(jtype, params, displacement_text(g)))
     # the coordinates entering the analysis are the chosen ones (data to 16 digits)
     q = closed_q(path, mode)
     tol = 1e-13 if mode != "mp:30" else 1e-14
@@ -197,7 +198,7 @@ def test_omitted_translation_is_completed_in_every_mode(tmp_path, jtype, mode):
     q_rot = q0 if jtype == "S" else [q0[0]] + [0] * (len(q0) - 1)
     g = displacement(jtype, params, q_rot)
     path = write(
-        tmp_path, "d.yaml", one_joint_file(jtype, params, displacement_text(g, translation=False))
+        tmp_path, "d", one_joint_file(jtype, params, displacement_text(g, translation=False))
     )
     q = np.asarray(closed_q(path, mode), dtype=float)
     assert np.max(np.abs(q - np.asarray(q_rot, dtype=float))) < 1e-13
@@ -209,7 +210,7 @@ def test_s_joint_translation_completed_from_its_centre(tmp_path, mode):
     is (I - R) c = (0, 3, 1); the coordinates are the rotation vector (pi/2, 0, 0)."""
     path = write(
         tmp_path,
-        "s.yaml",
+        "s",
         one_joint_file("S", {"point": [0, 1, 2]}, "{rotation: [[1, 0, 0], [0, 0, -1], [0, 1, 0]]}"),
     )
     q = closed_q(path, mode)
@@ -225,7 +226,7 @@ def test_s_joint_translation_completed_from_its_centre(tmp_path, mode):
     # the same with the translation written out
     path2 = write(
         tmp_path,
-        "s2.yaml",
+        "s2",
         one_joint_file(
             "S",
             {"point": [0, 1, 2]},
@@ -274,7 +275,7 @@ EXACT_CASES = {
 @pytest.mark.parametrize("jtype", sorted(EXACT_CASES))
 def test_exact_displacement_gives_exact_coordinates(tmp_path, jtype):
     params, value, expected = EXACT_CASES[jtype]
-    path = write(tmp_path, "e.yaml", one_joint_file(jtype, params, value))
+    path = write(tmp_path, "e", one_joint_file(jtype, params, value))
     q = closed_q(path, "exact")
     assert all(isinstance(x, sympy.Basic) for x in q)
     assert [sympy.simplify(sympy.expand_trig(x - y)) for x, y in zip(q, expected, strict=True)] == [
@@ -297,7 +298,7 @@ def _s_file_off(offset: str) -> str:
 
 @pytest.mark.parametrize("mode", MODES + ["exact"])
 def test_displacement_outside_the_subgroup_is_a_clear_error(tmp_path, mode):
-    path = write(tmp_path, "off.yaml", _s_file_off("1.001"))  # 1 mm off (L = |c| = 2.24 m)
+    path = write(tmp_path, "off", _s_file_off("1.001"))  # 1 mm off (L = |c| = 2.24 m)
     with pytest.raises(UserError) as exc:
         mechsing.analyze(path, ["c1"], mode)
     msg = str(exc.value)
@@ -311,7 +312,7 @@ def test_displacement_outside_the_subgroup_is_a_clear_error(tmp_path, mode):
 def test_membership_tolerance_is_the_modes(tmp_path):
     """1e-12 m off the subgroup: inside float's tolerance (1e-9 relative), outside mp:30's
     (1e-15) and exact mode's (0)."""
-    path = write(tmp_path, "off.yaml", _s_file_off("1.000000000001"))
+    path = write(tmp_path, "off", _s_file_off("1.000000000001"))
     assert analysed_joint(path, "float") == pytest.approx([np.pi / 2, 0, 0], abs=1e-11)
     for mode in ("mp:30", "exact"):
         with pytest.raises(UserError, match="not in the joint's S subgroup"):
@@ -324,7 +325,7 @@ def test_rotation_outside_a_planar_subgroup_is_a_clear_error(tmp_path):
         "{rotation: [[1, 0, 0], [0, 0, -1], [0, 1, 0]]}",
         "{rotation: [[1, 0, 0], [0, 0, -1], [0, 1, 0]], translation: [0, 0, 0]}",
     ):
-        path = write(tmp_path, "g.yaml", one_joint_file("G", {"normal": [0, 0, 1]}, value))
+        path = write(tmp_path, "g", one_joint_file("G", {"normal": [0, 0, 1]}, value))
         for mode in MODES:
             with pytest.raises(UserError, match=r"configuration 'c1', joint 'J' \(line 6\)"):
                 mechsing.analyze(path, ["c1"], mode)
@@ -349,7 +350,7 @@ def test_auto_keeps_its_tolerance_when_it_re_decides_at_mp50(tmp_path):
         "configurations:\n"
         f"  c1: {{J: {displacement_text(g)}, K: 0.2}}\n"
     )
-    path = write(tmp_path, "sr.yaml", text)
+    path = write(tmp_path, "sr", text)
     res = mechsing.analyze(path, ["c1"], "auto").to_json()
     cfg = by_name(res)["c1"]
     assert cfg["precision"] == "mp:50"
@@ -380,8 +381,84 @@ def test_stewart_platform_with_s_joints_given_as_16_digit_rotations(tmp_path, mo
         R = _rodrigues(cfg[name])
         cfg[name] = {"rotation": [[_text(R[i, k]) for k in range(3)] for i in range(3)]}
     doc["configurations"] = {"rotated+90": cfg}
-    path = write(tmp_path, "stewart16.yaml", yaml.dump(doc, Dumper=_Dumper, sort_keys=False))
+    path = write(tmp_path, "stewart16", yaml.dump(doc, Dumper=_Dumper, sort_keys=False))
     res = by_name(mechsing.analyze(path, ["rotated+90"], mode).to_json())["rotated+90"]
     assert res.get("error") is None
     for name, v in vectors.items():
         assert res["joints"][name] == pytest.approx(v, abs=1e-14)
+
+
+# ----------------------------------------------------------------------------- defect 2
+
+RSSR = """\
+mechanism: rssr
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: S1, type: S, between: [crank, coupler], point: [1, 0, 0]}
+  - {name: S2, type: S, between: [coupler, rocker], point: [1, 2, 1]}
+  - {name: D, type: R, between: [rocker, ground], axis: [1, 0, 0], point: [0, 2, 0]}
+inputs: [A]
+output: {body: rocker}
+configurations:
+"""
+
+
+def _reference_result(path, mode: str) -> dict:
+    res = mechsing.analyze(path, ["reference"], mode).to_json()
+    return by_name(res)["reference"]
+
+
+@pytest.mark.parametrize("mode", MODES + ["exact"])
+def test_reference_listing_identity_values_is_the_reference(tmp_path, mode):
+    identity = "{rotation: [[1, 0, 0], [0, 1, 0], [0, 0, 1]], translation: [0, 0, 0]}"
+    given = write(
+        tmp_path,
+        "given",
+        RSSR + f"  reference: {{A: 0, S1: {identity}, S2: [0.0, 0, 0], D: '0'}}\n",
+    )
+    implicit = write(tmp_path, "implicit", RSSR + "  reference: {}\n")
+    got, want = _reference_result(given, mode), _reference_result(implicit, mode)
+    # every joint at identity: all coordinates zero, closed exactly
+    assert got["joints"] == {"A": [0.0], "S1": [0.0] * 3, "S2": [0.0] * 3, "D": [0.0]}
+    assert got["closure_residual"] == 0.0
+    assert got["mobility"] == want["mobility"] and got["loops"] == want["loops"]
+    assert got["singularities"] == want["singularities"]
+    # a displacement with one key only is the identity too (the other is completed)
+    for value in ("{rotation: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}", "{translation: [0, 0, 0]}"):
+        path = write(tmp_path, "one", RSSR + f"  reference: {{S1: {value}}}\n")
+        assert _reference_result(path, mode)["joints"]["S1"] == [0.0] * 3
+
+
+def test_reference_value_is_decided_in_the_modes_sense(tmp_path):
+    """A rotation vector of 1e-12 rad is the identity to float's tolerance (1e-9), not to
+    mp:30's (1e-15) nor exactly."""
+    path = write(tmp_path, "tiny", RSSR + "  reference: {S1: [0, 0, 1e-12]}\n")
+    assert _reference_result(path, "float")["joints"]["S1"] == [0.0] * 3
+    for mode in ("mp:30", "exact"):
+        with pytest.raises(UserError) as exc:
+            mechsing.analyze(path, ["reference"], mode)
+        msg = str(exc.value)
+        assert msg.startswith(f"{path}:11: ") and "joint 'S1'" in msg
+        assert "the reference configuration has every joint at identity" in msg
+        rc, _out, err = run_cli(["analyze", str(path), "--precision", mode])
+        assert rc == 2 and "identity" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize(
+    "value",
+    [
+        "{A: 1}",
+        "{S1: {rotation: [[1, 0, 0], [0, 0, -1], [0, 1, 0]]}}",
+        "{S1: {translation: [0, 0, 1]}}",
+    ],
+)
+def test_reference_with_other_values_is_refused_as_before(tmp_path, value):
+    path = write(tmp_path, "moved", RSSR + f"  reference: {value}\n")
+    with pytest.raises(MechanismError) as exc:
+        mechsing.load(path)
+    msg = str(exc.value)
+    assert msg.startswith(f"{path}:11: configuration 'reference'")
+    assert ("joint 'A'" if "A:" in value else "joint 'S1'") in msg
+    assert "the reference configuration has every joint at identity" in msg
+    assert "new configuration" in msg

@@ -146,7 +146,10 @@ class Closer:
         m = self.model
         target = m.zeros()
         given: list[int] = []
-        if cfg.is_reference and not cfg.values:
+        if cfg.is_reference:
+            # every joint at identity; the values it lists must be the identity
+            if cfg.values:
+                self._check_reference(cfg)
             return target, tuple(range(m.n))
         for jname, val in cfg.values.items():
             jk = m.joint(jname)
@@ -173,6 +176,36 @@ class Closer:
             target[jk.columns] = coords
             given.extend(range(jk.columns.start, jk.columns.stop))
         return target, tuple(sorted(given))
+
+    def _check_reference(self, cfg: Configuration) -> None:
+        """The values the reference configuration lists must be the identity in the
+        analysis's mode: zero coordinates (angles to the mode's tolerance, lengths to
+        it times L; exactly in exact mode), or an identity displacement."""
+        m, decide = self.model, self.data_precision
+        for jname, val in cfg.values.items():
+            jk = m.joint(jname)
+            if isinstance(val, Displacement):
+                coords = self._coordinates_of_displacement(cfg, jname, val)
+            else:
+                coords = m.asarray(list(val))
+            if decide.mode == "exact":
+                zero = all(exact_is_zero(x, m.length_scale) is True for x in coords)
+            else:
+                with decide.context():
+                    tol = screw_zero_rtol(decide.backend)
+                    scale = np.where(m.length_columns[jk.columns], m.length_scale, 1.0)
+                    zero = all(
+                        abs(x) <= tol * s
+                        for x, s in zip(decide.asarray(coords), scale, strict=True)
+                    )
+            if not zero:
+                line = val.line if isinstance(val, Displacement) else cfg.lines.get(jname)
+                where = f"{self.mech.path}:{line}: " if self.mech.path and line else ""
+                raise UserError(
+                    f"{where}configuration {cfg.name!r}: joint {jname!r}: the reference "
+                    "configuration has every joint at identity (value 0), and this value is not "
+                    f"the identity {_to_the_tolerance(decide)}; give it in a new configuration"
+                )
 
     def _refuse_transcendental(self, cfg: Configuration, jk: Any, coords: np.ndarray) -> None:
         """Exact data: every rotation a joint value produces must have

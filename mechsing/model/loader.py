@@ -37,7 +37,7 @@ from mechsing.model.yamlnodes import (
     YValue,
     read_yaml_text,
 )
-from mechsing.numeric import NEAR_ZERO_VECTOR
+from mechsing.numeric import NEAR_ZERO_VECTOR, REFERENCE_SCREEN_RTOL
 
 __all__ = [
     "ANGLE_UNITS",
@@ -773,6 +773,7 @@ class _Builder:
             else:
                 cmap = r.mapping(cv, item, "a configuration")
             values: dict[str, Any] = {}
+            lines: dict[str, int] = {}
             start: str | None = None if cname == "reference" else "reference"
             for jk, jv in cmap.items:
                 if jk.text == "start":
@@ -793,17 +794,18 @@ class _Builder:
                         f"unknown joint {jk.text!r}; use one of {_few(list(jmap))} or start",
                     )
                 values[jk.text] = self.value(jv, jmap[jk.text], item)
+                lines[jk.text] = jk.line
             if cname == "reference":
                 for jn, val in values.items():
-                    if isinstance(val, Displacement) or any(x != 0 for x in val):
+                    if not self.near_identity(val, jmap[jn]):
                         raise r.error(
                             item,
-                            cmap.key_line(jn),
-                            "the reference configuration has every "
+                            lines[jn],
+                            f"joint {jn!r}: the reference configuration has every "
                             "joint at identity (value 0); give other values in a new "
                             "configuration",
                         )
-            out[cname] = Configuration(cname, values, start, k.line)
+            out[cname] = Configuration(cname, values, start, k.line, lines)
         for cname, (start, line) in starts.items():
             if start not in out:
                 raise r.error(
@@ -825,6 +827,26 @@ class _Builder:
                 chain.append(cur)
                 cur = out[cur].start
         return out
+
+    def near_identity(self, val: Any, j: Joint) -> bool:
+        """A value is near the identity when it is within :data:`REFERENCE_SCREEN_RTOL`
+        of it (radians, rotation entries, lengths relative to the file's largest
+        coordinate): the reference configuration may list such values, and the
+        analysis decides in its mode whether they are the identity."""
+        size = self.r.scale * self.r.units.length_factor
+
+        def small(x: Any, unit: str) -> bool:
+            if x == 0:
+                return True
+            bound = REFERENCE_SCREEN_RTOL * (size if unit == "m" else 1)
+            return bool(abs(sympy.N(x, 30)) <= bound)
+
+        if isinstance(val, Displacement):
+            rot = val.rotation or ((1, 0, 0), (0, 1, 0), (0, 0, 1))
+            return all(
+                small(rot[i][k] - (1 if i == k else 0), "rad") for i in range(3) for k in range(3)
+            ) and all(small(x, "m") for x in val.translation or (0, 0, 0))
+        return all(small(x, u) for x, u in zip(val, j.units, strict=True))
 
     def value(self, v: YValue, j: Joint, item: str) -> Any:
         r = self.r

@@ -182,13 +182,14 @@ class Configuration:
     catalog order; length ``dof``) or a :class:`Displacement`.  ``start`` is the
     configuration continuation starts from: ``"reference"`` when the file
     does not say, None for the reference configuration itself (all joints at
-    identity).
+    identity).  ``lines`` gives the line of each value in the file.
     """
 
     name: str
     values: Mapping[str, JointValue] = field(hash=False)
     start: str | None = "reference"
     line: int | None = None
+    lines: Mapping[str, int] = field(default_factory=dict, hash=False, compare=False)
 
     @property
     def is_reference(self) -> bool:
