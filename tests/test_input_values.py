@@ -14,6 +14,9 @@
 
 from __future__ import annotations
 
+import json
+import re
+
 import mpmath
 import numpy as np
 import pytest
@@ -462,3 +465,121 @@ def test_reference_with_other_values_is_refused_as_before(tmp_path, value):
     assert ("joint 'A'" if "A:" in value else "joint 'S1'") in msg
     assert "the reference configuration has every joint at identity" in msg
     assert "new configuration" in msg
+
+
+# ----------------------------------------------------------------------------- defect 3
+
+CHAIN = """\
+mechanism: chain
+units: {{angle: {unit}}}
+bodies: [ground, a, b]
+joints:
+  - {{name: J1, type: {type1}, between: [ground, a], {geo1}}}
+  - {{name: J2, type: R, between: [a, b], axis: [0, 0, 1], point: [1, 0, 0]}}
+configurations:
+  c1: {{J1: {value}}}
+"""
+GEO = {
+    "R": "axis: [0, 0, 1], point: [0, 0, 0]",
+    "H": "axis: [0, 0, 1], point: [0, 0, 0], pitch: 0.001",
+    "C": "axis: [0, 0, 1], point: [0, 0, 0]",
+    "U": "axes: [[0, 0, 1], [1, 0, 0]], point: [0, 0, 0]",
+    "S": "point: [0, 0, 0]",
+    "G": "normal: [0, 0, 1]",
+    "X": "axis: [0, 0, 1]",
+    "D": "",
+}
+
+
+def chain(unit: str, jtype: str, value: str) -> str:
+    geo = GEO[jtype] or "{}"
+    text = CHAIN.format(unit=unit, type1=jtype, geo1=geo, value=value)
+    return text.replace(", {}}", "}")
+
+
+# (type, value written in a degree file, the radian expression in it, the same angle in degrees)
+RADIAN_IN_DEG = [
+    ("R", '"pi/6"', "pi/6", 30.0),
+    ("H", '"pi/4"', "pi/4", 45.0),
+    ("C", '["pi/3", 0.1]', "pi/3", 60.0),
+    ("U", '[0, "atan(1/2)"]', "atan(1/2)", np.degrees(np.arctan(0.5))),
+    ("S", '[0, "2*atan(1/3)", 0]', "2*atan(1/3)", np.degrees(2 * np.arctan(1 / 3))),
+    ("G", '["asin(1/3)", 0, 0]', "asin(1/3)", np.degrees(np.arcsin(1 / 3))),
+    ("X", '["acos(0.3)", 0, 0, 0]', "acos(0.3)", np.degrees(np.arccos(0.3))),
+    ("D", '[0, 0, "atan2(1, 2)", 0, 0, 0]', "atan2(1, 2)", np.degrees(np.arctan2(1, 2))),
+]
+
+
+@pytest.mark.parametrize(("jtype", "value", "expr", "degrees"), RADIAN_IN_DEG)
+def test_radian_expression_in_a_degree_file_is_an_error(tmp_path, jtype, value, expr, degrees):
+    path = write(tmp_path, "deg", chain("deg", jtype, value))
+    rc, out, err = run_cli(["analyze", str(path)])
+    assert rc == 2 and out == "" and "Traceback" not in err
+    assert err.startswith(f"mechsing: error: {path}:8: configuration 'c1': value of joint 'J1'")
+    assert expr in err and "degrees" in err
+    # both fixes: the value in degrees, or radians for the whole file
+    m = re.search(r"e\.g\. (-?[0-9.]+)", err)
+    assert m and float(m.group(1)) == pytest.approx(degrees, rel=1e-5)
+    assert "units: {angle: rad}" in err
+    with pytest.raises(MechanismError) as exc:
+        mechsing.load(path)
+    assert exc.value.line == 8 and exc.value.status == 2
+
+
+@pytest.mark.parametrize(
+    ("value", "radians"),
+    [
+        ("30", sympy.pi / 6),
+        ('"asin(1/2)*180/pi"', sympy.pi / 6),  # a radian value converted to degrees
+        ('"pi/6 * 180/pi"', sympy.pi / 6),
+        ('"cos(pi/3)"', sympy.pi / 360),  # a pure number (1/2) of degrees
+        ('"sqrt(3)/2"', sympy.sqrt(3) * sympy.pi / 360),
+    ],
+)
+def test_degree_values_in_a_degree_file_are_read_in_degrees(tmp_path, value, radians):
+    mech = mechsing.load(write(tmp_path, "deg", chain("deg", "R", value)))
+    assert sympy.simplify(mech.configurations["c1"].values["J1"][0] - radians) == 0
+    assert mech.warnings == ()
+
+
+@pytest.mark.parametrize(
+    ("jtype", "value", "expected"),
+    [
+        ("R", "30", (30,)),
+        ("C", "[30, 0.1]", (30, sympy.Rational(1, 10))),
+        ("U", "[0, -7]", (0, -7)),
+        ("S", "[0, 0, 7]", (0, 0, 7)),
+        ("G", "[20, 0, 0]", (20, 0, 0)),
+    ],
+)
+def test_plain_angle_above_a_full_turn_in_a_radian_file_warns(tmp_path, jtype, value, expected):
+    path = write(tmp_path, "rad", chain("rad", jtype, value))
+    mech = mechsing.load(path)
+    (warning,) = mech.warnings
+    assert warning.startswith(f"{path}:8: configuration 'c1': value of joint 'J1'")
+    assert "units: {angle: deg}" in warning
+    # the angle is taken as written, in radians
+    assert mech.configurations["c1"].values["J1"] == expected
+    # the CLI prints the warning without -v and goes on with the analysis
+    rc, out, err = run_cli(["analyze", str(path), "--format", "json"])
+    assert rc == 0
+    assert by_name(json.loads(out))["c1"]["joints"]["J1"] == pytest.approx(
+        [float(x) for x in expected]
+    )
+    assert f"mechsing: warning: {warning}" in err.splitlines()
+
+
+@pytest.mark.parametrize(
+    ("jtype", "value"),
+    [
+        ("R", "6"),  # below a full turn
+        ("R", '"10*pi"'),  # an expression: meant in radians
+        ("H", "30"),  # a screw turns many times: no warning for pitched joints
+        ("S", "[3, 3, 3]"),  # rotation vector of norm 5.2 < 2 pi
+    ],
+)
+def test_no_warning_for_ordinary_radian_values(tmp_path, jtype, value):
+    path = write(tmp_path, "rad", chain("rad", jtype, value))
+    assert mechsing.load(path).warnings == ()
+    rc, _out, err = run_cli(["analyze", str(path), "--format", "json"])
+    assert rc == 0 and "warning" not in err

@@ -15,7 +15,12 @@ from typing import Any
 
 import sympy
 
-from mechsing.model.expressions import ExpressionError, parse_number
+from mechsing.model.expressions import (
+    ExpressionError,
+    is_plain_decimal,
+    parse_number,
+    radian_power,
+)
 from mechsing.model.graph import build_graph, connected_to
 from mechsing.model.mechanism import (
     U_JOINT,
@@ -105,11 +110,16 @@ class _Reader:
     def __init__(self, path: str | None) -> None:
         self.path = path
         self.notes: list[str] = []
+        self.warnings: list[str] = []
         self.units = Units()
         self.scale = 1.0  # largest point coordinate (file units), for near-zero tests
 
     def error(self, item: str | None, line: int | None, message: str) -> MechanismError:
         return MechanismError(message, path=self.path, line=line, item=item)
+
+    def warn(self, item: str, line: int | None, message: str) -> None:
+        """A likely mistake that is not an error: worded like an error's message."""
+        self.warnings.append(str(MechanismError(message, path=self.path, line=line, item=item)))
 
     # -- shapes ---------------------------------------------------------------
 
@@ -358,6 +368,7 @@ class _Builder:
             configurations=configs,
             characteristic_length=char_len,
             notes=tuple(r.notes),
+            warnings=tuple(r.warnings),
             graph=graph,
             units=r.units,
         )
@@ -895,7 +906,9 @@ class _Builder:
                     f"{what}: a joint of type {j.type} has {j.dof} coordinates; give a "
                     f"list of {j.dof} numbers (or a displacement)",
                 )
-            return (r.number(v, item, what, factors[0]),)
+            raw = (r.number(v, item, what),)
+            self.check_angles(j, (v,), raw, item, (what,))
+            return (raw[0] * factors[0] if factors[0] != 1 else raw[0],)
         if isinstance(v, YSeq):
             if len(v.items) != j.dof:
                 raise r.error(
@@ -904,12 +917,88 @@ class _Builder:
                     f"{what}: a joint of type {j.type} has {j.dof} coordinate"
                     f"{'s' if j.dof > 1 else ''}, got {len(v.items)} values",
                 )
-            return tuple(
-                r.number(e, item, f"{what}[{i}]", factors[i]) for i, e in enumerate(v.items)
-            )
+            labels = tuple(f"{what}[{i}]" for i in range(j.dof))
+            raw = tuple(r.number(e, item, labels[i]) for i, e in enumerate(v.items))
+            self.check_angles(j, v.items, raw, item, labels)
+            return tuple(x * f if f != 1 else x for x, f in zip(raw, factors, strict=True))
         raise r.error(
             item, getattr(v, "line", None), f"{what} must be a number or a list"
         )  # pragma: no cover
+
+    def check_angles(
+        self,
+        j: Joint,
+        nodes: tuple[YValue, ...],
+        raw: tuple[Any, ...],
+        item: str,
+        labels: tuple[str, ...],
+    ) -> None:
+        """The unit trap of angles, on the values as written (before the unit factor).
+
+        In a degree file, an angle written with ``pi`` or an inverse trigonometric
+        function is a radian value (:func:`radian_power`): an error that gives both
+        fixes.  In a radian file, a plain number above a full turn is probably meant
+        in degrees: a warning (an R, C, U, G or X angle; the norm of an S or D
+        rotation vector; not the angle of a pitched joint, H or Y, whose many turns
+        are ordinary).
+        """
+        r = self.r
+        angles = [i for i, u in enumerate(j.units) if u == "rad"]
+        if not angles:
+            return
+        if r.units.angle != "rad":
+            for i in angles:
+                if radian_power(raw[i]) > 0:
+                    node = nodes[i]
+                    text = node.text if isinstance(node, YScalar) else str(raw[i])
+                    as_deg = float(sympy.N(raw[i] * 180 / sympy.pi, 15))
+                    read = float(sympy.N(raw[i], 15))
+                    raise r.error(
+                        item,
+                        getattr(node, "line", None),
+                        f"{labels[i]}: {text!r} is an angle in radians (pi, asin, acos, atan "
+                        f"and atan2 give radians), but this file's angles are in degrees "
+                        f"(units: {{angle: {r.units.angle}}}), so it would be read as "
+                        f"{read:.6g} degrees; write the value in degrees (e.g. {as_deg:.6g}), "
+                        "or set units: {angle: rad} and write every angle of the file in radians",
+                    )
+            return
+        if j.type in _PITCHED:
+            return
+        plain = [
+            i for i in angles if isinstance(nodes[i], YScalar) and is_plain_decimal(nodes[i].text)
+        ]
+        if j.type in _ROTATION_VECTORS:
+            if len(plain) == len(angles) and sum(raw[i] ** 2 for i in angles) > FULL_TURN**2:
+                shown = ", ".join(nodes[i].text for i in angles)
+                norm = float(sympy.N(sympy.sqrt(sum(raw[i] ** 2 for i in angles)), 15))
+                r.warn(
+                    item,
+                    nodes[angles[0]].line,
+                    f"{labels[0].rsplit('[', 1)[0]}: the rotation vector [{shown}] turns by "
+                    f"{norm:.6g}, more than a full turn (2 pi) in a file whose angles are in "
+                    "radians; if its angles are meant in degrees, set units: {angle: deg}",
+                )
+            return
+        for i in plain:
+            if abs(raw[i]) > FULL_TURN:
+                node = nodes[i]
+                in_rad = raw[i] * sympy.pi / 180
+                r.warn(
+                    item,
+                    node.line,
+                    f"{labels[i]}: the angle {node.text} is more than a full turn (2 pi) in a "
+                    "file whose angles are in radians; if it is meant in degrees, set "
+                    f"units: {{angle: deg}} (or write it in radians: {str(in_rad)!r})",
+                )
+
+
+#: a full turn (rad): a plain angle above it in a radian file gets a warning
+FULL_TURN = 2 * sympy.pi
+#: pitched joints: their angle is tied to a slide, many turns are ordinary
+_PITCHED = ("H", "Y")
+#: joints whose angular coordinates form a rotation vector (its norm is the angle)
+_ROTATION_VECTORS = ("S", "D")
 
 
 def _few(names: list[str], n: int = 8) -> str:

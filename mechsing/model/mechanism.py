@@ -223,6 +223,10 @@ class Mechanism:
     notes : tuple of str
         What mechsing did silently (axes normalised, defaults chosen); ``-v``
         prints them.
+    warnings : tuple of str
+        Likely mistakes that are not errors (a plain angle above a full turn in
+        a file in radians: degrees meant?), worded like an error message (file,
+        line, item, fix); the command line always prints them.
     graph : MechanismGraph
         Bodies, joints, loops, the spanning tree and legs.
     units : Units
@@ -241,6 +245,7 @@ class Mechanism:
     notes: tuple[str, ...]
     graph: MechanismGraph = field(repr=False)
     units: Units = field(default_factory=Units)
+    warnings: tuple[str, ...] = ()
 
     def joint(self, name: str) -> Joint:
         """The joint called ``name`` (KeyError if none)."""
