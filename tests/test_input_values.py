@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import re
+from pathlib import Path
 
 import mpmath
 import numpy as np
@@ -583,3 +584,26 @@ def test_no_warning_for_ordinary_radian_values(tmp_path, jtype, value):
     assert mechsing.load(path).warnings == ()
     rc, _out, err = run_cli(["analyze", str(path), "--format", "json"])
     assert rc == 0 and "warning" not in err
+
+
+# ----------------------------------------------------------------------------- messages point to
+# what users have
+
+
+def test_empty_file_message_points_to_the_schema_and_readme(tmp_path):
+    path = write(tmp_path, "empty", "")
+    rc, out, err = run_cli(["analyze", str(path)])
+    assert rc == 2 and out == ""
+    assert "mechsing schema" in err and "README" in err
+    assert "DESIGN" not in err
+
+
+def test_model_and_kinematics_texts_name_no_internal_document():
+    """Messages and docstrings of the model and kinematics layers point to ``mechsing schema``
+    and the README, never to design notes users do not have."""
+    root = Path(mechsing.__file__).parent
+    for sub in ("model", "kinematics"):
+        for path in sorted((root / sub).glob("*.py")):
+            text = path.read_text()
+            for word in ("DESIGN", "theory.md", "../shared", "shared/"):
+                assert word not in text, f"{path.name} mentions {word}"

@@ -1,4 +1,4 @@
-"""Closure of named configurations by continuation (DESIGN.md "Configurations").
+"""Closure of named configurations by continuation.
 
 From the configuration named by ``start`` (default ``reference``: every joint
 at identity), the given values move along a straight line in small steps; at

@@ -1,4 +1,4 @@
-"""Reading and validating mechanism files (DESIGN.md, "The mechanism file").
+"""Reading and validating mechanism files (the format: ``mechsing schema`` and the README).
 
 :func:`load` reads a YAML or JSON file, :func:`loads` a text.  Every problem
 raises :class:`~mechsing.model.mechanism.MechanismError` whose message names
@@ -64,7 +64,7 @@ LENGTH_UNITS: dict[str, Any] = {
 #: exact factors to radians
 ANGLE_UNITS: dict[str, Any] = {"rad": sympy.Integer(1), "deg": sympy.pi / 180}
 
-#: keys of the top-level mapping, in the order DESIGN.md lists them
+#: keys of the top-level mapping, in the order the file format lists them
 TOP_LEVEL_KEYS = (
     "mechanism",
     "units",

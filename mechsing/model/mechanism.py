@@ -270,7 +270,7 @@ class Mechanism:
 
     @property
     def loops(self) -> tuple:
-        """The canonical loops (DESIGN.md "Loops")."""
+        """The canonical loops (:attr:`MechanismGraph.loops`)."""
         return self.graph.loops
 
     @property
