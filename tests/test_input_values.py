@@ -224,6 +224,9 @@ def test_s_joint_translation_completed_from_its_centre(tmp_path, mode):
             0,
             0,
         ]
+    elif mode == "mp:30":  # exact data: the coordinates to the working precision
+        with mpmath.workdps(DIGITS):
+            assert abs(q[0] - mpmath.pi / 2) < 1e-28 and q[1] == 0 and q[2] == 0
     else:
         assert np.max(np.abs(np.asarray(q, dtype=float) - [np.pi / 2, 0, 0])) < 1e-14
     assert analysed_joint(path, mode) == pytest.approx([np.pi / 2, 0, 0], abs=1e-14)
