@@ -153,7 +153,8 @@ def _analyze(
         key = str(mode)
         if key not in models:
             km = KinematicModel(mech, mode)
-            models[key] = (km, Closer(km))
+            # given values are checked with the tolerance of the mode asked for (auto: float's)
+            models[key] = (km, Closer(km, data_precision=first))
         return models[key]
 
     first = Precision("float") if prec.mode == "auto" else prec

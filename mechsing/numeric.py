@@ -59,6 +59,7 @@ __all__ = [
     "orthonormal_columns",
     "parse_precision",
     "rank_bounds",
+    "rotation_orthonormal_atol",
     "pinv_truncated",
     "scale_screws",
     "screw_zero_rtol",
@@ -143,7 +144,13 @@ ORDER3_RESIDUAL_FACTOR = 1.0
 #: digits of the higher-order and input/output tests of an ``exact`` analysis:
 #: the configuration and its screws are exact, the tests run at mp:50 (and say so)
 EXACT_TEST_DIGITS = 50
-#: a given rotation matrix must satisfy |R^T R - I| below this (and det R > 0)
+#: the reference configuration has every joint at identity: reading a file refuses a
+#: value listed there when it is farther than this from the identity (radians, rotation
+#: entries, or lengths relative to the file's largest coordinate); nearer values are
+#: decided by the analysis in its mode (to 1e-9 in float, 10^(-N/2) at mp:N, exactly)
+REFERENCE_SCREEN_RTOL = 1e-6
+#: a given rotation matrix must satisfy |R^T R - I| below this in float (and det R > 0);
+#: at mp:N below 10^(-N/2), exactly in exact mode (:func:`rotation_orthonormal_atol`)
 ROTATION_ORTHONORMAL_ATOL = 1e-9
 #: batched scans (:mod:`mechsing.scanner`) decide "full rank" without an SVD when
 #: the determinant bound on sigma_min / sigma_max is at least this many times
@@ -362,6 +369,20 @@ def screw_zero_rtol(bk: Backend) -> Any:
     if bk.name == "mp":
         return mpmath.mpf(10) ** (-(mpmath.mp.dps // 2))
     return 0
+
+
+def rotation_orthonormal_atol(prec: Precision) -> Any:
+    """Largest entry of ``R^T R - I`` for which a given 3x3 matrix is a rotation.
+
+    :data:`ROTATION_ORTHONORMAL_ATOL` (1e-9) in float and auto, 10^(-N/2) at
+    mp:N (the mode's ``tau_hi``, as for subgroup membership), 0 in exact mode.
+    """
+    if prec.mode == "mp":
+        with prec.context():
+            return screw_zero_rtol(prec.backend)
+    if prec.mode == "exact":
+        return 0
+    return ROTATION_ORTHONORMAL_ATOL
 
 
 # ---------------------------------------------------------------------------

@@ -49,12 +49,15 @@ def precision_option(text: str) -> Precision:
 
 
 def load_mechanism(path: str, verbose: bool = False) -> Mechanism:
-    """Read a mechanism file; with ``verbose`` print what was done silently (axes normalised...)."""
+    """Read a mechanism file; print its warnings (likely mistakes that are not
+    errors), and with ``verbose`` what was done silently (axes normalised...)."""
     from mechsing.errors import working_on
     from mechsing.model import load
 
     with working_on(file=path):
         mech = load(path)
+    for warning in mech.warnings:
+        print(f"mechsing: warning: {warning}", file=sys.stderr)
     if verbose:
         for note in mech.notes:
             print(f"mechsing: {note}", file=sys.stderr)

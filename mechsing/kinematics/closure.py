@@ -1,4 +1,4 @@
-"""Closure of named configurations by continuation (DESIGN.md "Configurations").
+"""Closure of named configurations by continuation.
 
 From the configuration named by ``start`` (default ``reference``: every joint
 at identity), the given values move along a straight line in small steps; at
@@ -39,13 +39,13 @@ from mechsing.numeric import (
     CONTINUATION_STEP_RTOL,
     EXACT_ZERO_DIGITS,
     MAX_JOINT_VALUE,
-    MEMBERSHIP_RTOL_FLOAT,
     POLISH_DIGITS_SPARE,
     POLISH_MAX_STEPS,
-    ROTATION_ORTHONORMAL_ATOL,
     Precision,
     decide_rank,
     exact_is_zero,
+    rotation_orthonormal_atol,
+    screw_zero_rtol,
     to_float,
 )
 
@@ -86,12 +86,16 @@ class ClosedConfiguration:
 class Closer:
     """Solves the named configurations of one kinematic model (memoised)."""
 
-    def __init__(self, model: KinematicModel) -> None:
+    def __init__(self, model: KinematicModel, data_precision: Precision | None = None) -> None:
         self.model = model
         self.mech = model.mech
         self._solved: dict[str, ClosedConfiguration] = {}
         prec = model.precision
         self.tolerance = prec.closure_tolerance(model.length_scale)
+        #: the mode whose tolerance decides whether a given value is what it claims
+        #: to be (a displacement in its joint's subgroup): the analysis's own; auto
+        #: keeps float's when it re-decides a configuration at mp:50
+        self.data_precision: Precision = data_precision or prec
 
     # ---------------------------------------------------------------- public
 
@@ -142,7 +146,10 @@ class Closer:
         m = self.model
         target = m.zeros()
         given: list[int] = []
-        if cfg.is_reference and not cfg.values:
+        if cfg.is_reference:
+            # every joint at identity; the values it lists must be the identity
+            if cfg.values:
+                self._check_reference(cfg)
             return target, tuple(range(m.n))
         for jname, val in cfg.values.items():
             jk = m.joint(jname)
@@ -170,8 +177,38 @@ class Closer:
             given.extend(range(jk.columns.start, jk.columns.stop))
         return target, tuple(sorted(given))
 
+    def _check_reference(self, cfg: Configuration) -> None:
+        """The values the reference configuration lists must be the identity in the
+        analysis's mode: zero coordinates (angles to the mode's tolerance, lengths to
+        it times L; exactly in exact mode), or an identity displacement."""
+        m, decide = self.model, self.data_precision
+        for jname, val in cfg.values.items():
+            jk = m.joint(jname)
+            if isinstance(val, Displacement):
+                coords = self._coordinates_of_displacement(cfg, jname, val)
+            else:
+                coords = m.asarray(list(val))
+            if decide.mode == "exact":
+                zero = all(exact_is_zero(x, m.length_scale) is True for x in coords)
+            else:
+                with decide.context():
+                    tol = screw_zero_rtol(decide.backend)
+                    scale = np.where(m.length_columns[jk.columns], m.length_scale, 1.0)
+                    zero = all(
+                        abs(x) <= tol * s
+                        for x, s in zip(decide.asarray(coords), scale, strict=True)
+                    )
+            if not zero:
+                line = val.line if isinstance(val, Displacement) else cfg.lines.get(jname)
+                where = f"{self.mech.path}:{line}: " if self.mech.path and line else ""
+                raise UserError(
+                    f"{where}configuration {cfg.name!r}: joint {jname!r}: the reference "
+                    "configuration has every joint at identity (value 0), and this value is not "
+                    f"the identity {_to_the_tolerance(decide)}; give it in a new configuration"
+                )
+
     def _refuse_transcendental(self, cfg: Configuration, jk: Any, coords: np.ndarray) -> None:
-        """Exact data (DESIGN.md): every rotation a joint value produces must have
+        """Exact data: every rotation a joint value produces must have
         algebraic entries (angles that are rational multiples of pi, atan/asin/acos of
         algebraic numbers and their sums).  sympy must *prove* it (``is_algebraic``
         after expanding the trigonometric functions): 1 rad, pi*sqrt(2) or pi**2 are
@@ -187,7 +224,12 @@ class Closer:
             q[jk.columns] = coords
             entries = list(self.model.element(jk, q)[:3, :3].flat)
         for x in entries:
-            if sympy.expand_trig(x).is_algebraic is not True:
+            # the stable forms of exp write 1 - cos a as 2 sin(a/2)**2: trigsimp folds the
+            # half angles back (cos(atan(4/3)) is 3/5) when expansion alone cannot tell
+            if (
+                sympy.expand_trig(x).is_algebraic is not True
+                and sympy.expand_trig(sympy.trigsimp(x)).is_algebraic is not True
+            ):
                 where = f"configuration {cfg.name!r}, joint {jk.name!r}" + (
                     f" (line {cfg.line})" if cfg.line else ""
                 )
@@ -202,6 +244,14 @@ class Closer:
     def _coordinates_of_displacement(
         self, cfg: Configuration, jname: str, val: Displacement
     ) -> np.ndarray:
+        """The joint's coordinates (its log in the subgroup) of a displacement value.
+
+        The displacement is read in the model's arithmetic and its membership in
+        the joint's subgroup decided with the tolerance of the analysis's mode
+        (:attr:`data_precision`): 1e-9 in float, 10^(-N/2) at mp:N, exactly in
+        exact mode.  An omitted rotation is the identity; an omitted translation
+        is completed (:meth:`Subgroup.completing_translation`).
+        """
         m = self.model
         jk = m.joint(jname)
         where = f"configuration {cfg.name!r}, joint {jname!r}" + (
@@ -209,50 +259,59 @@ class Closer:
         )
         if jk.subgroup is None:
             raise UserError(f"{where}: a U joint takes two angles [q1, q2], not a displacement")
-        with m.precision.context():
+        prec, decide = m.precision, self.data_precision
+        with prec.context():
             R = (
                 m.backend.eye(3)
                 if val.rotation is None
                 else m.asarray([list(r) for r in val.rotation])
             )
-            Rf = to_float(R)
-            if (
-                np.max(np.abs(Rf.T @ Rf - np.eye(3))) > ROTATION_ORTHONORMAL_ATOL
-                or np.linalg.det(Rf) < 0
-            ):
-                raise UserError(
-                    f"{where}: the rotation is not a rotation matrix (R^T R = I, det R = 1); give an orthonormal matrix"
-                )
+            self._check_rotation(where, R)
             if val.translation is None:
-                p = self._complete_translation(jk, R)
-                if p is None:
-                    raise UserError(
-                        f"{where}: give the translation too: no translation puts this rotation in the {jk.type} subgroup"
-                    )
+                p = jk.subgroup.completing_translation(R, prec)
             else:
                 p = m.asarray(list(val.translation))
             g = lie.pose(R, p)
-            if not jk.subgroup.contains(to_float(g), length_scale=m.length_scale):
+            try:
+                q = jk.subgroup.coordinates_of(g, prec)
+            except ValueError:
+                q = None
+            if q is None or not jk.subgroup.contains(g, m.length_scale, decide, q):
+                if val.translation is None:
+                    raise UserError(
+                        f"{where}: no displacement of the joint's {jk.type} subgroup has this "
+                        "rotation (whatever the translation); give a rotation the joint can produce"
+                    )
                 raise UserError(
-                    f"{where}: this displacement is not in the joint's {jk.type} subgroup; "
-                    "give a rotation and translation the joint can produce"
+                    f"{where}: this displacement is not in the joint's {jk.type} subgroup "
+                    f"(decided {_to_the_tolerance(decide)}); give a rotation and translation the "
+                    "joint can produce, or leave the translation out to have it completed"
                 )
-            return m.coordinates_in(jk, g)
+            return q
 
-    def _complete_translation(self, jk: Any, R: np.ndarray) -> np.ndarray | None:
-        # the translation of exp of the subalgebra element with that rotation and no slide
-        w = lie.log_so3(R)
-        B = to_float(jk.basis)
-        wf = to_float(w)
-        coef, *_ = np.linalg.lstsq(B[:, :3].T, wf, rcond=None)
-        if np.linalg.norm(B[:, :3].T @ coef - wf) > MEMBERSHIP_RTOL_FLOAT * max(
-            1.0, np.linalg.norm(wf)
-        ):
-            return None
-        # keep only rotating basis directions (no translation slide)
-        rot = np.linalg.norm(B[:, :3], axis=1) > 0
-        coef = np.where(rot, coef, 0.0)
-        return self.model.asarray(lie.exp(coef @ B)[:3, 3])
+    def _check_rotation(self, where: str, R: np.ndarray) -> None:
+        """A given rotation must be orthonormal with det 1, to the mode's tolerance."""
+        decide = self.data_precision
+        Rf = to_float(R)
+        if np.linalg.det(Rf) > 0:
+            E = R.T @ R - self.model.backend.eye(3)
+            if decide.mode == "exact":
+                if all(exact_is_zero(x) is True for x in E.flat):
+                    return
+                raise UserError(
+                    f"{where}: the rotation is not exactly a rotation matrix (R^T R = I); exact "
+                    'mode needs exact entries, such as "sqrt(2)/2" or 0.6 and 0.8; use '
+                    "--precision auto, float or mp:N for decimals rounded from a rotation"
+                )
+            atol = rotation_orthonormal_atol(decide)
+            with decide.context():
+                err = max(abs(x) for x in decide.asarray(E).flat)
+            if err <= atol:
+                return
+        raise UserError(
+            f"{where}: the rotation is not a rotation matrix (R^T R = I, det R = 1) "
+            f"{_to_the_tolerance(decide)}; give an orthonormal matrix (with more digits)"
+        )
 
     # ---------------------------------------------------------------- checking
 
@@ -618,3 +677,12 @@ def solve_configuration(
     """Close one named configuration; returns the model and the closed configuration."""
     model = KinematicModel(mech, precision)
     return model, Closer(model).solve(name)
+
+
+def _to_the_tolerance(prec: Precision) -> str:
+    """How a precision mode decides that a given value is what it claims, for messages."""
+    if prec.mode == "exact":
+        return "exactly, in exact mode"
+    with prec.context():
+        tol = float(screw_zero_rtol(prec.backend))
+    return f"to {tol:.0e} (relative) at {prec} precision"

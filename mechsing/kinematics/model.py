@@ -1,6 +1,6 @@
 """Poses, current joint screws and closure residuals of a mechanism.
 
-Conventions (DESIGN.md):
+Conventions (those of the mechanism file; the README states them):
 
 * the joint values of a mechanism are one flat vector ``q`` of all joint
   coordinates in file order and catalog basis order

@@ -20,7 +20,9 @@ not allowed.  Sizes are bounded so that no text can make sympy build a huge
 number: the text length, the number of syntax nodes, the digits of a number,
 decimal exponents, and the exponents of ``**``.
 
-Public API: :func:`parse_number` (text to exact value), :func:`is_finite_real`.
+Public API: :func:`parse_number` (text to exact value), :func:`is_finite_real`,
+:func:`is_plain_decimal` (a number as opposed to an expression) and
+:func:`radian_power` (does a value carry radians: the unit trap of degree files).
 """
 
 from __future__ import annotations
@@ -38,7 +40,9 @@ __all__ = [
     "ExpressionError",
     "MAX_EXPRESSION_CHARS",
     "is_finite_real",
+    "is_plain_decimal",
     "parse_number",
+    "radian_power",
 ]
 
 #: longest expression text accepted
@@ -347,3 +351,38 @@ def is_finite_real(value: Any) -> bool:
         return False
     scale = max(abs(re_), sympy.Float(1))
     return abs(im) <= sympy.Float("1e-25") * scale
+
+
+def is_plain_decimal(text: str) -> bool:
+    """True for a plain (signed) decimal number such as ``30`` or ``-1.5e3``, False
+    for an expression such as ``"pi/6"``."""
+    return bool(_SIGNED_DECIMAL.match(text.strip()))
+
+
+#: functions whose value is an angle (in radians)
+_RADIAN_FUNCTIONS = (sympy.asin, sympy.acos, sympy.atan, sympy.atan2)
+
+
+def radian_power(value: Any) -> Any:
+    """How many times an exact value carries the radian, read from its form.
+
+    ``pi`` and the inverse trigonometric functions (``asin``, ``acos``,
+    ``atan``, ``atan2``) give angles in radians: power 1.  Numbers and the
+    values of other functions (``sin``, ``cos``, ``tan``, ``sqrt`` of numbers)
+    are pure numbers: power 0.  Powers add over a product, multiply under a
+    rational power, and a sum takes the largest over its terms.  So ``pi/6``,
+    ``2*atan(1/2)`` and ``pi/6 + 1`` have power 1 (radian values), ``sqrt(3)/2``
+    and ``cos(pi/12)`` power 0, and ``asin(1/2)*180/pi`` (a radian value
+    converted to degrees) power 0.
+    """
+    if value == sympy.pi:
+        return sympy.Integer(1)
+    if isinstance(value, _RADIAN_FUNCTIONS):
+        return sympy.Integer(1)
+    if isinstance(value, sympy.Mul):
+        return sum((radian_power(a) for a in value.args), sympy.Integer(0))
+    if isinstance(value, sympy.Add):
+        return max(radian_power(a) for a in value.args)
+    if isinstance(value, sympy.Pow):
+        return radian_power(value.base) * value.exp
+    return sympy.Integer(0)

@@ -7,8 +7,8 @@
   whole joint; 0 or 1 for the two revolutes of a U joint), ``tail`` and
   ``head`` (the edge is oriented tail -> head like the joint's ``between``).
   Edge keys are the joint name, or ``(name, 0)`` / ``(name, 1)`` for U parts.
-* :attr:`MechanismGraph.loops` -- the canonical cycle basis (DESIGN.md
-  "Loops"): ``networkx.minimum_cycle_basis`` of the simple graph whose nodes
+* :attr:`MechanismGraph.loops` -- the canonical cycle basis:
+  ``networkx.minimum_cycle_basis`` of the simple graph whose nodes
   are the bodies and the joints (each joint a node between its two bodies, so
   parallel joints are fine and a U joint counts once), built with bodies and
   joints inserted in file order; loops are sorted short first, then by their
@@ -19,7 +19,7 @@
   ground.  The pose of a body is the product, in order, of
   ``exp(value)`` (sign +1: crossing the joint from ``between[0]`` to
   ``between[1]``) or its inverse (sign -1).
-* :meth:`MechanismGraph.legs` -- DESIGN.md "legs".
+* :meth:`MechanismGraph.legs` -- the legs between a base body and the output body.
 """
 
 from __future__ import annotations
@@ -112,7 +112,7 @@ class MechanismGraph:
         raise KeyError(name)
 
     def legs(self, body: str, base: str) -> tuple[Leg, ...]:
-        """The legs between ``base`` and ``body`` (DESIGN.md).
+        """The legs between ``base`` and ``body``.
 
         With ``base`` and ``body`` removed, each connected component that has a
         joint to both is a leg (its inner joints and the joints that attach
@@ -157,7 +157,7 @@ class MechanismGraph:
 
 
 def canonical_loops(bodies: Sequence[str], joints: Sequence[Any]) -> tuple[Loop, ...]:
-    """The canonical cycle basis of DESIGN.md for bodies and joints in file order.
+    """The canonical cycle basis (module docstring) for bodies and joints in file order.
 
     ``joints`` need ``name`` and ``between`` attributes.  The simple graph has
     integer nodes (bodies 0..nb-1, then joints nb..) inserted in file order,

@@ -1,4 +1,4 @@
-"""Reading and validating mechanism files (DESIGN.md, "The mechanism file").
+"""Reading and validating mechanism files (the format: ``mechsing schema`` and the README).
 
 :func:`load` reads a YAML or JSON file, :func:`loads` a text.  Every problem
 raises :class:`~mechsing.model.mechanism.MechanismError` whose message names
@@ -15,7 +15,12 @@ from typing import Any
 
 import sympy
 
-from mechsing.model.expressions import ExpressionError, parse_number
+from mechsing.model.expressions import (
+    ExpressionError,
+    is_plain_decimal,
+    parse_number,
+    radian_power,
+)
 from mechsing.model.graph import build_graph, connected_to
 from mechsing.model.mechanism import (
     U_JOINT,
@@ -37,7 +42,7 @@ from mechsing.model.yamlnodes import (
     YValue,
     read_yaml_text,
 )
-from mechsing.numeric import NEAR_ZERO_VECTOR
+from mechsing.numeric import NEAR_ZERO_VECTOR, REFERENCE_SCREEN_RTOL
 
 __all__ = [
     "ANGLE_UNITS",
@@ -59,7 +64,7 @@ LENGTH_UNITS: dict[str, Any] = {
 #: exact factors to radians
 ANGLE_UNITS: dict[str, Any] = {"rad": sympy.Integer(1), "deg": sympy.pi / 180}
 
-#: keys of the top-level mapping, in the order DESIGN.md lists them
+#: keys of the top-level mapping, in the order the file format lists them
 TOP_LEVEL_KEYS = (
     "mechanism",
     "units",
@@ -105,11 +110,16 @@ class _Reader:
     def __init__(self, path: str | None) -> None:
         self.path = path
         self.notes: list[str] = []
+        self.warnings: list[str] = []
         self.units = Units()
         self.scale = 1.0  # largest point coordinate (file units), for near-zero tests
 
     def error(self, item: str | None, line: int | None, message: str) -> MechanismError:
         return MechanismError(message, path=self.path, line=line, item=item)
+
+    def warn(self, item: str, line: int | None, message: str) -> None:
+        """A likely mistake that is not an error: worded like an error's message."""
+        self.warnings.append(str(MechanismError(message, path=self.path, line=line, item=item)))
 
     # -- shapes ---------------------------------------------------------------
 
@@ -358,6 +368,7 @@ class _Builder:
             configurations=configs,
             characteristic_length=char_len,
             notes=tuple(r.notes),
+            warnings=tuple(r.warnings),
             graph=graph,
             units=r.units,
         )
@@ -773,6 +784,7 @@ class _Builder:
             else:
                 cmap = r.mapping(cv, item, "a configuration")
             values: dict[str, Any] = {}
+            lines: dict[str, int] = {}
             start: str | None = None if cname == "reference" else "reference"
             for jk, jv in cmap.items:
                 if jk.text == "start":
@@ -793,17 +805,18 @@ class _Builder:
                         f"unknown joint {jk.text!r}; use one of {_few(list(jmap))} or start",
                     )
                 values[jk.text] = self.value(jv, jmap[jk.text], item)
+                lines[jk.text] = jk.line
             if cname == "reference":
                 for jn, val in values.items():
-                    if isinstance(val, Displacement) or any(x != 0 for x in val):
+                    if not self.near_identity(val, jmap[jn]):
                         raise r.error(
                             item,
-                            cmap.key_line(jn),
-                            "the reference configuration has every "
+                            lines[jn],
+                            f"joint {jn!r}: the reference configuration has every "
                             "joint at identity (value 0); give other values in a new "
                             "configuration",
                         )
-            out[cname] = Configuration(cname, values, start, k.line)
+            out[cname] = Configuration(cname, values, start, k.line, lines)
         for cname, (start, line) in starts.items():
             if start not in out:
                 raise r.error(
@@ -825,6 +838,26 @@ class _Builder:
                 chain.append(cur)
                 cur = out[cur].start
         return out
+
+    def near_identity(self, val: Any, j: Joint) -> bool:
+        """A value is near the identity when it is within :data:`REFERENCE_SCREEN_RTOL`
+        of it (radians, rotation entries, lengths relative to the file's largest
+        coordinate): the reference configuration may list such values, and the
+        analysis decides in its mode whether they are the identity."""
+        size = self.r.scale * self.r.units.length_factor
+
+        def small(x: Any, unit: str) -> bool:
+            if x == 0:
+                return True
+            bound = REFERENCE_SCREEN_RTOL * (size if unit == "m" else 1)
+            return bool(abs(sympy.N(x, 30)) <= bound)
+
+        if isinstance(val, Displacement):
+            rot = val.rotation or ((1, 0, 0), (0, 1, 0), (0, 0, 1))
+            return all(
+                small(rot[i][k] - (1 if i == k else 0), "rad") for i in range(3) for k in range(3)
+            ) and all(small(x, "m") for x in val.translation or (0, 0, 0))
+        return all(small(x, u) for x, u in zip(val, j.units, strict=True))
 
     def value(self, v: YValue, j: Joint, item: str) -> Any:
         r = self.r
@@ -873,7 +906,9 @@ class _Builder:
                     f"{what}: a joint of type {j.type} has {j.dof} coordinates; give a "
                     f"list of {j.dof} numbers (or a displacement)",
                 )
-            return (r.number(v, item, what, factors[0]),)
+            raw = (r.number(v, item, what),)
+            self.check_angles(j, (v,), raw, item, (what,))
+            return (raw[0] * factors[0] if factors[0] != 1 else raw[0],)
         if isinstance(v, YSeq):
             if len(v.items) != j.dof:
                 raise r.error(
@@ -882,12 +917,88 @@ class _Builder:
                     f"{what}: a joint of type {j.type} has {j.dof} coordinate"
                     f"{'s' if j.dof > 1 else ''}, got {len(v.items)} values",
                 )
-            return tuple(
-                r.number(e, item, f"{what}[{i}]", factors[i]) for i, e in enumerate(v.items)
-            )
+            labels = tuple(f"{what}[{i}]" for i in range(j.dof))
+            raw = tuple(r.number(e, item, labels[i]) for i, e in enumerate(v.items))
+            self.check_angles(j, v.items, raw, item, labels)
+            return tuple(x * f if f != 1 else x for x, f in zip(raw, factors, strict=True))
         raise r.error(
             item, getattr(v, "line", None), f"{what} must be a number or a list"
         )  # pragma: no cover
+
+    def check_angles(
+        self,
+        j: Joint,
+        nodes: tuple[YValue, ...],
+        raw: tuple[Any, ...],
+        item: str,
+        labels: tuple[str, ...],
+    ) -> None:
+        """The unit trap of angles, on the values as written (before the unit factor).
+
+        In a degree file, an angle written with ``pi`` or an inverse trigonometric
+        function is a radian value (:func:`radian_power`): an error that gives both
+        fixes.  In a radian file, a plain number above a full turn is probably meant
+        in degrees: a warning (an R, C, U, G or X angle; the norm of an S or D
+        rotation vector; not the angle of a pitched joint, H or Y, whose many turns
+        are ordinary).
+        """
+        r = self.r
+        angles = [i for i, u in enumerate(j.units) if u == "rad"]
+        if not angles:
+            return
+        if r.units.angle != "rad":
+            for i in angles:
+                if radian_power(raw[i]) > 0:
+                    node = nodes[i]
+                    text = node.text if isinstance(node, YScalar) else str(raw[i])
+                    as_deg = float(sympy.N(raw[i] * 180 / sympy.pi, 15))
+                    read = float(sympy.N(raw[i], 15))
+                    raise r.error(
+                        item,
+                        getattr(node, "line", None),
+                        f"{labels[i]}: {text!r} is an angle in radians (pi, asin, acos, atan "
+                        f"and atan2 give radians), but this file's angles are in degrees "
+                        f"(units: {{angle: {r.units.angle}}}), so it would be read as "
+                        f"{read:.6g} degrees; write the value in degrees (e.g. {as_deg:.6g}), "
+                        "or set units: {angle: rad} and write every angle of the file in radians",
+                    )
+            return
+        if j.type in _PITCHED:
+            return
+        plain = [
+            i for i in angles if isinstance(nodes[i], YScalar) and is_plain_decimal(nodes[i].text)
+        ]
+        if j.type in _ROTATION_VECTORS:
+            if len(plain) == len(angles) and sum(raw[i] ** 2 for i in angles) > FULL_TURN**2:
+                shown = ", ".join(nodes[i].text for i in angles)
+                norm = float(sympy.N(sympy.sqrt(sum(raw[i] ** 2 for i in angles)), 15))
+                r.warn(
+                    item,
+                    nodes[angles[0]].line,
+                    f"{labels[0].rsplit('[', 1)[0]}: the rotation vector [{shown}] turns by "
+                    f"{norm:.6g}, more than a full turn (2 pi) in a file whose angles are in "
+                    "radians; if its angles are meant in degrees, set units: {angle: deg}",
+                )
+            return
+        for i in plain:
+            if abs(raw[i]) > FULL_TURN:
+                node = nodes[i]
+                in_rad = raw[i] * sympy.pi / 180
+                r.warn(
+                    item,
+                    node.line,
+                    f"{labels[i]}: the angle {node.text} is more than a full turn (2 pi) in a "
+                    "file whose angles are in radians; if it is meant in degrees, set "
+                    f"units: {{angle: deg}} (or write it in radians: {str(in_rad)!r})",
+                )
+
+
+#: a full turn (rad): a plain angle above it in a radian file gets a warning
+FULL_TURN = 2 * sympy.pi
+#: pitched joints: their angle is tied to a slide, many turns are ordinary
+_PITCHED = ("H", "Y")
+#: joints whose angular coordinates form a rotation vector (its norm is the angle)
+_ROTATION_VECTORS = ("S", "D")
 
 
 def _few(names: list[str], n: int = 8) -> str:

@@ -182,13 +182,14 @@ class Configuration:
     catalog order; length ``dof``) or a :class:`Displacement`.  ``start`` is the
     configuration continuation starts from: ``"reference"`` when the file
     does not say, None for the reference configuration itself (all joints at
-    identity).
+    identity).  ``lines`` gives the line of each value in the file.
     """
 
     name: str
     values: Mapping[str, JointValue] = field(hash=False)
     start: str | None = "reference"
     line: int | None = None
+    lines: Mapping[str, int] = field(default_factory=dict, hash=False, compare=False)
 
     @property
     def is_reference(self) -> bool:
@@ -222,6 +223,10 @@ class Mechanism:
     notes : tuple of str
         What mechsing did silently (axes normalised, defaults chosen); ``-v``
         prints them.
+    warnings : tuple of str
+        Likely mistakes that are not errors (a plain angle above a full turn in
+        a file in radians: degrees meant?), worded like an error message (file,
+        line, item, fix); the command line always prints them.
     graph : MechanismGraph
         Bodies, joints, loops, the spanning tree and legs.
     units : Units
@@ -240,6 +245,7 @@ class Mechanism:
     notes: tuple[str, ...]
     graph: MechanismGraph = field(repr=False)
     units: Units = field(default_factory=Units)
+    warnings: tuple[str, ...] = ()
 
     def joint(self, name: str) -> Joint:
         """The joint called ``name`` (KeyError if none)."""
@@ -264,7 +270,7 @@ class Mechanism:
 
     @property
     def loops(self) -> tuple:
-        """The canonical loops (DESIGN.md "Loops")."""
+        """The canonical loops (:attr:`MechanismGraph.loops`)."""
         return self.graph.loops
 
     @property

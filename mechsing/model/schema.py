@@ -86,6 +86,10 @@ def mechanism_schema() -> dict[str, Any]:
             "mechanism": {"type": "string", "description": "the mechanism's name"},
             "units": {
                 "type": "object",
+                "description": "angle: deg writes every joint angle in degrees; an angle "
+                "written with pi, asin, acos, atan or atan2 is a radian value and is refused "
+                "there. In radians (the default) a plain angle above a full turn is warned "
+                "about (degrees meant?).",
                 "properties": {
                     "length": {"enum": list(LENGTH_UNITS)},
                     "angle": {"enum": list(ANGLE_UNITS)},
@@ -143,6 +147,10 @@ def mechanism_schema() -> dict[str, Any]:
             "joint": {"oneOf": joint_variants},
             "displacement": {
                 "type": "object",
+                "description": "a multi-dof joint value as the relative displacement it "
+                "produces; an omitted key is completed (identity rotation, or the translation "
+                "that puts the rotation in the joint's subgroup); membership is decided to the "
+                "analysis precision's tolerance",
                 "properties": {
                     "rotation": {
                         "type": "array",
@@ -164,6 +172,9 @@ def mechanism_schema() -> dict[str, Any]:
                 ]
             },
             "configuration": {
+                "description": "joint values by joint name (the others are solved by "
+                "closure) and start; the configuration named reference has every joint at "
+                "identity and may list only identity values",
                 "anyOf": [
                     {"type": "null"},
                     {
@@ -171,7 +182,7 @@ def mechanism_schema() -> dict[str, Any]:
                         "properties": {"start": {"$ref": "#/$defs/name"}},
                         "additionalProperties": {"$ref": "#/$defs/joint_value"},
                     },
-                ]
+                ],
             },
         },
     }

@@ -193,7 +193,7 @@ def read_yaml_text(text: str, max_items: int = MAX_ITEMS) -> YValue:
     except RecursionError:
         raise YAMLReadError("the file is nested too deeply to be a mechanism") from None
     if node is None:
-        raise YAMLReadError("the file is empty; see 'mechsing schema' or DESIGN.md for the format")
+        raise YAMLReadError("the file is empty; see 'mechsing schema' or the README for the format")
     try:
         return _Converter(max_items).convert(node)
     except RecursionError:

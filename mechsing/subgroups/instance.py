@@ -311,10 +311,13 @@ class Subgroup:
             ok |= np.linalg.norm(xs, axis=1) == 0
             return ok.reshape(xi.shape[:-1])[()] if xi.ndim > 1 else bool(ok[0])
 
-    def chart(self, q: Any) -> np.ndarray:
-        """The element ``exp(sum q_i e_i)`` of canonical coordinates ``q`` (dim,)."""
+    def chart(self, q: Any, precision: Any = None) -> np.ndarray:
+        """The element ``exp(sum q_i e_i)`` of canonical coordinates ``q`` (dim,).
+
+        ``precision``: a Precision or mode string; default: that of q and the parameters.
+        """
         q = np.asarray(q)
-        prec = as_precision(None, q, *self.params.values())
+        prec = as_precision(precision, q, *self.params.values())
         with prec.context():
             qq = _linalg.convert(q, prec).reshape(self.dim)
             B = self.basis(prec)
@@ -323,7 +326,7 @@ class Subgroup:
 
     element = chart
 
-    def coordinates_of(self, g: Any) -> np.ndarray:
+    def coordinates_of(self, g: Any, precision: Any = None) -> np.ndarray:
         """Canonical coordinates q with ``chart(q) == g`` for g in the subgroup.
 
         Angles are principal, in (-pi, pi], except where the subgroup forces a
@@ -335,9 +338,13 @@ class Subgroup:
         :meth:`contains` checks it.  For a helical-translating (Y) element whose
         angle is a non-zero multiple of 2 pi with a translation across the
         axis, no first-kind coordinates exist: ``ValueError``.
+
+        ``precision``: a Precision or mode string (the arithmetic of the result);
+        default: that of g and the parameters (exact parameters give exact
+        coordinates of an exact g).
         """
         g = np.asarray(g)
-        prec = as_precision(None, g, *self.params.values())
+        prec = as_precision(precision, g, *self.params.values())
         with prec.context():
             gg = _linalg.convert(g, prec)
             bk = prec.backend
@@ -388,9 +395,13 @@ class Subgroup:
             a = slide / h0
         else:
             s_vec = lie.vee3((R - R.T) / 2)
-            a = bk.atan2(np.asarray(u @ s_vec), np.asarray((R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2))[
-                ()
-            ]
+            y, x = u @ s_vec, (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
+            if exact and _linalg.is_zero(y) and _linalg.is_zero(x):
+                # no rotation about u at all (a half turn about a perpendicular axis): the
+                # projection's angle is 0 (atan2(0, 0) is undefined in exact arithmetic)
+                a = sympy.Integer(0)
+            else:
+                a = bk.atan2(np.asarray(y), np.asarray(x))[()]
         if exact:
             a = _linalg.simplify(a)
         p_perp = p - slide * u
@@ -420,22 +431,37 @@ class Subgroup:
         xi = np.concatenate([a * u, v_perp + slide * u])
         return a, xi
 
-    def contains(self, g: Any, length_scale: float = 1.0) -> bool:
+    def contains(
+        self,
+        g: Any,
+        length_scale: float = 1.0,
+        precision: Any = None,
+        coordinates: Any = None,
+    ) -> bool:
         """Is the displacement ``g`` (4x4) an element of the subgroup?
 
         Compares ``chart(coordinates_of(g))`` with g: rotation entries and
-        translation / ``length_scale`` within ``screw_zero_rtol`` (1e-9 in float)
-        times ``max(1, |p| / L)``; exactly in exact mode.
+        translation / ``length_scale`` within ``screw_zero_rtol`` of the
+        precision (1e-9 in float, 10^(-N/2) at mp:N) times ``max(1, |p| / L)``;
+        exactly in exact mode.
+
+        ``precision``: the mode that decides (a Precision or mode string);
+        default: that of g and the parameters (exact parameters and an exact g
+        decide exactly).  ``coordinates``: g's coordinates when already computed
+        (:meth:`coordinates_of`), to save computing them again.
         """
         g = np.asarray(g)
-        prec = as_precision(None, g, *self.params.values())
+        prec = as_precision(precision, g, *self.params.values())
         with prec.context():
             gg = _linalg.convert(g, prec)
-            try:
-                q = self.coordinates_of(gg)
-            except ValueError:
-                return False
-            g2 = self.chart(q)
+            if coordinates is not None:
+                q = _linalg.convert(np.asarray(coordinates), prec)
+            else:
+                try:
+                    q = self.coordinates_of(gg, prec)
+                except ValueError:
+                    return False
+            g2 = self.chart(q, prec)
             d = g2 - gg
             if prec.mode == "exact":
                 return all(_linalg.is_zero(x) for x in d.flat)
@@ -446,6 +472,28 @@ class Subgroup:
             )
             ref = max(1.0, float(np.linalg.norm(fp)) / length_scale)
             return err <= float(screw_zero_rtol(prec.backend)) * ref
+
+    def completing_translation(self, R: Any, precision: Any = None) -> np.ndarray:
+        """The translation that completes the rotation ``R`` to an element of the subgroup.
+
+        It is the translation of ``exp(xi)`` where xi combines the rotating basis
+        screws only (no slide) and has the rotation of R (principal angle); for
+        a pitched type (H, Y) it includes the slide the pitch couples to the
+        angle.  When no element of the subgroup has the rotation R, xi is the
+        least-squares fit and :meth:`contains` refuses the completed element.
+        ``precision`` as in :meth:`coordinates_of`.
+        """
+        R = np.asarray(R)
+        prec = as_precision(precision, R, *self.params.values())
+        with prec.context():
+            RR = _linalg.convert(R, prec)
+            B = self.basis(prec)
+            rotating = [i for i in range(B.shape[0]) if np.any(to_float(B[i, 0:3]) != 0)]
+            if not rotating:
+                return prec.backend.zeros(3)
+            Br = B[rotating]
+            coef = _linalg.solve_coefficients(Br[:, 0:3], lie.log_so3(RR), prec)
+            return lie.exp(coef @ Br)[:3, 3]
 
 
 def _simp(v: Any) -> Any:
