@@ -46,6 +46,7 @@ from mechsing.numeric import (
     Precision,
     decide_rank,
     exact_is_zero,
+    svd_r,
     to_float,
 )
 
@@ -567,7 +568,7 @@ class Closer:
 def _mp_lstsq(A: Any, b: Any) -> list[Any]:
     import mpmath
 
-    U, S, V = mpmath.svd_r(A)
+    U, S, V = svd_r(A)
     smax = max(abs(x) for x in S) if len(S) else 0
     out = mpmath.matrix(A.cols, 1)
     for i in range(len(S)):
