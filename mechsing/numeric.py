@@ -430,14 +430,21 @@ class Precision:
         with self.context():
             return self.backend.asarray(x)
 
-    def closure_tolerance(self, length_scale: float) -> float:
-        """Closure acceptance (DESIGN.md): 1e-12 L in float, 10^(15-N) L at mp:N, 0 exact."""
+    def closure_tolerance(self, length_scale: float) -> Any:
+        """Closure acceptance (DESIGN.md): 1e-12 L in float, 10^(15-N) L at mp:N, 0 exact.
+
+        At mp:N an ``mpf`` (10^(15-N) underflows float beyond N = 323); compare it with
+        residuals in the model's numbers (``KinematicModel.residual_norm(native=True)``).
+        """
         if self.mode in ("float", "auto"):
             return CLOSURE_RTOL_FLOAT * length_scale
         if self.mode == "mp":
             # never looser than float's: more digits must not accept what float refuses
-            rtol = min(10.0 ** (15 - (self.digits or 50)), CLOSURE_RTOL_FLOAT)
-            return rtol * length_scale
+            n = self.digits or 50
+            if 15 - n >= math.log10(CLOSURE_RTOL_FLOAT):
+                return CLOSURE_RTOL_FLOAT * length_scale
+            with mpmath.workdps(max(n, 15)):
+                return mpmath.mpf(10) ** (15 - n) * length_scale
         return 0.0
 
 
@@ -604,6 +611,8 @@ def _mp_matrix(arr: np.ndarray) -> Any:
 #: most sweeps of the one-sided Jacobi SVD (it converges quadratically: about ten
 #: sweeps reach 50 digits; the bound only guards against a pathological matrix)
 _JACOBI_MAX_SWEEPS = 100
+#: extra digits of the second attempt of mpmath's SVD
+_SVD_RETRY_DIGITS = 10
 
 
 def svd_r(A: Any, full_matrices: bool = False, compute_uv: bool = True) -> Any:
@@ -614,7 +623,8 @@ def svd_r(A: Any, full_matrices: bool = False, compute_uv: bool = True) -> Any:
     repeated singular value (repeated rows, as stacked wrench systems often have) the
     implicit-shift QR step can leave that entry at about half an ulp of the norm, flipping
     its sign at every step, and mpmath gives up with ``RuntimeError: svd: no convergence``
-    at some working precisions and not at others.  Then this computes the SVD by one-sided
+    at some working precisions and not at others.  Then this tries again with a few more
+    digits (which moves the last bits), and failing that computes the SVD by one-sided
     (Hestenes) Jacobi rotations, whose stopping test is relative (two columns are
     orthogonal when their inner product is below ``m eps`` times their norms): it always
     converges, and to high relative accuracy.
@@ -622,7 +632,16 @@ def svd_r(A: Any, full_matrices: bool = False, compute_uv: bool = True) -> Any:
     try:
         return mpmath.svd_r(A, full_matrices=full_matrices, compute_uv=compute_uv)
     except (RuntimeError, ZeroDivisionError):
-        return _jacobi_svd(A, full_matrices, compute_uv)
+        pass
+    # the stall depends on the last bits: a few more digits usually break it (cheap) ...
+    try:
+        with mpmath.workdps(mpmath.mp.dps + _SVD_RETRY_DIGITS):
+            out = mpmath.svd_r(A, full_matrices=full_matrices, compute_uv=compute_uv)
+        return (+out) if not compute_uv else tuple(+x for x in out)
+    except (RuntimeError, ZeroDivisionError):
+        pass
+    # ... and Jacobi always converges
+    return _jacobi_svd(A, full_matrices, compute_uv)
 
 
 def _dot(a: list[Any], b: list[Any]) -> Any:
@@ -691,22 +710,20 @@ def _jacobi_svd(A: Any, full_matrices: bool, compute_uv: bool) -> Any:
 
 
 def _complete_orthonormal(Q: list[list[Any]], p: int, count: int) -> list[list[Any]]:
-    """``count`` orthonormal vectors of length p: those of Q (orthonormal), then coordinate
-    vectors orthogonalised against them (Gram-Schmidt twice, the best-conditioned first)."""
+    """``count`` orthonormal vectors of length p: those of Q (orthonormal), then the
+    coordinate vector least in their span, orthogonalised against them (Gram-Schmidt twice),
+    and so on."""
     Q = [list(q) for q in Q]
     while len(Q) < count:
-        best = None
-        for e in range(p):
-            v = [mpmath.mpf(1) if i == e else mpmath.mpf(0) for i in range(p)]
-            for _pass in range(2):
-                for q in Q:
-                    d = _dot(q, v)
-                    v = [x - d * y for x, y in zip(v, q, strict=True)]
-            nv = mpmath.sqrt(_dot(v, v))
-            if best is None or nv > best[0]:
-                best = (nv, v)
-        assert best is not None
-        Q.append([x / best[0] for x in best[1]])
+        # |e - P e|^2 = 1 - sum_q q[e]^2 for the coordinate vector e
+        e = max(range(p), key=lambda i: (1 - mpmath.fsum(q[i] * q[i] for q in Q), -i))
+        v = [mpmath.mpf(1) if i == e else mpmath.mpf(0) for i in range(p)]
+        for _pass in range(2):
+            for q in Q:
+                d = _dot(q, v)
+                v = [x - d * y for x, y in zip(v, q, strict=True)]
+        nv = mpmath.sqrt(_dot(v, v))
+        Q.append([x / nv for x in v])
     return Q[:count]
 
 

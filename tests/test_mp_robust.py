@@ -25,6 +25,8 @@ from pathlib import Path
 import mpmath
 import numpy as np
 import pytest
+import sympy
+import yaml
 
 from mechsing.numeric import (
     decide_definiteness,
@@ -34,7 +36,7 @@ from mechsing.numeric import (
     spectral_norm,
     svd,
 )
-from tests.mechanisms import by_name, classes, run_cli, write
+from tests.mechanisms import EXAMPLES, by_name, classes, run_cli, write
 
 # ============================================================================ helpers
 
@@ -101,7 +103,7 @@ def _gave_up(*args: object, **kwargs: object) -> None:
     raise RuntimeError("svd: no convergence to an eigenvalue after 150 iterations")
 
 
-@pytest.mark.parametrize("shape", [(6, 6), (9, 6), (6, 9), (1, 4), (4, 1), (36, 30)])
+@pytest.mark.parametrize("shape", [(6, 6), (9, 6), (6, 9), (1, 4), (4, 1), (18, 12)])
 @pytest.mark.parametrize("rank_deficit", [0, 2])
 def test_svd_when_mpmath_gives_up(
     monkeypatch: pytest.MonkeyPatch, shape: tuple[int, int], rank_deficit: int
@@ -213,3 +215,353 @@ def test_screw_jack_in_every_mode(tmp_path: Path, mode: str) -> None:
         (r1,), (h1,), (p1,) = c["joints"]["R1"], c["joints"]["H1"], c["joints"]["P1"]
         assert h1 == pytest.approx(-r1, abs=1e-15), where
         assert p1 == pytest.approx(JACK_PITCH * r1, rel=1e-14, abs=1e-18), where
+
+
+# ============================================================================ 1. Newton at N digits
+
+#: digits of the independent recomputation beyond the mode's
+GUARD = 20
+
+
+def _num(x: object) -> mpmath.mpf:
+    """A number of a mechanism file (int, decimal or expression text) at the working precision."""
+    return mpmath.mpf(sympy.N(sympy.sympify(str(x), rational=True), mpmath.mp.dps + 5))
+
+
+def _vec(v: object) -> mpmath.matrix:
+    return mpmath.matrix([_num(x) for x in v])
+
+
+def _unit(v: mpmath.matrix) -> mpmath.matrix:
+    return v / mpmath.norm(v)
+
+
+def _cross(a: mpmath.matrix, b: mpmath.matrix) -> mpmath.matrix:
+    return mpmath.matrix(
+        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    )
+
+
+def _twist(w: mpmath.matrix, v: mpmath.matrix) -> list[mpmath.mpf]:
+    return [w[0], w[1], w[2], v[0], v[1], v[2]]
+
+
+def _in_plane(w: mpmath.matrix) -> tuple[mpmath.matrix, mpmath.matrix]:
+    """DESIGN.md: e1 = normalise(a - (a.w) w), a the coordinate axis least aligned with w
+    (first in x, y, z order on a tie); e2 = w x e1."""
+    i = min(range(3), key=lambda k: (abs(w[k]), k))
+    a = mpmath.matrix([1 if k == i else 0 for k in range(3)])
+    e1 = _unit(a - (a.T * w)[0] * w)
+    return e1, _cross(w, e1)
+
+
+def _basis(j: dict) -> list[list[mpmath.mpf]]:
+    """The catalog basis of a joint at the reference configuration (DESIGN.md "Conventions")."""
+    t, zero = j["type"], mpmath.matrix(3, 1)
+    if t in ("R", "H", "C"):
+        u, p = _unit(_vec(j["axis"])), _vec(j["point"])
+        h = _num(j.get("pitch", 0))
+        rot = _twist(u, _cross(p, u) + h * u)
+        return [rot, _twist(zero, u)] if t == "C" else [rot]
+    if t == "P":
+        return [_twist(zero, _unit(_vec(j["axis"])))]
+    if t == "S":
+        p = _vec(j["point"])
+        axes = [mpmath.matrix([1 if k == i else 0 for k in range(3)]) for i in range(3)]
+        return [_twist(e, _cross(p, e)) for e in axes]
+    if t == "T3":
+        return [
+            _twist(zero, mpmath.matrix([1 if k == i else 0 for k in range(3)])) for i in range(3)
+        ]
+    if t == "D":
+        return [[mpmath.mpf(1 if k == i else 0) for k in range(6)] for i in range(6)]
+    w = _unit(_vec(j["normal"] if "normal" in j else j["axis"]))
+    e1, e2 = _in_plane(w)
+    planar = [_twist(zero, e1), _twist(zero, e2)]
+    if t == "T2":
+        return planar
+    if t == "G":
+        return [_twist(w, zero), *planar]
+    if t == "Y":
+        return [_twist(w, _num(j["pitch"]) * w), *planar]
+    if t == "X":
+        return [_twist(w, zero), *planar, _twist(zero, w)]
+    raise AssertionError(t)
+
+
+def _hat(xi: list[mpmath.mpf]) -> mpmath.matrix:
+    w, v = xi[:3], xi[3:]
+    return mpmath.matrix(
+        [[0, -w[2], w[1], v[0]], [w[2], 0, -w[0], v[1]], [-w[1], w[0], 0, v[2]], [0, 0, 0, 0]]
+    )
+
+
+def _element(j: dict, q: list[mpmath.mpf]) -> mpmath.matrix:
+    """g_a^-1 g_b of a joint at values q: exp(sum q_i e_i); a U joint exp(q1 R1) exp(q2 R2)."""
+    if j["type"] == "U":
+        r = [_basis({"type": "R", "axis": a, "point": j["point"]})[0] for a in j["axes"]]
+        return mpmath.expm(q[0] * _hat(r[0])) * mpmath.expm(q[1] * _hat(r[1]))
+    B = _basis(j)
+    xi = [mpmath.fsum(qi * b[k] for qi, b in zip(q, B, strict=True)) for k in range(6)]
+    return mpmath.expm(_hat(xi))
+
+
+def _points(joints: list[dict]) -> list[mpmath.matrix]:
+    """DESIGN.md: each joint's axis point nearest the origin (R, H, C), centre (S, U)."""
+    out = []
+    for j in joints:
+        if j["type"] in ("R", "H", "C"):
+            u, p = _unit(_vec(j["axis"])), _vec(j["point"])
+            out.append(p - (u.T * p)[0] * u)
+        elif j["type"] in ("S", "U"):
+            out.append(_vec(j["point"]))
+    return out
+
+
+def _length_scale(joints: list[dict]) -> tuple[mpmath.mpf, mpmath.matrix]:
+    """DESIGN.md: L = RMS distance of the points from their centroid c, else |c|, else 1."""
+    pts = _points(joints)
+    c = sum(pts, mpmath.matrix(3, 1)) / len(pts) if pts else mpmath.matrix(3, 1)
+    rms = mpmath.sqrt(mpmath.fsum(mpmath.norm(p - c) ** 2 for p in pts) / len(pts)) if pts else 0
+    if rms > 0:
+        return rms, c
+    return (mpmath.norm(c), c) if mpmath.norm(c) > 0 else (mpmath.mpf(1), c)
+
+
+def _mismatch(g: mpmath.matrix, L: mpmath.mpf, c: mpmath.mpf) -> mpmath.mpf:
+    """How far a displacement is from the identity, as a length: the larger of L |R - I| and the
+    displacement of the centroid."""
+    E = g - mpmath.eye(4)
+    rot = max(abs(E[i, k]) for i in range(3) for k in range(3))
+    moved = mpmath.norm(
+        mpmath.matrix(
+            [E[i, 0] * c[0] + E[i, 1] * c[1] + E[i, 2] * c[2] + E[i, 3] for i in range(3)]
+        )
+    )
+    return max(L * rot, moved)
+
+
+def _mechanism(name: str, joints: list[dict], inputs: list[str], config: dict) -> str:
+    bodies = []
+    for j in joints:
+        for b in j["between"]:
+            if b not in bodies:
+                bodies.append(b)
+    lines = [f"mechanism: {name}", f"bodies: [{', '.join(bodies)}]", "joints:"]
+    lines += [f"  - {json.dumps(j)}" for j in joints]
+    lines += [f"inputs: [{', '.join(inputs)}]", "configurations:", "  reference: {}"]
+    lines.append(f"  moved: {json.dumps(config)}")
+    return "\n".join(lines) + "\n"
+
+
+def _R(name: str, a: str, b: str, axis: list, point: list) -> dict:
+    return {"name": name, "type": "R", "between": [a, b], "axis": axis, "point": point}
+
+
+def _S(name: str, a: str, b: str, point: list) -> dict:
+    return {"name": name, "type": "S", "between": [a, b], "point": point}
+
+
+#: a spatial RSSR: crank (radius 1/2) about z through the origin, coupler from (1/2, 0, 0) to
+#: (0, 3, 2), rocker (radius 1) about x through (0, 3, 1); the coupler spins idly about its line
+RSSR = [
+    _R("A", "ground", "crank", [0, 0, 1], [0, 0, 0]),
+    _S("B", "crank", "coupler", ["1/2", 0, 0]),
+    _S("C", "coupler", "rocker", [0, 3, 2]),
+    _R("D", "rocker", "ground", [1, 0, 0], [0, 3, 1]),
+]
+
+#: loops in chain order (each joint between the previous body and the next), the input and its
+#: value; every joint type that can sit in a loop appears in at least one
+LOOPS: dict[str, tuple[list[dict], dict]] = {
+    "RSSR": (RSSR, {"A": 0.1}),
+    "RSSP": (
+        [*RSSR[:3], {"name": "D", "type": "P", "between": ["rocker", "ground"], "axis": [0, 1, 0]}],
+        {"A": 0.4},
+    ),
+    "HSSR": (
+        [{**RSSR[0], "type": "H", "pitch": "1/10"}, *RSSR[1:]],
+        {"A": 0.3},
+    ),
+    "CSSR": (
+        [{**RSSR[0], "type": "C"}, *RSSR[1:]],
+        {"A": [0.3, "1/20"]},
+    ),
+    "RUSR": (
+        [
+            RSSR[0],
+            {
+                "name": "B",
+                "type": "U",
+                "between": ["crank", "coupler"],
+                "axes": [[0, 0, 1], [1, 0, 0]],
+                "point": ["1/2", 0, 0],
+            },
+            *RSSR[2:],
+        ],
+        {"A": 0.3},
+    ),
+    "R+G": (
+        [
+            _R("J1", "ground", "body", [1, 2, 2], [1, 0, 3]),
+            {"name": "J2", "type": "G", "between": ["body", "ground"], "normal": [1, 2, 2]},
+        ],
+        {"J1": 0.7},
+    ),
+    "H+Y": (
+        [
+            {**_R("J1", "ground", "body", [0, 1, 1], [1, 2, 0]), "type": "H", "pitch": "1/10"},
+            {
+                "name": "J2",
+                "type": "Y",
+                "between": ["body", "ground"],
+                "normal": [0, 1, 1],
+                "pitch": "1/10",
+            },
+        ],
+        {"J1": 0.7},
+    ),
+    "R+X": (
+        [
+            _R("J1", "ground", "body", [0, 0, 1], [1, 2, 0]),
+            {"name": "J2", "type": "X", "between": ["body", "ground"], "axis": [0, 0, 1]},
+        ],
+        {"J1": 0.7},
+    ),
+    "P+T2": (
+        [
+            {"name": "J1", "type": "P", "between": ["ground", "body"], "axis": [1, 1, 0]},
+            {"name": "J2", "type": "T2", "between": ["body", "ground"], "normal": [0, 0, 1]},
+        ],
+        {"J1": 0.3},
+    ),
+    "P+T3": (
+        [
+            {"name": "J1", "type": "P", "between": ["ground", "body"], "axis": [1, 2, 2]},
+            {"name": "J2", "type": "T3", "between": ["body", "ground"]},
+        ],
+        {"J1": 0.3},
+    ),
+    "R+D": (
+        [
+            _R("J1", "ground", "body", [1, 2, 2], [1, 0, 3]),
+            {"name": "J2", "type": "D", "between": ["body", "ground"]},
+        ],
+        {"J1": 0.7},
+    ),
+}
+
+
+def _closed_values(path: Path, mode: str) -> tuple[dict, dict[str, list[mpmath.mpf]]]:
+    """The JSON of ``mechsing solve`` and the joint values of the closed configuration at the
+    mode's digits (Python API: the JSON rounds them to float)."""
+    from mechsing.kinematics import solve_configuration
+    from mechsing.model import load
+
+    out = _json(["solve", str(path), "--config", "moved", "--precision", mode, "--format", "json"])
+    model, closed = solve_configuration(load(str(path)), "moved", mode)
+    q = {jk.name: list(closed.q[jk.columns]) for jk in model.joints}
+    return out, q
+
+
+@pytest.mark.parametrize("digits", [30, 50])
+@pytest.mark.parametrize("loop", sorted(LOOPS))
+def test_newton_at_n_digits_closes_every_joint_type(tmp_path: Path, loop: str, digits: int) -> None:
+    """Moved by its input, the loop is closed by continuation and Newton at N digits: the product
+    of the joints' exponentials around the loop (recomputed with mpmath.expm at N + 20 digits) is
+    the identity to 10^(5-N) L, and the JSON's residual is below 10^(5-N) L."""
+    joints, config = LOOPS[loop]
+    inputs = list(config)
+    path = write(
+        tmp_path, f"loop_{loop.replace('+', '_')}", _mechanism(loop, joints, inputs, config)
+    )
+    out, q = _closed_values(path, f"mp:{digits}")
+    with mpmath.workdps(digits + GUARD):
+        L, c = _length_scale(joints)
+        goal = mpmath.mpf(10) ** (5 - digits) * L
+        assert out["closure_residual"] <= goal, (loop, out["closure_residual"], float(goal))
+        g = mpmath.eye(4)
+        for j in joints:
+            g = g * _element(j, [mpmath.mpf(x) for x in q[j["name"]]])
+        assert _mismatch(g, L, c) <= goal, (loop, float(_mismatch(g, L, c)))
+        # the given value is the file's, to N digits
+        given = q[inputs[0]]
+        want = config[inputs[0]] if isinstance(config[inputs[0]], list) else [config[inputs[0]]]
+        assert max(abs(a - _num(b)) for a, b in zip(given, want, strict=True)) <= goal
+
+
+def _stewart_with_strokes() -> tuple[str, list[dict]]:
+    """The octahedral Stewart platform of the examples with one more configuration: the six
+    strokes given (inputs), the U and S joints solved by continuation from the centred pose."""
+    text = (EXAMPLES / "stewart_octahedral.yaml").read_text()
+    strokes = "{P1: 0.05, P2: -0.03, P3: 0.02, P4: 0.04, P5: -0.01, P6: 0.03}"
+    text = text.replace("configurations:\n", f"configurations:\n  moved: {strokes}\n", 1)
+    return text, yaml.safe_load(text)["joints"]
+
+
+@pytest.mark.parametrize("digits", [30, 50])
+def test_newton_at_n_digits_closes_the_stewart_platform(tmp_path: Path, digits: int) -> None:
+    """Six U-P-S legs with given strokes: every leg carries the platform to the same pose (the
+    product U_k P_k S_k of the leg's exponentials, recomputed at N + 20 digits, is the same for
+    the six legs) to 10^(5-N) L, and the JSON's residual is below 10^(5-N) L."""
+    text, joints = _stewart_with_strokes()
+    path = write(tmp_path, "stewart_strokes", text)
+    out, q = _closed_values(path, f"mp:{digits}")
+    by = {j["name"]: j for j in joints}
+    with mpmath.workdps(digits + GUARD):
+        L, c = _length_scale(joints)
+        goal = mpmath.mpf(10) ** (5 - digits) * L
+        assert out["closure_residual"] <= goal, out["closure_residual"]
+        legs = []
+        for k in range(1, 7):
+            g = mpmath.eye(4)
+            for name in (f"U{k}", f"P{k}", f"S{k}"):
+                g = g * _element(by[name], [mpmath.mpf(x) for x in q[name]])
+            legs.append(g)
+        for k, g in enumerate(legs[1:], start=2):
+            d = mpmath.inverse(legs[0]) * g
+            assert _mismatch(d, L, c) <= goal, (k, float(_mismatch(d, L, c)))
+        for k in range(1, 7):
+            assert abs(q[f"P{k}"][0] - _num(out["joints"][f"P{k}"][0])) <= mpmath.mpf(10) ** -15
+
+
+def test_rssr_at_400_digits(tmp_path: Path) -> None:
+    """Beyond float's exponent range (eps = 10^-400 underflows in float) mp:N still closes the
+    RSSR to 10^(5-N) L; the series of the Lie formulas take their number of terms from N."""
+    joints, config = LOOPS["RSSR"]
+    path = write(tmp_path, "rssr400", _mechanism("rssr", joints, ["A"], config))
+    out, q = _closed_values(path, "mp:400")
+    with mpmath.workdps(400 + GUARD):
+        L, c = _length_scale(joints)
+        g = mpmath.eye(4)
+        for j in joints:
+            g = g * _element(j, [mpmath.mpf(x) for x in q[j["name"]]])
+        assert _mismatch(g, L, c) <= mpmath.mpf(10) ** (5 - 400) * L
+    assert out["closure_residual"] <= 1e-300  # the residual underflows float's range
+
+
+def test_auto_near_the_rssr_rocker_dead_centre(tmp_path: Path) -> None:
+    """The RSSR's loop equation |C(psi) - B(theta)|^2 = |C0 - B0|^2 with B(theta) = (cos theta,
+    sin theta, 0) / 2 and C(psi) = (0, 3 - sin psi, 1 + cos psi) has d/dtheta = -cos theta
+    (3 - sin psi), zero only at theta = +-pi/2: there the rocker stops while the crank turns (an
+    input singularity, and the rocker cannot move at all: impossible output).  At
+    theta = pi/2 - 1e-10 every rank is full, but float's thresholds cannot tell (auto re-decides
+    at mp:50): the configuration must be closed at 50 digits and found regular."""
+    joints, _ = LOOPS["RSSR"]
+    text = _mechanism("rssr", joints, ["A"], {"A": "pi/2 - 1e-10"})
+    text = text.replace("inputs: [A]\n", "inputs: [A]\noutput: {body: rocker}\n")
+    text += '  dead: {A: "pi/2"}\n'
+    path = write(tmp_path, "rssr_dead_centre", text)
+    res = by_name(_json(["analyze", str(path), "--format", "json"]))
+    c = res["moved"]
+    assert c["precision"] == "mp:50" and "error" not in c, c.get("error")
+    with mpmath.workdps(60):
+        L, _c = _length_scale(joints)
+        assert c["closure_residual"] <= mpmath.mpf(10) ** -45 * L
+    assert (c["closure_rank"]["rank"], c["closure_rank"]["nullity"]) == (6, 2)  # crank + idle spin
+    assert c["singular"] is False, classes(c)
+    dead = _json(
+        ["analyze", str(path), "--config", "dead", "--precision", "mp:50", "--format", "json"]
+    )
+    (d,) = dead["configurations"]
+    assert {"input", "impossible-output"} <= set(classes(d)), classes(d)
