@@ -565,3 +565,70 @@ def test_auto_near_the_rssr_rocker_dead_centre(tmp_path: Path) -> None:
     )
     (d,) = dead["configurations"]
     assert {"input", "impossible-output"} <= set(classes(d)), classes(d)
+
+
+# ============================================================================ 3. T3-S chain at mp:50
+
+T3_S_CHAIN = """mechanism: t3-s-chain
+bodies: [ground, b1, b2]
+joints:
+  - {name: T, type: T3, between: [ground, b1]}
+  - {name: S, type: S, between: [b1, b2], point: [0, 0, 1]}
+output: {body: b2}
+configurations:
+  middle-axis: {T: [0.1, 0.2, 0.3], S: [0, "pi/2", 0]}
+  middle-axis-back: {T: [0.1, 0.2, 0.3], S: [0, "-pi/2", 0]}
+  full-turn: {T: [0.1, 0.2, 0.3], S: [0, "2*pi", 0]}
+"""
+
+
+def test_t3_s_chain_is_regular_where_charts_are_singular(tmp_path: Path) -> None:
+    """A T3 joint then an S joint: the translations and the rotations about the S centre span
+    all of se(3) at every pose, so the output screw system has rank 6 everywhere; where Euler
+    angles would lock (pi/2 about the middle axis) or the rotation-vector chart is singular
+    (2 pi) the verdict is regular.  Independently: L = |c| = 1 with c = (0, 0, 1) the only axis
+    point; the S screws are carried by b1's pose (the translation t) and seen from c they are
+    (e_i, t x e_i), the T3 screws (0, e_i): the commensurate matrix is [[0, I], [I, t^]] at every
+    S value, whose extreme singular values the margin reports."""
+    path = write(tmp_path, "t3_s_chain", T3_S_CHAIN)
+    res = _json(["analyze", str(path), "--precision", "mp:50", "--format", "json"])
+    with mpmath.workdps(60):
+        t = [mpmath.mpf(x) / 10 for x in (1, 2, 3)]
+        M = mpmath.zeros(6, 6)
+        for i in range(3):
+            M[i, 3 + i] = 1
+            M[3 + i, i] = 1
+        M[3, 4], M[3, 5], M[4, 3], M[4, 5], M[5, 3], M[5, 4] = -t[2], t[1], t[2], -t[0], -t[1], t[0]
+        sig = sorted(mpmath.svd_r(M, compute_uv=False), reverse=True)
+    assert len(res["configurations"]) == 3
+    for c in res["configurations"]:
+        assert c["precision"] == "mp:50" and "error" not in c, c["name"]
+        assert c["singular"] is False and classes(c) == [], (c["name"], classes(c))
+        (d,) = [x for x in c["decisions"] if x["test"] == "output chain"]
+        assert (d["rank"], d["generic"]) == (6, 6), c["name"]
+        assert d["margin"]["kept"] == pytest.approx(float(sig[-1]), rel=1e-14)
+        assert d["margin"]["sigma_max"] == pytest.approx(float(sig[0]), rel=1e-14)
+        assert d["margin"]["dropped"] is None
+
+
+def test_mp_analysis_never_converts_arrays_through_repr(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """For ``mpf * x`` mpmath first tries to make x an mpf; a numpy array fails only after its
+    repr (every entry printed to N digits) has been built, then numpy does the product.  An mp:50
+    analysis (a serial chain, and an RSSR through closure, polish and every test) keeps an array
+    on the left of each mixed operation, so that path is never taken."""
+    calls: list[str] = []
+    original = mpmath.mp.npconvert
+
+    def spy(x: object) -> object:
+        calls.append(type(x).__name__)
+        return original(x)
+
+    monkeypatch.setattr(mpmath.mp, "npconvert", spy)
+    chain = write(tmp_path, "t3_s_chain", T3_S_CHAIN)
+    joints, config = LOOPS["RSSR"]
+    rssr = write(tmp_path, "rssr", _mechanism("rssr", joints, ["A"], config))
+    for path in (chain, rssr):
+        _json(["analyze", str(path), "--precision", "mp:50", "--format", "json"])
+    assert calls == []

@@ -166,7 +166,7 @@ class KinematicModel:
         """The joint's relative displacement M (g_b = g_a M)."""
         qj = q[jk.columns]
         if jk.type == "U":
-            return lie.exp(qj[0] * jk.basis[0]) @ lie.exp(qj[1] * jk.basis[1])
+            return lie.exp(jk.basis[0] * qj[0]) @ lie.exp(jk.basis[1] * qj[1])
         return lie.exp(qj @ jk.basis)
 
     def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
@@ -207,7 +207,7 @@ class KinematicModel:
             if jk.type == "U":
                 qa = q[jk.columns][0]
                 cols.append(lie.act_screw(ga, jk.basis[0]))
-                cols.append(lie.act_screw(ga @ lie.exp(qa * jk.basis[0]), jk.basis[1]))
+                cols.append(lie.act_screw(ga @ lie.exp(jk.basis[0] * qa), jk.basis[1]))
             else:
                 cols.extend(lie.act_screw(ga, jk.basis))
         return np.stack(cols, axis=1) if cols else self.backend.zeros((6, 0))

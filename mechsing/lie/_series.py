@@ -116,6 +116,10 @@ def _bernoulli_converted(name: str, dps: int, n: int) -> tuple[Any, ...]:
 
 
 def _horner(x: Any, conv: tuple[Any, ...]) -> Any:
+    if isinstance(x, np.ndarray) and x.ndim == 0:
+        # one number: plain scalar arithmetic (an mpf times a 0-d array makes mpmath
+        # try to convert the array, through its repr, before numpy takes over)
+        x = x[()]
     acc = x * 0 + conv[-1]
     for c in reversed(conv[:-1]):
         acc = acc * x + c
