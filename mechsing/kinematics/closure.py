@@ -592,8 +592,9 @@ def _dls(A: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def _g(x: Any, digits: int) -> str:
     """A residual or tolerance (float or mpf) in %g style, also below float's range."""
-    if isinstance(x, float | int):
-        return f"{x:.{digits}g}"
+    f = float(x)
+    if f != 0 or x == 0:
+        return f"{f:.{digits}g}"
     import mpmath
 
     return mpmath.nstr(x, digits)
