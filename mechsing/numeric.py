@@ -431,7 +431,7 @@ class Precision:
             return self.backend.asarray(x)
 
     def closure_tolerance(self, length_scale: float) -> Any:
-        """Closure acceptance (DESIGN.md): 1e-12 L in float, 10^(15-N) L at mp:N, 0 exact.
+        """Closure acceptance: 1e-12 L in float, 10^(15-N) L at mp:N, 0 exact.
 
         At mp:N an ``mpf`` (10^(15-N) underflows float beyond N = 323); compare it with
         residuals in the model's numbers (``KinematicModel.residual_norm(native=True)``).

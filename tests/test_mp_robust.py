@@ -5,7 +5,7 @@ Every expected answer is derived here from the mathematics, not read from the pr
 1. Newton at N digits closes loops with every joint type that can sit in a loop (R, P, H, C, S,
    U, and G, Y, X, T2, T3, D): at mp:30 and mp:50 the closed configuration satisfies the loop
    equation (the product of the joints' exponentials around the loop is the identity, recomputed
-   here with ``mpmath.expm`` at N + 20 digits from the bases written in DESIGN.md) to
+   here with ``mpmath.expm`` at N + 20 digits from the catalog's bases, written out here) to
    10^(5-N) L, and the residual reported in the JSON of ``mechsing solve`` / ``analyze`` is below
    that too.  The RSSR is also taken 1e-10 rad from its input (rocker dead-centre) singularity,
    where ``auto`` re-decides at mp:50 and must still close.
@@ -247,7 +247,7 @@ def _twist(w: mpmath.matrix, v: mpmath.matrix) -> list[mpmath.mpf]:
 
 
 def _in_plane(w: mpmath.matrix) -> tuple[mpmath.matrix, mpmath.matrix]:
-    """DESIGN.md: e1 = normalise(a - (a.w) w), a the coordinate axis least aligned with w
+    """The catalog's in-plane directions: e1 = normalise(a - (a.w) w), a the coordinate axis least aligned with w
     (first in x, y, z order on a tie); e2 = w x e1."""
     i = min(range(3), key=lambda k: (abs(w[k]), k))
     a = mpmath.matrix([1 if k == i else 0 for k in range(3)])
@@ -256,7 +256,7 @@ def _in_plane(w: mpmath.matrix) -> tuple[mpmath.matrix, mpmath.matrix]:
 
 
 def _basis(j: dict) -> list[list[mpmath.mpf]]:
-    """The catalog basis of a joint at the reference configuration (DESIGN.md "Conventions")."""
+    """The catalog basis of a joint at the reference configuration (angular part first)."""
     t, zero = j["type"], mpmath.matrix(3, 1)
     if t in ("R", "H", "C"):
         u, p = _unit(_vec(j["axis"])), _vec(j["point"])
@@ -307,7 +307,7 @@ def _element(j: dict, q: list[mpmath.mpf]) -> mpmath.matrix:
 
 
 def _points(joints: list[dict]) -> list[mpmath.matrix]:
-    """DESIGN.md: each joint's axis point nearest the origin (R, H, C), centre (S, U)."""
+    """The characteristic points: each joint's axis point nearest the origin (R, H, C), centre (S, U)."""
     out = []
     for j in joints:
         if j["type"] in ("R", "H", "C"):
@@ -319,7 +319,7 @@ def _points(joints: list[dict]) -> list[mpmath.matrix]:
 
 
 def _length_scale(joints: list[dict]) -> tuple[mpmath.mpf, mpmath.matrix]:
-    """DESIGN.md: L = RMS distance of the points from their centroid c, else |c|, else 1."""
+    """The characteristic length: L = RMS distance of the points from their centroid c, else |c|, else 1."""
     pts = _points(joints)
     c = sum(pts, mpmath.matrix(3, 1)) / len(pts) if pts else mpmath.matrix(3, 1)
     rms = mpmath.sqrt(mpmath.fsum(mpmath.norm(p - c) ** 2 for p in pts) / len(pts)) if pts else 0
