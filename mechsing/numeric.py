@@ -51,6 +51,7 @@ __all__ = [
     "decide_rank",
     "exact_is_zero",
     "eigh",
+    "eigsy",
     "lstsq",
     "max_abs",
     "norm",
@@ -66,7 +67,9 @@ __all__ = [
     "spectral_norm",
     "subspace_containment_atol",
     "subspace_rank_rtol",
+    "singular_values",
     "svd",
+    "svd_r",
     "to_float",
 ]
 
@@ -448,14 +451,21 @@ class Precision:
         with self.context():
             return self.backend.asarray(x)
 
-    def closure_tolerance(self, length_scale: float) -> float:
-        """Closure acceptance (DESIGN.md): 1e-12 L in float, 10^(15-N) L at mp:N, 0 exact."""
+    def closure_tolerance(self, length_scale: float) -> Any:
+        """Closure acceptance: 1e-12 L in float, 10^(15-N) L at mp:N, 0 exact.
+
+        At mp:N an ``mpf`` (10^(15-N) underflows float beyond N = 323); compare it with
+        residuals in the model's numbers (``KinematicModel.residual_norm(native=True)``).
+        """
         if self.mode in ("float", "auto"):
             return CLOSURE_RTOL_FLOAT * length_scale
         if self.mode == "mp":
             # never looser than float's: more digits must not accept what float refuses
-            rtol = min(10.0 ** (15 - (self.digits or 50)), CLOSURE_RTOL_FLOAT)
-            return rtol * length_scale
+            n = self.digits or 50
+            if 15 - n >= math.log10(CLOSURE_RTOL_FLOAT):
+                return CLOSURE_RTOL_FLOAT * length_scale
+            with mpmath.workdps(max(n, 15)):
+                return mpmath.mpf(10) ** (15 - n) * length_scale
         return 0.0
 
 
@@ -577,9 +587,9 @@ def scale_screws(
         # v - c x w, columnwise
         cx = np.stack(
             [
-                c[1] * w[..., 2, :] - c[2] * w[..., 1, :],
-                c[2] * w[..., 0, :] - c[0] * w[..., 2, :],
-                c[0] * w[..., 1, :] - c[1] * w[..., 0, :],
+                w[..., 2, :] * c[1] - w[..., 1, :] * c[2],
+                w[..., 0, :] * c[2] - w[..., 2, :] * c[0],
+                w[..., 1, :] * c[0] - w[..., 0, :] * c[1],
             ],
             axis=-2,
         )
@@ -614,11 +624,184 @@ def _object_array(M: Any, shape: tuple[int, ...]) -> np.ndarray:
     return out
 
 
+def _mp_matrix(arr: np.ndarray) -> Any:
+    """An ``mpmath.matrix`` of a 2-d array, entries rounded to the working precision."""
+    return mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()])
+
+
+#: most sweeps of the one-sided Jacobi SVD (it converges quadratically: about ten
+#: sweeps reach 50 digits; the bound only guards against a pathological matrix)
+_JACOBI_MAX_SWEEPS = 100
+#: extra digits of the second attempt of mpmath's SVD
+_SVD_RETRY_DIGITS = 10
+
+
+def svd_r(A: Any, full_matrices: bool = False, compute_uv: bool = True) -> Any:
+    """``mpmath.svd_r`` that always converges (same arguments and results).
+
+    mpmath's Golub-Reinsch iteration declares a bidiagonal entry negligible only when
+    adding it to the matrix norm does not change the norm (less than half an ulp).  With a
+    repeated singular value (repeated rows, as stacked wrench systems often have) the
+    implicit-shift QR step can leave that entry at about half an ulp of the norm, flipping
+    its sign at every step, and mpmath gives up with ``RuntimeError: svd: no convergence``
+    at some working precisions and not at others.  Then this tries again with a few more
+    digits (which moves the last bits), and failing that computes the SVD by one-sided
+    (Hestenes) Jacobi rotations, whose stopping test is relative (two columns are
+    orthogonal when their inner product is below ``m eps`` times their norms): it always
+    converges, and to high relative accuracy.
+    """
+    try:
+        return mpmath.svd_r(A, full_matrices=full_matrices, compute_uv=compute_uv)
+    except (RuntimeError, ZeroDivisionError):
+        pass
+    # the stall depends on the last bits: a few more digits usually break it (cheap) ...
+    try:
+        with mpmath.workdps(mpmath.mp.dps + _SVD_RETRY_DIGITS):
+            out = mpmath.svd_r(A, full_matrices=full_matrices, compute_uv=compute_uv)
+        return (+out) if not compute_uv else tuple(+x for x in out)
+    except (RuntimeError, ZeroDivisionError):
+        pass
+    # ... and Jacobi always converges
+    return _jacobi_svd(A, full_matrices, compute_uv)
+
+
+def _dot(a: list[Any], b: list[Any]) -> Any:
+    return mpmath.fdot(a, b)
+
+
+def _jacobi_svd(A: Any, full_matrices: bool, compute_uv: bool) -> Any:
+    """SVD by one-sided Jacobi rotations at the working precision, in the layout of
+    ``mpmath.svd_r`` (``A = U diag(S) V``, singular values descending)."""
+    m, n = A.rows, A.cols
+    rows = [[A[i, j] for j in range(n)] for i in range(m)]
+    # orthogonalise the columns of B = A (m >= n) or of B = A^T (m < n): k columns of length p
+    transpose = m < n
+    cols = (
+        [list(r) for r in rows] if transpose else [[rows[i][j] for i in range(m)] for j in range(n)]
+    )
+    k, p = len(cols), (n if transpose else m)
+    zero, one = mpmath.mpf(0), mpmath.mpf(1)
+    W = [[one if i == j else zero for i in range(k)] for j in range(k)]  # columns of W
+    tol = mpmath.mp.eps * p
+    for _sweep in range(_JACOBI_MAX_SWEEPS):
+        rotated = False
+        for i in range(k - 1):
+            for j in range(i + 1, k):
+                a, b = cols[i], cols[j]
+                gamma = _dot(a, b)
+                if not gamma:
+                    continue
+                alpha, beta = _dot(a, a), _dot(b, b)
+                if abs(gamma) <= tol * mpmath.sqrt(alpha * beta):
+                    continue
+                rotated = True
+                zeta = (beta - alpha) / (2 * gamma)
+                t = (1 if zeta >= 0 else -1) / (abs(zeta) + mpmath.sqrt(1 + zeta * zeta))
+                c = 1 / mpmath.sqrt(1 + t * t)
+                s = c * t
+                cols[i] = [c * x - s * y for x, y in zip(a, b, strict=True)]
+                cols[j] = [s * x + c * y for x, y in zip(a, b, strict=True)]
+                wa, wb = W[i], W[j]
+                W[i] = [c * x - s * y for x, y in zip(wa, wb, strict=True)]
+                W[j] = [s * x + c * y for x, y in zip(wa, wb, strict=True)]
+        if not rotated:
+            break
+    sig = [mpmath.sqrt(_dot(col, col)) for col in cols]
+    order = sorted(range(k), key=lambda j: -sig[j])
+    S = mpmath.matrix(k, 1)
+    for r, j in enumerate(order):
+        S[r] = sig[j]
+    if not compute_uv:
+        return S
+    # B = Q diag(sig) W^T with Q's columns cols[j] / sig[j]; columns of (numerical) zero
+    # singular values and the missing ones are completed to an orthonormal basis
+    smax = sig[order[0]] if k else zero
+    Q = [[x / sig[j] for x in cols[j]] for j in order if sig[j] > tol * smax and sig[j] > 0]
+    Q = _complete_orthonormal(Q, p, p if (full_matrices or not transpose) else k)
+    Wt = [W[j] for j in order]  # rows: right singular vectors of B
+    if transpose:
+        # A = B^T = W diag(sig) Q^T: U = W (m x m), V = Q^T (k' x n)
+        U = mpmath.matrix([[Wt[c][r] for c in range(k)] for r in range(k)])
+        V = mpmath.matrix(Q if full_matrices else Q[:k])
+        return U, S, V
+    # A = B = Q diag(sig) W^T: U = Q (m x m or m x n), V = W^T (n x n)
+    U = mpmath.matrix([[Q[c][r] for c in range(len(Q) if full_matrices else k)] for r in range(p)])
+    V = mpmath.matrix(Wt)
+    return U, S, V
+
+
+def _complete_orthonormal(Q: list[list[Any]], p: int, count: int) -> list[list[Any]]:
+    """``count`` orthonormal vectors of length p: those of Q (orthonormal), then the
+    coordinate vector least in their span, orthogonalised against them (Gram-Schmidt twice),
+    and so on."""
+    Q = [list(q) for q in Q]
+    while len(Q) < count:
+        # |e - P e|^2 = 1 - sum_q q[e]^2 for the coordinate vector e
+        e = max(range(p), key=lambda i: (1 - mpmath.fsum(q[i] * q[i] for q in Q), -i))
+        v = [mpmath.mpf(1) if i == e else mpmath.mpf(0) for i in range(p)]
+        for _pass in range(2):
+            for q in Q:
+                d = _dot(q, v)
+                v = [x - d * y for x, y in zip(v, q, strict=True)]
+        nv = mpmath.sqrt(_dot(v, v))
+        Q.append([x / nv for x in v])
+    return Q[:count]
+
+
+def eigsy(A: Any, eigvals_only: bool = False) -> Any:
+    """``mpmath.eigsy`` that always converges (same arguments and results): when the QL
+    iteration gives up, the cyclic Jacobi eigenvalue method (each rotation removes an
+    off-diagonal pair, so the off-diagonal mass decreases until it is below ``eps`` of the
+    matrix's norm)."""
+    try:
+        return mpmath.eigsy(A, eigvals_only=eigvals_only)
+    except (RuntimeError, ZeroDivisionError):
+        return _jacobi_eigsy(A, eigvals_only)
+
+
+def _jacobi_eigsy(A: Any, eigvals_only: bool) -> Any:
+    n = A.rows
+    a = [[A[i, j] for j in range(n)] for i in range(n)]
+    zero, one = mpmath.mpf(0), mpmath.mpf(1)
+    V = [[one if i == j else zero for j in range(n)] for i in range(n)]
+    fro = mpmath.sqrt(mpmath.fsum(x * x for row in a for x in row))
+    for _sweep in range(_JACOBI_MAX_SWEEPS):
+        off = mpmath.sqrt(mpmath.fsum(a[i][j] ** 2 for i in range(n) for j in range(n) if i != j))
+        if off <= mpmath.mp.eps * fro:
+            break
+        for p in range(n - 1):
+            for q in range(p + 1, n):
+                apq = a[p][q]
+                if abs(apq) <= mpmath.mp.eps * fro / n:
+                    continue
+                theta = (a[q][q] - a[p][p]) / (2 * apq)
+                t = (1 if theta >= 0 else -1) / (abs(theta) + mpmath.sqrt(theta * theta + 1))
+                c = 1 / mpmath.sqrt(t * t + 1)
+                s = t * c
+                for k in range(n):  # columns p, q
+                    akp, akq = a[k][p], a[k][q]
+                    a[k][p], a[k][q] = c * akp - s * akq, s * akp + c * akq
+                for k in range(n):  # rows p, q
+                    apk, aqk = a[p][k], a[q][k]
+                    a[p][k], a[q][k] = c * apk - s * aqk, s * apk + c * aqk
+                a[p][q] = a[q][p] = zero
+                for k in range(n):
+                    vkp, vkq = V[k][p], V[k][q]
+                    V[k][p], V[k][q] = c * vkp - s * vkq, s * vkp + c * vkq
+    order = sorted(range(n), key=lambda i: a[i][i])
+    E = mpmath.matrix(n, 1)
+    for r, i in enumerate(order):
+        E[r] = a[i][i]
+    if eigvals_only:
+        return E
+    return E, mpmath.matrix([[V[k][i] for i in order] for k in range(n)])
+
+
 def svd(A: Any, full_matrices: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``A = U diag(s) Vt`` in the backend of ``A``, singular values descending.
 
-    float: :func:`numpy.linalg.svd`; mp: :func:`mpmath.svd_r` at the working
-    precision, object arrays of ``mpf``.
+    float: :func:`numpy.linalg.svd`; mp: :func:`svd_r` (mpmath's, with a Jacobi fallback)
+    at the working precision, object arrays of ``mpf``.
     """
     arr = np.asarray(A)
     bk = _numerical_backend(arr)
@@ -630,10 +813,7 @@ def svd(A: Any, full_matrices: bool = True) -> tuple[np.ndarray, np.ndarray, np.
         U = bk.eye(m) if full_matrices else bk.zeros((m, 0))
         Vt = bk.eye(n) if full_matrices else bk.zeros((0, n))
         return U, bk.zeros(0), Vt
-    Um, S, Vm = mpmath.svd_r(
-        mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()]),
-        full_matrices=full_matrices,
-    )
+    Um, S, Vm = svd_r(_mp_matrix(arr), full_matrices=full_matrices)
     s = [S[i] for i in range(k)]
     order = sorted(range(k), key=lambda i: -s[i])
     U = _object_array(Um, (Um.rows, Um.cols))
@@ -646,9 +826,16 @@ def svd(A: Any, full_matrices: bool = True) -> tuple[np.ndarray, np.ndarray, np.
     return U, sv, Vt
 
 
+def singular_values(A: Any) -> list[Any]:
+    """Singular values (descending) of an mp array or matrix, at the working precision."""
+    M = A if isinstance(A, mpmath.matrix) else _mp_matrix(np.asarray(A))
+    sig = svd_r(M, compute_uv=False)
+    return sorted((abs(sig[i]) for i in range(len(sig))), reverse=True)
+
+
 def eigh(A: Any) -> tuple[np.ndarray, np.ndarray]:
     """Eigenvalues (ascending) and orthonormal eigenvectors (columns) of the
-    symmetric part of ``A``, in its backend (numpy ``eigh`` / mpmath ``eigsy``)."""
+    symmetric part of ``A``, in its backend (numpy ``eigh`` / :func:`eigsy`)."""
     arr = np.asarray(A)
     bk = _numerical_backend(arr)
     if bk.name == "float":
@@ -657,8 +844,8 @@ def eigh(A: Any) -> tuple[np.ndarray, np.ndarray]:
     n = arr.shape[0]
     if n == 0:
         return bk.zeros(0), bk.zeros((0, 0))
-    S = mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()])
-    E, Q = mpmath.eigsy((S + S.T) / 2)
+    S = _mp_matrix(arr)
+    E, Q = eigsy((S + S.T) / 2)
     w = [E[i] for i in range(n)]
     order = sorted(range(n), key=lambda i: w[i])
     V = _object_array(Q, (n, n))[:, order]
@@ -678,7 +865,7 @@ def orthonormal_columns(A: Any) -> np.ndarray:
     m, k = arr.shape
     if k == 0:
         return bk.zeros((m, 0))
-    Q, _ = mpmath.qr(mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()]))
+    Q, _ = mpmath.qr(_mp_matrix(arr))
     return _object_array(Q, (m, m))[:, :k]
 
 
@@ -699,10 +886,7 @@ def spectral_norm(A: Any) -> Any:
     bk = _numerical_backend(arr)
     if bk.name == "float":
         return float(np.linalg.norm(to_float(arr), 2))
-    sig = mpmath.svd_r(
-        mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()]), compute_uv=False
-    )
-    return max(abs(sig[i]) for i in range(len(sig)))
+    return singular_values(arr)[0]
 
 
 def max_abs(A: Any) -> Any:
@@ -897,8 +1081,7 @@ def decide_rank(
                 Um, s_mp, Vm = svd(A)
                 s = list(s_mp)
             else:
-                sig = mpmath.svd_r(mpmath.matrix(A.tolist()), compute_uv=False)
-                s = sorted((abs(x) for x in sig), reverse=True)
+                s = singular_values(A)
             smax = s[0] if s else mpmath.mpf(0)
             if reference is not None and reference > smax:
                 smax = mpmath.mpf(reference)
@@ -1014,9 +1197,8 @@ def decide_definiteness(
         )
     if prec.mode == "mp":
         with prec.context():
-            A = mpmath.matrix([[_mp_convert(x) for x in row] for row in arr.tolist()])
-            A = (A + A.T) / 2
-            ev = mpmath.eigsy(A, eigvals_only=True)
+            A = _mp_matrix(arr)
+            ev = eigsy((A + A.T) / 2, eigvals_only=True)
             vals = sorted(float(x) for x in ev)
     else:
         F = to_float(arr)

@@ -46,6 +46,7 @@ from mechsing.numeric import (
     exact_is_zero,
     rotation_orthonormal_atol,
     screw_zero_rtol,
+    svd_r,
     to_float,
 )
 
@@ -351,18 +352,18 @@ class Closer:
                     res,
                 )
             return ClosedConfiguration(cfg.name, q, 0.0, False, 0, tuple(range(m.n)))
-        res = m.residual_norm(deltas)
+        res = m.residual_norm(deltas, native=True)
         if res > self.tolerance:
-            worst = max(range(len(deltas)), key=lambda i: m.residual_norm([deltas[i]]))
+            worst = max(range(len(deltas)), key=lambda i: m.residual_norm([deltas[i]], True))
             raise ClosureError(
                 f"configuration {cfg.name!r} gives every joint value but does not close: "
-                f"{self._loop_named(m.chords[worst].name)} leaves a residual of {res:.3g} m "
-                f"(accepted: {self.tolerance:.1g} m); "
+                f"{self._loop_named(m.chords[worst].name)} leaves a residual of {_g(res, 3)} m "
+                f"(accepted: {_g(self.tolerance, 1)} m); "
                 "leave the passive joints out so they are solved, or give more digits",
                 cfg.name,
-                res,
+                float(res),
             )
-        return ClosedConfiguration(cfg.name, q, res, False, 0, tuple(range(m.n)))
+        return ClosedConfiguration(cfg.name, q, float(res), False, 0, tuple(range(m.n)))
 
     # ---------------------------------------------------------------- continuation
 
@@ -461,12 +462,12 @@ class Closer:
             q_out = q
         if res > self.tolerance:
             raise ClosureError(
-                f"configuration {cfg.name!r} does not close: residual {res:.3g} m after continuation "
-                f"(accepted: {self.tolerance:.1g} m)",
+                f"configuration {cfg.name!r} does not close: residual {_g(res, 3)} m after continuation "
+                f"(accepted: {_g(self.tolerance, 1)} m)",
                 cfg.name,
-                res,
+                float(res),
             )
-        return ClosedConfiguration(cfg.name, q_out, res, underdetermined, steps, given)
+        return ClosedConfiguration(cfg.name, q_out, float(res), underdetermined, steps, given)
 
     def _same_branch(
         self, fm: KinematicModel, q: np.ndarray, qn: np.ndarray, info: dict, gmask: np.ndarray
@@ -600,8 +601,8 @@ class Closer:
             qm[gmask] = target[gmask]
             free = ~gmask
             L = m.length_scale
-            goal = 10.0 ** (POLISH_DIGITS_SPARE - mpmath.mp.dps) * L
-            res = m.residual_norm(m.chord_residuals(qm))
+            goal = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - mpmath.mp.dps) * L
+            res = m.residual_norm(m.chord_residuals(qm), native=True)
             for _ in range(POLISH_MAX_STEPS):
                 if res <= goal or not m.chords:
                     break
@@ -616,7 +617,7 @@ class Closer:
                 d[np.flatnonzero(free)] = np.array(du, dtype=object)
                 d = np.where(m.length_columns, d * L, d)
                 qn = m.update(qm, d)
-                rn = m.residual_norm(m.chord_residuals(qn))
+                rn = m.residual_norm(m.chord_residuals(qn), native=True)
                 if rn >= res:
                     break
                 qm, res = qn, rn
@@ -626,7 +627,7 @@ class Closer:
 def _mp_lstsq(A: Any, b: Any) -> list[Any]:
     import mpmath
 
-    U, S, V = mpmath.svd_r(A)
+    U, S, V = svd_r(A)
     smax = max(abs(x) for x in S) if len(S) else 0
     out = mpmath.matrix(A.cols, 1)
     for i in range(len(S)):
@@ -646,6 +647,16 @@ def _dls(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     lam = 1e-7 * s[0]
     f = s / (s * s + lam * lam)
     return Vt.T @ (f * (U.T @ b))
+
+
+def _g(x: Any, digits: int) -> str:
+    """A residual or tolerance (float or mpf) in %g style, also below float's range."""
+    f = float(x)
+    if f != 0 or x == 0:
+        return f"{f:.{digits}g}"
+    import mpmath
+
+    return mpmath.nstr(x, digits)
 
 
 def _fmt(m: KinematicModel, q: np.ndarray) -> str:

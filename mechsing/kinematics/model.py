@@ -24,6 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+import mpmath
 import numpy as np
 
 from mechsing import lie
@@ -165,7 +166,7 @@ class KinematicModel:
         """The joint's relative displacement M (g_b = g_a M)."""
         qj = q[jk.columns]
         if jk.type == "U":
-            return lie.exp(qj[0] * jk.basis[0]) @ lie.exp(qj[1] * jk.basis[1])
+            return lie.exp(jk.basis[0] * qj[0]) @ lie.exp(jk.basis[1] * qj[1])
         return lie.exp(qj @ jk.basis)
 
     def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
@@ -206,7 +207,7 @@ class KinematicModel:
             if jk.type == "U":
                 qa = q[jk.columns][0]
                 cols.append(lie.act_screw(ga, jk.basis[0]))
-                cols.append(lie.act_screw(ga @ lie.exp(qa * jk.basis[0]), jk.basis[1]))
+                cols.append(lie.act_screw(ga @ lie.exp(jk.basis[0] * qa), jk.basis[1]))
             else:
                 cols.extend(lie.act_screw(ga, jk.basis))
         return np.stack(cols, axis=1) if cols else self.backend.zeros((6, 0))
@@ -220,12 +221,25 @@ class KinematicModel:
         poses = self.poses(q) if poses is None else poses
         return [poses[jk.a] @ self.element(jk, q) @ lie.inverse(poses[jk.b]) for jk in self.chords]
 
-    def residual_norm(self, deltas: list[np.ndarray]) -> float:
+    def residual_norm(self, deltas: list[np.ndarray], native: bool = False) -> Any:
         """Closure residual as a length (m): the largest over the chords of
         ``sqrt(|p_c|^2 + L^2 |R - I|_F^2 / 2)`` with ``p_c`` the translation of
         Delta seen from the centroid (meaningful also near half-turns, where
-        the logarithm is not)."""
+        the logarithm is not).
+
+        A float; with ``native`` at mp:N the model's own number (an ``mpf``: a
+        residual of 1e-400 is not 0, as its float is)."""
         L = self.length_scale
+        if native and self.backend.name == "mp":
+            with self.precision.context():
+                worst = mpmath.mpf(0)
+                c = self.backend.asarray(self.centroid)
+                for D in deltas:
+                    R = D[:3, :3]
+                    p = D[:3, 3] + R @ c - c
+                    E = R - self.backend.eye(3)
+                    worst = max(worst, mpmath.sqrt((p * p).sum() + L * L * (E * E).sum() / 2))
+                return worst
         worst = 0.0
         with self.precision.context():
             if self.backend.name == "mp":
@@ -274,7 +288,10 @@ class KinematicModel:
         out = np.array(q, copy=True)
         for jk in self.joints:
             d = delta[jk.columns]
-            if jk.abelian or not np.any(to_float(d)):
+            # zero tested in the model's numbers: at mp:N beyond float's range (N > 300) a
+            # correction of 1e-350 is not zero, and adding it to a non-abelian joint's
+            # coordinates would be wrong at first order
+            if jk.abelian or not any(x != 0 for x in d):
                 out[jk.columns] = q[jk.columns] + d
                 continue
             M = lie.exp(d @ jk.basis) @ self.element(jk, q)
@@ -287,20 +304,42 @@ class KinematicModel:
         Solved in the commensurate metric (screws moved to the centroid, v / L):
         in raw units a joint far from the origin mixes rows of very different
         sizes and loses the coordinates along its own axis to rounding.
+
+        At mp:N the float solution is refined (iterative refinement: the residual
+        ``x - c B`` at N digits, its correction solved in float, each pass gaining
+        about 15 digits) until the correction is below the working precision, so
+        the coordinates of a non-abelian joint (S, G, Y, X, D) carry N digits and
+        Newton at N digits can close a loop to 10^(5-N) L.
         """
         x = lie.log(M)
         L, c = self.length_scale, self.centroid
         B = scale_screws(to_float(jk.basis).T, L, c)
         xs = scale_screws(to_float(x)[:, None], L, c)[:, 0]
         coef, *_ = np.linalg.lstsq(B, xs, rcond=None)
-        if self.backend.name == "float":
+        bk = self.backend
+        if bk.name == "float":
             return coef
-        # refine in the model's backend: one Newton step on B c = x
-        cm = self.backend.asarray(coef)
-        r = x - cm @ jk.basis
-        rs = scale_screws(to_float(r)[:, None], L, c)[:, 0]
-        corr, *_ = np.linalg.lstsq(B, rs, rcond=None)
-        return cm + self.backend.asarray(corr)
+        cm = bk.asarray(coef)
+        if bk.name == "exact":
+            # exact mode only checks given values: one refinement step
+            r = x - cm @ jk.basis
+            rs = scale_screws(to_float(r)[:, None], L, c)[:, 0]
+            corr, *_ = np.linalg.lstsq(B, rs, rcond=None)
+            return cm + bk.asarray(corr)
+        for _pass in range(_refinement_passes()):
+            r = x - cm @ jk.basis
+            # normalised before the float solve: at N > 300 digits the residual itself
+            # would underflow in float
+            size = max(abs(v) for v in r)
+            if not size:
+                break
+            rs = scale_screws(to_float(r / size)[:, None], L, c)[:, 0]
+            corr, *_ = np.linalg.lstsq(B, rs, rcond=None)
+            step = bk.asarray(corr) * size
+            cm = cm + step
+            if max(abs(v) for v in step) <= mpmath.mp.eps * max(1, max(abs(v) for v in cm)):
+                break
+        return cm
 
 
 def _is_abelian(B: np.ndarray) -> bool:
@@ -324,3 +363,10 @@ def scale_blocks(
         scale_screws(M[6 * i : 6 * i + 6], L, c, length_columns) for i in range(M.shape[0] // 6)
     ]
     return np.concatenate(blocks, axis=0)
+
+
+def _refinement_passes() -> int:
+    """Most iterative-refinement passes of :meth:`KinematicModel.coordinates_in` at the
+    working precision: a float solve gains at least 10 digits per pass (the commensurate
+    bases are well conditioned), plus two to spare."""
+    return mpmath.mp.dps // 10 + 2

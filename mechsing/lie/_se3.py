@@ -141,7 +141,9 @@ def log(g: Any) -> np.ndarray:
     # c from the half-angle quaternion parts: (t/2) cot(t/2) = (t/2) qw / n
     small = use_series(bk, t2)
     ts = safe(bk, small, theta)
-    closed = (1 - (ts / 2) * qw / safe(bk, small, n)) / (ts * ts)
+    # an array on the left of each operation (see so3_coefficients), same rounding as
+    # (t/2) qw / n
+    closed = (1 - np.asarray(qw * (ts / 2)) / safe(bk, small, n)) / (ts * ts)
     c = np.where(small, half_cot_series(bk, t2), closed)
     wp = cross(w, p)
     wwp = cross(w, wp)

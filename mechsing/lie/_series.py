@@ -41,13 +41,33 @@ def safe(bk: Backend, mask: np.ndarray, x: Any, fill: Any = 1) -> Any:
     return np.where(mask, bk.convert(fill), x)
 
 
+def _eps_digits(bk: Backend) -> float:
+    """-log10(eps) of the backend (15.65 in float, about N at mp:N; 0 in exact mode, where
+    no series is truncated)."""
+    return _digits_of(bk.name, _dps(bk))
+
+
 @lru_cache(maxsize=64)
-def _n_terms_factorial(name: str, eps: float, shift: int) -> int:
-    """Terms of sum (-1)^k t^(2k)/(2k+shift)! for |t| <= 1 to reach eps."""
+def _digits_of(name: str, dps: int) -> float:
+    # from log10(eps), never float(eps): at N > 300 digits eps underflows to 0 in float
+    if name == "exact":
+        return 0.0
+    if name == "float":
+        return -math.log10(float(np.finfo(np.float64).eps))
+    import mpmath
+
+    with mpmath.workdps(dps):
+        return float(-mpmath.log10(mpmath.mp.eps))
+
+
+@lru_cache(maxsize=64)
+def _n_terms_factorial(name: str, digits: float, shift: int) -> int:
+    """Terms of sum (-1)^k t^(2k)/(2k+shift)! for |t| <= 1 to reach eps / 100 (eps =
+    10^-digits): the first omitted term 1/(2k+shift)! is below it."""
     if name == "exact":
         return 1
     k = 0
-    while 1.0 / math.factorial(2 * k + shift) > eps * 1e-2:
+    while math.lgamma(2 * k + shift + 1) / math.log(10) < digits + 2:
         k += 1
     return k + 1
 
@@ -57,7 +77,7 @@ def factorial_series(bk: Backend, t2: Any, shift: int) -> Any:
 
     shift = 1: sin t / t; 2: (1 - cos t)/t^2; 3: (t - sin t)/t^3; and so on.
     """
-    n = _n_terms_factorial(bk.name, float(bk.eps), shift)
+    n = _n_terms_factorial(bk.name, _eps_digits(bk), shift)
     return _horner(t2, _factorial_converted(bk.name, _dps(bk), shift, n))
 
 
@@ -67,11 +87,10 @@ def _factorial_coeffs(name: str, shift: int, n: int) -> tuple[Any, ...]:
 
 
 def _n_terms_bernoulli(bk: Backend) -> int:
-    # terms decay like (t / 2pi)^(2k); at t = 1 that is 0.0253^k
+    # terms decay like (t / 2pi)^(2k); at t = 1 that is (4 pi^2)^-k: enough to reach eps / 100
     if bk.name == "exact":
         return 1
-    eps = float(bk.eps)
-    return int(math.ceil(math.log(eps * 1e-2) / math.log(1.0 / (4 * math.pi**2)))) + 1
+    return int(math.ceil((_eps_digits(bk) + 2) / math.log10(4 * math.pi**2))) + 1
 
 
 @lru_cache(maxsize=8)
@@ -97,6 +116,10 @@ def _bernoulli_converted(name: str, dps: int, n: int) -> tuple[Any, ...]:
 
 
 def _horner(x: Any, conv: tuple[Any, ...]) -> Any:
+    if isinstance(x, np.ndarray) and x.ndim == 0:
+        # one number: plain scalar arithmetic (an mpf times a 0-d array makes mpmath
+        # try to convert the array, through its repr, before numpy takes over)
+        x = x[()]
     acc = x * 0 + conv[-1]
     for c in reversed(conv[:-1]):
         acc = acc * x + c

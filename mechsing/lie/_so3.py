@@ -101,8 +101,10 @@ def so3_coefficients(w: np.ndarray) -> tuple[Any, Any, Any, Any]:
     A = np.where(small, factorial_series(bk, t2, 1), s / t)
     # (1 - cos t)/t^2 written as 2 sin^2(t/2)/t^2: no cancellation
     sh = bk.sin(t / 2)
-    B = np.where(small, factorial_series(bk, t2, 2), 2 * sh * sh / (t * t))
-    C = np.where(small, factorial_series(bk, t2, 3), (t - s) / (t * t * t))
+    # operand order keeps an array on the left of each product: an mpf times a 0-d array
+    # makes mpmath try (through the array's repr) to convert the array before numpy does
+    B = np.where(small, factorial_series(bk, t2, 2), sh * sh * 2 / (t * t))
+    C = np.where(small, factorial_series(bk, t2, 3), (t - s) / (t * (t * t)))
     return t2, A, B, C
 
 
@@ -169,7 +171,7 @@ def quaternion_parts(R: Any) -> tuple[np.ndarray, np.ndarray]:
     """
     R = _asarr(R)
     bk = backend_of(R)
-    tr = R[..., 0, 0] + R[..., 1, 1] + R[..., 2, 2]
+    tr = np.asarray(R[..., 0, 0] + R[..., 1, 1]) + R[..., 2, 2]
     t = np.stack(
         [1 + tr, 1 + 2 * R[..., 0, 0] - tr, 1 + 2 * R[..., 1, 1] - tr, 1 + 2 * R[..., 2, 2] - tr],
         axis=-1,
@@ -217,7 +219,9 @@ def log_so3_parts(R: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarra
     n = bk.sqrt(n2)
     theta = 2 * bk.atan2(n, qw)
     # theta / n -> 2 / w as n -> 0; atan2(n, w)/n is accurate for every n > 0
-    factor = np.where(zero, 2 / np.where(zero, qw, bk.convert(1)), theta / safe(bk, zero, n))
+    factor = np.where(
+        zero, 2 / np.where(zero, qw, bk.convert(1)), np.asarray(theta) / safe(bk, zero, n)
+    )
     return factor[..., None] * qv, theta, qw, n
 
 

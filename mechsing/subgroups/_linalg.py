@@ -13,7 +13,7 @@ import mpmath
 import numpy as np
 import sympy
 
-from mechsing.numeric import Backend, Precision, RankDecision, decide_rank, to_float
+from mechsing.numeric import Backend, Precision, RankDecision, decide_rank, svd, to_float
 
 
 def backend(prec: Precision) -> Backend:
@@ -30,19 +30,10 @@ def convert(x: Any, prec: Precision) -> np.ndarray:
 
 
 def _svd_mp(M: np.ndarray, prec: Precision) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Full SVD at the precision's digits (:func:`mechsing.numeric.svd`: mpmath's, with a
+    fallback that always converges), singular values descending."""
     with prec.context():
-        A = mpmath.matrix(M.tolist())
-        U, S, V = mpmath.svd_r(A, full_matrices=True)
-        s = [S[i] for i in range(len(S))]
-        order = sorted(range(len(s)), key=lambda i: -s[i])
-        Um = np.array(U.tolist(), dtype=object)
-        Vm = np.array(V.tolist(), dtype=object)
-        rest = [i for i in range(Vm.shape[0]) if i not in order]
-        return (
-            Um[:, order + [i for i in range(Um.shape[1]) if i not in order]],
-            np.array([s[i] for i in order], dtype=object),
-            Vm[order + rest],
-        )
+        return svd(prec.backend.asarray(M))
 
 
 def simplify(x: Any) -> Any:

@@ -101,7 +101,7 @@ def in_plane(w: np.ndarray, bk: Backend) -> tuple[np.ndarray, np.ndarray]:
             i = j
     a = bk.zeros(3)
     a[i] = bk.convert(1)
-    e = a - w[i] * w
+    e = a - w * w[i]
     n = bk.sqrt(np.asarray(e @ e))[()]
     e1 = e / n
     if bk.name == "exact":
@@ -167,7 +167,7 @@ def compile_vector(text: str, kinds: Mapping[str, str], where: str = "") -> _Vec
             if kinds.get(s) != "pitch":
                 raise bad(f"{s!r} before '*' must be a pitch parameter")
             f = term(rest)
-            return lambda p, bk: p[s] * f(p, bk)
+            return lambda p, bk: f(p, bk) * p[s]
         parts = re.split(r"\s+x\s+", tok.strip())
         if len(parts) == 1:
             return atom(parts[0])
