@@ -60,6 +60,7 @@ __all__ = [
     "orthonormal_columns",
     "parse_precision",
     "rank_bounds",
+    "rank_difference",
     "rotation_orthonormal_atol",
     "pinv_truncated",
     "scale_screws",
@@ -999,6 +1000,38 @@ class RankDecision:
         d["margin"] = self.margin.to_json()
         d["precision"] = self.precision
         return d
+
+
+def rank_difference(a: RankDecision, b: RankDecision) -> RankDecision:
+    """The decision ``rank(a) - rank(b)`` (a dimension such as dim(K cap ker T) -
+    dim(K cap ker T cap ker E) = rank [TN; EN] - rank TN), decided when both are.
+
+    Its bounds are the widest the two allow; its margin is that of the decision
+    nearer to flipping (the smaller of kept / sigma_max / tau_hi and
+    tau_lo / (dropped / sigma_max)), so the reader sees the tighter evidence.
+    """
+    if a.precision != b.precision:
+        raise ValueError(f"rank_difference of decisions at {a.precision} and {b.precision}")
+    (alo, ahi), (blo, bhi) = (
+        (d.rank, d.rank) if d.rank is not None else d.rank_bounds for d in (a, b)
+    )
+    lo, hi = max(0, alo - bhi), max(0, ahi - blo)
+    rank = lo if lo == hi else None
+    return RankDecision(rank, None, min(a.margin, b.margin, key=_slack), a.precision, (lo, hi))
+
+
+def _slack(m: Margin) -> float:
+    """How far a margin is from flipping its decision: the smaller of the kept value's
+    ratio to tau_hi and tau_lo's ratio to the dropped value (relative to sigma_max);
+    exact margins (no thresholds) never flip."""
+    if not m.tau_hi or not m.sigma_max:
+        return math.inf
+    out = math.inf
+    if m.kept is not None:
+        out = min(out, m.kept / m.sigma_max / m.tau_hi)
+    if m.dropped is not None:
+        out = min(out, m.tau_lo / max(m.dropped / m.sigma_max, 1e-300))
+    return out
 
 
 def rank_bounds(rel: Any, tol: Tolerances) -> tuple[np.ndarray, np.ndarray]:

@@ -567,6 +567,33 @@ def test_auto_near_the_rssr_rocker_dead_centre(tmp_path: Path) -> None:
     assert {"input", "impossible-output"} <= set(classes(d)), classes(d)
 
 
+@pytest.mark.parametrize(
+    ("precision", "k"),
+    [("float", 4), ("float", 6), ("float", 8), ("float", 9), ("mp:50", 11), ("mp:50", 15),
+     ("mp:50", 20)],
+)
+def test_input_test_near_the_rssr_dead_centre_is_never_falsely_singular(
+    tmp_path: Path, precision: str, k: int
+) -> None:
+    """10^-k before the dead centre (theta = pi/2, see above) every rank is full. The input
+    test must say so or leave it undecided, never report a singularity: its dimension is
+    rank [TN; EN] - rank TN, decided on those matrices' own singular values (rounding eps),
+    not E applied to a kernel of TN computed 10^-k from a singularity (error eps / 10^-k,
+    which float used to take for an input motion at k = 9)."""
+    joints, _ = LOOPS["RSSR"]
+    text = _mechanism("rssr", joints, ["A"], {"A": f"pi/2 - 1e-{k}"})
+    text = text.replace("inputs: [A]\n", "inputs: [A]\noutput: {body: rocker}\n")
+    path = write(tmp_path, "rssr_near", text)
+    (c,) = _json(["analyze", str(path), "--config", "moved", "--precision", precision,
+                  "--format", "json"])["configurations"]
+    assert "error" not in c, c["error"]
+    assert c["singular"] is not True, classes(c)
+    inputs = [d for d in c["decisions"] if d["test"] == "input"]
+    assert inputs and all(d["rank"] in (None, d.get("generic")) for d in inputs), inputs
+    if precision == "mp:50" or k <= 8:  # decided where the precision can see 10^-k
+        assert c["singular"] is False, classes(c)
+
+
 # ============================================================================ 3. T3-S chain at mp:50
 
 T3_S_CHAIN = """mechanism: t3-s-chain

@@ -453,10 +453,12 @@ def _zfb(
         v, g = hv[cls], generic[cls]
         if v is None or g is None or v <= g:
             continue
-        if cls == "input":
-            basis, dec = sp["zT"], here.input_motion
-        elif cls == "output":
-            basis, dec = sp["zE"], here.output_motion
+        if cls == "input":  # in K cap ker T, the direction the inputs move most
+            dec = here.input_motion
+            basis = _most_moved(sp["zT"], sp["E"] @ N)
+        elif cls == "output":  # in K cap ker E, the direction the output moves most
+            dec = here.output_motion
+            basis = _most_moved(sp["zE"], sp["T"] @ N)
         else:
             both = np.vstack([sp["T"] @ N / max(sp["nT"], 1e-300), sp["E"] @ N])
             dec = decide_rank(both, tprec, L, want_spaces=True, reference=1.0, native_spaces=True)
@@ -497,6 +499,15 @@ def _zfb(
             }
         )
     return findings
+
+
+def _most_moved(z: np.ndarray, A: np.ndarray) -> np.ndarray:
+    """The unit combination of the columns of ``z`` that ``A`` moves most (its first
+    right singular vector), as a one-column basis; empty when ``z`` is."""
+    if not z.size:
+        return z
+    _u, _s, vt = svd(A @ z)
+    return z @ vt[:1].T
 
 
 def _output_si(mech: Any, fm: Any, t: np.ndarray) -> list[float]:

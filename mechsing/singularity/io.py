@@ -34,6 +34,7 @@ from mechsing.numeric import (
     Precision,
     RankDecision,
     decide_rank,
+    rank_difference,
     spectral_norm,
     svd,
     to_float,
@@ -159,22 +160,29 @@ def _io_quantities(
     # orthonormal), so a product that vanishes is rank 0, not rounding noise
     nT = spectral_norm(T)
     nE = 1.0
-    zT = _null(TN, L, prec, nT) if m else bk.zeros((0, 0))
-    zE = _null(EN, L, prec, nE) if m else bk.zeros((0, 0))
-    inp = decide_rank(EN @ zT if zT.size else np.zeros((E.shape[0], 0)), prec, L, reference=nE)
-    outp = decide_rank(TN @ zE if zE.size else np.zeros((T.shape[0], 0)), prec, L, reference=nT)
+    # every dimension is a difference of ranks of TN, EN and [TN; EN], each decided on
+    # its own singular values: their rounding is eps times the matrix, whereas a kernel
+    # of TN (or EN) computed near a singularity at distance d is off by eps / d, and
+    # E applied to it would turn that error into a false input (output) motion
+    rT = decide_rank(TN, prec, L, reference=nT)
+    rE = decide_rank(EN, prec, L, reference=nE)
     both = np.vstack([TN / max(nT, 1e-300), EN]) if m else np.zeros((0, 0))
     if m:
-        d = decide_rank(both, prec, L, reference=1.0)
-        passive = None if d.rank is None else m - d.rank
+        rB = decide_rank(both, prec, L, reference=1.0)
+        passive = None if rB.rank is None else m - rB.rank
     else:
+        rB = decide_rank(np.zeros((T.shape[0] + E.shape[0], 0)), prec, L)
         passive = 0
+    # witnesses of the motions (for the joint rates of a finding): the kernels at the
+    # decided (or guessed) ranks
+    zT = _null(TN, L, prec, nT) if m else bk.zeros((0, 0))
+    zE = _null(EN, L, prec, nE) if m else bk.zeros((0, 0))
     return IOQuantities(
-        inp,
-        outp,
+        rank_difference(rB, rT),  # dim E(K cap ker T) = rank [TN; EN] - rank TN
+        rank_difference(rB, rE),  # dim T(K cap ker E) = rank [TN; EN] - rank EN
         passive,
-        decide_rank(EN, prec, L, reference=nE),
-        decide_rank(TN, prec, L, reference=nT),
+        rE,
+        rT,
         {"T": T, "E": E, "N": N, "zT": zT, "zE": zE, "nT": nT},
     )
 
