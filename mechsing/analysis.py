@@ -45,6 +45,8 @@ class ConfigurationResult:
     error: str | None = None
     #: wall-clock seconds the configuration took (escalation included); not in the JSON
     seconds: float = field(default=0.0, compare=False)
+    #: what the analysis did to the given values that a reader should know (JSON ``notes``)
+    notes: list[str] = field(default_factory=list)
     internals: dict[str, Any] = field(default_factory=dict, repr=False)
 
     @property
@@ -76,6 +78,8 @@ class ConfigurationResult:
         )
         if self.underdetermined:
             out["underdetermined"] = True
+        if self.notes:
+            out["notes"] = list(self.notes)
         return out
 
 
@@ -196,6 +200,7 @@ def _analyze_one_in_context(
     out.joints = model.values(q)
     out.closure_residual = float(closed.residual)
     out.underdetermined = closed.underdetermined
+    out.notes.extend(closed.notes)
     cs = closure_system(model, q, prec)
     rank = cs.rank
     out.closure_rank = {

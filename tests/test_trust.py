@@ -189,3 +189,48 @@ def test_nothing_shipped_points_outside_the_project():
 def test_docs_show_exit_status_4():
     text = (ROOT / "README.md").read_text()
     assert "4 an internal defect" in text
+
+
+# --------------------------------------------------------------------------- auto on float data
+
+
+def _slider_crank_near_dead_centre(distance: str) -> dict[str, str]:
+    """Every joint value of the offset slider-crank (crank r = 1 at the origin, B at (0, -1),
+    rod 4 to C = (16/5, 7/5), slider on y = 7/5) a given distance before its outer dead centre
+    A = 2 atan(4/3), from the planar geometry at 40 digits, written with float's 17 digits:
+    B = (sin A, -cos A), C = (x, 7/5) with |C - B| = 4; the rod turns by phi - phi0, the slider
+    not at all."""
+    import mpmath
+
+    with mpmath.workdps(40):
+        a = 2 * mpmath.atan(mpmath.mpf(4) / 3) - mpmath.mpf(distance)
+        bx, by = mpmath.sin(a), -mpmath.cos(a)
+        cy = mpmath.mpf(7) / 5
+        x = bx + mpmath.sqrt(16 - (cy - by) ** 2)
+        phi0 = mpmath.atan2(mpmath.mpf(12) / 5, mpmath.mpf(16) / 5)
+        phi = mpmath.atan2(cy - by, x - bx)
+        vals = {"A": a, "B": phi - phi0 - a, "C": phi0 - phi, "P": x - mpmath.mpf(16) / 5}
+    return {k: repr(float(v)) for k, v in vals.items()}
+
+
+def test_auto_re_decides_fully_given_float_values_instead_of_refusing_them(tmp_path):
+    """Every value given with float's digits 1e-10 before the dead centre: float cannot decide
+    the input test, so auto re-decides at mp:50, where those digits close only to 1e-16 m.
+    The default mode must not turn a valid file into 'does not close': it projects the values
+    onto closure (a change far below their own digits) and decides there (regular: the dead
+    centre is 1e-10 away)."""
+    vals = _slider_crank_near_dead_centre("1e-10")
+    given = ", ".join(f"{k}: {v}" for k, v in vals.items())
+    path = write(tmp_path, "near", SLIDER_CRANK.replace('crank-60: {A: "pi/3"}',
+                                                        f"near: {{{given}}}"))
+    rc, out, err = run_cli(["analyze", str(path), "--config", "near", "--format", "json"])
+    assert rc == 0, err
+    (c,) = json.loads(out)["configurations"]
+    assert c["precision"] == "mp:50" and c["closure_residual"] < 1e-40
+    assert c["singular"] is False
+    for k, v in vals.items():
+        assert abs(c["joints"][k][0] - float(v)) < 1e-14
+    assert any("projected onto closure" in n for n in c["notes"])
+    # asked for explicitly, mp:50 still holds the file to its digits (the contract)
+    rc, _out, err = run_cli(["analyze", str(path), "--config", "near", "--precision", "mp:50"])
+    assert rc == 3 and "give more digits" in err

@@ -323,6 +323,16 @@ class Closer:
             return f"the loop through joint {chord!r}"
         return f"loop {'-'.join(min(loops, key=len).joints)}"
 
+    def _closes_as_data(self, res: Any) -> bool:
+        """Do given values that miss the model's tolerance still close to that of the
+        mode their digits were checked in (auto's float, when it re-decides at mp:50)?"""
+        d = self.data_precision
+        return (
+            self.model.precision.mode == "mp"
+            and d.mode == "float"
+            and float(res) <= d.closure_tolerance(self.model.length_scale)
+        )
+
     def _residual(self, q: np.ndarray) -> float:
         return self.model.residual_norm(self.model.chord_residuals(q))
 
@@ -353,6 +363,26 @@ class Closer:
                 )
             return ClosedConfiguration(cfg.name, q, 0.0, False, 0, tuple(range(m.n)))
         res = m.residual_norm(deltas, native=True)
+        if res > self.tolerance and self._closes_as_data(res):
+            # auto re-deciding at N digits values that close to float's tolerance: the
+            # file's digits say no more, so the configuration they give is the closed
+            # one nearest to them (passive joints corrected, inputs kept; every joint
+            # when that fails), far below what the values themselves claim
+            names = {jn for jn, _i in self.mech.input_coordinates()}
+            keep = np.zeros(m.n, dtype=bool)
+            for jk in m.joints:
+                keep[jk.columns] = jk.name in names
+            for gmask in (keep, np.zeros(m.n, dtype=bool)):
+                qm, rm = self._polish_mp(m, q, q, gmask)
+                if rm <= self.tolerance:
+                    moved = float(np.max(np.abs(to_float(qm) - to_float(q)), initial=0.0))
+                    note = (
+                        f"the given values close to {_g(res, 3)} m (float's tolerance); "
+                        f"projected onto closure at {m.precision} (largest change {moved:.2g})"
+                    )
+                    return ClosedConfiguration(
+                        cfg.name, qm, float(rm), False, 0, tuple(range(m.n)), [note]
+                    )
         if res > self.tolerance:
             worst = max(range(len(deltas)), key=lambda i: m.residual_norm([deltas[i]], True))
             raise ClosureError(

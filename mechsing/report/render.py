@@ -187,6 +187,8 @@ def render_text(result: Any, markdown: bool = False) -> str:
         )
         lines.append(f"{bullet}joint values (m, rad): {vals}")
         lines.append(f"{bullet}closure residual {c['closure_residual']:.3g} m")
+        for note in c.get("notes", []):
+            lines.append(f"{bullet}note: {note}")
         for lp in c["loops"]:
             sig = ", ".join(f"{s:.4g}" for s in (lp["sigma"] or []))
             lines.append(
