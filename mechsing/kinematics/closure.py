@@ -154,10 +154,7 @@ class Closer:
             return target, tuple(range(m.n))
         for jname, val in cfg.values.items():
             jk = m.joint(jname)
-            if isinstance(val, Displacement):
-                coords = self._coordinates_of_displacement(cfg, jname, val)
-            else:
-                coords = m.asarray(list(val))
+            coords = self._coordinates_of_value(cfg, jname, val)
             fc = np.asarray(to_float(coords), dtype=float)
             # lengths are measured against the mechanism's own size L, angles in radians
             bound = np.where(
@@ -178,6 +175,12 @@ class Closer:
             given.extend(range(jk.columns.start, jk.columns.stop))
         return target, tuple(sorted(given))
 
+    def _coordinates_of_value(self, cfg: Configuration, jname: str, val: Any) -> np.ndarray:
+        """A given value's coordinates in its joint's subgroup, in the model's numbers."""
+        if isinstance(val, Displacement):
+            return self._coordinates_of_displacement(cfg, jname, val)
+        return self.model.asarray(list(val))
+
     def _check_reference(self, cfg: Configuration) -> None:
         """The values the reference configuration lists must be the identity in the
         analysis's mode: zero coordinates (angles to the mode's tolerance, lengths to
@@ -185,10 +188,7 @@ class Closer:
         m, decide = self.model, self.data_precision
         for jname, val in cfg.values.items():
             jk = m.joint(jname)
-            if isinstance(val, Displacement):
-                coords = self._coordinates_of_displacement(cfg, jname, val)
-            else:
-                coords = m.asarray(list(val))
+            coords = self._coordinates_of_value(cfg, jname, val)
             if decide.mode == "exact":
                 zero = all(exact_is_zero(x, m.length_scale) is True for x in coords)
             else:
