@@ -3,7 +3,8 @@
 Each sub-command lives in its own module of this package and exposes
 ``NAME`` (the sub-command), ``HELP`` (one line), ``add_arguments(parser)`` and
 ``run(args) -> int``.  Exit status: 0 success, 2 bad input, 3 a configuration
-could not be closed (DESIGN.md).
+could not be analysed (not closed, or refused or stopped by exact mode; the
+others are reported).
 """
 
 from __future__ import annotations
