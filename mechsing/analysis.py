@@ -6,7 +6,10 @@
 {'grubler': -2, 'group': 1, 'instantaneous': 1, 'generic': 1, 'finite': 1}
 
 Precision: ``auto`` decides in float and re-does a configuration at mp:50
-when a rank is undecided there; ``float``, ``mp:N`` and ``exact`` use one mode.
+when a rank is undecided there, or when float found it singular on a dropped
+singular value far above float's own rounding
+(:func:`mechsing.numeric.float_drop_is_real`: float's thresholds call it zero,
+float's data say it is not); ``float``, ``mp:N`` and ``exact`` use one mode.
 
 Exact mode works on each configuration within a time limit (``time_limit``, default
 60 s): a configuration that sympy cannot finish in time is stopped wherever sympy is
@@ -26,7 +29,7 @@ from typing import Any
 
 from mechsing.kinematics import Closer, ConfigurationError, KinematicModel
 from mechsing.model import Mechanism, load
-from mechsing.numeric import Precision, parse_precision
+from mechsing.numeric import Precision, float_drop_is_real, parse_precision
 from mechsing.screws import closure_system, group_mobility, grubler
 from mechsing.singularity import classify_configuration, mechanism_properties
 from mechsing.timelimit import (
@@ -188,13 +191,34 @@ def analyze(
             )
             continue
         res = _analyze_one(mech, name, stage(first))
-        if prec.mode == "auto" and res.error is None and res.internals.get("undecided"):
-            res = _analyze_one(mech, name, stage(Precision("mp", 50)))
-            res.internals["escalated"] = True
+        if prec.mode == "auto" and res.error is None:
+            doubtful = _doubtful_drops(res)
+            if res.internals.get("undecided") or doubtful:
+                res = _analyze_one(mech, name, stage(Precision("mp", 50)))
+                res.internals["escalated"] = True
+                res.internals["escalated_for"] = doubtful or ["undecided"]
         results.append(res)
     km0 = stage(first)[0]
     props = mechanism_properties(mech, km0, results)
     return AnalysisResult(mech, prec, km0.length_scale, results, props)
+
+
+def _doubtful_drops(res: ConfigurationResult) -> list[str]:
+    """The float decisions of a configuration found singular that dropped a singular value
+    above float's rounding of it (closure residual included): auto re-decides them at mp:50.
+
+    Only a singular verdict can rest on such a drop (a rank decided too low makes a finding,
+    never removes one), so a regular configuration is not re-decided: far from singular,
+    auto costs what float costs."""
+    model = res.internals.get("model")
+    if model is None or res.singular is not True:
+        return []
+    data_error = (res.closure_residual or 0.0) / model.length_scale
+    return [
+        d["test"]
+        for d in res.decisions
+        if d["precision"] == "float" and float_drop_is_real(d["margin"], data_error)
+    ]
 
 
 class _ExactRun:
