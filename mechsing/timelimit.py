@@ -111,7 +111,11 @@ class TimeLimit:
             signal, "SIGALRM"
         )
         if self._main:
-            self._old_handler = signal.signal(signal.SIGALRM, self._on_alarm)
+            try:
+                self._old_handler = signal.signal(signal.SIGALRM, self._on_alarm)
+            except ValueError:  # signals unavailable here (an embedded interpreter)
+                self._main = False
+        if self._main:
             self._old_timer = signal.setitimer(signal.ITIMER_REAL, self.seconds, REPEAT)
         else:
             self._thread_id = threading.get_ident()
@@ -165,7 +169,9 @@ class TimeLimit:
         if self._main:
             self._closing = True
             signal.setitimer(signal.ITIMER_REAL, 0)
-            signal.signal(signal.SIGALRM, self._old_handler)  # type: ignore[arg-type]
+            # None: the previous handler was not set from Python; the default is put back
+            old = signal.SIG_DFL if self._old_handler is None else self._old_handler
+            signal.signal(signal.SIGALRM, old)  # type: ignore[arg-type]
             delay, interval = self._old_timer
             if delay > 0:
                 # the caller's own timer, postponed by the block: re-armed with what it had left
