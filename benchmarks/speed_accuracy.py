@@ -10,9 +10,12 @@ usage: python benchmarks/speed_accuracy.py [--quick] [--part families|throughput
    mode.  The truth at every distance is "regular".  Joint values are written with
    110 digits; float reads their float64 rounding, mp:N their N-digit one.  Per mode: the rate of
    correct verdicts, the relative error of the smallest singular value of the
-   deciding test (against mechsing at mp:100 on the same file), and the median
-   time per configuration.  The four families are built from exact geometry
-   (tests/families.py: closed forms, evaluated here at 130 digits).
+   deciding test (against mechsing at mp:100 on the same file), the median
+   time per configuration and the verdict at each k (R regular, S singular,
+   U undecided, E error; for auto, the k it re-decided at mp:50); per family,
+   auto's time over float's far from the singularity (k <= 4).  The four
+   families are built from exact geometry (tests/families.py: closed forms,
+   evaluated here at 130 digits).
 2. throughput: float verdicts of a 6R arm (UR5) on --configs random
    configurations: mechsing.scan (array Jacobians, determinant screen, SVD only
    near singular), the same with the SVD everywhere, and -- when the `pin`
@@ -52,6 +55,8 @@ from mechsing.numeric import Precision, rank_bounds, scale_screws  # noqa: E402
 from mechsing.scanner import ChainScanner  # noqa: E402
 
 MODES = ("float", "mp:30", "mp:50", "auto", "exact")
+#: configurations 10^-k from singular with k up to this are "far from singular" (timing of auto)
+FAR_K = 4
 
 
 # =============================================================================== 1. families
@@ -119,7 +124,7 @@ def _sigma_at(d: dict | None, g: int | None) -> float | None:
 def families(ks: list[int], repeat: int) -> None:
     print(f"1. families at 10^-k from singular, k = {ks[0]} ... {ks[-1]}; truth: regular")
     print("   correct = decided regular (not singular, not undecided); sigma error against mp:100")
-    header = f"   {'family':24s} {'mode':6s} {'correct':>8s} {'first wrong k':>13s} {'max sigma rel. err':>19s} {'median s/config':>16s}"
+    header = f"   {'family':24s} {'mode':6s} {'correct':>8s} {'first wrong k':>13s} {'max sigma rel. err':>19s} {'median s/config':>16s}  verdicts k = {ks[0]} ... {ks[-1]}"
     print(header)
     with tempfile.TemporaryDirectory() as tmp:
         for name, test, text, exact_ok in _families(ks):
@@ -131,6 +136,7 @@ def families(ks: list[int], repeat: int) -> None:
                 d = _decision(c, test)
                 rank100[c["name"]] = None if d is None else d["rank"]
                 ref[c["name"]] = _sigma_at(d, rank100[c["name"]])
+            far: dict[str, list[float]] = {}
             for mode in MODES:
                 if mode == "exact" and not exact_ok:
                     print(
@@ -138,6 +144,7 @@ def families(ks: list[int], repeat: int) -> None:
                     )
                     continue
                 times, correct, first_wrong, errs = [], 0, None, []
+                verdicts, redone = [], []
                 for k in ks:
                     cfg = f"k{k}"
                     t, res = timed_median(
@@ -147,9 +154,19 @@ def families(ks: list[int], repeat: int) -> None:
                         repeat,
                     )
                     times.append(t)
+                    if k <= FAR_K:
+                        far.setdefault(mode, []).append(t)
                     (c,) = res.to_json()["configurations"]
                     undecided = any(f["class"] == "undecided" for f in c["singularities"])
                     ok = c.get("error") is None and not c["singular"] and not undecided
+                    if c.get("error"):
+                        verdicts.append("E")
+                    elif undecided or c["singular"] is None:
+                        verdicts.append("U")
+                    else:
+                        verdicts.append("S" if c["singular"] else "R")
+                    if mode == "auto" and c["precision"] != "float":
+                        redone.append(k)
                     correct += ok
                     if not ok and first_wrong is None:
                         first_wrong = k
@@ -158,9 +175,13 @@ def families(ks: list[int], repeat: int) -> None:
                         errs.append(abs(s - ref[cfg]) / ref[cfg])
                 err = f"{max(errs):.1e}" if errs else "n/a"
                 fw = "-" if first_wrong is None else str(first_wrong)
+                again = f" (mp:50 at k = {','.join(map(str, redone))})" if redone else ""
                 print(
-                    f"   {name:24s} {mode:6s} {correct:>4d}/{len(ks):<3d} {fw:>13s} {err:>19s} {statistics.median(times):16.3f}"
+                    f"   {name:24s} {mode:6s} {correct:>4d}/{len(ks):<3d} {fw:>13s} {err:>19s} {statistics.median(times):16.3f}  {''.join(verdicts)}{again}"
                 )
+            if far.get("float") and far.get("auto"):
+                ratio = sum(far["auto"]) / sum(far["float"])
+                print(f"   {name:24s} auto / float time at k <= {FAR_K}: {ratio:.2f}")
 
 
 # =============================================================================== 2. throughput

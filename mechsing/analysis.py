@@ -6,22 +6,40 @@
 {'grubler': -2, 'group': 1, 'instantaneous': 1, 'generic': 1, 'finite': 1}
 
 Precision: ``auto`` decides in float and re-does a configuration at mp:50
-when a rank is undecided there; ``float``, ``mp:N`` and ``exact`` use one mode.
+when a rank is undecided there, or when float found it singular on a dropped
+singular value far above float's own rounding
+(:func:`mechsing.numeric.float_drop_is_real`: float's thresholds call it zero,
+float's data say it is not); ``float``, ``mp:N`` and ``exact`` use one mode.
+
+Exact mode works on each configuration within a time limit (``time_limit``, default
+60 s): a configuration that sympy cannot finish in time is stopped wherever sympy is
+(:mod:`mechsing.timelimit`) and gets an ``error`` entry that says what could not be
+proved, like a configuration that does not close; the others are reported.
 """
 
 from __future__ import annotations
 
+import math
+import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from mechsing.errors import working_on
-from mechsing.kinematics import Closer, ClosureError, KinematicModel
+from mechsing.errors import UserError, working_on
+from mechsing.kinematics import Closer, ConfigurationError, KinematicModel
 from mechsing.model import Mechanism, load
-from mechsing.numeric import Precision, parse_precision
+from mechsing.numeric import Precision, float_drop_is_real, parse_precision
 from mechsing.screws import closure_system, group_mobility, grubler
 from mechsing.singularity import classify_configuration, mechanism_properties
+from mechsing.timelimit import (
+    EXACT_PROGRESS_DELAY,
+    EXACT_TIME_LIMIT,
+    TimeLimit,
+    TimeLimitExceeded,
+    activity,
+)
 
 __all__ = ["AnalysisResult", "ConfigurationResult", "analyze"]
 
@@ -116,15 +134,34 @@ def analyze(
     mechanism: Mechanism | str | Path,
     configs: list[str] | None = None,
     precision: Precision | str = "auto",
+    time_limit: float | None = EXACT_TIME_LIMIT,
+    progress: Callable[[str], None] | None = None,
 ) -> AnalysisResult:
-    """Analyse a mechanism (or a file) at the named configurations (default: all)."""
+    """Analyse a mechanism (or a file) at the named configurations (default: all).
+
+    ``time_limit``: seconds exact mode may spend on one configuration (None: no limit);
+    a configuration stopped there gets an ``error`` entry.  ``progress``: called with a
+    line of text when exact mode takes long (which configuration it works on); the
+    command line prints these lines on standard error.  Neither matters in the other
+    precision modes.
+    """
+    if time_limit is not None and not (
+        isinstance(time_limit, int | float) and 0 < time_limit < math.inf
+    ):
+        raise ValueError(
+            f"time_limit must be a positive number of seconds or None, not {time_limit!r}"
+        )
     mech = mechanism if isinstance(mechanism, Mechanism) else load(str(mechanism))
     with working_on(file=mech.path or mech.name):
-        return _analyze(mech, configs, precision)
+        return _analyze(mech, configs, precision, time_limit, progress)
 
 
 def _analyze(
-    mech: Mechanism, configs: list[str] | None, precision: Precision | str
+    mech: Mechanism,
+    configs: list[str] | None,
+    precision: Precision | str,
+    time_limit: float | None,
+    progress: Callable[[str], None] | None,
 ) -> AnalysisResult:
     if isinstance(precision, str):
         prec = parse_precision(precision)
@@ -145,8 +182,6 @@ def _analyze(
         names = names or ["reference"]
     for n in names:
         if n not in mech.configurations:
-            from mechsing.cli import UserError
-
             known = ", ".join(mech.configurations)
             raise UserError(
                 f"{mech.path or mech.name}: no configuration named {n!r}; the file has: {known}"
@@ -162,18 +197,136 @@ def _analyze(
         return models[key]
 
     first = Precision("float") if prec.mode == "auto" else prec
+    if prec.mode == "exact":
+        exact = _ExactRun(mech, names, time_limit, progress)
+        exact.prepare(lambda: stage(first))
     results = []
     for name in names:
         start = time.perf_counter()
+        if prec.mode == "exact":
+            res = exact.run(name, lambda name=name: _analyze_one(mech, name, stage(first)))
+            res.seconds = time.perf_counter() - start
+            results.append(res)
+            continue
         res = _analyze_one(mech, name, stage(first))
-        if prec.mode == "auto" and res.error is None and res.internals.get("undecided"):
-            res = _analyze_one(mech, name, stage(Precision("mp", 50)))
-            res.internals["escalated"] = True
+        if prec.mode == "auto" and res.error is None:
+            doubtful = _doubtful_drops(res)
+            if res.internals.get("undecided") or doubtful:
+                res = _analyze_one(mech, name, stage(Precision("mp", 50)))
+                res.internals["escalated"] = True
+                res.internals["escalated_for"] = doubtful or ["undecided"]
         res.seconds = time.perf_counter() - start
         results.append(res)
     km0 = stage(first)[0]
     props = mechanism_properties(mech, km0, results)
     return AnalysisResult(mech, prec, km0.length_scale, results, props)
+
+
+def _doubtful_drops(res: ConfigurationResult) -> list[str]:
+    """The float decisions of a configuration found singular that dropped a singular value
+    above float's rounding of it (closure residual included): auto re-decides them at mp:50.
+
+    Only a singular verdict can rest on such a drop (a rank decided too low makes a finding,
+    never removes one), so a regular configuration is not re-decided: far from singular,
+    auto costs what float costs."""
+    model = res.internals.get("model")
+    if model is None or res.singular is not True:
+        return []
+    data_error = (res.closure_residual or 0.0) / model.length_scale
+    return [
+        d["test"]
+        for d in res.decisions
+        if d["precision"] == "float" and float_drop_is_real(d["margin"], data_error)
+    ]
+
+
+class _ExactRun:
+    """Exact mode over a file's configurations: each within the time limit, with progress
+    lines once a configuration (or the file) takes long."""
+
+    def __init__(
+        self,
+        mech: Mechanism,
+        names: list[str],
+        limit: float | None,
+        progress: Callable[[str], None] | None,
+    ) -> None:
+        self.mech = mech
+        self.names = names
+        self.limit = limit
+        self.progress = progress
+        self.start = time.monotonic()
+        # "after a few seconds", and always before a short limit stops a configuration
+        self.delay = EXACT_PROGRESS_DELAY if limit is None else min(EXACT_PROGRESS_DELAY, limit / 2)
+        self._announced: set[str] = set()
+        self._lock = threading.Lock()
+
+    def _say(self, key: str, text: str) -> None:
+        with self._lock:
+            self._announced.add(key)
+        if self.progress is not None:
+            self.progress(f"exact: {text}")
+
+    def _watch(self, key: str, what: str) -> threading.Timer | None:
+        """A progress line about ``what`` after ``delay`` seconds, at once when the file has
+        already taken that long."""
+        if self.progress is None:
+            return None
+        limit = "no time limit" if self.limit is None else f"time limit {self.limit:g} s"
+        text = f"{what}; {limit} per configuration (--time-limit S changes it)"
+        if time.monotonic() - self.start >= self.delay:
+            self._say(key, text)
+            return None
+        timer = threading.Timer(self.delay, self._say, (key, text))
+        timer.daemon = True
+        timer.start()
+        return timer
+
+    def prepare(self, build: Callable[[], Any]) -> None:
+        """Build the exact model of the geometry (once per file) within the time limit."""
+        timer = self._watch("", f"preparing the exact geometry of {self.mech.name!r}")
+        try:
+            with TimeLimit(self.limit):
+                build()
+        except TimeLimitExceeded:
+            from mechsing.cli import UserError
+
+            raise UserError(
+                f"{self.mech.path or self.mech.name}: exact mode could not prepare the mechanism's "
+                f"geometry within {self.limit:g} s (sympy could not simplify its exact axes, points "
+                "and reference screws in time); use --precision mp:50 (or auto), or allow more time "
+                "with --time-limit S"
+            ) from None
+        finally:
+            if timer is not None:
+                timer.cancel()
+
+    def run(self, name: str, work: Callable[[], ConfigurationResult]) -> ConfigurationResult:
+        """``work()`` (the analysis of configuration ``name``) within the time limit."""
+        i = self.names.index(name) + 1
+        timer = self._watch(name, f"working on configuration {name!r} ({i} of {len(self.names)})")
+        limit = TimeLimit(self.limit)
+        try:
+            with limit:
+                res = work()
+        except TimeLimitExceeded as exc:
+            doing = exc.activity or "analysing it"
+            res = ConfigurationResult(name, "exact")
+            res.error = (
+                f"configuration {name!r}: exact mode stopped after {self.limit:g} s (its time "
+                f"limit) while {doing}: sympy could not finish that in time; use --precision "
+                "mp:50 (or auto) for this configuration, or allow exact mode more time with "
+                "--time-limit S"
+            )
+        finally:
+            if timer is not None:
+                timer.cancel()
+        with self._lock:
+            announced = name in self._announced
+        if announced and self.progress is not None:
+            outcome = "stopped" if res.error is not None and limit.exceeded else "done"
+            self.progress(f"exact: configuration {name!r}: {outcome} after {limit.elapsed:.1f} s")
+        return res
 
 
 def _analyze_one(
@@ -192,8 +345,9 @@ def _analyze_one_in_context(
     prec = model.precision
     out = ConfigurationResult(name, str(prec))
     try:
-        closed = closer.solve(name)
-    except ClosureError as exc:
+        with activity("closing the configuration"):
+            closed = closer.solve(name)
+    except ConfigurationError as exc:
         out.error = str(exc)
         return out
     q = closed.q
@@ -201,7 +355,30 @@ def _analyze_one_in_context(
     out.closure_residual = float(closed.residual)
     out.underdetermined = closed.underdetermined
     out.notes.extend(closed.notes)
-    cs = closure_system(model, q, prec)
+    with activity("deciding the ranks of the closure system, of its loops and their subgroups"):
+        cs = closure_system(model, q, prec)
+        undecided = _closure_entries(mech, cs, out)
+        inst = cs.nullity
+        out.mobility = {
+            "grubler": grubler(model),
+            "group": group_mobility(model, cs.loops),
+            "instantaneous": inst,
+            "generic": inst,
+            "finite": inst,
+        }
+    out.internals.update(
+        {"model": model, "q": q, "closure": cs, "undecided": undecided, "closed": closed}
+    )
+    with activity("classifying the singularities (output chain, input/output and cone tests)"):
+        out.singularities = classify_configuration(mech, model, out)
+    if any(f["class"] == "undecided" for f in out.singularities):
+        out.internals["undecided"] = True  # auto re-decides the configuration at mp:50
+    return out
+
+
+def _closure_entries(mech: Mechanism, cs: Any, out: ConfigurationResult) -> bool:
+    """The closure rank and the loops of a configuration (its JSON entries and decisions);
+    True when one of them is undecided."""
     rank = cs.rank
     out.closure_rank = {
         "rank": rank.rank,
@@ -228,18 +405,4 @@ def _analyze_one_in_context(
             undecided = True
         out.loops.append(entry)
         out.decisions.append(ls.rank.record(f"loop {'-'.join(ls.loop.joints)}"))
-    inst = cs.nullity
-    out.mobility = {
-        "grubler": grubler(model),
-        "group": group_mobility(model, cs.loops),
-        "instantaneous": inst,
-        "generic": inst,
-        "finite": inst,
-    }
-    out.internals.update(
-        {"model": model, "q": q, "closure": cs, "undecided": undecided, "closed": closed}
-    )
-    out.singularities = classify_configuration(mech, model, out)
-    if any(f["class"] == "undecided" for f in out.singularities):
-        out.internals["undecided"] = True  # auto re-decides the configuration at mp:50
-    return out
+    return undecided

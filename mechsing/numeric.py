@@ -52,6 +52,7 @@ __all__ = [
     "exact_is_zero",
     "eigh",
     "eigsy",
+    "float_drop_is_real",
     "lstsq",
     "max_abs",
     "norm",
@@ -165,6 +166,23 @@ SCAN_SCREEN_FACTOR = 10.0
 #: this of J (backward error of LU), so the bound is lowered by as much
 SCAN_ROUNDING_FACTOR = 16.0
 
+
+#: auto re-decides at mp:50 a float rank decision whose largest dropped singular value
+#: exceeds this many times float's own rounding of it (:func:`float_drop_is_real`).  A
+#: computed singular value is off by at most the norm of the error in the matrix (Weyl):
+#: the rounding of its entries, about eps |M|_F (recorded as the margin's ``rounding``),
+#: plus the SVD's backward error and the roundings that built each entry (products of
+#: exponentials, Jacobians, earlier float factorisations) -- this factor -- plus the
+#: effect of a configuration closed only to a residual r: r / L |M|.  Singular values
+#: that are exactly zero come out below 2 eps |M|_F on the examples and the
+#: near-singular families, and up to about 5 eps |M|_F on matrices built from other
+#: float factorisations (the legs' constraint wrenches); 10^-14 from a singularity the
+#: deciding singular values of benchmarks/speed_accuracy.py's families are 5 to 20
+#: eps |M|_F.  A drop above the bound is a singular value that float's thresholds call
+#: zero but that float itself sees is not: auto re-decides the configuration at mp:50
+#: when float found it singular (at a singular configuration a zero above the bound only
+#: costs that second analysis; a regular one is never re-decided).
+FLOAT_ROUNDING_FACTOR = 4.0
 
 #: exact mode first evaluates a quantity to this many digits: clearly non-zero
 #: there (above 10^-(EXACT_ZERO_DIGITS - 15) of its scale) it is not zero, and
@@ -935,7 +953,9 @@ class Margin:
     decision was ``kept / sigma_max >= tau_hi`` and ``dropped / sigma_max <=
     tau_lo``).  ``eig_margin`` where a quadratic form was decided (relative to
     its largest eigenvalue).  In exact mode ``kept`` is the smallest non-zero
-    pivot (30 digits) and there is no ``sigma_max``.
+    pivot (30 digits) and there is no ``sigma_max``.  ``rounding`` (float only): the
+    rounding level of the singular values, eps times the Frobenius norm of the matrix
+    (or of the reference it was decided against); see :func:`float_drop_is_real`.
     """
 
     kept: float | None
@@ -945,6 +965,7 @@ class Margin:
     length_scale: float
     eig_margin: float | None = None
     sigma_max: float | None = None
+    rounding: float | None = None
 
     def to_json(self) -> dict[str, Any]:
         d: dict[str, Any] = {
@@ -956,6 +977,8 @@ class Margin:
         }
         if self.sigma_max is not None:
             d["sigma_max"] = self.sigma_max
+        if self.rounding is not None:
+            d["rounding"] = self.rounding
         if self.eig_margin is not None:
             d["eig_margin"] = self.eig_margin
         return d
@@ -1104,6 +1127,7 @@ def decide_rank(
     if prec.mode == "exact":
         return _exact_rank(arr, prec, tol, length_scale, want_spaces)
     Um = Vm = None
+    rounding: float | None = None  # float's rounding level of the singular values
     if prec.mode == "mp":
         with prec.context():
             A = np.array(
@@ -1128,11 +1152,23 @@ def decide_rank(
             smax = float(reference)
         rel = [float(x / smax) if smax > 0 else 0.0 for x in s_np]
         sigma = tuple(float(x) for x in s_np)
+        # the entries' rounding: of F itself, or of the factors of a product decided
+        # against the norm of its first factor (``reference``)
+        rounding = FLOAT.eps * max(float(np.linalg.norm(F)), float(reference or 0.0))
     rank, bounds = _split_rank(rel, tol)
     r_eff = rank if rank is not None else bounds[0]
     kept = sigma[r_eff - 1] if r_eff else None
     dropped = sigma[r_eff] if r_eff < len(sigma) else None
-    margin = Margin(kept, dropped, tol.tau_lo, tol.tau_hi, length_scale, None, float(smax))
+    margin = Margin(
+        kept,
+        dropped,
+        tol.tau_lo,
+        tol.tau_hi,
+        length_scale,
+        None,
+        float(smax),
+        rounding,
+    )
     ns = rs = ls = None
     if want_spaces:
         k = r_eff
@@ -1144,6 +1180,24 @@ def decide_rank(
         rs = Um[:, :k].copy()
         ls = Um[:, k:]
     return RankDecision(rank, sigma, margin, str(prec), bounds, ns, rs, ls)
+
+
+def float_drop_is_real(margin: Margin | dict[str, Any], data_error: float = 0.0) -> bool:
+    """Did a float rank decision drop a singular value that float itself sees is not zero?
+
+    True when the largest dropped singular value exceeds :data:`FLOAT_ROUNDING_FACTOR`
+    times ``rounding + data_error * sigma_max``: ``rounding`` is the margin's (eps |M|_F),
+    ``data_error`` the relative error of the configuration the matrix was built at (its
+    closure residual divided by the characteristic length).  Such a drop is decided by the
+    two thresholds but not by the data: ``auto`` re-decides it at mp:50, as it does an
+    undecided rank.  False for mp and exact decisions, and when nothing was dropped.
+    ``margin`` is a :class:`Margin` or its JSON (a decision record's ``margin``).
+    """
+    m = margin.to_json() if isinstance(margin, Margin) else margin
+    rounding, dropped, smax = m.get("rounding"), m.get("dropped"), m.get("sigma_max")
+    if rounding is None or dropped is None or not smax:
+        return False
+    return dropped > FLOAT_ROUNDING_FACTOR * (rounding + data_error * smax)
 
 
 def _exact_rank(

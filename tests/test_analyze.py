@@ -516,12 +516,13 @@ def test_margin_dropped_is_null_when_nothing_is_dropped(precision: str) -> None:
 
 
 def test_exact_refuses_inexact_configurations() -> None:
-    """`exact` needs every joint value given exactly; crank-30 gives only the input: status 2."""
+    """`exact` needs every joint value given exactly; crank-30 gives only the input: that
+    configuration gets an error entry, status 3."""
     rc, out, err = run_cli(
         ["analyze", str(EXAMPLES / "fourbar.yaml"), "--precision", "exact", "--config", "crank-30"]
     )
-    assert rc == 2
-    assert "exact" in err
+    assert rc == 3
+    assert "'crank-30'" in err and "exact" in err
 
 
 # ============================================================================ 5. options

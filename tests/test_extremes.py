@@ -7,7 +7,7 @@ Every expected answer comes from outside the code under test:
    and ``exact`` (``auto`` is tests/test_analyze.py ``test_scale_invariance``); DESIGN.md principle
    4 says the verdicts, singular values and margins do not change.  The published facts of the
    examples (tests/mechanisms.py ``PUBLISHED``) are checked in the modes that take the file;
-   ``exact`` refuses a configuration that is not given exactly with status 2.
+   ``exact`` refuses a configuration that is not given exactly (an error entry, status 3).
 2. joints within 1e-12 of pi: a parallelogram turned over (crank angle phi on its parallelogram
    branch: joint values (phi, -phi, phi, -phi) close for every phi, closed form) and a UR5 with
    three joints at pi (det J factors of the UR5 header, theory.md section 6 row 22); poses against
@@ -401,13 +401,13 @@ REFUSED = [n for n in EXAMPLE_FILES if _partial_configuration(n) is not None]
 def test_exact_refuses_configurations_not_given_exactly(
     name: str, scale: str, scaled_dir: Path
 ) -> None:
-    """DESIGN.md: exact needs every joint value given exactly, otherwise exit status 2 with a
-    message naming the configuration (no traceback), at every scale."""
+    """Exact needs every joint value given exactly, otherwise that configuration gets
+    an error entry naming it (exit status 3, no traceback), at every scale."""
     cname = _partial_configuration(name)
     assert cname is not None
     path = EXAMPLES / name if scale == "1" else scaled_file(scaled_dir, name, scale)
     rc, out, err = run_cli(["analyze", str(path), "--precision", "exact", "--config", cname])
-    assert rc == 2, (rc, err)
+    assert rc == 3, (rc, err)
     assert "Traceback" not in err
     assert f"'{cname}'" in err and "exact" in err, err
 
@@ -549,7 +549,8 @@ def test_exact_mode_at_pi_minus_a_rational_multiple_of_pi(tmp_path: Path) -> Non
 def test_exact_refuses_angles_that_are_not_exact_data(tmp_path: Path) -> None:
     """Two coaxial revolutes turned by 1 and -1 rad close (closed form), but 1 rad is not exact
     data (DESIGN.md: angles as rational multiples of pi or atan/asin/acos of algebraic numbers):
-    exact refuses with status 2 naming the configuration, and does not claim non-closure."""
+    exact refuses it (an error entry, status 3) naming the configuration, and does not claim
+    non-closure."""
     text = """mechanism: coaxial-RR
 bodies: [ground, wheel]
 joints:
@@ -561,7 +562,7 @@ configurations:
     path = write(tmp_path, "coaxial_rr", text)
     rc, _out, err = run_cli(["analyze", str(path), "--precision", "exact"])
     assert "does not close" not in err
-    assert rc == 2, err
+    assert rc == 3, err
     assert "'one-radian'" in err and "Traceback" not in err
 
 
@@ -1156,8 +1157,9 @@ def test_ur5_wrist_exactly_singular_and_1e_30_off(tmp_path: Path) -> None:
     regular."""
     path = ur5_wrist(tmp_path)
     # off-1e-10 gives J5 = 1/10^10 rad, not exact data (sin is transcendental): exact refuses it
-    rc, _out, err = run_cli(["analyze", str(path), "--precision", "exact"])
-    assert rc == 2 and "'off-1e-10'" in err and "not exact data" in err, err
+    # (its error entry; the other configurations are analysed)
+    rc, _out, err = run_cli(["analyze", str(path), "--precision", "exact", "--config", "off-1e-10"])
+    assert rc == 3 and "'off-1e-10'" in err and "not exact data" in err, err
     exact_names = [n for n in configuration_names(path) if n != "off-1e-10"]
     exact = by_name(
         analyze_json(

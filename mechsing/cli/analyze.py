@@ -1,13 +1,19 @@
 """Analyse a mechanism file: loops, ranks, mobility and singularities at its configurations.
 
 Without --config every configuration of the file is analysed.  Exit status:
-0 success, 2 bad input, 3 some configuration could not be closed (the others
-are still reported; the failed one carries "error").
+0 success, 2 bad input, 3 some configuration could not be analysed (not
+closed, joint values exact mode cannot take, or stopped by exact mode's time
+limit): the others are still reported, the failed one carries "error".
+
+Exact mode works on each configuration for at most --time-limit seconds
+(default 60); when a file takes long it says on standard error which
+configuration it is working on.
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from pathlib import Path
 
@@ -23,6 +29,14 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--precision", default="auto", metavar="MODE", help="auto (default), float, mp:N or exact"
     )
+    p.add_argument(
+        "--time-limit",
+        type=_seconds,
+        default=None,
+        metavar="S",
+        help="seconds exact mode may spend on one configuration before it stops it with an "
+        f"error entry (default {_default_limit():g})",
+    )
     p.add_argument("--format", choices=("text", "json", "md"), default="text")
     p.add_argument(
         "-o", "--output", metavar="OUT", help="write the report to OUT instead of standard output"
@@ -32,6 +46,30 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
 
 
+def _default_limit() -> float:
+    # the time-limit module imports no numerics: building the parser stays fast
+    from mechsing.timelimit import EXACT_TIME_LIMIT
+
+    return EXACT_TIME_LIMIT
+
+
+def _seconds(text: str) -> float:
+    """--time-limit: a positive, finite number of seconds."""
+    try:
+        x = float(text)
+    except ValueError:
+        x = math.nan
+    if not 0 < x < math.inf:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a positive number of seconds (e.g. --time-limit 120)"
+        )
+    return x
+
+
+def _progress(line: str) -> None:
+    print(f"mechsing: {line}", file=sys.stderr, flush=True)
+
+
 def run(args: argparse.Namespace) -> int:
     from mechsing.analysis import analyze
     from mechsing.cli import UserError, load_mechanism, precision_option
@@ -39,7 +77,8 @@ def run(args: argparse.Namespace) -> int:
 
     prec = precision_option(args.precision)
     mech = load_mechanism(args.file, args.verbose)
-    result = analyze(mech, args.config, prec)
+    limit = args.time_limit if args.time_limit is not None else _default_limit()
+    result = analyze(mech, args.config, prec, time_limit=limit, progress=_progress)
     text = render(result, args.format)
     if args.output:
         try:

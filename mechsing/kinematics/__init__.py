@@ -4,6 +4,8 @@ from mechsing.kinematics.closure import (
     ClosedConfiguration,
     Closer,
     ClosureError,
+    ConfigurationError,
+    ExactDataError,
     solve_configuration,
 )
 from mechsing.kinematics.model import JointKinematics, KinematicModel, axis_points
@@ -12,6 +14,8 @@ __all__ = [
     "ClosedConfiguration",
     "Closer",
     "ClosureError",
+    "ConfigurationError",
+    "ExactDataError",
     "JointKinematics",
     "KinematicModel",
     "axis_points",

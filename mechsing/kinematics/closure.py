@@ -49,6 +49,7 @@ from mechsing.numeric import (
     svd_r,
     to_float,
 )
+from mechsing.timelimit import activity
 
 #: largest step of a given coordinate: radians, or this times L for a length
 _MAX_STEP = 0.1
@@ -62,13 +63,23 @@ _MAX_STEPS = 20000
 _MAX_ATTEMPTS_PER_STEP = 20
 
 
-class ClosureError(UserError):
-    """A configuration that cannot be closed (exit status 3 for ``analyze``)."""
+class ConfigurationError(UserError):
+    """One configuration that cannot be analysed while the others can: ``analyze`` gives it
+    an ``error`` entry, reports the others and exits with status 3."""
 
     def __init__(self, message: str, configuration: str, residual: float | None = None) -> None:
         super().__init__(message, status=3)
         self.configuration = configuration
         self.residual = residual
+
+
+class ClosureError(ConfigurationError):
+    """A configuration that cannot be closed (exit status 3 for ``analyze``)."""
+
+
+class ExactDataError(ConfigurationError):
+    """Exact mode cannot take a configuration: a joint value is missing (it would be solved
+    numerically), is not exact data, or sympy cannot prove that the loops close exactly."""
 
 
 @dataclass
@@ -118,6 +129,16 @@ class Closer:
         if len(given) == n:
             out = self._check(cfg, target)
         else:
+            if self.model.chords and self.model.precision.mode == "exact":
+                # the joints not given would be solved numerically: refused before solving
+                # the start configuration (whose own problems are not this one's)
+                where = f"configuration {cfg.name!r}" + (f" (line {cfg.line})" if cfg.line else "")
+                raise ExactDataError(
+                    f"{where}: exact precision needs every joint value given exactly (it gives "
+                    f"{len(given)} of {n} coordinates; the others would be solved numerically); "
+                    "give them all, or use --precision auto, float or mp:N for this configuration",
+                    cfg.name,
+                )
             start_name = cfg.start if cfg.start else None
             if start_name is None or (cfg.is_reference and not cfg.values):
                 q0 = self.model.zeros()
@@ -227,19 +248,21 @@ class Closer:
         for x in entries:
             # the stable forms of exp write 1 - cos a as 2 sin(a/2)**2: trigsimp folds the
             # half angles back (cos(atan(4/3)) is 3/5) when expansion alone cannot tell
-            if (
-                sympy.expand_trig(x).is_algebraic is not True
-                and sympy.expand_trig(sympy.trigsimp(x)).is_algebraic is not True
-            ):
+            with activity(f"showing that the value of joint {jk.name!r} is exact data"):
+                algebraic = sympy.expand_trig(x).is_algebraic is True or (
+                    sympy.expand_trig(sympy.trigsimp(x)).is_algebraic is True
+                )
+            if not algebraic:
                 where = f"configuration {cfg.name!r}, joint {jk.name!r}" + (
                     f" (line {cfg.line})" if cfg.line else ""
                 )
                 shown = ", ".join(str(v) for v in coords)
-                raise UserError(
+                raise ExactDataError(
                     f"{where}: the value [{shown}] is not exact data (sympy cannot show that "
                     'the rotation it gives is algebraic); exact mode needs angles such as "pi/6", '
                     '"atan(1/2)" or "2*atan(1/3)"; use --precision auto, float or mp:N for this '
-                    "configuration"
+                    "configuration",
+                    cfg.name,
                 )
 
     def _coordinates_of_displacement(
@@ -340,18 +363,20 @@ class Closer:
         m = self.model
         deltas = m.chord_residuals(q)
         if m.precision.mode == "exact":
-            proofs = [
-                [exact_is_zero(x, m.length_scale) for x in (D - m.backend.eye(4)).flat]
-                for D in deltas
-            ]
+            with activity("proving that the loops close exactly"):
+                proofs = [
+                    [exact_is_zero(x, m.length_scale) for x in (D - m.backend.eye(4)).flat]
+                    for D in deltas
+                ]
             bad = [jk.name for jk, pr in zip(m.chords, proofs, strict=True) if False in pr]
             unproven = [jk.name for jk, pr in zip(m.chords, proofs, strict=True) if None in pr]
             res = m.residual_norm(deltas)
             if unproven and not bad:
-                raise UserError(
+                raise ExactDataError(
                     f"configuration {cfg.name!r}: {self._loop_named(unproven[0])} closes to "
                     f"{EXACT_ZERO_DIGITS} digits but sympy cannot prove that it closes exactly; "
-                    "use --precision mp:N for this configuration"
+                    "use --precision mp:N for this configuration",
+                    cfg.name,
                 )
             if bad:
                 raise ClosureError(
@@ -401,11 +426,6 @@ class Closer:
         self, cfg: Configuration, q0: np.ndarray, target: np.ndarray, given: tuple[int, ...]
     ) -> ClosedConfiguration:
         m = self.model
-        if m.precision.mode == "exact":
-            raise UserError(
-                f"configuration {cfg.name!r}: exact precision needs every joint value given exactly "
-                f"(it gives {len(given)} of {m.n} coordinates); use --precision auto, float or mp:N"
-            )
         fm = KinematicModel(m.mech, "float") if m.precision.mode != "float" else m
         L = fm.length_scale
         gmask = np.zeros(m.n, dtype=bool)

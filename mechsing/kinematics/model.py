@@ -70,6 +70,42 @@ def axis_points(mech: Mechanism) -> list[list[Any]]:
     return pts
 
 
+def refuse_inexact_geometry(mech: Mechanism) -> None:
+    """Exact mode needs exact data: every number of the geometry (axes, points,
+    pitches, the output point, the characteristic length) must be one that sympy proves
+    algebraic.  Otherwise the whole file is refused (MechanismError, exit status 2), naming
+    the joint, the key and the line."""
+    import sympy
+
+    from mechsing.model import MechanismError
+
+    def numbers(x: Any) -> list[Any]:
+        if isinstance(x, tuple | list):
+            return [y for v in x for y in numbers(v)]
+        return [x]
+
+    items: list[tuple[str, str, Any, int | None]] = [
+        (f"joint {j.name!r}", key, value, j.line)
+        for j in mech.joints
+        for key, value in j.params.items()
+    ]
+    if mech.output is not None and mech.output.point is not None:
+        items.append(("output", "point", mech.output.point, mech.output.line))
+    if mech.characteristic_length is not None:
+        items.append(("characteristic_length", "value", mech.characteristic_length, None))
+    for item, key, value, line in items:
+        for x in numbers(value):
+            if sympy.expand_trig(sympy.sympify(x)).is_algebraic is not True:
+                raise MechanismError(
+                    f"{key} contains {x}, which is not exact data (sympy cannot show that it is "
+                    "algebraic); exact mode needs rational or algebraic lengths and axes (e.g. "
+                    '"sqrt(3)/2", "cos(pi/12)"); use --precision auto, float or mp:N for this file',
+                    path=mech.path,
+                    line=line,
+                    item=item,
+                )
+
+
 class KinematicModel:
     """Poses, screws and closure residuals of a mechanism in one precision mode.
 
@@ -88,6 +124,8 @@ class KinematicModel:
         self.precision = parse_precision(precision) if isinstance(precision, str) else precision
         if self.precision.mode == "auto":
             self.precision = Precision("float")
+        if self.precision.mode == "exact":
+            refuse_inexact_geometry(mech)
         self.backend = self.precision.backend
         pts = axis_points(mech)
         override = mech.characteristic_length

@@ -180,7 +180,7 @@ def render_text(result: Any, markdown: bool = False) -> str:
             else f"Configuration {c['name']} ({c['precision']}):",
         ]
         if "error" in c:
-            lines.append(f"{bullet}could not be closed: {c['error']}")
+            lines.append(f"{bullet}not analysed: {c['error']}")
             continue
         vals = ", ".join(
             f"{k} = [{', '.join(f'{x:.6g}' for x in v)}]" for k, v in c["joints"].items()

@@ -13,6 +13,7 @@ import numpy as np
 from mechsing import lie
 from mechsing.numeric import to_float
 from mechsing.singularity.serial import GENERIC_SAMPLES, chain_system, serial_finding
+from mechsing.timelimit import activity
 
 __all__ = [
     "GENERIC_SAMPLES",
@@ -77,9 +78,10 @@ def _tree_serial(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
 
     fm = float_model(mech, model)
     # decided at the analysis precision (so auto can re-decide it at mp:50) ...
-    poses = model.poses(q)
-    x = _output_point(mech, model, q, poses)
-    here = chain_system(model, model.current_screws(q, poses), cols, x, model.precision)
+    with activity("deciding the rank of the output chain's screw system"):
+        poses = model.poses(q)
+        x = _output_point(mech, model, q, poses)
+        here = chain_system(model, model.current_screws(q, poses), cols, x, model.precision)
     xf = None if x is None else np.asarray(to_float(x), dtype=float)
     # ... against the generic rank found at random configurations (float)
     generic = here.rank.rank or 0
@@ -125,7 +127,8 @@ def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str,
     for ls in cs.loops:
         if ls.rank.rank is None:
             findings.append(_undecided(f"loop {'-'.join(ls.loop.joints)}", ls.rank))
-    local = local_analysis(mech, model, result.internals["q"], cs)
+    with activity("running the mobility, input/output and tangent-cone tests"):
+        local = local_analysis(mech, model, result.internals["q"], cs)
     result.mobility["generic"] = local.generic
     result.mobility["finite"] = local.finite
     result.internals["local"] = local

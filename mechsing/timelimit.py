@@ -1,0 +1,196 @@
+"""A time limit that really interrupts a computation (exact mode's limit per configuration).
+
+sympy can spend minutes inside a single call (``simplify``, ``is_algebraic``, an echelon
+form of algebraic numbers), so a deadline checked between the steps of an analysis does not
+stop it.  :class:`TimeLimit` interrupts the running Python code wherever it is:
+
+* in the main thread with ``SIGALRM`` (:func:`signal.setitimer`): the handler raises
+  :class:`TimeLimitExceeded` at the next bytecode the interpreter runs; the previous handler is
+  put back afterwards, and an interval timer the caller had set is re-armed with the time it had
+  left (it is postponed, not lost);
+* in any other thread, where Python delivers no signals, a watchdog thread raises the same
+  exception in the working thread (CPython's ``PyThreadState_SetAsyncExc``), with the same
+  effect.
+
+A worker process would also survive a long call into C code (neither way above interrupts a
+single huge integer product before it returns), but it would have to send the whole analysis
+(sympy arrays, models, closures) back to the parent and pay a process start per configuration;
+mechsing's exact computations are Python code (sympy, mpmath), which both ways interrupt
+within microseconds.  Interrupting sympy leaves it consistent: its caches and assumptions keep
+only results that were completed.
+
+:class:`TimeLimitExceeded` derives from ``BaseException``, like ``KeyboardInterrupt``, so that
+no ``except Exception`` on the way (sympy has many) swallows it; should one swallow it anyway,
+it is raised again every :data:`REPEAT` seconds until the block is left.  :func:`activity`
+names what the code is doing, so that the exception can say what was cut short.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import signal
+import threading
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from types import TracebackType
+
+__all__ = [
+    "EXACT_PROGRESS_DELAY",
+    "EXACT_TIME_LIMIT",
+    "REPEAT",
+    "TimeLimit",
+    "TimeLimitExceeded",
+    "activity",
+]
+
+#: seconds exact mode may spend on one configuration (``mechsing analyze --time-limit``,
+#: ``mechsing.analyze(time_limit=...)``): sympy can take hours to prove what mp:50 decides
+#: in a second, so a configuration still unproved then is stopped with an error entry
+EXACT_TIME_LIMIT = 60.0
+#: exact mode says which configuration it works on (standard error, command line) once a
+#: configuration, or the file, has taken this many seconds
+EXACT_PROGRESS_DELAY = 3.0
+#: seconds between repeated interruptions, should some code swallow the first one
+REPEAT = 0.25
+
+
+class TimeLimitExceeded(BaseException):
+    """The block of a :class:`TimeLimit` ran longer than its limit.
+
+    ``activity``: the innermost :func:`activity` the code was in when it was interrupted
+    (None when it was in none).
+    """
+
+    activity: str | None = None
+
+
+@contextmanager
+def activity(text: str) -> Iterator[None]:
+    """Name what the block does: a :class:`TimeLimitExceeded` raised inside it carries ``text``
+    (the innermost activity wins)."""
+    try:
+        yield
+    except TimeLimitExceeded as exc:
+        if exc.activity is None:
+            exc.activity = text
+        raise
+
+
+class TimeLimit:
+    """``with TimeLimit(seconds):`` raises :class:`TimeLimitExceeded` inside the block when it
+    runs longer than ``seconds`` (None: no limit).
+
+    After the block, ``elapsed`` is its wall time in seconds and ``exceeded`` says whether the
+    limit was reached.
+    """
+
+    def __init__(self, seconds: float | None) -> None:
+        if seconds is not None and not seconds > 0:
+            raise ValueError(f"a time limit must be a positive number of seconds, not {seconds!r}")
+        self.seconds = seconds
+        self.exceeded = False
+        self.elapsed = 0.0
+        self._start = 0.0
+        self._closing = False
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
+        self._watchdog: threading.Thread | None = None
+        self._thread_id = 0
+        self._old_handler: object = None
+        self._old_timer: tuple[float, float] = (0.0, 0.0)
+        self._main = False
+
+    # ------------------------------------------------------------------ entering
+
+    def __enter__(self) -> TimeLimit:
+        self._start = time.monotonic()
+        if self.seconds is None:
+            return self
+        self._main = threading.current_thread() is threading.main_thread() and hasattr(
+            signal, "SIGALRM"
+        )
+        if self._main:
+            try:
+                self._old_handler = signal.signal(signal.SIGALRM, self._on_alarm)
+            except ValueError:  # signals unavailable here (an embedded interpreter)
+                self._main = False
+        if self._main:
+            self._old_timer = signal.setitimer(signal.ITIMER_REAL, self.seconds, REPEAT)
+        else:
+            self._thread_id = threading.get_ident()
+            self._watchdog = threading.Thread(
+                target=self._watch, name="mechsing-time-limit", daemon=True
+            )
+            self._watchdog.start()
+        return self
+
+    def _on_alarm(self, signum: int, frame: object) -> None:
+        if self._closing:
+            return
+        self.exceeded = True
+        raise TimeLimitExceeded
+
+    def _watch(self) -> None:
+        assert self.seconds is not None
+        if self._stop.wait(self.seconds):
+            return
+        while True:
+            with self._lock:
+                if self._closing:
+                    return
+                self.exceeded = True
+                _raise_in_thread(self._thread_id, TimeLimitExceeded)
+            if self._stop.wait(REPEAT):
+                return
+
+    # ------------------------------------------------------------------ leaving
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        if self.seconds is not None:
+            # an interruption may arrive while we disarm: disarm again until it is done
+            while True:
+                try:
+                    self._disarm()
+                    break
+                except TimeLimitExceeded:
+                    continue
+        self.elapsed = time.monotonic() - self._start
+        if self.exceeded and exc_type is None:
+            # the limit fell while leaving the block: it was still reached
+            raise TimeLimitExceeded
+
+    def _disarm(self) -> None:
+        if self._main:
+            self._closing = True
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            # None: the previous handler was not set from Python; the default is put back
+            old = signal.SIG_DFL if self._old_handler is None else self._old_handler
+            signal.signal(signal.SIGALRM, old)  # type: ignore[arg-type]
+            delay, interval = self._old_timer
+            if delay > 0:
+                # the caller's own timer, postponed by the block: re-armed with what it had left
+                left = delay - (time.monotonic() - self._start)
+                signal.setitimer(signal.ITIMER_REAL, max(left, 1e-6), interval)
+                self._old_timer = (0.0, 0.0)
+            self._main = False
+        elif self._watchdog is not None:
+            with self._lock:
+                self._closing = True
+                self._stop.set()
+                if self.exceeded:
+                    # an interruption sent but not yet delivered must not escape the block
+                    _raise_in_thread(self._thread_id, None)
+            self._watchdog = None
+
+
+def _raise_in_thread(thread_id: int, exc: type[BaseException] | None) -> None:
+    """Raise ``exc`` in the thread (None: cancel an exception not yet delivered)."""
+    ctypes.pythonapi.PyThreadState_SetAsyncExc(
+        ctypes.c_ulong(thread_id), ctypes.py_object(exc) if exc is not None else None
+    )
