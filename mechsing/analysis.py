@@ -103,7 +103,7 @@ class ConfigurationResult:
 
 @dataclass
 class AnalysisResult:
-    """The analysis of a mechanism; :meth:`to_json` is the JSON contract of DESIGN.md."""
+    """The analysis of a mechanism; :meth:`to_json` is the JSON contract (README)."""
 
     mechanism: Mechanism
     precision: Precision

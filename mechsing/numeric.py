@@ -21,7 +21,7 @@ value is the exact limit.
 
 Decision tolerances (is this singular value zero?) live here and nowhere else:
 :class:`Tolerances` gives the two rank thresholds ``tau_lo`` and ``tau_hi`` of
-each mode (DESIGN.md, "Rank decisions"), and :func:`decide_rank` returns a
+each mode (the two-threshold rule), and :func:`decide_rank` returns a
 rank *with its margin* or ``None`` (undecided).
 """
 
@@ -86,7 +86,7 @@ MEMBERSHIP_RTOL_FLOAT = 1e-9
 #: norm below which a geometric vector given by a user (an axis, a normal) is
 #: refused as near-zero (relative to the largest length of the mechanism or 1).
 NEAR_ZERO_VECTOR = 1e-9
-#: support threshold of a kernel vector (DESIGN.md: entries above 1e-9 of the largest)
+#: support threshold of a kernel vector (entries above 1e-9 of the largest)
 SUPPORT_RTOL = 1e-9
 #: closure acceptance in float mode, relative to the characteristic length L
 #: (mp:N accepts at 10^(15-N) L, never looser than this)
@@ -491,7 +491,7 @@ class Precision:
 def parse_precision(text: str) -> Precision:
     """Parse ``float``, ``mp:N`` (20 <= N <= 10000), ``exact`` or ``auto``.
 
-    N starts at 20: below it DESIGN.md's thresholds cross (``tau_lo = 10^(10-N)``
+    N starts at 20: below it the two thresholds cross (``tau_lo = 10^(10-N)``
     exceeds ``tau_hi = 10^(-N/2)``), so no rank could be decided consistently.
 
     Raises
@@ -550,7 +550,7 @@ def order3_residual_rtol(prec: Precision) -> float:
 
 
 # ---------------------------------------------------------------------------
-# Characteristic length and scaling (DESIGN.md, "Characteristic length L")
+# Characteristic length and scaling (the commensurate metric)
 # ---------------------------------------------------------------------------
 
 
@@ -944,7 +944,7 @@ def pinv_truncated(U: np.ndarray, s: np.ndarray, Vt: np.ndarray, r: int) -> np.n
 
 @dataclass(frozen=True)
 class Margin:
-    """How far a decision was from flipping (DESIGN.md "margin").
+    """How far a decision was from flipping (the JSON "margin").
 
     ``kept``: the smallest kept singular value (None if rank 0); ``dropped``:
     the largest dropped one (None when every singular value is kept), both in
@@ -1058,7 +1058,7 @@ def _slack(m: Margin) -> float:
 
 
 def rank_bounds(rel: Any, tol: Tolerances) -> tuple[np.ndarray, np.ndarray]:
-    """The two-threshold rule (DESIGN.md "Rank decisions") on singular values
+    """The two-threshold rank rule on singular values
     relative to the largest, batched over leading axes: (lowest, highest) rank
     consistent with them, i.e. the counts ``sigma >= tau_hi`` and ``sigma > tau_lo``.
     The rank is decided when the two agree."""
