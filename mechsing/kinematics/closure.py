@@ -145,9 +145,11 @@ class Closer:
             else:
                 try:
                     q0 = self._solve(start_name, _chain + (name,)).q
-                except ClosureError as exc:
-                    raise ClosureError(
-                        f"configuration {name!r} starts from {start_name!r}, which could not be closed: {exc}",
+                except ConfigurationError as exc:
+                    # the same kind of failure, now this configuration's
+                    raise type(exc)(
+                        f"configuration {name!r} starts from {start_name!r}, which could not be "
+                        f"{'closed' if isinstance(exc, ClosureError) else 'analysed'}: {exc}",
                         name,
                         exc.residual,
                     ) from None
