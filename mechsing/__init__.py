@@ -22,20 +22,23 @@ an open chain over many configurations), :mod:`mechsing.lie`,
 
 __version__ = "0.1.0"
 
-__all__ = ["__version__", "analyze", "load", "scan"]
+import importlib
+
+#: the public API: functions (loaded on first use, so ``mechsing --version`` stays fast)
+#: and the layers a script uses directly
+_FUNCTIONS = {"analyze": "mechsing.analysis", "load": "mechsing.model", "scan": "mechsing.scanner"}
+_MODULES = ("errors", "lie", "numeric", "subgroups", "model", "kinematics", "screws", "singularity")
+
+__all__ = ["__version__", *_FUNCTIONS, *_MODULES]
 
 
-def __getattr__(name: str):  # lazy: `mechsing --version` stays fast
-    if name == "analyze":
-        from mechsing.analysis import analyze
+def __getattr__(name: str):  # lazy: importing mechsing loads no numerics
+    if name in _FUNCTIONS:
+        return getattr(importlib.import_module(_FUNCTIONS[name]), name)
+    if name in _MODULES:
+        return importlib.import_module(f"mechsing.{name}")
+    raise AttributeError(f"module 'mechsing' has no attribute {name!r}")
 
-        return analyze
-    if name == "load":
-        from mechsing.model import load
 
-        return load
-    if name == "scan":
-        from mechsing.scanner import scan
-
-        return scan
-    raise AttributeError(name)
+def __dir__() -> list[str]:
+    return sorted({*globals(), *__all__})

@@ -289,8 +289,6 @@ class _ExactRun:
             with TimeLimit(self.limit):
                 build()
         except TimeLimitExceeded:
-            from mechsing.cli import UserError
-
             raise UserError(
                 f"{self.mech.path or self.mech.name}: exact mode could not prepare the mechanism's "
                 f"geometry within {self.limit:g} s (sympy could not simplify its exact axes, points "

@@ -1,11 +1,18 @@
-"""mechsing's errors, and what was being worked on when an error escaped (a leaf module).
+"""mechsing's exceptions, and what was being worked on when one escaped (a leaf module).
 
-* :class:`UserError`: bad input (or a configuration that cannot be analysed):
-  printed without a traceback; the command exits with its ``status``.
-* :func:`working_on`: a context naming the file and the configuration under
-  analysis, so that an exception that escapes everything (a defect of
-  mechsing, exit status 4) can still say where it happened
-  (:func:`current_work`).
+One family, :class:`MechsingError`: every error mechsing raises on purpose,
+with a message for people (the file, the item, the line, the fix).
+
+* :class:`UserError`: bad input (a file, an option, data a mode cannot take).
+* :class:`ConfigurationError`: one configuration cannot be analysed (it does
+  not close, exact mode cannot take it or stopped on it) while the others can.
+* :class:`CatalogError`: the subgroup catalog's data are broken.
+
+The layers raise these and never decide what a command does with them: only
+the command line (``mechsing.cli.main``) maps them to exit statuses.
+:func:`working_on` names the file and the configuration under analysis, so
+that an exception that escapes everything (a defect of mechsing) can still say
+where it happened (:func:`current_work`).
 """
 
 from __future__ import annotations
@@ -14,15 +21,37 @@ import contextlib
 from collections.abc import Iterator
 from contextvars import ContextVar
 
-__all__ = ["UserError", "current_work", "forget_work", "working_on"]
+__all__ = [
+    "CatalogError",
+    "ConfigurationError",
+    "MechsingError",
+    "UserError",
+    "current_work",
+    "forget_work",
+    "working_on",
+]
 
 
-class UserError(Exception):
-    """Bad input: printed without a traceback, exit status 2 (or ``status``)."""
+class MechsingError(Exception):
+    """Every error mechsing raises on purpose; its message is written for people."""
 
-    def __init__(self, message: str, status: int = 2) -> None:
+
+class UserError(MechsingError):
+    """Bad input: a file, an option, or data the precision mode cannot take."""
+
+
+class ConfigurationError(UserError):
+    """One configuration that cannot be analysed while the others can: an analysis
+    gives it an ``error`` entry and reports the others."""
+
+    def __init__(self, message: str, configuration: str, residual: float | None = None) -> None:
         super().__init__(message)
-        self.status = status
+        self.configuration = configuration
+        self.residual = residual
+
+
+class CatalogError(MechsingError):
+    """A catalog file is missing or malformed (an installation or data defect)."""
 
 
 _WORK: ContextVar[tuple[tuple[str, str], ...]] = ContextVar("mechsing_work", default=())

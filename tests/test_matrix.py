@@ -19,6 +19,7 @@ from pathlib import Path
 import pytest
 
 from mechsing.analysis import analyze
+from mechsing.cli import exit_status
 from mechsing.errors import UserError
 from mechsing.report import render
 from tests.mechanisms import ROOT, run_cli
@@ -43,7 +44,7 @@ def _status(mode: str, path: Path) -> tuple[int, object]:
     try:
         result = analyze(path, precision=mode, time_limit=EXACT_LIMIT)
     except UserError as exc:
-        assert exc.status == 2, exc
+        assert exit_status(exc) == 2, exc
         assert str(exc) and "Traceback" not in str(exc)
         return 2, exc
     return (3 if result.failed else 0), result

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from mechsing.cli import UserError
+from mechsing.cli import UserError, exit_status
 from mechsing.model import MechanismError, load
 
 BAD = Path(__file__).parent / "bad_files"
@@ -28,7 +28,7 @@ def test_bad_file_is_refused_with_a_clear_message(path):
     with pytest.raises(MechanismError) as exc:
         load(path)
     err = exc.value
-    assert isinstance(err, UserError) and err.status == 2
+    assert isinstance(err, UserError) and exit_status(err) == 2
     msg = str(err)
     assert msg.startswith(str(path))
     for word in expected:

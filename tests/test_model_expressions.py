@@ -7,7 +7,7 @@ import sympy
 from hypothesis import given
 from hypothesis import strategies as st
 
-from mechsing.cli import UserError
+from mechsing.cli import UserError, exit_status
 from mechsing.model.expressions import ExpressionError, parse_number
 
 
@@ -97,7 +97,7 @@ def test_rejected(text, word):
     with pytest.raises(ExpressionError) as exc:
         parse_number(text)
     assert word.lower() in str(exc.value).lower()
-    assert isinstance(exc.value, UserError) and exc.value.status == 2
+    assert isinstance(exc.value, UserError) and exit_status(exc.value) == 2
 
 
 def test_no_code_runs(tmp_path):

@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 import sympy
 
+from mechsing.cli import exit_status
 from mechsing.model import (
     Displacement,
     InputRef,
@@ -230,7 +231,7 @@ def test_errors_are_user_errors_with_parts():
         loads(FOURBAR.replace("axis: [0, 0, 1], point: [3, 2, 0]", "axis: [0, 0, 0], point: [3, 2, 0]"),
               path="x.yaml")
     e = exc.value
-    assert e.status == 2 and e.path == "x.yaml" and e.line == 7 and e.item == "joint 'C'"
+    assert exit_status(e) == 2 and e.path == "x.yaml" and e.line == 7 and e.item == "joint 'C'"
     assert str(e).startswith("x.yaml:7: joint 'C': ")
 
 

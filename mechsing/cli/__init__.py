@@ -18,21 +18,34 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from mechsing import __version__
-from mechsing.errors import UserError, current_work, forget_work
-
-# mechsing works on many tiny matrices: BLAS threads only add overhead there (and
-# on a loaded machine make a 4x4 product hundreds of times slower).  This module
-# imports no numpy, and the commands import their layers lazily, so this runs
-# before numpy is loaded; a user's own setting wins.
-for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
+from mechsing.errors import ConfigurationError, MechsingError, UserError, current_work, forget_work
 
 if TYPE_CHECKING:  # the commands import their layers lazily: `mechsing --version` stays fast
     from mechsing.model import Mechanism
     from mechsing.numeric import Precision
 
-#: exit status of an exception that escaped (a defect of mechsing)
-INTERNAL_ERROR = 4
+#: exit statuses: bad input, a configuration that could not be analysed, a defect
+BAD_INPUT, NOT_ANALYSED, INTERNAL_ERROR = 2, 3, 4
+
+
+def exit_status(exc: BaseException) -> int:
+    """The exit status of an exception that reaches the command line (the only place
+    exceptions become statuses): 3 for a configuration that could not be analysed, 2
+    for any other error of mechsing's (bad input), 4 for anything else (a defect)."""
+    if isinstance(exc, ConfigurationError):
+        return NOT_ANALYSED
+    if isinstance(exc, MechsingError):
+        return BAD_INPUT
+    return INTERNAL_ERROR
+
+
+def _few_blas_threads() -> None:
+    """mechsing works on many tiny matrices: BLAS threads only add overhead there (and
+    on a loaded machine make a 4x4 product hundreds of times slower).  Set before the
+    commands load numpy; a user's own setting wins.  Only the command does this: a
+    program that imports mechsing keeps its own threads."""
+    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(var, "1")
 
 #: sub-command modules, in the order ``--help`` lists them
 COMMANDS = ("analyze", "solve", "catalog", "identify", "schema")
@@ -102,6 +115,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    _few_blas_threads()
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "_run", None):
@@ -110,11 +124,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     forget_work()
     try:
         return int(args._run(args))
-    except UserError as exc:
+    except MechsingError as exc:
         if args.traceback:
             raise
         print(f"mechsing: error: {exc}", file=sys.stderr)
-        return exc.status
+        return exit_status(exc)
     except BrokenPipeError:
         return 0
     except Exception as exc:  # a defect: one line that says where, exit 4

@@ -72,12 +72,9 @@ def _universal_joint(fmt: str) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
-    from mechsing.subgroups import CatalogError, load_catalog
+    from mechsing.subgroups import load_catalog
 
-    try:
-        cat = load_catalog()
-    except CatalogError as exc:
-        raise UserError(str(exc)) from None
+    cat = load_catalog()
     if args.type is not None:
         key = args.type.strip()
         match = cat.get(key) or {s.upper(): t for s, t in cat.items()}.get(key.upper())

@@ -27,7 +27,7 @@ import numpy as np
 import sympy
 
 from mechsing import lie
-from mechsing.cli import UserError
+from mechsing.errors import ConfigurationError, UserError
 from mechsing.kinematics.model import KinematicModel, scale_blocks
 from mechsing.model import Configuration, Displacement
 from mechsing.numeric import (
@@ -63,18 +63,8 @@ _MAX_STEPS = 20000
 _MAX_ATTEMPTS_PER_STEP = 20
 
 
-class ConfigurationError(UserError):
-    """One configuration that cannot be analysed while the others can: ``analyze`` gives it
-    an ``error`` entry, reports the others and exits with status 3."""
-
-    def __init__(self, message: str, configuration: str, residual: float | None = None) -> None:
-        super().__init__(message, status=3)
-        self.configuration = configuration
-        self.residual = residual
-
-
 class ClosureError(ConfigurationError):
-    """A configuration that cannot be closed (exit status 3 for ``analyze``)."""
+    """A configuration that cannot be closed."""
 
 
 class ExactDataError(ConfigurationError):

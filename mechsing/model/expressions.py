@@ -33,7 +33,7 @@ from typing import Any
 
 import sympy
 
-from mechsing.cli import UserError
+from mechsing.errors import UserError
 
 __all__ = [
     "ALLOWED_FUNCTIONS",

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from mechsing.cli import UserError
+from mechsing.errors import UserError
 
 if TYPE_CHECKING:  # pragma: no cover
     from mechsing.model.graph import Leg, MechanismGraph
@@ -39,7 +39,7 @@ Vector = tuple[Any, Any, Any]
 
 
 class MechanismError(UserError):
-    """A mechanism file that mechsing cannot accept (exit status 2).
+    """A mechanism file that mechsing cannot accept (bad input).
 
     The message names the file, the line where it can, the item and the fix;
     the parts are also attributes for programs and tests.
@@ -59,7 +59,7 @@ class MechanismError(UserError):
         elif line is not None:
             where = f"line {line}: "
         lead = f"{item}: " if item else ""
-        super().__init__(f"{where}{lead}{message}", 2)
+        super().__init__(f"{where}{lead}{message}")
         self.path = path
         self.line = line
         self.item = item

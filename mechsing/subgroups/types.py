@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.errors import CatalogError
 from mechsing.numeric import FLOAT, Backend
 
 __all__ = [
@@ -67,10 +68,6 @@ _REQUIRED = {
     "basis": list,
     "coordinates": list,
 }
-
-
-class CatalogError(Exception):
-    """A catalog file is missing, unreadable or malformed (names the file and the fix)."""
 
 
 # ---------------------------------------------------------------------------
@@ -264,12 +261,6 @@ class SubgroupType:
     def rotation_rank(self) -> int:
         """Dimension of the rotation part (projection of the algebra to so(3))."""
         return int(np.linalg.matrix_rank(self.basis(_sample_params(self))[:, 0:3]))
-
-    def __call__(self, **params: Any) -> Any:
-        """An instance: ``load_catalog()["R"](axis=[0, 0, 1], point=[1, 0, 0])``."""
-        from mechsing.subgroups.instance import Subgroup
-
-        return Subgroup(self, params)
 
     def to_json(self) -> dict[str, Any]:
         return {
