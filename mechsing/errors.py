@@ -28,6 +28,7 @@ __all__ = [
     "UserError",
     "current_work",
     "forget_work",
+    "work_item",
     "working_on",
 ]
 
@@ -86,6 +87,12 @@ def current_work() -> str:
     seen = _AT_ERROR.get()
     work = seen[1] if seen is not None else _WORK.get()
     return ", ".join(f"{k} {v!r}" for k, v in work)
+
+
+def work_item(key: str) -> str | None:
+    """One item of :func:`current_work` (``"file"``, ``"configuration"``), or None."""
+    seen = _AT_ERROR.get()
+    return dict(seen[1] if seen is not None else _WORK.get()).get(key)
 
 
 def forget_work() -> None:

@@ -115,7 +115,10 @@ CONTINUATION_JUMP_FLOOR = 1e-9
 #: residual is below 10^(POLISH_DIGITS_SPARE - N) L (working precision, with a
 #: few digits spare for the rounding of poses), in at most POLISH_MAX_STEPS steps
 POLISH_DIGITS_SPARE = 5
-POLISH_MAX_STEPS = 12
+POLISH_MAX_STEPS = 24
+#: a polish step that lowers the residual by less than this factor is slow (Newton at a
+#: multiple root lowers it by 4): the doubled step is tried too
+POLISH_SLOW_RATIO = 8
 #: largest joint value accepted in a configuration: radians, or times the
 #: characteristic length L for a length; larger is an absurd size (an angle of
 #: 1e6 rad is 160 000 turns)

@@ -18,7 +18,14 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from mechsing import __version__
-from mechsing.errors import ConfigurationError, MechsingError, UserError, current_work, forget_work
+from mechsing.errors import (
+    ConfigurationError,
+    MechsingError,
+    UserError,
+    current_work,
+    forget_work,
+    work_item,
+)
 
 if TYPE_CHECKING:  # the commands import their layers lazily: `mechsing --version` stays fast
     from mechsing.model import Mechanism
@@ -37,6 +44,13 @@ def exit_status(exc: BaseException) -> int:
     if isinstance(exc, MechsingError):
         return BAD_INPUT
     return INTERNAL_ERROR
+
+
+def with_file(message: str, path: str | None = None) -> str:
+    """An error message that names its file: the one given, else the one being worked on
+    when the error was raised (messages from reading a file name it already)."""
+    path = path or work_item("file")
+    return message if not path or path in message else f"{path}: {message}"
 
 
 def _few_blas_threads() -> None:
@@ -127,7 +141,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except MechsingError as exc:
         if args.traceback:
             raise
-        print(f"mechsing: error: {exc}", file=sys.stderr)
+        print(f"mechsing: error: {with_file(str(exc))}", file=sys.stderr)
         return exit_status(exc)
     except BrokenPipeError:
         return 0

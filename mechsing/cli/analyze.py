@@ -72,7 +72,7 @@ def _progress(line: str) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.analysis import analyze
-    from mechsing.cli import UserError, load_mechanism, precision_option
+    from mechsing.cli import NOT_ANALYSED, UserError, load_mechanism, precision_option, with_file
     from mechsing.report import render
 
     prec = precision_option(args.precision)
@@ -91,5 +91,5 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.write(text)
     for c in result.configurations:
         if c.error:
-            print(f"mechsing: {c.error}", file=sys.stderr)
-    return 3 if result.failed else 0
+            print(f"mechsing: {with_file(c.error, args.file)}", file=sys.stderr)
+    return NOT_ANALYSED if result.failed else 0

@@ -41,6 +41,7 @@ from mechsing.numeric import (
     MAX_JOINT_VALUE,
     POLISH_DIGITS_SPARE,
     POLISH_MAX_STEPS,
+    POLISH_SLOW_RATIO,
     Precision,
     decide_rank,
     exact_is_zero,
@@ -633,8 +634,17 @@ class Closer:
         Polished to the working precision (10^(5-N) L), not merely to the acceptance
         tolerance 10^(15-N) L: at mp:30 the float solution (1e-16 L) is already
         accepted, and the rank decisions that follow need the screws to N digits (a
-        dropped singular value of 1e-17 lies between mp:30's thresholds).  Stops when a
-        step no longer reduces the residual (near a singular solution Newton is slow).
+        dropped singular value of 1e-17 lies between mp:30's thresholds).
+
+        A target that is itself singular (a change point, a flat parallelogram reached
+        from its input) is a multiple root: there the residual is quadratic in the
+        distance d along the kernel, so a small residual still leaves d = sqrt(residual)
+        (1e-13 at mp:30, enough to call the configuration regular), and Newton only
+        halves d at each step.  So the polish also goes on until the correction itself
+        is below working precision, and when a step is slow (the residual falls by less
+        than POLISH_SLOW_RATIO) it tries the doubled step, which removes the halving
+        (for a double root it converges quadratically again).  Stops when a step no
+        longer reduces the residual.
         """
         import mpmath
 
@@ -643,10 +653,16 @@ class Closer:
             qm[gmask] = target[gmask]
             free = ~gmask
             L = m.length_scale
-            goal = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - mpmath.mp.dps) * L
+            small = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - mpmath.mp.dps)
+            goal = small * L
             res = m.residual_norm(m.chord_residuals(qm), native=True)
+
+            def moved(d: np.ndarray, k: int) -> tuple[np.ndarray, Any]:
+                qn = m.update(qm, d * k)
+                return qn, m.residual_norm(m.chord_residuals(qn), native=True)
+
             for _ in range(POLISH_MAX_STEPS):
-                if res <= goal or not m.chords:
+                if not m.chords:
                     break
                 r = m.chord_twists(m.chord_residuals(qm))
                 J = m.closure_jacobian(qm)
@@ -655,11 +671,16 @@ class Closer:
                 A = mpmath.matrix(Js[:, free].tolist())
                 b = mpmath.matrix([-x for x in rs])
                 du = _mp_lstsq(A, b)
+                if res <= goal and max((abs(x) for x in du), default=0) <= small:
+                    break  # closed, and what is left to correct is below working precision
                 d = m.zeros()
                 d[np.flatnonzero(free)] = np.array(du, dtype=object)
                 d = np.where(m.length_columns, d * L, d)
-                qn = m.update(qm, d)
-                rn = m.residual_norm(m.chord_residuals(qn), native=True)
+                qn, rn = moved(d, 1)
+                if rn * POLISH_SLOW_RATIO > res:
+                    q2, r2 = moved(d, 2)
+                    if r2 < rn:
+                        qn, rn = q2, r2
                 if rn >= res:
                     break
                 qm, res = qn, rn
@@ -707,7 +728,7 @@ def _fmt(m: KinematicModel, q: np.ndarray) -> str:
 
 def _given_reached(m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> str:
     """The given coordinates where continuation stopped, against their targets,
-    in the file's units: ``A reached 173.13 deg (target 200 deg)``."""
+    in the file's units: ``A reached 173.13 deg, 26.87 deg short of the target 200 deg``."""
     units = m.mech.units
     joints = {j.name: j for j in m.mech.joints}
     parts = []
@@ -720,7 +741,10 @@ def _given_reached(m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: 
         unit = units.length if length else units.angle
         label = jname if j.dof == 1 else f"{jname}[{i}]"
         reached, goal = float(q[col]) / factor, float(target[col]) / factor
-        parts.append(f"{label} reached {reached:.6g} {unit} (target {goal:.6g} {unit})")
+        parts.append(
+            f"{label} reached {reached:.10g} {unit}, {abs(goal - reached):.3g} {unit} short "
+            f"of the target {goal:.10g} {unit}"
+        )
     return "; ".join(parts)
 
 

@@ -138,11 +138,22 @@ def explain(f: dict[str, Any]) -> str:
             if bounds
             else f.get("note", "a singular value lies between the two thresholds")
         )
-        return (
-            f"the precision used cannot decide the {what} ({why}); "
-            "try --precision mp:50 or exact"
-        )
+        return f"the precision used cannot decide the {what} ({why}); {_more_precise(f)}"
     return EXPLAIN.get(cls, cls)
+
+
+def _more_precise(f: dict[str, Any]) -> str:
+    """What to try after an undecided test, from the precision that left it open."""
+    prec = str(f.get("precision", "float"))
+    if prec.startswith("mp:"):
+        digits = int(prec[3:])
+        return (
+            f"try --precision mp:{2 * digits}, or exact with exact data (the configuration may "
+            f"be within 10^-{digits // 2} of a singularity)"
+        )
+    if prec == "exact":
+        return "the test ran at mp:50 from the exact data: try a larger --precision mp:N"
+    return "try --precision mp:50 or exact"
 
 
 def _subgroup(sg: dict[str, Any]) -> str:

@@ -110,6 +110,24 @@ def _undecided(what: str, dec: Any) -> dict[str, Any]:
     }
 
 
+#: tests whose singularity is a dimension above its generic value (the others: a rank below)
+_RISING = ("input", "output", "passive-motion")
+
+
+def _verdict_open(d: dict[str, Any]) -> bool:
+    """Does an undecided rank leave the verdict open?  Not when every rank its bounds
+    allow gives the same verdict: a rank test is singular below its generic value (a
+    constraint rank undecided between 5 and 6 with generic 5 is regular either way), a
+    motion test above it."""
+    bounds, generic = d.get("rank_bounds"), d.get("generic")
+    if bounds is None or generic is None:
+        return True
+    lo, hi = bounds
+    if d["test"] in _RISING:
+        return lo <= generic < hi
+    return lo < generic <= hi
+
+
 def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str, Any]]:
     """Findings at one closed configuration (the JSON contract's classes); also sets
     ``result.mobility["generic"]`` and ``["finite"]`` for mechanisms with loops."""
@@ -137,7 +155,7 @@ def classify_configuration(mech: Any, model: Any, result: Any) -> list[dict[str,
     # an input/output, constraint or leg rank the precision could not decide is a
     # verdict left open: say so, and let auto re-decide the configuration at mp:50
     for d in local.decisions:
-        if d["rank"] is None:
+        if d["rank"] is None and _verdict_open(d):
             f = {
                 "class": "undecided",
                 "what": f"{d['test']} test",
