@@ -20,6 +20,7 @@ Every expected answer is derived here from the mathematics, not read from the pr
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import mpmath
@@ -659,3 +660,34 @@ def test_mp_analysis_never_converts_arrays_through_repr(
     for path in (chain, rssr):
         _json(["analyze", str(path), "--precision", "mp:50", "--format", "json"])
     assert calls == []
+
+
+# ============================================================================ singular targets
+
+
+@pytest.mark.parametrize("precision", ["mp:30", "mp:50", "auto"])
+def test_a_singular_target_reached_from_its_input_is_classified_as_when_fully_given(
+    tmp_path: Path, precision: str
+) -> None:
+    """The parallelogram's flat configuration (A = -pi/2, a change point where the
+    parallelogram and anti-parallelogram branches cross) reached from its input alone: the
+    passive joints solve a multiple root, whose residual is quadratic in the distance along
+    the kernel.  N digits of residual then place it only to 10^(-N/2), where the rank could
+    not be decided (mp:30 used to call it regular, mp:50 and auto to stall at 5.7e-32 m); it
+    must close to 10^(5-N) L and get the classes of the fully given flat configuration,
+    decided exactly.  Independently: on that branch B = -A, C = A, D = -A (a parallelogram
+    keeps its links parallel), so the solved values are pi/2, -pi/2, pi/2."""
+    src = (EXAMPLES / "parallelogram.yaml").read_text()
+    text = src.replace('crank-30: {A: "-pi/6"}', 'flat-solved: {A: "-pi/2"}')
+    path = write(tmp_path, "para", text)
+    (c,) = _json(["analyze", str(path), "--config", "flat-solved", "--precision", precision,
+                  "--format", "json"])["configurations"]
+    (exact,) = _json(["analyze", str(path), "--config", "flat", "--precision", "exact",
+                      "--format", "json"])["configurations"]
+    assert "error" not in c, c["error"]
+    digits = 50 if precision == "auto" else int(precision[3:])
+    assert c["precision"] == f"mp:{digits}"
+    assert c["closure_residual"] <= 10.0 ** (5 - digits) * 2
+    for name, value in {"B": math.pi / 2, "C": -math.pi / 2, "D": math.pi / 2}.items():
+        assert abs(c["joints"][name][0] - value) < 1e-15
+    assert classes(c) == classes(exact) and "bifurcation" in classes(c)

@@ -391,7 +391,7 @@ class Closer:
             for jk in m.joints:
                 keep[jk.columns] = jk.name in names
             for gmask in (keep, np.zeros(m.n, dtype=bool)):
-                qm, rm = self._polish_mp(m, q, q, gmask)
+                qm, rm = self._polish_mp(m, q, q, gmask, cfg)
                 if rm <= self.tolerance:
                     moved = float(np.max(np.abs(to_float(qm) - to_float(q)), initial=0.0))
                     note = (
@@ -499,7 +499,7 @@ class Closer:
             dt = min(dt * 1.5, 1.0 / nsteps)
         res = info["residual"]
         if m.precision.mode == "mp":
-            qm, res = self._polish_mp(m, q, target, gmask)
+            qm, res = self._polish_mp(m, q, target, gmask, cfg)
             q_out = qm
         else:
             q_out = q
@@ -627,8 +627,13 @@ class Closer:
         return True, q, info
 
     def _polish_mp(
-        self, m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray
-    ) -> tuple[np.ndarray, float]:
+        self,
+        m: KinematicModel,
+        q: np.ndarray,
+        target: np.ndarray,
+        gmask: np.ndarray,
+        cfg: Configuration | None = None,
+    ) -> tuple[np.ndarray, Any]:
         """Newton at N digits from the float solution (given values at full precision).
 
         Polished to the working precision (10^(5-N) L), not merely to the acceptance
@@ -637,25 +642,59 @@ class Closer:
         dropped singular value of 1e-17 lies between mp:30's thresholds).
 
         A target that is itself singular (a change point, a flat parallelogram reached
-        from its input) is a multiple root: there the residual is quadratic in the
-        distance d along the kernel, so a small residual still leaves d = sqrt(residual)
-        (1e-13 at mp:30, enough to call the configuration regular), and Newton only
-        halves d at each step.  So the polish also goes on until the correction itself
-        is below working precision, and when a step is slow (the residual falls by less
-        than POLISH_SLOW_RATIO) it tries the doubled step, which removes the halving
-        (for a double root it converges quadratically again).  Stops when a step no
-        longer reduces the residual.
+        from its input) is a multiple root: the residual is quadratic in the distance d
+        along the kernel, so N digits of residual place the configuration only to
+        d = 10^(-N/2), where its rank cannot be decided at N digits (the kernel's
+        singular value is d).  Such a root shows itself by slow steps (see
+        :meth:`_newton_mp`); it is then polished again at 2N + 10 digits (the model
+        rebuilt from the file's numbers at those digits) and rounded back to N digits.
         """
+        qm, res, slow = self._newton_mp(m, q, target, gmask)
+        if slow and cfg is not None:
+            import mpmath
+
+            deep = self._deeper_model()
+            with deep.precision.context():
+                dtarget, _ = Closer(deep)._given(cfg)
+                qd, _rd, _ = self._newton_mp(deep, qm, dtarget, gmask)
+            with m.precision.context():
+                qn = np.array([+mpmath.mpf(x) for x in qd], dtype=object)
+                rn = m.residual_norm(m.chord_residuals(qn), native=True)
+            if rn <= max(res, self.tolerance):
+                qm, res = qn, rn
+        return qm, res
+
+    def _deeper_model(self) -> KinematicModel:
+        """The model at 2N + 10 digits (built once), for multiple roots."""
+        if getattr(self, "_deep", None) is None:
+            digits = self.model.precision.digits
+            self._deep = KinematicModel(self.mech, Precision("mp", 2 * digits + 10))
+        return self._deep
+
+    def _newton_mp(
+        self, m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray
+    ) -> tuple[np.ndarray, Any, bool]:
+        """Newton on the group at the model's digits: (coordinates, residual, whether a
+        step was slow).  A step is slow when it lowers the residual by less than
+        POLISH_SLOW_RATIO (Newton at a multiple root halves the distance, so lowers the
+        residual by 4); the doubled step is then tried too, which for a double root
+        converges quadratically again.  Goes on until the correction itself is below
+        working precision (at a multiple root a small residual still leaves d =
+        sqrt(residual)), and stops when a step no longer lowers the residual."""
         import mpmath
 
         with m.precision.context():
-            qm = m.asarray([repr(float(x)) for x in q])
+            if np.asarray(q).dtype == object:
+                qm = np.array([mpmath.mpf(x) for x in q], dtype=object)
+            else:
+                qm = m.asarray([repr(float(x)) for x in q])
             qm[gmask] = target[gmask]
             free = ~gmask
             L = m.length_scale
             small = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - mpmath.mp.dps)
             goal = small * L
             res = m.residual_norm(m.chord_residuals(qm), native=True)
+            slow = False
 
             def moved(d: np.ndarray, k: int) -> tuple[np.ndarray, Any]:
                 qn = m.update(qm, d * k)
@@ -678,13 +717,14 @@ class Closer:
                 d = np.where(m.length_columns, d * L, d)
                 qn, rn = moved(d, 1)
                 if rn * POLISH_SLOW_RATIO > res:
+                    slow = True
                     q2, r2 = moved(d, 2)
                     if r2 < rn:
                         qn, rn = q2, r2
                 if rn >= res:
                     break
                 qm, res = qn, rn
-            return qm, res
+            return qm, res, slow
 
 
 def _mp_lstsq(A: Any, b: Any) -> list[Any]:
