@@ -172,9 +172,13 @@ def render_text(result: Any, markdown: bool = False) -> str:
     bullet = "- " if markdown else "  "
     lines = [f"{h1}mechsing analysis: {d['mechanism']}", ""]
     p = d["precision"]
+    thresholds = (
+        "exact ranks"
+        if p["mode"] == "exact"
+        else f"rank thresholds {p['tau_lo']:g} and {p['tau_hi']:g} of the largest singular value"
+    )
     lines.append(
-        f"Precision {p['mode']} (rank thresholds {p['tau_lo']:g} and {p['tau_hi']:g} of the largest "
-        f"singular value); characteristic length L = {p['length_scale']:.4g} m."
+        f"Precision {p['mode']} ({thresholds}); characteristic length L = {p['length_scale']:.4g} m."
     )
     if d["properties"]:
         lines += ["", f"{h2}Properties" if markdown else "Properties:"]
