@@ -369,6 +369,19 @@ def _analyze_one_in_context(
     )
     with activity("classifying the singularities (output chain, input/output and cone tests)"):
         out.singularities = classify_configuration(mech, model, out)
+    if closed.at_fold and prec.mode == "float":
+        # float locates a fold's unknown joints only to sqrt(eps): a kernel singular value
+        # of 1e-8 there says nothing, so no float verdict stands (auto re-decides at mp:50)
+        out.singularities.append(
+            {
+                "class": "undecided",
+                "what": "configuration at a fold of the given values",
+                "rank_bounds": None,
+                "note": "float places a fold's unknown joints only to about 1e-8",
+                "margin": out.closure_rank["margin"] if out.closure_rank else None,
+                "precision": str(prec),
+            }
+        )
     if any(f["class"] == "undecided" for f in out.singularities):
         out.internals["undecided"] = True  # auto re-decides the configuration at mp:50
     return out

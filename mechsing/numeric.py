@@ -109,6 +109,13 @@ CONTINUATION_RETURN_RATIO = 0.1
 #: corrections and returns smaller than this (commensurate: radians, or
 #: lengths / L) are rounding, never a jump between assembly modes
 CONTINUATION_JUMP_FLOOR = 1e-9
+#: a target continuation cannot step onto is tried directly (Newton from the last point
+#: reached) when what is left is at most this (commensurate); it is accepted only at a
+#: fold: the unknown joints' Jacobian there has relative smallest singular value below
+#: CONTINUATION_SINGULAR_RTOL, and the landing moved them at most CONTINUATION_FOLD_REACH
+#: times the square root of what was left (the two branches meet like a square root)
+CONTINUATION_FOLD_GAP = 1e-4
+CONTINUATION_FOLD_REACH = 10.0
 
 
 #: mp:N polishes a closed configuration with Newton at N digits until its

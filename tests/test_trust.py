@@ -285,3 +285,52 @@ def test_an_undecided_finding_at_mp_suggests_more_digits_not_the_same_mode():
     f = {"class": "undecided", "what": "input test", "rank_bounds": [0, 1],
          "precision": "mp:50"}
     assert "mp:100" in explain(f) and "mp:50 or" not in explain(f)
+
+
+# --------------------------------------------------------------------------- folds as targets
+
+SLIDER_INPUT = (ROOT / "examples" / "slider_crank_slider_input.yaml").read_text()
+
+
+def _with_config(text: str, line: str) -> str:
+    head, _sep, _rest = text.partition("configurations:")
+    return f"{head}configurations:\n  reference: {{}}\n  {line}\n"
+
+
+def test_a_fold_given_by_its_input_is_reached_and_classified_as_when_fully_given(tmp_path):
+    """The slider-crank driven by its slider, at the outer dead centre given by the slider
+    alone (P = 8/5: the slider pin at x = sqrt((l + r)^2 - e^2) = 24/5).  The slider cannot go
+    further: a fold, where the crank and the rod move like the square root of the slider, so
+    continuation cannot step onto it and Newton only halves the distance there.  The target is
+    reached; float, which places a fold's unknown joints only to about 1e-8, says it cannot
+    decide; auto decides at mp:50 and gives the classes of the fully given dead centre
+    (decided exactly); the solved joints are the dead centre's closed form."""
+    path = write(tmp_path, "dead", _with_config(SLIDER_INPUT, 'dead: {P: "8/5"}'))
+    full = write(tmp_path, "full", _with_config(
+        SLIDER_INPUT, 'dead: {A: "2*atan(4/3)", B: "-2*atan(2)", C: "2*atan(2/11)", P: "8/5"}'))
+    closed_form = {"A": 2 * math.atan(4 / 3), "B": -2 * math.atan(2), "C": 2 * math.atan(2 / 11)}
+    rc, out, err = run_cli(["analyze", str(path), "--config", "dead", "--precision", "float",
+                            "--format", "json"])
+    assert rc == 0, err
+    (c,) = json.loads(out)["configurations"]
+    assert c["singular"] is None and any("fold" in f["what"] for f in c["singularities"])
+    assert any("fold" in n for n in c["notes"])
+    for k, v in closed_form.items():
+        assert abs(c["joints"][k][0] - v) < 1e-6
+    rc, out, err = run_cli(["analyze", str(path), "--config", "dead", "--format", "json"])
+    assert rc == 0, err
+    (a,) = json.loads(out)["configurations"]
+    rc, out, _ = run_cli(["analyze", str(full), "--config", "dead", "--precision", "exact",
+                          "--format", "json"])
+    (e,) = json.loads(out)["configurations"]
+    assert a["precision"] == "mp:50" and a["singular"] is True
+    assert sorted(f["class"] for f in a["singularities"]) == sorted(
+        f["class"] for f in e["singularities"])
+    for k, v in closed_form.items():
+        assert abs(a["joints"][k][0] - v) < 1e-14
+
+
+def test_a_target_beyond_the_fold_is_still_refused(tmp_path):
+    path = write(tmp_path, "beyond", _with_config(SLIDER_INPUT, 'beyond: {P: "8/5 + 1/1000"}'))
+    rc, _out, err = run_cli(["analyze", str(path), "--config", "beyond", "--precision", "float"])
+    assert rc == 3 and "short of the target" in err

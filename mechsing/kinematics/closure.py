@@ -32,6 +32,8 @@ from mechsing.kinematics.model import KinematicModel, scale_blocks
 from mechsing.model import Configuration, Displacement
 from mechsing.numeric import (
     CONTINUATION_CORRECTOR_RATIO,
+    CONTINUATION_FOLD_GAP,
+    CONTINUATION_FOLD_REACH,
     CONTINUATION_JUMP_FLOOR,
     CONTINUATION_RETURN_RATIO,
     CONTINUATION_REVERSE_RTOL,
@@ -84,6 +86,8 @@ class ClosedConfiguration:
     steps: int = 0
     given: tuple[int, ...] = ()
     notes: list[str] = field(default_factory=list)
+    #: reached by landing on a fold of the given values (float locates it to ~1e-8 only)
+    at_fold: bool = False
 
 
 class Closer:
@@ -440,6 +444,7 @@ class Closer:
         dt = 1.0 / nsteps
         steps = 0
         underdetermined = False
+        at_fold = False
         best_rank = None
         attempts = 0
         while t < 1.0:
@@ -464,6 +469,11 @@ class Closer:
             if not ok:
                 dt /= 2
                 if dt < 1.0 / nsteps / 2**_MAX_HALVINGS:
+                    landed = self._land_on_fold(fm, q, qt, gmask)
+                    if landed is not None:  # the target is the fold itself: reached
+                        q, info = landed
+                        t, steps, at_fold = 1.0, steps + 1, True
+                        continue
                     raise ClosureError(
                         f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} stopped at step "
                         f"{steps + 1}: {_given_reached(fm, q, qt, gmask)}; the given values "
@@ -498,6 +508,12 @@ class Closer:
             t = t_next
             dt = min(dt * 1.5, 1.0 / nsteps)
         res = info["residual"]
+        notes = []
+        if at_fold:
+            notes.append(
+                "the given values are a fold (a limit of their motion): the unknown joints were "
+                "found by Newton from just short of it; float places them only to about 1e-8 there"
+            )
         if m.precision.mode == "mp":
             qm, res = self._polish_mp(m, q, target, gmask, cfg)
             q_out = qm
@@ -510,7 +526,66 @@ class Closer:
                 cfg.name,
                 float(res),
             )
-        return ClosedConfiguration(cfg.name, q_out, float(res), underdetermined, steps, given)
+        return ClosedConfiguration(
+            cfg.name, q_out, float(res), underdetermined, steps, given, notes, at_fold
+        )
+
+    def _land_on_fold(
+        self, fm: KinematicModel, q: np.ndarray, qt: np.ndarray, gmask: np.ndarray
+    ) -> tuple[np.ndarray, dict] | None:
+        """The target, when continuation stalls just short of it because it is a fold
+        (a limit of the given values: a dead centre, a Type II pose given by the inputs).
+
+        There the unknown joints move like the square root of the given ones, so no
+        step is short enough for the predictor, and Newton at the double root only
+        halves the distance at each step.  From the last point reached, Newton with the
+        given values at the target (a slow step is doubled, which converges at a double
+        root) must close; the landing is accepted only where the two branches meet: the
+        Jacobian in the unknown joints is singular there (relative smallest singular
+        value below CONTINUATION_SINGULAR_RTOL) and the joints moved at most
+        CONTINUATION_FOLD_REACH times the square root of what was left.  None otherwise
+        (a target beyond the fold has no solution; one before it is not a fold)."""
+        L = fm.length_scale
+
+        def comm(d: np.ndarray) -> float:
+            return float(np.linalg.norm(np.where(fm.length_columns, d / L, d)))
+
+        left = comm(np.where(gmask, qt - q, 0.0))
+        free = ~gmask
+        if left > CONTINUATION_FOLD_GAP or not np.any(free) or not fm.chords:
+            return None
+        tol = fm.precision.closure_tolerance(L)
+        qn = q.copy()
+        qn[gmask] = qt[gmask]
+        res = fm.residual_norm(fm.chord_residuals(qn))
+        for _ in range(POLISH_MAX_STEPS):
+            Js = scale_blocks(fm.closure_jacobian(qn), L, fm.centroid, fm.length_columns)
+            r = fm.chord_twists(fm.chord_residuals(qn))
+            rs = scale_blocks(r.reshape(-1, 6).T, L, fm.centroid, None).T.reshape(-1)
+            d = np.zeros(fm.n)
+            d[free] = _dls(Js[:, free], -rs)
+            d = np.where(fm.length_columns, d * L, d)
+            best = None
+            for k in (1, 2):  # the doubled step removes the halving at a double root
+                qk = fm.update(qn, d * k)
+                rk = fm.residual_norm(fm.chord_residuals(qk))
+                if best is None or rk < best[1]:
+                    best = (qk, rk)
+                if rk * POLISH_SLOW_RATIO <= res:
+                    break
+            if best[1] >= res:
+                break
+            qn, res = best
+        if res > tol or comm(qn - q) > CONTINUATION_FOLD_REACH * math.sqrt(left):
+            return None
+        Js = scale_blocks(fm.closure_jacobian(qn), L, fm.centroid, fm.length_columns)
+        sigma = np.linalg.svd(Js[:, free], compute_uv=False)
+        if not len(sigma) or sigma[-1] > CONTINUATION_SINGULAR_RTOL * sigma[0]:
+            return None
+        rank = int(np.sum(sigma > CONTINUATION_SINGULAR_RTOL * sigma[0]))
+        info = {"residual": res, "rank": rank, "smin": float(sigma[-1] / sigma[0]),
+                "underdetermined": False, "predicted": qn}
+        return qn, info
 
     def _same_branch(
         self, fm: KinematicModel, q: np.ndarray, qn: np.ndarray, info: dict, gmask: np.ndarray
