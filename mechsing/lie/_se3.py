@@ -296,7 +296,7 @@ def classify_screw(xi: Any, length_scale: float = 1.0) -> np.ndarray | str:
 
 
 @dataclass(frozen=True)
-class Displacement:
+class ChaslesScrew:
     """Chasles decomposition of a displacement.
 
     ``kind``: ``"identity"``, ``"translation"``, ``"rotation"`` or ``"screw"``.
@@ -312,7 +312,7 @@ class Displacement:
     slide: Any
 
 
-def classify_displacement(g: Any, length_scale: float = 1.0) -> Displacement:
+def classify_displacement(g: Any, length_scale: float = 1.0) -> ChaslesScrew:
     """Chasles/Mozzi decomposition of one displacement (Chasles-Mozzi).
 
     A rotation angle counts as zero when ``|angle| <= rtol`` and a length
@@ -330,15 +330,15 @@ def classify_displacement(g: Any, length_scale: float = 1.0) -> Displacement:
     plen = bk.sqrt(dot(p, p)[None])[0]
     if theta <= rtol or n == 0:
         if plen <= rtol * length_scale:
-            return Displacement("identity", theta, w * 0, p * 0, plen * 0)
-        return Displacement("translation", theta * 0, p / plen, p * 0, plen)
+            return ChaslesScrew("identity", theta, w * 0, p * 0, plen * 0)
+        return ChaslesScrew("translation", theta * 0, p / plen, p * 0, plen)
     u = w / theta
     d = dot(u, p)
     pperp = p - d * u
     cot_half = qw / n
     point = (pperp + cot_half * cross(u, pperp)) / 2
     kind = "rotation" if abs(d) <= rtol * length_scale else "screw"
-    return Displacement(kind, theta, u, point, d)
+    return ChaslesScrew(kind, theta, u, point, d)
 
 
 # ---------------------------------------------------------------------------
@@ -408,7 +408,7 @@ __all__ = [
     "ANGULAR",
     "LINEAR",
     "Ad",
-    "Displacement",
+    "ChaslesScrew",
     "act_point",
     "act_screw",
     "ad",
