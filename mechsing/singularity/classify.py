@@ -12,7 +12,7 @@ Order of work (lazy: nothing second-order at a regular point):
    that disagrees with what continuation finds), ``increased-mobility`` (one
    smooth branch of the generic dimension);
 3. with inputs and output: the ZFB classes and ``constraint``
-   (:mod:`mechsing.singularity.io`), and ``serial`` for legs that lose rank.
+   (:mod:`mechsing.singularity.zfb`), and ``serial`` for legs that lose rank.
 """
 
 from __future__ import annotations
@@ -38,8 +38,8 @@ from mechsing.numeric import (
 from mechsing.screws import closure_system
 from mechsing.screws.mobility import NearbySample, nearby_samples, reclose, stacked_jacobian
 from mechsing.singularity.cspace import Cone, Expansion, closure_expansion, tangent_cone
-from mechsing.singularity.io import io_quantities, leg_constraint_rank
 from mechsing.singularity.serial import chain_system, serial_finding, wrenches_of
+from mechsing.singularity.zfb import io_quantities, leg_constraint_rank
 
 # The higher-order forms (tangent cone) and the input/output and constraint
 # ranks at q are computed and decided at the analysis precision

@@ -1,4 +1,5 @@
-"""Input/output and constraint singularities (Zlatanov-Fenton-Benhabib's classes, constraint singularities).
+"""Input/output and constraint singularities: Zlatanov-Fenton-Benhabib's classes from
+the complete velocity equation, and the legs' constraint wrenches.
 
 Complete velocity equation.  With ``N`` an orthonormal basis of the solution
 space K of the closure equations (commensurate joint rates), the output twist
