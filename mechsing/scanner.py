@@ -42,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
+from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
     MAX_JOINT_VALUE,
     SCAN_ROUNDING_FACTOR,
@@ -133,7 +134,7 @@ def _exp_one(theta: np.ndarray, e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     of the coefficients ``(sin, 1 - cos, theta)`` with fixed 3 x 9 and 3 x 3 tables.
     """
     n = theta.shape[0]
-    u, v = e[:3], e[3:]
+    u, v = e[ANGULAR], e[LINEAR]
     if not np.any(u):
         R = np.broadcast_to(np.eye(3), (n, 3, 3)).copy()
         return R, theta[:, None] * v[None, :]
@@ -349,7 +350,7 @@ class ChainScanner:
             # the screw in the commensurate frame: moved to the centroid, v / L (an
             # automorphism of D, so exp and Ad commute with it)
             e = scale_screws(p.basis[0][:, None], L, c)[:, 0]
-            u, v = e[:3], e[3:]
+            u, v = e[ANGULAR], e[LINEAR]
             K = _hat3(u)
             K2 = K @ K
             a = np.cross(u, v)
@@ -505,13 +506,13 @@ class ChainScanner:
 def _act(R: np.ndarray, p: np.ndarray, e: np.ndarray) -> np.ndarray:
     """Ad(R, p) e batched: (R w, R v + p x R w), shape (N, 6)."""
     out = np.empty((R.shape[0], 6))
-    w = out[:, :3]
-    np.matmul(R, e[:3], out=w)
-    v = R @ e[3:]
+    w = out[:, ANGULAR]
+    np.matmul(R, e[ANGULAR], out=w)
+    v = R @ e[LINEAR]
     v[:, 0] += p[:, 1] * w[:, 2] - p[:, 2] * w[:, 1]
     v[:, 1] += p[:, 2] * w[:, 0] - p[:, 0] * w[:, 2]
     v[:, 2] += p[:, 0] * w[:, 1] - p[:, 1] * w[:, 0]
-    out[:, 3:] = v
+    out[:, LINEAR] = v
     return out
 
 

@@ -29,6 +29,7 @@ import sympy
 from mechsing import lie
 from mechsing.errors import ConfigurationError, UserError
 from mechsing.kinematics.model import KinematicModel, scale_blocks
+from mechsing.lie import ANGULAR
 from mechsing.model import Configuration, Displacement
 from mechsing.numeric import (
     CONTINUATION_CORRECTOR_RATIO,
@@ -236,7 +237,7 @@ class Closer:
             angles = list(coords) if jk.type == "U" else [coords[0]]
             entries = [f(v) for v in angles for f in (sympy.sin, sympy.cos)]
         else:
-            rotates = any(any(x != 0 for x in row[:3]) for row in jk.basis.tolist())
+            rotates = any(any(x != 0 for x in row[ANGULAR]) for row in jk.basis.tolist())
             if not rotates:
                 return
             q = self.model.zeros()

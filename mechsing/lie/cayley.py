@@ -38,6 +38,7 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.lie._se3 import ANGULAR, LINEAR
 from mechsing.lie._so3 import _asarr as _arr
 from mechsing.lie._so3 import cross, hat3, vee3
 from mechsing.lie._so3 import dot as _dot
@@ -130,8 +131,8 @@ def cayley_se3(xi: Any) -> np.ndarray:
     xi = _arr(xi)
     _check(xi, (6,), "cayley_se3", "a twist (omega, v)")
     bk = backend_of(xi)
-    w = xi[..., 0:3]
-    v = xi[..., 3:6]
+    w = xi[..., ANGULAR]
+    v = xi[..., LINEAR]
     R = cayley_so3(w)
     p = 2 * (v + cross(w, v) + _dot(w, v)[..., None] * w) / np.asarray(1 + _dot(w, w))[..., None]
     top = np.concatenate([R, p[..., None]], axis=-1)

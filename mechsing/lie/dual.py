@@ -38,6 +38,7 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.lie._se3 import ANGULAR, LINEAR
 from mechsing.lie._so3 import _asarr as _arr
 from mechsing.lie._so3 import _mask, cross, hat3, vee3
 from mechsing.lie._so3 import dot as _dot
@@ -231,7 +232,7 @@ def screw_to_dual(xi: Any) -> Dual:
     xi = _arr(xi)
     if xi.ndim < 1 or xi.shape[-1] != 6:
         raise ValueError(f"screw_to_dual: expected a screw of shape (..., 6), got {xi.shape}")
-    return Dual(xi[..., 0:3], xi[..., 3:6])
+    return Dual(xi[..., ANGULAR], xi[..., LINEAR])
 
 
 def dual_to_screw(X: Dual) -> np.ndarray:
@@ -264,7 +265,7 @@ def _unit_line(line: Any, name: str) -> tuple[np.ndarray, np.ndarray]:
     if L.ndim < 1 or L.shape[-1] != 6:
         raise ValueError(f"{name}: expected a line (u, m) of shape (..., 6), got {L.shape}")
     bk = backend_of(L)
-    u, m = L[..., 0:3], L[..., 3:6]
+    u, m = L[..., ANGULAR], L[..., LINEAR]
     u2 = _dot(u, u)
     if np.any(_mask(u2 == 0)):
         raise ValueError(f"{name}: a line needs a non-zero direction u (got u = 0)")
@@ -548,8 +549,8 @@ def dual_rank(screws: Any, precision: Precision | str = "float") -> DualRank:
         if S.ndim != 2 or S.shape[1] != 6:
             raise ValueError(f"dual_rank: expected screws of shape (n, 6), got {S.shape}")
         bk = prec.backend
-        A = S[:, 0:3]
-        B = S[:, 3:6]
+        A = S[:, ANGULAR]
+        B = S[:, LINEAR]
         n = S.shape[0]
         pdec = decide_rank(A, prec)
         r0 = pdec.rank

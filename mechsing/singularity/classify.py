@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
     BRANCH_ALIGNMENT,
     SAMPLE_CLOSURE_RTOL,
@@ -518,7 +519,7 @@ def _output_si(mech: Any, fm: Any, t: np.ndarray) -> list[float]:
         n = float(np.linalg.norm(v))
         return [float(a) for a in (v / n if n else v)]
     tw = twist_back(fm, t)
-    n = float(np.linalg.norm(tw[:3])) or float(np.linalg.norm(tw[3:])) or 1.0
+    n = float(np.linalg.norm(tw[ANGULAR])) or float(np.linalg.norm(tw[LINEAR])) or 1.0
     return [float(a) + 0.0 for a in tw / n]
 
 

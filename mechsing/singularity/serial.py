@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
+from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
     MEMBERSHIP_RTOL_FLOAT,
     SUPPORT_RTOL,
@@ -73,7 +74,7 @@ def chain_matrix(
         return scaled_columns(model, S)[:, columns]
     Sc = S[:, columns]
     lc = model.length_columns[columns]
-    w, v = Sc[:3], Sc[3:]
+    w, v = Sc[ANGULAR], Sc[LINEAR]
     vel = (v + lie.cross(w.T, point).T) / backend_length(model)
     return np.where(lc[None, :], vel * backend_length(model), vel)
 
@@ -113,7 +114,7 @@ def twist_back(model: Any, t: np.ndarray) -> np.ndarray:
     """SI twist at the ground origin from a commensurate one (inverse of the scaling)."""
     L = model.length_scale
     c = model.centroid
-    w, v = t[:3], t[3:] * L
+    w, v = t[ANGULAR], t[LINEAR] * L
     # commensurate twists were moved to c: v_c = v_0 - c x w  ->  v_0 = v_c + c x w
     return np.concatenate([w, v + np.cross(c, w)])
 

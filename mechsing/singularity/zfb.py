@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
+from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
     Precision,
     RankDecision,
@@ -99,7 +100,7 @@ def output_rows(
     # velocity of the body point x: v + omega x x, from twists moved to the centroid:
     # v_x = v_c + omega x (x - c); in commensurate units divide by L
     L, c = commensurate_frame(model)
-    w, vc = T[:3], T[3:]
+    w, vc = T[ANGULAR], T[LINEAR]
     d = (x - c) / L
     return vc + lie.cross(w.T, d).T
 

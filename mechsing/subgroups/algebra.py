@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
+from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
     Margin,
     Precision,
@@ -198,7 +199,7 @@ def lie_closure(
 def _centre_of(X: np.ndarray) -> np.ndarray:
     """Mean of the axis points nearest the origin of the screws that rotate (float)."""
     f = to_float(X)
-    w = f[:, 0:3]
+    w = f[:, ANGULAR]
     n2 = np.sum(w * w, axis=1)
     big = n2 > 0
     if not np.any(big):
@@ -322,19 +323,19 @@ def _classify(
             rotation_dim=r,
         )
     # the geometric elements the parameters are read from
-    W = B[:, 0:3]
+    W = B[:, ANGULAR]
     geo: dict[str, Any] = {}
     pitch = None
     if r == 1:
         x = _rotating_element(B, prec)
-        w, v = x[0:3], x[3:6]
+        w, v = x[ANGULAR], x[LINEAR]
         n2 = w @ w
         u = w / bk.sqrt(np.asarray(n2))[()]
         geo["direction"] = u
         geo["point"] = _cross(w, v) / n2
         pitch = (w @ v) / n2
     elif r == 0 and k in (1, 2):
-        vs = B[:, 3:6]
+        vs = B[:, LINEAR]
         d = vs[0] if k == 1 else _cross(vs[0], vs[1])
         geo["direction"] = d / bk.sqrt(np.asarray(d @ d))[()]
     elif r == 3 and k == 3:
@@ -391,7 +392,7 @@ def _simplify_any(v: Any) -> Any:
 
 def _rotating_element(B: np.ndarray, prec: Precision) -> np.ndarray:
     """The element of span(B) with the largest rotation part (rotations of rank 1)."""
-    W = B[:, 0:3]
+    W = B[:, ANGULAR]
     if prec.mode == "exact":
         i = max(range(B.shape[0]), key=lambda j: float(to_float(W[j] @ W[j])))
         return B[i]
@@ -405,7 +406,7 @@ def _rotating_element(B: np.ndarray, prec: Precision) -> np.ndarray:
 def _centre_of_rotations(B: np.ndarray, prec: Precision) -> np.ndarray:
     """Least-squares N with ``omega_i x N = -v_i`` over the basis (spherical)."""
     rows, rhs = [], []
-    for w, v in zip(B[:, 0:3], B[:, 3:6], strict=True):
+    for w, v in zip(B[:, ANGULAR], B[:, LINEAR], strict=True):
         rows.extend(lie.hat3(w).tolist())
         rhs.extend(list(-v))
     A = np.array(rows, dtype=B.dtype)
@@ -588,7 +589,7 @@ def _unit_turn(p: Subgroup, prec: Precision) -> np.ndarray:
     B = p.basis(prec)
     bk = prec.backend
     q = bk.zeros(p.dim)
-    i = int(np.argmax(np.abs(to_float(B[:, 0:3])).sum(axis=1)))
+    i = int(np.argmax(np.abs(to_float(B[:, ANGULAR])).sum(axis=1)))
     n = bk.sqrt(np.asarray(B[i, 0:3] @ B[i, 0:3]))[()]
     q[i] = 2 * bk.pi / n
     return q

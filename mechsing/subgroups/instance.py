@@ -13,6 +13,7 @@ import numpy as np
 import sympy
 
 from mechsing import lie
+from mechsing.lie import ANGULAR
 from mechsing.numeric import (
     NEAR_ZERO_VECTOR,
     Backend,
@@ -192,7 +193,7 @@ class Subgroup:
             return None
         B = self.basis(precision)
         bk = backend_of(B)
-        i = int(np.argmax(np.abs(to_float(B[:, 0:3])).sum(axis=1)))
+        i = int(np.argmax(np.abs(to_float(B[:, ANGULAR])).sum(axis=1)))
         w, v = B[i, 0:3], B[i, 3:6]
         n2 = _norm2(w)
         return w / bk.sqrt(np.asarray(n2))[()], _cross(w, v) / n2, (w @ v) / n2
@@ -370,7 +371,7 @@ class Subgroup:
         part of the twist ``(a u, V(a u)^-1 p)``."""
         a, xi = self._xi_one_axis(R, p, prec)
         bk = prec.backend
-        fw = to_float(B[:, 0:3])
+        fw = to_float(B[:, ANGULAR])
         i = int(np.argmax(np.abs(fw).sum(axis=1)))
         others = [j for j in range(B.shape[0]) if j != i]
         if any(np.any(fw[j] != 0) for j in others):  # not the catalog's layout: least squares
@@ -492,7 +493,7 @@ class Subgroup:
             if not rotating:
                 return prec.backend.zeros(3)
             Br = B[rotating]
-            coef = _linalg.solve_coefficients(Br[:, 0:3], lie.log_so3(RR), prec)
+            coef = _linalg.solve_coefficients(Br[:, ANGULAR], lie.log_so3(RR), prec)
             return lie.exp(coef @ Br)[:3, 3]
 
 

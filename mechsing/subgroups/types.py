@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.errors import CatalogError
+from mechsing.lie import ANGULAR
 from mechsing.numeric import FLOAT, Backend
 
 __all__ = [
@@ -260,7 +261,7 @@ class SubgroupType:
     @functools.cached_property
     def rotation_rank(self) -> int:
         """Dimension of the rotation part (projection of the algebra to so(3))."""
-        return int(np.linalg.matrix_rank(self.basis(_sample_params(self))[:, 0:3]))
+        return int(np.linalg.matrix_rank(self.basis(_sample_params(self))[:, ANGULAR]))
 
     def to_json(self) -> dict[str, Any]:
         return {
