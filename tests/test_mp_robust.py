@@ -597,17 +597,8 @@ def test_input_test_near_the_rssr_dead_centre_is_never_falsely_singular(
 
 # ============================================================================ 3. T3-S chain at mp:50
 
-T3_S_CHAIN = """mechanism: t3-s-chain
-bodies: [ground, b1, b2]
-joints:
-  - {name: T, type: T3, between: [ground, b1]}
-  - {name: S, type: S, between: [b1, b2], point: [0, 0, 1]}
-output: {body: b2}
-configurations:
-  middle-axis: {T: [0.1, 0.2, 0.3], S: [0, "pi/2", 0]}
-  middle-axis-back: {T: [0.1, 0.2, 0.3], S: [0, "-pi/2", 0]}
-  full-turn: {T: [0.1, 0.2, 0.3], S: [0, "2*pi", 0]}
-"""
+#: also in the matrix test (tests/data) and benchmarks/mp_cost.py
+T3_S_CHAIN = (EXAMPLES.parent / "tests" / "data" / "t3_s_chain.yaml").read_text()
 
 
 def test_t3_s_chain_is_regular_where_charts_are_singular(tmp_path: Path) -> None:
