@@ -62,6 +62,7 @@ __all__ = [
     "parse_precision",
     "rank_bounds",
     "rank_difference",
+    "decide_nonzero",
     "rotation_orthonormal_atol",
     "pinv_truncated",
     "scale_screws",
@@ -88,6 +89,9 @@ MEMBERSHIP_RTOL_FLOAT = 1e-9
 NEAR_ZERO_VECTOR = 1e-9
 #: support threshold of a kernel vector (entries above 1e-9 of the largest)
 SUPPORT_RTOL = 1e-9
+#: two unit axes are parallel when the norm of their cross product is below this (a
+#: product of subgroups turning about parallel axes with their own pitches)
+PARALLEL_AXES_ATOL = 1e-9
 #: closure acceptance in float mode, relative to the characteristic length L
 #: (mp:N accepts at 10^(15-N) L, never looser than this)
 CLOSURE_RTOL_FLOAT = 1e-12
@@ -1033,6 +1037,21 @@ class RankDecision:
         d["margin"] = self.margin.to_json()
         d["precision"] = self.precision
         return d
+
+
+def decide_nonzero(value: Any, prec: Precision) -> bool | None:
+    """Is a relative (dimensionless, at most about 1) quantity non-zero?  The
+    two-threshold rule of a rank on one value: True at or above ``tau_hi``, False at
+    or below ``tau_lo``, None between (undecided); exactly in exact mode."""
+    if prec.mode == "exact":
+        return bool(sympy.simplify(value) != 0)
+    t = prec.tolerances
+    a = abs(float(to_float(value)))
+    if a >= t.tau_hi:
+        return True
+    if a <= t.tau_lo:
+        return False
+    return None
 
 
 def rank_difference(a: RankDecision, b: RankDecision) -> RankDecision:

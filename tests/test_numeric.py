@@ -137,3 +137,18 @@ def test_backends_convert_text_exactly() -> None:
         assert abs(x - mpmath.mpf(1) / 10) < mpmath.mpf(10) ** -39
     assert numeric.backend_of(np.zeros(3)).name == "float"
     assert numeric.backend_of(Precision("exact").asarray([1, 2])).name == "exact"
+
+
+def test_decide_nonzero_is_the_two_threshold_rule_on_one_value():
+    """One relative value decided like a singular value: above tau_hi non-zero, below tau_lo
+    zero, between undecided (float 1e-12 / 1e-9; mp:30 1e-20 / 1e-15); exact mode proves."""
+    import sympy
+
+    from mechsing.numeric import Precision, decide_nonzero
+
+    f, mp = Precision("float"), Precision("mp", 30)
+    assert [decide_nonzero(x, f) for x in (1e-13, -1e-10, 1e-8)] == [False, None, True]
+    assert [decide_nonzero(x, mp) for x in (1e-21, 1e-16, -1e-14)] == [False, None, True]
+    ex = Precision("exact")
+    assert decide_nonzero(sympy.sqrt(2) * sympy.sqrt(3) - sympy.sqrt(6), ex) is False
+    assert decide_nonzero(sympy.Rational(1, 10**40), ex) is True

@@ -19,10 +19,12 @@ from mechsing.kinematics.model import scale_blocks
 from mechsing.numeric import (
     SAMPLE_CLOSURE_RTOL,
     SAMPLE_DISTINCT_RATIO,
+    Precision,
     decide_rank,
     to_float,
 )
 
+_FLOAT = Precision("float")
 #: relative distances (radians or multiples of L) of the sample points
 SAMPLE_STEPS = (1e-3, 1e-2)
 #: random kernel directions tried per step
@@ -53,7 +55,8 @@ def reclose(
     Returns the configuration reached and its residual (m).
     """
     L = model.length_scale
-    tol = model.precision.closure_tolerance(L) if model.precision.mode == "float" else 1e-12 * L
+    # the float closure tolerance, also for an mp or exact model (this Newton is float)
+    tol = _FLOAT.closure_tolerance(L)
     free = np.ones(model.n, dtype=bool) if fixed is None else ~fixed
     res = model.residual_norm(model.chord_residuals(q))
     for _ in range(_NEWTON):
@@ -64,7 +67,7 @@ def reclose(
         rs = scale_blocks(r[:, None], L, model.centroid)[:, 0]
         A = J[:, free]
         U, s, Vt = np.linalg.svd(A, full_matrices=False)
-        keep = s > 1e-12 * (s[0] if len(s) else 0)
+        keep = s > _FLOAT.tolerances.tau_lo * (s[0] if len(s) else 0)
         du = Vt[keep].T @ ((U[:, keep].T @ -rs) / s[keep])
         d = np.zeros(model.n)
         d[free] = du

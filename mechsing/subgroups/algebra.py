@@ -19,11 +19,13 @@ import numpy as np
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
+    PARALLEL_AXES_ATOL,
     Margin,
     Precision,
     RankDecision,
     backend_of,
     characteristic_length,
+    decide_nonzero,
     decide_rank,
     scale_screws,
     to_float,
@@ -416,17 +418,11 @@ def _centre_of_rotations(B: np.ndarray, prec: Precision) -> np.ndarray:
 
 def _decide_pitch(h: Any, prec: Precision, margins: _Margins) -> bool | None:
     """Is the (commensurate) pitch non-zero?  Two thresholds, like a rank."""
-    if prec.mode == "exact":
-        return not _linalg.is_zero(h)
-    t = prec.tolerances
-    a = abs(float(to_float(h)))
-    if a >= t.tau_hi:
-        margins.add_values(kept=min(a, 1.0))
-        return True
-    if a <= t.tau_lo:
-        margins.add_values(dropped=a)
-        return False
-    return None
+    nonzero = decide_nonzero(h, prec)
+    if prec.mode != "exact" and nonzero is not None:
+        a = abs(float(to_float(h)))
+        margins.add_values(**({"kept": min(a, 1.0)} if nonzero else {"dropped": a}))
+    return nonzero
 
 
 # ---------------------------------------------------------------------------
@@ -566,7 +562,8 @@ def _discrete_pieces(
         turn = p.chart(_unit_turn(p, prec))
         if q.type.pitched and q.rotation_axis(prec) is not None:
             u2 = q.rotation_axis(prec)[0]  # type: ignore[index]
-            if float(np.linalg.norm(np.cross(to_float(u), to_float(u2)))) < 1e-9 and not q.contains(
+            parallel = float(np.linalg.norm(np.cross(to_float(u), to_float(u2))))
+            if parallel < PARALLEL_AXES_ATOL and not q.contains(
                 turn
             ):
                 extra = None
