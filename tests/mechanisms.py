@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -177,6 +178,26 @@ def run_cli(argv: list[str]) -> tuple[int, str, str]:
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         rc = main(argv)
     return rc, out.getvalue(), err.getvalue()
+
+
+_ANALYSES: dict[tuple[str, ...], tuple[str, dict]] = {}
+
+
+def analyze_text(path: Path | str, *options: str) -> tuple[str, dict]:
+    """``mechsing analyze PATH --format json OPTIONS``: its text and parsed JSON, which must
+    come with exit status 0 and no traceback (cached for the session: do not mutate)."""
+    key = (str(path), *options)
+    if key not in _ANALYSES:
+        rc, out, err = run_cli(["analyze", str(path), "--format", "json", *options])
+        assert rc == 0, f"exit status {rc} for {key}: {err}"
+        assert "Traceback" not in err
+        _ANALYSES[key] = (out, json.loads(out))
+    return _ANALYSES[key]
+
+
+def analyze_json(path: Path | str, *options: str) -> dict:
+    """The parsed JSON of ``mechsing analyze PATH --format json OPTIONS`` (cached)."""
+    return analyze_text(path, *options)[1]
 
 
 # ----------------------------------------------------------------------------- scaling a file

@@ -28,6 +28,8 @@ from tests.mechanisms import (
     PUBLISHED,
     ROOT,
     all_axis_points_at_origin,
+    analyze_json,
+    analyze_text,
     by_name,
     changepoint_family,
     changepoint_length_scale,
@@ -41,21 +43,6 @@ from tests.mechanisms import (
 
 EXAMPLE_FILES = sorted(p.name for p in EXAMPLES.glob("*.yaml"))
 
-_CACHE: dict[tuple[str, ...], tuple[str, dict]] = {}
-
-
-def analyze_json(path: Path | str, *options: str) -> dict:
-    """The parsed JSON of ``mechsing analyze PATH --format json OPTIONS`` (cached)."""
-    return analyze_text(path, *options)[1]
-
-
-def analyze_text(path: Path | str, *options: str) -> tuple[str, dict]:
-    key = (str(path), *options)
-    if key not in _CACHE:
-        rc, out, err = run_cli(["analyze", str(path), "--format", "json", *options])
-        assert rc == 0, f"exit status {rc} for {key}: {err}"
-        _CACHE[key] = (out, json.loads(out))
-    return _CACHE[key]
 
 
 def loop_map(config: dict) -> dict[frozenset[str], dict]:

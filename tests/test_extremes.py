@@ -53,6 +53,7 @@ from tests.mechanisms import (
     PUBLISHED,
     ROOT,
     all_axis_points_at_origin,
+    analyze_json,
     by_name,
     classes,
     configuration_names,
@@ -71,20 +72,6 @@ SLOW = os.environ.get("MECHSING_QUICK_TESTS") != "1"
 slow = pytest.mark.skipif(not SLOW, reason="heavy: skipped with MECHSING_QUICK_TESTS=1")
 
 # ----------------------------------------------------------------------------- helpers
-
-_CACHE: dict[tuple[str, ...], dict] = {}
-
-
-def analyze_json(path: Path | str, *options: str) -> dict:
-    """The parsed JSON of ``mechsing analyze PATH --format json OPTIONS`` (cached per session)."""
-    key = (str(path), *options)
-    if key not in _CACHE:
-        rc, out, err = run_cli(["analyze", str(path), "--format", "json", *options])
-        assert rc == 0, f"exit status {rc} for {key}: {err}"
-        assert "Traceback" not in err
-        _CACHE[key] = json.loads(out)
-    return _CACHE[key]
-
 
 def closure_tolerance(mode: str, L: float) -> float:
     """DESIGN.md: closure accepted at 1e-12 L in float, 10^(15-N) L at mp:N, exactly in exact."""
