@@ -391,10 +391,9 @@ class Closer:
             # file's digits say no more, so the configuration they give is the closed
             # one nearest to them (passive joints corrected, inputs kept; every joint
             # when that fails), far below what the values themselves claim
-            names = {jn for jn, _i in self.mech.input_coordinates()}
             keep = np.zeros(m.n, dtype=bool)
-            for jk in m.joints:
-                keep[jk.columns] = jk.name in names
+            for jn, i in self.mech.input_coordinates():
+                keep[m.joint(jn).columns.start + i] = True
             for gmask in (keep, np.zeros(m.n, dtype=bool)):
                 qm, rm = self._polish_mp(m, q, q, gmask, cfg)
                 if rm <= self.tolerance:
@@ -560,12 +559,8 @@ class Closer:
         qn[gmask] = qt[gmask]
         res = fm.residual_norm(fm.chord_residuals(qn))
         for _ in range(POLISH_MAX_STEPS):
-            Js = scale_blocks(fm.closure_jacobian(qn), L, fm.centroid, fm.length_columns)
-            r = fm.chord_twists(fm.chord_residuals(qn))
-            rs = scale_blocks(r.reshape(-1, 6).T, L, fm.centroid, None).T.reshape(-1)
-            d = np.zeros(fm.n)
-            d[free] = _dls(Js[:, free], -rs)
-            d = np.where(fm.length_columns, d * L, d)
+            Js, rs = _scaled_system(fm, qn)
+            d = _increment(fm, free, _dls(Js[:, free], -rs))
             best = None
             for k in (1, 2):  # the doubled step removes the halving at a double root
                 qk = fm.update(qn, d * k)
@@ -669,19 +664,10 @@ class Closer:
                 polish += 1
             if not fm.chords:
                 break
-            deltas = fm.chord_residuals(q)
-            r = fm.chord_twists(deltas)
-            S = fm.current_screws(q)
-            J = fm.closure_jacobian(q, S)
-            Js = scale_blocks(J, L, c, fm.length_columns)
-            rs = scale_blocks(r.reshape(-1, 6).T, L, c, None).T.reshape(-1)
             if not np.any(free):
                 break
-            du = _dls(Js[:, free], -rs)
-            d = np.zeros(fm.n)
-            d[free] = du
-            d = np.where(fm.length_columns, d * L, d)
-            qn = fm.update(q, d)
+            Js, rs = _scaled_system(fm, q)
+            qn = fm.update(q, _increment(fm, free, _dls(Js[:, free], -rs)))
             new = fm.residual_norm(fm.chord_residuals(qn))
             if not np.isfinite(new) or new > 10 * max(res, tol) and _it > 2:
                 info["residual"] = new
@@ -779,18 +765,13 @@ class Closer:
             for _ in range(POLISH_MAX_STEPS):
                 if not m.chords:
                     break
-                r = m.chord_twists(m.chord_residuals(qm))
-                J = m.closure_jacobian(qm)
-                Js = scale_blocks(J, L, m.centroid, m.length_columns)
-                rs = scale_blocks(r.reshape(-1, 6).T, L, m.centroid, None).T.reshape(-1)
+                Js, rs = _scaled_system(m, qm)
                 A = mpmath.matrix(Js[:, free].tolist())
                 b = mpmath.matrix([-x for x in rs])
                 du = _mp_lstsq(A, b)
                 if res <= goal and max((abs(x) for x in du), default=0) <= small:
                     break  # closed, and what is left to correct is below working precision
-                d = m.zeros()
-                d[np.flatnonzero(free)] = np.array(du, dtype=object)
-                d = np.where(m.length_columns, d * L, d)
+                d = _increment(m, free, np.array(du, dtype=object))
                 qn, rn = moved(d, 1)
                 if rn * POLISH_SLOW_RATIO > res:
                     slow = True
@@ -801,6 +782,24 @@ class Closer:
                     break
                 qm, res = qn, rn
             return qm, res, slow
+
+
+def _scaled_system(m: KinematicModel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The closure Jacobian and the chord residual twists at q, commensurate (moved to
+    the centroid, lengths over L): the system every Newton step on the group solves."""
+    L = m.length_scale
+    r = m.chord_twists(m.chord_residuals(q))
+    Js = scale_blocks(m.closure_jacobian(q), L, m.centroid, m.length_columns)
+    rs = scale_blocks(r.reshape(-1, 6).T, L, m.centroid, None).T.reshape(-1)
+    return Js, rs
+
+
+def _increment(m: KinematicModel, free: np.ndarray, du: np.ndarray) -> np.ndarray:
+    """A commensurate step ``du`` of the free coordinates as joint increments (lengths
+    times L, the given coordinates unmoved), in the model's numbers."""
+    d = m.zeros()
+    d[np.flatnonzero(free)] = du
+    return np.where(m.length_columns, d * m.length_scale, d)
 
 
 def _mp_lstsq(A: Any, b: Any) -> list[Any]:
