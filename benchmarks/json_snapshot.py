@@ -5,9 +5,9 @@ usage:
     python benchmarks/json_snapshot.py dump OUT.json [--modes float mp:30 exact auto]
     python benchmarks/json_snapshot.py compare OLD.json NEW.json
 
-``dump`` runs ``mechsing.analyze`` on examples/*.yaml in each mode (exact mode with its
-default time limit) and writes ``{mode: {file: json}}``; a file a mode refuses is stored
-as its error text.  ``compare`` walks both snapshots and reports every difference beyond
+``dump`` runs ``mechsing analyze --format json`` on examples/*.yaml in each mode (exact
+mode with its default time limit) and writes ``{mode: {file: json}}``; a file a mode
+refuses is stored as its error text.  ``compare`` walks both snapshots and reports every difference beyond
 these rules: keys may be added (never removed); strings, booleans, integers and None
 must be equal; floats must agree to 1e-12 relative in float and auto configurations
 decided in float, to 10^(5-N) relative at mp:N, and exactly in exact mode (margins are
@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import subprocess
 import sys
 from pathlib import Path
 from typing import Any
@@ -26,20 +27,25 @@ from typing import Any
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def dump(out: Path, modes: list[str]) -> None:
-    from mechsing.analysis import analyze
-    from mechsing.errors import UserError
-    from mechsing.report.render import _clean
-
+def dump(out: Path, modes: list[str], *, text: bool = False) -> None:
+    """Run the command line (not the Python API, which a restructuring may move) on
+    every example in every mode and store its JSON, or its error text when it exits
+    with status 2; ``text`` also stores the text report."""
     snap: dict[str, dict[str, Any]] = {}
     for mode in modes:
         snap[mode] = {}
         for path in sorted((ROOT / "examples").glob("*.yaml")):
-            try:
-                snap[mode][path.name] = _clean(analyze(path, precision=mode).to_json())
-            except UserError as exc:
-                snap[mode][path.name] = {"refused": str(exc)}
-            print(f"{mode:6s} {path.name}", file=sys.stderr)
+            cmd = [sys.executable, "-m", "mechsing", "analyze", str(path), "--precision", mode]
+            run = subprocess.run([*cmd, "--format", "json"], capture_output=True, text=True)
+            if run.returncode == 2:
+                snap[mode][path.name] = {"refused": run.stderr.strip()}
+            else:
+                snap[mode][path.name] = json.loads(run.stdout)
+            if text:
+                snap[mode][path.name + ".txt"] = subprocess.run(
+                    cmd, capture_output=True, text=True
+                ).stdout
+            print(f"{mode:6s} {path.name} exit {run.returncode}", file=sys.stderr)
     out.write_text(json.dumps(snap, indent=1, sort_keys=True))
 
 
@@ -101,12 +107,13 @@ def main() -> int:
     d = sub.add_parser("dump")
     d.add_argument("out", type=Path)
     d.add_argument("--modes", nargs="+", default=["float", "mp:30", "exact", "auto"])
+    d.add_argument("--text", action="store_true", help="also store the text reports")
     c = sub.add_parser("compare")
     c.add_argument("old", type=Path)
     c.add_argument("new", type=Path)
     args = p.parse_args()
     if args.cmd == "dump":
-        dump(args.out, args.modes)
+        dump(args.out, args.modes, text=args.text)
         return 0
     return compare(args.old, args.new)
 
