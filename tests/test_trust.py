@@ -131,7 +131,7 @@ def test_an_escaping_exception_is_one_line_exit_4_naming_file_and_configuration(
     def broken(*args, **kwargs):
         raise RuntimeError("svd: no convergence")
 
-    monkeypatch.setattr(mechsing.analysis, "classify_configuration", broken)
+    monkeypatch.setattr(mechsing.analysis, "classify", broken)
     path = str(ROOT / "examples" / "fourbar.yaml")
     rc, out, err = run_cli(["analyze", path, "--config", "crank-30", "--precision", "float"])
     assert rc == 4

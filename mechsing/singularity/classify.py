@@ -17,7 +17,7 @@ Order of work (lazy: nothing second-order at a regular point):
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -39,6 +39,17 @@ from mechsing.numeric import (
 from mechsing.screws import closure_system
 from mechsing.screws.mobility import NearbySample, nearby_samples, reclose, stacked_jacobian
 from mechsing.singularity.cspace import Cone, Expansion, closure_expansion, tangent_cone
+from mechsing.singularity.findings import (
+    BranchFinding,
+    ConstraintFinding,
+    Decision,
+    DegenerateReason,
+    Finding,
+    MotionFinding,
+    branch_finding,
+    decision,
+    degenerate,
+)
 from mechsing.singularity.serial import chain_system, serial_finding, wrenches_of
 from mechsing.singularity.zfb import io_quantities, leg_constraint_rank
 
@@ -49,24 +60,28 @@ from mechsing.singularity.zfb import io_quantities, leg_constraint_rank
 # ``test_precision``.  The nearby samples and the branch probes that they are
 # measured against are verification by continuation and stay in float.
 
+#: the note of a motion test whose space rests on another test's undecided rank
+RESTS_ON_UNDECIDED = "rests on an undecided rank of the input or output map"
+
 #: distances (commensurate) of the probes along a branch tangent
 BRANCH_STEPS = (3e-3, 3e-2)
 
 
 @dataclass
 class LocalAnalysis:
-    """Mobility fields and findings of one configuration."""
+    """Mobility fields and findings of one configuration, as the local analysis builds
+    them (its own working record: :func:`mechsing.singularity.classify` turns
+    it into a frozen :class:`~mechsing.singularity.findings.Classification`)."""
 
     generic: int | None
     finite: int | None
-    findings: list[dict[str, Any]] = field(default_factory=list)
+    findings: list[Finding] = field(default_factory=list)
     samples: list[NearbySample] = field(default_factory=list)
     cone: Cone | None = None
     regular: bool = True
-    io_generic: dict[str, Any] = field(default_factory=dict)
+    io_generic: dict[str, int | None] = field(default_factory=dict)
     #: the rank decisions at q behind the input/output, constraint and leg tests
-    #: (``decisions`` of the JSON; :meth:`mechsing.numeric.RankDecision.record`)
-    decisions: list[dict[str, Any]] = field(default_factory=list)
+    decisions: list[Decision] = field(default_factory=list)
 
 
 def float_model(mech: Any, model: Any) -> Any:
@@ -122,9 +137,9 @@ def _probe(fm: Any, q: np.ndarray, x: np.ndarray) -> tuple[int | None, float] | 
     return undecided
 
 
-def _joints_of(mech: Any, cs: Any) -> list[str]:
+def _joints_of(mech: Any, cs: Any) -> tuple[str, ...]:
     order = [j.name for j in mech.joints]
-    return sorted({j for ls in cs.loops for j in ls.loop.joints}, key=order.index)
+    return tuple(sorted({j for ls in cs.loops for j in ls.loop.joints}, key=order.index))
 
 
 def local_analysis(mech: Any, model: Any, q: np.ndarray, cs: Any) -> LocalAnalysis:
@@ -180,9 +195,7 @@ def _local_analysis(
         out.regular = False
         if cone.kind == "zero":
             out.generic, out.finite = None, 0
-            out.findings.append(
-                _cspace("isolated", joints, cone, margin, prec_name, instantaneous=inst)
-            )
+            out.findings.append(branch_finding("isolated", joints, cone, margin, prec_name, inst))
         else:
             found = _branches(fm, qf, cone) if cone.kind == "subspaces" else []
             if found and any(b[1] is not None for b in found):
@@ -194,14 +207,8 @@ def _local_analysis(
             else:
                 out.generic, out.finite = None, None
                 out.findings.append(
-                    _cspace(
-                        "degenerate",
-                        joints,
-                        cone,
-                        margin,
-                        prec_name,
-                        instantaneous=inst,
-                        note="rank drops, no nearby closed configuration was found, but the tangent cone is not {0}",
+                    degenerate(
+                        DegenerateReason.NOTHING_NEARBY, joints, cone, margin, prec_name, inst
                     )
                 )
     elif gen_s is not None and inst > gen_s:
@@ -211,27 +218,11 @@ def _local_analysis(
         out.generic = out.finite = gen_s
         if cone.kind == "inconclusive":
             out.findings.append(
-                _cspace(
-                    "degenerate",
-                    joints,
-                    cone,
-                    margin,
-                    prec_name,
-                    instantaneous=inst,
-                    note="; ".join(cone.notes),
-                )
+                degenerate(DegenerateReason.INCONCLUSIVE, joints, cone, margin, prec_name, inst)
             )
         elif cone.kind == "zero":
             out.findings.append(
-                _cspace(
-                    "degenerate",
-                    joints,
-                    cone,
-                    margin,
-                    prec_name,
-                    instantaneous=inst,
-                    note="the tangent cone is {0} but nearby closed configurations exist (a cusp?)",
-                )
+                degenerate(DegenerateReason.ZERO_CONE_NEARBY, joints, cone, margin, prec_name, inst)
             )
         else:
             found = _branches(fm, qf, cone)
@@ -280,26 +271,9 @@ def _branches(fm: Any, qf: np.ndarray, cone: Cone) -> list[tuple[np.ndarray, int
     return res
 
 
-def _cspace(
-    cls: str, joints: list[str], cone: Cone | None, margin: Margin, prec: str, **extra: Any
-) -> dict[str, Any]:
-    m = margin.to_json()
-    if cone is not None and cone.eig_margin is not None:
-        m["eig_margin"] = cone.eig_margin
-    f: dict[str, Any] = {"class": cls, "joints": joints}
-    if cone is not None:
-        f["order"] = cone.order
-    f.update({k: v for k, v in extra.items() if v is not None})
-    f["margin"] = m
-    f["precision"] = prec
-    if cone is not None:
-        f["test_precision"] = cone.precision
-    return f
-
-
 def _bifurcation_or_more(
     fm: Any,
-    joints: list[str],
+    joints: tuple[str, ...],
     cone: Cone,
     found: list,
     margin: Margin,
@@ -307,54 +281,42 @@ def _bifurcation_or_more(
     inst: int,
     gen: int | None,
     out: LocalAnalysis,
-) -> dict[str, Any]:
-    tangents = [_si_rates(fm, x) for x, _, _ in found]
-    mobilities = [n for _, n, _ in found]
-    dims = [W.shape[1] for W in cone.subspaces]
+) -> BranchFinding:
+    tangents = tuple(tuple(_si_rates(fm, x)) for x, _, _ in found)
+    mobilities = tuple(n for _, n, _ in found)
+    dims = tuple(W.shape[1] for W in cone.subspaces)
     if len(found) >= 2:
         known = [m for m in mobilities if m is not None]
         if known:
             out.generic = out.finite = max(known)
-        return _cspace(
+        return branch_finding(
             "bifurcation",
             joints,
             cone,
             margin,
             prec,
+            inst,
             branches=len(found),
             branch_tangents=tangents,
             branch_mobility=mobilities,
             branch_dimensions=dims,
-            instantaneous=inst,
             kinematotropic=len(set(known)) > 1 or None,
         )
     x, n, smooth = found[0]
     if smooth and gen is not None and dims[0] == gen:
-        return _cspace(
+        return branch_finding(
             "increased-mobility",
             joints,
             cone,
             margin,
             prec,
-            instantaneous=inst,
+            inst,
             generic=gen,
             branch_tangents=tangents,
         )
-    why = (
-        "one candidate branch, but continuation along it does not find a smooth curve through the point "
-        "(a cusp or tangential branches)"
-        if not smooth
-        else f"the tangent cone is one space of dimension {dims[0]}, not the branch dimension {gen}"
-    )
-    return _cspace(
-        "degenerate",
-        joints,
-        cone,
-        margin,
-        prec,
-        instantaneous=inst,
-        branch_tangents=tangents,
-        note=why,
+    reason = DegenerateReason.NOT_SMOOTH if not smooth else DegenerateReason.WRONG_DIMENSION
+    return degenerate(
+        reason, joints, cone, margin, prec, inst, branch_tangents=tangents, generic=gen
     )
 
 
@@ -368,11 +330,11 @@ def _io_findings(
     samples: list[NearbySample],
     out: LocalAnalysis,
     tprec: Precision,
-) -> list[dict[str, Any]]:
+) -> list[Finding]:
     """ZFB and constraint findings: decided at q at the test precision ``tprec``
     (``rank``: the closure system's decision there, with its kernel), against
     the values at the regular nearby samples (float)."""
-    findings: list[dict[str, Any]] = []
+    findings: list[Finding] = []
     regular = [s for s in samples if s.nullity == out.generic] or samples
     has_io = mech.output is not None and mech.inputs
     if has_io:
@@ -400,11 +362,10 @@ def _io_findings(
                 ("impossible-input", here.input_rank),
                 ("impossible-output", here.output_rank),
             ):
-                d = dec.record(test, generic[test])
+                d = decision(test, dec, generic[test])
                 if hv[test] is None and dec.rank is not None:
                     # a motion space built on an undecided rank (IOQuantities.values)
-                    d["rank"] = None
-                    d["note"] = "rests on an undecided rank of the input or output map"
+                    d = replace(d, rank=None, note=RESTS_ON_UNDECIDED)
                 out.decisions.append(d)
             findings.extend(_zfb(mech, fm, here, hv, generic, tprec))
     legs = leg_constraint_rank(mech, model, q, cs, tprec) if mech.output is not None else None
@@ -415,22 +376,21 @@ def _io_findings(
             r = leg_constraint_rank(mech, fm, s.q, closure_system(fm, s.q))
             if r is not None and r[0].rank is not None:
                 gen_ranks.append(r[0].rank)
-        out.decisions.append(dec.record("constraint", max(gen_ranks) if gen_ranks else None))
+        out.decisions.append(decision("constraint", dec, max(gen_ranks) if gen_ranks else None))
         if dec.rank is not None and gen_ranks and dec.rank < max(gen_ranks):
             g = max(gen_ranks)
             U, _s, _ = svd(np.concatenate(wr, axis=1))
+            wrenches = wrenches_of(fm, None, to_float(U[:, : dec.rank]), False)
             findings.append(
-                {
-                    "class": "constraint",
-                    "joints": [j for leg in mech.legs for j in leg.joints],
-                    "rank": dec.rank,
-                    "generic_rank": g,
-                    "corank": g - dec.rank,
-                    "wrenches": wrenches_of(fm, None, to_float(U[:, : dec.rank]), False),
-                    "margin": dec.margin.to_json(),
-                    "precision": dec.precision,
-                    "test_precision": dec.precision,
-                }
+                ConstraintFinding(
+                    joints=tuple(j for leg in mech.legs for j in leg.joints),
+                    rank=dec.rank,
+                    generic_rank=g,
+                    wrenches=tuple(tuple(w) for w in wrenches),
+                    margin=dec.margin,
+                    precision=dec.precision,
+                    test_precision=dec.precision,
+                )
             )
     if mech.output is not None:
         findings.extend(_leg_serial(mech, model, fm, cs, regular, out))
@@ -444,8 +404,8 @@ def _zfb(
     hv: dict[str, Any],
     generic: dict[str, Any],
     tprec: Precision,
-) -> list[dict[str, Any]]:
-    findings = []
+) -> list[Finding]:
+    findings: list[Finding] = []
     names = _coordinate_names(mech, fm)
     sp = here.spaces
     N = sp["N"]
@@ -466,38 +426,43 @@ def _zfb(
             basis = dec.null_space
         x = to_float(N @ basis[:, 0]) if basis.size else np.zeros(fm.n)
         rates = _si_rates(fm, x)
-        f: dict[str, Any] = {
-            "class": cls,
-            "joints": sorted(
-                {names[i] for i, r in enumerate(rates) if abs(r) > SUPPORT_RTOL},
-                key=[j.name for j in mech.joints].index,
-            ),
-            "dimension": v,
-            "generic": g,
-            "joint_rates": rates,
-        }
+        twist = None
         if cls == "output":
             t = to_float(sp["T"] @ (N @ basis[:, 0]))
-            f["output_twist"] = _output_si(mech, fm, t)
-        f["margin"] = dec.margin.to_json()
-        f["precision"] = dec.precision
-        f["test_precision"] = dec.precision
-        findings.append(f)
+            twist = tuple(_output_si(mech, fm, t))
+        findings.append(
+            MotionFinding(
+                cls,
+                joints=tuple(
+                    sorted(
+                        {names[i] for i, r in enumerate(rates) if abs(r) > SUPPORT_RTOL},
+                        key=[j.name for j in mech.joints].index,
+                    )
+                ),
+                generic=g,
+                margin=dec.margin,
+                precision=dec.precision,
+                test_precision=dec.precision,
+                dimension=v,
+                joint_rates=tuple(rates),
+                output_twist=twist,
+            )
+        )
     for cls in ("impossible-input", "impossible-output"):
         v, g = hv[cls], generic[cls]
         if v is None or g is None or v >= g:
             continue
         dec = here.input_rank if cls == "impossible-input" else here.output_rank
         findings.append(
-            {
-                "class": cls,
-                "joints": [r.joint for r in mech.inputs] if cls == "impossible-input" else [],
-                "rank": v,
-                "generic": g,
-                "margin": dec.margin.to_json(),
-                "precision": dec.precision,
-                "test_precision": dec.precision,
-            }
+            MotionFinding(
+                cls,
+                joints=tuple(r.joint for r in mech.inputs) if cls == "impossible-input" else (),
+                generic=g,
+                margin=dec.margin,
+                precision=dec.precision,
+                test_precision=dec.precision,
+                rank=v,
+            )
         )
     return findings
 
@@ -533,11 +498,11 @@ def _coordinate_names(mech: Any, fm: Any) -> list[str]:
 
 def _leg_serial(
     mech: Any, model: Any, fm: Any, cs: Any, regular: list[NearbySample], out: LocalAnalysis
-) -> list[dict[str, Any]]:
+) -> list[Finding]:
     """``serial`` for a leg whose own screw system loses rank (type I per leg):
     decided at the analysis precision from the closure system's screws (as the
     output chain of an open chain), against the float ranks at the samples."""
-    findings = []
+    findings: list[Finding] = []
     legs = mech.legs
     if len(legs) < 2:
         return findings
@@ -559,7 +524,7 @@ def _leg_serial(
             r = chain_system(fm, fm.current_screws(s.q), cols, None, "float").rank.rank
             if r is not None:
                 gen = max(gen, r)
-        out.decisions.append(here.rank.record(f"leg {i + 1} chain", gen))
+        out.decisions.append(decision(f"leg {i + 1} chain", here.rank, gen))
         f = serial_finding(fm, here, gen, names, {"chain": "leg", "leg": i + 1})
         if f:
             findings.append(f)

@@ -31,6 +31,7 @@ from mechsing.numeric import (
     decide_rank,
     to_float,
 )
+from mechsing.singularity.findings import SerialFinding
 
 #: random configurations sampled to find a chain's generic rank
 GENERIC_SAMPLES = 8
@@ -126,8 +127,9 @@ def serial_finding(
     joints_of_columns: list[str],
     label: dict[str, Any],
     point_x: np.ndarray | None = None,
-) -> dict[str, Any] | None:
-    """The ``serial`` finding of a chain whose rank is below ``generic_rank`` (else None)."""
+) -> SerialFinding | None:
+    """The ``serial`` finding of a chain whose rank is below ``generic_rank`` (else None);
+    ``label``: ``chain`` ("output" with ``body`` and ``relative_to``, or "leg" with ``leg``)."""
     dec = system.rank
     if dec.rank is None or dec.rank >= generic_rank:
         return None
@@ -161,20 +163,20 @@ def serial_finding(
         {joints_of_columns[i] for i, x in enumerate(rates) if big > 0 and abs(x) > SUPPORT_RTOL},
         key=joints_of_columns.index,
     )
-    finding = {
-        "class": "serial",
-        **label,
-        "joints": support,
-        "corank": generic_rank - r,
-        "rank": r,
-        "generic_rank": generic_rank,
-        "wrenches": wr,
-        "twist": _unit_first_positive(np.asarray(twist)).tolist(),
-        "null_joint_rates": [float(x) for x in rates],
-        "margin": dec.margin.to_json(),
-        "precision": dec.precision,
-    }
-    return finding
+    return SerialFinding(
+        chain=label["chain"],
+        joints=tuple(support),
+        rank=r,
+        generic_rank=generic_rank,
+        wrenches=tuple(tuple(w) for w in wr),
+        twist=tuple(_unit_first_positive(np.asarray(twist)).tolist()),
+        null_joint_rates=tuple(float(x) for x in rates),
+        margin=dec.margin,
+        precision=dec.precision,
+        body=label.get("body"),
+        relative_to=label.get("relative_to"),
+        leg=label.get("leg"),
+    )
 
 
 def chain_system(

@@ -23,16 +23,25 @@ import math
 import threading
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
+from mechsing.analysis.properties import mechanism_properties
+from mechsing.analysis.results import (
+    AnalysisResult,
+    ClosureRank,
+    ConfigurationResult,
+    LoopEntry,
+    Mobility,
+)
 from mechsing.errors import UserError, working_on
 from mechsing.kinematics import Closer, ConfigurationError, KinematicModel
 from mechsing.model import Mechanism, load
 from mechsing.numeric import Precision, float_drop_is_real, parse_precision
 from mechsing.screws import closure_system, group_mobility, grubler
-from mechsing.singularity import classify_configuration, mechanism_properties
+from mechsing.singularity import classify
+from mechsing.singularity.findings import Decision, UndecidedFinding, decision
 from mechsing.timelimit import (
     EXACT_PROGRESS_DELAY,
     EXACT_TIME_LIMIT,
@@ -42,92 +51,6 @@ from mechsing.timelimit import (
 )
 
 __all__ = ["AnalysisResult", "ConfigurationResult", "analyze"]
-
-
-@dataclass
-class ConfigurationResult:
-    """Everything mechsing says about one configuration (see :meth:`to_json`)."""
-
-    name: str
-    precision: str
-    joints: dict[str, list[float]] = field(default_factory=dict)
-    closure_residual: float | None = None
-    closure_rank: dict[str, Any] | None = None
-    loops: list[dict[str, Any]] = field(default_factory=list)
-    mobility: dict[str, Any] = field(default_factory=dict)
-    singularities: list[dict[str, Any]] = field(default_factory=list)
-    #: every rank decision made at the configuration, singular or not
-    #: (:meth:`mechsing.numeric.RankDecision.record`)
-    decisions: list[dict[str, Any]] = field(default_factory=list)
-    underdetermined: bool = False
-    error: str | None = None
-    #: wall-clock seconds the configuration took (escalation included); not in the JSON
-    seconds: float = field(default=0.0, compare=False)
-    #: what the analysis did to the given values that a reader should know (JSON ``notes``)
-    notes: list[str] = field(default_factory=list)
-    internals: dict[str, Any] = field(default_factory=dict, repr=False)
-
-    @property
-    def singular(self) -> bool | None:
-        if not self.singularities:
-            return False
-        if all(s["class"] == "undecided" for s in self.singularities):
-            return None
-        return True
-
-    def to_json(self) -> dict[str, Any]:
-        out: dict[str, Any] = {"name": self.name, "precision": self.precision}
-        if self.error is not None:
-            out["error"] = self.error
-            out["singular"] = None
-            out["singularities"] = []
-            return out
-        out.update(
-            {
-                "joints": self.joints,
-                "closure_residual": self.closure_residual,
-                "closure_rank": self.closure_rank,
-                "loops": self.loops,
-                "mobility": self.mobility,
-                "singular": self.singular,
-                "singularities": self.singularities,
-                "decisions": self.decisions,
-            }
-        )
-        if self.underdetermined:
-            out["underdetermined"] = True
-        if self.notes:
-            out["notes"] = list(self.notes)
-        return out
-
-
-@dataclass
-class AnalysisResult:
-    """The analysis of a mechanism; :meth:`to_json` is the JSON contract (README)."""
-
-    mechanism: Mechanism
-    precision: Precision
-    length_scale: float
-    configurations: list[ConfigurationResult]
-    properties: list[dict[str, Any]] = field(default_factory=list)
-
-    @property
-    def failed(self) -> bool:
-        return any(c.error is not None for c in self.configurations)
-
-    def to_json(self) -> dict[str, Any]:
-        t = self.precision.tolerances
-        return {
-            "mechanism": self.mechanism.name,
-            "precision": {
-                "mode": str(self.precision),
-                "tau_lo": t.tau_lo,
-                "tau_hi": t.tau_hi,
-                "length_scale": self.length_scale,
-            },
-            "properties": self.properties,
-            "configurations": [c.to_json() for c in self.configurations],
-        }
 
 
 def analyze(
@@ -205,39 +128,39 @@ def _analyze(
         start = time.perf_counter()
         if prec.mode == "exact":
             res = exact.run(name, lambda name=name: _analyze_one(mech, name, stage(first)))
-            res.seconds = time.perf_counter() - start
-            results.append(res)
+            results.append(replace(res, seconds=time.perf_counter() - start))
             continue
         res = _analyze_one(mech, name, stage(first))
-        if prec.mode == "auto" and res.error is None:
-            doubtful = _doubtful_drops(res)
-            if res.internals.get("undecided") or doubtful:
-                res = _analyze_one(mech, name, stage(Precision("mp", 50)))
-                res.internals["escalated"] = True
-                res.internals["escalated_for"] = doubtful or ["undecided"]
-        res.seconds = time.perf_counter() - start
-        results.append(res)
+        if prec.mode == "auto" and res.error is None and (res.undecided or res.doubtful):
+            why = res.doubtful or ("undecided",)
+            res = _analyze_one(mech, name, stage(Precision("mp", 50)))
+            res = replace(res, escalated_for=why)
+        results.append(replace(res, seconds=time.perf_counter() - start))
     km0 = stage(first)[0]
-    props = mechanism_properties(mech, km0, results)
-    return AnalysisResult(mech, prec, km0.length_scale, results, props)
+    props = mechanism_properties(mech, results)
+    return AnalysisResult(mech, prec, km0.length_scale, tuple(results), props)
 
 
-def _doubtful_drops(res: ConfigurationResult) -> list[str]:
+def _doubtful_drops(
+    singular: bool | None,
+    decisions: tuple[Decision, ...],
+    closure_residual: float,
+    length_scale: float,
+) -> tuple[str, ...]:
     """The float decisions of a configuration found singular that dropped a singular value
     above float's rounding of it (closure residual included): auto re-decides them at mp:50.
 
     Only a singular verdict can rest on such a drop (a rank decided too low makes a finding,
     never removes one), so a regular configuration is not re-decided: far from singular,
     auto costs what float costs."""
-    model = res.internals.get("model")
-    if model is None or res.singular is not True:
-        return []
-    data_error = (res.closure_residual or 0.0) / model.length_scale
-    return [
-        d["test"]
-        for d in res.decisions
-        if d["precision"] == "float" and float_drop_is_real(d["margin"], data_error)
-    ]
+    if singular is not True:
+        return ()
+    data_error = closure_residual / length_scale
+    return tuple(
+        d.test
+        for d in decisions
+        if d.precision == "float" and float_drop_is_real(d.margin, data_error)
+    )
 
 
 class _ExactRun:
@@ -309,12 +232,13 @@ class _ExactRun:
                 res = work()
         except TimeLimitExceeded as exc:
             doing = exc.activity or "analysing it"
-            res = ConfigurationResult(name, "exact")
-            res.error = (
-                f"configuration {name!r}: exact mode stopped after {self.limit:g} s (its time "
+            res = ConfigurationResult(
+                name,
+                "exact",
+                error=f"configuration {name!r}: exact mode stopped after {self.limit:g} s (its time "
                 f"limit) while {doing}: sympy could not finish that in time; use --precision "
                 "mp:50 (or auto) for this configuration, or allow exact mode more time with "
-                "--time-limit S"
+                "--time-limit S",
             )
         finally:
             if timer is not None:
@@ -341,79 +265,84 @@ def _analyze_one_in_context(
 ) -> ConfigurationResult:
     model, closer = stage
     prec = model.precision
-    out = ConfigurationResult(name, str(prec))
     try:
         with activity("closing the configuration"):
             closed = closer.solve(name)
     except ConfigurationError as exc:
-        out.error = str(exc)
-        return out
+        return ConfigurationResult(name, str(prec), error=str(exc))
     q = closed.q
-    out.joints = model.values(q)
-    out.closure_residual = float(closed.residual)
-    out.underdetermined = closed.underdetermined
-    out.notes.extend(closed.notes)
     with activity("deciding the ranks of the closure system, of its loops and their subgroups"):
         cs = closure_system(model, q, prec)
-        undecided = _closure_entries(mech, cs, out)
+        closure_rank = ClosureRank(cs.rank.rank, cs.nullity, cs.rank.margin)
+        loops, decisions, undecided = _closure_entries(mech, cs)
         inst = cs.nullity
-        out.mobility = {
-            "grubler": grubler(model),
-            "group": group_mobility(model, cs.loops),
-            "instantaneous": inst,
-            "generic": inst,
-            "finite": inst,
-        }
-    out.internals.update(
-        {"model": model, "q": q, "closure": cs, "undecided": undecided, "closed": closed}
-    )
+        grubler_count, group = grubler(model), group_mobility(model, cs.loops)
     with activity("classifying the singularities (output chain, input/output and cone tests)"):
-        out.singularities = classify_configuration(mech, model, out)
+        found = classify(mech, model, q, cs)
+    findings = list(found.findings)
     if closed.at_fold and prec.mode == "float":
         # float locates a fold's unknown joints only to sqrt(eps): a kernel singular value
         # of 1e-8 there says nothing, so no float verdict stands (auto re-decides at mp:50)
-        out.singularities.append(
-            {
-                "class": "undecided",
-                "what": "configuration at a fold of the given values",
-                "rank_bounds": None,
-                "note": "float places a fold's unknown joints only to about 1e-8",
-                "margin": out.closure_rank["margin"] if out.closure_rank else None,
-                "precision": str(prec),
-            }
+        findings.append(
+            UndecidedFinding(
+                "configuration at a fold of the given values",
+                None,
+                closure_rank.margin,
+                str(prec),
+                note=FOLD_NOTE,
+                subject="configuration",
+            )
         )
-    if any(f["class"] == "undecided" for f in out.singularities):
-        out.internals["undecided"] = True  # auto re-decides the configuration at mp:50
-    return out
+    decisions.extend(found.decisions)
+    res = ConfigurationResult(
+        name,
+        str(prec),
+        joints=tuple((k, tuple(v)) for k, v in model.values(q).items()),
+        closure_residual=float(closed.residual),
+        closure_rank=closure_rank,
+        loops=loops,
+        mobility=Mobility(grubler_count, group, inst, found.generic, found.finite),
+        singularities=tuple(findings),
+        decisions=tuple(decisions),
+        underdetermined=closed.underdetermined,
+        notes=tuple(closed.notes),
+        # auto re-decides the configuration at mp:50
+        undecided=undecided
+        or found.undecided
+        or any(isinstance(f, UndecidedFinding) for f in findings),
+        classification=found,
+    )
+    doubtful = _doubtful_drops(
+        res.singular, res.decisions, res.closure_residual or 0.0, model.length_scale
+    )
+    return replace(res, doubtful=doubtful) if doubtful else res
 
 
-def _closure_entries(mech: Mechanism, cs: Any, out: ConfigurationResult) -> bool:
-    """The closure rank and the loops of a configuration (its JSON entries and decisions);
+#: why float gives no verdict at a fold of the given values
+FOLD_NOTE = "float places a fold's unknown joints only to about 1e-8"
+
+
+def _closure_entries(
+    mech: Mechanism, cs: Any
+) -> tuple[tuple[LoopEntry, ...], list[Decision], bool]:
+    """The loops of a configuration (their entries) and the closure and loop decisions;
     True when one of them is undecided."""
     rank = cs.rank
-    out.closure_rank = {
-        "rank": rank.rank,
-        "nullity": cs.nullity,
-        "margin": rank.margin.to_json(),
-    }
     undecided = rank.rank is None
-    if mech.loops:
-        out.decisions.append(rank.record("closure"))
+    decisions = [decision("closure", rank)] if mech.loops else []
+    loops = []
     for ls in cs.loops:
         ident = ls.identification
-        sub = ident.subgroup.to_json() if ident.ok else {"type": None, "dim": None, "params": {}}
-        entry: dict[str, Any] = {
-            "joints": list(ls.loop.joints),
-            "subgroup": sub,
-            "rank": ls.rank.rank,
-            "sigma": list(ls.rank.sigma) if ls.rank.sigma is not None else None,
-            "margin": ls.rank.margin.to_json(),
-        }
-        if not ident.ok:
-            entry["subgroup_status"] = ident.status
+        entry = LoopEntry(
+            joints=tuple(ls.loop.joints),
+            subgroup=ident.subgroup if ident.ok else None,
+            rank=ls.rank.rank,
+            sigma=tuple(ls.rank.sigma) if ls.rank.sigma is not None else None,
+            margin=ls.rank.margin,
+            status=None if ident.ok else ident.status,
+        )
+        if not ident.ok or ls.rank.rank is None:
             undecided = True
-        if ls.rank.rank is None:
-            undecided = True
-        out.loops.append(entry)
-        out.decisions.append(ls.rank.record(f"loop {'-'.join(ls.loop.joints)}"))
-    return undecided
+        loops.append(entry)
+        decisions.append(decision(f"loop {'-'.join(ls.loop.joints)}", ls.rank))
+    return tuple(loops), decisions, undecided

@@ -1,0 +1,475 @@
+"""The typed, immutable results of an analysis, and the one serializer of the JSON contract.
+
+Owns :class:`ConfigurationResult` and :class:`AnalysisResult` with their records (the closure
+rank, a loop's entry, the mobility, the mechanism-level properties) and :func:`to_json`, the
+only place where the JSON contract is built: configurations, findings, rank decisions, margins,
+mobility and properties are read from their types here (keys in the contract's order).  The
+renderers of :mod:`mechsing.report` read this output.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from mechsing.model import Mechanism
+from mechsing.numeric import Margin, Precision
+from mechsing.singularity.findings import (
+    BranchFinding,
+    Classification,
+    ConstraintFinding,
+    Decision,
+    Finding,
+    MotionFinding,
+    SerialFinding,
+    UndecidedFinding,
+)
+
+__all__ = [
+    "AnalysisResult",
+    "ClosureRank",
+    "ConfigurationResult",
+    "IdleMotion",
+    "LoopEntry",
+    "Mobility",
+    "Overconstrained",
+    "Property",
+    "Shaky",
+    "Actuation",
+    "to_json",
+]
+
+
+@dataclass(frozen=True)
+class Mobility:
+    """The mobility fields of a configuration: the spatial Grubler-Kutzbach count, the
+    group mobility of the loops' subgroups, the instantaneous mobility (closure nullity),
+    and the generic and finite mobility the classification decided (None: undecided)."""
+
+    grubler: int | None
+    group: int | None
+    instantaneous: int | None
+    generic: int | None
+    finite: int | None
+
+
+@dataclass(frozen=True)
+class ClosureRank:
+    """The stacked closure system's rank, nullity and margin."""
+
+    rank: int | None
+    nullity: int | None
+    margin: Margin
+
+
+@dataclass(frozen=True)
+class LoopEntry:
+    """One loop at a configuration: its joints, the subgroup its screws generate
+    (None when not identified: ``status`` says why), its rank and singular values."""
+
+    joints: tuple[str, ...]
+    subgroup: Any
+    rank: int | None
+    sigma: tuple[float, ...] | None
+    margin: Margin
+    status: str | None = None
+
+
+@dataclass(frozen=True)
+class Overconstrained:
+    """The mechanism moves with more freedom than its loops' subgroups allow."""
+
+    finite: int
+    group: int
+    grubler: int | None
+    configuration: str
+
+    kind = "overconstrained"
+
+    @property
+    def explanation(self) -> str:
+        return (
+            f"the mechanism moves with {self.finite} degree(s) of freedom although its loops' "
+            f"subgroups allow {self.group} (Grubler-Kutzbach gives {self.grubler}): its mobility "
+            "comes from special geometry (an intersection of subgroups or metric conditions)"
+        )
+
+
+@dataclass(frozen=True)
+class Shaky:
+    """Instantaneous motions at regular configurations that do not extend."""
+
+    instantaneous: int
+    finite: int
+    configurations: tuple[str, ...]
+
+    kind = "shaky"
+
+    @property
+    def explanation(self) -> str:
+        return (
+            f"at regular configurations the joints have {self.instantaneous} instantaneous "
+            f"motion(s) but only {self.finite} extend to finite motion (second-order test)"
+        )
+
+
+@dataclass(frozen=True)
+class IdleMotion:
+    """Passive motions with inputs and output still, present generically."""
+
+    dimension: int
+    configuration: str
+
+    kind = "idle-motion"
+
+    @property
+    def explanation(self) -> str:
+        return (
+            f"{self.dimension} passive motion(s) exist with the inputs locked and the output still, "
+            "at every regular configuration (e.g. a link spinning about its own axis)"
+        )
+
+
+@dataclass(frozen=True)
+class Actuation:
+    """``redundant-actuation`` or ``underactuated``: inputs against the useful freedom."""
+
+    kind: str
+    inputs: int
+    finite: int
+    idle: int
+    configuration: str
+
+    @property
+    def explanation(self) -> str:
+        useful = self.finite - self.idle
+        if self.kind == "redundant-actuation":
+            return f"{self.inputs} actuated coordinates drive {useful} degree(s) of freedom"
+        return f"{self.inputs} actuated coordinates for {useful} degree(s) of freedom"
+
+
+Property = Overconstrained | Shaky | IdleMotion | Actuation
+
+
+@dataclass(frozen=True)
+class ConfigurationResult:
+    """Everything mechsing says about one configuration (see :func:`to_json`).
+
+    ``undecided``: a verdict was left open at this precision (auto re-decides the
+    configuration at mp:50); ``doubtful``: the float decisions of a singular verdict that
+    dropped a singular value above float's rounding (auto re-decides those too);
+    ``escalated_for``: why auto re-decided it; ``classification``: what
+    :func:`mechsing.singularity.classify` returned (the properties read it)."""
+
+    name: str
+    precision: str
+    joints: tuple[tuple[str, tuple[float, ...]], ...] = ()
+    closure_residual: float | None = None
+    closure_rank: ClosureRank | None = None
+    loops: tuple[LoopEntry, ...] = ()
+    mobility: Mobility | None = None
+    singularities: tuple[Finding, ...] = ()
+    #: every rank decision made at the configuration, singular or not
+    decisions: tuple[Decision, ...] = ()
+    underdetermined: bool = False
+    error: str | None = None
+    #: wall-clock seconds the configuration took (escalation included); not in the JSON
+    seconds: float = field(default=0.0, compare=False)
+    #: what the analysis did to the given values that a reader should know (JSON ``notes``)
+    notes: tuple[str, ...] = ()
+    undecided: bool = False
+    doubtful: tuple[str, ...] = ()
+    escalated_for: tuple[str, ...] = ()
+    classification: Classification | None = field(default=None, compare=False, repr=False)
+
+    @property
+    def singular(self) -> bool | None:
+        if not self.singularities:
+            return False
+        if all(isinstance(s, UndecidedFinding) for s in self.singularities):
+            return None
+        return True
+
+    def to_json(self) -> dict[str, Any]:
+        return to_json(self)
+
+
+@dataclass(frozen=True)
+class AnalysisResult:
+    """The analysis of a mechanism; :func:`to_json` is the JSON contract (README)."""
+
+    mechanism: Mechanism
+    precision: Precision
+    length_scale: float
+    configurations: tuple[ConfigurationResult, ...]
+    properties: tuple[Property, ...] = ()
+
+    @property
+    def failed(self) -> bool:
+        return any(c.error is not None for c in self.configurations)
+
+    def to_json(self) -> dict[str, Any]:
+        return to_json(self)
+
+
+# --------------------------------------------------------------------------- the serializer
+
+
+def to_json(x: Any) -> Any:
+    """The JSON contract of a result, a finding, a decision, a margin, a mobility or a
+    property (plain dicts and lists, keys in the contract's order)."""
+    if isinstance(x, AnalysisResult):
+        return _analysis(x)
+    if isinstance(x, ConfigurationResult):
+        return _configuration(x)
+    if isinstance(x, Margin):
+        return _margin(x)
+    if isinstance(x, Decision):
+        return _decision(x)
+    if isinstance(x, Mobility):
+        return _mobility(x)
+    if isinstance(x, SerialFinding | BranchFinding | MotionFinding | ConstraintFinding):
+        return _finding(x)
+    if isinstance(x, UndecidedFinding):
+        return _undecided(x)
+    if isinstance(x, Overconstrained | Shaky | IdleMotion | Actuation):
+        return _property(x)
+    raise TypeError(f"no JSON form for {type(x).__name__}")
+
+
+def _lists(x: Any) -> Any:
+    """Tuples (the types' immutable sequences) as JSON lists."""
+    if isinstance(x, tuple):
+        return [_lists(v) for v in x]
+    return x
+
+
+def _analysis(r: AnalysisResult) -> dict[str, Any]:
+    t = r.precision.tolerances
+    return {
+        "mechanism": r.mechanism.name,
+        "precision": {
+            "mode": str(r.precision),
+            "tau_lo": t.tau_lo,
+            "tau_hi": t.tau_hi,
+            "length_scale": r.length_scale,
+        },
+        "properties": [_property(p) for p in r.properties],
+        "configurations": [_configuration(c) for c in r.configurations],
+    }
+
+
+def _configuration(c: ConfigurationResult) -> dict[str, Any]:
+    out: dict[str, Any] = {"name": c.name, "precision": c.precision}
+    if c.error is not None:
+        out["error"] = c.error
+        out["singular"] = None
+        out["singularities"] = []
+        return out
+    cr = c.closure_rank
+    out.update(
+        {
+            "joints": {k: list(v) for k, v in c.joints},
+            "closure_residual": c.closure_residual,
+            "closure_rank": None
+            if cr is None
+            else {"rank": cr.rank, "nullity": cr.nullity, "margin": _margin(cr.margin)},
+            "loops": [_loop(lp) for lp in c.loops],
+            "mobility": {} if c.mobility is None else _mobility(c.mobility),
+            "singular": c.singular,
+            "singularities": [to_json(f) for f in c.singularities],
+            "decisions": [_decision(d) for d in c.decisions],
+        }
+    )
+    if c.underdetermined:
+        out["underdetermined"] = True
+    if c.notes:
+        out["notes"] = list(c.notes)
+    return out
+
+
+def _loop(lp: LoopEntry) -> dict[str, Any]:
+    sub = (
+        lp.subgroup.to_json()
+        if lp.subgroup is not None
+        else {"type": None, "dim": None, "params": {}}
+    )
+    entry: dict[str, Any] = {
+        "joints": list(lp.joints),
+        "subgroup": sub,
+        "rank": lp.rank,
+        "sigma": list(lp.sigma) if lp.sigma is not None else None,
+        "margin": _margin(lp.margin),
+    }
+    if lp.status is not None:
+        entry["subgroup_status"] = lp.status
+    return entry
+
+
+def _mobility(m: Mobility) -> dict[str, Any]:
+    return {
+        "grubler": m.grubler,
+        "group": m.group,
+        "instantaneous": m.instantaneous,
+        "generic": m.generic,
+        "finite": m.finite,
+    }
+
+
+def _margin(m: Margin | None) -> dict[str, Any] | None:
+    """How far a decision was from flipping: kept, dropped, thresholds and length scale,
+    then sigma_max, rounding and eig_margin where known."""
+    if m is None:
+        return None
+    d: dict[str, Any] = {
+        "kept": m.kept,
+        "dropped": m.dropped,
+        "tau_lo": m.tau_lo,
+        "tau_hi": m.tau_hi,
+        "length_scale": m.length_scale,
+    }
+    if m.sigma_max is not None:
+        d["sigma_max"] = m.sigma_max
+    if m.rounding is not None:
+        d["rounding"] = m.rounding
+    if m.eig_margin is not None:
+        d["eig_margin"] = m.eig_margin
+    return d
+
+
+def _decision(d: Decision) -> dict[str, Any]:
+    out: dict[str, Any] = {"test": d.test, "rank": d.rank}
+    if d.rank_bounds is not None:
+        out["rank_bounds"] = list(d.rank_bounds)
+    if d.generic is not None:
+        out["generic"] = d.generic
+    out["margin"] = _margin(d.margin)
+    out["precision"] = d.precision
+    if d.note is not None:
+        out["note"] = d.note
+    return out
+
+
+def _decided(f: Any, out: dict[str, Any]) -> dict[str, Any]:
+    """The closing keys of a decided finding: margin, precision, test precision."""
+    out["margin"] = _margin(f.margin)
+    out["precision"] = f.precision
+    if getattr(f, "test_precision", None) is not None:
+        out["test_precision"] = f.test_precision
+    return out
+
+
+def _finding(
+    f: SerialFinding | BranchFinding | MotionFinding | ConstraintFinding,
+) -> dict[str, Any]:
+    out: dict[str, Any] = {"class": f.cls}
+    if isinstance(f, SerialFinding):
+        out["chain"] = f.chain
+        if f.chain == "leg":
+            out["leg"] = f.leg
+        else:
+            out["body"] = f.body
+            out["relative_to"] = f.relative_to
+        out.update(
+            {
+                "joints": list(f.joints),
+                "corank": f.corank,
+                "rank": f.rank,
+                "generic_rank": f.generic_rank,
+                "wrenches": _lists(f.wrenches),
+                "twist": list(f.twist),
+                "null_joint_rates": list(f.null_joint_rates),
+            }
+        )
+        return _decided(f, out)
+    out["joints"] = list(f.joints)
+    if isinstance(f, BranchFinding):
+        out["order"] = f.order
+        if f.cls == "bifurcation":
+            keys = (
+                "branches",
+                "branch_tangents",
+                "branch_mobility",
+                "branch_dimensions",
+                "instantaneous",
+                "kinematotropic",
+            )
+        elif f.cls == "increased-mobility":
+            keys = ("instantaneous", "generic", "branch_tangents")
+        else:  # isolated, degenerate
+            keys = ("instantaneous", "branch_tangents", "note")
+        for k in keys:
+            v = getattr(f, k)
+            if v is not None:
+                out[k] = _lists(v)
+        return _decided(f, out)
+    if isinstance(f, MotionFinding):
+        if f.rank is not None:  # impossible-input, impossible-output
+            out["rank"] = f.rank
+            out["generic"] = f.generic
+        else:
+            out["dimension"] = f.dimension
+            out["generic"] = f.generic
+            out["joint_rates"] = _lists(f.joint_rates)
+            if f.output_twist is not None:
+                out["output_twist"] = list(f.output_twist)
+        return _decided(f, out)
+    out.update(
+        {
+            "rank": f.rank,
+            "generic_rank": f.generic_rank,
+            "corank": f.corank,
+            "wrenches": _lists(f.wrenches),
+        }
+    )
+    return _decided(f, out)
+
+
+def _undecided(f: UndecidedFinding) -> dict[str, Any]:
+    out: dict[str, Any] = {
+        "class": "undecided",
+        "what": f.what,
+        "rank_bounds": None if f.rank_bounds is None else list(f.rank_bounds),
+    }
+    if f.subject == "configuration":
+        # no rank in question: why the configuration itself is too coarse comes first
+        out["note"] = f.note
+    out["margin"] = _margin(f.margin)
+    out["precision"] = f.precision
+    if f.subject != "configuration" and f.note is not None:
+        out["note"] = f.note
+    return out
+
+
+def _property(p: Property) -> dict[str, Any]:
+    out: dict[str, Any] = {"kind": p.kind}
+    if isinstance(p, Overconstrained):
+        out.update(
+            {
+                "finite": p.finite,
+                "group": p.group,
+                "grubler": p.grubler,
+                "configuration": p.configuration,
+            }
+        )
+    elif isinstance(p, Shaky):
+        out.update(
+            {
+                "instantaneous": p.instantaneous,
+                "finite": p.finite,
+                "configurations": list(p.configurations),
+            }
+        )
+    elif isinstance(p, IdleMotion):
+        out.update({"dimension": p.dimension, "configuration": p.configuration})
+    else:
+        out.update(
+            {
+                "inputs": p.inputs,
+                "finite": p.finite,
+                "idle": p.idle,
+                "configuration": p.configuration,
+            }
+        )
+    out["explanation"] = p.explanation
+    return out
