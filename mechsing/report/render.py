@@ -1,6 +1,7 @@
 """Text, Markdown and JSON renderings of an :class:`~mechsing.analysis.AnalysisResult`.
 
-JSON is deterministic: the same file gives byte-identical output (keys in a
+All three read the one serializer's output (:func:`mechsing.analysis.results.to_json`, the
+JSON contract); none builds JSON of its own.  JSON is deterministic: the same file gives byte-identical output (keys in a
 fixed order, floats printed by ``repr``).  Text and Markdown explain each
 finding in a sentence a student understands.
 """
@@ -10,6 +11,8 @@ from __future__ import annotations
 import json
 import math
 from typing import Any
+
+from mechsing.analysis.results import AnalysisResult, to_json
 
 EXPLAIN = {
     "serial": "the chain's screws span fewer directions than usual: it has lost a direction of motion "
@@ -46,8 +49,9 @@ def _clean(x: Any) -> Any:
     return x
 
 
-def to_json_text(result: Any) -> str:
-    return json.dumps(_clean(result.to_json()), indent=2) + "\n"
+def to_json_text(result: AnalysisResult) -> str:
+    """The JSON contract as text (non-finite floats as null)."""
+    return json.dumps(_clean(to_json(result)), indent=2) + "\n"
 
 
 def _fmt_num(x: Any) -> str:
@@ -166,8 +170,8 @@ def _subgroup(sg: dict[str, Any]) -> str:
     return f"{sg['type']} (dimension {sg['dim']}{', ' + ps if ps else ''})"
 
 
-def render_text(result: Any, markdown: bool = False) -> str:
-    d = result.to_json()
+def render_text(result: AnalysisResult, markdown: bool = False) -> str:
+    d = to_json(result)
     h1, h2 = ("# ", "## ") if markdown else ("", "")
     bullet = "- " if markdown else "  "
     lines = [f"{h1}mechsing analysis: {d['mechanism']}", ""]
@@ -234,7 +238,7 @@ def render_text(result: Any, markdown: bool = False) -> str:
     return "\n".join(lines) + "\n"
 
 
-def render(result: Any, fmt: str) -> str:
+def render(result: AnalysisResult, fmt: str) -> str:
     if fmt == "json":
         return to_json_text(result)
     if fmt == "md":
