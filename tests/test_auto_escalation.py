@@ -157,4 +157,4 @@ def test_float_precision_keeps_its_verdict(tmp_path: Path) -> None:
     res = mechsing.analyze(path, configs=["k14"], precision="float")
     (c,) = res.configurations
     assert c.precision == "float" and c.singular is True
-    assert c.closure_rank is not None and c.closure_rank["rank"] == 2
+    assert c.closure_rank is not None and c.closure_rank.rank == 2
