@@ -289,3 +289,11 @@ def test_an_undecided_rank_finding_names_its_bounds():
     dec = RankDecision(None, (1.0, 1e-9), M, "mp:30", rank_bounds=(2, 3))
     f = undecided_rank("loop A-B-C-D", dec)
     assert to_json(f)["rank_bounds"] == [2, 3] and to_json(f)["precision"] == "mp:30"
+
+
+def test_an_undecided_configuration_says_why_before_its_margin():
+    """A fold that float places too coarsely: no rank is in question, the note says why."""
+    f = UndecidedFinding("configuration at a fold", None, M, "float", "why", "configuration")
+    assert list(to_json(f)) == ["class", "what", "rank_bounds", "note", "margin", "precision"]
+    g = UndecidedFinding("input test", None, M, "float", "rests on another rank")
+    assert list(to_json(g)) == ["class", "what", "rank_bounds", "margin", "precision", "note"]
