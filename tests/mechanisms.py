@@ -14,8 +14,6 @@
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -23,6 +21,8 @@ from pathlib import Path
 import mpmath
 import numpy as np
 import yaml
+
+from tests.cli import run_cli
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -168,16 +168,6 @@ def configuration_names(path: Path) -> list[str]:
 
 
 # ----------------------------------------------------------------------------- running the CLI
-
-
-def run_cli(argv: list[str]) -> tuple[int, str, str]:
-    """``mechsing.cli.main(argv)`` in-process: (exit status, stdout, stderr)."""
-    from mechsing.cli import main
-
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        rc = main(argv)
-    return rc, out.getvalue(), err.getvalue()
 
 
 _ANALYSES: dict[tuple[str, ...], tuple[str, dict]] = {}
@@ -420,3 +410,32 @@ def finding(config: dict, cls: str) -> dict:
     found = [f for f in config["singularities"] if f["class"] == cls]
     assert len(found) == 1, (config["name"], classes(config))
     return found[0]
+
+
+# ----------------------------------------------------------------------------- directions
+
+
+def normalised(v: object) -> np.ndarray:
+    """Largest entry 1 in magnitude, first entry above 1e-9 of it positive (the JSON's
+    normalisation of directions)."""
+    v = np.asarray(v, dtype=float)
+    v = v / np.max(np.abs(v))
+    first = v[np.flatnonzero(np.abs(v) > 1e-9)[0]]
+    return v if first > 0 else -v
+
+
+def assert_same_lines(got: list, expected: list, tol: float = 1e-8, contract: bool = False) -> None:
+    """Two sets of directions (each up to scale) are equal; with ``contract``, each of ``got``
+    must also come normalised as the JSON contract says."""
+    assert len(got) == len(expected), (got, expected)
+    if contract:
+        for x in got:
+            assert abs(np.max(np.abs(x)) - 1) < 1e-12
+            assert np.asarray(x)[np.flatnonzero(np.abs(x) > 1e-9)[0]] > 0
+    e = [normalised(x) for x in expected]
+    unmatched = list(range(len(e)))
+    for x in got:
+        g = normalised(x)
+        hit = [i for i in unmatched if np.max(np.abs(g - e[i])) < tol]
+        assert hit, (got, expected)
+        unmatched.remove(hit[0])

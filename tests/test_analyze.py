@@ -15,18 +15,16 @@ from __future__ import annotations
 import json
 import math
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from tests.cli import run_cli, run_cli_subprocess
 from tests.mechanisms import (
     EXAMPLES,
     LENGTH_COORDS,
     PUBLISHED,
-    ROOT,
     all_axis_points_at_origin,
     analyze_json,
     analyze_text,
@@ -36,7 +34,6 @@ from tests.mechanisms import (
     classes,
     configuration_names,
     joint_types,
-    run_cli,
     scaled_text,
     total_dof,
 )
@@ -418,15 +415,9 @@ def test_same_file_gives_byte_identical_json(name: str) -> None:
 def test_subprocess_json_matches_in_process() -> None:
     """The installed command (a fresh interpreter, another hash seed) prints the same bytes."""
     first, _ = analyze_text(EXAMPLES / "fourbar.yaml")
-    r = subprocess.run(
-        [sys.executable, "-m", "mechsing", "analyze", "examples/fourbar.yaml", "--format", "json"],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
-    assert r.returncode == 0, r.stderr
-    assert r.stdout == first
+    r = run_cli_subprocess(["analyze", "examples/fourbar.yaml", "--format", "json"])
+    assert r.status == 0, r.err
+    assert r.out == first
 
 
 def test_precision_float() -> None:

@@ -20,7 +20,6 @@ the family, and far from them (k = 1 ... 3) it keeps float's verdict without re-
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import mpmath
@@ -30,7 +29,8 @@ import pytest
 import mechsing
 from mechsing.numeric import FLOAT_ROUNDING_FACTOR, decide_rank, float_drop_is_real
 from tests import families as fam
-from tests.mechanisms import EXAMPLES, by_name, classes, run_cli, write
+from tests.cli import cli_json
+from tests.mechanisms import EXAMPLES, by_name, classes, write
 
 NEAR = (12, 13, 14)
 FAR = (1, 2, 3)
@@ -75,9 +75,7 @@ def _families(ks: tuple[int, ...]) -> dict[str, tuple[str, str, str]]:
 
 
 def _analyze(path: Path, precision: str) -> dict[str, dict]:
-    rc, out, err = run_cli(["analyze", str(path), "--precision", precision, "--format", "json"])
-    assert rc == 0, err
-    return by_name(json.loads(out))
+    return by_name(cli_json(["analyze", path, "--precision", precision, "--format", "json"]))
 
 
 def _decision(c: dict, test: str) -> dict:

@@ -24,58 +24,12 @@ from mechsing.lie.cayley import (
 )
 from mechsing.lie.quaternion import quat_to_rotation_matrix
 from mechsing.numeric import Precision
+from tests.reference.se3 import adjoint, hat, skew
+from tests.strategies import gibbs
+from tests.strategies import gibbs_twists as twists
 
 EPS = float(np.finfo(float).eps)
 SETTINGS = settings(max_examples=150, deadline=None)
-
-
-def skew(a):
-    a = np.asarray(a)
-    z = a[0] * 0
-    return np.array([[z, -a[2], a[1]], [a[2], z, -a[0]], [-a[1], a[0], z]])
-
-
-def hat4(xi):
-    xi = np.asarray(xi)
-    top = np.concatenate([skew(xi[:3]), xi[3:, None]], axis=1)
-    return np.concatenate([top, np.zeros((1, 4), dtype=xi.dtype) * xi[0]], axis=0)
-
-
-def ad_matrix(g):
-    R, p = g[:3, :3], g[:3, 3]
-    return np.block([[R, np.zeros((3, 3))], [skew(p) @ R, R]])
-
-
-# magnitudes of the Gibbs vector: tan(theta/2) near 0 (theta ~ 1e-12) and
-# large (theta within 1e-9 of pi), plus moderate ones
-gibbs_norms = st.one_of(
-    st.floats(0, 1e-12),
-    st.floats(1e-12, 1e-4),
-    st.floats(0.1, 10),
-    st.floats(10, 1e9),
-    st.sampled_from([0.0, 1.0, 1e3, 1e6]),
-)
-
-
-@st.composite
-def unit_axes(draw):
-    v = np.array(draw(st.lists(st.floats(-1, 1), min_size=3, max_size=3)))
-    if np.linalg.norm(v) < 1e-3:
-        v = np.array([2.0, 3.0, 6.0])
-    return v / np.linalg.norm(v)
-
-
-@st.composite
-def gibbs(draw):
-    return draw(gibbs_norms) * draw(unit_axes())
-
-
-@st.composite
-def twists(draw):
-    a = draw(gibbs())
-    scale = draw(st.sampled_from([1e-9, 1e-3, 1.0, 1e3, 1e9]))
-    v = scale * np.array(draw(st.lists(st.floats(-1, 1), min_size=3, max_size=3)))
-    return np.concatenate([a, v])
 
 
 # --- SO(3) -----------------------------------------------------------------
@@ -187,7 +141,7 @@ def test_exact_se3_cayley(vals):
     xi = np.array(vals, dtype=object)
     g = cayley_se3(xi)
     G = sympy.Matrix(g.tolist())
-    X = sympy.Matrix(hat4(xi).tolist())
+    X = sympy.Matrix(hat(xi).tolist())
     assert G == (sympy.eye(4) + X) * (sympy.eye(4) - X).inv()
     assert all(x.is_Rational for x in G)
     assert list(cayley_se3_inverse(g)) == vals
@@ -201,7 +155,7 @@ def test_exact_se3_cayley(vals):
 def test_cayley_se3_matches_defining_product(xi):
     # reference: (I + X)(I - X)^-1 with mpmath's matrix inverse at 40 digits
     with mpmath.workdps(40):
-        X = mpmath.matrix(hat4(xi).tolist())
+        X = mpmath.matrix(hat(xi).tolist())
         ref = (mpmath.eye(4) + X) * mpmath.inverse(mpmath.eye(4) - X)
         ref = np.array(ref.tolist(), dtype=float)
     g = cayley_se3(xi)
@@ -231,7 +185,7 @@ def test_cayley_se3_round_trip(xi):
 def test_cayley_se3_is_equivariant(xi, eta):
     # cay(Ad(g) xi) = g cay(xi) g^-1, with g any displacement (here a Cayley image)
     g = cayley_se3(eta)
-    lhs = cayley_se3(ad_matrix(g) @ xi)
+    lhs = cayley_se3(adjoint(g) @ xi)
     rhs = g @ cayley_se3(xi) @ np.linalg.inv(g)
     R = cayley_so3(xi[:3])
     # conditioning: |omega'| = |omega| but the moved v carries |p| |omega|
@@ -263,7 +217,7 @@ def test_mp50_against_mpmath_inverse(xi):
     with MP50.context():
         x = MP50.asarray(xi)
         g = cayley_se3(x)
-        X = mpmath.matrix(hat4(x).tolist())
+        X = mpmath.matrix(hat(x).tolist())
         ref = (mpmath.eye(4) + X) * mpmath.inverse(mpmath.eye(4) - X)
         n2 = 1 + sum(c * c for c in x[:3])
         scale = 1 + max(abs(c) for c in x[3:])

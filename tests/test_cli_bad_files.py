@@ -6,13 +6,11 @@ code execution."""
 from __future__ import annotations
 
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from mechsing.cli import main
+from tests.cli import run_cli, run_cli_subprocess
 
 ROOT = Path(__file__).resolve().parents[1]
 BAD = ROOT / "tests" / "bad_files"
@@ -41,24 +39,17 @@ def test_the_corpus_is_there():
 
 
 @pytest.mark.parametrize("path", FILES, ids=[p.stem for p in FILES])
-def test_bad_file_gives_exit_2_and_a_message_naming_it(path, capsys):
-    status = main(["analyze", str(path), "--format", "json"])
-    out, err = capsys.readouterr()
+def test_bad_file_gives_exit_2_and_a_message_naming_it(path):
+    status, out, err = run_cli(["analyze", path, "--format", "json"])
     check_message(path, status, out, err)
 
 
 @pytest.mark.parametrize("name", SUBPROCESS)
 def test_bad_file_as_a_subprocess(name, tmp_path):
     path = BAD / f"{name}.yaml"
-    proc = subprocess.run(
-        [sys.executable, "-m", "mechsing", "analyze", str(path), "--format", "json"],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        cwd=tmp_path,
-    )
-    check_message(path, proc.returncode, proc.stdout, proc.stderr)
-    assert proc.stderr.count("\n") == 1  # one message, one line
+    proc = run_cli_subprocess(["analyze", path, "--format", "json"], cwd=tmp_path)
+    check_message(path, proc.status, proc.out, proc.err)
+    assert proc.err.count("\n") == 1  # one message, one line
 
 
 FOURBAR = """\
@@ -99,13 +90,12 @@ def hostile_files(marker: Path) -> dict[str, str]:
     return out
 
 
-def test_expressions_and_tags_never_run_code(tmp_path, capsys):
+def test_expressions_and_tags_never_run_code(tmp_path):
     marker = tmp_path / "pwned"
     for key, text in hostile_files(marker).items():
         f = tmp_path / f"{key}.yaml"
         f.write_text(text)
-        status = main(["analyze", str(f), "--format", "json"])
-        out, err = capsys.readouterr()
+        status, out, err = run_cli(["analyze", f, "--format", "json"])
         assert status == 2, (key, err)
         assert out == "" and str(f) in err and "Traceback" not in err, (key, err)
         assert "not allowed" in err, (key, err)
@@ -118,6 +108,5 @@ def test_expressions_and_tags_never_run_code(tmp_path, capsys):
 
     before = stamp()
     for name in ("expression_code_execution", "python_tag", "expression_dunder_attribute"):
-        assert main(["analyze", str(BAD / f"{name}.yaml"), "--format", "json"]) == 2
-    capsys.readouterr()
+        assert run_cli(["analyze", BAD / f"{name}.yaml", "--format", "json"]).status == 2
     assert stamp() == before

@@ -6,22 +6,16 @@ import json
 
 import pytest
 
-from mechsing.cli import main
 from mechsing.subgroups import load_catalog
+from tests.cli import run_cli
 
 
-def run(capsys, *argv):
-    code = main(list(argv))
-    out = capsys.readouterr()
-    return code, out.out, out.err
-
-
-def test_catalog_text_and_json(capsys):
-    code, out, _ = run(capsys, "catalog")
+def test_catalog_text_and_json():
+    code, out, _ = run_cli(["catalog"])
     assert code == 0
     for sym in load_catalog():
         assert f"  {sym} " in out
-    code, out, _ = run(capsys, "catalog", "--format", "json")
+    code, out, _ = run_cli(["catalog", "--format", "json"])
     data = json.loads(out)
     assert [d["symbol"] for d in data] == list(load_catalog())
     for d in data:
@@ -29,20 +23,20 @@ def test_catalog_text_and_json(capsys):
         assert len(d["basis"]) == d["dimension"]
 
 
-def test_catalog_one_type(capsys):
-    code, out, _ = run(capsys, "catalog", "S")
+def test_catalog_one_type():
+    code, out, _ = run_cli(["catalog", "S"])
     assert code == 0 and "spherical" in out and "point x ex" in out
-    code, out, _ = run(capsys, "catalog", "t2", "--format", "json")
+    code, out, _ = run_cli(["catalog", "t2", "--format", "json"])
     assert json.loads(out)[0]["symbol"] == "T2"
 
 
-def test_catalog_unknown_type(capsys):
-    code, _, err = run(capsys, "catalog", "Q")
+def test_catalog_unknown_type():
+    code, _, err = run_cli(["catalog", "Q"])
     assert code == 2 and "'Q'" in err and "use one of" in err
 
 
-def test_identify_json_contract(capsys):
-    code, out, _ = run(capsys, "identify", "--format", "json", "--", "0,0,1,0,0,0", "0,0,1,0,-1,0")
+def test_identify_json_contract():
+    code, out, _ = run_cli(["identify", "--format", "json", "--", "0,0,1,0,0,0", "0,0,1,0,-1,0"])
     assert code == 0
     data = json.loads(out)
     assert data["type"] == "G" and data["dim"] == 3 and data["params"] == {"normal": [0.0, 0.0, 1.0]}
@@ -50,16 +44,16 @@ def test_identify_json_contract(capsys):
     assert set(data["margin"]) >= {"kept", "dropped", "tau_lo", "tau_hi", "length_scale"}
 
 
-def test_identify_expressions_and_length_scale(capsys):
-    code, out, _ = run(
-        capsys, "identify", "--length-scale", "1000", "--format", "json", "--",
-        "sqrt(2)/2,sqrt(2)/2,0,-1000*sqrt(2),1000*sqrt(2),0", "0,0,1,0,0,0", "1,0,0,0,2000,0",
+def test_identify_expressions_and_length_scale():
+    code, out, _ = run_cli(
+        ["identify", "--length-scale", "1000", "--format", "json", "--",
+         "sqrt(2)/2,sqrt(2)/2,0,-1000*sqrt(2),1000*sqrt(2),0", "0,0,1,0,0,0", "1,0,0,0,2000,0"]
     )
     data = json.loads(out)
     assert code == 0 and data["type"] == "S"
     assert data["params"]["point"] == pytest.approx([0, 0, 2000])
     assert data["margin"]["length_scale"] == 1000.0
-    code, out, _ = run(capsys, "identify", "--", "1/3,0,0,0,0,0")
+    code, out, _ = run_cli(["identify", "--", "1/3,0,0,0,0,0"])
     assert code == 0 and out.startswith("R (dimension 1)") and "exact" in out
 
 
@@ -70,15 +64,15 @@ def test_identify_expressions_and_length_scale(capsys):
     (["identify", "--length-scale", "-1", "--", "1,0,0,0,0,0"], "positive"),
     (["identify", "--precision", "quad", "--", "1,0,0,0,0,0"], "precision"),
 ])
-def test_identify_bad_input(capsys, argv, needle):
-    code, _, err = run(capsys, *argv)
+def test_identify_bad_input(argv, needle):
+    code, _, err = run_cli(argv)
     assert code == 2 and needle in err and "Traceback" not in err
 
 
-def test_identify_near_degenerate_is_not_a_guess(capsys):
-    code, out, _ = run(
-        capsys, "identify", "--precision", "float", "--format", "json", "--",
-        "0,0,1,0,0,0", "0,1e-11,1,0,-1,0",
+def test_identify_near_degenerate_is_not_a_guess():
+    code, out, _ = run_cli(
+        ["identify", "--precision", "float", "--format", "json", "--",
+         "0,0,1,0,0,0", "0,1e-11,1,0,-1,0"]
     )
     data = json.loads(out)
     assert code == 0 and data["status"] == "undecided" and data["type"] is None

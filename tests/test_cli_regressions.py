@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from mechsing.cli import main
+from tests.cli import run_cli
 
 WRIST = """mechanism: zyz-wrist
 bodies: [g, a, b, c]
@@ -31,39 +31,32 @@ configurations:
 """
 
 
-def _run(
-    tmp_path: Path, text: str, *args: str, capsys: pytest.CaptureFixture[str]
-) -> tuple[int, str, str]:
+def _run(tmp_path: Path, text: str, *args: str) -> tuple[int, str, str]:
+    """``mechsing analyze`` (in-process) on TEXT written as a mechanism file."""
     p = tmp_path / "m.yaml"
     p.write_text(text)
-    status = main(["analyze", str(p), *args])
-    out, err = capsys.readouterr()
-    return status, out, err
+    return run_cli(["analyze", str(p), *args])
 
 
 @pytest.mark.parametrize("value", ["1.0e+300", "1e400", '"10**400"'])
-def test_absurd_joint_values_are_bad_input_not_a_hang_or_traceback(
-    tmp_path, capsys, value: str
-) -> None:
+def test_absurd_joint_values_are_bad_input_not_a_hang_or_traceback(tmp_path, value: str) -> None:
     text = WRIST.format(configs=f"  huge: {{W1: {value}}}")
-    status, _out, err = _run(tmp_path, text, "--format", "json", capsys=capsys)
+    status, _out, err = _run(tmp_path, text, "--format", "json")
     assert status == 2
     assert "Traceback" not in err and "'huge'" in err and "'W1'" in err
 
 
-def test_a_loop_driven_too_far_is_refused_with_the_way_out(tmp_path, capsys) -> None:
+def test_a_loop_driven_too_far_is_refused_with_the_way_out(tmp_path) -> None:
     text = FOURBAR.format(configs="  far: {A: 5000}")  # 800 turns of the crank
-    status, _out, err = _run(tmp_path, text, capsys=capsys)
+    status, _out, err = _run(tmp_path, text)
     assert status == 2
     assert "intermediate configurations" in err
 
 
-def test_a_tree_is_not_continued_and_works_in_exact_mode(tmp_path, capsys) -> None:
+def test_a_tree_is_not_continued_and_works_in_exact_mode(tmp_path) -> None:
     # only W2 given: W1 and W3 keep their start values (exactly 0); nothing is solved
     text = WRIST.format(configs='  bent: {W2: "pi/3"}\n  flat: {W2: 0}')
-    status, out, err = _run(
-        tmp_path, text, "--precision", "exact", "--format", "json", capsys=capsys
-    )
+    status, out, err = _run(tmp_path, text, "--precision", "exact", "--format", "json")
     assert status == 0, err
     conf = {c["name"]: c for c in json.loads(out)["configurations"]}
     assert conf["bent"]["singular"] is False
@@ -73,7 +66,7 @@ def test_a_tree_is_not_continued_and_works_in_exact_mode(tmp_path, capsys) -> No
     assert f["margin"]["tau_lo"] == f["margin"]["tau_hi"] == 0
 
 
-def test_serial_rank_is_decided_at_the_requested_precision(tmp_path, capsys) -> None:
+def test_serial_rank_is_decided_at_the_requested_precision(tmp_path) -> None:
     # W2 = 1e-14 rad: axes 1 and 3 are not collinear, so the wrist is regular; float
     # cannot see it (sigma ~ 1e-14 < tau_lo), mp:50 can (tau_hi = 1e-25)
     configs = '  e11: {W2: "1e-11"}\n  e14: {W2: "1e-14"}'
@@ -84,24 +77,19 @@ def test_serial_rank_is_decided_at_the_requested_precision(tmp_path, capsys) -> 
         "mp:50",
         "--format",
         "json",
-        capsys=capsys,
     )
     assert status == 0
     for c in json.loads(out)["configurations"]:
         assert c["singular"] is False and c["precision"] == "mp:50", c["name"]
     # auto: float cannot decide 1e-11 (between the thresholds) and re-decides it at mp:50
-    status, out, _ = _run(
-        tmp_path, WRIST.format(configs=configs), "--format", "json", capsys=capsys
-    )
+    status, out, _ = _run(tmp_path, WRIST.format(configs=configs), "--format", "json")
     e11 = next(c for c in json.loads(out)["configurations"] if c["name"] == "e11")
     assert e11["precision"] == "mp:50" and e11["singular"] is False
 
 
-def test_a_failed_start_is_named_with_its_loop(tmp_path, capsys) -> None:
+def test_a_failed_start_is_named_with_its_loop(tmp_path) -> None:
     configs = "  bad: {A: 30, B: 0, C: 0, D: 0}\n  next: {A: 40, start: bad}"
-    status, out, err = _run(
-        tmp_path, FOURBAR.format(configs=configs), "--format", "json", capsys=capsys
-    )
+    status, out, err = _run(tmp_path, FOURBAR.format(configs=configs), "--format", "json")
     assert status == 3
     errors = {c["name"]: c.get("error", "") for c in json.loads(out)["configurations"]}
     assert "loop A-B-C-D" in errors["bad"]
@@ -111,7 +99,7 @@ def test_a_failed_start_is_named_with_its_loop(tmp_path, capsys) -> None:
     assert "Traceback" not in err
 
 
-def test_reported_vectors_have_no_rounding_signs(tmp_path, capsys) -> None:
+def test_reported_vectors_have_no_rounding_signs(tmp_path) -> None:
     text = """mechanism: planar-3R
 bodies: [g, a, b, c]
 joints:
@@ -121,7 +109,7 @@ joints:
 configurations:
   reference: {}
 """
-    status, out, _ = _run(tmp_path, text, "--format", "json", capsys=capsys)
+    status, out, _ = _run(tmp_path, text, "--format", "json")
     assert status == 0
     (f,) = json.loads(out)["configurations"][0]["singularities"]
     for vec in [*f["wrenches"], f["twist"]]:
@@ -158,60 +146,60 @@ configurations:
 """
 
 
-def _json(tmp_path, text, capsys, *args):
-    status, out, err = _run(tmp_path, text, "--format", "json", *args, capsys=capsys)
+def _json(tmp_path, text, *args):
+    status, out, err = _run(tmp_path, text, "--format", "json", *args)
     assert status == 0, err
     (c,) = json.loads(out)["configurations"]
     return c
 
 
-def test_an_output_singularity_resting_on_an_undecided_rank_is_undecided(tmp_path, capsys) -> None:
+def test_an_output_singularity_resting_on_an_undecided_rank_is_undecided(tmp_path) -> None:
     """1e-10 from concurrent legs, the input map's sigma ratio lies between float's
     thresholds: the output motion space built on it is undecided too (it was reported as a
     decided `output` singularity), and auto re-decides the configuration at mp:50: regular."""
     text = RPR_NEAR_CONCURRENT.format(k=10)
-    c = _json(tmp_path, text, capsys, "--precision", "float")
+    c = _json(tmp_path, text, "--precision", "float")
     assert c["singular"] is None
     assert {f["class"] for f in c["singularities"]} == {"undecided"}
     tests = {d["test"]: d for d in c["decisions"]}
     assert tests["impossible-input"]["rank"] is None and tests["output"]["rank"] is None
-    c = _json(tmp_path, text, capsys)
+    c = _json(tmp_path, text)
     assert c["precision"] == "mp:50" and c["singular"] is False and c["singularities"] == []
 
 
-def test_mp_below_20_digits_is_refused(tmp_path, capsys) -> None:
+def test_mp_below_20_digits_is_refused(tmp_path) -> None:
     """mp:N's thresholds 10^(10-N) and 10^(-N/2) cross below N = 20."""
     status, _out, err = _run(
-        tmp_path, FOURBAR.format(configs="  q: {A: 10}"), "--precision", "mp:16", capsys=capsys
+        tmp_path, FOURBAR.format(configs="  q: {A: 10}"), "--precision", "mp:16"
     )
     assert status == 2 and "20 <= N" in err
 
 
-def test_more_digits_never_accept_what_float_refuses(tmp_path, capsys) -> None:
+def test_more_digits_never_accept_what_float_refuses(tmp_path) -> None:
     """A four-bar with the crank turned 1 degree and the other joints left at 0 does not close
     (residual 0.048 m): float refuses it, and so must mp:20 (10^(15-N) L would accept it)."""
     text = FOURBAR.format(configs="  off: {A: 0.017453292519943295, B: 0, C: 0, D: 0}")
     for prec in ("float", "mp:20", "mp:30"):
-        status, _out, err = _run(tmp_path, text, "--precision", prec, capsys=capsys)
+        status, _out, err = _run(tmp_path, text, "--precision", prec)
         assert status == 3 and "does not close" in err, (prec, err)
 
 
 @pytest.mark.parametrize("angle", ["pi*sqrt(2)", "atan(1/2) + 1", "pi**2", "1"])
-def test_exact_refuses_angles_it_cannot_show_exact(angle: str, tmp_path, capsys) -> None:
+def test_exact_refuses_angles_it_cannot_show_exact(angle: str, tmp_path) -> None:
     text = WRIST.format(configs=f'  w: {{W1: 0, W2: "{angle}", W3: 0}}')
-    status, _out, err = _run(tmp_path, text, "--precision", "exact", capsys=capsys)
+    status, _out, err = _run(tmp_path, text, "--precision", "exact")
     # that configuration's error (the others would be reported): status 3
     assert status == 3 and "not exact data" in err and "'W2'" in err
 
 
 @pytest.mark.parametrize("angle", ["2*atan(1/2)", "pi/7 + 3*atan(1/3)", "acos(sqrt(3)/3)"])
-def test_exact_accepts_angles_with_algebraic_sine_and_cosine(angle: str, tmp_path, capsys) -> None:
+def test_exact_accepts_angles_with_algebraic_sine_and_cosine(angle: str, tmp_path) -> None:
     text = WRIST.format(configs=f'  w: {{W1: 0, W2: "{angle}", W3: 0}}')
-    status, _out, err = _run(tmp_path, text, "--precision", "exact", capsys=capsys)
+    status, _out, err = _run(tmp_path, text, "--precision", "exact")
     assert status == 0, err
 
 
-def test_exact_refuses_a_spherical_joint_turned_by_one_radian(tmp_path, capsys) -> None:
+def test_exact_refuses_a_spherical_joint_turned_by_one_radian(tmp_path) -> None:
     text = """mechanism: r-s
 bodies: [base, l1, l2]
 joints:
@@ -222,11 +210,7 @@ configurations:
   one: {A: 0, B: [1, 0, 0]}
   quarter: {A: 0, B: ["pi/2", 0, 0]}
 """
-    status, _out, err = _run(
-        tmp_path, text, "--precision", "exact", "--config", "one", capsys=capsys
-    )
+    status, _out, err = _run(tmp_path, text, "--precision", "exact", "--config", "one")
     assert status == 3 and "not exact data" in err and "'B'" in err
-    status, _out, err = _run(
-        tmp_path, text, "--precision", "exact", "--config", "quarter", capsys=capsys
-    )
+    status, _out, err = _run(tmp_path, text, "--precision", "exact", "--config", "quarter")
     assert status == 0, err

@@ -5,8 +5,6 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -14,17 +12,22 @@ import pytest
 
 from mechsing.cli import main
 from mechsing.model import load
-from tests.test_kinematics import J, assert_closes, fourbar_closed_form, joints_of, my_poses
+from tests.cli import cli_json, run_cli, run_cli_subprocess
+from tests.reference.kinematics import (
+    J,
+    assert_closes,
+    fourbar_closed_form,
+    joints_from_model,
+    poses,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 FOURBAR = ROOT / "examples" / "fourbar.yaml"
 
 
-def run_json(capsys, *argv) -> dict:
-    status = main(["solve", *map(str, argv), "--format", "json"])
-    out, err = capsys.readouterr()
-    assert status == 0, err
-    return json.loads(out)
+def solve_json(*argv: object) -> dict:
+    """``mechsing solve ARGV --format json`` in-process: its JSON (exit status 0)."""
+    return cli_json(["solve", *map(str, argv), "--format", "json"])
 
 
 def fourbar_expected(theta: float) -> dict[str, float]:
@@ -34,8 +37,8 @@ def fourbar_expected(theta: float) -> dict[str, float]:
     return {"A": theta, "B": psi - theta, "C": phi - psi, "D": -phi}
 
 
-def test_design_md_fourbar_crank_30_in_radians(capsys):
-    doc = run_json(capsys, FOURBAR, "--config", "crank-30")
+def test_design_md_fourbar_crank_30_in_radians():
+    doc = solve_json(FOURBAR, "--config", "crank-30")
     assert doc["mechanism"] == "four-bar"
     assert doc["configuration"] == "crank-30"
     assert doc["precision"] == "float"
@@ -55,10 +58,10 @@ def test_design_md_fourbar_crank_30_in_radians(capsys):
     assert isinstance(doc["steps"], int) and doc["steps"] >= 1
 
 
-def test_chained_configuration_crank_200(capsys):
+def test_chained_configuration_crank_200():
     """crank-200 starts at crank-30: the crank-rocker's crank turns on, the
     rocker stays on the reference's assembly mode."""
-    doc = run_json(capsys, FOURBAR, "--config", "crank-200")
+    doc = solve_json(FOURBAR, "--config", "crank-200")
     joints = doc["joints"]
     assert joints["A"][0] == pytest.approx(math.radians(200), abs=1e-14)
     for k, v in fourbar_expected(math.radians(200)).items():
@@ -66,9 +69,8 @@ def test_chained_configuration_crank_200(capsys):
         assert abs(d) < 1e-9, (k, joints[k][0], v)
 
 
-def test_solve_text_format_lists_every_joint(capsys):
-    status = main(["solve", str(FOURBAR), "--config", "crank-30"])
-    out, err = capsys.readouterr()
+def test_solve_text_format_lists_every_joint():
+    status, out, err = run_cli(["solve", str(FOURBAR), "--config", "crank-30"])
     assert status == 0, err
     lines = out.strip().splitlines()
     assert "four-bar" in lines[0] and "crank-30" in lines[0]
@@ -93,11 +95,11 @@ def test_solve_text_format_lists_every_joint(capsys):
         ("bricard.yaml", "q1-0.4"),
     ],
 )
-def test_solved_json_closes_by_an_independent_check(capsys, example, config):
+def test_solved_json_closes_by_an_independent_check(example, config):
     path = ROOT / "examples" / example
-    doc = run_json(capsys, path, "--config", config)
+    doc = solve_json(path, "--config", config)
     mech = load(path)
-    joints = joints_of(mech)
+    joints = joints_from_model(mech)
     vals = {k: np.array(v) for k, v in doc["joints"].items()}
     assert set(vals) == {j.name for j in mech.joints}
     for j in mech.joints:
@@ -109,7 +111,7 @@ def test_solved_json_closes_by_an_independent_check(capsys, example, config):
     assert_closes(joints, vals, L)
 
 
-def test_units_mm_and_deg_come_out_in_si(tmp_path, capsys):
+def test_units_mm_and_deg_come_out_in_si(tmp_path):
     """A serial arm in mm and deg: lengths in metres and angles in radians."""
     f = tmp_path / "arm.yaml"
     f.write_text(
@@ -122,7 +124,7 @@ def test_units_mm_and_deg_come_out_in_si(tmp_path, capsys):
         "  reference: {}\n"
         "  out: {R1: 90, P1: 250}\n"
     )
-    doc = run_json(capsys, f, "--config", "out")
+    doc = solve_json(f, "--config", "out")
     assert doc["joints"]["R1"][0] == pytest.approx(math.pi / 2, abs=1e-15)
     assert doc["joints"]["P1"][0] == pytest.approx(0.25, abs=1e-15)
     # independently: the hand's origin is at (0, 0.25, 0)
@@ -130,7 +132,7 @@ def test_units_mm_and_deg_come_out_in_si(tmp_path, capsys):
         J("R1", "R", "base", "arm", {"axis": np.array([0.0, 0, 1]), "point": np.zeros(3)}),
         J("P1", "P", "arm", "hand", {"axis": np.array([1.0, 0, 0])}),
     ]
-    g = my_poses(joints, "base", {k: np.array(v) for k, v in doc["joints"].items()})["hand"]
+    g = poses(joints, "base", {k: np.array(v) for k, v in doc["joints"].items()})["hand"]
     np.testing.assert_allclose(g[:3, 3], [0, 0.25, 0], atol=1e-15)
 
 
@@ -152,23 +154,22 @@ configurations:
 """
 
 
-def test_underdetermined_five_bar(tmp_path, capsys):
+def test_underdetermined_five_bar(tmp_path):
     f = tmp_path / "five.yaml"
     f.write_text(FIVE_BAR)
-    one = run_json(capsys, f, "--config", "one-input")
-    two = run_json(capsys, f, "--config", "two-inputs")
+    one = solve_json(f, "--config", "one-input")
+    two = solve_json(f, "--config", "two-inputs")
     assert one["underdetermined"] is True
     assert two["underdetermined"] is False
-    joints = joints_of(load(f))
+    joints = joints_from_model(load(f))
     for doc in (one, two):
         assert doc["joints"]["J0"] == [0.2]
         assert_closes(joints, {k: np.array(v) for k, v in doc["joints"].items()}, 4.0)
     assert two["joints"]["J4"] == [-0.1]
 
 
-def test_unknown_configuration_is_exit_2_naming_it(capsys):
-    status = main(["solve", str(FOURBAR), "--config", "crank-31"])
-    out, err = capsys.readouterr()
+def test_unknown_configuration_is_exit_2_naming_it():
+    status, out, err = run_cli(["solve", str(FOURBAR), "--config", "crank-31"])
     assert status == 2
     assert out == ""
     assert "crank-31" in err
@@ -184,28 +185,26 @@ def test_missing_config_option_is_exit_2(capsys):
     assert "--config" in capsys.readouterr().err
 
 
-def test_bad_precision_is_exit_2(capsys):
-    status = main(["solve", str(FOURBAR), "--config", "crank-30", "--precision", "fast"])
-    _, err = capsys.readouterr()
+def test_bad_precision_is_exit_2():
+    status, _, err = run_cli(["solve", str(FOURBAR), "--config", "crank-30", "--precision", "fast"])
     assert status == 2
     assert "--precision" in err and "Traceback" not in err
 
 
-def test_configuration_that_does_not_close_is_exit_3(tmp_path, capsys):
+def test_configuration_that_does_not_close_is_exit_3(tmp_path):
     f = tmp_path / "open.yaml"
     f.write_text(
         FIVE_BAR.replace("  two-inputs: {J0: 0.2, J4: -0.1}\n", "")
         + "  given: {J0: 0.2, J1: 0, J2: 0, J3: 0, J4: 0}\n"
     )
-    status = main(["solve", str(f), "--config", "given", "--format", "json"])
-    out, err = capsys.readouterr()
+    status, out, err = run_cli(["solve", str(f), "--config", "given", "--format", "json"])
     assert status == 3
     assert out == ""
     assert "given" in err and "Traceback" not in err
 
 
-def test_solve_mp_precision(capsys):
-    doc = run_json(capsys, FOURBAR, "--config", "crank-30", "--precision", "mp:30")
+def test_solve_mp_precision():
+    doc = solve_json(FOURBAR, "--config", "crank-30", "--precision", "mp:30")
     assert doc["precision"] == "mp:30"
     for k, v in fourbar_expected(math.pi / 6).items():
         assert doc["joints"][k][0] == pytest.approx(v, abs=1e-12)
@@ -213,34 +212,12 @@ def test_solve_mp_precision(capsys):
 
 
 def test_solve_as_a_subprocess():
-    proc = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "mechsing",
-            "solve",
-            str(FOURBAR),
-            "--config",
-            "crank-30",
-            "--format",
-            "json",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        cwd=ROOT,
-    )
-    assert proc.returncode == 0, proc.stderr
-    doc = json.loads(proc.stdout)
+    proc = run_cli_subprocess(["solve", FOURBAR, "--config", "crank-30", "--format", "json"])
+    assert proc.status == 0, proc.err
+    doc = json.loads(proc.out)
     for k, v in fourbar_expected(math.pi / 6).items():
         assert doc["joints"][k][0] == pytest.approx(v, abs=1e-10)
-    proc = subprocess.run(
-        [sys.executable, "-m", "mechsing", "solve", str(FOURBAR), "--config", "nope"],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        cwd=ROOT,
-    )
-    assert proc.returncode == 2
-    assert "nope" in proc.stderr and "Traceback" not in proc.stderr
-    assert proc.stdout == ""
+    proc = run_cli_subprocess(["solve", FOURBAR, "--config", "nope"])
+    assert proc.status == 2
+    assert "nope" in proc.err and "Traceback" not in proc.err
+    assert proc.out == ""

@@ -9,19 +9,9 @@ import scipy.linalg
 from mechsing import lie
 from mechsing.numeric import Precision
 from mechsing.singularity.cspace import Expansion, LoopChain, _zero_set, tangent_cone
+from tests.reference.se3 import hat, vee
 
 FLOAT = Precision("float")
-
-
-def _hat(x: np.ndarray) -> np.ndarray:
-    W = np.zeros((4, 4))
-    W[:3, :3] = [[0, -x[2], x[1]], [x[2], 0, -x[0]], [-x[1], x[0], 0]]
-    W[:3, 3] = x[3:]
-    return W
-
-
-def _vee(X: np.ndarray) -> np.ndarray:
-    return np.array([X[2, 1], X[0, 2], X[1, 0], X[0, 3], X[1, 3], X[2, 3]])
 
 
 @pytest.mark.parametrize("seed", range(4))
@@ -41,8 +31,8 @@ def test_second_order_term_is_the_bch_quadratic_of_the_loop_product(seed: int) -
     def logprod(tt: float) -> np.ndarray:
         g = np.eye(4)
         for k in range(n):
-            g = g @ scipy.linalg.expm(_hat(tt * signs[k] * S[:, k] * x[k]))
-        return _vee(np.real(scipy.linalg.logm(g)))
+            g = g @ scipy.linalg.expm(hat(tt * signs[k] * S[:, k] * x[k]))
+        return vee(np.real(scipy.linalg.logm(g)))
 
     second = (logprod(t) + logprod(-t)) / t**2
     np.testing.assert_allclose(exp.quadratic(x), second, atol=1e-5 * np.abs(second).max())
@@ -56,7 +46,9 @@ def test_bracket_terms_use_lie_bracket_convention() -> None:
     a, b = np.array([0, 0, 1.0, 0, 0, 0]), np.array([0, 0, 1.0, 0, -1.0, 0])
     chain = LoopChain([([0], 1), ([1], 1)], np.eye(6))
     exp = Expansion([chain], np.stack([a, b], axis=1))
-    np.testing.assert_allclose(exp.bilinear(np.array([1.0, 0]), np.array([0, 1.0])), lie.bracket(a, b))
+    np.testing.assert_allclose(
+        exp.bilinear(np.array([1.0, 0]), np.array([0, 1.0])), lie.bracket(a, b)
+    )
 
 
 def _spaces(forms: list[np.ndarray]) -> tuple[str, list[np.ndarray], list[bool]]:

@@ -31,7 +31,7 @@ from mechsing.analysis import analyze
 from mechsing.numeric import Precision
 from mechsing.singularity.cspace import Expansion, LoopChain, _zero_set, tangent_cone
 from tests import families as fam
-from tests.mechanisms import by_name, classes, finding, write
+from tests.mechanisms import assert_same_lines, by_name, classes, finding, normalised, write
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -48,25 +48,6 @@ def run(path: Path, precision: str) -> dict:
 def tau(n: int) -> tuple[float, float]:
     """DESIGN.md: mp:N thresholds."""
     return 10.0 ** (10 - n), 10.0 ** (-n / 2)
-
-
-def normalised(v) -> np.ndarray:
-    v = np.asarray(v, dtype=float)
-    v = v / np.max(np.abs(v))
-    first = v[np.flatnonzero(np.abs(v) > 1e-9)[0]]
-    return v if first > 0 else -v
-
-
-def assert_same_lines(got: list, expected: list, tol: float) -> None:
-    """Two sets of directions (each up to scale) are equal."""
-    assert len(got) == len(expected), (got, expected)
-    e = [normalised(x) for x in expected]
-    unmatched = list(range(len(e)))
-    for x in got:
-        g = normalised(x)
-        hit = [i for i in unmatched if np.max(np.abs(g - e[i])) < tol]
-        assert hit, (got, expected)
-        unmatched.remove(hit[0])
 
 
 def closed_form_tangents(fb: fam.FourBar, digits: int = 200) -> list[list[mpmath.mpf]]:

@@ -23,8 +23,6 @@ from __future__ import annotations
 
 import json
 import signal
-import subprocess
-import sys
 import threading
 import time
 from pathlib import Path
@@ -33,7 +31,8 @@ import pytest
 
 import mechsing
 from mechsing.timelimit import TimeLimit, TimeLimitExceeded, activity
-from tests.mechanisms import ROOT, by_name, finding, run_cli, write
+from tests.cli import run_cli, run_cli_subprocess
+from tests.mechanisms import ROOT, by_name, finding, write
 
 STANFORD = """mechanism: stanford-arm
 units: {{angle: deg}}
@@ -112,12 +111,11 @@ def fivebar_text() -> str:
 def analyze_cli(path: Path, *args: str, timeout: float = 300) -> tuple[int, dict, str, float]:
     """``python -m mechsing analyze PATH --format json ARGS`` in a child process (the command
     as users run it: main thread, SIGALRM free); (status, JSON, stderr, seconds)."""
-    cmd = [sys.executable, "-m", "mechsing", "analyze", str(path), "--format", "json", *args]
     t0 = time.monotonic()
-    r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=timeout)
+    r = run_cli_subprocess(["analyze", path, "--format", "json", *args], timeout=timeout)
     dt = time.monotonic() - t0
-    assert "Traceback" not in r.stderr, r.stderr
-    return r.returncode, json.loads(r.stdout) if r.stdout else {}, r.stderr, dt
+    assert "Traceback" not in r.err, r.err
+    return r.status, json.loads(r.out) if r.out else {}, r.err, dt
 
 
 def assert_wrist_singular(c: dict) -> None:

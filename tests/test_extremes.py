@@ -36,7 +36,6 @@ import json
 import math
 import os
 import subprocess
-import sys
 from fractions import Fraction as F
 from pathlib import Path
 
@@ -47,23 +46,23 @@ import scipy.linalg
 import yaml
 
 from tests import families as fam
+from tests.cli import run_cli, run_cli_subprocess
 from tests.mechanisms import (
     EXAMPLES,
     LENGTH_COORDS,
     PUBLISHED,
-    ROOT,
     all_axis_points_at_origin,
     analyze_json,
     by_name,
     classes,
     configuration_names,
     joint_types,
-    run_cli,
     scaled_text,
     total_dof,
     write,
 )
-from tests.test_examples_data import evaluate
+from tests.reference.expressions import evaluate
+from tests.reference.se3 import hat
 
 EPS = float(np.finfo(float).eps)
 EXAMPLE_FILES = sorted(p.name for p in EXAMPLES.glob("*.yaml"))
@@ -73,6 +72,7 @@ slow = pytest.mark.skipif(not SLOW, reason="heavy: skipped with MECHSING_QUICK_T
 
 # ----------------------------------------------------------------------------- helpers
 
+
 def closure_tolerance(mode: str, L: float) -> float:
     """DESIGN.md: closure accepted at 1e-12 L in float, 10^(15-N) L at mp:N, exactly in exact."""
     if mode == "exact":
@@ -80,14 +80,6 @@ def closure_tolerance(mode: str, L: float) -> float:
     if mode.startswith("mp:"):
         return 10.0 ** (15 - int(mode[3:])) * L
     return 1e-12 * L
-
-
-def hat(xi) -> np.ndarray:
-    w, v = xi[:3], xi[3:]
-    return np.array(
-        [[0, -w[2], w[1], v[0]], [w[2], 0, -w[0], v[1]], [-w[1], w[0], 0, v[2]], [0, 0, 0, 0]],
-        dtype=float,
-    )
 
 
 def joint_screw(t: str, u: list, p: list, sqrt=math.sqrt, pitch=0.05) -> list:
@@ -128,8 +120,8 @@ def commensurate(screws: list[list], centroid: list, L) -> list[list]:
 
 
 def mp_eval(expr: str | float):
-    """A file expression at the working mpmath precision (tests/test_examples_data.py's
-    whitelisted AST walker, no mechsing)."""
+    """A file expression at the working mpmath precision (the reference's whitelisted AST
+    walker, no mechsing)."""
     funcs = {"sqrt": mpmath.sqrt, "sin": mpmath.sin, "cos": mpmath.cos, "atan": mpmath.atan}
     return evaluate(expr, funcs=funcs, const=mpmath.mpf, pi=mpmath.pi)
 
@@ -424,14 +416,14 @@ def test_exact_refuses_the_stewart_rotation_promptly() -> None:
     """The Stewart example's rotated+90 values are 40-digit roundings (its header: 'not exactly:
     leave S free for exact mode'): exact mode must say so (status 2 or 3, naming the
     configuration) instead of running for minutes; 60 s is ten times a normal exact analysis."""
-    cmd = [sys.executable, "-m", "mechsing", "analyze", "examples/stewart_octahedral.yaml"]
-    cmd += ["--precision", "exact", "--config", "rotated+90"]
+    argv = ["analyze", "examples/stewart_octahedral.yaml"]
+    argv += ["--precision", "exact", "--config", "rotated+90"]
     try:
-        r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=60)
+        r = run_cli_subprocess(argv, timeout=60)
     except subprocess.TimeoutExpired:
         pytest.fail("exact mode ran for more than 60 s on a configuration that does not close")
-    assert r.returncode in (2, 3), r.stderr
-    assert "'rotated+90'" in r.stderr and "Traceback" not in r.stderr
+    assert r.status in (2, 3), r.err
+    assert "'rotated+90'" in r.err and "Traceback" not in r.err
 
 
 # ============================================================================ 2. joints near pi
@@ -938,7 +930,7 @@ def test_open_chain_of_100_joints_end_pose(tmp_path: Path) -> None:
         for (t, u, p), x in zip(joints, q, strict=True):
             um, pm = ([mpmath.mpf(repr(float(a))) for a in v] for v in (u, p))
             xi = joint_screw(t, um, pm, mpmath.sqrt, mpmath.mpf("0.05"))
-            G = G * mpmath.expm(mpmath.matrix(hat_mp(xi)) * mpmath.mpf(repr(x)))
+            G = G * mpmath.expm(mpmath.matrix(hat(xi).tolist()) * mpmath.mpf(repr(x)))
         ref = [[G[i, j] for j in range(4)] for i in range(4)]
     ref_f = np.array(ref, dtype=float)
     S = (
@@ -961,12 +953,6 @@ def test_open_chain_of_100_joints_end_pose(tmp_path: Path) -> None:
     m = c["mobility"]
     assert (m["grubler"], m["group"], m["instantaneous"], m["generic"], m["finite"]) == (N100,) * 5
     assert c["singular"] is False and c["singularities"] == []
-
-
-def hat_mp(xi: list) -> list[list]:
-    w, v = xi[:3], xi[3:]
-    z = 0 * w[0]
-    return [[z, -w[2], w[1], v[0]], [w[2], z, -w[0], v[1]], [-w[1], w[0], z, v[2]], [z, z, z, z]]
 
 
 def test_planar_loop_of_100_joints(tmp_path: Path) -> None:
@@ -1121,7 +1107,7 @@ def ur5_sigma_ratio(j5) -> mpmath.mpf:
             [p[1] * w[2] - p[2] * w[1], p[2] * w[0] - p[0] * w[2], p[0] * w[1] - p[1] * w[0]]
         )
         current.append([*w, *v])
-        g = g * mpmath.expm(mpmath.matrix(hat_mp(xi)) * t)
+        g = g * mpmath.expm(mpmath.matrix(hat(xi).tolist()) * t)
     # axis points nearest the origin (feet of the perpendiculars) at the reference
     feet = []
     for j, p in zip(joints, pts, strict=True):

@@ -28,8 +28,9 @@ import mechsing
 from mechsing.cli import UserError, exit_status
 from mechsing.kinematics import Closer, KinematicModel
 from mechsing.model import MechanismError
+from tests.cli import run_cli
 
-from .mechanisms import EXAMPLES, _Dumper, _KeepNumbers, by_name, run_cli, write
+from .mechanisms import EXAMPLES, _Dumper, _KeepNumbers, by_name, write
 
 # ----------------------------------------------------------------------------- independent algebra
 

@@ -1,7 +1,7 @@
 """Poses and loop closure checked against an independent computation.
 
-Everything mechsing computes here is checked by code written in this file
-from DESIGN.md's rules alone (joint-value semantics, catalog bases, in-plane
+Everything mechsing computes here is checked by the tests' reference
+implementation (tests/reference, no mechsing inside), written from the rules alone (joint-value semantics, catalog bases, in-plane
 convention, U joints): its own hat/exp (``scipy.linalg.expm`` of 4x4
 matrices; for the many products of the closed chains a closed-form Rodrigues
 exponential, itself checked against expm), its own bases, its own spanning
@@ -18,15 +18,11 @@ residual.
 
 from __future__ import annotations
 
-import functools
 import math
-from dataclasses import dataclass, field
 from pathlib import Path
 
-import networkx as nx
 import numpy as np
 import pytest
-import scipy.linalg
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
@@ -34,6 +30,25 @@ from mechsing.cli import exit_status
 from mechsing.kinematics import Closer, ClosureError, KinematicModel
 from mechsing.model import load, loads
 from mechsing.numeric import MAX_JOINT_VALUE
+from tests.reference.files import Spec
+from tests.reference.kinematics import (
+    KINDS,
+    J,
+    assert_closes,
+    closure_error,
+    cycle_products,
+    cycles,
+    fourbar_closed_form,
+    rot2,
+    track,
+)
+from tests.reference.kinematics import joints_from_model as joints_of
+from tests.reference.kinematics import poses as my_poses
+from tests.reference.se3 import exp_rodrigues, expt, in_plane, unit
+from tests.strategies import deltas, finite, planar_frame, plane_xy, rotation_vectors, trees
+from tests.strategies import file_axes as axes
+from tests.strategies import file_lengths as lengths
+from tests.strategies import file_points as points
 
 PI = math.pi
 EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.yaml"))
@@ -46,438 +61,15 @@ SETTINGS = settings(
 #: closed chains cost a continuation and an independent path tracking each
 LOOP_SETTINGS = settings(SETTINGS, max_examples=12)
 
-# ---------------------------------------------------------------------------
-# independent SE(3), bases and joint elements (DESIGN.md "Conventions")
-
-#: kind of each coordinate per joint type: "a" angle (rad), "l" length (m)
-KINDS = {
-    "R": "a",
-    "P": "l",
-    "H": "a",
-    "C": "al",
-    "T2": "ll",
-    "T3": "lll",
-    "S": "aaa",
-    "G": "all",
-    "Y": "all",
-    "X": "alll",
-    "D": "aaalll",
-    "U": "aa",
-    "E": "",
-}
-
-
-def skew(w: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
-
-
-def hat(xi: np.ndarray) -> np.ndarray:
-    m = np.zeros((4, 4))
-    m[:3, :3] = skew(xi[:3])
-    m[:3, 3] = xi[3:]
-    return m
-
-
-def expt(xi: np.ndarray) -> np.ndarray:
-    """exp of a twist (omega, v) as a 4x4 matrix (scipy's Pade expm)."""
-    return scipy.linalg.expm(hat(np.asarray(xi, dtype=float)))
-
-
-def exp_rodrigues(xi: np.ndarray) -> np.ndarray:
-    """The same exponential in closed form (Rodrigues), for the path tracker
-    below, which needs many of them (checked against ``expt`` in a test)."""
-    w, v = np.asarray(xi[:3], float), np.asarray(xi[3:], float)
-    th2 = float(w @ w)
-    th = math.sqrt(th2)
-    if th < 1e-4:
-        a = 1 - th2 / 6 + th2 * th2 / 120
-        b = 0.5 - th2 / 24 + th2 * th2 / 720
-        c = 1 / 6 - th2 / 120 + th2 * th2 / 5040
-    else:
-        a = math.sin(th) / th
-        b = (1 - math.cos(th)) / th2
-        c = (th - math.sin(th)) / (th2 * th)
-    W = skew(w)
-    W2 = np.outer(w, w) - th2 * np.eye(3)
-    g = np.eye(4)
-    g[:3, :3] += a * W + b * W2
-    g[:3, 3] = v + b * (W @ v) + c * (W2 @ v)
-    return g
-
-
-def inv(g: np.ndarray) -> np.ndarray:
-    out = np.eye(4)
-    out[:3, :3] = g[:3, :3].T
-    out[:3, 3] = -g[:3, :3].T @ g[:3, 3]
-    return out
-
-
-def unit(v) -> np.ndarray:
-    v = np.asarray(v, dtype=float)
-    return v / np.linalg.norm(v)
-
-
-def in_plane(raw) -> tuple[np.ndarray, np.ndarray]:
-    """e1 = normalise(a - (a.w) w), a the coordinate axis least aligned with w
-    (first in x, y, z order on a tie, decided on the vector as written), e2 = w x e1."""
-    raw = np.asarray(raw, dtype=float)
-    mags = np.abs(raw)
-    i = 0
-    for k in (1, 2):
-        if mags[k] < mags[i]:
-            i = k
-    w = unit(raw)
-    a = np.zeros(3)
-    a[i] = 1.0
-    e1 = unit(a - w[i] * w)
-    return e1, np.cross(w, e1)
-
-
-def rev(u, p) -> np.ndarray:
-    u = unit(u)
-    return np.concatenate([u, np.cross(np.asarray(p, float), u)])
-
-
-def slide(u) -> np.ndarray:
-    return np.concatenate([np.zeros(3), unit(u)])
-
-
-def basis(jtype: str, prm: dict) -> list[np.ndarray]:
-    """The reference basis screws of a joint, from DESIGN.md (SI units)."""
-    eye = np.eye(3)
-    if jtype == "R":
-        return [rev(prm["axis"], prm["point"])]
-    if jtype == "P":
-        return [slide(prm["axis"])]
-    if jtype == "H":
-        u = unit(prm["axis"])
-        return [rev(u, prm["point"]) + np.concatenate([np.zeros(3), prm["pitch"] * u])]
-    if jtype == "C":
-        return [rev(prm["axis"], prm["point"]), slide(prm["axis"])]
-    if jtype == "T2":
-        e1, e2 = in_plane(prm["normal"])
-        return [slide(e1), slide(e2)]
-    if jtype == "T3":
-        return [slide(eye[k]) for k in range(3)]
-    if jtype == "S":
-        return [rev(eye[k], prm["point"]) for k in range(3)]
-    if jtype in ("G", "Y"):
-        n = unit(prm["normal"])
-        e1, e2 = in_plane(prm["normal"])
-        h = prm.get("pitch", 0.0)
-        return [np.concatenate([n, h * n]), slide(e1), slide(e2)]
-    if jtype == "X":
-        a = unit(prm["axis"])
-        e1, e2 = in_plane(prm["axis"])
-        return [np.concatenate([a, np.zeros(3)]), slide(e1), slide(e2), slide(a)]
-    if jtype == "D":
-        return [np.eye(6)[k] for k in range(6)]
-    if jtype == "U":
-        a1, a2 = prm["axes"]
-        return [rev(a1, prm["point"]), rev(a2, prm["point"])]
-    if jtype == "E":
-        return []
-    raise AssertionError(jtype)
-
-
-@dataclass
-class J:
-    """A joint as this file understands it (SI floats)."""
-
-    name: str
-    type: str
-    a: str
-    b: str
-    prm: dict = field(default_factory=dict)
-
-    @functools.cached_property
-    def basis(self) -> list[np.ndarray]:
-        return basis(self.type, self.prm)
-
-    def element(self, q, exp=expt) -> np.ndarray:
-        """The relative displacement M with g_b = g_a M."""
-        B = self.basis
-        q = np.asarray(q, dtype=float).reshape(-1)
-        assert len(q) == len(B)
-        if self.type == "U":
-            return exp(q[0] * B[0]) @ exp(q[1] * B[1])
-        if not B:
-            return np.eye(4)
-        return exp(sum(qi * b for qi, b in zip(q, B, strict=True)))
-
-
-def my_poses(
-    joints: list[J], ground: str, values: dict[str, np.ndarray], exp=expt
-) -> dict[str, np.ndarray]:
-    """Body poses along a breadth-first spanning tree of my own."""
-    out = {ground: np.eye(4)}
-    todo = [ground]
-    while todo:
-        body = todo.pop(0)
-        for j in joints:
-            if j.a == body and j.b not in out:
-                out[j.b] = out[body] @ j.element(values[j.name], exp)
-                todo.append(j.b)
-            elif j.b == body and j.a not in out:
-                out[j.a] = out[body] @ inv(j.element(values[j.name], exp))
-                todo.append(j.a)
-    return out
-
-
-def cycles(joints: list[J]) -> list[list[tuple[J, int]]]:
-    """A cycle basis of the mechanism: each cycle a list of (joint, +1 if crossed a->b)."""
-    H = nx.Graph()
-    by = {j.name: j for j in joints}
-    for j in joints:
-        H.add_edge(("b", j.a), ("j", j.name))
-        H.add_edge(("j", j.name), ("b", j.b))
-    out = []
-    for cyc in nx.cycle_basis(H):
-        k = next(i for i, node in enumerate(cyc) if node[0] == "b")
-        cyc = cyc[k:] + cyc[:k]
-        steps = []
-        for i in range(0, len(cyc), 2):
-            body, joint, nxt = cyc[i][1], by[cyc[i + 1][1]], cyc[(i + 2) % len(cyc)][1]
-            assert {body, nxt} == {joint.a, joint.b}
-            steps.append((joint, 1 if joint.a == body else -1))
-        out.append(steps)
-    return out
-
-
-def cycle_products(joints: list[J], values: dict[str, np.ndarray], exp=expt) -> list[np.ndarray]:
-    out = []
-    for steps in cycles(joints):
-        P = np.eye(4)
-        for j, s in steps:
-            M = j.element(values[j.name], exp)
-            P = P @ (M if s > 0 else inv(M))
-        out.append(P)
-    return out
-
-
-def closure_error(P: np.ndarray, L: float) -> float:
-    """A length: |p| and L |R - I|."""
-    return max(float(np.linalg.norm(P[:3, 3])), L * float(np.linalg.norm(P[:3, :3] - np.eye(3))))
-
-
-def assert_closes(joints: list[J], values: dict[str, np.ndarray], L: float, exp=expt) -> None:
-    prods = cycle_products(joints, values, exp)
-    for P in prods:
-        err = closure_error(P, L)
-        assert err <= 1e-10 * L, f"a loop does not close: error {err:.3g} (L = {L:.3g})"
-
 
 def mech_values(model: KinematicModel, q: np.ndarray) -> dict[str, np.ndarray]:
     return {k: np.array(v) for k, v in model.values(q).items()}
-
-
-# ---------------------------------------------------------------------------
-# writing mechanism files
-
-UNITS = {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "rad": 1.0, "deg": PI / 180}
-
-
-def num(x: float) -> str:
-    return repr(float(x))
-
-
-def vec(v) -> str:
-    return "[" + ", ".join(num(x) for x in v) + "]"
-
-
-@dataclass
-class Spec:
-    """A mechanism file written by this test, and the SI geometry behind it."""
-
-    bodies: list[str]
-    ground: str
-    joints: list[J]
-    configurations: dict[str, dict] = field(
-        default_factory=dict
-    )  # name -> {joint: SI values, "start": ...}
-    inputs: list[str] = field(default_factory=list)
-    output: str | None = None
-    length: str = "m"
-    angle: str = "rad"
-
-    def to_file(self) -> tuple[str, dict[str, dict[str, np.ndarray]]]:
-        """The YAML text, and each configuration's values as the file gives them, in SI."""
-        lf, af = UNITS[self.length], UNITS[self.angle]
-        lines = ["mechanism: generated"]
-        if (self.length, self.angle) != ("m", "rad"):
-            lines.append(f"units: {{length: {self.length}, angle: {self.angle}}}")
-        lines.append(f"ground: {self.ground}")
-        lines.append(f"bodies: [{', '.join(self.bodies)}]")
-        lines.append("joints:")
-        for j in self.joints:
-            geo = []
-            for key, val in j.prm.items():
-                if key == "point":
-                    geo.append(f"point: {vec(np.asarray(val) / lf)}")
-                elif key == "pitch":
-                    geo.append(f"pitch: {num(val / lf)}")
-                elif key == "axes":
-                    geo.append(f"axes: [{vec(val[0])}, {vec(val[1])}]")
-                else:
-                    geo.append(f"{key}: {vec(val)}")
-            lines.append(
-                f"  - {{name: {j.name}, type: {j.type}, between: [{j.a}, {j.b}]"
-                + "".join(", " + g for g in geo)
-                + "}"
-            )
-        if self.inputs:
-            lines.append(f"inputs: [{', '.join(self.inputs)}]")
-        if self.output:
-            lines.append(f"output: {{body: {self.output}}}")
-        lines.append("configurations:")
-        lines.append("  reference: {}")
-        written: dict[str, dict[str, np.ndarray]] = {}
-        by = {j.name: j for j in self.joints}
-        for cname, vals in self.configurations.items():
-            items = []
-            si: dict[str, np.ndarray] = {}
-            for jn, v in vals.items():
-                if jn == "start":
-                    items.append(f"start: {v}")
-                    continue
-                kinds = KINDS[by[jn].type]
-                texts = [num(x / (af if k == "a" else lf)) for x, k in zip(v, kinds, strict=True)]
-                si[jn] = np.array(
-                    [float(t) * (af if k == "a" else lf) for t, k in zip(texts, kinds, strict=True)]
-                )
-                items.append(f"{jn}: " + (texts[0] if len(texts) == 1 else f"[{', '.join(texts)}]"))
-            lines.append(f"  {cname}: {{{', '.join(items)}}}")
-            written[cname] = si
-        return "\n".join(lines) + "\n", written
 
 
 def flat(mech, values: dict[str, np.ndarray]) -> np.ndarray:
     """The flat coordinate vector in mechsing's order (file order, basis order)."""
     parts = [np.asarray(values[j.name], float).reshape(-1) for j in mech.joints if j.dof]
     return np.concatenate(parts) if parts else np.zeros(0)
-
-
-# ---------------------------------------------------------------------------
-# strategies
-
-finite = {"allow_nan": False, "allow_infinity": False}
-
-angles = st.one_of(
-    st.floats(-PI, PI, **finite),
-    st.floats(-1e-9, 1e-9, **finite),
-    st.builds(lambda e, s: s * (PI - e), st.floats(0, 1e-9, **finite), st.sampled_from([1, -1])),
-    st.sampled_from([0.0, PI, -PI, PI / 2, 1e-12, -1e-300, 2 * PI, 5.0]),
-)
-lengths = st.one_of(
-    st.floats(-3, 3, **finite),
-    st.floats(-1e-9, 1e-9, **finite),
-    st.sampled_from([0.0, 1.0, -2.5]),
-)
-coordinate_axes = st.sampled_from(
-    [
-        (0, 0, 1),
-        (1, 0, 0),
-        (0, 1, 0),
-        (0, -2, 0),
-        (1, 1, 0),
-        (1, 1, 1),
-        (-1, 1, 1),
-        (1, 2, 3),
-        (0, 3, 4),
-    ]
-)
-
-
-@st.composite
-def axes(draw) -> np.ndarray:
-    """Direction vectors as a file writes them (not normalised)."""
-    if draw(st.booleans()):
-        return np.array(draw(coordinate_axes), dtype=float)
-    v = np.array(draw(st.tuples(*[st.floats(-2, 2, **finite)] * 3)))
-    if np.linalg.norm(v) < 0.3:
-        v = v + np.array([0.3, -0.4, 0.5])
-    return v
-
-
-points = st.one_of(
-    st.tuples(*[st.floats(-5, 5, **finite)] * 3).map(np.array),
-    st.sampled_from([(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 0.0, 2.0)]).map(np.array),
-)
-pitches = st.builds(lambda h, s: s * h, st.floats(0.05, 2, **finite), st.sampled_from([1, -1]))
-
-
-@st.composite
-def rotation_vectors(draw) -> np.ndarray:
-    return unit(draw(axes())) * draw(angles)
-
-
-@st.composite
-def joint_params(draw, jtype: str) -> dict:
-    if jtype == "R" or jtype == "C":
-        return {"axis": draw(axes()), "point": draw(points)}
-    if jtype in ("P", "X"):
-        return {"axis": draw(axes())}
-    if jtype == "H":
-        return {"axis": draw(axes()), "point": draw(points), "pitch": draw(pitches)}
-    if jtype in ("T2", "G"):
-        return {"normal": draw(axes())}
-    if jtype == "Y":
-        return {"normal": draw(axes()), "pitch": draw(pitches)}
-    if jtype == "S":
-        return {"point": draw(points)}
-    if jtype == "U":
-        a1, a2 = draw(axes()), draw(axes())
-        if np.linalg.norm(np.cross(unit(a1), unit(a2))) < 0.2:
-            a2 = np.cross(a1, [1.0, 0, 0] if abs(unit(a1)[0]) < 0.7 else [0, 1.0, 0])
-        return {"axes": (a1, a2), "point": draw(points)}
-    return {}  # T3, D, E
-
-
-@st.composite
-def joint_values(draw, jtype: str) -> np.ndarray:
-    if jtype == "S":
-        return draw(rotation_vectors())
-    if jtype == "D":
-        return np.concatenate([draw(rotation_vectors()), [draw(lengths) for _ in range(3)]])
-    return np.array([draw(angles) if k == "a" else draw(lengths) for k in KINDS[jtype]])
-
-
-TREE_TYPES = ["R", "P", "H", "C", "S", "U", "T2", "T3", "G", "X", "D", "Y", "E"]
-
-
-@st.composite
-def trees(draw) -> Spec:
-    n = draw(st.integers(1, 8))
-    serial = draw(st.booleans())
-    parent = [None] + [k - 1 if serial else draw(st.integers(0, k - 1)) for k in range(1, n + 1)]
-    names = draw(st.permutations([f"body{k}" for k in range(n + 1)]))
-    ground = names[draw(st.integers(0, n))]
-    joints, values = [], {}
-    for k in range(1, n + 1):
-        jtype = draw(st.sampled_from(TREE_TYPES))
-        a, b = names[parent[k]], names[k]
-        if draw(st.booleans()):
-            a, b = b, a
-        j = J(f"J{k}", jtype, a, b, draw(joint_params(jtype)))
-        joints.append(j)
-        values[j.name] = draw(joint_values(jtype))
-    joints = draw(st.permutations(joints))
-    bodies = draw(st.permutations(names))
-    length, angle = draw(
-        st.sampled_from([("m", "rad"), ("mm", "deg"), ("cm", "rad"), ("m", "deg")])
-    )
-    output = draw(st.sampled_from([b for b in names if b != ground]))
-    cfg = {j.name: values[j.name] for j in joints if j.type != "E"}
-    spec = Spec(
-        list(bodies),
-        ground,
-        list(joints),
-        {"given": cfg},
-        output=output,
-        length=length,
-        angle=angle,
-    )
-    return spec
 
 
 # ---------------------------------------------------------------------------
@@ -605,84 +197,6 @@ def test_closed_form_exponential_of_this_file_agrees_with_expm(w, v):
     np.testing.assert_allclose(exp_rodrigues(xi), expt(xi), rtol=0, atol=1e-13)
 
 
-# ---------------------------------------------------------------------------
-# independent path tracking for closed chains
-
-
-def track(
-    joints: list[J],
-    start: dict[str, np.ndarray],
-    target: dict[str, np.ndarray],
-    L: float,
-    nsteps: int = 12,
-) -> tuple[dict[str, np.ndarray] | None, float]:
-    """Follow the given joints from ``start`` to ``target`` (straight line), the
-    others solved at each step by Gauss-Newton on the products around my cycles.
-
-    Returns the end values and the smallest relative singular value of the
-    closure Jacobian in the unknowns met on the way, start included (None when
-    a step fails).
-    """
-    unknown = [j for j in joints if j.name not in target and KINDS[j.type]]
-    sizes = [len(KINDS[j.type]) for j in unknown]
-    x = np.concatenate([start[j.name] for j in unknown])
-    cyc = cycles(joints)
-
-    def values_at(x, given):
-        vals = dict(given)
-        k = 0
-        for j, s in zip(unknown, sizes, strict=True):
-            vals[j.name] = x[k : k + s]
-            k += s
-        for j in joints:
-            vals.setdefault(j.name, np.zeros(0))
-        return vals
-
-    def F(x, given):
-        vals = values_at(x, given)
-        res = []
-        for steps in cyc:
-            P = np.eye(4)
-            for j, s in steps:
-                M = j.element(vals[j.name], exp_rodrigues)
-                P = P @ (M if s > 0 else inv(M))
-            res.append(L * (P[:3, :3] - np.eye(3)).ravel())
-            res.append(P[:3, 3])
-        return np.concatenate(res)
-
-    def jac(x, given):
-        f0 = F(x, given)
-        h = 1e-7
-        cols = []
-        for i in range(len(x)):
-            xp = x.copy()
-            xp[i] += h
-            cols.append((F(xp, given) - f0) / h)
-        return np.stack(cols, axis=1)
-
-    # the start counts too: from a singular point several branches leave
-    s = np.linalg.svd(jac(x, {k: start[k] for k in target}), compute_uv=False)
-    worst = float(s[-1] / s[0])
-    for t in np.linspace(0, 1, nsteps + 1)[1:]:
-        given_t = {k: start[k] + t * (target[k] - start[k]) for k in target}
-        x_prev = x
-        # Newton with a finite-difference Jacobian, refreshed every 4 iterations
-        for it in range(24):
-            if it % 4 == 0:
-                Jx = jac(x, given_t)
-            f = F(x, given_t)
-            if np.max(np.abs(f)) <= 1e-13 * L:
-                break
-            x = x + np.linalg.lstsq(Jx, -f, rcond=None)[0]
-        else:
-            return None, 0.0
-        if np.max(np.abs(x - x_prev)) > 0.5:
-            return None, 0.0  # too large a jump to vouch for the branch
-        s = np.linalg.svd(jac(x, given_t), compute_uv=False)
-        worst = min(worst, float(s[-1] / s[0]))
-    return values_at(x, target), worst
-
-
 def loop_joints(pts, axs, types=None, flips=None, prefix="J") -> tuple[list[str], list[J]]:
     """A single loop ground -> l1 -> ... -> ground through the given joints."""
     n = len(pts)
@@ -709,19 +223,6 @@ def solve_file(spec: Spec):
     return mech, model, Closer(model), written
 
 
-@st.composite
-def planar_frame(draw):
-    """A random plane: unit normal w and in-plane unit vectors, a random origin."""
-    w = unit(draw(axes()))
-    e1, e2 = in_plane(w)
-    c0 = draw(points)
-    return w, e1, e2, c0
-
-
-plane_xy = st.tuples(st.floats(-3, 3, **finite), st.floats(-3, 3, **finite))
-deltas = st.floats(-0.3, 0.3, **finite).filter(lambda d: abs(d) > 1e-3)
-
-
 def spread(pts2) -> bool:
     """Points of a planar linkage that are not bunched (every pair at least 0.3 apart)."""
     P = np.asarray(pts2)
@@ -730,35 +231,6 @@ def spread(pts2) -> bool:
 
 # ---------------------------------------------------------------------------
 # 2a. planar four-bar: against the closed-form solution and its assembly mode
-
-
-def rot2(t):
-    return np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
-
-
-def cross2(u, v):
-    return float(u[0] * v[1] - u[1] * v[0])
-
-
-def fourbar_closed_form(A, B, C, D, theta):
-    """Crank angle theta -> (coupler angle, rocker angle, sin of the angle at C)
-    on the assembly mode of the reference; or, where the loop cannot close,
-    None and by how much it misses (a length)."""
-    r1, r2 = np.linalg.norm(C - B), np.linalg.norm(C - D)
-    side = np.sign(cross2(D - B, C - B))
-    Bt = A + rot2(theta) @ (B - A)
-    d = np.linalg.norm(D - Bt)
-    if d >= r1 + r2 or d <= abs(r1 - r2):
-        return None, max(d - r1 - r2, abs(r1 - r2) - d)
-    a = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
-    h = math.sqrt(max(r1 * r1 - a * a, 0.0))
-    u = (D - Bt) / d
-    n = np.array([-u[1], u[0]])
-    Ct = Bt + a * u + side * h * n
-    psi = math.atan2(cross2(C - B, Ct - Bt), float((C - B) @ (Ct - Bt)))
-    phi = math.atan2(cross2(C - D, Ct - D), float((C - D) @ (Ct - D)))
-    sin_c = abs(cross2(Ct - Bt, D - Ct)) / (r1 * r2)
-    return (psi, phi, sin_c), 0.0
 
 
 def wrap(x):
@@ -1276,21 +748,6 @@ def test_five_bar_with_one_input_is_underdetermined(frame, xy, k, delta):
 
 # ---------------------------------------------------------------------------
 # 3. every example: every named configuration closes
-
-
-def joints_of(mech) -> list[J]:
-    out = []
-    for j in mech.joints:
-        prm = {}
-        for key, val in j.params.items():
-            if key == "axes":
-                prm[key] = tuple(np.array([float(x) for x in a]) for a in val)
-            elif key == "pitch":
-                prm[key] = float(val)
-            else:
-                prm[key] = np.array([float(x) for x in val])
-        out.append(J(j.name, j.type, j.between[0], j.between[1], prm))
-    return out
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])

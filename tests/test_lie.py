@@ -10,12 +10,11 @@ import pytest
 import scipy.linalg
 import sympy
 from hypothesis import given, settings
-from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from mechsing import lie
 from mechsing.numeric import Precision
-from tests.strategies import angles, displacements, lengths, twists, unit_axes
+from tests.strategies import angles, bounded_twists, displacements, lengths, twists, unit_axes
 
 EPS = np.finfo(float).eps
 SET = settings(max_examples=200, deadline=None)
@@ -167,12 +166,8 @@ def test_group_axioms(g: np.ndarray, h: np.ndarray, k: np.ndarray) -> None:
 # --------------------------------------------------------------------------- Ad, ad, bracket
 
 
-def _bounded_twists() -> st.SearchStrategy[np.ndarray]:
-    return st.lists(st.floats(-3, 3), min_size=6, max_size=6).map(np.array)
-
-
 @SET
-@given(_bounded_twists(), _bounded_twists(), _bounded_twists())
+@given(bounded_twists(), bounded_twists(), bounded_twists())
 def test_bracket_is_commutator_and_jacobi(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> None:
     X, Y = lie.hat(x), lie.hat(y)
     np.testing.assert_allclose(lie.hat(lie.bracket(x, y)), X @ Y - Y @ X, atol=1e-12)
@@ -186,7 +181,7 @@ def test_bracket_is_commutator_and_jacobi(x: np.ndarray, y: np.ndarray, z: np.nd
 
 
 @SET
-@given(displacements(), _bounded_twists(), _bounded_twists())
+@given(displacements(), bounded_twists(), bounded_twists())
 def test_ad_of_bracket_is_bracket_of_ads(g: np.ndarray, x: np.ndarray, y: np.ndarray) -> None:
     s = _scale(g) ** 2
     lhs = lie.act_screw(g, lie.bracket(x, y))
@@ -215,7 +210,7 @@ def test_Ad_exp_is_exp_ad() -> None:  # noqa: N802
 
 
 @SET
-@given(displacements(), _bounded_twists(), _bounded_twists())
+@given(displacements(), bounded_twists(), bounded_twists())
 def test_klein_and_killing_are_Ad_invariant(g: np.ndarray, x: np.ndarray, y: np.ndarray) -> None:  # noqa: N802
     s = _scale(g)
     gx, gy = lie.act_screw(g, x), lie.act_screw(g, y)

@@ -22,7 +22,8 @@ from mechsing.analysis import analyze
 from mechsing.cli import exit_status
 from mechsing.errors import UserError
 from mechsing.report import render
-from tests.mechanisms import ROOT, run_cli
+from tests.cli import run_cli
+from tests.mechanisms import ROOT
 
 FILES = sorted((ROOT / "examples").glob("*.yaml")) + sorted((ROOT / "tests" / "data").glob("*.yaml"))
 MODES = ("float", "mp:30", "mp:50", "auto", "exact")

@@ -12,34 +12,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechsing.model import Joint, Leg, build_graph, canonical_loops, load, loads
+from tests.strategies import body_graphs
 
 DATA = Path(__file__).parent / "data"
-
-
-@st.composite
-def mechanisms(draw, max_bodies=8, max_extra=8):
-    """Random connected body graphs: a random spanning tree plus extra joints
-    (parallel joints allowed), random orientations, some U joints."""
-    n = draw(st.integers(1, max_bodies))
-    bodies = [f"b{i}" for i in range(n)]
-    pairs = []
-    for i in range(1, n):
-        pairs.append((draw(st.integers(0, i - 1)), i))
-    if n >= 2:
-        for _ in range(draw(st.integers(0, max_extra))):
-            a = draw(st.integers(0, n - 1))
-            b = draw(st.integers(0, n - 2))
-            b = b if b < a else b + 1
-            pairs.append((a, b))
-    order = draw(st.permutations(range(len(pairs))))
-    joints = []
-    for k, idx in enumerate(order):
-        a, b = pairs[idx]
-        if draw(st.booleans()):
-            a, b = b, a
-        jtype = "U" if draw(st.integers(0, 4)) == 0 else "R"
-        joints.append(Joint(f"J{k}", jtype, (bodies[a], bodies[b]), {}, None, 2 if jtype == "U" else 1))
-    return bodies, joints
 
 
 def _walk_ok(loop, joints_by_name):
@@ -74,7 +49,7 @@ def _gf2_rank(vectors):
 
 
 @settings(max_examples=150, deadline=None)
-@given(mechanisms())
+@given(body_graphs())
 def test_loop_count_and_basis(mech):
     bodies, joints = mech
     g = build_graph(bodies, bodies[0], joints)
@@ -105,7 +80,7 @@ def test_loop_count_and_basis(mech):
 
 
 @settings(max_examples=100, deadline=None)
-@given(mechanisms(), st.randoms(use_true_random=False))
+@given(body_graphs(), st.randoms(use_true_random=False))
 def test_same_loops_whatever_the_names_and_memory_order(mech, rnd):
     """Renaming bodies and joints (which changes every hash and sort order) and
     rebuilding from fresh objects gives the same loops, joint for joint."""
@@ -142,7 +117,7 @@ def test_same_loops_under_another_hash_seed():
 
 
 @settings(max_examples=100, deadline=None)
-@given(mechanisms())
+@given(body_graphs())
 def test_tree_paths_reach_every_body(mech):
     bodies, joints = mech
     g = build_graph(bodies, bodies[0], joints)

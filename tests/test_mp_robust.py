@@ -37,15 +37,11 @@ from mechsing.numeric import (
     spectral_norm,
     svd,
 )
-from tests.mechanisms import EXAMPLES, by_name, classes, run_cli, write
+from tests.cli import cli_json
+from tests.mechanisms import EXAMPLES, by_name, classes, write
+from tests.reference.se3 import hat
 
 # ============================================================================ helpers
-
-
-def _json(argv: list[str]) -> dict:
-    rc, out, err = run_cli(argv)
-    assert rc == 0, (argv, rc, err)
-    return json.loads(out)
 
 
 # ============================================================================ 2. robust SVD
@@ -202,7 +198,7 @@ def test_screw_jack_in_every_mode(tmp_path: Path, mode: str) -> None:
     exp(theta (z, 0)) exp(-theta (z, h z)) = exp(-h theta (0, z))), so the nut's slide rate is the
     pitch times the input rate."""
     path = write(tmp_path, "screw_jack", SCREW_JACK)
-    res = _json(["analyze", str(path), "--precision", mode, "--format", "json"])
+    res = cli_json(["analyze", str(path), "--precision", mode, "--format", "json"])
     assert set(by_name(res)) == {"reference", "turned", "turned-back"}
     for c in res["configurations"]:
         where = (mode, c["name"])
@@ -291,10 +287,7 @@ def _basis(j: dict) -> list[list[mpmath.mpf]]:
 
 
 def _hat(xi: list[mpmath.mpf]) -> mpmath.matrix:
-    w, v = xi[:3], xi[3:]
-    return mpmath.matrix(
-        [[0, -w[2], w[1], v[0]], [w[2], 0, -w[0], v[1]], [-w[1], w[0], 0, v[2]], [0, 0, 0, 0]]
-    )
+    return mpmath.matrix(hat(xi).tolist())
 
 
 def _element(j: dict, q: list[mpmath.mpf]) -> mpmath.matrix:
@@ -459,7 +452,7 @@ def _closed_values(path: Path, mode: str) -> tuple[dict, dict[str, list[mpmath.m
     from mechsing.kinematics import solve_configuration
     from mechsing.model import load
 
-    out = _json(["solve", str(path), "--config", "moved", "--precision", mode, "--format", "json"])
+    out = cli_json(["solve", str(path), "--config", "moved", "--precision", mode, "--format", "json"])
     model, closed = solve_configuration(load(str(path)), "moved", mode)
     q = {jk.name: list(closed.q[jk.columns]) for jk in model.joints}
     return out, q
@@ -553,7 +546,7 @@ def test_auto_near_the_rssr_rocker_dead_centre(tmp_path: Path) -> None:
     text = text.replace("inputs: [A]\n", "inputs: [A]\noutput: {body: rocker}\n")
     text += '  dead: {A: "pi/2"}\n'
     path = write(tmp_path, "rssr_dead_centre", text)
-    res = by_name(_json(["analyze", str(path), "--format", "json"]))
+    res = by_name(cli_json(["analyze", str(path), "--format", "json"]))
     c = res["moved"]
     assert c["precision"] == "mp:50" and "error" not in c, c.get("error")
     with mpmath.workdps(60):
@@ -561,7 +554,7 @@ def test_auto_near_the_rssr_rocker_dead_centre(tmp_path: Path) -> None:
         assert c["closure_residual"] <= mpmath.mpf(10) ** -45 * L
     assert (c["closure_rank"]["rank"], c["closure_rank"]["nullity"]) == (6, 2)  # crank + idle spin
     assert c["singular"] is False, classes(c)
-    dead = _json(
+    dead = cli_json(
         ["analyze", str(path), "--config", "dead", "--precision", "mp:50", "--format", "json"]
     )
     (d,) = dead["configurations"]
@@ -570,8 +563,15 @@ def test_auto_near_the_rssr_rocker_dead_centre(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize(
     ("precision", "k"),
-    [("float", 4), ("float", 6), ("float", 8), ("float", 9), ("mp:50", 11), ("mp:50", 15),
-     ("mp:50", 20)],
+    [
+        ("float", 4),
+        ("float", 6),
+        ("float", 8),
+        ("float", 9),
+        ("mp:50", 11),
+        ("mp:50", 15),
+        ("mp:50", 20),
+    ],
 )
 def test_input_test_near_the_rssr_dead_centre_is_never_falsely_singular(
     tmp_path: Path, precision: str, k: int
@@ -585,8 +585,9 @@ def test_input_test_near_the_rssr_dead_centre_is_never_falsely_singular(
     text = _mechanism("rssr", joints, ["A"], {"A": f"pi/2 - 1e-{k}"})
     text = text.replace("inputs: [A]\n", "inputs: [A]\noutput: {body: rocker}\n")
     path = write(tmp_path, "rssr_near", text)
-    (c,) = _json(["analyze", str(path), "--config", "moved", "--precision", precision,
-                  "--format", "json"])["configurations"]
+    (c,) = cli_json(
+        ["analyze", str(path), "--config", "moved", "--precision", precision, "--format", "json"]
+    )["configurations"]
     assert "error" not in c, c["error"]
     assert c["singular"] is not True, classes(c)
     inputs = [d for d in c["decisions"] if d["test"] == "input"]
@@ -610,7 +611,7 @@ def test_t3_s_chain_is_regular_where_charts_are_singular(tmp_path: Path) -> None
     (e_i, t x e_i), the T3 screws (0, e_i): the commensurate matrix is [[0, I], [I, t^]] at every
     S value, whose extreme singular values the margin reports."""
     path = write(tmp_path, "t3_s_chain", T3_S_CHAIN)
-    res = _json(["analyze", str(path), "--precision", "mp:50", "--format", "json"])
+    res = cli_json(["analyze", str(path), "--precision", "mp:50", "--format", "json"])
     with mpmath.workdps(60):
         t = [mpmath.mpf(x) / 10 for x in (1, 2, 3)]
         M = mpmath.zeros(6, 6)
@@ -649,7 +650,7 @@ def test_mp_analysis_never_converts_arrays_through_repr(
     joints, config = LOOPS["RSSR"]
     rssr = write(tmp_path, "rssr", _mechanism("rssr", joints, ["A"], config))
     for path in (chain, rssr):
-        _json(["analyze", str(path), "--precision", "mp:50", "--format", "json"])
+        cli_json(["analyze", str(path), "--precision", "mp:50", "--format", "json"])
     assert calls == []
 
 
@@ -671,10 +672,21 @@ def test_a_singular_target_reached_from_its_input_is_classified_as_when_fully_gi
     src = (EXAMPLES / "parallelogram.yaml").read_text()
     text = src.replace('crank-30: {A: "-pi/6"}', 'flat-solved: {A: "-pi/2"}')
     path = write(tmp_path, "para", text)
-    (c,) = _json(["analyze", str(path), "--config", "flat-solved", "--precision", precision,
-                  "--format", "json"])["configurations"]
-    (exact,) = _json(["analyze", str(path), "--config", "flat", "--precision", "exact",
-                      "--format", "json"])["configurations"]
+    (c,) = cli_json(
+        [
+            "analyze",
+            str(path),
+            "--config",
+            "flat-solved",
+            "--precision",
+            precision,
+            "--format",
+            "json",
+        ]
+    )["configurations"]
+    (exact,) = cli_json(
+        ["analyze", str(path), "--config", "flat", "--precision", "exact", "--format", "json"]
+    )["configurations"]
     assert "error" not in c, c["error"]
     digits = 50 if precision == "auto" else int(precision[3:])
     assert c["precision"] == f"mp:{digits}"

@@ -24,6 +24,7 @@ from mechsing.lie.quaternion import (
     quat_to_rotation_matrix,
 )
 from mechsing.numeric import Precision
+from tests.strategies import rotvecs
 
 EPS = float(np.finfo(float).eps)
 SETTINGS = settings(max_examples=150, deadline=None)
@@ -35,31 +36,6 @@ def to_scipy(q):
 
 def from_scipy(q):
     return np.asarray(q)[..., [3, 0, 1, 2]]
-
-
-# --- strategies concentrated at the branch points -------------------------
-
-angles = st.one_of(
-    st.floats(0, 1e-12),
-    st.floats(0, 1e-6),
-    st.floats(math.pi - 1e-12, math.pi),
-    st.floats(math.pi - 1e-6, math.pi),
-    st.sampled_from([0.0, 1e-16, 1e-8, 1e-4, math.pi / 2, math.pi - 1e-8, math.pi]),
-    st.floats(0, math.pi),
-)
-
-
-@st.composite
-def unit_axes(draw):
-    v = np.array(draw(st.lists(st.floats(-1, 1), min_size=3, max_size=3)))
-    if np.linalg.norm(v) < 1e-3:
-        v = np.array([2.0, 3.0, 6.0])  # a non-coordinate axis
-    return v / np.linalg.norm(v)
-
-
-@st.composite
-def rotvecs(draw):
-    return draw(angles) * draw(unit_axes())
 
 
 def same_up_to_sign(a, b, tol):

@@ -35,9 +35,9 @@ import numpy as np
 import pytest
 
 from mechsing.analysis import analyze
-from mechsing.cli import main
 from tests import families as fam
-from tests.mechanisms import by_name, classes, finding, write
+from tests.cli import cli_json
+from tests.mechanisms import assert_same_lines, by_name, classes, finding, normalised, write
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -72,11 +72,7 @@ def run_api(path: Path) -> dict:
 
 
 def run_cli(path: Path, capsys: pytest.CaptureFixture[str], *options: str) -> dict:
-    capsys.readouterr()
-    rc = main(["analyze", str(path), "--format", "json", *options])
-    captured = capsys.readouterr()
-    assert rc == 0, captured.err
-    out = json.loads(captured.out)
+    out = cli_json(["analyze", str(path), "--format", "json", *options])
     check_contract(out)
     return out
 
@@ -87,29 +83,6 @@ def assert_regular(config: dict, rank: int) -> None:
     assert config["closure_rank"]["rank"] == rank, (config["name"], config["closure_rank"])
     assert config["singularities"] == [], (config["name"], classes(config))
     assert config["singular"] is False
-
-
-def normalised(v) -> np.ndarray:
-    """Largest entry 1 in magnitude, first entry above 1e-9 of it positive (DESIGN.md)."""
-    v = np.asarray(v, dtype=float)
-    v = v / np.max(np.abs(v))
-    first = v[np.flatnonzero(np.abs(v) > 1e-9)[0]]
-    return v if first > 0 else -v
-
-
-def assert_same_lines(got: list, expected: list, tol: float = 1e-8) -> None:
-    """Two sets of directions (each up to scale) are equal."""
-    assert len(got) == len(expected)
-    g = [normalised(x) for x in got]
-    e = [normalised(x) for x in expected]
-    for x in got:  # the contract's own normalisation
-        assert abs(np.max(np.abs(x)) - 1) < 1e-12
-        assert np.asarray(x)[np.flatnonzero(np.abs(x) > 1e-9)[0]] > 0
-    unmatched = list(range(len(e)))
-    for x in g:
-        hit = [i for i in unmatched if np.max(np.abs(x - e[i])) < tol]
-        assert hit, (g, e)
-        unmatched.remove(hit[0])
 
 
 # ----------------------------------------------------------------------------- 1. change points
@@ -155,7 +128,7 @@ def test_changepoint_fold_is_a_bifurcation_and_regular_off_it(
     assert f["branch_mobility"] == [1, 1]
     assert f["joints"] == ["A", "B", "C", "D"]
     # the two tangents of the closed-form motion (one per side of the line BD)
-    assert_same_lines(f["branch_tangents"], fb.branch_tangents())
+    assert_same_lines(f["branch_tangents"], fb.branch_tangents(), contract=True)
     assert fold["singular"] is True
 
     pts = np.array([float(x) for x in fb.points])
@@ -389,7 +362,9 @@ def test_isosceles_slider_crank_at_90_degrees_is_a_bifurcation(tmp_path: Path, r
     assert f["branches"] == 2 and f["branch_mobility"] == [1, 1]
     # branch x = 2 r cos(theta): (A, B, C, P) rates (1, -2, 1, -2 r) per unit crank rate;
     # branch x = 0 (the slider pin stays on the crank pivot): (1, 0, -1, 0)
-    assert_same_lines(f["branch_tangents"], [[1, -2, 1, -2 * float(r)], [1, 0, -1, 0]])
+    assert_same_lines(
+        f["branch_tangents"], [[1, -2, 1, -2 * float(r)], [1, 0, -1, 0]], contract=True
+    )
 
 
 @pytest.mark.parametrize(("a", "b"), [(F(1), F(2)), (F(3, 2), F(5, 7))])

@@ -12,7 +12,8 @@ import tomllib
 import pytest
 
 from mechsing.errors import current_work, forget_work, working_on
-from tests.mechanisms import ROOT, run_cli, write
+from tests.cli import run_cli
+from tests.mechanisms import ROOT, write
 
 SLIDER_CRANK = (ROOT / "examples" / "slider_crank_crank_input.yaml").read_text()
 

@@ -1,0 +1,54 @@
+"""The tests' one way to run the command line: in-process (``mechsing.cli.main``, stdout and
+stderr captured) or as the installed command in a child process (``python -m mechsing``), both
+giving the exit status, stdout and stderr; and the parsed JSON of a successful run."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import subprocess
+import sys
+from pathlib import Path
+from typing import NamedTuple
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+class CliRun(NamedTuple):
+    """One run of the command line."""
+
+    status: int
+    out: str
+    err: str
+
+
+def run_cli(argv: list[str]) -> CliRun:
+    """``mechsing.cli.main(argv)`` in-process: (exit status, stdout, stderr)."""
+    from mechsing.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        rc = main([str(a) for a in argv])
+    return CliRun(rc, out.getvalue(), err.getvalue())
+
+
+def run_cli_subprocess(argv: list[str], timeout: float = 120, cwd: Path | str = ROOT) -> CliRun:
+    """``python -m mechsing ARGV`` in a child process (the command as users run it: a fresh
+    interpreter, main thread); raises subprocess.TimeoutExpired after ``timeout`` seconds."""
+    r = subprocess.run(
+        [sys.executable, "-m", "mechsing", *map(str, argv)],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
+    return CliRun(r.returncode, r.stdout, r.stderr)
+
+
+def cli_json(argv: list[str]) -> dict:
+    """The parsed JSON stdout of an in-process run, which must exit 0 without a traceback."""
+    rc, out, err = run_cli(argv)
+    assert rc == 0, (argv, rc, err)
+    assert "Traceback" not in err, err
+    return json.loads(out)

@@ -1,0 +1,323 @@
+"""Mechanism kinematics for the tests, from the product's conventions alone: the reference basis
+screws of every joint type, joint displacements, body poses along a breadth-first spanning tree,
+a cycle basis (networkx) and the products around it, closure errors, spatial joint screws, a
+path tracker (Gauss-Newton on the cycle products with finite differences) and the closed-form
+planar four-bar.
+
+Joint values are dictionaries {joint name: array of its coordinates} in SI units and radians.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
+
+import networkx as nx
+import numpy as np
+
+from tests.reference.se3 import adjoint, exp_rodrigues, expt, in_plane, inv, revolute, slide, unit
+
+PI = math.pi
+
+#: kind of each coordinate per joint type: "a" angle (rad), "l" length (m)
+KINDS = {
+    "R": "a",
+    "P": "l",
+    "H": "a",
+    "C": "al",
+    "T2": "ll",
+    "T3": "lll",
+    "S": "aaa",
+    "G": "all",
+    "Y": "all",
+    "X": "alll",
+    "D": "aaalll",
+    "U": "aa",
+    "E": "",
+}
+
+Exp = Callable[[np.ndarray], np.ndarray]
+Values = Mapping[str, np.ndarray]
+
+
+def basis(jtype: str, prm: dict) -> list[np.ndarray]:
+    """The reference basis screws of a joint (SI units)."""
+    eye = np.eye(3)
+    if jtype == "R":
+        return [revolute(prm["axis"], prm["point"])]
+    if jtype == "P":
+        return [slide(prm["axis"])]
+    if jtype == "H":
+        u = unit(prm["axis"])
+        return [revolute(u, prm["point"]) + np.concatenate([np.zeros(3), prm["pitch"] * u])]
+    if jtype == "C":
+        return [revolute(prm["axis"], prm["point"]), slide(prm["axis"])]
+    if jtype == "T2":
+        e1, e2 = in_plane(prm["normal"])
+        return [slide(e1), slide(e2)]
+    if jtype == "T3":
+        return [slide(eye[k]) for k in range(3)]
+    if jtype == "S":
+        return [revolute(eye[k], prm["point"]) for k in range(3)]
+    if jtype in ("G", "Y"):
+        n = unit(prm["normal"])
+        e1, e2 = in_plane(prm["normal"])
+        h = prm.get("pitch", 0.0)
+        return [np.concatenate([n, h * n]), slide(e1), slide(e2)]
+    if jtype == "X":
+        a = unit(prm["axis"])
+        e1, e2 = in_plane(prm["axis"])
+        return [np.concatenate([a, np.zeros(3)]), slide(e1), slide(e2), slide(a)]
+    if jtype == "D":
+        return [np.eye(6)[k] for k in range(6)]
+    if jtype == "U":
+        a1, a2 = prm["axes"]
+        return [revolute(a1, prm["point"]), revolute(a2, prm["point"])]
+    if jtype == "E":
+        return []
+    raise AssertionError(jtype)
+
+
+@dataclass
+class J:
+    """A joint as the reference understands it (SI floats): between bodies ``a`` and ``b``."""
+
+    name: str
+    type: str
+    a: str
+    b: str
+    prm: dict = field(default_factory=dict)
+
+    @functools.cached_property
+    def basis(self) -> list[np.ndarray]:
+        return basis(self.type, self.prm)
+
+    def element(self, q: Iterable[float], exp: Exp = expt) -> np.ndarray:
+        """The relative displacement M with g_b = g_a M."""
+        B = self.basis
+        q = np.asarray(q, dtype=float).reshape(-1)
+        assert len(q) == len(B)
+        if self.type == "U":
+            return exp(q[0] * B[0]) @ exp(q[1] * B[1])
+        if not B:
+            return np.eye(4)
+        return exp(sum(qi * b for qi, b in zip(q, B, strict=True)))
+
+
+def poses(joints: list[J], ground: str, values: Values, exp: Exp = expt) -> dict[str, np.ndarray]:
+    """Body poses along a breadth-first spanning tree (bodies in the order met, joints in list
+    order)."""
+    out = {ground: np.eye(4)}
+    todo = [ground]
+    while todo:
+        body = todo.pop(0)
+        for j in joints:
+            if j.a == body and j.b not in out:
+                out[j.b] = out[body] @ j.element(values[j.name], exp)
+                todo.append(j.b)
+            elif j.b == body and j.a not in out:
+                out[j.a] = out[body] @ inv(j.element(values[j.name], exp))
+                todo.append(j.a)
+    return out
+
+
+def cycles(joints: list[J]) -> list[list[tuple[J, int]]]:
+    """A cycle basis of the mechanism: each cycle a list of (joint, +1 if crossed a->b)."""
+    H = nx.Graph()
+    by = {j.name: j for j in joints}
+    for j in joints:
+        H.add_edge(("b", j.a), ("j", j.name))
+        H.add_edge(("j", j.name), ("b", j.b))
+    out = []
+    for cyc in nx.cycle_basis(H):
+        k = next(i for i, node in enumerate(cyc) if node[0] == "b")
+        cyc = cyc[k:] + cyc[:k]
+        steps = []
+        for i in range(0, len(cyc), 2):
+            body, joint, nxt = cyc[i][1], by[cyc[i + 1][1]], cyc[(i + 2) % len(cyc)][1]
+            assert {body, nxt} == {joint.a, joint.b}
+            steps.append((joint, 1 if joint.a == body else -1))
+        out.append(steps)
+    return out
+
+
+def cycle_products(
+    joints: list[J],
+    values: Values,
+    exp: Exp = expt,
+    basis_cycles: list[list[tuple[J, int]]] | None = None,
+) -> list[np.ndarray]:
+    """The product of the joint displacements around each cycle (identity when it closes)."""
+    out = []
+    for steps in cycles(joints) if basis_cycles is None else basis_cycles:
+        P = np.eye(4)
+        for j, s in steps:
+            M = j.element(values[j.name], exp)
+            P = P @ (M if s > 0 else inv(M))
+        out.append(P)
+    return out
+
+
+def closure_error(P: np.ndarray, L: float) -> float:
+    """A length: |p| and L |R - I|."""
+    return max(float(np.linalg.norm(P[:3, 3])), L * float(np.linalg.norm(P[:3, :3] - np.eye(3))))
+
+
+def closure_residual(products: list[np.ndarray], L: float) -> np.ndarray:
+    """The residual vector of the cycle products: (R - I) and p / L per cycle (dimensionless)."""
+    if not products:
+        return np.zeros(0)
+    return np.concatenate([np.r_[(P[:3, :3] - np.eye(3)).ravel(), P[:3, 3] / L] for P in products])
+
+
+def assert_closes(joints: list[J], values: Values, L: float, exp: Exp = expt) -> None:
+    for P in cycle_products(joints, values, exp):
+        err = closure_error(P, L)
+        assert err <= 1e-10 * L, f"a loop does not close: error {err:.3g} (L = {L:.3g})"
+
+
+def spatial_screws(
+    joints: list[J],
+    body_poses: Mapping[str, np.ndarray],
+    values: Values,
+    names: set[str] | None = None,
+    exp: Exp = expt,
+) -> np.ndarray:
+    """The current spatial joint screws (columns, joints in list order, basis order; only the
+    joints in ``names`` when given): each basis screw moved by its joint's ``a`` body; a U
+    joint's second axis also by its first rotation."""
+    cols = []
+    for j in joints:
+        if names is not None and j.name not in names:
+            continue
+        ga = body_poses[j.a]
+        if j.type == "U":
+            cols.append(adjoint(ga) @ j.basis[0])
+            g1 = ga @ exp(values[j.name][0] * j.basis[0])
+            cols.append(adjoint(g1) @ j.basis[1])
+        else:
+            cols.extend(adjoint(ga) @ s for s in j.basis)
+    return np.array(cols).T
+
+
+def track(
+    joints: list[J],
+    start: Values,
+    target: Values,
+    L: float,
+    nsteps: int = 12,
+    exp: Exp | None = None,
+    iterations: int = 24,
+    refresh: int = 4,
+    rcond: float | None = None,
+) -> tuple[dict[str, np.ndarray] | None, float]:
+    """Follow the given joints from ``start`` to ``target`` (straight line, ``nsteps`` steps),
+    the others solved at each step by Gauss-Newton on the products around the cycles
+    (finite-difference Jacobian refreshed every ``refresh`` iterations, least-squares steps
+    with ``rcond``).
+
+    Returns the end values and the smallest relative singular value of the closure Jacobian in
+    the unknowns met on the way, start included (None when a step fails or jumps).
+    """
+    exp = exp or exp_rodrigues
+    unknown = [j for j in joints if j.name not in target and KINDS[j.type]]
+    sizes = [len(KINDS[j.type]) for j in unknown]
+    x = np.concatenate([np.asarray(start[j.name], float) for j in unknown] or [np.zeros(0)])
+    cyc = cycles(joints)
+
+    def values_at(x: np.ndarray, given: Values) -> dict[str, np.ndarray]:
+        vals = dict(given)
+        k = 0
+        for j, s in zip(unknown, sizes, strict=True):
+            vals[j.name] = x[k : k + s]
+            k += s
+        for j in joints:
+            vals.setdefault(j.name, np.zeros(0))
+        return vals
+
+    def F(x: np.ndarray, given: Values) -> np.ndarray:
+        return closure_residual(cycle_products(joints, values_at(x, given), exp, cyc), L)
+
+    def jac(x: np.ndarray, given: Values) -> np.ndarray:
+        f0 = F(x, given)
+        h = 1e-7
+        cols = []
+        for i in range(len(x)):
+            xp = x.copy()
+            xp[i] += h
+            cols.append((F(xp, given) - f0) / h)
+        return np.stack(cols, axis=1)
+
+    # the start counts too: from a singular point several branches leave
+    s = np.linalg.svd(jac(x, {k: start[k] for k in target}), compute_uv=False)
+    worst = float(s[-1] / s[0])
+    for t in np.linspace(0, 1, nsteps + 1)[1:]:
+        given_t = {k: start[k] + t * (target[k] - start[k]) for k in target}
+        x_prev = x
+        for it in range(iterations):
+            if it % refresh == 0:
+                Jx = jac(x, given_t)
+            f = F(x, given_t)
+            if np.max(np.abs(f)) <= 1e-13:
+                break
+            x = x + np.linalg.lstsq(Jx, -f, rcond=rcond)[0]
+        else:
+            return None, 0.0
+        if np.max(np.abs(x - x_prev)) > 0.5:
+            return None, 0.0  # too large a jump to vouch for the branch
+        s = np.linalg.svd(jac(x, given_t), compute_uv=False)
+        worst = min(worst, float(s[-1] / s[0]))
+    return values_at(x, target), worst
+
+
+def joints_from_model(mech: object) -> list[J]:
+    """Reference joints from a loaded mechanism's joint list (``name``, ``type``, ``between``,
+    ``params``: duck-typed, read as floats)."""
+    out = []
+    for j in mech.joints:
+        prm = {}
+        for key, val in j.params.items():
+            if key == "axes":
+                prm[key] = tuple(np.array([float(x) for x in a]) for a in val)
+            elif key == "pitch":
+                prm[key] = float(val)
+            else:
+                prm[key] = np.array([float(x) for x in val])
+        out.append(J(j.name, j.type, j.between[0], j.between[1], prm))
+    return out
+
+
+# ----------------------------------------------------------------------------- planar four-bar
+
+
+def rot2(t: float) -> np.ndarray:
+    return np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
+
+
+def cross2(u: np.ndarray, v: np.ndarray) -> float:
+    return float(u[0] * v[1] - u[1] * v[0])
+
+
+def fourbar_closed_form(
+    A: np.ndarray, B: np.ndarray, C: np.ndarray, D: np.ndarray, theta: float
+) -> tuple[tuple[float, float, float] | None, float]:
+    """Crank angle theta -> (coupler angle, rocker angle, sin of the angle at C)
+    on the assembly mode of the reference; or, where the loop cannot close,
+    None and by how much it misses (a length)."""
+    r1, r2 = np.linalg.norm(C - B), np.linalg.norm(C - D)
+    side = np.sign(cross2(D - B, C - B))
+    Bt = A + rot2(theta) @ (B - A)
+    d = np.linalg.norm(D - Bt)
+    if d >= r1 + r2 or d <= abs(r1 - r2):
+        return None, max(d - r1 - r2, abs(r1 - r2) - d)
+    a = (r1 * r1 - r2 * r2 + d * d) / (2 * d)
+    h = math.sqrt(max(r1 * r1 - a * a, 0.0))
+    u = (D - Bt) / d
+    n = np.array([-u[1], u[0]])
+    Ct = Bt + a * u + side * h * n
+    psi = math.atan2(cross2(C - B, Ct - Bt), float((C - B) @ (Ct - Bt)))
+    phi = math.atan2(cross2(C - D, Ct - D), float((C - D) @ (Ct - D)))
+    sin_c = abs(cross2(Ct - Bt, D - Ct)) / (r1 * r2)
+    return (psi, phi, sin_c), 0.0

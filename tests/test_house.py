@@ -1,0 +1,98 @@
+"""The test suite's own house rules, checked on its source with ast (lazy imports included):
+
+* no module under tests/ imports from a test module (test_*.py): shared helpers live in helper
+  modules (tests/mechanisms.py, tests/cli.py, tests/strategies.py, tests/reference/, ...);
+* the reference implementation (tests/reference/) imports nothing from mechsing, directly or
+  through another module of tests/;
+* hypothesis strategies are defined in tests/strategies.py only.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+TESTS = Path(__file__).resolve().parent
+ROOT = TESTS.parent
+
+
+def _module_name(path: Path) -> str:
+    parts = list(path.relative_to(ROOT).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+MODULES = {_module_name(p): p for p in sorted(TESTS.rglob("*.py"))}
+
+
+def _imports(name: str) -> set[str]:
+    """Every module ``name`` imports anywhere in its body (absolute names; ``from X import Y``
+    gives X and X.Y)."""
+    path = MODULES[name]
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    out: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            out.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")
+                base = base[: len(base) - (node.level - 1)]
+                mod = ".".join(base + ([node.module] if node.module else []))
+            else:
+                mod = node.module or ""
+            out.add(mod)
+            out.update(f"{mod}.{a.name}" for a in node.names)
+    return out
+
+
+def _is_test_module(name: str) -> bool:
+    return name.rpartition(".")[2].startswith("test_") and name in MODULES
+
+
+def test_the_walker_sees_every_kind_of_import(tmp_path: Path) -> None:
+    """The checks below rest on _imports: relative, lazy and ``from package import module``."""
+    assert "tests.reference.se3" in _imports("tests.reference.kinematics")
+    assert "tests.families" in _imports("tests.test_extremes")  # from tests import families
+    assert "tests.mechanisms" in _imports("tests.test_input_values")  # from .mechanisms import
+    assert "mechsing.lie" in _imports("tests.strategies")  # a lazy import inside a function
+    assert _is_test_module("tests.test_house") and not _is_test_module("tests.mechanisms")
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+def test_no_module_imports_from_a_test_module(name: str) -> None:
+    bad = sorted(m for m in _imports(name) if _is_test_module(m) and m != name)
+    assert not bad, f"{name} imports from test modules {bad}: move the helper to a helper module"
+
+
+def test_the_reference_implementation_imports_nothing_from_mechsing() -> None:
+    reference = [m for m in MODULES if m == "tests.reference" or m.startswith("tests.reference.")]
+    assert {"tests.reference.se3", "tests.reference.kinematics"} <= set(reference)
+    seen: set[str] = set()
+    todo = list(reference)
+    while todo:
+        name = todo.pop()
+        if name in seen:
+            continue
+        seen.add(name)
+        for m in _imports(name):
+            assert m != "mechsing" and not m.startswith("mechsing."), (
+                f"{name} imports {m}: the reference must stay independent of mechsing"
+            )
+            if m in MODULES:
+                todo.append(m)  # a helper module of tests/: its imports count too
+
+
+def test_hypothesis_strategies_live_in_strategies_py() -> None:
+    """No other module defines a composite strategy (one set of strategies, with parameters
+    where tests need variants)."""
+    for name, path in MODULES.items():
+        if name == "tests.strategies":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.FunctionDef):
+                decorators = {ast.unparse(d) for d in node.decorator_list}
+                assert "st.composite" not in decorators, f"{name}.{node.name}: a strategy"
