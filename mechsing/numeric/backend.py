@@ -277,6 +277,8 @@ class ExactBackend(Backend):
         return bool(sympy.N(x, 30) < 0)
 
     def simplify(self, x: Any) -> Any:
+        if isinstance(x, np.ndarray) and x.ndim == 0:
+            x = x[()]
         if isinstance(x, np.ndarray):
             out = np.empty(x.shape, dtype=object)
             for idx, v in np.ndenumerate(x):
@@ -410,6 +412,13 @@ def backend_of(*arrays: Any) -> Backend:
                 found = _mp_backend()
                 break
     return found
+
+
+def coarser_backend(a: Backend, b: Backend) -> Backend:
+    """The backend two numbers are compared in: the coarser arithmetic of the two
+    (float before mp before exact), so a float is never compared exactly."""
+    rank = {"float": 0, "mp": 1, "exact": 2}
+    return a if rank[a.name] <= rank[b.name] else b
 
 
 def to_float(x: Any) -> Any:
