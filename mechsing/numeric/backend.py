@@ -220,7 +220,7 @@ class FloatBackend(Backend):
 
     @property
     def digits(self) -> float:
-        return -math.log10(float(np.finfo(np.float64).eps))
+        return _FLOAT_DIGITS
 
     def rational(self, p: int, q: int) -> Any:
         return p / q
@@ -311,6 +311,9 @@ class ExactBackend(Backend):
         At = sympy.Matrix(A.T.tolist())
         x = (At * At.T).LUsolve(At * sympy.Matrix(list(b)))
         return np.array([exact_normal_form(v) for v in x], dtype=object)
+
+
+_FLOAT_DIGITS = -math.log10(float(np.finfo(np.float64).eps))
 
 
 @lru_cache(maxsize=64)
