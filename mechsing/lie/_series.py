@@ -58,8 +58,12 @@ def factorial_series(bk: Backend, t2: Any, shift: int) -> Any:
 
     shift = 1: sin t / t; 2: (1 - cos t)/t^2; 3: (t - sin t)/t^3; and so on.
     """
-    n = _n_terms_factorial(bk.digits, shift)
-    return _horner(t2, _converted(bk, _factorial_coeffs(shift, n)))
+    key = (bk.key, "factorial", shift)
+    conv = _CONVERTED.get(key)
+    if conv is None:
+        n = _n_terms_factorial(bk.digits, shift)
+        conv = _CONVERTED[key] = _converted(bk, _factorial_coeffs(shift, n))
+    return _horner(t2, conv)
 
 
 @lru_cache(maxsize=64)
@@ -82,8 +86,11 @@ def _bernoulli_coeffs(n: int) -> tuple[Any, ...]:
 
 def half_cot_series(bk: Backend, t2: Any) -> Any:
     """(1 - (t/2) cot(t/2)) / t^2 = 1/12 + t^2/720 + t^4/30240 + ...  (|t| < 2 pi)."""
-    n = _n_terms_bernoulli(bk)
-    return _horner(t2, _converted(bk, _bernoulli_coeffs(n)))
+    key = (bk.key, "bernoulli", 0)
+    conv = _CONVERTED.get(key)
+    if conv is None:
+        conv = _CONVERTED[key] = _converted(bk, _bernoulli_coeffs(_n_terms_bernoulli(bk)))
+    return _horner(t2, conv)
 
 
 def _horner(x: Any, conv: tuple[Any, ...]) -> Any:
@@ -112,5 +119,6 @@ def _converted(bk: Backend, coeffs: tuple[Any, ...]) -> tuple[Any, ...]:
     return out
 
 
-#: converted coefficients by (backend key, coefficients): a few series at a few precisions
+#: converted coefficients by (backend key, coefficients) or (backend key, series, shift):
+#: a few series at a few precisions
 _CONVERTED: dict[tuple[Any, ...], tuple[Any, ...]] = {}
