@@ -92,7 +92,9 @@ def test_chart_round_trip_and_membership(sym):
         assert np.allclose(sub.coordinates_of(g), q, atol=1e-9)
         if t.dimension < 6:
             off = lie.compose(g, lie.exp(1e-3 * rng.normal(size=6)))
-            assert not sub.contains(off) or sub.contains_screw(lie.log(lie.compose(lie.inverse(g), off)))
+            assert not sub.contains(off) or sub.contains_screw(
+                lie.log(lie.compose(lie.inverse(g), off))
+            )
         for e in sub.basis():
             assert sub.contains_screw(3.0 * e)
     # membership of a screw outside (when there is one)
@@ -144,7 +146,9 @@ def test_canonical_comparison():
     a = R([0, 0, -1], [1, 2, 5])
     b = R([0, 0, 3], [1, 2, -7])
     assert a == b and a.to_json() == {
-        "type": "R", "dim": 1, "params": {"axis": [0.0, 0.0, 1.0], "point": [1.0, 2.0, 0.0]},
+        "type": "R",
+        "dim": 1,
+        "params": {"axis": [0.0, 0.0, 1.0], "point": [1.0, 2.0, 0.0]},
     }
     assert a != R([0, 0, 1], [1, 2.1, 0])
     assert H([0, 0, 1], [0, 0, 0], 0.2) != H([0, 0, 1], [0, 0, 0], 0.3)
@@ -190,15 +194,39 @@ def test_identification_exact_on_rational_input():
 
 KNOWN = [
     ([R([0, 0, 1], [0, 0, 0]), R([0, 0, 1], [1, 0, 0])], "G", {"normal": [0, 0, 1]}),
-    ([R([0, 0, 1], [1, 1, 0]), Subgroup("P", axis=[0, 0, -1])], "C", {"axis": [0, 0, 1], "point": [1, 1, 0]}),
+    (
+        [R([0, 0, 1], [1, 1, 0]), Subgroup("P", axis=[0, 0, -1])],
+        "C",
+        {"axis": [0, 0, 1], "point": [1, 1, 0]},
+    ),
     ([R([0, 0, 1], [1, 1, 0]), Subgroup("P", axis=[1, 0, 0])], "G", {"normal": [0, 0, 1]}),
     ([R([0, 0, 1], [1, 1, 0]), Subgroup("P", axis=[1, 0, 1])], "X", {"axis": [0, 0, 1]}),
-    ([R([0, 0, 1], [1, 2, 3]), R([1, 0, 0], [1, 2, 3]), R([1, 1, 1], [1, 2, 3])], "S", {"point": [1, 2, 3]}),
-    ([H([0, 0, 1], [0, 0, 0], 0.2), H([0, 0, 1], [1, 0, 0], 0.2)], "Y", {"normal": [0, 0, 1], "pitch": 0.2}),
+    (
+        [R([0, 0, 1], [1, 2, 3]), R([1, 0, 0], [1, 2, 3]), R([1, 1, 1], [1, 2, 3])],
+        "S",
+        {"point": [1, 2, 3]},
+    ),
+    (
+        [H([0, 0, 1], [0, 0, 0], 0.2), H([0, 0, 1], [1, 0, 0], 0.2)],
+        "Y",
+        {"normal": [0, 0, 1], "pitch": 0.2},
+    ),
     ([H([0, 0, 1], [0, 0, 0], 0.2), H([0, 0, 1], [1, 0, 0], 0.3)], "X", {"axis": [0, 0, 1]}),
-    ([H([0, 0, 1], [0, 0, 0], 0.2), H([0, 0, 1], [0, 0, 4], 0.2)], "H", {"axis": [0, 0, 1], "point": [0, 0, 0], "pitch": 0.2}),
-    ([H([0, 0, 1], [0, 0, 0], 0.2), H([0, 0, 1], [0, 0, 4], 0.3)], "C", {"axis": [0, 0, 1], "point": [0, 0, 0]}),
-    ([H([0, 0, 1], [2, 0, 0], 0.2), Subgroup("P", axis=[1, 0, 0])], "Y", {"normal": [0, 0, 1], "pitch": 0.2}),
+    (
+        [H([0, 0, 1], [0, 0, 0], 0.2), H([0, 0, 1], [0, 0, 4], 0.2)],
+        "H",
+        {"axis": [0, 0, 1], "point": [0, 0, 0], "pitch": 0.2},
+    ),
+    (
+        [H([0, 0, 1], [0, 0, 0], 0.2), H([0, 0, 1], [0, 0, 4], 0.3)],
+        "C",
+        {"axis": [0, 0, 1], "point": [0, 0, 0]},
+    ),
+    (
+        [H([0, 0, 1], [2, 0, 0], 0.2), Subgroup("P", axis=[1, 0, 0])],
+        "Y",
+        {"normal": [0, 0, 1], "pitch": 0.2},
+    ),
     ([R([0, 0, 1], [0, 0, 0]), R([1, 0, 0], [0, 1, 0])], "D", {}),
     ([Subgroup("P", axis=[1, 0, 0]), Subgroup("P", axis=[0, 1, 1])], "T2", {"normal": [0, -1, 1]}),
 ]
@@ -215,21 +243,61 @@ def test_known_generated_subgroups_exact():
     z = [0, 0, 1]
     res = generate([R(z, [0, 0, 0]), R(z, [RAT(1, 3), 0, 0])])
     assert res.ok and res.precision == "exact" and res.subgroup.symbol == "G"
-    res = generate([R([1, 0, 0], [0, 0, 0]), R([0, 1, 0], [0, 0, 0]), R([0, 0, 1], [RAT(1, 2), 0, 0])])
+    res = generate(
+        [R([1, 0, 0], [0, 0, 0]), R([0, 1, 0], [0, 0, 0]), R([0, 0, 1], [RAT(1, 2), 0, 0])]
+    )
     assert res.ok and res.subgroup.symbol == "D"
 
 
-@pytest.mark.parametrize(("a", "b", "sym", "params"), [
-    (Subgroup("S", point=[0, 0, 0]), Subgroup("S", point=[1, 2, 2]), "R", {"axis": [1, 2, 2], "point": [0, 0, 0]}),
-    (Subgroup("S", point=[1, 0, 5]), Subgroup("S", point=[3, 0, 5]), "R", {"axis": [1, 0, 0], "point": [0, 0, 5]}),
-    (Subgroup("T3"), Subgroup("G", normal=[0, 1, 1]), "T2", {"normal": [0, 1, 1]}),
-    (Subgroup("X", axis=[1, 0, 0]), Subgroup("X", axis=[0, 1, 1]), "T3", {}),
-    (Subgroup("G", normal=[1, 0, 0]), Subgroup("G", normal=[0, 1, 0]), "P", {"axis": [0, 0, 1]}),
-    (Subgroup("X", axis=[0, 0, 1]), Subgroup("S", point=[1, 2, 3]), "R", {"axis": [0, 0, 1], "point": [1, 2, 3]}),
-    (Subgroup("C", axis=[0, 0, 1], point=[0, 0, 0]), Subgroup("C", axis=[0, 0, 1], point=[1, 0, 0]), "P", {"axis": [0, 0, 1]}),
-    (Subgroup("C", axis=[0, 0, 1], point=[0, 0, 0]), Subgroup("C", axis=[1, 0, 0], point=[0, 1, 0]), "E", {}),
-    (Subgroup("X", axis=[0, 0, 1]), Subgroup("Y", normal=[0, 0, 1], pitch=0.5), "Y", {"normal": [0, 0, 1], "pitch": 0.5}),
-])
+@pytest.mark.parametrize(
+    ("a", "b", "sym", "params"),
+    [
+        (
+            Subgroup("S", point=[0, 0, 0]),
+            Subgroup("S", point=[1, 2, 2]),
+            "R",
+            {"axis": [1, 2, 2], "point": [0, 0, 0]},
+        ),
+        (
+            Subgroup("S", point=[1, 0, 5]),
+            Subgroup("S", point=[3, 0, 5]),
+            "R",
+            {"axis": [1, 0, 0], "point": [0, 0, 5]},
+        ),
+        (Subgroup("T3"), Subgroup("G", normal=[0, 1, 1]), "T2", {"normal": [0, 1, 1]}),
+        (Subgroup("X", axis=[1, 0, 0]), Subgroup("X", axis=[0, 1, 1]), "T3", {}),
+        (
+            Subgroup("G", normal=[1, 0, 0]),
+            Subgroup("G", normal=[0, 1, 0]),
+            "P",
+            {"axis": [0, 0, 1]},
+        ),
+        (
+            Subgroup("X", axis=[0, 0, 1]),
+            Subgroup("S", point=[1, 2, 3]),
+            "R",
+            {"axis": [0, 0, 1], "point": [1, 2, 3]},
+        ),
+        (
+            Subgroup("C", axis=[0, 0, 1], point=[0, 0, 0]),
+            Subgroup("C", axis=[0, 0, 1], point=[1, 0, 0]),
+            "P",
+            {"axis": [0, 0, 1]},
+        ),
+        (
+            Subgroup("C", axis=[0, 0, 1], point=[0, 0, 0]),
+            Subgroup("C", axis=[1, 0, 0], point=[0, 1, 0]),
+            "E",
+            {},
+        ),
+        (
+            Subgroup("X", axis=[0, 0, 1]),
+            Subgroup("Y", normal=[0, 0, 1], pitch=0.5),
+            "Y",
+            {"normal": [0, 0, 1], "pitch": 0.5},
+        ),
+    ],
+)
 def test_known_intersections(a, b, sym, params):
     res = intersect(a, b)
     assert res.identification.ok and res.subgroup.symbol == sym
@@ -252,19 +320,22 @@ def test_exact_intersection():
     assert res.subgroup.equals(Subgroup("R", axis=[RAT(1, 3), 1, 0], point=[0, 0, 0]))
 
 
-@pytest.mark.parametrize(("a", "b", "expect", "sym"), [
-    (Subgroup("P", axis=[0, 0, 1]), R([0, 0, 1], [1, 0, 0]), True, "C"),
-    (R([0, 0, 1], [1, 0, 0]), Subgroup("T2", normal=[0, 0, 1]), True, "G"),
-    (H([0, 0, 1], [1, 0, 0], 0.3), Subgroup("T2", normal=[0, 0, 1]), True, "Y"),
-    (Subgroup("G", normal=[0, 0, 1]), Subgroup("P", axis=[0, 0, 1]), True, "X"),
-    (R([0, 1, 0], [1, 0, 0]), Subgroup("T3"), True, "X"),
-    (Subgroup("P", axis=[1, 0, 0]), Subgroup("P", axis=[0, 1, 0]), True, "T2"),
-    (Subgroup("S", point=[1, 0, 0]), Subgroup("T3"), True, "D"),
-    (Subgroup("X", axis=[0, 0, 1]), Subgroup("S", point=[1, 0, 0]), True, "D"),
-    (Subgroup("S", point=[0, 0, 0]), Subgroup("S", point=[1, 0, 0]), False, "D"),
-    (R([0, 0, 1], [0, 0, 0]), R([0, 0, 1], [1, 0, 0]), False, "G"),
-    (Subgroup("G", normal=[0, 0, 1]), Subgroup("G", normal=[1, 0, 0]), False, "D"),
-])
+@pytest.mark.parametrize(
+    ("a", "b", "expect", "sym"),
+    [
+        (Subgroup("P", axis=[0, 0, 1]), R([0, 0, 1], [1, 0, 0]), True, "C"),
+        (R([0, 0, 1], [1, 0, 0]), Subgroup("T2", normal=[0, 0, 1]), True, "G"),
+        (H([0, 0, 1], [1, 0, 0], 0.3), Subgroup("T2", normal=[0, 0, 1]), True, "Y"),
+        (Subgroup("G", normal=[0, 0, 1]), Subgroup("P", axis=[0, 0, 1]), True, "X"),
+        (R([0, 1, 0], [1, 0, 0]), Subgroup("T3"), True, "X"),
+        (Subgroup("P", axis=[1, 0, 0]), Subgroup("P", axis=[0, 1, 0]), True, "T2"),
+        (Subgroup("S", point=[1, 0, 0]), Subgroup("T3"), True, "D"),
+        (Subgroup("X", axis=[0, 0, 1]), Subgroup("S", point=[1, 0, 0]), True, "D"),
+        (Subgroup("S", point=[0, 0, 0]), Subgroup("S", point=[1, 0, 0]), False, "D"),
+        (R([0, 0, 1], [0, 0, 0]), R([0, 0, 1], [1, 0, 0]), False, "G"),
+        (Subgroup("G", normal=[0, 0, 1]), Subgroup("G", normal=[1, 0, 0]), False, "D"),
+    ],
+)
 def test_known_products(a, b, expect, sym):
     res = product(a, b)
     assert res.is_subgroup is expect, res.note
@@ -322,7 +393,9 @@ def test_scale_does_not_change_the_verdict():
         parts = [R([0, 0, 1], [0, 0, 0]), R([0, 0, 1], [s, 0, 0])]
         res = generate(parts)
         assert res.subgroup.symbol == "G"
-        assert res.margin.kept == pytest.approx(generate([R([0, 0, 1], [0, 0, 0]), R([0, 0, 1], [1, 0, 0])]).margin.kept)
+        assert res.margin.kept == pytest.approx(
+            generate([R([0, 0, 1], [0, 0, 0]), R([0, 0, 1], [1, 0, 0])]).margin.kept
+        )
         sph = [R(ax, [s, 2 * s, 0]) for ax in ([1, 0, 0], [0, 1, 0], [0, 0, 1])]
         res = generate(sph)
         assert res.subgroup.equals(Subgroup("S", point=[s, 2 * s, 0]), length_scale=s)

@@ -237,7 +237,7 @@ def pitch(xi: Any) -> np.ndarray:
     zero = _mask(w2 <= 0)
     h = dot(xi[..., ANGULAR], xi[..., LINEAR]) / safe(bk, zero, w2)
     if np.any(zero):
-        h = np.where(zero, np.inf, h) if bk.name == "float" else np.where(zero, None, h)
+        h = np.where(zero, bk.inf, h)
     return h
 
 
@@ -283,7 +283,7 @@ def classify_screw(xi: Any, length_scale: float = 1.0) -> np.ndarray | str:
     for idx in np.ndindex(out.shape):
         a, b = nw[idx] * length_scale, nv[idx]
         if a <= rtol * b or a == 0:
-            out[idx] = "zero" if b == 0 or (bk.name != "exact" and b <= 0) else "translation"
+            out[idx] = "zero" if b == 0 else "translation"  # b is a norm: never below 0
             continue
         h = dot(w[idx], v[idx]) / (nw[idx] * nw[idx])
         out[idx] = "rotation" if abs(h) <= rtol * length_scale else "helical"

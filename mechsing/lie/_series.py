@@ -31,8 +31,7 @@ SWITCH_T2 = 1
 
 def use_series(bk: Backend, t2: Any) -> np.ndarray:
     """Boolean mask: where the series (not the closed form) must be used."""
-    limit = 0 if bk.name == "exact" else SWITCH_T2
-    cond = np.asarray(t2 <= limit)
+    cond = np.asarray(t2 <= bk.series_switch(SWITCH_T2))
     return cond.astype(bool) if cond.dtype == object else cond
 
 
@@ -41,30 +40,12 @@ def safe(bk: Backend, mask: np.ndarray, x: Any, fill: Any = 1) -> Any:
     return np.where(mask, bk.convert(fill), x)
 
 
-def _eps_digits(bk: Backend) -> float:
-    """-log10(eps) of the backend (15.65 in float, about N at mp:N; 0 in exact mode, where
-    no series is truncated)."""
-    return _digits_of(bk.name, _dps(bk))
-
-
 @lru_cache(maxsize=64)
-def _digits_of(name: str, dps: int) -> float:
-    # from log10(eps), never float(eps): at N > 300 digits eps underflows to 0 in float
-    if name == "exact":
-        return 0.0
-    if name == "float":
-        return -math.log10(float(np.finfo(np.float64).eps))
-    import mpmath
-
-    with mpmath.workdps(dps):
-        return float(-mpmath.log10(mpmath.mp.eps))
-
-
-@lru_cache(maxsize=64)
-def _n_terms_factorial(name: str, digits: float, shift: int) -> int:
+def _n_terms_factorial(digits: float, shift: int) -> int:
     """Terms of sum (-1)^k t^(2k)/(2k+shift)! for |t| <= 1 to reach eps / 100 (eps =
-    10^-digits): the first omitted term 1/(2k+shift)! is below it."""
-    if name == "exact":
+    10^-digits): the first omitted term 1/(2k+shift)! is below it.  No digits (exact
+    mode): the series is only evaluated at 0, where its first term is its value."""
+    if not digits:
         return 1
     k = 0
     while math.lgamma(2 * k + shift + 1) / math.log(10) < digits + 2:
@@ -77,20 +58,24 @@ def factorial_series(bk: Backend, t2: Any, shift: int) -> Any:
 
     shift = 1: sin t / t; 2: (1 - cos t)/t^2; 3: (t - sin t)/t^3; and so on.
     """
-    n = _n_terms_factorial(bk.name, _eps_digits(bk), shift)
-    return _horner(t2, _factorial_converted(bk.name, _dps(bk), shift, n))
+    key = (bk.key, "factorial", shift)
+    conv = _CONVERTED.get(key)
+    if conv is None:
+        n = _n_terms_factorial(bk.digits, shift)
+        conv = _CONVERTED[key] = _converted(bk, _factorial_coeffs(shift, n))
+    return _horner(t2, conv)
 
 
 @lru_cache(maxsize=64)
-def _factorial_coeffs(name: str, shift: int, n: int) -> tuple[Any, ...]:
+def _factorial_coeffs(shift: int, n: int) -> tuple[Any, ...]:
     return tuple(sympy.Rational((-1) ** k, math.factorial(2 * k + shift)) for k in range(n))
 
 
 def _n_terms_bernoulli(bk: Backend) -> int:
     # terms decay like (t / 2pi)^(2k); at t = 1 that is (4 pi^2)^-k: enough to reach eps / 100
-    if bk.name == "exact":
-        return 1
-    return int(math.ceil((_eps_digits(bk) + 2) / math.log10(4 * math.pi**2))) + 1
+    if not bk.digits:
+        return 1  # exact: evaluated only at 0
+    return int(math.ceil((bk.digits + 2) / math.log10(4 * math.pi**2))) + 1
 
 
 @lru_cache(maxsize=8)
@@ -101,18 +86,11 @@ def _bernoulli_coeffs(n: int) -> tuple[Any, ...]:
 
 def half_cot_series(bk: Backend, t2: Any) -> Any:
     """(1 - (t/2) cot(t/2)) / t^2 = 1/12 + t^2/720 + t^4/30240 + ...  (|t| < 2 pi)."""
-    n = _n_terms_bernoulli(bk)
-    return _horner(t2, _bernoulli_converted(bk.name, _dps(bk), n))
-
-
-@lru_cache(maxsize=64)
-def _factorial_converted(name: str, dps: int, shift: int, n: int) -> tuple[Any, ...]:
-    return _converted(name, dps, _factorial_coeffs(name, shift, n))
-
-
-@lru_cache(maxsize=64)
-def _bernoulli_converted(name: str, dps: int, n: int) -> tuple[Any, ...]:
-    return _converted(name, dps, _bernoulli_coeffs(n))
+    key = (bk.key, "bernoulli", 0)
+    conv = _CONVERTED.get(key)
+    if conv is None:
+        conv = _CONVERTED[key] = _converted(bk, _bernoulli_coeffs(_n_terms_bernoulli(bk)))
+    return _horner(t2, conv)
 
 
 def _horner(x: Any, conv: tuple[Any, ...]) -> Any:
@@ -128,25 +106,19 @@ def _horner(x: Any, conv: tuple[Any, ...]) -> Any:
 
 def horner(bk: Backend, x: Any, coeffs: tuple[Any, ...]) -> Any:
     """sum_k coeffs[k] x^k with coefficients converted to the backend."""
-    return _horner(x, _converted(bk.name, _dps(bk), tuple(coeffs)))
+    return _horner(x, _converted(bk, tuple(coeffs)))
 
 
-def _dps(bk: Backend) -> int:
-    if bk.name != "mp":
-        return 0
-    import mpmath
+def _converted(bk: Backend, coeffs: tuple[Any, ...]) -> tuple[Any, ...]:
+    """The rational coefficients in the backend's numbers, cached per backend and working
+    precision (converting rationals dominates otherwise)."""
+    key = (bk.key, coeffs)
+    out = _CONVERTED.get(key)
+    if out is None:
+        out = _CONVERTED[key] = tuple(bk.rational(int(c.p), int(c.q)) for c in coeffs)
+    return out
 
-    return int(mpmath.mp.dps)
 
-
-@lru_cache(maxsize=256)
-def _converted(name: str, dps: int, coeffs: tuple[Any, ...]) -> tuple[Any, ...]:
-    # cached per backend and working precision: converting rationals dominates otherwise
-    if name == "exact":
-        return coeffs
-    if name == "float":
-        return tuple(float(c) for c in coeffs)
-    import mpmath
-
-    with mpmath.workdps(dps):
-        return tuple(mpmath.mpf(c.p) / c.q for c in coeffs)
+#: converted coefficients by (backend key, coefficients) or (backend key, series, shift):
+#: a few series at a few precisions
+_CONVERTED: dict[tuple[Any, ...], tuple[Any, ...]] = {}

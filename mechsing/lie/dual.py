@@ -76,8 +76,6 @@ __all__ = [
 
 
 def _to_backend(x: np.ndarray, bk: Any) -> np.ndarray:
-    if bk.name == "float":
-        return x if x.dtype == np.float64 else np.asarray(x, dtype=np.float64)
     return bk.asarray(x)
 
 

@@ -28,6 +28,7 @@ from mechsing.numeric import (
     decide_nonzero,
     decide_rank,
     scale_screws,
+    svd,
     to_float,
 )
 from mechsing.subgroups import _linalg
@@ -140,9 +141,7 @@ def _brackets(B: np.ndarray) -> np.ndarray:
     a = np.stack([B[i] for i, _ in pairs])
     b = np.stack([B[j] for _, j in pairs])
     out = lie.bracket(a, b)
-    if backend_of(out).name == "exact":
-        out = np.vectorize(_linalg.simplify, otypes=[object])(out)
-    return out
+    return backend_of(out).simplify(out)
 
 
 def _residual_norm(B: np.ndarray) -> float:
@@ -258,20 +257,12 @@ def identify(
         X = _linalg.convert(S, prec)
         bk = prec.backend
         if centre is None:
-            c = bk.zeros(3) if prec.mode == "exact" else _linalg.convert(_centre_of(X), prec)
+            c = bk.frame_centre(_centre_of(X))
         else:
             c = _linalg.convert(np.asarray(centre), prec)
-        L = bk.convert(length_scale) if prec.mode != "exact" else _exact_scale(length_scale)
+        L = bk.convert(length_scale)
         Xs = scale_screws(X.T, L, c).T
         return _identify_scaled(Xs, prec, L, c)
-
-
-def _exact_scale(L: Any) -> Any:
-    import sympy
-
-    if isinstance(L, float):
-        return sympy.Rational(repr(L))
-    return sympy.sympify(L)
 
 
 def _identify_scaled(Xs: np.ndarray, prec: Precision, L: Any, c: np.ndarray) -> Identification:
@@ -365,9 +356,7 @@ def _classify(
             params[name] = geo["point"] * L + c
         else:
             params[name] = pitch * L
-    if prec.mode == "exact":
-        params = {n: _simplify_any(v) for n, v in params.items()}
-    sub = Subgroup(t, params)
+    sub = Subgroup(t, {n: prec.backend.simplify(v) for n, v in params.items()})
     # consistency: the rebuilt canonical basis spans the same space
     Bc = scale_screws(sub.basis(prec).T, L, c).T
     dec = decide_rank(np.concatenate([B, Bc], axis=0), prec, Lf)
@@ -385,23 +374,17 @@ def _classify(
     return ident
 
 
-def _simplify_any(v: Any) -> Any:
-    arr = np.asarray(v, dtype=object)
-    if arr.shape == ():
-        return _linalg.simplify(arr[()])
-    return np.array([_linalg.simplify(x) for x in arr], dtype=object)
-
-
 def _rotating_element(B: np.ndarray, prec: Precision) -> np.ndarray:
     """The element of span(B) with the largest rotation part (rotations of rank 1)."""
     W = B[:, ANGULAR]
     if prec.mode == "exact":
+        # left as a branch: exactly, any basis element that rotates will do (the largest
+        # keeps the numbers short); numerically the first left singular vector is the
+        # best-conditioned combination
         i = max(range(B.shape[0]), key=lambda j: float(to_float(W[j] @ W[j])))
         return B[i]
-    if prec.mode == "mp":
-        U, _s, _V = _linalg._svd_mp(W, prec)
-        return U[:, 0] @ B
-    U, _s, _V = np.linalg.svd(W)
+    with prec.context():
+        U, _s, _V = svd(prec.backend.asarray(W))
     return U[:, 0] @ B
 
 
@@ -419,6 +402,7 @@ def _centre_of_rotations(B: np.ndarray, prec: Precision) -> np.ndarray:
 def _decide_pitch(h: Any, prec: Precision, margins: _Margins) -> bool | None:
     """Is the (commensurate) pitch non-zero?  Two thresholds, like a rank."""
     nonzero = decide_nonzero(h, prec)
+    # left as a branch: an exact margin records pivots, not values (a proved pitch adds none)
     if prec.mode != "exact" and nonzero is not None:
         a = abs(float(to_float(h)))
         margins.add_values(**({"kept": min(a, 1.0)} if nonzero else {"dropped": a}))
@@ -463,8 +447,7 @@ def generate(
     with prec.context():
         rows = [s.basis(prec) for s in subgroups]
         S = np.concatenate(rows, axis=0) if rows else prec.backend.zeros((0, 6))
-        centre = None if prec.mode == "exact" else c
-        return identify(S, L, prec, centre)
+        return identify(S, L, prec, prec.backend.frame_centre(c))
 
 
 @dataclass
@@ -504,8 +487,8 @@ def intersect(
     L, c = _common_frame([a, b], length_scale)
     with prec.context():
         bk = prec.backend
-        cc = bk.zeros(3) if prec.mode == "exact" else _linalg.convert(c, prec)
-        LL = _exact_scale(L) if prec.mode == "exact" else bk.convert(L)
+        cc = bk.frame_centre(c)
+        LL = bk.convert(L)
         B1 = scale_screws(a.basis(prec).T, LL, cc).T
         B2 = scale_screws(b.basis(prec).T, LL, cc).T
         margins = _Margins(prec, L)
@@ -563,9 +546,7 @@ def _discrete_pieces(
         if q.type.pitched and q.rotation_axis(prec) is not None:
             u2 = q.rotation_axis(prec)[0]  # type: ignore[index]
             parallel = float(np.linalg.norm(np.cross(to_float(u), to_float(u2))))
-            if parallel < PARALLEL_AXES_ATOL and not q.contains(
-                turn
-            ):
+            if parallel < PARALLEL_AXES_ATOL and not q.contains(turn):
                 extra = None
                 notes.append(
                     f"{p.symbol} and {q.symbol} turn about parallel axes with their own pitches: "
@@ -631,8 +612,8 @@ def product(
     gen = generate([a, b], L, prec)
     with prec.context():
         bk = prec.backend
-        cc = bk.zeros(3) if prec.mode == "exact" else _linalg.convert(c, prec)
-        LL = _exact_scale(L) if prec.mode == "exact" else bk.convert(L)
+        cc = bk.frame_centre(c)
+        LL = bk.convert(L)
         B1 = scale_screws(a.basis(prec).T, LL, cc).T
         B2 = scale_screws(b.basis(prec).T, LL, cc).T
         dec, Ssum = _linalg.row_space(np.concatenate([B1, B2], axis=0), prec, L)

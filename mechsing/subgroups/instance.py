@@ -19,6 +19,7 @@ from mechsing.numeric import (
     Backend,
     Precision,
     backend_of,
+    coarser_backend,
     parse_precision,
     scale_screws,
     screw_zero_rtol,
@@ -42,13 +43,7 @@ def as_precision(p: Any, *arrays: Any) -> Precision:
         bk = p
     else:
         bk = backend_of(*arrays)
-    if bk.name == "exact":
-        return Precision("exact")
-    if bk.name == "mp":
-        import mpmath
-
-        return Precision("mp", mpmath.mp.dps)
-    return Precision("float")
+    return Precision.of(bk)
 
 
 def _norm2(v: np.ndarray) -> Any:
@@ -56,14 +51,9 @@ def _norm2(v: np.ndarray) -> Any:
 
 
 def _first_nonzero_positive(v: np.ndarray, bk: Backend) -> np.ndarray:
-    tol = screw_zero_rtol(bk)
     for x in v:
-        if bk.name == "exact":
-            if _linalg.is_zero(x):
-                continue
-            return -v if sympy.N(x, 30) < 0 else v
-        if abs(x) > tol:
-            return -v if x < 0 else v
+        if not bk.is_zero(x):
+            return -v if bk.negative(x) else v
     return v
 
 
@@ -126,9 +116,7 @@ class Subgroup:
                             f"subgroup {t.symbol}: {name} {given[name]!r} is zero or nearly so; "
                             "give a non-zero direction"
                         )
-                    v = v / bk.sqrt(np.asarray(_norm2(v)))[()]
-                    if bk.name == "exact":
-                        v = np.array([_linalg.simplify(x) for x in v], dtype=object)
+                    v = bk.simplify(v / bk.sqrt(np.asarray(_norm2(v)))[()])
                 self.params[name] = v
             else:
                 if val.shape != ():
@@ -136,9 +124,7 @@ class Subgroup:
                 h = bk.asarray(val)[()]
                 if not np.isfinite(to_float(h)):
                     raise ValueError(f"subgroup {t.symbol}: {name} must be finite")
-                if name in t.nonzero and (
-                    _linalg.is_zero(h) if bk.name == "exact" else abs(to_float(h)) == 0.0
-                ):
+                if name in t.nonzero and bk.is_zero(h, 0):  # exactly zero
                     raise ValueError(
                         f"subgroup {t.symbol}: {name} must not be zero "
                         f"(a zero {name} is a different type)"
@@ -160,7 +146,7 @@ class Subgroup:
         return f"Subgroup({self.symbol}{', ' if ps else ''}{ps})"
 
     def _params_in(self, prec: Precision) -> dict[str, Any]:
-        if prec.backend.name == self.backend.name and prec.mode != "mp":
+        if prec.backend.accepts(self.backend):
             return self.params
         out = {}
         for k, v in self.params.items():
@@ -217,9 +203,7 @@ class Subgroup:
                 new[name] = R @ val
             else:
                 new[name] = val
-        if bk.name == "exact":
-            new = {k: _simp(v) for k, v in new.items()}
-        return Subgroup(self.type, new)
+        return Subgroup(self.type, {k: bk.simplify(v) for k, v in new.items()})
 
     def canonical(self) -> Subgroup:
         """The same subgroup with canonical parameters (recognising a subgroup from spanning screws): directions
@@ -238,8 +222,7 @@ class Subgroup:
             if kind == "point" and direction is not None:
                 p = new[name]
                 new[name] = p - (p @ direction) * direction
-        if bk.name == "exact":
-            new = {k: _simp(v) for k, v in new.items()}
+        new = {k: bk.simplify(v) for k, v in new.items()}
         out = Subgroup.__new__(Subgroup)
         out.type, out.backend, out.params = self.type, bk, new
         return out
@@ -250,19 +233,14 @@ class Subgroup:
         if not isinstance(other, Subgroup) or other.type.symbol != self.type.symbol:
             return False
         a, b = self.canonical(), other.canonical()
-        exact = a.backend.name == "exact" and b.backend.name == "exact"
-        tol = screw_zero_rtol(a.backend if a.backend.name != "float" else b.backend)
+        bk = coarser_backend(a.backend, b.backend)
         for name, kind in self.type.parameters:
             x, y = a.params[name], b.params[name]
-            if exact:
-                d = np.atleast_1d(np.asarray(x, dtype=object) - np.asarray(y, dtype=object))
-                if not all(_linalg.is_zero(v) for v in d):
-                    return False
-                continue
             fx, fy = np.atleast_1d(to_float(x)), np.atleast_1d(to_float(y))
             scale = length_scale if kind in ("point", "pitch") else 1.0
             ref = max(scale, float(np.max(np.abs(fx))), float(np.max(np.abs(fy))))
-            if float(np.max(np.abs(fx - fy))) > float(tol) * ref:
+            d = np.atleast_1d(bk.asarray(x) - bk.asarray(y))
+            if not all(bk.is_zero(v, ref) for v in d):
                 return False
         return True
 
@@ -295,7 +273,10 @@ class Subgroup:
             x = _linalg.convert(xi, prec).reshape(-1, 6)
             B = self.basis(prec)
             if prec.mode == "exact":
-                out = []  # exact rank: the length scale changes nothing
+                # left as a branch: exact membership is an exact rank (the length scale
+                # changes nothing); float and mp measure the projection residual in float
+                # below (mp's own residual would change mp verdicts: a later step)
+                out = []
                 for row in x:
                     M = sympy.Matrix([list(r) for r in B] + [list(row)])
                     out.append(M.rank(simplify=True) == B.shape[0])
@@ -382,46 +363,37 @@ class Subgroup:
             rest = _linalg.solve_coefficients(B[others], xi - q[i] * B[i], prec)
             for j, val in zip(others, rest, strict=True):
                 q[j] = val
-        if bk.name == "exact":
-            q = np.array([_linalg.simplify(x) for x in q], dtype=object)
-        return q
+        return bk.simplify(q)
 
     def _xi_one_axis(self, R: np.ndarray, p: np.ndarray, prec: Precision) -> tuple[Any, np.ndarray]:
         bk = prec.backend
         u, _pt, h0 = self.rotation_axis(prec)  # type: ignore[misc]
         slide = u @ p
         axial = np.concatenate([bk.zeros(3), u])
-        exact = bk.name == "exact"
         if self.type.pitched and not self.contains_screw(axial, precision=prec):
             a = slide / h0
         else:
             s_vec = lie.vee3((R - R.T) / 2)
             y, x = u @ s_vec, (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
-            if exact and _linalg.is_zero(y) and _linalg.is_zero(x):
+            if bk.is_zero(y, 0) and bk.is_zero(x, 0):
                 # no rotation about u at all (a half turn about a perpendicular axis): the
-                # projection's angle is 0 (atan2(0, 0) is undefined in exact arithmetic)
-                a = sympy.Integer(0)
+                # projection's angle is 0 (atan2(0, 0) is undefined, in exact arithmetic too)
+                a = bk.convert(0)
             else:
                 a = bk.atan2(np.asarray(y), np.asarray(x))[()]
-        if exact:
-            a = _linalg.simplify(a)
+        a = bk.simplify(a)
         p_perp = p - slide * u
         # V(a u) on the plane normal to u is s I + c J (J = u x): invert it.
-        if exact:
-            s = sympy.sin(a) / a if a != 0 else sympy.Integer(1)
-            c = (1 - sympy.cos(a)) / a if a != 0 else sympy.Integer(0)
-        else:
-            small = abs(to_float(a)) < bk.threshold(4)
-            aa = a if not small else bk.convert(1)
-            s = 1 - a * a / 6 if small else bk.sin(np.asarray(aa))[()] / aa
-            c = a / 2 - a * a * a / 24 if small else (1 - bk.cos(np.asarray(aa))[()]) / aa
+        # the series below the switch point (exactly a = 0 in exact mode: its limit)
+        small = a == 0 or abs(to_float(a)) < bk.threshold(4)
+        aa = a if not small else bk.convert(1)
+        s = 1 - a * a / 6 if small else bk.sin(np.asarray(aa))[()] / aa
+        c = a / 2 - a * a * a / 24 if small else (1 - bk.cos(np.asarray(aa))[()]) / aa
         det = s * s + c * c
         Jp = _cross(u, p_perp)
         translations_across = self.dim > 1
-        if (_linalg.is_zero(det) if exact else to_float(det) == 0.0) or not translations_across:
-            if translations_across and not all(
-                _linalg.is_zero(x) if exact else x == 0 for x in p_perp
-            ):
+        if bk.is_zero(det, 0) or not translations_across:
+            if translations_across and not all(bk.is_zero(x, 0) for x in p_perp):
                 raise ValueError(
                     f"{self.symbol}: this element turns a whole number of turns while moving "
                     "across its axis; it has no first-kind exponential coordinates"
@@ -464,15 +436,11 @@ class Subgroup:
                     return False
             g2 = self.chart(q, prec)
             d = g2 - gg
-            if prec.mode == "exact":
-                return all(_linalg.is_zero(x) for x in d.flat)
-            fd = to_float(d)
-            fp = to_float(gg[:3, 3])
-            err = max(
-                float(np.max(np.abs(fd[:3, :3]))), float(np.max(np.abs(fd[:3, 3]))) / length_scale
+            bk = prec.backend
+            ref = max(1.0, float(np.linalg.norm(to_float(gg[:3, 3]))) / length_scale)
+            return all(bk.is_zero(x, ref) for x in d[:3, :3].flat) and all(
+                bk.is_zero(x, ref * length_scale) for x in d[:3, 3]
             )
-            ref = max(1.0, float(np.linalg.norm(fp)) / length_scale)
-            return err <= float(screw_zero_rtol(prec.backend)) * ref
 
     def completing_translation(self, R: Any, precision: Any = None) -> np.ndarray:
         """The translation that completes the rotation ``R`` to an element of the subgroup.
@@ -495,13 +463,6 @@ class Subgroup:
             Br = B[rotating]
             coef = _linalg.solve_coefficients(Br[:, ANGULAR], lie.log_so3(RR), prec)
             return lie.exp(coef @ Br)[:3, 3]
-
-
-def _simp(v: Any) -> Any:
-    arr = np.asarray(v, dtype=object)
-    if arr.shape == ():
-        return _linalg.simplify(arr[()])
-    return np.array([_linalg.simplify(x) for x in arr.flat], dtype=object).reshape(arr.shape)
 
 
 def _show(v: Any) -> str:

@@ -388,7 +388,9 @@ def catalog_dir() -> Traversable:
 
 
 def _toml_files(directory: Traversable) -> list[Traversable]:
-    return sorted((f for f in directory.iterdir() if f.name.endswith(".toml")), key=lambda f: f.name)
+    return sorted(
+        (f for f in directory.iterdir() if f.name.endswith(".toml")), key=lambda f: f.name
+    )
 
 
 def _parse_all(files: list[Traversable], where: object) -> dict[str, SubgroupType]:

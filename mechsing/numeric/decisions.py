@@ -1,0 +1,416 @@
+"""Decisions with margins: ranks (:func:`decide_rank`, the two-threshold rule, or
+undecided), differences of ranks, the non-zero test of one value, the definiteness of a
+quadratic form, and whether float's dropped singular value is real
+(:func:`float_drop_is_real`).  :class:`Margin` and :class:`RankDecision` carry the
+evidence of a decision.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import mpmath
+import numpy as np
+import sympy
+
+from mechsing.numeric._mp import _mp_convert, _mp_matrix, eigsy
+from mechsing.numeric.backend import FLOAT, to_float
+from mechsing.numeric.linalg import singular_values, svd
+from mechsing.numeric.precision import Precision, parse_precision
+from mechsing.numeric.tolerances import FLOAT_ROUNDING_FACTOR, Tolerances
+
+
+@dataclass(frozen=True)
+class Margin:
+    """How far a decision was from flipping (the JSON "margin").
+
+    ``kept``: the smallest kept singular value (None if rank 0); ``dropped``:
+    the largest dropped one (None when every singular value is kept), both in
+    the commensurate metric, like ``sigma``; ``sigma_max``: the largest
+    singular value, which ``tau_lo`` and ``tau_hi`` are relative to (so the
+    decision was ``kept / sigma_max >= tau_hi`` and ``dropped / sigma_max <=
+    tau_lo``).  ``eig_margin`` where a quadratic form was decided (relative to
+    its largest eigenvalue).  In exact mode ``kept`` is the smallest non-zero
+    pivot (30 digits) and there is no ``sigma_max``.  ``rounding`` (float only): the
+    rounding level of the singular values, eps times the Frobenius norm of the matrix
+    (or of the reference it was decided against); see :func:`float_drop_is_real`.
+    """
+
+    kept: float | None
+    dropped: float | None
+    tau_lo: float
+    tau_hi: float
+    length_scale: float
+    eig_margin: float | None = None
+    sigma_max: float | None = None
+    rounding: float | None = None
+
+    def to_json(self) -> dict[str, Any]:
+        d: dict[str, Any] = {
+            "kept": self.kept,
+            "dropped": self.dropped,
+            "tau_lo": self.tau_lo,
+            "tau_hi": self.tau_hi,
+            "length_scale": self.length_scale,
+        }
+        if self.sigma_max is not None:
+            d["sigma_max"] = self.sigma_max
+        if self.rounding is not None:
+            d["rounding"] = self.rounding
+        if self.eig_margin is not None:
+            d["eig_margin"] = self.eig_margin
+        return d
+
+
+@dataclass(frozen=True)
+class RankDecision:
+    """A rank with its evidence.
+
+    ``rank`` is None when undecided; ``rank_bounds`` then gives (lowest, highest)
+    consistent ranks.  ``sigma`` are all singular values (absolute, in the
+    scaled metric), largest first; ``null_space`` is an orthonormal basis of
+    the (right) kernel (columns), ``range_space`` of the range and
+    ``left_null_space`` of its orthogonal complement, when requested: float
+    arrays, or the mode's own numbers with ``native_spaces`` at mp:N.
+    """
+
+    rank: int | None
+    sigma: tuple[float, ...] | None
+    margin: Margin
+    precision: str
+    rank_bounds: tuple[int, int] = (0, 0)
+    null_space: np.ndarray | None = field(default=None, compare=False, repr=False)
+    range_space: np.ndarray | None = field(default=None, compare=False, repr=False)
+    left_null_space: np.ndarray | None = field(default=None, compare=False, repr=False)
+
+    @property
+    def decided(self) -> bool:
+        return self.rank is not None
+
+    def record(self, test: str, generic: int | None = None) -> dict[str, Any]:
+        """This decision as an entry of a configuration's ``decisions`` (JSON): the test
+        (``closure``, ``loop A-B-C-D``, ``output chain``, ``leg k chain``, ``input``,
+        ``output``, ``impossible-input``, ``impossible-output``, ``constraint``), its
+        rank (with ``rank_bounds`` when undecided), the ``generic`` value it is measured
+        against where there is one, its margin and the precision that decided it."""
+        d: dict[str, Any] = {"test": test, "rank": self.rank}
+        if self.rank is None:
+            d["rank_bounds"] = list(self.rank_bounds)
+        if generic is not None:
+            d["generic"] = generic
+        d["margin"] = self.margin.to_json()
+        d["precision"] = self.precision
+        return d
+
+
+def decide_nonzero(value: Any, prec: Precision) -> bool | None:
+    """Is a relative (dimensionless, at most about 1) quantity non-zero?  The
+    two-threshold rule of a rank on one value: True at or above ``tau_hi``, False at
+    or below ``tau_lo``, None between (undecided); exactly in exact mode."""
+    if prec.mode == "exact":
+        return bool(sympy.simplify(value) != 0)
+    t = prec.tolerances
+    a = abs(float(to_float(value)))
+    if a >= t.tau_hi:
+        return True
+    if a <= t.tau_lo:
+        return False
+    return None
+
+
+def rank_difference(a: RankDecision, b: RankDecision) -> RankDecision:
+    """The decision ``rank(a) - rank(b)`` (a dimension such as dim(K cap ker T) -
+    dim(K cap ker T cap ker E) = rank [TN; EN] - rank TN), decided when both are.
+
+    Its bounds are the widest the two allow; its margin is that of the decision
+    nearer to flipping (the smaller of kept / sigma_max / tau_hi and
+    tau_lo / (dropped / sigma_max)), so the reader sees the tighter evidence.
+    """
+    if a.precision != b.precision:
+        raise ValueError(f"rank_difference of decisions at {a.precision} and {b.precision}")
+    (alo, ahi), (blo, bhi) = (
+        (d.rank, d.rank) if d.rank is not None else d.rank_bounds for d in (a, b)
+    )
+    lo, hi = max(0, alo - bhi), max(0, ahi - blo)
+    rank = lo if lo == hi else None
+    return RankDecision(rank, None, min(a.margin, b.margin, key=_slack), a.precision, (lo, hi))
+
+
+def _slack(m: Margin) -> float:
+    """How far a margin is from flipping its decision: the smaller of the kept value's
+    ratio to tau_hi and tau_lo's ratio to the dropped value (relative to sigma_max);
+    exact margins (no thresholds) never flip."""
+    if not m.tau_hi or not m.sigma_max:
+        return math.inf
+    out = math.inf
+    if m.kept is not None:
+        out = min(out, m.kept / m.sigma_max / m.tau_hi)
+    if m.dropped is not None:
+        out = min(out, m.tau_lo / max(m.dropped / m.sigma_max, 1e-300))
+    return out
+
+
+def rank_bounds(rel: Any, tol: Tolerances) -> tuple[np.ndarray, np.ndarray]:
+    """The two-threshold rank rule on singular values
+    relative to the largest, batched over leading axes: (lowest, highest) rank
+    consistent with them, i.e. the counts ``sigma >= tau_hi`` and ``sigma > tau_lo``.
+    The rank is decided when the two agree."""
+    r = np.asarray(rel, dtype=float)
+    return np.count_nonzero(r >= tol.tau_hi, axis=-1), np.count_nonzero(r > tol.tau_lo, axis=-1)
+
+
+def _split_rank(rel: list[float], tol: Tolerances) -> tuple[int | None, tuple[int, int]]:
+    lo_rank, hi_rank = (int(x) for x in rank_bounds(rel, tol))
+    return (lo_rank if lo_rank == hi_rank else None), (lo_rank, hi_rank)
+
+
+def decide_rank(
+    M: Any,
+    precision: Precision | str = "float",
+    length_scale: float = 1.0,
+    want_spaces: bool = False,
+    reference: Any = None,
+    native_spaces: bool = False,
+) -> RankDecision:
+    """Rank of a (scaled) matrix with the two-threshold rule and its margin.
+
+    Parameters
+    ----------
+    M : array_like, shape (m, n)
+        Already commensurate (see :func:`scale_screws`).  Any backend.
+    precision : Precision or str
+        ``float``/``auto``: numpy SVD; ``mp:N``: mpmath SVD at N digits;
+        ``exact``: sympy exact rank.
+    length_scale : float
+        Recorded in the margin.
+    want_spaces : bool
+        Also return orthonormal bases of the kernel, the range and the left
+        kernel (float arrays unless ``native_spaces``).
+    reference : number, optional
+        Magnitude the thresholds are relative to when it exceeds the largest
+        singular value: for a product ``A @ B`` with B orthonormal, pass the
+        norm of A, so that a product that is nearly zero is decided as rank 0
+        rather than judged against its own rounding noise.
+    native_spaces : bool
+        At mp:N, return the bases as object arrays of N-digit numbers (the
+        spaces that later mp computations need) instead of their float
+        rounding.  No effect in float and exact mode.
+    """
+    prec = parse_precision(precision) if isinstance(precision, str) else precision
+    tol = prec.tolerances
+    arr = np.asarray(M)
+    m, n = arr.shape if arr.ndim == 2 else (0, 0)
+    if m == 0 or n == 0:
+        native = native_spaces and prec.mode == "mp"
+        with prec.context():
+            bk = prec.backend if native else FLOAT
+            ns = bk.eye(n) if want_spaces else None
+            rs = bk.zeros((m, 0)) if want_spaces else None
+            ls = bk.eye(m) if want_spaces else None
+        return RankDecision(
+            0,
+            (),
+            Margin(None, None, tol.tau_lo, tol.tau_hi, length_scale),
+            str(prec),
+            (0, 0),
+            ns,
+            rs,
+            ls,
+        )
+    if prec.mode == "exact":
+        return _exact_rank(arr, prec, tol, length_scale, want_spaces)
+    Um = Vm = None
+    rounding: float | None = None  # float's rounding level of the singular values
+    if prec.mode == "mp":
+        with prec.context():
+            A = np.array(
+                [[_mp_convert(x) for x in row] for row in arr.tolist()], dtype=object
+            ).reshape(m, n)
+            if want_spaces:
+                # one full SVD: its singular values are those of compute_uv=False
+                Um, s_mp, Vm = svd(A)
+                s = list(s_mp)
+            else:
+                s = singular_values(A)
+            smax = s[0] if s else mpmath.mpf(0)
+            if reference is not None and reference > smax:
+                smax = mpmath.mpf(reference)
+            rel = [float(x / smax) if smax else 0.0 for x in s]
+            sigma = tuple(float(x) for x in s)
+    else:
+        F = to_float(arr)
+        s_np = np.linalg.svd(F, compute_uv=False)
+        smax = float(s_np[0]) if len(s_np) else 0.0
+        if reference is not None and reference > smax:
+            smax = float(reference)
+        rel = [float(x / smax) if smax > 0 else 0.0 for x in s_np]
+        sigma = tuple(float(x) for x in s_np)
+        # the entries' rounding: of F itself, or of the factors of a product decided
+        # against the norm of its first factor (``reference``)
+        rounding = FLOAT.eps * max(float(np.linalg.norm(F)), float(reference or 0.0))
+    rank, bounds = _split_rank(rel, tol)
+    r_eff = rank if rank is not None else bounds[0]
+    kept = sigma[r_eff - 1] if r_eff else None
+    dropped = sigma[r_eff] if r_eff < len(sigma) else None
+    margin = Margin(
+        kept,
+        dropped,
+        tol.tau_lo,
+        tol.tau_hi,
+        length_scale,
+        None,
+        float(smax),
+        rounding,
+    )
+    ns = rs = ls = None
+    if want_spaces:
+        k = r_eff
+        if Um is None or Vm is None:
+            Um, _s, Vm = np.linalg.svd(to_float(arr))
+        elif not native_spaces:
+            Um, Vm = to_float(Um), to_float(Vm)
+        ns = Vm[k:].T.copy()
+        rs = Um[:, :k].copy()
+        ls = Um[:, k:]
+    return RankDecision(rank, sigma, margin, str(prec), bounds, ns, rs, ls)
+
+
+def float_drop_is_real(margin: Margin | dict[str, Any], data_error: float = 0.0) -> bool:
+    """Did a float rank decision drop a singular value that float itself sees is not zero?
+
+    True when the largest dropped singular value exceeds :data:`FLOAT_ROUNDING_FACTOR`
+    times ``rounding + data_error * sigma_max``: ``rounding`` is the margin's (eps |M|_F),
+    ``data_error`` the relative error of the configuration the matrix was built at (its
+    closure residual divided by the characteristic length).  Such a drop is decided by the
+    two thresholds but not by the data: ``auto`` re-decides it at mp:50, as it does an
+    undecided rank.  False for mp and exact decisions, and when nothing was dropped.
+    ``margin`` is a :class:`Margin` or its JSON (a decision record's ``margin``).
+    """
+    m = margin.to_json() if isinstance(margin, Margin) else margin
+    rounding, dropped, smax = m.get("rounding"), m.get("dropped"), m.get("sigma_max")
+    if rounding is None or dropped is None or not smax:
+        return False
+    return dropped > FLOAT_ROUNDING_FACTOR * (rounding + data_error * smax)
+
+
+def _exact_rank(
+    arr: np.ndarray, prec: Precision, tol: Tolerances, length_scale: float, want_spaces: bool
+) -> RankDecision:
+    M = sympy.Matrix(arr.tolist()).applyfunc(
+        lambda x: sympy.nsimplify(x) if isinstance(x, float) else x
+    )
+    E, pivots = M.echelon_form(with_pivots=True, simplify=True)
+    rank = len(pivots)
+    piv_vals = []
+    for row, col in enumerate(pivots):
+        piv_vals.append(abs(float(sympy.N(E[row, col], 30))))
+    kept = min(piv_vals) if piv_vals else None
+    dropped = None if rank == min(M.shape) else 0.0
+    ns = rs = None
+    if want_spaces:
+        ker = M.nullspace(simplify=True)
+        ns = (
+            _orthonormal(np.array([[float(sympy.N(x, 30)) for x in v] for v in ker]).T)
+            if ker
+            else np.zeros((M.shape[1], 0))
+        )
+        cols = M.columnspace(simplify=True)
+        rs = (
+            _orthonormal(np.array([[float(sympy.N(x, 30)) for x in v] for v in cols]).T)
+            if cols
+            else np.zeros((M.shape[0], 0))
+        )
+    return RankDecision(
+        rank, None, Margin(kept, dropped, 0.0, 0.0, length_scale), "exact", (rank, rank), ns, rs
+    )
+
+
+def _orthonormal(A: np.ndarray) -> np.ndarray:
+    q, _ = np.linalg.qr(A)
+    return q[:, : A.shape[1]]
+
+
+@dataclass(frozen=True)
+class DefinitenessDecision:
+    """Sign pattern of a symmetric form: ``kind`` is ``"definite"``, ``"indefinite"``,
+    ``"semidefinite"`` (a zero eigenvalue, no sign change), ``"zero"`` or ``None``
+    (undecided).  ``eig_margin`` is the smallest decided |eigenvalue| relative to
+    the largest (or the largest in exact mode)."""
+
+    kind: str | None
+    eigenvalues: tuple[float, ...]
+    eig_margin: float | None
+    n_pos: int
+    n_neg: int
+    n_zero: int
+
+
+def decide_definiteness(
+    Q: Any, precision: Precision | str = "float", scale: float | None = None
+) -> DefinitenessDecision:
+    """Decide the definiteness of a symmetric matrix on its eigenvalues.
+
+    Eigenvalues are compared with ``tau_lo``/``tau_hi`` relative to ``scale``
+    (default: the largest |eigenvalue|).  An eigenvalue between the two
+    thresholds leaves the verdict undecided.
+    """
+    prec = parse_precision(precision) if isinstance(precision, str) else precision
+    tol = prec.tolerances
+    arr = np.asarray(Q)
+    n = arr.shape[0] if arr.ndim == 2 else 0
+    if n == 0:
+        return DefinitenessDecision("zero", (), None, 0, 0, 0)
+    if prec.mode == "exact":
+        M = sympy.Matrix(arr.tolist())
+        M = (M + M.T) / 2
+        # exact signature: eigenvalues of a symmetric algebraic matrix are real
+        ev = [sympy.nsimplify(e) if isinstance(e, float) else e for e in _exact_eigs(M)]
+        vals = [float(sympy.N(e, 30)) for e in ev]
+        zero = [sympy.simplify(e) == 0 for e in ev]
+        npos = sum(1 for v, z in zip(vals, zero, strict=True) if not z and v > 0)
+        nneg = sum(1 for v, z in zip(vals, zero, strict=True) if not z and v < 0)
+        nz = sum(zero)
+        nonzero = [abs(v) for v, z in zip(vals, zero, strict=True) if not z]
+        eig_margin = (min(nonzero) / max(nonzero)) if nonzero else None
+        return DefinitenessDecision(
+            _kind(npos, nneg, nz), tuple(sorted(vals)), eig_margin, npos, nneg, nz
+        )
+    if prec.mode == "mp":
+        with prec.context():
+            A = _mp_matrix(arr)
+            ev = eigsy((A + A.T) / 2, eigvals_only=True)
+            vals = sorted(float(x) for x in ev)
+    else:
+        F = to_float(arr)
+        vals = sorted(float(x) for x in np.linalg.eigvalsh((F + F.T) / 2))
+    ref = scale if scale else max((abs(v) for v in vals), default=0.0)
+    if ref == 0:
+        return DefinitenessDecision("zero", tuple(vals), None, 0, 0, n)
+    rel = [v / ref for v in vals]
+    if any(tol.tau_lo < abs(r) < tol.tau_hi for r in rel):
+        return DefinitenessDecision(None, tuple(vals), None, 0, 0, 0)
+    npos = sum(1 for r in rel if r >= tol.tau_hi)
+    nneg = sum(1 for r in rel if r <= -tol.tau_hi)
+    nz = n - npos - nneg
+    decided = [abs(r) for r in rel if abs(r) >= tol.tau_hi]
+    eig_margin = min(decided) if decided else None
+    return DefinitenessDecision(_kind(npos, nneg, nz), tuple(vals), eig_margin, npos, nneg, nz)
+
+
+def _exact_eigs(M: sympy.Matrix) -> list[Any]:
+    out: list[Any] = []
+    for val, mult in M.eigenvals().items():
+        out.extend([val] * mult)
+    return out
+
+
+def _kind(npos: int, nneg: int, nz: int) -> str:
+    if npos and nneg:
+        return "indefinite"
+    if npos + nneg == 0:
+        return "zero"
+    if nz:
+        return "semidefinite"
+    return "definite"

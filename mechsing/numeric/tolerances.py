@@ -1,0 +1,151 @@
+"""Every decision tolerance of mechsing, as constants, and the two rank thresholds.
+
+The bottom of :mod:`mechsing.numeric`: it imports nothing from mechsing.  A tolerance
+that depends on the precision mode is a function of these constants, beside the
+object it depends on (:meth:`mechsing.numeric.Backend.zero_rtol` for a backend's
+working precision, :mod:`mechsing.numeric.precision` for a precision mode).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+# ---------------------------------------------------------------------------
+# Decision tolerances that are not rank thresholds.  Each is a *decision*
+# (membership, identification, classification), so each lives here.
+# ---------------------------------------------------------------------------
+
+#: relative tolerance for "this screw lies in that subalgebra" / "these are equal"
+#: decisions on float data, relative to the largest entry involved.
+MEMBERSHIP_RTOL_FLOAT = 1e-9
+#: norm below which a geometric vector given by a user (an axis, a normal) is
+#: refused as near-zero (relative to the largest length of the mechanism or 1).
+NEAR_ZERO_VECTOR = 1e-9
+#: support threshold of a kernel vector (entries above 1e-9 of the largest)
+SUPPORT_RTOL = 1e-9
+#: two unit axes are parallel when the norm of their cross product is below this (a
+#: product of subgroups turning about parallel axes with their own pitches)
+PARALLEL_AXES_ATOL = 1e-9
+#: closure acceptance in float mode, relative to the characteristic length L
+#: (mp:N accepts at 10^(15-N) L, never looser than this)
+CLOSURE_RTOL_FLOAT = 1e-12
+#: fewest digits of mp:N: below 20, tau_lo = 10^(10-N) exceeds tau_hi = 10^(-N/2)
+MP_MIN_DIGITS = 20
+#: continuation stops when the smallest kept singular value of the closure
+#: Jacobian in the unknown joints (relative to the largest) falls below this
+#: before the target while the rank drops
+CONTINUATION_SINGULAR_RTOL = 1e-6
+#: a continuation step is rejected (and halved) when Newton's correction is
+#: larger than this fraction of the predictor step: it may have jumped to
+#: another assembly mode
+CONTINUATION_CORRECTOR_RATIO = 0.5
+#: below this relative smallest singular value (unknown joints) a step must be
+#: reversible: stepping back must return within CONTINUATION_RETURN_RATIO of
+#: the step to the previous point (near a fold two modes are close)
+CONTINUATION_REVERSE_RTOL = 1e-2
+CONTINUATION_RETURN_RATIO = 0.1
+#: corrections and returns smaller than this (commensurate: radians, or
+#: lengths / L) are rounding, never a jump between assembly modes
+CONTINUATION_JUMP_FLOOR = 1e-9
+#: a target continuation cannot step onto is tried directly (Newton from the last point
+#: reached) when what is left is at most this (commensurate); it is accepted only at a
+#: fold: the unknown joints' Jacobian there has relative smallest singular value below
+#: CONTINUATION_SINGULAR_RTOL, and the landing moved them at most CONTINUATION_FOLD_REACH
+#: times the square root of what was left (the two branches meet like a square root)
+CONTINUATION_FOLD_GAP = 1e-4
+CONTINUATION_FOLD_REACH = 10.0
+
+
+#: mp:N polishes a closed configuration with Newton at N digits until its
+#: residual is below 10^(POLISH_DIGITS_SPARE - N) L (working precision, with a
+#: few digits spare for the rounding of poses), in at most POLISH_MAX_STEPS steps
+POLISH_DIGITS_SPARE = 5
+POLISH_MAX_STEPS = 24
+#: a polish step that lowers the residual by less than this factor is slow (Newton at a
+#: multiple root lowers it by 4): the doubled step is tried too
+POLISH_SLOW_RATIO = 8
+#: largest joint value accepted in a configuration: radians, or times the
+#: characteristic length L for a length; larger is an absurd size (an angle of
+#: 1e6 rad is 160 000 turns)
+MAX_JOINT_VALUE = 1e6
+#: continuation accepts intermediate steps at this residual (times L); the target
+#: itself is accepted at the precision's closure tolerance
+CONTINUATION_STEP_RTOL = 1e-9
+#: a nearby configuration found by sampling or by following a branch counts as
+#: closed at this residual (times L)
+SAMPLE_CLOSURE_RTOL = 1e-10
+#: a sample that lands closer to q than this fraction of its step is q itself
+#: (Newton fell back): not a nearby configuration
+SAMPLE_DISTINCT_RATIO = 0.1
+#: a branch probe follows its tangent when the cosine between the tangent and
+#: the displacement found is above this (a smooth branch through the point)
+BRANCH_ALIGNMENT = 0.9
+#: The tolerances of the higher-order (tangent-cone) tests are placed relative to
+#: the mode's ``tau_hi`` (1e-9 in float, 10^(-N/2) at mp:N), so that they keep
+#: their meaning at every precision (see :func:`subspace_rank_rtol`,
+#: :func:`subspace_containment_atol`, :func:`order3_residual_rtol`):
+#:
+#: relative singular value below which a direction is dropped from a basis of a
+#: subspace (bases of cone pieces, orthonormalised): tau_hi / 10 (float: 1e-10)
+SUBSPACE_RANK_FACTOR = 0.1
+#: two orthonormal bases span nested subspaces when the projection residual is
+#: below 10 tau_hi (float: 1e-8)
+SUBSPACE_CONTAINMENT_FACTOR = 10.0
+#: the third-order condition holds on a direction when its residual, relative to
+#: the size of its linear part, is below tau_hi (float: 1e-9)
+ORDER3_RESIDUAL_FACTOR = 1.0
+#: digits of the higher-order and input/output tests of an ``exact`` analysis:
+#: the configuration and its screws are exact, the tests run at mp:50 (and say so)
+EXACT_TEST_DIGITS = 50
+#: the reference configuration has every joint at identity: reading a file refuses a
+#: value listed there when it is farther than this from the identity (radians, rotation
+#: entries, or lengths relative to the file's largest coordinate); nearer values are
+#: decided by the analysis in its mode (to 1e-9 in float, 10^(-N/2) at mp:N, exactly)
+REFERENCE_SCREEN_RTOL = 1e-6
+#: a given rotation matrix must satisfy |R^T R - I| below this in float (and det R > 0);
+#: at mp:N below 10^(-N/2), exactly in exact mode (:func:`rotation_orthonormal_atol`)
+ROTATION_ORTHONORMAL_ATOL = 1e-9
+#: batched scans (:mod:`mechsing.scanner`) decide "full rank" without an SVD when
+#: the determinant bound on sigma_min / sigma_max is at least this many times
+#: float's tau_hi (room for the SVD's own rounding, which is near eps)
+SCAN_SCREEN_FACTOR = 10.0
+#: rounding allowance of that bound, in units of (matrix size) x eps: the
+#: determinant of J (or of its Gram matrix) is the exact one of a matrix within
+#: this of J (backward error of LU), so the bound is lowered by as much
+SCAN_ROUNDING_FACTOR = 16.0
+
+
+#: auto re-decides at mp:50 a float rank decision whose largest dropped singular value
+#: exceeds this many times float's own rounding of it (:func:`float_drop_is_real`).  A
+#: computed singular value is off by at most the norm of the error in the matrix (Weyl):
+#: the rounding of its entries, about eps |M|_F (recorded as the margin's ``rounding``),
+#: plus the SVD's backward error and the roundings that built each entry (products of
+#: exponentials, Jacobians, earlier float factorisations) -- this factor -- plus the
+#: effect of a configuration closed only to a residual r: r / L |M|.  Singular values
+#: that are exactly zero come out below 2 eps |M|_F on the examples and the
+#: near-singular families, and up to about 5 eps |M|_F on matrices built from other
+#: float factorisations (the legs' constraint wrenches); 10^-14 from a singularity the
+#: deciding singular values of benchmarks/speed_accuracy.py's families are 5 to 20
+#: eps |M|_F.  A drop above the bound is a singular value that float's thresholds call
+#: zero but that float itself sees is not: auto re-decides the configuration at mp:50
+#: when float found it singular (at a singular configuration a zero above the bound only
+#: costs that second analysis; a regular one is never re-decided).
+FLOAT_ROUNDING_FACTOR = 4.0
+
+#: exact mode first evaluates a quantity to this many digits: clearly non-zero
+#: there (above 10^-(EXACT_ZERO_DIGITS - 15) of its scale) it is not zero, and
+#: only the rest is handed to sympy to prove it zero
+EXACT_ZERO_DIGITS = 60
+
+
+@dataclass(frozen=True)
+class Tolerances:
+    """The two rank thresholds of a precision mode, relative to sigma_max.
+
+    A rank is ``r`` when ``sigma_r >= tau_hi`` and ``sigma_{r+1} <= tau_lo``
+    (both relative to the largest singular value); a singular value strictly
+    between the two leaves the rank undecided.
+    """
+
+    tau_lo: float
+    tau_hi: float
