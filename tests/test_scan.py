@@ -20,11 +20,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import mechsing
-from mechsing.kinematics import KinematicModel
-from mechsing.model.mechanism import MechanismError
 from mechsing import lie
-from mechsing.kinematics import batched
+from mechsing.kinematics import KinematicModel, batched
 from mechsing.kinematics.chains import tree_chain
+from mechsing.model.mechanism import MechanismError
 from mechsing.numeric import decide_rank, scale_screws
 from mechsing.scanner import ChainScanner, scan
 from mechsing.screws import chain_matrix
