@@ -1,4 +1,6 @@
-"""Poses, current joint screws and closure residuals of a mechanism.
+"""The kinematic model of a mechanism in one precision mode: its joints' reference
+screws and coordinates, closure residuals, closure Jacobian and updates on the
+group (poses and current screws are computed by :mod:`mechsing.kinematics.batched`).
 
 Conventions (those of the mechanism file; the README states them):
 

@@ -1,4 +1,6 @@
-"""Screw systems at a configuration: loops, the stacked closure system, mobility.
+"""Screw systems at a configuration: loops, the stacked closure system, mobility, and
+the one builder of a chain's screw system (:func:`chain_matrix`: output, leg and
+scanned chains).
 
 "Model only what the scene requires" (Chevallier & Lerbet): each loop's
 joint screws are expressed in reduced, orthonormal coordinates of the loop's
