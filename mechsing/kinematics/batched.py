@@ -100,10 +100,10 @@ def current_screws(
             qa = q[..., jk.columns.start, None]
             cols.append(lie.act_screw(ga, jk.basis[0]))
             cols.append(lie.act_screw(ga @ lie.exp(jk.basis[0] * qa), jk.basis[1]))
-        else:
-            # (..., k, 6): one current screw per basis screw of the joint
-            S = lie.act_screw(ga[..., None, :, :], jk.basis)
-            cols.extend(np.moveaxis(S, -2, 0))
+        elif ga.ndim == 2:  # one configuration: (k, 6)
+            cols.extend(lie.act_screw(ga, jk.basis))
+        else:  # a batch: (N, k, 6), one current screw per basis screw of the joint
+            cols.extend(np.moveaxis(lie.act_screw(ga[..., None, :, :], jk.basis), -2, 0))
     if joints is not None:
         out = model.backend.zeros(q.shape[:-1] + (6, model.n))
         where = [c for jk in joints for c in range(jk.columns.start, jk.columns.stop)]

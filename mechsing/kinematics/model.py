@@ -184,6 +184,7 @@ class KinematicModel:
         for jk in self.joints:
             self.length_columns[jk.columns] = jk.length_coordinates
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]
+        self._chords_signs: list[np.ndarray] | None = None
 
     # ------------------------------------------------------------------ access
 
@@ -272,15 +273,22 @@ class KinematicModel:
         ``screws(j) + V_a - V_b`` with ``V_x`` the tree velocity of body x."""
         S = self.current_screws(q) if screws is None else screws
         bk = self.backend
-        rows = []
-        for jk in self.chords:
-            # the chord itself, then back through the tree from a to b
-            coef = tree_chain(self, jk.a, jk.b).signs
-            coef[jk.columns] += 1
-            rows.append(S * coef[None, :])
+        rows = [S * coef[None, :] for coef in self._chord_signs()]
         if not rows:
             return bk.zeros((0, self.n))
         return np.concatenate(rows, axis=0)
+
+    def _chord_signs(self) -> list[np.ndarray]:
+        """Each chord's closure chain (integers, n): the chord itself, then back through
+        the tree from its body a to its body b (built once)."""
+        if self._chords_signs is None:
+            out = []
+            for jk in self.chords:
+                coef = tree_chain(self, jk.a, jk.b).signs
+                coef[jk.columns] += 1
+                out.append(coef)
+            self._chords_signs = out
+        return self._chords_signs
 
     def chord_twists(self, deltas: list[np.ndarray]) -> np.ndarray:
         """log of each chord residual, stacked (6 * n_chords,)."""
