@@ -42,15 +42,17 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
-from mechsing.lie import ANGULAR, LINEAR
+from mechsing.kinematics import KinematicModel, batched
+from mechsing.kinematics.batched import SerialJacobian
+from mechsing.kinematics.chains import tree_chain
 from mechsing.numeric import (
     MAX_JOINT_VALUE,
     SCAN_ROUNDING_FACTOR,
     SCAN_SCREEN_FACTOR,
     Precision,
     rank_bounds,
-    scale_screws,
 )
+from mechsing.screws import chain_matrix
 
 __all__ = ["ChainScanner", "ScanResult", "scan"]
 
@@ -113,63 +115,6 @@ class ScanResult:
         }
 
 
-@dataclass(frozen=True)
-class _JointPlan:
-    """What the batched poses need of one joint."""
-
-    name: str
-    a: str
-    b: str
-    columns: slice
-    basis: np.ndarray  # (dof, 6) float reference screws
-    kind: str  # "one" (R, P, H), "U", or "general"
-
-
-def _exp_one(theta: np.ndarray, e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """exp(theta e) for a fixed one-dof screw e (|omega| = 1, or omega = 0): (R, p) batched.
-
-    With ``e = (u, v)``, |u| = 1: pitch ``h = u . v``, axis point ``a = u x v``,
-    ``R = I + sin K + (1 - cos) K^2`` (K = u^), ``p = (I - R) a + h theta u``;
-    with u = 0: ``R = I``, ``p = theta v``.  Both are one small matrix product
-    of the coefficients ``(sin, 1 - cos, theta)`` with fixed 3 x 9 and 3 x 3 tables.
-    """
-    n = theta.shape[0]
-    u, v = e[ANGULAR], e[LINEAR]
-    if not np.any(u):
-        R = np.broadcast_to(np.eye(3), (n, 3, 3)).copy()
-        return R, theta[:, None] * v[None, :]
-    K = _hat3(u)
-    K2 = K @ K
-    a = np.cross(u, v)
-    h = float(u @ v)
-    coef = np.empty((n, 3))
-    np.sin(theta, out=coef[:, 0])
-    np.cos(theta, out=coef[:, 1])
-    coef[:, 1] = 1.0 - coef[:, 1]
-    coef[:, 2] = theta
-    R = coef[:, :2] @ np.stack([K.ravel(), K2.ravel()])
-    R += np.eye(3).ravel()
-    # (I - R) a = -(sin K a + (1 - cos) K^2 a)
-    p = coef @ np.stack([-(K @ a), -(K2 @ a), h * u])
-    return R.reshape(n, 3, 3), p
-
-
-def _hat3(u: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -u[2], u[1]], [u[2], 0.0, -u[0]], [-u[1], u[0], 0.0]])
-
-
-def _compose(
-    Ra: np.ndarray, pa: np.ndarray, Rb: np.ndarray, pb: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """(Ra, pa) (Rb, pb) batched."""
-    return Ra @ Rb, (Ra @ pb[:, :, None])[:, :, 0] + pa
-
-
-def _inverse(R: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    Rt = np.swapaxes(R, 1, 2)
-    return Rt, -(Rt @ p[:, :, None])[:, :, 0]
-
-
 class ChainScanner:
     """The output chain of an open-chain mechanism, ready to scan.
 
@@ -180,9 +125,7 @@ class ChainScanner:
     """
 
     def __init__(self, mech: Any) -> None:
-        from mechsing.kinematics import KinematicModel
         from mechsing.model.mechanism import MechanismError
-        from mechsing.singularity import output_chain
 
         where = mech.path
         if mech.loops:
@@ -197,8 +140,8 @@ class ChainScanner:
             )
         self.mech = mech
         self.model = KinematicModel(mech, "float")
-        names, cols = output_chain(mech, self.model)
-        self.columns = np.array(cols, dtype=int)
+        self.chain = tree_chain(self.model, mech.output.body, mech.output.relative_to)
+        self.columns = np.array(self.chain.columns, dtype=int)
         self.n = self.model.n
         self.point = (
             None if mech.output.point is None else np.array([float(x) for x in mech.output.point])
@@ -208,78 +151,30 @@ class ChainScanner:
         self.centroid = np.asarray(self.model.centroid, dtype=float)
         self.length_columns = np.asarray(self.model.length_columns[self.columns], dtype=bool)
         self.tolerances = Precision("float").tolerances
-        self._plans = {}
-        for jk in self.model.joints:
-            basis = np.asarray(jk.basis, dtype=float)
-            if jk.type == "U":
-                kind = "U"
-            elif basis.shape[0] == 1:
-                kind = "one"
-            else:
-                kind = "general"
-            self._plans[jk.name] = _JointPlan(jk.name, jk.a, jk.b, jk.columns, basis, kind)
-        # the bodies whose pose the chain needs, and every body on their tree paths
-        self._chain_joints = []
-        seen = set()
-        for j in names:
-            if j not in seen:
-                seen.add(j)
-                self._chain_joints.append(self._plans[j])
+        names = list(dict.fromkeys(self.chain.joints))
+        self._chain_joints = [self.model.joint(j) for j in names]
         self._generic: int | None = None
-        self._serial = self._serial_plan()
+        # the fast path: a serial chain of one-dof joints from ground to the output body
+        self._serial = (
+            SerialJacobian(self.model, self._path_joints(), list(self.columns), self.point)
+            if mech.output.relative_to == mech.ground
+            and SerialJacobian.applies(self.model, mech.output.body, self._chain_joints)
+            else None
+        )
 
-    # ---------------------------------------------------------------- poses
-
-    def _element(self, plan: _JointPlan, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        q = Q[:, plan.columns]
-        if plan.kind == "one":
-            return _exp_one(q[:, 0], plan.basis[0])
-        if plan.kind == "U":
-            R1, p1 = _exp_one(q[:, 0], plan.basis[0])
-            R2, p2 = _exp_one(q[:, 1], plan.basis[1])
-            return _compose(R1, p1, R2, p2)
-        g = lie.exp(q @ plan.basis)
-        return np.ascontiguousarray(g[:, :3, :3]), np.ascontiguousarray(g[:, :3, 3])
-
-    def _poses(
-        self, Q: np.ndarray, bodies: Iterable[str]
-    ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
-        """Poses (R, p) of the given bodies, batched over the rows of Q."""
-        n = Q.shape[0]
-        ground = self.mech.ground
-        eye = (np.broadcast_to(np.eye(3), (n, 3, 3)).copy(), np.zeros((n, 3)))
-        out: dict[str, tuple[np.ndarray, np.ndarray]] = {ground: eye}
-        elements: dict[str, tuple[np.ndarray, np.ndarray]] = {}
-        paths = self.mech.graph.tree_paths
-        for body in bodies:
-            if body in out:
-                continue
-            g = eye
-            here = ground
-            for st in paths[body]:
-                plan = self._plans[st.joint]
-                nxt = plan.b if st.sign > 0 else plan.a
-                if st.part is not None:
-                    raise AssertionError("tree paths to user bodies cross whole joints")
-                if nxt in out:
-                    g = out[nxt]
-                else:
-                    if st.joint not in elements:
-                        elements[st.joint] = self._element(plan, Q)
-                    M = elements[st.joint]
-                    g = _compose(*g, *(M if st.sign > 0 else _inverse(*M)))
-                    out[nxt] = g
-                here = nxt
-            assert here == body
-        return out
+    def _path_joints(self) -> list[Any]:
+        steps = self.mech.graph.tree_paths[self.mech.output.body]
+        return [self.model.joint(st.joint) for st in steps]
 
     # ---------------------------------------------------------------- matrices
 
     def matrices(self, Q: np.ndarray) -> np.ndarray:
         """The chain's commensurate matrices, shape (N, rows, columns), for the rows of Q.
 
-        Equal (to rounding) to :func:`mechsing.singularity.serial.chain_matrix`
-        of the float model at each configuration.
+        The batched kinematics of :mod:`mechsing.kinematics.batched` and the chain
+        builder :func:`mechsing.screws.chain_matrix`, as the one-configuration
+        analysis uses them (equal to rounding: the serial fast path is the same
+        product of exponentials in the commensurate frame).
         """
         Q = np.asarray(Q, dtype=float)
         if Q.ndim != 2 or Q.shape[1] != self.n:
@@ -300,110 +195,15 @@ class ChainScanner:
                 f"a length): {Q[i].tolist()}"
             )
         if self._serial is not None:
-            return self._serial_matrices(Q)
-        need = {p.a for p in self._chain_joints}
-        if self.point is not None:
-            need.add(self.mech.output.body)
-        poses = self._poses(Q, sorted(need))
-        cols = []
-        for plan in self._chain_joints:
-            R, p = poses[plan.a]
-            if plan.kind == "U":
-                q1 = Q[:, plan.columns.start]
-                M1 = _exp_one(q1, plan.basis[0])
-                R2, p2 = _compose(R, p, *M1)
-                cols.append(_act(R, p, plan.basis[0]))
-                cols.append(_act(R2, p2, plan.basis[1]))
-            else:
-                for e in plan.basis:
-                    cols.append(_act(R, p, e))
-        S = np.stack(cols, axis=2)  # (N, 6, k)
-        L = self.length_scale
-        if self.point is None:
-            return scale_screws(S, L, self.centroid, self.length_columns)
-        Rb, pb = poses[self.mech.output.body]
-        x = Rb @ self.point + pb
-        w, v = S[:, :3, :], S[:, 3:, :]
-        vel = (v + np.cross(w, x[:, :, None], axis=1)) / L
-        return np.where(self.length_columns[None, None, :], vel * L, vel)
-
-    def _serial_plan(self) -> list[tuple[int, int, np.ndarray]] | None:
-        """The fast path: an output body reached from ground through one-dof joints, each
-        crossed forward, and those joints are the whole chain.  One entry per joint:
-        (coordinate column, its position among the chain's columns, a table of
-        fixed vectors in the commensurate frame, see :meth:`_serial_matrices`)."""
+            return self._serial(Q)
         out = self.mech.output
-        if out.relative_to != self.mech.ground:
-            return None
-        steps = self.mech.graph.tree_paths[out.body]
-        if any(st.sign < 0 or st.part is not None for st in steps):
-            return None
-        plans = [self._plans[st.joint] for st in steps]
-        if any(p.kind != "one" for p in plans) or {p.name for p in plans} != {
-            p.name for p in self._chain_joints
-        }:
-            return None
-        order = list(self.columns)
-        L, c = self.length_scale, self.centroid
-        table = []
-        for p in plans:
-            # the screw in the commensurate frame: moved to the centroid, v / L (an
-            # automorphism of D, so exp and Ad commute with it)
-            e = scale_screws(p.basis[0][:, None], L, c)[:, 0]
-            u, v = e[ANGULAR], e[LINEAR]
-            K = _hat3(u)
-            K2 = K @ K
-            a = np.cross(u, v)
-            h = float(u @ v)
-            # columns: K, K^2 (rotation update), K a, K^2 a (translation update), u, v
-            T = np.concatenate(
-                [K, K2, (K @ a)[:, None], (K2 @ a)[:, None], u[:, None], v[:, None]], axis=1
-            )
-            table.append((p.columns.start, order.index(p.columns.start), T, h, bool(np.any(u))))
-        return table
-
-    def _serial_matrices(self, Q: np.ndarray) -> np.ndarray:
-        """Commensurate chain matrices of a serial chain of one-dof joints.
-
-        The pose (R, P) is carried in the commensurate frame (origin at the centroid,
-        lengths / L).  For each joint, one product ``R @ [K, K^2, K a, K^2 a, u, v]``
-        gives its current screw ``(R u, R v + P x R u)`` and the next pose
-        ``R + sin R K + (1 - cos) R K^2``, ``P - sin R K a - (1 - cos) R K^2 a + h theta R u``
-        (:func:`_exp_one` composed on the right).
-        """
-        n = Q.shape[0]
-        k = len(self.columns)
-        J = np.empty((n, 6, k))
-        R = np.broadcast_to(np.eye(3), (n, 3, 3)).copy()
-        P = np.zeros((n, 3))
-        last = len(self._serial) - 1
-        for i, (col, pos, T, h, rotates) in enumerate(self._serial):
-            RT = (R.reshape(-1, 3) @ T).reshape(n, 3, T.shape[1])
-            w = RT[:, :, 8]
-            J[:, :3, pos] = w
-            J[:, 3:, pos] = RT[:, :, 9] + _cross(P, w)
-            if i == last and self.point is None:
-                break
-            th = Q[:, col]
-            if rotates:
-                s = np.sin(th)
-                c1 = 1.0 - np.cos(th)
-                R = R + s[:, None, None] * RT[:, :, 0:3] + c1[:, None, None] * RT[:, :, 3:6]
-                P = P - s[:, None] * RT[:, :, 6] - c1[:, None] * RT[:, :, 7]
-                if h:
-                    P = P + (h * th)[:, None] * w
-            else:
-                P = P + th[:, None] * RT[:, :, 9]
-        lc = self.length_columns
+        need = [jk.a for jk in self._chain_joints]
         if self.point is not None:
-            x = (self.point - self.centroid) / self.length_scale
-            X = R @ x + P
-            w = J[:, :3, :]
-            vel = J[:, 3:, :] + np.cross(w, X[:, :, None], axis=1)
-            J = np.ascontiguousarray(vel)
-        if np.any(lc):
-            J[:, :, lc] *= self.length_scale
-        return J
+            need.append(out.body)
+        poses = batched.poses(self.model, Q, need)
+        S = batched.current_screws(self.model, Q, poses, self._chain_joints)
+        x = None if self.point is None else lie.act_point(poses[out.body], self.point)
+        return chain_matrix(self.model, S, self.chain.columns, x)
 
     # ---------------------------------------------------------------- decisions
 
@@ -501,28 +301,6 @@ class ChainScanner:
             tol.tau_hi,
             self.length_scale,
         )
-
-
-def _act(R: np.ndarray, p: np.ndarray, e: np.ndarray) -> np.ndarray:
-    """Ad(R, p) e batched: (R w, R v + p x R w), shape (N, 6)."""
-    out = np.empty((R.shape[0], 6))
-    w = out[:, ANGULAR]
-    np.matmul(R, e[ANGULAR], out=w)
-    v = R @ e[LINEAR]
-    v[:, 0] += p[:, 1] * w[:, 2] - p[:, 2] * w[:, 1]
-    v[:, 1] += p[:, 2] * w[:, 0] - p[:, 0] * w[:, 2]
-    v[:, 2] += p[:, 0] * w[:, 1] - p[:, 1] * w[:, 0]
-    out[:, LINEAR] = v
-    return out
-
-
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b for (N, 3) arrays (faster than np.cross on small rows)."""
-    out = np.empty_like(b)
-    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
-    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
-    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
-    return out
 
 
 def _chunks(configurations: Any, chunk: int) -> Iterator[np.ndarray]:

@@ -20,12 +20,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import mechsing
-from mechsing.kinematics import KinematicModel
+from mechsing import lie
+from mechsing.kinematics import KinematicModel, batched
+from mechsing.kinematics.chains import tree_chain
 from mechsing.model.mechanism import MechanismError
-from mechsing.numeric import decide_rank
+from mechsing.numeric import decide_rank, scale_screws
 from mechsing.scanner import ChainScanner, scan
+from mechsing.screws import chain_matrix
 from mechsing.singularity import _output_point, output_chain, random_configurations
-from mechsing.singularity.serial import chain_matrix
 from tests.mechanisms import EXAMPLES, ROOT, scaled_text
 
 SERIAL_FILES = [
@@ -62,7 +64,8 @@ joints:
 
 
 def _reference_matrices(mech, Q: np.ndarray) -> list[np.ndarray]:
-    """The one-configuration path: KinematicModel poses and serial.chain_matrix."""
+    """The one-configuration path: KinematicModel poses and screws.chain_matrix, as
+    the analysis decides the output chain (the decision the scan must reproduce)."""
     model = KinematicModel(mech, "float")
     _, cols = output_chain(mech, model)
     out = []
@@ -98,14 +101,147 @@ def _ur5_near_singular() -> np.ndarray:
     return np.array(rows)
 
 
-@pytest.mark.parametrize("path", SERIAL_FILES, ids=lambda p: p.stem)
-def test_matrices_equal_the_one_configuration_path(path: Path) -> None:
-    mech = mechsing.load(path)
-    sc = ChainScanner(mech)
-    Q = random_configurations(sc.model, 40, seed=7)
-    J = sc.matrices(Q)
-    for Jk, Mk in zip(J, _reference_matrices(mech, Q), strict=True):
-        np.testing.assert_allclose(Jk, Mk, rtol=0, atol=1e-14 * np.abs(Mk).max())
+#: joint kinds of the random open trees
+_RANDOM_TYPES = ("R", "P", "H", "C", "U", "S")
+
+
+def _random_tree(seed: int) -> str:
+    """A random open tree of 5 joints of the kinds above (each joins a new body to an
+    earlier one, in either orientation), its output the last body relative to another."""
+    rng = np.random.default_rng(seed)
+
+    def vec() -> str:
+        return "[" + ", ".join(f"{x:.6f}" for x in rng.normal(size=3)) + "]"
+
+    lines = ["mechanism: random-tree", "bodies: [b0, b1, b2, b3, b4, b5]", "joints:"]
+    for k in range(1, 6):
+        kind = _RANDOM_TYPES[int(rng.integers(len(_RANDOM_TYPES)))]
+        parent = f"b{int(rng.integers(k))}"
+        a, b = (parent, f"b{k}") if rng.random() < 0.7 else (f"b{k}", parent)
+        params = {
+            "R": f"axis: {vec()}, point: {vec()}",
+            "P": f"axis: {vec()}",
+            "H": f"axis: {vec()}, point: {vec()}, pitch: {rng.uniform(-0.5, 0.5):.4f}",
+            "C": f"axis: {vec()}, point: {vec()}",
+            "U": f"axes: [[0, 0, 1], [1, 0, 0]], point: {vec()}",
+            "S": f"point: {vec()}",
+        }[kind]
+        lines.append(f"  - {{name: J{k}, type: {kind}, between: [{a}, {b}], {params}}}")
+    lines.append(f"output: {{body: b5, relative_to: b{int(rng.integers(1, 5))}}}")
+    return "\n".join(lines) + "\n"
+
+
+def _lie_pose(model, body: str, q: np.ndarray) -> np.ndarray:
+    """The pose of ``body`` at one configuration: the product of lie.exp of the joint
+    values along its tree path (inverted where the path crosses a joint backward)."""
+    g = lie.identity()
+    for step in model.mech.graph.tree_paths[body]:
+        jk = model.joint(step.joint)
+        qj = q[jk.columns]
+        if jk.type == "U":
+            M = lie.compose(lie.exp(jk.basis[0] * qj[0]), lie.exp(jk.basis[1] * qj[1]))
+        else:
+            M = lie.exp(qj @ jk.basis)
+        g = lie.compose(g, M if step.sign > 0 else lie.inverse(M))
+    return g
+
+
+def _mechanisms(tmp_path: Path, open_only: bool = False) -> list:
+    """The bundled arms, the point and 7R chains above, six random trees, and (unless
+    ``open_only``) a closed mechanism (its spanning tree)."""
+    texts = [PLANAR_3R_POINT, REDUNDANT_7R] + [_random_tree(seed) for seed in range(6)]
+    files = [_write(tmp_path, f"m{i}.yaml", t) for i, t in enumerate(texts)]
+    closed = [] if open_only else [EXAMPLES / "stewart_octahedral.yaml"]
+    return [mechsing.load(p) for p in [*SERIAL_FILES, *closed, *files]]
+
+
+def test_batched_poses_are_products_of_lie_exponentials(tmp_path: Path) -> None:
+    """For random configurations of random trees (every joint kind, joints crossed both
+    ways), of the bundled arms and of a closed mechanism, each row of the batched poses
+    is the product of exponentials of its tree path, and so is the one-configuration pose."""
+    for mech in _mechanisms(tmp_path):
+        model = KinematicModel(mech, "float")
+        Q = random_configurations(model, 12, seed=5)
+        poses = batched.poses(model, Q)
+        for i, q in enumerate(Q):
+            one = model.poses(q)
+            for body in mech.bodies:
+                want = _lie_pose(model, body, q)
+                np.testing.assert_allclose(poses[body][i], want, rtol=0, atol=1e-12)
+                np.testing.assert_allclose(one[body], want, rtol=0, atol=1e-12)
+
+
+def _moved(model, q: np.ndarray, col: int, h: float) -> np.ndarray:
+    """q with coordinate ``col`` moved by h on the group (the model's update, whose
+    velocity the current screws are)."""
+    d = np.zeros(model.n)
+    d[col] = h
+    return model.update(q, d)
+
+
+def test_current_screws_are_finite_differences_of_poses(tmp_path: Path) -> None:
+    """Each current screw (batched Jacobian column) is the velocity of the joint's body b
+    relative to its body a when its coordinate moves, both seen in ground:
+    ``V_b - V_a`` with ``V_x = log(g_x(q + h e_i) g_x(q - h e_i)^-1) / 2h``, whichever
+    of a and b the spanning tree reaches first (central differences)."""
+    h = 1e-6
+    for mech in _mechanisms(tmp_path, open_only=True):
+        model = KinematicModel(mech, "float")
+        Q = random_configurations(model, 4, seed=9)
+        S = batched.current_screws(model, Q)
+        for i, q in enumerate(Q):
+            for jk in model.joints:
+                for col in range(jk.columns.start, jk.columns.stop):
+                    Pp = model.poses(_moved(model, q, col, h))
+                    Pm = model.poses(_moved(model, q, col, -h))
+                    fd = sum(
+                        s * lie.log(lie.compose(Pp[x], lie.inverse(Pm[x]))) / (2 * h)
+                        for x, s in ((jk.b, 1), (jk.a, -1))
+                    )
+                    np.testing.assert_allclose(
+                        S[i, :, col], fd, rtol=0, atol=1e-6 * max(1.0, np.abs(fd).max())
+                    )
+
+
+def _rel(model, q: np.ndarray) -> np.ndarray:
+    """The output body's displacement relative to ``relative_to``."""
+    out = model.mech.output
+    P = model.poses(q)
+    return lie.compose(lie.inverse(P[out.relative_to]), P[out.body])
+
+
+def test_scanned_matrices_are_finite_differences_of_the_output(tmp_path: Path) -> None:
+    """The scanner's matrices (serial fast path and general path) are the commensurate
+    velocities of the output when each chain coordinate moves: the twist of the output
+    body relative to ``relative_to`` (times the sign of the column's joint on the chain:
+    the columns are the joints' own screws) or its point's velocity, by central
+    differences of the poses."""
+    h = 1e-6
+    for mech in _mechanisms(tmp_path, open_only=True):
+        sc = ChainScanner(mech)
+        model = sc.model
+        out = mech.output
+        Q = random_configurations(model, 4, seed=3)
+        J = sc.matrices(Q)
+        signs = tree_chain(model, out.body, out.relative_to).signs
+        assert J.shape == (len(Q), sc.rows, len(sc.columns))
+        L, c = sc.length_scale, sc.centroid
+        for i, q in enumerate(Q):
+            base = model.poses(q)[out.relative_to]
+            for k, col in enumerate(sc.columns):
+                qp, qm = _moved(model, q, col, h), _moved(model, q, col, -h)
+                if sc.point is None:
+                    # the relative twist, seen in ground at the reference body's pose
+                    tw = lie.log(lie.compose(_rel(model, qp), lie.inverse(_rel(model, qm))))
+                    fd = lie.act_screw(base, tw / (2 * h)) * signs[col]
+                    want = scale_screws(fd[:, None], L, c, sc.length_columns[k : k + 1])[:, 0]
+                else:
+                    xp = lie.act_point(model.poses(qp)[out.body], sc.point)
+                    xm = lie.act_point(model.poses(qm)[out.body], sc.point)
+                    want = (xp - xm) / (2 * h) / L * (L if sc.length_columns[k] else 1.0)
+                np.testing.assert_allclose(
+                    J[i, :, k], want, rtol=0, atol=1e-6 * max(1.0, np.abs(want).max())
+                )
 
 
 @pytest.mark.parametrize("text", [PLANAR_3R_POINT, REDUNDANT_7R], ids=["point", "7R"])
@@ -114,9 +250,6 @@ def test_point_output_and_redundant_chain(text: str, tmp_path: Path) -> None:
     sc = ChainScanner(mech)
     Q = random_configurations(sc.model, 30, seed=2)
     Q[0] = 0.0  # stretched planar arm / 7R at home
-    J = sc.matrices(Q)
-    for Jk, Mk in zip(J, _reference_matrices(mech, Q), strict=True):
-        np.testing.assert_allclose(Jk, Mk, rtol=0, atol=1e-14 * max(1.0, np.abs(Mk).max()))
     res = sc.scan(Q)
     want = [decide_rank(M, "float").rank for M in _reference_matrices(mech, Q)]
     assert [int(r) if r >= 0 else None for r in res.rank] == want

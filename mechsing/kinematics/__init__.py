@@ -1,5 +1,17 @@
-"""Poses by product of exponentials, closure residuals, closure by continuation."""
+"""Kinematics of a mechanism: poses, current screws, chains, closure.
 
+* :mod:`~mechsing.kinematics.model`: the kinematic model (reference screws of the
+  joints in one precision mode, coordinates, closure residuals and Jacobian, updates
+  on the group);
+* :mod:`~mechsing.kinematics.batched`: poses and current screws of one configuration
+  or a batch (the analysis and the scanner), the serial fast Jacobian;
+* :mod:`~mechsing.kinematics.chains`: the coordinates a chain between two bodies
+  crosses, with their signs (tree-path sign sums);
+* :mod:`~mechsing.kinematics.newton`: Newton on the group;
+* :mod:`~mechsing.kinematics.closure`: closure of named configurations by continuation.
+"""
+
+from mechsing.kinematics.chains import Chain, path_chain, tree_chain
 from mechsing.kinematics.closure import (
     ClosedConfiguration,
     Closer,
@@ -9,8 +21,10 @@ from mechsing.kinematics.closure import (
     solve_configuration,
 )
 from mechsing.kinematics.model import JointKinematics, KinematicModel, axis_points
+from mechsing.kinematics.newton import NewtonResult, newton_on_group
 
 __all__ = [
+    "Chain",
     "ClosedConfiguration",
     "Closer",
     "ClosureError",
@@ -18,6 +32,10 @@ __all__ = [
     "ExactDataError",
     "JointKinematics",
     "KinematicModel",
+    "NewtonResult",
     "axis_points",
+    "newton_on_group",
+    "path_chain",
     "solve_configuration",
+    "tree_chain",
 ]

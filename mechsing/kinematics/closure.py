@@ -29,6 +29,7 @@ import sympy
 from mechsing import lie
 from mechsing.errors import ConfigurationError, UserError
 from mechsing.kinematics.model import KinematicModel, scale_blocks
+from mechsing.kinematics.newton import damped_least_squares, mp_least_squares, newton_on_group
 from mechsing.lie import ANGULAR
 from mechsing.model import Configuration, Displacement
 from mechsing.numeric import (
@@ -44,13 +45,11 @@ from mechsing.numeric import (
     MAX_JOINT_VALUE,
     POLISH_DIGITS_SPARE,
     POLISH_MAX_STEPS,
-    POLISH_SLOW_RATIO,
     Precision,
     decide_rank,
     exact_is_zero,
     rotation_orthonormal_atol,
     screw_zero_rtol,
-    svd_r,
     to_float,
 )
 from mechsing.timelimit import activity
@@ -557,21 +556,11 @@ class Closer:
         tol = fm.precision.closure_tolerance(L)
         qn = q.copy()
         qn[gmask] = qt[gmask]
-        res = fm.residual_norm(fm.chord_residuals(qn))
-        for _ in range(POLISH_MAX_STEPS):
-            Js, rs = _scaled_system(fm, qn)
-            d = _increment(fm, free, _dls(Js[:, free], -rs))
-            best = None
-            for k in (1, 2):  # the doubled step removes the halving at a double root
-                qk = fm.update(qn, d * k)
-                rk = fm.residual_norm(fm.chord_residuals(qk))
-                if best is None or rk < best[1]:
-                    best = (qk, rk)
-                if rk * POLISH_SLOW_RATIO <= res:
-                    break
-            if best[1] >= res:
-                break
-            qn, res = best
+        # the doubled step removes the halving at a double root
+        landed = newton_on_group(
+            fm, qn, free, solve=damped_least_squares, max_steps=POLISH_MAX_STEPS, doubling=True
+        )
+        qn, res = landed.q, landed.residual
         if res > tol or comm(qn - q) > CONTINUATION_FOLD_REACH * math.sqrt(left):
             return None
         Js = scale_blocks(fm.closure_jacobian(qn), L, fm.centroid, fm.length_columns)
@@ -579,8 +568,13 @@ class Closer:
         if not len(sigma) or sigma[-1] > CONTINUATION_SINGULAR_RTOL * sigma[0]:
             return None
         rank = int(np.sum(sigma > CONTINUATION_SINGULAR_RTOL * sigma[0]))
-        info = {"residual": res, "rank": rank, "smin": float(sigma[-1] / sigma[0]),
-                "underdetermined": False, "predicted": qn}
+        info = {
+            "residual": res,
+            "rank": rank,
+            "smin": float(sigma[-1] / sigma[0]),
+            "underdetermined": False,
+            "predicted": qn,
+        }
         return qn, info
 
     def _same_branch(
@@ -638,7 +632,7 @@ class Closer:
         dgs = np.where(fm.length_columns, dg / L, dg)
         q = q_prev.copy()
         if np.any(free) and Js.shape[0]:
-            du = _dls(Js[:, free], -Js[:, gmask] @ dgs[gmask])
+            du = damped_least_squares(Js[:, free], -Js[:, gmask] @ dgs[gmask])
             dus = np.zeros(fm.n)
             dus[free] = du
             dus = np.where(fm.length_columns, dus * L, dus)
@@ -656,26 +650,34 @@ class Closer:
             "predicted": predicted,
         }
         polish = 0
-        for _it in range(_NEWTON_ITERATIONS):
-            if res <= tol and _it > 0:
+
+        def stop(it: int, res: float) -> bool:
+            nonlocal polish
+            if res <= tol and it > 0:
                 # at the target, keep iterating while Newton still gains (rounding level)
                 if not final or polish >= 2:
-                    break
+                    return True
                 polish += 1
-            if not fm.chords:
-                break
-            if not np.any(free):
-                break
-            Js, rs = _scaled_system(fm, q)
-            qn = fm.update(q, _increment(fm, free, _dls(Js[:, free], -rs)))
-            new = fm.residual_norm(fm.chord_residuals(qn))
-            if not np.isfinite(new) or new > 10 * max(res, tol) and _it > 2:
-                info["residual"] = new
-                return False, qn, info
-            if res <= tol and new >= res:
-                break  # polishing no longer gains
-            q, res = qn, new
-        info["residual"] = res
+            return not fm.chords or not np.any(free)
+
+        out = newton_on_group(
+            fm,
+            q,
+            free,
+            solve=damped_least_squares,
+            max_steps=_NEWTON_ITERATIONS,
+            residual=res,
+            stop=stop,
+            # polishing at the target stops when it no longer gains
+            keep=lambda res, new: not (res <= tol and new >= res),
+            diverged=lambda it, res, new: (
+                not np.isfinite(new) or new > 10 * max(res, tol) and it > 2
+            ),
+        )
+        info["residual"] = out.residual
+        if out.diverged:
+            return False, out.q, info
+        q, res = out.q, out.residual
         if res > tol:
             return False, q, info
         if np.any(free) and fm.chords:
@@ -751,80 +753,23 @@ class Closer:
             else:
                 qm = m.asarray([repr(float(x)) for x in q])
             qm[gmask] = target[gmask]
-            free = ~gmask
-            L = m.length_scale
             small = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - mpmath.mp.dps)
-            goal = small * L
-            res = m.residual_norm(m.chord_residuals(qm), native=True)
-            slow = False
-
-            def moved(d: np.ndarray, k: int) -> tuple[np.ndarray, Any]:
-                qn = m.update(qm, d * k)
-                return qn, m.residual_norm(m.chord_residuals(qn), native=True)
-
-            for _ in range(POLISH_MAX_STEPS):
-                if not m.chords:
-                    break
-                Js, rs = _scaled_system(m, qm)
-                A = mpmath.matrix(Js[:, free].tolist())
-                b = mpmath.matrix([-x for x in rs])
-                du = _mp_lstsq(A, b)
-                if res <= goal and max((abs(x) for x in du), default=0) <= small:
-                    break  # closed, and what is left to correct is below working precision
-                d = _increment(m, free, np.array(du, dtype=object))
-                qn, rn = moved(d, 1)
-                if rn * POLISH_SLOW_RATIO > res:
-                    slow = True
-                    q2, r2 = moved(d, 2)
-                    if r2 < rn:
-                        qn, rn = q2, r2
-                if rn >= res:
-                    break
-                qm, res = qn, rn
-            return qm, res, slow
-
-
-def _scaled_system(m: KinematicModel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The closure Jacobian and the chord residual twists at q, commensurate (moved to
-    the centroid, lengths over L): the system every Newton step on the group solves."""
-    L = m.length_scale
-    r = m.chord_twists(m.chord_residuals(q))
-    Js = scale_blocks(m.closure_jacobian(q), L, m.centroid, m.length_columns)
-    rs = scale_blocks(r.reshape(-1, 6).T, L, m.centroid, None).T.reshape(-1)
-    return Js, rs
-
-
-def _increment(m: KinematicModel, free: np.ndarray, du: np.ndarray) -> np.ndarray:
-    """A commensurate step ``du`` of the free coordinates as joint increments (lengths
-    times L, the given coordinates unmoved), in the model's numbers."""
-    d = m.zeros()
-    d[np.flatnonzero(free)] = du
-    return np.where(m.length_columns, d * m.length_scale, d)
-
-
-def _mp_lstsq(A: Any, b: Any) -> list[Any]:
-    import mpmath
-
-    U, S, V = svd_r(A)
-    smax = max(abs(x) for x in S) if len(S) else 0
-    out = mpmath.matrix(A.cols, 1)
-    for i in range(len(S)):
-        if S[i] > smax * mpmath.mpf(10) ** (-(mpmath.mp.dps // 2)):
-            ui = U.column(i)
-            coef = sum(ui[k] * b[k] for k in range(A.rows)) / S[i]
-            for k in range(A.cols):
-                out[k] += coef * V[i, k]
-    return [out[k] for k in range(A.cols)]
-
-
-def _dls(A: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Damped least squares (minimum norm), damping relative to sigma_max."""
-    U, s, Vt = np.linalg.svd(A, full_matrices=False)
-    if not len(s) or s[0] == 0:
-        return np.zeros(A.shape[1])
-    lam = 1e-7 * s[0]
-    f = s / (s * s + lam * lam)
-    return Vt.T @ (f * (U.T @ b))
+            goal = small * m.length_scale
+            out = newton_on_group(
+                m,
+                qm,
+                ~gmask,
+                solve=mp_least_squares,
+                max_steps=POLISH_MAX_STEPS,
+                native=True,
+                stop=lambda _it, _res: not m.chords,
+                # closed, and what is left to correct is below working precision
+                converged=lambda res, du: (
+                    res <= goal and max((abs(x) for x in du), default=0) <= small
+                ),
+                doubling=True,
+            )
+            return out.q, out.residual, out.slow
 
 
 def _g(x: Any, digits: int) -> str:

@@ -1,4 +1,6 @@
-"""Poses, current joint screws and closure residuals of a mechanism.
+"""The kinematic model of a mechanism in one precision mode: its joints' reference
+screws and coordinates, closure residuals, closure Jacobian and updates on the
+group (poses and current screws are computed by :mod:`mechsing.kinematics.batched`).
 
 Conventions (those of the mechanism file; the README states them):
 
@@ -28,6 +30,8 @@ import mpmath
 import numpy as np
 
 from mechsing import lie
+from mechsing.kinematics import batched
+from mechsing.kinematics.chains import tree_chain
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, characteristic_length, scale_screws, to_float
 from mechsing.subgroups import Subgroup
@@ -180,6 +184,7 @@ class KinematicModel:
         for jk in self.joints:
             self.length_columns[jk.columns] = jk.length_coordinates
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]
+        self._chords_signs: list[np.ndarray] | None = None
 
     # ------------------------------------------------------------------ access
 
@@ -202,53 +207,19 @@ class KinematicModel:
 
     def element(self, jk: JointKinematics, q: np.ndarray) -> np.ndarray:
         """The joint's relative displacement M (g_b = g_a M)."""
-        qj = q[jk.columns]
-        if jk.type == "U":
-            return lie.exp(jk.basis[0] * qj[0]) @ lie.exp(jk.basis[1] * qj[1])
-        return lie.exp(qj @ jk.basis)
+        return batched.element(jk, q)
 
     def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
-        """The pose of every user body (ground = identity) from the spanning tree."""
-        eye = self.backend.eye(4)
-        out: dict[str, np.ndarray] = {self.mech.ground: eye}
-        elements: dict[str, np.ndarray] = {}
-        for body, steps in sorted(self.mech.graph.tree_paths.items(), key=lambda kv: len(kv[1])):
-            if body in out or not steps:
-                continue
-            last = steps[-1]
-            if last.part is not None:
-                continue  # hidden cross bodies: see current_screws
-            prev = self._parent_pose(steps, out)
-            jk = self._by_name[last.joint]
-            if last.joint not in elements:
-                elements[last.joint] = self.element(jk, q)
-            M = elements[last.joint]
-            out[body] = prev @ (M if last.sign > 0 else lie.inverse(M))
-        return out
-
-    def _parent_pose(self, steps: tuple, out: dict[str, np.ndarray]) -> np.ndarray:
-        # the body reached by all steps but the last
-        body = self.mech.ground
-        for st in steps[:-1]:
-            jk = self._by_name[st.joint]
-            body = jk.b if st.sign > 0 else jk.a
-        return out[body]
+        """The pose of every user body (ground = identity) from the spanning tree;
+        q may be one configuration (n,) or a batch (N, n)."""
+        return batched.poses(self, q)
 
     def current_screws(
         self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
     ) -> np.ndarray:
-        """The current screw of every joint coordinate: (6, n), columns in file order."""
-        poses = self.poses(q) if poses is None else poses
-        cols = []
-        for jk in self.joints:
-            ga = poses[jk.a]
-            if jk.type == "U":
-                qa = q[jk.columns][0]
-                cols.append(lie.act_screw(ga, jk.basis[0]))
-                cols.append(lie.act_screw(ga @ lie.exp(jk.basis[0] * qa), jk.basis[1]))
-            else:
-                cols.extend(lie.act_screw(ga, jk.basis))
-        return np.stack(cols, axis=1) if cols else self.backend.zeros((6, 0))
+        """The current screw of every joint coordinate: (6, n) (or (N, 6, n) for a batch),
+        columns in file order."""
+        return batched.current_screws(self, q, poses)
 
     # ------------------------------------------------------------------ closure
 
@@ -302,17 +273,22 @@ class KinematicModel:
         ``screws(j) + V_a - V_b`` with ``V_x`` the tree velocity of body x."""
         S = self.current_screws(q) if screws is None else screws
         bk = self.backend
-        rows = []
-        for jk in self.chords:
-            coef = np.zeros(self.n, dtype=int)
-            coef[jk.columns] += 1
-            for body, s in ((jk.a, 1), (jk.b, -1)):
-                for st in self.mech.graph.tree_paths[body]:
-                    coef[self._by_name[st.joint].columns] += s * st.sign
-            rows.append(S * coef[None, :])
+        rows = [S * coef[None, :] for coef in self._chord_signs()]
         if not rows:
             return bk.zeros((0, self.n))
         return np.concatenate(rows, axis=0)
+
+    def _chord_signs(self) -> list[np.ndarray]:
+        """Each chord's closure chain (integers, n): the chord itself, then back through
+        the tree from its body a to its body b (built once)."""
+        if self._chords_signs is None:
+            out = []
+            for jk in self.chords:
+                coef = tree_chain(self, jk.a, jk.b).signs
+                coef[jk.columns] += 1
+                out.append(coef)
+            self._chords_signs = out
+        return self._chords_signs
 
     def chord_twists(self, deltas: list[np.ndarray]) -> np.ndarray:
         """log of each chord residual, stacked (6 * n_chords,)."""

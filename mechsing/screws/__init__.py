@@ -1,4 +1,6 @@
-"""Screw systems at a configuration: loops, the stacked closure system, mobility.
+"""Screw systems at a configuration: loops, the stacked closure system, mobility, and
+the one builder of a chain's screw system (:func:`chain_matrix`: output, leg and
+scanned chains).
 
 "Model only what the scene requires" (Chevallier & Lerbet): each loop's
 joint screws are expressed in reduced, orthonormal coordinates of the loop's
@@ -13,13 +15,16 @@ columns of length coordinates multiplied by L, before any rank decision.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 import sympy
 
+from mechsing import lie
 from mechsing.kinematics import KinematicModel
+from mechsing.lie import ANGULAR, LINEAR
 from mechsing.model import Loop
 from mechsing.numeric import (
     Precision,
@@ -33,6 +38,7 @@ from mechsing.subgroups import Identification, Subgroup, generate
 
 __all__ = [
     "ClosureSystem",
+    "chain_matrix",
     "LoopSystem",
     "closure_system",
     "commensurate_frame",
@@ -96,6 +102,42 @@ def scaled_columns(model: KinematicModel, S: np.ndarray) -> np.ndarray:
     """Commensurate screws: moved to the centroid, v / L, length columns times L."""
     L, c = commensurate_frame(model)
     return scale_screws(S, L, c, model.length_columns)
+
+
+def chain_matrix(
+    model: KinematicModel,
+    S: np.ndarray,
+    columns: Sequence[int] | None,
+    point: np.ndarray | None = None,
+    signs: np.ndarray | None = None,
+) -> np.ndarray:
+    """The commensurate screw system of a chain: the one builder of output, leg and
+    scanned chain matrices.
+
+    ``S``: current screws (..., 6, n), one configuration or a batch, in any backend;
+    ``columns``: the chain's coordinates in the matrix's column order (None: all n);
+    ``signs``: (n,) integers (a :class:`~mechsing.kinematics.chains.Chain`'s), +1 or -1
+    for a coordinate crossed forward or backward and 0 off the chain, so that the
+    columns are relative twists of the chain's last body (None: the joints' own
+    screws); ``point``: the current position (m) of a point of the last body, (..., 3),
+    for a positioning task.  Returns the twists (..., 6, k) or the point's velocity
+    rows ``v + omega x x`` (..., 3, k), commensurate (moved to the centroid, v / L,
+    length columns times L), in the numbers of ``S``.
+    """
+    M = S if signs is None else S * signs  # integer signs: exact in every backend
+    lc = model.length_columns
+    if columns is not None:
+        M = M[..., list(columns)]
+        lc = lc[list(columns)]
+    L, c = commensurate_frame(model)
+    T = scale_screws(M, L, c, lc)
+    if point is None:
+        return T
+    # velocity of the body point x: v + omega x x, from twists moved to the centroid:
+    # v_x = v_c + omega x (x - c); in commensurate units divide by L
+    w, vc = T[..., ANGULAR, :], T[..., LINEAR, :]
+    d = (point - c) / L
+    return vc + np.swapaxes(lie.cross(np.swapaxes(w, -1, -2), d[..., None, :]), -1, -2)
 
 
 def commensurate_frame(model: KinematicModel) -> tuple[Any, np.ndarray]:

@@ -16,6 +16,7 @@ import numpy as np
 
 from mechsing.kinematics import KinematicModel
 from mechsing.kinematics.model import scale_blocks
+from mechsing.kinematics.newton import newton_on_group, truncated_least_squares
 from mechsing.numeric import (
     SAMPLE_CLOSURE_RTOL,
     SAMPLE_DISTINCT_RATIO,
@@ -54,30 +55,19 @@ def reclose(
 
     Returns the configuration reached and its residual (m).
     """
-    L = model.length_scale
     # the float closure tolerance, also for an mp or exact model (this Newton is float)
-    tol = _FLOAT.closure_tolerance(L)
+    tol = _FLOAT.closure_tolerance(model.length_scale)
     free = np.ones(model.n, dtype=bool) if fixed is None else ~fixed
-    res = model.residual_norm(model.chord_residuals(q))
-    for _ in range(_NEWTON):
-        if res <= tol:
-            break
-        r = to_float(model.chord_twists(model.chord_residuals(q)))
-        J = stacked_jacobian(model, q)
-        rs = scale_blocks(r[:, None], L, model.centroid)[:, 0]
-        A = J[:, free]
-        U, s, Vt = np.linalg.svd(A, full_matrices=False)
-        keep = s > _FLOAT.tolerances.tau_lo * (s[0] if len(s) else 0)
-        du = Vt[keep].T @ ((U[:, keep].T @ -rs) / s[keep])
-        d = np.zeros(model.n)
-        d[free] = du
-        d = np.where(model.length_columns, d * L, d)
-        qn = model.update(q, d)
-        new = model.residual_norm(model.chord_residuals(qn))
-        if not np.isfinite(new):
-            break
-        q, res = qn, new
-    return q, res
+    out = newton_on_group(
+        model,
+        q,
+        free,
+        solve=truncated_least_squares,
+        max_steps=_NEWTON,
+        stop=lambda _it, res: res <= tol,
+        keep=lambda _res, new: bool(np.isfinite(new)),
+    )
+    return out.q, out.residual
 
 
 def nearby_samples(

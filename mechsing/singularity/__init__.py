@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
+from mechsing.kinematics.chains import tree_chain
 from mechsing.numeric import to_float
 from mechsing.singularity.findings import (
     Classification,
@@ -40,22 +41,8 @@ def output_chain(mech: Any, model: Any) -> tuple[list[str], list[int]] | None:
     out = mech.output
     if out is None:
         return None
-    paths = mech.graph.tree_paths
-    pa = list(paths[out.body])
-    pb = list(paths[out.relative_to])
-    k = 0
-    while k < min(len(pa), len(pb)) and pa[k] == pb[k]:
-        k += 1
-    joints = [st.joint for st in pa[k:]] + [st.joint for st in pb[k:]]
-    order = {j.name: i for i, j in enumerate(mech.joints)}
-    joints = sorted(set(joints), key=order.__getitem__)
-    cols: list[int] = []
-    names: list[str] = []
-    for j in joints:
-        sl = model.joint(j).columns
-        cols.extend(range(sl.start, sl.stop))
-        names.extend([j] * (sl.stop - sl.start))
-    return names, cols
+    chain = tree_chain(model, out.body, out.relative_to)
+    return chain.joints, chain.columns
 
 
 def _output_point(

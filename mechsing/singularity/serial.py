@@ -31,6 +31,7 @@ from mechsing.numeric import (
     decide_rank,
     to_float,
 )
+from mechsing.screws import chain_matrix
 from mechsing.singularity.findings import SerialFinding
 
 #: random configurations sampled to find a chain's generic rank
@@ -60,24 +61,6 @@ def _unit_first_positive(v: np.ndarray) -> np.ndarray:
     if len(nz) and v[nz[0]] < 0:
         v = -v
     return v + 0.0  # no -0.0
-
-
-def chain_matrix(
-    model: Any, S: np.ndarray, columns: list[int], point: np.ndarray | None
-) -> np.ndarray:
-    """Commensurate matrix of a chain, in the model's backend: twists (6 x k) or,
-    for a point ``x`` (current position, m), its velocity rows ``v + omega x x``
-    divided by L (3 x k)."""
-    from mechsing.screws import _L as backend_length
-    from mechsing.screws import scaled_columns
-
-    if point is None:
-        return scaled_columns(model, S)[:, columns]
-    Sc = S[:, columns]
-    lc = model.length_columns[columns]
-    w, v = Sc[ANGULAR], Sc[LINEAR]
-    vel = (v + lie.cross(w.T, point).T) / backend_length(model)
-    return np.where(lc[None, :], vel * backend_length(model), vel)
 
 
 def wrenches_of(

@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
-from mechsing.lie import ANGULAR, LINEAR
+from mechsing.kinematics.chains import tree_chain
 from mechsing.numeric import (
     Precision,
     RankDecision,
@@ -41,7 +41,7 @@ from mechsing.numeric import (
     svd,
     to_float,
 )
-from mechsing.screws import commensurate_frame, scaled_columns
+from mechsing.screws import chain_matrix, scaled_columns
 
 __all__ = ["IOQuantities", "io_quantities", "leg_constraint_rank"]
 
@@ -83,26 +83,15 @@ def output_rows(
     out = mech.output
     if out is None:
         return None
-    paths = mech.graph.tree_paths
-    # integer signs: a float factor would round exact screws to float digits
-    coef = np.zeros(model.n, dtype=int)
-    for body, sgn in ((out.body, 1), (out.relative_to, -1)):
-        for st in paths[body]:
-            coef[model.joint(st.joint).columns] += sgn * st.sign
-    T = scaled_columns(model, S * coef[None, :])
-    if out.point is None:
-        return T
-    if model.backend.name == "float":
-        x0 = to_float(np.array(list(out.point), dtype=object))
-    else:
-        x0 = model.asarray(list(out.point))
-    x = lie.act_point(poses[out.body], x0)
-    # velocity of the body point x: v + omega x x, from twists moved to the centroid:
-    # v_x = v_c + omega x (x - c); in commensurate units divide by L
-    L, c = commensurate_frame(model)
-    w, vc = T[ANGULAR], T[LINEAR]
-    d = (x - c) / L
-    return vc + lie.cross(w.T, d).T
+    chain = tree_chain(model, out.body, out.relative_to)
+    x = None
+    if out.point is not None:
+        if model.backend.name == "float":
+            x0 = to_float(np.array(list(out.point), dtype=object))
+        else:
+            x0 = model.asarray(list(out.point))
+        x = lie.act_point(poses[out.body], x0)
+    return chain_matrix(model, S, None, x, chain.signs)
 
 
 def input_rows(mech: Any, model: Any) -> np.ndarray | None:

@@ -1,0 +1,216 @@
+"""Poses and current joint screws of one configuration or of a batch of them.
+
+Owns the product of exponentials of a mechanism's spanning tree: the joint
+elements, the body poses and the current screws (the Jacobian columns), written
+once with :mod:`mechsing.lie` for a coordinate vector ``q`` of shape ``(n,)``
+or an array of configurations ``(N, n)`` (every :mod:`mechsing.lie` function
+broadcasts over leading axes).  :class:`~mechsing.kinematics.KinematicModel`
+calls these with one configuration (in any backend), the scanner with
+thousands (float).
+
+It also owns :class:`SerialJacobian`, the fast batched Jacobian of a serial
+chain of one-dof joints crossed forward from ground, built directly in the
+commensurate frame (the scanner's throughput path).
+
+Conventions: those of :mod:`mechsing.kinematics.model` (``g_b = g_a M_j``,
+current screws carried by the pose of ``between[0]``).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from mechsing import lie
+from mechsing.lie import ANGULAR, LINEAR
+from mechsing.numeric import scale_screws
+
+__all__ = ["SerialJacobian", "current_screws", "element", "poses"]
+
+
+def element(jk: Any, q: np.ndarray) -> np.ndarray:
+    """The joint's relative displacement M (``g_b = g_a M``): (..., 4, 4) for q of shape (..., n)."""
+    qj = q[..., jk.columns]
+    if jk.type == "U":
+        return lie.exp(jk.basis[0] * qj[..., 0, None]) @ lie.exp(jk.basis[1] * qj[..., 1, None])
+    return lie.exp(qj @ jk.basis)
+
+
+def poses(model: Any, q: np.ndarray, bodies: Any = None) -> dict[str, np.ndarray]:
+    """The pose of every user body (ground = identity) from the spanning tree, or only of
+    ``bodies`` and those on their tree paths: (..., 4, 4) for q of shape (..., n)."""
+    mech = model.mech
+    eye = model.backend.eye(4)
+    batch = q.shape[:-1]
+    if batch:
+        eye = np.broadcast_to(eye, batch + (4, 4))
+    out: dict[str, np.ndarray] = {mech.ground: eye}
+    elements: dict[str, np.ndarray] = {}
+    paths = mech.graph.tree_paths
+    if bodies is None:
+        wanted = None
+    else:
+        wanted = set()
+        for body in bodies:
+            here = mech.ground
+            for st in paths[body]:
+                jk = model.joint(st.joint)
+                here = jk.b if st.sign > 0 else jk.a
+                wanted.add(here)
+    for body, steps in sorted(paths.items(), key=lambda kv: len(kv[1])):
+        if body in out or not steps or (wanted is not None and body not in wanted):
+            continue
+        last = steps[-1]
+        if last.part is not None:
+            continue  # hidden cross bodies: see current_screws
+        prev = out[_parent(model, steps)]
+        jk = model.joint(last.joint)
+        if last.joint not in elements:
+            elements[last.joint] = element(jk, q)
+        M = elements[last.joint]
+        out[body] = prev @ (M if last.sign > 0 else lie.inverse(M))
+    return out
+
+
+def _parent(model: Any, steps: tuple) -> str:
+    """The body reached by all steps but the last."""
+    body = model.mech.ground
+    for st in steps[:-1]:
+        jk = model.joint(st.joint)
+        body = jk.b if st.sign > 0 else jk.a
+    return body
+
+
+def current_screws(
+    model: Any,
+    q: np.ndarray,
+    body_poses: dict[str, np.ndarray] | None = None,
+    joints: list[Any] | None = None,
+) -> np.ndarray:
+    """The current screw of every joint coordinate: (..., 6, n), columns in file order.
+
+    With ``joints``, only theirs (the other columns zero; ``body_poses`` then needs only
+    the poses of their ``between[0]`` bodies)."""
+    body_poses = poses(model, q) if body_poses is None else body_poses
+    cols = []
+    for jk in model.joints if joints is None else joints:
+        ga = body_poses[jk.a]
+        if jk.type == "U":
+            qa = q[..., jk.columns.start, None]
+            cols.append(lie.act_screw(ga, jk.basis[0]))
+            cols.append(lie.act_screw(ga @ lie.exp(jk.basis[0] * qa), jk.basis[1]))
+        elif ga.ndim == 2:  # one configuration: (k, 6)
+            cols.extend(lie.act_screw(ga, jk.basis))
+        else:  # a batch: (N, k, 6), one current screw per basis screw of the joint
+            cols.extend(np.moveaxis(lie.act_screw(ga[..., None, :, :], jk.basis), -2, 0))
+    if joints is not None:
+        out = model.backend.zeros(q.shape[:-1] + (6, model.n))
+        where = [c for jk in joints for c in range(jk.columns.start, jk.columns.stop)]
+        if cols:
+            out[..., where] = np.stack(cols, axis=-1)
+        return out
+    if not cols:
+        return model.backend.zeros(q.shape[:-1] + (6, 0))
+    return np.stack(cols, axis=-1)
+
+
+class SerialJacobian:
+    """Commensurate Jacobians of a serial chain of one-dof joints, batched.
+
+    The chain: the tree path from ground to one body, every joint crossed forward
+    (``sign > 0``) and of one degree of freedom.  The pose (R, P) is carried in the
+    commensurate frame (origin at the centroid, lengths / L: an automorphism of D,
+    so exp and Ad commute with it).  For each joint with unit screw ``(u, v)`` (or
+    ``u = 0``), one product ``R @ [K, K^2, K a, K^2 a, u, v]`` (``K = u^``, axis
+    point ``a = u x v``, pitch ``h = u . v``) gives its current screw
+    ``(R u, R v + P x R u)`` and the next pose by the Rodrigues form of
+    :func:`mechsing.lie.exp` composed on the right: ``R + sin R K + (1 - cos) R K^2``,
+    ``P - sin R K a - (1 - cos) R K^2 a + h theta R u``.
+
+    Parameters
+    ----------
+    model : KinematicModel (float)
+    joints : the chain's joints, ground first
+    order : the chain's coordinate columns (the matrix's column order)
+    point : an output point on the last body (m), or None for its twist
+    """
+
+    def __init__(
+        self, model: Any, joints: list[Any], order: list[int], point: np.ndarray | None
+    ) -> None:
+        L, c = model.length_scale, model.centroid
+        self.length_scale = L
+        self.centroid = c
+        self.columns = len(order)
+        self.point = point
+        self.length_columns = np.asarray(model.length_columns[order], dtype=bool)
+        self._table = []
+        for jk in joints:
+            e = scale_screws(np.asarray(jk.basis, dtype=float)[0][:, None], L, c)[:, 0]
+            u, v = e[ANGULAR], e[LINEAR]
+            K = lie.hat(np.concatenate([u, np.zeros(3)]))[:3, :3]
+            K2 = K @ K
+            a = np.cross(u, v)
+            h = float(u @ v)
+            # columns: K, K^2 (rotation update), K a, K^2 a (translation update), u, v
+            T = np.concatenate(
+                [K, K2, (K @ a)[:, None], (K2 @ a)[:, None], u[:, None], v[:, None]], axis=1
+            )
+            start = jk.columns.start
+            self._table.append((start, order.index(start), T, h, bool(np.any(u))))
+
+    @staticmethod
+    def applies(model: Any, body: str, joints: list[Any]) -> bool:
+        """Is the chain ``joints`` the forward tree path from ground to ``body`` of one-dof joints?"""
+        steps = model.mech.graph.tree_paths[body]
+        if any(st.sign < 0 or st.part is not None for st in steps):
+            return False
+        path = [model.joint(st.joint) for st in steps]
+        return all(jk.basis.shape[0] == 1 and jk.type != "U" for jk in path) and {
+            jk.name for jk in path
+        } == {jk.name for jk in joints}
+
+    def __call__(self, Q: np.ndarray) -> np.ndarray:
+        """The commensurate matrices (N, 6 or 3, columns) at the rows of Q."""
+        n = Q.shape[0]
+        J = np.empty((n, 6, self.columns))
+        R = np.broadcast_to(np.eye(3), (n, 3, 3)).copy()
+        P = np.zeros((n, 3))
+        last = len(self._table) - 1
+        for i, (col, pos, T, h, rotates) in enumerate(self._table):
+            RT = (R.reshape(-1, 3) @ T).reshape(n, 3, T.shape[1])
+            w = RT[:, :, 8]
+            J[:, :3, pos] = w
+            J[:, 3:, pos] = RT[:, :, 9] + _cross(P, w)
+            if i == last and self.point is None:
+                break
+            th = Q[:, col]
+            if rotates:
+                s = np.sin(th)
+                c1 = 1.0 - np.cos(th)
+                R = R + s[:, None, None] * RT[:, :, 0:3] + c1[:, None, None] * RT[:, :, 3:6]
+                P = P - s[:, None] * RT[:, :, 6] - c1[:, None] * RT[:, :, 7]
+                if h:
+                    P = P + (h * th)[:, None] * w
+            else:
+                P = P + th[:, None] * RT[:, :, 9]
+        lc = self.length_columns
+        if self.point is not None:
+            x = (self.point - self.centroid) / self.length_scale
+            X = R @ x + P
+            w = J[:, :3, :]
+            vel = J[:, 3:, :] + np.cross(w, X[:, :, None], axis=1)
+            J = np.ascontiguousarray(vel)
+        if np.any(lc):
+            J[:, :, lc] *= self.length_scale
+        return J
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b for (N, 3) arrays (faster than np.cross or lie.cross on small rows)."""
+    out = np.empty_like(b)
+    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
+    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
+    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    return out
