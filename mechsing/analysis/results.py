@@ -21,6 +21,7 @@ from mechsing.singularity.findings import (
     Finding,
     UndecidedFinding,
 )
+from mechsing.subgroups import Subgroup
 
 __all__ = [
     "AnalysisResult",
@@ -65,7 +66,7 @@ class LoopEntry:
     (None when not identified: ``status`` says why), its rank and singular values."""
 
     joints: tuple[str, ...]
-    subgroup: Any
+    subgroup: Subgroup | None
     rank: int | None
     sigma: tuple[float, ...] | None
     margin: Margin
