@@ -27,7 +27,8 @@ import numpy as np
 import pytest
 
 import mechsing
-from mechsing.numeric import FLOAT_ROUNDING_FACTOR, decide_rank, float_drop_is_real
+from mechsing.analysis.contract import to_json
+from mechsing.numeric import FLOAT_ROUNDING_FACTOR, Margin, decide_rank, float_drop_is_real
 from tests import families as fam
 from tests.cli import cli_json
 from tests.mechanisms import EXAMPLES, by_name, classes, write
@@ -138,7 +139,8 @@ def test_rounding_bound_of_a_float_decision() -> None:
     assert real.rank == 5  # float's two thresholds: 1e-14 / 3 is below tau_lo
     assert real.margin.rounding == pytest.approx(eps * np.linalg.norm(with_sigma(1e-14)))
     assert float_drop_is_real(real.margin)
-    assert float_drop_is_real(real.margin.to_json())  # the JSON record says the same
+    # the JSON record says the same: its margin carries what the test reads
+    assert float_drop_is_real(Margin(**to_json(real.margin)))
     assert not float_drop_is_real(real.margin, data_error=1e-14)
     noise = decide_rank(with_sigma(0.0), "float")
     assert noise.rank == 5 and not float_drop_is_real(noise.margin)

@@ -2,9 +2,9 @@
 
 Owns :class:`ConfigurationResult` and :class:`AnalysisResult` with their records (the closure
 rank, a loop's entry, the mobility, the mechanism-level properties) and :func:`to_json`, the
-only place where the JSON contract is built: configurations, findings, rank decisions, margins,
-mobility and properties are read from their types here (keys in the contract's order).  The
-renderers of :mod:`mechsing.report` read this output.
+one entry of the JSON contract: it serializes these types here and hands the values they hold
+(findings, rank decisions, margins, subgroups) to :mod:`mechsing.analysis.contract`, which
+builds the JSON of every lower layer's value (keys in the contract's order).
 """
 
 from __future__ import annotations
@@ -12,18 +12,16 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from mechsing.analysis import contract
 from mechsing.model import Mechanism
 from mechsing.numeric import Margin, Precision
 from mechsing.singularity.findings import (
-    BranchFinding,
     Classification,
-    ConstraintFinding,
     Decision,
     Finding,
-    MotionFinding,
-    SerialFinding,
     UndecidedFinding,
 )
+from mechsing.subgroups import Subgroup
 
 __all__ = [
     "AnalysisResult",
@@ -68,7 +66,7 @@ class LoopEntry:
     (None when not identified: ``status`` says why), its rank and singular values."""
 
     joints: tuple[str, ...]
-    subgroup: Any
+    subgroup: Subgroup | None
     rank: int | None
     sigma: tuple[float, ...] | None
     margin: Margin
@@ -216,32 +214,18 @@ class AnalysisResult:
 
 
 def to_json(x: Any) -> Any:
-    """The JSON contract of a result, a finding, a decision, a margin, a mobility or a
-    property (plain dicts and lists, keys in the contract's order)."""
+    """The JSON contract of a result, a configuration, a mobility or a property, and of
+    every value they hold (findings, decisions, margins, subgroups: :mod:`.contract`),
+    as plain dicts and lists with keys in the contract's order."""
     if isinstance(x, AnalysisResult):
         return _analysis(x)
     if isinstance(x, ConfigurationResult):
         return _configuration(x)
-    if isinstance(x, Margin):
-        return _margin(x)
-    if isinstance(x, Decision):
-        return _decision(x)
     if isinstance(x, Mobility):
         return _mobility(x)
-    if isinstance(x, SerialFinding | BranchFinding | MotionFinding | ConstraintFinding):
-        return _finding(x)
-    if isinstance(x, UndecidedFinding):
-        return _undecided(x)
     if isinstance(x, Overconstrained | Shaky | IdleMotion | Actuation):
         return _property(x)
-    raise TypeError(f"no JSON form for {type(x).__name__}")
-
-
-def _lists(x: Any) -> Any:
-    """Tuples (the types' immutable sequences) as JSON lists."""
-    if isinstance(x, tuple):
-        return [_lists(v) for v in x]
-    return x
+    return contract.to_json(x)
 
 
 def _analysis(r: AnalysisResult) -> dict[str, Any]:
@@ -273,12 +257,12 @@ def _configuration(c: ConfigurationResult) -> dict[str, Any]:
             "closure_residual": c.closure_residual,
             "closure_rank": None
             if cr is None
-            else {"rank": cr.rank, "nullity": cr.nullity, "margin": _margin(cr.margin)},
+            else {"rank": cr.rank, "nullity": cr.nullity, "margin": contract.to_json(cr.margin)},
             "loops": [_loop(lp) for lp in c.loops],
             "mobility": {} if c.mobility is None else _mobility(c.mobility),
             "singular": c.singular,
-            "singularities": [to_json(f) for f in c.singularities],
-            "decisions": [_decision(d) for d in c.decisions],
+            "singularities": [contract.to_json(f) for f in c.singularities],
+            "decisions": [contract.to_json(d) for d in c.decisions],
         }
     )
     if c.underdetermined:
@@ -289,17 +273,12 @@ def _configuration(c: ConfigurationResult) -> dict[str, Any]:
 
 
 def _loop(lp: LoopEntry) -> dict[str, Any]:
-    sub = (
-        lp.subgroup.to_json()
-        if lp.subgroup is not None
-        else {"type": None, "dim": None, "params": {}}
-    )
     entry: dict[str, Any] = {
         "joints": list(lp.joints),
-        "subgroup": sub,
+        "subgroup": contract.subgroup_json(lp.subgroup),
         "rank": lp.rank,
         "sigma": list(lp.sigma) if lp.sigma is not None else None,
-        "margin": _margin(lp.margin),
+        "margin": contract.to_json(lp.margin),
     }
     if lp.status is not None:
         entry["subgroup_status"] = lp.status
@@ -314,131 +293,6 @@ def _mobility(m: Mobility) -> dict[str, Any]:
         "generic": m.generic,
         "finite": m.finite,
     }
-
-
-def _margin(m: Margin | None) -> dict[str, Any] | None:
-    """How far a decision was from flipping: kept, dropped, thresholds and length scale,
-    then sigma_max, rounding and eig_margin where known."""
-    if m is None:
-        return None
-    d: dict[str, Any] = {
-        "kept": m.kept,
-        "dropped": m.dropped,
-        "tau_lo": m.tau_lo,
-        "tau_hi": m.tau_hi,
-        "length_scale": m.length_scale,
-    }
-    if m.sigma_max is not None:
-        d["sigma_max"] = m.sigma_max
-    if m.rounding is not None:
-        d["rounding"] = m.rounding
-    if m.eig_margin is not None:
-        d["eig_margin"] = m.eig_margin
-    return d
-
-
-def _decision(d: Decision) -> dict[str, Any]:
-    out: dict[str, Any] = {"test": d.test, "rank": d.rank}
-    if d.rank_bounds is not None:
-        out["rank_bounds"] = list(d.rank_bounds)
-    if d.generic is not None:
-        out["generic"] = d.generic
-    out["margin"] = _margin(d.margin)
-    out["precision"] = d.precision
-    if d.note is not None:
-        out["note"] = d.note
-    return out
-
-
-def _decided(f: Any, out: dict[str, Any]) -> dict[str, Any]:
-    """The closing keys of a decided finding: margin, precision, test precision."""
-    out["margin"] = _margin(f.margin)
-    out["precision"] = f.precision
-    if getattr(f, "test_precision", None) is not None:
-        out["test_precision"] = f.test_precision
-    return out
-
-
-def _finding(
-    f: SerialFinding | BranchFinding | MotionFinding | ConstraintFinding,
-) -> dict[str, Any]:
-    out: dict[str, Any] = {"class": f.cls}
-    if isinstance(f, SerialFinding):
-        out["chain"] = f.chain
-        if f.chain == "leg":
-            out["leg"] = f.leg
-        else:
-            out["body"] = f.body
-            out["relative_to"] = f.relative_to
-        out.update(
-            {
-                "joints": list(f.joints),
-                "corank": f.corank,
-                "rank": f.rank,
-                "generic_rank": f.generic_rank,
-                "wrenches": _lists(f.wrenches),
-                "twist": list(f.twist),
-                "null_joint_rates": list(f.null_joint_rates),
-            }
-        )
-        return _decided(f, out)
-    out["joints"] = list(f.joints)
-    if isinstance(f, BranchFinding):
-        out["order"] = f.order
-        if f.cls == "bifurcation":
-            keys = (
-                "branches",
-                "branch_tangents",
-                "branch_mobility",
-                "branch_dimensions",
-                "instantaneous",
-                "kinematotropic",
-            )
-        elif f.cls == "increased-mobility":
-            keys = ("instantaneous", "generic", "branch_tangents")
-        else:  # isolated, degenerate
-            keys = ("instantaneous", "branch_tangents", "note")
-        for k in keys:
-            v = getattr(f, k)
-            if v is not None:
-                out[k] = _lists(v)
-        return _decided(f, out)
-    if isinstance(f, MotionFinding):
-        if f.rank is not None:  # impossible-input, impossible-output
-            out["rank"] = f.rank
-            out["generic"] = f.generic
-        else:
-            out["dimension"] = f.dimension
-            out["generic"] = f.generic
-            out["joint_rates"] = _lists(f.joint_rates)
-            if f.output_twist is not None:
-                out["output_twist"] = list(f.output_twist)
-        return _decided(f, out)
-    out.update(
-        {
-            "rank": f.rank,
-            "generic_rank": f.generic_rank,
-            "corank": f.corank,
-            "wrenches": _lists(f.wrenches),
-        }
-    )
-    return _decided(f, out)
-
-
-def _undecided(f: UndecidedFinding) -> dict[str, Any]:
-    out: dict[str, Any] = {
-        "class": "undecided",
-        "what": f.what,
-        "rank_bounds": None if f.rank_bounds is None else list(f.rank_bounds),
-    }
-    if f.subject == "configuration":
-        # no rank in question: why the configuration itself is too coarse comes first
-        out["note"] = f.note
-    out["margin"] = _margin(f.margin)
-    out["precision"] = f.precision
-    if f.subject != "configuration" and f.note is not None:
-        out["note"] = f.note
-    return out
 
 
 def _property(p: Property) -> dict[str, Any]:

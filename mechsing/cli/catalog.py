@@ -72,6 +72,7 @@ def _universal_joint(fmt: str) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    from mechsing.analysis.contract import to_json
     from mechsing.subgroups import load_catalog
 
     cat = load_catalog()
@@ -88,7 +89,7 @@ def run(args: argparse.Namespace) -> int:
     else:
         types = list(cat.values())
     if args.format == "json":
-        print(json.dumps([t.to_json() for t in types], indent=2, ensure_ascii=False))
+        print(json.dumps([to_json(t) for t in types], indent=2, ensure_ascii=False))
         return 0
     if args.type is None:
         width = max(len(t.symbol) for t in types)

@@ -69,6 +69,7 @@ def parse_screws(texts: list[str]) -> tuple[np.ndarray, bool]:
 
 
 def run(args: argparse.Namespace) -> int:
+    from mechsing.analysis.contract import subgroup_params, to_json
     from mechsing.numeric import parse_precision, to_float
     from mechsing.subgroups import identify
 
@@ -87,14 +88,13 @@ def run(args: argparse.Namespace) -> int:
         precision = "exact" if rational else "auto"
     data = screws if precision == "exact" else np.asarray(to_float(screws))
     result = identify(data, length_scale=L, precision=precision)
-    out = result.to_json()
     if args.format == "json":
-        print(json.dumps(out, indent=2))
+        print(json.dumps(to_json(result), indent=2))
         return 0
     exact = result.precision == "exact"
     if result.ok and result.subgroup is not None:
-        print(f"{out['type']} (dimension {out['dim']})")
-        params = result.subgroup.params if exact else out["params"]
+        print(f"{result.subgroup.symbol} (dimension {result.subgroup.dim})")
+        params = result.subgroup.params if exact else subgroup_params(result.subgroup)
         for name, val in params.items():
             print(f"  {name}: {_shown(val, exact)}")
     else:
@@ -103,16 +103,14 @@ def run(args: argparse.Namespace) -> int:
             print(f"  dimension between {result.dim_bounds[0]} and {result.dim_bounds[1]}")
     print(f"  precision: {result.precision}")
     print("  bracket norms: " + (", ".join(f"{x:.3g}" for x in result.bracket_norms) or "none"))
-    m = out["margin"]
+    m = result.margin
     if exact:
-        print(
-            f"  margin: exact ranks; smallest kept pivot {_num(m['kept'])} (L {m['length_scale']:g})"
-        )
+        print(f"  margin: exact ranks; smallest kept pivot {_num(m.kept)} (L {m.length_scale:g})")
     else:
-        dropped = "nothing dropped" if m["dropped"] is None else f"dropped {_num(m['dropped'])}"
+        dropped = "nothing dropped" if m.dropped is None else f"dropped {_num(m.dropped)}"
         print(
-            f"  margin: kept {_num(m['kept'])}, {dropped} "
-            f"(tau_lo {m['tau_lo']:g}, tau_hi {m['tau_hi']:g}, L {m['length_scale']:g})"
+            f"  margin: kept {_num(m.kept)}, {dropped} "
+            f"(tau_lo {m.tau_lo:g}, tau_hi {m.tau_hi:g}, L {m.length_scale:g})"
         )
     return 0
 
@@ -127,7 +125,9 @@ def _shown(val: object, exact: bool) -> str:
         import sympy
 
         items = list(val) if isinstance(val, list | tuple | np.ndarray) else [val]
-        return ", ".join(sympy.sstr(sympy.nsimplify(x) if isinstance(x, float) else x) for x in items)
+        return ", ".join(
+            sympy.sstr(sympy.nsimplify(x) if isinstance(x, float) else x) for x in items
+        )
     if isinstance(val, list):
         return ", ".join(f"{x:.12g}" for x in val)
     return f"{val:.12g}"

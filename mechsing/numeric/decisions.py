@@ -47,22 +47,6 @@ class Margin:
     sigma_max: float | None = None
     rounding: float | None = None
 
-    def to_json(self) -> dict[str, Any]:
-        d: dict[str, Any] = {
-            "kept": self.kept,
-            "dropped": self.dropped,
-            "tau_lo": self.tau_lo,
-            "tau_hi": self.tau_hi,
-            "length_scale": self.length_scale,
-        }
-        if self.sigma_max is not None:
-            d["sigma_max"] = self.sigma_max
-        if self.rounding is not None:
-            d["rounding"] = self.rounding
-        if self.eig_margin is not None:
-            d["eig_margin"] = self.eig_margin
-        return d
-
 
 @dataclass(frozen=True)
 class RankDecision:
@@ -88,21 +72,6 @@ class RankDecision:
     @property
     def decided(self) -> bool:
         return self.rank is not None
-
-    def record(self, test: str, generic: int | None = None) -> dict[str, Any]:
-        """This decision as an entry of a configuration's ``decisions`` (JSON): the test
-        (``closure``, ``loop A-B-C-D``, ``output chain``, ``leg k chain``, ``input``,
-        ``output``, ``impossible-input``, ``impossible-output``, ``constraint``), its
-        rank (with ``rank_bounds`` when undecided), the ``generic`` value it is measured
-        against where there is one, its margin and the precision that decided it."""
-        d: dict[str, Any] = {"test": test, "rank": self.rank}
-        if self.rank is None:
-            d["rank_bounds"] = list(self.rank_bounds)
-        if generic is not None:
-            d["generic"] = generic
-        d["margin"] = self.margin.to_json()
-        d["precision"] = self.precision
-        return d
 
 
 def decide_nonzero(value: Any, prec: Precision) -> bool | None:
@@ -277,7 +246,7 @@ def decide_rank(
     return RankDecision(rank, sigma, margin, str(prec), bounds, ns, rs, ls)
 
 
-def float_drop_is_real(margin: Margin | dict[str, Any], data_error: float = 0.0) -> bool:
+def float_drop_is_real(margin: Margin, data_error: float = 0.0) -> bool:
     """Did a float rank decision drop a singular value that float itself sees is not zero?
 
     True when the largest dropped singular value exceeds :data:`FLOAT_ROUNDING_FACTOR`
@@ -286,10 +255,8 @@ def float_drop_is_real(margin: Margin | dict[str, Any], data_error: float = 0.0)
     closure residual divided by the characteristic length).  Such a drop is decided by the
     two thresholds but not by the data: ``auto`` re-decides it at mp:50, as it does an
     undecided rank.  False for mp and exact decisions, and when nothing was dropped.
-    ``margin`` is a :class:`Margin` or its JSON (a decision record's ``margin``).
     """
-    m = margin.to_json() if isinstance(margin, Margin) else margin
-    rounding, dropped, smax = m.get("rounding"), m.get("dropped"), m.get("sigma_max")
+    rounding, dropped, smax = margin.rounding, margin.dropped, margin.sigma_max
     if rounding is None or dropped is None or not smax:
         return False
     return dropped > FLOAT_ROUNDING_FACTOR * (rounding + data_error * smax)

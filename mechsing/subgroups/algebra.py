@@ -81,27 +81,6 @@ class Identification:
     def ok(self) -> bool:
         return self.status == "ok"
 
-    def to_json(self) -> dict[str, Any]:
-        sub = (
-            self.subgroup.to_json()
-            if self.subgroup is not None
-            else {"type": None, "dim": None, "params": {}}
-        )
-        out = dict(sub)
-        out.update(
-            {
-                "bracket_norms": [float(x) for x in self.bracket_norms],
-                "margin": self.margin.to_json(),
-                "status": self.status,
-                "precision": self.precision,
-            }
-        )
-        if self.message:
-            out["message"] = self.message
-        if self.dim_bounds is not None:
-            out["dim_bounds"] = list(self.dim_bounds)
-        return out
-
 
 class _Margins:
     def __init__(self, prec: Precision, L: float):
@@ -465,12 +444,6 @@ class Intersection:
     def subgroup(self) -> Subgroup | None:
         return self.identification.subgroup
 
-    def to_json(self) -> dict[str, Any]:
-        out = self.identification.to_json()
-        out["extra_components"] = self.extra_components
-        out["note"] = self.note
-        return out
-
 
 def intersect(
     a: Subgroup, b: Subgroup, length_scale: float | None = None, precision: Any = None
@@ -585,15 +558,6 @@ class Product:
     generated: Identification
     set_dimension: int | None
     note: str
-
-    def to_json(self) -> dict[str, Any]:
-        return {
-            "is_subgroup": self.is_subgroup,
-            "subgroup": self.subgroup.to_json() if self.subgroup is not None else None,
-            "generated": self.generated.to_json(),
-            "set_dimension": self.set_dimension,
-            "note": self.note,
-        }
 
 
 def product(

@@ -73,8 +73,8 @@ class Subgroup:
     Examples
     --------
     >>> r = Subgroup("R", axis=[0, 0, 2], point=[1, 0, 0])
-    >>> r.to_json()
-    {'type': 'R', 'dim': 1, 'params': {'axis': [0.0, 0.0, 1.0], 'point': [1.0, 0.0, 0.0]}}
+    >>> r.symbol, r.dim, [float(x) for x in r.params["axis"]]
+    ('R', 1, [0.0, 0.0, 1.0])
     """
 
     def __init__(
@@ -248,15 +248,6 @@ class Subgroup:
         return isinstance(other, Subgroup) and self.equals(other)
 
     __hash__ = None  # type: ignore[assignment]  # equality has a tolerance
-
-    def to_json(self) -> dict[str, Any]:
-        """``{"type", "dim", "params"}`` with canonical parameters, as floats (SI)."""
-        c = self.canonical()
-        params: dict[str, Any] = {}
-        for k, v in c.params.items():
-            f = to_float(v)
-            params[k] = [float(x) + 0.0 for x in f] if np.ndim(f) else float(f) + 0.0
-        return {"type": self.symbol, "dim": self.dim, "params": params}
 
     # -- membership -----------------------------------------------------------
 

@@ -263,20 +263,6 @@ class SubgroupType:
         """Dimension of the rotation part (projection of the algebra to so(3))."""
         return int(np.linalg.matrix_rank(self.basis(_sample_params(self))[:, ANGULAR]))
 
-    def to_json(self) -> dict[str, Any]:
-        return {
-            "symbol": self.symbol,
-            "name": self.name,
-            "dimension": self.dimension,
-            "parameters": [{"name": n, "kind": k} for n, k in self.parameters],
-            "basis": [{"omega": w, "v": v} for w, v in self.basis_text],
-            "coordinates": [{"name": n, "unit": u} for n, u in self.coordinates],
-            "normal_in_D": self.normal_in_D,
-            "invariants": list(self.invariants),
-            "joints": list(self.joints),
-            "explanation": self.explanation.strip(),
-        }
-
 
 def _sample_params(t: SubgroupType) -> dict[str, Any]:
     """Generic float parameters (used to compute structural facts of a type)."""
