@@ -4,8 +4,8 @@ Every instance is built from its geometry with exact rationals (``fractions.Frac
 as ``"p/q"`` strings that the loader reads exactly) or, where a configuration off a singular one
 needs irrational joint values, with closed forms evaluated by mpmath at 60 digits and written
 with 40 significant digits (they close to about 1e-40, far below the float and mp:50 closure
-tolerances of DESIGN.md).  The expected answers are derived here from the geometry, never from
-mechsing:
+tolerances, 1e-12 L and 1e-35 L).  The expected answers are derived here from the geometry, never
+from mechsing:
 
 * :func:`changepoint_fourbar`, :func:`parallelogram_fourbar`: planar 4R at the Grashof change
   point, folded flat (all joints collinear) at the reference; configurations off the fold by a
@@ -14,13 +14,14 @@ mechsing:
 * :func:`stretched_fourbar`: a + b + c = g, the only configuration is the stretched one;
 * :func:`rpr_concurrent`: 3-RPR with the three leg lines through one point O at the reference,
   pushed poses with the legs re-derived (angles by atan2, lengths by norms);
-* :func:`bennett`: Bennett linkage from rational tan(alpha/2), tan(beta/2), a (theory.md 5.4);
+* :func:`bennett`: Bennett linkage from rational tan(alpha/2), tan(beta/2), a (Bennett 1903);
   every configuration from the Bennett relation with rational tan(theta1/2), closure checked
   exactly here;
 * :func:`tsai_coplanar`: 3-UPU (Tsai's axis conditions) whose leg constraint couples
   n_i = s_i1 x s_i2 are coplanar at the reference; platform translations off it, the U angles
   from the leg directions in closed form;
-* :func:`isosceles_slider_crank`, :func:`degenerate_triangle`: theory.md section 6 rows 7 and 4;
+* :func:`isosceles_slider_crank`, :func:`degenerate_triangle`: the isosceles
+  slider-crank r = l, e = 0 (two branches cross) and the flat 3R triangle a + b = c (rigid);
 * :func:`arm_jacobian`: spatial joint screws of UR5 / PUMA 560 from their DH tables (as in the
   example headers), for the serial checks.
 """
@@ -564,7 +565,7 @@ def tsai_coplanar(rng: np.random.Generator) -> Tsai:
         return Tsai(A, ls, s1s, ns, m)
 
 
-# ----------------------------------------------------------------------------- theory.md section 6 rows 4 and 7
+# ------------------------------------------------------------ isosceles slider-crank, flat triangle
 
 
 def isosceles_slider_crank(r: F) -> str:
@@ -678,7 +679,7 @@ def arm_screws(arm: str, theta) -> mpmath.matrix:
 
 
 def arm_factors(arm: str, th) -> dict[str, mpmath.mpf]:
-    """The factors of det J (theory.md section 4.1)."""
+    """The factors of det J (the example headers: UR5 from UR's DH table, PUMA 560 Craig's)."""
     if arm == "ur5":
         a2, a3, d5 = UR5_DH["a"][1], UR5_DH["a"][2], UR5_DH["d"][4]
         return {
