@@ -5,7 +5,8 @@
   configurations that are regular points of the configuration space, published closure ranks).
 * :func:`run_cli`: ``mechsing.cli.main`` in-process with standard output captured.
 * :func:`scaled_text`: a mechanism file with every length multiplied by a factor, written from the
-  file's own text (numbers keep the text they were written with; lengths become exact expressions).
+  file's own text (numbers keep the text they were written with; lengths become exact expressions);
+  :func:`scaled_file` writes it once per example and scale (:data:`SCALES`).
 * :func:`changepoint_family`: a Grashof change-point four-bar and configurations approaching its flat
   (singular) configuration along both motion branches, joint values derived here in closed form with
   mpmath, plus the closure-system singular values computed independently of mechsing in the
@@ -279,6 +280,19 @@ def scaled_text(path: Path, factor: str) -> str:
             elif lengths[0]:
                 cfg[name] = _scale(value, factor)
     return yaml.dump(data, Dumper=_Dumper, sort_keys=False, width=10_000)
+
+
+#: the scales of the scale-invariance tests: name -> (k, the factor written after each length)
+SCALES = {"1e-6": (1e-6, "/1000000"), "1e6": (1e6, "*1000000")}
+
+
+def scaled_file(directory: Path, name: str, scale: str) -> Path:
+    """The example ``name`` with every length times ``SCALES[scale]`` in ``directory`` (the
+    session's ``scaled_dir``), written on first use."""
+    path = directory / f"{Path(name).stem}_{scale}.yaml"
+    if not path.exists():
+        path.write_text(scaled_text(EXAMPLES / name, SCALES[scale][1]))
+    return path
 
 
 # ----------------------------------------------------------------------------- transversal family

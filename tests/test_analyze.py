@@ -25,6 +25,7 @@ from tests.mechanisms import (
     EXAMPLES,
     LENGTH_COORDS,
     PUBLISHED,
+    SCALES,
     all_axis_points_at_origin,
     analyze_json,
     analyze_text,
@@ -34,7 +35,7 @@ from tests.mechanisms import (
     classes,
     configuration_names,
     joint_types,
-    scaled_text,
+    scaled_file,
     total_dof,
 )
 
@@ -184,13 +185,6 @@ def test_overconstrained_property(name: str) -> None:
 
 # ============================================================================ 2. scale invariance
 
-SCALES = {"1e-6": (1e-6, "/1000000"), "1e6": (1e6, "*1000000")}
-
-
-@pytest.fixture(scope="session")
-def scaled_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return tmp_path_factory.mktemp("scaled")
-
 
 def _close(a: float | None, b: float | None, tol: float) -> bool:
     if a is None or b is None:
@@ -202,9 +196,8 @@ def _close(a: float | None, b: float | None, tol: float) -> bool:
 @pytest.mark.parametrize("name", EXAMPLE_FILES)
 def test_scale_invariance(name: str, scale: str, scaled_dir: Path) -> None:
     """All lengths times k: same verdicts, sigma within 1e-10 of the largest, L times k."""
-    k, factor = SCALES[scale]
-    path = scaled_dir / f"{Path(name).stem}_{scale}.yaml"
-    path.write_text(scaled_text(EXAMPLES / name, factor))
+    k = SCALES[scale][0]
+    path = scaled_file(scaled_dir, name, scale)
     base = analyze_json(EXAMPLES / name)
     res = analyze_json(path)
 

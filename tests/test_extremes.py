@@ -52,18 +52,19 @@ from tests.mechanisms import (
     EXAMPLES,
     LENGTH_COORDS,
     PUBLISHED,
+    SCALES,
     all_axis_points_at_origin,
     analyze_json,
     by_name,
     classes,
     configuration_names,
     joint_types,
-    scaled_text,
+    scaled_file,
     total_dof,
     write,
 )
 from tests.reference.expressions import evaluate
-from tests.reference.se3 import hat
+from tests.reference.se3 import hat, wrap
 
 EPS = float(np.finfo(float).eps)
 EXAMPLE_FILES = sorted(p.name for p in EXAMPLES.glob("*.yaml"))
@@ -127,14 +128,7 @@ def mp_eval(expr: str | float):
     return evaluate(expr, funcs=funcs, const=mpmath.mpf, pi=mpmath.pi)
 
 
-def wrap(x: float) -> float:
-    """An angle modulo 2 pi, in (-pi, pi]."""
-    return math.remainder(x, 2 * math.pi)
-
-
 # ============================================================================ 1. scale 10^-6, 10^6
-
-SCALES = {"1e-6": (1e-6, "/1000000"), "1e6": (1e6, "*1000000")}
 
 #: configurations analysed at mp:30 and in exact mode (exactly given, cheap); float: all of them
 MP30_CONFIGS = {
@@ -186,18 +180,6 @@ def _options(mode: str, name: str, configs: list[str] | None = None) -> list[str
     for c in configs or []:
         opts += ["--config", c]
     return opts
-
-
-@pytest.fixture(scope="module")
-def scaled_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return tmp_path_factory.mktemp("extremes_scaled")
-
-
-def scaled_file(scaled_dir: Path, name: str, scale: str) -> Path:
-    path = scaled_dir / f"{Path(name).stem}_{scale}.yaml"
-    if not path.exists():
-        path.write_text(scaled_text(EXAMPLES / name, SCALES[scale][1]))
-    return path
 
 
 def _close_margin(m0: dict, m1: dict, kL: float, where: str) -> None:

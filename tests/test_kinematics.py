@@ -44,7 +44,7 @@ from tests.reference.kinematics import (
 )
 from tests.reference.kinematics import joints_from_model as joints_of
 from tests.reference.kinematics import poses as my_poses
-from tests.reference.se3 import exp_rodrigues, expt, in_plane, unit
+from tests.reference.se3 import exp_rodrigues, expt, in_plane, unit, wrap
 from tests.strategies import deltas, finite, planar_frame, plane_xy, rotation_vectors, trees
 from tests.strategies import file_axes as axes
 from tests.strategies import file_lengths as lengths
@@ -231,10 +231,6 @@ def spread(pts2) -> bool:
 
 # ---------------------------------------------------------------------------
 # 2a. planar four-bar: against the closed-form solution and its assembly mode
-
-
-def wrap(x):
-    return (x + PI) % (2 * PI) - PI
 
 
 @LOOP_SETTINGS

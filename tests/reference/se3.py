@@ -4,8 +4,8 @@ vectors and the in-plane directions of the conventions.
 Twists are (omega, v): angular part first.  :func:`skew`, :func:`hat`, :func:`inv`,
 :func:`unit`, :func:`in_plane`, :func:`revolute` and :func:`slide` keep the number type of their
 input (floats, or mpmath or sympy numbers in an object array), so one set serves the float checks
-and the multiprecision / exact ones; :func:`expm_mp` and :func:`rotation_mp`
-compute at mpmath's working precision.
+and the multiprecision / exact ones; :func:`expm_mp`, :func:`rodrigues_mp` and
+:func:`rotation_mp` compute at mpmath's working precision.
 """
 
 from __future__ import annotations
@@ -31,6 +31,11 @@ def sqrt(x: object) -> object:
     if isinstance(x, mpmath.mpf):
         return mpmath.sqrt(x)
     return math.sqrt(x)
+
+
+def wrap(x: float) -> float:
+    """An angle modulo 2 pi, in [-pi, pi]."""
+    return math.remainder(x, 2 * math.pi)
 
 
 def skew(w: Sequence | np.ndarray) -> np.ndarray:
@@ -86,14 +91,20 @@ def expm_mp(xi: Sequence | np.ndarray) -> np.ndarray:
     return np.array(mpmath.expm(X).tolist(), dtype=object)
 
 
-def rotation_mp(v: Sequence) -> np.ndarray:
-    """The rotation matrix of the rotation vector v (Rodrigues) at mpmath's working precision;
-    the entries of v are read as their decimal text."""
-    w = [mpmath.mpf(str(x)) for x in v]
-    t = mpmath.sqrt(mpmath.fsum(x * x for x in w))
-    K = mpmath.matrix(skew([x / t for x in w]).tolist())
+def rodrigues_mp(u: Sequence, t: object) -> np.ndarray:
+    """The rotation by t about the unit vector u (Rodrigues' formula) at mpmath's working
+    precision, as an object array of mpmath numbers."""
+    K = mpmath.matrix(skew(np.array([mpmath.mpf(x) for x in u], dtype=object)).tolist())
     R = mpmath.eye(3) + mpmath.sin(t) * K + (1 - mpmath.cos(t)) * K * K
     return np.array(R.tolist(), dtype=object)
+
+
+def rotation_mp(v: Sequence) -> np.ndarray:
+    """The rotation matrix of the rotation vector v at mpmath's working precision; the entries
+    of v are read as their decimal text."""
+    w = [mpmath.mpf(str(x)) for x in v]
+    t = mpmath.sqrt(mpmath.fsum(x * x for x in w))
+    return rodrigues_mp([x / t for x in w], t)
 
 
 def inv(g: np.ndarray) -> np.ndarray:
