@@ -117,7 +117,6 @@ def test_batch_shapes():
 # --- exact -----------------------------------------------------------------
 
 
-
 @settings(max_examples=60, deadline=None)
 @given(st.lists(rationals, min_size=3, max_size=3))
 def test_exact_rational_gibbs_vector(vals):

@@ -353,7 +353,9 @@ def _closed_values(path: Path, mode: str) -> tuple[dict, dict[str, list[mpmath.m
     from mechsing.kinematics import solve_configuration
     from mechsing.model import load
 
-    out = cli_json(["solve", str(path), "--config", "moved", "--precision", mode, "--format", "json"])
+    out = cli_json(
+        ["solve", str(path), "--config", "moved", "--precision", mode, "--format", "json"]
+    )
     model, closed = solve_configuration(load(str(path)), "moved", mode)
     q = {jk.name: list(closed.q[jk.columns]) for jk in model.joints}
     return out, q
