@@ -212,7 +212,7 @@ def _pin_model(mech, scanner: ChainScanner):
 
 
 def _decide_svd(J: np.ndarray) -> np.ndarray:
-    """Float two-threshold rule (DESIGN.md) on batched singular values."""
+    """Float two-threshold rule (tau_lo 1e-12, tau_hi 1e-9 of sigma_max) on batched sigmas."""
     s = np.linalg.svd(J, compute_uv=False)
     lo_rank, hi_rank = rank_bounds(s / s[:, :1], Precision("float").tolerances)
     return np.where(lo_rank == hi_rank, lo_rank, -1)

@@ -4,8 +4,8 @@ Every instance is built from its geometry with exact rationals (``fractions.Frac
 as ``"p/q"`` strings that the loader reads exactly) or, where a configuration off a singular one
 needs irrational joint values, with closed forms evaluated by mpmath at 60 digits and written
 with 40 significant digits (they close to about 1e-40, far below the float and mp:50 closure
-tolerances of DESIGN.md).  The expected answers are derived here from the geometry, never from
-mechsing:
+tolerances, 1e-12 L and 1e-35 L).  The expected answers are derived here from the geometry, never
+from mechsing:
 
 * :func:`changepoint_fourbar`, :func:`parallelogram_fourbar`: planar 4R at the Grashof change
   point, folded flat (all joints collinear) at the reference; configurations off the fold by a
@@ -14,13 +14,14 @@ mechsing:
 * :func:`stretched_fourbar`: a + b + c = g, the only configuration is the stretched one;
 * :func:`rpr_concurrent`: 3-RPR with the three leg lines through one point O at the reference,
   pushed poses with the legs re-derived (angles by atan2, lengths by norms);
-* :func:`bennett`: Bennett linkage from rational tan(alpha/2), tan(beta/2), a (theory.md 5.4);
+* :func:`bennett`: Bennett linkage from rational tan(alpha/2), tan(beta/2), a (Bennett 1903);
   every configuration from the Bennett relation with rational tan(theta1/2), closure checked
   exactly here;
 * :func:`tsai_coplanar`: 3-UPU (Tsai's axis conditions) whose leg constraint couples
   n_i = s_i1 x s_i2 are coplanar at the reference; platform translations off it, the U angles
   from the leg directions in closed form;
-* :func:`isosceles_slider_crank`, :func:`degenerate_triangle`: theory.md section 6 rows 7 and 4;
+* :func:`isosceles_slider_crank`, :func:`degenerate_triangle`: the isosceles
+  slider-crank r = l, e = 0 (two branches cross) and the flat 3R triangle a + b = c (rigid);
 * :func:`arm_jacobian`: spatial joint screws of UR5 / PUMA 560 from their DH tables (as in the
   example headers), for the serial checks.
 """
@@ -32,6 +33,8 @@ from fractions import Fraction as F
 
 import mpmath
 import numpy as np
+
+from tests.reference.se3 import rodrigues_mp, unit
 
 mpmath.mp.dps = 60
 
@@ -50,7 +53,8 @@ def d(x: mpmath.mpf | float) -> str:
     return '"' + mpmath.nstr(mpmath.mpf(x), 40, min_fixed=-50, max_fixed=50) + '"'
 
 
-def vec(v) -> str:
+def q_vec(v) -> str:
+    """A vector of exact rationals as a YAML list of quoted ``"p/q"`` strings."""
     return "[" + ", ".join(q(x) for x in v) + "]"
 
 
@@ -63,6 +67,16 @@ def rand_rational(rng: np.random.Generator, lo: int, hi: int, den: int = 6) -> F
 def angle_between(u0, u) -> mpmath.mpf:
     """Signed planar angle from u0 to u."""
     return mpmath.atan2(u0[0] * u[1] - u0[1] * u[0], u0[0] * u[0] + u0[1] * u[1])
+
+
+def _platform_tail(configs: dict[str, dict[str, str]]) -> list[str]:
+    """The end of a three-leg parallel mechanism's file: inputs P1, P2, P3, the platform as
+    output, the reference and ``configs`` (name -> {joint: value text})."""
+    lines = ["inputs: [P1, P2, P3]", "output: {body: platform}", "configurations:"]
+    lines.append("  reference: {}")
+    for name, vals in configs.items():
+        lines.append(f"  {name}: {{" + ", ".join(f"{k}: {v}" for k, v in vals.items()) + "}")
+    return lines
 
 
 # ----------------------------------------------------------------------------- planar 4R
@@ -213,11 +227,7 @@ class RPR:
                 f"  - {{name: P{k}, type: P, between: [cyl{k}, pis{k}], axis: [{q(bx - ax)}, {q(by - ay)}, 0]}}",
                 f"  - {{name: Rp{k}, type: R, between: [pis{k}, platform], axis: [0, 0, 1], point: [{q(bx)}, {q(by)}, 0]}}",
             ]
-        lines += ["inputs: [P1, P2, P3]", "output: {body: platform}", "configurations:"]
-        lines.append("  reference: {}")
-        for name, vals in configs.items():
-            lines.append(f"  {name}: {{" + ", ".join(f"{k}: {v}" for k, v in vals.items()) + "}")
-        return "\n".join(lines) + "\n"
+        return "\n".join(lines + _platform_tail(configs)) + "\n"
 
     def moved(self, turn: mpmath.mpf, shift: tuple[mpmath.mpf, mpmath.mpf]) -> dict[str, str]:
         """Joint values with the platform turned by ``turn`` about O and moved by ``shift``."""
@@ -385,7 +395,7 @@ class Bennett:
         for i in range(4):
             lines.append(
                 f"  - {{name: J{i + 1}, type: R, between: [{between[i][0]}, {between[i][1]}], "
-                f"axis: {vec(self.axes[i])}, point: {vec(self.points[i])}}}"
+                f"axis: {q_vec(self.axes[i])}, point: {q_vec(self.points[i])}}}"
             )
         lines += ["inputs: [J1]", "output: {body: link2}", "configurations:", "  reference: {}"]
         for name, vals in configs.items():
@@ -407,10 +417,6 @@ def bennett(rng: np.random.Generator) -> Bennett:
 # ----------------------------------------------------------------------------- Tsai 3-UPU
 
 
-def _cross(u, v):
-    return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
-
-
 def _dot(u, v):
     return sum(x * y for x, y in zip(u, v, strict=True))
 
@@ -428,7 +434,7 @@ class Tsai:
     m: tuple[F, F, F]  # normal of the plane of the n_i
 
     def s2(self, i: int):
-        return _cross(self.n[i], self.s1[i])
+        return tuple(np.cross(self.n[i], self.s1[i]))
 
     def yaml(self, configs: dict[str, dict[str, str]]) -> str:
         bodies = ["ground"] + [f"{x}{i}" for i in (1, 2, 3) for x in ("cyl", "pis")] + ["platform"]
@@ -439,15 +445,11 @@ class Tsai:
             B = tuple(a + x for a, x in zip(A, self.l[i], strict=True))
             s1, s2 = self.s1[i], self.s2(i)
             lines += [
-                f"  - {{name: U{k}a, type: U, between: [ground, cyl{k}], axes: [{vec(s1)}, {vec(s2)}], point: {vec(A)}}}",
-                f"  - {{name: P{k}, type: P, between: [cyl{k}, pis{k}], axis: {vec(self.l[i])}}}",
-                f"  - {{name: U{k}b, type: U, between: [pis{k}, platform], axes: [{vec(s2)}, {vec(s1)}], point: {vec(B)}}}",
+                f"  - {{name: U{k}a, type: U, between: [ground, cyl{k}], axes: [{q_vec(s1)}, {q_vec(s2)}], point: {q_vec(A)}}}",
+                f"  - {{name: P{k}, type: P, between: [cyl{k}, pis{k}], axis: {q_vec(self.l[i])}}}",
+                f"  - {{name: U{k}b, type: U, between: [pis{k}, platform], axes: [{q_vec(s2)}, {q_vec(s1)}], point: {q_vec(B)}}}",
             ]
-        lines += ["inputs: [P1, P2, P3]", "output: {body: platform}", "configurations:"]
-        lines.append("  reference: {}")
-        for name, vals in configs.items():
-            lines.append(f"  {name}: {{" + ", ".join(f"{k}: {v}" for k, v in vals.items()) + "}")
-        return "\n".join(lines) + "\n"
+        return "\n".join(lines + _platform_tail(configs)) + "\n"
 
     def _leg(self, i: int, shift):
         """U angles and stroke of leg i with the platform translated by ``shift``."""
@@ -456,13 +458,8 @@ class Tsai:
             for v in (self.s1[i], self.n[i], self.l[i])
         ]
         s1, n, l0 = mp
-        e1 = [x / mpmath.sqrt(sum(y * y for y in s1)) for x in s1]
-        e2 = [x / mpmath.sqrt(sum(y * y for y in n)) for x in n]
-        e3 = [
-            e1[1] * e2[2] - e1[2] * e2[1],
-            e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0],
-        ]
+        e1, e2 = list(unit(np.array(s1))), list(unit(np.array(n)))
+        e3 = list(np.cross(e1, e2))
         l1 = [a + b for a, b in zip(l0, shift, strict=True)]
         L0 = mpmath.sqrt(sum(x * x for x in l0))
         L1 = mpmath.sqrt(sum(x * x for x in l1))
@@ -492,7 +489,7 @@ class Tsai:
         """Closure check of the closed form: |R_cyl l_hat - l_hat'| with R_cyl = Rot(s1, q1) Rot(s2, q2)."""
         q1, q2, _, (e1, e2, e3) = self._leg(i, shift)
         s2 = [-x for x in e3]
-        R = _rodrigues(e1, q1) * _rodrigues(s2, q2)
+        R = mpmath.matrix((rodrigues_mp(e1, q1) @ rodrigues_mp(s2, q2)).tolist())
         l0 = mpmath.matrix([mpmath.mpf(x.numerator) / x.denominator for x in self.l[i]])
         l1 = l0 + mpmath.matrix(list(shift))
         return mpmath.norm(R * (l0 / mpmath.norm(l0)) - l1 / mpmath.norm(l1))
@@ -503,20 +500,9 @@ class Tsai:
         for i in range(3):
             q1, q2, _, (e1, e2, e3) = self._leg(i, shift)
             s2 = [-x for x in e3]
-            R = _rodrigues(e1, q1) * _rodrigues(s2, q2)
-            s2c = R * mpmath.matrix(s2)
-            nn = [
-                e1[1] * s2c[2] - e1[2] * s2c[1],
-                e1[2] * s2c[0] - e1[0] * s2c[2],
-                e1[0] * s2c[1] - e1[1] * s2c[0],
-            ]
-            cols.append(nn)
+            R = rodrigues_mp(e1, q1) @ rodrigues_mp(s2, q2)
+            cols.append(list(np.cross(e1, R @ np.array(s2))))
         return mpmath.det(mpmath.matrix(cols))
-
-
-def _rodrigues(u, t):
-    ux = mpmath.matrix([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
-    return mpmath.eye(3) + mpmath.sin(t) * ux + (1 - mpmath.cos(t)) * ux * ux
 
 
 def tsai_coplanar(rng: np.random.Generator) -> Tsai:
@@ -533,8 +519,8 @@ def tsai_coplanar(rng: np.random.Generator) -> Tsai:
         ok = True
         for k in range(3):
             # n_k in the plane normal to m, s1_k normal to n_k, leg l_k = alpha s1 + beta n
-            n = _cross(m, rv())
-            s1 = _cross(n, rv())
+            n = tuple(np.cross(m, rv()))
+            s1 = tuple(np.cross(n, rv()))
             if _dot(n, n) == 0 or _dot(s1, s1) == 0:
                 ok = False
                 break
@@ -557,14 +543,14 @@ def tsai_coplanar(rng: np.random.Generator) -> Tsai:
             + M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0])
         )
         assert det == 0
-        if _cross(ns[0], ns[1]) == (0, 0, 0) and _cross(ns[0], ns[2]) == (0, 0, 0):
+        if not any(np.cross(ns[0], ns[1])) and not any(np.cross(ns[0], ns[2])):
             continue
-        if any(_cross(ns[i], ns[j]) == (0, 0, 0) for i in range(3) for j in range(i)):
+        if any(not any(np.cross(ns[i], ns[j])) for i in range(3) for j in range(i)):
             continue
         return Tsai(A, ls, s1s, ns, m)
 
 
-# ----------------------------------------------------------------------------- theory.md section 6 rows 4 and 7
+# ------------------------------------------------------------ isosceles slider-crank, flat triangle
 
 
 def isosceles_slider_crank(r: F) -> str:
@@ -678,7 +664,7 @@ def arm_screws(arm: str, theta) -> mpmath.matrix:
 
 
 def arm_factors(arm: str, th) -> dict[str, mpmath.mpf]:
-    """The factors of det J (theory.md section 4.1)."""
+    """The factors of det J (the example headers: UR5 from UR's DH table, PUMA 560 Craig's)."""
     if arm == "ur5":
         a2, a3, d5 = UR5_DH["a"][1], UR5_DH["a"][2], UR5_DH["d"][4]
         return {

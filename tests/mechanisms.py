@@ -1,15 +1,16 @@
 """Helpers for the analysis tests (tests/test_analyze.py).
 
 * :data:`PUBLISHED`: the published facts of every example, copied from the comment block at the top
-  of each examples/*.yaml file and from theory.md section 6 (mobility, spatial Gruebler-Kutzbach,
+  of each examples/*.yaml file (mobility, spatial Gruebler-Kutzbach,
   configurations that are regular points of the configuration space, published closure ranks).
 * :func:`run_cli`: ``mechsing.cli.main`` in-process with standard output captured.
 * :func:`scaled_text`: a mechanism file with every length multiplied by a factor, written from the
-  file's own text (numbers keep the text they were written with; lengths become exact expressions).
+  file's own text (numbers keep the text they were written with; lengths become exact expressions);
+  :func:`scaled_file` writes it once per example and scale (:data:`SCALES`).
 * :func:`changepoint_family`: a Grashof change-point four-bar and configurations approaching its flat
   (singular) configuration along both motion branches, joint values derived here in closed form with
-  mpmath, plus the closure-system singular values computed independently of mechsing from DESIGN.md's
-  definitions (characteristic length, centroid, planar reduced coordinates).
+  mpmath, plus the closure-system singular values computed independently of mechsing in the
+  commensurate metric (characteristic length, centroid, planar reduced coordinates).
 """
 
 from __future__ import annotations
@@ -32,7 +33,7 @@ EXAMPLES = ROOT / "examples"
 
 @dataclass(frozen=True)
 class Published:
-    """Facts stated in an example's header comment (and theory.md section 6)."""
+    """Facts stated in an example's header comment."""
 
     mobility: int
     grubler: int
@@ -115,7 +116,7 @@ PUBLISHED: dict[str, Published] = {
         overconstrained=True,
     ),
     # Sarrus: rank 5 at regular poses, 4 at the stretched pose; closure of the screws is se(3)
-    # (theory.md section 3.2), Gruebler 0
+    # (so the group formula gives 6 - 6 = 0, one less than the truth), Gruebler 0
     "sarrus.yaml": Published(
         1,
         0,
@@ -142,7 +143,7 @@ PUBLISHED: dict[str, Published] = {
     ),
 }
 
-#: degrees of freedom of each joint type (DESIGN.md: a U joint has two)
+#: degrees of freedom of each joint type (a U joint has two)
 DOF = {"R": 1, "P": 1, "H": 1, "C": 2, "U": 2, "T2": 2, "S": 3, "T3": 3, "G": 3, "Y": 3}
 DOF |= {"X": 4, "D": 6}
 
@@ -153,7 +154,7 @@ def total_dof(path: Path) -> int:
 
 
 def all_axis_points_at_origin(path: Path) -> bool:
-    """Every joint's point is the origin (then L = 1 by DESIGN.md's fallback, at every scale)."""
+    """Every joint's point is the origin (then L falls back to 1, at every scale)."""
     joints = yaml.safe_load(path.read_text())["joints"]
     return all(x == 0 for j in joints for x in j.get("point", [0, 0, 0]))
 
@@ -192,7 +193,8 @@ def analyze_json(path: Path | str, *options: str) -> dict:
 
 # ----------------------------------------------------------------------------- scaling a file
 
-#: coordinates of a joint value that are lengths (DESIGN.md "Joint values" and bases)
+#: coordinates of a joint value that are lengths, in the catalog basis order (README "Joint values
+#: in a mechanism file")
 LENGTH_COORDS: dict[str, tuple[bool, ...]] = {
     "R": (False,),
     "P": (True,),
@@ -280,6 +282,19 @@ def scaled_text(path: Path, factor: str) -> str:
     return yaml.dump(data, Dumper=_Dumper, sort_keys=False, width=10_000)
 
 
+#: the scales of the scale-invariance tests: name -> (k, the factor written after each length)
+SCALES = {"1e-6": (1e-6, "/1000000"), "1e6": (1e6, "*1000000")}
+
+
+def scaled_file(directory: Path, name: str, scale: str) -> Path:
+    """The example ``name`` with every length times ``SCALES[scale]`` in ``directory`` (the
+    session's ``scaled_dir``), written on first use."""
+    path = directory / f"{Path(name).stem}_{scale}.yaml"
+    if not path.exists():
+        path.write_text(scaled_text(EXAMPLES / name, SCALES[scale][1]))
+    return path
+
+
 # ----------------------------------------------------------------------------- transversal family
 
 #: change-point four-bar: crank a, coupler b, rocker c, ground g with a + b = g + c (Grashof s + l =
@@ -293,9 +308,10 @@ def _changepoint_pose(d: mpmath.mpf, branch: int) -> tuple[list, list]:
     """Joint points B, C and joint values (A, B, C, D) at crank angle d on a branch (+1: C above
     the line BD, -1: below), with mpmath at the working precision.
 
-    Joint values follow DESIGN.md (g_b = g_a exp(q xi), reference = the flat configuration): the
-    crank turns by d, the coupler's absolute angle is phi2 = angle of C - B, the rocker's is
-    phi3 = angle of C - D (both 0 at the flat reference), so q = (d, phi2 - d, phi3 - phi2, -phi3).
+    Joint values follow the README's conventions (g_b = g_a exp(q xi), reference = the flat
+    configuration): the crank turns by d, the coupler's absolute angle is phi2 = angle of C - B,
+    the rocker's is phi3 = angle of C - D (both 0 at the flat reference), so
+    q = (d, phi2 - d, phi3 - phi2, -phi3).
     """
     a, b, c, g = (mpmath.mpf(v) for v in (CP_A, CP_B, CP_C, CP_G))
     B = mpmath.matrix([a * mpmath.cos(d), a * mpmath.sin(d)])
@@ -313,10 +329,10 @@ def _changepoint_pose(d: mpmath.mpf, branch: int) -> tuple[list, list]:
 def _reduced_planar_sigma(points: np.ndarray) -> np.ndarray:
     """Singular values of the four-bar's closure system, independently of mechsing.
 
-    DESIGN.md: L = RMS distance of the axis points from their centroid c at the reference (flat)
-    configuration; screws moved to c, v rows divided by L. For an R joint with axis z through p,
-    the twist seen from c is (z, z x (c - p)), whose in-plane velocity is ((p - c)_y, -(p - c)_x);
-    G's subalgebra is spanned by the coordinate directions omega_z, v_x,
+    The commensurate metric: L = RMS distance of the axis points from their centroid c at the
+    reference (flat) configuration; screws moved to c, v rows divided by L. For an R joint with
+    axis z through p, the twist seen from c is (z, z x (c - p)), whose in-plane velocity is
+    ((p - c)_y, -(p - c)_x); G's subalgebra is spanned by the coordinate directions omega_z, v_x,
     v_y, so any orthonormal reduced basis gives the singular values of the 3 x 4 matrix with
     columns (1, (p - c)_y / L, -(p - c)_x / L).
     """

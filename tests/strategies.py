@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import sympy
 from hypothesis import strategies as st
 
 from tests.reference.files import Spec
@@ -33,6 +34,9 @@ angles = st.one_of(
     st.sampled_from([0.0, 1e-16, 1e-8, 1e-4, 0.5, 1.0, PI / 2, PI - 1e-4, PI - 1e-8, PI]),
     st.floats(0.0, PI),
 )
+
+#: small exact rationals (sympy), for the exact forms of the Lie formulas
+rationals = st.fractions(min_value=-20, max_value=20, max_denominator=12).map(sympy.Rational)
 
 _fixed_axes = [
     (1.0, 0.0, 0.0),

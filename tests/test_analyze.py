@@ -1,8 +1,8 @@
-"""``mechsing analyze`` through its JSON contract (issue 5, DESIGN.md "The JSON contract").
+"""``mechsing analyze`` through its JSON contract (issue 5, README "The JSON contract").
 
 Every expected value comes from outside mechsing: the published facts in each example's header
-comment and theory.md section 6 (tests/mechanisms.py, PUBLISHED), DESIGN.md's definitions
-(thresholds, scaling), closed forms derived in tests/mechanisms.py (the change-point four-bar
+comment (tests/mechanisms.py, PUBLISHED), the README's definitions ("Precision": thresholds,
+commensurate scaling), closed forms derived in tests/mechanisms.py (the change-point four-bar
 family and its singular values), or mechsing's own output on an equivalent input (scale
 invariance, determinism).
 
@@ -25,6 +25,7 @@ from tests.mechanisms import (
     EXAMPLES,
     LENGTH_COORDS,
     PUBLISHED,
+    SCALES,
     all_axis_points_at_origin,
     analyze_json,
     analyze_text,
@@ -34,7 +35,7 @@ from tests.mechanisms import (
     classes,
     configuration_names,
     joint_types,
-    scaled_text,
+    scaled_file,
     total_dof,
 )
 
@@ -110,7 +111,7 @@ def test_fourbar_loop_is_planar_about_z() -> None:
 
 def test_spherical_4r_loop_is_S_about_the_sphere_centre() -> None:
     """All four axes pass through the origin: the loop moves in S(O), rank 3, unit-free (L is 1
-    because every axis point nearest the origin is the origin itself, DESIGN.md)."""
+    because every axis point nearest the origin is the origin itself: L's fallback)."""
     res = analyze_json(EXAMPLES / "spherical_4r.yaml")
     assert res["precision"]["length_scale"] == 1.0
     for c in res["configurations"]:
@@ -138,7 +139,7 @@ def test_sarrus_moves_although_gruebler_is_zero() -> None:
     configs = by_name(analyze_json(EXAMPLES / "sarrus.yaml"))
     for c in configs.values():
         assert c["mobility"]["grubler"] == 0
-        assert c["mobility"]["group"] == 0  # 6 - 6 (theory.md section 3.2: wrong for Sarrus)
+        assert c["mobility"]["group"] == 0  # 6 - 6 (the group formula, wrong for Sarrus)
         assert c["mobility"]["finite"] == 1
     # stretched: both legs' axes coplanar, closure rank 4 (header): a singular configuration
     assert configs["stretched"]["singular"] is True
@@ -184,13 +185,6 @@ def test_overconstrained_property(name: str) -> None:
 
 # ============================================================================ 2. scale invariance
 
-SCALES = {"1e-6": (1e-6, "/1000000"), "1e6": (1e6, "*1000000")}
-
-
-@pytest.fixture(scope="session")
-def scaled_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return tmp_path_factory.mktemp("scaled")
-
 
 def _close(a: float | None, b: float | None, tol: float) -> bool:
     if a is None or b is None:
@@ -202,14 +196,13 @@ def _close(a: float | None, b: float | None, tol: float) -> bool:
 @pytest.mark.parametrize("name", EXAMPLE_FILES)
 def test_scale_invariance(name: str, scale: str, scaled_dir: Path) -> None:
     """All lengths times k: same verdicts, sigma within 1e-10 of the largest, L times k."""
-    k, factor = SCALES[scale]
-    path = scaled_dir / f"{Path(name).stem}_{scale}.yaml"
-    path.write_text(scaled_text(EXAMPLES / name, factor))
+    k = SCALES[scale][0]
+    path = scaled_file(scaled_dir, name, scale)
     base = analyze_json(EXAMPLES / name)
     res = analyze_json(path)
 
     L0, L1 = base["precision"]["length_scale"], res["precision"]["length_scale"]
-    # DESIGN.md: L scales with the lengths, except the fallback L = 1 when every axis point is
+    # L scales with the lengths, except the fallback L = 1 when every axis point is
     # the origin (the spherical 4R: no length at all)
     kL = 1.0 if all_axis_points_at_origin(EXAMPLES / name) else k
     if kL == 1.0:
@@ -287,7 +280,7 @@ def changepoint(tmp_path_factory: pytest.TempPathFactory) -> tuple[dict, list]:
 
 def test_changepoint_family_is_singular_at_the_closed_form_point(changepoint) -> None:
     """At d = 0 (the flat configuration, closed form: |BD| = b - c, circles tangent) the closure
-    system has rank 2, nullity 2 (theory.md section 6 row 2) and the configuration is singular."""
+    system has rank 2, nullity 2 (all four joints collinear) and the configuration is singular."""
     res, _points = changepoint
     flat = by_name(res)["reference"]
     assert (flat["closure_rank"]["rank"], flat["closure_rank"]["nullity"]) == (2, 2)
@@ -296,8 +289,9 @@ def test_changepoint_family_is_singular_at_the_closed_form_point(changepoint) ->
 
 
 def test_changepoint_family_sigma_matches_closed_form(changepoint) -> None:
-    """Singular values of the loop equal those of the 3 x 4 planar matrix built here from
-    DESIGN.md's definitions (L, centroid, reduced G coordinates) and the closed-form joint points."""
+    """Singular values of the loop equal those of the 3 x 4 planar matrix built here in
+    the commensurate metric (L, centroid, reduced G coordinates) and the closed-form joint
+    points."""
     res, points = changepoint
     assert res["precision"]["length_scale"] == pytest.approx(changepoint_length_scale(), rel=1e-14)
     configs = by_name(res)
@@ -396,7 +390,7 @@ def test_json_contract_keys(name: str) -> None:
         for s in c["singularities"]:
             assert s["class"] in CLASSES, s
             assert "margin" in s and "precision" in s, s
-        # DESIGN.md: singular is true iff a finding other than `undecided`, null if only those
+        # singular is true iff a finding other than `undecided`, null if only those
         found = classes(c)
         expected = False if not found else (None if set(found) == {"undecided"} else True)
         assert c["singular"] is expected
@@ -428,8 +422,8 @@ def test_precision_float() -> None:
 
 
 def test_precision_mp30_fourbar() -> None:
-    """mp:30: thresholds 10^(10-N) and 10^(-N/2) (DESIGN.md), same ranks and mobilities as auto,
-    closure accepted at 10^(15-N) L = 1e-15 L."""
+    """mp:30: thresholds 10^(10-N) and 10^(-N/2) (README, Precision), same ranks and mobilities as
+    auto, closure accepted at 10^(15-N) L = 1e-15 L."""
     base = by_name(analyze_json(EXAMPLES / "fourbar.yaml"))
     res = analyze_json(EXAMPLES / "fourbar.yaml", "--precision", "mp:30")
     assert res["precision"]["mode"] == "mp:30"
@@ -482,7 +476,7 @@ def test_precision_exact(name: str, config: str, rank: int, mobility: int) -> No
 
 @pytest.mark.parametrize("precision", ["float", "mp:30", "exact"])
 def test_margin_dropped_is_null_when_nothing_is_dropped(precision: str) -> None:
-    """DESIGN.md's contract example is this four-bar: its 3 x 4 loop and closure systems have rank
+    """The README's four-bar (examples/fourbar.yaml): its 3 x 4 loop and closure systems have rank
     3, every singular value is kept, and both margins say "dropped": null (numeric.Margin: "None if
     full rank"). The same matrix must give the same margin form in every precision mode."""
     res = analyze_json(EXAMPLES / "fourbar.yaml", "--precision", precision, "--config", "reference")

@@ -72,16 +72,28 @@ def test_added_type_is_accepted_and_bad_files_refused(tmp_path):
     (d / "Rbis.toml").write_text(text)
     cat = load_catalog(d)
     assert "Rbis" in cat and cat["Rbis"].dimension == 1
-    (d / "Bad.toml").write_text((d / "P.toml").read_text().replace('symbol = "P"', 'symbol = "Bad"')
-                                .replace('kind = "direction"', 'kind = "colour"'))
+    (d / "Bad.toml").write_text(
+        (d / "P.toml")
+        .read_text()
+        .replace('symbol = "P"', 'symbol = "Bad"')
+        .replace('kind = "direction"', 'kind = "colour"')
+    )
     with pytest.raises(CatalogError, match="colour"):
         load_catalog(d)
-    (d / "Bad.toml").write_text((d / "P.toml").read_text().replace('symbol = "P"', 'symbol = "Bad"')
-                                .replace('v = "axis"', 'v = "axis x nothing"'))
+    (d / "Bad.toml").write_text(
+        (d / "P.toml")
+        .read_text()
+        .replace('symbol = "P"', 'symbol = "Bad"')
+        .replace('v = "axis"', 'v = "axis x nothing"')
+    )
     with pytest.raises(CatalogError, match="nothing"):
         load_catalog(d)
-    (d / "Bad.toml").write_text((d / "P.toml").read_text().replace('symbol = "P"', 'symbol = "Bad"')
-                                .replace("dimension = 1", "dimension = 2"))
+    (d / "Bad.toml").write_text(
+        (d / "P.toml")
+        .read_text()
+        .replace('symbol = "P"', 'symbol = "Bad"')
+        .replace("dimension = 1", "dimension = 2")
+    )
     with pytest.raises(CatalogError, match="dimension 2"):
         load_catalog(d)
 

@@ -25,7 +25,7 @@ from mechsing.lie.cayley import (
 from mechsing.lie.quaternion import quat_to_rotation_matrix
 from mechsing.numeric import Precision
 from tests.reference.se3 import adjoint, hat, skew
-from tests.strategies import gibbs
+from tests.strategies import gibbs, rationals
 from tests.strategies import gibbs_twists as twists
 
 EPS = float(np.finfo(float).eps)
@@ -115,8 +115,6 @@ def test_batch_shapes():
 
 
 # --- exact -----------------------------------------------------------------
-
-rationals = st.fractions(min_value=-20, max_value=20, max_denominator=12).map(sympy.Rational)
 
 
 @settings(max_examples=60, deadline=None)

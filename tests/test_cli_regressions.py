@@ -125,7 +125,7 @@ configurations:
 
 #: a 3-RPR whose third leg line is moved off the common point of the other two by
 #: 10^-k / 2 (exact): the three leg lines meet within about 1e-k (legs concurrent: the
-#: output singularity of theory.md section 4.4), so the input map E N has sigma_min /
+#: Type II singularity of Gosselin & Angeles 1990), so the input map E N has sigma_min /
 #: sigma_max of order 10^-k
 RPR_NEAR_CONCURRENT = """mechanism: rpr-near-concurrent
 bodies: [ground, cyl1, pis1, cyl2, pis2, cyl3, pis3, platform]

@@ -31,7 +31,7 @@ def solve_json(*argv: object) -> dict:
 
 
 def fourbar_expected(theta: float) -> dict[str, float]:
-    """Closed form of DESIGN.md's four-bar (A (0,0), B (1,0), C (3,2), D (4,0))."""
+    """Closed form of the four-bar of examples/fourbar.yaml (A (0,0), B (1,0), C (3,2), D (4,0))."""
     A, B, C, D = (np.array(p, float) for p in ([0, 0], [1, 0], [3, 2], [4, 0]))
     (psi, phi, _), _ = fourbar_closed_form(A, B, C, D, theta)
     return {"A": theta, "B": psi - theta, "C": phi - psi, "D": -phi}

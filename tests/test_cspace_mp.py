@@ -2,15 +2,15 @@
 
 With ``--precision mp:N`` the forms of the second-order test (on the kernel, projected on the
 cokernel), their definiteness, the splitting of their zero set, the third-order test and the
-ZFB ranks run at N digits with the mp thresholds of DESIGN.md (tau_lo = 10^(10-N),
+ZFB ranks run at N digits with the mp thresholds (tau_lo = 10^(10-N),
 tau_hi = 10^(-N/2)), and each finding says so in ``test_precision``; ``exact`` evaluates them at
 mp:50; float stays numpy.
 
-The expected answers come from outside the code under test: DESIGN.md's thresholds; closed-form
+The expected answers come from outside the code under test: the mp:N thresholds; closed-form
 quadratic forms and their zero lines; the planar four-bars of tests/families.py (parallelogram,
 change point, stretched: branch tangents from the closed-form circle intersection, evaluated
 here with mpmath at 150+ digits); singular values of the four-bar's reduced closure matrix
-rebuilt here from DESIGN.md's definitions (L, centroid, G coordinates) and the closed-form joint
+rebuilt here in the commensurate metric (L, centroid, G coordinates) and the closed-form joint
 points; the 3-RPR with concurrent leg lines (tests/families.py: the platform turns about the
 common point with the P joints locked).
 """
@@ -46,7 +46,7 @@ def run(path: Path, precision: str) -> dict:
 
 
 def tau(n: int) -> tuple[float, float]:
-    """DESIGN.md: mp:N thresholds."""
+    """The mp:N thresholds: tau_lo = 10^(10-N), tau_hi = 10^(-N/2)."""
     return 10.0 ** (10 - n), 10.0 ** (-n / 2)
 
 
@@ -59,8 +59,8 @@ def closed_form_tangents(fb: fam.FourBar, digits: int = 200) -> list[list[mpmath
 
 
 def closed_form_sigma(fb: fam.FourBar, values: list[mpmath.mpf]) -> list[mpmath.mpf]:
-    """Singular values of the four-bar's closure system at joint values (A, B, C, D), from
-    DESIGN.md's definitions: L and the centroid c of the joint points at the reference, R screws
+    """Singular values of the four-bar's closure system at joint values (A, B, C, D), in
+    the commensurate metric: L and the centroid c of the joint points at the reference, R screws
     about z moved to c with v / L; in G's coordinates (omega_z, v_x, v_y) the column of a joint
     at p is (1, (p - c)_y / L, -(p - c)_x / L) up to its sign, which no singular value sees."""
     ref = [mpmath.mpf(x.numerator) / x.denominator for x in fb.points]
@@ -82,7 +82,7 @@ def closed_form_sigma(fb: fam.FourBar, values: list[mpmath.mpf]) -> list[mpmath.
 @pytest.mark.parametrize("n", [30, 50])
 def test_higher_order_tolerances_are_placed_at_the_modes_tau_hi(n: int) -> None:
     """The cone tolerances keep their float values (1e-10, 1e-8, 1e-9 = tau_hi / 10, 10 tau_hi,
-    tau_hi with DESIGN.md's float tau_hi = 1e-9) and move with tau_hi = 10^(-N/2) at mp:N."""
+    tau_hi with float's tau_hi = 1e-9) and move with tau_hi = 10^(-N/2) at mp:N."""
     fl = Precision("float")
     assert numeric.subspace_rank_rtol(fl) == pytest.approx(1e-10, rel=1e-12)
     assert numeric.subspace_containment_atol(fl) == pytest.approx(1e-8, rel=1e-12)

@@ -4,15 +4,16 @@ Every expected answer comes from outside the code under test:
 
 1. scale: every example with all lengths times 10^-6 and 10^6 (written exactly on the file text by
    tests/mechanisms.py ``scaled_text``) against the same example unscaled, in ``float``, ``mp:30``
-   and ``exact`` (``auto`` is tests/test_analyze.py ``test_scale_invariance``); DESIGN.md principle
-   4 says the verdicts, singular values and margins do not change.  The published facts of the
-   examples (tests/mechanisms.py ``PUBLISHED``) are checked in the modes that take the file;
+   and ``exact`` (``auto`` is tests/test_analyze.py ``test_scale_invariance``); scale invariance:
+   scaling every length by k scales L by k and changes no verdict, singular value or margin.  The
+   published facts of the examples (tests/mechanisms.py ``PUBLISHED``) are checked in the modes
+   that take the file;
    ``exact`` refuses a configuration that is not given exactly (an error entry, status 3).
 2. joints within 1e-12 of pi: a parallelogram turned over (crank angle phi on its parallelogram
    branch: joint values (phi, -phi, phi, -phi) close for every phi, closed form) and a UR5 with
-   three joints at pi (det J factors of the UR5 header, theory.md section 6 row 22); poses against
+   three joints at pi (the factors of det J in the UR5 header); poses against
    a product of ``scipy.linalg.expm``.
-3. axes parallel within 1e-9 rad: the crank-rocker of DESIGN.md with one axis tilted by
+3. axes parallel within 1e-9 rad: the crank-rocker of examples/fourbar.yaml with one axis tilted by
    atan(10^-k) (a spatial 4R that is not Bennett: rigid, rank 4, Delassus) and a collinear 3R
    chain with its last axis tilted; singular values recomputed here with mpmath.
 4. loops of 2 to 12 joints: planar nR polygons (mobility n - 3, planar Gruebler), two-joint loops
@@ -21,7 +22,7 @@ Every expected answer comes from outside the code under test:
 5. 100 joints: an open R/P/H chain (end pose against scipy expm and a 40-digit mpmath product) and
    a planar 100-gon (closure recomputed with expm; mobility 97).
 6. 1e-10 from a fold (parallelogram and change-point families of tests/families.py): float is
-   ``undecided`` (DESIGN.md thresholds), mp:50 and auto regular with the kept singular value of a
+   ``undecided`` (thresholds 1e-12, 1e-9), mp:50 and auto regular with the kept singular value of a
    100-digit recomputation; exact singular with dropped 0 at the fold; a UR5 wrist exactly singular
    and 1e-30 rad off it (exact data) regular in exact mode.
 
@@ -51,18 +52,19 @@ from tests.mechanisms import (
     EXAMPLES,
     LENGTH_COORDS,
     PUBLISHED,
+    SCALES,
     all_axis_points_at_origin,
     analyze_json,
     by_name,
     classes,
     configuration_names,
     joint_types,
-    scaled_text,
+    scaled_file,
     total_dof,
     write,
 )
 from tests.reference.expressions import evaluate
-from tests.reference.se3 import hat
+from tests.reference.se3 import hat, wrap
 
 EPS = float(np.finfo(float).eps)
 EXAMPLE_FILES = sorted(p.name for p in EXAMPLES.glob("*.yaml"))
@@ -74,7 +76,7 @@ slow = pytest.mark.skipif(not SLOW, reason="heavy: skipped with MECHSING_QUICK_T
 
 
 def closure_tolerance(mode: str, L: float) -> float:
-    """DESIGN.md: closure accepted at 1e-12 L in float, 10^(15-N) L at mp:N, exactly in exact."""
+    """The closure tolerance: 1e-12 L in float, 10^(15-N) L at mp:N, exactly in exact."""
     if mode == "exact":
         return 0.0
     if mode.startswith("mp:"):
@@ -110,7 +112,7 @@ def mp_svd(M: list[list]) -> list:
 
 
 def commensurate(screws: list[list], centroid: list, L) -> list[list]:
-    """DESIGN.md: twists moved to the centroid c (v + w x c) and v rows divided by L, as columns."""
+    """Commensurate metric: twists moved to the centroid c (v + w x c), v rows divided by L."""
     cols = []
     for w, v in ((s[:3], s[3:]) for s in screws):
         wxc = [w[1] * centroid[2] - w[2] * centroid[1], w[2] * centroid[0] - w[0] * centroid[2]]
@@ -126,14 +128,7 @@ def mp_eval(expr: str | float):
     return evaluate(expr, funcs=funcs, const=mpmath.mpf, pi=mpmath.pi)
 
 
-def wrap(x: float) -> float:
-    """An angle modulo 2 pi, in (-pi, pi]."""
-    return math.remainder(x, 2 * math.pi)
-
-
 # ============================================================================ 1. scale 10^-6, 10^6
-
-SCALES = {"1e-6": (1e-6, "/1000000"), "1e6": (1e6, "*1000000")}
 
 #: configurations analysed at mp:30 and in exact mode (exactly given, cheap); float: all of them
 MP30_CONFIGS = {
@@ -187,18 +182,6 @@ def _options(mode: str, name: str, configs: list[str] | None = None) -> list[str
     return opts
 
 
-@pytest.fixture(scope="module")
-def scaled_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return tmp_path_factory.mktemp("extremes_scaled")
-
-
-def scaled_file(scaled_dir: Path, name: str, scale: str) -> Path:
-    path = scaled_dir / f"{Path(name).stem}_{scale}.yaml"
-    if not path.exists():
-        path.write_text(scaled_text(EXAMPLES / name, SCALES[scale][1]))
-    return path
-
-
 def _close_margin(m0: dict, m1: dict, kL: float, where: str) -> None:
     """Same margin at both scales, by the precision that decided it (its own tau_lo): float as
     test_analyze (absolute 1e-10 in the commensurate metric); mp:N kept to JSON rounding, dropped
@@ -224,7 +207,7 @@ def _close_margin(m0: dict, m1: dict, kL: float, where: str) -> None:
 
 def assert_same_verdicts(name: str, base: dict, res: dict, mode: str, k: float) -> None:
     """Same verdicts (ranks, mobility, singular, findings, loops), singular values and margins,
-    lengths times k (DESIGN.md principle 4)."""
+    lengths times k (scale invariance: scaling lengths by k scales L by k, nothing else)."""
     kL = 1.0 if all_axis_points_at_origin(EXAMPLES / name) else k
     L0, L1 = base["precision"]["length_scale"], res["precision"]["length_scale"]
     assert L1 == pytest.approx(kL * L0, rel=1e-12)
@@ -277,7 +260,7 @@ def assert_same_verdicts(name: str, base: dict, res: dict, mode: str, k: float) 
 
 
 def assert_published(name: str, res: dict) -> None:
-    """The example's published facts (its header, theory.md section 6) at the analysed configs."""
+    """The example's published facts (its header comment) at the analysed configs."""
     pub = PUBLISHED[name]
     dof = total_dof(EXAMPLES / name)
     for c in res["configurations"]:
@@ -307,8 +290,8 @@ def _mode_cases() -> list:
 @pytest.mark.parametrize(("mode", "name", "scale"), _mode_cases())
 def test_scale_invariance_in_every_mode(mode: str, name: str, scale: str, scaled_dir: Path) -> None:
     """Lengths times 10^-6 or 10^6: the same verdicts, singular values and margins as the unscaled
-    file in float, mp:30 and exact (independent answer: the unscaled example, DESIGN.md principle
-    4), and the published facts of the example hold at both scales."""
+    file in float, mp:30 and exact (independent answer: the unscaled example, since scaling
+    every length changes no verdict), and the published facts of the example hold at both scales."""
     k = SCALES[scale][0]
     base = analyze_json(EXAMPLES / name, *_options(mode, name))
     res = analyze_json(scaled_file(scaled_dir, name, scale), *_options(mode, name))
@@ -331,8 +314,8 @@ def _kept_margins(res: dict) -> list[tuple[str, float | None]]:
 
 
 def test_exact_margins_are_scale_invariant(scaled_dir: Path) -> None:
-    """DESIGN.md principle 4 ("the same margins") in exact mode: every kept margin of the exact
-    configurations of test_scale_invariance_in_every_mode is the same at lengths x 10^-6 and
+    """Scale invariance (the same margins at every scale) in exact mode: every kept margin of the
+    exact configurations of test_scale_invariance_in_every_mode is the same at lengths x 10^-6 and
     x 10^6 as unscaled (to its 30 digits, here 1e-12 relative)."""
     wrong = []
     for name in EXAMPLE_FILES:
@@ -391,8 +374,9 @@ def test_exact_refuses_configurations_not_given_exactly(
     assert f"'{cname}'" in err and "exact" in err, err
 
 
-#: configurations that DESIGN.md solves by continuation at mp:30, with their published closure
-#: rank (the example headers: Bennett 3 everywhere, Bricard and Sarrus generic rank 5)
+#: configurations whose free joints mp:30 solves by continuation (README, Precision), with their
+#: published closure rank (the example headers: Bennett 3 everywhere, Bricard and Sarrus
+#: generic rank 5)
 MP30_CONTINUED = [("bennett.yaml", "q1-1rad", 3), ("bricard.yaml", "q1-0.4", 5)]
 MP30_CONTINUED += [("sarrus.yaml", "lowered", 5)]
 
@@ -402,7 +386,7 @@ def test_mp30_decides_overconstrained_configurations_solved_by_continuation(
     name: str, config: str, rank: int
 ) -> None:
     """mp:30 on an input-only configuration of an overconstrained loop: the published closure
-    rank and mobility (example headers), decided (DESIGN.md: mp:N thresholds 10^(10-N), 10^(-N/2)
+    rank and mobility (example headers), decided (mp:N thresholds 10^(10-N), 10^(-N/2)
     and closure at N digits)."""
     res = analyze_json(EXAMPLES / name, "--precision", "mp:30", "--config", config)
     (c,) = res["configurations"]
@@ -464,7 +448,7 @@ def parallelogram_near_pi(tmp_path: Path) -> Path:
 
 def parallelogram_sigma(phi) -> list:
     """Singular values of the parallelogram's planar closure system at crank angle phi (the
-    parallelogram branch: B = Rot(phi) (0, 1), C = B + (2, 0)), from DESIGN.md's definitions:
+    parallelogram branch: B = Rot(phi) (0, 1), C = B + (2, 0)), in the commensurate metric:
     reference centroid c = (1, 1/2), L = RMS distance = sqrt(5)/2, columns (1, (p-c)_y/L,
     -(p-c)_x/L)."""
     c = (mpmath.mpf(1), mpmath.mpf(1) / 2)
@@ -480,7 +464,7 @@ def test_parallelogram_turned_over_near_pi(tmp_path: Path, mode: str) -> None:
     """Joints at pi - 1e-12, pi + 1e-12 and pi (and continued to them from 3 pi / 4): the closed
     form (joint values (phi, -phi, phi, -phi) close for every phi; the rectangle is regular,
     rank 3, mobility 1) with its 50-digit singular values, the same verdict as at pi, and the
-    closure residual within DESIGN.md's tolerance; the verdict at pi in exact mode is the same."""
+    closure residual within the closure tolerance; the verdict at pi in exact mode is the same."""
     path = parallelogram_near_pi(tmp_path)
     res = by_name(analyze_json(path, "--precision", mode))
     exact = by_name(analyze_json(path, "--precision", "exact", "--config", "at-pi"))["at-pi"]
@@ -512,7 +496,7 @@ def test_parallelogram_turned_over_near_pi(tmp_path: Path, mode: str) -> None:
 
 
 def test_exact_mode_at_pi_minus_a_rational_multiple_of_pi(tmp_path: Path) -> None:
-    """pi - pi/10^12 is exact data (a rational multiple of pi, DESIGN.md) and the parallelogram
+    """pi - pi/10^12 is exact data (a rational multiple of pi) and the parallelogram
     closes for every crank angle on its branch (closed form): exact mode gives the verdict at pi
     (rank 3, regular)."""
     text = PARALLELOGRAM + '  below-pi: {A: "pi - pi/10**12", B: "pi/10**12 - pi", '
@@ -527,7 +511,7 @@ def test_exact_mode_at_pi_minus_a_rational_multiple_of_pi(tmp_path: Path) -> Non
 
 def test_exact_refuses_angles_that_are_not_exact_data(tmp_path: Path) -> None:
     """Two coaxial revolutes turned by 1 and -1 rad close (closed form), but 1 rad is not exact
-    data (DESIGN.md: angles as rational multiples of pi or atan/asin/acos of algebraic numbers):
+    data (only angles as rational multiples of pi or atan/asin/acos of algebraic numbers):
     exact refuses it (an error entry, status 3) naming the configuration, and does not claim
     non-closure."""
     text = """mechanism: coaxial-RR
@@ -622,8 +606,8 @@ configurations:
 def tilted_fourbar_sigma(k: int) -> list:
     """Singular values of the four joint screws of FOURBAR_TILTED (D tilted by atan(10^-k) about
     x) at the reference, moved to the centroid of the axis points (2, 1/2, 0) (each point is the
-    foot of its axis: p . u = 0) and v rows divided by L = sqrt(13)/2 (DESIGN.md); the loop's
-    joints generate D, whose orthonormal basis does not change the singular values."""
+    foot of its axis: p . u = 0) and v rows divided by L = sqrt(13)/2 (RMS distance to c); the
+    loop's joints generate D, whose orthonormal basis does not change the singular values."""
     t = mpmath.mpf(10) ** -k
     axes = [(0, 0, 1)] * 3 + [(0, t, 1)]
     pts = [(0, 0, 0), (1, 0, 0), (3, 2, 0), (4, 0, 0)]
@@ -646,7 +630,7 @@ def test_fourbar_with_axes_parallel_within_1e_9_rad(tmp_path: Path, k: int) -> N
     with mpmath.workdps(50):
         sigma = [float(s) for s in tilted_fourbar_sigma(k)]
     ratio = sigma[3] / sigma[0]
-    assert 1e-12 < ratio < 1e-9  # DESIGN.md's float band: undecided
+    assert 1e-12 < ratio < 1e-9  # float's band (1e-12, 1e-9): undecided
     (flt,) = analyze_json(path, "--precision", "float")["configurations"]
     assert classes(flt) == ["undecided"] and flt["singular"] is None
     assert flt["closure_rank"]["rank"] is None
@@ -996,8 +980,8 @@ def fold_family(kind: str, seed: int) -> fam.FourBar:
 
 def fold_sigma(fb: fam.FourBar, phi, branch: int) -> list:
     """Singular values of the four-bar's planar closure system with the crank turned by phi from
-    the fold, C on side ``branch`` of BD (circle intersection in closed form), from DESIGN.md's
-    definitions (reference centroid and L of the collinear joints, columns (1, (p-c)_y/L,
+    the fold, C on side ``branch`` of BD (circle intersection in closed form), in the commensurate
+    metric (reference centroid and L of the collinear joints, columns (1, (p-c)_y/L,
     -(p-c)_x/L)); at the working mpmath precision, independently of mechsing."""
     A0, B0, C0, D0 = (mpmath.mpf(x.numerator) / x.denominator for x in fb.points)
     a, b, c = (mpmath.mpf(x.numerator) / x.denominator for x in (fb.a, fb.b, fb.c))
@@ -1036,7 +1020,7 @@ def test_fold_at_1e_10(tmp_path: Path, kind: str, seed: int) -> None:
     auto = by_name(analyze_json(path, "--precision", "auto"))
     for name, sig in sigma.items():
         ratio = float(sig[-1] / sig[0])
-        assert 1e-12 < ratio < 1e-9, (name, ratio)  # DESIGN.md: float's undecided band
+        assert 1e-12 < ratio < 1e-9, (name, ratio)  # float's undecided band (1e-12, 1e-9)
         f = flt[name]
         assert f["precision"] == "float" and f["singular"] is None, name
         assert classes(f) == ["undecided"] and f["singularities"][0]["rank_bounds"] == [2, 3]
@@ -1089,8 +1073,8 @@ def ur5_wrist(tmp_path: Path) -> Path:
 
 def ur5_sigma_ratio(j5) -> mpmath.mpf:
     """sigma_min / sigma_max of the UR5's six joint screws at (0, -pi/4, pi/2, -pi/4, j5, 0)
-    in DESIGN.md's commensurate metric, from the file's axes by products of exponentials (mpmath,
-    working precision), independently of mechsing."""
+    in the commensurate metric (moved to the centroid, v / L), from the file's axes
+    by products of exponentials (mpmath, working precision), independently of mechsing."""
     joints = yaml.safe_load((EXAMPLES / "ur5.yaml").read_text())["joints"]
     th = [0, -mpmath.pi / 4, mpmath.pi / 2, -mpmath.pi / 4, j5, 0]
     pts = [[mpmath.mpf(repr(float(x))) for x in j["point"]] for j in joints]

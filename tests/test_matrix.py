@@ -25,7 +25,9 @@ from mechsing.report import render
 from tests.cli import run_cli
 from tests.mechanisms import ROOT
 
-FILES = sorted((ROOT / "examples").glob("*.yaml")) + sorted((ROOT / "tests" / "data").glob("*.yaml"))
+FILES = sorted((ROOT / "examples").glob("*.yaml")) + sorted(
+    (ROOT / "tests" / "data").glob("*.yaml")
+)
 MODES = ("float", "mp:30", "mp:50", "auto", "exact")
 #: the seconds a configuration may take: a hang, not a speed, is what this catches
 BOUND = {"exact": 60.0, "float": 20.0, "mp:30": 20.0, "mp:50": 20.0, "auto": 20.0}
@@ -84,8 +86,18 @@ def test_every_file_every_mode_every_format(path: Path, mode: str) -> None:
 @pytest.mark.parametrize("mode", MODES)
 def test_the_command_line_in_every_mode(mode: str) -> None:
     name, fmt = THROUGH_CLI[mode]
-    rc, out, err = run_cli(["analyze", str(ROOT / "examples" / name), "--precision", mode,
-                            "--format", fmt, "--time-limit", str(EXACT_LIMIT)])
+    rc, out, err = run_cli(
+        [
+            "analyze",
+            str(ROOT / "examples" / name),
+            "--precision",
+            mode,
+            "--format",
+            fmt,
+            "--time-limit",
+            str(EXACT_LIMIT),
+        ]
+    )
     assert rc in (0, 3), err
     assert "Traceback" not in err and out
     if fmt == "json":

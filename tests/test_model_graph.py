@@ -110,8 +110,9 @@ def test_same_loops_under_another_hash_seed():
     outs = set()
     for seed in ("1", "12345"):
         env = dict(os.environ, PYTHONHASHSEED=seed)
-        res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
-                             check=True)
+        res = subprocess.run(
+            [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
+        )
         outs.add(res.stdout)
     assert len(outs) == 1
 
@@ -213,7 +214,9 @@ def test_legs_numbered_by_first_joint_in_file_order():
 
 
 def test_legs_relative_to_another_body():
-    m = loads(PLATFORM.replace("output: {body: platform}", "output: {body: tail, relative_to: l2a}"))
+    m = loads(
+        PLATFORM.replace("output: {body: platform}", "output: {body: tail, relative_to: l2a}")
+    )
     # with l2a and tail removed, the rest (ground, platform, legs 1 and 3) is one component
     # touching l2a (A2, C2) and tail (T1)
     (leg,) = m.legs

@@ -97,8 +97,13 @@ def test_json_is_accepted(tmp_path):
         "units": {"length": "cm", "angle": "deg"},
         "bodies": ["ground", "link"],
         "joints": [
-            {"name": "A", "type": "R", "between": ["ground", "link"], "axis": [0, 0, 1],
-             "point": [10, 0, 0]},
+            {
+                "name": "A",
+                "type": "R",
+                "between": ["ground", "link"],
+                "axis": [0, 0, 1],
+                "point": [10, 0, 0],
+            },
         ],
         "configurations": {"up": {"A": 90}},
     }
@@ -228,8 +233,12 @@ def test_u_joint_graph_shape():
 
 def test_errors_are_user_errors_with_parts():
     with pytest.raises(MechanismError) as exc:
-        loads(FOURBAR.replace("axis: [0, 0, 1], point: [3, 2, 0]", "axis: [0, 0, 0], point: [3, 2, 0]"),
-              path="x.yaml")
+        loads(
+            FOURBAR.replace(
+                "axis: [0, 0, 1], point: [3, 2, 0]", "axis: [0, 0, 0], point: [3, 2, 0]"
+            ),
+            path="x.yaml",
+        )
     e = exc.value
     assert exit_status(e) == 2 and e.path == "x.yaml" and e.line == 7 and e.item == "joint 'C'"
     assert str(e).startswith("x.yaml:7: joint 'C': ")
@@ -251,8 +260,14 @@ def test_near_zero_is_relative_to_the_file_scale():
     # and one of length 1e-3 is accepted (and normalised)
     big = FOURBAR.replace("point: [4, 0, 0]", "point: [4000, 0, 0]")
     with pytest.raises(MechanismError, match="too close to zero"):
-        loads(big.replace("[ground, crank],   axis: [0, 0, 1]", "[ground, crank],   axis: [0, 0, 1e-7]"))
-    m = loads(big.replace("[ground, crank],   axis: [0, 0, 1]", "[ground, crank],   axis: [0, 0, 0.001]"))
+        loads(
+            big.replace(
+                "[ground, crank],   axis: [0, 0, 1]", "[ground, crank],   axis: [0, 0, 1e-7]"
+            )
+        )
+    m = loads(
+        big.replace("[ground, crank],   axis: [0, 0, 1]", "[ground, crank],   axis: [0, 0, 0.001]")
+    )
     assert m.joint("A").params["axis"] == (0, 0, 1)
 
 

@@ -53,8 +53,15 @@ def test_valid_files_pass_the_schema(path):
 
 BASE = {
     "bodies": ["ground", "a"],
-    "joints": [{"name": "A", "type": "R", "between": ["ground", "a"], "axis": [0, 0, 1],
-                "point": [0, 0, 0]}],
+    "joints": [
+        {
+            "name": "A",
+            "type": "R",
+            "between": ["ground", "a"],
+            "axis": [0, 0, 1],
+            "point": [0, 0, 0],
+        }
+    ],
 }
 
 
@@ -64,11 +71,29 @@ BASE = {
         {"joint": []},
         {"units": {"length": "inch"}},
         {"joints": [{"name": "A", "type": "R", "between": ["ground", "a"], "axis": [0, 0, 1]}]},
-        {"joints": [{"name": "A", "type": "P", "between": ["ground", "a"], "axis": [0, 0, 1],
-                     "point": [0, 0, 0]}]},
+        {
+            "joints": [
+                {
+                    "name": "A",
+                    "type": "P",
+                    "between": ["ground", "a"],
+                    "axis": [0, 0, 1],
+                    "point": [0, 0, 0],
+                }
+            ]
+        },
         {"joints": [{"name": "A", "type": "Q", "between": ["ground", "a"]}]},
-        {"joints": [{"name": "A", "type": "R", "between": ["ground"], "axis": [0, 0, 1],
-                     "point": [0, 0, 0]}]},
+        {
+            "joints": [
+                {
+                    "name": "A",
+                    "type": "R",
+                    "between": ["ground"],
+                    "axis": [0, 0, 1],
+                    "point": [0, 0, 0],
+                }
+            ]
+        },
         {"inputs": ["A[x]"]},
         {"output": {"relative_to": "ground"}},
         {"configurations": {"c": {"A": {"rotation": [[1, 0, 0]]}}}},

@@ -5,7 +5,7 @@ Every expected answer is derived here from the mathematics, not read from the pr
 1. Newton at N digits closes loops with every joint type that can sit in a loop (R, P, H, C, S,
    U, and G, Y, X, T2, T3, D): at mp:30 and mp:50 the closed configuration satisfies the loop
    equation (the product of the joints' exponentials around the loop is the identity, recomputed
-   here with ``mpmath.expm`` at N + 20 digits from the catalog's bases, written out here) to
+   here with ``mpmath.expm`` at N + 20 digits from the catalog's bases by tests/reference) to
    10^(5-N) L, and the residual reported in the JSON of ``mechsing solve`` / ``analyze`` is below
    that too.  The RSSR is also taken 1e-10 rad from its input (rocker dead-centre) singularity,
    where ``auto`` re-decides at mp:50 and must still close.
@@ -26,7 +26,6 @@ from pathlib import Path
 import mpmath
 import numpy as np
 import pytest
-import sympy
 import yaml
 
 from mechsing.numeric import (
@@ -39,7 +38,9 @@ from mechsing.numeric import (
 )
 from tests.cli import cli_json
 from tests.mechanisms import EXAMPLES, by_name, classes, write
-from tests.reference.se3 import hat
+from tests.reference.expressions import mp_num
+from tests.reference.kinematics import J, joint_from_entry, length_scale, mismatch
+from tests.reference.se3 import expm_mp, inv
 
 # ============================================================================ helpers
 
@@ -220,119 +221,19 @@ def test_screw_jack_in_every_mode(tmp_path: Path, mode: str) -> None:
 GUARD = 20
 
 
-def _num(x: object) -> mpmath.mpf:
-    """A number of a mechanism file (int, decimal or expression text) at the working precision."""
-    return mpmath.mpf(sympy.N(sympy.sympify(str(x), rational=True), mpmath.mp.dps + 5))
+def _joints(entries: list[dict]) -> list[J]:
+    """The reference joints of file entries, their numbers at the working precision (so build
+    them inside the ``mpmath.workdps`` block that uses them)."""
+    return [joint_from_entry(e, mp_num, mpmath.mpf(1)) for e in entries]
 
 
-def _vec(v: object) -> mpmath.matrix:
-    return mpmath.matrix([_num(x) for x in v])
-
-
-def _unit(v: mpmath.matrix) -> mpmath.matrix:
-    return v / mpmath.norm(v)
-
-
-def _cross(a: mpmath.matrix, b: mpmath.matrix) -> mpmath.matrix:
-    return mpmath.matrix(
-        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-    )
-
-
-def _twist(w: mpmath.matrix, v: mpmath.matrix) -> list[mpmath.mpf]:
-    return [w[0], w[1], w[2], v[0], v[1], v[2]]
-
-
-def _in_plane(w: mpmath.matrix) -> tuple[mpmath.matrix, mpmath.matrix]:
-    """The catalog's in-plane directions: e1 = normalise(a - (a.w) w), a the coordinate axis least aligned with w
-    (first in x, y, z order on a tie); e2 = w x e1."""
-    i = min(range(3), key=lambda k: (abs(w[k]), k))
-    a = mpmath.matrix([1 if k == i else 0 for k in range(3)])
-    e1 = _unit(a - (a.T * w)[0] * w)
-    return e1, _cross(w, e1)
-
-
-def _basis(j: dict) -> list[list[mpmath.mpf]]:
-    """The catalog basis of a joint at the reference configuration (angular part first)."""
-    t, zero = j["type"], mpmath.matrix(3, 1)
-    if t in ("R", "H", "C"):
-        u, p = _unit(_vec(j["axis"])), _vec(j["point"])
-        h = _num(j.get("pitch", 0))
-        rot = _twist(u, _cross(p, u) + h * u)
-        return [rot, _twist(zero, u)] if t == "C" else [rot]
-    if t == "P":
-        return [_twist(zero, _unit(_vec(j["axis"])))]
-    if t == "S":
-        p = _vec(j["point"])
-        axes = [mpmath.matrix([1 if k == i else 0 for k in range(3)]) for i in range(3)]
-        return [_twist(e, _cross(p, e)) for e in axes]
-    if t == "T3":
-        return [
-            _twist(zero, mpmath.matrix([1 if k == i else 0 for k in range(3)])) for i in range(3)
-        ]
-    if t == "D":
-        return [[mpmath.mpf(1 if k == i else 0) for k in range(6)] for i in range(6)]
-    w = _unit(_vec(j["normal"] if "normal" in j else j["axis"]))
-    e1, e2 = _in_plane(w)
-    planar = [_twist(zero, e1), _twist(zero, e2)]
-    if t == "T2":
-        return planar
-    if t == "G":
-        return [_twist(w, zero), *planar]
-    if t == "Y":
-        return [_twist(w, _num(j["pitch"]) * w), *planar]
-    if t == "X":
-        return [_twist(w, zero), *planar, _twist(zero, w)]
-    raise AssertionError(t)
-
-
-def _hat(xi: list[mpmath.mpf]) -> mpmath.matrix:
-    return mpmath.matrix(hat(xi).tolist())
-
-
-def _element(j: dict, q: list[mpmath.mpf]) -> mpmath.matrix:
-    """g_a^-1 g_b of a joint at values q: exp(sum q_i e_i); a U joint exp(q1 R1) exp(q2 R2)."""
-    if j["type"] == "U":
-        r = [_basis({"type": "R", "axis": a, "point": j["point"]})[0] for a in j["axes"]]
-        return mpmath.expm(q[0] * _hat(r[0])) * mpmath.expm(q[1] * _hat(r[1]))
-    B = _basis(j)
-    xi = [mpmath.fsum(qi * b[k] for qi, b in zip(q, B, strict=True)) for k in range(6)]
-    return mpmath.expm(_hat(xi))
-
-
-def _points(joints: list[dict]) -> list[mpmath.matrix]:
-    """The characteristic points: each joint's axis point nearest the origin (R, H, C), centre (S, U)."""
-    out = []
+def _product(joints: list[J], q: dict[str, list]) -> np.ndarray:
+    """The product of the joints' exponentials in their order (mpmath.expm at the working
+    precision; a U joint exp(q1 R1) exp(q2 R2))."""
+    g = np.eye(4)
     for j in joints:
-        if j["type"] in ("R", "H", "C"):
-            u, p = _unit(_vec(j["axis"])), _vec(j["point"])
-            out.append(p - (u.T * p)[0] * u)
-        elif j["type"] in ("S", "U"):
-            out.append(_vec(j["point"]))
-    return out
-
-
-def _length_scale(joints: list[dict]) -> tuple[mpmath.mpf, mpmath.matrix]:
-    """The characteristic length: L = RMS distance of the points from their centroid c, else |c|, else 1."""
-    pts = _points(joints)
-    c = sum(pts, mpmath.matrix(3, 1)) / len(pts) if pts else mpmath.matrix(3, 1)
-    rms = mpmath.sqrt(mpmath.fsum(mpmath.norm(p - c) ** 2 for p in pts) / len(pts)) if pts else 0
-    if rms > 0:
-        return rms, c
-    return (mpmath.norm(c), c) if mpmath.norm(c) > 0 else (mpmath.mpf(1), c)
-
-
-def _mismatch(g: mpmath.matrix, L: mpmath.mpf, c: mpmath.mpf) -> mpmath.mpf:
-    """How far a displacement is from the identity, as a length: the larger of L |R - I| and the
-    displacement of the centroid."""
-    E = g - mpmath.eye(4)
-    rot = max(abs(E[i, k]) for i in range(3) for k in range(3))
-    moved = mpmath.norm(
-        mpmath.matrix(
-            [E[i, 0] * c[0] + E[i, 1] * c[1] + E[i, 2] * c[2] + E[i, 3] for i in range(3)]
-        )
-    )
-    return max(L * rot, moved)
+        g = g @ j.element([mpmath.mpf(x) for x in q[j.name]], expm_mp)
+    return g
 
 
 def _mechanism(name: str, joints: list[dict], inputs: list[str], config: dict) -> str:
@@ -452,7 +353,9 @@ def _closed_values(path: Path, mode: str) -> tuple[dict, dict[str, list[mpmath.m
     from mechsing.kinematics import solve_configuration
     from mechsing.model import load
 
-    out = cli_json(["solve", str(path), "--config", "moved", "--precision", mode, "--format", "json"])
+    out = cli_json(
+        ["solve", str(path), "--config", "moved", "--precision", mode, "--format", "json"]
+    )
     model, closed = solve_configuration(load(str(path)), "moved", mode)
     q = {jk.name: list(closed.q[jk.columns]) for jk in model.joints}
     return out, q
@@ -471,17 +374,16 @@ def test_newton_at_n_digits_closes_every_joint_type(tmp_path: Path, loop: str, d
     )
     out, q = _closed_values(path, f"mp:{digits}")
     with mpmath.workdps(digits + GUARD):
-        L, c = _length_scale(joints)
+        ref = _joints(joints)
+        L, c = length_scale(ref)
         goal = mpmath.mpf(10) ** (5 - digits) * L
         assert out["closure_residual"] <= goal, (loop, out["closure_residual"], float(goal))
-        g = mpmath.eye(4)
-        for j in joints:
-            g = g * _element(j, [mpmath.mpf(x) for x in q[j["name"]]])
-        assert _mismatch(g, L, c) <= goal, (loop, float(_mismatch(g, L, c)))
+        g = _product(ref, q)
+        assert mismatch(g, L, c) <= goal, (loop, float(mismatch(g, L, c)))
         # the given value is the file's, to N digits
         given = q[inputs[0]]
         want = config[inputs[0]] if isinstance(config[inputs[0]], list) else [config[inputs[0]]]
-        assert max(abs(a - _num(b)) for a, b in zip(given, want, strict=True)) <= goal
+        assert max(abs(a - mp_num(b)) for a, b in zip(given, want, strict=True)) <= goal
 
 
 def _stewart_with_strokes() -> tuple[str, list[dict]]:
@@ -501,22 +403,18 @@ def test_newton_at_n_digits_closes_the_stewart_platform(tmp_path: Path, digits: 
     text, joints = _stewart_with_strokes()
     path = write(tmp_path, "stewart_strokes", text)
     out, q = _closed_values(path, f"mp:{digits}")
-    by = {j["name"]: j for j in joints}
     with mpmath.workdps(digits + GUARD):
-        L, c = _length_scale(joints)
+        ref = _joints(joints)
+        by = {j.name: j for j in ref}
+        L, c = length_scale(ref)
         goal = mpmath.mpf(10) ** (5 - digits) * L
         assert out["closure_residual"] <= goal, out["closure_residual"]
-        legs = []
-        for k in range(1, 7):
-            g = mpmath.eye(4)
-            for name in (f"U{k}", f"P{k}", f"S{k}"):
-                g = g * _element(by[name], [mpmath.mpf(x) for x in q[name]])
-            legs.append(g)
+        legs = [_product([by[f"U{k}"], by[f"P{k}"], by[f"S{k}"]], q) for k in range(1, 7)]
         for k, g in enumerate(legs[1:], start=2):
-            d = mpmath.inverse(legs[0]) * g
-            assert _mismatch(d, L, c) <= goal, (k, float(_mismatch(d, L, c)))
+            d = inv(legs[0]) @ g
+            assert mismatch(d, L, c) <= goal, (k, float(mismatch(d, L, c)))
         for k in range(1, 7):
-            assert abs(q[f"P{k}"][0] - _num(out["joints"][f"P{k}"][0])) <= mpmath.mpf(10) ** -15
+            assert abs(q[f"P{k}"][0] - mp_num(out["joints"][f"P{k}"][0])) <= mpmath.mpf(10) ** -15
 
 
 def test_rssr_at_400_digits(tmp_path: Path) -> None:
@@ -526,11 +424,9 @@ def test_rssr_at_400_digits(tmp_path: Path) -> None:
     path = write(tmp_path, "rssr400", _mechanism("rssr", joints, ["A"], config))
     out, q = _closed_values(path, "mp:400")
     with mpmath.workdps(400 + GUARD):
-        L, c = _length_scale(joints)
-        g = mpmath.eye(4)
-        for j in joints:
-            g = g * _element(j, [mpmath.mpf(x) for x in q[j["name"]]])
-        assert _mismatch(g, L, c) <= mpmath.mpf(10) ** (5 - 400) * L
+        ref = _joints(joints)
+        L, c = length_scale(ref)
+        assert mismatch(_product(ref, q), L, c) <= mpmath.mpf(10) ** (5 - 400) * L
     assert out["closure_residual"] <= 1e-300  # the residual underflows float's range
 
 
@@ -550,7 +446,7 @@ def test_auto_near_the_rssr_rocker_dead_centre(tmp_path: Path) -> None:
     c = res["moved"]
     assert c["precision"] == "mp:50" and "error" not in c, c.get("error")
     with mpmath.workdps(60):
-        L, _c = _length_scale(joints)
+        L, _c = length_scale(_joints(joints))
         assert c["closure_residual"] <= mpmath.mpf(10) ** -45 * L
     assert (c["closure_rank"]["rank"], c["closure_rank"]["nullity"]) == (6, 2)  # crank + idle spin
     assert c["singular"] is False, classes(c)

@@ -59,7 +59,7 @@ def test_rank_undecided_between_thresholds() -> None:
 def test_rank_full_and_zero() -> None:
     d = decide_rank(np.eye(3), "float")
     assert d.rank == 3 and d.margin.dropped is None and d.margin.kept == 1.0
-    # a wide matrix of full row rank drops nothing either (DESIGN.md's four-bar: "dropped": null)
+    # a wide matrix of full row rank drops nothing either (examples/fourbar.yaml: "dropped": null)
     w = decide_rank(np.hstack([np.eye(3), np.ones((3, 1))]), "float")
     assert w.rank == 3 and w.margin.dropped is None
     z = decide_rank(np.zeros((3, 2)), "float", want_spaces=True)

@@ -98,7 +98,10 @@ def test_group_laws(phi1, phi2, v):
         atol=16 * EPS,
     )
     np.testing.assert_allclose(
-        quat_rotate(p, v), quat_to_rotation_matrix(p) @ v, rtol=0, atol=16 * EPS * (1 + np.abs(v).max())
+        quat_rotate(p, v),
+        quat_to_rotation_matrix(p) @ v,
+        rtol=0,
+        atol=16 * EPS * (1 + np.abs(v).max()),
     )
     ref = Rotation.from_quat(to_scipy(p)) * Rotation.from_quat(to_scipy(q))
     assert same_up_to_sign(quat_multiply(p, q), from_scipy(ref.as_quat()), 8 * EPS)
@@ -113,7 +116,9 @@ def test_associativity_and_non_unit_inverse():
     np.testing.assert_allclose(
         quat_multiply(quat_multiply(a, b), c), quat_multiply(a, quat_multiply(b, c)), atol=1e-14
     )
-    np.testing.assert_allclose(quat_multiply(a, quat_inverse(a)), np.tile([1, 0, 0, 0], (5, 1)), atol=1e-15)
+    np.testing.assert_allclose(
+        quat_multiply(a, quat_inverse(a)), np.tile([1, 0, 0, 0], (5, 1)), atol=1e-15
+    )
     # the rational (homogeneous) rotation formulas accept non-unit quaternions
     un = a / np.linalg.norm(a, axis=-1, keepdims=True)
     np.testing.assert_allclose(quat_to_rotation_matrix(a), quat_to_rotation_matrix(un), atol=1e-15)
@@ -238,8 +243,10 @@ def test_mp50_exp_log_against_direct_mpmath(phi):
         assert err <= mpmath.mpf(10) ** -48 * max(t, mpmath.mpf(10) ** -300)
         R = quat_to_rotation_matrix(q)
         q2 = quat_from_rotation_matrix(R)
-        d = min(max(abs(a - b) for a, b in zip(q2, q, strict=True)),
-                max(abs(a + b) for a, b in zip(q2, q, strict=True)))
+        d = min(
+            max(abs(a - b) for a, b in zip(q2, q, strict=True)),
+            max(abs(a + b) for a, b in zip(q2, q, strict=True)),
+        )
         assert d <= mpmath.mpf(10) ** -48
 
 

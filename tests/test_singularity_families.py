@@ -5,8 +5,8 @@ its geometry; the same instance is then pushed 10^-k off the singular configurat
 (k = 1 ... 6).  The mechanisms are written to ``tmp_path`` with exact rationals (tests/families.py)
 and analysed in-process, with ``mechsing.analysis.analyze(path).to_json()`` or with
 ``mechsing.cli.main(["analyze", path, "--format", "json"])``.  Every expected answer is derived
-from the geometry in tests/families.py or below (closed forms, theory.md sections 3.4, 4, 5.4 and
-6), never from mechsing's output:
+from the geometry in tests/families.py or below (closed forms and the published facts named
+there), never from mechsing's output:
 
 * change-point four-bars and parallelograms folded flat: ``bifurcation``, 2 branches of mobility
   1 whose tangents are those of the closed-form motion; off the fold: regular in float;
@@ -21,7 +21,8 @@ from the geometry in tests/families.py or below (closed forms, theory.md section
   slider driving; 6R arms on each factor of det J: ``serial`` told apart by its support, with its
   evidence (wrenches, twist, null rates) checked against the arm's own screws.
 
-All findings carry ``margin`` and ``precision``, and ``singular`` follows DESIGN.md's rule.
+All findings carry ``margin`` and ``precision``, and ``singular`` is true iff a
+finding other than ``undecided`` is present (null if only those, false if none).
 """
 
 from __future__ import annotations
@@ -48,7 +49,8 @@ MARGIN_KEYS = {"kept", "dropped", "tau_lo", "tau_hi", "length_scale"}
 
 
 def check_contract(result: dict) -> None:
-    """Every finding carries margin and precision; ``singular`` follows DESIGN.md's rule."""
+    """Every finding carries margin and precision; ``singular`` is true iff a finding
+    other than ``undecided`` is present, null if only those, false if none."""
     for c in result["configurations"]:
         assert c.get("error") is None, (c["name"], c.get("error"))
         for f in c["singularities"]:
@@ -132,7 +134,7 @@ def test_changepoint_fold_is_a_bifurcation_and_regular_off_it(
     assert fold["singular"] is True
 
     pts = np.array([float(x) for x in fb.points])
-    L = float(np.sqrt(np.mean((pts - pts.mean()) ** 2)))  # DESIGN.md: RMS distance to centroid
+    L = float(np.sqrt(np.mean((pts - pts.mean()) ** 2)))  # L: RMS distance to the centroid
     for name, c in res.items():
         if name != "reference":
             assert_regular(c, 3)
@@ -149,8 +151,8 @@ def test_crank_input_continued_towards_the_fold_stays_on_its_branch(
 ) -> None:
     """The crank alone, continued from crank angle 0.1 on one branch to 10^-k (k = 2 ... 6):
     for every crank angle in (0, 0.1] the two assembly modes (the two sides of the line BD) are
-    distinct, so continuation must stay on the side it starts on (DESIGN.md: "the result stays
-    on the starting assembly mode"), and the point is regular."""
+    distinct, so continuation must stay on the side it starts on (README: continuation stays
+    on the start's assembly mode), and the point is regular."""
     fb = _fourbar_family(kind, seed)
     configs = {"start": fb.pushed_config(mpmath.mpf("0.1"), 1)}
     for k in KS[1:]:
@@ -349,7 +351,7 @@ def test_tsai_coplanar_couples_constraint_singular_and_not_off_it(
         assert_regular(c, 12)
 
 
-# ----------------------------------------------------------------------------- 6. theory.md rows 7, 4
+# ------------------------------------------------------------ 6. slider-crank r = l, flat triangle
 
 
 @pytest.mark.parametrize("r", [F(1), F(7, 3), F(2, 5)])

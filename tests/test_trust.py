@@ -182,7 +182,7 @@ def test_the_build_lists_every_package():
 def test_nothing_shipped_points_outside_the_project():
     """Users get the README, `mechsing schema` and the project's own files; no message,
     docstring or example may send them to files that are not part of the project."""
-    banned = ("../shared", "DESIGN.md", "theory.md")
+    banned = ("../" + "shared", "DESIGN" + ".md", "theory" + ".md")  # spelt apart: see test_house
     files = [*ROOT.joinpath("mechsing").rglob("*.py"), *ROOT.joinpath("catalog").iterdir(),
              *ROOT.joinpath("examples").iterdir(), ROOT / "README.md"]
     offenders = [

@@ -8,6 +8,7 @@ import ast
 import math
 from collections.abc import Callable, Sequence
 
+import mpmath
 import numpy as np
 
 FLOAT_FUNCTIONS: dict[str, Callable] = {
@@ -20,6 +21,9 @@ FLOAT_FUNCTIONS: dict[str, Callable] = {
     "atan": math.atan,
     "atan2": math.atan2,
 }
+
+#: the same functions at mpmath's working precision
+MP_FUNCTIONS: dict[str, Callable] = {name: getattr(mpmath, name) for name in FLOAT_FUNCTIONS}
 
 _OPS = {
     ast.Add: lambda a, b: a + b,
@@ -81,3 +85,10 @@ def num(x: object) -> float:
 def vec(v: Sequence) -> np.ndarray:
     """A file vector as floats."""
     return np.array([num(x) for x in v], dtype=float)
+
+
+def mp_num(x: object) -> mpmath.mpf:
+    """A file number at mpmath's working precision, its decimals as written (``0.1`` is 1/10,
+    not the float nearest it)."""
+    value = evaluate(x, MP_FUNCTIONS, const=lambda c: mpmath.mpf(str(c)), pi=mpmath.pi)
+    return mpmath.mpf(value)

@@ -2,22 +2,36 @@
 screws of every joint type, joint displacements, body poses along a breadth-first spanning tree,
 a cycle basis (networkx) and the products around it, closure errors, spatial joint screws, a
 path tracker (Gauss-Newton on the cycle products with finite differences) and the closed-form
-planar four-bar.
+planar four-bar; the characteristic length and centroid of the commensurate metric, and how far
+a displacement is from the identity as a length.
 
 Joint values are dictionaries {joint name: array of its coordinates} in SI units and radians.
+Bases, joint displacements, the characteristic length and the mismatch keep the number type of
+the joint's data (floats, or mpmath / sympy numbers: give :class:`J` their ``one`` and an ``exp``
+in that type, such as :func:`tests.reference.se3.expm_mp`).
 """
 
 from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import networkx as nx
 import numpy as np
 
-from tests.reference.se3 import adjoint, exp_rodrigues, expt, in_plane, inv, revolute, slide, unit
+from tests.reference.se3 import (
+    adjoint,
+    exp_rodrigues,
+    expt,
+    in_plane,
+    inv,
+    revolute,
+    slide,
+    sqrt,
+    unit,
+)
 
 PI = math.pi
 
@@ -42,16 +56,25 @@ Exp = Callable[[np.ndarray], np.ndarray]
 Values = Mapping[str, np.ndarray]
 
 
-def basis(jtype: str, prm: dict) -> list[np.ndarray]:
-    """The reference basis screws of a joint (SI units)."""
-    eye = np.eye(3)
+def _eye(n: int, one: object) -> np.ndarray:
+    """The n x n identity in the number type of ``one``."""
+    if isinstance(one, float):
+        return np.eye(n)
+    return np.array([[one if i == k else one * 0 for k in range(n)] for i in range(n)])
+
+
+def basis(jtype: str, prm: dict, one: object = 1.0) -> list[np.ndarray]:
+    """The reference basis screws of a joint (SI units), in the number type of ``one`` (1.0,
+    ``mpmath.mpf(1)``, ``sympy.Integer(1)``) and of the joint's data."""
+    eye = _eye(3, one)
+    zero = eye[0] * 0
     if jtype == "R":
         return [revolute(prm["axis"], prm["point"])]
     if jtype == "P":
         return [slide(prm["axis"])]
     if jtype == "H":
         u = unit(prm["axis"])
-        return [revolute(u, prm["point"]) + np.concatenate([np.zeros(3), prm["pitch"] * u])]
+        return [revolute(u, prm["point"]) + np.concatenate([zero, prm["pitch"] * u])]
     if jtype == "C":
         return [revolute(prm["axis"], prm["point"]), slide(prm["axis"])]
     if jtype == "T2":
@@ -64,14 +87,14 @@ def basis(jtype: str, prm: dict) -> list[np.ndarray]:
     if jtype in ("G", "Y"):
         n = unit(prm["normal"])
         e1, e2 = in_plane(prm["normal"])
-        h = prm.get("pitch", 0.0)
+        h = prm.get("pitch", one * 0)
         return [np.concatenate([n, h * n]), slide(e1), slide(e2)]
     if jtype == "X":
         a = unit(prm["axis"])
         e1, e2 = in_plane(prm["axis"])
-        return [np.concatenate([a, np.zeros(3)]), slide(e1), slide(e2), slide(a)]
+        return [np.concatenate([a, zero]), slide(e1), slide(e2), slide(a)]
     if jtype == "D":
-        return [np.eye(6)[k] for k in range(6)]
+        return list(_eye(6, one))
     if jtype == "U":
         a1, a2 = prm["axes"]
         return [revolute(a1, prm["point"]), revolute(a2, prm["point"])]
@@ -82,22 +105,24 @@ def basis(jtype: str, prm: dict) -> list[np.ndarray]:
 
 @dataclass
 class J:
-    """A joint as the reference understands it (SI floats): between bodies ``a`` and ``b``."""
+    """A joint as the reference understands it (SI): between bodies ``a`` and ``b``, its data
+    (``prm``) and its values in the number type of ``one`` (1.0: floats)."""
 
     name: str
     type: str
     a: str
     b: str
     prm: dict = field(default_factory=dict)
+    one: object = 1.0
 
     @functools.cached_property
     def basis(self) -> list[np.ndarray]:
-        return basis(self.type, self.prm)
+        return basis(self.type, self.prm, self.one)
 
     def element(self, q: Iterable[float], exp: Exp = expt) -> np.ndarray:
-        """The relative displacement M with g_b = g_a M."""
+        """The relative displacement M with g_b = g_a M (``exp`` in the joint's number type)."""
         B = self.basis
-        q = np.asarray(q, dtype=float).reshape(-1)
+        q = np.asarray(q, dtype=float if isinstance(self.one, float) else object).reshape(-1)
         assert len(q) == len(B)
         if self.type == "U":
             return exp(q[0] * B[0]) @ exp(q[1] * B[1])
@@ -270,6 +295,61 @@ def track(
         s = np.linalg.svd(jac(x, given_t), compute_uv=False)
         worst = min(worst, float(s[-1] / s[0]))
     return values_at(x, target), worst
+
+
+def joint_from_entry(entry: Mapping, num: Callable[[object], object], one: object = 1.0) -> J:
+    """A reference joint from a mechanism file's joint entry (``name``, ``type``, ``between`` and
+    its geometry), each number read by ``num`` (a float reader, or
+    :func:`tests.reference.expressions.mp_num` with ``one = mpmath.mpf(1)``)."""
+    prm: dict = {}
+    for key, val in entry.items():
+        if key in ("name", "type", "between"):
+            continue
+        if key == "axes":
+            prm[key] = tuple(np.array([num(x) for x in a]) for a in val)
+        elif key == "pitch":
+            prm[key] = num(val)
+        else:
+            prm[key] = np.array([num(x) for x in val])
+    a, b = entry["between"]
+    return J(entry["name"], entry["type"], a, b, prm, one)
+
+
+def characteristic_points(joints: Iterable[J]) -> list[np.ndarray]:
+    """Each joint's point that the characteristic length is taken over: the axis point nearest
+    the origin (the foot of the perpendicular) of R, H and C, the centre of S and U."""
+    out = []
+    for j in joints:
+        if j.type in ("R", "H", "C"):
+            u, p = unit(j.prm["axis"]), np.asarray(j.prm["point"])
+            out.append(p - (u @ p) * u)
+        elif j.type in ("S", "U"):
+            out.append(np.asarray(j.prm["point"]))
+    return out
+
+
+def length_scale(joints: Sequence[J]) -> tuple[object, np.ndarray]:
+    """The characteristic length L and the centroid c of the characteristic points: L is their
+    RMS distance from c; if that is zero, |c|; if that is zero too, 1 (in the joints' type)."""
+    one = joints[0].one if joints else 1.0
+    pts = characteristic_points(joints)
+    c = sum(pts) / len(pts) if pts else _eye(3, one)[0] * 0
+    rms = sqrt(sum((p - c) @ (p - c) for p in pts) / len(pts)) if pts else one * 0
+    if rms > 0:
+        return rms, c
+    norm = sqrt(c @ c)
+    return (norm, c) if norm > 0 else (one, c)
+
+
+def mismatch(g: np.ndarray, L: object, c: np.ndarray) -> object:
+    """How far a displacement is from the identity, as a length: the larger of L max |R - I|
+    and the distance it moves the centroid c."""
+    E = np.array(g, copy=True)
+    for i in range(4):
+        E[i, i] = E[i, i] - 1
+    rot = max(abs(E[i, k]) for i in range(3) for k in range(3))
+    moved = E[:3, :3] @ c + E[:3, 3]
+    return max(L * rot, sqrt(moved @ moved))
 
 
 def joints_from_model(mech: object) -> list[J]:

@@ -1,9 +1,11 @@
 """SE(3) and screw algebra for the tests: hat/skew, exponentials, inverse, adjoint, unit
 vectors and the in-plane directions of the conventions.
 
-Twists are (omega, v): angular part first.  :func:`skew` and :func:`hat` keep the number type of
-their input (floats, mpmath or sympy numbers in an object array), so one pair serves the float
-checks and the multiprecision / exact ones.
+Twists are (omega, v): angular part first.  :func:`skew`, :func:`hat`, :func:`inv`,
+:func:`unit`, :func:`in_plane`, :func:`revolute` and :func:`slide` keep the number type of their
+input (floats, or mpmath or sympy numbers in an object array), so one set serves the float checks
+and the multiprecision / exact ones; :func:`expm_mp`, :func:`rodrigues_mp` and
+:func:`rotation_mp` compute at mpmath's working precision.
 """
 
 from __future__ import annotations
@@ -11,8 +13,29 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
+import mpmath
 import numpy as np
 import scipy.linalg
+import sympy
+
+
+def is_float(v: object) -> bool:
+    """Whether v holds plain numbers (computed in float64) rather than mpmath / sympy ones."""
+    return np.asarray(v).dtype != object
+
+
+def sqrt(x: object) -> object:
+    """The square root in x's number type (float, mpmath or sympy)."""
+    if isinstance(x, sympy.Basic):
+        return sympy.sqrt(x)
+    if isinstance(x, mpmath.mpf):
+        return mpmath.sqrt(x)
+    return math.sqrt(x)
+
+
+def wrap(x: float) -> float:
+    """An angle modulo 2 pi, in [-pi, pi]."""
+    return math.remainder(x, 2 * math.pi)
 
 
 def skew(w: Sequence | np.ndarray) -> np.ndarray:
@@ -61,8 +84,35 @@ def exp_rodrigues(xi: Sequence | np.ndarray) -> np.ndarray:
     return g
 
 
+def expm_mp(xi: Sequence | np.ndarray) -> np.ndarray:
+    """exp of a twist (omega, v) at mpmath's working precision (``mpmath.expm`` of its 4 x 4
+    matrix), as an object array of mpmath numbers."""
+    X = mpmath.matrix(hat(np.asarray(xi, dtype=object)).tolist())
+    return np.array(mpmath.expm(X).tolist(), dtype=object)
+
+
+def rodrigues_mp(u: Sequence, t: object) -> np.ndarray:
+    """The rotation by t about the unit vector u (Rodrigues' formula) at mpmath's working
+    precision, as an object array of mpmath numbers."""
+    K = mpmath.matrix(skew(np.array([mpmath.mpf(x) for x in u], dtype=object)).tolist())
+    R = mpmath.eye(3) + mpmath.sin(t) * K + (1 - mpmath.cos(t)) * K * K
+    return np.array(R.tolist(), dtype=object)
+
+
+def rotation_mp(v: Sequence) -> np.ndarray:
+    """The rotation matrix of the rotation vector v at mpmath's working precision; the entries
+    of v are read as their decimal text."""
+    w = [mpmath.mpf(str(x)) for x in v]
+    t = mpmath.sqrt(mpmath.fsum(x * x for x in w))
+    return rodrigues_mp([x / t for x in w], t)
+
+
 def inv(g: np.ndarray) -> np.ndarray:
-    """The inverse of a rigid displacement (R^T, -R^T p)."""
+    """The inverse of a rigid displacement (R^T, -R^T p), in g's number type."""
+    if not is_float(g):
+        R, p = g[:3, :3], g[:3, 3]
+        top = np.concatenate([R.T, (-(R.T @ p))[:, None]], axis=1)
+        return np.concatenate([top, g[3:4] * 0 + np.array([[0, 0, 0, 1]])], axis=0)
     out = np.eye(4)
     out[:3, :3] = g[:3, :3].T
     out[:3, 3] = -g[:3, :3].T @ g[:3, 3]
@@ -80,35 +130,43 @@ def adjoint(g: np.ndarray) -> np.ndarray:
 
 
 def unit(v: Sequence | np.ndarray) -> np.ndarray:
+    """v / |v|, in v's number type."""
+    if not is_float(v):
+        v = np.asarray(v)
+        return v / sqrt(sum(x * x for x in v))
     v = np.asarray(v, dtype=float)
     return v / np.linalg.norm(v)
 
 
 def in_plane(raw: Sequence | np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """e1 = normalise(a - (a.w) w), a the coordinate axis least aligned with w
-    (first in x, y, z order on a tie, decided on the vector as written), e2 = w x e1."""
-    raw = np.asarray(raw, dtype=float)
-    mags = np.abs(raw)
+    (first in x, y, z order on a tie, decided on the vector as written), e2 = w x e1; in raw's
+    number type."""
+    raw = np.asarray(raw) if not is_float(raw) else np.asarray(raw, dtype=float)
+    mags = [abs(x) for x in raw]
     i = 0
     for k in (1, 2):
         if mags[k] < mags[i]:
             i = k
     w = unit(raw)
-    a = np.zeros(3)
-    a[i] = 1.0
+    a = np.zeros(3) if is_float(w) else w * 0
+    a[i] = a[i] + 1
     e1 = unit(a - w[i] * w)
     return e1, np.cross(w, e1)
 
 
 def revolute(u: Sequence | np.ndarray, p: Sequence | np.ndarray) -> np.ndarray:
-    """The unit twist of a rotation about the line through p along u: (u, p x u)."""
-    u = unit(u)
-    return np.concatenate([u, np.cross(np.asarray(p, float), u)])
+    """The unit twist of a rotation about the line through p along u: (u, p x u), in the number
+    type of u and p."""
+    exact = not (is_float(u) and is_float(p))
+    u = unit(np.asarray(u, dtype=object) if exact else u)
+    return np.concatenate([u, np.cross(np.asarray(p) if exact else np.asarray(p, float), u)])
 
 
 def slide(u: Sequence | np.ndarray) -> np.ndarray:
-    """The unit twist of a translation along u: (0, u)."""
-    return np.concatenate([np.zeros(3), unit(u)])
+    """The unit twist of a translation along u: (0, u), in u's number type."""
+    u = unit(u)
+    return np.concatenate([np.zeros(3) if is_float(u) else u * 0, u])
 
 
 def screw_motion(u: np.ndarray, N: np.ndarray, theta: float, d: float) -> np.ndarray:
