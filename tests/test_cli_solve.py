@@ -37,7 +37,7 @@ def fourbar_expected(theta: float) -> dict[str, float]:
     return {"A": theta, "B": psi - theta, "C": phi - psi, "D": -phi}
 
 
-def test_design_md_fourbar_crank_30_in_radians():
+def test_fourbar_crank_30_in_radians():
     doc = solve_json(FOURBAR, "--config", "crank-30")
     assert doc["mechanism"] == "four-bar"
     assert doc["configuration"] == "crank-30"

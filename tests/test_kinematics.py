@@ -303,7 +303,7 @@ def test_planar_fourbar_matches_closed_form(frame, xy, heights, flips, d1, d2):
             assert_closes(joints, mech_values(model, closed.q), L, exp_rodrigues)
 
 
-def test_fourbar_design_md_values():
+def test_fourbar_example_values():
     """examples/fourbar.yaml at crank 30 deg: B ~ -0.712, C ~ 0.0881, D ~ 0.1003."""
     mech = load(EXAMPLES[0].parent / "fourbar.yaml")
     model = KinematicModel(mech)
