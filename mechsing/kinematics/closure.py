@@ -187,7 +187,7 @@ class Closer:
                     f"sensible size (at most {MAX_JOINT_VALUE:g} rad, or {MAX_JOINT_VALUE:g} times the "
                     f"mechanism's size {m.length_scale:.3g} m for a length); check the value and the units"
                 )
-            if m.precision.mode == "exact":
+            if m.precision.mode == "exact":  # policy: exact mode takes exact values only
                 self._refuse_transcendental(cfg, jk, coords)
             target[jk.columns] = coords
             given.extend(range(jk.columns.start, jk.columns.stop))
@@ -358,7 +358,7 @@ class Closer:
     def _check(self, cfg: Configuration, q: np.ndarray) -> ClosedConfiguration:
         m = self.model
         deltas = m.chord_residuals(q)
-        if m.precision.mode == "exact":
+        if m.precision.mode == "exact":  # policy: exact mode proves closure, never measures it
             with activity("proving that the loops close exactly"):
                 proofs = [
                     [exact_is_zero(x, m.length_scale) for x in (D - m.backend.eye(4)).flat]
@@ -421,6 +421,7 @@ class Closer:
         self, cfg: Configuration, q0: np.ndarray, target: np.ndarray, given: tuple[int, ...]
     ) -> ClosedConfiguration:
         m = self.model
+        # policy: continuation is float by design (an mp model polishes its end point)
         fm = KinematicModel(m.mech, "float") if m.precision.mode != "float" else m
         gmask = np.zeros(m.n, dtype=bool)
         gmask[list(given)] = True
@@ -511,7 +512,7 @@ class Closer:
                 "the given values are a fold (a limit of their motion): the unknown joints were "
                 "found by Newton from just short of it; float places them only to about 1e-8 there"
             )
-        if m.precision.mode == "mp":
+        if m.precision.mode == "mp":  # policy: only mp polishes the float landing
             qm, res = self._polish_mp(m, q, target, gmask, cfg)
             q_out = qm
         else:
@@ -814,7 +815,7 @@ def solve_configuration(
 
 def _to_the_tolerance(prec: Precision) -> str:
     """How a precision mode decides that a given value is what it claims, for messages."""
-    if prec.mode == "exact":
+    if prec.mode == "exact":  # the wording differs, not the arithmetic
         return "exactly, in exact mode"
     with prec.context():
         tol = float(screw_zero_rtol(prec.backend))

@@ -128,7 +128,7 @@ class KinematicModel:
         self.precision = parse_precision(precision) if isinstance(precision, str) else precision
         if self.precision.mode == "auto":
             self.precision = Precision("float")
-        if self.precision.mode == "exact":
+        if self.precision.mode == "exact":  # policy: exact mode takes exact geometry only
             refuse_inexact_geometry(mech)
         self.backend = self.precision.backend
         pts = axis_points(mech)
@@ -248,7 +248,7 @@ class KinematicModel:
         if native and self.backend.name == "mp":
             with self.precision.context():
                 worst = mpmath.mpf(0)
-                c = self.backend.asarray(self.centroid)
+                c = self.frame.c
                 for D in deltas:
                     R = D[:3, :3]
                     p = D[:3, 3] + R @ c - c
@@ -256,20 +256,18 @@ class KinematicModel:
                     worst = max(worst, mpmath.sqrt((p * p).sum() + L * L * (E * E).sum() / 2))
                 return worst
         worst = 0.0
+        # policy: mp measures in its own numbers; an exact model's residual is a float
+        # measure (exact closure is proved, not measured)
+        mp = self.backend.name == "mp"
+        c = (self.frame if mp else self.float_frame).c
         with self.precision.context():
-            if self.backend.name == "mp":
-                c = self.backend.asarray(self.centroid)
-                eye = self.backend.eye(3)
-            else:
-                c = self.centroid
-                eye = np.eye(3)
             for D in deltas:
                 # in the model's precision: converting Delta to float first would
                 # bury an mp:N residual under float rounding of R @ c
-                Dm = D if self.backend.name == "mp" else np.array(to_float(D))
+                Dm = D if mp else np.array(to_float(D))
                 R = Dm[:3, :3]
                 p = Dm[:3, 3] + R @ c - c
-                E = R - eye
+                E = R - np.eye(3)
                 r2 = (p * p).sum() + L * L * (E * E).sum() / 2
                 worst = max(worst, float(r2) ** 0.5)
         return worst
@@ -337,7 +335,7 @@ class KinematicModel:
         xs = ff.twists(to_float(x)[:, None])[:, 0]
         coef, *_ = np.linalg.lstsq(B, xs, rcond=None)
         bk = self.backend
-        if bk.name == "float":
+        if bk.name == "float":  # policy: float's solve is the answer; exact and mp refine
             return coef
         cm = bk.asarray(coef)
         if bk.name == "exact":

@@ -86,7 +86,7 @@ class LocalAnalysis:
 
 def float_model(mech: Any, model: Any) -> Any:
     """The model itself in float, else its float twin (built once per model)."""
-    if model.precision.mode == "float":
+    if model.precision.mode == "float":  # the model is its own float twin
         return model
     cache = model.__dict__.setdefault("_float_twin", {})
     if "m" not in cache:
