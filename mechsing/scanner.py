@@ -183,9 +183,7 @@ class ChainScanner:
                 f"(joint coordinates in file order), not {Q.shape}"
             )
         # the limits of `analyze` (numeric.MAX_JOINT_VALUE): radians, or times L for a length
-        bound = np.where(
-            self.model.length_columns, MAX_JOINT_VALUE * self.length_scale, MAX_JOINT_VALUE
-        )
+        bound = self.model.float_frame.rates_back(np.full(self.n, MAX_JOINT_VALUE))
         bad = ~np.all(np.isfinite(Q) & (np.abs(Q) <= bound), axis=1)
         if np.any(bad):
             i = int(np.flatnonzero(bad)[0])

@@ -120,13 +120,13 @@ def _analyze(
         return models[key]
 
     first = Precision("float") if prec.mode == "auto" else prec
-    if prec.mode == "exact":
+    if prec.mode == "exact":  # policy: exact proofs run under a time limit, one at a time
         exact = _ExactRun(mech, names, time_limit, progress)
         exact.prepare(lambda: stage(first))
     results = []
     for name in names:
         start = time.perf_counter()
-        if prec.mode == "exact":
+        if prec.mode == "exact":  # policy: see _ExactRun
             res = exact.run(name, lambda name=name: _analyze_one(mech, name, stage(first)))
             results.append(replace(res, seconds=time.perf_counter() - start))
             continue
@@ -159,6 +159,7 @@ def _doubtful_drops(
     return tuple(
         d.test
         for d in decisions
+        # policy: only a float verdict can be an artefact of the data's rounding
         if d.precision == "float" and float_drop_is_real(d.margin, data_error)
     )
 

@@ -24,7 +24,6 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
-from mechsing.numeric import scale_screws
 
 __all__ = ["SerialJacobian", "current_screws", "element", "poses"]
 
@@ -139,15 +138,14 @@ class SerialJacobian:
     def __init__(
         self, model: Any, joints: list[Any], order: list[int], point: np.ndarray | None
     ) -> None:
-        L, c = model.length_scale, model.centroid
-        self.length_scale = L
-        self.centroid = c
+        self.frame = model.float_frame
+        self.order = list(order)
         self.columns = len(order)
-        self.point = point
-        self.length_columns = np.asarray(model.length_columns[order], dtype=bool)
+        #: the output point's commensurate position (x - c) / L, or None
+        self.point = None if point is None else self.frame.point(np.asarray(point, dtype=float))
         self._table = []
         for jk in joints:
-            e = scale_screws(np.asarray(jk.basis, dtype=float)[0][:, None], L, c)[:, 0]
+            e = self.frame.twists(np.asarray(jk.basis, dtype=float)[0][:, None])[:, 0]
             u, v = e[ANGULAR], e[LINEAR]
             K = lie.hat(np.concatenate([u, np.zeros(3)]))[:3, :3]
             K2 = K @ K
@@ -195,16 +193,12 @@ class SerialJacobian:
                     P = P + (h * th)[:, None] * w
             else:
                 P = P + th[:, None] * RT[:, :, 9]
-        lc = self.length_columns
         if self.point is not None:
-            x = (self.point - self.centroid) / self.length_scale
-            X = R @ x + P
+            X = R @ self.point + P
             w = J[:, :3, :]
             vel = J[:, 3:, :] + np.cross(w, X[:, :, None], axis=1)
             J = np.ascontiguousarray(vel)
-        if np.any(lc):
-            J[:, :, lc] *= self.length_scale
-        return J
+        return self.frame.columns_in_place(J, self.order)
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:

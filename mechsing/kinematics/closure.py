@@ -28,7 +28,7 @@ import sympy
 
 from mechsing import lie
 from mechsing.errors import ConfigurationError, UserError
-from mechsing.kinematics.model import KinematicModel, scale_blocks
+from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import damped_least_squares, mp_least_squares, newton_on_group
 from mechsing.lie import ANGULAR
 from mechsing.model import Configuration, Displacement
@@ -175,8 +175,8 @@ class Closer:
             coords = self._coordinates_of_value(cfg, jname, val)
             fc = np.asarray(to_float(coords), dtype=float)
             # lengths are measured against the mechanism's own size L, angles in radians
-            bound = np.where(
-                m.length_columns[jk.columns], MAX_JOINT_VALUE * m.length_scale, MAX_JOINT_VALUE
+            bound = m.float_frame.rates_back(
+                np.full(len(fc), MAX_JOINT_VALUE), range(jk.columns.start, jk.columns.stop)
             )
             if not np.all(np.isfinite(fc)) or np.any(np.abs(fc) > bound):
                 where = f"configuration {cfg.name!r}, joint {jname!r}" + (
@@ -187,7 +187,7 @@ class Closer:
                     f"sensible size (at most {MAX_JOINT_VALUE:g} rad, or {MAX_JOINT_VALUE:g} times the "
                     f"mechanism's size {m.length_scale:.3g} m for a length); check the value and the units"
                 )
-            if m.precision.mode == "exact":
+            if m.precision.mode == "exact":  # policy: exact mode takes exact values only
                 self._refuse_transcendental(cfg, jk, coords)
             target[jk.columns] = coords
             given.extend(range(jk.columns.start, jk.columns.stop))
@@ -207,16 +207,15 @@ class Closer:
         for jname, val in cfg.values.items():
             jk = m.joint(jname)
             coords = self._coordinates_of_value(cfg, jname, val)
-            if decide.mode == "exact":
-                zero = all(exact_is_zero(x, m.length_scale) is True for x in coords)
-            else:
-                with decide.context():
-                    tol = screw_zero_rtol(decide.backend)
-                    scale = np.where(m.length_columns[jk.columns], m.length_scale, 1.0)
-                    zero = all(
-                        abs(x) <= tol * s
-                        for x, s in zip(decide.asarray(coords), scale, strict=True)
-                    )
+            # a length against L, an angle against 1 (exact: proved zero)
+            scale = m.float_frame.rates_back(
+                np.ones(len(coords)), range(jk.columns.start, jk.columns.stop)
+            )
+            with decide.context():
+                zero = all(
+                    decide.backend.is_zero(x, s)
+                    for x, s in zip(decide.asarray(coords), scale, strict=True)
+                )
             if not zero:
                 line = val.line if isinstance(val, Displacement) else cfg.lines.get(jname)
                 where = f"{self.mech.path}:{line}: " if self.mech.path and line else ""
@@ -316,7 +315,7 @@ class Closer:
         Rf = to_float(R)
         if np.linalg.det(Rf) > 0:
             E = R.T @ R - self.model.backend.eye(3)
-            if decide.mode == "exact":
+            if decide.mode == "exact":  # policy: exact entries only, with its own advice
                 if all(exact_is_zero(x) is True for x in E.flat):
                     return
                 raise UserError(
@@ -359,7 +358,7 @@ class Closer:
     def _check(self, cfg: Configuration, q: np.ndarray) -> ClosedConfiguration:
         m = self.model
         deltas = m.chord_residuals(q)
-        if m.precision.mode == "exact":
+        if m.precision.mode == "exact":  # policy: exact mode proves closure, never measures it
             with activity("proving that the loops close exactly"):
                 proofs = [
                     [exact_is_zero(x, m.length_scale) for x in (D - m.backend.eye(4)).flat]
@@ -422,15 +421,15 @@ class Closer:
         self, cfg: Configuration, q0: np.ndarray, target: np.ndarray, given: tuple[int, ...]
     ) -> ClosedConfiguration:
         m = self.model
+        # policy: continuation is float by design (an mp model polishes its end point)
         fm = KinematicModel(m.mech, "float") if m.precision.mode != "float" else m
-        L = fm.length_scale
         gmask = np.zeros(m.n, dtype=bool)
         gmask[list(given)] = True
         q = to_float(q0).copy()
         qt = to_float(target)
         # straight line in the given coordinates
         span = np.abs(qt - q)[gmask]
-        scale = np.where(fm.length_columns[gmask], L, 1.0)
+        scale = fm.float_frame.rates_back(np.ones(int(gmask.sum())), np.flatnonzero(gmask))
         nsteps = max(1, math.ceil(float(np.max(span / scale, initial=0.0)) / _MAX_STEP))
         if nsteps > _MAX_STEPS:
             raise UserError(
@@ -513,7 +512,7 @@ class Closer:
                 "the given values are a fold (a limit of their motion): the unknown joints were "
                 "found by Newton from just short of it; float places them only to about 1e-8 there"
             )
-        if m.precision.mode == "mp":
+        if m.precision.mode == "mp":  # policy: only mp polishes the float landing
             qm, res = self._polish_mp(m, q, target, gmask, cfg)
             q_out = qm
         else:
@@ -547,7 +546,7 @@ class Closer:
         L = fm.length_scale
 
         def comm(d: np.ndarray) -> float:
-            return float(np.linalg.norm(np.where(fm.length_columns, d / L, d)))
+            return float(np.linalg.norm(fm.float_frame.rates(d)))
 
         left = comm(np.where(gmask, qt - q, 0.0))
         free = ~gmask
@@ -563,7 +562,7 @@ class Closer:
         qn, res = landed.q, landed.residual
         if res > tol or comm(qn - q) > CONTINUATION_FOLD_REACH * math.sqrt(left):
             return None
-        Js = scale_blocks(fm.closure_jacobian(qn), L, fm.centroid, fm.length_columns)
+        Js = fm.float_frame.blocks(fm.closure_jacobian(qn))
         sigma = np.linalg.svd(Js[:, free], compute_uv=False)
         if not len(sigma) or sigma[-1] > CONTINUATION_SINGULAR_RTOL * sigma[0]:
             return None
@@ -586,10 +585,9 @@ class Closer:
         singularity (where two modes are close) the step must be reversible:
         stepping back from ``qn`` returns to ``q``.
         """
-        L = fm.length_scale
 
         def comm(d: np.ndarray) -> float:
-            return float(np.linalg.norm(np.where(fm.length_columns, d / L, d)))
+            return float(np.linalg.norm(fm.float_frame.rates(d)))
 
         step = comm(info["predicted"] - q)
         if step == 0.0:
@@ -620,22 +618,21 @@ class Closer:
         """Predictor (tangent) + damped Newton on the unknown coordinates."""
         free = ~gmask
         L = fm.length_scale
-        c = fm.centroid
         # the float stage accepts at float's tolerance (an mp model polishes afterwards)
         tol_final = fm.precision.closure_tolerance(L)
         tol = tol_final if final else max(tol_final, CONTINUATION_STEP_RTOL * L)
         # predictor: J_u du = -J_g dg at the previous point
         S = fm.current_screws(q_prev)
         J = fm.closure_jacobian(q_prev, S)
-        Js = scale_blocks(J, L, c, fm.length_columns)
+        Js = fm.float_frame.blocks(J)
         dg = np.where(gmask, qg - q_prev, 0.0)
-        dgs = np.where(fm.length_columns, dg / L, dg)
+        dgs = fm.float_frame.rates(dg)
         q = q_prev.copy()
         if np.any(free) and Js.shape[0]:
             du = damped_least_squares(Js[:, free], -Js[:, gmask] @ dgs[gmask])
             dus = np.zeros(fm.n)
             dus[free] = du
-            dus = np.where(fm.length_columns, dus * L, dus)
+            dus = fm.float_frame.rates_back(dus)
             q = fm.update(q_prev, np.where(gmask, dg, dus))
         else:
             q = fm.update(q_prev, dg)
@@ -681,7 +678,7 @@ class Closer:
         if res > tol:
             return False, q, info
         if np.any(free) and fm.chords:
-            Js = scale_blocks(fm.closure_jacobian(q), L, c, fm.length_columns)
+            Js = fm.float_frame.blocks(fm.closure_jacobian(q))
             dec = decide_rank(Js[:, free], "float", L)
             rank = dec.rank if dec.rank is not None else dec.rank_bounds[0]
             info["rank"] = rank
@@ -818,7 +815,7 @@ def solve_configuration(
 
 def _to_the_tolerance(prec: Precision) -> str:
     """How a precision mode decides that a given value is what it claims, for messages."""
-    if prec.mode == "exact":
+    if prec.mode == "exact":  # the wording differs, not the arithmetic
         return "exactly, in exact mode"
     with prec.context():
         tol = float(screw_zero_rtol(prec.backend))

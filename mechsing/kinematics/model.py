@@ -33,7 +33,7 @@ from mechsing import lie
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
 from mechsing.model import Mechanism
-from mechsing.numeric import Precision, characteristic_length, scale_screws, to_float
+from mechsing.numeric import CommensurateFrame, Precision, characteristic_length, to_float
 from mechsing.subgroups import Subgroup
 
 
@@ -128,7 +128,7 @@ class KinematicModel:
         self.precision = parse_precision(precision) if isinstance(precision, str) else precision
         if self.precision.mode == "auto":
             self.precision = Precision("float")
-        if self.precision.mode == "exact":
+        if self.precision.mode == "exact":  # policy: exact mode takes exact geometry only
             refuse_inexact_geometry(mech)
         self.backend = self.precision.backend
         pts = axis_points(mech)
@@ -183,6 +183,12 @@ class KinematicModel:
         self.length_columns = np.zeros(self.n, dtype=bool)
         for jk in self.joints:
             self.length_columns[jk.columns] = jk.length_coordinates
+        #: the commensurate frame in the model's numbers, and its float twin: every map
+        #: into the commensurate metric and back to SI goes through them
+        self.frame: CommensurateFrame = CommensurateFrame.of(
+            L, c, self.length_columns, self.backend
+        )
+        self.float_frame: CommensurateFrame = self.frame.as_float()
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]
         self._chords_signs: list[np.ndarray] | None = None
 
@@ -242,7 +248,7 @@ class KinematicModel:
         if native and self.backend.name == "mp":
             with self.precision.context():
                 worst = mpmath.mpf(0)
-                c = self.backend.asarray(self.centroid)
+                c = self.frame.c
                 for D in deltas:
                     R = D[:3, :3]
                     p = D[:3, 3] + R @ c - c
@@ -250,20 +256,18 @@ class KinematicModel:
                     worst = max(worst, mpmath.sqrt((p * p).sum() + L * L * (E * E).sum() / 2))
                 return worst
         worst = 0.0
+        # policy: mp measures in its own numbers; an exact model's residual is a float
+        # measure (exact closure is proved, not measured)
+        mp = self.backend.name == "mp"
+        c = (self.frame if mp else self.float_frame).c
         with self.precision.context():
-            if self.backend.name == "mp":
-                c = self.backend.asarray(self.centroid)
-                eye = self.backend.eye(3)
-            else:
-                c = self.centroid
-                eye = np.eye(3)
             for D in deltas:
                 # in the model's precision: converting Delta to float first would
                 # bury an mp:N residual under float rounding of R @ c
-                Dm = D if self.backend.name == "mp" else np.array(to_float(D))
+                Dm = D if mp else np.array(to_float(D))
                 R = Dm[:3, :3]
                 p = Dm[:3, 3] + R @ c - c
-                E = R - eye
+                E = R - np.eye(3)
                 r2 = (p * p).sum() + L * L * (E * E).sum() / 2
                 worst = max(worst, float(r2) ** 0.5)
         return worst
@@ -326,18 +330,18 @@ class KinematicModel:
         Newton at N digits can close a loop to 10^(5-N) L.
         """
         x = lie.log(M)
-        L, c = self.length_scale, self.centroid
-        B = scale_screws(to_float(jk.basis).T, L, c)
-        xs = scale_screws(to_float(x)[:, None], L, c)[:, 0]
+        ff = self.float_frame
+        B = ff.twists(to_float(jk.basis).T)
+        xs = ff.twists(to_float(x)[:, None])[:, 0]
         coef, *_ = np.linalg.lstsq(B, xs, rcond=None)
         bk = self.backend
-        if bk.name == "float":
+        if bk.name == "float":  # policy: float's solve is the answer; exact and mp refine
             return coef
         cm = bk.asarray(coef)
         if bk.name == "exact":
             # exact mode only checks given values: one refinement step
             r = x - cm @ jk.basis
-            rs = scale_screws(to_float(r)[:, None], L, c)[:, 0]
+            rs = ff.twists(to_float(r)[:, None])[:, 0]
             corr, *_ = np.linalg.lstsq(B, rs, rcond=None)
             return cm + bk.asarray(corr)
         for _pass in range(_refinement_passes()):
@@ -347,7 +351,7 @@ class KinematicModel:
             size = max(abs(v) for v in r)
             if not size:
                 break
-            rs = scale_screws(to_float(r / size)[:, None], L, c)[:, 0]
+            rs = ff.twists(to_float(r / size)[:, None])[:, 0]
             corr, *_ = np.linalg.lstsq(B, rs, rcond=None)
             step = bk.asarray(corr) * size
             cm = cm + step
@@ -363,20 +367,6 @@ def _is_abelian(B: np.ndarray) -> bool:
             if np.any(to_float(lie.bracket(B[i], B[j])) != 0):
                 return False
     return True
-
-
-def scale_blocks(
-    M: np.ndarray, L: Any, c: Any, length_columns: np.ndarray | None = None
-) -> np.ndarray:
-    """Commensurate form of stacked 6-row screw blocks (closure Jacobians, residual
-    twists as one column): each block moved to the centroid c and v / L; the
-    columns flagged in ``length_columns`` multiplied by L."""
-    if M.shape[0] == 0:
-        return M
-    blocks = [
-        scale_screws(M[6 * i : 6 * i + 6], L, c, length_columns) for i in range(M.shape[0] // 6)
-    ]
-    return np.concatenate(blocks, axis=0)
 
 
 def _refinement_passes() -> int:

@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.kinematics.model import KinematicModel, scale_blocks
+from mechsing.kinematics.model import KinematicModel
 from mechsing.numeric import POLISH_SLOW_RATIO, Precision, svd_r
 
 __all__ = [
@@ -54,10 +54,9 @@ class NewtonResult:
 def scaled_system(m: KinematicModel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The closure Jacobian and the chord residual twists at q, commensurate (moved to
     the centroid, lengths over L): the system every Newton step on the group solves."""
-    L = m.length_scale
     r = m.chord_twists(m.chord_residuals(q))
-    Js = scale_blocks(m.closure_jacobian(q), L, m.centroid, m.length_columns)
-    rs = scale_blocks(r.reshape(-1, 6).T, L, m.centroid, None).T.reshape(-1)
+    Js = m.frame.blocks(m.closure_jacobian(q))
+    rs = m.frame.stacked(r)
     return Js, rs
 
 
@@ -66,7 +65,7 @@ def increment(m: KinematicModel, free: np.ndarray, du: np.ndarray) -> np.ndarray
     times L, the other coordinates unmoved), in the model's numbers."""
     d = m.zeros()
     d[np.flatnonzero(free)] = du
-    return np.where(m.length_columns, d * m.length_scale, d)
+    return m.frame.rates_back(d)
 
 
 def damped_least_squares(A: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -17,7 +17,8 @@ modules, from the bottom up (each imports only those before it):
 ``linalg``
     SVD, eigenproblems, norms and least squares on the numerical backends;
 ``scaling``
-    the characteristic length and the commensurate scaling of screws;
+    the characteristic length and :class:`CommensurateFrame` (the commensurate maps
+    and their inverses);
 ``decisions``
     rank and definiteness decisions with their margins.
 
@@ -77,6 +78,7 @@ from mechsing.numeric.precision import (
     subspace_rank_rtol,
 )
 from mechsing.numeric.scaling import (
+    CommensurateFrame,
     characteristic_length,
     scale_screws,
 )
@@ -182,6 +184,7 @@ __all__ = [
     "rank_difference",
     "rotation_orthonormal_atol",
     "scale_screws",
+    "CommensurateFrame",
     "screw_zero_rtol",
     "singular_values",
     "spectral_norm",

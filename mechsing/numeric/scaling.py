@@ -1,14 +1,17 @@
 """The commensurate metric: the characteristic length L and centroid of a mechanism's
-axes, and the map that makes screws commensurate before a rank decision.
+axes, and :class:`CommensurateFrame`, the one home of the maps into the commensurate
+metric (before a rank decision) and back to SI at the ground origin (for reports).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import sympy
 
-from mechsing.numeric.backend import to_float
+from mechsing.numeric.backend import Backend, to_float
 
 
 def characteristic_length(points: Any, override: float | None = None) -> tuple[float, np.ndarray]:
@@ -75,3 +78,174 @@ def scale_screws(
         mask = np.asarray(length_columns, dtype=bool)
         S[..., :, mask] = S[..., :, mask] * length_scale
     return S
+
+
+#: (f, m) <-> (m, f): the swap between a wrench and its twist-pairing vector
+_SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
+
+
+@dataclass(frozen=True, eq=False)
+class CommensurateFrame:
+    """The commensurate frame of a mechanism (or of a loop): where ranks are decided so
+    that the mechanism's scale does not change a verdict.
+
+    Forward (SI at the ground origin -> commensurate): a twist is moved to the centroid
+    ``c`` (``v -> v - c x omega``) and its linear part divided by ``L``; a joint
+    coordinate that is a length (a ``length_columns`` entry) is divided by ``L``, so
+    its screw column is multiplied by ``L``.  Inverse (commensurate -> SI at the
+    origin): ``v_0 = L v_c + c x omega``; length rates times ``L``; a wrench by the
+    dual map (it pairs with twists as the commensurate wrench paired with the
+    commensurate twists).
+
+    Attributes
+    ----------
+    L, c : number, ndarray (3,) or None
+        The characteristic length and centroid in the numbers of one backend (float,
+        mp, or exact rationals); ``c`` None: the origin.
+    length_columns : ndarray of bool (n,) or None
+        Which joint coordinates are lengths (None: a frame of screws only).
+    """
+
+    L: Any
+    c: Any
+    length_columns: np.ndarray | None = None
+    #: the float values of L and c (the float twin's numbers)
+    L_float: float = 1.0
+    c_float: np.ndarray | None = None
+
+    @classmethod
+    def of(
+        cls,
+        L: float,
+        c: Any,
+        length_columns: Any = None,
+        backend: Backend | None = None,
+    ) -> CommensurateFrame:
+        """The frame of the float ``L`` and centroid ``c`` in ``backend``'s numbers
+        (None: float).  Exact: the decimals of the float values as rationals."""
+        cf = np.asarray(to_float(c), dtype=float).reshape(3)
+        lc = None if length_columns is None else np.asarray(length_columns, dtype=bool)
+        name = "float" if backend is None else backend.name
+        if name == "exact":
+            # any exact non-zero factor keeps exact ranks; the decimals as rationals
+            Lb: Any = sympy.Rational(repr(float(L)))
+            cb: Any = np.array([sympy.nsimplify(float(x), rational=True) for x in cf], dtype=object)
+        elif name == "mp":
+            assert backend is not None
+            Lb, cb = backend.convert(L), backend.asarray(cf)
+        else:
+            Lb, cb = float(L), cf
+        return cls(Lb, cb, lc, float(L), cf)
+
+    @classmethod
+    def from_numbers(cls, L: Any, c: Any = None, length_columns: Any = None) -> CommensurateFrame:
+        """The frame of ``L`` and ``c`` already in one backend's numbers (``c`` None:
+        the origin, screws are not moved)."""
+        cf = np.zeros(3) if c is None else np.asarray(to_float(c), dtype=float).reshape(3)
+        lc = None if length_columns is None else np.asarray(length_columns, dtype=bool)
+        return cls(L, c, lc, float(to_float(L)), cf)
+
+    def as_float(self) -> CommensurateFrame:
+        """The float twin (same L, c and length columns, float numbers)."""
+        if isinstance(self.L, float):
+            return self
+        return CommensurateFrame(
+            self.L_float, self.c_float, self.length_columns, self.L_float, self.c_float
+        )
+
+    def lengths(self, columns: Any = None) -> np.ndarray | None:
+        """Which of the joint coordinates ``columns`` (None: all) are lengths."""
+        if self.length_columns is None:
+            return None
+        return self.length_columns if columns is None else self.length_columns[list(columns)]
+
+    # -- forward: SI at the origin -> commensurate ------------------------------------
+
+    def screws(self, S: np.ndarray, columns: Any = None) -> np.ndarray:
+        """Commensurate screw columns ``(..., 6, k)`` of joint coordinates (``columns``:
+        their indices among the frame's coordinates; None: all): moved to c, v / L,
+        length columns times L."""
+        return scale_screws(S, self.L, self.c, self.lengths(columns))
+
+    def columns_in_place(self, J: np.ndarray, columns: Any = None) -> np.ndarray:
+        """Multiply the length columns of ``J`` (..., rows, k) by L in place (the column
+        factor of :meth:`screws` alone, for batched float matrices already moved to c
+        and divided by L); returns ``J``."""
+        lc = self.lengths(columns)
+        if lc is not None and np.any(lc):
+            J[..., lc] *= self.L
+        return J
+
+    def twists(self, S: np.ndarray) -> np.ndarray:
+        """Commensurate twist columns ``(..., 6, k)`` with no column factor (twists that
+        are not joint screws: residuals, lost twists)."""
+        return scale_screws(S, self.L, self.c)
+
+    def rows(self, B: np.ndarray) -> np.ndarray:
+        """Commensurate basis rows ``(k, 6)`` (a subgroup's basis): moved to c, v / L."""
+        return scale_screws(B.T, self.L, self.c).T
+
+    def blocks(self, M: np.ndarray, columns: bool = True) -> np.ndarray:
+        """Stacked 6-row screw blocks ``(6b, n)`` (closure Jacobians), each block made
+        commensurate; the length columns multiplied by L unless ``columns`` is False."""
+        if M.shape[0] == 0:
+            return M
+        k = M.shape[0] // 6
+        lc = self.length_columns if columns else None
+        return scale_screws(M.reshape(k, 6, M.shape[1]), self.L, self.c, lc).reshape(M.shape)
+
+    def stacked(self, r: np.ndarray) -> np.ndarray:
+        """Stacked residual twists (a vector of 6b entries), each made commensurate."""
+        return self.twists(r.reshape(-1, 6).T).T.reshape(-1)
+
+    def rates(self, d: np.ndarray) -> np.ndarray:
+        """SI joint rates or increments -> commensurate (lengths / L)."""
+        return np.where(self.length_columns, d / self.L, d)
+
+    def random_coordinates(self, rng: np.random.Generator, count: int) -> np.ndarray:
+        """``count`` random joint coordinates (rows, float): angles uniform in
+        [-pi, pi), lengths in [-L, L) (uniform in the commensurate metric)."""
+        assert self.length_columns is not None
+        q = rng.uniform(-np.pi, np.pi, size=(count, len(self.length_columns)))
+        return np.where(self.length_columns[None, :], q * self.L_float / np.pi, q)
+
+    def point(self, x: Any) -> Any:
+        """A point's commensurate position: ``(x - c) / L``."""
+        return x / self.L if self.c is None else (x - self.c) / self.L
+
+    # -- inverse: commensurate -> SI at the origin -----------------------------------
+
+    def rates_back(self, x: np.ndarray, columns: Any = None) -> np.ndarray:
+        """Commensurate joint rates -> SI (lengths times L); ``columns`` as in
+        :meth:`screws`."""
+        lc = self.lengths(columns)
+        return np.where(lc, x * self.L, x)
+
+    def twist_back(self, t: np.ndarray) -> np.ndarray:
+        """An SI twist at the ground origin from a commensurate one:
+        ``v_0 = L v_c + c x omega``."""
+        w, v = t[0:3], t[3:6] * self.L
+        return (
+            np.concatenate([w, v])
+            if self.c is None
+            else np.concatenate([w, v + np.cross(self.c, w)])
+        )
+
+    def point_back(self, x: Any) -> Any:
+        """A point's SI position from its commensurate one: ``x L + c``."""
+        return x * self.L if self.c is None else x * self.L + self.c
+
+    def velocity_back(self, v: np.ndarray) -> np.ndarray:
+        """A point's SI velocity from a commensurate one (times L)."""
+        return v * self.L
+
+    def wrench_back(self, y: np.ndarray) -> np.ndarray:
+        """The SI wrench (f, m) at the ground origin of a commensurate left-null vector
+        ``y`` (float): the one with ``f . v_0 + m . omega = y . twist`` for every twist,
+        i.e. ``swap(Ad(T(-c))^T D y)`` with ``D = diag(1, 1, 1, 1/L, 1/L, 1/L)``."""
+        L, c = self.L_float, self.c_float
+        D = np.diag([1, 1, 1, 1 / L, 1 / L, 1 / L])
+        # Ad of the translation by -c (rotation identity): [[I, 0], [hat(-c), I]]
+        Ad = np.eye(6)
+        Ad[3:6, 0:3] = np.array([[0, c[2], -c[1]], [-c[2], 0, c[0]], [c[1], -c[0], 0]])
+        return _SWAP @ (Ad.T @ (D @ np.asarray(y, dtype=float)))

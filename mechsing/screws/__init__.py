@@ -10,14 +10,14 @@ values are those of the commensurate screws themselves.
 
 Commensurate metric (the characteristic length L): screws are moved to
 the centroid c of the joints' axis points, their v rows divided by L, and the
-columns of length coordinates multiplied by L, before any rank decision.
+columns of length coordinates multiplied by L, before any rank decision; the maps
+are the model's :class:`~mechsing.numeric.CommensurateFrame` (``model.frame``).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
 
 import numpy as np
 import sympy
@@ -31,7 +31,6 @@ from mechsing.numeric import (
     RankDecision,
     decide_rank,
     orthonormal_columns,
-    scale_screws,
     to_float,
 )
 from mechsing.subgroups import Identification, Subgroup, generate
@@ -41,13 +40,11 @@ __all__ = [
     "chain_matrix",
     "LoopSystem",
     "closure_system",
-    "commensurate_frame",
     "grubler",
     "group_mobility",
     "loop_basis",
     "reduced_coordinates",
     "reference_loop_identification",
-    "scaled_columns",
 ]
 
 
@@ -89,19 +86,13 @@ class ClosureSystem:
     matrix: np.ndarray
     rank: RankDecision
     screws: np.ndarray = field(repr=False)
-    #: the commensurate screws (:func:`scaled_columns`) the loop rows are built from
+    #: the commensurate screws (``model.frame.screws``) the loop rows are built from
     scaled_screws: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def nullity(self) -> int | None:
         r = self.rank.rank
         return None if r is None else self.matrix.shape[1] - r
-
-
-def scaled_columns(model: KinematicModel, S: np.ndarray) -> np.ndarray:
-    """Commensurate screws: moved to the centroid, v / L, length columns times L."""
-    L, c = commensurate_frame(model)
-    return scale_screws(S, L, c, model.length_columns)
 
 
 def chain_matrix(
@@ -125,41 +116,17 @@ def chain_matrix(
     length columns times L), in the numbers of ``S``.
     """
     M = S if signs is None else S * signs  # integer signs: exact in every backend
-    lc = model.length_columns
     if columns is not None:
         M = M[..., list(columns)]
-        lc = lc[list(columns)]
-    L, c = commensurate_frame(model)
-    T = scale_screws(M, L, c, lc)
+    fr = model.frame
+    T = fr.screws(M, columns)
     if point is None:
         return T
     # velocity of the body point x: v + omega x x, from twists moved to the centroid:
     # v_x = v_c + omega x (x - c); in commensurate units divide by L
     w, vc = T[..., ANGULAR, :], T[..., LINEAR, :]
-    d = (point - c) / L
+    d = fr.point(point)
     return vc + np.swapaxes(lie.cross(np.swapaxes(w, -1, -2), d[..., None, :]), -1, -2)
-
-
-def commensurate_frame(model: KinematicModel) -> tuple[Any, np.ndarray]:
-    """The characteristic length L and the centroid c in the model's numbers, as
-    every commensurate quantity of the model uses them (exact mode: the
-    decimals of the float values, as rationals)."""
-    bk = model.backend
-    c = bk.asarray(model.centroid) if bk.name != "exact" else _exact_vec(model.centroid)
-    return _L(model), c
-
-
-def _L(model: KinematicModel) -> Any:
-    if model.backend.name == "exact":
-        # any exact non-zero factor keeps exact ranks; the decimal of L as a rational
-        return sympy.Rational(repr(float(model.length_scale)))
-    if model.backend.name == "mp":
-        return model.backend.convert(model.length_scale)
-    return model.length_scale
-
-
-def _exact_vec(v: np.ndarray) -> np.ndarray:
-    return np.array([sympy.nsimplify(float(x), rational=True) for x in v], dtype=object)
 
 
 def reduced_coordinates(
@@ -240,19 +207,18 @@ def _loop_subgroup(
         return ref
     g = poses[loop.bodies[0]]
     gf = to_float(g)
+    # policy: a float model keeps the reference parameters of a loop at rest
     if model.backend.name == "float" and np.array_equal(gf, np.eye(4)):
         return ref  # the loop's first body is at rest: parameters stay exact
     if model.backend.name == "exact":
+        # policy: exact mode keeps the exact subgroup; the numeric modes move its float
+        # parameters (the loop's rows are rebuilt at the model's precision from them)
         moved = ref.subgroup.conjugate(g)
-    elif model.backend.name == "mp":
+    else:
         with model.precision.context():
             moved = Subgroup(
                 ref.subgroup.type, {k: to_float(v) for k, v in ref.subgroup.params.items()}
             ).conjugate(gf)
-    else:
-        moved = Subgroup(
-            ref.subgroup.type, {k: to_float(v) for k, v in ref.subgroup.params.items()}
-        ).conjugate(gf)
     return replace(ref, subgroup=moved)
 
 
@@ -263,7 +229,7 @@ def closure_system(
     prec = precision or model.precision
     poses = model.poses(q)
     S = model.current_screws(q, poses)
-    Ss = scaled_columns(model, S)
+    Ss = model.frame.screws(S)
     L = model.length_scale
     loops: list[LoopSystem] = []
     blocks = []
@@ -276,8 +242,8 @@ def closure_system(
         if ident.ok and ident.subgroup is not None:
             B = ident.subgroup.basis(prec if prec.mode != "auto" else "float")
             with model.precision.context():
-                Bb = model.asarray(B) if model.backend.name != "float" else to_float(B)
-                Bs = scaled_columns_rows(model, Bb)
+                Bb = model.asarray(B)
+                Bs = model.frame.rows(Bb)
             R = reduced_coordinates(model, Bs, Sl)
             Qf = loop_basis(to_float(Bs))
         else:
@@ -295,12 +261,6 @@ def closure_system(
     with model.precision.context():
         dec = decide_rank(M, prec, L, want_spaces=True)
     return ClosureSystem(loops, M, dec, S, Ss)
-
-
-def scaled_columns_rows(model: KinematicModel, rows: np.ndarray) -> np.ndarray:
-    """Commensurate basis rows (k x 6): moved to the centroid and v / L (no column factor)."""
-    L, c = commensurate_frame(model)
-    return scale_screws(rows.T, L, c).T
 
 
 def grubler(model: KinematicModel) -> int:

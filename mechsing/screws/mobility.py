@@ -15,7 +15,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechsing.kinematics import KinematicModel
-from mechsing.kinematics.model import scale_blocks
 from mechsing.kinematics.newton import newton_on_group, truncated_least_squares
 from mechsing.numeric import (
     SAMPLE_CLOSURE_RTOL,
@@ -45,7 +44,7 @@ class NearbySample:
 def stacked_jacobian(model: KinematicModel, q: np.ndarray) -> np.ndarray:
     """Commensurate chord closure Jacobian (float): rank and nullity as the stacked loop system."""
     J = to_float(model.closure_jacobian(q))
-    return scale_blocks(J, model.length_scale, model.centroid, model.length_columns)
+    return model.float_frame.blocks(J)
 
 
 def reclose(
@@ -85,11 +84,11 @@ def nearby_samples(
         for _ in range(SAMPLES_PER_STEP):
             v = kernel @ rng.normal(size=kernel.shape[1])
             v /= np.linalg.norm(v)
-            d = np.where(model.length_columns, step * v * L, step * v)
+            d = model.float_frame.rates_back(step * v)
             q1, res = reclose(model, model.update(qf, d))
             if res > SAMPLE_CLOSURE_RTOL * L:
                 continue
-            dist = float(np.linalg.norm(np.where(model.length_columns, (q1 - qf) / L, q1 - qf)))
+            dist = float(np.linalg.norm(model.float_frame.rates(q1 - qf)))
             if dist < SAMPLE_DISTINCT_RATIO * step:
                 continue  # Newton fell back onto q: not a nearby configuration
             dec = decide_rank(stacked_jacobian(model, q1), "float", L)

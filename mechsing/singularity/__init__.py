@@ -52,18 +52,13 @@ def _output_point(
     if out is None or out.point is None:
         return None
     g = poses[out.body]
-    x0 = (
-        model.asarray(list(out.point))
-        if model.backend.name != "float"
-        else to_float(np.array(list(out.point), dtype=object))
-    )
+    x0 = model.asarray(list(out.point))
     return lie.act_point(g, x0)
 
 
 def random_configurations(model: Any, count: int, seed: int = 0) -> np.ndarray:
     """``count`` random configurations (rows): angles uniform in [-pi, pi), lengths in [-L, L)."""
-    q = np.random.default_rng(seed).uniform(-np.pi, np.pi, size=(count, model.n))
-    return np.where(model.length_columns[None, :], q * model.length_scale / np.pi, q)
+    return model.float_frame.random_coordinates(np.random.default_rng(seed), count)
 
 
 def _tree_serial(mech: Any, model: Any, q: np.ndarray) -> tuple[list[Finding], list[Decision]]:

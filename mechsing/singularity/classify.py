@@ -86,7 +86,7 @@ class LocalAnalysis:
 
 def float_model(mech: Any, model: Any) -> Any:
     """The model itself in float, else its float twin (built once per model)."""
-    if model.precision.mode == "float":
+    if model.precision.mode == "float":  # the model is its own float twin
         return model
     cache = model.__dict__.setdefault("_float_twin", {})
     if "m" not in cache:
@@ -101,7 +101,7 @@ def float_model(mech: Any, model: Any) -> Any:
 def _si_rates(model: Any, x: np.ndarray) -> list[float]:
     """Commensurate joint rates -> SI (length coordinates times L), largest entry 1, first
     non-zero positive; entries at or below SUPPORT_RTOL (outside the support) reported as 0."""
-    v = np.where(model.length_columns, x * model.length_scale, x)
+    v = model.float_frame.rates_back(x)
     big = float(np.max(np.abs(v))) if v.size else 0.0
     if big == 0:
         return [0.0 for _ in v]
@@ -118,11 +118,11 @@ def _probe(fm: Any, q: np.ndarray, x: np.ndarray) -> tuple[int | None, float] | 
     L = fm.length_scale
     undecided: tuple[int | None, float] | None = None
     for step in BRANCH_STEPS:
-        d = np.where(fm.length_columns, step * x * L, step * x)
+        d = fm.float_frame.rates_back(step * x)
         q1, res = reclose(fm, fm.update(q, d))
         if res > SAMPLE_CLOSURE_RTOL * L:
             continue
-        moved = np.where(fm.length_columns, (q1 - q) / L, q1 - q)
+        moved = fm.float_frame.rates(q1 - q)
         dist = float(np.linalg.norm(moved))
         if dist < SAMPLE_DISTINCT_RATIO * step:
             continue
@@ -380,7 +380,7 @@ def _io_findings(
         if dec.rank is not None and gen_ranks and dec.rank < max(gen_ranks):
             g = max(gen_ranks)
             U, _s, _ = svd(np.concatenate(wr, axis=1))
-            wrenches = wrenches_of(fm, None, to_float(U[:, : dec.rank]), False)
+            wrenches = wrenches_of(fm.float_frame, to_float(U[:, : dec.rank]), False)
             findings.append(
                 ConstraintFinding(
                     joints=tuple(j for leg in mech.legs for j in leg.joints),
@@ -477,13 +477,11 @@ def _most_moved(z: np.ndarray, A: np.ndarray) -> np.ndarray:
 
 
 def _output_si(mech: Any, fm: Any, t: np.ndarray) -> list[float]:
-    from mechsing.singularity.serial import twist_back
-
     if mech.output.point is not None:
-        v = t * fm.length_scale
+        v = fm.float_frame.velocity_back(t)
         n = float(np.linalg.norm(v))
         return [float(a) for a in (v / n if n else v)]
-    tw = twist_back(fm, t)
+    tw = fm.float_frame.twist_back(t)
     n = float(np.linalg.norm(tw[ANGULAR])) or float(np.linalg.norm(tw[LINEAR])) or 1.0
     return [float(a) + 0.0 for a in tw / n]
 

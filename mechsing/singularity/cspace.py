@@ -53,7 +53,7 @@ from mechsing.numeric import (
     subspace_rank_rtol,
     svd,
 )
-from mechsing.screws import loop_basis, scaled_columns
+from mechsing.screws import loop_basis
 
 #: directions sampled on a candidate subspace for the order-3 test
 _ORDER3_SAMPLES = 6
@@ -154,7 +154,7 @@ def closure_expansion(model: Any, cs: Any, prec: Precision) -> tuple[Expansion, 
         bk = prec.backend
         Ss0 = cs.scaled_screws
         if Ss0 is None:
-            Ss0 = scaled_columns(model, cs.screws)
+            Ss0 = model.frame.screws(cs.screws)
         Ss = prec.asarray(Ss0)
         chains = loop_chains(model, cs, prec)
         rows = []

@@ -22,11 +22,10 @@ from typing import Any
 
 import numpy as np
 
-from mechsing import lie
-from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
     MEMBERSHIP_RTOL_FLOAT,
     SUPPORT_RTOL,
+    CommensurateFrame,
     RankDecision,
     decide_rank,
     to_float,
@@ -36,8 +35,6 @@ from mechsing.singularity.findings import SerialFinding
 
 #: random configurations sampled to find a chain's generic rank
 GENERIC_SAMPLES = 8
-
-_SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
 
 
 @dataclass
@@ -63,12 +60,10 @@ def _unit_first_positive(v: np.ndarray) -> np.ndarray:
     return v + 0.0  # no -0.0
 
 
-def wrenches_of(
-    model: Any, Ms: np.ndarray, null_rows: np.ndarray, point: bool
-) -> list[list[float]]:
-    """SI wrenches (f, m) at the ground origin from commensurate left-null vectors."""
-    L = model.length_scale
-    c = model.centroid
+def wrenches_of(frame: CommensurateFrame, null_rows: np.ndarray, point: bool) -> list[list[float]]:
+    """SI wrenches (f, m) at the ground origin from commensurate left-null vectors
+    (columns of ``null_rows``), each a unit force (a unit moment for a couple), first
+    non-zero component positive."""
     out = []
     for y in null_rows.T:
         if point:
@@ -77,14 +72,7 @@ def wrenches_of(
             # the force acts at the point x: moment about the origin x x f (filled by caller)
             out.append(np.concatenate([f, np.zeros(3)]))
             continue
-        # commensurate twist rows are D Ad(T(-c)) S; a commensurate wrench y pairs
-        # by y . (D Ad S) = (Ad^T D y) . S, so the (m, f)-layout pairing vector is
-        # Ad^T D y and the (f, m) wrench is its swap
-        D = np.diag([1, 1, 1, 1 / L, 1 / L, 1 / L])
-        Tc = np.eye(4)
-        Tc[:3, 3] = -c
-        pair = lie.Ad(Tc).T @ (D @ y)  # pairs with twists by plain dot
-        w = _SWAP @ pair  # (f, m): f . v + m . omega = pair . S
+        w = frame.wrench_back(y)  # (f, m): f . v + m . omega = y . (commensurate twist)
         f, m = w[:3], w[3:]
         nf = np.linalg.norm(f)
         # a couple when the force is zero next to the moment (unit moment, else unit force)
@@ -92,15 +80,6 @@ def wrenches_of(
         w = w / np.linalg.norm(m) if couple else w / nf
         out.append(w)
     return [_unit_first_positive(np.asarray(x)).tolist() for x in out]
-
-
-def twist_back(model: Any, t: np.ndarray) -> np.ndarray:
-    """SI twist at the ground origin from a commensurate one (inverse of the scaling)."""
-    L = model.length_scale
-    c = model.centroid
-    w, v = t[ANGULAR], t[LINEAR] * L
-    # commensurate twists were moved to c: v_c = v_0 - c x w  ->  v_0 = v_c + c x w
-    return np.concatenate([w, v + np.cross(c, w)])
 
 
 def serial_finding(
@@ -122,7 +101,8 @@ def serial_finding(
     U, s, Vt = np.linalg.svd(Ms)
     r = dec.rank
     left_null = U[:, r:]
-    wr = wrenches_of(model, Ms, left_null, system.point)
+    fr = model.float_frame
+    wr = wrenches_of(fr, left_null, system.point)
     if system.point and point_x is not None:
         wr = [
             _unit_first_positive(
@@ -132,13 +112,12 @@ def serial_finding(
         ]
     lost = U[:, r]
     if system.point:
-        twist = np.concatenate([np.zeros(3), lost * model.length_scale]).tolist()
+        twist = np.concatenate([np.zeros(3), fr.velocity_back(lost)]).tolist()
     else:
-        twist = twist_back(model, lost).tolist()
+        twist = fr.twist_back(lost).tolist()
     kernel = Vt[r:].T if Vt.shape[0] > r else np.zeros((Ms.shape[1], 0))
     rates = kernel[:, 0] if kernel.shape[1] else np.zeros(Ms.shape[1])
-    lc = model.length_columns[system.columns]
-    rates = np.where(lc, rates * model.length_scale, rates)
+    rates = fr.rates_back(rates, system.columns)
     big = float(np.max(np.abs(rates))) if len(rates) else 0.0
     if big > 0:
         rates = _unit_first_positive(rates / big)

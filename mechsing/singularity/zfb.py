@@ -39,9 +39,8 @@ from mechsing.numeric import (
     rank_difference,
     spectral_norm,
     svd,
-    to_float,
 )
-from mechsing.screws import chain_matrix, scaled_columns
+from mechsing.screws import chain_matrix
 
 __all__ = ["IOQuantities", "io_quantities", "leg_constraint_rank"]
 
@@ -86,10 +85,7 @@ def output_rows(
     chain = tree_chain(model, out.body, out.relative_to)
     x = None
     if out.point is not None:
-        if model.backend.name == "float":
-            x0 = to_float(np.array(list(out.point), dtype=object))
-        else:
-            x0 = model.asarray(list(out.point))
+        x0 = model.asarray(list(out.point))
         x = lie.act_point(poses[out.body], x0)
     return chain_matrix(model, S, None, x, chain.signs)
 
@@ -223,7 +219,7 @@ def leg_constraint_rank(
     if out is None or len(mech.legs) < 2:
         return None
     with model.precision.context():
-        Ss0 = cs.scaled_screws if cs.scaled_screws is not None else scaled_columns(model, cs.screws)
+        Ss0 = cs.scaled_screws if cs.scaled_screws is not None else model.frame.screws(cs.screws)
     L = model.length_scale
     with prec.context():
         Ss = prec.asarray(Ss0)

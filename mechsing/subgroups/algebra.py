@@ -20,6 +20,7 @@ from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
     PARALLEL_AXES_ATOL,
+    CommensurateFrame,
     Margin,
     Precision,
     RankDecision,
@@ -27,7 +28,6 @@ from mechsing.numeric import (
     characteristic_length,
     decide_nonzero,
     decide_rank,
-    scale_screws,
     svd,
     to_float,
 )
@@ -171,7 +171,7 @@ def lie_closure(
     prec = as_precision(precision, S)
     with prec.context():
         X = _linalg.convert(S, prec).reshape(-1, 6)
-        Xs = scale_screws(X.T, length_scale).T
+        Xs = CommensurateFrame.from_numbers(length_scale).rows(X)
         B, norms, _ = _closure(Xs, prec, length_scale, _Margins(prec, length_scale))
         return B, norms
 
@@ -239,13 +239,12 @@ def identify(
             c = bk.frame_centre(_centre_of(X))
         else:
             c = _linalg.convert(np.asarray(centre), prec)
-        L = bk.convert(length_scale)
-        Xs = scale_screws(X.T, L, c).T
-        return _identify_scaled(Xs, prec, L, c)
+        frame = CommensurateFrame.from_numbers(bk.convert(length_scale), c)
+        return _identify_scaled(frame.rows(X), prec, frame)
 
 
-def _identify_scaled(Xs: np.ndarray, prec: Precision, L: Any, c: np.ndarray) -> Identification:
-    Lf = float(to_float(L))
+def _identify_scaled(Xs: np.ndarray, prec: Precision, frame: CommensurateFrame) -> Identification:
+    Lf = frame.L_float
     margins = _Margins(prec, Lf)
     B, norms, bounds = _closure(Xs, prec, Lf, margins)
 
@@ -258,7 +257,7 @@ def _identify_scaled(Xs: np.ndarray, prec: Precision, L: Any, c: np.ndarray) -> 
             "a rank lies between the thresholds of this precision; use a higher one (mp:N or exact)",
             dim_bounds=bounds,
         )
-    return _classify(B, prec, L, c, margins, norms)
+    return _classify(B, prec, frame, margins, norms)
 
 
 def _translations(bk: Any) -> np.ndarray:
@@ -269,10 +268,16 @@ def _translations(bk: Any) -> np.ndarray:
 
 
 def _classify(
-    B: np.ndarray, prec: Precision, L: Any, c: np.ndarray, margins: _Margins, norms: list[float]
+    B: np.ndarray,
+    prec: Precision,
+    frame: CommensurateFrame,
+    margins: _Margins,
+    norms: list[float],
 ) -> Identification:
+    """Type and parameters of the algebra with commensurate basis rows ``B`` in ``frame``."""
     bk = prec.backend
-    Lf = float(to_float(L))
+    L = frame.L
+    Lf = frame.L_float
     k = B.shape[0]
 
     def result(status: str, message: str, **kw: Any) -> Identification:
@@ -332,12 +337,12 @@ def _classify(
         if kind in ("direction", "normal"):
             params[name] = geo["direction"]
         elif kind == "point":
-            params[name] = geo["point"] * L + c
+            params[name] = frame.point_back(geo["point"])
         else:
             params[name] = pitch * L
     sub = Subgroup(t, {n: prec.backend.simplify(v) for n, v in params.items()})
     # consistency: the rebuilt canonical basis spans the same space
-    Bc = scale_screws(sub.basis(prec).T, L, c).T
+    Bc = frame.rows(sub.basis(prec))
     dec = decide_rank(np.concatenate([B, Bc], axis=0), prec, Lf)
     if dec.rank != k:
         return result(
@@ -460,10 +465,9 @@ def intersect(
     L, c = _common_frame([a, b], length_scale)
     with prec.context():
         bk = prec.backend
-        cc = bk.frame_centre(c)
-        LL = bk.convert(L)
-        B1 = scale_screws(a.basis(prec).T, LL, cc).T
-        B2 = scale_screws(b.basis(prec).T, LL, cc).T
+        frame = CommensurateFrame.from_numbers(bk.convert(L), bk.frame_centre(c))
+        B1 = frame.rows(a.basis(prec))
+        B2 = frame.rows(b.basis(prec))
         margins = _Margins(prec, L)
         if B1.shape[0] == 0 or B2.shape[0] == 0:
             inter = bk.zeros((0, 6))
@@ -486,7 +490,7 @@ def intersect(
                 return Intersection(ident, None, "")
             inter = N[:, : O1.shape[0]] @ O1
         if inter.shape[0] == 0:
-            ident = _classify(inter, prec, LL, cc, margins, [])
+            ident = _classify(inter, prec, frame, margins, [])
         else:
             B, norms, bounds = _closure(inter, prec, L, margins)
             if B is None:
@@ -501,7 +505,7 @@ def intersect(
                     bounds,
                 )
                 return Intersection(ident, None, "")
-            ident = _classify(B, prec, LL, cc, margins, norms)
+            ident = _classify(B, prec, frame, margins, norms)
         extra, note = _discrete_pieces(a, b, ident, prec)
         return Intersection(ident, extra, note)
 
@@ -576,10 +580,9 @@ def product(
     gen = generate([a, b], L, prec)
     with prec.context():
         bk = prec.backend
-        cc = bk.frame_centre(c)
-        LL = bk.convert(L)
-        B1 = scale_screws(a.basis(prec).T, LL, cc).T
-        B2 = scale_screws(b.basis(prec).T, LL, cc).T
+        frame = CommensurateFrame.from_numbers(bk.convert(L), bk.frame_centre(c))
+        B1 = frame.rows(a.basis(prec))
+        B2 = frame.rows(b.basis(prec))
         dec, Ssum = _linalg.row_space(np.concatenate([B1, B2], axis=0), prec, L)
         if Ssum is None:
             return Product(None, None, gen, None, "the dimension of the sum is undecided")
