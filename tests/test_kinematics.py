@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
 from mechsing.cli import exit_status
@@ -562,6 +562,19 @@ def test_watt_and_stephenson_six_bars(kind, frame, xy, ground, data):
     st.tuples(axes(), axes()),
     axes(),
     deltas,
+)
+# the S joint's rotation passes a half-turn on the way (its principal rotation vector
+# jumps by 2 pi): continuation must measure its steps on the group, not in coordinates
+@example(
+    pts=[
+        np.array([0.0, 4.101443082788057, 0.0]),
+        np.array([0.0, 0.0, 2.0]),
+        np.array([0.0, -1.37727729, -1.65426486]),
+    ],
+    r_axis=np.array([0.0, 0.0, 1.0]),
+    u_axes=(np.array([0.0, 0.25, 0.875]), np.array([1.0, 2.0, 3.0])),
+    p_axis=np.array([0.3, -0.4, 0.5]),
+    delta=0.25,
 )
 def test_loop_with_u_and_p_joints(pts, r_axis, u_axes, p_axis, delta):
     """ground -R- l1 -U- l2 -P- l3 -S- ground: 7 dof, mobility 1."""

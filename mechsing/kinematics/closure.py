@@ -560,7 +560,7 @@ class Closer:
             fm, qn, free, solve=damped_least_squares, max_steps=POLISH_MAX_STEPS, doubling=True
         )
         qn, res = landed.q, landed.residual
-        if res > tol or comm(qn - q) > CONTINUATION_FOLD_REACH * math.sqrt(left):
+        if res > tol or comm(fm.difference(qn, q)) > CONTINUATION_FOLD_REACH * math.sqrt(left):
             return None
         Js = fm.float_frame.blocks(fm.closure_jacobian(qn))
         sigma = np.linalg.svd(Js[:, free], compute_uv=False)
@@ -589,14 +589,14 @@ class Closer:
         def comm(d: np.ndarray) -> float:
             return float(np.linalg.norm(fm.float_frame.rates(d)))
 
-        step = comm(info["predicted"] - q)
+        step = comm(fm.difference(info["predicted"], q))
         if step == 0.0:
             return True
         # the whole predicted step, passive joints included, stays short: a path on
         # which the passive joints move much faster than the given ones is cut finer
         if step > _MAX_PREDICTED_STEP:
             return False
-        if comm(qn - info["predicted"]) > max(
+        if comm(fm.difference(qn, info["predicted"])) > max(
             CONTINUATION_CORRECTOR_RATIO * step, CONTINUATION_JUMP_FLOOR
         ):
             return False
@@ -606,7 +606,7 @@ class Closer:
             back_target = qn.copy()
             back_target[gmask] = q[gmask]
             ok, qb, _ = self._correct(fm, qn, back_target, gmask, False)
-            if not ok or comm(qb - q) > max(
+            if not ok or comm(fm.difference(qb, q)) > max(
                 CONTINUATION_RETURN_RATIO * step, CONTINUATION_JUMP_FLOOR
             ):
                 return False

@@ -316,6 +316,23 @@ class KinematicModel:
             out[jk.columns] = self.coordinates_in(jk, M)
         return out
 
+    def difference(self, q1: np.ndarray, q0: np.ndarray) -> np.ndarray:
+        """The increments ``d`` (one per coordinate) with ``update(q0, d) == q1``: measured on
+        the group, so two coordinate vectors of the same joint pose are no distance apart.
+
+        Coordinates of a non-abelian joint are first-kind coordinates read by the principal
+        log (an S joint's rotation vector has norm at most pi); a path through a half-turn
+        makes them jump by 2 pi although the joint barely moved.  Steps, corrections and
+        distances along a path are therefore compared with this difference, never with
+        ``q1 - q0``."""
+        d = np.asarray(q1) - np.asarray(q0)
+        for jk in self.joints:
+            if jk.abelian:
+                continue
+            M = self.element(jk, q1) @ lie.inverse(self.element(jk, q0))
+            d[jk.columns] = self.coordinates_in(jk, M)
+        return d
+
     def coordinates_in(self, jk: JointKinematics, M: np.ndarray) -> np.ndarray:
         """First-kind coordinates of an element of the joint's subgroup (log, then the basis).
 

@@ -88,7 +88,7 @@ def nearby_samples(
             q1, res = reclose(model, model.update(qf, d))
             if res > SAMPLE_CLOSURE_RTOL * L:
                 continue
-            dist = float(np.linalg.norm(model.float_frame.rates(q1 - qf)))
+            dist = float(np.linalg.norm(model.float_frame.rates(model.difference(q1, qf))))
             if dist < SAMPLE_DISTINCT_RATIO * step:
                 continue  # Newton fell back onto q: not a nearby configuration
             dec = decide_rank(stacked_jacobian(model, q1), "float", L)

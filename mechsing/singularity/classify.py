@@ -122,7 +122,7 @@ def _probe(fm: Any, q: np.ndarray, x: np.ndarray) -> tuple[int | None, float] | 
         q1, res = reclose(fm, fm.update(q, d))
         if res > SAMPLE_CLOSURE_RTOL * L:
             continue
-        moved = fm.float_frame.rates(q1 - q)
+        moved = fm.float_frame.rates(fm.difference(q1, q))
         dist = float(np.linalg.norm(moved))
         if dist < SAMPLE_DISTINCT_RATIO * step:
             continue
