@@ -1,3 +1,5 @@
+"""``python -m mechsing``: the ``mechsing`` command."""
+
 import sys
 
 from mechsing.cli import main
