@@ -69,6 +69,15 @@ length_scales = st.sampled_from([1e-9, 1e-3, 1.0, 1e3, 1e9])
 
 
 @st.composite
+def frame_data(draw: st.DrawFn, n: int = 5) -> tuple[float, np.ndarray, np.ndarray]:
+    """A commensurate frame's data: a length scale L, a centroid within 10 L of the origin,
+    and which of ``n`` joint coordinates are lengths."""
+    L = draw(length_scales)
+    c = np.array(draw(st.lists(st.floats(-10.0, 10.0), min_size=3, max_size=3))) * L
+    return L, c, np.array(draw(st.lists(st.booleans(), min_size=n, max_size=n)))
+
+
+@st.composite
 def twists(draw: st.DrawFn, max_angle: float = PI) -> np.ndarray:
     """Twists whose rotation angle is clustered at 0 and pi (<= max_angle)."""
     th = min(draw(angles), max_angle)

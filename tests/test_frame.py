@@ -14,18 +14,11 @@ from mechsing.kinematics import KinematicModel
 from mechsing.model import loads
 from mechsing.numeric import EXACT, CommensurateFrame, parse_precision
 from tests.mechanisms import EXAMPLES, scaled_text
-from tests.strategies import length_scales
-
-finite = st.floats(-10.0, 10.0)
-vectors = st.lists(finite, min_size=3, max_size=3).map(np.array)
+from tests.strategies import frame_data
 
 
-@st.composite
-def frames(draw: st.DrawFn, n: int = 5) -> CommensurateFrame:
-    L = draw(length_scales)
-    c = draw(vectors) * L
-    lc = np.array(draw(st.lists(st.booleans(), min_size=n, max_size=n)))
-    return CommensurateFrame.of(L, c, lc)
+def frames() -> st.SearchStrategy[CommensurateFrame]:
+    return frame_data().map(lambda data: CommensurateFrame.of(*data))
 
 
 def _matrix(rng: np.random.Generator, L: float, rows: int, cols: int) -> np.ndarray:
