@@ -37,6 +37,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -45,6 +46,7 @@ from mechsing import lie
 from mechsing.kinematics import KinematicModel, batched
 from mechsing.kinematics.batched import SerialJacobian
 from mechsing.kinematics.chains import tree_chain
+from mechsing.model import Mechanism, load
 from mechsing.numeric import (
     MAX_JOINT_VALUE,
     SCAN_ROUNDING_FACTOR,
@@ -322,15 +324,13 @@ def _chunks(configurations: Any, chunk: int) -> Iterator[np.ndarray]:
 
 
 def scan(
-    mech: Any,
+    mech: Mechanism | str | Path,
     configurations: np.ndarray | Iterable[np.ndarray],
     *,
     chunk: int = DEFAULT_CHUNK,
     all_sigma: bool = False,
 ) -> ScanResult:
     """Scan an open chain (a :class:`~mechsing.model.Mechanism` or a file path); see :class:`ChainScanner`."""
-    if not hasattr(mech, "graph"):
-        from mechsing.model import load
-
+    if not isinstance(mech, Mechanism):
         mech = load(mech)
     return ChainScanner(mech).scan(configurations, chunk=chunk, all_sigma=all_sigma)

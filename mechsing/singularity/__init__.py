@@ -9,7 +9,7 @@ is a property of the mechanism (decided by the analysis), never a singularity.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -27,6 +27,11 @@ from mechsing.singularity.findings import (
 from mechsing.singularity.serial import GENERIC_SAMPLES, chain_system, serial_finding
 from mechsing.timelimit import activity
 
+if TYPE_CHECKING:
+    from mechsing.kinematics import KinematicModel
+    from mechsing.model import Mechanism
+    from mechsing.screws import ClosureSystem
+
 __all__ = [
     "GENERIC_SAMPLES",
     "Classification",
@@ -36,7 +41,7 @@ __all__ = [
 ]
 
 
-def output_chain(mech: Any, model: Any) -> tuple[list[str], list[int]] | None:
+def output_chain(mech: Mechanism, model: KinematicModel) -> tuple[list[str], list[int]] | None:
     """Joints and coordinate columns of the tree path from ``relative_to`` to the output body."""
     out = mech.output
     if out is None:
@@ -56,7 +61,7 @@ def _output_point(
     return lie.act_point(g, x0)
 
 
-def random_configurations(model: Any, count: int, seed: int = 0) -> np.ndarray:
+def random_configurations(model: KinematicModel, count: int, seed: int = 0) -> np.ndarray:
     """``count`` random configurations (rows): angles uniform in [-pi, pi), lengths in [-L, L)."""
     return model.float_frame.random_coordinates(np.random.default_rng(seed), count)
 
@@ -100,7 +105,9 @@ def _undecided_test(d: Decision) -> UndecidedFinding:
     return UndecidedFinding(f"{d.test} test", d.rank_bounds, d.margin, d.precision, d.note)
 
 
-def classify(mech: Any, model: Any, q: np.ndarray, closure: Any) -> Classification:
+def classify(
+    mech: Mechanism, model: KinematicModel, q: np.ndarray, closure: ClosureSystem
+) -> Classification:
     """Classify one closed configuration ``q`` of ``mech`` (kinematic ``model`` at the
     analysis precision, ``closure``: its stacked closure system there).
 
