@@ -61,6 +61,7 @@ def _few_blas_threads() -> None:
     for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ.setdefault(var, "1")
 
+
 #: sub-command modules, in the order ``--help`` lists them
 COMMANDS = ("analyze", "solve", "catalog", "identify", "schema")
 

@@ -30,6 +30,7 @@ from mechsing import lie
 from mechsing.errors import ConfigurationError, UserError
 from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import damped_least_squares, mp_least_squares, newton_on_group
+from mechsing.kinematics.pose import PoseModel, pose_problem
 from mechsing.lie import ANGULAR
 from mechsing.model import Configuration, Displacement
 from mechsing.numeric import (
@@ -121,16 +122,21 @@ class Closer:
         cfg = self.mech.configurations[name]
         target, given = self._given(cfg)
         n = self.model.n
-        if len(given) == n:
+        if len(given) == n and cfg.pose is None:
             out = self._check(cfg, target)
         else:
-            if self.model.chords and self.model.precision.mode == "exact":
+            if self.model.precision.mode == "exact" and (self.model.chords or cfg.pose):
                 # the joints not given would be solved numerically: refused before solving
                 # the start configuration (whose own problems are not this one's)
                 where = f"configuration {cfg.name!r}" + (f" (line {cfg.line})" if cfg.line else "")
+                why = (
+                    "it gives the output's pose, and the joints are then solved numerically"
+                    if cfg.pose is not None
+                    else f"it gives {len(given)} of {n} coordinates; the others would be "
+                    "solved numerically"
+                )
                 raise ExactDataError(
-                    f"{where}: exact precision needs every joint value given exactly (it gives "
-                    f"{len(given)} of {n} coordinates; the others would be solved numerically); "
+                    f"{where}: exact precision needs every joint value given exactly ({why}); "
                     "give them all, or use --precision auto, float or mp:N for this configuration",
                     cfg.name,
                 )
@@ -148,7 +154,9 @@ class Closer:
                         name,
                         exc.residual,
                     ) from None
-            if not self.model.chords:
+            if cfg.pose is not None:
+                out = self._solve_pose(cfg, q0, target, given)
+            elif not self.model.chords:
                 # no loop: nothing to solve; the joints not given keep their start values
                 q = np.array(q0, copy=True)
                 q[list(given)] = target[list(given)]
@@ -157,6 +165,35 @@ class Closer:
                 out = self._continue(cfg, q0, target, given)
         self._solved[name] = out
         return out
+
+    def _solve_pose(
+        self, cfg: Configuration, q0: np.ndarray, target: np.ndarray, given: tuple[int, ...]
+    ) -> ClosedConfiguration:
+        """A configuration that gives the output's pose (and perhaps some joint values):
+        continuation from ``q0`` in the pose model (:mod:`mechsing.kinematics.pose`),
+        whose six pose coordinates are given and follow the geodesic from the start's
+        pose; every joint not given is solved."""
+        m = self.model
+        pose = cfg.pose
+        assert pose is not None
+        if pose.rotation is not None:
+            at = f"{self.mech.path}:{pose.line}: " if self.mech.path and pose.line else ""
+            with m.precision.context():
+                self._check_rotation(
+                    f"{at}configuration {cfg.name!r}: pose of the output body "
+                    f"{self.mech.output.body if self.mech.output else ''!r}",
+                    m.asarray([list(row) for row in pose.rotation]),
+                )
+        with m.precision.context():
+            pm, start, goal = pose_problem(m, cfg, q0)
+            full = np.concatenate([target, goal])
+        pgiven = tuple(given) + tuple(range(m.n, m.n + 6))
+        out = self._continue(cfg, start, full, pgiven, pm)
+        q = out.q[: m.n]
+        res = m.residual_norm(m.chord_residuals(q), native=m.precision.mode == "mp")
+        return ClosedConfiguration(
+            cfg.name, q, float(res), out.underdetermined, out.steps, given, out.notes, out.at_fold
+        )
 
     # ---------------------------------------------------------------- given values
 
@@ -418,11 +455,21 @@ class Closer:
     # ---------------------------------------------------------------- continuation
 
     def _continue(
-        self, cfg: Configuration, q0: np.ndarray, target: np.ndarray, given: tuple[int, ...]
+        self,
+        cfg: Configuration,
+        q0: np.ndarray,
+        target: np.ndarray,
+        given: tuple[int, ...],
+        model: PoseModel | None = None,
     ) -> ClosedConfiguration:
-        m = self.model
+        """Continuation from ``q0`` to the given coordinates of ``target`` in the model
+        (``model``: a pose model of this configuration, else the Closer's own)."""
+        m: Any = self.model if model is None else model
         # policy: continuation is float by design (an mp model polishes its end point)
-        fm = KinematicModel(m.mech, "float") if m.precision.mode != "float" else m
+        if m.precision.mode == "float":
+            fm: Any = m
+        else:
+            fm = KinematicModel(m.mech, "float") if model is None else model.as_float()
         gmask = np.zeros(m.n, dtype=bool)
         gmask[list(given)] = True
         q = to_float(q0).copy()
@@ -513,7 +560,8 @@ class Closer:
                 "found by Newton from just short of it; float places them only to about 1e-8 there"
             )
         if m.precision.mode == "mp":  # policy: only mp polishes the float landing
-            qm, res = self._polish_mp(m, q, target, gmask, cfg)
+            # (a pose model is not rebuilt deeper: its target is polished at N digits)
+            qm, res = self._polish_mp(m, q, target, gmask, cfg if model is None else None)
             q_out = qm
         else:
             q_out = q
@@ -783,7 +831,7 @@ def _fmt(m: KinematicModel, q: np.ndarray) -> str:
     return ", ".join(f"{k}={[round(x, 6) for x in v]}" for k, v in m.values(q).items())
 
 
-def _given_reached(m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> str:
+def _given_reached(m: Any, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> str:
     """The given coordinates where continuation stopped, against their targets,
     in the file's units: ``A reached 173.13 deg, 26.87 deg short of the target 200 deg``."""
     units = m.mech.units
@@ -801,6 +849,12 @@ def _given_reached(m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: 
         parts.append(
             f"{label} reached {reached:.10g} {unit}, {abs(goal - reached):.3g} {unit} short "
             f"of the target {goal:.10g} {unit}"
+        )
+    if isinstance(m, PoseModel):
+        dx, angle = m.distance(q, target)
+        parts.append(
+            f"the output {m.mech.output.body!r} is {dx:.3g} m and {angle:.3g} rad "
+            f"({math.degrees(angle):.3g} deg) from the target pose"
         )
     return "; ".join(parts)
 

@@ -30,6 +30,7 @@ from mechsing.model.mechanism import (
     Mechanism,
     MechanismError,
     Output,
+    OutputPose,
     Units,
 )
 
@@ -45,6 +46,7 @@ __all__ = [
     "MechanismError",
     "MechanismGraph",
     "Output",
+    "OutputPose",
     "PathStep",
     "Units",
     "build_graph",

@@ -23,6 +23,7 @@ from mechsing.model.expressions import (
 )
 from mechsing.model.graph import build_graph, connected_to
 from mechsing.model.mechanism import (
+    POSE_KEY,
     U_JOINT,
     Configuration,
     Displacement,
@@ -31,6 +32,7 @@ from mechsing.model.mechanism import (
     Mechanism,
     MechanismError,
     Output,
+    OutputPose,
     Units,
 )
 from mechsing.model.yamlnodes import (
@@ -80,6 +82,11 @@ JOINT_BASE_KEYS = ("name", "type", "between")
 U_KEYS = (("axes", "axes"), ("point", "point"))
 OUTPUT_KEYS = ("body", "relative_to", "point")
 DISPLACEMENT_KEYS = ("rotation", "translation")
+#: keys of a configuration's output pose: the reference point's position, and the
+#: rotation about it written one way (a matrix, a rotation vector, or axis and angle)
+POSE_KEYS = ("position", "rotation", "rotation_vector", "axis", "angle")
+#: configuration keys that are not joint names (so no joint may be called so)
+RESERVED_CONFIGURATION_KEYS = ("start", POSE_KEY)
 
 #: most bodies / joints / configurations in one file
 MAX_BODIES = 2000
@@ -356,6 +363,7 @@ class _Builder:
                     v.line,
                     f"must be a positive length, got {char_len}; remove it or give e.g. 1",
                 )
+        self.output_given = output
         configs = self.configurations(top.get("configurations"), jmap)
         return Mechanism(
             name=name,
@@ -516,8 +524,13 @@ class _Builder:
                 "a joint name may not contain '[' or ']' (they select "
                 "coordinates in inputs); rename it",
             )
-        if name == "start":
-            raise r.error(item, nv.line, "'start' is reserved in configurations; rename the joint")
+        if name in RESERVED_CONFIGURATION_KEYS:
+            what = {"start": "the start configuration", POSE_KEY: "the output body's pose"}[name]
+            raise r.error(
+                item,
+                nv.line,
+                f"{name!r} is reserved in configurations ({what}); rename the joint",
+            )
         tv = m.get("type")
         if tv is None:
             raise r.error(item, m.line, f"missing key 'type'; give one of {self.type_list()}")
@@ -786,7 +799,18 @@ class _Builder:
             values: dict[str, Any] = {}
             lines: dict[str, int] = {}
             start: str | None = None if cname == "reference" else "reference"
+            pose: OutputPose | None = None
             for jk, jv in cmap.items:
+                if jk.text == POSE_KEY:
+                    if cname == "reference":
+                        raise r.error(
+                            item,
+                            jk.line,
+                            "the reference configuration (all joints at identity) has the "
+                            "output at its reference pose; give a pose in a new configuration",
+                        )
+                    pose = self.pose(jv, item, jk.line)
+                    continue
                 if jk.text == "start":
                     if cname == "reference":
                         raise r.error(
@@ -802,7 +826,8 @@ class _Builder:
                     raise r.error(
                         item,
                         jk.line,
-                        f"unknown joint {jk.text!r}; use one of {_few(list(jmap))} or start",
+                        f"unknown joint {jk.text!r}; use one of {_few(list(jmap))}, start or "
+                        f"{POSE_KEY}",
                     )
                 values[jk.text] = self.value(jv, jmap[jk.text], item)
                 lines[jk.text] = jk.line
@@ -816,7 +841,17 @@ class _Builder:
                             "joint at identity (value 0); give other values in a new "
                             "configuration",
                         )
-            out[cname] = Configuration(cname, values, start, k.line, lines)
+            if pose is not None and sum(jmap[jn].dof for jn in values) == sum(
+                j.dof for j in jmap.values()
+            ):
+                raise r.error(
+                    item,
+                    cmap.key_line(POSE_KEY),
+                    f"gives every joint value and the output's {POSE_KEY} too: the joint "
+                    f"values fix the pose; remove {POSE_KEY} or the values of the joints to "
+                    "be solved",
+                )
+            out[cname] = Configuration(cname, values, start, k.line, lines, pose)
         for cname, (start, line) in starts.items():
             if start not in out:
                 raise r.error(
@@ -838,6 +873,72 @@ class _Builder:
                 chain.append(cur)
                 cur = out[cur].start
         return out
+
+    def pose(self, v: YValue | None, item: str, line: int) -> OutputPose:
+        """The output body's pose in a configuration: ``position`` of the output's
+        reference point (file lengths) and the rotation about it, as ``rotation`` (a 3x3
+        matrix), ``rotation_vector`` or ``axis`` and ``angle`` (file angles)."""
+        r = self.r
+        out = self.output_given
+        if out is None:
+            raise r.error(
+                item,
+                line,
+                f"{POSE_KEY} gives the output body's pose, but the file has no output; add "
+                "output: {body: NAME} (the body whose pose this is)",
+            )
+        m = r.mapping(
+            v,
+            item,
+            f"{POSE_KEY} (e.g. {{position: [x, y, z], rotation_vector: [rx, ry, rz]}})",
+        )
+        r.keys(m, item, POSE_KEYS, hint=f"the output body's {POSE_KEY}")
+        what = f"{POSE_KEY} of the output body {out.body!r}"
+        if not m.items:
+            raise r.error(item, m.line, f"{what}: give position and/or a rotation")
+        forms = [k for k in ("rotation", "rotation_vector", "axis") if m.get(k) is not None]
+        if len(forms) > 1:
+            raise r.error(
+                item,
+                m.key_line(forms[1]),
+                f"{what}: give the rotation one way, not both {forms[0]} and {forms[1]}: "
+                "rotation (a 3x3 matrix), rotation_vector, or axis and angle",
+            )
+        if (m.get("axis") is None) != (m.get("angle") is None):
+            has, lacks = ("axis", "angle") if m.get("axis") is not None else ("angle", "axis")
+            raise r.error(
+                item,
+                m.key_line(has),
+                f"{what}: {has} needs {lacks} (a rotation by an angle about an axis); add {lacks}",
+            )
+        position = None
+        if m.get("position") is not None:
+            position = r.vector(m.get("position"), item, f"{what}: position", r.units.length_factor)
+        rotation = rvec = None
+        form = None
+        af = r.units.angle_factor
+        if m.get("rotation") is not None:
+            rv = m.get("rotation")
+            if not isinstance(rv, YSeq) or len(rv.items) != 3:
+                raise r.error(
+                    item,
+                    rv.line,
+                    f"{what}: rotation must be a 3x3 matrix [[r11, r12, r13], [r21, r22, r23], "
+                    "[r31, r32, r33]] (or write rotation_vector, or axis and angle)",
+                )
+            rows = tuple(
+                r.vector(row, item, f"{what}: rotation row {i}") for i, row in enumerate(rv.items)
+            )
+            rotation, form = (rows[0], rows[1], rows[2]), "matrix"
+        elif m.get("rotation_vector") is not None:
+            rvec = r.vector(m.get("rotation_vector"), item, f"{what}: rotation_vector", af)
+            form = "rotation_vector"
+        elif m.get("axis") is not None:
+            unit, _ = r.direction(m.get("axis"), item, f"{what}: axis")
+            angle = r.number(m.get("angle"), item, f"{what}: angle", af)
+            rvec = (unit[0] * angle, unit[1] * angle, unit[2] * angle)
+            form = "axis_angle"
+        return OutputPose(position, rotation, rvec, m.line, form)
 
     def near_identity(self, val: Any, j: Joint) -> bool:
         """A value is near the identity when it is within :data:`REFERENCE_SCREEN_RTOL`

@@ -27,6 +27,7 @@ __all__ = [
     "Mechanism",
     "MechanismError",
     "Output",
+    "OutputPose",
     "Units",
 ]
 
@@ -173,6 +174,30 @@ class Displacement:
 
 JointValue = tuple[Any, ...] | Displacement
 
+#: the configuration key of the output body's pose (a reserved name: no joint may have it)
+POSE_KEY = "pose"
+
+
+@dataclass(frozen=True)
+class OutputPose:
+    """The pose of the output body that a configuration gives (relative to
+    ``output.relative_to``, ground by default), exact values in SI and radians.
+
+    ``position`` is where the output's reference point
+    (:meth:`Mechanism.output_reference_point`) is; the rotation, about that point and
+    relative to the reference configuration, is a 3x3 ``rotation`` matrix or a
+    ``rotation_vector`` (an axis and angle is read as the rotation vector
+    ``angle * axis``).  An omitted position or rotation is the reference
+    configuration's.  ``form`` says how the file wrote the rotation (``matrix``,
+    ``rotation_vector``, ``axis_angle`` or None).
+    """
+
+    position: Vector | None = None
+    rotation: tuple[Vector, Vector, Vector] | None = None
+    rotation_vector: Vector | None = None
+    line: int | None = None
+    form: str | None = None
+
 
 @dataclass(frozen=True)
 class Configuration:
@@ -182,7 +207,9 @@ class Configuration:
     catalog order; length ``dof``) or a :class:`Displacement`.  ``start`` is the
     configuration continuation starts from: ``"reference"`` when the file
     does not say, None for the reference configuration itself (all joints at
-    identity).  ``lines`` gives the line of each value in the file.
+    identity).  ``lines`` gives the line of each value in the file.  ``pose``: the
+    output body's pose the configuration gives (None: none), solved for by closure
+    with the joints not given.
     """
 
     name: str
@@ -190,6 +217,7 @@ class Configuration:
     start: str | None = "reference"
     line: int | None = None
     lines: Mapping[str, int] = field(default_factory=dict, hash=False, compare=False)
+    pose: OutputPose | None = field(default=None, hash=False)
 
     @property
     def is_reference(self) -> bool:
@@ -293,6 +321,29 @@ class Mechanism:
     def coordinates(self) -> tuple[tuple[str, int], ...]:
         """Every joint coordinate as ``(joint, index)`` in file and catalog order."""
         return tuple((j.name, i) for j in self.joints for i in range(j.dof))
+
+    def output_reference_point(self) -> Vector:
+        """The output's reference point at the reference configuration (exact, SI, ground
+        frame): ``output.point`` when the file gives one, else the centroid of the points
+        of the joints attached to the output body (the origin when none has a point).
+        A configuration's ``pose`` gives this point's position and the rotation about it."""
+        if self.output is None:
+            raise ValueError("the mechanism has no output")
+        if self.output.point is not None:
+            return self.output.point
+        pts = [
+            j.params["point"]
+            for j in self.joints
+            if self.output.body in j.between and "point" in j.params
+        ]
+        if not pts:
+            return (0, 0, 0)
+        n = len(pts)
+        return (
+            sum(p[0] for p in pts) / n,
+            sum(p[1] for p in pts) / n,
+            sum(p[2] for p in pts) / n,
+        )
 
     def source_path(self) -> Path | None:
         return Path(self.path) if self.path else None

@@ -14,9 +14,11 @@ from mechsing.model.loader import (
     ANGLE_UNITS,
     DISPLACEMENT_KEYS,
     LENGTH_UNITS,
+    POSE_KEYS,
+    RESERVED_CONFIGURATION_KEYS,
     U_KEYS,
 )
-from mechsing.model.mechanism import U_JOINT
+from mechsing.model.mechanism import POSE_KEY, U_JOINT
 
 __all__ = ["SCHEMA_ID", "mechanism_schema"]
 
@@ -134,7 +136,7 @@ def mechanism_schema() -> dict[str, Any]:
                 "minLength": 1,
                 "maxLength": 200,
                 "pattern": r"^[^\[\]]+$",
-                "not": {"const": "start"},
+                "not": {"enum": list(RESERVED_CONFIGURATION_KEYS)},
             },
             "number": number,
             "vector": vector,
@@ -164,6 +166,40 @@ def mechanism_schema() -> dict[str, Any]:
                 "additionalProperties": False,
                 "propertyNames": {"enum": list(DISPLACEMENT_KEYS)},
             },
+            "pose": {
+                "type": "object",
+                "description": "the output body's pose (relative to output.relative_to, "
+                "default the ground); the joints not given are solved by closure. position: "
+                "where the output's reference point is (output.point, else the centroid of the "
+                "output body's joint points at the reference configuration), in the file's "
+                "lengths; the rotation about that point relative to the reference "
+                "configuration, written one way: rotation (3x3 matrix), rotation_vector, or "
+                "axis and angle (the file's angles). An omitted position or rotation is the "
+                "reference configuration's.",
+                "properties": {
+                    "position": {"$ref": "#/$defs/vector"},
+                    "rotation": {
+                        "type": "array",
+                        "items": {"$ref": "#/$defs/vector"},
+                        "minItems": 3,
+                        "maxItems": 3,
+                    },
+                    "rotation_vector": {"$ref": "#/$defs/vector"},
+                    "axis": {"$ref": "#/$defs/vector"},
+                    "angle": {"$ref": "#/$defs/number"},
+                },
+                "minProperties": 1,
+                "additionalProperties": False,
+                "propertyNames": {"enum": list(POSE_KEYS)},
+                "dependentRequired": {"axis": ["angle"], "angle": ["axis"]},
+                "not": {
+                    "anyOf": [
+                        {"required": ["rotation", "rotation_vector"]},
+                        {"required": ["rotation", "axis"]},
+                        {"required": ["rotation_vector", "axis"]},
+                    ]
+                },
+            },
             "joint_value": {
                 "anyOf": [
                     {"$ref": "#/$defs/number"},
@@ -173,13 +209,16 @@ def mechanism_schema() -> dict[str, Any]:
             },
             "configuration": {
                 "description": "joint values by joint name (the others are solved by "
-                "closure) and start; the configuration named reference has every joint at "
-                "identity and may list only identity values",
+                f"closure), start, and the output body's {POSE_KEY}; the configuration named "
+                "reference has every joint at identity and may list only identity values",
                 "anyOf": [
                     {"type": "null"},
                     {
                         "type": "object",
-                        "properties": {"start": {"$ref": "#/$defs/name"}},
+                        "properties": {
+                            "start": {"$ref": "#/$defs/name"},
+                            POSE_KEY: {"$ref": "#/$defs/pose"},
+                        },
                         "additionalProperties": {"$ref": "#/$defs/joint_value"},
                     },
                 ],
