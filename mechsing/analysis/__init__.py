@@ -32,6 +32,7 @@ from mechsing.analysis.results import (
     AnalysisResult,
     ClosureRank,
     ConfigurationResult,
+    GivenPose,
     LoopEntry,
     Mobility,
 )
@@ -312,11 +313,50 @@ def _analyze_one_in_context(
         or found.undecided
         or any(isinstance(f, UndecidedFinding) for f in findings),
         classification=found,
+        pose=given_pose(mech, name),
     )
     doubtful = _doubtful_drops(
         res.singular, res.decisions, res.closure_residual or 0.0, model.length_scale
     )
     return replace(res, doubtful=doubtful) if doubtful else res
+
+
+def given_pose(mech: Mechanism, name: str) -> GivenPose | None:
+    """The output's pose configuration ``name`` gives, completed (an omitted position is
+    the reference point's, an omitted rotation the identity) and in float (SI, radians)."""
+    import numpy as np
+
+    from mechsing import lie
+    from mechsing.numeric import to_float
+
+    pose = mech.configurations[name].pose
+    if pose is None or mech.output is None:
+        return None
+    point = np.asarray(to_float(np.array(mech.output_reference_point(), dtype=object)), float)
+    position = (
+        point
+        if pose.position is None
+        else np.asarray(to_float(np.array(pose.position, dtype=object)), float)
+    )
+    if pose.rotation is not None:
+        R = np.asarray(to_float(np.array(pose.rotation, dtype=object)), float)
+        rvec = lie.log_so3(R)
+    else:
+        rv = (0, 0, 0) if pose.rotation_vector is None else pose.rotation_vector
+        rvec = np.asarray(to_float(np.array(rv, dtype=object)), float)
+        R = lie.exp(np.concatenate([rvec, np.zeros(3)]))[:3, :3]
+
+    def vec(x: Any) -> tuple[float, float, float]:
+        return (float(x[0]), float(x[1]), float(x[2]))
+
+    return GivenPose(
+        mech.output.body,
+        mech.output.relative_to,
+        vec(point),
+        vec(position),
+        tuple(vec(row) for row in R),
+        vec(rvec),
+    )
 
 
 #: why float gives no verdict at a fold of the given values

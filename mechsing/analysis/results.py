@@ -27,6 +27,7 @@ __all__ = [
     "AnalysisResult",
     "ClosureRank",
     "ConfigurationResult",
+    "GivenPose",
     "IdleMotion",
     "LoopEntry",
     "Mobility",
@@ -150,6 +151,21 @@ Property = Overconstrained | Shaky | IdleMotion | Actuation
 
 
 @dataclass(frozen=True)
+class GivenPose:
+    """The output body's pose a configuration gave (JSON ``pose``), in SI and radians:
+    ``position`` of the reference ``point`` (its place at the reference configuration),
+    and the rotation about it as a matrix and a rotation vector, relative to
+    ``relative_to``."""
+
+    body: str
+    relative_to: str
+    point: tuple[float, float, float]
+    position: tuple[float, float, float]
+    rotation: tuple[tuple[float, float, float], ...]
+    rotation_vector: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
 class ConfigurationResult:
     """Everything mechsing says about one configuration (see :func:`to_json`).
 
@@ -179,6 +195,8 @@ class ConfigurationResult:
     doubtful: tuple[str, ...] = ()
     escalated_for: tuple[str, ...] = ()
     classification: Classification | None = field(default=None, compare=False, repr=False)
+    #: the output's pose the configuration gave (None: it gave joint values only)
+    pose: GivenPose | None = None
 
     @property
     def singular(self) -> bool | None:
@@ -269,6 +287,15 @@ def _configuration(c: ConfigurationResult) -> dict[str, Any]:
         out["underdetermined"] = True
     if c.notes:
         out["notes"] = list(c.notes)
+    if c.pose is not None:
+        out["pose"] = {
+            "body": c.pose.body,
+            "relative_to": c.pose.relative_to,
+            "point": list(c.pose.point),
+            "position": list(c.pose.position),
+            "rotation": [list(row) for row in c.pose.rotation],
+            "rotation_vector": list(c.pose.rotation_vector),
+        }
     return out
 
 
