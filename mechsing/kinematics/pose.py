@@ -28,7 +28,7 @@ import numpy as np
 from mechsing import lie
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.model import KinematicModel
-from mechsing.lie._so3 import exp_so3, left_jacobian_so3
+from mechsing.lie import exp_so3, left_jacobian_so3
 from mechsing.model import Configuration, OutputPose
 from mechsing.numeric import CommensurateFrame, to_float
 
