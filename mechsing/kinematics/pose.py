@@ -127,15 +127,7 @@ class PoseModel:
             x = s[3:]
             cols = bk.zeros((6, 6))
             cols[0:3, 0:3] = W
-            for k in range(3):  # x x omega_k
-                w = W[:, k]
-                cols[3:6, k] = np.array(
-                    [
-                        x[1] * w[2] - x[2] * w[1],
-                        x[2] * w[0] - x[0] * w[2],
-                        x[0] * w[1] - x[1] * w[0],
-                    ]
-                )
+            cols[3:6, 0:3] = lie.cross(x, W.T).T  # x x omega_k, column by column
             cols[3:6, 3:6] = bk.eye(3)
             cols = lie.Ad(poses[self.pose_chord.a]) @ cols
         return np.concatenate([S, cols], axis=1)

@@ -918,18 +918,10 @@ class _Builder:
         form = None
         af = r.units.angle_factor
         if m.get("rotation") is not None:
-            rv = m.get("rotation")
-            if not isinstance(rv, YSeq) or len(rv.items) != 3:
-                raise r.error(
-                    item,
-                    rv.line,
-                    f"{what}: rotation must be a 3x3 matrix [[r11, r12, r13], [r21, r22, r23], "
-                    "[r31, r32, r33]] (or write rotation_vector, or axis and angle)",
-                )
-            rows = tuple(
-                r.vector(row, item, f"{what}: rotation row {i}") for i, row in enumerate(rv.items)
+            rotation = self.rotation_matrix(
+                m.get("rotation"), item, what, " (or write rotation_vector, or axis and angle)"
             )
-            rotation, form = (rows[0], rows[1], rows[2]), "matrix"
+            form = "matrix"
         elif m.get("rotation_vector") is not None:
             rvec = r.vector(m.get("rotation_vector"), item, f"{what}: rotation_vector", af)
             form = "rotation_vector"
@@ -939,6 +931,22 @@ class _Builder:
             rvec = (unit[0] * angle, unit[1] * angle, unit[2] * angle)
             form = "axis_angle"
         return OutputPose(position, rotation, rvec, m.line, form)
+
+    def rotation_matrix(self, rv: YValue, item: str, what: str, hint: str = "") -> Any:
+        """A rotation written as a 3x3 matrix (three rows of three numbers); ``hint`` ends
+        the message when it is not one (the other ways to write it, where there are)."""
+        r = self.r
+        if not isinstance(rv, YSeq) or len(rv.items) != 3:
+            raise r.error(
+                item,
+                rv.line,
+                f"{what}: rotation must be a 3x3 matrix "
+                f"[[r11, r12, r13], [r21, r22, r23], [r31, r32, r33]]{hint}",
+            )
+        rows = tuple(
+            r.vector(row, item, f"{what}: rotation row {i}") for i, row in enumerate(rv.items)
+        )
+        return (rows[0], rows[1], rows[2])
 
     def near_identity(self, val: Any, j: Joint) -> bool:
         """A value is near the identity when it is within :data:`REFERENCE_SCREEN_RTOL`
@@ -980,19 +988,7 @@ class _Builder:
                 raise r.error(item, v.line, f"{what}: give rotation and/or translation")
             rot = None
             if v.get("rotation") is not None:
-                rv = v.get("rotation")
-                if not isinstance(rv, YSeq) or len(rv.items) != 3:
-                    raise r.error(
-                        item,
-                        rv.line,
-                        f"{what}: rotation must be a 3x3 matrix "
-                        "[[r11, r12, r13], [r21, r22, r23], [r31, r32, r33]]",
-                    )
-                rows = tuple(
-                    r.vector(row, item, f"{what}: rotation row {i}")
-                    for i, row in enumerate(rv.items)
-                )
-                rot = (rows[0], rows[1], rows[2])
+                rot = self.rotation_matrix(v.get("rotation"), item, what)
             tr = None
             if v.get("translation") is not None:
                 tr = r.vector(

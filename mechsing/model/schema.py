@@ -147,6 +147,13 @@ def mechanism_schema() -> dict[str, Any]:
                 "maxItems": 2,
             },
             "joint": {"oneOf": joint_variants},
+            "rotation_matrix": {
+                "type": "array",
+                "description": "a rotation as a 3x3 matrix, three rows of three numbers",
+                "items": {"$ref": "#/$defs/vector"},
+                "minItems": 3,
+                "maxItems": 3,
+            },
             "displacement": {
                 "type": "object",
                 "description": "a multi-dof joint value as the relative displacement it "
@@ -154,12 +161,7 @@ def mechanism_schema() -> dict[str, Any]:
                 "that puts the rotation in the joint's subgroup); membership is decided to the "
                 "analysis precision's tolerance",
                 "properties": {
-                    "rotation": {
-                        "type": "array",
-                        "items": {"$ref": "#/$defs/vector"},
-                        "minItems": 3,
-                        "maxItems": 3,
-                    },
+                    "rotation": {"$ref": "#/$defs/rotation_matrix"},
                     "translation": {"$ref": "#/$defs/vector"},
                 },
                 "minProperties": 1,
@@ -178,12 +180,7 @@ def mechanism_schema() -> dict[str, Any]:
                 "reference configuration's.",
                 "properties": {
                     "position": {"$ref": "#/$defs/vector"},
-                    "rotation": {
-                        "type": "array",
-                        "items": {"$ref": "#/$defs/vector"},
-                        "minItems": 3,
-                        "maxItems": 3,
-                    },
+                    "rotation": {"$ref": "#/$defs/rotation_matrix"},
                     "rotation_vector": {"$ref": "#/$defs/vector"},
                     "axis": {"$ref": "#/$defs/vector"},
                     "angle": {"$ref": "#/$defs/number"},
