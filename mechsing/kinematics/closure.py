@@ -466,10 +466,7 @@ class Closer:
         (``model``: a pose model of this configuration, else the Closer's own)."""
         m: Any = self.model if model is None else model
         # policy: continuation is float by design (an mp model polishes its end point)
-        if m.precision.mode == "float":
-            fm: Any = m
-        else:
-            fm = KinematicModel(m.mech, "float") if model is None else model.as_float()
+        fm: Any = m.float_twin()
         gmask = np.zeros(m.n, dtype=bool)
         gmask[list(given)] = True
         q = to_float(q0).copy()

@@ -191,11 +191,21 @@ class KinematicModel:
         self.float_frame: CommensurateFrame = self.frame.as_float()
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]
         self._chords_signs: list[np.ndarray] | None = None
+        self._float_twin: KinematicModel | None = None
 
     # ------------------------------------------------------------------ access
 
     def joint(self, name: str) -> JointKinematics:
         return self._by_name[name]
+
+    def float_twin(self) -> KinematicModel:
+        """This model in float: itself when it is float, else a float model of the same
+        mechanism built once (continuation and the nearby samples work in float)."""
+        if self.precision.mode == "float":
+            return self
+        if self._float_twin is None:
+            self._float_twin = KinematicModel(self.mech, "float")
+        return self._float_twin
 
     def zeros(self) -> np.ndarray:
         return self.backend.zeros(self.n)

@@ -82,11 +82,11 @@ class PoseModel:
         signs[self.nb :] = 1
         self._pose_signs = signs
 
-    def as_float(self) -> PoseModel:
-        """The same pose problem on the mechanism's float model."""
+    def float_twin(self) -> PoseModel:
+        """The same pose problem on the mechanism's float model (itself when float)."""
         if self.backend.name == "float":
             return self
-        return PoseModel(KinematicModel(self.mech, "float"), to_float(self.c0), to_float(self.R0))
+        return PoseModel(self.base.float_twin(), to_float(self.c0), to_float(self.R0))
 
     # -- what closure asks of a model -------------------------------------------------
 

@@ -75,7 +75,7 @@ def _tree_serial(mech: Any, model: Any, q: np.ndarray) -> tuple[list[Finding], l
     names, cols = chain
     from mechsing.singularity.classify import float_model
 
-    fm = float_model(mech, model)
+    fm = float_model(model)
     # decided at the analysis precision (so auto can re-decide it at mp:50) ...
     with activity("deciding the rank of the output chain's screw system"):
         poses = model.poses(q)

@@ -84,18 +84,13 @@ class LocalAnalysis:
     decisions: list[Decision] = field(default_factory=list)
 
 
-def float_model(mech: Any, model: Any) -> Any:
-    """The model itself in float, else its float twin (built once per model)."""
-    if model.precision.mode == "float":  # the model is its own float twin
-        return model
-    cache = model.__dict__.setdefault("_float_twin", {})
-    if "m" not in cache:
-        from mechsing.kinematics import KinematicModel
-
-        fm = KinematicModel(mech, "float")
+def float_model(model: Any) -> Any:
+    """The model's float twin (:meth:`KinematicModel.float_twin`), sharing the loop
+    identifications the model decided at its own precision."""
+    fm = model.float_twin()
+    if fm is not model and "_loop_identifications" not in fm.__dict__:
         fm.__dict__["_loop_identifications"] = model.__dict__.get("_loop_identifications", {})
-        cache["m"] = fm
-    return cache["m"]
+    return fm
 
 
 def _si_rates(model: Any, x: np.ndarray) -> list[float]:
@@ -165,7 +160,7 @@ def _local_analysis(
     prec_name = cs.rank.precision
     if inst is None:
         return LocalAnalysis(None, None, [], regular=False)
-    fm = float_model(mech, model)
+    fm = float_model(model)
     qf = to_float(q)
     N = to_float(cs.rank.null_space) if cs.rank.null_space is not None else np.zeros((model.n, 0))
     samples = nearby_samples(fm, qf, N) if inst > 0 else []
