@@ -25,6 +25,7 @@ LAYERS: list[set[str]] = [
     {"screws"},
     {"singularity"},
     {"analysis", "scanner"},
+    {"sweeps"},
     {"report"},
     {"cli", "__main__"},
 ]

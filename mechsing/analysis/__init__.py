@@ -51,7 +51,7 @@ from mechsing.timelimit import (
     activity,
 )
 
-__all__ = ["AnalysisResult", "ConfigurationResult", "analyze"]
+__all__ = ["AnalysisResult", "ConfigurationResult", "analyze", "analyze_found"]
 
 
 def analyze(
@@ -80,12 +80,53 @@ def analyze(
         return _analyze(mech, configs, precision, time_limit, progress)
 
 
+def analyze_found(
+    mechanism: Mechanism,
+    found: dict[str, Any],
+    precision: Precision | str = "auto",
+) -> list[ConfigurationResult]:
+    """The analysis of configurations found numerically in float (a sweep's located
+    singularities): ``found`` maps a name to every joint coordinate (SI, radians, the
+    mechanism's coordinate order), closed to float's tolerance.
+
+    Their values are float data: at mp:N (and when auto re-decides an undecided rank at
+    mp:50) each is first projected onto closure at N digits (the inputs kept), as a
+    file's decimal values are; the point is then where float located it, about 1e-13
+    from the singularity, which N digits can tell apart.  For the same reason auto does
+    not re-decide a singular float verdict whose dropped singular value is above
+    float's rounding: that drop is the distance float located the point to.  Exact mode
+    cannot take them (they are not exact data)."""
+    from mechsing.model import Configuration
+
+    prec = parse_precision(precision) if isinstance(precision, str) else precision
+    if prec.mode == "exact":  # policy: exact mode takes exact data only
+        raise UserError(
+            "exact precision cannot classify configurations found numerically (their values "
+            "are float data, not exact ones); use --precision auto or mp:N"
+        )
+    coords = mechanism.coordinates()
+    configurations = dict(mechanism.configurations)
+    for name, q in found.items():
+        values: dict[str, list[float]] = {}
+        for (joint, _i), x in zip(coords, q, strict=True):
+            values.setdefault(joint, []).append(float(x))
+        configurations[name] = Configuration(
+            name, {j: tuple(v) for j, v in values.items()}, start="reference"
+        )
+    mech = replace(mechanism, configurations=configurations)
+    with working_on(file=mech.path or mech.name):
+        res = _analyze(mech, list(found), prec, None, None, Precision("float"), located=True)
+    return list(res.configurations)
+
+
 def _analyze(
     mech: Mechanism,
     configs: list[str] | None,
     precision: Precision | str,
     time_limit: float | None,
     progress: Callable[[str], None] | None,
+    data_precision: Precision | None = None,
+    located: bool = False,
 ) -> AnalysisResult:
     if isinstance(precision, str):
         prec = parse_precision(precision)
@@ -117,7 +158,7 @@ def _analyze(
         if key not in models:
             km = KinematicModel(mech, mode)
             # given values are checked with the tolerance of the mode asked for (auto: float's)
-            models[key] = (km, Closer(km, data_precision=first))
+            models[key] = (km, Closer(km, data_precision=data_precision or first))
         return models[key]
 
     first = Precision("float") if prec.mode == "auto" else prec
@@ -132,7 +173,10 @@ def _analyze(
             results.append(replace(res, seconds=time.perf_counter() - start))
             continue
         res = _analyze_one(mech, name, stage(first))
-        if prec.mode == "auto" and res.error is None and (res.undecided or res.doubtful):
+        # a point located in float is as near its singularity as float places it: the drop
+        # float sees above its own rounding is that distance, so auto keeps the verdict
+        doubtful = res.doubtful and not located
+        if prec.mode == "auto" and res.error is None and (res.undecided or doubtful):
             why = res.doubtful or ("undecided",)
             res = _analyze_one(mech, name, stage(Precision("mp", 50)))
             res = replace(res, escalated_for=why)

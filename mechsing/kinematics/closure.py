@@ -195,6 +195,24 @@ class Closer:
             cfg.name, q, float(res), out.underdetermined, out.steps, given, out.notes, out.at_fold
         )
 
+    def follow(
+        self,
+        q0: np.ndarray,
+        target: np.ndarray,
+        given: tuple[int, ...],
+        model: PoseModel | None = None,
+        label: str = "sweep",
+        start: str = "the previous point",
+    ) -> ClosedConfiguration:
+        """Continuation from the closed ``q0`` to the given coordinates of ``target`` on
+        the same assembly mode (float; ``model``: a pose model), with the predictor,
+        Newton on the group, branch checks and fold landing of a named configuration's
+        closure.  Raises :class:`ClosureError` where the path cannot be followed (a
+        fold, a singularity on the way); ``label`` and ``start`` name the two ends in
+        its message.  The sweeps' continuation between their nodes."""
+        cfg = Configuration(label, {}, start=start)
+        return self._continue(cfg, q0, target, tuple(given), model)
+
     # ---------------------------------------------------------------- given values
 
     def _given(self, cfg: Configuration) -> tuple[np.ndarray, tuple[int, ...]]:

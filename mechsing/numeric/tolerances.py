@@ -132,6 +132,26 @@ SCAN_ROUNDING_FACTOR = 16.0
 #: costs that second analysis; a regular one is never re-decided).
 FLOAT_ROUNDING_FACTOR = 4.0
 
+#: sweeps (:mod:`mechsing.sweeps`).  A path is followed by continuation through nodes at
+#: most SWEEP_NODE_STEP apart (radians, or lengths / L); the samples between two nodes
+#: are closed together by batched Newton from their interpolation, and a sample whose
+#: correction exceeds SWEEP_JUMP_RATIO times the node spacing is closed again by
+#: continuation (it may have jumped to another assembly mode)
+SWEEP_NODE_STEP = 0.1
+SWEEP_JUMP_RATIO = 0.25
+#: a located singularity (a sign change, a minimum, a fold) is refined until the swept
+#: value is known to this (radians, or lengths / L): well below the 1e-10 promised
+SWEEP_LOCATE_TOL = 1e-12
+#: a sampled local minimum of a test's smallest relative singular value is refined when
+#: it is at most this many times the rise to its higher neighbour: a zero between the
+#: neighbours makes a V (or a parabola touching 0) whose lowest sample is at most half
+#: (a quarter) of that rise; a shallow minimum far from zero is left alone
+SWEEP_MINIMUM_SCREEN = 2.0
+#: first step (commensurate arclength) when a path is followed along its curve through a
+#: fold (pseudo-arclength continuation), and the shortest step before it gives up
+SWEEP_ARC_STEP = 0.02
+SWEEP_ARC_MIN_STEP = 1e-10
+
 #: exact mode first evaluates a quantity to this many digits: clearly non-zero
 #: there (above 10^-(EXACT_ZERO_DIGITS - 15) of its scale) it is not zero, and
 #: only the rest is handed to sympy to prove it zero

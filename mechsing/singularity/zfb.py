@@ -42,7 +42,7 @@ from mechsing.numeric import (
 )
 from mechsing.screws import chain_matrix
 
-__all__ = ["IOQuantities", "io_quantities", "leg_constraint_rank"]
+__all__ = ["IOQuantities", "io_quantities", "leg_constraint_rank", "leg_path"]
 
 _FLOAT = Precision("float")
 
@@ -174,7 +174,7 @@ def _io_quantities(
     )
 
 
-def _leg_path(mech: Any, leg: Any, base: str, body: str) -> list[tuple[str, int]]:
+def leg_path(mech: Any, leg: Any, base: str, body: str) -> list[tuple[str, int]]:
     """A path of (joint, sign) from base to body through the leg's joints (BFS, file order)."""
     from collections import deque
 
@@ -238,7 +238,7 @@ def leg_constraint_rank(
             else:
                 K = prec.backend.eye(len(cols))
             coef = np.zeros(model.n)
-            for jn, sg in _leg_path(mech, leg, out.relative_to, out.body):
+            for jn, sg in leg_path(mech, leg, out.relative_to, out.body):
                 coef[model.joint(jn).columns] = sg
             Tl = (Ss * coef[None, :])[:, cols] @ K
             dec = decide_rank(Tl, prec, L)

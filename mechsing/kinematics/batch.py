@@ -1,0 +1,205 @@
+"""Closure of many configurations at once, in float: the batched Newton of the sweeps.
+
+Owns :class:`BatchClosure`: the chord residuals, the closure Jacobian and the update on
+the group of a float :class:`~mechsing.kinematics.KinematicModel` (and, for a sweep of
+the output's pose, of its :class:`~mechsing.kinematics.pose.PoseModel`), written for an
+array of configurations ``Q`` of shape ``(N, n)`` with :mod:`mechsing.lie` (which
+broadcasts over leading axes), and :meth:`BatchClosure.newton`, damped Gauss-Newton on
+the group for all rows together.  The one-configuration kinematics
+(:mod:`mechsing.kinematics.batched`) computes the poses and screws; this module adds what
+closing a batch needs.  Nothing here decides a rank: it closes.
+
+Conventions: those of :mod:`mechsing.kinematics.model`.  Residual twists and Jacobian
+rows are commensurate (moved to the centroid, v / L, length columns times L), as in
+:func:`mechsing.kinematics.newton.scaled_system`; the residual norm is the length of
+:meth:`KinematicModel.residual_norm` (m).  With a pose model the coordinate vector is
+the joints' followed by the six pose coordinates ``(rx, ry, rz, x, y, z)``, which are
+always given (never moved by Newton).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from mechsing import lie
+from mechsing.kinematics import batched
+from mechsing.kinematics.chains import tree_chain
+from mechsing.lie import exp_so3
+
+__all__ = ["BatchClosure"]
+
+#: damping of the batched Gauss-Newton step, relative to each row's sigma_max (the same
+#: as the one-configuration damped least squares)
+_DAMPING = 1e-7
+
+
+class BatchClosure:
+    """Batched float closure of one kinematic model (or pose model).
+
+    Parameters
+    ----------
+    model : a float KinematicModel, or a PoseModel on one
+    """
+
+    def __init__(self, model: Any) -> None:
+        base = getattr(model, "base", model)
+        if base.backend.name != "float":
+            raise ValueError("BatchClosure works in float")
+        self.model = model
+        self.base = base
+        self.nb: int = base.n
+        self.n: int = model.n
+        self.pose = model if model is not base else None
+        self.L = float(base.length_scale)
+        self.c = np.asarray(base.float_frame.c, dtype=float)
+        self.frame = base.float_frame
+        self.chords = list(base.chords)
+        self.signs = np.array(base._chord_signs(), dtype=float).reshape(-1, self.nb)
+        if self.pose is not None:
+            out = base.mech.output
+            self.pose_a, self.pose_b = out.relative_to, out.body
+            self.pose_signs = tree_chain(base, out.relative_to, out.body).signs.astype(float)
+            self.c0 = np.asarray(self.pose.c0, dtype=float)
+            self.R0 = np.asarray(self.pose.R0, dtype=float)
+        self.blocks = len(self.chords) + (1 if self.pose is not None else 0)
+        # the first-kind coordinates of a non-abelian joint from a commensurate log:
+        # least squares against its commensurate basis, one pseudo-inverse per joint
+        self._pinv = {}
+        for jk in base.joints:
+            if not jk.abelian:
+                B = self.frame.twists(np.asarray(jk.basis, dtype=float).T)
+                self._pinv[jk.name] = np.linalg.pinv(B)
+
+    # ------------------------------------------------------------------ residuals
+
+    def deltas(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
+        """The closure residual of every chord (and the pose), (N, blocks, 4, 4)."""
+        q = Q[:, : self.nb]
+        P = batched.poses(self.base, q) if P is None else P
+        out = [P[jk.a] @ batched.element(jk, q) @ lie.inverse(P[jk.b]) for jk in self.chords]
+        if self.pose is not None:
+            out.append(P[self.pose_a] @ self.target(Q[:, self.nb :]) @ lie.inverse(P[self.pose_b]))
+        if not out:
+            return np.zeros((Q.shape[0], 0, 4, 4))
+        return np.stack(out, axis=1)
+
+    def target(self, s: np.ndarray) -> np.ndarray:
+        """The output's displacement ``T(s)`` for pose coordinates s (N, 6)."""
+        R = self.R0 @ exp_so3(s[:, :3])
+        g = np.zeros(s.shape[:-1] + (4, 4))
+        g[..., :3, :3] = R
+        g[..., :3, 3] = s[:, 3:] - R @ self.c0
+        g[..., 3, 3] = 1.0
+        return g
+
+    def residual_norm(self, D: np.ndarray) -> np.ndarray:
+        """The closure residual (m) of each row: the largest over its blocks of
+        ``sqrt(|p_c|^2 + L^2 |R - I|_F^2 / 2)`` (:meth:`KinematicModel.residual_norm`)."""
+        if D.shape[1] == 0:
+            return np.zeros(D.shape[0])
+        R = D[..., :3, :3]
+        p = D[..., :3, 3] + R @ self.c - self.c
+        E = R - np.eye(3)
+        r2 = np.sum(p * p, axis=-1) + self.L**2 * np.sum(E * E, axis=(-1, -2)) / 2
+        return np.sqrt(np.max(r2, axis=1))
+
+    def residual_twists(self, D: np.ndarray) -> np.ndarray:
+        """The commensurate residual twists, stacked: (N, 6 * blocks)."""
+        N, b = D.shape[:2]
+        r = lie.log(D.reshape(N * b, 4, 4)).reshape(N, b, 6)
+        rs = self.frame.twists(np.swapaxes(r, 1, 2))  # (N, 6, b)
+        return np.swapaxes(rs, 1, 2).reshape(N, 6 * b)
+
+    # ------------------------------------------------------------------ Jacobian
+
+    def jacobian(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
+        """The commensurate closure Jacobian in the joint coordinates: (N, 6 * blocks, nb)
+        (the pose coordinates are given and have no column)."""
+        q = Q[:, : self.nb]
+        P = batched.poses(self.base, q) if P is None else P
+        Ss = self.frame.screws(batched.current_screws(self.base, q, P))  # (N, 6, nb)
+        signs = self.signs
+        if self.pose is not None:
+            signs = np.concatenate([signs, self.pose_signs[None, :]], axis=0)
+        if signs.shape[0] == 0:
+            return np.zeros((Q.shape[0], 0, self.nb))
+        J = Ss[:, None, :, :] * signs[None, :, None, :]  # (N, blocks, 6, nb)
+        return J.reshape(Q.shape[0], 6 * signs.shape[0], self.nb)
+
+    # ------------------------------------------------------------------ update
+
+    def update(self, Q: np.ndarray, D: np.ndarray) -> np.ndarray:
+        """Trivialised increments D (N, nb) of the joints applied on the group (abelian
+        joints add; the others ``M <- exp(sum d_i e_i) M``), pose coordinates unchanged."""
+        out = np.array(Q, copy=True)
+        q = Q[:, : self.nb]
+        for jk in self.base.joints:
+            d = D[:, jk.columns]
+            if jk.abelian:
+                out[:, jk.columns] = q[:, jk.columns] + d
+                continue
+            M = lie.exp(d @ jk.basis) @ batched.element(jk, q)
+            x = self.frame.twists(lie.log(M)[..., None])[..., 0]  # (N, 6) commensurate
+            out[:, jk.columns] = x @ self._pinv[jk.name].T
+        return out
+
+    # ------------------------------------------------------------------ Newton
+
+    def newton(
+        self, Q: np.ndarray, free: np.ndarray, tolerance: float, iterations: int = 8
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Damped Gauss-Newton on the group for every row of Q, moving the joint
+        coordinates in ``free`` (bool, nb); stops a row once its residual is below
+        ``tolerance`` (m) and it no longer gains.  Returns (Q, residual (m), Newton
+        iterations per row)."""
+        Q = np.array(Q, dtype=float, copy=True)
+        cols = np.flatnonzero(free)
+        lengths = self.frame.length_columns[cols]
+        D = self.deltas(Q)
+        res = self.residual_norm(D)
+        its = np.zeros(Q.shape[0], dtype=int)
+        active = np.ones(Q.shape[0], dtype=bool)
+        if not len(cols) or D.shape[1] == 0:
+            return Q, res, its
+        polish = np.zeros(Q.shape[0], dtype=int)
+        for _ in range(iterations):
+            # a closed row is polished once more (the step after tolerance gains the
+            # last digits), then left alone
+            done = res <= tolerance
+            polish[done] += 1
+            active &= ~(done & (polish > 1))
+            if not np.any(active):
+                break
+            idx = np.flatnonzero(active)
+            Qa = Q[idx]
+            P = batched.poses(self.base, Qa[:, : self.nb])
+            J = self.jacobian(Qa, P)[:, :, cols]
+            r = self.residual_twists(self.deltas(Qa, P))
+            du = _damped_step(J, r)
+            du = np.where(lengths[None, :], du * self.L, du)
+            step = np.zeros((len(idx), self.nb))
+            step[:, cols] = du
+            Qn = self.update(Qa, step)
+            rn = self.residual_norm(self.deltas(Qn))
+            better = rn < res[idx]
+            keep = idx[better]
+            Q[keep] = Qn[better]
+            res[keep] = rn[better]
+            its[idx] += 1
+            # a row that no longer gains stops
+            active[idx[~better]] = False
+        return Q, res, its
+
+
+def _damped_step(J: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """The damped least-squares steps ``-(J^T J + lam^2 I)^-1 J^T r`` of a batch (the
+    normal equations: a batched Cholesky-sized solve instead of an SVD per row), with
+    ``lam`` = _DAMPING times the row's Frobenius norm (a bound of sigma_max)."""
+    JtJ = np.matmul(np.swapaxes(J, 1, 2), J)
+    g = np.einsum("nji,nj->ni", J, r)
+    lam2 = (_DAMPING**2) * np.einsum("nii->n", JtJ)
+    k = JtJ.shape[1]
+    JtJ[:, np.arange(k), np.arange(k)] += np.maximum(lam2, np.finfo(float).tiny)[:, None]
+    return -np.linalg.solve(JtJ, g[..., None])[..., 0]

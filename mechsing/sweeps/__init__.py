@@ -1,0 +1,247 @@
+"""Sweeps: where, along a path or over a grid, a mechanism meets its singularities.
+
+>>> import mechsing
+>>> r = mechsing.sweep("examples/slider_crank_slider_input.yaml", ["P=-3:3:0.01"])  # doctest: +SKIP
+>>> [(p.kind, p.values, p.classes) for p in r.located]                                # doctest: +SKIP
+
+:func:`sweep` varies one swept variable (a path) or two (a grid) in the file's units
+(:class:`~mechsing.sweeps.spec.Vary`: ``"A=0:360:1"``, ``"C1[1]=0:0.5:0.01"``,
+``"pose.x=-0.1:0.1:0.01"``), follows the mechanism along it from the ``from_config``
+configuration on its assembly mode (:mod:`.path`), measures every sample in float
+(:mod:`.measures`), locates the singularities between the samples and classifies each
+at ``precision`` (:mod:`.engine`), and returns a :class:`~.results.SweepResult`.
+
+:class:`SweepRun` is the same sweep row by row, for a caller that writes rows as they
+come (the command line streams its CSV and JSON that way, in bounded memory) or
+distributes them (``workers``/``scheduler``: Dask, see :mod:`.distributed`).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from mechsing.errors import UserError, working_on
+from mechsing.model import Mechanism, load
+from mechsing.numeric import Precision, parse_precision
+from mechsing.sweeps.engine import Located, RowResult, Sweep, classify_located
+from mechsing.sweeps.loci import loci_of
+from mechsing.sweeps.results import (
+    LocatedSingularity,
+    Locus,
+    SweepResult,
+    SweptVariable,
+)
+from mechsing.sweeps.spec import Vary, resolve
+
+__all__ = [
+    "LocatedSingularity",
+    "Locus",
+    "SweepResult",
+    "SweepRun",
+    "SweptVariable",
+    "Vary",
+    "sweep",
+]
+
+#: a grid classifies at most this many located points by the full analysis (evenly
+#: spread over the located points); a path classifies every one
+MAX_CLASSIFIED = 200
+
+
+def sweep(
+    mechanism: Mechanism | str | Path,
+    vary: list[str | Vary],
+    from_config: str | None = None,
+    precision: Precision | str = "auto",
+    *,
+    progress: Callable[[int], None] | None = None,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    max_classified: int = MAX_CLASSIFIED,
+) -> SweepResult:
+    """Sweep a mechanism (or a file) over one variable (a path) or two (a grid).
+
+    Parameters
+    ----------
+    vary : ``"NAME=START:STOP:STEP"`` strings (or :class:`Vary`), in the file's units
+    from_config : the configuration the sweep starts from (default ``reference``)
+    precision : of the classification of the located points (``auto``, ``float``,
+        ``mp:N``); the measures are always float
+    progress : called with the number of samples each finished row adds
+    workers, scheduler : distribute the rows of a grid with Dask (a local cluster of
+        ``workers`` processes, or the scheduler at that address); the result is the
+        serial one
+    max_classified : most located points of a grid classified by the full analysis
+    """
+    run = SweepRun(mechanism, vary, from_config, precision, max_classified=max_classified)
+    for _ in run.rows(progress, workers=workers, scheduler=scheduler):
+        pass
+    return run.result()
+
+
+class SweepRun:
+    """A sweep run row by row: :meth:`rows` yields each row's samples as they are done
+    (the arrays of the whole sweep are filled as it goes), :meth:`result` then locates,
+    classifies and returns the :class:`SweepResult`."""
+
+    def __init__(
+        self,
+        mechanism: Mechanism | str | Path,
+        vary: list[str | Vary],
+        from_config: str | None = None,
+        precision: Precision | str = "auto",
+        max_classified: int = MAX_CLASSIFIED,
+    ) -> None:
+        self.start_time = time.perf_counter()
+        mech = mechanism if isinstance(mechanism, Mechanism) else load(str(mechanism))
+        self.mechanism = mech
+        prec = parse_precision(precision) if isinstance(precision, str) else precision
+        if prec.mode == "exact":  # policy: exact mode takes exact data only
+            raise UserError(
+                "a sweep locates singularities numerically, so exact precision cannot classify "
+                "them (their values are not exact data); use --precision auto (the default) or mp:N"
+            )
+        self.prec = prec
+        self.precision = str(prec)
+        varies = [Vary.parse(v) if isinstance(v, str) else v for v in vary]
+        self.varies = varies
+        self.max_classified = max_classified
+        with working_on(file=mech.path or mech.name):
+            self.vars = resolve(mech, varies)
+            self.engine = Sweep(mech, self.vars, from_config)
+        eng = self.engine
+        self.from_config = eng.from_config
+        self.tests = eng.tests
+        self.generic = {t: int(eng.measures.generic[t]) for t in self.tests}
+        self.variables = tuple(
+            SweptVariable(
+                v.name, v.unit, v.file_unit, v.factor, v.values, (w.start, w.stop, w.step)
+            )
+            for v, w in zip(self.vars, varies, strict=True)
+        )
+        names = [f"{j}" if mech.joint(j).dof == 1 else f"{j}[{i}]" for j, i in mech.coordinates()]
+        pm = eng.problem
+        held = [
+            names[c]
+            if c < len(names)
+            else f"pose.{('rx', 'ry', 'rz', 'x', 'y', 'z')[c - len(names)]}"
+            for c in np.flatnonzero(pm.given)
+            if c not in eng.cols
+        ]
+        self.held = tuple(held)
+        shape = tuple(len(v.values) for v in reversed(self.vars))
+        self.reached = np.zeros(shape, dtype=bool)
+        self.rank = {t: np.full(shape, -2, dtype=np.int16) for t in self.tests}
+        self.ratio = {t: np.full(shape, np.nan) for t in self.tests}
+        self.located: list[Located] = []
+        self.notes: list[str] = []
+        self.newton_iterations = 0
+
+    @property
+    def grid(self) -> bool:
+        return len(self.vars) == 2
+
+    def rows(
+        self,
+        progress: Callable[[int], None] | None = None,
+        workers: int | None = None,
+        scheduler: str | None = None,
+    ) -> Iterator[int]:
+        """Run the sweep; yields the index of each finished row (0 for a path) once its
+        entries of :attr:`reached`, :attr:`rank` and :attr:`ratio` are filled."""
+        values = [v.values for v in self.vars]
+        if workers or scheduler:
+            if not self.grid:
+                raise UserError(
+                    "--workers and --scheduler distribute the rows of a grid (two --vary)"
+                )
+            from mechsing.sweeps.distributed import distributed_rows
+
+            source: Iterator[RowResult] = distributed_rows(
+                self, values, workers, scheduler, progress
+            )
+        else:
+            source = self.engine.rows(values, progress)
+        prev: RowResult | None = None
+        with working_on(file=self.mechanism.path or self.mechanism.name):
+            for row in source:
+                self._store(row)
+                if self.grid and prev is not None and row.Z is not None and prev.Z is not None:
+                    y = (float(values[1][prev.index]), float(values[1][row.index]))
+                    self.located += self.engine.between_rows(y, prev, row, self.engine.cols[1])
+                if prev is not None:
+                    prev.Z = None  # only the last row's configurations are kept
+                    prev.measures = None
+                prev = row if row.Z is not None else None
+                yield max(row.index, 0)
+
+    def _store(self, row: RowResult) -> None:
+        at: Any = slice(None) if not self.grid else row.index
+        self.reached[at] = row.reached
+        for t in self.tests:
+            self.rank[t][at] = row.rank[t]
+            self.ratio[t][at] = row.ratio[t]
+        self.located += row.located
+        self.newton_iterations += row.newton
+        for s in row.stopped:
+            what = (
+                f"row {self.vars[1].name} = {self.vars[1].shown(self.vars[1].values[row.index])}: "
+                if self.grid
+                else ""
+            )
+            self.notes.append(f"{what}{s}")
+
+    def result(self) -> SweepResult:
+        """Classify the located points and return the result."""
+        eng = self.engine
+        located = sorted(self.located, key=lambda p: (p.edge != "row", p.values[::-1]))
+        chosen = [p for p in located if p.edge == "row"]
+        if self.grid and len(chosen) > self.max_classified:
+            pick = np.linspace(0, len(chosen) - 1, self.max_classified).round().astype(int)
+            chosen = [chosen[i] for i in sorted(set(pick.tolist()))]
+            self.notes.append(
+                f"{len(self.located)} singular points located; the full analysis classified "
+                f"{len(chosen)} of them, spread over the grid (max_classified)"
+            )
+        with working_on(file=self.mechanism.path or self.mechanism.name):
+            analysed = classify_located(self.mechanism, chosen, self.prec)
+        by_id = {id(p): a for p, a in zip(chosen, analysed, strict=True)}
+        model = eng.model
+        out = []
+        for p in located:
+            joints = tuple((k, tuple(v)) for k, v in model.values(p.q).items())
+            out.append(
+                LocatedSingularity(
+                    p.values,
+                    p.kind,
+                    p.tests,
+                    float(p.ratio),
+                    joints,
+                    by_id.get(id(p)),
+                    p.far_side,
+                    p.edge,
+                )
+            )
+        loci = loci_of(self, out) if self.grid else ()
+        return SweepResult(
+            self.mechanism,
+            self.variables,
+            self.from_config,
+            self.precision,
+            self.tests,
+            self.generic,
+            self.held,
+            self.reached,
+            self.rank,
+            self.ratio,
+            tuple(out),
+            tuple(loci),
+            tuple(self.notes),
+            self.newton_iterations,
+            time.perf_counter() - self.start_time,
+        )

@@ -1,0 +1,534 @@
+"""The sweep itself: paths and grids, their measures, and the singularities located on them.
+
+Owns :class:`Sweep` (the problem of one sweep, built once) and the row-by-row work:
+
+* a **path** (one swept variable) starts at the sample nearest the ``--from``
+  configuration's value (reached from it by continuation), and is followed forward to
+  the end of the range and back to its beginning (:func:`mechsing.sweeps.path.follow`);
+* a **grid** (two) is rows of paths in the first variable, each started from a first
+  column (a path in the second variable at the first variable's start sample);
+* every reached sample gets the float measures of :class:`~.measures.Measures`;
+* along a row, every sign change of a test's compressed determinant between two
+  samples is refined by Brent's method, every sampled minimum that could hide a zero
+  by golden-section search, and every fold comes located from the path; between rows of
+  a grid, the sign changes along the columns are refined the same way (they make the
+  loci, with the rows' points);
+* each located point is classified by the full analysis at the sweep's precision
+  (:func:`mechsing.analysis.analyze_found`).
+
+Which coordinates a sweep holds: a sweep of joint coordinates that are all inputs holds
+the other inputs at their ``--from`` values and solves the passive joints; a sweep of a
+joint that is not an input lets it drive the mechanism alone (the inputs are solved
+with the passive joints); a sweep of the output's pose holds the other pose coordinates
+and solves every joint (the inverse kinematics of a parallel robot).  A mechanism
+without loops solves nothing: every other coordinate keeps its ``--from`` value.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from mechsing.analysis import analyze, analyze_found
+from mechsing.errors import UserError
+from mechsing.kinematics import Closer, ClosureError, KinematicModel
+from mechsing.kinematics.batch import BatchClosure
+from mechsing.kinematics.pose import PoseModel
+from mechsing.lie import log_so3
+from mechsing.model import Mechanism
+from mechsing.numeric import (
+    SWEEP_JUMP_RATIO,
+    SWEEP_LOCATE_TOL,
+    SWEEP_MINIMUM_SCREEN,
+    Precision,
+    to_float,
+)
+from mechsing.sweeps.measures import Measures, PointMeasures
+from mechsing.sweeps.path import Fold, Problem, follow
+from mechsing.sweeps.spec import Variable
+
+__all__ = ["Located", "RowResult", "Sweep"]
+
+_TAU_LO = Precision("float").tolerances.tau_lo
+
+#: measures are computed this many configurations at a time (bounds the working memory)
+_CHUNK = 4096
+
+
+@dataclass
+class Located:
+    """A singularity located on a sweep, before its classification: the swept values
+    (SI), how it was found (``fold``, ``crossing``, ``minimum``), the tests whose measure
+    vanishes there, the refined measure, the configuration (joint coordinates), and for
+    a grid the row and column it lies between (``edge``: "row" or "column")."""
+
+    values: tuple[float, ...]
+    kind: str
+    tests: tuple[str, ...]
+    ratio: float
+    q: np.ndarray
+    row: int = 0
+    edge: str = "row"
+    cell: tuple[int, int] = (0, 0)
+    far_side: bool = False
+
+
+@dataclass
+class RowResult:
+    """One row of a sweep (the whole path for a path): the reached samples, each test's
+    rank and measure there, the located points, and why the row stopped early."""
+
+    index: int
+    reached: np.ndarray
+    rank: dict[str, np.ndarray]
+    ratio: dict[str, np.ndarray]
+    located: list[Located]
+    stopped: list[str] = field(default_factory=list)
+    newton: int = 0
+    Z: np.ndarray | None = None
+    measures: PointMeasures | None = None
+
+
+class Sweep:
+    """One sweep's problem: the model, what is held and swept, the start, the measures."""
+
+    def __init__(
+        self, mech: Mechanism, variables: list[Variable], from_config: str | None = None
+    ) -> None:
+        self.mech = mech
+        self.variables = variables
+        self.from_config = from_config or "reference"
+        if self.from_config not in mech.configurations:
+            raise UserError(
+                f"{mech.path or mech.name}: --from {self.from_config!r}: no such configuration; "
+                f"the file has: {', '.join(mech.configurations)}"
+            )
+        model = KinematicModel(mech, "float")
+        self.model = model
+        closer = Closer(model)
+        q0 = np.asarray(to_float(closer.solve(self.from_config).q), dtype=float)
+        self.pose = variables[0].kind == "pose"
+        n = model.n
+        if self.pose:
+            c0 = [float(x) for x in to_float(np.array(mech.output_reference_point(), dtype=object))]
+            cm: Any = PoseModel(model, c0, np.eye(3))
+            g = cm.output_pose(np.concatenate([q0, np.zeros(6)]))
+            r0 = log_so3(g[:3, :3])
+            x0 = g[:3, :3] @ np.array(c0) + g[:3, 3]
+            z0 = np.concatenate([q0, r0, x0])
+            given = np.zeros(cm.n, dtype=bool)
+            given[n:] = True
+            cols = [n + v.column for v in variables]
+        else:
+            cm = model
+            z0 = q0
+            cols = [v.column for v in variables]
+            inputs = {model.joint(j).columns.start + i for j, i in mech.input_coordinates()}
+            given = np.zeros(n, dtype=bool)
+            if not mech.loops:
+                given[:] = True
+            elif set(cols) <= inputs:
+                given[list(inputs)] = True
+            given[cols] = True
+        self.cols = cols
+        self.z0 = z0
+        periodic = np.zeros(cm.n, dtype=bool)
+        for v, c in zip(variables, cols, strict=True):
+            periodic[c] = v.periodic
+        self.problem = Problem(
+            model,
+            cm,
+            given,
+            closer,
+            BatchClosure(cm),
+            model.precision.closure_tolerance(model.length_scale),
+            periodic,
+        )
+        self.measures = Measures(model, self._generic())
+
+    # ------------------------------------------------------------------ generic ranks
+
+    def _generic(self) -> dict[str, int | None]:
+        """Each test's generic rank, from the full float analysis of the start."""
+        res = analyze(self.mech, [self.from_config], "float").configurations[0]
+        dec = {d.test: d for d in res.decisions}
+        n = self.model.n
+        out: dict[str, int | None] = {}
+        if self.mech.loops and res.mobility is not None and res.mobility.generic is not None:
+            out["closure"] = n - res.mobility.generic
+        for test, name in (("input", "impossible-output"), ("output", "impossible-input")):
+            if name in dec:
+                out[test] = dec[name].generic
+        if "output chain" in dec:  # no loop: T N is the output chain's matrix
+            out["input"] = dec["output chain"].generic
+            out["output"] = len(self.mech.input_coordinates()) or None
+        if "constraint" in dec:
+            out["constraint"] = dec["constraint"].generic
+        return out
+
+    @property
+    def tests(self) -> tuple[str, ...]:
+        return self.measures.tests
+
+    # ------------------------------------------------------------------ closing
+
+    def scale(self, col: int) -> float:
+        return self.problem.scale(col)
+
+    def reach(self, z: np.ndarray, col: int, value: float) -> np.ndarray:
+        """From z, the closed configuration with coordinate ``col`` at ``value``."""
+        pb = self.problem
+        target = z.copy()
+        target[col] = value
+        given = tuple(int(i) for i in np.flatnonzero(pb.given))
+        return np.asarray(
+            pb.closer.follow(z, target, given, pb.cm if self.pose else None).q, dtype=float
+        )
+
+    def start_of(self, col: int, values: np.ndarray, z: np.ndarray) -> tuple[int, np.ndarray]:
+        """The sample nearest z's value of ``col``, and its configuration reached from z."""
+        k0 = int(np.argmin(np.abs(values - z[col])))
+        try:
+            return k0, self.reach(z, col, values[k0])
+        except ClosureError as exc:
+            var = self._variable(col)
+            raise ClosureError(
+                f"the sweep cannot start: {var.name} = {var.shown(values[k0])} (the sample nearest "
+                f"the start's value {var.shown(z[col])}) cannot be reached from "
+                f"{self.from_config!r}: {exc}",
+                self.from_config,
+                exc.residual,
+            ) from None
+
+    def _variable(self, col: int) -> Variable:
+        return self.variables[self.cols.index(col)]
+
+    def close_at(self, za: np.ndarray, zb: np.ndarray, col: int, t: float) -> np.ndarray:
+        """The configuration with ``col`` at t between two closed neighbours za, zb (their
+        interpolation closed by Newton; by continuation from za when that jumps)."""
+        pb = self.problem
+        ta, tb = za[col], zb[col]
+        f = 0.0 if tb == ta else (t - ta) / (tb - ta)
+        d = pb.cm.difference(zb, za)
+        nb = pb.batch.nb
+        zp = pb.batch.update(za[None, :], f * d[None, :nb])[0]
+        zp[nb:] = za[nb:] + f * d[nb:]
+        zp[col] = t
+        Q, res, _ = pb.batch.newton(zp[None, :], ~pb.given[:nb], pb.tolerance)
+        moved = pb.comm(Q[0] - zp)
+        if res[0] <= pb.tolerance and moved <= SWEEP_JUMP_RATIO * max(pb.comm(d), 1e-300):
+            return Q[0]
+        return self.reach(za, col, t)
+
+    # ------------------------------------------------------------------ rows
+
+    def row(
+        self, index: int, col: int, values: np.ndarray, z: np.ndarray, other: tuple[float, ...]
+    ) -> RowResult:
+        """One path in ``col`` through ``values`` from the closed z (at any value of col),
+        with its measures and the singularities located along it.  ``other``: the values
+        of the other swept variable on this row (a grid), for the located points."""
+        k0, zk = self.start_of(col, values, z)
+        pb = self.problem
+        fwd = follow(pb, zk, col, values[k0:])
+        bwd = follow(pb, zk, col, values[k0::-1])
+        K = len(values)
+        Z = np.full((K, pb.n), np.nan)
+        Z[k0:] = fwd.Z
+        Z[: k0 + 1] = bwd.Z[::-1]
+        newton = int(np.sum(fwd.newton)) + int(np.sum(bwd.newton))
+        reached = ~np.isnan(Z[:, 0])
+        pm = self._measure(Z, reached)
+        rank = {t: np.full(K, -2, dtype=np.int16) for t in self.tests}
+        ratio = {t: np.full(K, np.nan) for t in self.tests}
+        for t in self.tests:
+            rank[t][reached] = pm.rank[t]
+            ratio[t][reached] = pm.ratio[t]
+        located = [self._fold(f, col, index, other, values) for f in [*fwd.folds, *bwd.folds]]
+        located += self._along(Z, reached, pm, ratio, col, index, other, values)
+        stopped = [s for s in (fwd.stopped, bwd.stopped) if s]
+        return RowResult(index, reached, rank, ratio, _merge(located, self), stopped, newton, Z, pm)
+
+    def _measure(self, Z: np.ndarray, reached: np.ndarray) -> PointMeasures:
+        Q = Z[reached][:, : self.model.n]
+        parts = [self.measures(Q[i : i + _CHUNK]) for i in range(0, max(len(Q), 1), _CHUNK)]
+        if len(parts) == 1:
+            return parts[0]
+        return PointMeasures(
+            {t: np.concatenate([p.rank[t] for p in parts]) for t in self.tests},
+            {t: np.concatenate([p.ratio[t] for p in parts]) for t in self.tests},
+            {
+                t: tuple(np.concatenate([p.bases[t][k] for p in parts]) for k in (0, 1))
+                for t in self.tests
+            },
+            None
+            if parts[0].kernel is None
+            else np.concatenate([np.asarray(p.kernel) for p in parts]),
+        )
+
+    def values_of(self, z: np.ndarray) -> tuple[float, ...]:
+        return tuple(float(z[c]) for c in self.cols)
+
+    def _fold(
+        self, f: Fold, col: int, index: int, other: tuple[float, ...], values: np.ndarray
+    ) -> Located:
+        pm = self.measures(f.z[None, : self.model.n])
+        vanishing = tuple(t for t in self.tests if pm.ratio[t][0] <= 1e-6) or ("limit",)
+        ratio = min((float(pm.ratio[t][0]) for t in self.tests), default=0.0)
+        i = int(np.searchsorted(np.sort(values), f.value)) - 1
+        return Located(
+            self.values_of(f.z),
+            "fold",
+            vanishing,
+            ratio,
+            f.z[: self.model.n].copy(),
+            index,
+            "row",
+            (index, max(i, 0)),
+            f.far_side,
+        )
+
+    def _along(
+        self,
+        Z: np.ndarray,
+        reached: np.ndarray,
+        pm: PointMeasures,
+        ratio: dict[str, np.ndarray],
+        col: int,
+        index: int,
+        other: tuple[float, ...],
+        values: np.ndarray,
+    ) -> list[Located]:
+        """Sign changes and minima of each test along one row."""
+        out: list[Located] = []
+        where = np.flatnonzero(reached)
+        pos = {int(k): i for i, k in enumerate(where)}
+        pairs = [(a, a + 1) for a in where if a + 1 < len(Z) and reached[a + 1]]
+        if not pairs:
+            return out
+        ia = np.array([pos[a] for a, _ in pairs])
+        Qb = np.array([Z[b, : self.model.n] for _, b in pairs])
+        dets = self.measures.compressed(pm, ia, Qb)
+        for t in self.tests:
+            crossed = set()
+            for (a, b), d in zip(pairs, dets.get(t, ()), strict=False):
+                if d < 0:
+                    crossed.update((a, b))
+                    found = self._crossing(t, Z[a], Z[b], col, pm, pos[a])
+                    if found is not None:
+                        z, r = found
+                        out.append(
+                            Located(
+                                self.values_of(z),
+                                "crossing",
+                                (t,),
+                                r,
+                                z[: self.model.n],
+                                index,
+                                "row",
+                                (index, min(a, b)),
+                            )
+                        )
+            rho = ratio[t]
+            for k in range(1, len(Z) - 1):
+                if not (reached[k - 1] and reached[k] and reached[k + 1]) or k in crossed:
+                    continue
+                lo, hi = rho[k - 1], rho[k + 1]
+                if not (rho[k] <= lo and rho[k] <= hi):
+                    continue
+                rise = max(lo, hi) - rho[k]
+                if rho[k] > SWEEP_MINIMUM_SCREEN * rise:
+                    continue
+                found = self._minimum(t, Z[k - 1], Z[k], Z[k + 1], col)
+                if found is not None:
+                    z, r = found
+                    out.append(
+                        Located(
+                            self.values_of(z),
+                            "minimum",
+                            (t,),
+                            r,
+                            z[: self.model.n],
+                            index,
+                            "row",
+                            (index, k),
+                        )
+                    )
+        return out
+
+    # ------------------------------------------------------------------ refinement
+
+    def _ratio(self, t: str, z: np.ndarray) -> float:
+        return float(self.measures(z[None, : self.model.n]).ratio[t][0])
+
+    def _crossing(
+        self, t: str, za: np.ndarray, zb: np.ndarray, col: int, pm: PointMeasures, ia: int
+    ) -> tuple[np.ndarray, float] | None:
+        """Brent's method on the test's compressed determinant between two samples."""
+        from scipy.optimize import brentq
+
+        cache: dict[float, np.ndarray] = {}
+        ends = {float(za[col]): za, float(zb[col]): zb}
+
+        def f(v: float) -> float:
+            z = ends.get(v)
+            if z is None:
+                z = self.close_at(za, zb, col, v)
+            cache[v] = z
+            return float(
+                self.measures.compressed(pm, np.array([ia]), z[None, : self.model.n])[t][0]
+            )
+
+        try:
+            v = brentq(
+                f,
+                float(za[col]),
+                float(zb[col]),
+                xtol=SWEEP_LOCATE_TOL * self.scale(col),
+                rtol=4 * np.finfo(float).eps,
+            )
+        except (ValueError, ClosureError):
+            return None
+        z = cache.get(v)
+        if z is None:
+            z = self.close_at(za, zb, col, v)
+        return z, self._ratio(t, z)
+
+    def _minimum(
+        self, t: str, za: np.ndarray, zm: np.ndarray, zb: np.ndarray, col: int
+    ) -> tuple[np.ndarray, float] | None:
+        """Golden-section search of the test's measure between two samples' neighbours;
+        the point when the measure reaches float's tau_lo there."""
+        g = (math.sqrt(5) - 1) / 2
+        a, b = float(za[col]), float(zb[col])
+
+        m = float(zm[col])
+
+        def at(v: float) -> np.ndarray:
+            pair = (za, zm) if (v - m) * (a - m) > 0 else (zm, zb)
+            return self.close_at(pair[0], pair[1], col, v)
+
+        try:
+            c, d = b - g * (b - a), a + g * (b - a)
+            zc, zd = at(c), at(d)
+            fc, fd = self._ratio(t, zc), self._ratio(t, zd)
+            while abs(b - a) > SWEEP_LOCATE_TOL * self.scale(col):
+                if fc < fd:
+                    b, d, zd, fd = d, c, zc, fc
+                    c = b - g * (b - a)
+                    zc = at(c)
+                    fc = self._ratio(t, zc)
+                else:
+                    a, c, zc, fc = c, d, zd, fd
+                    d = a + g * (b - a)
+                    zd = at(d)
+                    fd = self._ratio(t, zd)
+        except ClosureError:
+            return None
+        z, r = (zc, fc) if fc < fd else (zd, fd)
+        return (z, r) if r <= _TAU_LO else None
+
+    # ------------------------------------------------------------------ columns of a grid
+
+    def between_rows(
+        self, t_rows: tuple[float, float], ra: RowResult, rb: RowResult, col: int
+    ) -> list[Located]:
+        """The sign changes of each test between two neighbouring rows of a grid (at the
+        same sample of the row variable), refined along the column."""
+        assert ra.Z is not None and rb.Z is not None and ra.measures is not None
+        both = np.flatnonzero(ra.reached & rb.reached)
+        if not len(both):
+            return []
+        pos = {int(k): i for i, k in enumerate(np.flatnonzero(ra.reached))}
+        ia = np.array([pos[int(k)] for k in both])
+        Qb = rb.Z[both][:, : self.model.n]
+        dets = self.measures.compressed(ra.measures, ia, Qb)
+        out = []
+        for t in dets:
+            for k, i, d in zip(both, ia, dets[t], strict=True):
+                if d >= 0:
+                    continue
+                found = self._crossing(t, ra.Z[k], rb.Z[k], col, ra.measures, int(i))
+                if found is not None:
+                    z, r = found
+                    out.append(
+                        Located(
+                            self.values_of(z),
+                            "crossing",
+                            (t,),
+                            r,
+                            z[: self.model.n],
+                            ra.index,
+                            "column",
+                            (ra.index, int(k)),
+                        )
+                    )
+        return out
+
+    def rows(
+        self, values: list[np.ndarray], progress: Callable[[int], None] | None = None
+    ) -> Iterator[RowResult]:
+        """The rows of the sweep in order (one for a path): each with its located points,
+        and for a grid the column crossings between it and the previous row appended to
+        the previous row's... (see :meth:`between_rows`)."""
+        if len(self.cols) == 1:
+            res = self.row(0, self.cols[0], values[0], self.z0, ())
+            if progress:
+                progress(len(values[0]))
+            yield res
+            return
+        # a grid: the first column is a path in the second variable
+        cx, cy = self.cols
+        kx0, zx = self.start_of(cx, values[0], self.z0)
+        column = self.row(-1, cy, values[1], zx, ())
+        assert column.Z is not None
+        for j in range(len(values[1])):
+            if not column.reached[j]:
+                empty = np.zeros(len(values[0]), dtype=bool)
+                yield RowResult(
+                    j,
+                    empty,
+                    {t: np.full(len(empty), -2, dtype=np.int16) for t in self.tests},
+                    {t: np.full(len(empty), np.nan) for t in self.tests},
+                    [],
+                    [f"row {j}: the first column does not reach it"],
+                )
+            else:
+                yield self.row(j, cx, values[0], column.Z[j], (float(values[1][j]),))
+            if progress:
+                progress(len(values[0]))
+
+
+def _merge(located: list[Located], sw: Sweep) -> list[Located]:
+    """Points of one row found by several tests (or a fold and a test) at the same value
+    are one point: their tests together, the fold's kind first."""
+    order = {"fold": 0, "crossing": 1, "minimum": 2}
+    located = sorted(located, key=lambda p: (p.values, order[p.kind]))
+    out: list[Located] = []
+    for p in located:
+        same = None
+        for o in out:
+            if o.edge == p.edge and all(
+                abs(a - b) <= 1e3 * SWEEP_LOCATE_TOL * sw.scale(c) + 1e-9 * sw.scale(c)
+                for a, b, c in zip(o.values, p.values, sw.cols, strict=True)
+            ):
+                same = o
+                break
+        if same is None:
+            out.append(p)
+            continue
+        same.tests = tuple(dict.fromkeys((*same.tests, *p.tests)))
+        same.tests = tuple(x for x in same.tests if x != "limit") or ("limit",)
+    return out
+
+
+def classify_located(mech: Mechanism, located: list[Located], precision: Precision) -> list[Any]:
+    """The full analysis of each located point at the sweep's precision."""
+    if not located:
+        return []
+    found = {f"located-{i + 1}": p.q for i, p in enumerate(located)}
+    return analyze_found(mech, found, precision)

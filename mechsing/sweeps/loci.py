@@ -1,0 +1,101 @@
+"""The singularity loci of a grid: polylines through the located points (marching squares).
+
+Owns :func:`loci_of`.  Every located point of a grid lies on an edge of the sampling
+grid: a row edge (between two samples of one row: a sign change, a minimum or a fold
+along the row) or a column edge (between two rows at one sample).  For each test, the
+points on the four edges of a grid cell are joined inside the cell (two points: one
+segment; four: the pairing with the shorter segments, as marching squares resolves its
+saddle cells), and the segments that share a point are chained into polylines, closed
+when they come back to their first point.  A locus is labelled with its test and with
+the classes the full analysis found at its classified points.
+"""
+
+from __future__ import annotations
+
+import itertools
+from typing import Any
+
+import networkx as nx
+import numpy as np
+
+from mechsing.sweeps.results import LocatedSingularity, Locus
+
+__all__ = ["loci_of"]
+
+
+def _edge(p: LocatedSingularity, xs: np.ndarray, ys: np.ndarray) -> tuple[str, int, int]:
+    x, y = p.values
+    if p.between == "row":
+        j = int(np.argmin(np.abs(ys - y)))
+        i = int(np.clip(np.searchsorted(xs, x) - 1, 0, max(len(xs) - 2, 0)))
+        return ("h", j, i)
+    i = int(np.argmin(np.abs(xs - x)))
+    j = int(np.clip(np.searchsorted(ys, y) - 1, 0, max(len(ys) - 2, 0)))
+    return ("v", j, i)
+
+
+def loci_of(run: Any, located: list[LocatedSingularity]) -> list[Locus]:
+    """The loci of a grid sweep (``run``: its SweepRun) through its located points."""
+    xs = np.sort(run.vars[0].values)
+    ys = np.sort(run.vars[1].values)
+    out: list[Locus] = []
+    for test in run.tests:
+        pts = [p for p in located if test in p.tests]
+        if len(pts) < 2:
+            continue
+        on: dict[tuple[str, int, int], list[int]] = {}
+        for k, p in enumerate(pts):
+            on.setdefault(_edge(p, xs, ys), []).append(k)
+        cells: dict[tuple[int, int], list[int]] = {}
+        for (kind, j, i), ks in on.items():
+            touching = [(j, i), (j - 1, i)] if kind == "h" else [(j, i), (j, i - 1)]
+            for c in touching:
+                cells.setdefault(c, []).extend(ks)
+        g = nx.Graph()
+        g.add_nodes_from(range(len(pts)))
+        xy = np.array([p.values for p in pts], dtype=float)
+        span = np.array([max(np.ptp(xs), 1e-300), max(np.ptp(ys), 1e-300)])
+        for ks in cells.values():
+            ks = sorted(set(ks))
+            for a, b in _pairs(ks, xy / span):
+                g.add_edge(a, b)
+        for comp in nx.connected_components(g):
+            if len(comp) < 2:
+                continue
+            sub = g.subgraph(comp)
+            order, closed = _walk(sub)
+            classes: dict[str, None] = {}
+            for k in order:
+                for c in pts[k].classes or ():
+                    classes[c] = None
+            out.append(Locus(test, tuple(classes), xy[order], closed))
+    return out
+
+
+def _pairs(ks: list[int], xy: np.ndarray) -> list[tuple[int, int]]:
+    """The segments of one cell through its edge points."""
+    if len(ks) < 2:
+        return []
+    if len(ks) == 2:
+        return [(ks[0], ks[1])]
+    # four (or more) points: the perfect matching of shortest total length
+    best, pairs = np.inf, []
+    for perm in itertools.permutations(ks):
+        cand = [(perm[i], perm[i + 1]) for i in range(0, len(perm) - 1, 2)]
+        cost = sum(float(np.linalg.norm(xy[a] - xy[b])) for a, b in cand)
+        if cost < best:
+            best, pairs = cost, cand
+        if len(ks) > 6:
+            break
+    return pairs
+
+
+def _walk(g: nx.Graph) -> tuple[list[int], bool]:
+    """The points of a connected piece in order along it (from an end when it has one)."""
+    ends = [v for v in g.nodes if g.degree(v) == 1]
+    start = ends[0] if ends else min(g.nodes)
+    order = list(nx.dfs_preorder_nodes(g, start))
+    closed = not ends and len(order) > 2
+    if closed:
+        order.append(order[0])
+    return order, closed

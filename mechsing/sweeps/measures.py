@@ -1,0 +1,244 @@
+"""The distance-to-singularity measures of a sweep, batched in float.
+
+Owns :class:`Measures`: for an array of closed configurations ``Q`` (N, n), the rank
+and the smallest relative singular value of each test, computed for all rows at once
+with numpy's batched SVD (no Python loop over configurations):
+
+* ``closure``: the stacked loop screw systems (each loop's current screws with its
+  crossing signs, commensurate).  Their singular values are those of the closure
+  system :func:`mechsing.analyze` decides (each loop's rows in an orthonormal basis of
+  its subgroup are an isometric image of its six-row screws).
+* ``input``: the output map on the motion space, ``T N`` / |T| (``N`` an orthonormal
+  basis of the closure kernel, ``T`` the commensurate output twists or point
+  velocities): it loses rank where the inputs can move while the output stays still
+  (an input singularity; also the impossible-output test).
+* ``output``: the input selection on the motion space, ``E N``: it loses rank where
+  the output can move with the inputs locked (an output singularity, a dead centre;
+  also the impossible-input test).
+* ``constraint``: the legs' combined constraint wrench system (each leg's wrenches
+  reciprocal to the twists it lets the output make).
+
+Each test's measure is its ``g``-th singular value, ``g`` its generic rank (the rank
+the full analysis finds at regular configurations of the sweep's start), relative to
+the same reference as the full analysis: the operator's norm for ``input`` and
+``output``, the largest singular value for ``closure`` and ``constraint``; its rank
+is decided by float's two-threshold rule (``-1``: undecided).  A measure that
+vanishes is a singularity of that test; how close it comes is what a designer plots.
+
+Signs.  A singular value does not change sign, a determinant does.  For consecutive
+points ``a``, ``b`` of a path (or neighbouring points of a grid),
+:meth:`Measures.compressed` compresses the matrix at ``b`` onto the leading singular
+vectors of the one at ``a``: ``det(U_a^T A_b V_a)`` is positive at ``a`` and changes
+sign where the matrix passes through a rank drop between them (the kernel basis of
+``b`` is first turned to the one of ``a``, so that ``T N`` is continuous).
+
+Conventions: commensurate matrices (moved to the centroid, v / L, length columns
+times L); twists ``(omega, v)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from mechsing.kinematics import batched
+from mechsing.kinematics.chains import tree_chain
+from mechsing.numeric import Precision, rank_bounds
+from mechsing.screws import chain_matrix
+from mechsing.singularity.zfb import input_rows, leg_path
+
+__all__ = ["SIGNED", "TESTS", "Measures", "PointMeasures"]
+
+#: the tests a sweep measures, in the order of every output
+TESTS = ("closure", "input", "output", "constraint")
+
+_FLOAT = Precision("float").tolerances
+
+#: tests whose singular values are relative to the operator applied to the motion space
+#: (T N over |T|, E N with |E| = 1), as the full analysis decides them; the others are
+#: relative to their own largest singular value
+_UNIT_REFERENCE = ("input", "output")
+
+#: tests with a continuous matrix, whose compressed determinant has a meaningful sign
+#: (the constraint wrenches are a basis found afresh at each point)
+SIGNED = ("closure", "input", "output")
+
+
+@dataclass
+class PointMeasures:
+    """The measures of a batch of configurations: per test, the decided rank (int, -1
+    undecided), the smallest relative singular value, and the matrices' leading
+    singular vectors (kept for :meth:`Measures.compressed`)."""
+
+    rank: dict[str, np.ndarray]
+    ratio: dict[str, np.ndarray]
+    bases: dict[str, tuple[np.ndarray, np.ndarray]]
+    kernel: np.ndarray | None
+
+
+class Measures:
+    """The sweep's tests for one float kinematic model.
+
+    Parameters
+    ----------
+    model : float KinematicModel
+    generic : the generic rank of each test (from the full analysis at the start); a
+        test with no generic rank (None) or none at all (no loop, no inputs or output,
+        fewer than two legs) is not measured
+    """
+
+    def __init__(self, model: Any, generic: dict[str, int | None]) -> None:
+        self.model = model
+        self.mech = mech = model.mech
+        self.frame = model.float_frame
+        n = model.n
+        self.loop_signs = np.zeros((len(mech.loops), n))
+        for i, loop in enumerate(mech.loops):
+            for name, sign in zip(loop.joints, loop.signs, strict=True):
+                self.loop_signs[i, model.joint(name).columns] = sign
+        out = mech.output
+        E = input_rows(mech, model)
+        self.E = None if E is None else np.asarray(E, dtype=float)
+        self.out_signs = None
+        self.out_point = None
+        if out is not None:
+            self.out_signs = tree_chain(model, out.body, out.relative_to).signs
+            if out.point is not None:
+                self.out_point = np.array([float(x) for x in out.point])
+        self.legs = []
+        if out is not None and len(mech.legs) >= 2:
+            for leg in mech.legs:
+                legset = set(leg.joints)
+                cols = [
+                    c
+                    for j in leg.joints
+                    for c in range(model.joint(j).columns.start, model.joint(j).columns.stop)
+                ]
+                inner = [i for i, lp in enumerate(mech.loops) if set(lp.joints) <= legset]
+                coef = np.zeros(n)
+                for jn, sg in leg_path(mech, leg, out.relative_to, out.body):
+                    coef[model.joint(jn).columns] = sg
+                self.legs.append((np.array(cols), inner, coef))
+        present = {
+            "closure": bool(mech.loops),
+            "input": self.E is not None and out is not None,
+            "output": self.E is not None and out is not None,
+            "constraint": bool(self.legs),
+        }
+        self.generic = {
+            t: generic.get(t) for t in TESTS if present[t] and generic.get(t) not in (None, 0)
+        }
+        self.tests = tuple(self.generic)
+
+    # ------------------------------------------------------------------ matrices
+
+    def matrices(self, Q: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray | None]:
+        """Each test's commensurate matrix at the rows of Q, and the closure kernel."""
+        P = batched.poses(self.model, Q)
+        Ss = self.frame.screws(batched.current_screws(self.model, Q, P))
+        N = Q.shape[0]
+        n = self.model.n
+        out: dict[str, np.ndarray] = {}
+        if self.mech.loops:
+            C = Ss[:, None, :, :] * self.loop_signs[None, :, None, :]
+            out["closure"] = C.reshape(N, -1, n)
+        kernel = None
+        if "input" in self.tests or "output" in self.tests:
+            if self.mech.loops:
+                g = self.generic.get("closure") or _max_rank(out["closure"])
+                _, _, Vt = np.linalg.svd(out["closure"], full_matrices=True)
+                kernel = np.swapaxes(Vt[:, g:, :], 1, 2)  # (N, n, n - g)
+            else:
+                kernel = np.broadcast_to(np.eye(n), (N, n, n))
+            x = None
+            if self.out_point is not None:
+                x = (P[self.mech.output.body][:, :3, :3] @ self.out_point) + P[
+                    self.mech.output.body
+                ][:, :3, 3]
+            T = chain_matrix(self.model, Ss, None, x, self.out_signs)
+            nT = np.linalg.norm(T, ord=2, axis=(1, 2))
+            out["input"] = (T @ kernel) / np.maximum(nT, 1e-300)[:, None, None]
+            out["output"] = self.E[None, :, :] @ kernel
+        if "constraint" in self.tests:
+            out["constraint"] = self._constraint(Ss)
+        return out, kernel
+
+    def _constraint(self, Ss: np.ndarray) -> np.ndarray:
+        """The legs' combined constraint wrenches as rows, (N, wrenches, 6)."""
+        N = Ss.shape[0]
+        blocks = []
+        for cols, inner, coef in self.legs:
+            Tl = (Ss * coef[None, None, :])[:, :, cols]
+            if inner:
+                Mi = (Ss[:, None, :, :] * self.loop_signs[inner][None, :, None, :]).reshape(
+                    N, -1, Ss.shape[2]
+                )[:, :, cols]
+                _, s, Vt = np.linalg.svd(Mi, full_matrices=True)
+                lo, hi = rank_bounds(_relative(s, Mi.shape[-1]), _FLOAT)
+                r = int(np.max(hi))
+                Tl = Tl @ np.swapaxes(Vt[:, r:, :], 1, 2)
+            U, s, _ = np.linalg.svd(Tl, full_matrices=True)
+            lo, hi = rank_bounds(_relative(s, 6), _FLOAT)
+            # columns of U beyond each row's rank: the leg's wrenches (zero elsewhere)
+            mask = np.arange(6)[None, :] >= hi[:, None]
+            blocks.append(np.swapaxes(U * mask[:, None, :], 1, 2))
+        return np.concatenate(blocks, axis=1)
+
+    # ------------------------------------------------------------------ measures
+
+    def __call__(self, Q: np.ndarray) -> PointMeasures:
+        mats, kernel = self.matrices(Q)
+        rank, ratio, bases = {}, {}, {}
+        for t in self.tests:
+            A = mats[t]
+            g = self.generic[t]
+            U, s, Vt = np.linalg.svd(A, full_matrices=False)
+            if t in _UNIT_REFERENCE:
+                rel = s  # already relative to the operator's norm (|T| or |E| = 1)
+            else:
+                big = s[:, :1]
+                rel = np.where(big > 0, s / np.where(big > 0, big, 1.0), 0.0)
+            lo, hi = rank_bounds(rel, _FLOAT)
+            rank[t] = np.where(lo == hi, lo, -1).astype(np.int16)
+            ratio[t] = rel[:, g - 1] if g <= rel.shape[1] else np.zeros(len(rel))
+            bases[t] = (U[:, :, :g], np.swapaxes(Vt[:, :g, :], 1, 2))
+        return PointMeasures(rank, ratio, bases, kernel)
+
+    def compressed(self, a: PointMeasures, ia: np.ndarray, Qb: np.ndarray) -> dict[str, np.ndarray]:
+        """For pairs of points (row ``ia`` of the measured batch ``a``, row of ``Qb``): per
+        test, the determinant of the matrix at b compressed onto a's leading singular
+        vectors.  Positive at a itself; negative where a rank drop was crossed."""
+        mats, kernel = self.matrices(Qb)
+        out = {}
+        for t in self.tests:
+            if t not in SIGNED:
+                continue
+            A = mats[t]
+            if t in ("input", "output") and a.kernel is not None and kernel is not None:
+                A = self._turned(A, kernel, a.kernel[ia])
+            U, V = a.bases[t]
+            C = np.swapaxes(U[ia], 1, 2) @ A @ V[ia]
+            out[t] = np.linalg.det(C)
+        return out
+
+    def _turned(self, A: np.ndarray, kb: np.ndarray, ka: np.ndarray) -> np.ndarray:
+        """The test's matrix at b with b's kernel basis turned to a's (the orthogonal
+        factor of ``kb^T ka``), so that the matrix is continuous from a to b."""
+        W = np.swapaxes(kb, 1, 2) @ ka
+        u, _, vt = np.linalg.svd(W)
+        turn = u @ vt
+        # A = X kb, with X the map the test applies to the kernel: A turned = A @ turn
+        return A @ turn
+
+
+def _relative(s: np.ndarray, width: int) -> np.ndarray:
+    big = s[:, :1]
+    return np.where(big > 0, s / np.where(big > 0, big, 1.0), 0.0)
+
+
+def _max_rank(A: np.ndarray) -> int:
+    s = np.linalg.svd(A, compute_uv=False)
+    lo, hi = rank_bounds(_relative(s, A.shape[-1]), _FLOAT)
+    return int(np.max(hi))

@@ -1,0 +1,481 @@
+"""Following one path of a sweep: the closed configuration at each sample, and its folds.
+
+Owns :class:`Problem` (what a sweep holds fixed and what it solves) and
+:func:`follow`: from a closed configuration at the first sample value, the swept
+coordinate moves through the sample values in order, and every sample is closed on the
+assembly mode the path started on.
+
+* **Nodes.**  Samples at most :data:`~mechsing.numeric.SWEEP_NODE_STEP` apart (radians,
+  or lengths / L) are *nodes*, reached one after the other by the continuation of a
+  named configuration's closure (:meth:`mechsing.kinematics.Closer.follow`: predictor,
+  Newton on the group, branch checks).  The samples between two nodes are closed
+  together by batched Newton (:class:`~mechsing.kinematics.batch.BatchClosure`) from
+  their interpolation on the group; one whose correction is large next to the node
+  spacing is closed again by continuation from its predecessor.
+* **Folds.**  Where continuation cannot reach the next node, the path is followed along
+  its curve by pseudo-arclength continuation (the swept coordinate solved with the
+  others, one more equation fixing the step along the tangent).  A fold of the swept
+  value (a limit of its travel: a dead centre, the end of a rocker's swing) is where the
+  tangent's swept component changes sign; it is located by Brent's method on that
+  component, so the limit value itself (quadratic in the arclength there) is known to
+  far better than :data:`~mechsing.numeric.SWEEP_LOCATE_TOL`.
+* **The other side.**  Past a fold the curve comes back on the other assembly mode; it
+  is followed to its next fold, after which the swept value moves forward again.  For a
+  revolute angle that value is taken modulo 2 pi into what is left of the range, and the
+  path resumes there (a double rocker swept over a full turn comes back past its other
+  limit); otherwise, or when the curve does not come back, the rest of the path is not
+  reached.  A path whose curve is not one-dimensional (more freedom than the swept
+  value) stops at the fold.
+
+Conventions: coordinates ``z`` are the model's (joints in file order; for a sweep of the
+output's pose, then the six pose coordinates), SI units and radians; distances along a
+path are commensurate (radians, lengths / L).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from mechsing.kinematics import Closer, ClosureError, KinematicModel
+from mechsing.kinematics.batch import BatchClosure
+from mechsing.kinematics.newton import scaled_system
+from mechsing.numeric import (
+    SWEEP_ARC_MIN_STEP,
+    SWEEP_ARC_STEP,
+    SWEEP_JUMP_RATIO,
+    SWEEP_LOCATE_TOL,
+    SWEEP_NODE_STEP,
+)
+
+__all__ = ["Fold", "PathTrace", "Problem", "follow"]
+
+#: most arclength steps spent on the far side of one fold
+_ARC_BUDGET = 4000
+#: most folds one direction of a path passes
+_MAX_FOLDS = 8
+#: Newton iterations of one arclength step
+_ARC_NEWTON = 10
+
+
+@dataclass
+class Problem:
+    """A sweep's kinematic problem: the float model it closes (the mechanism's, or its
+    pose model when the output's pose is swept), which coordinates are given (held at
+    the start's values or swept), the closure tolerance, and the tools that close."""
+
+    model: KinematicModel
+    cm: Any  # the model continuation works in (a PoseModel for a pose sweep)
+    given: np.ndarray  # bool over cm.n
+    closer: Closer
+    batch: BatchClosure
+    tolerance: float
+    #: which columns of cm are revolute angles (a value and itself plus 2 pi are one pose)
+    periodic: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
+
+    @property
+    def n(self) -> int:
+        return int(self.cm.n)
+
+    def scale(self, col: int) -> float:
+        """The commensurate unit of column ``col``: 1 for an angle, L for a length."""
+        return float(self.cm.float_frame.rates_back(np.ones(1), [col])[0])
+
+    def comm(self, d: np.ndarray) -> float:
+        return float(np.linalg.norm(self.cm.float_frame.rates(d)))
+
+
+@dataclass(frozen=True)
+class Fold:
+    """A limit of the swept value: where the path's curve turns back.  ``value`` (SI) is
+    the limit, ``z`` the configuration there, ``direction`` +1 when the swept value was
+    increasing, ``far_side`` True for a fold met on the other assembly mode (the limit
+    the path comes back past)."""
+
+    value: float
+    z: np.ndarray
+    direction: int
+    far_side: bool = False
+
+
+@dataclass
+class PathTrace:
+    """The closed configurations of one direction of a path: ``Z`` (K, n), NaN rows at
+    samples not reached; its folds; ``stopped``: why the path ended early (None: it
+    reached every sample it could); ``newton``: batched Newton iterations per sample."""
+
+    Z: np.ndarray
+    folds: list[Fold]
+    stopped: str | None = None
+    newton: np.ndarray | None = None
+
+
+def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTrace:
+    """Follow the swept coordinate ``col`` through ``values`` (monotone) from ``z0``,
+    closed at ``values[0]``."""
+    K = len(values)
+    Z = np.full((K, pb.n), np.nan)
+    its = np.zeros(K, dtype=int)
+    Z[0] = z0
+    folds: list[Fold] = []
+    if K < 2:
+        return PathTrace(Z, folds, None, its)
+    direction = 1 if values[-1] > values[0] else -1
+    sc = pb.scale(col)
+    given = tuple(int(i) for i in np.flatnonzero(pb.given))
+    i, z = 0, np.array(z0, dtype=float)
+    stopped = None
+    while i < K - 1:
+        j = i + 1
+        while j + 1 < K and abs(values[j + 1] - values[i]) / sc <= SWEEP_NODE_STEP:
+            j += 1
+        target = z.copy()
+        target[col] = values[j]
+        try:
+            zj = pb.closer.follow(z, target, given, _pose(pb)).q
+        except ClosureError:
+            zj = None
+        if zj is not None:
+            if j > i + 1:
+                Zf, itf = _fine(pb, z, zj, col, values[i + 1 : j], values[i], values[j])
+                Z[i + 1 : j], its[i + 1 : j] = Zf, itf
+            Z[j] = zj
+            i, z = j, np.asarray(zj, dtype=float)
+            continue
+        # continuation cannot reach the next node: follow the curve itself
+        if len(folds) >= _MAX_FOLDS:
+            stopped = f"more than {_MAX_FOLDS} limits of travel on one path"
+            break
+        arc = _Arc(pb, col, direction)
+        out = arc.to_fold_or(z, values[j])
+        if out is None:
+            stopped = arc.why or "continuation cannot go on (a singularity of the path's curve)"
+            break
+        kind, zs = out
+        if kind == "passed":  # no fold: the curve passes a point continuation refused
+            if j > i + 1:
+                Zf, itf = _fine(pb, z, zs, col, values[i + 1 : j], values[i], values[j])
+                Z[i + 1 : j], its[i + 1 : j] = Zf, itf
+            Z[j] = zs
+            i, z = j, zs
+            continue
+        fold = Fold(float(zs[col]), zs, direction)
+        folds.append(fold)
+        prev = z
+        for k in range(i + 1, j + 1):
+            if (values[k] - fold.value) * direction > 0:
+                break
+            target = prev.copy()
+            target[col] = values[k]
+            try:
+                Z[k] = prev = pb.closer.follow(prev, target, given, _pose(pb)).q
+            except ClosureError:
+                break
+        reached = [k for k in range(i + 1, j + 1) if not np.isnan(Z[k, 0])]
+        last = max(reached) if reached else i
+        resume = arc.other_side(zs, values, last)
+        if resume is None:
+            stopped = arc.why
+            break
+        far, k, zk = resume
+        folds.append(far)
+        Z[k] = zk
+        i, z = k, zk
+    return PathTrace(Z, folds, stopped, its)
+
+
+def _pose(pb: Problem) -> Any:
+    return pb.cm if pb.cm is not pb.model else None
+
+
+def _fine(
+    pb: Problem,
+    za: np.ndarray,
+    zb: np.ndarray,
+    col: int,
+    vals: np.ndarray,
+    va: float,
+    vb: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The samples strictly between two nodes: batched Newton from their interpolation on
+    the group; a sample that does not close near its prediction is closed again by
+    continuation from the previous one."""
+    cm, bc = pb.cm, pb.batch
+    d = cm.difference(zb, za)
+    f = (vals - va) / (vb - va)
+    nb = bc.nb
+    Q0 = np.tile(za, (len(vals), 1))
+    Qp = bc.update(Q0, f[:, None] * d[None, :nb])
+    Qp[:, nb:] = za[nb:] + f[:, None] * d[None, nb:]
+    Qp[:, col] = vals
+    free = ~pb.given[:nb]
+    Q, res, its = bc.newton(Qp, free, pb.tolerance)
+    span = pb.comm(d)
+    moved = np.linalg.norm(cm.float_frame.rates(Q - Qp), axis=1)
+    bad = (res > pb.tolerance) | (moved > SWEEP_JUMP_RATIO * span) | ~np.isfinite(res)
+    if np.any(bad):
+        given = tuple(int(i) for i in np.flatnonzero(pb.given))
+        prev = za
+        for k in range(len(vals)):
+            if bad[k]:
+                target = prev.copy()
+                target[col] = vals[k]
+                try:
+                    Q[k] = pb.closer.follow(prev, target, given, _pose(pb)).q
+                except ClosureError:
+                    Q[k:] = np.nan
+                    break
+            prev = Q[k]
+    return Q, its
+
+
+class _Arc:
+    """Pseudo-arclength continuation of a path's curve: the swept coordinate is solved
+    with the unknown ones, and one more equation fixes the step along the tangent."""
+
+    def __init__(self, pb: Problem, col: int, direction: int) -> None:
+        self.pb = pb
+        self.cm = pb.cm
+        self.col = col
+        self.direction = direction
+        free = ~pb.given.copy()
+        free[col] = True
+        self.free = free
+        self.cidx = int(np.flatnonzero(free).tolist().index(col))
+        self.why: str | None = None
+
+    # -- the curve ------------------------------------------------------------------
+
+    def tangent(self, z: np.ndarray, prev: np.ndarray | None = None) -> np.ndarray | None:
+        """The unit commensurate tangent (free coordinates) at z, oriented along ``prev``
+        (or with the swept value increasing in the path's direction); None when the
+        curve is not one-dimensional there."""
+        Js, _ = scaled_system(self.cm, z)
+        A = Js[:, self.free]
+        _, s, Vt = np.linalg.svd(A, full_matrices=True)
+        rank = int(np.sum(s > 1e-9 * (s[0] if len(s) else 1.0)))
+        K = Vt[rank:]
+        if K.shape[0] == 0:
+            return None
+        if K.shape[0] > 1:
+            if prev is None:
+                self.why = "the path's curve has more freedom than the swept value"
+                return None
+            t = K.T @ (K @ prev)  # the kernel direction nearest the previous tangent
+            nt = np.linalg.norm(t)
+            if nt < 0.5:
+                return None
+            t = t / nt
+        else:
+            t = K[0]
+        if prev is not None:
+            return t if t @ prev >= 0 else -t
+        return t if t[self.cidx] * self.direction >= 0 else -t
+
+    def step(self, z: np.ndarray, tau: np.ndarray, h: float) -> np.ndarray | None:
+        """The point of the curve at arclength ``h`` along ``tau`` from z (None when
+        Newton does not close it)."""
+        cm, free = self.cm, self.free
+        fr = cm.float_frame
+        d = np.zeros(cm.n)
+        d[free] = h * tau
+        zp = cm.update(z, fr.rates_back(d))
+        zc = zp
+        tol = self.pb.tolerance
+        for _ in range(_ARC_NEWTON):
+            Js, rs = scaled_system(cm, zc)
+            off = fr.rates(cm.difference(zc, zp))[free]
+            A = np.vstack([Js[:, free], tau[None, :]])
+            b = np.concatenate([-rs, [-(tau @ off)]])
+            du, *_ = np.linalg.lstsq(A, b, rcond=None)
+            dd = np.zeros(cm.n)
+            dd[free] = du
+            zc = cm.update(zc, fr.rates_back(dd))
+            res = cm.residual_norm(cm.chord_residuals(zc))
+            if res <= tol and np.linalg.norm(du) <= 1e-13 + 1e-9 * abs(h):
+                return zc
+        res = cm.residual_norm(cm.chord_residuals(zc))
+        return zc if res <= tol else None
+
+    def _g(self, tau: np.ndarray) -> float:
+        return float(tau[self.cidx]) * self.direction
+
+    def _advance(
+        self, z: np.ndarray, tau: np.ndarray, h: float
+    ) -> tuple[np.ndarray, np.ndarray, float] | None:
+        """One accepted step (the step halved until Newton closes and the tangent turns
+        less than 30 degrees); (z, tangent, step taken)."""
+        while h >= SWEEP_ARC_MIN_STEP:
+            zn = self.step(z, tau, h)
+            if zn is not None:
+                tn = self.tangent(zn, tau)
+                if tn is not None and tn @ tau > math.cos(math.radians(30)):
+                    return zn, tn, h
+            h /= 2
+        self.why = "the path's curve could not be followed (a singular point of the curve)"
+        return None
+
+    def _turn(self, z: np.ndarray, tau: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
+        """The fold between z (g > 0) and its step h (g <= 0): Brent on g(s)."""
+        from scipy.optimize import brentq
+
+        cache: dict[float, tuple[np.ndarray, np.ndarray]] = {}
+
+        def g(s: float) -> float:
+            if s == 0.0:
+                return self._g(tau)
+            zs = self.step(z, tau, s)
+            ts = None if zs is None else self.tangent(zs, tau)
+            if zs is None or ts is None:
+                raise _Lost
+            cache[s] = (zs, ts)
+            return self._g(ts)
+
+        try:
+            s = brentq(g, 0.0, h, xtol=SWEEP_LOCATE_TOL, rtol=4 * np.finfo(float).eps)
+        except (_Lost, ValueError):
+            s = h
+        if s not in cache:
+            g(s)
+        return cache[s]
+
+    # -- what the path asks ---------------------------------------------------------
+
+    def to_fold_or(self, z: np.ndarray, stop: float) -> tuple[str, np.ndarray] | None:
+        """From z, along the curve: the first fold before the swept value reaches
+        ``stop`` ("fold", its configuration), or the configuration at ``stop`` when the
+        curve gets there without one ("passed").  The samples passed on the way are
+        not closed here (the caller closes them); None when the curve is lost."""
+        tau = self.tangent(z)
+        if tau is None:
+            return None
+        if self._g(tau) <= 0:
+            return "fold", z
+        h = SWEEP_ARC_STEP
+        for _ in range(_ARC_BUDGET):
+            out = self._advance(z, tau, h)
+            if out is None:
+                return None
+            zn, tn, h = out
+            if self._g(tn) <= 0:
+                zf, _tf = self._turn(z, tau, h)
+                return "fold", zf
+            if (zn[self.col] - stop) * self.direction >= 0:
+                zs = self._land(z, zn, stop)
+                if zs is None:
+                    return None
+                return "passed", zs
+            z, tau = zn, tn
+            h = min(2 * h, 4 * SWEEP_ARC_STEP)
+        self.why = "the path's curve is longer than sweeps follow"
+        return None
+
+    def _land(self, za: np.ndarray, zb: np.ndarray, value: float) -> np.ndarray | None:
+        """The curve's point with the swept value ``value``, between za and zb."""
+        pb = self.pb
+        f = (value - za[self.col]) / (zb[self.col] - za[self.col])
+        zp = pb.cm.update(za, f * pb.cm.difference(zb, za))
+        zp[self.col] = value
+        given = tuple(int(i) for i in np.flatnonzero(pb.given))
+        try:
+            return pb.closer.follow(za, zp, given, _pose(pb)).q
+        except ClosureError:
+            return None
+
+    def other_side(
+        self, zf: np.ndarray, values: np.ndarray, last: int
+    ) -> tuple[Fold, int, np.ndarray] | None:
+        """Past the fold at zf, the curve on the other assembly mode up to its next fold;
+        beyond that the swept value moves forward again: the next sample it reaches
+        (modulo 2 pi for a revolute angle) and its configuration, with the far fold."""
+        tau = self.tangent(zf)
+        if tau is None:
+            return None
+        h = SWEEP_ARC_STEP
+        z = zf
+        # orient along the curve away from where the path came from
+        probe = self.step(z, tau, h)
+        if probe is not None and (probe[self.col] - zf[self.col]) * self.direction > 0:
+            tau = -tau
+        passed = False
+        for _ in range(_ARC_BUDGET):
+            out = self._advance(z, tau, h)
+            if out is None:
+                return None
+            zn, tn, h = out
+            g = self._g(tn)
+            if (
+                not passed
+                and g > 0
+                and np.linalg.norm(self.cm.float_frame.rates(self.cm.difference(zn, zf)))
+                > 10 * SWEEP_ARC_MIN_STEP
+            ):
+                zfar, _ = self._turn_back(z, tau, h)
+                passed = True
+                far = Fold(float(zfar[self.col]), zfar, -self.direction, far_side=True)
+                z, tau = zn, tn
+                continue
+            if passed:
+                # moving forward again: the next sample this value reaches
+                wrap = 2 * math.pi if self.pb.periodic[self.col] else None
+                nxt = _next_sample(values, last, zn[self.col], self.direction, wrap)
+                if nxt is None:
+                    self.why = "the rest of the range is beyond the limits of travel"
+                    return None
+                k, shift = nxt
+                zs = zn.copy()
+                zs[self.col] += shift
+                zk = self._reach(zs, values[k])
+                if zk is None:
+                    return None
+                far = Fold(float(far.value + shift), far.z.copy(), far.direction, far_side=True)
+                far.z[self.col] += shift
+                return far, k, zk
+            z, tau = zn, tn
+            h = min(2 * h, 4 * SWEEP_ARC_STEP)
+        self.why = "the curve past the limit does not come back within the range"
+        return None
+
+    def _turn_back(self, z: np.ndarray, tau: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
+        self.direction = -self.direction
+        try:
+            return self._turn(z, tau, h)
+        finally:
+            self.direction = -self.direction
+
+    def _reach(self, z: np.ndarray, value: float) -> np.ndarray | None:
+        pb = self.pb
+        target = z.copy()
+        target[self.col] = value
+        given = tuple(int(i) for i in np.flatnonzero(pb.given))
+        try:
+            return pb.closer.follow(z, target, given, _pose(pb)).q
+        except ClosureError:
+            return None
+
+
+def _next_sample(
+    values: np.ndarray, last: int, v: float, direction: int, wrap: float | None
+) -> tuple[int, float] | None:
+    """The first sample after ``last`` that a swept value moving forward from v reaches,
+    and the multiple of ``wrap`` (a full turn, when given) that takes v into the rest
+    of the range: (index, shift)."""
+    for k in range(last + 1, len(values)):
+        if wrap is None:
+            # the value comes back only beyond where the path stopped
+            if (v - values[last]) * direction > 0 and (values[k] - v) * direction >= 0:
+                return k, 0.0
+            continue
+        # the turn count m with v + m wrap after values[last] and at or before values[k]
+        m = math.floor((values[k] - v) / wrap * direction) * direction
+        vv = v + m * wrap
+        if (vv - values[last]) * direction > 0 and (values[k] - vv) * direction >= 0:
+            return k, m * wrap
+    return None
+
+
+class _Lost(Exception):
+    """The curve was lost while locating a fold."""

@@ -1,0 +1,366 @@
+"""What a sweep returns: typed, immutable results and their JSON, CSV and text forms.
+
+Owns :class:`SweepResult` (the sampled measures, the located singularities, the loci of a
+grid), :class:`LocatedSingularity`, :class:`Locus` and :class:`SweptVariable`, and the
+writers: :func:`json_header` / :func:`json_point` (the JSON document, written point by
+point by the command line), :func:`csv_header` / :func:`csv_rows`, and
+:func:`text_report`.  JSON and CSV are in SI units and radians like every mechsing
+output; the text also shows the file's units.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from mechsing.analysis import ConfigurationResult
+from mechsing.model import Mechanism
+
+__all__ = [
+    "LocatedSingularity",
+    "Locus",
+    "SweepResult",
+    "SweptVariable",
+    "csv_header",
+    "csv_rows",
+    "json_header",
+    "json_point",
+    "text_report",
+]
+
+
+@dataclass(frozen=True)
+class SweptVariable:
+    """A swept variable: its name, SI unit, the file's unit and factor, its samples (SI)."""
+
+    name: str
+    unit: str
+    file_unit: str
+    factor: float
+    values: np.ndarray = field(repr=False, compare=False)
+    range: tuple[float, float, float] = (0.0, 0.0, 0.0)  # start, stop, step (file units)
+
+    def shown(self, si: float) -> str:
+        """A value in the file's units (and in SI when they differ)."""
+        text = f"{si / self.factor:.10g} {self.file_unit}"
+        if self.file_unit != self.unit:
+            text += f" ({si:.10g} {self.unit})"
+        return text
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "name": self.name,
+            "unit": self.unit,
+            "file_unit": self.file_unit,
+            "start": self.range[0],
+            "stop": self.range[1],
+            "step": self.range[2],
+            "samples": len(self.values),
+        }
+
+
+@dataclass(frozen=True)
+class LocatedSingularity:
+    """A singularity located on a sweep and classified.
+
+    ``values``: the swept variables there (SI); ``kind``: ``fold`` (a limit of the
+    swept value: the path turns back), ``crossing`` (a test's determinant changes sign
+    there), ``minimum`` (a test's measure touches zero without a sign change); ``tests``:
+    the tests whose measure vanishes there; ``ratio``: the smallest of those measures
+    after refinement; ``joints``: every joint value (SI); ``configuration``: the full
+    analysis of the point at the sweep's precision (None when it was not classified:
+    a grid classifies at most ``max_classified`` points); ``far_side``: a fold met on
+    the other assembly mode, past which the path resumed; ``between``: for a grid,
+    ``row`` (found along a row) or ``column`` (between two rows)."""
+
+    values: tuple[float, ...]
+    kind: str
+    tests: tuple[str, ...]
+    ratio: float
+    joints: tuple[tuple[str, tuple[float, ...]], ...]
+    configuration: ConfigurationResult | None = None
+    far_side: bool = False
+    between: str = "row"
+
+    @property
+    def classes(self) -> tuple[str, ...] | None:
+        """The classes of the singularities the analysis found there (None: not
+        classified)."""
+        if self.configuration is None:
+            return None
+        return tuple(
+            dict.fromkeys(s["class"] for s in self.configuration.to_json().get("singularities", []))
+        )
+
+    @property
+    def singular(self) -> bool | None:
+        return None if self.configuration is None else self.configuration.singular
+
+    @property
+    def precision(self) -> str | None:
+        return None if self.configuration is None else self.configuration.precision
+
+    @property
+    def margin(self) -> dict[str, Any] | None:
+        """The margin of the decision behind the first singular finding."""
+        if self.configuration is None:
+            return None
+        for s in self.configuration.to_json().get("singularities", []):
+            if s.get("margin"):
+                return s["margin"]
+        return None
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "values": list(self.values),
+            "kind": self.kind,
+            "between": self.between,
+            "far_side": self.far_side,
+            "tests": list(self.tests),
+            "ratio": self.ratio,
+            "singular": self.singular,
+            "classes": None if self.classes is None else list(self.classes),
+            "margin": self.margin,
+            "precision": self.precision,
+            "joints": {k: list(v) for k, v in self.joints},
+            "configuration": None if self.configuration is None else self.configuration.to_json(),
+        }
+
+
+@dataclass(frozen=True)
+class Locus:
+    """A singularity locus of a grid: a polyline over the two swept variables (SI) where
+    ``test``'s measure vanishes, with the classes found at its classified points."""
+
+    test: str
+    classes: tuple[str, ...]
+    vertices: np.ndarray = field(repr=False, compare=False)
+    closed: bool = False
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "test": self.test,
+            "classes": list(self.classes),
+            "closed": self.closed,
+            "vertices": [[float(a), float(b)] for a, b in self.vertices],
+        }
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """A sweep: the measures at every sample (arrays shaped like the sweep: (n,) for a
+    path, (rows, n) for a grid over (second, first) variable), the located
+    singularities and, for a grid, the loci.
+
+    ``rank[test]``: the decided rank (-1 undecided, -2 not reached); ``ratio[test]``:
+    the smallest relative singular value (NaN where not reached); ``reached``: closed
+    on the start's assembly mode; ``held``: the coordinates held at the start's values;
+    ``generic``: each test's generic rank."""
+
+    mechanism: Mechanism = field(repr=False, compare=False)
+    variables: tuple[SweptVariable, ...]
+    from_config: str
+    precision: str
+    tests: tuple[str, ...]
+    generic: dict[str, int]
+    held: tuple[str, ...]
+    reached: np.ndarray = field(repr=False, compare=False)
+    rank: dict[str, np.ndarray] = field(repr=False, compare=False)
+    ratio: dict[str, np.ndarray] = field(repr=False, compare=False)
+    located: tuple[LocatedSingularity, ...] = ()
+    loci: tuple[Locus, ...] = ()
+    notes: tuple[str, ...] = ()
+    newton_iterations: int = 0
+    seconds: float = field(default=0.0, compare=False)
+
+    @property
+    def grid(self) -> bool:
+        return len(self.variables) == 2
+
+    def points(self) -> int:
+        return int(self.reached.size)
+
+    def to_json(self) -> dict[str, Any]:
+        """The whole result as one JSON document (the command line writes the same
+        document point by point)."""
+        out = json_header(self)
+        out["points"] = [json_point(self, idx) for idx in np.ndindex(self.reached.shape)]
+        out.update(json_tail(self))
+        return out
+
+    def to_csv(self) -> str:
+        return "".join(
+            [csv_header(self), *csv_rows(self, range(self.reached.shape[0])), *csv_located(self)]
+        )
+
+    def to_text(self) -> str:
+        return text_report(self)
+
+
+# --------------------------------------------------------------------------- JSON
+
+
+def json_header(r: Any) -> dict[str, Any]:
+    """The JSON keys before the points (``r``: a SweepResult, or a sweep being run)."""
+    mech = r.mechanism
+    return {
+        "mechanism": mech.name,
+        "file": mech.path,
+        "from": r.from_config,
+        "precision": r.precision,
+        "units": {"length": "m", "angle": "rad"},
+        "file_units": {"length": mech.units.length, "angle": mech.units.angle},
+        "variables": [v.to_json() for v in r.variables],
+        "held": list(r.held),
+        "tests": list(r.tests),
+        "generic": dict(r.generic),
+    }
+
+
+def _num(x: float) -> float | None:
+    return None if not math.isfinite(x) else float(x)
+
+
+def json_point(r: Any, idx: tuple[int, ...]) -> dict[str, Any]:
+    """One sample: its swept values, whether it was reached, each test's rank and measure."""
+    vals = _values_at(r.variables, idx)
+    reached = bool(r.reached[idx])
+    out: dict[str, Any] = {"values": vals, "reached": reached}
+    for t in r.tests:
+        rk = int(r.rank[t][idx])
+        out[t] = {"rank": None if rk < 0 else rk, "ratio": _num(float(r.ratio[t][idx]))}
+    return out
+
+
+def json_tail(r: Any) -> dict[str, Any]:
+    return {
+        "located": [p.to_json() for p in r.located],
+        "loci": [lo.to_json() for lo in r.loci],
+        "notes": list(r.notes),
+        "newton_iterations": r.newton_iterations,
+    }
+
+
+def _values_at(variables: tuple[SweptVariable, ...], idx: tuple[int, ...]) -> list[float]:
+    if len(variables) == 1:
+        return [float(variables[0].values[idx[0]])]
+    j, i = idx
+    return [float(variables[0].values[i]), float(variables[1].values[j])]
+
+
+# --------------------------------------------------------------------------- CSV
+
+
+def csv_header(r: Any) -> str:
+    cols = ["kind", *(f"{v.name} [{v.unit}]" for v in r.variables), "reached"]
+    for t in r.tests:
+        cols += [f"{t} rank", f"{t} ratio"]
+    cols += ["classes", "precision"]
+    return ",".join(cols) + "\n"
+
+
+def csv_rows(r: Any, rows: Any) -> list[str]:
+    """The CSV lines of the samples of ``rows`` (the rows of a grid; 0 for a path)."""
+    out = []
+    shape = r.reached.shape
+    for j in rows:
+        idxs = [(j,)] if len(shape) == 1 and False else None
+        if len(shape) == 1:
+            idxs = [(i,) for i in range(shape[0])] if j == 0 else []
+        else:
+            idxs = [(j, i) for i in range(shape[1])]
+        for idx in idxs:
+            p = json_point(r, idx)
+            cells = ["sample", *(f"{x:.17g}" for x in p["values"]), str(int(p["reached"]))]
+            for t in r.tests:
+                rk, ra = p[t]["rank"], p[t]["ratio"]
+                cells += ["" if rk is None else str(rk), "" if ra is None else f"{ra:.6e}"]
+            cells += ["", ""]
+            out.append(",".join(cells) + "\n")
+    return out
+
+
+def csv_located(r: Any) -> list[str]:
+    out = []
+    for p in r.located:
+        cells = [p.kind, *(f"{x:.17g}" for x in p.values), "1"]
+        for t in r.tests:
+            cells += ["", f"{p.ratio:.6e}" if t in p.tests else ""]
+        classes = "" if p.classes is None else " ".join(p.classes) or "none"
+        cells += [classes, p.precision or ""]
+        out.append(",".join(cells) + "\n")
+    return out
+
+
+# --------------------------------------------------------------------------- text
+
+
+def _where(r: SweepResult, values: tuple[float, ...]) -> str:
+    return ", ".join(f"{v.name} = {v.shown(x)}" for v, x in zip(r.variables, values, strict=True))
+
+
+def text_report(r: SweepResult) -> str:
+    mech = r.mechanism
+    lines = []
+    kind = "grid" if r.grid else "path"
+    what = " x ".join(
+        f"{v.name} from {v.range[0]:g} to {v.range[1]:g} {v.file_unit} by {v.range[2]:g}"
+        for v in r.variables
+    )
+    lines.append(f"{mech.name}: sweep ({kind}) of {what}, from {r.from_config!r}")
+    held = ", ".join(r.held) if r.held else "nothing"
+    lines.append(
+        f"  {r.points()} samples, {int(r.reached.sum())} reached on the start's assembly mode; "
+        f"held at the start's values: {held}"
+    )
+    lines.append("  tests (smallest relative singular value over the reached samples):")
+    for t in r.tests:
+        rho = r.ratio[t]
+        ok = np.isfinite(rho)
+        if not np.any(ok):
+            continue
+        k = np.unravel_index(int(np.nanargmin(rho)), rho.shape)
+        vals = tuple(_values_at(r.variables, tuple(int(x) for x in k)))
+        lines.append(
+            f"    {t:<10} generic rank {r.generic[t]}, lowest {float(rho[k]):.3g} at {_where(r, vals)}"
+        )
+    if not r.located:
+        lines.append("  no singularity located on the sweep")
+    else:
+        lines.append(f"  located singularities ({len(r.located)}):")
+        for p in r.located:
+            lines.append("    " + _located_line(r, p))
+    for lo in r.loci:
+        a, b = lo.vertices[0], lo.vertices[-1]
+        lines.append(
+            f"  locus of {lo.test} ({', '.join(lo.classes) or 'unclassified'}): "
+            f"{len(lo.vertices)} vertices from ({r.variables[0].shown(a[0])}, "
+            f"{r.variables[1].shown(a[1])}) to ({r.variables[0].shown(b[0])}, "
+            f"{r.variables[1].shown(b[1])})" + (", closed" if lo.closed else "")
+        )
+    for note in r.notes:
+        lines.append(f"  note: {note}")
+    return "\n".join(lines) + "\n"
+
+
+def _located_line(r: SweepResult, p: LocatedSingularity) -> str:
+    where = _where(r, p.values)
+    if p.kind == "fold":
+        head = f"{where}: limit of travel" + (
+            " (met on the other assembly mode; the path resumes past it)" if p.far_side else ""
+        )
+    else:
+        head = f"{where}: {'sign change' if p.kind == 'crossing' else 'minimum'} of {', '.join(p.tests)}"
+    if p.configuration is None:
+        return f"{head} (measure {p.ratio:.2g}; not classified)"
+    if p.configuration.error:
+        return f"{head}: not analysed: {p.configuration.error}"
+    classes = ", ".join(p.classes or ()) or "no singularity found by the full analysis"
+    margin = p.margin or {}
+    shown = ""
+    if margin.get("dropped") is not None:
+        shown = f", dropped singular value {margin['dropped']:.2g}"
+    return f"{head} -> {classes} ({p.precision}{shown})"

@@ -1,0 +1,202 @@
+"""What a sweep varies: ``--vary NAME=START:STOP:STEP`` read and checked against a mechanism.
+
+Owns :class:`Vary` (the user's words, in the file's units) and :class:`Variable` (what
+it is in the model: a joint coordinate or an output-pose coordinate, its column, its
+unit and its sample values in SI units and radians).
+
+Names: a joint of one coordinate by its name (``A``); one coordinate of a joint of
+several by its index in the joint's catalog order (``C1[1]``, ``S1[0]``); the output's
+pose by ``pose.x``, ``pose.y``, ``pose.z`` (the position of the output's reference
+point, ground axes) and ``pose.rx``, ``pose.ry``, ``pose.rz`` (its rotation vector from
+the reference configuration, about the reference point, ground axes).  Ranges are in the
+file's units (``units:``), inclusive of STOP when the steps land on it.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechsing.errors import UserError
+from mechsing.kinematics.pose import POSE_COORDINATES
+from mechsing.model import Mechanism
+
+__all__ = ["MAX_SAMPLES", "Variable", "Vary", "resolve"]
+
+#: most samples of one swept variable, and of a whole grid
+MAX_SAMPLES = 10_000_000
+
+_SPEC = re.compile(r"^\s*([A-Za-z_][\w.\-]*(?:\[\d+\])?)\s*=\s*([^:]+):([^:]+):([^:]+)\s*$")
+
+
+@dataclass(frozen=True)
+class Vary:
+    """One swept variable as the user gives it: a name and a range in the file's units."""
+
+    name: str
+    start: float
+    stop: float
+    step: float
+
+    @classmethod
+    def parse(cls, text: str) -> Vary:
+        """``NAME=START:STOP:STEP`` (numbers in the file's units)."""
+        m = _SPEC.match(text)
+        if not m:
+            raise UserError(
+                f"--vary {text!r}: expected NAME=START:STOP:STEP, e.g. --vary A=0:360:1 "
+                "(a joint), --vary C1[1]=0:0.5:0.01 (one coordinate of a joint of several) "
+                "or --vary pose.x=-0.1:0.1:0.01"
+            )
+        name, *nums = m.groups()
+        try:
+            start, stop, step = (float(x) for x in nums)
+        except ValueError:
+            raise UserError(
+                f"--vary {text!r}: START, STOP and STEP must be numbers (in the file's units)"
+            ) from None
+        return cls(name, start, stop, step)
+
+    def count(self) -> int:
+        if not all(math.isfinite(x) for x in (self.start, self.stop, self.step)):
+            raise UserError(f"--vary {self.name}: the range must be finite numbers")
+        if self.step <= 0:
+            raise UserError(
+                f"--vary {self.name}: STEP must be positive ({self.step:g}); to go down, "
+                "give START above STOP"
+            )
+        return int(math.floor(abs(self.stop - self.start) / self.step * (1 + 1e-12) + 1e-9)) + 1
+
+    def values(self) -> np.ndarray:
+        """The sample values in the file's units, from START towards STOP."""
+        k = self.count()
+        sign = 1.0 if self.stop >= self.start else -1.0
+        return self.start + sign * self.step * np.arange(k)
+
+    def __str__(self) -> str:
+        return f"{self.name}={self.start:g}:{self.stop:g}:{self.step:g}"
+
+
+@dataclass(frozen=True)
+class Variable:
+    """A swept variable in the model: ``kind`` "joint" or "pose"; ``column``: its index
+    among the joint coordinates (a joint), or among the six pose coordinates
+    ``(rx, ry, rz, x, y, z)``; ``unit`` "rad" or "m" (SI) and the file's unit with its
+    factor to SI; ``values``: the samples in SI; ``periodic``: a revolute angle."""
+
+    name: str
+    kind: str
+    column: int
+    unit: str
+    file_unit: str
+    factor: float
+    values: np.ndarray
+    periodic: bool
+
+    def shown(self, si: float) -> str:
+        """A value in the file's units, with the unit."""
+        return f"{si / self.factor:.10g} {self.file_unit}"
+
+
+def resolve(mech: Mechanism, varies: list[Vary]) -> list[Variable]:
+    """The swept variables of a mechanism, checked: one (a path) or two (a grid)."""
+    if not varies:
+        raise UserError(
+            "a sweep needs --vary NAME=START:STOP:STEP (one for a path, two for a grid)"
+        )
+    if len(varies) > 2:
+        raise UserError(f"a sweep varies one variable (a path) or two (a grid), not {len(varies)}")
+    names = [v.name for v in varies]
+    if len(set(names)) != len(names):
+        raise UserError(f"--vary {names[0]} is given twice")
+    units = mech.units
+    af, lf = float(units.angle_factor), float(units.length_factor)
+    coords = mech.coordinates()
+    out = []
+    total = 1
+    for v in varies:
+        count = v.count()
+        total *= count
+        if count > MAX_SAMPLES or total > MAX_SAMPLES:
+            raise UserError(
+                f"--vary {v}: {total:,} samples, more than a sweep takes ({MAX_SAMPLES:,}); "
+                "use a larger STEP"
+            )
+        if v.name.startswith("pose."):
+            key = v.name
+            if key not in POSE_COORDINATES:
+                raise UserError(
+                    f"--vary {v.name}: the output's pose coordinates are "
+                    f"{', '.join(POSE_COORDINATES)}"
+                )
+            if mech.output is None:
+                raise UserError(
+                    f"--vary {v.name}: the mechanism has no output, so no output pose to sweep; "
+                    "add output: {body: ...} to the file"
+                )
+            k = POSE_COORDINATES.index(key)
+            angle = k < 3
+            factor = af if angle else lf
+            out.append(
+                Variable(
+                    v.name,
+                    "pose",
+                    k,
+                    "rad" if angle else "m",
+                    units.angle if angle else units.length,
+                    factor,
+                    v.values() * factor,
+                    False,
+                )
+            )
+            continue
+        m = re.fullmatch(r"(.+?)(?:\[(\d+)\])?", v.name)
+        assert m is not None
+        jname, idx = m.group(1), m.group(2)
+        if jname not in mech.joint_names:
+            known = ", ".join(mech.joint_names)
+            raise UserError(
+                f"--vary {v.name}: no joint named {jname!r}; the joints are {known} (or pose.x, "
+                "pose.y, pose.z, pose.rx, pose.ry, pose.rz for the output's pose)"
+            )
+        joint = mech.joint(jname)
+        if idx is None:
+            if joint.dof != 1:
+                raise UserError(
+                    f"--vary {v.name}: joint {jname!r} ({joint.type}) has {joint.dof} coordinates; "
+                    f"name one: {jname}[0] ... {jname}[{joint.dof - 1}] (catalog order, "
+                    f"units {', '.join(joint.units)})"
+                )
+            i = 0
+        else:
+            i = int(idx)
+            if i >= joint.dof:
+                raise UserError(
+                    f"--vary {v.name}: joint {jname!r} has coordinates {jname}[0] ... "
+                    f"{jname}[{joint.dof - 1}]"
+                )
+        col = coords.index((jname, i))
+        angle = joint.units[i] == "rad"
+        factor = af if angle else lf
+        out.append(
+            Variable(
+                v.name,
+                "joint",
+                col,
+                joint.units[i],
+                units.angle if angle else units.length,
+                factor,
+                v.values() * factor,
+                joint.type in ("R", "U"),
+            )
+        )
+    kinds = {x.kind for x in out}
+    if len(out) == 2 and kinds == {"joint", "pose"}:
+        raise UserError(
+            "a sweep varies joint coordinates or the output's pose, not both: the joints are "
+            "solved for the pose"
+        )
+    return out
