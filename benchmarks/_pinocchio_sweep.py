@@ -675,3 +675,104 @@ def check_against_mechsing(
         qm = np.asarray(closer.solve(name).q, dtype=float)
         worst = max(worst, _distance(mech, anchor.to_mechsing(path.q[i]), qm))
     return worst
+
+
+# ====================================================================== the benchmark's paths
+
+
+@dataclass(frozen=True)
+class Case:
+    """One path (or grid) of the benchmark: the file, what is held or posed, the values.
+
+    A held path gives ``held`` and ``values`` (points,); a pose path or grid gives
+    ``positions`` and ``rotation_vectors`` ((points, 3), or (n1, n2, 3) for a grid, as in
+    :meth:`PinocchioAnchor.set_pose`) and ``values`` the reported parameter; ``checked``
+    are the points compared with mechsing's closure.
+    """
+
+    name: str
+    file: str
+    values: np.ndarray
+    checked: tuple[int, ...]
+    held: str | None = None
+    positions: np.ndarray | None = None
+    rotation_vectors: np.ndarray | None = None
+
+    @property
+    def points(self) -> int:
+        return len(self.values) if self.held else int(np.prod(np.shape(self.positions)[:-1]))
+
+
+def cases() -> list[Case]:
+    """The benchmark's paths: the four-bar's crank A over a turn in 0.1 deg steps (3600
+    points); the slider-crank's slider P over its reachable range, between the dead centres
+    x = 4 sqrt(11)/5 and 24/5 (the slider at x = 16/5 + P), at the midpoints of 2000 equal
+    cells; the hexapod's platform turned about the vertical through its centre from -100 to
+    100 deg (1000 points, through the Type II poses at +-90 deg); the 3-RPR's reference point
+    over a 50 x 50 grid of +-0.3 m at the reference orientation (a 2-variable case)."""
+    lo, hi = 4 * np.sqrt(11) / 5 - 16 / 5, 8 / 5
+    slider = lo + (np.arange(2000) + 0.5) * (hi - lo) / 2000
+    turn = np.zeros((1000, 3))
+    turn[:, 2] = np.deg2rad(np.linspace(-100, 100, 1000))
+    steps = np.linspace(-0.3, 0.3, 50)
+    X, Y = np.meshgrid(steps, steps, indexing="ij")
+    grid = np.stack([X, Y, np.zeros_like(X)], axis=-1)
+    return [
+        Case(
+            "four-bar, crank A 0-360 deg",
+            "fourbar.yaml",
+            np.deg2rad(np.arange(3600) * 0.1),
+            (300, 1800, 3500),
+            held="A",
+        ),
+        Case(
+            "slider-crank, slider P dead centre to dead centre",
+            "slider_crank_slider_input.yaml",
+            slider,
+            (10, 1000, 1990),
+            held="P",
+        ),
+        Case(
+            "6-UPS hexapod, platform turn -100..100 deg",
+            "stewart_octahedral.yaml",
+            np.rad2deg(turn[:, 2]),
+            (0, 500, 999),
+            positions=np.zeros((1000, 3)),
+            rotation_vectors=turn,
+        ),
+        Case(
+            "3-RPR, platform (x, y) 50 x 50 grid",
+            "planar_3rpr.yaml",
+            np.stack([X, Y], axis=-1).reshape(-1, 2),
+            (0, 1275, 2499),
+            positions=grid,
+            rotation_vectors=np.zeros_like(grid),
+        ),
+    ]
+
+
+def prepare(case: Case, root: Any) -> tuple[PinocchioAnchor, Any]:
+    """The anchor of a case and a function that follows its path from a closed start (the
+    start is reached by continuation from the reference once, here, outside any timing)."""
+    pose = case.held is None
+    anchor = PinocchioAnchor(mechsing.load(f"{root}/examples/{case.file}"), pose=pose)
+    q = pin.neutral(anchor.model)
+    if case.held is not None:
+        q0 = anchor.approach(q, [case.held], [case.values[0]])
+        return anchor, lambda: anchor.path(case.held, case.values, q0)
+    assert case.positions is not None and case.rotation_vectors is not None
+    x, r = case.positions, case.rotation_vectors
+    first = (0, 0) if x.ndim == 3 else 0
+    q0 = anchor.approach_pose(q, x[first], r[first])
+    if x.ndim == 3:
+        return anchor, lambda: anchor.pose_grid(x, r, case.values, q0)
+    return anchor, lambda: anchor.pose_path(x, r, case.values, q0)
+
+
+def check(case: Case, anchor: PinocchioAnchor, path: AnchorPath) -> float:
+    """:func:`check_against_mechsing` at the case's checked points."""
+    if case.held is not None:
+        return check_against_mechsing(anchor, path, case.checked, held=case.held)
+    assert case.positions is not None and case.rotation_vectors is not None
+    flat = np.reshape(case.positions, (-1, 3)), np.reshape(case.rotation_vectors, (-1, 3))
+    return check_against_mechsing(anchor, path, case.checked, poses=flat)
