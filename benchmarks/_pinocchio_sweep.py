@@ -45,6 +45,11 @@ at its joint's point; for a joint the tree crosses from ``between[1]`` to ``betw
 Pinocchio's value is minus mechsing's (R, P; S: the inverse rotation) and a U joint's two
 revolutes come in the other order with opposite axes.  Scope: R, P, U and S tree joints; R, P and S chord joints; the
 output relative to ground.
+
+The benchmark's paths are :func:`cases` (the four-bar's crank turn, the slider-crank between
+its dead centres, the hexapod's platform turn, a 3-RPR pose grid); :func:`prepare` builds a
+case's anchor and its timed run, :func:`check` compares it with mechsing first.  Run alone,
+``python benchmarks/_pinocchio_sweep.py`` prints the anchor's own figures.
 """
 
 from __future__ import annotations
@@ -776,3 +781,38 @@ def check(case: Case, anchor: PinocchioAnchor, path: AnchorPath) -> float:
     assert case.positions is not None and case.rotation_vectors is not None
     flat = np.reshape(case.positions, (-1, 3)), np.reshape(case.rotation_vectors, (-1, 3))
     return check_against_mechsing(anchor, path, case.checked, poses=flat)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """The anchor alone, for its own figures (benchmarks/sweep.py runs it beside mechsing):
+    ``python benchmarks/_pinocchio_sweep.py [--repeat 5]``, one core."""
+    import argparse
+    import os
+    from pathlib import Path
+
+    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        if os.environ.get(var) != "1":
+            print(f"note: {var} is not 1; numpy may use several cores")
+    from _timing import timed_median
+
+    parser = argparse.ArgumentParser(description=main.__doc__)
+    parser.add_argument("--repeat", type=int, default=5)
+    args = parser.parse_args(argv)
+    root = Path(__file__).resolve().parents[1]
+    print(f"Pinocchio {pin.__version__} anchor: Newton to {CLOSURE_RTOL:g} L, numpy SVD")
+    for case in cases():
+        anchor, run = prepare(case, root)
+        deviation = check(case, anchor, run())
+        t, p = timed_median(run, args.repeat)
+        its = p.iterations
+        print(
+            f"  {case.name}: {case.points} points, {case.points / t:,.0f} points/s "
+            f"(median of {args.repeat}); Newton iterations mean {its.mean():.2f}, "
+            f"max {its.max()}, total {its.sum()}; largest residual {p.residual.max():.1e} m; "
+            f"joint values vs mechsing's closure {deviation:.1e}"
+        )
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
