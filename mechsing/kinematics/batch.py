@@ -145,6 +145,26 @@ class BatchClosure:
             out[:, jk.columns] = x @ self._pinv[jk.name].T
         return out
 
+    def difference(self, Q1: np.ndarray, Q0: np.ndarray) -> np.ndarray:
+        """The increments D with ``update(Q0, D) == Q1`` row by row, measured on the group
+        (:meth:`KinematicModel.difference`); pose coordinates subtract."""
+        D = np.asarray(Q1, dtype=float) - np.asarray(Q0, dtype=float)
+        q1, q0 = Q1[:, : self.nb], Q0[:, : self.nb]
+        for jk in self.base.joints:
+            if jk.abelian:
+                continue
+            M = batched.element(jk, q1) @ lie.inverse(batched.element(jk, q0))
+            x = self.frame.twists(lie.log(M)[..., None])[..., 0]
+            D[:, jk.columns] = x @ self._pinv[jk.name].T
+        return D
+
+    def between(self, QA: np.ndarray, QB: np.ndarray, f: np.ndarray) -> np.ndarray:
+        """The points a fraction f (per row) of the way from QA to QB on the group."""
+        D = self.difference(QB, QA)
+        out = self.update(QA, f[:, None] * D[:, : self.nb])
+        out[:, self.nb :] = QA[:, self.nb :] + f[:, None] * D[:, self.nb :]
+        return out
+
     # ------------------------------------------------------------------ Newton
 
     def newton(

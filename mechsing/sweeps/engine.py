@@ -54,6 +54,9 @@ from mechsing.sweeps.spec import Variable
 __all__ = ["Located", "RowResult", "Sweep"]
 
 _TAU_LO = Precision("float").tolerances.tau_lo
+_TAU_HI = Precision("float").tolerances.tau_hi
+#: most regula falsi steps of one crossing (superlinear: about ten are needed)
+_ILLINOIS_ITERATIONS = 60
 
 #: measures are computed this many configurations at a time (bounds the working memory)
 _CHUNK = 4096
@@ -192,6 +195,8 @@ class Sweep:
     def start_of(self, col: int, values: np.ndarray, z: np.ndarray) -> tuple[int, np.ndarray]:
         """The sample nearest z's value of ``col``, and its configuration reached from z."""
         k0 = int(np.argmin(np.abs(values - z[col])))
+        if z[col] == values[k0]:
+            return k0, np.array(z, dtype=float)
         try:
             return k0, self.reach(z, col, values[k0])
         except ClosureError as exc:
@@ -268,6 +273,7 @@ class Sweep:
             None
             if parts[0].kernel is None
             else np.concatenate([np.asarray(p.kernel) for p in parts]),
+            {t: np.concatenate([p.matrices[t] for p in parts]) for t in parts[0].matrices or {}},
         )
 
     def values_of(self, z: np.ndarray) -> tuple[float, ...]:
@@ -311,14 +317,19 @@ class Sweep:
         if not pairs:
             return out
         ia = np.array([pos[a] for a, _ in pairs])
-        Qb = np.array([Z[b, : self.model.n] for _, b in pairs])
-        dets = self.measures.compressed(pm, ia, Qb)
+        ib = np.array([pos[b] for _, b in pairs])
+        dets = self.measures.compressed_pairs(pm, ia, ib)
         for t in self.tests:
-            crossed = set()
-            for (a, b), d in zip(pairs, dets.get(t, ()), strict=False):
-                if d < 0:
-                    crossed.update((a, b))
-                    found = self._crossing(t, Z[a], Z[b], col, pm, pos[a])
+            crossed: set[int] = set()
+            d = dets.get(t)
+            hits = [] if d is None else [k for k in range(len(pairs)) if d[k] < 0]
+            if hits:
+                A = np.array([pairs[k][0] for k in hits])
+                B = np.array([pairs[k][1] for k in hits])
+                crossed.update(A.tolist() + B.tolist())
+                for a, found in zip(
+                    A, self._crossings(t, Z[A], Z[B], col, pm, ia[hits]), strict=True
+                ):
                     if found is not None:
                         z, r = found
                         out.append(
@@ -330,7 +341,7 @@ class Sweep:
                                 z[: self.model.n],
                                 index,
                                 "row",
-                                (index, min(a, b)),
+                                (index, int(a)),
                             )
                         )
             rho = ratio[t]
@@ -365,38 +376,61 @@ class Sweep:
     def _ratio(self, t: str, z: np.ndarray) -> float:
         return float(self.measures(z[None, : self.model.n]).ratio[t][0])
 
-    def _crossing(
-        self, t: str, za: np.ndarray, zb: np.ndarray, col: int, pm: PointMeasures, ia: int
-    ) -> tuple[np.ndarray, float] | None:
-        """Brent's method on the test's compressed determinant between two samples."""
-        from scipy.optimize import brentq
-
-        cache: dict[float, np.ndarray] = {}
-        ends = {float(za[col]): za, float(zb[col]): zb}
-
-        def f(v: float) -> float:
-            z = ends.get(v)
-            if z is None:
-                z = self.close_at(za, zb, col, v)
-            cache[v] = z
-            return float(
-                self.measures.compressed(pm, np.array([ia]), z[None, : self.model.n])[t][0]
-            )
-
-        try:
-            v = brentq(
-                f,
-                float(za[col]),
-                float(zb[col]),
-                xtol=SWEEP_LOCATE_TOL * self.scale(col),
-                rtol=4 * np.finfo(float).eps,
-            )
-        except (ValueError, ClosureError):
-            return None
-        z = cache.get(v)
-        if z is None:
-            z = self.close_at(za, zb, col, v)
-        return z, self._ratio(t, z)
+    def _crossings(
+        self,
+        t: str,
+        ZA: np.ndarray,
+        ZB: np.ndarray,
+        col: int,
+        pm: PointMeasures,
+        ia: np.ndarray,
+    ) -> list[tuple[np.ndarray, float] | None]:
+        """The zero of the test's compressed determinant between each pair of samples
+        (ZA, ZB), all pairs together: the Illinois variant of regula falsi, each trial
+        point closed by batched Newton from its interpolation; a zero where the measure
+        does not reach float's tau_hi is not a singularity (the compressed determinant
+        also vanishes where the two samples' singular vectors turned too far apart)."""
+        pb = self.problem
+        bc = pb.batch
+        nb = bc.nb
+        free = ~pb.given[:nb]
+        za, zb = np.array(ZA, dtype=float), np.array(ZB, dtype=float)
+        a, b = za[:, col].copy(), zb[:, col].copy()
+        fa = self.measures.compressed(pm, ia, za[:, : self.model.n])[t]
+        fb = self.measures.compressed(pm, ia, zb[:, : self.model.n])[t]
+        ok = np.ones(len(a), dtype=bool)
+        tol = SWEEP_LOCATE_TOL * self.scale(col)
+        side = np.zeros(len(a), dtype=int)
+        for _ in range(_ILLINOIS_ITERATIONS):
+            act = ok & (np.abs(b - a) > tol) & (fb != 0)
+            if not np.any(act):
+                break
+            i = np.flatnonzero(act)
+            c = b[i] - fb[i] * (b[i] - a[i]) / (fb[i] - fa[i])
+            lo, hi = np.minimum(a[i], b[i]), np.maximum(a[i], b[i])
+            bad = ~((c > lo) & (c < hi))
+            c[bad] = (a[i][bad] + b[i][bad]) / 2
+            f = (c - a[i]) / (b[i] - a[i])
+            zp = bc.between(za[i], zb[i], f)
+            zp[:, col] = c
+            zc, res, _ = bc.newton(zp, free, pb.tolerance)
+            lost = res > pb.tolerance
+            ok[i[lost]] = False
+            fc = self.measures.compressed(pm, ia[i], zc[:, : self.model.n])[t]
+            same = fc * fb[i] > 0
+            # the end that keeps its sign twice in a row has its value halved (Illinois)
+            j = i[same]
+            fa[j] = np.where(side[j] == 1, fa[j] / 2, fa[j])
+            side[j] = 1
+            k = i[~same]
+            a[k], fa[k], za[k] = b[k], fb[k], zb[k]
+            side[k] = 0
+            b[i], fb[i], zb[i] = c, fc, zc
+        out: list[tuple[np.ndarray, float] | None] = []
+        rho = self.measures(zb[:, : self.model.n]).ratio[t]
+        for m in range(len(a)):
+            out.append((zb[m], float(rho[m])) if ok[m] and rho[m] <= _TAU_HI else None)
+        return out
 
     def _minimum(
         self, t: str, za: np.ndarray, zm: np.ndarray, zb: np.ndarray, col: int
@@ -449,10 +483,12 @@ class Sweep:
         dets = self.measures.compressed(ra.measures, ia, Qb)
         out = []
         for t in dets:
-            for k, i, d in zip(both, ia, dets[t], strict=True):
-                if d >= 0:
-                    continue
-                found = self._crossing(t, ra.Z[k], rb.Z[k], col, ra.measures, int(i))
+            hits = np.flatnonzero(dets[t] < 0)
+            if not len(hits):
+                continue
+            K = both[hits]
+            found_all = self._crossings(t, ra.Z[K], rb.Z[K], col, ra.measures, ia[hits])
+            for k, found in zip(K, found_all, strict=True):
                 if found is not None:
                     z, r = found
                     out.append(

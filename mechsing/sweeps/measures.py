@@ -76,6 +76,8 @@ class PointMeasures:
     ratio: dict[str, np.ndarray]
     bases: dict[str, tuple[np.ndarray, np.ndarray]]
     kernel: np.ndarray | None
+    #: the signed tests' matrices (for the sign changes between neighbours)
+    matrices: dict[str, np.ndarray] | None = None
 
 
 class Measures:
@@ -148,10 +150,10 @@ class Measures:
         if "input" in self.tests or "output" in self.tests:
             if self.mech.loops:
                 g = self.generic.get("closure") or _max_rank(out["closure"])
-                _, _, Vt = np.linalg.svd(out["closure"], full_matrices=True)
+                U, s, Vt = np.linalg.svd(out["closure"], full_matrices=True)
                 kernel = np.swapaxes(Vt[:, g:, :], 1, 2)  # (N, n, n - g)
-            else:
-                kernel = np.broadcast_to(np.eye(n), (N, n, n))
+                self._closure_svd = (U, s, Vt)
+            # without loops every joint rate is a motion: N is the identity
             x = None
             if self.out_point is not None:
                 x = (P[self.mech.output.body][:, :3, :3] @ self.out_point) + P[
@@ -159,8 +161,11 @@ class Measures:
                 ][:, :3, 3]
             T = chain_matrix(self.model, Ss, None, x, self.out_signs)
             nT = np.linalg.norm(T, ord=2, axis=(1, 2))
-            out["input"] = (T @ kernel) / np.maximum(nT, 1e-300)[:, None, None]
-            out["output"] = self.E[None, :, :] @ kernel
+            TN = T if kernel is None else T @ kernel
+            out["input"] = TN / np.maximum(nT, 1e-300)[:, None, None]
+            out["output"] = (
+                np.broadcast_to(self.E, (N, *self.E.shape)) if kernel is None else self.E @ kernel
+            )
         if "constraint" in self.tests:
             out["constraint"] = self._constraint(Ss)
         return out, kernel
@@ -189,12 +194,18 @@ class Measures:
     # ------------------------------------------------------------------ measures
 
     def __call__(self, Q: np.ndarray) -> PointMeasures:
+        self._closure_svd = None
         mats, kernel = self.matrices(Q)
         rank, ratio, bases = {}, {}, {}
         for t in self.tests:
             A = mats[t]
             g = self.generic[t]
-            U, s, Vt = np.linalg.svd(A, full_matrices=False)
+            if t == "closure" and self._closure_svd is not None:
+                U, s, Vt = self._closure_svd  # the kernel's SVD, already done
+                k = s.shape[1]
+                U, Vt = U[:, :, :k], Vt[:, :k, :]
+            else:
+                U, s, Vt = np.linalg.svd(A, full_matrices=False)
             if t in _UNIT_REFERENCE:
                 rel = s  # already relative to the operator's norm (|T| or |E| = 1)
             else:
@@ -204,7 +215,23 @@ class Measures:
             rank[t] = np.where(lo == hi, lo, -1).astype(np.int16)
             ratio[t] = rel[:, g - 1] if g <= rel.shape[1] else np.zeros(len(rel))
             bases[t] = (U[:, :, :g], np.swapaxes(Vt[:, :g, :], 1, 2))
-        return PointMeasures(rank, ratio, bases, kernel)
+        signed = {t: mats[t] for t in self.tests if t in SIGNED}
+        return PointMeasures(rank, ratio, bases, kernel, signed)
+
+    def compressed_pairs(
+        self, pm: PointMeasures, ia: np.ndarray, ib: np.ndarray
+    ) -> dict[str, np.ndarray]:
+        """:meth:`compressed` for pairs of points of one measured batch (rows ``ia`` and
+        ``ib``), from the matrices it kept."""
+        assert pm.matrices is not None
+        out = {}
+        for t, M in pm.matrices.items():
+            A = M[ib]
+            if t in ("input", "output") and pm.kernel is not None:
+                A = self._turned(A, pm.kernel[ib], pm.kernel[ia])
+            U, V = pm.bases[t]
+            out[t] = np.linalg.det(np.swapaxes(U[ia], 1, 2) @ A @ V[ia])
+        return out
 
     def compressed(self, a: PointMeasures, ia: np.ndarray, Qb: np.ndarray) -> dict[str, np.ndarray]:
         """For pairs of points (row ``ia`` of the measured batch ``a``, row of ``Qb``): per

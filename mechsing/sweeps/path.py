@@ -59,6 +59,9 @@ _ARC_BUDGET = 4000
 _MAX_FOLDS = 8
 #: Newton iterations of one arclength step
 _ARC_NEWTON = 10
+#: a node closed from the secant predictor is kept when Newton moved it at most this
+#: fraction of the step (a well-predicted step stays on its branch)
+_NODE_CORRECTION = 0.1
 
 
 @dataclass
@@ -127,23 +130,26 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
     sc = pb.scale(col)
     given = tuple(int(i) for i in np.flatnonzero(pb.given))
     i, z = 0, np.array(z0, dtype=float)
+    z_prev: np.ndarray | None = None
     stopped = None
     while i < K - 1:
         j = i + 1
         while j + 1 < K and abs(values[j + 1] - values[i]) / sc <= SWEEP_NODE_STEP:
             j += 1
-        target = z.copy()
-        target[col] = values[j]
-        try:
-            zj = pb.closer.follow(z, target, given, _pose(pb)).q
-        except ClosureError:
-            zj = None
+        zj = _node(pb, z, z_prev, col, values[j])
+        if zj is None:
+            target = z.copy()
+            target[col] = values[j]
+            try:
+                zj = pb.closer.follow(z, target, given, _pose(pb)).q
+            except ClosureError:
+                zj = None
         if zj is not None:
             if j > i + 1:
                 Zf, itf = _fine(pb, z, zj, col, values[i + 1 : j], values[i], values[j])
                 Z[i + 1 : j], its[i + 1 : j] = Zf, itf
             Z[j] = zj
-            i, z = j, np.asarray(zj, dtype=float)
+            i, z, z_prev = j, np.asarray(zj, dtype=float), z
             continue
         # continuation cannot reach the next node: follow the curve itself
         if len(folds) >= _MAX_FOLDS:
@@ -160,7 +166,7 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
                 Zf, itf = _fine(pb, z, zs, col, values[i + 1 : j], values[i], values[j])
                 Z[i + 1 : j], its[i + 1 : j] = Zf, itf
             Z[j] = zs
-            i, z = j, zs
+            i, z, z_prev = j, zs, None
             continue
         fold = Fold(float(zs[col]), zs, direction)
         folds.append(fold)
@@ -183,8 +189,37 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
         far, k, zk = resume
         folds.append(far)
         Z[k] = zk
-        i, z = k, zk
+        i, z, z_prev = k, zk, None
     return PathTrace(Z, folds, stopped, its)
+
+
+def _node(
+    pb: Problem, z: np.ndarray, z_prev: np.ndarray | None, col: int, value: float
+) -> np.ndarray | None:
+    """The next node by one batched Newton from the secant predictor (the last step
+    repeated, scaled to the new one); None when it does not close there or its
+    correction is not small next to the step (the careful continuation then takes it)."""
+    cm, bc = pb.cm, pb.batch
+    nb = bc.nb
+    if z_prev is None or z_prev[col] == z[col]:
+        # a first step: a point a thousandth of it behind, closed from z itself, gives
+        # the secant (the tangent, to first order)
+        zq = np.array(z, dtype=float)
+        zq[col] = z[col] - 1e-3 * (value - z[col])
+        Q, res, _ = bc.newton(zq[None, :], ~pb.given[:nb], pb.tolerance)
+        if res[0] > pb.tolerance:
+            return None
+        z_prev = Q[0]
+    f = (value - z[col]) / (z[col] - z_prev[col])
+    d = cm.difference(z, z_prev)
+    zp = bc.update(z[None, :], f * d[None, :nb])[0]
+    zp[nb:] = z[nb:] + f * d[nb:]
+    zp[col] = value
+    Q, res, _ = bc.newton(zp[None, :], ~pb.given[:nb], pb.tolerance)
+    step = pb.comm(zp - z)
+    if res[0] > pb.tolerance or pb.comm(Q[0] - zp) > _NODE_CORRECTION * step:
+        return None
+    return Q[0]
 
 
 def _pose(pb: Problem) -> Any:
