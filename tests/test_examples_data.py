@@ -38,6 +38,8 @@ EXPECTED = {
     "stewart_octahedral.yaml",
     "ur5.yaml",
     "puma560.yaml",
+    "double_rocker.yaml",
+    "five_bar.yaml",
 }
 _M: dict[str, MechanismFile] = {}
 
@@ -152,6 +154,44 @@ def test_slider_crank_dead_centre(name, inp):
     for c in m.data["configurations"]:
         if c != "dead-centre":
             assert rank(m.current_screws(m.solve(c), passive)) == 3
+
+
+def test_double_rocker_non_grashof_limits():
+    m = mech("double_rocker.yaml")
+    P = [vec(m.data["joints"][i]["point"]) for i in range(4)]
+    links = sorted(np.linalg.norm(P[(i + 1) % 4] - P[i]) for i in range(4))
+    assert links[0] + links[3] > links[1] + links[2]  # non-Grashof: no link turns fully
+    for c in m.data["configurations"]:
+        q = m.solve(c)
+        A, B, C, D = (planar_pts(m, q, j) for j in "ABCD")
+        passive = rank(m.current_screws(q, {"B", "C", "D"}))
+        assert rank(m.current_screws(q)) == 3  # c-space regular everywhere
+        if c == "limit":  # coupler and output stretched: the input's limit, at 120 deg
+            assert np.isclose(q[0], 2 * math.pi / 3)
+            assert np.isclose(np.linalg.norm(D - B), 7) and passive == 2
+        else:
+            assert passive == 3
+        # input and coupler aligned (the output's limit) only at output-limit
+        aligned = abs((B - A)[0] * (C - A)[1] - (B - A)[1] * (C - A)[0]) < 1e-12
+        assert aligned == (c == "output-limit")
+
+
+def test_five_bar_type1_and_type2():
+    m = mech("five_bar.yaml")
+
+    def cross(u, v):
+        return u[0] * v[1] - u[1] * v[0]
+
+    for c in m.data["configurations"]:
+        q = m.solve(c)
+        A1, B1, P, B2, A2 = (planar_pts(m, q, j) for j in ("A1", "B1", "P", "B2", "A2"))
+        type1 = cross(P - B1, B1 - A1) * cross(P - B2, B2 - A2)
+        type2 = cross(P - B1, P - B2)
+        assert rank(m.current_screws(q)) == 3
+        assert (abs(type1) < 1e-12) == (c == "type1")  # leg 1 stretched
+        assert (abs(type2) < 1e-12) == (c == "type2")  # distal links aligned
+        # the passive joints lose rank exactly at the Type II pose
+        assert rank(m.current_screws(q, {"B1", "P", "B2"})) == (2 if c == "type2" else 3)
 
 
 def test_spherical_4r_concurrent_rank3():
