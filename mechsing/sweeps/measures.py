@@ -139,7 +139,8 @@ class Measures:
     def matrices(self, Q: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray | None]:
         """Each test's commensurate matrix at the rows of Q, and the closure kernel."""
         P = batched.poses(self.model, Q)
-        Ss = self.frame.screws(batched.current_screws(self.model, Q, P))
+        S = batched.current_screws(self.model, Q, P)
+        Ss = self.frame.screws(S)
         N = Q.shape[0]
         n = self.model.n
         out: dict[str, np.ndarray] = {}
@@ -159,7 +160,7 @@ class Measures:
                 x = (P[self.mech.output.body][:, :3, :3] @ self.out_point) + P[
                     self.mech.output.body
                 ][:, :3, 3]
-            T = chain_matrix(self.model, Ss, None, x, self.out_signs)
+            T = chain_matrix(self.model, S, None, x, self.out_signs)  # makes it commensurate
             nT = np.linalg.norm(T, ord=2, axis=(1, 2))
             TN = T if kernel is None else T @ kernel
             out["input"] = TN / np.maximum(nT, 1e-300)[:, None, None]

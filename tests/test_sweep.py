@@ -1,0 +1,128 @@
+"""Sweeps against answers mechsing does not compute: closed forms from the planar geometry
+(tests/reference/sweep_truth.py), each also on the mechanism scaled by 1e-3 (the same file
+in millimetres: the same numbers, a thousandth of the size in SI)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechsing.sweeps import sweep
+from tests.reference import sweep_truth as truth
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+#: how well a located value must match its closed form (the issue asks 1e-10)
+LOCATED = 1e-10
+
+
+def _millimetres(tmp_path: Path, name: str) -> Path:
+    """The example with ``units: {length: mm}``: every length a thousandth in SI."""
+    text = (EXAMPLES / name).read_text()
+    lines = [ln for ln in text.splitlines() if not ln.startswith("units:")]
+    i = next(k for k, ln in enumerate(lines) if ln.startswith("mechanism:"))
+    angle = "deg" if "angle: deg" in text else "rad"
+    lines.insert(i + 1, f"units: {{length: mm, angle: {angle}}}")
+    out = tmp_path / name
+    out.write_text("\n".join(lines) + "\n")
+    return out
+
+
+def _values(r, kind=None, test=None):
+    return sorted(
+        p.values[0]
+        for p in r.located
+        if (kind is None or p.kind == kind) and (test is None or test in p.tests)
+    )
+
+
+def test_crank_rocker_turns_fully_and_meets_only_its_rockers_limits():
+    """The crank turns 360 deg with no fold, no closure and no output singularity; the input
+    test vanishes exactly where the rocker stops (crank and coupler collinear)."""
+    r = sweep(EXAMPLES / "fourbar.yaml", ["A=0:360:0.5"])
+    assert r.reached.all()
+    assert not [p for p in r.located if p.kind == "fold"]
+    assert not [p for p in r.located if {"closure", "output"} & set(p.tests)]
+    limits = truth.four_bar_output_limits((0, 0), (1, 0), (3, 2), (4, 0))
+    expected = sorted(lim.value % (2 * math.pi) for lim in limits)
+    found = _values(r, test="input")
+    assert len(found) == 2
+    np.testing.assert_allclose(found, expected, atol=LOCATED)
+    for p in r.located:
+        assert p.classes is not None and "input" in p.classes
+
+
+@pytest.mark.parametrize("scaled", [False, True])
+def test_double_rocker_stops_at_its_limits_from_the_law_of_cosines(tmp_path, scaled):
+    """A non-Grashof input rocks between -120 and +120 deg: two folds located to 1e-10 rad and
+    classified as output singularities; the samples beyond are not reached."""
+    path = _millimetres(tmp_path, "double_rocker.yaml") if scaled else EXAMPLES / "double_rocker.yaml"
+    r = sweep(path, ["A=-3.1:3.1:0.01"])
+    folds = _values(r, kind="fold")
+    np.testing.assert_allclose(folds, [-2 * math.pi / 3, 2 * math.pi / 3], atol=LOCATED)
+    values = r.variables[0].values
+    inside = np.abs(values) < 2 * math.pi / 3 - 1e-9
+    assert np.array_equal(r.reached, inside)
+    for p in r.located:
+        if p.kind == "fold":
+            assert "output" in (p.classes or ())
+
+
+@pytest.mark.parametrize("scaled", [False, True])
+def test_offset_slider_crank_dead_centres(tmp_path, scaled):
+    """The slider (input) stops at its two dead centres x = sqrt((l +- r)^2 - e^2)."""
+    name = "slider_crank_slider_input.yaml"
+    path = _millimetres(tmp_path, name) if scaled else EXAMPLES / name
+    k = 1e-3 if scaled else 1.0
+    r = sweep(path, ["P=-4:4:0.01"])
+    dead = truth.slider_crank_dead_centres((0, 0), (0, -1), (3.2, 1.4), (1, 0))
+    expected = sorted(v * k for v in dead.values())
+    np.testing.assert_allclose(_values(r, kind="fold"), expected, atol=LOCATED * k)
+    assert all("output" in (p.classes or ()) for p in r.located if p.kind == "fold")
+
+
+def test_ur5_grid_loci_lie_where_the_closed_form_det_j_vanishes():
+    """Over (J3, J5) the output chain loses rank where det J = 0 (elbow: sin J3 = 0; wrist:
+    sin J5 = 0): every located point zeroes the closed form, and every grid cell where it
+    changes sign along a row holds a located point."""
+    r = sweep(EXAMPLES / "ur5.yaml", ["J3=-2:2:0.25", "J5=-2:2:0.25"], "regular")
+    regular = {"J1": 0.0, "J2": -math.pi / 4, "J4": -math.pi / 4, "J6": 0.0}
+    assert r.located
+    for p in r.located:
+        theta = np.array(
+            [regular["J1"], regular["J2"], p.values[0], regular["J4"], p.values[1], regular["J6"]]
+        )
+        scale = truth.ur5_det_j(np.array([0.0, -0.7, 1.0, -0.3, 1.0, 0.0]))
+        assert abs(truth.ur5_det_j(theta)) <= 1e-8 * abs(scale)
+    xs, ys = r.variables[0].values, r.variables[1].values
+    for j, y in enumerate(ys):
+        th = np.zeros((len(xs), 6))
+        th[:, 1], th[:, 2], th[:, 3], th[:, 4] = -math.pi / 4, xs, -math.pi / 4, y
+        d = truth.ur5_det_j(th)
+        for i in range(len(xs) - 1):
+            if d[i] * d[i + 1] < 0:
+                assert any(
+                    p.between == "row"
+                    and abs(p.values[1] - y) < 1e-12
+                    and xs[i] - 1e-12 <= p.values[0] <= xs[i + 1] + 1e-12
+                    for p in r.located
+                ), (y, xs[i])
+
+
+def test_five_bar_grid_type_one_loci_match_the_independent_determinant():
+    """Over the two inputs, the input (Type I) singularities the sweep locates zero the
+    determinant written from the planar geometry, and the folds (the end of the assembled
+    region) zero the Type II determinant."""
+    r = sweep(EXAMPLES / "five_bar.yaml", ["A1=-0.6:0.6:0.1", "A2=-0.6:0.6:0.1"])
+    mode = truth.FIVE_BAR.reference_mode()
+    size = max(truth.FIVE_BAR.lengths()) ** 2
+    for p in r.located:
+        t1, t2 = p.values
+        if p.kind == "fold":
+            assert abs(truth.five_bar_type2_det(np.array(t1), np.array(t2), mode)) <= 1e-6 * size
+        elif "input" in p.tests:
+            d = truth.five_bar_type1_det(np.array(t1), np.array(t2), mode)
+            assert abs(d) <= 1e-8 * size**2
