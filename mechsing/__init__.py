@@ -16,7 +16,10 @@ Conventions (stated once, used everywhere; the README says them too):
 
 API: :func:`load` (a mechanism file), :func:`analyze` (a result whose
 ``to_json()`` is the JSON contract), :func:`scan` (batched float verdicts of
-an open chain over many configurations), :mod:`mechsing.lie`,
+an open chain over many configurations), :func:`sweep` (where the
+singularities are along a path or over a grid of joint values or output poses:
+a ``SweepResult`` with the measures at every sample, the located and classified
+singularities and a grid's loci), :mod:`mechsing.lie`,
 :func:`mechsing.subgroups.identify`.
 """
 
@@ -26,7 +29,12 @@ import importlib
 
 #: the public API: functions (loaded on first use, so ``mechsing --version`` stays fast)
 #: and the layers a script uses directly
-_FUNCTIONS = {"analyze": "mechsing.analysis", "load": "mechsing.model", "scan": "mechsing.scanner"}
+_FUNCTIONS = {
+    "analyze": "mechsing.analysis",
+    "load": "mechsing.model",
+    "scan": "mechsing.scanner",
+    "sweep": "mechsing.sweeps",
+}
 _MODULES = ("errors", "lie", "numeric", "subgroups", "model", "kinematics", "screws", "singularity")
 
 __all__ = ["__version__", *_FUNCTIONS, *_MODULES]

@@ -3,7 +3,8 @@
 Point an editor's YAML or JSON language server at it to get completion and
 checks while writing a mechanism file.  mechsing's own validation
 (``mechsing analyze``) checks more than the schema can (names, geometry,
-expressions) and is the authority.
+expressions) and is the authority.  With --sweep, the schema of the document
+``mechsing sweep --format json`` writes instead.
 """
 
 from __future__ import annotations
@@ -12,19 +13,29 @@ import argparse
 import json
 
 NAME = "schema"
-HELP = "print the JSON Schema of the mechanism file format"
+HELP = "print the JSON Schema of the mechanism file format (or of the sweep document)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--compact", action="store_true", help="print on one line instead of indented"
     )
+    parser.add_argument(
+        "--sweep",
+        action="store_true",
+        help="the schema of mechsing sweep's JSON document instead of the file format's",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
-    from mechsing.model.schema import mechanism_schema
+    if getattr(args, "sweep", False):
+        from mechsing.sweeps.schema import sweep_schema
 
-    schema = mechanism_schema()
+        schema = sweep_schema()
+    else:
+        from mechsing.model.schema import mechanism_schema
+
+        schema = mechanism_schema()
     if getattr(args, "compact", False):
         print(json.dumps(schema, separators=(",", ":")))
     else:
