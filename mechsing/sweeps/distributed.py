@@ -100,10 +100,8 @@ def distributed_rows(
     if workers is not None and workers < 1:
         raise UserError(f"--workers must be at least 1 (got {workers})")
     eng = run.engine
-    column = eng.first_column(values)
-    assert column.Z is not None
-    with ExitStack() as stack:
-        client = stack.enter_context(_client(client_cls, cluster_cls, workers, scheduler))
+    with _client(client_cls, cluster_cls, workers, scheduler) as client:  # fails fast
+        column = eng.first_column(values)
         recipe = _recipe(run, eng, values[0])
         (shared,) = client.scatter([recipe], broadcast=True, hash=False)
         threads = sum(client.nthreads().values())
