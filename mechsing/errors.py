@@ -50,6 +50,10 @@ class ConfigurationError(UserError):
         self.configuration = configuration
         self.residual = residual
 
+    def __reduce__(self) -> tuple[type, tuple[str, str, float | None]]:
+        # pickles whole (a sweep's row raises it on a Dask worker, the driver re-raises it)
+        return (type(self), (str(self), self.configuration, self.residual))
+
 
 class CatalogError(MechsingError):
     """A catalog file is missing or malformed (an installation or data defect)."""

@@ -517,26 +517,36 @@ class Sweep:
                 progress(len(values[0]))
             yield res
             return
-        # a grid: the first column is a path in the second variable
-        cx, cy = self.cols
-        kx0, zx = self.start_of(cx, values[0], self.z0)
-        column = self.row(-1, cy, values[1], zx, ())
+        column = self.first_column(values)
         assert column.Z is not None
+        cx = self.cols[0]
         for j in range(len(values[1])):
             if not column.reached[j]:
-                empty = np.zeros(len(values[0]), dtype=bool)
-                yield RowResult(
-                    j,
-                    empty,
-                    {t: np.full(len(empty), -2, dtype=np.int16) for t in self.tests},
-                    {t: np.full(len(empty), np.nan) for t in self.tests},
-                    [],
-                    [f"row {j}: the first column does not reach it"],
-                )
+                yield self.unreached_row(j, len(values[0]))
             else:
                 yield self.row(j, cx, values[0], column.Z[j], (float(values[1][j]),))
             if progress:
                 progress(len(values[0]))
+
+    def first_column(self, values: list[np.ndarray]) -> RowResult:
+        """A grid's first column: a path in the second variable, at the first variable's
+        sample nearest the start; its configurations start the rows (which are then
+        independent of each other)."""
+        cx, cy = self.cols
+        _, zx = self.start_of(cx, values[0], self.z0)
+        return self.row(-1, cy, values[1], zx, ())
+
+    def unreached_row(self, j: int, k: int) -> RowResult:
+        """Row j of k samples when the first column does not reach it: nothing reached."""
+        empty = np.zeros(k, dtype=bool)
+        return RowResult(
+            j,
+            empty,
+            {t: np.full(k, -2, dtype=np.int16) for t in self.tests},
+            {t: np.full(k, np.nan) for t in self.tests},
+            [],
+            [f"row {j}: the first column does not reach it"],
+        )
 
 
 def _merge(located: list[Located], sw: Sweep) -> list[Located]:

@@ -1,0 +1,249 @@
+"""The rows of a grid sweep computed on a Dask ``distributed`` cluster.
+
+Owns :func:`distributed_rows`, the distributed twin of :meth:`.engine.Sweep.rows` for a
+grid, and the work a Dask worker does for it (:func:`_row_task`).
+
+Conventions:
+
+* **The serial result, bit for bit.**  This process (the driver) computes the grid's
+  first column itself (:meth:`.engine.Sweep.first_column`, as the serial run does);
+  each row ``j`` is then one task on a worker, the very call the serial run makes,
+  ``Sweep.row(j, cx, values[0], column.Z[j], (values[1][j],))``, whose inputs travel
+  pickled (exact floats).  Rows are independent once the first column is known, so the
+  same computations in the same order per row give the same arrays.
+* **Row order.**  Results come back in any order; they are buffered and yielded in row
+  order, so the caller (:class:`mechsing.sweeps.SweepRun`) sees the serial sequence and
+  computes the crossings between neighbouring rows as it does serially.  An error in a
+  row is raised when that row's turn comes (the rows before it are yielded first).
+  At most :data:`AHEAD_PER_THREAD` rows per worker thread are submitted ahead of the
+  next row to yield (bounded memory on a long grid).
+* **Workers build the sweep once per process.**  A task carries the row's start
+  configuration and a reference to one scattered recipe: the pickled mechanism (a
+  :class:`~mechsing.model.Mechanism` pickles; the engine itself is never sent), the
+  resolved swept variables, the start configuration's name and the mechsing version.
+  A worker unpickles it and builds its :class:`~.engine.Sweep` on the first row, and
+  keeps it (a few recipes at most) keyed by the mechanism's file path, the SHA-256 of
+  the pickled mechanism (its content: an edited file is a new key), the ``--vary``
+  specs and the ``--from`` configuration.  Rows on one worker process run one at a
+  time (the arbitrary precision context is process-global), so a worker with several
+  threads gains nothing: start workers with one thread each.
+* ``progress`` is called with the row's number of samples when a row finishes (in the
+  order rows finish).
+* Dask is the optional extra ``mechsing[dask]``; without it a distributed sweep is a
+  :class:`~mechsing.errors.UserError` that says how to install it.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import pickle
+import threading
+import uuid
+from collections import OrderedDict
+from collections.abc import Callable, Iterator
+from contextlib import ExitStack, contextmanager
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from mechsing.errors import UserError
+from mechsing.sweeps.engine import RowResult, Sweep
+
+if TYPE_CHECKING:
+    from mechsing.sweeps import SweepRun
+
+__all__ = ["AHEAD_PER_THREAD", "distributed_rows"]
+
+#: rows submitted ahead of the next row to yield, per worker thread of the cluster
+AHEAD_PER_THREAD = 4
+
+#: recipes (sweeps) a worker process keeps built
+_KEPT = 4
+
+
+@dataclass(frozen=True)
+class _Recipe:
+    """What a worker needs to build the sweep: the cache key, the pickled
+    ``(mechanism, variables, from_config)``, the row variable's samples (SI) and the
+    driver's mechsing version (a worker with another version refuses the row)."""
+
+    key: tuple[Any, ...]
+    blob: bytes
+    row_values: np.ndarray
+    version: str
+
+
+def distributed_rows(
+    run: SweepRun,
+    values: list[np.ndarray],
+    workers: int | None,
+    scheduler: str | None,
+    progress: Callable[[int], None] | None = None,
+) -> Iterator[RowResult]:
+    """The rows of a grid sweep, in row order, computed on a Dask cluster.
+
+    Parameters
+    ----------
+    run : the sweep (its engine computes the first column here; its mechanism, swept
+        variables and ``--from`` configuration make the workers' recipe)
+    values : the samples (SI) of the two swept variables, as ``Sweep.rows`` takes them
+    workers : start a local cluster of this many worker processes (one thread each)
+    scheduler : or use the Dask scheduler at this address (``tcp://host:8786``)
+    progress : called with the number of samples of each finished row
+
+    Yields exactly what ``run.engine.rows(values, progress)`` yields.
+    """
+    client_cls, cluster_cls, as_completed = _dask()
+    if workers is not None and scheduler:
+        raise UserError("give --workers N (a local cluster) or --scheduler ADDRESS, not both")
+    if workers is not None and workers < 1:
+        raise UserError(f"--workers must be at least 1 (got {workers})")
+    eng = run.engine
+    with _client(client_cls, cluster_cls, workers, scheduler) as client:  # fails fast
+        column = eng.first_column(values)
+        recipe = _recipe(run, eng, values[0])
+        (shared,) = client.scatter([recipe], broadcast=True, hash=False)
+        threads = sum(client.nthreads().values())
+        ahead = AHEAD_PER_THREAD * max(threads, 1)
+        yield from _in_order(client, as_completed, shared, eng, column, values, ahead, progress)
+
+
+def _dask() -> tuple[Any, Any, Any]:
+    try:
+        from distributed import Client, LocalCluster, as_completed
+    except ImportError:
+        raise UserError(
+            "distributing a sweep (--workers, --scheduler) needs Dask distributed: "
+            "pip install 'mechsing[dask]' (or run the sweep without them, serially)"
+        ) from None
+    return Client, LocalCluster, as_completed
+
+
+@contextmanager
+def _client(
+    client_cls: Any, cluster_cls: Any, workers: int | None, scheduler: str | None
+) -> Iterator[Any]:
+    """A Dask client to the scheduler at an address, or to a local cluster of
+    ``workers`` processes (one thread each) on the loopback address; closed after."""
+    with ExitStack() as stack:
+        try:
+            if scheduler:
+                client = stack.enter_context(client_cls(scheduler))
+            else:
+                cluster = stack.enter_context(
+                    cluster_cls(
+                        n_workers=workers,
+                        threads_per_worker=1,
+                        processes=True,
+                        host="127.0.0.1",
+                        dashboard_address=None,
+                        # no dashboard; the HTTP server on any free port, not 8787
+                        scheduler_kwargs={"dashboard_address": ":0"},
+                    )
+                )
+                client = stack.enter_context(client_cls(cluster))
+        except (OSError, TimeoutError) as exc:
+            where = f"the Dask scheduler at {scheduler}" if scheduler else "a local Dask cluster"
+            raise UserError(f"cannot reach {where}: {exc}") from None
+        yield client
+
+
+def _recipe(run: SweepRun, eng: Sweep, row_values: np.ndarray) -> _Recipe:
+    from mechsing import __version__
+
+    blob = pickle.dumps((run.mechanism, eng.variables, eng.from_config))
+    key = (
+        run.mechanism.path,
+        hashlib.sha256(blob).hexdigest(),
+        tuple((v.name, v.start, v.stop, v.step) for v in run.varies),
+        eng.from_config,
+    )
+    return _Recipe(key, blob, np.asarray(row_values), __version__)
+
+
+def _in_order(
+    client: Any,
+    as_completed: Any,
+    shared: Any,
+    eng: Sweep,
+    column: RowResult,
+    values: list[np.ndarray],
+    ahead: int,
+    progress: Callable[[int], None] | None,
+) -> Iterator[RowResult]:
+    """Submit the rows (at most ``ahead`` past the next to yield), yield them in order."""
+    assert column.Z is not None
+    rows, k = len(values[1]), len(values[0])
+    tag = uuid.uuid4().hex
+    finished = as_completed()
+    pending: dict[Any, tuple[int, Any]] = {}  # future key -> (row, future)
+    done: dict[int, tuple[RowResult | None, BaseException | None]] = {}
+    submitted = 0
+    try:
+        for j in range(rows):
+            while submitted < rows and submitted <= j + ahead:
+                i = submitted
+                submitted += 1
+                if not column.reached[i]:  # nothing to compute: as the serial run does
+                    done[i] = (eng.unreached_row(i, k), None)
+                    if progress:
+                        progress(k)
+                    continue
+                fut = client.submit(
+                    _row_task,
+                    shared,
+                    i,
+                    column.Z[i],
+                    float(values[1][i]),
+                    key=f"mechsing-row-{tag}-{i}",
+                    pure=False,
+                )
+                pending[fut.key] = (i, fut)
+                finished.add(fut)
+            while j not in done:
+                fut = next(finished)
+                i, _ = pending.pop(fut.key)
+                try:
+                    done[i] = (fut.result(), None)
+                except Exception as exc:  # raised in row order, below
+                    done[i] = (None, exc)
+                del fut
+                if progress:
+                    progress(k)
+            row, error = done.pop(j)
+            if error is not None:
+                raise error
+            assert row is not None
+            yield row
+    finally:
+        finished.clear()
+        if pending:
+            client.cancel([f for _, f in pending.values()])
+
+
+# --------------------------------------------------------------------- on the worker
+
+_built: OrderedDict[tuple[Any, ...], Sweep] = OrderedDict()
+_lock = threading.Lock()
+
+
+def _row_task(recipe: _Recipe, j: int, z: np.ndarray, y: float) -> RowResult:
+    """Row j of the grid from its first-column configuration z (on a worker)."""
+    from mechsing import __version__
+
+    if recipe.version != __version__:
+        raise UserError(
+            f"the Dask worker runs mechsing {__version__}, the sweep mechsing {recipe.version}: "
+            "install the same version on the workers"
+        )
+    with _lock:
+        sweep = _built.get(recipe.key)
+        if sweep is None:
+            mech, variables, from_config = pickle.loads(recipe.blob)
+            sweep = Sweep(mech, variables, from_config)
+            _built[recipe.key] = sweep
+            while len(_built) > _KEPT:
+                _built.popitem(last=False)
+        _built.move_to_end(recipe.key)
+        return sweep.row(j, sweep.cols[0], recipe.row_values, z, (y,))
