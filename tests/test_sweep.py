@@ -59,7 +59,9 @@ def test_crank_rocker_turns_fully_and_meets_only_its_rockers_limits():
 def test_double_rocker_stops_at_its_limits_from_the_law_of_cosines(tmp_path, scaled):
     """A non-Grashof input rocks between -120 and +120 deg: two folds located to 1e-10 rad and
     classified as output singularities; the samples beyond are not reached."""
-    path = _millimetres(tmp_path, "double_rocker.yaml") if scaled else EXAMPLES / "double_rocker.yaml"
+    path = (
+        _millimetres(tmp_path, "double_rocker.yaml") if scaled else EXAMPLES / "double_rocker.yaml"
+    )
     r = sweep(path, ["A=-3.1:3.1:0.01"])
     folds = _values(r, kind="fold")
     np.testing.assert_allclose(folds, [-2 * math.pi / 3, 2 * math.pi / 3], atol=LOCATED)
@@ -98,7 +100,7 @@ def test_ur5_grid_loci_lie_where_the_closed_form_det_j_vanishes():
         scale = truth.ur5_det_j(np.array([0.0, -0.7, 1.0, -0.3, 1.0, 0.0]))
         assert abs(truth.ur5_det_j(theta)) <= 1e-8 * abs(scale)
     xs, ys = r.variables[0].values, r.variables[1].values
-    for j, y in enumerate(ys):
+    for _j, y in enumerate(ys):
         th = np.zeros((len(xs), 6))
         th[:, 1], th[:, 2], th[:, 3], th[:, 4] = -math.pi / 4, xs, -math.pi / 4, y
         d = truth.ur5_det_j(th)

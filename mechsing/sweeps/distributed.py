@@ -43,15 +43,12 @@ from collections import OrderedDict
 from collections.abc import Callable, Iterator
 from contextlib import ExitStack, contextmanager
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from mechsing.errors import UserError
 from mechsing.sweeps.engine import RowResult, Sweep
-
-if TYPE_CHECKING:
-    from mechsing.sweeps import SweepRun
 
 __all__ = ["AHEAD_PER_THREAD", "distributed_rows"]
 
@@ -75,7 +72,7 @@ class _Recipe:
 
 
 def distributed_rows(
-    run: SweepRun,
+    run: Any,  # a mechsing.sweeps.SweepRun (which imports this module)
     values: list[np.ndarray],
     workers: int | None,
     scheduler: str | None,
@@ -149,7 +146,7 @@ def _client(
         yield client
 
 
-def _recipe(run: SweepRun, eng: Sweep, row_values: np.ndarray) -> _Recipe:
+def _recipe(run: Any, eng: Sweep, row_values: np.ndarray) -> _Recipe:
     from mechsing import __version__
 
     blob = pickle.dumps((run.mechanism, eng.variables, eng.from_config))
