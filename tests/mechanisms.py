@@ -66,6 +66,22 @@ PUBLISHED: dict[str, Published] = {
         _loop("A B C D", "G", 3),
         ranks={"reference": 2},
     ),
+    # non-Grashof double rocker: the c-space is smooth, also at the input's and the output's limits
+    "double_rocker.yaml": Published(
+        1,
+        -2,
+        ("reference", "input-60", "limit", "output-limit"),
+        _loop("A B C D", "G", 3),
+        ranks={"limit": 3, "output-limit": 3},
+    ),
+    # 5R five-bar: mobility 2, spatial Gruebler -1; Type I and Type II poses are c-space regular
+    "five_bar.yaml": Published(
+        2,
+        -1,
+        ("reference", "inputs", "type1", "type2"),
+        _loop("A1 B1 P B2 A2", "G", 3),
+        ranks={"type1": 3, "type2": 3},
+    ),
     # parallelogram: flat configuration rank 2, elsewhere regular
     "parallelogram.yaml": Published(
         1,

@@ -133,6 +133,8 @@ def mp_eval(expr: str | float):
 #: configurations analysed at mp:30 and in exact mode (exactly given, cheap); float: all of them
 MP30_CONFIGS = {
     "bennett.yaml": ["theta1-90"],
+    "double_rocker.yaml": ["output-limit"],
+    "five_bar.yaml": ["type2"],
     "bricard.yaml": ["reference"],
     "fourbar.yaml": ["crank-30"],
     "fourbar_changepoint.yaml": ["reference"],
@@ -149,6 +151,8 @@ MP30_CONFIGS = {
 }
 EXACT_CONFIGS = {
     "bennett.yaml": ["reference"],
+    "double_rocker.yaml": ["reference"],
+    "five_bar.yaml": ["type1"],
     "bricard.yaml": ["reference"],
     "fourbar.yaml": ["reference"],
     "fourbar_changepoint.yaml": ["reference"],
