@@ -128,3 +128,22 @@ def test_five_bar_grid_type_one_loci_match_the_independent_determinant():
         elif "input" in p.tests:
             d = truth.five_bar_type1_det(np.array(t1), np.array(t2), mode)
             assert abs(d) <= 1e-8 * size**2
+
+
+@pytest.mark.parametrize("spec", ["A=-3.1:3.1:0.007", "A=1:-1:0.013", "A=-6.3:6.3:0.05"])
+def test_change_point_four_bar_bifurcation_at_its_flat_position(spec):
+    """At the Grashof change point the crank passes the flat position (A = 0 mod 2 pi, all
+    joints collinear), where two branches cross: located to 1e-10 rad and classified as a
+    bifurcation, wherever the samples fall."""
+    r = sweep(EXAMPLES / "fourbar_changepoint.yaml", [spec], "crank-up")
+    assert r.reached.all()
+    flats = truth.four_bar_flat_positions((0, 0), (1, 0), (6, 0), (4, 0))
+    lo, hi = sorted(r.variables[0].values[[0, -1]])
+    expected = sorted(
+        f + 2 * math.pi * k for f in flats for k in range(-2, 3) if lo <= f + 2 * math.pi * k <= hi
+    )
+    found = _values(r, test="closure")
+    np.testing.assert_allclose(found, expected, atol=LOCATED)
+    for p in r.located:
+        if "closure" in p.tests:
+            assert "bifurcation" in (p.classes or ())

@@ -41,6 +41,8 @@ from mechsing.kinematics.pose import PoseModel
 from mechsing.lie import log_so3
 from mechsing.model import Mechanism
 from mechsing.numeric import (
+    SWEEP_BRANCH_BRACKET,
+    SWEEP_BRANCH_OFFSET,
     SWEEP_JUMP_RATIO,
     SWEEP_LOCATE_TOL,
     SWEEP_MINIMUM_SCREEN,
@@ -327,23 +329,30 @@ class Sweep:
                 A = np.array([pairs[k][0] for k in hits])
                 B = np.array([pairs[k][1] for k in hits])
                 crossed.update(A.tolist() + B.tolist())
-                for a, found in zip(
-                    A, self._crossings(t, Z[A], Z[B], col, pm, ia[hits]), strict=True
-                ):
-                    if found is not None:
-                        z, r = found
-                        out.append(
-                            Located(
-                                self.values_of(z),
-                                "crossing",
-                                (t,),
-                                r,
-                                z[: self.model.n],
-                                index,
-                                "row",
-                                (index, int(a)),
-                            )
+                # a sign change of the closure is a singular point the path passes
+                # through: a double root for Newton, placed by the path on both sides
+                refined = (
+                    [self._through(Z, reached, int(a), int(a) + 1, col) for a in A]
+                    if t == "closure"
+                    else self._crossings(t, Z[A], Z[B], col, pm, ia[hits])
+                )
+                for a, found in zip(A, refined, strict=True):
+                    if found is None:
+                        crossed.difference_update((int(a), int(a) + 1))
+                        continue
+                    z, r = found
+                    out.append(
+                        Located(
+                            self.values_of(z),
+                            "crossing",
+                            (t,),
+                            r,
+                            z[: self.model.n],
+                            index,
+                            "row",
+                            (index, int(a)),
                         )
+                    )
             rho = ratio[t]
             for k in range(1, len(Z) - 1):
                 if not (reached[k - 1] and reached[k] and reached[k + 1]) or k in crossed:
@@ -355,6 +364,8 @@ class Sweep:
                 if rho[k] > SWEEP_MINIMUM_SCREEN * rise:
                     continue
                 found = self._minimum(t, Z[k - 1], Z[k], Z[k + 1], col)
+                if found is None and t == "closure":
+                    found = self._through(Z, reached, k - 1, k + 1, col)
                 if found is not None:
                     z, r = found
                     out.append(
@@ -464,6 +475,97 @@ class Sweep:
         except ClosureError:
             return None
         z, r = (zc, fc) if fc < fd else (zd, fd)
+        return (z, r) if r <= _TAU_LO else None
+
+    def _through(
+        self, Z: np.ndarray, reached: np.ndarray, ka: int, kb: int, col: int
+    ) -> tuple[np.ndarray, float] | None:
+        """A singular point of the closure that the path passes through (two branches
+        crossing, as at a change-point four-bar's flat position), between samples ka and
+        kb of the path Z.
+
+        There the unknown joints are a double root of the closure equations for the held
+        values, so float closes them only to about 1e-8 and the measure has a floor
+        there: neither Newton at the point nor a search down to it can place it to
+        1e-10.  The path itself is smooth through the point, and so is the determinant
+        of the closure system along it, which changes sign: the point is found by
+        golden-section search down to SWEEP_BRANCH_BRACKET, then from six points of
+        the path on both sides, SWEEP_BRANCH_OFFSET apart (far outside the double
+        root's reach, closed to full accuracy), the measure signed by side is fitted by
+        a cubic whose root is the swept value, and the configuration there is the
+        cubic interpolation of theirs.  Every point is closed by Newton from the cubic
+        through the path's four nearest samples (the other branch is as near as the
+        point is to the crossing: a cruder prediction could land on it).  None when the
+        six points do not make one smooth signed curve or when the interpolated point
+        is not singular to float's tau_lo."""
+        t = "closure"
+        pb = self.problem
+        cm, bc = pb.cm, pb.batch
+        sc = self.scale(col)
+        near = [k for k in range(ka - 1, kb + 2) if 0 <= k < len(Z) and reached[k]]
+        if len(near) < 2:
+            return None
+        base0 = Z[near[0]]
+        tv = np.array([Z[k, col] for k in near])
+        Dn = np.array([cm.difference(Z[k], base0) for k in near])
+        deg = min(3, len(near) - 1)
+        fits = [np.polyfit(tv, Dn[:, i], deg) for i in range(Dn.shape[1])]
+        a, b = float(Z[ka, col]), float(Z[kb, col])
+        span = abs(b - a)
+
+        def at(v: float) -> np.ndarray:
+            d = np.array([np.polyval(c, v) for c in fits])
+            zp = np.asarray(cm.update(base0, d), dtype=float)
+            zp[col] = v
+            Q, res, _ = bc.newton(zp[None, :], ~pb.given[: bc.nb], pb.tolerance)
+            if res[0] > pb.tolerance or pb.comm(Q[0] - zp) > SWEEP_JUMP_RATIO * span:
+                raise ClosureError("the path is lost near a singular point", None, None)
+            return Q[0]
+
+        g = (math.sqrt(5) - 1) / 2
+        lo, hi = min(a, b), max(a, b)
+        try:
+            c, d = hi - g * (hi - lo), lo + g * (hi - lo)
+            fc, fd = self._ratio(t, at(c)), self._ratio(t, at(d))
+        except ClosureError:
+            return None
+        while hi - lo > SWEEP_BRANCH_BRACKET * sc:
+            # nearer the point than the path's samples predict, Newton may not close: the
+            # bracket reached so far is enough for the fit, which stays further out
+            try:
+                if fc < fd:  # the minimum is in [lo, d]
+                    c2 = d - g * (d - lo)
+                    f2 = self._ratio(t, at(c2))
+                    hi, d, fd, c, fc = d, c, fc, c2, f2
+                else:  # in [c, hi]
+                    d2 = c + g * (hi - c)
+                    f2 = self._ratio(t, at(d2))
+                    lo, c, fc, d, fd = c, d, fd, d2, f2
+            except ClosureError:
+                break
+        guess = (lo + hi) / 2
+        delta = min(SWEEP_BRANCH_OFFSET * sc, span / 8)
+        if hi - lo > delta:
+            return None
+        u = np.array([-3.0, -2.0, -1.0, 1.0, 2.0, 3.0])
+        try:
+            zs = [at(guess + k * delta) for k in u]
+        except ClosureError:
+            return None
+        f = np.sign(u) * np.array([self._ratio(t, z) for z in zs])
+        coef = np.polyfit(u, f, 3)
+        if np.max(np.abs(np.polyval(coef, u) - f)) > 1e-6 * np.max(np.abs(f)):
+            return None  # not one smooth signed curve: not a crossing of the path
+        roots = [r.real for r in np.roots(coef) if abs(r.imag) < 1e-9 and abs(r.real) < 1]
+        if not roots:
+            return None
+        root = min(roots, key=abs)
+        base = zs[2]
+        D = np.array([cm.difference(z, base) for z in zs])
+        dstar = np.array([np.polyval(np.polyfit(u, D[:, i], 3), root) for i in range(D.shape[1])])
+        z = np.asarray(cm.update(base, dstar), dtype=float)
+        z[col] = guess + root * delta
+        r = self._ratio(t, z)
         return (z, r) if r <= _TAU_LO else None
 
     # ------------------------------------------------------------------ columns of a grid
