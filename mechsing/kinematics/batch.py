@@ -26,7 +26,7 @@ import numpy as np
 from mechsing import lie
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
-from mechsing.lie import exp_so3
+from mechsing.lie import exp_so3, log_so3
 
 __all__ = ["BatchClosure"]
 
@@ -67,7 +67,12 @@ class BatchClosure:
         # the first-kind coordinates of a non-abelian joint from a commensurate log:
         # least squares against its commensurate basis, one pseudo-inverse per joint
         self._pinv = {}
+        #: a spherical joint's rotation vectors composed directly: (angular basis, inverse)
+        self._turns = {}
         for jk in base.joints:
+            if jk.type == "S":
+                W = np.asarray(jk.basis, dtype=float)[:, :3]
+                self._turns[jk.name] = (W, np.linalg.inv(W))
             if not jk.abelian:
                 B = self.frame.twists(np.asarray(jk.basis, dtype=float).T)
                 self._pinv[jk.name] = np.linalg.pinv(B)
@@ -77,8 +82,10 @@ class BatchClosure:
     def deltas(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
         """The closure residual of every chord (and the pose), (N, blocks, 4, 4)."""
         q = Q[:, : self.nb]
-        P = batched.poses(self.base, q) if P is None else P
-        out = [P[jk.a] @ batched.element(jk, q) @ lie.inverse(P[jk.b]) for jk in self.chords]
+        P = batched.poses(self.base, q, fast=True) if P is None else P
+        out = [
+            P[jk.a] @ batched.element(jk, q, fast=True) @ lie.inverse(P[jk.b]) for jk in self.chords
+        ]
         if self.pose is not None:
             out.append(P[self.pose_a] @ self.target(Q[:, self.nb :]) @ lie.inverse(P[self.pose_b]))
         if not out:
@@ -118,7 +125,7 @@ class BatchClosure:
         """The commensurate closure Jacobian in the joint coordinates: (N, 6 * blocks, nb)
         (the pose coordinates are given and have no column)."""
         q = Q[:, : self.nb]
-        P = batched.poses(self.base, q) if P is None else P
+        P = batched.poses(self.base, q, fast=True) if P is None else P
         Ss = self.frame.screws(batched.current_screws(self.base, q, P))  # (N, 6, nb)
         signs = self.signs
         if self.pose is not None:
@@ -140,7 +147,12 @@ class BatchClosure:
             if jk.abelian:
                 out[:, jk.columns] = q[:, jk.columns] + d
                 continue
-            M = lie.exp(d @ jk.basis) @ batched.element(jk, q)
+            if jk.name in self._turns:
+                W, Wi = self._turns[jk.name]
+                R = exp_so3(d @ W) @ exp_so3(q[:, jk.columns] @ W)
+                out[:, jk.columns] = log_so3(R) @ Wi
+                continue
+            M = lie.exp(d @ jk.basis) @ batched.element(jk, q, fast=True)
             x = self.frame.twists(lie.log(M)[..., None])[..., 0]  # (N, 6) commensurate
             out[:, jk.columns] = x @ self._pinv[jk.name].T
         return out
@@ -153,7 +165,14 @@ class BatchClosure:
         for jk in self.base.joints:
             if jk.abelian:
                 continue
-            M = batched.element(jk, q1) @ lie.inverse(batched.element(jk, q0))
+            if jk.name in self._turns:
+                W, Wi = self._turns[jk.name]
+                R = exp_so3(q1[:, jk.columns] @ W) @ np.swapaxes(
+                    exp_so3(q0[:, jk.columns] @ W), -1, -2
+                )
+                D[:, jk.columns] = log_so3(R) @ Wi
+                continue
+            M = batched.element(jk, q1, fast=True) @ lie.inverse(batched.element(jk, q0, fast=True))
             x = self.frame.twists(lie.log(M)[..., None])[..., 0]
             D[:, jk.columns] = x @ self._pinv[jk.name].T
         return D
@@ -177,7 +196,12 @@ class BatchClosure:
         Q = np.array(Q, dtype=float, copy=True)
         cols = np.flatnonzero(free)
         lengths = self.frame.length_columns[cols]
-        D = self.deltas(Q)
+        # the poses and residuals of the current rows, carried from one iteration to the
+        # next (each trial point's are computed once)
+        P = {
+            k: np.array(v) for k, v in batched.poses(self.base, Q[:, : self.nb], fast=True).items()
+        }
+        D = self.deltas(Q, P)
         res = self.residual_norm(D)
         its = np.zeros(Q.shape[0], dtype=int)
         active = np.ones(Q.shape[0], dtype=bool)
@@ -194,19 +218,24 @@ class BatchClosure:
                 break
             idx = np.flatnonzero(active)
             Qa = Q[idx]
-            P = batched.poses(self.base, Qa[:, : self.nb])
-            J = self.jacobian(Qa, P)[:, :, cols]
-            r = self.residual_twists(self.deltas(Qa, P))
+            Pa = {k: v[idx] for k, v in P.items()}
+            J = self.jacobian(Qa, Pa)[:, :, cols]
+            r = self.residual_twists(D[idx])
             du = _damped_step(J, r)
             du = np.where(lengths[None, :], du * self.L, du)
             step = np.zeros((len(idx), self.nb))
             step[:, cols] = du
             Qn = self.update(Qa, step)
-            rn = self.residual_norm(self.deltas(Qn))
+            Pn = batched.poses(self.base, Qn[:, : self.nb], fast=True)
+            Dn = self.deltas(Qn, Pn)
+            rn = self.residual_norm(Dn)
             better = rn < res[idx]
             keep = idx[better]
             Q[keep] = Qn[better]
             res[keep] = rn[better]
+            D[keep] = Dn[better]
+            for k in P:
+                P[k][keep] = Pn[k][better]
             its[idx] += 1
             # a row that no longer gains stops
             active[idx[~better]] = False

@@ -28,17 +28,87 @@ from mechsing.lie import ANGULAR, LINEAR
 __all__ = ["SerialJacobian", "current_screws", "element", "poses"]
 
 
-def element(jk: Any, q: np.ndarray) -> np.ndarray:
-    """The joint's relative displacement M (``g_b = g_a M``): (..., 4, 4) for q of shape (..., n)."""
+def element(jk: Any, q: np.ndarray, fast: bool = False) -> np.ndarray:
+    """The joint's relative displacement M (``g_b = g_a M``): (..., 4, 4) for q of shape (..., n).
+
+    ``fast``: a one-dof float joint by its Rodrigues closed form (:func:`_one_dof_exp`,
+    equal to :func:`mechsing.lie.exp` to rounding): the sweeps' batches use it; the
+    analysis keeps :func:`mechsing.lie.exp`, so its numbers do not move with the batches'."""
     qj = q[..., jk.columns]
+    floats = fast and jk.basis.dtype != object
     if jk.type == "U":
+        if floats:
+            return _one_dof_exp(jk.basis[0], qj[..., 0]) @ _one_dof_exp(jk.basis[1], qj[..., 1])
         return lie.exp(jk.basis[0] * qj[..., 0, None]) @ lie.exp(jk.basis[1] * qj[..., 1, None])
+    if floats and jk.basis.shape[0] == 1:
+        return _one_dof_exp(jk.basis[0], qj[..., 0])
+    if floats and jk.type == "S":
+        return _spherical_exp(jk.basis, qj)
     return lie.exp(qj @ jk.basis)
 
 
-def poses(model: Any, q: np.ndarray, bodies: Any = None) -> dict[str, np.ndarray]:
+def _spherical_exp(basis: np.ndarray, qj: np.ndarray) -> np.ndarray:
+    """``exp(q B)`` of a spherical joint (float): the turn ``R = exp(w)`` with ``w`` the
+    angular part of ``q B``, about the joint's centre c (``v = c x w``): ``p = (I - R) c``."""
+    x = qj @ basis
+    R = lie.exp_so3(x[..., ANGULAR])
+    key = basis.tobytes()
+    c = _CENTRES.get(key)
+    if c is None:
+        B = np.asarray(basis, dtype=float)
+        # the centre from the basis: v_i = c x w_i = -w_i^ c for the three rotations
+        A = -np.concatenate([_hat(w) for w in B[:, ANGULAR]])
+        c = _CENTRES[key] = np.linalg.lstsq(A, B[:, LINEAR].reshape(-1), rcond=None)[0]
+    out = np.zeros(qj.shape[:-1] + (4, 4))
+    out[..., :3, :3] = R
+    out[..., :3, 3] = c - R @ c
+    out[..., 3, 3] = 1.0
+    return out
+
+
+#: the centres of spherical float bases (their bytes -> c)
+_CENTRES: dict[bytes, np.ndarray] = {}
+
+
+def _hat(w: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+
+
+#: the Rodrigues tables of one-dof float screws (their bytes -> K, K^2, v, rotates)
+_ONE_DOF: dict[bytes, tuple[np.ndarray, np.ndarray, np.ndarray, bool]] = {}
+
+
+def _one_dof_exp(e: np.ndarray, th: np.ndarray) -> np.ndarray:
+    """``exp(th e)`` of a one-dof float screw ``e = (u, v)`` (|u| = 1, or u = 0) for an
+    array of angles: ``R = I + sin K + (1 - cos) K^2`` and
+    ``p = (th I + (1 - cos) K + (th - sin) K^2) v`` with ``K = u^`` (the closed form
+    :func:`mechsing.lie.exp` evaluates by series; this skips the general case's work)."""
+    key = e.tobytes()
+    table = _ONE_DOF.get(key)
+    if table is None:
+        u, v = np.asarray(e[ANGULAR], dtype=float), np.asarray(e[LINEAR], dtype=float)
+        K = np.array([[0.0, -u[2], u[1]], [u[2], 0.0, -u[0]], [-u[1], u[0], 0.0]])
+        table = (K, K @ K, v, bool(np.any(u)))
+        _ONE_DOF[key] = table
+    K, K2, v, rotates = table
+    out = np.zeros(th.shape + (4, 4))
+    out[..., 3, 3] = 1.0
+    if not rotates:
+        out[..., 0, 0] = out[..., 1, 1] = out[..., 2, 2] = 1.0
+        out[..., :3, 3] = th[..., None] * v
+        return out
+    s, c1 = np.sin(th), 1.0 - np.cos(th)
+    out[..., :3, :3] = np.eye(3) + s[..., None, None] * K + c1[..., None, None] * K2
+    out[..., :3, 3] = th[..., None] * v + c1[..., None] * (K @ v) + (th - s)[..., None] * (K2 @ v)
+    return out
+
+
+def poses(
+    model: Any, q: np.ndarray, bodies: Any = None, fast: bool = False
+) -> dict[str, np.ndarray]:
     """The pose of every user body (ground = identity) from the spanning tree, or only of
-    ``bodies`` and those on their tree paths: (..., 4, 4) for q of shape (..., n)."""
+    ``bodies`` and those on their tree paths: (..., 4, 4) for q of shape (..., n)
+    (``fast``: see :func:`element`)."""
     mech = model.mech
     eye = model.backend.eye(4)
     batch = q.shape[:-1]
@@ -66,7 +136,7 @@ def poses(model: Any, q: np.ndarray, bodies: Any = None) -> dict[str, np.ndarray
         prev = out[_parent(model, steps)]
         jk = model.joint(last.joint)
         if last.joint not in elements:
-            elements[last.joint] = element(jk, q)
+            elements[last.joint] = element(jk, q, fast)
         M = elements[last.joint]
         out[body] = prev @ (M if last.sign > 0 else lie.inverse(M))
     return out

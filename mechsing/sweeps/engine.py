@@ -451,10 +451,10 @@ class Sweep:
         g = (math.sqrt(5) - 1) / 2
         a, b = float(za[col]), float(zb[col])
 
-        m = float(zm[col])
+        m, a0 = float(zm[col]), a
 
         def at(v: float) -> np.ndarray:
-            pair = (za, zm) if (v - m) * (a - m) > 0 else (zm, zb)
+            pair = (za, zm) if (v - m) * (a0 - m) > 0 else (zm, zb)
             return self.close_at(pair[0], pair[1], col, v)
 
         try:

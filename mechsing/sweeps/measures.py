@@ -138,7 +138,7 @@ class Measures:
 
     def matrices(self, Q: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray | None]:
         """Each test's commensurate matrix at the rows of Q, and the closure kernel."""
-        P = batched.poses(self.model, Q)
+        P = batched.poses(self.model, Q, fast=True)
         S = batched.current_screws(self.model, Q, P)
         Ss = self.frame.screws(S)
         N = Q.shape[0]
@@ -222,8 +222,12 @@ class Measures:
     def compressed_pairs(
         self, pm: PointMeasures, ia: np.ndarray, ib: np.ndarray
     ) -> dict[str, np.ndarray]:
-        """:meth:`compressed` for pairs of points of one measured batch (rows ``ia`` and
-        ``ib``), from the matrices it kept."""
+        """The sign test between neighbours of one measured batch (rows ``ia`` and ``ib``),
+        from the matrices it kept: the matrix at b projected on the weakest singular pair
+        at a, ``u_g^T A_b v_g`` (``sigma_g`` at a itself).  It follows the weakest
+        singular value through zero, and costs a product where :meth:`compressed` costs a
+        determinant of the generic rank's size; negative where a rank drop was crossed (the
+        refinement then uses :meth:`compressed`, whose zero is exact)."""
         assert pm.matrices is not None
         out = {}
         for t, M in pm.matrices.items():
@@ -231,7 +235,8 @@ class Measures:
             if t in ("input", "output") and pm.kernel is not None:
                 A = self._turned(A, pm.kernel[ib], pm.kernel[ia])
             U, V = pm.bases[t]
-            out[t] = np.linalg.det(np.swapaxes(U[ia], 1, 2) @ A @ V[ia])
+            u, v = U[ia][:, :, -1], V[ia][:, :, -1]
+            out[t] = np.einsum("ni,nij,nj->n", u, A, v)
         return out
 
     def compressed(self, a: PointMeasures, ia: np.ndarray, Qb: np.ndarray) -> dict[str, np.ndarray]:

@@ -61,7 +61,11 @@ _MAX_FOLDS = 8
 _ARC_NEWTON = 10
 #: a node closed from the secant predictor is kept when Newton moved it at most this
 #: fraction of the step (a well-predicted step stays on its branch)
-_NODE_CORRECTION = 0.1
+_NODE_CORRECTION = 0.3
+#: samples closed by one batched Newton call at most (bounds its working memory)
+_FINE_CHUNK = 8192
+#: a badly predicted node is tried again in this many halvings of its step
+_NODE_HALVINGS = 3
 
 
 @dataclass
@@ -132,11 +136,13 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
     i, z = 0, np.array(z0, dtype=float)
     z_prev: np.ndarray | None = None
     stopped = None
+    #: node pairs whose samples in between are closed together at the end
+    segments: list[tuple[int, int]] = []
     while i < K - 1:
         j = i + 1
         while j + 1 < K and abs(values[j + 1] - values[i]) / sc <= SWEEP_NODE_STEP:
             j += 1
-        zj = _node(pb, z, z_prev, col, values[j])
+        zj = _nodes(pb, z, z_prev, col, values[j])
         if zj is None:
             target = z.copy()
             target[col] = values[j]
@@ -146,8 +152,7 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
                 zj = None
         if zj is not None:
             if j > i + 1:
-                Zf, itf = _fine(pb, z, zj, col, values[i + 1 : j], values[i], values[j])
-                Z[i + 1 : j], its[i + 1 : j] = Zf, itf
+                segments.append((i, j))
             Z[j] = zj
             i, z, z_prev = j, np.asarray(zj, dtype=float), z
             continue
@@ -163,8 +168,7 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
         kind, zs = out
         if kind == "passed":  # no fold: the curve passes a point continuation refused
             if j > i + 1:
-                Zf, itf = _fine(pb, z, zs, col, values[i + 1 : j], values[i], values[j])
-                Z[i + 1 : j], its[i + 1 : j] = Zf, itf
+                segments.append((i, j))
             Z[j] = zs
             i, z, z_prev = j, zs, None
             continue
@@ -190,7 +194,31 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
         folds.append(far)
         Z[k] = zk
         i, z, z_prev = k, zk, None
+    if segments:
+        _fine(pb, Z, its, col, values, segments)
     return PathTrace(Z, folds, stopped, its)
+
+
+def _nodes(
+    pb: Problem, z: np.ndarray, z_prev: np.ndarray | None, col: int, value: float
+) -> np.ndarray | None:
+    """The next node by :func:`_node`, in halved steps when the whole one is not well
+    predicted (at most _NODE_HALVINGS times), before the careful continuation."""
+    parts = 1
+    for attempt in range(_NODE_HALVINGS + 1):
+        # the previous node's secant, then the tangent (a secant from a point just
+        # behind): a far previous node predicts a short step no better than a long one
+        here, prev = z, (z_prev if attempt == 0 else None)
+        start = float(z[col])
+        for k in range(1, parts + 1):
+            nxt = _node(pb, here, prev, col, start + (value - start) * k / parts)
+            if nxt is None:
+                break
+            here, prev = nxt, here
+        else:
+            return here
+        parts *= 2
+    return None
 
 
 def _node(
@@ -228,43 +256,70 @@ def _pose(pb: Problem) -> Any:
 
 def _fine(
     pb: Problem,
-    za: np.ndarray,
-    zb: np.ndarray,
+    Z: np.ndarray,
+    its: np.ndarray,
     col: int,
-    vals: np.ndarray,
-    va: float,
-    vb: float,
-) -> tuple[np.ndarray, np.ndarray]:
-    """The samples strictly between two nodes: batched Newton from their interpolation on
-    the group; a sample that does not close near its prediction is closed again by
-    continuation from the previous one."""
+    values: np.ndarray,
+    segments: list[tuple[int, int]],
+) -> None:
+    """The samples strictly between the nodes of each segment (i, j), all segments of the
+    path together: batched Newton from their cubic interpolation on the group (in chunks
+    of _FINE_CHUNK rows); a sample that does not close near its prediction is closed again
+    by continuation from the previous one.  Fills Z and its in place."""
     cm, bc = pb.cm, pb.batch
-    d = cm.difference(zb, za)
-    f = (vals - va) / (vb - va)
     nb = bc.nb
-    Q0 = np.tile(za, (len(vals), 1))
-    Qp = bc.update(Q0, f[:, None] * d[None, :nb])
-    Qp[:, nb:] = za[nb:] + f[:, None] * d[None, nb:]
-    Qp[:, col] = vals
-    free = ~pb.given[:nb]
-    Q, res, its = bc.newton(Qp, free, pb.tolerance)
-    span = pb.comm(d)
-    moved = np.linalg.norm(cm.float_frame.rates(Q - Qp), axis=1)
-    bad = (res > pb.tolerance) | (moved > SWEEP_JUMP_RATIO * span) | ~np.isfinite(res)
-    if np.any(bad):
-        given = tuple(int(i) for i in np.flatnonzero(pb.given))
-        prev = za
-        for k in range(len(vals)):
-            if bad[k]:
-                target = prev.copy()
-                target[col] = vals[k]
-                try:
-                    Q[k] = pb.closer.follow(prev, target, given, _pose(pb)).q
-                except ClosureError:
-                    Q[k:] = np.nan
-                    break
-            prev = Q[k]
-    return Q, its
+    # each sample predicted by the cubic through its segment's two nodes and the nodes
+    # before and after (a quadratic at the ends of the path): on the group, as increments
+    # from the segment's first node
+    rows, base, preds, spans = [], [], [], []
+    for i, j in segments:
+        knots = [
+            k for k in (2 * i - j, i, j, 2 * j - i) if 0 <= k < len(Z) and not np.isnan(Z[k, 0])
+        ]
+        D = bc.difference(Z[knots], np.repeat(Z[i][None, :], len(knots), axis=0))
+        tk = values[knots]
+        ks = np.arange(i + 1, j)
+        tv = values[ks]
+        # Lagrange weights of the knots at the samples
+        W = np.ones((len(ks), len(knots)))
+        for a in range(len(knots)):
+            for b in range(len(knots)):
+                if a != b:
+                    W[:, a] *= (tv - tk[b]) / (tk[a] - tk[b])
+        preds.append(W @ D)
+        rows.extend(ks.tolist())
+        base.extend([i] * len(ks))
+        spans.extend([pb.comm(D[knots.index(j)])] * len(ks))
+    rows_a = np.array(rows)
+    A = Z[np.array(base)]
+    P = np.concatenate(preds)
+    span_a = np.array(spans)
+    for lo in range(0, len(rows_a), _FINE_CHUNK):
+        sl = slice(lo, lo + _FINE_CHUNK)
+        Qp = bc.update(A[sl], P[sl, :nb])
+        Qp[:, nb:] = A[sl, nb:] + P[sl, nb:]
+        Qp[:, col] = values[rows_a[sl]]
+        Q, res, it = bc.newton(Qp, ~pb.given[:nb], pb.tolerance)
+        moved = np.linalg.norm(cm.float_frame.rates(Q - Qp), axis=1)
+        bad = (res > pb.tolerance) | (moved > SWEEP_JUMP_RATIO * span_a[sl]) | ~np.isfinite(res)
+        Q[bad] = np.nan
+        Z[rows_a[sl]] = Q
+        its[rows_a[sl]] = it
+    # the samples Newton did not close near their prediction: continuation, in order
+    given = tuple(int(i) for i in np.flatnonzero(pb.given))
+    for i, j in segments:
+        for k in range(i + 1, j):
+            if not np.isnan(Z[k, 0]):
+                continue
+            prev = Z[k - 1]
+            if np.isnan(prev[0]):
+                continue
+            target = prev.copy()
+            target[col] = values[k]
+            try:
+                Z[k] = pb.closer.follow(prev, target, given, _pose(pb)).q
+            except ClosureError:
+                continue
 
 
 class _Arc:
