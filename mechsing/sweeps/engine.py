@@ -257,7 +257,16 @@ class Sweep:
             ratio[t][reached] = pm.ratio[t]
         located = [self._fold(f, col, index, other, values) for f in [*fwd.folds, *bwd.folds]]
         located += self._along(Z, reached, pm, ratio, col, index, other, values)
-        stopped = [s for s in (fwd.stopped, bwd.stopped) if s]
+        var = self._variable(col)
+        stopped = []
+        for trace, end in ((fwd, values[-1]), (bwd, values[0])):
+            if trace.stopped:
+                # where it stopped: the last sample reached towards that end
+                got = trace.Z[~np.isnan(trace.Z[:, 0])]
+                last = var.shown(float(got[-1][col])) if len(got) else "its start"
+                stopped.append(
+                    f"towards {var.name} = {var.shown(float(end))}: stopped after {last}: {trace.stopped}"
+                )
         return RowResult(index, reached, rank, ratio, _merge(located, self), stopped, newton, Z, pm)
 
     def _measure(self, Z: np.ndarray, reached: np.ndarray) -> PointMeasures:
