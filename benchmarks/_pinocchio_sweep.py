@@ -708,25 +708,27 @@ class Case:
         return len(self.values) if self.held else int(np.prod(np.shape(self.positions)[:-1]))
 
 
-def cases() -> list[Case]:
+def cases(density: int = 1) -> list[Case]:
     """The benchmark's paths: the four-bar's crank A over a turn in 0.1 deg steps (3600
     points); the slider-crank's slider P over its reachable range, between the dead centres
     x = 4 sqrt(11)/5 and 24/5 (the slider at x = 16/5 + P), at the midpoints of 2000 equal
     cells; the hexapod's platform turned about the vertical through its centre from -100 to
     100 deg (1000 points, through the Type II poses at +-90 deg); the 3-RPR's reference point
-    over a 50 x 50 grid of +-0.3 m at the reference orientation (a 2-variable case)."""
+    over a 50 x 50 grid of +-0.3 m at the reference orientation (a 2-variable case).
+    ``density`` multiplies the points of each path (and of each grid by about as much)."""
+    side = 50 * max(1, round(density**0.5))
     lo, hi = 4 * np.sqrt(11) / 5 - 16 / 5, 8 / 5
-    slider = lo + (np.arange(2000) + 0.5) * (hi - lo) / 2000
-    turn = np.zeros((1000, 3))
-    turn[:, 2] = np.deg2rad(np.linspace(-100, 100, 1000))
-    steps = np.linspace(-0.3, 0.3, 50)
+    slider = lo + (np.arange(2000 * density) + 0.5) * (hi - lo) / (2000 * density)
+    turn = np.zeros((1000 * density, 3))
+    turn[:, 2] = np.deg2rad(np.linspace(-100, 100, 1000 * density))
+    steps = np.linspace(-0.3, 0.3, side)
     X, Y = np.meshgrid(steps, steps, indexing="ij")
     grid = np.stack([X, Y, np.zeros_like(X)], axis=-1)
     return [
         Case(
             "four-bar, crank A 0-360 deg",
             "fourbar.yaml",
-            np.deg2rad(np.arange(3600) * 0.1),
+            np.deg2rad(np.arange(3600 * density) * 0.1 / density),
             (300, 1800, 3500),
             held="A",
         ),
@@ -746,10 +748,10 @@ def cases() -> list[Case]:
             rotation_vectors=turn,
         ),
         Case(
-            "3-RPR, platform (x, y) 50 x 50 grid",
+            f"3-RPR, platform (x, y) {side} x {side} grid",
             "planar_3rpr.yaml",
             np.stack([X, Y], axis=-1).reshape(-1, 2),
-            (0, 1275, 2499),
+            (0, side * side // 2 + side // 2, side * side - 1),
             positions=grid,
             rotation_vectors=np.zeros_like(grid),
         ),

@@ -18,7 +18,7 @@ reach a singularity, a second mechsing sweep across one).  ``--million`` also ru
 ``mechsing sweep`` on a 10^6-point five-bar grid in a child process and reports its time
 and peak resident memory.
 
-    OPENBLAS_NUM_THREADS=1 python benchmarks/sweep.py [--repeat 3] [--million]
+    OPENBLAS_NUM_THREADS=1 python benchmarks/sweep.py [--repeat 3] [--density 10] [--million]
 """
 
 from __future__ import annotations
@@ -37,11 +37,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-import mechsing  # noqa: E402
-from tests.reference import sweep_truth as truth  # noqa: E402
-
 from _pinocchio_sweep import PinocchioAnchor, cases, pin, prepare  # noqa: E402
 from _timing import timed_median  # noqa: E402
+
+import mechsing  # noqa: E402
+from tests.reference import sweep_truth as truth  # noqa: E402
 
 
 def _spec(name: str, values: np.ndarray, factor: float = 1.0) -> str:
@@ -51,10 +51,10 @@ def _spec(name: str, values: np.ndarray, factor: float = 1.0) -> str:
     return f"{name}={float(v[0])!r}:{float(v[-1] + step / 4)!r}:{float(step)!r}"
 
 
-def _mechsing_cases() -> list[tuple[str, list[str], str | None]]:
+def _mechsing_cases(density: int) -> list[tuple[str, list[str], str | None]]:
     """The mechsing sweep of each anchor case (same samples, the file's units)."""
     out = []
-    for case in cases():
+    for case in cases(density):
         mech = mechsing.load(ROOT / "examples" / case.file)
         af = float(mech.units.angle_factor)
         if case.held is not None:
@@ -115,9 +115,9 @@ def _err(what: str, got: list[float], want: list[float]) -> str:
     return f"{what} within {max(abs(a - b) for a, b in zip(got, want, strict=True)):.1e}"
 
 
-def _five_bar(repeat: int) -> None:
+def _five_bar(repeat: int, density: int) -> None:
     """The five-bar grid of its two inputs: mechsing and the anchor's grid of held inputs."""
-    v = np.linspace(-0.4, 0.4, 41)
+    v = np.linspace(-0.4, 0.4, 41 * max(1, round(density**0.5)))
     spec = [_spec("A1", v), _spec("A2", v)]
     t, r = timed_median(lambda: mechsing.sweep(ROOT / "examples" / "five_bar.yaml", spec), repeat)
     n = r.points()
@@ -135,7 +135,7 @@ def _five_bar(repeat: int) -> None:
         for p in r.located
         if p.kind == "fold"
     ]
-    line = f"  five-bar, inputs A1 x A2 41 x 41 grid: {n} points, mechsing {n / t:,.0f} points/s"
+    line = f"  five-bar, inputs A1 x A2 {len(v)} x {len(v)} grid: {n} points, mechsing {n / t:,.0f} points/s"
     if pin is not None:
         anchor = PinocchioAnchor(mechsing.load(ROOT / "examples" / "five_bar.yaml"))
         q0 = anchor.approach(pin.neutral(anchor.model), ["A1", "A2"], [v[0], v[0]])
@@ -184,6 +184,12 @@ def _million() -> None:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument(
+        "--density",
+        type=int,
+        default=10,
+        help="points of each path times this (grids: about as much)",
+    )
     parser.add_argument("--million", action="store_true", help="also the 10^6-point grid")
     args = parser.parse_args(argv)
     for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
@@ -192,7 +198,9 @@ def main(argv: list[str] | None = None) -> int:
     if pin is None:
         print("note: Pinocchio is not installed (pip install 'mechsing[bench]'): mechsing only")
     print(f"mechsing {mechsing.__version__} sweeps (auto), median of {args.repeat}")
-    for case, (file, spec, start) in zip(cases(), _mechsing_cases(), strict=True):
+    for case, (file, spec, start) in zip(
+        cases(args.density), _mechsing_cases(args.density), strict=True
+    ):
         t, r = timed_median(
             lambda f=file, s=spec, st=start: mechsing.sweep(ROOT / "examples" / f, s, st),
             args.repeat,
@@ -210,7 +218,7 @@ def main(argv: list[str] | None = None) -> int:
             )
         print(line)
         print(f"    located on a crossing sweep: {_accuracy(file)}")
-    _five_bar(args.repeat)
+    _five_bar(args.repeat, args.density)
     if args.million:
         _million()
     return 0

@@ -119,7 +119,9 @@ def test_five_bar_grid_type_one_loci_match_the_independent_determinant():
     determinant written from the planar geometry, and the folds (the end of the assembled
     region) zero the Type II determinant."""
     r = sweep(EXAMPLES / "five_bar.yaml", ["A1=-0.6:0.6:0.1", "A2=-0.6:0.6:0.1"])
-    assert [p for p in r.located if p.kind == "fold"] and [p for p in r.located if "input" in p.tests]
+    assert [p for p in r.located if p.kind == "fold"] and [
+        p for p in r.located if "input" in p.tests
+    ]
     mode = truth.FIVE_BAR.reference_mode()
     size = max(truth.FIVE_BAR.lengths()) ** 2
     for p in r.located:
@@ -150,3 +152,85 @@ def test_change_point_four_bar_bifurcation_at_its_flat_position(spec):
     for p in r.located:
         if "closure" in p.tests:
             assert "bifurcation" in (p.classes or ())
+
+
+def _scaled(tmp_path: Path, name: str, k: float) -> Path:
+    """The example with every length times k (points, the output point, the values of
+    prismatic joints), written as expressions of the file's own numbers."""
+    import yaml
+
+    data = yaml.safe_load((EXAMPLES / name).read_text())
+
+    def times(x):
+        return f"({x})*{k!r}"
+
+    prismatic = {j["name"] for j in data["joints"] if j["type"] == "P"}
+    for j in data["joints"]:
+        if "point" in j:
+            j["point"] = [times(x) for x in j["point"]]
+    if isinstance(data.get("output"), dict) and "point" in data["output"]:
+        data["output"]["point"] = [times(x) for x in data["output"]["point"]]
+    for cfg in (data.get("configurations") or {}).values():
+        for jn in list(cfg or {}):
+            if jn in prismatic:
+                cfg[jn] = times(cfg[jn])
+    out = tmp_path / f"x{k:g}-{name}"
+    out.write_text(yaml.safe_dump(data, sort_keys=False))
+    return out
+
+
+@pytest.mark.parametrize("k", [1e-3, 1.0, 1e3])
+def test_three_rpr_type_two_locus_where_the_legs_are_concurrent(tmp_path, k):
+    """Over the platform's (x, y) at its reference orientation, the output (Type II) locus
+    is where the three leg lines meet in a point: every located point zeroes the
+    concurrency determinant, and every grid cell whose corners give it opposite signs
+    holds a located point; the same, scaled, on the mechanism scaled by k."""
+    path = EXAMPLES / "planar_3rpr.yaml" if k == 1.0 else _scaled(tmp_path, "planar_3rpr.yaml", k)
+    r = sweep(
+        path,
+        [
+            f"pose.x={0.4 * k!r}:{1.6 * k!r}:{0.2 * k!r}",
+            f"pose.y={2.4 * k!r}:{3.4 * k!r}:{0.2 * k!r}",
+        ],
+    )
+    assert r.reached.all()
+    xs, ys = r.variables[0].values / k, r.variables[1].values / k
+    typ2 = [p for p in r.located if "output" in p.tests]
+    assert typ2 and r.loci
+    for p in typ2:
+        d = truth.rpr3_concurrency_det(
+            np.array(p.values[0] / k), np.array(p.values[1] / k), np.array(0.0), unit=False
+        )
+        assert abs(d) <= 1e-8
+        if p.between == "row":  # the points found along the rows are classified
+            assert "output" in (p.classes or ())
+    D = truth.rpr3_concurrency_det(
+        xs[None, :], ys[:, None], np.zeros((len(ys), len(xs))), unit=False
+    )
+    for j in range(len(ys) - 1):
+        for i in range(len(xs) - 1):
+            corners = D[j : j + 2, i : i + 2]
+            if corners.min() < 0 < corners.max():
+                assert any(
+                    xs[i] - 1e-9 <= p.values[0] / k <= xs[i + 1] + 1e-9
+                    and ys[j] - 1e-9 <= p.values[1] / k <= ys[j + 1] + 1e-9
+                    for p in typ2
+                ), (xs[i], ys[j])
+
+
+@pytest.mark.parametrize("k", [1e-3, 1e3])
+def test_scaled_slider_crank_and_double_rocker(tmp_path, k):
+    """The slider's dead centres scale with the mechanism; the rocker's angular limits do
+    not move."""
+    r = sweep(
+        _scaled(tmp_path, "slider_crank_slider_input.yaml", k),
+        [f"P={-4 * k!r}:{4 * k!r}:{0.01 * k!r}"],
+    )
+    dead = truth.slider_crank_dead_centres((0, 0), (0, -1), (3.2, 1.4), (1, 0))
+    np.testing.assert_allclose(
+        _values(r, kind="fold"), sorted(k * v for v in dead.values()), atol=LOCATED * k
+    )
+    r = sweep(_scaled(tmp_path, "double_rocker.yaml", k), ["A=-3.1:3.1:0.01"])
+    np.testing.assert_allclose(
+        _values(r, kind="fold"), [-2 * math.pi / 3, 2 * math.pi / 3], atol=LOCATED
+    )

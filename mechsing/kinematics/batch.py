@@ -187,12 +187,18 @@ class BatchClosure:
     # ------------------------------------------------------------------ Newton
 
     def newton(
-        self, Q: np.ndarray, free: np.ndarray, tolerance: float, iterations: int = 8
+        self,
+        Q: np.ndarray,
+        free: np.ndarray,
+        tolerance: float,
+        iterations: int = 8,
+        polish: bool = True,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Damped Gauss-Newton on the group for every row of Q, moving the joint
         coordinates in ``free`` (bool, nb); stops a row once its residual is below
-        ``tolerance`` (m) and it no longer gains.  Returns (Q, residual (m), Newton
-        iterations per row)."""
+        ``tolerance`` (m) and, with ``polish``, one more step no longer gains (the last
+        digits, for a point whose singular values are read near zero).  Returns (Q,
+        residual (m), Newton iterations per row)."""
         Q = np.array(Q, dtype=float, copy=True)
         cols = np.flatnonzero(free)
         lengths = self.frame.length_columns[cols]
@@ -207,13 +213,13 @@ class BatchClosure:
         active = np.ones(Q.shape[0], dtype=bool)
         if not len(cols) or D.shape[1] == 0:
             return Q, res, its
-        polish = np.zeros(Q.shape[0], dtype=int)
+        polished = np.zeros(Q.shape[0], dtype=int)
         for _ in range(iterations):
             # a closed row is polished once more (the step after tolerance gains the
             # last digits), then left alone
             done = res <= tolerance
-            polish[done] += 1
-            active &= ~(done & (polish > 1))
+            polished[done] += 1
+            active &= ~(done & (polished > (1 if polish else 0)))
             if not np.any(active):
                 break
             idx = np.flatnonzero(active)

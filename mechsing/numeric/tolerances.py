@@ -132,12 +132,14 @@ SCAN_ROUNDING_FACTOR = 16.0
 #: costs that second analysis; a regular one is never re-decided).
 FLOAT_ROUNDING_FACTOR = 4.0
 
-#: sweeps (:mod:`mechsing.sweeps`).  A path is followed by continuation through nodes at
-#: most SWEEP_NODE_STEP apart (radians, or lengths / L); the samples between two nodes
-#: are closed together by batched Newton from their interpolation, and a sample whose
-#: correction exceeds SWEEP_JUMP_RATIO times the node spacing is closed again by
-#: continuation (it may have jumped to another assembly mode)
-SWEEP_NODE_STEP = 0.1
+#: sweeps (:mod:`mechsing.sweeps`).  A path is followed through nodes at most
+#: SWEEP_NODE_STEP apart (radians, or lengths / L), each closed from the tangent's
+#: prediction and kept only when Newton moved it little (else the step is halved, and at
+#: last the careful continuation of a named configuration takes it); the samples between
+#: nodes are closed together by batched Newton from the cubic through the nodes around
+#: them, and a sample whose correction exceeds SWEEP_JUMP_RATIO times the node spacing is
+#: closed again by continuation (it may have jumped to another assembly mode)
+SWEEP_NODE_STEP = 0.25
 SWEEP_JUMP_RATIO = 0.25
 #: a located singularity (a sign change, a minimum, a fold) is refined until the swept
 #: value is known to this (radians, or lengths / L): well below the 1e-10 promised

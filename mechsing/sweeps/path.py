@@ -55,6 +55,9 @@ __all__ = ["Fold", "PathTrace", "Problem", "follow"]
 
 #: most arclength steps spent on the far side of one fold
 _ARC_BUDGET = 4000
+#: the longest step along a curve (commensurate): the tangent may turn at most 30 degrees
+#: per step, which shortens it where the curve bends
+_ARC_LONGEST = 10 * SWEEP_ARC_STEP
 #: most folds one direction of a path passes
 _MAX_FOLDS = 8
 #: Newton iterations of one arclength step
@@ -142,14 +145,9 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
         j = i + 1
         while j + 1 < K and abs(values[j + 1] - values[i]) / sc <= SWEEP_NODE_STEP:
             j += 1
+        # where the tangent's prediction cannot reach the next node (a fold, a singular
+        # point, a sharp bend) the curve itself is followed below
         zj = _nodes(pb, z, z_prev, col, values[j])
-        if zj is None:
-            target = z.copy()
-            target[col] = values[j]
-            try:
-                zj = pb.closer.follow(z, target, given, _pose(pb)).q
-            except ClosureError:
-                zj = None
         if zj is not None:
             if j > i + 1:
                 segments.append((i, j))
@@ -174,16 +172,21 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
             continue
         fold = Fold(float(zs[col]), zs, direction)
         folds.append(fold)
-        prev = z
+        prev, before = z, z_prev
         for k in range(i + 1, j + 1):
             if (values[k] - fold.value) * direction > 0:
                 break
-            target = prev.copy()
-            target[col] = values[k]
-            try:
-                Z[k] = prev = pb.closer.follow(prev, target, given, _pose(pb)).q
-            except ClosureError:
-                break
+            nxt = _nodes(pb, prev, before, col, values[k])
+            if nxt is None:
+                nxt = _near_fold(pb, prev, zs, col, values[k])
+            if nxt is None:
+                target = prev.copy()
+                target[col] = values[k]
+                try:
+                    nxt = pb.closer.follow(prev, target, given, _pose(pb)).q
+                except ClosureError:
+                    break
+            Z[k], prev, before = nxt, nxt, prev
         reached = [k for k in range(i + 1, j + 1) if not np.isnan(Z[k, 0])]
         last = max(reached) if reached else i
         resume = arc.other_side(zs, values, last)
@@ -250,6 +253,26 @@ def _node(
     return Q[0]
 
 
+def _near_fold(
+    pb: Problem, z: np.ndarray, zf: np.ndarray, col: int, value: float
+) -> np.ndarray | None:
+    """A sample between z and the fold zf: near a fold the swept value is quadratic in
+    the distance along the curve, so the sample lies at the fraction
+    ``1 - sqrt((t* - value) / (t* - t))`` of the way from z to zf; Newton from there."""
+    cm, bc = pb.cm, pb.batch
+    tz, tf = float(z[col]), float(zf[col])
+    if (value - tz) * (tf - tz) <= 0 or (tf - value) * (tf - tz) < 0:
+        return None
+    f = 1.0 - math.sqrt((tf - value) / (tf - tz))
+    zp = bc.between(z[None, :], zf[None, :], np.array([f]))[0]
+    zp[col] = value
+    Q, res, _ = bc.newton(zp[None, :], ~pb.given[: bc.nb], pb.tolerance)
+    span = pb.comm(cm.difference(zf, z))
+    if res[0] > pb.tolerance or pb.comm(Q[0] - zp) > SWEEP_JUMP_RATIO * span:
+        return None
+    return Q[0]
+
+
 def _pose(pb: Problem) -> Any:
     return pb.cm if pb.cm is not pb.model else None
 
@@ -299,7 +322,9 @@ def _fine(
         Qp = bc.update(A[sl], P[sl, :nb])
         Qp[:, nb:] = A[sl, nb:] + P[sl, nb:]
         Qp[:, col] = values[rows_a[sl]]
-        Q, res, it = bc.newton(Qp, ~pb.given[:nb], pb.tolerance)
+        # closed to the tolerance and no further: a sample read near a singularity is
+        # closed again (polished) by the refinement that locates it
+        Q, res, it = bc.newton(Qp, ~pb.given[:nb], pb.tolerance, polish=False)
         moved = np.linalg.norm(cm.float_frame.rates(Q - Qp), axis=1)
         bad = (res > pb.tolerance) | (moved > SWEEP_JUMP_RATIO * span_a[sl]) | ~np.isfinite(res)
         Q[bad] = np.nan
@@ -459,7 +484,7 @@ class _Arc:
                     return None
                 return "passed", zs
             z, tau = zn, tn
-            h = min(2 * h, 4 * SWEEP_ARC_STEP)
+            h = min(2 * h, _ARC_LONGEST)
         self.why = "the path's curve is longer than sweeps follow"
         return None
 
@@ -525,7 +550,7 @@ class _Arc:
                 far.z[self.col] += shift
                 return far, k, zk
             z, tau = zn, tn
-            h = min(2 * h, 4 * SWEEP_ARC_STEP)
+            h = min(2 * h, _ARC_LONGEST)
         self.why = "the curve past the limit does not come back within the range"
         return None
 
