@@ -234,3 +234,24 @@ def test_scaled_slider_crank_and_double_rocker(tmp_path, k):
     np.testing.assert_allclose(
         _values(r, kind="fold"), [-2 * math.pi / 3, 2 * math.pi / 3], atol=LOCATED
     )
+
+
+@pytest.mark.parametrize(
+    ("name", "spec", "start", "cls"),
+    [
+        ("slider_crank_slider_input.yaml", "P=-4:4:0.05", None, "output"),
+        ("fourbar.yaml", "A=0:360:2", None, "input"),
+        ("fourbar_changepoint.yaml", "A=-1:1:0.3", "crank-up", "bifurcation"),
+    ],
+)
+def test_located_points_classified_at_mp_digits(name, spec, start, cls):
+    """At mp:30 each located point is found again at 30 digits before its analysis (a point
+    only float-close to the singularity would be regular at 30 digits): every one gets its
+    class, decided at mp:30 on a singular value far below mp:30's thresholds."""
+    r = sweep(EXAMPLES / name, [spec], start, precision="mp:30")
+    assert r.located
+    for p in r.located:
+        assert p.precision == "mp:30"
+        assert cls in (p.classes or ()), (p.values, p.classes)
+        assert p.margin is not None and p.margin["dropped"] < 1e-25
+    assert any("located again at mp:30" in n for n in r.notes)

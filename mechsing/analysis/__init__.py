@@ -96,6 +96,8 @@ def analyze_found(
     not re-decide a singular float verdict whose dropped singular value is above
     float's rounding: that drop is the distance float located the point to.  Exact mode
     cannot take them (they are not exact data)."""
+    import mpmath
+
     from mechsing.model import Configuration
 
     prec = parse_precision(precision) if isinstance(precision, str) else precision
@@ -109,7 +111,8 @@ def analyze_found(
     for name, q in found.items():
         values: dict[str, list[float]] = {}
         for (joint, _i), x in zip(coords, q, strict=True):
-            values.setdefault(joint, []).append(float(x))
+            # N-digit values stay as they are (a point located again at mp:N)
+            values.setdefault(joint, []).append(x if isinstance(x, mpmath.mpf) else float(x))
         configurations[name] = Configuration(
             name, {j: tuple(v) for j, v in values.items()}, start="reference"
         )

@@ -213,6 +213,21 @@ class Closer:
         cfg = Configuration(label, {}, start=start)
         return self._continue(cfg, q0, target, tuple(given), model)
 
+    def polish(
+        self, q: np.ndarray, target: np.ndarray, given: tuple[int, ...], model: Any = None
+    ) -> tuple[np.ndarray, Any]:
+        """Newton at the model's digits (mp:N) from ``q`` (float or mp), the coordinates in
+        ``given`` held at their values in ``target`` (``model``: a pose model on this
+        Closer's model): the coordinates and their residual (m, the model's numbers).
+        Converges where float's point is within Newton's reach (a multiple root: slowly,
+        with the doubled step).  The sweeps' relocation of a float point at N digits."""
+        m = self.model if model is None else model
+        gmask = np.zeros(m.n, dtype=bool)
+        gmask[list(given)] = True
+        with m.precision.context():
+            qm, res, _ = self._newton_mp(m, q, m.asarray(list(target)), gmask)
+        return qm, res
+
     # ---------------------------------------------------------------- given values
 
     def _given(self, cfg: Configuration) -> tuple[np.ndarray, tuple[int, ...]]:

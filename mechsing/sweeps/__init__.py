@@ -209,7 +209,13 @@ class SweepRun:
                 f"{len(chosen)} of them, spread over the grid (max_classified)"
             )
         with working_on(file=self.mechanism.path or self.mechanism.name):
-            analysed = classify_located(self.mechanism, chosen, self.prec)
+            analysed, moved = classify_located(eng, chosen, self.prec)
+        if self.prec.mode == "mp" and chosen:
+            self.notes.append(
+                f"{sum(moved)} of the {len(chosen)} classified points were located again at "
+                f"{self.prec} before their analysis"
+                + ("" if all(moved) else "; the others keep their float values")
+            )
         by_id = {id(p): a for p, a in zip(chosen, analysed, strict=True)}
         model = eng.model
         out = []

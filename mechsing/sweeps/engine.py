@@ -80,6 +80,10 @@ class Located:
     edge: str = "row"
     cell: tuple[int, int] = (0, 0)
     far_side: bool = False
+    #: the sweep's coordinates there (joints, then the pose's for a pose sweep)
+    z: np.ndarray | None = None
+    #: the sweep's coordinates there (joints, then the pose's for a pose sweep)
+    z: np.ndarray | None = None
 
 
 @dataclass
@@ -307,6 +311,7 @@ class Sweep:
             "row",
             (index, max(i, 0)),
             f.far_side,
+            f.z.copy(),
         )
 
     def _along(
@@ -360,6 +365,7 @@ class Sweep:
                             index,
                             "row",
                             (index, int(a)),
+                            z=z,
                         )
                     )
             rho = ratio[t]
@@ -387,6 +393,7 @@ class Sweep:
                             index,
                             "row",
                             (index, k),
+                            z=z,
                         )
                     )
         return out
@@ -612,6 +619,7 @@ class Sweep:
                             ra.index,
                             "column",
                             (ra.index, int(k)),
+                            z=z,
                         )
                     )
         return out
@@ -683,9 +691,36 @@ def _merge(located: list[Located], sw: Sweep) -> list[Located]:
     return out
 
 
-def classify_located(mech: Mechanism, located: list[Located], precision: Precision) -> list[Any]:
-    """The full analysis of each located point at the sweep's precision."""
+def classify_located(
+    sweep: Sweep, located: list[Located], precision: Precision
+) -> tuple[list[Any], list[bool]]:
+    """The full analysis of each located point at the sweep's precision; at mp:N each
+    point is first found again at N digits (:mod:`.relocate`).  Also says, per point,
+    whether it was relocated."""
     if not located:
-        return []
-    found = {f"located-{i + 1}": p.q for i, p in enumerate(located)}
-    return analyze_found(mech, found, precision)
+        return [], []
+    points: dict[str, Any] = {}
+    moved = []
+    relocators: dict[str, Any] = {}
+
+    def relocator(test: str) -> Any:
+        # a singular point of the closure is a double root of the closure for the held
+        # values: N digits of residual place it to N/2 digits only, so it is placed at
+        # 2N + 10 digits (and read at N)
+        from mechsing.sweeps.relocate import Relocator
+
+        digits = precision.digits * 2 + 10 if test == "closure" else precision.digits
+        key = str(digits)
+        if key not in relocators:
+            relocators[key] = Relocator(sweep, Precision("mp", digits))
+        return relocators[key]
+
+    for i, p in enumerate(located):
+        again = None
+        test = next((t for t in p.tests if t in sweep.tests), None)
+        # policy: only mp places the points again, at its digits
+        if precision.mode == "mp" and p.z is not None and test is not None:
+            again = relocator(test).relocate(p.z, test, "fold" if p.kind == "fold" else p.edge)
+        moved.append(again is not None)
+        points[f"located-{i + 1}"] = p.q if again is None else again
+    return analyze_found(sweep.mech, points, precision), moved
