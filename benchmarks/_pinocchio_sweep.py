@@ -744,7 +744,7 @@ def cases(density: int = 1) -> list[Case]:
             "stewart_octahedral.yaml",
             np.rad2deg(turn[:, 2]),
             (0, 500, 999),
-            positions=np.zeros((1000, 3)),
+            positions=np.zeros((1000 * density, 3)),
             rotation_vectors=turn,
         ),
         Case(

@@ -172,10 +172,14 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
             continue
         fold = Fold(float(zs[col]), zs, direction)
         folds.append(fold)
+        ks = [k for k in range(i + 1, j + 1) if (values[k] - fold.value) * direction <= 0]
+        if ks:
+            _to_fold(pb, Z, col, values, ks, [*arc.trail, zs])
         prev, before = z, z_prev
-        for k in range(i + 1, j + 1):
-            if (values[k] - fold.value) * direction > 0:
-                break
+        for k in ks:
+            if not np.isnan(Z[k, 0]):
+                prev, before = Z[k], prev
+                continue
             nxt = _nodes(pb, prev, before, col, values[k])
             if nxt is None:
                 nxt = _near_fold(pb, prev, zs, col, values[k])
@@ -251,6 +255,40 @@ def _node(
     if res[0] > pb.tolerance or pb.comm(Q[0] - zp) > _NODE_CORRECTION * step:
         return None
     return Q[0]
+
+
+def _to_fold(
+    pb: Problem, Z: np.ndarray, col: int, values: np.ndarray, ks: list[int], trail: list[np.ndarray]
+) -> None:
+    """The samples ``ks`` between a path's last node and the fold at ``trail[-1]``, all
+    together: each predicted between the two points of the curve traced to the fold that
+    bracket its value (by the square-root law in the last stretch, where the swept value is
+    quadratic in the distance along the curve), then batched Newton; a sample that does
+    not close near its prediction is left for the caller (NaN)."""
+    cm, bc = pb.cm, pb.batch
+    tt = np.array([float(p[col]) for p in trail])
+    sign = 1.0 if tt[-1] >= tt[0] else -1.0
+    A, B, F, spans = [], [], [], []
+    last = len(trail) - 2
+    for k in ks:
+        v = float(values[k])
+        m = int(np.clip(np.searchsorted(sign * tt, sign * v) - 1, 0, last))
+        ta, tb = tt[m], tt[m + 1]
+        if m == last and tb != ta:
+            f = 1.0 - math.sqrt(max(0.0, (tb - v) / (tb - ta)))
+        else:
+            f = 0.0 if tb == ta else (v - ta) / (tb - ta)
+        A.append(trail[m])
+        B.append(trail[m + 1])
+        F.append(f)
+        spans.append(pb.comm(cm.difference(trail[m + 1], trail[m])))
+    Qp = bc.between(np.array(A), np.array(B), np.array(F))
+    idx = np.array(ks)
+    Qp[:, col] = values[idx]
+    Q, res, _ = bc.newton(Qp, ~pb.given[: bc.nb], pb.tolerance, polish=False)
+    moved = np.linalg.norm(cm.float_frame.rates(Q - Qp), axis=1)
+    ok = (res <= pb.tolerance) & (moved <= SWEEP_JUMP_RATIO * np.array(spans)) & np.isfinite(res)
+    Z[idx[ok]] = Q[ok]
 
 
 def _near_fold(
@@ -361,6 +399,8 @@ class _Arc:
         self.free = free
         self.cidx = int(np.flatnonzero(free).tolist().index(col))
         self.why: str | None = None
+        #: the points of the curve traced by :meth:`to_fold_or`, in order
+        self.trail: list[np.ndarray] = []
 
     # -- the curve ------------------------------------------------------------------
 
@@ -465,6 +505,7 @@ class _Arc:
         curve gets there without one ("passed").  The samples passed on the way are
         not closed here (the caller closes them); None when the curve is lost."""
         tau = self.tangent(z)
+        self.trail = [z]
         if tau is None:
             return None
         if self._g(tau) <= 0:
@@ -478,6 +519,7 @@ class _Arc:
             if self._g(tn) <= 0:
                 zf, _tf = self._turn(z, tau, h)
                 return "fold", zf
+            self.trail.append(zn)
             if (zn[self.col] - stop) * self.direction >= 0:
                 zs = self._land(z, zn, stop)
                 if zs is None:
