@@ -291,3 +291,18 @@ def test_pose_needs_an_output(tmp_path):
     )
     run = run_cli(["analyze", path])
     assert run.status == 2 and "no output" in run.err and "output: {body:" in run.err
+
+
+def test_text_report_shows_the_given_pose(tmp_path):
+    """The text report says which pose a configuration gave, as the JSON's pose key does."""
+    path = with_configurations(
+        "planar_3rpr.yaml",
+        "  moved:\n    pose: {position: [1.1, 0.9, 0], axis: [0, 0, 1], angle: 0.1}\n",
+        tmp_path,
+        "rpr.yaml",
+    )
+    run = run_cli(["analyze", path, "--config", "moved"])
+    assert run.status == 0, run.err
+    line = next(ln for ln in run.out.splitlines() if "given pose" in ln)
+    assert "given pose of platform" in line
+    assert "(1.1, 0.9, 0)" in line and "(0, 0, 0.1)" in line

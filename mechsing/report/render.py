@@ -185,6 +185,18 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         if c.error is not None:
             lines.append(f"{bullet}not analysed: {c.error}")
             continue
+        if c.pose is not None:
+            gp = c.pose
+            rel = (
+                ""
+                if gp.relative_to == result.mechanism.ground
+                else f" relative to {gp.relative_to}"
+            )
+            lines.append(
+                f"{bullet}given pose of {gp.body}{rel} (m, rad): reference point at "
+                f"({', '.join(f'{x:.6g}' for x in gp.position)}), rotation vector "
+                f"({', '.join(f'{x:.6g}' for x in gp.rotation_vector)}) about it"
+            )
         vals = ", ".join(f"{k} = [{', '.join(f'{x:.6g}' for x in v)}]" for k, v in c.joints)
         lines.append(f"{bullet}joint values (m, rad): {vals}")
         lines.append(f"{bullet}closure residual {c.closure_residual:.3g} m")
