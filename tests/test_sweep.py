@@ -39,10 +39,13 @@ def _values(r, kind=None, test=None):
     )
 
 
-def test_crank_rocker_turns_fully_and_meets_only_its_rockers_limits():
+@pytest.mark.parametrize("k", [1e-3, 1.0, 1e3])
+def test_crank_rocker_turns_fully_and_meets_only_its_rockers_limits(tmp_path, k):
     """The crank turns 360 deg with no fold, no closure and no output singularity; the input
-    test vanishes exactly where the rocker stops (crank and coupler collinear)."""
-    r = sweep(EXAMPLES / "fourbar.yaml", ["A=0:360:0.5"])
+    test vanishes exactly where the rocker stops (crank and coupler collinear); the same
+    angles on the four-bar scaled by k."""
+    path = EXAMPLES / "fourbar.yaml" if k == 1.0 else _scaled(tmp_path, "fourbar.yaml", k)
+    r = sweep(path, ["A=0:360:0.5"])
     assert r.reached.all()
     assert not [p for p in r.located if p.kind == "fold"]
     assert not [p for p in r.located if {"closure", "output"} & set(p.tests)]
@@ -86,11 +89,13 @@ def test_offset_slider_crank_dead_centres(tmp_path, scaled):
     assert all("output" in (p.classes or ()) for p in r.located if p.kind == "fold")
 
 
-def test_ur5_grid_loci_lie_where_the_closed_form_det_j_vanishes():
+@pytest.mark.parametrize("k", [1e-3, 1.0, 1e3])
+def test_ur5_grid_loci_lie_where_the_closed_form_det_j_vanishes(tmp_path, k):
     """Over (J3, J5) the output chain loses rank where det J = 0 (elbow: sin J3 = 0; wrist:
     sin J5 = 0): every located point zeroes the closed form, and every grid cell where it
-    changes sign along a row holds a located point."""
-    r = sweep(EXAMPLES / "ur5.yaml", ["J3=-2:2:0.25", "J5=-2:2:0.25"], "regular")
+    changes sign along a row holds a located point; the same on the arm scaled by k."""
+    path = EXAMPLES / "ur5.yaml" if k == 1.0 else _scaled(tmp_path, "ur5.yaml", k)
+    r = sweep(path, ["J3=-2:2:0.25", "J5=-2:2:0.25"], "regular")
     regular = {"J1": 0.0, "J2": -math.pi / 4, "J4": -math.pi / 4, "J6": 0.0}
     assert r.located
     for p in r.located:
@@ -114,11 +119,14 @@ def test_ur5_grid_loci_lie_where_the_closed_form_det_j_vanishes():
                 ), (y, xs[i])
 
 
-def test_five_bar_grid_type_one_loci_match_the_independent_determinant():
+@pytest.mark.parametrize("k", [1e-3, 1.0, 1e3])
+def test_five_bar_grid_type_one_loci_match_the_independent_determinant(tmp_path, k):
     """Over the two inputs, the input (Type I) singularities the sweep locates zero the
-    determinant written from the planar geometry, and the folds (the end of the assembled
-    region) zero the Type II determinant."""
-    r = sweep(EXAMPLES / "five_bar.yaml", ["A1=-0.6:0.6:0.1", "A2=-0.6:0.6:0.1"])
+    determinant written from the planar geometry, and every grid cell whose corners give
+    that determinant opposite signs holds one; the folds (the end of the assembled region)
+    zero the discriminant of the assembly (Type II); the same on the five-bar scaled by k."""
+    path = EXAMPLES / "five_bar.yaml" if k == 1.0 else _scaled(tmp_path, "five_bar.yaml", k)
+    r = sweep(path, ["A1=-0.6:0.6:0.1", "A2=-0.6:0.6:0.1"])
     assert [p for p in r.located if p.kind == "fold"] and [
         p for p in r.located if "input" in p.tests
     ]
@@ -133,14 +141,37 @@ def test_five_bar_grid_type_one_loci_match_the_independent_determinant():
         elif "input" in p.tests:
             d = truth.five_bar_type1_det(np.array(t1), np.array(t2), mode)
             assert abs(d) <= 1e-8 * size**2
+    xs, ys = r.variables[0].values, r.variables[1].values
+    D = truth.five_bar_type1_det(xs[None, :], ys[:, None], mode)
+    type1 = [p for p in r.located if p.kind != "fold" and "input" in p.tests]
+    for j in range(len(ys) - 1):
+        for i in range(len(xs) - 1):
+            corners = D[j : j + 2, i : i + 2]
+            if np.all(np.isfinite(corners)) and corners.min() < 0 < corners.max():
+                assert any(
+                    xs[i] - 1e-9 <= p.values[0] <= xs[i + 1] + 1e-9
+                    and ys[j] - 1e-9 <= p.values[1] <= ys[j + 1] + 1e-9
+                    for p in type1
+                ), (xs[i], ys[j])
 
 
-@pytest.mark.parametrize("spec", ["A=-3.1:3.1:0.007", "A=1:-1:0.013", "A=-6.3:6.3:0.05"])
-def test_change_point_four_bar_bifurcation_at_its_flat_position(spec):
+@pytest.mark.parametrize(
+    ("spec", "k"),
+    [
+        ("A=-3.1:3.1:0.007", 1.0),
+        ("A=1:-1:0.013", 1.0),
+        ("A=-6.3:6.3:0.05", 1.0),
+        ("A=-3.1:3.1:0.007", 1e-3),
+        ("A=-3.1:3.1:0.007", 1e3),
+    ],
+)
+def test_change_point_four_bar_bifurcation_at_its_flat_position(tmp_path, spec, k):
     """At the Grashof change point the crank passes the flat position (A = 0 mod 2 pi, all
     joints collinear), where two branches cross: located to 1e-10 rad and classified as a
-    bifurcation, wherever the samples fall."""
-    r = sweep(EXAMPLES / "fourbar_changepoint.yaml", [spec], "crank-up")
+    bifurcation, wherever the samples fall and whatever the mechanism's size."""
+    name = "fourbar_changepoint.yaml"
+    path = EXAMPLES / name if k == 1.0 else _scaled(tmp_path, name, k)
+    r = sweep(path, [spec], "crank-up")
     assert r.reached.all()
     flats = truth.four_bar_flat_positions((0, 0), (1, 0), (6, 0), (4, 0))
     lo, hi = sorted(r.variables[0].values[[0, -1]])
