@@ -5,6 +5,7 @@ in millimetres: the same numbers, a thousandth of the size in SI)."""
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -286,3 +287,48 @@ def test_located_points_classified_at_mp_digits(name, spec, start, cls):
         assert cls in (p.classes or ()), (p.values, p.classes)
         assert p.margin is not None and p.margin["dropped"] < 1e-25
     assert any("located again at mp:30" in n for n in r.notes)
+
+
+def test_sweep_starting_at_a_limit_of_travel_goes_the_reachable_way():
+    """From the double rocker's limit (a fold: continuation has no direction there) the
+    sweep steps off along the curve and reaches the other limit."""
+    r = sweep(EXAMPLES / "double_rocker.yaml", ["A=-3:3:0.1"], "limit")
+    np.testing.assert_allclose(
+        _values(r, kind="fold"), [-2 * math.pi / 3, 2 * math.pi / 3], atol=LOCATED
+    )
+
+
+def test_sweep_starting_at_a_dead_centre_reports_both():
+    r = sweep(EXAMPLES / "slider_crank_slider_input.yaml", ["P=-1:2:0.1"], "dead-centre")
+    dead = truth.slider_crank_dead_centres((0, 0), (0, -1), (3.2, 1.4), (1, 0))
+    np.testing.assert_allclose(_values(r, kind="fold"), sorted(dead.values()), atol=LOCATED)
+
+
+@pytest.mark.parametrize(
+    ("name", "spec", "words"),
+    [
+        ("stewart_octahedral.yaml", "S1[2]=-1:1:0.1", "5 more degree(s) of freedom"),
+        ("fourbar.yaml", "pose.rz=-90:90:1", "cannot move along pose.rz"),
+        ("planar_3rpr.yaml", "pose.z=0:1:0.1", "cannot move along pose.z"),
+    ],
+)
+def test_a_sweep_whose_path_is_not_a_curve_is_refused(name, spec, words):
+    """Sweeping a passive coordinate of a mechanism of mobility 6 leaves the path
+    undetermined; a pose coordinate the output cannot move along leaves none: both are
+    refused with the reason, before anything is followed."""
+    from mechsing.errors import UserError
+
+    with pytest.raises(UserError, match=re.escape(words)):
+        sweep(EXAMPLES / name, [spec])
+
+
+def test_auto_locates_again_at_mp50_what_it_re_decides_there():
+    """The anti-parallelogram passes its flat position (a bifurcation): where auto re-decides
+    the located point at mp:50, it first finds the point again at 50 digits, so the verdict
+    is the bifurcation, not the regular neighbour float placed."""
+    r = sweep(EXAMPLES / "parallelogram.yaml", ["A=-4:4:0.1"], "anti-parallelogram")
+    flats = [p for p in r.located if "closure" in p.tests]
+    np.testing.assert_allclose(
+        sorted(p.values[0] for p in flats), [-math.pi / 2, math.pi / 2], atol=LOCATED
+    )
+    assert all("bifurcation" in (p.classes or ()) for p in flats)

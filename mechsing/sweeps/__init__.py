@@ -55,7 +55,7 @@ MAX_CLASSIFIED = 200
 
 def sweep(
     mechanism: Mechanism | str | Path,
-    vary: list[str | Vary],
+    vary: list[str | Vary] | str | Vary,
     from_config: str | None = None,
     precision: Precision | str = "auto",
     *,
@@ -92,7 +92,7 @@ class SweepRun:
     def __init__(
         self,
         mechanism: Mechanism | str | Path,
-        vary: list[str | Vary],
+        vary: list[str | Vary] | str | Vary,
         from_config: str | None = None,
         precision: Precision | str = "auto",
         max_classified: int = MAX_CLASSIFIED,
@@ -108,6 +108,8 @@ class SweepRun:
             )
         self.prec = prec
         self.precision = str(prec)
+        if isinstance(vary, str | Vary):  # one variable given alone
+            vary = [vary]
         varies = [Vary.parse(v) if isinstance(v, str) else v for v in vary]
         self.varies = varies
         self.max_classified = max_classified
@@ -210,10 +212,10 @@ class SweepRun:
             )
         with working_on(file=self.mechanism.path or self.mechanism.name):
             analysed, moved = classify_located(eng, chosen, self.prec)
-        if self.prec.mode == "mp" and chosen:
+        if self.prec.mode == "mp" and chosen or self.prec.mode == "auto" and any(moved):
             self.notes.append(
                 f"{sum(moved)} of the {len(chosen)} classified points were located again at "
-                f"{self.prec} before their analysis"
+                f"{self.prec if self.prec.mode == 'mp' else 'mp:50'} before their analysis"
                 + ("" if all(moved) else "; the others keep their float values")
             )
         by_id = {id(p): a for p, a in zip(chosen, analysed, strict=True)}

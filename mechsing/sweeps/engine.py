@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -50,7 +50,7 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.sweeps.measures import Measures, PointMeasures
-from mechsing.sweeps.path import Fold, Problem, follow
+from mechsing.sweeps.path import Fold, Problem, _Arc, follow
 from mechsing.sweeps.spec import Variable
 
 __all__ = ["Located", "RowResult", "Sweep"]
@@ -60,6 +60,18 @@ _TAU_HI = Precision("float").tolerances.tau_hi
 #: most regula falsi steps of one crossing (superlinear: about ten are needed)
 _ILLINOIS_ITERATIONS = 60
 
+#: the samples nearest the start's value tried as the sweep's first (the start may be at a
+#: limit of travel, with its nearest samples beyond it)
+_START_TRIES = 4
+#: the tests a fold is listed under: those whose measure there is below this (a fold is
+#: located on the path's curve to rounding, where the vanishing measure is ~1e-12 or
+#: less; the others stay of order one)
+_FOLD_TEST_RTOL = 1e-6
+#: a swept pose coordinate is refused when adding its column raises the rank of the
+#: closure system in the solved joints by a singular value above this (relative)
+_DETERMINED_RTOL = 1e-8
+#: the step (commensurate arclength) that leaves a singular start along its curve
+_OFF_SINGULAR_STEP = 1e-3
 #: measures are computed this many configurations at a time (bounds the working memory)
 _CHUNK = 4096
 
@@ -157,7 +169,59 @@ class Sweep:
             model.precision.closure_tolerance(model.length_scale),
             periodic,
         )
+        self.generic_mobility: int | None = None
         self.measures = Measures(model, self._generic())
+        self._check_determined()
+
+    def _check_determined(self) -> None:
+        """A sweep whose path is not a curve is refused before it starts: holding the
+        given coordinates must leave one degree of freedom to the swept one (a joint
+        sweep), and the output must be able to move along a swept pose coordinate with
+        the rest of its pose held."""
+        from mechsing.kinematics.newton import scaled_system
+
+        mech, pb = self.mech, self.problem
+        names = ", ".join(v.name for v in self.variables)
+        M = self.generic_mobility
+        if not mech.loops or M is None:
+            return
+        if not self.pose:
+            g = int(np.sum(pb.given))
+            inputs = ", ".join(
+                j if mech.joint(j).dof == 1 else f"{j}[{i}]" for j, i in mech.input_coordinates()
+            )
+            if g < M:
+                raise UserError(
+                    f"--vary {names}: with the other coordinates solved, the mechanism keeps "
+                    f"{M - g} more degree(s) of freedom (its mobility is {M}), so the sweep's path "
+                    "is not determined; sweep an input of the file"
+                    + (f" ({inputs}): the others are then held" if inputs else "")
+                    + ", or declare inputs (inputs: [...]) so that the sweep holds them"
+                )
+            if g > M:
+                raise UserError(
+                    f"--vary {names}: the file's inputs ({inputs}) are {g} coordinates for a "
+                    f"mechanism of mobility {M}; held at their start values they leave the swept "
+                    "one no motion; sweep a mechanism whose inputs match its mobility"
+                )
+            return
+        Js, _ = scaled_system(pb.cm, self.z0)
+        free = ~pb.given
+        A = Js[:, free]
+        for v, c in zip(self.variables, self.cols, strict=True):
+            B = np.concatenate([A, Js[:, [c]]], axis=1)
+            sa = np.linalg.svd(A, compute_uv=False)
+            sb = np.linalg.svd(B, compute_uv=False)
+            ra = int(np.sum(sa > _DETERMINED_RTOL * sb[0]))
+            rb = int(np.sum(sb > _DETERMINED_RTOL * sb[0]))
+            if rb > ra:
+                raise UserError(
+                    f"--vary {v.name}: the output {mech.output.body!r} cannot move along "
+                    f"{v.name} with the rest of its pose held (its motion at {self.from_config!r} "
+                    "does not contain that direction: the mechanism moves its output in a "
+                    "smaller set of displacements); sweep a pose coordinate the output can "
+                    "move along, or a joint"
+                )
 
     # ------------------------------------------------------------------ generic ranks
 
@@ -167,6 +231,8 @@ class Sweep:
         dec = {d.test: d for d in res.decisions}
         n = self.model.n
         out: dict[str, int | None] = {}
+        if res.mobility is not None:
+            self.generic_mobility = res.mobility.generic
         if self.mech.loops and res.mobility is not None and res.mobility.generic is not None:
             out["closure"] = n - res.mobility.generic
         for test, name in (("input", "impossible-output"), ("output", "impossible-input")):
@@ -199,21 +265,52 @@ class Sweep:
         )
 
     def start_of(self, col: int, values: np.ndarray, z: np.ndarray) -> tuple[int, np.ndarray]:
-        """The sample nearest z's value of ``col``, and its configuration reached from z."""
-        k0 = int(np.argmin(np.abs(values - z[col])))
+        """The sample nearest z's value of ``col`` that can be reached from z (the start
+        may be at a limit of travel, its nearest sample beyond it), and its configuration."""
+        order = np.argsort(np.abs(values - z[col]), kind="stable")
+        k0 = int(order[0])
         if z[col] == values[k0]:
             return k0, np.array(z, dtype=float)
-        try:
-            return k0, self.reach(z, col, values[k0])
-        except ClosureError as exc:
-            var = self._variable(col)
-            raise ClosureError(
-                f"the sweep cannot start: {var.name} = {var.shown(values[k0])} (the sample nearest "
-                f"the start's value {var.shown(z[col])}) cannot be reached from "
-                f"{self.from_config!r}: {exc}",
-                self.from_config,
-                exc.residual,
-            ) from None
+        first: ClosureError | None = None
+        for k in order[:_START_TRIES]:
+            try:
+                return int(k), self.reach(z, col, values[k])
+            except ClosureError as exc:
+                first = first or exc
+            # a start at a fold or another singular point: step off it along the curve
+            off = self._off_singular(z, col, float(values[k]))
+            if off is not None:
+                return int(k), off
+        var = self._variable(col)
+        assert first is not None
+        why = str(first).split(": ", 1)[-1]
+        raise ClosureError(
+            f"the sweep cannot start: none of the {min(_START_TRIES, len(values))} samples of "
+            f"{var.name} nearest its value at {self.from_config!r} ({var.shown(z[col])}) can be "
+            f"reached from that configuration on its assembly mode ({why}); start from another "
+            "configuration (--from) or sweep a range that contains the start's value",
+            self.from_config,
+            first.residual,
+        ) from None
+
+    def _off_singular(self, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
+        """From a singular start (a fold: continuation has no direction there), a short
+        step along the path's curve towards ``value``, then continuation to it."""
+        d = 1 if value > z[col] else -1
+        arc = _Arc(self.problem, col, d)
+        tau = arc.tangent(np.asarray(z, dtype=float))
+        if tau is None:
+            return None
+        for sign in (1.0, -1.0):
+            zn = arc.step(np.asarray(z, dtype=float), sign * tau, _OFF_SINGULAR_STEP)
+            if zn is None or (zn[col] - z[col]) * d <= 0:
+                continue
+            # along the curve (near a fold the joints move like the square root of the
+            # swept value: continuation in the swept value cannot leave it)
+            out = _Arc(self.problem, col, d).to_fold_or(zn, value)
+            if out is not None and out[0] == "passed":
+                return np.asarray(out[1], dtype=float)
+        return None
 
     def _variable(self, col: int) -> Variable:
         return self.variables[self.cols.index(col)]
@@ -298,7 +395,7 @@ class Sweep:
         self, f: Fold, col: int, index: int, other: tuple[float, ...], values: np.ndarray
     ) -> Located:
         pm = self.measures(f.z[None, : self.model.n])
-        vanishing = tuple(t for t in self.tests if pm.ratio[t][0] <= 1e-6) or ("limit",)
+        vanishing = tuple(t for t in self.tests if pm.ratio[t][0] <= _FOLD_TEST_RTOL)
         ratio = min((float(pm.ratio[t][0]) for t in self.tests), default=0.0)
         i = int(np.searchsorted(np.sort(values), f.value)) - 1
         return Located(
@@ -687,7 +784,6 @@ def _merge(located: list[Located], sw: Sweep) -> list[Located]:
             out.append(p)
             continue
         same.tests = tuple(dict.fromkeys((*same.tests, *p.tests)))
-        same.tests = tuple(x for x in same.tests if x != "limit") or ("limit",)
     return out
 
 
@@ -703,24 +799,40 @@ def classify_located(
     moved = []
     relocators: dict[str, Any] = {}
 
-    def relocator(test: str) -> Any:
+    def relocator(test: str, prec: Precision) -> Any:
         # a singular point of the closure is a double root of the closure for the held
         # values: N digits of residual place it to N/2 digits only, so it is placed at
         # 2N + 10 digits (and read at N)
         from mechsing.sweeps.relocate import Relocator
 
-        digits = precision.digits * 2 + 10 if test == "closure" else precision.digits
+        digits = prec.digits * 2 + 10 if test == "closure" else prec.digits
         key = str(digits)
         if key not in relocators:
             relocators[key] = Relocator(sweep, Precision("mp", digits))
         return relocators[key]
 
-    for i, p in enumerate(located):
-        again = None
+    def again_at(p: Located, prec: Precision) -> Any:
         test = next((t for t in p.tests if t in sweep.tests), None)
+        if p.z is None or test is None:
+            return None
+        return relocator(test, prec).relocate(p.z, test, "fold" if p.kind == "fold" else p.edge)
+
+    for i, p in enumerate(located):
         # policy: only mp places the points again, at its digits
-        if precision.mode == "mp" and p.z is not None and test is not None:
-            again = relocator(test).relocate(p.z, test, "fold" if p.kind == "fold" else p.edge)
+        again = again_at(p, precision) if precision.mode == "mp" else None
         moved.append(again is not None)
         points[f"located-{i + 1}"] = p.q if again is None else again
-    return analyze_found(sweep.mech, points, precision), moved
+    results = analyze_found(sweep.mech, points, precision)
+    if precision.mode == "auto":
+        # auto re-decided some points at mp:50 (an undecided float rank): at 50 digits the
+        # float point is a regular neighbour of the singular one, so it is found again there
+        deep = Precision("mp", 50)
+        for i, (p, res) in enumerate(zip(located, results, strict=True)):
+            if res.precision == "float" or res.error is not None:
+                continue
+            again = again_at(p, deep)
+            if again is not None:
+                res2 = analyze_found(sweep.mech, {f"located-{i + 1}": again}, deep)[0]
+                results[i] = replace(res2, escalated_for=res.escalated_for)
+                moved[i] = True
+    return results, moved

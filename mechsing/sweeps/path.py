@@ -477,10 +477,10 @@ class _Arc:
         """The fold between z (g > 0) and its step h (g <= 0): Brent on g(s)."""
         from scipy.optimize import brentq
 
-        cache: dict[float, tuple[np.ndarray, np.ndarray]] = {}
+        cache: dict[float, tuple[np.ndarray, np.ndarray]] = {0.0: (z, tau)}
 
         def g(s: float) -> float:
-            if s == 0.0:
+            if s == 0.0:  # z itself (the fold when the path starts on it)
                 return self._g(tau)
             zs = self.step(z, tau, s)
             ts = None if zs is None else self.tangent(zs, tau)
@@ -494,7 +494,10 @@ class _Arc:
         except (_Lost, ValueError):
             s = h
         if s not in cache:
-            g(s)
+            try:
+                g(s)
+            except _Lost:
+                return cache[0.0]
         return cache[s]
 
     # -- what the path asks ---------------------------------------------------------

@@ -173,6 +173,11 @@ def resolve(mech: Mechanism, varies: list[Vary]) -> list[Variable]:
             i = 0
         else:
             i = int(idx)
+            if joint.dof == 1 and i != 0:
+                raise UserError(
+                    f"--vary {v.name}: joint {jname!r} ({joint.type}) has one coordinate; "
+                    f"name it {jname}"
+                )
             if i >= joint.dof:
                 raise UserError(
                     f"--vary {v.name}: joint {jname!r} has coordinates {jname}[0] ... "
