@@ -332,3 +332,12 @@ def test_auto_locates_again_at_mp50_what_it_re_decides_there():
         sorted(p.values[0] for p in flats), [-math.pi / 2, math.pi / 2], atol=LOCATED
     )
     assert all("bifurcation" in (p.classes or ()) for p in flats)
+
+
+def test_a_path_inside_a_singular_set_says_so_instead_of_locating_noise():
+    """From the UR5's reference pose (wrist singular: J5 = 0) a sweep of J3 keeps the wrist
+    singularity all along: the output chain's rank is 5 at every sample, so there is no
+    isolated singularity to place, and the report says that the path lies in the set."""
+    r = sweep(EXAMPLES / "ur5.yaml", ["J3=-4:4:0.1"])
+    assert not r.located
+    assert any("input is singular at every reached sample" in n for n in r.notes)

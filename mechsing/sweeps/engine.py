@@ -358,8 +358,13 @@ class Sweep:
             ratio[t][reached] = pm.ratio[t]
         located = [self._fold(f, col, index, other, values) for f in [*fwd.folds, *bwd.folds]]
         located += self._along(Z, reached, pm, ratio, col, index, other, values)
+        always = [t for t in self.tests if np.any(reached) and np.all(ratio[t][reached] <= _TAU_HI)]
         var = self._variable(col)
-        stopped = []
+        stopped = [
+            f"{t} is singular at every reached sample (rank below its generic "
+            f"{self.measures.generic[t]} all along): the path lies in that singular set"
+            for t in always
+        ]
         for trace, end in ((fwd, values[-1]), (bwd, values[0])):
             if trace.stopped:
                 # where it stopped: the last sample reached towards that end
@@ -435,7 +440,18 @@ class Sweep:
         for t in self.tests:
             crossed: set[int] = set()
             d = dets.get(t)
-            hits = [] if d is None else [k for k in range(len(pairs)) if d[k] < 0]
+            rho = ratio[t]
+            # between two samples that are both singular for the test, its sign is noise:
+            # a sign change counts only where one end has a decided full generic rank
+            hits = (
+                []
+                if d is None
+                else [
+                    k
+                    for k in range(len(pairs))
+                    if d[k] < 0 and max(rho[pairs[k][0]], rho[pairs[k][1]]) > _TAU_HI
+                ]
+            )
             if hits:
                 A = np.array([pairs[k][0] for k in hits])
                 B = np.array([pairs[k][1] for k in hits])
@@ -465,11 +481,12 @@ class Sweep:
                             z=z,
                         )
                     )
-            rho = ratio[t]
             for k in range(1, len(Z) - 1):
                 if not (reached[k - 1] and reached[k] and reached[k + 1]) or k in crossed:
                     continue
                 lo, hi = rho[k - 1], rho[k + 1]
+                if max(lo, hi) <= _TAU_HI:
+                    continue  # singular on both sides: no isolated zero to place
                 if not (rho[k] <= lo and rho[k] <= hi):
                     continue
                 rise = max(lo, hi) - rho[k]
