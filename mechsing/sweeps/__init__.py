@@ -202,7 +202,8 @@ class SweepRun:
         """Classify the located points and return the result."""
         eng = self.engine
         located = sorted(self.located, key=lambda p: (p.edge != "row", p.values[::-1]))
-        chosen = [p for p in located if p.edge == "row"]
+        # the points found along the rows first, then those between rows (a grid)
+        chosen = list(located)
         if self.grid and len(chosen) > self.max_classified:
             pick = np.linspace(0, len(chosen) - 1, self.max_classified).round().astype(int)
             chosen = [chosen[i] for i in sorted(set(pick.tolist()))]

@@ -258,7 +258,7 @@ def csv_header(r: Any) -> str:
     cols = ["kind", *(f"{v.name} [{v.unit}]" for v in r.variables), "reached"]
     for t in r.tests:
         cols += [f"{t} rank", f"{t} ratio"]
-    cols += ["classes", "precision"]
+    cols += ["classes", "precision", "tests", "between", "dropped"]
     return ",".join(cols) + "\n"
 
 
@@ -278,7 +278,7 @@ def csv_rows(r: Any, rows: Any) -> list[str]:
             for t in r.tests:
                 rk, ra = p[t]["rank"], p[t]["ratio"]
                 cells += ["" if rk is None else str(rk), "" if ra is None else f"{ra:.6e}"]
-            cells += ["", ""]
+            cells += ["", "", "", "", ""]
             out.append(",".join(cells) + "\n")
     return out
 
@@ -289,8 +289,16 @@ def csv_located(r: Any) -> list[str]:
         cells = [p.kind, *(f"{x:.17g}" for x in p.values), "1"]
         for t in r.tests:
             cells += ["", f"{p.ratio:.6e}" if t in p.tests else ""]
+        # "" not classified (a grid's max_classified), "none": classified, nothing found
         classes = "" if p.classes is None else " ".join(p.classes) or "none"
-        cells += [classes, p.precision or ""]
+        dropped = (p.margin or {}).get("dropped")
+        cells += [
+            classes,
+            p.precision or "",
+            " ".join(p.tests),
+            p.between,
+            "" if dropped is None else f"{dropped:.3e}",
+        ]
         out.append(",".join(cells) + "\n")
     return out
 
@@ -355,7 +363,7 @@ def _located_line(r: SweepResult, p: LocatedSingularity) -> str:
     else:
         head = f"{where}: {'sign change' if p.kind == 'crossing' else 'minimum'} of {', '.join(p.tests)}"
     if p.configuration is None:
-        return f"{head} (measure {p.ratio:.2g}; not classified)"
+        return f"{head} (measure {p.ratio:.2g}; not classified: beyond --max-classified)"
     if p.configuration.error:
         return f"{head}: not analysed: {p.configuration.error}"
     classes = ", ".join(p.classes or ()) or "no singularity found by the full analysis"
