@@ -8,7 +8,7 @@ Conventions:
 * **The serial result, bit for bit.**  This process (the driver) computes the grid's
   first column itself (:meth:`.engine.Sweep.first_column`, as the serial run does);
   each row ``j`` is then one task on a worker, the very call the serial run makes,
-  ``Sweep.row(j, cx, values[0], column.Z[j], (values[1][j],))``, whose inputs travel
+  ``Sweep.row(j, cx, values[0], column.Z[j])``, whose inputs travel
   pickled (exact floats).  Rows are independent once the first column is known, so the
   same computations in the same order per row give the same arrays.
 * **Row order.**  Results come back in any order; they are buffered and yielded in row
@@ -192,7 +192,6 @@ def _in_order(
                     shared,
                     i,
                     column.Z[i],
-                    float(values[1][i]),
                     key=f"mechsing-row-{tag}-{i}",
                     pure=False,
                 )
@@ -225,7 +224,7 @@ _built: OrderedDict[tuple[Any, ...], Sweep] = OrderedDict()
 _lock = threading.Lock()
 
 
-def _row_task(recipe: _Recipe, j: int, z: np.ndarray, y: float) -> RowResult:
+def _row_task(recipe: _Recipe, j: int, z: np.ndarray) -> RowResult:
     """Row j of the grid from its first-column configuration z (on a worker)."""
     from mechsing import __version__
 
@@ -243,4 +242,4 @@ def _row_task(recipe: _Recipe, j: int, z: np.ndarray, y: float) -> RowResult:
             while len(_built) > _KEPT:
                 _built.popitem(last=False)
         _built.move_to_end(recipe.key)
-        return sweep.row(j, sweep.cols[0], recipe.row_values, z, (y,))
+        return sweep.row(j, sweep.cols[0], recipe.row_values, z)

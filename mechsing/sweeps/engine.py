@@ -254,16 +254,6 @@ class Sweep:
     def scale(self, col: int) -> float:
         return self.problem.scale(col)
 
-    def reach(self, z: np.ndarray, col: int, value: float) -> np.ndarray:
-        """From z, the closed configuration with coordinate ``col`` at ``value``."""
-        pb = self.problem
-        target = z.copy()
-        target[col] = value
-        given = tuple(int(i) for i in np.flatnonzero(pb.given))
-        return np.asarray(
-            pb.closer.follow(z, target, given, pb.cm if self.pose else None).q, dtype=float
-        )
-
     def start_of(self, col: int, values: np.ndarray, z: np.ndarray) -> tuple[int, np.ndarray]:
         """The sample nearest z's value of ``col`` that can be reached from z (the start
         may be at a limit of travel, its nearest sample beyond it), and its configuration."""
@@ -274,7 +264,7 @@ class Sweep:
         first: ClosureError | None = None
         for k in order[:_START_TRIES]:
             try:
-                return int(k), self.reach(z, col, values[k])
+                return int(k), self.problem.reach(z, col, values[k])
             except ClosureError as exc:
                 first = first or exc
             # a start at a fold or another singular point: step off it along the curve
@@ -321,25 +311,17 @@ class Sweep:
         pb = self.problem
         ta, tb = za[col], zb[col]
         f = 0.0 if tb == ta else (t - ta) / (tb - ta)
-        d = pb.cm.difference(zb, za)
-        nb = pb.batch.nb
-        zp = pb.batch.update(za[None, :], f * d[None, :nb])[0]
-        zp[nb:] = za[nb:] + f * d[nb:]
+        zp = pb.batch.between(za[None, :], zb[None, :], np.array([f]))[0]
         zp[col] = t
-        Q, res, _ = pb.batch.newton(zp[None, :], ~pb.given[:nb], pb.tolerance)
-        moved = pb.comm(Q[0] - zp)
-        if res[0] <= pb.tolerance and moved <= SWEEP_JUMP_RATIO * max(pb.comm(d), 1e-300):
-            return Q[0]
-        return self.reach(za, col, t)
+        span = pb.comm(pb.cm.difference(zb, za))
+        Q, ok, _ = pb.close_near(zp[None, :], SWEEP_JUMP_RATIO * max(span, 1e-300))
+        return Q[0] if ok[0] else pb.reach(za, col, t)
 
     # ------------------------------------------------------------------ rows
 
-    def row(
-        self, index: int, col: int, values: np.ndarray, z: np.ndarray, other: tuple[float, ...]
-    ) -> RowResult:
+    def row(self, index: int, col: int, values: np.ndarray, z: np.ndarray) -> RowResult:
         """One path in ``col`` through ``values`` from the closed z (at any value of col),
-        with its measures and the singularities located along it.  ``other``: the values
-        of the other swept variable on this row (a grid), for the located points."""
+        with its measures and the singularities located along it."""
         k0, zk = self.start_of(col, values, z)
         pb = self.problem
         fwd = follow(pb, zk, col, values[k0:])
@@ -356,8 +338,8 @@ class Sweep:
         for t in self.tests:
             rank[t][reached] = pm.rank[t]
             ratio[t][reached] = pm.ratio[t]
-        located = [self._fold(f, col, index, other, values) for f in [*fwd.folds, *bwd.folds]]
-        located += self._along(Z, reached, pm, ratio, col, index, other, values)
+        located = [self._fold(f, index, values) for f in [*fwd.folds, *bwd.folds]]
+        located += self._along(Z, reached, pm, ratio, col, index)
         always = [t for t in self.tests if np.any(reached) and np.all(ratio[t][reached] <= _TAU_HI)]
         var = self._variable(col)
         stopped = [
@@ -396,24 +378,37 @@ class Sweep:
     def values_of(self, z: np.ndarray) -> tuple[float, ...]:
         return tuple(float(z[c]) for c in self.cols)
 
-    def _fold(
-        self, f: Fold, col: int, index: int, other: tuple[float, ...], values: np.ndarray
-    ) -> Located:
+    def _fold(self, f: Fold, index: int, values: np.ndarray) -> Located:
         pm = self.measures(f.z[None, : self.model.n])
         vanishing = tuple(t for t in self.tests if pm.ratio[t][0] <= _FOLD_TEST_RTOL)
         ratio = min((float(pm.ratio[t][0]) for t in self.tests), default=0.0)
         i = int(np.searchsorted(np.sort(values), f.value)) - 1
+        return self._at(f.z, "fold", vanishing, ratio, "row", (index, max(i, 0)), f.far_side)
+
+    def _at(
+        self,
+        z: np.ndarray,
+        kind: str,
+        tests: tuple[str, ...],
+        ratio: float,
+        edge: str,
+        cell: tuple[int, int],
+        far_side: bool = False,
+    ) -> Located:
+        """A located point at the sweep's coordinates z, on a row's or column's edge
+        ``cell`` (row index first)."""
+        z = np.array(z, dtype=float)
         return Located(
-            self.values_of(f.z),
-            "fold",
-            vanishing,
+            self.values_of(z),
+            kind,
+            tests,
             ratio,
-            f.z[: self.model.n].copy(),
-            index,
-            "row",
-            (index, max(i, 0)),
-            f.far_side,
-            f.z.copy(),
+            z[: self.model.n].copy(),
+            cell[0],
+            edge,
+            cell,
+            far_side,
+            z,
         )
 
     def _along(
@@ -424,8 +419,6 @@ class Sweep:
         ratio: dict[str, np.ndarray],
         col: int,
         index: int,
-        other: tuple[float, ...],
-        values: np.ndarray,
     ) -> list[Located]:
         """Sign changes and minima of each test along one row."""
         out: list[Located] = []
@@ -468,19 +461,7 @@ class Sweep:
                         crossed.difference_update((int(a), int(a) + 1))
                         continue
                     z, r = found
-                    out.append(
-                        Located(
-                            self.values_of(z),
-                            "crossing",
-                            (t,),
-                            r,
-                            z[: self.model.n],
-                            index,
-                            "row",
-                            (index, int(a)),
-                            z=z,
-                        )
-                    )
+                    out.append(self._at(z, "crossing", (t,), r, "row", (index, int(a))))
             for k in range(1, len(Z) - 1):
                 if not (reached[k - 1] and reached[k] and reached[k + 1]) or k in crossed:
                     continue
@@ -497,19 +478,7 @@ class Sweep:
                     found = self._through(Z, reached, k - 1, k + 1, col)
                 if found is not None:
                     z, r = found
-                    out.append(
-                        Located(
-                            self.values_of(z),
-                            "minimum",
-                            (t,),
-                            r,
-                            z[: self.model.n],
-                            index,
-                            "row",
-                            (index, k),
-                            z=z,
-                        )
-                    )
+                    out.append(self._at(z, "minimum", (t,), r, "row", (index, k)))
         return out
 
     # ------------------------------------------------------------------ refinement
@@ -630,7 +599,7 @@ class Sweep:
         is not singular to float's tau_lo."""
         t = "closure"
         pb = self.problem
-        cm, bc = pb.cm, pb.batch
+        cm = pb.cm
         sc = self.scale(col)
         near = [k for k in range(ka - 1, kb + 2) if 0 <= k < len(Z) and reached[k]]
         if len(near) < 2:
@@ -647,8 +616,8 @@ class Sweep:
             d = np.array([np.polyval(c, v) for c in fits])
             zp = np.asarray(cm.update(base0, d), dtype=float)
             zp[col] = v
-            Q, res, _ = bc.newton(zp[None, :], ~pb.given[: bc.nb], pb.tolerance)
-            if res[0] > pb.tolerance or pb.comm(Q[0] - zp) > SWEEP_JUMP_RATIO * span:
+            Q, ok, _ = pb.close_near(zp[None, :], SWEEP_JUMP_RATIO * span)
+            if not ok[0]:
                 raise ClosureError("the path is lost near a singular point", None, None)
             return Q[0]
 
@@ -723,29 +692,17 @@ class Sweep:
             for k, found in zip(K, found_all, strict=True):
                 if found is not None:
                     z, r = found
-                    out.append(
-                        Located(
-                            self.values_of(z),
-                            "crossing",
-                            (t,),
-                            r,
-                            z[: self.model.n],
-                            ra.index,
-                            "column",
-                            (ra.index, int(k)),
-                            z=z,
-                        )
-                    )
+                    out.append(self._at(z, "crossing", (t,), r, "column", (ra.index, int(k))))
         return out
 
     def rows(
         self, values: list[np.ndarray], progress: Callable[[int], None] | None = None
     ) -> Iterator[RowResult]:
-        """The rows of the sweep in order (one for a path): each with its located points,
-        and for a grid the column crossings between it and the previous row appended to
-        the previous row's... (see :meth:`between_rows`)."""
+        """The rows of the sweep in order (one for a path), each with its measures and the
+        points located along it (the crossings between rows are the caller's:
+        :meth:`between_rows`)."""
         if len(self.cols) == 1:
-            res = self.row(0, self.cols[0], values[0], self.z0, ())
+            res = self.row(0, self.cols[0], values[0], self.z0)
             if progress:
                 progress(len(values[0]))
             yield res
@@ -757,7 +714,7 @@ class Sweep:
             if not column.reached[j]:
                 yield self.unreached_row(j, len(values[0]))
             else:
-                yield self.row(j, cx, values[0], column.Z[j], (float(values[1][j]),))
+                yield self.row(j, cx, values[0], column.Z[j])
             if progress:
                 progress(len(values[0]))
 
@@ -767,7 +724,7 @@ class Sweep:
         independent of each other)."""
         cx, cy = self.cols
         _, zx = self.start_of(cx, values[0], self.z0)
-        return self.row(-1, cy, values[1], zx, ())
+        return self.row(-1, cy, values[1], zx)
 
     def unreached_row(self, j: int, k: int) -> RowResult:
         """Row j of k samples when the first column does not reach it: nothing reached."""

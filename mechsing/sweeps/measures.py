@@ -182,11 +182,11 @@ class Measures:
                     N, -1, Ss.shape[2]
                 )[:, :, cols]
                 _, s, Vt = np.linalg.svd(Mi, full_matrices=True)
-                lo, hi = rank_bounds(_relative(s, Mi.shape[-1]), _FLOAT)
+                lo, hi = rank_bounds(_relative(s), _FLOAT)
                 r = int(np.max(hi))
                 Tl = Tl @ np.swapaxes(Vt[:, r:, :], 1, 2)
             U, s, _ = np.linalg.svd(Tl, full_matrices=True)
-            lo, hi = rank_bounds(_relative(s, 6), _FLOAT)
+            lo, hi = rank_bounds(_relative(s), _FLOAT)
             # columns of U beyond each row's rank: the leg's wrenches (zero elsewhere)
             mask = np.arange(6)[None, :] >= hi[:, None]
             blocks.append(np.swapaxes(U * mask[:, None, :], 1, 2))
@@ -210,8 +210,7 @@ class Measures:
             if t in _UNIT_REFERENCE:
                 rel = s  # already relative to the operator's norm (|T| or |E| = 1)
             else:
-                big = s[:, :1]
-                rel = np.where(big > 0, s / np.where(big > 0, big, 1.0), 0.0)
+                rel = _relative(s)
             lo, hi = rank_bounds(rel, _FLOAT)
             rank[t] = np.where(lo == hi, lo, -1).astype(np.int16)
             ratio[t] = rel[:, g - 1] if g <= rel.shape[1] else np.zeros(len(rel))
@@ -266,12 +265,13 @@ class Measures:
         return A @ turn
 
 
-def _relative(s: np.ndarray, width: int) -> np.ndarray:
+def _relative(s: np.ndarray) -> np.ndarray:
+    """Singular values (N, k) relative to each row's largest (0 where it is 0)."""
     big = s[:, :1]
     return np.where(big > 0, s / np.where(big > 0, big, 1.0), 0.0)
 
 
 def _max_rank(A: np.ndarray) -> int:
     s = np.linalg.svd(A, compute_uv=False)
-    lo, hi = rank_bounds(_relative(s, A.shape[-1]), _FLOAT)
+    lo, hi = rank_bounds(_relative(s), _FLOAT)
     return int(np.max(hi))

@@ -97,6 +97,30 @@ class Problem:
     def comm(self, d: np.ndarray) -> float:
         return float(np.linalg.norm(self.cm.float_frame.rates(d)))
 
+    def close_near(
+        self, Qp: np.ndarray, bound: Any, polish: bool = True
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Batched Newton from the predicted rows Qp (the given coordinates held): the
+        closed rows, which of them closed to the tolerance within ``bound`` of their
+        prediction (commensurate; a scalar or one per row: farther, a row may have jumped
+        to another assembly mode), and the Newton iterations per row."""
+        Q, res, its = self.batch.newton(
+            Qp, ~self.given[: self.batch.nb], self.tolerance, polish=polish
+        )
+        moved = np.linalg.norm(self.cm.float_frame.rates(Q - Qp), axis=1)
+        ok = (res <= self.tolerance) & np.isfinite(res) & (moved <= bound)
+        return Q, ok, its
+
+    def reach(self, z: np.ndarray, col: int, value: float) -> np.ndarray:
+        """From the closed z, the configuration with coordinate ``col`` at ``value`` (the
+        other given coordinates kept), by the careful continuation of a named
+        configuration's closure; raises :class:`ClosureError` where it cannot go."""
+        target = np.array(z, dtype=float)
+        target[col] = value
+        given = tuple(int(i) for i in np.flatnonzero(self.given))
+        pose = self.cm if self.cm is not self.model else None
+        return np.asarray(self.closer.follow(z, target, given, pose).q, dtype=float)
+
 
 @dataclass(frozen=True)
 class Fold:
@@ -135,7 +159,6 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
         return PathTrace(Z, folds, None, its)
     direction = 1 if values[-1] > values[0] else -1
     sc = pb.scale(col)
-    given = tuple(int(i) for i in np.flatnonzero(pb.given))
     i, z = 0, np.array(z0, dtype=float)
     z_prev: np.ndarray | None = None
     stopped = None
@@ -184,10 +207,8 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
             if nxt is None:
                 nxt = _near_fold(pb, prev, zs, col, values[k])
             if nxt is None:
-                target = prev.copy()
-                target[col] = values[k]
                 try:
-                    nxt = pb.closer.follow(prev, target, given, _pose(pb)).q
+                    nxt = pb.reach(prev, col, values[k])
                 except ClosureError:
                     break
             Z[k], prev, before = nxt, nxt, prev
@@ -234,27 +255,22 @@ def _node(
     """The next node by one batched Newton from the secant predictor (the last step
     repeated, scaled to the new one); None when it does not close there or its
     correction is not small next to the step (the careful continuation then takes it)."""
-    cm, bc = pb.cm, pb.batch
-    nb = bc.nb
+    bc = pb.batch
     if z_prev is None or z_prev[col] == z[col]:
         # a first step: a point a thousandth of it behind, closed from z itself, gives
         # the secant (the tangent, to first order)
         zq = np.array(z, dtype=float)
         zq[col] = z[col] - 1e-3 * (value - z[col])
-        Q, res, _ = bc.newton(zq[None, :], ~pb.given[:nb], pb.tolerance)
-        if res[0] > pb.tolerance:
+        Q, ok, _ = pb.close_near(zq[None, :], np.inf)
+        if not ok[0]:
             return None
         z_prev = Q[0]
+    # the last step repeated, scaled to the new one: z_prev -> z continued past z
     f = (value - z[col]) / (z[col] - z_prev[col])
-    d = cm.difference(z, z_prev)
-    zp = bc.update(z[None, :], f * d[None, :nb])[0]
-    zp[nb:] = z[nb:] + f * d[nb:]
+    zp = bc.between(z[None, :], z_prev[None, :], np.array([-f]))[0]
     zp[col] = value
-    Q, res, _ = bc.newton(zp[None, :], ~pb.given[:nb], pb.tolerance)
-    step = pb.comm(zp - z)
-    if res[0] > pb.tolerance or pb.comm(Q[0] - zp) > _NODE_CORRECTION * step:
-        return None
-    return Q[0]
+    Q, ok, _ = pb.close_near(zp[None, :], _NODE_CORRECTION * pb.comm(zp - z))
+    return Q[0] if ok[0] else None
 
 
 def _to_fold(
@@ -285,9 +301,7 @@ def _to_fold(
     Qp = bc.between(np.array(A), np.array(B), np.array(F))
     idx = np.array(ks)
     Qp[:, col] = values[idx]
-    Q, res, _ = bc.newton(Qp, ~pb.given[: bc.nb], pb.tolerance, polish=False)
-    moved = np.linalg.norm(cm.float_frame.rates(Q - Qp), axis=1)
-    ok = (res <= pb.tolerance) & (moved <= SWEEP_JUMP_RATIO * np.array(spans)) & np.isfinite(res)
+    Q, ok, _ = pb.close_near(Qp, SWEEP_JUMP_RATIO * np.array(spans), polish=False)
     Z[idx[ok]] = Q[ok]
 
 
@@ -304,15 +318,8 @@ def _near_fold(
     f = 1.0 - math.sqrt((tf - value) / (tf - tz))
     zp = bc.between(z[None, :], zf[None, :], np.array([f]))[0]
     zp[col] = value
-    Q, res, _ = bc.newton(zp[None, :], ~pb.given[: bc.nb], pb.tolerance)
-    span = pb.comm(cm.difference(zf, z))
-    if res[0] > pb.tolerance or pb.comm(Q[0] - zp) > SWEEP_JUMP_RATIO * span:
-        return None
-    return Q[0]
-
-
-def _pose(pb: Problem) -> Any:
-    return pb.cm if pb.cm is not pb.model else None
+    Q, ok, _ = pb.close_near(zp[None, :], SWEEP_JUMP_RATIO * pb.comm(cm.difference(zf, z)))
+    return Q[0] if ok[0] else None
 
 
 def _fine(
@@ -327,7 +334,7 @@ def _fine(
     path together: batched Newton from their cubic interpolation on the group (in chunks
     of _FINE_CHUNK rows); a sample that does not close near its prediction is closed again
     by continuation from the previous one.  Fills Z and its in place."""
-    cm, bc = pb.cm, pb.batch
+    bc = pb.batch
     nb = bc.nb
     # each sample predicted by the cubic through its segment's two nodes and the nodes
     # before and after (a quadratic at the ends of the path): on the group, as increments
@@ -362,14 +369,11 @@ def _fine(
         Qp[:, col] = values[rows_a[sl]]
         # closed to the tolerance and no further: a sample read near a singularity is
         # closed again (polished) by the refinement that locates it
-        Q, res, it = bc.newton(Qp, ~pb.given[:nb], pb.tolerance, polish=False)
-        moved = np.linalg.norm(cm.float_frame.rates(Q - Qp), axis=1)
-        bad = (res > pb.tolerance) | (moved > SWEEP_JUMP_RATIO * span_a[sl]) | ~np.isfinite(res)
-        Q[bad] = np.nan
+        Q, ok, it = pb.close_near(Qp, SWEEP_JUMP_RATIO * span_a[sl], polish=False)
+        Q[~ok] = np.nan
         Z[rows_a[sl]] = Q
         its[rows_a[sl]] = it
     # the samples Newton did not close near their prediction: continuation, in order
-    given = tuple(int(i) for i in np.flatnonzero(pb.given))
     for i, j in segments:
         for k in range(i + 1, j):
             if not np.isnan(Z[k, 0]):
@@ -377,10 +381,8 @@ def _fine(
             prev = Z[k - 1]
             if np.isnan(prev[0]):
                 continue
-            target = prev.copy()
-            target[col] = values[k]
             try:
-                Z[k] = pb.closer.follow(prev, target, given, _pose(pb)).q
+                Z[k] = pb.reach(prev, col, values[k])
             except ClosureError:
                 continue
 
@@ -524,7 +526,7 @@ class _Arc:
                 return "fold", zf
             self.trail.append(zn)
             if (zn[self.col] - stop) * self.direction >= 0:
-                zs = self._land(z, zn, stop)
+                zs = self._reach(z, stop)
                 if zs is None:
                     return None
                 return "passed", zs
@@ -533,15 +535,10 @@ class _Arc:
         self.why = "the path's curve is longer than sweeps follow"
         return None
 
-    def _land(self, za: np.ndarray, zb: np.ndarray, value: float) -> np.ndarray | None:
-        """The curve's point with the swept value ``value``, between za and zb."""
-        pb = self.pb
-        f = (value - za[self.col]) / (zb[self.col] - za[self.col])
-        zp = pb.cm.update(za, f * pb.cm.difference(zb, za))
-        zp[self.col] = value
-        given = tuple(int(i) for i in np.flatnonzero(pb.given))
+    def _reach(self, z: np.ndarray, value: float) -> np.ndarray | None:
+        """The curve's point with the swept value ``value``, by continuation from z."""
         try:
-            return pb.closer.follow(za, zp, given, _pose(pb)).q
+            return self.pb.reach(z, self.col, value)
         except ClosureError:
             return None
 
@@ -605,16 +602,6 @@ class _Arc:
             return self._turn(z, tau, h)
         finally:
             self.direction = -self.direction
-
-    def _reach(self, z: np.ndarray, value: float) -> np.ndarray | None:
-        pb = self.pb
-        target = z.copy()
-        target[self.col] = value
-        given = tuple(int(i) for i in np.flatnonzero(pb.given))
-        try:
-            return pb.closer.follow(z, target, given, _pose(pb)).q
-        except ClosureError:
-            return None
 
 
 def _next_sample(

@@ -267,8 +267,7 @@ def csv_rows(r: Any, rows: Any) -> list[str]:
     out = []
     shape = r.reached.shape
     for j in rows:
-        idxs = [(j,)] if len(shape) == 1 and False else None
-        if len(shape) == 1:
+        if len(shape) == 1:  # a path is one row: row 0 is all of it
             idxs = [(i,) for i in range(shape[0])] if j == 0 else []
         else:
             idxs = [(j, i) for i in range(shape[1])]
