@@ -162,6 +162,9 @@ def test_five_bar_grid_type_one_loci_match_the_independent_determinant(tmp_path,
         ("A=-3.1:3.1:0.007", 1.0),
         ("A=1:-1:0.013", 1.0),
         ("A=-6.3:6.3:0.05", 1.0),
+        # coarse steps: samples 0.2 apart, one of them exactly on the flat position
+        ("A=-7:7:0.2", 1.0),
+        ("A=-7:7:0.2", 1e-3),
         ("A=-3.1:3.1:0.007", 1e-3),
         ("A=-3.1:3.1:0.007", 1e3),
     ],
@@ -250,6 +253,39 @@ def test_three_rpr_type_two_locus_where_the_legs_are_concurrent(tmp_path, k):
                 ), (xs[i], ys[j])
 
 
+def test_three_rpr_every_grid_edge_the_locus_crosses_holds_a_located_point():
+    """On a coarse grid (samples 0.2 m and 0.25 m apart, the locus bending between them),
+    every edge of the grid, along a row or a column, whose ends give the independent
+    concurrency determinant opposite signs holds a located point on it, and the points
+    make one locus."""
+    r = sweep(EXAMPLES / "planar_3rpr.yaml", ["pose.x=0:2:0.2", "pose.y=0:2.5:0.25"])
+    assert r.reached.all()
+    xs, ys = r.variables[0].values, r.variables[1].values
+    typ2 = [p for p in r.located if "output" in p.tests]
+    D = truth.rpr3_concurrency_det(
+        xs[None, :], ys[:, None], np.zeros((len(ys), len(xs))), unit=False
+    )
+
+    def on(x0, x1, y0, y1):
+        return any(
+            min(x0, x1) - 1e-9 <= p.values[0] <= max(x0, x1) + 1e-9
+            and min(y0, y1) - 1e-9 <= p.values[1] <= max(y0, y1) + 1e-9
+            for p in typ2
+        )
+
+    crossed = 0
+    for j in range(len(ys)):
+        for i in range(len(xs)):
+            if i + 1 < len(xs) and D[j, i] * D[j, i + 1] < 0:
+                crossed += 1
+                assert on(xs[i], xs[i + 1], ys[j], ys[j]), ("row", ys[j], xs[i])
+            if j + 1 < len(ys) and D[j, i] * D[j + 1, i] < 0:
+                crossed += 1
+                assert on(xs[i], xs[i], ys[j], ys[j + 1]), ("column", xs[i], ys[j])
+    assert crossed == len(typ2)
+    assert len(r.loci) == 1
+
+
 @pytest.mark.parametrize("k", [1e-3, 1e3])
 def test_scaled_slider_crank_and_double_rocker(tmp_path, k):
     """The slider's dead centres scale with the mechanism; the rocker's angular limits do
@@ -322,11 +358,24 @@ def test_a_sweep_whose_path_is_not_a_curve_is_refused(name, spec, words):
         sweep(EXAMPLES / name, [spec])
 
 
-def test_auto_locates_again_at_mp50_what_it_re_decides_there():
+def test_a_start_on_a_bifurcation_follows_a_branch_both_ways():
+    """The change-point four-bar's reference is its flat position, where two branches
+    cross (the path's curve has two directions there): the sweep steps onto one branch,
+    says so, goes both ways and still locates the flat positions on it (A = 0, +-2 pi)."""
+    r = sweep(EXAMPLES / "fourbar_changepoint.yaml", ["A=-7:7:0.2"])
+    assert r.reached.all()
+    assert any("branches of the path cross" in n for n in r.notes)
+    found = _values(r, test="closure")
+    np.testing.assert_allclose(found, [-2 * math.pi, 0.0, 2 * math.pi], atol=LOCATED)
+    assert all("bifurcation" in (p.classes or ()) for p in r.located if "closure" in p.tests)
+
+
+@pytest.mark.parametrize("step", [0.1, 0.2])
+def test_auto_locates_again_at_mp50_what_it_re_decides_there(step):
     """The anti-parallelogram passes its flat position (a bifurcation): where auto re-decides
     the located point at mp:50, it first finds the point again at 50 digits, so the verdict
     is the bifurcation, not the regular neighbour float placed."""
-    r = sweep(EXAMPLES / "parallelogram.yaml", ["A=-4:4:0.1"], "anti-parallelogram")
+    r = sweep(EXAMPLES / "parallelogram.yaml", [f"A=-4:4:{step}"], "anti-parallelogram")
     flats = [p for p in r.located if "closure" in p.tests]
     np.testing.assert_allclose(
         sorted(p.values[0] for p in flats), [-math.pi / 2, math.pi / 2], atol=LOCATED
@@ -341,3 +390,15 @@ def test_a_path_inside_a_singular_set_says_so_instead_of_locating_noise():
     r = sweep(EXAMPLES / "ur5.yaml", ["J3=-4:4:0.1"])
     assert not r.located
     assert any("input is singular at every reached sample" in n for n in r.notes)
+
+
+def test_a_further_rank_drop_inside_a_singular_set_is_located():
+    """The PUMA 560's reference has its wrist singular (J5 = 0), so a sweep of J3 lies in
+    that singular set all along; the elbow singularity is a further drop of the arm's
+    rank inside it, located where the wrist centre, rotated about J3's axis (y), comes in
+    line with J2 and J3: the J3-to-wrist-centre vector (0.0203, 0, -0.4318) rotated by q
+    about y has no z component, tan q = -0.4318 / 0.0203, q = pi - atan(4318/203) here."""
+    r = sweep(EXAMPLES / "puma560.yaml", ["J3=1.5:1.7:0.003"])
+    elbow = math.pi - math.atan(4318 / 203)
+    np.testing.assert_allclose(_values(r, test="input"), [elbow], atol=LOCATED)
+    assert any("inside that set its rank is 5" in n for n in r.notes)

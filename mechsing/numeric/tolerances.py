@@ -149,12 +149,10 @@ SWEEP_LOCATE_TOL = 1e-12
 #: neighbours makes a V (or a parabola touching 0) whose lowest sample is at most half
 #: (a quarter) of that rise; a shallow minimum far from zero is left alone
 SWEEP_MINIMUM_SCREEN = 2.0
-#: a path through a singular point of the closure (two branches crossing) is searched down
-#: to SWEEP_BRANCH_BRACKET, then fitted from points SWEEP_BRANCH_OFFSET apart on both
+#: a path through a singular point of the closure (two branches crossing) is walked
+#: towards it from both sides, then fitted from points SWEEP_BRANCH_OFFSET apart on both
 #: sides (radians, or lengths / L): far outside the 1e-8 that float's double root blurs,
-#: close enough that a cubic is exact to rounding (offset^4 = 1e-16); the bracket only has
-#: to put the point between the fit's middle points
-SWEEP_BRANCH_BRACKET = 2e-5
+#: close enough that a cubic is exact to rounding (offset^4 = 1e-16)
 SWEEP_BRANCH_OFFSET = 1e-4
 #: first step (commensurate arclength) when a path is followed along its curve through a
 #: fold (pseudo-arclength continuation), and the shortest step before it gives up

@@ -26,6 +26,7 @@ without loops solves nothing: every other coordinate keeps its ``--from`` value.
 
 from __future__ import annotations
 
+import contextlib
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field, replace
@@ -37,11 +38,11 @@ from mechsing.analysis import analyze, analyze_found
 from mechsing.errors import UserError
 from mechsing.kinematics import Closer, ClosureError, KinematicModel
 from mechsing.kinematics.batch import BatchClosure
+from mechsing.kinematics.newton import scaled_system
 from mechsing.kinematics.pose import PoseModel
 from mechsing.lie import log_so3
 from mechsing.model import Mechanism
 from mechsing.numeric import (
-    SWEEP_BRANCH_BRACKET,
     SWEEP_BRANCH_OFFSET,
     SWEEP_JUMP_RATIO,
     SWEEP_LOCATE_TOL,
@@ -50,7 +51,7 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.sweeps.measures import Measures, PointMeasures
-from mechsing.sweeps.path import Fold, Problem, _Arc, follow
+from mechsing.sweeps.path import Fold, Problem, _Arc, _nodes, follow
 from mechsing.sweeps.spec import Variable
 
 __all__ = ["Located", "RowResult", "Sweep"]
@@ -72,6 +73,13 @@ _FOLD_TEST_RTOL = 1e-6
 _DETERMINED_RTOL = 1e-8
 #: the step (commensurate arclength) that leaves a singular start along its curve
 _OFF_SINGULAR_STEP = 1e-3
+#: most steps of a walk towards a singular point the path passes through
+_WALK_STEPS = 60
+#: a start where branches cross: directions tried over the kernel, the smallest share of
+#: the swept value in one of them, and the relative size of a kernel singular value
+_BRANCH_DIRECTIONS = 24
+_BRANCH_MIN_SWEPT = 0.05
+_KERNEL_RTOL = 1e-9
 #: measures are computed this many configurations at a time (bounds the working memory)
 _CHUNK = 4096
 
@@ -157,6 +165,8 @@ class Sweep:
             given[cols] = True
         self.cols = cols
         self.z0 = z0
+        #: said once, in the first row's notes: how the path left a singular start
+        self.start_notes: list[str] = []
         periodic = np.zeros(cm.n, dtype=bool)
         for v, c in zip(variables, cols, strict=True):
             periodic[c] = v.periodic
@@ -178,7 +188,6 @@ class Sweep:
         given coordinates must leave one degree of freedom to the swept one (a joint
         sweep), and the output must be able to move along a swept pose coordinate with
         the rest of its pose held."""
-        from mechsing.kinematics.newton import scaled_system
 
         mech, pb = self.mech, self.problem
         names = ", ".join(v.name for v in self.variables)
@@ -260,6 +269,14 @@ class Sweep:
         order = np.argsort(np.abs(values - z[col]), kind="stable")
         k0 = int(order[0])
         if z[col] == values[k0]:
+            if _Arc(self.problem, col, 1).tangent(np.asarray(z, dtype=float)) is not None:
+                return k0, np.array(z, dtype=float)
+            # a start where branches cross (a bifurcation): onto one of them
+            for k in (k0 + 1, k0 - 1):
+                if 0 <= k < len(values):
+                    off = self._onto_branch(z, col, float(values[k]))
+                    if off is not None:
+                        return k, off
             return k0, np.array(z, dtype=float)
         first: ClosureError | None = None
         for k in order[:_START_TRIES]:
@@ -269,6 +286,8 @@ class Sweep:
                 first = first or exc
             # a start at a fold or another singular point: step off it along the curve
             off = self._off_singular(z, col, float(values[k]))
+            if off is None:
+                off = self._onto_branch(z, col, float(values[k]))
             if off is not None:
                 return int(k), off
         var = self._variable(col)
@@ -302,6 +321,50 @@ class Sweep:
                 return np.asarray(out[1], dtype=float)
         return None
 
+    def _onto_branch(self, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
+        """From a start where branches cross (the curve of the path has a kernel of more
+        than one direction there, as at a change-point four-bar's flat position): the
+        branches leave along some directions of that kernel.  A short pseudo-arclength
+        step is tried along directions spread over it (towards ``value``); the step whose
+        corrector moves least lies on a branch, and the path goes on from there to
+        ``value`` along the curve.  The branch taken is said in the sweep's notes."""
+        pb = self.problem
+        d = 1 if value > z[col] else -1
+        arc = _Arc(pb, col, d)
+        z = np.asarray(z, dtype=float)
+        Js, _ = scaled_system(pb.cm, z)
+        _, s, Vt = np.linalg.svd(Js[:, arc.free], full_matrices=True)
+        K = Vt[int(np.sum(s > _KERNEL_RTOL * (s[0] if len(s) else 1.0))) :]
+        if K.shape[0] < 2:
+            return None
+        fr = pb.cm.float_frame
+        best: tuple[float, np.ndarray] | None = None
+        for th in np.linspace(0.0, math.pi, _BRANCH_DIRECTIONS, endpoint=False):
+            tau = math.cos(th) * K[0] + math.sin(th) * K[1]
+            if abs(tau[arc.cidx]) < _BRANCH_MIN_SWEPT:
+                continue  # hardly moves the swept value
+            tau = tau if tau[arc.cidx] * d > 0 else -tau
+            zn = arc.step(z, tau, _OFF_SINGULAR_STEP)
+            if zn is None or (zn[col] - z[col]) * d <= 0 or arc.tangent(zn) is None:
+                continue
+            moved = np.zeros(pb.cm.n)
+            moved[arc.free] = _OFF_SINGULAR_STEP * tau
+            off = float(np.linalg.norm(fr.rates(pb.cm.difference(zn, z)) - moved))
+            if best is None or off < best[0]:
+                best = (off, zn)
+        if best is None:
+            return None
+        out = _Arc(pb, col, d).to_fold_or(best[1], value)
+        if out is None or out[0] != "passed":
+            return None
+        var = self._variable(col)
+        self.start_notes.append(
+            f"the start {self.from_config!r} is a singular point where branches of the path "
+            f"cross ({var.name} = {var.shown(float(z[col]))}): the path follows one of them; "
+            "start from a configuration on a branch (--from) to choose"
+        )
+        return np.asarray(out[1], dtype=float)
+
     def _variable(self, col: int) -> Variable:
         return self.variables[self.cols.index(col)]
 
@@ -315,7 +378,12 @@ class Sweep:
         zp[col] = t
         span = pb.comm(pb.cm.difference(zb, za))
         Q, ok, _ = pb.close_near(zp[None, :], SWEEP_JUMP_RATIO * max(span, 1e-300))
-        return Q[0] if ok[0] else pb.reach(za, col, t)
+        if ok[0]:
+            return Q[0]
+        # along the path from za by the tangent in halved steps, then the careful
+        # continuation
+        walked = _nodes(pb, np.asarray(za, dtype=float), None, col, t)
+        return walked if walked is not None else pb.reach(za, col, t)
 
     # ------------------------------------------------------------------ rows
 
@@ -342,11 +410,27 @@ class Sweep:
         located += self._along(Z, reached, pm, ratio, col, index)
         always = [t for t in self.tests if np.any(reached) and np.all(ratio[t][reached] <= _TAU_HI)]
         var = self._variable(col)
-        stopped = [
-            f"{t} is singular at every reached sample (rank below its generic "
-            f"{self.measures.generic[t]} all along): the path lies in that singular set"
-            for t in always
-        ]
+        stopped = list(self.start_notes) if index == 0 else []
+        for t in always:
+            g = self.measures.generic[t]
+            stopped.append(
+                f"{t} is singular at every reached sample (rank below its generic {g} all "
+                "along): the path lies in that singular set"
+            )
+            # inside the set, the rank it keeps along the path can drop further (a PUMA's
+            # elbow on a path inside its wrist singularity): located at that level
+            level = int(np.max(rank[t][reached]))
+            if 0 < level < g:
+                with self._levelled(t, level):
+                    pm_t = self._measure(Z, reached)
+                    ratio_t = np.full(K, np.nan)
+                    ratio_t[reached] = pm_t.ratio[t]
+                    if np.any(ratio_t[reached] > _TAU_HI):
+                        located += self._along(Z, reached, pm_t, {t: ratio_t}, col, index)
+                        stopped.append(
+                            f"{t}: inside that set its rank is {level} along the path; "
+                            f"the points where it drops below {level} are located"
+                        )
         for trace, end in ((fwd, values[-1]), (bwd, values[0])):
             if trace.stopped:
                 # where it stopped: the last sample reached towards that end
@@ -356,6 +440,17 @@ class Sweep:
                     f"towards {var.name} = {var.shown(float(end))}: stopped after {last}: {trace.stopped}"
                 )
         return RowResult(index, reached, rank, ratio, _merge(located, self), stopped, newton, Z, pm)
+
+    @contextlib.contextmanager
+    def _levelled(self, t: str, level: int) -> Iterator[None]:
+        """Within the block, the sweep measures test ``t`` alone, at rank ``level``
+        instead of its generic rank (the refinements read ``self.measures``)."""
+        whole = self.measures
+        self.measures = whole.levelled(t, level)
+        try:
+            yield
+        finally:
+            self.measures = whole
 
     def _measure(self, Z: np.ndarray, reached: np.ndarray) -> PointMeasures:
         Q = Z[reached][:, : self.model.n]
@@ -445,6 +540,16 @@ class Sweep:
                     if d[k] < 0 and max(rho[pairs[k][0]], rho[pairs[k][1]]) > _TAU_HI
                 ]
             )
+            # a pair holding a point already located for another test (the closure's
+            # first) that zeroes this one too: the same point, placed by that test
+            # (near a singular point of the closure this test's zero is blurred)
+            done = [
+                k
+                for k in hits
+                if self._holds(out, t, Z[pairs[k][0], col], Z[pairs[k][1], col], col)
+            ]
+            crossed.update(x for k in done for x in pairs[k])
+            hits = [k for k in hits if k not in done]
             if hits:
                 A = np.array([pairs[k][0] for k in hits])
                 B = np.array([pairs[k][1] for k in hits])
@@ -465,6 +570,8 @@ class Sweep:
             for k in range(1, len(Z) - 1):
                 if not (reached[k - 1] and reached[k] and reached[k + 1]) or k in crossed:
                     continue
+                if self._holds(out, t, Z[k - 1, col], Z[k + 1, col], col):
+                    continue  # the point located there for another test zeroes this one
                 lo, hi = rho[k - 1], rho[k + 1]
                 if max(lo, hi) <= _TAU_HI:
                     continue  # singular on both sides: no isolated zero to place
@@ -473,13 +580,28 @@ class Sweep:
                 rise = max(lo, hi) - rho[k]
                 if rho[k] > SWEEP_MINIMUM_SCREEN * rise:
                     continue
-                found = self._minimum(t, Z[k - 1], Z[k], Z[k + 1], col)
-                if found is None and t == "closure":
+                found = None
+                if t == "closure":
                     found = self._through(Z, reached, k - 1, k + 1, col)
+                if found is None:
+                    found = self._minimum(t, Z[k - 1], Z[k], Z[k + 1], col)
                 if found is not None:
                     z, r = found
                     out.append(self._at(z, "minimum", (t,), r, "row", (index, k)))
         return out
+
+    def _holds(self, out: list[Located], t: str, va: float, vb: float, col: int) -> bool:
+        """Whether a point of ``out`` lies between the swept values va and vb and is
+        singular for test ``t`` too (its measure below float's tau_hi there), or is a
+        singular point of the closure (where the input and output tests' sign, read
+        through the closure, changes too, and their measure is not defined)."""
+        lo, hi = sorted((float(va), float(vb)))
+        return any(
+            lo <= float(p.z[col]) <= hi
+            and ("closure" in p.tests or self._ratio(t, p.z) <= _TAU_HI)
+            for p in out
+            if p.z is not None
+        )
 
     # ------------------------------------------------------------------ refinement
 
@@ -586,71 +708,75 @@ class Sweep:
         There the unknown joints are a double root of the closure equations for the held
         values, so float closes them only to about 1e-8 and the measure has a floor
         there: neither Newton at the point nor a search down to it can place it to
-        1e-10.  The path itself is smooth through the point, and so is the determinant
-        of the closure system along it, which changes sign: the point is found by
-        golden-section search down to SWEEP_BRANCH_BRACKET, then from six points of
-        the path on both sides, SWEEP_BRANCH_OFFSET apart (far outside the double
-        root's reach, closed to full accuracy), the measure signed by side is fitted by
-        a cubic whose root is the swept value, and the configuration there is the
-        cubic interpolation of theirs.  Every point is closed by Newton from the cubic
-        through the path's four nearest samples (the other branch is as near as the
-        point is to the crossing: a cruder prediction could land on it).  None when the
-        six points do not make one smooth signed curve or when the interpolated point
-        is not singular to float's tau_lo."""
+        1e-10.  The path itself is smooth through the point, and the measure along it
+        is, near the point, proportional to the distance from it (a V).  So the path is
+        walked from each side towards the point, each step half the estimated distance
+        left (the estimate from the last two steps' measures) and predicted from the
+        last two points of the walk (the other branch is as near as the point is: a
+        prediction from the coarse samples could land on it), until SWEEP_BRANCH_OFFSET
+        away; then from six points on both sides, 1, 2 and 3 offsets away (far outside
+        the double root's reach, closed to full accuracy), the measure signed by side is
+        fitted by a cubic whose root is the swept value, and the configuration there is
+        the cubic interpolation of theirs.  None when the walks lose the path, when the
+        six points do not make one smooth signed curve or when the interpolated point is
+        not singular to float's tau_lo."""
         t = "closure"
-        pb = self.problem
-        cm = pb.cm
+        cm = self.problem.cm
         sc = self.scale(col)
-        near = [k for k in range(ka - 1, kb + 2) if 0 <= k < len(Z) and reached[k]]
-        if len(near) < 2:
-            return None
-        base0 = Z[near[0]]
-        tv = np.array([Z[k, col] for k in near])
-        Dn = np.array([cm.difference(Z[k], base0) for k in near])
-        deg = min(3, len(near) - 1)
-        fits = [np.polyfit(tv, Dn[:, i], deg) for i in range(Dn.shape[1])]
         a, b = float(Z[ka, col]), float(Z[kb, col])
-        span = abs(b - a)
-
-        def at(v: float) -> np.ndarray:
-            d = np.array([np.polyval(c, v) for c in fits])
-            zp = np.asarray(cm.update(base0, d), dtype=float)
-            zp[col] = v
-            Q, ok, _ = pb.close_near(zp[None, :], SWEEP_JUMP_RATIO * span)
-            if not ok[0]:
-                raise ClosureError("the path is lost near a singular point", None, None)
-            return Q[0]
-
-        g = (math.sqrt(5) - 1) / 2
+        rho = [self._ratio(t, Z[k]) for k in range(ka, kb + 1)]
+        ra, rb = rho[0], rho[-1]
+        if kb == ka + 2:
+            # a minimum at the middle sample: on a V through it, c |v - g|, the point g is
+            # on its lower neighbour's side, 2 h r_mid / (r_a + r_b) from it
+            mid = (a + b) / 2
+            toward = np.sign(b - a) * (1.0 if rb < ra else -1.0)
+            guess = mid + toward * abs(b - a) * rho[1] / (ra + rb) if ra + rb > 0 else mid
+        else:
+            guess = a + (b - a) * ra / (ra + rb) if ra + rb > 0 else (a + b) / 2
         lo, hi = min(a, b), max(a, b)
-        try:
-            c, d = hi - g * (hi - lo), lo + g * (hi - lo)
-            fc, fd = self._ratio(t, at(c)), self._ratio(t, at(d))
-        except ClosureError:
-            return None
-        while hi - lo > SWEEP_BRANCH_BRACKET * sc:
-            # nearer the point than the path's samples predict, Newton may not close: the
-            # bracket reached so far is enough for the fit, which stays further out
-            try:
-                if fc < fd:  # the minimum is in [lo, d]
-                    c2 = d - g * (d - lo)
-                    f2 = self._ratio(t, at(c2))
-                    hi, d, fd, c, fc = d, c, fc, c2, f2
-                else:  # in [c, hi]
-                    d2 = c + g * (hi - c)
-                    f2 = self._ratio(t, at(d2))
-                    lo, c, fc, d, fd = c, d, fd, d2, f2
-            except ClosureError:
-                break
-        guess = (lo + hi) / 2
-        delta = min(SWEEP_BRANCH_OFFSET * sc, span / 8)
-        if hi - lo > delta:
-            return None
+        delta = min(SWEEP_BRANCH_OFFSET * sc, (hi - lo) / 8)
+        if not lo + 3 * delta < guess < hi - 3 * delta:
+            guess = min(max(guess, lo + 4 * delta), hi - 4 * delta)
+
+        def behind(k: int, step: int) -> np.ndarray | None:
+            j = k - step
+            return Z[j] if 0 <= j < len(Z) and reached[j] else None
+
+        walks = []
+        for k, step in ((ka, 1), (kb, -1)):
+            z, zp, r = np.asarray(Z[k], dtype=float), behind(k, step), (ra if k == ka else rb)
+            g = guess
+            for _ in range(_WALK_STEPS):
+                v = float(z[col])
+                if abs(g - v) <= 4 * delta:
+                    break
+                zn = _nodes(self.problem, z, zp, col, v + (g - v) / 2)
+                if zn is None:
+                    return None
+                rn = self._ratio(t, zn)
+                vn = float(zn[col])
+                if rn < r:  # still descending the V: the distance left, from its slope
+                    c = (r - rn) / abs(vn - v)
+                    g_new = vn + np.sign(g - v) * rn / c
+                    if lo < g_new < hi:
+                        g = g_new
+                z, zp, r = np.asarray(zn, dtype=float), z, rn
+            else:
+                return None
+            walks.append((z, zp, g))
+        guess = (walks[0][2] + walks[1][2]) / 2
         u = np.array([-3.0, -2.0, -1.0, 1.0, 2.0, 3.0])
-        try:
-            zs = [at(guess + k * delta) for k in u]
-        except ClosureError:
-            return None
+        zs: list[np.ndarray] = []
+        for (z, zp, _), side in zip(walks, (-1.0, 1.0), strict=True):
+            pts = []
+            for k in (3.0, 2.0, 1.0):
+                zn = _nodes(self.problem, z, zp, col, guess + side * k * delta)
+                if zn is None:
+                    return None
+                z, zp = np.asarray(zn, dtype=float), z
+                pts.append(z)
+            zs += pts if side < 0 else pts[::-1]
         f = np.sign(u) * np.array([self._ratio(t, z) for z in zs])
         coef = np.polyfit(u, f, 3)
         if np.max(np.abs(np.polyval(coef, u) - f)) > 1e-6 * np.max(np.abs(f)):
@@ -741,23 +867,28 @@ class Sweep:
 
 def _merge(located: list[Located], sw: Sweep) -> list[Located]:
     """Points of one row found by several tests (or a fold and a test) at the same value
-    are one point: their tests together, the fold's kind first."""
+    are one point: their tests together, placed by the fold if there is one, else by the
+    closure's test (near a singular point of the closure the other tests' measures are
+    blurred by its double root; the closure's own placement is not)."""
     order = {"fold": 0, "crossing": 1, "minimum": 2}
     located = sorted(located, key=lambda p: (p.values, order[p.kind]))
-    out: list[Located] = []
+    groups: list[list[Located]] = []
     for p in located:
-        same = None
-        for o in out:
+        for g in groups:
+            o = g[0]
             if o.edge == p.edge and all(
                 abs(a - b) <= 1e3 * SWEEP_LOCATE_TOL * sw.scale(c) + 1e-9 * sw.scale(c)
                 for a, b, c in zip(o.values, p.values, sw.cols, strict=True)
             ):
-                same = o
+                g.append(p)
                 break
-        if same is None:
-            out.append(p)
-            continue
-        same.tests = tuple(dict.fromkeys((*same.tests, *p.tests)))
+        else:
+            groups.append([p])
+    out = []
+    for g in groups:
+        best = min(g, key=lambda p: (order[p.kind] > 0, "closure" not in p.tests))
+        best.tests = tuple(dict.fromkeys(t for p in [best, *g] for t in p.tests))
+        out.append(best)
     return out
 
 

@@ -38,6 +38,7 @@ times L); twists ``(omega, v)``.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 from typing import Any
 
@@ -134,6 +135,15 @@ class Measures:
         }
         self.tests = tuple(self.generic)
 
+    def levelled(self, t: str, level: int) -> Measures:
+        """The same measures for test ``t`` alone, at rank ``level`` instead of its
+        generic rank: inside a set where the test is singular, where its rank drops
+        further."""
+        out = copy.copy(self)
+        out.generic = {t: level}
+        out.tests = (t,)
+        return out
+
     # ------------------------------------------------------------------ matrices
 
     def matrices(self, Q: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray | None]:
@@ -167,6 +177,9 @@ class Measures:
             out["output"] = (
                 np.broadcast_to(self.E, (N, *self.E.shape)) if kernel is None else self.E @ kernel
             )
+            if kernel is not None:  # the rows themselves, for the bordered sign test
+                out["input_rows"] = T / np.maximum(nT, 1e-300)[:, None, None]
+                out["output_rows"] = np.broadcast_to(self.E, (N, *self.E.shape))
         if "constraint" in self.tests:
             out["constraint"] = self._constraint(Ss)
         return out, kernel
@@ -216,7 +229,35 @@ class Measures:
             ratio[t] = rel[:, g - 1] if g <= rel.shape[1] else np.zeros(len(rel))
             bases[t] = (U[:, :, :g], np.swapaxes(Vt[:, :g, :], 1, 2))
         signed = {t: mats[t] for t in self.tests if t in SIGNED}
+        for t in ("input", "output"):
+            if self._bordered_test(t) and f"{t}_rows" in mats:
+                signed[f"{t}_rows"] = mats[f"{t}_rows"]
         return PointMeasures(rank, ratio, bases, kernel, signed)
+
+    def _bordered_test(self, t: str) -> bool:
+        """Whether the sign of test ``t`` is read from the bordered determinant: an input
+        or output test of a closed chain whose generic rank is the dimension of the
+        closure kernel (its matrix X N square), with the closure measured too."""
+        g, gc = self.generic.get(t), self.generic.get("closure")
+        return (
+            t in ("input", "output")
+            and g is not None
+            and gc is not None
+            and "closure" in self.tests
+            and g == self.model.n - gc
+        )
+
+    def _bordered(self, t: str, a: PointMeasures, ia: np.ndarray, mats: dict) -> np.ndarray:
+        """The determinant of the square matrix [U_c^T C; U_t^T X] at the points of
+        ``mats``: the closure matrix C and the test's rows X (T or E, before the kernel),
+        compressed on the leading left singular vectors of the points ``ia`` of ``a``.  It
+        vanishes exactly where X N loses rank (N the closure kernel), and, unlike X N, needs
+        no basis of the kernel: it is continuous from a to b, so its sign is a sure test."""
+        Uc = a.bases["closure"][0][ia]
+        Ut = a.bases[t][0][ia]
+        top = np.swapaxes(Uc, 1, 2) @ mats["closure"]
+        low = np.swapaxes(Ut, 1, 2) @ mats[f"{t}_rows"]
+        return np.linalg.det(np.concatenate([top, low], axis=1))
 
     def compressed_pairs(
         self, pm: PointMeasures, ia: np.ndarray, ib: np.ndarray
@@ -230,6 +271,13 @@ class Measures:
         assert pm.matrices is not None
         out = {}
         for t, M in pm.matrices.items():
+            if t.endswith("_rows"):
+                continue
+            if f"{t}_rows" in pm.matrices:
+                at_b = {k: v[ib] for k, v in pm.matrices.items()}
+                at_a = {k: v[ia] for k, v in pm.matrices.items()}
+                out[t] = self._bordered(t, pm, ia, at_b) * np.sign(self._bordered(t, pm, ia, at_a))
+                continue
             A = M[ib]
             if t in ("input", "output") and pm.kernel is not None:
                 A = self._turned(A, pm.kernel[ib], pm.kernel[ia])
@@ -246,6 +294,10 @@ class Measures:
         out = {}
         for t in self.tests:
             if t not in SIGNED:
+                continue
+            if a.matrices is not None and f"{t}_rows" in a.matrices and f"{t}_rows" in mats:
+                at_a = {k: v[ia] for k, v in a.matrices.items()}
+                out[t] = self._bordered(t, a, ia, mats) * np.sign(self._bordered(t, a, ia, at_a))
                 continue
             A = mats[t]
             if t in ("input", "output") and a.kernel is not None and kernel is not None:
