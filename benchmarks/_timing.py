@@ -9,10 +9,13 @@ from collections.abc import Callable
 from typing import Any
 
 
-def timed_median(f: Callable[[], Any], repeat: int) -> tuple[float, Any]:
-    """Median wall time of ``repeat`` calls of ``f`` (seconds), and the last call's result."""
+def timed_median(f: Callable[[], Any], repeat: int, warmup: int = 0) -> tuple[float, Any]:
+    """Median wall time of ``repeat`` calls of ``f`` (seconds), and the last call's result;
+    ``warmup`` untimed calls first (what a first call loads once: modules, caches)."""
     ts = []
     out = None
+    for _ in range(warmup):
+        f()
     for _ in range(repeat):
         t0 = time.perf_counter()
         out = f()

@@ -11,7 +11,8 @@ For each path (the four-bar's crank turn, the slider-crank between its dead cent
   numpy's SVD at each point (``benchmarks/_pinocchio_sweep.py``, the ``bench`` extra),
   which measures but neither locates nor classifies.
 
-Printed per path: points, points/s of each (median of ``--repeat`` runs), the ratio,
+Printed per path: points, points/s of each (median of ``--repeat`` runs after one untimed
+run of each, which loads what a first call loads once), the ratio,
 Newton iterations per point of each, and how far the located singularities are from their
 closed forms (tests/reference/sweep_truth.py; for the paths of the timing that never
 reach a singularity, a second mechsing sweep across one).  ``--million`` also runs
@@ -119,7 +120,9 @@ def _five_bar(repeat: int, density: int) -> None:
     """The five-bar grid of its two inputs: mechsing and the anchor's grid of held inputs."""
     v = np.linspace(-0.4, 0.4, 41 * max(1, round(density**0.5)))
     spec = [_spec("A1", v), _spec("A2", v)]
-    t, r = timed_median(lambda: mechsing.sweep(ROOT / "examples" / "five_bar.yaml", spec), repeat)
+    t, r = timed_median(
+        lambda: mechsing.sweep(ROOT / "examples" / "five_bar.yaml", spec), repeat, warmup=1
+    )
     n = r.points()
     mode = truth.FIVE_BAR.reference_mode()
     size = max(truth.FIVE_BAR.lengths()) ** 2
@@ -139,7 +142,7 @@ def _five_bar(repeat: int, density: int) -> None:
     if pin is not None:
         anchor = PinocchioAnchor(mechsing.load(ROOT / "examples" / "five_bar.yaml"))
         q0 = anchor.approach(pin.neutral(anchor.model), ["A1", "A2"], [v[0], v[0]])
-        ta, pa = timed_median(lambda: anchor.grid(["A1", "A2"], v, v, q0), repeat)
+        ta, pa = timed_median(lambda: anchor.grid(["A1", "A2"], v, v, q0), repeat, warmup=1)
         line += f", anchor {n / ta:,.0f} points/s, ratio {ta / t:.2f}; anchor Newton {pa.iterations.mean():.2f}/point"
     print(line)
     print(
@@ -204,12 +207,13 @@ def main(argv: list[str] | None = None) -> int:
         t, r = timed_median(
             lambda f=file, s=spec, st=start: mechsing.sweep(ROOT / "examples" / f, s, st),
             args.repeat,
+            warmup=1,
         )
         n = r.points()
         line = f"  {case.name}: {n} points, mechsing {n / t:,.0f} points/s"
         if pin is not None:
             _anchor, run = prepare(case, ROOT)
-            ta, pa = timed_median(run, args.repeat)
+            ta, pa = timed_median(run, args.repeat, warmup=1)
             na = case.points
             line += (
                 f", anchor {na / ta:,.0f} points/s, ratio {(n / t) / (na / ta):.2f}; "

@@ -273,11 +273,6 @@ class Measures:
         for t, M in pm.matrices.items():
             if t.endswith("_rows"):
                 continue
-            if f"{t}_rows" in pm.matrices:
-                at_b = {k: v[ib] for k, v in pm.matrices.items()}
-                at_a = {k: v[ia] for k, v in pm.matrices.items()}
-                out[t] = self._bordered(t, pm, ia, at_b) * np.sign(self._bordered(t, pm, ia, at_a))
-                continue
             A = M[ib]
             if t in ("input", "output") and pm.kernel is not None:
                 A = self._turned(A, pm.kernel[ib], pm.kernel[ia])

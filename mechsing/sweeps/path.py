@@ -214,6 +214,8 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
             Z[k], prev, before = nxt, nxt, prev
         reached = [k for k in range(i + 1, j + 1) if not np.isnan(Z[k, 0])]
         last = max(reached) if reached else i
+        if last == K - 1:
+            break  # every sample reached: the fold lies beyond the range
         resume = arc.other_side(zs, values, last)
         if resume is None:
             stopped = arc.why
