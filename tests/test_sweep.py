@@ -402,3 +402,35 @@ def test_a_further_rank_drop_inside_a_singular_set_is_located():
     elbow = math.pi - math.atan(4318 / 203)
     np.testing.assert_allclose(_values(r, test="input"), [elbow], atol=LOCATED)
     assert any("inside that set its rank is 5" in n for n in r.notes)
+
+
+def test_a_grid_covers_the_assembled_region_beyond_its_first_column():
+    """The five-bar over a wide grid of its inputs: the first column (A1 = 0) misses the
+    rows where the assembled region lies to one side, and those rows are started from a
+    neighbouring row instead.  Every sample of the start's assembled region (the
+    discriminant of the assembly positive, connected to the start on the grid) is
+    reached, and nothing outside the assembled set; the folds that bound the region on
+    neighbouring rows are chained into loci."""
+    from scipy import ndimage
+
+    r = sweep(EXAMPLES / "five_bar.yaml", ["A1=-3:3:0.25", "A2=-3:3:0.25"], precision="float")
+    xs, ys = r.variables[0].values, r.variables[1].values
+    D = truth.five_bar_discriminant(xs[None, :], ys[:, None])
+    labels, _ = ndimage.label(D > 0)
+    region = labels == labels[np.argmin(np.abs(ys)), np.argmin(np.abs(xs))]
+    reached = np.asarray(r.reached).reshape(len(ys), len(xs))
+    assert not np.any(region & ~reached)
+    assert np.all(D[reached] > 0)
+    assert any("started from a neighbouring row" in n for n in r.notes)
+    folds = [p for p in r.located if p.kind == "fold"]
+    size = max(truth.FIVE_BAR.lengths()) ** 2
+    for p in folds:
+        assert abs(truth.five_bar_discriminant(np.array(p.values[0]), np.array(p.values[1]))) <= (
+            1e-9 * size**2
+        )
+    step = float(ys[1] - ys[0])
+    loci = [lc for lc in r.loci if lc.test == "output"]
+    assert loci and 3 * len(loci) < len(folds)
+    for lc in loci:
+        rows = lc.vertices[:, 1] / step
+        assert np.all(np.abs(np.diff(rows)) <= 1 + 1e-9)

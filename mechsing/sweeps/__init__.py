@@ -201,6 +201,8 @@ class SweepRun:
     def result(self) -> SweepResult:
         """Classify the located points and return the result."""
         eng = self.engine
+        # how the sweep started (a singular start, rows started from a neighbour) first
+        self.notes[:0] = [n for n in eng.start_notes if n not in self.notes]
         located = sorted(self.located, key=lambda p: (p.edge != "row", p.values[::-1]))
         # the points found along the rows first, then those between rows (a grid)
         chosen = list(located)

@@ -75,6 +75,8 @@ _DETERMINED_RTOL = 1e-8
 _OFF_SINGULAR_STEP = 1e-3
 #: most steps of a walk towards a singular point the path passes through
 _WALK_STEPS = 60
+#: most samples of a reached row tried to start a neighbouring row the first column misses
+_BRIDGE_TRIES = 6
 #: a start where branches cross: directions tried over the kernel, the smallest share of
 #: the swept value in one of them, and the relative size of a kernel singular value
 _BRANCH_DIRECTIONS = 24
@@ -410,7 +412,7 @@ class Sweep:
         located += self._along(Z, reached, pm, ratio, col, index)
         always = [t for t in self.tests if np.any(reached) and np.all(ratio[t][reached] <= _TAU_HI)]
         var = self._variable(col)
-        stopped = list(self.start_notes) if index == 0 else []
+        stopped: list[str] = []
         for t in always:
             g = self.measures.generic[t]
             stopped.append(
@@ -597,8 +599,7 @@ class Sweep:
         through the closure, changes too, and their measure is not defined)."""
         lo, hi = sorted((float(va), float(vb)))
         return any(
-            lo <= float(p.z[col]) <= hi
-            and ("closure" in p.tests or self._ratio(t, p.z) <= _TAU_HI)
+            lo <= float(p.z[col]) <= hi and ("closure" in p.tests or self._ratio(t, p.z) <= _TAU_HI)
             for p in out
             if p.z is not None
         )
@@ -850,7 +851,68 @@ class Sweep:
         independent of each other)."""
         cx, cy = self.cols
         _, zx = self.start_of(cx, values[0], self.z0)
-        return self.row(-1, cy, values[1], zx)
+        column = self.row(-1, cy, values[1], zx)
+        self._bridge(column, values)
+        return column
+
+    def _bridge(self, column: RowResult, values: list[np.ndarray]) -> None:
+        """Rows the first column does not reach (the reachable region does not cover
+        the start's value of the first variable there) are started from a neighbouring
+        row that is reached: that row is followed, and from its reached samples (the
+        nearest the first column first) the column is continued to the row's value; the
+        row's start (at that sample) goes into ``column``.  Repeated outwards until no
+        row is added, so a reachable region that the first column crosses only in part is
+        covered on the start's assembly mode."""
+        assert column.Z is not None
+        reached = column.reached
+        if reached.all() or not reached.any():
+            return
+        cx, cy = self.cols
+        xs, ys = values
+        k0 = int(np.argmin(np.abs(xs - self.z0[cx])))
+        pb = self.problem
+        paths: dict[int, np.ndarray] = {}
+
+        def path_of(n: int) -> np.ndarray:
+            if n not in paths:
+                assert column.Z is not None
+                z = column.Z[n]
+                kn = int(np.argmin(np.abs(xs - z[cx])))
+                Zn = np.full((len(xs), pb.n), np.nan)
+                Zn[kn:] = follow(pb, z, cx, xs[kn:]).Z
+                Zn[: kn + 1] = follow(pb, z, cx, xs[kn::-1]).Z[::-1]
+                paths[n] = Zn
+            return paths[n]
+
+        bridged = 0
+        added = True
+        while added:
+            added = False
+            for j in range(len(ys)):
+                if reached[j]:
+                    continue
+                for n in (j - 1, j + 1):
+                    if not (0 <= n < len(ys) and reached[n]):
+                        continue
+                    Zn = path_of(n)
+                    ks = np.flatnonzero(~np.isnan(Zn[:, 0]))
+                    ks = ks[np.argsort(np.abs(ks - k0), kind="stable")]
+                    picks = ks[:: max(1, len(ks) // _BRIDGE_TRIES)][:_BRIDGE_TRIES]
+                    for k in picks:
+                        try:
+                            zj = pb.reach(Zn[k], cy, float(ys[j]))
+                        except ClosureError:
+                            continue
+                        column.Z[j], reached[j] = zj, True
+                        added, bridged = True, bridged + 1
+                        break
+                    if reached[j]:
+                        break
+        if bridged:
+            self.start_notes.append(
+                f"{bridged} rows the first column does not reach were started from a "
+                "neighbouring row"
+            )
 
     def unreached_row(self, j: int, k: int) -> RowResult:
         """Row j of k samples when the first column does not reach it: nothing reached."""

@@ -59,6 +59,9 @@ def loci_of(run: Any, located: list[LocatedSingularity]) -> list[Locus]:
             ks = sorted(set(ks))
             for a, b in _pairs(ks, xy / span):
                 g.add_edge(a, b)
+        for a, b in _fold_links(run, pts):
+            if not g.has_edge(a, b) and g.degree(a) < 2 and g.degree(b) < 2:
+                g.add_edge(a, b)
         for comp in nx.connected_components(g):
             if len(comp) < 2:
                 continue
@@ -70,6 +73,39 @@ def loci_of(run: Any, located: list[LocatedSingularity]) -> list[Locus]:
                     classes[c] = None
             out.append(Locus(test, tuple(classes), xy[order], closed))
     return out
+
+
+def _fold_links(run: Any, pts: list[LocatedSingularity]) -> list[tuple[int, int]]:
+    """Links between the folds of neighbouring rows that bound the reached region on the
+    same side (a row stopped going right, or left, at each): a fold curve crosses no
+    column edge whose two ends are reached, so marching squares cannot join its points
+    when the curve runs closer to the rows' direction than to the columns'.  Each fold
+    is linked to the nearest fold on the same side of the next row when each is the
+    other's nearest."""
+    xv, yv = np.asarray(run.vars[0].values), np.asarray(run.vars[1].values)
+    reached = np.asarray(run.reached, dtype=bool).reshape(len(yv), len(xv))
+    ascending = xv[-1] >= xv[0]
+    side: dict[int, tuple[int, int]] = {}  # point -> (row, +1 right boundary / -1 left)
+    for k, p in enumerate(pts):
+        if p.kind != "fold" or p.between != "row":
+            continue
+        j = int(np.argmin(np.abs(yv - p.values[1])))
+        i = int(np.searchsorted(xv if ascending else xv[::-1], p.values[0]))
+        i = i if ascending else len(xv) - i  # the first sample past the fold in x
+        left = reached[j, i - 1] if 0 < i <= len(xv) else False
+        right = reached[j, i] if 0 <= i < len(xv) else False
+        if left != right:
+            side[k] = (j, 1 if (left ^ (not ascending)) else -1)
+    links = []
+    for a, (j, s) in side.items():
+        near = [b for b, (jb, sb) in side.items() if jb == j + 1 and sb == s]
+        if not near:
+            continue
+        b = min(near, key=lambda m: abs(pts[m].values[0] - pts[a].values[0]))
+        back = [m for m, (jm, sm) in side.items() if jm == j and sm == s]
+        if min(back, key=lambda m: abs(pts[m].values[0] - pts[b].values[0])) == a:
+            links.append((a, b))
+    return links
 
 
 def _pairs(ks: list[int], xy: np.ndarray) -> list[tuple[int, int]]:
