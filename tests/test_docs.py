@@ -172,8 +172,10 @@ def _run_page(path: Path, tmp_path: Path) -> None:
             where = f"{path.name}:{cmd.line}: mechsing {' '.join(cmd.argv)}"
             assert run.status == cmd.status, f"{where}: exit {run.status}\n{run.err}"
             assert output_matches(cmd.expected, run.out.splitlines()), (
-                f"{where}: output differs\n--- expected\n" + "\n".join(cmd.expected)
-                + "\n--- got\n" + run.out
+                f"{where}: output differs\n--- expected\n"
+                + "\n".join(cmd.expected)
+                + "\n--- got\n"
+                + run.out
             )
     finally:
         os.chdir(here)
@@ -193,7 +195,9 @@ def _run_page(path: Path, tmp_path: Path) -> None:
             os.chdir(here)
 
 
-@pytest.mark.parametrize("path", PAGES, ids=[p.name if p.parent.name != "docs" else f"docs/{p.name}" for p in PAGES])
+@pytest.mark.parametrize(
+    "path", PAGES, ids=[p.name if p.parent.name != "docs" else f"docs/{p.name}" for p in PAGES]
+)
 def test_page_examples_run(path: Path, tmp_path: Path) -> None:
     """Every console block, file and doctest of the page runs as the page says."""
     _run_page(path, tmp_path)

@@ -113,7 +113,10 @@ def _agrees(expected: Any, got: Any, answer: dict[str, Any]) -> bool:
         if not isinstance(got, list) or len(got) != len(expected):
             return False
         signs = (1, -1) if answer.get("up_to_sign") else (1,)
-        return any(all(abs(s * g * scale - e) <= tol for g, e in zip(got, expected)) for s in signs)
+        return any(
+            all(abs(s * g * scale - e) <= tol for g, e in zip(got, expected, strict=True))
+            for s in signs
+        )
     if isinstance(expected, set):
         return isinstance(got, (set, list)) and {str(x) for x in got} == expected
     if isinstance(got, (set, list)):  # one word against several: it is one of them
@@ -145,7 +148,9 @@ def test_readme_states_the_checked_answers(folder: Path) -> None:
     for answer in _answers(folder):
         aid, want = answer["id"], str(answer["expected"]).strip()
         assert aid in stated, f"{folder.name}: `{aid} = ...` is not stated in README.md"
-        assert want in stated[aid], f"{folder.name}: README says {aid} = {stated[aid]}, answers.yaml {want}"
+        assert want in stated[aid], (
+            f"{folder.name}: README says {aid} = {stated[aid]}, answers.yaml {want}"
+        )
 
 
 @pytest.mark.parametrize("folder", FOLDERS, ids=[f.name for f in FOLDERS])
@@ -154,4 +159,6 @@ def test_mechsing_agrees_with_the_worked_answer(folder: Path) -> None:
         data = _run(folder, tuple(str(a) for a in answer["command"]))
         got = _walk(data, answer["path"])
         want = _value(answer["expected"])
-        assert _agrees(want, got, answer), f"{folder.name}: {answer['id']}: expected {want}, mechsing {got}"
+        assert _agrees(want, got, answer), (
+            f"{folder.name}: {answer['id']}: expected {want}, mechsing {got}"
+        )
