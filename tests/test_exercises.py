@@ -162,3 +162,17 @@ def test_mechsing_agrees_with_the_worked_answer(folder: Path) -> None:
         assert _agrees(want, got, answer), (
             f"{folder.name}: {answer['id']}: expected {want}, mechsing {got}"
         )
+
+
+@pytest.mark.parametrize("folder", FOLDERS, ids=[f.name for f in FOLDERS])
+def test_mechanism_files_pass_the_schema(folder: Path) -> None:
+    """A student's editor checks the exercise's file against the published schema."""
+    jsonschema = pytest.importorskip("jsonschema")
+    from mechsing.model.schema import mechanism_schema
+
+    validator = jsonschema.Draft202012Validator(mechanism_schema())
+    for path in sorted(folder.glob("*.yaml")):
+        if path.name == "answers.yaml":
+            continue
+        doc = yaml.safe_load(path.read_text(encoding="utf-8"))
+        assert not [e.message for e in validator.iter_errors(doc)], path.name
