@@ -176,3 +176,9 @@ def test_mechanism_files_pass_the_schema(folder: Path) -> None:
             continue
         doc = yaml.safe_load(path.read_text(encoding="utf-8"))
         assert not [e.message for e in validator.iter_errors(doc)], path.name
+
+
+def test_the_index_lists_every_exercise() -> None:
+    index = (EXERCISES / "README.md").read_text(encoding="utf-8")
+    for folder in FOLDERS:
+        assert f"]({folder.name}/README.md)" in index, folder.name
