@@ -634,6 +634,9 @@ class Sweep:
         ok = np.ones(len(a), dtype=bool)
         tol = SWEEP_LOCATE_TOL * self.scale(col)
         side = np.zeros(len(a), dtype=int)
+        # the kept end's true value (Illinois halves fa), the iterate before the last
+        ta = fa.copy()
+        p, fp, zq = b.copy(), np.full(len(a), np.nan), zb.copy()
         for _ in range(_ILLINOIS_ITERATIONS):
             act = ok & (np.abs(b - a) > tol) & (fb != 0)
             if not np.any(act):
@@ -656,9 +659,29 @@ class Sweep:
             fa[j] = np.where(side[j] == 1, fa[j] / 2, fa[j])
             side[j] = 1
             k = i[~same]
-            a[k], fa[k], za[k] = b[k], fb[k], zb[k]
+            a[k], fa[k], za[k], ta[k] = b[k], fb[k], zb[k], fb[k]
             side[k] = 0
+            p[i], fp[i], zq[i] = b[i], fb[i], zb[i]
             b[i], fb[i], zb[i] = c, fc, zc
+        # the bracket is within the tolerance: the end nearer the zero (by its true
+        # value), then one secant step through the last two iterates, put the zero at
+        # the rounding level, where the analysis of the point decides in float too
+        swap = ok & (np.abs(ta) < np.abs(fb))
+        b[swap], fb[swap], zb[swap] = a[swap], ta[swap], za[swap]
+        fp[swap] = np.nan
+        act = np.flatnonzero(ok & np.isfinite(fp) & (fb != fp) & (fb != 0))
+        if len(act):
+            c = b[act] - fb[act] * (b[act] - p[act]) / (fb[act] - fp[act])
+            near = np.abs(c - b[act]) <= np.abs(b[act] - p[act])
+            act, c = act[near], c[near]
+        if len(act):
+            f = (c - b[act]) / np.where(p[act] != b[act], p[act] - b[act], 1.0)
+            zp = bc.between(zb[act], zq[act], f)
+            zp[:, col] = c
+            zc, res, _ = bc.newton(zp, free, pb.tolerance)
+            fc = self.measures.compressed(pm, ia[act], zc[:, : self.model.n])[t]
+            better = (res <= pb.tolerance) & (np.abs(fc) < np.abs(fb[act]))
+            zb[act[better]] = zc[better]
         out: list[tuple[np.ndarray, float] | None] = []
         rho = self.measures(zb[:, : self.model.n]).ratio[t]
         for m in range(len(a)):
