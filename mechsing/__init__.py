@@ -31,6 +31,7 @@ import importlib
 #: and the layers a script uses directly
 _FUNCTIONS = {
     "analyze": "mechsing.analysis",
+    "condition": "mechsing.conditions",
     "load": "mechsing.model",
     "scan": "mechsing.scanner",
     "sweep": "mechsing.sweeps",

@@ -84,6 +84,9 @@ from mechsing.numeric.scaling import (
 )
 from mechsing.numeric.tolerances import (
     BRANCH_ALIGNMENT,
+    CONDITION_GENERIC_RANK_RTOL,
+    CONDITION_GEOMETRY_RTOL,
+    CONDITION_VANISH_RTOL,
     CLOSURE_RTOL_FLOAT,
     CONTINUATION_CORRECTOR_RATIO,
     CONTINUATION_FOLD_GAP,
@@ -127,6 +130,9 @@ from mechsing.numeric.tolerances import (
 
 __all__ = [
     "BRANCH_ALIGNMENT",
+    "CONDITION_GENERIC_RANK_RTOL",
+    "CONDITION_GEOMETRY_RTOL",
+    "CONDITION_VANISH_RTOL",
     "Backend",
     "CLOSURE_RTOL_FLOAT",
     "CONTINUATION_CORRECTOR_RATIO",

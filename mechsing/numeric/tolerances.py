@@ -178,3 +178,14 @@ class Tolerances:
 
     tau_lo: float
     tau_hi: float
+
+# -- symbolic conditions (mechsing.conditions) -----------------------------------
+#: relative singular value below which a Jacobian evaluated at random joint values
+#: loses a rank: the generic rank, and which rows of a subgroup's coordinates to keep
+CONDITION_GENERIC_RANK_RTOL = 1e-8
+#: a factor evaluated at a configuration vanishes when it is below this times the
+#: sum of the absolute values of its terms (the scale of its cancellation)
+CONDITION_VANISH_RTOL = 1e-9
+#: two axes parallel, points collinear ... (unit vectors, lengths relative to the
+#: mechanism's size) in the explanations of a factor, tested where it vanishes
+CONDITION_GEOMETRY_RTOL = 1e-6
