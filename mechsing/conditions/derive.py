@@ -394,6 +394,7 @@ class _Explainer:
             for n, p, u in L:
                 if p is not None and np.linalg.norm(np.cross(P - p, u)) < tol * self.scale:
                     facts.add(f"the output point is on the axis of {n}")
+        facts |= self.centre_facts(L)
         # three parallel axes (or two and the output point) in one plane
         items = [(n, p, u) for n, p, u in L if p is not None]
         if P is not None and items:
@@ -410,6 +411,39 @@ class _Explainer:
                     "stretched or folded)".replace("of the output point", "and the output point")
                 )
         return facts
+
+    def centre_facts(self, L: list[tuple[str, Any, Any]]) -> set[str]:
+        """Where three or more axes meet (a wrist centre): is it in the plane of two
+        parallel axes, or in the plane through one axis parallel to another?"""
+        tol = CONDITION_GEOMETRY_RTOL
+        R = [(n, p, u) for n, p, u in L if p is not None]
+        out: set[str] = set()
+        for trio in itertools.combinations(R, 3):
+            us = [u for _, _, u in trio]
+            if min(np.linalg.norm(np.cross(a, b)) for a, b in itertools.combinations(us, 2)) < tol:
+                continue
+            (_, p1, u1), (_, p2, u2) = trio[0], trio[1]
+            A = np.column_stack([u1, -u2])
+            t = np.linalg.lstsq(A, p2 - p1, rcond=None)[0]
+            W = p1 + t[0] * u1
+            if any(np.linalg.norm(np.cross(W - p, u)) > tol * self.scale for _, p, u in trio):
+                continue
+            who = ", ".join(n for n, _, _ in trio)
+            for (a, pa, ua), (b, pb, ub) in itertools.combinations(R, 2):
+                if a in who.split(", ") or b in who.split(", "):
+                    continue
+                normal = np.cross(ua, ub)
+                if np.linalg.norm(normal) < tol:
+                    normal = np.cross(ua, pb - pa)
+                    if np.linalg.norm(normal) < tol * self.scale:
+                        continue
+                    where = f"the plane of the parallel axes of {a} and {b}"
+                else:
+                    where = f"the plane through the axis of {a} parallel to the axis of {b}"
+                normal = normal / np.linalg.norm(normal)
+                if abs(np.dot(W - pa, normal)) < tol * self.scale:
+                    out.add(f"the wrist centre (where {who} meet) is in {where}")
+        return out
 
     def __call__(self, f: Any) -> str | None:
         rng = random.Random(7)
@@ -438,9 +472,21 @@ class _Explainer:
                 }
             )
             if new:
-                return "vanishes when " + "; ".join(new)
+                return _kind(new) + "vanishes when " + "; ".join(new)
             return f"a condition on {', '.join(joints)} (no parallel axes or aligned pivots there)"
         return None
+
+
+def _kind(facts: list[str]) -> str:
+    """The name arm designers give a singularity with these geometric facts."""
+    text = " ".join(facts)
+    if "plane through the axis" in text:
+        return "shoulder: "
+    if "plane of the parallel axes" in text or "in line" in text:
+        return "elbow: "
+    if "coincide" in text or "are parallel" in text:
+        return "wrist: "
+    return ""
 
 
 def _root_of(f: Any, var: JointSymbols, pt: dict[Any, Any], params: list[Any]) -> float | None:
@@ -676,11 +722,14 @@ def _eliminate(
     ivars = [inp.s, inp.c] if inp.c is not None else [inp.q]
     circle = [js.s**2 + js.c**2 - 1 for js in S.values() if js.c is not None]
     Sl = list(S.values())
+    eqs = [reduce_trig(det, Sl), *_independent(closure, pvars + ivars, Sl), *circle]
     try:
         with TimeLimit(ELIMINATION_SECONDS):
-            G = sympy.groebner(
-                [reduce_trig(det, Sl), *closure, *circle], *pvars, *ivars, order="lex"
-            )
+            G = sympy.groebner(eqs, *pvars, *ivars, order="grevlex")
+            if G.is_zero_dimensional:
+                G = G.fglm("lex")
+            else:
+                G = sympy.groebner(eqs, *pvars, *ivars, order="lex")
     except TimeLimitExceeded:
         return (
             f"sympy could not eliminate the passive joints within {ELIMINATION_SECONDS:g} s; "
@@ -710,6 +759,18 @@ def _eliminate(
     return Condition(
         "eliminated", "eliminated", (in_joint,), const, fs, note, tuple(roots), (unit,)
     )
+
+
+def _independent(eqs: list[Any], variables: list[Any], S: list[JointSymbols]) -> list[Any]:
+    """The closure equations whose gradients are independent at random joint values
+    (the 12 entries of a displacement repeat one another)."""
+    pt = _random_point(S, random.Random(11))
+    grads = [[float(sympy.diff(e, v).xreplace(pt)) for v in variables] for e in eqs]
+    keep: list[int] = []
+    for i in range(len(eqs)):
+        if _rank(np.array([grads[j] for j in [*keep, i]])) > len(keep):
+            keep.append(i)
+    return [reduce_trig(eqs[i], S) for i in keep]
 
 
 def _angles(g: Any, js: JointSymbols) -> list[float]:
@@ -853,8 +914,15 @@ def _evaluate(c: Condition, values: dict[str, float], params: list[Any]) -> Cond
     for f in c.factors:
         e = f.expression.xreplace(sub)
         val = complex(sympy.N(e, 30))
+        # the scale of the factor: its terms with every sine and cosine at its largest, 1
         terms = sympy.Add.make_args(sympy.expand(f.expression))
-        scale = sum(abs(complex(sympy.N(t.xreplace(sub), 30))) for t in terms) or 1.0
+        bound = [
+            t.replace(sympy.sin, lambda *_: sympy.Integer(1)).replace(
+                sympy.cos, lambda *_: sympy.Integer(1)
+            )
+            for t in terms
+        ]
+        scale = sum(abs(complex(sympy.N(t.xreplace(sub), 30))) for t in bound) or 1.0
         vanishes = abs(val) <= CONDITION_VANISH_RTOL * scale if not e.free_symbols else None
         out.append(Factor(f.expression, f.power, f.meaning, float(val.real), vanishes))
     return Condition(c.name, c.form, c.variables, c.constant, tuple(out), c.note, c.roots, c.units)

@@ -68,6 +68,17 @@ class Condition:
             out = out * f.expression**f.power
         return out
 
+    def product_text(self) -> str:
+        """``constant*(factor)*(factor)**2 ...`` as written (sympy would distribute a
+        rational constant into the first factor)."""
+        parts = [] if self.constant == 1 else [sympy.sstr(self.constant)]
+        for f in self.factors:
+            e = sympy.sstr(f.expression)
+            if isinstance(f.expression, sympy.Add):
+                e = f"({e})"
+            parts.append(e if f.power == 1 else f"{e}**{f.power}")
+        return "*".join(parts) if parts else "1"
+
     @property
     def vanishes(self) -> bool | None:
         flags = [f.vanishes for f in self.factors]
@@ -105,7 +116,7 @@ class ConditionResult:
                     "name": c.name,
                     "form": c.form,
                     "variables": list(c.variables),
-                    "expression": str(c.expression),
+                    "expression": c.product_text(),
                     "constant": str(c.constant),
                     "factors": [
                         {
@@ -142,7 +153,7 @@ class ConditionResult:
         for c in self.conditions:
             lines.append("")
             lines.append(f"{c.name} ({c.form}):")
-            lines.append(f"  {sympy.sstr(c.expression)} = 0")
+            lines.append(f"  {c.product_text()} = 0")
             if c.note:
                 lines.append(f"  {c.note}")
             lines.append(f"  constant: {sympy.sstr(c.constant)}")
