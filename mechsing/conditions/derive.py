@@ -358,7 +358,9 @@ class _Explainer:
         point: Any = None,
         planar: bool = False,
         scale: float = 1.0,
+        arm: bool = True,
     ) -> None:
+        self.arm = arm  # name the factors as an arm's (wrist, elbow, shoulder)
         self.names, self.types, self.cols = names, types, cols
         self.S, self.params, self.point, self.planar = S, params, point, planar
         self.scale = scale
@@ -472,7 +474,8 @@ class _Explainer:
                 }
             )
             if new:
-                return _kind(new) + "vanishes when " + "; ".join(new)
+                kind = _kind(new) if self.arm else ""
+                return kind + "vanishes when " + "; ".join(new)
             return f"a condition on {', '.join(joints)} (no parallel axes or aligned pivots there)"
         return None
 
@@ -643,6 +646,7 @@ def _single_loop(mech: Mechanism, S: dict[str, JointSymbols]) -> tuple[list[Cond
         None,
         _is_planar(mech, names),
         _size(mech),
+        arm=False,
     )
     pset = set(params)
     conds: list[Condition] = []
