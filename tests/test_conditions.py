@@ -319,3 +319,41 @@ def test_the_python_function_is_public() -> None:
 
     res = mechsing.condition(EXAMPLES / "ur5.yaml", config="wrist")
     assert res.conditions[0].vanishes is True
+
+
+@pytest.mark.parametrize(
+    ("example", "config"),
+    [
+        ("fourbar.yaml", "crank-30"),
+        ("planar_3rpr.yaml", None),
+        ("parallelogram.yaml", None),
+        ("ur5.yaml", "wrist"),
+    ],
+)
+def test_json_follows_its_schema(example: str, config: str | None) -> None:
+    jsonschema = pytest.importorskip("jsonschema")
+    schema = json.loads(run_cli(["schema", "--condition"]).out)
+    argv = ["condition", EXAMPLES / example, "--format", "json"]
+    run = run_cli(argv + (["--config", config] if config else []))
+    assert run.status == 0, run.err
+    jsonschema.validate(json.loads(run.out), schema)
+
+
+def test_honest_messages_where_elimination_gives_nothing(tmp_path: Path) -> None:
+    # the parallelogram's output is its coupler, not joined to the ground: only type II,
+    # whose double root (the change point, all four pivots in line) is listed once
+    res = condition(EXAMPLES / "parallelogram.yaml")
+    assert any("only the output (type II)" in n for n in res.notes)
+    (elim,) = [c for c in res.conditions if c.form == "eliminated"]
+    assert [f.power for f in elim.factors] == [2]
+    assert sorted(elim.roots) == pytest.approx([-math.pi / 2, math.pi / 2])
+    # symbolic parameters: no elimination, and the output says why
+    text = (
+        (EXAMPLES / "fourbar.yaml")
+        .read_text()
+        .replace("bodies: [ground", "parameters: {r: 1}\nbodies: [ground")
+        .replace("point: [1, 0, 0]", "point: [r, 0, 0]")
+    )
+    sym = condition(_write(tmp_path, text), symbolic="r")
+    assert [c.form for c in sym.conditions] == ["determinant", "determinant"]
+    assert any("only with numeric parameters" in n for n in sym.notes)

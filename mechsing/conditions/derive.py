@@ -67,7 +67,7 @@ from mechsing.timelimit import TimeLimit, TimeLimitExceeded
 __all__ = ["ELIMINATION_SECONDS", "MAX_MINORS", "condition"]
 
 #: time allowed to eliminate the passive joints of a loop (s)
-ELIMINATION_SECONDS = 30.0
+ELIMINATION_SECONDS = 10.0
 #: most maximal minors computed for a redundant or deficient chain
 MAX_MINORS = 84
 
@@ -752,7 +752,7 @@ def _eliminate(
     g = polys[-1]
     const, factors = factor_condition(g, [inp], set())
     fs = tuple(Factor(to_trig(f, [inp]), p, None) for f, p in factors)
-    roots = _angles(g, inp)
+    roots = _distinct([a for f, _ in factors for a in _angles(f, inp)])
     note = (
         f"after eliminating the passive joints (exact, lex Groebner basis): the values of "
         f"{in_joint} where this singularity occurs (on one assembly branch or another)"
@@ -798,8 +798,16 @@ def _angles(g: Any, js: JointSymbols) -> list[float]:
     for r in np.roots(coeffs) if len(coeffs) > 1 else []:
         if abs(r.imag) < 1e-7 * max(1.0, abs(r)):
             out.append(2 * math.atan(r.real))
-    out = sorted({round(a, 12) for a in out})
-    return out
+    return _distinct(out)
+
+
+def _distinct(values: list[float]) -> list[float]:
+    """Sorted values, each once (roots of different factors may meet)."""
+    distinct: list[float] = []
+    for a in sorted(values):
+        if not distinct or abs(a - distinct[-1]) > 1e-9:
+            distinct.append(a)
+    return distinct
 
 
 # ---------------------------------------------------------------------------

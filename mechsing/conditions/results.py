@@ -122,7 +122,7 @@ class ConditionResult:
                     "factors": [
                         {
                             "expression": str(f.expression),
-                            "power": f.power,
+                            "power": int(f.power),
                             "meaning": f.meaning,
                             "value": f.value,
                             "vanishes": f.vanishes,
@@ -130,7 +130,7 @@ class ConditionResult:
                         for f in c.factors
                     ],
                     "note": c.note,
-                    "roots": list(c.roots),
+                    "roots": [float(r) for r in c.roots],
                     "root_units": list(c.units),
                     "vanishes": c.vanishes,
                 }
