@@ -357,3 +357,32 @@ def test_honest_messages_where_elimination_gives_nothing(tmp_path: Path) -> None
     sym = condition(_write(tmp_path, text), symbolic="r")
     assert [c.form for c in sym.conditions] == ["determinant", "determinant"]
     assert any("only with numeric parameters" in n for n in sym.notes)
+
+
+def test_spherical_four_bar_limit_positions() -> None:
+    # examples/spherical_4r.yaml: all axes through the origin, u_A = z, u_B, u_C, u_D as
+    # drawn.  The input (type I) singularity: the axes of A, B, C in one plane (crank and
+    # coupler in line on the sphere).  Independent check: at each crank angle given, some
+    # unit vector u_C in the plane of u_A and u_B(A), at the coupler's angle from u_B, is
+    # at the rocker's angle from u_D; at the mirror angle -A (not a root: the linkage is
+    # not symmetric) none is.
+    uA = np.array([0.0, 0.0, 1.0])
+    uB0 = np.array([0.0, 5 / 13, 12 / 13])
+    uC0 = np.array([4 / 9, 8 / 9, 1 / 9])
+    uD = np.array([15 / 17, 0.0, 8 / 17])
+    cos_bc, cos_cd = uB0 @ uC0, uC0 @ uD
+
+    def reachable(a: float) -> float:
+        rot = np.array([[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]])
+        uB = rot @ uB0
+        w = uA - (uA @ uB) * uB
+        w /= np.linalg.norm(w)
+        sin_bc = math.sqrt(1 - cos_bc**2)
+        return min(abs((cos_bc * uB + sg * sin_bc * w) @ uD - cos_cd) for sg in (1, -1))
+
+    res = condition(EXAMPLES / "spherical_4r.yaml")
+    (lim,) = [c for c in res.conditions if c.name == "input (type I) in the input A"]
+    assert len(lim.roots) == 4
+    for a in lim.roots:
+        assert reachable(a) < 1e-9
+        assert reachable(-a) > 1e-3

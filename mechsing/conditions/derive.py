@@ -431,6 +431,8 @@ class _Explainer:
             if any(np.linalg.norm(np.cross(W - p, u)) > tol * self.scale for _, p, u in trio):
                 continue
             who = ", ".join(n for n, _, _ in trio)
+            if abs(np.linalg.det(np.column_stack(us))) < tol:
+                out.add(f"the axes of {who} (meeting at one point) are in one plane")
             for (a, pa, ua), (b, pb, ub) in itertools.combinations(R, 2):
                 if a in who.split(", ") or b in who.split(", "):
                     continue
@@ -726,7 +728,7 @@ def _eliminate(
     ivars = [inp.s, inp.c] if inp.c is not None else [inp.q]
     circle = [js.s**2 + js.c**2 - 1 for js in S.values() if js.c is not None]
     Sl = list(S.values())
-    eqs = [reduce_trig(det, Sl), *_independent(closure, pvars + ivars, Sl), *circle]
+    eqs = [reduce_trig(det, Sl), *[reduce_trig(e, Sl) for e in closure], *circle]
     try:
         with TimeLimit(ELIMINATION_SECONDS):
             G = sympy.groebner(eqs, *pvars, *ivars, order="grevlex")
@@ -749,20 +751,86 @@ def _eliminate(
     ]
     if not polys:
         return "the closure equations leave the input free there: no condition on the input alone"
-    g = polys[-1]
+    g, exact = _eliminant(polys, inp)
     const, factors = factor_condition(g, [inp], set())
     fs = tuple(Factor(to_trig(f, [inp]), p, None) for f, p in factors)
-    roots = _distinct([a for f, _ in factors for a in _angles(f, inp)])
+    roots = _common_roots(polys, inp)
     note = (
         f"after eliminating the passive joints (exact, lex Groebner basis): the values of "
         f"{in_joint} where this singularity occurs (on one assembly branch or another)"
     )
+    if not exact:
+        shown = ", ".join(f"{r:.6g}" for r in roots) or "none"
+        note += (
+            f"; this one equation also has other zeros: the singularity occurs only at "
+            f"{in_joint} = {shown}"
+        )
     if not roots:
         note += "; no real value: this singularity is never reached"
     unit = "rad" if inp.c is not None else "m"
     return Condition(
         "eliminated", "eliminated", (in_joint,), const, fs, note, tuple(roots), (unit,)
     )
+
+
+def _half_angle(p: Any, js: JointSymbols, t: Any) -> Any:
+    """The numerator of ``p(c, s)`` in ``t = tan(J/2)`` (degree twice p's in c, s, less
+    the multiplicity of the zero at J = pi)."""
+    k = int(sympy.Poly(p, js.c, js.s).total_degree()) if p.has(js.c) or p.has(js.s) else 0
+    sub = {js.c: (1 - t**2) / (1 + t**2), js.s: 2 * t / (1 + t**2)}
+    return sympy.expand(sympy.cancel(p.xreplace(sub) * (1 + t**2) ** k))
+
+
+def _eliminant(polys: list[Any], js: JointSymbols) -> tuple[Any, bool]:
+    """One polynomial in the input whose zeros are those common to ``polys`` (a lex
+    basis may give two: ``s - p(c)`` and ``q(c)``, whose common zeros are fewer than
+    ``q``'s), and whether its zeros are exactly those."""
+    if js.c is None:
+        g = polys[0]
+        for p in polys[1:]:
+            g = sympy.gcd(g, p)
+        return g, True
+    if len(polys) == 1:
+        return polys[0], True
+    t = sympy.Dummy("t")
+    g = _half_angle(polys[0], js, t)
+    for p in polys[1:]:
+        g = sympy.gcd(g, _half_angle(p, js, t))
+    at_pi = all(p.xreplace({js.c: -1, js.s: 0}) == 0 for p in polys)
+    deg = int(sympy.degree(g, t))
+    k = (deg + 1) // 2 + (1 if at_pi and deg % 2 == 0 else 0)
+    if (2 * k > deg) != at_pi or k == 0:
+        return polys[-1], False
+    from mechsing.conditions.factoring import to_circle
+
+    return to_circle(g, t, k, js), True
+
+
+def _common_roots(polys: list[Any], js: JointSymbols) -> list[float]:
+    """Real values of the input where every polynomial of ``polys`` vanishes."""
+    candidates = _distinct(_angles(sympy.sqf_part(polys[-1]), js))
+    out = []
+    for a in candidates:
+        sub = {js.q: a} if js.c is None else {js.c: math.cos(a), js.s: math.sin(a)}
+        ok = True
+        for p in polys:
+            terms = sympy.Add.make_args(sympy.expand(p))
+            scale = (
+                sum(
+                    abs(
+                        float(
+                            sympy.N(x.xreplace({js.c: 1, js.s: 1} if js.c else {js.q: abs(a)}), 30)
+                        )
+                    )
+                    for x in terms
+                )
+                or 1.0
+            )
+            if abs(float(sympy.N(p.xreplace(sub), 30))) > 1e-7 * scale:
+                ok = False
+        if ok:
+            out.append(a)
+    return out
 
 
 def _independent(eqs: list[Any], variables: list[Any], S: list[JointSymbols]) -> list[Any]:

@@ -71,14 +71,18 @@ class Condition:
     def product_text(self) -> str:
         """``constant*(factor)*(factor)**2 ...`` as written (sympy would distribute a
         rational constant into the first factor)."""
-        parts = [] if self.constant == 1 else [sympy.sstr(self.constant)]
-        alone = self.constant == 1 and len(self.factors) == 1 and self.factors[0].power == 1
+        sign = "-" if self.constant == -1 else ""
+        parts = [] if self.constant in (1, -1) else [sympy.sstr(self.constant)]
+        alone = self.constant in (1, -1) and len(self.factors) == 1 and self.factors[0].power == 1
+        alone = alone and (
+            self.constant == 1 or not isinstance(self.factors[0].expression, sympy.Add)
+        )
         for f in self.factors:
             e = sympy.sstr(f.expression)
             if isinstance(f.expression, sympy.Add) and not alone:
                 e = f"({e})"
             parts.append(e if f.power == 1 else f"{e}**{f.power}")
-        return "*".join(parts) if parts else "1"
+        return sign + ("*".join(parts) if parts else "1")
 
     @property
     def vanishes(self) -> bool | None:
