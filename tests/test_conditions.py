@@ -223,6 +223,8 @@ def test_four_bar_toggle_and_limit_positions() -> None:
     assert sorted(abs(x) for x in lim.roots) == pytest.approx(sorted([ext, ext, fold, fold]))
     assert tog.roots == (), names
     assert lim.units == ("rad",)
+    # the file's angles are in degrees: the text shows them too
+    assert "rad (-168.686, -33.101, 33.101, 168.686 deg)" in res.text()
 
 
 def _concurrency(A: np.ndarray, B: np.ndarray) -> float:

@@ -136,6 +136,7 @@ def condition(
         notes=tuple(notes),
         configuration=config,
         values=values,
+        file_angle_unit=mech.units.angle,
     )
 
 
@@ -831,18 +832,6 @@ def _common_roots(polys: list[Any], js: JointSymbols) -> list[float]:
         if ok:
             out.append(a)
     return out
-
-
-def _independent(eqs: list[Any], variables: list[Any], S: list[JointSymbols]) -> list[Any]:
-    """The closure equations whose gradients are independent at random joint values
-    (the 12 entries of a displacement repeat one another)."""
-    pt = _random_point(S, random.Random(11))
-    grads = [[float(sympy.diff(e, v).xreplace(pt)) for v in variables] for e in eqs]
-    keep: list[int] = []
-    for i in range(len(eqs)):
-        if _rank(np.array([grads[j] for j in [*keep, i]])) > len(keep):
-            keep.append(i)
-    return [reduce_trig(eqs[i], S) for i in keep]
 
 
 def _angles(g: Any, js: JointSymbols) -> list[float]:

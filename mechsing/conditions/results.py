@@ -15,6 +15,7 @@ and :meth:`ConditionResult.latex` (``sympy.latex``).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -104,6 +105,8 @@ class ConditionResult:
     notes: tuple[str, ...] = ()
     configuration: str | None = None
     values: dict[str, float] = field(default_factory=dict)
+    #: the file's angle unit: the text also shows angles in degrees for a "deg" file
+    file_angle_unit: str = "rad"
 
     # -- renderings ---------------------------------------------------------
 
@@ -173,6 +176,9 @@ class ConditionResult:
             if c.roots:
                 shown = ", ".join(f"{r:.6g}" for r in c.roots)
                 unit = c.units[0] if c.units else ""
+                if unit == "rad" and self.file_angle_unit == "deg":
+                    deg = ", ".join(f"{r * 180 / math.pi:.6g}" for r in c.roots)
+                    unit = f"rad ({deg} deg)"
                 lines.append(f"  vanishes at {c.variables[0]} = {shown} {unit}".rstrip())
             if c.vanishes is not None:
                 verdict = "singular" if c.vanishes else "regular"
