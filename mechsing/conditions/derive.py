@@ -408,11 +408,16 @@ class _Explainer:
             d1 = pb - pa - ua * np.dot(pb - pa, ua)
             d2 = pc - pa - ua * np.dot(pc - pa, ua)
             if np.linalg.norm(np.cross(d1, d2)) < tol * self.scale**2:
-                what = "pivots" if self.planar else "parallel axes"
-                facts.add(
-                    f"the {what} of {a}, {b} and {c} are in line (the links between them "
-                    "stretched or folded)".replace("of the output point", "and the output point")
-                )
+                if self.planar:
+                    facts.add(
+                        f"the pivots of {a}, {b} and {c} are in line (the links between them "
+                        "stretched or folded)"
+                    )
+                else:
+                    facts.add(
+                        f"the parallel axes of {a}, {b} and {c} lie in one plane (the links "
+                        "between them stretched or folded)"
+                    )
         return facts
 
     def centre_facts(self, L: list[tuple[str, Any, Any]]) -> set[str]:
@@ -488,7 +493,7 @@ def _kind(facts: list[str]) -> str:
     text = " ".join(facts)
     if "plane through the axis" in text:
         return "shoulder: "
-    if "plane of the parallel axes" in text or "in line" in text:
+    if "plane of the parallel axes" in text or "in line" in text or "lie in one plane" in text:
         return "elbow: "
     if "coincide" in text or "are parallel" in text:
         return "wrist: "
@@ -889,6 +894,12 @@ def _parallel(
     normal = sympy.Matrix(mech.joints[0].params["axis"]) if mech.joints[0].type == "R" else None
     if normal is None or list(normal) != [0, 0, 1]:
         raise refuse
+    clash = [p.name for p in _parameters(mech) if p.name in ("x", "y", "phi")]
+    if clash:
+        raise UserError(
+            f"{source}: parameter {clash[0]!r} has the name of a pose variable (x, y, phi); "
+            "rename it to keep it symbolic"
+        )
     x, y, phi = (sympy.Symbol(n, real=True) for n in ("x", "y", "phi"))
     cphi, sphi = sympy.Symbol("c_phi", real=True), sympy.Symbol("s_phi", real=True)
     pose = JointSymbols(phi, cphi, sphi)
