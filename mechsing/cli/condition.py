@@ -1,7 +1,8 @@
-"""``mechsing condition``: singularity conditions as factored formulas.
-
-Prints the conditions of :func:`mechsing.conditions.condition` as text, JSON
-(the shape of ``ConditionResult.to_json``; SI units and radians) or LaTeX.
+"""Write the singularity conditions of a mechanism as factored formulas in its joint
+variables (named by the joints, measured from the drawn pose, radians and metres) or, for a
+parallel robot, its pose variables x, y, phi; keep the parameters named in --symbolic as
+symbols; with --config, evaluate each factor there and say which vanish.  Output as text,
+JSON (its schema: mechsing schema --condition) or LaTeX.
 """
 
 from __future__ import annotations
