@@ -60,6 +60,8 @@ from mechsing.model.parameters import ParameterSymbol
 from mechsing.numeric import (
     CONDITION_GENERIC_RANK_RTOL,
     CONDITION_GEOMETRY_RTOL,
+    CONDITION_ROOT_MERGE,
+    CONDITION_ROOT_RTOL,
     CONDITION_VANISH_RTOL,
 )
 from mechsing.timelimit import TimeLimit, TimeLimitExceeded
@@ -515,7 +517,9 @@ def _root_of(f: Any, var: JointSymbols, pt: dict[Any, Any], params: list[Any]) -
         return None
     if len(coeffs) < 2:
         return math.pi if len(coeffs) == 1 else None
-    roots = [r.real for r in np.roots(coeffs) if abs(r.imag) < 1e-9 * max(1.0, abs(r))]
+    roots = [
+        r.real for r in np.roots(coeffs) if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r))
+    ]
     if not roots:
         return None
     return 2 * math.atan(roots[0])
@@ -593,7 +597,7 @@ def _is_planar(mech: Mechanism, names: list[str]) -> bool:
 
 
 def _size(mech: Mechanism) -> float:
-    best = 1e-3
+    best = 1e-3  # m: the smallest size a mechanism is taken to have
     for j in mech.joints:
         if "point" in j.params:
             best = max(best, max(abs(float(sympy.N(x))) for x in j.params["point"]))
@@ -832,7 +836,7 @@ def _common_roots(polys: list[Any], js: JointSymbols) -> list[float]:
                 )
                 or 1.0
             )
-            if abs(float(sympy.N(p.xreplace(sub), 30))) > 1e-7 * scale:
+            if abs(float(sympy.N(p.xreplace(sub), 30))) > CONDITION_ROOT_RTOL * scale:
                 ok = False
         if ok:
             out.append(a)
@@ -843,7 +847,9 @@ def _angles(g: Any, js: JointSymbols) -> list[float]:
     """Real values of a joint where a polynomial in its ``c``, ``s`` (or ``q``) vanishes."""
     if js.c is None:
         coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(g, js.q).all_coeffs()]
-        return sorted(r.real for r in np.roots(coeffs) if abs(r.imag) < 1e-9)
+        return sorted(
+            r.real for r in np.roots(coeffs) if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r))
+        )
     t = sympy.Dummy("t")
     k = int(sympy.Poly(g, js.c, js.s).total_degree())
     N = sympy.expand(
@@ -858,7 +864,7 @@ def _angles(g: Any, js: JointSymbols) -> list[float]:
     if len(coeffs) - 1 < 2 * k:
         out.append(math.pi)
     for r in np.roots(coeffs) if len(coeffs) > 1 else []:
-        if abs(r.imag) < 1e-7 * max(1.0, abs(r)):
+        if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r)):
             out.append(2 * math.atan(r.real))
     return _distinct(out)
 
@@ -867,7 +873,7 @@ def _distinct(values: list[float]) -> list[float]:
     """Sorted values, each once (roots of different factors may meet)."""
     distinct: list[float] = []
     for a in sorted(values):
-        if not distinct or abs(a - distinct[-1]) > 1e-9:
+        if not distinct or abs(a - distinct[-1]) > CONDITION_ROOT_MERGE:
             distinct.append(a)
     return distinct
 
