@@ -388,3 +388,42 @@ def test_spherical_four_bar_limit_positions() -> None:
     for a in lim.roots:
         assert reachable(a) < 1e-9
         assert reachable(-a) > 1e-3
+
+
+@pytest.mark.parametrize(
+    "example",
+    [
+        "fourbar.yaml",
+        "fourbar_changepoint.yaml",
+        "double_rocker.yaml",
+        "slider_crank_crank_input.yaml",
+        "slider_crank_slider_input.yaml",
+    ],
+)
+def test_loop_conditions_agree_with_analyze(example: str) -> None:
+    # type I vanishes exactly where analyze finds an input singularity, type II where it
+    # finds an output singularity, in every configuration of the file
+    path = EXAMPLES / example
+    run = run_cli(["analyze", path, "--format", "json"])
+    found = {
+        c["name"]: {s["class"] for s in c["singularities"]}
+        for c in json.loads(run.out)["configurations"]
+    }
+    for config, classes in found.items():
+        res = condition(path, config=config)
+        verdict = {c.name: c.vanishes for c in res.conditions if c.form == "determinant"}
+        assert verdict["output (type II)"] is ("output" in classes), config
+        if "input (type I)" in verdict:
+            assert verdict["input (type I)"] is ("input" in classes), config
+
+
+def test_double_rocker_limits_are_its_singular_configurations() -> None:
+    # examples/double_rocker.yaml gives its output-limit pose at A = 2*atan(sqrt(3)/9)
+    # (input singular) and its limit at A = 2*pi/3 (output singular), exactly
+    res = condition(EXAMPLES / "double_rocker.yaml")
+    roots = {c.name: c.roots for c in res.conditions if c.form == "eliminated"}
+    a_in = 2 * math.atan(math.sqrt(3) / 9)
+    assert roots["input (type I) in the input A"] == pytest.approx([-a_in, a_in])
+    assert roots["output (type II) in the input A"] == pytest.approx(
+        [-2 * math.pi / 3, 2 * math.pi / 3]
+    )
