@@ -19,7 +19,8 @@ API: :func:`load` (a mechanism file), :func:`analyze` (a result whose
 an open chain over many configurations), :func:`sweep` (where the
 singularities are along a path or over a grid of joint values or output poses:
 a ``SweepResult`` with the measures at every sample, the located and classified
-singularities and a grid's loci), :mod:`mechsing.lie`,
+singularities and a grid's loci), :func:`condition` (singularity conditions as
+factored formulas in the joint or pose variables), :mod:`mechsing.lie`,
 :func:`mechsing.subgroups.identify`.
 """
 
@@ -31,6 +32,7 @@ import importlib
 #: and the layers a script uses directly
 _FUNCTIONS = {
     "analyze": "mechsing.analysis",
+    "condition": "mechsing.conditions",
     "load": "mechsing.model",
     "scan": "mechsing.scanner",
     "sweep": "mechsing.sweeps",

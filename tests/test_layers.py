@@ -24,7 +24,7 @@ LAYERS: list[set[str]] = [
     {"kinematics"},
     {"screws"},
     {"singularity"},
-    {"analysis", "scanner"},
+    {"analysis", "scanner", "conditions"},
     {"sweeps"},
     {"report"},
     {"cli", "__main__"},

@@ -4,7 +4,8 @@ Point an editor's YAML or JSON language server at it to get completion and
 checks while writing a mechanism file.  mechsing's own validation
 (``mechsing analyze``) checks more than the schema can (names, geometry,
 expressions) and is the authority.  With --sweep, the schema of the document
-``mechsing sweep --format json`` writes instead.
+``mechsing sweep --format json`` writes instead; with --condition, that of
+``mechsing condition --format json``.
 """
 
 from __future__ import annotations
@@ -25,10 +26,19 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         action="store_true",
         help="the schema of mechsing sweep's JSON document instead of the file format's",
     )
+    parser.add_argument(
+        "--condition",
+        action="store_true",
+        help="the schema of mechsing condition's JSON document instead of the file format's",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
-    if getattr(args, "sweep", False):
+    if getattr(args, "condition", False):
+        from mechsing.conditions.schema import condition_schema
+
+        schema = condition_schema()
+    elif getattr(args, "sweep", False):
         from mechsing.sweeps.schema import sweep_schema
 
         schema = sweep_schema()

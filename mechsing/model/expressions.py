@@ -9,7 +9,7 @@ The grammar is parsed with :mod:`ast` and only these nodes are accepted:
 
 * decimal numbers (``3``, ``-0.25``, ``1.5e-3``), taken from their *text*;
 * the operators ``+ - * / **``, unary ``+``/``-`` and parentheses;
-* the constant ``pi``;
+* the constant ``pi`` and the names a caller passes (a file's parameters);
 * the functions ``sqrt``, ``sin``, ``cos``, ``tan``, ``asin``, ``acos``,
   ``atan`` (one argument) and ``atan2(y, x)``.
 
@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import ast
 import re
+from collections.abc import Mapping
 from typing import Any
 
 import sympy
@@ -108,9 +109,10 @@ def _describe(node: ast.AST) -> str:
 
 
 class _Builder:
-    def __init__(self, text: str) -> None:
+    def __init__(self, text: str, names: Mapping[str, Any] | None = None) -> None:
         self.text = text
         self.shown = _short(text)
+        self.names = names or {}
 
     def fail(self, what: str) -> ExpressionError:
         return ExpressionError(
@@ -137,8 +139,13 @@ class _Builder:
         if isinstance(node, ast.Name):
             if node.id == "pi":
                 return sympy.pi
+            if node.id in self.names:
+                return self.names[node.id]
             if node.id in ALLOWED_FUNCTIONS:
                 raise self.fail(f"{node.id} without parentheses")
+            if self.names:
+                known = ", ".join(self.names)
+                raise self.fail(f"the name {node.id!r} (not a parameter; parameters: {known})")
             raise self.fail(f"the name {node.id!r}")
         if isinstance(node, ast.Call):
             return self.call(node)
@@ -270,7 +277,7 @@ def decimal_text_to_rational(text: str, context: str | None = None) -> sympy.Rat
     return -value if sign == "-" else value
 
 
-def parse_number(text: str) -> Any:
+def parse_number(text: str, names: Mapping[str, Any] | None = None) -> Any:
     """The exact sympy value of a number or whitelisted expression.
 
     Parameters
@@ -278,6 +285,10 @@ def parse_number(text: str) -> Any:
     text : str
         ``"0.1"``, ``"-3"``, ``"1/3"``, ``"pi/2"``, ``"sqrt(3)/2"``,
         ``"2*atan(1/2)"``, ``"atan2(1, 2)"`` ...
+    names : mapping, optional
+        Named values the expression may use (a file's parameters); a value
+        may be a symbol that knows its value (``parameter_value``), which the
+        finiteness test uses.
 
     Returns
     -------
@@ -318,13 +329,16 @@ def parse_number(text: str) -> Any:
             f"expression {t[:40]!r}... has {count} parts, too many (at most {MAX_EXPRESSION_NODES})"
         )
     try:
-        value = _Builder(t).build(tree)
+        value = _Builder(t, names).build(tree)
     except ExpressionError:
         raise
     except RecursionError:
         raise ExpressionError(f"expression {t[:40]!r}... is nested too deeply") from None
     value = sympy.sympify(value)
-    if not is_finite_real(value):
+    probe = value.xreplace(
+        {a: a.parameter_value for a in value.free_symbols if hasattr(a, "parameter_value")}
+    )
+    if not is_finite_real(probe):
         raise ExpressionError(
             f"expression {_short(t)!r} is not a finite real number (it is {value})"
         )

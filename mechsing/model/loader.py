@@ -10,6 +10,7 @@ units and radians exactly.
 from __future__ import annotations
 
 import re
+from collections.abc import Collection
 from pathlib import Path
 from typing import Any
 
@@ -35,6 +36,7 @@ from mechsing.model.mechanism import (
     OutputPose,
     Units,
 )
+from mechsing.model.parameters import read_parameters
 from mechsing.model.yamlnodes import (
     MAX_FILE_BYTES,
     YAMLReadError,
@@ -70,6 +72,7 @@ ANGLE_UNITS: dict[str, Any] = {"rad": sympy.Integer(1), "deg": sympy.pi / 180}
 TOP_LEVEL_KEYS = (
     "mechanism",
     "units",
+    "parameters",
     "ground",
     "bodies",
     "joints",
@@ -120,6 +123,7 @@ class _Reader:
         self.warnings: list[str] = []
         self.units = Units()
         self.scale = 1.0  # largest point coordinate (file units), for near-zero tests
+        self.parameters: dict[str, Any] = {}  # the file's named parameters (parameters.py)
 
     def error(self, item: str | None, line: int | None, message: str) -> MechanismError:
         return MechanismError(message, path=self.path, line=line, item=item)
@@ -196,7 +200,7 @@ class _Reader:
                 item, line, f"{what} is {v.text}, not a finite number; give a finite value"
             )
         try:
-            value = parse_number(v.text)
+            value = parse_number(v.text, self.parameters)
         except ExpressionError as exc:
             raise self.error(item, line, f"{what}: {exc}") from None
         return value * factor if factor != 1 else value
@@ -259,7 +263,7 @@ def _show(vec: tuple[Any, ...]) -> str:
 # ---------------------------------------------------------------------------
 
 
-def load(path: str | Path) -> Mechanism:
+def load(path: str | Path, symbolic: Collection[str] = ()) -> Mechanism:
     """Read and validate a mechanism file (YAML or JSON).
 
     Raises
@@ -267,6 +271,9 @@ def load(path: str | Path) -> Mechanism:
     MechanismError
         for every problem: unreadable file, malformed YAML, unknown keys,
         invalid geometry, names, inputs, output or configurations.
+
+    ``symbolic`` names parameters of the file to keep as symbols
+    (:class:`~mechsing.model.parameters.ParameterSymbol`), for symbolic conditions.
     """
     p = Path(path)
     shown = str(path)
@@ -293,10 +300,15 @@ def load(path: str | Path) -> Mechanism:
         raise MechanismError(
             f"the file is not UTF-8 text (byte {exc.start}); save it as UTF-8", path=shown
         ) from None
-    return loads(text, path=shown, default_name=p.stem)
+    return loads(text, path=shown, default_name=p.stem, symbolic=symbolic)
 
 
-def loads(text: str, path: str | None = None, default_name: str = "mechanism") -> Mechanism:
+def loads(
+    text: str,
+    path: str | None = None,
+    default_name: str = "mechanism",
+    symbolic: Collection[str] = (),
+) -> Mechanism:
     """Validate a mechanism given as YAML or JSON text (``path`` only for messages)."""
     r = _Reader(path if path is not None else "<text>")
     if "\x00" in text:
@@ -305,7 +317,9 @@ def loads(text: str, path: str | None = None, default_name: str = "mechanism") -
         doc = read_yaml_text(text)
     except YAMLReadError as exc:
         raise r.error(None, exc.line, exc.message) from None
-    return _Builder(r, default_name).build(doc)
+    builder = _Builder(r, default_name)
+    builder.symbolic = tuple(symbolic)
+    return builder.build(doc)
 
 
 # ---------------------------------------------------------------------------
@@ -319,6 +333,7 @@ class _Builder:
         self.default_name = default_name
         self.catalog = _catalog()
         self.body_lines: dict[str, int] = {}
+        self.symbolic: tuple[str, ...] = ()
 
     def build(self, doc: YValue) -> Mechanism:
         r = self.r
@@ -335,6 +350,7 @@ class _Builder:
         if top.get("mechanism") is not None:
             name = r.name(top.get("mechanism"), "mechanism", "the mechanism name")
         self.units(top.get("units"))
+        r.parameters = read_parameters(r, top, self.symbolic)
         self.scan_scale(top.get("joints"))
         bodies = self.bodies(top.get("bodies"))
         ground = self.ground(top.get("ground"), bodies, top)

@@ -69,7 +69,8 @@ def mechanism_schema() -> dict[str, Any]:
     )
     number = {
         "description": "a number, or a quoted exact expression: numbers, + - * / **, "
-        "parentheses, pi, sqrt, sin, cos, tan, asin, acos, atan, atan2",
+        "parentheses, pi, sqrt, sin, cos, tan, asin, acos, atan, atan2 and the file's "
+        "parameters",
         "anyOf": [
             {"type": "number"},
             {"type": "string", "minLength": 1, "maxLength": 1000},
@@ -97,6 +98,15 @@ def mechanism_schema() -> dict[str, Any]:
                     "angle": {"enum": list(ANGLE_UNITS)},
                 },
                 "additionalProperties": False,
+            },
+            "parameters": {
+                "type": "object",
+                "description": "named numbers used in any number or expression of the file "
+                "(e.g. point: [a2, 0, 0]); a value is a number or an expression of earlier "
+                "parameters; names are identifiers, not pi, a function name, or a body or "
+                "joint name; the unit of the place where a parameter is used applies",
+                "propertyNames": {"pattern": r"^[A-Za-z_][A-Za-z0-9_]*$"},
+                "additionalProperties": {"$ref": "#/$defs/number"},
             },
             "ground": {"$ref": "#/$defs/name", "description": "default: the first body"},
             "bodies": {

@@ -176,3 +176,20 @@ class Tolerances:
 
     tau_lo: float
     tau_hi: float
+
+# -- symbolic conditions (mechsing.conditions) -----------------------------------
+#: relative singular value below which a Jacobian evaluated at random joint values
+#: loses a rank: the generic rank, and which rows of a subgroup's coordinates to keep
+CONDITION_GENERIC_RANK_RTOL = 1e-8
+#: a factor evaluated at a configuration vanishes when it is below this times the
+#: sum of the absolute values of its terms (the scale of its cancellation)
+CONDITION_VANISH_RTOL = 1e-9
+#: two axes parallel, points collinear ... (unit vectors, lengths relative to the
+#: mechanism's size) in the explanations of a factor, tested where it vanishes
+CONDITION_GEOMETRY_RTOL = 1e-6
+#: a root of a polynomial (numpy.roots, double precision) is real when its imaginary
+#: part is below this times max(1, |root|); a value is a common zero of several
+#: polynomials when each is below this times the sum of its terms' magnitudes
+CONDITION_ROOT_RTOL = 1e-7
+#: two roots (rad or m) closer than this are one (a double root, or two factors' roots)
+CONDITION_ROOT_MERGE = 1e-9

@@ -1,0 +1,151 @@
+"""Factoring trigonometric polynomials of joint angles.
+
+A condition is first a polynomial in ``c_J = cos(J)``, ``s_J = sin(J)`` (and
+the values of prismatic joints and symbolic parameters).  Such polynomials
+live on the torus ``c_J**2 + s_J**2 = 1``, where ordinary polynomial
+factoring misses factors (``(d4*c3 - a3*s3)*(a2*c2 + a3*c23 - d4*s23)``
+no longer factors once ``s3**2`` is replaced by ``1 - c3**2``).  So this
+module takes each revolute joint in turn to its half-angle variable
+``t = tan(J/2)`` (``c = (1-t**2)/(1+t**2)``, ``s = 2t/(1+t**2)``), where
+factoring is complete, splits off the factors in that joint alone (written
+back as ``a*cos(J) + b*sin(J) + e``, a root at ``t = oo`` being ``J = pi``),
+and factors what is left as a polynomial.  Every step is exact.
+
+Public: :func:`factor_condition` -> (constant, [(factor, power), ...]) with
+factors polynomials in the ``c``, ``s`` symbols.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import sympy
+
+from mechsing.conditions.symbolic import JointSymbols, reduce_trig
+
+__all__ = ["factor_condition", "to_circle"]
+
+
+def _cs_degree(expr: Any, js: JointSymbols) -> int:
+    if not (expr.has(js.c) or expr.has(js.s)):
+        return 0
+    return int(sympy.Poly(expr, js.c, js.s).total_degree())
+
+
+def to_circle(P: Any, t: Any, k: int, js: JointSymbols) -> Any:
+    """``P(t) / (1 + t**2)**k`` with ``t = tan(J/2)`` written in ``c``, ``s`` (exact;
+    needs ``deg P <= 2k``)."""
+    poly = sympy.Poly(sympy.expand(P), t)
+    out = sympy.Integer(0)
+    for (j,), coeff in poly.terms():
+        out += coeff * js.s ** (j % 2) * (1 - js.c) ** (j // 2) * (1 + js.c) ** (k - (j + 1) // 2)
+    return sympy.expand(out / 2**k)
+
+
+def _split_joint(
+    expr: Any, js: JointSymbols, params: set[Any]
+) -> tuple[list[tuple[Any, int]], Any]:
+    """Factors of ``expr`` in joint ``js`` alone (with their powers) and the cofactor."""
+    k = _cs_degree(expr, js)
+    if k == 0 or expr.has(js.q):
+        return [], expr
+    t = sympy.Dummy("t")
+    N = sympy.expand(
+        sympy.cancel(
+            expr.xreplace({js.c: (1 - t**2) / (1 + t**2), js.s: 2 * t / (1 + t**2)})
+            * (1 + t**2) ** k
+        )
+    )
+    if N == 0:
+        return [], expr
+    deficit = 2 * k - int(sympy.degree(N, t))
+    _, factors = sympy.factor_list(N)
+    alone = [(f, e) for f, e in factors if f.has(t) and f.free_symbols <= {t} | params]
+    if not alone and deficit < 2:
+        return [], expr
+    found: list[tuple[Any, int]] = []
+    rest = N
+    used = 0
+    for f, e in alone:
+        d = int(sympy.degree(f, t))
+        if d > 2:
+            continue
+        for _ in range(e):
+            kk = 1
+            if d == 1:
+                if deficit < 1:
+                    continue
+                deficit -= 1
+            rest = sympy.quo(rest, f, t)
+            used += kk
+            found.append((to_circle(f, t, kk, js), 1))
+    while deficit >= 2 and used < k:  # a double root at J = pi: the factor 1 + cos(J)
+        deficit -= 2
+        used += 1
+        found.append((1 + js.c, 1))
+        rest = rest / 2
+    if not found:
+        return [], expr
+    cofactor = to_circle(rest, t, k - used, js)
+    return found, cofactor
+
+
+def factor_condition(
+    expr: Any, joints: list[JointSymbols], params: set[Any]
+) -> tuple[Any, list[tuple[Any, int]]]:
+    """Exact factors of a condition: ``expr == constant * prod(f**e)`` on the torus.
+
+    ``params`` are the free symbols that are not joint symbols (symbolic
+    parameters).  Factors are primitive polynomials in the ``c``, ``s``
+    symbols with a positive leading coefficient; equal factors are merged.
+    """
+    e = reduce_trig(sympy.expand(expr), joints)
+    if e == 0:
+        return sympy.Integer(0), []
+    pieces: list[tuple[Any, int]] = []
+    for js in joints:
+        if js.c is None:
+            continue
+        found, e = _split_joint(e, js, params)
+        pieces.extend(found)
+        e = reduce_trig(e, joints)
+    _, rest = sympy.factor_list(e)
+    merged: dict[Any, int] = {}
+    for f, p in pieces + list(rest):
+        for g, q in sympy.factor_list(reduce_trig(f, joints))[1]:
+            g = reduce_trig(g, joints)
+            if not g.free_symbols - params:
+                continue  # constants (and parameter-only factors) go to the constant
+            gens = sorted(g.free_symbols, key=str)
+            _, prim = sympy.Poly(g, *gens).primitive()
+            prim_e = prim.as_expr()
+            if sympy.Poly(prim_e, *gens).LC().could_extract_minus_sign():
+                prim_e = -prim_e
+            merged[prim_e] = merged.get(prim_e, 0) + p * q
+    factors = list(merged.items())
+    const = _constant(expr, factors, joints)
+    if const is None:  # pragma: no cover - the factoring did not reproduce expr
+        return sympy.Integer(1), [(e, 1)]
+    return const, factors
+
+
+def _constant(expr: Any, factors: list[tuple[Any, int]], joints: list[JointSymbols]) -> Any:
+    """``expr / prod(f**e)``, checked to be the same at two points of the torus."""
+    values = []
+    for u in (sympy.Rational(2, 7), sympy.Rational(5, 11)):
+        pt: dict[Any, Any] = {}
+        for i, js in enumerate(joints):
+            w = u + sympy.Rational(i, 13)
+            if js.c is not None:
+                pt[js.c] = (1 - w**2) / (1 + w**2)
+                pt[js.s] = 2 * w / (1 + w**2)
+            pt[js.q] = w
+        den = sympy.Integer(1)
+        for f, p in factors:
+            den *= sympy.sympify(f).xreplace(pt) ** p
+        if den == 0:
+            return None
+        values.append(sympy.factor(sympy.cancel(sympy.sympify(expr).xreplace(pt) / den)))
+    if sympy.cancel(values[0] - values[1]) != 0:
+        return None
+    return values[0]

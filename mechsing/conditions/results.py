@@ -1,0 +1,206 @@
+"""The result of ``mechsing condition``: conditions, their factors, and renderings.
+
+A :class:`ConditionResult` holds one or more :class:`Condition` (an output
+Jacobian's determinant, the input and output conditions of a loop or of a
+parallel robot ...), each a constant times a product of :class:`Factor`.  The
+expressions are sympy expressions in the joint variables (symbols named by
+the joints, values in radians or metres as the joint's coordinate, measured
+from the pose drawn in the file), the pose variables ``x``, ``y`` (m) and
+``phi`` (rad) of a parallel robot, and the parameters kept symbolic.
+
+Renderings: :meth:`ConditionResult.to_json` (the JSON shape the README and the
+docs state; every number in SI units and radians), :meth:`ConditionResult.text`
+and :meth:`ConditionResult.latex` (``sympy.latex``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import sympy
+
+__all__ = ["Condition", "ConditionResult", "Factor"]
+
+
+@dataclass(frozen=True)
+class Factor:
+    """One factor of a condition, raised to ``power``.
+
+    ``meaning`` says what its vanishing means where it is recognised (None
+    otherwise); ``value`` and ``vanishes`` are set when a configuration was
+    given (the factor's value there, and whether it is zero to the precision
+    of the evaluation).
+    """
+
+    expression: Any
+    power: int = 1
+    meaning: str | None = None
+    value: float | None = None
+    vanishes: bool | None = None
+
+
+@dataclass(frozen=True)
+class Condition:
+    """A singularity condition ``constant * prod(factor ** power) = 0``.
+
+    ``name`` says which singularity (``"output Jacobian"``, ``"input (type I)"``
+    ...), ``form`` how it was obtained (``"determinant"``, ``"gcd of maximal
+    minors"``, ``"eliminated"``), ``variables`` the symbols it is written in,
+    ``note`` a sentence for people (what the determinant is of, what it
+    means when the gcd is 1, where elimination failed), ``roots`` the values
+    of a single variable where it vanishes (eliminated conditions).
+    """
+
+    name: str
+    form: str
+    variables: tuple[str, ...]
+    constant: Any
+    factors: tuple[Factor, ...]
+    note: str = ""
+    roots: tuple[float, ...] = ()
+    units: tuple[str, ...] = ()
+
+    @property
+    def expression(self) -> Any:
+        out = self.constant
+        for f in self.factors:
+            out = out * f.expression**f.power
+        return out
+
+    def product_text(self) -> str:
+        """``constant*(factor)*(factor)**2 ...`` as written (sympy would distribute a
+        rational constant into the first factor)."""
+        sign = "-" if self.constant == -1 else ""
+        parts = [] if self.constant in (1, -1) else [sympy.sstr(self.constant)]
+        alone = self.constant in (1, -1) and len(self.factors) == 1 and self.factors[0].power == 1
+        alone = alone and (
+            self.constant == 1 or not isinstance(self.factors[0].expression, sympy.Add)
+        )
+        for f in self.factors:
+            e = sympy.sstr(f.expression)
+            if isinstance(f.expression, sympy.Add) and not alone:
+                e = f"({e})"
+            parts.append(e if f.power == 1 else f"{e}**{f.power}")
+        return sign + ("*".join(parts) if parts else "1")
+
+    @property
+    def vanishes(self) -> bool | None:
+        flags = [f.vanishes for f in self.factors]
+        if not flags or any(v is None for v in flags):
+            return None
+        return any(flags)
+
+
+@dataclass(frozen=True)
+class ConditionResult:
+    """All the conditions of one mechanism file (see the module docstring)."""
+
+    mechanism: str
+    method: str
+    symbolic: tuple[str, ...]
+    parameters: dict[str, Any]
+    conditions: tuple[Condition, ...]
+    notes: tuple[str, ...] = ()
+    configuration: str | None = None
+    values: dict[str, float] = field(default_factory=dict)
+    #: the file's angle unit: the text also shows angles in degrees for a "deg" file
+    file_angle_unit: str = "rad"
+
+    # -- renderings ---------------------------------------------------------
+
+    def to_json(self) -> dict[str, Any]:
+        """A JSON-serialisable dict (the shape ``mechsing condition --format json`` prints)."""
+        return {
+            "mechanism": self.mechanism,
+            "method": self.method,
+            "symbolic": list(self.symbolic),
+            "parameters": {k: float(sympy.N(v, 17)) for k, v in self.parameters.items()},
+            "configuration": self.configuration,
+            "values": dict(self.values),
+            "conditions": [
+                {
+                    "name": c.name,
+                    "form": c.form,
+                    "variables": list(c.variables),
+                    "expression": c.product_text(),
+                    "constant": str(c.constant),
+                    "factors": [
+                        {
+                            "expression": str(f.expression),
+                            "power": int(f.power),
+                            "meaning": f.meaning,
+                            "value": f.value,
+                            "vanishes": f.vanishes,
+                        }
+                        for f in c.factors
+                    ],
+                    "note": c.note,
+                    "roots": [float(r) for r in c.roots],
+                    "root_units": list(c.units),
+                    "vanishes": c.vanishes,
+                }
+                for c in self.conditions
+            ],
+            "notes": list(self.notes),
+        }
+
+    def text(self) -> str:
+        """The conditions for people."""
+        lines = [f"mechsing condition: {self.mechanism} ({self.method})"]
+        if self.symbolic:
+            lines.append(f"Symbolic parameters: {', '.join(self.symbolic)}")
+        fixed = {k: v for k, v in self.parameters.items() if k not in self.symbolic}
+        if fixed:
+            shown = ", ".join(f"{k} = {v}" for k, v in fixed.items())
+            lines.append(f"Parameters at their values: {shown}")
+        if self.configuration is not None:
+            vals = ", ".join(f"{k} = {v:.6g}" for k, v in self.values.items())
+            lines.append(f"At configuration {self.configuration}: {vals}")
+        for c in self.conditions:
+            lines.append("")
+            lines.append(f"{c.name} ({c.form}):")
+            lines.append(f"  {c.product_text()} = 0")
+            if c.note:
+                lines.append(f"  {c.note}")
+            lines.append(f"  constant: {sympy.sstr(c.constant)}")
+            for i, f in enumerate(c.factors, 1):
+                power = f"  (power {f.power})" if f.power != 1 else ""
+                lines.append(f"  factor {i}: {sympy.sstr(f.expression)}{power}")
+                if f.meaning:
+                    lines.append(f"    {f.meaning}")
+                if f.value is not None:
+                    state = "vanishes" if f.vanishes else "does not vanish"
+                    lines.append(f"    at {self.configuration}: {f.value:.6g} ({state})")
+            if c.roots:
+                shown = ", ".join(f"{r:.6g}" for r in c.roots)
+                unit = c.units[0] if c.units else ""
+                if unit == "rad" and self.file_angle_unit == "deg":
+                    deg = ", ".join(f"{r * 180 / math.pi:.6g}" for r in c.roots)
+                    unit = f"rad ({deg} deg)"
+                lines.append(f"  vanishes at {c.variables[0]} = {shown} {unit}".rstrip())
+            if c.vanishes is not None:
+                verdict = "singular" if c.vanishes else "regular"
+                lines.append(f"  => {self.configuration} is {verdict} for this condition")
+        for n in self.notes:
+            lines.append("")
+            lines.append(f"Note: {n}")
+        return "\n".join(lines) + "\n"
+
+    def latex(self) -> str:
+        """The conditions as LaTeX (one ``align*`` environment)."""
+        rows = []
+        for c in self.conditions:
+            body = r" \cdot ".join(
+                (
+                    sympy.latex(f.expression)
+                    if f.power == 1
+                    else rf"\left({sympy.latex(f.expression)}\right)^{{{f.power}}}"
+                )
+                for f in c.factors
+            )
+            const = sympy.latex(c.constant)
+            expr = f"{const} \\cdot {body}" if body else const
+            rows.append(rf"  &\text{{{c.name}}}: && {expr} = 0")
+        return "\\begin{align*}\n" + " \\\\\n".join(rows) + "\n\\end{align*}\n"
