@@ -121,7 +121,19 @@ def _agrees(expected: Any, got: Any, answer: dict[str, Any]) -> bool:
         return isinstance(got, (set, list)) and {str(x) for x in got} == expected
     if isinstance(got, (set, list)):  # one word against several: it is one of them
         return expected in {str(x) for x in got}
+    if str(got) != expected and isinstance(got, str) and any(c in expected for c in "*/()"):
+        return _same_formula(expected, got)
     return str(got) == expected
+
+
+def _same_formula(expected: str, got: str) -> bool:
+    """Two formulas (a symbolic condition) equal as expressions, whatever their order."""
+    try:
+        a = sympy.sympify(expected, rational=True)
+        b = sympy.sympify(got, rational=True)
+    except (sympy.SympifyError, TypeError, SyntaxError):
+        return False
+    return sympy.simplify(a - b) == 0
 
 
 def test_there_are_enough_exercises() -> None:
