@@ -32,6 +32,7 @@ import importlib
 _FUNCTIONS = {
     "analyze": "mechsing.analysis",
     "load": "mechsing.model",
+    "report": "mechsing.report",
     "scan": "mechsing.scanner",
     "sweep": "mechsing.sweeps",
 }

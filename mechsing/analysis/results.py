@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from mechsing.analysis import contract
+from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
 from mechsing.model import Mechanism
 from mechsing.numeric import Margin, Precision
 from mechsing.singularity.findings import (
@@ -226,6 +227,12 @@ class AnalysisResult:
 
     def to_json(self) -> dict[str, Any]:
         return to_json(self)
+
+    def _repr_html_(self) -> str:
+        """The verdict table in a notebook (``mechsing.report`` draws the whole review)."""
+        caption = f"{self.mechanism.name}: analysis in {self.precision}"
+        rows = [verdict_row(c) for c in self.configurations]
+        return html_table(VERDICT_HEADERS, rows, caption)
 
 
 # --------------------------------------------------------------------------- the serializer
