@@ -95,7 +95,7 @@ def slug(text: str) -> str:
 CSS = """
 .mechsing-report { font-family: system-ui, -apple-system, "Segoe UI", Roboto, "DejaVu Sans",
   sans-serif; line-height: 1.45; color: #1a1a1a; max-width: 1100px; margin: 0 auto;
-  padding: 0 1rem 2rem; }
+  padding: 0 1rem 2rem; overflow-wrap: anywhere; }
 .mechsing-report h1 { font-size: 1.6rem; margin: 1rem 0 0.5rem; }
 .mechsing-report h2 { font-size: 1.3rem; margin: 1.8rem 0 0.5rem; border-bottom: 1px solid #ccc; }
 .mechsing-report h3 { font-size: 1.1rem; margin: 1.4rem 0 0.4rem; }
