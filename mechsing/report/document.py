@@ -107,7 +107,7 @@ CSS = """
 .mechsing-report th { background: #eef1f5; }
 .mechsing-report tr.problem td { background: #fdecea; }
 .mechsing-report figure { margin: 0.8rem 0 1.2rem; }
-.mechsing-report figure img { width: 100%; max-width: 760px; height: auto; display: block;
+.mechsing-report figure img { max-width: 100%; height: auto; display: block;
   border: 1px solid #ddd; }
 .mechsing-report figcaption { font-size: 0.85rem; color: #444; margin-top: 0.3rem; }
 .mechsing-report details { margin: 0.5rem 0 1rem; }

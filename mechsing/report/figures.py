@@ -3,7 +3,7 @@
 Owns :func:`svg` (a figure as SVG text: the Agg-free SVG writer, text as paths, a fixed
 hash salt and no date, so the same input gives the same bytes), :func:`graph_figure` (the
 mechanism's graph: bodies as nodes, joints as labelled edges, each loop shaded in its
-colour, ground hatched), :func:`path_figure` (a path sweep: the smallest relative singular
+colour, the ground grey), :func:`path_figure` (a path sweep: the smallest relative singular
 value of each test on a log scale against the swept value, float's thresholds shaded,
 located singularities marked and labelled) and :func:`grid_figure` (a grid sweep: the
 singularity loci over the two swept variables coloured by class, the samples not reached
@@ -81,19 +81,31 @@ def graph_figure(
     ground: str,
     joints: Sequence[tuple[str, str, str, str]],
     loops: Sequence[Sequence[str]],
+    loop_bodies: Sequence[Sequence[str]] = (),
 ) -> Figure:
     """The mechanism's graph.  ``joints``: (name, type, body a, body b); ``loops``: the
-    joint names of each loop.  Layout: Kamada-Kawai (deterministic)."""
+    joint names of each loop, ``loop_bodies`` its bodies in order (shaded).  Layout: the
+    bodies in rows by their distance from the ground (file order within a row)."""
     import networkx as nx
 
     g = nx.Graph()
     g.add_nodes_from(bodies)
     for _name, _t, a, b in joints:
         g.add_edge(a, b)
-    pos = nx.kamada_kawai_layout(g) if len(bodies) > 1 else {bodies[0]: np.zeros(2)}
-    xy = {k: np.asarray(v, dtype=float) for k, v in pos.items()}
-    n = len(bodies)
-    fig = new_figure(6.4, 4.0 if n <= 6 else 5.0)
+    # layers by distance from the ground, the ground at the bottom: the legs of a
+    # parallel robot stand side by side between the ground and the output
+    depth = nx.single_source_shortest_path_length(g, ground)
+    far = max(depth.values(), default=0) + 1
+    layers: dict[int, list[str]] = {}
+    for body in bodies:
+        layers.setdefault(depth.get(body, far), []).append(body)
+    xy = {}
+    for level, members in layers.items():
+        for i, body in enumerate(members):
+            xy[body] = np.array([i - (len(members) - 1) / 2, 0.9 * level], dtype=float)
+    columns = max(len(m) for m in layers.values())
+    width = min(9.0, max(4.5, 1.4 * columns + (2.8 if loops else 0.5)))
+    fig = new_figure(width, min(7.0, max(2.4, 0.9 * len(layers) + 0.8)))
     with matplotlib.rc_context(RC):
         ax = fig.add_subplot()
         ax.set_aspect("equal")
@@ -101,12 +113,7 @@ def graph_figure(
         loop_of: dict[str, int] = {}
         for k, lp in enumerate(loops):
             colour = LOOP_COLOURS[k % len(LOOP_COLOURS)]
-            by_name = {j[0]: j for j in joints}
-            ring = []
-            for jn in lp:
-                _, _, a, b = by_name[jn]
-                ring += [a, b]
-            order = list(dict.fromkeys(ring))
+            order = list(dict.fromkeys(loop_bodies[k])) if loop_bodies else []
             if len(order) >= 3:
                 ax.add_patch(
                     Polygon([xy[b] for b in order], closed=True, facecolor=colour, alpha=0.10, lw=0)
@@ -151,19 +158,20 @@ def graph_figure(
             )
         for body in bodies:
             x, y = xy[body]
-            hatch = "////" if body == ground else None
+            is_ground = body == ground
             ax.text(
                 x,
                 y,
-                body + (" (ground)" if body == ground else ""),
+                body,
                 ha="center",
                 va="center",
                 fontsize=9,
+                fontweight="bold" if is_ground else "normal",
                 bbox={
-                    "boxstyle": "round,pad=0.3",
-                    "fc": "#f2f2f2" if body == ground else "white",
+                    "boxstyle": "square,pad=0.35" if is_ground else "round,pad=0.3",
+                    "fc": "#d9d9d9" if is_ground else "white",
                     "ec": "#333333",
-                    "hatch": hatch,
+                    "lw": 2.0 if is_ground else 1.0,
                 },
             )
         pts = np.array(list(xy.values()))

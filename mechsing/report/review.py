@@ -368,14 +368,15 @@ def _mechanism(r: Report) -> list[doc.Block]:
         mech.ground,
         [(j.name, j.type, j.between[0], j.between[1]) for j in mech.joints],
         loops,
+        [lp.bodies for lp in mech.loops],
     )
     out.append(
         doc.Figure(
             "graph",
             svg(fig),
             f"graph of {mech.name}: bodies as nodes, joints as edges",
-            "Bodies as nodes, joints as labelled edges (type in brackets); each loop shaded "
-            "in its colour; the ground hatched.",
+            "Bodies as nodes (the ground grey, in bold), joints as labelled edges (type in "
+            "brackets); each loop shaded in its colour.",
         )
     )
     first = next((c for c in r.analysis.configurations if c.error is None), None)

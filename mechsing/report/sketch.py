@@ -234,9 +234,8 @@ def sketch_figure(
             colour = "#4a6fa5" if k % 2 == 0 else "#5b8c5a"
             if len(pts) >= 3:
                 hull = _hull(xy)
-                ax.add_patch(
-                    Polygon(hull, closed=True, facecolor=colour, alpha=0.18, edgecolor=colour, lw=2)
-                )
+                ax.add_patch(Polygon(hull, closed=True, facecolor=colour, alpha=0.18, lw=0))
+                ax.add_patch(Polygon(hull, closed=True, fill=False, edgecolor=colour, lw=2.5))
             else:
                 ax.plot(xy[:, 0], xy[:, 1], color=colour, lw=3.0, solid_capstyle="round", zorder=1)
         # the ground: dashed between its joints, hatched under each
