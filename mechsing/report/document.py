@@ -95,12 +95,14 @@ def slug(text: str) -> str:
 CSS = """
 .mechsing-report { font-family: system-ui, -apple-system, "Segoe UI", Roboto, "DejaVu Sans",
   sans-serif; line-height: 1.45; color: #1a1a1a; max-width: 1100px; margin: 0 auto;
-  padding: 0 1rem 2rem; overflow-wrap: anywhere; }
+  padding: 0 1rem 2rem; }
+.mechsing-report p, .mechsing-report li, .mechsing-report figcaption { overflow-wrap: anywhere; }
 .mechsing-report h1 { font-size: 1.6rem; margin: 1rem 0 0.5rem; }
 .mechsing-report h2 { font-size: 1.3rem; margin: 1.8rem 0 0.5rem; border-bottom: 1px solid #ccc; }
 .mechsing-report h3 { font-size: 1.1rem; margin: 1.4rem 0 0.4rem; }
 .mechsing-report .table-wrap { overflow-x: auto; margin: 0.5rem 0 1rem; }
-.mechsing-report table { border-collapse: collapse; font-size: 0.9rem; }
+.mechsing-report table { border-collapse: collapse; font-size: 0.9rem; min-width: 36rem; }
+.mechsing-report th { white-space: nowrap; }
 .mechsing-report caption { text-align: left; font-style: italic; padding: 0.2rem 0; }
 .mechsing-report th, .mechsing-report td { border: 1px solid #bbb; padding: 0.25rem 0.5rem;
   text-align: left; vertical-align: top; }

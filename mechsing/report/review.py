@@ -244,7 +244,7 @@ def _configuration_q(mech: Mechanism, c: ConfigurationResult) -> list[float]:
     return [float(values[j][i]) for j, i in mech.coordinates()]
 
 
-def _screws(c: ConfigurationResult) -> list[Screw]:
+def _screws(mech: Mechanism, c: ConfigurationResult) -> list[Screw]:
     out: list[Screw] = []
     for f in c.singularities:
         if isinstance(f, SerialFinding):
@@ -253,11 +253,19 @@ def _screws(c: ConfigurationResult) -> list[Screw]:
         elif isinstance(f, MotionFinding) and f.output_twist is not None:
             t = tuple(f.output_twist)
             if len(t) == 3:  # the velocity of the output's point: a translation there
+                at = tuple(float(to_float(x)) for x in mech.output_reference_point())
+                body = mech.output.body if mech.output else None
                 out.append(
-                    Screw("twist", (0.0, 0.0, 0.0, *t), "output point velocity, inputs locked")
+                    Screw(
+                        "twist",
+                        (0.0, 0.0, 0.0, *t),
+                        "output point velocity (inputs locked)",
+                        at,  # type: ignore[arg-type]
+                        body,
+                    )
                 )
             else:
-                out.append(Screw("twist", t, "output twist, inputs locked"))
+                out.append(Screw("twist", t, "output twist (inputs locked)"))
         elif isinstance(f, ConstraintFinding):
             for w in f.wrenches[: f.corank or 1]:
                 out.append(Screw("wrench", tuple(w), "constraint wrench"))
@@ -414,7 +422,7 @@ def _configurations(r: Report) -> list[doc.Block]:
         if c.error is not None:
             out.append(doc.Paragraph(f"not analysed: {c.error}"))
             continue
-        screws = _screws(c)
+        screws = _screws(mech, c)
         fig = sketch_figure(
             mech,
             _configuration_q(mech, c),
@@ -577,10 +585,12 @@ def _sweep(r: Report) -> list[doc.Block]:
                 )
             )
     if sw.notes:
-        shown = list(sw.notes[:8])
-        if len(sw.notes) > 8:
-            shown.append(f"... and {len(sw.notes) - 8} more notes")
-        out.append(doc.Bullets(tuple(f"note: {n}" for n in shown)))
+        notes = doc.Bullets(tuple(sw.notes))
+        out.append(
+            notes
+            if len(sw.notes) <= 3
+            else doc.Details(f"The sweep's {len(sw.notes)} notes", (notes,))
+        )
     return out
 
 

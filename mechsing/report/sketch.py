@@ -34,7 +34,15 @@ from mechsing.model import Mechanism
 from mechsing.numeric import to_float
 from mechsing.report.figures import RC, new_figure
 
-__all__ = ["Screw", "View", "choose_view", "joint_places", "screw_axis", "sketch_figure"]
+__all__ = [
+    "Screw",
+    "body_poses",
+    "View",
+    "choose_view",
+    "joint_places",
+    "screw_axis",
+    "sketch_figure",
+]
 
 #: joint types drawn with an axis line (direction parameter ``axis``)
 AXIAL = ("R", "H", "C")
@@ -67,6 +75,10 @@ class Screw:
     kind: str
     vector: tuple[float, ...]
     label: str
+    #: where a translation is drawn: a point of ``body`` at the reference configuration
+    #: (SI, ground frame); None: the mechanism's centre
+    at: tuple[float, float, float] | None = None
+    body: str | None = None
 
 
 def _f(x: object) -> np.ndarray:
@@ -122,13 +134,18 @@ def choose_view(mech: Mechanism) -> View:
     return View(toward, right, up, "oblique view, z up")
 
 
+def body_poses(mech: Mechanism, q: Sequence[float]) -> dict[str, np.ndarray]:
+    """The 4x4 pose of every body at the joint values ``q`` (SI), ground the identity."""
+    model = KinematicModel(mech, "float")
+    return {k: np.asarray(v, dtype=float) for k, v in model.poses(np.asarray(q, float)).items()}
+
+
 def joint_places(mech: Mechanism, q: Sequence[float]) -> dict[str, dict[str, np.ndarray]]:
     """Where each joint is at the joint values ``q`` (SI, the mechanism's coordinate
     order): ``{joint: {body: point}}`` for each of its two bodies (the same point for a
     joint with a point), plus ``"axis"`` (the joint's current direction, if any), in the
     ground frame."""
-    model = KinematicModel(mech, "float")
-    poses = {k: np.asarray(v, dtype=float) for k, v in model.poses(np.asarray(q, float)).items()}
+    poses = body_poses(mech, q)
 
     def carry(body: str, p: np.ndarray) -> np.ndarray:
         g = poses.get(body, np.eye(4))
@@ -311,13 +328,19 @@ def sketch_figure(
             )
         # screws
         centre = np.mean(np.array(pts3), axis=0) if pts3 else np.zeros(3)
+        extra: list[np.ndarray] = []  # what the screws add to the drawing's extent
         colours = ("#d62728", "#9467bd", "#ff7f0e", "#17becf")
         for k, s in enumerate(screws):
             colour = colours[k % len(colours)]
             point, direction, pitch = screw_axis(s)
             if point is None:
-                c = view.project(centre)
+                base = centre
+                if s.at is not None:
+                    g = body_poses(mech, q).get(s.body or mech.ground, np.eye(4))
+                    base = g[:3, :3] @ np.asarray(s.at, dtype=float) + g[:3, 3]
+                c = view.project(base)
                 d = view.project(direction)
+                extra += [c, c + 0.25 * span * d]
                 ax.annotate(
                     "",
                     xy=c + 0.25 * span * d,
@@ -326,13 +349,14 @@ def sketch_figure(
                     zorder=6,
                 )
                 words = "translation" if s.kind == "twist" else "couple"
-                text = f"{s.label}: {words} (infinite pitch)"
+                text = f"{s.label}: a {words}"
                 at = c + 0.25 * span * d
             else:
                 # the axis's point nearest the mechanism's centre
                 foot = point + ((centre - point) @ direction) * direction
                 d = view.project(direction)
                 at = view.project(foot)
+                extra.append(at)
                 if float(np.linalg.norm(d)) < 0.2:
                     ax.plot([at[0]], [at[1]], marker="o", mfc="none", mec=colour, ms=10, mew=1.8)
                     ax.plot([at[0]], [at[1]], marker=".", color=colour, ms=4)
@@ -343,16 +367,26 @@ def sketch_figure(
                         [a0[0], a1[0]], [a0[1], a1[1]], color=colour, lw=1.8, ls=(0, (6, 2, 1, 2))
                     )
                 text = f"{s.label}: pitch {pitch:.3g} m/rad"
+            # the label toward the middle of the drawing
+            rel = (float(at[0]) - float(lo[0] + hi[0]) / 2) / span
+            ha = "center" if abs(rel) < 0.15 else ("right" if rel > 0 else "left")
+            dx = {"center": 0, "right": -8, "left": 8}[ha]
             ax.annotate(
                 text,
                 at,
-                xytext=(8, -12 - 12 * k),
+                xytext=(dx, (6 if ha == "center" else -12) - 12 * k),
                 textcoords="offset points",
+                ha=ha,
                 fontsize=8,
                 color=colour,
                 zorder=7,
                 bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": colour, "alpha": 0.9},
             )
+        mid = (lo + hi) / 2
+        extra = [e for e in extra if float(np.max(np.abs(e - mid))) < span]  # not far away
+        if extra:
+            lo = np.minimum(lo, np.min(extra, axis=0))
+            hi = np.maximum(hi, np.max(extra, axis=0))
         pad = 0.12 * span
         ax.set_xlim(lo[0] - pad, hi[0] + pad)
         ax.set_ylim(lo[1] - pad - 2 * mark, hi[1] + pad)
