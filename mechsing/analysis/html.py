@@ -23,7 +23,15 @@ from mechsing.numeric import Margin
 #: a ConfigurationResult (not imported: the results import this module)
 ConfigurationResult = Any
 
-__all__ = ["CLASS_WORDS", "VERDICT_HEADERS", "class_words", "html_table", "verdict_row"]
+__all__ = [
+    "CLASS_WORDS",
+    "VERDICT_HEADERS",
+    "class_words",
+    "html_table",
+    "largest_drop",
+    "margin_words",
+    "verdict_row",
+]
 
 #: each singularity class of the JSON contract in a few words
 CLASS_WORDS = {
@@ -56,17 +64,27 @@ def _relative(m: Margin, value: float | None) -> float | None:
     return value / m.sigma_max if m.sigma_max else value
 
 
+def largest_drop(c: ConfigurationResult) -> tuple[float, Margin] | None:
+    """The largest relative singular value a singular finding of ``c`` counted as zero,
+    with its margin (None when there is none: regular, or decided exactly)."""
+    drops = [
+        (_relative(s.margin, s.margin.dropped), s.margin)
+        for s in c.singularities
+        if s.cls != "undecided" and s.margin is not None
+    ]
+    known = [(d, m) for d, m in drops if d is not None]
+    return max(known, key=lambda t: t[0]) if known else None
+
+
 def margin_words(c: ConfigurationResult) -> str:
     """The margin of a configuration's verdict in words (see the module docstring)."""
     if c.error is not None:
         return "-"
     singular = [s for s in c.singularities if s.cls != "undecided" and s.margin is not None]
     if singular:
-        drops = [(_relative(s.margin, s.margin.dropped), s.margin) for s in singular]
-        known = [(d, m) for d, m in drops if d is not None]
-        if known:
-            d, m = max(known, key=lambda t: t[0])
-            return f"dropped {d:.3g} <= tau_lo {m.tau_lo:.3g}"
+        worst = largest_drop(c)
+        if worst is not None:
+            return f"dropped {worst[0]:.3g} <= tau_lo {worst[1].tau_lo:.3g}"
         return "rank decided exactly"
     if any(s.cls == "undecided" for s in c.singularities):
         return "a singular value between tau_lo and tau_hi"

@@ -25,7 +25,7 @@ import numpy as np
 from mechsing import __version__
 from mechsing.analysis import AnalysisResult, ConfigurationResult, analyze
 from mechsing.analysis.contract import subgroup_params
-from mechsing.analysis.html import VERDICT_HEADERS, class_words, verdict_row
+from mechsing.analysis.html import VERDICT_HEADERS, class_words, largest_drop, verdict_row
 from mechsing.analysis.results import Mobility
 from mechsing.model import Mechanism, load
 from mechsing.numeric import Precision, parse_precision, to_float
@@ -290,13 +290,19 @@ def _verdict(r: Report) -> list[doc.Block]:
                 and any(np.allclose(p.values, v) for v in lo.vertices)
             ]
             decided = sorted({p.precision or "-" for p in on}) or ["-"]
+            drops = [d for p in on if (d := largest_drop(p.configuration)) is not None]
+            if drops:
+                d, m = max(drops, key=lambda t: t[0])
+                margin = f"largest dropped {d:.3g} <= tau_lo {m.tau_lo:.3g} over its points"
+            else:
+                margin = "-"
             singular = "yes" if any(p.singular for p in on) else ("undecided" if on else "-")
             rows.append(
                 (
                     f"sweep: locus {k + 1} of {lo.test} ({len(lo.vertices)} points)",
                     singular,
                     class_words(lo.classes) if lo.classes else "not classified",
-                    "see the sweep's located points",
+                    margin,
                     ", ".join(decided),
                 )
             )
