@@ -356,3 +356,14 @@ def test_reports_render_in_a_real_browser(example_reports: dict[str, Path], tmp_
         finally:
             browser.close()
     assert len(list(shots.glob("*.png"))) == len(example_reports)
+
+
+def test_a_configuration_that_cannot_be_analysed_is_reported_with_exit_3(tmp_path: Path) -> None:
+    # exact mode takes exact data only: crank-30 gives one of four joint values, the others
+    # would be solved numerically, so it cannot be analysed exactly (the reference can)
+    out = tmp_path / "review.html"
+    r = run_cli(["report", ROOT / "examples/fourbar.yaml", "--precision", "exact", "-o", out])
+    assert r.status == 3 and "crank-30" in r.err
+    rows = _rows(out.read_text(encoding="utf-8"))
+    assert rows["crank-30"][1] == "not analysed" and "exact" in rows["crank-30"][2]
+    assert rows["reference"][1:3] == ["no", "none"] and rows["reference"][4] == "exact"
