@@ -111,8 +111,10 @@ def planar_normal(mech: Mechanism) -> np.ndarray | None:
 
 
 def choose_view(mech: Mechanism) -> View:
-    """Along the normal of a planar mechanism (seen from its positive side); else from
-    the direction (-1.2, -2, 1.1) with z up, like an engineering drawing's isometric view."""
+    """Along the normal of a planar mechanism (seen from its positive side); else, z up,
+    the oblique view (elevation 30 degrees, azimuth a multiple of 45) in which the joints
+    at the reference configuration stand farthest apart: the smallest projected distance
+    between two distinct joint points, largest (the first such azimuth on a tie)."""
     n = planar_normal(mech)
     if n is not None:
         toward = -n
@@ -123,15 +125,38 @@ def choose_view(mech: Mechanism) -> View:
         name = (
             f"seen along the plane's normal ({axis})"
             if np.max(np.abs(n)) > 0.999
-            else ("seen along the plane's normal")
+            else "seen along the plane's normal"
         )
         return View(toward, right, up, name)
-    eye = _unit(np.array([-1.2, -2.0, 1.1]))
-    toward = -eye
-    z = np.array([0.0, 0.0, 1.0])
-    right = _unit(np.cross(toward, z))
-    up = np.cross(right, toward)
-    return View(toward, right, up, "oblique view, z up")
+    places = joint_places(mech, [0.0] * mech.dof)
+    pts = np.array([p for e in places.values() for k, p in e.items() if k not in ("axis", "ends")])
+    best: tuple[float, View] | None = None
+    for k in range(8):
+        az = np.radians(-60.0 + 45.0 * k)
+        el = np.radians(30.0)
+        eye = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+        toward = -eye
+        right = _unit(np.cross(toward, np.array([0.0, 0.0, 1.0])))
+        up = np.cross(right, toward)
+        view = View(toward, right, up, "oblique view, z up")
+        score = _spread(view, pts)
+        if best is None or score > best[0] + 1e-9:
+            best = (score, view)
+    assert best is not None
+    return best[1]
+
+
+def _spread(view: View, pts: np.ndarray) -> float:
+    """The smallest projected distance between two joint points that are apart in space,
+    relative to the projected extent."""
+    if len(pts) < 2:
+        return 0.0
+    xy = view.project(pts)
+    extent = float(np.max(np.ptp(xy, axis=0))) or 1.0
+    d3 = np.linalg.norm(pts[:, None, :] - pts[None, :, :], axis=-1)
+    d2 = np.linalg.norm(xy[:, None, :] - xy[None, :, :], axis=-1)
+    apart = d3 > DRAWING_TOLERANCE * max(float(np.max(d3)), 1.0)
+    return float(np.min(d2[apart])) / extent if np.any(apart) else 0.0
 
 
 def body_poses(mech: Mechanism, q: Sequence[float]) -> dict[str, np.ndarray]:
