@@ -222,11 +222,16 @@ def path_figure(
             ax.semilogy(x, yy, color=TEST_COLOURS.get(test, "#333333"), lw=1.4, label=test)
         bottom = max(FLOOR, min(lowest, tau_lo) / 30)
         ax.set_ylim(bottom, 2.0)
-        for k, (xm, ym, label) in enumerate(marks):
+        last = -math.inf
+        numbered = sorted((xm, k, ym, label) for k, (xm, ym, label) in enumerate(marks))
+        for xm, k, ym, label in numbered:
             ax.axvline(xm, color="#333333", lw=0.7, ls=":")
             ax.plot([xm], [max(ym, bottom * 1.5)], marker="v", color="black", ms=6)
+            # a mark too close to the one before it is labelled by its number only
+            crowded = xm - last < 0.04 * (xmax - xmin)
+            last = xm
             ax.annotate(
-                f"{k + 1}: {label}",
+                f"{k + 1}" if crowded else f"{k + 1}: {label}",
                 xy=(xm, 1.0),
                 xycoords=("data", "axes fraction"),
                 xytext=(2, -4),

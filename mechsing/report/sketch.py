@@ -12,7 +12,7 @@ joints hatched; each screw of a finding drawn as its axis with its pitch).
 Conventions: a joint's ``point`` is its place at the reference configuration in the ground
 frame, so at a configuration it is ``g_a . point`` with ``g_a`` the pose of ``between[0]``;
 a joint without a point (prismatic, planar, translational...) is placed halfway between the
-other joints of its two bodies.  A twist ``(omega, v)`` (v: the velocity of the body point
+other joints of its two bodies, or, on the ground, at its other body's joints on a rail.  A twist ``(omega, v)`` (v: the velocity of the body point
 at the ground origin) has its axis through ``omega x v / |omega|^2``, direction ``omega``,
 pitch ``omega . v / |omega|^2`` (m/rad); with ``omega = 0`` it is a translation along v
 (infinite pitch).  A wrench ``(f, m)`` (m about the origin) has its axis through
@@ -129,7 +129,9 @@ def choose_view(mech: Mechanism) -> View:
         )
         return View(toward, right, up, name)
     places = joint_places(mech, [0.0] * mech.dof)
-    pts = np.array([p for e in places.values() for k, p in e.items() if k not in ("axis", "ends")])
+    pts = np.array(
+        [p for e in places.values() for k, p in e.items() if k not in ("axis", "ends", "rail")]
+    )
     best: tuple[float, View] | None = None
     for k in range(8):
         az = np.radians(-60.0 + 45.0 * k)
@@ -199,11 +201,17 @@ def joint_places(mech: Mechanism, q: Sequence[float]) -> dict[str, dict[str, np.
             ]
             ends.append(np.mean(pts, axis=0) if pts else None)
         known = [e for e in ends if e is not None]
-        mid = np.mean(known, axis=0) if known else carry(a, np.zeros(3))
         entry = out.setdefault(j.name, {})
+        moving = 1 if a == mech.ground else 0 if b == mech.ground else None
+        if moving is not None and ends[moving] is not None:
+            # a slider on the ground: at its body's joints, on a rail fixed to the ground
+            mid = ends[moving]
+            entry["rail"] = mid
+        else:
+            mid = np.mean(known, axis=0) if known else carry(a, np.zeros(3))
+            entry["ends"] = np.array([e if e is not None else mid for e in ends])
         entry[a] = mid
         entry[b] = mid
-        entry["ends"] = np.array([e if e is not None else mid for e in ends])
     return out
 
 
@@ -257,10 +265,18 @@ def sketch_figure(
         ax.set_yticks([])
         for side in ax.spines.values():
             side.set_color("#bbbbbb")
-        pts3 = [p for e in places.values() for k, p in e.items() if k not in ("axis", "ends")]
+        pts3 = [
+            p for e in places.values() for k, p in e.items() if k not in ("axis", "ends", "rail")
+        ]
         allp = view.project(np.array(pts3)) if pts3 else np.zeros((1, 2))
         lo, hi = allp.min(axis=0), allp.max(axis=0)
         span = float(max(np.max(hi - lo), length_scale * 0.5, 1e-9))
+        for e in places.values():  # the rails of sliders on the ground are drawn whole
+            if "rail" in e and "axis" in e:
+                ends = view.project(
+                    np.array([e["rail"] + t * 0.3 * span * e["axis"] for t in (-1, 1)])
+                )
+                lo, hi = np.minimum(lo, ends.min(axis=0)), np.maximum(hi, ends.max(axis=0))
         mark = 0.035 * span
         # links
         bodies = [b for b in mech.bodies if b != mech.ground]
@@ -298,7 +314,11 @@ def sketch_figure(
                 continue
             p = e[j.between[0]]
             xy = view.project(p)
-            if j.type == "P" or "ends" in e:
+            if j.type == "P" or "ends" in e or "rail" in e:
+                if "rail" in e and "axis" in e:
+                    r0 = view.project(p - 0.3 * span * e["axis"])
+                    r1 = view.project(p + 0.3 * span * e["axis"])
+                    ax.plot([r0[0], r1[0]], [r0[1], r1[1]], color="#777777", lw=2.5, zorder=1)
                 ends = view.project(e["ends"]) if "ends" in e else np.array([xy, xy])
                 ax.plot(ends[:, 0], ends[:, 1], color="#444444", lw=1.0, ls="-", zorder=1)
                 d = view.project(e.get("axis", np.zeros(3)))
@@ -345,7 +365,7 @@ def sketch_figure(
             ax.annotate(
                 j.name,
                 xy,
-                xytext=(6, 5),
+                xytext=(6, -14) if j.type == "P" else (6, 5),  # a slider may sit on a pin
                 textcoords="offset points",
                 fontsize=8,
                 zorder=5,
