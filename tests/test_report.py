@@ -367,3 +367,23 @@ def test_a_configuration_that_cannot_be_analysed_is_reported_with_exit_3(tmp_pat
     rows = _rows(out.read_text(encoding="utf-8"))
     assert rows["crank-30"][1] == "not analysed" and "exact" in rows["crank-30"][2]
     assert rows["reference"][1:3] == ["no", "none"] and rows["reference"][4] == "exact"
+
+
+def test_the_mechanism_section_says_the_published_mobility_and_loop_subgroup(
+    example_reports: dict[str, Path],
+) -> None:
+    # the four-bar (its file's published facts): planar Grubler 1, spatial Grubler -2, one
+    # loop in the planar subgroup G of normal z
+    html = example_reports["fourbar"].read_text(encoding="utf-8")
+    rows = _rows(html)
+    assert rows["Grübler-Kutzbach (spatial)"][1] == "-2"
+    assert rows["group (loop subgroups)"][1] == "1" and "by 3" in rows["group (loop subgroups)"][2]
+    assert rows["finite"][1] == "1"
+    assert "this loop moves in a plane (planar subgroup G, normal (0, 0, 1))" in html
+    # the spherical four-bar: one loop in S about the common point of its axes
+    html = example_reports["spherical_4r"].read_text(encoding="utf-8")
+    assert "this loop turns about a point (spherical subgroup S" in html
+    # Bennett's linkage: overconstrained, mobile although Grubler says -2
+    rows = _rows(example_reports["bennett"].read_text(encoding="utf-8"))
+    assert rows["Grübler-Kutzbach (spatial)"][1] == "-2" and rows["finite"][1] == "1"
+    assert "overconstrained" in rows["finite"][2]
