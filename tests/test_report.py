@@ -387,3 +387,21 @@ def test_the_mechanism_section_says_the_published_mobility_and_loop_subgroup(
     rows = _rows(example_reports["bennett"].read_text(encoding="utf-8"))
     assert rows["Grübler-Kutzbach (spatial)"][1] == "-2" and rows["finite"][1] == "1"
     assert "overconstrained" in rows["finite"][2]
+
+
+def test_legs_and_output_motion_types_are_the_published_ones(tmp_path: Path) -> None:
+    # Tsai's 3-UPU (L.-W. Tsai, 1996): three U-P-U legs, a translational platform (T3);
+    # the file's "flat" configuration is its constraint singularity, where the platform
+    # gains a rotation: the legs' constraint couples n_i lie along the horizontal legs, so the
+    # rotation they no longer resist is about z (T3 plus turns about z: Schoenflies motion X)
+    out = tmp_path / "tsai.html"
+    assert run_cli(["report", ROOT / "examples/tsai_3upu.yaml", "-o", out]).status == 0
+    html = out.read_text(encoding="utf-8")
+    rows = _rows(html)
+    assert [rows[k][1] for k in ("1", "2", "3")] == [
+        "U1a - P1 - U1b",
+        "U2a - P2 - U2b",
+        "U3a - P3 - U3b",
+    ]
+    assert "span T3, spatial translation (dimension 3)" in html
+    assert "at flat: X, Schoenflies motion (dimension 4; axis (0, 0, 1))" in html

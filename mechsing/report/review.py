@@ -25,6 +25,7 @@ import numpy as np
 from mechsing import __version__
 from mechsing.analysis import AnalysisResult, ConfigurationResult, analyze
 from mechsing.analysis.contract import subgroup_params
+from mechsing.analysis.describe import OutputMotion
 from mechsing.analysis.html import VERDICT_HEADERS, class_words, largest_drop, verdict_row
 from mechsing.analysis.results import Mobility
 from mechsing.model import Mechanism, load
@@ -123,8 +124,14 @@ def report(
 # --------------------------------------------------------------------------- words
 
 
+#: display only: a component below this fraction of a vector's largest is shown as 0
+#: (rounding noise of a computed direction, e.g. 1e-17 beside 1); nothing is decided by it
+DISPLAY_ZERO = 1e-12
+
+
 def _vec(v: Sequence[float]) -> str:
-    return "(" + ", ".join(f"{x:.4g}" for x in v) + ")"
+    big = max((abs(x) for x in v), default=0.0)
+    return "(" + ", ".join(f"{x if abs(x) > DISPLAY_ZERO * big else 0.0:.4g}" for x in v) + ")"
 
 
 def subgroup_words(sg: Subgroup | None) -> str:
@@ -405,6 +412,7 @@ def _mechanism(r: Report) -> list[doc.Block]:
                 )
             )
         )
+    out += _legs_and_motion(r)
     if first is not None and first.mobility is not None:
         out.append(doc.Heading(3, "Mobility"))
         out.append(
@@ -416,6 +424,66 @@ def _mechanism(r: Report) -> list[doc.Block]:
         )
     if r.analysis.properties:
         out.append(doc.Bullets(tuple(f"{p.kind}: {p.explanation}" for p in r.analysis.properties)))
+    return out
+
+
+def motion_words(m: OutputMotion) -> str:
+    """The output's motion type in words: its subgroup (type, name, parameters) or what
+    its twists span when they span no subgroup."""
+    if m.dim is None:
+        return f"undecided at {m.precision}"
+    if m.is_subgroup and m.subgroup is not None:
+        return subgroup_words(m.subgroup)
+    if m.is_subgroup is False:
+        return f"not a subgroup: {m.dim} independent twists whose brackets leave their span"
+    return f"dimension {m.dim} ({m.note or 'type not identified'})"
+
+
+def _legs_and_motion(r: Report) -> list[doc.Block]:
+    out: list[doc.Block] = []
+    a = r.analysis
+    if a.legs:
+        out.append(doc.Heading(3, "Legs"))
+        rows = tuple(
+            (
+                str(leg.number),
+                " - ".join(leg.joints),
+                ", ".join(leg.other_joints) or "-",
+                ", ".join(leg.bodies) or "-",
+            )
+            for leg in a.legs
+        )
+        out.append(
+            doc.Table(
+                (
+                    "leg",
+                    f"joints from {a.legs[0].base} to {a.legs[0].body}",
+                    "other joints",
+                    "bodies",
+                ),
+                rows,
+            )
+        )
+    m = a.output_motion
+    if m is not None:
+        out.append(doc.Heading(3, "Output motion type"))
+        out.append(
+            doc.Paragraph(
+                f"The twists of {m.body} relative to {m.relative_to} span "
+                f"{motion_words(m)}: its motion type at the regular configuration "
+                f"{m.configuration} (decided in {m.precision}; margin: {_margin(m.margin)})."
+            )
+        )
+        differ = [
+            (c.name, c.output_motion)
+            for c in a.configurations
+            if c.output_motion is not None and c.output_motion.summary != m.summary
+        ]
+        if differ:
+            out.append(
+                doc.Paragraph("Where it differs (a singularity changes what the output can do):")
+            )
+            out.append(doc.Bullets(tuple(f"at {name}: {motion_words(cm)}" for name, cm in differ)))
     return out
 
 
@@ -462,6 +530,8 @@ def _configurations(r: Report) -> list[doc.Block]:
                 f"mobility: finite {m.finite}, generic {m.generic}, instantaneous "
                 f"{m.instantaneous}, group {m.group}, Grübler-Kutzbach {m.grubler}"
             )
+        if c.output_motion is not None:
+            items.append(f"output motion: {c.output_motion.summary}")
         items += [f"note: {n}" for n in c.notes]
         out.append(doc.Bullets(tuple(items)))
         if not c.singularities:
