@@ -34,6 +34,7 @@ _FUNCTIONS = {
     "analyze": "mechsing.analysis",
     "condition": "mechsing.conditions",
     "load": "mechsing.model",
+    "report": "mechsing.report",
     "scan": "mechsing.scanner",
     "sweep": "mechsing.sweeps",
 }

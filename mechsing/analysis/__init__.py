@@ -27,6 +27,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
+from mechsing.analysis.describe import describe_legs, output_motion
 from mechsing.analysis.properties import mechanism_properties
 from mechsing.analysis.results import (
     AnalysisResult,
@@ -186,7 +187,24 @@ def _analyze(
         results.append(replace(res, seconds=time.perf_counter() - start))
     km0 = stage(first)[0]
     props = mechanism_properties(mech, results)
-    return AnalysisResult(mech, prec, km0.length_scale, tuple(results), props)
+    return AnalysisResult(
+        mech,
+        prec,
+        km0.length_scale,
+        tuple(results),
+        props,
+        legs=describe_legs(mech),
+        output_motion=_generic_motion(results),
+    )
+
+
+def _generic_motion(results: list[ConfigurationResult]) -> Any:
+    """The output's motion type at the first regular configuration analysed (the one
+    that speaks for the mechanism, as for its properties); None when none is regular."""
+    for r in results:
+        if r.error is None and r.singular is False and r.output_motion is not None:
+            return r.output_motion
+    return None
 
 
 def _doubtful_drops(
@@ -361,6 +379,7 @@ def _analyze_one_in_context(
         or any(isinstance(f, UndecidedFinding) for f in findings),
         classification=found,
         pose=given_pose(mech, name),
+        output_motion=output_motion(mech, model, q, cs, name),
     )
     doubtful = _doubtful_drops(
         res.singular, res.decisions, res.closure_residual or 0.0, model.length_scale

@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from mechsing.analysis import contract
+from mechsing.analysis.describe import LegDescription, OutputMotion
+from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
 from mechsing.model import Mechanism
 from mechsing.numeric import Margin, Precision
 from mechsing.singularity.findings import (
@@ -29,8 +31,10 @@ __all__ = [
     "ConfigurationResult",
     "GivenPose",
     "IdleMotion",
+    "LegDescription",
     "LoopEntry",
     "Mobility",
+    "OutputMotion",
     "Overconstrained",
     "Property",
     "Shaky",
@@ -197,6 +201,8 @@ class ConfigurationResult:
     classification: Classification | None = field(default=None, compare=False, repr=False)
     #: the output's pose the configuration gave (None: it gave joint values only)
     pose: GivenPose | None = None
+    #: the twists the output can make here and their motion type (None: no output)
+    output_motion: OutputMotion | None = None
 
     @property
     def singular(self) -> bool | None:
@@ -219,6 +225,10 @@ class AnalysisResult:
     length_scale: float
     configurations: tuple[ConfigurationResult, ...]
     properties: tuple[Property, ...] = ()
+    #: the legs of a parallel mechanism, joints from the base to the output
+    legs: tuple[LegDescription, ...] = ()
+    #: the output's generic motion type: at the first regular configuration analysed
+    output_motion: OutputMotion | None = None
 
     @property
     def failed(self) -> bool:
@@ -226,6 +236,12 @@ class AnalysisResult:
 
     def to_json(self) -> dict[str, Any]:
         return to_json(self)
+
+    def _repr_html_(self) -> str:
+        """The verdict table in a notebook (``mechsing.report`` draws the whole review)."""
+        caption = f"{self.mechanism.name}: analysis in {self.precision}"
+        rows = [verdict_row(c) for c in self.configurations]
+        return html_table(VERDICT_HEADERS, rows, caption)
 
 
 # --------------------------------------------------------------------------- the serializer
@@ -258,6 +274,8 @@ def _analysis(r: AnalysisResult) -> dict[str, Any]:
         },
         "properties": [_property(p) for p in r.properties],
         "configurations": [_configuration(c) for c in r.configurations],
+        "legs": [_leg(leg) for leg in r.legs],
+        "output_motion": None if r.output_motion is None else _output_motion(r.output_motion),
     }
 
 
@@ -296,6 +314,39 @@ def _configuration(c: ConfigurationResult) -> dict[str, Any]:
             "rotation": [list(row) for row in c.pose.rotation],
             "rotation_vector": list(c.pose.rotation_vector),
         }
+    if c.output_motion is not None:
+        out["output_motion"] = _output_motion(c.output_motion)
+    return out
+
+
+def _leg(leg: LegDescription) -> dict[str, Any]:
+    return {
+        "leg": leg.number,
+        "base": leg.base,
+        "body": leg.body,
+        "joints": list(leg.joints),
+        "other_joints": list(leg.other_joints),
+        "bodies": list(leg.bodies),
+    }
+
+
+def _output_motion(m: OutputMotion) -> dict[str, Any]:
+    sub = contract.subgroup_json(m.subgroup)
+    out: dict[str, Any] = {
+        "configuration": m.configuration,
+        "body": m.body,
+        "relative_to": m.relative_to,
+        "dim": m.dim,
+        "is_subgroup": m.is_subgroup,
+        "type": sub["type"],
+        "params": sub["params"],
+        "summary": m.summary,
+        "twists": [list(t) for t in m.twists],
+        "margin": contract.to_json(m.margin),
+        "precision": m.precision,
+    }
+    if m.note is not None:
+        out["note"] = m.note
     return out
 
 

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.analysis import ConfigurationResult
+from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
 from mechsing.model import Mechanism
 
 __all__ = [
@@ -28,6 +29,7 @@ __all__ = [
     "csv_rows",
     "json_header",
     "json_point",
+    "located_rows",
     "text_report",
 ]
 
@@ -199,6 +201,13 @@ class SweepResult:
     def to_text(self) -> str:
         return text_report(self)
 
+    def _repr_html_(self) -> str:
+        """The located singularities as a table in a notebook (``mechsing.report``
+        draws the curves and loci)."""
+        return html_table(
+            VERDICT_HEADERS, located_rows(self), caption=self.to_text().splitlines()[0]
+        )
+
 
 # --------------------------------------------------------------------------- JSON
 
@@ -351,6 +360,22 @@ def text_report(r: SweepResult) -> str:
     for note in r.notes:
         lines.append(f"  note: {note}")
     return "\n".join(lines) + "\n"
+
+
+def located_rows(r: SweepResult) -> list[tuple[str, ...]]:
+    """A verdict row (:data:`mechsing.analysis.html.VERDICT_HEADERS`) per located
+    singularity, named by where it is and what located it."""
+    rows = []
+    for p in r.located:
+        kind = "limit of travel" if p.kind == "fold" else f"{p.kind} of {', '.join(p.tests)}"
+        name = f"sweep: {_where(r, p.values)} ({kind})"
+        if p.configuration is None:
+            rows.append(
+                (name, "not classified", "beyond --max-classified", f"measure {p.ratio:.2g}", "-")
+            )
+        else:
+            rows.append(verdict_row(p.configuration, name))
+    return rows
 
 
 def _located_line(r: SweepResult, p: LocatedSingularity) -> str:

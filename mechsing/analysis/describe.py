@@ -1,0 +1,225 @@
+"""What a report tells a person about a mechanism's structure and its output's motion.
+
+Owns :class:`LegDescription` (a leg of a parallel mechanism: its joints in order from the
+base, ``output.relative_to``, to the output body) with :func:`describe_legs`, and
+:class:`OutputMotion` (the space of twists the output body can make at a configuration,
+the subgroup type it spans, or "not a subgroup" with its dimension) with
+:func:`output_motion`.
+
+Conventions: twists are (omega, v) in SI at the ground origin (rad/s, m/s per unit rate),
+the output body's twist relative to ``output.relative_to`` whether or not the output has a
+point.  The output twist space at a configuration is ``T K``: the output map ``T`` (the
+tree path from ``relative_to`` to the output body) applied to the joint rates ``K`` that
+keep every loop closed (all rates for an open chain).  Its rank is decided at the
+analysis precision (exact mode: at mp:50 from the exact data, as a rank of a product of
+kernels is), in the commensurate metric with the precision's two thresholds; the span is
+a subgroup when the subgroup it generates (:func:`mechsing.subgroups.identify`) has the
+span's dimension.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from mechsing.kinematics.chains import tree_chain
+from mechsing.model import Mechanism
+from mechsing.numeric import Margin, Precision, decide_rank, spectral_norm, to_float
+from mechsing.screws import chain_matrix
+from mechsing.subgroups import Subgroup, identify
+
+__all__ = ["LegDescription", "OutputMotion", "describe_legs", "output_motion"]
+
+Floats = tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class LegDescription:
+    """Leg ``number`` (from 1, numbered by its first joint in file order, as findings name
+    legs) between ``base`` and ``body``: ``joints`` on its path from the base to the
+    output body in that order, ``other_joints`` the rest of the leg (joints of loops
+    inside the leg, e.g. a parallelogram, file order), ``bodies`` its intermediate bodies
+    (file order)."""
+
+    number: int
+    base: str
+    body: str
+    joints: tuple[str, ...]
+    other_joints: tuple[str, ...] = ()
+    bodies: tuple[str, ...] = ()
+
+
+def describe_legs(mech: Mechanism) -> tuple[LegDescription, ...]:
+    """The legs between ``output.relative_to`` and the output body, each with its joints
+    from the base to the output (empty without an output, or with fewer than two legs:
+    a mechanism with one leg is a chain, not a parallel mechanism)."""
+    from mechsing.singularity.zfb import leg_path
+
+    out = mech.output
+    if out is None or len(mech.legs) < 2:
+        return ()
+    legs = []
+    for i, leg in enumerate(mech.legs, start=1):
+        path = tuple(j for j, _sign in leg_path(mech, leg, out.relative_to, out.body))
+        rest = tuple(j for j in leg.joints if j not in path)
+        legs.append(LegDescription(i, out.relative_to, out.body, path, rest, tuple(leg.bodies)))
+    return tuple(legs)
+
+
+@dataclass(frozen=True)
+class OutputMotion:
+    """The twists the output body can make (relative to ``relative_to``) at
+    ``configuration``.
+
+    ``dim``: the dimension of the output twist space (None: undecided at this precision);
+    ``subgroup``: the subgroup type it spans when it is one; ``is_subgroup``: whether the
+    span is closed under the Lie bracket (None: undecided, or not identified: ``note``
+    says why); ``twists``: an orthonormal (commensurate metric) basis of the span as SI
+    twists (omega, v) at the ground origin; ``margin`` of the rank decision; ``precision``
+    it was decided at."""
+
+    configuration: str
+    body: str
+    relative_to: str
+    dim: int | None
+    subgroup: Subgroup | None
+    is_subgroup: bool | None
+    twists: tuple[Floats, ...]
+    margin: Margin
+    precision: str
+    note: str | None = None
+
+    @property
+    def type(self) -> str | None:
+        """The subgroup's symbol (``T`` with dimension 3 for a translational robot)."""
+        return None if self.subgroup is None else self.subgroup.symbol
+
+    @property
+    def summary(self) -> str:
+        """The motion type in a few words: ``T (dimension 3)`` or ``not a subgroup: dim 2``."""
+        if self.dim is None:
+            return "undecided"
+        if self.is_subgroup and self.subgroup is not None:
+            return f"{self.subgroup.symbol} (dimension {self.dim})"
+        if self.is_subgroup is False:
+            return f"not a subgroup: dim {self.dim}"
+        return f"dim {self.dim} ({self.note or 'type not identified'})"
+
+
+def _mode(model: Any) -> Precision:
+    prec: Precision = model.precision
+    # policy: exact mode decides a rank of a product with a kernel at mp:50 from the exact data
+    return Precision("mp", 50) if prec.mode == "exact" else prec
+
+
+def output_motion(
+    mech: Mechanism, model: Any, q: Any, cs: Any, configuration: str
+) -> OutputMotion | None:
+    """The output twist space at the closed configuration ``q`` (``cs``: the closure
+    system there; None without an output)."""
+    out = mech.output
+    if out is None:
+        return None
+    prec = _mode(model)
+    L = model.length_scale
+    with model.precision.context():
+        S = cs.screws if cs.screws is not None else model.current_screws(q, model.poses(q))
+        chain = tree_chain(model, out.body, out.relative_to)
+        T = chain_matrix(model, S, None, None, chain.signs)
+        A = cs.matrix
+    with prec.context():
+        T = prec.asarray(T)
+        A = prec.asarray(A)
+        if A.shape[0]:
+            N = decide_rank(A, prec, L, want_spaces=True, native_spaces=True).null_space
+        else:
+            N = prec.backend.eye(T.shape[1])
+        TN = T @ N
+        dec = decide_rank(
+            TN, prec, L, want_spaces=True, reference=spectral_norm(T), native_spaces=True
+        )
+        r = dec.rank
+        fr = model.frame.as_float()
+        if r is None:
+            return OutputMotion(
+                configuration,
+                out.body,
+                out.relative_to,
+                None,
+                None,
+                None,
+                (),
+                dec.margin,
+                str(prec),
+                note="the rank of the output twists lies between the two thresholds",
+            )
+        basis = dec.range_space[:, :r] if r else prec.backend.zeros((6, 0))
+        si = [fr.twist_back(np.asarray(to_float(basis[:, k]), dtype=float)) for k in range(r)]
+        if prec.mode == "mp":
+            # the N-digit twists, for the identification at N digits
+            c = prec.asarray(fr.c_float)
+            native = []
+            for k in range(r):
+                w, v = basis[0:3, k], basis[3:6, k] * model.length_scale
+                native.append(np.concatenate([w, v + np.cross(c, w)]))
+            X = np.array(native, dtype=object).reshape(r, 6)
+        else:
+            X = np.array(si, dtype=float).reshape(r, 6)
+    twists = tuple(tuple(float(x) + 0.0 for x in t) for t in si)
+    if r == 0:
+        return OutputMotion(
+            configuration,
+            out.body,
+            out.relative_to,
+            0,
+            None,
+            True,
+            (),
+            dec.margin,
+            str(prec),
+            note="the output cannot move",
+        )
+    # the mechanism's centroid: identify's default centre (the mean axis point of the
+    # rotating screws) is thrown far off by a translation with a rounding-level rotation
+    centre = prec.asarray(np.asarray(fr.c_float, dtype=float)) if prec.mode == "mp" else fr.c_float
+    ident = identify(X, L, prec, centre=centre)
+    if not ident.ok or ident.dim is None:
+        return OutputMotion(
+            configuration,
+            out.body,
+            out.relative_to,
+            r,
+            None,
+            None,
+            twists,
+            dec.margin,
+            str(prec),
+            note=f"the subgroup the twists generate is {ident.status}",
+        )
+    if ident.dim == r:
+        return OutputMotion(
+            configuration,
+            out.body,
+            out.relative_to,
+            r,
+            ident.subgroup,
+            True,
+            twists,
+            dec.margin,
+            str(prec),
+        )
+    return OutputMotion(
+        configuration,
+        out.body,
+        out.relative_to,
+        r,
+        None,
+        False,
+        twists,
+        dec.margin,
+        str(prec),
+        note=f"the twists generate {ident.subgroup.symbol if ident.subgroup else '?'} "
+        f"(dimension {ident.dim}), larger than their span",
+    )
