@@ -77,6 +77,8 @@ TOP_LEVEL_KEYS = (
     "output",
     "characteristic_length",
     "configurations",
+    "limits",
+    "dh",
 )
 JOINT_BASE_KEYS = ("name", "type", "between")
 U_KEYS = (("axes", "axes"), ("point", "point"))
@@ -301,11 +303,62 @@ def loads(text: str, path: str | None = None, default_name: str = "mechanism") -
     r = _Reader(path if path is not None else "<text>")
     if "\x00" in text:
         raise r.error(None, None, "the file contains NUL bytes: it is not a text file")
+    text = _from_other_format(text, r.path)
     try:
         doc = read_yaml_text(text)
     except YAMLReadError as exc:
         raise r.error(None, exc.line, exc.message) from None
     return _Builder(r, default_name).build(doc)
+
+
+def _from_other_format(text: str, path: str) -> str:
+    """A URDF or MJCF text (recognised by its root element) becomes mechsing YAML."""
+    from mechsing.formats import xml_format, xml_to_yaml
+
+    return xml_to_yaml(text, path) if xml_format(text) is not None else text
+
+
+def _expand_dh(top: YMap, r: _Reader) -> YMap:
+    """A file with a ``dh`` table gets the bodies, joints and output it defines."""
+    if top.get("dh") is None:
+        return top
+    from mechsing.formats.dh import expand_dh
+
+    return expand_dh(top, r)
+
+
+def _limits(v: YValue | None, jmap: dict[str, Joint], r: _Reader) -> dict[str, Any]:
+    """``limits``: joint name -> [lower, upper] (a 1-dof joint) or a list of such pairs, one
+    per coordinate, in the file's units; returned per coordinate in SI units and radians."""
+    if v is None:
+        return {}
+    m = r.mapping(v, "limits", "limits (joint name: [lower, upper])")
+    out: dict[str, Any] = {}
+    for k, lv in m.items:
+        item = f"limits of {k.text!r}"
+        if k.text not in jmap:
+            raise r.error(item, k.line, f"unknown joint {k.text!r}; use one of {_few(list(jmap))}")
+        j = jmap[k.text]
+        seq = r.sequence(lv, item, "the limits", "[lower, upper]")
+        pairs = [seq] if j.dof == 1 and not isinstance(seq.items[0] if seq.items else None, YSeq) else [
+            r.sequence(e, item, "each coordinate's limits", "[lower, upper]") for e in seq.items
+        ]
+        if len(pairs) != j.dof:
+            raise r.error(
+                item, seq.line, f"joint {j.name!r} has {j.dof} coordinates: give {j.dof} pairs "
+                "[lower, upper]"
+            )
+        got = []
+        for i, pair in enumerate(pairs):
+            if len(pair.items) != 2:
+                raise r.error(item, pair.line, "give two numbers [lower, upper]")
+            f = r.units.angle_factor if j.units[i] == "rad" else r.units.length_factor
+            lo, hi = (float(sympy.N(r.number(e, item, "a limit", f), 17)) for e in pair.items)
+            if not lo < hi:
+                raise r.error(item, pair.line, f"lower {lo:g} is not below upper {hi:g}; swap them")
+            got.append((lo, hi))
+        out[k.text] = tuple(got)
+    return out
 
 
 # ---------------------------------------------------------------------------
@@ -322,7 +375,7 @@ class _Builder:
 
     def build(self, doc: YValue) -> Mechanism:
         r = self.r
-        top = r.mapping(doc, None, "the file")
+        top = _expand_dh(r.mapping(doc, None, "the file"), r)
         r.keys(
             top,
             None,
@@ -379,6 +432,7 @@ class _Builder:
             warnings=tuple(r.warnings),
             graph=graph,
             units=r.units,
+            limits=_limits(top.get("limits"), jmap, r),
         )
 
     # -- units --------------------------------------------------------------
