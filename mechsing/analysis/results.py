@@ -258,7 +258,16 @@ def _analysis(r: AnalysisResult) -> dict[str, Any]:
         },
         "properties": [_property(p) for p in r.properties],
         "configurations": [_configuration(c) for c in r.configurations],
+        **_limits(r.mechanism),
     }
+
+
+def _limits(mech: Mechanism) -> dict[str, Any]:
+    """The added key ``limits`` (only when the file has limits): joint name -> one
+    [lower, upper] per coordinate, SI units and radians."""
+    if not mech.limits:
+        return {}
+    return {"limits": {k: [list(p) for p in v] for k, v in mech.limits.items()}}
 
 
 def _configuration(c: ConfigurationResult) -> dict[str, Any]:

@@ -17,8 +17,9 @@ describes a serial chain; it stands for the file's ``bodies`` and ``joints``
   unit; numbers may be exact expressions (``pi/2``); frames are computed in
   floats and written with round-off below 1e-14 snapped;
 * joints ``J1..Jn`` and bodies ``L0..Ln`` (``L0`` the ground) unless a row gives
-  ``name`` (its joint) or ``body`` (the link after it); the default output is
-  the last body with ``point`` at the origin of frame n (the tool frame).
+  ``name`` (its joint) or ``body`` (the link after it); the default inputs are
+  all the joints and the default output is the last body (its twist is the tool
+  frame's).
 """
 
 from __future__ import annotations
@@ -168,14 +169,11 @@ def expand_dh(top: YMap, r: Any) -> YMap:
             new.append((_s("bodies", line), YSeq(tuple(_s(b, line) for b in bodies), line)))
             new.append((_s("joints", line), YSeq(tuple(joints), line)))
             if top.get("output") is None:
-                out = YMap(
-                    (
-                        (_s("body", line), _s(bodies[-1], line)),
-                        (_s("point", line), _vec(frames[-1][:3, 3], line)),
-                    ),
-                    line,
-                )
+                out = YMap(((_s("body", line), _s(bodies[-1], line)),), line)
                 new.append((_s("output", line), out))
+            if top.get("inputs") is None:
+                names_seq = tuple(_s(m[0], line) for m in meta)
+                new.append((_s("inputs", line), YSeq(names_seq, line)))
         else:
             new.append((k, v))
     if top.get("ground") is None:

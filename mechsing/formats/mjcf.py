@@ -21,6 +21,8 @@ Owns :func:`read_mjcf`.  The mapping (also in the docs' import page):
 * default classes: ``<default>`` (class ``main``) and nested
   ``<default class="...">``, chosen by an element's ``class`` or the nearest
   ``childclass`` of its bodies, later (inner) values overriding;
+* the inputs: the joints named by ``<actuator>`` elements (``joint=``); the
+  output: for a serial chain (no connect, no branch), the tip body;
 * joint ``range`` (when limited, or with ``autolimits``) -> ``limits`` in the
   file's units.
 
@@ -294,9 +296,19 @@ def _read(root: Element, path: str) -> MechanismSpec:
         if all(v == 1 for v in kids.values()):
             tip = out_joints[-1].between[1]
             if tip not in kids:
-                output = (tip, tuple(placed[tip][:3, 3]))
+                output = tip
     model = root.get("model") or "mjcf"
     del used
+    inputs: list[str] = []
+    for group in root.findall("actuator"):
+        for act in group.children:
+            jn = act.get("joint")
+            if jn is None:
+                continue
+            if jn not in {j.name for j in out_joints}:
+                raise rd.err(act, f"drives joint {jn!r}, which is not a joint of the model")
+            if jn not in inputs:
+                inputs.append(jn)
     return MechanismSpec(
         name=model,
         source=f"Converted by mechsing from the MJCF file {path} (model {model!r}).",
@@ -304,7 +316,8 @@ def _read(root: Element, path: str) -> MechanismSpec:
         bodies=bodies.bodies(),
         joints=out_joints,
         angle_unit="deg" if rd.degree else "rad",
-        output=output,  # type: ignore[arg-type]
+        output=output,
+        inputs=inputs,
     )
 
 

@@ -15,8 +15,10 @@ Owns :func:`read_urdf`.  The mapping (also in the docs' import page):
   joint value is then the URDF joint position (radians or metres) and the
   reference configuration is the URDF zero configuration;
 * ``<limit lower upper>`` of revolute and prismatic joints -> ``limits``;
-* the output: for a serial chain (no link with two children), the tip link,
-  with ``point`` at its frame origin (the tool frame's twist).
+* the inputs: every revolute and prismatic joint (a robot arm's actuated joints);
+* the output: for a serial chain (no link with two children), the body of the
+  tip link (its twist is the tool frame's; no ``point``, which would make the
+  output a positioning task of three rows).
 
 Refused with a message naming the element and line: a ``<mimic>`` joint (a
 coupling mechsing cannot model), an unknown joint type, a link that is the
@@ -189,7 +191,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         while children[tip]:
             tip = children[tip][0].find("child").get("link")  # type: ignore[union-attr]
         if bodies.find(tip) != bodies.find(base):
-            output = (bodies.find(tip), tuple(world[tip][:3, 3]))
+            output = bodies.find(tip)
     name = root.get("name") or "robot"
     return MechanismSpec(
         name=name,
@@ -198,5 +200,6 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         bodies=bodies.bodies(),
         joints=out_joints,
         angle_unit="rad",
-        output=output,  # type: ignore[arg-type]
+        output=output,
+        inputs=[j.name for j in out_joints if j.type in ("R", "P")],
     )

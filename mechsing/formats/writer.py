@@ -68,7 +68,8 @@ class MechanismSpec:
     bodies: list[str]
     joints: list[JointSpec]
     angle_unit: str = "rad"
-    output: tuple[str, tuple[float, float, float]] | None = None
+    output: str | None = None
+    inputs: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
 
 
@@ -140,9 +141,10 @@ def to_yaml(spec: MechanismSpec) -> str:
             else:
                 pairs = ", ".join(f"[{number(lo)}, {number(hi)}]" for lo, hi in j.limits)
                 lines.append(f"  {_name(j.name)}: [{pairs}]")
+    if spec.inputs:
+        lines.append("inputs: [" + ", ".join(_name(n) for n in spec.inputs) + "]")
     if spec.output is not None:
-        body, point = spec.output
-        lines.append(f"output: {{body: {_name(body)}, point: {_vec(point)}}}")
+        lines.append(f"output: {{body: {_name(spec.output)}}}")
     lines.append("configurations:")
     lines.append("  reference: {}")
     return "\n".join(lines) + "\n"
