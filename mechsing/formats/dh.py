@@ -82,6 +82,16 @@ def _vec(v: np.ndarray, line: int) -> YSeq:
     return YSeq(tuple(_n(float(c), line) for c in v), line)
 
 
+def _angle_factor(top: YMap) -> Any:
+    """The file's angle unit in radians (read here: the table is expanded before the
+    loader reads ``units``, which checks it)."""
+    units = top.get("units")
+    angle = units.get("angle") if isinstance(units, YMap) else None
+    if isinstance(angle, YScalar) and angle.text.strip() == "deg":
+        return sympy.pi / 180
+    return sympy.Integer(1)
+
+
 def expand_dh(top: YMap, r: Any) -> YMap:
     """``top`` with its ``dh`` table replaced by the bodies, joints (and output) it defines.
 
@@ -123,7 +133,7 @@ def expand_dh(top: YMap, r: Any) -> YMap:
         item = f"dh row {i}"
         row = r.mapping(e, item, "a dh row")
         r.keys(row, item, ROW_KEYS, ("theta", "d", "a", "alpha"), hint="a DH row")
-        lf, af = r.units.length_factor, r.units.angle_factor
+        af = _angle_factor(top)
 
         def val(key: str, f: Any, row: YMap = row, item: str = item) -> float:
             x = r.number(row.get(key), item, key)
