@@ -45,7 +45,7 @@ def xml_to_yaml(text: str, path: str) -> str:
             "declarations or entities (they can expand without bound or read other files); "
             "remove the declaration",
             path=path,
-            line=1,
+            line=text.count("\n", 0, max(0, text.upper().find("<!DOCTYPE"))) + 1,
         )
     raise MechanismError(
         f"an XML file whose root element is <{tag}>: mechsing reads URDF (<robot>) and MJCF "
