@@ -9,7 +9,7 @@ YAML are the same computation.  Lengths are written in metres; angles (only
 limits carry angles) in the unit the source uses (radians for URDF, the
 compiler's unit for MJCF).  Numbers are written with ``repr`` after snapping
 float round-off within :data:`SNAP` (times the number when above 1) of a 15-digit value (so ``0.08915900000000001``
-is written ``0.089159`` and ``6e-17`` is written ``0``).
+is written ``0.089159`` and ``6e-17`` is written ``0``); limits are written as given.
 """
 
 from __future__ import annotations
@@ -137,9 +137,9 @@ def to_yaml(spec: MechanismSpec) -> str:
             assert j.limits is not None
             if len(j.limits) == 1:
                 lo, hi = j.limits[0]
-                lines.append(f"  {_name(j.name)}: [{number(lo)}, {number(hi)}]")
+                lines.append(f"  {_name(j.name)}: [{float(lo)!r}, {float(hi)!r}]")
             else:
-                pairs = ", ".join(f"[{number(lo)}, {number(hi)}]" for lo, hi in j.limits)
+                pairs = ", ".join(f"[{float(lo)!r}, {float(hi)!r}]" for lo, hi in j.limits)
                 lines.append(f"  {_name(j.name)}: [{pairs}]")
     if spec.inputs:
         lines.append("inputs: [" + ", ".join(_name(n) for n in spec.inputs) + "]")
