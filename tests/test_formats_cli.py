@@ -93,8 +93,20 @@ def test_sweep_over_limits(tmp_path) -> None:
 
 
 def test_urdf_limits_and_set(tmp_path) -> None:
-    r = run_cli(["analyze", "examples/ur5.urdf", "--set", "joint5=0", "--set", "joint3=1",
-                 "--config", "cli", "--format", "json"])
+    r = run_cli(
+        [
+            "analyze",
+            "examples/ur5.urdf",
+            "--set",
+            "joint5=0",
+            "--set",
+            "joint3=1",
+            "--config",
+            "cli",
+            "--format",
+            "json",
+        ]
+    )
     assert r.status == 0, r.err
     doc = json.loads(r.out)
     assert doc["limits"]["joint1"] == [[-2 * math.pi, 2 * math.pi]]

@@ -38,9 +38,7 @@ def _urdf(joints: str, links: str = "abc") -> str:
     return f'<robot name="r">\n{body}{joints}</robot>\n'
 
 
-UNKNOWN_TYPE = _urdf(
-    '<joint name="J" type="screw">\n<parent link="a"/><child link="b"/></joint>\n'
-)
+UNKNOWN_TYPE = _urdf('<joint name="J" type="screw">\n<parent link="a"/><child link="b"/></joint>\n')
 CYCLE = _urdf(
     '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/></joint>\n'
     '<joint name="J2" type="revolute"><parent link="b"/><child link="c"/></joint>\n'
@@ -55,7 +53,9 @@ MIMIC = _urdf(
     '<joint name="J2" type="revolute"><parent link="b"/><child link="c"/>\n'
     '  <mimic joint="J1" multiplier="2"/></joint>\n'
 )
-MJCF_UNKNOWN = '<mujoco>\n<worldbody>\n<body><joint type="screw"/></body>\n</worldbody>\n</mujoco>\n'
+MJCF_UNKNOWN = (
+    '<mujoco>\n<worldbody>\n<body><joint type="screw"/></body>\n</worldbody>\n</mujoco>\n'
+)
 MJCF_INCLUDE = '<mujoco>\n<include file="/etc/passwd"/>\n<worldbody/>\n</mujoco>\n'
 MJCF_TENDON = (
     '<mujoco><worldbody><body><joint name="a"/></body></worldbody>\n'

@@ -130,8 +130,11 @@ def _axis(xml_body: str, compiler: str = "") -> tuple[float, ...]:
     ("body", "compiler", "axis"),
     [
         ('<body euler="0 0 90"><joint axis="1 0 0"/></body>', "", (0, 1, 0)),  # degrees default
-        ('<body euler="0 0 1.5707963267948966"><joint axis="1 0 0"/></body>',
-         '<compiler angle="radian"/>', (0, 1, 0)),
+        (
+            '<body euler="0 0 1.5707963267948966"><joint axis="1 0 0"/></body>',
+            '<compiler angle="radian"/>',
+            (0, 1, 0),
+        ),
         ('<body quat="0.7071067811865476 0 0.7071067811865476 0"><joint/></body>', "", (1, 0, 0)),
         ('<body axisangle="1 0 0 90"><joint/></body>', "", (0, -1, 0)),
         ('<body xyaxes="0 1 0 -1 0 0"><joint axis="1 0 0"/></body>', "", (0, 1, 0)),
@@ -160,8 +163,9 @@ def test_default_classes_and_childclass() -> None:
     assert tuple(float(c) for c in mech.joint("J2").params["axis"]) == (0.0, 1.0, 0.0)
     assert tuple(float(c) for c in mech.joint("J3").params["point"]) == (1.0, 0.0, 1.0)
     assert mech.units.angle == "deg"  # MuJoCo's default compiler angle
-    assert mech.limits["J1"][0] == pytest.approx((-10 * 3.141592653589793 / 180,
-                                                  20 * 3.141592653589793 / 180))
+    assert mech.limits["J1"][0] == pytest.approx(
+        (-10 * 3.141592653589793 / 180, 20 * 3.141592653589793 / 180)
+    )
     assert mech.limits["J2"] == ((-10.0, 20.0),)  # a slide's range is a length (m)
 
 

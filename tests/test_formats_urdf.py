@@ -103,8 +103,17 @@ UR5_CASES = {  # (theta1..theta6, singular?) after the published det J of the UR
     "regular": ((0, -0.7, 1.1, -0.4, 1.2, 0), False),
     "wrist": ((0, -0.7, 1.1, -0.4, 0.0, 0), True),
     "elbow": ((0, -0.7, 0.0, -0.4, 1.2, 0), True),
-    "shoulder": ((0, math.atan(1700 / 1569), math.pi / 2, -math.atan(1700 / 1569) - math.pi / 2,
-                  math.pi / 2, 0), True),
+    "shoulder": (
+        (
+            0,
+            math.atan(1700 / 1569),
+            math.pi / 2,
+            -math.atan(1700 / 1569) - math.pi / 2,
+            math.pi / 2,
+            0,
+        ),
+        True,
+    ),
 }
 A3, D4 = 0.0203, 0.4318
 PUMA_CASES = {  # Corke's PUMA 560: wrist s5 = 0; elbow d4 c3 + a3 s3 = 0 (the wrist centre on the
@@ -163,10 +172,14 @@ def test_dh_with_joints_is_refused(tmp_path) -> None:
 
 def test_dh_degrees_and_expressions(tmp_path) -> None:
     """A table in degrees with an exact expression equals the same table in radians."""
-    deg = loads("units: {angle: deg}\ndh: {rows: [{theta: 0, d: 0.3, a: 0.1, alpha: 90},"
-                " {theta: 0, d: 0, a: 0.2, alpha: 0}]}\n")
-    rad = loads("dh: {rows: [{theta: 0, d: 0.3, a: 0.1, alpha: pi/2},"
-                " {theta: 0, d: 0, a: 0.2, alpha: 0}]}\n")
+    deg = loads(
+        "units: {angle: deg}\ndh: {rows: [{theta: 0, d: 0.3, a: 0.1, alpha: 90},"
+        " {theta: 0, d: 0, a: 0.2, alpha: 0}]}\n"
+    )
+    rad = loads(
+        "dh: {rows: [{theta: 0, d: 0.3, a: 0.1, alpha: pi/2},"
+        " {theta: 0, d: 0, a: 0.2, alpha: 0}]}\n"
+    )
     assert [j.params for j in deg.joints] == [j.params for j in rad.joints]
     # standard DH: joint 2 turns about z1 = Rx(90 deg) z = -y, at the origin of frame 1
     assert tuple(float(c) for c in rad.joints[1].params["axis"]) == (0.0, -1.0, 0.0)

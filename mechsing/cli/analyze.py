@@ -81,7 +81,9 @@ def run(args: argparse.Namespace) -> int:
     prec = precision_option(args.precision)
     from mechsing.cli.options import apply_set
 
-    mech = apply_set(load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file)
+    mech = apply_set(
+        load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file
+    )
     limit = args.time_limit if args.time_limit is not None else _default_limit()
     result = analyze(mech, args.config, prec, time_limit=limit, progress=_progress)
     text = render(result, args.format)

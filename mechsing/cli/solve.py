@@ -34,7 +34,9 @@ def run(args: argparse.Namespace) -> int:
     prec = precision_option(args.precision)
     from mechsing.cli.options import SET_CONFIG, apply_set
 
-    mech = apply_set(load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file)
+    mech = apply_set(
+        load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file
+    )
     if args.config is None:
         if not args.set_values:
             raise UserError("solve needs --config NAME (or --set JOINT=VALUE for an ad-hoc one)")

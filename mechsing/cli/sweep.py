@@ -153,7 +153,9 @@ def run(args: argparse.Namespace) -> int:
         fmt = output_format(args.format, args.output)
         from mechsing.cli.options import SET_CONFIG, apply_set
 
-        mech = apply_set(load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file)
+        mech = apply_set(
+            load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file
+        )
         sweep_run = SweepRun(
             mech,
             list(varies),

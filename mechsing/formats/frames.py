@@ -50,7 +50,9 @@ _UNIT = {"x": np.array([1.0, 0, 0]), "y": np.array([0, 1.0, 0]), "z": np.array([
 
 def rpy(roll: float, pitch: float, yaw: float) -> np.ndarray:
     """URDF's ``rpy``: ``Rz(yaw) Ry(pitch) Rx(roll)``."""
-    return axis_angle(_UNIT["z"], yaw) @ axis_angle(_UNIT["y"], pitch) @ axis_angle(_UNIT["x"], roll)
+    return (
+        axis_angle(_UNIT["z"], yaw) @ axis_angle(_UNIT["y"], pitch) @ axis_angle(_UNIT["x"], roll)
+    )
 
 
 def quaternion(w: float, x: float, y: float, z: float) -> np.ndarray:

@@ -78,7 +78,7 @@ class _Reader:
     def read_default(self, d: Element, parent: str | None) -> None:
         name = d.get("class", "main" if parent is None else None)
         if name is None:
-            raise self.err(d, "a nested <default> needs a class name; add class=\"...\"")
+            raise self.err(d, 'a nested <default> needs a class name; add class="..."')
         tags: dict[str, dict[str, str]] = {}
         for c in d.children:
             if c.tag == "default":
@@ -107,8 +107,12 @@ class _Reader:
     def angle(self, x: float) -> float:
         return math.radians(x) if self.degree else x
 
-    def nums(self, el: Element, a: dict[str, str], key: str, n: int, default: list[float]) -> list[float]:
-        probe = Element(el.tag, {**el.attrib, key: a[key]} if key in a else dict(el.attrib), el.line)
+    def nums(
+        self, el: Element, a: dict[str, str], key: str, n: int, default: list[float]
+    ) -> list[float]:
+        probe = Element(
+            el.tag, {**el.attrib, key: a[key]} if key in a else dict(el.attrib), el.line
+        )
         if key not in a:
             return list(default)
         return floats(probe, key, n, self.path)
@@ -151,17 +155,24 @@ def read_mjcf(text: str, path: str) -> MechanismSpec:
 
 def _read(root: Element, path: str) -> MechanismSpec:
     if root.tag != "mujoco":
-        raise MechanismError(f"{root.where()}: an MJCF file's root element is <mujoco>",
-                             path=path, line=root.line)
+        raise MechanismError(
+            f"{root.where()}: an MJCF file's root element is <mujoco>", path=path, line=root.line
+        )
     rd = _Reader(root, path)
     for el in _walk(root):
         if el.tag == "include":
-            raise rd.err(el, f"includes the file {el.get('file')!r}; mechsing reads one file "
-                         "and nothing it names: paste the included content in")
+            raise rd.err(
+                el,
+                f"includes the file {el.get('file')!r}; mechsing reads one file "
+                "and nothing it names: paste the included content in",
+            )
     for el in root.findall("tendon"):
         if el.children:
-            raise rd.err(el, "tendons couple joints, which mechsing cannot model; remove the "
-                         "<tendon> section to analyse the linkage without them")
+            raise rd.err(
+                el,
+                "tendons couple joints, which mechsing cannot model; remove the "
+                "<tendon> section to analyse the linkage without them",
+            )
     world = root.find("worldbody")
     if world is None:
         raise rd.err(root, "the model has no <worldbody>; add one with the bodies")
@@ -173,7 +184,9 @@ def _read(root: Element, path: str) -> MechanismSpec:
     names: set[str] = set()
     counter = [0]
 
-    def visit(el: Element, parent_body: str, parent_frame: np.ndarray, childclass: str | None) -> None:
+    def visit(
+        el: Element, parent_body: str, parent_frame: np.ndarray, childclass: str | None
+    ) -> None:
         for c in el.children:
             if c.tag == "site":
                 a = rd.attrs(c, childclass)
@@ -199,8 +212,9 @@ def _read(root: Element, path: str) -> MechanismSpec:
             ja = rd.attrs(j, cc) if j.tag == "joint" else dict(j.attrib)
             jt = "free" if j.tag == "freejoint" else ja.get("type", "hinge")
             if jt not in MJCF_TYPES:
-                raise rd.err(j, f"unknown joint type {jt!r}; MJCF joint types are "
-                             f"{', '.join(MJCF_TYPES)}")
+                raise rd.err(
+                    j, f"unknown joint type {jt!r}; MJCF joint types are {', '.join(MJCF_TYPES)}"
+                )
             this = name if k == len(jels) - 1 else f"{name}.{k + 1}"
             bodies.add(this)
             placed[this] = t
@@ -214,7 +228,7 @@ def _read(root: Element, path: str) -> MechanismSpec:
             if jt in ("hinge", "slide"):
                 nrm = float(np.linalg.norm(ax))
                 if not nrm > 1e-9:
-                    raise rd.err(j, "the axis is a zero vector; give a direction such as \"0 0 1\"")
+                    raise rd.err(j, 'the axis is a zero vector; give a direction such as "0 0 1"')
                 w = t[:3, :3] @ (ax / nrm)
                 spec.axis = tuple(w)  # type: ignore[assignment]
                 if jt == "hinge":
@@ -258,8 +272,11 @@ def _read(root: Element, path: str) -> MechanismSpec:
                     b2 = c.get("body2") or _WORLD
                     for b in (b1, b2):
                         if b not in placed:
-                            raise rd.err(c, f"body {b!r} is not a body of the model; name one "
-                                         "with body1 and body2")
+                            raise rd.err(
+                                c,
+                                f"body {b!r} is not a body of the model; name one "
+                                "with body1 and body2",
+                            )
                     loc = rd.nums(c, dict(c.attrib), "anchor", 3, [0, 0, 0])
                     anchor = (placed[b1] @ np.array([*loc, 1.0]))[:3]  # type: ignore[index]
                 jname = c.get("name") or f"connect{n_connect}"
@@ -275,15 +292,20 @@ def _read(root: Element, path: str) -> MechanismSpec:
                         raise rd.err(c, f"body {b!r} is not a body of the model")
                 bodies.merge(b1, b2)  # type: ignore[arg-type]
             else:
-                raise rd.err(c, f"<{c.tag}> constraints (couplings of joint values or tendons) "
-                             "cannot be modelled by mechsing; remove it, or use connect/weld")
+                raise rd.err(
+                    c,
+                    f"<{c.tag}> constraints (couplings of joint values or tendons) "
+                    "cannot be modelled by mechsing; remove it, or use connect/weld",
+                )
     out_joints = []
     for j in joints:
         a, b = bodies.find(j.between[0]), bodies.find(j.between[1])
         if a == b:
-            raise MechanismError(f"joint {j.name!r} joins a body to itself after the welds "
-                                 "(a weld makes its two bodies one); remove the weld or the joint",
-                                 path=path)
+            raise MechanismError(
+                f"joint {j.name!r} joins a body to itself after the welds "
+                "(a weld makes its two bodies one); remove the weld or the joint",
+                path=path,
+            )
         j.between = (a, b)
         out_joints.append(j)
     # the output: the tip of a serial chain (no loop, no branch)

@@ -60,7 +60,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
     for el in root.findall("link"):
         name = el.get("name")
         if not name:
-            raise err(el, "a link needs a name; add name=\"...\"")
+            raise err(el, 'a link needs a name; add name="..."')
         if name in links:
             raise err(el, f"link {name!r} is defined twice (first at line {links[name].line})")
         links[name] = el
@@ -72,7 +72,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
     for el in root.findall("joint"):
         name = el.get("name")
         if not name:
-            raise err(el, "a joint needs a name; add name=\"...\"")
+            raise err(el, 'a joint needs a name; add name="..."')
         if name in seen:
             raise err(el, f"joint {name!r} is defined twice (first at line {seen[name].line})")
         seen[name] = el
@@ -80,13 +80,12 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         if jtype not in URDF_TYPES:
             raise err(
                 el,
-                f"unknown joint type {jtype!r}; URDF joint types are "
-                f"{', '.join(URDF_TYPES)}",
+                f"unknown joint type {jtype!r}; URDF joint types are {', '.join(URDF_TYPES)}",
             )
         mimic = el.find("mimic")
         if mimic is not None:
             raise MechanismError(
-                f"{el.where()}: <mimic joint=\"{mimic.get('joint')}\"> ties this joint's value "
+                f'{el.where()}: <mimic joint="{mimic.get("joint")}"> ties this joint\'s value '
                 "to another joint's, a coupling mechsing cannot model; remove the <mimic> "
                 "element (the joint becomes independent) or make the joint fixed",
                 path=path,
@@ -95,10 +94,10 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         for tag in ("parent", "child"):
             sub = el.find(tag)
             if sub is None or not sub.get("link"):
-                raise err(el, f"needs <{tag} link=\"...\"/>; add it")
+                raise err(el, f'needs <{tag} link="..."/>; add it')
             if sub.get("link") not in links:
                 raise MechanismError(
-                    f"{el.where()}: <{tag} link=\"{sub.get('link')}\"> names no link of the "
+                    f'{el.where()}: <{tag} link="{sub.get("link")}"> names no link of the '
                     f"robot; define the link or fix the name",
                     path=path,
                     line=sub.line,
@@ -116,8 +115,11 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         joints.append(el)
     roots = [n for n in links if n not in parent_of]
     if not roots:
-        raise err(root, "every link is some joint's child: the joints form a cycle; a URDF "
-                  "is a tree with one root link")
+        raise err(
+            root,
+            "every link is some joint's child: the joints form a cycle; a URDF "
+            "is a tree with one root link",
+        )
     # order the joints from the root (also detects cycles not reachable from the root)
     children: dict[str, list[Element]] = {n: [] for n in links}
     for el in joints:
@@ -145,8 +147,11 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
             stack.append(child)
     missing = [el for el in joints if el.find("child").get("link") not in world]  # type: ignore[union-attr]
     if missing:
-        raise err(missing[0], "this joint is on a cycle of joints not connected to the root "
-                  f"link {base!r}; a URDF is a tree")
+        raise err(
+            missing[0],
+            "this joint is on a cycle of joints not connected to the root "
+            f"link {base!r}; a URDF is a tree",
+        )
     # rigid joints merge links
     bodies = Bodies()
     for n in [base, *(el.find("child").get("link") for el, _ in ordered)]:  # type: ignore[union-attr]
@@ -165,7 +170,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         axis = floats(axis_el, "xyz", 3, path, [1, 0, 0]) if axis_el is not None else [1, 0, 0]
         n = float(np.linalg.norm(axis))
         if not n > 1e-9:
-            raise err(axis_el or el, "the axis is a zero vector; give a direction such as \"0 0 1\"")
+            raise err(axis_el or el, 'the axis is a zero vector; give a direction such as "0 0 1"')
         w = tj[:3, :3] @ (np.array(axis) / n)
         p = tj[:3, 3]
         spec = JointSpec(el.get("name"), jtype, (a, b))  # type: ignore[arg-type]

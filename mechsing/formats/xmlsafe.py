@@ -210,7 +210,7 @@ def floats(
         count = f"{n} numbers" if n is not None else "numbers"
         raise MechanismError(
             f"{el.where()}: attribute {key}={text[:60]!r} must be {count} separated by "
-            "spaces (finite, e.g. \"0 0 1\")",
+            'spaces (finite, e.g. "0 0 1")',
             path=path,
             line=el.line,
         )

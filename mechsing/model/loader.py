@@ -340,13 +340,18 @@ def _limits(v: YValue | None, jmap: dict[str, Joint], r: _Reader) -> dict[str, A
             raise r.error(item, k.line, f"unknown joint {k.text!r}; use one of {_few(list(jmap))}")
         j = jmap[k.text]
         seq = r.sequence(lv, item, "the limits", "[lower, upper]")
-        pairs = [seq] if j.dof == 1 and not isinstance(seq.items[0] if seq.items else None, YSeq) else [
-            r.sequence(e, item, "each coordinate's limits", "[lower, upper]") for e in seq.items
-        ]
+        pairs = (
+            [seq]
+            if j.dof == 1 and not isinstance(seq.items[0] if seq.items else None, YSeq)
+            else [
+                r.sequence(e, item, "each coordinate's limits", "[lower, upper]") for e in seq.items
+            ]
+        )
         if len(pairs) != j.dof:
             raise r.error(
-                item, seq.line, f"joint {j.name!r} has {j.dof} coordinates: give {j.dof} pairs "
-                "[lower, upper]"
+                item,
+                seq.line,
+                f"joint {j.name!r} has {j.dof} coordinates: give {j.dof} pairs [lower, upper]",
             )
         got = []
         for i, pair in enumerate(pairs):

@@ -122,8 +122,10 @@ def with_limits(mech: Mechanism, v: Vary) -> Vary:
     name, _, rest = v.name.partition("[")
     index = int(rest.rstrip("]")) if rest else 0
     if name not in mech.joint_names:
-        raise UserError(f"--vary {v.name}: no joint named {name!r}; the joints are "
-                        f"{', '.join(mech.joint_names[:12])}")
+        raise UserError(
+            f"--vary {v.name}: no joint named {name!r}; the joints are "
+            f"{', '.join(mech.joint_names[:12])}"
+        )
     joint = mech.joint(name)
     if name not in mech.limits:
         raise UserError(

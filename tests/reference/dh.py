@@ -92,8 +92,13 @@ def dh_product(rows: list, q: np.ndarray, convention: str = "standard", flange: 
     return t @ _tr(0, 0, flange)
 
 
-def urdf_from_dh(name: str, rows: list, convention: str = "standard", flange: float = 0.0,
-                 limits: float | None = None) -> str:
+def urdf_from_dh(
+    name: str,
+    rows: list,
+    convention: str = "standard",
+    flange: float = 0.0,
+    limits: float | None = None,
+) -> str:
     """A URDF text whose links are the DH frames (link_i = frame i; tool0 the tool frame).
 
     Standard: joint i turns link_{i-1}'s copy of frame i-1 about its z, and the fixed part
@@ -104,33 +109,34 @@ def urdf_from_dh(name: str, rows: list, convention: str = "standard", flange: fl
     Rz before the roll)."""
     assert all(row[0] == 0 for row in rows), "theta offsets are not written as URDF"
 
-    out = [f'<?xml version="1.0"?>', f'<robot name="{name}">', '  <link name="base_link"/>']
+    out = ['<?xml version="1.0"?>', f'<robot name="{name}">', '  <link name="base_link"/>']
     n = len(rows)
     for i in range(n + 1):
         if i:
             out.append(f'  <link name="link{i}"/>')
     out.append('  <link name="tool0"/>')
     prev_fixed = (0.0, 0.0, 0.0, 0.0)  # the fixed part carried to the next joint: (d, a, alpha)
-    for i, (off, d, a, alpha) in enumerate(rows, start=1):
+    for i, (_off, d, a, alpha) in enumerate(rows, start=1):
         if convention == "standard":
             pd, pa, palpha = prev_fixed[1:]
             xyz = (pa, 0.0, pd)
             rpy = (palpha, 0.0, 0.0)
             prev_fixed = (0.0, d, a, alpha)
-            rot_off = 0.0
         else:
             xyz = (a, -d * math.sin(alpha), d * math.cos(alpha))
             rpy = (alpha, 0.0, 0.0)
-            rot_off = 0.0
-        lim = (f'    <limit lower="{-limits!r}" upper="{limits!r}" effort="1" velocity="1"/>\n'
-               if limits else "")
+        lim = (
+            f'    <limit lower="{-limits!r}" upper="{limits!r}" effort="1" velocity="1"/>\n'
+            if limits
+            else ""
+        )
         parent = "base_link" if i == 1 else f"link{i - 1}"
         # a constant theta offset: a fixed joint turning about z before the moving joint
         out.append(
             f'  <joint name="joint{i}" type="revolute">\n'
             f'    <parent link="{parent}"/>\n    <child link="link{i}"/>\n'
             f'    <origin xyz="{xyz[0]!r} {xyz[1]!r} {xyz[2]!r}" '
-            f'rpy="{rpy[0]!r} {rpy[1]!r} {rot_off!r}"/>\n'
+            f'rpy="{rpy[0]!r} {rpy[1]!r} {rpy[2]!r}"/>\n'
             f'    <axis xyz="0 0 1"/>\n{lim}  </joint>'
         )
     if convention == "standard":
