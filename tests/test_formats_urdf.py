@@ -184,3 +184,29 @@ def test_dh_degrees_and_expressions(tmp_path) -> None:
     # standard DH: joint 2 turns about z1 = Rx(90 deg) z = -y, at the origin of frame 1
     assert tuple(float(c) for c in rad.joints[1].params["axis"]) == (0.0, -1.0, 0.0)
     assert tuple(float(c) for c in rad.joints[1].params["point"]) == (0.1, 0.0, 0.3)
+
+
+def test_the_bundled_urdf_gives_the_verdicts_of_the_bundled_yaml() -> None:
+    """examples/ur5.urdf at the configurations of examples/ur5.yaml (written by hand from the
+    same table): same ranks, mobility and singularity classes."""
+    from mechsing.model import load
+
+    yaml_mech = load("examples/ur5.yaml")
+
+    def verdict(conf: dict) -> tuple:
+        return (
+            conf["mobility"],
+            sorted((s["class"], s.get("rank"), s.get("corank")) for s in conf["singularities"]),
+        )
+
+    for name in ("regular", "wrist", "elbow", "shoulder"):
+        want = run_cli(["analyze", "examples/ur5.yaml", "--config", name, "--format", "json"])
+        assert want.status == 0, want.err
+        argv = ["analyze", "examples/ur5.urdf", "--config", "cli", "--format", "json"]
+        for joint, value in yaml_mech.configurations[name].values.items():
+            argv += ["--set", f"joint{joint[1:]}={value[0]}"]  # exact values as expressions
+        got = run_cli(argv)
+        assert got.status == 0, got.err
+        (w,) = json.loads(want.out)["configurations"]
+        (g,) = json.loads(got.out)["configurations"]
+        assert verdict(g) == verdict(w), name
