@@ -177,3 +177,33 @@ def test_weld_and_jointless_bodies_merge() -> None:
     mech = loads(text, path="w.xml")
     assert mech.bodies == ("world", "a")
     assert [j.between for j in mech.joints] == [("world", "a"), ("world", "a")]
+
+
+def test_free_ball_and_site_connect() -> None:
+    text = """<mujoco><compiler angle="radian"/><worldbody>
+      <body name="a" pos="0 0 1"><freejoint name="F"/>
+        <body name="b" pos="1 0 0"><joint name="S" type="ball"/><site name="s1" pos="0.5 0 0"/>
+        </body></body>
+      <body name="c" pos="2 0 1"><joint name="H" axis="0 1 0"/><site name="s2" pos="-0.5 0 0"/>
+      </body></worldbody>
+      <equality><connect site1="s1" site2="s2"/></equality></mujoco>"""
+    mech = loads(text, path="m.xml")
+    assert [(j.name, j.type, j.between) for j in mech.joints] == [
+        ("F", "D", ("world", "a")),
+        ("S", "S", ("a", "b")),
+        ("H", "R", ("world", "c")),
+        ("connect1", "S", ("b", "c")),
+    ]
+    # the site s1 sits 0.5 along x from b, which is 1 along x from a, at height 1
+    assert tuple(float(c) for c in mech.joint("connect1").params["point"]) == (1.5, 0.0, 1.0)
+
+
+def test_urdf_floating_and_planar() -> None:
+    text = """<robot name="f"><link name="w"/><link name="a"/><link name="b"/>
+      <joint name="F" type="floating"><parent link="w"/><child link="a"/></joint>
+      <joint name="G" type="planar"><parent link="a"/><child link="b"/>
+        <origin rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/></joint></robot>"""
+    mech = loads(text, path="f.urdf")
+    assert [j.type for j in mech.joints] == ["D", "G"]
+    # the plane's normal: z of the joint frame turned by roll 90 deg about x is -y
+    assert tuple(float(c) for c in mech.joint("G").params["normal"]) == (0.0, -1.0, 0.0)

@@ -179,7 +179,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         elif jtype == "P":
             spec.axis = tuple(w)  # type: ignore[assignment]
         elif jtype == "G":
-            spec.normal, spec.point = tuple(w), tuple(p)  # type: ignore[assignment]
+            spec.normal = tuple(w)  # type: ignore[assignment]
         limit = el.find("limit")
         if limit is not None and el.get("type") in ("revolute", "prismatic"):
             lo = floats(limit, "lower", 1, path, [0])[0]
