@@ -61,6 +61,10 @@ MJCF_TENDON = (
     '<mujoco><worldbody><body><joint name="a"/></body></worldbody>\n'
     '<equality>\n<joint joint1="a"/>\n</equality></mujoco>\n'
 )
+BAD_NAME = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/></joint>\n'
+    '<joint name="q[1]" type="revolute"><parent link="b"/><child link="c"/></joint>\n'
+)
 MALFORMED = '<robot name="x">\n<link name="a">\n</robot>\n'
 
 CASES = {
@@ -77,6 +81,7 @@ CASES = {
     "mjcf_include": (MJCF_INCLUDE, "include", 2),
     "mjcf_joint_coupling": (MJCF_TENDON, "cannot be modelled", 3),
     "malformed": (MALFORMED, "malformed XML", 3),
+    "bad_joint_name": (BAD_NAME, "holds '[' or ']'", 6),
 }
 
 
@@ -108,3 +113,12 @@ def test_hostile_xml_is_bad_input(case: str, command: str, tmp_path, no_network)
 def test_a_yaml_file_is_not_converted(tmp_path) -> None:
     r = run_cli(["convert", "examples/fourbar.yaml"])
     assert r.status == 2 and "needs no conversion" in r.err
+
+
+def test_a_huge_file_is_refused(tmp_path) -> None:
+    f = tmp_path / "big.urdf"
+    f.write_text('<robot name="x">\n' + "<!-- padding -->\n" * 700_000 + "</robot>\n")
+    for command in ("analyze", "convert"):
+        r = run_cli([command, str(f)])
+        assert r.status == 2 and ("MB" in r.err or "bytes" in r.err), r.err
+        assert "Traceback" not in r.err

@@ -5,8 +5,8 @@ joints (placed in the ground frame at the description's zero configuration),
 joint limits and output, and a reference configuration, so inputs, outputs and
 configurations can be added and the work continued in YAML.  Analysing the
 converted file gives the same result as analysing the description directly.
-A mechanism file (YAML or JSON, with a ``dh`` table or not) is written out
-expanded the same way.  Exit status: 0 success, 2 bad input.
+A mechanism file (YAML or JSON) needs no conversion and is refused.  Exit
+status: 0 success, 2 bad input.
 """
 
 from __future__ import annotations
@@ -30,13 +30,16 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.cli import UserError, load_mechanism
     from mechsing.errors import working_on
     from mechsing.formats import xml_format, xml_to_yaml
-    from mechsing.model.yamlnodes import MAX_FILE_BYTES
+    from mechsing.formats.xmlsafe import MAX_XML_BYTES
 
     with working_on(file=args.file):
         path = Path(args.file)
         try:
-            if path.stat().st_size > 3 * MAX_FILE_BYTES:
-                raise UserError(f"{args.file}: the file is too large to be a robot description")
+            if path.stat().st_size > MAX_XML_BYTES:
+                raise UserError(
+                    f"{args.file}: the file has more than {MAX_XML_BYTES // 2**20} MB, more "
+                    "than mechsing reads; remove the meshes or other large parts from it"
+                )
             text = path.read_bytes().decode("utf-8-sig")
         except OSError as exc:
             raise UserError(f"{args.file}: cannot read the file ({exc.strerror})") from None

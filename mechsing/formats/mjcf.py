@@ -39,7 +39,7 @@ import math
 import numpy as np
 
 from mechsing.formats.frames import axis_angle, euler, frame, quaternion, xyaxes, zaxis
-from mechsing.formats.writer import Bodies, JointSpec, MechanismSpec
+from mechsing.formats.writer import Bodies, JointSpec, MechanismSpec, joint_name_problem
 from mechsing.formats.xmlsafe import Element, floats, parse
 from mechsing.model.mechanism import MechanismError
 
@@ -221,6 +221,8 @@ def _read(root: Element, path: str) -> MechanismSpec:
             jname = ja.get("name") or f"{name}_joint{k + 1}"
             if jname in names:
                 raise rd.err(j, f"joint name {jname!r} is used twice; rename one")
+            if joint_name_problem(jname):
+                raise rd.err(j, joint_name_problem(jname))  # type: ignore[arg-type]
             names.add(jname)
             spec = JointSpec(jname, MJCF_TYPES[jt], (prev, this))
             p = t @ np.array([*rd.nums(j, ja, "pos", 3, [0, 0, 0]), 1.0])
@@ -282,6 +284,8 @@ def _read(root: Element, path: str) -> MechanismSpec:
                 jname = c.get("name") or f"connect{n_connect}"
                 if jname in names:
                     raise rd.err(c, f"name {jname!r} is already a joint's; rename it")
+                if joint_name_problem(jname):
+                    raise rd.err(c, joint_name_problem(jname))  # type: ignore[arg-type]
                 names.add(jname)
                 joints.append(JointSpec(jname, "S", (b1, b2), point=tuple(anchor)))  # type: ignore[arg-type]
             elif c.tag == "weld":

@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 
 from mechsing.formats.frames import frame, rpy
-from mechsing.formats.writer import Bodies, JointSpec, MechanismSpec
+from mechsing.formats.writer import Bodies, JointSpec, MechanismSpec, joint_name_problem
 from mechsing.formats.xmlsafe import Element, floats, parse
 from mechsing.model.mechanism import MechanismError
 
@@ -76,6 +76,9 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         if name in seen:
             raise err(el, f"joint {name!r} is defined twice (first at line {seen[name].line})")
         seen[name] = el
+        problem = joint_name_problem(name)
+        if problem and el.get("type") != "fixed":
+            raise err(el, problem)
         jtype = el.get("type")
         if jtype not in URDF_TYPES:
             raise err(

@@ -37,6 +37,25 @@ def number(x: float) -> str:
     return repr(x)
 
 
+#: names a joint may not have (configuration keys); a joint name may not hold '[' or ']'
+RESERVED_JOINT_NAMES = ("start", "pose")
+
+
+def joint_name_problem(name: str) -> str | None:
+    """Why ``name`` cannot be a mechsing joint's name (None when it can): the importers
+    say so on the element's line rather than on a line of the converted YAML."""
+    if "[" in name or "]" in name:
+        return (
+            f"the joint name {name!r} holds '[' or ']', which select coordinates in mechsing; "
+            "rename the joint"
+        )
+    if name in RESERVED_JOINT_NAMES:
+        return f"the joint name {name!r} is a reserved configuration key in mechsing; rename it"
+    if len(name) > 200:
+        return "the joint name is longer than 200 characters; shorten it"
+    return None
+
+
 def _name(text: str) -> str:
     return json.dumps(text, ensure_ascii=False)
 

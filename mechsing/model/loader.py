@@ -280,9 +280,10 @@ def load(path: str | Path) -> Mechanism:
         ) from None
     if p.is_dir():
         raise MechanismError("is a directory, not a mechanism file", path=shown)
-    if size > MAX_FILE_BYTES:
+    if size > _largest_file():
         raise MechanismError(
-            f"the file has {size} bytes, more than the {MAX_FILE_BYTES} a mechanism file may have",
+            f"the file has {size} bytes, more than the {_largest_file()} a mechanism file "
+            "(or a URDF or MJCF description) may have",
             path=shown,
         )
     try:
@@ -309,6 +310,13 @@ def loads(text: str, path: str | None = None, default_name: str = "mechanism") -
     except YAMLReadError as exc:
         raise r.error(None, exc.line, exc.message) from None
     return _Builder(r, default_name).build(doc)
+
+
+def _largest_file() -> int:
+    """The largest file :func:`load` reads: a YAML text is bounded again when it is read."""
+    from mechsing.formats.xmlsafe import MAX_XML_BYTES
+
+    return max(MAX_FILE_BYTES, MAX_XML_BYTES)
 
 
 def _from_other_format(text: str, path: str) -> str:
