@@ -48,6 +48,7 @@ def test_set_errors(tmp_path) -> None:
         (["--set", "A=1,2"], "has 1 coordinate"),
         (["--set", "A=1", "--set", "A=2"], "given twice"),
         (["--set", "A=1", "--from", "nowhere"], "no such configuration"),
+        (["--from", "reference"], "give --set JOINT=VALUE too"),
     ]:
         r = run_cli(["analyze", str(f), *argv])
         assert r.status == 2 and words in r.err, (argv, r.err)
@@ -112,3 +113,15 @@ def test_urdf_limits_and_set(tmp_path) -> None:
     assert doc["limits"]["joint1"] == [[-2 * math.pi, 2 * math.pi]]
     (conf,) = doc["configurations"]
     assert [s["class"] for s in conf["singularities"]] == ["serial"]  # the wrist, theta5 = 0
+
+
+def test_sweep_from_set(tmp_path) -> None:
+    """With --set the sweep starts from cli; without, --from is the sweep's own start."""
+    f = tmp_path / "s.yaml"
+    f.write_text(LIMITED.replace("reference: {}", "reference: {}\n  tilted: {A: 45}"))
+    r = run_cli(["sweep", str(f), "--vary", "A=45:60:5", "--set", "A=45", "--format", "json"])
+    assert r.status == 0, r.err
+    assert json.loads(r.out)["from"] == "cli"
+    r = run_cli(["sweep", str(f), "--vary", "A=45:60:5", "--from", "tilted", "--format", "json"])
+    assert r.status == 0, r.err
+    assert json.loads(r.out)["from"] == "tilted"

@@ -51,6 +51,11 @@ def apply_set(mech: Any, sets: list[str] | None, start: str | None, path: str) -
     from mechsing.model.mechanism import Configuration
 
     if not sets:
+        if start is not None:
+            raise UserError(
+                f"--from {start}: names the configuration --set values are solved from; give "
+                "--set JOINT=VALUE too (or --config to analyse a configuration of the file)"
+            )
         return mech
     if SET_CONFIG in mech.configurations:
         raise UserError(

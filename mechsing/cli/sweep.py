@@ -154,7 +154,10 @@ def run(args: argparse.Namespace) -> int:
         from mechsing.cli.options import SET_CONFIG, apply_set
 
         mech = apply_set(
-            load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file
+            load_mechanism(args.file, args.verbose),
+            args.set_values,
+            args.from_config if args.set_values else None,  # without --set: the sweep's start
+            args.file,
         )
         sweep_run = SweepRun(
             mech,
