@@ -207,3 +207,15 @@ def test_urdf_floating_and_planar() -> None:
     assert [j.type for j in mech.joints] == ["D", "G"]
     # the plane's normal: z of the joint frame turned by roll 90 deg about x is -y
     assert tuple(float(c) for c in mech.joint("G").params["normal"]) == (0.0, -1.0, 0.0)
+
+
+def test_ref_shifts_the_joint_value_and_its_limits() -> None:
+    """MuJoCo draws the model at qpos = ref: mechsing measures from the drawn pose."""
+    text = """<mujoco><worldbody><body><joint name="J" ref="30" range="-60 90"/></body>
+      </worldbody></mujoco>"""
+    mech = loads(text, path="r.xml")
+    lo, hi = mech.limits["J"][0]
+    assert (round(lo * 180 / 3.141592653589793, 9), round(hi * 180 / 3.141592653589793, 9)) == (
+        -90.0,
+        60.0,
+    )

@@ -23,6 +23,9 @@ Owns :func:`read_mjcf`.  The mapping (also in the docs' import page):
   ``childclass`` of its bodies, later (inner) values overriding;
 * the inputs: the joints named by ``<actuator>`` elements (``joint=``); the
   output: for a serial chain (no connect, no branch), the tip body;
+* a hinge or slide ``ref`` is the joint value of the pose drawn in the file, so
+  mechsing's joint value (measured from the drawn pose) is ``qpos - ref``, and
+  the limits are shifted by ``ref``;
 * joint ``range`` (when limited, or with ``autolimits``) -> ``limits`` in the
   file's units.
 
@@ -238,6 +241,8 @@ def _read(root: Element, path: str) -> MechanismSpec:
                 limited = ja.get("limited", "auto")
                 if "range" in ja and (limited == "true" or (limited == "auto" and rd.autolimits)):
                     lo, hi = rd.nums(j, ja, "range", 2, [0, 0])
+                    ref = rd.nums(j, ja, "ref", 1, [0])[0]  # the drawn pose is qpos = ref
+                    lo, hi = lo - ref, hi - ref
                     if hi < lo:
                         raise rd.err(j, f"range {lo} {hi}: lower above upper; swap them")
                     if hi > lo:
