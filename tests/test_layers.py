@@ -20,7 +20,7 @@ LAYERS: list[set[str]] = [
     {"errors", "numeric", "timelimit"},  # leaves
     {"lie"},
     {"subgroups"},
-    {"model"},
+    {"model", "formats"},
     {"kinematics"},
     {"screws"},
     {"singularity"},

@@ -209,7 +209,17 @@ def test_three_vary_and_a_from_without_vary_are_refused() -> None:
     r = run_cli(["report", f, "--vary", "A1=0:1:1", "--vary", "A2=0:1:1", "--vary", "P=0:1:1"])
     assert r.status == 2 and "--vary is given 3 times" in r.err
     r = run_cli(["report", f, "--from", "inputs"])
-    assert r.status == 2 and "give --vary too" in r.err
+    assert r.status == 2 and "give --vary or --set too" in r.err
+
+
+def test_set_adds_a_configuration_to_a_robot_description(tmp_path: Path) -> None:
+    """--set on a URDF arm: the configuration cli (the UR5 with its wrist joint at zero,
+    so the axes of joints 4 and 6 line up: a wrist singularity) is in the verdict."""
+    out = tmp_path / "ur5.md"
+    r = run_cli(["report", ROOT / "examples/ur5.urdf", "--set", "joint5=0", "-o", out])
+    assert r.status == 0, r.err
+    rows = [line for line in out.read_text().splitlines() if line.startswith("| **cli**")]
+    assert rows and "| yes |" in rows[0] and "serial" in rows[0]
 
 
 # --------------------------------------------------------------------------- notebook

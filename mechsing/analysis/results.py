@@ -276,7 +276,16 @@ def _analysis(r: AnalysisResult) -> dict[str, Any]:
         "configurations": [_configuration(c) for c in r.configurations],
         "legs": [_leg(leg) for leg in r.legs],
         "output_motion": None if r.output_motion is None else _output_motion(r.output_motion),
+        **_limits(r.mechanism),
     }
+
+
+def _limits(mech: Mechanism) -> dict[str, Any]:
+    """The added key ``limits`` (only when the file has limits): joint name -> one
+    [lower, upper] per coordinate, SI units and radians."""
+    if not mech.limits:
+        return {}
+    return {"limits": {k: [list(p) for p in v] for k, v in mech.limits.items()}}
 
 
 def _configuration(c: ConfigurationResult) -> dict[str, Any]:

@@ -63,7 +63,17 @@ def _few_blas_threads() -> None:
 
 
 #: sub-command modules, in the order ``--help`` lists them
-COMMANDS = ("analyze", "solve", "sweep", "report", "condition", "catalog", "identify", "schema")
+COMMANDS = (
+    "analyze",
+    "solve",
+    "sweep",
+    "report",
+    "condition",
+    "convert",
+    "catalog",
+    "identify",
+    "schema",
+)
 
 
 def precision_option(text: str) -> Precision:

@@ -22,7 +22,7 @@ HELP = "analyse a mechanism file (loops, ranks, mobility, singularities)"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("file", metavar="FILE", help="mechanism file (YAML or JSON)")
+    p.add_argument("file", metavar="FILE", help="mechanism file (YAML or JSON), URDF or MJCF")
     p.add_argument(
         "--config", action="append", metavar="NAME", help="configuration to analyse (repeatable)"
     )
@@ -44,6 +44,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "-v", "--verbose", action="store_true", help="also print what mechsing did silently"
     )
+    from mechsing.cli.options import add_set_option
+
+    add_set_option(p)
 
 
 def _default_limit() -> float:
@@ -76,7 +79,11 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.report import render
 
     prec = precision_option(args.precision)
-    mech = load_mechanism(args.file, args.verbose)
+    from mechsing.cli.options import apply_set
+
+    mech = apply_set(
+        load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file
+    )
     limit = args.time_limit if args.time_limit is not None else _default_limit()
     result = analyze(mech, args.config, prec, time_limit=limit, progress=_progress)
     text = render(result, args.format)

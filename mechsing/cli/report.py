@@ -28,7 +28,9 @@ EXTENSIONS = {".html": "html", ".htm": "html", ".md": "md"}
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("file", metavar="FILE", help="mechanism file (YAML or JSON)")
+    p.add_argument(
+        "file", metavar="FILE", help="mechanism file (YAML or JSON, a DH table), URDF or MJCF"
+    )
     p.add_argument(
         "-o",
         "--output",
@@ -49,8 +51,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--from",
         dest="from_config",
         metavar="CONFIG",
-        help="the configuration the sweep starts from (default reference)",
+        help="the configuration the sweep starts from (default reference; with --set, the "
+        "configuration the --set values are solved from, and the sweep starts at cli)",
     )
+    from mechsing.cli.options import add_set_option
+
+    add_set_option(p, from_option=False)
     p.add_argument(
         "--precision", default="auto", metavar="MODE", help="auto (default), float or mp:N"
     )
@@ -90,17 +96,28 @@ def run(args: argparse.Namespace) -> int:
             )
         for text in args.vary or ():
             Vary.parse(text).count()  # the range's own errors before the file is read
-        if args.from_config and not args.vary:
-            raise UserError("--from names where a sweep starts: give --vary too")
+        if args.from_config and not args.vary and not args.set_values:
+            raise UserError(
+                "--from names where a sweep starts (or where --set values are solved from): "
+                "give --vary or --set too"
+            )
         prec = precision_option(args.precision)
         if prec.mode == "exact" and args.vary:
             raise UserError(
                 "--precision exact: a sweep locates its singularities numerically, so their "
                 "values are not exact data; use --precision auto (the default) or mp:N"
             )
-        mech = load_mechanism(args.file, args.verbose)
+        from mechsing.cli.options import SET_CONFIG, apply_set
+
+        mech = apply_set(
+            load_mechanism(args.file, args.verbose),
+            args.set_values,
+            args.from_config if args.set_values else None,  # without --set: the sweep's start
+            args.file,
+        )
+        start = SET_CONFIG if args.set_values else args.from_config
         command = "mechsing report " + shlex.join(_argv(args))
-        rep = report(mech, args.config, args.vary, prec, args.from_config, command=command)
+        rep = report(mech, args.config, args.vary, prec, start, command=command)
         try:
             if fmt == "html":
                 path.write_text(rep.to_html(), encoding="utf-8")
@@ -129,6 +146,8 @@ def _argv(args: argparse.Namespace) -> list[str]:
         out += ["--vary", v]
     if args.from_config:
         out += ["--from", args.from_config]
+    for v in args.set_values or ():
+        out += ["--set", v]
     if args.precision != "auto":
         out += ["--precision", args.precision]
     return out

@@ -12,7 +12,9 @@ HELP = "close a configuration and print all joint values"
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("file", metavar="FILE")
-    p.add_argument("--config", required=True, metavar="NAME")
+    p.add_argument(
+        "--config", metavar="NAME", help="the configuration to close (default with --set: cli)"
+    )
     p.add_argument(
         "--precision", default="float", metavar="MODE", help="float (default), mp:N or exact"
     )
@@ -20,6 +22,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "-v", "--verbose", action="store_true", help="also print what mechsing did silently"
     )
+    from mechsing.cli.options import add_set_option
+
+    add_set_option(p)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -27,7 +32,15 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.kinematics import solve_configuration
 
     prec = precision_option(args.precision)
-    mech = load_mechanism(args.file, args.verbose)
+    from mechsing.cli.options import SET_CONFIG, apply_set
+
+    mech = apply_set(
+        load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file
+    )
+    if args.config is None:
+        if not args.set_values:
+            raise UserError("solve needs --config NAME (or --set JOINT=VALUE for an ad-hoc one)")
+        args.config = SET_CONFIG
     if args.config not in mech.configurations:
         raise UserError(
             f"{args.file}: no configuration named {args.config!r}; the file has: {', '.join(mech.configurations)}"

@@ -41,22 +41,27 @@ _BY_EXTENSION = {".json": "json", ".csv": "csv", ".txt": "text"}
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("file", metavar="FILE", help="mechanism file (YAML or JSON)")
+    p.add_argument("file", metavar="FILE", help="mechanism file (YAML or JSON), URDF or MJCF")
     p.add_argument(
         "--vary",
         action="append",
         required=True,
         metavar="NAME=START:STOP:STEP",
         help="a swept variable in the file's units: once for a path, twice for a grid "
-        "(e.g. --vary A=0:360:1, --vary C1[1]=0:0.5:0.01, --vary pose.x=-0.1:0.1:0.01)",
+        "(e.g. --vary A=0:360:1, --vary C1[1]=0:0.5:0.01, --vary pose.x=-0.1:0.1:0.01); a "
+        "joint given without a range (--vary J2) is swept over its limits in 200 steps",
     )
     p.add_argument(
         "--from",
         dest="from_config",
         metavar="CONFIG",
         help="the configuration the sweep starts from (its assembly mode is kept; "
-        "default reference)",
+        "default reference; with --set, the one the configuration cli is solved from, and the "
+        "sweep starts from cli)",
     )
+    from mechsing.cli.options import add_set_option
+
+    add_set_option(p, from_option=False)
     p.add_argument(
         "--precision",
         default="auto",
@@ -133,7 +138,8 @@ def run(args: argparse.Namespace) -> int:
             )
         varies = [Vary.parse(text) for text in args.vary]
         for v in varies:
-            v.count()  # the range's own errors (STEP <= 0, not finite) before the file is read
+            if v.ranged:
+                v.count()  # the range's own errors (STEP <= 0, not finite) before the file is read
         prec = precision_option(args.precision)
         if prec.mode == "exact":
             raise UserError(
@@ -145,11 +151,18 @@ def run(args: argparse.Namespace) -> int:
                 "--workers and --scheduler distribute the rows of a grid: give two --vary"
             )
         fmt = output_format(args.format, args.output)
-        mech = load_mechanism(args.file, args.verbose)
+        from mechsing.cli.options import SET_CONFIG, apply_set
+
+        mech = apply_set(
+            load_mechanism(args.file, args.verbose),
+            args.set_values,
+            args.from_config if args.set_values else None,  # without --set: the sweep's start
+            args.file,
+        )
         sweep_run = SweepRun(
             mech,
             list(varies),
-            args.from_config,
+            SET_CONFIG if args.set_values else args.from_config,
             prec,
             max_classified=args.max_classified or MAX_CLASSIFIED,
         )

@@ -80,6 +80,8 @@ TOP_LEVEL_KEYS = (
     "output",
     "characteristic_length",
     "configurations",
+    "limits",
+    "dh",
 )
 JOINT_BASE_KEYS = ("name", "type", "between")
 U_KEYS = (("axes", "axes"), ("point", "point"))
@@ -285,9 +287,10 @@ def load(path: str | Path, symbolic: Collection[str] = ()) -> Mechanism:
         ) from None
     if p.is_dir():
         raise MechanismError("is a directory, not a mechanism file", path=shown)
-    if size > MAX_FILE_BYTES:
+    if size > _largest_file():
         raise MechanismError(
-            f"the file has {size} bytes, more than the {MAX_FILE_BYTES} a mechanism file may have",
+            f"the file has {size} bytes, more than the {_largest_file()} a mechanism file "
+            "(or a URDF or MJCF description) may have",
             path=shown,
         )
     try:
@@ -313,6 +316,7 @@ def loads(
     r = _Reader(path if path is not None else "<text>")
     if "\x00" in text:
         raise r.error(None, None, "the file contains NUL bytes: it is not a text file")
+    text = _from_other_format(text, r.path)
     try:
         doc = read_yaml_text(text)
     except YAMLReadError as exc:
@@ -320,6 +324,68 @@ def loads(
     builder = _Builder(r, default_name)
     builder.symbolic = tuple(symbolic)
     return builder.build(doc)
+
+
+def _largest_file() -> int:
+    """The largest file :func:`load` reads: a YAML text is bounded again when it is read."""
+    from mechsing.formats.xmlsafe import MAX_XML_BYTES
+
+    return max(MAX_FILE_BYTES, MAX_XML_BYTES)
+
+
+def _from_other_format(text: str, path: str) -> str:
+    """A URDF or MJCF text (recognised by its root element) becomes mechsing YAML."""
+    from mechsing.formats import xml_format, xml_to_yaml
+
+    return xml_to_yaml(text, path) if xml_format(text) is not None else text
+
+
+def _expand_dh(top: YMap, r: _Reader) -> YMap:
+    """A file with a ``dh`` table gets the bodies, joints and output it defines."""
+    if top.get("dh") is None:
+        return top
+    from mechsing.formats.dh import expand_dh
+
+    return expand_dh(top, r)
+
+
+def _limits(v: YValue | None, jmap: dict[str, Joint], r: _Reader) -> dict[str, Any]:
+    """``limits``: joint name -> [lower, upper] (a 1-dof joint) or a list of such pairs, one
+    per coordinate, in the file's units; returned per coordinate in SI units and radians."""
+    if v is None:
+        return {}
+    m = r.mapping(v, "limits", "limits (joint name: [lower, upper])")
+    out: dict[str, Any] = {}
+    for k, lv in m.items:
+        item = f"limits of {k.text!r}"
+        if k.text not in jmap:
+            raise r.error(item, k.line, f"unknown joint {k.text!r}; use one of {_few(list(jmap))}")
+        j = jmap[k.text]
+        seq = r.sequence(lv, item, "the limits", "[lower, upper]")
+        pairs = (
+            [seq]
+            if j.dof == 1 and not isinstance(seq.items[0] if seq.items else None, YSeq)
+            else [
+                r.sequence(e, item, "each coordinate's limits", "[lower, upper]") for e in seq.items
+            ]
+        )
+        if len(pairs) != j.dof:
+            raise r.error(
+                item,
+                seq.line,
+                f"joint {j.name!r} has {j.dof} coordinates: give {j.dof} pairs [lower, upper]",
+            )
+        got = []
+        for i, pair in enumerate(pairs):
+            if len(pair.items) != 2:
+                raise r.error(item, pair.line, "give two numbers [lower, upper]")
+            f = r.units.angle_factor if j.units[i] == "rad" else r.units.length_factor
+            lo, hi = (float(sympy.N(r.number(e, item, "a limit", f), 17)) for e in pair.items)
+            if not lo < hi:
+                raise r.error(item, pair.line, f"lower {lo:g} is not below upper {hi:g}; swap them")
+            got.append((lo, hi))
+        out[k.text] = tuple(got)
+    return out
 
 
 # ---------------------------------------------------------------------------
@@ -337,7 +403,7 @@ class _Builder:
 
     def build(self, doc: YValue) -> Mechanism:
         r = self.r
-        top = r.mapping(doc, None, "the file")
+        top = _expand_dh(r.mapping(doc, None, "the file"), r)
         r.keys(
             top,
             None,
@@ -395,6 +461,7 @@ class _Builder:
             warnings=tuple(r.warnings),
             graph=graph,
             units=r.units,
+            limits=_limits(top.get("limits"), jmap, r),
         )
 
     # -- units --------------------------------------------------------------

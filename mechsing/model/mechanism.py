@@ -259,6 +259,8 @@ class Mechanism:
         Bodies, joints, loops, the spanning tree and legs.
     units : Units
         The file's units (values here are already in SI).
+    limits : dict name -> tuple of (lower, upper)
+        The file's ``limits`` (per joint coordinate; SI units and radians).
     """
 
     name: str
@@ -274,6 +276,8 @@ class Mechanism:
     graph: MechanismGraph = field(repr=False)
     units: Units = field(default_factory=Units)
     warnings: tuple[str, ...] = ()
+    #: joint limits: joint name -> ((lower, upper), ...) per coordinate, SI units and radians
+    limits: Mapping[str, tuple[tuple[float, float], ...]] = field(default_factory=dict)
 
     def joint(self, name: str) -> Joint:
         """The joint called ``name`` (KeyError if none)."""

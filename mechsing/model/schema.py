@@ -56,6 +56,49 @@ def _joint_schema(symbol: str, title: str, params: list[tuple[str, str]]) -> dic
     }
 
 
+def _import_properties() -> dict[str, Any]:
+    """The ``limits`` and ``dh`` keys (joint limits; a Denavit-Hartenberg table standing for
+    the bodies and joints of a serial chain)."""
+    pair = {"type": "array", "items": {"$ref": "#/$defs/number"}, "minItems": 2, "maxItems": 2}
+    row = {
+        "type": "object",
+        "properties": {
+            "theta": {"$ref": "#/$defs/number"},
+            "d": {"$ref": "#/$defs/number"},
+            "a": {"$ref": "#/$defs/number"},
+            "alpha": {"$ref": "#/$defs/number"},
+            "type": {"enum": ["R", "P"]},
+            "name": {"$ref": "#/$defs/joint_name"},
+            "body": {"$ref": "#/$defs/name"},
+        },
+        "required": ["theta", "d", "a", "alpha"],
+        "additionalProperties": False,
+    }
+    return {
+        "limits": {
+            "type": "object",
+            "description": "joint limits in the file's units: [lower, upper] for a joint of "
+            "one coordinate, a list of such pairs (one per coordinate) for a joint of several",
+            "additionalProperties": {
+                "anyOf": [pair, {"type": "array", "items": pair, "minItems": 1, "maxItems": 6}]
+            },
+        },
+        "dh": {
+            "type": "object",
+            "description": "a Denavit-Hartenberg table (instead of bodies and joints): "
+            "standard T = Rz(theta) Tz(d) Tx(a) Rx(alpha), or modified (Craig) T = Rx(alpha) "
+            "Tx(a) Rz(theta) Tz(d); joint values are measured from the table's theta (R) or "
+            "d (P); joints J1..Jn and bodies L0..Ln unless the rows name them",
+            "properties": {
+                "convention": {"enum": ["standard", "modified"]},
+                "rows": {"type": "array", "items": row, "minItems": 1},
+            },
+            "required": ["rows"],
+            "additionalProperties": False,
+        },
+    }
+
+
 def mechanism_schema() -> dict[str, Any]:
     """The JSON Schema of the mechanism file format (a JSON-serialisable dict)."""
     from mechsing.subgroups import load_catalog
@@ -136,8 +179,15 @@ def mechanism_schema() -> dict[str, Any]:
                 "type": "object",
                 "additionalProperties": {"$ref": "#/$defs/configuration"},
             },
+            **_import_properties(),
         },
-        "required": ["bodies", "joints"],
+        "anyOf": [
+            {"required": ["bodies", "joints"]},
+            {
+                "required": ["dh"],
+                "not": {"anyOf": [{"required": ["joints"]}, {"required": ["bodies"]}]},
+            },
+        ],
         "additionalProperties": False,
         "$defs": {
             "name": {"type": "string", "minLength": 1, "maxLength": 200},

@@ -171,6 +171,12 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
     lines.append(
         f"Precision {mode} ({thresholds}); characteristic length L = {result.length_scale:.4g} m."
     )
+    if result.mechanism.limits:
+        shown = ", ".join(
+            f"{k} " + " ".join(f"[{lo:.6g}, {hi:.6g}]" for lo, hi in v)
+            for k, v in result.mechanism.limits.items()
+        )
+        lines.append(f"Joint limits (m, rad): {shown}.")
     if result.properties:
         lines += ["", f"{h2}Properties" if markdown else "Properties:"]
         for prop in result.properties:
@@ -199,6 +205,9 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             )
         vals = ", ".join(f"{k} = [{', '.join(f'{x:.6g}' for x in v)}]" for k, v in c.joints)
         lines.append(f"{bullet}joint values (m, rad): {vals}")
+        outside = _outside_limits(result.mechanism.limits, c.joints)
+        if outside:
+            lines.append(f"{bullet}outside the joint limits: {', '.join(outside)}")
         lines.append(f"{bullet}closure residual {c.closure_residual:.3g} m")
         for note in c.notes:
             lines.append(f"{bullet}note: {note}")
@@ -228,6 +237,17 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             verb = "tested" if isinstance(s, UndecidedFinding) else "decided"
             lines.append(f"{sub}{verb} in {s.precision}; margin: {_margin(s.margin)}")
     return "\n".join(lines) + "\n"
+
+
+def _outside_limits(limits: Any, joints: Any) -> list[str]:
+    """The joints of a configuration whose values lie outside the file's ``limits``."""
+    out = []
+    for k, v in joints:
+        for x, (lo, hi) in zip(v, limits.get(k, ()), strict=False):
+            if not lo <= x <= hi:
+                out.append(k)
+                break
+    return out
 
 
 def render(result: AnalysisResult, fmt: str) -> str:

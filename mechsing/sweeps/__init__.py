@@ -36,7 +36,7 @@ from mechsing.sweeps.results import (
     SweepResult,
     SweptVariable,
 )
-from mechsing.sweeps.spec import Vary, resolve
+from mechsing.sweeps.spec import Vary, resolve, with_limits
 
 __all__ = [
     "LocatedSingularity",
@@ -111,6 +111,7 @@ class SweepRun:
         if isinstance(vary, str | Vary):  # one variable given alone
             vary = [vary]
         varies = [Vary.parse(v) if isinstance(v, str) else v for v in vary]
+        varies = [with_limits(mech, v) for v in varies]
         self.varies = varies
         self.max_classified = max_classified
         with working_on(file=mech.path or mech.name):

@@ -29,6 +29,9 @@ __all__ = ["MAX_SAMPLES", "Variable", "Vary", "resolve"]
 #: most samples of one swept variable, and of a whole grid
 MAX_SAMPLES = 10_000_000
 
+_NAME_ONLY = re.compile(r"^\s*([A-Za-z_][\w.\-]*(?:\[\d+\])?)\s*$")
+#: samples of a sweep over a joint's limits (``--vary J2`` given without a range)
+LIMIT_STEPS = 200
 _SPEC = re.compile(r"^\s*([A-Za-z_][\w.\-]*(?:\[\d+\])?)\s*=\s*([^:]+):([^:]+):([^:]+)\s*$")
 
 
@@ -45,6 +48,9 @@ class Vary:
     def parse(cls, text: str) -> Vary:
         """``NAME=START:STOP:STEP`` (numbers in the file's units)."""
         m = _SPEC.match(text)
+        bare = _NAME_ONLY.match(text)
+        if bare and not bare.group(1).startswith("pose."):  # a joint: its limits are the range
+            return cls(bare.group(1), math.nan, math.nan, math.nan)
         if not m:
             raise UserError(
                 f"--vary {text!r}: expected NAME=START:STOP:STEP, e.g. --vary A=0:360:1 "
@@ -60,7 +66,14 @@ class Vary:
             ) from None
         return cls(name, start, stop, step)
 
+    @property
+    def ranged(self) -> bool:
+        """False for a joint given without a range (swept over its limits)."""
+        return not math.isnan(self.step)
+
     def count(self) -> int:
+        if not self.ranged:
+            raise UserError(f"--vary {self.name}: no range, and the joint's limits not read yet")
         if not all(math.isfinite(x) for x in (self.start, self.stop, self.step)):
             raise UserError(f"--vary {self.name}: the range must be finite numbers")
         if self.step <= 0:
@@ -99,6 +112,33 @@ class Variable:
     def shown(self, si: float) -> str:
         """A value in the file's units, with the unit."""
         return f"{si / self.factor:.10g} {self.file_unit}"
+
+
+def with_limits(mech: Mechanism, v: Vary) -> Vary:
+    """A joint given without a range (``--vary J2``) is swept over its limits (the file's
+    ``limits``) in :data:`LIMIT_STEPS` steps; exit 2 when the joint has no limits."""
+    if v.ranged:
+        return v
+    name, _, rest = v.name.partition("[")
+    index = int(rest.rstrip("]")) if rest else 0
+    if name not in mech.joint_names:
+        raise UserError(
+            f"--vary {v.name}: no joint named {name!r}; the joints are "
+            f"{', '.join(mech.joint_names[:12])}"
+        )
+    joint = mech.joint(name)
+    if name not in mech.limits:
+        raise UserError(
+            f"--vary {v.name}: joint {name!r} has no limits in the file, so the sweep has no "
+            f"range; give one (--vary {v.name}=START:STOP:STEP) or add limits: {{{name}: "
+            "[lower, upper]} to the file"
+        )
+    if index >= joint.dof:
+        raise UserError(f"--vary {v.name}: joint {name!r} has {joint.dof} coordinate(s)")
+    unit = joint.units[index]
+    factor = float(mech.units.angle_factor if unit == "rad" else mech.units.length_factor)
+    lo, hi = (x / factor for x in mech.limits[name][index])
+    return Vary(v.name, lo, hi, (hi - lo) / LIMIT_STEPS)
 
 
 def resolve(mech: Mechanism, varies: list[Vary]) -> list[Variable]:

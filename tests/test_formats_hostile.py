@@ -1,0 +1,124 @@
+"""XML from anywhere: hostile or unmodellable descriptions are exit 2 with the element and its
+line, never a traceback, and never a file or network access."""
+
+from __future__ import annotations
+
+import socket
+
+import pytest
+
+from tests.cli import run_cli
+
+BILLION_LAUGHS = """<?xml version="1.0"?>
+<!DOCTYPE lolz [
+ <!ENTITY lol "lol">
+ <!ENTITY lol2 "&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;">
+ <!ENTITY lol3 "&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;">
+ <!ENTITY lol9 "&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;&lol3;">
+]>
+<robot name="&lol9;"><link name="a"/></robot>
+"""
+FILE_ENTITY = """<?xml version="1.0"?>
+<!DOCTYPE robot [<!ENTITY xxe SYSTEM "file:///etc/passwd">]>
+<robot name="x"><link name="&xxe;"/></robot>
+"""
+HTTP_ENTITY = """<?xml version="1.0"?>
+<!DOCTYPE robot [<!ENTITY % ext SYSTEM "http://example.invalid/evil.dtd"> %ext;]>
+<robot name="x"><link name="a"/></robot>
+"""
+DOCTYPE_AFTER_COMMENT = """<!-- hello -->
+<!DOCTYPE mujoco SYSTEM "http://example.invalid/x.dtd">
+<mujoco/>
+"""
+HUGE_ATTRIBUTE = '<robot name="x">\n<link name="' + "a" * 200_000 + '"/>\n</robot>\n'
+
+
+def _urdf(joints: str, links: str = "abc") -> str:
+    body = "".join(f'<link name="{n}"/>\n' for n in links)
+    return f'<robot name="r">\n{body}{joints}</robot>\n'
+
+
+UNKNOWN_TYPE = _urdf('<joint name="J" type="screw">\n<parent link="a"/><child link="b"/></joint>\n')
+CYCLE = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/></joint>\n'
+    '<joint name="J2" type="revolute"><parent link="b"/><child link="c"/></joint>\n'
+    '<joint name="J3" type="revolute"><parent link="c"/><child link="a"/></joint>\n'
+)
+TWO_PARENTS = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/></joint>\n'
+    '<joint name="J2" type="revolute"><parent link="c"/><child link="b"/></joint>\n'
+)
+MIMIC = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/></joint>\n'
+    '<joint name="J2" type="revolute"><parent link="b"/><child link="c"/>\n'
+    '  <mimic joint="J1" multiplier="2"/></joint>\n'
+)
+MJCF_UNKNOWN = (
+    '<mujoco>\n<worldbody>\n<body><joint type="screw"/></body>\n</worldbody>\n</mujoco>\n'
+)
+MJCF_INCLUDE = '<mujoco>\n<include file="/etc/passwd"/>\n<worldbody/>\n</mujoco>\n'
+MJCF_TENDON = (
+    '<mujoco><worldbody><body><joint name="a"/></body></worldbody>\n'
+    '<equality>\n<joint joint1="a"/>\n</equality></mujoco>\n'
+)
+BAD_NAME = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/></joint>\n'
+    '<joint name="q[1]" type="revolute"><parent link="b"/><child link="c"/></joint>\n'
+)
+MALFORMED = '<robot name="x">\n<link name="a">\n</robot>\n'
+
+CASES = {
+    "billion_laughs": (BILLION_LAUGHS, "DOCTYPE", 2),
+    "file_entity": (FILE_ENTITY, "DOCTYPE", 2),
+    "http_entity": (HTTP_ENTITY, "DOCTYPE", 2),
+    "doctype_after_comment": (DOCTYPE_AFTER_COMMENT, "DOCTYPE", 2),
+    "huge_attribute": (HUGE_ATTRIBUTE, "characters", 2),
+    "unknown_type": (UNKNOWN_TYPE, "unknown joint type 'screw'", 5),
+    "cycle": (CYCLE, "cycle", None),
+    "two_parents": (TWO_PARENTS, "already the child", 6),
+    "mimic": (MIMIC, "mimic", 7),
+    "mjcf_unknown_type": (MJCF_UNKNOWN, "unknown joint type 'screw'", 3),
+    "mjcf_include": (MJCF_INCLUDE, "include", 2),
+    "mjcf_joint_coupling": (MJCF_TENDON, "cannot be modelled", 3),
+    "malformed": (MALFORMED, "malformed XML", 3),
+    "bad_joint_name": (BAD_NAME, "holds '[' or ']'", 6),
+}
+
+
+@pytest.fixture
+def no_network(monkeypatch: pytest.MonkeyPatch) -> None:
+    def refuse(*args: object, **kwargs: object) -> None:
+        raise AssertionError("network access attempted")
+
+    monkeypatch.setattr(socket.socket, "connect", refuse)
+    monkeypatch.setattr(socket, "create_connection", refuse)
+
+
+@pytest.mark.parametrize("case", CASES)
+@pytest.mark.parametrize("command", ["analyze", "convert"])
+def test_hostile_xml_is_bad_input(case: str, command: str, tmp_path, no_network) -> None:
+    text, words, line = CASES[case]
+    f = tmp_path / "robot.xml"
+    f.write_text(text)
+    r = run_cli([command, str(f)])
+    assert r.status == 2, (r.status, r.err)
+    assert "Traceback" not in r.err and "internal error" not in r.err
+    assert words in r.err
+    assert str(f) in r.err
+    if line is not None:
+        assert f"{f}:{line}:" in r.err
+    assert "root:" not in r.err + r.out  # nothing of /etc/passwd
+
+
+def test_a_yaml_file_is_not_converted(tmp_path) -> None:
+    r = run_cli(["convert", "examples/fourbar.yaml"])
+    assert r.status == 2 and "needs no conversion" in r.err
+
+
+def test_a_huge_file_is_refused(tmp_path) -> None:
+    f = tmp_path / "big.urdf"
+    f.write_text('<robot name="x">\n' + "<!-- padding -->\n" * 700_000 + "</robot>\n")
+    for command in ("analyze", "convert"):
+        r = run_cli([command, str(f)])
+        assert r.status == 2 and ("MB" in r.err or "bytes" in r.err), r.err
+        assert "Traceback" not in r.err
