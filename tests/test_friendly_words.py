@@ -109,3 +109,16 @@ def test_text_of_a_rocker_and_of_a_lost_twist():
     # a serial arm at a singularity: each lost twist and resisted wrench in words
     text = render_text(analyze(EX / "ur5.yaml", configs=["wrist"], precision="float"))
     assert "    lost twist: a " in text and "    resisted wrench: a " in text
+
+
+def test_3rpr_type_ii_turns_about_the_common_point_of_its_legs():
+    # examples/planar_3rpr.yaml, configuration concurrent: the three leg lines pass through
+    # c = (1, 1) (Bonev, Zlatanov, Gosselin 2003): with the actuators locked the platform
+    # turns about the vertical through c
+    text = render_text(analyze(EX / "planar_3rpr.yaml", configs=["concurrent"], precision="float"))
+    lines = text.splitlines()
+    at = lines.index(next(x for x in lines if x.startswith("  output: ")))
+    assert lines[at + 1] in (
+        "    output motion: a rotation about the axis through (1, 1, 0) m along z",
+        "    output motion: a rotation about the axis through (1, 1, 0) m along -z",
+    )

@@ -181,6 +181,18 @@ def output_motion(
             str(prec),
             note="the output cannot move",
         )
+    if r == 6:  # the twists span se(3): all displacements, nothing to identify
+        return OutputMotion(
+            configuration,
+            out.body,
+            out.relative_to,
+            6,
+            Subgroup("D"),
+            True,
+            twists,
+            dec.margin,
+            str(prec),
+        )
     # the mechanism's centroid: identify's default centre (the mean axis point of the
     # rotating screws) is thrown far off by a translation with a rounding-level rotation
     centre = prec.asarray(np.asarray(fr.c_float, dtype=float)) if prec.mode == "mp" else fr.c_float
