@@ -146,3 +146,18 @@ def test_ur5_wrist_singularity_loses_a_dimension():
 def test_exact_mode_decides_the_output_motion_at_mp50():
     _res, m = _motion("fourbar", "reference", "exact")
     assert (m.type, m.dim, m.precision) == ("R", 1, "mp:50")
+
+
+def test_a_span_that_is_no_subgroup_names_the_subgroup_it_generates():
+    # two planar twists generate the planar group G with normal z (their bracket is a
+    # translation in the plane); an arm's five twists at a singularity generate D
+    res, m = _motion("five_bar", "reference")
+    assert m.generated is not None and m.generated.symbol == "G"
+    normal = np.array(m.generated.canonical().params["normal"], dtype=float)
+    assert abs(abs(normal[2]) - 1) < 1e-12
+    js = res.to_json()["configurations"][0]["output_motion"]["generated"]
+    assert js["type"] == "G" and js["dim"] == 3
+    _res, m = _motion("ur5", "wrist")
+    assert m.generated is not None and m.generated.symbol == "D"
+    _res, m = _motion("tsai_3upu", "reference")
+    assert m.generated is not None and m.generated.symbol == "T3"

@@ -78,7 +78,9 @@ class OutputMotion:
     span is closed under the Lie bracket (None: undecided, or not identified: ``note``
     says why); ``twists``: an orthonormal (commensurate metric) basis of the span as SI
     twists (omega, v) at the ground origin; ``margin`` of the rank decision; ``precision``
-    it was decided at."""
+    it was decided at; ``generated``: the subgroup the twists generate (the span's own
+    subgroup, or the smallest one that holds a span that is not a subgroup: G for a
+    five-bar's distal link, D for an arm at a singularity; None when not identified)."""
 
     configuration: str
     body: str
@@ -90,6 +92,7 @@ class OutputMotion:
     margin: Margin
     precision: str
     note: str | None = None
+    generated: Subgroup | None = None
 
     @property
     def type(self) -> str | None:
@@ -192,6 +195,7 @@ def output_motion(
             twists,
             dec.margin,
             str(prec),
+            generated=Subgroup("D"),
         )
     # the mechanism's centroid: identify's default centre (the mean axis point of the
     # rotating screws) is thrown far off by a translation with a rounding-level rotation
@@ -221,6 +225,7 @@ def output_motion(
             twists,
             dec.margin,
             str(prec),
+            generated=ident.subgroup,
         )
     return OutputMotion(
         configuration,
@@ -234,4 +239,5 @@ def output_motion(
         str(prec),
         note=f"the twists generate {ident.subgroup.symbol if ident.subgroup else '?'} "
         f"(dimension {ident.dim}), larger than their span",
+        generated=ident.subgroup,
     )

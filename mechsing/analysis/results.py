@@ -337,6 +337,7 @@ def _output_motion(m: OutputMotion) -> dict[str, Any]:
         "twists": [list(t) for t in m.twists],
         "margin": contract.to_json(m.margin),
         "precision": m.precision,
+        "generated": contract.subgroup_json(m.generated),
     }
     if m.note is not None:
         out["note"] = m.note
