@@ -122,3 +122,21 @@ def test_3rpr_type_ii_turns_about_the_common_point_of_its_legs():
         "    output motion: a rotation about the axis through (1, 1, 0) m along z",
         "    output motion: a rotation about the axis through (1, 1, 0) m along -z",
     )
+
+
+def test_point_velocity_spaces():
+    from mechsing.report.words import velocity_space_words
+
+    assert velocity_space_words([]) == "stays still"
+    assert velocity_space_words([[0, 0, -1]]) == "moves along -z only"
+    # two velocities in the plane x + y = 0 ... its normal (1, 1, 0)/sqrt2, shown with a
+    # positive first component whatever the order of the basis
+    s = 1 / np.sqrt(2)
+    for basis in ([[s, -s, 0], [0, 0, 1]], [[0, 0, 1], [s, -s, 0]]):
+        assert velocity_space_words(basis) == "moves in the plane normal to (0.7071, 0.7071, 0)"
+    assert velocity_space_words([[1, 0, 0], [0, 1, 0], [0, 0, 1]]) == "moves in every direction"
+
+
+def test_five_bar_text_says_where_its_point_moves():
+    text = render_text(analyze(EX / "five_bar.yaml", configs=["reference"], precision="float"))
+    assert "its point at (0, 4, 0) m moves in the plane normal to z" in text

@@ -341,6 +341,13 @@ def _output_motion(m: OutputMotion) -> dict[str, Any]:
     }
     if m.note is not None:
         out["note"] = m.note
+    if m.point is not None:
+        out["point"] = {
+            "position": list(m.point.position),
+            "dim": m.point.dim,
+            "velocities": [list(v) for v in m.point.velocities],
+            "margin": contract.to_json(m.point.margin),
+        }
     return out
 
 

@@ -18,7 +18,7 @@ from mechsing.analysis.contract import subgroup_params
 from mechsing.analysis.describe import OutputMotion
 from mechsing.analysis.results import AnalysisResult, to_json
 from mechsing.numeric import Margin
-from mechsing.report.words import describe, subgroup_words
+from mechsing.report.words import describe, subgroup_words, velocity_space_words
 from mechsing.singularity.findings import (
     BranchFinding,
     ConstraintFinding,
@@ -160,18 +160,33 @@ def _subgroup(sg: Subgroup | None) -> str:
 def _motion_words(m: OutputMotion, length_scale: float) -> str:
     """The output's twist space in words: its subgroup, or its dimension and its twists."""
     head = f"{m.body}" + ("" if m.relative_to == "ground" else f" relative to {m.relative_to}")
+    text = _body_motion_words(m, head, length_scale)
+    p = m.point
+    if p is None:
+        return text
+    at = ", ".join(f"{x:.4g}" for x in p.position)
+    if p.dim is None:
+        return f"{text}; its point at ({at}) m: undecided"
+    return f"{text}; its point at ({at}) m {velocity_space_words(p.velocities)}"
+
+
+def _body_motion_words(m: OutputMotion, head: str, length_scale: float) -> str:
     if m.dim is None:
         return f"{head}: undecided at {m.precision} ({m.note})"
     if m.is_subgroup and m.subgroup is not None:
         return f"{head} moves in {subgroup_words(m.subgroup)}"
     if m.dim == 0:
         return f"{head} cannot move"
-    why = f"; {m.note}" if m.note else ""
-    kind = "not a subgroup" if m.is_subgroup is False else "type not identified"
+    if m.is_subgroup is False and m.generated is not None:
+        kind = f"not a subgroup: they generate {m.generated.symbol}, dimension {m.generated.dim}"
+    else:
+        kind = "not a subgroup" if m.is_subgroup is False else (m.note or "type not identified")
+    text = f"{head} has {m.dim} independent twists ({kind})"
+    if m.point is not None:  # the point's motion says what matters
+        return text
     if m.dim > _TWISTS_IN_WORDS:
-        return f"{head} has {m.dim} independent twists ({kind}{why}; a basis is in the JSON)"
-    twists = "; ".join(describe(t, "twist", length_scale) for t in m.twists)
-    return f"{head} has {m.dim} independent twists ({kind}{why}), e.g. {twists}"
+        return f"{text}; a basis is in the JSON"
+    return f"{text}, e.g. " + "; ".join(describe(t, "twist", length_scale) for t in m.twists)
 
 
 #: the most basis twists of an output motion the text spells out (more read as noise)

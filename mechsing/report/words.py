@@ -26,7 +26,13 @@ from mechsing.analysis.contract import subgroup_params
 from mechsing.numeric import MEMBERSHIP_RTOL_FLOAT
 from mechsing.subgroups import Subgroup
 
-__all__ = ["subgroup_words", "twist_words", "velocity_words", "wrench_words"]
+__all__ = [
+    "subgroup_words",
+    "twist_words",
+    "velocity_space_words",
+    "velocity_words",
+    "wrench_words",
+]
 
 _AXES = ("x", "y", "z")
 
@@ -94,6 +100,21 @@ def velocity_words(velocity: Sequence[float]) -> str:
     if not np.any(v):
         return "the point stays still"
     return f"the point moves along {_direction(v)}"
+
+
+def velocity_space_words(velocities: Sequence[Sequence[float]]) -> str:
+    """A space of point velocities (a basis) in words: still, along a line, in a plane
+    (named by its normal), or in every direction."""
+    V = [np.asarray(v, dtype=float) for v in velocities]
+    if not V:
+        return "stays still"
+    if len(V) == 1:
+        return f"moves along {_direction(V[0])} only"
+    if len(V) == 2:
+        n = np.cross(V[0], V[1])
+        n = n if n[np.argmax(np.abs(n) > MEMBERSHIP_RTOL_FLOAT * np.linalg.norm(n))] > 0 else -n
+        return f"moves in the plane normal to {_direction(n)}"
+    return "moves in every direction"
 
 
 def subgroup_words(sub: Subgroup) -> str:
