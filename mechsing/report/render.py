@@ -245,7 +245,9 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         om = result.output_motion
         lines += [
             "",
-            f"Output motion (generic, at configuration {om.configuration}): {_motion_words(om, L)}",
+            f"{h2}Output motion" if markdown else "Output motion:",
+            f"{bullet}generic (at the first regular configuration, {om.configuration}): "
+            f"{_motion_words(om, L)}",
         ]
     for c in result.configurations:
         lines += [
