@@ -91,10 +91,10 @@ def test_text_lists_legs_and_the_output_motion_in_words():
     assert "Legs (joints from ground to platform):" in text
     for i in (1, 2, 3):
         assert f"  leg {i}: U{i}a - P{i} - U{i}b\n" in text
-    assert "platform moves in T3 (spatial translation, dimension 3)" in text
+    assert "platform's twists span T3 (spatial translation, dimension 3)" in text
     # at the flat constraint singularity the couples n_i lie along the horizontal legs:
     # the platform gains the rotation about the vertical through its centre, the origin
-    assert "platform moves in X (Schoenflies motion, dimension 4): axis z" in text
+    assert "platform's twists span X (Schoenflies motion, dimension 4): axis z" in text
     assert "output motion: a rotation about the axis through (0, 0, 0) m along z" in text
     assert "constraint wrench: a couple about x" in text
     assert "constraint wrench: a couple about y" in text
@@ -103,7 +103,7 @@ def test_text_lists_legs_and_the_output_motion_in_words():
 def test_text_of_a_rocker_and_of_a_lost_twist():
     text = render_text(analyze(EX / "fourbar.yaml", precision="float"))
     assert (
-        "rocker moves in R (rotation about an axis (revolute), dimension 1): "
+        "rocker's twists span R (rotation about an axis (revolute), dimension 1): "
         "axis z, point (4, 0, 0) m"
     ) in text
     # a serial arm at a singularity: each lost twist and resisted wrench in words

@@ -172,16 +172,16 @@ def _motion_words(m: OutputMotion, length_scale: float) -> str:
 
 def _body_motion_words(m: OutputMotion, head: str, length_scale: float) -> str:
     if m.dim is None:
-        return f"{head}: undecided at {m.precision} ({m.note})"
+        return f"{head}'s twists: undecided at {m.precision} ({m.note})"
     if m.is_subgroup and m.subgroup is not None:
-        return f"{head} moves in {subgroup_words(m.subgroup)}"
+        return f"{head}'s twists span {subgroup_words(m.subgroup)}"
     if m.dim == 0:
-        return f"{head} cannot move"
+        return f"{head} cannot move here (to first order)"
     if m.is_subgroup is False and m.generated is not None:
         kind = f"not a subgroup: they generate {m.generated.symbol}, dimension {m.generated.dim}"
     else:
         kind = "not a subgroup" if m.is_subgroup is False else (m.note or "type not identified")
-    text = f"{head} has {m.dim} independent twists ({kind})"
+    text = f"{head}'s twists span dimension {m.dim} ({kind})"
     if m.point is not None:  # the point's motion says what matters
         return text
     if m.dim > _TWISTS_IN_WORDS:
