@@ -146,3 +146,35 @@ def test_ur5_wrist_singularity_loses_a_dimension():
 def test_exact_mode_decides_the_output_motion_at_mp50():
     _res, m = _motion("fourbar", "reference", "exact")
     assert (m.type, m.dim, m.precision) == ("R", 1, "mp:50")
+
+
+def test_a_span_that_is_no_subgroup_names_the_subgroup_it_generates():
+    # two planar twists generate the planar group G with normal z (their bracket is a
+    # translation in the plane); an arm's five twists at a singularity generate D
+    res, m = _motion("five_bar", "reference")
+    assert m.generated is not None and m.generated.symbol == "G"
+    normal = np.array(m.generated.canonical().params["normal"], dtype=float)
+    assert abs(abs(normal[2]) - 1) < 1e-12
+    js = res.to_json()["configurations"][0]["output_motion"]["generated"]
+    assert js["type"] == "G" and js["dim"] == 3
+    _res, m = _motion("ur5", "wrist")
+    assert m.generated is not None and m.generated.symbol == "D"
+    _res, m = _motion("tsai_3upu", "reference")
+    assert m.generated is not None and m.generated.symbol == "T3"
+
+
+def test_five_bar_point_at_an_input_singularity_moves_across_the_straight_leg():
+    # examples/five_bar.yaml, type1: leg 1 (A1 = (-3/2, 0), proximal 2, distal 5/2) is
+    # stretched straight, |A1 P| = 9/2: the output point can move only perpendicular to A1 P
+    res, m = _motion("five_bar", "type1")
+    p = m.point
+    assert p is not None and p.dim == 1
+    a1p = np.array(p.position) - [-1.5, 0, 0]
+    assert np.linalg.norm(a1p) == pytest.approx(4.5, abs=1e-12)
+    assert abs(np.dot(p.velocities[0], a1p)) < 1e-12
+    assert abs(p.velocities[0][2]) < 1e-12
+    js = res.to_json()["configurations"][0]["output_motion"]["point"]
+    assert js["dim"] == 1 and len(js["velocities"]) == 1
+    # at a regular pose the point moves in the plane of the mechanism
+    _res, m = _motion("five_bar", "reference")
+    assert m.point.dim == 2 and m.point.position == pytest.approx((0, 4, 0), abs=1e-12)

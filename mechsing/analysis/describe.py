@@ -19,18 +19,19 @@ span's dimension.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
+from mechsing import lie
 from mechsing.kinematics.chains import tree_chain
 from mechsing.model import Mechanism
 from mechsing.numeric import Margin, Precision, decide_rank, spectral_norm, to_float
 from mechsing.screws import chain_matrix
 from mechsing.subgroups import Subgroup, identify
 
-__all__ = ["LegDescription", "OutputMotion", "describe_legs", "output_motion"]
+__all__ = ["LegDescription", "OutputMotion", "PointMotion", "describe_legs", "output_motion"]
 
 Floats = tuple[float, ...]
 
@@ -69,6 +70,19 @@ def describe_legs(mech: Mechanism) -> tuple[LegDescription, ...]:
 
 
 @dataclass(frozen=True)
+class PointMotion:
+    """The velocities the output's point can have (an output with ``point``): its
+    ``position`` (m, ground frame) at the configuration, ``dim`` of its velocity space
+    (None: undecided), an orthonormal basis ``velocities`` (unit directions) and the
+    rank decision's ``margin``."""
+
+    position: Floats
+    dim: int | None
+    velocities: tuple[Floats, ...]
+    margin: Margin
+
+
+@dataclass(frozen=True)
 class OutputMotion:
     """The twists the output body can make (relative to ``relative_to``) at
     ``configuration``.
@@ -78,7 +92,9 @@ class OutputMotion:
     span is closed under the Lie bracket (None: undecided, or not identified: ``note``
     says why); ``twists``: an orthonormal (commensurate metric) basis of the span as SI
     twists (omega, v) at the ground origin; ``margin`` of the rank decision; ``precision``
-    it was decided at."""
+    it was decided at; ``generated``: the subgroup the twists generate (the span's own
+    subgroup, or the smallest one that holds a span that is not a subgroup: G for a
+    five-bar's distal link, D for an arm at a singularity; None when not identified)."""
 
     configuration: str
     body: str
@@ -90,6 +106,9 @@ class OutputMotion:
     margin: Margin
     precision: str
     note: str | None = None
+    generated: Subgroup | None = None
+    #: the output point's velocities (None: the output has no point)
+    point: PointMotion | None = None
 
     @property
     def type(self) -> str | None:
@@ -118,24 +137,63 @@ def output_motion(
     mech: Mechanism, model: Any, q: Any, cs: Any, configuration: str
 ) -> OutputMotion | None:
     """The output twist space at the closed configuration ``q`` (``cs``: the closure
-    system there; None without an output)."""
-    out = mech.output
-    if out is None:
+    system there; None without an output), and its point's velocity space when the
+    output has a point."""
+    if mech.output is None:
         return None
+    prec = _mode(model)
+    with model.precision.context():
+        A = cs.matrix
+    with prec.context():
+        A = prec.asarray(A)
+        if A.shape[0]:
+            # the joint rates that keep every loop closed
+            N = decide_rank(A, prec, model.length_scale, want_spaces=True, native_spaces=True)
+            N = N.null_space
+        else:
+            N = prec.backend.eye(A.shape[1])
+    motion = _output_motion(mech, model, q, cs, configuration, N)
+    if mech.output.point is None:
+        return motion
+    return replace(motion, point=_point_motion(mech, model, q, cs, N))
+
+
+def _point_motion(mech: Any, model: Any, q: Any, cs: Any, N: Any) -> PointMotion:
+    """The velocity space of the output point over the closure's kernel ``N``."""
+    out = mech.output
+    prec = _mode(model)
+    L = model.length_scale
+    with model.precision.context():
+        S = cs.screws if cs.screws is not None else model.current_screws(q, model.poses(q))
+        chain = tree_chain(model, out.body, out.relative_to)
+        x = lie.act_point(model.poses(q)[out.body], model.asarray(list(out.point)))
+        V = chain_matrix(model, S, None, x, chain.signs)
+    with prec.context():
+        V = prec.asarray(V)
+        dec = decide_rank(
+            V @ N, prec, L, want_spaces=True, reference=spectral_norm(V), native_spaces=True
+        )
+        r = dec.rank
+        basis = [] if r is None else [dec.range_space[:, k] for k in range(r)]
+        vel = tuple(
+            tuple(float(c) + 0.0 for c in np.asarray(to_float(b), dtype=float)) for b in basis
+        )
+    pos = tuple(float(c) + 0.0 for c in np.asarray(to_float(x), dtype=float))
+    return PointMotion(pos, r, vel, dec.margin)
+
+
+def _output_motion(
+    mech: Mechanism, model: Any, q: Any, cs: Any, configuration: str, N: Any
+) -> OutputMotion:
+    out = mech.output
     prec = _mode(model)
     L = model.length_scale
     with model.precision.context():
         S = cs.screws if cs.screws is not None else model.current_screws(q, model.poses(q))
         chain = tree_chain(model, out.body, out.relative_to)
         T = chain_matrix(model, S, None, None, chain.signs)
-        A = cs.matrix
     with prec.context():
         T = prec.asarray(T)
-        A = prec.asarray(A)
-        if A.shape[0]:
-            N = decide_rank(A, prec, L, want_spaces=True, native_spaces=True).null_space
-        else:
-            N = prec.backend.eye(T.shape[1])
         TN = T @ N
         dec = decide_rank(
             TN, prec, L, want_spaces=True, reference=spectral_norm(T), native_spaces=True
@@ -181,6 +239,19 @@ def output_motion(
             str(prec),
             note="the output cannot move",
         )
+    if r == 6:  # the twists span se(3): all displacements, nothing to identify
+        return OutputMotion(
+            configuration,
+            out.body,
+            out.relative_to,
+            6,
+            Subgroup("D"),
+            True,
+            twists,
+            dec.margin,
+            str(prec),
+            generated=Subgroup("D"),
+        )
     # the mechanism's centroid: identify's default centre (the mean axis point of the
     # rotating screws) is thrown far off by a translation with a rounding-level rotation
     centre = prec.asarray(np.asarray(fr.c_float, dtype=float)) if prec.mode == "mp" else fr.c_float
@@ -209,6 +280,7 @@ def output_motion(
             twists,
             dec.margin,
             str(prec),
+            generated=ident.subgroup,
         )
     return OutputMotion(
         configuration,
@@ -222,4 +294,5 @@ def output_motion(
         str(prec),
         note=f"the twists generate {ident.subgroup.symbol if ident.subgroup else '?'} "
         f"(dimension {ident.dim}), larger than their span",
+        generated=ident.subgroup,
     )

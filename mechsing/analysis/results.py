@@ -353,9 +353,17 @@ def _output_motion(m: OutputMotion) -> dict[str, Any]:
         "twists": [list(t) for t in m.twists],
         "margin": contract.to_json(m.margin),
         "precision": m.precision,
+        "generated": contract.subgroup_json(m.generated),
     }
     if m.note is not None:
         out["note"] = m.note
+    if m.point is not None:
+        out["point"] = {
+            "position": list(m.point.position),
+            "dim": m.point.dim,
+            "velocities": [list(v) for v in m.point.velocities],
+            "margin": contract.to_json(m.point.margin),
+        }
     return out
 
 

@@ -1,4 +1,6 @@
-"""Close one configuration of a mechanism file and print every joint value (SI units, radians)."""
+"""Close one configuration of a mechanism file and print every joint value (SI units,
+radians): to every digit of the precision mode (N significant digits at mp:N, the exact
+expression in exact mode); the JSON is :class:`mechsing.analysis.solve.SolveResult`'s."""
 
 from __future__ import annotations
 
@@ -28,8 +30,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from mechsing.analysis.solve import solve
     from mechsing.cli import UserError, load_mechanism, precision_option
-    from mechsing.kinematics import solve_configuration
 
     prec = precision_option(args.precision)
     from mechsing.cli.options import SET_CONFIG, apply_set
@@ -45,30 +47,22 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(
             f"{args.file}: no configuration named {args.config!r}; the file has: {', '.join(mech.configurations)}"
         )
-    model, closed = solve_configuration(mech, args.config, prec)
-    values = model.values(closed.q)
+    res = solve(mech, args.config, prec)
     if args.format == "json":
-        out = {
-            "mechanism": mech.name,
-            "configuration": args.config,
-            "precision": str(model.precision),
-            "joints": values,
-            "closure_residual": closed.residual,
-            "underdetermined": closed.underdetermined,
-            "steps": closed.steps,
-        }
-        sys.stdout.write(json.dumps(out, indent=2) + "\n")
+        sys.stdout.write(json.dumps(res.to_json(), indent=2) + "\n")
     else:
         print(
-            f"{mech.name}, configuration {args.config} ({model.precision}): residual {closed.residual:.3g} m"
-            + (", underdetermined (minimum-norm steps)" if closed.underdetermined else "")
+            f"{mech.name}, configuration {args.config} ({res.precision}): residual "
+            f"{res.closure_residual:.3g} m"
+            + (", underdetermined (minimum-norm steps)" if res.underdetermined else "")
         )
-        for k, v in values.items():
+        # the values as solved: every digit of mp:N, the exact expression in exact mode
+        for k, v in res.joints_text:
             units = mech.joint(k).units if k in mech.joint_names else ()
             shown = (
-                ", ".join(f"{x!r} {u}" for x, u in zip(v, units, strict=False))
+                ", ".join(f"{x} {u}" for x, u in zip(v, units, strict=False))
                 if units
-                else ", ".join(repr(x) for x in v)
+                else ", ".join(v)
             )
             print(f"  {k}: {shown}")
     return 0

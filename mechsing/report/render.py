@@ -15,8 +15,10 @@ from collections.abc import Sequence
 from typing import Any
 
 from mechsing.analysis.contract import subgroup_params
+from mechsing.analysis.describe import OutputMotion
 from mechsing.analysis.results import AnalysisResult, to_json
 from mechsing.numeric import Margin
+from mechsing.report.words import describe, subgroup_words, velocity_space_words
 from mechsing.singularity.findings import (
     BranchFinding,
     ConstraintFinding,
@@ -155,6 +157,58 @@ def _subgroup(sg: Subgroup | None) -> str:
     return f"{sg.symbol} (dimension {sg.dim}{', ' + ps if ps else ''})"
 
 
+def _motion_words(m: OutputMotion, length_scale: float) -> str:
+    """The output's twist space in words: its subgroup, or its dimension and its twists."""
+    head = f"{m.body}" + ("" if m.relative_to == "ground" else f" relative to {m.relative_to}")
+    text = _body_motion_words(m, head, length_scale)
+    p = m.point
+    if p is None:
+        return text
+    at = ", ".join(f"{x:.4g}" for x in p.position)
+    if p.dim is None:
+        return f"{text}; its point at ({at}) m: undecided"
+    return f"{text}; its point at ({at}) m {velocity_space_words(p.velocities)}"
+
+
+def _body_motion_words(m: OutputMotion, head: str, length_scale: float) -> str:
+    if m.dim is None:
+        return f"{head}'s twists: undecided at {m.precision} ({m.note})"
+    if m.is_subgroup and m.subgroup is not None:
+        return f"{head}'s twists span {subgroup_words(m.subgroup)}"
+    if m.dim == 0:
+        return f"{head} cannot move here (to first order)"
+    if m.is_subgroup is False and m.generated is not None:
+        kind = f"not a subgroup: they generate {m.generated.symbol}, dimension {m.generated.dim}"
+    else:
+        kind = "not a subgroup" if m.is_subgroup is False else (m.note or "type not identified")
+    text = f"{head}'s twists span dimension {m.dim} ({kind})"
+    if m.point is not None:  # the point's motion says what matters
+        return text
+    if m.dim > _TWISTS_IN_WORDS:
+        return f"{text}; a basis is in the JSON"
+    return f"{text}, e.g. " + "; ".join(describe(t, "twist", length_scale) for t in m.twists)
+
+
+#: the most basis twists of an output motion the text spells out (more read as noise)
+_TWISTS_IN_WORDS = 3
+
+
+def screw_lines(f: Finding, length_scale: float) -> list[str]:
+    """The twists and wrenches of a finding in words (lost twist, resisted or constraint
+    wrenches, the output's motion), one line each."""
+    out = []
+    if isinstance(f, SerialFinding):
+        out.append(f"lost twist: {describe(f.twist, 'twist', length_scale)}")
+        for w in f.wrenches:
+            out.append(f"resisted wrench: {describe(w, 'wrench', length_scale)}")
+    elif isinstance(f, ConstraintFinding):
+        for w in f.wrenches:
+            out.append(f"constraint wrench: {describe(w, 'wrench', length_scale)}")
+    elif getattr(f, "output_twist", None) is not None:
+        out.append(f"output motion: {describe(f.output_twist, 'twist', length_scale)}")
+    return out
+
+
 def render_text(result: AnalysisResult, markdown: bool = False) -> str:
     """The text (or Markdown) report of ``result``: the precision, the mechanism's
     properties, then each configuration with its loops, closure rank, mobility and
@@ -181,6 +235,26 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         lines += ["", f"{h2}Properties" if markdown else "Properties:"]
         for prop in result.properties:
             lines.append(f"{bullet}{prop.kind}: {prop.explanation}")
+    L = result.length_scale
+    if result.legs:
+        first = result.legs[0]
+        title = f"Legs (joints from {first.base} to {first.body})"
+        lines += ["", f"{h2}{title}" if markdown else f"{title}:"]
+        for leg in result.legs:
+            inner = (
+                f" (and {_names(leg.other_joints)} in loops inside the leg)"
+                if leg.other_joints
+                else ""
+            )
+            lines.append(f"{bullet}leg {leg.number}: {' - '.join(leg.joints)}{inner}")
+    if result.output_motion is not None:
+        om = result.output_motion
+        lines += [
+            "",
+            f"{h2}Output motion" if markdown else "Output motion:",
+            f"{bullet}generic (at the first regular configuration, {om.configuration}): "
+            f"{_motion_words(om, L)}",
+        ]
     for c in result.configurations:
         lines += [
             "",
@@ -229,11 +303,14 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             f"instantaneous {_fmt_num(m.instantaneous)}, group {_fmt_num(m.group)}, "
             f"spatial Grubler-Kutzbach count {_fmt_num(m.grubler)})"
         )
+        if c.output_motion is not None:
+            lines.append(f"{bullet}output motion: {_motion_words(c.output_motion, L)}")
         if not c.singularities:
             lines.append(f"{bullet}regular: no singularity.")
         for s in c.singularities:
             lines.append(f"{bullet}{s.cls}: {explain(s)}.")
             sub = "  - " if markdown else "    "
+            lines += [f"{sub}{line}" for line in screw_lines(s, L)]
             verb = "tested" if isinstance(s, UndecidedFinding) else "decided"
             lines.append(f"{sub}{verb} in {s.precision}; margin: {_margin(s.margin)}")
     return "\n".join(lines) + "\n"

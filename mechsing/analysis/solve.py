@@ -1,0 +1,89 @@
+"""The closed joint values of one configuration (the API behind ``mechsing solve``).
+
+Owns :class:`SolveResult` (typed, immutable, with its JSON in :meth:`SolveResult.to_json`)
+and :func:`solve`.  Conventions: joint values in SI units and radians, in the
+mechanism's joint order; ``joints`` are floats (the numeric JSON every mode keeps), and
+``joints_text`` the same values as text at the precision they were solved to: the
+shortest decimal that reads back to the float in float mode, N significant digits at
+mp:N (correctly rounded from the N-digit solution: data a file can give to mp and exact
+modes), and the exact expression in exact mode.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from mechsing.model import Mechanism
+from mechsing.numeric import Precision, parse_precision
+
+__all__ = ["SolveResult", "solve", "value_text"]
+
+
+@dataclass(frozen=True)
+class SolveResult:
+    """One configuration closed at ``precision``: every joint's values (``joints``,
+    floats; ``joints_text``, text at the solution's precision), the closure residual
+    (m), whether the closure was underdetermined (minimum-norm steps) and the Newton
+    steps it took."""
+
+    mechanism: str
+    configuration: str
+    precision: str
+    joints: tuple[tuple[str, tuple[float, ...]], ...]
+    joints_text: tuple[tuple[str, tuple[str, ...]], ...]
+    closure_residual: float
+    underdetermined: bool
+    steps: int
+
+    def to_json(self) -> dict[str, Any]:
+        """The JSON of ``mechsing solve --format json`` (keys in this order; added keys
+        come last)."""
+        return {
+            "mechanism": self.mechanism,
+            "configuration": self.configuration,
+            "precision": self.precision,
+            "joints": {k: list(v) for k, v in self.joints},
+            "closure_residual": self.closure_residual,
+            "underdetermined": self.underdetermined,
+            "steps": self.steps,
+            "joints_text": {k: list(v) for k, v in self.joints_text},
+        }
+
+
+def value_text(x: Any, precision: Precision) -> str:
+    """A joint value as text at ``precision``: float ``repr`` (round-trips), N significant
+    digits at mp:N, the exact expression in exact mode."""
+    if precision.mode == "mp":
+        import mpmath
+
+        with precision.context():
+            return str(mpmath.nstr(mpmath.mpf(x), precision.digits, strip_zeros=False))
+    if precision.mode == "exact":
+        import sympy
+
+        return sympy.sstr(sympy.sympify(x))
+    return repr(float(x))
+
+
+def solve(mech: Mechanism, name: str, precision: Precision | str = "float") -> SolveResult:
+    """Close configuration ``name`` of ``mech`` at ``precision`` (float, mp:N or exact)."""
+    from mechsing.kinematics import solve_configuration
+
+    prec = parse_precision(precision) if isinstance(precision, str) else precision
+    model, closed = solve_configuration(mech, name, prec)
+    values = model.values(closed.q)
+    mode = model.precision  # auto solves in float
+    texts = []
+    for jk in model.joints:
+        texts.append((jk.name, tuple(value_text(x, mode) for x in closed.q[jk.columns])))
+    return SolveResult(
+        mechanism=mech.name,
+        configuration=name,
+        precision=str(model.precision),
+        joints=tuple((k, tuple(v)) for k, v in values.items()),
+        joints_text=tuple(texts),
+        closure_residual=float(closed.residual),
+        underdetermined=bool(closed.underdetermined),
+        steps=int(closed.steps),
+    )
