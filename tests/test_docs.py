@@ -214,12 +214,7 @@ def test_relative_links_resolve(path: Path) -> None:
         if re.match(r"^[a-z]+:", target) or target.startswith("#"):
             continue
         file = target.split("#", 1)[0]
-        assert (path.parent / file).exists() or _landing_today(file), f"{path.name}: {target}"
-
-
-def _landing_today(file: str) -> bool:
-    """Pages written alongside this one on other branches (conditions, import, reports)."""
-    return file in ("conditions.md", "import.md", "reports.md")
+        assert (path.parent / file).exists(), f"{path.name}: {target}"
 
 
 def test_docs_index_lists_every_page() -> None:
