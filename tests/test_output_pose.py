@@ -306,3 +306,40 @@ def test_text_report_shows_the_given_pose(tmp_path):
     line = next(ln for ln in run.out.splitlines() if "given pose" in ln)
     assert "given pose of platform" in line
     assert "(1.1, 0.9, 0)" in line and "(0, 0, 0.1)" in line
+
+
+@pytest.mark.parametrize(
+    ("pose", "where"),
+    [
+        ('{rotation_vector: [0, 0, "pi/36"]}', "rotation_vector[2]"),
+        ('{axis: [0, 0, 1], angle: "pi/36"}', "angle"),
+    ],
+)
+def test_a_radian_angle_in_a_degree_files_pose_is_refused_with_both_fixes(tmp_path, pose, where):
+    """In a file whose angles are in degrees, ``pi/36`` is 5 degrees written in radians:
+    read as degrees it would be a 0.087-degree turn, so it is refused, as it is for joint
+    values, with the value in degrees; the same pose written in degrees is the radian
+    file's pose."""
+    text = (EXAMPLES / "planar_3rpr.yaml").read_text()
+    head = text[: text.index("\nconfigurations:")].replace(
+        "\nbodies:", "\nunits: {angle: deg}\nbodies:", 1
+    )
+    bad = tmp_path / "deg.yaml"
+    bad.write_text(head + f"\nconfigurations:\n  turned:\n    pose: {pose}\n")
+    run = run_cli(["analyze", bad, "--format", "json"])
+    assert run.status == 2 and "Traceback" not in run.err
+    assert f"{bad}:" in run.err and where in run.err
+    assert "write the value in degrees (e.g. 5)" in run.err and "units: {angle: rad}" in run.err
+    good = tmp_path / "deg-ok.yaml"
+    good.write_text(head + "\nconfigurations:\n  turned:\n    pose: {rotation_vector: [0, 0, 5]}\n")
+    rad = with_configurations(
+        "planar_3rpr.yaml",
+        '  turned:\n    pose: {rotation_vector: [0, 0, "pi/36"]}\n',
+        tmp_path,
+        "rad.yaml",
+    )
+    _, deg_doc, err = analyze(good)
+    _, rad_doc, _ = analyze(rad)
+    assert "joints" in configuration(deg_doc, "turned"), err
+    for j, v in configuration(rad_doc, "turned")["joints"].items():
+        np.testing.assert_allclose(configuration(deg_doc, "turned")["joints"][j], v, atol=1e-12)

@@ -1006,14 +1006,31 @@ class _Builder:
             )
             form = "matrix"
         elif m.get("rotation_vector") is not None:
-            rvec = r.vector(m.get("rotation_vector"), item, f"{what}: rotation_vector", af)
+            node = m.get("rotation_vector")
+            raw = r.vector(node, item, f"{what}: rotation_vector")
+            for i, x in enumerate(raw):
+                self.angle_in_file_units(node.items[i], x, item, f"{what}: rotation_vector[{i}]")
+            rvec = (raw[0] * af, raw[1] * af, raw[2] * af)
             form = "rotation_vector"
         elif m.get("axis") is not None:
             unit, _ = r.direction(m.get("axis"), item, f"{what}: axis")
-            angle = r.number(m.get("angle"), item, f"{what}: angle", af)
+            raw_angle = r.number(m.get("angle"), item, f"{what}: angle")
+            self.angle_in_file_units(m.get("angle"), raw_angle, item, f"{what}: angle")
+            angle = raw_angle * af
             rvec = (unit[0] * angle, unit[1] * angle, unit[2] * angle)
             form = "axis_angle"
         return OutputPose(position, rotation, rvec, m.line, form)
+
+    def angle_in_file_units(self, node: Any, raw: Any, item: str, what: str) -> None:
+        """In a degree file, an angle of a pose written in radians (``pi``, an inverse
+        trigonometric function) is an error that gives both fixes, as for joint values."""
+        r = self.r
+        if r.units.angle != "rad" and radian_power(raw) > 0:
+            raise r.error(
+                item,
+                getattr(node, "line", None),
+                radians_in_degree_file(what, node, raw, r.units.angle),
+            )
 
     def rotation_matrix(self, rv: YValue, item: str, what: str, hint: str = "") -> Any:
         """A rotation written as a 3x3 matrix (three rows of three numbers); ``hint`` ends
@@ -1130,17 +1147,10 @@ class _Builder:
             for i in angles:
                 if radian_power(raw[i]) > 0:
                     node = nodes[i]
-                    text = node.text if isinstance(node, YScalar) else str(raw[i])
-                    as_deg = float(sympy.N(raw[i] * 180 / sympy.pi, 15))
-                    read = float(sympy.N(raw[i], 15))
                     raise r.error(
                         item,
                         getattr(node, "line", None),
-                        f"{labels[i]}: {text!r} is an angle in radians (pi, asin, acos, atan "
-                        f"and atan2 give radians), but this file's angles are in degrees "
-                        f"(units: {{angle: {r.units.angle}}}), so it would be read as "
-                        f"{read:.6g} degrees; write the value in degrees (e.g. {as_deg:.6g}), "
-                        "or set units: {angle: rad} and write every angle of the file in radians",
+                        radians_in_degree_file(labels[i], node, raw[i], r.units.angle),
                     )
             return
         if j.type in _PITCHED:
@@ -1171,6 +1181,21 @@ class _Builder:
                     "file whose angles are in radians; if it is meant in degrees, set "
                     f"units: {{angle: deg}} (or write it in radians: {str(in_rad)!r})",
                 )
+
+
+def radians_in_degree_file(label: str, node: Any, raw: Any, unit: str) -> str:
+    """The message for an angle written in radians (with ``pi`` or an inverse
+    trigonometric function) in a file whose angles are in degrees."""
+    text = node.text if isinstance(node, YScalar) else str(raw)
+    as_deg = float(sympy.N(raw * 180 / sympy.pi, 15))
+    read = float(sympy.N(raw, 15))
+    return (
+        f"{label}: {text!r} is an angle in radians (pi, asin, acos, atan "
+        f"and atan2 give radians), but this file's angles are in degrees "
+        f"(units: {{angle: {unit}}}), so it would be read as "
+        f"{read:.6g} degrees; write the value in degrees (e.g. {as_deg:.6g}), "
+        "or set units: {angle: rad} and write every angle of the file in radians"
+    )
 
 
 #: a full turn (rad): a plain angle above it in a radian file gets a warning
