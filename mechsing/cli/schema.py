@@ -14,7 +14,7 @@ import argparse
 import json
 
 NAME = "schema"
-HELP = "print the JSON Schema of the mechanism file format (or of the sweep document)"
+HELP = "print the JSON Schema of the mechanism file format (or of the sweep or condition document)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
