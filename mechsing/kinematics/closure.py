@@ -53,6 +53,7 @@ from mechsing.numeric import (
     screw_zero_rtol,
     to_float,
 )
+from mechsing.numeric.blocks import block_svd
 from mechsing.timelimit import activity
 
 #: largest step of a given coordinate: radians, or this times L for a length
@@ -641,7 +642,7 @@ class Closer:
         if res > tol or comm(fm.difference(qn, q)) > CONTINUATION_FOLD_REACH * math.sqrt(left):
             return None
         Js = fm.float_frame.blocks(fm.closure_jacobian(qn))
-        sigma = np.linalg.svd(Js[:, free], compute_uv=False)
+        sigma = block_svd(Js[:, free], compute_uv=False)
         if not len(sigma) or sigma[-1] > CONTINUATION_SINGULAR_RTOL * sigma[0]:
             return None
         rank = int(np.sum(sigma > CONTINUATION_SINGULAR_RTOL * sigma[0]))

@@ -24,6 +24,7 @@ import numpy as np
 
 from mechsing.kinematics.model import KinematicModel
 from mechsing.numeric import POLISH_SLOW_RATIO, Precision, svd_r
+from mechsing.numeric.blocks import block_svd
 
 __all__ = [
     "NewtonResult",
@@ -70,7 +71,7 @@ def increment(m: KinematicModel, free: np.ndarray, du: np.ndarray) -> np.ndarray
 
 def damped_least_squares(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Damped least squares (minimum norm), damping relative to sigma_max (float)."""
-    U, s, Vt = np.linalg.svd(A, full_matrices=False)
+    U, s, Vt = block_svd(A, full_matrices=False)
     if not len(s) or s[0] == 0:
         return np.zeros(A.shape[1])
     lam = _DAMPING * s[0]
@@ -81,7 +82,7 @@ def damped_least_squares(A: np.ndarray, b: np.ndarray) -> np.ndarray:
 def truncated_least_squares(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Minimum-norm least squares (float), singular values below float's ``tau_lo``
     relative to sigma_max dropped."""
-    U, s, Vt = np.linalg.svd(A, full_matrices=False)
+    U, s, Vt = block_svd(A, full_matrices=False)
     keep = s > Precision("float").tolerances.tau_lo * (s[0] if len(s) else 0)
     return Vt[keep].T @ ((U[:, keep].T @ b) / s[keep])
 

@@ -39,6 +39,7 @@ __all__ = [
     "build_graph",
     "canonical_loops",
     "connected_to",
+    "coupled_loops",
 ]
 
 
@@ -156,13 +157,40 @@ class MechanismGraph:
         return tuple(legs)
 
 
+#: radius of the breadth-first trees in which :func:`short_cycle_basis` looks for
+#: loops (it finds every loop of 2 * 16 + 1 = 33 joints or fewer)
+SHORT_CYCLE_DEPTH = 16
+#: largest loops x (bodies + joints)^2 for which the loops are networkx's
+#: ``minimum_cycle_basis`` (about 0.1 s there); above it, :func:`short_cycle_basis`
+NETWORKX_LOOP_WORK = 60_000
+
+
 def canonical_loops(bodies: Sequence[str], joints: Sequence[Any]) -> tuple[Loop, ...]:
     """The canonical cycle basis (module docstring) for bodies and joints in file order.
 
     ``joints`` need ``name`` and ``between`` attributes.  The simple graph has
     integer nodes (bodies 0..nb-1, then joints nb..) inserted in file order,
     so nothing depends on string hashing or on any other memory order.
+
+    networkx's ``minimum_cycle_basis`` costs about loops x nodes^2; above
+    :data:`NETWORKX_LOOP_WORK` the basis is :func:`short_cycle_basis` instead,
+    also a minimum cycle basis (the same total length, so the same loops
+    wherever the minimum basis is unique, as in a ladder of parallelograms),
+    with ties broken by the joints' file positions.
     """
+    pos = {j.name: k for k, j in enumerate(joints)}
+    n_loops = len(joints) - len(bodies) + 1
+    if n_loops * (len(bodies) + len(joints)) ** 2 <= NETWORKX_LOOP_WORK:
+        cycles = _networkx_cycles(bodies, joints)
+    else:
+        cycles = short_cycle_basis(bodies, [j.between for j in joints])
+    loops = [_orient(sorted(ks), joints) for ks in cycles]
+    loops.sort(key=lambda lp: (len(lp.joints), sorted(pos[n] for n in lp.joints)))
+    return tuple(loops)
+
+
+def _networkx_cycles(bodies: Sequence[str], joints: Sequence[Any]) -> list[list[int]]:
+    """networkx's minimum cycle basis, each cycle as its joints' file positions."""
     index = {b: i for i, b in enumerate(bodies)}
     nb = len(bodies)
     H = nx.Graph()
@@ -172,13 +200,158 @@ def canonical_loops(bodies: Sequence[str], joints: Sequence[Any]) -> tuple[Loop,
         H.add_node(nb + k)
         H.add_edge(nb + k, index[a])
         H.add_edge(nb + k, index[b])
-    loops = []
-    for cycle in nx.minimum_cycle_basis(H):
-        ks = sorted(n - nb for n in cycle if n >= nb)
-        loops.append(_orient(ks, joints))
-    pos = {j.name: k for k, j in enumerate(joints)}
-    loops.sort(key=lambda lp: (len(lp.joints), sorted(pos[n] for n in lp.joints)))
-    return tuple(loops)
+    return [[n - nb for n in cycle if n >= nb] for cycle in nx.minimum_cycle_basis(H)]
+
+
+def short_cycle_basis(bodies: Sequence[str], between: Sequence[tuple[str, str]]) -> list[list[int]]:
+    """A minimum cycle basis of the body graph (joints of length 1), in near-linear time.
+
+    ``between[k]`` are joint k's two bodies; every body must be connected to
+    the others.  Returns each cycle as the sorted file positions of its joints.
+
+    Candidates (Horton's): for a root body v, its breadth-first tree T_v
+    (neighbours in joint file order) and a joint e = (x, y) outside T_v with
+    both ends reached, the cycle e + (the path from x to y in T_v).  A cycle C
+    is the sum over GF(2) of the candidates of its joints from any root on C,
+    and each has length at most |C| and ends at depth at most |C| / 2; so the
+    candidates from trees of depth R span every cycle of length 2R + 1 or
+    less.  Taking the candidates short first (ties: the joints' file
+    positions) and keeping each that is independent of those kept (Gaussian
+    elimination over GF(2) on bit sets) is the matroid greedy, so the result
+    is a minimum cycle basis.  R doubles from 1 until the basis is complete;
+    mechanisms' loops are short, so every tree stays small and the cost grows
+    with the number of loops times the size of a neighbourhood.  Past
+    :data:`SHORT_CYCLE_DEPTH` the fundamental cycles of one breadth-first tree
+    complete the basis, shortest first: a loop of more than 33 joints is then
+    a loop of the basis but not necessarily of a minimum one.
+    """
+    index = {b: i for i, b in enumerate(bodies)}
+    nb = len(bodies)
+    ends = [(index[a], index[b]) for a, b in between]
+    adj: list[list[tuple[int, int]]] = [[] for _ in range(nb)]
+    for k, (a, b) in enumerate(ends):
+        adj[a].append((k, b))
+        adj[b].append((k, a))
+    need = len(ends) - nb + 1
+    if need <= 0:
+        return []
+    depth_limit = 1
+    candidates: set[tuple[int, ...]] = set()
+    while True:
+        candidates = set()
+        longest = 2 * depth_limit + 1
+        for root in range(nb):
+            candidates.update(_tree_cycles(root, adj, ends, depth_limit, longest))
+        basis = _greedy_basis(sorted(candidates, key=lambda c: (len(c), c)), need)
+        if len(basis) == need:
+            return [list(c) for c in basis]
+        if depth_limit >= SHORT_CYCLE_DEPTH:
+            break
+        depth_limit *= 2
+    # loops longer than 2 * SHORT_CYCLE_DEPTH + 1 joints: the fundamental cycles of
+    # the breadth-first tree from the first body complete the basis, shortest first
+    # (a basis, no longer proved minimum in those long loops)
+    whole = _tree_cycles(0, adj, ends, nb, len(ends) + 1)
+    pool = sorted(candidates, key=lambda c: (len(c), c)) + sorted(whole, key=lambda c: (len(c), c))
+    return [list(c) for c in _greedy_basis(pool, need)]
+
+
+def _tree_cycles(
+    root: int,
+    adj: list[list[tuple[int, int]]],
+    ends: list[tuple[int, int]],
+    depth_limit: int,
+    longest: int,
+) -> list[tuple[int, ...]]:
+    """Horton's candidates of ``root`` (see :func:`short_cycle_basis`) of ``longest`` joints or fewer."""
+    depth = {root: 0}
+    parent: dict[int, tuple[int, int]] = {}  # body -> (joint, parent body)
+    queue = deque([root])
+    while queue:
+        x = queue.popleft()
+        if depth[x] == depth_limit:
+            continue
+        for k, y in adj[x]:
+            if y not in depth:
+                depth[y] = depth[x] + 1
+                parent[y] = (k, x)
+                queue.append(y)
+    tree = {k for k, _ in parent.values()}
+    out = []
+    for x in depth:
+        for k, y in adj[x]:
+            if k in tree or y not in depth or ends[k][0] != x:
+                continue
+            path = _tree_path(x, y, depth, parent)
+            if len(path) + 1 <= longest:
+                out.append(tuple(sorted((*path, k))))
+    return out
+
+
+def _tree_path(x: int, y: int, depth: dict[int, int], parent: dict[int, tuple[int, int]]) -> list[int]:
+    """The joints of the tree path between bodies x and y."""
+    left: list[int] = []
+    right: list[int] = []
+    while depth[x] > depth[y]:
+        k, x = parent[x]
+        left.append(k)
+    while depth[y] > depth[x]:
+        k, y = parent[y]
+        right.append(k)
+    while x != y:
+        k, x = parent[x]
+        left.append(k)
+        k, y = parent[y]
+        right.append(k)
+    return left + right
+
+
+def _greedy_basis(candidates: Sequence[tuple[int, ...]], need: int) -> list[tuple[int, ...]]:
+    """Keep, in order, each candidate independent over GF(2) of those kept (at most ``need``)."""
+    pivots: dict[int, int] = {}
+    kept: list[tuple[int, ...]] = []
+    for cycle in candidates:
+        bits = 0
+        for k in cycle:
+            bits ^= 1 << k
+        while bits:
+            top = bits.bit_length() - 1
+            row = pivots.get(top)
+            if row is None:
+                pivots[top] = bits
+                kept.append(cycle)
+                break
+            bits ^= row
+        if len(kept) == need:
+            break
+    return kept
+
+
+def coupled_loops(loops: Sequence[Loop]) -> list[tuple[int, int]]:
+    """The loops grouped by shared joints (two loops that share a joint are in one
+    group, transitively): (loops, joints) of each group, largest first.  The closure
+    system splits into one block per group, the unit of mechsing's dense work."""
+    parent = list(range(len(loops)))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    owner: dict[str, int] = {}
+    for i, lp in enumerate(loops):
+        for name in lp.joints:
+            if name in owner:
+                parent[find(i)] = find(owner[name])
+            else:
+                owner[name] = i
+    groups: dict[int, tuple[int, set[str]]] = {}
+    for i, lp in enumerate(loops):
+        n, joints = groups.get(find(i), (0, set()))
+        joints.update(lp.joints)
+        groups[find(i)] = (n + 1, joints)
+    return sorted(((n, len(j)) for n, j in groups.values()), reverse=True)
 
 
 def _orient(ks: list[int], joints: Sequence[Any]) -> Loop:

@@ -22,7 +22,7 @@ from mechsing.model.expressions import (
     parse_number,
     radian_power,
 )
-from mechsing.model.graph import build_graph, connected_to
+from mechsing.model.graph import build_graph, connected_to, coupled_loops
 from mechsing.model.mechanism import (
     POSE_KEY,
     U_JOINT,
@@ -97,12 +97,37 @@ RESERVED_CONFIGURATION_KEYS = ("start", POSE_KEY)
 MAX_BODIES = 2000
 MAX_JOINTS = 4000
 MAX_CONFIGURATIONS = 1000
-#: bound on loops x (bodies + joints)^2, the cost of networkx.minimum_cycle_basis
-#: (about 10 s at this bound); realistic mechanisms are far below it
-MAX_LOOP_WORK = 6_000_000
+#: most seconds and bytes the analysis of one configuration is estimated to take
+#: (:func:`analysis_cost`) before a file is refused
+MAX_ANALYSIS_SECONDS = 600.0
+MAX_ANALYSIS_BYTES = 2 * 1024**3
+#: the estimate's constants, measured on a 2-core machine (ladders of parallelogram
+#: loops and rings of triangles, float): seconds per joint, seconds per unit of a
+#: coupled group's dense factorisations (rows x joints^2), bytes per entry of the
+#: dense stacked closure matrices (their copies included)
+COST_PER_JOINT = 0.005
+COST_PER_DENSE_UNIT = 2.6e-8
+BYTES_PER_ENTRY = 64
 
 _INPUT = re.compile(r"^(?P<name>[^\[\]]+?)\s*\[\s*(?P<index>-?\d+)\s*\]$")
 _NAME_HINT = "a name such as crank or link_2"
+
+
+def analysis_cost(graph: Any) -> tuple[float, float]:
+    """Estimated (seconds, bytes) of the float analysis of one configuration.
+
+    Linear in the joints, plus each group of loops that share joints
+    (:func:`~mechsing.model.graph.coupled_loops`) factorised densely (6 rows per
+    loop times its joints squared), plus the dense stacked closure matrices
+    (6 rows per loop times all the joints).  Good to a factor of about 3 on the
+    ladders and rings it was measured on; a configuration that needs a long
+    continuation or a large tangent cone takes longer."""
+    n_joints = len(graph.joints)
+    n_loops = len(graph.loops)
+    dense = sum(6 * loops * joints**2 for loops, joints in coupled_loops(graph.loops))
+    seconds = COST_PER_JOINT * n_joints + COST_PER_DENSE_UNIT * dense
+    size = BYTES_PER_ENTRY * (6 * n_loops) * (n_joints + 6 * n_loops)
+    return seconds, float(size)
 
 
 def _catalog() -> dict[str, Any]:
@@ -422,16 +447,21 @@ class _Builder:
         ground = self.ground(top.get("ground"), bodies, top)
         joints = self.joints(top.get("joints"), bodies)
         self.connectivity(bodies, ground, joints)
-        n_loops = len(joints) - len(bodies) + 1
-        if n_loops * (len(bodies) + len(joints)) ** 2 > MAX_LOOP_WORK:
+        graph = build_graph(bodies, ground, joints)
+        seconds, size = analysis_cost(graph)
+        if seconds > MAX_ANALYSIS_SECONDS or size > MAX_ANALYSIS_BYTES:
+            groups = coupled_loops(graph.loops)
             raise r.error(
                 "joints",
                 top.key_line("joints"),
-                f"{len(joints)} joints among {len(bodies)} bodies with {n_loops} "
-                "independent loops is too large a mechanism for mechsing's loop "
-                "analysis; split it into smaller mechanisms",
+                f"{len(joints)} joints among {len(bodies)} bodies with {len(graph.loops)} "
+                f"independent loops, the largest group of loops that share joints having "
+                f"{groups[0][0]} loops and {groups[0][1]} joints, is too large a mechanism "
+                f"for mechsing's loop analysis: one configuration would take about "
+                f"{seconds:.0f} s and {size / 1024**3:.1f} GB (limits "
+                f"{MAX_ANALYSIS_SECONDS:.0f} s and {MAX_ANALYSIS_BYTES / 1024**3:.0f} GB); "
+                "split it into smaller mechanisms, or into groups of loops that share no joint",
             )
-        graph = build_graph(bodies, ground, joints)
         jmap = {j.name: j for j in joints}
         inputs = self.inputs(top.get("inputs"), jmap)
         output = self.output(top.get("output"), bodies, ground, graph)

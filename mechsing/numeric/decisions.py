@@ -17,6 +17,7 @@ import sympy
 
 from mechsing.numeric._mp import _mp_convert, _mp_matrix, eigsy
 from mechsing.numeric.backend import FLOAT, to_float
+from mechsing.numeric.blocks import block_svd
 from mechsing.numeric.linalg import singular_values, svd
 from mechsing.numeric.precision import Precision, parse_precision
 from mechsing.numeric.tolerances import FLOAT_ROUNDING_FACTOR, Tolerances
@@ -210,7 +211,7 @@ def decide_rank(
             sigma = tuple(float(x) for x in s)
     else:
         F = to_float(arr)
-        s_np = np.linalg.svd(F, compute_uv=False)
+        s_np = block_svd(F, compute_uv=False)
         smax = float(s_np[0]) if len(s_np) else 0.0
         if reference is not None and reference > smax:
             smax = float(reference)
@@ -237,7 +238,7 @@ def decide_rank(
     if want_spaces:
         k = r_eff
         if Um is None or Vm is None:
-            Um, _s, Vm = np.linalg.svd(to_float(arr))
+            Um, _s, Vm = block_svd(to_float(arr))
         elif not native_spaces:
             Um, Vm = to_float(Um), to_float(Vm)
         ns = Vm[k:].T.copy()

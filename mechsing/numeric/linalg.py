@@ -14,6 +14,7 @@ import numpy as np
 
 from mechsing.numeric._mp import _mp_matrix, _object_array, eigsy, mp_svd, svd_r
 from mechsing.numeric.backend import Backend, backend_of, to_float
+from mechsing.numeric.blocks import block_svd
 
 
 def _numerical_backend(*arrays: Any) -> Backend:
@@ -32,7 +33,7 @@ def svd(A: Any, full_matrices: bool = True) -> tuple[np.ndarray, np.ndarray, np.
     arr = np.asarray(A)
     bk = _numerical_backend(arr)
     if bk.name == "float":
-        return np.linalg.svd(to_float(arr), full_matrices=full_matrices)
+        return block_svd(to_float(arr), full_matrices=full_matrices)
     return mp_svd(arr, full_matrices)
 
 
