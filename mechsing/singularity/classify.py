@@ -245,11 +245,20 @@ def _local_analysis(
     return out
 
 
+#: seed of the generic directions probed along a branch of dimension 2 or more
+BRANCH_PROBE_SEED = 7
+
+
 def _branches(fm: Any, qf: np.ndarray, cone: Cone) -> list[tuple[np.ndarray, int | None, bool]]:
     """For each cone subspace: its tangent, the nullity found along it, smooth on both sides."""
     res = []
+    rng = np.random.default_rng(BRANCH_PROBE_SEED)
     for W in cone.subspaces:
-        x = to_float(W[:, 0])
+        # a generic direction of the branch: a basis vector of it may lie in a
+        # special subspace (one that leaves the singular loop at rest)
+        Wf = to_float(W)
+        x = Wf[:, 0] if Wf.shape[1] == 1 else Wf @ rng.normal(size=Wf.shape[1])
+        x = x / np.linalg.norm(x)
         fwd = _probe(fm, qf, x)
         bwd = _probe(fm, qf, -x)
         null = None

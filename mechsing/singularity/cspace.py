@@ -59,6 +59,9 @@ from mechsing.screws import loop_basis
 _ORDER3_SAMPLES = 6
 #: combinations of two forms scanned for a definite one
 _PENCIL_ANGLES = 90
+#: most subspaces a product of the loop groups' cones is written out as (beyond,
+#: the cone is reported as not a finite union of subspaces worth listing)
+MAX_CONE_PIECES = 256
 
 
 @dataclass
@@ -375,8 +378,15 @@ def _tangent_cone(
         return Cone("zero", [], 1, precision=tp)
     if P.shape[1] == 0:
         return Cone("subspaces", [N], 1, precision=tp)
-    forms = _forms(exp, N, P)
-    kind, subs, silent, margins, undecided = _zero_set(forms, prec)
+    grouped = _grouped_zero_set(exp, N, P, prec)
+    if grouped is not None:
+        kind, subs, silent, margins, undecided = grouped
+    else:
+        N, active = _localised_kernel(exp, N, P, prec)
+        forms = _forms(exp, N[:, :active], P)
+        kind, subs, silent, margins, undecided = _zero_set(forms, prec)
+        if active < m:
+            kind, subs, silent = _with_free_directions(kind, subs, silent, active, m, exp.bk)
     eig = min(margins) if margins else None
     if undecided:
         return Cone("inconclusive", [], 2, eig, True, ["a second-order form is undecided"], tp)
@@ -425,6 +435,173 @@ def _tangent_cone(
             "inconclusive", [], 2, eig, False, ["order 2 is silent on a candidate branch"], tp
         )
     return Cone("subspaces", _distinct(spaces, prec), order, eig, precision=tp)
+
+
+def _grouped_zero_set(
+    exp: Expansion, N: np.ndarray, P: np.ndarray, prec: Precision
+) -> tuple[str, list[np.ndarray], list[bool], list[float], bool] | None:
+    """The second-order zero set group by group, when the closure system splits.
+
+    Loops that share no joint (directly or through other loops) form independent
+    groups: a kernel vector or a left-null vector of a block-diagonal closure matrix
+    (as :func:`~mechsing.numeric.blocks.block_svd` gives them) lives in one group,
+    the forms of a group's left-null vectors involve only its own loops and kernel
+    vectors, and the zero set is the product of the groups' zero sets (a group
+    without left-null vector is regular: its whole kernel).  So a mechanism of a
+    thousand loops costs a thousand small tests, not one test on the whole kernel.
+    Returns None when the kernel or the left-null vectors mix groups (a dense
+    factorisation, or one group): the caller then works on the whole kernel.
+    """
+    if exp.bk.name != "float" or len(exp.chains) < 2:
+        return None
+    rows, starts = 0, []
+    for ch in exp.chains:
+        starts.append(rows)
+        rows += ch.Q.shape[1]
+    # the groups: chains linked by a shared joint column
+    parent = list(range(len(exp.chains)))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    owner: dict[int, int] = {}
+    for i, ch in enumerate(exp.chains):
+        for cols, _ in ch.elements:
+            for c in cols:
+                if c in owner:
+                    parent[find(i)] = find(owner[c])
+                else:
+                    owner[c] = i
+    group_of_chain = [find(i) for i in range(len(exp.chains))]
+    groups = sorted(set(group_of_chain))
+    if len(groups) < 2:
+        return None
+    col_group = np.full(N.shape[0], -1)
+    for c, i in owner.items():
+        col_group[c] = group_of_chain[i]
+    row_group = np.empty(rows, dtype=int)
+    for i, ch in enumerate(exp.chains):
+        row_group[starts[i] : starts[i] + ch.Q.shape[1]] = group_of_chain[i]
+    Nf, Pf = np.asarray(N, dtype=float), np.asarray(P, dtype=float)
+
+    def owner_group(vec: np.ndarray, where: np.ndarray) -> int | None:
+        hit = np.unique(where[vec != 0.0])
+        return int(hit[0]) if len(hit) == 1 else (-1 if len(hit) == 0 else None)
+
+    kgroup = [owner_group(Nf[:, j], col_group) for j in range(Nf.shape[1])]
+    pgroup = [owner_group(Pf[:, j], row_group) for j in range(Pf.shape[1])]
+    if any(g is None for g in kgroup + pgroup) or -1 in pgroup:
+        return None
+    m = N.shape[1]
+    factors: list[tuple[list[int], list[np.ndarray], list[bool]]] = []
+    margins: list[float] = []
+    undecided = False
+    for g in groups:
+        pcols = [j for j, h in enumerate(pgroup) if h == g]
+        kcols = [j for j, h in enumerate(kgroup) if h == g]
+        if not pcols or not kcols:
+            continue
+        chains = [i for i, h in enumerate(group_of_chain) if h == g]
+        grows = np.concatenate(
+            [np.arange(starts[i], starts[i] + exp.chains[i].Q.shape[1]) for i in chains]
+        )
+        sub = Expansion([exp.chains[i] for i in chains], exp.Ss)
+        forms = _forms(sub, N[:, kcols], P[np.ix_(grows, pcols)])
+        kind, subs, silent, mg, und = _zero_set(forms, prec)
+        margins.extend(mg)
+        undecided = undecided or und
+        if kind == "cone":
+            return "cone", [], [], margins, undecided
+        factors.append((kcols, subs or [exp.bk.zeros((len(kcols), 0))], silent or [False]))
+    if undecided:
+        return "subspaces", [], [], margins, True
+    count = 1
+    for _, subs, _ in factors:
+        count *= len(subs)
+    if count > MAX_CONE_PIECES:
+        return "cone", [], [], margins, False
+    tested = {j for kcols, _, _ in factors for j in kcols}
+    free = [j for j in range(m) if j not in tested]
+    pieces: list[tuple[list[tuple[list[int], np.ndarray]], bool]] = [([], False)]
+    for kcols, subs, flags in factors:
+        pieces = [
+            (done + [(kcols, S)], quiet or flag)
+            for done, quiet in pieces
+            for S, flag in zip(subs, flags, strict=True)
+        ]
+    out, out_flags = [], []
+    for parts, quiet in pieces:
+        width = sum(S.shape[1] for _, S in parts) + len(free)
+        B = exp.bk.zeros((m, width))
+        at = 0
+        for kcols, S in parts:
+            B[np.ix_(kcols, range(at, at + S.shape[1]))] = S
+            at += S.shape[1]
+        for j in free:
+            B[j, at] = 1.0
+            at += 1
+        out.append(B)
+        out_flags.append(quiet)
+    if all(B.shape[1] == 0 for B in out):
+        return "subspaces", [], [], margins, False
+    return "subspaces", out, out_flags, margins, False
+
+
+def _localised_kernel(
+    exp: Expansion, N: np.ndarray, P: np.ndarray, prec: Precision
+) -> tuple[np.ndarray, int]:
+    """The kernel in a basis whose first ``active`` columns are the only ones that
+    move a joint of a loop the left-null vectors P see.
+
+    The second-order forms ``P^T Q(x, y)`` involve only those loops (a loop's
+    term is made of its own joints' rates), so they vanish whenever x or y is
+    one of the other columns, which are zero on every such joint (exactly, when
+    the closure matrix splits into blocks; to the precision otherwise).  A
+    mechanism of many loops in which one loop is singular thus gets forms of
+    that loop's size, not of the whole kernel's.  Returns (N, m) unchanged when
+    no column can be set aside.
+    """
+    m = N.shape[1]
+    rows = 0
+    touched: list[int] = []
+    seen = P.shape[0] and max_abs(P)
+    for ch in exp.chains:
+        k = ch.Q.shape[1]
+        if seen and max_abs(P[rows : rows + k]) > subspace_rank_rtol(prec) * seen:
+            touched.extend(c for cols, _ in ch.elements for c in cols)
+        rows += k
+    cols = sorted(set(touched))
+    if not cols or len(cols) >= N.shape[0]:
+        return N, m
+    _, s, Vt = svd(N[cols], full_matrices=True)
+    top = s[0] if len(s) else 0
+    active = sum(1 for x in s if top and x > subspace_rank_rtol(prec) * top)
+    if active == 0 or active == m:
+        return N, m
+    return N @ Vt.T, active
+
+
+def _with_free_directions(
+    kind: str, subs: list[np.ndarray], silent: list[bool], active: int, m: int, bk: Any
+) -> tuple[str, list[np.ndarray], list[bool]]:
+    """The zero set of forms that vanish on the last ``m - active`` coordinates:
+    each subspace of the first ``active`` ones times all of the others (the cone
+    {0} of the active part gives the others alone)."""
+    if kind != "subspaces":
+        return kind, subs, silent
+    free = m - active
+    pieces = subs or [bk.zeros((active, 0))]
+    flags = silent or [False]
+    out = []
+    for S in pieces:
+        B = bk.zeros((m, S.shape[1] + free))
+        B[:active, : S.shape[1]] = S
+        B[active:, S.shape[1] :] = bk.eye(free)
+        out.append(B)
+    return kind, out, list(flags)
 
 
 def _order3(
