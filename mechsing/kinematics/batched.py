@@ -127,14 +127,16 @@ def poses(
                 jk = model.joint(st.joint)
                 here = jk.b if st.sign > 0 else jk.a
                 wanted.add(here)
+    if not batch and wanted is None and q.dtype != object:
+        elements.update(elements_at_once(model, q))
     for body, steps in sorted(paths.items(), key=lambda kv: len(kv[1])):
         if body in out or not steps or (wanted is not None and body not in wanted):
             continue
         last = steps[-1]
         if last.part is not None:
             continue  # hidden cross bodies: see current_screws
-        prev = out[_parent(model, steps)]
         jk = model.joint(last.joint)
+        prev = out[jk.a if last.sign > 0 else jk.b]  # the body before the last step
         if last.joint not in elements:
             elements[last.joint] = element(jk, q, fast)
         M = elements[last.joint]
@@ -142,13 +144,38 @@ def poses(
     return out
 
 
-def _parent(model: Any, steps: tuple) -> str:
-    """The body reached by all steps but the last."""
-    body = model.mech.ground
-    for st in steps[:-1]:
-        jk = model.joint(st.joint)
-        body = jk.b if st.sign > 0 else jk.a
-    return body
+def _screws_at_once(model: Any, q: np.ndarray, body_poses: dict[str, np.ndarray]) -> np.ndarray:
+    """:func:`current_screws` of every joint at one float configuration, by one call of
+    :func:`mechsing.lie.act_screw` on the stacked poses and basis screws (a U joint's
+    second screw is carried by ``g_a exp(q1 e1)``, its cross body's pose)."""
+    G, E = [], []
+    for jk in model.joints:
+        ga = body_poses[jk.a]
+        for i, e in enumerate(jk.basis):
+            G.append(ga if jk.type != "U" or i == 0 else None)
+            E.append(e)
+    if not E:
+        return model.backend.zeros((6, 0))
+    for jk in model.joints:
+        if jk.type == "U":
+            c = jk.columns.start
+            G[c + 1] = G[c] @ lie.exp(jk.basis[0] * q[c, None])
+    return lie.act_screw(np.stack(G), np.stack(E)).T
+
+
+def elements_at_once(
+    model: Any, q: np.ndarray, joints: Any = None
+) -> dict[str, np.ndarray]:
+    """The elements of every joint (or of ``joints``) but the U joints at one float
+    configuration, by one call of :func:`mechsing.lie.exp` on the stacked twists
+    ``q_j @ basis_j`` (the same formula as :func:`element`, evaluated joint by joint
+    in numpy's batch)."""
+    joints = [jk for jk in (model.joints if joints is None else joints) if jk.type != "U"]
+    if not joints:
+        return {}
+    twists = np.stack([q[jk.columns] @ jk.basis for jk in joints])
+    Ms = lie.exp(twists)
+    return {jk.name: Ms[i] for i, jk in enumerate(joints)}
 
 
 def current_screws(
@@ -162,6 +189,8 @@ def current_screws(
     With ``joints``, only theirs (the other columns zero; ``body_poses`` then needs only
     the poses of their ``between[0]`` bodies)."""
     body_poses = poses(model, q) if body_poses is None else body_poses
+    if joints is None and q.ndim == 1 and q.dtype != object:
+        return _screws_at_once(model, q, body_poses)
     cols = []
     for jk in model.joints if joints is None else joints:
         ga = body_poses[jk.a]

@@ -244,7 +244,19 @@ class KinematicModel:
     ) -> list[np.ndarray]:
         """``Delta_j = g_a M_j g_b^-1`` for each chord joint (identity when closed)."""
         poses = self.poses(q) if poses is None else poses
-        return [poses[jk.a] @ self.element(jk, q) @ lie.inverse(poses[jk.b]) for jk in self.chords]
+        if q.ndim == 1 and q.dtype != object and len(self.chords) > 1:
+            ms = batched.elements_at_once(self, q, self.chords)
+            elements = [ms.get(jk.name) for jk in self.chords]
+            if all(M is not None for M in elements):
+                Ga = np.stack([poses[jk.a] for jk in self.chords])
+                Gb = np.stack([poses[jk.b] for jk in self.chords])
+                return list(Ga @ np.stack(elements) @ lie.inverse(Gb))
+        else:
+            elements = [None] * len(self.chords)
+        return [
+            poses[jk.a] @ (self.element(jk, q) if M is None else M) @ lie.inverse(poses[jk.b])
+            for jk, M in zip(self.chords, elements, strict=True)
+        ]
 
     def residual_norm(self, deltas: list[np.ndarray], native: bool = False) -> Any:
         """Closure residual as a length (m): the largest over the chords of
@@ -308,6 +320,8 @@ class KinematicModel:
         """log of each chord residual, stacked (6 * n_chords,)."""
         if not deltas:
             return self.backend.zeros(0)
+        if len(deltas) > 1 and all(D.dtype != object for D in deltas):
+            return lie.log(np.stack(deltas)).reshape(-1)
         return np.concatenate([lie.log(D) for D in deltas])
 
     def update(self, q: np.ndarray, delta: np.ndarray) -> np.ndarray:
