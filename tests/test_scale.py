@@ -1,0 +1,199 @@
+"""Big mechanisms: the cycle basis, block factorisations and grouped tangent cones.
+
+The answers are checked against networkx (an independent minimum cycle basis),
+numpy's dense SVD, and the mathematics of ladders of parallelograms and chains
+of Bennett linkages (each loop keeps its own single degree of freedom; a
+parallelogram folded flat is a change point where its two branches cross).
+"""
+
+from __future__ import annotations
+
+import random
+
+import networkx as nx
+import numpy as np
+import pytest
+
+from mechsing.model.graph import NETWORKX_LOOP_WORK, canonical_loops, short_cycle_basis
+from mechsing.numeric import blocks as blocks_module
+from mechsing.numeric.blocks import block_svd, blocks_of
+from tests.cli import run_cli
+
+
+class _J:
+    def __init__(self, name: str, a: str, b: str) -> None:
+        self.name = name
+        self.between = (a, b)
+
+
+def _random_graph(rng: random.Random) -> tuple[list[str], list[_J]]:
+    n = rng.randint(2, 16)
+    bodies = [f"b{i}" for i in range(n)]
+    joints = [_J(f"j{i}", bodies[rng.randrange(i)], bodies[i]) for i in range(1, n)]
+    for _ in range(rng.randint(0, 14)):
+        x, y = rng.sample(range(n), 2)
+        joints.append(_J(f"j{len(joints) + 1}", bodies[x], bodies[y]))
+    rng.shuffle(joints)
+    return bodies, joints
+
+
+def _networkx_total(bodies: list[str], joints: list[_J]) -> int:
+    """Total joints of networkx's minimum cycle basis of the body/joint graph."""
+    H = nx.Graph()
+    H.add_nodes_from(bodies)
+    for j in joints:
+        H.add_edge(("joint", j.name), j.between[0])
+        H.add_edge(("joint", j.name), j.between[1])
+    return sum(len(c) // 2 for c in nx.minimum_cycle_basis(H))
+
+
+def test_short_cycle_basis_is_a_minimum_cycle_basis():
+    rng = random.Random(3)
+    for _ in range(150):
+        bodies, joints = _random_graph(rng)
+        basis = short_cycle_basis(bodies, [j.between for j in joints])
+        assert len(basis) == len(joints) - len(bodies) + 1
+        # every element is a cycle: each body meets an even number of its joints
+        for cycle in basis:
+            degree: dict[str, int] = {}
+            for k in cycle:
+                for body in joints[k].between:
+                    degree[body] = degree.get(body, 0) + 1
+            assert all(d % 2 == 0 for d in degree.values())
+        # independent over GF(2)
+        rows = np.zeros((len(basis), len(joints)), dtype=np.uint8)
+        for i, cycle in enumerate(basis):
+            rows[i, cycle] = 1
+        assert _gf2_rank(rows) == len(basis)
+        # minimum: the same total length as networkx's minimum cycle basis
+        assert sum(map(len, basis)) == _networkx_total(bodies, joints)
+
+
+def _gf2_rank(rows: np.ndarray) -> int:
+    A = rows.copy()
+    rank = 0
+    for col in range(A.shape[1]):
+        pivot = next((r for r in range(rank, A.shape[0]) if A[r, col]), None)
+        if pivot is None:
+            continue
+        A[[rank, pivot]] = A[[pivot, rank]]
+        for r in range(A.shape[0]):
+            if r != rank and A[r, col]:
+                A[r] ^= A[rank]
+        rank += 1
+    return rank
+
+
+def test_a_large_ladder_gets_its_squares_as_loops():
+    n = 60  # loops x (bodies + joints)^2 is far above networkx's bound
+    bodies = ["ground"] + [f"{x}{k}" for k in range(1, n + 1) for x in ("l", "r", "t")]
+    joints = []
+    prev = "ground"
+    for k in range(1, n + 1):
+        joints += [
+            _J(f"A{k}", prev, f"l{k}"),
+            _J(f"B{k}", prev, f"r{k}"),
+            _J(f"C{k}", f"l{k}", f"t{k}"),
+            _J(f"D{k}", f"r{k}", f"t{k}"),
+        ]
+        prev = f"t{k}"
+    assert n * (len(bodies) + len(joints)) ** 2 > NETWORKX_LOOP_WORK
+    loops = canonical_loops(bodies, joints)
+    assert [set(lp.joints) for lp in loops] == [
+        {f"A{k}", f"B{k}", f"C{k}", f"D{k}"} for k in range(1, n + 1)
+    ]
+    # each starts at its first joint in the file, oriented by its between
+    assert all(lp.joints[0] == f"A{k}" and lp.signs[0] == 1 for k, lp in enumerate(loops, 1))
+
+
+def _block_matrix(rng: np.random.Generator) -> np.ndarray:
+    m, n = (int(x) for x in rng.integers(10, 60, 2))
+    A = np.zeros((m, n))
+    rp, cp = rng.permutation(m), rng.permutation(n)
+    i = j = 0
+    while i < m and j < n:
+        a, b = (int(x) for x in rng.integers(1, 7, 2))
+        blk = rng.normal(size=(min(a, m - i), min(b, n - j)))
+        if rng.random() < 0.4:
+            blk[:, 0] = blk[:, -1]  # a rank drop inside the block
+        A[np.ix_(rp[i : i + a], cp[j : j + b])] = blk
+        i, j = i + a + int(rng.random() < 0.15), j + b  # sometimes a zero row
+    return A
+
+
+def test_block_svd_equals_the_dense_svd(monkeypatch):
+    monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 0)
+    rng = np.random.default_rng(5)
+    for _ in range(60):
+        A = _block_matrix(rng)
+        s_dense = np.linalg.svd(A, compute_uv=False)
+        assert np.allclose(block_svd(A, compute_uv=False), s_dense, atol=1e-13)
+        for full in (True, False):
+            U, s, Vt = block_svd(A, full_matrices=full)
+            assert np.allclose(s, s_dense, atol=1e-13)
+            S = np.zeros((U.shape[1], Vt.shape[0]))
+            np.fill_diagonal(S, s)
+            assert np.allclose(U @ S @ Vt, A, atol=1e-12)
+            assert np.allclose(U.T @ U, np.eye(U.shape[1]), atol=1e-12)
+            assert np.allclose(Vt @ Vt.T, np.eye(Vt.shape[0]), atol=1e-12)
+
+
+def test_blocks_of_finds_the_components():
+    A = np.zeros((4, 5))
+    A[0, 1] = A[2, 1] = 1.0  # rows 0 and 2 share column 1
+    A[1, 3] = 2.0
+    got = sorted((tuple(r), tuple(c)) for r, c in blocks_of(A))
+    assert got == [((), (0,)), ((), (2,)), ((), (4,)), ((0, 2), (1,)), ((1,), (3,)), ((3,), ())]
+
+
+def _ladder(n: int, fold: int) -> str:
+    bodies, joints, prev = ["ground"], [], "ground"
+    for k in range(1, n + 1):
+        bodies += [f"l{k}", f"r{k}", f"t{k}"]
+        for name, a, b, x, y in (
+            ("A", prev, f"l{k}", 0, k - 1),
+            ("B", prev, f"r{k}", 1, k - 1),
+            ("C", f"l{k}", f"t{k}", 0, k),
+            ("D", f"r{k}", f"t{k}", 1, k),
+        ):
+            joints.append(
+                f"  - {{name: {name}{k}, type: R, between: [{a}, {b}], axis: [0, 0, 1], "
+                f"point: [{x}, {y}, 0]}}"
+            )
+        prev = f"t{k}"
+    every = {f"{x}{k}": 0 for k in range(1, n + 1) for x in "ABCD"}
+    every.update({f"A{fold}": -90, f"B{fold}": -90, f"C{fold}": 90, f"D{fold}": 90})
+    flat = ", ".join(f"{k}: {v}" for k, v in every.items())
+    return (
+        "units: {angle: deg}\n"
+        f"bodies: [{', '.join(bodies)}]\njoints:\n" + "\n".join(joints) + "\n"
+        f"configurations:\n  reference: {{}}\n  flat: {{{flat}}}\n"
+    )
+
+
+@pytest.mark.parametrize("dense", [False, True])
+def test_a_ladder_with_one_parallelogram_folded_flat(tmp_path, monkeypatch, dense):
+    """40 parallelograms: 40 degrees of freedom; the folded one is a change point
+    (parallelogram and anti-parallelogram branches cross), so the kernel gains one
+    direction and two branches of 40 degrees of freedom cross.  The block path and
+    the dense path (every factorisation on the whole matrix) agree."""
+    if dense:
+        monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 10**12)
+    path = tmp_path / "ladder.yaml"
+    path.write_text(_ladder(40, 17))
+    run = run_cli(["analyze", str(path), "--precision", "float", "--format", "json"])
+    assert run.status == 0, run.err
+    import json
+
+    reference, flat = json.loads(run.out)["configurations"]
+    assert reference["mobility"]["finite"] == 40
+    assert reference["mobility"]["instantaneous"] == 40
+    assert not reference.get("singularities")
+    assert flat["mobility"]["instantaneous"] == 41
+    assert flat["mobility"]["finite"] == 40
+    (bif,) = [s for s in flat["singularities"] if s["class"] == "bifurcation"]
+    assert bif["branch_mobility"] == [40, 40]
+    # the folded loop, and only it, loses rank
+    ranks = {tuple(lp["joints"]): lp["rank"] for lp in flat["loops"]}
+    assert ranks[("A17", "C17", "D17", "B17")] == 2
+    assert sum(1 for r in ranks.values() if r == 3) == 39
