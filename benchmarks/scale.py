@@ -46,7 +46,10 @@ def main(argv: list[str] | None = None) -> int:
         elif part == "exact":
             from _scale_exact import part_exact
 
-            print("## Exact mode against float\n\n" + part_exact(args.repeat, args.quick) + "\n", flush=True)
+            print(
+                "## Exact mode against float\n\n" + part_exact(args.repeat, args.quick) + "\n",
+                flush=True,
+            )
         else:
             from _scale_scanner import part_scanner
 

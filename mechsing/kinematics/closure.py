@@ -641,7 +641,7 @@ class Closer:
         qn, res = landed.q, landed.residual
         if res > tol or comm(fm.difference(qn, q)) > CONTINUATION_FOLD_REACH * math.sqrt(left):
             return None
-        Js = fm.float_frame.blocks(fm.closure_jacobian(qn))
+        Js = fm.scaled_closure_jacobian(qn, fm.float_frame)
         sigma = block_svd(Js[:, free], compute_uv=False)
         if not len(sigma) or sigma[-1] > CONTINUATION_SINGULAR_RTOL * sigma[0]:
             return None
@@ -702,8 +702,7 @@ class Closer:
         tol = tol_final if final else max(tol_final, CONTINUATION_STEP_RTOL * L)
         # predictor: J_u du = -J_g dg at the previous point
         S = fm.current_screws(q_prev)
-        J = fm.closure_jacobian(q_prev, S)
-        Js = fm.float_frame.blocks(J)
+        Js = fm.scaled_closure_jacobian(q_prev, fm.float_frame, S)
         dg = np.where(gmask, qg - q_prev, 0.0)
         dgs = fm.float_frame.rates(dg)
         q = q_prev.copy()
@@ -757,7 +756,7 @@ class Closer:
         if res > tol:
             return False, q, info
         if np.any(free) and fm.chords:
-            Js = fm.float_frame.blocks(fm.closure_jacobian(q))
+            Js = fm.scaled_closure_jacobian(q, fm.float_frame)
             dec = decide_rank(Js[:, free], "float", L)
             rank = dec.rank if dec.rank is not None else dec.rank_bounds[0]
             info["rank"] = rank

@@ -299,10 +299,26 @@ class KinematicModel:
         ``screws(j) + V_a - V_b`` with ``V_x`` the tree velocity of body x."""
         S = self.current_screws(q) if screws is None else screws
         bk = self.backend
-        rows = [S * coef[None, :] for coef in self._chord_signs()]
-        if not rows:
+        signs = self._chord_signs()
+        if not signs:
             return bk.zeros((0, self.n))
+        if S.ndim == 2 and S.dtype != object:
+            # one float configuration: one broadcast product (the same products)
+            return (np.stack(signs)[:, None, :] * S[None, :, :]).reshape(-1, self.n)
+        rows = [S * coef[None, :] for coef in signs]
         return np.concatenate(rows, axis=0)
+
+    def scaled_closure_jacobian(
+        self, q: np.ndarray, frame: Any, screws: np.ndarray | None = None
+    ) -> np.ndarray:
+        """``frame.blocks(closure_jacobian(q))``: the screws are made commensurate once and
+        then signed per chord (the signs are -1, 0 or 1, so the numbers are the same)."""
+        S = self.current_screws(q) if screws is None else screws
+        signs = self._chord_signs()
+        if not signs or S.ndim != 2 or S.dtype == object:
+            return frame.blocks(self.closure_jacobian(q, S))
+        Ss = frame.blocks(np.asarray(S, dtype=float))
+        return (np.stack(signs)[:, None, :] * Ss[None, :, :]).reshape(-1, self.n)
 
     def _chord_signs(self) -> list[np.ndarray]:
         """Each chord's closure chain (integers, n): the chord itself, then back through

@@ -56,7 +56,7 @@ def scaled_system(m: KinematicModel, q: np.ndarray) -> tuple[np.ndarray, np.ndar
     """The closure Jacobian and the chord residual twists at q, commensurate (moved to
     the centroid, lengths over L): the system every Newton step on the group solves."""
     r = m.chord_twists(m.chord_residuals(q))
-    Js = m.frame.blocks(m.closure_jacobian(q))
+    Js = m.scaled_closure_jacobian(q, m.frame)
     rs = m.frame.stacked(r)
     return Js, rs
 

@@ -56,48 +56,69 @@ def block_svd(
     if len(blocks) == 1:
         return np.linalg.svd(A, full_matrices=full_matrices, compute_uv=compute_uv)
     k = min(m, n)
-    sigmas: list[np.ndarray] = []
-    parts = []
+    # blocks of one shape are factorised in one batched call
+    shapes: dict[tuple[int, int], list[tuple[np.ndarray, np.ndarray]]] = {}
+    lone_rows: list[int] = []
+    lone_cols: list[int] = []
     for rows, cols in blocks:
         if len(rows) and len(cols):
-            sub = A[np.ix_(rows, cols)]
-            if compute_uv:
-                Ub, sb, Vtb = np.linalg.svd(sub, full_matrices=True)
-                parts.append((rows, cols, Ub, Vtb, len(sb)))
-            else:
-                sb = np.linalg.svd(sub, compute_uv=False)
-            sigmas.append(sb)
+            shapes.setdefault((len(rows), len(cols)), []).append((rows, cols))
         else:
-            parts.append((rows, cols, None, None, 0))
+            lone_rows.extend(rows.tolist())
+            lone_cols.extend(cols.tolist())
+    groups = []
+    sigmas = []
+    for members in shapes.values():
+        R = np.stack([r for r, _ in members])
+        C = np.stack([c for _, c in members])
+        sub = A[R[:, :, None], C[:, None, :]]
+        if compute_uv:
+            Ub, sb, Vtb = np.linalg.svd(sub, full_matrices=True)
+        else:
+            Ub = Vtb = None
+            sb = np.linalg.svd(sub, compute_uv=False)
+        groups.append((R, C, Ub, Vtb, sb.shape[1]))
+        sigmas.append(sb.reshape(-1))
     paired = np.concatenate(sigmas) if sigmas else np.zeros(0)
     order = np.argsort(-paired, kind="stable")
     s = np.zeros(k)
     s[: len(paired)] = paired[order]
     if not compute_uv:
         return s
-    # paired singular vectors first, in the order of their singular values, then
-    # each block's remaining (left or right) kernel vectors, then the zero rows/columns
-    left_paired, right_paired, left_rest, right_rest = [], [], [], []
-    for rows, cols, Ub, Vtb, p in parts:
-        if Ub is None:
-            left_rest.extend((rows[i:i + 1], None) for i in range(len(rows)))
-            right_rest.extend((cols[i:i + 1], None) for i in range(len(cols)))
-            continue
-        for i in range(p):
-            left_paired.append((rows, Ub[:, i]))
-            right_paired.append((cols, Vtb[i]))
-        for i in range(p, Ub.shape[1]):
-            left_rest.append((rows, Ub[:, i]))
-        for i in range(p, Vtb.shape[0]):
-            right_rest.append((cols, Vtb[i]))
-    lefts = [left_paired[i] for i in order] + left_rest
-    rights = [right_paired[i] for i in order] + right_rest
+    # output position of every paired singular value, then of every block's remaining
+    # left (right) kernel vectors, then of the zero rows (columns)
+    place = np.empty(len(paired), dtype=int)
+    place[order] = np.arange(len(paired))
     ucols = m if full_matrices else k
     vrows = n if full_matrices else k
     U = np.zeros((m, ucols))
-    for j, (idx, vec) in enumerate(lefts[:ucols]):
-        U[idx, j] = 1.0 if vec is None else vec
     Vt = np.zeros((vrows, n))
-    for j, (idx, vec) in enumerate(rights[:vrows]):
-        Vt[j, idx] = 1.0 if vec is None else vec
+    u_next = v_next = len(paired)
+    at = 0
+    for R, C, Ub, Vtb, p in groups:
+        count, r, c = len(R), R.shape[1], C.shape[1]
+        pos = place[at : at + count * p].reshape(count, p)
+        at += count * p
+        u_pos = np.concatenate([pos, u_next + np.arange(count * (r - p)).reshape(count, r - p)], 1)
+        v_pos = np.concatenate([pos, v_next + np.arange(count * (c - p)).reshape(count, c - p)], 1)
+        u_next += count * (r - p)
+        v_next += count * (c - p)
+        keep = u_pos < ucols
+        rows_b = np.broadcast_to(R[:, :, None], Ub.shape)
+        cols_b = np.broadcast_to(u_pos[:, None, :], Ub.shape)
+        mask = np.broadcast_to(keep[:, None, :], Ub.shape)
+        U[rows_b[mask], cols_b[mask]] = Ub[mask]
+        keep = v_pos < vrows
+        rows_b = np.broadcast_to(v_pos[:, :, None], Vtb.shape)
+        cols_b = np.broadcast_to(C[:, None, :], Vtb.shape)
+        mask = np.broadcast_to(keep[:, :, None], Vtb.shape)
+        Vt[rows_b[mask], cols_b[mask]] = Vtb[mask]
+    for i in lone_rows:
+        if u_next < ucols:
+            U[i, u_next] = 1.0
+        u_next += 1
+    for j in lone_cols:
+        if v_next < vrows:
+            Vt[v_next, j] = 1.0
+        v_next += 1
     return U, s, Vt
