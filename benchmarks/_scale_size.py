@@ -215,12 +215,62 @@ def part_size(repeat: int, quick: bool) -> str:
     return "\n".join(lines) + "\n\nFitted growth exponent (seconds ~ bodies^k): " + "; ".join(fits)
 
 
+_SWEEP_CHILD = """
+import sys, time
+import mechsing
+t = time.perf_counter()
+res = mechsing.sweep(sys.argv[1], vary=["A1=0:60:0.25"], precision="float")
+print(time.perf_counter() - t)
+"""
+
+
+def part_sweep(repeat: int, quick: bool) -> str:
+    """Sweeps as the mechanism grows: a ladder's first crank over 0 ... 60 deg (241
+    points, every A joint an input), time per point against the number of loops, and
+    the issue's bound 2 x (one loop's time per point) x (loops ratio)."""
+    sizes = (1, 3, 10, 30) if quick else (1, 3, 10, 30, 100)
+    lines = [
+        "| loops | seconds | ms per point | bound (ms per point) | within |",
+        "|---|---|---|---|---|",
+    ]
+    base = None
+    with tempfile.TemporaryDirectory() as tmp:
+        for n in sizes:
+            inputs = ", ".join(f"A{k}" for k in range(1, n + 1))
+            text = ladder(n).replace("configurations:", f"inputs: [{inputs}]\nconfigurations:")
+            path = Path(tmp) / f"sweep-{n}.yaml"
+            path.write_text(text)
+            times = []
+            for _ in range(repeat):
+                out = subprocess.run(
+                    [sys.executable, "-c", _SWEEP_CHILD, str(path)],
+                    capture_output=True,
+                    text=True,
+                    check=True,
+                    cwd=ROOT,
+                )
+                times.append(float(out.stdout.strip().splitlines()[-1]))
+            sec = statistics.median(times)
+            per = 1000 * sec / 241
+            base = per if base is None else base
+            bound = 2 * base * n / sizes[0]
+            lines.append(
+                f"| {n} | {sec:.2f} | {per:.2f} | {bound:.1f} | {'yes' if per <= bound else 'no'} |"
+            )
+            print(lines[-1], file=sys.stderr, flush=True)
+    return "\n".join(lines)
+
+
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--quick", action="store_true", help="the two smallest sizes only")
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args(argv)
     print(part_size(args.repeat, args.quick))
+    print()
+    print(part_sweep(args.repeat, args.quick))
     return 0
 
 

@@ -6,7 +6,7 @@ usage: python benchmarks/scale.py [--part size|exact|scanner|all] [--quick]
 - size (``_scale_size.py``): one configuration of ladders of parallelograms,
   chains of Bennett linkages and chains of Watt six-bars from about 100 to
   about 1,000 bodies, in float: seconds and peak memory, the verdict, and the
-  fitted growth exponent;
+  fitted growth exponent; and a ladder's sweep, time per point against loops;
 - exact (``_scale_exact.py``): exact mode's time over float's on every bundled
   example and on random Bennett, Bricard and Stewart instances, against the
   degree of the number field their data live in, with the verdicts compared;
@@ -40,9 +40,13 @@ def main(argv: list[str] | None = None) -> int:
     parts = ("size", "exact", "scanner") if args.part == "all" else (args.part,)
     for part in parts:
         if part == "size":
-            from _scale_size import part_size
+            from _scale_size import part_size, part_sweep
 
             print("## Size\n\n" + part_size(args.repeat, args.quick) + "\n", flush=True)
+            print(
+                "## Sweeps as loops are added\n\n" + part_sweep(args.repeat, args.quick) + "\n",
+                flush=True,
+            )
         elif part == "exact":
             from _scale_exact import part_exact
 
