@@ -161,8 +161,8 @@ class MechanismGraph:
 #: loops (it finds every loop of 2 * 16 + 1 = 33 joints or fewer)
 SHORT_CYCLE_DEPTH = 16
 #: largest loops x (bodies + joints)^2 for which the loops are networkx's
-#: ``minimum_cycle_basis`` (about 0.1 s there); above it, :func:`short_cycle_basis`
-NETWORKX_LOOP_WORK = 60_000
+#: ``minimum_cycle_basis`` (about 0.4 s there); above it, :func:`short_cycle_basis`
+NETWORKX_LOOP_WORK = 400_000
 
 
 def canonical_loops(bodies: Sequence[str], joints: Sequence[Any]) -> tuple[Loop, ...]:
