@@ -139,6 +139,12 @@ class PoseModel:
         J = np.concatenate([J, self.backend.zeros((J.shape[0], 6))], axis=1)
         return np.concatenate([J, S * self._pose_signs[None, :]], axis=0)
 
+    def scaled_closure_jacobian(
+        self, q: np.ndarray, frame: Any, screws: np.ndarray | None = None
+    ) -> np.ndarray:
+        """``frame.blocks(closure_jacobian(q))``, as the mechanism's model names it."""
+        return frame.blocks(self.closure_jacobian(q, screws))
+
     def chord_residuals(
         self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
     ) -> list[np.ndarray]:
