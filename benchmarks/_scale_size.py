@@ -16,8 +16,9 @@ files in a temporary folder:
 - ``six-bar``: planar Watt six-bars (two loops sharing two joints) chained
   coupler to base: loops coupled in pairs.
 
-Each analysis runs in a child process, which reports its time (load and
-analysis, not the interpreter's start) and its peak resident memory.  The
+Each analysis runs in a child process, which reports its time (reading the
+file and the analysis; not the interpreter's start nor mechsing's import) and
+its peak resident memory.  The
 growth exponent is the least-squares slope of log(seconds) against
 log(bodies) over each family's sizes.
 """
@@ -37,8 +38,9 @@ ROOT = Path(__file__).resolve().parents[1]
 
 _CHILD = """
 import json, resource, sys, time
-t = time.perf_counter()
 import mechsing
+import mechsing.analysis
+t = time.perf_counter()
 res = mechsing.analyze(sys.argv[1], configs=[sys.argv[2]], precision="float")
 dt = time.perf_counter() - t
 c = res.to_json()["configurations"][0]

@@ -42,7 +42,7 @@ from typing import Any
 
 import numpy as np
 
-from mechsing import lie
+from mechsing import lie, scanner_kernel
 from mechsing.kinematics import KinematicModel, batched
 from mechsing.kinematics.batched import SerialJacobian
 from mechsing.kinematics.chains import tree_chain
@@ -61,6 +61,8 @@ __all__ = ["ChainScanner", "ScanResult", "scan"]
 #: configurations processed together (bounds the working memory: about
 #: 2 kB per configuration of a 6 x 6 chain; small enough to stay in cache)
 DEFAULT_CHUNK = 4096
+#: rows per call of the compiled screen (its memory is the rows' joint values and results)
+COMPILED_CHUNK = 65536
 #: decided rank of a configuration whose rank the float thresholds cannot decide
 UNDECIDED = -1
 
@@ -178,6 +180,20 @@ class ChainScanner:
         analysis uses them (equal to rounding: the serial fast path is the same
         product of exponentials in the commensurate frame).
         """
+        Q = self._checked(Q)
+        if self._serial is not None:
+            return self._serial(Q)
+        out = self.mech.output
+        need = [jk.a for jk in self._chain_joints]
+        if self.point is not None:
+            need.append(out.body)
+        poses = batched.poses(self.model, Q, need)
+        S = batched.current_screws(self.model, Q, poses, self._chain_joints)
+        x = None if self.point is None else lie.act_point(poses[out.body], self.point)
+        return chain_matrix(self.model, S, self.chain.columns, x)
+
+    def _checked(self, Q: np.ndarray) -> np.ndarray:
+        """Q as a float array of configurations, refused when a value is not sensible."""
         Q = np.asarray(Q, dtype=float)
         if Q.ndim != 2 or Q.shape[1] != self.n:
             raise ValueError(
@@ -194,16 +210,7 @@ class ChainScanner:
                 f"sensible size (at most {MAX_JOINT_VALUE:g} rad, or {MAX_JOINT_VALUE:g} L for "
                 f"a length): {Q[i].tolist()}"
             )
-        if self._serial is not None:
-            return self._serial(Q)
-        out = self.mech.output
-        need = [jk.a for jk in self._chain_joints]
-        if self.point is not None:
-            need.append(out.body)
-        poses = batched.poses(self.model, Q, need)
-        S = batched.current_screws(self.model, Q, poses, self._chain_joints)
-        x = None if self.point is None else lie.act_point(poses[out.body], self.point)
-        return chain_matrix(self.model, S, self.chain.columns, x)
+        return Q
 
     # ---------------------------------------------------------------- decisions
 
@@ -247,6 +254,34 @@ class ChainScanner:
             ratio[todo] = rel[:, -1]
         return rank, screened, ratio, bound
 
+    @property
+    def compiled(self) -> bool:
+        """Does :meth:`scan` screen with the compiled kernel (:mod:`mechsing.scanner_kernel`:
+        a serial chain of one-dof joints from ground, and numba installed)?"""
+        return self._serial is not None and scanner_kernel.available()
+
+    def _decide_compiled(self, Q: np.ndarray) -> tuple[np.ndarray, ...]:
+        """:meth:`_decide` with the compiled screen: the numpy matrices and SVD only at the
+        rows it cannot certify."""
+        rows = self.rows
+        k = len(self.columns)
+        m = min(rows, k)
+        N = Q.shape[0]
+        if m < 2:
+            return self._decide(self.matrices(Q), False)
+        err = SCAN_ROUNDING_FACTOR * m * _EPS
+        bound = scanner_kernel.screen_bounds(self._serial, Q, err if rows == k else np.sqrt(err))
+        screened = bound >= SCAN_SCREEN_FACTOR * self.tolerances.tau_hi
+        rank = np.full(N, m, dtype=np.int8)
+        ratio = np.full(N, np.nan)
+        rest = ~screened
+        if np.any(rest):
+            r, _s, ra, b = self._decide(self.matrices(Q[rest]), False)
+            rank[rest] = r
+            ratio[rest] = ra
+            bound[rest] = b
+        return rank, screened, ratio, bound
+
     # ---------------------------------------------------------------- scans
 
     @property
@@ -280,8 +315,14 @@ class ChainScanner:
             Run the SVD everywhere (``ratio`` for every configuration; slower).
         """
         ranks, scr, rat, bnd = [], [], [], []
-        for block in _chunks(configurations, chunk):
-            r, s, ra, b = self._decide(self.matrices(block), all_sigma)
+        compiled = self.compiled and not all_sigma
+        # the compiled screen keeps no per-row temporaries: bigger chunks cost no memory
+        rows = max(chunk, COMPILED_CHUNK) if compiled and chunk >= 1 else chunk
+        for block in _chunks(configurations, rows):
+            if compiled:
+                r, s, ra, b = self._decide_compiled(self._checked(block))
+            else:
+                r, s, ra, b = self._decide(self.matrices(block), all_sigma)
             ranks.append(r)
             scr.append(s)
             rat.append(ra)

@@ -24,7 +24,7 @@ LAYERS: list[set[str]] = [
     {"kinematics"},
     {"screws"},
     {"singularity"},
-    {"analysis", "scanner", "conditions"},
+    {"analysis", "scanner", "scanner_kernel", "conditions"},
     {"sweeps"},
     {"report"},
     {"cli", "__main__"},
