@@ -168,7 +168,16 @@ def test_series_switch_and_simplify() -> None:
 # -- the package's internal layers --------------------------------------------------------
 
 #: mechsing.numeric's modules from the bottom up: each imports only modules before it
-NUMERIC_ORDER = ["tolerances", "_mp", "backend", "precision", "linalg", "scaling", "decisions"]
+NUMERIC_ORDER = [
+    "tolerances",
+    "_mp",
+    "backend",
+    "precision",
+    "blocks",
+    "linalg",
+    "scaling",
+    "decisions",
+]
 
 
 def test_numeric_modules_import_only_downwards() -> None:
