@@ -129,53 +129,109 @@ def poses(
                 wanted.add(here)
     if not batch and wanted is None and q.dtype != object:
         elements.update(elements_at_once(model, q))
-    for body, steps in sorted(paths.items(), key=lambda kv: len(kv[1])):
-        if body in out or not steps or (wanted is not None and body not in wanted):
+    for body, jk, prev, sign in _pose_plan(model):
+        if wanted is not None and body not in wanted:
             continue
-        last = steps[-1]
-        if last.part is not None:
-            continue  # hidden cross bodies: see current_screws
-        jk = model.joint(last.joint)
-        prev = out[jk.a if last.sign > 0 else jk.b]  # the body before the last step
-        if last.joint not in elements:
-            elements[last.joint] = element(jk, q, fast)
-        M = elements[last.joint]
-        out[body] = prev @ (M if last.sign > 0 else lie.inverse(M))
+        if jk.name not in elements:
+            elements[jk.name] = element(jk, q, fast)
+        M = elements[jk.name]
+        out[body] = out[prev] @ (M if sign > 0 else lie.inverse(M))
     return out
+
+
+def _pose_plan(model: Any) -> list[tuple[str, Any, str, int]]:
+    """The order in which :func:`poses` composes the tree (built once per model): each
+    user body (shorter tree paths first) with the joint of its path's last step, the
+    body before that step and the step's sign (hidden cross bodies: see
+    :func:`current_screws`)."""
+    plan = getattr(model, "_tree_pose_plan", None)
+    if plan is None:
+        mech = model.mech
+        plan = []
+        for body, steps in sorted(mech.graph.tree_paths.items(), key=lambda kv: len(kv[1])):
+            if body == mech.ground or not steps or steps[-1].part is not None:
+                continue
+            last = steps[-1]
+            jk = model.joint(last.joint)
+            plan.append((body, jk, jk.a if last.sign > 0 else jk.b, last.sign))
+        model._tree_pose_plan = plan
+    return plan
 
 
 def _screws_at_once(model: Any, q: np.ndarray, body_poses: dict[str, np.ndarray]) -> np.ndarray:
     """:func:`current_screws` of every joint at one float configuration, by one call of
     :func:`mechsing.lie.act_screw` on the stacked poses and basis screws (a U joint's
     second screw is carried by ``g_a exp(q1 e1)``, its cross body's pose)."""
-    G, E = [], []
-    for jk in model.joints:
-        ga = body_poses[jk.a]
-        for i, e in enumerate(jk.basis):
-            G.append(ga if jk.type != "U" or i == 0 else None)
-            E.append(e)
-    if not E:
+    carriers, E, crosses = _screw_plan(model)
+    if not carriers:
         return model.backend.zeros((6, 0))
-    for jk in model.joints:
-        if jk.type == "U":
-            c = jk.columns.start
-            G[c + 1] = G[c] @ lie.exp(jk.basis[0] * q[c, None])
-    return lie.act_screw(np.stack(G), np.stack(E)).T
+    G = [body_poses[a] for a in carriers]
+    for jk in crosses:
+        c = jk.columns.start
+        G[c + 1] = G[c] @ lie.exp(jk.basis[0] * q[c, None])
+    return lie.act_screw(np.stack(G), E).T
 
 
-def elements_at_once(
-    model: Any, q: np.ndarray, joints: Any = None
-) -> dict[str, np.ndarray]:
+def _screw_plan(model: Any) -> tuple[list[str], Any, list[Any]]:
+    """What :func:`_screws_at_once` stacks (built once per model): the body whose pose
+    carries each coordinate's screw (``between[0]``; a U joint's second screw is fixed
+    up from its first), the basis screws stacked, and the U joints."""
+    plan = getattr(model, "_screws_plan", None)
+    if plan is None:
+        carriers, E = [], []
+        for jk in model.joints:
+            for e in jk.basis:
+                carriers.append(jk.a)
+                E.append(e)
+        crosses = [jk for jk in model.joints if jk.type == "U"]
+        plan = (carriers, np.stack(E) if E else None, crosses)
+        model._screws_plan = plan
+    return plan
+
+
+def elements_at_once(model: Any, q: np.ndarray, joints: Any = None) -> dict[str, np.ndarray]:
     """The elements of every joint (or of ``joints``) but the U joints at one float
     configuration, by one call of :func:`mechsing.lie.exp` on the stacked twists
     ``q_j @ basis_j`` (the same formula as :func:`element`, evaluated joint by joint
     in numpy's batch)."""
-    joints = [jk for jk in (model.joints if joints is None else joints) if jk.type != "U"]
+    joints, rows, cols, basis, others = _element_plan(model, joints)
     if not joints:
         return {}
-    twists = np.stack([q[jk.columns] @ jk.basis for jk in joints])
+    if joints[0].basis.dtype == object:  # a model in mp or exact numbers
+        Ms = lie.exp(np.stack([q[jk.columns] @ jk.basis for jk in joints]))
+        return {jk.name: Ms[i] for i, jk in enumerate(joints)}
+    twists = np.empty((len(joints), 6))
+    # a one-dof twist q e: the product matmul forms (q e + 0.0, as its sum from zero)
+    twists[rows] = q[cols][:, None] * basis + 0.0
+    for i in others:
+        twists[i] = q[joints[i].columns] @ joints[i].basis
     Ms = lie.exp(twists)
-    return {jk.name: Ms[i] for i, jk in enumerate(joints)}
+    return dict(zip([jk.name for jk in joints], Ms, strict=True))
+
+
+def _element_plan(
+    model: Any, joints: Any
+) -> tuple[list[Any], np.ndarray, np.ndarray, np.ndarray, list[int]]:
+    """What :func:`elements_at_once` stacks for these joints (built once per model and
+    set of joints): the joints but U, the rows of the one-dof joints with their
+    coordinates and basis screws stacked, and the rows of the others."""
+    cache = getattr(model, "_element_plans", None)
+    if cache is None:
+        cache = model._element_plans = {}
+    key = None if joints is None else tuple(jk.name for jk in joints)
+    plan = cache.get(key)
+    if plan is None:
+        kept = [jk for jk in (model.joints if joints is None else joints) if jk.type != "U"]
+        one = [i for i, jk in enumerate(kept) if jk.basis.shape[0] == 1]
+        plan = (
+            kept,
+            np.array(one, dtype=np.intp),
+            np.array([kept[i].columns.start for i in one], dtype=np.intp),
+            np.array([kept[i].basis[0] for i in one]).reshape(len(one), 6),
+            [i for i, jk in enumerate(kept) if jk.basis.shape[0] != 1],
+        )
+        cache[key] = plan
+    return plan
 
 
 def current_screws(

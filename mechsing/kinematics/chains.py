@@ -41,7 +41,28 @@ class Chain:
 
 
 def _names(model: Any) -> tuple[str, ...]:
-    return tuple(jk.name for jk in model.joints for _ in range(jk.columns.stop - jk.columns.start))
+    """The joint of every coordinate (built once per model)."""
+    names = getattr(model, "_coordinate_joint_names", None)
+    if names is None:
+        names = tuple(
+            jk.name for jk in model.joints for _ in range(jk.columns.stop - jk.columns.start)
+        )
+        model._coordinate_joint_names = names
+    return names
+
+
+def _shared(a: tuple[Any, ...], b: tuple[Any, ...]) -> int:
+    """How many first steps two tree paths share (their common prefix: the path to the
+    bodies' last common ancestor).  Found by bisection: in a tree, two paths that take
+    the same step at the same depth share every step before it."""
+    lo, hi = 0, min(len(a), len(b))
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if a[mid - 1] == b[mid - 1]:
+            lo = mid
+        else:
+            hi = mid - 1
+    return lo
 
 
 def path_chain(model: Any, steps: Iterable[tuple[str, int]]) -> Chain:
@@ -55,6 +76,9 @@ def path_chain(model: Any, steps: Iterable[tuple[str, int]]) -> Chain:
 def tree_chain(model: Any, body: str, relative_to: str) -> Chain:
     """The chain of ``body`` relative to ``relative_to`` through the spanning tree."""
     paths = model.mech.graph.tree_paths
-    steps = [(st.joint, st.sign) for st in paths[body]]
-    steps += [(st.joint, -st.sign) for st in paths[relative_to]]
+    a, b = paths[body], paths[relative_to]
+    # the steps the two paths share cancel (+s and -s): only the rest is crossed
+    k = _shared(a, b)
+    steps = [(st.joint, st.sign) for st in a[k:]]
+    steps += [(st.joint, -st.sign) for st in b[k:]]
     return path_chain(model, steps)

@@ -641,7 +641,7 @@ class Closer:
         qn, res = landed.q, landed.residual
         if res > tol or comm(fm.difference(qn, q)) > CONTINUATION_FOLD_REACH * math.sqrt(left):
             return None
-        Js = fm.scaled_closure_jacobian(qn, fm.float_frame)
+        Js = _closure_matrix(fm, qn)
         sigma = block_svd(Js[:, free], compute_uv=False)
         if not len(sigma) or sigma[-1] > CONTINUATION_SINGULAR_RTOL * sigma[0]:
             return None
@@ -701,8 +701,7 @@ class Closer:
         tol_final = fm.precision.closure_tolerance(L)
         tol = tol_final if final else max(tol_final, CONTINUATION_STEP_RTOL * L)
         # predictor: J_u du = -J_g dg at the previous point
-        S = fm.current_screws(q_prev)
-        Js = fm.scaled_closure_jacobian(q_prev, fm.float_frame, S)
+        Js = _closure_matrix(fm, q_prev)
         dg = np.where(gmask, qg - q_prev, 0.0)
         dgs = fm.float_frame.rates(dg)
         q = q_prev.copy()
@@ -756,7 +755,7 @@ class Closer:
         if res > tol:
             return False, q, info
         if np.any(free) and fm.chords:
-            Js = fm.scaled_closure_jacobian(q, fm.float_frame)
+            Js = _closure_matrix(fm, q)
             dec = decide_rank(Js[:, free], "float", L)
             rank = dec.rank if dec.rank is not None else dec.rank_bounds[0]
             info["rank"] = rank
@@ -845,6 +844,15 @@ class Closer:
                 doubling=True,
             )
             return out.q, out.residual, out.slow
+
+
+def _closure_matrix(fm: KinematicModel, q: np.ndarray) -> Any:
+    """The commensurate closure Jacobian of the float model at q: sparse for a big
+    mechanism (:attr:`KinematicModel.sparse_closure`: built from each loop's own
+    joints and factorised block by block), dense otherwise."""
+    if fm.sparse_closure:
+        return fm.sparse_closure_jacobian(q, fm.float_frame)
+    return fm.scaled_closure_jacobian(q, fm.float_frame)
 
 
 def _g(x: Any, digits: int) -> str:

@@ -28,12 +28,13 @@ from typing import Any
 
 import mpmath
 import numpy as np
+from scipy.sparse import csc_matrix
 
 from mechsing import lie
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
 from mechsing.model import Mechanism
-from mechsing.numeric import CommensurateFrame, Precision, characteristic_length, to_float
+from mechsing.numeric import CommensurateFrame, Precision, blocks, characteristic_length, to_float
 from mechsing.subgroups import Subgroup
 
 
@@ -191,6 +192,7 @@ class KinematicModel:
         self.float_frame: CommensurateFrame = self.frame.as_float()
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]
         self._chords_signs: list[np.ndarray] | None = None
+        self._chord_nonzeros: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         self._float_twin: KinematicModel | None = None
 
     # ------------------------------------------------------------------ access
@@ -282,6 +284,16 @@ class KinematicModel:
         # measure (exact closure is proved, not measured)
         mp = self.backend.name == "mp"
         c = (self.frame if mp else self.float_frame).c
+        if not mp and len(deltas) > 1 and all(D.dtype == float for D in deltas):
+            # float residuals of every chord in one batch (the same formula, the same numbers)
+            Dm = np.stack(deltas)
+            R = Dm[:, :3, :3]
+            p = Dm[:, :3, 3] + R @ c - c
+            E = R - np.eye(3)
+            r2 = (p * p).sum(-1) + L * L * (E * E).sum((-2, -1)) / 2
+            for x in r2.tolist():
+                worst = max(worst, x**0.5)
+            return worst
         with self.precision.context():
             for D in deltas:
                 # in the model's precision: converting Delta to float first would
@@ -319,6 +331,44 @@ class KinematicModel:
             return frame.blocks(self.closure_jacobian(q, S))
         Ss = frame.blocks(np.asarray(S, dtype=float))
         return (np.stack(signs)[:, None, :] * Ss[None, :, :]).reshape(-1, self.n)
+
+    @property
+    def sparse_closure(self) -> bool:
+        """Whether the float closure Jacobian is big enough to be built and solved sparse
+        (:meth:`sparse_closure_jacobian`, block by block): a float model whose closure
+        matrix has more than :data:`mechsing.numeric.blocks.DENSE_ENTRIES` entries."""
+        return self.backend.name == "float" and 6 * len(self.chords) * self.n > blocks.DENSE_ENTRIES
+
+    def sparse_closure_jacobian(
+        self, q: np.ndarray, frame: Any, screws: np.ndarray | None = None
+    ) -> csc_matrix:
+        """:meth:`scaled_closure_jacobian` of one float configuration as a sparse matrix
+        (the same numbers): row block j holds the commensurate screws of chord j's chain
+        times their signs, and only the coordinates the chain crosses are stored, so
+        building it is linear in the loops' lengths, not loops x coordinates."""
+        S = self.current_screws(q) if screws is None else screws
+        chord, col, sign = self._chord_entries()
+        Ss = frame.blocks(np.asarray(S, dtype=float))
+        vals = sign[:, None] * Ss[:, col].T
+        rows = 6 * chord[:, None] + np.arange(6)
+        cols = np.broadcast_to(col[:, None], vals.shape)
+        return csc_matrix(
+            (vals.ravel(), (rows.ravel(), cols.ravel())), shape=(6 * len(self.chords), self.n)
+        )
+
+    def _chord_entries(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The non-zero chord signs (:meth:`_chord_signs`) as (chord, column, sign)
+        arrays, chord by chord, columns ascending (built once)."""
+        if self._chord_nonzeros is None:
+            signs = self._chord_signs()
+            if signs:
+                chord, col = np.nonzero(np.stack(signs))
+                sign = np.stack(signs)[chord, col].astype(float)
+            else:
+                chord = col = np.zeros(0, dtype=np.intp)
+                sign = np.zeros(0)
+            self._chord_nonzeros = (chord, col, sign)
+        return self._chord_nonzeros
 
     def _chord_signs(self) -> list[np.ndarray]:
         """Each chord's closure chain (integers, n): the chord itself, then back through

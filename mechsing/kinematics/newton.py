@@ -23,8 +23,8 @@ from typing import Any
 import numpy as np
 
 from mechsing.kinematics.model import KinematicModel
-from mechsing.numeric import POLISH_SLOW_RATIO, Precision, svd_r
-from mechsing.numeric.blocks import block_svd
+from mechsing.numeric import POLISH_SLOW_RATIO, Precision, blocks, svd_r
+from mechsing.numeric.blocks import block_factors, block_svd, issparse
 
 __all__ = [
     "NewtonResult",
@@ -52,11 +52,16 @@ class NewtonResult:
     diverged: bool = False
 
 
-def scaled_system(m: KinematicModel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def scaled_system(m: KinematicModel, q: np.ndarray, sparse: bool = False) -> tuple[Any, np.ndarray]:
     """The closure Jacobian and the chord residual twists at q, commensurate (moved to
-    the centroid, lengths over L): the system every Newton step on the group solves."""
+    the centroid, lengths over L): the system every Newton step on the group solves.
+    With ``sparse`` (a big float model, :attr:`KinematicModel.sparse_closure`) the
+    Jacobian is a :mod:`scipy.sparse` matrix of the same numbers."""
     r = m.chord_twists(m.chord_residuals(q))
-    Js = m.scaled_closure_jacobian(q, m.frame)
+    if sparse:
+        Js = m.sparse_closure_jacobian(q, m.frame)
+    else:
+        Js = m.scaled_closure_jacobian(q, m.frame)
     rs = m.frame.stacked(r)
     return Js, rs
 
@@ -69,8 +74,27 @@ def increment(m: KinematicModel, free: np.ndarray, du: np.ndarray) -> np.ndarray
     return m.frame.rates_back(d)
 
 
-def damped_least_squares(A: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Damped least squares (minimum norm), damping relative to sigma_max (float)."""
+def _big(A: Any) -> bool:
+    """A sparse matrix big enough to be solved block by block (a smaller one is made
+    dense and solved as before)."""
+    return (
+        issparse(A)
+        and A.shape[0] * A.shape[1] > blocks.DENSE_ENTRIES
+        and bool(np.isfinite(A.data).all())
+    )
+
+
+def damped_least_squares(A: Any, b: np.ndarray) -> np.ndarray:
+    """Damped least squares (minimum norm), damping relative to sigma_max (float); ``A``
+    dense or sparse (then block by block, :func:`mechsing.numeric.blocks.block_factors`)."""
+    if _big(A):
+        F = block_factors(A)
+        if not len(F.s) or F.s[0] == 0:
+            return np.zeros(A.shape[1])
+        lam = _DAMPING * F.s[0]
+        return F.solve(b, lambda s: s / (s * s + lam * lam))
+    if issparse(A):
+        A = A.toarray()
     U, s, Vt = block_svd(A, full_matrices=False)
     if not len(s) or s[0] == 0:
         return np.zeros(A.shape[1])
@@ -79,11 +103,18 @@ def damped_least_squares(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     return Vt.T @ (f * (U.T @ b))
 
 
-def truncated_least_squares(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+def truncated_least_squares(A: Any, b: np.ndarray) -> np.ndarray:
     """Minimum-norm least squares (float), singular values below float's ``tau_lo``
-    relative to sigma_max dropped."""
+    relative to sigma_max dropped; ``A`` dense or sparse (then block by block)."""
+    tau = Precision("float").tolerances.tau_lo
+    if _big(A):
+        F = block_factors(A)
+        floor = tau * (F.s[0] if len(F.s) else 0)
+        return F.solve(b, lambda s: np.where(s > floor, 1 / np.where(s > floor, s, 1), 0.0))
+    if issparse(A):
+        A = A.toarray()
     U, s, Vt = block_svd(A, full_matrices=False)
-    keep = s > Precision("float").tolerances.tau_lo * (s[0] if len(s) else 0)
+    keep = s > tau * (s[0] if len(s) else 0)
     return Vt[keep].T @ ((U[:, keep].T @ b) / s[keep])
 
 
@@ -145,10 +176,11 @@ def newton_on_group(
 
     res = closure(q) if residual is None else residual
     slow = False
+    sparse = m.sparse_closure
     for step in range(max_steps):
         if stop is not None and stop(step, res):
             break
-        Js, rs = scaled_system(m, q)
+        Js, rs = scaled_system(m, q, sparse)
         du = solve(Js[:, free], -rs)
         if converged is not None and converged(res, du):
             break

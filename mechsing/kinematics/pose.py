@@ -58,6 +58,10 @@ class PoseModel:
     R0 : the rotation the pose's rotation vector is measured from (base numbers)
     """
 
+    #: its closure Jacobian is built and solved dense (the pose block couples the
+    #: output's chain to every loop it crosses)
+    sparse_closure = False
+
     def __init__(self, base: KinematicModel, c0: Any, R0: Any) -> None:
         out = base.mech.output
         assert out is not None

@@ -12,97 +12,229 @@ cubes rather than the whole matrix's cube.  Its result has the shapes and the
 order of :func:`numpy.linalg.svd` (singular values descending); the singular
 vectors of a repeated or zero singular value are another basis of the same
 space, as any SVD's are.
+
+A big matrix may also be given as a :mod:`scipy.sparse` matrix (the closure
+Jacobian of a big mechanism, :meth:`KinematicModel.sparse_closure_jacobian`):
+its blocks are found from its stored non-zero entries and each block is made
+dense on its own, so nothing of the size of the whole matrix is built.
+:func:`block_factors` keeps the factorisation block by block, and
+:meth:`BlockFactors.solve` applies a filtered pseudo-inverse (least squares)
+block by block: the work is linear in the number of blocks of a given size.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
 import numpy as np
-from scipy.sparse import coo_matrix
+from scipy.sparse import coo_matrix, issparse
 from scipy.sparse.csgraph import connected_components
 
-__all__ = ["block_svd", "blocks_of"]
+__all__ = ["BlockFactors", "block_factors", "block_svd", "blocks_of", "issparse"]
 
 #: below this many entries the dense SVD is cheaper than finding blocks
 DENSE_ENTRIES = 4096
 
 
-def blocks_of(A: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
-    """The blocks of ``A``: (rows, columns) index arrays, one pair per connected
-    component of its non-zero pattern, ordered by their first row (then column).
-    A row or a column that is entirely zero is a block of its own with no
-    columns or no rows."""
-    m, n = A.shape
+def _entries(A: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Rows, columns and values of the non-zero entries of a dense or sparse matrix
+    (an explicitly stored 0.0 is not an entry), rows ascending, then columns."""
+    if issparse(A):
+        C = A.tocoo()
+        keep = C.data != 0
+        r, c, v = C.row[keep], C.col[keep], C.data[keep]
+        order = np.lexsort((c, r))
+        return r[order].astype(np.intp), c[order].astype(np.intp), v[order]
     r, c = np.nonzero(A)
+    return r, c, A[r, c]
+
+
+@dataclass(frozen=True)
+class _Structure:
+    """The connected components of a pattern: ``labels`` of the rows then the columns
+    (m + n nodes; components numbered by their first node), the nodes in component
+    order (``order``, ``bounds``), and each component's row and column counts."""
+
+    m: int
+    n: int
+    labels: np.ndarray
+    order: np.ndarray
+    bounds: np.ndarray
+    nrows: np.ndarray
+    ncols: np.ndarray
+
+
+def _structure(m: int, n: int, r: np.ndarray, c: np.ndarray) -> _Structure:
     graph = coo_matrix((np.ones(len(r)), (r, m + c)), shape=(m + n, m + n))
     count, labels = connected_components(graph, directed=False)
     order = np.argsort(labels, kind="stable")
     bounds = np.searchsorted(labels[order], np.arange(count + 1))
+    nrows = np.bincount(labels[:m], minlength=count)
+    ncols = np.bincount(labels[m:], minlength=count)
+    return _Structure(m, n, labels, order, bounds, nrows, ncols)
+
+
+def blocks_of(A: Any) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The blocks of ``A`` (dense or sparse): (rows, columns) index arrays, one pair per
+    connected component of its non-zero pattern, ordered by their first row (then
+    column).  A row or a column that is entirely zero is a block of its own with no
+    columns or no rows."""
+    m, n = A.shape
+    r, c, _ = _entries(A)
+    st = _structure(m, n, r, c)
     out = []
-    for b in range(count):
-        members = order[bounds[b] : bounds[b + 1]]
+    for b in range(len(st.nrows)):
+        members = st.order[st.bounds[b] : st.bounds[b + 1]]
         out.append((members[members < m], members[members >= m] - m))
     return out
 
 
-def block_svd(
-    A: np.ndarray, full_matrices: bool = True, compute_uv: bool = True
-) -> tuple[np.ndarray, np.ndarray, np.ndarray] | np.ndarray:
-    """:func:`numpy.linalg.svd` of a float matrix, block by block when it splits (module docstring)."""
-    A = np.asarray(A, dtype=float)
+@dataclass
+class BlockFactors:
+    """The SVD of a matrix block by block.
+
+    ``groups``: one per block shape (r, c) with r, c > 0, in the order of the first
+    block of that shape: ``(R, C, U, s, Vt)`` with ``R`` (count, r) and ``C`` (count,
+    c) the blocks' rows and columns, ``U`` (count, r, r), ``s`` (count, min(r, c)),
+    ``Vt`` (count, c, c) their full SVDs (``U`` and ``Vt`` None without vectors);
+    ``lone_rows`` and ``lone_cols``: the zero rows and columns; ``s``: every singular
+    value, descending, padded with zeros to min(m, n) (those of
+    :func:`numpy.linalg.svd`)."""
+
+    shape: tuple[int, int]
+    groups: list[tuple[np.ndarray, np.ndarray, Any, np.ndarray, Any]]
+    lone_rows: list[int]
+    lone_cols: list[int]
+    s: np.ndarray
+    #: the position in ``s`` of each group's singular values, concatenated
+    order: np.ndarray
+
+    def solve(self, b: np.ndarray, weight: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+        """``sum_i w(s_i) v_i (u_i . b)`` over the paired singular triplets, block by
+        block: a filtered pseudo-inverse applied to ``b`` (``weight`` maps singular
+        values to their factors: ``1/s`` kept, 0 dropped; damped ``s/(s^2+lam^2)``)."""
+        x = np.zeros(self.shape[1])
+        for R, C, U, s, Vt in self.groups:
+            p = s.shape[1]
+            y = np.einsum("kri,kr->ki", U[:, :, :p], b[R]) * weight(s)
+            x[C] = np.einsum("kic,ki->kc", Vt[:, :p, :], y)
+        return x
+
+
+def block_factors(A: Any, compute_uv: bool = True) -> BlockFactors:
+    """The block SVD of a float matrix (dense or sparse), every block factorised on its
+    own; blocks of one shape in one batched call."""
     m, n = A.shape
-    if A.size <= DENSE_ENTRIES or not np.isfinite(A).all():
-        return np.linalg.svd(A, full_matrices=full_matrices, compute_uv=compute_uv)
-    blocks = blocks_of(A)
-    if len(blocks) == 1:
-        return np.linalg.svd(A, full_matrices=full_matrices, compute_uv=compute_uv)
-    k = min(m, n)
-    # blocks of one shape are factorised in one batched call
-    shapes: dict[tuple[int, int], list[tuple[np.ndarray, np.ndarray]]] = {}
-    lone_rows: list[int] = []
-    lone_cols: list[int] = []
-    for rows, cols in blocks:
-        if len(rows) and len(cols):
-            shapes.setdefault((len(rows), len(cols)), []).append((rows, cols))
-        else:
-            lone_rows.extend(rows.tolist())
-            lone_cols.extend(cols.tolist())
+    r, c, v = _entries(A)
+    return _factor(A, r, c, v, _structure(m, n, r, c), compute_uv)
+
+
+def _factor(
+    A: Any, r: np.ndarray, c: np.ndarray, v: np.ndarray, st: _Structure, compute_uv: bool
+) -> BlockFactors:
+    m, n = st.m, st.n
+    is_paired = (st.nrows > 0) & (st.ncols > 0)
+    paired = np.flatnonzero(is_paired)
+    # the zero rows and columns (blocks of one node), in block order
+    lone_nodes = st.order[~is_paired[st.labels[st.order]]].tolist()
+    # shapes in the order of their first block
+    key = st.nrows[paired] * (n + 1) + st.ncols[paired]
+    _, first = np.unique(key, return_index=True)
+    dense = not issparse(A)
+    if not dense:
+        # each entry's place in its block: its row's (column's) rank among the block's
+        rank = np.empty(m + n, dtype=np.intp)
+        rank[st.order] = np.arange(m + n)
+        rank -= st.bounds[st.labels]
+        rank[m:] -= st.nrows[st.labels[m:]]
+        entry_block = st.labels[r]
+        slot = np.full(len(st.nrows), -1)
     groups = []
     sigmas = []
-    for members in shapes.values():
-        R = np.stack([r for r, _ in members])
-        C = np.stack([c for _, c in members])
-        sub = A[R[:, :, None], C[:, None, :]]
+    for f in np.sort(first):
+        members = paired[key == key[f]]
+        nr, nc = int(st.nrows[members[0]]), int(st.ncols[members[0]])
+        start = st.bounds[members][:, None]
+        R = st.order[start + np.arange(nr)]
+        C = st.order[start + nr + np.arange(nc)] - m
+        if dense:
+            sub = A[R[:, :, None], C[:, None, :]]
+        else:
+            slot[:] = -1
+            slot[members] = np.arange(len(members))
+            at = slot[entry_block]
+            sel = at >= 0
+            sub = np.zeros((len(members), nr, nc))
+            sub[at[sel], rank[r[sel]], rank[m + c[sel]]] = v[sel]
         if compute_uv:
             Ub, sb, Vtb = np.linalg.svd(sub, full_matrices=True)
         else:
             Ub = Vtb = None
             sb = np.linalg.svd(sub, compute_uv=False)
-        groups.append((R, C, Ub, Vtb, sb.shape[1]))
+        groups.append((R, C, Ub, sb, Vtb))
         sigmas.append(sb.reshape(-1))
-    paired = np.concatenate(sigmas) if sigmas else np.zeros(0)
-    order = np.argsort(-paired, kind="stable")
-    s = np.zeros(k)
-    s[: len(paired)] = paired[order]
+    paired_s = np.concatenate(sigmas) if sigmas else np.zeros(0)
+    order = np.argsort(-paired_s, kind="stable")
+    s = np.zeros(min(m, n))
+    s[: len(paired_s)] = paired_s[order]
+    return BlockFactors(
+        (m, n),
+        groups,
+        [i for i in lone_nodes if i < m],
+        [i - m for i in lone_nodes if i >= m],
+        s,
+        order,
+    )
+
+
+def block_svd(
+    A: Any, full_matrices: bool = True, compute_uv: bool = True
+) -> tuple[np.ndarray, np.ndarray, np.ndarray] | np.ndarray:
+    """:func:`numpy.linalg.svd` of a float matrix (dense or sparse), block by block when it
+    splits (module docstring)."""
+    m, n = A.shape
+    if issparse(A):
+        if m * n <= DENSE_ENTRIES or not np.isfinite(A.data).all():
+            A = A.toarray()
+    else:
+        A = np.asarray(A, dtype=float)
+    if not issparse(A) and (A.size <= DENSE_ENTRIES or not np.isfinite(A).all()):
+        return np.linalg.svd(A, full_matrices=full_matrices, compute_uv=compute_uv)
+    r, c, v = _entries(A)
+    st = _structure(m, n, r, c)
+    if len(st.nrows) == 1:
+        D = A.toarray() if issparse(A) else A
+        return np.linalg.svd(D, full_matrices=full_matrices, compute_uv=compute_uv)
+    F = _factor(A, r, c, v, st, compute_uv)
     if not compute_uv:
-        return s
+        return F.s
+    k = min(m, n)
+    paired = F.s[: len(F.order)]
     # output position of every paired singular value, then of every block's remaining
     # left (right) kernel vectors, then of the zero rows (columns)
     place = np.empty(len(paired), dtype=int)
-    place[order] = np.arange(len(paired))
+    place[F.order] = np.arange(len(paired))
     ucols = m if full_matrices else k
     vrows = n if full_matrices else k
     U = np.zeros((m, ucols))
     Vt = np.zeros((vrows, n))
     u_next = v_next = len(paired)
     at = 0
-    for R, C, Ub, Vtb, p in groups:
-        count, r, c = len(R), R.shape[1], C.shape[1]
+    for R, C, Ub, sb, Vtb in F.groups:
+        count, r_, c_ = len(R), R.shape[1], C.shape[1]
+        p = sb.shape[1]
         pos = place[at : at + count * p].reshape(count, p)
         at += count * p
-        u_pos = np.concatenate([pos, u_next + np.arange(count * (r - p)).reshape(count, r - p)], 1)
-        v_pos = np.concatenate([pos, v_next + np.arange(count * (c - p)).reshape(count, c - p)], 1)
-        u_next += count * (r - p)
-        v_next += count * (c - p)
+        u_pos = np.concatenate(
+            [pos, u_next + np.arange(count * (r_ - p)).reshape(count, r_ - p)], 1
+        )
+        v_pos = np.concatenate(
+            [pos, v_next + np.arange(count * (c_ - p)).reshape(count, c_ - p)], 1
+        )
+        u_next += count * (r_ - p)
+        v_next += count * (c_ - p)
         keep = u_pos < ucols
         rows_b = np.broadcast_to(R[:, :, None], Ub.shape)
         cols_b = np.broadcast_to(u_pos[:, None, :], Ub.shape)
@@ -113,12 +245,12 @@ def block_svd(
         cols_b = np.broadcast_to(C[:, None, :], Vtb.shape)
         mask = np.broadcast_to(keep[:, :, None], Vtb.shape)
         Vt[rows_b[mask], cols_b[mask]] = Vtb[mask]
-    for i in lone_rows:
+    for i in F.lone_rows:
         if u_next < ucols:
             U[i, u_next] = 1.0
         u_next += 1
-    for j in lone_cols:
+    for j in F.lone_cols:
         if v_next < vrows:
             Vt[v_next, j] = 1.0
         v_next += 1
-    return U, s, Vt
+    return U, F.s, Vt

@@ -17,7 +17,7 @@ import sympy
 
 from mechsing.numeric._mp import _mp_convert, _mp_matrix, eigsy
 from mechsing.numeric.backend import FLOAT, to_float
-from mechsing.numeric.blocks import block_svd
+from mechsing.numeric.blocks import block_svd, issparse
 from mechsing.numeric.linalg import singular_values, svd
 from mechsing.numeric.precision import Precision, parse_precision
 from mechsing.numeric.tolerances import FLOAT_ROUNDING_FACTOR, Tolerances
@@ -170,7 +170,10 @@ def decide_rank(
     """
     prec = parse_precision(precision) if isinstance(precision, str) else precision
     tol = prec.tolerances
-    arr = np.asarray(M)
+    if issparse(M) and (prec.mode in ("mp", "exact") or want_spaces):
+        M = M.toarray()
+    # a sparse float matrix (a big closure Jacobian) is factorised block by block
+    arr = M if issparse(M) else np.asarray(M)
     m, n = arr.shape if arr.ndim == 2 else (0, 0)
     if m == 0 or n == 0:
         native = native_spaces and prec.mode == "mp"
@@ -210,7 +213,7 @@ def decide_rank(
             rel = [float(x / smax) if smax else 0.0 for x in s]
             sigma = tuple(float(x) for x in s)
     else:
-        F = to_float(arr)
+        F = arr if issparse(arr) else to_float(arr)
         s_np = block_svd(F, compute_uv=False)
         smax = float(s_np[0]) if len(s_np) else 0.0
         if reference is not None and reference > smax:
@@ -219,7 +222,8 @@ def decide_rank(
         sigma = tuple(float(x) for x in s_np)
         # the entries' rounding: of F itself, or of the factors of a product decided
         # against the norm of its first factor (``reference``)
-        rounding = FLOAT.eps * max(float(np.linalg.norm(F)), float(reference or 0.0))
+        norm = float(np.sqrt(np.sum(F.data**2))) if issparse(F) else float(np.linalg.norm(F))
+        rounding = FLOAT.eps * max(norm, float(reference or 0.0))
     rank, bounds = _split_rank(rel, tol)
     r_eff = rank if rank is not None else bounds[0]
     kept = sigma[r_eff - 1] if r_eff else None
