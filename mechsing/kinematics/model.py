@@ -193,6 +193,11 @@ class KinematicModel:
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]
         self._chords_signs: list[np.ndarray] | None = None
         self._chord_nonzeros: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+        self._last_poses: tuple[bytes, dict[str, np.ndarray]] | None = None
+        self._abelian_columns = np.zeros(self.n, dtype=bool)
+        for jk in self.joints:
+            self._abelian_columns[jk.columns] = jk.abelian
+        self._non_abelian = [jk for jk in self.joints if not jk.abelian]
         self._float_twin: KinematicModel | None = None
 
     # ------------------------------------------------------------------ access
@@ -229,14 +234,23 @@ class KinematicModel:
 
     def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
         """The pose of every user body (ground = identity) from the spanning tree;
-        q may be one configuration (n,) or a batch (N, n)."""
-        return batched.poses(self, q)
+        q may be one configuration (n,) or a batch (N, n).  The poses of the last float
+        configuration are kept: Newton asks for them again for the residual and the
+        Jacobian at the same point."""
+        if q.ndim != 1 or q.dtype != float:
+            return batched.poses(self, q)
+        key = q.tobytes()
+        if self._last_poses is None or self._last_poses[0] != key:
+            self._last_poses = (key, batched.poses(self, q))
+        return dict(self._last_poses[1])
 
     def current_screws(
         self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
     ) -> np.ndarray:
         """The current screw of every joint coordinate: (6, n) (or (N, 6, n) for a batch),
         columns in file order."""
+        if poses is None and q.ndim == 1 and q.dtype == float:
+            poses = self.poses(q)
         return batched.current_screws(self, q, poses)
 
     # ------------------------------------------------------------------ closure
@@ -394,12 +408,15 @@ class KinematicModel:
         """Apply trivialised increments ``delta`` (one per coordinate) on the group:
         ``M <- exp(sum d_i e_i) M`` (coordinates add for abelian joints and U)."""
         out = np.array(q, copy=True)
-        for jk in self.joints:
+        # the abelian joints' coordinates add, all in one
+        ab = self._abelian_columns
+        out[ab] = np.asarray(q)[ab] + np.asarray(delta)[ab]
+        for jk in self._non_abelian:
             d = delta[jk.columns]
             # zero tested in the model's numbers: at mp:N beyond float's range (N > 300) a
             # correction of 1e-350 is not zero, and adding it to a non-abelian joint's
             # coordinates would be wrong at first order
-            if jk.abelian or not any(x != 0 for x in d):
+            if not any(x != 0 for x in d):
                 out[jk.columns] = q[jk.columns] + d
                 continue
             M = lie.exp(d @ jk.basis) @ self.element(jk, q)
