@@ -13,10 +13,15 @@ import random
 import networkx as nx
 import numpy as np
 import pytest
+from scipy.sparse import csc_matrix
 
+from mechsing.kinematics.closure import Closer
+from mechsing.kinematics.model import KinematicModel
+from mechsing.kinematics.newton import damped_least_squares, truncated_least_squares
+from mechsing.model import load
 from mechsing.model.graph import NETWORKX_LOOP_WORK, canonical_loops, short_cycle_basis
 from mechsing.numeric import blocks as blocks_module
-from mechsing.numeric.blocks import block_svd, blocks_of
+from mechsing.numeric.blocks import block_factors, block_svd, blocks_of
 from tests.cli import run_cli
 
 
@@ -197,3 +202,93 @@ def test_a_ladder_with_one_parallelogram_folded_flat(tmp_path, monkeypatch, dens
     ranks = {tuple(lp["joints"]): lp["rank"] for lp in flat["loops"]}
     assert ranks[("A17", "C17", "D17", "B17")] == 2
     assert sum(1 for r in ranks.values() if r == 3) == 39
+
+
+def test_a_sparse_matrix_gets_the_dense_block_svd(monkeypatch):
+    """A matrix given sparse has the blocks and the factorisation of the same matrix
+    given dense, to the last bit (each block is the same dense sub-matrix)."""
+    monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 0)
+    rng = np.random.default_rng(11)
+    for _ in range(40):
+        A = _block_matrix(rng)
+        S = csc_matrix(A)
+        assert [(r.tolist(), c.tolist()) for r, c in blocks_of(S)] == [
+            (r.tolist(), c.tolist()) for r, c in blocks_of(A)
+        ]
+        assert np.array_equal(block_svd(S, compute_uv=False), block_svd(A, compute_uv=False))
+        for full in (True, False):
+            pairs = zip(
+                block_svd(S, full_matrices=full), block_svd(A, full_matrices=full), strict=True
+            )
+            assert all(np.array_equal(x, y) for x, y in pairs)
+
+
+def test_block_factors_solve_least_squares_block_by_block(monkeypatch):
+    """The filtered pseudo-inverse applied block by block is numpy's pseudo-inverse
+    (singular values kept above a floor) and Tikhonov's damped least squares
+    ``(A^T A + lam^2 I)^-1 A^T b``, both computed on the whole dense matrix."""
+    monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 0)
+    rng = np.random.default_rng(12)
+    for _ in range(40):
+        A = _block_matrix(rng)
+        b = rng.normal(size=A.shape[0])
+        F = block_factors(csc_matrix(A))
+        assert np.allclose(F.s, np.linalg.svd(A, compute_uv=False), atol=1e-13)
+        floor = 1e-9 * F.s[0]
+        x = F.solve(b, lambda s, f=floor: np.where(s > f, 1 / np.where(s > f, s, 1), 0.0))
+        assert np.allclose(x, np.linalg.pinv(A, rcond=1e-9) @ b, atol=1e-9)
+        lam = 1e-3 * F.s[0]
+        x = F.solve(b, lambda s, lam=lam: s / (s * s + lam * lam))
+        tikhonov = np.linalg.solve(A.T @ A + lam * lam * np.eye(A.shape[1]), A.T @ b)
+        assert np.allclose(x, tikhonov, atol=1e-8)
+        # the solvers of Newton's steps take the sparse matrix and give the dense answer
+        for solve in (damped_least_squares, truncated_least_squares):
+            assert np.allclose(solve(csc_matrix(A), b), solve(A, b), atol=1e-9)
+
+
+def _ladder_model(n: int, tmp_path):
+    path = tmp_path / f"ladder-{n}.yaml"
+    path.write_text(_ladder(n, (n + 1) // 2) + _FOLD_ONLY.format(k=(n + 1) // 2))
+    return KinematicModel(load(path), "float")
+
+
+#: the folded loop's four values alone: the other joints are solved by continuation
+_FOLD_ONLY = "  flat-solved: {{A{k}: -90, B{k}: -90, C{k}: 90, D{k}: 90}}\n"
+
+
+def test_a_ladder_closure_jacobian_built_sparse(tmp_path):
+    """A ladder's closure rows: chord D_k closes through B_k forward and A_k, C_k back
+    (the tree reaches rung k through A_k, C_k), the four joints of its own square and
+    no other, however far the square is from ground; the sparse Jacobian holds the
+    dense one's numbers."""
+    m = _ladder_model(40, tmp_path)
+    assert m.sparse_closure
+    names = [jk.name for jk in m.joints]
+    for k, jk in enumerate(m.chords, 1):
+        assert jk.name == f"D{k}"
+        signs = m._chord_signs()[k - 1]
+        crossed = {names[i]: int(signs[i]) for i in np.flatnonzero(signs)}
+        assert crossed == {f"A{k}": -1, f"B{k}": 1, f"C{k}": -1, f"D{k}": 1}
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        q = rng.normal(size=m.n)
+        J = m.sparse_closure_jacobian(q, m.float_frame)
+        assert np.array_equal(J.toarray(), m.scaled_closure_jacobian(q, m.float_frame))
+
+
+@pytest.mark.parametrize("dense", [False, True])
+def test_a_ladder_folded_flat_by_continuation(tmp_path, monkeypatch, dense):
+    """Folding one square of a ladder (its verticals turned by -90 deg, its rung kept
+    level) moves no other joint: the squares above ride on a rung that only
+    translates.  Continuation from the reference with the four values alone finds
+    every other joint at 0, on the sparse path and on the dense one."""
+    if dense:
+        monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 10**12)
+    m = _ladder_model(40, tmp_path)
+    assert m.sparse_closure is not dense
+    closed = Closer(m).solve("flat-solved")
+    expected = {jk.name: 0.0 for jk in m.joints}
+    expected.update({"A20": -np.pi / 2, "B20": -np.pi / 2, "C20": np.pi / 2, "D20": np.pi / 2})
+    got = m.values(closed.q)
+    assert max(abs(got[name][0] - v) for name, v in expected.items()) < 1e-9
+    assert closed.residual <= 1e-12 * m.length_scale
