@@ -240,9 +240,10 @@ class KinematicModel:
         if q.ndim != 1 or q.dtype != float:
             return batched.poses(self, q)
         key = q.tobytes()
-        if self._last_poses is None or self._last_poses[0] != key:
-            self._last_poses = (key, batched.poses(self, q))
-        return dict(self._last_poses[1])
+        last = self._last_poses  # read once: another thread may replace it
+        if last is None or last[0] != key:
+            last = self._last_poses = (key, batched.poses(self, q))
+        return dict(last[1])
 
     def current_screws(
         self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
