@@ -292,3 +292,56 @@ def test_a_ladder_folded_flat_by_continuation(tmp_path, monkeypatch, dense):
     got = m.values(closed.q)
     assert max(abs(got[name][0] - v) for name, v in expected.items()) < 1e-9
     assert closed.residual <= 1e-12 * m.length_scale
+
+
+_BENNETT = (
+    ("J1", (0, 0, 1), ("0", "0", "0")),
+    ("J2", ("12/25", "-9/25", "4/5"), ("3/5", "4/5", "0")),
+    ("J3", ("-156/701", "429/701", "532/701"), ("-2353/3505", "-364/3505", "1248/3505")),
+    ("J4", (0, "24/25", "7/25"), ("-8/5", "0", "0")),
+)
+
+
+def _bennett_chain(n: int, turned: int) -> str:
+    """``n`` Bennett linkages (examples/bennett.yaml's, moved up 2 m per loop), link 2
+    of each the base of the next; ``turned``: loop ``turned``'s J1 at 30 deg, the
+    rest solved."""
+    bodies, joints, base = ["ground"], [], "ground"
+    for k in range(1, n + 1):
+        names = [base, f"l1_{k}", f"l2_{k}", f"l3_{k}"]
+        bodies += names[1:]
+        for i, (name, axis, point) in enumerate(_BENNETT):
+            p = [point[0], point[1], f"{point[2]} + {2 * k}"]
+            quoted = ", ".join(f'"{x}"' if isinstance(x, str) else str(x) for x in axis)
+            joints.append(
+                f"  - {{name: {name}_{k}, type: R, between: [{names[i]}, {names[(i + 1) % 4]}], "
+                f"axis: [{quoted}], point: [{', '.join(repr(x) for x in p)}]}}"
+            )
+        base = names[2]
+    return (
+        f"units: {{angle: deg}}\nbodies: [{', '.join(bodies)}]\njoints:\n"
+        + "\n".join(joints)
+        + f"\nconfigurations:\n  reference: {{}}\n  turned: {{J1_{turned}: 30}}\n"
+    )
+
+
+def test_a_bennett_chain_solved_sparse_moves_one_loop(tmp_path):
+    """Turning one Bennett loop of a chain of 30 (spatial loops: every screw row is
+    used) moves only that loop's joints, and exactly as the lone Bennett linkage
+    moves (the loops above ride on its link 2, which the loop turns rigidly).  The
+    chain is solved on the sparse path, the lone linkage on the dense one."""
+    chain = tmp_path / "chain.yaml"
+    chain.write_text(_bennett_chain(30, 12))
+    lone = tmp_path / "lone.yaml"
+    lone.write_text(_bennett_chain(1, 1))
+    m = KinematicModel(load(chain), "float")
+    m1 = KinematicModel(load(lone), "float")
+    assert m.sparse_closure and not m1.sparse_closure
+    got = m.values(Closer(m).solve("turned").q)
+    one = m1.values(Closer(m1).solve("turned").q)
+    assert abs(one["J1_1"][0] - np.pi / 6) < 1e-15
+    assert min(abs(one[f"J{i}_1"][0]) for i in (2, 3, 4)) > 0.05  # the loop moved
+    for name, (v,) in got.items():
+        joint, loop = name.split("_")
+        expected = one[f"{joint}_1"][0] if loop == "12" else 0.0
+        assert abs(v - expected) < 1e-9, name
