@@ -21,6 +21,7 @@ from mechsing.kinematics.newton import damped_least_squares, truncated_least_squ
 from mechsing.model import load
 from mechsing.model.graph import NETWORKX_LOOP_WORK, canonical_loops, short_cycle_basis
 from mechsing.numeric import blocks as blocks_module
+from mechsing.numeric import decide_rank
 from mechsing.numeric.blocks import block_factors, block_svd, blocks_of
 from tests.cli import run_cli
 
@@ -345,3 +346,21 @@ def test_a_bennett_chain_solved_sparse_moves_one_loop(tmp_path):
         joint, loop = name.split("_")
         expected = one[f"{joint}_1"][0] if loop == "12" else 0.0
         assert abs(v - expected) < 1e-9, name
+
+
+def test_a_sparse_matrix_gets_the_dense_rank_decision(monkeypatch):
+    """decide_rank of a sparse float matrix: the rank, the singular values and the
+    margin of the same matrix given dense (its spaces, when asked, from the dense one)."""
+    monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 0)
+    rng = np.random.default_rng(13)
+    for _ in range(20):
+        A = _block_matrix(rng)
+        sparse, dense = decide_rank(csc_matrix(A), "float"), decide_rank(A, "float")
+        assert sparse.rank == dense.rank and sparse.rank_bounds == dense.rank_bounds
+        assert sparse.sigma == dense.sigma
+        assert sparse.margin.kept == dense.margin.kept
+        assert np.isclose(sparse.margin.rounding, dense.margin.rounding, rtol=1e-12)
+        spaces = decide_rank(csc_matrix(A), "float", want_spaces=True)
+        assert np.array_equal(
+            spaces.null_space, decide_rank(A, "float", want_spaces=True).null_space
+        )
