@@ -101,14 +101,15 @@ def _rotation(axis: sp.Matrix, c: sp.Expr, s: sp.Expr) -> sp.Matrix:
 
 
 def cos_sin(angle: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
-    """Exact cosine and sine of an angle 2 atan(r) (r rational or algebraic), 0 or pi, or of
-    anything sympy evaluates to radicals."""
+    """Exact cosine and sine of an angle +-2 atan(t) (from the half-angle tangent t), 0 or pi,
+    or of anything sympy's ``expand_trig`` writes in radicals."""
     if angle == 0:
         return sp.Integer(1), sp.Integer(0)
     if angle == sp.pi:
         return sp.Integer(-1), sp.Integer(0)
-    if isinstance(angle, sp.Mul) and angle.args[0] == 2 and isinstance(angle.args[1], sp.atan):
-        t = angle.args[1].args[0]
+    coeff, rest = sp.sympify(angle).as_coeff_Mul()
+    if abs(coeff) == 2 and isinstance(rest, sp.atan):
+        t = sp.sign(coeff) * rest.args[0]  # tan of half the angle
         return (1 - t**2) / (1 + t**2), 2 * t / (1 + t**2)
     return sp.expand_trig(sp.cos(angle)), sp.expand_trig(sp.sin(angle))
 
