@@ -37,7 +37,6 @@ from __future__ import annotations
 import random
 import sys
 from dataclasses import dataclass, field
-from fractions import Fraction
 
 import sympy as sp
 from sympy.polys.domains import QQ
@@ -183,7 +182,6 @@ def _flatten(v: object) -> list[object]:
 
 
 def _s(x: sp.Expr) -> str:
-    x = sp.nsimplify(x) if isinstance(x, float) else x
     return f'"{sp.sstr(sp.radsimp(x))}"' if not x.is_Integer else str(x)
 
 
@@ -428,9 +426,6 @@ def _offset2(prev, line, nxt) -> sp.Expr:  # noqa: ANN001
 
 # -- Stewart ------------------------------------------------------------------------------
 
-#: integer leg directions (x, y, z > 0) whose squared length is a square times 1, 2, 3, 6
-_CLASSES = (1, 2, 3, 6)
-
 
 def _squarefree(n: int) -> int:
     k = 1
@@ -450,21 +445,11 @@ def _leg_direction(r: random.Random, cls: int) -> tuple[int, int, int]:
             return x, y, z
 
 
-#: rational unit horizontal directions for the U joints' second axes
+#: rational unit horizontal directions for the U joints' second axes (a, b, c: (a/c, b/c, 0))
 _HORIZONTAL = [
-    (Fraction(a, c), Fraction(b, c))
-    for a, b, c in (
-        (1, 0, 1),
-        (0, 1, 1),
-        (3, 4, 5),
-        (4, 3, 5),
-        (-3, 4, 5),
-        (-4, 3, 5),
-        (5, 12, 13),
-        (12, 5, 13),
-        (-5, 12, 13),
-        (-12, 5, 13),
-    )
+    (sp.Rational(a, c), sp.Rational(b, c))
+    for a, b, c in ((1, 0, 1), (0, 1, 1), (3, 4, 5), (4, 3, 5), (-3, 4, 5), (-4, 3, 5))
+    + ((5, 12, 13), (12, 5, 13), (-5, 12, 13), (-12, 5, 13))
 ]
 
 
@@ -499,14 +484,9 @@ def stewart(seed: int, degree: int = 1) -> Instance:
         base = p - leg
         length = sp.sqrt(leg.dot(leg))
         unit = sp.Matrix([sp.radsimp(e / length) for e in leg])
+        # the U's second axis: the listed horizontal direction furthest from the leg's plane
         hx, hy = max(_HORIZONTAL, key=lambda h: abs(h[0] * ly - h[1] * lx))
-        second = sp.Matrix(
-            [
-                sp.Rational(hx.numerator, hx.denominator),
-                sp.Rational(hy.numerator, hy.denominator),
-                0,
-            ]
-        )
+        second = sp.Matrix([hx, hy, 0])
         i = k + 1
         bodies += [f"cyl{i}", f"pis{i}"]
         joints_lines += [
