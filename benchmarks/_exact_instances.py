@@ -22,7 +22,9 @@ product of exponentials around the loop, Rodrigues' formula with exact cosines a
   directions and rational points for joints 1-3, and their images under the half-turn
   about a random rational line for joints 4-6.  ``bricard-plane``: plane-symmetric
   Bricard 6R: joints 1 and 4 lie in a rational plane, joints 6 and 5 are the mirror
-  images of joints 2 and 3.  The drawn pose is the configuration (degree 1).
+  images of joints 2 and 3.  The drawn pose is the configuration.  Points rational
+  (degree 1) or a + b sqrt(k) with a, b rational (``bricard-d2``, ``bricard-plane-d2``:
+  degree 2); the isometries are rational, so the images stay in the field.
 - ``stewart``: a 6-UPS platform in the form of ``examples/stewart_octahedral.yaml``
   (U at the base, first axis vertical; P along the leg; S at the platform): platform
   points of a rational hexagon moved by a rational pose (rotation: the Cayley transform
@@ -310,66 +312,93 @@ def _bennett_frames(t1, t2, a, b, ca, sa, cb, sb):  # noqa: ANN001, ANN202
 # -- Bricard ------------------------------------------------------------------------------
 
 
-def _point(r: random.Random) -> sp.Matrix:
-    return sp.Matrix([_rat(r, -2, 2, 4) for _ in range(3)])
+def _coordinate(r: random.Random, root: sp.Expr | None) -> sp.Expr:
+    """A random rational, or (``root`` given) a + b root with a, b random rationals."""
+    x = _rat(r, -2, 2, 4)
+    return x if root is None else x + _rat(r, -1, 1, 4) * root
 
 
-def bricard(seed: int) -> Instance:
-    """A random line-symmetric Bricard 6R at its drawn (symmetric) pose."""
-    r = random.Random(f"bricard-{seed}")
+def _point(r: random.Random, root: sp.Expr | None = None) -> sp.Matrix:
+    return sp.Matrix([_coordinate(r, root) for _ in range(3)])
+
+
+def _root(r: random.Random, degree: int) -> sp.Expr | None:
+    if degree not in (1, 2):
+        raise ValueError("bricard: degree 1 or 2")
+    return None if degree == 1 else sp.sqrt(r.choice((2, 3, 5, 7)))
+
+
+def _named(family: str, seed: int, degree: int) -> str:
+    return f"{family}-{seed}" if degree == 1 else f"{family}-d2-{seed}"
+
+
+def bricard(seed: int, degree: int = 1) -> Instance:
+    """A random line-symmetric Bricard 6R at its drawn (symmetric) pose: points rational
+    (degree 1) or in QQ(sqrt k) (degree 2); directions rational."""
+    r = random.Random(f"bricard-{seed}" if degree == 1 else f"bricard-{seed}-{degree}")
+    root = _root(r, degree)
     d = _unit(r)
-    c = _point(r) / 2
+    c = _point(r, root) / 2
     half = 2 * d * d.T - sp.eye(3)  # the half-turn's rotation (rational, involutive)
-    first = [(_unit(r), _point(r)) for _ in range(3)]
+    first = [(_unit(r), _point(r, root)) for _ in range(3)]
     lines3 = first + [(half * w, c + half * (p - c)) for w, p in first]
     return _six_r(
-        "bricard", seed, lines3, f"half-turn about the line through {list(c)} along {list(d)}"
+        "bricard",
+        _named("bricard", seed, degree),
+        seed,
+        lines3,
+        f"half-turn about the line through {list(c)} along {list(d)}",
     )
 
 
-def bricard_plane(seed: int) -> Instance:
+def bricard_plane(seed: int, degree: int = 1) -> Instance:
     """A random plane-symmetric Bricard 6R at its drawn pose: joints 1 and 4 in the plane of
-    symmetry, joints 6 and 5 the mirror images of joints 2 and 3."""
-    r = random.Random(f"bricard-plane-{seed}")
+    symmetry, joints 6 and 5 the mirror images of joints 2 and 3 (points rational or in
+    QQ(sqrt k), directions rational)."""
+    r = random.Random(f"bricard-plane-{seed}" if degree == 1 else f"bricard-plane-{seed}-{degree}")
+    root = _root(r, degree)
     q = cayley(sp.Matrix([_rat(r, -1, 1, 4) for _ in range(3)]))
     n = q[:, 2]
-    c = _point(r) / 2
+    c = _point(r, root) / 2
     mirror = sp.eye(3) - 2 * n * n.T
 
     def in_plane() -> tuple[sp.Matrix, sp.Matrix]:
         co, si = _half(_rat(r, -3, 3, 4))
         w = q * sp.Matrix([co, si, 0])
-        p = c + q * sp.Matrix([_rat(r, -2, 2, 4), _rat(r, -2, 2, 4), 0])
+        p = c + q * sp.Matrix([_coordinate(r, root), _coordinate(r, root), 0])
         return w, p
 
     j1, j4 = in_plane(), in_plane()
-    j2, j3 = (_unit(r), _point(r)), (_unit(r), _point(r))
+    j2, j3 = (_unit(r), _point(r, root)), (_unit(r), _point(r, root))
     j5 = (mirror * j3[0], c + mirror * (j3[1] - c))
     j6 = (mirror * j2[0], c + mirror * (j2[1] - c))
     return _six_r(
         "bricard-plane",
+        _named("bricard-plane", seed, degree),
         seed,
         [j1, j2, j3, j4, j5, j6],
         f"mirror in the plane through {list(c)} normal to {list(n)}",
     )
 
 
-def _six_r(family: str, seed: int, axes: list[tuple[sp.Matrix, sp.Matrix]], what: str) -> Instance:
+def _six_r(
+    family: str, name: str, seed: int, axes: list[tuple[sp.Matrix, sp.Matrix]], what: str
+) -> Instance:
     joints = {f"J{i + 1}": (tuple(w), tuple(p)) for i, (w, p) in enumerate(axes)}
     bodies = ["ground", "link1", "link2", "link3", "link4", "link5", "ground"]
     lines = [
         f"# {family} 6R, random instance (seed {seed}): {what}",
-        f"mechanism: {family}-{seed}",
+        f"mechanism: {name}",
         "bodies: [ground, link1, link2, link3, link4, link5]",
         "joints:",
     ]
-    for i, (name, (w, p)) in enumerate(joints.items()):
-        lines.append(_joint_line(name, bodies[i], bodies[i + 1], sp.Matrix(w), sp.Matrix(p)))
+    for i, (joint, (w, p)) in enumerate(joints.items()):
+        lines.append(_joint_line(joint, bodies[i], bodies[i + 1], sp.Matrix(w), sp.Matrix(p)))
     lines += ["inputs: [J1]", "output: {body: link3}", "configurations:", "  reference: {}"]
     numbers = [x for ax, p in joints.values() for x in (*ax, *p)]
     return Instance(
         family,
-        f"{family}-{seed}",
+        name,
         "\n".join(lines) + "\n",
         field_degree(numbers),
         joints,
@@ -524,7 +553,9 @@ FAMILIES = {
     "bennett-d1": lambda seed: bennett(seed, 1),
     "bennett-d2": lambda seed: bennett(seed, 2),
     "bricard": bricard,
+    "bricard-d2": lambda seed: bricard(seed, 2),
     "bricard-plane": bricard_plane,
+    "bricard-plane-d2": lambda seed: bricard_plane(seed, 2),
     "stewart-d1": lambda seed: stewart(seed, 1),
     "stewart-d2": lambda seed: stewart(seed, 2),
     "stewart-d4": lambda seed: stewart(seed, 4),

@@ -5,7 +5,7 @@ usage: python benchmarks/_scale_exact.py [--quick] [--repeat 3]
 Cases: every bundled example (``examples/*.yaml``) and random instances with exact data
 (``_exact_instances.py``): Bennett linkages with rational data (degree 1) and with
 lengths in QQ(sqrt k) (degree 2), line- and plane-symmetric Bricard 6R linkages
-(degree 1), and 6-UPS platforms at a rational pose with leg lengths in QQ, QQ(sqrt 2)
+with points rational or in QQ(sqrt k) (degrees 1, 2), and 6-UPS platforms at a rational pose with leg lengths in QQ, QQ(sqrt 2)
 and QQ(sqrt 2, sqrt 3) (degrees 1, 2, 4).
 
 For each case, in this process: one untimed run of each mode over all the file's

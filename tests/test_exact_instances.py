@@ -76,16 +76,17 @@ def test_bennett_closes_exactly_at_every_configuration(seed, degree):
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("degree", [1, 2])
 @pytest.mark.parametrize("make", ["bricard", "bricard_plane"])
-def test_bricard_is_symmetric_exactly(seed, make):
-    inst = getattr(ei, make)(seed)
-    assert inst.degree == 1
+def test_bricard_is_symmetric_exactly(seed, degree, make):
+    inst = getattr(ei, make)(seed, degree)
+    assert inst.degree == degree
     assert ei.symmetric(inst)
     # the check can fail: joint 5 moved along its own axis breaks the symmetry
     w, p = inst.joints["J5"]
     moved = dict(inst.joints)
     moved["J5"] = (w, tuple(sp.Matrix(p) + sp.Matrix([0, 0, sp.Rational(1, 7)])))
-    assert not ei.symmetric(type(inst)(inst.family, inst.name, inst.text, 1, moved))
+    assert not ei.symmetric(type(inst)(inst.family, inst.name, inst.text, degree, moved))
 
 
 @pytest.mark.parametrize("degree", [1, 2, 4])
@@ -125,9 +126,19 @@ def _published(res: object, inst: object) -> None:
         lambda: ei.bennett(1, 2),
         lambda: ei.bricard(0),
         lambda: ei.bricard_plane(0),
+        lambda: ei.bricard(1, 2),
+        lambda: ei.bricard_plane(1, 2),
         lambda: ei.stewart(0, 4),
     ],
-    ids=["bennett-d1", "bennett-d2", "bricard", "bricard-plane", "stewart-d4"],
+    ids=[
+        "bennett-d1",
+        "bennett-d2",
+        "bricard",
+        "bricard-plane",
+        "bricard-d2",
+        "bricard-plane-d2",
+        "stewart-d4",
+    ],
 )
 def test_float_gives_the_published_mobility(tmp_path, make):
     inst = make()
