@@ -51,7 +51,15 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.sweeps.measures import Measures, PointMeasures
-from mechsing.sweeps.path import Fold, Problem, _Arc, _nodes, follow
+from mechsing.sweeps.path import (
+    Fold,
+    Problem,
+    _Arc,
+    _nodes,
+    close_segments,
+    first_nodes,
+    follow,
+)
 from mechsing.sweeps.spec import Variable
 
 __all__ = ["Located", "RowResult", "Sweep"]
@@ -271,7 +279,7 @@ class Sweep:
         order = np.argsort(np.abs(values - z[col]), kind="stable")
         k0 = int(order[0])
         if z[col] == values[k0]:
-            if _Arc(self.problem, col, 1).tangent(np.asarray(z, dtype=float)) is not None:
+            if self.problem.tangent(np.asarray(z, dtype=float), col) is not None:
                 return k0, np.array(z, dtype=float)
             # a start where branches cross (a bifurcation): onto one of them
             for k in (k0 + 1, k0 - 1):
@@ -394,8 +402,12 @@ class Sweep:
         with its measures and the singularities located along it."""
         k0, zk = self.start_of(col, values, z)
         pb = self.problem
-        fwd = follow(pb, zk, col, values[k0:])
-        bwd = follow(pb, zk, col, values[k0::-1])
+        # the first node of each direction: one batched Newton
+        first = first_nodes(pb, zk, col, [values[k0:], values[k0::-1]])
+        fwd = follow(pb, zk, col, values[k0:], fine=False, first=first[0])
+        bwd = follow(pb, zk, col, values[k0::-1], fine=False, first=first[1])
+        # the samples between the nodes of both directions: one batched Newton
+        close_segments(pb, [fwd, bwd], col)
         K = len(values)
         Z = np.full((K, pb.n), np.nan)
         Z[k0:] = fwd.Z
@@ -830,8 +842,13 @@ class Sweep:
             return []
         pos = {int(k): i for i, k in enumerate(np.flatnonzero(ra.reached))}
         ia = np.array([pos[int(k)] for k in both])
-        Qb = rb.Z[both][:, : self.model.n]
-        dets = self.measures.compressed(ra.measures, ia, Qb)
+        if rb.measures is not None and rb.measures.matrices is not None:
+            # row b's matrices at those samples were kept by its own measures
+            pos_b = {int(k): i for i, k in enumerate(np.flatnonzero(rb.reached))}
+            ib = np.array([pos_b[int(k)] for k in both])
+            dets = self.measures.compressed_measured(ra.measures, ia, rb.measures, ib)
+        else:
+            dets = self.measures.compressed(ra.measures, ia, rb.Z[both][:, : self.model.n])
         out = []
         for t in dets:
             hits = np.flatnonzero(dets[t] < 0)
