@@ -532,13 +532,19 @@ class Sweep:
         """Sign changes and minima of each test along one row."""
         out: list[Located] = []
         where = np.flatnonzero(reached)
-        pos = {int(k): i for i, k in enumerate(where)}
-        pairs = [(a, a + 1) for a in where if a + 1 < len(Z) and reached[a + 1]]
+        # the reached samples whose next one is reached too: the pairs, and their rows in
+        # the measured batch (which holds the reached samples in order)
+        first = np.flatnonzero((where[:-1] + 1 == where[1:]) if len(where) else [])
+        PA = where[first]
+        pairs = [(int(a), int(a) + 1) for a in PA]
         if not pairs:
             return out
-        ia = np.array([pos[a] for a, _ in pairs])
-        ib = np.array([pos[b] for _, b in pairs])
+        ia, ib = first, first + 1
         dets = self.measures.compressed_pairs(pm, ia, ib)
+        K = len(Z)
+        # the samples whose neighbours are both reached (the minima's candidates)
+        inner = np.zeros(K, dtype=bool)
+        inner[1:-1] = reached[:-2] & reached[1:-1] & reached[2:]
         for t in self.tests:
             crossed: set[int] = set()
             d = dets.get(t)
@@ -548,11 +554,7 @@ class Sweep:
             hits = (
                 []
                 if d is None
-                else [
-                    k
-                    for k in range(len(pairs))
-                    if d[k] < 0 and max(rho[pairs[k][0]], rho[pairs[k][1]]) > _TAU_HI
-                ]
+                else np.flatnonzero((d < 0) & (np.maximum(rho[PA], rho[PA + 1]) > _TAU_HI)).tolist()
             )
             # a pair holding a point already located for another test (the closure's
             # first) that zeroes this one too: the same point, placed by that test
@@ -581,19 +583,25 @@ class Sweep:
                         continue
                     z, r = found
                     out.append(self._at(z, "crossing", (t,), r, "row", (index, int(a))))
-            for k in range(1, len(Z) - 1):
-                if not (reached[k - 1] and reached[k] and reached[k + 1]) or k in crossed:
+            # a sampled minimum that could hide a zero: not singular on both sides (no
+            # isolated zero to place there), at most its neighbours, and low next to how
+            # far they rise
+            lo, mid, hi = np.full(K, np.nan), rho, np.full(K, np.nan)
+            lo[1:], hi[:-1] = rho[:-1], rho[1:]
+            big = np.maximum(lo, hi)
+            with np.errstate(invalid="ignore"):
+                low = (
+                    inner
+                    & (big > _TAU_HI)
+                    & (mid <= lo)
+                    & (mid <= hi)
+                    & ~(mid > SWEEP_MINIMUM_SCREEN * (big - mid))
+                )
+            for k in np.flatnonzero(low).tolist():
+                if k in crossed:
                     continue
                 if self._holds(out, t, Z[k - 1, col], Z[k + 1, col], col):
                     continue  # the point located there for another test zeroes this one
-                lo, hi = rho[k - 1], rho[k + 1]
-                if max(lo, hi) <= _TAU_HI:
-                    continue  # singular on both sides: no isolated zero to place
-                if not (rho[k] <= lo and rho[k] <= hi):
-                    continue
-                rise = max(lo, hi) - rho[k]
-                if rho[k] > SWEEP_MINIMUM_SCREEN * rise:
-                    continue
                 found = None
                 if t == "closure":
                     found = self._through(Z, reached, k - 1, k + 1, col)
