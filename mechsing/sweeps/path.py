@@ -8,10 +8,13 @@ assembly mode the path started on.
 * **Nodes.**  Samples at most :data:`~mechsing.numeric.SWEEP_NODE_STEP` apart (radians,
   or lengths / L) are *nodes*, reached one after the other by the continuation of a
   named configuration's closure (:meth:`mechsing.kinematics.Closer.follow`: predictor,
-  Newton on the group, branch checks).  The samples between two nodes are closed
-  together by batched Newton (:class:`~mechsing.kinematics.batch.BatchClosure`) from
-  their interpolation on the group; one whose correction is large next to the node
-  spacing is closed again by continuation from its predecessor.
+  Newton on the group, branch checks), each first predicted from the last step (the
+  first step from the tangent at the start) and kept when Newton corrects it little.
+  The samples between two nodes are closed together by batched Newton
+  (:class:`~mechsing.kinematics.batch.BatchClosure`) from their interpolation on the
+  group (a row's two directions in one batch: :func:`close_segments`); one whose
+  correction is large next to the node spacing is closed again by continuation from
+  its predecessor.
 * **Folds.**  Where continuation cannot reach the next node, the path is followed along
   its curve by pseudo-arclength continuation (the swept coordinate solved with the
   others, one more equation fixing the step along the tangent).  A fold of the swept
@@ -330,8 +333,9 @@ def _node(
     pb: Problem, z: np.ndarray, z_prev: np.ndarray | None, col: int, value: float
 ) -> np.ndarray | None:
     """The next node by one batched Newton from the secant predictor (the last step
-    repeated, scaled to the new one); None when it does not close there or its
-    correction is not small next to the step (the careful continuation then takes it)."""
+    repeated, scaled to the new one; a first step from the tangent at z); None when it
+    does not close there or its correction is not small next to the step (the careful
+    continuation then takes it)."""
     bc = pb.batch
     if z_prev is None or z_prev[col] == z[col]:
         # a first step: the tangent at z (the kernel of the closure Jacobian, no Newton)
