@@ -9,17 +9,22 @@ from collections.abc import Callable
 from typing import Any
 
 
-def timed_median(f: Callable[[], Any], repeat: int, warmup: int = 0) -> tuple[float, Any]:
+def timed_median(
+    f: Callable[[], Any], repeat: int, warmup: int = 0, cpu: bool = False
+) -> tuple[float, Any]:
     """Median wall time of ``repeat`` calls of ``f`` (seconds), and the last call's result;
-    ``warmup`` untimed calls first (what a first call loads once: modules, caches)."""
+    ``warmup`` untimed calls first (what a first call loads once: modules, caches).
+    ``cpu``: the process's CPU time instead (on a shared machine, what one core spent:
+    other processes' load does not count)."""
+    clock = time.process_time if cpu else time.perf_counter
     ts = []
     out = None
     for _ in range(warmup):
         f()
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        t0 = clock()
         out = f()
-        ts.append(time.perf_counter() - t0)
+        ts.append(clock() - t0)
     return statistics.median(ts), out
 
 

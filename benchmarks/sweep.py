@@ -19,7 +19,10 @@ reach a singularity, a second mechsing sweep across one).  ``--million`` also ru
 ``mechsing sweep`` on a 10^6-point five-bar grid in a child process and reports its time
 and peak resident memory.
 
-    OPENBLAS_NUM_THREADS=1 python benchmarks/sweep.py [--repeat 3] [--density 10] [--million]
+``--cpu`` times by the process's CPU time instead of the wall clock (both sides: on a
+shared machine the others' load then does not count; one BLAS thread, one core).
+
+    OPENBLAS_NUM_THREADS=1 python benchmarks/sweep.py [--repeat 3] [--density 10] [--cpu] [--million]
 """
 
 from __future__ import annotations
@@ -116,12 +119,12 @@ def _err(what: str, got: list[float], want: list[float]) -> str:
     return f"{what} within {max(abs(a - b) for a, b in zip(got, want, strict=True)):.1e}"
 
 
-def _five_bar(repeat: int, density: int) -> None:
+def _five_bar(repeat: int, density: int, cpu: bool = False) -> None:
     """The five-bar grid of its two inputs: mechsing and the anchor's grid of held inputs."""
     v = np.linspace(-0.4, 0.4, 41 * max(1, round(density**0.5)))
     spec = [_spec("A1", v), _spec("A2", v)]
     t, r = timed_median(
-        lambda: mechsing.sweep(ROOT / "examples" / "five_bar.yaml", spec), repeat, warmup=1
+        lambda: mechsing.sweep(ROOT / "examples" / "five_bar.yaml", spec), repeat, 1, cpu
     )
     n = r.points()
     mode = truth.FIVE_BAR.reference_mode()
@@ -142,7 +145,7 @@ def _five_bar(repeat: int, density: int) -> None:
     if pin is not None:
         anchor = PinocchioAnchor(mechsing.load(ROOT / "examples" / "five_bar.yaml"))
         q0 = anchor.approach(pin.neutral(anchor.model), ["A1", "A2"], [v[0], v[0]])
-        ta, pa = timed_median(lambda: anchor.grid(["A1", "A2"], v, v, q0), repeat, warmup=1)
+        ta, pa = timed_median(lambda: anchor.grid(["A1", "A2"], v, v, q0), repeat, 1, cpu)
         line += f", anchor {n / ta:,.0f} points/s, ratio {ta / t:.2f}; anchor Newton {pa.iterations.mean():.2f}/point"
     print(line)
     print(
@@ -194,26 +197,31 @@ def main(argv: list[str] | None = None) -> int:
         help="points of each path times this (grids: about as much)",
     )
     parser.add_argument("--million", action="store_true", help="also the 10^6-point grid")
+    parser.add_argument(
+        "--cpu", action="store_true", help="time by CPU time (a shared machine), not wall time"
+    )
     args = parser.parse_args(argv)
     for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
         if os.environ.get(var) != "1":
             print(f"note: {var} is not 1; numpy may use several cores")
     if pin is None:
         print("note: Pinocchio is not installed (pip install 'mechsing[bench]'): mechsing only")
-    print(f"mechsing {mechsing.__version__} sweeps (auto), median of {args.repeat}")
+    clock = "CPU time" if args.cpu else "wall time"
+    print(f"mechsing {mechsing.__version__} sweeps (auto), median {clock} of {args.repeat}")
     for case, (file, spec, start) in zip(
         cases(args.density), _mechsing_cases(args.density), strict=True
     ):
         t, r = timed_median(
             lambda f=file, s=spec, st=start: mechsing.sweep(ROOT / "examples" / f, s, st),
             args.repeat,
-            warmup=1,
+            1,
+            args.cpu,
         )
         n = r.points()
         line = f"  {case.name}: {n} points, mechsing {n / t:,.0f} points/s"
         if pin is not None:
             _anchor, run = prepare(case, ROOT)
-            ta, pa = timed_median(run, args.repeat, warmup=1)
+            ta, pa = timed_median(run, args.repeat, 1, args.cpu)
             na = case.points
             line += (
                 f", anchor {na / ta:,.0f} points/s, ratio {(n / t) / (na / ta):.2f}; "
@@ -222,7 +230,7 @@ def main(argv: list[str] | None = None) -> int:
             )
         print(line)
         print(f"    located on a crossing sweep: {_accuracy(file)}")
-    _five_bar(args.repeat, args.density)
+    _five_bar(args.repeat, args.density, args.cpu)
     if args.million:
         _million()
     return 0

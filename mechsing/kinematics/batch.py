@@ -79,15 +79,22 @@ class BatchClosure:
 
     # ------------------------------------------------------------------ residuals
 
-    def deltas(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
-        """The closure residual of every chord (and the pose), (N, blocks, 4, 4)."""
+    def deltas(
+        self,
+        Q: np.ndarray,
+        P: dict[str, np.ndarray] | None = None,
+        T: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """The closure residual of every chord (and the pose), (N, blocks, 4, 4); ``T``:
+        the output's displacements :meth:`target` of Q's pose coordinates, when known."""
         q = Q[:, : self.nb]
         P = batched.poses(self.base, q, fast=True) if P is None else P
         out = [
             P[jk.a] @ batched.element(jk, q, fast=True) @ lie.inverse(P[jk.b]) for jk in self.chords
         ]
         if self.pose is not None:
-            out.append(P[self.pose_a] @ self.target(Q[:, self.nb :]) @ lie.inverse(P[self.pose_b]))
+            T = self.target(Q[:, self.nb :]) if T is None else T
+            out.append(P[self.pose_a] @ T @ lie.inverse(P[self.pose_b]))
         if not out:
             return np.zeros((Q.shape[0], 0, 4, 4))
         return np.stack(out, axis=1)
@@ -207,7 +214,9 @@ class BatchClosure:
         P = {
             k: np.array(v) for k, v in batched.poses(self.base, Q[:, : self.nb], fast=True).items()
         }
-        D = self.deltas(Q, P)
+        # the pose coordinates are given: the output's target is computed once
+        T = None if self.pose is None else self.target(Q[:, self.nb :])
+        D = self.deltas(Q, P, T)
         res = self.residual_norm(D)
         its = np.zeros(Q.shape[0], dtype=int)
         active = np.ones(Q.shape[0], dtype=bool)
@@ -233,7 +242,7 @@ class BatchClosure:
             step[:, cols] = du
             Qn = self.update(Qa, step)
             Pn = batched.poses(self.base, Qn[:, : self.nb], fast=True)
-            Dn = self.deltas(Qn, Pn)
+            Dn = self.deltas(Qn, Pn, None if T is None else T[idx])
             rn = self.residual_norm(Dn)
             better = rn < res[idx]
             keep = idx[better]

@@ -51,7 +51,15 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.sweeps.measures import Measures, PointMeasures
-from mechsing.sweeps.path import Fold, Problem, _Arc, _nodes, follow
+from mechsing.sweeps.path import (
+    Fold,
+    Problem,
+    _Arc,
+    _nodes,
+    close_segments,
+    first_nodes,
+    follow,
+)
 from mechsing.sweeps.spec import Variable
 
 __all__ = ["Located", "RowResult", "Sweep"]
@@ -271,7 +279,7 @@ class Sweep:
         order = np.argsort(np.abs(values - z[col]), kind="stable")
         k0 = int(order[0])
         if z[col] == values[k0]:
-            if _Arc(self.problem, col, 1).tangent(np.asarray(z, dtype=float)) is not None:
+            if self.problem.tangent(np.asarray(z, dtype=float), col) is not None:
                 return k0, np.array(z, dtype=float)
             # a start where branches cross (a bifurcation): onto one of them
             for k in (k0 + 1, k0 - 1):
@@ -394,8 +402,12 @@ class Sweep:
         with its measures and the singularities located along it."""
         k0, zk = self.start_of(col, values, z)
         pb = self.problem
-        fwd = follow(pb, zk, col, values[k0:])
-        bwd = follow(pb, zk, col, values[k0::-1])
+        # the first node of each direction: one batched Newton
+        first = first_nodes(pb, zk, col, [values[k0:], values[k0::-1]])
+        fwd = follow(pb, zk, col, values[k0:], fine=False, first=first[0])
+        bwd = follow(pb, zk, col, values[k0::-1], fine=False, first=first[1])
+        # the samples between the nodes of both directions: one batched Newton
+        close_segments(pb, [fwd, bwd], col)
         K = len(values)
         Z = np.full((K, pb.n), np.nan)
         Z[k0:] = fwd.Z
@@ -520,13 +532,19 @@ class Sweep:
         """Sign changes and minima of each test along one row."""
         out: list[Located] = []
         where = np.flatnonzero(reached)
-        pos = {int(k): i for i, k in enumerate(where)}
-        pairs = [(a, a + 1) for a in where if a + 1 < len(Z) and reached[a + 1]]
+        # the reached samples whose next one is reached too: the pairs, and their rows in
+        # the measured batch (which holds the reached samples in order)
+        first = np.flatnonzero((where[:-1] + 1 == where[1:]) if len(where) else [])
+        PA = where[first]
+        pairs = [(int(a), int(a) + 1) for a in PA]
         if not pairs:
             return out
-        ia = np.array([pos[a] for a, _ in pairs])
-        ib = np.array([pos[b] for _, b in pairs])
+        ia, ib = first, first + 1
         dets = self.measures.compressed_pairs(pm, ia, ib)
+        K = len(Z)
+        # the samples whose neighbours are both reached (the minima's candidates)
+        inner = np.zeros(K, dtype=bool)
+        inner[1:-1] = reached[:-2] & reached[1:-1] & reached[2:]
         for t in self.tests:
             crossed: set[int] = set()
             d = dets.get(t)
@@ -536,11 +554,7 @@ class Sweep:
             hits = (
                 []
                 if d is None
-                else [
-                    k
-                    for k in range(len(pairs))
-                    if d[k] < 0 and max(rho[pairs[k][0]], rho[pairs[k][1]]) > _TAU_HI
-                ]
+                else np.flatnonzero((d < 0) & (np.maximum(rho[PA], rho[PA + 1]) > _TAU_HI)).tolist()
             )
             # a pair holding a point already located for another test (the closure's
             # first) that zeroes this one too: the same point, placed by that test
@@ -569,19 +583,25 @@ class Sweep:
                         continue
                     z, r = found
                     out.append(self._at(z, "crossing", (t,), r, "row", (index, int(a))))
-            for k in range(1, len(Z) - 1):
-                if not (reached[k - 1] and reached[k] and reached[k + 1]) or k in crossed:
+            # a sampled minimum that could hide a zero: not singular on both sides (no
+            # isolated zero to place there), at most its neighbours, and low next to how
+            # far they rise
+            lo, mid, hi = np.full(K, np.nan), rho, np.full(K, np.nan)
+            lo[1:], hi[:-1] = rho[:-1], rho[1:]
+            big = np.maximum(lo, hi)
+            with np.errstate(invalid="ignore"):
+                low = (
+                    inner
+                    & (big > _TAU_HI)
+                    & (mid <= lo)
+                    & (mid <= hi)
+                    & ~(mid > SWEEP_MINIMUM_SCREEN * (big - mid))
+                )
+            for k in np.flatnonzero(low).tolist():
+                if k in crossed:
                     continue
                 if self._holds(out, t, Z[k - 1, col], Z[k + 1, col], col):
                     continue  # the point located there for another test zeroes this one
-                lo, hi = rho[k - 1], rho[k + 1]
-                if max(lo, hi) <= _TAU_HI:
-                    continue  # singular on both sides: no isolated zero to place
-                if not (rho[k] <= lo and rho[k] <= hi):
-                    continue
-                rise = max(lo, hi) - rho[k]
-                if rho[k] > SWEEP_MINIMUM_SCREEN * rise:
-                    continue
                 found = None
                 if t == "closure":
                     found = self._through(Z, reached, k - 1, k + 1, col)
@@ -830,8 +850,13 @@ class Sweep:
             return []
         pos = {int(k): i for i, k in enumerate(np.flatnonzero(ra.reached))}
         ia = np.array([pos[int(k)] for k in both])
-        Qb = rb.Z[both][:, : self.model.n]
-        dets = self.measures.compressed(ra.measures, ia, Qb)
+        if rb.measures is not None and rb.measures.matrices is not None:
+            # row b's matrices at those samples were kept by its own measures
+            pos_b = {int(k): i for i, k in enumerate(np.flatnonzero(rb.reached))}
+            ib = np.array([pos_b[int(k)] for k in both])
+            dets = self.measures.compressed_measured(ra.measures, ia, rb.measures, ib)
+        else:
+            dets = self.measures.compressed(ra.measures, ia, rb.Z[both][:, : self.model.n])
         out = []
         for t in dets:
             hits = np.flatnonzero(dets[t] < 0)

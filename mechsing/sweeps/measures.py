@@ -286,6 +286,21 @@ class Measures:
         test, the determinant of the matrix at b compressed onto a's leading singular
         vectors.  Positive at a itself; negative where a rank drop was crossed."""
         mats, kernel = self.matrices(Qb)
+        return self._compressed(a, ia, mats, kernel)
+
+    def compressed_measured(
+        self, a: PointMeasures, ia: np.ndarray, b: PointMeasures, ib: np.ndarray
+    ) -> dict[str, np.ndarray]:
+        """:meth:`compressed` where the points b are rows ``ib`` of a measured batch
+        ``b`` (a grid's neighbouring row): b's matrices and kernel are the ones it kept,
+        not computed again."""
+        assert b.matrices is not None
+        mats = {k: v[ib] for k, v in b.matrices.items()}
+        return self._compressed(a, ia, mats, None if b.kernel is None else b.kernel[ib])
+
+    def _compressed(
+        self, a: PointMeasures, ia: np.ndarray, mats: dict[str, np.ndarray], kernel: Any
+    ) -> dict[str, np.ndarray]:
         out = {}
         for t in self.tests:
             if t not in SIGNED:

@@ -8,10 +8,13 @@ assembly mode the path started on.
 * **Nodes.**  Samples at most :data:`~mechsing.numeric.SWEEP_NODE_STEP` apart (radians,
   or lengths / L) are *nodes*, reached one after the other by the continuation of a
   named configuration's closure (:meth:`mechsing.kinematics.Closer.follow`: predictor,
-  Newton on the group, branch checks).  The samples between two nodes are closed
-  together by batched Newton (:class:`~mechsing.kinematics.batch.BatchClosure`) from
-  their interpolation on the group; one whose correction is large next to the node
-  spacing is closed again by continuation from its predecessor.
+  Newton on the group, branch checks), each first predicted from the last step (the
+  first step from the tangent at the start) and kept when Newton corrects it little.
+  The samples between two nodes are closed together by batched Newton
+  (:class:`~mechsing.kinematics.batch.BatchClosure`) from their interpolation on the
+  group (a row's two directions in one batch: :func:`close_segments`); one whose
+  correction is large next to the node spacing is closed again by continuation from
+  its predecessor.
 * **Folds.**  Where continuation cannot reach the next node, the path is followed along
   its curve by pseudo-arclength continuation (the swept coordinate solved with the
   others, one more equation fixing the step along the tangent).  A fold of the swept
@@ -51,7 +54,7 @@ from mechsing.numeric import (
     SWEEP_NODE_STEP,
 )
 
-__all__ = ["Fold", "PathTrace", "Problem", "follow"]
+__all__ = ["Fold", "PathTrace", "Problem", "close_segments", "first_nodes", "follow"]
 
 #: most arclength steps spent on the far side of one fold
 _ARC_BUDGET = 4000
@@ -69,6 +72,8 @@ _NODE_CORRECTION = 0.3
 _FINE_CHUNK = 8192
 #: a badly predicted node is tried again in this many halvings of its step
 _NODE_HALVINGS = 3
+#: tangents a Problem keeps (a row's start asks for the same one up to three times)
+_TANGENTS_KEPT = 8
 
 
 @dataclass
@@ -85,6 +90,10 @@ class Problem:
     tolerance: float
     #: which columns of cm are revolute angles (a value and itself plus 2 pi are one pose)
     periodic: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    #: the tangents asked last (:meth:`tangent`), by (column, configuration's bytes)
+    _tangents: dict[tuple[int, bytes], np.ndarray | None] = field(
+        default_factory=dict, repr=False, compare=False
+    )
 
     @property
     def n(self) -> int:
@@ -110,6 +119,25 @@ class Problem:
         moved = np.linalg.norm(self.cm.float_frame.rates(Q - Qp), axis=1)
         ok = (res <= self.tolerance) & np.isfinite(res) & (moved <= bound)
         return Q, ok, its
+
+    def tangent(self, z: np.ndarray, col: int) -> np.ndarray | None:
+        """The unit commensurate tangent of the path's curve at the closed z (every
+        coordinate of cm, zero on the given ones but ``col``; its sign arbitrary), or None
+        where the curve is not one-dimensional.  The last few are kept: a row's start
+        asks for it once to check that it can leave and once per direction."""
+        key = (col, np.asarray(z, dtype=float).tobytes())
+        if key in self._tangents:
+            return self._tangents[key]
+        arc = _Arc(self, col, 1)
+        t = arc.tangent(np.asarray(z, dtype=float))
+        out = None
+        if t is not None:
+            out = np.zeros(self.n)
+            out[arc.free] = t
+        if len(self._tangents) >= _TANGENTS_KEPT:
+            self._tangents.pop(next(iter(self._tangents)))
+        self._tangents[key] = out
+        return out
 
     def reach(self, z: np.ndarray, col: int, value: float) -> np.ndarray:
         """From the closed z, the configuration with coordinate ``col`` at ``value`` (the
@@ -145,18 +173,66 @@ class PathTrace:
     folds: list[Fold]
     stopped: str | None = None
     newton: np.ndarray | None = None
+    #: node pairs whose samples in between are still to be closed (``follow(...,
+    #: fine=False)``: :func:`close_segments` closes them, several traces together)
+    segments: list[tuple[int, int]] = field(default_factory=list)
+    values: np.ndarray | None = None
 
 
-def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTrace:
+def first_nodes(
+    pb: Problem, z0: np.ndarray, col: int, paths: list[np.ndarray]
+) -> list[np.ndarray | None]:
+    """The first node of each path from the closed z0 (each path's ``values`` start at
+    z0's value), all in one batched Newton: the prediction and the test :func:`_node`
+    makes for a first step (the tangent at z0).  None for a path whose first node is
+    not kept that way (:func:`follow` then takes it as it takes any node)."""
+    out: list[np.ndarray | None] = [None] * len(paths)
+    preds, bounds, which = [], [], []
+    sc = pb.scale(col)
+    for m, values in enumerate(paths):
+        if len(values) < 2:
+            continue
+        zp = _tangent_prediction(pb, z0, col, values[_next_node(values, 0, sc)])
+        if zp is None:
+            continue
+        preds.append(zp)
+        bounds.append(_NODE_CORRECTION * pb.comm(zp - z0))
+        which.append(m)
+    if preds:
+        Q, ok, _ = pb.close_near(np.array(preds), np.array(bounds))
+        for m, q, good in zip(which, Q, ok, strict=True):
+            out[m] = q if good else None
+    return out
+
+
+def _next_node(values: np.ndarray, i: int, sc: float) -> int:
+    """The next node after sample i: the farthest sample at most SWEEP_NODE_STEP away
+    (and at least the next one)."""
+    j = i + 1
+    while j + 1 < len(values) and abs(values[j + 1] - values[i]) / sc <= SWEEP_NODE_STEP:
+        j += 1
+    return j
+
+
+def follow(
+    pb: Problem,
+    z0: np.ndarray,
+    col: int,
+    values: np.ndarray,
+    fine: bool = True,
+    first: np.ndarray | None = None,
+) -> PathTrace:
     """Follow the swept coordinate ``col`` through ``values`` (monotone) from ``z0``,
-    closed at ``values[0]``."""
+    closed at ``values[0]``.  With ``fine=False`` only the nodes (and the samples near
+    folds) are closed: the trace's ``segments`` are left to :func:`close_segments`.
+    ``first``: the first node when it is already closed (:func:`first_nodes`)."""
     K = len(values)
     Z = np.full((K, pb.n), np.nan)
     its = np.zeros(K, dtype=int)
     Z[0] = z0
     folds: list[Fold] = []
     if K < 2:
-        return PathTrace(Z, folds, None, its)
+        return PathTrace(Z, folds, None, its, [], values)
     direction = 1 if values[-1] > values[0] else -1
     sc = pb.scale(col)
     i, z = 0, np.array(z0, dtype=float)
@@ -165,12 +241,13 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
     #: node pairs whose samples in between are closed together at the end
     segments: list[tuple[int, int]] = []
     while i < K - 1:
-        j = i + 1
-        while j + 1 < K and abs(values[j + 1] - values[i]) / sc <= SWEEP_NODE_STEP:
-            j += 1
+        j = _next_node(values, i, sc)
         # where the tangent's prediction cannot reach the next node (a fold, a singular
         # point, a sharp bend) the curve itself is followed below
-        zj = _nodes(pb, z, z_prev, col, values[j])
+        if i == 0 and first is not None:
+            zj = first
+        else:
+            zj = _nodes(pb, z, z_prev, col, values[j])
         if zj is not None:
             if j > i + 1:
                 segments.append((i, j))
@@ -224,9 +301,10 @@ def follow(pb: Problem, z0: np.ndarray, col: int, values: np.ndarray) -> PathTra
         folds.append(far)
         Z[k] = zk
         i, z, z_prev = k, zk, None
-    if segments:
-        _fine(pb, Z, its, col, values, segments)
-    return PathTrace(Z, folds, stopped, its)
+    trace = PathTrace(Z, folds, stopped, its, segments, values)
+    if fine:
+        close_segments(pb, [trace], col)
+    return trace
 
 
 def _nodes(
@@ -255,12 +333,20 @@ def _node(
     pb: Problem, z: np.ndarray, z_prev: np.ndarray | None, col: int, value: float
 ) -> np.ndarray | None:
     """The next node by one batched Newton from the secant predictor (the last step
-    repeated, scaled to the new one); None when it does not close there or its
-    correction is not small next to the step (the careful continuation then takes it)."""
+    repeated, scaled to the new one; a first step from the tangent at z); None when it
+    does not close there or its correction is not small next to the step (the careful
+    continuation then takes it)."""
     bc = pb.batch
     if z_prev is None or z_prev[col] == z[col]:
-        # a first step: a point a thousandth of it behind, closed from z itself, gives
-        # the secant (the tangent, to first order)
+        # a first step: the tangent at z (the kernel of the closure Jacobian, no Newton)
+        # predicts it
+        zp = _tangent_prediction(pb, z, col, value)
+        if zp is not None:
+            Q, ok, _ = pb.close_near(zp[None, :], _NODE_CORRECTION * pb.comm(zp - z))
+            if ok[0]:
+                return Q[0]
+        # where the tangent's step is not kept: a point a thousandth of it behind,
+        # closed from z itself, gives the secant (the tangent, to first order)
         zq = np.array(z, dtype=float)
         zq[col] = z[col] - 1e-3 * (value - z[col])
         Q, ok, _ = pb.close_near(zq[None, :], np.inf)
@@ -273,6 +359,21 @@ def _node(
     zp[col] = value
     Q, ok, _ = pb.close_near(zp[None, :], _NODE_CORRECTION * pb.comm(zp - z))
     return Q[0] if ok[0] else None
+
+
+def _tangent_prediction(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
+    """The point on the tangent of the path's curve at z where coordinate ``col`` is
+    ``value`` (on the group, as :meth:`BatchClosure.update` moves), or None where the
+    tangent is not defined or does not move ``col``."""
+    tau = pb.tangent(z, col)
+    if tau is None or tau[col] == 0:
+        return None
+    d = pb.cm.float_frame.rates_back(tau * ((value - z[col]) / pb.scale(col) / tau[col]))
+    bc = pb.batch
+    zp = bc.update(np.asarray(z, dtype=float)[None, :], d[None, : bc.nb])[0]
+    zp[bc.nb :] = z[bc.nb :] + d[bc.nb :]
+    zp[col] = value
+    return zp
 
 
 def _to_fold(
@@ -324,69 +425,80 @@ def _near_fold(
     return Q[0] if ok[0] else None
 
 
-def _fine(
-    pb: Problem,
-    Z: np.ndarray,
-    its: np.ndarray,
-    col: int,
-    values: np.ndarray,
-    segments: list[tuple[int, int]],
-) -> None:
-    """The samples strictly between the nodes of each segment (i, j), all segments of the
-    path together: batched Newton from their cubic interpolation on the group (in chunks
-    of _FINE_CHUNK rows); a sample that does not close near its prediction is closed again
-    by continuation from the previous one.  Fills Z and its in place."""
+def close_segments(pb: Problem, traces: list[PathTrace], col: int) -> None:
+    """The samples strictly between the nodes of each segment (i, j) of each trace, all
+    segments of the traces together (the two directions of a path are one batch):
+    batched Newton from their cubic interpolation on the group (in chunks of
+    _FINE_CHUNK rows); a sample that does not close near its prediction is closed again
+    by continuation from the previous one.  Fills each trace's Z and newton in place."""
     bc = pb.batch
     nb = bc.nb
     # each sample predicted by the cubic through its segment's two nodes and the nodes
     # before and after (a quadratic at the ends of the path): on the group, as increments
     # from the segment's first node
-    rows, base, preds, spans = [], [], [], []
-    for i, j in segments:
-        knots = [
-            k for k in (2 * i - j, i, j, 2 * j - i) if 0 <= k < len(Z) and not np.isnan(Z[k, 0])
-        ]
-        D = bc.difference(Z[knots], np.repeat(Z[i][None, :], len(knots), axis=0))
-        tk = values[knots]
-        ks = np.arange(i + 1, j)
-        tv = values[ks]
-        # Lagrange weights of the knots at the samples
-        W = np.ones((len(ks), len(knots)))
-        for a in range(len(knots)):
-            for b in range(len(knots)):
-                if a != b:
-                    W[:, a] *= (tv - tk[b]) / (tk[a] - tk[b])
-        preds.append(W @ D)
-        rows.extend(ks.tolist())
-        base.extend([i] * len(ks))
-        spans.extend([pb.comm(D[knots.index(j)])] * len(ks))
-    rows_a = np.array(rows)
-    A = Z[np.array(base)]
+    which, rows, base, preds, spans, tvals = [], [], [], [], [], []
+    for m, tr in enumerate(traces):
+        Z, values = tr.Z, tr.values
+        assert values is not None
+        for i, j in tr.segments:
+            knots = [
+                k for k in (2 * i - j, i, j, 2 * j - i) if 0 <= k < len(Z) and not np.isnan(Z[k, 0])
+            ]
+            D = bc.difference(Z[knots], np.repeat(Z[i][None, :], len(knots), axis=0))
+            tk = values[knots]
+            ks = np.arange(i + 1, j)
+            tv = values[ks]
+            # Lagrange weights of the knots at the samples
+            W = np.ones((len(ks), len(knots)))
+            for a in range(len(knots)):
+                for b in range(len(knots)):
+                    if a != b:
+                        W[:, a] *= (tv - tk[b]) / (tk[a] - tk[b])
+            preds.append(W @ D)
+            rows.extend(ks.tolist())
+            which.extend([m] * len(ks))
+            base.append(np.repeat(Z[i][None, :], len(ks), axis=0))
+            tvals.append(tv)
+            spans.extend([pb.comm(D[knots.index(j)])] * len(ks))
+    if not rows:
+        return
+    rows_a, which_a = np.array(rows), np.array(which)
+    A = np.concatenate(base)
     P = np.concatenate(preds)
+    T = np.concatenate(tvals)
     span_a = np.array(spans)
     for lo in range(0, len(rows_a), _FINE_CHUNK):
         sl = slice(lo, lo + _FINE_CHUNK)
         Qp = bc.update(A[sl], P[sl, :nb])
         Qp[:, nb:] = A[sl, nb:] + P[sl, nb:]
-        Qp[:, col] = values[rows_a[sl]]
+        Qp[:, col] = T[sl]
         # closed to the tolerance and no further: a sample read near a singularity is
         # closed again (polished) by the refinement that locates it
         Q, ok, it = pb.close_near(Qp, SWEEP_JUMP_RATIO * span_a[sl], polish=False)
         Q[~ok] = np.nan
-        Z[rows_a[sl]] = Q
-        its[rows_a[sl]] = it
+        for m, tr in enumerate(traces):
+            mine = which_a[sl] == m
+            if not np.any(mine):
+                continue
+            tr.Z[rows_a[sl][mine]] = Q[mine]
+            assert tr.newton is not None
+            tr.newton[rows_a[sl][mine]] = it[mine]
     # the samples Newton did not close near their prediction: continuation, in order
-    for i, j in segments:
-        for k in range(i + 1, j):
-            if not np.isnan(Z[k, 0]):
-                continue
-            prev = Z[k - 1]
-            if np.isnan(prev[0]):
-                continue
-            try:
-                Z[k] = pb.reach(prev, col, values[k])
-            except ClosureError:
-                continue
+    for tr in traces:
+        Z, values = tr.Z, tr.values
+        assert values is not None
+        for i, j in tr.segments:
+            for k in range(i + 1, j):
+                if not np.isnan(Z[k, 0]):
+                    continue
+                prev = Z[k - 1]
+                if np.isnan(prev[0]):
+                    continue
+                try:
+                    Z[k] = pb.reach(prev, col, values[k])
+                except ClosureError:
+                    continue
+        tr.segments = []
 
 
 class _Arc:
