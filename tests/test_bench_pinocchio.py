@@ -10,11 +10,8 @@ Skipped when ``pinocchio`` (the ``bench`` extra) is not installed.
 
 from __future__ import annotations
 
-import importlib.util
 import math
-import sys
 from pathlib import Path
-from types import ModuleType
 
 import numpy as np
 import pytest
@@ -22,24 +19,12 @@ import pytest
 pin = pytest.importorskip("pinocchio")
 
 from mechsing.model import load, loads  # noqa: E402
+from tests.reference.benchmarks import benchmark_module  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
 
-
-def _anchor_module() -> ModuleType:
-    """benchmarks/ is not a package: the module is loaded from its file."""
-    name = "_pinocchio_sweep"
-    if name not in sys.modules:
-        spec = importlib.util.spec_from_file_location(name, ROOT / "benchmarks" / f"{name}.py")
-        assert spec is not None and spec.loader is not None
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[name] = module  # dataclasses look their module up while it loads
-        spec.loader.exec_module(module)
-    return sys.modules[name]
-
-
-ps = _anchor_module()
+ps = benchmark_module("_pinocchio_sweep")
 
 #: an R-U-P-S loop whose U and S joints the spanning tree crosses from between[1] to
 #: between[0] and whose chord is the P joint (the benchmark's examples have neither)

@@ -13,33 +13,16 @@ instance of each family.
 
 from __future__ import annotations
 
-import importlib.util
-import sys
 from pathlib import Path
-from types import ModuleType
 
 import pytest
 import sympy as sp
 
 import mechsing
 from mechsing.model import loads
+from tests.reference.benchmarks import benchmark_module
 
-ROOT = Path(__file__).resolve().parents[1]
-
-
-def _module() -> ModuleType:
-    """benchmarks/ is not a package: the module is loaded from its file."""
-    name = "_exact_instances"
-    if name not in sys.modules:
-        spec = importlib.util.spec_from_file_location(name, ROOT / "benchmarks" / f"{name}.py")
-        assert spec is not None and spec.loader is not None
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[name] = module  # dataclasses look their module up while it loads
-        spec.loader.exec_module(module)
-    return sys.modules[name]
-
-
-ei = _module()
+ei = benchmark_module("_exact_instances")
 
 
 def _write(tmp_path: Path, inst: object) -> Path:
@@ -157,11 +140,7 @@ def test_float_gives_the_published_mobility(tmp_path, make):
     ids=["bennett", "bennett-sqrt", "bricard", "bricard-plane", "stewart"],
 )
 def test_exact_agrees_with_float(tmp_path, make, config):
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    try:
-        from _scale_exact import verdict
-    finally:
-        sys.path.remove(str(ROOT / "benchmarks"))
+    verdict = benchmark_module("_scale_exact").verdict
     inst = make()
     path = _write(tmp_path, inst)
     exact = mechsing.analyze(path, configs=[config], precision="exact", time_limit=120)
