@@ -1,0 +1,191 @@
+"""Exact arithmetic in the algebraic number field K the data of a configuration live in.
+
+Exact mode's numbers are sympy expressions; sympy's general arithmetic and
+simplification on them is slow (a Bennett configuration's closure residual is a sum
+of products of nested radicals and inverse trigonometric functions).  When every
+datum is an algebraic number -- rationals, radicals, and the cosines and sines of the
+joint angles (``2*atan(1/3)``, ``pi/6``, ``acos(13/14)``) -- they all lie in one number
+field ``K = Q(alpha)`` (``QQ`` in the common case of rational data and angles
+``2*atan(rational)``), whose elements sympy's polynomial domains add, multiply and
+divide exactly and in normal form (a rational, or a polynomial in the primitive element
+alpha reduced by its minimal polynomial).  Zero in K is zero: no simplification, no
+proof by expansion.
+
+This module owns:
+
+* :func:`cos_sin`: the cosine and sine of an angle as radicals, or None;
+* :func:`number_field`: the field K of a list of sympy numbers and their elements in K
+  (None when they do not fit one: a transcendental number, a sine sympy cannot
+  write as radicals);
+* :func:`domain_matrix`, :func:`field_rank`, :func:`field_null_space`,
+  :func:`field_row_space`, :func:`field_solve`: exact linear algebra on object arrays of
+  sympy numbers through :class:`sympy.polys.matrices.DomainMatrix` over their field
+  (None when the entries have no field: the caller keeps its sympy path).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+import sympy
+from sympy.functions.elementary.trigonometric import (
+    InverseTrigonometricFunction,
+    TrigonometricFunction,
+)
+from sympy.polys.constructor import construct_domain
+from sympy.polys.domains import QQ
+from sympy.polys.matrices import DomainMatrix
+
+__all__ = [
+    "cos_sin",
+    "domain_matrix",
+    "field_null_space",
+    "field_rank",
+    "field_row_space",
+    "field_solve",
+    "from_field",
+    "number_field",
+]
+
+_TRIG = (TrigonometricFunction, InverseTrigonometricFunction)
+
+
+def _algebraic_form(x: Any) -> bool:
+    """Is the sympy number ``x`` written with rationals and radicals only (no pi, no
+    trigonometric or other function, no symbol)?"""
+    x = sympy.sympify(x)
+    if x.is_Rational:
+        return True
+    if x.free_symbols or x.has(sympy.Function) or x.has(sympy.pi) or x.has(sympy.E):
+        return False
+    if x.has(sympy.I) or x.has(sympy.Float):
+        return False
+    return all(
+        a.is_Rational or (a.is_Pow and a.exp.is_Rational) or a.is_Add or a.is_Mul
+        for a in sympy.preorder_traversal(x)
+    )
+
+
+@lru_cache(maxsize=4096)
+def cos_sin(theta: Any) -> tuple[Any, Any] | None:
+    """The cosine and sine of the angle ``theta`` (a sympy number) as expressions in
+    rationals and radicals (``2*atan(1/3)`` -> (4/5, 3/5), ``pi/6`` -> (sqrt(3)/2, 1/2),
+    ``acos(13/14)`` -> (13/14, 3*sqrt(3)/14)), or None when sympy cannot write them so
+    (``1``, ``pi/7``)."""
+    theta = sympy.sympify(theta)
+    c = sympy.expand_trig(sympy.cos(theta))
+    s = sympy.expand_trig(sympy.sin(theta))
+    if c.has(*_TRIG) or s.has(*_TRIG) or not (_algebraic_form(c) and _algebraic_form(s)):
+        return None
+    return c, s
+
+
+def number_field(values: list[Any]) -> tuple[Any, list[Any]] | None:
+    """The number field K of the sympy numbers ``values`` and their elements of K.
+
+    K is ``QQ`` when every value is rational, else ``QQ<alpha>`` (sympy's
+    :class:`~sympy.polys.domains.AlgebraicField`, alpha a primitive element of the
+    field the values generate).  None when the values do not fit a number field
+    (a value that is not written in rationals and radicals)."""
+    vals = [sympy.sympify(v) for v in values]
+    if all(v.is_Rational for v in vals):
+        return QQ, [QQ.from_sympy(v) for v in vals]
+    if not all(_algebraic_form(v) for v in vals):
+        return None
+    try:
+        K, elements = construct_domain(vals, field=True, extension=True)
+    except (sympy.polys.polyerrors.PolynomialError, NotImplementedError, ValueError):
+        return None
+    if K.is_ZZ:
+        return QQ, [QQ.convert_from(e, K) for e in elements]
+    if not (K.is_QQ or K.is_AlgebraicField):
+        return None
+    return K, list(elements)
+
+
+def from_field(K: Any, x: Any) -> Any:
+    """A sympy number from an element of K (or an array of them, elementwise)."""
+    if isinstance(x, np.ndarray):
+        out = np.empty(x.shape, dtype=object)
+        for idx, v in np.ndenumerate(x):
+            out[idx] = K.to_sympy(v)
+        return out
+    return K.to_sympy(x)
+
+
+def domain_matrix(A: Any) -> DomainMatrix | None:
+    """The matrix of sympy numbers ``A`` (m, n) as a DomainMatrix over the number field
+    of its entries (QQ or an algebraic field), or None (entries without a field)."""
+    arr = np.asarray(A, dtype=object)
+    m, n = arr.shape
+    flat = [sympy.sympify(x) for x in arr.flat]
+    if not flat:
+        return DomainMatrix([[] for _ in range(m)], (m, n), QQ)
+    fit = number_field(flat)
+    if fit is None:
+        return None
+    K, elements = fit
+    rows = [elements[i * n : (i + 1) * n] for i in range(m)]
+    return DomainMatrix(rows, (m, n), K)
+
+
+def _sympy_rows(D: DomainMatrix, n: int) -> np.ndarray:
+    K = D.domain
+    rows = [[K.to_sympy(x) for x in row] for row in D.to_list()]
+    return np.array(rows, dtype=object).reshape(len(rows), n)
+
+
+def field_rank(A: Any) -> tuple[int, list[Any]] | None:
+    """The exact rank of ``A`` and the pivots of its row echelon form (sympy numbers),
+    or None when its entries have no number field."""
+    D = domain_matrix(A)
+    if D is None:
+        return None
+    R, pivots = D.rref()
+    if not pivots:
+        return 0, []
+    # the pivots of a fraction-free elimination are not needed: the margin reports the
+    # smallest |pivot| of the echelon form before normalisation, from an LU
+    return len(pivots), [R.domain.to_sympy(R.rep.to_ddm()[i][j]) for i, j in enumerate(pivots)]
+
+
+def field_null_space(A: Any) -> np.ndarray | None:
+    """Rows spanning the right null space of ``A`` (the reduced basis of
+    :meth:`sympy.Matrix.nullspace`: one per free column, 1 there), or None."""
+    D = domain_matrix(A)
+    if D is None:
+        return None
+    n = D.shape[1]
+    N = D.nullspace().to_field()
+    return _sympy_rows(N, n)
+
+
+def field_row_space(A: Any) -> np.ndarray | None:
+    """The non-zero rows of the reduced row echelon form of ``A``, or None."""
+    D = domain_matrix(A)
+    if D is None:
+        return None
+    n = D.shape[1]
+    R, pivots = D.rref()
+    rows = R.to_list()[: len(pivots)]
+    K = R.domain
+    out = [[K.to_sympy(x) for x in row] for row in rows]
+    return np.array(out, dtype=object).reshape(len(out), n)
+
+
+def field_solve(A: Any, b: Any) -> np.ndarray | None:
+    """x with ``A^T A x = A^T b`` (A of full column rank), or None."""
+    arr = np.asarray(A, dtype=object)
+    m, n = arr.shape
+    both = np.concatenate([arr, np.asarray(b, dtype=object).reshape(m, 1)], axis=1)
+    D = domain_matrix(both)
+    if D is None:
+        return None
+    Am = D[:, :n]
+    bm = D[:, n:]
+    At = Am.transpose()
+    x = (At * Am).lu_solve(At * bm)
+    K = x.domain
+    return np.array([K.to_sympy(row[0]) for row in x.to_list()], dtype=object)
