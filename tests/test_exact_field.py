@@ -32,7 +32,6 @@ import sympy
 import mechsing
 from mechsing.kinematics import batched
 from mechsing.kinematics.closure import Closer
-from mechsing.kinematics.field import FieldKinematics
 from mechsing.kinematics.model import KinematicModel
 from mechsing.model.loader import load
 from mechsing.numeric.field import cos_sin, field_null_space, field_row_space, number_field

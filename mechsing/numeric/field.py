@@ -17,7 +17,7 @@ This module owns:
 * :func:`number_field`: the field K of a list of sympy numbers and their elements in K
   (None when they do not fit one: a transcendental number, a sine sympy cannot
   write as radicals);
-* :func:`domain_matrix`, :func:`field_rank`, :func:`field_null_space`,
+* :func:`domain_matrix`, :func:`field_echelon`, :func:`field_null_space`,
   :func:`field_row_space`, :func:`field_solve`: exact linear algebra on object arrays of
   sympy numbers through :class:`sympy.polys.matrices.DomainMatrix` over their field
   (None when the entries have no field: the caller keeps its sympy path).
@@ -41,8 +41,8 @@ from sympy.polys.matrices import DomainMatrix
 __all__ = [
     "cos_sin",
     "domain_matrix",
+    "field_echelon",
     "field_null_space",
-    "field_rank",
     "field_row_space",
     "field_solve",
     "from_field",
@@ -131,35 +131,61 @@ def domain_matrix(A: Any) -> DomainMatrix | None:
     return DomainMatrix(rows, (m, n), K)
 
 
-def _sympy_rows(D: DomainMatrix, n: int) -> np.ndarray:
-    K = D.domain
-    rows = [[K.to_sympy(x) for x in row] for row in D.to_list()]
-    return np.array(rows, dtype=object).reshape(len(rows), n)
+def field_echelon(A: Any) -> tuple[list[int], list[Any], list[list[Any]]] | None:
+    """Pivot columns, pivot values and the reduced null-space basis of ``A`` (sympy
+    numbers), computed in the number field of its entries; None when they have none.
 
-
-def field_rank(A: Any) -> tuple[int, list[Any]] | None:
-    """The exact rank of ``A`` and the pivots of its row echelon form (sympy numbers),
-    or None when its entries have no number field."""
+    The echelon form is :meth:`sympy.Matrix.echelon_form`'s: fraction-free elimination
+    below each pivot (``row_i <- pivot row_i - a_i pivot_row``), the pivot the first
+    non-zero entry of its column (zero is decided in K); the null space is
+    :meth:`sympy.Matrix.nullspace`'s (one vector per free column, 1 there, from the
+    reduced row echelon form)."""
     D = domain_matrix(A)
     if D is None:
         return None
-    R, pivots = D.rref()
-    if not pivots:
-        return 0, []
-    # the pivots of a fraction-free elimination are not needed: the margin reports the
-    # smallest |pivot| of the echelon form before normalisation, from an LU
-    return len(pivots), [R.domain.to_sympy(R.rep.to_ddm()[i][j]) for i, j in enumerate(pivots)]
+    K = D.domain
+    m, n = D.shape
+    rows = [list(r) for r in D.to_list()]
+    pivots: list[int] = []
+    values: list[Any] = []
+    pr = 0
+    for col in range(n):
+        if pr >= m:
+            break
+        off = next((i for i in range(pr, m) if not K.is_zero(rows[i][col])), None)
+        if off is None:
+            continue
+        rows[pr], rows[off] = rows[off], rows[pr]
+        pv = rows[pr][col]
+        for r in range(pr + 1, m):
+            a = rows[r][col]
+            if K.is_zero(a):
+                continue
+            rows[r] = [pv * x - a * y for x, y in zip(rows[r], rows[pr], strict=True)]
+        pivots.append(col)
+        values.append(K.to_sympy(pv))
+        pr += 1
+    R, rpiv = D.rref()
+    rl = R.to_list()
+    basis = []
+    for free in (j for j in range(n) if j not in rpiv):
+        vec = [K.zero] * n
+        vec[free] = K.one
+        for i, pc in enumerate(rpiv):
+            vec[pc] = vec[pc] - rl[i][free]
+        basis.append([K.to_sympy(x) for x in vec])
+    return pivots, values, basis
 
 
 def field_null_space(A: Any) -> np.ndarray | None:
     """Rows spanning the right null space of ``A`` (the reduced basis of
     :meth:`sympy.Matrix.nullspace`: one per free column, 1 there), or None."""
-    D = domain_matrix(A)
-    if D is None:
+    arr = np.asarray(A, dtype=object)
+    found = field_echelon(arr)
+    if found is None:
         return None
-    n = D.shape[1]
-    N = D.nullspace().to_field()
-    return _sympy_rows(N, n)
+    basis = found[2]
+    return np.array(basis, dtype=object).reshape(len(basis), arr.shape[1])
 
 
 def field_row_space(A: Any) -> np.ndarray | None:
