@@ -94,15 +94,73 @@ def number_field(values: list[Any]) -> tuple[Any, list[Any]] | None:
         return QQ, [QQ.from_sympy(v) for v in vals]
     if not all(_algebraic_form(v) for v in vals):
         return None
+    gens: set[Any] = set()
+    for v in vals:
+        _radicals(v, gens)
+    fit = _field_of(tuple(sorted(gens, key=sympy.default_sort_key)))
+    if fit is None:
+        return None
+    K, images = fit
     try:
-        K, elements = construct_domain(vals, field=True, extension=True)
+        return K, [_evaluate(K, images, v) for v in vals]
+    except (KeyError, ZeroDivisionError, NotImplementedError):
+        return None
+
+
+def _radicals(x: Any, out: set[Any]) -> None:
+    """The radicals (powers with a non-integer exponent) ``x`` is written with, outermost."""
+    if x.is_Rational:
+        return
+    if x.is_Pow and not x.exp.is_Integer:
+        out.add(x)
+        return
+    for a in x.args:
+        _radicals(a, out)
+
+
+@lru_cache(maxsize=256)
+def _field_of(gens: tuple[Any, ...]) -> tuple[Any, dict[Any, Any]] | None:
+    """The field QQ(gens) (a primitive element: computed once per set of radicals) and
+    each radical's element in it."""
+    try:
+        K, elements = construct_domain(list(gens), field=True, extension=True)
     except (sympy.polys.polyerrors.PolynomialError, NotImplementedError, ValueError):
         return None
-    if K.is_ZZ:
-        return QQ, [QQ.convert_from(e, K) for e in elements]
-    if not (K.is_QQ or K.is_AlgebraicField):
+    if K.is_ZZ or K.is_QQ:
+        K = QQ
+        elements = [QQ.from_sympy(g) for g in gens]
+    elif not K.is_AlgebraicField:
         return None
-    return K, list(elements)
+    return K, dict(zip(gens, elements, strict=True))
+
+
+def _evaluate(K: Any, images: dict[Any, Any], x: Any) -> Any:
+    """The element of K that the expression ``x`` (rationals, the radicals of
+    ``images``, +, *, integer powers) denotes: exact arithmetic in K, no minimal
+    polynomial per value."""
+    if x.is_Rational:
+        return K.convert_from(QQ.from_sympy(x), QQ)
+    if x.is_Add:
+        total = K.zero
+        for a in x.args:
+            total = total + _evaluate(K, images, a)
+        return total
+    if x.is_Mul:
+        prod = K.one
+        for a in x.args:
+            prod = prod * _evaluate(K, images, a)
+        return prod
+    if x.is_Pow and x.exp.is_Integer:
+        base = _evaluate(K, images, x.base)
+        e = int(x.exp)
+        if e < 0:
+            base = K.one / base
+            e = -e
+        out = K.one
+        for _ in range(e):
+            out = out * base
+        return out
+    return images[x]
 
 
 def from_field(K: Any, x: Any) -> Any:
@@ -202,11 +260,15 @@ def field_row_space(A: Any) -> np.ndarray | None:
 
 
 def field_solve(A: Any, b: Any) -> np.ndarray | None:
-    """x with ``A^T A x = A^T b`` (A of full column rank), or None."""
+    """X with ``A^T A X = A^T b`` (A (m, n) of full column rank, b (m,) or (m, k)): the
+    least-squares solution, exact when b is in the range; None when the entries have no
+    number field."""
     arr = np.asarray(A, dtype=object)
+    rhs = np.asarray(b, dtype=object)
     m, n = arr.shape
-    both = np.concatenate([arr, np.asarray(b, dtype=object).reshape(m, 1)], axis=1)
-    D = domain_matrix(both)
+    vector = rhs.ndim == 1
+    rhs = rhs.reshape(m, -1)
+    D = domain_matrix(np.concatenate([arr, rhs], axis=1))
     if D is None:
         return None
     Am = D[:, :n]
@@ -214,4 +276,6 @@ def field_solve(A: Any, b: Any) -> np.ndarray | None:
     At = Am.transpose()
     x = (At * Am).lu_solve(At * bm)
     K = x.domain
-    return np.array([K.to_sympy(row[0]) for row in x.to_list()], dtype=object)
+    out = np.array([[K.to_sympy(v) for v in row] for row in x.to_list()], dtype=object)
+    out = out.reshape(n, rhs.shape[1])
+    return out[:, 0] if vector else out
