@@ -34,7 +34,13 @@ from mechsing.kinematics import batched
 from mechsing.kinematics.closure import Closer
 from mechsing.kinematics.model import KinematicModel
 from mechsing.model.loader import load
-from mechsing.numeric.field import cos_sin, field_null_space, field_row_space, number_field
+from mechsing.numeric.field import (
+    cos_sin,
+    field_echelon,
+    field_null_space,
+    field_row_space,
+    number_field,
+)
 from tests.mechanisms import EXAMPLES, by_name, classes, write
 
 
@@ -91,6 +97,34 @@ def test_field_spaces_are_those_of_the_matrix() -> None:
     R = field_row_space(A)
     assert R.shape == (2, 3)
     assert sympy.Matrix(np.concatenate([A, R]).tolist()).rank(simplify=True) == 2
+
+
+def test_field_echelon_is_sympys() -> None:
+    """The pivots, pivot values (the margin's numbers) and null-space basis from the field
+    are those of sympy's own echelon_form and nullspace, on matrices over Q(sqrt 2, sqrt 3)
+    with dependent rows."""
+    import random
+
+    rng = random.Random(1)
+    r2, r3 = sympy.sqrt(2), sympy.sqrt(3)
+    pool = [0, 0, 0, 1, -2, sympy.Rational(1, 3), r2, r3 / 2, 1 + r2, r2 * r3]
+    for trial in range(20):
+        m, n = rng.randint(2, 5), rng.randint(2, 5)
+        rows = [[rng.choice(pool) for _ in range(n)] for _ in range(m)]
+        if trial % 3 == 0:
+            rows[-1] = [a * r2 + b for a, b in zip(rows[0], rows[1], strict=True)]
+        M = sympy.Matrix(rows)
+        E, piv = M.echelon_form(with_pivots=True, simplify=True)
+        pivots, values, ker = field_echelon(np.array(rows, dtype=object))
+        assert pivots == list(piv)
+        assert all(
+            sympy.simplify(E[i, c] - v) == 0
+            for (i, c), v in zip(enumerate(piv), values, strict=True)
+        )
+        ns = M.nullspace(simplify=True)
+        assert len(ns) == len(ker)
+        for u, v in zip(ns, ker, strict=True):
+            assert all(sympy.simplify(a - b) == 0 for a, b in zip(u, v, strict=True))
 
 
 # ============================================================================ Bennett closure

@@ -194,16 +194,20 @@ def field_echelon(A: Any) -> tuple[list[int], list[Any], list[list[Any]]] | None
     numbers), computed in the number field of its entries; None when they have none.
 
     The echelon form is :meth:`sympy.Matrix.echelon_form`'s: fraction-free elimination
-    below each pivot (``row_i <- pivot row_i - a_i pivot_row``), the pivot the first
-    non-zero entry of its column (zero is decided in K); the null space is
-    :meth:`sympy.Matrix.nullspace`'s (one vector per free column, 1 there, from the
-    reduced row echelon form)."""
+    below each pivot (``row_i <- p row_i - a_i pivot_row``, p the pivot value), the pivot
+    the first non-zero entry of its column (zero is decided in K).  Its rows are
+    computed as ``s_i t_i``: ``t_i`` the rows of ordinary elimination (with division,
+    numbers of bounded size) and ``s_i`` the product of the pivot values row i was
+    multiplied by, so a pivot value is ``s_p t_p[c]`` -- the fraction-free numbers
+    without their growth.  The null space is :meth:`sympy.Matrix.nullspace`'s (one
+    vector per free column, 1 there, from the reduced row echelon form)."""
     D = domain_matrix(A)
     if D is None:
         return None
     K = D.domain
     m, n = D.shape
     rows = [list(r) for r in D.to_list()]
+    scale = [K.one] * m
     pivots: list[int] = []
     values: list[Any] = []
     pr = 0
@@ -214,15 +218,25 @@ def field_echelon(A: Any) -> tuple[list[int], list[Any], list[list[Any]]] | None
         if off is None:
             continue
         rows[pr], rows[off] = rows[off], rows[pr]
-        pv = rows[pr][col]
+        scale[pr], scale[off] = scale[off], scale[pr]
+        t = rows[pr][col]
+        pv = scale[pr] * t
         for r in range(pr + 1, m):
             a = rows[r][col]
             if K.is_zero(a):
                 continue
-            rows[r] = [pv * x - a * y for x, y in zip(rows[r], rows[pr], strict=True)]
+            f = a / t
+            rows[r][col:] = [x - f * y for x, y in zip(rows[r][col:], rows[pr][col:], strict=True)]
+            scale[r] = scale[r] * pv
         pivots.append(col)
         values.append(K.to_sympy(pv))
         pr += 1
+    return pivots, values, _null_basis(D)
+
+
+def _null_basis(D: DomainMatrix) -> list[list[Any]]:
+    K = D.domain
+    n = D.shape[1]
     R, rpiv = D.rref()
     rl = R.to_list()
     basis = []
@@ -232,17 +246,17 @@ def field_echelon(A: Any) -> tuple[list[int], list[Any], list[list[Any]]] | None
         for i, pc in enumerate(rpiv):
             vec[pc] = vec[pc] - rl[i][free]
         basis.append([K.to_sympy(x) for x in vec])
-    return pivots, values, basis
+    return basis
 
 
 def field_null_space(A: Any) -> np.ndarray | None:
     """Rows spanning the right null space of ``A`` (the reduced basis of
     :meth:`sympy.Matrix.nullspace`: one per free column, 1 there), or None."""
     arr = np.asarray(A, dtype=object)
-    found = field_echelon(arr)
-    if found is None:
+    D = domain_matrix(arr)
+    if D is None:
         return None
-    basis = found[2]
+    basis = _null_basis(D)
     return np.array(basis, dtype=object).reshape(len(basis), arr.shape[1])
 
 
