@@ -17,6 +17,8 @@ the expected answers come from:
 * published ranks: a planar four-bar (the double rocker, data in Q(sqrt 3, sqrt 15), degree 4)
   closes with loop rank 3 in G; the 3-RPR's concurrent configuration is output (type II)
   singular (its header: the three leg lines meet in one point);
+* an S joint's rotation vector (angle and unit axis in radicals) in the field, equal to the
+  sympy path;
 * fallback: an H joint (translation pitch * angle, not algebraic) keeps the sympy path and
   gives the same verdict.
 """
@@ -199,6 +201,42 @@ def test_field_path_equals_the_sympy_path() -> None:
         S_fast = fk.current_screws()
         diff = [sympy.N(a - b, 60) for a, b in zip(S_slow.flat, S_fast.flat, strict=True)]
         assert all(abs(d) < 1e-50 for d in diff), file
+
+
+RS_CHAIN = """mechanism: r-s
+bodies: [ground, arm, hand]
+joints:
+  - {name: R1, type: R, between: [ground, arm], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: S1, type: S, between: [arm, hand], point: [1, "1/2", 0]}
+inputs: [R1, S1]
+output: {body: hand}
+configurations:
+  reference: {}
+  about-z: {R1: "2*atan(1/2)", S1: [0, 0, "pi/3"]}
+  oblique: {R1: "pi/6", S1: ["2*acos(1/3)/3", "2*acos(1/3)/3", "acos(1/3)/3"]}
+"""
+
+
+def test_spherical_joint_in_the_field_equals_the_sympy_path(tmp_path: Path) -> None:
+    """An S joint's rotation vector: angle acos(1/3) about the unit axis (2, 2, 1)/3 (cos 1/3,
+    sin 2 sqrt(2)/3) and pi/3 about z; the field's poses and screws are the sympy path's."""
+    path = write(tmp_path, "rs", RS_CHAIN)
+    for name, degree in (("about-z", 2), ("oblique", 4)):
+        model, q = _configuration(path, name)
+        fk = model.field_kinematics(q)
+        assert fk is not None and fk.degree == degree, name
+        slow = batched.poses(model, q)
+        fast = fk.poses()
+        for body, g in slow.items():
+            assert all(
+                abs(sympy.N(a - b, 60)) < 1e-50
+                for a, b in zip(g.flat, fast[body].flat, strict=True)
+            ), (name, body)
+        S_slow = batched.current_screws(model, q, slow)
+        S_fast = fk.current_screws()
+        assert all(
+            abs(sympy.N(a - b, 60)) < 1e-50 for a, b in zip(S_slow.flat, S_fast.flat, strict=True)
+        ), name
 
 
 # ============================================================================ published ranks

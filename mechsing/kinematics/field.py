@@ -12,10 +12,13 @@ cancel exactly for a pure rotation); a translation ``e = (0, v)`` gives ``p = d 
 Joints whose rows commute (C, planar, translational) are products of their rows'
 elements, a U joint the product of its two turns.
 
+An S joint's rotation vector w turns by the angle |w| (its cosine and sine as radicals)
+about the unit axis w / |w| through the joint's centre c: ``p = (I - R) c``.
+
 What does not fit falls back to the sympy path (:meth:`FieldKinematics.of` returns
-None): an H joint (its translation ``pitch * theta`` is transcendental), an S or other
-non-abelian joint at a non-zero value, an angle whose sine sympy cannot write as
-radicals, geometry that is not written in radicals.
+None): an H joint (its translation ``pitch * theta`` is transcendental), a non-abelian
+joint other than S at a non-zero value, an angle whose sine sympy cannot write as
+radicals, an S joint's axis that is not, geometry that is not written in radicals.
 
 The arrays handed out are sympy numbers (``K.to_sympy``: rationals, or short sums of
 radicals), equal to what the sympy path computes.
@@ -47,6 +50,59 @@ def _rot(K: Any, u: list[Any], c: Any, s: Any, v: list[Any]) -> np.ndarray:
     g[3, :3] = zero
     g[3, 3] = one
     return g
+
+
+def _turn(jk: Any, vals: list[Any]) -> list[Any] | None:
+    """An S joint's rotation vector ``w = sum q_i u_i`` as (cos, sin) of its angle
+    ``|w|`` and its unit axis ``w / |w|`` (sympy numbers), or None when they are not
+    written in radicals."""
+    import sympy
+
+    w = [
+        sum((q * e[k] for q, e in zip(vals, jk.basis, strict=True)), sympy.S.Zero) for k in range(3)
+    ]
+    theta = sympy.sqrt(sum((x * x for x in w), sympy.S.Zero))
+    cs = cos_sin(theta)
+    if cs is None:
+        return None
+    axis = [sympy.cancel(x / theta) for x in w]
+    if not all(_in_radicals(x) for x in axis):
+        return None
+    return [*cs, *axis]
+
+
+def _in_radicals(x: Any) -> bool:
+    return number_field([x]) is not None
+
+
+def _spherical(K: Any, B: np.ndarray, turn: list[Any]) -> np.ndarray | None:
+    """The element of an S joint (basis rows ``(u_i, c x u_i)``, ``u_i`` orthonormal) that
+    turns by the angle of (cos, sin) about the unit axis n through its centre c:
+    ``R = I + s N + (1 - c) N^2``, ``p = (I - R) c`` (None if the basis is not of that form)."""
+    c, s, *n = turn
+    U = [list(B[i, :3]) for i in range(3)]
+    for i in range(3):
+        for j in range(3):
+            dot = sum((a * b for a, b in zip(U[i], U[j], strict=True)), K.zero)
+            if dot != (K.one if i == j else K.zero):
+                return None
+    # sum_i u_i x (c x u_i) = sum_i (c - u_i (u_i . c)) = 2 c for an orthonormal u_i
+    half = K.one / (K.one + K.one)
+    centre = [K.zero] * 3
+    for i in range(3):
+        u, v = U[i], list(B[i, 3:])
+        if sum((a * b for a, b in zip(u, v, strict=True)), K.zero) != K.zero:
+            return None
+        uxv = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+        centre = [a + half * b for a, b in zip(centre, uxv, strict=True)]
+    if sum((x * x for x in n), K.zero) != K.one:
+        return None
+    v = [
+        centre[1] * n[2] - centre[2] * n[1],
+        centre[2] * n[0] - centre[0] * n[2],
+        centre[0] * n[1] - centre[1] * n[0],
+    ]
+    return _rot(K, n, c, s, v)
 
 
 def _trans(K: Any, v: list[Any], d: Any) -> np.ndarray:
@@ -132,9 +188,14 @@ class FieldKinematics:
             vals = [q[c] for c in range(jk.columns.start, jk.columns.stop)]
             rows = []
             if jk.type != "U" and not jk.abelian:
-                if any(v != 0 for v in vals):
-                    return None  # S and other non-abelian joints away from zero: sympy
-                plan.append((jk, []))
+                if all(v == 0 for v in vals):
+                    plan.append((jk, []))
+                    continue
+                turn = _turn(jk, vals) if jk.type == "S" else None
+                if turn is None:
+                    return None  # other non-abelian joints away from zero: sympy
+                plan.append((jk, [("S", 0, len(needed))]))
+                needed.extend(turn)
                 continue
             for i, (e, val) in enumerate(zip(jk.basis, vals, strict=True)):
                 if all(x == 0 for x in e[:3]):
@@ -169,6 +230,10 @@ class FieldKinematics:
                 u, v = list(B[i, :3]), list(B[i, 3:])
                 if kind == "P":
                     gi = _trans(K, v, els[where])
+                elif kind == "S":
+                    gi = _spherical(K, B, els[where : where + 5])
+                    if gi is None:
+                        return None
                 else:
                     uu = sum((x * x for x in u), K.zero)
                     uv = sum((a * b for a, b in zip(u, v, strict=True)), K.zero)
