@@ -171,6 +171,7 @@ def test_series_switch_and_simplify() -> None:
 NUMERIC_ORDER = [
     "tolerances",
     "_mp",
+    "field",
     "backend",
     "precision",
     "blocks",

@@ -33,6 +33,7 @@ from scipy.sparse import csc_matrix
 from mechsing import lie
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
+from mechsing.kinematics.field import FieldKinematics
 from mechsing.model import Mechanism
 from mechsing.numeric import CommensurateFrame, Precision, blocks, characteristic_length, to_float
 from mechsing.subgroups import Subgroup
@@ -199,6 +200,7 @@ class KinematicModel:
             self._abelian_columns[jk.columns] = jk.abelian
         self._non_abelian = [jk for jk in self.joints if not jk.abelian]
         self._float_twin: KinematicModel | None = None
+        self._field_cache: dict[tuple[Any, ...], FieldKinematics | None] = {}
 
     # ------------------------------------------------------------------ access
 
@@ -234,9 +236,13 @@ class KinematicModel:
 
     def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
         """The pose of every user body (ground = identity) from the spanning tree;
-        q may be one configuration (n,) or a batch (N, n).  The poses of the last float
+        q may be one configuration (n,) or a batch (N, n).  An exact configuration's
+        come from its number field when its data have one; the poses of the last float
         configuration are kept: Newton asks for them again for the residual and the
         Jacobian at the same point."""
+        fk = self.field_kinematics(q)
+        if fk is not None:
+            return fk.poses()
         if q.ndim != 1 or q.dtype != float:
             return batched.poses(self, q)
         key = q.tobytes()
@@ -245,11 +251,29 @@ class KinematicModel:
             last = self._last_poses = (key, batched.poses(self, q))
         return dict(last[1])
 
+    def field_kinematics(self, q: np.ndarray) -> FieldKinematics | None:
+        """Exact mode: the kinematics of configuration ``q`` in the number field of its
+        data (:class:`~mechsing.kinematics.field.FieldKinematics`), or None when ``q``
+        is not one exact configuration or its data do not fit a field (the sympy path
+        then serves).  Kept for the last few configurations."""
+        if self.backend.name != "exact" or q.ndim != 1:
+            return None
+        key = tuple(q.tolist())
+        cache = self._field_cache
+        if key not in cache:
+            if len(cache) >= _FIELD_CACHE_SIZE:
+                cache.pop(next(iter(cache)))
+            cache[key] = FieldKinematics.of(self, q)
+        return cache[key]
+
     def current_screws(
         self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
     ) -> np.ndarray:
         """The current screw of every joint coordinate: (6, n) (or (N, 6, n) for a batch),
         columns in file order."""
+        fk = self.field_kinematics(q)
+        if fk is not None and _same_poses(fk, poses):
+            return fk.current_screws()
         if poses is None and q.ndim == 1 and q.dtype == float:
             poses = self.poses(q)
         return batched.current_screws(self, q, poses)
@@ -260,6 +284,9 @@ class KinematicModel:
         self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
     ) -> list[np.ndarray]:
         """``Delta_j = g_a M_j g_b^-1`` for each chord joint (identity when closed)."""
+        fk = self.field_kinematics(q)
+        if fk is not None and _same_poses(fk, poses):
+            return fk.chord_residuals()
         poses = self.poses(q) if poses is None else poses
         if q.ndim == 1 and q.dtype != object and len(self.chords) > 1:
             ms = batched.elements_at_once(self, q, self.chords)
@@ -483,6 +510,19 @@ class KinematicModel:
             if max(abs(v) for v in step) <= mpmath.mp.eps * max(1, max(abs(v) for v in cm)):
                 break
         return cm
+
+
+#: exact configurations whose field kinematics a model keeps
+_FIELD_CACHE_SIZE = 8
+
+
+def _same_poses(fk: FieldKinematics, poses: dict[str, np.ndarray] | None) -> bool:
+    """Were ``poses`` (if given) handed out by ``fk`` (so its screws and residuals
+    belong to them)?"""
+    if poses is None:
+        return True
+    mine = fk.poses()
+    return all(poses.get(b) is g for b, g in mine.items())
 
 
 def _is_abelian(B: np.ndarray) -> bool:

@@ -57,6 +57,15 @@ from mechsing.numeric.decisions import (
     rank_bounds,
     rank_difference,
 )
+from mechsing.numeric.field import (
+    cos_sin,
+    field_echelon,
+    field_null_space,
+    field_row_space,
+    field_solve,
+    from_field,
+    number_field,
+)
 from mechsing.numeric.linalg import (
     eigh,
     lstsq,
@@ -130,6 +139,13 @@ from mechsing.numeric.tolerances import (
 )
 
 __all__ = [
+    "cos_sin",
+    "field_echelon",
+    "field_null_space",
+    "field_row_space",
+    "field_solve",
+    "from_field",
+    "number_field",
     "BRANCH_ALIGNMENT",
     "CONDITION_GENERIC_RANK_RTOL",
     "CONDITION_GEOMETRY_RTOL",

@@ -37,6 +37,7 @@ import numpy as np
 import sympy
 
 from mechsing.numeric._mp import _mp_convert, mp_svd
+from mechsing.numeric.field import field_null_space, field_row_space, field_solve
 from mechsing.numeric.tolerances import EXACT_ZERO_DIGITS, MEMBERSHIP_RTOL_FLOAT
 
 # ---------------------------------------------------------------------------
@@ -294,12 +295,18 @@ class ExactBackend(Backend):
 
     def null_space(self, A: Any, rank: int | None = None) -> np.ndarray:
         A = np.asarray(A)
+        fast = field_null_space(A) if A.size else None
+        if fast is not None:  # in the number field of the entries: no simplification
+            return fast
         ker = sympy.Matrix(A.tolist()).nullspace(simplify=True)
         rows = [[exact_normal_form(x) for x in v] for v in ker]
         return np.array(rows, dtype=object).reshape(len(rows), A.shape[1])
 
     def row_space(self, A: Any, rank: int | None = None) -> np.ndarray:
         A = np.asarray(A)
+        fast = field_row_space(A) if A.size else None
+        if fast is not None:
+            return fast
         R, piv = sympy.Matrix(A.tolist()).rref(simplify=True)
         rows = [[exact_normal_form(x) for x in R.row(i)] for i in range(len(piv))]
         return np.array(rows, dtype=object).reshape(len(piv), A.shape[1])
@@ -308,6 +315,9 @@ class ExactBackend(Backend):
         A = np.asarray(A)
         if A.shape[1] == 0:
             return self.zeros(0)
+        fast = field_solve(A, b) if A.shape[0] else None
+        if fast is not None:
+            return fast
         At = sympy.Matrix(A.T.tolist())
         x = (At * At.T).LUsolve(At * sympy.Matrix(list(b)))
         return np.array([exact_normal_form(v) for v in x], dtype=object)

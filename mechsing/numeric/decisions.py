@@ -18,6 +18,7 @@ import sympy
 from mechsing.numeric._mp import _mp_convert, _mp_matrix, eigsy
 from mechsing.numeric.backend import FLOAT, to_float
 from mechsing.numeric.blocks import block_svd, issparse
+from mechsing.numeric.field import field_echelon
 from mechsing.numeric.linalg import singular_values, svd
 from mechsing.numeric.precision import Precision, parse_precision
 from mechsing.numeric.tolerances import FLOAT_ROUNDING_FACTOR, Tolerances
@@ -270,6 +271,9 @@ def float_drop_is_real(margin: Margin, data_error: float = 0.0) -> bool:
 def _exact_rank(
     arr: np.ndarray, prec: Precision, tol: Tolerances, length_scale: float, want_spaces: bool
 ) -> RankDecision:
+    fast = _field_rank(arr, length_scale, want_spaces)
+    if fast is not None:
+        return fast
     M = sympy.Matrix(arr.tolist()).applyfunc(
         lambda x: sympy.nsimplify(x) if isinstance(x, float) else x
     )
@@ -294,6 +298,35 @@ def _exact_rank(
             if cols
             else np.zeros((M.shape[0], 0))
         )
+    return RankDecision(
+        rank, None, Margin(kept, dropped, 0.0, 0.0, length_scale), "exact", (rank, rank), ns, rs
+    )
+
+
+def _field_rank(arr: np.ndarray, length_scale: float, want_spaces: bool) -> RankDecision | None:
+    """:func:`_exact_rank` in the number field of the entries (the same echelon form,
+    pivots and spaces, without simplification), or None when they have no field (a
+    float, a transcendental number)."""
+    if arr.ndim != 2 or 0 in arr.shape or any(isinstance(x, float) for x in arr.flat):
+        return None
+    found = field_echelon(arr)
+    if found is None:
+        return None
+    pivots, values, ker = found
+    m, n = arr.shape
+    rank = len(pivots)
+    piv_vals = [abs(float(sympy.N(v, 30))) for v in values]
+    kept = min(piv_vals) if piv_vals else None
+    dropped = None if rank == min(m, n) else 0.0
+    ns = rs = None
+    if want_spaces:
+        ns = (
+            _orthonormal(np.array([[float(sympy.N(x, 30)) for x in v] for v in ker]).T)
+            if ker
+            else np.zeros((n, 0))
+        )
+        cols = [[float(sympy.N(arr[i, j], 30)) for i in range(m)] for j in pivots]
+        rs = _orthonormal(np.array(cols).T) if cols else np.zeros((m, 0))
     return RankDecision(
         rank, None, Margin(kept, dropped, 0.0, 0.0, length_scale), "exact", (rank, rank), ns, rs
     )

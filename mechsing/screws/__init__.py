@@ -30,6 +30,7 @@ from mechsing.numeric import (
     Precision,
     RankDecision,
     decide_rank,
+    field_solve,
     orthonormal_columns,
     to_float,
 )
@@ -152,6 +153,9 @@ def reduced_coordinates(
     for row in basis_rows.tolist():
         big = max(row, key=lambda x: abs(float(x)))
         rows.append([sympy.sympify(x) / abs(sympy.sympify(big)) for x in row])
+    fast = field_solve(np.array(rows, dtype=object).T, Ss)
+    if fast is not None:  # in the number field of the entries
+        return fast
     B = sympy.Matrix(rows).T
     C = (B.T * B).inv() * B.T * sympy.Matrix(Ss.tolist())
     return np.array(C.applyfunc(sympy.simplify).tolist(), dtype=object)

@@ -1,0 +1,295 @@
+"""Exact arithmetic in the algebraic number field K the data of a configuration live in.
+
+Exact mode's numbers are sympy expressions; sympy's general arithmetic and
+simplification on them is slow (a Bennett configuration's closure residual is a sum
+of products of nested radicals and inverse trigonometric functions).  When every
+datum is an algebraic number -- rationals, radicals, and the cosines and sines of the
+joint angles (``2*atan(1/3)``, ``pi/6``, ``acos(13/14)``) -- they all lie in one number
+field ``K = Q(alpha)`` (``QQ`` in the common case of rational data and angles
+``2*atan(rational)``), whose elements sympy's polynomial domains add, multiply and
+divide exactly and in normal form (a rational, or a polynomial in the primitive element
+alpha reduced by its minimal polynomial).  Zero in K is zero: no simplification, no
+proof by expansion.
+
+This module owns:
+
+* :func:`cos_sin`: the cosine and sine of an angle as radicals, or None;
+* :func:`number_field`: the field K of a list of sympy numbers and their elements in K
+  (None when they do not fit one: a transcendental number, a sine sympy cannot
+  write as radicals);
+* :func:`domain_matrix`, :func:`field_echelon`, :func:`field_null_space`,
+  :func:`field_row_space`, :func:`field_solve`: exact linear algebra on object arrays of
+  sympy numbers through :class:`sympy.polys.matrices.DomainMatrix` over their field
+  (None when the entries have no field: the caller keeps its sympy path).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+import sympy
+from sympy.functions.elementary.trigonometric import (
+    InverseTrigonometricFunction,
+    TrigonometricFunction,
+)
+from sympy.polys.constructor import construct_domain
+from sympy.polys.domains import QQ
+from sympy.polys.matrices import DomainMatrix
+
+__all__ = [
+    "cos_sin",
+    "domain_matrix",
+    "field_echelon",
+    "field_null_space",
+    "field_row_space",
+    "field_solve",
+    "from_field",
+    "number_field",
+]
+
+_TRIG = (TrigonometricFunction, InverseTrigonometricFunction)
+
+
+def _algebraic_form(x: Any) -> bool:
+    """Is the sympy number ``x`` written with rationals and radicals only (no pi, no
+    trigonometric or other function, no symbol)?"""
+    x = sympy.sympify(x)
+    if x.is_Rational:
+        return True
+    if x.free_symbols or x.has(sympy.Function) or x.has(sympy.pi) or x.has(sympy.E):
+        return False
+    if x.has(sympy.I) or x.has(sympy.Float):
+        return False
+    return all(
+        a.is_Rational or (a.is_Pow and a.exp.is_Rational) or a.is_Add or a.is_Mul
+        for a in sympy.preorder_traversal(x)
+    )
+
+
+@lru_cache(maxsize=4096)
+def cos_sin(theta: Any) -> tuple[Any, Any] | None:
+    """The cosine and sine of the angle ``theta`` (a sympy number) as expressions in
+    rationals and radicals (``2*atan(1/3)`` -> (4/5, 3/5), ``pi/6`` -> (sqrt(3)/2, 1/2),
+    ``acos(13/14)`` -> (13/14, 3*sqrt(3)/14)), or None when sympy cannot write them so
+    (``1``, ``pi/7``)."""
+    theta = sympy.sympify(theta)
+    c = sympy.expand_trig(sympy.cos(theta))
+    s = sympy.expand_trig(sympy.sin(theta))
+    if c.has(*_TRIG) or s.has(*_TRIG) or not (_algebraic_form(c) and _algebraic_form(s)):
+        return None
+    return c, s
+
+
+def number_field(values: list[Any]) -> tuple[Any, list[Any]] | None:
+    """The number field K of the sympy numbers ``values`` and their elements of K.
+
+    K is ``QQ`` when every value is rational, else ``QQ<alpha>`` (sympy's
+    :class:`~sympy.polys.domains.AlgebraicField`, alpha a primitive element of the
+    field the values generate).  None when the values do not fit a number field
+    (a value that is not written in rationals and radicals)."""
+    vals = [sympy.sympify(v) for v in values]
+    if all(v.is_Rational for v in vals):
+        return QQ, [QQ.from_sympy(v) for v in vals]
+    if not all(_algebraic_form(v) for v in vals):
+        return None
+    gens: set[Any] = set()
+    for v in vals:
+        _radicals(v, gens)
+    fit = _field_of(tuple(sorted(gens, key=sympy.default_sort_key)))
+    if fit is None:
+        return None
+    K, images = fit
+    try:
+        return K, [_evaluate(K, images, v) for v in vals]
+    except (KeyError, ZeroDivisionError, NotImplementedError):
+        return None
+
+
+def _radicals(x: Any, out: set[Any]) -> None:
+    """The radicals (powers with a non-integer exponent) ``x`` is written with, outermost."""
+    if x.is_Rational:
+        return
+    if x.is_Pow and not x.exp.is_Integer:
+        out.add(x)
+        return
+    for a in x.args:
+        _radicals(a, out)
+
+
+@lru_cache(maxsize=256)
+def _field_of(gens: tuple[Any, ...]) -> tuple[Any, dict[Any, Any]] | None:
+    """The field QQ(gens) (a primitive element: computed once per set of radicals) and
+    each radical's element in it."""
+    try:
+        K, elements = construct_domain(list(gens), field=True, extension=True)
+    except (sympy.polys.polyerrors.PolynomialError, NotImplementedError, ValueError):
+        return None
+    if K.is_ZZ or K.is_QQ:
+        K = QQ
+        elements = [QQ.from_sympy(g) for g in gens]
+    elif not K.is_AlgebraicField:
+        return None
+    return K, dict(zip(gens, elements, strict=True))
+
+
+def _evaluate(K: Any, images: dict[Any, Any], x: Any) -> Any:
+    """The element of K that the expression ``x`` (rationals, the radicals of
+    ``images``, +, *, integer powers) denotes: exact arithmetic in K, no minimal
+    polynomial per value."""
+    if x.is_Rational:
+        return K.convert_from(QQ.from_sympy(x), QQ)
+    if x.is_Add:
+        total = K.zero
+        for a in x.args:
+            total = total + _evaluate(K, images, a)
+        return total
+    if x.is_Mul:
+        prod = K.one
+        for a in x.args:
+            prod = prod * _evaluate(K, images, a)
+        return prod
+    if x.is_Pow and x.exp.is_Integer:
+        base = _evaluate(K, images, x.base)
+        e = int(x.exp)
+        if e < 0:
+            base = K.one / base
+            e = -e
+        out = K.one
+        for _ in range(e):
+            out = out * base
+        return out
+    return images[x]
+
+
+def from_field(K: Any, x: Any) -> Any:
+    """A sympy number from an element of K (or an array of them, elementwise)."""
+    if isinstance(x, np.ndarray):
+        out = np.empty(x.shape, dtype=object)
+        for idx, v in np.ndenumerate(x):
+            out[idx] = K.to_sympy(v)
+        return out
+    return K.to_sympy(x)
+
+
+def domain_matrix(A: Any) -> DomainMatrix | None:
+    """The matrix of sympy numbers ``A`` (m, n) as a DomainMatrix over the number field
+    of its entries (QQ or an algebraic field), or None (entries without a field)."""
+    arr = np.asarray(A, dtype=object)
+    m, n = arr.shape
+    flat = [sympy.sympify(x) for x in arr.flat]
+    if not flat:
+        return DomainMatrix([[] for _ in range(m)], (m, n), QQ)
+    fit = number_field(flat)
+    if fit is None:
+        return None
+    K, elements = fit
+    rows = [elements[i * n : (i + 1) * n] for i in range(m)]
+    return DomainMatrix(rows, (m, n), K)
+
+
+def field_echelon(A: Any) -> tuple[list[int], list[Any], list[list[Any]]] | None:
+    """Pivot columns, pivot values and the reduced null-space basis of ``A`` (sympy
+    numbers), computed in the number field of its entries; None when they have none.
+
+    The echelon form is :meth:`sympy.Matrix.echelon_form`'s: fraction-free elimination
+    below each pivot (``row_i <- p row_i - a_i pivot_row``, p the pivot value), the pivot
+    the first non-zero entry of its column (zero is decided in K).  Its rows are
+    computed as ``s_i t_i``: ``t_i`` the rows of ordinary elimination (with division,
+    numbers of bounded size) and ``s_i`` the product of the pivot values row i was
+    multiplied by, so a pivot value is ``s_p t_p[c]`` -- the fraction-free numbers
+    without their growth.  The null space is :meth:`sympy.Matrix.nullspace`'s (one
+    vector per free column, 1 there, from the reduced row echelon form)."""
+    D = domain_matrix(A)
+    if D is None:
+        return None
+    K = D.domain
+    m, n = D.shape
+    rows = [list(r) for r in D.to_list()]
+    scale = [K.one] * m
+    pivots: list[int] = []
+    values: list[Any] = []
+    pr = 0
+    for col in range(n):
+        if pr >= m:
+            break
+        off = next((i for i in range(pr, m) if not K.is_zero(rows[i][col])), None)
+        if off is None:
+            continue
+        rows[pr], rows[off] = rows[off], rows[pr]
+        scale[pr], scale[off] = scale[off], scale[pr]
+        t = rows[pr][col]
+        pv = scale[pr] * t
+        for r in range(pr + 1, m):
+            a = rows[r][col]
+            if K.is_zero(a):
+                continue
+            f = a / t
+            rows[r][col:] = [x - f * y for x, y in zip(rows[r][col:], rows[pr][col:], strict=True)]
+            scale[r] = scale[r] * pv
+        pivots.append(col)
+        values.append(K.to_sympy(pv))
+        pr += 1
+    return pivots, values, _null_basis(D)
+
+
+def _null_basis(D: DomainMatrix) -> list[list[Any]]:
+    K = D.domain
+    n = D.shape[1]
+    R, rpiv = D.rref()
+    rl = R.to_list()
+    basis = []
+    for free in (j for j in range(n) if j not in rpiv):
+        vec = [K.zero] * n
+        vec[free] = K.one
+        for i, pc in enumerate(rpiv):
+            vec[pc] = vec[pc] - rl[i][free]
+        basis.append([K.to_sympy(x) for x in vec])
+    return basis
+
+
+def field_null_space(A: Any) -> np.ndarray | None:
+    """Rows spanning the right null space of ``A`` (the reduced basis of
+    :meth:`sympy.Matrix.nullspace`: one per free column, 1 there), or None."""
+    arr = np.asarray(A, dtype=object)
+    D = domain_matrix(arr)
+    if D is None:
+        return None
+    basis = _null_basis(D)
+    return np.array(basis, dtype=object).reshape(len(basis), arr.shape[1])
+
+
+def field_row_space(A: Any) -> np.ndarray | None:
+    """The non-zero rows of the reduced row echelon form of ``A``, or None."""
+    D = domain_matrix(A)
+    if D is None:
+        return None
+    n = D.shape[1]
+    R, pivots = D.rref()
+    rows = R.to_list()[: len(pivots)]
+    K = R.domain
+    out = [[K.to_sympy(x) for x in row] for row in rows]
+    return np.array(out, dtype=object).reshape(len(out), n)
+
+
+def field_solve(A: Any, b: Any) -> np.ndarray | None:
+    """X with ``A^T A X = A^T b`` (A (m, n) of full column rank, b (m,) or (m, k)): the
+    least-squares solution, exact when b is in the range; None when the entries have no
+    number field."""
+    arr = np.asarray(A, dtype=object)
+    rhs = np.asarray(b, dtype=object)
+    m, n = arr.shape
+    vector = rhs.ndim == 1
+    rhs = rhs.reshape(m, -1)
+    D = domain_matrix(np.concatenate([arr, rhs], axis=1))
+    if D is None:
+        return None
+    Am = D[:, :n]
+    bm = D[:, n:]
+    At = Am.transpose()
+    x = (At * Am).lu_solve(At * bm)
+    K = x.domain
+    out = np.array([[K.to_sympy(v) for v in row] for row in x.to_list()], dtype=object)
+    out = out.reshape(n, rhs.shape[1])
+    return out[:, 0] if vector else out
