@@ -576,6 +576,19 @@ def test_watt_and_stephenson_six_bars(kind, frame, xy, ground, data):
     p_axis=np.array([0.3, -0.4, 0.5]),
     delta=0.25,
 )
+# the R, U and S joints at one point: the S joint can turn without end while the loop stays
+# closed; continuation ran its rotation vector to 1e119, where the Jacobian's series overflow
+# (an SVD that did not converge escaped as a traceback): now that is no step
+@example(
+    pts=[np.array([-1.32792144e-182, 1.02275976e-136, 3.36721595])] * 3,
+    r_axis=np.array([1.06073415, 1.32350293, -7.91831284e-287]),
+    u_axes=(
+        np.array([1.96625492, 1.95465712, -0.19535562]),
+        np.array([-1.43403705, 1.0, -7.23649228e-236]),
+    ),
+    p_axis=np.array([1.73752718e-105, -5.96046448e-008, -4.57111262e-001]),
+    delta=-0.1281259931364724,
+)
 def test_loop_with_u_and_p_joints(pts, r_axis, u_axes, p_axis, delta):
     """ground -R- l1 -U- l2 -P- l3 -S- ground: 7 dof, mobility 1."""
     a1, a2 = u_axes

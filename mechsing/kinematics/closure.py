@@ -29,7 +29,12 @@ import sympy
 from mechsing import lie
 from mechsing.errors import ConfigurationError, UserError
 from mechsing.kinematics.model import KinematicModel
-from mechsing.kinematics.newton import damped_least_squares, mp_least_squares, newton_on_group
+from mechsing.kinematics.newton import (
+    damped_least_squares,
+    finite_system,
+    mp_least_squares,
+    newton_on_group,
+)
 from mechsing.kinematics.pose import PoseModel, pose_problem
 from mechsing.lie import ANGULAR
 from mechsing.model import Configuration, Displacement
@@ -761,6 +766,10 @@ class Closer:
             return False, q, info
         if np.any(free) and fm.chords:
             Js = _closure_matrix(fm, q)
+            if not finite_system(Js):
+                # closed, but at coordinates so far off that the Jacobian's series
+                # overflow (a degenerate loop whose S joint turned without end): no step
+                return False, q, info
             dec = decide_rank(Js[:, free], "float", L)
             rank = dec.rank if dec.rank is not None else dec.rank_bounds[0]
             info["rank"] = rank

@@ -84,6 +84,19 @@ def _big(A: Any) -> bool:
     )
 
 
+def finite_system(A: Any, b: np.ndarray | None = None) -> bool:
+    """Is a float system finite?  A coordinate that Newton sent far off (a rotation
+    angle of 1e100) gives a residual that is still finite but a Jacobian whose series
+    overflow: such a system is no step, Newton stops there as on a step that does not
+    lower the residual.  Always True for mp and exact numbers."""
+    data = A.data if issparse(A) else np.asarray(A)
+    if data.dtype != float:
+        return True
+    return bool(np.isfinite(data).all()) and (
+        b is None or bool(np.isfinite(np.asarray(b, dtype=float)).all())
+    )
+
+
 def damped_least_squares(A: Any, b: np.ndarray) -> np.ndarray:
     """Damped least squares (minimum norm), damping relative to sigma_max (float); ``A``
     dense or sparse (then block by block, :func:`mechsing.numeric.blocks.block_factors`)."""
@@ -181,6 +194,8 @@ def newton_on_group(
         if stop is not None and stop(step, res):
             break
         Js, rs = scaled_system(m, q, sparse)
+        if not finite_system(Js, rs):
+            break  # a coordinate ran off to where the exponential's series overflow
         du = solve(Js[:, free], -rs)
         if converged is not None and converged(res, du):
             break
