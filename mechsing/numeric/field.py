@@ -38,6 +38,8 @@ from sympy.polys.constructor import construct_domain
 from sympy.polys.domains import QQ
 from sympy.polys.matrices import DomainMatrix
 
+from mechsing.numeric.tolerances import EXACT_FIELD_MAX_DEGREE
+
 __all__ = [
     "cos_sin",
     "domain_matrix",
@@ -97,6 +99,8 @@ def number_field(values: list[Any]) -> tuple[Any, list[Any]] | None:
     gens: set[Any] = set()
     for v in vals:
         _radicals(v, gens)
+    if _degree_bound(gens) > EXACT_FIELD_MAX_DEGREE:
+        return None
     fit = _field_of(tuple(sorted(gens, key=sympy.default_sort_key)))
     if fit is None:
         return None
@@ -116,6 +120,19 @@ def _radicals(x: Any, out: set[Any]) -> None:
         return
     for a in x.args:
         _radicals(a, out)
+
+
+def _degree_bound(gens: set[Any]) -> int:
+    """A bound on the degree of QQ(gens): the product of the radicals' indices, the
+    radicals inside them included (``sqrt(1 + sqrt(2))``: 4)."""
+    bound = 1
+    for g in gens:
+        if not g.exp.is_Rational:
+            return EXACT_FIELD_MAX_DEGREE + 1
+        inner: set[Any] = set()
+        _radicals(g.base, inner)
+        bound *= int(g.exp.q) * _degree_bound(inner)
+    return bound
 
 
 @lru_cache(maxsize=256)

@@ -193,3 +193,10 @@ CONDITION_GEOMETRY_RTOL = 1e-6
 CONDITION_ROOT_RTOL = 1e-7
 #: two roots (rad or m) closer than this are one (a double root, or two factors' roots)
 CONDITION_ROOT_MERGE = 1e-9
+
+#: the largest degree (bounded by the product of the radicals' indices) of a number field
+#: exact mode builds for a configuration's data (the bundled 6-UPS and 3-UPU platforms: 32,
+#: five square roots); beyond it, the primitive element and the factoring over it can take
+#: longer than the general sympy path, which then serves (float mode's loop identification
+#: at the drawn pose of a file with many different radicals stalled there)
+EXACT_FIELD_MAX_DEGREE = 32
