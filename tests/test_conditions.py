@@ -203,6 +203,39 @@ def test_slider_crank_dead_centres(tmp_path: Path) -> None:
     assert [c.vanishes for c in regular.conditions if c.form == "determinant"] == [False, False]
 
 
+CENTRED_SLIDER_CRANK_MM = """\
+mechanism: centred-slider-crank
+units: {length: mm, angle: deg}
+bodies: [ground, crank, rod, slider]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, rod], axis: [0, 0, 1], point: [0, -10, 0]}
+  - {name: C, type: R, between: [rod, slider], axis: [0, 0, 1], point: ["10*sqrt(3)", 0, 0]}
+  - {name: S, type: P, between: [ground, slider], axis: [1, 0, 0]}
+inputs: [A]
+output: {body: slider}
+"""
+
+
+def test_a_number_brought_out_by_combining_angles_goes_to_the_constant(tmp_path: Path) -> None:
+    # Crank 10 mm drawn straight down, rod 20 mm to the pin at (10*sqrt(3), 0) mm.  The
+    # input condition is the determinant of the planar twists (1, y, -x) of the pivots A,
+    # B, C (metres).  Drawn pose: A = (0, 0), B = (0, -0.01), C = (0.01*sqrt(3), 0), so
+    # det = 0.01 * 0.01*sqrt(3) = sqrt(3)/10000.  The rod turns by B about the crank: it
+    # is folded onto the crank at B = pi/3 (rod at 30 deg, crank at -90 deg) and stretched
+    # at B = -2*pi/3.  The factor cos(B + pi/6) carries no number of its own.
+    res = condition(_write(tmp_path, CENTRED_SLIDER_CRANK_MM))
+    det = [c for c in res.conditions if c.name == "input (type I)"][0]
+    (factor,) = det.factors
+    number, _ = factor.expression.as_coeff_Mul()
+    assert number == 1, factor.expression
+    (b,) = factor.expression.free_symbols
+    value = lambda x: det.constant * factor.expression.xreplace({b: x}) ** factor.power  # noqa: E731
+    assert abs(float(value(0))) == pytest.approx(math.sqrt(3) / 10000, rel=1e-12)
+    for in_line in (sympy.pi / 3, -2 * sympy.pi / 3):
+        assert sympy.simplify(value(in_line)) == 0
+
+
 def test_four_bar_toggle_and_limit_positions() -> None:
     # examples/fourbar.yaml: crank a = 1, coupler b = 2 sqrt(2), rocker c = sqrt(5),
     # ground d = 4; the crank lies along the ground line in the drawn pose.  Limit

@@ -205,6 +205,11 @@ def _conditions_from(
     out = []
     for f, p in factors:
         trig = to_trig(f, S)
+        # combining sums of angles can bring out a number (sqrt(3)*cos(B) - sin(B) is
+        # 2*cos(B + pi/6)): it belongs to the constant, not the factor
+        number, rest = trig.as_coeff_Mul()
+        if number.is_number and number != 1 and rest.free_symbols:
+            const, trig = const * number**p, rest
         meaning = meanings(f) if meanings is not None else None
         out.append(Factor(trig, p, meaning))
     variables = sorted(
