@@ -140,3 +140,70 @@ def test_point_velocity_spaces():
 def test_five_bar_text_says_where_its_point_moves():
     text = render_text(analyze(EX / "five_bar.yaml", configs=["reference"], precision="float"))
     assert "its point at (0, 4, 0) m moves in the plane normal to z" in text
+
+
+PLANAR_3R_STRETCHED = """\
+mechanism: planar-3r
+units: {length: mm}
+bodies: [ground, l1, l2, l3]
+joints:
+  - {name: A, type: R, between: [ground, l1], axis: [0, 0, 1], point: [0, 5, 0]}
+  - {name: B, type: R, between: [l1, l2], axis: [0, 0, 1], point: [40, 5, 0]}
+  - {name: C, type: R, between: [l2, l3], axis: [0, 0, 1], point: [70, 5, 0]}
+output: {body: l3}
+configurations:
+  stretched: {}
+"""
+
+CENTRED_SLIDER_CRANK_DEAD_CENTRE = """\
+mechanism: centred-slider-crank
+units: {length: mm, angle: deg}
+bodies: [ground, crank, rod, slider]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, rod], axis: [0, 0, 1], point: [0, -10, 0]}
+  - {name: C, type: R, between: [rod, slider], axis: [0, 0, 1], point: ["10*sqrt(3)", 0, 0]}
+  - {name: S, type: P, between: [ground, slider], axis: [1, 0, 0]}
+inputs: [A]
+output: {body: slider}
+configurations:
+  dead-centre: {A: 90}
+"""
+
+
+def _serial(path: Path, chain: str) -> dict:
+    conf = analyze(path).to_json()["configurations"][0]
+    return next(s for s in conf["singularities"] if s["class"] == "serial" and s["chain"] == chain)
+
+
+def _plane_wrenches_by_hand() -> list[np.ndarray]:
+    # what every planar chain with axes along z resists: the force along z and the couples
+    # about x and y (unit force through the origin, unit moments)
+    return [_wrench([0, 0, 1], [0, 0, 0], 0.0), np.eye(6)[3], np.eye(6)[4]]
+
+
+@pytest.mark.parametrize(
+    ("text", "chain", "line_y"),
+    [(PLANAR_3R_STRETCHED, "output", 0.005), (CENTRED_SLIDER_CRANK_DEAD_CENTRE, "leg", 0.0)],
+)
+def test_a_planar_chain_in_line_loses_the_translation_along_its_line(tmp_path, text, chain, line_y):
+    # A planar 3R arm stretched along the line y = 5 mm, and the slider-crank's crank-rod
+    # leg at its dead centre (A, B, C on the x axis): the chain's twists are the rotations
+    # about z through points of its line, which span the rotation about z and the
+    # translation along y.  Inside the plane's motions it has lost the translation along
+    # x, and it newly resists the force along its line; what every configuration resists
+    # comes after: the force along z and the couples about x and y.
+    path = tmp_path / "m.yaml"
+    path.write_text(text)
+    f = _serial(path, chain)
+    assert f["corank"] == 1
+    assert np.allclose(f["twist"], [0, 0, 0, 1, 0, 0], atol=1e-12)
+    W = np.array(f["wrenches"])
+    assert W.shape == (4, 6)
+    assert np.allclose(W[0], _wrench([1, 0, 0], [0, line_y, 0], 0.0), atol=1e-12)
+    usual = _plane_wrenches_by_hand()
+    for w, want in zip(W[1:], usual, strict=True):
+        assert np.allclose(w, want, atol=1e-12), (w, want)
+    text_out = render_text(analyze(path))
+    assert "lost twist: a translation along x" in text_out
+    assert f"resisted wrench: a force along x through (0, {line_y:g}, 0) m" in text_out

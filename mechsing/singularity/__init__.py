@@ -24,7 +24,12 @@ from mechsing.singularity.findings import (
     decision,
     undecided_rank,
 )
-from mechsing.singularity.serial import GENERIC_SAMPLES, chain_system, serial_finding
+from mechsing.singularity.serial import (
+    GENERIC_SAMPLES,
+    chain_system,
+    generic_span,
+    serial_finding,
+)
 from mechsing.timelimit import activity
 
 if TYPE_CHECKING:
@@ -84,16 +89,21 @@ def _tree_serial(mech: Any, model: Any, q: np.ndarray) -> tuple[list[Finding], l
     xf = None if x is None else np.asarray(to_float(x), dtype=float)
     # ... against the generic rank found at random configurations (float)
     generic = here.rank.rank or 0
+    samples = []
     for qr in random_configurations(fm, GENERIC_SAMPLES):
         pr = fm.poses(qr)
         sysr = chain_system(
             fm, fm.current_screws(qr, pr), cols, _output_point(mech, fm, qr, pr), "float"
         )
+        samples.append(sysr.matrix)
         if sysr.rank.rank is not None:
             generic = max(generic, sysr.rank.rank)
     decisions = [decision("output chain", here.rank, generic)]
     label = {"chain": "output", "body": mech.output.body, "relative_to": mech.output.relative_to}
-    f = serial_finding(model, here, generic, names, label, xf)
+    span = None
+    if here.rank.rank is not None and here.rank.rank < generic:
+        span = generic_span([here.matrix, *samples], generic)
+    f = serial_finding(model, here, generic, names, label, xf, span)
     if f is None and here.rank.rank is None:
         return [undecided_rank("output screw system", here.rank)], decisions
     return ([f] if f else []), decisions

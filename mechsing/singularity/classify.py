@@ -50,7 +50,12 @@ from mechsing.singularity.findings import (
     decision,
     degenerate,
 )
-from mechsing.singularity.serial import chain_system, serial_finding, wrenches_of
+from mechsing.singularity.serial import (
+    chain_system,
+    generic_span,
+    serial_finding,
+    wrenches_of,
+)
 from mechsing.singularity.zfb import io_quantities, leg_constraint_rank
 
 # The higher-order forms (tangent cone) and the input/output and constraint
@@ -522,12 +527,17 @@ def _leg_serial(
         with model.precision.context():
             here = chain_system(model, cs.screws, cols, None, model.precision)
         gen = here.rank.rank or 0
+        samples = []
         for s in regular:
-            r = chain_system(fm, fm.current_screws(s.q), cols, None, "float").rank.rank
-            if r is not None:
-                gen = max(gen, r)
+            sample = chain_system(fm, fm.current_screws(s.q), cols, None, "float")
+            samples.append(sample.matrix)
+            if sample.rank.rank is not None:
+                gen = max(gen, sample.rank.rank)
         out.decisions.append(decision(f"leg {i + 1} chain", here.rank, gen))
-        f = serial_finding(fm, here, gen, names, {"chain": "leg", "leg": i + 1})
+        span = None
+        if here.rank.rank is not None and here.rank.rank < gen:
+            span = generic_span([here.matrix, *samples], gen)
+        f = serial_finding(fm, here, gen, names, {"chain": "leg", "leg": i + 1}, None, span)
         if f:
             findings.append(f)
     return findings

@@ -13,6 +13,19 @@ first non-zero component positive; ``corank``; ``twist`` -- a lost twist with
 non-zero power against a new wrench; ``null_joint_rates`` -- a kernel vector
 (largest entry 1) and its support ``joints`` (entries above
 :data:`mechsing.numeric.SUPPORT_RTOL` of the largest).
+
+Which basis, and which lost twist, is a choice (theory: only the reciprocal system is
+intrinsic); it is made to be read.  When the chain's screws stay in one space E at
+every configuration (a chain of a subgroup: a planar leg's E is its plane's g(u)),
+the lost twist is taken in E and the new wrenches (reciprocal to the chain here but
+not to E) are listed first, then the ones every configuration resists.  Each is then
+written in its simplest form modulo what it may be changed by, in the coordinates
+(omega, v) and (f, m) at the ground origin: the lost twist modulo the chain's twists
+here and each new wrench modulo the usual ones, with the least rotation (force), then
+the least translation (couple) (:func:`_simplest`); the usual ones, and the new ones
+among themselves, in reduced row echelon form (linear parts divided by L,
+:func:`_echelon`).  A dead centre's lost twist thus reads as the translation along the
+line of its pivots and its new wrench as the force along that line.
 """
 
 from __future__ import annotations
@@ -60,26 +73,120 @@ def _unit_first_positive(v: np.ndarray) -> np.ndarray:
     return v + 0.0  # no -0.0
 
 
-def wrenches_of(frame: CommensurateFrame, null_rows: np.ndarray, point: bool) -> list[list[float]]:
-    """SI wrenches (f, m) at the ground origin from commensurate left-null vectors
-    (columns of ``null_rows``), each a unit force (a unit moment for a couple), first
-    non-zero component positive."""
+def _si_wrenches(
+    frame: CommensurateFrame, null_rows: np.ndarray, point_x: np.ndarray | None, point: bool
+) -> list[np.ndarray]:
+    """SI wrenches (f, m) at the ground origin (not normalised) of commensurate left-null
+    vectors (columns of ``null_rows``); for a point's velocities, forces through the
+    point ``point_x`` (None: moments left 0, the caller's)."""
     out = []
     for y in null_rows.T:
         if point:
             # a force through the point: f with f . v_point = 0 for all joint motions
-            f = y / np.linalg.norm(y)
-            # the force acts at the point x: moment about the origin x x f (filled by caller)
-            out.append(np.concatenate([f, np.zeros(3)]))
+            f = np.asarray(y, dtype=float)
+            m = np.zeros(3) if point_x is None else np.cross(point_x, f)
+            out.append(np.concatenate([f, m]))
+        else:
+            out.append(frame.wrench_back(y))  # f . v + m . omega = y . (commensurate twist)
+    return out
+
+
+def _unit_wrench(w: np.ndarray) -> list[float]:
+    """A unit force (a unit moment for a couple), first non-zero component positive."""
+    f, m = w[:3], w[3:]
+    nf = np.linalg.norm(f)
+    # a couple when the force is zero next to the moment (unit moment, else unit force)
+    couple = nf <= MEMBERSHIP_RTOL_FLOAT * np.linalg.norm(m)
+    return _unit_first_positive(w / np.linalg.norm(m) if couple else w / nf).tolist()
+
+
+def _unit_twist(t: np.ndarray) -> list[float]:
+    """A unit rotation (a unit translation when omega is zero next to v), first non-zero
+    component positive."""
+    w, v = t[:3], t[3:]
+    nw = np.linalg.norm(w)
+    translation = nw <= MEMBERSHIP_RTOL_FLOAT * np.linalg.norm(v)
+    return _unit_first_positive(t / np.linalg.norm(v) if translation else t / nw).tolist()
+
+
+def wrenches_of(frame: CommensurateFrame, null_rows: np.ndarray, point: bool) -> list[list[float]]:
+    """SI wrenches (f, m) at the ground origin from commensurate left-null vectors
+    (columns of ``null_rows``), each a unit force (a unit moment for a couple), first
+    non-zero component positive."""
+    return [_unit_wrench(w) for w in _si_wrenches(frame, null_rows, None, point)]
+
+
+def _echelon(rows: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, list[int]]:
+    """Reduced row echelon form of ``rows`` (k, 6) with its pivot columns, the columns
+    compared after multiplying by ``scale`` (a pivot is the largest remaining entry of
+    the first column where one exceeds SUPPORT_RTOL of the largest entry)."""
+    A = np.array(rows, dtype=float) * scale
+    pivots: list[int] = []
+    if A.size == 0:
+        return A / scale, pivots
+    tol = SUPPORT_RTOL * float(np.max(np.abs(A)))
+    r = 0
+    for j in range(A.shape[1]):
+        if r == A.shape[0]:
+            break
+        i = r + int(np.argmax(np.abs(A[r:, j])))
+        if abs(A[i, j]) <= tol:
             continue
-        w = frame.wrench_back(y)  # (f, m): f . v + m . omega = y . (commensurate twist)
-        f, m = w[:3], w[3:]
-        nf = np.linalg.norm(f)
-        # a couple when the force is zero next to the moment (unit moment, else unit force)
-        couple = nf <= MEMBERSHIP_RTOL_FLOAT * np.linalg.norm(m)
-        w = w / np.linalg.norm(m) if couple else w / nf
-        out.append(w)
-    return [_unit_first_positive(np.asarray(x)).tolist() for x in out]
+        A[[r, i]] = A[[i, r]]
+        A[r] /= A[r, j]
+        others = np.arange(A.shape[0]) != r
+        A[others] -= np.outer(A[others, j], A[r])
+        pivots.append(j)
+        r += 1
+    return A[:r] / scale, pivots
+
+
+def _simplest(v: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """``v`` (6,) modulo the span of ``rows`` (k, 6): the representative whose first
+    half (omega of a twist, f of a wrench) is smallest, and among those, whose second
+    half is (the span's elements with a zero first half -- translations, couples -- do
+    not depend on the origin)."""
+    R = np.asarray(rows, dtype=float).reshape(-1, 6)
+    out = np.array(v, dtype=float)
+    if len(R) == 0:
+        return out
+    # least squares on the first halves, their rounding-level singular values dropped
+    U, sv, Vt = np.linalg.svd(R[:, :3], full_matrices=True)
+    big = max(float(np.max(np.abs(R))), float(sv.max(initial=0.0)))
+    rank = int(np.sum(sv > SUPPORT_RTOL * big))
+    a = U[:, :rank] @ ((Vt[:rank] @ out[:3]) / sv[:rank])
+    out = out - a @ R
+    pure = U[:, rank:].T @ R  # the span's elements with a zero first half
+    if len(pure):
+        Q, s2, _ = np.linalg.svd(pure[:, 3:].T, full_matrices=False)
+        Q = Q[:, s2 > SUPPORT_RTOL * big]
+        out[3:] = out[3:] - Q @ (Q.T @ out[3:])
+    return out
+
+
+def _split_new(left_null: np.ndarray, span: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+    """Commensurate left-null columns split into the new ones (inside the chain's generic
+    span E, orthonormal columns ``span``; None: all are new) and the usual ones
+    (orthogonal to E: reciprocal to the chain at every configuration)."""
+    if span is None:
+        return left_null, left_null[:, :0]
+    new = left_null.shape[1] - (left_null.shape[0] - span.shape[1])
+    if new <= 0:
+        return left_null[:, :0], left_null
+    U, _, Vt = np.linalg.svd(span.T @ left_null)
+    return span @ U[:, :new], left_null @ Vt[new:].T
+
+
+def generic_span(matrices: list[np.ndarray], generic_rank: int) -> np.ndarray | None:
+    """Orthonormal columns of the one space E of dimension ``generic_rank`` that the
+    chain's commensurate screw matrices ``matrices`` (at several configurations) all lie
+    in, or None when together they span more (the chain moves its span around)."""
+    M = np.hstack([np.asarray(to_float(m), dtype=float) for m in matrices])
+    dec = decide_rank(M, "float")
+    if dec.rank != generic_rank or generic_rank == M.shape[0]:
+        return None
+    U = np.linalg.svd(M)[0]
+    return U[:, :generic_rank]
 
 
 def serial_finding(
@@ -89,9 +196,11 @@ def serial_finding(
     joints_of_columns: list[str],
     label: dict[str, Any],
     point_x: np.ndarray | None = None,
+    span: np.ndarray | None = None,
 ) -> SerialFinding | None:
     """The ``serial`` finding of a chain whose rank is below ``generic_rank`` (else None);
-    ``label``: ``chain`` ("output" with ``body`` and ``relative_to``, or "leg" with ``leg``)."""
+    ``label``: ``chain`` ("output" with ``body`` and ``relative_to``, or "leg" with ``leg``);
+    ``span``: the space the chain's screws stay in (:func:`generic_span`), if one."""
     dec = system.rank
     if dec.rank is None or dec.rank >= generic_rank:
         return None
@@ -100,21 +209,28 @@ def serial_finding(
     Ms = np.asarray(to_float(system.matrix), dtype=float)
     U, s, Vt = np.linalg.svd(Ms)
     r = dec.rank
-    left_null = U[:, r:]
+    new, usual = _split_new(U[:, r:], span)
     fr = model.float_frame
-    wr = wrenches_of(fr, left_null, system.point)
-    if system.point and point_x is not None:
-        wr = [
-            _unit_first_positive(
-                np.concatenate([np.array(w[:3]), np.cross(point_x, w[:3])])
-            ).tolist()
-            for w in wr
-        ]
-    lost = U[:, r]
-    if system.point:
-        twist = np.concatenate([np.zeros(3), fr.velocity_back(lost)]).tolist()
-    else:
-        twist = fr.twist_back(lost).tolist()
+    L = float(model.length_scale)
+    scale = np.array([1.0, 1.0, 1.0, 1.0 / L, 1.0 / L, 1.0 / L])
+    # the wrenches every configuration resists, in their simplest form; then the new
+    # ones, each modulo those and in their own simplest form
+    usual_si, _ = _echelon(
+        np.array(_si_wrenches(fr, usual, point_x, system.point)).reshape(-1, 6), scale
+    )
+    new_si = [_simplest(w, usual_si) for w in _si_wrenches(fr, new, point_x, system.point)]
+    new_si, _ = _echelon(np.array(new_si).reshape(-1, 6), scale)
+    wr = [_unit_wrench(w) for w in list(new_si) + list(usual_si)]
+
+    def si_twist(t: np.ndarray) -> np.ndarray:
+        if system.point:
+            return np.concatenate([np.zeros(3), fr.velocity_back(t)])
+        return fr.twist_back(t)
+
+    # a lost twist: in E, with non-zero power against the first new wrench (a commensurate
+    # left-null vector pairs with itself), in its simplest form modulo the chain's twists
+    here = np.array([si_twist(u) for u in U[:, :r].T]).reshape(-1, 6)
+    twist = _unit_twist(_simplest(si_twist(new[:, 0]), here))
     kernel = Vt[r:].T if Vt.shape[0] > r else np.zeros((Ms.shape[1], 0))
     rates = kernel[:, 0] if kernel.shape[1] else np.zeros(Ms.shape[1])
     rates = fr.rates_back(rates, system.columns)
@@ -131,7 +247,7 @@ def serial_finding(
         rank=r,
         generic_rank=generic_rank,
         wrenches=tuple(tuple(w) for w in wr),
-        twist=tuple(_unit_first_positive(np.asarray(twist)).tolist()),
+        twist=tuple(twist),
         null_joint_rates=tuple(float(x) for x in rates),
         margin=dec.margin,
         precision=dec.precision,
