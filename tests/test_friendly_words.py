@@ -207,3 +207,22 @@ def test_a_planar_chain_in_line_loses_the_translation_along_its_line(tmp_path, t
     text_out = render_text(analyze(path))
     assert "lost twist: a translation along x" in text_out
     assert f"resisted wrench: a force along x through (0, {line_y:g}, 0) m" in text_out
+
+
+def test_text_says_when_the_values_given_leave_the_configuration_free(tmp_path):
+    # the five-bar has two degrees of freedom: giving A1 alone leaves one, which
+    # continuation fills with minimum-norm steps (JSON: underdetermined); the text says
+    # so and names what was given, where a fully given input pair says nothing of it
+    text = (EX / "five_bar.yaml").read_text() + "  one-input: {A1: 0.3}\n"
+    path = tmp_path / "five_bar.yaml"
+    path.write_text(text)
+    res = analyze(path, configs=["one-input", "inputs"])
+    by_name = {c["name"]: c for c in res.to_json()["configurations"]}
+    assert by_name["one-input"].get("underdetermined") is True
+    assert "underdetermined" not in by_name["inputs"]
+    out = render_text(res)
+    blocks = {b.split(" ", 1)[0]: b for b in out.split("\nConfiguration ")[1:]}
+    one, both = blocks["one-input"], blocks["inputs"]
+    assert "underdetermined: the values given (A1) leave the mechanism free to move" in one
+    assert "from reference; give more joint values to fix them" in one
+    assert "underdetermined" not in both

@@ -279,6 +279,8 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             )
         vals = ", ".join(f"{k} = [{', '.join(f'{x:.6g}' for x in v)}]" for k, v in c.joints)
         lines.append(f"{bullet}joint values (m, rad): {vals}")
+        if c.underdetermined:
+            lines.append(f"{bullet}{_underdetermined(result.mechanism, c)}")
         outside = _outside_limits(result.mechanism.limits, c.joints)
         if outside:
             lines.append(f"{bullet}outside the joint limits: {', '.join(outside)}")
@@ -314,6 +316,19 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             verb = "tested" if isinstance(s, UndecidedFinding) else "decided"
             lines.append(f"{sub}{verb} in {s.precision}; margin: {_margin(s.margin)}")
     return "\n".join(lines) + "\n"
+
+
+def _underdetermined(mech: Any, c: Any) -> str:
+    """Why some joint values were chosen rather than given: the configuration's values
+    leave freedom, and continuation took the minimum-norm steps."""
+    conf = mech.configurations.get(c.name)
+    given = sorted(conf.values, key=[j.name for j in mech.joints].index) if conf else []
+    start = conf.start if conf is not None and conf.start else "reference"
+    said = f"the values given ({', '.join(given)})" if given else "the values given"
+    return (
+        f"underdetermined: {said} leave the mechanism free to move, so the other joints "
+        f"took the smallest (minimum-norm) steps from {start}; give more joint values to fix them"
+    )
 
 
 def _outside_limits(limits: Any, joints: Any) -> list[str]:
