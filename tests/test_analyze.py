@@ -183,6 +183,33 @@ def test_overconstrained_property(name: str) -> None:
     assert kinds.count("overconstrained") <= 1
 
 
+RIGID_SPATIAL_4R = """\
+mechanism: spatial-4r-rigid
+bodies: [ground, a, b, c]
+joints:
+  - {name: J1, type: R, between: [ground, a], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [a, b], axis: [1, 0, 0], point: [1, 0, 0]}
+  - {name: J3, type: R, between: [b, c], axis: [0, 1, 1], point: [1, 1, 0.5]}
+  - {name: J4, type: R, between: [c, ground], axis: [1, 1, 0], point: [0, 1, 0.3]}
+"""
+
+
+def test_a_rigid_spatial_loop_is_a_structure_with_redundant_constraints(tmp_path) -> None:
+    # Four revolute axes in general position (not Bennett's conditions): the loop's four
+    # screws are independent (rank 4, no motion), while Grubler-Kutzbach counts
+    # 6*3 - 4*5 = -2.  finite 0 is above group -2, so the contract's `overconstrained`
+    # holds; its words say what that means for a structure: 2 redundant constraints.
+    path = tmp_path / "rigid.yaml"
+    path.write_text(RIGID_SPATIAL_4R)
+    res = analyze_json(path)
+    (c,) = res["configurations"]
+    assert c["closure_rank"]["rank"] == 4
+    assert (c["mobility"]["finite"], c["mobility"]["group"], c["mobility"]["grubler"]) == (0, -2, -2)
+    (prop,) = [p for p in res["properties"] if p["kind"] == "overconstrained"]
+    assert "does not move (a structure)" in prop["explanation"]
+    assert "2 of its constraints are redundant" in prop["explanation"]
+
+
 # ============================================================================ 2. scale invariance
 
 

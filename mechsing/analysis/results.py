@@ -91,6 +91,13 @@ class Overconstrained:
 
     @property
     def explanation(self) -> str:
+        if self.finite == 0:
+            # a structure: nothing moves, and the count below zero is redundant constraint
+            return (
+                f"the mechanism does not move (a structure), and its loops' subgroups count "
+                f"{self.group} (Grubler-Kutzbach gives {self.grubler}): {-self.group} of its "
+                "constraints are redundant (statically indeterminate)"
+            )
         return (
             f"the mechanism moves with {self.finite} degree(s) of freedom although its loops' "
             f"subgroups allow {self.group} (Grubler-Kutzbach gives {self.grubler}): its mobility "

@@ -232,7 +232,12 @@ def mobility_sentences(m: Mobility) -> list[tuple[str, str, str]]:
             "classification compares against)",
         )
     )
-    if m.finite is not None and m.group is not None and m.finite > m.group:
+    if m.finite == 0 and m.group is not None and m.group < 0:
+        why = (
+            "the dimension of the motion through this configuration: none, a structure; "
+            "above the group count: some constraints are redundant"
+        )
+    elif m.finite is not None and m.group is not None and m.finite > m.group:
         why = (
             "the dimension of the motion through this configuration; above the group count: "
             "the mobility comes from special geometry (an overconstrained mechanism)"
