@@ -15,17 +15,15 @@ non-zero power against a new wrench; ``null_joint_rates`` -- a kernel vector
 :data:`mechsing.numeric.SUPPORT_RTOL` of the largest).
 
 Which basis, and which lost twist, is a choice (theory: only the reciprocal system is
-intrinsic); it is made to be read.  When the chain's screws stay in one space E at
-every configuration (a chain of a subgroup: a planar leg's E is its plane's g(u)),
-the lost twist is taken in E and the new wrenches (reciprocal to the chain here but
-not to E) are listed first, then the ones every configuration resists.  Each is then
-written in its simplest form modulo what it may be changed by, in the coordinates
-(omega, v) and (f, m) at the ground origin: the lost twist modulo the chain's twists
-here and each new wrench modulo the usual ones, with the least rotation (force), then
-the least translation (couple) (:func:`_simplest`); the usual ones, and the new ones
-among themselves, in reduced row echelon form (linear parts divided by L,
-:func:`_echelon`).  A dead centre's lost twist thus reads as the translation along the
-line of its pivots and its new wrench as the force along that line.
+intrinsic); it is made to be read (:mod:`mechsing.screws.readable`).  When the chain's
+screws stay in one space E at every configuration (a chain of a subgroup: a planar
+leg's E is its plane's g(u)), the lost twist is taken in E and the new wrenches
+(reciprocal to the chain here but not to E) are listed first, then the ones every
+configuration resists.  The lost twist is the simplest modulo the chain's twists here,
+each new wrench the simplest modulo the usual ones (least rotation or force, then least
+translation or couple), and the usual ones, and the new ones among themselves, are in
+reduced row echelon form.  A dead centre's lost twist thus reads as the translation
+along the line of its pivots and its new wrench as the force along that line.
 """
 
 from __future__ import annotations
@@ -44,6 +42,7 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.screws import chain_matrix
+from mechsing.screws.readable import echelon, simplest
 from mechsing.singularity.findings import SerialFinding
 
 #: random configurations sampled to find a chain's generic rank
@@ -116,54 +115,6 @@ def wrenches_of(frame: CommensurateFrame, null_rows: np.ndarray, point: bool) ->
     return [_unit_wrench(w) for w in _si_wrenches(frame, null_rows, None, point)]
 
 
-def _echelon(rows: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, list[int]]:
-    """Reduced row echelon form of ``rows`` (k, 6) with its pivot columns, the columns
-    compared after multiplying by ``scale`` (a pivot is the largest remaining entry of
-    the first column where one exceeds SUPPORT_RTOL of the largest entry)."""
-    A = np.array(rows, dtype=float) * scale
-    pivots: list[int] = []
-    if A.size == 0:
-        return A / scale, pivots
-    tol = SUPPORT_RTOL * float(np.max(np.abs(A)))
-    r = 0
-    for j in range(A.shape[1]):
-        if r == A.shape[0]:
-            break
-        i = r + int(np.argmax(np.abs(A[r:, j])))
-        if abs(A[i, j]) <= tol:
-            continue
-        A[[r, i]] = A[[i, r]]
-        A[r] /= A[r, j]
-        others = np.arange(A.shape[0]) != r
-        A[others] -= np.outer(A[others, j], A[r])
-        pivots.append(j)
-        r += 1
-    return A[:r] / scale, pivots
-
-
-def _simplest(v: np.ndarray, rows: np.ndarray) -> np.ndarray:
-    """``v`` (6,) modulo the span of ``rows`` (k, 6): the representative whose first
-    half (omega of a twist, f of a wrench) is smallest, and among those, whose second
-    half is (the span's elements with a zero first half -- translations, couples -- do
-    not depend on the origin)."""
-    R = np.asarray(rows, dtype=float).reshape(-1, 6)
-    out = np.array(v, dtype=float)
-    if len(R) == 0:
-        return out
-    # least squares on the first halves, their rounding-level singular values dropped
-    U, sv, Vt = np.linalg.svd(R[:, :3], full_matrices=True)
-    big = max(float(np.max(np.abs(R))), float(sv.max(initial=0.0)))
-    rank = int(np.sum(sv > SUPPORT_RTOL * big))
-    a = U[:, :rank] @ ((Vt[:rank] @ out[:3]) / sv[:rank])
-    out = out - a @ R
-    pure = U[:, rank:].T @ R  # the span's elements with a zero first half
-    if len(pure):
-        Q, s2, _ = np.linalg.svd(pure[:, 3:].T, full_matrices=False)
-        Q = Q[:, s2 > SUPPORT_RTOL * big]
-        out[3:] = out[3:] - Q @ (Q.T @ out[3:])
-    return out
-
-
 def _split_new(left_null: np.ndarray, span: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
     """Commensurate left-null columns split into the new ones (inside the chain's generic
     span E, orthonormal columns ``span``; None: all are new) and the usual ones
@@ -212,14 +163,13 @@ def serial_finding(
     new, usual = _split_new(U[:, r:], span)
     fr = model.float_frame
     L = float(model.length_scale)
-    scale = np.array([1.0, 1.0, 1.0, 1.0 / L, 1.0 / L, 1.0 / L])
     # the wrenches every configuration resists, in their simplest form; then the new
     # ones, each modulo those and in their own simplest form
-    usual_si, _ = _echelon(
-        np.array(_si_wrenches(fr, usual, point_x, system.point)).reshape(-1, 6), scale
+    usual_si, _ = echelon(
+        np.array(_si_wrenches(fr, usual, point_x, system.point)).reshape(-1, 6), L
     )
-    new_si = [_simplest(w, usual_si) for w in _si_wrenches(fr, new, point_x, system.point)]
-    new_si, _ = _echelon(np.array(new_si).reshape(-1, 6), scale)
+    new_si = [simplest(w, usual_si) for w in _si_wrenches(fr, new, point_x, system.point)]
+    new_si, _ = echelon(np.array(new_si).reshape(-1, 6), L)
     wr = [_unit_wrench(w) for w in list(new_si) + list(usual_si)]
 
     def si_twist(t: np.ndarray) -> np.ndarray:
@@ -230,7 +180,7 @@ def serial_finding(
     # a lost twist: in E, with non-zero power against the first new wrench (a commensurate
     # left-null vector pairs with itself), in its simplest form modulo the chain's twists
     here = np.array([si_twist(u) for u in U[:, :r].T]).reshape(-1, 6)
-    twist = _unit_twist(_simplest(si_twist(new[:, 0]), here))
+    twist = _unit_twist(simplest(si_twist(new[:, 0]), here))
     kernel = Vt[r:].T if Vt.shape[0] > r else np.zeros((Ms.shape[1], 0))
     rates = kernel[:, 0] if kernel.shape[1] else np.zeros(Ms.shape[1])
     rates = fr.rates_back(rates, system.columns)

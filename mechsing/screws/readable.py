@@ -1,0 +1,101 @@
+"""Screws written to be read: which element of a space, or of a class modulo a space.
+
+Only some screw objects are intrinsic: a span of twists, a system of wrenches.  A basis
+of one, or a lost twist (any twist outside a span), is a choice, and these functions
+make it the one a reader recognises.  Coordinates are SI at the ground origin: a twist
+``(omega, v)``, a wrench ``(f, m)`` -- the "first half" is omega or f, the "second
+half" v or m.  The elements with a zero first half (translations, couples) are the
+ones that do not depend on the origin.
+
+* :func:`echelon` -- a basis in reduced row echelon form (second halves divided by the
+  characteristic length L so that the columns are commensurate): a planar chain's
+  usual wrenches come out as the force along the normal and the couples about the two
+  in-plane axes, a span's rotations before its translations.
+* :func:`simplest` -- a representative of ``v`` modulo a span: the least first half,
+  then the least second half (a dead centre's lost twist: the translation along the
+  line of its pivots, not some screw about a far axis).
+* :func:`readable_basis` -- a span's basis, rotations (forces) in echelon form with
+  their second halves least modulo the span's translations (couples), then those.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mechsing.numeric import SUPPORT_RTOL
+
+__all__ = ["echelon", "readable_basis", "simplest"]
+
+
+def _scale(length_scale: float) -> np.ndarray:
+    L = float(length_scale)
+    return np.array([1.0, 1.0, 1.0, 1.0 / L, 1.0 / L, 1.0 / L])
+
+
+def echelon(rows: np.ndarray, length_scale: float) -> tuple[np.ndarray, list[int]]:
+    """Reduced row echelon form of ``rows`` (k, 6) with its pivot columns; the columns
+    compared after dividing second halves by ``length_scale``.  A pivot is the largest
+    remaining entry of the first column where one exceeds SUPPORT_RTOL of the largest
+    entry; rows of rounding level are dropped."""
+    scale = _scale(length_scale)
+    A = np.array(rows, dtype=float).reshape(-1, 6) * scale
+    pivots: list[int] = []
+    if A.size == 0:
+        return A / scale, pivots
+    tol = SUPPORT_RTOL * float(np.max(np.abs(A)))
+    r = 0
+    for j in range(A.shape[1]):
+        if r == A.shape[0]:
+            break
+        i = r + int(np.argmax(np.abs(A[r:, j])))
+        if abs(A[i, j]) <= tol:
+            continue
+        A[[r, i]] = A[[i, r]]
+        A[r] /= A[r, j]
+        others = np.arange(A.shape[0]) != r
+        A[others] -= np.outer(A[others, j], A[r])
+        pivots.append(j)
+        r += 1
+    return A[:r] / scale, pivots
+
+
+def _pure(R: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]:
+    """The SVD of the first halves of ``R`` (U, singular values, Vt), the span's elements
+    with a zero first half (rows), and the magnitude the rank is judged against."""
+    U, sv, Vt = np.linalg.svd(R[:, :3], full_matrices=True)
+    big = max(float(np.max(np.abs(R))), float(sv.max(initial=0.0)))
+    rank = int(np.sum(sv > SUPPORT_RTOL * big))
+    return U[:, :rank], sv[:rank], Vt[:rank], U[:, rank:].T @ R, big
+
+
+def simplest(v: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """``v`` (6,) modulo the span of ``rows`` (k, 6): the representative whose first
+    half is least, and among those, whose second half is least."""
+    R = np.asarray(rows, dtype=float).reshape(-1, 6)
+    out = np.array(v, dtype=float)
+    if len(R) == 0:
+        return out
+    # least squares on the first halves, their rounding-level singular values dropped
+    U, sv, Vt, pure, big = _pure(R)
+    out = out - (U @ ((Vt @ out[:3]) / sv)) @ R
+    if len(pure):
+        Q, s2, _ = np.linalg.svd(pure[:, 3:].T, full_matrices=False)
+        Q = Q[:, s2 > SUPPORT_RTOL * big]
+        out[3:] = out[3:] - Q @ (Q.T @ out[3:])
+    return out
+
+
+def readable_basis(rows: np.ndarray, length_scale: float) -> np.ndarray:
+    """A basis (rows) of the span of ``rows`` (k, 6): in echelon form (:func:`echelon`),
+    each row with a first half then made least in its second half modulo the rows
+    without one (a rotation's axis as near the origin as the span's translations allow)."""
+    E, pivots = echelon(rows, length_scale)
+    pure = [i for i, j in enumerate(pivots) if j >= 3]
+    if not pure:
+        return E
+    T = E[pure]
+    out = E.copy()
+    for i, j in enumerate(pivots):
+        if j < 3:
+            out[i] = np.concatenate([E[i, :3], simplest(np.r_[np.zeros(3), E[i, 3:]], T)[3:]])
+    return out
