@@ -226,3 +226,27 @@ def test_text_says_when_the_values_given_leave_the_configuration_free(tmp_path):
     assert "underdetermined: the values given (A1) leave the mechanism free to move" in one
     assert "from reference; give more joint values to fix them" in one
     assert "underdetermined" not in both
+
+
+def test_an_output_motion_basis_reads_as_a_rotation_and_a_translation(tmp_path):
+    # A plate gliding on the plane z = 0 (G) whose point (1, 0, 0) is held by a rod to
+    # the ground point (1, 1, 1) (two S joints): the point moves normal to the rod, along
+    # x, so the plate's twists span the translation along x and the rotation about z
+    # through (1, 0, 0) (by hand), and the text shows exactly those two.
+    path = tmp_path / "gss.yaml"
+    path.write_text(
+        "mechanism: plate-on-plane-with-rod\n"
+        "bodies: [ground, plate, rod]\n"
+        "joints:\n"
+        "  - {name: G1, type: G, between: [ground, plate], normal: [0, 0, 1]}\n"
+        "  - {name: S1, type: S, between: [plate, rod], point: [1, 0, 0]}\n"
+        "  - {name: S2, type: S, between: [rod, ground], point: [1, 1, 1]}\n"
+        "output: {body: plate}\n"
+    )
+    res = analyze(path)
+    twists = np.array(res.to_json()["configurations"][0]["output_motion"]["twists"])
+    assert np.allclose(twists, [_twist([0, 0, 1], [1, 0, 0], 0.0), [0, 0, 0, 1, 0, 0]])
+    assert (
+        "e.g. a rotation about the axis through (1, 0, 0) m along z; a translation along x"
+        in render_text(res)
+    )

@@ -29,6 +29,7 @@ from mechsing.kinematics.chains import tree_chain
 from mechsing.model import Mechanism
 from mechsing.numeric import Margin, Precision, decide_rank, spectral_norm, to_float
 from mechsing.screws import chain_matrix
+from mechsing.screws.readable import readable_basis
 from mechsing.subgroups import Subgroup, identify
 
 __all__ = ["LegDescription", "OutputMotion", "PointMotion", "describe_legs", "output_motion"]
@@ -225,7 +226,10 @@ def _output_motion(
             X = np.array(native, dtype=object).reshape(r, 6)
         else:
             X = np.array(si, dtype=float).reshape(r, 6)
-    twists = tuple(tuple(float(x) + 0.0 for x in t) for t in si)
+    # the basis shown: rotations in echelon form with their axes as near the origin as the
+    # span's translations allow, then those (the span itself is what the numbers decided)
+    shown = readable_basis(np.array(si, dtype=float).reshape(-1, 6), float(to_float(L)))
+    twists = tuple(tuple(float(x) + 0.0 for x in t) for t in shown)
     if r == 0:
         return OutputMotion(
             configuration,

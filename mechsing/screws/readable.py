@@ -85,17 +85,33 @@ def simplest(v: np.ndarray, rows: np.ndarray) -> np.ndarray:
     return out
 
 
+def _unit(row: np.ndarray, length_scale: float) -> np.ndarray:
+    """A unit first half, or a unit second half when the first is of rounding level
+    next to it (commensurate: at most SUPPORT_RTOL of the second half over L);
+    components of rounding level (SUPPORT_RTOL of the largest, commensurate) set to 0."""
+    scale = _scale(length_scale)
+    first, second = np.linalg.norm(row[:3]), np.linalg.norm(row[3:] * scale[3:])
+    if first <= SUPPORT_RTOL * second:
+        row = np.r_[np.zeros(3), row[3:]]
+        out = row / np.linalg.norm(row[3:])
+    else:
+        out = row / first
+    big = np.max(np.abs(out * scale))
+    return np.where(np.abs(out * scale) > SUPPORT_RTOL * big, out, 0.0) + 0.0
+
+
 def readable_basis(rows: np.ndarray, length_scale: float) -> np.ndarray:
     """A basis (rows) of the span of ``rows`` (k, 6): in echelon form (:func:`echelon`),
     each row with a first half then made least in its second half modulo the rows
-    without one (a rotation's axis as near the origin as the span's translations allow)."""
+    without one (a rotation's axis as near the origin as the span's translations allow);
+    each row a unit rotation (force), or a unit translation (couple)."""
     E, pivots = echelon(rows, length_scale)
     pure = [i for i, j in enumerate(pivots) if j >= 3]
-    if not pure:
-        return E
-    T = E[pure]
     out = E.copy()
-    for i, j in enumerate(pivots):
-        if j < 3:
-            out[i] = np.concatenate([E[i, :3], simplest(np.r_[np.zeros(3), E[i, 3:]], T)[3:]])
-    return out
+    if pure:
+        T = E[pure]
+        for i, j in enumerate(pivots):
+            if j < 3:
+                v = simplest(np.r_[np.zeros(3), E[i, 3:]], T)[3:]
+                out[i] = np.concatenate([E[i, :3], v])
+    return np.array([_unit(row, length_scale) for row in out]).reshape(-1, 6)
