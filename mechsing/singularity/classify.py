@@ -137,11 +137,14 @@ def _joints_of(mech: Any, cs: Any) -> tuple[str, ...]:
     return tuple(sorted({j for ls in cs.loops for j in ls.loop.joints}, key=order.index))
 
 
-def local_analysis(mech: Any, model: Any, q: np.ndarray, cs: Any) -> LocalAnalysis:
-    """Generic/finite mobility and every finding at a closed configuration with loops."""
+def local_analysis(
+    mech: Any, model: Any, q: np.ndarray, cs: Any, samples: list[NearbySample] | None = None
+) -> LocalAnalysis:
+    """Generic/finite mobility and every finding at a closed configuration with loops
+    (``samples``: its nearby samples when already closed, else closed here)."""
     tprec = numeric_precision(model.precision)
     with tprec.context():
-        return _local_analysis(mech, model, q, cs, tprec)
+        return _local_analysis(mech, model, q, cs, tprec, samples)
 
 
 @dataclass
@@ -154,7 +157,12 @@ class _TestSystem:
 
 
 def _local_analysis(
-    mech: Any, model: Any, q: np.ndarray, cs: Any, tprec: Precision
+    mech: Any,
+    model: Any,
+    q: np.ndarray,
+    cs: Any,
+    tprec: Precision,
+    given: list[NearbySample] | None = None,
 ) -> LocalAnalysis:
     inst = cs.nullity
     prec_name = cs.rank.precision
@@ -163,7 +171,10 @@ def _local_analysis(
     fm = float_model(model)
     qf = to_float(q)
     N = to_float(cs.rank.null_space) if cs.rank.null_space is not None else np.zeros((model.n, 0))
-    samples = nearby_samples(fm, qf, N) if inst > 0 else []
+    if inst == 0:
+        samples: list[NearbySample] = []
+    else:
+        samples = nearby_samples(fm, qf, N) if given is None else given
     null_s = [s.nullity for s in samples if s.nullity is not None]
     gen_s = min(null_s) if null_s else None
     out = LocalAnalysis(inst, inst, [], samples)
