@@ -14,7 +14,7 @@ minimum-norm Newton instead of one Newton each.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -39,11 +39,14 @@ _NEWTON = 30
 
 @dataclass(frozen=True)
 class NearbySample:
-    """A closed configuration near q and its decided nullity (None: undecided)."""
+    """A closed configuration near q and its decided nullity (None: undecided);
+    ``kernel``: an orthonormal basis of the closure system's kernel there (commensurate,
+    the decision's), which the input/output tests at the sample start from."""
 
     q: np.ndarray
     nullity: int | None
     distance: float
+    kernel: np.ndarray | None = field(default=None, compare=False, repr=False)
 
 
 def stacked_jacobian(model: KinematicModel, q: np.ndarray) -> np.ndarray:
@@ -99,9 +102,9 @@ def _sample(
     dist = float(np.linalg.norm(model.float_frame.rates(model.difference(q1, qf))))
     if dist < SAMPLE_DISTINCT_RATIO * step:
         return None  # Newton fell back onto q: not a nearby configuration
-    dec = decide_rank(stacked_jacobian(model, q1), "float", L)
+    dec = decide_rank(stacked_jacobian(model, q1), "float", L, want_spaces=True)
     null = None if dec.rank is None else model.n - dec.rank
-    return NearbySample(q1, null, dist)
+    return NearbySample(q1, null, dist, dec.null_space)
 
 
 def nearby_samples(

@@ -351,15 +351,19 @@ def _io_findings(
     the values at the regular nearby samples (float)."""
     findings: list[Finding] = []
     regular = [s for s in samples if s.nullity == out.generic] or samples
+    # each regular sample's screws, computed once for its tests
+    screws = [fm.current_screws(s.q) for s in regular]
     has_io = mech.output is not None and mech.inputs
     if has_io:
         here = io_quantities(mech, model, q, rank.null_space, tprec, screws=cs.screws)
         gens = []
-        for s in regular:
-            Ns = decide_rank(
-                stacked_jacobian(fm, s.q), "float", fm.length_scale, want_spaces=True
-            ).null_space
-            g = io_quantities(mech, fm, s.q, Ns)
+        for s, S in zip(regular, screws, strict=True):
+            Ns = s.kernel
+            if Ns is None:
+                Ns = decide_rank(
+                    stacked_jacobian(fm, s.q), "float", fm.length_scale, want_spaces=True
+                ).null_space
+            g = io_quantities(mech, fm, s.q, Ns, screws=S)
             if g is not None:
                 gens.append(g.values())
         if here is not None and gens:
@@ -408,7 +412,7 @@ def _io_findings(
                 )
             )
     if mech.output is not None:
-        findings.extend(_leg_serial(mech, model, fm, cs, regular, out))
+        findings.extend(_leg_serial(mech, model, fm, cs, regular, screws, out))
     return findings
 
 
@@ -510,11 +514,18 @@ def _coordinate_names(mech: Any, fm: Any) -> list[str]:
 
 
 def _leg_serial(
-    mech: Any, model: Any, fm: Any, cs: Any, regular: list[NearbySample], out: LocalAnalysis
+    mech: Any,
+    model: Any,
+    fm: Any,
+    cs: Any,
+    regular: list[NearbySample],
+    screws: list[np.ndarray],
+    out: LocalAnalysis,
 ) -> list[Finding]:
     """``serial`` for a leg whose own screw system loses rank (type I per leg):
     decided at the analysis precision from the closure system's screws (as the
-    output chain of an open chain), against the float ranks at the samples."""
+    output chain of an open chain), against the float ranks at the samples
+    (``screws``: each sample's)."""
     findings: list[Finding] = []
     legs = mech.legs
     if len(legs) < 2:
@@ -533,8 +544,8 @@ def _leg_serial(
         with model.precision.context():
             here = chain_system(model, cs.screws, cols, None, model.precision)
         gen = here.rank.rank or 0
-        for s in regular:
-            r = chain_system(fm, fm.current_screws(s.q), cols, None, "float").rank.rank
+        for S in screws:
+            r = chain_system(fm, S, cols, None, "float").rank.rank
             if r is not None:
                 gen = max(gen, r)
         out.decisions.append(decision(f"leg {i + 1} chain", here.rank, gen))
