@@ -46,7 +46,6 @@ from mechsing.numeric import Precision, float_drop_is_real, parse_precision, to_
 from mechsing.screws import closure_system, group_mobility, grubler
 from mechsing.screws.mobility import NearbySample, nearby_samples_many
 from mechsing.singularity import classify
-from mechsing.singularity.classify import float_model
 from mechsing.singularity.findings import Decision, UndecidedFinding, decision
 from mechsing.timelimit import (
     EXACT_PROGRESS_DELAY,
@@ -343,6 +342,10 @@ def _prepare_found(
     against (:func:`mechsing.screws.mobility.nearby_samples`), all configurations'
     samples closed by one batched Newton.  A configuration that does not close is left
     out (its analysis says why)."""
+    # imported here, as classify() does: importing the submodule at import time would
+    # shadow the function mechsing.singularity.classify with the module of that name
+    from mechsing.singularity.classify import float_model
+
     model, closer = stage
     prec = model.precision
     out: dict[str, tuple[Any, Any]] = {}
