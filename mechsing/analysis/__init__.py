@@ -23,9 +23,11 @@ import math
 import threading
 import time
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from mechsing.analysis.describe import describe_legs, output_motion
 from mechsing.analysis.properties import mechanism_properties
@@ -40,8 +42,9 @@ from mechsing.analysis.results import (
 from mechsing.errors import UserError, working_on
 from mechsing.kinematics import Closer, ConfigurationError, KinematicModel
 from mechsing.model import Mechanism, load
-from mechsing.numeric import Precision, float_drop_is_real, parse_precision
+from mechsing.numeric import Precision, float_drop_is_real, parse_precision, to_float
 from mechsing.screws import closure_system, group_mobility, grubler
+from mechsing.screws.mobility import NearbySample, nearby_samples_many
 from mechsing.singularity import classify
 from mechsing.singularity.findings import Decision, UndecidedFinding, decision
 from mechsing.timelimit import (
@@ -170,13 +173,16 @@ def _analyze(
         exact = _ExactRun(mech, names, time_limit, progress)
         exact.prepare(lambda: stage(first))
     results = []
+    # configurations found numerically (a sweep's located points) come many at a time:
+    # their nearby samples are closed together
+    prepared = _prepare_found(mech, names, stage(first)) if located else {}
     for name in names:
         start = time.perf_counter()
         if prec.mode == "exact":  # policy: see _ExactRun
             res = exact.run(name, lambda name=name: _analyze_one(mech, name, stage(first)))
             results.append(replace(res, seconds=time.perf_counter() - start))
             continue
-        res = _analyze_one(mech, name, stage(first))
+        res = _analyze_one(mech, name, stage(first), prepared.get(name))
         # a point located in float is as near its singularity as float places it: the drop
         # float sees above its own rounding is that distance, so auto keeps the verdict
         doubtful = res.doubtful and not located
@@ -318,34 +324,95 @@ class _ExactRun:
         return res
 
 
+@dataclass(frozen=True)
+class _Prepared:
+    """What the analysis of one configuration starts from, computed before it: the
+    closed configuration, its closure system and its nearby samples (None: not needed)."""
+
+    closed: Any
+    closure: Any
+    samples: list[NearbySample] | None
+
+
+def _prepare_found(
+    mech: Mechanism, names: list[str], stage: tuple[KinematicModel, Closer]
+) -> dict[str, _Prepared]:
+    """Each configuration closed and its closure system decided, as its analysis does
+    first, and the nearby samples its classification measures the generic values
+    against (:func:`mechsing.screws.mobility.nearby_samples`), all configurations'
+    samples closed by one batched Newton.  A configuration that does not close is left
+    out (its analysis says why)."""
+    # imported here, as classify() does: importing the submodule at import time would
+    # shadow the function mechsing.singularity.classify with the module of that name
+    from mechsing.singularity.classify import float_model
+
+    model, closer = stage
+    prec = model.precision
+    out: dict[str, tuple[Any, Any]] = {}
+    for name in names:
+        with working_on(configuration=name, precision=str(prec)), prec.context():
+            try:
+                closed = closer.solve(name)
+            except ConfigurationError:
+                continue
+            out[name] = (closed, closure_system(model, closed.q, prec))
+    # the classification samples a configuration of nullity above 0 whose closure rank
+    # is decided (mechsing.singularity.classify)
+    want = [
+        n
+        for n, (_, cs) in out.items()
+        if mech.loops and cs.rank.rank is not None and cs.nullity
+    ]
+    fm = float_model(model)
+    with prec.context():
+        qs = [to_float(out[n][0].q) for n in want]
+        kernels = [
+            np.zeros((model.n, 0))
+            if out[n][1].rank.null_space is None
+            else to_float(out[n][1].rank.null_space)
+            for n in want
+        ]
+    samples = dict(zip(want, nearby_samples_many(fm, qs, kernels), strict=True))
+    return {n: _Prepared(c, cs, samples.get(n)) for n, (c, cs) in out.items()}
+
+
 def _analyze_one(
-    mech: Mechanism, name: str, stage: tuple[KinematicModel, Closer]
+    mech: Mechanism,
+    name: str,
+    stage: tuple[KinematicModel, Closer],
+    prepared: _Prepared | None = None,
 ) -> ConfigurationResult:
     # every mp:N computation must run at N digits: mpmath's precision is a context
     prec = stage[0].precision
     with working_on(configuration=name, precision=str(prec)), prec.context():
-        return _analyze_one_in_context(mech, name, stage)
+        return _analyze_one_in_context(mech, name, stage, prepared)
 
 
 def _analyze_one_in_context(
-    mech: Mechanism, name: str, stage: tuple[KinematicModel, Closer]
+    mech: Mechanism,
+    name: str,
+    stage: tuple[KinematicModel, Closer],
+    prepared: _Prepared | None = None,
 ) -> ConfigurationResult:
     model, closer = stage
     prec = model.precision
-    try:
-        with activity("closing the configuration"):
-            closed = closer.solve(name)
-    except ConfigurationError as exc:
-        return ConfigurationResult(name, str(prec), error=str(exc))
+    if prepared is not None:
+        closed = prepared.closed
+    else:
+        try:
+            with activity("closing the configuration"):
+                closed = closer.solve(name)
+        except ConfigurationError as exc:
+            return ConfigurationResult(name, str(prec), error=str(exc))
     q = closed.q
     with activity("deciding the ranks of the closure system, of its loops and their subgroups"):
-        cs = closure_system(model, q, prec)
+        cs = closure_system(model, q, prec) if prepared is None else prepared.closure
         closure_rank = ClosureRank(cs.rank.rank, cs.nullity, cs.rank.margin)
         loops, decisions, undecided = _closure_entries(mech, cs)
         inst = cs.nullity
         grubler_count, group = grubler(model), group_mobility(model, cs.loops)
     with activity("classifying the singularities (output chain, input/output and cone tests)"):
-        found = classify(mech, model, q, cs)
+        found = classify(mech, model, q, cs, None if prepared is None else prepared.samples)
     findings = list(found.findings)
     if closed.at_fold and prec.mode == "float":
         # float locates a fold's unknown joints only to sqrt(eps): a kernel singular value
@@ -390,8 +457,6 @@ def _analyze_one_in_context(
 def given_pose(mech: Mechanism, name: str) -> GivenPose | None:
     """The output's pose configuration ``name`` gives, completed (an omitted position is
     the reference point's, an omitted rotation the identity) and in float (SI, radians)."""
-    import numpy as np
-
     from mechsing import lie
     from mechsing.numeric import to_float
 

@@ -6,15 +6,20 @@ small distance along kernel directions, closes the loops again (minimum-norm
 Newton on the group, every joint free) and decides the nullity there; the
 generic value is the smallest found.  No nearby closed configuration at all
 means q is isolated (finite 0, generic null in the JSON).
+
+:func:`nearby_samples_many` gives the same samples of many configurations at once
+(a sweep's located points): the same directions, every sample closed by one batched
+minimum-norm Newton instead of one Newton each.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from mechsing.kinematics import KinematicModel
+from mechsing.kinematics.batch import BatchClosure
 from mechsing.kinematics.newton import newton_on_group, truncated_least_squares
 from mechsing.numeric import (
     SAMPLE_CLOSURE_RTOL,
@@ -34,11 +39,14 @@ _NEWTON = 30
 
 @dataclass(frozen=True)
 class NearbySample:
-    """A closed configuration near q and its decided nullity (None: undecided)."""
+    """A closed configuration near q and its decided nullity (None: undecided);
+    ``kernel``: an orthonormal basis of the closure system's kernel there (commensurate,
+    the decision's), which the input/output tests at the sample start from."""
 
     q: np.ndarray
     nullity: int | None
     distance: float
+    kernel: np.ndarray | None = field(default=None, compare=False, repr=False)
 
 
 def stacked_jacobian(model: KinematicModel, q: np.ndarray) -> np.ndarray:
@@ -69,6 +77,36 @@ def reclose(
     return out.q, out.residual
 
 
+def _starts(
+    model: KinematicModel, qf: np.ndarray, kernel: np.ndarray, seed: int
+) -> list[tuple[float, np.ndarray]]:
+    """The samples' starting points before closing: (step, q moved ``step`` along a
+    random unit kernel direction), in the order :func:`nearby_samples` tries them."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for step in SAMPLE_STEPS:
+        for _ in range(SAMPLES_PER_STEP):
+            v = kernel @ rng.normal(size=kernel.shape[1])
+            v /= np.linalg.norm(v)
+            out.append((step, model.update(qf, model.float_frame.rates_back(step * v))))
+    return out
+
+
+def _sample(
+    model: KinematicModel, qf: np.ndarray, step: float, q1: np.ndarray, res: float
+) -> NearbySample | None:
+    """The sample a closed start gives (None: not closed, or fallen back onto q)."""
+    L = model.length_scale
+    if not res <= SAMPLE_CLOSURE_RTOL * L:
+        return None
+    dist = float(np.linalg.norm(model.float_frame.rates(model.difference(q1, qf))))
+    if dist < SAMPLE_DISTINCT_RATIO * step:
+        return None  # Newton fell back onto q: not a nearby configuration
+    dec = decide_rank(stacked_jacobian(model, q1), "float", L, want_spaces=True)
+    null = None if dec.rank is None else model.n - dec.rank
+    return NearbySample(q1, null, dist, dec.null_space)
+
+
 def nearby_samples(
     model: KinematicModel, q: np.ndarray, kernel: np.ndarray, seed: int = 0
 ) -> list[NearbySample]:
@@ -76,22 +114,78 @@ def nearby_samples(
     directions (``kernel``: commensurate, n x d, float), with their nullities."""
     if kernel.shape[1] == 0 or not model.chords:
         return []
-    rng = np.random.default_rng(seed)
-    L = model.length_scale
     qf = to_float(q)
     out: list[NearbySample] = []
-    for step in SAMPLE_STEPS:
-        for _ in range(SAMPLES_PER_STEP):
-            v = kernel @ rng.normal(size=kernel.shape[1])
-            v /= np.linalg.norm(v)
-            d = model.float_frame.rates_back(step * v)
-            q1, res = reclose(model, model.update(qf, d))
-            if res > SAMPLE_CLOSURE_RTOL * L:
-                continue
-            dist = float(np.linalg.norm(model.float_frame.rates(model.difference(q1, qf))))
-            if dist < SAMPLE_DISTINCT_RATIO * step:
-                continue  # Newton fell back onto q: not a nearby configuration
-            dec = decide_rank(stacked_jacobian(model, q1), "float", L)
-            null = None if dec.rank is None else model.n - dec.rank
-            out.append(NearbySample(q1, null, dist))
+    for step, q0 in _starts(model, qf, kernel, seed):
+        q1, res = reclose(model, q0)
+        s = _sample(model, qf, step, q1, res)
+        if s is not None:
+            out.append(s)
     return out
+
+
+def nearby_samples_many(
+    model: KinematicModel, qs: list[np.ndarray], kernels: list[np.ndarray], seed: int = 0
+) -> list[list[NearbySample]]:
+    """:func:`nearby_samples` of each configuration ``qs[i]`` with its kernel
+    ``kernels[i]`` (``model`` float): the same starting points, all closed together by
+    :func:`reclose_many` (the same minimum-norm Newton, batched)."""
+    if model.backend.name != "float" or model.sparse_closure:
+        # a big model closes one sample at a time, block by block (sparse)
+        return [nearby_samples(model, q, K, seed) for q, K in zip(qs, kernels, strict=True)]
+    jobs: list[tuple[int, float, np.ndarray]] = []
+    qfs = [to_float(q) for q in qs]
+    for i, (qf, K) in enumerate(zip(qfs, kernels, strict=True)):
+        if K.shape[1] == 0 or not model.chords:
+            continue
+        jobs += [(i, step, q0) for step, q0 in _starts(model, qf, K, seed)]
+    out: list[list[NearbySample]] = [[] for _ in qs]
+    if not jobs:
+        return out
+    Q, res = reclose_many(model, np.array([q0 for _, _, q0 in jobs], dtype=float))
+    for (i, step, _), q1, r in zip(jobs, Q, res, strict=True):
+        s = _sample(model, qfs[i], step, q1, float(r))
+        if s is not None:
+            out[i].append(s)
+    return out
+
+
+def reclose_many(model: KinematicModel, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`reclose` of every row of Q (float, every joint free), all rows together:
+    the same minimum-norm Newton step (the truncated pseudo-inverse of the commensurate
+    closure Jacobian: singular values at or below float's ``tau_lo`` times the largest
+    dropped, as :func:`~mechsing.kinematics.newton.truncated_least_squares`), the same
+    rules per row (stop once the residual is within the float
+    closure tolerance or after as many steps; a step is taken when its residual is finite,
+    and a row whose system is not finite stops).  Returns (Q, residual (m) per row)."""
+    tol = _FLOAT.closure_tolerance(model.length_scale)
+    tau = _FLOAT.tolerances.tau_lo
+    bc = BatchClosure(model)
+    Q = np.array(Q, dtype=float, copy=True)
+    lengths = bc.frame.length_columns
+    res = bc.residual_norm(bc.deltas(Q))
+    active = np.ones(len(Q), dtype=bool)
+    for _ in range(_NEWTON):
+        active &= ~(res <= tol)
+        idx = np.flatnonzero(active)
+        if not len(idx):
+            break
+        Qa = Q[idx]
+        J = bc.jacobian(Qa)
+        r = bc.residual_twists(bc.deltas(Qa))
+        finite = np.isfinite(J).all(axis=(1, 2)) & np.isfinite(r).all(axis=1)
+        active[idx[~finite]] = False
+        idx, Qa, J, r = idx[finite], Qa[finite], J[finite], r[finite]
+        if not len(idx):
+            break
+        U, s, Vt = np.linalg.svd(J, full_matrices=False)
+        keep = s > tau * s[:, :1]
+        inv = np.where(keep, 1.0 / np.where(keep, s, 1.0), 0.0)
+        du = -np.einsum("nji,nj->ni", Vt, inv * np.einsum("nji,nj->ni", U, r))
+        du = np.where(lengths[None, :], du * bc.L, du)
+        Qn = bc.update(Qa, du)
+        rn = bc.residual_norm(bc.deltas(Qn))
+        take = np.isfinite(rn)
+        Q[idx[take]], res[idx[take]] = Qn[take], rn[take]
+        active[idx[~take]] = False
+    return Q, res

@@ -36,6 +36,7 @@ if TYPE_CHECKING:
     from mechsing.kinematics import KinematicModel
     from mechsing.model import Mechanism
     from mechsing.screws import ClosureSystem
+    from mechsing.screws.mobility import NearbySample
 
 __all__ = [
     "GENERIC_SAMPLES",
@@ -116,10 +117,17 @@ def _undecided_test(d: Decision) -> UndecidedFinding:
 
 
 def classify(
-    mech: Mechanism, model: KinematicModel, q: np.ndarray, closure: ClosureSystem
+    mech: Mechanism,
+    model: KinematicModel,
+    q: np.ndarray,
+    closure: ClosureSystem,
+    samples: list[NearbySample] | None = None,
 ) -> Classification:
     """Classify one closed configuration ``q`` of ``mech`` (kinematic ``model`` at the
-    analysis precision, ``closure``: its stacked closure system there).
+    analysis precision, ``closure``: its stacked closure system there; ``samples``: its
+    nearby samples when the caller closed them already, as
+    :func:`mechsing.screws.mobility.nearby_samples` does for the closure's float kernel,
+    else they are closed here when needed).
 
     A pure function of its inputs: the findings (the JSON contract's classes), the rank
     decisions behind them, the generic and finite mobility for mechanisms with loops
@@ -139,7 +147,7 @@ def classify(
         if ls.rank.rank is None
     ]
     with activity("running the mobility, input/output and tangent-cone tests"):
-        local = local_analysis(mech, model, q, cs)
+        local = local_analysis(mech, model, q, cs, samples)
     found.extend(local.findings)
     # an input/output, constraint or leg rank the precision could not decide is a
     # verdict left open: say so, and let auto re-decide the configuration at mp:50

@@ -142,11 +142,14 @@ def _joints_of(mech: Any, cs: Any) -> tuple[str, ...]:
     return tuple(sorted({j for ls in cs.loops for j in ls.loop.joints}, key=order.index))
 
 
-def local_analysis(mech: Any, model: Any, q: np.ndarray, cs: Any) -> LocalAnalysis:
-    """Generic/finite mobility and every finding at a closed configuration with loops."""
+def local_analysis(
+    mech: Any, model: Any, q: np.ndarray, cs: Any, samples: list[NearbySample] | None = None
+) -> LocalAnalysis:
+    """Generic/finite mobility and every finding at a closed configuration with loops
+    (``samples``: its nearby samples when already closed, else closed here)."""
     tprec = numeric_precision(model.precision)
     with tprec.context():
-        return _local_analysis(mech, model, q, cs, tprec)
+        return _local_analysis(mech, model, q, cs, tprec, samples)
 
 
 @dataclass
@@ -159,7 +162,12 @@ class _TestSystem:
 
 
 def _local_analysis(
-    mech: Any, model: Any, q: np.ndarray, cs: Any, tprec: Precision
+    mech: Any,
+    model: Any,
+    q: np.ndarray,
+    cs: Any,
+    tprec: Precision,
+    given: list[NearbySample] | None = None,
 ) -> LocalAnalysis:
     inst = cs.nullity
     prec_name = cs.rank.precision
@@ -168,7 +176,10 @@ def _local_analysis(
     fm = float_model(model)
     qf = to_float(q)
     N = to_float(cs.rank.null_space) if cs.rank.null_space is not None else np.zeros((model.n, 0))
-    samples = nearby_samples(fm, qf, N) if inst > 0 else []
+    if inst == 0:
+        samples: list[NearbySample] = []
+    else:
+        samples = nearby_samples(fm, qf, N) if given is None else given
     null_s = [s.nullity for s in samples if s.nullity is not None]
     gen_s = min(null_s) if null_s else None
     out = LocalAnalysis(inst, inst, [], samples)
@@ -345,15 +356,19 @@ def _io_findings(
     the values at the regular nearby samples (float)."""
     findings: list[Finding] = []
     regular = [s for s in samples if s.nullity == out.generic] or samples
+    # each regular sample's screws, computed once for its tests
+    screws = [fm.current_screws(s.q) for s in regular]
     has_io = mech.output is not None and mech.inputs
     if has_io:
         here = io_quantities(mech, model, q, rank.null_space, tprec, screws=cs.screws)
         gens = []
-        for s in regular:
-            Ns = decide_rank(
-                stacked_jacobian(fm, s.q), "float", fm.length_scale, want_spaces=True
-            ).null_space
-            g = io_quantities(mech, fm, s.q, Ns)
+        for s, S in zip(regular, screws, strict=True):
+            Ns = s.kernel
+            if Ns is None:
+                Ns = decide_rank(
+                    stacked_jacobian(fm, s.q), "float", fm.length_scale, want_spaces=True
+                ).null_space
+            g = io_quantities(mech, fm, s.q, Ns, screws=S)
             if g is not None:
                 gens.append(g.values())
         if here is not None and gens:
@@ -402,7 +417,7 @@ def _io_findings(
                 )
             )
     if mech.output is not None:
-        findings.extend(_leg_serial(mech, model, fm, cs, regular, out))
+        findings.extend(_leg_serial(mech, model, fm, cs, regular, screws, out))
     return findings
 
 
@@ -504,11 +519,18 @@ def _coordinate_names(mech: Any, fm: Any) -> list[str]:
 
 
 def _leg_serial(
-    mech: Any, model: Any, fm: Any, cs: Any, regular: list[NearbySample], out: LocalAnalysis
+    mech: Any,
+    model: Any,
+    fm: Any,
+    cs: Any,
+    regular: list[NearbySample],
+    screws: list[np.ndarray],
+    out: LocalAnalysis,
 ) -> list[Finding]:
     """``serial`` for a leg whose own screw system loses rank (type I per leg):
     decided at the analysis precision from the closure system's screws (as the
-    output chain of an open chain), against the float ranks at the samples."""
+    output chain of an open chain), against the float ranks at the samples
+    (``screws``: each sample's)."""
     findings: list[Finding] = []
     legs = mech.legs
     if len(legs) < 2:
@@ -528,8 +550,8 @@ def _leg_serial(
             here = chain_system(model, cs.screws, cols, None, model.precision)
         gen = here.rank.rank or 0
         samples = []
-        for s in regular:
-            sample = chain_system(fm, fm.current_screws(s.q), cols, None, "float")
+        for S in screws:
+            sample = chain_system(fm, S, cols, None, "float")
             samples.append(sample.matrix)
             if sample.rank.rank is not None:
                 gen = max(gen, sample.rank.rank)

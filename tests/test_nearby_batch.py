@@ -1,0 +1,133 @@
+"""The nearby samples of many configurations closed by one batched Newton
+(:func:`mechsing.screws.mobility.nearby_samples_many`), and the analysis of a sweep's
+located points that uses them (:func:`mechsing.analysis.analyze_found`).
+
+Checked against answers not computed by mechsing: the five-bar's loop closure from its
+planar geometry (the example file's dimensions), its regular nullity from the planar
+count (5 joints, 3 constraints), the Type I class of its published ``type1`` pose; and
+against the one-Newton-per-sample path the analysis of a single configuration takes.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mechsing
+from mechsing.analysis import analyze_found
+from mechsing.kinematics import Closer, KinematicModel
+from mechsing.model import Configuration
+from mechsing.numeric import to_float
+from mechsing.screws import closure_system
+from mechsing.screws.mobility import SAMPLE_STEPS, nearby_samples, nearby_samples_many
+
+EX = Path(__file__).resolve().parents[1] / "examples"
+
+
+def _rot(a: float, v: tuple[float, float]) -> np.ndarray:
+    c, s = math.cos(a), math.sin(a)
+    return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+
+
+def _five_bar_gap(q: np.ndarray) -> float:
+    """The loop's closure error from the file's geometry alone: the output point P and
+    the distal links' angle through leg 1 (A1, B1) and through leg 2 (A2, B2, P)."""
+    a1, b1, p, b2, a2 = q
+    # leg 1: A1 at (-3/2, 0), B1 2 above it, P at (3/2, 2) from B1 (reference frames)
+    P1 = np.array([-1.5, 0.0]) + _rot(a1, (0.0, 2.0)) + _rot(a1 + b1, (1.5, 2.0))
+    # leg 2: A2 at (3/2, 0), B2 2 above it, P at (-3/2, 2) from B2; dist2 = dist1 turned by P
+    P2 = np.array([1.5, 0.0]) + _rot(a2, (0.0, 2.0)) + _rot(a2 + b2, (-1.5, 2.0))
+    turn = (a1 + b1 + p) - (a2 + b2)
+    return float(np.linalg.norm(P1 - P2)) + abs(math.remainder(turn, 2 * math.pi))
+
+
+def _kernels(mech, names):
+    model = KinematicModel(mech, "float")
+    closer = Closer(model)
+    qs, Ks = [], []
+    for n in names:
+        q = np.asarray(to_float(closer.solve(n).q), dtype=float)
+        qs.append(q)
+        Ks.append(to_float(closure_system(model, q).rank.null_space))
+    return model, qs, Ks
+
+
+def test_five_bar_samples_close_the_loop_at_their_distances_with_the_planar_nullity():
+    mech = mechsing.load(EX / "five_bar.yaml")
+    model, qs, Ks = _kernels(mech, ["type1", "inputs", "reference"])
+    got = nearby_samples_many(model, qs, Ks)
+    assert [len(s) for s in got] == [6, 6, 6]
+    steps = sorted(SAMPLE_STEPS * 3)
+    for q, samples in zip(qs, got, strict=True):
+        for s in samples:
+            # closed: the planar geometry's gap, not mechsing's residual
+            assert _five_bar_gap(s.q) < 1e-12
+            # a planar 5R loop: 5 joints, 3 independent constraints
+            assert s.nullity == 2
+            # each sample as far as its step (the kernel direction, then the closure's
+            # second-order correction)
+            assert s.distance == pytest.approx(np.linalg.norm(s.q - q), rel=1e-12)
+        d = sorted(s.distance for s in samples)
+        assert all(0.9 * h < x < 1.1 * h for x, h in zip(d, steps, strict=True))
+
+
+@pytest.mark.parametrize(
+    ("file", "names", "agree"),
+    [
+        ("five_bar.yaml", ["type1", "type2", "inputs"], 1e-6),
+        ("stewart_octahedral.yaml", None, 1e-6),  # spherical joints: rotation vectors updated
+        ("tsai_3upu.yaml", None, 1e-6),
+        # overconstrained: its 6 x 4 closure Jacobian has rank 3 on its motion and rank 4
+        # off it, the fourth singular value of the order of the distance, so where along
+        # the motion a minimum-norm Newton lands amplifies the rounding of its steps
+        ("bennett.yaml", None, 1e-2),
+    ],
+)
+def test_batched_samples_are_the_one_at_a_time_samples(file, names, agree):
+    """The same starting points closed together land where one Newton each lands."""
+    mech = mechsing.load(EX / file)
+    names = names or list(mech.configurations)
+    model, qs, Ks = _kernels(mech, names)
+    many = nearby_samples_many(model, qs, Ks)
+    assert sum(len(s) for s in many) > 0
+    for q, K, got in zip(qs, Ks, many, strict=True):
+        one = nearby_samples(model, q, K)
+        assert len(got) == len(one)
+        for a, b in zip(got, one, strict=True):
+            assert a.nullity == b.nullity
+            assert model.residual_norm(model.chord_residuals(a.q)) <= 1e-12 * model.length_scale
+            assert np.max(np.abs(model.difference(a.q, b.q))) < agree * b.distance
+            assert abs(a.distance - b.distance) < agree * b.distance
+
+
+def test_located_points_analysed_together_as_each_alone():
+    """analyze_found closes the samples of all its points at once; each result is the
+    analysis of that point alone (and the published class at the Type I pose)."""
+    mech = mechsing.load(EX / "five_bar.yaml")
+    model = KinematicModel(mech, "float")
+    closer = Closer(model)
+    found = {
+        n: np.asarray(to_float(closer.solve(n).q), dtype=float)
+        for n in ("type1", "inputs", "reference")
+    }
+    together = analyze_found(mech, found, "float")
+    # the same float values as configurations of the file, analysed one at a time (their
+    # samples closed one Newton each)
+    configs = dict(mech.configurations)
+    for n, q in found.items():
+        values = {j: tuple(float(x) for x in q[model.joint(j).columns]) for j, _ in mech.coordinates()}
+        configs[n] = Configuration(n, values, start="reference")
+    plain = replace(mech, configurations=configs)
+    alone = [mechsing.analyze(plain, [n], "float").configurations[0] for n in found]
+    for a, b in zip(together, alone, strict=True):
+        ja, jb = a.to_json(), b.to_json()
+        ja.pop("seconds", None), jb.pop("seconds", None)
+        assert ja == jb
+    classes = [{s["class"] for s in r.to_json()["singularities"]} for r in together]
+    # Type I: leg 1 stretched (file comment: Gosselin and Angeles); the others regular
+    assert "input" in classes[0]
+    assert classes[1] == classes[2] == set()
