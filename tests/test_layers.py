@@ -111,7 +111,7 @@ def test_the_reader_sees_what_the_test_reads() -> None:
     g = _graph()
     assert g.has_edge("mechsing.cli.analyze", "mechsing.analysis")  # inside run()
     assert g.has_edge("mechsing.analysis", "mechsing.errors")
-    assert g.has_edge("mechsing.singularity.classify", "mechsing.numeric")
+    assert g.has_edge("mechsing.singularity.local", "mechsing.numeric")
 
 
 def test_importing_a_layer_loads_no_command_and_sets_no_thread_count() -> None:

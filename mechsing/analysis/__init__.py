@@ -47,6 +47,7 @@ from mechsing.screws import closure_system, group_mobility, grubler
 from mechsing.screws.mobility import NearbySample, nearby_samples_many
 from mechsing.singularity import classify
 from mechsing.singularity.findings import Decision, UndecidedFinding, decision
+from mechsing.singularity.local import float_model
 from mechsing.timelimit import (
     EXACT_PROGRESS_DELAY,
     EXACT_TIME_LIMIT,
@@ -342,10 +343,6 @@ def _prepare_found(
     against (:func:`mechsing.screws.mobility.nearby_samples`), all configurations'
     samples closed by one batched Newton.  A configuration that does not close is left
     out (its analysis says why)."""
-    # imported here, as classify() does: importing the submodule at import time would
-    # shadow the function mechsing.singularity.classify with the module of that name
-    from mechsing.singularity.classify import float_model
-
     model, closer = stage
     prec = model.precision
     out: dict[str, tuple[Any, Any]] = {}
@@ -357,11 +354,9 @@ def _prepare_found(
                 continue
             out[name] = (closed, closure_system(model, closed.q, prec))
     # the classification samples a configuration of nullity above 0 whose closure rank
-    # is decided (mechsing.singularity.classify)
+    # is decided (mechsing.singularity.local)
     want = [
-        n
-        for n, (_, cs) in out.items()
-        if mech.loops and cs.rank.rank is not None and cs.nullity
+        n for n, (_, cs) in out.items() if mech.loops and cs.rank.rank is not None and cs.nullity
     ]
     fm = float_model(model)
     with prec.context():

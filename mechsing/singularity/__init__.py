@@ -24,6 +24,7 @@ from mechsing.singularity.findings import (
     decision,
     undecided_rank,
 )
+from mechsing.singularity.local import float_model, local_analysis
 from mechsing.singularity.serial import (
     GENERIC_SAMPLES,
     chain_system,
@@ -79,8 +80,6 @@ def _tree_serial(mech: Any, model: Any, q: np.ndarray) -> tuple[list[Finding], l
     if chain is None:
         return [], []
     names, cols = chain
-    from mechsing.singularity.classify import float_model
-
     fm = float_model(model)
     # decided at the analysis precision (so auto can re-decide it at mp:50) ...
     with activity("deciding the rank of the output chain's screw system"):
@@ -133,8 +132,6 @@ def classify(
     decisions behind them, the generic and finite mobility for mechanisms with loops
     (for open chains both are the closure nullity), the generic values of the
     input/output tests and whether a second-order form was left undecided."""
-    from mechsing.singularity.classify import local_analysis
-
     cs = closure
     if not mech.loops:
         findings, decisions = _tree_serial(mech, model, q)
