@@ -297,3 +297,17 @@ def test_an_undecided_configuration_says_why_before_its_margin():
     assert list(to_json(f)) == ["class", "what", "rank_bounds", "note", "margin", "precision"]
     g = UndecidedFinding("input test", None, M, "float", "rests on another rank")
     assert list(to_json(g)) == ["class", "what", "rank_bounds", "margin", "precision", "note"]
+
+
+def test_the_classify_function_is_not_shadowed_by_a_submodule():
+    # a submodule named like the package's function would replace it as the package's
+    # attribute once imported (it did, as mechsing.singularity.classify)
+    import importlib
+    import pkgutil
+
+    import mechsing.singularity as singularity
+
+    for info in pkgutil.iter_modules(singularity.__path__):
+        importlib.import_module(f"mechsing.singularity.{info.name}")
+    assert callable(singularity.classify) and not hasattr(singularity.classify, "__path__")
+    assert type(singularity.classify).__name__ == "function"
