@@ -135,6 +135,7 @@ from mechsing.numeric.tolerances import (
     SWEEP_LOCATE_TOL,
     SWEEP_MINIMUM_SCREEN,
     SWEEP_NODE_STEP,
+    SWEEP_SCREEN_ROUNDING,
     Tolerances,
 )
 
@@ -199,6 +200,7 @@ __all__ = [
     "SWEEP_LOCATE_TOL",
     "SWEEP_MINIMUM_SCREEN",
     "SWEEP_NODE_STEP",
+    "SWEEP_SCREEN_ROUNDING",
     "Tolerances",
     "backend_of",
     "coarser_backend",

@@ -154,6 +154,12 @@ SWEEP_MINIMUM_SCREEN = 2.0
 #: sides (radians, or lengths / L): far outside the 1e-8 that float's double root blurs,
 #: close enough that a cubic is exact to rounding (offset^4 = 1e-16)
 SWEEP_BRANCH_OFFSET = 1e-4
+#: a sweep's sign test between neighbouring samples a and b reads ``u^T A_b v`` (u, v the
+#: weakest singular pair at a); where the matrix moved less than ``sigma`` at a, that
+#: product is positive by Weyl's bound, which stands for it when it clears the roundings
+#: of both (the SVD's backward error and the product's, a few eps |A|_F each) by this
+#: factor times eps |A_a|_F
+SWEEP_SCREEN_ROUNDING = 1e3
 #: first step (commensurate arclength) when a path is followed along its curve through a
 #: fold (pseudo-arclength continuation), and the shortest step before it gives up
 SWEEP_ARC_STEP = 0.02

@@ -476,12 +476,14 @@ class Sweep:
             {t: np.concatenate([p.ratio[t] for p in parts]) for t in self.tests},
             {
                 t: tuple(np.concatenate([p.bases[t][k] for p in parts]) for k in (0, 1))
-                for t in self.tests
+                for t in parts[0].bases
             },
             None
             if parts[0].kernel is None
             else np.concatenate([np.asarray(p.kernel) for p in parts]),
             {t: np.concatenate([p.matrices[t] for p in parts]) for t in parts[0].matrices or {}},
+            parts[0].deferred,
+            {t: np.concatenate([p.top[t] for p in parts]) for t in parts[0].top},
         )
 
     def values_of(self, z: np.ndarray) -> tuple[float, ...]:
