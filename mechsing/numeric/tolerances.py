@@ -141,6 +141,11 @@ FLOAT_ROUNDING_FACTOR = 4.0
 #: closed again by continuation (it may have jumped to another assembly mode)
 SWEEP_NODE_STEP = 0.25
 SWEEP_JUMP_RATIO = 0.25
+#: where a path's samples are closer together than this (radians, or lengths / L), the
+#: samples between two nodes are closed in two passes: first knots about this far apart
+#: (from the nodes' cubic), then the samples between the knots (from the knots' cubic,
+#: about (SWEEP_KNOT_STEP / SWEEP_NODE_STEP)^4 nearer: one Newton step each)
+SWEEP_KNOT_STEP = 0.01
 #: a located singularity (a sign change, a minimum, a fold) is refined until the swept
 #: value is known to this (radians, or lengths / L): well below the 1e-10 promised
 SWEEP_LOCATE_TOL = 1e-12

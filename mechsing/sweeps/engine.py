@@ -686,11 +686,12 @@ class Sweep:
             p[i], fp[i], zq[i] = b[i], fb[i], zb[i]
             b[i], fb[i], zb[i] = c, fc, zc
         # the bracket is within the tolerance: the end nearer the zero (by its true
-        # value), then one secant step through the last two iterates, put the zero at
-        # the rounding level, where the analysis of the point decides in float too
+        # value), then one secant step through the last two iterates (or, when the kept
+        # end is the nearer, through the bracket's two ends), put the zero at the
+        # rounding level, where the analysis of the point decides in float too
         swap = ok & (np.abs(ta) < np.abs(fb))
+        p[swap], fp[swap], zq[swap] = b[swap], fb[swap], zb[swap]
         b[swap], fb[swap], zb[swap] = a[swap], ta[swap], za[swap]
-        fp[swap] = np.nan
         act = np.flatnonzero(ok & np.isfinite(fp) & (fb != fp) & (fb != 0))
         if len(act):
             c = b[act] - fb[act] * (b[act] - p[act]) / (fb[act] - fp[act])
