@@ -73,6 +73,8 @@ _NODE_CORRECTION = 0.3
 _FINE_CHUNK = 8192
 #: a badly predicted node is tried again in this many halvings of its step
 _NODE_HALVINGS = 3
+#: nodes a node's predictor is extrapolated through, besides the last (a cubic)
+_HISTORY = 3
 #: tangents a Problem keeps (a row's start asks for the same one up to three times)
 _TANGENTS_KEPT = 8
 
@@ -238,6 +240,8 @@ def follow(
     sc = pb.scale(col)
     i, z = 0, np.array(z0, dtype=float)
     z_prev: np.ndarray | None = None
+    #: the nodes before z_prev on this stretch of the path (the predictor's history)
+    older: list[np.ndarray] = []
     stopped = None
     #: node pairs whose samples in between are closed together at the end
     segments: list[tuple[int, int]] = []
@@ -248,13 +252,16 @@ def follow(
         if i == 0 and first is not None:
             zj = first
         else:
-            zj = _nodes(pb, z, z_prev, col, values[j])
+            zj = _nodes(pb, z, z_prev, col, values[j], older)
         if zj is not None:
             if j > i + 1:
                 segments.append((i, j))
             Z[j] = zj
+            if z_prev is not None:
+                older = [*older[-(_HISTORY - 1) :], z_prev]
             i, z, z_prev = j, np.asarray(zj, dtype=float), z
             continue
+        older = []
         # continuation cannot reach the next node: follow the curve itself
         if len(folds) >= _MAX_FOLDS:
             stopped = f"more than {_MAX_FOLDS} limits of travel on one path"
@@ -309,18 +316,31 @@ def follow(
 
 
 def _nodes(
-    pb: Problem, z: np.ndarray, z_prev: np.ndarray | None, col: int, value: float
+    pb: Problem,
+    z: np.ndarray,
+    z_prev: np.ndarray | None,
+    col: int,
+    value: float,
+    older: list[np.ndarray] | None = None,
 ) -> np.ndarray | None:
     """The next node by :func:`_node`, in halved steps when the whole one is not well
-    predicted (at most _NODE_HALVINGS times), before the careful continuation."""
+    predicted (at most _NODE_HALVINGS times), before the careful continuation.
+    ``older``: the nodes before z_prev on the same stretch of the path (oldest first)."""
     parts = 1
     for attempt in range(_NODE_HALVINGS + 1):
-        # the previous node's secant, then the tangent (a secant from a point just
+        # the previous nodes' extrapolation, then the tangent (a secant from a point just
         # behind): a far previous node predicts a short step no better than a long one
         here, prev = z, (z_prev if attempt == 0 else None)
         start = float(z[col])
         for k in range(1, parts + 1):
-            nxt = _node(pb, here, prev, col, start + (value - start) * k / parts)
+            nxt = _node(
+                pb,
+                here,
+                prev,
+                col,
+                start + (value - start) * k / parts,
+                older if attempt == 0 and k == 1 else None,
+            )
             if nxt is None:
                 break
             here, prev = nxt, here
@@ -331,12 +351,18 @@ def _nodes(
 
 
 def _node(
-    pb: Problem, z: np.ndarray, z_prev: np.ndarray | None, col: int, value: float
+    pb: Problem,
+    z: np.ndarray,
+    z_prev: np.ndarray | None,
+    col: int,
+    value: float,
+    older: list[np.ndarray] | None = None,
 ) -> np.ndarray | None:
     """The next node by one batched Newton from the secant predictor (the last step
-    repeated, scaled to the new one; a first step from the tangent at z); None when it
-    does not close there or its correction is not small next to the step (the careful
-    continuation then takes it)."""
+    repeated, scaled to the new one; with ``older`` nodes before z_prev, the polynomial
+    through them all, extrapolated on the group; a first step from the tangent at z);
+    None when it does not close there or its correction is not small next to the step
+    (the careful continuation then takes it)."""
     bc = pb.batch
     if z_prev is None or z_prev[col] == z[col]:
         # a first step: the tangent at z (the kernel of the closure Jacobian, no Newton)
@@ -354,9 +380,25 @@ def _node(
         if not ok[0]:
             return None
         z_prev = Q[0]
-    # the last step repeated, scaled to the new one: z_prev -> z continued past z
-    f = (value - z[col]) / (z[col] - z_prev[col])
-    zp = bc.between(z[None, :], z_prev[None, :], np.array([-f]))[0]
+    knots = [p for p in (older or []) if p[col] != z[col]]
+    if knots and len({float(p[col]) for p in [*knots, z_prev, z]}) == len(knots) + 2:
+        # the polynomial through the last nodes (increments on the group from z)
+        pts = np.array([*knots, z_prev])
+        D = bc.difference(pts, np.repeat(np.asarray(z, dtype=float)[None, :], len(pts), 0))
+        tk = np.concatenate([pts[:, col], [z[col]]])
+        D = np.concatenate([D, np.zeros((1, D.shape[1]))])
+        w = np.ones(len(tk))
+        for a in range(len(tk)):
+            for b in range(len(tk)):
+                if a != b:
+                    w[a] *= (value - tk[b]) / (tk[a] - tk[b])
+        d = w @ D
+        zp = bc.update(np.asarray(z, dtype=float)[None, :], d[None, : bc.nb])[0]
+        zp[bc.nb :] = z[bc.nb :] + d[bc.nb :]
+    else:
+        # the last step repeated, scaled to the new one: z_prev -> z continued past z
+        f = (value - z[col]) / (z[col] - z_prev[col])
+        zp = bc.between(z[None, :], z_prev[None, :], np.array([-f]))[0]
     zp[col] = value
     Q, ok, _ = pb.close_near(zp[None, :], _NODE_CORRECTION * pb.comm(zp - z))
     return Q[0] if ok[0] else None
