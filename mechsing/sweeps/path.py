@@ -71,6 +71,8 @@ _ARC_NEWTON = 10
 _NODE_CORRECTION = 0.3
 #: samples closed by one batched Newton call at most (bounds its working memory)
 _FINE_CHUNK = 8192
+#: fewer samples than this between the nodes of a row are closed in one pass (no knots)
+_KNOTS_FROM = 1000
 #: a badly predicted node is tried again in this many halvings of its step
 _NODE_HALVINGS = 3
 #: nodes a node's predictor is extrapolated through, besides the last (a cubic)
@@ -477,6 +479,10 @@ def close_segments(pb: Problem, traces: list[PathTrace], col: int) -> None:
        sample of the segment, m the samples in that step; otherwise every sample;
     2. the samples between the knots.
 
+    (One pass, every sample from the nodes' cubic, when the traces hold fewer than
+    _KNOTS_FROM samples to close: a grid's short rows, where a second batched call costs
+    more than the Newton steps it saves.)
+
     Each sample is predicted by the cubic through the two closed points around it (nodes,
     or knots) and the one before and after them (a quadratic at the ends of the path), on
     the group, from the first of the two: knots only some hundredths of a radian apart
@@ -487,11 +493,12 @@ def close_segments(pb: Problem, traces: list[PathTrace], col: int) -> None:
     sc = pb.scale(col)
     first: list[tuple[int, int, int, list[int], list[int]]] = []
     later: list[tuple[int, list[int]]] = []  # (trace, its knots in order) per segment
+    many = sum(j - i - 1 for tr in traces for i, j in tr.segments) >= _KNOTS_FROM
     for m, tr in enumerate(traces):
         Z, values = tr.Z, tr.values
         assert values is not None
         for i, j in tr.segments:
-            stride = _knot_stride(values, i, j, sc)
+            stride = _knot_stride(values, i, j, sc) if many else 1
             knots = [i, *range(i + stride, j - stride // 2, stride), j] if stride > 1 else [i, j]
             if len(knots) == 2:
                 first.append((m, i, j, _cubic_knots(Z, i, j), list(range(i + 1, j))))
