@@ -336,6 +336,7 @@ class Measures:
         bound stands for it; the product is computed at the other pairs only."""
         assert pm.matrices is not None
         out = {}
+        turn = None  # b's kernel basis turned to a's: one for the input and output tests
         for t, M in pm.matrices.items():
             if t.endswith("_rows"):
                 continue
@@ -344,7 +345,9 @@ class Measures:
                 continue
             A = M[ib]
             if t in ("input", "output") and pm.kernel is not None:
-                A = self._turned(A, pm.kernel[ib], pm.kernel[ia])
+                if turn is None:
+                    turn = _turn(pm.kernel[ib], pm.kernel[ia])
+                A = A @ turn
             U, V = pm.bases[t]
             u, v = U[ia][:, :, -1], V[ia][:, :, -1]
             out[t] = np.einsum("ni,nij,nj->n", u, A, v)
@@ -412,11 +415,14 @@ class Measures:
     def _turned(self, A: np.ndarray, kb: np.ndarray, ka: np.ndarray) -> np.ndarray:
         """The test's matrix at b with b's kernel basis turned to a's (the orthogonal
         factor of ``kb^T ka``), so that the matrix is continuous from a to b."""
-        W = np.swapaxes(kb, 1, 2) @ ka
-        u, _, vt = np.linalg.svd(W)
-        turn = u @ vt
         # A = X kb, with X the map the test applies to the kernel: A turned = A @ turn
-        return A @ turn
+        return A @ _turn(kb, ka)
+
+
+def _turn(kb: np.ndarray, ka: np.ndarray) -> np.ndarray:
+    """The orthogonal factor of ``kb^T ka``: turns the kernel basis kb onto ka."""
+    u, _, vt = np.linalg.svd(np.swapaxes(kb, 1, 2) @ ka)
+    return u @ vt
 
 
 def _relative(s: np.ndarray) -> np.ndarray:
