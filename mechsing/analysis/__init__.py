@@ -122,6 +122,9 @@ def analyze_found(
             name, {j: tuple(v) for j, v in values.items()}, start="reference"
         )
     mech = replace(mechanism, configurations=configurations)
+    from mechsing.screws import share_loop_identifications
+
+    share_loop_identifications(mechanism, mech)  # the same joints: the same loops
     with working_on(file=mech.path or mech.name):
         res = _analyze(mech, list(found), prec, None, None, Precision("float"), located=True)
     return list(res.configurations)

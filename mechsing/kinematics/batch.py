@@ -64,6 +64,8 @@ class BatchClosure:
             self.c0 = np.asarray(self.pose.c0, dtype=float)
             self.R0 = np.asarray(self.pose.R0, dtype=float)
         self.blocks = len(self.chords) + (1 if self.pose is not None else 0)
+        #: the legs' split of the pose-fixed closure, per set of moved columns
+        self._split: dict[bytes, _Split | None] = {}
         # the first-kind coordinates of a non-abelian joint from a commensurate log:
         # least squares against its commensurate basis, one pseudo-inverse per joint
         self._pinv = {}
@@ -128,12 +130,16 @@ class BatchClosure:
 
     # ------------------------------------------------------------------ Jacobian
 
+    def screws(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
+        """The commensurate current screws of the joint coordinates: (N, 6, nb)."""
+        q = Q[:, : self.nb]
+        P = batched.poses(self.base, q, fast=True) if P is None else P
+        return self.frame.screws(batched.current_screws(self.base, q, P))
+
     def jacobian(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
         """The commensurate closure Jacobian in the joint coordinates: (N, 6 * blocks, nb)
         (the pose coordinates are given and have no column)."""
-        q = Q[:, : self.nb]
-        P = batched.poses(self.base, q, fast=True) if P is None else P
-        Ss = self.frame.screws(batched.current_screws(self.base, q, P))  # (N, 6, nb)
+        Ss = self.screws(Q, P)  # (N, 6, nb)
         signs = self.signs
         if self.pose is not None:
             signs = np.concatenate([signs, self.pose_signs[None, :]], axis=0)
@@ -223,6 +229,7 @@ class BatchClosure:
         if not len(cols) or D.shape[1] == 0:
             return Q, res, its
         polished = np.zeros(Q.shape[0], dtype=int)
+        split = self.split(cols)
         for _ in range(iterations):
             # a closed row is polished once more (the step after tolerance gains the
             # last digits), then left alone
@@ -234,9 +241,11 @@ class BatchClosure:
             idx = np.flatnonzero(active)
             Qa = Q[idx]
             Pa = {k: v[idx] for k, v in P.items()}
-            J = self.jacobian(Qa, Pa)[:, :, cols]
             r = self.residual_twists(D[idx])
-            du = _damped_step(J, r)
+            if split is not None:
+                du = split.step(self.screws(Qa, Pa), r)
+            else:
+                du = _damped_step(self.jacobian(Qa, Pa)[:, :, cols], r)
             du = np.where(lengths[None, :], du * self.L, du)
             step = np.zeros((len(idx), self.nb))
             step[:, cols] = du
@@ -255,6 +264,110 @@ class BatchClosure:
             # a row that no longer gains stops
             active[idx[~better]] = False
         return Q, res, its
+
+    # ------------------------------------------------------------------ the legs' split
+
+    def split(self, cols: np.ndarray) -> _Split | None:
+        """The closure of a pose model with the output's pose given, split by legs, for
+        the moved columns ``cols`` (None when it does not split).
+
+        With the output's pose given, each leg (a component of the graph left when the
+        base and the output body are removed, :meth:`MechanismGraph.legs`) closes on its
+        own: every closure block (the chords' loops and the pose) restricted to a leg's
+        columns is a combination of that leg's own rows, ``signs[:, leg] = A_leg B_leg``
+        (``B_leg``: independent sign rows, one per loop of the leg with the output held,
+        the leg's path from base to output among them).  When the legs' rows number the
+        blocks, ``A = [A_leg ...]`` is square and invertible, and the Jacobian is
+        ``(A kron I6) diag(J_leg)``: the Newton step is ``J_leg^-1`` applied to the leg's
+        rows of ``(A^-1 kron I6) r``, small solves instead of one of every coordinate.
+        Only square legs split (as many coordinates as rows: the step is then the same
+        Newton step as the whole system's)."""
+        key = np.asarray(cols).tobytes()
+        if key not in self._split:
+            self._split[key] = self._find_split(np.asarray(cols))
+        return self._split[key]
+
+    def _find_split(self, cols: np.ndarray) -> _Split | None:
+        if self.pose is None or len(self.base.mech.loops) == 0:
+            return None
+        mech = self.base.mech
+        signs = np.concatenate([self.signs, self.pose_signs[None, :]], axis=0)
+        position = {int(c): k for k, c in enumerate(cols)}
+        legs, A_parts, covered = [], [], set()
+        for leg in mech.legs:
+            lc = [
+                c
+                for j in leg.joints
+                for c in range(self.base.joint(j).columns.start, self.base.joint(j).columns.stop)
+                if c in position
+            ]
+            if not lc:
+                continue
+            M = signs[:, lc]
+            basis = _independent_rows(M)
+            B = M[basis]
+            if 6 * len(basis) != len(lc):
+                return None  # not square: no split
+            A_parts.append(M @ np.linalg.pinv(B))
+            legs.append((np.array([position[c] for c in lc]), np.array(lc), B))
+            covered.update(lc)
+        if len(covered) != len(cols) or not legs:
+            return None
+        A = np.concatenate(A_parts, axis=1)
+        if A.shape[0] != A.shape[1] or np.linalg.matrix_rank(A) < A.shape[0]:
+            return None
+        # A is a matrix of small integers: so is its inverse, to rounding
+        return _Split(np.linalg.inv(A), legs, len(cols))
+
+
+def _independent_rows(M: np.ndarray) -> list[int]:
+    """The first rows of M (small integers) that are linearly independent, in order."""
+    out: list[int] = []
+    for i in range(M.shape[0]):
+        trial = M[[*out, i]]
+        if np.linalg.matrix_rank(trial) > len(out):
+            out.append(i)
+    return out
+
+
+class _Split:
+    """The pose-fixed closure split by legs (:meth:`BatchClosure.split`): ``Ainv`` turns
+    the residual's blocks into the legs' rows (leg by leg, in order), each leg its
+    columns (positions among the moved ones, and the coordinates themselves) and sign
+    rows ``B``."""
+
+    def __init__(
+        self, Ainv: np.ndarray, legs: list[tuple[np.ndarray, np.ndarray, np.ndarray]], n: int
+    ) -> None:
+        self.Ainv = Ainv
+        self.legs = legs
+        self.n = n
+        # legs of one shape are solved in one batched call
+        self.shapes: dict[tuple[int, int], list[int]] = {}
+        for k, (c, _, B) in enumerate(legs):
+            self.shapes.setdefault((B.shape[0], len(c)), []).append(k)
+        starts = np.cumsum([0] + [B.shape[0] for _, _, B in legs])
+        self.rows = [slice(int(a), int(b)) for a, b in zip(starts[:-1], starts[1:], strict=True)]
+
+    def step(self, Ss: np.ndarray, r: np.ndarray) -> np.ndarray:
+        """The Newton steps (N, moved columns) from the commensurate screws of every joint
+        coordinate ``Ss`` (N, 6, nb) and the stacked residual twists ``r`` (N, 6 blocks):
+        the damped least squares of :func:`_damped_step`, leg by leg."""
+        N = r.shape[0]
+        rl = np.einsum("kb,nbi->nki", self.Ainv, r.reshape(N, -1, 6))  # (N, leg rows, 6)
+        out = np.zeros((N, self.n))
+        for (nr, nc), ks in self.shapes.items():
+            Js, rs = [], []
+            for k in ks:
+                _, cols, B = self.legs[k]
+                S = Ss[:, :, cols]  # (N, 6, nc)
+                Js.append((B[None, :, None, :] * S[:, None, :, :]).reshape(N, 6 * nr, nc))
+                rs.append(rl[:, self.rows[k], :].reshape(N, 6 * nr))
+            J = np.concatenate(Js)  # (len(ks) N, 6 nr, nc)
+            du = _damped_step(J, np.concatenate(rs)).reshape(len(ks), N, nc)
+            for k, d in zip(ks, du, strict=True):
+                out[:, self.legs[k][0]] = d
+        return out
 
 
 def _damped_step(J: np.ndarray, r: np.ndarray) -> np.ndarray:

@@ -132,9 +132,11 @@ from mechsing.numeric.tolerances import (
     SWEEP_ARC_STEP,
     SWEEP_BRANCH_OFFSET,
     SWEEP_JUMP_RATIO,
+    SWEEP_KNOT_STEP,
     SWEEP_LOCATE_TOL,
     SWEEP_MINIMUM_SCREEN,
     SWEEP_NODE_STEP,
+    SWEEP_SCREEN_ROUNDING,
     Tolerances,
 )
 
@@ -196,9 +198,11 @@ __all__ = [
     "SWEEP_ARC_STEP",
     "SWEEP_BRANCH_OFFSET",
     "SWEEP_JUMP_RATIO",
+    "SWEEP_KNOT_STEP",
     "SWEEP_LOCATE_TOL",
     "SWEEP_MINIMUM_SCREEN",
     "SWEEP_NODE_STEP",
+    "SWEEP_SCREEN_ROUNDING",
     "Tolerances",
     "backend_of",
     "coarser_backend",

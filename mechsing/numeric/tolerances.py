@@ -141,6 +141,11 @@ FLOAT_ROUNDING_FACTOR = 4.0
 #: closed again by continuation (it may have jumped to another assembly mode)
 SWEEP_NODE_STEP = 0.25
 SWEEP_JUMP_RATIO = 0.25
+#: where a path's samples are closer together than this (radians, or lengths / L), the
+#: samples between two nodes are closed in two passes: first knots about this far apart
+#: (from the nodes' cubic), then the samples between the knots (from the knots' cubic,
+#: about (SWEEP_KNOT_STEP / SWEEP_NODE_STEP)^4 nearer: one Newton step each)
+SWEEP_KNOT_STEP = 0.01
 #: a located singularity (a sign change, a minimum, a fold) is refined until the swept
 #: value is known to this (radians, or lengths / L): well below the 1e-10 promised
 SWEEP_LOCATE_TOL = 1e-12
@@ -154,6 +159,12 @@ SWEEP_MINIMUM_SCREEN = 2.0
 #: sides (radians, or lengths / L): far outside the 1e-8 that float's double root blurs,
 #: close enough that a cubic is exact to rounding (offset^4 = 1e-16)
 SWEEP_BRANCH_OFFSET = 1e-4
+#: a sweep's sign test between neighbouring samples a and b reads ``u^T A_b v`` (u, v the
+#: weakest singular pair at a); where the matrix moved less than ``sigma`` at a, that
+#: product is positive by Weyl's bound, which stands for it when it clears the roundings
+#: of both (the SVD's backward error and the product's, a few eps |A|_F each) by this
+#: factor times eps |A_a|_F
+SWEEP_SCREEN_ROUNDING = 1e3
 #: first step (commensurate arclength) when a path is followed along its curve through a
 #: fold (pseudo-arclength continuation), and the shortest step before it gives up
 SWEEP_ARC_STEP = 0.02

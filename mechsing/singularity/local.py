@@ -90,12 +90,10 @@ class LocalAnalysis:
 
 
 def float_model(model: Any) -> Any:
-    """The model's float twin (:meth:`KinematicModel.float_twin`), sharing the loop
-    identifications the model decided at its own precision."""
-    fm = model.float_twin()
-    if fm is not model and "_loop_identifications" not in fm.__dict__:
-        fm.__dict__["_loop_identifications"] = model.__dict__.get("_loop_identifications", {})
-    return fm
+    """The model's float twin (:meth:`KinematicModel.float_twin`); the loop
+    identifications are the mechanism's (:func:`mechsing.screws.reference_loop_identification`),
+    shared by both."""
+    return model.float_twin()
 
 
 def _si_rates(model: Any, x: np.ndarray) -> list[float]:

@@ -476,12 +476,14 @@ class Sweep:
             {t: np.concatenate([p.ratio[t] for p in parts]) for t in self.tests},
             {
                 t: tuple(np.concatenate([p.bases[t][k] for p in parts]) for k in (0, 1))
-                for t in self.tests
+                for t in parts[0].bases
             },
             None
             if parts[0].kernel is None
             else np.concatenate([np.asarray(p.kernel) for p in parts]),
             {t: np.concatenate([p.matrices[t] for p in parts]) for t in parts[0].matrices or {}},
+            parts[0].deferred,
+            {t: np.concatenate([p.top[t] for p in parts]) for t in parts[0].top},
         )
 
     def values_of(self, z: np.ndarray) -> tuple[float, ...]:
@@ -684,11 +686,12 @@ class Sweep:
             p[i], fp[i], zq[i] = b[i], fb[i], zb[i]
             b[i], fb[i], zb[i] = c, fc, zc
         # the bracket is within the tolerance: the end nearer the zero (by its true
-        # value), then one secant step through the last two iterates, put the zero at
-        # the rounding level, where the analysis of the point decides in float too
+        # value), then one secant step through the last two iterates (or, when the kept
+        # end is the nearer, through the bracket's two ends), put the zero at the
+        # rounding level, where the analysis of the point decides in float too
         swap = ok & (np.abs(ta) < np.abs(fb))
+        p[swap], fp[swap], zq[swap] = b[swap], fb[swap], zb[swap]
         b[swap], fb[swap], zb[swap] = a[swap], ta[swap], za[swap]
-        fp[swap] = np.nan
         act = np.flatnonzero(ok & np.isfinite(fp) & (fb != fp) & (fb != 0))
         if len(act):
             c = b[act] - fb[act] * (b[act] - p[act]) / (fb[act] - fp[act])

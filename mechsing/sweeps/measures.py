@@ -18,6 +18,15 @@ with numpy's batched SVD (no Python loop over configurations):
 * ``constraint``: the legs' combined constraint wrench system (each leg's wrenches
   reciprocal to the twists it lets the output make).
 
+Factorisations.  Where the closure's generic rank is its number of rows (every loop's
+rows independent, as in a spatial parallel robot), its kernel is the orthogonal
+complement of its row space: a QR factorisation of its transpose gives that complement
+and a triangular factor with the same singular values, so the closure's singular values
+come without singular vectors, at about half the cost of its SVD.  Its singular vectors
+are then computed only where they are used (:meth:`PointMeasures.basis`: the sign tests
+of the few pairs the screen of :meth:`Measures.compressed_pairs` keeps, and the
+refinements), by the same SVD of the same kept matrix as otherwise.
+
 Each test's measure is its ``g``-th singular value, ``g`` its generic rank (the rank
 the full analysis finds at regular configurations of the sweep's start), relative to
 the same reference as the full analysis: the operator's norm for ``input`` and
@@ -39,14 +48,14 @@ times L); twists ``(omega, v)``.
 from __future__ import annotations
 
 import copy
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
-from mechsing.numeric import Precision, rank_bounds
+from mechsing.numeric import SWEEP_SCREEN_ROUNDING, Precision, rank_bounds
 from mechsing.screws import chain_matrix
 from mechsing.singularity.zfb import input_rows, leg_path
 
@@ -62,6 +71,9 @@ _FLOAT = Precision("float").tolerances
 #: relative to their own largest singular value
 _UNIT_REFERENCE = ("input", "output")
 
+#: pairs of samples screened at a time (bounds the working memory of the differences)
+_SCREEN_CHUNK = 512
+
 #: tests with a continuous matrix, whose compressed determinant has a meaningful sign
 #: (the constraint wrenches are a basis found afresh at each point)
 SIGNED = ("closure", "input", "output")
@@ -71,14 +83,40 @@ SIGNED = ("closure", "input", "output")
 class PointMeasures:
     """The measures of a batch of configurations: per test, the decided rank (int, -1
     undecided), the smallest relative singular value, and the matrices' leading
-    singular vectors (kept for :meth:`Measures.compressed`)."""
+    singular vectors (kept for :meth:`Measures.compressed`; read them with
+    :meth:`basis`)."""
 
     rank: dict[str, np.ndarray]
     ratio: dict[str, np.ndarray]
+    #: the leading singular vectors of the tests whose SVD was computed with the measures
     bases: dict[str, tuple[np.ndarray, np.ndarray]]
     kernel: np.ndarray | None
     #: the signed tests' matrices (for the sign changes between neighbours)
     matrices: dict[str, np.ndarray] | None = None
+    #: tests measured without their singular vectors (the closure of full row rank),
+    #: with their generic rank: :meth:`basis` computes the vectors from ``matrices``
+    deferred: dict[str, int] = field(default_factory=dict)
+    #: the largest singular value of each test's matrix, per configuration
+    top: dict[str, np.ndarray] = field(default_factory=dict)
+    _last: Any = field(default=None, repr=False, compare=False)
+
+    def basis(self, t: str, idx: Any) -> tuple[np.ndarray, np.ndarray]:
+        """The leading ``g`` left and right singular vectors of test ``t``'s matrix at the
+        configurations ``idx`` (an index array or a slice): (points, rows, g) and
+        (points, columns, g)."""
+        if t in self.bases:
+            U, V = self.bases[t]
+            return U[idx], V[idx]
+        assert self.matrices is not None, f"no singular vectors of {t} kept"
+        # the last ones asked are kept (a refinement asks for the same points again)
+        key = (t, repr(idx) if isinstance(idx, slice) else np.asarray(idx).tobytes())
+        if self._last is not None and self._last[0] == key:
+            return self._last[1]
+        g = self.deferred[t]
+        U, _, Vt = np.linalg.svd(self.matrices[t][idx], full_matrices=True)
+        out = U[..., :g], np.swapaxes(Vt[..., :g, :], -1, -2)
+        self._last = (key, out)
+        return out
 
 
 class Measures:
@@ -158,12 +196,23 @@ class Measures:
             C = Ss[:, None, :, :] * self.loop_signs[None, :, None, :]
             out["closure"] = C.reshape(N, -1, n)
         kernel = None
+        if self.mech.loops and self._full_row_rank():
+            # the kernel is the complement of the row space: C^T = Q R, and C = R^T Q^T
+            # has R's singular values
+            C = out["closure"]
+            rows = C.shape[1]
+            if "input" in self.tests or "output" in self.tests:
+                Qc, Rc = np.linalg.qr(np.swapaxes(C, 1, 2), mode="complete")
+                kernel = Qc[:, :, rows:]  # (N, n, n - rows)
+            else:
+                Rc = np.linalg.qr(np.swapaxes(C, 1, 2), mode="r")
+            self._closure_svd = ("qr", np.linalg.svd(Rc[:, :rows, :], compute_uv=False))
         if "input" in self.tests or "output" in self.tests:
-            if self.mech.loops:
+            if self.mech.loops and kernel is None:
                 g = self.generic.get("closure") or _max_rank(out["closure"])
                 U, s, Vt = np.linalg.svd(out["closure"], full_matrices=True)
                 kernel = np.swapaxes(Vt[:, g:, :], 1, 2)  # (N, n, n - g)
-                self._closure_svd = (U, s, Vt)
+                self._closure_svd = ("svd", U, s, Vt)
             # without loops every joint rate is a motion: N is the identity
             x = None
             if self.out_point is not None:
@@ -183,6 +232,12 @@ class Measures:
         if "constraint" in self.tests:
             out["constraint"] = self._constraint(Ss)
         return out, kernel
+
+    def _full_row_rank(self) -> bool:
+        """Whether the closure is measured and its generic rank is its number of rows
+        (its kernel then needs no singular vectors)."""
+        g = self.generic.get("closure")
+        return "closure" in self.tests and g is not None and g == 6 * len(self.mech.loops)
 
     def _constraint(self, Ss: np.ndarray) -> np.ndarray:
         """The legs' combined constraint wrenches as rows, (N, wrenches, 6)."""
@@ -210,12 +265,16 @@ class Measures:
     def __call__(self, Q: np.ndarray) -> PointMeasures:
         self._closure_svd = None
         mats, kernel = self.matrices(Q)
-        rank, ratio, bases = {}, {}, {}
+        rank, ratio, bases, deferred, top = {}, {}, {}, {}, {}
         for t in self.tests:
             A = mats[t]
             g = self.generic[t]
-            if t == "closure" and self._closure_svd is not None:
-                U, s, Vt = self._closure_svd  # the kernel's SVD, already done
+            done = self._closure_svd if t == "closure" else None
+            if done is not None and done[0] == "qr":
+                s = done[1]  # the singular values alone; the vectors where they are used
+                deferred[t] = g
+            elif done is not None:
+                _, U, s, Vt = done  # the kernel's SVD, already done
                 k = s.shape[1]
                 U, Vt = U[:, :, :k], Vt[:, :k, :]
             else:
@@ -227,12 +286,14 @@ class Measures:
             lo, hi = rank_bounds(rel, _FLOAT)
             rank[t] = np.where(lo == hi, lo, -1).astype(np.int16)
             ratio[t] = rel[:, g - 1] if g <= rel.shape[1] else np.zeros(len(rel))
-            bases[t] = (U[:, :, :g], np.swapaxes(Vt[:, :g, :], 1, 2))
+            top[t] = s[:, 0] if s.shape[1] else np.zeros(len(s))
+            if t not in deferred:
+                bases[t] = (U[:, :, :g], np.swapaxes(Vt[:, :g, :], 1, 2))
         signed = {t: mats[t] for t in self.tests if t in SIGNED}
         for t in ("input", "output"):
             if self._bordered_test(t) and f"{t}_rows" in mats:
                 signed[f"{t}_rows"] = mats[f"{t}_rows"]
-        return PointMeasures(rank, ratio, bases, kernel, signed)
+        return PointMeasures(rank, ratio, bases, kernel, signed, deferred, top)
 
     def _bordered_test(self, t: str) -> bool:
         """Whether the sign of test ``t`` is read from the bordered determinant: an input
@@ -253,8 +314,8 @@ class Measures:
         compressed on the leading left singular vectors of the points ``ia`` of ``a``.  It
         vanishes exactly where X N loses rank (N the closure kernel), and, unlike X N, needs
         no basis of the kernel: it is continuous from a to b, so its sign is a sure test."""
-        Uc = a.bases["closure"][0][ia]
-        Ut = a.bases[t][0][ia]
+        Uc = a.basis("closure", ia)[0]
+        Ut = a.basis(t, ia)[0]
         top = np.swapaxes(Uc, 1, 2) @ mats["closure"]
         low = np.swapaxes(Ut, 1, 2) @ mats[f"{t}_rows"]
         return np.linalg.det(np.concatenate([top, low], axis=1))
@@ -267,19 +328,53 @@ class Measures:
         at a, ``u_g^T A_b v_g`` (``sigma_g`` at a itself).  It follows the weakest
         singular value through zero, and costs a product where :meth:`compressed` costs a
         determinant of the generic rank's size; negative where a rank drop was crossed (the
-        refinement then uses :meth:`compressed`, whose zero is exact)."""
+        refinement then uses :meth:`compressed`, whose zero is exact).
+
+        A test measured without its singular vectors is screened first: where the matrix
+        moved less from a to b (Frobenius norm) than ``sigma_g`` at a, less the
+        roundings, ``u_g^T A_b v_g >= sigma_g - |A_b - A_a|`` is positive (Weyl), and that
+        bound stands for it; the product is computed at the other pairs only."""
         assert pm.matrices is not None
         out = {}
+        turn = None  # b's kernel basis turned to a's: one for the input and output tests
         for t, M in pm.matrices.items():
             if t.endswith("_rows"):
                 continue
+            if t in pm.deferred:
+                out[t] = self._screened_pairs(pm, t, M, ia, ib)
+                continue
             A = M[ib]
             if t in ("input", "output") and pm.kernel is not None:
-                A = self._turned(A, pm.kernel[ib], pm.kernel[ia])
+                if turn is None:
+                    turn = _turn(pm.kernel[ib], pm.kernel[ia])
+                A = A @ turn
             U, V = pm.bases[t]
             u, v = U[ia][:, :, -1], V[ia][:, :, -1]
             out[t] = np.einsum("ni,nij,nj->n", u, A, v)
         return out
+
+    def _screened_pairs(
+        self, pm: PointMeasures, t: str, M: np.ndarray, ia: np.ndarray, ib: np.ndarray
+    ) -> np.ndarray:
+        """:meth:`compressed_pairs` of a test measured without its singular vectors: the
+        Weyl bound where it is positive, the product elsewhere (in chunks: the matrices'
+        differences stay small in memory)."""
+        g = pm.deferred[t]
+        rounding = SWEEP_SCREEN_ROUNDING * np.finfo(float).eps
+        d = pm.ratio[t][ia] * pm.top[t][ia]  # sigma_g at a
+        for lo in range(0, len(ia), _SCREEN_CHUNK):
+            sl = slice(lo, lo + _SCREEN_CHUNK)
+            Aa, Ab = M[ia[sl]], M[ib[sl]]
+            D = Ab - Aa
+            moved = np.sqrt(np.einsum("nij,nij->n", D, D))
+            size = np.sqrt(np.einsum("nij,nij->n", Aa, Aa))
+            d[sl] -= moved + rounding * size
+        near = np.flatnonzero(~(d > 0))
+        if len(near):
+            U, V = pm.basis(t, ia[near])
+            u, v = U[:, :, g - 1], V[:, :, g - 1]
+            d[near] = np.einsum("ni,nij,nj->n", u, M[ib[near]], v)
+        return d
 
     def compressed(self, a: PointMeasures, ia: np.ndarray, Qb: np.ndarray) -> dict[str, np.ndarray]:
         """For pairs of points (row ``ia`` of the measured batch ``a``, row of ``Qb``): per
@@ -312,19 +407,22 @@ class Measures:
             A = mats[t]
             if t in ("input", "output") and a.kernel is not None and kernel is not None:
                 A = self._turned(A, kernel, a.kernel[ia])
-            U, V = a.bases[t]
-            C = np.swapaxes(U[ia], 1, 2) @ A @ V[ia]
+            U, V = a.basis(t, ia)
+            C = np.swapaxes(U, 1, 2) @ A @ V
             out[t] = np.linalg.det(C)
         return out
 
     def _turned(self, A: np.ndarray, kb: np.ndarray, ka: np.ndarray) -> np.ndarray:
         """The test's matrix at b with b's kernel basis turned to a's (the orthogonal
         factor of ``kb^T ka``), so that the matrix is continuous from a to b."""
-        W = np.swapaxes(kb, 1, 2) @ ka
-        u, _, vt = np.linalg.svd(W)
-        turn = u @ vt
         # A = X kb, with X the map the test applies to the kernel: A turned = A @ turn
-        return A @ turn
+        return A @ _turn(kb, ka)
+
+
+def _turn(kb: np.ndarray, ka: np.ndarray) -> np.ndarray:
+    """The orthogonal factor of ``kb^T ka``: turns the kernel basis kb onto ka."""
+    u, _, vt = np.linalg.svd(np.swapaxes(kb, 1, 2) @ ka)
+    return u @ vt
 
 
 def _relative(s: np.ndarray) -> np.ndarray:

@@ -50,6 +50,7 @@ from mechsing.numeric import (
     SWEEP_ARC_MIN_STEP,
     SWEEP_ARC_STEP,
     SWEEP_JUMP_RATIO,
+    SWEEP_KNOT_STEP,
     SWEEP_LOCATE_TOL,
     SWEEP_NODE_STEP,
 )
@@ -70,8 +71,12 @@ _ARC_NEWTON = 10
 _NODE_CORRECTION = 0.3
 #: samples closed by one batched Newton call at most (bounds its working memory)
 _FINE_CHUNK = 8192
+#: fewer samples than this between the nodes of a row are closed in one pass (no knots)
+_KNOTS_FROM = 1000
 #: a badly predicted node is tried again in this many halvings of its step
 _NODE_HALVINGS = 3
+#: nodes a node's predictor is extrapolated through, besides the last (a cubic)
+_HISTORY = 3
 #: tangents a Problem keeps (a row's start asks for the same one up to three times)
 _TANGENTS_KEPT = 8
 
@@ -237,6 +242,8 @@ def follow(
     sc = pb.scale(col)
     i, z = 0, np.array(z0, dtype=float)
     z_prev: np.ndarray | None = None
+    #: the nodes before z_prev on this stretch of the path (the predictor's history)
+    older: list[np.ndarray] = []
     stopped = None
     #: node pairs whose samples in between are closed together at the end
     segments: list[tuple[int, int]] = []
@@ -247,13 +254,16 @@ def follow(
         if i == 0 and first is not None:
             zj = first
         else:
-            zj = _nodes(pb, z, z_prev, col, values[j])
+            zj = _nodes(pb, z, z_prev, col, values[j], older)
         if zj is not None:
             if j > i + 1:
                 segments.append((i, j))
             Z[j] = zj
+            if z_prev is not None:
+                older = [*older[-(_HISTORY - 1) :], z_prev]
             i, z, z_prev = j, np.asarray(zj, dtype=float), z
             continue
+        older = []
         # continuation cannot reach the next node: follow the curve itself
         if len(folds) >= _MAX_FOLDS:
             stopped = f"more than {_MAX_FOLDS} limits of travel on one path"
@@ -308,18 +318,31 @@ def follow(
 
 
 def _nodes(
-    pb: Problem, z: np.ndarray, z_prev: np.ndarray | None, col: int, value: float
+    pb: Problem,
+    z: np.ndarray,
+    z_prev: np.ndarray | None,
+    col: int,
+    value: float,
+    older: list[np.ndarray] | None = None,
 ) -> np.ndarray | None:
     """The next node by :func:`_node`, in halved steps when the whole one is not well
-    predicted (at most _NODE_HALVINGS times), before the careful continuation."""
+    predicted (at most _NODE_HALVINGS times), before the careful continuation.
+    ``older``: the nodes before z_prev on the same stretch of the path (oldest first)."""
     parts = 1
     for attempt in range(_NODE_HALVINGS + 1):
-        # the previous node's secant, then the tangent (a secant from a point just
+        # the previous nodes' extrapolation, then the tangent (a secant from a point just
         # behind): a far previous node predicts a short step no better than a long one
         here, prev = z, (z_prev if attempt == 0 else None)
         start = float(z[col])
         for k in range(1, parts + 1):
-            nxt = _node(pb, here, prev, col, start + (value - start) * k / parts)
+            nxt = _node(
+                pb,
+                here,
+                prev,
+                col,
+                start + (value - start) * k / parts,
+                older if attempt == 0 and k == 1 else None,
+            )
             if nxt is None:
                 break
             here, prev = nxt, here
@@ -330,12 +353,18 @@ def _nodes(
 
 
 def _node(
-    pb: Problem, z: np.ndarray, z_prev: np.ndarray | None, col: int, value: float
+    pb: Problem,
+    z: np.ndarray,
+    z_prev: np.ndarray | None,
+    col: int,
+    value: float,
+    older: list[np.ndarray] | None = None,
 ) -> np.ndarray | None:
     """The next node by one batched Newton from the secant predictor (the last step
-    repeated, scaled to the new one; a first step from the tangent at z); None when it
-    does not close there or its correction is not small next to the step (the careful
-    continuation then takes it)."""
+    repeated, scaled to the new one; with ``older`` nodes before z_prev, the polynomial
+    through them all, extrapolated on the group; a first step from the tangent at z);
+    None when it does not close there or its correction is not small next to the step
+    (the careful continuation then takes it)."""
     bc = pb.batch
     if z_prev is None or z_prev[col] == z[col]:
         # a first step: the tangent at z (the kernel of the closure Jacobian, no Newton)
@@ -353,9 +382,25 @@ def _node(
         if not ok[0]:
             return None
         z_prev = Q[0]
-    # the last step repeated, scaled to the new one: z_prev -> z continued past z
-    f = (value - z[col]) / (z[col] - z_prev[col])
-    zp = bc.between(z[None, :], z_prev[None, :], np.array([-f]))[0]
+    knots = [p for p in (older or []) if p[col] != z[col]]
+    if knots and len({float(p[col]) for p in [*knots, z_prev, z]}) == len(knots) + 2:
+        # the polynomial through the last nodes (increments on the group from z)
+        pts = np.array([*knots, z_prev])
+        D = bc.difference(pts, np.repeat(np.asarray(z, dtype=float)[None, :], len(pts), 0))
+        tk = np.concatenate([pts[:, col], [z[col]]])
+        D = np.concatenate([D, np.zeros((1, D.shape[1]))])
+        w = np.ones(len(tk))
+        for a in range(len(tk)):
+            for b in range(len(tk)):
+                if a != b:
+                    w[a] *= (value - tk[b]) / (tk[a] - tk[b])
+        d = w @ D
+        zp = bc.update(np.asarray(z, dtype=float)[None, :], d[None, : bc.nb])[0]
+        zp[bc.nb :] = z[bc.nb :] + d[bc.nb :]
+    else:
+        # the last step repeated, scaled to the new one: z_prev -> z continued past z
+        f = (value - z[col]) / (z[col] - z_prev[col])
+        zp = bc.between(z[None, :], z_prev[None, :], np.array([-f]))[0]
     zp[col] = value
     Q, ok, _ = pb.close_near(zp[None, :], _NODE_CORRECTION * pb.comm(zp - z))
     return Q[0] if ok[0] else None
@@ -427,39 +472,138 @@ def _near_fold(
 
 def close_segments(pb: Problem, traces: list[PathTrace], col: int) -> None:
     """The samples strictly between the nodes of each segment (i, j) of each trace, all
-    segments of the traces together (the two directions of a path are one batch):
-    batched Newton from their cubic interpolation on the group (in chunks of
-    _FINE_CHUNK rows); a sample that does not close near its prediction is closed again
-    by continuation from the previous one.  Fills each trace's Z and newton in place."""
-    bc = pb.batch
-    nb = bc.nb
-    # each sample predicted by the cubic through its segment's two nodes and the nodes
-    # before and after (a quadratic at the ends of the path): on the group, as increments
-    # from the segment's first node
-    which, rows, base, preds, spans, tvals = [], [], [], [], [], []
+    segments of the traces together (the two directions of a path are one batch), in two
+    passes of batched Newton (in chunks of _FINE_CHUNK rows):
+
+    1. where the samples are closer together than SWEEP_KNOT_STEP, *knots*: every m-th
+       sample of the segment, m the samples in that step; otherwise every sample;
+    2. the samples between the knots.
+
+    (One pass, every sample from the nodes' cubic, when the traces hold fewer than
+    _KNOTS_FROM samples to close: a grid's short rows, where a second batched call costs
+    more than the Newton steps it saves.)
+
+    Each sample is predicted by the cubic through the two closed points around it (nodes,
+    or knots) and the one before and after them (a quadratic at the ends of the path), on
+    the group, from the first of the two: knots only some hundredths of a radian apart
+    predict to about 1e-10, so one Newton step closes a sample where the nodes' cubic
+    needs two or three.  A sample that does not close near its prediction is closed
+    again by continuation from the previous one.  Fills each trace's Z and newton in
+    place."""
+    sc = pb.scale(col)
+    first: list[tuple[int, int, int, list[int], list[int]]] = []
+    later: list[tuple[int, list[int]]] = []  # (trace, its knots in order) per segment
+    many = sum(j - i - 1 for tr in traces for i, j in tr.segments) >= _KNOTS_FROM
     for m, tr in enumerate(traces):
         Z, values = tr.Z, tr.values
         assert values is not None
         for i, j in tr.segments:
-            knots = [
-                k for k in (2 * i - j, i, j, 2 * j - i) if 0 <= k < len(Z) and not np.isnan(Z[k, 0])
-            ]
-            D = bc.difference(Z[knots], np.repeat(Z[i][None, :], len(knots), axis=0))
-            tk = values[knots]
-            ks = np.arange(i + 1, j)
-            tv = values[ks]
-            # Lagrange weights of the knots at the samples
-            W = np.ones((len(ks), len(knots)))
-            for a in range(len(knots)):
-                for b in range(len(knots)):
-                    if a != b:
-                        W[:, a] *= (tv - tk[b]) / (tk[a] - tk[b])
-            preds.append(W @ D)
-            rows.extend(ks.tolist())
-            which.extend([m] * len(ks))
-            base.append(np.repeat(Z[i][None, :], len(ks), axis=0))
-            tvals.append(tv)
-            spans.extend([pb.comm(D[knots.index(j)])] * len(ks))
+            stride = _knot_stride(values, i, j, sc) if many else 1
+            knots = [i, *range(i + stride, j - stride // 2, stride), j] if stride > 1 else [i, j]
+            if len(knots) == 2:
+                first.append((m, i, j, _cubic_knots(Z, i, j), list(range(i + 1, j))))
+                continue
+            first.append((m, i, j, _cubic_knots(Z, i, j), knots[1:-1]))
+            later.append((m, knots))
+    _close_between(pb, traces, col, first)
+    second = []
+    for m, knots in later:
+        Z = traces[m].Z
+        closed = [k for k in knots if not np.isnan(Z[k, 0])]
+        for p in range(len(closed) - 1):
+            a, b = closed[p], closed[p + 1]
+            if b - a < 2:
+                continue
+            around = [closed[p - 1]] if p > 0 else []
+            around += [a, b] + ([closed[p + 2]] if p + 2 < len(closed) else [])
+            # at the ends of the segment, the nodes' neighbours as for the first pass
+            if p == 0 or p + 2 == len(closed):
+                around = sorted(set(around) | set(_cubic_knots(Z, a, b)))
+                around = _nearest(around, a, b)
+            second.append((m, a, b, around, list(range(a + 1, b))))
+    _close_between(pb, traces, col, second)
+    # the samples Newton did not close near their prediction: continuation, in order
+    for tr in traces:
+        Z, values = tr.Z, tr.values
+        assert values is not None
+        for i, j in tr.segments:
+            for k in range(i + 1, j):
+                if not np.isnan(Z[k, 0]):
+                    continue
+                prev = Z[k - 1]
+                if np.isnan(prev[0]):
+                    continue
+                try:
+                    Z[k] = pb.reach(prev, col, values[k])
+                except ClosureError:
+                    continue
+        tr.segments = []
+
+
+def _knot_stride(values: np.ndarray, i: int, j: int, sc: float) -> int:
+    """Samples per knot between nodes i and j: as many samples as SWEEP_KNOT_STEP holds
+    (commensurate), at least 1."""
+    spacing = abs(float(values[j]) - float(values[i])) / (j - i) / sc
+    return max(1, int(SWEEP_KNOT_STEP / spacing)) if spacing > 0 else 1
+
+
+def _cubic_knots(Z: np.ndarray, i: int, j: int) -> list[int]:
+    """The closed points a segment (i, j) is interpolated through: its ends and the points
+    as far before and after them, where closed."""
+    return [k for k in (2 * i - j, i, j, 2 * j - i) if 0 <= k < len(Z) and not np.isnan(Z[k, 0])]
+
+
+def _nearest(knots: list[int], a: int, b: int) -> list[int]:
+    """At most four of the sorted closed points ``knots``: a, b and the nearest one before
+    a and after b."""
+    before = [k for k in knots if k < a][-1:]
+    after = [k for k in knots if k > b][:1]
+    return [*before, a, b, *after]
+
+
+def _close_between(
+    pb: Problem,
+    traces: list[PathTrace],
+    col: int,
+    jobs: list[tuple[int, int, int, list[int], list[int]]],
+) -> None:
+    """One batched Newton over ``jobs``: (trace, a, b, knots, rows) closes the samples
+    ``rows`` of a trace from the Lagrange interpolation through its closed samples
+    ``knots`` (a among them), as increments on the group from sample a; a sample moved
+    by Newton more than SWEEP_JUMP_RATIO times the distance from a to b is left NaN."""
+    bc = pb.batch
+    nb = bc.nb
+    jobs = [job for job in jobs if job[4]]
+    if not jobs:
+        return
+    # every knot's increment from its job's first point, in one call
+    K1 = np.concatenate([traces[m].Z[knots] for m, _, _, knots, _ in jobs])
+    K0 = np.concatenate(
+        [np.repeat(traces[m].Z[a][None, :], len(kn), axis=0) for m, a, _, kn, _ in jobs]
+    )
+    Dall = bc.difference(K1, K0)
+    which, rows, base, preds, spans, tvals = [], [], [], [], [], []
+    at = 0
+    for m, a, b, knots, ks_list in jobs:
+        Z, values = traces[m].Z, traces[m].values
+        assert values is not None
+        D = Dall[at : at + len(knots)]
+        at += len(knots)
+        tk = values[knots]
+        ks = np.array(ks_list)
+        tv = values[ks]
+        # Lagrange weights of the knots at the samples
+        W = np.ones((len(ks), len(knots)))
+        for p in range(len(knots)):
+            for q in range(len(knots)):
+                if p != q:
+                    W[:, p] *= (tv - tk[q]) / (tk[p] - tk[q])
+        preds.append(W @ D)
+        rows.extend(ks_list)
+        which.extend([m] * len(ks))
+        base.append(np.repeat(Z[a][None, :], len(ks), axis=0))
+        tvals.append(tv)
+        spans.extend([pb.comm(D[knots.index(b)])] * len(ks))
     if not rows:
         return
     rows_a, which_a = np.array(rows), np.array(which)
@@ -482,23 +626,7 @@ def close_segments(pb: Problem, traces: list[PathTrace], col: int) -> None:
                 continue
             tr.Z[rows_a[sl][mine]] = Q[mine]
             assert tr.newton is not None
-            tr.newton[rows_a[sl][mine]] = it[mine]
-    # the samples Newton did not close near their prediction: continuation, in order
-    for tr in traces:
-        Z, values = tr.Z, tr.values
-        assert values is not None
-        for i, j in tr.segments:
-            for k in range(i + 1, j):
-                if not np.isnan(Z[k, 0]):
-                    continue
-                prev = Z[k - 1]
-                if np.isnan(prev[0]):
-                    continue
-                try:
-                    Z[k] = pb.reach(prev, col, values[k])
-                except ClosureError:
-                    continue
-        tr.segments = []
+            tr.newton[rows_a[sl][mine]] += it[mine]
 
 
 class _Arc:

@@ -101,9 +101,9 @@ class Relocator:
         nb = sw.model.n
         # the float point's bases and, for a fold, the coordinate that drives it
         pm = sw.measures(np.asarray(z[:nb], dtype=float)[None, :])
-        if test not in pm.bases:
+        if test not in pm.rank:
             return None
-        U, V = pm.bases[test]
+        U, V = pm.basis(test, slice(0, 1))
         U0, V0 = U[0], V[0]
         N0 = None if pm.kernel is None or test not in ("input", "output") else pm.kernel[0]
         if kind == "fold":

@@ -1,0 +1,163 @@
+"""A sweep of the output's pose on a 6-UPS platform: the closure split leg by leg, the
+samples closed in two passes, the closure measured without its full SVD.
+
+The answers come from outside the code under test: each leg's length from the moved
+platform's attachment points (a distance), its U joint's angles from the leg's direction
+(Rodrigues' formula written here), the platform's pose from the independent forward
+kinematics of tests/reference (:class:`MechanismFile`), the Type II turns of the
+octahedral platform at +-pi/2 (Fichter), and numpy's SVD of the same matrices for the
+measures.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechsing.kinematics.batch import _damped_step
+from mechsing.sweeps import SweepRun, sweep
+from tests.reference.files import MechanismFile
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+STEWART = EXAMPLES / "stewart_octahedral.yaml"
+#: the platform's reference point: the centroid of its S joints' points (the file)
+CENTRE = np.array([0.0, 0.0, 1.0])
+
+
+def rodrigues(axis: np.ndarray, angle: float) -> np.ndarray:
+    u = np.asarray(axis, dtype=float)
+    u = u / np.linalg.norm(u)
+    K = np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
+    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * (K @ K)
+
+
+def _geometry() -> tuple[MechanismFile, np.ndarray, np.ndarray, np.ndarray]:
+    """The file read by the reference reader: base points, platform points, U axes."""
+    f = MechanismFile(STEWART)
+    base = np.array([f.joints[f.jidx[f"U{k}"]].prm["point"] for k in range(1, 7)], dtype=float)
+    top = np.array([f.joints[f.jidx[f"S{k}"]].prm["point"] for k in range(1, 7)], dtype=float)
+    axes = np.array([f.joints[f.jidx[f"U{k}"]].prm["axes"] for k in range(1, 7)], dtype=float)
+    return f, base, top, axes
+
+
+def _path(spec: str) -> tuple[SweepRun, np.ndarray]:
+    """The sweep's closed configurations (joints, then the pose coordinates), every sample."""
+    run = SweepRun(STEWART, [spec])
+    rows = list(run.engine.rows([v.values for v in run.vars], None))
+    assert len(rows) == 1 and rows[0].Z is not None
+    return run, rows[0].Z
+
+
+def test_a_dense_platform_turn_closes_every_leg_at_its_inverse_kinematics():
+    """Each sample of a dense turn about the vertical through the platform's centre, closed
+    by the legs' split Newton in two passes: the P joint is the leg's length at the pose
+    minus its length at the reference, the U joint turns the leg onto its direction, and
+    the reference forward kinematics puts the platform at the pose."""
+    f, base, top, axes = _geometry()
+    run, Z = _path("pose.rz=-1.2:1.2:0.0015")
+    model = run.engine.model
+    col = {j.name: model.joint(j.name).columns for j in model.mech.joints}
+    assert not np.isnan(Z[:, 0]).any()
+    rz = Z[:, model.n + 2]
+    np.testing.assert_allclose(rz, run.vars[0].values, rtol=0, atol=1e-15)
+    for z, angle in zip(Z[::37], rz[::37], strict=False):
+        R = rodrigues([0, 0, 1], float(angle))
+        moved = (R @ (top - CENTRE).T).T + CENTRE
+        for k in range(6):
+            leg = moved[k] - base[k]
+            ref = top[k] - base[k]
+            p = z[col[f"P{k + 1}"]][0]
+            assert p == pytest.approx(np.linalg.norm(leg) - np.linalg.norm(ref), abs=1e-12)
+            a, b = z[col[f"U{k + 1}"]]
+            # U: exp(a e1) exp(b e2), both axes through the base point, at the reference
+            turn = rodrigues(axes[k][0], a) @ rodrigues(axes[k][1], b)
+            d = turn @ (ref / np.linalg.norm(ref))
+            np.testing.assert_allclose(d, leg / np.linalg.norm(leg), rtol=0, atol=1e-12)
+        g = f.poses(z[: model.n])["platform"]
+        np.testing.assert_allclose(g[:3, :3], R, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(g[:3, :3] @ CENTRE + g[:3, 3], CENTRE, rtol=0, atol=1e-12)
+
+
+def test_the_split_step_is_the_newton_step_of_the_whole_closure():
+    """Leg by leg (six 6 x 6 solves) the step is the one of the whole 36-coordinate system
+    (its damped normal equations: they agree to their own rounding, cond^2 eps)."""
+    run, Z = _path("pose.rz=-1:1:0.05")
+    pb = run.engine.problem
+    bc = pb.batch
+    cols = np.flatnonzero(~pb.given[: bc.nb])
+    split = bc.split(cols)
+    assert split is not None
+    assert [len(c) for _, c, _ in split.legs] == [6] * 6
+    rng = np.random.default_rng(7)
+    Q = Z.copy()
+    Q[:, : bc.nb] += 1e-3 * rng.standard_normal((len(Z), bc.nb))
+    r = bc.residual_twists(bc.deltas(Q))
+    whole = _damped_step(bc.jacobian(Q)[:, :, cols], r)
+    legs = split.step(bc.screws(Q), r)
+    assert np.max(np.abs(legs - whole)) <= 1e-9 * np.max(np.abs(whole))
+
+
+@pytest.mark.parametrize(
+    ("name", "spec"),
+    [("planar_3rpr.yaml", "pose.x=0.9:1.1:0.05"), ("stewart_octahedral.yaml", "P1=0:0.01:0.005")],
+)
+def test_no_split_where_the_legs_are_not_square_or_the_pose_is_not_given(name, spec):
+    """A planar platform's legs have three coordinates for six rows each; a sweep of a
+    joint does not give the output's pose: both close the whole system."""
+    run = SweepRun(EXAMPLES / name, [spec])
+    pb = run.engine.problem
+    assert pb.batch.split(np.flatnonzero(~pb.given[: pb.batch.nb])) is None
+
+
+def test_a_dense_turn_locates_the_type_two_turns_to_rounding_with_one_newton_step_a_sample():
+    """Fichter's rotation singularity at +-pi/2, on a turn dense enough for the samples to
+    be closed between knots (one Newton step each), located to rounding."""
+    r = sweep(STEWART, ["pose.rz=-1.8:1.8:0.0018"])
+    got = sorted(p.values[0] for p in r.located if "output" in r.tests and "output" in p.tests)
+    assert len(got) == 2
+    assert abs(got[0] + math.pi / 2) <= 1e-14
+    assert abs(got[1] - math.pi / 2) <= 1e-14
+    assert all(p.classes and "output" in p.classes for p in r.located)
+    # knots every fifth sample (SWEEP_KNOT_STEP / 0.0018): one Newton step for the four
+    # samples between two knots, two or three for a knot (from the nodes' cubic, as every
+    # sample took before the knots)
+    assert r.newton_iterations / r.points() <= 1.5
+
+
+def test_the_closure_measured_without_its_svd_is_the_svd_s():
+    """The closure of full row rank (30 x 36) measured by a QR: its smallest relative
+    singular value is numpy's SVD's, its kernel is orthonormal and annihilated, the input
+    and output tests on that kernel are those on the SVD's kernel; and the screened sign
+    test between any two samples has the sign of the product it stands for."""
+    run, Z = _path("pose.rz=-1.7:1.7:0.02")
+    meas = run.engine.measures
+    Q = Z[:, : run.engine.model.n]
+    pm = meas(Q)
+    assert "closure" in pm.deferred and "closure" not in pm.bases
+    C = pm.matrices["closure"]
+    U, s, Vt = np.linalg.svd(C)
+    g = meas.generic["closure"]
+    assert g == C.shape[1] == 30
+    np.testing.assert_allclose(pm.ratio["closure"], s[:, g - 1] / s[:, 0], rtol=1e-12)
+    K = pm.kernel
+    assert np.max(np.abs(C @ K)) <= 1e-13 * np.max(s[:, 0])
+    np.testing.assert_allclose(
+        np.swapaxes(K, 1, 2) @ K, np.broadcast_to(np.eye(6), (len(K), 6, 6)), atol=1e-14
+    )
+    N = np.swapaxes(Vt[:, g:, :], 1, 2)
+    E = meas.E
+    sE = np.linalg.svd(E @ N, compute_uv=False)
+    np.testing.assert_allclose(pm.ratio["output"], sE[:, -1], rtol=1e-9, atol=1e-15)
+    # neighbours (screened: the bound) and samples far apart (the product itself)
+    n = len(Q)
+    ia = np.concatenate([np.arange(n - 1), np.arange(0, n - 40, 7)])
+    ib = np.concatenate([np.arange(1, n), np.arange(40, n, 7)])
+    d = meas.compressed_pairs(pm, ia, ib)["closure"]
+    u, v = U[ia][:, :, g - 1], Vt[ia][:, g - 1, :]
+    direct = np.einsum("ni,nij,nj->n", u, C[ib], v)
+    assert np.array_equal(np.sign(d), np.sign(direct))
+    # the screened pairs' bound is below the product it stands for
+    assert np.all(d <= direct + 1e-12 * s[ia, 0])
