@@ -76,6 +76,21 @@ def axis_points(mech: Mechanism) -> list[list[Any]]:
     return pts
 
 
+def _exact_centroid(pts: list[list[Any]]) -> list[Any] | None:
+    """The exact mean of the axis points when their coordinates lie in a number field
+    (rationals, radicals), else None."""
+    import sympy
+
+    from mechsing.numeric import number_field
+
+    if not pts:
+        return None
+    vals = [sympy.sympify(x) for p in pts for x in p]
+    if any(isinstance(v, sympy.Float) for v in vals) or number_field(vals) is None:
+        return None
+    return [sum(vals[k::3], sympy.S.Zero) / len(pts) for k in range(3)]
+
+
 def refuse_inexact_geometry(mech: Mechanism) -> None:
     """Exact mode needs exact data: every number of the geometry (axes, points,
     pitches, the output point, the characteristic length) must be one that sympy proves
@@ -188,7 +203,7 @@ class KinematicModel:
         #: the commensurate frame in the model's numbers, and its float twin: every map
         #: into the commensurate metric and back to SI goes through them
         self.frame: CommensurateFrame = CommensurateFrame.of(
-            L, c, self.length_columns, self.backend
+            L, c, self.length_columns, self.backend, _exact_centroid(pts)
         )
         self.float_frame: CommensurateFrame = self.frame.as_float()
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]

@@ -31,6 +31,7 @@ from mechsing.numeric import (
     Margin,
     Precision,
     RankDecision,
+    decide_from_exact,
     decide_rank,
     numeric_precision,
     svd,
@@ -174,7 +175,12 @@ def _local_analysis(
     def system() -> _TestSystem:
         if not built:
             exp, M = closure_expansion(model, cs, tprec)
-            dec = decide_rank(M, tprec, 1.0, want_spaces=True, native_spaces=True)
+            # exact mode: M's rank is the closure rank proved exactly, and its mp spaces
+            # come from the exact kernel (the same kernel: M is the closure system in
+            # orthonormal loop coordinates) by QR, without an SVD of M
+            dec = decide_from_exact(M, tprec, cs.rank) if model.precision.mode == "exact" else None
+            if dec is None:
+                dec = decide_rank(M, tprec, 1.0, want_spaces=True, native_spaces=True)
             built.append(_TestSystem(exp, M, dec))
         return built[0]
 

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from sympy.polys.matrices import DomainMatrix
 
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
@@ -28,6 +29,9 @@ from mechsing.numeric import (
     characteristic_length,
     decide_nonzero,
     decide_rank,
+    echelon_form,
+    field_float,
+    number_field,
     svd,
     to_float,
 )
@@ -136,11 +140,78 @@ def _residual_norm(B: np.ndarray) -> float:
     return float(np.max(np.linalg.norm(res, axis=1)))
 
 
+def _field_brackets(K: Any, B: list[list[Any]]) -> list[list[Any]]:
+    """:func:`_brackets` of rows of elements of K: ``[(w1, v1), (w2, v2)] = (w1 x w2,
+    w1 x v2 - w2 x v1)`` for each pair i < j, in K."""
+
+    def cross(a: list[Any], b: list[Any]) -> list[Any]:
+        return [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+
+    out = []
+    for i in range(len(B)):
+        for j in range(i + 1, len(B)):
+            (w1, v1), (w2, v2) = (B[i][:3], B[i][3:]), (B[j][:3], B[j][3:])
+            a, b = cross(w1, v2), cross(w2, v1)
+            out.append(cross(w1, w2) + [x - y for x, y in zip(a, b, strict=True)])
+    return out
+
+
+def _field_closure(
+    S: np.ndarray, L: float, margins: _Margins
+) -> tuple[np.ndarray, list[float], None] | None:
+    """:func:`_closure` in exact mode in the number field of the rows (None: they have
+    none): the same decisions (echelon pivots), row spaces (reduced row echelon rows)
+    and brackets as the exact path takes on sympy numbers, without converting each
+    round's brackets to sympy and back."""
+    m = S.shape[0]
+    fit = number_field(list(S.flat)) if m else None
+    if fit is None:
+        return None
+    K, els = fit
+    rows = [els[6 * i : 6 * i + 6] for i in range(m)]
+
+    def row_space(rows: list[list[Any]]) -> list[list[Any]]:
+        D = DomainMatrix(rows, (len(rows), 6), K)
+        E = echelon_form(D)
+        mags = E.pivot_magnitudes()
+        margins.add_values(
+            kept=min(mags) if mags else None,
+            dropped=0.0 if len(E.pivots) < min(len(rows), 6) else None,
+        )
+        R, piv = D.rref()
+        return [list(r) for r in R.to_list()[: len(piv)]]
+
+    def floats(B: list[list[Any]]) -> np.ndarray:
+        return np.array([[field_float(K, x) for x in r] for r in B], dtype=float).reshape(-1, 6)
+
+    B = row_space(rows)
+    norms: list[float] = []
+    for _ in range(_MAX_ROUNDS):
+        br = _field_brackets(K, B)
+        if not br:
+            break
+        norms.append(_residual_norm(floats(B)))
+        B2 = row_space(B + br)
+        if len(B2) == len(B):
+            break
+        B = B2
+    out = np.array([[K.to_sympy(x) for x in r] for r in B], dtype=object).reshape(len(B), 6)
+    return out, norms, None
+
+
 def _closure(
     S: np.ndarray, prec: Precision, L: float, margins: _Margins
 ) -> tuple[np.ndarray | None, list[float], tuple[int, int] | None]:
     """Lie closure of the rows of S (commensurate metric): basis, bracket norms,
     and the rank bounds when a decision was undecided."""
+    if prec.mode == "exact":
+        fast = _field_closure(S, L, margins)
+        if fast is not None:
+            return fast
     dec, B = _linalg.row_space(S, prec, L)
     margins.add(dec)
     if B is None:
