@@ -243,7 +243,9 @@ def _point_motion(mech: Any, model: Any, q: Any, cs: Any, N: Any) -> PointMotion
     return PointMotion(pos, r, vel, dec.margin)
 
 
-def _exact_point_motion(mech: Any, model: Any, q: Any, cs: Any, Z: np.ndarray) -> PointMotion | None:
+def _exact_point_motion(
+    mech: Any, model: Any, q: Any, cs: Any, Z: np.ndarray
+) -> PointMotion | None:
     """:func:`_point_motion` in exact mode: the rank of ``V K`` exactly, in the number
     field of the data (None: no field)."""
     out = mech.output
@@ -282,9 +284,7 @@ def _exact_output_motion(
         E = dec.exact_range_space
         # the span's exact twists in SI at the ground origin: v_0 = L v_c + c x omega
         X = np.array([fr.twist_back(E[:, k]) for k in range(r)], dtype=object).reshape(r, 6)
-    return _motion_of_span(
-        mech, model, configuration, dec, si, X, model.precision, fr.c
-    )
+    return _motion_of_span(mech, model, configuration, dec, si, X, model.precision, fr.c)
 
 
 def _output_motion(
