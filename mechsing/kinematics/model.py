@@ -77,16 +77,14 @@ def axis_points(mech: Mechanism) -> list[list[Any]]:
 
 
 def _exact_centroid(pts: list[list[Any]]) -> list[Any] | None:
-    """The exact mean of the axis points when their coordinates lie in a number field
-    (rationals, radicals), else None."""
+    """The exact mean of the axis points when their coordinates are all rational, else
+    None (a centroid with radicals would carry them into every commensurate number)."""
     import sympy
-
-    from mechsing.numeric import number_field
 
     if not pts:
         return None
     vals = [sympy.sympify(x) for p in pts for x in p]
-    if any(isinstance(v, sympy.Float) for v in vals) or number_field(vals) is None:
+    if not all(v.is_Rational for v in vals):
         return None
     return [sum(vals[k::3], sympy.S.Zero) / len(pts) for k in range(3)]
 

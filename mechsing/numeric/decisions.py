@@ -18,7 +18,7 @@ import sympy
 from mechsing.numeric._mp import _mp_convert, _mp_eye, _mp_matrix, _object_array, eigsy
 from mechsing.numeric.backend import FLOAT, to_float
 from mechsing.numeric.blocks import block_svd, issparse
-from mechsing.numeric.field import echelon_form, field_float
+from mechsing.numeric.field import echelon_form, field_float, number_field
 from mechsing.numeric.linalg import singular_values, svd
 from mechsing.numeric.precision import Precision, parse_precision
 from mechsing.numeric.tolerances import FLOAT_ROUNDING_FACTOR, Tolerances
@@ -87,6 +87,10 @@ def decide_nonzero(value: Any, prec: Precision) -> bool | None:
     two-threshold rule of a rank on one value: True at or above ``tau_hi``, False at
     or below ``tau_lo``, None between (undecided); exactly in exact mode."""
     if prec.mode == "exact":
+        fit = number_field([value]) if isinstance(value, sympy.Basic | int) else None
+        if fit is not None:  # zero in its number field is zero
+            K, (el,) = fit
+            return not K.is_zero(el)
         return bool(sympy.simplify(value) != 0)
     t = prec.tolerances
     a = abs(float(to_float(value)))

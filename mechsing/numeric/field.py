@@ -50,6 +50,7 @@ __all__ = [
     "field_echelon",
     "field_float",
     "field_floats",
+    "field_normal_form",
     "field_null_space",
     "field_product",
     "field_row_space",
@@ -246,6 +247,19 @@ def field_floats(A: Any) -> np.ndarray | None:
         return None
     K, els = fit
     return np.array([field_float(K, x) for x in els], dtype=float).reshape(arr.shape)
+
+
+def field_normal_form(x: Any) -> Any:
+    """A sympy number or array written back from its elements of the number field its
+    entries lie in (rationals and polynomials in the primitive element, expanded: zero is
+    zero, denominators rational), or None when they have no field."""
+    arr = np.asarray(x, dtype=object)
+    fit = number_field(list(arr.flat)) if arr.size else None
+    if fit is None:
+        return None
+    K, els = fit
+    out = np.array([K.to_sympy(e) for e in els], dtype=object).reshape(arr.shape)
+    return out[()] if out.shape == () else out
 
 
 def from_field(K: Any, x: Any) -> Any:

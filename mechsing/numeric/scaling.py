@@ -124,7 +124,7 @@ class CommensurateFrame:
     ) -> CommensurateFrame:
         """The frame of the float ``L`` and centroid ``c`` in ``backend``'s numbers
         (None: float).  Exact: the decimals of the float values as rationals, or the
-        centroid ``exact_centre`` when given (the exact mean of exact points, of which
+        centroid ``exact_centre`` when given (the exact mean of rational points, of which
         ``c`` is the float rounding)."""
         cf = np.asarray(to_float(c), dtype=float).reshape(3)
         lc = None if length_columns is None else np.asarray(length_columns, dtype=bool)

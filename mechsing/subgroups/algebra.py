@@ -31,6 +31,7 @@ from mechsing.numeric import (
     decide_rank,
     echelon_form,
     field_float,
+    field_normal_form,
     number_field,
     svd,
     to_float,
@@ -379,13 +380,15 @@ def _classify(
         w, v = x[ANGULAR], x[LINEAR]
         n2 = w @ w
         u = w / bk.sqrt(np.asarray(n2))[()]
-        geo["direction"] = u
+        # exactly: the subgroup normalises the direction itself (one square root, not a
+        # root of a sum of squares of roots)
+        geo["direction"] = w if prec.mode == "exact" else u
         geo["point"] = _cross(w, v) / n2
         pitch = (w @ v) / n2
     elif r == 0 and k in (1, 2):
         vs = B[:, LINEAR]
         d = vs[0] if k == 1 else _cross(vs[0], vs[1])
-        geo["direction"] = d / bk.sqrt(np.asarray(d @ d))[()]
+        geo["direction"] = d if prec.mode == "exact" else d / bk.sqrt(np.asarray(d @ d))[()]
     elif r == 3 and k == 3:
         geo["point"] = _centre_of_rotations(B, prec)
     _ = W
@@ -411,7 +414,7 @@ def _classify(
             params[name] = frame.point_back(geo["point"])
         else:
             params[name] = pitch * L
-    sub = Subgroup(t, {n: prec.backend.simplify(v) for n, v in params.items()})
+    sub = Subgroup(t, {n: _normal_form(v, prec) for n, v in params.items()})
     # consistency: the rebuilt canonical basis spans the same space
     Bc = frame.rows(sub.basis(prec))
     dec = decide_rank(np.concatenate([B, Bc], axis=0), prec, Lf)
@@ -427,6 +430,16 @@ def _classify(
     ident.pitch_scaled = None if pitch is None else float(to_float(pitch))
     ident.basis = B
     return ident
+
+
+def _normal_form(v: Any, prec: Precision) -> Any:
+    """A parameter in the backend's normal form; exactly, its number field's when it has
+    one (no radical simplification of values that are sums of products in the field)."""
+    if prec.mode == "exact":
+        fast = field_normal_form(v)
+        if fast is not None:
+            return fast
+    return prec.backend.simplify(v)
 
 
 def _rotating_element(B: np.ndarray, prec: Precision) -> np.ndarray:
