@@ -298,10 +298,33 @@ class FieldEchelon:
     D: DomainMatrix
     pivots: list[int]
     pivot_elements: list[Any]
+    #: the rows of the elimination (with division) that hold the pivots, in order
+    rows: list[list[Any]] | None = None
 
     @property
     def K(self) -> Any:
         return self.D.domain
+
+    def rref_rows(self) -> list[list[Any]]:
+        """The non-zero rows of the reduced row echelon form (unique: sympy's ``rref``),
+        elements of K: the elimination's rows, each divided by its pivot and cleared above
+        it (back substitution)."""
+        if self.rows is None:
+            R, piv = self.D.rref()
+            return [list(r) for r in R.to_list()[: len(piv)]]
+        K = self.K
+        out = [list(r) for r in self.rows]
+        for i in range(len(out) - 1, -1, -1):
+            c = self.pivots[i]
+            p = out[i][c]
+            if p != K.one:
+                out[i] = [x / p if x else x for x in out[i]]
+            row = out[i]
+            for k in range(i):
+                a = out[k][c]
+                if a:
+                    out[k] = [x - a * y if y else x for x, y in zip(out[k], row, strict=True)]
+        return out
 
     def pivot_values(self) -> list[Any]:
         """The pivot values as sympy numbers."""
@@ -316,8 +339,8 @@ class FieldEchelon:
         free column, 1 there), elements of K."""
         K = self.K
         n = self.D.shape[1]
-        R, rpiv = self.D.rref()
-        rl = R.to_list()
+        rl = self.rref_rows()
+        rpiv = self.pivots
         basis = []
         for free in (j for j in range(n) if j not in rpiv):
             vec = [K.zero] * n
@@ -363,7 +386,7 @@ def _echelon(D: DomainMatrix) -> FieldEchelon:
         pivots.append(col)
         values.append(pv)
         pr += 1
-    return FieldEchelon(D, pivots, values)
+    return FieldEchelon(D, pivots, values, rows[:pr])
 
 
 def field_echelon(A: Any) -> tuple[list[int], list[Any], list[list[Any]]] | None:
@@ -429,7 +452,7 @@ def field_null_space(A: Any) -> np.ndarray | None:
     if D is None:
         return None
     K = D.domain
-    basis = [[K.to_sympy(x) for x in v] for v in FieldEchelon(D, [], []).null_basis()]
+    basis = [[K.to_sympy(x) for x in v] for v in _echelon(D).null_basis()]
     return np.array(basis, dtype=object).reshape(len(basis), arr.shape[1])
 
 

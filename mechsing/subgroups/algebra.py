@@ -145,11 +145,15 @@ def _field_brackets(K: Any, B: list[list[Any]]) -> list[list[Any]]:
     """:func:`_brackets` of rows of elements of K: ``[(w1, v1), (w2, v2)] = (w1 x w2,
     w1 x v2 - w2 x v1)`` for each pair i < j, in K."""
 
+    def mul(x: Any, y: Any) -> Any:
+        # rows of reduced echelon forms are sparse: no product with a zero factor
+        return x * y if x and y else K.zero
+
     def cross(a: list[Any], b: list[Any]) -> list[Any]:
         return [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
+            mul(a[1], b[2]) - mul(a[2], b[1]),
+            mul(a[2], b[0]) - mul(a[0], b[2]),
+            mul(a[0], b[1]) - mul(a[1], b[0]),
         ]
 
     out = []
@@ -183,8 +187,7 @@ def _field_closure(
             kept=min(mags) if mags else None,
             dropped=0.0 if len(E.pivots) < min(len(rows), 6) else None,
         )
-        R, piv = D.rref()
-        return [list(r) for r in R.to_list()[: len(piv)]]
+        return E.rref_rows()
 
     def floats(B: list[list[Any]]) -> np.ndarray:
         return np.array([[field_float(K, x) for x in r] for r in B], dtype=float).reshape(-1, 6)
