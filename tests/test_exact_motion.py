@@ -83,6 +83,21 @@ def test_quadratic_radicals_count_by_the_degree_they_generate(radicands, degree)
     assert (1 if K.is_QQ else K.mod.degree()) == degree
 
 
+def test_dependent_square_roots_are_products_of_independent_ones() -> None:
+    # ten square roots of five independent classes: QQ(sqrt 2, sqrt 3, sqrt 5, sqrt 7,
+    # sqrt 11) of degree 32, each root (sqrt 6 = sqrt 2 sqrt 3, sqrt 21 = sqrt 3 sqrt 7 ...)
+    # its element there; a sum with a product of two roots as well
+    ks = (2, 3, 5, 7, 11, 6, 10, 14, 15, 21)
+    vals = [sympy.sqrt(k) for k in ks] + [sympy.sqrt(6) * sympy.sqrt(21) - sympy.sqrt(14) / 3]
+    K, els = number_field(vals)
+    assert K.mod.degree() == 32
+    for v, e in zip(vals, els, strict=True):
+        assert field_float(K, e) == pytest.approx(float(sympy.N(v, 30)), rel=1e-15)
+    # sqrt 6 sqrt 21 = 3 sqrt 14: zero in K
+    (zero,) = number_field([sympy.sqrt(6) * sympy.sqrt(21) - 3 * sympy.sqrt(14)])[1]
+    assert zero == 0
+
+
 def test_other_radicals_keep_the_product_bound() -> None:
     assert _degree_bound({sympy.sqrt(2), sympy.cbrt(2)}) == 6
     assert _degree_bound({sympy.sqrt(1 + sympy.sqrt(2))}) == 4

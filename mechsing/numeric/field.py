@@ -194,17 +194,61 @@ def _gf2_rank(masks: list[int]) -> int:
 @lru_cache(maxsize=256)
 def _field_of(gens: tuple[Any, ...]) -> tuple[Any, dict[Any, Any]] | None:
     """The field QQ(gens) (a primitive element: computed once per set of radicals) and
-    each radical's element in it."""
+    each radical's element in it.  The square roots of integers enter through a basis
+    of their square classes (:func:`_quadratic_basis`): the others are a rational times
+    a product of basis roots (sqrt 6 = sqrt 2 sqrt 3), so the primitive element is
+    built from as few radicals as the degree allows (sympy's construction slows down
+    steeply with their number)."""
+    dependent = _quadratic_basis(gens)
+    build = [g for g in gens if g not in dependent]
     try:
-        K, elements = construct_domain(list(gens), field=True, extension=True)
+        K, elements = construct_domain(build, field=True, extension=True)
     except (sympy.polys.polyerrors.PolynomialError, NotImplementedError, ValueError):
         return None
     if K.is_ZZ or K.is_QQ:
         K = QQ
-        elements = [QQ.from_sympy(g) for g in gens]
+        elements = [QQ.from_sympy(g) for g in build]
     elif not K.is_AlgebraicField:
         return None
-    return K, dict(zip(gens, elements, strict=True))
+    images = dict(zip(build, elements, strict=True))
+    for g, (factor, roots) in dependent.items():
+        el = K.convert_from(QQ.from_sympy(factor), QQ)
+        for b in roots:
+            el = el * images[b]
+        images[g] = el
+    return K, images
+
+
+def _quadratic_basis(gens: tuple[Any, ...]) -> dict[Any, tuple[Any, list[Any]]]:
+    """The square roots of positive integers among ``gens`` that depend on the others
+    before them (their square classes over GF(2)), each as ``(r, [b1, b2, ...])``:
+    ``g = r b1 b2 ...`` with r rational and b_i independent roots among ``gens``."""
+    lead: dict[int, tuple[int, frozenset[Any]]] = {}
+    dependent: dict[Any, tuple[Any, list[Any]]] = {}
+    for g in gens:
+        if not (g.exp == sympy.S.Half and g.base.is_Integer and g.base > 0):
+            continue
+        mask = _square_class(g.base)
+        if mask is None:
+            continue
+        combo: frozenset[Any] = frozenset()
+        while mask:
+            top = mask.bit_length() - 1
+            if top not in lead:
+                break
+            m, c = lead[top]
+            mask ^= m
+            combo = combo ^ c
+        if mask:
+            lead[mask.bit_length() - 1] = (mask, combo ^ {g})
+            continue
+        roots = sorted(combo, key=sympy.default_sort_key)
+        prod = sympy.Integer(1)
+        for b in roots:
+            prod = prod * b.base
+        # g / prod(roots) = sqrt(n / prod b_i), a rational (the same square class)
+        dependent[g] = (sympy.sqrt(sympy.Rational(g.base, prod)), roots)
+    return dependent
 
 
 def _evaluate(K: Any, images: dict[Any, Any], x: Any) -> Any:
