@@ -76,6 +76,11 @@ class RankDecision:
     left_null_space: np.ndarray | None = field(default=None, compare=False, repr=False)
     exact_null_space: np.ndarray | None = field(default=None, compare=False, repr=False)
     exact_range_space: np.ndarray | None = field(default=None, compare=False, repr=False)
+    #: a decision taken from an exact one (:func:`decide_from_exact`): its native kernel
+    #: is ``exact_null_space @ kernel_coefficients`` (k x k, N-digit numbers), so that a
+    #: product ``A @ null_space`` can be formed as ``(A @ exact_null_space) @ coefficients``
+    #: with ``A @ exact_null_space`` exact (its exact zeros kept)
+    kernel_coefficients: np.ndarray | None = field(default=None, compare=False, repr=False)
 
     @property
     def decided(self) -> bool:
@@ -268,10 +273,11 @@ def decide_from_exact(M: Any, precision: Precision, exact: RankDecision) -> Rank
     coordinates, e.g. its exact reduced coordinates where M has orthonormal ones).
 
     The rank is the one ``exact`` proved (its margin and precision are given); the
-    native orthonormal spaces of M at N digits come from the exact kernel by Householder
-    QR instead of an SVD: the kernel N and its complement Y from the QR of the exact
-    kernel basis, the range and the left kernel from the QR of ``M Y`` (full column rank
-    r).  None (decide M itself) unless ``precision`` is mp:N and ``exact`` has an exact
+    native orthonormal spaces of M at N digits come from the exact kernel instead of an
+    SVD: the kernel ``N = Z C`` by Gram-Schmidt on the exact kernel basis Z (exact zeros
+    kept; Z and C are given, ``exact_null_space`` and ``kernel_coefficients``), its
+    complement Y from the Householder QR of Z, the range and the left kernel from the QR
+    of ``M Y`` (full column rank r).  None (decide M itself) unless ``precision`` is mp:N and ``exact`` has an exact
     kernel of M's width, or when M does not annihilate that kernel: ``|M N|_F`` above
     ``tau_lo |M|_F`` (M is not the matrix the caller took it for).
     """
@@ -287,10 +293,13 @@ def decide_from_exact(M: Any, precision: Precision, exact: RankDecision) -> Rank
         return None
     with prec.context():
         A = _mp_matrix(arr)
+        C = None
         if k:
-            Q, _ = mpmath.qr(_mp_matrix(Z))
-            Qn = _object_array(Q, (n, n))
-            N, Y = Qn[:, :k], Qn[:, k:]
+            Zm = _mp_matrix(Z)
+            Q, _ = mpmath.qr(Zm)
+            Y = _object_array(Q, (n, n))[:, k:]
+            C = _gram_schmidt(Zm, n, k)
+            N = _object_array(Zm * mpmath.matrix(C.tolist()), (n, k))
             AN = _object_array(A * mpmath.matrix(N.tolist()), (m, k))
             size = mpmath.sqrt(mpmath.fsum(x * x for x in A))
             if mpmath.sqrt(mpmath.fsum(x * x for x in AN.flat)) > prec.tolerances.tau_lo * size:
@@ -305,7 +314,44 @@ def decide_from_exact(M: Any, precision: Precision, exact: RankDecision) -> Rank
             Qr, _ = mpmath.qr(A * mpmath.matrix(Y.tolist()))
             Qm = _object_array(Qr, (m, m))
             R, P = Qm[:, :r], Qm[:, r:]
-    return RankDecision(r, None, exact.margin, exact.precision, (r, r), N, R, P)
+    return RankDecision(
+        r,
+        None,
+        exact.margin,
+        exact.precision,
+        (r, r),
+        N,
+        R,
+        P,
+        exact_null_space=Z,
+        kernel_coefficients=C,
+    )
+
+
+def _gram_schmidt(Z: Any, n: int, k: int) -> np.ndarray:
+    """The coefficients C (k x k object array, upper triangular) with ``Z C`` orthonormal:
+    modified Gram-Schmidt on the columns of Z (mpmath matrix), twice, each vector
+    carried as its coefficients on Z.  ``Z C`` keeps Z's exact zeros (a coordinate zero
+    in every column stays exactly zero), which a Householder QR would fill with
+    rounding."""
+    vecs: list[list[Any]] = []  # the orthonormal vectors so far
+    coefs: list[list[Any]] = []  # their coefficients on the columns of Z
+    zero, one = mpmath.mpf(0), mpmath.mpf(1)
+    for j in range(k):
+        v = [Z[i, j] for i in range(n)]
+        c = [one if i == j else zero for i in range(k)]
+        for _pass in range(2):
+            for q, cq in zip(vecs, coefs, strict=True):
+                d = mpmath.fsum(a * b for a, b in zip(q, v, strict=True))
+                v = [a - d * b for a, b in zip(v, q, strict=True)]
+                c = [a - d * b for a, b in zip(c, cq, strict=True)]
+        nv = mpmath.sqrt(mpmath.fsum(a * a for a in v))
+        vecs.append([a / nv for a in v])
+        coefs.append([a / nv for a in c])
+    out = np.empty((k, k), dtype=object)
+    for j, c in enumerate(coefs):
+        out[:, j] = c
+    return out
 
 
 def float_drop_is_real(margin: Margin, data_error: float = 0.0) -> bool:

@@ -470,7 +470,7 @@ def field_float(K: Any, a: Any) -> float:
     rounding; an algebraic element's polynomial in the primitive element evaluated at
     60 digits (sympy's adaptive evaluation when its terms cancel to 30 digits)."""
     if K.is_QQ:
-        return int(a.numerator) / int(a.denominator)
+        return int(QQ.numer(a)) / int(QQ.denom(a))
     coeffs = a.to_list()
     if not coeffs:
         return 0.0
@@ -480,7 +480,7 @@ def field_float(K: Any, a: Any) -> float:
         size = mpmath.mpf(0)
         ax = abs(x)
         for c in coeffs:
-            cq = mpmath.mpf(int(c.numerator)) / int(c.denominator)
+            cq = mpmath.mpf(int(QQ.numer(c))) / int(QQ.denom(c))
             val = val * x + cq
             size = size * ax + abs(cq)
         if abs(val) <= _EVAL_CANCELLATION * size:

@@ -175,10 +175,12 @@ def _local_analysis(
     def system() -> _TestSystem:
         if not built:
             exp, M = closure_expansion(model, cs, tprec)
-            # exact mode: M's rank is the closure rank proved exactly, and its mp spaces
-            # come from the exact kernel (the same kernel: M is the closure system in
-            # orthonormal loop coordinates) by QR, without an SVD of M
-            dec = decide_from_exact(M, tprec, cs.rank) if model.precision.mode == "exact" else None
+            # exact mode, a large system: M's rank is the closure rank proved exactly, and
+            # its mp spaces come from the exact kernel (the same kernel: M is the closure
+            # system in orthonormal loop coordinates), without an SVD of M at 50 digits
+            large = M.shape[1] >= EXACT_KERNEL_MIN_COORDINATES
+            exact = model.precision.mode == "exact" and large
+            dec = decide_from_exact(M, tprec, cs.rank) if exact else None
             if dec is None:
                 dec = decide_rank(M, tprec, 1.0, want_spaces=True, native_spaces=True)
             built.append(_TestSystem(exp, M, dec))
@@ -250,6 +252,13 @@ def _local_analysis(
         )
     return out
 
+
+#: exact mode takes the test system's spaces from the exact kernel (no SVD at 50 digits)
+#: from this many coordinates on (a 6-UPS platform: 36); below, the SVD costs little and
+#: its spaces are kept: the margin a rank difference reports is the one of its two
+#: decisions nearer to flipping, which for two decisions that drop only rounding is
+#: decided by that rounding, and so by the basis the kernel is given in
+EXACT_KERNEL_MIN_COORDINATES = 24
 
 #: seed of the generic directions probed along a branch of dimension 2 or more
 BRANCH_PROBE_SEED = 7
@@ -348,7 +357,7 @@ def _io_findings(
     regular = [s for s in samples if s.nullity == out.generic] or samples
     has_io = mech.output is not None and mech.inputs
     if has_io:
-        here = io_quantities(mech, model, q, rank.null_space, tprec, screws=cs.screws)
+        here = io_quantities(mech, model, q, rank.null_space, tprec, screws=cs.screws, kernel=rank)
         gens = []
         for s in regular:
             Ns = decide_rank(
