@@ -143,9 +143,13 @@ def test_ur5_wrist_singularity_loses_a_dimension():
     assert res.to_json()["output_motion"]["summary"] == "D (dimension 6)"
 
 
-def test_exact_mode_decides_the_output_motion_at_mp50():
+def test_exact_mode_decides_the_output_motion_exactly():
+    # the rocker turns about its ground pivot D: axis z through (4, 0, 0), exactly
     _res, m = _motion("fourbar", "reference", "exact")
-    assert (m.type, m.dim, m.precision) == ("R", 1, "mp:50")
+    assert (m.type, m.dim, m.precision) == ("R", 1, "exact")
+    assert list(m.subgroup.params["axis"]) == [0, 0, 1]
+    assert list(m.subgroup.params["point"]) == [4, 0, 0]
+    assert (m.margin.tau_lo, m.margin.tau_hi, m.margin.sigma_max) == (0.0, 0.0, None)
 
 
 def test_a_span_that_is_no_subgroup_names_the_subgroup_it_generates():

@@ -11,10 +11,12 @@ the output body's twist relative to ``output.relative_to`` whether or not the ou
 point.  The output twist space at a configuration is ``T K``: the output map ``T`` (the
 tree path from ``relative_to`` to the output body) applied to the joint rates ``K`` that
 keep every loop closed (all rates for an open chain).  Its rank is decided at the
-analysis precision (exact mode: at mp:50 from the exact data, as a rank of a product of
-kernels is), in the commensurate metric with the precision's two thresholds; the span is
-a subgroup when the subgroup it generates (:func:`mechsing.subgroups.identify`) has the
-span's dimension.
+analysis precision, in the commensurate metric with the precision's two thresholds; the
+span is a subgroup when the subgroup it generates (:func:`mechsing.subgroups.identify`)
+has the span's dimension.  Exact mode works in the number field of the data: ``K`` the
+closure matrix's exact kernel, ``T K`` its exact product, the rank decided exactly, the
+span's exact basis (pivot columns) identified exactly (Lie closure by exact echelon
+forms); where the data have no number field it decides at mp:50 from the exact data.
 """
 
 from __future__ import annotations
@@ -23,11 +25,21 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
+import sympy
 
 from mechsing import lie
 from mechsing.kinematics.chains import tree_chain
 from mechsing.model import Mechanism
-from mechsing.numeric import Margin, Precision, decide_rank, spectral_norm, to_float
+from mechsing.numeric import (
+    Margin,
+    Precision,
+    decide_rank,
+    field_floats,
+    field_product,
+    spectral_norm,
+    svd,
+    to_float,
+)
 from mechsing.screws import chain_matrix
 from mechsing.screws.readable import readable_basis
 from mechsing.subgroups import Subgroup, identify
@@ -130,8 +142,48 @@ class OutputMotion:
 
 def _mode(model: Any) -> Precision:
     prec: Precision = model.precision
-    # policy: exact mode decides a rank of a product with a kernel at mp:50 from the exact data
+    # policy: exact mode decides a rank of a product with a kernel at mp:50 from the exact
+    # data when they have no number field (see _exact_kernel)
     return Precision("mp", 50) if prec.mode == "exact" else prec
+
+
+def _exact_kernel(model: Any, cs: Any) -> np.ndarray | None:
+    """Exact mode: the closure matrix's exact kernel basis (columns, sympy numbers; the
+    identity without loops), or None (not exact mode, or no exact basis)."""
+    if model.precision.mode != "exact":
+        return None
+    n = cs.matrix.shape[1]
+    if cs.matrix.shape[0] == 0:
+        eye = np.empty((n, n), dtype=object)
+        for i in range(n):
+            for j in range(n):
+                eye[i, j] = sympy.S.One if i == j else sympy.S.Zero
+        return eye
+    return cs.rank.exact_null_space
+
+
+def _exact_span(model: Any, cs: Any, A: Any, Z: np.ndarray) -> tuple[Any, np.ndarray] | None:
+    """The exact product ``A Z`` (A exact, Z the exact kernel), its exact rank decision
+    (with its exact range basis), and an orthonormal float basis of its span (columns,
+    in the order of the left singular vectors of ``A N``, N the kernel's orthonormal
+    basis, as the numerical modes give them); None when the product has no number field."""
+    # without loops the kernel is the identity: A itself
+    AZ = field_product(A, Z) if cs.matrix.shape[0] else np.asarray(A, dtype=object)
+    if AZ is None:
+        return None
+    dec = decide_rank(AZ, model.precision, model.length_scale, want_spaces=True)
+    r = dec.rank
+    if r == 0:
+        return dec, np.zeros((AZ.shape[0], 0))
+    N = cs.rank.null_space if cs.matrix.shape[0] else np.eye(cs.matrix.shape[1])
+    Af = field_floats(A)
+    if Af is None:
+        Af = np.asarray(to_float(A), dtype=float)
+    # the exact span's orthonormal float basis (dec.range_space: of its pivot columns),
+    # rotated to the singular vectors of A N
+    Y = dec.range_space
+    u, _s, _vt = svd(Y.T @ (Af @ N))
+    return dec, Y @ u
 
 
 def output_motion(
@@ -142,6 +194,15 @@ def output_motion(
     output has a point."""
     if mech.output is None:
         return None
+    Z = _exact_kernel(model, cs)
+    if Z is not None:
+        motion = _exact_output_motion(mech, model, q, cs, configuration, Z)
+        if motion is not None:
+            if mech.output.point is None:
+                return motion
+            point = _exact_point_motion(mech, model, q, cs, Z)
+            if point is not None:
+                return replace(motion, point=point)
     prec = _mode(model)
     with model.precision.context():
         A = cs.matrix
@@ -181,6 +242,50 @@ def _point_motion(mech: Any, model: Any, q: Any, cs: Any, N: Any) -> PointMotion
         )
     pos = tuple(float(c) + 0.0 for c in np.asarray(to_float(x), dtype=float))
     return PointMotion(pos, r, vel, dec.margin)
+
+
+def _exact_point_motion(
+    mech: Any, model: Any, q: Any, cs: Any, Z: np.ndarray
+) -> PointMotion | None:
+    """:func:`_point_motion` in exact mode: the rank of ``V K`` exactly, in the number
+    field of the data (None: no field)."""
+    out = mech.output
+    with model.precision.context():
+        S = cs.screws if cs.screws is not None else model.current_screws(q, model.poses(q))
+        chain = tree_chain(model, out.body, out.relative_to)
+        x = lie.act_point(model.poses(q)[out.body], model.asarray(list(out.point)))
+        V = chain_matrix(model, S, None, x, chain.signs)
+    span = _exact_span(model, cs, V, Z)
+    if span is None:
+        return None
+    dec, basis = span
+    vel = tuple(tuple(float(c) + 0.0 for c in basis[:, k]) for k in range(basis.shape[1]))
+    pos = tuple(float(c) + 0.0 for c in np.asarray(to_float(x), dtype=float))
+    return PointMotion(pos, dec.rank, vel, dec.margin)
+
+
+def _exact_output_motion(
+    mech: Mechanism, model: Any, q: Any, cs: Any, configuration: str, Z: np.ndarray
+) -> OutputMotion | None:
+    """:func:`_output_motion` in exact mode: ``T K`` and its rank exactly, its span's
+    exact twists identified exactly (None: the data have no number field)."""
+    out = mech.output
+    with model.precision.context():
+        S = cs.screws if cs.screws is not None else model.current_screws(q, model.poses(q))
+        chain = tree_chain(model, out.body, out.relative_to)
+        T = chain_matrix(model, S, None, None, chain.signs)
+    span = _exact_span(model, cs, T, Z)
+    if span is None:
+        return None
+    dec, basis = span
+    fr = model.frame
+    r = dec.rank
+    si = [model.frame.as_float().twist_back(basis[:, k]) for k in range(r)]
+    with model.precision.context():
+        E = dec.exact_range_space
+        # the span's exact twists in SI at the ground origin: v_0 = L v_c + c x omega
+        X = np.array([fr.twist_back(E[:, k]) for k in range(r)], dtype=object).reshape(r, 6)
+    return _motion_of_span(mech, model, configuration, dec, si, X, model.precision, fr.c)
 
 
 def _output_motion(
@@ -226,6 +331,28 @@ def _output_motion(
             X = np.array(native, dtype=object).reshape(r, 6)
         else:
             X = np.array(si, dtype=float).reshape(r, 6)
+    # the mechanism's centroid: identify's default centre (the mean axis point of the
+    # rotating screws) is thrown far off by a translation with a rounding-level rotation
+    centre = prec.asarray(np.asarray(fr.c_float, dtype=float)) if prec.mode == "mp" else fr.c_float
+    return _motion_of_span(mech, model, configuration, dec, si, X, prec, centre)
+
+
+def _motion_of_span(
+    mech: Mechanism,
+    model: Any,
+    configuration: str,
+    dec: Any,
+    si: list[Any],
+    X: np.ndarray,
+    prec: Precision,
+    centre: Any,
+) -> OutputMotion:
+    """The output motion of a decided span of rank ``dec.rank``: its SI ``si`` twists
+    (orthonormal, float) and ``X`` (SI twists in ``prec``'s numbers) identified about
+    ``centre``."""
+    out = mech.output
+    L = model.length_scale
+    r = dec.rank
     # the basis shown: rotations in echelon form with their axes as near the origin as the
     # span's translations allow, then those (the span itself is what the numbers decided)
     shown = readable_basis(np.array(si, dtype=float).reshape(-1, 6), float(to_float(L)))
@@ -256,9 +383,6 @@ def _output_motion(
             str(prec),
             generated=Subgroup("D"),
         )
-    # the mechanism's centroid: identify's default centre (the mean axis point of the
-    # rotating screws) is thrown far off by a translation with a rounding-level rotation
-    centre = prec.asarray(np.asarray(fr.c_float, dtype=float)) if prec.mode == "mp" else fr.c_float
     ident = identify(X, L, prec, centre=centre)
     if not ident.ok or ident.dim is None:
         return OutputMotion(

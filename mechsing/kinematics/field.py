@@ -38,15 +38,15 @@ __all__ = ["FieldKinematics"]
 def _rot(K: Any, u: list[Any], c: Any, s: Any, v: list[Any]) -> np.ndarray:
     one, zero = K.one, K.zero
     Ku = [[zero, -u[2], u[1]], [u[2], zero, -u[0]], [-u[1], u[0], zero]]
-    K2 = [[sum((Ku[i][k] * Ku[k][j] for k in range(3)), zero) for j in range(3)] for i in range(3)]
+    K2 = [[_dot(K, Ku[i], [Ku[k][j] for k in range(3)]) for j in range(3)] for i in range(3)]
     c1 = one - c
     g = np.empty((4, 4), dtype=object)
     for i in range(3):
         for j in range(3):
-            g[i, j] = (one if i == j else zero) + s * Ku[i][j] + c1 * K2[i][j]
-    uxv = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+            g[i, j] = _dot(K, [one if i == j else zero, s, c1], [one, Ku[i][j], K2[i][j]])
+    uxv = _cross(K, u, v)
     for i in range(3):
-        g[i, 3] = c1 * uxv[i] + s * v[i]
+        g[i, 3] = _dot(K, [c1, s], [uxv[i], v[i]])
     g[3, :3] = zero
     g[3, 3] = one
     return g
@@ -120,26 +120,52 @@ def _eye(K: Any) -> np.ndarray:
     return g
 
 
+def _dot(K: Any, a: Any, b: Any) -> Any:
+    """``sum a_k b_k`` in K, skipping the products with a zero factor (axes and rotation
+    matrices are sparse; a product in an algebraic field costs a polynomial remainder)."""
+    out = K.zero
+    for x, y in zip(a, b, strict=True):
+        if x and y:
+            out = out + x * y
+    return out
+
+
+def _compose(K: Any, g: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """``g h`` for two displacements (4 x 4, last row 0 0 0 1), elements of K: the
+    rotation block and the translation only."""
+    out = _eye(K)
+    for i in range(3):
+        row = g[i, :3]
+        for j in range(3):
+            out[i, j] = _dot(K, row, h[:3, j])
+        out[i, 3] = _dot(K, row, h[:3, 3]) + g[i, 3]
+    return out
+
+
 def _inverse(K: Any, g: np.ndarray) -> np.ndarray:
     out = _eye(K)
     Rt = g[:3, :3].T
     out[:3, :3] = Rt
-    p = Rt @ g[:3, 3]
     for i in range(3):
-        out[i, 3] = -p[i]
+        out[i, 3] = -_dot(K, Rt[i], g[:3, 3])
     return out
 
 
-def _act(g: np.ndarray, e: np.ndarray) -> np.ndarray:
-    """Ad(g) e: (R w, p x R w + R v)."""
+def _cross(K: Any, a: Any, b: Any) -> list[Any]:
+    return [
+        _dot(K, [a[1], -a[2]], [b[2], b[1]]),
+        _dot(K, [a[2], -a[0]], [b[0], b[2]]),
+        _dot(K, [a[0], -a[1]], [b[1], b[0]]),
+    ]
+
+
+def _act(K: Any, g: np.ndarray, e: np.ndarray) -> np.ndarray:
+    """Ad(g) e: (R w, p x R w + R v), elements of K."""
     R, p = g[:3, :3], g[:3, 3]
-    w = R @ e[:3]
-    Rv = R @ e[3:]
-    pxw = np.array(
-        [p[1] * w[2] - p[2] * w[1], p[2] * w[0] - p[0] * w[2], p[0] * w[1] - p[1] * w[0]],
-        dtype=object,
-    )
-    return np.concatenate([w, pxw + Rv])
+    w = [_dot(K, R[i], e[:3]) for i in range(3)]
+    Rv = [_dot(K, R[i], e[3:]) for i in range(3)]
+    pxw = _cross(K, p, w)
+    return np.array(w + [a + b for a, b in zip(pxw, Rv, strict=True)], dtype=object)
 
 
 def _frozen(a: np.ndarray) -> np.ndarray:
@@ -242,7 +268,7 @@ class FieldKinematics:
                     gi = _rot(K, u, els[where], els[where + 1], v)
                     if jk.type == "U" and i == 0:
                         u_first[jk.name] = (els[where], els[where + 1])
-                g = g @ gi
+                g = _compose(K, g, gi)
             elements[jk.name] = g
         return cls(model, K, elements, basis, u_first)
 
@@ -263,7 +289,7 @@ class FieldKinematics:
                 jk = model.joint(last.joint)
                 prev = out[jk.a if last.sign > 0 else jk.b]
                 M = self._elements[jk.name]
-                out[body] = prev @ (M if last.sign > 0 else _inverse(K, M))
+                out[body] = _compose(K, prev, M if last.sign > 0 else _inverse(K, M))
             self._poses = out
         return self._poses
 
@@ -275,11 +301,11 @@ class FieldKinematics:
             B = self._basis[jk.name]
             ga = poses[jk.a]
             if jk.type == "U":
-                cols.append(_act(ga, B[0]))
+                cols.append(_act(self.K, ga, B[0]))
                 first = _rot(self.K, list(B[0, :3]), *self._cs_of_u(jk), list(B[0, 3:]))
-                cols.append(_act(ga @ first, B[1]))
+                cols.append(_act(self.K, _compose(self.K, ga, first), B[1]))
             else:
-                cols.extend(_act(ga, e) for e in B)
+                cols.extend(_act(self.K, ga, e) for e in B)
         if not cols:
             out = np.empty((6, 0), dtype=object)
             return out
@@ -294,7 +320,11 @@ class FieldKinematics:
         """``Delta_j = g_a M_j g_b^-1`` for each chord joint, elements of K."""
         poses = self.poses_in_field()
         return [
-            poses[jk.a] @ self._elements[jk.name] @ _inverse(self.K, poses[jk.b])
+            _compose(
+                self.K,
+                _compose(self.K, poses[jk.a], self._elements[jk.name]),
+                _inverse(self.K, poses[jk.b]),
+            )
             for jk in self.model.chords
         ]
 

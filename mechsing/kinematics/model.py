@@ -76,6 +76,19 @@ def axis_points(mech: Mechanism) -> list[list[Any]]:
     return pts
 
 
+def _exact_centroid(pts: list[list[Any]]) -> list[Any] | None:
+    """The exact mean of the axis points when their coordinates are all rational, else
+    None (a centroid with radicals would carry them into every commensurate number)."""
+    import sympy
+
+    if not pts:
+        return None
+    vals = [sympy.sympify(x) for p in pts for x in p]
+    if not all(v.is_Rational for v in vals):
+        return None
+    return [sum(vals[k::3], sympy.S.Zero) / len(pts) for k in range(3)]
+
+
 def refuse_inexact_geometry(mech: Mechanism) -> None:
     """Exact mode needs exact data: every number of the geometry (axes, points,
     pitches, the output point, the characteristic length) must be one that sympy proves
@@ -188,7 +201,7 @@ class KinematicModel:
         #: the commensurate frame in the model's numbers, and its float twin: every map
         #: into the commensurate metric and back to SI goes through them
         self.frame: CommensurateFrame = CommensurateFrame.of(
-            L, c, self.length_columns, self.backend
+            L, c, self.length_columns, self.backend, _exact_centroid(pts)
         )
         self.float_frame: CommensurateFrame = self.frame.as_float()
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]

@@ -15,10 +15,10 @@ import mpmath
 import numpy as np
 import sympy
 
-from mechsing.numeric._mp import _mp_convert, _mp_matrix, eigsy
+from mechsing.numeric._mp import _mp_convert, _mp_eye, _mp_matrix, _object_array, eigsy
 from mechsing.numeric.backend import FLOAT, to_float
 from mechsing.numeric.blocks import block_svd, issparse
-from mechsing.numeric.field import field_echelon
+from mechsing.numeric.field import echelon_form, field_float, number_field
 from mechsing.numeric.linalg import singular_values, svd
 from mechsing.numeric.precision import Precision, parse_precision
 from mechsing.numeric.tolerances import FLOAT_ROUNDING_FACTOR, Tolerances
@@ -59,7 +59,11 @@ class RankDecision:
     scaled metric), largest first; ``null_space`` is an orthonormal basis of
     the (right) kernel (columns), ``range_space`` of the range and
     ``left_null_space`` of its orthogonal complement, when requested: float
-    arrays, or the mode's own numbers with ``native_spaces`` at mp:N.
+    arrays, or the mode's own numbers with ``native_spaces`` at mp:N.  An exact
+    decision with spaces also gives them exactly: ``exact_null_space`` the reduced
+    kernel basis (columns, :meth:`sympy.Matrix.nullspace`'s, 1 in each free column) and
+    ``exact_range_space`` the pivot columns of the matrix (sympy numbers, not
+    orthonormal).
     """
 
     rank: int | None
@@ -70,6 +74,13 @@ class RankDecision:
     null_space: np.ndarray | None = field(default=None, compare=False, repr=False)
     range_space: np.ndarray | None = field(default=None, compare=False, repr=False)
     left_null_space: np.ndarray | None = field(default=None, compare=False, repr=False)
+    exact_null_space: np.ndarray | None = field(default=None, compare=False, repr=False)
+    exact_range_space: np.ndarray | None = field(default=None, compare=False, repr=False)
+    #: a decision taken from an exact one (:func:`decide_from_exact`): its native kernel
+    #: is ``exact_null_space @ kernel_coefficients`` (k x k, N-digit numbers), so that a
+    #: product ``A @ null_space`` can be formed as ``(A @ exact_null_space) @ coefficients``
+    #: with ``A @ exact_null_space`` exact (its exact zeros kept)
+    kernel_coefficients: np.ndarray | None = field(default=None, compare=False, repr=False)
 
     @property
     def decided(self) -> bool:
@@ -81,6 +92,10 @@ def decide_nonzero(value: Any, prec: Precision) -> bool | None:
     two-threshold rule of a rank on one value: True at or above ``tau_hi``, False at
     or below ``tau_lo``, None between (undecided); exactly in exact mode."""
     if prec.mode == "exact":
+        fit = number_field([value]) if isinstance(value, sympy.Basic | int) else None
+        if fit is not None:  # zero in its number field is zero
+            K, (el,) = fit
+            return not K.is_zero(el)
         return bool(sympy.simplify(value) != 0)
     t = prec.tolerances
     a = abs(float(to_float(value)))
@@ -252,6 +267,93 @@ def decide_rank(
     return RankDecision(rank, sigma, margin, str(prec), bounds, ns, rs, ls)
 
 
+def decide_from_exact(M: Any, precision: Precision, exact: RankDecision) -> RankDecision | None:
+    """The decision of ``M`` (m, n) at mp:N taken from ``exact``: an exact decision, with
+    its spaces, of a matrix with M's kernel (the closure system in other row
+    coordinates, e.g. its exact reduced coordinates where M has orthonormal ones).
+
+    The rank is the one ``exact`` proved (its margin and precision are given); the
+    native orthonormal spaces of M at N digits come from the exact kernel instead of an
+    SVD: the kernel ``N = Z C`` by Gram-Schmidt on the exact kernel basis Z (exact zeros
+    kept; Z and C are given, ``exact_null_space`` and ``kernel_coefficients``), its
+    complement Y from the Householder QR of Z, the range and the left kernel from the QR
+    of ``M Y`` (full column rank r).  None (decide M itself) unless ``precision`` is mp:N and ``exact`` has an exact
+    kernel of M's width, or when M does not annihilate that kernel: ``|M N|_F`` above
+    ``tau_lo |M|_F`` (M is not the matrix the caller took it for).
+    """
+    prec = parse_precision(precision) if isinstance(precision, str) else precision
+    Z = exact.exact_null_space
+    arr = np.asarray(M)
+    if prec.mode != "mp" or exact.rank is None or Z is None or arr.ndim != 2:
+        return None
+    m, n = arr.shape
+    k = Z.shape[1]
+    r = n - k
+    if Z.shape[0] != n or r != exact.rank or r > m:
+        return None
+    with prec.context():
+        A = _mp_matrix(arr)
+        C = None
+        if k:
+            Zm = _mp_matrix(Z)
+            Q, _ = mpmath.qr(Zm)
+            Y = _object_array(Q, (n, n))[:, k:]
+            C = _gram_schmidt(Zm, n, k)
+            N = _object_array(Zm * mpmath.matrix(C.tolist()), (n, k))
+            AN = _object_array(A * mpmath.matrix(N.tolist()), (m, k))
+            size = mpmath.sqrt(mpmath.fsum(x * x for x in A))
+            if mpmath.sqrt(mpmath.fsum(x * x for x in AN.flat)) > prec.tolerances.tau_lo * size:
+                return None
+        else:
+            N, Y = _mp_eye(n)[:, :0], _mp_eye(n)
+        if r == 0:
+            R, P = _mp_eye(m)[:, :0], _mp_eye(m)
+        elif r == m:
+            R, P = _mp_eye(m), _mp_eye(m)[:, :0]
+        else:
+            Qr, _ = mpmath.qr(A * mpmath.matrix(Y.tolist()))
+            Qm = _object_array(Qr, (m, m))
+            R, P = Qm[:, :r], Qm[:, r:]
+    return RankDecision(
+        r,
+        None,
+        exact.margin,
+        exact.precision,
+        (r, r),
+        N,
+        R,
+        P,
+        exact_null_space=Z,
+        kernel_coefficients=C,
+    )
+
+
+def _gram_schmidt(Z: Any, n: int, k: int) -> np.ndarray:
+    """The coefficients C (k x k object array, upper triangular) with ``Z C`` orthonormal:
+    modified Gram-Schmidt on the columns of Z (mpmath matrix), twice, each vector
+    carried as its coefficients on Z.  ``Z C`` keeps Z's exact zeros (a coordinate zero
+    in every column stays exactly zero), which a Householder QR would fill with
+    rounding."""
+    vecs: list[list[Any]] = []  # the orthonormal vectors so far
+    coefs: list[list[Any]] = []  # their coefficients on the columns of Z
+    zero, one = mpmath.mpf(0), mpmath.mpf(1)
+    for j in range(k):
+        v = [Z[i, j] for i in range(n)]
+        c = [one if i == j else zero for i in range(k)]
+        for _pass in range(2):
+            for q, cq in zip(vecs, coefs, strict=True):
+                d = mpmath.fsum(a * b for a, b in zip(q, v, strict=True))
+                v = [a - d * b for a, b in zip(v, q, strict=True)]
+                c = [a - d * b for a, b in zip(c, cq, strict=True)]
+        nv = mpmath.sqrt(mpmath.fsum(a * a for a in v))
+        vecs.append([a / nv for a in v])
+        coefs.append([a / nv for a in c])
+    out = np.empty((k, k), dtype=object)
+    for j, c in enumerate(coefs):
+        out[:, j] = c
+    return out
+
+
 def float_drop_is_real(margin: Margin, data_error: float = 0.0) -> bool:
     """Did a float rank decision drop a singular value that float itself sees is not zero?
 
@@ -284,7 +386,7 @@ def _exact_rank(
         piv_vals.append(abs(float(sympy.N(E[row, col], 30))))
     kept = min(piv_vals) if piv_vals else None
     dropped = None if rank == min(M.shape) else 0.0
-    ns = rs = None
+    ns = rs = ens = ers = None
     if want_spaces:
         ker = M.nullspace(simplify=True)
         ns = (
@@ -298,8 +400,18 @@ def _exact_rank(
             if cols
             else np.zeros((M.shape[0], 0))
         )
+        ens = _columns([list(v) for v in ker], M.shape[1])
+        ers = _columns([list(v) for v in cols], M.shape[0])
     return RankDecision(
-        rank, None, Margin(kept, dropped, 0.0, 0.0, length_scale), "exact", (rank, rank), ns, rs
+        rank,
+        None,
+        Margin(kept, dropped, 0.0, 0.0, length_scale),
+        "exact",
+        (rank, rank),
+        ns,
+        rs,
+        exact_null_space=ens,
+        exact_range_space=ers,
     )
 
 
@@ -309,27 +421,48 @@ def _field_rank(arr: np.ndarray, length_scale: float, want_spaces: bool) -> Rank
     float, a transcendental number)."""
     if arr.ndim != 2 or 0 in arr.shape or any(isinstance(x, float) for x in arr.flat):
         return None
-    found = field_echelon(arr)
-    if found is None:
+    E = echelon_form(arr)
+    if E is None:
         return None
-    pivots, values, ker = found
+    K = E.K
+    pivots = E.pivots
     m, n = arr.shape
     rank = len(pivots)
-    piv_vals = [abs(float(sympy.N(v, 30))) for v in values]
+    piv_vals = E.pivot_magnitudes()
     kept = min(piv_vals) if piv_vals else None
     dropped = None if rank == min(m, n) else 0.0
-    ns = rs = None
+    ns = rs = ens = ers = None
     if want_spaces:
+        ker = E.null_basis()
         ns = (
-            _orthonormal(np.array([[float(sympy.N(x, 30)) for x in v] for v in ker]).T)
+            _orthonormal(np.array([[field_float(K, x) for x in v] for v in ker]).T)
             if ker
             else np.zeros((n, 0))
         )
-        cols = [[float(sympy.N(arr[i, j], 30)) for i in range(m)] for j in pivots]
+        entries = E.D.to_list()
+        cols = [[field_float(K, entries[i][j]) for i in range(m)] for j in pivots]
         rs = _orthonormal(np.array(cols).T) if cols else np.zeros((m, 0))
+        ens = _columns([[K.to_sympy(x) for x in v] for v in ker], n)
+        ers = _columns([[sympy.sympify(arr[i, j]) for i in range(m)] for j in pivots], m)
     return RankDecision(
-        rank, None, Margin(kept, dropped, 0.0, 0.0, length_scale), "exact", (rank, rank), ns, rs
+        rank,
+        None,
+        Margin(kept, dropped, 0.0, 0.0, length_scale),
+        "exact",
+        (rank, rank),
+        ns,
+        rs,
+        exact_null_space=ens,
+        exact_range_space=ers,
     )
+
+
+def _columns(vectors: list[list[Any]], length: int) -> np.ndarray:
+    """The vectors as the columns of an object array (length x len(vectors))."""
+    out = np.empty((length, len(vectors)), dtype=object)
+    for j, v in enumerate(vectors):
+        out[:, j] = v
+    return out
 
 
 def _orthonormal(A: np.ndarray) -> np.ndarray:

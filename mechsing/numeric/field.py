@@ -18,16 +18,18 @@ This module owns:
   (None when they do not fit one: a transcendental number, a sine sympy cannot
   write as radicals);
 * :func:`domain_matrix`, :func:`field_echelon`, :func:`field_null_space`,
-  :func:`field_row_space`, :func:`field_solve`: exact linear algebra on object arrays of
+  :func:`field_row_space`, :func:`field_solve`, :func:`field_product`: exact linear algebra on object arrays of
   sympy numbers through :class:`sympy.polys.matrices.DomainMatrix` over their field
   (None when the entries have no field: the caller keeps its sympy path).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
 
+import mpmath
 import numpy as np
 import sympy
 from sympy.functions.elementary.trigonometric import (
@@ -41,10 +43,16 @@ from sympy.polys.matrices import DomainMatrix
 from mechsing.numeric.tolerances import EXACT_FIELD_MAX_DEGREE
 
 __all__ = [
+    "FieldEchelon",
     "cos_sin",
     "domain_matrix",
+    "echelon_form",
     "field_echelon",
+    "field_float",
+    "field_floats",
+    "field_normal_form",
     "field_null_space",
+    "field_product",
     "field_row_space",
     "field_solve",
     "from_field",
@@ -124,31 +132,123 @@ def _radicals(x: Any, out: set[Any]) -> None:
 
 def _degree_bound(gens: set[Any]) -> int:
     """A bound on the degree of QQ(gens): the product of the radicals' indices, the
-    radicals inside them included (``sqrt(1 + sqrt(2))``: 4)."""
+    radicals inside them included (``sqrt(1 + sqrt(2))``: 4), except that the square
+    roots of rationals count by the degree they generate together, ``2^k`` with k the
+    rank over GF(2) of their radicands' square classes (``sqrt 3, sqrt 11, sqrt 33``: 4,
+    not 8)."""
     bound = 1
+    classes: list[int] = []
     for g in gens:
         if not g.exp.is_Rational:
             return EXACT_FIELD_MAX_DEGREE + 1
+        if g.exp.q == 2 and g.base.is_Rational:
+            cls = _square_class(g.base)
+            if cls is not None:
+                classes.append(cls)
+                continue
         inner: set[Any] = set()
         _radicals(g.base, inner)
         bound *= int(g.exp.q) * _degree_bound(inner)
-    return bound
+    return bound * 2 ** _gf2_rank(classes)
+
+
+#: radicands (numerator times denominator) beyond this are not factored: they count as
+#: a square class of their own (the product bound)
+_FACTOR_LIMIT = 10**12
+
+
+def _square_class(r: Any) -> int | None:
+    """The square class of the positive rational ``r`` as a bit mask (bit i: the prime
+    ``_PRIMES[i]`` divides its square-free part an odd number of times), or None (negative,
+    or too large to factor: counted by the product bound)."""
+    n = int(r.p) * int(r.q)
+    if n <= 0 or n > _FACTOR_LIMIT:
+        return None
+    mask = 0
+    for prime, e in sympy.factorint(n).items():
+        if e % 2:
+            mask |= 1 << _prime_index(prime)
+    return mask
+
+
+_PRIMES: dict[int, int] = {}
+
+
+def _prime_index(p: int) -> int:
+    return _PRIMES.setdefault(p, len(_PRIMES))
+
+
+def _gf2_rank(masks: list[int]) -> int:
+    """The rank over GF(2) of bit vectors (Gaussian elimination on the highest bit)."""
+    lead: dict[int, int] = {}
+    for m in masks:
+        while m:
+            top = m.bit_length() - 1
+            if top not in lead:
+                lead[top] = m
+                break
+            m ^= lead[top]
+    return len(lead)
 
 
 @lru_cache(maxsize=256)
 def _field_of(gens: tuple[Any, ...]) -> tuple[Any, dict[Any, Any]] | None:
     """The field QQ(gens) (a primitive element: computed once per set of radicals) and
-    each radical's element in it."""
+    each radical's element in it.  The square roots of integers enter through a basis
+    of their square classes (:func:`_quadratic_basis`): the others are a rational times
+    a product of basis roots (sqrt 6 = sqrt 2 sqrt 3), so the primitive element is
+    built from as few radicals as the degree allows (sympy's construction slows down
+    steeply with their number)."""
+    dependent = _quadratic_basis(gens)
+    build = [g for g in gens if g not in dependent]
     try:
-        K, elements = construct_domain(list(gens), field=True, extension=True)
+        K, elements = construct_domain(build, field=True, extension=True)
     except (sympy.polys.polyerrors.PolynomialError, NotImplementedError, ValueError):
         return None
     if K.is_ZZ or K.is_QQ:
         K = QQ
-        elements = [QQ.from_sympy(g) for g in gens]
+        elements = [QQ.from_sympy(g) for g in build]
     elif not K.is_AlgebraicField:
         return None
-    return K, dict(zip(gens, elements, strict=True))
+    images = dict(zip(build, elements, strict=True))
+    for g, (factor, roots) in dependent.items():
+        el = K.convert_from(QQ.from_sympy(factor), QQ)
+        for b in roots:
+            el = el * images[b]
+        images[g] = el
+    return K, images
+
+
+def _quadratic_basis(gens: tuple[Any, ...]) -> dict[Any, tuple[Any, list[Any]]]:
+    """The square roots of positive integers among ``gens`` that depend on the others
+    before them (their square classes over GF(2)), each as ``(r, [b1, b2, ...])``:
+    ``g = r b1 b2 ...`` with r rational and b_i independent roots among ``gens``."""
+    lead: dict[int, tuple[int, frozenset[Any]]] = {}
+    dependent: dict[Any, tuple[Any, list[Any]]] = {}
+    for g in gens:
+        if not (g.exp == sympy.S.Half and g.base.is_Integer and g.base > 0):
+            continue
+        mask = _square_class(g.base)
+        if mask is None:
+            continue
+        combo: frozenset[Any] = frozenset()
+        while mask:
+            top = mask.bit_length() - 1
+            if top not in lead:
+                break
+            m, c = lead[top]
+            mask ^= m
+            combo = combo ^ c
+        if mask:
+            lead[mask.bit_length() - 1] = (mask, combo ^ {g})
+            continue
+        roots = sorted(combo, key=sympy.default_sort_key)
+        prod = sympy.Integer(1)
+        for b in roots:
+            prod = prod * b.base
+        # g / prod(roots) = sqrt(n / prod b_i), a rational (the same square class)
+        dependent[g] = (sympy.sqrt(sympy.Rational(g.base, prod)), roots)
+    return dependent
 
 
 def _evaluate(K: Any, images: dict[Any, Any], x: Any) -> Any:
@@ -180,6 +280,32 @@ def _evaluate(K: Any, images: dict[Any, Any], x: Any) -> Any:
     return images[x]
 
 
+def field_floats(A: Any) -> np.ndarray | None:
+    """The array of sympy numbers ``A`` as floats, evaluated in the number field of its
+    entries (:func:`field_float`: no adaptive evaluation per entry), or None (no field)."""
+    arr = np.asarray(A, dtype=object)
+    if arr.size == 0:
+        return np.zeros(arr.shape)
+    fit = number_field(list(arr.flat))
+    if fit is None:
+        return None
+    K, els = fit
+    return np.array([field_float(K, x) for x in els], dtype=float).reshape(arr.shape)
+
+
+def field_normal_form(x: Any) -> Any:
+    """A sympy number or array written back from its elements of the number field its
+    entries lie in (rationals and polynomials in the primitive element, expanded: zero is
+    zero, denominators rational), or None when they have no field."""
+    arr = np.asarray(x, dtype=object)
+    fit = number_field(list(arr.flat)) if arr.size else None
+    if fit is None:
+        return None
+    K, els = fit
+    out = np.array([K.to_sympy(e) for e in els], dtype=object).reshape(arr.shape)
+    return out[()] if out.shape == () else out
+
+
 def from_field(K: Any, x: Any) -> Any:
     """A sympy number from an element of K (or an array of them, elementwise)."""
     if isinstance(x, np.ndarray):
@@ -206,21 +332,77 @@ def domain_matrix(A: Any) -> DomainMatrix | None:
     return DomainMatrix(rows, (m, n), K)
 
 
-def field_echelon(A: Any) -> tuple[list[int], list[Any], list[list[Any]]] | None:
-    """Pivot columns, pivot values and the reduced null-space basis of ``A`` (sympy
-    numbers), computed in the number field of its entries; None when they have none.
+@dataclass
+class FieldEchelon:
+    """The echelon form of a matrix over its number field K (see :func:`field_echelon`):
+    ``D`` the matrix over K, ``pivots`` its pivot columns and ``pivot_elements`` the
+    pivot values (elements of K); the null basis and the reduced row echelon form are
+    computed when asked for."""
 
-    The echelon form is :meth:`sympy.Matrix.echelon_form`'s: fraction-free elimination
-    below each pivot (``row_i <- p row_i - a_i pivot_row``, p the pivot value), the pivot
-    the first non-zero entry of its column (zero is decided in K).  Its rows are
-    computed as ``s_i t_i``: ``t_i`` the rows of ordinary elimination (with division,
-    numbers of bounded size) and ``s_i`` the product of the pivot values row i was
-    multiplied by, so a pivot value is ``s_p t_p[c]`` -- the fraction-free numbers
-    without their growth.  The null space is :meth:`sympy.Matrix.nullspace`'s (one
-    vector per free column, 1 there, from the reduced row echelon form)."""
-    D = domain_matrix(A)
-    if D is None:
-        return None
+    D: DomainMatrix
+    pivots: list[int]
+    pivot_elements: list[Any]
+    #: the rows of the elimination (with division) that hold the pivots, in order
+    rows: list[list[Any]] | None = None
+
+    @property
+    def K(self) -> Any:
+        return self.D.domain
+
+    def rref_rows(self) -> list[list[Any]]:
+        """The non-zero rows of the reduced row echelon form (unique: sympy's ``rref``),
+        elements of K: the elimination's rows, each divided by its pivot and cleared above
+        it (back substitution)."""
+        if self.rows is None:
+            R, piv = self.D.rref()
+            return [list(r) for r in R.to_list()[: len(piv)]]
+        K = self.K
+        out = [list(r) for r in self.rows]
+        for i in range(len(out) - 1, -1, -1):
+            c = self.pivots[i]
+            p = out[i][c]
+            if p != K.one:
+                out[i] = [x / p if x else x for x in out[i]]
+            row = out[i]
+            for k in range(i):
+                a = out[k][c]
+                if a:
+                    out[k] = [x - a * y if y else x for x, y in zip(out[k], row, strict=True)]
+        return out
+
+    def pivot_values(self) -> list[Any]:
+        """The pivot values as sympy numbers."""
+        return [self.K.to_sympy(p) for p in self.pivot_elements]
+
+    def pivot_magnitudes(self) -> list[float]:
+        """``|pivot value|`` as floats (at least 25 correct digits before rounding)."""
+        return [abs(field_float(self.K, p)) for p in self.pivot_elements]
+
+    def null_basis(self) -> list[list[Any]]:
+        """The reduced null-space basis (:meth:`sympy.Matrix.nullspace`'s: one vector per
+        free column, 1 there), elements of K."""
+        K = self.K
+        n = self.D.shape[1]
+        rl = self.rref_rows()
+        rpiv = self.pivots
+        basis = []
+        for free in (j for j in range(n) if j not in rpiv):
+            vec = [K.zero] * n
+            vec[free] = K.one
+            for i, pc in enumerate(rpiv):
+                vec[pc] = vec[pc] - rl[i][free]
+            basis.append(vec)
+        return basis
+
+
+def echelon_form(A: Any) -> FieldEchelon | None:
+    """The echelon form of ``A`` (sympy numbers, or a DomainMatrix over its field) in the
+    number field of its entries (None when they have none); see :func:`field_echelon`."""
+    D = A if isinstance(A, DomainMatrix) else domain_matrix(A)
+    return None if D is None else _echelon(D)
+
+
+def _echelon(D: DomainMatrix) -> FieldEchelon:
     K = D.domain
     m, n = D.shape
     rows = [list(r) for r in D.to_list()]
@@ -246,24 +428,64 @@ def field_echelon(A: Any) -> tuple[list[int], list[Any], list[list[Any]]] | None
             rows[r][col:] = [x - f * y for x, y in zip(rows[r][col:], rows[pr][col:], strict=True)]
             scale[r] = scale[r] * pv
         pivots.append(col)
-        values.append(K.to_sympy(pv))
+        values.append(pv)
         pr += 1
-    return pivots, values, _null_basis(D)
+    return FieldEchelon(D, pivots, values, rows[:pr])
 
 
-def _null_basis(D: DomainMatrix) -> list[list[Any]]:
-    K = D.domain
-    n = D.shape[1]
-    R, rpiv = D.rref()
-    rl = R.to_list()
-    basis = []
-    for free in (j for j in range(n) if j not in rpiv):
-        vec = [K.zero] * n
-        vec[free] = K.one
-        for i, pc in enumerate(rpiv):
-            vec[pc] = vec[pc] - rl[i][free]
-        basis.append([K.to_sympy(x) for x in vec])
-    return basis
+def field_echelon(A: Any) -> tuple[list[int], list[Any], list[list[Any]]] | None:
+    """Pivot columns, pivot values and the reduced null-space basis of ``A`` (sympy
+    numbers), computed in the number field of its entries; None when they have none.
+
+    The echelon form is :meth:`sympy.Matrix.echelon_form`'s: fraction-free elimination
+    below each pivot (``row_i <- p row_i - a_i pivot_row``, p the pivot value), the pivot
+    the first non-zero entry of its column (zero is decided in K).  Its rows are
+    computed as ``s_i t_i``: ``t_i`` the rows of ordinary elimination (with division,
+    numbers of bounded size) and ``s_i`` the product of the pivot values row i was
+    multiplied by, so a pivot value is ``s_p t_p[c]`` -- the fraction-free numbers
+    without their growth.  The null space is :meth:`sympy.Matrix.nullspace`'s (one
+    vector per free column, 1 there, from the reduced row echelon form)."""
+    E = echelon_form(A)
+    if E is None:
+        return None
+    K = E.K
+    return E.pivots, E.pivot_values(), [[K.to_sympy(x) for x in v] for v in E.null_basis()]
+
+
+#: digits at which an element of an algebraic field is evaluated as a polynomial in its
+#: primitive element, and the cancellation (value over the sum of the terms' sizes) below
+#: which sympy's adaptive evaluation serves instead
+_EVAL_DIGITS = 60
+_EVAL_CANCELLATION = 1e-30
+
+
+@lru_cache(maxsize=256)
+def _primitive_value(K: Any) -> Any:
+    """The primitive element of the algebraic field K at :data:`_EVAL_DIGITS` digits."""
+    return mpmath.mpf(sympy.N(K.ext.as_expr(), _EVAL_DIGITS + 10))
+
+
+def field_float(K: Any, a: Any) -> float:
+    """The element ``a`` of K (QQ or an algebraic field) as a float: a rational's correct
+    rounding; an algebraic element's polynomial in the primitive element evaluated at
+    60 digits (sympy's adaptive evaluation when its terms cancel to 30 digits)."""
+    if K.is_QQ:
+        return int(QQ.numer(a)) / int(QQ.denom(a))
+    coeffs = a.to_list()
+    if not coeffs:
+        return 0.0
+    with mpmath.workdps(_EVAL_DIGITS):
+        x = _primitive_value(K)
+        val = mpmath.mpf(0)
+        size = mpmath.mpf(0)
+        ax = abs(x)
+        for c in coeffs:
+            cq = mpmath.mpf(int(QQ.numer(c))) / int(QQ.denom(c))
+            val = val * x + cq
+            size = size * ax + abs(cq)
+        if abs(val) <= _EVAL_CANCELLATION * size:
+            return float(sympy.N(K.to_sympy(a), 30))
+        return float(val)
 
 
 def field_null_space(A: Any) -> np.ndarray | None:
@@ -273,7 +495,8 @@ def field_null_space(A: Any) -> np.ndarray | None:
     D = domain_matrix(arr)
     if D is None:
         return None
-    basis = _null_basis(D)
+    K = D.domain
+    basis = [[K.to_sympy(x) for x in v] for v in _echelon(D).null_basis()]
     return np.array(basis, dtype=object).reshape(len(basis), arr.shape[1])
 
 
@@ -288,6 +511,29 @@ def field_row_space(A: Any) -> np.ndarray | None:
     K = R.domain
     out = [[K.to_sympy(x) for x in row] for row in rows]
     return np.array(out, dtype=object).reshape(len(out), n)
+
+
+def field_product(A: Any, B: Any) -> np.ndarray | None:
+    """The product ``A @ B`` of two matrices of sympy numbers, computed in the number
+    field of their entries (sums of products reduced in K, no simplification), or None
+    when they have none."""
+    a = np.asarray(A, dtype=object)
+    b = np.asarray(B, dtype=object)
+    (m, k), (k2, n) = a.shape, b.shape
+    if k != k2:
+        raise ValueError(f"field_product: shapes {a.shape} and {b.shape} do not match")
+    if 0 in (m, k, n):
+        return np.array([[sympy.S.Zero] * n for _ in range(m)], dtype=object).reshape(m, n)
+    fit = number_field([*a.flat, *b.flat])
+    if fit is None:
+        return None
+    K, els = fit
+    Da = DomainMatrix([els[i * k : (i + 1) * k] for i in range(m)], (m, k), K)
+    at = m * k
+    Db = DomainMatrix([els[at + i * n : at + (i + 1) * n] for i in range(k)], (k, n), K)
+    rows = (Da * Db).to_list()
+    out = np.array([[K.to_sympy(x) for x in row] for row in rows], dtype=object)
+    return out.reshape(m, n)
 
 
 def field_solve(A: Any, b: Any) -> np.ndarray | None:

@@ -120,16 +120,23 @@ class CommensurateFrame:
         c: Any,
         length_columns: Any = None,
         backend: Backend | None = None,
+        exact_centre: Any = None,
     ) -> CommensurateFrame:
         """The frame of the float ``L`` and centroid ``c`` in ``backend``'s numbers
-        (None: float).  Exact: the decimals of the float values as rationals."""
+        (None: float).  Exact: the decimals of the float values as rationals, or the
+        centroid ``exact_centre`` when given (the exact mean of rational points, of which
+        ``c`` is the float rounding)."""
         cf = np.asarray(to_float(c), dtype=float).reshape(3)
         lc = None if length_columns is None else np.asarray(length_columns, dtype=bool)
         name = "float" if backend is None else backend.name
         if name == "exact":
-            # any exact non-zero factor keeps exact ranks; the decimals as rationals
+            # any exact non-zero factor keeps exact ranks, any exact centre (a translation
+            # is an automorphism); the decimals as rationals
             Lb: Any = sympy.Rational(repr(float(L)))
-            cb: Any = np.array([sympy.nsimplify(float(x), rational=True) for x in cf], dtype=object)
+            if exact_centre is not None:
+                cb: Any = np.array([sympy.sympify(x) for x in exact_centre], dtype=object)
+            else:
+                cb = np.array([sympy.nsimplify(float(x), rational=True) for x in cf], dtype=object)
         elif name == "mp":
             assert backend is not None
             Lb, cb = backend.convert(L), backend.asarray(cf)

@@ -31,6 +31,7 @@ from mechsing.numeric import (
     Margin,
     Precision,
     RankDecision,
+    decide_from_exact,
     decide_rank,
     numeric_precision,
     svd,
@@ -188,7 +189,14 @@ def _local_analysis(
     def system() -> _TestSystem:
         if not built:
             exp, M = closure_expansion(model, cs, tprec)
-            dec = decide_rank(M, tprec, 1.0, want_spaces=True, native_spaces=True)
+            # exact mode, a large system: M's rank is the closure rank proved exactly, and
+            # its mp spaces come from the exact kernel (the same kernel: M is the closure
+            # system in orthonormal loop coordinates), without an SVD of M at 50 digits
+            large = M.shape[1] >= EXACT_KERNEL_MIN_COORDINATES
+            exact = model.precision.mode == "exact" and large
+            dec = decide_from_exact(M, tprec, cs.rank) if exact else None
+            if dec is None:
+                dec = decide_rank(M, tprec, 1.0, want_spaces=True, native_spaces=True)
             built.append(_TestSystem(exp, M, dec))
         return built[0]
 
@@ -258,6 +266,13 @@ def _local_analysis(
         )
     return out
 
+
+#: exact mode takes the test system's spaces from the exact kernel (no SVD at 50 digits)
+#: from this many coordinates on (a 6-UPS platform: 36); below, the SVD costs little and
+#: its spaces are kept: the margin a rank difference reports is the one of its two
+#: decisions nearer to flipping, which for two decisions that drop only rounding is
+#: decided by that rounding, and so by the basis the kernel is given in
+EXACT_KERNEL_MIN_COORDINATES = 24
 
 #: seed of the generic directions probed along a branch of dimension 2 or more
 BRANCH_PROBE_SEED = 7
@@ -358,7 +373,7 @@ def _io_findings(
     screws = [fm.current_screws(s.q) for s in regular]
     has_io = mech.output is not None and mech.inputs
     if has_io:
-        here = io_quantities(mech, model, q, rank.null_space, tprec, screws=cs.screws)
+        here = io_quantities(mech, model, q, rank.null_space, tprec, screws=cs.screws, kernel=rank)
         gens = []
         for s, S in zip(regular, screws, strict=True):
             Ns = s.kernel

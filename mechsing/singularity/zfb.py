@@ -36,6 +36,7 @@ from mechsing.numeric import (
     Precision,
     RankDecision,
     decide_rank,
+    field_product,
     rank_difference,
     spectral_norm,
     svd,
@@ -115,6 +116,7 @@ def io_quantities(
     N: np.ndarray,
     prec: Precision = _FLOAT,
     screws: np.ndarray | None = None,
+    kernel: RankDecision | None = None,
 ) -> IOQuantities | None:
     """ZFB quantities at q, computed and decided at ``prec`` (float or mp:N).
 
@@ -122,7 +124,10 @@ def io_quantities(
     of ``prec``; ``screws``: the current screws at q when already known (the
     closure system's); the output map is built in the model's numbers (exact
     ones included) and then converted, so that it shares L and the centroid
-    with the closure rows N was computed from.
+    with the closure rows N was computed from.  ``kernel``: N's decision; when it
+    was taken from an exact one (``N = Z C``, Z exact), the products ``T N`` and
+    ``E N`` are formed as ``(T Z) C`` with ``T Z`` exact in the data's number field, so
+    that what vanishes exactly is exactly zero.
     """
     with model.precision.context():
         poses = model.poses(q) if screws is None or mech.output.point is not None else {}
@@ -131,18 +136,30 @@ def io_quantities(
     E = input_rows(mech, model)
     if T is None or E is None:
         return None
+    products = None
+    if kernel is not None and kernel.kernel_coefficients is not None:
+        Z, C = kernel.exact_null_space, kernel.kernel_coefficients
+        TZ = field_product(T, Z)
+        EZ = field_product(E.astype(int).astype(object), Z)
+        if TZ is not None and EZ is not None:
+            with prec.context():
+                products = (prec.asarray(TZ) @ C, prec.asarray(EZ) @ C)
     with prec.context():
         T = prec.asarray(T)
-        return _io_quantities(T, E, N, model.length_scale, prec)
+        return _io_quantities(T, E, N, model.length_scale, prec, products)
 
 
 def _io_quantities(
-    T: np.ndarray, E: np.ndarray, N: np.ndarray, L: float, prec: Precision
+    T: np.ndarray,
+    E: np.ndarray,
+    N: np.ndarray,
+    L: float,
+    prec: Precision,
+    products: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> IOQuantities:
     bk = prec.backend
     m = N.shape[1]
-    TN = T @ N
-    EN = E @ N
+    TN, EN = products if products is not None else (T @ N, E @ N)
     # thresholds relative to the operators T and E themselves (N and the z are
     # orthonormal), so a product that vanishes is rank 0, not rounding noise
     nT = spectral_norm(T)

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from sympy.polys.matrices import DomainMatrix
 
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
@@ -28,6 +29,10 @@ from mechsing.numeric import (
     characteristic_length,
     decide_nonzero,
     decide_rank,
+    echelon_form,
+    field_float,
+    field_normal_form,
+    number_field,
     svd,
     to_float,
 )
@@ -136,11 +141,81 @@ def _residual_norm(B: np.ndarray) -> float:
     return float(np.max(np.linalg.norm(res, axis=1)))
 
 
+def _field_brackets(K: Any, B: list[list[Any]]) -> list[list[Any]]:
+    """:func:`_brackets` of rows of elements of K: ``[(w1, v1), (w2, v2)] = (w1 x w2,
+    w1 x v2 - w2 x v1)`` for each pair i < j, in K."""
+
+    def mul(x: Any, y: Any) -> Any:
+        # rows of reduced echelon forms are sparse: no product with a zero factor
+        return x * y if x and y else K.zero
+
+    def cross(a: list[Any], b: list[Any]) -> list[Any]:
+        return [
+            mul(a[1], b[2]) - mul(a[2], b[1]),
+            mul(a[2], b[0]) - mul(a[0], b[2]),
+            mul(a[0], b[1]) - mul(a[1], b[0]),
+        ]
+
+    out = []
+    for i in range(len(B)):
+        for j in range(i + 1, len(B)):
+            (w1, v1), (w2, v2) = (B[i][:3], B[i][3:]), (B[j][:3], B[j][3:])
+            a, b = cross(w1, v2), cross(w2, v1)
+            out.append(cross(w1, w2) + [x - y for x, y in zip(a, b, strict=True)])
+    return out
+
+
+def _field_closure(
+    S: np.ndarray, L: float, margins: _Margins
+) -> tuple[np.ndarray, list[float], None] | None:
+    """:func:`_closure` in exact mode in the number field of the rows (None: they have
+    none): the same decisions (echelon pivots), row spaces (reduced row echelon rows)
+    and brackets as the exact path takes on sympy numbers, without converting each
+    round's brackets to sympy and back."""
+    m = S.shape[0]
+    fit = number_field(list(S.flat)) if m else None
+    if fit is None:
+        return None
+    K, els = fit
+    rows = [els[6 * i : 6 * i + 6] for i in range(m)]
+
+    def row_space(rows: list[list[Any]]) -> list[list[Any]]:
+        D = DomainMatrix(rows, (len(rows), 6), K)
+        E = echelon_form(D)
+        mags = E.pivot_magnitudes()
+        margins.add_values(
+            kept=min(mags) if mags else None,
+            dropped=0.0 if len(E.pivots) < min(len(rows), 6) else None,
+        )
+        return E.rref_rows()
+
+    def floats(B: list[list[Any]]) -> np.ndarray:
+        return np.array([[field_float(K, x) for x in r] for r in B], dtype=float).reshape(-1, 6)
+
+    B = row_space(rows)
+    norms: list[float] = []
+    for _ in range(_MAX_ROUNDS):
+        br = _field_brackets(K, B)
+        if not br:
+            break
+        norms.append(_residual_norm(floats(B)))
+        B2 = row_space(B + br)
+        if len(B2) == len(B):
+            break
+        B = B2
+    out = np.array([[K.to_sympy(x) for x in r] for r in B], dtype=object).reshape(len(B), 6)
+    return out, norms, None
+
+
 def _closure(
     S: np.ndarray, prec: Precision, L: float, margins: _Margins
 ) -> tuple[np.ndarray | None, list[float], tuple[int, int] | None]:
     """Lie closure of the rows of S (commensurate metric): basis, bracket norms,
     and the rank bounds when a decision was undecided."""
+    if prec.mode == "exact":
+        fast = _field_closure(S, L, margins)
+        if fast is not None:
+            return fast
     dec, B = _linalg.row_space(S, prec, L)
     margins.add(dec)
     if B is None:
@@ -308,13 +383,15 @@ def _classify(
         w, v = x[ANGULAR], x[LINEAR]
         n2 = w @ w
         u = w / bk.sqrt(np.asarray(n2))[()]
-        geo["direction"] = u
+        # exactly: the subgroup normalises the direction itself (one square root, not a
+        # root of a sum of squares of roots)
+        geo["direction"] = w if prec.mode == "exact" else u
         geo["point"] = _cross(w, v) / n2
         pitch = (w @ v) / n2
     elif r == 0 and k in (1, 2):
         vs = B[:, LINEAR]
         d = vs[0] if k == 1 else _cross(vs[0], vs[1])
-        geo["direction"] = d / bk.sqrt(np.asarray(d @ d))[()]
+        geo["direction"] = d if prec.mode == "exact" else d / bk.sqrt(np.asarray(d @ d))[()]
     elif r == 3 and k == 3:
         geo["point"] = _centre_of_rotations(B, prec)
     _ = W
@@ -340,7 +417,7 @@ def _classify(
             params[name] = frame.point_back(geo["point"])
         else:
             params[name] = pitch * L
-    sub = Subgroup(t, {n: prec.backend.simplify(v) for n, v in params.items()})
+    sub = Subgroup(t, {n: _normal_form(v, prec) for n, v in params.items()})
     # consistency: the rebuilt canonical basis spans the same space
     Bc = frame.rows(sub.basis(prec))
     dec = decide_rank(np.concatenate([B, Bc], axis=0), prec, Lf)
@@ -356,6 +433,16 @@ def _classify(
     ident.pitch_scaled = None if pitch is None else float(to_float(pitch))
     ident.basis = B
     return ident
+
+
+def _normal_form(v: Any, prec: Precision) -> Any:
+    """A parameter in the backend's normal form; exactly, its number field's when it has
+    one (no radical simplification of values that are sums of products in the field)."""
+    if prec.mode == "exact":
+        fast = field_normal_form(v)
+        if fast is not None:
+            return fast
+    return prec.backend.simplify(v)
 
 
 def _rotating_element(B: np.ndarray, prec: Precision) -> np.ndarray:
