@@ -11,6 +11,8 @@
   (singular) configuration along both motion branches, joint values derived here in closed form with
   mpmath, plus the closure-system singular values computed independently of mechsing in the
   commensurate metric (characteristic length, centroid, planar reduced coordinates).
+* :data:`CENTRED_SLIDER_CRANK_MM`: a centred slider-crank in millimetres whose pivots are not
+  on a coordinate line in the drawn pose (the condition and serial-finding tests).
 """
 
 from __future__ import annotations
@@ -27,6 +29,21 @@ from tests.cli import run_cli
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
+
+#: crank 10 mm drawn straight down from A = (0, 0), rod 20 mm to the pin C = (10*sqrt(3), 0)
+#: mm on the slide along x (no configurations: a test adds its own)
+CENTRED_SLIDER_CRANK_MM = """\
+mechanism: centred-slider-crank
+units: {length: mm, angle: deg}
+bodies: [ground, crank, rod, slider]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, rod], axis: [0, 0, 1], point: [0, -10, 0]}
+  - {name: C, type: R, between: [rod, slider], axis: [0, 0, 1], point: ["10*sqrt(3)", 0, 0]}
+  - {name: S, type: P, between: [ground, slider], axis: [1, 0, 0]}
+inputs: [A]
+output: {body: slider}
+"""
 
 # ----------------------------------------------------------------------------- published facts
 

@@ -15,6 +15,7 @@ import sympy
 
 from mechsing.conditions import condition
 from tests.cli import ROOT, run_cli
+from tests.mechanisms import CENTRED_SLIDER_CRANK_MM
 
 EXAMPLES = ROOT / "examples"
 
@@ -201,20 +202,6 @@ def test_slider_crank_dead_centres(tmp_path: Path) -> None:
     assert "input" in classes
     regular = condition(EXAMPLES / "slider_crank_crank_input.yaml", config="crank-60")
     assert [c.vanishes for c in regular.conditions if c.form == "determinant"] == [False, False]
-
-
-CENTRED_SLIDER_CRANK_MM = """\
-mechanism: centred-slider-crank
-units: {length: mm, angle: deg}
-bodies: [ground, crank, rod, slider]
-joints:
-  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [crank, rod], axis: [0, 0, 1], point: [0, -10, 0]}
-  - {name: C, type: R, between: [rod, slider], axis: [0, 0, 1], point: ["10*sqrt(3)", 0, 0]}
-  - {name: S, type: P, between: [ground, slider], axis: [1, 0, 0]}
-inputs: [A]
-output: {body: slider}
-"""
 
 
 def test_a_number_brought_out_by_combining_angles_goes_to_the_constant(tmp_path: Path) -> None:

@@ -14,6 +14,7 @@ import pytest
 from mechsing.analysis import analyze
 from mechsing.report.render import render_text
 from mechsing.report.words import twist_words, velocity_words, wrench_words
+from tests.mechanisms import CENTRED_SLIDER_CRANK_MM
 
 EX = Path(__file__).resolve().parents[1] / "examples"
 
@@ -155,20 +156,9 @@ configurations:
   stretched: {}
 """
 
-CENTRED_SLIDER_CRANK_DEAD_CENTRE = """\
-mechanism: centred-slider-crank
-units: {length: mm, angle: deg}
-bodies: [ground, crank, rod, slider]
-joints:
-  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [crank, rod], axis: [0, 0, 1], point: [0, -10, 0]}
-  - {name: C, type: R, between: [rod, slider], axis: [0, 0, 1], point: ["10*sqrt(3)", 0, 0]}
-  - {name: S, type: P, between: [ground, slider], axis: [1, 0, 0]}
-inputs: [A]
-output: {body: slider}
-configurations:
-  dead-centre: {A: 90}
-"""
+CENTRED_SLIDER_CRANK_DEAD_CENTRE = (
+    CENTRED_SLIDER_CRANK_MM + "configurations:\n  dead-centre: {A: 90}\n"
+)
 
 
 def _serial(path: Path, chain: str) -> dict:
