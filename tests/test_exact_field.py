@@ -287,3 +287,26 @@ def test_h_joint_keeps_the_sympy_path(tmp_path: Path) -> None:
         assert exact[name]["precision"] == "exact"
         assert exact[name]["singular"] == floats[name]["singular"]
         assert classes(exact[name]) == classes(floats[name])
+
+
+def test_a_configuration_that_gives_nothing_is_its_start_in_exact_mode(tmp_path: Path) -> None:
+    # A configuration with no joint values is its start configuration (nothing moves):
+    # exact mode takes it as it is -- the reference's drawn pose, or a start that gives
+    # every value exactly (the file's Type I pose) -- where it used to refuse it as
+    # "values left to solve numerically".
+    text = (EXAMPLES / "five_bar.yaml").read_text()
+    path = write(tmp_path, "five_bar", text + "  drawn: {}\n  again: {start: type1}\n")
+    res = by_name(
+        mechsing.analyze(
+            str(path), configs=["reference", "drawn", "type1", "again"], precision="exact"
+        ).to_json()
+    )
+    for copy, original in (("drawn", "reference"), ("again", "type1")):
+        c, o = res[copy], res[original]
+        assert "error" not in c, c.get("error")
+        assert c["precision"] == "exact" and c["closure_residual"] == 0
+        assert c["joints"] == o["joints"]
+        assert classes(c) == classes(o)
+        assert c["closure_rank"] == o["closure_rank"] and c["mobility"] == o["mobility"]
+        assert "underdetermined" not in c
+    assert "input" in classes(res["again"])  # the file's type1 pose: a Type I singularity

@@ -20,7 +20,7 @@ close the loops again, so the result stays on the starting assembly mode.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -130,6 +130,12 @@ class Closer:
         n = self.model.n
         if len(given) == n and cfg.pose is None:
             out = self._check(cfg, target)
+        elif self.model.precision.mode == "exact" and not given and cfg.pose is None:
+            # a configuration that gives nothing is its start configuration, which exact
+            # mode takes (and proves) as it is
+            start = cfg.start if cfg.start else None
+            q0 = self.model.zeros() if start is None else self._solve(start, _chain + (name,)).q
+            out = replace(self._check(cfg, q0), given=())
         else:
             if self.model.precision.mode == "exact" and (self.model.chords or cfg.pose):
                 # the joints not given would be solved numerically: refused before solving
