@@ -152,3 +152,21 @@ def test_decide_nonzero_is_the_two_threshold_rule_on_one_value():
     ex = Precision("exact")
     assert decide_nonzero(sympy.sqrt(2) * sympy.sqrt(3) - sympy.sqrt(6), ex) is False
     assert decide_nonzero(sympy.Rational(1, 10**40), ex) is True
+
+
+def test_mechsing_starts_without_scipy_sparse_and_loads_it_for_a_big_mechanism() -> None:
+    # scipy.sparse costs a fifth of a second at every start: only a big mechanism's
+    # sparse closure needs it (checked in a fresh interpreter)
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, mechsing.analysis, mechsing.cli, mechsing.cli.analyze\n"
+        "from mechsing.numeric.blocks import issparse\n"
+        "import numpy as np\n"
+        "assert 'scipy.sparse' not in sys.modules, 'imported at start'\n"
+        "assert not issparse(np.eye(3))\n"
+        "from scipy.sparse import csr_matrix\n"
+        "assert issparse(csr_matrix(np.eye(3))) and not issparse(np.eye(3))\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)

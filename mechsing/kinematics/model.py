@@ -24,11 +24,10 @@ Conventions (those of the mechanism file; the README states them):
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mpmath
 import numpy as np
-from scipy.sparse import csc_matrix
 
 from mechsing import lie
 from mechsing.kinematics import batched
@@ -37,6 +36,9 @@ from mechsing.kinematics.field import FieldKinematics
 from mechsing.model import Mechanism
 from mechsing.numeric import CommensurateFrame, Precision, blocks, characteristic_length, to_float
 from mechsing.subgroups import Subgroup
+
+if TYPE_CHECKING:
+    from scipy.sparse import csc_matrix
 
 
 @dataclass(frozen=True)
@@ -401,6 +403,8 @@ class KinematicModel:
         (the same numbers): row block j holds the commensurate screws of chord j's chain
         times their signs, and only the coordinates the chain crosses are stored, so
         building it is linear in the loops' lengths, not loops x coordinates."""
+        from scipy.sparse import csc_matrix  # big models only: not at every start
+
         S = self.current_screws(q) if screws is None else screws
         chord, col, sign = self._chord_entries()
         Ss = frame.blocks(np.asarray(S, dtype=float))

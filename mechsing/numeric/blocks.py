@@ -24,18 +24,25 @@ block by block: the work is linear in the number of blocks of a given size.
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.sparse import coo_matrix, issparse
-from scipy.sparse.csgraph import connected_components
 
 __all__ = ["BlockFactors", "block_factors", "block_svd", "blocks_of", "issparse"]
 
 #: below this many entries the dense SVD is cheaper than finding blocks
 DENSE_ENTRIES = 4096
+
+
+def issparse(A: Any) -> bool:
+    """Whether ``A`` is a scipy sparse matrix.  scipy.sparse is imported only where a
+    big mechanism needs it (it costs a fifth of a second at every start); before that,
+    nothing can be one."""
+    sparse = sys.modules.get("scipy.sparse")
+    return sparse is not None and bool(sparse.issparse(A))
 
 
 def _entries(A: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -67,6 +74,9 @@ class _Structure:
 
 
 def _structure(m: int, n: int, r: np.ndarray, c: np.ndarray) -> _Structure:
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
     graph = coo_matrix((np.ones(len(r)), (r, m + c)), shape=(m + n, m + n))
     count, labels = connected_components(graph, directed=False)
     order = np.argsort(labels, kind="stable")
