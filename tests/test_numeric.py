@@ -155,8 +155,9 @@ def test_decide_nonzero_is_the_two_threshold_rule_on_one_value():
 
 
 def test_mechsing_starts_without_scipy_sparse_and_loads_it_for_a_big_mechanism() -> None:
-    # scipy.sparse costs a fifth of a second at every start: only a big mechanism's
-    # sparse closure needs it (checked in a fresh interpreter)
+    # scipy.sparse and matplotlib cost a fifth and a third of a second at every start:
+    # only a big mechanism's sparse closure needs the one, only the review's figures the
+    # other (checked in a fresh interpreter)
     import subprocess
     import sys
 
@@ -165,6 +166,7 @@ def test_mechsing_starts_without_scipy_sparse_and_loads_it_for_a_big_mechanism()
         "from mechsing.numeric.blocks import issparse\n"
         "import numpy as np\n"
         "assert 'scipy.sparse' not in sys.modules, 'imported at start'\n"
+        "assert 'matplotlib' not in sys.modules, 'the review loaded for the text'\n"
         "assert not issparse(np.eye(3))\n"
         "from scipy.sparse import csr_matrix\n"
         "assert issparse(csr_matrix(np.eye(3))) and not issparse(np.eye(3))\n"
