@@ -220,16 +220,26 @@ def output_motion(
     return replace(motion, point=_point_motion(mech, model, q, cs, N))
 
 
+def _output_chain_matrix(
+    mech: Any, model: Any, q: Any, cs: Any, point: bool = False
+) -> tuple[Any, Any]:
+    """The screw system of the chain from ``relative_to`` to the output body at ``q``
+    (the model's precision): its twists, or with ``point`` the velocities of the
+    output point; and that point's position (None without ``point``)."""
+    out = mech.output
+    with model.precision.context():
+        poses = None if cs.screws is not None and not point else model.poses(q)
+        S = cs.screws if cs.screws is not None else model.current_screws(q, poses)
+        chain = tree_chain(model, out.body, out.relative_to)
+        x = lie.act_point(poses[out.body], model.asarray(list(out.point))) if point else None
+        return chain_matrix(model, S, None, x, chain.signs), x
+
+
 def _point_motion(mech: Any, model: Any, q: Any, cs: Any, N: Any) -> PointMotion:
     """The velocity space of the output point over the closure's kernel ``N``."""
-    out = mech.output
     prec = _mode(model)
     L = model.length_scale
-    with model.precision.context():
-        S = cs.screws if cs.screws is not None else model.current_screws(q, model.poses(q))
-        chain = tree_chain(model, out.body, out.relative_to)
-        x = lie.act_point(model.poses(q)[out.body], model.asarray(list(out.point)))
-        V = chain_matrix(model, S, None, x, chain.signs)
+    V, x = _output_chain_matrix(mech, model, q, cs, point=True)
     with prec.context():
         V = prec.asarray(V)
         dec = decide_rank(
@@ -249,12 +259,7 @@ def _exact_point_motion(
 ) -> PointMotion | None:
     """:func:`_point_motion` in exact mode: the rank of ``V K`` exactly, in the number
     field of the data (None: no field)."""
-    out = mech.output
-    with model.precision.context():
-        S = cs.screws if cs.screws is not None else model.current_screws(q, model.poses(q))
-        chain = tree_chain(model, out.body, out.relative_to)
-        x = lie.act_point(model.poses(q)[out.body], model.asarray(list(out.point)))
-        V = chain_matrix(model, S, None, x, chain.signs)
+    V, x = _output_chain_matrix(mech, model, q, cs, point=True)
     span = _exact_span(model, cs, V, Z)
     if span is None:
         return None
@@ -269,11 +274,7 @@ def _exact_output_motion(
 ) -> OutputMotion | None:
     """:func:`_output_motion` in exact mode: ``T K`` and its rank exactly, its span's
     exact twists identified exactly (None: the data have no number field)."""
-    out = mech.output
-    with model.precision.context():
-        S = cs.screws if cs.screws is not None else model.current_screws(q, model.poses(q))
-        chain = tree_chain(model, out.body, out.relative_to)
-        T = chain_matrix(model, S, None, None, chain.signs)
+    T, _ = _output_chain_matrix(mech, model, q, cs)
     span = _exact_span(model, cs, T, Z)
     if span is None:
         return None
@@ -294,10 +295,7 @@ def _output_motion(
     out = mech.output
     prec = _mode(model)
     L = model.length_scale
-    with model.precision.context():
-        S = cs.screws if cs.screws is not None else model.current_screws(q, model.poses(q))
-        chain = tree_chain(model, out.body, out.relative_to)
-        T = chain_matrix(model, S, None, None, chain.signs)
+    T, _ = _output_chain_matrix(mech, model, q, cs)
     with prec.context():
         T = prec.asarray(T)
         TN = T @ N

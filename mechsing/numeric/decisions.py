@@ -384,8 +384,6 @@ def _exact_rank(
     piv_vals = []
     for row, col in enumerate(pivots):
         piv_vals.append(abs(float(sympy.N(E[row, col], 30))))
-    kept = min(piv_vals) if piv_vals else None
-    dropped = None if rank == min(M.shape) else 0.0
     ns = rs = ens = ers = None
     if want_spaces:
         ker = M.nullspace(simplify=True)
@@ -402,17 +400,7 @@ def _exact_rank(
         )
         ens = _columns([list(v) for v in ker], M.shape[1])
         ers = _columns([list(v) for v in cols], M.shape[0])
-    return RankDecision(
-        rank,
-        None,
-        Margin(kept, dropped, 0.0, 0.0, length_scale),
-        "exact",
-        (rank, rank),
-        ns,
-        rs,
-        exact_null_space=ens,
-        exact_range_space=ers,
-    )
+    return _exact_decision(rank, piv_vals, arr.shape, length_scale, (ns, rs, ens, ers))
 
 
 def _field_rank(arr: np.ndarray, length_scale: float, want_spaces: bool) -> RankDecision | None:
@@ -429,8 +417,6 @@ def _field_rank(arr: np.ndarray, length_scale: float, want_spaces: bool) -> Rank
     m, n = arr.shape
     rank = len(pivots)
     piv_vals = E.pivot_magnitudes()
-    kept = min(piv_vals) if piv_vals else None
-    dropped = None if rank == min(m, n) else 0.0
     ns = rs = ens = ers = None
     if want_spaces:
         ker = E.null_basis()
@@ -444,6 +430,17 @@ def _field_rank(arr: np.ndarray, length_scale: float, want_spaces: bool) -> Rank
         rs = _orthonormal(np.array(cols).T) if cols else np.zeros((m, 0))
         ens = _columns([[K.to_sympy(x) for x in v] for v in ker], n)
         ers = _columns([[sympy.sympify(arr[i, j]) for i in range(m)] for j in pivots], m)
+    return _exact_decision(rank, piv_vals, arr.shape, length_scale, (ns, rs, ens, ers))
+
+
+def _exact_decision(
+    rank: int, pivots: list[float], shape: tuple[int, ...], length_scale: float, spaces: tuple
+) -> RankDecision:
+    """An exact rank decision: its smallest pivot magnitude kept, 0 dropped when the
+    rank is below full; ``spaces``: (null, range, exact null, exact range) or Nones."""
+    kept = min(pivots) if pivots else None
+    dropped = None if rank == min(shape) else 0.0
+    ns, rs, ens, ers = spaces
     return RankDecision(
         rank,
         None,
