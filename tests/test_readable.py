@@ -115,3 +115,25 @@ def test_a_screw_motion_keeps_its_pitch_modulo_nothing_and_loses_it_modulo_its_a
     assert np.allclose(simplest(t, np.zeros((0, 6))), t)
     # modulo the translation along its axis, it is the pure rotation about the same axis
     assert np.allclose(simplest(t, [_translation([0, 0, 1])]), _screw([0, 0, 1], [1, 0, 0], 0))
+
+
+def test_rotations_tilted_by_rounding_out_of_a_plane_keep_their_span_and_size():
+    # rotations whose axes leave the (y, z) plane by 3e-8 rad, and two translations (the
+    # case hypothesis found): a pivot on the tiny x column would scale its row by 3e7
+    # and the readable basis would lose the span to the digits dropped; the plane's own
+    # columns are the pivots instead, and no entry grows
+    rows = np.array(
+        [
+            _screw([3e-8, 1, 0.1], [0.3, -1, 2], 0),
+            _screw([-5e-8, 0.2, 1], [1, 0.5, -0.4], 0.1),
+            _translation([1, 2, 0]),
+            _translation([0, 1, 3]),
+        ]
+    )
+    for basis in (echelon(rows, 1.0)[0], readable_basis(rows, 1.0)):
+        assert len(basis) == 4
+        assert all(_in_span(r, basis) for r in rows)
+        assert all(_in_span(b, rows) for b in basis)
+        assert np.max(np.abs(basis)) < 1e2
+    E, pivots = echelon(rows, 1.0)
+    assert pivots[:2] == [1, 2]

@@ -23,6 +23,12 @@ MEMBERSHIP_RTOL_FLOAT = 1e-9
 NEAR_ZERO_VECTOR = 1e-9
 #: support threshold of a kernel vector (entries above 1e-9 of the largest)
 SUPPORT_RTOL = 1e-9
+#: a reduced row echelon form written to be read (screws.readable.echelon) takes its
+#: pivots in column order, but not one below this fraction of the largest entry still
+#: to eliminate: a smaller pivot would scale its row by more than 1e6 and bring the
+#: data's rounding up to the digits shown (an axis tilted by 3e-8 rad out of a plane is
+#: then read in the plane's own columns; the span is unchanged)
+ECHELON_PIVOT_RTOL = 1e-6
 #: two unit axes are parallel when the norm of their cross product is below this (a
 #: product of subgroups turning about parallel axes with their own pitches)
 PARALLEL_AXES_ATOL = 1e-9

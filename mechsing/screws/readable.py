@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechsing.numeric import SUPPORT_RTOL
+from mechsing.numeric import ECHELON_PIVOT_RTOL, SUPPORT_RTOL
 
 __all__ = ["echelon", "readable_basis", "simplest"]
 
@@ -35,8 +35,11 @@ def _scale(length_scale: float) -> np.ndarray:
 def echelon(rows: np.ndarray, length_scale: float) -> tuple[np.ndarray, list[int]]:
     """Reduced row echelon form of ``rows`` (k, 6) with its pivot columns; the columns
     compared after dividing second halves by ``length_scale``.  A pivot is the largest
-    remaining entry of the first column where one exceeds SUPPORT_RTOL of the largest
-    entry; rows of rounding level are dropped."""
+    remaining entry of the first column where one exceeds ECHELON_PIVOT_RTOL of the
+    largest entry still to eliminate (the rows not yet pivoted, the columns from this
+    one on), so no row is scaled by more than 1/ECHELON_PIVOT_RTOL; a column skipped that
+    way keeps its entries (the span is the input's).  Rows whose entries are all of
+    rounding level (SUPPORT_RTOL of the largest entry) are dropped."""
     scale = _scale(length_scale)
     A = np.array(rows, dtype=float).reshape(-1, 6) * scale
     pivots: list[int] = []
@@ -47,8 +50,11 @@ def echelon(rows: np.ndarray, length_scale: float) -> tuple[np.ndarray, list[int
     for j in range(A.shape[1]):
         if r == A.shape[0]:
             break
+        rest = float(np.max(np.abs(A[r:, j:])))
+        if rest <= tol:
+            break
         i = r + int(np.argmax(np.abs(A[r:, j])))
-        if abs(A[i, j]) <= tol:
+        if abs(A[i, j]) <= ECHELON_PIVOT_RTOL * rest:
             continue
         A[[r, i]] = A[[i, r]]
         A[r] /= A[r, j]
