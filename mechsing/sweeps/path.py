@@ -55,7 +55,15 @@ from mechsing.numeric import (
     SWEEP_NODE_STEP,
 )
 
-__all__ = ["Fold", "PathTrace", "Problem", "close_segments", "first_nodes", "follow"]
+__all__ = [
+    "Fold",
+    "PathTrace",
+    "Problem",
+    "close_segments",
+    "first_nodes",
+    "first_nodes_of",
+    "follow",
+]
 
 #: most arclength steps spent on the far side of one fold
 _ARC_BUDGET = 4000
@@ -191,22 +199,31 @@ def first_nodes(
     z0's value), all in one batched Newton: the prediction and the test :func:`_node`
     makes for a first step (the tangent at z0).  None for a path whose first node is
     not kept that way (:func:`follow` then takes it as it takes any node)."""
-    out: list[np.ndarray | None] = [None] * len(paths)
+    return first_nodes_of(pb, [(z0, paths)], col)[0]
+
+
+def first_nodes_of(
+    pb: Problem, starts: list[tuple[np.ndarray, list[np.ndarray]]], col: int
+) -> list[list[np.ndarray | None]]:
+    """:func:`first_nodes` of several starts (the rows of a grid), all in one batched
+    Newton: each start's closed z0 and its paths; per start, its paths' first nodes."""
+    out: list[list[np.ndarray | None]] = [[None] * len(paths) for _, paths in starts]
     preds, bounds, which = [], [], []
     sc = pb.scale(col)
-    for m, values in enumerate(paths):
-        if len(values) < 2:
-            continue
-        zp = _tangent_prediction(pb, z0, col, values[_next_node(values, 0, sc)])
-        if zp is None:
-            continue
-        preds.append(zp)
-        bounds.append(_NODE_CORRECTION * pb.comm(zp - z0))
-        which.append(m)
+    for s, (z0, paths) in enumerate(starts):
+        for m, values in enumerate(paths):
+            if len(values) < 2:
+                continue
+            zp = _tangent_prediction(pb, z0, col, values[_next_node(values, 0, sc)])
+            if zp is None:
+                continue
+            preds.append(zp)
+            bounds.append(_NODE_CORRECTION * pb.comm(zp - z0))
+            which.append((s, m))
     if preds:
         Q, ok, _ = pb.close_near(np.array(preds), np.array(bounds))
-        for m, q, good in zip(which, Q, ok, strict=True):
-            out[m] = q if good else None
+        for (s, m), q, good in zip(which, Q, ok, strict=True):
+            out[s][m] = q if good else None
     return out
 
 
@@ -470,7 +487,9 @@ def _near_fold(
     return Q[0] if ok[0] else None
 
 
-def close_segments(pb: Problem, traces: list[PathTrace], col: int) -> None:
+def close_segments(
+    pb: Problem, traces: list[PathTrace], col: int, groups: list[list[int]] | None = None
+) -> None:
     """The samples strictly between the nodes of each segment (i, j) of each trace, all
     segments of the traces together (the two directions of a path are one batch), in two
     passes of batched Newton (in chunks of _FINE_CHUNK rows):
@@ -489,12 +508,20 @@ def close_segments(pb: Problem, traces: list[PathTrace], col: int) -> None:
     predict to about 1e-10, so one Newton step closes a sample where the nodes' cubic
     needs two or three.  A sample that does not close near its prediction is closed
     again by continuation from the previous one.  Fills each trace's Z and newton in
-    place."""
+    place.
+
+    ``groups``: the traces (indices) of each path, when several paths are closed together
+    (the rows of a grid): whether a path's samples are closed in one pass or two is
+    decided by its own traces, as when it is closed alone (default: one path)."""
     sc = pb.scale(col)
     first: list[tuple[int, int, int, list[int], list[int]]] = []
     later: list[tuple[int, list[int]]] = []  # (trace, its knots in order) per segment
-    many = sum(j - i - 1 for tr in traces for i, j in tr.segments) >= _KNOTS_FROM
+    many_of = {}
+    for group in groups if groups is not None else [list(range(len(traces)))]:
+        many = sum(j - i - 1 for m in group for i, j in traces[m].segments) >= _KNOTS_FROM
+        many_of.update({m: many for m in group})
     for m, tr in enumerate(traces):
+        many = many_of[m]
         Z, values = tr.Z, tr.values
         assert values is not None
         for i, j in tr.segments:
