@@ -18,7 +18,13 @@ import pytest
 
 from mechsing.kinematics import ClosureError
 from mechsing.sweeps import SweepRun
-from mechsing.sweeps.path import close_segments, first_nodes, first_nodes_of, follow
+from mechsing.sweeps.path import (
+    close_segments,
+    first_nodes,
+    first_nodes_of,
+    follow,
+    follow_together,
+)
 
 ROOT = Path(__file__).resolve().parent.parent
 FILE = str(ROOT / "examples" / "five_bar.yaml")
@@ -123,3 +129,25 @@ def test_segments_of_several_paths_close_as_each_alone(grid) -> None:
         for got, want in zip(many[2 * r : 2 * r + 2], alone, strict=True):
             assert _bits(got.Z) == _bits(want.Z)
             assert _bits(got.newton) == _bits(want.newton)
+
+
+def test_paths_followed_in_lockstep_are_each_followed_alone(grid) -> None:
+    eng, values, column = grid
+    pb, col, xs = eng.problem, eng.cols[0], values[0]
+    paths = []
+    for j in range(len(values[1])):
+        if column.reached[j]:
+            k0, zk = eng.start_of(col, xs, column.Z[j])
+            for v in (xs[k0:], xs[k0::-1]):
+                (first,) = first_nodes(pb, zk, col, [v])
+                paths.append((zk, v, first))
+    together = follow_together(pb, col, paths)
+    # some paths leave the lockstep at a fold and are finished alone
+    assert any(tr.folds for tr in together) and any(not tr.folds for tr in together)
+    for (z0, v, first), got in zip(paths, together, strict=True):
+        alone = follow(pb, z0, col, v, fine=False, first=first)
+        assert _bits(got.Z) == _bits(alone.Z)
+        assert got.segments == alone.segments and got.stopped == alone.stopped
+        assert [(f.value, f.direction, f.far_side) for f in got.folds] == [
+            (f.value, f.direction, f.far_side) for f in alone.folds
+        ]

@@ -63,6 +63,7 @@ from mechsing.sweeps.path import (
     close_segments,
     first_nodes_of,
     follow,
+    follow_together,
 )
 from mechsing.sweeps.spec import Variable
 
@@ -424,11 +425,19 @@ class Sweep:
         firsts = first_nodes_of(
             pb, [(zk, [values[k0:], values[k0::-1]]) for k0, zk in begun], col
         )
-        traces: list[tuple[PathTrace, PathTrace]] = []
-        for (k0, zk), first in zip(begun, firsts, strict=True):
-            fwd = follow(pb, zk, col, values[k0:], fine=False, first=first[0])
-            bwd = follow(pb, zk, col, values[k0::-1], fine=False, first=first[1])
-            traces.append((fwd, bwd))
+        # both directions of every row, node by node in lockstep
+        flat = follow_together(
+            pb,
+            col,
+            [
+                (zk, v, f)
+                for (k0, zk), first in zip(begun, firsts, strict=True)
+                for v, f in ((values[k0:], first[0]), (values[k0::-1], first[1]))
+            ],
+        )
+        traces: list[tuple[PathTrace, PathTrace]] = list(
+            zip(flat[0::2], flat[1::2], strict=True)
+        )
         # the samples between the nodes of every row's two directions: one batched Newton
         close_segments(
             pb,

@@ -63,6 +63,7 @@ __all__ = [
     "first_nodes",
     "first_nodes_of",
     "follow",
+    "follow_together",
 ]
 
 #: most arclength steps spent on the far side of one fold
@@ -236,6 +237,36 @@ def _next_node(values: np.ndarray, i: int, sc: float) -> int:
     return j
 
 
+@dataclass
+class _Walk:
+    """Where :func:`follow` is on its path: the closed samples so far, the last node
+    (sample i, configuration z), the node before it and the older ones on the same
+    stretch (the predictor's history), the node pairs whose samples are still to close."""
+
+    Z: np.ndarray
+    its: np.ndarray
+    i: int
+    z: np.ndarray
+    z_prev: np.ndarray | None = None
+    older: list[np.ndarray] = field(default_factory=list)
+    segments: list[tuple[int, int]] = field(default_factory=list)
+
+    @classmethod
+    def start(cls, pb: Problem, z0: np.ndarray, values: np.ndarray) -> _Walk:
+        Z = np.full((len(values), pb.n), np.nan)
+        Z[0] = z0
+        return cls(Z, np.zeros(len(values), dtype=int), 0, np.array(z0, dtype=float))
+
+    def take(self, j: int, zj: np.ndarray) -> None:
+        """The next node, sample j, is zj."""
+        if j > self.i + 1:
+            self.segments.append((self.i, j))
+        self.Z[j] = zj
+        if self.z_prev is not None:
+            self.older = [*self.older[-(_HISTORY - 1) :], self.z_prev]
+        self.i, self.z, self.z_prev = j, np.asarray(zj, dtype=float), self.z
+
+
 def follow(
     pb: Problem,
     z0: np.ndarray,
@@ -243,27 +274,28 @@ def follow(
     values: np.ndarray,
     fine: bool = True,
     first: np.ndarray | None = None,
+    walk: _Walk | None = None,
 ) -> PathTrace:
     """Follow the swept coordinate ``col`` through ``values`` (monotone) from ``z0``,
     closed at ``values[0]``.  With ``fine=False`` only the nodes (and the samples near
     folds) are closed: the trace's ``segments`` are left to :func:`close_segments`.
-    ``first``: the first node when it is already closed (:func:`first_nodes`)."""
+    ``first``: the first node when it is already closed (:func:`first_nodes`);
+    ``walk``: where the path already is (:func:`follow_together`), to go on from."""
     K = len(values)
-    Z = np.full((K, pb.n), np.nan)
-    its = np.zeros(K, dtype=int)
-    Z[0] = z0
+    if walk is None:
+        walk = _Walk.start(pb, z0, values)
+    Z, its = walk.Z, walk.its
     folds: list[Fold] = []
     if K < 2:
         return PathTrace(Z, folds, None, its, [], values)
     direction = 1 if values[-1] > values[0] else -1
     sc = pb.scale(col)
-    i, z = 0, np.array(z0, dtype=float)
-    z_prev: np.ndarray | None = None
+    i, z, z_prev = walk.i, walk.z, walk.z_prev
     #: the nodes before z_prev on this stretch of the path (the predictor's history)
-    older: list[np.ndarray] = []
+    older: list[np.ndarray] = walk.older
     stopped = None
     #: node pairs whose samples in between are closed together at the end
-    segments: list[tuple[int, int]] = []
+    segments: list[tuple[int, int]] = walk.segments
     while i < K - 1:
         j = _next_node(values, i, sc)
         # where the tangent's prediction cannot reach the next node (a fold, a singular
@@ -334,6 +366,69 @@ def follow(
     return trace
 
 
+def follow_together(
+    pb: Problem,
+    col: int,
+    paths: list[tuple[np.ndarray, np.ndarray, np.ndarray | None]],
+) -> list[PathTrace]:
+    """:func:`follow` (``fine=False``) of several paths (the rows of a grid), each
+    ``(z0, values, first)``, in lockstep: at each step, every path whose next node
+    :func:`_node` predicts from its last two nodes (the secant or the polynomial through
+    the older ones) has it closed by one batched Newton over all of them, kept by the
+    same test.  A path whose node is not kept that way (a fold, a sharp bend), or that
+    needs the tangent's prediction, leaves the lockstep where it is: :func:`follow`
+    goes on from there, as it would have alone.  Each path's trace is the one
+    :func:`follow` gives it alone."""
+    sc = pb.scale(col)
+    walks = [_Walk.start(pb, z0, values) for z0, values, _ in paths]
+    going = []
+    for m, (_, values, first) in enumerate(paths):
+        if len(values) >= 2 and first is not None:
+            walks[m].take(_next_node(values, 0, sc), first)
+            going.append(m)
+    bc = pb.batch
+    while going:
+        steps = []
+        for m in going:
+            w, values = walks[m], paths[m][1]
+            if w.i >= len(values) - 1 or w.z_prev is None or w.z_prev[col] == w.z[col]:
+                continue
+            steps.append((m, _next_node(values, w.i, sc)))
+        if not steps:
+            break
+        preds = np.zeros((len(steps), pb.n))
+        secant = []
+        for s, (m, j) in enumerate(steps):
+            w, value = walks[m], paths[m][1][j]
+            zp = _polynomial_prediction(pb, w.z, w.z_prev, col, value, w.older)
+            if zp is None:
+                secant.append(s)
+            else:
+                preds[s] = zp
+        if secant:
+            # the last step repeated, scaled to the new one: z_prev -> z continued past z
+            zs = np.array([walks[steps[s][0]].z for s in secant])
+            zq = np.array([walks[steps[s][0]].z_prev for s in secant])
+            v = np.array([paths[steps[s][0]][1][steps[s][1]] for s in secant])
+            f = (v - zs[:, col]) / (zs[:, col] - zq[:, col])
+            preds[secant] = bc.between(zs, zq, -f)
+        for s, (m, j) in enumerate(steps):
+            preds[s, col] = paths[m][1][j]
+        bounds = np.array(
+            [_NODE_CORRECTION * pb.comm(preds[s] - walks[m].z) for s, (m, _) in enumerate(steps)]
+        )
+        Q, ok, _ = pb.close_near(preds, bounds)
+        going = []
+        for s, (m, j) in enumerate(steps):
+            if ok[s]:
+                walks[m].take(j, Q[s])
+                going.append(m)
+    return [
+        follow(pb, z0, col, values, fine=False, walk=walks[m])
+        for m, (z0, values, _) in enumerate(paths)
+    ]
+
+
 def _nodes(
     pb: Problem,
     z: np.ndarray,
@@ -399,28 +494,44 @@ def _node(
         if not ok[0]:
             return None
         z_prev = Q[0]
-    knots = [p for p in (older or []) if p[col] != z[col]]
-    if knots and len({float(p[col]) for p in [*knots, z_prev, z]}) == len(knots) + 2:
-        # the polynomial through the last nodes (increments on the group from z)
-        pts = np.array([*knots, z_prev])
-        D = bc.difference(pts, np.repeat(np.asarray(z, dtype=float)[None, :], len(pts), 0))
-        tk = np.concatenate([pts[:, col], [z[col]]])
-        D = np.concatenate([D, np.zeros((1, D.shape[1]))])
-        w = np.ones(len(tk))
-        for a in range(len(tk)):
-            for b in range(len(tk)):
-                if a != b:
-                    w[a] *= (value - tk[b]) / (tk[a] - tk[b])
-        d = w @ D
-        zp = bc.update(np.asarray(z, dtype=float)[None, :], d[None, : bc.nb])[0]
-        zp[bc.nb :] = z[bc.nb :] + d[bc.nb :]
-    else:
+    zp = _polynomial_prediction(pb, z, z_prev, col, value, older)
+    if zp is None:
         # the last step repeated, scaled to the new one: z_prev -> z continued past z
         f = (value - z[col]) / (z[col] - z_prev[col])
         zp = bc.between(z[None, :], z_prev[None, :], np.array([-f]))[0]
     zp[col] = value
     Q, ok, _ = pb.close_near(zp[None, :], _NODE_CORRECTION * pb.comm(zp - z))
     return Q[0] if ok[0] else None
+
+
+def _polynomial_prediction(
+    pb: Problem,
+    z: np.ndarray,
+    z_prev: np.ndarray,
+    col: int,
+    value: float,
+    older: list[np.ndarray] | None,
+) -> np.ndarray | None:
+    """:func:`_node`'s prediction through the older nodes: the polynomial through them,
+    z_prev and z (increments on the group from z), at ``value``; None when there are no
+    older nodes of distinct values (the secant predicts then)."""
+    bc = pb.batch
+    knots = [p for p in (older or []) if p[col] != z[col]]
+    if not (knots and len({float(p[col]) for p in [*knots, z_prev, z]}) == len(knots) + 2):
+        return None
+    pts = np.array([*knots, z_prev])
+    D = bc.difference(pts, np.repeat(np.asarray(z, dtype=float)[None, :], len(pts), 0))
+    tk = np.concatenate([pts[:, col], [z[col]]])
+    D = np.concatenate([D, np.zeros((1, D.shape[1]))])
+    w = np.ones(len(tk))
+    for a in range(len(tk)):
+        for b in range(len(tk)):
+            if a != b:
+                w[a] *= (value - tk[b]) / (tk[a] - tk[b])
+    d = w @ D
+    zp = bc.update(np.asarray(z, dtype=float)[None, :], d[None, : bc.nb])[0]
+    zp[bc.nb :] = z[bc.nb :] + d[bc.nb :]
+    return zp
 
 
 def _tangent_prediction(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
