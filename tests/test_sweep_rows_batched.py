@@ -59,14 +59,36 @@ def _same_located(ps, qs) -> None:
         assert _bits(p.q) == _bits(q.q)
 
 
+# a pose grid of a planar parallel robot (prismatic joints) and of a spatial one
+# (spherical joints, the legs' split Newton), both across their Type II locus
+POSE_GRIDS = [
+    ("planar_3rpr.yaml", ["pose.x=0.4:1.6:0.1", "pose.y=2.4:3.4:0.1"]),
+    ("stewart_octahedral.yaml", ["pose.rz=-1.8:1.8:0.1", "pose.x=-0.04:0.04:0.04"]),
+]
+
+
+@pytest.mark.parametrize("file,spec", POSE_GRIDS, ids=[f for f, _ in POSE_GRIDS])
+def test_pose_grid_rows_together_are_each_row_alone(file: str, spec: list[str]) -> None:
+    run = SweepRun(str(ROOT / "examples" / file), spec, precision="float")
+    values = [v.values for v in run.vars]
+    column = run.engine.first_column(values)
+    together = _same_rows(run.engine, values, column)
+    assert sum(p.kind == "crossing" for r in together for p in r.located) >= 4
+
+
 def test_rows_together_are_each_row_alone(grid) -> None:
     eng, values, column = grid
-    starts = [(j, column.Z[j]) for j in range(len(values[1])) if column.reached[j]]
-    together = eng.rows_of(starts, eng.cols[0], values[0])
+    together = _same_rows(eng, values, column)
     kinds = {p.kind for r in together for p in r.located}
     # the comparison means something: rows that stop at folds and rows that cross
     assert {"fold", "crossing"} <= kinds
     assert any(not r.reached.all() for r in together) and any(r.reached.all() for r in together)
+
+
+def _same_rows(eng, values, column):
+    """Every reached row of the grid together, each compared with the row alone."""
+    starts = [(j, column.Z[j]) for j in range(len(values[1])) if column.reached[j]]
+    together = eng.rows_of(starts, eng.cols[0], values[0])
     for (j, z), got in zip(starts, together, strict=True):
         alone = eng.row(j, eng.cols[0], values[0], z)
         assert got.index == alone.index == j
@@ -77,6 +99,7 @@ def test_rows_together_are_each_row_alone(grid) -> None:
             assert _bits(got.ratio[t]) == _bits(alone.ratio[t]), (j, t)
         assert got.newton == alone.newton and got.stopped == alone.stopped
         _same_located(got.located, alone.located)
+    return together
 
 
 def test_crossings_between_rows_together_are_each_pair_alone(grid) -> None:

@@ -99,6 +99,8 @@ _KERNEL_RTOL = 1e-9
 _CHUNK = 4096
 #: rows of a grid followed, measured and refined together hold about this many samples
 _ROWS_SAMPLES = 8192
+#: ... and at most about this many bytes of their measures (a big mechanism's matrices)
+_ROWS_BYTES = 64 * 2**20
 
 
 @dataclass
@@ -1092,9 +1094,14 @@ class Sweep:
 
     def row_chunks(self, values: list[np.ndarray]) -> list[range]:
         """The rows of a grid in the chunks that are followed, measured and refined
-        together: as many rows as hold about _ROWS_SAMPLES samples (at least one)."""
+        together: as many rows as hold about _ROWS_SAMPLES samples and _ROWS_BYTES of
+        their measures (at least one)."""
         rows, k = len(values[1]), len(values[0])
-        per = max(1, _ROWS_SAMPLES // max(k, 1))
+        # a sample's measures keep its matrices (the closure's rows by the coordinates,
+        # the closure kernel, the tests' rows and singular vectors): about this many bytes
+        n, loops = self.problem.n, 6 * len(self.mech.loops)
+        size = 8 * (2 * loops * n + 2 * n * n + 24 * n)
+        per = max(1, min(_ROWS_SAMPLES, _ROWS_BYTES // max(size, 1)) // max(k, 1))
         return [range(lo, min(lo + per, rows)) for lo in range(0, rows, per)]
 
     def chunk_rows(
