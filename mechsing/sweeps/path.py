@@ -86,8 +86,10 @@ _KNOTS_FROM = 1000
 _NODE_HALVINGS = 3
 #: nodes a node's predictor is extrapolated through, besides the last (a cubic)
 _HISTORY = 3
-#: tangents a Problem keeps (a row's start asks for the same one up to three times)
-_TANGENTS_KEPT = 8
+#: tangents a Problem keeps (a row's start asks for the same one up to three times, and
+#: the rows of a grid are started together: a chunk of rows' starts, then their first
+#: nodes; a tangent is a few hundred bytes)
+_TANGENTS_KEPT = 4096
 
 
 @dataclass
@@ -137,7 +139,7 @@ class Problem:
     def tangent(self, z: np.ndarray, col: int) -> np.ndarray | None:
         """The unit commensurate tangent of the path's curve at the closed z (every
         coordinate of cm, zero on the given ones but ``col``; its sign arbitrary), or None
-        where the curve is not one-dimensional.  The last few are kept: a row's start
+        where the curve is not one-dimensional.  The last ones are kept: a row's start
         asks for it once to check that it can leave and once per direction."""
         key = (col, np.asarray(z, dtype=float).tobytes())
         if key in self._tangents:
@@ -209,20 +211,25 @@ def first_nodes_of(
     """:func:`first_nodes` of several starts (the rows of a grid), all in one batched
     Newton: each start's closed z0 and its paths; per start, its paths' first nodes."""
     out: list[list[np.ndarray | None]] = [[None] * len(paths) for _, paths in starts]
-    preds, bounds, which = [], [], []
+    steps, which, targets = [], [], []
     sc = pb.scale(col)
     for s, (z0, paths) in enumerate(starts):
         for m, values in enumerate(paths):
             if len(values) < 2:
                 continue
-            zp = _tangent_prediction(pb, z0, col, values[_next_node(values, 0, sc)])
-            if zp is None:
+            value = values[_next_node(values, 0, sc)]
+            d = _tangent_step(pb, z0, col, value)
+            if d is None:
                 continue
-            preds.append(zp)
-            bounds.append(_NODE_CORRECTION * pb.comm(zp - z0))
+            steps.append(d)
             which.append((s, m))
-    if preds:
-        Q, ok, _ = pb.close_near(np.array(preds), np.array(bounds))
+            targets.append(value)
+    if steps:
+        # the tangents' predictions, every path's in one update
+        Z0 = np.array([np.asarray(starts[s][0], dtype=float) for s, _ in which])
+        preds = _tangent_points(pb, Z0, np.array(steps), col, np.array(targets))
+        bounds = [_NODE_CORRECTION * pb.comm(zp - z0) for zp, z0 in zip(preds, Z0, strict=True)]
+        Q, ok, _ = pb.close_near(preds, np.array(bounds))
         for (s, m), q, good in zip(which, Q, ok, strict=True):
             out[s][m] = q if good else None
     return out
@@ -538,14 +545,30 @@ def _tangent_prediction(pb: Problem, z: np.ndarray, col: int, value: float) -> n
     """The point on the tangent of the path's curve at z where coordinate ``col`` is
     ``value`` (on the group, as :meth:`BatchClosure.update` moves), or None where the
     tangent is not defined or does not move ``col``."""
+    d = _tangent_step(pb, z, col, value)
+    if d is None:
+        return None
+    return _tangent_points(pb, np.asarray(z, dtype=float)[None, :], d[None, :], col, [value])[0]
+
+
+def _tangent_step(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
+    """The increment along the tangent at z that takes coordinate ``col`` to ``value``
+    (None where the tangent is not defined or does not move ``col``)."""
     tau = pb.tangent(z, col)
     if tau is None or tau[col] == 0:
         return None
-    d = pb.cm.float_frame.rates_back(tau * ((value - z[col]) / pb.scale(col) / tau[col]))
+    return pb.cm.float_frame.rates_back(tau * ((value - z[col]) / pb.scale(col) / tau[col]))
+
+
+def _tangent_points(
+    pb: Problem, Z: np.ndarray, D: np.ndarray, col: int, values: Any
+) -> np.ndarray:
+    """The points reached from the rows of Z by the increments D (:func:`_tangent_step`),
+    on the group, with ``col`` set to ``values``: one batched update for every row."""
     bc = pb.batch
-    zp = bc.update(np.asarray(z, dtype=float)[None, :], d[None, : bc.nb])[0]
-    zp[bc.nb :] = z[bc.nb :] + d[bc.nb :]
-    zp[col] = value
+    zp = bc.update(Z, D[:, : bc.nb])
+    zp[:, bc.nb :] = Z[:, bc.nb :] + D[:, bc.nb :]
+    zp[:, col] = values
     return zp
 
 
