@@ -174,3 +174,21 @@ def test_paths_followed_in_lockstep_are_each_followed_alone(grid) -> None:
         assert [(f.value, f.direction, f.far_side) for f in got.folds] == [
             (f.value, f.direction, f.far_side) for f in alone.folds
         ]
+
+
+def test_rows_measured_row_by_row_where_measures_depend_on_their_batch(grid, monkeypatch) -> None:
+    # measures that take a rank over their batch (a leg's inner loops) are taken row by
+    # row, as alone; the five-bar's are per configuration, so both ways agree exactly
+    eng, values, column = grid
+    starts = [(j, column.Z[j]) for j in range(0, len(values[1]), 5) if column.reached[j]]
+    batched = eng.rows_of(starts, eng.cols[0], values[0])
+    monkeypatch.setattr(type(eng.measures), "pointwise", property(lambda self: False))
+    measured, _ = eng._measure_rows([r.Z for r in batched], [r.reached for r in batched])
+    assert isinstance(measured, list) and len(measured) == len(batched)
+    apart = eng.rows_of(starts, eng.cols[0], values[0])
+    for a, b in zip(batched, apart, strict=True):
+        assert _bits(a.Z) == _bits(b.Z)
+        for t in eng.tests:
+            assert _bits(a.ratio[t]) == _bits(b.ratio[t]) and _bits(a.rank[t]) == _bits(b.rank[t])
+        _same_located(a.located, b.located)
+        assert len(b.measures) == int(np.sum(b.reached))
