@@ -225,8 +225,11 @@ class Measures:
 
     # ------------------------------------------------------------------ matrices
 
-    def matrices(self, Q: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray | None]:
-        """Each test's commensurate matrix at the rows of Q, and the closure kernel."""
+    def matrices(
+        self, Q: np.ndarray, signed: bool = False
+    ) -> tuple[dict[str, np.ndarray], np.ndarray | None]:
+        """Each test's commensurate matrix at the rows of Q, and the closure kernel
+        (``signed``: only the tests whose sign is read, :data:`SIGNED`)."""
         P = batched.poses(self.model, Q, fast=True)
         S = batched.current_screws(self.model, Q, P)
         Ss = self.frame.screws(S)
@@ -270,7 +273,7 @@ class Measures:
             if kernel is not None:  # the rows themselves, for the bordered sign test
                 out["input_rows"] = T / np.maximum(nT, 1e-300)[:, None, None]
                 out["output_rows"] = np.broadcast_to(self.E, (N, *self.E.shape))
-        if "constraint" in self.tests:
+        if "constraint" in self.tests and not signed:
             out["constraint"] = self._constraint(Ss)
         return out, kernel
 
@@ -421,7 +424,7 @@ class Measures:
         """For pairs of points (row ``ia`` of the measured batch ``a``, row of ``Qb``): per
         test, the determinant of the matrix at b compressed onto a's leading singular
         vectors.  Positive at a itself; negative where a rank drop was crossed."""
-        mats, kernel = self.matrices(Qb)
+        mats, kernel = self.matrices(Qb, signed=True)
         return self._compressed(a, ia, mats, kernel)
 
     def compressed_measured(
