@@ -170,18 +170,40 @@ class SweepRun:
             )
         else:
             source = self.engine.rows(values, progress)
+        if not self.grid:
+            with working_on(file=self.mechanism.path or self.mechanism.name):
+                for row in source:
+                    self._store(row)
+                    yield 0
+            return
+        # a grid's rows in chunks: the crossings between each row and the one before are
+        # refined for the whole chunk together, then its rows are stored in order (only
+        # the last row's configurations are kept past its chunk)
         prev: RowResult | None = None
+        chunks = iter(self.engine.row_chunks(values))
         with working_on(file=self.mechanism.path or self.mechanism.name):
-            for row in source:
-                self._store(row)
-                if self.grid and prev is not None and row.Z is not None and prev.Z is not None:
-                    y = (float(values[1][prev.index]), float(values[1][row.index]))
-                    self.located += self.engine.between_rows(y, prev, row, self.engine.cols[1])
-                if prev is not None:
-                    prev.Z = None  # only the last row's configurations are kept
-                    prev.measures = None
-                prev = row if row.Z is not None else None
-                yield max(row.index, 0)
+            while True:
+                chunk = next(chunks, None)
+                if chunk is None:
+                    break
+                rows = [next(source) for _ in chunk]
+                pairs, at = [], []
+                for row in rows:
+                    if prev is not None and row.Z is not None and prev.Z is not None:
+                        pairs.append((prev, row))
+                        at.append(row.index)
+                    prev = row if row.Z is not None else None
+                between = dict(
+                    zip(at, self.engine.between_many(pairs, self.engine.cols[1]), strict=True)
+                )
+                for row in rows:
+                    self._store(row)
+                    self.located += between.get(row.index, [])
+                    yield row.index
+                for a, _ in pairs:
+                    if a is not prev:
+                        a.Z = None
+                        a.measures = None
 
     def _store(self, row: RowResult) -> None:
         at: Any = slice(None) if not self.grid else row.index

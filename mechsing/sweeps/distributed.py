@@ -1,22 +1,23 @@
 """The rows of a grid sweep computed on a Dask ``distributed`` cluster.
 
 Owns :func:`distributed_rows`, the distributed twin of :meth:`.engine.Sweep.rows` for a
-grid, and the work a Dask worker does for it (:func:`_row_task`).
+grid, and the work a Dask worker does for it (:func:`_rows_task`).
 
 Conventions:
 
 * **The serial result, bit for bit.**  This process (the driver) computes the grid's
   first column itself (:meth:`.engine.Sweep.first_column`, as the serial run does);
-  each row ``j`` is then one task on a worker, the very call the serial run makes,
-  ``Sweep.row(j, cx, values[0], column.Z[j])``, whose inputs travel
+  each chunk of rows (:meth:`.engine.Sweep.row_chunks`, the chunks the serial run
+  computes together) is then one task on a worker, the very call the serial run makes,
+  ``Sweep.rows_of([(j, column.Z[j]) ...], cx, values[0])``, whose inputs travel
   pickled (exact floats).  Rows are independent once the first column is known, so the
-  same computations in the same order per row give the same arrays.
+  same computations in the same order per chunk give the same arrays.
 * **Row order.**  Results come back in any order; they are buffered and yielded in row
   order, so the caller (:class:`mechsing.sweeps.SweepRun`) sees the serial sequence and
   computes the crossings between neighbouring rows as it does serially.  An error in a
-  row is raised when that row's turn comes (the rows before it are yielded first).
-  At most :data:`AHEAD_PER_THREAD` rows per worker thread are submitted ahead of the
-  next row to yield (bounded memory on a long grid).
+  chunk is raised when that chunk's turn comes (the chunks before it are yielded
+  first).  At most :data:`AHEAD_PER_THREAD` chunks per worker thread are submitted ahead
+  of the next chunk to yield (bounded memory on a long grid).
 * **Workers build the sweep once per process.**  A task carries the row's start
   configuration and a reference to one scattered recipe: the pickled mechanism (a
   :class:`~mechsing.model.Mechanism` pickles; the engine itself is never sent), the
@@ -27,8 +28,7 @@ Conventions:
   specs and the ``--from`` configuration.  Rows on one worker process run one at a
   time (the arbitrary precision context is process-global), so a worker with several
   threads gains nothing: start workers with one thread each.
-* ``progress`` is called with the row's number of samples when a row finishes (in the
-  order rows finish).
+* ``progress`` is called with the row's number of samples when a row is yielded.
 * Dask is the optional extra ``mechsing[dask]``; without it a distributed sweep is a
   :class:`~mechsing.errors.UserError` that says how to install it.
 """
@@ -52,7 +52,7 @@ from mechsing.sweeps.engine import RowResult, Sweep
 
 __all__ = ["AHEAD_PER_THREAD", "distributed_rows"]
 
-#: rows submitted ahead of the next row to yield, per worker thread of the cluster
+#: chunks of rows submitted ahead of the next to yield, per worker thread of the cluster
 AHEAD_PER_THREAD = 4
 
 #: recipes (sweeps) a worker process keeps built
@@ -169,49 +169,52 @@ def _in_order(
     ahead: int,
     progress: Callable[[int], None] | None,
 ) -> Iterator[RowResult]:
-    """Submit the rows (at most ``ahead`` past the next to yield), yield them in order."""
+    """Submit the chunks of rows (at most ``ahead`` past the next to yield), yield their
+    rows in order."""
     assert column.Z is not None
-    rows, k = len(values[1]), len(values[0])
+    k = len(values[0])
+    chunks = eng.row_chunks(values)
     tag = uuid.uuid4().hex
     finished = as_completed()
-    pending: dict[Any, tuple[int, Any]] = {}  # future key -> (row, future)
-    done: dict[int, tuple[RowResult | None, BaseException | None]] = {}
+    pending: dict[Any, tuple[int, Any]] = {}  # future key -> (chunk, future)
+    done: dict[int, tuple[list[RowResult] | None, BaseException | None]] = {}
     submitted = 0
     try:
-        for j in range(rows):
-            while submitted < rows and submitted <= j + ahead:
+        for c in range(len(chunks)):
+            while submitted < len(chunks) and submitted <= c + ahead:
                 i = submitted
                 submitted += 1
-                if not column.reached[i]:  # nothing to compute: as the serial run does
-                    done[i] = (eng.unreached_row(i, k), None)
-                    if progress:
-                        progress(k)
+                starts = [(j, column.Z[j]) for j in chunks[i] if column.reached[j]]
+                if not starts:  # nothing to compute: as the serial run does
+                    done[i] = ([eng.unreached_row(j, k) for j in chunks[i]], None)
                     continue
                 fut = client.submit(
-                    _row_task,
+                    _rows_task,
                     shared,
-                    i,
-                    column.Z[i],
-                    key=f"mechsing-row-{tag}-{i}",
+                    starts,
+                    key=f"mechsing-rows-{tag}-{i}",
                     pure=False,
                 )
                 pending[fut.key] = (i, fut)
                 finished.add(fut)
-            while j not in done:
+            while c not in done:
                 fut = next(finished)
                 i, _ = pending.pop(fut.key)
                 try:
-                    done[i] = (fut.result(), None)
+                    got = {r.index: r for r in fut.result()}
+                    rows = [got.get(j) or eng.unreached_row(j, k) for j in chunks[i]]
+                    done[i] = (rows, None)
                 except Exception as exc:  # raised in row order, below
                     done[i] = (None, exc)
                 del fut
-                if progress:
-                    progress(k)
-            row, error = done.pop(j)
+            rows, error = done.pop(c)
             if error is not None:
                 raise error
-            assert row is not None
-            yield row
+            assert rows is not None
+            for row in rows:
+                if progress:  # before the row is yielded: its consumer may stop there
+                    progress(k)
+                yield row
     finally:
         finished.clear()
         if pending:
@@ -224,8 +227,9 @@ _built: OrderedDict[tuple[Any, ...], Sweep] = OrderedDict()
 _lock = threading.Lock()
 
 
-def _row_task(recipe: _Recipe, j: int, z: np.ndarray) -> RowResult:
-    """Row j of the grid from its first-column configuration z (on a worker)."""
+def _rows_task(recipe: _Recipe, starts: list[tuple[int, np.ndarray]]) -> list[RowResult]:
+    """The rows of one chunk of the grid from their first-column configurations (on a
+    worker): ``Sweep.rows_of``, as the serial run computes that chunk."""
     from mechsing import __version__
 
     if recipe.version != __version__:
@@ -242,4 +246,4 @@ def _row_task(recipe: _Recipe, j: int, z: np.ndarray) -> RowResult:
             while len(_built) > _KEPT:
                 _built.popitem(last=False)
         _built.move_to_end(recipe.key)
-        return sweep.row(j, sweep.cols[0], recipe.row_values, z)
+        return sweep.rows_of(starts, sweep.cols[0], recipe.row_values)

@@ -6,7 +6,10 @@ Owns :class:`Sweep` (the problem of one sweep, built once) and the row-by-row wo
   configuration's value (reached from it by continuation), and is followed forward to
   the end of the range and back to its beginning (:func:`mechsing.sweeps.path.follow`);
 * a **grid** (two) is rows of paths in the first variable, each started from a first
-  column (a path in the second variable at the first variable's start sample);
+  column (a path in the second variable at the first variable's start sample); the rows
+  are computed in chunks (:meth:`Sweep.rows_of`): their batched Newton calls, measures
+  and refinements are shared by the chunk's rows, each row's result that of the row
+  alone;
 * every reached sample gets the float measures of :class:`~.measures.Measures`;
 * along a row, every sign change of a test's compressed determinant between two
   samples is refined by Brent's method, every sampled minimum that could hide a zero
@@ -53,12 +56,14 @@ from mechsing.numeric import (
 from mechsing.sweeps.measures import Measures, PointMeasures
 from mechsing.sweeps.path import (
     Fold,
+    PathTrace,
     Problem,
     _Arc,
     _nodes,
     close_segments,
-    first_nodes,
+    first_nodes_of,
     follow,
+    follow_together,
 )
 from mechsing.sweeps.spec import Variable
 
@@ -92,6 +97,10 @@ _BRANCH_MIN_SWEPT = 0.05
 _KERNEL_RTOL = 1e-9
 #: measures are computed this many configurations at a time (bounds the working memory)
 _CHUNK = 4096
+#: rows of a grid followed, measured and refined together hold about this many samples
+_ROWS_SAMPLES = 8192
+#: ... and at most about this many bytes of their measures (a big mechanism's matrices)
+_ROWS_BYTES = 64 * 2**20
 
 
 @dataclass
@@ -400,30 +409,128 @@ class Sweep:
     def row(self, index: int, col: int, values: np.ndarray, z: np.ndarray) -> RowResult:
         """One path in ``col`` through ``values`` from the closed z (at any value of col),
         with its measures and the singularities located along it."""
-        k0, zk = self.start_of(col, values, z)
+        return self.rows_of([(index, z)], col, values)[0]
+
+    def rows_of(
+        self, starts: list[tuple[int, np.ndarray]], col: int, values: np.ndarray
+    ) -> list[RowResult]:
+        """:meth:`row` of several rows of a grid (each its index and closed configuration
+        at any value of ``col``), the rows' batched work done together: their first
+        nodes in one batched Newton, the samples between their nodes in one, their
+        measures in one batch, and the crossings along them refined together.  Each row
+        is followed, measured and refined exactly as alone (every batched step is per
+        configuration)."""
         pb = self.problem
-        # the first node of each direction: one batched Newton
-        first = first_nodes(pb, zk, col, [values[k0:], values[k0::-1]])
-        fwd = follow(pb, zk, col, values[k0:], fine=False, first=first[0])
-        bwd = follow(pb, zk, col, values[k0::-1], fine=False, first=first[1])
-        # the samples between the nodes of both directions: one batched Newton
-        close_segments(pb, [fwd, bwd], col)
         K = len(values)
-        Z = np.full((K, pb.n), np.nan)
-        Z[k0:] = fwd.Z
-        Z[: k0 + 1] = bwd.Z[::-1]
-        newton = int(np.sum(fwd.newton)) + int(np.sum(bwd.newton))
-        reached = ~np.isnan(Z[:, 0])
-        pm = self._measure(Z, reached)
-        rank = {t: np.full(K, -2, dtype=np.int16) for t in self.tests}
-        ratio = {t: np.full(K, np.nan) for t in self.tests}
-        for t in self.tests:
-            rank[t][reached] = pm.rank[t]
-            ratio[t][reached] = pm.ratio[t]
-        located = [self._fold(f, index, values) for f in [*fwd.folds, *bwd.folds]]
-        located += self._along(Z, reached, pm, ratio, col, index)
+        begun = [self.start_of(col, values, z) for _, z in starts]
+        # the first node of each direction of each row: one batched Newton
+        firsts = first_nodes_of(
+            pb, [(zk, [values[k0:], values[k0::-1]]) for k0, zk in begun], col
+        )
+        # both directions of every row, node by node in lockstep
+        flat = follow_together(
+            pb,
+            col,
+            [
+                (zk, v, f)
+                for (k0, zk), first in zip(begun, firsts, strict=True)
+                for v, f in ((values[k0:], first[0]), (values[k0::-1], first[1]))
+            ],
+        )
+        traces: list[tuple[PathTrace, PathTrace]] = list(
+            zip(flat[0::2], flat[1::2], strict=True)
+        )
+        # the samples between the nodes of every row's two directions: one batched Newton
+        close_segments(
+            pb,
+            [tr for pair in traces for tr in pair],
+            col,
+            [[2 * r, 2 * r + 1] for r in range(len(traces))],
+        )
+        Zs, reacheds = [], []
+        for (k0, _), (fwd, bwd) in zip(begun, traces, strict=True):
+            Z = np.full((K, pb.n), np.nan)
+            Z[k0:] = fwd.Z
+            Z[: k0 + 1] = bwd.Z[::-1]
+            Zs.append(Z)
+            reacheds.append(~np.isnan(Z[:, 0]))
+        pm_all, offsets = self._measure_rows(Zs, reacheds)
+        pms = [
+            pm if pm is not None else PointMeasures.gather([(pm_all, slice(o, o + int(np.sum(r))))])
+            for pm, o, r in zip(
+                pm_all if isinstance(pm_all, list) else [None] * len(Zs),
+                offsets,
+                reacheds,
+                strict=True,
+            )
+        ]
+        ratios = []
+        ranks = []
+        for pm, reached in zip(pms, reacheds, strict=True):
+            rank = {t: np.full(K, -2, dtype=np.int16) for t in self.tests}
+            ratio = {t: np.full(K, np.nan) for t in self.tests}
+            for t in self.tests:
+                rank[t][reached] = pm.rank[t]
+                ratio[t][reached] = pm.ratio[t]
+            ranks.append(rank)
+            ratios.append(ratio)
+        if isinstance(pm_all, list):  # measured row by row: refined row by row
+            along = [
+                self._along(Z, reached, pm, ratio, col, i)
+                for (i, _), Z, reached, pm, ratio in zip(
+                    starts, Zs, reacheds, pms, ratios, strict=True
+                )
+            ]
+        else:
+            along = self._along_rows(
+                pm_all,
+                [
+                    (Z, reached, o, ratio, col, i)
+                    for (i, _), Z, reached, o, ratio in zip(
+                        starts, Zs, reacheds, offsets, ratios, strict=True
+                    )
+                ],
+            )
+        out = []
+        for r, (index, _) in enumerate(starts):
+            fwd, bwd = traces[r]
+            Z, reached, pm, rank, ratio = Zs[r], reacheds[r], pms[r], ranks[r], ratios[r]
+            newton = int(np.sum(fwd.newton)) + int(np.sum(bwd.newton))
+            located = [self._fold(f, index, values) for f in [*fwd.folds, *bwd.folds]]
+            located += along[r]
+            stopped = self._inside(Z, reached, rank, ratio, col, index, located)
+            var = self._variable(col)
+            for trace, end in ((fwd, values[-1]), (bwd, values[0])):
+                if trace.stopped:
+                    # where it stopped: the last sample reached towards that end
+                    got = trace.Z[~np.isnan(trace.Z[:, 0])]
+                    last = var.shown(float(got[-1][col])) if len(got) else "its start"
+                    stopped.append(
+                        f"towards {var.name} = {var.shown(float(end))}: stopped after {last}: "
+                        f"{trace.stopped}"
+                    )
+            out.append(
+                RowResult(
+                    index, reached, rank, ratio, _merge(located, self), stopped, newton, Z, pm
+                )
+            )
+        return out
+
+    def _inside(
+        self,
+        Z: np.ndarray,
+        reached: np.ndarray,
+        rank: dict[str, np.ndarray],
+        ratio: dict[str, np.ndarray],
+        col: int,
+        index: int,
+        located: list[Located],
+    ) -> list[str]:
+        """The tests singular at every reached sample of a row (the path lies in their
+        singular set): said in the row's notes, and where the rank they keep along the
+        path drops further, those points located (added to ``located``)."""
+        K = len(Z)
         always = [t for t in self.tests if np.any(reached) and np.all(ratio[t][reached] <= _TAU_HI)]
-        var = self._variable(col)
         stopped: list[str] = []
         for t in always:
             g = self.measures.generic[t]
@@ -445,15 +552,7 @@ class Sweep:
                             f"{t}: inside that set its rank is {level} along the path; "
                             f"the points where it drops below {level} are located"
                         )
-        for trace, end in ((fwd, values[-1]), (bwd, values[0])):
-            if trace.stopped:
-                # where it stopped: the last sample reached towards that end
-                got = trace.Z[~np.isnan(trace.Z[:, 0])]
-                last = var.shown(float(got[-1][col])) if len(got) else "its start"
-                stopped.append(
-                    f"towards {var.name} = {var.shown(float(end))}: stopped after {last}: {trace.stopped}"
-                )
-        return RowResult(index, reached, rank, ratio, _merge(located, self), stopped, newton, Z, pm)
+        return stopped
 
     @contextlib.contextmanager
     def _levelled(self, t: str, level: int) -> Iterator[None]:
@@ -465,6 +564,19 @@ class Sweep:
             yield
         finally:
             self.measures = whole
+
+    def _measure_rows(
+        self, Zs: list[np.ndarray], reacheds: list[np.ndarray]
+    ) -> tuple[PointMeasures | list[PointMeasures], list[int]]:
+        """The measures of several rows' reached samples: one batch (in chunks of
+        _CHUNK configurations), with each row's offset in it, when the measures are per
+        configuration; otherwise a list, row by row (each row its own batch, as alone)."""
+        sizes = [int(np.sum(r)) for r in reacheds]
+        offsets = [int(x) for x in np.cumsum([0, *sizes[:-1]])]
+        if not self.measures.pointwise:
+            return [self._measure(Z, r) for Z, r in zip(Zs, reacheds, strict=True)], offsets
+        Z = np.concatenate([Z[r] for Z, r in zip(Zs, reacheds, strict=True)])
+        return self._measure(Z, np.ones(len(Z), dtype=bool)), offsets
 
     def _measure(self, Z: np.ndarray, reached: np.ndarray) -> PointMeasures:
         Q = Z[reached][:, : self.model.n]
@@ -532,87 +644,167 @@ class Sweep:
         index: int,
     ) -> list[Located]:
         """Sign changes and minima of each test along one row."""
-        out: list[Located] = []
-        where = np.flatnonzero(reached)
-        # the reached samples whose next one is reached too: the pairs, and their rows in
-        # the measured batch (which holds the reached samples in order)
-        first = np.flatnonzero((where[:-1] + 1 == where[1:]) if len(where) else [])
-        PA = where[first]
-        pairs = [(int(a), int(a) + 1) for a in PA]
-        if not pairs:
-            return out
-        ia, ib = first, first + 1
-        dets = self.measures.compressed_pairs(pm, ia, ib)
-        K = len(Z)
-        # the samples whose neighbours are both reached (the minima's candidates)
-        inner = np.zeros(K, dtype=bool)
-        inner[1:-1] = reached[:-2] & reached[1:-1] & reached[2:]
+        return self._along_rows(pm, [(Z, reached, 0, ratio, col, index)])[0]
+
+    def _along_rows(
+        self,
+        pm: PointMeasures,
+        rows: list[tuple[np.ndarray, np.ndarray, int, dict[str, np.ndarray], int, int]],
+    ) -> list[list[Located]]:
+        """Sign changes and minima of each test along several rows, each ``(Z, reached,
+        offset, ratio, col, index)``: its reached samples are the measured batch ``pm``'s
+        from ``offset`` on, in order.  Test by test, the sign changes of every row are
+        refined together (:meth:`_crossings`, each bracket on its own), then each row's
+        minima; each row's points are found as when it is alone."""
+        outs: list[list[Located]] = [[] for _ in rows]
+        # per row: its pairs of neighbouring reached samples, and their rows in the batch
+        # (which holds the row's reached samples in order, from its offset)
+        info: list[tuple[list[tuple[int, int]], np.ndarray, np.ndarray, np.ndarray] | None] = []
+        ias, ibs = [], []
+        for Z, reached, off, _, _, _ in rows:
+            where = np.flatnonzero(reached)
+            first = np.flatnonzero((where[:-1] + 1 == where[1:]) if len(where) else [])
+            PA = where[first]
+            pairs = [(int(a), int(a) + 1) for a in PA]
+            if not pairs:
+                info.append(None)
+                continue
+            K = len(Z)
+            # the samples whose neighbours are both reached (the minima's candidates)
+            inner = np.zeros(K, dtype=bool)
+            inner[1:-1] = reached[:-2] & reached[1:-1] & reached[2:]
+            info.append((pairs, PA, off + first, inner))
+            ias.append(off + first)
+            ibs.append(off + first + 1)
+        if not ias:
+            return outs
+        dets_all = self.measures.compressed_pairs(pm, np.concatenate(ias), np.concatenate(ibs))
+        dets: list[dict[str, np.ndarray] | None] = []
+        at = 0
+        for got in info:
+            if got is None:
+                dets.append(None)
+                continue
+            n = len(got[0])
+            dets.append({t: d[at : at + n] for t, d in dets_all.items()})
+            at += n
+        crossed: list[set[int]] = [set() for _ in rows]
         for t in self.tests:
-            crossed: set[int] = set()
-            d = dets.get(t)
-            rho = ratio[t]
-            # between two samples that are both singular for the test, its sign is noise:
-            # a sign change counts only where one end has a decided full generic rank
-            hits = (
-                []
-                if d is None
-                else np.flatnonzero((d < 0) & (np.maximum(rho[PA], rho[PA + 1]) > _TAU_HI)).tolist()
-            )
-            # a pair holding a point already located for another test (the closure's
-            # first) that zeroes this one too: the same point, placed by that test
-            # (near a singular point of the closure this test's zero is blurred)
-            done = [
-                k
-                for k in hits
-                if self._holds(out, t, Z[pairs[k][0], col], Z[pairs[k][1], col], col)
-            ]
-            crossed.update(x for k in done for x in pairs[k])
-            hits = [k for k in hits if k not in done]
-            if hits:
-                A = np.array([pairs[k][0] for k in hits])
-                B = np.array([pairs[k][1] for k in hits])
-                crossed.update(A.tolist() + B.tolist())
-                # a sign change of the closure is a singular point the path passes
-                # through: a double root for Newton, placed by the path on both sides
-                refined = (
-                    [self._through(Z, reached, int(a), int(a) + 1, col) for a in A]
-                    if t == "closure"
-                    else self._crossings(t, Z[A], Z[B], col, pm, ia[hits])
-                )
-                for a, found in zip(A, refined, strict=True):
-                    if found is None:
-                        crossed.difference_update((int(a), int(a) + 1))
-                        continue
-                    z, r = found
-                    out.append(self._at(z, "crossing", (t,), r, "row", (index, int(a))))
-            # a sampled minimum that could hide a zero: not singular on both sides (no
-            # isolated zero to place there), at most its neighbours, and low next to how
-            # far they rise
-            lo, mid, hi = np.full(K, np.nan), rho, np.full(K, np.nan)
-            lo[1:], hi[:-1] = rho[:-1], rho[1:]
-            big = np.maximum(lo, hi)
-            with np.errstate(invalid="ignore"):
-                low = (
-                    inner
-                    & (big > _TAU_HI)
-                    & (mid <= lo)
-                    & (mid <= hi)
-                    & ~(mid > SWEEP_MINIMUM_SCREEN * (big - mid))
-                )
-            for k in np.flatnonzero(low).tolist():
-                if k in crossed:
+            # the sign changes of every row (A: the first sample of each pair)
+            todo: list[np.ndarray | None] = []
+            for r, (Z, _, _, ratio, col, _) in enumerate(rows):
+                crossed[r] = set()
+                got, dr = info[r], dets[r]
+                if got is None or dr is None:
+                    todo.append(None)
                     continue
-                if self._holds(out, t, Z[k - 1, col], Z[k + 1, col], col):
-                    continue  # the point located there for another test zeroes this one
-                found = None
-                if t == "closure":
-                    found = self._through(Z, reached, k - 1, k + 1, col)
-                if found is None:
-                    found = self._minimum(t, Z[k - 1], Z[k], Z[k + 1], col)
-                if found is not None:
-                    z, r = found
-                    out.append(self._at(z, "minimum", (t,), r, "row", (index, k)))
-        return out
+                pairs, PA, _, _ = got
+                d = dr.get(t)
+                rho = ratio[t]
+                # between two samples that are both singular for the test, its sign is
+                # noise: a sign change counts only where one end has a decided full generic
+                # rank
+                hits = (
+                    []
+                    if d is None
+                    else np.flatnonzero(
+                        (d < 0) & (np.maximum(rho[PA], rho[PA + 1]) > _TAU_HI)
+                    ).tolist()
+                )
+                # a pair holding a point already located for another test (the closure's
+                # first) that zeroes this one too: the same point, placed by that test
+                # (near a singular point of the closure this test's zero is blurred)
+                done = [
+                    k
+                    for k in hits
+                    if self._holds(outs[r], t, Z[pairs[k][0], col], Z[pairs[k][1], col], col)
+                ]
+                crossed[r].update(x for k in done for x in pairs[k])
+                hits = [k for k in hits if k not in done]
+                todo.append(np.array(hits, dtype=int) if hits else None)
+            # a sign change of the closure is a singular point the path passes through: a
+            # double root for Newton, placed by the path on both sides (row by row);
+            # the others' zeros, every row's together
+            refined: list[list[tuple[np.ndarray, float] | None]] = [[] for _ in rows]
+            if t == "closure":
+                for r, hits_r in enumerate(todo):
+                    if hits_r is not None:
+                        Z, reached, _, _, col, _ = rows[r]
+                        refined[r] = [
+                            self._through(Z, reached, int(a), int(a) + 1, col)
+                            for a in info[r][1][hits_r]  # type: ignore[index]
+                        ]
+            else:
+                which = [r for r, h in enumerate(todo) if h is not None]
+                if which:
+                    col = rows[which[0]][4]
+                    ZA = np.concatenate([rows[r][0][info[r][1][todo[r]]] for r in which])  # type: ignore[index]
+                    ZB = np.concatenate([rows[r][0][info[r][1][todo[r]] + 1] for r in which])  # type: ignore[index]
+                    ia = np.concatenate([info[r][2][todo[r]] for r in which])  # type: ignore[index]
+                    found_all = self._crossings(t, ZA, ZB, col, pm, ia)
+                    at = 0
+                    for r in which:
+                        n = len(todo[r])  # type: ignore[arg-type]
+                        refined[r] = found_all[at : at + n]
+                        at += n
+            for r, hits_r in enumerate(todo):
+                got = info[r]
+                if got is None:
+                    continue
+                Z, _, _, ratio, col, index = rows[r]
+                out = outs[r]
+                if hits_r is not None:
+                    A = got[1][hits_r]
+                    crossed[r].update(A.tolist() + (A + 1).tolist())
+                    for a, found in zip(A, refined[r], strict=True):
+                        if found is None:
+                            crossed[r].difference_update((int(a), int(a) + 1))
+                            continue
+                        z, rr = found
+                        out.append(self._at(z, "crossing", (t,), rr, "row", (index, int(a))))
+                self._minima(t, Z, rows[r][1], ratio[t], got[3], crossed[r], col, index, out)
+        return outs
+
+    def _minima(
+        self,
+        t: str,
+        Z: np.ndarray,
+        reached: np.ndarray,
+        rho: np.ndarray,
+        inner: np.ndarray,
+        crossed: set[int],
+        col: int,
+        index: int,
+        out: list[Located],
+    ) -> None:
+        """A row's sampled minima of test ``t`` that could hide a zero, refined (added to
+        ``out``): not singular on both sides (no isolated zero to place there), at most
+        its neighbours, and low next to how far they rise."""
+        K = len(Z)
+        lo, mid, hi = np.full(K, np.nan), rho, np.full(K, np.nan)
+        lo[1:], hi[:-1] = rho[:-1], rho[1:]
+        big = np.maximum(lo, hi)
+        with np.errstate(invalid="ignore"):
+            low = (
+                inner
+                & (big > _TAU_HI)
+                & (mid <= lo)
+                & (mid <= hi)
+                & ~(mid > SWEEP_MINIMUM_SCREEN * (big - mid))
+            )
+        for k in np.flatnonzero(low).tolist():
+            if k in crossed:
+                continue
+            if self._holds(out, t, Z[k - 1, col], Z[k + 1, col], col):
+                continue  # the point located there for another test zeroes this one
+            found = None
+            if t == "closure":
+                found = self._through(Z, reached, k - 1, k + 1, col)
+            if found is None:
+                found = self._minimum(t, Z[k - 1], Z[k], Z[k + 1], col)
+            if found is not None:
+                z, r = found
+                out.append(self._at(z, "minimum", (t,), r, "row", (index, k)))
 
     def _holds(self, out: list[Located], t: str, va: float, vb: float, col: int) -> bool:
         """Whether a point of ``out`` lies between the swept values va and vb and is
@@ -847,38 +1039,94 @@ class Sweep:
     ) -> list[Located]:
         """The sign changes of each test between two neighbouring rows of a grid (at the
         same sample of the row variable), refined along the column."""
-        assert ra.Z is not None and rb.Z is not None and ra.measures is not None
-        both = np.flatnonzero(ra.reached & rb.reached)
-        if not len(both):
-            return []
-        pos = {int(k): i for i, k in enumerate(np.flatnonzero(ra.reached))}
-        ia = np.array([pos[int(k)] for k in both])
-        if rb.measures is not None and rb.measures.matrices is not None:
-            # row b's matrices at those samples were kept by its own measures
-            pos_b = {int(k): i for i, k in enumerate(np.flatnonzero(rb.reached))}
-            ib = np.array([pos_b[int(k)] for k in both])
-            dets = self.measures.compressed_measured(ra.measures, ia, rb.measures, ib)
-        else:
-            dets = self.measures.compressed(ra.measures, ia, rb.Z[both][:, : self.model.n])
-        out = []
-        for t in dets:
-            hits = np.flatnonzero(dets[t] < 0)
-            if not len(hits):
+        return self.between_many([(ra, rb)], col)[0]
+
+    def between_many(self, pairs: list[tuple[RowResult, RowResult]], col: int) -> list[list[Located]]:
+        """:meth:`between_rows` of several pairs of neighbouring rows (ra, rb): the sign
+        changes of each test between them, every pair's refined together (each bracket
+        on its own, as for one pair)."""
+        found: list[dict[str, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]] = []
+        for ra, rb in pairs:
+            assert ra.Z is not None and rb.Z is not None and ra.measures is not None
+            mine: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = {}
+            found.append(mine)
+            both = np.flatnonzero(ra.reached & rb.reached)
+            if not len(both):
                 continue
-            K = both[hits]
-            found_all = self._crossings(t, ra.Z[K], rb.Z[K], col, ra.measures, ia[hits])
-            for k, found in zip(K, found_all, strict=True):
-                if found is not None:
-                    z, r = found
-                    out.append(self._at(z, "crossing", (t,), r, "column", (ra.index, int(k))))
+            pos = {int(k): i for i, k in enumerate(np.flatnonzero(ra.reached))}
+            ia = np.array([pos[int(k)] for k in both])
+            if rb.measures is not None and rb.measures.matrices is not None:
+                # row b's matrices at those samples were kept by its own measures
+                pos_b = {int(k): i for i, k in enumerate(np.flatnonzero(rb.reached))}
+                ib = np.array([pos_b[int(k)] for k in both])
+                dets = self.measures.compressed_measured(ra.measures, ia, rb.measures, ib)
+            else:
+                dets = self.measures.compressed(ra.measures, ia, rb.Z[both][:, : self.model.n])
+            for t in dets:
+                hits = np.flatnonzero(dets[t] < 0)
+                if len(hits):
+                    K = both[hits]
+                    mine[t] = (K, ra.Z[K], rb.Z[K], ia[hits])
+        # each test's sign changes, every pair's together
+        refined: dict[str, list[tuple[np.ndarray, float] | None]] = {}
+        for t in self.tests:
+            which = [p for p, mine in enumerate(found) if t in mine]
+            if not which:
+                continue
+            pm = PointMeasures.gather(
+                [(pairs[p][0].measures, found[p][t][3]) for p in which]  # type: ignore[misc]
+            )
+            ZA = np.concatenate([found[p][t][1] for p in which])
+            ZB = np.concatenate([found[p][t][2] for p in which])
+            refined[t] = self._crossings(t, ZA, ZB, col, pm, np.arange(len(ZA)))
+        out: list[list[Located]] = []
+        at = dict.fromkeys(refined, 0)
+        for (ra, _), mine in zip(pairs, found, strict=True):
+            got: list[Located] = []
+            for t, (K, _, _, _) in mine.items():
+                for k, f in zip(K, refined[t][at[t] : at[t] + len(K)], strict=True):
+                    if f is not None:
+                        z, r = f
+                        got.append(self._at(z, "crossing", (t,), r, "column", (ra.index, int(k))))
+                at[t] += len(K)
+            out.append(got)
         return out
+
+    def row_chunks(self, values: list[np.ndarray]) -> list[range]:
+        """The rows of a grid in the chunks that are followed, measured and refined
+        together: as many rows as hold about _ROWS_SAMPLES samples and _ROWS_BYTES of
+        their measures (at least one)."""
+        rows, k = len(values[1]), len(values[0])
+        # a sample's measures keep its matrices (the closure's rows by the coordinates,
+        # the closure kernel, the tests' rows and singular vectors): about this many bytes
+        n, loops = self.problem.n, 6 * len(self.mech.loops)
+        size = 8 * (2 * loops * n + 2 * n * n + 24 * n)
+        per = max(1, min(_ROWS_SAMPLES, _ROWS_BYTES // max(size, 1)) // max(k, 1))
+        return [range(lo, min(lo + per, rows)) for lo in range(0, rows, per)]
+
+    def chunk_rows(
+        self, chunk: range, column: RowResult, values: list[np.ndarray]
+    ) -> list[RowResult]:
+        """The rows of one chunk (:meth:`row_chunks`), from the first column's
+        configurations: the reached ones together (:meth:`rows_of`)."""
+        assert column.Z is not None
+        starts = [(j, column.Z[j]) for j in chunk if column.reached[j]]
+        got = dict(
+            zip(
+                [j for j, _ in starts],
+                self.rows_of(starts, self.cols[0], values[0]) if starts else [],
+                strict=True,
+            )
+        )
+        return [got[j] if j in got else self.unreached_row(j, len(values[0])) for j in chunk]
 
     def rows(
         self, values: list[np.ndarray], progress: Callable[[int], None] | None = None
     ) -> Iterator[RowResult]:
         """The rows of the sweep in order (one for a path), each with its measures and the
         points located along it (the crossings between rows are the caller's:
-        :meth:`between_rows`)."""
+        :meth:`between_rows`).  A grid's rows are computed in chunks
+        (:meth:`row_chunks`)."""
         if len(self.cols) == 1:
             res = self.row(0, self.cols[0], values[0], self.z0)
             if progress:
@@ -886,15 +1134,11 @@ class Sweep:
             yield res
             return
         column = self.first_column(values)
-        assert column.Z is not None
-        cx = self.cols[0]
-        for j in range(len(values[1])):
-            if not column.reached[j]:
-                yield self.unreached_row(j, len(values[0]))
-            else:
-                yield self.row(j, cx, values[0], column.Z[j])
-            if progress:
-                progress(len(values[0]))
+        for chunk in self.row_chunks(values):
+            for res in self.chunk_rows(chunk, column, values):
+                if progress:  # before the row is yielded: its consumer may stop there
+                    progress(len(values[0]))
+                yield res
 
     def first_column(self, values: list[np.ndarray]) -> RowResult:
         """A grid's first column: a path in the second variable, at the first variable's

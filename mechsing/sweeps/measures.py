@@ -48,6 +48,7 @@ times L); twists ``(omega, v)``.
 from __future__ import annotations
 
 import copy
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -99,6 +100,36 @@ class PointMeasures:
     #: the largest singular value of each test's matrix, per configuration
     top: dict[str, np.ndarray] = field(default_factory=dict)
     _last: Any = field(default=None, repr=False, compare=False)
+
+    def __len__(self) -> int:
+        return len(next(iter(self.ratio.values()))) if self.ratio else 0
+
+    @staticmethod
+    def gather(parts: list[tuple[PointMeasures, Any]]) -> PointMeasures:
+        """The measures of the points ``idx`` (an index array or a slice) of each measured
+        batch of ``parts``, in order, as one batch (several rows of a grid refined
+        together).  Every array is per point, so each point's entries are those of its
+        own batch."""
+        first = parts[0][0]
+
+        def cat(get: Callable[[PointMeasures], np.ndarray]) -> np.ndarray:
+            got = [get(pm)[idx] for pm, idx in parts]
+            return got[0] if len(got) == 1 else np.concatenate(got)
+
+        return PointMeasures(
+            {t: cat(lambda pm, t=t: pm.rank[t]) for t in first.rank},
+            {t: cat(lambda pm, t=t: pm.ratio[t]) for t in first.ratio},
+            {
+                t: (cat(lambda pm, t=t: pm.bases[t][0]), cat(lambda pm, t=t: pm.bases[t][1]))
+                for t in first.bases
+            },
+            None if first.kernel is None else cat(lambda pm: pm.kernel),
+            None
+            if first.matrices is None
+            else {t: cat(lambda pm, t=t: pm.matrices[t]) for t in first.matrices},
+            dict(first.deferred),
+            {t: cat(lambda pm, t=t: pm.top[t]) for t in first.top},
+        )
 
     def basis(self, t: str, idx: Any) -> tuple[np.ndarray, np.ndarray]:
         """The leading ``g`` left and right singular vectors of test ``t``'s matrix at the
@@ -173,6 +204,16 @@ class Measures:
         }
         self.tests = tuple(self.generic)
 
+    @property
+    def pointwise(self) -> bool:
+        """Whether each configuration's measures are independent of the others measured
+        with it (so that several rows may be measured in one batch).  Not so where a
+        rank is taken over the whole batch: a leg with inner loops (the rank of their
+        system, :meth:`_constraint`), a closure without a generic rank."""
+        if any(inner for _, inner, _ in self.legs) and "constraint" in self.tests:
+            return False
+        return not (self.mech.loops and not self.generic.get("closure"))
+
     def levelled(self, t: str, level: int) -> Measures:
         """The same measures for test ``t`` alone, at rank ``level`` instead of its
         generic rank: inside a set where the test is singular, where its rank drops
@@ -184,8 +225,11 @@ class Measures:
 
     # ------------------------------------------------------------------ matrices
 
-    def matrices(self, Q: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray | None]:
-        """Each test's commensurate matrix at the rows of Q, and the closure kernel."""
+    def matrices(
+        self, Q: np.ndarray, signed: bool = False
+    ) -> tuple[dict[str, np.ndarray], np.ndarray | None]:
+        """Each test's commensurate matrix at the rows of Q, and the closure kernel
+        (``signed``: only the tests whose sign is read, :data:`SIGNED`)."""
         P = batched.poses(self.model, Q, fast=True)
         S = batched.current_screws(self.model, Q, P)
         Ss = self.frame.screws(S)
@@ -229,7 +273,7 @@ class Measures:
             if kernel is not None:  # the rows themselves, for the bordered sign test
                 out["input_rows"] = T / np.maximum(nT, 1e-300)[:, None, None]
                 out["output_rows"] = np.broadcast_to(self.E, (N, *self.E.shape))
-        if "constraint" in self.tests:
+        if "constraint" in self.tests and not signed:
             out["constraint"] = self._constraint(Ss)
         return out, kernel
 
@@ -380,7 +424,7 @@ class Measures:
         """For pairs of points (row ``ia`` of the measured batch ``a``, row of ``Qb``): per
         test, the determinant of the matrix at b compressed onto a's leading singular
         vectors.  Positive at a itself; negative where a rank drop was crossed."""
-        mats, kernel = self.matrices(Qb)
+        mats, kernel = self.matrices(Qb, signed=True)
         return self._compressed(a, ia, mats, kernel)
 
     def compressed_measured(

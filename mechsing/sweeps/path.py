@@ -55,7 +55,16 @@ from mechsing.numeric import (
     SWEEP_NODE_STEP,
 )
 
-__all__ = ["Fold", "PathTrace", "Problem", "close_segments", "first_nodes", "follow"]
+__all__ = [
+    "Fold",
+    "PathTrace",
+    "Problem",
+    "close_segments",
+    "first_nodes",
+    "first_nodes_of",
+    "follow",
+    "follow_together",
+]
 
 #: most arclength steps spent on the far side of one fold
 _ARC_BUDGET = 4000
@@ -77,8 +86,10 @@ _KNOTS_FROM = 1000
 _NODE_HALVINGS = 3
 #: nodes a node's predictor is extrapolated through, besides the last (a cubic)
 _HISTORY = 3
-#: tangents a Problem keeps (a row's start asks for the same one up to three times)
-_TANGENTS_KEPT = 8
+#: tangents a Problem keeps (a row's start asks for the same one up to three times, and
+#: the rows of a grid are started together: a chunk of rows' starts, then their first
+#: nodes; a tangent is a few hundred bytes)
+_TANGENTS_KEPT = 4096
 
 
 @dataclass
@@ -128,7 +139,7 @@ class Problem:
     def tangent(self, z: np.ndarray, col: int) -> np.ndarray | None:
         """The unit commensurate tangent of the path's curve at the closed z (every
         coordinate of cm, zero on the given ones but ``col``; its sign arbitrary), or None
-        where the curve is not one-dimensional.  The last few are kept: a row's start
+        where the curve is not one-dimensional.  The last ones are kept: a row's start
         asks for it once to check that it can leave and once per direction."""
         key = (col, np.asarray(z, dtype=float).tobytes())
         if key in self._tangents:
@@ -191,22 +202,36 @@ def first_nodes(
     z0's value), all in one batched Newton: the prediction and the test :func:`_node`
     makes for a first step (the tangent at z0).  None for a path whose first node is
     not kept that way (:func:`follow` then takes it as it takes any node)."""
-    out: list[np.ndarray | None] = [None] * len(paths)
-    preds, bounds, which = [], [], []
+    return first_nodes_of(pb, [(z0, paths)], col)[0]
+
+
+def first_nodes_of(
+    pb: Problem, starts: list[tuple[np.ndarray, list[np.ndarray]]], col: int
+) -> list[list[np.ndarray | None]]:
+    """:func:`first_nodes` of several starts (the rows of a grid), all in one batched
+    Newton: each start's closed z0 and its paths; per start, its paths' first nodes."""
+    out: list[list[np.ndarray | None]] = [[None] * len(paths) for _, paths in starts]
+    steps, which, targets = [], [], []
     sc = pb.scale(col)
-    for m, values in enumerate(paths):
-        if len(values) < 2:
-            continue
-        zp = _tangent_prediction(pb, z0, col, values[_next_node(values, 0, sc)])
-        if zp is None:
-            continue
-        preds.append(zp)
-        bounds.append(_NODE_CORRECTION * pb.comm(zp - z0))
-        which.append(m)
-    if preds:
-        Q, ok, _ = pb.close_near(np.array(preds), np.array(bounds))
-        for m, q, good in zip(which, Q, ok, strict=True):
-            out[m] = q if good else None
+    for s, (z0, paths) in enumerate(starts):
+        for m, values in enumerate(paths):
+            if len(values) < 2:
+                continue
+            value = values[_next_node(values, 0, sc)]
+            d = _tangent_step(pb, z0, col, value)
+            if d is None:
+                continue
+            steps.append(d)
+            which.append((s, m))
+            targets.append(value)
+    if steps:
+        # the tangents' predictions, every path's in one update
+        Z0 = np.array([np.asarray(starts[s][0], dtype=float) for s, _ in which])
+        preds = _tangent_points(pb, Z0, np.array(steps), col, np.array(targets))
+        bounds = [_NODE_CORRECTION * pb.comm(zp - z0) for zp, z0 in zip(preds, Z0, strict=True)]
+        Q, ok, _ = pb.close_near(preds, np.array(bounds))
+        for (s, m), q, good in zip(which, Q, ok, strict=True):
+            out[s][m] = q if good else None
     return out
 
 
@@ -219,6 +244,36 @@ def _next_node(values: np.ndarray, i: int, sc: float) -> int:
     return j
 
 
+@dataclass
+class _Walk:
+    """Where :func:`follow` is on its path: the closed samples so far, the last node
+    (sample i, configuration z), the node before it and the older ones on the same
+    stretch (the predictor's history), the node pairs whose samples are still to close."""
+
+    Z: np.ndarray
+    its: np.ndarray
+    i: int
+    z: np.ndarray
+    z_prev: np.ndarray | None = None
+    older: list[np.ndarray] = field(default_factory=list)
+    segments: list[tuple[int, int]] = field(default_factory=list)
+
+    @classmethod
+    def start(cls, pb: Problem, z0: np.ndarray, values: np.ndarray) -> _Walk:
+        Z = np.full((len(values), pb.n), np.nan)
+        Z[0] = z0
+        return cls(Z, np.zeros(len(values), dtype=int), 0, np.array(z0, dtype=float))
+
+    def take(self, j: int, zj: np.ndarray) -> None:
+        """The next node, sample j, is zj."""
+        if j > self.i + 1:
+            self.segments.append((self.i, j))
+        self.Z[j] = zj
+        if self.z_prev is not None:
+            self.older = [*self.older[-(_HISTORY - 1) :], self.z_prev]
+        self.i, self.z, self.z_prev = j, np.asarray(zj, dtype=float), self.z
+
+
 def follow(
     pb: Problem,
     z0: np.ndarray,
@@ -226,27 +281,28 @@ def follow(
     values: np.ndarray,
     fine: bool = True,
     first: np.ndarray | None = None,
+    walk: _Walk | None = None,
 ) -> PathTrace:
     """Follow the swept coordinate ``col`` through ``values`` (monotone) from ``z0``,
     closed at ``values[0]``.  With ``fine=False`` only the nodes (and the samples near
     folds) are closed: the trace's ``segments`` are left to :func:`close_segments`.
-    ``first``: the first node when it is already closed (:func:`first_nodes`)."""
+    ``first``: the first node when it is already closed (:func:`first_nodes`);
+    ``walk``: where the path already is (:func:`follow_together`), to go on from."""
     K = len(values)
-    Z = np.full((K, pb.n), np.nan)
-    its = np.zeros(K, dtype=int)
-    Z[0] = z0
+    if walk is None:
+        walk = _Walk.start(pb, z0, values)
+    Z, its = walk.Z, walk.its
     folds: list[Fold] = []
     if K < 2:
         return PathTrace(Z, folds, None, its, [], values)
     direction = 1 if values[-1] > values[0] else -1
     sc = pb.scale(col)
-    i, z = 0, np.array(z0, dtype=float)
-    z_prev: np.ndarray | None = None
+    i, z, z_prev = walk.i, walk.z, walk.z_prev
     #: the nodes before z_prev on this stretch of the path (the predictor's history)
-    older: list[np.ndarray] = []
+    older: list[np.ndarray] = walk.older
     stopped = None
     #: node pairs whose samples in between are closed together at the end
-    segments: list[tuple[int, int]] = []
+    segments: list[tuple[int, int]] = walk.segments
     while i < K - 1:
         j = _next_node(values, i, sc)
         # where the tangent's prediction cannot reach the next node (a fold, a singular
@@ -317,6 +373,69 @@ def follow(
     return trace
 
 
+def follow_together(
+    pb: Problem,
+    col: int,
+    paths: list[tuple[np.ndarray, np.ndarray, np.ndarray | None]],
+) -> list[PathTrace]:
+    """:func:`follow` (``fine=False``) of several paths (the rows of a grid), each
+    ``(z0, values, first)``, in lockstep: at each step, every path whose next node
+    :func:`_node` predicts from its last two nodes (the secant or the polynomial through
+    the older ones) has it closed by one batched Newton over all of them, kept by the
+    same test.  A path whose node is not kept that way (a fold, a sharp bend), or that
+    needs the tangent's prediction, leaves the lockstep where it is: :func:`follow`
+    goes on from there, as it would have alone.  Each path's trace is the one
+    :func:`follow` gives it alone."""
+    sc = pb.scale(col)
+    walks = [_Walk.start(pb, z0, values) for z0, values, _ in paths]
+    going = []
+    for m, (_, values, first) in enumerate(paths):
+        if len(values) >= 2 and first is not None:
+            walks[m].take(_next_node(values, 0, sc), first)
+            going.append(m)
+    bc = pb.batch
+    while going:
+        steps = []
+        for m in going:
+            w, values = walks[m], paths[m][1]
+            if w.i >= len(values) - 1 or w.z_prev is None or w.z_prev[col] == w.z[col]:
+                continue
+            steps.append((m, _next_node(values, w.i, sc)))
+        if not steps:
+            break
+        preds = np.zeros((len(steps), pb.n))
+        secant = []
+        for s, (m, j) in enumerate(steps):
+            w, value = walks[m], paths[m][1][j]
+            zp = _polynomial_prediction(pb, w.z, w.z_prev, col, value, w.older)
+            if zp is None:
+                secant.append(s)
+            else:
+                preds[s] = zp
+        if secant:
+            # the last step repeated, scaled to the new one: z_prev -> z continued past z
+            zs = np.array([walks[steps[s][0]].z for s in secant])
+            zq = np.array([walks[steps[s][0]].z_prev for s in secant])
+            v = np.array([paths[steps[s][0]][1][steps[s][1]] for s in secant])
+            f = (v - zs[:, col]) / (zs[:, col] - zq[:, col])
+            preds[secant] = bc.between(zs, zq, -f)
+        for s, (m, j) in enumerate(steps):
+            preds[s, col] = paths[m][1][j]
+        bounds = np.array(
+            [_NODE_CORRECTION * pb.comm(preds[s] - walks[m].z) for s, (m, _) in enumerate(steps)]
+        )
+        Q, ok, _ = pb.close_near(preds, bounds)
+        going = []
+        for s, (m, j) in enumerate(steps):
+            if ok[s]:
+                walks[m].take(j, Q[s])
+                going.append(m)
+    return [
+        follow(pb, z0, col, values, fine=False, walk=walks[m])
+        for m, (z0, values, _) in enumerate(paths)
+    ]
+
+
 def _nodes(
     pb: Problem,
     z: np.ndarray,
@@ -382,22 +501,8 @@ def _node(
         if not ok[0]:
             return None
         z_prev = Q[0]
-    knots = [p for p in (older or []) if p[col] != z[col]]
-    if knots and len({float(p[col]) for p in [*knots, z_prev, z]}) == len(knots) + 2:
-        # the polynomial through the last nodes (increments on the group from z)
-        pts = np.array([*knots, z_prev])
-        D = bc.difference(pts, np.repeat(np.asarray(z, dtype=float)[None, :], len(pts), 0))
-        tk = np.concatenate([pts[:, col], [z[col]]])
-        D = np.concatenate([D, np.zeros((1, D.shape[1]))])
-        w = np.ones(len(tk))
-        for a in range(len(tk)):
-            for b in range(len(tk)):
-                if a != b:
-                    w[a] *= (value - tk[b]) / (tk[a] - tk[b])
-        d = w @ D
-        zp = bc.update(np.asarray(z, dtype=float)[None, :], d[None, : bc.nb])[0]
-        zp[bc.nb :] = z[bc.nb :] + d[bc.nb :]
-    else:
+    zp = _polynomial_prediction(pb, z, z_prev, col, value, older)
+    if zp is None:
         # the last step repeated, scaled to the new one: z_prev -> z continued past z
         f = (value - z[col]) / (z[col] - z_prev[col])
         zp = bc.between(z[None, :], z_prev[None, :], np.array([-f]))[0]
@@ -406,18 +511,64 @@ def _node(
     return Q[0] if ok[0] else None
 
 
+def _polynomial_prediction(
+    pb: Problem,
+    z: np.ndarray,
+    z_prev: np.ndarray,
+    col: int,
+    value: float,
+    older: list[np.ndarray] | None,
+) -> np.ndarray | None:
+    """:func:`_node`'s prediction through the older nodes: the polynomial through them,
+    z_prev and z (increments on the group from z), at ``value``; None when there are no
+    older nodes of distinct values (the secant predicts then)."""
+    bc = pb.batch
+    knots = [p for p in (older or []) if p[col] != z[col]]
+    if not (knots and len({float(p[col]) for p in [*knots, z_prev, z]}) == len(knots) + 2):
+        return None
+    pts = np.array([*knots, z_prev])
+    D = bc.difference(pts, np.repeat(np.asarray(z, dtype=float)[None, :], len(pts), 0))
+    tk = np.concatenate([pts[:, col], [z[col]]])
+    D = np.concatenate([D, np.zeros((1, D.shape[1]))])
+    w = np.ones(len(tk))
+    for a in range(len(tk)):
+        for b in range(len(tk)):
+            if a != b:
+                w[a] *= (value - tk[b]) / (tk[a] - tk[b])
+    d = w @ D
+    zp = bc.update(np.asarray(z, dtype=float)[None, :], d[None, : bc.nb])[0]
+    zp[bc.nb :] = z[bc.nb :] + d[bc.nb :]
+    return zp
+
+
 def _tangent_prediction(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
     """The point on the tangent of the path's curve at z where coordinate ``col`` is
     ``value`` (on the group, as :meth:`BatchClosure.update` moves), or None where the
     tangent is not defined or does not move ``col``."""
+    d = _tangent_step(pb, z, col, value)
+    if d is None:
+        return None
+    return _tangent_points(pb, np.asarray(z, dtype=float)[None, :], d[None, :], col, [value])[0]
+
+
+def _tangent_step(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
+    """The increment along the tangent at z that takes coordinate ``col`` to ``value``
+    (None where the tangent is not defined or does not move ``col``)."""
     tau = pb.tangent(z, col)
     if tau is None or tau[col] == 0:
         return None
-    d = pb.cm.float_frame.rates_back(tau * ((value - z[col]) / pb.scale(col) / tau[col]))
+    return pb.cm.float_frame.rates_back(tau * ((value - z[col]) / pb.scale(col) / tau[col]))
+
+
+def _tangent_points(
+    pb: Problem, Z: np.ndarray, D: np.ndarray, col: int, values: Any
+) -> np.ndarray:
+    """The points reached from the rows of Z by the increments D (:func:`_tangent_step`),
+    on the group, with ``col`` set to ``values``: one batched update for every row."""
     bc = pb.batch
-    zp = bc.update(np.asarray(z, dtype=float)[None, :], d[None, : bc.nb])[0]
-    zp[bc.nb :] = z[bc.nb :] + d[bc.nb :]
-    zp[col] = value
+    zp = bc.update(Z, D[:, : bc.nb])
+    zp[:, bc.nb :] = Z[:, bc.nb :] + D[:, bc.nb :]
+    zp[:, col] = values
     return zp
 
 
@@ -470,7 +621,9 @@ def _near_fold(
     return Q[0] if ok[0] else None
 
 
-def close_segments(pb: Problem, traces: list[PathTrace], col: int) -> None:
+def close_segments(
+    pb: Problem, traces: list[PathTrace], col: int, groups: list[list[int]] | None = None
+) -> None:
     """The samples strictly between the nodes of each segment (i, j) of each trace, all
     segments of the traces together (the two directions of a path are one batch), in two
     passes of batched Newton (in chunks of _FINE_CHUNK rows):
@@ -489,12 +642,20 @@ def close_segments(pb: Problem, traces: list[PathTrace], col: int) -> None:
     predict to about 1e-10, so one Newton step closes a sample where the nodes' cubic
     needs two or three.  A sample that does not close near its prediction is closed
     again by continuation from the previous one.  Fills each trace's Z and newton in
-    place."""
+    place.
+
+    ``groups``: the traces (indices) of each path, when several paths are closed together
+    (the rows of a grid): whether a path's samples are closed in one pass or two is
+    decided by its own traces, as when it is closed alone (default: one path)."""
     sc = pb.scale(col)
     first: list[tuple[int, int, int, list[int], list[int]]] = []
     later: list[tuple[int, list[int]]] = []  # (trace, its knots in order) per segment
-    many = sum(j - i - 1 for tr in traces for i, j in tr.segments) >= _KNOTS_FROM
+    many_of = {}
+    for group in groups if groups is not None else [list(range(len(traces)))]:
+        many = sum(j - i - 1 for m in group for i, j in traces[m].segments) >= _KNOTS_FROM
+        many_of.update({m: many for m in group})
     for m, tr in enumerate(traces):
+        many = many_of[m]
         Z, values = tr.Z, tr.values
         assert values is not None
         for i, j in tr.segments:
