@@ -365,12 +365,17 @@ class KinematicModel:
 
     def closure_jacobian(self, q: np.ndarray, screws: np.ndarray | None = None) -> np.ndarray:
         """Linearised chord closure: (6 * n_chords, n); row block j is
-        ``screws(j) + V_a - V_b`` with ``V_x`` the tree velocity of body x."""
+        ``screws(j) + V_a - V_b`` with ``V_x`` the tree velocity of body x.  A float batch
+        of configurations (N, n) gives (N, 6 * n_chords, n)."""
         S = self.current_screws(q) if screws is None else screws
         bk = self.backend
         signs = self._chord_signs()
         if not signs:
-            return bk.zeros((0, self.n))
+            return bk.zeros(S.shape[:-2] + (0, self.n))
+        if S.ndim == 3 and S.dtype != object:
+            # a float batch: the same products, configuration by configuration
+            J = np.stack(signs)[None, :, None, :] * S[:, None, :, :]
+            return J.reshape(S.shape[0], -1, self.n)
         if S.ndim == 2 and S.dtype != object:
             # one float configuration: one broadcast product (the same products)
             return (np.stack(signs)[:, None, :] * S[None, :, :]).reshape(-1, self.n)
