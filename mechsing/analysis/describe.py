@@ -208,8 +208,11 @@ def output_motion(
         A = cs.matrix
     with prec.context():
         A = prec.asarray(A)
-        if A.shape[0]:
-            # the joint rates that keep every loop closed
+        if A.shape[0] and prec.mode == "float" and cs.rank.precision == "float":
+            # the joint rates that keep every loop closed: in float, the closure system's
+            # own decision already holds them (the same decision of the same matrix)
+            N = cs.rank.null_space
+        elif A.shape[0]:
             N = decide_rank(A, prec, model.length_scale, want_spaces=True, native_spaces=True)
             N = N.null_space
         else:
