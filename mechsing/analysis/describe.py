@@ -234,7 +234,7 @@ def _output_chain_matrix(
         poses = None if cs.screws is not None and not point else model.poses(q)
         S = cs.screws if cs.screws is not None else model.current_screws(q, poses)
         chain = tree_chain(model, out.body, out.relative_to)
-        x = lie.act_point(poses[out.body], model.asarray(list(out.point))) if point else None
+        x = lie.act_point(poses[out.body], model.point_array(out.point)) if point else None
         return chain_matrix(model, S, None, x, chain.signs), x
 
 

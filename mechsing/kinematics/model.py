@@ -209,7 +209,12 @@ class KinematicModel:
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]
         self._chords_signs: list[np.ndarray] | None = None
         self._chord_nonzeros: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
-        self._last_poses: tuple[bytes, dict[str, np.ndarray]] | None = None
+        self._points: dict[tuple[Any, ...], np.ndarray] = {}
+        #: the basis rows of loops at rest (:func:`mechsing.screws.closure_system`)
+        self._loop_rows: dict[tuple[Any, ...], Any] = {}
+        #: the poses of the last float configurations asked for (by their bytes)
+        self._pose_cache: dict[bytes, dict[str, np.ndarray]] = {}
+        self._pose_cache_size = max(1, _POSE_CACHE_MATRICES // max(1, len(mech.bodies)))
         self._abelian_columns = np.zeros(self.n, dtype=bool)
         for jk in self.joints:
             self._abelian_columns[jk.columns] = jk.abelian
@@ -238,6 +243,18 @@ class KinematicModel:
         with self.precision.context():
             return self.backend.asarray(q)
 
+    def point_array(self, x: Any) -> np.ndarray:
+        """A fixed point of the file (its exact coordinates, a tuple) in the model's
+        numbers, converted once (read only: the output point, asked for at every
+        configuration)."""
+        key = tuple(x)
+        got = self._points.get(key)
+        if got is None:
+            got = self.asarray(list(key))
+            got.flags.writeable = False
+            self._points[key] = got
+        return got
+
     def values(self, q: np.ndarray) -> dict[str, list[float]]:
         """Joint values by name, floats in SI units and radians."""
         qf = to_float(q)
@@ -253,18 +270,27 @@ class KinematicModel:
         """The pose of every user body (ground = identity) from the spanning tree;
         q may be one configuration (n,) or a batch (N, n).  An exact configuration's
         come from its number field when its data have one; the poses of the last float
-        configuration are kept: Newton asks for them again for the residual and the
-        Jacobian at the same point."""
+        configurations are kept: Newton asks for them again for the residual and the
+        Jacobian at the same point, and the analysis of many configurations (a sweep's
+        located points: closed, then classified) for each again."""
         fk = self.field_kinematics(q)
         if fk is not None:
             return fk.poses()
         if q.ndim != 1 or q.dtype != float:
             return batched.poses(self, q)
         key = q.tobytes()
-        last = self._last_poses  # read once: another thread may replace it
-        if last is None or last[0] != key:
-            last = self._last_poses = (key, batched.poses(self, q))
-        return dict(last[1])
+        cache = self._pose_cache
+        got = cache.get(key)
+        if got is None:
+            got = batched.poses(self, q)
+            if len(cache) >= self._pose_cache_size:
+                # the oldest goes (another thread may have changed the cache meanwhile)
+                try:
+                    cache.pop(next(iter(cache)), None)
+                except (StopIteration, RuntimeError):
+                    pass
+            cache[key] = got
+        return dict(got)
 
     def field_kinematics(self, q: np.ndarray) -> FieldKinematics | None:
         """Exact mode: the kinematics of configuration ``q`` in the number field of its
@@ -536,6 +562,9 @@ class KinematicModel:
 
 #: exact configurations whose field kinematics a model keeps
 _FIELD_CACHE_SIZE = 8
+#: body poses (4 x 4 matrices) the pose cache of a float model holds at most: a sweep's
+#: located points of a small mechanism, a few configurations of a big one
+_POSE_CACHE_MATRICES = 4096
 
 
 def _same_poses(fk: FieldKinematics, poses: dict[str, np.ndarray] | None) -> bool:

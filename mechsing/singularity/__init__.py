@@ -65,7 +65,7 @@ def _output_point(
     if out is None or out.point is None:
         return None
     g = poses[out.body]
-    x0 = model.asarray(list(out.point))
+    x0 = model.point_array(out.point)
     return lie.act_point(g, x0)
 
 
