@@ -791,3 +791,24 @@ def test_every_example_configuration_closes(path):
         mine = my_poses(joints, mech.ground, vals)
         for b in mech.bodies:
             np.testing.assert_allclose(theirs[b], mine[b], rtol=0, atol=1e-10 * L)
+
+
+def test_pose_cache_keeps_the_poses_of_the_last_configurations_and_stays_bounded():
+    """A float model keeps the poses of the configurations it was last asked for (a sweep's
+    located points are closed, then classified): the poses asked again, after more
+    configurations than it keeps, are those a fresh model computes, and it keeps at most
+    its bound of body poses."""
+    mech = load(Path(__file__).resolve().parents[1] / "examples" / "five_bar.yaml")
+    model = KinematicModel(mech, "float")
+    rng = np.random.default_rng(3)
+    qs = rng.uniform(-math.pi, math.pi, size=(model._pose_cache_size + 50, model.n))
+    first = [model.poses(q) for q in qs]
+    assert len(model._pose_cache) == model._pose_cache_size
+    assert model._pose_cache_size * len(mech.bodies) <= 4096
+    fresh = KinematicModel(mech, "float")
+    for q, got in zip([qs[0], qs[-1], qs[0]], [first[0], first[-1], first[0]], strict=True):
+        again = model.poses(q)
+        want = fresh.poses(q.copy())
+        for body in mech.bodies:
+            np.testing.assert_array_equal(again[body], want[body])
+            np.testing.assert_array_equal(got[body], want[body])
