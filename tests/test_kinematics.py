@@ -26,6 +26,7 @@ import pytest
 from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
+from mechsing import lie
 from mechsing.cli import exit_status
 from mechsing.kinematics import Closer, ClosureError, KinematicModel
 from mechsing.model import load, loads
@@ -791,3 +792,48 @@ def test_every_example_configuration_closes(path):
         mine = my_poses(joints, mech.ground, vals)
         for b in mech.bodies:
             np.testing.assert_allclose(theirs[b], mine[b], rtol=0, atol=1e-10 * L)
+
+
+def test_pose_cache_keeps_the_poses_of_the_last_configurations_and_stays_bounded():
+    """A float model keeps the poses of the configurations it was last asked for (a sweep's
+    located points are closed, then classified): the poses asked again, after more
+    configurations than it keeps, are those a fresh model computes, and it keeps at most
+    its bound of body poses."""
+    mech = load(Path(__file__).resolve().parents[1] / "examples" / "five_bar.yaml")
+    model = KinematicModel(mech, "float")
+    rng = np.random.default_rng(3)
+    qs = rng.uniform(-math.pi, math.pi, size=(model._pose_cache_size + 50, model.n))
+    first = [model.poses(q) for q in qs]
+    assert len(model._pose_cache) == model._pose_cache_size
+    assert model._pose_cache_size * len(mech.bodies) <= 4096
+    fresh = KinematicModel(mech, "float")
+    for q, got in zip([qs[0], qs[-1], qs[0]], [first[0], first[-1], first[0]], strict=True):
+        again = model.poses(q)
+        want = fresh.poses(q.copy())
+        for body in mech.bodies:
+            np.testing.assert_array_equal(again[body], want[body])
+            np.testing.assert_array_equal(got[body], want[body])
+
+
+def test_spherical_joints_updated_together_step_on_the_group():
+    """A float model updates its non-abelian joints (the hexapod's six S joints) all at once:
+    each joint's new element is exp(d B) times its old one (scipy's expm, independent of
+    mechsing), difference undoes update, and the numbers are those of the joint-by-joint
+    formula (exp, then coordinates_in of each joint)."""
+    mech = load(Path(__file__).resolve().parents[1] / "examples" / "stewart_octahedral.yaml")
+    model = KinematicModel(mech, "float")
+    spherical = [jk for jk in model.joints if not jk.abelian]
+    assert [jk.type for jk in spherical] == ["S"] * 6
+    rng = np.random.default_rng(5)
+    for scale in (1e-6, 1e-3, 0.2):
+        q = rng.normal(size=model.n) * 0.5
+        d = rng.normal(size=model.n) * scale
+        d[spherical[2].columns] = 0.0  # a joint that does not move
+        q1 = model.update(q, d)
+        for jk in spherical:
+            want = expt(d[jk.columns] @ jk.basis) @ expt(q[jk.columns] @ jk.basis)
+            np.testing.assert_allclose(model.element(jk, q1), want, rtol=0, atol=1e-13)
+            M = lie.exp(d[jk.columns] @ jk.basis) @ model.element(jk, q)
+            if np.any(d[jk.columns]):
+                np.testing.assert_array_equal(q1[jk.columns], model.coordinates_in(jk, M))
+        np.testing.assert_allclose(model.difference(q1, q), d, rtol=0, atol=1e-13)

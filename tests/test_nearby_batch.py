@@ -6,6 +6,9 @@ Checked against answers not computed by mechsing: the five-bar's loop closure fr
 planar geometry (the example file's dimensions), its regular nullity from the planar
 count (5 joints, 3 constraints), the Type I class of its published ``type1`` pose; and
 against the one-Newton-per-sample path the analysis of a single configuration takes.
+The tests' values at many samples (:func:`mechsing.singularity.generic.sample_values`) are
+checked against the planar counts of the five-bar and of a leg that holds a parallelogram,
+and against the functions that decide the tests at one configuration.
 """
 
 from __future__ import annotations
@@ -21,9 +24,11 @@ import mechsing
 from mechsing.analysis import analyze_found
 from mechsing.kinematics import Closer, KinematicModel
 from mechsing.model import Configuration
+from mechsing.model.loader import loads
 from mechsing.numeric import to_float
 from mechsing.screws import closure_system
 from mechsing.screws.mobility import SAMPLE_STEPS, nearby_samples, nearby_samples_many
+from mechsing.singularity.generic import one_sample_values, sample_values
 
 EX = Path(__file__).resolve().parents[1] / "examples"
 
@@ -131,3 +136,91 @@ def test_located_points_analysed_together_as_each_alone():
     # Type I: leg 1 stretched (file comment: Gosselin and Angeles); the others regular
     assert "input" in classes[0]
     assert classes[1] == classes[2] == set()
+
+
+#: a planar linkage whose first leg holds a loop of its own (a parallelogram A B C D
+#: carries the body m, which holds the output through E), the second leg F G
+INNER_LOOP_LEG = """mechanism: parallelogram-leg
+bodies: [ground, l1, l2, m, out, r1]
+joints:
+  - {name: A, type: R, between: [ground, l1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [l1, m],      axis: [0, 0, 1], point: [0, 1, 0]}
+  - {name: C, type: R, between: [m, l2],      axis: [0, 0, 1], point: [1, 1, 0]}
+  - {name: D, type: R, between: [l2, ground], axis: [0, 0, 1], point: [1, 0, 0]}
+  - {name: E, type: R, between: [m, out],     axis: [0, 0, 1], point: ["1/2", 2, 0]}
+  - {name: F, type: R, between: [out, r1],    axis: [0, 0, 1], point: [3, 2, 0]}
+  - {name: G, type: R, between: [r1, ground], axis: [0, 0, 1], point: [3, 0, 0]}
+inputs: [A]
+output: {body: out, point: [2, 2, 0]}
+configurations:
+  reference: {}
+"""
+
+
+def _samples_of(mech, names):
+    model, qs, Ks = _kernels(mech, names)
+    return model, [s for ss in nearby_samples_many(model, qs, Ks) for s in ss]
+
+
+@pytest.mark.parametrize(
+    "file", ["five_bar.yaml", "stewart_octahedral.yaml", "tsai_3upu.yaml", "planar_3rpr.yaml"]
+)
+def test_the_tests_values_at_many_samples_are_those_of_one_sample_at_a_time(file):
+    """sample_values (every sample's poses, screws and decisions in stacked arrays) gives the
+    values one_sample_values takes from io_quantities, leg_constraint_rank and chain_system,
+    the functions that decide the tests at the configuration itself."""
+    mech = mechsing.load(EX / file)
+    model, samples = _samples_of(mech, list(mech.configurations))
+    assert len(samples) >= 6
+    many = sample_values(mech, model, samples)
+    for s, got in zip(samples, many, strict=True):
+        one = one_sample_values(mech, model, s)
+        assert got.io == one.io
+        assert got.constraint == one.constraint
+        assert [r for _, r in got.legs] == [r for _, r in one.legs]
+        for (a, _), (b, _) in zip(got.legs, one.legs, strict=True):
+            np.testing.assert_array_equal(a, b)
+
+
+def test_five_bar_sample_values_are_the_planar_counts():
+    """At regular configurations of the five-bar (file comment: two legs, inputs A1 and A2,
+    output point P on dist1): no input, output or passive motion; the inputs and the point's
+    velocity both span the 2-dof motion; leg 1 (A1, B1) has 2 independent planar screws and
+    leg 2 (A2, B2, P) 3; the legs' constraint wrenches: the 3 out-of-plane ones, which both
+    legs resist, and leg 1's planar force along its distal link."""
+    mech = mechsing.load(EX / "five_bar.yaml")
+    model, samples = _samples_of(mech, ["reference", "inputs"])
+    for v in sample_values(mech, model, samples):
+        assert v.io == {
+            "input": 0,
+            "output": 0,
+            "passive-motion": 0,
+            "impossible-input": 2,
+            "impossible-output": 2,
+        }
+        assert [r for _, r in v.legs] == [2, 3]
+        assert v.constraint == 4
+
+
+def test_a_leg_with_a_loop_of_its_own_takes_its_constraint_rank_from_the_closure_system():
+    """A leg that holds a parallelogram: its twists are taken over that loop's solutions (one
+    sample at a time), the rest batched.  The values are the one-at-a-time ones and the
+    planar counts: one dof (7 joints, 2 planar loops of 3 constraints), driven by the input
+    A and moving the point; leg 1's output twists are m's translation and the turn about E,
+    leg 2's the turns about F and G, so each resists the 3 out-of-plane wrenches and one
+    planar force of its own (5 together); leg 1's 5 planar screws span 3, leg 2's 2."""
+    mech = loads(INNER_LOOP_LEG)
+    model, samples = _samples_of(mech, ["reference"])
+    assert len(samples) == 6
+    for s, v in zip(samples, sample_values(mech, model, samples), strict=True):
+        assert v.io == {
+            "input": 0,
+            "output": 0,
+            "passive-motion": 0,
+            "impossible-input": 1,
+            "impossible-output": 1,
+        }
+        assert v.constraint == 5
+        assert [r for _, r in v.legs] == [3, 2]
+        one = one_sample_values(mech, model, s)
+        assert (one.io, one.constraint) == (v.io, v.constraint)

@@ -47,6 +47,7 @@ from mechsing.screws import closure_system, group_mobility, grubler
 from mechsing.screws.mobility import NearbySample, nearby_samples_many
 from mechsing.singularity import classify
 from mechsing.singularity.findings import Decision, UndecidedFinding, decision
+from mechsing.singularity.generic import SampleValues, sample_values
 from mechsing.singularity.local import float_model
 from mechsing.timelimit import (
     EXACT_PROGRESS_DELAY,
@@ -336,6 +337,8 @@ class _Prepared:
     closed: Any
     closure: Any
     samples: list[NearbySample] | None
+    #: the tests' values at each sample (:func:`mechsing.singularity.generic.sample_values`)
+    values: list[SampleValues] | None = None
 
 
 def _prepare_found(
@@ -370,8 +373,16 @@ def _prepare_found(
             else to_float(out[n][1].rank.null_space)
             for n in want
         ]
-    samples = dict(zip(want, nearby_samples_many(fm, qs, kernels), strict=True))
-    return {n: _Prepared(c, cs, samples.get(n)) for n, (c, cs) in out.items()}
+    many = nearby_samples_many(fm, qs, kernels)
+    # the tests' values at every sample of every configuration, computed together
+    flat = sample_values(mech, fm, [s for ss in many for s in ss])
+    values: dict[str, list[SampleValues]] = {}
+    at = 0
+    for n, ss in zip(want, many, strict=True):
+        values[n] = flat[at : at + len(ss)]
+        at += len(ss)
+    samples = dict(zip(want, many, strict=True))
+    return {n: _Prepared(c, cs, samples.get(n), values.get(n)) for n, (c, cs) in out.items()}
 
 
 def _analyze_one(
@@ -410,7 +421,11 @@ def _analyze_one_in_context(
         inst = cs.nullity
         grubler_count, group = grubler(model), group_mobility(model, cs.loops)
     with activity("classifying the singularities (output chain, input/output and cone tests)"):
-        found = classify(mech, model, q, cs, None if prepared is None else prepared.samples)
+        found = (
+            classify(mech, model, q, cs)
+            if prepared is None
+            else classify(mech, model, q, cs, prepared.samples, prepared.values)
+        )
     findings = list(found.findings)
     if closed.at_fold and prec.mode == "float":
         # float locates a fold's unknown joints only to sqrt(eps): a kernel singular value

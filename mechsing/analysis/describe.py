@@ -208,8 +208,11 @@ def output_motion(
         A = cs.matrix
     with prec.context():
         A = prec.asarray(A)
-        if A.shape[0]:
-            # the joint rates that keep every loop closed
+        if A.shape[0] and prec.mode == "float" and cs.rank.precision == "float":
+            # the joint rates that keep every loop closed: in float, the closure system's
+            # own decision already holds them (the same decision of the same matrix)
+            N = cs.rank.null_space
+        elif A.shape[0]:
             N = decide_rank(A, prec, model.length_scale, want_spaces=True, native_spaces=True)
             N = N.null_space
         else:
@@ -231,7 +234,7 @@ def _output_chain_matrix(
         poses = None if cs.screws is not None and not point else model.poses(q)
         S = cs.screws if cs.screws is not None else model.current_screws(q, poses)
         chain = tree_chain(model, out.body, out.relative_to)
-        x = lie.act_point(poses[out.body], model.asarray(list(out.point))) if point else None
+        x = lie.act_point(poses[out.body], model.point_array(out.point)) if point else None
         return chain_matrix(model, S, None, x, chain.signs), x
 
 

@@ -209,7 +209,16 @@ class KinematicModel:
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]
         self._chords_signs: list[np.ndarray] | None = None
         self._chord_nonzeros: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
-        self._last_poses: tuple[bytes, dict[str, np.ndarray]] | None = None
+        self._points: dict[tuple[Any, ...], np.ndarray] = {}
+        #: the elements of the non-abelian joints at the last float configuration, and
+        #: each such joint's basis in the commensurate metric (:meth:`update`)
+        self._last_elements: tuple[bytes, np.ndarray] | None = None
+        self._basis_twists: dict[str, np.ndarray] = {}
+        #: the basis rows of loops at rest (:func:`mechsing.screws.closure_system`)
+        self._loop_rows: dict[tuple[Any, ...], Any] = {}
+        #: the poses of the last float configurations asked for (by their bytes)
+        self._pose_cache: dict[bytes, dict[str, np.ndarray]] = {}
+        self._pose_cache_size = max(1, _POSE_CACHE_MATRICES // max(1, len(mech.bodies)))
         self._abelian_columns = np.zeros(self.n, dtype=bool)
         for jk in self.joints:
             self._abelian_columns[jk.columns] = jk.abelian
@@ -238,6 +247,18 @@ class KinematicModel:
         with self.precision.context():
             return self.backend.asarray(q)
 
+    def point_array(self, x: Any) -> np.ndarray:
+        """A fixed point of the file (its exact coordinates, a tuple) in the model's
+        numbers, converted once (read only: the output point, asked for at every
+        configuration)."""
+        key = tuple(x)
+        got = self._points.get(key)
+        if got is None:
+            got = self.asarray(list(key))
+            got.flags.writeable = False
+            self._points[key] = got
+        return got
+
     def values(self, q: np.ndarray) -> dict[str, list[float]]:
         """Joint values by name, floats in SI units and radians."""
         qf = to_float(q)
@@ -253,18 +274,27 @@ class KinematicModel:
         """The pose of every user body (ground = identity) from the spanning tree;
         q may be one configuration (n,) or a batch (N, n).  An exact configuration's
         come from its number field when its data have one; the poses of the last float
-        configuration are kept: Newton asks for them again for the residual and the
-        Jacobian at the same point."""
+        configurations are kept: Newton asks for them again for the residual and the
+        Jacobian at the same point, and the analysis of many configurations (a sweep's
+        located points: closed, then classified) for each again."""
         fk = self.field_kinematics(q)
         if fk is not None:
             return fk.poses()
         if q.ndim != 1 or q.dtype != float:
             return batched.poses(self, q)
         key = q.tobytes()
-        last = self._last_poses  # read once: another thread may replace it
-        if last is None or last[0] != key:
-            last = self._last_poses = (key, batched.poses(self, q))
-        return dict(last[1])
+        cache = self._pose_cache
+        got = cache.get(key)
+        if got is None:
+            got = batched.poses(self, q)
+            if len(cache) >= self._pose_cache_size:
+                # the oldest goes (another thread may have changed the cache meanwhile)
+                try:
+                    cache.pop(next(iter(cache)), None)
+                except (StopIteration, RuntimeError):
+                    pass
+            cache[key] = got
+        return dict(got)
 
     def field_kinematics(self, q: np.ndarray) -> FieldKinematics | None:
         """Exact mode: the kinematics of configuration ``q`` in the number field of its
@@ -365,12 +395,17 @@ class KinematicModel:
 
     def closure_jacobian(self, q: np.ndarray, screws: np.ndarray | None = None) -> np.ndarray:
         """Linearised chord closure: (6 * n_chords, n); row block j is
-        ``screws(j) + V_a - V_b`` with ``V_x`` the tree velocity of body x."""
+        ``screws(j) + V_a - V_b`` with ``V_x`` the tree velocity of body x.  A float batch
+        of configurations (N, n) gives (N, 6 * n_chords, n)."""
         S = self.current_screws(q) if screws is None else screws
         bk = self.backend
         signs = self._chord_signs()
         if not signs:
-            return bk.zeros((0, self.n))
+            return bk.zeros(S.shape[:-2] + (0, self.n))
+        if S.ndim == 3 and S.dtype != object:
+            # a float batch: the same products, configuration by configuration
+            J = np.stack(signs)[None, :, None, :] * S[:, None, :, :]
+            return J.reshape(S.shape[0], -1, self.n)
         if S.ndim == 2 and S.dtype != object:
             # one float configuration: one broadcast product (the same products)
             return (np.stack(signs)[:, None, :] * S[None, :, :]).reshape(-1, self.n)
@@ -456,6 +491,8 @@ class KinematicModel:
         # the abelian joints' coordinates add, all in one
         ab = self._abelian_columns
         out[ab] = np.asarray(q)[ab] + np.asarray(delta)[ab]
+        if self._float_joints(q, delta):
+            return self._update_float(q, np.asarray(delta), out)
         for jk in self._non_abelian:
             d = delta[jk.columns]
             # zero tested in the model's numbers: at mp:N beyond float's range (N > 300) a
@@ -478,12 +515,66 @@ class KinematicModel:
         distances along a path are therefore compared with this difference, never with
         ``q1 - q0``."""
         d = np.asarray(q1) - np.asarray(q0)
+        if self._non_abelian and self._float_joints(q1, q0):
+            # every non-abelian joint at once: the same products, stacked
+            M = self._elements_of(q1) @ lie.inverse(self._elements_of(q0))
+            for jk, x in zip(self._non_abelian, lie.log(M), strict=True):
+                d[jk.columns] = self._float_coordinates(jk, x)
+            return d
         for jk in self.joints:
             if jk.abelian:
                 continue
             M = self.element(jk, q1) @ lie.inverse(self.element(jk, q0))
             d[jk.columns] = self.coordinates_in(jk, M)
         return d
+
+    def _float_joints(self, *arrays: Any) -> bool:
+        """Whether the non-abelian joints of a float model are updated at float
+        coordinates (one configuration each): then all together, by stacked exponentials
+        and logarithms (:func:`mechsing.lie.exp` and :func:`~mechsing.lie.log` give each
+        row of a stack the numbers they give it alone)."""
+        return self.backend.name == "float" and all(
+            isinstance(a, np.ndarray) and a.ndim == 1 and a.dtype == float for a in arrays
+        )
+
+    def _elements_of(self, q: np.ndarray) -> np.ndarray:
+        """The elements (k, 4, 4) of the non-abelian joints at the float configuration q:
+        :meth:`element`'s ``exp(q_j B_j)``, stacked (the last configuration's kept)."""
+        key = q.tobytes()
+        last = self._last_elements  # read once: another thread may replace it
+        if last is None or last[0] != key:
+            twists = np.stack([q[jk.columns] @ jk.basis for jk in self._non_abelian])
+            last = self._last_elements = (key, lie.exp(twists))
+        return last[1]
+
+    def _update_float(self, q: np.ndarray, delta: np.ndarray, out: np.ndarray) -> np.ndarray:
+        """:meth:`update` of the non-abelian joints of a float model, all at once: the
+        same ``exp(d_j B_j) M_j`` and coordinates, the exponentials and logarithms stacked."""
+        moving = []
+        for i, jk in enumerate(self._non_abelian):
+            d = delta[jk.columns]
+            if not any(x != 0 for x in d):
+                out[jk.columns] = q[jk.columns] + d
+            else:
+                moving.append(i)
+        if not moving:
+            return out
+        joints = [self._non_abelian[i] for i in moving]
+        steps = lie.exp(np.stack([delta[jk.columns] @ jk.basis for jk in joints]))
+        M = steps @ self._elements_of(q)[moving]
+        for jk, x in zip(joints, lie.log(M), strict=True):
+            out[jk.columns] = self._float_coordinates(jk, x)
+        return out
+
+    def _float_coordinates(self, jk: JointKinematics, x: np.ndarray) -> np.ndarray:
+        """:meth:`coordinates_in` of a float model from the logarithm ``x`` of the element
+        (the basis of the joint in the commensurate metric computed once)."""
+        B = self._basis_twists.get(jk.name)
+        if B is None:
+            B = self._basis_twists[jk.name] = self.float_frame.twists(to_float(jk.basis).T)
+        xs = self.float_frame.twists(to_float(x)[:, None])[:, 0]
+        coef, *_ = np.linalg.lstsq(B, xs, rcond=None)
+        return coef
 
     def coordinates_in(self, jk: JointKinematics, M: np.ndarray) -> np.ndarray:
         """First-kind coordinates of an element of the joint's subgroup (log, then the basis).
@@ -531,6 +622,9 @@ class KinematicModel:
 
 #: exact configurations whose field kinematics a model keeps
 _FIELD_CACHE_SIZE = 8
+#: body poses (4 x 4 matrices) the pose cache of a float model holds at most: a sweep's
+#: located points of a small mechanism, a few configurations of a big one
+_POSE_CACHE_MATRICES = 4096
 
 
 def _same_poses(fk: FieldKinematics, poses: dict[str, np.ndarray] | None) -> bool:

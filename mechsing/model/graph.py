@@ -24,6 +24,7 @@
 
 from __future__ import annotations
 
+import weakref
 from collections import deque
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -120,6 +121,12 @@ class MechanismGraph:
         it), and so is each joint that connects ``base`` and ``body`` directly.
         Legs are numbered by their first joint in file order.
         """
+        found = _LEGS.setdefault(self, {})
+        if (body, base) not in found:
+            found[body, base] = self._find_legs(body, base)
+        return found[body, base]
+
+    def _find_legs(self, body: str, base: str) -> tuple[Leg, ...]:
         order = {j.name: i for i, j in enumerate(self.joints)}
         rest = [b for b in self.bodies if b not in (body, base)]
         adj: dict[str, list[Any]] = {b: [] for b in self.bodies}
@@ -156,6 +163,12 @@ class MechanismGraph:
         legs.sort(key=lambda leg: order[leg.joints[0]])
         return tuple(legs)
 
+
+#: the legs found in each graph for each (body, base) (:meth:`MechanismGraph.legs`; a graph
+#: does not change), kept beside the graph while it lives
+_LEGS: weakref.WeakKeyDictionary[MechanismGraph, dict[tuple[str, str], tuple[Leg, ...]]] = (
+    weakref.WeakKeyDictionary()
+)
 
 #: radius of the breadth-first trees in which :func:`short_cycle_basis` looks for
 #: loops (it finds every loop of 2 * 16 + 1 = 33 joints or fewer)

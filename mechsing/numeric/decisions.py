@@ -148,7 +148,9 @@ def rank_bounds(rel: Any, tol: Tolerances) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _split_rank(rel: list[float], tol: Tolerances) -> tuple[int | None, tuple[int, int]]:
-    lo_rank, hi_rank = (int(x) for x in rank_bounds(rel, tol))
+    # rank_bounds on one list of floats, counted in Python (the same comparisons)
+    lo_rank = sum(1 for x in rel if x >= tol.tau_hi)
+    hi_rank = sum(1 for x in rel if x > tol.tau_lo)
     return (lo_rank if lo_rank == hi_rank else None), (lo_rank, hi_rank)
 
 
@@ -234,8 +236,9 @@ def decide_rank(
         smax = float(s_np[0]) if len(s_np) else 0.0
         if reference is not None and reference > smax:
             smax = float(reference)
-        rel = [float(x / smax) if smax > 0 else 0.0 for x in s_np]
-        sigma = tuple(float(x) for x in s_np)
+        values = s_np.tolist()  # Python floats: the same numbers
+        rel = [x / smax if smax > 0 else 0.0 for x in values]
+        sigma = tuple(values)
         # the entries' rounding: of F itself, or of the factors of a product decided
         # against the norm of its first factor (``reference``)
         norm = float(np.sqrt(np.sum(F.data**2))) if issparse(F) else float(np.linalg.norm(F))

@@ -244,6 +244,26 @@ def _loop_subgroup(
     return replace(ref, subgroup=moved)
 
 
+def _loop_rows(
+    model: KinematicModel, loop: Loop, ident: Identification, prec: Precision
+) -> tuple[np.ndarray, np.ndarray]:
+    """The loop's commensurate basis rows (in the model's numbers) and their orthonormal
+    float basis (:func:`loop_basis`); a float model keeps those of a loop whose subgroup is
+    its reference one (its first body at rest: the same at every configuration)."""
+    key = (loop.joints, str(prec))
+    kept = model._loop_rows.get(key)
+    if kept is not None and kept[0] is ident:
+        return kept[1], kept[2]
+    B = ident.subgroup.basis(prec if prec.mode != "auto" else "float")
+    with model.precision.context():
+        Bb = model.asarray(B)
+        Bs = model.frame.rows(Bb)
+    Qf = loop_basis(to_float(Bs))
+    if model.backend.name == "float" and ident is reference_loop_identification(model, loop):
+        model._loop_rows[key] = (ident, Bs, Qf)
+    return Bs, Qf
+
+
 def closure_system(
     model: KinematicModel, q: np.ndarray, precision: Precision | None = None
 ) -> ClosureSystem:
@@ -262,12 +282,11 @@ def closure_system(
             cols[model.joint(name).columns] = sign
         Sl = Ss * cols[None, :]
         if ident.ok and ident.subgroup is not None:
-            B = ident.subgroup.basis(prec if prec.mode != "auto" else "float")
-            with model.precision.context():
-                Bb = model.asarray(B)
-                Bs = model.frame.rows(Bb)
-            R = reduced_coordinates(model, Bs, Sl)
-            Qf = loop_basis(to_float(Bs))
+            Bs, Qf = _loop_rows(model, loop, ident, prec)
+            if model.backend.name == "float" and Bs.shape[0]:
+                R = Qf.T @ Sl  # reduced_coordinates: the same QR of the same rows
+            else:
+                R = reduced_coordinates(model, Bs, Sl)
         else:
             R = Sl  # undecided subgroup: the full 6 rows (reported as such)
             Bs = None

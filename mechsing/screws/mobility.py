@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mechsing.kinematics import KinematicModel
+from mechsing.kinematics import KinematicModel, batched
 from mechsing.kinematics.batch import BatchClosure
 from mechsing.kinematics.newton import newton_on_group, truncated_least_squares
 from mechsing.numeric import (
@@ -26,8 +26,10 @@ from mechsing.numeric import (
     SAMPLE_DISTINCT_RATIO,
     Precision,
     decide_rank,
+    rank_bounds,
     to_float,
 )
+from mechsing.numeric.blocks import DENSE_ENTRIES
 
 _FLOAT = Precision("float")
 #: relative distances (radians or multiples of L) of the sample points
@@ -92,17 +94,25 @@ def _starts(
     return out
 
 
+def _distance(
+    model: KinematicModel, qf: np.ndarray, step: float, q1: np.ndarray, res: float
+) -> float | None:
+    """The distance from q of the sample a closed start gives (commensurate), or None:
+    not closed, or fallen back onto q (not a nearby configuration)."""
+    if not res <= SAMPLE_CLOSURE_RTOL * model.length_scale:
+        return None
+    dist = float(np.linalg.norm(model.float_frame.rates(model.difference(q1, qf))))
+    return None if dist < SAMPLE_DISTINCT_RATIO * step else dist
+
+
 def _sample(
     model: KinematicModel, qf: np.ndarray, step: float, q1: np.ndarray, res: float
 ) -> NearbySample | None:
     """The sample a closed start gives (None: not closed, or fallen back onto q)."""
-    L = model.length_scale
-    if not res <= SAMPLE_CLOSURE_RTOL * L:
+    dist = _distance(model, qf, step, q1, res)
+    if dist is None:
         return None
-    dist = float(np.linalg.norm(model.float_frame.rates(model.difference(q1, qf))))
-    if dist < SAMPLE_DISTINCT_RATIO * step:
-        return None  # Newton fell back onto q: not a nearby configuration
-    dec = decide_rank(stacked_jacobian(model, q1), "float", L, want_spaces=True)
+    dec = decide_rank(stacked_jacobian(model, q1), "float", model.length_scale, want_spaces=True)
     null = None if dec.rank is None else model.n - dec.rank
     return NearbySample(q1, null, dist, dec.null_space)
 
@@ -143,10 +153,47 @@ def nearby_samples_many(
     if not jobs:
         return out
     Q, res = reclose_many(model, np.array([q0 for _, _, q0 in jobs], dtype=float))
+    kept = []
     for (i, step, _), q1, r in zip(jobs, Q, res, strict=True):
-        s = _sample(model, qfs[i], step, q1, float(r))
-        if s is not None:
-            out[i].append(s)
+        dist = _distance(model, qfs[i], step, q1, float(r))
+        if dist is not None:
+            kept.append((i, q1, dist))
+    Qk = np.array([q1 for _, q1, _ in kept], dtype=float).reshape(-1, model.n)
+    for (i, q1, dist), (null, kernel) in zip(kept, _decided_many(model, Qk), strict=True):
+        out[i].append(NearbySample(q1, null, dist, kernel))
+    return out
+
+
+def _decided_many(model: KinematicModel, Q: np.ndarray) -> list[tuple[int | None, np.ndarray]]:
+    """The nullity and the kernel of the closure at each row of Q (closed samples), as
+    :func:`_sample` decides them: the stacked Jacobians of all rows built from one batched
+    product of exponentials (the analysis's own), their singular values and vectors by
+    numpy's batched SVD (the same LAPACK routine, matrix by matrix) and the ranks by the same
+    two-threshold rule."""
+    n = model.n
+    rows = 6 * len(model.chords)
+    if not len(Q) or rows * n > DENSE_ENTRIES:
+        # decide_rank factorises a big matrix block by block: one sample at a time
+        out = []
+        for q1 in Q:
+            dec = decide_rank(
+                stacked_jacobian(model, q1), "float", model.length_scale, want_spaces=True
+            )
+            out.append((None if dec.rank is None else n - dec.rank, dec.null_space))
+        return out
+    S = batched.current_screws(model, Q, batched.poses(model, Q))
+    # stacked_jacobian of each: the chords' signed screws, each 6-row block commensurate
+    J = model.closure_jacobian(Q, S).reshape(len(Q), len(model.chords), 6, n)
+    J = model.float_frame.screws(J).reshape(len(Q), rows, n)
+    s = np.linalg.svd(J, compute_uv=False)
+    Vt = np.linalg.svd(J, full_matrices=True)[2]
+    smax = s[:, 0]
+    rel = np.where(smax[:, None] > 0, s / np.where(smax > 0, smax, 1.0)[:, None], 0.0)
+    lo, hi = rank_bounds(rel, _FLOAT.tolerances)
+    out = []
+    for b in range(len(Q)):
+        r = int(lo[b])
+        out.append((n - r if r == int(hi[b]) else None, Vt[b, r:].T.copy()))
     return out
 
 

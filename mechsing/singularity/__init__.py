@@ -38,6 +38,7 @@ if TYPE_CHECKING:
     from mechsing.model import Mechanism
     from mechsing.screws import ClosureSystem
     from mechsing.screws.mobility import NearbySample
+    from mechsing.singularity.generic import SampleValues
 
 __all__ = [
     "GENERIC_SAMPLES",
@@ -64,7 +65,7 @@ def _output_point(
     if out is None or out.point is None:
         return None
     g = poses[out.body]
-    x0 = model.asarray(list(out.point))
+    x0 = model.point_array(out.point)
     return lie.act_point(g, x0)
 
 
@@ -121,12 +122,14 @@ def classify(
     q: np.ndarray,
     closure: ClosureSystem,
     samples: list[NearbySample] | None = None,
+    values: list[SampleValues] | None = None,
 ) -> Classification:
     """Classify one closed configuration ``q`` of ``mech`` (kinematic ``model`` at the
     analysis precision, ``closure``: its stacked closure system there; ``samples``: its
     nearby samples when the caller closed them already, as
     :func:`mechsing.screws.mobility.nearby_samples` does for the closure's float kernel,
-    else they are closed here when needed).
+    else they are closed here when needed; ``values``: the tests' values at each of them
+    when the caller computed them, :func:`mechsing.singularity.generic.sample_values`).
 
     A pure function of its inputs: the findings (the JSON contract's classes), the rank
     decisions behind them, the generic and finite mobility for mechanisms with loops
@@ -144,7 +147,7 @@ def classify(
         if ls.rank.rank is None
     ]
     with activity("running the mobility, input/output and tangent-cone tests"):
-        local = local_analysis(mech, model, q, cs, samples)
+        local = local_analysis(mech, model, q, cs, samples, values)
     found.extend(local.findings)
     # an input/output, constraint or leg rank the precision could not decide is a
     # verdict left open: say so, and let auto re-decide the configuration at mp:50

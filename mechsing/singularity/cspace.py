@@ -89,7 +89,10 @@ def loop_chains(model: Any, cs: Any, prec: Precision | None = None) -> list[Loop
             else:
                 elems.append((cols, sign))
         rows = ls.basis_rows
-        Q = loop_basis(None if rows is None else prec.asarray(rows))
+        if prec.mode == "float":
+            Q = ls.basis_float  # the closure system's: the same QR of the same float rows
+        else:
+            Q = loop_basis(None if rows is None else prec.asarray(rows))
         out.append(LoopChain(elems, Q))
     return out
 

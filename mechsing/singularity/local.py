@@ -37,7 +37,6 @@ from mechsing.numeric import (
     svd,
     to_float,
 )
-from mechsing.screws import closure_system
 from mechsing.screws.mobility import NearbySample, nearby_samples, reclose, stacked_jacobian
 from mechsing.singularity.cspace import Cone, Expansion, closure_expansion, tangent_cone
 from mechsing.singularity.findings import (
@@ -51,6 +50,7 @@ from mechsing.singularity.findings import (
     decision,
     degenerate,
 )
+from mechsing.singularity.generic import SampleValues, mechanism_plan, sample_values
 from mechsing.singularity.serial import (
     chain_system,
     generic_span,
@@ -142,13 +142,20 @@ def _joints_of(mech: Any, cs: Any) -> tuple[str, ...]:
 
 
 def local_analysis(
-    mech: Any, model: Any, q: np.ndarray, cs: Any, samples: list[NearbySample] | None = None
+    mech: Any,
+    model: Any,
+    q: np.ndarray,
+    cs: Any,
+    samples: list[NearbySample] | None = None,
+    values: list[SampleValues] | None = None,
 ) -> LocalAnalysis:
     """Generic/finite mobility and every finding at a closed configuration with loops
-    (``samples``: its nearby samples when already closed, else closed here)."""
+    (``samples``: its nearby samples when already closed, else closed here; ``values``:
+    the tests' values at each of them when already computed,
+    :func:`mechsing.singularity.generic.sample_values`)."""
     tprec = numeric_precision(model.precision)
     with tprec.context():
-        return _local_analysis(mech, model, q, cs, tprec, samples)
+        return _local_analysis(mech, model, q, cs, tprec, samples, values)
 
 
 @dataclass
@@ -167,6 +174,7 @@ def _local_analysis(
     cs: Any,
     tprec: Precision,
     given: list[NearbySample] | None = None,
+    values: list[SampleValues] | None = None,
 ) -> LocalAnalysis:
     inst = cs.nullity
     prec_name = cs.rank.precision
@@ -262,7 +270,18 @@ def _local_analysis(
     # input / output / constraint, measured against the regular samples of the branch
     if out.generic is not None and inst > 0 and samples:
         out.findings.extend(
-            _io_findings(mech, model, fm, q, system().rank, cs, samples, out, tprec)
+            _io_findings(
+                mech,
+                model,
+                fm,
+                q,
+                system().rank,
+                cs,
+                samples,
+                out,
+                tprec,
+                values if given is not None else None,
+            )
         )
     return out
 
@@ -363,27 +382,23 @@ def _io_findings(
     samples: list[NearbySample],
     out: LocalAnalysis,
     tprec: Precision,
+    values: list[SampleValues] | None = None,
 ) -> list[Finding]:
     """ZFB and constraint findings: decided at q at the test precision ``tprec``
     (``rank``: the closure system's decision there, with its kernel), against
-    the values at the regular nearby samples (float)."""
+    the values at the regular nearby samples (float; ``values``: those of every sample
+    when already computed, else computed here for the regular ones)."""
     findings: list[Finding] = []
-    regular = [s for s in samples if s.nullity == out.generic] or samples
-    # each regular sample's screws, computed once for its tests
-    screws = [fm.current_screws(s.q) for s in regular]
+    idx = [i for i, s in enumerate(samples) if s.nullity == out.generic] or range(len(samples))
+    # each regular sample's values, computed once for every test (all samples together)
+    if values is None:
+        regular = sample_values(mech, fm, [samples[i] for i in idx])
+    else:
+        regular = [values[i] for i in idx]
     has_io = mech.output is not None and mech.inputs
     if has_io:
         here = io_quantities(mech, model, q, rank.null_space, tprec, screws=cs.screws, kernel=rank)
-        gens = []
-        for s, S in zip(regular, screws, strict=True):
-            Ns = s.kernel
-            if Ns is None:
-                Ns = decide_rank(
-                    stacked_jacobian(fm, s.q), "float", fm.length_scale, want_spaces=True
-                ).null_space
-            g = io_quantities(mech, fm, s.q, Ns, screws=S)
-            if g is not None:
-                gens.append(g.values())
+        gens = [v.io for v in regular if v.io is not None]
         if here is not None and gens:
             hv = here.values()
             generic = {
@@ -408,11 +423,7 @@ def _io_findings(
     legs = leg_constraint_rank(mech, model, q, cs, tprec) if mech.output is not None else None
     if legs is not None:
         dec, wr = legs
-        gen_ranks = []
-        for s in regular:
-            r = leg_constraint_rank(mech, fm, s.q, closure_system(fm, s.q))
-            if r is not None and r[0].rank is not None:
-                gen_ranks.append(r[0].rank)
+        gen_ranks = [v.constraint for v in regular if v.constraint is not None]
         out.decisions.append(decision("constraint", dec, max(gen_ranks) if gen_ranks else None))
         if dec.rank is not None and gen_ranks and dec.rank < max(gen_ranks):
             g = max(gen_ranks)
@@ -430,7 +441,7 @@ def _io_findings(
                 )
             )
     if mech.output is not None:
-        findings.extend(_leg_serial(mech, model, fm, cs, regular, screws, out))
+        findings.extend(_leg_serial(mech, model, fm, cs, regular, out))
     return findings
 
 
@@ -536,43 +547,30 @@ def _leg_serial(
     model: Any,
     fm: Any,
     cs: Any,
-    regular: list[NearbySample],
-    screws: list[np.ndarray],
+    regular: list[SampleValues],
     out: LocalAnalysis,
 ) -> list[Finding]:
     """``serial`` for a leg whose own screw system loses rank (type I per leg):
     decided at the analysis precision from the closure system's screws (as the
     output chain of an open chain), against the float ranks at the samples
-    (``screws``: each sample's)."""
+    (``regular``: their values, with each leg's screw matrix)."""
     findings: list[Finding] = []
-    legs = mech.legs
-    if len(legs) < 2:
-        return findings
+    legs = mechanism_plan(mech, fm).legs
     for i, leg in enumerate(legs):
-        cols = [
-            c
-            for j in leg.joints
-            for c in range(fm.joint(j).columns.start, fm.joint(j).columns.stop)
-        ]
-        names = [
-            fm.joint(j).name
-            for j in leg.joints
-            for _ in range(fm.joint(j).columns.stop - fm.joint(j).columns.start)
-        ]
         with model.precision.context():
-            here = chain_system(model, cs.screws, cols, None, model.precision)
+            here = chain_system(model, cs.screws, leg.columns, None, model.precision)
         gen = here.rank.rank or 0
         samples = []
-        for S in screws:
-            sample = chain_system(fm, S, cols, None, "float")
-            samples.append(sample.matrix)
-            if sample.rank.rank is not None:
-                gen = max(gen, sample.rank.rank)
+        for v in regular:
+            matrix, r = v.legs[i]
+            samples.append(matrix)
+            if r is not None:
+                gen = max(gen, r)
         out.decisions.append(decision(f"leg {i + 1} chain", here.rank, gen))
         span = None
         if here.rank.rank is not None and here.rank.rank < gen:
             span = generic_span([here.matrix, *samples], gen)
-        f = serial_finding(fm, here, gen, names, {"chain": "leg", "leg": i + 1}, None, span)
+        f = serial_finding(fm, here, gen, leg.names, {"chain": "leg", "leg": i + 1}, None, span)
         if f:
             findings.append(f)
     return findings

@@ -86,7 +86,7 @@ def output_rows(
     chain = tree_chain(model, out.body, out.relative_to)
     x = None
     if out.point is not None:
-        x0 = model.asarray(list(out.point))
+        x0 = model.point_array(out.point)
         x = lie.act_point(poses[out.body], x0)
     return chain_matrix(model, S, None, x, chain.signs)
 
@@ -168,8 +168,14 @@ def _io_quantities(
     # its own singular values: their rounding is eps times the matrix, whereas a kernel
     # of TN (or EN) computed near a singularity at distance d is off by eps / d, and
     # E applied to it would turn that error into a false input (output) motion
-    rT = decide_rank(TN, prec, L, reference=nT)
-    rE = decide_rank(EN, prec, L, reference=nE)
+    if prec.mode == "float" and m:
+        # the ranks with their kernels (below): in float a decision with spaces has the
+        # singular values, rank and margin of the one without
+        rT = decide_rank(TN, prec, L, want_spaces=True, reference=nT)
+        rE = decide_rank(EN, prec, L, want_spaces=True, reference=nE)
+    else:
+        rT = decide_rank(TN, prec, L, reference=nT)
+        rE = decide_rank(EN, prec, L, reference=nE)
     both = np.vstack([TN / max(nT, 1e-300), EN]) if m else np.zeros((0, 0))
     if m:
         rB = decide_rank(both, prec, L, reference=1.0)
@@ -179,8 +185,11 @@ def _io_quantities(
         passive = 0
     # witnesses of the motions (for the joint rates of a finding): the kernels at the
     # decided (or guessed) ranks
-    zT = _null(TN, L, prec, nT) if m else bk.zeros((0, 0))
-    zE = _null(EN, L, prec, nE) if m else bk.zeros((0, 0))
+    if prec.mode == "float" and m:
+        zT, zE = rT.null_space, rE.null_space
+    else:
+        zT = _null(TN, L, prec, nT) if m else bk.zeros((0, 0))
+        zE = _null(EN, L, prec, nE) if m else bk.zeros((0, 0))
     return IOQuantities(
         rank_difference(rB, rT),  # dim E(K cap ker T) = rank [TN; EN] - rank TN
         rank_difference(rB, rE),  # dim T(K cap ker E) = rank [TN; EN] - rank EN
