@@ -161,3 +161,36 @@ def test_the_closure_measured_without_its_svd_is_the_svd_s():
     assert np.array_equal(np.sign(d), np.sign(direct))
     # the screened pairs' bound is below the product it stands for
     assert np.all(d <= direct + 1e-12 * s[ia, 0])
+
+
+def test_the_closure_singular_values_from_the_gram_matrix_where_it_is_far_from_singular():
+    """The closure's triangular factor's singular values, from R^T R's eigenvalues where the
+    smallest relative one is at least SWEEP_GRAM_RATIO, numpy's SVD elsewhere: on matrices
+    built with known singular values (random orthogonal factors), the first within their
+    bound (30 eps / (2 rho^2) relative, rho the smallest relative one), the others the
+    SVD's exactly."""
+    from mechsing.numeric import SWEEP_GRAM_RATIO
+    from mechsing.sweeps.measures import _singular_values
+
+    rng = np.random.default_rng(7)
+    k = 30
+    smallest = [1.0, 0.5, 0.2, 1.2 * SWEEP_GRAM_RATIO, 0.8 * SWEEP_GRAM_RATIO, 1e-3, 1e-9]
+    want, mats = [], []
+    for lo in smallest:
+        s = np.sort(np.concatenate([[1.0, lo], rng.uniform(lo, 1.0, k - 2)]))[::-1] * 3.7
+        U, _ = np.linalg.qr(rng.standard_normal((k, k)))
+        V, _ = np.linalg.qr(rng.standard_normal((k, k)))
+        want.append(s)
+        mats.append(np.linalg.qr(U @ np.diag(s) @ V.T, mode="r"))  # a triangular factor
+    R = np.array(mats)
+    got = _singular_values(R)
+    svd = np.linalg.svd(R, compute_uv=False)
+    for lo, g, w, sv in zip(smallest, got, want, svd, strict=True):
+        if lo >= SWEEP_GRAM_RATIO:
+            bound = 30 * np.finfo(float).eps / (2 * lo**2)
+            np.testing.assert_allclose(g, w, rtol=bound, atol=0)
+            np.testing.assert_allclose(g[-1] / g[0], sv[-1] / sv[0], rtol=bound, atol=0)
+        else:
+            assert np.array_equal(g, sv)
+            # the SVD's rounding: a few eps sigma_1 on every singular value
+            np.testing.assert_allclose(g, w, rtol=0, atol=1e-14 * w[0])

@@ -56,7 +56,7 @@ import numpy as np
 
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
-from mechsing.numeric import SWEEP_SCREEN_ROUNDING, Precision, rank_bounds
+from mechsing.numeric import SWEEP_GRAM_RATIO, SWEEP_SCREEN_ROUNDING, Precision, rank_bounds
 from mechsing.screws import chain_matrix
 from mechsing.singularity.zfb import input_rows, leg_path
 
@@ -250,7 +250,7 @@ class Measures:
                 kernel = Qc[:, :, rows:]  # (N, n, n - rows)
             else:
                 Rc = np.linalg.qr(np.swapaxes(C, 1, 2), mode="r")
-            self._closure_svd = ("qr", np.linalg.svd(Rc[:, :rows, :], compute_uv=False))
+            self._closure_svd = ("qr", _singular_values(Rc[:, :rows, :]))
         if "input" in self.tests or "output" in self.tests:
             if self.mech.loops and kernel is None:
                 g = self.generic.get("closure") or _max_rank(out["closure"])
@@ -467,6 +467,20 @@ def _turn(kb: np.ndarray, ka: np.ndarray) -> np.ndarray:
     """The orthogonal factor of ``kb^T ka``: turns the kernel basis kb onto ka."""
     u, _, vt = np.linalg.svd(np.swapaxes(kb, 1, 2) @ ka)
     return u @ vt
+
+
+def _singular_values(R: np.ndarray) -> np.ndarray:
+    """The singular values of square matrices R (N, k, k), descending: the square roots
+    of the eigenvalues of R^T R (a symmetric eigenproblem, cheaper than the SVD) where
+    the smallest relative one is at least SWEEP_GRAM_RATIO (there squaring loses at most
+    a factor 1 / (2 rho^2) of the rounding), the SVD of R elsewhere (a matrix nearer its
+    singularity, whose smallest singular values a Gram matrix would blur)."""
+    lam = np.linalg.eigvalsh(np.swapaxes(R, 1, 2) @ R)
+    s = np.sqrt(np.maximum(lam[:, ::-1], 0.0))
+    near = np.flatnonzero(~(s[:, -1] >= SWEEP_GRAM_RATIO * s[:, 0]))
+    if len(near):
+        s[near] = np.linalg.svd(R[near], compute_uv=False)
+    return s
 
 
 def _relative(s: np.ndarray) -> np.ndarray:
