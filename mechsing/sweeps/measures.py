@@ -130,7 +130,7 @@ class PointMeasures:
             matrices = {}
             lazy = [
                 t
-                for t, M in first.matrices.items()
+                for t in first.matrices
                 if all(isinstance(pm.matrices[t], _Recomputed) for pm, _ in parts)  # type: ignore[index]
             ]
             if lazy:
