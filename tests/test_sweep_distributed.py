@@ -12,6 +12,7 @@ document.  The tests that need a cluster are skipped without Dask distributed (t
 from __future__ import annotations
 
 import importlib.util
+import math
 import pickle
 import sys
 from pathlib import Path
@@ -136,3 +137,21 @@ def test_a_rows_closure_error_reaches_the_driver_whole() -> None:
     e = pickle.loads(pickle.dumps(ClosureError("row 3 does not close", "reference", 1.5e-3)))
     assert isinstance(e, ClosureError)
     assert (str(e), e.configuration, e.residual) == ("row 3 does not close", "reference", 1.5e-3)
+
+
+@needs_dask
+def test_a_closure_not_kept_travels_whole_and_gives_the_serial_result(cluster) -> None:
+    """The hexapod's closure of full row rank is measured without keeping its matrices
+    (they are computed again where read): a row sent back from a worker carries them
+    whole, and the crossings between rows found from them are the serial ones."""
+    hexapod = str(ROOT / "examples" / "stewart_octahedral.yaml")
+    grid = ["pose.x=-0.04:0.04:0.04", "pose.rz=-1.8:1.8:0.1"]
+    run = SweepRun(hexapod, grid, precision=PRECISION)
+    assert "closure" in run.engine.measures(run.engine.z0[None, : run.engine.model.n]).deferred
+    serial = sweep(hexapod, grid, precision=PRECISION)
+    # Fichter's Type II turns (rz = +-pi/2), crossed between the rows (refined from the
+    # received rows' matrices)
+    turns = [p for p in serial.located if p.between == "column" and "output" in p.tests]
+    assert len(turns) == 6
+    assert all(abs(abs(p.values[1]) - math.pi / 2) <= 1e-12 for p in turns)
+    _same(serial, sweep(hexapod, grid, precision=PRECISION, scheduler=cluster.scheduler_address))

@@ -161,3 +161,98 @@ def test_the_closure_measured_without_its_svd_is_the_svd_s():
     assert np.array_equal(np.sign(d), np.sign(direct))
     # the screened pairs' bound is below the product it stands for
     assert np.all(d <= direct + 1e-12 * s[ia, 0])
+
+
+def test_the_closure_singular_values_from_the_gram_matrix_where_it_is_far_from_singular():
+    """The closure's triangular factor's singular values, from R^T R's eigenvalues where the
+    smallest relative one is at least SWEEP_GRAM_RATIO, numpy's SVD elsewhere: on matrices
+    built with known singular values (random orthogonal factors), the first within their
+    bound (30 eps / (2 rho^2) relative, rho the smallest relative one), the others the
+    SVD's exactly."""
+    from mechsing.numeric import SWEEP_GRAM_RATIO
+    from mechsing.sweeps.measures import _singular_values
+
+    rng = np.random.default_rng(7)
+    k = 30
+    smallest = [1.0, 0.5, 0.2, 1.2 * SWEEP_GRAM_RATIO, 0.8 * SWEEP_GRAM_RATIO, 1e-3, 1e-9]
+    want, mats = [], []
+    for lo in smallest:
+        s = np.sort(np.concatenate([[1.0, lo], rng.uniform(lo, 1.0, k - 2)]))[::-1] * 3.7
+        U, _ = np.linalg.qr(rng.standard_normal((k, k)))
+        V, _ = np.linalg.qr(rng.standard_normal((k, k)))
+        want.append(s)
+        mats.append(np.linalg.qr(U @ np.diag(s) @ V.T, mode="r"))  # a triangular factor
+    R = np.array(mats)
+    got = _singular_values(R)
+    svd = np.linalg.svd(R, compute_uv=False)
+    for lo, g, w, sv in zip(smallest, got, want, svd, strict=True):
+        if lo >= SWEEP_GRAM_RATIO:
+            bound = 30 * np.finfo(float).eps / (2 * lo**2)
+            np.testing.assert_allclose(g, w, rtol=bound, atol=0)
+            np.testing.assert_allclose(g[-1] / g[0], sv[-1] / sv[0], rtol=bound, atol=0)
+        else:
+            assert np.array_equal(g, sv)
+            # the SVD's rounding: a few eps sigma_1 on every singular value
+            np.testing.assert_allclose(g, w, rtol=0, atol=1e-14 * w[0])
+
+
+def test_the_closure_matrices_not_kept_are_computed_again_the_same():
+    """A closure of full row rank is measured without keeping its matrices (nor the bordered
+    tests' rows): read at any rows, they are the numbers the measures computed (bit for
+    bit), also after batches are gathered (by slices or index arrays) and after a batch
+    travelled to another process (pickled); the neighbours' screen, from the norms the
+    measures kept, gives what it gives from the matrices themselves."""
+    import pickle
+
+    from mechsing.sweeps.measures import PointMeasures
+
+    run, Z = _path("pose.rz=-1.6:1.6:0.004")
+    meas = run.engine.measures
+    Q = Z[:, : run.engine.model.n]
+    parts = [meas(Q[:300]), meas(Q[300:])]
+    pm = PointMeasures.gather([(p, slice(None)) for p in parts])
+    assert "closure" in pm.deferred and not isinstance(pm.matrices["closure"], np.ndarray)
+    whole, _ = meas.matrices(Q)
+    idx = np.array([0, 5, 299, 300, 301, len(Q) - 1])
+    for t in ("closure", "input_rows"):
+        assert np.array_equal(pm.matrices[t][idx], whole[t][idx])
+        again = pickle.loads(pickle.dumps(pm))
+        assert np.array_equal(again.matrices[t][idx], whole[t][idx])
+        # a gather of a pickled batch (whole) and of a computed one
+        mixed = PointMeasures.gather([(again, slice(0, 10)), (pm, np.array([400, 401, 7]))])
+        want = np.concatenate([whole[t][:10], whole[t][[400, 401, 7]]])
+        assert np.array_equal(mixed.matrices[t][:], want)
+    # the screen from the kept norms and from the matrices themselves
+    kept = PointMeasures(
+        pm.rank,
+        pm.ratio,
+        pm.bases,
+        pm.kernel,
+        {t: whole[t] for t in pm.matrices},
+        pm.deferred,
+        pm.top,
+    )
+    ia = np.arange(len(Q) - 1)
+    ib = ia + 1
+    a = meas.compressed_pairs(pm, ia, ib)
+    b = meas.compressed_pairs(kept, ia, ib)
+    for t in a:
+        assert np.array_equal(a[t], b[t]), t
+    # every Weyl bound screened positive, and the closure never crosses zero on this turn
+    assert np.all(a["closure"] > 0)
+    # the norms gathered by an index array: kept where the next point follows, and the
+    # screen of those points' pairs is the one of the whole batch
+    pick = np.array([3, 4, 5, 9, 10, 298, 299, 300, 301, 600])
+    sub = PointMeasures.gather([(pm, pick)])
+    size, ahead = sub.steps["closure"]
+    assert np.array_equal(size, pm.steps["closure"][0][pick])
+    follows = np.append(pick[1:] == pick[:-1] + 1, False)
+    assert np.array_equal(np.isnan(ahead), ~follows | (pick == 299))
+    ja = np.arange(len(pick) - 1)
+    c = meas.compressed_pairs(sub, ja, ja + 1)
+    d = meas.compressed_pairs(kept, pick[:-1], pick[1:])
+    for t in c:
+        assert np.array_equal(c[t], d[t]), t
+    # its singular values: numpy's SVD of the same matrices
+    s = np.linalg.svd(whole["closure"], compute_uv=False)
+    assert np.allclose(pm.ratio["closure"], s[:, -1] / s[:, 0], rtol=1e-12, atol=0)

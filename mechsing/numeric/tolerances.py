@@ -171,6 +171,13 @@ SWEEP_BRANCH_OFFSET = 1e-4
 #: of both (the SVD's backward error and the product's, a few eps |A|_F each) by this
 #: factor times eps |A_a|_F
 SWEEP_SCREEN_ROUNDING = 1e3
+#: a sweep's closure of full row rank (its triangular factor R) has its singular values
+#: from the eigenvalues of R^T R where its smallest relative one is at least this: the
+#: eigenvalues are off by a few eps sigma_1^2, so sigma_i by a few eps / (2 rho_i^2), at
+#: most 200 eps here (the SVD's own rounding is eps / rho, up to 20 eps: on the hexapod's
+#: turn, rho 0.094 to 0.14, the two differ by 1.3e-14 relative, as the SVDs of R and of
+#: the closure itself differ by 1.0e-14); nearer its singularity, the SVD of R
+SWEEP_GRAM_RATIO = 0.05
 #: first step (commensurate arclength) when a path is followed along its curve through a
 #: fold (pseudo-arclength continuation), and the shortest step before it gives up
 SWEEP_ARC_STEP = 0.02

@@ -583,20 +583,7 @@ class Sweep:
         parts = [self.measures(Q[i : i + _CHUNK]) for i in range(0, max(len(Q), 1), _CHUNK)]
         if len(parts) == 1:
             return parts[0]
-        return PointMeasures(
-            {t: np.concatenate([p.rank[t] for p in parts]) for t in self.tests},
-            {t: np.concatenate([p.ratio[t] for p in parts]) for t in self.tests},
-            {
-                t: tuple(np.concatenate([p.bases[t][k] for p in parts]) for k in (0, 1))
-                for t in parts[0].bases
-            },
-            None
-            if parts[0].kernel is None
-            else np.concatenate([np.asarray(p.kernel) for p in parts]),
-            {t: np.concatenate([p.matrices[t] for p in parts]) for t in parts[0].matrices or {}},
-            parts[0].deferred,
-            {t: np.concatenate([p.top[t] for p in parts]) for t in parts[0].top},
-        )
+        return PointMeasures.gather([(p, slice(None)) for p in parts])
 
     def values_of(self, z: np.ndarray) -> tuple[float, ...]:
         return tuple(float(z[c]) for c in self.cols)

@@ -56,7 +56,7 @@ import numpy as np
 
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
-from mechsing.numeric import SWEEP_SCREEN_ROUNDING, Precision, rank_bounds
+from mechsing.numeric import SWEEP_GRAM_RATIO, SWEEP_SCREEN_ROUNDING, Precision, rank_bounds
 from mechsing.screws import chain_matrix
 from mechsing.singularity.zfb import input_rows, leg_path
 
@@ -92,13 +92,19 @@ class PointMeasures:
     #: the leading singular vectors of the tests whose SVD was computed with the measures
     bases: dict[str, tuple[np.ndarray, np.ndarray]]
     kernel: np.ndarray | None
-    #: the signed tests' matrices (for the sign changes between neighbours)
-    matrices: dict[str, np.ndarray] | None = None
+    #: the signed tests' matrices (for the sign changes between neighbours); a closure of
+    #: full row rank's, and the bordered tests' rows, are not kept but computed again
+    #: where they are indexed (:class:`_Recomputed`)
+    matrices: dict[str, Any] | None = None
     #: tests measured without their singular vectors (the closure of full row rank),
     #: with their generic rank: :meth:`basis` computes the vectors from ``matrices``
     deferred: dict[str, int] = field(default_factory=dict)
     #: the largest singular value of each test's matrix, per configuration
     top: dict[str, np.ndarray] = field(default_factory=dict)
+    #: per test measured without its singular vectors: the Frobenius norm of its matrix
+    #: at each configuration and of the step to the next one (NaN where there is none),
+    #: which :meth:`Measures.compressed_pairs` screens neighbours with
+    steps: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
     _last: Any = field(default=None, repr=False, compare=False)
 
     def __len__(self) -> int:
@@ -108,14 +114,34 @@ class PointMeasures:
     def gather(parts: list[tuple[PointMeasures, Any]]) -> PointMeasures:
         """The measures of the points ``idx`` (an index array or a slice) of each measured
         batch of ``parts``, in order, as one batch (several rows of a grid refined
-        together).  Every array is per point, so each point's entries are those of its
-        own batch."""
+        together, a row of a chunk's batch, the chunks of a long row).  Every array is per
+        point, so each point's entries are those of its own batch; matrices that were not
+        kept (:class:`_Recomputed`) stay so, computed again from the points'
+        configurations where they are read; the screen's step norms are kept where a
+        point's next one is gathered after it (NaN elsewhere)."""
         first = parts[0][0]
 
-        def cat(get: Callable[[PointMeasures], np.ndarray]) -> np.ndarray:
+        def cat(get: Callable[[PointMeasures], Any]) -> np.ndarray:
             got = [get(pm)[idx] for pm, idx in parts]
             return got[0] if len(got) == 1 else np.concatenate(got)
 
+        matrices: dict[str, Any] | None = None
+        if first.matrices is not None:
+            matrices = {}
+            lazy = [
+                t
+                for t in first.matrices
+                if all(isinstance(pm.matrices[t], _Recomputed) for pm, _ in parts)  # type: ignore[index]
+            ]
+            if lazy:
+                source = _Source.gather(
+                    [(pm.matrices[lazy[0]].source, idx) for pm, idx in parts]  # type: ignore[index]
+                )
+            for t in first.matrices:
+                if t in lazy:
+                    matrices[t] = _Recomputed(source, t)
+                else:
+                    matrices[t] = cat(lambda pm, t=t: pm.matrices[t])
         return PointMeasures(
             {t: cat(lambda pm, t=t: pm.rank[t]) for t in first.rank},
             {t: cat(lambda pm, t=t: pm.ratio[t]) for t in first.ratio},
@@ -124,11 +150,10 @@ class PointMeasures:
                 for t in first.bases
             },
             None if first.kernel is None else cat(lambda pm: pm.kernel),
-            None
-            if first.matrices is None
-            else {t: cat(lambda pm, t=t: pm.matrices[t]) for t in first.matrices},
+            matrices,
             dict(first.deferred),
             {t: cat(lambda pm, t=t: pm.top[t]) for t in first.top},
+            {t: _gathered_steps([(pm.steps[t], idx) for pm, idx in parts]) for t in first.steps},
         )
 
     def basis(self, t: str, idx: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -230,15 +255,11 @@ class Measures:
     ) -> tuple[dict[str, np.ndarray], np.ndarray | None]:
         """Each test's commensurate matrix at the rows of Q, and the closure kernel
         (``signed``: only the tests whose sign is read, :data:`SIGNED`)."""
-        P = batched.poses(self.model, Q, fast=True)
-        S = batched.current_screws(self.model, Q, P)
-        Ss = self.frame.screws(S)
+        P, S, Ss = self._screws(Q)
         N = Q.shape[0]
-        n = self.model.n
         out: dict[str, np.ndarray] = {}
         if self.mech.loops:
-            C = Ss[:, None, :, :] * self.loop_signs[None, :, None, :]
-            out["closure"] = C.reshape(N, -1, n)
+            out["closure"] = self._closure(Ss)
         kernel = None
         if self.mech.loops and self._full_row_rank():
             # the kernel is the complement of the row space: C^T = Q R, and C = R^T Q^T
@@ -250,7 +271,7 @@ class Measures:
                 kernel = Qc[:, :, rows:]  # (N, n, n - rows)
             else:
                 Rc = np.linalg.qr(np.swapaxes(C, 1, 2), mode="r")
-            self._closure_svd = ("qr", np.linalg.svd(Rc[:, :rows, :], compute_uv=False))
+            self._closure_svd = ("qr", _singular_values(Rc[:, :rows, :]))
         if "input" in self.tests or "output" in self.tests:
             if self.mech.loops and kernel is None:
                 g = self.generic.get("closure") or _max_rank(out["closure"])
@@ -258,13 +279,7 @@ class Measures:
                 kernel = np.swapaxes(Vt[:, g:, :], 1, 2)  # (N, n, n - g)
                 self._closure_svd = ("svd", U, s, Vt)
             # without loops every joint rate is a motion: N is the identity
-            x = None
-            if self.out_point is not None:
-                x = (P[self.mech.output.body][:, :3, :3] @ self.out_point) + P[
-                    self.mech.output.body
-                ][:, :3, 3]
-            T = chain_matrix(self.model, S, None, x, self.out_signs)  # makes it commensurate
-            nT = np.linalg.norm(T, ord=2, axis=(1, 2))
+            T, nT = self._output_rows(P, S)
             TN = T if kernel is None else T @ kernel
             out["input"] = TN / np.maximum(nT, 1e-300)[:, None, None]
             out["output"] = (
@@ -276,6 +291,42 @@ class Measures:
         if "constraint" in self.tests and not signed:
             out["constraint"] = self._constraint(Ss)
         return out, kernel
+
+    def _screws(self, Q: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
+        """The body poses, the current screws and the commensurate screws at the rows of Q."""
+        P = batched.poses(self.model, Q, fast=True)
+        S = batched.current_screws(self.model, Q, P)
+        return P, S, self.frame.screws(S)
+
+    def _closure(self, Ss: np.ndarray) -> np.ndarray:
+        """The stacked loop screw systems from the commensurate screws, (N, 6 loops, n)."""
+        C = Ss[:, None, :, :] * self.loop_signs[None, :, None, :]
+        return C.reshape(Ss.shape[0], -1, self.model.n)
+
+    def _output_rows(
+        self, P: dict[str, np.ndarray], S: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The commensurate output rows T (twists, or the output point's velocities) and
+        their norms |T|."""
+        x = None
+        if self.out_point is not None:
+            x = (P[self.mech.output.body][:, :3, :3] @ self.out_point) + P[self.mech.output.body][
+                :, :3, 3
+            ]
+        T = chain_matrix(self.model, S, None, x, self.out_signs)  # makes it commensurate
+        return T, np.linalg.norm(T, ord=2, axis=(1, 2))
+
+    def unkept(self, Q: np.ndarray) -> dict[str, np.ndarray]:
+        """The matrices a measured batch of a closure of full row rank does not keep
+        (:class:`_Recomputed`), at the rows of Q: the closure and the bordered tests'
+        rows, computed as :meth:`matrices` computes them (the same numbers)."""
+        P, S, Ss = self._screws(Q)
+        out = {"closure": self._closure(Ss)}
+        if "input" in self.tests or "output" in self.tests:
+            T, nT = self._output_rows(P, S)
+            out["input_rows"] = T / np.maximum(nT, 1e-300)[:, None, None]
+            out["output_rows"] = np.broadcast_to(self.E, (Q.shape[0], *self.E.shape))
+        return out
 
     def _full_row_rank(self) -> bool:
         """Whether the closure is measured and its generic rank is its number of rows
@@ -337,7 +388,18 @@ class Measures:
         for t in ("input", "output"):
             if self._bordered_test(t) and f"{t}_rows" in mats:
                 signed[f"{t}_rows"] = mats[f"{t}_rows"]
-        return PointMeasures(rank, ratio, bases, kernel, signed, deferred, top)
+        steps = {}
+        if deferred:
+            # the closure of full row rank is large (and its rows' neighbours are read
+            # only through the screen's norms): its matrices, and the bordered tests'
+            # rows, are computed again where they are read
+            for t in deferred:
+                steps[t] = _steps(mats[t])
+            source = _Source(self, Q)
+            for t in signed:
+                if t in source.keys:
+                    signed[t] = _Recomputed(source, t)
+        return PointMeasures(rank, ratio, bases, kernel, signed, deferred, top, steps)
 
     def _bordered_test(self, t: str) -> bool:
         """Whether the sign of test ``t`` is read from the bordered determinant: an input
@@ -406,8 +468,19 @@ class Measures:
         g = pm.deferred[t]
         rounding = SWEEP_SCREEN_ROUNDING * np.finfo(float).eps
         d = pm.ratio[t][ia] * pm.top[t][ia]  # sigma_g at a
-        for lo in range(0, len(ia), _SCREEN_CHUNK):
-            sl = slice(lo, lo + _SCREEN_CHUNK)
+        ia, ib = np.asarray(ia), np.asarray(ib)
+        if t in pm.steps:
+            # the norms the measures kept: of each matrix and of its step to the next row
+            sizes, ahead = pm.steps[t]
+            size = sizes[ia]
+            moved = np.where(ib == ia + 1, ahead[ia], np.nan)
+            known = np.isfinite(moved)
+            d[known] -= moved[known] + rounding * size[known]
+            rest = np.flatnonzero(~known)  # other pairs, and across the measured parts
+        else:
+            rest = np.arange(len(ia))
+        for lo in range(0, len(rest), _SCREEN_CHUNK):
+            sl = rest[lo : lo + _SCREEN_CHUNK]
             Aa, Ab = M[ia[sl]], M[ib[sl]]
             D = Ab - Aa
             moved = np.sqrt(np.einsum("nij,nij->n", D, D))
@@ -469,6 +542,20 @@ def _turn(kb: np.ndarray, ka: np.ndarray) -> np.ndarray:
     return u @ vt
 
 
+def _singular_values(R: np.ndarray) -> np.ndarray:
+    """The singular values of square matrices R (N, k, k), descending: the square roots
+    of the eigenvalues of R^T R (a symmetric eigenproblem, cheaper than the SVD) where
+    the smallest relative one is at least SWEEP_GRAM_RATIO (there squaring loses at most
+    a factor 1 / (2 rho^2) of the rounding), the SVD of R elsewhere (a matrix nearer its
+    singularity, whose smallest singular values a Gram matrix would blur)."""
+    lam = np.linalg.eigvalsh(np.swapaxes(R, 1, 2) @ R)
+    s = np.sqrt(np.maximum(lam[:, ::-1], 0.0))
+    near = np.flatnonzero(~(s[:, -1] >= SWEEP_GRAM_RATIO * s[:, 0]))
+    if len(near):
+        s[near] = np.linalg.svd(R[near], compute_uv=False)
+    return s
+
+
 def _relative(s: np.ndarray) -> np.ndarray:
     """Singular values (N, k) relative to each row's largest (0 where it is 0)."""
     big = s[:, :1]
@@ -479,3 +566,106 @@ def _max_rank(A: np.ndarray) -> int:
     s = np.linalg.svd(A, compute_uv=False)
     lo, hi = rank_bounds(_relative(s), _FLOAT)
     return int(np.max(hi))
+
+
+def _steps(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The Frobenius norm of each matrix of M (N, r, c) and of its difference with the
+    next one (NaN for the last): what the neighbours' screen reads."""
+    size = np.sqrt(np.einsum("nij,nij->n", M, M))
+    ahead = np.full(len(M), np.nan)
+    # the differences a block at a time (a small working array, not a second M)
+    for lo in range(0, len(M) - 1, _SCREEN_CHUNK):
+        hi = min(lo + _SCREEN_CHUNK, len(M) - 1)
+        D = M[lo + 1 : hi + 1] - M[lo:hi]
+        ahead[lo:hi] = np.sqrt(np.einsum("nij,nij->n", D, D))
+    return size, ahead
+
+
+def _gathered_steps(
+    parts: list[tuple[tuple[np.ndarray, np.ndarray], Any]],
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_steps` of the points ``idx`` of each part, in order: a point's step norm is
+    kept where its next point in its batch is the next one gathered, NaN elsewhere."""
+    sizes, aheads = [], []
+    for (size, ahead), idx in parts:
+        pos = np.arange(len(size))[idx]
+        follows = np.zeros(len(pos), dtype=bool)
+        follows[:-1] = pos[1:] == pos[:-1] + 1
+        sizes.append(size[pos])
+        aheads.append(np.where(follows, ahead[pos], np.nan))
+    if len(parts) == 1:
+        return sizes[0], aheads[0]
+    return np.concatenate(sizes), np.concatenate(aheads)
+
+
+class _Source:
+    """The configurations of a measured batch, whose large matrices
+    (:meth:`Measures.unkept`) are computed again at the rows read; the last rows asked
+    are kept (a refinement reads the same points several times).  Sent to another
+    process (a distributed grid's rows), it carries the matrices themselves."""
+
+    keys = ("closure", "input_rows", "output_rows")
+
+    def __init__(self, measures: Measures | None, Q: np.ndarray) -> None:
+        self.measures = measures
+        self.Q = np.array(Q, dtype=float)
+        self._last: Any = None
+        #: the matrices themselves, where the measures are not here (received whole)
+        self._whole: dict[str, np.ndarray] = {}
+
+    @staticmethod
+    def gather(parts: list[tuple[_Source, Any]]) -> _Source:
+        """The points ``idx`` of each source, in order, as one source: computed again by
+        the same measures from their configurations, or, where a part was received whole
+        (or the parts' measures differ), whole."""
+        measures = parts[0][0].measures
+        if measures is not None and all(s.measures is measures for s, _ in parts):
+            return _Source(measures, np.concatenate([s.Q[idx] for s, idx in parts]))
+        out = _Source(None, np.concatenate([s.Q[idx] for s, idx in parts]))
+        got = [s.at(idx) for s, idx in parts]
+        out._whole = {k: np.concatenate([g[k] for g in got]) for k in got[0]}
+        return out
+
+    def at(self, idx: Any) -> dict[str, np.ndarray]:
+        if isinstance(idx, slice):
+            key: Any = ("slice", idx.start, idx.stop, idx.step)
+        else:
+            a = np.asarray(idx)
+            key = (a.dtype.str, a.shape, a.tobytes())
+        if self._last is not None and self._last[0] == key:
+            return self._last[1]
+        if self.measures is None:  # received from another process: kept whole
+            got = {k: v[idx] for k, v in self._whole.items()}
+        else:
+            got = self.measures.unkept(self.Q[idx])
+        self._last = (key, got)
+        return got
+
+    def __getstate__(self) -> dict[str, Any]:
+        # sent to another process: the matrices themselves, not the model that computes them
+        whole = self.at(slice(None)) if self.measures is not None else self._whole
+        return {"measures": None, "Q": self.Q, "_last": None, "_whole": whole}
+
+
+class _Recomputed:
+    """One test's matrices at a measured batch's configurations, not kept but computed
+    again (:meth:`Measures.unkept`, the same numbers) at the rows indexed."""
+
+    def __init__(self, source: _Source, t: str) -> None:
+        self.source = source
+        self.t = t
+
+    def __len__(self) -> int:
+        return len(self.source.Q)
+
+    def __getitem__(self, idx: Any) -> np.ndarray:
+        return self.source.at(idx)[self.t]
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return (len(self), *self[:1].shape[1:])
+
+    def __array__(self, dtype: Any = None, copy: Any = None) -> np.ndarray:
+        """Every row's matrix (an array of the whole batch, computed again)."""
+        whole = self[:]
+        return whole if dtype is None else whole.astype(dtype)
