@@ -590,6 +590,18 @@ def test_watt_and_stephenson_six_bars(kind, frame, xy, ground, data):
     p_axis=np.array([1.73752718e-105, -5.96046448e-008, -4.57111262e-001]),
     delta=-0.1281259931364724,
 )
+# the reference configuration is 0.0015 rad of R1 short of a fold, where it meets a second
+# assembly mode (U1 = 0.15 rad at R1 = 0): the tracker's first step of 0.0078 rad, Gauss-Newton
+# from the reference without a predictor, converged on that other mode, and the test blamed
+# mechsing, whose continuation stays on the reference's mode; now the tracker's steps must be
+# reversible, and it halves its first step
+@example(
+    pts=[np.array([0.0, 0.0, 1.0]), np.array([4.25, 0.0, -2.5]), np.array([-1.0, -0.5, 4.0])],
+    r_axis=np.array([0.0, 1.0, 0.0]),
+    u_axes=(np.array([-2.0, -0.203125, 1.5]), np.array([-1.0, 0.0, 1.0])),
+    p_axis=np.array([0.0, 0.0, 1.0]),
+    delta=-0.09375,
+)
 def test_loop_with_u_and_p_joints(pts, r_axis, u_axes, p_axis, delta):
     """ground -R- l1 -U- l2 -P- l3 -S- ground: 7 dof, mobility 1."""
     a1, a2 = u_axes
@@ -610,6 +622,86 @@ def test_loop_with_u_and_p_joints(pts, r_axis, u_axes, p_axis, delta):
         output="l3",
     )
     check_against_tracker(spec, [("moved", None), ("further", "moved")], char_length(joints))
+
+
+def test_tracker_keeps_the_start_mode_beside_a_fold():
+    """My tracker's steps from a point just short of a fold of the given joint (where a
+    second assembly mode comes close) stay on the start's mode: a coarse path ends where a
+    fine one does.  Gauss-Newton without a predictor, in steps five times the distance to
+    the fold, converged on the other mode and made test_loop_with_u_and_p_joints blame
+    mechsing; a step is now taken only when it is reversible."""
+    joints = [
+        J(
+            "R1",
+            "R",
+            "ground",
+            "l1",
+            {"axis": np.array([0.0, 1, 0]), "point": np.array([0.0, 0, 1])},
+        ),
+        J(
+            "U1",
+            "U",
+            "l1",
+            "l2",
+            {
+                "axes": (np.array([-2.0, -0.203125, 1.5]), np.array([-1.5, 0.0, -2.0])),
+                "point": np.array([4.25, 0.0, -2.5]),
+            },
+        ),
+        J("P1", "P", "l2", "l3", {"axis": np.array([0.0, 0, 1])}),
+        J("S1", "S", "l3", "ground", {"point": np.array([-1.0, -0.5, 4.0])}),
+    ]
+    L = char_length(joints)
+    zero = {j.name: np.zeros(len(KINDS[j.type])) for j in joints}
+    # the fold: R1 turns from the reference up to between 0.0016 and 0.002 rad, no further
+    near, _ = track(joints, zero, {"R1": np.array([0.0016])}, L, nsteps=20)
+    assert near is not None
+    assert track(joints, zero, {"R1": np.array([0.002])}, L, nsteps=20)[0] is None
+    target = {"R1": np.array([-0.09375])}
+    fine, _ = track(joints, zero, target, L, nsteps=192)
+    assert fine is not None
+    assert_closes(joints, fine, L, exp_rodrigues)
+    for nsteps in (1, 12):
+        coarse, worst = track(joints, zero, target, L, nsteps=nsteps)
+        # a path the property test calls regular, and it ends on the fine path's mode
+        assert coarse is not None and worst > 2e-3
+        for jn in fine:
+            np.testing.assert_allclose(coarse[jn], fine[jn], rtol=0, atol=1e-9, err_msg=jn)
+
+
+def test_tracker_keeps_its_mode_past_a_near_singular_point():
+    """A planar 6R loop whose path, from ``first`` to ``second``, passes close to a singular
+    point (smallest relative singular value 0.004), where two assembly modes come close:
+    my tracker's 12 steps end where its 192 steps do (each step checked against two half
+    steps), not on the other mode, which made test_planar_5r_6r_loops_close_on_their_assembly_mode
+    blame mechsing (found by hypothesis)."""
+    w = np.array([0.42426407, -0.56568542, 0.70710678])
+    e1 = np.array([0.90553851, 0.26503566, -0.33129458])
+    e2 = np.array([2.77555756e-17, 7.80868809e-01, 6.24695048e-01])
+    xy = [
+        (1.7838318746575865, 0.25612188532054336),
+        (-1.097202974807479, 2.2796627684985147),
+        (-0.7489851332061965, -0.3327716191373984),
+        (1.753498138462131, -0.6051395507922148),
+        (-2.368945802410985, -0.2288118786708413),
+        (0.25, -2.25),
+    ]
+    _, joints = loop_joints([x * e1 + y * e2 for x, y in xy], [w] * 6)
+    L = char_length(joints)
+    zero = {j.name: np.zeros(1) for j in joints}
+    first = {"J1": -0.056640625, "J2": 0.125, "J4": -0.14364424968351908}
+    moved = {"J1": 0.24609375, "J2": 0.25, "J4": -0.1953125}
+    second = {jn: np.array([v + moved[jn]]) for jn, v in first.items()}
+    first = {jn: np.array([v]) for jn, v in first.items()}
+    ends = {}
+    for nsteps in (12, 192):
+        mid, _ = track(joints, zero, first, L, nsteps=nsteps)
+        assert mid is not None
+        ends[nsteps], worst = track(joints, mid, second, L, nsteps=nsteps)
+        assert ends[nsteps] is not None and worst > 2e-3
+    assert_closes(joints, ends[192], L, exp_rodrigues)
+    for jn in ends[192]:
+        np.testing.assert_allclose(ends[12][jn], ends[192][jn], rtol=0, atol=1e-9, err_msg=jn)
 
 
 def test_finer_steps_reach_the_same_solution():

@@ -237,11 +237,20 @@ def track(
     iterations: int = 24,
     refresh: int = 4,
     rcond: float | None = None,
+    halvings: int = 8,
 ) -> tuple[dict[str, np.ndarray] | None, float]:
     """Follow the given joints from ``start`` to ``target`` (straight line, ``nsteps`` steps),
     the others solved at each step by Gauss-Newton on the products around the cycles
     (finite-difference Jacobian refreshed every ``refresh`` iterations, least-squares steps
     with ``rcond``).
+
+    Gauss-Newton has no predictor: a step several times longer than the distance to a fold of
+    the given joints (or to a near-singular point, where two assembly modes pass close) can
+    converge on the other mode.  A step is therefore taken only when two half steps end at
+    the same point and it is reversible (Gauss-Newton from its end, with the given joints back
+    at the step's start, returns to the point it left; from the other mode beside a fold, the
+    way back lands on that mode too); else it is halved (at most ``halvings`` times below
+    ``1 / nsteps``; the next steps grow back).
 
     Returns the end values and the smallest relative singular value of the closure Jacobian in
     the unknowns met on the way, start included (None when a step fails or jumps).
@@ -251,6 +260,10 @@ def track(
     sizes = [len(KINDS[j.type]) for j in unknown]
     x = np.concatenate([np.asarray(start[j.name], float) for j in unknown] or [np.zeros(0)])
     cyc = cycles(joints)
+    # lengths count against L when the way back is compared with the point left
+    unit_of = np.concatenate(
+        [[L if k == "l" else 1.0 for k in KINDS[j.type]] for j in unknown] or [np.zeros(0)]
+    )
 
     def values_at(x: np.ndarray, given: Values) -> dict[str, np.ndarray]:
         vals = dict(given)
@@ -275,25 +288,45 @@ def track(
             cols.append((F(xp, given) - f0) / h)
         return np.stack(cols, axis=1)
 
+    def given_at(t: float) -> dict[str, np.ndarray]:
+        return {k: start[k] + t * (target[k] - start[k]) for k in target}
+
+    def close(x: np.ndarray, given: Values) -> np.ndarray | None:
+        for it in range(iterations):
+            if it % refresh == 0:
+                Jx = jac(x, given)
+            f = F(x, given)
+            if np.max(np.abs(f)) <= 1e-13:
+                return x
+            x = x + np.linalg.lstsq(Jx, -f, rcond=rcond)[0]
+        return None
+
     # the start counts too: from a singular point several branches leave
     s = np.linalg.svd(jac(x, {k: start[k] for k in target}), compute_uv=False)
     worst = float(s[-1] / s[0])
-    for t in np.linspace(0, 1, nsteps + 1)[1:]:
-        given_t = {k: start[k] + t * (target[k] - start[k]) for k in target}
-        x_prev = x
-        for it in range(iterations):
-            if it % refresh == 0:
-                Jx = jac(x, given_t)
-            f = F(x, given_t)
-            if np.max(np.abs(f)) <= 1e-13:
-                break
-            x = x + np.linalg.lstsq(Jx, -f, rcond=rcond)[0]
-        else:
-            return None, 0.0
-        if np.max(np.abs(x - x_prev)) > 0.5:
-            return None, 0.0  # too large a jump to vouch for the branch
-        s = np.linalg.svd(jac(x, given_t), compute_uv=False)
-        worst = min(worst, float(s[-1] / s[0]))
+    t, dt, shortest = 0.0, 1.0 / nsteps, 1.0 / nsteps / 2**halvings
+
+    def same(a: np.ndarray | None, b: np.ndarray | None) -> bool:
+        if a is None or b is None:
+            return False
+        return bool(np.max(np.abs(a - b) / unit_of, initial=0.0) <= 1e-6)
+
+    while t < 1.0:
+        t_next = min(1.0, t + dt)
+        x_next = close(x, given_at(t_next))
+        if x_next is not None and np.max(np.abs(x_next - x)) <= 0.5:
+            # two half steps end at the same point, and the way back returns
+            x_half = close(x, given_at((t + t_next) / 2))
+            two = None if x_half is None else close(x_half, given_at(t_next))
+            if same(two, x_next) and same(close(x_next, given_at(t)), x):
+                s = np.linalg.svd(jac(x_next, given_at(t_next)), compute_uv=False)
+                worst = min(worst, float(s[-1] / s[0]))
+                x, t = x_next, t_next
+                dt = min(2 * dt, 1.0 / nsteps)
+                continue
+        if dt / 2 < shortest:
+            return None, 0.0  # no step short enough to vouch for the branch
+        dt /= 2
     return values_at(x, target), worst
 
 
