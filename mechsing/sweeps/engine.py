@@ -121,8 +121,6 @@ class Located:
     far_side: bool = False
     #: the sweep's coordinates there (joints, then the pose's for a pose sweep)
     z: np.ndarray | None = None
-    #: the sweep's coordinates there (joints, then the pose's for a pose sweep)
-    z: np.ndarray | None = None
 
 
 @dataclass
