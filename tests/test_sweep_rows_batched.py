@@ -5,7 +5,7 @@ first nodes in one batched Newton, the samples between their nodes in one, their
 measures in one batch, the crossings along them refined together), and the crossings
 between neighbouring rows of a chunk are refined together (``Sweep.between_many``).
 Every batched step is per configuration, so each row must come out exactly as the
-one-row call (``Sweep.row``, ``Sweep.between_rows``) makes it.  The grid is the
+one-row call (``Sweep.row``, ``Sweep.between_many`` of one pair) makes it.  The grid is the
 five-bar's two inputs over a range that reaches its Type II locus (folds of the rows)
 and crosses its Type I locus (sign changes along and between the rows)."""
 
@@ -20,7 +20,6 @@ from mechsing.kinematics import ClosureError
 from mechsing.sweeps import SweepRun
 from mechsing.sweeps.path import (
     close_segments,
-    first_nodes,
     first_nodes_of,
     follow,
     follow_together,
@@ -110,8 +109,7 @@ def test_crossings_between_rows_together_are_each_pair_alone(grid) -> None:
     together = eng.between_many(pairs, eng.cols[1])
     assert sum(len(x) for x in together) >= 10  # the rows' neighbours cross the Type I locus
     for (a, b), got in zip(pairs, together, strict=True):
-        y = (float(values[1][a.index]), float(values[1][b.index]))
-        _same_located(got, eng.between_rows(y, a, b, eng.cols[1]))
+        _same_located(got, eng.between_many([(a, b)], eng.cols[1])[0])
 
 
 def test_first_nodes_of_several_starts_are_each_alone(grid) -> None:
@@ -128,7 +126,7 @@ def test_first_nodes_of_several_starts_are_each_alone(grid) -> None:
     together = first_nodes_of(pb, starts, col)
     assert len(starts) >= 5
     for (z0, paths), got in zip(starts, together, strict=True):
-        alone = first_nodes(pb, z0, col, paths)
+        (alone,) = first_nodes_of(pb, [(z0, paths)], col)
         assert [x is None for x in got] == [x is None for x in alone]
         for x, y in zip(got, alone, strict=True):
             if x is not None:
@@ -162,7 +160,7 @@ def test_paths_followed_in_lockstep_are_each_followed_alone(grid) -> None:
         if column.reached[j]:
             k0, zk = eng.start_of(col, xs, column.Z[j])
             for v in (xs[k0:], xs[k0::-1]):
-                (first,) = first_nodes(pb, zk, col, [v])
+                ((first,),) = first_nodes_of(pb, [(zk, [v])], col)
                 paths.append((zk, v, first))
     together = follow_together(pb, col, paths)
     # some paths leave the lockstep at a fold and are finished alone

@@ -1019,17 +1019,10 @@ class Sweep:
 
     # ------------------------------------------------------------------ columns of a grid
 
-    def between_rows(
-        self, t_rows: tuple[float, float], ra: RowResult, rb: RowResult, col: int
-    ) -> list[Located]:
-        """The sign changes of each test between two neighbouring rows of a grid (at the
-        same sample of the row variable), refined along the column."""
-        return self.between_many([(ra, rb)], col)[0]
-
     def between_many(self, pairs: list[tuple[RowResult, RowResult]], col: int) -> list[list[Located]]:
-        """:meth:`between_rows` of several pairs of neighbouring rows (ra, rb): the sign
-        changes of each test between them, every pair's refined together (each bracket
-        on its own, as for one pair)."""
+        """The sign changes of each test between neighbouring rows of a grid, for several
+        pairs of rows (ra, rb) at the same samples of the row variable: refined along the
+        column, every pair's together (each bracket on its own, as for one pair)."""
         found: list[dict[str, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]] = []
         for ra, rb in pairs:
             assert ra.Z is not None and rb.Z is not None and ra.measures is not None
@@ -1110,7 +1103,7 @@ class Sweep:
     ) -> Iterator[RowResult]:
         """The rows of the sweep in order (one for a path), each with its measures and the
         points located along it (the crossings between rows are the caller's:
-        :meth:`between_rows`).  A grid's rows are computed in chunks
+        :meth:`between_many`).  A grid's rows are computed in chunks
         (:meth:`row_chunks`)."""
         if len(self.cols) == 1:
             res = self.row(0, self.cols[0], values[0], self.z0)

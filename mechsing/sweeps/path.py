@@ -60,7 +60,6 @@ __all__ = [
     "PathTrace",
     "Problem",
     "close_segments",
-    "first_nodes",
     "first_nodes_of",
     "follow",
     "follow_together",
@@ -195,21 +194,14 @@ class PathTrace:
     values: np.ndarray | None = None
 
 
-def first_nodes(
-    pb: Problem, z0: np.ndarray, col: int, paths: list[np.ndarray]
-) -> list[np.ndarray | None]:
-    """The first node of each path from the closed z0 (each path's ``values`` start at
-    z0's value), all in one batched Newton: the prediction and the test :func:`_node`
-    makes for a first step (the tangent at z0).  None for a path whose first node is
-    not kept that way (:func:`follow` then takes it as it takes any node)."""
-    return first_nodes_of(pb, [(z0, paths)], col)[0]
-
-
 def first_nodes_of(
     pb: Problem, starts: list[tuple[np.ndarray, list[np.ndarray]]], col: int
 ) -> list[list[np.ndarray | None]]:
-    """:func:`first_nodes` of several starts (the rows of a grid), all in one batched
-    Newton: each start's closed z0 and its paths; per start, its paths' first nodes."""
+    """The first node of each path of several starts (the rows of a grid), all in one
+    batched Newton: each start's closed z0 and its paths (each path's ``values`` start at
+    z0's value); per start, its paths' first nodes: the prediction and the test
+    :func:`_node` makes for a first step (the tangent at z0).  None for a path whose first
+    node is not kept that way (:func:`follow` then takes it as it takes any node)."""
     out: list[list[np.ndarray | None]] = [[None] * len(paths) for _, paths in starts]
     steps, which, targets = [], [], []
     sc = pb.scale(col)
@@ -286,7 +278,7 @@ def follow(
     """Follow the swept coordinate ``col`` through ``values`` (monotone) from ``z0``,
     closed at ``values[0]``.  With ``fine=False`` only the nodes (and the samples near
     folds) are closed: the trace's ``segments`` are left to :func:`close_segments`.
-    ``first``: the first node when it is already closed (:func:`first_nodes`);
+    ``first``: the first node when it is already closed (:func:`first_nodes_of`);
     ``walk``: where the path already is (:func:`follow_together`), to go on from."""
     K = len(values)
     if walk is None:
