@@ -12,7 +12,9 @@ For each path (the four-bar's crank turn, the slider-crank between its dead cent
   which measures but neither locates nor classifies.
 
 Printed per path: points, points/s of each (median of ``--repeat`` runs after one untimed
-run of each, which loads what a first call loads once), the ratio,
+run of each, which loads what a first call loads once; mechsing and the anchor are timed
+in turn, round by round, so that a change of the machine's speed during the run falls on
+both), the ratio,
 Newton iterations per point of each, and how far the located singularities are from their
 closed forms (tests/reference/sweep_truth.py; for the paths of the timing that never
 reach a singularity, a second mechsing sweep across one).  ``--million`` also runs
@@ -34,7 +36,9 @@ import resource
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -42,7 +46,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from _pinocchio_sweep import PinocchioAnchor, cases, pin, prepare  # noqa: E402
-from _timing import timed_median  # noqa: E402
+from _timing import timed_medians_interleaved  # noqa: E402
 
 import mechsing  # noqa: E402
 from tests.reference import sweep_truth as truth  # noqa: E402
@@ -123,9 +127,17 @@ def _five_bar(repeat: int, density: int, cpu: bool = False) -> None:
     """The five-bar grid of its two inputs: mechsing and the anchor's grid of held inputs."""
     v = np.linspace(-0.4, 0.4, 41 * max(1, round(density**0.5)))
     spec = [_spec("A1", v), _spec("A2", v)]
-    t, r = timed_median(
-        lambda: mechsing.sweep(ROOT / "examples" / "five_bar.yaml", spec), repeat, 1, cpu
-    )
+
+    def run() -> Any:
+        return mechsing.sweep(ROOT / "examples" / "five_bar.yaml", spec)
+
+    timed: list[Callable[[], Any]] = [run]
+    if pin is not None:
+        anchor = PinocchioAnchor(mechsing.load(ROOT / "examples" / "five_bar.yaml"))
+        q0 = anchor.approach(pin.neutral(anchor.model), ["A1", "A2"], [v[0], v[0]])
+        timed.append(lambda: anchor.grid(["A1", "A2"], v, v, q0))
+    # mechsing and the anchor in turn, round by round (the same conditions for both)
+    (t, r), *rest = timed_medians_interleaved(timed, repeat, 1, cpu)
     n = r.points()
     mode = truth.FIVE_BAR.reference_mode()
     size = max(truth.FIVE_BAR.lengths()) ** 2
@@ -142,10 +154,8 @@ def _five_bar(repeat: int, density: int, cpu: bool = False) -> None:
         if p.kind == "fold"
     ]
     line = f"  five-bar, inputs A1 x A2 {len(v)} x {len(v)} grid: {n} points, mechsing {n / t:,.0f} points/s"
-    if pin is not None:
-        anchor = PinocchioAnchor(mechsing.load(ROOT / "examples" / "five_bar.yaml"))
-        q0 = anchor.approach(pin.neutral(anchor.model), ["A1", "A2"], [v[0], v[0]])
-        ta, pa = timed_median(lambda: anchor.grid(["A1", "A2"], v, v, q0), repeat, 1, cpu)
+    if rest:
+        ta, pa = rest[0]
         line += f", anchor {n / ta:,.0f} points/s, ratio {ta / t:.2f}; anchor Newton {pa.iterations.mean():.2f}/point"
     print(line)
     print(
@@ -211,17 +221,17 @@ def main(argv: list[str] | None = None) -> int:
     for case, (file, spec, start) in zip(
         cases(args.density), _mechsing_cases(args.density), strict=True
     ):
-        t, r = timed_median(
-            lambda f=file, s=spec, st=start: mechsing.sweep(ROOT / "examples" / f, s, st),
-            args.repeat,
-            1,
-            args.cpu,
-        )
+        timed: list[Callable[[], Any]] = [
+            lambda f=file, s=spec, st=start: mechsing.sweep(ROOT / "examples" / f, s, st)
+        ]
+        if pin is not None:
+            timed.append(prepare(case, ROOT)[1])
+        # mechsing and the anchor in turn, round by round (the same conditions for both)
+        (t, r), *rest = timed_medians_interleaved(timed, args.repeat, 1, args.cpu)
         n = r.points()
         line = f"  {case.name}: {n} points, mechsing {n / t:,.0f} points/s"
-        if pin is not None:
-            _anchor, run = prepare(case, ROOT)
-            ta, pa = timed_median(run, args.repeat, 1, args.cpu)
+        if rest:
+            ta, pa = rest[0]
             na = case.points
             line += (
                 f", anchor {na / ta:,.0f} points/s, ratio {(n / t) / (na / ta):.2f}; "
