@@ -163,6 +163,60 @@ def test_the_closure_measured_without_its_svd_is_the_svd_s():
     assert np.all(d <= direct + 1e-12 * s[ia, 0])
 
 
+@pytest.mark.parametrize(
+    ("file", "spec", "crossings"),
+    [
+        # the closure kernel from a QR (a basis continuous along the path)
+        (STEWART, "pose.rz=-1.7:1.7:0.002", 2),
+        # from an SVD (a basis of the plane of motions picked afresh at each sample)
+        (EXAMPLES / "five_bar.yaml", "A1=-1.2:1.2:0.002", None),
+    ],
+)
+def test_the_input_and_output_sign_tests_screened_by_the_kernel_step_keep_their_sign(
+    file, spec, crossings
+):
+    """The input and output tests read the closure kernel's basis: between two samples their
+    sign test is ``u^T X N_b R v`` (R turning b's basis to a's).  Where the kernel moved
+    less than sigma_g (with the roundings) the bound stands for the product: its sign is
+    the product's, it is below the product, and the pairs it does not clear (every sign
+    change) are the product itself, bit for bit.  Checked against the product computed at
+    every pair with the turn written out here (the orthogonal Procrustes factor): on the
+    hexapod's turn through both Type II poses, and along a five-bar's input."""
+    run = SweepRun(file, [spec])
+    rows = list(run.engine.rows([v.values for v in run.vars], None))
+    Z = rows[0].Z[rows[0].reached]
+    meas = run.engine.measures
+    Q = Z[:, : run.engine.model.n]
+    pm = meas(Q)
+    assert pm.kernel is not None
+    n = len(Q)
+    ia = np.concatenate([np.arange(n - 1), np.arange(0, n - 40, 7)])
+    ib = np.concatenate([np.arange(1, n), np.arange(40, n, 7)])
+    got = meas.compressed_pairs(pm, ia, ib)
+    Na, Nb = pm.kernel[ia], pm.kernel[ib]
+    u, _, vt = np.linalg.svd(np.swapaxes(Nb, 1, 2) @ Na)
+    turn = u @ vt
+    # the turn is the nearest: N_b R is closer to N_a than N_b is
+    near = np.linalg.norm(Nb @ turn - Na, axis=(1, 2))
+    assert np.all(near <= np.linalg.norm(Nb - Na, axis=(1, 2)) + 1e-14)
+    screened = {}
+    for t in ("input", "output"):
+        U, V = pm.bases[t]
+        M = pm.matrices[t]
+        direct = np.einsum("ni,nij,nj->n", U[ia][:, :, -1], M[ib] @ turn, V[ia][:, :, -1])
+        d = got[t]
+        assert np.array_equal(np.sign(d), np.sign(direct)), t
+        assert np.all(d <= direct + 1e-14), t
+        exact = d == direct
+        screened[t] = int(np.sum(~exact))
+        # every sign change is the product itself
+        assert np.all(exact[direct < 0]), t
+    if crossings is not None:  # both Type II turns cross the output test's zero
+        assert np.sum(got["output"][: n - 1] < 0) == crossings
+    # most neighbours are screened
+    assert min(screened.values()) >= 0.9 * (n - 1)
+
+
 def test_the_closure_singular_values_from_the_gram_matrix_where_it_is_far_from_singular():
     """The closure's triangular factor's singular values, from R^T R's eigenvalues where the
     smallest relative one is at least SWEEP_GRAM_RATIO, numpy's SVD elsewhere: on matrices

@@ -439,25 +439,80 @@ class Measures:
         A test measured without its singular vectors is screened first: where the matrix
         moved less from a to b (Frobenius norm) than ``sigma_g`` at a, less the
         roundings, ``u_g^T A_b v_g >= sigma_g - |A_b - A_a|`` is positive (Weyl), and that
-        bound stands for it; the product is computed at the other pairs only."""
+        bound stands for it; the product is computed at the other pairs only.  So are the
+        input and output tests of a closed chain, by how far the closure kernel moved
+        (:meth:`_turned_pairs`)."""
         assert pm.matrices is not None
         out = {}
-        turn = None  # b's kernel basis turned to a's: one for the input and output tests
+        # b's kernel basis turned to a's, for the input and output tests, at the pairs
+        # their screen leaves (the same turn for both)
+        turns: dict[bytes, np.ndarray] = {}
         for t, M in pm.matrices.items():
             if t.endswith("_rows"):
                 continue
             if t in pm.deferred:
                 out[t] = self._screened_pairs(pm, t, M, ia, ib)
                 continue
-            A = M[ib]
-            if t in ("input", "output") and pm.kernel is not None:
-                if turn is None:
-                    turn = _turn(pm.kernel[ib], pm.kernel[ia])
-                A = A @ turn
             U, V = pm.bases[t]
+            if t in ("input", "output") and pm.kernel is not None:
+                out[t] = self._turned_pairs(pm, t, M, ia, ib, turns)
+                continue
             u, v = U[ia][:, :, -1], V[ia][:, :, -1]
-            out[t] = np.einsum("ni,nij,nj->n", u, A, v)
+            out[t] = np.einsum("ni,nij,nj->n", u, M[ib], v)
         return out
+
+    def _turned_pairs(
+        self,
+        pm: PointMeasures,
+        t: str,
+        M: np.ndarray,
+        ia: np.ndarray,
+        ib: np.ndarray,
+        turns: dict[bytes, np.ndarray],
+    ) -> np.ndarray:
+        """:meth:`compressed_pairs` of the input or output test of a closed chain, whose
+        matrix ``X N`` reads the closure kernel's basis N (X the output rows over their
+        norm, or the input selection: ``|X| = 1``): ``u_g^T X N_b R v_g``, R the orthogonal
+        factor of ``N_b^T N_a`` (b's basis turned to a's, :func:`_turn`).  It differs from
+        ``sigma_g`` at a by at most ``|N_b R - N_a|``, the largest ``2 sin(theta / 2)``
+        over the principal angles theta between the two kernels.  That is at most
+        ``|N_b - N_a|_F`` (R is the nearest turn, orthogonal Procrustes) and at most
+        ``|P_b - P_a|_F = sqrt(2 k - 2 |N_a^T N_b|_F^2)`` (P the projectors; this one does
+        not depend on the bases, which an SVD picks afresh at each point).  Where the
+        smaller of the two, with the roundings, is below ``sigma_g`` the product is
+        positive and the bound stands for it; the turn and the product are computed at
+        the other pairs only."""
+        assert pm.kernel is not None
+        ia, ib = np.asarray(ia), np.asarray(ib)
+        eps = np.finfo(float).eps
+        rounding = SWEEP_SCREEN_ROUNDING * eps
+        n, k = pm.kernel.shape[1:]
+        # the rounding of |N_a^T N_b|_F^2 (k^2 dot products of length n, of unit vectors)
+        # and of the bases' orthonormality, generously
+        slack = SWEEP_SCREEN_ROUNDING * (n + k) * k * eps
+        d = np.array(pm.ratio[t][ia], dtype=float)  # sigma_g at a (|X| = 1)
+        for lo in range(0, len(ia), _SCREEN_CHUNK):
+            sl = slice(lo, lo + _SCREEN_CHUNK)
+            Na, Nb = pm.kernel[ia[sl]], pm.kernel[ib[sl]]
+            D = Nb - Na
+            W = np.swapaxes(Na, 1, 2) @ Nb
+            apart = 2 * k - 2 * np.einsum("nij,nij->n", W, W)
+            moved = np.minimum(
+                np.sqrt(np.einsum("nij,nij->n", D, D)), np.sqrt(np.maximum(apart, 0.0) + slack)
+            )
+            Aa = M[ia[sl]]
+            size = np.sqrt(np.einsum("nij,nij->n", Aa, Aa))
+            d[sl] -= moved + rounding * size
+        near = np.flatnonzero(~(d > 0))
+        if len(near):
+            key = near.tobytes()
+            if key not in turns:
+                turns.clear()
+                turns[key] = _turn(pm.kernel[ib[near]], pm.kernel[ia[near]])
+            U, V = pm.bases[t]
+            u, v = U[ia[near]][:, :, -1], V[ia[near]][:, :, -1]
+            d[near] = np.einsum("ni,nij,nj->n", u, M[ib[near]] @ turns[key], v)
+        return d
 
     def _screened_pairs(
         self, pm: PointMeasures, t: str, M: np.ndarray, ia: np.ndarray, ib: np.ndarray
