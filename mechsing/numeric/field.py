@@ -362,7 +362,9 @@ class FieldEchelon:
             c = self.pivots[i]
             p = out[i][c]
             if p != K.one:
-                out[i] = [x / p if x else x for x in out[i]]
+                # one inversion per row (a division in K inverts its divisor each time)
+                inv = K.one / p
+                out[i] = [x * inv if x else x for x in out[i]]
             row = out[i]
             for k in range(i):
                 a = out[k][c]
@@ -420,11 +422,14 @@ def _echelon(D: DomainMatrix) -> FieldEchelon:
         scale[pr], scale[off] = scale[off], scale[pr]
         t = rows[pr][col]
         pv = scale[pr] * t
+        inv = None  # 1 / t, once per pivot (the same element as each a / t, in K)
         for r in range(pr + 1, m):
             a = rows[r][col]
             if K.is_zero(a):
                 continue
-            f = a / t
+            if inv is None:
+                inv = K.one / t
+            f = a * inv
             rows[r][col:] = [x - f * y for x, y in zip(rows[r][col:], rows[pr][col:], strict=True)]
             scale[r] = scale[r] * pv
         pivots.append(col)
