@@ -251,6 +251,32 @@ def test_the_closure_kernel_from_the_householder_vectors_is_the_complete_q_s_las
             assert np.all(np.abs(U[i][:, : len(s[i])][:, kept].T @ K[i]) <= 1e-9)
 
 
+def test_the_largest_singular_value_from_the_smaller_gram_matrix():
+    """The output rows' norm (:func:`_largest_singular_value`, the largest eigenvalue of
+    the smaller Gram matrix) is the largest singular value the matrices were built with,
+    within a few eps times their smaller side, and numpy's SVD's, whichever side is
+    smaller, for matrices of any rank (0 for the zero matrix)."""
+    from mechsing.sweeps.measures import _largest_singular_value
+
+    rng = np.random.default_rng(5)
+    eps = np.finfo(float).eps
+    for r, c in ((6, 36), (3, 36), (36, 6), (6, 6)):
+        k = min(r, c)
+        want, mats = [], []
+        for lo in (1.0, 0.3, 1e-8, 0.0):
+            s = np.sort(np.concatenate([[1.0, lo], rng.uniform(lo, 1.0, k - 2)]))[::-1]
+            s = s * 10.0 ** rng.uniform(-4, 4)
+            A = _with_singular_values(rng, max(r, c), s)
+            mats.append(A if r >= c else A.T)
+            want.append(s[0])
+        mats.append(np.zeros((r, c)))
+        want.append(0.0)
+        got = _largest_singular_value(np.array(mats))
+        np.testing.assert_allclose(got, want, rtol=4 * k * eps, atol=0)
+        svd = np.linalg.svd(np.array(mats), compute_uv=False)[:, 0]
+        np.testing.assert_allclose(got, svd, rtol=4 * k * eps, atol=0)
+
+
 def test_the_closure_matrices_not_kept_are_computed_again_the_same():
     """A closure of full row rank is measured without keeping its matrices (nor the bordered
     tests' rows): read at any rows, they are the numbers the measures computed (bit for
