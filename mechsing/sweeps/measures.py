@@ -78,12 +78,12 @@ _UNIT_REFERENCE = ("input", "output")
 _SCREEN_CHUNK = 512
 
 #: the closure kernel of a closure of full row rank (:func:`_complement`) is formed from
-#: its QR's Householder vectors this many at a time (a block's compact WY form: two
-#: products of small matrices per block instead of two per reflector; 6 measured fastest
-#: of 2 to 10 on the hexapod's 30 reflectors), for this many configurations at a time (the
-#: block's working set stays in cache)
+#: its QR's Householder vectors this many at a time (a block's reflectors applied at once,
+#: ``Y - W V``: three products of small matrices per block instead of two per reflector),
+#: for this many configurations at a time (the working set stays in cache): on the
+#: hexapod's 30 reflectors, 6 to 8 and 256 measured fastest of 2 to 15 and 128 to 1024
 _KERNEL_BLOCK = 6
-_KERNEL_CHUNK = 512
+_KERNEL_CHUNK = 256
 
 #: tests with a continuous matrix, whose compressed determinant has a meaningful sign
 #: (the constraint wrenches are a basis found afresh at each point)
@@ -560,25 +560,24 @@ def _complement(h: np.ndarray, tau: np.ndarray) -> np.ndarray:
     after its diagonal, and ``tau`` (N, k)): an orthonormal basis of the orthogonal
     complement of each A's column space, the same columns as the complete Q's (which
     LAPACK forms with the same reflectors).  Only ``Q [0; I]`` is formed,
-    ``H_1 ... H_k [0; I]``: the reflectors are applied _KERNEL_BLOCK at a time (their
-    compact WY form, ``I - V^T W``), each to the rows it touches, _KERNEL_CHUNK
-    configurations at a time.  Products of reflectors, like LAPACK's, so as accurate
-    however near A is to losing rank."""
+    ``H_1 ... H_k [0; I]``: the reflectors are applied _KERNEL_BLOCK at a time (the
+    block's product at once, ``Y - W V``, W from ``Y V^T`` and the vectors' products),
+    each block to the rows it touches, _KERNEL_CHUNK configurations at a time.
+    Products of reflectors, like LAPACK's, so as accurate however near A is to losing
+    rank."""
     N, k, n = h.shape
     d = n - k
     out = np.zeros((N, d, n))  # the transposed basis, Y = (Q [0; I])^T
     out[:, :, k:] = np.eye(d)
     if d == 0 or k == 0:
         return np.swapaxes(out, 1, 2)
-    # the Householder vectors as rows: 1 on the diagonal, h after it, 0 before it
-    Vall = h * np.triu(np.ones((k, n)), 1)
-    Vall[:, np.arange(k), np.arange(k)] = 1.0
+    after = np.triu(np.ones((k, n)), 1)
+    diagonal = np.arange(k)
     for lo in range(0, N, _KERNEL_CHUNK):
-        V_, t, Y = (
-            Vall[lo : lo + _KERNEL_CHUNK],
-            tau[lo : lo + _KERNEL_CHUNK],
-            out[lo : lo + _KERNEL_CHUNK],
-        )
+        t, Y = tau[lo : lo + _KERNEL_CHUNK], out[lo : lo + _KERNEL_CHUNK]
+        # the Householder vectors as rows: 1 on the diagonal, h after it, 0 before it
+        V_ = h[lo : lo + _KERNEL_CHUNK] * after
+        V_[:, diagonal, diagonal] = 1.0
         hi = k
         while hi > 0:  # the last block first: Y <- Y H_hi-1 ... H_a
             a = max(hi - _KERNEL_BLOCK, 0)
