@@ -250,6 +250,87 @@ def test_the_closure_singular_values_from_the_gram_matrix_where_it_is_far_from_s
             np.testing.assert_allclose(g, w, rtol=0, atol=1e-14 * w[0])
 
 
+def _with_singular_values(rng: np.random.Generator, n: int, s: np.ndarray) -> np.ndarray:
+    """An n x len(s) matrix with the singular values s (random orthonormal factors)."""
+    U, _ = np.linalg.qr(rng.standard_normal((n, n)))
+    V, _ = np.linalg.qr(rng.standard_normal((len(s), len(s))))
+    return U[:, : len(s)] @ np.diag(s) @ V.T
+
+
+def test_the_closure_kernel_from_the_householder_vectors_is_the_complete_q_s_last_columns():
+    """The closure kernel formed from a QR's Householder vectors alone (:func:`_complement`,
+    the reflectors in blocks, chunk by chunk) is the complete orthogonal factor's last
+    columns that numpy forms (LAPACK's dorgqr), to rounding, and it is orthonormal and
+    orthogonal to the column space by numpy's SVD of the same matrices: on random matrices,
+    on matrices nearly or exactly losing rank (smallest singular values 1e-9, 1e-15, 0), on
+    columns already triangular (reflectors that are the identity, tau = 0), with a number
+    of reflectors that is not a multiple of the block, more configurations than a chunk,
+    one reflector, and no complement at all."""
+    from mechsing.sweeps.measures import _KERNEL_BLOCK, _KERNEL_CHUNK, _complement
+
+    rng = np.random.default_rng(11)
+    eps = np.finfo(float).eps
+    cases = []
+    for n, k in ((36, 30), (6, 5), (13, 2 * _KERNEL_BLOCK + 1), (7, 1), (5, 5)):
+        mats = [rng.standard_normal((n, k)) * 10.0 ** rng.uniform(-3, 3)]
+        for lo in (1e-9, 1e-15, 0.0):
+            s = np.sort(np.concatenate([[1.0, lo], rng.uniform(lo, 1.0, max(k - 2, 0))]))[::-1]
+            mats.append(_with_singular_values(rng, n, s[:k]) * 3.1)
+        upper = np.zeros((n, k))  # already triangular: every tau is 0
+        upper[np.triu_indices(n, 0, k)] = rng.standard_normal(len(np.triu_indices(n, 0, k)[0]))
+        mats.append(upper)
+        cases.append(np.array(mats))
+    many = rng.standard_normal((_KERNEL_CHUNK + 37, 36, 30))
+    cases.append(many)
+    for A in cases:
+        N, n, k = A.shape
+        h, tau = np.linalg.qr(A, mode="raw")
+        K = _complement(h, tau)
+        assert K.shape == (N, n, n - k)
+        full = np.linalg.qr(A, mode="complete")[0][:, :, k:]
+        np.testing.assert_allclose(K, full, rtol=0, atol=50 * eps)
+        np.testing.assert_allclose(
+            np.swapaxes(K, 1, 2) @ K,
+            np.broadcast_to(np.eye(n - k), (N, n - k, n - k)),
+            rtol=0,
+            atol=50 * eps,
+        )
+        # orthogonal to the column space: to A itself (relative to its norm), and to the
+        # left singular vectors of A's nonzero singular values
+        U, s, _ = np.linalg.svd(A, full_matrices=True)
+        AK = np.swapaxes(A, 1, 2) @ K
+        assert np.all(np.abs(AK) <= 100 * eps * s[:, :1, None])
+        for i in range(N):
+            kept = s[i] > 1e-6 * s[i, 0]  # directions the matrix clearly has
+            assert np.all(np.abs(U[i][:, : len(s[i])][:, kept].T @ K[i]) <= 1e-9)
+
+
+def test_the_largest_singular_value_from_the_smaller_gram_matrix():
+    """The output rows' norm (:func:`_largest_singular_value`, the largest eigenvalue of
+    the smaller Gram matrix) is the largest singular value the matrices were built with,
+    within a few eps times their smaller side, and numpy's SVD's, whichever side is
+    smaller, for matrices of any rank (0 for the zero matrix)."""
+    from mechsing.sweeps.measures import _largest_singular_value
+
+    rng = np.random.default_rng(5)
+    eps = np.finfo(float).eps
+    for r, c in ((6, 36), (3, 36), (36, 6), (6, 6)):
+        k = min(r, c)
+        want, mats = [], []
+        for lo in (1.0, 0.3, 1e-8, 0.0):
+            s = np.sort(np.concatenate([[1.0, lo], rng.uniform(lo, 1.0, k - 2)]))[::-1]
+            s = s * 10.0 ** rng.uniform(-4, 4)
+            A = _with_singular_values(rng, max(r, c), s)
+            mats.append(A if r >= c else A.T)
+            want.append(s[0])
+        mats.append(np.zeros((r, c)))
+        want.append(0.0)
+        got = _largest_singular_value(np.array(mats))
+        np.testing.assert_allclose(got, want, rtol=4 * k * eps, atol=0)
+        svd = np.linalg.svd(np.array(mats), compute_uv=False)[:, 0]
+        np.testing.assert_allclose(got, svd, rtol=4 * k * eps, atol=0)
+
+
 def test_the_closure_matrices_not_kept_are_computed_again_the_same():
     """A closure of full row rank is measured without keeping its matrices (nor the bordered
     tests' rows): read at any rows, they are the numbers the measures computed (bit for
