@@ -91,15 +91,15 @@ class BatchClosure:
         the output's displacements :meth:`target` of Q's pose coordinates, when known."""
         q = Q[:, : self.nb]
         P = batched.poses(self.base, q, fast=True) if P is None else P
-        out = [
-            P[jk.a] @ batched.element(jk, q, fast=True) @ lie.inverse(P[jk.b]) for jk in self.chords
-        ]
+        out = np.empty((Q.shape[0], self.blocks, 4, 4))
+        for i, jk in enumerate(self.chords):
+            np.matmul(
+                P[jk.a] @ batched.element(jk, q, fast=True), lie.inverse(P[jk.b]), out=out[:, i]
+            )
         if self.pose is not None:
             T = self.target(Q[:, self.nb :]) if T is None else T
-            out.append(P[self.pose_a] @ T @ lie.inverse(P[self.pose_b]))
-        if not out:
-            return np.zeros((Q.shape[0], 0, 4, 4))
-        return np.stack(out, axis=1)
+            np.matmul(P[self.pose_a] @ T, lie.inverse(P[self.pose_b]), out=out[:, -1])
+        return out
 
     def target(self, s: np.ndarray) -> np.ndarray:
         """The output's displacement ``T(s)`` for pose coordinates s (N, 6)."""
@@ -155,35 +155,60 @@ class BatchClosure:
         joints add; the others ``M <- exp(sum d_i e_i) M``), pose coordinates unchanged."""
         out = np.array(Q, copy=True)
         q = Q[:, : self.nb]
+        turns = self._turn_joints()
+        if turns:
+            # every spherical joint's turns at once: R = exp(d W) exp(q W), read back by log
+            cols = self._turn_columns
+            R = self._turned(D[:, cols], turns) @ self._turned(q[:, cols], turns)
+            x = log_so3(R)
+            for k, jk in enumerate(turns):
+                out[:, jk.columns] = x[:, k] @ self._turns[jk.name][1]
         for jk in self.base.joints:
             d = D[:, jk.columns]
             if jk.abelian:
                 out[:, jk.columns] = q[:, jk.columns] + d
                 continue
             if jk.name in self._turns:
-                W, Wi = self._turns[jk.name]
-                R = exp_so3(d @ W) @ exp_so3(q[:, jk.columns] @ W)
-                out[:, jk.columns] = log_so3(R) @ Wi
                 continue
             M = lie.exp(d @ jk.basis) @ batched.element(jk, q, fast=True)
             x = self.frame.twists(lie.log(M)[..., None])[..., 0]  # (N, 6) commensurate
             out[:, jk.columns] = x @ self._pinv[jk.name].T
         return out
 
+    def _turn_joints(self) -> list[Any]:
+        """The spherical joints (their rotation vectors composed directly), in file order;
+        their coordinate columns, joint after joint, in ``_turn_columns``."""
+        turns = getattr(self, "_turn_list", None)
+        if turns is None:
+            turns = self._turn_list = [jk for jk in self.base.joints if jk.name in self._turns]
+            self._turn_columns = np.array(
+                [c for jk in turns for c in range(jk.columns.start, jk.columns.stop)], dtype=int
+            )
+        return turns
+
+    def _turned(self, x: np.ndarray, turns: list[Any]) -> np.ndarray:
+        """``exp_so3(x_j W_j)`` of every spherical joint j at once: (N, joints, 3, 3) from
+        the joints' coordinates side by side, x (N, 3 joints)."""
+        N = x.shape[0]
+        w = np.empty((N, len(turns), 3))
+        for k, jk in enumerate(turns):
+            w[:, k] = x[:, 3 * k : 3 * k + 3] @ self._turns[jk.name][0]
+        return exp_so3(w)
+
     def difference(self, Q1: np.ndarray, Q0: np.ndarray) -> np.ndarray:
         """The increments D with ``update(Q0, D) == Q1`` row by row, measured on the group
         (:meth:`KinematicModel.difference`); pose coordinates subtract."""
         D = np.asarray(Q1, dtype=float) - np.asarray(Q0, dtype=float)
         q1, q0 = Q1[:, : self.nb], Q0[:, : self.nb]
+        turns = self._turn_joints()
+        if turns:
+            cols = self._turn_columns
+            R0 = self._turned(q0[:, cols], turns)
+            x = log_so3(self._turned(q1[:, cols], turns) @ np.swapaxes(R0, -1, -2))
+            for k, jk in enumerate(turns):
+                D[:, jk.columns] = x[:, k] @ self._turns[jk.name][1]
         for jk in self.base.joints:
-            if jk.abelian:
-                continue
-            if jk.name in self._turns:
-                W, Wi = self._turns[jk.name]
-                R = exp_so3(q1[:, jk.columns] @ W) @ np.swapaxes(
-                    exp_so3(q0[:, jk.columns] @ W), -1, -2
-                )
-                D[:, jk.columns] = log_so3(R) @ Wi
+            if jk.abelian or jk.name in self._turns:
                 continue
             M = batched.element(jk, q1, fast=True) @ lie.inverse(batched.element(jk, q0, fast=True))
             x = self.frame.twists(lie.log(M)[..., None])[..., 0]

@@ -59,11 +59,7 @@ def _spherical_exp(basis: np.ndarray, qj: np.ndarray) -> np.ndarray:
         # the centre from the basis: v_i = c x w_i = -w_i^ c for the three rotations
         A = -np.concatenate([_hat(w) for w in B[:, ANGULAR]])
         c = _CENTRES[key] = np.linalg.lstsq(A, B[:, LINEAR].reshape(-1), rcond=None)[0]
-    out = np.zeros(qj.shape[:-1] + (4, 4))
-    out[..., :3, :3] = R
-    out[..., :3, 3] = c - R @ c
-    out[..., 3, 3] = 1.0
-    return out
+    return lie.pose(R, c - R @ c)
 
 
 #: the centres of spherical float bases (their bytes -> c)
@@ -91,6 +87,8 @@ def _one_dof_exp(e: np.ndarray, th: np.ndarray) -> np.ndarray:
         table = (K, K @ K, v, bool(np.any(u)))
         _ONE_DOF[key] = table
     K, K2, v, rotates = table
+    if rotates and th.size >= _ENTRYWISE and np.isfinite(th).all():
+        return _one_dof_entrywise(table, th)
     out = np.zeros(th.shape + (4, 4))
     out[..., 3, 3] = 1.0
     if not rotates:
@@ -100,6 +98,34 @@ def _one_dof_exp(e: np.ndarray, th: np.ndarray) -> np.ndarray:
     s, c1 = np.sin(th), 1.0 - np.cos(th)
     out[..., :3, :3] = np.eye(3) + s[..., None, None] * K + c1[..., None, None] * K2
     out[..., :3, 3] = th[..., None] * v + c1[..., None] * (K @ v) + (th - s)[..., None] * (K2 @ v)
+    return out
+
+
+#: from this many angles on, :func:`_one_dof_exp` fills its entries one by one
+_ENTRYWISE = 64
+
+
+def _one_dof_entrywise(table: tuple[Any, ...], th: np.ndarray) -> np.ndarray:
+    """:func:`_one_dof_exp` of a rotating screw at finite angles, entry by entry: the same
+    sums ``(I + sin K) + (1 - cos) K^2`` and ``(th v + (1 - cos) K v) + (th - sin) K^2 v``
+    in the same order, each over the batch at once, those of an entry where K and K^2
+    vanish (exactly I's entry, for finite angles) not computed; fewer passes over a
+    large batch than the (N, 3, 3) broadcasts, the same numbers bit for bit."""
+    K, K2, v, _ = table
+    s, c1 = np.sin(th), 1.0 - np.cos(th)
+    out = np.zeros(th.shape + (4, 4))
+    for i in range(3):
+        for j in range(3):
+            one = 1.0 if i == j else 0.0
+            if K[i, j] == 0 and K2[i, j] == 0:
+                if one:
+                    out[..., i, j] = one
+                continue
+            np.add(one + s * K[i, j], c1 * K2[i, j], out=out[..., i, j])
+    Kv, K2v, ts = K @ v, K2 @ v, th - s
+    for i in range(3):
+        np.add(th * v[i] + c1 * Kv[i], ts * K2v[i], out=out[..., i, 3])
+    out[..., 3, 3] = 1.0
     return out
 
 
@@ -135,6 +161,11 @@ def poses(
         if jk.name not in elements:
             elements[jk.name] = element(jk, q, fast)
         M = elements[jk.name]
+        if sign > 0 and prev == mech.ground and fast and M.dtype != object:
+            # a float body after a joint from ground: its element (the identity's product
+            # is exact)
+            out[body] = M
+            continue
         out[body] = out[prev] @ (M if sign > 0 else lie.inverse(M))
     return out
 
@@ -170,6 +201,24 @@ def _screws_at_once(model: Any, q: np.ndarray, body_poses: dict[str, np.ndarray]
         c = jk.columns.start
         G[c + 1] = G[c] @ lie.exp(jk.basis[0] * q[c, None])
     return lie.act_screw(np.stack(G), E).T
+
+
+def _screws_of_batch(model: Any, q: np.ndarray, body_poses: dict[str, np.ndarray]) -> np.ndarray:
+    """:func:`current_screws` of every joint at a float batch of configurations q (N, n):
+    the same :func:`mechsing.lie.act_screw` of each joint's basis screws (a U joint's
+    second screw carried by ``g_a exp(q1 e1)``), written into the (N, 6, n) array in
+    place instead of stacked."""
+    out = np.empty((q.shape[0], 6, model.n))
+    for jk in model.joints:
+        ga = body_poses[jk.a]
+        c = jk.columns.start
+        if jk.type == "U":
+            out[:, :, c] = lie.act_screw(ga, jk.basis[0])
+            turned = ga @ lie.exp(jk.basis[0] * q[:, c, None])
+            out[:, :, c + 1] = lie.act_screw(turned, jk.basis[1])
+        else:
+            out[:, :, jk.columns] = np.swapaxes(lie.act_screw(ga[:, None, :, :], jk.basis), 1, 2)
+    return out
 
 
 def _screw_plan(model: Any) -> tuple[list[str], Any, list[Any]]:
@@ -247,6 +296,8 @@ def current_screws(
     body_poses = poses(model, q) if body_poses is None else body_poses
     if joints is None and q.ndim == 1 and q.dtype != object:
         return _screws_at_once(model, q, body_poses)
+    if joints is None and q.ndim == 2 and q.dtype == np.float64:
+        return _screws_of_batch(model, q, body_poses)
     cols = []
     for jk in model.joints if joints is None else joints:
         ga = body_poses[jk.a]
