@@ -434,3 +434,19 @@ def test_a_grid_covers_the_assembled_region_beyond_its_first_column():
     for lc in loci:
         rows = lc.vertices[:, 1] / step
         assert np.all(np.abs(np.diff(rows)) <= 1 + 1e-9)
+
+
+def test_located_classes_and_margin_are_those_of_the_json():
+    """A located point's classes and margin, read from its findings, are the ones its
+    configuration's JSON lists (the contract the sweep's summary quotes): the five-bar's
+    grid crosses serial (type I) and input/output singularities."""
+    r = sweep(EXAMPLES / "five_bar.yaml", ["A1=-0.4:0.4:0.1", "A2=-0.4:0.4:0.1"])
+    classified = [p for p in r.located if p.configuration is not None]
+    assert classified
+    seen = set()
+    for p in classified:
+        js = p.configuration.to_json()["singularities"]
+        assert p.classes == tuple(dict.fromkeys(s["class"] for s in js))
+        assert p.margin == next((s["margin"] for s in js if s.get("margin")), None)
+        seen.update(p.classes)
+    assert "serial" in seen

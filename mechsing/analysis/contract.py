@@ -25,7 +25,7 @@ from mechsing.singularity.findings import (
 )
 from mechsing.subgroups import Identification, Intersection, Product, Subgroup, SubgroupType
 
-__all__ = ["subgroup_json", "subgroup_params", "to_json"]
+__all__ = ["finding_class", "finding_margin", "subgroup_json", "subgroup_params", "to_json"]
 
 
 def to_json(x: Any) -> Any:
@@ -172,6 +172,25 @@ def _finding(
         }
     )
     return _decided(f, out)
+
+
+def finding_class(f: Any) -> str:
+    """A finding's JSON ``class`` (``to_json(f)["class"]``) without building the rest of
+    its JSON: a sweep reads the classes of every located point."""
+    if isinstance(f, UndecidedFinding):
+        return "undecided"
+    if isinstance(f, SerialFinding | BranchFinding | MotionFinding | ConstraintFinding):
+        return f.cls
+    raise TypeError(f"not a finding: {f!r}")
+
+
+def finding_margin(f: Any) -> dict[str, Any] | None:
+    """A finding's JSON ``margin`` (``to_json(f)["margin"]``) alone."""
+    if not isinstance(
+        f, UndecidedFinding | SerialFinding | BranchFinding | MotionFinding | ConstraintFinding
+    ):
+        raise TypeError(f"not a finding: {f!r}")
+    return _margin(f.margin)
 
 
 def _undecided(f: UndecidedFinding) -> dict[str, Any]:

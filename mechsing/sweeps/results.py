@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.analysis import ConfigurationResult
+from mechsing.analysis.contract import finding_class, finding_margin
 from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
 from mechsing.model import Mechanism
 
@@ -91,11 +92,12 @@ class LocatedSingularity:
     def classes(self) -> tuple[str, ...] | None:
         """The classes of the singularities the analysis found there (None: not
         classified)."""
-        if self.configuration is None:
+        c = self.configuration
+        if c is None:
             return None
-        return tuple(
-            dict.fromkeys(s["class"] for s in self.configuration.to_json().get("singularities", []))
-        )
+        # the JSON's classes (an error entry lists no singularity), without the JSON
+        found = () if c.error is not None else c.singularities
+        return tuple(dict.fromkeys(finding_class(f) for f in found))
 
     @property
     def singular(self) -> bool | None:
@@ -108,11 +110,13 @@ class LocatedSingularity:
     @property
     def margin(self) -> dict[str, Any] | None:
         """The margin of the decision behind the first singular finding."""
-        if self.configuration is None:
+        c = self.configuration
+        if c is None or c.error is not None:
             return None
-        for s in self.configuration.to_json().get("singularities", []):
-            if s.get("margin"):
-                return s["margin"]
+        for f in c.singularities:
+            m = finding_margin(f)
+            if m:
+                return m
         return None
 
     def to_json(self) -> dict[str, Any]:
