@@ -929,3 +929,42 @@ def test_spherical_joints_updated_together_step_on_the_group():
             if np.any(d[jk.columns]):
                 np.testing.assert_array_equal(q1[jk.columns], model.coordinates_in(jk, M))
         np.testing.assert_allclose(model.difference(q1, q), d, rtol=0, atol=1e-13)
+
+
+@pytest.mark.parametrize("name", ["five_bar.yaml", "tsai_3upu.yaml", "planar_3rpr.yaml"])
+def test_configurations_closed_together_are_those_closed_one_by_one(name):
+    """Closer.solve_many checks every configuration that gives all joint values in one
+    batch: each closed configuration, residual and pose is bitwise that of solve alone;
+    one that does not close is left to solve, which refuses it with the same error."""
+    from dataclasses import replace
+
+    from mechsing.model import Configuration
+
+    mech = load(Path(__file__).resolve().parents[1] / "examples" / name)
+    solo = Closer(KinematicModel(mech, "float"))
+    qs = {n: solo.solve(n).q for n in mech.configurations}
+    cfgs = dict(mech.configurations)
+    for n, q in qs.items():
+        values: dict[str, list[float]] = {}
+        for (j, _i), x in zip(mech.coordinates(), q, strict=True):
+            values.setdefault(j, []).append(float(x))
+        cfgs["given-" + n] = Configuration("given-" + n, {j: tuple(v) for j, v in values.items()})
+    # the last one moved off closure by a millimetre-sized error in its first joint
+    j0, v0 = next(iter(cfgs["given-" + n].values.items()))
+    bad = dict(cfgs["given-" + n].values)
+    bad[j0] = (v0[0] + 1e-3, *v0[1:])
+    cfgs["open"] = Configuration("open", bad)
+    mech2 = replace(mech, configurations=cfgs)
+    names = [*("given-" + n for n in qs), "open"]
+    one, many = Closer(KinematicModel(mech2, "float")), Closer(KinematicModel(mech2, "float"))
+    many.solve_many(names)
+    for n in names[:-1]:
+        a, b = one.solve(n), many.solve(n)
+        assert np.array_equal(a.q, b.q) and a.residual == b.residual and a.given == b.given
+        pa, pb = one.model.poses(a.q), many.model.poses(b.q)
+        assert pa.keys() == pb.keys() and all(np.array_equal(pa[k], pb[k]) for k in pa)
+    with pytest.raises(ClosureError) as e1:
+        one.solve("open")
+    with pytest.raises(ClosureError) as e2:
+        many.solve("open")
+    assert str(e1.value) == str(e2.value)

@@ -352,6 +352,8 @@ def _prepare_found(
     model, closer = stage
     prec = model.precision
     out: dict[str, tuple[Any, Any]] = {}
+    # the points' closure checked together (float: the same residuals, one batch)
+    closer.solve_many(names)
     for name in names:
         with working_on(configuration=name, precision=str(prec)), prec.context():
             try:

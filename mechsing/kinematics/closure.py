@@ -118,6 +118,48 @@ class Closer:
         with self.model.precision.context():
             return self._solve(name, _chain)
 
+    def solve_many(self, names: list[str]) -> None:
+        """Close the named configurations together where they can be (memoised, for
+        :meth:`solve`): in float, those that give every joint value (no pose) of a
+        mechanism of one-dof and U joints are checked in one batch, their poses kept for the model (:meth:`KinematicModel.keep_poses`):
+        each residual, pose and verdict is bitwise that of :meth:`solve` on its own.  One
+        that does not close is left to :meth:`solve`, which says why; the others are not
+        touched here."""
+        m = self.model
+        # a joint of several coordinates (but U) has the twist q @ basis, a matrix product
+        # numpy may sum in another order for a batch than for one configuration
+        if (
+            m.precision.mode != "float"
+            or not m.chords
+            or any(jk.type != "U" and jk.basis.shape[0] != 1 for jk in m.joints)
+        ):
+            return
+        n = m.n
+        todo: list[tuple[str, np.ndarray]] = []
+        with m.precision.context():
+            for name in names:
+                cfg = self.mech.configurations.get(name)
+                if name in self._solved or cfg is None or cfg.pose is not None:
+                    continue
+                try:
+                    target, given = self._given(cfg)
+                except UserError:
+                    continue  # solve says why
+                if len(given) == n and target.dtype == float:
+                    todo.append((name, target))
+            if not todo:
+                return
+            Q = np.stack([q for _, q in todo])
+            poses = m.poses(Q)
+            deltas = m.chord_residuals(Q, poses)
+            m.keep_poses(Q, poses)
+            for i, (name, q) in enumerate(todo):
+                res = m.residual_norm([D[i] for D in deltas], native=True)
+                if res <= self.tolerance:
+                    self._solved[name] = ClosedConfiguration(
+                        name, q, float(res), False, 0, tuple(range(n))
+                    )
+
     def _solve(self, name: str, _chain: tuple[str, ...] = ()) -> ClosedConfiguration:
         if name in self._solved:
             return self._solved[name]

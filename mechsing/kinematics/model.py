@@ -283,18 +283,31 @@ class KinematicModel:
         if q.ndim != 1 or q.dtype != float:
             return batched.poses(self, q)
         key = q.tobytes()
-        cache = self._pose_cache
-        got = cache.get(key)
+        got = self._pose_cache.get(key)
         if got is None:
             got = batched.poses(self, q)
-            if len(cache) >= self._pose_cache_size:
-                # the oldest goes (another thread may have changed the cache meanwhile)
-                try:
-                    cache.pop(next(iter(cache)), None)
-                except (StopIteration, RuntimeError):
-                    pass
-            cache[key] = got
+            self._keep_poses(key, got)
         return dict(got)
+
+    def keep_poses(self, qs: np.ndarray, poses: dict[str, np.ndarray]) -> None:
+        """Remember the poses of a float batch ``qs`` (N, n) computed together (``poses``:
+        ``poses(qs)``, each (N, 4, 4), configuration by configuration bitwise those of one
+        configuration) for :meth:`poses` of each of them: configurations closed together
+        and then analysed one by one."""
+        if self.backend.name != "float" or qs.ndim != 2 or qs.dtype != float:
+            return
+        for i, q in enumerate(qs):
+            self._keep_poses(q.tobytes(), {b: P[i].copy() for b, P in poses.items()})
+
+    def _keep_poses(self, key: bytes, got: dict[str, np.ndarray]) -> None:
+        cache = self._pose_cache
+        if len(cache) >= self._pose_cache_size:
+            # the oldest goes (another thread may have changed the cache meanwhile)
+            try:
+                cache.pop(next(iter(cache)), None)
+            except (StopIteration, RuntimeError):
+                pass
+        cache[key] = got
 
     def field_kinematics(self, q: np.ndarray) -> FieldKinematics | None:
         """Exact mode: the kinematics of configuration ``q`` in the number field of its
