@@ -27,8 +27,6 @@ from typing import Any
 import numpy as np
 import sympy
 
-from mechsing import lie
-from mechsing.kinematics.chains import tree_chain
 from mechsing.model import Mechanism
 from mechsing.numeric import (
     Margin,
@@ -40,8 +38,8 @@ from mechsing.numeric import (
     svd,
     to_float,
 )
-from mechsing.screws import chain_matrix
 from mechsing.screws.readable import readable_basis
+from mechsing.singularity.zfb import output_chain
 from mechsing.subgroups import Subgroup, identify
 
 __all__ = ["LegDescription", "OutputMotion", "PointMotion", "describe_legs", "output_motion"]
@@ -228,14 +226,9 @@ def _output_chain_matrix(
 ) -> tuple[Any, Any]:
     """The screw system of the chain from ``relative_to`` to the output body at ``q``
     (the model's precision): its twists, or with ``point`` the velocities of the
-    output point; and that point's position (None without ``point``)."""
-    out = mech.output
-    with model.precision.context():
-        poses = None if cs.screws is not None and not point else model.poses(q)
-        S = cs.screws if cs.screws is not None else model.current_screws(q, poses)
-        chain = tree_chain(model, out.body, out.relative_to)
-        x = lie.act_point(poses[out.body], model.point_array(out.point)) if point else None
-        return chain_matrix(model, S, None, x, chain.signs), x
+    output point; and that point's position (None without ``point``).  The input/output
+    test builds the same rows from the same closure system: built once."""
+    return output_chain(mech, model, q, cs, point)
 
 
 def _point_motion(mech: Any, model: Any, q: Any, cs: Any, N: Any) -> PointMotion:

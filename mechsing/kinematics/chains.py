@@ -74,7 +74,19 @@ def path_chain(model: Any, steps: Iterable[tuple[str, int]]) -> Chain:
 
 
 def tree_chain(model: Any, body: str, relative_to: str) -> Chain:
-    """The chain of ``body`` relative to ``relative_to`` through the spanning tree."""
+    """The chain of ``body`` relative to ``relative_to`` through the spanning tree (built
+    once per model and pair of bodies; its signs are read only)."""
+    cache = getattr(model, "_tree_chains", None)
+    if cache is None:
+        cache = model._tree_chains = {}
+    got = cache.get((body, relative_to))
+    if got is None:
+        got = cache[(body, relative_to)] = _tree_chain(model, body, relative_to)
+        got.signs.flags.writeable = False
+    return got
+
+
+def _tree_chain(model: Any, body: str, relative_to: str) -> Chain:
     paths = model.mech.graph.tree_paths
     a, b = paths[body], paths[relative_to]
     # the steps the two paths share cancel (+s and -s): only the rest is crossed

@@ -483,7 +483,7 @@ class KinematicModel:
         if self._chords_signs is None:
             out = []
             for jk in self.chords:
-                coef = tree_chain(self, jk.a, jk.b).signs
+                coef = tree_chain(self, jk.a, jk.b).signs.copy()
                 coef[jk.columns] += 1
                 out.append(coef)
             self._chords_signs = out

@@ -91,6 +91,11 @@ class ClosureSystem:
     screws: np.ndarray = field(repr=False)
     #: the commensurate screws (``model.frame.screws``) the loop rows are built from
     scaled_screws: np.ndarray | None = field(default=None, repr=False)
+    #: matrices the tests at this configuration share, built once by the first that
+    #: asks (:func:`mechsing.singularity.zfb.output_chain`: the output chain's rows)
+    shared: dict[tuple[str, bool], tuple[np.ndarray, np.ndarray | None]] = field(
+        default_factory=dict, repr=False, compare=False
+    )
 
     @property
     def nullity(self) -> int | None:

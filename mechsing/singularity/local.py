@@ -397,7 +397,9 @@ def _io_findings(
         regular = [values[i] for i in idx]
     has_io = mech.output is not None and mech.inputs
     if has_io:
-        here = io_quantities(mech, model, q, rank.null_space, tprec, screws=cs.screws, kernel=rank)
+        here = io_quantities(
+            mech, model, q, rank.null_space, tprec, screws=cs.screws, kernel=rank, cs=cs
+        )
         gens = [v.io for v in regular if v.io is not None]
         if here is not None and gens:
             hv = here.values()
@@ -558,7 +560,9 @@ def _leg_serial(
     legs = mechanism_plan(mech, fm).legs
     for i, leg in enumerate(legs):
         with model.precision.context():
-            here = chain_system(model, cs.screws, leg.columns, None, model.precision)
+            here = chain_system(
+                model, cs.screws, leg.columns, None, model.precision, cs.scaled_screws
+            )
         gen = here.rank.rank or 0
         samples = []
         for v in regular:

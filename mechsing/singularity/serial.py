@@ -208,8 +208,19 @@ def serial_finding(
 
 
 def chain_system(
-    model: Any, S: np.ndarray, columns: list[int], point_x: np.ndarray | None, precision: Any
+    model: Any,
+    S: np.ndarray,
+    columns: list[int],
+    point_x: np.ndarray | None,
+    precision: Any,
+    scaled: np.ndarray | None = None,
 ) -> ChainSystem:
-    Ms = chain_matrix(model, S, columns, point_x)
+    """The screw system of the chain of joint coordinates ``columns`` (``S``: the current
+    screws; ``scaled``: ``model.frame.screws(S)`` when already computed, whose columns
+    are then taken: commensurate column by column, the same numbers) and its rank."""
+    if scaled is not None and point_x is None:
+        Ms = scaled[:, list(columns)]
+    else:
+        Ms = chain_matrix(model, S, columns, point_x)
     dec = decide_rank(Ms, precision, model.length_scale)
     return ChainSystem(Ms, dec, columns, point_x is not None)

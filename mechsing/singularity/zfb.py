@@ -43,7 +43,7 @@ from mechsing.numeric import (
 )
 from mechsing.screws import chain_matrix
 
-__all__ = ["IOQuantities", "io_quantities", "leg_constraint_rank", "leg_path"]
+__all__ = ["IOQuantities", "io_quantities", "leg_constraint_rank", "leg_path", "output_chain"]
 
 _FLOAT = Precision("float")
 
@@ -91,6 +91,25 @@ def output_rows(
     return chain_matrix(model, S, None, x, chain.signs)
 
 
+def output_chain(mech: Any, model: Any, q: np.ndarray, cs: Any, point: bool) -> tuple[Any, Any]:
+    """The output chain's commensurate rows at the closed configuration ``q`` from its
+    closure system ``cs`` (in the model's numbers): its twists, or with ``point`` the
+    output point's velocities (:func:`output_rows`), and that point's position (None
+    without ``point``).  Built once per closure system: the input/output test and the
+    output motion both ask for them."""
+    key = ("output chain", point)
+    got = cs.shared.get(key)
+    if got is None:
+        out = mech.output
+        with model.precision.context():
+            poses = model.poses(q) if point or cs.screws is None else None
+            S = cs.screws if cs.screws is not None else model.current_screws(q, poses)
+            chain = tree_chain(model, out.body, out.relative_to)
+            x = lie.act_point(poses[out.body], model.point_array(out.point)) if point else None
+            got = cs.shared[key] = (chain_matrix(model, S, None, x, chain.signs), x)
+    return got
+
+
 def input_rows(mech: Any, model: Any) -> np.ndarray | None:
     """Selection E of the actuated coordinates (rows), commensurate (lengths / L)."""
     coords = mech.input_coordinates()
@@ -117,6 +136,7 @@ def io_quantities(
     prec: Precision = _FLOAT,
     screws: np.ndarray | None = None,
     kernel: RankDecision | None = None,
+    cs: Any = None,
 ) -> IOQuantities | None:
     """ZFB quantities at q, computed and decided at ``prec`` (float or mp:N).
 
@@ -127,12 +147,16 @@ def io_quantities(
     with the closure rows N was computed from.  ``kernel``: N's decision; when it
     was taken from an exact one (``N = Z C``, Z exact), the products ``T N`` and
     ``E N`` are formed as ``(T Z) C`` with ``T Z`` exact in the data's number field, so
-    that what vanishes exactly is exactly zero.
+    that what vanishes exactly is exactly zero.  ``cs``: the closure system at q whose
+    screws ``screws`` are (the output rows are then shared, :func:`output_chain`).
     """
-    with model.precision.context():
-        poses = model.poses(q) if screws is None or mech.output.point is not None else {}
-        S = model.current_screws(q, poses) if screws is None else screws
-        T = output_rows(mech, model, q, S, poses)
+    if cs is not None and screws is cs.screws and mech.output is not None:
+        T = output_chain(mech, model, q, cs, mech.output.point is not None)[0]
+    else:
+        with model.precision.context():
+            poses = model.poses(q) if screws is None or mech.output.point is not None else {}
+            S = model.current_screws(q, poses) if screws is None else screws
+            T = output_rows(mech, model, q, S, poses)
     E = input_rows(mech, model)
     if T is None or E is None:
         return None
