@@ -224,3 +224,17 @@ def test_a_leg_with_a_loop_of_its_own_takes_its_constraint_rank_from_the_closure
         assert [r for _, r in v.legs] == [3, 2]
         one = one_sample_values(mech, model, s)
         assert (one.io, one.constraint) == (v.io, v.constraint)
+
+
+def test_the_starting_draws_are_those_of_a_fresh_generator():
+    """The kernel coefficients drawn once per kernel dimension are the ones a generator
+    seeded afresh at each configuration draws, in the same order."""
+    from mechsing.screws.mobility import SAMPLES_PER_STEP, _draws
+
+    for d in (1, 2, 5):
+        rng = np.random.default_rng(0)
+        expected = [rng.normal(size=d) for _ in range(len(SAMPLE_STEPS) * SAMPLES_PER_STEP)]
+        got = _draws(0, d)
+        assert len(got) == len(expected)
+        assert all(np.array_equal(a, b) for a, b in zip(got, expected, strict=True))
+        assert got is _draws(0, d)

@@ -6,6 +6,7 @@ metric (before a rank decision) and back to SI at the ground origin (for reports
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -78,6 +79,22 @@ def scale_screws(
         mask = np.asarray(length_columns, dtype=bool)
         S[..., :, mask] = S[..., :, mask] * length_scale
     return S
+
+
+def _cross(a: Any, b: Any) -> Any:
+    """``numpy.cross`` of two 3-vectors; of two float ones in Python floats (the same
+    products and differences, a fraction of numpy's per-call cost)."""
+    if (
+        type(a) is np.ndarray
+        and type(b) is np.ndarray
+        and a.dtype == np.float64
+        and b.dtype == np.float64
+        and a.shape == b.shape == (3,)
+    ):
+        a0, a1, a2 = a.tolist()
+        b0, b1, b2 = b.tolist()
+        return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
+    return np.cross(a, b)
 
 
 #: (f, m) <-> (m, f): the swap between a wrench and its twist-pairing vector
@@ -233,9 +250,7 @@ class CommensurateFrame:
         ``v_0 = L v_c + c x omega``."""
         w, v = t[0:3], t[3:6] * self.L
         return (
-            np.concatenate([w, v])
-            if self.c is None
-            else np.concatenate([w, v + np.cross(self.c, w)])
+            np.concatenate([w, v]) if self.c is None else np.concatenate([w, v + _cross(self.c, w)])
         )
 
     def point_back(self, x: Any) -> Any:
@@ -250,9 +265,15 @@ class CommensurateFrame:
         """The SI wrench (f, m) at the ground origin of a commensurate left-null vector
         ``y`` (float): the one with ``f . v_0 + m . omega = y . twist`` for every twist,
         i.e. ``swap(Ad(T(-c))^T D y)`` with ``D = diag(1, 1, 1, 1/L, 1/L, 1/L)``."""
+        AdT, D = self._wrench_maps
+        return _SWAP @ (AdT @ (D @ np.asarray(y, dtype=float)))
+
+    @cached_property
+    def _wrench_maps(self) -> tuple[np.ndarray, np.ndarray]:
+        """``Ad(T(-c))^T`` and ``D`` of :meth:`wrench_back` (float, built once)."""
         L, c = self.L_float, self.c_float
         D = np.diag([1, 1, 1, 1 / L, 1 / L, 1 / L])
         # Ad of the translation by -c (rotation identity): [[I, 0], [hat(-c), I]]
         Ad = np.eye(6)
         Ad[3:6, 0:3] = np.array([[0, c[2], -c[1]], [-c[2], 0, c[0]], [c[1], -c[0], 0]])
-        return _SWAP @ (Ad.T @ (D @ np.asarray(y, dtype=float)))
+        return Ad.T, D

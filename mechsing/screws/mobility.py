@@ -84,14 +84,33 @@ def _starts(
 ) -> list[tuple[float, np.ndarray]]:
     """The samples' starting points before closing: (step, q moved ``step`` along a
     random unit kernel direction), in the order :func:`nearby_samples` tries them."""
-    rng = np.random.default_rng(seed)
+    draws = iter(_draws(seed, kernel.shape[1]))
     out = []
     for step in SAMPLE_STEPS:
         for _ in range(SAMPLES_PER_STEP):
-            v = kernel @ rng.normal(size=kernel.shape[1])
+            v = kernel @ next(draws)
             v /= np.linalg.norm(v)
             out.append((step, model.update(qf, model.float_frame.rates_back(step * v))))
     return out
+
+
+def _draws(seed: int, d: int) -> list[np.ndarray]:
+    """The kernel coefficients :func:`_starts` draws, in order: ``rng.normal(size=d)``
+    once per start from a generator seeded with ``seed``, the same for every
+    configuration with a kernel of dimension ``d`` (drawn once; read only)."""
+    key = (seed, d)
+    got = _DRAWS.get(key)
+    if got is None:
+        rng = np.random.default_rng(seed)
+        got = [rng.normal(size=d) for _ in range(len(SAMPLE_STEPS) * SAMPLES_PER_STEP)]
+        for g in got:
+            g.flags.writeable = False
+        _DRAWS[key] = got
+    return got
+
+
+#: :func:`_draws` by (seed, kernel dimension)
+_DRAWS: dict[tuple[int, int], list[np.ndarray]] = {}
 
 
 def _distance(

@@ -45,6 +45,16 @@ def echelon(rows: np.ndarray, length_scale: float) -> tuple[np.ndarray, list[int
     pivots: list[int] = []
     if A.size == 0:
         return A / scale, pivots
+    if np.isfinite(A).all():
+        return _echelon_lists(A, scale)
+    return _echelon_arrays(A, scale)
+
+
+def _echelon_arrays(A: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, list[int]]:
+    """:func:`echelon` of commensurate rows ``A`` (k, 6), k >= 1, in numpy (a row with a
+    non-finite entry: numpy's NaN rules)."""
+    A = A.copy()
+    pivots: list[int] = []
     tol = SUPPORT_RTOL * float(np.max(np.abs(A)))
     r = 0
     for j in range(A.shape[1]):
@@ -63,6 +73,39 @@ def echelon(rows: np.ndarray, length_scale: float) -> tuple[np.ndarray, list[int
         pivots.append(j)
         r += 1
     return A[:r] / scale, pivots
+
+
+def _echelon_lists(A: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, list[int]]:
+    """:func:`echelon` of finite commensurate rows ``A`` (k, 6) in Python floats: the same
+    operations on the same numbers (a few rows of six: numpy's per-call cost is most of
+    the work there), the same first largest pivot, the same result bit for bit."""
+    rows = A.tolist()
+    k = len(rows)
+    tol = SUPPORT_RTOL * max(abs(x) for row in rows for x in row)
+    pivots: list[int] = []
+    r = 0
+    for j in range(6):
+        if r == k:
+            break
+        rest = max(abs(x) for row in rows[r:] for x in row[j:])
+        if rest <= tol:
+            break
+        i, best = r, abs(rows[r][j])
+        for t in range(r + 1, k):
+            if abs(rows[t][j]) > best:
+                i, best = t, abs(rows[t][j])
+        if best <= ECHELON_PIVOT_RTOL * rest:
+            continue
+        rows[r], rows[i] = rows[i], rows[r]
+        p = rows[r][j]
+        pr = rows[r] = [x / p for x in rows[r]]
+        for t in range(k):
+            if t != r:
+                f = rows[t][j]
+                rows[t] = [a - f * b for a, b in zip(rows[t], pr, strict=True)]
+        pivots.append(j)
+        r += 1
+    return np.array(rows[:r], dtype=float).reshape(r, 6) / scale, pivots
 
 
 def _pure(R: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]:
