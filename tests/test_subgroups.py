@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 import sympy
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from mechsing import lie
@@ -163,6 +163,9 @@ SYMBOLS = [s for s in CAT]
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.sampled_from(SYMBOLS), st.integers(0, 2**32 - 1))
+# one screw of the X system is a translation with a rotation of 2.7e-5: its axis point,
+# 6.6e4 away, once moved the centre so far that the axis came out 2.4e-9 off
+@example("X", 24528)
 def test_identification_invariant_under_conjugation(sym, seed):
     rng = np.random.default_rng(seed)
     t = CAT[sym]

@@ -100,6 +100,7 @@ from mechsing.numeric.scaling import (
 )
 from mechsing.numeric.tolerances import (
     BRANCH_ALIGNMENT,
+    CENTRE_ROTATION_RTOL,
     CLOSURE_RTOL_FLOAT,
     CONDITION_GENERIC_RANK_RTOL,
     CONDITION_GEOMETRY_RTOL,
@@ -209,6 +210,7 @@ __all__ = [
     "SUBSPACE_CONTAINMENT_FACTOR",
     "SUBSPACE_RANK_FACTOR",
     "SUPPORT_RTOL",
+    "CENTRE_ROTATION_RTOL",
     "ECHELON_PIVOT_RTOL",
     "SWEEP_ARC_MIN_STEP",
     "SWEEP_ARC_STEP",

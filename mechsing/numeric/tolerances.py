@@ -23,6 +23,12 @@ MEMBERSHIP_RTOL_FLOAT = 1e-9
 NEAR_ZERO_VECTOR = 1e-9
 #: support threshold of a kernel vector (entries above 1e-9 of the largest)
 SUPPORT_RTOL = 1e-9
+#: the centre an identification moves the screws to is the mean of the axis points of
+#: the screws that rotate, but not of one whose rotation is below this fraction of the
+#: largest: its axis point is as far as its translation over that rotation (a
+#: translation with a trace of rotation: 1e4 away for a rotation of 1e-4), and a centre
+#: that far makes the commensurate rows ill-conditioned (an X axis then read to 1e-9)
+CENTRE_ROTATION_RTOL = 1e-3
 #: a reduced row echelon form written to be read (screws.readable.echelon) takes its
 #: pivots in column order, but not one below this fraction of the largest entry still
 #: to eliminate: a smaller pivot would scale its row by more than 1e6 and bring the
@@ -200,6 +206,7 @@ class Tolerances:
 
     tau_lo: float
     tau_hi: float
+
 
 # -- symbolic conditions (mechsing.conditions) -----------------------------------
 #: relative singular value below which a Jacobian evaluated at random joint values

@@ -20,6 +20,7 @@ from sympy.polys.matrices import DomainMatrix
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
+    CENTRE_ROTATION_RTOL,
     PARALLEL_AXES_ATOL,
     CommensurateFrame,
     Margin,
@@ -252,11 +253,13 @@ def lie_closure(
 
 
 def _centre_of(X: np.ndarray) -> np.ndarray:
-    """Mean of the axis points nearest the origin of the screws that rotate (float)."""
+    """Mean of the axis points nearest the origin of the screws that rotate (float), but
+    not of those whose rotation is below CENTRE_ROTATION_RTOL of the largest (their axis
+    points are far: a centre there would make the commensurate rows ill-conditioned)."""
     f = to_float(X)
     w = f[:, ANGULAR]
     n2 = np.sum(w * w, axis=1)
-    big = n2 > 0
+    big = (n2 > 0) & (n2 >= CENTRE_ROTATION_RTOL**2 * np.max(n2, initial=0.0))
     if not np.any(big):
         return np.zeros(3)
     feet = np.cross(w[big], f[big, 3:6]) / n2[big, None]
