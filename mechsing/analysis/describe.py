@@ -221,21 +221,11 @@ def output_motion(
     return replace(motion, point=_point_motion(mech, model, q, cs, N))
 
 
-def _output_chain_matrix(
-    mech: Any, model: Any, q: Any, cs: Any, point: bool = False
-) -> tuple[Any, Any]:
-    """The screw system of the chain from ``relative_to`` to the output body at ``q``
-    (the model's precision): its twists, or with ``point`` the velocities of the
-    output point; and that point's position (None without ``point``).  The input/output
-    test builds the same rows from the same closure system: built once."""
-    return output_chain(mech, model, q, cs, point)
-
-
 def _point_motion(mech: Any, model: Any, q: Any, cs: Any, N: Any) -> PointMotion:
     """The velocity space of the output point over the closure's kernel ``N``."""
     prec = _mode(model)
     L = model.length_scale
-    V, x = _output_chain_matrix(mech, model, q, cs, point=True)
+    V, x = output_chain(mech, model, q, cs, True)
     with prec.context():
         V = prec.asarray(V)
         dec = decide_rank(
@@ -255,7 +245,7 @@ def _exact_point_motion(
 ) -> PointMotion | None:
     """:func:`_point_motion` in exact mode: the rank of ``V K`` exactly, in the number
     field of the data (None: no field)."""
-    V, x = _output_chain_matrix(mech, model, q, cs, point=True)
+    V, x = output_chain(mech, model, q, cs, True)
     span = _exact_span(model, cs, V, Z)
     if span is None:
         return None
@@ -270,7 +260,7 @@ def _exact_output_motion(
 ) -> OutputMotion | None:
     """:func:`_output_motion` in exact mode: ``T K`` and its rank exactly, its span's
     exact twists identified exactly (None: the data have no number field)."""
-    T, _ = _output_chain_matrix(mech, model, q, cs)
+    T, _ = output_chain(mech, model, q, cs, False)
     span = _exact_span(model, cs, T, Z)
     if span is None:
         return None
@@ -291,7 +281,7 @@ def _output_motion(
     out = mech.output
     prec = _mode(model)
     L = model.length_scale
-    T, _ = _output_chain_matrix(mech, model, q, cs)
+    T, _ = output_chain(mech, model, q, cs, False)
     with prec.context():
         T = prec.asarray(T)
         TN = T @ N

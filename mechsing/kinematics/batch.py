@@ -78,6 +78,13 @@ class BatchClosure:
             if not jk.abelian:
                 B = self.frame.twists(np.asarray(jk.basis, dtype=float).T)
                 self._pinv[jk.name] = np.linalg.pinv(B)
+        #: the spherical joints in file order (their turns composed all at once), and
+        #: their coordinate columns, joint after joint
+        self._turn_list = [jk for jk in base.joints if jk.name in self._turns]
+        self._turn_columns = np.array(
+            [c for jk in self._turn_list for c in range(jk.columns.start, jk.columns.stop)],
+            dtype=int,
+        )
 
     # ------------------------------------------------------------------ residuals
 
@@ -155,7 +162,7 @@ class BatchClosure:
         joints add; the others ``M <- exp(sum d_i e_i) M``), pose coordinates unchanged."""
         out = np.array(Q, copy=True)
         q = Q[:, : self.nb]
-        turns = self._turn_joints()
+        turns = self._turn_list
         if turns:
             # every spherical joint's turns at once: R = exp(d W) exp(q W), read back by log
             cols = self._turn_columns
@@ -175,17 +182,6 @@ class BatchClosure:
             out[:, jk.columns] = x @ self._pinv[jk.name].T
         return out
 
-    def _turn_joints(self) -> list[Any]:
-        """The spherical joints (their rotation vectors composed directly), in file order;
-        their coordinate columns, joint after joint, in ``_turn_columns``."""
-        turns = getattr(self, "_turn_list", None)
-        if turns is None:
-            turns = self._turn_list = [jk for jk in self.base.joints if jk.name in self._turns]
-            self._turn_columns = np.array(
-                [c for jk in turns for c in range(jk.columns.start, jk.columns.stop)], dtype=int
-            )
-        return turns
-
     def _turned(self, x: np.ndarray, turns: list[Any]) -> np.ndarray:
         """``exp_so3(x_j W_j)`` of every spherical joint j at once: (N, joints, 3, 3) from
         the joints' coordinates side by side, x (N, 3 joints)."""
@@ -200,7 +196,7 @@ class BatchClosure:
         (:meth:`KinematicModel.difference`); pose coordinates subtract."""
         D = np.asarray(Q1, dtype=float) - np.asarray(Q0, dtype=float)
         q1, q0 = Q1[:, : self.nb], Q0[:, : self.nb]
-        turns = self._turn_joints()
+        turns = self._turn_list
         if turns:
             cols = self._turn_columns
             R0 = self._turned(q0[:, cols], turns)
