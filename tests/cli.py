@@ -7,6 +7,7 @@ from __future__ import annotations
 import contextlib
 import io
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -33,12 +34,19 @@ def run_cli(argv: list[str]) -> CliRun:
     return CliRun(rc, out.getvalue(), err.getvalue())
 
 
-def run_cli_subprocess(argv: list[str], timeout: float = 120, cwd: Path | str = ROOT) -> CliRun:
+def run_cli_subprocess(
+    argv: list[str],
+    timeout: float = 120,
+    cwd: Path | str = ROOT,
+    env: dict[str, str] | None = None,
+) -> CliRun:
     """``python -m mechsing ARGV`` in a child process (the command as users run it: a fresh
-    interpreter, main thread); raises subprocess.TimeoutExpired after ``timeout`` seconds."""
+    interpreter, main thread); raises subprocess.TimeoutExpired after ``timeout`` seconds;
+    ``env`` adds to (or overrides) this process's environment."""
     r = subprocess.run(
         [sys.executable, "-m", "mechsing", *map(str, argv)],
         cwd=cwd,
+        env=None if env is None else {**os.environ, **env},
         capture_output=True,
         text=True,
         timeout=timeout,

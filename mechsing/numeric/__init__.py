@@ -147,6 +147,7 @@ from mechsing.numeric.tolerances import (
     SWEEP_MINIMUM_SCREEN,
     SWEEP_NODE_STEP,
     SWEEP_SCREEN_ROUNDING,
+    SWEEP_TIE_RTOL,
     Tolerances,
 )
 
@@ -219,6 +220,7 @@ __all__ = [
     "SWEEP_JUMP_RATIO",
     "SWEEP_KNOT_STEP",
     "SWEEP_LOCATE_TOL",
+    "SWEEP_TIE_RTOL",
     "SWEEP_MINIMUM_SCREEN",
     "SWEEP_NODE_STEP",
     "SWEEP_SCREEN_ROUNDING",

@@ -161,6 +161,11 @@ SWEEP_KNOT_STEP = 0.01
 #: a located singularity (a sign change, a minimum, a fold) is refined until the swept
 #: value is known to this (radians, or lengths / L): well below the 1e-10 promised
 SWEEP_LOCATE_TOL = 1e-12
+#: two samples' relative singular values within this relative distance are a tie, which
+#: rounding (another BLAS kernel, another machine) may break either way: a sweep's summary
+#: names the first of the tied lowest samples in sweep order, and a test whose values are
+#: all tied (a planar loop's constant constraint rank) is said to be constant
+SWEEP_TIE_RTOL = 1e-9
 #: a sampled local minimum of a test's smallest relative singular value is refined when
 #: it is at most this many times the rise to its higher neighbour: a zero between the
 #: neighbours makes a V (or a parabola touching 0) whose lowest sample is at most half

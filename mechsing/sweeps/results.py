@@ -20,6 +20,7 @@ from mechsing.analysis import ConfigurationResult
 from mechsing.analysis.contract import finding_class, finding_margin
 from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
 from mechsing.model import Mechanism
+from mechsing.numeric import SWEEP_TIE_RTOL
 
 __all__ = [
     "LocatedSingularity",
@@ -342,11 +343,16 @@ def text_report(r: SweepResult) -> str:
         ok = np.isfinite(rho)
         if not np.any(ok):
             continue
-        k = np.unravel_index(int(np.nanargmin(rho)), rho.shape)
+        lowest, spread = float(np.min(rho[ok])), float(np.max(rho[ok]))
+        tie = SWEEP_TIE_RTOL * max(abs(lowest), np.finfo(float).tiny)
+        head = f"    {t:<10} generic rank {r.generic[t]}"
+        if spread - lowest <= tie:
+            lines.append(f"{head}, constant {lowest:.3g} over the reached samples")
+            continue
+        # the first of the tied lowest samples in sweep order: rounding breaks ties either way
+        k = np.unravel_index(int(np.argmax(ok & (rho <= lowest + tie))), rho.shape)
         vals = tuple(_values_at(r.variables, tuple(int(x) for x in k)))
-        lines.append(
-            f"    {t:<10} generic rank {r.generic[t]}, lowest {float(rho[k]):.3g} at {_where(r, vals)}"
-        )
+        lines.append(f"{head}, lowest {lowest:.3g} at {_where(r, vals)}")
     if not r.located:
         lines.append("  no singularity located on the sweep")
     else:
