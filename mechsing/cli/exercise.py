@@ -28,13 +28,25 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
     sub = parser.add_subparsers(dest="action", metavar="ACTION", required=True)
     p = sub.add_parser("list", help="the exercises, and which have a template")
-    p.add_argument("--dir", metavar="DIR", help="a folder of exercise folders (default: the checkout's)")
+    p.add_argument(
+        "--dir", metavar="DIR", help="a folder of exercise folders (default: the checkout's)"
+    )
     p.add_argument("--format", choices=("text", "json"), default="text", help="output format")
     p = sub.add_parser("make", help="variants of an exercise, each with its answer key")
-    p.add_argument("exercise", metavar="EXERCISE", help="an exercise folder, or a bundled exercise's name")
+    p.add_argument(
+        "exercise", metavar="EXERCISE", help="an exercise folder, or a bundled exercise's name"
+    )
     p.add_argument("--variants", type=int, default=1, metavar="N", help="how many (default 1)")
-    p.add_argument("--seed", type=int, required=True, metavar="S", help="the seed of the draws (an integer >= 0)")
-    p.add_argument("-o", "--output", required=True, metavar="DIR", help="where the variant folders go")
+    p.add_argument(
+        "--seed",
+        type=int,
+        required=True,
+        metavar="S",
+        help="the seed of the draws (an integer >= 0)",
+    )
+    p.add_argument(
+        "-o", "--output", required=True, metavar="DIR", help="where the variant folders go"
+    )
     p.add_argument(
         "--force",
         action="store_true",
@@ -72,7 +84,9 @@ def run(args: argparse.Namespace) -> int:
         variants = make_variants(template, args.variants, args.seed)
         written = write_variants(template, variants, args.seed, Path(args.output), args.force)
         if not args.quiet:
-            print(f"{template.exercise}: {len(written)} variants (seed {args.seed}) in {args.output}")
+            print(
+                f"{template.exercise}: {len(written)} variants (seed {args.seed}) in {args.output}"
+            )
             for folder in written:
                 print(f"  {folder}")
         return 0

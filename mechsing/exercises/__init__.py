@@ -79,14 +79,21 @@ def find_exercise(name: str) -> Path:
             "give the path of an exercise folder (examples/exercises/NN-name in a checkout)"
         )
     found = [
-        d for d in sorted(directory.iterdir())
-        if d.is_dir() and (d.name == name or d.name.split("-", 1)[0] == name.zfill(2)
-                           or d.name.split("-", 1)[-1] == name)
+        d
+        for d in sorted(directory.iterdir())
+        if d.is_dir()
+        and (
+            d.name == name
+            or d.name.split("-", 1)[0] == name.zfill(2)
+            or d.name.split("-", 1)[-1] == name
+        )
     ]
     if not found:
         known = ", ".join(n for n, _ in list_exercises(directory))
         raise UserError(f"{name}: no exercise of that name in {directory} (exercises: {known})")
     if not (found[0] / TEMPLATE_FILE).is_file():
         with_t = ", ".join(n for n, t in list_exercises(directory) if t)
-        raise UserError(f"{found[0].name}: this exercise has no template (those with one: {with_t})")
+        raise UserError(
+            f"{found[0].name}: this exercise has no template (those with one: {with_t})"
+        )
     return found[0] / TEMPLATE_FILE

@@ -121,7 +121,11 @@ def evaluate(text: str, values: dict[str, float]) -> Any:
             raise UserError(f"constraint {text!r}: {node.id!r} is not a parameter")
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub | ast.UAdd | ast.Not):
             v = build(node.operand)
-            return (not v) if isinstance(node.op, ast.Not) else (-v if isinstance(node.op, ast.USub) else v)
+            return (
+                (not v)
+                if isinstance(node.op, ast.Not)
+                else (-v if isinstance(node.op, ast.USub) else v)
+            )
         if isinstance(node, ast.BinOp) and type(node.op) in _ARITHMETIC:
             return _ARITHMETIC[type(node.op)](build(node.left), build(node.right))
         if isinstance(node, ast.BoolOp):

@@ -34,10 +34,26 @@ from mechsing.exercises.units import UNITS, parse_quantity, to_si
 from mechsing.numeric.tolerances import EXERCISE_FORMULA_RTOL
 from mechsing.singularity.findings import BRANCH_CLASSES, IMPOSSIBLE_CLASSES, MOTION_CLASSES
 
-__all__ = ["CLASSES", "KEY_VERSION", "Grade", "Mark", "grade", "read_key", "read_sheet", "same_formula"]
+__all__ = [
+    "CLASSES",
+    "KEY_VERSION",
+    "Grade",
+    "Mark",
+    "grade",
+    "read_key",
+    "read_sheet",
+    "same_formula",
+]
 
 #: the classes of a finding (the JSON contract's ``class`` values)
-CLASSES = ("serial", *BRANCH_CLASSES, *MOTION_CLASSES, *IMPOSSIBLE_CLASSES, "constraint", "undecided")
+CLASSES = (
+    "serial",
+    *BRANCH_CLASSES,
+    *MOTION_CLASSES,
+    *IMPOSSIBLE_CLASSES,
+    "constraint",
+    "undecided",
+)
 #: the version of the key format (``key: 1``)
 KEY_VERSION = 1
 #: largest sheet or key read (bytes)
@@ -61,8 +77,13 @@ class Mark:
     note: str = ""
 
     def to_json(self) -> dict[str, Any]:
-        return {"id": self.id, "result": self.result, "expected": self.expected,
-                "given": self.given, "note": self.note}
+        return {
+            "id": self.id,
+            "result": self.result,
+            "expected": self.expected,
+            "given": self.given,
+            "note": self.note,
+        }
 
 
 @dataclass(frozen=True)
@@ -120,7 +141,9 @@ def _read_yaml(path: str | Path, what: str) -> dict[str, Any]:
     except UnicodeDecodeError:
         raise UserError(f"{p}: the {what} is not UTF-8 text") from None
     except yaml.YAMLError as exc:
-        raise UserError(f"{p}: the {what} is not valid YAML ({' '.join(str(exc).split())})") from None
+        raise UserError(
+            f"{p}: the {what} is not valid YAML ({' '.join(str(exc).split())})"
+        ) from None
     if not isinstance(doc, dict):
         raise UserError(f"{p}: the {what} is a YAML mapping (see docs/exercises.md)")
     return doc
@@ -168,7 +191,9 @@ def _formula(text: str, symbols: dict[str, Any]) -> Any:
     return value.xreplace({s: sympy.Symbol(s.name, real=True) for s in probe.values()})
 
 
-def same_formula(expected: str, given: str, rtol: float, up_to_factor: bool = False) -> tuple[bool, str]:
+def same_formula(
+    expected: str, given: str, rtol: float, up_to_factor: bool = False
+) -> tuple[bool, str]:
     """Whether two formulas are the same (and why not); see the module's docstring."""
     names = sorted(_names(expected) | _names(given))
     extra = sorted(_names(given) - _names(expected))
@@ -283,5 +308,11 @@ def grade(sheet_path: str | Path, key_path: str | Path) -> Grade:
         marks.append(Mark(qid, "right" if ok else "wrong", expected, shown, note))
     asked = {str(q["id"]) for q in key["questions"]}
     extra = tuple(k for k in answers if k not in asked)
-    return Grade(str(sheet_path), str(key_path), str(key.get("exercise", "")), key.get("variant"),
-                 tuple(marks), extra)
+    return Grade(
+        str(sheet_path),
+        str(key_path),
+        str(key.get("exercise", "")),
+        key.get("variant"),
+        tuple(marks),
+        extra,
+    )

@@ -80,7 +80,9 @@ def _compute(op: str, args: dict[str, Any], path: Path, draw: Draw) -> dict[str,
 
         vary = args["vary"]
         vary = [render(v, draw) for v in vary] if isinstance(vary, list) else vary
-        return sweep(path, vary, args.get("from"), precision=args.get("precision", "float")).to_json()
+        return sweep(
+            path, vary, args.get("from"), precision=args.get("precision", "float")
+        ).to_json()
     from mechsing.conditions import condition
 
     symbolic = args.get("symbolic") or ()
@@ -184,7 +186,14 @@ def _dump(doc: Any) -> str:
 def _files(template: Template, variant: Variant, seed: int) -> dict[str, str]:
     title = f"{template.title} (variant {variant.number})"
     asks = [template.questions[i] for i in range(len(template.questions))]
-    lines = [f"# {title}", "", render(template.statement, variant.draw).rstrip(), "", "## Questions", ""]
+    lines = [
+        f"# {title}",
+        "",
+        render(template.statement, variant.draw).rstrip(),
+        "",
+        "## Questions",
+        "",
+    ]
     for i, q in enumerate(asks, 1):
         unit = f", in {q.unit}" if q.unit else ""
         lines.append(f"{i}. {render(q.ask, variant.draw)} (`{q.id}`{unit})")
@@ -220,7 +229,11 @@ def _files(template: Template, variant: Variant, seed: int) -> dict[str, str]:
     md += ["", "| # | question | answer |", "|---|---|---|"]
     for i, entry in enumerate(variant.key, 1):
         md.append(f"| {i} | `{entry['id']}` | {_shown(entry)} |")
-    md += ["", "Computed by mechsing. Grade a sheet with `mechsing exercise check sheet.yaml --key key.yaml`.", ""]
+    md += [
+        "",
+        "Computed by mechsing. Grade a sheet with `mechsing exercise check sheet.yaml --key key.yaml`.",
+        "",
+    ]
     return {
         "statement.md": statement,
         "mechanism.yaml": variant.draw.mechanism,
@@ -248,7 +261,10 @@ def write_variants(
     written = []
     for v in variants:
         folder = out / f"variant-{v.number:0{width}d}"
-        if folder.resolve() == template_dir or (folder / template.path.name).resolve() == template.path.resolve():
+        if (
+            folder.resolve() == template_dir
+            or (folder / template.path.name).resolve() == template.path.resolve()
+        ):
             raise UserError(f"{folder}: is the template's folder; choose another -o")
         folder.mkdir(parents=True, exist_ok=True)
         for name, text in _files(template, v, seed).items():

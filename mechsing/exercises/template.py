@@ -185,8 +185,10 @@ def _question(path: Path, i: int, q: Any) -> Question:
         raise _fail(path, item, f"kind {q['kind']!r} is not one of {', '.join(KINDS)}")
     compute = q["compute"]
     if not isinstance(compute, dict) or len(compute) != 1:
-        raise _fail(path, item, "compute is one of {analyze: {...}}, {sweep: {...}}, {condition: {...}}")
-    (op, args), = compute.items()
+        raise _fail(
+            path, item, "compute is one of {analyze: {...}}, {sweep: {...}}, {condition: {...}}"
+        )
+    ((op, args),) = compute.items()
     if op not in COMPUTE_OPERATIONS:
         raise _fail(path, item, f"compute {op!r} is not one of {', '.join(COMPUTE_OPERATIONS)}")
     args = args or {}
