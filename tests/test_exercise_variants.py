@@ -25,7 +25,9 @@ TEMPLATES = sorted(EXERCISES.glob("*/template.yaml"))
 
 
 def _make(out: Path, exercise: str, n: int, seed: int, *extra: str) -> list[Path]:
-    run = run_cli(["exercise", "make", exercise, "--variants", n, "--seed", seed, "-o", out, *extra])
+    run = run_cli(
+        ["exercise", "make", exercise, "--variants", n, "--seed", seed, "-o", out, *extra]
+    )
     assert run.status == 0, run.err
     return sorted(out.glob("variant-*"))
 
@@ -49,7 +51,7 @@ def made(tmp_path_factory: pytest.TempPathFactory) -> dict[str, list[Path]]:
     base = tmp_path_factory.mktemp("variants")
     return {
         name: _make(base / name, name, 3, 11)
-        for name in ("12", "07-slider-crank-dead-centres", "15", "10-3rpr-type2")
+        for name in ("12", "07-slider-crank-dead-centres", "15", "10-3rpr-type2", "13", "14")
     }
 
 
@@ -121,7 +123,9 @@ def test_2r_condition_is_a1_a2_sin_b(made: dict[str, list[Path]]) -> None:
         assert sympy.simplify(numeric - want) == 0, key["condition"]["value"]
         symbolic = sympy.sympify(key["symbolic"]["value"], locals={"a1": a1, "a2": a2, "B": B})
         assert sympy.simplify(symbolic - a1 * a2 * sympy.sin(B)) == 0
-        assert key["bent_factor"]["value"] == pytest.approx(math.sin(math.radians(p["bend"])), abs=1e-12)
+        assert key["bent_factor"]["value"] == pytest.approx(
+            math.sin(math.radians(p["bend"])), abs=1e-12
+        )
         assert key["folded_singular"]["value"] is True  # sin(pi) = 0
 
 
@@ -148,12 +152,41 @@ def test_3rpr_legs_and_type_ii_from_the_leg_lines(made: dict[str, list[Path]]) -
         assert set(key["classes"]["value"]) == {"output", "impossible-input"}
 
 
+def test_double_rocker_limits_by_the_law_of_cosines(made: dict[str, list[Path]]) -> None:
+    for folder in made["13"]:
+        p = _params(folder)
+        a, b, c, d = p["a"], p["b"], p["c"], p["d"]
+        s, longest = min(a, b, c, d), max(a, b, c, d)
+        assert s + longest > a + b + c + d - s - longest  # non-Grashof
+        upper = math.acos((a**2 + d**2 - (b + c) ** 2) / (2 * a * d))  # B, C, D in line
+        stop = math.acos(((a + b) ** 2 + d**2 - c**2) / (2 * (a + b) * d))  # A, B, C in line
+        key = _key(folder)
+        assert key["upper"]["value"] == pytest.approx(upper, abs=1e-7)
+        assert key["lower"]["value"] == pytest.approx(-upper, abs=1e-7)
+        assert key["output_stop"]["value"] == pytest.approx(stop, abs=1e-7)
+
+
+def test_elbow_null_rates_from_the_lengths(made: dict[str, list[Path]]) -> None:
+    """Stretched, J2, J3, J4 sit on one line at 0, a2, a2 + a3 along it: the rates with
+    w2 + w3 + w4 = 0 and a2 w3 + (a2 + a3) w4 = 0 move nothing."""
+    for folder in made["14"]:
+        p = _params(folder)
+        a2, a3 = p["a2"], p["a3"]
+        key = _key(folder)
+        want = np.array([0, a3 / (a2 + a3), -1, a2 / (a2 + a3), 0, 0])
+        got = np.array(key["null_rates"]["value"])
+        assert min(np.abs(got - want).max(), np.abs(got + want).max()) < 1e-9
+        assert key["rank"]["value"] == 5 and key["regular_singular"]["value"] is False
+
+
 # -- grading --------------------------------------------------------------------------
 
 
 def _check(sheet: Path, key: Path, fmt: str = "json") -> tuple[int, dict | str]:
     run = run_cli(["exercise", "check", sheet, "--key", key, "--format", fmt])
-    return run.status, (json.loads(run.out) if fmt == "json" and run.status == 0 else run.out + run.err)
+    return run.status, (
+        json.loads(run.out) if fmt == "json" and run.status == 0 else run.out + run.err
+    )
 
 
 def _write(path: Path, answers: dict) -> Path:
@@ -161,7 +194,9 @@ def _write(path: Path, answers: dict) -> Path:
     return path
 
 
-def test_grading_a_right_a_wrong_and_an_incomplete_sheet(made: dict[str, list[Path]], tmp_path: Path) -> None:
+def test_grading_a_right_a_wrong_and_an_incomplete_sheet(
+    made: dict[str, list[Path]], tmp_path: Path
+) -> None:
     folder = made["12"][0]
     p = _params(folder)
     a, b, c, d = p["a"], p["b"], p["c"], p["d"]
@@ -170,7 +205,11 @@ def test_grading_a_right_a_wrong_and_an_incomplete_sheet(made: dict[str, list[Pa
     classes = ", ".join(_key(folder)["kind"]["value"])
     right = _write(
         tmp_path / "right.yaml",
-        {"stretched": f"{stretched:.6f} rad", "folded": round(math.degrees(folded), 3), "kind": classes},
+        {
+            "stretched": f"{stretched:.6f} rad",
+            "folded": round(math.degrees(folded), 3),
+            "kind": classes,
+        },
     )
     wrong = _write(
         tmp_path / "wrong.yaml",
@@ -245,7 +284,9 @@ def test_a_template_that_cannot_be_met_is_refused(tmp_path: Path) -> None:
     folder = tmp_path / "impossible"
     folder.mkdir()
     (folder / "template.yaml").write_text(text, encoding="utf-8")
-    run = run_cli(["exercise", "make", folder, "--variants", 1, "--seed", 0, "-o", tmp_path / "out"])
+    run = run_cli(
+        ["exercise", "make", folder, "--variants", 1, "--seed", 0, "-o", tmp_path / "out"]
+    )
     assert run.status == 2
     assert "the crank is the shortest link" in run.err and "failed most" in run.err
     assert not (tmp_path / "out").exists()

@@ -247,6 +247,11 @@ def _expected_text(q: dict[str, Any]) -> str:
     if kind == "number":
         unit = f" {q['unit']}" if q.get("unit") else ""
         return f"{float(v):.6g}{unit} ± {float(q.get('tol', 0)):g}{unit}"
+    if kind == "vector":
+        unit = f" {q['unit']}" if q.get("unit") else ""
+        sign = ", up to sign" if q.get("up_to_sign") else ""
+        shown = ", ".join(f"{float(x):.6g}" for x in v)
+        return f"[{shown}]{unit} ± {float(q.get('tol', 0)):g}{unit} each{sign}"
     if kind == "classes":
         return ", ".join(v)
     if kind == "boolean":
@@ -266,6 +271,8 @@ def _mark(q: dict[str, Any], given: Any) -> tuple[bool, str]:
         got = to_si(number, unit or key_unit)
         want = to_si(float(value), key_unit)
         return abs(got - want) <= to_si(float(q.get("tol", 0)), key_unit), ""
+    if kind == "vector":
+        return _vector(q, given)
     if kind == "integer":
         try:
             return int(str(given).strip()) == int(value), ""
@@ -286,6 +293,30 @@ def _mark(q: dict[str, Any], given: Any) -> tuple[bool, str]:
         rtol = float(q.get("tol", EXERCISE_FORMULA_RTOL))
         return same_formula(str(value), str(given), rtol, bool(q.get("up_to_factor")))
     return str(given).strip() == str(value), ""
+
+
+def _vector(q: dict[str, Any], given: Any) -> tuple[bool, str]:
+    """A vector of numbers (a list, or numbers separated by commas, brackets optional),
+    each entry in the key's unit or with its own."""
+    if isinstance(given, list):
+        items = given
+    else:
+        items = [x for x in str(given).strip().strip("[]").split(",") if x.strip()]
+    want = [float(x) for x in q["value"]]
+    if len(items) != len(want):
+        return False, f"{len(want)} entries are expected, not {len(items)}"
+    key_unit = q.get("unit")
+    got = []
+    for item in items:
+        number, unit = parse_quantity(item)
+        if unit is not None and (key_unit is None or UNITS[unit][0] != UNITS[key_unit][0]):
+            return False, f"the unit {unit} does not fit"
+        got.append(to_si(number, unit or key_unit))
+    want_si = [to_si(x, key_unit) for x in want]
+    tol = to_si(float(q.get("tol", 0)), key_unit)
+    signs = (1, -1) if q.get("up_to_sign") else (1,)
+    ok = any(all(abs(s * g - w) <= tol for g, w in zip(got, want_si, strict=True)) for s in signs)
+    return ok, ""
 
 
 def grade(sheet_path: str | Path, key_path: str | Path) -> Grade:

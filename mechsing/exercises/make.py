@@ -91,12 +91,20 @@ def _compute(op: str, args: dict[str, Any], path: Path, draw: Draw) -> dict[str,
 
 def _key_value(q: Question, got: Any) -> Any:
     """The answer found at the question's path, as the key states it."""
-    if isinstance(got, (list, set)) and q.kind != "classes" and len(got) == 1:
+    if isinstance(got, (list, set)) and q.kind not in ("classes", "vector") and len(got) == 1:
         got = next(iter(got))
     if q.kind == "number":
         if isinstance(got, bool) or not isinstance(got, int | float) or not math.isfinite(got):
             raise UserError(f"question {q.id}: mechsing's answer {got!r} is not a number")
         return float(got) / (UNITS[q.unit][1] if q.unit else 1.0)
+    if q.kind == "vector":
+        ok = isinstance(got, list) and all(
+            isinstance(x, int | float) and not isinstance(x, bool) and math.isfinite(x) for x in got
+        )
+        if not ok or not got:
+            raise UserError(f"question {q.id}: mechsing's answer {got!r} is not a vector")
+        scale = UNITS[q.unit][1] if q.unit else 1.0
+        return [float(x) / scale for x in got]
     if q.kind == "integer":
         if isinstance(got, bool) or not isinstance(got, int):
             raise UserError(f"question {q.id}: mechsing's answer {got!r} is not an integer")
@@ -140,6 +148,8 @@ def answer_key(template: Template, draw: Draw, workdir: Path) -> list[dict[str, 
             entry["tol"] = q.tol
         if q.up_to_factor:
             entry["up_to_factor"] = True
+        if q.up_to_sign:
+            entry["up_to_sign"] = True
         entries.append(entry)
     return entries
 
@@ -172,6 +182,11 @@ def _shown(entry: dict[str, Any]) -> str:
         text = format(v, f".{_SHOWN_DIGITS}g")
         unit = f" {entry['unit']}" if entry.get("unit") else ""
         return f"{text}{unit} (± {entry['tol']:g}{unit})"
+    if entry["kind"] == "vector":
+        sign = ", up to sign" if entry.get("up_to_sign") else ""
+        unit = f" {entry['unit']}" if entry.get("unit") else ""
+        text = ", ".join(format(x, f".{_SHOWN_DIGITS}g") for x in v)
+        return f"[{text}]{unit} (± {entry['tol']:g}{unit} each{sign})"
     if entry["kind"] == "classes":
         return ", ".join(v)
     if entry["kind"] == "boolean":
@@ -208,6 +223,7 @@ def _files(template: Template, variant: Variant, seed: int) -> dict[str, str]:
     for q in asks:
         hint = {
             "number": f"a number{' in ' + q.unit + ' (or give its unit)' if q.unit else ''}",
+            "vector": f"numbers in brackets, e.g. [1, 0, -1]{' in ' + q.unit if q.unit else ''}",
             "integer": "an integer",
             "boolean": "true or false",
             "word": "a word",

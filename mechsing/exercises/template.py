@@ -19,7 +19,8 @@ the format for teachers)::
     questions:
       - id: stretched
         ask: At which crank angle ...?
-        kind: number                      # number, integer, boolean, word, classes, formula
+        kind: number                      # number, vector, integer, boolean, word, classes,
+                                          # formula
         unit: deg                         # the key's unit (mechsing answers in SI)
         tol: 0.05                         # in that unit
         compute: {sweep: {vary: "A=0:360:2"}}
@@ -58,7 +59,7 @@ __all__ = [
 #: the template's file name in an exercise's folder
 TEMPLATE_FILE = "template.yaml"
 #: the kinds of answer a question may have
-KINDS = ("number", "integer", "boolean", "word", "classes", "formula")
+KINDS = ("number", "vector", "integer", "boolean", "word", "classes", "formula")
 #: the mechsing computations a question may ask for (the library's functions)
 COMPUTE_OPERATIONS = {
     "analyze": ("config", "precision"),
@@ -68,7 +69,17 @@ COMPUTE_OPERATIONS = {
 #: largest number of grid points of one varied number
 _MAX_GRID = 10**6
 _TOP_KEYS = ("template", "title", "vary", "constraints", "mechanism", "statement", "questions")
-_QUESTION_KEYS = ("id", "ask", "kind", "unit", "tol", "compute", "path", "up_to_factor")
+_QUESTION_KEYS = (
+    "id",
+    "ask",
+    "kind",
+    "unit",
+    "tol",
+    "compute",
+    "path",
+    "up_to_factor",
+    "up_to_sign",
+)
 _IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 
@@ -113,6 +124,7 @@ class Question:
     unit: str | None = None
     tol: float | None = None
     up_to_factor: bool = False
+    up_to_sign: bool = False
 
 
 @dataclass(frozen=True)
@@ -205,14 +217,14 @@ def _question(path: Path, i: int, q: Any) -> Question:
             raise _fail(path, item, f"tol {tol!r} is not a number") from None
         if not tol >= 0:
             raise _fail(path, item, f"tol must be >= 0 (got {tol})")
-    if q["kind"] == "number" and tol is None:
-        raise _fail(path, item, "a number question needs tol (in the question's unit)")
+    if q["kind"] in ("number", "vector") and tol is None:
+        raise _fail(path, item, f"a {q['kind']} question needs tol (in the question's unit)")
     unit = q.get("unit")
     if unit is not None:
         from mechsing.exercises.units import UNITS
 
-        if q["kind"] != "number":
-            raise _fail(path, item, "only a number question has a unit")
+        if q["kind"] not in ("number", "vector"):
+            raise _fail(path, item, "only a number or a vector question has a unit")
         if unit not in UNITS:
             raise _fail(path, item, f"unit {unit!r} is not one of {', '.join(UNITS)}")
     return Question(
@@ -224,6 +236,7 @@ def _question(path: Path, i: int, q: Any) -> Question:
         unit,
         tol,
         bool(q.get("up_to_factor", False)),
+        bool(q.get("up_to_sign", False)),
     )
 
 
