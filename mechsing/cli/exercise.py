@@ -85,7 +85,8 @@ def run(args: argparse.Namespace) -> int:
         written = write_variants(template, variants, args.seed, Path(args.output), args.force)
         if not args.quiet:
             print(
-                f"{template.exercise}: {len(written)} variants (seed {args.seed}) in {args.output}"
+                f"{template.exercise}: {len(written)} variant{'s' if len(written) != 1 else ''} "
+                f"(seed {args.seed}) in {args.output}"
             )
             for folder in written:
                 print(f"  {folder}")

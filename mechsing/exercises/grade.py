@@ -75,6 +75,7 @@ class Mark:
     expected: str
     given: str | None = None
     note: str = ""
+    key: dict[str, Any] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -83,6 +84,10 @@ class Mark:
             "expected": self.expected,
             "given": self.given,
             "note": self.note,
+            "kind": self.key.get("kind"),
+            "value": self.key.get("value"),
+            "unit": self.key.get("unit"),
+            "tol": self.key.get("tol"),
         }
 
 
@@ -329,14 +334,14 @@ def grade(sheet_path: str | Path, key_path: str | Path) -> Grade:
         expected = _expected_text(q)
         given = answers.get(qid)
         if given is None or (isinstance(given, str | list) and not given):
-            marks.append(Mark(qid, "missing", expected))
+            marks.append(Mark(qid, "missing", expected, key=q))
             continue
         shown = ", ".join(map(str, given)) if isinstance(given, list) else str(given)
         try:
             ok, note = _mark(q, given)
         except UserError as exc:
             ok, note = False, str(exc)
-        marks.append(Mark(qid, "right" if ok else "wrong", expected, shown, note))
+        marks.append(Mark(qid, "right" if ok else "wrong", expected, shown, note, q))
     asked = {str(q["id"]) for q in key["questions"]}
     extra = tuple(k for k in answers if k not in asked)
     return Grade(
