@@ -211,6 +211,12 @@ def draws(template: Template, seed: int, failures: Counter[str]) -> Iterator[Dra
             failures[DISTINCT] += 1
             refused += 1
             continue
+        # the constraints over the varied numbers alone first: no file to evaluate
+        broken = check_constraints(template, {k: float(v) for k, v in texts.items()}, True)
+        if broken:
+            failures.update(broken)
+            refused += 1
+            continue
         mechanism = set_parameters(template.mechanism, texts, where=str(template.path))
         try:
             values = parameter_values(mechanism, where=f"{template.path}: mechanism")

@@ -336,7 +336,10 @@ def grade(sheet_path: str | Path, key_path: str | Path) -> Grade:
         if given is None or (isinstance(given, str | list) and not given):
             marks.append(Mark(qid, "missing", expected, key=q))
             continue
-        shown = ", ".join(map(str, given)) if isinstance(given, list) else str(given)
+        if isinstance(given, bool):
+            shown = "true" if given else "false"
+        else:
+            shown = ", ".join(map(str, given)) if isinstance(given, list) else str(given)
         try:
             ok, note = _mark(q, given)
         except UserError as exc:
