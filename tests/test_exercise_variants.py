@@ -292,6 +292,17 @@ def test_a_template_that_cannot_be_met_is_refused(tmp_path: Path) -> None:
     assert not (tmp_path / "out").exists()
 
 
+def test_a_question_mechsing_cannot_answer_is_refused(tmp_path: Path) -> None:
+    text = (EXERCISES / "15-symbolic-2r-condition" / "template.yaml").read_text(encoding="utf-8")
+    text = text.replace("path: configurations.0.singular", "path: configurations.0.nothing")
+    folder = tmp_path / "unanswered"
+    folder.mkdir()
+    (folder / "template.yaml").write_text(text, encoding="utf-8")
+    run = run_cli(["exercise", "make", folder, "--seed", 0, "-o", tmp_path / "out"])
+    assert run.status == 2
+    assert "could not answer" in run.err and "folded_singular" in run.err, run.err
+
+
 def test_a_non_empty_directory_needs_force(tmp_path: Path) -> None:
     out = tmp_path / "out"
     out.mkdir()

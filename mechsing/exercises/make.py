@@ -35,8 +35,14 @@ from mechsing.exercises.units import UNITS
 __all__ = ["Variant", "answer_key", "make_variants", "render", "write_variants"]
 
 _PLACEHOLDER = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)(?::([^{}]*))?\}")
-#: significant digits of a number in key.md (key.yaml keeps every digit)
+#: significant digits of a number in key.md
 _SHOWN_DIGITS = 6
+#: significant digits of a number in key.yaml: far below any grading tolerance, and above
+#: the last bits in which two machines' floating point may differ
+_KEY_DIGITS = 12
+#: draws whose questions mechsing cannot answer before the template is refused (each such
+#: draw costs a computation; a template whose path is wrong fails on every draw)
+MAX_UNANSWERED = 20
 
 
 @dataclass(frozen=True)
@@ -89,6 +95,10 @@ def _compute(op: str, args: dict[str, Any], path: Path, draw: Draw) -> dict[str,
     return condition(path, args.get("config"), list(symbolic)).to_json()
 
 
+def _rounded(x: float) -> float:
+    return float(f"{x:.{_KEY_DIGITS}g}")
+
+
 def _key_value(q: Question, got: Any) -> Any:
     """The answer found at the question's path, as the key states it."""
     if isinstance(got, (list, set)) and q.kind not in ("classes", "vector") and len(got) == 1:
@@ -96,7 +106,7 @@ def _key_value(q: Question, got: Any) -> Any:
     if q.kind == "number":
         if isinstance(got, bool) or not isinstance(got, int | float) or not math.isfinite(got):
             raise UserError(f"question {q.id}: mechsing's answer {got!r} is not a number")
-        return float(got) / (UNITS[q.unit][1] if q.unit else 1.0)
+        return _rounded(float(got) / (UNITS[q.unit][1] if q.unit else 1.0))
     if q.kind == "vector":
         ok = isinstance(got, list) and all(
             isinstance(x, int | float) and not isinstance(x, bool) and math.isfinite(x) for x in got
@@ -104,7 +114,7 @@ def _key_value(q: Question, got: Any) -> Any:
         if not ok or not got:
             raise UserError(f"question {q.id}: mechsing's answer {got!r} is not a vector")
         scale = UNITS[q.unit][1] if q.unit else 1.0
-        return [float(x) / scale for x in got]
+        return [_rounded(float(x) / scale) for x in got]
     if q.kind == "integer":
         if isinstance(got, bool) or not isinstance(got, int):
             raise UserError(f"question {q.id}: mechsing's answer {got!r} is not an integer")
@@ -167,8 +177,16 @@ def make_variants(template: Template, count: int, seed: int) -> list[Variant]:
         for draw in draws(template, seed, failures):
             try:
                 key = answer_key(template, draw, Path(tmp))
-            except MechsingError:
+            except MechsingError as exc:
                 failures[ANSWERED] += 1
+                if failures[ANSWERED] >= MAX_UNANSWERED:
+                    numbers = ", ".join(f"{k} = {v}" for k, v in draw.texts.items())
+                    raise UserError(
+                        f"{template.path}: mechsing could not answer the questions of "
+                        f"{MAX_UNANSWERED} draws that met the constraints; the last ({numbers}): "
+                        f"{exc}. Check the questions' compute and path, or add the "
+                        "constraint these draws break"
+                    ) from None
                 continue
             out.append(Variant(len(out) + 1, draw, key))
             if len(out) == count:
