@@ -312,6 +312,15 @@ def test_a_non_empty_directory_needs_force(tmp_path: Path) -> None:
     assert [p.name for p in out.iterdir()] == ["notes.txt"]
     (folder,) = _make(out, "12", 1, 1, "--force")
     assert (out / "notes.txt").read_text(encoding="utf-8") == "mine" and folder.is_dir()
+    # never into the template's own folder, even with --force
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    template = (EXERCISES / "15-symbolic-2r-condition" / "template.yaml").read_bytes()
+    (mine / "template.yaml").write_bytes(template)
+    run = run_cli(["exercise", "make", mine, "--seed", 1, "-o", mine, "--force"])
+    assert run.status == 2 and "template's folder" in run.err
+    assert [p.name for p in mine.iterdir()] == ["template.yaml"]
+    assert (mine / "template.yaml").read_bytes() == template
 
 
 def test_list_shows_which_exercises_have_templates() -> None:

@@ -77,10 +77,12 @@ def run(args: argparse.Namespace) -> int:
         return 0
     if args.action == "make":
         from mechsing.exercises import find_exercise, load_template, make_variants, write_variants
+        from mechsing.exercises.make import check_output
 
         if args.seed < 0:
             raise UserError(f"--seed must be an integer >= 0 (got {args.seed})")
         template = load_template(find_exercise(args.exercise))
+        check_output(template, Path(args.output), args.force)  # before the work
         variants = make_variants(template, args.variants, args.seed)
         written = write_variants(template, variants, args.seed, Path(args.output), args.force)
         if not args.quiet:

@@ -32,7 +32,7 @@ from mechsing.exercises.paths import walk
 from mechsing.exercises.template import Question, Template
 from mechsing.exercises.units import UNITS
 
-__all__ = ["Variant", "answer_key", "make_variants", "render", "write_variants"]
+__all__ = ["Variant", "answer_key", "check_output", "make_variants", "render", "write_variants"]
 
 _PLACEHOLDER = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)(?::([^{}]*))?\}")
 #: significant digits of a number in key.md
@@ -277,12 +277,13 @@ def _files(template: Template, variant: Variant, seed: int) -> dict[str, str]:
     }
 
 
-def write_variants(
-    template: Template, variants: list[Variant], seed: int, out: Path, force: bool = False
-) -> list[Path]:
-    """Write each variant's folder under ``out``; refuse a non-empty ``out`` unless
-    ``force``, and never write over a template.  Returns the folders written."""
+def check_output(template: Template, out: Path, force: bool = False) -> None:
+    """Refuse (UserError) an output directory that is a file, the template's folder, or
+    not empty without ``force``: called before the variants are computed."""
     out = Path(out)
+    template_dir = template.path.resolve().parent
+    if out.resolve() == template_dir:
+        raise UserError(f"{out}: is the template's folder; write the variants elsewhere (-o)")
     if out.exists() and not out.is_dir():
         raise UserError(f"{out}: is a file, not a directory: give a directory for -o")
     if out.exists() and any(out.iterdir()) and not force:
@@ -290,6 +291,15 @@ def write_variants(
             f"{out}: the directory is not empty; choose a new one, or add --force to write "
             "the variant folders into it (files of the same names are replaced)"
         )
+
+
+def write_variants(
+    template: Template, variants: list[Variant], seed: int, out: Path, force: bool = False
+) -> list[Path]:
+    """Write each variant's folder under ``out`` (checked by :func:`check_output`); never
+    over a template.  Returns the folders written."""
+    out = Path(out)
+    check_output(template, out, force)
     template_dir = template.path.resolve().parent
     width = max(2, len(str(len(variants))))
     written = []
