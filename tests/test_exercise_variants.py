@@ -276,6 +276,11 @@ def test_unreadable_sheet_or_key_exits_2(made: dict[str, list[Path]], tmp_path: 
     assert run.status == 2 and "nokey.yaml" in run.err
     run = run_cli(["exercise", "check", key, "--key", made["12"][0] / "mechanism.yaml"])
     assert run.status == 2 and "not an answer key" in run.err
+    edited = yaml.safe_load(key.read_text(encoding="utf-8"))
+    edited["questions"][0]["value"] = "forty"  # a key edited by hand
+    (tmp_path / "edited.yaml").write_text(yaml.safe_dump(edited), encoding="utf-8")
+    run = run_cli(["exercise", "check", key, "--key", tmp_path / "edited.yaml"])
+    assert run.status == 2 and "'forty' is not a number" in run.err
 
 
 def test_a_template_that_cannot_be_met_is_refused(tmp_path: Path) -> None:

@@ -30,6 +30,7 @@ import sympy
 import yaml
 
 from mechsing.errors import UserError
+from mechsing.exercises.template import KINDS
 from mechsing.exercises.units import UNITS, parse_quantity, to_si
 from mechsing.numeric.tolerances import EXERCISE_FORMULA_RTOL
 from mechsing.singularity.findings import BRANCH_CLASSES, IMPOSSIBLE_CLASSES, MOTION_CLASSES
@@ -157,6 +158,21 @@ def _read_yaml(path: str | Path, what: str) -> dict[str, Any]:
     return doc
 
 
+def _is_number(x: Any) -> bool:
+    return isinstance(x, int | float) and not isinstance(x, bool) and math.isfinite(x)
+
+
+_VALUE_CHECKS = {
+    "number": _is_number,
+    "vector": lambda v: isinstance(v, list) and bool(v) and all(_is_number(x) for x in v),
+    "integer": lambda v: isinstance(v, int) and not isinstance(v, bool),
+    "boolean": lambda v: isinstance(v, bool),
+    "word": lambda v: isinstance(v, str),
+    "classes": lambda v: isinstance(v, list) and all(isinstance(x, str) for x in v),
+    "formula": lambda v: isinstance(v, str),
+}
+
+
 def read_key(path: str | Path) -> dict[str, Any]:
     """A key written by ``mechsing exercise make`` (checked: a UserError says what is wrong)."""
     doc = _read_yaml(path, "key")
@@ -165,6 +181,18 @@ def read_key(path: str | Path) -> dict[str, Any]:
     for i, q in enumerate(doc["questions"]):
         if not isinstance(q, dict) or not {"id", "kind", "value"} <= set(q):
             raise UserError(f"{path}: questions[{i}]: each question has id, kind and value")
+        if q["kind"] not in KINDS:
+            raise UserError(
+                f"{path}: questions[{i}] ({q['id']}): kind {q['kind']!r} is not one of "
+                f"{', '.join(KINDS)}"
+            )
+        if not _VALUE_CHECKS[q["kind"]](q["value"]):
+            raise UserError(
+                f"{path}: questions[{i}] ({q['id']}): the value {q['value']!r} is not a {q['kind']}"
+            )
+        tol = q.get("tol", 0)
+        if isinstance(tol, bool) or not isinstance(tol, int | float) or not tol >= 0:
+            raise UserError(f"{path}: questions[{i}] ({q['id']}): tol {tol!r} is not a number >= 0")
         if q["kind"] == "number" and (q.get("unit") is not None and q["unit"] not in UNITS):
             raise UserError(f"{path}: questions[{i}] ({q['id']}): unknown unit {q['unit']!r}")
     return doc
