@@ -276,6 +276,12 @@ def test_unreadable_sheet_or_key_exits_2(made: dict[str, list[Path]], tmp_path: 
     assert run.status == 2 and "nokey.yaml" in run.err
     run = run_cli(["exercise", "check", key, "--key", made["12"][0] / "mechanism.yaml"])
     assert run.status == 2 and "not an answer key" in run.err
+    bomb = tmp_path / "bomb.yaml"
+    bomb.write_text(
+        "a: &a [1, 1, 1]\nb: &b [*a, *a, *a]\nanswers: {stretched: *b}\n", encoding="utf-8"
+    )
+    run = run_cli(["exercise", "check", bomb, "--key", key])
+    assert run.status == 2 and "aliases" in run.err
     edited = yaml.safe_load(key.read_text(encoding="utf-8"))
     edited["questions"][0]["value"] = "forty"  # a key edited by hand
     (tmp_path / "edited.yaml").write_text(yaml.safe_dump(edited), encoding="utf-8")

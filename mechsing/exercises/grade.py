@@ -144,7 +144,11 @@ def _read_yaml(path: str | Path, what: str) -> dict[str, Any]:
     try:
         if p.stat().st_size > MAX_FILE_BYTES:
             raise UserError(f"{p}: the {what} is larger than {MAX_FILE_BYTES} bytes")
-        doc = yaml.safe_load(p.read_text(encoding="utf-8"))
+        text = p.read_text(encoding="utf-8")
+        # an alias can make a small file expand to gigabytes once printed: a sheet has none
+        if any(isinstance(e, yaml.AliasEvent) for e in yaml.parse(text, Loader=yaml.SafeLoader)):
+            raise UserError(f"{p}: the {what} uses YAML aliases (*name); write every answer out")
+        doc = yaml.safe_load(text)
     except OSError as exc:
         raise UserError(f"{p}: cannot read the {what} ({exc.strerror})") from None
     except UnicodeDecodeError:
