@@ -303,6 +303,26 @@ def test_a_template_that_cannot_be_met_is_refused(tmp_path: Path) -> None:
     assert not (tmp_path / "out").exists()
 
 
+def test_the_exercises_own_numbers_are_never_a_variant(tmp_path: Path) -> None:
+    """A variant with the bundled exercise's numbers would come with a published answer."""
+    text = (EXERCISES / "15-symbolic-2r-condition" / "template.yaml").read_text(encoding="utf-8")
+    doc = yaml.safe_load(text)
+    own = yaml.safe_load(doc["mechanism"])["parameters"]
+    for name in doc["vary"]:  # each range a single point but one: two grid points in all
+        doc["vary"][name] = {"from": own[name], "to": own[name], "step": 1}
+    doc["vary"]["turn"]["to"] = own["turn"] + 1
+    folder = tmp_path / "own"
+    folder.mkdir()
+    (folder / "template.yaml").write_text(yaml.safe_dump(doc, sort_keys=False), encoding="utf-8")
+    (made,) = _make(tmp_path / "out", str(folder), 1, 0)
+    numbers = yaml.safe_load((made / "key.yaml").read_text(encoding="utf-8"))["numbers"]
+    assert float(numbers["turn"]) == own["turn"] + 1
+    doc["vary"]["turn"]["to"] = own["turn"]  # the exercise's own numbers only: refused
+    (folder / "template.yaml").write_text(yaml.safe_dump(doc, sort_keys=False), encoding="utf-8")
+    run = run_cli(["exercise", "make", folder, "--seed", 0, "-o", tmp_path / "o2"])
+    assert run.status == 2 and "failed most: numbers other than the template's own" in run.err
+
+
 def test_a_question_mechsing_cannot_answer_is_refused(tmp_path: Path) -> None:
     text = (EXERCISES / "15-symbolic-2r-condition" / "template.yaml").read_text(encoding="utf-8")
     text = text.replace("path: configurations.0.singular", "path: configurations.0.nothing")

@@ -14,6 +14,7 @@ import math
 from collections import Counter
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from decimal import Decimal, InvalidOperation
 from typing import Any
 
 import numpy as np
@@ -30,6 +31,9 @@ MAX_DRAWS = 2000
 ANSWERED = "mechsing answers every question"
 #: the name under which a draw is counted when it repeats an earlier variant
 DISTINCT = "a variant not drawn before"
+#: ... and when it has the template's own numbers (those of the exercise, whose worked
+#: answer is published)
+NOT_OWN = "numbers other than the template's own (the exercise's worked answer)"
 
 _FUNCTIONS: dict[str, Callable[..., float]] = {
     "sqrt": math.sqrt,
@@ -186,6 +190,20 @@ def _uses_only(text: str, values: dict[str, float]) -> bool:
     return names <= set(values) | set(_FUNCTIONS) | {"pi"}
 
 
+def _own_numbers(template: Template) -> tuple[Decimal | None, ...]:
+    """The varied numbers as the template's mechanism writes them (None: not a decimal)."""
+    doc = yaml.safe_load(template.mechanism)
+    params = doc.get("parameters") if isinstance(doc, dict) else None
+    out = []
+    for v in template.vary:
+        text = str(params.get(v.name)) if isinstance(params, dict) else ""
+        try:
+            out.append(Decimal(text.strip()))
+        except InvalidOperation:
+            out.append(None)
+    return tuple(out)
+
+
 def draws(template: Template, seed: int, failures: Counter[str]) -> Iterator[Draw]:
     """Draws that meet every constraint, forever (the caller stops).  ``failures`` counts
     the broken constraints; once :data:`MAX_DRAWS` draws in a row are refused, a UserError
@@ -193,6 +211,7 @@ def draws(template: Template, seed: int, failures: Counter[str]) -> Iterator[Dra
     refuses for another reason) and the count of refused draws goes on."""
     rng = np.random.default_rng(seed)
     seen: set[tuple[str, ...]] = set()
+    own = _own_numbers(template)
     refused = 0
     while True:
         if refused >= MAX_DRAWS:
@@ -207,8 +226,8 @@ def draws(template: Template, seed: int, failures: Counter[str]) -> Iterator[Dra
         ks = [int(rng.integers(0, v.count)) for v in template.vary]
         texts = {v.name: v.text(k) for v, k in zip(template.vary, ks, strict=True)}
         key = tuple(texts.values())
-        if key in seen:
-            failures[DISTINCT] += 1
+        if key in seen or tuple(Decimal(t) for t in key) == own:
+            failures[DISTINCT if key in seen else NOT_OWN] += 1
             refused += 1
             continue
         # the constraints over the varied numbers alone first: no file to evaluate
