@@ -38,6 +38,7 @@ from mechsing.singularity.findings import BRANCH_CLASSES, IMPOSSIBLE_CLASSES, MO
 __all__ = [
     "CLASSES",
     "KEY_VERSION",
+    "expected_text",
     "Grade",
     "Mark",
     "grade",
@@ -284,7 +285,8 @@ def same_formula(
     return False, "cannot be evaluated at enough points to compare it"
 
 
-def _expected_text(q: dict[str, Any]) -> str:
+def expected_text(q: dict[str, Any]) -> str:
+    """A key's answer as people read it (key.md, the grades): ``44.8017 deg ± 0.05 deg``."""
     v, kind = q["value"], q["kind"]
     if kind == "number":
         unit = f" {q['unit']}" if q.get("unit") else ""
@@ -368,7 +370,7 @@ def grade(sheet_path: str | Path, key_path: str | Path) -> Grade:
     marks = []
     for q in key["questions"]:
         qid = str(q["id"])
-        expected = _expected_text(q)
+        expected = expected_text(q)
         given = answers.get(qid)
         if given is None or (isinstance(given, str | list) and not given):
             marks.append(Mark(qid, "missing", expected, key=q))

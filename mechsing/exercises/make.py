@@ -27,7 +27,7 @@ import yaml
 
 from mechsing.errors import MechsingError, UserError
 from mechsing.exercises.draw import ANSWERED, Draw, draws
-from mechsing.exercises.grade import CLASSES, KEY_VERSION
+from mechsing.exercises.grade import CLASSES, KEY_VERSION, expected_text
 from mechsing.exercises.paths import walk
 from mechsing.exercises.template import Question, Template
 from mechsing.exercises.units import UNITS
@@ -194,24 +194,6 @@ def make_variants(template: Template, count: int, seed: int) -> list[Variant]:
     return out
 
 
-def _shown(entry: dict[str, Any]) -> str:
-    v = entry["value"]
-    if entry["kind"] == "number":
-        text = format(v, f".{_SHOWN_DIGITS}g")
-        unit = f" {entry['unit']}" if entry.get("unit") else ""
-        return f"{text}{unit} (± {entry['tol']:g}{unit})"
-    if entry["kind"] == "vector":
-        sign = ", up to sign" if entry.get("up_to_sign") else ""
-        unit = f" {entry['unit']}" if entry.get("unit") else ""
-        text = ", ".join(format(x, f".{_SHOWN_DIGITS}g") for x in v)
-        return f"[{text}]{unit} (± {entry['tol']:g}{unit} each{sign})"
-    if entry["kind"] == "classes":
-        return ", ".join(v)
-    if entry["kind"] == "boolean":
-        return "true" if v else "false"
-    return str(v)
-
-
 def _dump(doc: Any) -> str:
     return yaml.safe_dump(doc, sort_keys=False, allow_unicode=True, width=100)
 
@@ -262,7 +244,7 @@ def _files(template: Template, variant: Variant, seed: int) -> dict[str, str]:
     md[-1] += ", ".join(f"{k} = {v}" for k, v in variant.draw.texts.items()) + "."
     md += ["", "| # | question | answer |", "|---|---|---|"]
     for i, entry in enumerate(variant.key, 1):
-        md.append(f"| {i} | `{entry['id']}` | {_shown(entry)} |")
+        md.append(f"| {i} | `{entry['id']}` | {expected_text(entry)} |")
     md += [
         "",
         "Computed by mechsing. Grade a sheet with `mechsing exercise check sheet.yaml --key key.yaml`.",
