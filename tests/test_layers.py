@@ -26,6 +26,7 @@ LAYERS: list[set[str]] = [
     {"singularity"},
     {"analysis", "scanner", "scanner_kernel", "conditions"},
     {"sweeps"},
+    {"exercises"},
     {"report"},
     {"cli", "__main__"},
 ]

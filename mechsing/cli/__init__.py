@@ -73,6 +73,7 @@ COMMANDS = (
     "catalog",
     "identify",
     "schema",
+    "exercise",
 )
 
 
