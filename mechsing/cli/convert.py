@@ -24,12 +24,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "-o", "--output", metavar="OUT", help="the YAML file to write (default: standard output)"
     )
+    from mechsing.cli.options import add_scene_options
+
+    add_scene_options(p)
 
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import UserError, load_mechanism
     from mechsing.errors import working_on
-    from mechsing.formats import xml_format, xml_to_yaml
+    from mechsing.cli.options import apply_scene
+    from mechsing.formats import xml_format, xml_spec
+    from mechsing.formats.writer import restrict_to, to_yaml
     from mechsing.formats.xmlsafe import MAX_XML_BYTES
 
     with working_on(file=args.file):
@@ -50,8 +55,11 @@ def run(args: argparse.Namespace) -> int:
                 f"{args.file}: not a URDF or MJCF description (no XML root element <robot> "
                 "or <mujoco>); a mechsing file needs no conversion"
             )
-        yaml_text = xml_to_yaml(text, args.file)
-        load_mechanism(args.file)  # the converted file must load: the same checks as analyze
+        spec = xml_spec(text, args.file)
+        # the converted file must load: the same checks as analyze
+        mech = load_mechanism(args.file)
+        chosen = apply_scene(mech, args, args.file)
+        yaml_text = to_yaml(spec if chosen is mech else restrict_to(spec, chosen))
         if args.output:
             try:
                 Path(args.output).write_text(yaml_text, encoding="utf-8")
