@@ -76,7 +76,6 @@ CASES = {
     "unknown_type": (UNKNOWN_TYPE, "unknown joint type 'screw'", 5),
     "cycle": (CYCLE, "cycle", None),
     "two_parents": (TWO_PARENTS, "already the child", 6),
-    "mimic": (MIMIC, "mimic", 7),
     "mjcf_unknown_type": (MJCF_UNKNOWN, "unknown joint type 'screw'", 3),
     "mjcf_include": (MJCF_INCLUDE, "include", 2),
     "mjcf_joint_coupling": (MJCF_TENDON, "cannot be modelled", 3),
@@ -108,6 +107,42 @@ def test_hostile_xml_is_bad_input(case: str, command: str, tmp_path, no_network)
     if line is not None:
         assert f"{f}:{line}:" in r.err
     assert "root:" not in r.err + r.out  # nothing of /etc/passwd
+
+
+def test_a_mimic_is_read_as_a_coupling_and_refused_when_analysed(tmp_path) -> None:
+    f = tmp_path / "robot.xml"
+    f.write_text(MIMIC)
+    r = run_cli(["analyze", str(f)])
+    assert r.status == 2 and f"{f}:7:" in r.err and "<mimic>" in r.err, r.err
+    r = run_cli(["convert", str(f)])
+    assert r.status == 0, r.err
+    assert "{joint: \"J2\", leader: \"J1\", multiplier: 2.0, offset: 0.0, source_line: 7}" in r.out
+    assert 'inputs: ["J1"]' in r.out  # a mimic joint is driven by its leader
+
+
+@pytest.mark.parametrize(
+    ("mimic", "words"),
+    [
+        ('<mimic joint="J9"/>', "names no joint of the robot ('J9')"),
+        ("<mimic/>", 'add joint="..."'),
+        ('<mimic joint="J2"/>', "cannot mimic itself"),
+        ('<mimic joint="F"/>', "joint 'F' is fixed"),
+        ('<mimic joint="J1" multiplier="x"/>', "multiplier"),
+    ],
+)
+def test_a_bad_mimic_is_exit_2_on_its_line(mimic: str, words: str, tmp_path) -> None:
+    f = tmp_path / "robot.xml"
+    f.write_text(
+        _urdf(
+            '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/></joint>\n'
+            '<joint name="F" type="fixed"><parent link="b"/><child link="d"/></joint>\n'
+            '<joint name="J2" type="revolute"><parent link="b"/><child link="c"/>\n'
+            f"  {mimic}</joint>\n",
+            links="abcd",
+        )
+    )
+    r = run_cli(["convert", str(f)])
+    assert r.status == 2 and words in r.err and f"{f}:9:" in r.err, r.err
 
 
 def test_a_yaml_file_is_not_converted(tmp_path) -> None:
