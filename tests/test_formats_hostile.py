@@ -116,7 +116,7 @@ def test_a_mimic_is_read_as_a_coupling_and_refused_when_analysed(tmp_path) -> No
     assert r.status == 2 and f"{f}:7:" in r.err and "<mimic>" in r.err, r.err
     r = run_cli(["convert", str(f)])
     assert r.status == 0, r.err
-    assert "{joint: \"J2\", leader: \"J1\", multiplier: 2.0, offset: 0.0, source_line: 7}" in r.out
+    assert '{joint: "J2", leader: "J1", multiplier: 2.0, offset: 0.0, source_line: 7}' in r.out
     assert 'inputs: ["J1"]' in r.out  # a mimic joint is driven by its leader
 
 

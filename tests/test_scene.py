@@ -148,7 +148,9 @@ def test_the_options_replace_the_files_output_and_inputs_and_say_so_with_v() -> 
     assert doc["scene"]["output"]["body"] == "coupler" and doc["scene"]["inputs"] == ["D"]
     assert doc["scene"]["left_out"] == []  # the coupler closes the loop: nothing left out
     # --output-point alone changes the file's output: its body stays
-    doc = cli_json(["analyze", "examples/fourbar.yaml", "--output-point", "1,0,0", "--format", "json"])
+    doc = cli_json(
+        ["analyze", "examples/fourbar.yaml", "--output-point", "1,0,0", "--format", "json"]
+    )
     assert doc["scene"]["output"] == {"body": "rocker", "relative_to": "ground", "point": [1, 0, 0]}
 
 

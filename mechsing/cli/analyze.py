@@ -83,7 +83,10 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.cli.options import apply_scene, apply_set
 
     mech = apply_set(
-        apply_scene(load_mechanism(args.file, args.verbose), args, args.file), args.set_values, args.from_config, args.file
+        apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
+        args.set_values,
+        args.from_config,
+        args.file,
     )
     limit = args.time_limit if args.time_limit is not None else _default_limit()
     result = analyze(mech, args.config, prec, time_limit=limit, progress=_progress)

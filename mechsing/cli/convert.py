@@ -31,8 +31,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import UserError, load_mechanism
-    from mechsing.errors import working_on
     from mechsing.cli.options import apply_scene
+    from mechsing.errors import working_on
     from mechsing.formats import xml_format, xml_spec
     from mechsing.formats.writer import restrict_to, to_yaml
     from mechsing.formats.xmlsafe import MAX_XML_BYTES

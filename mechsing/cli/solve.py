@@ -38,7 +38,10 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set
 
     mech = apply_set(
-        apply_scene(load_mechanism(args.file, args.verbose), args, args.file), args.set_values, args.from_config, args.file
+        apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
+        args.set_values,
+        args.from_config,
+        args.file,
     )
     if args.config is None:
         if not args.set_values:

@@ -196,7 +196,8 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
             if hi > lo:
                 spec.limits = [(lo, hi)]
         out_joints.append(spec)
-    couplings = _mimics(joints, seen, path)
+    notes: list[str] = []
+    couplings = _mimics(joints, seen, path, notes)
     followers = {c.joint for c in couplings}  # driven by their leaders: not inputs
     # the output: the tip link of a serial chain
     output = None
@@ -217,6 +218,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         output=output,
         inputs=[j.name for j in out_joints if j.type in ("R", "P") and j.name not in followers],
         couplings=couplings,
+        notes=notes,
     )
 
 
@@ -224,13 +226,23 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
 MIMIC_TYPES = ("revolute", "continuous", "prismatic")
 
 
-def _mimics(joints: list[Element], by_name: dict[str, Element], path: str) -> list[CouplingSpec]:
+def _mimics(
+    joints: list[Element], by_name: dict[str, Element], path: str, notes: list[str]
+) -> list[CouplingSpec]:
     """The couplings of the ``<mimic joint multiplier offset>`` elements: the joint's value
-    is ``multiplier * (the named joint's value) + offset`` (URDF defaults 1 and 0)."""
+    is ``multiplier * (the named joint's value) + offset`` (URDF defaults 1 and 0).  The
+    mimic of a fixed joint couples nothing (the joint has no value): it is ignored, and
+    ``notes`` says so."""
     out = []
     for el in joints:
         mimic = el.find("mimic")
         if mimic is None:
+            continue
+        if el.get("type") == "fixed":
+            notes.append(
+                f"the <mimic> of the fixed joint {el.get('name')!r} (line {mimic.line}) is "
+                "ignored: a fixed joint has no value to couple"
+            )
             continue
 
         def err(message: str, mimic: Element = mimic) -> MechanismError:

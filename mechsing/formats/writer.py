@@ -20,7 +20,16 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["SNAP", "Bodies", "CouplingSpec", "JointSpec", "MechanismSpec", "number", "restrict_to", "to_yaml"]
+__all__ = [
+    "SNAP",
+    "Bodies",
+    "CouplingSpec",
+    "JointSpec",
+    "MechanismSpec",
+    "number",
+    "restrict_to",
+    "to_yaml",
+]
 
 #: relative round-off snapped when numbers are written (far below any tolerance of mechsing)
 SNAP = 1e-14

@@ -74,7 +74,9 @@ def read_couplings(r: Any, v: Any, jmap: dict[str, Joint]) -> tuple[Coupling, ..
         followers[follower] = m.line
         unit_f = _factor(r, jmap[follower])
         unit_l = _factor(r, jmap[leader])
-        mult = 1 if m.get("multiplier") is None else r.number(m.get("multiplier"), item, "multiplier")
+        mult = (
+            1 if m.get("multiplier") is None else r.number(m.get("multiplier"), item, "multiplier")
+        )
         offset = 0 if m.get("offset") is None else r.number(m.get("offset"), item, "offset", unit_f)
         source_line = None
         sl = m.get("source_line")
@@ -82,9 +84,7 @@ def read_couplings(r: Any, v: Any, jmap: dict[str, Joint]) -> tuple[Coupling, ..
             if not (isinstance(sl, YScalar) and sl.kind == "int" and int(sl.text) > 0):
                 raise r.error(item, m.key_line("source_line"), "source_line must be a line number")
             source_line = int(sl.text)
-        out.append(
-            Coupling(follower, leader, mult * unit_f / unit_l, offset, m.line, source_line)
-        )
+        out.append(Coupling(follower, leader, mult * unit_f / unit_l, offset, m.line, source_line))
     return tuple(out)
 
 

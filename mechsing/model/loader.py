@@ -9,7 +9,6 @@ units and radians exactly.
 
 from __future__ import annotations
 
-
 from collections.abc import Collection
 from pathlib import Path
 from typing import Any

@@ -255,6 +255,7 @@ class Scene:
     dropped_couplings: tuple[str, ...] = ()
     notes: tuple[str, ...] = ()
 
+
 #: the configuration key of the output body's pose (a reserved name: no joint may have it)
 POSE_KEY = "pose"
 

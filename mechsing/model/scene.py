@@ -203,9 +203,7 @@ def _output(mech: Mechanism, choice: SceneChoice, notes: list[str]) -> Output:
         body, rel, point = old.body, old.relative_to, old.point
     else:
         given = "--output-point" if choice.output_point is not None else "--relative-to"
-        raise UserError(
-            f"{given}: {where} names no output; name its body with --output-body BODY"
-        )
+        raise UserError(f"{given}: {where} names no output; name its body with --output-body BODY")
     body = _body(mech, body, "--output-body")
     if choice.relative_to is not None:
         rel = _body(mech, choice.relative_to.strip(), "--relative-to")
@@ -218,7 +216,7 @@ def _output(mech: Mechanism, choice: SceneChoice, notes: list[str]) -> Output:
         point = _point(mech, choice.output_point)
     new = Output(body, rel, point, None, False)
     shown = f"{{body: {body}" + (f", relative_to: {rel}" if rel != mech.ground else "")
-    shown += (f", point: [{', '.join(f'{float(x):.6g}' for x in point)}] m" if point else "")
+    shown += f", point: [{', '.join(f'{float(x):.6g}' for x in point)}] m" if point else ""
     shown += "}"
     if old is None:
         notes.append(f"output {shown} from the command line (the file names none)")

@@ -32,8 +32,7 @@ from mechsing.model import Mechanism, load
 from mechsing.numeric import Precision, parse_precision, to_float
 from mechsing.report import document as doc
 from mechsing.report.figures import graph_figure, grid_figure, path_figure, svg
-from mechsing.report.render import scene_line
-from mechsing.report.render import _margin, explain
+from mechsing.report.render import _margin, explain, scene_line
 from mechsing.report.sketch import Screw, choose_view, sketch_figure
 from mechsing.singularity.findings import (
     ConstraintFinding,
