@@ -3,6 +3,7 @@ line, never a traceback, and never a file or network access."""
 
 from __future__ import annotations
 
+import json
 import socket
 
 import pytest
@@ -123,7 +124,6 @@ def test_a_mimic_is_read_as_a_coupling_and_refused_when_analysed(tmp_path) -> No
 @pytest.mark.parametrize(
     ("mimic", "words"),
     [
-        ('<mimic joint="J9"/>', "names no joint of the robot ('J9')"),
         ("<mimic/>", 'add joint="..."'),
         ('<mimic joint="J2"/>', "cannot mimic itself"),
         ('<mimic joint="F"/>', "joint 'F' is fixed"),
@@ -143,6 +143,38 @@ def test_a_bad_mimic_is_exit_2_on_its_line(mimic: str, words: str, tmp_path) -> 
     )
     r = run_cli(["convert", str(f)])
     assert r.status == 2 and words in r.err and f"{f}:9:" in r.err, r.err
+
+
+def _gripper(mimic_a: str, mimic_b: str) -> str:
+    """An arm J1 (a -> b) with a fixed finger F (b -> d) and a sliding finger J2 (b -> c)."""
+    return _urdf(
+        '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/></joint>\n'
+        f'<joint name="F" type="fixed"><parent link="b"/><child link="d"/>{mimic_a}</joint>\n'
+        '<joint name="J2" type="prismatic"><parent link="b"/><child link="c"/>\n'
+        f"  {mimic_b}</joint>\n",
+        links="abcd",
+    )
+
+
+def test_a_mimic_of_a_fixed_joint_couples_nothing_and_is_ignored(tmp_path) -> None:
+    f = tmp_path / "robot.urdf"
+    f.write_text(_gripper('<mimic joint="J1"/>', ""))
+    r = run_cli(["convert", str(f)])
+    assert r.status == 0 and "couplings" not in r.out.replace("# the <mimic>", ""), r.out
+    assert "the <mimic> of the fixed joint 'F' (line 7) is ignored" in r.out
+    assert run_cli(["analyze", str(f)]).status == 0
+
+
+def test_a_mimic_of_an_undefined_joint_is_refused_only_where_analysed(tmp_path) -> None:
+    f = tmp_path / "robot.urdf"
+    f.write_text(_gripper("", '<mimic joint="J9"/>'))
+    r = run_cli(["analyze", str(f)])
+    assert r.status == 2 and f"{f}:9:" in r.err, r.err
+    assert "names joint 'J9', which the robot does not define" in r.err
+    # the finger left out (an output on the arm's body b): analysed
+    r = run_cli(["analyze", str(f), "--output-body", "b", "--format", "json"])
+    assert r.status == 0, r.err
+    assert json.loads(r.out)["scene"]["dropped_couplings"] == ["J2"]
 
 
 def test_a_yaml_file_is_not_converted(tmp_path) -> None:

@@ -28,7 +28,9 @@ Owns :func:`read_urdf`.  The mapping (also in the docs' import page):
   (:mod:`mechsing.model.couplings`).
 
 Refused with a message naming the element and line: an unknown joint type, a mimic
-that names no joint or couples a joint of no or several coordinates, a link that is the
+that couples a joint of several coordinates (a mimic that names a joint the robot does
+not define is kept, and refused only when its joint is analysed; one of a fixed joint
+couples nothing and is ignored), a link that is the
 child of two joints, a cycle, a joint naming an unknown link.
 """
 
@@ -251,11 +253,13 @@ def _mimics(
         leader = mimic.get("joint")
         if not leader:
             raise err('a <mimic> names the joint it follows; add joint="..."')
-        if leader not in by_name:
-            raise err(f"names no joint of the robot ({leader!r}); fix the name")
         if leader == el.get("name"):
             raise err("a joint cannot mimic itself; name another joint")
-        for name, joint in ((el.get("name"), el), (leader, by_name[leader])):
+        # a leader the robot does not define is kept as written: the coupling cannot be
+        # modelled, which is refused only when the joint is analysed (not on a branch left
+        # out), naming this line
+        pairs = [(el.get("name"), el)] + ([(leader, by_name[leader])] if leader in by_name else [])
+        for name, joint in pairs:
             if joint.get("type") not in MIMIC_TYPES:
                 raise err(
                     f"joint {name!r} is {joint.get('type')}; a mimic couples two joints of "

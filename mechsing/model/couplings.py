@@ -11,7 +11,9 @@ unit)::
       - {joint: finger_right, leader: finger_left, multiplier: -1, offset: 0}
 
 ``mechsing convert`` writes the entries of a URDF's mimic joints, with
-``source_line``, the line of the ``<mimic>`` element.  The file is read with its
+``source_line``, the line of the ``<mimic>`` element; such an entry may name a leader the
+description does not define (a broken ``<mimic>``): it is kept, so the robot is still read,
+and refused like any coupling when its joint is analysed.  The file is read with its
 couplings; the analysis does not model a coupling in the closure system yet, so a
 coupling still present when a mechanism is analysed is refused
 (:func:`refuse_couplings`, exit 2 naming the joint and its line).  One whose joint lies
@@ -48,7 +50,18 @@ def read_couplings(r: Any, v: Any, jmap: dict[str, Joint]) -> tuple[Coupling, ..
         follower = r.name(m.get("joint"), "couplings", "the coupled joint")
         item = f"coupling of {follower!r}"
         leader = r.name(m.get("leader"), item, "the leader joint")
+        source_line = None
+        sl = m.get("source_line")
+        if sl is not None:
+            if not (isinstance(sl, YScalar) and sl.kind == "int" and int(sl.text) > 0):
+                raise r.error(item, m.key_line("source_line"), "source_line must be a line number")
+            source_line = int(sl.text)
+        # a converted description's coupling to a joint it does not define is kept, and
+        # refused when its joint is analysed (refuse_couplings): the robot is still read
+        orphan = leader not in jmap and source_line is not None and follower in jmap
         for name, key in ((follower, "joint"), (leader, "leader")):
+            if name == leader and orphan:
+                continue
             if name not in jmap:
                 raise r.error(
                     item,
@@ -73,18 +86,16 @@ def read_couplings(r: Any, v: Any, jmap: dict[str, Joint]) -> tuple[Coupling, ..
             )
         followers[follower] = m.line
         unit_f = _factor(r, jmap[follower])
-        unit_l = _factor(r, jmap[leader])
+        unit_l = unit_f if orphan else _factor(r, jmap[leader])
         mult = (
             1 if m.get("multiplier") is None else r.number(m.get("multiplier"), item, "multiplier")
         )
         offset = 0 if m.get("offset") is None else r.number(m.get("offset"), item, "offset", unit_f)
-        source_line = None
-        sl = m.get("source_line")
-        if sl is not None:
-            if not (isinstance(sl, YScalar) and sl.kind == "int" and int(sl.text) > 0):
-                raise r.error(item, m.key_line("source_line"), "source_line must be a line number")
-            source_line = int(sl.text)
-        out.append(Coupling(follower, leader, mult * unit_f / unit_l, offset, m.line, source_line))
+        out.append(
+            Coupling(
+                follower, leader, mult * unit_f / unit_l, offset, m.line, source_line, not orphan
+            )
+        )
     return tuple(out)
 
 
@@ -110,7 +121,9 @@ def refuse_couplings(mech: Mechanism) -> None:
     c = mech.couplings[0]
     line = c.source_line if c.source_line is not None else c.line
     more = (
-        f" (and {len(mech.couplings) - 1} more: "
+        f" (and {len(mech.couplings) - 1} more coupled joint"
+        + ("s" if len(mech.couplings) > 2 else "")
+        + ": "
         + ", ".join(repr(x.joint) for x in mech.couplings[1:4])
         + (", ..." if len(mech.couplings) > 4 else "")
         + ")"
@@ -118,6 +131,15 @@ def refuse_couplings(mech: Mechanism) -> None:
         else ""
     )
     what = "<mimic>" if c.source_line is not None else "coupling"
+    if not c.leader_defined:
+        raise MechanismError(
+            f"joint {c.joint!r}: its {what} names joint {c.leader!r}, which the robot does not "
+            f"define{more}; fix the name, or name an output on a branch that does not hold "
+            f"{c.joint!r} (--output-body BODY: the branches that neither lead to it nor close "
+            "a loop with it are left out, couplings included)",
+            path=mech.path,
+            line=line,
+        )
     raise MechanismError(
         f"joint {c.joint!r} is coupled to joint {c.leader!r} ({what}: "
         f"{describe_coupling(c)}){more}; mechsing does not model couplings of joint values "

@@ -230,7 +230,9 @@ class Coupling:
     coordinate; ``offset`` in SI units or radians, the follower's unit).
 
     ``line`` is the line of the entry in the mechanism file; ``source_line`` the line
-    of the element it was converted from (a URDF's ``<mimic>``), when there is one."""
+    of the element it was converted from (a URDF's ``<mimic>``), when there is one;
+    ``leader_defined`` is False when that element names a joint the description does
+    not define (kept so that the robot is read; refused when its joint is analysed)."""
 
     joint: str
     leader: str
@@ -238,6 +240,8 @@ class Coupling:
     offset: Any = 0
     line: int | None = None
     source_line: int | None = None
+    #: False for a converted description's coupling to a joint it does not define
+    leader_defined: bool = True
 
 
 @dataclass(frozen=True)
