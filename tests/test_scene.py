@@ -166,6 +166,8 @@ def test_the_options_replace_the_files_output_and_inputs_and_say_so_with_v() -> 
         (["--output-body", "l_fore", "--inputs", "l_elbow,l_elbow"], "given twice"),
         (["--output-body", "l_fore", "--inputs", "l_elbow[1]"], "out of range"),
         (["--output-body", "l_fore", "--inputs", "nope"], "unknown joint 'nope'"),
+        (["--output-body", "base"], "the body it is measured relative to (the ground)"),
+        (["--output-body", "l_fore", "--set", "r_elbow=1"], "'r_elbow' is on a branch left out"),
     ],
 )
 def test_bad_scene_options_are_exit_2(argv: list[str], words: str) -> None:

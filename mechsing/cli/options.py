@@ -146,7 +146,7 @@ def apply_scene(mech: Any, args: argparse.Namespace, path: str) -> Any:
     part of it they require; the mechanism's notes (``-v``) say what replaced what.
     ``path`` names the file in messages."""
     from mechsing.errors import working_on
-    from mechsing.model.scene import SceneChoice, choose_scene
+    from mechsing.model.scene import SceneChoice, choose_scene, refuse_left_out
 
     choice = SceneChoice(
         output_body=getattr(args, "output_body", None),
@@ -158,6 +158,11 @@ def apply_scene(mech: Any, args: argparse.Namespace, path: str) -> Any:
         return mech
     with working_on(file=path):
         chosen = choose_scene(mech, choice)
+        for option in ("set_values", "vary"):
+            given = [
+                t.partition("=")[0].split("[")[0].strip() for t in getattr(args, option, None) or ()
+            ]
+            refuse_left_out(chosen, given, f"--{option.removesuffix('_values')}")
     if getattr(args, "verbose", False):
         import sys
 

@@ -47,7 +47,7 @@ from mechsing.model.mechanism import (
     Scene,
 )
 
-__all__ = ["SceneChoice", "choose_scene", "relevant_part"]
+__all__ = ["SceneChoice", "choose_scene", "refuse_left_out", "relevant_part"]
 
 
 @dataclass(frozen=True)
@@ -144,6 +144,23 @@ def choose_scene(mech: Mechanism, choice: SceneChoice) -> Mechanism:
     )
 
 
+def refuse_left_out(mech: Mechanism, names: Sequence[str], option: str) -> None:
+    """UserError (exit 2) when an option names a joint of a branch the scene left out
+    (``--set r_elbow=1`` with ``--output-body`` on the other arm): it says so, rather
+    than that the joint does not exist."""
+    if mech.scene is None:
+        return
+    for name in names:
+        for _bodies, joints in mech.scene.left_out:
+            if name in joints:
+                raise UserError(
+                    f"{option} {name}: joint {name!r} is on a branch left out of the analysis "
+                    f"(joints {', '.join(joints)}), which neither leads to the output body "
+                    f"{mech.output.body if mech.output else ''} nor closes a loop with that "
+                    "path; name a joint between the output and the body it is relative to"
+                )
+
+
 def relevant_part(
     bodies: Sequence[str], joints: Sequence[Joint], base: str, body: str
 ) -> tuple[set[str], set[str]]:
@@ -208,9 +225,12 @@ def _output(mech: Mechanism, choice: SceneChoice, notes: list[str]) -> Output:
     if choice.relative_to is not None:
         rel = _body(mech, choice.relative_to.strip(), "--relative-to")
     if rel == body:
+        given = (
+            f"--relative-to {rel}" if choice.relative_to is not None else f"--output-body {body}"
+        )
         raise UserError(
-            f"--relative-to {rel}: the output body {body!r} is the body it is measured "
-            "relative to; name another body (the default is the ground)"
+            f"{given}: the output body {body!r} is the body it is measured relative to "
+            f"({'the ground' if rel == mech.ground else '--relative-to'}); name another body"
         )
     if choice.output_point is not None:
         point = _point(mech, choice.output_point)
