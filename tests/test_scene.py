@@ -6,7 +6,6 @@ axis z; left shoulder at (0, 0.5, 0), left tip at (1.5, 0.5, 0)), a head and, on
 arm, a gripper whose second finger mimics the first (multiplier -1).  Its left tip point
 is a planar 2R's: the point Jacobian's determinant is l1 l2 sin(theta2) = sin(l_elbow)/2,
 so the arm has mobility 2 and is singular exactly where sin(l_elbow) = 0.
-tests/data/two_arm_mimic.yaml is `mechsing convert` of it.
 """
 
 from __future__ import annotations
@@ -23,7 +22,6 @@ from mechsing.model.scene import relevant_part
 from tests.cli import ROOT, cli_json, run_cli
 
 URDF = ROOT / "tests" / "data" / "two_arm_mimic.urdf"
-YAML = ROOT / "tests" / "data" / "two_arm_mimic.yaml"
 LEFT_TIP = ["--output-body", "l_fore", "--output-point", "1.5,0.5,0"]
 RIGHT_ARM = ["r_shoulder", "r_elbow", "r_finger_b_slide", "r_finger_a_slide"]
 
@@ -186,7 +184,10 @@ def test_every_command_that_reads_a_mechanism_takes_the_options(command: str, tm
         "condition": ["--format", "json"],
         "convert": [],
     }[command]
-    source = YAML if command == "condition" else URDF
+    source = URDF
+    if command == "condition":  # condition reads a mechanism file: the converted robot
+        source = tmp_path / "two_arm_mimic.yaml"
+        assert run_cli(["convert", URDF, "-o", source]).status == 0
     r = run_cli([command, source, *LEFT_TIP, "--inputs", "l_elbow", *extra])
     assert r.status == 0, (command, r.err)
     if command == "solve":
