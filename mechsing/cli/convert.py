@@ -4,7 +4,10 @@ The YAML written starts with a comment naming its source; it holds the bodies,
 joints (placed in the ground frame at the description's zero configuration),
 joint limits and output, and a reference configuration, so inputs, outputs and
 configurations can be added and the work continued in YAML.  Analysing the
-converted file gives the same result as analysing the description directly.
+converted file gives the same result as analysing the description directly.  With
+--output-body (--output-point, --relative-to) or --inputs the file holds that scene: the
+output, the inputs, and only the part the output requires (a comment names what was left
+out).
 A mechanism file (YAML or JSON) needs no conversion and is refused.  Exit
 status: 0 success, 2 bad input.
 """
