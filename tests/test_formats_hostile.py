@@ -3,6 +3,7 @@ line, never a traceback, and never a file or network access."""
 
 from __future__ import annotations
 
+import json
 import socket
 
 import pytest
@@ -76,7 +77,6 @@ CASES = {
     "unknown_type": (UNKNOWN_TYPE, "unknown joint type 'screw'", 5),
     "cycle": (CYCLE, "cycle", None),
     "two_parents": (TWO_PARENTS, "already the child", 6),
-    "mimic": (MIMIC, "mimic", 7),
     "mjcf_unknown_type": (MJCF_UNKNOWN, "unknown joint type 'screw'", 3),
     "mjcf_include": (MJCF_INCLUDE, "include", 2),
     "mjcf_joint_coupling": (MJCF_TENDON, "cannot be modelled", 3),
@@ -108,6 +108,73 @@ def test_hostile_xml_is_bad_input(case: str, command: str, tmp_path, no_network)
     if line is not None:
         assert f"{f}:{line}:" in r.err
     assert "root:" not in r.err + r.out  # nothing of /etc/passwd
+
+
+def test_a_mimic_is_read_as_a_coupling_and_refused_when_analysed(tmp_path) -> None:
+    f = tmp_path / "robot.xml"
+    f.write_text(MIMIC)
+    r = run_cli(["analyze", str(f)])
+    assert r.status == 2 and f"{f}:7:" in r.err and "<mimic>" in r.err, r.err
+    r = run_cli(["convert", str(f)])
+    assert r.status == 0, r.err
+    assert '{joint: "J2", leader: "J1", multiplier: 2.0, offset: 0.0, source_line: 7}' in r.out
+    assert 'inputs: ["J1"]' in r.out  # a mimic joint is driven by its leader
+
+
+@pytest.mark.parametrize(
+    ("mimic", "words"),
+    [
+        ("<mimic/>", 'add joint="..."'),
+        ('<mimic joint="J2"/>', "cannot mimic itself"),
+        ('<mimic joint="F"/>', "joint 'F' is fixed"),
+        ('<mimic joint="J1" multiplier="x"/>', "multiplier"),
+    ],
+)
+def test_a_bad_mimic_is_exit_2_on_its_line(mimic: str, words: str, tmp_path) -> None:
+    f = tmp_path / "robot.xml"
+    f.write_text(
+        _urdf(
+            '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/></joint>\n'
+            '<joint name="F" type="fixed"><parent link="b"/><child link="d"/></joint>\n'
+            '<joint name="J2" type="revolute"><parent link="b"/><child link="c"/>\n'
+            f"  {mimic}</joint>\n",
+            links="abcd",
+        )
+    )
+    r = run_cli(["convert", str(f)])
+    assert r.status == 2 and words in r.err and f"{f}:9:" in r.err, r.err
+
+
+def _gripper(mimic_a: str, mimic_b: str) -> str:
+    """An arm J1 (a -> b) with a fixed finger F (b -> d) and a sliding finger J2 (b -> c)."""
+    return _urdf(
+        '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/></joint>\n'
+        f'<joint name="F" type="fixed"><parent link="b"/><child link="d"/>{mimic_a}</joint>\n'
+        '<joint name="J2" type="prismatic"><parent link="b"/><child link="c"/>\n'
+        f"  {mimic_b}</joint>\n",
+        links="abcd",
+    )
+
+
+def test_a_mimic_of_a_fixed_joint_couples_nothing_and_is_ignored(tmp_path) -> None:
+    f = tmp_path / "robot.urdf"
+    f.write_text(_gripper('<mimic joint="J1"/>', ""))
+    r = run_cli(["convert", str(f)])
+    assert r.status == 0 and "couplings" not in r.out.replace("# the <mimic>", ""), r.out
+    assert "the <mimic> of the fixed joint 'F' (line 7) is ignored" in r.out
+    assert run_cli(["analyze", str(f)]).status == 0
+
+
+def test_a_mimic_of_an_undefined_joint_is_refused_only_where_analysed(tmp_path) -> None:
+    f = tmp_path / "robot.urdf"
+    f.write_text(_gripper("", '<mimic joint="J9"/>'))
+    r = run_cli(["analyze", str(f)])
+    assert r.status == 2 and f"{f}:9:" in r.err, r.err
+    assert "names joint 'J9', which the robot does not define" in r.err
+    # the finger left out (an output on the arm's body b): analysed
+    r = run_cli(["analyze", str(f), "--output-body", "b", "--format", "json"])
+    assert r.status == 0, r.err
+    assert json.loads(r.out)["scene"]["dropped_couplings"] == ["J2"]
 
 
 def test_a_yaml_file_is_not_converted(tmp_path) -> None:

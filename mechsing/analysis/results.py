@@ -284,6 +284,7 @@ def _analysis(r: AnalysisResult) -> dict[str, Any]:
         "legs": [_leg(leg) for leg in r.legs],
         "output_motion": None if r.output_motion is None else _output_motion(r.output_motion),
         **_limits(r.mechanism),
+        **scene_json(r.mechanism),
     }
 
 
@@ -293,6 +294,34 @@ def _limits(mech: Mechanism) -> dict[str, Any]:
     if not mech.limits:
         return {}
     return {"limits": {k: [list(p) for p in v] for k, v in mech.limits.items()}}
+
+
+def scene_json(mech: Mechanism) -> dict[str, Any]:
+    """The added key ``scene`` (only when the command line's scene options chose the output
+    or inputs): the output and inputs analysed, the branches left out (each its bodies and
+    joints), the couplings dropped with them, and the notes saying so."""
+    if mech.scene is None:
+        return {}
+    out = mech.output
+    return {
+        "scene": {
+            "output": None
+            if out is None
+            else {
+                "body": out.body,
+                "relative_to": out.relative_to,
+                "point": None if out.point is None else [float(x) for x in out.point],
+            },
+            "inputs": [str(i) for i in mech.inputs],
+            "ground": mech.ground,
+            "left_out": [
+                {"bodies": list(bodies), "joints": list(joints)}
+                for bodies, joints in mech.scene.left_out
+            ],
+            "dropped_couplings": list(mech.scene.dropped_couplings),
+            "notes": list(mech.scene.notes),
+        }
+    }
 
 
 def _configuration(c: ConfigurationResult) -> dict[str, Any]:

@@ -44,9 +44,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "-v", "--verbose", action="store_true", help="also print what mechsing did silently"
     )
-    from mechsing.cli.options import add_set_option
+    from mechsing.cli.options import add_scene_options, add_set_option
 
     add_set_option(p)
+    add_scene_options(p)
 
 
 def _default_limit() -> float:
@@ -79,10 +80,13 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.report import render
 
     prec = precision_option(args.precision)
-    from mechsing.cli.options import apply_set
+    from mechsing.cli.options import apply_scene, apply_set
 
     mech = apply_set(
-        load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file
+        apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
+        args.set_values,
+        args.from_config,
+        args.file,
     )
     limit = args.time_limit if args.time_limit is not None else _default_limit()
     result = analyze(mech, args.config, prec, time_limit=limit, progress=_progress)

@@ -29,12 +29,21 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="parameters of the file to keep as symbols (comma-separated)",
     )
     p.add_argument("--format", choices=("text", "json", "latex"), default="text")
+    from mechsing.cli.options import add_scene_options
+
+    add_scene_options(p)
 
 
 def run(args: argparse.Namespace) -> int:
+    from mechsing.cli.options import apply_scene
     from mechsing.conditions import condition
 
-    result = condition(args.file, config=args.config, symbolic=args.symbolic)
+    result = condition(
+        args.file,
+        config=args.config,
+        symbolic=args.symbolic,
+        scene=lambda mech: apply_scene(mech, args, args.file),
+    )
     if args.format == "json":
         sys.stdout.write(json.dumps(result.to_json(), indent=2) + "\n")
     elif args.format == "latex":

@@ -4,7 +4,10 @@ The YAML written starts with a comment naming its source; it holds the bodies,
 joints (placed in the ground frame at the description's zero configuration),
 joint limits and output, and a reference configuration, so inputs, outputs and
 configurations can be added and the work continued in YAML.  Analysing the
-converted file gives the same result as analysing the description directly.
+converted file gives the same result as analysing the description directly.  With
+--output-body (--output-point, --relative-to) or --inputs the file holds that scene: the
+output, the inputs, and only the part the output requires (a comment names what was left
+out).
 A mechanism file (YAML or JSON) needs no conversion and is refused.  Exit
 status: 0 success, 2 bad input.
 """
@@ -24,12 +27,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "-o", "--output", metavar="OUT", help="the YAML file to write (default: standard output)"
     )
+    from mechsing.cli.options import add_scene_options
+
+    add_scene_options(p)
 
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import UserError, load_mechanism
+    from mechsing.cli.options import apply_scene
     from mechsing.errors import working_on
-    from mechsing.formats import xml_format, xml_to_yaml
+    from mechsing.formats import xml_format, xml_spec
+    from mechsing.formats.writer import restrict_to, to_yaml
     from mechsing.formats.xmlsafe import MAX_XML_BYTES
 
     with working_on(file=args.file):
@@ -50,8 +58,11 @@ def run(args: argparse.Namespace) -> int:
                 f"{args.file}: not a URDF or MJCF description (no XML root element <robot> "
                 "or <mujoco>); a mechsing file needs no conversion"
             )
-        yaml_text = xml_to_yaml(text, args.file)
-        load_mechanism(args.file)  # the converted file must load: the same checks as analyze
+        spec = xml_spec(text, args.file)
+        # the converted file must load: the same checks as analyze
+        mech = load_mechanism(args.file)
+        chosen = apply_scene(mech, args, args.file)
+        yaml_text = to_yaml(spec if chosen is mech else restrict_to(spec, chosen))
         if args.output:
             try:
                 Path(args.output).write_text(yaml_text, encoding="utf-8")

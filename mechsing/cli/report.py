@@ -54,9 +54,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="the configuration the sweep starts from (default reference; with --set, the "
         "configuration the --set values are solved from, and the sweep starts at cli)",
     )
-    from mechsing.cli.options import add_set_option
+    from mechsing.cli.options import add_scene_options, add_set_option
 
     add_set_option(p, from_option=False)
+    add_scene_options(p)
     p.add_argument(
         "--precision", default="auto", metavar="MODE", help="auto (default), float or mp:N"
     )
@@ -107,10 +108,10 @@ def run(args: argparse.Namespace) -> int:
                 "--precision exact: a sweep locates its singularities numerically, so their "
                 "values are not exact data; use --precision auto (the default) or mp:N"
             )
-        from mechsing.cli.options import SET_CONFIG, apply_set
+        from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set
 
         mech = apply_set(
-            load_mechanism(args.file, args.verbose),
+            apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
             args.set_values,
             args.from_config if args.set_values else None,  # without --set: the sweep's start
             args.file,

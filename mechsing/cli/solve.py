@@ -24,9 +24,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "-v", "--verbose", action="store_true", help="also print what mechsing did silently"
     )
-    from mechsing.cli.options import add_set_option
+    from mechsing.cli.options import add_scene_options, add_set_option
 
     add_set_option(p)
+    add_scene_options(p)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -34,10 +35,13 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.cli import UserError, load_mechanism, precision_option
 
     prec = precision_option(args.precision)
-    from mechsing.cli.options import SET_CONFIG, apply_set
+    from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set
 
     mech = apply_set(
-        load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file
+        apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
+        args.set_values,
+        args.from_config,
+        args.file,
     )
     if args.config is None:
         if not args.set_values:

@@ -59,9 +59,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "default reference; with --set, the one the configuration cli is solved from, and the "
         "sweep starts from cli)",
     )
-    from mechsing.cli.options import add_set_option
+    from mechsing.cli.options import add_scene_options, add_set_option
 
     add_set_option(p, from_option=False)
+    add_scene_options(p)
     p.add_argument(
         "--precision",
         default="auto",
@@ -151,10 +152,10 @@ def run(args: argparse.Namespace) -> int:
                 "--workers and --scheduler distribute the rows of a grid: give two --vary"
             )
         fmt = output_format(args.format, args.output)
-        from mechsing.cli.options import SET_CONFIG, apply_set
+        from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set
 
         mech = apply_set(
-            load_mechanism(args.file, args.verbose),
+            apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
             args.set_values,
             args.from_config if args.set_values else None,  # without --set: the sweep's start
             args.file,

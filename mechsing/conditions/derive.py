@@ -36,6 +36,7 @@ from __future__ import annotations
 import itertools
 import math
 import random
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -55,6 +56,7 @@ from mechsing.conditions.symbolic import (
 )
 from mechsing.errors import UserError
 from mechsing.model import Mechanism
+from mechsing.model.couplings import refuse_couplings
 from mechsing.model.loader import load
 from mechsing.model.parameters import ParameterSymbol
 from mechsing.numeric import (
@@ -78,6 +80,7 @@ def condition(
     source: str | Path,
     config: str | None = None,
     symbolic: str | list[str] | tuple[str, ...] = (),
+    scene: Callable[[Mechanism], Mechanism] | None = None,
 ) -> ConditionResult:
     """The singularity conditions of a mechanism file as factored formulas.
 
@@ -86,6 +89,8 @@ def condition(
     source : path of the mechanism file
     config : a configuration of the file: each factor is evaluated there
     symbolic : parameters of the file to keep as symbols (a list, or ``"a2,a3"``)
+    scene : applied to the mechanism as read (e.g. the command line's output and inputs,
+        :func:`mechsing.model.scene.choose_scene`), before anything is derived
 
     Raises
     ------
@@ -97,6 +102,9 @@ def condition(
     names = [s.strip() for s in symbolic.split(",")] if isinstance(symbolic, str) else symbolic
     names = [s for s in names if s]
     mech = load(source, symbolic=names)
+    if scene is not None:
+        mech = scene(mech)
+    refuse_couplings(mech)
     if config is not None and config not in mech.configurations:
         raise UserError(
             f"{source}: no configuration named {config!r}; the file has: "
@@ -126,7 +134,7 @@ def condition(
     conds = [_printable(c, printable) for c in conds]
     values: dict[str, float] = {}
     if config is not None:
-        values = _configuration_values(source, config, mech, method)
+        values = _configuration_values(source, config, mech, method, scene)
         conds = [_evaluate(c, values, params) for c in conds]
     fixed = {k: v for k, v in _file_parameters(source).items() if k not in names}
     return ConditionResult(
@@ -135,7 +143,7 @@ def condition(
         symbolic=tuple(names),
         parameters=fixed,
         conditions=tuple(conds),
-        notes=tuple(notes),
+        notes=(*(mech.scene.notes if mech.scene else ()), *notes),
         configuration=config,
         values=values,
         file_angle_unit=mech.units.angle,
@@ -977,11 +985,15 @@ def _parallel(
 
 
 def _configuration_values(
-    source: str | Path, config: str, mech: Mechanism, method: str
+    source: str | Path,
+    config: str,
+    mech: Mechanism,
+    method: str,
+    scene: Callable[[Mechanism], Mechanism] | None,
 ) -> dict[str, float]:
     from mechsing.kinematics import solve_configuration
 
-    numeric = load(source)
+    numeric = load(source) if scene is None else scene(load(source))
     model, closed = solve_configuration(numeric, config, "float")
     vals = {k: float(v[0]) for k, v in model.values(closed.q).items() if k in numeric.joint_names}
     if method.startswith("parallel"):

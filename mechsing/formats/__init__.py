@@ -11,10 +11,15 @@ Lengths in metres; angles in the source's unit (written in the YAML's
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from mechsing.formats.xmlsafe import root_tag
 from mechsing.model.mechanism import MechanismError
 
-__all__ = ["xml_format", "xml_to_yaml"]
+if TYPE_CHECKING:
+    from mechsing.formats.writer import MechanismSpec
+
+__all__ = ["xml_format", "xml_spec", "xml_to_yaml"]
 
 
 def xml_format(text: str) -> str | None:
@@ -29,15 +34,20 @@ def xml_to_yaml(text: str, path: str) -> str:
     """The mechsing YAML text of a URDF or MJCF description."""
     from mechsing.formats.writer import to_yaml
 
+    return to_yaml(xml_spec(text, path))
+
+
+def xml_spec(text: str, path: str) -> MechanismSpec:
+    """The mechanism file's content of a URDF or MJCF description."""
     kind = xml_format(text)
     if kind == "urdf":
         from mechsing.formats.urdf import read_urdf
 
-        return to_yaml(read_urdf(text, path))
+        return read_urdf(text, path)
     if kind == "mjcf":
         from mechsing.formats.mjcf import read_mjcf
 
-        return to_yaml(read_mjcf(text, path))
+        return read_mjcf(text, path)
     tag = root_tag(text)
     if tag == "!DOCTYPE":
         raise MechanismError(

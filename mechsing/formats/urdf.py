@@ -15,13 +15,22 @@ Owns :func:`read_urdf`.  The mapping (also in the docs' import page):
   joint value is then the URDF joint position (radians or metres) and the
   reference configuration is the URDF zero configuration;
 * ``<limit lower upper>`` of revolute and prismatic joints -> ``limits``;
-* the inputs: every revolute and prismatic joint (a robot arm's actuated joints);
+* the inputs: every revolute and prismatic joint (a robot arm's actuated joints) but
+  those of a ``<mimic>`` (their leader drives them);
 * the output: for a serial chain (no link with two children), the body of the
   tip link (its twist is the tool frame's; no ``point``, which would make the
   output a positioning task of three rows).
 
-Refused with a message naming the element and line: a ``<mimic>`` joint (a
-coupling mechsing cannot model), an unknown joint type, a link that is the
+* ``<mimic joint multiplier offset>`` -> an entry of ``couplings`` (the joint's value
+  is ``multiplier * (the named joint's value) + offset``), with the ``<mimic>``'s line:
+  kept when the robot is read, dropped with its branch when the scene options leave the
+  branch out, refused when a coupled joint is analysed
+  (:mod:`mechsing.model.couplings`).
+
+Refused with a message naming the element and line: an unknown joint type, a mimic
+that couples a joint of several coordinates (a mimic that names a joint the robot does
+not define is kept, and refused only when its joint is analysed; one of a fixed joint
+couples nothing and is ignored), a link that is the
 child of two joints, a cycle, a joint naming an unknown link.
 """
 
@@ -30,7 +39,13 @@ from __future__ import annotations
 import numpy as np
 
 from mechsing.formats.frames import frame, rpy
-from mechsing.formats.writer import Bodies, JointSpec, MechanismSpec, joint_name_problem
+from mechsing.formats.writer import (
+    Bodies,
+    CouplingSpec,
+    JointSpec,
+    MechanismSpec,
+    joint_name_problem,
+)
 from mechsing.formats.xmlsafe import Element, floats, parse
 from mechsing.model.mechanism import MechanismError
 
@@ -84,15 +99,6 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
             raise err(
                 el,
                 f"unknown joint type {jtype!r}; URDF joint types are {', '.join(URDF_TYPES)}",
-            )
-        mimic = el.find("mimic")
-        if mimic is not None:
-            raise MechanismError(
-                f'{el.where()}: <mimic joint="{mimic.get("joint")}"> ties this joint\'s value '
-                "to another joint's, a coupling mechsing cannot model; remove the <mimic> "
-                "element (the joint becomes independent) or make the joint fixed",
-                path=path,
-                line=mimic.line,
             )
         for tag in ("parent", "child"):
             sub = el.find(tag)
@@ -192,6 +198,9 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
             if hi > lo:
                 spec.limits = [(lo, hi)]
         out_joints.append(spec)
+    notes: list[str] = []
+    couplings = _mimics(joints, seen, path, notes)
+    followers = {c.joint for c in couplings}  # driven by their leaders: not inputs
     # the output: the tip link of a serial chain
     output = None
     if all(len(c) <= 1 for c in children.values()):
@@ -209,5 +218,54 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         joints=out_joints,
         angle_unit="rad",
         output=output,
-        inputs=[j.name for j in out_joints if j.type in ("R", "P")],
+        inputs=[j.name for j in out_joints if j.type in ("R", "P") and j.name not in followers],
+        couplings=couplings,
+        notes=notes,
     )
+
+
+#: URDF joint types a <mimic> may couple (one coordinate each)
+MIMIC_TYPES = ("revolute", "continuous", "prismatic")
+
+
+def _mimics(
+    joints: list[Element], by_name: dict[str, Element], path: str, notes: list[str]
+) -> list[CouplingSpec]:
+    """The couplings of the ``<mimic joint multiplier offset>`` elements: the joint's value
+    is ``multiplier * (the named joint's value) + offset`` (URDF defaults 1 and 0).  The
+    mimic of a fixed joint couples nothing (the joint has no value): it is ignored, and
+    ``notes`` says so."""
+    out = []
+    for el in joints:
+        mimic = el.find("mimic")
+        if mimic is None:
+            continue
+        if el.get("type") == "fixed":
+            notes.append(
+                f"the <mimic> of the fixed joint {el.get('name')!r} (line {mimic.line}) is "
+                "ignored: a fixed joint has no value to couple"
+            )
+            continue
+
+        def err(message: str, mimic: Element = mimic) -> MechanismError:
+            return MechanismError(f"{mimic.where()}: {message}", path=path, line=mimic.line)
+
+        leader = mimic.get("joint")
+        if not leader:
+            raise err('a <mimic> names the joint it follows; add joint="..."')
+        if leader == el.get("name"):
+            raise err("a joint cannot mimic itself; name another joint")
+        # a leader the robot does not define is kept as written: the coupling cannot be
+        # modelled, which is refused only when the joint is analysed (not on a branch left
+        # out), naming this line
+        pairs = [(el.get("name"), el)] + ([(leader, by_name[leader])] if leader in by_name else [])
+        for name, joint in pairs:
+            if joint.get("type") not in MIMIC_TYPES:
+                raise err(
+                    f"joint {name!r} is {joint.get('type')}; a mimic couples two joints of "
+                    f"one coordinate ({', '.join(MIMIC_TYPES)}); remove the <mimic>"
+                )
+        mult = floats(mimic, "multiplier", 1, path, [1.0])[0]
+        offset = floats(mimic, "offset", 1, path, [0.0])[0]
+        out.append(CouplingSpec(el.get("name"), leader, mult, offset, mimic.line))  # type: ignore[arg-type]
+    return out

@@ -14,11 +14,22 @@ is written ``0.089159`` and ``6e-17`` is written ``0``); limits are written as g
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
-__all__ = ["SNAP", "Bodies", "JointSpec", "MechanismSpec", "number", "to_yaml"]
+__all__ = [
+    "SNAP",
+    "Bodies",
+    "CouplingSpec",
+    "JointSpec",
+    "MechanismSpec",
+    "number",
+    "restrict_to",
+    "to_yaml",
+]
 
 #: relative round-off snapped when numbers are written (far below any tolerance of mechsing)
 SNAP = 1e-14
@@ -78,6 +89,18 @@ class JointSpec:
 
 
 @dataclass
+class CouplingSpec:
+    """A coupling of two joints' values: ``joint = multiplier * leader + offset`` (a URDF
+    mimic); ``source_line``: the line of the element it comes from."""
+
+    joint: str
+    leader: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+    source_line: int | None = None
+
+
+@dataclass
 class MechanismSpec:
     """A mechanism file's content built from another description."""
 
@@ -90,6 +113,34 @@ class MechanismSpec:
     output: str | None = None
     inputs: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    couplings: list[CouplingSpec] = field(default_factory=list)
+    #: the output's point (m, ground frame, reference configuration) and relative_to
+    output_point: tuple[float, float, float] | None = None
+    output_relative_to: str | None = None
+
+
+def restrict_to(spec: MechanismSpec, mech: Any) -> MechanismSpec:
+    """``spec`` reduced to the scene ``mech`` holds (a Mechanism read from ``spec`` and given
+    another output, inputs, and only the part they require: ``mechsing.model.scene``):
+    its bodies, joints, ground, inputs, output and couplings, and the scene's notes."""
+    from mechsing.numeric import to_float
+
+    kept = set(mech.joint_names)
+    out = mech.output
+    return dataclasses.replace(
+        spec,
+        ground=mech.ground,
+        bodies=[b for b in spec.bodies if b in mech.bodies],
+        joints=[j for j in spec.joints if j.name in kept],
+        inputs=[str(i) for i in mech.inputs],
+        output=out.body if out is not None else None,
+        output_point=None if out is None or out.point is None else tuple(to_float(out.point)),
+        output_relative_to=(
+            out.relative_to if out is not None and out.relative_to != mech.ground else None
+        ),
+        couplings=[c for c in spec.couplings if c.joint in kept],
+        notes=[*spec.notes, *(mech.scene.notes if mech.scene else ())],
+    )
 
 
 class Bodies:
@@ -163,7 +214,21 @@ def to_yaml(spec: MechanismSpec) -> str:
     if spec.inputs:
         lines.append("inputs: [" + ", ".join(_name(n) for n in spec.inputs) + "]")
     if spec.output is not None:
-        lines.append(f"output: {{body: {_name(spec.output)}}}")
+        rel = (
+            f", relative_to: {_name(spec.output_relative_to)}"
+            if spec.output_relative_to is not None
+            else ""
+        )
+        point = f", point: {_vec(spec.output_point)}" if spec.output_point is not None else ""
+        lines.append(f"output: {{body: {_name(spec.output)}{rel}{point}}}")
+    if spec.couplings:
+        lines.append("couplings:  # joint = multiplier * leader + offset (a URDF <mimic>)")
+        for c in spec.couplings:
+            src = f", source_line: {c.source_line}" if c.source_line is not None else ""
+            lines.append(
+                f"  - {{joint: {_name(c.joint)}, leader: {_name(c.leader)}, "
+                f"multiplier: {float(c.multiplier)!r}, offset: {float(c.offset)!r}{src}}}"
+            )
     lines.append("configurations:")
     lines.append("  reference: {}")
     return "\n".join(lines) + "\n"

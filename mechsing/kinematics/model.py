@@ -139,8 +139,10 @@ class KinematicModel:
     """
 
     def __init__(self, mech: Mechanism, precision: Precision | str = "float") -> None:
+        from mechsing.model.couplings import refuse_couplings
         from mechsing.numeric import parse_precision
 
+        refuse_couplings(mech)  # policy: couplings are not in the closure system (exit 2)
         self.mech = mech
         self.precision = parse_precision(precision) if isinstance(precision, str) else precision
         if self.precision.mode == "auto":

@@ -24,6 +24,7 @@ from mechsing.model.graph import (
 from mechsing.model.loader import load, loads
 from mechsing.model.mechanism import (
     Configuration,
+    Coupling,
     Displacement,
     InputRef,
     Joint,
@@ -31,11 +32,13 @@ from mechsing.model.mechanism import (
     MechanismError,
     Output,
     OutputPose,
+    Scene,
     Units,
 )
 
 __all__ = [
     "Configuration",
+    "Coupling",
     "Displacement",
     "ExpressionError",
     "InputRef",
@@ -48,6 +51,7 @@ __all__ = [
     "Output",
     "OutputPose",
     "PathStep",
+    "Scene",
     "Units",
     "build_graph",
     "canonical_loops",

@@ -9,13 +9,13 @@ units and radians exactly.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Collection
 from pathlib import Path
 from typing import Any
 
 import sympy
 
+from mechsing.model.couplings import read_couplings
 from mechsing.model.expressions import (
     ExpressionError,
     is_plain_decimal,
@@ -29,6 +29,7 @@ from mechsing.model.mechanism import (
     Configuration,
     Displacement,
     InputRef,
+    InputRefError,
     Joint,
     Mechanism,
     MechanismError,
@@ -82,6 +83,7 @@ TOP_LEVEL_KEYS = (
     "configurations",
     "limits",
     "dh",
+    "couplings",
 )
 JOINT_BASE_KEYS = ("name", "type", "between")
 U_KEYS = (("axes", "axes"), ("point", "point"))
@@ -109,7 +111,6 @@ COST_PER_JOINT = 0.005
 COST_PER_DENSE_UNIT = 2.6e-8
 BYTES_PER_ENTRY = 64
 
-_INPUT = re.compile(r"^(?P<name>[^\[\]]+?)\s*\[\s*(?P<index>-?\d+)\s*\]$")
 _NAME_HINT = "a name such as crank or link_2"
 
 
@@ -492,6 +493,7 @@ class _Builder:
             graph=graph,
             units=r.units,
             limits=_limits(top.get("limits"), jmap, r),
+            couplings=read_couplings(r, top.get("couplings"), jmap),
         )
 
     # -- units --------------------------------------------------------------
@@ -799,36 +801,11 @@ class _Builder:
                     '(quote it in YAML: inputs: ["C1[1]"])',
                 )
             text = e.text.strip()
-            mt = _INPUT.match(text)
-            jname, index = (
-                (mt.group("name").strip(), int(mt.group("index"))) if mt else (text, None)
-            )
-            if "[" in jname or "]" in jname:
-                raise r.error(
-                    "inputs",
-                    e.line,
-                    f'cannot read {text!r}; write "NAME[i]" with a 0-based index, e.g. "C1[1]"',
-                )
-            if jname not in jmap:
-                raise r.error(
-                    f"input {text!r}",
-                    e.line,
-                    f"unknown joint {jname!r}; use one of {_few(list(jmap))}",
-                )
-            j = jmap[jname]
-            if j.dof == 0:
-                raise r.error(
-                    f"input {text!r}",
-                    e.line,
-                    f"joint {jname!r} of type {j.type} has no coordinate to actuate",
-                )
-            if index is not None and not 0 <= index < j.dof:
-                raise r.error(
-                    f"input {text!r}",
-                    e.line,
-                    f"index {index} out of range: joint {jname!r} ({j.type}) has {j.dof} "
-                    f"coordinate{'s' if j.dof > 1 else ''}, indices 0 to {j.dof - 1}",
-                )
+            try:
+                ref = InputRef.parse(text, jmap)
+            except InputRefError as exc:
+                raise r.error(exc.item, e.line, exc.problem) from None
+            jname, index, j = ref.joint, ref.index, jmap[ref.joint]
             coords = range(j.dof) if index is None else (index,)
             for c in coords:
                 if (jname, c) in taken:

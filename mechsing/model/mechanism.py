@@ -8,6 +8,7 @@ backend of its precision mode (``Precision.asarray``).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,13 +22,16 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = [
     "U_JOINT",
     "Configuration",
+    "Coupling",
     "Displacement",
     "InputRef",
+    "InputRefError",
     "Joint",
     "Mechanism",
     "MechanismError",
     "Output",
     "OutputPose",
+    "Scene",
     "Units",
 ]
 
@@ -130,12 +134,56 @@ class Joint:
         return b if body == a else a
 
 
+class InputRefError(ValueError):
+    """An input that names no actuable coordinate: ``item`` (e.g. ``input 'A[3]'``) and
+    ``problem`` (what is wrong and what to write) for the caller's message."""
+
+    def __init__(self, item: str, problem: str) -> None:
+        super().__init__(f"{item}: {problem}")
+        self.item = item
+        self.problem = problem
+
+
+_INPUT = re.compile(r"^(?P<name>[^\[\]]+?)\s*\[\s*(?P<index>-?\d+)\s*\]$")
+
+
 @dataclass(frozen=True)
 class InputRef:
     """An actuated joint (``index`` None: all its coordinates) or one coordinate."""
 
     joint: str
     index: int | None = None
+
+    @staticmethod
+    def parse(text: str, joints: Mapping[str, Joint]) -> InputRef:
+        """The input written ``NAME`` or ``NAME[i]`` (0-based, catalog basis order) among
+        ``joints`` (name -> Joint); InputRefError when it names no actuable coordinate.
+        Both the file's ``inputs`` and ``--inputs`` are read by it."""
+        text = text.strip()
+        mt = _INPUT.match(text)
+        jname, index = (mt.group("name").strip(), int(mt.group("index"))) if mt else (text, None)
+        if "[" in jname or "]" in jname or not jname:
+            raise InputRefError(
+                "inputs",
+                f'cannot read {text!r}; write "NAME[i]" with a 0-based index, e.g. "C1[1]"',
+            )
+        item = f"input {text!r}"
+        if jname not in joints:
+            names = list(joints)
+            shown = ", ".join(names[:8]) + (", ..." if len(names) > 8 else "")
+            raise InputRefError(item, f"unknown joint {jname!r}; use one of {shown}")
+        j = joints[jname]
+        if j.dof == 0:
+            raise InputRefError(
+                item, f"joint {jname!r} of type {j.type} has no coordinate to actuate"
+            )
+        if index is not None and not 0 <= index < j.dof:
+            raise InputRefError(
+                item,
+                f"index {index} out of range: joint {jname!r} ({j.type}) has {j.dof} "
+                f"coordinate{'s' if j.dof > 1 else ''}, indices 0 to {j.dof - 1}",
+            )
+        return InputRef(jname, index)
 
     def __str__(self) -> str:
         return self.joint if self.index is None else f"{self.joint}[{self.index}]"
@@ -173,6 +221,44 @@ class Displacement:
 
 
 JointValue = tuple[Any, ...] | Displacement
+
+
+@dataclass(frozen=True)
+class Coupling:
+    """A linear coupling of two joint coordinates (a URDF ``<mimic>``): the value of
+    ``joint`` is ``multiplier * value of leader + offset`` (both joints of one
+    coordinate; ``offset`` in SI units or radians, the follower's unit).
+
+    ``line`` is the line of the entry in the mechanism file; ``source_line`` the line
+    of the element it was converted from (a URDF's ``<mimic>``), when there is one;
+    ``leader_defined`` is False when that element names a joint the description does
+    not define (kept so that the robot is read; refused when its joint is analysed)."""
+
+    joint: str
+    leader: str
+    multiplier: Any = 1
+    offset: Any = 0
+    line: int | None = None
+    source_line: int | None = None
+    #: False for a converted description's coupling to a joint it does not define
+    leader_defined: bool = True
+
+
+@dataclass(frozen=True)
+class Scene:
+    """What the command line's scene options (``--output-body``, ``--output-point``,
+    ``--relative-to``, ``--inputs``) chose and what the analysis left out
+    (:func:`mechsing.model.scene.choose_scene`).
+
+    ``left_out``: the branches left out, each ``(bodies, joints)`` in file order (they
+    neither lead from ``output.relative_to`` to the output body nor close a loop with
+    such a path); ``dropped_couplings``: the couplings whose joint was left out;
+    ``notes``: sentences for a reader (what replaced what, what was left out)."""
+
+    left_out: tuple[tuple[tuple[str, ...], tuple[str, ...]], ...] = ()
+    dropped_couplings: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
+
 
 #: the configuration key of the output body's pose (a reserved name: no joint may have it)
 POSE_KEY = "pose"
@@ -261,6 +347,10 @@ class Mechanism:
         The file's units (values here are already in SI).
     limits : dict name -> tuple of (lower, upper)
         The file's ``limits`` (per joint coordinate; SI units and radians).
+    couplings : tuple of Coupling
+        The file's ``couplings`` (a URDF's ``<mimic>`` joints).
+    scene : Scene or None
+        What ``--output-body``, ``--inputs``... chose and left out.
     """
 
     name: str
@@ -278,6 +368,10 @@ class Mechanism:
     warnings: tuple[str, ...] = ()
     #: joint limits: joint name -> ((lower, upper), ...) per coordinate, SI units and radians
     limits: Mapping[str, tuple[tuple[float, float], ...]] = field(default_factory=dict)
+    #: linear couplings of joint coordinates (URDF ``<mimic>``), in file order
+    couplings: tuple[Coupling, ...] = ()
+    #: what the command line's scene options chose and left out (None: no such option)
+    scene: Scene | None = None
 
     def joint(self, name: str) -> Joint:
         """The joint called ``name`` (KeyError if none)."""

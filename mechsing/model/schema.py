@@ -57,7 +57,7 @@ def _joint_schema(symbol: str, title: str, params: list[tuple[str, str]]) -> dic
 
 
 def _import_properties() -> dict[str, Any]:
-    """The ``limits`` and ``dh`` keys (joint limits; a Denavit-Hartenberg table standing for
+    """The ``limits``, ``dh`` and ``couplings`` keys (joint limits; a Denavit-Hartenberg table standing for
     the bodies and joints of a serial chain)."""
     pair = {"type": "array", "items": {"$ref": "#/$defs/number"}, "minItems": 2, "maxItems": 2}
     row = {
@@ -95,6 +95,25 @@ def _import_properties() -> dict[str, Any]:
             },
             "required": ["rows"],
             "additionalProperties": False,
+        },
+        "couplings": {
+            "type": "array",
+            "description": "linear couplings of two joints of one coordinate (a URDF mimic): "
+            "joint = multiplier * leader + offset, in the file's units; read, and dropped "
+            "with a branch the scene options leave out; a coupling in the analysed part is "
+            "refused (not modelled in the closure system yet)",
+            "items": {
+                "type": "object",
+                "properties": {
+                    "joint": {"$ref": "#/$defs/joint_name"},
+                    "leader": {"$ref": "#/$defs/joint_name"},
+                    "multiplier": {"$ref": "#/$defs/number"},
+                    "offset": {"$ref": "#/$defs/number"},
+                    "source_line": {"type": "integer", "minimum": 1},
+                },
+                "required": ["joint", "leader"],
+                "additionalProperties": False,
+            },
         },
     }
 

@@ -209,6 +209,11 @@ def screw_lines(f: Finding, length_scale: float) -> list[str]:
     return out
 
 
+def scene_line(note: str) -> str:
+    """A scene note (:class:`mechsing.model.Scene`) as a sentence of a report."""
+    return f"{note[:1].upper()}{note[1:]}."
+
+
 def render_text(result: AnalysisResult, markdown: bool = False) -> str:
     """The text (or Markdown) report of ``result``: the precision, the mechanism's
     properties, then each configuration with its loops, closure rank, mobility and
@@ -231,6 +236,8 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             for k, v in result.mechanism.limits.items()
         )
         lines.append(f"Joint limits (m, rad): {shown}.")
+    if result.mechanism.scene is not None:
+        lines += [scene_line(note) for note in result.mechanism.scene.notes]
     if result.properties:
         lines += ["", f"{h2}Properties" if markdown else "Properties:"]
         for prop in result.properties:

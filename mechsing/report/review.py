@@ -32,7 +32,7 @@ from mechsing.model import Mechanism, load
 from mechsing.numeric import Precision, parse_precision, to_float
 from mechsing.report import document as doc
 from mechsing.report.figures import graph_figure, grid_figure, path_figure, svg
-from mechsing.report.render import _margin, explain
+from mechsing.report.render import _margin, explain, scene_line
 from mechsing.report.sketch import Screw, choose_view, sketch_figure
 from mechsing.singularity.findings import (
     ConstraintFinding,
@@ -354,6 +354,8 @@ def _mechanism(r: Report) -> list[doc.Block]:
             f"inputs: {', '.join(str(i) for i in mech.inputs) or 'none'}; {output}."
         )
     )
+    if mech.scene is not None and mech.scene.notes:
+        out.append(doc.Paragraph(" ".join(scene_line(n) for n in mech.scene.notes)))
     catalog = load_catalog()
     rows = []
     for j in mech.joints:

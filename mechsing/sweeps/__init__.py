@@ -142,7 +142,8 @@ class SweepRun:
         self.rank = {t: np.full(shape, -2, dtype=np.int16) for t in self.tests}
         self.ratio = {t: np.full(shape, np.nan) for t in self.tests}
         self.located: list[Located] = []
-        self.notes: list[str] = []
+        #: the scene options' notes (branches left out) first
+        self.notes: list[str] = list(mech.scene.notes) if mech.scene else []
         self.newton_iterations = 0
 
     @property

@@ -1,0 +1,152 @@
+"""The ``couplings`` key of a mechanism file: linear couplings of joint coordinates.
+
+Owns :func:`read_couplings` and :func:`refuse_couplings`.  A coupling is what a URDF
+``<mimic>`` element says: the value of ``joint`` is ``multiplier * (value of leader) +
+offset``, both joints of one coordinate, the values in the file's units (``offset``
+in the unit of ``joint``'s coordinate; ``multiplier`` the ratio of the two values as
+written, so a degree file's R joint coupled to a P joint takes degrees per length
+unit)::
+
+    couplings:
+      - {joint: finger_right, leader: finger_left, multiplier: -1, offset: 0}
+
+``mechsing convert`` writes the entries of a URDF's mimic joints, with
+``source_line``, the line of the ``<mimic>`` element; such an entry may name a leader the
+description does not define (a broken ``<mimic>``): it is kept, so the robot is still read,
+and refused like any coupling when its joint is analysed.  The file is read with its
+couplings; the analysis does not model a coupling in the closure system yet, so a
+coupling still present when a mechanism is analysed is refused
+(:func:`refuse_couplings`, exit 2 naming the joint and its line).  One whose joint lies
+on a branch the scene options leave out (``--output-body``: the fingers, another arm)
+is dropped with its branch (:mod:`mechsing.model.scene`).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from mechsing.model.mechanism import Coupling, Joint, Mechanism, MechanismError
+
+__all__ = ["COUPLING_KEYS", "describe_coupling", "read_couplings", "refuse_couplings"]
+
+#: keys of one entry of ``couplings``
+COUPLING_KEYS = ("joint", "leader", "multiplier", "offset", "source_line")
+
+
+def read_couplings(r: Any, v: Any, jmap: dict[str, Joint]) -> tuple[Coupling, ...]:
+    """The ``couplings`` of a file (``r``: the loader's reader; ``v``: the key's node)."""
+    if v is None:
+        return ()
+    from mechsing.model.yamlnodes import YScalar
+
+    seq = r.sequence(
+        v, "couplings", "couplings", "couplings: [{joint: B, leader: A, multiplier: 1}]"
+    )
+    out: list[Coupling] = []
+    followers: dict[str, int | None] = {}
+    for e in seq.items:
+        m = r.mapping(e, "couplings", "each coupling")
+        r.keys(m, "couplings", COUPLING_KEYS, ("joint", "leader"))
+        follower = r.name(m.get("joint"), "couplings", "the coupled joint")
+        item = f"coupling of {follower!r}"
+        leader = r.name(m.get("leader"), item, "the leader joint")
+        source_line = None
+        sl = m.get("source_line")
+        if sl is not None:
+            if not (isinstance(sl, YScalar) and sl.kind == "int" and int(sl.text) > 0):
+                raise r.error(item, m.key_line("source_line"), "source_line must be a line number")
+            source_line = int(sl.text)
+        # a converted description's coupling to a joint it does not define is kept, and
+        # refused when its joint is analysed (refuse_couplings): the robot is still read
+        orphan = leader not in jmap and source_line is not None and follower in jmap
+        for name, key in ((follower, "joint"), (leader, "leader")):
+            if name == leader and orphan:
+                continue
+            if name not in jmap:
+                raise r.error(
+                    item,
+                    m.key_line(key),
+                    f"unknown joint {name!r}; use one of {', '.join(list(jmap)[:8])}",
+                )
+            if jmap[name].dof != 1:
+                raise r.error(
+                    item,
+                    m.key_line(key),
+                    f"joint {name!r} ({jmap[name].type}) has {jmap[name].dof} coordinates; a "
+                    "coupling ties two joints of one coordinate (R, P, H)",
+                )
+        if leader == follower:
+            raise r.error(item, m.line, "a joint cannot be coupled to itself; name another leader")
+        if follower in followers:
+            raise r.error(
+                item,
+                m.line,
+                f"joint {follower!r} is already coupled (line {followers[follower]}); "
+                "couple it once",
+            )
+        followers[follower] = m.line
+        unit_f = _factor(r, jmap[follower])
+        unit_l = unit_f if orphan else _factor(r, jmap[leader])
+        mult = (
+            1 if m.get("multiplier") is None else r.number(m.get("multiplier"), item, "multiplier")
+        )
+        offset = 0 if m.get("offset") is None else r.number(m.get("offset"), item, "offset", unit_f)
+        out.append(
+            Coupling(
+                follower, leader, mult * unit_f / unit_l, offset, m.line, source_line, not orphan
+            )
+        )
+    return tuple(out)
+
+
+def _factor(r: Any, j: Joint) -> Any:
+    return r.units.angle_factor if j.units[0] == "rad" else r.units.length_factor
+
+
+def describe_coupling(c: Coupling) -> str:
+    """``joint = multiplier x leader + offset`` in words (SI, radians)."""
+    from mechsing.numeric import to_float
+
+    mult, off = to_float(c.multiplier), to_float(c.offset)
+    tail = f" {'+' if off >= 0 else '-'} {abs(off):.6g}" if off else ""
+    return f"{c.joint} = {mult:.6g} x {c.leader}{tail}"
+
+
+def refuse_couplings(mech: Mechanism) -> None:
+    """A MechanismError (exit 2) for the first coupling of ``mech``: the analysis does not
+    model couplings in the closure system; the message names the joint, its line (the
+    URDF ``<mimic>``'s line for a converted file) and the ways out."""
+    if not mech.couplings:
+        return
+    c = mech.couplings[0]
+    line = c.source_line if c.source_line is not None else c.line
+    more = (
+        f" (and {len(mech.couplings) - 1} more coupled joint"
+        + ("s" if len(mech.couplings) > 2 else "")
+        + ": "
+        + ", ".join(repr(x.joint) for x in mech.couplings[1:4])
+        + (", ..." if len(mech.couplings) > 4 else "")
+        + ")"
+        if len(mech.couplings) > 1
+        else ""
+    )
+    what = "<mimic>" if c.source_line is not None else "coupling"
+    if not c.leader_defined:
+        raise MechanismError(
+            f"joint {c.joint!r}: its {what} names joint {c.leader!r}, which the robot does not "
+            f"define{more}; fix the name, or name an output on a branch that does not hold "
+            f"{c.joint!r} (--output-body BODY: the branches that neither lead to it nor close "
+            "a loop with it are left out, couplings included)",
+            path=mech.path,
+            line=line,
+        )
+    raise MechanismError(
+        f"joint {c.joint!r} is coupled to joint {c.leader!r} ({what}: "
+        f"{describe_coupling(c)}){more}; mechsing does not model couplings of joint values "
+        "in the closure system yet. Name an output on a branch that does not hold the "
+        "coupled joint (--output-body BODY: the branches that neither lead to it nor close "
+        "a loop with it are left out, couplings included), or remove the coupling (the "
+        "joint becomes independent)",
+        path=mech.path,
+        line=line,
+    )
