@@ -8,8 +8,11 @@ Python's ``__pycache__``; packaging's ``build/``, ``dist/`` and ``*.egg-info``) 
 
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
+import sys
+import sysconfig
 from pathlib import Path, PurePosixPath
 
 import pytest
@@ -116,3 +119,51 @@ def test_what_mechsing_writes_is_ignored() -> None:
     ignored = set(run.stdout.split())
     assert sorted(set(written) - ignored) == [], "not ignored"
     assert sorted(set(kept) & ignored) == [], "sources ignored"
+
+
+# -- running from a checkout that was never installed --------------------------------------
+
+
+def _uninstalled(path: Path, *args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
+    """``python -m mechsing ARGS`` with the package imported from ``path``, not installed: -S
+    reads no .pth file (so no editable install's finder), PYTHONPATH is ``path`` and then this
+    environment's site-packages (numpy and the rest)."""
+    paths = sysconfig.get_paths()
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+    env["PYTHONPATH"] = os.pathsep.join([str(path), paths["purelib"], paths["platlib"]])
+    return subprocess.run(
+        [sys.executable, "-S", *args], cwd=cwd, env=env, capture_output=True, text=True
+    )
+
+
+_PROBE = (
+    "import importlib.util, mechsing; "
+    "print(mechsing.__file__); print(importlib.util.find_spec('mechsing.catalog'))"
+)
+
+
+def test_python_m_mechsing_runs_in_a_checkout_never_installed() -> None:
+    """In the checkout (cwd at its root) the package is the checkout's, ``mechsing.catalog``
+    does not exist, and the catalog is read from the top-level ``catalog/``: every type."""
+    probe = _uninstalled(ROOT, "-c", _PROBE, cwd=ROOT)
+    assert probe.returncode == 0, probe.stderr
+    assert probe.stdout.split("\n")[:2] == [str(ROOT / "mechsing" / "__init__.py"), "None"]
+    run = _uninstalled(ROOT, "-m", "mechsing", "analyze", "examples/fourbar.yaml", cwd=ROOT)
+    assert run.returncode == 0, run.stderr
+    assert "regular: no singularity" in run.stdout
+    listing = _uninstalled(ROOT, "-m", "mechsing", "catalog", cwd=ROOT)
+    assert listing.returncode == 0, listing.stderr
+    types = len(list((ROOT / "catalog").glob("*.toml")))
+    assert listing.stdout.count("  dim ") == types
+
+
+def test_a_package_without_its_catalog_says_how_to_install(tmp_path: Path) -> None:
+    """The package copied alone (no catalog beside it): one line on standard error naming the
+    missing catalog and the install command, exit status 2."""
+    shutil.copytree(
+        ROOT / "mechsing", tmp_path / "mechsing", ignore=shutil.ignore_patterns("__pycache__")
+    )
+    run = _uninstalled(tmp_path, "-m", "mechsing", "catalog", cwd=tmp_path)
+    lines = run.stderr.strip().splitlines()
+    assert run.returncode == 2 and len(lines) == 1, run.stderr
+    assert "catalog" in lines[0] and "pip install" in lines[0]

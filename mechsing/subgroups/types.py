@@ -358,12 +358,24 @@ def _parse_type(path: Traversable) -> SubgroupType:
     return t
 
 
+def _checkout_catalog() -> Path | None:
+    """The ``catalog/`` folder of the source checkout this package is imported from (the
+    folder beside ``mechsing/``, under a ``pyproject.toml``), or None when the package is not
+    run from a checkout: ``python -m mechsing`` in a checkout that was never installed."""
+    root = Path(__file__).resolve().parents[2]
+    folder = root / "catalog"
+    if (root / "pyproject.toml").is_file() and any(folder.glob("*.toml")):
+        return folder
+    return None
+
+
 def catalog_dir() -> Traversable:
-    """The installed catalog (package data), with a clear error when it is not there."""
+    """The catalog: the installed package data, or else the ``catalog/`` folder of the source
+    checkout the package runs from; a clear error when neither is there."""
     try:
         root = importlib.resources.files(CATALOG_PACKAGE)
     except ModuleNotFoundError:
-        root = None
+        root = _checkout_catalog()
     if root is None or not any(f.name.endswith(".toml") for f in root.iterdir()):
         raise CatalogError(
             f"the subgroup catalog (package data {CATALOG_PACKAGE}) is missing from this "
