@@ -24,6 +24,7 @@ factored formulas in the joint or pose variables), :mod:`mechsing.lie`,
 :func:`mechsing.subgroups.identify`.
 """
 
+#: the version of mechsing (the package's version in pyproject.toml)
 __version__ = "0.1.0"
 
 import importlib

@@ -83,14 +83,22 @@ def condition(
 
     Parameters
     ----------
-    source : path of the mechanism file
-    config : a configuration of the file: each factor is evaluated there
-    symbolic : parameters of the file to keep as symbols (a list, or ``"a2,a3"``)
+    source : str or Path
+        The mechanism file.
+    config : str, optional
+        A configuration of the file: each factor is evaluated there.
+    symbolic : str or sequence of str
+        Parameters of the file to keep as symbols (a list, or ``"a2,a3"``).
+
+    Returns
+    -------
+    ConditionResult
+        The conditions, each a product of factors with their meaning.
 
     Raises
     ------
     UserError
-        for a file that cannot be read, a parameter or configuration that does
+        For a file that cannot be read, a parameter or configuration that does
         not exist, joints other than R, P and H, or a mechanism none of the
         three derivations applies to (the message says which exist).
     """

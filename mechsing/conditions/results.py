@@ -64,6 +64,7 @@ class Condition:
 
     @property
     def expression(self) -> Any:
+        """The condition as one sympy expression: the constant times the factors' powers."""
         out = self.constant
         for f in self.factors:
             out = out * f.expression**f.power
@@ -87,6 +88,7 @@ class Condition:
 
     @property
     def vanishes(self) -> bool | None:
+        """True when a factor vanishes at the configuration, None when one cannot be evaluated."""
         flags = [f.vanishes for f in self.factors]
         if not flags or any(v is None for v in flags):
             return None

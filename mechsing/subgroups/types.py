@@ -201,16 +201,17 @@ class SubgroupType:
     symbol, name : str
         Hervé's symbol (``"R"``, ``"T2"`` ...) and a readable name.
     dimension : int
-    parameters : tuple of (name, kind)
-        In file order; the names are the mechanism-file keys.
+    parameters : tuple of (str, str)
+        ``(name, kind)`` pairs in file order; the names are the mechanism-file keys.
     nonzero : frozenset of str
         Pitch parameters that may not be zero (H, Y).
     normal_in_D : bool
     invariants, joints : tuple of str
     explanation : str
     basis_text : tuple of (omega, v) expression strings
-    coordinates : tuple of (name, unit)
-        Canonical (first-kind exponential) coordinates of the joint value.
+    coordinates : tuple of (str, str)
+        ``(name, unit)`` pairs: the canonical (first-kind exponential) coordinates of the
+        joint value.
     source : Path
     """
 
