@@ -232,7 +232,7 @@ class ConfigurationResult:
 
 @dataclass(frozen=True)
 class AnalysisResult:
-    """The analysis of a mechanism; :func:`to_json` is the JSON contract (README)."""
+    """The analysis of a mechanism; :func:`to_json` is the JSON contract (docs/json.md)."""
 
     mechanism: Mechanism
     precision: Precision

@@ -8,8 +8,8 @@ the joints, values in radians or metres as the joint's coordinate, measured
 from the pose drawn in the file), the pose variables ``x``, ``y`` (m) and
 ``phi`` (rad) of a parallel robot, and the parameters kept symbolic.
 
-Renderings: :meth:`ConditionResult.to_json` (the JSON shape the README and the
-docs state; every number in SI units and radians), :meth:`ConditionResult.text`
+Renderings: :meth:`ConditionResult.to_json` (the JSON shape docs/conditions.md
+states; every number in SI units and radians), :meth:`ConditionResult.text`
 and :meth:`ConditionResult.latex` (``sympy.latex``).
 """
 

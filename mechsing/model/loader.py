@@ -1,4 +1,4 @@
-"""Reading and validating mechanism files (the format: ``mechsing schema`` and the README).
+"""Reading and validating mechanism files (the format: ``mechsing schema`` and docs/file-format.md).
 
 :func:`load` reads a YAML or JSON file, :func:`loads` a text.  Every problem
 raises :class:`~mechsing.model.mechanism.MechanismError` whose message names

@@ -168,7 +168,7 @@ class Subgroup:
     def scaled_basis(
         self, length_scale: Any = 1.0, centre: Any = None, precision: Any = None
     ) -> np.ndarray:
-        """The basis made commensurate (the README's conventions): moved to ``centre``, v rows / L."""
+        """The basis made commensurate (docs/precision.md, "Margins"): moved to ``centre``, v rows / L."""
         B = self.basis(precision)
         return scale_screws(B.T, length_scale, centre).T
 

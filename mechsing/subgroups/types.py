@@ -86,7 +86,7 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def in_plane(w: np.ndarray, bk: Backend) -> tuple[np.ndarray, np.ndarray]:
-    """In-plane directions ``(e1, e2)`` of a unit vector ``w`` (the README's conventions).
+    """In-plane directions ``(e1, e2)`` of a unit vector ``w`` (catalog/README.md).
 
     ``e1 = normalise(a - (a.w) w)`` with ``a`` the coordinate axis least aligned
     with ``w`` (smallest ``|w_i|``, first in x, y, z order on a tie) and
