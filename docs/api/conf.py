@@ -5,7 +5,13 @@ Build it (the ``docs`` extra installs Sphinx), warnings as errors, into a git-ig
     python -m sphinx -W --keep-going -b html docs/api docs/api/_build
 """
 
-import mechsing
+import sys
+from pathlib import Path
+
+# the checkout's own package, installed or not (the catalog is found beside it)
+sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+
+import mechsing  # noqa: E402
 
 project = "mechsing"
 author = "the mechsing authors"
