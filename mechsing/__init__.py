@@ -20,10 +20,13 @@ an open chain over many configurations), :func:`sweep` (where the
 singularities are along a path or over a grid of joint values or output poses:
 a ``SweepResult`` with the measures at every sample, the located and classified
 singularities and a grid's loci), :func:`condition` (singularity conditions as
-factored formulas in the joint or pose variables), :mod:`mechsing.lie`,
+factored formulas in the joint or pose variables), :func:`report` (a design-review
+document, HTML or Markdown), :func:`mechsing.analysis.solve.solve` (one configuration
+closed, every joint value to the precision's digits), :mod:`mechsing.lie`,
 :func:`mechsing.subgroups.identify`.
 """
 
+#: the version of mechsing (the package's version in pyproject.toml)
 __version__ = "0.1.0"
 
 import importlib

@@ -94,6 +94,7 @@ class ScanResult:
 
     @property
     def undecided(self) -> np.ndarray:
+        """Boolean mask of the configurations whose rank is undecided (``rank == -1``)."""
         return self.rank == UNDECIDED
 
     @property
@@ -105,6 +106,7 @@ class ScanResult:
         return len(self.rank)
 
     def summary(self) -> dict[str, Any]:
+        """Counts: configurations, singular, undecided and screened ones, and the generic rank."""
         n = len(self)
         return {
             "configurations": n,
@@ -371,7 +373,29 @@ def scan(
     chunk: int = DEFAULT_CHUNK,
     all_sigma: bool = False,
 ) -> ScanResult:
-    """Scan an open chain (a :class:`~mechsing.model.Mechanism` or a file path); see :class:`ChainScanner`."""
+    """Float verdicts of an open chain's output at many configurations, batched.
+
+    The verdict ``analyze`` gives for the output chain (the same commensurate matrix and
+    float thresholds), computed with array arithmetic: a determinant bound certifies most
+    configurations as full rank, and only the rest get an SVD (see :class:`ChainScanner`).
+
+    Parameters
+    ----------
+    mech : Mechanism, str or Path
+        An open-chain mechanism with an output, or the path of its file.
+    configurations : array (N, n) or iterable of such arrays
+        Joint coordinates in file order (radians, metres).  An iterable is consumed
+        chunk by chunk and never held whole.
+    chunk : int
+        Rows processed together.
+    all_sigma : bool
+        Run the SVD everywhere (``ratio`` for every configuration; slower).
+
+    Returns
+    -------
+    ScanResult
+        Each configuration's rank, screened flag, ratio and bound.
+    """
     if not isinstance(mech, Mechanism):
         mech = load(mech)
     return ChainScanner(mech).scan(configurations, chunk=chunk, all_sigma=all_sigma)

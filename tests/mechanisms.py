@@ -226,8 +226,8 @@ def analyze_json(path: Path | str, *options: str) -> dict:
 
 # ----------------------------------------------------------------------------- scaling a file
 
-#: coordinates of a joint value that are lengths, in the catalog basis order (README "Joint values
-#: in a mechanism file")
+#: coordinates of a joint value that are lengths, in the catalog basis order (docs/closure.md,
+#: "Joint values")
 LENGTH_COORDS: dict[str, tuple[bool, ...]] = {
     "R": (False,),
     "P": (True,),

@@ -1,7 +1,7 @@
-"""``mechsing analyze`` through its JSON contract (issue 5, README "The JSON contract").
+"""``mechsing analyze`` through its JSON contract (issue 5, docs/json.md).
 
 Every expected value comes from outside mechsing: the published facts in each example's header
-comment (tests/mechanisms.py, PUBLISHED), the README's definitions ("Precision": thresholds,
+comment (tests/mechanisms.py, PUBLISHED), the definitions of docs/precision.md (thresholds,
 commensurate scaling), closed forms derived in tests/mechanisms.py (the change-point four-bar
 family and its singular values), or mechsing's own output on an equivalent input (scale
 invariance, determinism).
@@ -449,7 +449,7 @@ def test_precision_float() -> None:
 
 
 def test_precision_mp30_fourbar() -> None:
-    """mp:30: thresholds 10^(10-N) and 10^(-N/2) (README, Precision), same ranks and mobilities as
+    """mp:30: thresholds 10^(10-N) and 10^(-N/2) (docs/precision.md), same ranks and mobilities as
     auto, closure accepted at 10^(15-N) L = 1e-15 L."""
     base = by_name(analyze_json(EXAMPLES / "fourbar.yaml"))
     res = analyze_json(EXAMPLES / "fourbar.yaml", "--precision", "mp:30")

@@ -378,7 +378,7 @@ def test_exact_refuses_configurations_not_given_exactly(
     assert f"'{cname}'" in err and "exact" in err, err
 
 
-#: configurations whose free joints mp:30 solves by continuation (README, Precision), with their
+#: configurations whose free joints mp:30 solves by continuation (docs/precision.md), with their
 #: published closure rank (the example headers: Bennett 3 everywhere, Bricard and Sarrus
 #: generic rank 5)
 MP30_CONTINUED = [("bennett.yaml", "q1-1rad", 3), ("bricard.yaml", "q1-0.4", 5)]

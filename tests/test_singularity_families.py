@@ -151,8 +151,8 @@ def test_crank_input_continued_towards_the_fold_stays_on_its_branch(
 ) -> None:
     """The crank alone, continued from crank angle 0.1 on one branch to 10^-k (k = 2 ... 6):
     for every crank angle in (0, 0.1] the two assembly modes (the two sides of the line BD) are
-    distinct, so continuation must stay on the side it starts on (README: continuation stays
-    on the start's assembly mode), and the point is regular."""
+    distinct, so continuation must stay on the side it starts on (docs/closure.md: continuation
+    stays on the start's assembly mode), and the point is regular."""
     fb = _fourbar_family(kind, seed)
     configs = {"start": fb.pushed_config(mpmath.mpf("0.1"), 1)}
     for k in KS[1:]:

@@ -69,11 +69,35 @@ def analyze(
 ) -> AnalysisResult:
     """Analyse a mechanism (or a file) at the named configurations (default: all).
 
-    ``time_limit``: seconds exact mode may spend on one configuration (None: no limit);
-    a configuration stopped there gets an ``error`` entry.  ``progress``: called with a
-    line of text when exact mode takes long (which configuration it works on); the
-    command line prints these lines on standard error.  Neither matters in the other
-    precision modes.
+    Parameters
+    ----------
+    mechanism : Mechanism, str or Path
+        A mechanism (:func:`mechsing.load`) or the path of a mechanism, URDF or MJCF file.
+    configs : list of str, optional
+        The configurations to analyse, by name; default: every configuration of the file.
+    precision : Precision or str
+        ``"auto"`` (float, then mp:50 where float cannot decide), ``"float"``, ``"mp:N"``
+        or ``"exact"``.
+    time_limit : float or None
+        Seconds exact mode may spend on one configuration (None: no limit); a
+        configuration stopped there gets an ``error`` entry.  No effect in the other
+        precision modes.
+    progress : callable, optional
+        Called with a line of text when exact mode takes long (which configuration it
+        works on); the command line prints these lines on standard error.
+
+    Returns
+    -------
+    AnalysisResult
+        One :class:`~mechsing.analysis.results.ConfigurationResult` per configuration,
+        the mechanism's properties; ``to_json()`` is the JSON contract.
+
+    Raises
+    ------
+    UserError
+        For a file or an option that is not valid (the message names the file, the line
+        and the fix).  A configuration that cannot be analysed is not raised: it carries
+        ``error`` in the result.
     """
     if time_limit is not None and not (
         isinstance(time_limit, int | float) and 0 < time_limit < math.inf

@@ -91,6 +91,7 @@ class Overconstrained:
 
     @property
     def explanation(self) -> str:
+        """The property in words, with its numbers."""
         if self.finite == 0:
             # a structure: nothing moves, and the count below zero is redundant constraint
             return (
@@ -117,6 +118,7 @@ class Shaky:
 
     @property
     def explanation(self) -> str:
+        """The property in words, with its numbers."""
         return (
             f"at regular configurations the joints have {self.instantaneous} instantaneous "
             f"motion(s) but only {self.finite} extend to finite motion (second-order test)"
@@ -134,6 +136,7 @@ class IdleMotion:
 
     @property
     def explanation(self) -> str:
+        """The property in words, with its numbers."""
         return (
             f"{self.dimension} passive motion(s) exist with the inputs locked and the output still, "
             "at every regular configuration (e.g. a link spinning about its own axis)"
@@ -152,12 +155,14 @@ class Actuation:
 
     @property
     def explanation(self) -> str:
+        """The property in words, with its numbers."""
         useful = self.finite - self.idle
         if self.kind == "redundant-actuation":
             return f"{self.inputs} actuated coordinates drive {useful} degree(s) of freedom"
         return f"{self.inputs} actuated coordinates for {useful} degree(s) of freedom"
 
 
+#: a mechanism-level property: one of the four frozen types above
 Property = Overconstrained | Shaky | IdleMotion | Actuation
 
 
@@ -213,6 +218,7 @@ class ConfigurationResult:
 
     @property
     def singular(self) -> bool | None:
+        """True when a finding is singular, None when every finding is undecided, else False."""
         if not self.singularities:
             return False
         if all(isinstance(s, UndecidedFinding) for s in self.singularities):
@@ -220,12 +226,13 @@ class ConfigurationResult:
         return True
 
     def to_json(self) -> dict[str, Any]:
+        """The configuration as the JSON contract has it (one entry of ``configurations``)."""
         return to_json(self)
 
 
 @dataclass(frozen=True)
 class AnalysisResult:
-    """The analysis of a mechanism; :func:`to_json` is the JSON contract (README)."""
+    """The analysis of a mechanism; :func:`to_json` is the JSON contract (docs/json.md)."""
 
     mechanism: Mechanism
     precision: Precision
@@ -239,9 +246,11 @@ class AnalysisResult:
 
     @property
     def failed(self) -> bool:
+        """True when some configuration could not be analysed (it carries ``error``)."""
         return any(c.error is not None for c in self.configurations)
 
     def to_json(self) -> dict[str, Any]:
+        """The JSON contract of the analysis (what ``mechsing analyze --format json`` prints)."""
         return to_json(self)
 
     def _repr_html_(self) -> str:

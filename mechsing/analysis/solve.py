@@ -67,7 +67,25 @@ def value_text(x: Any, precision: Precision) -> str:
 
 
 def solve(mech: Mechanism, name: str, precision: Precision | str = "float") -> SolveResult:
-    """Close configuration ``name`` of ``mech`` at ``precision`` (float, mp:N or exact)."""
+    """Close configuration ``name`` of ``mech`` at ``precision`` (float, mp:N or exact).
+
+    The joints the configuration does not give are solved by continuation from its
+    ``start`` (what ``mechsing solve`` prints).
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism (:func:`mechsing.load`).
+    name : str
+        One of its configurations.
+    precision : Precision or str
+        ``"float"``, ``"mp:N"`` or ``"exact"`` (``"auto"`` solves in float).
+
+    Returns
+    -------
+    SolveResult
+        Every joint value, as numbers and as text to the precision's digits.
+    """
     from mechsing.kinematics import solve_configuration
 
     prec = parse_precision(precision) if isinstance(precision, str) else precision

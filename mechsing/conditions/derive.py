@@ -86,16 +86,25 @@ def condition(
 
     Parameters
     ----------
-    source : path of the mechanism file
-    config : a configuration of the file: each factor is evaluated there
-    symbolic : parameters of the file to keep as symbols (a list, or ``"a2,a3"``)
-    scene : applied to the mechanism as read (e.g. the command line's output and inputs,
-        :func:`mechsing.model.scene.choose_scene`), before anything is derived
+    source : str or Path
+        The mechanism file.
+    config : str, optional
+        A configuration of the file: each factor is evaluated there.
+    symbolic : str or sequence of str
+        Parameters of the file to keep as symbols (a list, or ``"a2,a3"``).
+    scene : callable, optional
+        Applied to the mechanism as read (e.g. the command line's output and inputs,
+        :func:`mechsing.model.scene.choose_scene`), before anything is derived.
+
+    Returns
+    -------
+    ConditionResult
+        The conditions, each a product of factors with their meaning.
 
     Raises
     ------
     UserError
-        for a file that cannot be read, a parameter or configuration that does
+        For a file that cannot be read, a parameter or configuration that does
         not exist, joints other than R, P and H, or a mechanism none of the
         three derivations applies to (the message says which exist).
     """

@@ -8,8 +8,8 @@ the joints, values in radians or metres as the joint's coordinate, measured
 from the pose drawn in the file), the pose variables ``x``, ``y`` (m) and
 ``phi`` (rad) of a parallel robot, and the parameters kept symbolic.
 
-Renderings: :meth:`ConditionResult.to_json` (the JSON shape the README and the
-docs state; every number in SI units and radians), :meth:`ConditionResult.text`
+Renderings: :meth:`ConditionResult.to_json` (the JSON shape docs/conditions.md
+states; every number in SI units and radians), :meth:`ConditionResult.text`
 and :meth:`ConditionResult.latex` (``sympy.latex``).
 """
 
@@ -64,6 +64,7 @@ class Condition:
 
     @property
     def expression(self) -> Any:
+        """The condition as one sympy expression: the constant times the factors' powers."""
         out = self.constant
         for f in self.factors:
             out = out * f.expression**f.power
@@ -87,6 +88,7 @@ class Condition:
 
     @property
     def vanishes(self) -> bool | None:
+        """True when a factor vanishes at the configuration, None when one cannot be evaluated."""
         flags = [f.vanishes for f in self.factors]
         if not flags or any(v is None for v in flags):
             return None

@@ -171,17 +171,25 @@ def newton_on_group(
     coordinates with ``solve(A, b)`` (the precision and the kind of least squares),
     and applies the increments on the group (:meth:`KinematicModel.update`).
 
-    Parameters (what differs between the users)
+    Parameters
     ----------
-    residual : the residual at q when known (else computed)
-    native : residuals in the model's own numbers (an ``mpf`` at mp:N), else floats
-    stop(step, residual) : stop before building the system of this step
-    converged(residual, du) : stop once the step ``du`` is known (not applied)
-    doubling : when a step lowers the residual by less than POLISH_SLOW_RATIO, the
-        doubled step is tried too and the better kept (a double root)
-    keep(residual, new) : take the step only if True, else stop (default: the new
-        residual is lower)
-    diverged(step, residual, new) : give up (``diverged`` in the result, with the trial)
+    residual
+        The residual at q when known (else computed).
+    native
+        Residuals in the model's own numbers (an ``mpf`` at mp:N), else floats.
+    stop
+        ``stop(step, residual)``: stop before building the system of this step.
+    converged
+        ``converged(residual, du)``: stop once the step ``du`` is known (not applied).
+    doubling
+        When a step lowers the residual by less than POLISH_SLOW_RATIO, the doubled step
+        is tried too and the better kept (a double root).
+    keep
+        ``keep(residual, new)``: take the step only if True, else stop (default: the new
+        residual is lower).
+    diverged
+        ``diverged(step, residual, new)``: give up (``diverged`` in the result, with the
+        trial).
     """
 
     def closure(qx: np.ndarray) -> Any:

@@ -106,7 +106,7 @@ def exp(xi: Any) -> np.ndarray:
     """Exponential se(3) -> D: (..., 6) -> (..., 4, 4).
 
     ``R = I + A W + B W^2``, ``p = (I + B W + C W^2) v`` with A = sin t/t,
-    B = (1 - cos t)/t^2, C = (t - sin t)/t^3, t = |omega| (series near 0;
+    B = (1 - cos t)/t^2, C = (t - sin t)/t^3, ``t = |omega|`` (series near 0;
     any angle, also beyond pi).  Pure translations give ``p = v`` exactly.
     References: the exponential of D.
     """
@@ -231,7 +231,7 @@ def killing(x: Any, y: Any) -> np.ndarray:
 
 
 def magnitude(xi: Any) -> np.ndarray:
-    """|omega| if omega != 0, else |v| (the amplitude of the screw)."""
+    """``|omega|`` if omega != 0, else ``|v|`` (the amplitude of the screw)."""
     xi = _asarr(xi)
     bk = backend_of(xi)
     w2 = dot(xi[..., ANGULAR], xi[..., ANGULAR])
@@ -241,7 +241,7 @@ def magnitude(xi: Any) -> np.ndarray:
 
 
 def pitch(xi: Any) -> np.ndarray:
-    """Pitch omega.v / |omega|^2 in length per radian; ``inf`` (float) where omega = 0."""
+    """Pitch ``omega.v / |omega|^2`` in length per radian; ``inf`` (float) where omega = 0."""
     xi = _asarr(xi)
     bk = backend_of(xi)
     w2 = dot(xi[..., ANGULAR], xi[..., ANGULAR])

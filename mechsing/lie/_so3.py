@@ -140,7 +140,7 @@ def left_jacobian_so3(w: Any) -> np.ndarray:
 def left_jacobian_so3_inv(w: Any) -> np.ndarray:
     """Inverse left Jacobian of SO(3): I - W/2 + c(t) W^2, c = (1 - (t/2)cot(t/2))/t^2.
 
-    Finite for |w| < 2 pi (singular at 2 pi, outside log's principal branch).
+    Finite for ``|w| < 2 pi`` (singular at 2 pi, outside log's principal branch).
     """
     w = _asarr(w)
     bk = backend_of(w)

@@ -88,19 +88,19 @@ def _to_backend(x: np.ndarray, bk: Any) -> np.ndarray:
 class Dual:
     """A (batch of) dual number(s) ``a + eps b``, ``eps^2 = 0``.
 
-    Parameters
-    ----------
-    a : array_like, shape S
-        Primal part.
-    b : array_like, shape S, default 0
-        Dual part (broadcast to the shape of ``a``).
-
     Both parts are converted to one backend (float, mp or exact: the richest
     of the two).  Arithmetic ``+ - * /`` works between dual numbers and with
     plain numbers or arrays; indexing ``X[...]`` indexes both parts, so a dual
     vector or matrix is a :class:`Dual` whose parts have trailing axes (3,) or
     (3, 3).  ``x / y`` raises ``ZeroDivisionError`` where the primal part of y
     is 0 (a pure dual number has no inverse).
+
+    Parameters
+    ----------
+    a : array_like, shape S
+        Primal part.
+    b : array_like, shape S, default 0
+        Dual part (broadcast to the shape of ``a``).
     """
 
     a: Any

@@ -1,4 +1,4 @@
-"""Reading and validating mechanism files (the format: ``mechsing schema`` and the README).
+"""Reading and validating mechanism files (the format: ``mechsing schema`` and docs/file-format.md).
 
 :func:`load` reads a YAML or JSON file, :func:`loads` a text.  Every problem
 raises :class:`~mechsing.model.mechanism.MechanismError` whose message names
@@ -294,14 +294,24 @@ def _show(vec: tuple[Any, ...]) -> str:
 def load(path: str | Path, symbolic: Collection[str] = ()) -> Mechanism:
     """Read and validate a mechanism file (YAML or JSON).
 
+    Parameters
+    ----------
+    path : str or Path
+        The mechanism file.
+    symbolic : collection of str, optional
+        Parameters of the file to keep as symbols
+        (:class:`~mechsing.model.parameters.ParameterSymbol`), for symbolic conditions.
+
+    Returns
+    -------
+    Mechanism
+        The validated mechanism, its configurations included.
+
     Raises
     ------
     MechanismError
-        for every problem: unreadable file, malformed YAML, unknown keys,
+        For every problem: unreadable file, malformed YAML, unknown keys,
         invalid geometry, names, inputs, output or configurations.
-
-    ``symbolic`` names parameters of the file to keep as symbols
-    (:class:`~mechsing.model.parameters.ParameterSymbol`), for symbolic conditions.
     """
     p = Path(path)
     shown = str(path)

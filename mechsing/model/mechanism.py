@@ -366,7 +366,7 @@ class Mechanism:
     graph: MechanismGraph = field(repr=False)
     units: Units = field(default_factory=Units)
     warnings: tuple[str, ...] = ()
-    #: joint limits: joint name -> ((lower, upper), ...) per coordinate, SI units and radians
+    # joint limits: joint name -> ((lower, upper), ...) per coordinate, SI units and radians
     limits: Mapping[str, tuple[tuple[float, float], ...]] = field(default_factory=dict)
     #: linear couplings of joint coordinates (URDF ``<mimic>``), in file order
     couplings: tuple[Coupling, ...] = ()

@@ -129,7 +129,7 @@ class Backend:
 
     @property
     def key(self) -> tuple[str, int]:
-        """(name, working digits): what a cache of converted constants is keyed on."""
+        """What a cache of converted constants is keyed on: ``(name, working digits)``."""
         return (self.name, 0)
 
     def rational(self, p: int, q: int) -> Any:

@@ -361,7 +361,7 @@ def float_drop_is_real(margin: Margin, data_error: float = 0.0) -> bool:
     """Did a float rank decision drop a singular value that float itself sees is not zero?
 
     True when the largest dropped singular value exceeds :data:`FLOAT_ROUNDING_FACTOR`
-    times ``rounding + data_error * sigma_max``: ``rounding`` is the margin's (eps |M|_F),
+    times ``rounding + data_error * sigma_max``: ``rounding`` is the margin's (``eps |M|_F``),
     ``data_error`` the relative error of the configuration the matrix was built at (its
     closure residual divided by the characteristic length).  Such a drop is decided by the
     two thresholds but not by the data: ``auto`` re-decides it at mp:50, as it does an
@@ -474,7 +474,7 @@ def _orthonormal(A: np.ndarray) -> np.ndarray:
 class DefinitenessDecision:
     """Sign pattern of a symmetric form: ``kind`` is ``"definite"``, ``"indefinite"``,
     ``"semidefinite"`` (a zero eigenvalue, no sign change), ``"zero"`` or ``None``
-    (undecided).  ``eig_margin`` is the smallest decided |eigenvalue| relative to
+    (undecided).  ``eig_margin`` is the smallest decided ``|eigenvalue|`` relative to
     the largest (or the largest in exact mode)."""
 
     kind: str | None
@@ -491,7 +491,7 @@ def decide_definiteness(
     """Decide the definiteness of a symmetric matrix on its eigenvalues.
 
     Eigenvalues are compared with ``tau_lo``/``tau_hi`` relative to ``scale``
-    (default: the largest |eigenvalue|).  An eigenvalue between the two
+    (default: the largest ``|eigenvalue|``).  An eigenvalue between the two
     thresholds leaves the verdict undecided.
     """
     prec = parse_precision(precision) if isinstance(precision, str) else precision

@@ -101,7 +101,7 @@ def spectral_norm(A: Any) -> Any:
 
 
 def max_abs(A: Any) -> Any:
-    """Largest |entry| (0 for an empty array), in the array's backend."""
+    """Largest ``|entry|`` (0 for an empty array), in the array's backend."""
     arr = np.asarray(A)
     if arr.size == 0:
         return 0.0

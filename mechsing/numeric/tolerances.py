@@ -114,7 +114,7 @@ EXACT_TEST_DIGITS = 50
 #: entries, or lengths relative to the file's largest coordinate); nearer values are
 #: decided by the analysis in its mode (to 1e-9 in float, 10^(-N/2) at mp:N, exactly)
 REFERENCE_SCREEN_RTOL = 1e-6
-#: a given rotation matrix must satisfy |R^T R - I| below this in float (and det R > 0);
+#: a given rotation matrix must satisfy ``|R^T R - I|`` below this in float (and det R > 0);
 #: at mp:N below 10^(-N/2), exactly in exact mode (:func:`rotation_orthonormal_atol`)
 ROTATION_ORTHONORMAL_ATOL = 1e-9
 #: batched scans (:mod:`mechsing.scanner`) decide "full rank" without an SVD when
@@ -130,15 +130,15 @@ SCAN_ROUNDING_FACTOR = 16.0
 #: auto re-decides at mp:50 a float rank decision whose largest dropped singular value
 #: exceeds this many times float's own rounding of it (:func:`float_drop_is_real`).  A
 #: computed singular value is off by at most the norm of the error in the matrix (Weyl):
-#: the rounding of its entries, about eps |M|_F (recorded as the margin's ``rounding``),
+#: the rounding of its entries, about ``eps |M|_F`` (recorded as the margin's ``rounding``),
 #: plus the SVD's backward error and the roundings that built each entry (products of
 #: exponentials, Jacobians, earlier float factorisations) -- this factor -- plus the
-#: effect of a configuration closed only to a residual r: r / L |M|.  Singular values
-#: that are exactly zero come out below 2 eps |M|_F on the examples and the
-#: near-singular families, and up to about 5 eps |M|_F on matrices built from other
+#: effect of a configuration closed only to a residual r: ``r / L |M|``.  Singular values
+#: that are exactly zero come out below 2 ``eps |M|_F`` on the examples and the
+#: near-singular families, and up to about 5 ``eps |M|_F`` on matrices built from other
 #: float factorisations (the legs' constraint wrenches); 10^-14 from a singularity the
 #: deciding singular values of benchmarks/speed_accuracy.py's families are 5 to 20
-#: eps |M|_F.  A drop above the bound is a singular value that float's thresholds call
+#: ``eps |M|_F``.  A drop above the bound is a singular value that float's thresholds call
 #: zero but that float itself sees is not: auto re-decides the configuration at mp:50
 #: when float found it singular (at a singular configuration a zero above the bound only
 #: costs that second analysis; a regular one is never re-decided).
@@ -179,8 +179,8 @@ SWEEP_BRANCH_OFFSET = 1e-4
 #: a sweep's sign test between neighbouring samples a and b reads ``u^T A_b v`` (u, v the
 #: weakest singular pair at a); where the matrix moved less than ``sigma`` at a, that
 #: product is positive by Weyl's bound, which stands for it when it clears the roundings
-#: of both (the SVD's backward error and the product's, a few eps |A|_F each) by this
-#: factor times eps |A_a|_F
+#: of both (the SVD's backward error and the product's, a few ``eps |A|_F`` each) by this
+#: factor times ``eps |A_a|_F``
 SWEEP_SCREEN_ROUNDING = 1e3
 #: a sweep's closure of full row rank (its triangular factor R) has its singular values
 #: from the eigenvalues of R^T R where its smallest relative one is at least this: the
@@ -224,7 +224,7 @@ CONDITION_VANISH_RTOL = 1e-9
 #: mechanism's size) in the explanations of a factor, tested where it vanishes
 CONDITION_GEOMETRY_RTOL = 1e-6
 #: a root of a polynomial (numpy.roots, double precision) is real when its imaginary
-#: part is below this times max(1, |root|); a value is a common zero of several
+#: part is below this times ``max(1, |root|)``; a value is a common zero of several
 #: polynomials when each is below this times the sum of its terms' magnitudes
 CONDITION_ROOT_RTOL = 1e-7
 #: two roots (rad or m) closer than this are one (a double root, or two factors' roots)

@@ -64,6 +64,7 @@ class Report:
 
     @property
     def mechanism(self) -> Mechanism:
+        """The mechanism reviewed."""
         return self.analysis.mechanism
 
     def blocks(self) -> list[doc.Block]:
@@ -71,6 +72,7 @@ class Report:
         return _blocks(self)
 
     def to_html(self) -> str:
+        """The report as one self-contained HTML document (inline CSS and figures, no script)."""
         return doc.to_html(self.blocks(), f"Design review: {self.mechanism.name}")
 
     def to_markdown(self, folder: str | Path, relative_to: str | Path | None = None) -> str:
@@ -92,11 +94,29 @@ def report(
     *,
     command: str | None = None,
 ) -> Report:
-    """A design review of a mechanism (or a file): its configurations (``configs``,
-    default all) analysed at ``precision`` as ``mechsing.analyze`` does, and with
-    ``vary`` (one ``"NAME=START:STOP:STEP"`` for a path, two for a grid, in the file's
-    units) a sweep from ``from_config`` (default ``reference``).  ``command``: how the
-    report was asked for, shown at its end (default: this call)."""
+    """A design review of a mechanism (or a file), ready to write as HTML or Markdown.
+
+    Parameters
+    ----------
+    mechanism_or_path : Mechanism, str or Path
+        The mechanism, or the path of its file.
+    configs : sequence of str, optional
+        The configurations analysed (as ``mechsing.analyze`` does); default: all.
+    vary : sequence of str, or str, optional
+        One ``"NAME=START:STOP:STEP"`` for a path, two for a grid (in the file's units):
+        the report then sweeps the mechanism too.
+    precision : Precision or str
+        The analysis's precision mode (``auto``, ``float``, ``mp:N``).
+    from_config : str, optional
+        The configuration the sweep starts from (default ``reference``).
+    command : str, optional
+        How the report was asked for, shown at its end (default: this call).
+
+    Returns
+    -------
+    Report
+        ``to_html()``, ``to_markdown(folder)``, and ``_repr_html_`` for a notebook.
+    """
     t0 = time.perf_counter()
     mech = (
         mechanism_or_path

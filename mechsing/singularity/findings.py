@@ -122,6 +122,7 @@ class SerialFinding:
 
     @property
     def corank(self) -> int:
+        """How much rank is lost: the generic rank minus the rank here."""
         return self.generic_rank - self.rank
 
 
@@ -292,6 +293,7 @@ class ConstraintFinding:
 
     @property
     def corank(self) -> int:
+        """How much rank is lost: the generic rank minus the rank here."""
         return self.generic_rank - self.rank
 
 
@@ -320,6 +322,7 @@ def undecided_rank(what: str, dec: RankDecision) -> UndecidedFinding:
     return UndecidedFinding(what, (int(lo), int(hi)), dec.margin, dec.precision)
 
 
+#: a finding: one of the five frozen types above, told apart by their ``kind``
 Finding = SerialFinding | BranchFinding | MotionFinding | ConstraintFinding | UndecidedFinding
 
 

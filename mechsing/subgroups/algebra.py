@@ -1,7 +1,7 @@
 """Lie closure, identification of a subalgebra, generated subgroups,
 intersections and products (recognition, generated subgroups, intersections and products).
 
-Every rank is decided in the commensurate metric (the README's conventions): screws are moved
+Every rank is decided in the commensurate metric (docs/precision.md, "Margins"): screws are moved
 to a centre c (Ad of the translation by -c) and their v rows divided by the
 length scale L.  Both maps are Lie algebra automorphisms, so brackets are
 taken in that metric directly.  The type is looked up in the catalog by its

@@ -168,7 +168,7 @@ class Subgroup:
     def scaled_basis(
         self, length_scale: Any = 1.0, centre: Any = None, precision: Any = None
     ) -> np.ndarray:
-        """The basis made commensurate (the README's conventions): moved to ``centre``, v rows / L."""
+        """The basis made commensurate (docs/precision.md, "Margins"): moved to ``centre``, v rows / L."""
         B = self.basis(precision)
         return scale_screws(B.T, length_scale, centre).T
 
@@ -306,7 +306,7 @@ class Subgroup:
         global slide: when the rotating basis screw has a non-zero pitch h and
         the translation along its axis is not in the subgroup (H, Y), the angle
         is read from the slide, ``angle = slide / h``, so it does not wrap.
-        Spherical coordinates are the principal rotation vector (|angle| <= pi).
+        Spherical coordinates are the principal rotation vector (``|angle| <= pi``).
         For g outside the subgroup the result is a least-squares projection;
         :meth:`contains` checks it.  For a helical-translating (Y) element whose
         angle is a non-zero multiple of 2 pi with a translation across the

@@ -86,7 +86,7 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def in_plane(w: np.ndarray, bk: Backend) -> tuple[np.ndarray, np.ndarray]:
-    """In-plane directions ``(e1, e2)`` of a unit vector ``w`` (the README's conventions).
+    """In-plane directions ``(e1, e2)`` of a unit vector ``w`` (catalog/README.md).
 
     ``e1 = normalise(a - (a.w) w)`` with ``a`` the coordinate axis least aligned
     with ``w`` (smallest ``|w_i|``, first in x, y, z order on a tie) and
@@ -201,16 +201,17 @@ class SubgroupType:
     symbol, name : str
         Hervé's symbol (``"R"``, ``"T2"`` ...) and a readable name.
     dimension : int
-    parameters : tuple of (name, kind)
-        In file order; the names are the mechanism-file keys.
+    parameters : tuple of (str, str)
+        ``(name, kind)`` pairs in file order; the names are the mechanism-file keys.
     nonzero : frozenset of str
         Pitch parameters that may not be zero (H, Y).
     normal_in_D : bool
     invariants, joints : tuple of str
     explanation : str
     basis_text : tuple of (omega, v) expression strings
-    coordinates : tuple of (name, unit)
-        Canonical (first-kind exponential) coordinates of the joint value.
+    coordinates : tuple of (str, str)
+        ``(name, unit)`` pairs: the canonical (first-kind exponential) coordinates of the
+        joint value.
     source : Path
     """
 
@@ -358,12 +359,24 @@ def _parse_type(path: Traversable) -> SubgroupType:
     return t
 
 
+def _checkout_catalog() -> Path | None:
+    """The ``catalog/`` folder of the source checkout this package is imported from (the
+    folder beside ``mechsing/``, under a ``pyproject.toml``), or None when the package is not
+    run from a checkout: ``python -m mechsing`` in a checkout that was never installed."""
+    root = Path(__file__).resolve().parents[2]
+    folder = root / "catalog"
+    if (root / "pyproject.toml").is_file() and any(folder.glob("*.toml")):
+        return folder
+    return None
+
+
 def catalog_dir() -> Traversable:
-    """The installed catalog (package data), with a clear error when it is not there."""
+    """The catalog: the installed package data, or else the ``catalog/`` folder of the source
+    checkout the package runs from; a clear error when neither is there."""
     try:
         root = importlib.resources.files(CATALOG_PACKAGE)
     except ModuleNotFoundError:
-        root = None
+        root = _checkout_catalog()
     if root is None or not any(f.name.endswith(".toml") for f in root.iterdir()):
         raise CatalogError(
             f"the subgroup catalog (package data {CATALOG_PACKAGE}) is missing from this "

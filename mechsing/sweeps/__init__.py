@@ -68,15 +68,30 @@ def sweep(
 
     Parameters
     ----------
-    vary : ``"NAME=START:STOP:STEP"`` strings (or :class:`Vary`), in the file's units
-    from_config : the configuration the sweep starts from (default ``reference``)
-    precision : of the classification of the located points (``auto``, ``float``,
-        ``mp:N``); the measures are always float
-    progress : called with the number of samples each finished row adds
-    workers, scheduler : distribute the rows of a grid with Dask (a local cluster of
-        ``workers`` processes, or the scheduler at that address); the result is the
-        serial one
-    max_classified : most located points of a grid classified by the full analysis
+    mechanism : Mechanism, str or Path
+        The mechanism, or the path of its file.
+    vary : str or Vary, or a list of one or two of them
+        ``"NAME=START:STOP:STEP"`` in the file's units: a joint coordinate (``A``,
+        ``C1[1]``) or a coordinate of the output's pose (``pose.x`` ... ``pose.rz``).
+    from_config : str, optional
+        The configuration the sweep starts from, whose assembly mode it keeps (default
+        ``reference``).
+    precision : Precision or str
+        Of the classification of the located points (``auto``, ``float``, ``mp:N``); the
+        measures are always float.
+    progress : callable, optional
+        Called with the number of samples each finished row adds.
+    workers, scheduler : int, str, optional
+        Distribute the rows of a grid with Dask (a local cluster of ``workers``
+        processes, or the scheduler at that address); the result is the serial one.
+    max_classified : int
+        The most located points of a grid classified by the full analysis.
+
+    Returns
+    -------
+    SweepResult
+        The measures at every sample, the located and classified singularities and a
+        grid's loci.
     """
     run = SweepRun(mechanism, vary, from_config, precision, max_classified=max_classified)
     for _ in run.rows(progress, workers=workers, scheduler=scheduler):
@@ -148,6 +163,7 @@ class SweepRun:
 
     @property
     def grid(self) -> bool:
+        """True for a grid (two swept variables), False for a path."""
         return len(self.vars) == 2
 
     def rows(

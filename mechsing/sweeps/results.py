@@ -102,10 +102,12 @@ class LocatedSingularity:
 
     @property
     def singular(self) -> bool | None:
+        """The full analysis's verdict at the point (None: not classified, or undecided)."""
         return None if self.configuration is None else self.configuration.singular
 
     @property
     def precision(self) -> str | None:
+        """The precision that decided the verdict (None: not classified)."""
         return None if self.configuration is None else self.configuration.precision
 
     @property
@@ -121,6 +123,7 @@ class LocatedSingularity:
         return None
 
     def to_json(self) -> dict[str, Any]:
+        """The point as an entry of the sweep JSON's ``located`` (SI units and radians)."""
         return {
             "values": list(self.values),
             "kind": self.kind,
@@ -148,6 +151,7 @@ class Locus:
     closed: bool = False
 
     def to_json(self) -> dict[str, Any]:
+        """The locus as an entry of the sweep JSON's ``loci``."""
         return {
             "test": self.test,
             "classes": list(self.classes),
@@ -185,9 +189,11 @@ class SweepResult:
 
     @property
     def grid(self) -> bool:
+        """True for a grid (two swept variables), False for a path."""
         return len(self.variables) == 2
 
     def points(self) -> int:
+        """The number of samples."""
         return int(self.reached.size)
 
     def to_json(self) -> dict[str, Any]:
@@ -199,11 +205,13 @@ class SweepResult:
         return out
 
     def to_csv(self) -> str:
+        """The sweep as ``mechsing sweep --format csv`` writes it: a header, one line per sample, one per located point."""
         return "".join(
             [csv_header(self), *csv_rows(self, range(self.reached.shape[0])), *csv_located(self)]
         )
 
     def to_text(self) -> str:
+        """The sweep's text report, as ``mechsing sweep`` prints it."""
         return text_report(self)
 
     def _repr_html_(self) -> str:

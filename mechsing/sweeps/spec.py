@@ -72,6 +72,7 @@ class Vary:
         return not math.isnan(self.step)
 
     def count(self) -> int:
+        """The number of samples of the range (STOP included when the steps land on it)."""
         if not self.ranged:
             raise UserError(f"--vary {self.name}: no range, and the joint's limits not read yet")
         if not all(math.isfinite(x) for x in (self.start, self.stop, self.step)):

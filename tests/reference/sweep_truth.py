@@ -3,7 +3,7 @@ math; nothing from mechsing): where a four-bar's input stops and where its outpu
 change-point four-bar is flat, a slider-crank's dead centres, the five-bar's point and its Type I and
 Type II determinants, the 3-RPR's leg-line concurrency determinant and the UR5's det J.
 
-Conventions (those of the mechanism files, README "Joint values in a mechanism file"):
+Conventions (those of the mechanism files, docs/closure.md, "Joint values"):
 
 * points are planar (x, y) in SI units (metres), given at the reference configuration (the pose the
   file draws); a revolute joint's value is the turn, in radians, of its second body relative to its
