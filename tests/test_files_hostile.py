@@ -39,6 +39,7 @@ FOURBAR = ROOT / "examples" / "fourbar.yaml"
 URDF = ROOT / "examples" / "ur5.urdf"
 MJCF = ROOT / "examples" / "fourbar_mjcf.xml"
 SWEEP = ["--vary", "A=0:360:90", "--quiet", "--precision", "float"]
+QUICK = ["--config", "crank-30", "--precision", "float"]
 
 
 def _tree(folder: Path) -> dict[str, tuple[int, bytes | str]]:
@@ -117,7 +118,7 @@ def test_a_markdown_reports_figures_never_replace_the_input(tmp_path):
     (tmp_path / "r_files").mkdir()
     _copy(tmp_path / "r_files", FOURBAR, "graph.svg")
     before = _tree(tmp_path)
-    r = run_cli_capped(["report", "r_files/graph.svg", "-o", "r.md"], cwd=tmp_path)
+    r = run_cli_capped(["report", "r_files/graph.svg", *QUICK, "-o", "r.md"], cwd=tmp_path)
     _refused(r, "graph.svg", "is the input file r_files/graph.svg")
     assert _tree(tmp_path) == before
     # a file where the figures' folder goes is not replaced either
@@ -195,20 +196,24 @@ def test_an_output_keeps_its_permissions_and_links_and_devices_are_written_throu
     kept = tmp_path / "kept.txt"
     kept.write_text("old\n")
     kept.chmod(0o640)
-    assert run_cli_capped(["analyze", "in.yaml", "-o", "kept.txt"], cwd=tmp_path).status == 0
+    assert (
+        run_cli_capped(["analyze", "in.yaml", *QUICK, "-o", "kept.txt"], cwd=tmp_path).status == 0
+    )
     assert stat.S_IMODE(kept.stat().st_mode) == 0o640 and "four-bar" in kept.read_text()
     # a new file gets the usual permissions: 0666 less the umask
     mask = os.umask(0)
     os.umask(mask)
-    assert run_cli_capped(["analyze", "in.yaml", "-o", "new.txt"], cwd=tmp_path).status == 0
+    assert run_cli_capped(["analyze", "in.yaml", *QUICK, "-o", "new.txt"], cwd=tmp_path).status == 0
     assert stat.S_IMODE((tmp_path / "new.txt").stat().st_mode) == 0o666 & ~mask
     # an output that is a link is written to the link's target; the link stays
     (tmp_path / "link.txt").symlink_to("new.txt")
     (tmp_path / "new.txt").write_text("")
-    assert run_cli_capped(["analyze", "in.yaml", "-o", "link.txt"], cwd=tmp_path).status == 0
+    assert (
+        run_cli_capped(["analyze", "in.yaml", *QUICK, "-o", "link.txt"], cwd=tmp_path).status == 0
+    )
     assert (tmp_path / "link.txt").is_symlink() and "four-bar" in (tmp_path / "new.txt").read_text()
     # /dev/null is written to, never replaced by a regular file
-    r = run_cli_capped(["analyze", "in.yaml", "-o", os.devnull], cwd=tmp_path)
+    r = run_cli_capped(["analyze", "in.yaml", *QUICK, "-o", os.devnull], cwd=tmp_path)
     assert r.status == 0, r.err
     assert stat.S_ISCHR(os.stat(os.devnull).st_mode)
     assert sorted(p.name for p in tmp_path.iterdir()) == [
