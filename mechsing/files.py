@@ -183,8 +183,8 @@ def _read_pipe(fd: int, limit: int, shown: str, what: str) -> bytes:
 def _identity(path: PathLike) -> tuple[str, tuple[int, int] | None]:
     """A file's resolved path and (device, inode) when it exists."""
     real = os.path.realpath(path)
-    try:
-        st = os.stat(real)
+    try:  # the path itself: the kernel follows /dev/stdout to a pipe realpath cannot name
+        st = os.stat(path)
     except OSError:
         return real, None
     return real, (st.st_dev, st.st_ino)
@@ -203,7 +203,7 @@ def check_output(path: PathLike, inputs: Iterable[PathLike] = (), option: str = 
             f"{option} {shown}: the directory {missing} does not exist; create it first "
             "(mechsing creates no directories) or choose another path"
         )
-    if os.path.isdir(real):
+    if os.path.isdir(path):
         raise UserError(
             f"{option} {shown}: is a directory; name a file in it (e.g. {os.path.join(shown, 'out')})"
         )
@@ -290,11 +290,11 @@ def open_output(
     shown = os.fspath(path)
     target = check_output(path, inputs, option)
     try:
-        st = os.stat(target)
+        st = os.stat(path)
     except OSError:
         st = None
     if st is not None and not stat.S_ISREG(st.st_mode):
-        with _stream(target, shown, binary, option) as f:
+        with _stream(Path(path), shown, binary, option) as f:
             yield f
         return
     try:

@@ -216,6 +216,9 @@ def test_an_output_keeps_its_permissions_and_links_and_devices_are_written_throu
     r = run_cli_capped(["analyze", "in.yaml", *QUICK, "-o", os.devnull], cwd=tmp_path)
     assert r.status == 0, r.err
     assert stat.S_ISCHR(os.stat(os.devnull).st_mode)
+    # /dev/stdout that is a pipe (the runner's) is written to as a stream
+    r = run_cli_capped(["analyze", "in.yaml", *QUICK, "-o", "/dev/stdout"], cwd=tmp_path)
+    assert r.status == 0 and r.out.startswith("mechsing analysis: four-bar"), r.err
     assert sorted(p.name for p in tmp_path.iterdir()) == [
         "in.yaml",
         "kept.txt",

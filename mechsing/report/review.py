@@ -91,8 +91,7 @@ class Report:
         over one of the files ``inputs`` (:mod:`mechsing.files`); the file written."""
         from mechsing.files import check_output, write_output
 
-        path = Path(path)
-        check_output(path, inputs)
+        path = check_output(path, inputs)  # a link resolved: the figures go beside its file
         if path.suffix.lower() != ".md":
             return write_output(path, self.to_html(), inputs)
         folder = path.with_name(path.stem + "_files")
