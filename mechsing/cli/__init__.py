@@ -83,11 +83,21 @@ def _private_library_files() -> Iterator[None]:
     for var in names:
         os.environ[var] = folder
     try:
-        yield
+        with contextlib.ExitStack() as stack:
+            if "DASK_TEMPORARY_DIRECTORY" in names and "dask" in sys.modules:
+                # Dask read its configuration when it was imported (an earlier command
+                # of this process): set it for this command too
+                import dask
+
+                stack.enter_context(dask.config.set({"temporary-directory": folder}))
+            yield
     finally:
         for var in names:
             if os.environ.get(var) == folder:
                 del os.environ[var]
+        dask = sys.modules.get("dask")
+        if dask is not None and dask.config.get("temporary-directory", None) == folder:
+            dask.config.set({"temporary-directory": None})  # imported by this command
         shutil.rmtree(folder, ignore_errors=True)
 
 
