@@ -54,6 +54,56 @@ def run_cli_subprocess(
     return CliRun(r.returncode, r.stdout, r.stderr)
 
 
+#: the hard caps of a test about resources: address space (bytes) and wall clock (seconds)
+ADDRESS_SPACE = 1 << 30
+WALL_CLOCK = 120.0
+
+
+def _capped() -> None:  # in the child, before it runs anything
+    import resource
+
+    resource.setrlimit(resource.RLIMIT_AS, (ADDRESS_SPACE, ADDRESS_SPACE))
+
+
+def run_cli_capped(
+    argv: list[str],
+    cwd: Path | str,
+    timeout: float = WALL_CLOCK,
+    env: dict[str, str] | None = None,
+    setup: str = "",
+    pass_fds: tuple[int, ...] = (),
+) -> CliRun:
+    """``python -m mechsing ARGV`` in a child process under hard caps: at most
+    :data:`ADDRESS_SPACE` bytes of address space, killed after ``timeout`` seconds
+    (subprocess.TimeoutExpired).  ``env`` replaces the environment's variables it names
+    (a value of "" removes one); ``setup`` is Python run in the child before the command
+    (e.g. a shorter wait of mechsing's); ``pass_fds`` are inherited (a pipe as /dev/fd/N)."""
+    import os
+
+    child_env = dict(os.environ)
+    for k, v in (env or {}).items():
+        if v:
+            child_env[k] = v
+        else:
+            child_env.pop(k, None)
+    if setup:
+        code = f"import sys\n{setup}\nfrom mechsing.cli import main\nsys.exit(main(sys.argv[1:]))"
+        cmd = [sys.executable, "-c", code, *map(str, argv)]
+    else:
+        cmd = [sys.executable, "-m", "mechsing", *map(str, argv)]
+    r = subprocess.run(
+        cmd,
+        cwd=cwd,
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        preexec_fn=_capped,
+        pass_fds=pass_fds,
+    )
+    return CliRun(r.returncode, r.stdout, r.stderr)
+
+
 def cli_json(argv: list[str]) -> dict:
     """The parsed JSON stdout of an in-process run, which must exit 0 without a traceback."""
     rc, out, err = run_cli(argv)

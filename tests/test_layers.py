@@ -17,7 +17,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "mechsing"
 
 #: layers from the bottom up; a module's layer is its first dotted component below mechsing
 LAYERS: list[set[str]] = [
-    {"errors", "numeric", "timelimit"},  # leaves
+    {"errors", "files", "numeric", "timelimit"},  # leaves
     {"lie"},
     {"subgroups"},
     {"model", "formats"},

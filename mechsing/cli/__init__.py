@@ -11,10 +11,13 @@ escaped: one line on stderr, the traceback with ``-T``).
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import os
+import signal
 import sys
-from collections.abc import Sequence
+import threading
+from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING
 
 from mechsing import __version__
@@ -60,6 +63,47 @@ def _few_blas_threads() -> None:
     program that imports mechsing keeps its own threads."""
     for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ.setdefault(var, "1")
+
+
+@contextlib.contextmanager
+def _private_library_files() -> Iterator[None]:
+    """The libraries a command uses keep their caches and records (matplotlib's font list
+    and configuration folder, Dask's scratch space and locks) in one temporary folder of
+    the command's, removed when it ends: a command writes no file it was not asked to,
+    not in the working directory, the home folder or the shared temporary folder.  A
+    user's own MPLCONFIGDIR or DASK_TEMPORARY_DIRECTORY wins."""
+    import shutil
+    import tempfile
+
+    names = [v for v in ("MPLCONFIGDIR", "DASK_TEMPORARY_DIRECTORY") if v not in os.environ]
+    if not names:
+        yield
+        return
+    folder = tempfile.mkdtemp(prefix="mechsing-")
+    for var in names:
+        os.environ[var] = folder
+    try:
+        with contextlib.ExitStack() as stack:
+            if "DASK_TEMPORARY_DIRECTORY" in names and "dask" in sys.modules:
+                # Dask read its configuration when it was imported (an earlier command
+                # of this process): set it for this command too
+                import dask
+
+                stack.enter_context(dask.config.set({"temporary-directory": folder}))
+            yield
+    finally:
+        for var in names:
+            if os.environ.get(var) == folder:
+                del os.environ[var]
+        dask = sys.modules.get("dask")
+        if dask is not None and dask.config.get("temporary-directory", None) == folder:
+            dask.config.set({"temporary-directory": None})  # imported by this command
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _terminated(signum: int, frame: object) -> None:
+    """SIGTERM ends the command as Ctrl-C does: its temporary files are removed."""
+    raise SystemExit(128 + signum)
 
 
 #: sub-command modules, in the order ``--help`` lists them
@@ -148,8 +192,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return 0
     forget_work()
+    main_thread = threading.current_thread() is threading.main_thread()
+    before = signal.signal(signal.SIGTERM, _terminated) if main_thread else None
     try:
-        return int(args._run(args))
+        with _private_library_files():
+            return int(args._run(args))
     except MechsingError as exc:
         if args.traceback:
             raise
@@ -169,6 +216,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             file=sys.stderr,
         )
         return INTERNAL_ERROR
+    finally:
+        if before is not None:
+            signal.signal(signal.SIGTERM, before)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -15,7 +15,6 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from pathlib import Path
 
 NAME = "analyze"
 HELP = "analyse a mechanism file (loops, ranks, mobility, singularities)"
@@ -76,11 +75,15 @@ def _progress(line: str) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.analysis import analyze
-    from mechsing.cli import NOT_ANALYSED, UserError, load_mechanism, precision_option, with_file
+    from mechsing.cli import NOT_ANALYSED, load_mechanism, precision_option, with_file
     from mechsing.report import render
 
     prec = precision_option(args.precision)
     from mechsing.cli.options import apply_scene, apply_set
+    from mechsing.files import check_output, write_output
+
+    if args.output:  # before the work: a missing directory or the input file is refused now
+        check_output(args.output, [args.file])
 
     mech = apply_set(
         apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
@@ -92,12 +95,7 @@ def run(args: argparse.Namespace) -> int:
     result = analyze(mech, args.config, prec, time_limit=limit, progress=_progress)
     text = render(result, args.format)
     if args.output:
-        try:
-            Path(args.output).write_text(text)
-        except OSError as exc:
-            raise UserError(
-                f"cannot write {args.output}: {exc.strerror}; choose a writable path"
-            ) from None
+        write_output(args.output, text, [args.file])
     else:
         sys.stdout.write(text)
     for c in result.configurations:

@@ -33,43 +33,32 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from mechsing.cli import UserError, load_mechanism
+    from mechsing.cli import UserError
     from mechsing.cli.options import apply_scene
     from mechsing.errors import working_on
+    from mechsing.files import check_output, write_output
     from mechsing.formats import xml_format, xml_spec
     from mechsing.formats.writer import restrict_to, to_yaml
-    from mechsing.formats.xmlsafe import MAX_XML_BYTES
+    from mechsing.model.loader import loads, read_text_file
 
     with working_on(file=args.file):
-        path = Path(args.file)
-        try:
-            if path.stat().st_size > MAX_XML_BYTES:
-                raise UserError(
-                    f"{args.file}: the file has more than {MAX_XML_BYTES // 2**20} MB, more "
-                    "than mechsing reads; remove the meshes or other large parts from it"
-                )
-            text = path.read_bytes().decode("utf-8-sig")
-        except OSError as exc:
-            raise UserError(f"{args.file}: cannot read the file ({exc.strerror})") from None
-        except UnicodeDecodeError:
-            raise UserError(f"{args.file}: the file is not UTF-8 text; save it as UTF-8") from None
+        if args.output:
+            check_output(args.output, [args.file])
+        text = read_text_file(args.file)  # read once: a pipe or FIFO cannot be read twice
         if xml_format(text) is None:
             raise UserError(
                 f"{args.file}: not a URDF or MJCF description (no XML root element <robot> "
                 "or <mujoco>); a mechsing file needs no conversion"
             )
         spec = xml_spec(text, args.file)
-        # the converted file must load: the same checks as analyze
-        mech = load_mechanism(args.file)
+        # the converted file must load: the same checks (and warnings) as analyze
+        mech = loads(text, path=args.file, default_name=Path(args.file).stem)
+        for warning in mech.warnings:
+            print(f"mechsing: warning: {warning}", file=sys.stderr)
         chosen = apply_scene(mech, args, args.file)
         yaml_text = to_yaml(spec if chosen is mech else restrict_to(spec, chosen))
         if args.output:
-            try:
-                Path(args.output).write_text(yaml_text, encoding="utf-8")
-            except OSError as exc:
-                raise UserError(
-                    f"cannot write {args.output}: {exc.strerror}; choose a writable path"
-                ) from None
+            write_output(args.output, yaml_text, [args.file])
         else:
             sys.stdout.write(yaml_text)
     return 0

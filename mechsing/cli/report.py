@@ -85,11 +85,14 @@ def output_path(file: str, out: str | None) -> tuple[Path, str]:
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import NOT_ANALYSED, load_mechanism, precision_option, with_file
     from mechsing.errors import UserError, working_on
+    from mechsing.files import check_output
     from mechsing.report import report
     from mechsing.sweeps.spec import Vary
 
     with working_on(file=args.file):
-        path, fmt = output_path(args.file, args.output)
+        path, _ = output_path(args.file, args.output)
+        # before the work: a missing directory or the input file is refused now
+        check_output(path, [args.file], "-o" if args.output else "the default output")
         if args.vary and len(args.vary) > 2:
             raise UserError(
                 f"--vary is given {len(args.vary)} times: a report sweeps one variable (a "
@@ -119,16 +122,7 @@ def run(args: argparse.Namespace) -> int:
         start = SET_CONFIG if args.set_values else args.from_config
         command = "mechsing report " + shlex.join(_argv(args))
         rep = report(mech, args.config, args.vary, prec, start, command=command)
-        try:
-            if fmt == "html":
-                path.write_text(rep.to_html(), encoding="utf-8")
-            else:
-                folder = path.with_name(path.stem + "_files")
-                path.write_text(rep.to_markdown(folder, path.parent), encoding="utf-8")
-        except OSError as exc:
-            raise UserError(
-                f"-o {path}: cannot write it ({exc.strerror}); choose a writable path"
-            ) from None
+        rep.write(path, [args.file])
     print(f"mechsing: report written to {path}", file=sys.stderr)
     for c in rep.analysis.configurations:
         if c.error:

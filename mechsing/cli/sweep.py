@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -152,6 +151,10 @@ def run(args: argparse.Namespace) -> int:
                 "--workers and --scheduler distribute the rows of a grid: give two --vary"
             )
         fmt = output_format(args.format, args.output)
+        if args.output:  # before the work: a missing directory or the input file is refused now
+            from mechsing.files import check_output
+
+            check_output(args.output, [args.file])
         from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set
 
         mech = apply_set(
@@ -167,7 +170,10 @@ def run(args: argparse.Namespace) -> int:
             prec,
             max_classified=args.max_classified or MAX_CLASSIFIED,
         )
-        with _destination(args.output) as out, _progress_bar(sweep_run, args.quiet) as progress:
+        with (
+            _destination(args.output, args.file) as out,
+            _progress_bar(sweep_run, args.quiet) as progress,
+        ):
             rows = sweep_run.rows(progress, workers=args.workers, scheduler=args.scheduler)
             if fmt == "json":
                 write_json(sweep_run, rows, out)
@@ -246,30 +252,18 @@ def _row_indices(sweep_run: SweepRun, j: int) -> list[tuple[int, ...]]:
 
 
 @contextmanager
-def _destination(path: str | None) -> Iterator[IO[str]]:
-    """Standard output, or OUT: written as ``OUT.partial`` beside it and renamed when the
-    sweep is complete, so a sweep that stops leaves no half-written OUT."""
-    from mechsing.errors import UserError
+def _destination(path: str | None, source: str) -> Iterator[IO[str]]:
+    """Standard output, or OUT: written into a temporary file beside it and renamed when
+    the sweep is complete (:func:`mechsing.files.open_output`), so a sweep that stops
+    leaves no half-written OUT and OUT never appears before it is whole."""
+    from mechsing.files import open_output
 
     if not path:
         yield sys.stdout
         sys.stdout.flush()
         return
-    target = Path(path)
-    partial = target.with_name(target.name + ".partial")
-    try:
-        f = open(partial, "w", encoding="utf-8", newline="")
-    except OSError as exc:
-        raise UserError(
-            f"-o {path}: cannot write it ({exc.strerror}); choose a writable path"
-        ) from None
-    try:
-        with f:
-            yield f
-        os.replace(partial, target)
-    except BaseException:
-        partial.unlink(missing_ok=True)
-        raise
+    with open_output(path, [source]) as f:
+        yield f
 
 
 @contextmanager

@@ -57,7 +57,7 @@ from mechsing.conditions.symbolic import (
 from mechsing.errors import UserError
 from mechsing.model import Mechanism
 from mechsing.model.couplings import refuse_couplings
-from mechsing.model.loader import load
+from mechsing.model.loader import loads, read_text_file
 from mechsing.model.parameters import ParameterSymbol
 from mechsing.numeric import (
     CONDITION_GENERIC_RANK_RTOL,
@@ -110,7 +110,8 @@ def condition(
     """
     names = [s.strip() for s in symbolic.split(",")] if isinstance(symbolic, str) else symbolic
     names = [s for s in names if s]
-    mech = load(source, symbolic=names)
+    text = read_text_file(source)  # read once: a pipe or FIFO cannot be read twice
+    mech = loads(text, path=str(source), default_name=Path(source).stem, symbolic=names)
     if scene is not None:
         mech = scene(mech)
     refuse_couplings(mech)
@@ -143,9 +144,9 @@ def condition(
     conds = [_printable(c, printable) for c in conds]
     values: dict[str, float] = {}
     if config is not None:
-        values = _configuration_values(source, config, mech, method, scene)
+        values = _configuration_values(text, source, config, method, scene)
         conds = [_evaluate(c, values, params) for c in conds]
-    fixed = {k: v for k, v in _file_parameters(source).items() if k not in names}
+    fixed = {k: v for k, v in _file_parameters(text).items() if k not in names}
     return ConditionResult(
         mechanism=mech.name,
         method=method,
@@ -177,10 +178,10 @@ def _parameters(mech: Mechanism) -> list[Any]:
     return sorted(found, key=lambda s: s.name)
 
 
-def _file_parameters(source: str | Path) -> dict[str, Any]:
+def _file_parameters(text: str) -> dict[str, Any]:
     from mechsing.model.yamlnodes import YMap, YScalar, read_yaml_text
 
-    doc = read_yaml_text(Path(source).read_text(encoding="utf-8-sig"))
+    doc = read_yaml_text(text)
     out: dict[str, Any] = {}
     if isinstance(doc, YMap) and isinstance(doc.get("parameters"), YMap):
         from mechsing.model.expressions import parse_number
@@ -994,15 +995,17 @@ def _parallel(
 
 
 def _configuration_values(
+    text: str,
     source: str | Path,
     config: str,
-    mech: Mechanism,
     method: str,
     scene: Callable[[Mechanism], Mechanism] | None,
 ) -> dict[str, float]:
     from mechsing.kinematics import solve_configuration
 
-    numeric = load(source) if scene is None else scene(load(source))
+    numeric = loads(text, path=str(source), default_name=Path(source).stem)
+    if scene is not None:
+        numeric = scene(numeric)
     model, closed = solve_configuration(numeric, config, "float")
     vals = {k: float(v[0]) for k, v in model.values(closed.q).items() if k in numeric.joint_names}
     if method.startswith("parallel"):

@@ -58,6 +58,7 @@ __all__ = [
     "TOP_LEVEL_KEYS",
     "load",
     "loads",
+    "read_text_file",
 ]
 
 #: exact factors to metres
@@ -313,33 +314,28 @@ def load(path: str | Path, symbolic: Collection[str] = ()) -> Mechanism:
         For every problem: unreadable file, malformed YAML, unknown keys,
         invalid geometry, names, inputs, output or configurations.
     """
+    text = read_text_file(path)
     p = Path(path)
+    return loads(text, path=str(path), default_name=p.stem, symbolic=symbolic)
+
+
+def read_text_file(path: str | Path) -> str:
+    """The text of a mechanism file or robot description (UTF-8, a byte-order mark
+    dropped): a regular file, pipe or FIFO of at most the largest size mechsing reads
+    (:func:`mechsing.files.read_input`); MechanismError otherwise."""
+    from mechsing.files import InputError, read_input
+
     shown = str(path)
     try:
-        size = p.stat().st_size
-    except OSError as exc:
-        raise MechanismError(
-            f"cannot read the file ({exc.strerror}); check the path", path=shown
-        ) from None
-    if p.is_dir():
-        raise MechanismError("is a directory, not a mechanism file", path=shown)
-    if size > _largest_file():
-        raise MechanismError(
-            f"the file has {size} bytes, more than the {_largest_file()} a mechanism file "
-            "(or a URDF or MJCF description) may have",
-            path=shown,
-        )
+        raw = read_input(path, _largest_file(), "mechanism file (YAML, JSON, URDF or MJCF)")
+    except InputError as exc:
+        raise MechanismError(exc.problem, path=shown) from None
     try:
-        raw = p.read_bytes()
-    except OSError as exc:
-        raise MechanismError(f"cannot read the file ({exc.strerror})", path=shown) from None
-    try:
-        text = raw.decode("utf-8-sig")
+        return raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         raise MechanismError(
             f"the file is not UTF-8 text (byte {exc.start}); save it as UTF-8", path=shown
         ) from None
-    return loads(text, path=shown, default_name=p.stem, symbolic=symbolic)
 
 
 def loads(

@@ -27,6 +27,7 @@ __all__ = [
     "Heading",
     "Paragraph",
     "Table",
+    "markdown",
     "slug",
     "to_html",
     "to_markdown",
@@ -184,7 +185,7 @@ def _md_text(text: str) -> str:
     return re.sub(r"([\\`*_\[\]<>|#])", r"\\\1", text)
 
 
-def _md_block(b: Block, folder: Path, link: str) -> list[str]:
+def _md_block(b: Block, figures: dict[str, str], link: str) -> list[str]:
     if isinstance(b, Heading):
         return ["#" * b.level + " " + _md_text(b.text), ""]
     if isinstance(b, Paragraph):
@@ -203,25 +204,45 @@ def _md_block(b: Block, folder: Path, link: str) -> list[str]:
             out.append("| " + " | ".join(cells) + " |")
         return [*out, ""]
     if isinstance(b, Figure):
-        (folder / f"{b.name}.svg").write_text(b.svg, encoding="utf-8")
+        figures[f"{b.name}.svg"] = b.svg
         out = [f"![{_md_text(b.alt)}]({link}/{b.name}.svg)", ""]
         if b.caption:
             out += [f"*{_md_text(b.caption)}*", ""]
         return out
     lines = [f"**{_md_text(b.summary)}**", ""]
     for x in b.blocks:
-        lines += _md_block(x, folder, link)
+        lines += _md_block(x, figures, link)
     return lines
 
 
-def to_markdown(blocks: Sequence[Block], folder: str | Path, relative_to: str | Path) -> str:
-    """The blocks as GitHub-flavoured Markdown; the figures are written into ``folder``
-    (created) and linked relative to the directory ``relative_to`` (where the Markdown
-    file is)."""
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    link = Path(os.path.relpath(folder.resolve(), Path(relative_to).resolve())).as_posix()
+def markdown(blocks: Sequence[Block], link: str) -> tuple[str, dict[str, str]]:
+    """The blocks as GitHub-flavoured Markdown, its figures linked as ``link/NAME.svg``,
+    and the figures to write there (file name to SVG text)."""
+    figures: dict[str, str] = {}
     lines: list[str] = []
     for b in blocks:
-        lines += _md_block(b, folder, link)
-    return "\n".join(lines).rstrip("\n") + "\n"
+        lines += _md_block(b, figures, link)
+    return "\n".join(lines).rstrip("\n") + "\n", figures
+
+
+def to_markdown(
+    blocks: Sequence[Block],
+    folder: str | Path,
+    relative_to: str | Path,
+    inputs: Sequence[str | Path] = (),
+) -> str:
+    """The blocks as GitHub-flavoured Markdown; the figures are written into ``folder``
+    (created; its parent must exist) and linked relative to the directory ``relative_to``
+    (where the Markdown file is).  No figure may be one of the files ``inputs``
+    (:mod:`mechsing.files`: each is written atomically)."""
+    from mechsing.files import check_output, make_output_folder, write_output
+
+    folder = make_output_folder(folder, inputs)
+    link = Path(os.path.relpath(folder, Path(relative_to).resolve())).as_posix()
+    text, figures = markdown(blocks, link)
+    paths = [folder / name for name in figures]
+    for path in paths:  # every figure checked before any is written
+        check_output(path, inputs)
+    for path, svg in zip(paths, figures.values(), strict=True):
+        write_output(path, svg, inputs)
+    return text

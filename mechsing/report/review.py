@@ -75,11 +75,29 @@ class Report:
         """The report as one self-contained HTML document (inline CSS and figures, no script)."""
         return doc.to_html(self.blocks(), f"Design review: {self.mechanism.name}")
 
-    def to_markdown(self, folder: str | Path, relative_to: str | Path | None = None) -> str:
-        """The Markdown text; its figures are written into ``folder`` and linked relative
-        to ``relative_to`` (default: the folder's parent, where the Markdown goes)."""
+    def to_markdown(
+        self,
+        folder: str | Path,
+        relative_to: str | Path | None = None,
+        inputs: Sequence[str | Path] = (),
+    ) -> str:
+        """The Markdown text; its figures are written into ``folder`` (created; its parent
+        must exist) and linked relative to ``relative_to`` (default: the folder's parent,
+        where the Markdown goes); no figure may be one of the files ``inputs``."""
         folder = Path(folder)
-        return doc.to_markdown(self.blocks(), folder, relative_to or folder.parent)
+        return doc.to_markdown(self.blocks(), folder, relative_to or folder.parent, inputs)
+
+    def write(self, path: str | Path, inputs: Sequence[str | Path] = ()) -> Path:
+        """Write the report to ``path``: HTML, or Markdown for a ``.md`` path (its figures
+        in the folder of the path's stem + ``_files`` beside it), atomically and never
+        over one of the files ``inputs`` (:mod:`mechsing.files`); the file written."""
+        from mechsing.files import check_output, write_output
+
+        path = check_output(path, inputs)  # a link resolved: the figures go beside its file
+        if path.suffix.lower() != ".md":
+            return write_output(path, self.to_html(), inputs)
+        folder = path.with_name(path.stem + "_files")
+        return write_output(path, self.to_markdown(folder, path.parent, inputs), inputs)
 
     def _repr_html_(self) -> str:
         return doc.html_fragment(self.blocks())
