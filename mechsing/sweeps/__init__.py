@@ -245,10 +245,18 @@ class SweepRun:
                 + ("" if all(moved) else "; the others keep their float values")
             )
         by_id = {id(p): a for p, a in zip(chosen, analysed, strict=True)}
+        moved_by_id = {id(p): m for p, m in zip(chosen, moved, strict=True)}
         model = eng.model
         out = []
         for p in located:
             joints = tuple((k, tuple(v)) for k, v in model.values(p.q).items())
+            unresolved = _unresolved(p, by_id.get(id(p)), moved_by_id.get(id(p), False))
+            if unresolved:
+                self.notes.append(
+                    f"the limit of travel at {', '.join(v.name for v in self.variables)} = "
+                    f"{', '.join(v.shown(x) for v, x in zip(self.variables, p.values))} "
+                    f"was not resolved: {unresolved}"
+                )
             out.append(
                 LocatedSingularity(
                     p.values,
@@ -259,6 +267,7 @@ class SweepRun:
                     by_id.get(id(p)),
                     p.far_side,
                     p.edge,
+                    unresolved,
                 )
             )
         loci = loci_of(self, out) if self.grid else ()
@@ -279,3 +288,29 @@ class SweepRun:
             self.newton_iterations,
             time.perf_counter() - self.start_time,
         )
+
+
+def _unresolved(p: Any, analysed: Any, moved: bool) -> str | None:
+    """Why a limit of travel the full analysis found regular is not resolved (None for
+    any other point).  At a fold of the swept value the closure for the held values
+    loses rank, and so does some test: a regular verdict there means the point was
+    not placed closely enough for the precision that decided it."""
+    if p.kind != "fold" or analysed is None or analysed.error is not None:
+        return None
+    if analysed.singular is not False:
+        return None
+    kept = [
+        (d.margin.kept, d.test)
+        for d in analysed.decisions
+        if d.rank is not None and d.margin is not None and d.margin.kept is not None
+    ]
+    low = f" (smallest kept singular value {min(kept)[0]:.2g}, {min(kept)[1]})" if kept else ""
+    where = (
+        "placed again at its digits"
+        if moved
+        else "kept its float values (placing it again at the analysis's digits failed)"
+    )
+    return (
+        f"the full analysis at {analysed.precision} found every test at its generic rank{low}; "
+        f"the point {where}, and at a limit of travel some test drops rank"
+    )
