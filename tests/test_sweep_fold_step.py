@@ -6,7 +6,7 @@ turned about its reference point (``--vary pose.rz``).  The expected limit comes
 file's joint points read by the reference reader (tests/reference) and plane geometry
 alone: a leg A-B-C with the platform pivot C given reaches it while |AC| lies between
 |AB| - |BC| and |AB| + |BC|, and a turn by rz about the platform's reference point p moves
-C to p + R(rz)(C0 - p), so |AC|^2 = |d|^2 + |r|^2 + 2 rho cos(rz - phi) (d = p - A,
+C to p + R(rz)(C0 - p), so |AC|^2 = |d|^2 + |r|^2 + 2 rho cos(rz + phi) (d = p - A,
 r = C0 - p, rho cos phi = d.r, rho sin phi = (d x r)_z): the limit is the first rz below 0
 where some leg's |AC| reaches its bound.  There the leg is stretched (or folded): the
 input joint's rate is redundant (input), the platform cannot move along the leg
@@ -47,7 +47,7 @@ def expected_limit() -> float:
                 continue
             for s in (1, -1):
                 for turn in (-2, -1, 0):
-                    rz = phi + s * math.acos(c) + 2 * math.pi * turn
+                    rz = -phi + s * math.acos(c) + 2 * math.pi * turn
                     if rz < 0:
                         best = max(best, rz)
     return best

@@ -26,6 +26,7 @@ from mechsing.singularity.findings import (
     SerialFinding,
     UndecidedFinding,
 )
+from mechsing.singularity.zfb import not_run_sentences
 from mechsing.subgroups import Subgroup
 
 
@@ -231,6 +232,8 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             for k, v in result.mechanism.limits.items()
         )
         lines.append(f"Joint limits (m, rad): {shown}.")
+    for sentence in not_run_sentences(result.mechanism):
+        lines.append(f"Tests not run: {sentence}.")
     if result.properties:
         lines += ["", f"{h2}Properties" if markdown else "Properties:"]
         for prop in result.properties:

@@ -57,7 +57,7 @@ from mechsing.singularity.serial import (
     serial_finding,
     wrenches_of,
 )
-from mechsing.singularity.zfb import io_quantities, leg_constraint_rank
+from mechsing.singularity.zfb import io_quantities, leg_constraint_rank, tests_run
 
 # The higher-order forms (tangent cone) and the input/output and constraint
 # ranks at q are computed and decided at the analysis precision
@@ -395,8 +395,7 @@ def _io_findings(
         regular = sample_values(mech, fm, [samples[i] for i in idx])
     else:
         regular = [values[i] for i in idx]
-    has_io = mech.output is not None and mech.inputs
-    if has_io:
+    if tests_run(mech):
         here = io_quantities(
             mech, model, q, rank.null_space, tprec, screws=cs.screws, kernel=rank, cs=cs
         )
@@ -416,6 +415,8 @@ def _io_findings(
                 ("impossible-input", here.input_rank),
                 ("impossible-output", here.output_rank),
             ):
+                if test not in hv:
+                    continue
                 d = decision(test, dec, generic[test])
                 if hv[test] is None and dec.rank is not None:
                     # a motion space built on an undecided rank (IOQuantities.values)
@@ -461,6 +462,8 @@ def _zfb(
     N = sp["N"]
     L = fm.length_scale
     for cls in ("input", "output", "passive-motion"):
+        if cls not in hv:
+            continue
         v, g = hv[cls], generic[cls]
         if v is None or g is None or v <= g:
             continue
@@ -499,6 +502,8 @@ def _zfb(
             )
         )
     for cls in ("impossible-input", "impossible-output"):
+        if cls not in hv:
+            continue
         v, g = hv[cls], generic[cls]
         if v is None or g is None or v >= g:
             continue

@@ -28,6 +28,7 @@ import numpy as np
 from mechsing.errors import UserError, working_on
 from mechsing.model import Mechanism, load
 from mechsing.numeric import Precision, parse_precision
+from mechsing.singularity.zfb import not_run_sentences
 from mechsing.sweeps.engine import Located, RowResult, Sweep, classify_located
 from mechsing.sweeps.loci import loci_of
 from mechsing.sweeps.results import (
@@ -224,8 +225,10 @@ class SweepRun:
     def result(self) -> SweepResult:
         """Classify the located points and return the result."""
         eng = self.engine
-        # how the sweep started (a singular start, rows started from a neighbour) first
-        self.notes[:0] = [n for n in eng.start_notes if n not in self.notes]
+        # how the sweep started (a singular start, rows started from a neighbour) first,
+        # and the tests the file lacks the ingredients of
+        not_run = [f"tests not run: {s}" for s in not_run_sentences(self.mechanism)]
+        self.notes[:0] = [n for n in [*not_run, *eng.start_notes] if n not in self.notes]
         located = sorted(self.located, key=lambda p: (p.edge != "row", p.values[::-1]))
         # the points found along the rows first, then those between rows (a grid)
         chosen = list(located)
@@ -254,7 +257,7 @@ class SweepRun:
             if unresolved:
                 self.notes.append(
                     f"the limit of travel at {', '.join(v.name for v in self.variables)} = "
-                    f"{', '.join(v.shown(x) for v, x in zip(self.variables, p.values))} "
+                    f"{', '.join(v.shown(x) for v, x in zip(self.variables, p.values, strict=True))} "
                     f"was not resolved: {unresolved}"
                 )
             out.append(
