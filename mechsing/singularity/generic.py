@@ -182,7 +182,7 @@ def sample_values(mech: Any, model: Any, samples: list[NearbySample]) -> list[Sa
     if plan.legs:
         Ss = model.frame.screws(S)
         constraint = _constraint_values(mech, model, plan, samples, Ss)
-        legs = _leg_values(model, plan, S)
+        legs = _leg_values(mech, model, plan, S, P)
     return [SampleValues(a, b, c) for a, b, c in zip(io, constraint, legs, strict=True)]
 
 
@@ -210,7 +210,10 @@ def one_sample_values(mech: Any, model: Any, s: NearbySample) -> SampleValues:
     if plan.legs:
         r = leg_constraint_rank(mech, model, s.q, closure_system(model, s.q))
         constraint = None if r is None else r[0].rank
-        systems = [chain_system(model, S, leg.columns, None, "float") for leg in plan.legs]
+        x = None
+        if plan.out_point is not None:
+            x = lie.act_point(model.poses(s.q)[mech.output.body], plan.out_point)
+        systems = [chain_system(model, S, leg.columns, x, "float") for leg in plan.legs]
         legs = tuple((c.matrix, c.rank.rank) for c in systems)
     return SampleValues(io, constraint, legs)
 
@@ -328,13 +331,17 @@ def _constraint_values(
 
 
 def _leg_values(
-    model: Any, plan: MechanismPlan, S: np.ndarray
+    mech: Any, model: Any, plan: MechanismPlan, S: np.ndarray, P: dict[str, np.ndarray]
 ) -> list[tuple[tuple[np.ndarray, int | None], ...]]:
-    """Each leg's commensurate screw matrix and its decided rank at each sample (the
-    float twin of :func:`mechsing.singularity.serial.chain_system`)."""
+    """Each leg's commensurate screw matrix (the output point's velocities when the
+    output names a point, as for the output chain) and its decided rank at each sample
+    (the float twin of :func:`mechsing.singularity.serial.chain_system`)."""
+    x = None
+    if plan.out_point is not None:
+        x = lie.act_point(P[mech.output.body], plan.out_point)
     per_leg = []
     for leg in plan.legs:
-        M = chain_matrix(model, S, leg.columns)
+        M = chain_matrix(model, S, leg.columns, x)
         lo, hi = _ranks(_singular_values(M))
         per_leg.append((M, _decided(lo, hi)))
     return [tuple((M[b], ranks[b]) for M, ranks in per_leg) for b in range(S.shape[0])]

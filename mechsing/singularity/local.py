@@ -57,7 +57,7 @@ from mechsing.singularity.serial import (
     serial_finding,
     wrenches_of,
 )
-from mechsing.singularity.zfb import io_quantities, leg_constraint_rank, tests_run
+from mechsing.singularity.zfb import io_quantities, leg_constraint_rank, output_chain, tests_run
 
 # The higher-order forms (tangent cone) and the input/output and constraint
 # ranks at q are computed and decided at the analysis precision
@@ -444,7 +444,7 @@ def _io_findings(
                 )
             )
     if mech.output is not None:
-        findings.extend(_leg_serial(mech, model, fm, cs, regular, out))
+        findings.extend(_leg_serial(mech, model, fm, q, cs, regular, out))
     return findings
 
 
@@ -553,6 +553,7 @@ def _leg_serial(
     mech: Any,
     model: Any,
     fm: Any,
+    q: np.ndarray,
     cs: Any,
     regular: list[SampleValues],
     out: LocalAnalysis,
@@ -563,10 +564,16 @@ def _leg_serial(
     (``regular``: their values, with each leg's screw matrix)."""
     findings: list[Finding] = []
     legs = mechanism_plan(mech, fm).legs
+    # one rule for every leg, the output chain's: the twists of the output body, or the
+    # velocities of the output point when the output names one (a leg whose last joint
+    # turns about the point moves it no more than one that ends before that joint: the
+    # two mirror-image legs of a five-bar are judged alike)
+    x = output_chain(mech, model, q, cs, True)[1] if mech.output.point is not None else None
+    xf = None if x is None else np.asarray(to_float(x), dtype=float)
     for i, leg in enumerate(legs):
         with model.precision.context():
             here = chain_system(
-                model, cs.screws, leg.columns, None, model.precision, cs.scaled_screws
+                model, cs.screws, leg.columns, x, model.precision, cs.scaled_screws
             )
         gen = here.rank.rank or 0
         samples = []
@@ -579,7 +586,7 @@ def _leg_serial(
         span = None
         if here.rank.rank is not None and here.rank.rank < gen:
             span = generic_span([here.matrix, *samples], gen)
-        f = serial_finding(fm, here, gen, leg.names, {"chain": "leg", "leg": i + 1}, None, span)
+        f = serial_finding(fm, here, gen, leg.names, {"chain": "leg", "leg": i + 1}, xf, span)
         if f:
             findings.append(f)
     return findings
