@@ -22,7 +22,8 @@ analysis classifies a located point at mp:N, the point is found again at N digit
   affine set, along which the minimum-norm step does not move).
 
 Each secant step gains digits superlinearly from float's point; it stops when the step is
-below 10^(5-N) of the variable's scale (a fold: when its Gauss-Newton step is).  A point
+below 10^(5-N) of the variable's scale (10^(5-N/2) for the closure's test, whose point is
+a double root known to N/2 digits; a fold: when its Gauss-Newton step is).  A point
 whose relocation fails keeps its float values (its classification then says what N
 digits see there).
 """
@@ -229,7 +230,12 @@ class Relocator:
         pose = self.pose
         given = tuple(sorted(set(given) | {drive}))
         with m.precision.context():
-            small = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - mpmath.mp.dps) * scale
+            # a singular point of the closure is a double root of the closure for the
+            # held values: polished at D digits, its configuration (and so the test's
+            # determinant) is known to D/2 only, below which the secant's steps are
+            # noise; that is what it is placed to (the relocator works at 2N + 10 digits)
+            digits = mpmath.mp.dps // 2 if test == "closure" else mpmath.mp.dps
+            small = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - digits) * scale
             target = np.array([mpmath.mpf(repr(float(x))) for x in z], dtype=object)
             q = target.copy()
 
