@@ -206,6 +206,20 @@ class SweepRun:
                         a.Z = None
                         a.measures = None
 
+    def _drives(self, p: Located) -> bool:
+        """Whether the coordinate that turns back at the fold p is an input or a
+        coordinate of the output's pose (then some test drops rank there: the inputs',
+        or the output's, rank on the motion space); a passive joint may reach its
+        extreme at a regular configuration."""
+        eng = self.engine
+        col = eng.cols[0] if p.edge == "row" else eng.cols[-1]
+        if col >= eng.model.n:  # a coordinate of the output's pose
+            return True
+        inputs = {
+            eng.model.joint(j).columns.start + k for j, k in self.mechanism.input_coordinates()
+        }
+        return col in inputs
+
     def _store(self, row: RowResult) -> None:
         at: Any = slice(None) if not self.grid else row.index
         self.reached[at] = row.reached
@@ -253,7 +267,9 @@ class SweepRun:
         out = []
         for p in located:
             joints = tuple((k, tuple(v)) for k, v in model.values(p.q).items())
-            unresolved = _unresolved(p, by_id.get(id(p)), moved_by_id.get(id(p), False))
+            unresolved = _unresolved(
+                p, by_id.get(id(p)), moved_by_id.get(id(p), False), self._drives(p)
+            )
             if unresolved:
                 self.notes.append(
                     f"the limit of travel at {', '.join(v.name for v in self.variables)} = "
@@ -293,12 +309,13 @@ class SweepRun:
         )
 
 
-def _unresolved(p: Any, analysed: Any, moved: bool) -> str | None:
+def _unresolved(p: Any, analysed: Any, moved: bool, drives: bool) -> str | None:
     """Why a limit of travel the full analysis found regular is not resolved (None for
-    any other point).  At a fold of the swept value the closure for the held values
-    loses rank, and so does some test: a regular verdict there means the point was
-    not placed closely enough for the precision that decided it."""
-    if p.kind != "fold" or analysed is None or analysed.error is not None:
+    any other point).  At a fold of an input or of a coordinate of the output's pose
+    (``drives``) the closure for the held values loses rank, and so does a test (the
+    inputs', or the output's, rank on the motion space): a regular verdict there means
+    the point was not placed closely enough for the precision that decided it."""
+    if p.kind != "fold" or not drives or analysed is None or analysed.error is not None:
         return None
     if analysed.singular is not False:
         return None

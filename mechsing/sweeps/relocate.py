@@ -111,15 +111,17 @@ class Relocator:
 
     def relocate(self, z: np.ndarray, test: str, kind: str) -> np.ndarray | None:
         """The located point ``z`` (float, the sweep's coordinates) again at N digits: its
-        joints (object array), or None when the secant does not converge."""
+        joints (object array), or None when it does not converge.  ``test``: the test
+        whose crossing it is (a fold is placed by its own conditions, whatever vanishes
+        there); ``kind``: ``fold``, or the edge (``row``, ``column``) it was found on."""
         sw = self.sweep
         nb = sw.model.n
-        # the float point's bases and, for a fold, the coordinate that drives it
+        if kind == "fold":
+            return self._fold(z)
+        # the float point's bases
         pm = sw.measures(np.asarray(z[:nb], dtype=float)[None, :])
         if test not in pm.rank:
             return None
-        if kind == "fold":
-            return self._fold(z)
         U, V = pm.basis(test, slice(0, 1))
         U0, V0 = U[0], V[0]
         N0 = None if pm.kernel is None or test not in ("input", "output") else pm.kernel[0]
@@ -151,9 +153,11 @@ class Relocator:
         Jf, _ = scaled_system(pb.cm, np.asarray(z, dtype=float))
         A0 = np.asarray(Jf, dtype=float)[:, fcols]
         U, s, _ = np.linalg.svd(A0[:, [i for i in range(nf) if i != iv]])
-        k = int(np.sum(s < SWEEP_FOLD_KERNEL_RTOL * (s[0] if len(s) else 1.0)))
-        k = max(k, 1) + U.shape[1] - len(s)
-        Uk = U[:, len(U.T) - k :] if k else U[:, :0]
+        # the vanishing singular values (at least one: this is a fold), and the left
+        # vectors beyond the unknowns' count (rows every configuration satisfies, as a
+        # planar loop's out-of-plane ones: their weight is zero)
+        k = max(int(np.sum(s < SWEEP_FOLD_KERNEL_RTOL * (s[0] if len(s) else 1.0))), 1)
+        Uk = U[:, len(s) - k :]
         a = Uk.T @ A0[:, iv]
         if not np.any(a):
             return None

@@ -401,6 +401,9 @@ def _located_line(r: SweepResult, p: LocatedSingularity) -> str:
     if p.unresolved:
         return f"{head} -> not resolved: {p.unresolved}"
     classes = ", ".join(p.classes or ()) or "no singularity found by the full analysis"
+    if p.kind == "fold" and not p.classes:
+        # not unresolved: the coordinate that turns back is a passive joint's
+        classes += " (a passive joint at its extreme: the mechanism moves on through it)"
     margin = p.margin or {}
     shown = ""
     if margin.get("dropped") is not None:
