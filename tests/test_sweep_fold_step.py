@@ -101,3 +101,22 @@ def test_a_limit_of_travel_not_placed_again_is_not_resolved_never_regular(monkey
     assert "not resolved" in line and "no singularity" not in line, line
     assert "kept its float values" in line, line
     assert any("was not resolved" in ln for ln in r.out.splitlines() if "note:" in ln), r.out
+
+
+def test_a_passive_joints_limit_of_travel_is_regular_and_says_why():
+    """The crank-rocker four-bar swept in its passive joint C (between coupler and rocker):
+    C is extreme where the crank lies along the ground line (A = 0, the drawing, and A = pi),
+    a regular configuration; the turn of C between them is the change of the interior
+    angle at C, acos(-3/sqrt(10)) - acos(1/sqrt(10)) = pi/2 by the law of cosines (BC =
+    2 sqrt(2), CD = sqrt(5), BD = 3 at A = 0 and 5 at A = pi).  Placed again at 50 digits,
+    both are regular, and the text says that a passive joint is at its extreme."""
+    four = Path(__file__).resolve().parents[1] / "examples" / "fourbar.yaml"
+    turn = math.acos(-3 / math.sqrt(10)) - math.acos(1 / math.sqrt(10))
+    argv = ["sweep", four, "--vary", "C=-180:180:20", "--precision", "mp:50", "--quiet"]
+    r = run_cli([*argv, "--format", "json"])
+    assert r.status == 0, r.err
+    folds = [p for p in json.loads(r.out)["located"] if p["kind"] == "fold"]
+    np.testing.assert_allclose(sorted(abs(p["values"][0]) for p in folds), [0, turn], atol=1e-10)
+    assert all(p["classes"] == [] and p["unresolved"] is None for p in folds), folds
+    lines = [ln for ln in run_cli(argv).out.splitlines() if "limit of travel" in ln]
+    assert len(lines) == 2 and all("passive joint at its extreme" in ln for ln in lines), lines
