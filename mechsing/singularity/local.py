@@ -572,9 +572,7 @@ def _leg_serial(
     xf = None if x is None else np.asarray(to_float(x), dtype=float)
     for i, leg in enumerate(legs):
         with model.precision.context():
-            here = chain_system(
-                model, cs.screws, leg.columns, x, model.precision, cs.scaled_screws
-            )
+            here = chain_system(model, cs.screws, leg.columns, x, model.precision, cs.scaled_screws)
         gen = here.rank.rank or 0
         samples = []
         for v in regular:
