@@ -185,9 +185,11 @@ def test_the_tests_values_at_many_samples_are_those_of_one_sample_at_a_time(file
 def test_five_bar_sample_values_are_the_planar_counts():
     """At regular configurations of the five-bar (file comment: two legs, inputs A1 and A2,
     output point P on dist1): no input, output or passive motion; the inputs and the point's
-    velocity both span the 2-dof motion; leg 1 (A1, B1) has 2 independent planar screws and
-    leg 2 (A2, B2, P) 3; the legs' constraint wrenches: the 3 out-of-plane ones, which both
-    legs resist, and leg 1's planar force along its distal link."""
+    velocity both span the 2-dof motion; each leg is judged by the output point's velocities
+    (the output chain's rule): those of leg 1 (A1, B1) and of leg 2 (A2, B2, and P, which
+    turns about the point) both span the plane, 2; the legs' constraint wrenches: the 3
+    out-of-plane ones, which both legs resist, and leg 1's planar force along its distal
+    link."""
     mech = mechsing.load(EX / "five_bar.yaml")
     model, samples = _samples_of(mech, ["reference", "inputs"])
     for v in sample_values(mech, model, samples):
@@ -198,7 +200,7 @@ def test_five_bar_sample_values_are_the_planar_counts():
             "impossible-input": 2,
             "impossible-output": 2,
         }
-        assert [r for _, r in v.legs] == [2, 3]
+        assert [r for _, r in v.legs] == [2, 2]
         assert v.constraint == 4
 
 
@@ -208,7 +210,9 @@ def test_a_leg_with_a_loop_of_its_own_takes_its_constraint_rank_from_the_closure
     planar counts: one dof (7 joints, 2 planar loops of 3 constraints), driven by the input
     A and moving the point; leg 1's output twists are m's translation and the turn about E,
     leg 2's the turns about F and G, so each resists the 3 out-of-plane wrenches and one
-    planar force of its own (5 together); leg 1's 5 planar screws span 3, leg 2's 2."""
+    planar force of its own (5 together); each leg's velocities of the output point (the
+    output chain's rule) span the plane: 2 for leg 1 (its turn about E and the
+    parallelogram's translation) and 2 for leg 2 (the turns about F and G)."""
     mech = loads(INNER_LOOP_LEG)
     model, samples = _samples_of(mech, ["reference"])
     assert len(samples) == 6
@@ -221,7 +225,7 @@ def test_a_leg_with_a_loop_of_its_own_takes_its_constraint_rank_from_the_closure
             "impossible-output": 1,
         }
         assert v.constraint == 5
-        assert [r for _, r in v.legs] == [3, 2]
+        assert [r for _, r in v.legs] == [2, 2]
         one = one_sample_values(mech, model, s)
         assert (one.io, one.constraint) == (v.io, v.constraint)
 

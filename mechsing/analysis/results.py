@@ -23,6 +23,7 @@ from mechsing.singularity.findings import (
     Finding,
     UndecidedFinding,
 )
+from mechsing.singularity.zfb import tests_not_run
 from mechsing.subgroups import Subgroup
 
 __all__ = [
@@ -292,9 +293,16 @@ def _analysis(r: AnalysisResult) -> dict[str, Any]:
         "configurations": [_configuration(c) for c in r.configurations],
         "legs": [_leg(leg) for leg in r.legs],
         "output_motion": None if r.output_motion is None else _output_motion(r.output_motion),
+        "tests_not_run": _tests_not_run(r.mechanism),
         **_limits(r.mechanism),
         **scene_json(r.mechanism),
     }
+
+
+def _tests_not_run(mech: Mechanism) -> list[dict[str, Any]]:
+    """The added key ``tests_not_run``: the tests the file lacks the ingredients of (no
+    inputs, no output), each group with its reason (empty when every test ran)."""
+    return [{"tests": list(tests), "reason": why} for tests, why in tests_not_run(mech)]
 
 
 def _limits(mech: Mechanism) -> dict[str, Any]:

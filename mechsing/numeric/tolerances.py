@@ -193,6 +193,12 @@ SWEEP_GRAM_RATIO = 0.05
 #: fold (pseudo-arclength continuation), and the shortest step before it gives up
 SWEEP_ARC_STEP = 0.02
 SWEEP_ARC_MIN_STEP = 1e-10
+#: at a located fold, the unknowns' closure Jacobian has the singular values of the
+#: directions that reach their limit there (one per leg at its limit) below this
+#: fraction of its largest: float places a fold's unknowns to about sqrt(eps) (the curve
+#: is quadratic in them), so those are about 1e-8, and a chain that is not at a limit
+#: keeps singular values of the order of its conditioning, far above
+SWEEP_FOLD_KERNEL_RTOL = 1e-5
 
 #: exact mode first evaluates a quantity to this many digits: clearly non-zero
 #: there (above 10^-(EXACT_ZERO_DIGITS - 15) of its scale) it is not zero, and

@@ -26,6 +26,7 @@ from mechsing.singularity.findings import (
     SerialFinding,
     UndecidedFinding,
 )
+from mechsing.singularity.zfb import not_run_sentences
 from mechsing.subgroups import Subgroup
 
 
@@ -238,6 +239,8 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         lines.append(f"Joint limits (m, rad): {shown}.")
     if result.mechanism.scene is not None:
         lines += [scene_line(note) for note in result.mechanism.scene.notes]
+    for sentence in not_run_sentences(result.mechanism):
+        lines.append(f"Tests not run: {sentence}.")
     if result.properties:
         lines += ["", f"{h2}Properties" if markdown else "Properties:"]
         for prop in result.properties:

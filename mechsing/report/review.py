@@ -39,6 +39,7 @@ from mechsing.singularity.findings import (
     MotionFinding,
     SerialFinding,
 )
+from mechsing.singularity.zfb import not_run_sentences
 from mechsing.subgroups import Subgroup, load_catalog
 from mechsing.sweeps import SweepResult, sweep
 from mechsing.sweeps.results import located_rows
@@ -364,6 +365,9 @@ def _verdict(r: Report) -> list[doc.Block]:
         lead = "No singularity found, but some rows are not decided (highlighted)."
     else:
         lead = f"No singularity: all {len(rows)} rows are regular."
+    # what was not looked for is said with what was found
+    for sentence in not_run_sentences(r.analysis.mechanism):
+        lead += f" Tests not run: {sentence}."
     return [
         doc.Heading(2, "Verdict"),
         doc.Paragraph(lead),

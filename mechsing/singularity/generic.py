@@ -36,7 +36,13 @@ from mechsing.numeric.blocks import DENSE_ENTRIES
 from mechsing.screws import chain_matrix, closure_system
 from mechsing.screws.mobility import NearbySample, stacked_jacobian
 from mechsing.singularity.serial import chain_system
-from mechsing.singularity.zfb import input_rows, io_quantities, leg_constraint_rank, leg_path
+from mechsing.singularity.zfb import (
+    input_rows,
+    io_quantities,
+    leg_constraint_rank,
+    leg_path,
+    tests_run,
+)
 
 __all__ = [
     "LegPlan",
@@ -169,14 +175,14 @@ def sample_values(mech: Any, model: Any, samples: list[NearbySample]) -> list[Sa
     Q = np.array([s.q for s in samples], dtype=float)
     P = batched.poses(model, Q)
     S = batched.current_screws(model, Q, P)
-    has_io = mech.output is not None and bool(mech.inputs) and plan.E is not None
+    has_io = bool(tests_run(mech))
     io = _io_values(mech, model, plan, samples, S, P) if has_io else [None] * len(samples)
     constraint: list[int | None] = [None] * len(samples)
     legs: list[tuple[tuple[np.ndarray, int | None], ...]] = [()] * len(samples)
     if plan.legs:
         Ss = model.frame.screws(S)
         constraint = _constraint_values(mech, model, plan, samples, Ss)
-        legs = _leg_values(model, plan, S)
+        legs = _leg_values(mech, model, plan, S, P)
     return [SampleValues(a, b, c) for a, b, c in zip(io, constraint, legs, strict=True)]
 
 
@@ -196,7 +202,7 @@ def one_sample_values(mech: Any, model: Any, s: NearbySample) -> SampleValues:
     plan = mechanism_plan(mech, model)
     S = model.current_screws(s.q)
     io = None
-    if mech.output is not None and mech.inputs:
+    if tests_run(mech):
         g = io_quantities(mech, model, s.q, s.kernel, screws=S)
         io = None if g is None else g.values()
     constraint = None
@@ -204,7 +210,10 @@ def one_sample_values(mech: Any, model: Any, s: NearbySample) -> SampleValues:
     if plan.legs:
         r = leg_constraint_rank(mech, model, s.q, closure_system(model, s.q))
         constraint = None if r is None else r[0].rank
-        systems = [chain_system(model, S, leg.columns, None, "float") for leg in plan.legs]
+        x = None
+        if plan.out_point is not None:
+            x = lie.act_point(model.poses(s.q)[mech.output.body], plan.out_point)
+        systems = [chain_system(model, S, leg.columns, x, "float") for leg in plan.legs]
         legs = tuple((c.matrix, c.rank.rank) for c in systems)
     return SampleValues(io, constraint, legs)
 
@@ -219,13 +228,19 @@ def _io_values(
 ) -> list[dict[str, int | None] | None]:
     """:meth:`IOQuantities.values` of :func:`~mechsing.singularity.zfb.io_quantities` at each
     sample (its kernel the sample's), batched: the same products and decisions."""
-    x = None
-    if plan.out_point is not None:
-        x = lie.act_point(P[mech.output.body], plan.out_point)
-    T = chain_matrix(model, S, None, x, plan.out_signs)
-    E = plan.E
-    # |T|: the largest singular value of each T, the reference of T N's decision
-    nT = _singular_values(T)[:, 0]
+    B = S.shape[0]
+    if mech.output is not None:
+        x = None
+        if plan.out_point is not None:
+            x = lie.act_point(P[mech.output.body], plan.out_point)
+        T = chain_matrix(model, S, None, x, plan.out_signs)
+        # |T|: the largest singular value of each T, the reference of T N's decision
+        nT = _singular_values(T)[:, 0]
+    else:  # no output: no rows (rank 0), only the inputs' test is read
+        T, nT = np.zeros((B, 0, model.n)), np.ones(B)
+    # no inputs: no rows, only the output's test is read
+    E = plan.E if plan.E is not None else np.zeros((0, model.n))
+    run = tests_run(mech)
     out: list[dict[str, int | None] | None] = [None] * len(samples)
     widths: dict[int, list[int]] = {}
     for i, s in enumerate(samples):
@@ -235,7 +250,7 @@ def _io_values(
         if k == 0:
             # no motion: every rank 0, nothing passive
             for i in idx:
-                out[i] = _io_dict((0, 0), (0, 0), (0, 0), 0)
+                out[i] = _io_dict((0, 0), (0, 0), (0, 0), 0, run)
             continue
         N = np.array([samples[i].kernel for i in idx], dtype=float)
         TN = T[ix] @ N
@@ -249,23 +264,29 @@ def _io_values(
             bE = (int(rE[0][j]), int(rE[1][j]))
             bB = (int(rB[0][j]), int(rB[1][j]))
             passive = k - bB[0] if bB[0] == bB[1] else None
-            out[i] = _io_dict(bT, bE, bB, passive)
+            out[i] = _io_dict(bT, bE, bB, passive, run)
     return out
 
 
 def _io_dict(
-    rT: tuple[int, int], rE: tuple[int, int], rB: tuple[int, int], passive: int | None
+    rT: tuple[int, int],
+    rE: tuple[int, int],
+    rB: tuple[int, int],
+    passive: int | None,
+    run: tuple[str, ...],
 ) -> dict[str, int | None]:
-    """:meth:`IOQuantities.values` from the rank bounds of T N, E N and [T N; E N]."""
+    """:meth:`IOQuantities.values` from the rank bounds of T N, E N and [T N; E N], for
+    the tests ``run``."""
     out_ok = rT[0] == rT[1]
     in_ok = rE[0] == rE[1]
-    return {
+    every = {
         "input": _difference(rB, rT) if out_ok else None,
         "output": _difference(rB, rE) if in_ok else None,
         "passive-motion": passive if (in_ok and out_ok) else None,
         "impossible-input": rE[0] if in_ok else None,
         "impossible-output": rT[0] if out_ok else None,
     }
+    return {t: every[t] for t in run}
 
 
 def _constraint_values(
@@ -310,13 +331,17 @@ def _constraint_values(
 
 
 def _leg_values(
-    model: Any, plan: MechanismPlan, S: np.ndarray
+    mech: Any, model: Any, plan: MechanismPlan, S: np.ndarray, P: dict[str, np.ndarray]
 ) -> list[tuple[tuple[np.ndarray, int | None], ...]]:
-    """Each leg's commensurate screw matrix and its decided rank at each sample (the
-    float twin of :func:`mechsing.singularity.serial.chain_system`)."""
+    """Each leg's commensurate screw matrix (the output point's velocities when the
+    output names a point, as for the output chain) and its decided rank at each sample
+    (the float twin of :func:`mechsing.singularity.serial.chain_system`)."""
+    x = None
+    if plan.out_point is not None:
+        x = lie.act_point(P[mech.output.body], plan.out_point)
     per_leg = []
     for leg in plan.legs:
-        M = chain_matrix(model, S, leg.columns)
+        M = chain_matrix(model, S, leg.columns, x)
         lo, hi = _ranks(_singular_values(M))
         per_leg.append((M, _decided(lo, hi)))
     return [tuple((M[b], ranks[b]) for M, ranks in per_leg) for b in range(S.shape[0])]

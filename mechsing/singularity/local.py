@@ -57,7 +57,7 @@ from mechsing.singularity.serial import (
     serial_finding,
     wrenches_of,
 )
-from mechsing.singularity.zfb import io_quantities, leg_constraint_rank
+from mechsing.singularity.zfb import io_quantities, leg_constraint_rank, output_chain, tests_run
 
 # The higher-order forms (tangent cone) and the input/output and constraint
 # ranks at q are computed and decided at the analysis precision
@@ -395,8 +395,7 @@ def _io_findings(
         regular = sample_values(mech, fm, [samples[i] for i in idx])
     else:
         regular = [values[i] for i in idx]
-    has_io = mech.output is not None and mech.inputs
-    if has_io:
+    if tests_run(mech):
         here = io_quantities(
             mech, model, q, rank.null_space, tprec, screws=cs.screws, kernel=rank, cs=cs
         )
@@ -416,6 +415,8 @@ def _io_findings(
                 ("impossible-input", here.input_rank),
                 ("impossible-output", here.output_rank),
             ):
+                if test not in hv:
+                    continue
                 d = decision(test, dec, generic[test])
                 if hv[test] is None and dec.rank is not None:
                     # a motion space built on an undecided rank (IOQuantities.values)
@@ -443,7 +444,7 @@ def _io_findings(
                 )
             )
     if mech.output is not None:
-        findings.extend(_leg_serial(mech, model, fm, cs, regular, out))
+        findings.extend(_leg_serial(mech, model, fm, q, cs, regular, out))
     return findings
 
 
@@ -461,6 +462,8 @@ def _zfb(
     N = sp["N"]
     L = fm.length_scale
     for cls in ("input", "output", "passive-motion"):
+        if cls not in hv:
+            continue
         v, g = hv[cls], generic[cls]
         if v is None or g is None or v <= g:
             continue
@@ -499,6 +502,8 @@ def _zfb(
             )
         )
     for cls in ("impossible-input", "impossible-output"):
+        if cls not in hv:
+            continue
         v, g = hv[cls], generic[cls]
         if v is None or g is None or v >= g:
             continue
@@ -548,6 +553,7 @@ def _leg_serial(
     mech: Any,
     model: Any,
     fm: Any,
+    q: np.ndarray,
     cs: Any,
     regular: list[SampleValues],
     out: LocalAnalysis,
@@ -558,11 +564,15 @@ def _leg_serial(
     (``regular``: their values, with each leg's screw matrix)."""
     findings: list[Finding] = []
     legs = mechanism_plan(mech, fm).legs
+    # one rule for every leg, the output chain's: the twists of the output body, or the
+    # velocities of the output point when the output names one (a leg whose last joint
+    # turns about the point moves it no more than one that ends before that joint: the
+    # two mirror-image legs of a five-bar are judged alike)
+    x = output_chain(mech, model, q, cs, True)[1] if mech.output.point is not None else None
+    xf = None if x is None else np.asarray(to_float(x), dtype=float)
     for i, leg in enumerate(legs):
         with model.precision.context():
-            here = chain_system(
-                model, cs.screws, leg.columns, None, model.precision, cs.scaled_screws
-            )
+            here = chain_system(model, cs.screws, leg.columns, x, model.precision, cs.scaled_screws)
         gen = here.rank.rank or 0
         samples = []
         for v in regular:
@@ -574,7 +584,7 @@ def _leg_serial(
         span = None
         if here.rank.rank is not None and here.rank.rank < gen:
             span = generic_span([here.matrix, *samples], gen)
-        f = serial_finding(fm, here, gen, leg.names, {"chain": "leg", "leg": i + 1}, None, span)
+        f = serial_finding(fm, here, gen, leg.names, {"chain": "leg", "leg": i + 1}, xf, span)
         if f:
             findings.append(f)
     return findings

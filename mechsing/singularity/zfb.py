@@ -17,6 +17,12 @@ Each is measured against its value at regular configurations of the branch
 (the nearby samples), so what holds everywhere (an idle spin, redundancy)
 is a property, not a singularity.
 
+Every test whose ingredients the file has is run (:func:`tests_run`): with inputs and no
+output, ``impossible-input`` (an input loses its independent rate, as at a toggle of
+the driving joint: rank E N alone); with an output and no inputs, ``impossible-output``
+(rank T N alone).  :func:`tests_not_run` says which were not, and why, in the words
+every output format shows.
+
 Constraint singularity: each leg's twist system T_i and its reciprocal
 (constraint) wrench system W_i; the legs' combined constraint system
 ``W_c = sum W_i`` losing rank below its generic value lets the output move
@@ -43,7 +49,65 @@ from mechsing.numeric import (
 )
 from mechsing.screws import chain_matrix
 
-__all__ = ["IOQuantities", "io_quantities", "leg_constraint_rank", "leg_path", "output_chain"]
+__all__ = [
+    "IO_TESTS",
+    "IOQuantities",
+    "io_quantities",
+    "leg_constraint_rank",
+    "leg_path",
+    "output_chain",
+    "not_run_sentences",
+    "tests_not_run",
+    "tests_run",
+]
+
+#: the input/output tests, in the order every output lists them
+IO_TESTS = ("input", "output", "passive-motion", "impossible-input", "impossible-output")
+#: the tests that need the output (the constraint test and the legs' serial test too)
+_NEED_OUTPUT = ("input", "output", "passive-motion", "impossible-output", "constraint", "serial")
+#: the tests that need inputs
+_NEED_INPUTS = ("input", "output", "passive-motion", "impossible-input")
+
+
+def tests_run(mech: Any) -> tuple[str, ...]:
+    """The input/output tests (:data:`IO_TESTS`) whose ingredients the mechanism has:
+    all five with inputs and an output; ``impossible-input`` with inputs alone (the rank
+    of the inputs on the motion space: where an input loses its independent rate);
+    ``impossible-output`` with an output alone."""
+    has_in, has_out = bool(mech.inputs), mech.output is not None
+    return tuple(
+        t
+        for t in IO_TESTS
+        if (has_in or t not in _NEED_INPUTS) and (has_out or t not in _NEED_OUTPUT)
+    )
+
+
+def tests_not_run(mech: Any) -> tuple[tuple[tuple[str, ...], str], ...]:
+    """The tests a closed chain could not run for want of inputs or an output, with the
+    reason: ((tests, reason), ...), empty when the file has both (or no loop: an open
+    chain's only test is its output chain's rank).  The one place these words live."""
+    if not mech.loops:
+        return ()
+    has_in, has_out = bool(mech.inputs), mech.output is not None
+    if has_in and has_out:
+        return ()
+    if not has_in and not has_out:
+        return (
+            (
+                (*IO_TESTS, "constraint"),
+                "no inputs and no output: the input and output tests were not run",
+            ),
+        )
+    if not has_out:
+        return ((_NEED_OUTPUT, "no output: the output tests were not run"),)
+    return ((_NEED_INPUTS, "no inputs: the input tests were not run"),)
+
+
+def not_run_sentences(mech: Any) -> list[str]:
+    """:func:`tests_not_run` as the sentences every text format shows: ``no output: the
+    output tests were not run (input, output, ...)``."""
+    return [f"{why} ({', '.join(tests)})" for tests, why in tests_not_run(mech)]
+
 
 _FLOAT = Precision("float")
 
@@ -59,20 +123,25 @@ class IOQuantities:
     input_rank: RankDecision  # rank E N
     output_rank: RankDecision  # rank T N
     spaces: dict[str, Any]
+    #: the tests these quantities answer (:func:`tests_run`: all five unless the
+    #: mechanism has no output or no inputs)
+    run: tuple[str, ...] = IO_TESTS
 
     def values(self) -> dict[str, int | None]:
-        """The five dimensions; None where undecided.  K cap ker T rests on the decision
-        of rank T N and K cap ker E on that of rank E N: when those are undecided, so
-        are the motion spaces built on them (their kernel was taken at a guessed rank)."""
+        """The dimensions of the tests run; None where undecided.  K cap ker T rests on
+        the decision of rank T N and K cap ker E on that of rank E N: when those are
+        undecided, so are the motion spaces built on them (their kernel was taken at a
+        guessed rank)."""
         out_ok = self.output_rank.rank is not None
         in_ok = self.input_rank.rank is not None
-        return {
+        every = {
             "input": self.input_motion.rank if out_ok else None,
             "output": self.output_motion.rank if in_ok else None,
             "passive-motion": self.passive_motion if (in_ok and out_ok) else None,
             "impossible-input": self.input_rank.rank,
             "impossible-output": self.output_rank.rank,
         }
+        return {t: every[t] for t in self.run}
 
 
 def output_rows(
@@ -150,7 +219,12 @@ def io_quantities(
     that what vanishes exactly is exactly zero.  ``cs``: the closure system at q whose
     screws ``screws`` are (the output rows are then shared, :func:`output_chain`).
     """
-    if cs is not None and screws is cs.screws and mech.output is not None:
+    run = tests_run(mech)
+    if not run:
+        return None
+    if mech.output is None:
+        T = None
+    elif cs is not None and screws is cs.screws:
         T = output_chain(mech, model, q, cs, mech.output.point is not None)[0]
     else:
         with model.precision.context():
@@ -158,10 +232,14 @@ def io_quantities(
             S = model.current_screws(q, poses) if screws is None else screws
             T = output_rows(mech, model, q, S, poses)
     E = input_rows(mech, model)
-    if T is None or E is None:
-        return None
+    # a missing side enters as no rows: its rank is 0 and only the other side's
+    # test is read (:attr:`IOQuantities.run`)
+    if T is None:
+        T = np.zeros((0, model.n))
+    if E is None:
+        E = np.zeros((0, model.n))
     products = None
-    if kernel is not None and kernel.kernel_coefficients is not None:
+    if T.shape[0] and E.shape[0] and kernel is not None and kernel.kernel_coefficients is not None:
         Z, C = kernel.exact_null_space, kernel.kernel_coefficients
         TZ = field_product(T, Z)
         EZ = field_product(E.astype(int).astype(object), Z)
@@ -169,8 +247,10 @@ def io_quantities(
             with prec.context():
                 products = (prec.asarray(TZ) @ C, prec.asarray(EZ) @ C)
     with prec.context():
-        T = prec.asarray(T)
-        return _io_quantities(T, E, N, model.length_scale, prec, products)
+        T = prec.asarray(T) if T.shape[0] else prec.backend.zeros((0, model.n))
+        q_ = _io_quantities(T, E, N, model.length_scale, prec, products)
+    q_.run = run
+    return q_
 
 
 def _io_quantities(

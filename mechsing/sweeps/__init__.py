@@ -28,6 +28,7 @@ import numpy as np
 from mechsing.errors import UserError, working_on
 from mechsing.model import Mechanism, load
 from mechsing.numeric import Precision, parse_precision
+from mechsing.singularity.zfb import not_run_sentences
 from mechsing.sweeps.engine import Located, RowResult, Sweep, classify_located
 from mechsing.sweeps.loci import loci_of
 from mechsing.sweeps.results import (
@@ -222,6 +223,20 @@ class SweepRun:
                         a.Z = None
                         a.measures = None
 
+    def _drives(self, p: Located) -> bool:
+        """Whether the coordinate that turns back at the fold p is an input or a
+        coordinate of the output's pose (then some test drops rank there: the inputs',
+        or the output's, rank on the motion space); a passive joint may reach its
+        extreme at a regular configuration."""
+        eng = self.engine
+        col = eng.cols[0] if p.edge == "row" else eng.cols[-1]
+        if col >= eng.model.n:  # a coordinate of the output's pose
+            return True
+        inputs = {
+            eng.model.joint(j).columns.start + k for j, k in self.mechanism.input_coordinates()
+        }
+        return col in inputs
+
     def _store(self, row: RowResult) -> None:
         at: Any = slice(None) if not self.grid else row.index
         self.reached[at] = row.reached
@@ -241,8 +256,10 @@ class SweepRun:
     def result(self) -> SweepResult:
         """Classify the located points and return the result."""
         eng = self.engine
-        # how the sweep started (a singular start, rows started from a neighbour) first
-        self.notes[:0] = [n for n in eng.start_notes if n not in self.notes]
+        # how the sweep started (a singular start, rows started from a neighbour) first,
+        # and the tests the file lacks the ingredients of
+        not_run = [f"tests not run: {s}" for s in not_run_sentences(self.mechanism)]
+        self.notes[:0] = [n for n in [*not_run, *eng.start_notes] if n not in self.notes]
         located = sorted(self.located, key=lambda p: (p.edge != "row", p.values[::-1]))
         # the points found along the rows first, then those between rows (a grid)
         chosen = list(located)
@@ -262,10 +279,20 @@ class SweepRun:
                 + ("" if all(moved) else "; the others keep their float values")
             )
         by_id = {id(p): a for p, a in zip(chosen, analysed, strict=True)}
+        moved_by_id = {id(p): m for p, m in zip(chosen, moved, strict=True)}
         model = eng.model
         out = []
         for p in located:
             joints = tuple((k, tuple(v)) for k, v in model.values(p.q).items())
+            unresolved = _unresolved(
+                p, by_id.get(id(p)), moved_by_id.get(id(p), False), self._drives(p)
+            )
+            if unresolved:
+                self.notes.append(
+                    f"the limit of travel at {', '.join(v.name for v in self.variables)} = "
+                    f"{', '.join(v.shown(x) for v, x in zip(self.variables, p.values, strict=True))} "
+                    f"was not resolved: {unresolved}"
+                )
             out.append(
                 LocatedSingularity(
                     p.values,
@@ -276,6 +303,7 @@ class SweepRun:
                     by_id.get(id(p)),
                     p.far_side,
                     p.edge,
+                    unresolved,
                 )
             )
         loci = loci_of(self, out) if self.grid else ()
@@ -296,3 +324,30 @@ class SweepRun:
             self.newton_iterations,
             time.perf_counter() - self.start_time,
         )
+
+
+def _unresolved(p: Any, analysed: Any, moved: bool, drives: bool) -> str | None:
+    """Why a limit of travel the full analysis found regular is not resolved (None for
+    any other point).  At a fold of an input or of a coordinate of the output's pose
+    (``drives``) the closure for the held values loses rank, and so does a test (the
+    inputs', or the output's, rank on the motion space): a regular verdict there means
+    the point was not placed closely enough for the precision that decided it."""
+    if p.kind != "fold" or not drives or analysed is None or analysed.error is not None:
+        return None
+    if analysed.singular is not False:
+        return None
+    kept = [
+        (d.margin.kept, d.test)
+        for d in analysed.decisions
+        if d.rank is not None and d.margin is not None and d.margin.kept is not None
+    ]
+    low = f" (smallest kept singular value {min(kept)[0]:.2g}, {min(kept)[1]})" if kept else ""
+    where = (
+        "placed again at its digits"
+        if moved
+        else "kept its float values (placing it again at the analysis's digits failed)"
+    )
+    return (
+        f"the full analysis at {analysed.precision} found every test at its generic rank{low}; "
+        f"the point {where}, and at a limit of travel some test drops rank"
+    )

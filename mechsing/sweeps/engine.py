@@ -1252,10 +1252,14 @@ def classify_located(
         return relocators[key]
 
     def again_at(p: Located, prec: Precision) -> Any:
-        test = next((t for t in p.tests if t in sweep.tests), None)
-        if p.z is None or test is None:
+        if p.z is None:
             return None
-        return relocator(test, prec).relocate(p.z, test, "fold" if p.kind == "fold" else p.edge)
+        if p.kind == "fold":  # placed by its own conditions, whatever test vanishes there
+            return relocator("fold", prec).relocate(p.z, "fold", "fold")
+        test = next((t for t in p.tests if t in sweep.tests), None)
+        if test is None:
+            return None
+        return relocator(test, prec).relocate(p.z, test, p.edge)
 
     for i, p in enumerate(located):
         # policy: only mp places the points again, at its digits

@@ -230,8 +230,10 @@ class Measures:
                 self.legs.append((np.array(cols), inner, coef))
         present = {
             "closure": bool(mech.loops),
+            # T N needs the output; E N only the inputs (every test whose ingredients
+            # the file has is measured: :func:`mechsing.singularity.zfb.tests_run`)
             "input": self.E is not None and out is not None,
-            "output": self.E is not None and out is not None,
+            "output": self.E is not None,
             "constraint": bool(self.legs),
         }
         self.generic = {
@@ -290,15 +292,20 @@ class Measures:
                 kernel = np.swapaxes(Vt[:, g:, :], 1, 2)  # (N, n, n - g)
                 self._closure_svd = ("svd", U, s, Vt)
             # without loops every joint rate is a motion: N is the identity
-            T, nT = self._output_rows(P, S)
-            TN = T if kernel is None else T @ kernel
-            out["input"] = TN / np.maximum(nT, 1e-300)[:, None, None]
-            out["output"] = (
-                np.broadcast_to(self.E, (N, *self.E.shape)) if kernel is None else self.E @ kernel
-            )
-            if kernel is not None:  # the rows themselves, for the bordered sign test
-                out["input_rows"] = T / np.maximum(nT, 1e-300)[:, None, None]
-                out["output_rows"] = np.broadcast_to(self.E, (N, *self.E.shape))
+            if "input" in self.tests:
+                T, nT = self._output_rows(P, S)
+                TN = T if kernel is None else T @ kernel
+                out["input"] = TN / np.maximum(nT, 1e-300)[:, None, None]
+                if kernel is not None:  # the rows themselves, for the bordered sign test
+                    out["input_rows"] = T / np.maximum(nT, 1e-300)[:, None, None]
+            if "output" in self.tests:
+                out["output"] = (
+                    np.broadcast_to(self.E, (N, *self.E.shape))
+                    if kernel is None
+                    else self.E @ kernel
+                )
+                if kernel is not None:
+                    out["output_rows"] = np.broadcast_to(self.E, (N, *self.E.shape))
         if "constraint" in self.tests and not signed:
             out["constraint"] = self._constraint(Ss)
         return out, kernel
@@ -333,9 +340,10 @@ class Measures:
         rows, computed as :meth:`matrices` computes them (the same numbers)."""
         P, S, Ss = self._screws(Q)
         out = {"closure": self._closure(Ss)}
-        if "input" in self.tests or "output" in self.tests:
+        if "input" in self.tests:
             T, nT = self._output_rows(P, S)
             out["input_rows"] = T / np.maximum(nT, 1e-300)[:, None, None]
+        if "output" in self.tests:
             out["output_rows"] = np.broadcast_to(self.E, (Q.shape[0], *self.E.shape))
         return out
 

@@ -798,6 +798,9 @@ class _Arc:
         self.why: str | None = None
         #: the points of the curve traced by :meth:`to_fold_or`, in order
         self.trail: list[np.ndarray] = []
+        #: the curve's tangent at the fold :meth:`to_fold_or` found, along the way it
+        #: came (the way on past the fold, whatever the step that found it)
+        self.fold_tangent: np.ndarray | None = None
 
     # -- the curve ------------------------------------------------------------------
 
@@ -909,6 +912,7 @@ class _Arc:
         if tau is None:
             return None
         if self._g(tau) <= 0:
+            self.fold_tangent = tau
             return "fold", z
         h = SWEEP_ARC_STEP
         for _ in range(_ARC_BUDGET):
@@ -917,7 +921,7 @@ class _Arc:
                 return None
             zn, tn, h = out
             if self._g(tn) <= 0:
-                zf, _tf = self._turn(z, tau, h)
+                zf, self.fold_tangent = self._turn(z, tau, h)
                 return "fold", zf
             self.trail.append(zn)
             if (zn[self.col] - stop) * self.direction >= 0:
@@ -943,15 +947,22 @@ class _Arc:
         """Past the fold at zf, the curve on the other assembly mode up to its next fold;
         beyond that the swept value moves forward again: the next sample it reaches
         (modulo 2 pi for a revolute angle) and its configuration, with the far fold."""
-        tau = self.tangent(zf)
-        if tau is None:
-            return None
         h = SWEEP_ARC_STEP
         z = zf
-        # orient along the curve away from where the path came from
-        probe = self.step(z, tau, h)
-        if probe is not None and (probe[self.col] - zf[self.col]) * self.direction > 0:
-            tau = -tau
+        if self.fold_tangent is not None:
+            # on along the curve the way it came into the fold (the kernel direction
+            # nearest it where several chains reach their limit there together)
+            tau = self.tangent(zf, self.fold_tangent)
+            if tau is None:
+                return None
+        else:
+            tau = self.tangent(zf)
+            if tau is None:
+                return None
+            # orient along the curve away from where the path came from
+            probe = self.step(z, tau, h)
+            if probe is not None and (probe[self.col] - zf[self.col]) * self.direction > 0:
+                tau = -tau
         passed = False
         for _ in range(_ARC_BUDGET):
             out = self._advance(z, tau, h)

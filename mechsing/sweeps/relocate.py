@@ -11,14 +11,21 @@ analysis classifies a located point at mp:N, the point is found again at N digit
   for the input and output tests the motion space enters by its projector ``N N^T``,
   which has no orientation to choose), each point closed by Newton at N digits with the
   held coordinates given;
-* a **fold** (the swept value's limit of travel): the same with the roles swapped, the
-  passive coordinate that moves most along the fold's direction held and driven, and the
-  swept value solved: the test that vanishes at the fold changes sign there as a function
-  of that coordinate.
+* a **fold** (the swept value's limit of travel): the point where the swept value ``v`` is
+  extremal on the closure's solutions ``F(x, v) = 0``, by its Lagrange conditions
+  ``F = 0``, ``F_x^T lam = 0``, ``F_v . lam = 1`` (Moore and Spence's system with the left
+  null vector): Gauss-Newton at N digits on the unknowns and the multiplier ``lam``
+  (minimum-norm steps), the second derivatives by central differences at N digits.  Float
+  places the swept value of a fold to 1e-16 but its unknowns only to about 1e-8 (the
+  curve is quadratic there); the system needs no test, no coordinate to drive, and stays
+  solvable where several legs reach their limit at once (then ``lam`` is any point of an
+  affine set, along which the minimum-norm step does not move).
 
 Each secant step gains digits superlinearly from float's point; it stops when the step is
-below 10^(5-N) of the variable's scale.  A point whose relocation fails keeps its float
-values (its classification then says what N digits see there).
+below 10^(5-N) of the variable's scale (10^(5-N/2) for the closure's test, whose point is
+a double root known to N/2 digits; a fold: when its Gauss-Newton step is).  A point
+whose relocation fails keeps its float values (its classification then says what N
+digits see there).
 """
 
 from __future__ import annotations
@@ -30,13 +37,21 @@ import numpy as np
 
 from mechsing.kinematics import Closer, KinematicModel
 from mechsing.kinematics.pose import PoseModel
-from mechsing.numeric import POLISH_DIGITS_SPARE, Precision, decide_rank, to_float
+from mechsing.numeric import (
+    POLISH_DIGITS_SPARE,
+    SWEEP_FOLD_KERNEL_RTOL,
+    Precision,
+    decide_rank,
+    to_float,
+)
 from mechsing.screws import chain_matrix
 
 __all__ = ["Relocator"]
 
 #: most secant steps of one relocation (each gains digits superlinearly)
 _SECANT_STEPS = 16
+#: most Gauss-Newton steps of one fold's relocation (each about doubles its digits)
+_FOLD_STEPS = 12
 
 
 class Relocator:
@@ -96,40 +111,112 @@ class Relocator:
 
     def relocate(self, z: np.ndarray, test: str, kind: str) -> np.ndarray | None:
         """The located point ``z`` (float, the sweep's coordinates) again at N digits: its
-        joints (object array), or None when the secant does not converge."""
+        joints (object array), or None when it does not converge.  ``test``: the test
+        whose crossing it is (a fold is placed by its own conditions, whatever vanishes
+        there); ``kind``: ``fold``, or the edge (``row``, ``column``) it was found on."""
         sw = self.sweep
         nb = sw.model.n
-        # the float point's bases and, for a fold, the coordinate that drives it
+        if kind == "fold":
+            return self._fold(z)
+        # the float point's bases
         pm = sw.measures(np.asarray(z[:nb], dtype=float)[None, :])
         if test not in pm.rank:
             return None
         U, V = pm.basis(test, slice(0, 1))
         U0, V0 = U[0], V[0]
         N0 = None if pm.kernel is None or test not in ("input", "output") else pm.kernel[0]
-        if kind == "fold":
-            # the passive coordinate that moves most along the fold is held and driven,
-            # and the row's swept value is solved
-            drive = self._fold_driver(z)
-            if drive is None:
+        drive = sw.cols[0] if kind == "row" else sw.cols[1]
+        return self._secant(z, drive, self.given, test, U0, V0, N0)
+
+    def _fold(self, z: np.ndarray) -> np.ndarray | None:
+        """The fold near the float point z again at N digits (see the module's note): its
+        joints, or None when Gauss-Newton does not converge."""
+        from mechsing.kinematics.newton import mp_least_squares, scaled_system
+
+        sw = self.sweep
+        pb = sw.problem
+        nb = sw.model.n
+        m: Any = self.pose if self.pose is not None else self.model
+        col = sw.cols[0]
+        free = ~np.asarray(pb.given, dtype=bool)
+        free[col] = True
+        fcols = np.flatnonzero(free)
+        iv = int(fcols.tolist().index(col))
+        nf = len(fcols)
+        # the multiplier's start: the shortest combination of the left singular vectors
+        # of the unknowns' Jacobian that vanish at the fold (one per chain at its limit)
+        # with F_v . lam = 1.  Where several chains reach their limit together the
+        # multiplier is any point of an affine set; it is held at this one's weights
+        # (P (lam - lam0) = 0, P across a within those vectors), so that every chain
+        # keeps its share: a multiplier that drifts away from one chain leaves that
+        # chain's limit a double root, which Gauss-Newton only halves towards
+        Jf, _ = scaled_system(pb.cm, np.asarray(z, dtype=float))
+        A0 = np.asarray(Jf, dtype=float)[:, fcols]
+        U, s, _ = np.linalg.svd(A0[:, [i for i in range(nf) if i != iv]])
+        # the vanishing singular values (at least one: this is a fold), and the left
+        # vectors beyond the unknowns' count (rows every configuration satisfies, as a
+        # planar loop's out-of-plane ones: their weight is zero)
+        k = max(int(np.sum(s < SWEEP_FOLD_KERNEL_RTOL * (s[0] if len(s) else 1.0))), 1)
+        Uk = U[:, len(s) - k :]
+        a = Uk.T @ A0[:, iv]
+        if not np.any(a):
+            return None
+        lam0 = Uk @ (a / (a @ a))
+        P = np.linalg.svd(a[None, :])[2][1:] @ Uk.T
+        rhs = np.zeros(nf)
+        rhs[iv] = 1.0
+        with m.precision.context():
+            small = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - mpmath.mp.dps)
+            h = mpmath.mpf(10) ** (-(mpmath.mp.dps // 3))
+            q = m.asarray([repr(float(x)) for x in z])
+            lam = np.array([mpmath.mpf(repr(float(x))) for x in lam0], dtype=object)
+
+            def moved(q: np.ndarray, d: np.ndarray) -> np.ndarray:
+                dd = m.zeros()
+                dd[fcols] = d
+                return m.update(q, m.frame.rates_back(dd))
+
+            def parts(q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                Js, rs = scaled_system(m, q)
+                return np.asarray(Js, dtype=object)[:, fcols], np.asarray(rs, dtype=object)
+
+            Pm = np.array([[mpmath.mpf(repr(float(x))) for x in row] for row in P], dtype=object)
+            Pm = Pm.reshape(P.shape)
+            pin = Pm @ lam
+
+            def G(A: np.ndarray, rs: np.ndarray, lam: np.ndarray) -> np.ndarray:
+                return np.concatenate([rs, A.T @ lam - rhs, Pm @ lam - pin])
+
+            try:
+                for _ in range(_FOLD_STEPS):
+                    A, rs = parts(q)
+                    g = G(A, rs, lam)
+                    # d G / d (free coordinates): the residual's is A; the second
+                    # derivatives by central differences at N digits
+                    Dx = np.full((len(g), nf), mpmath.mpf(0), dtype=object)
+                    for j in range(nf):
+                        e = np.array([mpmath.mpf(0)] * nf, dtype=object)
+                        e[j] = h
+                        Ap, _ = parts(moved(q, e))
+                        Am, _ = parts(moved(q, -e))
+                        Dx[: len(rs), j] = A[:, j]
+                        Dx[len(rs) : len(rs) + nf, j] = ((Ap - Am).T @ lam) / (2 * h)
+                    # d G / d lam: zero for the residual, A^T for the conditions, P
+                    Dl = np.full((len(g), len(lam)), mpmath.mpf(0), dtype=object)
+                    Dl[len(rs) : len(rs) + nf] = A.T
+                    Dl[len(rs) + nf :] = Pm
+                    JJ = np.concatenate([Dx, Dl], axis=1)
+                    step = mp_least_squares(JJ, -g)
+                    q = moved(q, step[:nf])
+                    lam = lam + step[nf:]
+                    if max(abs(x) for x in step[:nf]) <= small:
+                        res = m.residual_norm(m.chord_residuals(q))
+                        if res <= small * m.length_scale:
+                            return q[:nb]
+                        return None
+            except (ArithmeticError, ValueError, np.linalg.LinAlgError):
                 return None
-            given = tuple(sorted((set(self.given) - {sw.cols[0]}) | {drive}))
-        else:
-            drive = sw.cols[0] if kind == "row" else sw.cols[1]
-            given = self.given
-        return self._secant(z, drive, given, test, U0, V0, N0)
-
-    def _fold_driver(self, z: np.ndarray) -> int | None:
-        """At a fold, the unknown coordinate with the largest share of the direction the
-        configuration moves in as the swept value reaches its limit."""
-        from mechsing.kinematics.newton import scaled_system
-
-        pb = self.sweep.problem
-        Js, _ = scaled_system(pb.cm, z)
-        free = ~pb.given
-        _, s, Vt = np.linalg.svd(Js[:, free])
-        x = Vt[-1]
-        cols = np.flatnonzero(free)
-        return int(cols[int(np.argmax(np.abs(x)))])
+        return None
 
     def _secant(
         self,
@@ -147,7 +234,12 @@ class Relocator:
         pose = self.pose
         given = tuple(sorted(set(given) | {drive}))
         with m.precision.context():
-            small = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - mpmath.mp.dps) * scale
+            # a singular point of the closure is a double root of the closure for the
+            # held values: polished at D digits, its configuration (and so the test's
+            # determinant) is known to D/2 only, below which the secant's steps are
+            # noise; that is what it is placed to (the relocator works at 2N + 10 digits)
+            digits = mpmath.mp.dps // 2 if test == "closure" else mpmath.mp.dps
+            small = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - digits) * scale
             target = np.array([mpmath.mpf(repr(float(x))) for x in z], dtype=object)
             q = target.copy()
 

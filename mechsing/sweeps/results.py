@@ -78,7 +78,9 @@ class LocatedSingularity:
     analysis of the point at the sweep's precision (None when it was not classified:
     a grid classifies at most ``max_classified`` points); ``far_side``: a fold met on
     the other assembly mode, past which the path resumed; ``between``: for a grid,
-    ``row`` (found along a row) or ``column`` (between two rows)."""
+    ``row`` (found along a row) or ``column`` (between two rows); ``unresolved``: why a
+    limit of travel the full analysis found regular was not resolved (at a fold of the
+    swept value some test drops rank, so "regular" there is never the answer)."""
 
     values: tuple[float, ...]
     kind: str
@@ -88,6 +90,7 @@ class LocatedSingularity:
     configuration: ConfigurationResult | None = None
     far_side: bool = False
     between: str = "row"
+    unresolved: str | None = None
 
     @property
     def classes(self) -> tuple[str, ...] | None:
@@ -136,6 +139,7 @@ class LocatedSingularity:
             "margin": self.margin,
             "precision": self.precision,
             "joints": {k: list(v) for k, v in self.joints},
+            "unresolved": self.unresolved,
             "configuration": None if self.configuration is None else self.configuration.to_json(),
         }
 
@@ -408,7 +412,12 @@ def _located_line(r: SweepResult, p: LocatedSingularity) -> str:
         return f"{head} (measure {p.ratio:.2g}; not classified: beyond --max-classified)"
     if p.configuration.error:
         return f"{head}: not analysed: {p.configuration.error}"
+    if p.unresolved:
+        return f"{head} -> not resolved: {p.unresolved}"
     classes = ", ".join(p.classes or ()) or "no singularity found by the full analysis"
+    if p.kind == "fold" and not p.classes:
+        # not unresolved: the coordinate that turns back is a passive joint's
+        classes += " (a passive joint at its extreme: the mechanism moves on through it)"
     margin = p.margin or {}
     shown = ""
     if margin.get("dropped") is not None:

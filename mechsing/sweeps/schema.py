@@ -91,6 +91,7 @@ def sweep_schema() -> dict[str, Any]:
                 "type": "object",
                 "additionalProperties": {"type": "array", "items": {"type": "number"}},
             },
+            "unresolved": {"type": ["string", "null"]},
             "configuration": {"type": ["object", "null"]},
         },
         "required": [
