@@ -21,6 +21,7 @@ LAYERS: list[set[str]] = [
     {"lie"},
     {"subgroups"},
     {"model", "formats"},
+    {"reader"},
     {"kinematics"},
     {"screws"},
     {"singularity"},

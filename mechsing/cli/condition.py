@@ -29,12 +29,19 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="parameters of the file to keep as symbols (comma-separated)",
     )
     p.add_argument("--format", choices=("text", "json", "latex"), default="text")
+    from mechsing.cli import options
+
+    options.add_time_limit_option(p)
+    options.add_verbose_option(p)
 
 
 def run(args: argparse.Namespace) -> int:
+    from mechsing.cli import load_mechanism
     from mechsing.conditions import condition
 
-    result = condition(args.file, config=args.config, symbolic=args.symbolic)
+    names = [s.strip() for s in args.symbolic.split(",") if s.strip()]
+    mech = load_mechanism(args.file, args.verbose, symbolic=names)
+    result = condition(mech, config=args.config, symbolic=names, time_limit=args.time_limit)
     if args.format == "json":
         sys.stdout.write(json.dumps(result.to_json(), indent=2) + "\n")
     elif args.format == "latex":

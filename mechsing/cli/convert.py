@@ -29,29 +29,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import UserError, load_mechanism
     from mechsing.errors import working_on
-    from mechsing.formats import xml_format, xml_to_yaml
-    from mechsing.formats.xmlsafe import MAX_XML_BYTES
+    from mechsing.reader import read_source
 
     with working_on(file=args.file):
-        path = Path(args.file)
-        try:
-            if path.stat().st_size > MAX_XML_BYTES:
-                raise UserError(
-                    f"{args.file}: the file has more than {MAX_XML_BYTES // 2**20} MB, more "
-                    "than mechsing reads; remove the meshes or other large parts from it"
-                )
-            text = path.read_bytes().decode("utf-8-sig")
-        except OSError as exc:
-            raise UserError(f"{args.file}: cannot read the file ({exc.strerror})") from None
-        except UnicodeDecodeError:
-            raise UserError(f"{args.file}: the file is not UTF-8 text; save it as UTF-8") from None
-        if xml_format(text) is None:
+        source = read_source(args.file)
+        if source.kind == "yaml":
             raise UserError(
                 f"{args.file}: not a URDF or MJCF description (no XML root element <robot> "
                 "or <mujoco>); a mechsing file needs no conversion"
             )
-        yaml_text = xml_to_yaml(text, args.file)
-        load_mechanism(args.file)  # the converted file must load: the same checks as analyze
+        yaml_text = source.yaml
+        load_mechanism(source)  # the converted file must load: the same checks as analyze
         if args.output:
             try:
                 Path(args.output).write_text(yaml_text, encoding="utf-8")

@@ -53,9 +53,8 @@ from mechsing.conditions.symbolic import (
     reference_twist,
     to_trig,
 )
-from mechsing.errors import UserError
+from mechsing.errors import ConfigurationError, UserError
 from mechsing.model import Mechanism
-from mechsing.model.loader import load
 from mechsing.model.parameters import ParameterSymbol
 from mechsing.numeric import (
     CONDITION_GENERIC_RANK_RTOL,
@@ -64,6 +63,7 @@ from mechsing.numeric import (
     CONDITION_ROOT_RTOL,
     CONDITION_VANISH_RTOL,
 )
+from mechsing.reader import read_mechanism
 from mechsing.timelimit import TimeLimit, TimeLimitExceeded
 
 __all__ = ["ELIMINATION_SECONDS", "MAX_MINORS", "condition"]
@@ -75,17 +75,21 @@ MAX_MINORS = 84
 
 
 def condition(
-    source: str | Path,
+    source: str | Path | Mechanism,
     config: str | None = None,
     symbolic: str | list[str] | tuple[str, ...] = (),
+    time_limit: float | None = None,
 ) -> ConditionResult:
     """The singularity conditions of a mechanism file as factored formulas.
 
     Parameters
     ----------
-    source : path of the mechanism file
+    source : path of the mechanism file (any format :func:`mechsing.load` reads), or a
+        mechanism read with ``symbolic`` kept as symbols
     config : a configuration of the file: each factor is evaluated there
     symbolic : parameters of the file to keep as symbols (a list, or ``"a2,a3"``)
+    time_limit : the most seconds the derivation may take (None: no limit); stopped
+        there, a ConfigurationError (exit status 3) that says so
 
     Raises
     ------
@@ -96,7 +100,20 @@ def condition(
     """
     names = [s.strip() for s in symbolic.split(",")] if isinstance(symbolic, str) else symbolic
     names = [s for s in names if s]
-    mech = load(source, symbolic=names)
+    mech = _symbolic_mechanism(source, names)
+    try:
+        with TimeLimit(time_limit):
+            return _condition(mech, config, names)
+    except TimeLimitExceeded:
+        raise ConfigurationError(
+            f"{mech.path or mech.name}: the conditions were stopped by the time limit after "
+            f"{time_limit:g} s; allow more time with --time-limit S",
+            config or "reference",
+        ) from None
+
+
+def _condition(mech: Mechanism, config: str | None, names: list[str]) -> ConditionResult:
+    source = mech.path or mech.name
     if config is not None and config not in mech.configurations:
         raise UserError(
             f"{source}: no configuration named {config!r}; the file has: "
@@ -126,9 +143,10 @@ def condition(
     conds = [_printable(c, printable) for c in conds]
     values: dict[str, float] = {}
     if config is not None:
-        values = _configuration_values(source, config, mech, method)
+        numeric = read_mechanism(mech.path) if names and mech.path else mech
+        values = _configuration_values(numeric, config, method)
         conds = [_evaluate(c, values, params) for c in conds]
-    fixed = {k: v for k, v in _file_parameters(source).items() if k not in names}
+    fixed = {k: v for k, v in mech.parameters.items() if k not in names}
     return ConditionResult(
         mechanism=mech.name,
         method=method,
@@ -160,18 +178,21 @@ def _parameters(mech: Mechanism) -> list[Any]:
     return sorted(found, key=lambda s: s.name)
 
 
-def _file_parameters(source: str | Path) -> dict[str, Any]:
-    from mechsing.model.yamlnodes import YMap, YScalar, read_yaml_text
-
-    doc = read_yaml_text(Path(source).read_text(encoding="utf-8-sig"))
-    out: dict[str, Any] = {}
-    if isinstance(doc, YMap) and isinstance(doc.get("parameters"), YMap):
-        from mechsing.model.expressions import parse_number
-
-        for k, v in doc.get("parameters").items:  # type: ignore[union-attr]
-            if isinstance(v, YScalar):
-                out[k.text.strip()] = parse_number(v.text, out)
-    return out
+def _symbolic_mechanism(source: str | Path | Mechanism, names: list[str]) -> Mechanism:
+    """The mechanism with the parameters ``names`` kept as symbols: read from the file,
+    or ``source`` itself when it was read so."""
+    if not isinstance(source, Mechanism):
+        return read_mechanism(source, symbolic=names)
+    kept = {k for k, v in source.parameters.items() if isinstance(v, ParameterSymbol)}
+    if kept == set(names):
+        return source
+    if source.path is None or not Path(source.path).is_file():
+        raise UserError(
+            f"{source.name}: the mechanism keeps {', '.join(sorted(kept)) or 'no parameter'} "
+            f"as symbols, not {', '.join(names) or 'none'}; read it with "
+            "mechsing.load(path, symbolic=...) or pass its path"
+        )
+    return read_mechanism(source.path, symbolic=names)
 
 
 def _printable(c: Condition, printable: dict[Any, Any]) -> Condition:
@@ -976,12 +997,10 @@ def _parallel(
 # ---------------------------------------------------------------------------
 
 
-def _configuration_values(
-    source: str | Path, config: str, mech: Mechanism, method: str
-) -> dict[str, float]:
+def _configuration_values(numeric: Mechanism, config: str, method: str) -> dict[str, float]:
+    """The joint (or pose) variables of a configuration of ``numeric`` (no symbols)."""
     from mechsing.kinematics import solve_configuration
 
-    numeric = load(source)
     model, closed = solve_configuration(numeric, config, "float")
     vals = {k: float(v[0]) for k, v in model.values(closed.q).items() if k in numeric.joint_names}
     if method.startswith("parallel"):

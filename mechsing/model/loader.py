@@ -36,7 +36,7 @@ from mechsing.model.mechanism import (
     OutputPose,
     Units,
 )
-from mechsing.model.parameters import read_parameters
+from mechsing.model.parameters import check_names, read_parameters
 from mechsing.model.yamlnodes import (
     MAX_FILE_BYTES,
     YAMLReadError,
@@ -57,6 +57,7 @@ __all__ = [
     "TOP_LEVEL_KEYS",
     "load",
     "loads",
+    "read_text",
 ]
 
 #: exact factors to metres
@@ -291,7 +292,8 @@ def _show(vec: tuple[Any, ...]) -> str:
 
 
 def load(path: str | Path, symbolic: Collection[str] = ()) -> Mechanism:
-    """Read and validate a mechanism file (YAML or JSON).
+    """Read and validate a mechanism file in mechsing YAML or JSON (any format, URDF and
+    MJCF too: :func:`mechsing.reader.read_mechanism`, which every command uses).
 
     Raises
     ------
@@ -302,6 +304,12 @@ def load(path: str | Path, symbolic: Collection[str] = ()) -> Mechanism:
     ``symbolic`` names parameters of the file to keep as symbols
     (:class:`~mechsing.model.parameters.ParameterSymbol`), for symbolic conditions.
     """
+    return loads(read_text(path), path=str(path), default_name=Path(path).stem, symbolic=symbolic)
+
+
+def read_text(path: str | Path, largest: int = MAX_FILE_BYTES) -> str:
+    """The text of a file of at most ``largest`` bytes (MechanismError when it cannot be
+    read, is a directory, is larger, or is not UTF-8 text)."""
     p = Path(path)
     shown = str(path)
     try:
@@ -312,9 +320,9 @@ def load(path: str | Path, symbolic: Collection[str] = ()) -> Mechanism:
         ) from None
     if p.is_dir():
         raise MechanismError("is a directory, not a mechanism file", path=shown)
-    if size > _largest_file():
+    if size > largest:
         raise MechanismError(
-            f"the file has {size} bytes, more than the {_largest_file()} a mechanism file "
+            f"the file has {size} bytes, more than the {largest} a mechanism file "
             "(or a URDF or MJCF description) may have",
             path=shown,
         )
@@ -323,12 +331,11 @@ def load(path: str | Path, symbolic: Collection[str] = ()) -> Mechanism:
     except OSError as exc:
         raise MechanismError(f"cannot read the file ({exc.strerror})", path=shown) from None
     try:
-        text = raw.decode("utf-8-sig")
+        return raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         raise MechanismError(
             f"the file is not UTF-8 text (byte {exc.start}); save it as UTF-8", path=shown
         ) from None
-    return loads(text, path=shown, default_name=p.stem, symbolic=symbolic)
 
 
 def loads(
@@ -341,7 +348,13 @@ def loads(
     r = _Reader(path if path is not None else "<text>")
     if "\x00" in text:
         raise r.error(None, None, "the file contains NUL bytes: it is not a text file")
-    text = _from_other_format(text, r.path)
+    if text.lstrip().startswith("<"):
+        raise r.error(
+            None,
+            None,
+            "an XML text: mechsing.model reads mechsing YAML and JSON; read URDF and MJCF "
+            "with mechsing.load (mechsing.reader.read_mechanism), as the commands do",
+        )
     try:
         doc = read_yaml_text(text)
     except YAMLReadError as exc:
@@ -349,20 +362,6 @@ def loads(
     builder = _Builder(r, default_name)
     builder.symbolic = tuple(symbolic)
     return builder.build(doc)
-
-
-def _largest_file() -> int:
-    """The largest file :func:`load` reads: a YAML text is bounded again when it is read."""
-    from mechsing.formats.xmlsafe import MAX_XML_BYTES
-
-    return max(MAX_FILE_BYTES, MAX_XML_BYTES)
-
-
-def _from_other_format(text: str, path: str) -> str:
-    """A URDF or MJCF text (recognised by its root element) becomes mechsing YAML."""
-    from mechsing.formats import xml_format, xml_to_yaml
-
-    return xml_to_yaml(text, path) if xml_format(text) is not None else text
 
 
 def _expand_dh(top: YMap, r: _Reader) -> YMap:
@@ -428,7 +427,12 @@ class _Builder:
 
     def build(self, doc: YValue) -> Mechanism:
         r = self.r
-        top = _expand_dh(r.mapping(doc, None, "the file"), r)
+        top = r.mapping(doc, None, "the file")
+        # parameters first: a dh table's rows may use them
+        r.parameters = read_parameters(r, top, self.symbolic)
+        if top.get("dh") is not None:
+            top = _expand_dh(top, r)
+            check_names(r, top)
         r.keys(
             top,
             None,
@@ -441,7 +445,6 @@ class _Builder:
         if top.get("mechanism") is not None:
             name = r.name(top.get("mechanism"), "mechanism", "the mechanism name")
         self.units(top.get("units"))
-        r.parameters = read_parameters(r, top, self.symbolic)
         self.scan_scale(top.get("joints"))
         bodies = self.bodies(top.get("bodies"))
         ground = self.ground(top.get("ground"), bodies, top)
@@ -492,6 +495,7 @@ class _Builder:
             graph=graph,
             units=r.units,
             limits=_limits(top.get("limits"), jmap, r),
+            parameters=dict(r.parameters),
         )
 
     # -- units --------------------------------------------------------------

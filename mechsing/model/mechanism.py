@@ -261,6 +261,10 @@ class Mechanism:
         The file's units (values here are already in SI).
     limits : dict name -> tuple of (lower, upper)
         The file's ``limits`` (per joint coordinate; SI units and radians).
+    parameters : dict name -> exact value
+        The file's named ``parameters`` in the order written (pure numbers, the file's
+        units not applied); those kept symbolic are
+        :class:`~mechsing.model.parameters.ParameterSymbol`.
     """
 
     name: str
@@ -278,6 +282,8 @@ class Mechanism:
     warnings: tuple[str, ...] = ()
     #: joint limits: joint name -> ((lower, upper), ...) per coordinate, SI units and radians
     limits: Mapping[str, tuple[tuple[float, float], ...]] = field(default_factory=dict)
+    #: the file's named parameters: name -> exact value (or ParameterSymbol), as written
+    parameters: Mapping[str, Any] = field(default_factory=dict)
 
     def joint(self, name: str) -> Joint:
         """The joint called ``name`` (KeyError if none)."""

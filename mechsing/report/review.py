@@ -28,8 +28,9 @@ from mechsing.analysis.contract import subgroup_params
 from mechsing.analysis.describe import OutputMotion
 from mechsing.analysis.html import VERDICT_HEADERS, class_words, largest_drop, verdict_row
 from mechsing.analysis.results import Mobility
-from mechsing.model import Mechanism, load
+from mechsing.model import Mechanism
 from mechsing.numeric import Precision, parse_precision, to_float
+from mechsing.reader import read_mechanism
 from mechsing.report import document as doc
 from mechsing.report.figures import graph_figure, grid_figure, path_figure, svg
 from mechsing.report.render import _margin, explain
@@ -42,6 +43,7 @@ from mechsing.singularity.findings import (
 from mechsing.subgroups import Subgroup, load_catalog
 from mechsing.sweeps import SweepResult, sweep
 from mechsing.sweeps.results import located_rows
+from mechsing.sweeps.spec import Vary
 
 __all__ = ["Report", "report"]
 
@@ -86,28 +88,31 @@ class Report:
 def report(
     mechanism_or_path: Mechanism | str | Path,
     configs: Sequence[str] | None = None,
-    vary: Sequence[str] | str | None = None,
+    vary: Sequence[str | Vary] | str | Vary | None = None,
     precision: Precision | str = "auto",
     from_config: str | None = None,
     *,
     command: str | None = None,
+    time_limit: float | None = None,
 ) -> Report:
     """A design review of a mechanism (or a file): its configurations (``configs``,
     default all) analysed at ``precision`` as ``mechsing.analyze`` does, and with
     ``vary`` (one ``"NAME=START:STOP:STEP"`` for a path, two for a grid, in the file's
     units) a sweep from ``from_config`` (default ``reference``).  ``command``: how the
-    report was asked for, shown at its end (default: this call)."""
+    report was asked for, shown at its end (default: this call).  ``time_limit``: the most
+    seconds one configuration (or located point) may take, as for ``mechsing.analyze``."""
     t0 = time.perf_counter()
     mech = (
         mechanism_or_path
         if isinstance(mechanism_or_path, Mechanism)
-        else load(str(mechanism_or_path))
+        else read_mechanism(mechanism_or_path)
     )
     prec = parse_precision(precision) if isinstance(precision, str) else precision
-    result = analyze(mech, list(configs) if configs else None, prec)
+    result = analyze(mech, list(configs) if configs else None, prec, time_limit=time_limit)
     swept = None
     if vary:
-        swept = sweep(mech, [vary] if isinstance(vary, str) else list(vary), from_config, prec)
+        varies = [vary] if isinstance(vary, str | Vary) else list(vary)
+        swept = sweep(mech, varies, from_config, prec, time_limit=time_limit)
     if command is None:
         args = [repr(mech.path or mech.name)]
         if configs:

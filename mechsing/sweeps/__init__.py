@@ -26,8 +26,9 @@ from typing import Any
 import numpy as np
 
 from mechsing.errors import UserError, working_on
-from mechsing.model import Mechanism, load
+from mechsing.model import Mechanism
 from mechsing.numeric import Precision, parse_precision
+from mechsing.reader import read_mechanism
 from mechsing.sweeps.engine import Located, RowResult, Sweep, classify_located
 from mechsing.sweeps.loci import loci_of
 from mechsing.sweeps.results import (
@@ -36,7 +37,8 @@ from mechsing.sweeps.results import (
     SweepResult,
     SweptVariable,
 )
-from mechsing.sweeps.spec import Vary, resolve, with_limits
+from mechsing.sweeps.spec import Vary, resolve, sweep_precision, with_limits
+from mechsing.timelimit import check_time_limit
 
 __all__ = [
     "LocatedSingularity",
@@ -63,6 +65,7 @@ def sweep(
     workers: int | None = None,
     scheduler: str | None = None,
     max_classified: int = MAX_CLASSIFIED,
+    time_limit: float | None = None,
 ) -> SweepResult:
     """Sweep a mechanism (or a file) over one variable (a path) or two (a grid).
 
@@ -77,8 +80,17 @@ def sweep(
         ``workers`` processes, or the scheduler at that address); the result is the
         serial one
     max_classified : most located points of a grid classified by the full analysis
+    time_limit : the most seconds the full analysis of one located point may take (None:
+        no limit); a point stopped there has an ``error`` entry that says so
     """
-    run = SweepRun(mechanism, vary, from_config, precision, max_classified=max_classified)
+    run = SweepRun(
+        mechanism,
+        vary,
+        from_config,
+        precision,
+        max_classified=max_classified,
+        time_limit=time_limit,
+    )
     for _ in run.rows(progress, workers=workers, scheduler=scheduler):
         pass
     return run.result()
@@ -96,16 +108,17 @@ class SweepRun:
         from_config: str | None = None,
         precision: Precision | str = "auto",
         max_classified: int = MAX_CLASSIFIED,
+        time_limit: float | None = None,
     ) -> None:
         self.start_time = time.perf_counter()
-        mech = mechanism if isinstance(mechanism, Mechanism) else load(str(mechanism))
+        if time_limit is not None:
+            check_time_limit(time_limit)
+        self.time_limit = time_limit
+        self._result: SweepResult | None = None
+        mech = mechanism if isinstance(mechanism, Mechanism) else read_mechanism(mechanism)
         self.mechanism = mech
         prec = parse_precision(precision) if isinstance(precision, str) else precision
-        if prec.mode == "exact":  # policy: exact mode takes exact data only
-            raise UserError(
-                "a sweep locates singularities numerically, so exact precision cannot classify "
-                "them (their values are not exact data); use --precision auto (the default) or mp:N"
-            )
+        sweep_precision(prec)  # policy: exact mode takes exact data only
         self.prec = prec
         self.precision = str(prec)
         if isinstance(vary, str | Vary):  # one variable given alone
@@ -222,7 +235,13 @@ class SweepRun:
             self.notes.append(f"{what}{s}")
 
     def result(self) -> SweepResult:
-        """Classify the located points and return the result."""
+        """Classify the located points and return the result (once: later calls return
+        the same result)."""
+        if self._result is None:
+            self._result = self._classified()
+        return self._result
+
+    def _classified(self) -> SweepResult:
         eng = self.engine
         # how the sweep started (a singular start, rows started from a neighbour) first
         self.notes[:0] = [n for n in eng.start_notes if n not in self.notes]
@@ -237,7 +256,7 @@ class SweepRun:
                 f"{len(chosen)} of them, spread over the grid (max_classified)"
             )
         with working_on(file=self.mechanism.path or self.mechanism.name):
-            analysed, moved = classify_located(eng, chosen, self.prec)
+            analysed, moved = classify_located(eng, chosen, self.prec, self.time_limit)
         if self.prec.mode == "mp" and chosen or self.prec.mode == "auto" and any(moved):
             self.notes.append(
                 f"{sum(moved)} of the {len(chosen)} classified points were located again at "

@@ -422,9 +422,7 @@ class Sweep:
         K = len(values)
         begun = [self.start_of(col, values, z) for _, z in starts]
         # the first node of each direction of each row: one batched Newton
-        firsts = first_nodes_of(
-            pb, [(zk, [values[k0:], values[k0::-1]]) for k0, zk in begun], col
-        )
+        firsts = first_nodes_of(pb, [(zk, [values[k0:], values[k0::-1]]) for k0, zk in begun], col)
         # both directions of every row, node by node in lockstep
         flat = follow_together(
             pb,
@@ -435,9 +433,7 @@ class Sweep:
                 for v, f in ((values[k0:], first[0]), (values[k0::-1], first[1]))
             ],
         )
-        traces: list[tuple[PathTrace, PathTrace]] = list(
-            zip(flat[0::2], flat[1::2], strict=True)
-        )
+        traces: list[tuple[PathTrace, PathTrace]] = list(zip(flat[0::2], flat[1::2], strict=True))
         # the samples between the nodes of every row's two directions: one batched Newton
         close_segments(
             pb,
@@ -1019,7 +1015,9 @@ class Sweep:
 
     # ------------------------------------------------------------------ columns of a grid
 
-    def between_many(self, pairs: list[tuple[RowResult, RowResult]], col: int) -> list[list[Located]]:
+    def between_many(
+        self, pairs: list[tuple[RowResult, RowResult]], col: int
+    ) -> list[list[Located]]:
         """The sign changes of each test between neighbouring rows of a grid, for several
         pairs of rows (ra, rb) at the same samples of the row variable: refined along the
         column, every pair's together (each bracket on its own, as for one pair)."""
@@ -1228,11 +1226,11 @@ def _merge(located: list[Located], sw: Sweep) -> list[Located]:
 
 
 def classify_located(
-    sweep: Sweep, located: list[Located], precision: Precision
+    sweep: Sweep, located: list[Located], precision: Precision, time_limit: float | None = None
 ) -> tuple[list[Any], list[bool]]:
-    """The full analysis of each located point at the sweep's precision; at mp:N each
-    point is first found again at N digits (:mod:`.relocate`).  Also says, per point,
-    whether it was relocated."""
+    """The full analysis of each located point at the sweep's precision, each within
+    ``time_limit`` seconds (None: no limit); at mp:N each point is first found again at N
+    digits (:mod:`.relocate`).  Also says, per point, whether it was relocated."""
     if not located:
         return [], []
     points: dict[str, Any] = {}
@@ -1262,7 +1260,7 @@ def classify_located(
         again = again_at(p, precision) if precision.mode == "mp" else None
         moved.append(again is not None)
         points[f"located-{i + 1}"] = p.q if again is None else again
-    results = analyze_found(sweep.mech, points, precision)
+    results = analyze_found(sweep.mech, points, precision, time_limit)
     if precision.mode == "auto":
         # auto re-decided some points at mp:50 (an undecided float rank): at 50 digits the
         # float point is a regular neighbour of the singular one, so it is found again there
@@ -1272,7 +1270,7 @@ def classify_located(
                 continue
             again = again_at(p, deep)
             if again is not None:
-                res2 = analyze_found(sweep.mech, {f"located-{i + 1}": again}, deep)[0]
+                res2 = analyze_found(sweep.mech, {f"located-{i + 1}": again}, deep, time_limit)[0]
                 results[i] = replace(res2, escalated_for=res.escalated_for)
                 moved[i] = True
     return results, moved

@@ -23,8 +23,9 @@ import numpy as np
 from mechsing.errors import UserError
 from mechsing.kinematics.pose import POSE_COORDINATES
 from mechsing.model import Mechanism
+from mechsing.numeric import Precision
 
-__all__ = ["MAX_SAMPLES", "Variable", "Vary", "resolve"]
+__all__ = ["MAX_SAMPLES", "Variable", "Vary", "check_varies", "resolve", "sweep_precision"]
 
 #: most samples of one swept variable, and of a whole grid
 MAX_SAMPLES = 10_000_000
@@ -114,6 +115,37 @@ class Variable:
         return f"{si / self.factor:.10g} {self.file_unit}"
 
 
+def check_varies(texts: list[str], what: str = "a sweep") -> list[Vary]:
+    """The ``--vary`` values of a command read and checked before the file is read: one
+    or two, each range's own errors (STEP <= 0, not finite); a joint given without a
+    range is checked once its limits are read (:func:`with_limits`).  ``what``: what
+    sweeps in the command ("a sweep", "a report"), for the message."""
+    _one_or_two(len(texts), what)
+    varies = [Vary.parse(text) for text in texts]
+    for v in varies:
+        if v.ranged:
+            v.count()
+    return varies
+
+
+def _one_or_two(n: int, what: str) -> None:
+    if n > 2:
+        raise UserError(
+            f"--vary is given {n} times: {what} varies one variable (a path) or two "
+            "(a grid); give --vary once or twice"
+        )
+
+
+def sweep_precision(prec: Precision) -> None:
+    """The precision policy of a sweep: its located points are float data, so exact mode
+    cannot classify them (UserError)."""
+    if prec.mode == "exact":
+        raise UserError(
+            "--precision exact: a sweep locates its singularities numerically, so their "
+            "values are not exact data; use --precision auto (the default) or mp:N"
+        )
+
+
 def with_limits(mech: Mechanism, v: Vary) -> Vary:
     """A joint given without a range (``--vary J2``) is swept over its limits (the file's
     ``limits``) in :data:`LIMIT_STEPS` steps; exit 2 when the joint has no limits."""
@@ -147,8 +179,7 @@ def resolve(mech: Mechanism, varies: list[Vary]) -> list[Variable]:
         raise UserError(
             "a sweep needs --vary NAME=START:STOP:STEP (one for a path, two for a grid)"
         )
-    if len(varies) > 2:
-        raise UserError(f"a sweep varies one variable (a path) or two (a grid), not {len(varies)}")
+    _one_or_two(len(varies), "a sweep")
     names = [v.name for v in varies]
     if len(set(names)) != len(names):
         raise UserError(f"--vary {names[0]} is given twice")
