@@ -16,7 +16,7 @@ import sympy
 
 import mechsing
 from mechsing.model import MechanismError, loads
-from tests.cli import run_cli
+from tests.cli import run_cli, run_cli_subprocess
 from tests.mechanisms import ROOT
 
 EXAMPLES = ROOT / "examples"
@@ -180,3 +180,254 @@ def test_a_parameter_may_not_take_a_name_the_dh_table_gives(tmp_path: Path) -> N
     rc, out, err = run_cli(["analyze", str(path)])
     assert rc == 2 and out == ""
     assert "parameter 'J2'" in err and "clashes with the joint 'J2'" in err
+
+
+# --------------------------------------------------------------------------- item 5 (of 27)
+
+#: two hinged links; the equality element is put in EQUALITY
+MJCF = """\
+<mujoco model="m">
+  <worldbody>
+    <body name="a"><joint name="J1" type="hinge" axis="0 0 1"/>
+      <site name="sa" pos="0.5 0 0"/>
+      <body name="b" pos="1 0 0"><joint name="J2" type="hinge" axis="0 0 1"/>
+        <site name="sb" pos="1 0 0"/>
+      </body>
+    </body>
+    <site name="sw" pos="2 0 0"/>
+  </worldbody>
+  <equality>
+    {equality}
+  </equality>
+</mujoco>
+"""
+
+
+@pytest.mark.parametrize(
+    ("equality", "problem"),
+    [
+        ('<connect body1="b" body2="world"/>', "lacks 'anchor'"),
+        ('<connect anchor="1 0 0" body2="world"/>', "lacks 'body1'"),
+        ('<connect site1="sb"/>', "lacks 'site2'"),
+        ('<connect body1="b" anchor="1 0 0" site1="sb" site2="sw"/>', "mixes"),
+        ("<connect/>", "gives none of body1+anchor or site1+site2"),
+        ('<weld body2="b"/>', "gives none of body1 or site1+site2"),
+    ],
+)
+def test_mujoco_equality_needs_the_attributes_its_reference_requires(
+    tmp_path: Path, equality: str, problem: str
+) -> None:
+    """MuJoCo's XML reference: a connect is body1 with anchor (in body1's frame) or site1
+    with site2; a weld is body1 or site1 with site2.  A connect without anchor used to put
+    the S joint at body1's origin, silently."""
+    path = _write(tmp_path, "m.xml", MJCF.format(equality=equality))
+    rc, out, err = run_cli(["analyze", str(path)])
+    assert rc == 2 and out == "", err
+    element = equality.split()[0].rstrip("/>")
+    assert f"{path}:12: {element}>" in err and problem in err, err
+
+
+def test_a_connect_by_sites_is_the_connect_by_body_and_anchor(tmp_path: Path) -> None:
+    """site1 + site2 and body1 + anchor at the same point give the same loop (the anchor is
+    site sb's position in b's frame)."""
+    by_sites = _write(tmp_path, "s.xml", MJCF.format(equality='<connect site1="sb" site2="sw"/>'))
+    by_body = _write(
+        tmp_path, "b.xml", MJCF.format(equality='<connect body1="b" body2="world" anchor="1 0 0"/>')
+    )
+    a, b = mechsing.load(by_sites), mechsing.load(by_body)
+    assert [j.params for j in a.joints] == [j.params for j in b.joints]
+
+
+@pytest.mark.parametrize(
+    ("change", "problem"),
+    [
+        (('<axis xyz="0 0 1"/>', "<axis/>"), "<axis> lacks 'xyz'"),
+        (('<robot name="arm">', "<robot>"), "<robot> lacks 'name'"),
+        (('type="revolute"', ""), "unknown joint type None"),
+        (('<child link="b"/>', ""), 'needs <child link="..."/>'),
+    ],
+)
+def test_urdf_elements_need_the_attributes_the_specification_requires(
+    tmp_path: Path, change: tuple[str, str], problem: str
+) -> None:
+    """The URDF specification (wiki.ros.org/urdf/XML): a robot and a joint have a name, a
+    joint a type, a parent and a child link; an <axis> element has its xyz."""
+    text = (
+        '<robot name="arm"><link name="a"/><link name="b"/>\n'
+        '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/>'
+        '<axis xyz="0 0 1"/></joint></robot>\n'
+    )
+    path = _write(tmp_path, "arm.urdf", text.replace(*change))
+    rc, out, err = run_cli(["analyze", str(path)])
+    assert rc == 2 and out == "", err
+    assert str(path) in err and problem in err, err
+
+
+# --------------------------------------------------------------------------- item 11, 28.7
+
+COMMANDS_READING = ("analyze", "solve", "sweep", "report", "condition")
+
+
+def _option_help(command: str, option: str) -> str:
+    from mechsing.cli import build_parser
+
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.dest == "command").choices[command]  # type: ignore[attr-defined]
+    return next(a.help for a in sub._actions if option in a.option_strings)
+
+
+@pytest.mark.parametrize("option", ["--time-limit", "--precision", "-v", "--set"])
+def test_shared_options_have_one_declaration(option: str) -> None:
+    """--time-limit, -v and --set say the same on every command that reads a mechanism
+    (declared once, in cli/options.py); --precision names the modes each command takes."""
+    helps = {
+        c: _option_help(c, option)
+        for c in COMMANDS_READING
+        if c != "condition" or option in ("--time-limit", "-v")
+    }
+    if option == "--precision":
+        assert all("mp:N" in h for h in helps.values()), helps
+    else:
+        assert len(set(helps.values())) == 1, helps
+
+
+@pytest.mark.parametrize(
+    "value", ["1e308", "1e-6", "0", "-5", "inf", "nan", "1_000", "３０", "abc"]
+)
+@pytest.mark.parametrize("command", COMMANDS_READING)
+def test_a_time_limit_out_of_range_is_refused(command: str, value: str) -> None:
+    """The accepted range is 0.01 s to 1e6 s (1e308 overflowed the timer: exit 4; 1e-6 killed
+    the process with SIGALRM, exit 142); ASCII decimal numbers only."""
+    argv = [command, str(EXAMPLES / "fourbar.yaml"), "--time-limit", value]
+    argv += {"solve": ["--config", "reference"], "sweep": ["--vary", "A=0:10:1"]}.get(command, [])
+    with pytest.raises(SystemExit) as exc:
+        run_cli(argv)
+    assert exc.value.code == 2
+
+
+def test_a_stopped_solve_is_exit_3_not_a_killed_process() -> None:
+    """`solve --precision mp:N --time-limit S` stops with exit 3 and says so (as the user
+    runs it: a process of its own, where a stray SIGALRM would kill it)."""
+    rc, out, err = run_cli_subprocess(
+        [
+            "solve",
+            EXAMPLES / "bricard.yaml",
+            "--config",
+            "reference",
+            "--precision",
+            "mp:3000",
+            "--time-limit",
+            "0.01",
+        ]
+    )
+    assert rc == 3, (rc, err)
+    assert "stopped by the time limit after 0.01 s" in err and out == ""
+
+
+def test_a_short_time_limit_stops_exact_analysis_with_exit_3() -> None:
+    """Stopped while preparing the exact geometry or while analysing a configuration: exit
+    3 (not analysed) with the reason, never a process killed by its alarm."""
+    rc, _out, err = run_cli_subprocess(
+        ["analyze", EXAMPLES / "bricard.yaml", "--precision", "exact", "--time-limit", "0.01"]
+    )
+    assert rc == 3, (rc, err)
+    assert "within 0.01 s" in err or "stopped after 0.01 s" in err, err
+
+
+def test_the_time_limit_stops_condition_and_the_classification_of_a_sweep() -> None:
+    rc, out, err = run_cli(["condition", str(EXAMPLES / "ur5.urdf"), "--time-limit", "0.01"])
+    assert rc == 3 and out == "", err
+    assert "stopped by the time limit after 0.01 s" in err
+    rc, out, err = run_cli(
+        [
+            "sweep",
+            str(EXAMPLES / "fourbar.yaml"),
+            "--vary",
+            "A=0:360:2",
+            "--quiet",
+            "--precision",
+            "mp:200",
+            "--time-limit",
+            "0.01",
+        ]
+    )
+    assert rc == 3, err
+    assert "not analysed: configuration 'located-1': stopped by the time limit" in out
+    assert "stopped by the time limit after 0.01 s" in err
+
+
+def test_report_sweeps_a_joint_over_its_limits_as_sweep_does(tmp_path: Path) -> None:
+    """`report FILE.urdf --vary joint3` (no range: the joint's limits, as for `sweep`)."""
+    out_path = tmp_path / "r.md"
+    rc, _out, err = run_cli(
+        [
+            "report",
+            str(EXAMPLES / "ur5.urdf"),
+            "--vary",
+            "joint3",
+            "-o",
+            str(out_path),
+            "--precision",
+            "float",
+        ]
+    )
+    assert rc == 0, err
+    text = out_path.read_text()
+    assert "joint3" in text and "-6.283" in text
+
+
+# --------------------------------------------------------------------------- item 14
+
+
+def test_a_radian_looking_range_in_a_degree_file_is_warned_about(tmp_path: Path) -> None:
+    """In a degree file, -3.14 is pi written in radians: warned about (as analyze warns
+    about a plain angle above a full turn in a radian file), with the range in degrees."""
+    path = ROOT / "tests" / "data" / "fourbar_deg.yaml"
+    vary = ["--vary", "A=-3.14:1.5:0.01", "--precision", "float"]
+    for argv in (
+        ["sweep", path, *vary, "--quiet"],
+        ["report", path, *vary, "--config", "reference", "-o", tmp_path / "r.md"],
+    ):
+        rc, _out, err = run_cli(argv)
+        assert rc == 0, err
+        assert "warning: --vary A=-3.14:1.5:0.01: the range looks like radians" in err, err
+        assert "--vary A=-179.909:85.9437:0.572958" in err
+    rc, _out, err = run_cli(["sweep", str(path), "--vary", "A=0:90:1", "--quiet"])
+    assert rc == 0 and "warning" not in err, err
+
+
+def test_a_sweep_beyond_a_joints_limits_says_so_per_sample_and_in_its_notes(
+    tmp_path: Path,
+) -> None:
+    """limits {A: [-30, 60]} (degrees): of the samples 0, 10, ..., 90 deg, those above 60
+    (70, 80, 90) are beyond them."""
+    text = (ROOT / "tests" / "data" / "fourbar_deg.yaml").read_text()
+    path = _write(
+        tmp_path,
+        "f.yaml",
+        text.replace("configurations:", "limits: {A: [-30, 60]}\nconfigurations:"),
+    )
+    data = json.loads(
+        run_cli(
+            [
+                "sweep",
+                str(path),
+                "--vary",
+                "A=0:90:10",
+                "--quiet",
+                "--precision",
+                "float",
+                "--format",
+                "json",
+            ]
+        ).out
+    )
+    beyond = [p["outside_limits"] for p in data["points"]]
+    assert beyond == [[]] * 7 + [["A"]] * 3
+    assert any("leaves the limits of A ([-30, 60] deg) at 3 of its 10" in n for n in data["notes"])
+    rc, out, _err = run_cli(
+        ["sweep", str(path), "--vary", "A=0:90:10", "--quiet", "--format", "csv"]
+    )
+    lines = out.splitlines()
+    assert lines[0].endswith(",outside limits")
+    assert [ln.rsplit(",", 1)[1] for ln in lines[1:11]] == [""] * 7 + ["A"] * 3

@@ -320,11 +320,13 @@ class _ExactRun:
             with TimeLimit(self.limit):
                 build()
         except TimeLimitExceeded:
-            raise UserError(
+            # stopped, not refused: no configuration was analysed (exit status 3)
+            raise ConfigurationError(
                 f"{self.mech.path or self.mech.name}: exact mode could not prepare the mechanism's "
                 f"geometry within {self.limit:g} s (sympy could not simplify its exact axes, points "
                 "and reference screws in time); use --precision mp:50 (or auto), or allow more time "
-                "with --time-limit S"
+                "with --time-limit S",
+                self.names[0],
             ) from None
         finally:
             if timer is not None:

@@ -37,13 +37,14 @@ __all__ = [
     "add_verbose_option",
     "apply_set",
     "check_shared",
+    "warn_varies",
     "precision_option",
 ]
 
 #: the name of the configuration --set adds
 SET_CONFIG = "cli"
 #: a number of seconds as written on the command line: ASCII decimal syntax only
-_DECIMAL = re.compile(r"^\s*[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?\s*$")
+_DECIMAL = re.compile(r"^\s*[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?\s*$", re.ASCII)
 
 
 def add_precision_option(p: argparse.ArgumentParser, default: str, modes: str) -> None:
@@ -137,6 +138,17 @@ def precision_option(text: str) -> Any:
         return parse_precision(text)
     except ValueError as exc:
         raise UserError(f"--precision: {exc}") from None
+
+
+def warn_varies(mech: Any, varies: list[Any]) -> None:
+    """Print the likely mistakes of the swept ranges on standard error, as the file's own
+    warnings are (:func:`mechsing.sweeps.spec.vary_warnings` says which)."""
+    import sys
+
+    from mechsing.sweeps.spec import vary_warnings
+
+    for warning in vary_warnings(mech, varies):
+        print(f"mechsing: warning: {warning}", file=sys.stderr)
 
 
 def check_shared(args: argparse.Namespace, sweeps: str = "a sweep") -> None:

@@ -74,7 +74,7 @@ def output_path(file: str, out: str | None) -> tuple[Path, str]:
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
-    from mechsing.cli.options import SET_CONFIG, apply_set, check_shared
+    from mechsing.cli.options import SET_CONFIG, apply_set, check_shared, warn_varies
     from mechsing.errors import UserError, working_on
     from mechsing.report import report
 
@@ -88,6 +88,7 @@ def run(args: argparse.Namespace) -> int:
             args.from_config if args.set_values else None,  # without --set: the sweep's start
             args.file,
         )
+        warn_varies(mech, args.varies)
         start = SET_CONFIG if args.set_values else args.from_config
         command = "mechsing report " + shlex.join(_argv(args))
         rep = report(

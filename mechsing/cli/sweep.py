@@ -114,7 +114,7 @@ def output_format(fmt: str | None, out: str | None) -> str:
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
-    from mechsing.cli.options import check_shared
+    from mechsing.cli.options import check_shared, warn_varies
     from mechsing.errors import UserError, working_on
     from mechsing.sweeps import MAX_CLASSIFIED, SweepRun
 
@@ -134,6 +134,7 @@ def run(args: argparse.Namespace) -> int:
             args.from_config if args.set_values else None,  # without --set: the sweep's start
             args.file,
         )
+        warn_varies(mech, varies)
         sweep_run = SweepRun(
             mech,
             list(varies),

@@ -188,6 +188,12 @@ SWEEP_GRAM_RATIO = 0.05
 #: fold (pseudo-arclength continuation), and the shortest step before it gives up
 SWEEP_ARC_STEP = 0.02
 SWEEP_ARC_MIN_STEP = 1e-10
+#: a swept sample is beyond a joint's limits when it passes one by more than this part of
+#: the limits' width (float's rounding of a sample placed on a limit is not leaving it)
+SWEEP_LIMIT_RTOL = 1e-9
+#: an end of a --vary range within this of a non-zero multiple of pi/2 (in the file's
+#: number) looks like radians in a degree file (3.14 is pi to 0.0016): a warning
+RADIAN_LOOK_ATOL = 0.01
 
 #: exact mode first evaluates a quantity to this many digits: clearly non-zero
 #: there (above 10^-(EXACT_ZERO_DIGITS - 15) of its scale) it is not zero, and

@@ -30,6 +30,7 @@ from mechsing.model import Mechanism
 from mechsing.numeric import Precision, parse_precision
 from mechsing.reader import read_mechanism
 from mechsing.sweeps.engine import Located, RowResult, Sweep, classify_located
+from mechsing.sweeps.limits import limits_notes
 from mechsing.sweeps.loci import loci_of
 from mechsing.sweeps.results import (
     LocatedSingularity,
@@ -37,7 +38,7 @@ from mechsing.sweeps.results import (
     SweepResult,
     SweptVariable,
 )
-from mechsing.sweeps.spec import Vary, resolve, sweep_precision, with_limits
+from mechsing.sweeps.spec import Vary, resolve, sweep_precision, vary_warnings, with_limits
 from mechsing.timelimit import check_time_limit
 
 __all__ = [
@@ -155,7 +156,10 @@ class SweepRun:
         self.rank = {t: np.full(shape, -2, dtype=np.int16) for t in self.tests}
         self.ratio = {t: np.full(shape, np.nan) for t in self.tests}
         self.located: list[Located] = []
-        self.notes: list[str] = []
+        #: likely mistakes of the swept ranges (:func:`~mechsing.sweeps.spec.vary_warnings`;
+        #: the command line prints them on standard error) begin the notes
+        self.notes: list[str] = vary_warnings(mech, varies)
+        self.outside = {c.name: np.zeros(shape, dtype=bool) for c in eng.limited}
         self.newton_iterations = 0
 
     @property
@@ -226,6 +230,8 @@ class SweepRun:
             self.ratio[t][at] = row.ratio[t]
         self.located += row.located
         self.newton_iterations += row.newton
+        for name, beyond in row.outside.items():
+            self.outside[name][at] = beyond
         for s in row.stopped:
             what = (
                 f"row {self.vars[1].name} = {self.vars[1].shown(self.vars[1].values[row.index])}: "
@@ -245,6 +251,7 @@ class SweepRun:
         eng = self.engine
         # how the sweep started (a singular start, rows started from a neighbour) first
         self.notes[:0] = [n for n in eng.start_notes if n not in self.notes]
+        self.notes += limits_notes(eng.limited, self.outside, self.reached)
         located = sorted(self.located, key=lambda p: (p.edge != "row", p.values[::-1]))
         # the points found along the rows first, then those between rows (a grid)
         chosen = list(located)
@@ -297,4 +304,5 @@ class SweepRun:
             tuple(self.notes),
             self.newton_iterations,
             time.perf_counter() - self.start_time,
+            self.outside,
         )

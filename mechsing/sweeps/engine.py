@@ -53,6 +53,7 @@ from mechsing.numeric import (
     Precision,
     to_float,
 )
+from mechsing.sweeps.limits import limited_coordinates, outside
 from mechsing.sweeps.measures import Measures, PointMeasures
 from mechsing.sweeps.path import (
     Fold,
@@ -137,6 +138,8 @@ class RowResult:
     newton: int = 0
     Z: np.ndarray | None = None
     measures: PointMeasures | None = None
+    #: limited coordinate -> the samples beyond its limits (:mod:`mechsing.sweeps.limits`)
+    outside: dict[str, np.ndarray] = field(default_factory=dict)
 
 
 class Sweep:
@@ -155,6 +158,7 @@ class Sweep:
             )
         model = KinematicModel(mech, "float")
         self.model = model
+        self.limited = limited_coordinates(mech)
         closer = Closer(model)
         q0 = np.asarray(to_float(closer.solve(self.from_config).q), dtype=float)
         self.pose = variables[0].kind == "pose"
@@ -505,7 +509,16 @@ class Sweep:
                     )
             out.append(
                 RowResult(
-                    index, reached, rank, ratio, _merge(located, self), stopped, newton, Z, pm
+                    index,
+                    reached,
+                    rank,
+                    ratio,
+                    _merge(located, self),
+                    stopped,
+                    newton,
+                    Z,
+                    pm,
+                    outside(self.limited, Z[:, : self.model.n], reached),
                 )
             )
         return out
