@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import jsonschema
 import pytest
 import sympy
 
@@ -422,6 +423,9 @@ def test_a_sweep_beyond_a_joints_limits_says_so_per_sample_and_in_its_notes(
             ]
         ).out
     )
+    from mechsing.sweeps.schema import sweep_schema
+
+    jsonschema.validate(data, sweep_schema())
     beyond = [p["outside_limits"] for p in data["points"]]
     assert beyond == [[]] * 7 + [["A"]] * 3
     assert any("leaves the limits of A ([-30, 60] deg) at 3 of its 10" in n for n in data["notes"])
