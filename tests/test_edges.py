@@ -153,6 +153,24 @@ def test_symbols_in_a_prismatic_axis(tmp_path: Path) -> None:
     assert "at dead: " in out and "(vanishes)" in out.split("type II")[0]
 
 
+def test_a_function_of_a_symbol_in_a_prismatic_axis(tmp_path: Path) -> None:
+    """The slider's axis [cos(phi), sin(phi), 0] with phi symbolic: the crank (at angle A
+    from the drawn pose) is perpendicular to the slider when A + phi = +-pi/2, i.e.
+    cos(A + phi) = 0, and the constant is r = 1/10 (the axis has length 1)."""
+    text = QUICK_RETURN.replace("{r: 0.1, d: 0.3}", "{r: 0.1, d: 0.3, phi: 0.3}").replace(
+        "axis: [r, d, 0]", 'axis: ["cos(phi)", "sin(phi)", 0]'
+    )
+    path = _write(tmp_path, "quick_return.yaml", text)
+    rc, out, err = run_cli(["condition", str(path), "--symbolic", "phi", "--format", "json"])
+    assert rc == 0, err
+    data = json.loads(out)
+    a, phi = sympy.symbols("A phi")
+    (type1,) = _factors(data, "input (type I)")
+    assert _same_up_to_sign(type1, sympy.cos(a + phi)), type1
+    cond = next(c for c in data["conditions"] if c["name"] == "input (type I)")
+    assert abs(sympy.sympify(cond["constant"])) == sympy.Rational(1, 10)
+
+
 # --------------------------------------------------------------------------- item 3
 
 
