@@ -5,8 +5,9 @@ Owns :func:`read_mechanism` (a path: mechsing YAML or JSON, with or without a
 the extension), :func:`read_source` (the file's text and its mechsing YAML,
 what ``mechsing convert`` writes) and :func:`mechanism_from_text`.  It sits
 above :mod:`mechsing.model` (which reads mechsing YAML and JSON) and
-:mod:`mechsing.formats` (which turns URDF and MJCF into mechsing YAML), so
-neither needs the other.  The mechanism's ``warnings`` (likely mistakes that
+:mod:`mechsing.formats` (which turns URDF and MJCF into mechsing YAML, and a
+``dh`` table into bodies and joints: the reader hands it to the model), so the
+model imports no format.  The mechanism's ``warnings`` (likely mistakes that
 are not errors) and ``notes`` travel with it: the command line prints them,
 a program reads them.  Every problem is a
 :class:`~mechsing.model.MechanismError` (exit status 2) naming the file.
@@ -19,6 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from mechsing.formats import xml_format, xml_to_yaml
+from mechsing.formats.dh import expand_dh
 from mechsing.formats.xmlsafe import MAX_XML_BYTES
 from mechsing.model import Mechanism, loads
 from mechsing.model.loader import read_text
@@ -68,7 +70,9 @@ def read_mechanism(source: str | Path | Source, symbolic: Collection[str] = ()) 
     (:class:`~mechsing.model.parameters.ParameterSymbol`), for symbolic conditions.
     Raises :class:`~mechsing.model.MechanismError` for every problem of the file."""
     src = source if isinstance(source, Source) else read_source(source)
-    return loads(src.yaml, path=src.path, default_name=src.name, symbolic=symbolic)
+    return loads(
+        src.yaml, path=src.path, default_name=src.name, symbolic=symbolic, expand_dh=expand_dh
+    )
 
 
 def mechanism_from_text(
@@ -80,4 +84,6 @@ def mechanism_from_text(
     """The mechanism of a text in any format :func:`read_mechanism` reads (``path`` only
     for messages)."""
     src = _source(text, path if path is not None else "<text>")
-    return loads(src.yaml, path=src.path, default_name=default_name, symbolic=symbolic)
+    return loads(
+        src.yaml, path=src.path, default_name=default_name, symbolic=symbolic, expand_dh=expand_dh
+    )

@@ -16,6 +16,7 @@ import pytest
 import sympy
 
 import mechsing
+import mechsing.reader
 from mechsing.model import MechanismError, loads
 from tests.cli import run_cli, run_cli_subprocess
 from tests.mechanisms import ROOT
@@ -111,6 +112,12 @@ def test_the_yaml_reader_sends_xml_to_the_one_reader() -> None:
     text = (EXAMPLES / "ur5.urdf").read_text()
     with pytest.raises(MechanismError, match="mechsing.load"):
         loads(text, path="ur5.urdf")
+
+
+def test_the_yaml_reader_sends_a_dh_table_to_the_one_reader() -> None:
+    with pytest.raises(MechanismError, match=r"<text>:3: dh: a DH table.*mechsing.load"):
+        loads(DH_2R)
+    assert mechsing.reader.mechanism_from_text(DH_2R).joint_names == ("J1", "J2")
 
 
 def test_warnings_of_a_file_reach_condition_as_analyze(tmp_path: Path) -> None:

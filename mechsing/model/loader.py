@@ -10,7 +10,7 @@ units and radians exactly.
 from __future__ import annotations
 
 import re
-from collections.abc import Collection
+from collections.abc import Callable, Collection
 from pathlib import Path
 from typing import Any
 
@@ -338,13 +338,22 @@ def read_text(path: str | Path, largest: int = MAX_FILE_BYTES) -> str:
         ) from None
 
 
+#: what turns a file's ``dh`` table into its bodies and joints: ``expand(top, reader)`` ->
+#: the top-level mapping without ``dh`` (:func:`mechsing.formats.dh.expand_dh`, given by
+#: the reader above both layers, :mod:`mechsing.reader`; the model reads no other format)
+TableExpander = Callable[[YMap, Any], YMap]
+
+
 def loads(
     text: str,
     path: str | None = None,
     default_name: str = "mechanism",
     symbolic: Collection[str] = (),
+    expand_dh: TableExpander | None = None,
 ) -> Mechanism:
-    """Validate a mechanism given as YAML or JSON text (``path`` only for messages)."""
+    """Validate a mechanism given as YAML or JSON text (``path`` only for messages);
+    ``expand_dh`` reads a ``dh`` table (None: a file with one is refused, naming the
+    reader that takes it, ``mechsing.load``)."""
     r = _Reader(path if path is not None else "<text>")
     if "\x00" in text:
         raise r.error(None, None, "the file contains NUL bytes: it is not a text file")
@@ -361,16 +370,8 @@ def loads(
         raise r.error(None, exc.line, exc.message) from None
     builder = _Builder(r, default_name)
     builder.symbolic = tuple(symbolic)
+    builder.expand_dh = expand_dh
     return builder.build(doc)
-
-
-def _expand_dh(top: YMap, r: _Reader) -> YMap:
-    """A file with a ``dh`` table gets the bodies, joints and output it defines."""
-    if top.get("dh") is None:
-        return top
-    from mechsing.formats.dh import expand_dh
-
-    return expand_dh(top, r)
 
 
 def _limits(v: YValue | None, jmap: dict[str, Joint], r: _Reader) -> dict[str, Any]:
@@ -424,6 +425,7 @@ class _Builder:
         self.catalog = _catalog()
         self.body_lines: dict[str, int] = {}
         self.symbolic: tuple[str, ...] = ()
+        self.expand_dh: TableExpander | None = None
 
     def build(self, doc: YValue) -> Mechanism:
         r = self.r
@@ -431,7 +433,15 @@ class _Builder:
         # parameters first: a dh table's rows may use them
         r.parameters = read_parameters(r, top, self.symbolic)
         if top.get("dh") is not None:
-            top = _expand_dh(top, r)
+            if self.expand_dh is None:
+                raise r.error(
+                    "dh",
+                    top.key_line("dh"),
+                    "a DH table: mechsing.model reads bodies and joints; read a file with a "
+                    "dh table with mechsing.load (mechsing.reader.read_mechanism), as the "
+                    "commands do",
+                )
+            top = self.expand_dh(top, r)
             check_names(r, top)
         r.keys(
             top,
