@@ -15,7 +15,9 @@ units.  With -o OUT and no --format, the format follows OUT's extension (.json,
 
 A progress bar is shown on standard error when it is a terminal (not with
 --quiet).  Exit status: 0 success, 2 bad input, 3 the sweep cannot start (its
---from configuration does not close, or the first sample cannot be reached).
+--from configuration does not close, or the first sample cannot be reached) or a
+located point could not be analysed (stopped by --time-limit, say: the output is
+written, its entry and standard error say why).
 """
 
 from __future__ import annotations
