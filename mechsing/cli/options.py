@@ -171,13 +171,15 @@ def check_shared(args: argparse.Namespace, sweeps: str = "a sweep") -> None:
             sweep_precision(args.prec)
     set_values = getattr(args, "set_values", None)
     if getattr(args, "from_config", None) and not set_values and not args.varies:
-        has_vary = hasattr(args, "vary")
+        if hasattr(args, "vary"):
+            raise UserError(
+                f"--from {args.from_config}: names where a sweep starts (or where --set values "
+                "are solved from): give --vary or --set too"
+            )
         raise UserError(
-            f"--from {args.from_config}: names the configuration "
-            + ("a sweep starts from or " if has_vary else "")
-            + "--set values are solved from; give --set JOINT=VALUE"
-            + (" or --vary" if has_vary else "")
-            + " too (or --config to analyse a configuration of the file)"
+            f"--from {args.from_config}: names the configuration --set values are solved "
+            "from; give --set JOINT=VALUE too (or --config to analyse a configuration of the "
+            "file)"
         )
 
 
