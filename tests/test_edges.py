@@ -309,7 +309,7 @@ def test_shared_options_have_one_declaration(option: str) -> None:
     helps = {
         c: _option_help(c, option)
         for c in COMMANDS_READING
-        if c != "condition" or option in ("--time-limit", "-v")
+        if c != "condition" or option != "--precision"
     }
     if option == "--precision":
         assert all("mp:N" in h for h in helps.values()), helps
@@ -460,3 +460,18 @@ def test_a_sweep_beyond_a_joints_limits_says_so_per_sample_and_in_its_notes(
     lines = out.splitlines()
     assert lines[0].endswith(",outside limits")
     assert [ln.rsplit(",", 1)[1] for ln in lines[1:11]] == [""] * 7 + ["A"] * 3
+
+
+def test_condition_takes_set_as_the_other_commands(tmp_path: Path) -> None:
+    """`condition --set O2=asin(-1/3)` evaluates the factors at that ad-hoc configuration
+    (cli), symbols kept: the quick-return's dead centre, sin(O2) = -r/d."""
+    path = _write(tmp_path, "quick_return.yaml", QUICK_RETURN)
+    rc, out, err = run_cli(
+        ["condition", str(path), "--symbolic", "r,d", "--set", "O2=asin(-1/3)", "--format", "json"]
+    )
+    assert rc == 0, err
+    data = json.loads(out)
+    assert data["configuration"] == "cli"
+    vanish = {c["name"]: [f["vanishes"] for f in c["factors"]] for c in data["conditions"]}
+    assert vanish == {"input (type I)": [True], "output (type II)": [False]}
+    assert _option_help("condition", "--set") == _option_help("analyze", "--set")

@@ -20,7 +20,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--config",
         metavar="NAME",
-        help="evaluate each factor at this configuration and say which vanish",
+        help="evaluate each factor at this configuration and say which vanish (default with "
+        "--set: cli)",
     )
     p.add_argument(
         "--symbolic",
@@ -33,15 +34,24 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
     options.add_time_limit_option(p)
     options.add_verbose_option(p)
+    options.add_set_option(p)
 
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import load_mechanism
+    from mechsing.cli.options import SET_CONFIG, apply_set, check_shared
     from mechsing.conditions import condition
 
+    check_shared(args)
     names = [s.strip() for s in args.symbolic.split(",") if s.strip()]
-    mech = load_mechanism(args.file, args.verbose, symbolic=names)
-    result = condition(mech, config=args.config, symbolic=names, time_limit=args.time_limit)
+    mech = apply_set(
+        load_mechanism(args.file, args.verbose, symbolic=names),
+        args.set_values,
+        args.from_config,
+        args.file,
+    )
+    config = args.config or (SET_CONFIG if args.set_values else None)
+    result = condition(mech, config=config, symbolic=names, time_limit=args.time_limit)
     if args.format == "json":
         sys.stdout.write(json.dumps(result.to_json(), indent=2) + "\n")
     elif args.format == "latex":

@@ -36,6 +36,7 @@ from __future__ import annotations
 import itertools
 import math
 import random
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -143,7 +144,15 @@ def _condition(mech: Mechanism, config: str | None, names: list[str]) -> Conditi
     conds = [_printable(c, printable) for c in conds]
     values: dict[str, float] = {}
     if config is not None:
-        numeric = read_mechanism(mech.path) if names and mech.path else mech
+        numeric = mech
+        if names and mech.path:  # the same file with its parameters' values
+            numeric = read_mechanism(mech.path)
+            # a configuration added to the mechanism read (mechsing condition --set)
+            added = {
+                k: v for k, v in mech.configurations.items() if k not in numeric.configurations
+            }
+            if added:
+                numeric = replace(numeric, configurations={**numeric.configurations, **added})
         values = _configuration_values(numeric, config, method)
         conds = [_evaluate(c, values, params) for c in conds]
     fixed = {k: v for k, v in mech.parameters.items() if k not in names}
