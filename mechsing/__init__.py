@@ -14,7 +14,7 @@ Conventions (stated once, used everywhere; the README says them too):
   exponentials, basis screws at the reference configuration in the ground frame).
 * Lengths in metres, angles in radians, pitch in metres per radian.
 
-API: :func:`load` (a mechanism file), :func:`analyze` (a result whose
+API: :func:`load` (a mechanism file of any format: YAML, JSON, a DH table, URDF, MJCF), :func:`analyze` (a result whose
 ``to_json()`` is the JSON contract), :func:`scan` (batched float verdicts of
 an open chain over many configurations), :func:`sweep` (where the
 singularities are along a path or over a grid of joint values or output poses:
@@ -34,12 +34,12 @@ import importlib
 #: the public API: functions (loaded on first use, so ``mechsing --version`` stays fast)
 #: and the layers a script uses directly
 _FUNCTIONS = {
-    "analyze": "mechsing.analysis",
-    "condition": "mechsing.conditions",
-    "load": "mechsing.model",
-    "report": "mechsing.report",
-    "scan": "mechsing.scanner",
-    "sweep": "mechsing.sweeps",
+    "analyze": ("mechsing.analysis", "analyze"),
+    "condition": ("mechsing.conditions", "condition"),
+    "load": ("mechsing.reader", "read_mechanism"),  # any format: YAML, JSON, DH, URDF, MJCF
+    "report": ("mechsing.report", "report"),
+    "scan": ("mechsing.scanner", "scan"),
+    "sweep": ("mechsing.sweeps", "sweep"),
 }
 _MODULES = ("errors", "lie", "numeric", "subgroups", "model", "kinematics", "screws", "singularity")
 
@@ -48,7 +48,8 @@ __all__ = ["__version__", *_FUNCTIONS, *_MODULES]
 
 def __getattr__(name: str):  # lazy: importing mechsing loads no numerics
     if name in _FUNCTIONS:
-        return getattr(importlib.import_module(_FUNCTIONS[name]), name)
+        module, attr = _FUNCTIONS[name]
+        return getattr(importlib.import_module(module), attr)
     if name in _MODULES:
         return importlib.import_module(f"mechsing.{name}")
     raise AttributeError(f"module 'mechsing' has no attribute {name!r}")

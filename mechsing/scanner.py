@@ -46,7 +46,7 @@ from mechsing import lie, scanner_kernel
 from mechsing.kinematics import KinematicModel, batched
 from mechsing.kinematics.batched import SerialJacobian
 from mechsing.kinematics.chains import tree_chain
-from mechsing.model import Mechanism, load
+from mechsing.model import Mechanism
 from mechsing.numeric import (
     MAX_JOINT_VALUE,
     SCAN_ROUNDING_FACTOR,
@@ -54,6 +54,7 @@ from mechsing.numeric import (
     Precision,
     rank_bounds,
 )
+from mechsing.reader import read_mechanism
 from mechsing.screws import chain_matrix
 
 __all__ = ["ChainScanner", "ScanResult", "scan"]
@@ -397,5 +398,5 @@ def scan(
         Each configuration's rank, screened flag, ratio and bound.
     """
     if not isinstance(mech, Mechanism):
-        mech = load(mech)
+        mech = read_mechanism(mech)
     return ChainScanner(mech).scan(configurations, chunk=chunk, all_sigma=all_sigma)

@@ -28,6 +28,7 @@ names what the code is doing, so that the exception can say what was cut short.
 from __future__ import annotations
 
 import ctypes
+import math
 import signal
 import threading
 import time
@@ -38,10 +39,13 @@ from types import TracebackType
 __all__ = [
     "EXACT_PROGRESS_DELAY",
     "EXACT_TIME_LIMIT",
+    "LONGEST_TIME_LIMIT",
     "REPEAT",
+    "SHORTEST_TIME_LIMIT",
     "TimeLimit",
     "TimeLimitExceeded",
     "activity",
+    "check_time_limit",
 ]
 
 #: seconds exact mode may spend on one configuration (``mechsing analyze --time-limit``,
@@ -53,6 +57,25 @@ EXACT_TIME_LIMIT = 60.0
 EXACT_PROGRESS_DELAY = 3.0
 #: seconds between repeated interruptions, should some code swallow the first one
 REPEAT = 0.25
+#: the range of a time limit (``--time-limit S``, ``time_limit=``), in seconds: shorter, a
+#: configuration would be stopped before any work (the interruption's own latency is about
+#: a millisecond); longer than about 11.6 days is no limit (and 1e308 overflows the timer)
+SHORTEST_TIME_LIMIT = 0.01
+LONGEST_TIME_LIMIT = 1e6
+
+
+def check_time_limit(seconds: object) -> float:
+    """``seconds`` as a time limit, or a ValueError that says the accepted range (the
+    policy of every command's ``--time-limit`` and of the library's ``time_limit``)."""
+    x = math.nan
+    if isinstance(seconds, int | float) and not isinstance(seconds, bool):
+        x = float(seconds)
+    if not SHORTEST_TIME_LIMIT <= x <= LONGEST_TIME_LIMIT:
+        raise ValueError(
+            f"time_limit {seconds!r} is not a number of seconds from {SHORTEST_TIME_LIMIT:g} "
+            f"to {LONGEST_TIME_LIMIT:g} (e.g. 120)"
+        )
+    return x
 
 
 class TimeLimitExceeded(BaseException):
@@ -86,9 +109,7 @@ class TimeLimit:
     """
 
     def __init__(self, seconds: float | None) -> None:
-        if seconds is not None and not seconds > 0:
-            raise ValueError(f"a time limit must be a positive number of seconds, not {seconds!r}")
-        self.seconds = seconds
+        self.seconds = None if seconds is None else check_time_limit(seconds)
         self.exceeded = False
         self.elapsed = 0.0
         self._start = 0.0
@@ -115,15 +136,20 @@ class TimeLimit:
                 self._old_handler = signal.signal(signal.SIGALRM, self._on_alarm)
             except ValueError:  # signals unavailable here (an embedded interpreter)
                 self._main = False
-        if self._main:
-            self._old_timer = signal.setitimer(signal.ITIMER_REAL, self.seconds, REPEAT)
-        else:
-            self._thread_id = threading.get_ident()
-            self._watchdog = threading.Thread(
-                target=self._watch, name="mechsing-time-limit", daemon=True
-            )
-            self._watchdog.start()
-        return self
+        try:
+            if self._main:
+                self._old_timer = signal.setitimer(signal.ITIMER_REAL, self.seconds, REPEAT)
+            else:
+                self._thread_id = threading.get_ident()
+                self._watchdog = threading.Thread(
+                    target=self._watch, name="mechsing-time-limit", daemon=True
+                )
+                self._watchdog.start()
+            return self
+        except TimeLimitExceeded:
+            # a short limit fell before the block began: no __exit__ will disarm it
+            self.__exit__(None, None, None)
+            raise
 
     def _on_alarm(self, signum: int, frame: object) -> None:
         if self._closing:

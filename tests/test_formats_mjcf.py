@@ -13,7 +13,7 @@ import json
 
 import pytest
 
-from mechsing.model import loads
+from mechsing.reader import mechanism_from_text
 from tests.cli import run_cli
 
 FOURBAR_YAML = """\
@@ -122,7 +122,7 @@ def test_the_four_bar_closes_like_the_yaml_four_bar() -> None:
 
 def _axis(xml_body: str, compiler: str = "") -> tuple[float, ...]:
     text = f"<mujoco>{compiler}<worldbody>{xml_body}</worldbody></mujoco>"
-    mech = loads(text, path="frames.xml")
+    mech = mechanism_from_text(text, path="frames.xml")
     return tuple(round(float(c), 12) + 0.0 for c in mech.joints[0].params["axis"])
 
 
@@ -157,7 +157,7 @@ def test_default_classes_and_childclass() -> None:
         <body name="b" childclass="s"><joint name="J2"/>
           <body name="c"><joint name="J3" class="main" axis="0 0 1" pos="0 0 1"/></body>
       </body></body></worldbody></mujoco>"""
-    mech = loads(text, path="d.xml")
+    mech = mechanism_from_text(text, path="d.xml")
     types = {j.name: j.type for j in mech.joints}
     assert types == {"J1": "R", "J2": "P", "J3": "R"}
     assert tuple(float(c) for c in mech.joint("J2").params["axis"]) == (0.0, 1.0, 0.0)
@@ -174,7 +174,7 @@ def test_weld_and_jointless_bodies_merge() -> None:
       <body name="a"><joint name="J1"/><body name="a2" pos="1 0 0"/></body>
       <body name="b" pos="2 0 0"><joint name="J2"/></body></worldbody>
       <equality><weld body1="a2" body2="b"/></equality></mujoco>"""
-    mech = loads(text, path="w.xml")
+    mech = mechanism_from_text(text, path="w.xml")
     assert mech.bodies == ("world", "a")
     assert [j.between for j in mech.joints] == [("world", "a"), ("world", "a")]
 
@@ -187,7 +187,7 @@ def test_free_ball_and_site_connect() -> None:
       <body name="c" pos="2 0 1"><joint name="H" axis="0 1 0"/><site name="s2" pos="-0.5 0 0"/>
       </body></worldbody>
       <equality><connect site1="s1" site2="s2"/></equality></mujoco>"""
-    mech = loads(text, path="m.xml")
+    mech = mechanism_from_text(text, path="m.xml")
     assert [(j.name, j.type, j.between) for j in mech.joints] == [
         ("F", "D", ("world", "a")),
         ("S", "S", ("a", "b")),
@@ -203,7 +203,7 @@ def test_urdf_floating_and_planar() -> None:
       <joint name="F" type="floating"><parent link="w"/><child link="a"/></joint>
       <joint name="G" type="planar"><parent link="a"/><child link="b"/>
         <origin rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/></joint></robot>"""
-    mech = loads(text, path="f.urdf")
+    mech = mechanism_from_text(text, path="f.urdf")
     assert [j.type for j in mech.joints] == ["D", "G"]
     # the plane's normal: z of the joint frame turned by roll 90 deg about x is -y
     assert tuple(float(c) for c in mech.joint("G").params["normal"]) == (0.0, -1.0, 0.0)
@@ -213,7 +213,7 @@ def test_ref_shifts_the_joint_value_and_its_limits() -> None:
     """MuJoCo draws the model at qpos = ref: mechsing measures from the drawn pose."""
     text = """<mujoco><worldbody><body><joint name="J" ref="30" range="-60 90"/></body>
       </worldbody></mujoco>"""
-    mech = loads(text, path="r.xml")
+    mech = mechanism_from_text(text, path="r.xml")
     lo, hi = mech.limits["J"][0]
     assert (round(lo * 180 / 3.141592653589793, 9), round(hi * 180 / 3.141592653589793, 9)) == (
         -90.0,

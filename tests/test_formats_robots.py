@@ -58,14 +58,14 @@ def _pin_q(model: object, q: np.ndarray, names: list[str]) -> np.ndarray:
 
 def test_example_robot_data_jacobians_match_pinocchio() -> None:
     from mechsing.kinematics.model import KinematicModel
-    from mechsing.model import load
     from mechsing.model.mechanism import MechanismError
+    from mechsing.reader import read_mechanism
 
     compared, refused, skipped = [], [], []
     rng = np.random.default_rng(16)
     for f in FILES:
         try:
-            mech = load(f)
+            mech = read_mechanism(f)
         except MechanismError as exc:
             refused.append((f.name, str(exc).split(": ", 2)[-1][:80]))
             continue

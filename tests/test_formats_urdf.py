@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from mechsing.kinematics.model import KinematicModel
-from mechsing.model import loads
+from mechsing.reader import mechanism_from_text
 from tests.cli import run_cli
 from tests.reference.dh import (
     IIWA14,
@@ -46,7 +46,7 @@ def _dh_yaml(name: str, rows: list, convention: str) -> str:
 @pytest.mark.parametrize("arm", ARMS)
 def test_forward_kinematics_matches_the_dh_product(arm: str) -> None:
     rows, convention, flange = ARMS[arm]
-    mech = loads(urdf_from_dh(arm, rows, convention, flange), path=f"{arm}.urdf")
+    mech = mechanism_from_text(urdf_from_dh(arm, rows, convention, flange), path=f"{arm}.urdf")
     assert mech.output is not None and len(mech.joints) == len(rows)
     km = KinematicModel(mech)
     tool0 = dh_product(rows, np.zeros(len(rows)), convention, flange)
@@ -60,8 +60,8 @@ def test_forward_kinematics_matches_the_dh_product(arm: str) -> None:
 @pytest.mark.parametrize("arm", ARMS)
 def test_dh_table_gives_the_same_mechanism_as_the_urdf(arm: str) -> None:
     rows, convention, flange = ARMS[arm]
-    from_urdf = loads(urdf_from_dh(arm, rows, convention, flange), path=f"{arm}.urdf")
-    from_dh = loads(_dh_yaml(arm, rows, convention), path=f"{arm}.yaml")
+    from_urdf = mechanism_from_text(urdf_from_dh(arm, rows, convention, flange), path=f"{arm}.urdf")
+    from_dh = mechanism_from_text(_dh_yaml(arm, rows, convention), path=f"{arm}.yaml")
     assert [j.name for j in from_dh.joints] == [f"J{i}" for i in range(1, len(rows) + 1)]
     assert from_dh.bodies == tuple(f"L{i}" for i in range(len(rows) + 1))
     a, b = KinematicModel(from_urdf), KinematicModel(from_dh)
@@ -172,11 +172,11 @@ def test_dh_with_joints_is_refused(tmp_path) -> None:
 
 def test_dh_degrees_and_expressions(tmp_path) -> None:
     """A table in degrees with an exact expression equals the same table in radians."""
-    deg = loads(
+    deg = mechanism_from_text(
         "units: {angle: deg}\ndh: {rows: [{theta: 0, d: 0.3, a: 0.1, alpha: 90},"
         " {theta: 0, d: 0, a: 0.2, alpha: 0}]}\n"
     )
-    rad = loads(
+    rad = mechanism_from_text(
         "dh: {rows: [{theta: 0, d: 0.3, a: 0.1, alpha: pi/2},"
         " {theta: 0, d: 0, a: 0.2, alpha: 0}]}\n"
     )

@@ -21,6 +21,7 @@ LAYERS: list[set[str]] = [
     {"lie"},
     {"subgroups"},
     {"model", "formats"},
+    {"reader"},
     {"kinematics"},
     {"screws"},
     {"singularity"},
@@ -138,3 +139,12 @@ def test_the_public_api_is_discoverable() -> None:
     for name in ("lie", "subgroups", "load", "analyze", "scan"):
         assert name in dir(mechsing) and getattr(mechsing, name) is not None
     assert callable(mechsing.lie.exp) and callable(mechsing.subgroups.identify)
+
+
+def test_the_model_imports_no_format() -> None:
+    """mechsing.model reads mechsing YAML and JSON; the other formats (URDF, MJCF, a dh table)
+    are read by mechsing.reader, above both, which hands the model what it reads."""
+    g = _graph()
+    found = [(a, b) for a, b in g.edges if a.startswith("mechsing.model") and ".formats" in b]
+    assert found == []
+    assert g.has_edge("mechsing.reader", "mechsing.formats.dh")

@@ -8,12 +8,17 @@ refusing decimal data) or 3 (some configuration could not be analysed, with its 
 other exception is a defect.  Each configuration must finish within its mode's bound (exact mode:
 its own time limit, which stops a configuration with an ``error``).  One file per mode also runs
 through the command line itself.
+
+Every command that reads a mechanism (analyze, condition, sweep, report) also reads one file of
+each format (mechsing YAML, a DH table, URDF, MJCF) through the command line, with Python's
+warnings turned into errors: a numpy RuntimeWarning there is a defect, as an exit status 4 is.
 """
 
 from __future__ import annotations
 
 import json
 import time
+import warnings
 from pathlib import Path
 
 import pytest
@@ -25,8 +30,10 @@ from mechsing.report import render
 from tests.cli import run_cli
 from tests.mechanisms import ROOT
 
-FILES = sorted((ROOT / "examples").glob("*.yaml")) + sorted(
-    (ROOT / "tests" / "data").glob("*.yaml")
+FILES = (
+    sorted((ROOT / "examples").glob("*.yaml"))
+    + sorted((ROOT / "tests" / "data").glob("*.yaml"))
+    + [ROOT / "examples" / "ur5.urdf", ROOT / "examples" / "fourbar_mjcf.xml"]
 )
 MODES = ("float", "mp:30", "mp:50", "auto", "exact")
 #: the seconds a configuration may take: a hang, not a speed, is what this catches
@@ -102,3 +109,43 @@ def test_the_command_line_in_every_mode(mode: str) -> None:
     assert "Traceback" not in err and out
     if fmt == "json":
         assert json.loads(out)["precision"]["mode"] == mode
+
+
+#: one file per format, and what a sweep of it varies
+FORMATS = {
+    "yaml": (ROOT / "examples" / "fourbar.yaml", "A=0:360:10"),
+    "dh": (ROOT / "tests" / "data" / "scara_dh.yaml", "J2"),  # over its limits
+    "urdf": (ROOT / "examples" / "ur5.urdf", "joint3=-3:3:0.25"),
+    "mjcf": (ROOT / "examples" / "fourbar_mjcf.xml", "A=0:360:10"),
+}
+COMMANDS = ("analyze", "condition", "sweep", "report")
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+@pytest.mark.parametrize("fmt", FORMATS)
+def test_every_command_reads_every_format(fmt: str, command: str, tmp_path: Path) -> None:
+    """Each command on a file of each format: an answer (0), a clear refusal (2: the MJCF
+    file names no output, which condition needs) or a configuration not analysed (3), never
+    a defect (4) or a warning of Python's."""
+    path, vary = FORMATS[fmt]
+    argv = [command, str(path)]
+    if command in ("sweep", "report"):
+        argv += ["--vary", vary, "--precision", "float"]
+    if command == "sweep":
+        argv += ["--quiet", "--format", "json"]
+    if command == "report":
+        argv += ["-o", str(tmp_path / "review.md")]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        rc, out, err = run_cli(argv)
+    assert "Traceback" not in err and "internal error" not in err, err
+    if fmt == "mjcf" and command == "condition":
+        assert rc == 2 and "no output" in err, err
+        return
+    assert rc in (0, 3), err
+    if command == "sweep":
+        assert json.loads(out)["points"]
+    elif command == "report":
+        assert (tmp_path / "review.md").read_text().startswith("#")
+    else:
+        assert out

@@ -19,7 +19,6 @@ proved, like a configuration that does not close; the others are reported.
 
 from __future__ import annotations
 
-import math
 import threading
 import time
 from collections.abc import Callable
@@ -41,8 +40,9 @@ from mechsing.analysis.results import (
 )
 from mechsing.errors import UserError, working_on
 from mechsing.kinematics import Closer, ConfigurationError, KinematicModel
-from mechsing.model import Mechanism, load
+from mechsing.model import Mechanism
 from mechsing.numeric import Precision, float_drop_is_real, parse_precision, to_float
+from mechsing.reader import read_mechanism
 from mechsing.screws import closure_system, group_mobility, grubler
 from mechsing.screws.mobility import NearbySample, nearby_samples_many
 from mechsing.singularity import classify
@@ -55,6 +55,7 @@ from mechsing.timelimit import (
     TimeLimit,
     TimeLimitExceeded,
     activity,
+    check_time_limit,
 )
 
 __all__ = ["AnalysisResult", "ConfigurationResult", "analyze", "analyze_found"]
@@ -64,24 +65,26 @@ def analyze(
     mechanism: Mechanism | str | Path,
     configs: list[str] | None = None,
     precision: Precision | str = "auto",
-    time_limit: float | None = EXACT_TIME_LIMIT,
+    time_limit: float | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> AnalysisResult:
-    """Analyse a mechanism (or a file) at the named configurations (default: all).
+    """Analyse a mechanism (or a file of any format) at the named configurations (default:
+    all).
 
     Parameters
     ----------
     mechanism : Mechanism, str or Path
-        A mechanism (:func:`mechsing.load`) or the path of a mechanism, URDF or MJCF file.
+        A mechanism (:func:`mechsing.load`) or the path of a mechanism file of any format
+        (YAML or JSON, a ``dh`` table, URDF, MJCF).
     configs : list of str, optional
         The configurations to analyse, by name; default: every configuration of the file.
     precision : Precision or str
         ``"auto"`` (float, then mp:50 where float cannot decide), ``"float"``, ``"mp:N"``
         or ``"exact"``.
     time_limit : float or None
-        Seconds exact mode may spend on one configuration (None: no limit); a
-        configuration stopped there gets an ``error`` entry.  No effect in the other
-        precision modes.
+        The most seconds one configuration may take, in every precision mode (None:
+        :data:`~mechsing.timelimit.EXACT_TIME_LIMIT` in exact mode, no limit in the
+        others); a configuration stopped there gets an ``error`` entry that says so.
     progress : callable, optional
         Called with a line of text when exact mode takes long (which configuration it
         works on); the command line prints these lines on standard error.
@@ -99,13 +102,9 @@ def analyze(
         and the fix).  A configuration that cannot be analysed is not raised: it carries
         ``error`` in the result.
     """
-    if time_limit is not None and not (
-        isinstance(time_limit, int | float) and 0 < time_limit < math.inf
-    ):
-        raise ValueError(
-            f"time_limit must be a positive number of seconds or None, not {time_limit!r}"
-        )
-    mech = mechanism if isinstance(mechanism, Mechanism) else load(str(mechanism))
+    if time_limit is not None:
+        check_time_limit(time_limit)
+    mech = mechanism if isinstance(mechanism, Mechanism) else read_mechanism(mechanism)
     with working_on(file=mech.path or mech.name):
         return _analyze(mech, configs, precision, time_limit, progress)
 
@@ -114,6 +113,7 @@ def analyze_found(
     mechanism: Mechanism,
     found: dict[str, Any],
     precision: Precision | str = "auto",
+    time_limit: float | None = None,
 ) -> list[ConfigurationResult]:
     """The analysis of configurations found numerically in float (a sweep's located
     singularities): ``found`` maps a name to every joint coordinate (SI, radians, the
@@ -125,7 +125,7 @@ def analyze_found(
     from the singularity, which N digits can tell apart.  For the same reason auto does
     not re-decide a singular float verdict whose dropped singular value is above
     float's rounding: that drop is the distance float located the point to.  Exact mode
-    cannot take them (they are not exact data)."""
+    cannot take them (they are not exact data).  ``time_limit``: as for :func:`analyze`."""
     import mpmath
 
     from mechsing.model import Configuration
@@ -151,7 +151,7 @@ def analyze_found(
 
     share_loop_identifications(mechanism, mech)  # the same joints: the same loops
     with working_on(file=mech.path or mech.name):
-        res = _analyze(mech, list(found), prec, None, None, Precision("float"), located=True)
+        res = _analyze(mech, list(found), prec, time_limit, None, Precision("float"), located=True)
     return list(res.configurations)
 
 
@@ -199,25 +199,36 @@ def _analyze(
 
     first = Precision("float") if prec.mode == "auto" else prec
     if prec.mode == "exact":  # policy: exact proofs run under a time limit, one at a time
-        exact = _ExactRun(mech, names, time_limit, progress)
+        exact = _ExactRun(
+            mech, names, EXACT_TIME_LIMIT if time_limit is None else time_limit, progress
+        )
         exact.prepare(lambda: stage(first))
     results = []
     # configurations found numerically (a sweep's located points) come many at a time:
     # their nearby samples are closed together
     prepared = _prepare_found(mech, names, stage(first)) if located else {}
+
+    def _one(name: str) -> ConfigurationResult:
+        return _analyze_one(mech, name, stage(first), prepared.get(name))
+
     for name in names:
         start = time.perf_counter()
         if prec.mode == "exact":  # policy: see _ExactRun
             res = exact.run(name, lambda name=name: _analyze_one(mech, name, stage(first)))
             results.append(replace(res, seconds=time.perf_counter() - start))
             continue
-        res = _analyze_one(mech, name, stage(first), prepared.get(name))
+        res = _within(time_limit, name, str(prec), lambda name=name: _one(name))
         # a point located in float is as near its singularity as float places it: the drop
         # float sees above its own rounding is that distance, so auto keeps the verdict
         doubtful = res.doubtful and not located
         if prec.mode == "auto" and res.error is None and (res.undecided or doubtful):
             why = res.doubtful or ("undecided",)
-            res = _analyze_one(mech, name, stage(Precision("mp", 50)))
+            res = _within(
+                time_limit,
+                name,
+                "mp:50",
+                lambda name=name: _analyze_one(mech, name, stage(Precision("mp", 50))),
+            )
             res = replace(res, escalated_for=why)
         results.append(replace(res, seconds=time.perf_counter() - start))
     km0 = stage(first)[0]
@@ -263,6 +274,26 @@ def _doubtful_drops(
         # policy: only a float verdict can be an artefact of the data's rounding
         if d.precision == "float" and float_drop_is_real(d.margin, data_error)
     )
+
+
+def _within(
+    limit: float | None, name: str, mode: str, work: Callable[[], ConfigurationResult]
+) -> ConfigurationResult:
+    """``work()`` (the analysis of configuration ``name``) within ``limit`` seconds (None: no
+    limit); stopped there, an error entry that says so."""
+    if limit is None:
+        return work()
+    try:
+        with TimeLimit(limit):
+            return work()
+    except TimeLimitExceeded as exc:
+        doing = exc.activity or "analysing it"
+        return ConfigurationResult(
+            name,
+            mode,
+            error=f"configuration {name!r}: stopped by the time limit after {limit:g} s while "
+            f"{doing}; allow more time with --time-limit S (time_limit=)",
+        )
 
 
 class _ExactRun:
@@ -314,11 +345,13 @@ class _ExactRun:
             with TimeLimit(self.limit):
                 build()
         except TimeLimitExceeded:
-            raise UserError(
+            # stopped, not refused: no configuration was analysed (exit status 3)
+            raise ConfigurationError(
                 f"{self.mech.path or self.mech.name}: exact mode could not prepare the mechanism's "
                 f"geometry within {self.limit:g} s (sympy could not simplify its exact axes, points "
                 "and reference screws in time); use --precision mp:50 (or auto), or allow more time "
-                "with --time-limit S"
+                "with --time-limit S",
+                self.names[0],
             ) from None
         finally:
             if timer is not None:

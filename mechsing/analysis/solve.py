@@ -14,8 +14,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from mechsing.errors import ConfigurationError
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, parse_precision
+from mechsing.timelimit import EXACT_TIME_LIMIT, TimeLimit, TimeLimitExceeded
 
 __all__ = ["SolveResult", "solve", "value_text"]
 
@@ -66,7 +68,12 @@ def value_text(x: Any, precision: Precision) -> str:
     return repr(float(x))
 
 
-def solve(mech: Mechanism, name: str, precision: Precision | str = "float") -> SolveResult:
+def solve(
+    mech: Mechanism,
+    name: str,
+    precision: Precision | str = "float",
+    time_limit: float | None = None,
+) -> SolveResult:
     """Close configuration ``name`` of ``mech`` at ``precision`` (float, mp:N or exact).
 
     The joints the configuration does not give are solved by continuation from its
@@ -80,6 +87,10 @@ def solve(mech: Mechanism, name: str, precision: Precision | str = "float") -> S
         One of its configurations.
     precision : Precision or str
         ``"float"``, ``"mp:N"`` or ``"exact"`` (``"auto"`` solves in float).
+    time_limit : float or None
+        The most seconds the closure may take (None:
+        :data:`~mechsing.timelimit.EXACT_TIME_LIMIT` in exact mode, no limit in the
+        others); stopped there: a ConfigurationError (exit status 3).
 
     Returns
     -------
@@ -89,7 +100,17 @@ def solve(mech: Mechanism, name: str, precision: Precision | str = "float") -> S
     from mechsing.kinematics import solve_configuration
 
     prec = parse_precision(precision) if isinstance(precision, str) else precision
-    model, closed = solve_configuration(mech, name, prec)
+    if time_limit is None and prec.mode == "exact":
+        time_limit = EXACT_TIME_LIMIT
+    try:
+        with TimeLimit(time_limit):
+            model, closed = solve_configuration(mech, name, prec)
+    except TimeLimitExceeded:
+        raise ConfigurationError(
+            f"configuration {name!r}: stopped by the time limit after {time_limit:g} s before "
+            f"it closed at {prec}; allow more time with --time-limit S, or use a lower precision",
+            name,
+        ) from None
     values = model.values(closed.q)
     mode = model.precision  # auto solves in float
     texts = []

@@ -33,6 +33,7 @@ from mechsing.errors import (
 if TYPE_CHECKING:  # the commands import their layers lazily: `mechsing --version` stays fast
     from mechsing.model import Mechanism
     from mechsing.numeric import Precision
+    from mechsing.reader import Source
 
 #: exit statuses: bad input, a configuration that could not be analysed, a defect
 BAD_INPUT, NOT_ANALYSED, INTERNAL_ERROR = 2, 3, 4
@@ -131,14 +132,17 @@ def precision_option(text: str) -> Precision:
         raise UserError(f"--precision: {exc}") from None
 
 
-def load_mechanism(path: str, verbose: bool = False) -> Mechanism:
-    """Read a mechanism file; print its warnings (likely mistakes that are not
+def load_mechanism(
+    path: str | Source, verbose: bool = False, symbolic: Sequence[str] = ()
+) -> Mechanism:
+    """Read a mechanism file of any format (:func:`mechsing.reader.read_mechanism`, the
+    one reader of every command); print its warnings (likely mistakes that are not
     errors), and with ``verbose`` what was done silently (axes normalised...)."""
     from mechsing.errors import working_on
-    from mechsing.model import load
+    from mechsing.reader import read_mechanism
 
-    with working_on(file=path):
-        mech = load(path)
+    with working_on(file=path if isinstance(path, str) else path.path):
+        mech = read_mechanism(path, symbolic=symbolic)
     for warning in mech.warnings:
         print(f"mechsing: warning: {warning}", file=sys.stderr)
     if verbose:

@@ -20,7 +20,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--config",
         metavar="NAME",
-        help="evaluate each factor at this configuration and say which vanish",
+        help="evaluate each factor at this configuration and say which vanish (default with "
+        "--set: cli)",
     )
     p.add_argument(
         "--symbolic",
@@ -29,20 +30,35 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="parameters of the file to keep as symbols (comma-separated)",
     )
     p.add_argument("--format", choices=("text", "json", "latex"), default="text")
-    from mechsing.cli.options import add_scene_options
+    from mechsing.cli import options
 
-    add_scene_options(p)
+    options.add_time_limit_option(p)
+    options.add_verbose_option(p)
+    options.add_set_option(p)
+    options.add_scene_options(p)
 
 
 def run(args: argparse.Namespace) -> int:
-    from mechsing.cli.options import apply_scene
+    from mechsing.cli import load_mechanism
+    from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set, check_shared
     from mechsing.conditions import condition
 
-    result = condition(
+    check_shared(args)
+    names = [s.strip() for s in args.symbolic.split(",") if s.strip()]
+    mech = apply_set(
+        apply_scene(load_mechanism(args.file, args.verbose, symbolic=names), args, args.file),
+        args.set_values,
+        args.from_config,
         args.file,
-        config=args.config,
-        symbolic=args.symbolic,
-        scene=lambda mech: apply_scene(mech, args, args.file),
+    )
+    config = args.config or (SET_CONFIG if args.set_values else None)
+    result = condition(
+        mech,
+        config=config,
+        symbolic=names,
+        # the file read again with its parameters' values (--config) gets the same scene
+        scene=lambda m: apply_scene(m, args, args.file),
+        time_limit=args.time_limit,
     )
     if args.format == "json":
         sys.stdout.write(json.dumps(result.to_json(), indent=2) + "\n")

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
 NAME = "convert"
 HELP = "convert a URDF or MJCF description into a mechsing YAML file"
@@ -33,30 +32,31 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from mechsing.cli import UserError
+    from mechsing.cli import UserError, load_mechanism
     from mechsing.cli.options import apply_scene
     from mechsing.errors import working_on
     from mechsing.files import check_output, write_output
-    from mechsing.formats import xml_format, xml_spec
+    from mechsing.formats import xml_spec
     from mechsing.formats.writer import restrict_to, to_yaml
-    from mechsing.model.loader import loads, read_text_file
+    from mechsing.reader import read_source
 
     with working_on(file=args.file):
         if args.output:
             check_output(args.output, [args.file])
-        text = read_text_file(args.file)  # read once: a pipe or FIFO cannot be read twice
-        if xml_format(text) is None:
+        source = read_source(args.file)  # read once: a pipe or FIFO cannot be read twice
+        if source.kind == "yaml":
             raise UserError(
                 f"{args.file}: not a URDF or MJCF description (no XML root element <robot> "
                 "or <mujoco>); a mechsing file needs no conversion"
             )
-        spec = xml_spec(text, args.file)
         # the converted file must load: the same checks (and warnings) as analyze
-        mech = loads(text, path=args.file, default_name=Path(args.file).stem)
-        for warning in mech.warnings:
-            print(f"mechsing: warning: {warning}", file=sys.stderr)
+        mech = load_mechanism(source)
         chosen = apply_scene(mech, args, args.file)
-        yaml_text = to_yaml(spec if chosen is mech else restrict_to(spec, chosen))
+        yaml_text = (
+            source.yaml
+            if chosen is mech
+            else to_yaml(restrict_to(xml_spec(source.text, args.file), chosen))
+        )
         if args.output:
             write_output(args.output, yaml_text, [args.file])
         else:

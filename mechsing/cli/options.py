@@ -1,28 +1,101 @@
-"""Options shared by several commands: ``--set JOINT=VALUE`` (an ad-hoc configuration) and
-the scene options ``--output-body``, ``--output-point``, ``--relative-to``, ``--inputs``.
+"""Options shared by several commands, declared and checked here once.
 
-Owns :func:`add_set_option` and :func:`apply_set`, :func:`add_scene_options` and
-:func:`apply_scene` (whose policy is :func:`mechsing.model.scene.choose_scene`).  ``--set`` (repeatable) gives
-joint values in the file's units (a joint of several coordinates takes a
-comma-separated list, ``--set S1=0.1,0,0.2``; exact expressions such as ``pi/4``
-are read as in a mechanism file); together they form a configuration named
-``cli``, added to the mechanism and solved by closure from ``reference`` or
-from the configuration ``--from`` names.  A file that already has a
-configuration called ``cli`` is refused (exit 2).
+Owns the declarations of ``--precision``, ``--time-limit``, ``-v/--verbose``,
+``--vary``, ``--from``, ``--set`` and the scene options ``--output-body``,
+``--output-point``, ``--relative-to``, ``--inputs`` (one ``add_*`` function each,
+the same words on every command) and :func:`check_shared`, which checks every
+shared option a command was given, before the file is read, by the library's
+policy: :func:`mechsing.numeric.parse_precision`,
+:func:`mechsing.timelimit.check_time_limit`, :func:`mechsing.sweeps.spec.check_varies`
+and :func:`mechsing.sweeps.spec.sweep_precision` say what is refused and with which
+words; :func:`apply_scene`'s policy is :func:`mechsing.model.scene.choose_scene`.
+
+``--set`` (repeatable) gives joint values in the file's units (a joint of
+several coordinates takes a comma-separated list, ``--set S1=0.1,0,0.2``; exact
+expressions such as ``pi/4`` are read as in a mechanism file); together they
+form a configuration named ``cli``, added to the mechanism and solved by
+closure from ``reference`` or from the configuration ``--from`` names
+(:func:`apply_set`).  A file that already has a configuration called ``cli`` is
+refused (exit 2).
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
+import re
 from typing import Any
 
 from mechsing.errors import UserError
 
-__all__ = ["SET_CONFIG", "add_scene_options", "add_set_option", "apply_scene", "apply_set"]
+__all__ = [
+    "SET_CONFIG",
+    "add_from_option",
+    "add_precision_option",
+    "add_scene_options",
+    "add_set_option",
+    "add_time_limit_option",
+    "add_vary_option",
+    "add_verbose_option",
+    "apply_scene",
+    "apply_set",
+    "check_shared",
+    "precision_option",
+    "warn_varies",
+]
 
 #: the name of the configuration --set adds
 SET_CONFIG = "cli"
+#: a number of seconds as written on the command line: ASCII decimal syntax only
+_DECIMAL = re.compile(r"^\s*[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?\s*$", re.ASCII)
+
+
+def add_precision_option(p: argparse.ArgumentParser, default: str, modes: str) -> None:
+    """``--precision MODE`` (``modes``: the modes the command takes, for its help)."""
+    p.add_argument("--precision", default=default, metavar="MODE", help=modes)
+
+
+def add_time_limit_option(p: argparse.ArgumentParser) -> None:
+    """``--time-limit S``: the most seconds the computation of one configuration may take,
+    in every precision mode (default: exact mode's limit in exact mode, none in the others)."""
+    # the time-limit module imports no numerics: building the parser stays fast
+    from mechsing.timelimit import EXACT_TIME_LIMIT, LONGEST_TIME_LIMIT, SHORTEST_TIME_LIMIT
+
+    p.add_argument(
+        "--time-limit",
+        type=_seconds,
+        default=None,
+        metavar="S",
+        help=f"the most seconds one configuration may take (from {SHORTEST_TIME_LIMIT:g} to "
+        f"{LONGEST_TIME_LIMIT:g}); one stopped there is reported as stopped, exit status 3 "
+        f"(default: {EXACT_TIME_LIMIT:g} s in exact mode, none in the others)",
+    )
+
+
+def add_verbose_option(p: argparse.ArgumentParser) -> None:
+    """``-v/--verbose``: the file's notes (what mechsing did silently) on standard error."""
+    p.add_argument(
+        "-v", "--verbose", action="store_true", help="also print what mechsing did silently"
+    )
+
+
+def add_vary_option(p: argparse.ArgumentParser, required: bool, what: str) -> None:
+    """``--vary NAME=START:STOP:STEP`` (repeatable: once a path, twice a grid); ``what``
+    says what the sweep is for in this command."""
+    p.add_argument(
+        "--vary",
+        action="append",
+        required=required,
+        metavar="NAME=START:STOP:STEP",
+        help=f"{what}: a swept variable in the file's units, once for a path, twice for a grid "
+        "(e.g. --vary A=0:360:1, --vary C1[1]=0:0.5:0.01, --vary pose.x=-0.1:0.1:0.01); a "
+        "joint given without a range (--vary J2) is swept over its limits",
+    )
+
+
+def add_from_option(p: argparse.ArgumentParser, what: str) -> None:
+    """``--from CONFIG`` (``what``: what it starts in this command)."""
+    p.add_argument("--from", dest="from_config", metavar="CONFIG", help=what)
 
 
 def add_set_option(p: argparse.ArgumentParser, from_option: bool = True) -> None:
@@ -37,11 +110,79 @@ def add_set_option(p: argparse.ArgumentParser, from_option: bool = True) -> None
         f"configuration named {SET_CONFIG}, solved by closure from reference (or --from)",
     )
     if from_option:
-        p.add_argument(
-            "--from",
-            dest="from_config",
-            metavar="CONFIG",
-            help=f"with --set: the configuration {SET_CONFIG} is solved from (default reference)",
+        add_from_option(
+            p, f"with --set: the configuration {SET_CONFIG} is solved from (default reference)"
+        )
+
+
+def _seconds(text: str) -> float:
+    """``--time-limit``: a number of seconds in the accepted range (argparse: exit 2)."""
+    from mechsing.timelimit import check_time_limit
+
+    try:
+        if not _DECIMAL.match(text):
+            raise ValueError(text)
+        return check_time_limit(float(text))
+    except ValueError:
+        from mechsing.timelimit import LONGEST_TIME_LIMIT, SHORTEST_TIME_LIMIT
+
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a number of seconds from {SHORTEST_TIME_LIMIT:g} to "
+            f"{LONGEST_TIME_LIMIT:g} (e.g. --time-limit 120)"
+        ) from None
+
+
+def precision_option(text: str) -> Any:
+    """The ``--precision`` option as a :class:`~mechsing.numeric.Precision`, or a
+    UserError that says what is accepted."""
+    from mechsing.numeric import parse_precision
+
+    try:
+        return parse_precision(text)
+    except ValueError as exc:
+        raise UserError(f"--precision: {exc}") from None
+
+
+def warn_varies(mech: Any, varies: list[Any]) -> None:
+    """Print the likely mistakes of the swept ranges on standard error, as the file's own
+    warnings are (:func:`mechsing.sweeps.spec.vary_warnings` says which)."""
+    import sys
+
+    from mechsing.sweeps.spec import vary_warnings
+
+    for warning in vary_warnings(mech, varies):
+        print(f"mechsing: warning: {warning}", file=sys.stderr)
+
+
+def check_shared(args: argparse.Namespace, sweeps: str = "a sweep") -> None:
+    """Check the shared options a command was given, before its file is read: sets
+    ``args.prec`` (the Precision of ``--precision``) and ``args.varies`` (the ``--vary``
+    values read, each range checked; a joint without a range is checked once its limits
+    are read).  ``sweeps``: what sweeps in the command, for the messages."""
+    texts = getattr(args, "vary", None) or []
+    if texts:
+        from mechsing.sweeps.spec import check_varies
+
+        args.varies = check_varies(texts, sweeps)
+    else:
+        args.varies = []
+    if getattr(args, "precision", None) is not None:
+        args.prec = precision_option(args.precision)
+        if args.varies:
+            from mechsing.sweeps.spec import sweep_precision
+
+            sweep_precision(args.prec)
+    set_values = getattr(args, "set_values", None)
+    if getattr(args, "from_config", None) and not set_values and not args.varies:
+        if hasattr(args, "vary"):
+            raise UserError(
+                f"--from {args.from_config}: names where a sweep starts (or where --set values "
+                "are solved from): give --vary or --set too"
+            )
+        raise UserError(
+            f"--from {args.from_config}: names the configuration --set values are solved "
+            "from; give --set JOINT=VALUE too (or --config to analyse a configuration of the "
+            "file)"
         )
 
 
@@ -53,11 +194,6 @@ def apply_set(mech: Any, sets: list[str] | None, start: str | None, path: str) -
     from mechsing.model.mechanism import Configuration
 
     if not sets:
-        if start is not None:
-            raise UserError(
-                f"--from {start}: names the configuration --set values are solved from; give "
-                "--set JOINT=VALUE too (or --config to analyse a configuration of the file)"
-            )
         return mech
     if SET_CONFIG in mech.configurations:
         raise UserError(

@@ -40,30 +40,21 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--config", action="append", metavar="NAME", help="configuration to analyse (repeatable)"
     )
-    p.add_argument(
-        "--vary",
-        action="append",
-        metavar="NAME=START:STOP:STEP",
-        help="a swept variable in the file's units, as for `sweep`: once for a path, twice "
-        "for a grid (e.g. --vary A=0:360:2)",
-    )
-    p.add_argument(
-        "--from",
-        dest="from_config",
-        metavar="CONFIG",
-        help="the configuration the sweep starts from (default reference; with --set, the "
+    from mechsing.cli import options
+
+    options.add_vary_option(p, False, "the report's sweep, as for `sweep`")
+    options.add_from_option(
+        p,
+        "the configuration the sweep starts from (default reference; with --set, the "
         "configuration the --set values are solved from, and the sweep starts at cli)",
     )
-    from mechsing.cli.options import add_scene_options, add_set_option
-
-    add_set_option(p, from_option=False)
-    add_scene_options(p)
-    p.add_argument(
-        "--precision", default="auto", metavar="MODE", help="auto (default), float or mp:N"
+    options.add_set_option(p, from_option=False)
+    options.add_scene_options(p)
+    options.add_precision_option(
+        p, "auto", "auto (default), float, mp:N, or exact (without --vary)"
     )
-    p.add_argument(
-        "-v", "--verbose", action="store_true", help="also print what mechsing did silently"
-    )
+    options.add_time_limit_option(p)
+    options.add_verbose_option(p)
 
 
 def output_path(file: str, out: str | None) -> tuple[Path, str]:
@@ -83,35 +74,23 @@ def output_path(file: str, out: str | None) -> tuple[Path, str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from mechsing.cli import NOT_ANALYSED, load_mechanism, precision_option, with_file
-    from mechsing.errors import UserError, working_on
+    from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
+    from mechsing.cli.options import (
+        SET_CONFIG,
+        apply_scene,
+        apply_set,
+        check_shared,
+        warn_varies,
+    )
+    from mechsing.errors import working_on
     from mechsing.files import check_output
     from mechsing.report import report
-    from mechsing.sweeps.spec import Vary
 
     with working_on(file=args.file):
         path, _ = output_path(args.file, args.output)
         # before the work: a missing directory or the input file is refused now
         check_output(path, [args.file], "-o" if args.output else "the default output")
-        if args.vary and len(args.vary) > 2:
-            raise UserError(
-                f"--vary is given {len(args.vary)} times: a report sweeps one variable (a "
-                "path) or two (a grid); give --vary once or twice"
-            )
-        for text in args.vary or ():
-            Vary.parse(text).count()  # the range's own errors before the file is read
-        if args.from_config and not args.vary and not args.set_values:
-            raise UserError(
-                "--from names where a sweep starts (or where --set values are solved from): "
-                "give --vary or --set too"
-            )
-        prec = precision_option(args.precision)
-        if prec.mode == "exact" and args.vary:
-            raise UserError(
-                "--precision exact: a sweep locates its singularities numerically, so their "
-                "values are not exact data; use --precision auto (the default) or mp:N"
-            )
-        from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set
+        check_shared(args, "a report")  # the options' own errors before the file is read
 
         mech = apply_set(
             apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
@@ -119,15 +98,26 @@ def run(args: argparse.Namespace) -> int:
             args.from_config if args.set_values else None,  # without --set: the sweep's start
             args.file,
         )
+        warn_varies(mech, args.varies)
         start = SET_CONFIG if args.set_values else args.from_config
         command = "mechsing report " + shlex.join(_argv(args))
-        rep = report(mech, args.config, args.vary, prec, start, command=command)
+        rep = report(
+            mech,
+            args.config,
+            args.varies,
+            args.prec,
+            start,
+            command=command,
+            time_limit=args.time_limit,
+        )
         rep.write(path, [args.file])
     print(f"mechsing: report written to {path}", file=sys.stderr)
-    for c in rep.analysis.configurations:
-        if c.error:
-            print(f"mechsing: {with_file(c.error, args.file)}", file=sys.stderr)
-    return NOT_ANALYSED if rep.analysis.failed else 0
+    errors = [c.error for c in rep.analysis.configurations]
+    if rep.sweep is not None:
+        errors += [p.configuration.error for p in rep.sweep.located if p.configuration]
+    for error in filter(None, errors):
+        print(f"mechsing: {with_file(error, args.file)}", file=sys.stderr)
+    return NOT_ANALYSED if any(errors) else 0
 
 
 def _argv(args: argparse.Namespace) -> list[str]:

@@ -17,25 +17,22 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--config", metavar="NAME", help="the configuration to close (default with --set: cli)"
     )
-    p.add_argument(
-        "--precision", default="float", metavar="MODE", help="float (default), mp:N or exact"
-    )
-    p.add_argument("--format", choices=("text", "json"), default="text")
-    p.add_argument(
-        "-v", "--verbose", action="store_true", help="also print what mechsing did silently"
-    )
-    from mechsing.cli.options import add_scene_options, add_set_option
+    from mechsing.cli import options
 
-    add_set_option(p)
-    add_scene_options(p)
+    options.add_precision_option(p, "float", "float (default), mp:N or exact")
+    options.add_time_limit_option(p)
+    p.add_argument("--format", choices=("text", "json"), default="text")
+    options.add_verbose_option(p)
+    options.add_set_option(p)
+    options.add_scene_options(p)
 
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.analysis.solve import solve
-    from mechsing.cli import UserError, load_mechanism, precision_option
+    from mechsing.cli import UserError, load_mechanism
+    from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set, check_shared
 
-    prec = precision_option(args.precision)
-    from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set
+    check_shared(args)
 
     mech = apply_set(
         apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
@@ -51,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(
             f"{args.file}: no configuration named {args.config!r}; the file has: {', '.join(mech.configurations)}"
         )
-    res = solve(mech, args.config, prec)
+    res = solve(mech, args.config, args.prec, time_limit=args.time_limit)
     if args.format == "json":
         sys.stdout.write(json.dumps(res.to_json(), indent=2) + "\n")
     else:

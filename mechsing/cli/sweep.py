@@ -15,7 +15,9 @@ units.  With -o OUT and no --format, the format follows OUT's extension (.json,
 
 A progress bar is shown on standard error when it is a terminal (not with
 --quiet).  Exit status: 0 success, 2 bad input, 3 the sweep cannot start (its
---from configuration does not close, or the first sample cannot be reached).
+--from configuration does not close, or the first sample cannot be reached) or a
+located point could not be analysed (stopped by --time-limit, say: the output is
+written, its entry and standard error say why).
 """
 
 from __future__ import annotations
@@ -41,34 +43,24 @@ _BY_EXTENSION = {".json": "json", ".csv": "csv", ".txt": "text"}
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("file", metavar="FILE", help="mechanism file (YAML or JSON), URDF or MJCF")
-    p.add_argument(
-        "--vary",
-        action="append",
-        required=True,
-        metavar="NAME=START:STOP:STEP",
-        help="a swept variable in the file's units: once for a path, twice for a grid "
-        "(e.g. --vary A=0:360:1, --vary C1[1]=0:0.5:0.01, --vary pose.x=-0.1:0.1:0.01); a "
-        "joint given without a range (--vary J2) is swept over its limits in 200 steps",
-    )
-    p.add_argument(
-        "--from",
-        dest="from_config",
-        metavar="CONFIG",
-        help="the configuration the sweep starts from (its assembly mode is kept; "
+    from mechsing.cli import options
+
+    options.add_vary_option(p, True, "what the sweep varies")
+    options.add_from_option(
+        p,
+        "the configuration the sweep starts from (its assembly mode is kept; "
         "default reference; with --set, the one the configuration cli is solved from, and the "
         "sweep starts from cli)",
     )
-    from mechsing.cli.options import add_scene_options, add_set_option
-
-    add_set_option(p, from_option=False)
-    add_scene_options(p)
-    p.add_argument(
-        "--precision",
-        default="auto",
-        metavar="MODE",
-        help="precision of the classification of the located points: auto (default), "
+    options.add_set_option(p, from_option=False)
+    options.add_scene_options(p)
+    options.add_precision_option(
+        p,
+        "auto",
+        "precision of the classification of the located points: auto (default), "
         "float or mp:N (the measures are always float)",
     )
+    options.add_time_limit_option(p)
     p.add_argument(
         "--format",
         choices=FORMATS,
@@ -95,9 +87,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         metavar="N",
         help="most located points of a grid classified by the full analysis (default 200)",
     )
-    p.add_argument(
-        "-v", "--verbose", action="store_true", help="also print what mechsing did silently"
-    )
+    options.add_verbose_option(p)
 
 
 def _positive_int(option: str) -> Callable[[str], int]:
@@ -125,27 +115,14 @@ def output_format(fmt: str | None, out: str | None) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from mechsing.cli import load_mechanism, precision_option
+    from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
+    from mechsing.cli.options import check_shared, warn_varies
     from mechsing.errors import UserError, working_on
     from mechsing.sweeps import MAX_CLASSIFIED, SweepRun
-    from mechsing.sweeps.spec import Vary
 
     with working_on(file=args.file):
-        if len(args.vary) > 2:
-            raise UserError(
-                f"--vary is given {len(args.vary)} times: a sweep varies one variable (a path) "
-                "or two (a grid); give --vary once or twice"
-            )
-        varies = [Vary.parse(text) for text in args.vary]
-        for v in varies:
-            if v.ranged:
-                v.count()  # the range's own errors (STEP <= 0, not finite) before the file is read
-        prec = precision_option(args.precision)
-        if prec.mode == "exact":
-            raise UserError(
-                "--precision exact: a sweep locates its singularities numerically, so their "
-                "values are not exact data; use --precision auto (the default) or mp:N"
-            )
+        check_shared(args)  # the options' own errors before the file is read
+        varies = args.varies
         if (args.workers or args.scheduler) and len(varies) != 2:
             raise UserError(
                 "--workers and --scheduler distribute the rows of a grid: give two --vary"
@@ -163,12 +140,14 @@ def run(args: argparse.Namespace) -> int:
             args.from_config if args.set_values else None,  # without --set: the sweep's start
             args.file,
         )
+        warn_varies(mech, varies)
         sweep_run = SweepRun(
             mech,
             list(varies),
             SET_CONFIG if args.set_values else args.from_config,
-            prec,
+            args.prec,
             max_classified=args.max_classified or MAX_CLASSIFIED,
+            time_limit=args.time_limit,
         )
         with (
             _destination(args.output, args.file) as out,
@@ -183,7 +162,10 @@ def run(args: argparse.Namespace) -> int:
                 for _ in rows:
                     pass
                 out.write(sweep_run.result().to_text())
-    return 0
+    stopped = [p.configuration.error for p in sweep_run.result().located if p.configuration]
+    for error in filter(None, stopped):
+        print(f"mechsing: {with_file(error, args.file)}", file=sys.stderr)
+    return NOT_ANALYSED if any(stopped) else 0
 
 
 # --------------------------------------------------------------------------- writers

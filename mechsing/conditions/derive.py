@@ -37,6 +37,7 @@ import itertools
 import math
 import random
 from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -54,10 +55,9 @@ from mechsing.conditions.symbolic import (
     reference_twist,
     to_trig,
 )
-from mechsing.errors import UserError
+from mechsing.errors import ConfigurationError, UserError
 from mechsing.model import Mechanism
 from mechsing.model.couplings import refuse_couplings
-from mechsing.model.loader import loads, read_text_file
 from mechsing.model.parameters import ParameterSymbol
 from mechsing.numeric import (
     CONDITION_GENERIC_RANK_RTOL,
@@ -66,6 +66,7 @@ from mechsing.numeric import (
     CONDITION_ROOT_RTOL,
     CONDITION_VANISH_RTOL,
 )
+from mechsing.reader import read_mechanism
 from mechsing.timelimit import TimeLimit, TimeLimitExceeded
 
 __all__ = ["ELIMINATION_SECONDS", "MAX_MINORS", "condition"]
@@ -77,24 +78,30 @@ MAX_MINORS = 84
 
 
 def condition(
-    source: str | Path,
+    source: str | Path | Mechanism,
     config: str | None = None,
     symbolic: str | list[str] | tuple[str, ...] = (),
     scene: Callable[[Mechanism], Mechanism] | None = None,
+    time_limit: float | None = None,
 ) -> ConditionResult:
     """The singularity conditions of a mechanism file as factored formulas.
 
     Parameters
     ----------
-    source : str or Path
-        The mechanism file.
+    source : str, Path or Mechanism
+        The mechanism file (any format :func:`mechsing.load` reads), or a mechanism read
+        with ``symbolic`` kept as symbols.
     config : str, optional
         A configuration of the file: each factor is evaluated there.
     symbolic : str or sequence of str
         Parameters of the file to keep as symbols (a list, or ``"a2,a3"``).
     scene : callable, optional
-        Applied to the mechanism as read (e.g. the command line's output and inputs,
-        :func:`mechsing.model.scene.choose_scene`), before anything is derived.
+        Applied to the mechanism as read from a file (e.g. the command line's output and
+        inputs, :func:`mechsing.model.scene.choose_scene`), before anything is derived
+        (a mechanism given as ``source`` is taken as it is).
+    time_limit : float or None
+        The most seconds the derivation may take (None: no limit); stopped there, a
+        ConfigurationError (exit status 3) that says so.
 
     Returns
     -------
@@ -110,11 +117,28 @@ def condition(
     """
     names = [s.strip() for s in symbolic.split(",")] if isinstance(symbolic, str) else symbolic
     names = [s for s in names if s]
-    text = read_text_file(source)  # read once: a pipe or FIFO cannot be read twice
-    mech = loads(text, path=str(source), default_name=Path(source).stem, symbolic=names)
-    if scene is not None:
+    mech = _symbolic_mechanism(source, names)
+    if scene is not None and not isinstance(source, Mechanism):
         mech = scene(mech)
     refuse_couplings(mech)
+    try:
+        with TimeLimit(time_limit):
+            return _condition(mech, config, names, scene)
+    except TimeLimitExceeded:
+        raise ConfigurationError(
+            f"{mech.path or mech.name}: the conditions were stopped by the time limit after "
+            f"{time_limit:g} s; allow more time with --time-limit S",
+            config or "reference",
+        ) from None
+
+
+def _condition(
+    mech: Mechanism,
+    config: str | None,
+    names: list[str],
+    scene: Callable[[Mechanism], Mechanism] | None,
+) -> ConditionResult:
+    source = mech.path or mech.name
     if config is not None and config not in mech.configurations:
         raise UserError(
             f"{source}: no configuration named {config!r}; the file has: "
@@ -144,9 +168,20 @@ def condition(
     conds = [_printable(c, printable) for c in conds]
     values: dict[str, float] = {}
     if config is not None:
-        values = _configuration_values(text, source, config, method, scene)
+        numeric = mech
+        if names and mech.path:  # the same file with its parameters' values
+            numeric = read_mechanism(mech.path)
+            if scene is not None:
+                numeric = scene(numeric)
+            # a configuration added to the mechanism read (mechsing condition --set)
+            added = {
+                k: v for k, v in mech.configurations.items() if k not in numeric.configurations
+            }
+            if added:
+                numeric = replace(numeric, configurations={**numeric.configurations, **added})
+        values = _configuration_values(numeric, config, method)
         conds = [_evaluate(c, values, params) for c in conds]
-    fixed = {k: v for k, v in _file_parameters(text).items() if k not in names}
+    fixed = {k: v for k, v in mech.parameters.items() if k not in names}
     return ConditionResult(
         mechanism=mech.name,
         method=method,
@@ -178,18 +213,21 @@ def _parameters(mech: Mechanism) -> list[Any]:
     return sorted(found, key=lambda s: s.name)
 
 
-def _file_parameters(text: str) -> dict[str, Any]:
-    from mechsing.model.yamlnodes import YMap, YScalar, read_yaml_text
-
-    doc = read_yaml_text(text)
-    out: dict[str, Any] = {}
-    if isinstance(doc, YMap) and isinstance(doc.get("parameters"), YMap):
-        from mechsing.model.expressions import parse_number
-
-        for k, v in doc.get("parameters").items:  # type: ignore[union-attr]
-            if isinstance(v, YScalar):
-                out[k.text.strip()] = parse_number(v.text, out)
-    return out
+def _symbolic_mechanism(source: str | Path | Mechanism, names: list[str]) -> Mechanism:
+    """The mechanism with the parameters ``names`` kept as symbols: read from the file,
+    or ``source`` itself when it was read so."""
+    if not isinstance(source, Mechanism):
+        return read_mechanism(source, symbolic=names)
+    kept = {k for k, v in source.parameters.items() if isinstance(v, ParameterSymbol)}
+    if kept == set(names):
+        return source
+    if source.path is None or not Path(source.path).is_file():
+        raise UserError(
+            f"{source.name}: the mechanism keeps {', '.join(sorted(kept)) or 'no parameter'} "
+            f"as symbols, not {', '.join(names) or 'none'}; read it with "
+            "mechsing.load(path, symbolic=...) or pass its path"
+        )
+    return read_mechanism(source.path, symbolic=names)
 
 
 def _printable(c: Condition, printable: dict[Any, Any]) -> Condition:
@@ -994,18 +1032,10 @@ def _parallel(
 # ---------------------------------------------------------------------------
 
 
-def _configuration_values(
-    text: str,
-    source: str | Path,
-    config: str,
-    method: str,
-    scene: Callable[[Mechanism], Mechanism] | None,
-) -> dict[str, float]:
+def _configuration_values(numeric: Mechanism, config: str, method: str) -> dict[str, float]:
+    """The joint (or pose) variables of a configuration of ``numeric`` (no symbols)."""
     from mechsing.kinematics import solve_configuration
 
-    numeric = loads(text, path=str(source), default_name=Path(source).stem)
-    if scene is not None:
-        numeric = scene(numeric)
     model, closed = solve_configuration(numeric, config, "float")
     vals = {k: float(v[0]) for k, v in model.values(closed.q).items() if k in numeric.joint_names}
     if method.startswith("parallel"):

@@ -98,7 +98,61 @@ def factor_condition(
     ``params`` are the free symbols that are not joint symbols (symbolic
     parameters).  Factors are primitive polynomials in the ``c``, ``s``
     symbols with a positive leading coefficient; equal factors are merged.
+    A radical of parameters (the length ``sqrt(d**2 + r**2)`` by which an axis
+    written with symbolic parameters is normalised) is factored as a positive
+    symbol of its own, a function of parameters (``cos(phi)``) as a symbol of its
+    own (:func:`_radicals`); both are written back in the results.
     """
+    expr, back = _radicals(expr, joints)
+    if not back:
+        return _factor(expr, joints, params)
+    # a radical in a denominator is a positive factor: the numerator holds the condition
+    num, den = sympy.fraction(sympy.together(sympy.expand(expr)))
+    const, factors = _factor(num, joints, params | set(back))
+    const = (sympy.sympify(const) / den).xreplace(back)
+    if const.has(sympy.sin, sympy.cos):  # sqrt(cos(phi)**2 + sin(phi)**2) is 1
+        const = sympy.trigsimp(const)
+    return const, [(sympy.sympify(f).xreplace(back), p) for f, p in factors]
+
+
+def _radicals(expr: Any, joints: list[JointSymbols]) -> tuple[Any, dict[Any, Any]]:
+    """``expr`` with every radical of symbolic parameters (``b**(p/q)``, ``b`` free of the
+    joint symbols) replaced by ``rho**p``, ``rho`` a positive symbol standing for
+    ``b**(1/q)``, and the map back.  The principal root of the parameters' (real,
+    positive) data is positive, so a factor of ``rho`` alone never vanishes: it goes to
+    the constant as a positive factor, and the rest is a polynomial again."""
+    variables = {x for js in joints for x in (js.c, js.s, js.q) if x is not None}
+    roots: dict[tuple[Any, int], Any] = {}
+    back: dict[Any, Any] = {}
+    sub: dict[Any, Any] = {}
+    expr = sympy.sympify(expr)
+    # a function of parameters alone (cos(phi) of an axis [cos(phi), sin(phi), 0]) is a
+    # number of its own to the factoring: a real symbol, written back afterwards
+    for i, f in enumerate(sorted(expr.atoms(sympy.Function), key=str)):
+        if f.free_symbols and not f.free_symbols & variables:
+            value = sympy.Dummy(f"value{i}", real=True)
+            back[value] = f
+            sub[f] = value
+    functions = dict(back)
+    if sub:
+        expr = expr.xreplace(sub)
+        sub = {}
+    for a in expr.atoms(sympy.Pow):
+        b, ex = a.args
+        if not ex.is_Rational or ex.is_Integer or not b.free_symbols or b.free_symbols & variables:
+            continue
+        key = (b, int(ex.q))
+        if key not in roots:
+            rho = sympy.Dummy(f"root{len(roots)}", positive=True)
+            roots[key] = rho
+            back[rho] = (b ** sympy.Rational(1, ex.q)).xreplace(functions)
+        sub[a] = roots[key] ** int(ex.p)
+    return (expr.xreplace(sub) if sub else expr), back
+
+
+def _factor(
+    expr: Any, joints: list[JointSymbols], params: set[Any]
+) -> tuple[Any, list[tuple[Any, int]]]:
     e = reduce_trig(sympy.expand(expr), joints)
     if e == 0:
         return sympy.Integer(0), []

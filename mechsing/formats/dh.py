@@ -70,6 +70,46 @@ def dh_frames(rows: list[tuple[float, float, float, float]], convention: str) ->
     return out
 
 
+def exact_frames(rows: list[tuple[Any, Any, Any, Any]], convention: str) -> list[Any]:
+    """Frames 0..n as exact sympy matrices, for rows whose values keep symbolic parameters
+    (``mechsing condition --symbolic``): the same products as :func:`dh_frames`."""
+
+    def rot(axis: int, t: Any) -> Any:
+        c, s = sympy.cos(t), sympy.sin(t)
+        m = sympy.eye(4)
+        i, j = (0, 1) if axis == 2 else (1, 2)
+        m[i, i], m[i, j], m[j, i], m[j, j] = c, -s, s, c
+        return m
+
+    def move(axis: int, x: Any) -> Any:
+        m = sympy.eye(4)
+        m[axis, 3] = x
+        return m
+
+    t = sympy.eye(4)
+    out = [t]
+    for theta, d, a, alpha in rows:
+        if convention == "standard":
+            t = t * rot(2, theta) * move(2, d) * move(0, a) * rot(0, alpha)
+        else:
+            t = t * rot(0, alpha) * move(0, a) * rot(2, theta) * move(2, d)
+        t = t.applyfunc(sympy.expand)
+        out.append(t)
+    return out
+
+
+def _exact_vec(v: Any, line: int) -> YSeq:
+    """An exact column written as expressions of the file's parameters (by their names)."""
+    from mechsing.model.parameters import ParameterSymbol
+
+    def text(x: Any) -> str:
+        x = sympy.sympify(x)
+        named = {p: sympy.Symbol(p.name) for p in x.atoms(ParameterSymbol)}
+        return sympy.sstr(x.xreplace(named))
+
+    return YSeq(tuple(YScalar(text(v[i]), "str", line, True) for i in range(3)), line)
+
+
 def _s(text: str, line: int) -> YScalar:
     return YScalar(text, "str", line, True)
 
@@ -126,6 +166,7 @@ def expand_dh(top: YMap, r: Any) -> YMap:
     if not seq.items:
         raise r.error("dh", seq.line, "dh.rows is empty; give one row per joint")
     rows: list[tuple[float, float, float, float]] = []
+    exact: list[tuple[Any, Any, Any, Any]] = []  # the rows' exact values (parameters kept)
     meta: list[tuple[str, str, str, int]] = []
     names: set[str] = set()
     bodies = ["L0"]
@@ -135,12 +176,13 @@ def expand_dh(top: YMap, r: Any) -> YMap:
         r.keys(row, item, ROW_KEYS, ("theta", "d", "a", "alpha"), hint="a DH row")
         af = _angle_factor(top)
 
-        def val(key: str, f: Any, row: YMap = row, item: str = item) -> float:
-            x = r.number(row.get(key), item, key)
-            return float(sympy.N(x * f, 20))
+        def val(key: str, f: Any, row: YMap = row, item: str = item) -> Any:
+            return r.number(row.get(key), item, key) * f
 
-        theta, alpha = val("theta", af), val("alpha", af)
-        d, a = val("d", 1), val("a", 1)  # file lengths: the points are written in them
+        # file lengths (d, a): the points are written in them
+        values = (val("theta", af), val("d", 1), val("a", 1), val("alpha", af))
+        exact.append(values)
+        theta, d, a, alpha = (float(sympy.N(x, 20)) for x in values)
         jtype = "R"
         if row.get("type") is not None:
             jtype = r.name(row.get("type"), item, "type")
@@ -158,7 +200,9 @@ def expand_dh(top: YMap, r: Any) -> YMap:
             raise r.error(item, row.line, "the row's numbers must be finite")  # pragma: no cover
         rows.append((theta, d, a, alpha))
         meta.append((jname, jtype, body, row.line))
-    frames = dh_frames(rows, convention)
+    symbolic = any(sympy.sympify(x).free_symbols for row_values in exact for x in row_values)
+    frames = exact_frames(exact, convention) if symbolic else dh_frames(rows, convention)
+    vec = _exact_vec if symbolic else _vec
     joints: list[YValue] = []
     prev = bodies[0]
     for i, (jname, jtype, body, ln) in enumerate(meta):
@@ -167,10 +211,10 @@ def expand_dh(top: YMap, r: Any) -> YMap:
             (_s("name", ln), _s(jname, ln)),
             (_s("type", ln), YScalar(jtype, "str", ln)),
             (_s("between", ln), YSeq((_s(prev, ln), _s(body, ln)), ln)),
-            (_s("axis", ln), _vec(f[:3, 2], ln)),
+            (_s("axis", ln), vec(f[:3, 2], ln)),
         ]
         if jtype == "R":
-            items.append((_s("point", ln), _vec(f[:3, 3], ln)))
+            items.append((_s("point", ln), vec(f[:3, 3], ln)))
         joints.append(YMap(tuple(items), ln))
         prev = body
     new: list[tuple[YScalar, YValue]] = []

@@ -31,8 +31,10 @@ Owns :func:`read_mjcf`.  The mapping (also in the docs' import page):
 
 Refused with a message naming the element and line: ``<include>`` (mechsing
 reads one file), ``<equality><joint>``/``<tendon>`` couplings, an unknown
-joint type, a connect or weld naming an unknown body, and
-``coordinate="global"``.
+joint type, a connect or weld naming an unknown body, ``coordinate="global"``,
+and a connect or weld without the attributes MuJoCo's reference requires of it
+(connect: ``body1`` with ``anchor``, or ``site1`` with ``site2``; weld:
+``body1``, or ``site1`` with ``site2``).
 """
 
 from __future__ import annotations
@@ -43,7 +45,7 @@ import numpy as np
 
 from mechsing.formats.frames import axis_angle, euler, frame, quaternion, xyaxes, zaxis
 from mechsing.formats.writer import Bodies, JointSpec, MechanismSpec, joint_name_problem
-from mechsing.formats.xmlsafe import Element, floats, parse
+from mechsing.formats.xmlsafe import Element, floats, parse, required
 from mechsing.model.mechanism import MechanismError
 
 __all__ = ["MJCF_TYPES", "read_mjcf"]
@@ -266,7 +268,11 @@ def _read(root: Element, path: str) -> MechanismSpec:
                 continue
             if c.tag == "connect":
                 n_connect += 1
-                if c.get("site1") is not None:
+                rule = (
+                    "MuJoCo's connect is given by body1 with anchor (in body1's frame; body2 "
+                    "defaults to the world) or by site1 with site2"
+                )
+                if required(c, path, rule, ("body1", "anchor"), ("site1", "site2"))[0] == "site1":
                     s1, s2 = c.get("site1"), c.get("site2")
                     for s in (s1, s2):
                         if s not in sites:
@@ -284,7 +290,7 @@ def _read(root: Element, path: str) -> MechanismSpec:
                                 f"body {b!r} is not a body of the model; name one "
                                 "with body1 and body2",
                             )
-                    loc = rd.nums(c, dict(c.attrib), "anchor", 3, [0, 0, 0])
+                    loc = floats(c, "anchor", 3, path)
                     anchor = (placed[b1] @ np.array([*loc, 1.0]))[:3]  # type: ignore[index]
                 jname = c.get("name") or f"connect{n_connect}"
                 if jname in names:
@@ -294,8 +300,18 @@ def _read(root: Element, path: str) -> MechanismSpec:
                 names.add(jname)
                 joints.append(JointSpec(jname, "S", (b1, b2), point=tuple(anchor)))  # type: ignore[arg-type]
             elif c.tag == "weld":
-                b1 = c.get("body1")
-                b2 = c.get("body2") or _WORLD
+                rule = (
+                    "MuJoCo's weld is given by body1 (body2 defaults to the world) or by "
+                    "site1 with site2"
+                )
+                if required(c, path, rule, ("body1",), ("site1", "site2"))[0] == "site1":
+                    for s in (c.get("site1"), c.get("site2")):
+                        if s not in sites:
+                            raise rd.err(c, f"site {s!r} is not a named site of the model")
+                    b1, b2 = sites[c.get("site1")][0], sites[c.get("site2")][0]  # type: ignore[index]
+                else:
+                    b1 = c.get("body1")
+                    b2 = c.get("body2") or _WORLD
                 for b in (b1, b2):
                     if b not in placed:
                         raise rd.err(c, f"body {b!r} is not a body of the model")

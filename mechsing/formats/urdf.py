@@ -24,14 +24,15 @@ Owns :func:`read_urdf`.  The mapping (also in the docs' import page):
 * ``<mimic joint multiplier offset>`` -> an entry of ``couplings`` (the joint's value
   is ``multiplier * (the named joint's value) + offset``), with the ``<mimic>``'s line:
   kept when the robot is read, dropped with its branch when the scene options leave the
-  branch out, refused when a coupled joint is analysed
-  (:mod:`mechsing.model.couplings`).
+  branch out (:mod:`mechsing.model.couplings`).
 
 Refused with a message naming the element and line: an unknown joint type, a mimic
 that couples a joint of several coordinates (a mimic that names a joint the robot does
 not define is kept, and refused only when its joint is analysed; one of a fixed joint
-couples nothing and is ignored), a link that is the
-child of two joints, a cycle, a joint naming an unknown link.
+couples nothing and is ignored), a link that is the child of two joints, a cycle, a
+joint naming an unknown link, and an attribute the URDF specification requires of an
+element read here missing (the robot's, a link's and a joint's ``name``, a joint's
+``type``, ``<parent link>`` and ``<child link>``, an ``<axis>``'s ``xyz``).
 """
 
 from __future__ import annotations
@@ -46,7 +47,7 @@ from mechsing.formats.writer import (
     MechanismSpec,
     joint_name_problem,
 )
-from mechsing.formats.xmlsafe import Element, floats, parse
+from mechsing.formats.xmlsafe import Element, floats, parse, required
 from mechsing.model.mechanism import MechanismError
 
 __all__ = ["URDF_TYPES", "read_urdf"]
@@ -71,6 +72,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
 
     if root.tag != "robot":
         raise err(root, "a URDF file's root element is <robot>")
+    required(root, path, "a URDF robot has a name (the URDF specification requires it)", ("name",))
     links: dict[str, Element] = {}
     for el in root.findall("link"):
         name = el.get("name")
@@ -176,7 +178,9 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         a = bodies.find(el.find("parent").get("link"))  # type: ignore[union-attr]
         b = bodies.find(el.find("child").get("link"))  # type: ignore[union-attr]
         axis_el = el.find("axis")
-        axis = floats(axis_el, "xyz", 3, path, [1, 0, 0]) if axis_el is not None else [1, 0, 0]
+        if axis_el is not None:  # the element is optional, its xyz is not
+            required(axis_el, path, "a URDF <axis> gives its direction", ("xyz",))
+        axis = floats(axis_el, "xyz", 3, path) if axis_el is not None else [1, 0, 0]
         n = float(np.linalg.norm(axis))
         if not n > 1e-9:
             raise err(axis_el or el, 'the axis is a zero vector; give a direction such as "0 0 1"')
@@ -209,7 +213,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
             tip = children[tip][0].find("child").get("link")  # type: ignore[union-attr]
         if bodies.find(tip) != bodies.find(base):
             output = bodies.find(tip)
-    name = root.get("name") or "robot"
+    name = root.get("name")
     return MechanismSpec(
         name=name,
         source=f"Converted by mechsing from the URDF file {path} (robot {name!r}).",

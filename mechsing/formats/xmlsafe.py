@@ -185,6 +185,27 @@ def parse(text: str, path: str, kind: str) -> Element:
     return roots[0]
 
 
+def required(el: Element, path: str, rule: str, *ways: tuple[str, ...]) -> tuple[str, ...]:
+    """The one way of ``ways`` (sets of attribute names) that ``el`` gives whole; a
+    MechanismError naming the element, its line and the format's ``rule`` when it gives
+    none whole, or parts of two (its reference requires one set, complete)."""
+    given = [w for w in ways if any(el.get(k) is not None for k in w)]
+    whole = [w for w in given if all(el.get(k) is not None for k in w)]
+    if len(given) == 1 and whole:
+        return whole[0]
+    options = " or ".join("+".join(w) for w in ways)
+    if not given and len(ways) == 1:
+        problem = f"lacks {', '.join(repr(k) for k in ways[0])}"
+    elif not given:
+        problem = f"gives none of {options}"
+    elif len(given) > 1:
+        problem = f"mixes {' and '.join('+'.join(w) for w in given)}"
+    else:
+        missing = [k for k in given[0] if el.get(k) is None]
+        problem = f"lacks {', '.join(repr(k) for k in missing)}"
+    raise MechanismError(f"{el.where()} {problem}: {rule}; give {options}", path=path, line=el.line)
+
+
 def floats(
     el: Element, key: str, n: int | None, path: str, default: list[float] | None = None
 ) -> list[float]:

@@ -9,7 +9,7 @@ units and radians exactly.
 
 from __future__ import annotations
 
-from collections.abc import Collection
+from collections.abc import Callable, Collection
 from pathlib import Path
 from typing import Any
 
@@ -37,7 +37,7 @@ from mechsing.model.mechanism import (
     OutputPose,
     Units,
 )
-from mechsing.model.parameters import read_parameters
+from mechsing.model.parameters import check_names, read_parameters
 from mechsing.model.yamlnodes import (
     MAX_FILE_BYTES,
     YAMLReadError,
@@ -58,7 +58,7 @@ __all__ = [
     "TOP_LEVEL_KEYS",
     "load",
     "loads",
-    "read_text_file",
+    "read_text",
 ]
 
 #: exact factors to metres
@@ -293,7 +293,8 @@ def _show(vec: tuple[Any, ...]) -> str:
 
 
 def load(path: str | Path, symbolic: Collection[str] = ()) -> Mechanism:
-    """Read and validate a mechanism file (YAML or JSON).
+    """Read and validate a mechanism file in mechsing YAML or JSON (any format, URDF and
+    MJCF too: :func:`mechsing.reader.read_mechanism`, which every command uses).
 
     Parameters
     ----------
@@ -314,20 +315,19 @@ def load(path: str | Path, symbolic: Collection[str] = ()) -> Mechanism:
         For every problem: unreadable file, malformed YAML, unknown keys,
         invalid geometry, names, inputs, output or configurations.
     """
-    text = read_text_file(path)
-    p = Path(path)
-    return loads(text, path=str(path), default_name=p.stem, symbolic=symbolic)
+    return loads(read_text(path), path=str(path), default_name=Path(path).stem, symbolic=symbolic)
 
 
-def read_text_file(path: str | Path) -> str:
+def read_text(path: str | Path, largest: int = MAX_FILE_BYTES) -> str:
     """The text of a mechanism file or robot description (UTF-8, a byte-order mark
-    dropped): a regular file, pipe or FIFO of at most the largest size mechsing reads
-    (:func:`mechsing.files.read_input`); MechanismError otherwise."""
+    dropped): a regular file, pipe or FIFO of at most ``largest`` bytes
+    (:func:`mechsing.files.read_input`); MechanismError otherwise (it cannot be read, is
+    not a regular file, pipe or FIFO, is larger, or is not UTF-8 text)."""
     from mechsing.files import InputError, read_input
 
     shown = str(path)
     try:
-        raw = read_input(path, _largest_file(), "mechanism file (YAML, JSON, URDF or MJCF)")
+        raw = read_input(path, largest, "mechanism file (YAML, JSON, URDF or MJCF)")
     except InputError as exc:
         raise MechanismError(exc.problem, path=shown) from None
     try:
@@ -338,47 +338,40 @@ def read_text_file(path: str | Path) -> str:
         ) from None
 
 
+#: what turns a file's ``dh`` table into its bodies and joints: ``expand(top, reader)`` ->
+#: the top-level mapping without ``dh`` (:func:`mechsing.formats.dh.expand_dh`, given by
+#: the reader above both layers, :mod:`mechsing.reader`; the model reads no other format)
+TableExpander = Callable[[YMap, Any], YMap]
+
+
 def loads(
     text: str,
     path: str | None = None,
     default_name: str = "mechanism",
     symbolic: Collection[str] = (),
+    expand_dh: TableExpander | None = None,
 ) -> Mechanism:
-    """Validate a mechanism given as YAML or JSON text (``path`` only for messages)."""
+    """Validate a mechanism given as YAML or JSON text (``path`` only for messages);
+    ``expand_dh`` reads a ``dh`` table (None: a file with one is refused, naming the
+    reader that takes it, ``mechsing.load``)."""
     r = _Reader(path if path is not None else "<text>")
     if "\x00" in text:
         raise r.error(None, None, "the file contains NUL bytes: it is not a text file")
-    text = _from_other_format(text, r.path)
+    if text.lstrip().startswith("<"):
+        raise r.error(
+            None,
+            None,
+            "an XML text: mechsing.model reads mechsing YAML and JSON; read URDF and MJCF "
+            "with mechsing.load (mechsing.reader.read_mechanism), as the commands do",
+        )
     try:
         doc = read_yaml_text(text)
     except YAMLReadError as exc:
         raise r.error(None, exc.line, exc.message) from None
     builder = _Builder(r, default_name)
     builder.symbolic = tuple(symbolic)
+    builder.expand_dh = expand_dh
     return builder.build(doc)
-
-
-def _largest_file() -> int:
-    """The largest file :func:`load` reads: a YAML text is bounded again when it is read."""
-    from mechsing.formats.xmlsafe import MAX_XML_BYTES
-
-    return max(MAX_FILE_BYTES, MAX_XML_BYTES)
-
-
-def _from_other_format(text: str, path: str) -> str:
-    """A URDF or MJCF text (recognised by its root element) becomes mechsing YAML."""
-    from mechsing.formats import xml_format, xml_to_yaml
-
-    return xml_to_yaml(text, path) if xml_format(text) is not None else text
-
-
-def _expand_dh(top: YMap, r: _Reader) -> YMap:
-    """A file with a ``dh`` table gets the bodies, joints and output it defines."""
-    if top.get("dh") is None:
-        return top
-    from mechsing.formats.dh import expand_dh
-
-    return expand_dh(top, r)
 
 
 def _limits(v: YValue | None, jmap: dict[str, Joint], r: _Reader) -> dict[str, Any]:
@@ -432,10 +425,24 @@ class _Builder:
         self.catalog = _catalog()
         self.body_lines: dict[str, int] = {}
         self.symbolic: tuple[str, ...] = ()
+        self.expand_dh: TableExpander | None = None
 
     def build(self, doc: YValue) -> Mechanism:
         r = self.r
-        top = _expand_dh(r.mapping(doc, None, "the file"), r)
+        top = r.mapping(doc, None, "the file")
+        # parameters first: a dh table's rows may use them
+        r.parameters = read_parameters(r, top, self.symbolic)
+        if top.get("dh") is not None:
+            if self.expand_dh is None:
+                raise r.error(
+                    "dh",
+                    top.key_line("dh"),
+                    "a DH table: mechsing.model reads bodies and joints; read a file with a "
+                    "dh table with mechsing.load (mechsing.reader.read_mechanism), as the "
+                    "commands do",
+                )
+            top = self.expand_dh(top, r)
+            check_names(r, top)
         r.keys(
             top,
             None,
@@ -448,7 +455,6 @@ class _Builder:
         if top.get("mechanism") is not None:
             name = r.name(top.get("mechanism"), "mechanism", "the mechanism name")
         self.units(top.get("units"))
-        r.parameters = read_parameters(r, top, self.symbolic)
         self.scan_scale(top.get("joints"))
         bodies = self.bodies(top.get("bodies"))
         ground = self.ground(top.get("ground"), bodies, top)
@@ -500,6 +506,7 @@ class _Builder:
             units=r.units,
             limits=_limits(top.get("limits"), jmap, r),
             couplings=read_couplings(r, top.get("couplings"), jmap),
+            parameters=dict(r.parameters),
         )
 
     # -- units --------------------------------------------------------------

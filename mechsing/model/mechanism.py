@@ -351,6 +351,10 @@ class Mechanism:
         The file's ``couplings`` (a URDF's ``<mimic>`` joints).
     scene : Scene or None
         What ``--output-body``, ``--inputs``... chose and left out.
+    parameters : dict name -> exact value
+        The file's named ``parameters`` in the order written (pure numbers, the file's
+        units not applied); those kept symbolic are
+        :class:`~mechsing.model.parameters.ParameterSymbol`.
     """
 
     name: str
@@ -372,6 +376,8 @@ class Mechanism:
     couplings: tuple[Coupling, ...] = ()
     #: what the command line's scene options chose and left out (None: no such option)
     scene: Scene | None = None
+    #: the file's named parameters: name -> exact value (or ParameterSymbol), as written
+    parameters: Mapping[str, Any] = field(default_factory=dict)
 
     def joint(self, name: str) -> Joint:
         """The joint called ``name`` (KeyError if none)."""

@@ -34,7 +34,13 @@ import sympy
 from mechsing.model.expressions import ALLOWED_FUNCTIONS, ExpressionError, parse_number
 from mechsing.model.yamlnodes import YMap, YScalar, YSeq
 
-__all__ = ["MAX_PARAMETERS", "ParameterSymbol", "read_parameters", "symbolic_values"]
+__all__ = [
+    "MAX_PARAMETERS",
+    "ParameterSymbol",
+    "check_names",
+    "read_parameters",
+    "symbolic_values",
+]
 
 #: most parameters in one file
 MAX_PARAMETERS = 1000
@@ -93,6 +99,24 @@ def _file_names(top: YMap) -> dict[str, str]:
     return out
 
 
+def check_names(reader: Any, top: YMap) -> None:
+    """No parameter of ``top`` has the name of one of its bodies or joints (called again
+    once a ``dh`` table has given the file its bodies and joints)."""
+    v = top.get("parameters")
+    if not isinstance(v, YMap):
+        return
+    names = _file_names(top)
+    for k, _ in v.items:
+        name = k.text.strip()
+        if name in names:
+            raise reader.error(
+                f"parameter {name!r}",
+                k.line,
+                f"clashes with the {names[name]} {name!r}; give the parameter another name "
+                f"(e.g. {name}_length)",
+            )
+
+
 def read_parameters(reader: Any, top: YMap, symbolic: Collection[str] = ()) -> dict[str, Any]:
     """The file's parameters, name -> exact value (or :class:`ParameterSymbol` for
     the names in ``symbolic``), in the order written.
@@ -116,7 +140,7 @@ def read_parameters(reader: Any, top: YMap, symbolic: Collection[str] = ()) -> d
         raise reader.error(
             "parameters", m.line, f"{len(m.items)} parameters, more than {MAX_PARAMETERS}"
         )
-    names = _file_names(top)
+    check_names(reader, top)
     order = {k.text.strip(): k.line for k, _ in m.items}
     values: dict[str, Any] = {}
     for k, pv in m.items:
@@ -136,13 +160,6 @@ def read_parameters(reader: Any, top: YMap, symbolic: Collection[str] = ()) -> d
                 else ("a function of expressions" if name in ALLOWED_FUNCTIONS else "a keyword")
             )
             raise reader.error(item, k.line, f"{name!r} is {what}; give the parameter another name")
-        if name in names:
-            raise reader.error(
-                item,
-                k.line,
-                f"clashes with the {names[name]} {name!r}; give the parameter another name "
-                f"(e.g. {name}_length)",
-            )
         if name in values:
             raise reader.error(
                 item, k.line, "declared twice; give each parameter one value and one name"

@@ -199,6 +199,12 @@ SWEEP_ARC_MIN_STEP = 1e-10
 #: is quadratic in them), so those are about 1e-8, and a chain that is not at a limit
 #: keeps singular values of the order of its conditioning, far above
 SWEEP_FOLD_KERNEL_RTOL = 1e-5
+#: a swept sample is beyond a joint's limits when it passes one by more than this part of
+#: the limits' width (float's rounding of a sample placed on a limit is not leaving it)
+SWEEP_LIMIT_RTOL = 1e-9
+#: an end of a --vary range within this of a non-zero multiple of pi/2 (in the file's
+#: number) looks like radians in a degree file (3.14 is pi to 0.0016): a warning
+RADIAN_LOOK_ATOL = 0.01
 
 #: exact mode first evaluates a quantity to this many digits: clearly non-zero
 #: there (above 10^-(EXACT_ZERO_DIGITS - 15) of its scale) it is not zero, and

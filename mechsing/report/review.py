@@ -28,8 +28,9 @@ from mechsing.analysis.contract import subgroup_params
 from mechsing.analysis.describe import OutputMotion
 from mechsing.analysis.html import VERDICT_HEADERS, class_words, largest_drop, verdict_row
 from mechsing.analysis.results import Mobility
-from mechsing.model import Mechanism, load
+from mechsing.model import Mechanism
 from mechsing.numeric import Precision, parse_precision, to_float
+from mechsing.reader import read_mechanism
 from mechsing.report import document as doc
 from mechsing.report.figures import graph_figure, grid_figure, path_figure, svg
 from mechsing.report.render import _margin, explain, scene_line
@@ -43,6 +44,7 @@ from mechsing.singularity.zfb import not_run_sentences
 from mechsing.subgroups import Subgroup, load_catalog
 from mechsing.sweeps import SweepResult, sweep
 from mechsing.sweeps.results import located_rows
+from mechsing.sweeps.spec import Vary
 
 __all__ = ["Report", "report"]
 
@@ -107,18 +109,19 @@ class Report:
 def report(
     mechanism_or_path: Mechanism | str | Path,
     configs: Sequence[str] | None = None,
-    vary: Sequence[str] | str | None = None,
+    vary: Sequence[str | Vary] | str | Vary | None = None,
     precision: Precision | str = "auto",
     from_config: str | None = None,
     *,
     command: str | None = None,
+    time_limit: float | None = None,
 ) -> Report:
     """A design review of a mechanism (or a file), ready to write as HTML or Markdown.
 
     Parameters
     ----------
     mechanism_or_path : Mechanism, str or Path
-        The mechanism, or the path of its file.
+        The mechanism, or the path of its file (any format mechsing reads).
     configs : sequence of str, optional
         The configurations analysed (as ``mechsing.analyze`` does); default: all.
     vary : sequence of str, or str, optional
@@ -130,23 +133,28 @@ def report(
         The configuration the sweep starts from (default ``reference``).
     command : str, optional
         How the report was asked for, shown at its end (default: this call).
+    time_limit : float or None
+        The most seconds one configuration (or located point) may take, as for
+        ``mechsing.analyze``.
 
     Returns
     -------
     Report
-        ``to_html()``, ``to_markdown(folder)``, and ``_repr_html_`` for a notebook.
+        ``to_html()``, ``to_markdown(folder)``, ``write(path)``, and ``_repr_html_`` for
+        a notebook.
     """
     t0 = time.perf_counter()
     mech = (
         mechanism_or_path
         if isinstance(mechanism_or_path, Mechanism)
-        else load(str(mechanism_or_path))
+        else read_mechanism(mechanism_or_path)
     )
     prec = parse_precision(precision) if isinstance(precision, str) else precision
-    result = analyze(mech, list(configs) if configs else None, prec)
+    result = analyze(mech, list(configs) if configs else None, prec, time_limit=time_limit)
     swept = None
     if vary:
-        swept = sweep(mech, [vary] if isinstance(vary, str) else list(vary), from_config, prec)
+        varies = [vary] if isinstance(vary, str | Vary) else list(vary)
+        swept = sweep(mech, varies, from_config, prec, time_limit=time_limit)
     if command is None:
         args = [repr(mech.path or mech.name)]
         if configs:

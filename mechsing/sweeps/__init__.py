@@ -26,10 +26,12 @@ from typing import Any
 import numpy as np
 
 from mechsing.errors import UserError, working_on
-from mechsing.model import Mechanism, load
+from mechsing.model import Mechanism
 from mechsing.numeric import Precision, parse_precision
+from mechsing.reader import read_mechanism
 from mechsing.singularity.zfb import not_run_sentences
 from mechsing.sweeps.engine import Located, RowResult, Sweep, classify_located
+from mechsing.sweeps.limits import limits_notes
 from mechsing.sweeps.loci import loci_of
 from mechsing.sweeps.results import (
     LocatedSingularity,
@@ -37,7 +39,8 @@ from mechsing.sweeps.results import (
     SweepResult,
     SweptVariable,
 )
-from mechsing.sweeps.spec import Vary, resolve, with_limits
+from mechsing.sweeps.spec import Vary, resolve, sweep_precision, vary_warnings, with_limits
+from mechsing.timelimit import check_time_limit
 
 __all__ = [
     "LocatedSingularity",
@@ -64,13 +67,14 @@ def sweep(
     workers: int | None = None,
     scheduler: str | None = None,
     max_classified: int = MAX_CLASSIFIED,
+    time_limit: float | None = None,
 ) -> SweepResult:
     """Sweep a mechanism (or a file) over one variable (a path) or two (a grid).
 
     Parameters
     ----------
     mechanism : Mechanism, str or Path
-        The mechanism, or the path of its file.
+        The mechanism, or the path of its file (any format mechsing reads).
     vary : str or Vary, or a list of one or two of them
         ``"NAME=START:STOP:STEP"`` in the file's units: a joint coordinate (``A``,
         ``C1[1]``) or a coordinate of the output's pose (``pose.x`` ... ``pose.rz``).
@@ -87,6 +91,9 @@ def sweep(
         processes, or the scheduler at that address); the result is the serial one.
     max_classified : int
         The most located points of a grid classified by the full analysis.
+    time_limit : float or None
+        The most seconds the full analysis of one located point may take (None: no
+        limit); a point stopped there has an ``error`` entry that says so.
 
     Returns
     -------
@@ -94,7 +101,14 @@ def sweep(
         The measures at every sample, the located and classified singularities and a
         grid's loci.
     """
-    run = SweepRun(mechanism, vary, from_config, precision, max_classified=max_classified)
+    run = SweepRun(
+        mechanism,
+        vary,
+        from_config,
+        precision,
+        max_classified=max_classified,
+        time_limit=time_limit,
+    )
     for _ in run.rows(progress, workers=workers, scheduler=scheduler):
         pass
     return run.result()
@@ -112,16 +126,17 @@ class SweepRun:
         from_config: str | None = None,
         precision: Precision | str = "auto",
         max_classified: int = MAX_CLASSIFIED,
+        time_limit: float | None = None,
     ) -> None:
         self.start_time = time.perf_counter()
-        mech = mechanism if isinstance(mechanism, Mechanism) else load(str(mechanism))
+        if time_limit is not None:
+            check_time_limit(time_limit)
+        self.time_limit = time_limit
+        self._result: SweepResult | None = None
+        mech = mechanism if isinstance(mechanism, Mechanism) else read_mechanism(mechanism)
         self.mechanism = mech
         prec = parse_precision(precision) if isinstance(precision, str) else precision
-        if prec.mode == "exact":  # policy: exact mode takes exact data only
-            raise UserError(
-                "a sweep locates singularities numerically, so exact precision cannot classify "
-                "them (their values are not exact data); use --precision auto (the default) or mp:N"
-            )
+        sweep_precision(prec)  # policy: exact mode takes exact data only
         self.prec = prec
         self.precision = str(prec)
         if isinstance(vary, str | Vary):  # one variable given alone
@@ -158,8 +173,12 @@ class SweepRun:
         self.rank = {t: np.full(shape, -2, dtype=np.int16) for t in self.tests}
         self.ratio = {t: np.full(shape, np.nan) for t in self.tests}
         self.located: list[Located] = []
-        #: the scene options' notes (branches left out) first
+        #: the scene options' notes (branches left out) first, then likely mistakes of the
+        #: swept ranges (:func:`~mechsing.sweeps.spec.vary_warnings`; the command line
+        #: prints them on standard error)
         self.notes: list[str] = list(mech.scene.notes) if mech.scene else []
+        self.notes += vary_warnings(mech, varies)
+        self.outside = {c.name: np.zeros(shape, dtype=bool) for c in eng.limited}
         self.newton_iterations = 0
 
     @property
@@ -245,6 +264,8 @@ class SweepRun:
             self.ratio[t][at] = row.ratio[t]
         self.located += row.located
         self.newton_iterations += row.newton
+        for name, beyond in row.outside.items():
+            self.outside[name][at] = beyond
         for s in row.stopped:
             what = (
                 f"row {self.vars[1].name} = {self.vars[1].shown(self.vars[1].values[row.index])}: "
@@ -254,12 +275,19 @@ class SweepRun:
             self.notes.append(f"{what}{s}")
 
     def result(self) -> SweepResult:
-        """Classify the located points and return the result."""
+        """Classify the located points and return the result (once: later calls return
+        the same result)."""
+        if self._result is None:
+            self._result = self._classified()
+        return self._result
+
+    def _classified(self) -> SweepResult:
         eng = self.engine
         # how the sweep started (a singular start, rows started from a neighbour) first,
         # and the tests the file lacks the ingredients of
         not_run = [f"tests not run: {s}" for s in not_run_sentences(self.mechanism)]
         self.notes[:0] = [n for n in [*not_run, *eng.start_notes] if n not in self.notes]
+        self.notes += limits_notes(eng.limited, self.outside, self.reached)
         located = sorted(self.located, key=lambda p: (p.edge != "row", p.values[::-1]))
         # the points found along the rows first, then those between rows (a grid)
         chosen = list(located)
@@ -271,7 +299,7 @@ class SweepRun:
                 f"{len(chosen)} of them, spread over the grid (max_classified)"
             )
         with working_on(file=self.mechanism.path or self.mechanism.name):
-            analysed, moved = classify_located(eng, chosen, self.prec)
+            analysed, moved = classify_located(eng, chosen, self.prec, self.time_limit)
         if self.prec.mode == "mp" and chosen or self.prec.mode == "auto" and any(moved):
             self.notes.append(
                 f"{sum(moved)} of the {len(chosen)} classified points were located again at "
@@ -323,6 +351,7 @@ class SweepRun:
             tuple(self.notes),
             self.newton_iterations,
             time.perf_counter() - self.start_time,
+            self.outside,
         )
 
 

@@ -53,6 +53,7 @@ from mechsing.numeric import (
     Precision,
     to_float,
 )
+from mechsing.sweeps.limits import limited_coordinates, outside
 from mechsing.sweeps.measures import Measures, PointMeasures
 from mechsing.sweeps.path import (
     Fold,
@@ -137,6 +138,8 @@ class RowResult:
     newton: int = 0
     Z: np.ndarray | None = None
     measures: PointMeasures | None = None
+    #: limited coordinate -> the samples beyond its limits (:mod:`mechsing.sweeps.limits`)
+    outside: dict[str, np.ndarray] = field(default_factory=dict)
 
 
 class Sweep:
@@ -155,6 +158,7 @@ class Sweep:
             )
         model = KinematicModel(mech, "float")
         self.model = model
+        self.limited = limited_coordinates(mech)
         closer = Closer(model)
         q0 = np.asarray(to_float(closer.solve(self.from_config).q), dtype=float)
         self.pose = variables[0].kind == "pose"
@@ -509,7 +513,16 @@ class Sweep:
                     )
             out.append(
                 RowResult(
-                    index, reached, rank, ratio, _merge(located, self), stopped, newton, Z, pm
+                    index,
+                    reached,
+                    rank,
+                    ratio,
+                    _merge(located, self),
+                    stopped,
+                    newton,
+                    Z,
+                    pm,
+                    outside(self.limited, Z[:, : self.model.n], reached),
                 )
             )
         return out
@@ -1228,11 +1241,11 @@ def _merge(located: list[Located], sw: Sweep) -> list[Located]:
 
 
 def classify_located(
-    sweep: Sweep, located: list[Located], precision: Precision
+    sweep: Sweep, located: list[Located], precision: Precision, time_limit: float | None = None
 ) -> tuple[list[Any], list[bool]]:
-    """The full analysis of each located point at the sweep's precision; at mp:N each
-    point is first found again at N digits (:mod:`.relocate`).  Also says, per point,
-    whether it was relocated."""
+    """The full analysis of each located point at the sweep's precision, each within
+    ``time_limit`` seconds (None: no limit); at mp:N each point is first found again at N
+    digits (:mod:`.relocate`).  Also says, per point, whether it was relocated."""
     if not located:
         return [], []
     points: dict[str, Any] = {}
@@ -1266,7 +1279,7 @@ def classify_located(
         again = again_at(p, precision) if precision.mode == "mp" else None
         moved.append(again is not None)
         points[f"located-{i + 1}"] = p.q if again is None else again
-    results = analyze_found(sweep.mech, points, precision)
+    results = analyze_found(sweep.mech, points, precision, time_limit)
     if precision.mode == "auto":
         # auto re-decided some points at mp:50 (an undecided float rank): at 50 digits the
         # float point is a regular neighbour of the singular one, so it is found again there
@@ -1276,7 +1289,7 @@ def classify_located(
                 continue
             again = again_at(p, deep)
             if again is not None:
-                res2 = analyze_found(sweep.mech, {f"located-{i + 1}": again}, deep)[0]
+                res2 = analyze_found(sweep.mech, {f"located-{i + 1}": again}, deep, time_limit)[0]
                 results[i] = replace(res2, escalated_for=res.escalated_for)
                 moved[i] = True
     return results, moved

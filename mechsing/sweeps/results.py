@@ -173,7 +173,8 @@ class SweepResult:
     ``rank[test]``: the decided rank (-1 undecided, -2 not reached); ``ratio[test]``:
     the smallest relative singular value (NaN where not reached); ``reached``: closed
     on the start's assembly mode; ``held``: the coordinates held at the start's values;
-    ``generic``: each test's generic rank."""
+    ``generic``: each test's generic rank; ``outside``: for each coordinate with limits in
+    the file, the samples beyond them."""
 
     mechanism: Mechanism = field(repr=False, compare=False)
     variables: tuple[SweptVariable, ...]
@@ -190,6 +191,7 @@ class SweepResult:
     notes: tuple[str, ...] = ()
     newton_iterations: int = 0
     seconds: float = field(default=0.0, compare=False)
+    outside: dict[str, np.ndarray] = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def grid(self) -> bool:
@@ -258,6 +260,8 @@ def json_point(r: Any, idx: tuple[int, ...]) -> dict[str, Any]:
     for t in r.tests:
         rk = int(r.rank[t][idx])
         out[t] = {"rank": None if rk < 0 else rk, "ratio": _num(float(r.ratio[t][idx]))}
+    if r.outside:  # the file has limits: the coordinates beyond theirs here
+        out["outside_limits"] = [name for name, beyond in r.outside.items() if beyond[idx]]
     return out
 
 
@@ -285,6 +289,8 @@ def csv_header(r: Any) -> str:
     for t in r.tests:
         cols += [f"{t} rank", f"{t} ratio"]
     cols += ["classes", "precision", "tests", "between", "dropped"]
+    if r.outside:  # the file has limits
+        cols.append("outside limits")
     return ",".join(cols) + "\n"
 
 
@@ -304,6 +310,8 @@ def csv_rows(r: Any, rows: Any) -> list[str]:
                 rk, ra = p[t]["rank"], p[t]["ratio"]
                 cells += ["" if rk is None else str(rk), "" if ra is None else f"{ra:.6e}"]
             cells += ["", "", "", "", ""]
+            if r.outside:
+                cells.append(";".join(p["outside_limits"]))
             out.append(",".join(cells) + "\n")
     return out
 
@@ -324,6 +332,8 @@ def csv_located(r: Any) -> list[str]:
             p.between,
             "" if dropped is None else f"{dropped:.3e}",
         ]
+        if r.outside:
+            cells.append("")
         out.append(",".join(cells) + "\n")
     return out
 

@@ -55,6 +55,12 @@ def sweep_schema() -> dict[str, Any]:
             "values": {"$ref": "#/$defs/values"},
             "reached": {"type": "boolean"},
             **{t: {"$ref": "#/$defs/measure"} for t in TESTS},
+            "outside_limits": {
+                "type": "array",
+                "items": {"type": "string"},
+                "description": "present when the file has joint limits: the coordinates "
+                "beyond theirs at this sample (J2, or C1[1] for a joint of several)",
+            },
         },
         "required": ["values", "reached"],
         "additionalProperties": False,

@@ -23,8 +23,9 @@ import numpy as np
 from mechsing.errors import UserError
 from mechsing.kinematics.pose import POSE_COORDINATES
 from mechsing.model import Mechanism
+from mechsing.numeric import RADIAN_LOOK_ATOL, Precision
 
-__all__ = ["MAX_SAMPLES", "Variable", "Vary", "resolve"]
+__all__ = ["MAX_SAMPLES", "Variable", "Vary", "check_varies", "resolve", "sweep_precision"]
 
 #: most samples of one swept variable, and of a whole grid
 MAX_SAMPLES = 10_000_000
@@ -115,6 +116,80 @@ class Variable:
         return f"{si / self.factor:.10g} {self.file_unit}"
 
 
+def check_varies(texts: list[str], what: str = "a sweep") -> list[Vary]:
+    """The ``--vary`` values of a command read and checked before the file is read: one
+    or two, each range's own errors (STEP <= 0, not finite); a joint given without a
+    range is checked once its limits are read (:func:`with_limits`).  ``what``: what
+    sweeps in the command ("a sweep", "a report"), for the message."""
+    _one_or_two(len(texts), what)
+    varies = [Vary.parse(text) for text in texts]
+    for v in varies:
+        if v.ranged:
+            v.count()
+    return varies
+
+
+def _one_or_two(n: int, what: str) -> None:
+    if n > 2:
+        raise UserError(
+            f"--vary is given {n} times: {what} varies one variable (a path) or two "
+            "(a grid); give --vary once or twice"
+        )
+
+
+def sweep_precision(prec: Precision) -> None:
+    """The precision policy of a sweep: its located points are float data, so exact mode
+    cannot classify them (UserError)."""
+    if prec.mode == "exact":
+        raise UserError(
+            "--precision exact: a sweep locates its singularities numerically, so their "
+            "values are not exact data; use --precision auto (the default) or mp:N"
+        )
+
+
+def vary_warnings(mech: Mechanism, varies: list[Vary]) -> list[str]:
+    """Likely mistakes of the swept ranges that are not errors, worded as the file's
+    warnings: in a file whose angles are in degrees, an angle's range that looks like
+    radians (both ends within a full turn in radians and one of them within
+    :data:`~mechsing.numeric.RADIAN_LOOK_ATOL` of a multiple of pi/2: ``A=-3.14:1.5:0.01``), as a plain value
+    above a full turn in a file in radians is warned about."""
+    if mech.units.angle == "rad":
+        return []
+    out = []
+    for v in varies:
+        if not v.ranged or not _is_angle(mech, v.name):
+            continue
+        ends = (v.start, v.stop)
+        near = [
+            x
+            for x in ends
+            if x
+            and abs(x / (math.pi / 2) - round(x / (math.pi / 2))) * math.pi / 2 < RADIAN_LOOK_ATOL
+        ]
+        if max(abs(x) for x in ends) <= 2 * math.pi + RADIAN_LOOK_ATOL and near:
+            deg = [math.degrees(x) for x in (v.start, v.stop, v.step)]
+            out.append(
+                f"--vary {v}: the range looks like radians ({near[0]:g} is about "
+                f"{near[0] / math.pi:.3g} pi), but the file's angles are in degrees "
+                f"(units: {{angle: {mech.units.angle}}}), so it sweeps {abs(v.stop - v.start):g} "
+                f"degrees; if it is meant in radians, write it in degrees: --vary "
+                f"{v.name}={deg[0]:.6g}:{deg[1]:.6g}:{deg[2]:.6g}"
+            )
+    return out
+
+
+def _is_angle(mech: Mechanism, name: str) -> bool:
+    """Whether the swept variable ``name`` (a joint coordinate or pose.*) is an angle."""
+    if name.startswith("pose."):
+        return name in ("pose.rx", "pose.ry", "pose.rz")
+    joint, _, rest = name.partition("[")
+    if joint not in mech.joint_names:
+        return False
+    units = mech.joint(joint).units
+    index = int(rest.rstrip("]")) if rest.rstrip("]").isdigit() else 0
+    return index < len(units) and units[index] == "rad"
+
+
 def with_limits(mech: Mechanism, v: Vary) -> Vary:
     """A joint given without a range (``--vary J2``) is swept over its limits (the file's
     ``limits``) in :data:`LIMIT_STEPS` steps; exit 2 when the joint has no limits."""
@@ -148,8 +223,7 @@ def resolve(mech: Mechanism, varies: list[Vary]) -> list[Variable]:
         raise UserError(
             "a sweep needs --vary NAME=START:STOP:STEP (one for a path, two for a grid)"
         )
-    if len(varies) > 2:
-        raise UserError(f"a sweep varies one variable (a path) or two (a grid), not {len(varies)}")
+    _one_or_two(len(varies), "a sweep")
     names = [v.name for v in varies]
     if len(set(names)) != len(names):
         raise UserError(f"--vary {names[0]} is given twice")
