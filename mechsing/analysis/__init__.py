@@ -31,6 +31,7 @@ import numpy as np
 
 from mechsing.analysis.describe import describe_legs, output_motion
 from mechsing.analysis.properties import mechanism_properties
+from mechsing.analysis.resolution import resolution_check
 from mechsing.analysis.results import (
     AnalysisResult,
     ClosureRank,
@@ -185,6 +186,7 @@ def _analyze(
         start = time.perf_counter()
         if prec.mode == "exact":  # policy: see _ExactRun
             res = exact.run(name, lambda name=name: _analyze_one(mech, name, stage(first)))
+            res = _with_resolution(mech, res, stage(first)[0])
             results.append(replace(res, seconds=time.perf_counter() - start))
             continue
         res = _analyze_one(mech, name, stage(first), prepared.get(name))
@@ -195,6 +197,7 @@ def _analyze(
             why = res.doubtful or ("undecided",)
             res = _analyze_one(mech, name, stage(Precision("mp", 50)))
             res = replace(res, escalated_for=why)
+        res = _with_resolution(mech, res, stage(first)[0])
         results.append(replace(res, seconds=time.perf_counter() - start))
     km0 = stage(first)[0]
     props = mechanism_properties(mech, results)
@@ -209,11 +212,26 @@ def _analyze(
     )
 
 
+def _with_resolution(
+    mech: Mechanism, res: ConfigurationResult, model: KinematicModel
+) -> ConfigurationResult:
+    """``res`` with its verdict checked against the resolution of its given values
+    (:func:`mechsing.analysis.resolution.resolution_check`): when it rests on less, the
+    result says so (``data_resolution``) and so do its notes."""
+    with working_on(configuration=res.name):
+        found = resolution_check(mech, res, model)
+    if found is None:
+        return res
+    return replace(res, data_resolution=found, notes=(*res.notes, found.note))
+
+
 def _generic_motion(results: list[ConfigurationResult]) -> Any:
     """The output's motion type at the first regular configuration analysed (the one
     that speaks for the mechanism, as for its properties); None when none is regular."""
     for r in results:
-        if r.error is None and r.singular is False and r.output_motion is not None:
+        # a verdict below the data's resolution does not speak for the mechanism
+        regular = r.error is None and r.singular is False and r.data_resolution is None
+        if regular and r.output_motion is not None:
             return r.output_motion
     return None
 

@@ -107,7 +107,11 @@ def verdict_row(c: ConfigurationResult, name: str | None = None) -> tuple[str, .
         return (name or c.name, "not analysed", c.error, "-", c.precision)
     singular = {True: "yes", False: "no", None: "undecided"}[c.singular]
     classes = class_words([s.cls for s in c.singularities])
-    return (name or c.name, singular, classes, margin_words(c), c.precision)
+    margin = margin_words(c)
+    below = getattr(c, "data_resolution", None)
+    if below is not None:  # the verdict holds of the written decimals only
+        margin = f"{margin}; {below.verdict}"
+    return (name or c.name, singular, classes, margin, c.precision)
 
 
 def html_table(

@@ -21,6 +21,7 @@ from mechsing.model.expressions import (
     is_plain_decimal,
     parse_number,
     radian_power,
+    written_digits,
 )
 from mechsing.model.graph import build_graph, connected_to, coupled_loops
 from mechsing.model.mechanism import (
@@ -46,7 +47,7 @@ from mechsing.model.yamlnodes import (
     YValue,
     read_yaml_text,
 )
-from mechsing.numeric import NEAR_ZERO_VECTOR, REFERENCE_SCREEN_RTOL
+from mechsing.numeric import NEAR_ZERO_VECTOR, REFERENCE_SCREEN_RTOL, data_resolution
 
 __all__ = [
     "ANGLE_UNITS",
@@ -911,6 +912,7 @@ class _Builder:
                 cmap = r.mapping(cv, item, "a configuration")
             values: dict[str, Any] = {}
             lines: dict[str, int] = {}
+            resolution: dict[str, tuple[tuple[float, int], ...]] = {}
             start: str | None = None if cname == "reference" else "reference"
             pose: OutputPose | None = None
             for jk, jv in cmap.items:
@@ -944,6 +946,9 @@ class _Builder:
                     )
                 values[jk.text] = self.value(jv, jmap[jk.text], item)
                 lines[jk.text] = jk.line
+                written = self.written(jv, jmap[jk.text])
+                if any(res for res, _ in written):
+                    resolution[jk.text] = written
             if cname == "reference":
                 for jn, val in values.items():
                     if not self.near_identity(val, jmap[jn]):
@@ -964,7 +969,9 @@ class _Builder:
                     f"values fix the pose; remove {POSE_KEY} or the values of the joints to "
                     "be solved",
                 )
-            out[cname] = Configuration(cname, values, start, k.line, lines, pose)
+            out[cname] = Configuration(
+                cname, values, start, k.line, lines, pose, resolution=resolution
+            )
         for cname, (start, line) in starts.items():
             if start not in out:
                 raise r.error(
@@ -1151,6 +1158,25 @@ class _Builder:
         raise r.error(
             item, getattr(v, "line", None), f"{what} must be a number or a list"
         )  # pragma: no cover
+
+    def written(self, v: YValue, j: Joint) -> tuple[tuple[float, int], ...]:
+        """The resolution (SI, radians) and significant digits of each coordinate of a
+        joint value as written (:func:`mechsing.numeric.data_resolution`): (0, 0) for an
+        expression, a named parameter or a displacement."""
+        r = self.r
+        nodes = v.items if isinstance(v, YSeq) else (v,) if isinstance(v, YScalar) else ()
+        if len(nodes) != j.dof:
+            return tuple((0.0, 0) for _ in range(j.dof))
+        out = []
+        for node, unit in zip(nodes, j.units, strict=True):
+            form = written_digits(node.text) if isinstance(node, YScalar) else None
+            if form is None:
+                out.append((0.0, 0))
+                continue
+            factor = r.units.angle_factor if unit == "rad" else r.units.length_factor
+            res = data_resolution(form[0], form[1], float(sympy.N(factor, 17)))
+            out.append((res, form[0] if res else 0))
+        return tuple(out)
 
     def check_angles(
         self,

@@ -209,7 +209,10 @@ class Configuration:
     does not say, None for the reference configuration itself (all joints at
     identity).  ``lines`` gives the line of each value in the file.  ``pose``: the
     output body's pose the configuration gives (None: none), solved for by closure
-    with the joints not given.
+    with the joints not given.  ``resolution``: for a joint whose value was written
+    with digits to spare, each coordinate's (resolution in SI units and radians,
+    significant digits) -- half a unit in its last written digit
+    (:func:`mechsing.numeric.data_resolution`); a joint not listed is exact.
     """
 
     name: str
@@ -218,6 +221,9 @@ class Configuration:
     line: int | None = None
     lines: Mapping[str, int] = field(default_factory=dict, hash=False, compare=False)
     pose: OutputPose | None = field(default=None, hash=False)
+    resolution: Mapping[str, tuple[tuple[float, int], ...]] = field(
+        default_factory=dict, hash=False, compare=False
+    )
 
     @property
     def is_reference(self) -> bool:

@@ -21,7 +21,11 @@ from mechsing.numeric.blocks import block_svd, issparse
 from mechsing.numeric.field import echelon_form, field_float, number_field
 from mechsing.numeric.linalg import singular_values, svd
 from mechsing.numeric.precision import Precision, parse_precision
-from mechsing.numeric.tolerances import FLOAT_ROUNDING_FACTOR, Tolerances
+from mechsing.numeric.tolerances import (
+    FLOAT_ROUNDING_FACTOR,
+    RESOLUTION_MIN_DIGITS,
+    Tolerances,
+)
 
 
 @dataclass(frozen=True)
@@ -371,6 +375,46 @@ def float_drop_is_real(margin: Margin, data_error: float = 0.0) -> bool:
     if rounding is None or dropped is None or not smax:
         return False
     return dropped > FLOAT_ROUNDING_FACTOR * (rounding + data_error * smax)
+
+
+def data_resolution(digits: int, last: int, factor: float = 1.0) -> float:
+    """The resolution of a given value written as a decimal of ``digits`` significant
+    digits whose last digit is 10^``last`` (in units that ``factor`` turns into SI):
+    half a unit in that digit, or 0 for a decimal shorter than
+    :data:`RESOLUTION_MIN_DIGITS` (taken as exact, like an expression)."""
+    if digits < RESOLUTION_MIN_DIGITS:
+        return 0.0
+    return 0.5 * 10.0**last * abs(float(factor))
+
+
+def resolution_spread(slopes: list[float], resolutions: list[float]) -> float:
+    """The first-order bound on how far the data's resolution can move a relative
+    singular value: sum_i |d sigma / d x_i| res_i (``slopes`` relative to sigma_max per
+    SI unit of each given value, ``resolutions`` in SI)."""
+    return float(sum(abs(s) * r for s, r in zip(slopes, resolutions, strict=True)))
+
+
+def flips_within(margin: Margin, spread: float, singular: bool) -> float | None:
+    """Could a decision flip when its singular values move by ``spread`` (relative to
+    sigma_max: :func:`resolution_spread`)?  The relative value it rests on when it could,
+    else None.
+
+    ``singular``: the decision stands for a singular verdict, which rests on its largest
+    dropped value staying at or below ``tau_lo``; else for a regular one, which rests on
+    its smallest kept value staying at or above ``tau_hi``.  Exact margins have no
+    ``sigma_max`` and thresholds 0: their pivot is compared as it is."""
+    if spread <= 0:
+        return None
+    smax = margin.sigma_max or 1.0
+    if singular:
+        if margin.dropped is None:
+            return None
+        d = abs(float(margin.dropped)) / smax
+        return d if d + spread > margin.tau_lo else None
+    if margin.kept is None:
+        return None
+    k = abs(float(margin.kept)) / smax
+    return k if k - spread < margin.tau_hi else None
 
 
 def _exact_rank(

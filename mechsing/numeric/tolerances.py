@@ -189,6 +189,18 @@ SWEEP_GRAM_RATIO = 0.05
 SWEEP_ARC_STEP = 0.02
 SWEEP_ARC_MIN_STEP = 1e-10
 
+#: data resolution (issue: verdicts below the resolution of their data).  A plain decimal
+#: written with at least this many significant digits is a rounding of the value meant
+#: (a float printed to 15-17 digits, a CAD export): its resolution is half a unit in its
+#: last written digit.  A shorter decimal (``3``, ``0.25``, ``12.5``: a drawing's
+#: dimension) is taken as exact, as an expression (``pi/3``) is: resolution 0
+RESOLUTION_MIN_DIGITS = 8
+#: the finite-difference step (radians, or lengths / L) over which the tests' singular
+#: values are differentiated with respect to a given value, for the first-order bound
+#: of what the data's resolution can move them by: far above float's rounding of the
+#: differences (1e-16 / 1e-6 relative) and small enough that the first order holds
+RESOLUTION_STEP = 1e-6
+
 #: exact mode first evaluates a quantity to this many digits: clearly non-zero
 #: there (above 10^-(EXACT_ZERO_DIGITS - 15) of its scale) it is not zero, and
 #: only the rest is handed to sympy to prove it zero

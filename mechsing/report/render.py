@@ -307,6 +307,8 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         )
         if c.output_motion is not None:
             lines.append(f"{bullet}output motion: {_motion_words(c.output_motion, L)}")
+        if c.data_resolution is not None:
+            lines.append(f"{bullet}verdict: {c.data_resolution.verdict} (see the note).")
         if not c.singularities:
             lines.append(f"{bullet}regular: no singularity.")
         for s in c.singularities:

@@ -539,6 +539,8 @@ def _configurations(r: Report) -> list[doc.Block]:
             items.append(f"output motion: {c.output_motion.summary}")
         items += [f"note: {n}" for n in c.notes]
         out.append(doc.Bullets(tuple(items)))
+        if c.data_resolution is not None:
+            out.append(doc.Paragraph(f"{c.data_resolution.note}.", "Below the data's resolution:"))
         if not c.singularities:
             out.append(
                 doc.Paragraph("No singularity: every test kept its generic rank.", "Regular.")
