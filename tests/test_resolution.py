@@ -74,9 +74,9 @@ def test_written_digits_and_resolution() -> None:
 @pytest.mark.parametrize("precision", ["auto", "mp:50"])
 def test_regular_below_the_resolution_of_15_digits(tmp_path: Path, precision: str) -> None:
     path = _rounded(tmp_path)
-    c = cli_json(["analyze", path, "--precision", precision, "--format", "json"])[
-        "configurations"
-    ][0]
+    c = cli_json(["analyze", path, "--precision", precision, "--format", "json"])["configurations"][
+        0
+    ]
     assert c["precision"] == "mp:50"  # auto re-decided float's drop at mp:50
     assert c["singular"] is False  # the written decimals are regular ...
     below = c["data_resolution"]  # ... by less than their resolution can move them

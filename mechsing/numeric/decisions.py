@@ -8,7 +8,7 @@ evidence of a decision.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import mpmath
@@ -125,7 +125,19 @@ def rank_difference(a: RankDecision, b: RankDecision) -> RankDecision:
     )
     lo, hi = max(0, alo - bhi), max(0, ahi - blo)
     rank = lo if lo == hi else None
-    return RankDecision(rank, None, min(a.margin, b.margin, key=_slack), a.precision, (lo, hi))
+    return RankDecision(rank, None, _tighter(a.margin, b.margin), a.precision, (lo, hi))
+
+
+def _tighter(a: Margin, b: Margin) -> Margin:
+    """The margin nearer to flipping (:func:`_slack`), with the other's dropped value
+    when it has none of its own: a dropped value that is exactly zero never flips, so a
+    kept one is the nearer, but the difference rests on that drop too and shows it
+    (relative to the kept margin's sigma_max; exact margins have none and drop 0)."""
+    near, far = (a, b) if _slack(a) <= _slack(b) else (b, a)
+    if near.dropped is not None or far.dropped is None:
+        return near
+    scale = 1.0 if not far.sigma_max or not near.sigma_max else near.sigma_max / far.sigma_max
+    return replace(near, dropped=far.dropped * scale)
 
 
 def _slack(m: Margin) -> float:
