@@ -57,3 +57,40 @@ def test_exact_report_says_which_tests_ran_at_mp50(tmp_path: Path) -> None:
     row = next(line for line in out.read_text().splitlines() if line.startswith("| **reference**"))
     assert "exact (the " in row and "tests at mp:50)" in row
     assert "output" in row.split("exact (the ")[1]
+
+
+SCARA = Path(__file__).parent / "data" / "scara.yaml"
+
+
+def test_auto_re_decides_an_undecided_output_motion_at_mp50() -> None:
+    """1.7e-5 rad from the SCARA's elbow the arm is bent: its end effector's twists span
+    the Schoenflies subgroup X about z (rotations about vertical axes, every translation),
+    which float leaves undecided there; auto re-decides it at mp:50, as mp:50 finds."""
+    by = {
+        p: {
+            c["name"]: c
+            for c in cli_json(["analyze", SCARA, "--precision", p, "--format", "json"])[
+                "configurations"
+            ]
+        }
+        for p in ("auto", "mp:50", "float")
+    }
+    assert by["float"]["near-elbow"]["output_motion"]["type"] is None  # float: undecided
+    for p in ("auto", "mp:50"):
+        c = by[p]["near-elbow"]
+        assert c["precision"] == "mp:50"
+        m = c["output_motion"]
+        assert (m["type"], m["dim"], m["is_subgroup"]) == ("X", 4, True)
+        assert m["params"]["axis"] == pytest.approx([0.0, 0.0, 1.0], abs=1e-12)
+    # at the elbow itself (stretched) the twists span dimension 3 in every mode
+    assert {by[p]["elbow"]["output_motion"]["dim"] for p in by} == {3}
+
+
+def test_report_never_lists_an_undecided_type_where_it_differs(tmp_path: Path) -> None:
+    out = tmp_path / "review.md"
+    rc, _, err = run_cli(["report", SCARA, "--precision", "float", "-o", out])
+    assert rc == 0, err
+    text = out.read_text()
+    differs = text[text.index("Where it differs") :].split("\n\n")[1]
+    assert "at elbow" in differs
+    assert "near-elbow" not in differs

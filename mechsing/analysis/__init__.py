@@ -193,7 +193,11 @@ def _analyze(
         # a point located in float is as near its singularity as float places it: the drop
         # float sees above its own rounding is that distance, so auto keeps the verdict
         doubtful = res.doubtful and not located
-        if prec.mode == "auto" and res.error is None and (res.undecided or doubtful):
+        # an output motion left undecided (its rank, or the subgroup its twists generate)
+        # is re-decided too; at a located point, where the twists are those of a
+        # singularity and the sweep shows no motion type, it is not worth an mp:50 pass
+        motion = res.output_motion is not None and res.output_motion.undecided and not located
+        if prec.mode == "auto" and res.error is None and (res.undecided or doubtful or motion):
             why = res.doubtful or ("undecided",)
             res = _analyze_one(mech, name, stage(Precision("mp", 50)))
             res = replace(res, escalated_for=why)
@@ -461,6 +465,7 @@ def _analyze_one_in_context(
             )
         )
     decisions.extend(found.decisions)
+    motion = output_motion(mech, model, q, cs, name)
     res = ConfigurationResult(
         name,
         str(prec),
@@ -473,13 +478,14 @@ def _analyze_one_in_context(
         decisions=tuple(decisions),
         underdetermined=closed.underdetermined,
         notes=tuple(closed.notes),
-        # auto re-decides the configuration at mp:50
+        # auto re-decides the configuration at mp:50 (and an output motion whose rank or
+        # subgroup the precision left open: see _analyze)
         undecided=undecided
         or found.undecided
         or any(isinstance(f, UndecidedFinding) for f in findings),
         classification=found,
         pose=given_pose(mech, name),
-        output_motion=output_motion(mech, model, q, cs, name),
+        output_motion=motion,
     )
     doubtful = _doubtful_drops(
         res.singular, res.decisions, res.closure_residual or 0.0, model.length_scale

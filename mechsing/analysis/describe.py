@@ -120,6 +120,15 @@ class OutputMotion:
     generated: Subgroup | None = None
     #: the output point's velocities (None: the output has no point)
     point: PointMotion | None = None
+    #: the identification's status when it gave no type (``undecided``,
+    #: ``ill-conditioned``); None when it gave one or was not run
+    status: str | None = None
+
+    @property
+    def undecided(self) -> bool:
+        """Did the precision leave the motion open: the rank of the output twists, or the
+        subgroup they generate (auto re-decides both at mp:50)?"""
+        return self.dim is None or self.status == "undecided"
 
     @property
     def type(self) -> str | None:
@@ -380,6 +389,7 @@ def _motion_of_span(
             dec.margin,
             str(prec),
             note=f"the subgroup the twists generate is {ident.status}",
+            status=ident.status,
         )
     if ident.dim == r:
         return OutputMotion(

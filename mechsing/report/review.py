@@ -479,10 +479,13 @@ def _legs_and_motion(r: Report) -> list[doc.Block]:
                 f"{m.configuration} (decided in {m.precision}; margin: {_margin(m.margin)})."
             )
         )
+        # a type the precision left undecided is not a difference
         differ = [
             (c.name, c.output_motion)
             for c in a.configurations
-            if c.output_motion is not None and c.output_motion.summary != m.summary
+            if c.output_motion is not None
+            and not c.output_motion.undecided
+            and c.output_motion.summary != m.summary
         ]
         if differ:
             out.append(
