@@ -94,3 +94,40 @@ def test_report_never_lists_an_undecided_type_where_it_differs(tmp_path: Path) -
     differs = text[text.index("Where it differs") :].split("\n\n")[1]
     assert "at elbow" in differs
     assert "near-elbow" not in differs
+
+
+#: a screw jack: one helical joint of pitch 0.01 m/rad about the vertical axis through
+#: (1, 2, 0); the lifted body's only twist is that screw's, (z; (1, 2, 0) x z + 0.01 z)
+JACK = """\
+mechanism: screw-jack
+bodies: [ground, nut]
+joints:
+  - {name: H1, type: H, between: [ground, nut], axis: [0, 0, 1], point: [1, 2, 0], pitch: 0.01}
+output: {body: nut}
+configurations:
+  turned: {H1: 0.5}
+"""
+
+
+def test_one_twist_is_an_instantaneous_screw_not_a_motion_type(tmp_path: Path) -> None:
+    path = tmp_path / "jack.yaml"
+    path.write_text(JACK)
+    res = cli_json(["analyze", path, "--format", "json"])
+    for m in (res["output_motion"], res["configurations"][0]["output_motion"]):
+        assert (m["type"], m["dim"], m["summary"]) == ("H", 1, "H (dimension 1)")  # kept
+        screw = m["instantaneous_screw"]
+        assert screw["type"] == "H"
+        assert screw["params"]["pitch"] == pytest.approx(0.01, rel=1e-12)
+        assert screw["twist"] == pytest.approx([0, 0, 1, 2, -1, 0.01], abs=1e-12)
+    for fmt in ("text", "md"):
+        rc, out, _ = run_cli(["analyze", path, "--format", fmt])
+        assert rc == 0
+        assert "nut's instantaneous screw: a screw motion of pitch 0.01 m/rad" in out
+        assert "motion type" not in out
+    review = tmp_path / "review.md"
+    rc, _, err = run_cli(["report", path, "-o", review])
+    assert rc == 0, err
+    text = review.read_text()
+    assert "### Output motion\n" in text and "Output motion type" not in text
+    assert "its instantaneous screw H" in text
+    assert "An instantaneous screw is not a motion type" in text

@@ -125,6 +125,14 @@ class OutputMotion:
     status: str | None = None
 
     @property
+    def instantaneous_screw(self) -> bool:
+        """Is the span one twist (a one-degree-of-freedom output)?  Its subgroup (R, P or
+        H) is then the output's instantaneous screw, the screw it turns about at this
+        instant, and not a motion type: a motion type is a subgroup the output's motions
+        stay in, and the screw moves as the mechanism does."""
+        return self.dim == 1
+
+    @property
     def undecided(self) -> bool:
         """Did the precision leave the motion open: the rank of the output twists, or the
         subgroup they generate (auto re-decides both at mp:50)?"""
@@ -137,7 +145,9 @@ class OutputMotion:
 
     @property
     def summary(self) -> str:
-        """The motion type in a few words: ``T (dimension 3)`` or ``not a subgroup: dim 2``."""
+        """The twist space in a few words (the JSON ``summary``): ``T (dimension 3)`` or
+        ``not a subgroup: dim 2`` (``R (dimension 1)``: one twist, the instantaneous
+        screw)."""
         if self.dim is None:
             return "undecided"
         if self.is_subgroup and self.subgroup is not None:

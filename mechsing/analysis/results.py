@@ -379,6 +379,14 @@ def _output_motion(m: OutputMotion) -> dict[str, Any]:
     }
     if m.note is not None:
         out["note"] = m.note
+    if m.instantaneous_screw and m.subgroup is not None:
+        # one twist: the screw the output turns about at this instant (not a motion type,
+        # a subgroup its motions stay in); ``type`` and ``params`` above are its subgroup's
+        out["instantaneous_screw"] = {
+            "type": sub["type"],
+            "params": sub["params"],
+            "twist": list(m.twists[0]),
+        }
     if m.point is not None:
         out["point"] = {
             "position": list(m.point.position),

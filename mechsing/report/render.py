@@ -173,6 +173,10 @@ def _motion_words(m: OutputMotion, length_scale: float) -> str:
 def _body_motion_words(m: OutputMotion, head: str, length_scale: float) -> str:
     if m.dim is None:
         return f"{head}'s twists: undecided at {m.precision} ({m.note})"
+    if m.instantaneous_screw and m.subgroup is not None:
+        # one twist: the screw the output turns about at this instant, not a motion type
+        screw = describe(m.twists[0], "twist", length_scale)
+        return f"{head}'s instantaneous screw: {screw} ({subgroup_words(m.subgroup)})"
     if m.is_subgroup and m.subgroup is not None:
         return f"{head}'s twists span {subgroup_words(m.subgroup)}"
     if m.dim == 0:
