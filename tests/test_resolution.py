@@ -123,3 +123,17 @@ def test_report_says_the_verdict_is_below_the_resolution(tmp_path: Path) -> None
     assert rc == 0, err
     html = out.read_text()
     assert "below the resolution of its 15-digit data" in html
+
+
+def test_geometry_written_to_16_digits_has_a_resolution_too(tmp_path: Path) -> None:
+    """The pin's x = 2 sqrt(3) written to 16 digits, the crank at the exact dead-centre
+    angle: mp:50 finds the written decimals off the dead centre, by less than the pin's
+    resolution (half a unit in its 16th digit) can move the tests."""
+    path = tmp_path / "pin.yaml"
+    text = GEOMETRY.format(units="", value='"pi/2 + asin(1/5)"')
+    path.write_text(text.replace('"2*sqrt(3)"', repr(float(f"{2 * math.sqrt(3):.16g}"))))
+    c = cli_json(["analyze", path, "--precision", "mp:50", "--format", "json"])["configurations"][0]
+    below = c["data_resolution"]
+    assert below["digits"] == 16
+    assert below["resolution"] == pytest.approx(0.5e-15, rel=1e-12)
+    assert below["value"] < below["spread"]

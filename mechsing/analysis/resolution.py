@@ -27,7 +27,7 @@ from mechsing.model import Mechanism
 from mechsing.numeric import flips_within, resolution_spread
 from mechsing.singularity.findings import UndecidedFinding
 from mechsing.singularity.local import float_model
-from mechsing.singularity.resolution import value_slopes
+from mechsing.singularity.resolution import geometry_slopes, value_slopes
 
 __all__ = ["DataResolution", "resolution_check"]
 
@@ -91,13 +91,15 @@ def resolution_check(mech: Mechanism, result: Any, model: Any) -> DataResolution
     a kinematic model of it, any precision) rest on a margin below the resolution of
     the values its configuration gives?  None when it does not (or has no such data)."""
     cfg = mech.configurations.get(result.name)
-    if cfg is None or not cfg.resolution or result.error is not None:
+    if cfg is None or not (cfg.resolution or mech.resolution) or result.error is not None:
         return None
     singular = result.singular
     if singular is None:
         return None  # undecided: nothing rests on a margin
     fm = float_model(model)
-    columns, resolutions, digits = [], [], []
+    columns: list[int] = []
+    resolutions: list[float] = []
+    digits: list[int] = []
     for joint, entries in cfg.resolution.items():
         start = fm.joint(joint).columns.start
         for i, (res, ndigits) in enumerate(entries):
@@ -105,11 +107,16 @@ def resolution_check(mech: Mechanism, result: Any, model: Any) -> DataResolution
                 columns.append(start + i)
                 resolutions.append(res)
                 digits.append(ndigits)
-    if not columns:
-        return None
     values = dict(result.joints)
     q = np.array([float(values[j][i]) for j, i in mech.coordinates()], dtype=float)
-    spread = resolution_spread(value_slopes(mech, fm, q, columns), resolutions)
+    slopes = value_slopes(mech, fm, q, columns)
+    # the geometry's resolution too (a point, a pitch, a direction written with digits
+    # to spare), with the joint values held
+    geometry = [(j, key, i) for j, key, i, _res, _d in mech.resolution]
+    slopes += geometry_slopes(mech, fm, q, geometry)
+    resolutions += [res for *_, res, _d in mech.resolution]
+    digits += [d for *_, d in mech.resolution]
+    spread = resolution_spread(slopes, resolutions)
     if singular:
         margins = [
             (_test_of(f), f.margin)

@@ -9,6 +9,7 @@ units and radians exactly.
 
 from __future__ import annotations
 
+import ast
 import re
 from collections.abc import Collection
 from pathlib import Path
@@ -152,6 +153,9 @@ class _Reader:
         self.units = Units()
         self.scale = 1.0  # largest point coordinate (file units), for near-zero tests
         self.parameters: dict[str, Any] = {}  # the file's named parameters (parameters.py)
+        #: (joint, parameter, entry, resolution in SI, digits) of the geometry written with
+        #: digits to spare (Mechanism.resolution)
+        self.geometry: list[tuple[str, str, int, float, int]] = []
 
     def error(self, item: str | None, line: int | None, message: str) -> MechanismError:
         return MechanismError(message, path=self.path, line=line, item=item)
@@ -232,6 +236,16 @@ class _Reader:
         except ExpressionError as exc:
             raise self.error(item, line, f"{what}: {exc}") from None
         return value * factor if factor != 1 else value
+
+    def resolution(self, node: YValue | None, factor: Any = 1) -> tuple[float, int]:
+        """The resolution (times ``factor``: SI) and significant digits of a number as
+        written (:func:`mechsing.numeric.data_resolution`); (0, 0) for an exact one (an
+        expression, a named parameter, a short decimal)."""
+        form = written_digits(node.text) if isinstance(node, YScalar) else None
+        if form is None:
+            return 0.0, 0
+        res = data_resolution(form[0], form[1], float(sympy.N(factor, 17)))
+        return res, (form[0] if res else 0)
 
     def vector(
         self, v: YValue | None, item: str, what: str, factor: Any = 1
@@ -493,6 +507,7 @@ class _Builder:
             graph=graph,
             units=r.units,
             limits=_limits(top.get("limits"), jmap, r),
+            resolution=tuple(r.geometry),
         )
 
     # -- units --------------------------------------------------------------
@@ -716,6 +731,14 @@ class _Builder:
     def param(self, m: YMap, item: str, jtype: str, key: str, kind: str, nonzero: bool) -> Any:
         r = self.r
         v = m.get(key)
+        # the written resolution of each entry (a direction's before it is normalised)
+        factor = 1 if kind in ("direction", "normal") else r.units.length_factor
+        nodes = v.items if isinstance(v, YSeq) else (v,)
+        for i, node in enumerate(nodes):
+            res, digits = r.resolution(node, factor)
+            if res:
+                name = ast.literal_eval(item.split(" ", 1)[1])  # item is f"joint {name!r}"
+                r.geometry.append((name, key, i, res, digits))
         if kind in ("direction", "normal"):
             unit, changed = r.direction(v, item, key)
             if changed:
@@ -1161,22 +1184,16 @@ class _Builder:
 
     def written(self, v: YValue, j: Joint) -> tuple[tuple[float, int], ...]:
         """The resolution (SI, radians) and significant digits of each coordinate of a
-        joint value as written (:func:`mechsing.numeric.data_resolution`): (0, 0) for an
-        expression, a named parameter or a displacement."""
+        joint value as written (:meth:`_Reader.resolution`): (0, 0) for an expression, a
+        named parameter or a displacement."""
         r = self.r
         nodes = v.items if isinstance(v, YSeq) else (v,) if isinstance(v, YScalar) else ()
         if len(nodes) != j.dof:
             return tuple((0.0, 0) for _ in range(j.dof))
-        out = []
-        for node, unit in zip(nodes, j.units, strict=True):
-            form = written_digits(node.text) if isinstance(node, YScalar) else None
-            if form is None:
-                out.append((0.0, 0))
-                continue
-            factor = r.units.angle_factor if unit == "rad" else r.units.length_factor
-            res = data_resolution(form[0], form[1], float(sympy.N(factor, 17)))
-            out.append((res, form[0] if res else 0))
-        return tuple(out)
+        return tuple(
+            r.resolution(node, r.units.angle_factor if unit == "rad" else r.units.length_factor)
+            for node, unit in zip(nodes, j.units, strict=True)
+        )
 
     def check_angles(
         self,

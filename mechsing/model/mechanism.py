@@ -267,6 +267,8 @@ class Mechanism:
         The file's units (values here are already in SI).
     limits : dict name -> tuple of (lower, upper)
         The file's ``limits`` (per joint coordinate; SI units and radians).
+    resolution : tuple
+        The geometry written with digits to spare (see the field).
     """
 
     name: str
@@ -284,6 +286,10 @@ class Mechanism:
     warnings: tuple[str, ...] = ()
     #: joint limits: joint name -> ((lower, upper), ...) per coordinate, SI units and radians
     limits: Mapping[str, tuple[tuple[float, float], ...]] = field(default_factory=dict)
+    #: the geometry written with digits to spare: (joint, parameter, entry, resolution in
+    #: SI, significant digits) -- half a unit in the last written digit of a decimal of
+    #: RESOLUTION_MIN_DIGITS digits or more (a direction's entry before normalisation)
+    resolution: tuple[tuple[str, str, int, float, int], ...] = ()
 
     def joint(self, name: str) -> Joint:
         """The joint called ``name`` (KeyError if none)."""

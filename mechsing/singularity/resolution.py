@@ -2,7 +2,7 @@
 
 Owns :func:`test_sigmas` (every test's singular values at a configuration, relative to
 its largest, in float: the closure system and its loops, the output chain, each leg's
-chain, the input/output ranks ``T N`` and ``E N``, the legs' constraint wrenches) and
+chain, the input/output ranks ``T N`` and ``E N``) and
 :func:`value_slopes`, their first-order sensitivity to each given coordinate: the
 largest change of any relative singular value per unit of that coordinate (radians,
 metres), by finite one-sided
@@ -20,17 +20,19 @@ within it (:func:`mechsing.numeric.flips_within`).
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
+from mechsing.kinematics import KinematicModel
 from mechsing.numeric import RESOLUTION_STEP, Precision, RankDecision, decide_rank
 from mechsing.screws import closure_system
 from mechsing.singularity.generic import mechanism_plan
 from mechsing.singularity.serial import chain_system
-from mechsing.singularity.zfb import io_quantities, leg_constraint_rank, output_chain
+from mechsing.singularity.zfb import io_quantities, output_chain
 
-__all__ = ["test_sigmas", "value_slopes"]
+__all__ = ["geometry_slopes", "test_sigmas", "value_slopes"]
 
 _FLOAT = Precision("float")
 
@@ -64,9 +66,9 @@ def test_sigmas(mech: Any, fm: Any, q: np.ndarray) -> list[np.ndarray]:
     for leg in mechanism_plan(mech, fm).legs:
         here = chain_system(fm, cs.screws, leg.columns, None, _FLOAT, cs.scaled_screws)
         out.append(_relative(here.rank))
-    legs = leg_constraint_rank(mech, fm, q, cs, _FLOAT)
-    if legs is not None:
-        out.append(_relative(legs[0]))
+    # not the legs' constraint wrenches: each leg's wrenches are the complement of its
+    # decided rank, so their matrix jumps where a leg's rank does (no derivative there);
+    # the legs' own chains above move as continuously as the data
     return out
 
 
@@ -95,5 +97,44 @@ def value_slopes(mech: Any, fm: Any, q: np.ndarray, columns: list[int]) -> list[
             qq = q.copy()
             qq[col] += sign * step
             worst = max(worst, _change(here, test_sigmas(mech, fm, qq)))
+        out.append(worst / step)
+    return out
+
+
+def geometry_slopes(
+    mech: Any, fm: Any, q: np.ndarray, entries: list[tuple[str, str, int]]
+) -> list[float]:
+    """For each geometry entry (joint, parameter, index: a point's or pitch's length, a
+    direction's component), the largest rate of change of a test's relative singular
+    value per SI unit of it at the joint values ``q`` (held): the tests of a float model
+    of the mechanism with that entry moved (a direction renormalised), one-sided on
+    both sides as :func:`value_slopes`."""
+    q = np.asarray(q, dtype=float)
+    here = test_sigmas(mech, fm, q)
+    out = []
+    for joint, key, index in entries:
+        j = mech.joint(joint)
+        value = j.params[key]
+        direction = key in ("axis", "normal")
+        step = RESOLUTION_STEP * (1.0 if direction else fm.length_scale)
+        worst = 0.0
+        for sign in (1.0, -1.0):
+            if isinstance(value, tuple):
+                moved = [float(x) for x in value]
+                moved[index] += sign * step
+                if direction:
+                    n = float(np.linalg.norm(moved))
+                    moved = [x / n for x in moved]
+                new = tuple(moved)
+            else:
+                new = float(value) + sign * step
+            other = replace(
+                mech,
+                joints=tuple(
+                    replace(jj, params={**jj.params, key: new}) if jj.name == joint else jj
+                    for jj in mech.joints
+                ),
+            )
+            worst = max(worst, _change(here, test_sigmas(other, KinematicModel(other, _FLOAT), q)))
         out.append(worst / step)
     return out
