@@ -22,7 +22,7 @@ import pytest
 
 from mechsing.model.expressions import written_digits
 from mechsing.numeric import RESOLUTION_MIN_DIGITS, data_resolution
-from tests.cli import cli_json, run_cli
+from tests.cli import ROOT, cli_json, run_cli
 
 GEOMETRY = """\
 mechanism: offset-slider-crank
@@ -137,3 +137,18 @@ def test_geometry_written_to_16_digits_has_a_resolution_too(tmp_path: Path) -> N
     assert below["digits"] == 16
     assert below["resolution"] == pytest.approx(0.5e-15, rel=1e-12)
     assert below["value"] < below["spread"]
+
+
+@pytest.mark.parametrize("precision", ["auto", "mp:50"])
+def test_a_target_beyond_a_limit_of_travel_names_it(tmp_path: Path, precision: str) -> None:
+    """The bundled slider-crank driven by its slider: the pin on y = 7/5 reaches at most
+    x = sqrt((l + r)^2 - e^2) = sqrt(25 - 49/25) = 24/5, from 16/5 at the reference, so
+    the slide P stops at its outer dead centre P = 8/5.  A target 1e-16 m beyond it has
+    no closed configuration: the message names P, the 1e-16 m and the limit 1.6 m."""
+    text = (ROOT / "examples" / "slider_crank_slider_input.yaml").read_text()
+    path = tmp_path / "beyond.yaml"
+    path.write_text(text + '  beyond: {P: "8/5 + 1e-16"}\n')
+    rc, out, err = run_cli(["analyze", path, "--config", "beyond", "--precision", precision])
+    assert rc == 3
+    assert "beyond a limit of travel" in err
+    assert "P is 1e-16 m beyond its limit at P = 1.6 m" in err

@@ -36,6 +36,7 @@ from mechsing.kinematics.newton import (
     newton_on_group,
 )
 from mechsing.kinematics.pose import PoseModel, pose_problem
+from mechsing.kinematics.travel import beyond_travel
 from mechsing.lie import ANGULAR
 from mechsing.model import Configuration, Displacement
 from mechsing.numeric import (
@@ -655,8 +656,13 @@ class Closer:
         else:
             q_out = q
         if res > self.tolerance:
+            # just beyond a fold of the given values: say which limit, and by how much
+            with m.precision.context():
+                why = beyond_travel(m, q_out, gmask)
             raise ClosureError(
-                f"configuration {cfg.name!r} does not close: residual {_g(res, 3)} m after continuation "
+                f"configuration {cfg.name!r} does not close: "
+                + (f"{why}; " if why else "")
+                + f"residual {_g(res, 3)} m after continuation "
                 f"(accepted: {_g(self.tolerance, 1)} m)",
                 cfg.name,
                 float(res),
