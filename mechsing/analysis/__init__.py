@@ -201,7 +201,8 @@ def _analyze(
             why = res.doubtful or ("undecided",)
             res = _analyze_one(mech, name, stage(Precision("mp", 50)))
             res = replace(res, escalated_for=why)
-        res = _with_resolution(mech, res, stage(first)[0])
+        if not located:  # a located point is float data, placed as near as float can
+            res = _with_resolution(mech, res, stage(first)[0])
         results.append(replace(res, seconds=time.perf_counter() - start))
     km0 = stage(first)[0]
     props = mechanism_properties(mech, results)
