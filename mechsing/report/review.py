@@ -560,7 +560,8 @@ def _configurations(r: Report) -> list[doc.Block]:
             om = c.output_motion
             shown = f"instantaneous screw {om.summary}" if om.instantaneous_screw else om.summary
             items.append(f"output motion: {shown}")
-        items += [f"note: {n}" for n in c.notes]
+        below = c.data_resolution  # said in a paragraph of its own, below
+        items += [f"note: {n}" for n in c.notes if below is None or n != below.note]
         out.append(doc.Bullets(tuple(items)))
         if c.data_resolution is not None:
             out.append(doc.Paragraph(f"{c.data_resolution.note}.", "Below the data's resolution:"))
