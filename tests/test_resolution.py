@@ -139,16 +139,56 @@ def test_geometry_written_to_16_digits_has_a_resolution_too(tmp_path: Path) -> N
     assert below["value"] < below["spread"]
 
 
-@pytest.mark.parametrize("precision", ["auto", "mp:50"])
-def test_a_target_beyond_a_limit_of_travel_names_it(tmp_path: Path, precision: str) -> None:
+@pytest.mark.parametrize(
+    ("precision", "target", "beyond"),
+    [
+        ("auto", '"8/5 + 1e-16"', "1e-16"),
+        ("mp:50", '"8/5 + 1e-16"', "1e-16"),
+        ("float", "1.61", "0.01"),
+    ],
+)
+def test_a_target_beyond_a_limit_of_travel_names_it(
+    tmp_path: Path, precision: str, target: str, beyond: str
+) -> None:
     """The bundled slider-crank driven by its slider: the pin on y = 7/5 reaches at most
     x = sqrt((l + r)^2 - e^2) = sqrt(25 - 49/25) = 24/5, from 16/5 at the reference, so
-    the slide P stops at its outer dead centre P = 8/5.  A target 1e-16 m beyond it has
-    no closed configuration: the message names P, the 1e-16 m and the limit 1.6 m."""
+    the slide P stops at its outer dead centre P = 8/5.  A target beyond it has no closed
+    configuration: the message names P, how far beyond and the limit 1.6 m (1e-16 m
+    beyond is closed in float, to its tolerance: it fails at 50 digits; 0.01 m beyond
+    stops float's continuation)."""
     text = (ROOT / "examples" / "slider_crank_slider_input.yaml").read_text()
     path = tmp_path / "beyond.yaml"
-    path.write_text(text + '  beyond: {P: "8/5 + 1e-16"}\n')
+    path.write_text(text + f"  beyond: {{P: {target}}}\n")
     rc, out, err = run_cli(["analyze", path, "--config", "beyond", "--precision", precision])
     assert rc == 3
     assert "beyond a limit of travel" in err
-    assert "P is 1e-16 m beyond its limit at P = 1.6 m" in err
+    assert f"P is {beyond} m beyond its limit at about P = 1.6 m" in err
+
+
+ROCKER = """\
+mechanism: rocker
+units: {angle: deg}
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler], axis: [0, 0, 1], point: [0, 2, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
+  - {name: D, type: R, between: [rocker, ground], axis: [0, 0, 1], point: [4, 0, 0]}
+inputs: [A]
+configurations:
+  near: {A: 27.6149}
+"""
+
+
+def test_an_input_beyond_its_limit_is_named_in_the_file_units(tmp_path: Path) -> None:
+    """A non-Grashof four-bar (2 + 4 > 3 + sqrt 5): the crank AB stops where B, C and D
+    line up, |BD| = 3 + sqrt 5, at the angle acos((4 + 16 - |BD|^2) / 16) from AD (law of
+    cosines), 90 deg less from AB's reference direction; a target just beyond it is named
+    with the distance and the limit in degrees, the file's unit."""
+    bd = 3 + math.sqrt(5)
+    limit = math.degrees(math.acos((4 + 16 - bd**2) / 16)) - 90
+    path = tmp_path / "rocker.yaml"
+    path.write_text(ROCKER)
+    rc, _, err = run_cli(["analyze", path, "--precision", "float"])
+    assert rc == 3
+    assert f"A is {27.6149 - limit:.3g} deg beyond its limit at about A = {limit:.3f} deg" in err

@@ -152,6 +152,7 @@ from mechsing.numeric.tolerances import (
     SWEEP_MINIMUM_SCREEN,
     SWEEP_NODE_STEP,
     SWEEP_SCREEN_ROUNDING,
+    TRAVEL_RESIDUAL_ALIGNMENT,
     Tolerances,
 )
 
@@ -229,6 +230,7 @@ __all__ = [
     "SWEEP_MINIMUM_SCREEN",
     "SWEEP_NODE_STEP",
     "SWEEP_SCREEN_ROUNDING",
+    "TRAVEL_RESIDUAL_ALIGNMENT",
     "Tolerances",
     "backend_of",
     "coarser_backend",

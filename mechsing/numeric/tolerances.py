@@ -201,6 +201,12 @@ RESOLUTION_MIN_DIGITS = 8
 #: differences (1e-16 / 1e-6 relative) and small enough that the first order holds
 RESOLUTION_STEP = 1e-6
 
+#: a configuration that does not close is beyond a limit of travel when, where Newton on
+#: its unknown joints stops, the residual lies along the direction they cannot correct
+#: (the left singular vector of their Jacobian's smallest singular value): at least this
+#: fraction of it (a cosine); :mod:`mechsing.kinematics.travel`
+TRAVEL_RESIDUAL_ALIGNMENT = 0.9
+
 #: exact mode first evaluates a quantity to this many digits: clearly non-zero
 #: there (above 10^-(EXACT_ZERO_DIGITS - 15) of its scale) it is not zero, and
 #: only the rest is handed to sympy to prove it zero
