@@ -103,9 +103,10 @@ def test_text_lists_legs_and_the_output_motion_in_words():
 
 def test_text_of_a_rocker_and_of_a_lost_twist():
     text = render_text(analyze(EX / "fourbar.yaml", precision="float"))
+    # one twist: the rocker's instantaneous screw, the rotation about D's axis
     assert (
-        "rocker's twists span R (rotation about an axis (revolute), dimension 1): "
-        "axis z, point (4, 0, 0) m"
+        "rocker's instantaneous screw: a rotation about the axis through (4, 0, 0) m along z "
+        "(R (rotation about an axis (revolute), dimension 1): axis z, point (4, 0, 0) m)"
     ) in text
     # a serial arm at a singularity: each lost twist and resisted wrench in words
     text = render_text(analyze(EX / "ur5.yaml", configs=["wrist"], precision="float"))

@@ -30,6 +30,7 @@ import numpy as np
 
 from mechsing.analysis.describe import describe_legs, output_motion
 from mechsing.analysis.properties import mechanism_properties
+from mechsing.analysis.resolution import resolution_check
 from mechsing.analysis.results import (
     AnalysisResult,
     ClosureRank,
@@ -215,13 +216,18 @@ def _analyze(
         start = time.perf_counter()
         if prec.mode == "exact":  # policy: see _ExactRun
             res = exact.run(name, lambda name=name: _analyze_one(mech, name, stage(first)))
+            res = _with_resolution(mech, res, stage(first)[0])
             results.append(replace(res, seconds=time.perf_counter() - start))
             continue
         res = _within(time_limit, name, str(prec), lambda name=name: _one(name))
         # a point located in float is as near its singularity as float places it: the drop
         # float sees above its own rounding is that distance, so auto keeps the verdict
         doubtful = res.doubtful and not located
-        if prec.mode == "auto" and res.error is None and (res.undecided or doubtful):
+        # an output motion left undecided (its rank, or the subgroup its twists generate)
+        # is re-decided too; at a located point, where the twists are those of a
+        # singularity and the sweep shows no motion type, it is not worth an mp:50 pass
+        motion = res.output_motion is not None and res.output_motion.undecided and not located
+        if prec.mode == "auto" and res.error is None and (res.undecided or doubtful or motion):
             why = res.doubtful or ("undecided",)
             res = _within(
                 time_limit,
@@ -230,6 +236,8 @@ def _analyze(
                 lambda name=name: _analyze_one(mech, name, stage(Precision("mp", 50))),
             )
             res = replace(res, escalated_for=why)
+        if not located:  # a located point is float data, placed as near as float can
+            res = _with_resolution(mech, res, stage(first)[0])
         results.append(replace(res, seconds=time.perf_counter() - start))
     km0 = stage(first)[0]
     props = mechanism_properties(mech, results)
@@ -244,11 +252,26 @@ def _analyze(
     )
 
 
+def _with_resolution(
+    mech: Mechanism, res: ConfigurationResult, model: KinematicModel
+) -> ConfigurationResult:
+    """``res`` with its verdict checked against the resolution of its given values
+    (:func:`mechsing.analysis.resolution.resolution_check`): when it rests on less, the
+    result says so (``data_resolution``) and so do its notes."""
+    with working_on(configuration=res.name):
+        found = resolution_check(mech, res, model)
+    if found is None:
+        return res
+    return replace(res, data_resolution=found, notes=(*res.notes, found.note))
+
+
 def _generic_motion(results: list[ConfigurationResult]) -> Any:
     """The output's motion type at the first regular configuration analysed (the one
     that speaks for the mechanism, as for its properties); None when none is regular."""
     for r in results:
-        if r.error is None and r.singular is False and r.output_motion is not None:
+        # a verdict below the data's resolution does not speak for the mechanism
+        regular = r.error is None and r.singular is False and r.data_resolution is None
+        if regular and r.output_motion is not None:
             return r.output_motion
     return None
 
@@ -500,6 +523,7 @@ def _analyze_one_in_context(
             )
         )
     decisions.extend(found.decisions)
+    motion = output_motion(mech, model, q, cs, name)
     res = ConfigurationResult(
         name,
         str(prec),
@@ -512,13 +536,14 @@ def _analyze_one_in_context(
         decisions=tuple(decisions),
         underdetermined=closed.underdetermined,
         notes=tuple(closed.notes),
-        # auto re-decides the configuration at mp:50
+        # auto re-decides the configuration at mp:50 (and an output motion whose rank or
+        # subgroup the precision left open: see _analyze)
         undecided=undecided
         or found.undecided
         or any(isinstance(f, UndecidedFinding) for f in findings),
         classification=found,
         pose=given_pose(mech, name),
-        output_motion=output_motion(mech, model, q, cs, name),
+        output_motion=motion,
     )
     doubtful = _doubtful_drops(
         res.singular, res.decisions, res.closure_residual or 0.0, model.length_scale

@@ -120,6 +120,23 @@ class OutputMotion:
     generated: Subgroup | None = None
     #: the output point's velocities (None: the output has no point)
     point: PointMotion | None = None
+    #: the identification's status when it gave no type (``undecided``,
+    #: ``ill-conditioned``); None when it gave one or was not run
+    status: str | None = None
+
+    @property
+    def instantaneous_screw(self) -> bool:
+        """Is the span one twist (a one-degree-of-freedom output)?  Its subgroup (R, P or
+        H) is then the output's instantaneous screw, the screw it turns about at this
+        instant, and not a motion type: a motion type is a subgroup the output's motions
+        stay in, and the screw moves as the mechanism does."""
+        return self.dim == 1
+
+    @property
+    def undecided(self) -> bool:
+        """Did the precision leave the motion open: the rank of the output twists, or the
+        subgroup they generate (auto re-decides both at mp:50)?"""
+        return self.dim is None or self.status == "undecided"
 
     @property
     def type(self) -> str | None:
@@ -128,7 +145,9 @@ class OutputMotion:
 
     @property
     def summary(self) -> str:
-        """The motion type in a few words: ``T (dimension 3)`` or ``not a subgroup: dim 2``."""
+        """The twist space in a few words (the JSON ``summary``): ``T (dimension 3)`` or
+        ``not a subgroup: dim 2`` (``R (dimension 1)``: one twist, the instantaneous
+        screw)."""
         if self.dim is None:
             return "undecided"
         if self.is_subgroup and self.subgroup is not None:
@@ -380,6 +399,7 @@ def _motion_of_span(
             dec.margin,
             str(prec),
             note=f"the subgroup the twists generate is {ident.status}",
+            status=ident.status,
         )
     if ident.dim == r:
         return OutputMotion(

@@ -27,6 +27,7 @@ __all__ = [
     "CLASS_WORDS",
     "VERDICT_HEADERS",
     "class_words",
+    "decided_in",
     "html_table",
     "largest_drop",
     "margin_words",
@@ -107,7 +108,28 @@ def verdict_row(c: ConfigurationResult, name: str | None = None) -> tuple[str, .
         return (name or c.name, "not analysed", c.error, "-", c.precision)
     singular = {True: "yes", False: "no", None: "undecided"}[c.singular]
     classes = class_words([s.cls for s in c.singularities])
-    return (name or c.name, singular, classes, margin_words(c), c.precision)
+    margin = margin_words(c)
+    below = getattr(c, "data_resolution", None)
+    if below is not None:  # the verdict holds of the written decimals only
+        margin = f"{margin}; {below.verdict}"
+    return (name or c.name, singular, classes, margin, decided_in(c))
+
+
+def decided_in(c: ConfigurationResult) -> str:
+    """The precision a configuration's verdict was decided at, with the tests that ran at
+    another (exact mode runs the input/output and cone tests at mp:50 from exact data)."""
+    other: dict[str, list[str]] = {}
+    for d in c.decisions:
+        if d.precision != c.precision:
+            other.setdefault(d.precision, []).append(d.test)
+    for s in c.singularities:
+        ran = getattr(s, "test_precision", None) or s.precision
+        if ran != c.precision and s.cls not in other.get(ran, []):
+            other.setdefault(ran, []).append(s.cls)
+    if not other:
+        return c.precision
+    parts = [f"the {', '.join(dict.fromkeys(tests))} tests at {p}" for p, tests in other.items()]
+    return f"{c.precision} ({'; '.join(parts)})"
 
 
 def html_table(

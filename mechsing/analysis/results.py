@@ -15,6 +15,7 @@ from typing import Any
 from mechsing.analysis import contract
 from mechsing.analysis.describe import LegDescription, OutputMotion
 from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
+from mechsing.analysis.resolution import DataResolution
 from mechsing.model import Mechanism
 from mechsing.numeric import Margin, Precision
 from mechsing.singularity.findings import (
@@ -216,6 +217,9 @@ class ConfigurationResult:
     pose: GivenPose | None = None
     #: the twists the output can make here and their motion type (None: no output)
     output_motion: OutputMotion | None = None
+    #: the verdict rests on a margin below the resolution of the given values (JSON
+    #: ``data_resolution``; None: it does not, or the values are exact)
+    data_resolution: DataResolution | None = None
 
     @property
     def singular(self) -> bool | None:
@@ -378,6 +382,17 @@ def _configuration(c: ConfigurationResult) -> dict[str, Any]:
         }
     if c.output_motion is not None:
         out["output_motion"] = _output_motion(c.output_motion)
+    if c.data_resolution is not None:
+        d = c.data_resolution
+        out["data_resolution"] = {
+            "below_resolution": True,
+            "verdict": d.verdict,
+            "digits": d.digits,
+            "resolution": d.resolution,
+            "spread": d.spread,
+            "value": d.value,
+            "test": d.test,
+        }
     return out
 
 
@@ -410,6 +425,14 @@ def _output_motion(m: OutputMotion) -> dict[str, Any]:
     }
     if m.note is not None:
         out["note"] = m.note
+    if m.instantaneous_screw and m.subgroup is not None:
+        # one twist: the screw the output turns about at this instant (not a motion type,
+        # a subgroup its motions stay in); ``type`` and ``params`` above are its subgroup's
+        out["instantaneous_screw"] = {
+            "type": sub["type"],
+            "params": sub["params"],
+            "twist": list(m.twists[0]),
+        }
     if m.point is not None:
         out["point"] = {
             "position": list(m.point.position),

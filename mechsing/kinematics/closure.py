@@ -36,6 +36,7 @@ from mechsing.kinematics.newton import (
     newton_on_group,
 )
 from mechsing.kinematics.pose import PoseModel, pose_problem
+from mechsing.kinematics.travel import beyond_target, beyond_travel
 from mechsing.lie import ANGULAR
 from mechsing.model import Configuration, Displacement
 from mechsing.numeric import (
@@ -608,11 +609,18 @@ class Closer:
                         q, info = landed
                         t, steps, at_fold = 1.0, steps + 1, True
                         continue
+                    # a target beyond a limit of travel: which value, by how much
+                    why = beyond_target(fm, q, qt, gmask)
                     raise ClosureError(
                         f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} stopped at step "
-                        f"{steps + 1}: {_given_reached(fm, q, qt, gmask)}; the given values "
-                        "cannot be followed further on this assembly mode (a singularity or a limit of motion "
-                        "lies on the path); add an intermediate configuration or change the target",
+                        f"{steps + 1}: {_given_reached(fm, q, qt, gmask)}; "
+                        + (
+                            f"{why}"
+                            if why
+                            else "the given values cannot be followed further on this assembly "
+                            "mode (a singularity or a limit of motion lies on the path); add an "
+                            "intermediate configuration or change the target"
+                        ),
                         cfg.name,
                         info["residual"],
                     )
@@ -655,8 +663,13 @@ class Closer:
         else:
             q_out = q
         if res > self.tolerance:
+            # just beyond a fold of the given values: say which limit, and by how much
+            with m.precision.context():
+                why = beyond_travel(m, q_out, gmask)
             raise ClosureError(
-                f"configuration {cfg.name!r} does not close: residual {_g(res, 3)} m after continuation "
+                f"configuration {cfg.name!r} does not close: "
+                + (f"{why}; " if why else "")
+                + f"residual {_g(res, 3)} m after continuation "
                 f"(accepted: {_g(self.tolerance, 1)} m)",
                 cfg.name,
                 float(res),

@@ -44,6 +44,7 @@ __all__ = [
     "is_plain_decimal",
     "parse_number",
     "radian_power",
+    "written_digits",
 ]
 
 #: longest expression text accepted
@@ -371,6 +372,22 @@ def is_plain_decimal(text: str) -> bool:
     """True for a plain (signed) decimal number such as ``30`` or ``-1.5e3``, False
     for an expression such as ``"pi/6"``."""
     return bool(_SIGNED_DECIMAL.match(text.strip()))
+
+
+def written_digits(text: str) -> tuple[int, int] | None:
+    """The significant digits of a plain decimal as written, and the power of ten of
+    its last written digit: ``"1.85459043600322"`` gives (15, -14), ``"-0.0025"``
+    (2, -4), ``"30"`` (2, 0), ``"1.5e-3"`` (2, -4).  None for an expression such as
+    ``"pi/3"`` (an exact value: it has no last digit).  Half a unit in the last digit
+    is the value's written resolution (:func:`mechsing.numeric.data_resolution`)."""
+    t = text.strip().lstrip("+-").strip()
+    if not _DECIMAL.match(t):
+        return None
+    mant, _, exp = t.lower().partition("e")
+    whole, _, frac = mant.partition(".")
+    digits = (whole + frac).lstrip("0")
+    last = int(exp or 0) - len(frac)
+    return max(len(digits), 1), last
 
 
 #: functions whose value is an angle (in radians)

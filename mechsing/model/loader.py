@@ -9,6 +9,7 @@ units and radians exactly.
 
 from __future__ import annotations
 
+import ast
 from collections.abc import Callable, Collection
 from pathlib import Path
 from typing import Any
@@ -21,6 +22,7 @@ from mechsing.model.expressions import (
     is_plain_decimal,
     parse_number,
     radian_power,
+    written_digits,
 )
 from mechsing.model.graph import build_graph, connected_to, coupled_loops
 from mechsing.model.mechanism import (
@@ -47,7 +49,7 @@ from mechsing.model.yamlnodes import (
     YValue,
     read_yaml_text,
 )
-from mechsing.numeric import NEAR_ZERO_VECTOR, REFERENCE_SCREEN_RTOL
+from mechsing.numeric import NEAR_ZERO_VECTOR, REFERENCE_SCREEN_RTOL, data_resolution
 
 __all__ = [
     "ANGLE_UNITS",
@@ -153,6 +155,9 @@ class _Reader:
         self.units = Units()
         self.scale = 1.0  # largest point coordinate (file units), for near-zero tests
         self.parameters: dict[str, Any] = {}  # the file's named parameters (parameters.py)
+        #: (joint, parameter, entry, resolution in SI, digits) of the geometry written with
+        #: digits to spare (Mechanism.resolution)
+        self.geometry: list[tuple[str, str, int, float, int]] = []
 
     def error(self, item: str | None, line: int | None, message: str) -> MechanismError:
         return MechanismError(message, path=self.path, line=line, item=item)
@@ -233,6 +238,16 @@ class _Reader:
         except ExpressionError as exc:
             raise self.error(item, line, f"{what}: {exc}") from None
         return value * factor if factor != 1 else value
+
+    def resolution(self, node: YValue | None, factor: Any = 1) -> tuple[float, int]:
+        """The resolution (times ``factor``: SI) and significant digits of a number as
+        written (:func:`mechsing.numeric.data_resolution`); (0, 0) for an exact one (an
+        expression, a named parameter, a short decimal)."""
+        form = written_digits(node.text) if isinstance(node, YScalar) else None
+        if form is None:
+            return 0.0, 0
+        res = data_resolution(form[0], form[1], float(sympy.N(factor, 17)))
+        return res, (form[0] if res else 0)
 
     def vector(
         self, v: YValue | None, item: str, what: str, factor: Any = 1
@@ -507,6 +522,7 @@ class _Builder:
             limits=_limits(top.get("limits"), jmap, r),
             couplings=read_couplings(r, top.get("couplings"), jmap),
             parameters=dict(r.parameters),
+            resolution=tuple(r.geometry),
         )
 
     # -- units --------------------------------------------------------------
@@ -730,6 +746,14 @@ class _Builder:
     def param(self, m: YMap, item: str, jtype: str, key: str, kind: str, nonzero: bool) -> Any:
         r = self.r
         v = m.get(key)
+        # the written resolution of each entry (a direction's before it is normalised)
+        factor = 1 if kind in ("direction", "normal") else r.units.length_factor
+        nodes = v.items if isinstance(v, YSeq) else (v,)
+        for i, node in enumerate(nodes):
+            res, digits = r.resolution(node, factor)
+            if res:
+                name = ast.literal_eval(item.split(" ", 1)[1])  # item is f"joint {name!r}"
+                r.geometry.append((name, key, i, res, digits))
         if kind in ("direction", "normal"):
             unit, changed = r.direction(v, item, key)
             if changed:
@@ -901,6 +925,7 @@ class _Builder:
                 cmap = r.mapping(cv, item, "a configuration")
             values: dict[str, Any] = {}
             lines: dict[str, int] = {}
+            resolution: dict[str, tuple[tuple[float, int], ...]] = {}
             start: str | None = None if cname == "reference" else "reference"
             pose: OutputPose | None = None
             for jk, jv in cmap.items:
@@ -934,6 +959,9 @@ class _Builder:
                     )
                 values[jk.text] = self.value(jv, jmap[jk.text], item)
                 lines[jk.text] = jk.line
+                written = self.written(jv, jmap[jk.text])
+                if any(res for res, _ in written):
+                    resolution[jk.text] = written
             if cname == "reference":
                 for jn, val in values.items():
                     if not self.near_identity(val, jmap[jn]):
@@ -954,7 +982,9 @@ class _Builder:
                     f"values fix the pose; remove {POSE_KEY} or the values of the joints to "
                     "be solved",
                 )
-            out[cname] = Configuration(cname, values, start, k.line, lines, pose)
+            out[cname] = Configuration(
+                cname, values, start, k.line, lines, pose, resolution=resolution
+            )
         for cname, (start, line) in starts.items():
             if start not in out:
                 raise r.error(
@@ -1141,6 +1171,19 @@ class _Builder:
         raise r.error(
             item, getattr(v, "line", None), f"{what} must be a number or a list"
         )  # pragma: no cover
+
+    def written(self, v: YValue, j: Joint) -> tuple[tuple[float, int], ...]:
+        """The resolution (SI, radians) and significant digits of each coordinate of a
+        joint value as written (:meth:`_Reader.resolution`): (0, 0) for an expression, a
+        named parameter or a displacement."""
+        r = self.r
+        nodes = v.items if isinstance(v, YSeq) else (v,) if isinstance(v, YScalar) else ()
+        if len(nodes) != j.dof:
+            return tuple((0.0, 0) for _ in range(j.dof))
+        return tuple(
+            r.resolution(node, r.units.angle_factor if unit == "rad" else r.units.length_factor)
+            for node, unit in zip(nodes, j.units, strict=True)
+        )
 
     def check_angles(
         self,

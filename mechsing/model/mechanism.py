@@ -295,7 +295,10 @@ class Configuration:
     does not say, None for the reference configuration itself (all joints at
     identity).  ``lines`` gives the line of each value in the file.  ``pose``: the
     output body's pose the configuration gives (None: none), solved for by closure
-    with the joints not given.
+    with the joints not given.  ``resolution``: for a joint whose value was written
+    with digits to spare, each coordinate's (resolution in SI units and radians,
+    significant digits) -- half a unit in its last written digit
+    (:func:`mechsing.numeric.data_resolution`); a joint not listed is exact.
     """
 
     name: str
@@ -304,6 +307,9 @@ class Configuration:
     line: int | None = None
     lines: Mapping[str, int] = field(default_factory=dict, hash=False, compare=False)
     pose: OutputPose | None = field(default=None, hash=False)
+    resolution: Mapping[str, tuple[tuple[float, int], ...]] = field(
+        default_factory=dict, hash=False, compare=False
+    )
 
     @property
     def is_reference(self) -> bool:
@@ -355,6 +361,8 @@ class Mechanism:
         The file's named ``parameters`` in the order written (pure numbers, the file's
         units not applied); those kept symbolic are
         :class:`~mechsing.model.parameters.ParameterSymbol`.
+    resolution : tuple
+        The geometry written with digits to spare (see the field).
     """
 
     name: str
@@ -378,6 +386,10 @@ class Mechanism:
     scene: Scene | None = None
     #: the file's named parameters: name -> exact value (or ParameterSymbol), as written
     parameters: Mapping[str, Any] = field(default_factory=dict)
+    #: the geometry written with digits to spare: (joint, parameter, entry, resolution in
+    #: SI, significant digits) -- half a unit in the last written digit of a decimal of
+    #: RESOLUTION_MIN_DIGITS digits or more (a direction's entry before normalisation)
+    resolution: tuple[tuple[str, str, int, float, int], ...] = ()
 
     def joint(self, name: str) -> Joint:
         """The joint called ``name`` (KeyError if none)."""

@@ -8,7 +8,7 @@ evidence of a decision.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import mpmath
@@ -21,7 +21,11 @@ from mechsing.numeric.blocks import block_svd, issparse
 from mechsing.numeric.field import echelon_form, field_float, number_field
 from mechsing.numeric.linalg import singular_values, svd
 from mechsing.numeric.precision import Precision, parse_precision
-from mechsing.numeric.tolerances import FLOAT_ROUNDING_FACTOR, Tolerances
+from mechsing.numeric.tolerances import (
+    FLOAT_ROUNDING_FACTOR,
+    RESOLUTION_MIN_DIGITS,
+    Tolerances,
+)
 
 
 @dataclass(frozen=True)
@@ -121,7 +125,19 @@ def rank_difference(a: RankDecision, b: RankDecision) -> RankDecision:
     )
     lo, hi = max(0, alo - bhi), max(0, ahi - blo)
     rank = lo if lo == hi else None
-    return RankDecision(rank, None, min(a.margin, b.margin, key=_slack), a.precision, (lo, hi))
+    return RankDecision(rank, None, _tighter(a.margin, b.margin), a.precision, (lo, hi))
+
+
+def _tighter(a: Margin, b: Margin) -> Margin:
+    """The margin nearer to flipping (:func:`_slack`), with the other's dropped value
+    when it has none of its own: a dropped value that is exactly zero never flips, so a
+    kept one is the nearer, but the difference rests on that drop too and shows it
+    (relative to the kept margin's sigma_max; exact margins have none and drop 0)."""
+    near, far = (a, b) if _slack(a) <= _slack(b) else (b, a)
+    if near.dropped is not None or far.dropped is None:
+        return near
+    scale = 1.0 if not far.sigma_max or not near.sigma_max else near.sigma_max / far.sigma_max
+    return replace(near, dropped=far.dropped * scale)
 
 
 def _slack(m: Margin) -> float:
@@ -371,6 +387,46 @@ def float_drop_is_real(margin: Margin, data_error: float = 0.0) -> bool:
     if rounding is None or dropped is None or not smax:
         return False
     return dropped > FLOAT_ROUNDING_FACTOR * (rounding + data_error * smax)
+
+
+def data_resolution(digits: int, last: int, factor: float = 1.0) -> float:
+    """The resolution of a given value written as a decimal of ``digits`` significant
+    digits whose last digit is 10^``last`` (in units that ``factor`` turns into SI):
+    half a unit in that digit, or 0 for a decimal shorter than
+    :data:`RESOLUTION_MIN_DIGITS` (taken as exact, like an expression)."""
+    if digits < RESOLUTION_MIN_DIGITS:
+        return 0.0
+    return 0.5 * 10.0**last * abs(float(factor))
+
+
+def resolution_spread(slopes: list[float], resolutions: list[float]) -> float:
+    """The first-order bound on how far the data's resolution can move a relative
+    singular value: sum_i |d sigma / d x_i| res_i (``slopes`` relative to sigma_max per
+    SI unit of each given value, ``resolutions`` in SI)."""
+    return float(sum(abs(s) * r for s, r in zip(slopes, resolutions, strict=True)))
+
+
+def flips_within(margin: Margin, spread: float, singular: bool) -> float | None:
+    """Could a decision flip when its singular values move by ``spread`` (relative to
+    sigma_max: :func:`resolution_spread`)?  The relative value it rests on when it could,
+    else None.
+
+    ``singular``: the decision stands for a singular verdict, which rests on its largest
+    dropped value staying at or below ``tau_lo``; else for a regular one, which rests on
+    its smallest kept value staying at or above ``tau_hi``.  Exact margins have no
+    ``sigma_max`` and thresholds 0: their pivot is compared as it is."""
+    if spread <= 0:
+        return None
+    smax = margin.sigma_max or 1.0
+    if singular:
+        if margin.dropped is None:
+            return None
+        d = abs(float(margin.dropped)) / smax
+        return d if d + spread > margin.tau_lo else None
+    if margin.kept is None:
+        return None
+    k = abs(float(margin.kept)) / smax
+    return k if k - spread < margin.tau_hi else None
 
 
 def _exact_rank(

@@ -206,6 +206,24 @@ SWEEP_LIMIT_RTOL = 1e-9
 #: number) looks like radians in a degree file (3.14 is pi to 0.0016): a warning
 RADIAN_LOOK_ATOL = 0.01
 
+#: data resolution (issue: verdicts below the resolution of their data).  A plain decimal
+#: written with at least this many significant digits is a rounding of the value meant
+#: (a float printed to 15-17 digits, a CAD export): its resolution is half a unit in its
+#: last written digit.  A shorter decimal (``3``, ``0.25``, ``12.5``: a drawing's
+#: dimension) is taken as exact, as an expression (``pi/3``) is: resolution 0
+RESOLUTION_MIN_DIGITS = 8
+#: the finite-difference step (radians, or lengths / L) over which the tests' singular
+#: values are differentiated with respect to a given value, for the first-order bound
+#: of what the data's resolution can move them by: far above float's rounding of the
+#: differences (1e-16 / 1e-6 relative) and small enough that the first order holds
+RESOLUTION_STEP = 1e-6
+
+#: a configuration that does not close is beyond a limit of travel when, where Newton on
+#: its unknown joints stops, the residual lies along the direction they cannot correct
+#: (the left singular vector of their Jacobian's smallest singular value): at least this
+#: fraction of it (a cosine); :mod:`mechsing.kinematics.travel`
+TRAVEL_RESIDUAL_ALIGNMENT = 0.9
+
 #: exact mode first evaluates a quantity to this many digits: clearly non-zero
 #: there (above 10^-(EXACT_ZERO_DIGITS - 15) of its scale) it is not zero, and
 #: only the rest is handed to sympy to prove it zero

@@ -174,6 +174,10 @@ def _motion_words(m: OutputMotion, length_scale: float) -> str:
 def _body_motion_words(m: OutputMotion, head: str, length_scale: float) -> str:
     if m.dim is None:
         return f"{head}'s twists: undecided at {m.precision} ({m.note})"
+    if m.instantaneous_screw and m.subgroup is not None:
+        # one twist: the screw the output turns about at this instant, not a motion type
+        screw = describe(m.twists[0], "twist", length_scale)
+        return f"{head}'s instantaneous screw: {screw} ({subgroup_words(m.subgroup)})"
     if m.is_subgroup and m.subgroup is not None:
         return f"{head}'s twists span {subgroup_words(m.subgroup)}"
     if m.dim == 0:
@@ -317,6 +321,8 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         )
         if c.output_motion is not None:
             lines.append(f"{bullet}output motion: {_motion_words(c.output_motion, L)}")
+        if c.data_resolution is not None:
+            lines.append(f"{bullet}verdict: {c.data_resolution.verdict} (see the note).")
         if not c.singularities:
             lines.append(f"{bullet}regular: no singularity.")
         for s in c.singularities:

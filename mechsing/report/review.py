@@ -35,6 +35,7 @@ from mechsing.report import document as doc
 from mechsing.report.figures import graph_figure, grid_figure, path_figure, svg
 from mechsing.report.render import _margin, explain, scene_line
 from mechsing.report.sketch import Screw, choose_view, sketch_figure
+from mechsing.report.words import twist_words
 from mechsing.singularity.findings import (
     ConstraintFinding,
     MotionFinding,
@@ -485,10 +486,13 @@ def _mechanism(r: Report) -> list[doc.Block]:
 
 
 def motion_words(m: OutputMotion) -> str:
-    """The output's motion type in words: its subgroup (type, name, parameters) or what
-    its twists span when they span no subgroup."""
+    """The output's twist space in words: its subgroup (type, name, parameters), its
+    instantaneous screw when it is one twist, or what its twists span when they span no
+    subgroup."""
     if m.dim is None:
         return f"undecided at {m.precision}"
+    if m.instantaneous_screw and m.subgroup is not None:
+        return f"instantaneous screw {subgroup_words(m.subgroup)}"
     if m.is_subgroup and m.subgroup is not None:
         return subgroup_words(m.subgroup)
     if m.is_subgroup is False:
@@ -522,7 +526,20 @@ def _legs_and_motion(r: Report) -> list[doc.Block]:
             )
         )
     m = a.output_motion
-    if m is not None:
+    if m is not None and m.instantaneous_screw and m.subgroup is not None:
+        # one twist: the screw the output turns about at that instant, not a motion type
+        screw = twist_words(m.twists[0], a.length_scale)
+        out.append(doc.Heading(3, "Output motion"))
+        out.append(
+            doc.Paragraph(
+                f"{m.body} relative to {m.relative_to} has one degree of freedom: at the "
+                f"regular configuration {m.configuration} it moves by {screw}, its "
+                f"instantaneous screw {subgroup_words(m.subgroup)} (decided in {m.precision}; "
+                f"margin: {_margin(m.margin)}). An instantaneous screw is not a motion type "
+                "(a subgroup the output's motions stay in): it can change as the mechanism moves."
+            )
+        )
+    elif m is not None:
         out.append(doc.Heading(3, "Output motion type"))
         out.append(
             doc.Paragraph(
@@ -531,10 +548,14 @@ def _legs_and_motion(r: Report) -> list[doc.Block]:
                 f"{m.configuration} (decided in {m.precision}; margin: {_margin(m.margin)})."
             )
         )
+    if m is not None:
+        # a type the precision left undecided is not a difference
         differ = [
             (c.name, c.output_motion)
             for c in a.configurations
-            if c.output_motion is not None and c.output_motion.summary != m.summary
+            if c.output_motion is not None
+            and not c.output_motion.undecided
+            and c.output_motion.summary != m.summary
         ]
         if differ:
             out.append(
@@ -588,9 +609,14 @@ def _configurations(r: Report) -> list[doc.Block]:
                 f"{m.instantaneous}, group {m.group}, Grübler-Kutzbach {m.grubler}"
             )
         if c.output_motion is not None:
-            items.append(f"output motion: {c.output_motion.summary}")
-        items += [f"note: {n}" for n in c.notes]
+            om = c.output_motion
+            shown = f"instantaneous screw {om.summary}" if om.instantaneous_screw else om.summary
+            items.append(f"output motion: {shown}")
+        below = c.data_resolution  # said in a paragraph of its own, below
+        items += [f"note: {n}" for n in c.notes if below is None or n != below.note]
         out.append(doc.Bullets(tuple(items)))
+        if c.data_resolution is not None:
+            out.append(doc.Paragraph(f"{c.data_resolution.note}.", "Below the data's resolution:"))
         if not c.singularities:
             out.append(
                 doc.Paragraph("No singularity: every test kept its generic rank.", "Regular.")

@@ -1,0 +1,194 @@
+"""Verdicts below the resolution of their data (issue 27, item 8).
+
+An offset slider-crank (crank r = 1, rod l = 4, slider pin on the line y = e = 1) is drawn
+at its outer dead centre, where crank and rod are collinear: the crank then points at
+the slider pin, at angle asin(e / (l + r)) above the slide, so from its reference
+direction (straight down, B = (0, -1)) the crank has turned A* = pi/2 + asin(1/5).  The
+dead centre is an input singularity (the slider's rate vanishes for any crank rate).
+
+Written as a degree value rounded to 15 significant digits, A is within half a unit of
+its 15th digit of A* (a 15-digit value: 101.536959032815 deg): float finds it singular,
+while mp:50 (and auto, which re-decides float's drop above its own rounding there) finds
+the written decimals regular by about 1e-15 -- below what the value's resolution can
+move the tests by.  Each says so, in every format; with A* given exactly no verdict does.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from mechsing.model.expressions import written_digits
+from mechsing.numeric import RESOLUTION_MIN_DIGITS, data_resolution
+from tests.cli import ROOT, cli_json, run_cli
+
+GEOMETRY = """\
+mechanism: offset-slider-crank
+{units}bodies: [ground, crank, rod, slider]
+joints:
+  - {{name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}}
+  - {{name: B, type: R, between: [crank, rod], axis: [0, 0, 1], point: [0, -1, 0]}}
+  - {{name: C, type: R, between: [rod, slider], axis: [0, 0, 1], point: ["2*sqrt(3)", 1, 0]}}
+  - {{name: P, type: P, between: [ground, slider], axis: [1, 0, 0]}}
+inputs: [A]
+output: {{body: slider}}
+configurations:
+  dead-centre: {{A: {value}}}
+"""
+
+#: the outer dead centre: the crank turned from straight down to point at the pin
+DEAD_CENTRE = math.pi / 2 + math.asin(1 / 5)
+
+
+def _rounded(tmp_path: Path) -> Path:
+    value = float(f"{math.degrees(DEAD_CENTRE):.15g}")
+    path = tmp_path / "rounded.yaml"
+    path.write_text(GEOMETRY.format(units="units: {angle: deg}\n", value=repr(value)))
+    return path
+
+
+def _exact(tmp_path: Path) -> Path:
+    """Every value exact (exact mode needs them all): the rod then points along the
+    crank, asin(1/5) above the slide, having turned from its reference direction (B0 to
+    the pin, 30 degrees) by asin(1/5) - pi/6; the pin is at 5 (2 sqrt(6) / 5, 1/5)."""
+    path = tmp_path / "exact.yaml"
+    value = '"pi/2 + asin(1/5)", B: "-2*pi/3", C: "pi/6 - asin(1/5)", P: "2*sqrt(6) - 2*sqrt(3)"'
+    path.write_text(GEOMETRY.format(units="", value=value))
+    return path
+
+
+def test_written_digits_and_resolution() -> None:
+    """Half a unit in the last written digit, from the text; none for an expression or
+    a short decimal (a drawing's dimension, taken as exact)."""
+    assert written_digits("1.85459043600322") == (15, -14)
+    assert written_digits("-0.0025") == (2, -4)
+    assert written_digits("1.5e-3") == (2, -4)
+    assert written_digits("pi/3") is None
+    assert data_resolution(15, -14) == pytest.approx(5e-15, rel=1e-12)
+    assert data_resolution(15, -12, math.pi / 180) == pytest.approx(5e-13 * math.pi / 180)
+    assert data_resolution(RESOLUTION_MIN_DIGITS - 1, -3) == 0.0
+
+
+@pytest.mark.parametrize("precision", ["auto", "mp:50"])
+def test_regular_below_the_resolution_of_15_digits(tmp_path: Path, precision: str) -> None:
+    path = _rounded(tmp_path)
+    c = cli_json(["analyze", path, "--precision", precision, "--format", "json"])["configurations"][
+        0
+    ]
+    assert c["precision"] == "mp:50"  # auto re-decided float's drop at mp:50
+    assert c["singular"] is False  # the written decimals are regular ...
+    below = c["data_resolution"]  # ... by less than their resolution can move them
+    assert below["below_resolution"] is True
+    assert below["digits"] == 15
+    # the resolution: half a unit in the 15th digit of a value of about 101.5 degrees
+    assert below["resolution"] == pytest.approx(0.5e-12 * math.pi / 180, rel=1e-9)
+    assert below["value"] < below["spread"]
+    assert any("below the resolution of its 15-digit data" in n for n in c["notes"])
+    for fmt in ("text", "md"):
+        rc, out, _ = run_cli(["analyze", path, "--precision", precision, "--format", fmt])
+        assert rc == 0
+        assert "regular at the written decimals, below the resolution of its 15-digit" in out
+        assert "give more digits, exact values, or let mechsing solve it" in out
+
+
+def test_float_singular_verdict_is_above_the_resolution(tmp_path: Path) -> None:
+    """Float's singular verdict (a dropped value at float's rounding, far below tau_lo)
+    cannot flip within the data's resolution: nothing to say."""
+    c = cli_json(["analyze", _rounded(tmp_path), "--precision", "float", "--format", "json"])[
+        "configurations"
+    ][0]
+    assert c["singular"] is True
+    assert "input" in {s["class"] for s in c["singularities"]}
+    assert "data_resolution" not in c
+
+
+@pytest.mark.parametrize("precision", ["auto", "mp:50", "exact"])
+def test_exact_dead_centre_is_singular_and_not_below_resolution(
+    tmp_path: Path, precision: str
+) -> None:
+    c = cli_json(["analyze", _exact(tmp_path), "--precision", precision, "--format", "json"])[
+        "configurations"
+    ][0]
+    assert c["singular"] is True
+    assert "input" in {s["class"] for s in c["singularities"]}
+    assert "data_resolution" not in c
+    assert not any("resolution" in n for n in c.get("notes", []))
+
+
+def test_report_says_the_verdict_is_below_the_resolution(tmp_path: Path) -> None:
+    out = tmp_path / "review.html"
+    rc, _, err = run_cli(["report", _rounded(tmp_path), "-o", out])
+    assert rc == 0, err
+    html = out.read_text()
+    assert "below the resolution of its 15-digit data" in html
+
+
+def test_geometry_written_to_16_digits_has_a_resolution_too(tmp_path: Path) -> None:
+    """The pin's x = 2 sqrt(3) written to 16 digits, the crank at the exact dead-centre
+    angle: mp:50 finds the written decimals off the dead centre, by less than the pin's
+    resolution (half a unit in its 16th digit) can move the tests."""
+    path = tmp_path / "pin.yaml"
+    text = GEOMETRY.format(units="", value='"pi/2 + asin(1/5)"')
+    path.write_text(text.replace('"2*sqrt(3)"', repr(float(f"{2 * math.sqrt(3):.16g}"))))
+    c = cli_json(["analyze", path, "--precision", "mp:50", "--format", "json"])["configurations"][0]
+    below = c["data_resolution"]
+    assert below["digits"] == 16
+    assert below["resolution"] == pytest.approx(0.5e-15, rel=1e-12)
+    assert below["value"] < below["spread"]
+
+
+@pytest.mark.parametrize(
+    ("precision", "target", "beyond"),
+    [
+        ("auto", '"8/5 + 1e-16"', "1e-16"),
+        ("mp:50", '"8/5 + 1e-16"', "1e-16"),
+        ("float", "1.61", "0.01"),
+    ],
+)
+def test_a_target_beyond_a_limit_of_travel_names_it(
+    tmp_path: Path, precision: str, target: str, beyond: str
+) -> None:
+    """The bundled slider-crank driven by its slider: the pin on y = 7/5 reaches at most
+    x = sqrt((l + r)^2 - e^2) = sqrt(25 - 49/25) = 24/5, from 16/5 at the reference, so
+    the slide P stops at its outer dead centre P = 8/5.  A target beyond it has no closed
+    configuration: the message names P, how far beyond and the limit 1.6 m (1e-16 m
+    beyond is closed in float, to its tolerance: it fails at 50 digits; 0.01 m beyond
+    stops float's continuation)."""
+    text = (ROOT / "examples" / "slider_crank_slider_input.yaml").read_text()
+    path = tmp_path / "beyond.yaml"
+    path.write_text(text + f"  beyond: {{P: {target}}}\n")
+    rc, out, err = run_cli(["analyze", path, "--config", "beyond", "--precision", precision])
+    assert rc == 3
+    assert "beyond a limit of travel" in err
+    assert f"P is {beyond} m beyond its limit at about P = 1.6 m" in err
+
+
+ROCKER = """\
+mechanism: rocker
+units: {angle: deg}
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler], axis: [0, 0, 1], point: [0, 2, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
+  - {name: D, type: R, between: [rocker, ground], axis: [0, 0, 1], point: [4, 0, 0]}
+inputs: [A]
+configurations:
+  near: {A: 27.6149}
+"""
+
+
+def test_an_input_beyond_its_limit_is_named_in_the_file_units(tmp_path: Path) -> None:
+    """A non-Grashof four-bar (2 + 4 > 3 + sqrt 5): the crank AB stops where B, C and D
+    line up, |BD| = 3 + sqrt 5, at the angle acos((4 + 16 - |BD|^2) / 16) from AD (law of
+    cosines), 90 deg less from AB's reference direction; a target just beyond it is named
+    with the distance and the limit in degrees, the file's unit."""
+    bd = 3 + math.sqrt(5)
+    limit = math.degrees(math.acos((4 + 16 - bd**2) / 16)) - 90
+    path = tmp_path / "rocker.yaml"
+    path.write_text(ROCKER)
+    rc, _, err = run_cli(["analyze", path, "--precision", "float"])
+    assert rc == 3
+    assert f"A is {27.6149 - limit:.3g} deg beyond its limit at about A = {limit:.3f} deg" in err
