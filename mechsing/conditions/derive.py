@@ -104,7 +104,7 @@ def condition(
     mech = load(source, symbolic=names)
     if scene is not None:
         mech = scene(mech)
-    refuse_couplings(mech)
+    refuse_couplings(mech, "symbolic conditions (mechsing condition)")
     if config is not None and config not in mech.configurations:
         raise UserError(
             f"{source}: no configuration named {config!r}; the file has: "

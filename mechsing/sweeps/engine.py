@@ -45,6 +45,7 @@ from mechsing.kinematics.newton import scaled_system
 from mechsing.kinematics.pose import PoseModel
 from mechsing.lie import log_so3
 from mechsing.model import Mechanism
+from mechsing.model.couplings import describe_coupling
 from mechsing.numeric import (
     SWEEP_BRANCH_OFFSET,
     SWEEP_JUMP_RATIO,
@@ -180,6 +181,17 @@ class Sweep:
             elif set(cols) <= inputs:
                 given[list(inputs)] = True
             given[cols] = True
+            for ck in model.couplings:
+                # a coupled joint follows its swept partner (never held against it)
+                swept = {ck.follower, ck.leader} & set(cols)
+                if len(swept) == 2:
+                    c = ck.coupling
+                    raise UserError(
+                        f"--vary: joint {c.joint!r} is coupled to {c.leader!r} "
+                        f"({describe_coupling(c)}): sweep one of them, the other follows"
+                    )
+                for k in {ck.follower, ck.leader} - swept if swept else ():
+                    given[k] = False
         self.cols = cols
         self.z0 = z0
         #: said once, in the first row's notes: how the path left a singular start
@@ -422,9 +434,7 @@ class Sweep:
         K = len(values)
         begun = [self.start_of(col, values, z) for _, z in starts]
         # the first node of each direction of each row: one batched Newton
-        firsts = first_nodes_of(
-            pb, [(zk, [values[k0:], values[k0::-1]]) for k0, zk in begun], col
-        )
+        firsts = first_nodes_of(pb, [(zk, [values[k0:], values[k0::-1]]) for k0, zk in begun], col)
         # both directions of every row, node by node in lockstep
         flat = follow_together(
             pb,
@@ -435,9 +445,7 @@ class Sweep:
                 for v, f in ((values[k0:], first[0]), (values[k0::-1], first[1]))
             ],
         )
-        traces: list[tuple[PathTrace, PathTrace]] = list(
-            zip(flat[0::2], flat[1::2], strict=True)
-        )
+        traces: list[tuple[PathTrace, PathTrace]] = list(zip(flat[0::2], flat[1::2], strict=True))
         # the samples between the nodes of every row's two directions: one batched Newton
         close_segments(
             pb,
@@ -1019,7 +1027,9 @@ class Sweep:
 
     # ------------------------------------------------------------------ columns of a grid
 
-    def between_many(self, pairs: list[tuple[RowResult, RowResult]], col: int) -> list[list[Located]]:
+    def between_many(
+        self, pairs: list[tuple[RowResult, RowResult]], col: int
+    ) -> list[list[Located]]:
         """The sign changes of each test between neighbouring rows of a grid, for several
         pairs of rows (ra, rb) at the same samples of the row variable: refined along the
         column, every pair's together (each bracket on its own, as for one pair)."""
