@@ -217,3 +217,44 @@ def test_the_two_arm_robot_is_analysed_whole_with_its_mimic() -> None:
     r = run_cli(["analyze", urdf])
     assert r.status == 0, r.err
     assert f"coupling r_finger_b_slide = -1 x r_finger_a_slide (<mimic>, line {line})" in r.out
+
+
+def _five_bar(coupled: bool) -> str:
+    """examples/five_bar.yaml (symmetric: A1 at (-3/2, 0), A2 at (3/2, 0)), its two
+    inputs geared as A2 = -A1 when ``coupled`` (inputs: [A1])."""
+    text = (ROOT / "examples" / "five_bar.yaml").read_text()
+    head, _, _ = text.partition("configurations:")
+    if coupled:
+        head = head.replace(
+            "inputs: [A1, A2]",
+            "inputs: [A1]\ncouplings:\n  - {joint: A2, leader: A1, multiplier: -1}",
+        )
+        values = "  geared: {A1: 0.3}\n"
+    else:
+        values = "  geared: {A1: 0.3, A2: -0.3}\n"
+    type2 = next(ln for ln in text.splitlines() if ln.strip().startswith("type2:"))
+    return head + "configurations:\n" + values + type2 + "\n"
+
+
+def test_a_coupling_inside_a_loop_is_closed_by_newton_with_the_loop(tmp_path: Path) -> None:
+    # the symmetric five-bar with A2 = -A1: one degree of freedom; its closure is the
+    # two-input five-bar's at (A1, -A1); at type2 (the distal links collinear, A2 = -A1 =
+    # -pi/6) locking A1 locks A2, and the output still moves: an output singularity
+    f, g = tmp_path / "geared.yaml", tmp_path / "free.yaml"
+    f.write_text(_five_bar(True))
+    g.write_text(_five_bar(False))
+    for precision in ("float", "mp:30"):
+        doc = cli_json(["analyze", f, "--format", "json", "--precision", precision])
+        by = {c["name"]: c for c in doc["configurations"]}
+        free = cli_json(["analyze", g, "--format", "json", "--config", "geared"])
+        (ref,) = free["configurations"]
+        for j, v in ref["joints"].items():
+            assert by["geared"]["joints"][j] == pytest.approx(v, abs=1e-12), j
+        for c in by.values():
+            assert c["mobility"]["finite"] == 1 and c["mobility"]["instantaneous"] == 1
+        assert not by["geared"]["singularities"]
+        assert "output" in {s["class"] for s in by["type2"]["singularities"]}
+        for s in by["type2"]["singularities"]:
+            rates = s.get("joint_rates")
+            if rates:  # joint rates in file order A1, B1, P, B2, A2: A2 = -A1
+                assert rates[4] == pytest.approx(-rates[0], abs=1e-12), s
