@@ -301,9 +301,7 @@ def _tree_cycles(
     return out
 
 
-def _tree_path(
-    x: int, y: int, depth: dict[int, int], parent: dict[int, tuple[int, int]]
-) -> list[int]:
+def _tree_path(x: int, y: int, depth: dict[int, int], parent: dict[int, tuple[int, int]]) -> list[int]:
     """The joints of the tree path between bodies x and y."""
     left: list[int] = []
     right: list[int] = []

@@ -434,7 +434,9 @@ class Sweep:
         K = len(values)
         begun = [self.start_of(col, values, z) for _, z in starts]
         # the first node of each direction of each row: one batched Newton
-        firsts = first_nodes_of(pb, [(zk, [values[k0:], values[k0::-1]]) for k0, zk in begun], col)
+        firsts = first_nodes_of(
+            pb, [(zk, [values[k0:], values[k0::-1]]) for k0, zk in begun], col
+        )
         # both directions of every row, node by node in lockstep
         flat = follow_together(
             pb,
@@ -445,7 +447,9 @@ class Sweep:
                 for v, f in ((values[k0:], first[0]), (values[k0::-1], first[1]))
             ],
         )
-        traces: list[tuple[PathTrace, PathTrace]] = list(zip(flat[0::2], flat[1::2], strict=True))
+        traces: list[tuple[PathTrace, PathTrace]] = list(
+            zip(flat[0::2], flat[1::2], strict=True)
+        )
         # the samples between the nodes of every row's two directions: one batched Newton
         close_segments(
             pb,
@@ -1027,9 +1031,7 @@ class Sweep:
 
     # ------------------------------------------------------------------ columns of a grid
 
-    def between_many(
-        self, pairs: list[tuple[RowResult, RowResult]], col: int
-    ) -> list[list[Located]]:
+    def between_many(self, pairs: list[tuple[RowResult, RowResult]], col: int) -> list[list[Located]]:
         """The sign changes of each test between neighbouring rows of a grid, for several
         pairs of rows (ra, rb) at the same samples of the row variable: refined along the
         column, every pair's together (each bracket on its own, as for one pair)."""

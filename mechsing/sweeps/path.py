@@ -552,7 +552,9 @@ def _tangent_step(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndar
     return pb.cm.float_frame.rates_back(tau * ((value - z[col]) / pb.scale(col) / tau[col]))
 
 
-def _tangent_points(pb: Problem, Z: np.ndarray, D: np.ndarray, col: int, values: Any) -> np.ndarray:
+def _tangent_points(
+    pb: Problem, Z: np.ndarray, D: np.ndarray, col: int, values: Any
+) -> np.ndarray:
     """The points reached from the rows of Z by the increments D (:func:`_tangent_step`),
     on the group, with ``col`` set to ``values``: one batched update for every row."""
     bc = pb.batch
