@@ -31,9 +31,9 @@ import numpy as np
 from mechsing import lie
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
+from mechsing.kinematics.couplings import fold_columns
 from mechsing.numeric import Precision, decide_rank, rank_bounds
 from mechsing.numeric.blocks import DENSE_ENTRIES
-from mechsing.kinematics.couplings import fold_columns
 from mechsing.screws import chain_matrix, closure_system
 from mechsing.screws.mobility import NearbySample, stacked_jacobian
 from mechsing.singularity.serial import chain_system
