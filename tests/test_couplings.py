@@ -258,3 +258,12 @@ def test_a_coupling_inside_a_loop_is_closed_by_newton_with_the_loop(tmp_path: Pa
             rates = s.get("joint_rates")
             if rates:  # joint rates in file order A1, B1, P, B2, A2: A2 = -A1
                 assert rates[4] == pytest.approx(-rates[0], abs=1e-12), s
+
+
+def test_the_chain_scanner_refuses_a_coupling_naming_it() -> None:
+    from mechsing.scanner import ChainScanner
+
+    with pytest.raises(MechanismError) as exc:
+        ChainScanner(loads(_three_r("  bent: {A: 0.3, B: 0.7}\n")))
+    assert exc.value.line == 9 and "the chain scanner" in str(exc.value)
+    assert "'C' is coupled to joint 'B'" in str(exc.value)

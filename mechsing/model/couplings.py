@@ -174,8 +174,8 @@ def refuse_couplings(mech: Mechanism, what: str) -> None:
     raise MechanismError(
         f"joint {c.joint!r} is coupled to joint {c.leader!r} "
         f"({'<mimic>' if c.source_line is not None else 'coupling'}: {describe_coupling(c)})"
-        f"{more}; {what} do not take couplings of joint values yet (analyze, solve and "
-        "sweep do). Name an output on a branch that does not hold the coupled joint "
+        f"{more}: couplings of joint values are not supported by {what} yet (analyze, "
+        "solve and sweep take them). Name an output on a branch that does not hold the coupled joint "
         "(--output-body BODY: the branches that neither lead to it nor close a loop with "
         "it are left out, couplings included), or remove the coupling",
         path=mech.path,
