@@ -195,6 +195,10 @@ def test_a_gripper_with_a_mimic_on_a_2r_arm_is_analysed_whole_with_mobility_3(
     assert open_["joints"]["fb_slide"] == pytest.approx([-0.02], abs=1e-15)
     r = run_cli(["analyze", f, "--config", "open"])
     assert "coupling fb_slide = -1 x fa_slide (coupling, line 10): one row" in r.out, r.out
+    html = tmp_path / "gripper.html"
+    r = run_cli(["report", f, "-o", html])
+    assert r.status == 0, r.err
+    assert "fb_slide = -1 x fa_slide (coupling, line 10; SI, radians): one row" in html.read_text()
 
 
 def test_the_two_arm_robot_is_analysed_whole_with_its_mimic() -> None:
