@@ -271,3 +271,39 @@ def test_the_chain_scanner_refuses_a_coupling_naming_it() -> None:
         ChainScanner(loads(_three_r("  bent: {A: 0.3, B: 0.7}\n")))
     assert exc.value.line == 9 and "the chain scanner" in str(exc.value)
     assert "'C' is coupled to joint 'B'" in str(exc.value)
+
+
+def test_a_sweep_of_the_leader_locates_the_coupled_chains_singularity(tmp_path: Path) -> None:
+    from mechsing.sweeps import sweep
+
+    # B (and C with it) from 0.2 to 3 rad, A held: the closed form's root cos t = -3/4
+    f = tmp_path / "r3.yaml"
+    f.write_text(_three_r("  start: {A: 0.2, B: 0.2}\n"))
+    r = sweep(f, ["B=0.2:3:0.1"], "start")
+    assert r.reached.all() and r.held == ("A",)
+    (p,) = r.located
+    assert p.values[0] == pytest.approx(math.acos(-0.75), abs=1e-9)
+    assert "serial" in (p.classes or ())
+
+
+def test_a_coupling_in_degrees_with_an_offset_and_the_reference(tmp_path: Path) -> None:
+    # B [deg] = 2 A [deg] + 10 deg: A = 20 deg gives B = 50 deg; the reference puts B at
+    # its offset, 10 deg; both joints swept together are refused
+    f = tmp_path / "deg.yaml"
+    f.write_text(
+        _three_r("  reference: {}\n  twenty: {A: 20}\n")
+        .replace("angle: rad", "angle: deg")
+        .replace(
+            "{joint: C, leader: B, multiplier: 1}",
+            "{joint: B, leader: A, multiplier: 2, offset: 10}",
+        )
+        .replace("inputs: [A, B]", "inputs: [A, C]")
+    )
+    doc = cli_json(["analyze", f, "--format", "json"])
+    by = {c["name"]: c for c in doc["configurations"]}
+    assert by["twenty"]["joints"]["B"] == pytest.approx([math.radians(50)], abs=1e-15)
+    assert by["reference"]["joints"]["B"] == pytest.approx([math.radians(10)], abs=1e-15)
+    assert by["reference"]["joints"]["A"] == [0.0]
+    assert doc["couplings"][0]["offset"] == pytest.approx(math.radians(10), abs=1e-15)
+    r = run_cli(["sweep", f, "--vary", "A=0:10:5", "--vary", "B=0:10:5"])
+    assert r.status == 2 and "sweep one of them, the other follows" in r.err, r.err
