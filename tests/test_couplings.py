@@ -307,3 +307,15 @@ def test_a_coupling_in_degrees_with_an_offset_and_the_reference(tmp_path: Path) 
     assert doc["couplings"][0]["offset"] == pytest.approx(math.radians(10), abs=1e-15)
     r = run_cli(["sweep", f, "--vary", "A=0:10:5", "--vary", "B=0:10:5"])
     assert r.status == 2 and "sweep one of them, the other follows" in r.err, r.err
+
+
+def test_exact_mode_proves_the_coupled_chains_singularity(tmp_path: Path) -> None:
+    # the root cos t = -3/4 given exactly: the folded chain's rank 1 is decided exactly
+    f = tmp_path / "r3.yaml"
+    f.write_text(_three_r('  exs: {A: "pi/6", B: "acos(-3/4)"}\n  ex: {A: "pi/6", B: "pi/3"}\n'))
+    doc = cli_json(["analyze", f, "--format", "json", "--precision", "exact"])
+    by = {c["name"]: c for c in doc["configurations"]}
+    assert {s["class"] for s in by["exs"]["singularities"]} == {"serial"}
+    assert not by["ex"]["singularities"]
+    for c in by.values():
+        assert c["mobility"]["finite"] == 2 and c["precision"] == "exact"
