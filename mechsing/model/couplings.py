@@ -67,7 +67,7 @@ def read_couplings(r: Any, v: Any, jmap: dict[str, Joint]) -> tuple[Coupling, ..
                 raise r.error(item, m.key_line("source_line"), "source_line must be a line number")
             source_line = int(sl.text)
         # a converted description's coupling to a joint it does not define is kept, and
-        # refused when its joint is analysed (refuse_couplings): the robot is still read
+        # refused when its joint is analysed (refuse_orphan_couplings): the robot is still read
         orphan = leader not in jmap and source_line is not None and follower in jmap
         for name, key in ((follower, "joint"), (leader, "leader")):
             if name == leader and orphan:
