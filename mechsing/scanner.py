@@ -145,6 +145,9 @@ class ChainScanner:
             raise MechanismError(
                 "scan needs an output: add `output: {body: NAME}` to the file", path=where
             )
+        from mechsing.model.couplings import refuse_couplings
+
+        refuse_couplings(mech, "the chain scanner (mechsing.scanner)")
         self.mech = mech
         self.model = KinematicModel(mech, "float")
         self.chain = tree_chain(self.model, mech.output.body, mech.output.relative_to)

@@ -299,6 +299,7 @@ def _analysis(r: AnalysisResult) -> dict[str, Any]:
         "output_motion": None if r.output_motion is None else _output_motion(r.output_motion),
         "tests_not_run": _tests_not_run(r.mechanism),
         **_limits(r.mechanism),
+        **couplings_json(r.mechanism),
         **scene_json(r.mechanism),
     }
 
@@ -307,6 +308,31 @@ def _tests_not_run(mech: Mechanism) -> list[dict[str, Any]]:
     """The added key ``tests_not_run``: the tests the file lacks the ingredients of (no
     inputs, no output), each group with its reason (empty when every test ran)."""
     return [{"tests": list(tests), "reason": why} for tests, why in tests_not_run(mech)]
+
+
+def couplings_json(mech: Mechanism) -> dict[str, Any]:
+    """The added key ``couplings`` (only when the analysed part has couplings of joint
+    values, a URDF's ``<mimic>``): each ``joint = multiplier * leader + offset`` (SI,
+    radians), its lines, and ``rows``: the constraint rows it adds to the closure system
+    (1: each lowers the mobility and the Grubler-Kutzbach and group counts by one)."""
+    if not mech.couplings:
+        return {}
+    from mechsing.numeric import to_float
+
+    return {
+        "couplings": [
+            {
+                "joint": c.joint,
+                "leader": c.leader,
+                "multiplier": float(to_float(c.multiplier)),
+                "offset": float(to_float(c.offset)),
+                "line": c.line,
+                "source_line": c.source_line,
+                "rows": 1,
+            }
+            for c in mech.couplings
+        ]
+    }
 
 
 def _limits(mech: Mechanism) -> dict[str, Any]:

@@ -120,7 +120,7 @@ def condition(
     mech = _symbolic_mechanism(source, names)
     if scene is not None and not isinstance(source, Mechanism):
         mech = scene(mech)
-    refuse_couplings(mech)
+    refuse_couplings(mech, "symbolic conditions (mechsing condition)")
     try:
         with TimeLimit(time_limit):
             return _condition(mech, config, names, scene)

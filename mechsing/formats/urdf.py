@@ -24,7 +24,8 @@ Owns :func:`read_urdf`.  The mapping (also in the docs' import page):
 * ``<mimic joint multiplier offset>`` -> an entry of ``couplings`` (the joint's value
   is ``multiplier * (the named joint's value) + offset``), with the ``<mimic>``'s line:
   kept when the robot is read, dropped with its branch when the scene options leave the
-  branch out (:mod:`mechsing.model.couplings`).
+  branch out, and analysed as one constraint of the closure system
+  (:mod:`mechsing.model.couplings`, :mod:`mechsing.kinematics.couplings`).
 
 Refused with a message naming the element and line: an unknown joint type, a mimic
 that couples a joint of several coordinates (a mimic that names a joint the robot does

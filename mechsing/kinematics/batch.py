@@ -26,6 +26,7 @@ import numpy as np
 from mechsing import lie
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
+from mechsing.kinematics.couplings import coupling_residuals
 from mechsing.lie import exp_so3, log_so3
 
 __all__ = ["BatchClosure"]
@@ -63,7 +64,11 @@ class BatchClosure:
             self.pose_signs = tree_chain(base, out.relative_to, out.body).signs.astype(float)
             self.c0 = np.asarray(self.pose.c0, dtype=float)
             self.R0 = np.asarray(self.pose.R0, dtype=float)
-        self.blocks = len(self.chords) + (1 if self.pose is not None else 0)
+        #: the couplings' closure blocks (after the chords', before the pose's),
+        #: commensurate (:mod:`mechsing.kinematics.couplings`)
+        self.couplings = len(base.couplings)
+        self.coupling_rows = base.coupling_block(self.frame) if self.couplings else None
+        self.blocks = len(self.chords) + self.couplings + (1 if self.pose is not None else 0)
         #: the legs' split of the pose-fixed closure, per set of moved columns
         self._split: dict[bytes, _Split | None] = {}
         # the first-kind coordinates of a non-abelian joint from a commensurate log:
@@ -103,6 +108,9 @@ class BatchClosure:
             np.matmul(
                 P[jk.a] @ batched.element(jk, q, fast=True), lie.inverse(P[jk.b]), out=out[:, i]
             )
+        if self.couplings:
+            k = len(self.chords)
+            out[:, k : k + self.couplings] = np.stack(coupling_residuals(self.base, q), axis=1)
         if self.pose is not None:
             T = self.target(Q[:, self.nb :]) if T is None else T
             np.matmul(P[self.pose_a] @ T, lie.inverse(P[self.pose_b]), out=out[:, -1])
@@ -150,10 +158,16 @@ class BatchClosure:
         signs = self.signs
         if self.pose is not None:
             signs = np.concatenate([signs, self.pose_signs[None, :]], axis=0)
-        if signs.shape[0] == 0:
+        if signs.shape[0] == 0 and not self.couplings:
             return np.zeros((Q.shape[0], 0, self.nb))
-        J = Ss[:, None, :, :] * signs[None, :, None, :]  # (N, blocks, 6, nb)
-        return J.reshape(Q.shape[0], 6 * signs.shape[0], self.nb)
+        J = (Ss[:, None, :, :] * signs[None, :, None, :]).reshape(
+            Q.shape[0], 6 * signs.shape[0], self.nb
+        )  # (N, 6 blocks, nb)
+        if self.couplings:
+            C = np.broadcast_to(self.coupling_rows, (Q.shape[0],) + self.coupling_rows.shape)
+            k = 6 * len(self.chords)
+            J = np.concatenate([J[:, :k], C, J[:, k:]], axis=1)
+        return J
 
     # ------------------------------------------------------------------ update
 
@@ -309,8 +323,8 @@ class BatchClosure:
         return self._split[key]
 
     def _find_split(self, cols: np.ndarray) -> _Split | None:
-        if self.pose is None or len(self.base.mech.loops) == 0:
-            return None
+        if self.pose is None or len(self.base.mech.loops) == 0 or self.couplings:
+            return None  # a coupling may tie two legs: the whole system's step
         mech = self.base.mech
         signs = np.concatenate([self.signs, self.pose_signs[None, :]], axis=0)
         position = {int(c): k for k, c in enumerate(cols)}

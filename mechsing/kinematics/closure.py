@@ -28,6 +28,7 @@ import sympy
 
 from mechsing import lie
 from mechsing.errors import ConfigurationError, UserError
+from mechsing.kinematics.couplings import couple_given, impose_couplings
 from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import (
     damped_least_squares,
@@ -39,6 +40,7 @@ from mechsing.kinematics.pose import PoseModel, pose_problem
 from mechsing.kinematics.travel import beyond_target, beyond_travel
 from mechsing.lie import ANGULAR
 from mechsing.model import Configuration, Displacement
+from mechsing.model.couplings import coupling_source, describe_coupling
 from mechsing.numeric import (
     CONTINUATION_CORRECTOR_RATIO,
     CONTINUATION_FOLD_GAP,
@@ -131,7 +133,7 @@ class Closer:
         # numpy may sum in another order for a batch than for one configuration
         if (
             m.precision.mode != "float"
-            or not m.chords
+            or not m.blocks
             or any(jk.type != "U" and jk.basis.shape[0] != 1 for jk in m.joints)
         ):
             return
@@ -215,6 +217,7 @@ class Closer:
                 # no loop: nothing to solve; the joints not given keep their start values
                 q = np.array(q0, copy=True)
                 q[list(given)] = target[list(given)]
+                q = impose_couplings(self.model, q, set(given))  # the followers follow
                 out = ClosedConfiguration(cfg.name, q, 0.0, False, 0, given)
             else:
                 out = self._continue(cfg, q0, target, given)
@@ -294,7 +297,8 @@ class Closer:
             # every joint at identity; the values it lists must be the identity
             if cfg.values:
                 self._check_reference(cfg)
-            return target, tuple(range(m.n))
+            # a coupled joint at its leader's image: its offset (identity when none)
+            return impose_couplings(m, target, set()), tuple(range(m.n))
         for jname, val in cfg.values.items():
             jk = m.joint(jname)
             coords = self._coordinates_of_value(cfg, jname, val)
@@ -316,6 +320,10 @@ class Closer:
                 self._refuse_transcendental(cfg, jk, coords)
             target[jk.columns] = coords
             given.extend(range(jk.columns.start, jk.columns.stop))
+        if m.couplings:
+            where = f"configuration {cfg.name!r}" + (f" (line {cfg.line})" if cfg.line else "")
+            target, have = couple_given(m, target, set(given), self.tolerance, where)
+            given = list(have)
         return target, tuple(sorted(given))
 
     def _coordinates_of_value(self, cfg: Configuration, jname: str, val: Any) -> np.ndarray:
@@ -460,6 +468,15 @@ class Closer:
 
     # ---------------------------------------------------------------- checking
 
+    def _block_named(self, i: int) -> str:
+        """The closure block ``i`` of the model (:meth:`KinematicModel.chord_residuals`'
+        order: the chords' loops, then the couplings) in words."""
+        m = self.model
+        if i < len(m.chords):
+            return self._loop_named(m.chords[i].name)
+        c = m.couplings[i - len(m.chords)].coupling
+        return f"the coupling {describe_coupling(c)} ({coupling_source(c)})"
+
     def _loop_named(self, chord: str) -> str:
         """'loop A-B-C-D' for the shortest canonical loop through a chord joint."""
         loops = [lp for lp in self.mech.loops if chord in lp.joints]
@@ -494,19 +511,19 @@ class Closer:
                         [exact_is_zero(x, m.length_scale) for x in (D - m.backend.eye(4)).flat]
                         for D in deltas
                     ]
-            bad = [jk.name for jk, pr in zip(m.chords, proofs, strict=True) if False in pr]
-            unproven = [jk.name for jk, pr in zip(m.chords, proofs, strict=True) if None in pr]
+            bad = [i for i, pr in enumerate(proofs) if False in pr]
+            unproven = [i for i, pr in enumerate(proofs) if None in pr]
             res = m.residual_norm(deltas)
             if unproven and not bad:
                 raise ExactDataError(
-                    f"configuration {cfg.name!r}: {self._loop_named(unproven[0])} closes to "
+                    f"configuration {cfg.name!r}: {self._block_named(unproven[0])} closes to "
                     f"{EXACT_ZERO_DIGITS} digits but sympy cannot prove that it closes exactly; "
                     "use --precision mp:N for this configuration",
                     cfg.name,
                 )
             if bad:
                 raise ClosureError(
-                    f"configuration {cfg.name!r} does not close exactly: {self._loop_named(bad[0])} "
+                    f"configuration {cfg.name!r} does not close exactly: {self._block_named(bad[0])} "
                     f"leaves a residual of {res:.3g} m; give joint values that close the loops exactly, "
                     "or leave the passive joints out so they are solved",
                     cfg.name,
@@ -537,7 +554,7 @@ class Closer:
             worst = max(range(len(deltas)), key=lambda i: m.residual_norm([deltas[i]], True))
             raise ClosureError(
                 f"configuration {cfg.name!r} gives every joint value but does not close: "
-                f"{self._loop_named(m.chords[worst].name)} leaves a residual of {_g(res, 3)} m "
+                f"{self._block_named(worst)} leaves a residual of {_g(res, 3)} m "
                 f"(accepted: {_g(self.tolerance, 1)} m); "
                 "leave the passive joints out so they are solved, or give more digits",
                 cfg.name,
@@ -700,7 +717,7 @@ class Closer:
 
         left = comm(np.where(gmask, qt - q, 0.0))
         free = ~gmask
-        if left > CONTINUATION_FOLD_GAP or not np.any(free) or not fm.chords:
+        if left > CONTINUATION_FOLD_GAP or not np.any(free) or not fm.blocks:
             return None
         tol = fm.precision.closure_tolerance(L)
         qn = q.copy()
@@ -803,7 +820,7 @@ class Closer:
                 if not final or polish >= 2:
                     return True
                 polish += 1
-            return not fm.chords or not np.any(free)
+            return not fm.blocks or not np.any(free)
 
         out = newton_on_group(
             fm,
@@ -825,7 +842,7 @@ class Closer:
         q, res = out.q, out.residual
         if res > tol:
             return False, q, info
-        if np.any(free) and fm.chords:
+        if np.any(free) and fm.blocks:
             Js = _closure_matrix(fm, q)
             if not finite_system(Js):
                 # closed, but at coordinates so far off that the Jacobian's series
@@ -911,7 +928,7 @@ class Closer:
                 solve=mp_least_squares,
                 max_steps=POLISH_MAX_STEPS,
                 native=True,
-                stop=lambda _it, _res: not m.chords,
+                stop=lambda _it, _res: not m.blocks,
                 # closed, and what is left to correct is below working precision
                 converged=lambda res, du: (
                     res <= goal and max((abs(x) for x in du), default=0) <= small

@@ -18,7 +18,14 @@ Conventions (those of the mechanism file; the README states them):
   coordinates for abelian subgroups and for U joints);
 * the closure residual of a chord joint j (not in the spanning tree) is
   ``Delta_j = g_a M_j g_b^-1`` with ``g_a``, ``g_b`` from the tree; it is the
-  identity when the loop through j closes.
+  identity when the loop through j closes;
+* a coupling of two one-coordinate joints (``couplings``, a URDF ``<mimic>``:
+  ``q_f = m q_l + c``) is one more closure block after the chords' (:mod:`.couplings`):
+  its residual is the pure translation ``(e L / s_f) x`` with ``e = q_f - m q_l - c``
+  (``s_f``: L for a length coordinate, 1 for an angle), the identity exactly when the
+  coupling holds, and its Jacobian block the constant row ``(dq_f - m dq_l) L / s_f`` in
+  the linear x row (five zero rows): so every Newton step, rank and kernel of the stacked
+  closure system, built block by block, takes the coupling as one more constraint.
 """
 
 from __future__ import annotations
@@ -32,6 +39,12 @@ import numpy as np
 from mechsing import lie
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
+from mechsing.kinematics.couplings import (
+    CouplingKinematics,
+    coupling_block,
+    coupling_kinematics,
+    coupling_residuals,
+)
 from mechsing.kinematics.field import FieldKinematics
 from mechsing.model import Mechanism
 from mechsing.numeric import CommensurateFrame, Precision, blocks, characteristic_length, to_float
@@ -139,10 +152,10 @@ class KinematicModel:
     """
 
     def __init__(self, mech: Mechanism, precision: Precision | str = "float") -> None:
-        from mechsing.model.couplings import refuse_couplings
+        from mechsing.model.couplings import refuse_orphan_couplings
         from mechsing.numeric import parse_precision
 
-        refuse_couplings(mech)  # policy: couplings are not in the closure system (exit 2)
+        refuse_orphan_couplings(mech)  # a <mimic> of a joint the robot does not define
         self.mech = mech
         self.precision = parse_precision(precision) if isinstance(precision, str) else precision
         if self.precision.mode == "auto":
@@ -209,6 +222,12 @@ class KinematicModel:
         )
         self.float_frame: CommensurateFrame = self.frame.as_float()
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]
+        #: the couplings of joint coordinates: closure blocks after the chords'
+        self.couplings: tuple[CouplingKinematics, ...] = coupling_kinematics(self)
+        #: the closure blocks: each chord's loop, then each coupling
+        self.blocks: int = len(self.chords) + len(self.couplings)
+        #: the commensurate coupling blocks, per frame (:meth:`coupling_block`)
+        self._coupling_blocks: dict[int, tuple[Any, np.ndarray]] = {}
         self._chords_signs: list[np.ndarray] | None = None
         self._chord_nonzeros: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         self._points: dict[tuple[Any, ...], np.ndarray] = {}
@@ -343,10 +362,20 @@ class KinematicModel:
     def chord_residuals(
         self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
     ) -> list[np.ndarray]:
-        """``Delta_j = g_a M_j g_b^-1`` for each chord joint (identity when closed)."""
+        """``Delta_j = g_a M_j g_b^-1`` for each chord joint (identity when closed), then
+        each coupling's translation (:mod:`mechsing.kinematics.couplings`)."""
         fk = self.field_kinematics(q)
         if fk is not None and _same_poses(fk, poses):
-            return fk.chord_residuals()
+            return fk.chord_residuals() + coupling_residuals(self, q)
+        if self.couplings:
+            chords = self._chord_residuals(q, poses)
+            with self.precision.context():
+                return chords + coupling_residuals(self, q)
+        return self._chord_residuals(q, poses)
+
+    def _chord_residuals(
+        self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
+    ) -> list[np.ndarray]:
         poses = self.poses(q) if poses is None else poses
         if q.ndim == 1 and q.dtype != object and len(self.chords) > 1:
             ms = batched.elements_at_once(self, q, self.chords)
@@ -409,10 +438,30 @@ class KinematicModel:
         return worst
 
     def closure_jacobian(self, q: np.ndarray, screws: np.ndarray | None = None) -> np.ndarray:
-        """Linearised chord closure: (6 * n_chords, n); row block j is
-        ``screws(j) + V_a - V_b`` with ``V_x`` the tree velocity of body x.  A float batch
-        of configurations (N, n) gives (N, 6 * n_chords, n)."""
+        """Linearised closure: (6 * blocks, n); row block j is ``screws(j) + V_a - V_b``
+        with ``V_x`` the tree velocity of body x, then each coupling's block.  A float
+        batch of configurations (N, n) gives (N, 6 * blocks, n)."""
         S = self.current_screws(q) if screws is None else screws
+        J = self._chord_jacobian(S)
+        if not self.couplings:
+            return J
+        C = self.coupling_block(None)
+        if J.ndim == 3:
+            C = np.broadcast_to(C, (J.shape[0],) + C.shape)
+        return np.concatenate([J, C], axis=-2)
+
+    def coupling_block(self, frame: Any) -> np.ndarray:
+        """The couplings' closure rows (6 * couplings, n): commensurate in ``frame``, or
+        (None) raw, as :meth:`closure_jacobian` holds them (built once per frame)."""
+        key = id(frame)
+        got = self._coupling_blocks.get(key)
+        if got is None or got[0] is not frame:
+            got = (frame, coupling_block(self, frame))
+            self._coupling_blocks[key] = got
+        return got[1]
+
+    def _chord_jacobian(self, S: np.ndarray) -> np.ndarray:
+        """The chords' rows of :meth:`closure_jacobian` from the current screws."""
         bk = self.backend
         signs = self._chord_signs()
         if not signs:
@@ -435,16 +484,20 @@ class KinematicModel:
         S = self.current_screws(q) if screws is None else screws
         signs = self._chord_signs()
         if not signs or S.ndim != 2 or S.dtype == object:
-            return frame.blocks(self.closure_jacobian(q, S))
-        Ss = frame.blocks(np.asarray(S, dtype=float))
-        return (np.stack(signs)[:, None, :] * Ss[None, :, :]).reshape(-1, self.n)
+            J = frame.blocks(self._chord_jacobian(S))
+        else:
+            Ss = frame.blocks(np.asarray(S, dtype=float))
+            J = (np.stack(signs)[:, None, :] * Ss[None, :, :]).reshape(-1, self.n)
+        if not self.couplings:
+            return J
+        return np.concatenate([J, self.coupling_block(frame)], axis=0)
 
     @property
     def sparse_closure(self) -> bool:
         """Whether the float closure Jacobian is big enough to be built and solved sparse
         (:meth:`sparse_closure_jacobian`, block by block): a float model whose closure
         matrix has more than :data:`mechsing.numeric.blocks.DENSE_ENTRIES` entries."""
-        return self.backend.name == "float" and 6 * len(self.chords) * self.n > blocks.DENSE_ENTRIES
+        return self.backend.name == "float" and 6 * self.blocks * self.n > blocks.DENSE_ENTRIES
 
     def sparse_closure_jacobian(
         self, q: np.ndarray, frame: Any, screws: np.ndarray | None = None
@@ -461,9 +514,14 @@ class KinematicModel:
         vals = sign[:, None] * Ss[:, col].T
         rows = 6 * chord[:, None] + np.arange(6)
         cols = np.broadcast_to(col[:, None], vals.shape)
-        return csc_matrix(
-            (vals.ravel(), (rows.ravel(), cols.ravel())), shape=(6 * len(self.chords), self.n)
-        )
+        v, r, c = vals.ravel(), rows.ravel(), cols.ravel()
+        if self.couplings:
+            C = self.coupling_block(frame)
+            cr, cc = np.nonzero(C)
+            v = np.concatenate([v, np.asarray(C[cr, cc], dtype=float)])
+            r = np.concatenate([r, 6 * len(self.chords) + cr])
+            c = np.concatenate([c, cc])
+        return csc_matrix((v, (r, c)), shape=(6 * self.blocks, self.n))
 
     def _chord_entries(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The non-zero chord signs (:meth:`_chord_signs`) as (chord, column, sign)

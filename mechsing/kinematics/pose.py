@@ -81,6 +81,9 @@ class PoseModel:
         self.float_frame = self.frame.as_float()
         self.pose_chord = PoseChord("pose", out.relative_to, out.body)
         self.chords: list[Any] = [*base.chords, self.pose_chord]
+        #: the closure blocks: the mechanism's (its chords' loops, its couplings), the pose
+        self.couplings = base.couplings
+        self.blocks: int = base.blocks + 1
         signs = np.zeros(self.n, dtype=int)
         signs[: self.nb] = tree_chain(base, out.relative_to, out.body).signs
         signs[self.nb :] = 1

@@ -13,12 +13,14 @@ unit)::
 ``mechsing convert`` writes the entries of a URDF's mimic joints, with
 ``source_line``, the line of the ``<mimic>`` element; such an entry may name a leader the
 description does not define (a broken ``<mimic>``): it is kept, so the robot is still read,
-and refused like any coupling when its joint is analysed.  The file is read with its
-couplings; the analysis does not model a coupling in the closure system yet, so a
-coupling still present when a mechanism is analysed is refused
-(:func:`refuse_couplings`, exit 2 naming the joint and its line).  One whose joint lies
-on a branch the scene options leave out (``--output-body``: the fingers, another arm)
-is dropped with its branch (:mod:`mechsing.model.scene`).
+and refused when its joint is analysed (:func:`refuse_orphan_couplings`).  The analysis
+models a coupling as one more constraint of the closure system
+(:mod:`mechsing.kinematics.couplings`: a row ``dq_f - m dq_l = 0`` at first order, a
+residual ``q_f - m q_l - c`` at finite order); a path that does not take couplings
+(symbolic conditions) refuses them (:func:`refuse_couplings`, exit 2 naming the joint and
+its line).  A coupling whose joint lies on a branch the scene options leave out
+(``--output-body``: the fingers, another arm) is dropped with its branch
+(:mod:`mechsing.model.scene`).
 """
 
 from __future__ import annotations
@@ -27,7 +29,15 @@ from typing import Any
 
 from mechsing.model.mechanism import Coupling, Joint, Mechanism, MechanismError
 
-__all__ = ["COUPLING_KEYS", "describe_coupling", "read_couplings", "refuse_couplings"]
+__all__ = [
+    "COUPLING_KEYS",
+    "coupling_line",
+    "coupling_source",
+    "describe_coupling",
+    "read_couplings",
+    "refuse_couplings",
+    "refuse_orphan_couplings",
+]
 
 #: keys of one entry of ``couplings``
 COUPLING_KEYS = ("joint", "leader", "multiplier", "offset", "source_line")
@@ -57,7 +67,7 @@ def read_couplings(r: Any, v: Any, jmap: dict[str, Joint]) -> tuple[Coupling, ..
                 raise r.error(item, m.key_line("source_line"), "source_line must be a line number")
             source_line = int(sl.text)
         # a converted description's coupling to a joint it does not define is kept, and
-        # refused when its joint is analysed (refuse_couplings): the robot is still read
+        # refused when its joint is analysed (refuse_orphan_couplings): the robot is still read
         orphan = leader not in jmap and source_line is not None and follower in jmap
         for name, key in ((follower, "joint"), (leader, "leader")):
             if name == leader and orphan:
@@ -112,14 +122,45 @@ def describe_coupling(c: Coupling) -> str:
     return f"{c.joint} = {mult:.6g} x {c.leader}{tail}"
 
 
-def refuse_couplings(mech: Mechanism) -> None:
-    """A MechanismError (exit 2) for the first coupling of ``mech``: the analysis does not
-    model couplings in the closure system; the message names the joint, its line (the
-    URDF ``<mimic>``'s line for a converted file) and the ways out."""
+def coupling_line(c: Coupling) -> int | None:
+    """The line a reader looks at for a coupling: its ``<mimic>``'s in a converted
+    description, else its entry's."""
+    return c.source_line if c.source_line is not None else c.line
+
+
+def coupling_source(c: Coupling) -> str:
+    """Where a coupling comes from, in words: ``<mimic>, line 63`` or ``coupling, line 9``."""
+    what = "<mimic>" if c.source_line is not None else "coupling"
+    line = coupling_line(c)
+    return what if line is None else f"{what}, line {line}"
+
+
+def refuse_orphan_couplings(mech: Mechanism) -> None:
+    """A MechanismError (exit 2) for a coupling of ``mech`` whose leader the robot does not
+    define (a converted ``<mimic>`` naming a missing joint): it cannot be modelled; the
+    message names the joint, its line and the ways out."""
+    for c in mech.couplings:
+        if c.leader_defined:
+            continue
+        raise MechanismError(
+            f"joint {c.joint!r}: its {'<mimic>' if c.source_line is not None else 'coupling'} "
+            f"names joint {c.leader!r}, which the robot does not define; fix the name, or "
+            f"name an output on a branch that does not hold {c.joint!r} (--output-body BODY: "
+            "the branches that neither lead to it nor close a loop with it are left out, "
+            "couplings included)",
+            path=mech.path,
+            line=coupling_line(c),
+        )
+
+
+def refuse_couplings(mech: Mechanism, what: str) -> None:
+    """A MechanismError (exit 2) for the first coupling of ``mech`` on a path that does
+    not model couplings (``what``: that path, e.g. "symbolic conditions"); the message
+    names the joint, its line and the ways out."""
+    refuse_orphan_couplings(mech)
     if not mech.couplings:
         return
     c = mech.couplings[0]
-    line = c.source_line if c.source_line is not None else c.line
     more = (
         f" (and {len(mech.couplings) - 1} more coupled joint"
         + ("s" if len(mech.couplings) > 2 else "")
@@ -130,23 +171,13 @@ def refuse_couplings(mech: Mechanism) -> None:
         if len(mech.couplings) > 1
         else ""
     )
-    what = "<mimic>" if c.source_line is not None else "coupling"
-    if not c.leader_defined:
-        raise MechanismError(
-            f"joint {c.joint!r}: its {what} names joint {c.leader!r}, which the robot does not "
-            f"define{more}; fix the name, or name an output on a branch that does not hold "
-            f"{c.joint!r} (--output-body BODY: the branches that neither lead to it nor close "
-            "a loop with it are left out, couplings included)",
-            path=mech.path,
-            line=line,
-        )
     raise MechanismError(
-        f"joint {c.joint!r} is coupled to joint {c.leader!r} ({what}: "
-        f"{describe_coupling(c)}){more}; mechsing does not model couplings of joint values "
-        "in the closure system yet. Name an output on a branch that does not hold the "
-        "coupled joint (--output-body BODY: the branches that neither lead to it nor close "
-        "a loop with it are left out, couplings included), or remove the coupling (the "
-        "joint becomes independent)",
+        f"joint {c.joint!r} is coupled to joint {c.leader!r} "
+        f"({'<mimic>' if c.source_line is not None else 'coupling'}: {describe_coupling(c)})"
+        f"{more}: couplings of joint values are not supported by {what} yet (analyze, "
+        "solve and sweep take them). Name an output on a branch that does not hold the coupled joint "
+        "(--output-body BODY: the branches that neither lead to it nor close a loop with "
+        "it are left out, couplings included), or remove the coupling",
         path=mech.path,
-        line=line,
+        line=coupling_line(c),
     )

@@ -116,12 +116,26 @@ def choose_scene(mech: Mechanism, choice: SceneChoice) -> Mechanism:
         dropped = [str(i) for i in mech.inputs if i.joint not in joints]
         if dropped:
             scene_notes.append(f"inputs left out with their branches: {', '.join(dropped)}")
-    couplings = tuple(c for c in mech.couplings if c.joint in joints)
+    # a coupling whose leader is left out goes too: the leader's coordinate is then free,
+    # and so is the follower's (q_f = m q_l + c for any q_l); an undefined leader stays, to
+    # be refused (mechsing.model.couplings.refuse_orphan_couplings)
+    couplings = tuple(
+        c
+        for c in mech.couplings
+        if c.joint in joints and (c.leader in joints or not c.leader_defined)
+    )
     dropped_c = tuple(c.joint for c in mech.couplings if c.joint not in joints)
     if dropped_c:
         scene_notes.append(
             f"coupling{'s' if len(dropped_c) > 1 else ''} (mimic) left out with "
             f"{'their' if len(dropped_c) > 1 else 'its'} branch: {', '.join(dropped_c)}"
+        )
+    freed = tuple(c for c in mech.couplings if c.joint in joints and c not in couplings)
+    if freed:
+        dropped_c += tuple(c.joint for c in freed)
+        scene_notes.append(
+            "coupled joint(s) whose leader is left out, now moving freely as their leader "
+            "would let them: " + ", ".join(f"{c.joint} (leader {c.leader})" for c in freed)
         )
     configs = _configurations(mech, output, joints)
     return dataclasses.replace(

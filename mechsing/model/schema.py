@@ -100,8 +100,8 @@ def _import_properties() -> dict[str, Any]:
             "type": "array",
             "description": "linear couplings of two joints of one coordinate (a URDF mimic): "
             "joint = multiplier * leader + offset, in the file's units; read, and dropped "
-            "with a branch the scene options leave out; a coupling in the analysed part is "
-            "refused (not modelled in the closure system yet)",
+            "with a branch the scene options leave out; in the analysed part, each is one "
+            "constraint row of the closure system (dq_joint = multiplier dq_leader)",
             "items": {
                 "type": "object",
                 "properties": {

@@ -17,6 +17,7 @@ from typing import Any
 from mechsing.analysis.contract import subgroup_params
 from mechsing.analysis.describe import OutputMotion
 from mechsing.analysis.results import AnalysisResult, to_json
+from mechsing.model.couplings import coupling_source, describe_coupling
 from mechsing.numeric import Margin
 from mechsing.report.words import describe, subgroup_words, velocity_space_words
 from mechsing.singularity.findings import (
@@ -306,6 +307,11 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             lines.append(
                 f"{bullet}loop {'-'.join(lp.joints)}: moves inside {_subgroup(lp.subgroup)}; "
                 f"rank {_fmt_num(lp.rank)}" + (f", singular values {sig}" if sig else "")
+            )
+        for cp in result.mechanism.couplings:
+            lines.append(
+                f"{bullet}coupling {describe_coupling(cp)} ({coupling_source(cp)}): one row of "
+                "the closure system"
             )
         cr = c.closure_rank
         assert cr is not None and c.mobility is not None  # an analysed configuration has both

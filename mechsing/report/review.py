@@ -29,6 +29,7 @@ from mechsing.analysis.describe import OutputMotion
 from mechsing.analysis.html import VERDICT_HEADERS, class_words, largest_drop, verdict_row
 from mechsing.analysis.results import Mobility
 from mechsing.model import Mechanism
+from mechsing.model.couplings import coupling_source, describe_coupling
 from mechsing.numeric import Precision, parse_precision, to_float
 from mechsing.reader import read_mechanism
 from mechsing.report import document as doc
@@ -467,6 +468,17 @@ def _mechanism(r: Report) -> list[doc.Block]:
                     f"loop {k + 1} ({'-'.join(lp.joints)}): {loop_meaning(lp.subgroup)}; "
                     f"generated subgroup {subgroup_words(lp.subgroup)}"
                     for k, lp in enumerate(first.loops)
+                )
+            )
+        )
+    if mech.couplings:
+        out.append(doc.Heading(3, "Couplings"))
+        out.append(
+            doc.Bullets(
+                tuple(
+                    f"{describe_coupling(c)} ({coupling_source(c)}; SI, radians): one row of "
+                    "the closure system, one degree of freedom less"
+                    for c in mech.couplings
                 )
             )
         )

@@ -86,6 +86,8 @@ class ClosureSystem:
     """The stacked closure system of all loops at one configuration."""
 
     loops: list[LoopSystem]
+    #: the loops' rows, then one row per coupling of joint values (the last
+    #: ``couplings`` rows: ``dq_f - m dq_l``, commensurate)
     matrix: np.ndarray
     rank: RankDecision
     screws: np.ndarray = field(repr=False)
@@ -96,6 +98,8 @@ class ClosureSystem:
     shared: dict[tuple[str, bool], tuple[np.ndarray, np.ndarray | None]] = field(
         default_factory=dict, repr=False, compare=False
     )
+    #: how many couplings of joint values the system's last rows are
+    couplings: int = 0
 
     @property
     def nullity(self) -> int | None:
@@ -300,27 +304,34 @@ def closure_system(
             dec = decide_rank(R[:, cols != 0], prec, L)
         loops.append(LoopSystem(loop, ident, R, dec, Qf, Bs))
         blocks.append(R)
+    if model.couplings:
+        # each coupling's row dq_f - m dq_l = 0, commensurate: the linear x row of its
+        # closure block (mechsing.kinematics.couplings), after the loops' rows
+        with model.precision.context():
+            blocks.append(model.coupling_block(model.frame)[3::6])
     if blocks:
         M = np.concatenate(blocks, axis=0)
     else:
         M = model.backend.zeros((0, model.n))
     with model.precision.context():
         dec = decide_rank(M, prec, L, want_spaces=True)
-    return ClosureSystem(loops, M, dec, S, Ss)
+    return ClosureSystem(loops, M, dec, S, Ss, couplings=len(model.couplings))
 
 
 def grubler(model: KinematicModel) -> int:
-    """Spatial Grubler-Kutzbach (lambda = 6): 6 (bodies - 1 - joints) + sum of dof."""
+    """Spatial Grubler-Kutzbach (lambda = 6): 6 (bodies - 1 - joints) + sum of dof, minus
+    one per coupling of joint values (each is one more constraint)."""
     mech = model.mech
-    return 6 * (len(mech.bodies) - 1 - len(mech.joints)) + mech.dof
+    return 6 * (len(mech.bodies) - 1 - len(mech.joints)) + mech.dof - len(model.couplings)
 
 
 def group_mobility(model: KinematicModel, loops: list[LoopSystem]) -> int | None:
-    """Total joint dof minus the sum of the loops' generated-subgroup dimensions
-    (wrong for exceptional and paradoxical linkages such as Sarrus and Bennett)."""
+    """Total joint dof minus the sum of the loops' generated-subgroup dimensions, minus one
+    per coupling of joint values (wrong for exceptional and paradoxical linkages such as
+    Sarrus and Bennett)."""
     dims = []
     for ls in loops:
         if ls.identification.dim is None:
             return None
         dims.append(ls.identification.dim)
-    return model.mech.dof - sum(dims)
+    return model.mech.dof - sum(dims) - len(model.couplings)

@@ -141,7 +141,7 @@ def nearby_samples(
 ) -> list[NearbySample]:
     """Closed configurations at distances :data:`SAMPLE_STEPS` along random kernel
     directions (``kernel``: commensurate, n x d, float), with their nullities."""
-    if kernel.shape[1] == 0 or not model.chords:
+    if kernel.shape[1] == 0 or not model.blocks:
         return []
     qf = to_float(q)
     out: list[NearbySample] = []
@@ -165,7 +165,7 @@ def nearby_samples_many(
     jobs: list[tuple[int, float, np.ndarray]] = []
     qfs = [to_float(q) for q in qs]
     for i, (qf, K) in enumerate(zip(qfs, kernels, strict=True)):
-        if K.shape[1] == 0 or not model.chords:
+        if K.shape[1] == 0 or not model.blocks:
             continue
         jobs += [(i, step, q0) for step, q0 in _starts(model, qf, K, seed)]
     out: list[list[NearbySample]] = [[] for _ in qs]
@@ -190,7 +190,7 @@ def _decided_many(model: KinematicModel, Q: np.ndarray) -> list[tuple[int | None
     numpy's batched SVD (the same LAPACK routine, matrix by matrix) and the ranks by the same
     two-threshold rule."""
     n = model.n
-    rows = 6 * len(model.chords)
+    rows = 6 * model.blocks
     if not len(Q) or rows * n > DENSE_ENTRIES:
         # decide_rank factorises a big matrix block by block: one sample at a time
         out = []
@@ -202,7 +202,7 @@ def _decided_many(model: KinematicModel, Q: np.ndarray) -> list[tuple[int | None
         return out
     S = batched.current_screws(model, Q, batched.poses(model, Q))
     # stacked_jacobian of each: the chords' signed screws, each 6-row block commensurate
-    J = model.closure_jacobian(Q, S).reshape(len(Q), len(model.chords), 6, n)
+    J = model.closure_jacobian(Q, S).reshape(len(Q), model.blocks, 6, n)
     J = model.float_frame.screws(J).reshape(len(Q), rows, n)
     s = np.linalg.svd(J, compute_uv=False)
     Vt = np.linalg.svd(J, full_matrices=True)[2]

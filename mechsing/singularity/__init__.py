@@ -15,6 +15,7 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.kinematics.chains import tree_chain
+from mechsing.kinematics.couplings import impose_couplings
 from mechsing.numeric import to_float
 from mechsing.singularity.findings import (
     Classification,
@@ -70,8 +71,10 @@ def _output_point(
 
 
 def random_configurations(model: KinematicModel, count: int, seed: int = 0) -> np.ndarray:
-    """``count`` random configurations (rows): angles uniform in [-pi, pi), lengths in [-L, L)."""
-    return model.float_frame.random_coordinates(np.random.default_rng(seed), count)
+    """``count`` random configurations (rows): angles uniform in [-pi, pi), lengths in [-L, L);
+    a coupled joint follows its leader."""
+    Q = model.float_frame.random_coordinates(np.random.default_rng(seed), count)
+    return impose_couplings(model, Q, set()) if model.couplings else Q
 
 
 def _tree_serial(mech: Any, model: Any, q: np.ndarray) -> tuple[list[Finding], list[Decision]]:

@@ -169,6 +169,14 @@ def closure_expansion(model: Any, cs: Any, prec: Precision) -> tuple[Expansion, 
             for name, sign in zip(ls.loop.joints, ls.loop.signs, strict=True):
                 signs[model.joint(name).columns] = sign
             rows.append(ch.Q.T @ (Ss * signs[None, :]))
+        if model.couplings:
+            # a coupling's row (the closure system's last rows) is exactly linear in the
+            # coordinates (R, P, H: additive): a chain of its two columns whose elements
+            # carry sign 0 and a zero basis, so its higher-order terms are zero
+            C = prec.asarray(model.coupling_block(model.frame)[3::6].tolist())
+            for i, ck in enumerate(model.couplings):
+                chains.append(LoopChain([([ck.follower], 0), ([ck.leader], 0)], bk.zeros((6, 1))))
+                rows.append(C[i : i + 1])
         M = np.concatenate(rows, axis=0) if rows else bk.zeros((0, model.n))
         return Expansion(chains, Ss), M
 

@@ -31,6 +31,7 @@ import numpy as np
 from mechsing import lie
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
+from mechsing.kinematics.couplings import fold_columns
 from mechsing.numeric import Precision, decide_rank, rank_bounds
 from mechsing.numeric.blocks import DENSE_ENTRIES
 from mechsing.screws import chain_matrix, closure_system
@@ -342,6 +343,8 @@ def _leg_values(
     per_leg = []
     for leg in plan.legs:
         M = chain_matrix(model, S, leg.columns, x)
+        if model.couplings:  # a follower folded into its leader's column, as chain_system
+            M = fold_columns(model, M, list(leg.columns))[0]
         lo, hi = _ranks(_singular_values(M))
         per_leg.append((M, _decided(lo, hi)))
     return [tuple((M[b], ranks[b]) for M, ranks in per_leg) for b in range(S.shape[0])]

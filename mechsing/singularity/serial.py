@@ -28,11 +28,12 @@ along the line of its pivots and its new wrench as the force along that line.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from mechsing.kinematics.couplings import expand_rates, fold_columns
 from mechsing.numeric import (
     MEMBERSHIP_RTOL_FLOAT,
     SUPPORT_RTOL,
@@ -58,6 +59,12 @@ class ChainSystem:
     rank: RankDecision
     columns: list[int]  # coordinate indices of the chain
     point: bool  # positioning task (3 rows)
+    #: the positions (in ``columns``) of the matrix's columns: a coupled follower whose
+    #: leader is in the chain is folded into its leader's column
+    #: (:func:`mechsing.kinematics.couplings.fold_columns`); None: every column
+    kept: list[int] | None = None
+    #: the folded followers: (position, leader's position, commensurate factor)
+    follows: list[tuple[int, int, Any]] = field(default_factory=list)
 
 
 def _unit_first_positive(v: np.ndarray) -> np.ndarray:
@@ -183,6 +190,8 @@ def serial_finding(
     twist = _unit_twist(simplest(si_twist(new[:, 0]), here))
     kernel = Vt[r:].T if Vt.shape[0] > r else np.zeros((Ms.shape[1], 0))
     rates = kernel[:, 0] if kernel.shape[1] else np.zeros(Ms.shape[1])
+    if system.kept is not None:
+        rates = expand_rates(rates, len(system.columns), system.kept, system.follows)
     rates = fr.rates_back(rates, system.columns)
     big = float(np.max(np.abs(rates))) if len(rates) else 0.0
     if big > 0:
@@ -222,5 +231,8 @@ def chain_system(
         Ms = scaled[:, list(columns)]
     else:
         Ms = chain_matrix(model, S, columns, point_x)
+    kept, follows = None, []
+    if getattr(model, "couplings", ()):
+        Ms, kept, follows = fold_columns(model, Ms, list(columns))
     dec = decide_rank(Ms, precision, model.length_scale)
-    return ChainSystem(Ms, dec, columns, point_x is not None)
+    return ChainSystem(Ms, dec, columns, point_x is not None, kept, follows)

@@ -45,6 +45,7 @@ from mechsing.kinematics.newton import scaled_system
 from mechsing.kinematics.pose import PoseModel
 from mechsing.lie import log_so3
 from mechsing.model import Mechanism
+from mechsing.model.couplings import describe_coupling
 from mechsing.numeric import (
     SWEEP_BRANCH_OFFSET,
     SWEEP_JUMP_RATIO,
@@ -184,6 +185,17 @@ class Sweep:
             elif set(cols) <= inputs:
                 given[list(inputs)] = True
             given[cols] = True
+            for ck in model.couplings:
+                # a coupled joint follows its swept partner (never held against it)
+                swept = {ck.follower, ck.leader} & set(cols)
+                if len(swept) == 2:
+                    c = ck.coupling
+                    raise UserError(
+                        f"--vary: joint {c.joint!r} is coupled to {c.leader!r} "
+                        f"({describe_coupling(c)}): sweep one of them, the other follows"
+                    )
+                for k in {ck.follower, ck.leader} - swept if swept else ():
+                    given[k] = False
         self.cols = cols
         self.z0 = z0
         #: said once, in the first row's notes: how the path left a singular start

@@ -58,6 +58,7 @@ import numpy as np
 
 from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
+from mechsing.kinematics.couplings import coupling_rows
 from mechsing.numeric import SWEEP_GRAM_RATIO, SWEEP_SCREEN_ROUNDING, Precision, rank_bounds
 from mechsing.screws import chain_matrix
 from mechsing.singularity.zfb import input_rows, leg_path
@@ -205,6 +206,11 @@ class Measures:
         for i, loop in enumerate(mech.loops):
             for name, sign in zip(loop.joints, loop.signs, strict=True):
                 self.loop_signs[i, model.joint(name).columns] = sign
+        #: the couplings' commensurate rows (k, n), after the loops' in the closure; and,
+        #: without loops, the constant kernel of those rows (the joint rates they allow)
+        self.coupling_rows, self.coupling_kernel = coupling_rows(model, self.frame)
+        if mech.loops:
+            self.coupling_kernel = None
         out = mech.output
         E = input_rows(mech, model)
         self.E = None if E is None else np.asarray(E, dtype=float)
@@ -292,18 +298,17 @@ class Measures:
                 kernel = np.swapaxes(Vt[:, g:, :], 1, 2)  # (N, n, n - g)
                 self._closure_svd = ("svd", U, s, Vt)
             # without loops every joint rate is a motion: N is the identity
+            # without loops, the couplings' kernel (constant) stands for the closure's
+            K = kernel if kernel is not None else self.coupling_kernel
             if "input" in self.tests:
                 T, nT = self._output_rows(P, S)
-                TN = T if kernel is None else T @ kernel
+                TN = T if K is None else T @ K
                 out["input"] = TN / np.maximum(nT, 1e-300)[:, None, None]
                 if kernel is not None:  # the rows themselves, for the bordered sign test
                     out["input_rows"] = T / np.maximum(nT, 1e-300)[:, None, None]
             if "output" in self.tests:
-                out["output"] = (
-                    np.broadcast_to(self.E, (N, *self.E.shape))
-                    if kernel is None
-                    else self.E @ kernel
-                )
+                EK = self.E if K is None else self.E @ K
+                out["output"] = EK if EK.ndim == 3 else np.broadcast_to(EK, (N, *EK.shape))
                 if kernel is not None:
                     out["output_rows"] = np.broadcast_to(self.E, (N, *self.E.shape))
         if "constraint" in self.tests and not signed:
@@ -317,9 +322,14 @@ class Measures:
         return P, S, self.frame.screws(S)
 
     def _closure(self, Ss: np.ndarray) -> np.ndarray:
-        """The stacked loop screw systems from the commensurate screws, (N, 6 loops, n)."""
+        """The stacked loop screw systems from the commensurate screws, then the couplings'
+        rows, (N, 6 loops + couplings, n)."""
         C = Ss[:, None, :, :] * self.loop_signs[None, :, None, :]
-        return C.reshape(Ss.shape[0], -1, self.model.n)
+        C = C.reshape(Ss.shape[0], -1, self.model.n)
+        if self.coupling_rows is None:
+            return C
+        R = np.broadcast_to(self.coupling_rows, (C.shape[0], *self.coupling_rows.shape))
+        return np.concatenate([C, R], axis=1)
 
     def _output_rows(
         self, P: dict[str, np.ndarray], S: np.ndarray
@@ -351,7 +361,8 @@ class Measures:
         """Whether the closure is measured and its generic rank is its number of rows
         (its kernel then needs no singular vectors)."""
         g = self.generic.get("closure")
-        return "closure" in self.tests and g is not None and g == 6 * len(self.mech.loops)
+        rows = 6 * len(self.mech.loops) + len(self.model.couplings)
+        return "closure" in self.tests and g is not None and g == rows
 
     def _constraint(self, Ss: np.ndarray) -> np.ndarray:
         """The legs' combined constraint wrenches as rows, (N, wrenches, 6)."""
