@@ -66,6 +66,38 @@ BAD_NAME = _urdf(
     '<joint name="q[1]" type="revolute"><parent link="b"/><child link="c"/></joint>\n'
 )
 MALFORMED = '<robot name="x">\n<link name="a">\n</robot>\n'
+HUGE_ORIGIN = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/>\n'
+    '<origin xyz="1e300 0 0"/></joint>\n',
+    "ab",
+)
+UNDERSCORE_NUMBER = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/>\n'
+    '<origin xyz="1_000 0 0"/></joint>\n',
+    "ab",
+)
+FULLWIDTH_NUMBER = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/>\n'
+    '<axis xyz="0 0 \uff11"/></joint>\n',
+    "ab",
+)
+NAN_NUMBER = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/>\n'
+    '<axis xyz="0 0 nan"/></joint>\n',
+    "ab",
+)
+MJCF_HUGE_QUAT = (
+    '<mujoco>\n<worldbody>\n<body quat="1e308 1e308 0 0"><joint/></body>\n</worldbody>\n</mujoco>\n'
+)
+MJCF_HUGE_ZAXIS = (
+    '<mujoco>\n<worldbody>\n<body zaxis="1e308 1e308 0"><joint/></body>\n</worldbody>\n</mujoco>\n'
+)
+MJCF_ZERO_QUAT = (
+    '<mujoco>\n<worldbody>\n<body quat="0 0 0 0"><joint/></body>\n</worldbody>\n</mujoco>\n'
+)
+MJCF_PARALLEL_XYAXES = (
+    '<mujoco>\n<worldbody>\n<body xyaxes="1 0 0 2 0 0"><joint/></body>\n</worldbody>\n</mujoco>\n'
+)
 
 CASES = {
     "billion_laughs": (BILLION_LAUGHS, "DOCTYPE", 2),
@@ -82,6 +114,15 @@ CASES = {
     "mjcf_joint_coupling": (MJCF_TENDON, "cannot be modelled", 3),
     "malformed": (MALFORMED, "malformed XML", 3),
     "bad_joint_name": (BAD_NAME, "holds '[' or ']'", 6),
+    # numbers: ASCII decimal syntax and a sensible size (at most 1e12), as the YAML's
+    "urdf_huge_origin": (HUGE_ORIGIN, "'1e300' is too large", 5),
+    "urdf_underscore_number": (UNDERSCORE_NUMBER, "ASCII decimal digits", 5),
+    "urdf_fullwidth_number": (FULLWIDTH_NUMBER, "ASCII decimal digits", 5),
+    "urdf_nan": (NAN_NUMBER, "ASCII decimal digits", 5),
+    "mjcf_huge_quat": (MJCF_HUGE_QUAT, "'1e308' is too large", 3),
+    "mjcf_huge_zaxis": (MJCF_HUGE_ZAXIS, "'1e308' is too large", 3),
+    "mjcf_zero_quat": (MJCF_ZERO_QUAT, "degenerate (a zero vector has no direction)", 3),
+    "mjcf_parallel_xyaxes": (MJCF_PARALLEL_XYAXES, "two directions are parallel", 3),
 }
 
 

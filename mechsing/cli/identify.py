@@ -28,7 +28,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("screws", nargs="*", metavar="SCREW", help="w1,w2,w3,v1,v2,v3")
     parser.add_argument(
         "--length-scale",
-        type=float,
+        type=_length,
         default=1.0,
         metavar="L",
         help="characteristic length of the commensurate metric (default 1)",
@@ -39,6 +39,21 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="float, mp:N, exact or auto (default: exact for rational input, else auto)",
     )
     parser.add_argument("--format", choices=("text", "json"), default="text", help="output format")
+
+
+def _length(text: str) -> float:
+    """--length-scale: a positive decimal number of a sensible size (either way)."""
+    from mechsing.numeric import decimal_float, is_sensible_size
+
+    try:
+        x = decimal_float(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"{exc}; give a positive length such as 1") from None
+    if not (x > 0 and is_sensible_size(1 / x)):
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a positive length of a sensible size (e.g. --length-scale 0.5)"
+        )
+    return x
 
 
 def parse_screws(texts: list[str]) -> tuple[np.ndarray, bool]:

@@ -45,6 +45,7 @@ from mechsing.formats.frames import axis_angle, euler, frame, quaternion, xyaxes
 from mechsing.formats.writer import Bodies, JointSpec, MechanismSpec, joint_name_problem
 from mechsing.formats.xmlsafe import Element, floats, parse
 from mechsing.model.mechanism import MechanismError
+from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
 
 __all__ = ["MJCF_TYPES", "read_mjcf"]
 
@@ -142,8 +143,8 @@ class _Reader:
                 rot = xyaxes(np.array(v[:3]), np.array(v[3:]))
             elif "zaxis" in a:
                 rot = zaxis(np.array(self.nums(el, a, "zaxis", 3, [0, 0, 1])))
-        except (ZeroDivisionError, FloatingPointError):  # pragma: no cover
-            raise self.err(el, "the orientation is degenerate (a zero vector)") from None
+        except ValueError as exc:
+            raise self.err(el, f"the orientation is degenerate ({exc})") from None
         if not np.all(np.isfinite(rot)):
             raise self.err(el, "the orientation is degenerate (a zero vector or quaternion)")
         return frame(rot, np.array(pos))
@@ -231,10 +232,9 @@ def _read(root: Element, path: str) -> MechanismSpec:
             p = t @ np.array([*rd.nums(j, ja, "pos", 3, [0, 0, 0]), 1.0])
             ax = np.array(rd.nums(j, ja, "axis", 3, [0, 0, 1]))
             if jt in ("hinge", "slide"):
-                nrm = float(np.linalg.norm(ax))
-                if not nrm > 1e-9:
+                if not safe_norm(ax) > NEAR_ZERO_VECTOR:
                     raise rd.err(j, 'the axis is a zero vector; give a direction such as "0 0 1"')
-                w = t[:3, :3] @ (ax / nrm)
+                w = t[:3, :3] @ unit_vector(ax)
                 spec.axis = tuple(w)  # type: ignore[assignment]
                 if jt == "hinge":
                     spec.point = tuple(p[:3])  # type: ignore[assignment]

@@ -33,6 +33,7 @@ from mechsing.formats.frames import frame, rpy
 from mechsing.formats.writer import Bodies, JointSpec, MechanismSpec, joint_name_problem
 from mechsing.formats.xmlsafe import Element, floats, parse
 from mechsing.model.mechanism import MechanismError
+from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
 
 __all__ = ["URDF_TYPES", "read_urdf"]
 
@@ -171,10 +172,9 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         b = bodies.find(el.find("child").get("link"))  # type: ignore[union-attr]
         axis_el = el.find("axis")
         axis = floats(axis_el, "xyz", 3, path, [1, 0, 0]) if axis_el is not None else [1, 0, 0]
-        n = float(np.linalg.norm(axis))
-        if not n > 1e-9:
+        if not safe_norm(axis) > NEAR_ZERO_VECTOR:
             raise err(axis_el or el, 'the axis is a zero vector; give a direction such as "0 0 1"')
-        w = tj[:3, :3] @ (np.array(axis) / n)
+        w = tj[:3, :3] @ unit_vector(axis)
         p = tj[:3, 3]
         spec = JointSpec(el.get("name"), jtype, (a, b))  # type: ignore[arg-type]
         if jtype == "R":

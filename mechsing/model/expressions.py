@@ -18,7 +18,13 @@ keyword arguments, strings, hexadecimal or complex literals, comparisons,
 lambdas ...) is refused with an :class:`ExpressionError` that names what is
 not allowed.  Sizes are bounded so that no text can make sympy build a huge
 number: the text length, the number of syntax nodes, the digits of a number,
-decimal exponents, and the exponents of ``**``.
+decimal exponents, the exponents of ``**``, and the size of the exact value once the
+parameters it names are put in (:data:`MAX_EXPRESSION_SIZE` parts, counted with
+repetition: a chain of parameters that each use the one before twice doubles at each
+step, and is refused when it outgrows the bound instead of taking exponential time).
+A number is of a sensible size (at most :data:`~mechsing.numeric.MAX_NUMBER` in
+magnitude), and a divisor that is exactly zero however it is written
+(``sin(pi/7)**2 + cos(pi/7)**2 - 1``) is a division by zero.
 
 Public API: :func:`parse_number` (text to exact value), :func:`is_finite_real`,
 :func:`is_plain_decimal` (a number as opposed to an expression) and
@@ -28,18 +34,21 @@ Public API: :func:`parse_number` (text to exact value), :func:`is_finite_real`,
 from __future__ import annotations
 
 import ast
-import re
 from collections.abc import Mapping
 from typing import Any
 
+import mpmath
 import sympy
 
 from mechsing.errors import UserError
+from mechsing.numeric.numbers import DECIMAL, SIGNED_DECIMAL, is_decimal_text, is_sensible_size
+from mechsing.numeric.tolerances import EXACT_ZERO_DIGITS, MAX_NUMBER
 
 __all__ = [
     "ALLOWED_FUNCTIONS",
     "ExpressionError",
     "MAX_EXPRESSION_CHARS",
+    "MAX_EXPRESSION_SIZE",
     "is_finite_real",
     "is_plain_decimal",
     "parse_number",
@@ -58,6 +67,9 @@ MAX_DECIMAL_EXPONENT = 400
 MAX_POWER_EXPONENT = 256
 #: largest bit length of an intermediate rational (numerator or denominator)
 MAX_RATIONAL_BITS = 8192
+#: most parts (sympy nodes, counted with repetition) of an exact value, once the
+#: parameters it uses are put in: building and evaluating one costs about 0.2 s
+MAX_EXPRESSION_SIZE = 5000
 
 #: whitelisted functions and their number of arguments
 ALLOWED_FUNCTIONS: dict[str, tuple[Any, int]] = {
@@ -72,8 +84,6 @@ ALLOWED_FUNCTIONS: dict[str, tuple[Any, int]] = {
 }
 
 _ALLOWED_TEXT = "numbers, + - * / **, parentheses, pi, sqrt, sin, cos, tan, asin, acos, atan, atan2"
-_DECIMAL = re.compile(r"^(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?$")
-_SIGNED_DECIMAL = re.compile(r"^[-+]?\s*(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?$")
 
 
 class ExpressionError(UserError, ValueError):
@@ -113,6 +123,7 @@ class _Builder:
         self.text = text
         self.shown = _short(text)
         self.names = names or {}
+        self.sizes: dict[Any, int] = {}
 
     def fail(self, what: str) -> ExpressionError:
         return ExpressionError(
@@ -125,7 +136,7 @@ class _Builder:
 
     def build(self, node: ast.AST) -> Any:
         if isinstance(node, ast.Expression):
-            return self.build(node.body)
+            return self.check(self.build(node.body))
         if isinstance(node, ast.Constant):
             return self.number(node)
         if isinstance(node, ast.UnaryOp):
@@ -160,7 +171,7 @@ class _Builder:
                 raise self.fail("a complex number")
             raise self.fail(f"the constant {value!r}")
         text = self.segment(node).strip()
-        if not _DECIMAL.match(text):
+        if not DECIMAL.match(text):
             raise self.fail(f"the number {text!r} (write plain decimal digits)")
         return decimal_text_to_rational(text, self.text)
 
@@ -188,8 +199,12 @@ class _Builder:
         if isinstance(op, ast.Mult):
             return self.check(left * right)
         if isinstance(op, ast.Div):
-            if right == 0:
-                raise ExpressionError(f"expression {self.shown!r}: division by zero")
+            if _is_zero(right):
+                divisor = _short(self.segment(node.right), 40)
+                raise ExpressionError(
+                    f"expression {self.shown!r}: division by zero (the divisor {divisor!r} "
+                    f"is zero{_zero_how(right)})"
+                )
             return self.check(left / right)
         return self.power(left, right)
 
@@ -205,7 +220,7 @@ class _Builder:
                 f"expression {self.shown!r}: the exponent {exponent} of ** is too large "
                 f"(at most {MAX_POWER_EXPONENT} in numerator and denominator)"
             )
-        if base == 0 and exponent < 0:
+        if exponent < 0 and _is_zero(base):
             raise ExpressionError(
                 f"expression {self.shown!r}: division by zero (0 to a negative power)"
             )
@@ -236,7 +251,7 @@ class _Builder:
                 f"{'s' if nargs > 1 else ''}, got {len(node.args)}"
             )
         args = [self.build(a) for a in node.args]
-        if name == "atan2" and args[0] == 0 and args[1] == 0:
+        if name == "atan2" and _is_zero(args[0]) and _is_zero(args[1]):
             raise ExpressionError(f"expression {self.shown!r}: atan2(0, 0) is undefined")
         return self.check(func(*args))
 
@@ -246,7 +261,64 @@ class _Builder:
                 raise ExpressionError(f"expression {self.shown!r}: a number in it is too large")
         if value.has(sympy.zoo, sympy.nan, sympy.oo, -sympy.oo):
             raise ExpressionError(f"expression {self.shown!r} is not a finite number")
+        size = _tree_size(value, self.sizes)
+        if size > MAX_EXPRESSION_SIZE:
+            raise ExpressionError(
+                f"expression {self.shown!r} is too large for exact evaluation: its value has "
+                f"{size} parts once the parameters it uses are put in (at most "
+                f"{MAX_EXPRESSION_SIZE}); write a number instead, or use each parameter "
+                "fewer times"
+            )
         return value
+
+
+def _tree_size(value: Any, memo: dict[Any, int]) -> int:
+    """Nodes of a sympy value counted as a tree (a shared part once per use), computed
+    over its distinct parts only (linear in them, without recursion)."""
+    stack = [value]
+    while stack:
+        x = stack[-1]
+        if x in memo:
+            stack.pop()
+            continue
+        todo = [a for a in x.args if a not in memo]
+        if todo:
+            stack.extend(todo)
+            continue
+        stack.pop()
+        memo[x] = 1 + sum(memo[a] for a in x.args)
+    return memo[value]
+
+
+def _with_values(value: Any) -> Any:
+    """``value`` with its parameter symbols replaced by their values (a number)."""
+    return value.xreplace(
+        {a: a.parameter_value for a in value.free_symbols if hasattr(a, "parameter_value")}
+    )
+
+
+#: a value below this at EXACT_ZERO_DIGITS digits is zero for a divisor
+_ZERO_BOUND = sympy.Float(10) ** (15 - EXACT_ZERO_DIGITS)
+
+
+def _is_zero(value: Any) -> bool:
+    """Is an exact value zero, however it is written?  Decided exactly for a rational;
+    otherwise by sympy's evaluation at EXACT_ZERO_DIGITS digits (whose error it bounds):
+    a value below 10^(15 - EXACT_ZERO_DIGITS) there is zero, or too close to zero to
+    divide by."""
+    value = sympy.sympify(value)
+    if isinstance(value, sympy.Rational):
+        return bool(value == 0)
+    probe = _with_values(value)
+    if probe.free_symbols:
+        return False
+    return bool(abs(sympy.N(probe, EXACT_ZERO_DIGITS)) <= _ZERO_BOUND)
+
+
+def _zero_how(value: Any) -> str:
+    if isinstance(value, sympy.Rational):
+        return ""
+    return f" to {EXACT_ZERO_DIGITS} digits, however it is written"
 
 
 def _short(text: str, n: int = 60) -> str:
@@ -260,7 +332,7 @@ def decimal_text_to_rational(text: str, context: str | None = None) -> sympy.Rat
     sign = ""
     if t[:1] in "+-":
         sign, t = t[:1], t[1:].strip()
-    if not _DECIMAL.match(t):
+    if not DECIMAL.match(t):
         raise ExpressionError(f"{where!r} is not a decimal number")
     mant, _, exp = t.lower().partition("e")
     if len(mant.replace(".", "")) > MAX_NUMBER_DIGITS:
@@ -312,8 +384,8 @@ def parse_number(text: str, names: Mapping[str, Any] | None = None) -> Any:
         raise ExpressionError(
             f"expression of {len(t)} characters is too long (at most {MAX_EXPRESSION_CHARS})"
         )
-    if _SIGNED_DECIMAL.match(t):
-        return decimal_text_to_rational(t)
+    if SIGNED_DECIMAL.match(t):
+        return _sensible(decimal_text_to_rational(t), t)
     try:
         tree = ast.parse(t, mode="eval")
     except (SyntaxError, ValueError) as exc:
@@ -335,12 +407,28 @@ def parse_number(text: str, names: Mapping[str, Any] | None = None) -> Any:
     except RecursionError:
         raise ExpressionError(f"expression {t[:40]!r}... is nested too deeply") from None
     value = sympy.sympify(value)
-    probe = value.xreplace(
-        {a: a.parameter_value for a in value.free_symbols if hasattr(a, "parameter_value")}
-    )
+    probe = _with_values(value)
     if not is_finite_real(probe):
         raise ExpressionError(
             f"expression {_short(t)!r} is not a finite real number (it is {value})"
+        )
+    return _sensible(value, t, probe)
+
+
+def _sensible(value: Any, text: str, probe: Any = None) -> Any:
+    """``value``, or an ExpressionError when it is larger than MAX_NUMBER in magnitude."""
+    x = value if probe is None else probe
+    if isinstance(x, sympy.Rational):
+        ok = is_sensible_size(x)
+    else:
+        ok = is_sensible_size(sympy.N(x, 20))
+    if not ok:
+        what = repr(_short(text))
+        if not SIGNED_DECIMAL.match(text.strip()):
+            what += f" (= {mpmath.nstr(mpmath.mpf(sympy.N(x, 5)._mpf_), 3)})"
+        raise ExpressionError(
+            f"the number {what} is too large: numbers are at most {MAX_NUMBER:g} in "
+            "magnitude (in the units of the place they stand); check the value and its unit"
         )
     return value
 
@@ -370,7 +458,7 @@ def is_finite_real(value: Any) -> bool:
 def is_plain_decimal(text: str) -> bool:
     """True for a plain (signed) decimal number such as ``30`` or ``-1.5e3``, False
     for an expression such as ``"pi/6"``."""
-    return bool(_SIGNED_DECIMAL.match(text.strip()))
+    return is_decimal_text(text)
 
 
 #: functions whose value is an angle (in radians)

@@ -46,7 +46,7 @@ from mechsing.model.yamlnodes import (
     YValue,
     read_yaml_text,
 )
-from mechsing.numeric import NEAR_ZERO_VECTOR, REFERENCE_SCREEN_RTOL
+from mechsing.numeric import MAX_NUMBER, NEAR_ZERO_VECTOR, REFERENCE_SCREEN_RTOL, is_sensible_size
 
 __all__ = [
     "ANGLE_UNITS",
@@ -475,6 +475,13 @@ class _Builder:
                     v.line,
                     f"must be a positive length, got {char_len}; remove it or give e.g. 1",
                 )
+            if not is_sensible_size(1 / char_len):
+                raise r.error(
+                    "characteristic_length",
+                    v.line,
+                    f"{sympy.N(char_len, 3)} m is too small a length (at least "
+                    f"{1 / MAX_NUMBER:g} m); remove it or give the size of the mechanism",
+                )
         self.output_given = output
         configs = self.configurations(top.get("configurations"), jmap)
         return Mechanism(
@@ -620,7 +627,28 @@ class _Builder:
                     j.line,
                     f"clashes with the hidden body of U joint {j.name!r}; rename the body",
                 )
+        self.check_size(out, seq.line)
         return out
+
+    def check_size(self, joints: list[Joint], line: int) -> None:
+        """A mechanism whose every joint point lies within 1/MAX_NUMBER m of the origin (but
+        not all at it) is of no sensible size: its residuals would underflow."""
+        size = max(
+            (
+                abs(float(sympy.N(c, 17)))
+                for j in joints
+                if "point" in j.params
+                for c in j.params["point"]
+            ),
+            default=0.0,
+        )
+        if 0.0 < size and not is_sensible_size(1 / size):
+            raise self.r.error(
+                "joints",
+                line,
+                f"the mechanism is {size:.3g} m across, too small a size (every joint point "
+                f"within {1 / MAX_NUMBER:g} m of the origin); check the lengths and their unit",
+            )
 
     def joint(self, e: YValue, bodyset: set[str]) -> Joint:
         r = self.r

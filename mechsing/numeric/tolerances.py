@@ -80,6 +80,11 @@ POLISH_SLOW_RATIO = 8
 #: characteristic length L for a length; larger is an absurd size (an angle of
 #: 1e6 rad is 160 000 turns)
 MAX_JOINT_VALUE = 1e6
+#: largest magnitude of any number a file or a command line gives (a coordinate, a
+#: parameter, a joint value, a limit, a sweep range, a screw coordinate), in its own
+#: units: 10^12 of them is beyond any mechanism, and squares and products of such
+#: numbers stay far from float overflow (1.8e308)
+MAX_NUMBER = 1e12
 #: continuation accepts intermediate steps at this residual (times L); the target
 #: itself is accepted at the precision's closure tolerance
 CONTINUATION_STEP_RTOL = 1e-9
