@@ -42,7 +42,13 @@ import math
 import numpy as np
 
 from mechsing.formats.frames import axis_angle, euler, frame, quaternion, xyaxes, zaxis
-from mechsing.formats.writer import Bodies, JointSpec, MechanismSpec, joint_name_problem
+from mechsing.formats.writer import (
+    Bodies,
+    JointSpec,
+    MechanismSpec,
+    joint_name_problem,
+    name_problem,
+)
 from mechsing.formats.xmlsafe import Element, floats, parse
 from mechsing.model.mechanism import MechanismError
 from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
@@ -79,18 +85,21 @@ class _Reader:
     def err(self, el: Element, message: str) -> MechanismError:
         return MechanismError(f"{el.where()}: {message}", path=self.path, line=el.line)
 
-    def read_default(self, d: Element, parent: str | None) -> None:
-        name = d.get("class", "main" if parent is None else None)
-        if name is None:
-            raise self.err(d, 'a nested <default> needs a class name; add class="..."')
-        tags: dict[str, dict[str, str]] = {}
-        for c in d.children:
-            if c.tag == "default":
-                continue
-            tags[c.tag] = dict(c.attrib)
-        self.classes[name] = (parent, tags)
-        for c in d.findall("default"):
-            self.read_default(c, name)
+    def read_default(self, top: Element, top_parent: str | None) -> None:
+        """The classes of a <default> and of the ones nested in it (a stack, not
+        recursion), in document order."""
+        todo: list[tuple[Element, str | None]] = [(top, top_parent)]
+        while todo:
+            d, parent = todo.pop()
+            name = d.get("class", "main" if parent is None else None)
+            if name is None:
+                raise self.err(d, 'a nested <default> needs a class name; add class="..."')
+            tags: dict[str, dict[str, str]] = {}
+            for c in d.children:
+                if c.tag != "default":
+                    tags[c.tag] = dict(c.attrib)
+            self.classes[name] = (parent, tags)
+            todo.extend((c, name) for c in reversed(d.findall("default")))
 
     def attrs(self, el: Element, childclass: str | None) -> dict[str, str]:
         """The element's attributes completed from its default class chain."""
@@ -163,6 +172,8 @@ def _read(root: Element, path: str) -> MechanismSpec:
             f"{root.where()}: an MJCF file's root element is <mujoco>", path=path, line=root.line
         )
     rd = _Reader(root, path)
+    if name_problem(root.get("model") or "mjcf", "model name"):
+        raise rd.err(root, name_problem(root.get("model") or "mjcf", "model name"))  # type: ignore[arg-type]
     for el in _walk(root):
         if el.tag == "include":
             raise rd.err(
@@ -188,16 +199,23 @@ def _read(root: Element, path: str) -> MechanismSpec:
     names: set[str] = set()
     counter = [0]
 
+    # the tree is walked with a stack, not by recursion (a chain nested up to the parser's
+    # MAX_DEPTH needs no Python frame per level): in document order, each element with
+    # its parent body, its parent's frame and the default class its children inherit
+    todo: list[tuple[Element, str, np.ndarray, str | None]] = []
+
     def visit(
         el: Element, parent_body: str, parent_frame: np.ndarray, childclass: str | None
     ) -> None:
-        for c in el.children:
-            if c.tag == "site":
-                a = rd.attrs(c, childclass)
-                if a.get("name"):
-                    sites[a["name"]] = (parent_body, parent_frame @ rd.pose(c, a))
-            elif c.tag in ("body", "frame"):
-                body(c, parent_body, parent_frame, childclass)
+        kids = [c for c in el.children if c.tag in ("site", "body", "frame")]
+        todo.extend((c, parent_body, parent_frame, childclass) for c in reversed(kids))
+
+    def site(
+        c: Element, parent_body: str, parent_frame: np.ndarray, childclass: str | None
+    ) -> None:
+        a = rd.attrs(c, childclass)
+        if a.get("name"):
+            sites[a["name"]] = (parent_body, parent_frame @ rd.pose(c, a))
 
     def body(el: Element, parent: str, parent_frame: np.ndarray, childclass: str | None) -> None:
         a = dict(el.attrib)
@@ -210,6 +228,8 @@ def _read(root: Element, path: str) -> MechanismSpec:
         name = el.get("name") or f"body{counter[0]}"
         if name in placed or name == _WORLD:
             raise rd.err(el, f"body name {name!r} is used twice; give each body its own name")
+        if name_problem(name, "body name"):
+            raise rd.err(el, name_problem(name, "body name"))  # type: ignore[arg-type]
         jels = [c for c in el.children if c.tag in ("joint", "freejoint")]
         prev = parent
         for k, j in enumerate(jels):
@@ -258,6 +278,9 @@ def _read(root: Element, path: str) -> MechanismSpec:
         visit(el, name, t, cc)
 
     visit(world, _WORLD, np.eye(4), None)
+    while todo:
+        item = todo.pop()
+        (site if item[0].tag == "site" else body)(*item)
     eq = root.findall("equality")
     n_connect = 0
     for group in eq:
@@ -353,6 +376,9 @@ def _read(root: Element, path: str) -> MechanismSpec:
 
 
 def _walk(el: Element):  # type: ignore[no-untyped-def]
-    yield el
-    for c in el.children:
-        yield from _walk(c)
+    """Every element under ``el`` (itself first), in document order, without recursion."""
+    stack = [el]
+    while stack:
+        e = stack.pop()
+        yield e
+        stack.extend(reversed(e.children))

@@ -30,7 +30,13 @@ from __future__ import annotations
 import numpy as np
 
 from mechsing.formats.frames import frame, rpy
-from mechsing.formats.writer import Bodies, JointSpec, MechanismSpec, joint_name_problem
+from mechsing.formats.writer import (
+    Bodies,
+    JointSpec,
+    MechanismSpec,
+    joint_name_problem,
+    name_problem,
+)
 from mechsing.formats.xmlsafe import Element, floats, parse
 from mechsing.model.mechanism import MechanismError
 from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
@@ -57,6 +63,8 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
 
     if root.tag != "robot":
         raise err(root, "a URDF file's root element is <robot>")
+    if name_problem(root.get("name") or "robot", "robot name"):
+        raise err(root, name_problem(root.get("name") or "robot", "robot name"))  # type: ignore[arg-type]
     links: dict[str, Element] = {}
     for el in root.findall("link"):
         name = el.get("name")
@@ -64,6 +72,8 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
             raise err(el, 'a link needs a name; add name="..."')
         if name in links:
             raise err(el, f"link {name!r} is defined twice (first at line {links[name].line})")
+        if name_problem(name, "link name"):
+            raise err(el, name_problem(name, "link name"))  # type: ignore[arg-type]
         links[name] = el
     if not links:
         raise err(root, "the robot has no <link>; a URDF robot needs links and joints")

@@ -64,6 +64,8 @@ class Element:
     def where(self) -> str:
         """How a message names the element: ``<joint name="J1">``."""
         name = self.attrib.get("name")
+        if name and not name.isprintable():  # control characters shown as escapes
+            name = name.encode("unicode_escape").decode("ascii")
         return f'<{self.tag} name="{name}">' if name else f"<{self.tag}>"
 
 

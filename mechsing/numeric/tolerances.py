@@ -9,6 +9,7 @@ working precision, :mod:`mechsing.numeric.precision` for a precision mode).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 # ---------------------------------------------------------------------------
 # Decision tolerances that are not rank thresholds.  Each is a *decision*
@@ -206,11 +207,26 @@ class Tolerances:
 
     A rank is ``r`` when ``sigma_r >= tau_hi`` and ``sigma_{r+1} <= tau_lo``
     (both relative to the largest singular value); a singular value strictly
-    between the two leaves the rank undecided.
+    between the two leaves the rank undecided.  Floats in float mode; at mp:N
+    mpmath numbers (10^(10-N) and 10^(-N/2) are below the float range for large N),
+    compared with the mode's own numbers.
     """
 
-    tau_lo: float
-    tau_hi: float
+    tau_lo: Any
+    tau_hi: Any
+
+    def shown(self) -> tuple[str, str]:
+        """``tau_lo`` and ``tau_hi`` as text (``1e-12``, ``1e-40``, ``3.16e-351``)."""
+        return _shown(self.tau_lo), _shown(self.tau_hi)
+
+
+def _shown(x: Any) -> str:
+    f = float(x)
+    if f != 0.0 or x == 0:
+        return f"{f:g}"
+    import mpmath  # below the float range: an mp number
+
+    return mpmath.nstr(x, 3)
 
 
 # -- symbolic conditions (mechsing.conditions) -----------------------------------

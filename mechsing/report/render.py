@@ -220,7 +220,7 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
     thresholds = (
         "exact ranks"
         if mode == "exact"
-        else f"rank thresholds {t.tau_lo:g} and {t.tau_hi:g} of the largest singular value"
+        else "rank thresholds {} and {} of the largest singular value".format(*t.shown())
     )
     lines.append(
         f"Precision {mode} ({thresholds}); characteristic length L = {result.length_scale:.4g} m."
