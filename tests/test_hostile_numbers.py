@@ -103,8 +103,22 @@ def test_a_doubling_chain_of_parameters_is_refused_in_linear_time(tmp_path: Path
     r = run_cli_subprocess(["analyze", f.name], cwd=tmp_path, timeout=60)
     assert time.monotonic() - t0 < 30
     assert r.status == 2, r.err
-    assert "chain.yaml:13: parameter 'a11'" in r.err
-    assert "too large for exact evaluation" in r.err and "at most 5000" in r.err
+    assert "chain.yaml:11: parameter 'a9'" in r.err
+    assert "too large for exact evaluation" in r.err and "has 2045 parts (at most 2000)" in r.err
+
+
+def test_a_deep_chain_of_parameters_is_refused_in_bounded_time(tmp_path: Path) -> None:
+    # a_k = sin(a_{k-1}) 600 times: each step cost sympy time growing with the depth (265 s
+    # in all before, then a RecursionError read as "nested too deeply" at a325)
+    chain = "".join(f'  a{k}: "sin(a{k - 1})"\n' for k in range(1, 601))
+    f = tmp_path / "deep.yaml"
+    f.write_text(TEMPLATE.format(parameters="parameters:\n  a0: 0.5\n" + chain, d="a600"))
+    t0 = time.monotonic()
+    r = run_cli_subprocess(["analyze", f.name], cwd=tmp_path, timeout=60)
+    assert time.monotonic() - t0 < 30
+    assert r.status == 2, r.err
+    assert "deep.yaml:66: parameter 'a64'" in r.err
+    assert "is nested 65 deep (at most 64)" in r.err
 
 
 def test_a_short_chain_is_evaluated_once_per_parameter(tmp_path: Path) -> None:

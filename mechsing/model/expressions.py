@@ -48,6 +48,7 @@ __all__ = [
     "ALLOWED_FUNCTIONS",
     "ExpressionError",
     "MAX_EXPRESSION_CHARS",
+    "MAX_EXPRESSION_DEPTH",
     "MAX_EXPRESSION_SIZE",
     "is_finite_real",
     "is_plain_decimal",
@@ -68,8 +69,11 @@ MAX_POWER_EXPONENT = 256
 #: largest bit length of an intermediate rational (numerator or denominator)
 MAX_RATIONAL_BITS = 8192
 #: most parts (sympy nodes, counted with repetition) of an exact value, once the
-#: parameters it uses are put in: building and evaluating one costs about 0.2 s
-MAX_EXPRESSION_SIZE = 5000
+#: parameters it uses are put in, and its deepest nesting: building one costs sympy time
+#: that grows with both (a sum of 2000 parts about 0.06 s, a function nested 64 deep
+#: about 0.01 s), so a file of many parameters is read in bounded time per parameter
+MAX_EXPRESSION_SIZE = 2000
+MAX_EXPRESSION_DEPTH = 64
 
 #: whitelisted functions and their number of arguments
 ALLOWED_FUNCTIONS: dict[str, tuple[Any, int]] = {
@@ -123,7 +127,7 @@ class _Builder:
         self.text = text
         self.shown = _short(text)
         self.names = names or {}
-        self.sizes: dict[Any, int] = {}
+        self.sizes: dict[Any, tuple[int, int]] = {}
 
     def fail(self, what: str) -> ExpressionError:
         return ExpressionError(
@@ -261,20 +265,24 @@ class _Builder:
                 raise ExpressionError(f"expression {self.shown!r}: a number in it is too large")
         if value.has(sympy.zoo, sympy.nan, sympy.oo, -sympy.oo):
             raise ExpressionError(f"expression {self.shown!r} is not a finite number")
-        size = _tree_size(value, self.sizes)
-        if size > MAX_EXPRESSION_SIZE:
+        size, depth = _tree_size(value, self.sizes)
+        if size > MAX_EXPRESSION_SIZE or depth > MAX_EXPRESSION_DEPTH:
+            what = (
+                f"has {size} parts (at most {MAX_EXPRESSION_SIZE})"
+                if size > MAX_EXPRESSION_SIZE
+                else f"is nested {depth} deep (at most {MAX_EXPRESSION_DEPTH})"
+            )
             raise ExpressionError(
-                f"expression {self.shown!r} is too large for exact evaluation: its value has "
-                f"{size} parts once the parameters it uses are put in (at most "
-                f"{MAX_EXPRESSION_SIZE}); write a number instead, or use each parameter "
-                "fewer times"
+                f"expression {self.shown!r} is too large for exact evaluation: its value "
+                f"{what} once the parameters it uses are put in; write a number instead, "
+                "or use each parameter fewer times"
             )
         return value
 
 
-def _tree_size(value: Any, memo: dict[Any, int]) -> int:
-    """Nodes of a sympy value counted as a tree (a shared part once per use), computed
-    over its distinct parts only (linear in them, without recursion)."""
+def _tree_size(value: Any, memo: dict[Any, tuple[int, int]]) -> tuple[int, int]:
+    """Nodes and depth of a sympy value counted as a tree (a shared part once per use),
+    computed over its distinct parts only (linear in them, without recursion)."""
     stack = [value]
     while stack:
         x = stack[-1]
@@ -286,7 +294,8 @@ def _tree_size(value: Any, memo: dict[Any, int]) -> int:
             stack.extend(todo)
             continue
         stack.pop()
-        memo[x] = 1 + sum(memo[a] for a in x.args)
+        parts = [memo[a] for a in x.args]
+        memo[x] = (1 + sum(p[0] for p in parts), 1 + max((p[1] for p in parts), default=0))
     return memo[value]
 
 
