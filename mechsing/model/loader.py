@@ -646,8 +646,9 @@ class _Builder:
             raise self.r.error(
                 "joints",
                 line,
-                f"the mechanism is {size:.3g} m across, too small a size (every joint point "
-                f"within {1 / MAX_NUMBER:g} m of the origin); check the lengths and their unit",
+                f"every joint point lies within {size:.3g} m of the origin: too small a "
+                f"mechanism (some point must be at least {1 / MAX_NUMBER:g} m from it); check "
+                "the lengths and their unit",
             )
 
     def joint(self, e: YValue, bodyset: set[str]) -> Joint:
