@@ -125,7 +125,7 @@ def run(args: argparse.Namespace) -> int:
         dropped = "nothing dropped" if m.dropped is None else f"dropped {_num(m.dropped)}"
         print(
             f"  margin: kept {_num(m.kept)}, {dropped} "
-            f"(tau_lo {m.tau_lo:g}, tau_hi {m.tau_hi:g}, L {m.length_scale:g})"
+            f"(tau_lo {m.thresholds[0]}, tau_hi {m.thresholds[1]}, L {m.length_scale:g})"
         )
     return 0
 

@@ -48,10 +48,13 @@ class Margin:
     eig_margin: float | None = None
     sigma_max: float | None = None
     rounding: float | None = None
+    #: tau_lo and tau_hi as text, also below the float range (``1.0e-690``)
+    thresholds: tuple[str, str] = field(default=("", ""), compare=False, repr=False)
 
     def __post_init__(self) -> None:
         # the record is in floats (JSON): an mp:N threshold below the float range
-        # (N > 333) is recorded as 0; the decision itself compared mp numbers
+        # (N > 333) is recorded as 0 (its text keeps it); the decision compared mp numbers
+        object.__setattr__(self, "thresholds", Tolerances(self.tau_lo, self.tau_hi).shown())
         object.__setattr__(self, "tau_lo", float(self.tau_lo))
         object.__setattr__(self, "tau_hi", float(self.tau_hi))
 
