@@ -48,7 +48,7 @@ class Margin:
     eig_margin: float | None = None
     sigma_max: float | None = None
     rounding: float | None = None
-    #: tau_lo and tau_hi as text, also below the float range (``1.0e-690``)
+    #: tau_lo and tau_hi as text, also below the float range (``1e-690``)
     thresholds: tuple[str, str] = field(default=("", ""), compare=False, repr=False)
 
     def __post_init__(self) -> None:

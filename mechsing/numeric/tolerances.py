@@ -8,6 +8,7 @@ working precision, :mod:`mechsing.numeric.precision` for a precision mode).
 
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
 from typing import Any
 
@@ -216,17 +217,20 @@ class Tolerances:
     tau_hi: Any
 
     def shown(self) -> tuple[str, str]:
-        """``tau_lo`` and ``tau_hi`` as text (``1e-12``, ``1e-40``, ``3.16e-351``)."""
+        """``tau_lo`` and ``tau_hi`` as text (``1e-12``, ``1e-40``, ``3.16228e-351``)."""
         return _shown(self.tau_lo), _shown(self.tau_hi)
 
 
 def _shown(x: Any) -> str:
     f = float(x)
-    if f != 0.0 or x == 0:
+    if x == 0 or abs(f) >= sys.float_info.min:  # a normal float (not a rounded subnormal)
         return f"{f:g}"
-    import mpmath  # below the float range: an mp number
+    import mpmath  # below the float range: an mp number (mpmath's own text of one with
+    # thousands of exponent digits converts an integer of as many digits, refused by Python)
 
-    return mpmath.nstr(x, 3)
+    e = int(mpmath.floor(mpmath.log10(abs(x))))
+    m = float(x * mpmath.mpf(10) ** (-e))
+    return f"{m:g}e{e:+03d}" if m != 1 else f"1e{e:+03d}"
 
 
 # -- symbolic conditions (mechsing.conditions) -----------------------------------
