@@ -7,7 +7,7 @@ import socket
 
 import pytest
 
-from tests.cli import run_cli
+from tests.cli import run_cli, runtime_warnings
 
 BILLION_LAUGHS = """<?xml version="1.0"?>
 <!DOCTYPE lolz [
@@ -166,6 +166,13 @@ def test_hostile_xml_is_bad_input(case: str, command: str, tmp_path, no_network)
     if line is not None:
         assert f"{f}:{line}:" in r.err
     assert "root:" not in r.err + r.out  # nothing of /etc/passwd
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_no_runtime_warning_on_hostile_xml(case: str, tmp_path) -> None:
+    f = tmp_path / "robot.xml"
+    f.write_text(CASES[case][0])
+    assert runtime_warnings(["analyze", str(f)]) == []
 
 
 def test_a_yaml_file_is_not_converted(tmp_path) -> None:
