@@ -54,7 +54,8 @@ class Margin:
     def __post_init__(self) -> None:
         # the record is in floats (JSON): an mp:N threshold below the float range
         # (N > 333) is recorded as 0 (its text keeps it); the decision compared mp numbers
-        object.__setattr__(self, "thresholds", Tolerances(self.tau_lo, self.tau_hi).shown())
+        if self.thresholds == ("", ""):  # (dataclasses.replace passes them on)
+            object.__setattr__(self, "thresholds", Tolerances(self.tau_lo, self.tau_hi).shown())
         object.__setattr__(self, "tau_lo", float(self.tau_lo))
         object.__setattr__(self, "tau_hi", float(self.tau_hi))
 
