@@ -10,6 +10,7 @@ import json
 import os
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 from typing import NamedTuple
 
@@ -32,6 +33,15 @@ def run_cli(argv: list[str]) -> CliRun:
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         rc = main([str(a) for a in argv])
     return CliRun(rc, out.getvalue(), err.getvalue())
+
+
+def runtime_warnings(argv: list[str]) -> list[str]:
+    """The RuntimeWarnings (numpy's overflow, invalid value ...) an in-process run raises,
+    every time one is raised: pytest would swallow them from stderr, so they are recorded."""
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        run_cli(argv)
+    return [f"{w.filename}:{w.lineno}: {w.message}" for w in seen if w.category is RuntimeWarning]
 
 
 def run_cli_subprocess(

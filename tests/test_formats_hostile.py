@@ -8,7 +8,7 @@ import socket
 
 import pytest
 
-from tests.cli import run_cli
+from tests.cli import run_cli, runtime_warnings
 
 BILLION_LAUGHS = """<?xml version="1.0"?>
 <!DOCTYPE lolz [
@@ -34,7 +34,7 @@ DOCTYPE_AFTER_COMMENT = """<!-- hello -->
 HUGE_ATTRIBUTE = '<robot name="x">\n<link name="' + "a" * 200_000 + '"/>\n</robot>\n'
 
 
-def _urdf(joints: str, links: str = "abc") -> str:
+def _urdf(joints: str, links: str | list[str] = "abc") -> str:
     body = "".join(f'<link name="{n}"/>\n' for n in links)
     return f'<robot name="r">\n{body}{joints}</robot>\n'
 
@@ -67,6 +67,51 @@ BAD_NAME = _urdf(
     '<joint name="q[1]" type="revolute"><parent link="b"/><child link="c"/></joint>\n'
 )
 MALFORMED = '<robot name="x">\n<link name="a">\n</robot>\n'
+HUGE_ORIGIN = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/>\n'
+    '<origin xyz="1e300 0 0"/></joint>\n',
+    "ab",
+)
+UNDERSCORE_NUMBER = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/>\n'
+    '<origin xyz="1_000 0 0"/></joint>\n',
+    "ab",
+)
+FULLWIDTH_NUMBER = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/>\n'
+    '<axis xyz="0 0 \uff11"/></joint>\n',
+    "ab",
+)
+NAN_NUMBER = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/>\n'
+    '<axis xyz="0 0 nan"/></joint>\n',
+    "ab",
+)
+MJCF_HUGE_QUAT = (
+    '<mujoco>\n<worldbody>\n<body quat="1e308 1e308 0 0"><joint/></body>\n</worldbody>\n</mujoco>\n'
+)
+MJCF_HUGE_ZAXIS = (
+    '<mujoco>\n<worldbody>\n<body zaxis="1e308 1e308 0"><joint/></body>\n</worldbody>\n</mujoco>\n'
+)
+MJCF_ZERO_QUAT = (
+    '<mujoco>\n<worldbody>\n<body quat="0 0 0 0"><joint/></body>\n</worldbody>\n</mujoco>\n'
+)
+# names YAML cannot carry (C1 controls, NEL, line separators): named at the XML element,
+# not as "malformed YAML ... line 7" of a converted text the user never saw
+C1_LINK_NAME = _urdf(
+    '<joint name="J1" type="revolute"><parent link="a"/><child link="b"/></joint>\n',
+    ["a", "b\x85x", "b"],
+)
+C1_JOINT_NAME = _urdf(
+    '<joint name="J\x81" type="revolute"><parent link="a"/><child link="b"/></joint>\n', "ab"
+)
+MJCF_NEL_BODY = (
+    '<mujoco>\n<worldbody>\n<body name="arm\x85"><joint/></body>\n</worldbody>\n</mujoco>\n'
+)
+MJCF_SEPARATOR_MODEL = '<mujoco model="m\u2028x">\n<worldbody/>\n</mujoco>\n'
+MJCF_PARALLEL_XYAXES = (
+    '<mujoco>\n<worldbody>\n<body xyaxes="1 0 0 2 0 0"><joint/></body>\n</worldbody>\n</mujoco>\n'
+)
 
 CASES = {
     "billion_laughs": (BILLION_LAUGHS, "DOCTYPE", 2),
@@ -82,6 +127,19 @@ CASES = {
     "mjcf_joint_coupling": (MJCF_TENDON, "cannot be modelled", 3),
     "malformed": (MALFORMED, "malformed XML", 3),
     "bad_joint_name": (BAD_NAME, "holds '[' or ']'", 6),
+    # numbers: ASCII decimal syntax and a sensible size (at most 1e12), as the YAML's
+    "urdf_huge_origin": (HUGE_ORIGIN, "'1e300' is too large", 5),
+    "urdf_underscore_number": (UNDERSCORE_NUMBER, "ASCII decimal digits", 5),
+    "urdf_fullwidth_number": (FULLWIDTH_NUMBER, "ASCII decimal digits", 5),
+    "urdf_nan": (NAN_NUMBER, "ASCII decimal digits", 5),
+    "mjcf_huge_quat": (MJCF_HUGE_QUAT, "'1e308' is too large", 3),
+    "mjcf_huge_zaxis": (MJCF_HUGE_ZAXIS, "'1e308' is too large", 3),
+    "mjcf_zero_quat": (MJCF_ZERO_QUAT, "degenerate (a zero vector has no direction)", 3),
+    "mjcf_parallel_xyaxes": (MJCF_PARALLEL_XYAXES, "two directions are parallel", 3),
+    "urdf_c1_link_name": (C1_LINK_NAME, "the link name 'b\\x85x' holds U+0085", 3),
+    "urdf_c1_joint_name": (C1_JOINT_NAME, "the joint name 'J\\x81' holds U+0081", 4),
+    "mjcf_nel_body_name": (MJCF_NEL_BODY, "the body name 'arm\\x85' holds U+0085", 3),
+    "mjcf_separator_model_name": (MJCF_SEPARATOR_MODEL, "holds U+2028 (a line or paragraph", 1),
 }
 
 
@@ -175,6 +233,11 @@ def test_a_mimic_of_an_undefined_joint_is_refused_only_where_analysed(tmp_path) 
     r = run_cli(["analyze", str(f), "--output-body", "b", "--format", "json"])
     assert r.status == 0, r.err
     assert json.loads(r.out)["scene"]["dropped_couplings"] == ["J2"]
+@pytest.mark.parametrize("case", CASES)
+def test_no_runtime_warning_on_hostile_xml(case: str, tmp_path) -> None:
+    f = tmp_path / "robot.xml"
+    f.write_text(CASES[case][0])
+    assert runtime_warnings(["analyze", str(f)]) == []
 
 
 def test_a_yaml_file_is_not_converted(tmp_path) -> None:
@@ -189,3 +252,42 @@ def test_a_huge_file_is_refused(tmp_path) -> None:
         r = run_cli([command, str(f)])
         assert r.status == 2 and ("MB" in r.err or "bytes" in r.err), r.err
         assert "Traceback" not in r.err
+
+
+def _nested_mjcf(depth: int) -> str:
+    """A chain of ``depth`` bodies, each inside the one before, each with a hinge about z
+    through its own origin, the next body 1 m further along x."""
+    opening = "".join(
+        f'<body name="b{i}" pos="1 0 0"><joint name="j{i}" axis="0 0 1"/>\n' for i in range(depth)
+    )
+    return f"<mujoco>\n<worldbody>\n{opening}{'</body>' * depth}\n</worldbody>\n</mujoco>\n"
+
+
+def test_bodies_nested_up_to_the_depth_limit_are_read(tmp_path) -> None:
+    # mujoco, worldbody, 497 bodies and a joint: 500 levels, the parser's limit (MAX_DEPTH);
+    # 493 to 498 bodies were a RecursionError (exit 4) before
+    f = tmp_path / "deep.xml"
+    f.write_text(_nested_mjcf(497))
+    r = run_cli(["convert", str(f)])
+    assert r.status == 0, r.err
+    assert r.out.count("type: R") == 497
+    # the last joint's axis passes through the last body's origin, 497 m along x
+    assert '{name: "j496", type: R, between: ["b495", "b496"], axis: [0, 0, 1], ' in r.out
+    assert "point: [497, 0, 0]}" in r.out
+    f.write_text(_nested_mjcf(498))
+    r = run_cli(["convert", str(f)])
+    assert r.status == 2 and "nested more than 500 levels deep" in r.err, r.err
+
+
+def test_nested_default_classes_up_to_the_depth_limit(tmp_path) -> None:
+    depth = 490
+    classes = "".join(f'<default class="c{i}">' for i in range(depth))
+    f = tmp_path / "classes.xml"
+    f.write_text(
+        f'<mujoco>\n<default>\n{classes}<joint axis="0 1 0"/>{"</default>" * depth}\n'
+        f'</default>\n<worldbody>\n<body childclass="c{depth - 1}"><joint/></body>\n'
+        "</worldbody>\n</mujoco>\n"
+    )
+    r = run_cli(["convert", str(f)])
+    assert r.status == 0, r.err
+    assert "axis: [0, 1, 0]" in r.out  # the innermost class's axis

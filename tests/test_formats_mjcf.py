@@ -142,6 +142,14 @@ def _axis(xml_body: str, compiler: str = "") -> tuple[float, ...]:
         # intrinsic x then y: Rx(90) Ry(90) z = x; extrinsic: Ry(90) Rx(90) z = -y
         ('<body euler="90 90 0"><joint/></body>', "", (1, 0, 0)),
         ('<body euler="90 90 0"><joint/></body>', '<compiler eulerseq="XYZ"/>', (0, -1, 0)),
+        # a quaternion or direction is normalised without overflow or underflow: scaled by
+        # its largest component first (the plain norm of these is 0, or of 1e11-sized ones
+        # fine, and must give the same frame as the unit ones above)
+        ('<body quat="7e-201 0 7e-201 0"><joint/></body>', "", (1, 0, 0)),
+        ('<body quat="7e10 0 7e10 0"><joint/></body>', "", (1, 0, 0)),
+        ('<body zaxis="1e-300 0 0"><joint/></body>', "", (1, 0, 0)),
+        ('<body xyaxes="0 1e-300 0 -1e-300 0 0"><joint axis="1 0 0"/></body>', "", (0, 1, 0)),
+        ('<body axisangle="1e-300 0 0 90"><joint/></body>', "", (0, -1, 0)),
         # nested bodies compose their frames
         ('<body euler="0 0 90"><body euler="90 0 0"><joint/></body></body>', "", (1, 0, 0)),
     ],

@@ -289,8 +289,9 @@ def _analysis(r: AnalysisResult) -> dict[str, Any]:
         "mechanism": r.mechanism.name,
         "precision": {
             "mode": str(r.precision),
-            "tau_lo": t.tau_lo,
-            "tau_hi": t.tau_hi,
+            # floats: an mp:N threshold below the float range (N > 333) is 0 here
+            "tau_lo": float(t.tau_lo),
+            "tau_hi": float(t.tau_hi),
             "length_scale": r.length_scale,
         },
         "properties": [_property(p) for p in r.properties],

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 
 import numpy as np
 
@@ -28,8 +27,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("screws", nargs="*", metavar="SCREW", help="w1,w2,w3,v1,v2,v3")
     parser.add_argument(
         "--length-scale",
-        type=float,
-        default=1.0,
+        default="1",
         metavar="L",
         help="characteristic length of the commensurate metric (default 1)",
     )
@@ -39,6 +37,24 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="float, mp:N, exact or auto (default: exact for rational input, else auto)",
     )
     parser.add_argument("--format", choices=("text", "json"), default="text", help="output format")
+
+
+def _length(text: str) -> float:
+    """--length-scale: a positive decimal number of a sensible size (either way)."""
+    from mechsing.numeric import decimal_float, is_sensible_size
+
+    try:
+        x = decimal_float(text)
+    except ValueError as exc:
+        raise UserError(
+            f"identify: --length-scale: {exc}; give a positive length such as 1"
+        ) from None
+    if not (x > 0 and is_sensible_size(1 / x)):
+        raise UserError(
+            f"identify: --length-scale {text!r} is not a positive length of a sensible size "
+            "(e.g. --length-scale 0.5)"
+        )
+    return x
 
 
 def parse_screws(texts: list[str]) -> tuple[np.ndarray, bool]:
@@ -73,9 +89,7 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.numeric import parse_precision, to_float
     from mechsing.subgroups import identify
 
-    L = args.length_scale
-    if not (math.isfinite(L) and L > 0):
-        raise UserError(f"identify: --length-scale {L} must be a positive finite length")
+    L = _length(str(args.length_scale))
     # no screw generates the identity subgroup E (dimension 0), as the API says
     screws, rational = parse_screws([t for t in args.screws if t != "--"])
     if args.precision is not None:
@@ -110,7 +124,7 @@ def run(args: argparse.Namespace) -> int:
         dropped = "nothing dropped" if m.dropped is None else f"dropped {_num(m.dropped)}"
         print(
             f"  margin: kept {_num(m.kept)}, {dropped} "
-            f"(tau_lo {m.tau_lo:g}, tau_hi {m.tau_hi:g}, L {m.length_scale:g})"
+            f"(tau_lo {m.thresholds[0]}, tau_hi {m.thresholds[1]}, L {m.length_scale:g})"
         )
     return 0
 

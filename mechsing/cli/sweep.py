@@ -81,6 +81,14 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="distribute the rows of a grid with the Dask scheduler at ADDRESS",
     )
     p.add_argument(
+        "--connect-timeout",
+        type=_timeout,
+        default=None,
+        metavar="SECONDS",
+        help="with --scheduler: seconds the scheduler has to accept the connection and answer "
+        "(default 5)",
+    )
+    p.add_argument(
         "--max-classified",
         type=_positive_int("--max-classified"),
         default=None,
@@ -105,6 +113,22 @@ def _positive_int(option: str) -> Callable[[str], int]:
     return parse
 
 
+def _timeout(text: str) -> float:
+    from mechsing.numeric import decimal_float
+    from mechsing.sweeps.distributed import MAX_CONNECT_TIMEOUT
+
+    try:
+        x = decimal_float(text)
+    except ValueError:
+        x = 0.0
+    if not 0 < x <= MAX_CONNECT_TIMEOUT:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a number of seconds between 0 and {MAX_CONNECT_TIMEOUT:g} "
+            "(e.g. --connect-timeout 10)"
+        )
+    return x
+
+
 def output_format(fmt: str | None, out: str | None) -> str:
     """The format asked for, else the one OUT's extension names, else text."""
     if fmt:
@@ -127,6 +151,17 @@ def run(args: argparse.Namespace) -> int:
             raise UserError(
                 "--workers and --scheduler distribute the rows of a grid: give two --vary"
             )
+        if args.workers or args.scheduler:  # before the file is read
+            from mechsing.sweeps.distributed import check_workers, parse_scheduler
+
+            if args.workers and args.scheduler:
+                raise UserError(
+                    "give --workers N (a local cluster) or --scheduler ADDRESS, not both"
+                )
+            if args.workers:
+                check_workers(args.workers)
+            else:
+                parse_scheduler(args.scheduler)
         fmt = output_format(args.format, args.output)
         if args.output:  # before the work: a missing directory or the input file is refused now
             from mechsing.files import check_output
@@ -153,7 +188,12 @@ def run(args: argparse.Namespace) -> int:
             _destination(args.output, args.file) as out,
             _progress_bar(sweep_run, args.quiet) as progress,
         ):
-            rows = sweep_run.rows(progress, workers=args.workers, scheduler=args.scheduler)
+            rows = sweep_run.rows(
+                progress,
+                workers=args.workers,
+                scheduler=args.scheduler,
+                connect_timeout=args.connect_timeout,
+            )
             if fmt == "json":
                 write_json(sweep_run, rows, out)
             elif fmt == "csv":

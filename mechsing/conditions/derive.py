@@ -65,6 +65,7 @@ from mechsing.numeric import (
     CONDITION_ROOT_MERGE,
     CONDITION_ROOT_RTOL,
     CONDITION_VANISH_RTOL,
+    unit_vector,
 )
 from mechsing.reader import read_mechanism
 from mechsing.timelimit import TimeLimit, TimeLimitExceeded
@@ -435,7 +436,7 @@ class _Explainer:
             x = _numeric(c, pt, self.params).ravel()
             w, v = x[:3], x[3:]
             if t == "P":
-                out.append((n, None, v / np.linalg.norm(v)))
+                out.append((n, None, unit_vector(v)))
             else:
                 nw = np.linalg.norm(w)
                 out.append((n, np.cross(w, v) / nw**2, w / nw))
@@ -513,7 +514,7 @@ class _Explainer:
                     where = f"the plane of the parallel axes of {a} and {b}"
                 else:
                     where = f"the plane through the axis of {a} parallel to the axis of {b}"
-                normal = normal / np.linalg.norm(normal)
+                normal = unit_vector(normal)
                 if abs(np.dot(W - pa, normal)) < tol * self.scale:
                     out.add(f"the wrist centre (where {who} meet) is in {where}")
         return out

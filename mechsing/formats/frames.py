@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
+
 __all__ = [
     "axis_angle",
     "euler",
@@ -39,8 +41,7 @@ def frame(rotation: np.ndarray | None = None, origin: np.ndarray | None = None) 
 
 def axis_angle(axis: np.ndarray, angle: float) -> np.ndarray:
     """The rotation by ``angle`` (rad) about the unit direction of ``axis`` (Rodrigues)."""
-    a = np.asarray(axis, dtype=float)
-    a = a / np.linalg.norm(a)
+    a = unit_vector(axis)
     k = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
     return np.eye(3) + np.sin(angle) * k + (1.0 - np.cos(angle)) * (k @ k)
 
@@ -57,8 +58,7 @@ def rpy(roll: float, pitch: float, yaw: float) -> np.ndarray:
 
 def quaternion(w: float, x: float, y: float, z: float) -> np.ndarray:
     """The rotation of the quaternion ``w x y z`` (normalised first)."""
-    q = np.array([w, x, y, z], dtype=float)
-    w, x, y, z = q / np.linalg.norm(q)
+    w, x, y, z = unit_vector([w, x, y, z])
     return np.array(
         [
             [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
@@ -80,18 +80,18 @@ def euler(angles: tuple[float, float, float], seq: str) -> np.ndarray:
 
 def xyaxes(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     """MJCF's ``xyaxes``: x normalised, y made orthogonal to it, z = x cross y."""
-    x = np.asarray(x, dtype=float)
-    x = x / np.linalg.norm(x)
-    y = np.asarray(y, dtype=float)
+    x = unit_vector(x)
+    y = unit_vector(y)
     y = y - (y @ x) * x
-    y = y / np.linalg.norm(y)
+    if not safe_norm(y) > NEAR_ZERO_VECTOR:
+        raise ValueError("xyaxes: the two directions are parallel")
+    y = unit_vector(y)
     return np.column_stack([x, y, np.cross(x, y)])
 
 
 def zaxis(z: np.ndarray) -> np.ndarray:
     """MJCF's ``zaxis``: the smallest rotation taking z to the given direction."""
-    z = np.asarray(z, dtype=float)
-    z = z / np.linalg.norm(z)
+    z = unit_vector(z)
     e = _UNIT["z"]
     c = float(e @ z)
     v = np.cross(e, z)

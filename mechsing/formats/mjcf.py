@@ -44,9 +44,16 @@ import math
 import numpy as np
 
 from mechsing.formats.frames import axis_angle, euler, frame, quaternion, xyaxes, zaxis
-from mechsing.formats.writer import Bodies, JointSpec, MechanismSpec, joint_name_problem
+from mechsing.formats.writer import (
+    Bodies,
+    JointSpec,
+    MechanismSpec,
+    joint_name_problem,
+    name_problem,
+)
 from mechsing.formats.xmlsafe import Element, floats, parse, required
 from mechsing.model.mechanism import MechanismError
+from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
 
 __all__ = ["MJCF_TYPES", "read_mjcf"]
 
@@ -80,18 +87,21 @@ class _Reader:
     def err(self, el: Element, message: str) -> MechanismError:
         return MechanismError(f"{el.where()}: {message}", path=self.path, line=el.line)
 
-    def read_default(self, d: Element, parent: str | None) -> None:
-        name = d.get("class", "main" if parent is None else None)
-        if name is None:
-            raise self.err(d, 'a nested <default> needs a class name; add class="..."')
-        tags: dict[str, dict[str, str]] = {}
-        for c in d.children:
-            if c.tag == "default":
-                continue
-            tags[c.tag] = dict(c.attrib)
-        self.classes[name] = (parent, tags)
-        for c in d.findall("default"):
-            self.read_default(c, name)
+    def read_default(self, top: Element, top_parent: str | None) -> None:
+        """The classes of a <default> and of the ones nested in it (a stack, not
+        recursion), in document order."""
+        todo: list[tuple[Element, str | None]] = [(top, top_parent)]
+        while todo:
+            d, parent = todo.pop()
+            name = d.get("class", "main" if parent is None else None)
+            if name is None:
+                raise self.err(d, 'a nested <default> needs a class name; add class="..."')
+            tags: dict[str, dict[str, str]] = {}
+            for c in d.children:
+                if c.tag != "default":
+                    tags[c.tag] = dict(c.attrib)
+            self.classes[name] = (parent, tags)
+            todo.extend((c, name) for c in reversed(d.findall("default")))
 
     def attrs(self, el: Element, childclass: str | None) -> dict[str, str]:
         """The element's attributes completed from its default class chain."""
@@ -144,8 +154,8 @@ class _Reader:
                 rot = xyaxes(np.array(v[:3]), np.array(v[3:]))
             elif "zaxis" in a:
                 rot = zaxis(np.array(self.nums(el, a, "zaxis", 3, [0, 0, 1])))
-        except (ZeroDivisionError, FloatingPointError):  # pragma: no cover
-            raise self.err(el, "the orientation is degenerate (a zero vector)") from None
+        except ValueError as exc:
+            raise self.err(el, f"the orientation is degenerate ({exc})") from None
         if not np.all(np.isfinite(rot)):
             raise self.err(el, "the orientation is degenerate (a zero vector or quaternion)")
         return frame(rot, np.array(pos))
@@ -164,6 +174,8 @@ def _read(root: Element, path: str) -> MechanismSpec:
             f"{root.where()}: an MJCF file's root element is <mujoco>", path=path, line=root.line
         )
     rd = _Reader(root, path)
+    if name_problem(root.get("model") or "mjcf", "model name"):
+        raise rd.err(root, name_problem(root.get("model") or "mjcf", "model name"))  # type: ignore[arg-type]
     for el in _walk(root):
         if el.tag == "include":
             raise rd.err(
@@ -189,16 +201,23 @@ def _read(root: Element, path: str) -> MechanismSpec:
     names: set[str] = set()
     counter = [0]
 
+    # the tree is walked with a stack, not by recursion (a chain nested up to the parser's
+    # MAX_DEPTH needs no Python frame per level): in document order, each element with
+    # its parent body, its parent's frame and the default class its children inherit
+    todo: list[tuple[Element, str, np.ndarray, str | None]] = []
+
     def visit(
         el: Element, parent_body: str, parent_frame: np.ndarray, childclass: str | None
     ) -> None:
-        for c in el.children:
-            if c.tag == "site":
-                a = rd.attrs(c, childclass)
-                if a.get("name"):
-                    sites[a["name"]] = (parent_body, parent_frame @ rd.pose(c, a))
-            elif c.tag in ("body", "frame"):
-                body(c, parent_body, parent_frame, childclass)
+        kids = [c for c in el.children if c.tag in ("site", "body", "frame")]
+        todo.extend((c, parent_body, parent_frame, childclass) for c in reversed(kids))
+
+    def site(
+        c: Element, parent_body: str, parent_frame: np.ndarray, childclass: str | None
+    ) -> None:
+        a = rd.attrs(c, childclass)
+        if a.get("name"):
+            sites[a["name"]] = (parent_body, parent_frame @ rd.pose(c, a))
 
     def body(el: Element, parent: str, parent_frame: np.ndarray, childclass: str | None) -> None:
         a = dict(el.attrib)
@@ -211,6 +230,8 @@ def _read(root: Element, path: str) -> MechanismSpec:
         name = el.get("name") or f"body{counter[0]}"
         if name in placed or name == _WORLD:
             raise rd.err(el, f"body name {name!r} is used twice; give each body its own name")
+        if name_problem(name, "body name"):
+            raise rd.err(el, name_problem(name, "body name"))  # type: ignore[arg-type]
         jels = [c for c in el.children if c.tag in ("joint", "freejoint")]
         prev = parent
         for k, j in enumerate(jels):
@@ -233,10 +254,9 @@ def _read(root: Element, path: str) -> MechanismSpec:
             p = t @ np.array([*rd.nums(j, ja, "pos", 3, [0, 0, 0]), 1.0])
             ax = np.array(rd.nums(j, ja, "axis", 3, [0, 0, 1]))
             if jt in ("hinge", "slide"):
-                nrm = float(np.linalg.norm(ax))
-                if not nrm > 1e-9:
+                if not safe_norm(ax) > NEAR_ZERO_VECTOR:
                     raise rd.err(j, 'the axis is a zero vector; give a direction such as "0 0 1"')
-                w = t[:3, :3] @ (ax / nrm)
+                w = t[:3, :3] @ unit_vector(ax)
                 spec.axis = tuple(w)  # type: ignore[assignment]
                 if jt == "hinge":
                     spec.point = tuple(p[:3])  # type: ignore[assignment]
@@ -260,6 +280,9 @@ def _read(root: Element, path: str) -> MechanismSpec:
         visit(el, name, t, cc)
 
     visit(world, _WORLD, np.eye(4), None)
+    while todo:
+        item = todo.pop()
+        (site if item[0].tag == "site" else body)(*item)
     eq = root.findall("equality")
     n_connect = 0
     for group in eq:
@@ -369,6 +392,9 @@ def _read(root: Element, path: str) -> MechanismSpec:
 
 
 def _walk(el: Element):  # type: ignore[no-untyped-def]
-    yield el
-    for c in el.children:
-        yield from _walk(c)
+    """Every element under ``el`` (itself first), in document order, without recursion."""
+    stack = [el]
+    while stack:
+        e = stack.pop()
+        yield e
+        stack.extend(reversed(e.children))

@@ -47,9 +47,11 @@ from mechsing.formats.writer import (
     JointSpec,
     MechanismSpec,
     joint_name_problem,
+    name_problem,
 )
 from mechsing.formats.xmlsafe import Element, floats, parse, required
 from mechsing.model.mechanism import MechanismError
+from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
 
 __all__ = ["URDF_TYPES", "read_urdf"]
 
@@ -74,6 +76,8 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
     if root.tag != "robot":
         raise err(root, "a URDF file's root element is <robot>")
     required(root, path, "a URDF robot has a name (the URDF specification requires it)", ("name",))
+    if name_problem(root.get("name") or "robot", "robot name"):
+        raise err(root, name_problem(root.get("name") or "robot", "robot name"))  # type: ignore[arg-type]
     links: dict[str, Element] = {}
     for el in root.findall("link"):
         name = el.get("name")
@@ -81,6 +85,8 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
             raise err(el, 'a link needs a name; add name="..."')
         if name in links:
             raise err(el, f"link {name!r} is defined twice (first at line {links[name].line})")
+        if name_problem(name, "link name"):
+            raise err(el, name_problem(name, "link name"))  # type: ignore[arg-type]
         links[name] = el
     if not links:
         raise err(root, "the robot has no <link>; a URDF robot needs links and joints")
@@ -182,10 +188,9 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         if axis_el is not None:  # the element is optional, its xyz is not
             required(axis_el, path, "a URDF <axis> gives its direction", ("xyz",))
         axis = floats(axis_el, "xyz", 3, path) if axis_el is not None else [1, 0, 0]
-        n = float(np.linalg.norm(axis))
-        if not n > 1e-9:
+        if not safe_norm(axis) > NEAR_ZERO_VECTOR:
             raise err(axis_el or el, 'the axis is a zero vector; give a direction such as "0 0 1"')
-        w = tj[:3, :3] @ (np.array(axis) / n)
+        w = tj[:3, :3] @ unit_vector(axis)
         p = tj[:3, 3]
         spec = JointSpec(el.get("name"), jtype, (a, b))  # type: ignore[arg-type]
         if jtype == "R":

@@ -17,6 +17,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import unicodedata
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -52,9 +53,41 @@ def number(x: float) -> str:
 RESERVED_JOINT_NAMES = ("start", "pose")
 
 
+def _unwritable(ch: str) -> bool:
+    # control characters (C0, DEL, C1 with NEL), line and paragraph separators,
+    # surrogates and the non-characters U+FFFE, U+FFFF: YAML refuses them, or reads a
+    # line break inside a name
+    return unicodedata.category(ch) in ("Cc", "Cs", "Zl", "Zp") or ch in "\ufffe\uffff"
+
+
+def name_problem(name: str, what: str) -> str | None:
+    """Why ``name`` (a body's, a model's ...; ``what`` says which) cannot be written in a
+    mechanism file (None when it can): a control character, a line separator ..."""
+    bad = next((ch for ch in name if _unwritable(ch)), None)
+    if bad is None:
+        return None
+    kind = (
+        "a line or paragraph separator"
+        if unicodedata.category(bad) in ("Zl", "Zp")
+        else ("a control character" if unicodedata.category(bad) == "Cc" else "not a character")
+    )
+    return (
+        f"the {what} {name!r} holds U+{ord(bad):04X} ({kind}), which a mechanism file "
+        "cannot carry; rename it"
+    )
+
+
+def _comment(text: str) -> str:
+    """``text`` for a YAML comment: the characters a name may not hold, escaped."""
+    return "".join(ch.encode("unicode_escape").decode() if _unwritable(ch) else ch for ch in text)
+
+
 def joint_name_problem(name: str) -> str | None:
     """Why ``name`` cannot be a mechsing joint's name (None when it can): the importers
     say so on the element's line rather than on a line of the converted YAML."""
+    problem = name_problem(name, "joint name")
+    if problem:
+        return problem
     if "[" in name or "]" in name:
         return (
             f"the joint name {name!r} holds '[' or ']', which select coordinates in mechsing; "
@@ -177,9 +210,9 @@ class Bodies:
 
 def to_yaml(spec: MechanismSpec) -> str:
     """The mechsing YAML text of ``spec``, with a comment naming its source."""
-    lines = [f"# {line}" for line in spec.source.splitlines()]
+    lines = [f"# {_comment(line)}" for line in spec.source.splitlines()]
     for note in spec.notes:
-        lines.append(f"# {note}")
+        lines.append(f"# {_comment(note)}")
     lines.append(f"mechanism: {_name(spec.name)}")
     lines.append(f"units: {{length: m, angle: {spec.angle_unit}}}")
     lines.append(f"ground: {_name(spec.ground)}")

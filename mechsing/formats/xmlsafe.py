@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from xml.parsers import expat
 
 from mechsing.model.mechanism import MechanismError
+from mechsing.numeric import decimal_float, is_decimal_text
 
 __all__ = [
     "MAX_ATTRIBUTE_CHARS",
@@ -63,6 +64,8 @@ class Element:
     def where(self) -> str:
         """How a message names the element: ``<joint name="J1">``."""
         name = self.attrib.get("name")
+        if name and not name.isprintable():  # control characters shown as escapes
+            name = name.encode("unicode_escape").decode("ascii")
         return f'<{self.tag} name="{name}">' if name else f"<{self.tag}>"
 
 
@@ -211,8 +214,6 @@ def floats(
 ) -> list[float]:
     """The attribute ``key`` of ``el`` as ``n`` finite numbers (any count when ``n`` is
     None), or ``default`` when absent; a MechanismError naming the element and line."""
-    import math
-
     text = el.get(key)
     if text is None:
         if default is None:
@@ -220,19 +221,21 @@ def floats(
                 f"{el.where()} needs the attribute {key!r}; add it", path=path, line=el.line
             )
         return list(default)
-    try:
-        out = [float(t) for t in text.split()]
-    except ValueError:
-        out = []
-        ok = False
-    else:
-        ok = all(math.isfinite(x) for x in out) and (n is None or len(out) == n)
-    if not ok:
-        count = f"{n} numbers" if n is not None else "numbers"
-        raise MechanismError(
-            f"{el.where()}: attribute {key}={text[:60]!r} must be {count} separated by "
-            'spaces (finite, e.g. "0 0 1")',
-            path=path,
-            line=el.line,
-        )
-    return out
+    words = text.split()
+    if all(is_decimal_text(t) for t in words) and (n is None or len(words) == n):
+        try:
+            return [decimal_float(t) for t in words]
+        except ValueError as exc:
+            raise MechanismError(
+                f"{el.where()}: attribute {key}: {exc} (in the file's units); check the "
+                "value and its unit",
+                path=path,
+                line=el.line,
+            ) from None
+    count = f"{n} numbers" if n is not None else "numbers"
+    raise MechanismError(
+        f"{el.where()}: attribute {key}={text[:60]!r} must be {count} separated by "
+        'spaces (ASCII decimal digits, finite, e.g. "0 0 1")',
+        path=path,
+        line=el.line,
+    )

@@ -49,7 +49,13 @@ from mechsing.model.yamlnodes import (
     YValue,
     read_yaml_text,
 )
-from mechsing.numeric import NEAR_ZERO_VECTOR, REFERENCE_SCREEN_RTOL, data_resolution
+from mechsing.numeric import (
+    MAX_NUMBER,
+    NEAR_ZERO_VECTOR,
+    REFERENCE_SCREEN_RTOL,
+    data_resolution,
+    is_sensible_size,
+)
 
 __all__ = [
     "ANGLE_UNITS",
@@ -503,6 +509,13 @@ class _Builder:
                     v.line,
                     f"must be a positive length, got {char_len}; remove it or give e.g. 1",
                 )
+            if not is_sensible_size(1 / char_len):
+                raise r.error(
+                    "characteristic_length",
+                    v.line,
+                    f"{sympy.N(char_len, 3)} m is too small a length (at least "
+                    f"{1 / MAX_NUMBER:g} m); remove it or give the size of the mechanism",
+                )
         self.output_given = output
         configs = self.configurations(top.get("configurations"), jmap)
         return Mechanism(
@@ -651,7 +664,29 @@ class _Builder:
                     j.line,
                     f"clashes with the hidden body of U joint {j.name!r}; rename the body",
                 )
+        self.check_size(out, seq.line)
         return out
+
+    def check_size(self, joints: list[Joint], line: int) -> None:
+        """A mechanism whose every joint point lies within 1/MAX_NUMBER m of the origin (but
+        not all at it) is of no sensible size: its residuals would underflow."""
+        size = max(
+            (
+                abs(float(sympy.N(c, 17)))
+                for j in joints
+                if "point" in j.params
+                for c in j.params["point"]
+            ),
+            default=0.0,
+        )
+        if 0.0 < size and not is_sensible_size(1 / size):
+            raise self.r.error(
+                "joints",
+                line,
+                f"every joint point lies within {size:.3g} m of the origin: too small a "
+                f"mechanism (some point must be at least {1 / MAX_NUMBER:g} m from it); check "
+                "the lengths and their unit",
+            )
 
     def joint(self, e: YValue, bodyset: set[str]) -> Joint:
         r = self.r

@@ -188,7 +188,8 @@ def read_parameters(reader: Any, top: YMap, symbolic: Collection[str] = ()) -> d
                     f"uses {ref!r}, which is not defined before it (a parameter may use only "
                     f"the parameters above it, so there are no cycles); {fix}",
                 ) from None
-            hint = "" if values else " (no parameter is defined above it)"
+            unknown = "the name" in str(exc)
+            hint = " (no parameter is defined above it)" if unknown and not values else ""
             raise reader.error(item, pv.line, f"{exc}{hint}") from None
         values[name] = value
     missing = [s for s in wanted if s not in values]

@@ -5,6 +5,9 @@ modules, from the bottom up (each imports only those before it):
 
 ``tolerances``
     every decision tolerance (constants) and the two rank thresholds;
+``numbers``
+    the one syntax of a written number, its sensible size, and directions made unit
+    without overflow;
 ``_mp``
     the mpmath kernels: the one mp SVD and eigensolver (always converging);
 ``backend``
@@ -87,6 +90,13 @@ from mechsing.numeric.linalg import (
     spectral_norm,
     svd,
 )
+from mechsing.numeric.numbers import (
+    decimal_float,
+    is_decimal_text,
+    is_sensible_size,
+    safe_norm,
+    unit_vector,
+)
 from mechsing.numeric.precision import (
     Precision,
     numeric_precision,
@@ -123,6 +133,7 @@ from mechsing.numeric.tolerances import (
     EXACT_ZERO_DIGITS,
     FLOAT_ROUNDING_FACTOR,
     MAX_JOINT_VALUE,
+    MAX_NUMBER,
     MEMBERSHIP_RTOL_FLOAT,
     MP_MIN_DIGITS,
     NEAR_ZERO_VECTOR,
@@ -199,6 +210,12 @@ __all__ = [
     "FLOAT_ROUNDING_FACTOR",
     "FloatBackend",
     "MAX_JOINT_VALUE",
+    "MAX_NUMBER",
+    "decimal_float",
+    "is_decimal_text",
+    "is_sensible_size",
+    "safe_norm",
+    "unit_vector",
     "MEMBERSHIP_RTOL_FLOAT",
     "MP_MIN_DIGITS",
     "Margin",

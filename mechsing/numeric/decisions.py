@@ -52,6 +52,16 @@ class Margin:
     eig_margin: float | None = None
     sigma_max: float | None = None
     rounding: float | None = None
+    #: tau_lo and tau_hi as text, also below the float range (``1e-690``)
+    thresholds: tuple[str, str] = field(default=("", ""), compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        # the record is in floats (JSON): an mp:N threshold below the float range
+        # (N > 333) is recorded as 0 (its text keeps it); the decision compared mp numbers
+        if self.thresholds == ("", ""):  # (dataclasses.replace passes them on)
+            object.__setattr__(self, "thresholds", Tolerances(self.tau_lo, self.tau_hi).shown())
+        object.__setattr__(self, "tau_lo", float(self.tau_lo))
+        object.__setattr__(self, "tau_hi", float(self.tau_hi))
 
 
 @dataclass(frozen=True)
@@ -102,7 +112,8 @@ def decide_nonzero(value: Any, prec: Precision) -> bool | None:
             return not K.is_zero(el)
         return bool(sympy.simplify(value) != 0)
     t = prec.tolerances
-    a = abs(float(to_float(value)))
+    # at mp:N in the mode's numbers: a float would underflow below 1e-308
+    a = abs(value) if isinstance(value, mpmath.mpf) else abs(float(to_float(value)))
     if a >= t.tau_hi:
         return True
     if a <= t.tau_lo:
@@ -163,8 +174,9 @@ def rank_bounds(rel: Any, tol: Tolerances) -> tuple[np.ndarray, np.ndarray]:
     return np.count_nonzero(r >= tol.tau_hi, axis=-1), np.count_nonzero(r > tol.tau_lo, axis=-1)
 
 
-def _split_rank(rel: list[float], tol: Tolerances) -> tuple[int | None, tuple[int, int]]:
-    # rank_bounds on one list of floats, counted in Python (the same comparisons)
+def _split_rank(rel: list[Any], tol: Tolerances) -> tuple[int | None, tuple[int, int]]:
+    # rank_bounds on one list of floats (or mp numbers), counted in Python (the same
+    # comparisons)
     lo_rank = sum(1 for x in rel if x >= tol.tau_hi)
     hi_rank = sum(1 for x in rel if x > tol.tau_lo)
     return (lo_rank if lo_rank == hi_rank else None), (lo_rank, hi_rank)
@@ -244,7 +256,8 @@ def decide_rank(
             smax = s[0] if s else mpmath.mpf(0)
             if reference is not None and reference > smax:
                 smax = mpmath.mpf(reference)
-            rel = [float(x / smax) if smax else 0.0 for x in s]
+            # relative values in mp: as floats they underflow beyond 1e-308 (N > 300)
+            rel = [x / smax if smax else mpmath.mpf(0) for x in s]
             sigma = tuple(float(x) for x in s)
     else:
         F = arr if issparse(arr) else to_float(arr)
@@ -575,21 +588,25 @@ def decide_definiteness(
         with prec.context():
             A = _mp_matrix(arr)
             ev = eigsy((A + A.T) / 2, eigvals_only=True)
-            vals = sorted(float(x) for x in ev)
+            exact_vals = sorted(ev[i] for i in range(n))
+            ref_mp = scale if scale else max((abs(v) for v in exact_vals), default=0)
+            # relative values in mp (floats underflow below 1e-308)
+            rel = [v / ref_mp for v in exact_vals] if ref_mp else []
+        vals = [float(x) for x in exact_vals]
     else:
         F = to_float(arr)
         vals = sorted(float(x) for x in np.linalg.eigvalsh((F + F.T) / 2))
-    ref = scale if scale else max((abs(v) for v in vals), default=0.0)
-    if ref == 0:
+        ref = scale if scale else max((abs(v) for v in vals), default=0.0)
+        rel = [v / ref for v in vals] if ref else []
+    if not rel:
         return DefinitenessDecision("zero", tuple(vals), None, 0, 0, n)
-    rel = [v / ref for v in vals]
     if any(tol.tau_lo < abs(r) < tol.tau_hi for r in rel):
         return DefinitenessDecision(None, tuple(vals), None, 0, 0, 0)
     npos = sum(1 for r in rel if r >= tol.tau_hi)
     nneg = sum(1 for r in rel if r <= -tol.tau_hi)
     nz = n - npos - nneg
     decided = [abs(r) for r in rel if abs(r) >= tol.tau_hi]
-    eig_margin = min(decided) if decided else None
+    eig_margin = float(min(decided)) if decided else None
     return DefinitenessDecision(_kind(npos, nneg, nz), tuple(vals), eig_margin, npos, nneg, nz)
 
 

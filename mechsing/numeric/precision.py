@@ -51,8 +51,10 @@ class Precision:
         if self.mode in ("float", "auto"):
             return Tolerances(1e-12, 1e-9)
         if self.mode == "mp":
+            # mpf: as floats, 10^(10-N) underflows to 0 beyond N = 333 and 10^(-N/2)
+            # beyond N = 646, and every decision with them was wrong there
             n = self.digits or 50
-            return Tolerances(10.0 ** (10 - n), 10.0 ** (-n / 2))
+            return Tolerances(mpmath.mpf(10) ** (10 - n), mpmath.mpf(10) ** (-n / 2))
         return Tolerances(0.0, 0.0)
 
     @property

@@ -13,6 +13,7 @@ import numpy as np
 import sympy
 
 from mechsing.numeric.backend import Backend, to_float
+from mechsing.numeric.numbers import safe_norm
 
 
 def characteristic_length(points: Any, override: float | None = None) -> tuple[float, np.ndarray]:
@@ -39,10 +40,15 @@ def characteristic_length(points: Any, override: float | None = None) -> tuple[f
     c = pts.mean(axis=0) if len(pts) else np.zeros(3)
     if override is not None:
         return float(override), c
-    rms = float(np.sqrt(np.mean(np.sum((pts - c) ** 2, axis=1)))) if len(pts) else 0.0
+    d = pts - c
+    big = float(np.max(np.abs(d))) if len(pts) else 0.0
+    # scaled by the largest offset first, so that no square underflows or overflows
+    rms = big * float(np.sqrt(np.mean(np.sum((d / big) ** 2, axis=1)))) if big > 0 else 0.0
+    if 1e-100 < big < 1e100:  # squares far from both ends of the range: the same rounding
+        rms = float(np.sqrt(np.mean(np.sum(d**2, axis=1))))  # as always (results unchanged)
     if rms > 0:
         return rms, c
-    nc = float(np.linalg.norm(c))
+    nc = safe_norm(c)
     if nc > 0:
         return nc, c
     return 1.0, c

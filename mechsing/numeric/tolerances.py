@@ -8,7 +8,9 @@ working precision, :mod:`mechsing.numeric.precision` for a precision mode).
 
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
+from typing import Any
 
 # ---------------------------------------------------------------------------
 # Decision tolerances that are not rank thresholds.  Each is a *decision*
@@ -80,6 +82,11 @@ POLISH_SLOW_RATIO = 8
 #: characteristic length L for a length; larger is an absurd size (an angle of
 #: 1e6 rad is 160 000 turns)
 MAX_JOINT_VALUE = 1e6
+#: largest magnitude of any number a file or a command line gives (a coordinate, a
+#: parameter, a joint value, a limit, a sweep range, a screw coordinate), in its own
+#: units: 10^12 of them is beyond any mechanism, and squares and products of such
+#: numbers stay far from float overflow (1.8e308)
+MAX_NUMBER = 1e12
 #: continuation accepts intermediate steps at this residual (times L); the target
 #: itself is accepted at the precision's closure tolerance
 CONTINUATION_STEP_RTOL = 1e-9
@@ -236,11 +243,29 @@ class Tolerances:
 
     A rank is ``r`` when ``sigma_r >= tau_hi`` and ``sigma_{r+1} <= tau_lo``
     (both relative to the largest singular value); a singular value strictly
-    between the two leaves the rank undecided.
+    between the two leaves the rank undecided.  Floats in float mode; at mp:N
+    mpmath numbers (10^(10-N) and 10^(-N/2) are below the float range for large N),
+    compared with the mode's own numbers.
     """
 
-    tau_lo: float
-    tau_hi: float
+    tau_lo: Any
+    tau_hi: Any
+
+    def shown(self) -> tuple[str, str]:
+        """``tau_lo`` and ``tau_hi`` as text (``1e-12``, ``1e-40``, ``3.16228e-351``)."""
+        return _shown(self.tau_lo), _shown(self.tau_hi)
+
+
+def _shown(x: Any) -> str:
+    f = float(x)
+    if x == 0 or abs(f) >= sys.float_info.min:  # a normal float (not a rounded subnormal)
+        return f"{f:g}"
+    import mpmath  # below the float range: an mp number (mpmath's own text of one with
+    # thousands of exponent digits converts an integer of as many digits, refused by Python)
+
+    e = int(mpmath.floor(mpmath.log10(abs(x))))
+    m = float(x * mpmath.mpf(10) ** (-e))
+    return f"{m:g}e{e:+03d}" if m != 1 else f"1e{e:+03d}"
 
 
 # -- symbolic conditions (mechsing.conditions) -----------------------------------

@@ -63,7 +63,8 @@ def _margin(m: Margin | None) -> str:
     parts = [f"kept {_fmt_num(m.kept)}", f"dropped {_fmt_num(m.dropped)}"]
     if m.eig_margin is not None:
         parts.append(f"eigenvalue margin {_fmt_num(m.eig_margin)}")
-    return ", ".join(parts) + f" (thresholds {m.tau_lo:g}/{m.tau_hi:g}, L = {m.length_scale:.4g} m)"
+    lo, hi = m.thresholds
+    return ", ".join(parts) + f" (thresholds {lo}/{hi}, L = {m.length_scale:.4g} m)"
 
 
 def _names(xs: Sequence[str]) -> str:
@@ -231,7 +232,7 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
     thresholds = (
         "exact ranks"
         if mode == "exact"
-        else f"rank thresholds {t.tau_lo:g} and {t.tau_hi:g} of the largest singular value"
+        else "rank thresholds {} and {} of the largest singular value".format(*t.shown())
     )
     lines.append(
         f"Precision {mode} ({thresholds}); characteristic length L = {result.length_scale:.4g} m."

@@ -771,8 +771,9 @@ def _how(r: Report) -> list[doc.Block]:
     thresholds = (
         "exact ranks"
         if mode == "exact"
-        else f"rank thresholds tau_lo = {t.tau_lo:g} and tau_hi = {t.tau_hi:g} of the largest "
-        "singular value"
+        else "rank thresholds tau_lo = {} and tau_hi = {} of the largest singular value".format(
+            *t.shown()
+        )
     )
     items = [
         f"mechsing {__version__}",

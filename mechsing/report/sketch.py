@@ -31,7 +31,7 @@ from matplotlib.patches import Circle, Polygon, Rectangle
 
 from mechsing.kinematics import KinematicModel
 from mechsing.model import Mechanism
-from mechsing.numeric import to_float
+from mechsing.numeric import to_float, unit_vector
 from mechsing.report.figures import RC, new_figure
 
 __all__ = [
@@ -86,8 +86,7 @@ def _f(x: object) -> np.ndarray:
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
-    n = float(np.linalg.norm(v))
-    return v / n if n > 0 else v
+    return unit_vector(v) if np.any(v) else v
 
 
 def planar_normal(mech: Mechanism) -> np.ndarray | None:

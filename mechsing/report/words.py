@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.analysis.contract import subgroup_params
-from mechsing.numeric import MEMBERSHIP_RTOL_FLOAT
+from mechsing.numeric import MEMBERSHIP_RTOL_FLOAT, unit_vector
 from mechsing.subgroups import Subgroup
 
 __all__ = [
@@ -46,7 +46,7 @@ def _num(x: float, scale: float = 1.0) -> str:
 
 def _direction(u: np.ndarray) -> str:
     """A direction: ``x``, ``-y``, ... along a coordinate axis, else its unit vector."""
-    u = u / np.linalg.norm(u)
+    u = unit_vector(u)
     for i, name in enumerate(_AXES):
         rest = np.delete(u, i)
         if np.all(np.abs(rest) <= MEMBERSHIP_RTOL_FLOAT):

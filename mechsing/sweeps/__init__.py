@@ -68,6 +68,7 @@ def sweep(
     scheduler: str | None = None,
     max_classified: int = MAX_CLASSIFIED,
     time_limit: float | None = None,
+    connect_timeout: float | None = None,
 ) -> SweepResult:
     """Sweep a mechanism (or a file) over one variable (a path) or two (a grid).
 
@@ -94,6 +95,9 @@ def sweep(
     time_limit : float or None
         The most seconds the full analysis of one located point may take (None: no
         limit); a point stopped there has an ``error`` entry that says so.
+    connect_timeout : float or None
+        Seconds a scheduler has to accept the connection and answer (default
+        :data:`mechsing.sweeps.distributed.CONNECT_TIMEOUT`, 5 s).
 
     Returns
     -------
@@ -109,7 +113,8 @@ def sweep(
         max_classified=max_classified,
         time_limit=time_limit,
     )
-    for _ in run.rows(progress, workers=workers, scheduler=scheduler):
+    rows = run.rows(progress, workers=workers, scheduler=scheduler, connect_timeout=connect_timeout)
+    for _ in rows:
         pass
     return run.result()
 
@@ -191,19 +196,23 @@ class SweepRun:
         progress: Callable[[int], None] | None = None,
         workers: int | None = None,
         scheduler: str | None = None,
+        connect_timeout: float | None = None,
     ) -> Iterator[int]:
         """Run the sweep; yields the index of each finished row (0 for a path) once its
-        entries of :attr:`reached`, :attr:`rank` and :attr:`ratio` are filled."""
+        entries of :attr:`reached`, :attr:`rank` and :attr:`ratio` are filled (rows of a
+        grid on Dask with ``workers`` or ``scheduler``, see
+        :func:`~mechsing.sweeps.distributed.distributed_rows`)."""
         values = [v.values for v in self.vars]
         if workers or scheduler:
             if not self.grid:
                 raise UserError(
                     "--workers and --scheduler distribute the rows of a grid (two --vary)"
                 )
-            from mechsing.sweeps.distributed import distributed_rows
+            from mechsing.sweeps.distributed import CONNECT_TIMEOUT, distributed_rows
 
+            timeout = CONNECT_TIMEOUT if connect_timeout is None else connect_timeout
             source: Iterator[RowResult] = distributed_rows(
-                self, values, workers, scheduler, progress
+                self, values, workers, scheduler, progress, timeout
             )
         else:
             source = self.engine.rows(values, progress)

@@ -31,12 +31,25 @@ Conventions:
 * ``progress`` is called with the row's number of samples when a row is yielded.
 * Dask is the optional extra ``mechsing[dask]``; without it a distributed sweep is a
   :class:`~mechsing.errors.UserError` that says how to install it.
+* **Bounded by the machine, never left waiting.**  ``--workers`` is at most the CPUs this
+  process may run on (:func:`usable_cpus`: ``os.sched_getaffinity``, else
+  ``os.cpu_count``).  A ``--scheduler`` address is checked (``[tcp://|tls://]HOST:PORT``),
+  then probed before Dask connects (:func:`probe_scheduler`): a TCP connection within
+  ``connect_timeout`` seconds (:data:`CONNECT_TIMEOUT` unless the caller gives another),
+  and for ``tcp://`` the first 8 bytes of the scheduler's handshake, which a Dask scheduler
+  sends at once: the length of its first message, at most :data:`HANDSHAKE_MAX_BYTES`.  A
+  refused connection, silence, or bytes that are not Dask's (an HTTP server's reply read
+  as a length was an allocation of exabytes) are a UserError naming the address.
 """
 
 from __future__ import annotations
 
 import hashlib
+import os
 import pickle
+import re
+import socket
+import struct
 import threading
 import uuid
 from collections import OrderedDict
@@ -50,13 +63,130 @@ import numpy as np
 from mechsing.errors import UserError
 from mechsing.sweeps.engine import RowResult, Sweep
 
-__all__ = ["AHEAD_PER_THREAD", "distributed_rows"]
+__all__ = [
+    "AHEAD_PER_THREAD",
+    "CONNECT_TIMEOUT",
+    "HANDSHAKE_MAX_BYTES",
+    "MAX_CONNECT_TIMEOUT",
+    "check_workers",
+    "distributed_rows",
+    "parse_scheduler",
+    "probe_scheduler",
+    "usable_cpus",
+]
 
 #: chunks of rows submitted ahead of the next to yield, per worker thread of the cluster
 AHEAD_PER_THREAD = 4
 
 #: recipes (sweeps) a worker process keeps built
 _KEPT = 4
+
+#: seconds a Dask scheduler has to accept the connection and to answer (--connect-timeout)
+CONNECT_TIMEOUT = 5.0
+#: the longest --connect-timeout accepted (seconds)
+MAX_CONNECT_TIMEOUT = 600.0
+#: largest first message a Dask scheduler's handshake may announce (its handshake is a few
+#: hundred bytes): a longer one is not Dask's protocol
+HANDSHAKE_MAX_BYTES = 1 << 20
+
+_ADDRESS = re.compile(
+    r"(?:(?P<scheme>[A-Za-z][A-Za-z0-9+.-]*)://)?"
+    r"(?P<host>\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_](?:[A-Za-z0-9_.-]*[A-Za-z0-9_])?)"
+    r":(?P<port>[0-9]{1,5})",
+    re.ASCII,
+)
+
+
+def usable_cpus() -> int:
+    """The CPUs this process may run on (``os.sched_getaffinity``, else ``os.cpu_count``)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def check_workers(workers: int) -> None:
+    """A UserError unless ``1 <= workers <= usable_cpus()``: a worker is a process that
+    computes rows, and more of them than CPUs only share the CPUs (1000 workers on 2
+    cores were 70 processes and 4.4 GB before failing)."""
+    limit = usable_cpus()
+    if workers < 1:
+        raise UserError(f"--workers must be at least 1 (got {workers})")
+    if workers > limit:
+        shown = f"{workers}" if workers < 10**9 else f"{str(workers)[:12]}..."
+        raise UserError(
+            f"--workers {shown}: this process may run on {limit} CPU{'s' if limit > 1 else ''} "
+            f"(os.sched_getaffinity), so at most {limit} worker{'s' if limit > 1 else ''}; "
+            "give --workers at most that, or --scheduler ADDRESS for a larger cluster"
+        )
+
+
+def parse_scheduler(address: str) -> tuple[str, str, int]:
+    """``(scheme, host, port)`` of ``[tcp://|tls://]HOST:PORT``; a UserError saying what
+    is wrong otherwise."""
+    text = address.strip()
+    shown = repr(address[:80])
+    m = _ADDRESS.fullmatch(text)
+    if m is None:
+        raise UserError(
+            f"--scheduler {shown} is not an address: give tcp://HOST:PORT (e.g. "
+            "tcp://127.0.0.1:8786, or tls://HOST:PORT)"
+        )
+    scheme = (m.group("scheme") or "tcp").lower()
+    if scheme not in ("tcp", "tls"):
+        raise UserError(
+            f"--scheduler {shown}: the protocol {scheme!r} is not read; give tcp://HOST:PORT "
+            "or tls://HOST:PORT"
+        )
+    port = int(m.group("port"))
+    if not 1 <= port <= 65535:
+        raise UserError(f"--scheduler {shown}: the port {port} is not between 1 and 65535")
+    return scheme, m.group("host"), port
+
+
+def probe_scheduler(address: str, timeout: float = CONNECT_TIMEOUT) -> None:
+    """Check that a Dask scheduler answers at ``address`` within ``timeout`` seconds (see
+    the module's conventions); a UserError naming the address and the reason otherwise."""
+    scheme, host, port = parse_scheduler(address)
+
+    def fail(reason: str) -> UserError:
+        return UserError(f"cannot reach the Dask scheduler at {address}: {reason}")
+
+    try:
+        sock = socket.create_connection((host.strip("[]"), port), timeout=timeout)
+    except TimeoutError:
+        raise fail(f"no connection within {timeout:g} s (--connect-timeout)") from None
+    except ConnectionRefusedError:
+        raise fail("the connection was refused (is the scheduler running on that port?)") from None
+    except socket.gaierror as exc:
+        raise fail(f"unknown host {host!r} ({exc.strerror})") from None
+    except OSError as exc:
+        raise fail(exc.strerror or str(exc)) from None
+    with sock:
+        if scheme == "tls":  # the TLS handshake comes first: Dask checks the rest
+            return
+        head = b""
+        try:
+            while len(head) < 8:
+                got = sock.recv(8 - len(head))
+                if not got:
+                    break
+                head += got
+        except TimeoutError:
+            raise fail(
+                f"it accepted the connection but sent nothing within {timeout:g} s, as a Dask "
+                "scheduler does at once: is it one? (--connect-timeout)"
+            ) from None
+        except OSError as exc:
+            raise fail(exc.strerror or str(exc)) from None
+    if len(head) < 8:
+        raise fail("it closed the connection without a Dask handshake: not a Dask scheduler")
+    (size,) = struct.unpack("Q", head)
+    if not 0 < size <= HANDSHAKE_MAX_BYTES:
+        raise fail(
+            f"it answered {head!r}, which is not Dask's protocol (a first message of {size} "
+            "bytes): not a Dask scheduler"
+        )
 
 
 @dataclass(frozen=True)
@@ -77,6 +207,7 @@ def distributed_rows(
     workers: int | None,
     scheduler: str | None,
     progress: Callable[[int], None] | None = None,
+    connect_timeout: float = CONNECT_TIMEOUT,
 ) -> Iterator[RowResult]:
     """The rows of a grid sweep, in row order, computed on a Dask cluster.
 
@@ -88,16 +219,19 @@ def distributed_rows(
     workers : start a local cluster of this many worker processes (one thread each)
     scheduler : or use the Dask scheduler at this address (``tcp://host:8786``)
     progress : called with the number of samples of each finished row
+    connect_timeout : seconds the scheduler has to accept the connection and answer
 
     Yields exactly what ``run.engine.rows(values, progress)`` yields.
     """
     client_cls, cluster_cls, as_completed = _dask()
     if workers is not None and scheduler:
         raise UserError("give --workers N (a local cluster) or --scheduler ADDRESS, not both")
-    if workers is not None and workers < 1:
-        raise UserError(f"--workers must be at least 1 (got {workers})")
+    if workers is not None:
+        check_workers(workers)
+    if scheduler:
+        probe_scheduler(scheduler, connect_timeout)
     eng = run.engine
-    with _client(client_cls, cluster_cls, workers, scheduler) as client:  # fails fast
+    with _client(client_cls, cluster_cls, workers, scheduler, connect_timeout) as client:
         column = eng.first_column(values)
         recipe = _recipe(run, eng, values[0])
         (shared,) = client.scatter([recipe], broadcast=True, hash=False)
@@ -119,14 +253,19 @@ def _dask() -> tuple[Any, Any, Any]:
 
 @contextmanager
 def _client(
-    client_cls: Any, cluster_cls: Any, workers: int | None, scheduler: str | None
+    client_cls: Any,
+    cluster_cls: Any,
+    workers: int | None,
+    scheduler: str | None,
+    timeout: float = CONNECT_TIMEOUT,
 ) -> Iterator[Any]:
-    """A Dask client to the scheduler at an address, or to a local cluster of
-    ``workers`` processes (one thread each) on the loopback address; closed after."""
+    """A Dask client to the scheduler at an address (connecting within ``timeout``
+    seconds), or to a local cluster of ``workers`` processes (one thread each) on the
+    loopback address; closed after."""
     with ExitStack() as stack:
         try:
             if scheduler:
-                client = stack.enter_context(client_cls(scheduler))
+                client = stack.enter_context(client_cls(scheduler, timeout=timeout))
             else:
                 cluster = stack.enter_context(
                     cluster_cls(

@@ -23,7 +23,7 @@ import numpy as np
 from mechsing.errors import UserError
 from mechsing.kinematics.pose import POSE_COORDINATES
 from mechsing.model import Mechanism
-from mechsing.numeric import RADIAN_LOOK_ATOL, Precision
+from mechsing.numeric import RADIAN_LOOK_ATOL, Precision, decimal_float, is_decimal_text
 
 __all__ = ["MAX_SAMPLES", "Variable", "Vary", "check_varies", "resolve", "sweep_precision"]
 
@@ -59,12 +59,15 @@ class Vary:
                 "or --vary pose.x=-0.1:0.1:0.01"
             )
         name, *nums = m.groups()
-        try:
-            start, stop, step = (float(x) for x in nums)
-        except ValueError:
+        if not all(is_decimal_text(x) for x in nums):
             raise UserError(
-                f"--vary {text!r}: START, STOP and STEP must be numbers (in the file's units)"
-            ) from None
+                f"--vary {text!r}: START, STOP and STEP must be numbers in ASCII decimal "
+                "digits (in the file's units)"
+            )
+        try:
+            start, stop, step = (decimal_float(x) for x in nums)
+        except ValueError as exc:
+            raise UserError(f"--vary {text!r}: {exc} (in the file's units)") from None
         return cls(name, start, stop, step)
 
     @property
@@ -83,7 +86,13 @@ class Vary:
                 f"--vary {self.name}: STEP must be positive ({self.step:g}); to go down, "
                 "give START above STOP"
             )
-        return int(math.floor(abs(self.stop - self.start) / self.step * (1 + 1e-12) + 1e-9)) + 1
+        steps = abs(self.stop - self.start) / self.step * (1 + 1e-12) + 1e-9
+        if not steps < MAX_SAMPLES:  # also an infinite quotient of a tiny STEP
+            raise UserError(
+                f"--vary {self}: more than {MAX_SAMPLES:,} samples, more than a sweep takes; "
+                "use a larger STEP"
+            )
+        return int(math.floor(steps)) + 1
 
     def values(self) -> np.ndarray:
         """The sample values in the file's units, from START towards STOP."""
