@@ -478,7 +478,7 @@ def written_digits(text: str) -> tuple[int, int] | None:
     ``"pi/3"`` (an exact value: it has no last digit).  Half a unit in the last digit
     is the value's written resolution (:func:`mechsing.numeric.data_resolution`)."""
     t = text.strip().lstrip("+-").strip()
-    if not _DECIMAL.match(t):
+    if not DECIMAL.match(t):
         return None
     mant, _, exp = t.lower().partition("e")
     whole, _, frac = mant.partition(".")
