@@ -8,6 +8,22 @@ with a message for people (the file, the item, the line, the fix).
   not close, exact mode cannot take it or stopped on it) while the others can.
 * :class:`CatalogError`: the subgroup catalog's data are broken.
 
+Every exception class of mechsing is defined here, so that any layer can raise
+or catch any of them without importing another layer (the old homes re-export
+them):
+
+* bad input, with the parts of the message as attributes:
+  :class:`MechanismError` (a mechanism file: path, line, item),
+  :class:`ExpressionError` (a number or expression), :class:`InputError` (a file
+  that cannot be read), :class:`ParameterError` (an exercise's parameter);
+* configurations not analysed: :class:`ClosureError` (it does not close) and
+  :class:`ExactDataError` (exact mode cannot take it);
+* signals caught inside mechsing and turned into one of the above:
+  :class:`YAMLReadError` (text that is not YAML mechsing accepts),
+  :class:`InputRefError` (an input that names no actuable coordinate);
+* :class:`TimeLimitExceeded`, a :class:`BaseException` (so that no ``except
+  Exception`` swallows it) raised by :class:`mechsing.timelimit.TimeLimit`.
+
 The layers raise these and never decide what a command does with them: only
 the command line (``mechsing.cli.main``) maps them to exit statuses.
 :func:`working_on` names the file and the configuration under analysis, so
@@ -23,9 +39,18 @@ from contextvars import ContextVar
 
 __all__ = [
     "CatalogError",
+    "ClosureError",
     "ConfigurationError",
+    "ExactDataError",
+    "ExpressionError",
+    "InputError",
+    "InputRefError",
+    "MechanismError",
     "MechsingError",
+    "ParameterError",
+    "TimeLimitExceeded",
     "UserError",
+    "YAMLReadError",
     "current_work",
     "forget_work",
     "work_item",
@@ -57,6 +82,97 @@ class ConfigurationError(UserError):
 
 class CatalogError(MechsingError):
     """A catalog file is missing or malformed (an installation or data defect)."""
+
+
+class MechanismError(UserError):
+    """A mechanism file that mechsing cannot accept (bad input).
+
+    The message names the file, the line where it can, the item and the fix;
+    the parts are also attributes for programs and tests.
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        path: str | None = None,
+        line: int | None = None,
+        item: str | None = None,
+    ) -> None:
+        where = ""
+        if path is not None:
+            where = f"{path}:{line}: " if line is not None else f"{path}: "
+        elif line is not None:
+            where = f"line {line}: "
+        lead = f"{item}: " if item else ""
+        super().__init__(f"{where}{lead}{message}")
+        self.path = path
+        self.line = line
+        self.item = item
+        self.problem = message
+
+
+class ExpressionError(UserError, ValueError):
+    """A number or expression that cannot be read (exit status 2).
+
+    The message says what is wrong and what is allowed; callers that know the
+    file and line (the mechanism loader) prefix them.
+    """
+
+
+class InputError(UserError):
+    """A file that cannot be read: ``path`` and ``problem`` (the message without the path)."""
+
+    def __init__(self, path: str, problem: str) -> None:
+        super().__init__(f"{path}: {problem}")
+        self.path = path
+        self.problem = problem
+
+
+class ParameterError(UserError):
+    """A parameter that is not a real number; ``values`` holds the ones before it."""
+
+    def __init__(self, message: str, values: dict[str, float]) -> None:
+        super().__init__(message)
+        self.values = values
+
+
+class ClosureError(ConfigurationError):
+    """A configuration that cannot be closed."""
+
+
+class ExactDataError(ConfigurationError):
+    """Exact mode cannot take a configuration: a joint value is missing (it would be solved
+    numerically), is not exact data, or sympy cannot prove that the loops close exactly."""
+
+
+class YAMLReadError(Exception):
+    """The text is not YAML that mechsing accepts; ``line`` is 1-based or None."""
+
+    def __init__(self, message: str, line: int | None = None) -> None:
+        super().__init__(message)
+        self.message = message
+        self.line = line
+
+
+class InputRefError(ValueError):
+    """An input that names no actuable coordinate: ``item`` (e.g. ``input 'A[3]'``) and
+    ``problem`` (what is wrong and what to write) for the caller's message."""
+
+    def __init__(self, item: str, problem: str) -> None:
+        super().__init__(f"{item}: {problem}")
+        self.item = item
+        self.problem = problem
+
+
+class TimeLimitExceeded(BaseException):
+    """The block of a :class:`~mechsing.timelimit.TimeLimit` ran longer than its limit.
+
+    ``activity``: the innermost :func:`~mechsing.timelimit.activity` the code was in when
+    it was interrupted (None when it was in none).
+    """
+
+    activity: str | None = None
 
 
 _WORK: ContextVar[tuple[tuple[str, str], ...]] = ContextVar("mechsing_work", default=())

@@ -38,7 +38,7 @@ from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import IO
 
-from mechsing.errors import UserError
+from mechsing.errors import InputError, UserError
 
 __all__ = [
     "PIPE_WAIT_SECONDS",
@@ -70,15 +70,6 @@ PathLike = str | os.PathLike[str]
 
 
 # --------------------------------------------------------------------------- reading
-
-
-class InputError(UserError):
-    """A file that cannot be read: ``path`` and ``problem`` (the message without the path)."""
-
-    def __init__(self, path: str, problem: str) -> None:
-        super().__init__(f"{path}: {problem}")
-        self.path = path
-        self.problem = problem
 
 
 def _kind(mode: int) -> str:

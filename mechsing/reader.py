@@ -24,7 +24,7 @@ from mechsing.formats.dh import expand_dh
 from mechsing.formats.xmlsafe import MAX_XML_BYTES
 from mechsing.model import Mechanism, loads
 from mechsing.model.loader import read_text
-from mechsing.model.yamlnodes import MAX_FILE_BYTES
+from mechsing.yamlnodes import MAX_FILE_BYTES
 
 __all__ = ["LARGEST_FILE", "Source", "mechanism_from_text", "read_mechanism", "read_source"]
 

@@ -132,7 +132,7 @@ class ChainScanner:
     """
 
     def __init__(self, mech: Any) -> None:
-        from mechsing.model.mechanism import MechanismError
+        from mechsing.errors import MechanismError
 
         where = mech.path
         if mech.loops:

@@ -36,6 +36,8 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from types import TracebackType
 
+from mechsing.errors import TimeLimitExceeded
+
 __all__ = [
     "EXACT_PROGRESS_DELAY",
     "EXACT_TIME_LIMIT",
@@ -76,16 +78,6 @@ def check_time_limit(seconds: object) -> float:
             f"to {LONGEST_TIME_LIMIT:g} (e.g. 120)"
         )
     return x
-
-
-class TimeLimitExceeded(BaseException):
-    """The block of a :class:`TimeLimit` ran longer than its limit.
-
-    ``activity``: the innermost :func:`activity` the code was in when it was interrupted
-    (None when it was in none).
-    """
-
-    activity: str | None = None
 
 
 @contextmanager

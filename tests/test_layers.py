@@ -17,10 +17,11 @@ PACKAGE = Path(__file__).resolve().parents[1] / "mechsing"
 
 #: layers from the bottom up; a module's layer is its first dotted component below mechsing
 LAYERS: list[set[str]] = [
-    {"errors", "files", "numeric", "timelimit"},  # leaves
+    {"errors", "files", "numeric", "timelimit", "yamlnodes"},  # leaves
     {"lie"},
     {"subgroups"},
-    {"model", "formats"},
+    {"model"},
+    {"formats"},
     {"reader"},
     {"kinematics"},
     {"screws"},
@@ -148,3 +149,50 @@ def test_the_model_imports_no_format() -> None:
     found = [(a, b) for a, b in g.edges if a.startswith("mechsing.model") and ".formats" in b]
     assert found == []
     assert g.has_edge("mechsing.reader", "mechsing.formats.dh")
+
+
+def test_the_formats_import_no_model() -> None:
+    """The formats turn URDF, MJCF and a dh table into mechsing YAML (located values of
+    mechsing.yamlnodes, a leaf) and raise the errors of mechsing.errors: they need nothing
+    of the model, though the layers would allow it."""
+    g = _graph()
+    found = [(a, b) for a, b in g.edges if ".formats" in a and b.startswith("mechsing.model")]
+    assert found == []
+    assert g.has_edge("mechsing.formats.dh", "mechsing.yamlnodes")
+    assert g.has_edge("mechsing.formats.xmlsafe", "mechsing.errors")
+
+
+def _exception_classes() -> dict[str, list[str]]:
+    """Module -> the public exception classes it defines (a class whose base is a builtin
+    exception or an exception class of mechsing.errors), read from the source."""
+    import builtins
+
+    bases = {
+        n
+        for n in dir(builtins)
+        if isinstance(getattr(builtins, n), type)
+        and issubclass(getattr(builtins, n), BaseException)
+    }
+    tree = ast.parse((PACKAGE / "errors.py").read_text(encoding="utf-8"))
+    bases |= {c.name for c in tree.body if isinstance(c, ast.ClassDef)}
+    out: dict[str, list[str]] = {}
+    for name, path in _modules().items():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ClassDef) and not node.name.startswith("_"):
+                named = {
+                    b.id if isinstance(b, ast.Name) else getattr(b, "attr", "") for b in node.bases
+                }
+                if named & bases:
+                    out.setdefault(name, []).append(node.name)
+    return out
+
+
+def test_every_exception_is_defined_in_errors() -> None:
+    """mechsing.errors holds every exception class, so that any layer raises or catches any
+    of them without importing another layer (a private signal that never leaves its module,
+    named with a leading underscore, stays there)."""
+    found = _exception_classes()
+    assert {m: c for m, c in found.items() if m != "mechsing.errors"} == {}
+    assert {"MechanismError", "ExpressionError", "ClosureError", "ExactDataError"} <= set(
+        found["mechsing.errors"]
+    )

@@ -39,7 +39,7 @@ from mechsing.analysis.results import (
     LoopEntry,
     Mobility,
 )
-from mechsing.errors import UserError, working_on
+from mechsing.errors import TimeLimitExceeded, UserError, working_on
 from mechsing.kinematics import Closer, ConfigurationError, KinematicModel
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, float_drop_is_real, parse_precision, to_float
@@ -54,7 +54,6 @@ from mechsing.timelimit import (
     EXACT_PROGRESS_DELAY,
     EXACT_TIME_LIMIT,
     TimeLimit,
-    TimeLimitExceeded,
     activity,
     check_time_limit,
 )

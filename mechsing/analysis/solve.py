@@ -14,10 +14,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from mechsing.errors import ConfigurationError
+from mechsing.errors import ConfigurationError, TimeLimitExceeded
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, parse_precision
-from mechsing.timelimit import EXACT_TIME_LIMIT, TimeLimit, TimeLimitExceeded
+from mechsing.timelimit import EXACT_TIME_LIMIT, TimeLimit
 
 __all__ = ["SolveResult", "solve", "value_text"]
 

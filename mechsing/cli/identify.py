@@ -61,7 +61,8 @@ def parse_screws(texts: list[str]) -> tuple[np.ndarray, bool]:
     """Screws (object array of sympy numbers) and whether every entry is rational."""
     import sympy
 
-    from mechsing.model.expressions import ExpressionError, parse_number
+    from mechsing.errors import ExpressionError
+    from mechsing.model.expressions import parse_number
 
     rows = []
     rational = True

@@ -190,7 +190,8 @@ def apply_set(mech: Any, sets: list[str] | None, start: str | None, path: str) -
     """``mech`` with the configuration ``cli`` the ``--set`` values give (``mech`` itself
     when there is none); ``start`` is the configuration it is solved from (None:
     reference); ``path`` names the file in messages."""
-    from mechsing.model.expressions import ExpressionError, parse_number
+    from mechsing.errors import ExpressionError
+    from mechsing.model.expressions import parse_number
     from mechsing.model.mechanism import Configuration
 
     if not sets:

@@ -55,7 +55,7 @@ from mechsing.conditions.symbolic import (
     reference_twist,
     to_trig,
 )
-from mechsing.errors import ConfigurationError, UserError
+from mechsing.errors import ConfigurationError, TimeLimitExceeded, UserError
 from mechsing.model import Mechanism
 from mechsing.model.couplings import refuse_couplings
 from mechsing.model.parameters import ParameterSymbol
@@ -68,7 +68,7 @@ from mechsing.numeric import (
     unit_vector,
 )
 from mechsing.reader import read_mechanism
-from mechsing.timelimit import TimeLimit, TimeLimitExceeded
+from mechsing.timelimit import TimeLimit
 
 __all__ = ["ELIMINATION_SECONDS", "MAX_MINORS", "condition"]
 

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 import yaml
 
-from mechsing.errors import UserError
+from mechsing.errors import ParameterError, UserError
 from mechsing.exercises.template import Template, set_parameters
 
 __all__ = ["MAX_DRAWS", "Draw", "check_constraints", "draws", "evaluate", "parameter_values"]
@@ -76,7 +76,8 @@ class Draw:
 def parameter_values(mechanism: str, where: str = "mechanism") -> dict[str, float]:
     """Every parameter of a mechanism file's text, in floats, read as the file format does
     (exact, each from the earlier ones)."""
-    from mechsing.model.expressions import ExpressionError, parse_number
+    from mechsing.errors import ExpressionError
+    from mechsing.model.expressions import parse_number
 
     doc = yaml.safe_load(mechanism)
     params = doc.get("parameters") if isinstance(doc, dict) else None
@@ -93,14 +94,6 @@ def parameter_values(mechanism: str, where: str = "mechanism") -> dict[str, floa
 
 def _floats(exact: dict[str, Any]) -> dict[str, float]:
     return {k: float(v) for k, v in exact.items()}
-
-
-class ParameterError(UserError):
-    """A parameter that is not a real number; ``values`` holds the ones before it."""
-
-    def __init__(self, message: str, values: dict[str, float]) -> None:
-        super().__init__(message)
-        self.values = values
 
 
 def evaluate(text: str, values: dict[str, float]) -> Any:

@@ -42,7 +42,8 @@ def parse_quantity(text: str | int | float) -> tuple[float, str | None]:
 
     Raises UserError for a text that is not a number or names an unknown unit.
     """
-    from mechsing.model.expressions import ExpressionError, parse_number
+    from mechsing.errors import ExpressionError
+    from mechsing.model.expressions import parse_number
 
     if isinstance(text, bool):
         raise UserError(f"{text!r} is not a number")

@@ -13,8 +13,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from mechsing.errors import MechanismError
 from mechsing.formats.xmlsafe import root_tag
-from mechsing.model.mechanism import MechanismError
 
 if TYPE_CHECKING:
     from mechsing.formats.writer import MechanismSpec

@@ -32,7 +32,7 @@ import sympy
 
 from mechsing.formats.frames import axis_angle, frame
 from mechsing.formats.writer import number
-from mechsing.model.yamlnodes import YMap, YScalar, YSeq, YValue
+from mechsing.yamlnodes import YMap, YScalar, YSeq, YValue
 
 __all__ = ["CONVENTIONS", "ROW_KEYS", "dh_frames", "expand_dh"]
 
@@ -99,12 +99,15 @@ def exact_frames(rows: list[tuple[Any, Any, Any, Any]], convention: str) -> list
 
 
 def _exact_vec(v: Any, line: int) -> YSeq:
-    """An exact column written as expressions of the file's parameters (by their names)."""
-    from mechsing.model.parameters import ParameterSymbol
+    """An exact column written as expressions of the file's parameters (by their names).
+
+    The rows' only free symbols are the parameters kept as symbols (the loader's
+    ``ParameterSymbol``: a file's numbers are otherwise constants), each written as the
+    plain symbol of its name."""
 
     def text(x: Any) -> str:
         x = sympy.sympify(x)
-        named = {p: sympy.Symbol(p.name) for p in x.atoms(ParameterSymbol)}
+        named = {p: sympy.Symbol(p.name) for p in x.free_symbols}
         return sympy.sstr(x.xreplace(named))
 
     return YSeq(tuple(YScalar(text(v[i]), "str", line, True) for i in range(3)), line)

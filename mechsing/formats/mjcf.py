@@ -43,6 +43,7 @@ import math
 
 import numpy as np
 
+from mechsing.errors import MechanismError
 from mechsing.formats.frames import axis_angle, euler, frame, quaternion, xyaxes, zaxis
 from mechsing.formats.writer import (
     Bodies,
@@ -52,7 +53,6 @@ from mechsing.formats.writer import (
     name_problem,
 )
 from mechsing.formats.xmlsafe import Element, floats, parse, required
-from mechsing.model.mechanism import MechanismError
 from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
 
 __all__ = ["MJCF_TYPES", "read_mjcf"]

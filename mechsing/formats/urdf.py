@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechsing.errors import MechanismError
 from mechsing.formats.frames import frame, rpy
 from mechsing.formats.writer import (
     Bodies,
@@ -50,7 +51,6 @@ from mechsing.formats.writer import (
     name_problem,
 )
 from mechsing.formats.xmlsafe import Element, floats, parse, required
-from mechsing.model.mechanism import MechanismError
 from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
 
 __all__ = ["URDF_TYPES", "read_urdf"]

@@ -17,7 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from xml.parsers import expat
 
-from mechsing.model.mechanism import MechanismError
+from mechsing.errors import MechanismError
 from mechsing.numeric import decimal_float, is_decimal_text
 
 __all__ = [

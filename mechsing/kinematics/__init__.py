@@ -11,15 +11,9 @@
 * :mod:`~mechsing.kinematics.closure`: closure of named configurations by continuation.
 """
 
+from mechsing.errors import ClosureError, ConfigurationError, ExactDataError
 from mechsing.kinematics.chains import Chain, path_chain, tree_chain
-from mechsing.kinematics.closure import (
-    ClosedConfiguration,
-    Closer,
-    ClosureError,
-    ConfigurationError,
-    ExactDataError,
-    solve_configuration,
-)
+from mechsing.kinematics.closure import ClosedConfiguration, Closer, solve_configuration
 from mechsing.kinematics.model import JointKinematics, KinematicModel, axis_points
 from mechsing.kinematics.newton import NewtonResult, newton_on_group
 

@@ -27,7 +27,7 @@ import numpy as np
 import sympy
 
 from mechsing import lie
-from mechsing.errors import ConfigurationError, UserError
+from mechsing.errors import ClosureError, ConfigurationError, ExactDataError, UserError
 from mechsing.kinematics.couplings import couple_given, impose_couplings
 from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import (
@@ -74,15 +74,6 @@ _NEWTON_ITERATIONS = 12
 _MAX_STEPS = 20000
 #: step attempts allowed per planned step before continuation gives up
 _MAX_ATTEMPTS_PER_STEP = 20
-
-
-class ClosureError(ConfigurationError):
-    """A configuration that cannot be closed."""
-
-
-class ExactDataError(ConfigurationError):
-    """Exact mode cannot take a configuration: a joint value is missing (it would be solved
-    numerically), is not exact data, or sympy cannot prove that the loops close exactly."""
 
 
 @dataclass

@@ -111,7 +111,7 @@ def refuse_inexact_geometry(mech: Mechanism) -> None:
     the joint, the key and the line."""
     import sympy
 
-    from mechsing.model import MechanismError
+    from mechsing.errors import MechanismError
 
     def numbers(x: Any) -> list[Any]:
         if isinstance(x, tuple | list):

@@ -12,7 +12,8 @@ See :mod:`mechsing.model.mechanism` for the data model,
 expressions, and :mod:`mechsing.model.schema` for the JSON Schema.
 """
 
-from mechsing.model.expressions import ExpressionError, parse_number
+from mechsing.errors import ExpressionError, MechanismError
+from mechsing.model.expressions import parse_number
 from mechsing.model.graph import (
     Leg,
     Loop,
@@ -29,7 +30,6 @@ from mechsing.model.mechanism import (
     InputRef,
     Joint,
     Mechanism,
-    MechanismError,
     Output,
     OutputPose,
     Scene,

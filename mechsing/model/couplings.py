@@ -27,7 +27,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from mechsing.model.mechanism import Coupling, Joint, Mechanism, MechanismError
+from mechsing.errors import MechanismError
+from mechsing.model.mechanism import Coupling, Joint, Mechanism
 
 __all__ = [
     "COUPLING_KEYS",
@@ -47,7 +48,7 @@ def read_couplings(r: Any, v: Any, jmap: dict[str, Joint]) -> tuple[Coupling, ..
     """The ``couplings`` of a file (``r``: the loader's reader; ``v``: the key's node)."""
     if v is None:
         return ()
-    from mechsing.model.yamlnodes import YScalar
+    from mechsing.yamlnodes import YScalar
 
     seq = r.sequence(
         v, "couplings", "couplings", "couplings: [{joint: B, leader: A, multiplier: 1}]"

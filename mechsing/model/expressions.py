@@ -40,7 +40,7 @@ from typing import Any
 import mpmath
 import sympy
 
-from mechsing.errors import UserError
+from mechsing.errors import ExpressionError
 from mechsing.numeric.numbers import DECIMAL, SIGNED_DECIMAL, is_decimal_text, is_sensible_size
 from mechsing.numeric.tolerances import EXACT_ZERO_DIGITS, MAX_NUMBER
 
@@ -89,14 +89,6 @@ ALLOWED_FUNCTIONS: dict[str, tuple[Any, int]] = {
 }
 
 _ALLOWED_TEXT = "numbers, + - * / **, parentheses, pi, sqrt, sin, cos, tan, asin, acos, atan, atan2"
-
-
-class ExpressionError(UserError, ValueError):
-    """A number or expression that cannot be read (exit status 2).
-
-    The message says what is wrong and what is allowed; callers that know the
-    file and line (the mechanism loader) prefix them.
-    """
 
 
 def _describe(node: ast.AST) -> str:

@@ -16,14 +16,9 @@ from typing import Any
 
 import sympy
 
+from mechsing.errors import ExpressionError, InputRefError, MechanismError, YAMLReadError
 from mechsing.model.couplings import read_couplings
-from mechsing.model.expressions import (
-    ExpressionError,
-    is_plain_decimal,
-    parse_number,
-    radian_power,
-    written_digits,
-)
+from mechsing.model.expressions import is_plain_decimal, parse_number, radian_power, written_digits
 from mechsing.model.graph import build_graph, connected_to, coupled_loops
 from mechsing.model.mechanism import (
     POSE_KEY,
@@ -31,24 +26,13 @@ from mechsing.model.mechanism import (
     Configuration,
     Displacement,
     InputRef,
-    InputRefError,
     Joint,
     Mechanism,
-    MechanismError,
     Output,
     OutputPose,
     Units,
 )
 from mechsing.model.parameters import check_names, read_parameters
-from mechsing.model.yamlnodes import (
-    MAX_FILE_BYTES,
-    YAMLReadError,
-    YMap,
-    YScalar,
-    YSeq,
-    YValue,
-    read_yaml_text,
-)
 from mechsing.numeric import (
     MAX_NUMBER,
     NEAR_ZERO_VECTOR,
@@ -56,6 +40,7 @@ from mechsing.numeric import (
     data_resolution,
     is_sensible_size,
 )
+from mechsing.yamlnodes import MAX_FILE_BYTES, YMap, YScalar, YSeq, YValue, read_yaml_text
 
 __all__ = [
     "ANGLE_UNITS",
@@ -344,7 +329,8 @@ def read_text(path: str | Path, largest: int = MAX_FILE_BYTES) -> str:
     dropped): a regular file, pipe or FIFO of at most ``largest`` bytes
     (:func:`mechsing.files.read_input`); MechanismError otherwise (it cannot be read, is
     not a regular file, pipe or FIFO, is larger, or is not UTF-8 text)."""
-    from mechsing.files import InputError, read_input
+    from mechsing.errors import InputError
+    from mechsing.files import read_input
 
     shown = str(path)
     try:

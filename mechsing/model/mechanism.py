@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from mechsing.errors import UserError
+from mechsing.errors import InputRefError, MechanismError
 
 if TYPE_CHECKING:  # pragma: no cover
     from mechsing.model.graph import Leg, MechanismGraph
@@ -41,34 +41,6 @@ U_JOINT = "U"
 CROSS_SUFFIX = ".cross"
 
 Vector = tuple[Any, Any, Any]
-
-
-class MechanismError(UserError):
-    """A mechanism file that mechsing cannot accept (bad input).
-
-    The message names the file, the line where it can, the item and the fix;
-    the parts are also attributes for programs and tests.
-    """
-
-    def __init__(
-        self,
-        message: str,
-        *,
-        path: str | None = None,
-        line: int | None = None,
-        item: str | None = None,
-    ) -> None:
-        where = ""
-        if path is not None:
-            where = f"{path}:{line}: " if line is not None else f"{path}: "
-        elif line is not None:
-            where = f"line {line}: "
-        lead = f"{item}: " if item else ""
-        super().__init__(f"{where}{lead}{message}")
-        self.path = path
-        self.line = line
-        self.item = item
-        self.problem = message
 
 
 @dataclass(frozen=True)
@@ -132,16 +104,6 @@ class Joint:
         """The body at the other end of the joint."""
         a, b = self.between
         return b if body == a else a
-
-
-class InputRefError(ValueError):
-    """An input that names no actuable coordinate: ``item`` (e.g. ``input 'A[3]'``) and
-    ``problem`` (what is wrong and what to write) for the caller's message."""
-
-    def __init__(self, item: str, problem: str) -> None:
-        super().__init__(f"{item}: {problem}")
-        self.item = item
-        self.problem = problem
 
 
 _INPUT = re.compile(r"^(?P<name>[^\[\]]+?)\s*\[\s*(?P<index>-?\d+)\s*\]$")

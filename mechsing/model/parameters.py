@@ -31,8 +31,9 @@ from typing import Any
 
 import sympy
 
-from mechsing.model.expressions import ALLOWED_FUNCTIONS, ExpressionError, parse_number
-from mechsing.model.yamlnodes import YMap, YScalar, YSeq
+from mechsing.errors import ExpressionError
+from mechsing.model.expressions import ALLOWED_FUNCTIONS, parse_number
+from mechsing.yamlnodes import YMap, YScalar, YSeq
 
 __all__ = [
     "MAX_PARAMETERS",

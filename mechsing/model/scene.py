@@ -35,17 +35,9 @@ from typing import Any
 
 import networkx as nx
 
-from mechsing.errors import UserError
+from mechsing.errors import InputRefError, UserError
 from mechsing.model.graph import build_graph
-from mechsing.model.mechanism import (
-    Configuration,
-    InputRef,
-    InputRefError,
-    Joint,
-    Mechanism,
-    Output,
-    Scene,
-)
+from mechsing.model.mechanism import Configuration, InputRef, Joint, Mechanism, Output, Scene
 
 __all__ = ["SceneChoice", "choose_scene", "refuse_left_out", "relevant_part"]
 
@@ -275,7 +267,8 @@ def _body(mech: Mechanism, name: str, option: str) -> str:
 
 
 def _point(mech: Mechanism, text: str) -> tuple[Any, Any, Any]:
-    from mechsing.model.expressions import ExpressionError, parse_number
+    from mechsing.errors import ExpressionError
+    from mechsing.model.expressions import parse_number
 
     parts = [t.strip() for t in text.split(",")]
     if len(parts) != 3 or not all(parts):

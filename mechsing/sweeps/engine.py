@@ -38,8 +38,8 @@ from typing import Any
 import numpy as np
 
 from mechsing.analysis import analyze, analyze_found
-from mechsing.errors import UserError
-from mechsing.kinematics import Closer, ClosureError, KinematicModel
+from mechsing.errors import ClosureError, UserError
+from mechsing.kinematics import Closer, KinematicModel
 from mechsing.kinematics.batch import BatchClosure
 from mechsing.kinematics.newton import scaled_system
 from mechsing.kinematics.pose import PoseModel

@@ -43,7 +43,8 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.kinematics import Closer, ClosureError, KinematicModel
+from mechsing.errors import ClosureError
+from mechsing.kinematics import Closer, KinematicModel
 from mechsing.kinematics.batch import BatchClosure
 from mechsing.kinematics.newton import scaled_system
 from mechsing.numeric import (
