@@ -10,7 +10,7 @@ above :mod:`mechsing.model` (which reads mechsing YAML and JSON) and
 model imports no format.  The mechanism's ``warnings`` (likely mistakes that
 are not errors) and ``notes`` travel with it: the command line prints them,
 a program reads them.  Every problem is a
-:class:`~mechsing.model.MechanismError` (exit status 2) naming the file.
+:class:`~mechsing.errors.MechanismError` (exit status 2) naming the file.
 """
 
 from __future__ import annotations
@@ -68,7 +68,7 @@ def read_mechanism(source: str | Path | Source, symbolic: Collection[str] = ()) 
 
     ``symbolic`` names parameters of the file to keep as symbols
     (:class:`~mechsing.model.parameters.ParameterSymbol`), for symbolic conditions.
-    Raises :class:`~mechsing.model.MechanismError` for every problem of the file."""
+    Raises :class:`~mechsing.errors.MechanismError` for every problem of the file."""
     src = source if isinstance(source, Source) else read_source(source)
     return loads(
         src.yaml, path=src.path, default_name=src.name, symbolic=symbolic, expand_dh=expand_dh

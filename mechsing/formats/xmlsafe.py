@@ -9,7 +9,7 @@ parameter entities are never parsed.  The text is bounded in size
 (:data:`MAX_XML_BYTES`), in the length of each attribute, in the number of
 elements and in nesting depth.  Every element keeps its 1-based line, so every
 message can name the element and its line.  Errors are
-:class:`~mechsing.model.mechanism.MechanismError` (bad input, exit 2).
+:class:`~mechsing.errors.MechanismError` (bad input, exit 2).
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Reading and validating mechanism files (the format: ``mechsing schema`` and docs/file-format.md).
 
 :func:`load` reads a YAML or JSON file, :func:`loads` a text.  Every problem
-raises :class:`~mechsing.model.mechanism.MechanismError` whose message names
+raises :class:`~mechsing.errors.MechanismError` whose message names
 the file, the line, the item and the fix.  Numbers are read from their text
 as exact sympy values (:mod:`mechsing.model.expressions`) and converted to SI
 units and radians exactly.

@@ -18,7 +18,7 @@ Conventions:
   digit) that is not ``pi``, not a whitelisted function name, not a Python
   keyword, and not the name of a body or joint of the file.
 
-Errors are :class:`~mechsing.model.mechanism.MechanismError` (exit status 2)
+Errors are :class:`~mechsing.errors.MechanismError` (exit status 2)
 naming the file, the line, the parameter and the fix.
 """
 
