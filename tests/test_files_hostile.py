@@ -336,9 +336,9 @@ def test_an_endless_pipe_stops_at_the_size_cap(tmp_path):
         r = run_cli_capped(["analyze", f"/dev/fd/{r_end}"], cwd=tmp_path, pass_fds=(r_end,))
     finally:
         os.close(r_end)
-    from mechsing.model.loader import _largest_file
+    from mechsing.reader import LARGEST_FILE
 
-    _refused(r, f"/dev/fd/{r_end}", f"more than {_largest_file():,} bytes")
+    _refused(r, f"/dev/fd/{r_end}", f"more than {LARGEST_FILE:,} bytes")
 
 
 def test_a_fifo_nobody_writes_to_is_an_error_not_a_hang(tmp_path):
