@@ -109,6 +109,15 @@ def test_characteristic_length() -> None:
     assert L == 2.0
     assert numeric.characteristic_length(np.zeros((0, 3)))[0] == 1.0
     assert numeric.characteristic_length([[1, 1, 1]], override=0.5)[0] == 0.5
+    # points that coincide up to their coordinates' rounding (a spread of 1e-136 at 3.37 m
+    # from the origin) have no spread: L is |c| (dividing by 1e-136 blew rounding up to
+    # 1e119 in the commensurate rows), at every scale
+    for k in (1e-6, 1.0, 1e6):
+        pts = k * np.array([[0.0, 1e-136, 3.37], [0.0, -1e-136, 3.37], [1e-182, 0.0, 3.37]])
+        assert numeric.characteristic_length(pts)[0] == pytest.approx(3.37 * k, rel=1e-15)
+        # a small mechanism far from the origin keeps its own size
+        pts = k * np.array([[1.0, 0.0, 0.0], [1.0 + 2e-6, 0.0, 0.0]])
+        assert numeric.characteristic_length(pts)[0] == pytest.approx(1e-6 * k, rel=1e-9)
 
 
 @pytest.mark.parametrize("k", [1e-6, 1.0, 1e6])

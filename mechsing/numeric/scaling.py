@@ -13,6 +13,7 @@ import numpy as np
 import sympy
 
 from mechsing.numeric.backend import Backend, to_float
+from mechsing.numeric.tolerances import NEAR_ZERO_VECTOR
 
 
 def characteristic_length(points: Any, override: float | None = None) -> tuple[float, np.ndarray]:
@@ -30,8 +31,12 @@ def characteristic_length(points: Any, override: float | None = None) -> tuple[f
     Returns
     -------
     L : float
-        RMS distance of the points from their centroid; ``|c|`` if that is 0;
-        1 if that is 0 too.
+        RMS distance of the points from their centroid; ``|c|`` if that is 0 or
+        no more than :data:`NEAR_ZERO_VECTOR` times the largest ``|point|`` (the
+        points coincide, and their spread is the rounding of their coordinates: a
+        length of 1e-137 next to points 3.37 from the origin would divide the
+        commensurate v rows by it and blow their rounding up to 1e119); 1 if ``|c|``
+        is 0 too.
     c : ndarray, shape (3,)
         The centroid (zeros when there are no points).
     """
@@ -40,7 +45,8 @@ def characteristic_length(points: Any, override: float | None = None) -> tuple[f
     if override is not None:
         return float(override), c
     rms = float(np.sqrt(np.mean(np.sum((pts - c) ** 2, axis=1)))) if len(pts) else 0.0
-    if rms > 0:
+    far = float(np.max(np.linalg.norm(pts, axis=1))) if len(pts) else 0.0
+    if rms > NEAR_ZERO_VECTOR * far:
         return rms, c
     nc = float(np.linalg.norm(c))
     if nc > 0:
