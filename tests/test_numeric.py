@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from mechsing import numeric
 from mechsing.numeric import Precision, decide_definiteness, decide_rank, parse_precision
@@ -107,6 +109,15 @@ def test_characteristic_length() -> None:
     assert L == 2.0
     assert numeric.characteristic_length(np.zeros((0, 3)))[0] == 1.0
     assert numeric.characteristic_length([[1, 1, 1]], override=0.5)[0] == 0.5
+    # points that coincide up to their coordinates' rounding (a spread of 1e-136 at 3.37 m
+    # from the origin) have no spread: L is |c| (dividing by 1e-136 blew rounding up to
+    # 1e119 in the commensurate rows), at every scale
+    for k in (1e-6, 1.0, 1e6):
+        pts = k * np.array([[0.0, 1e-136, 3.37], [0.0, -1e-136, 3.37], [1e-182, 0.0, 3.37]])
+        assert numeric.characteristic_length(pts)[0] == pytest.approx(3.37 * k, rel=1e-15)
+        # a small mechanism far from the origin keeps its own size
+        pts = k * np.array([[1.0, 0.0, 0.0], [1.0 + 2e-6, 0.0, 0.0]])
+        assert numeric.characteristic_length(pts)[0] == pytest.approx(1e-6 * k, rel=1e-9)
 
 
 @pytest.mark.parametrize("k", [1e-6, 1.0, 1e6])
@@ -172,3 +183,53 @@ def test_mechsing_starts_without_scipy_sparse_and_loads_it_for_a_big_mechanism()
         "assert issparse(csr_matrix(np.eye(3))) and not issparse(np.eye(3))\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    st.lists(st.sampled_from([0.0, 1.0]), min_size=2, max_size=7).filter(any),
+    st.integers(0, 2**32 - 1),
+)
+def test_first_nonzero_sign_is_not_decided_by_noise(pattern: list[float], seed: int) -> None:
+    # DESIGN: directions have their first non-zero component positive.  A vector with
+    # exact zeros and the same vector with 1e-15 noise of either sign in those zeros (a
+    # direction (0, 0, -1) computed as (1e-17, -2e-17, -1)) are the same direction
+    rng = np.random.default_rng(seed)
+    v = (
+        np.array(pattern)
+        * rng.uniform(0.1, 2.0, len(pattern))
+        * rng.choice([-1.0, 1.0], len(pattern))
+    )
+    noisy = v + np.where(v == 0, rng.uniform(-1e-15, 1e-15, len(v)), 0.0)
+    first = v[np.flatnonzero(v)[0]]
+    for x in (v, noisy, 1e-6 * noisy, 1e6 * noisy):  # relative to the vector's size
+        assert numeric.first_nonzero_sign(x) == np.sign(first)
+        u = numeric.first_nonzero_positive(x)
+        assert u[np.flatnonzero(v)[0]] > 0
+        assert np.array_equal(u, np.sign(first) * np.asarray(x) + 0.0)
+    assert numeric.first_nonzero_sign(np.zeros(3)) == 1.0
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.floats(0.0, 1.0), st.floats(1e-3, 1e3))
+def test_rank_difference_margin_is_not_decided_by_a_rounding_level_drop(
+    noise: float, scale: float
+) -> None:
+    # rank [TN; EN] - rank TN as at fourbar_changepoint.yaml's flat configuration: TN of
+    # full rank (smallest kept 0.62), [TN; EN] dropping one singular value that is zero
+    # up to rounding.  Whether float computes that value as 0 or as a few 1e-17 (at another
+    # length scale, on another BLAS) must not change which decision the margin shows
+    from mechsing.numeric import FLOAT_ROUNDING_FACTOR, Margin, RankDecision, rank_difference
+
+    rounding = 2.5e-16 * scale
+    full = Margin(0.62 * scale, None, 1e-12, 1e-9, 1.0, None, 1.0 * scale, rounding)
+    seen = set()
+    for dropped in (0.0, noise * FLOAT_ROUNDING_FACTOR * rounding):
+        m = Margin(0.93 * scale, dropped, 1e-12, 1e-9, 1.0, None, 1.13 * scale, rounding)
+        big = RankDecision(2, None, m, "float", (2, 2))
+        small = RankDecision(2, None, full, "float", (2, 2))
+        for a, b in ((big, small), (small, big)):
+            d = rank_difference(a, b)
+            assert d.rank == 0
+            seen.add(d.margin.kept)
+    assert seen == {0.62 * scale}

@@ -81,6 +81,8 @@ from mechsing.numeric.field import (
 )
 from mechsing.numeric.linalg import (
     eigh,
+    first_nonzero_positive,
+    first_nonzero_sign,
     lstsq,
     max_abs,
     norm,
@@ -267,6 +269,8 @@ __all__ = [
     "decide_nonzero",
     "decide_rank",
     "eigh",
+    "first_nonzero_positive",
+    "first_nonzero_sign",
     "eigsy",
     "exact_is_zero",
     "exact_normal_form",

@@ -141,7 +141,8 @@ def rank_difference(a: RankDecision, b: RankDecision) -> RankDecision:
 
 def _tighter(a: Margin, b: Margin) -> Margin:
     """The margin nearer to flipping (:func:`_slack`), with the other's dropped value
-    when it has none of its own: a dropped value that is exactly zero never flips, so a
+    when it has none of its own: a dropped value that is zero never flips (exactly zero,
+    or in float within the rounding of the matrix: :func:`_drop_is_rounding`), so a
     kept one is the nearer, but the difference rests on that drop too and shows it
     (relative to the kept margin's sigma_max; exact margins have none and drop 0)."""
     near, far = (a, b) if _slack(a) <= _slack(b) else (b, a)
@@ -154,15 +155,31 @@ def _tighter(a: Margin, b: Margin) -> Margin:
 def _slack(m: Margin) -> float:
     """How far a margin is from flipping its decision: the smaller of the kept value's
     ratio to tau_hi and tau_lo's ratio to the dropped value (relative to sigma_max);
-    exact margins (no thresholds) never flip."""
+    exact margins (no thresholds) never flip, nor does a dropped value that is zero.
+
+    A float drop within the rounding of its matrix (:func:`_drop_is_rounding`) counts as
+    zero: whether such a singular value comes out as 5e-17 or exactly 0 is decided by
+    rounding (the same matrix at another length scale, on another machine's BLAS), and
+    the margin chosen must not be."""
     if not m.tau_hi or not m.sigma_max:
         return math.inf
     out = math.inf
     if m.kept is not None:
         out = min(out, m.kept / m.sigma_max / m.tau_hi)
-    if m.dropped is not None:
-        out = min(out, m.tau_lo / max(m.dropped / m.sigma_max, 1e-300))
+    if m.dropped is not None and m.dropped > 0 and not _drop_is_rounding(m):
+        out = min(out, m.tau_lo / (m.dropped / m.sigma_max))
     return out
+
+
+def _drop_is_rounding(m: Margin) -> bool:
+    """Is a float margin's dropped singular value within its matrix's rounding
+    (:data:`FLOAT_ROUNDING_FACTOR` times ``rounding``, the bound below which a computed
+    singular value cannot be told from zero: :func:`float_drop_is_real`)?"""
+    return (
+        m.rounding is not None
+        and m.dropped is not None
+        and (m.dropped <= FLOAT_ROUNDING_FACTOR * m.rounding)
+    )
 
 
 def rank_bounds(rel: Any, tol: Tolerances) -> tuple[np.ndarray, np.ndarray]:

@@ -15,6 +15,7 @@ import numpy as np
 from mechsing.numeric._mp import _mp_matrix, _object_array, eigsy, mp_svd, svd_r
 from mechsing.numeric.backend import Backend, backend_of, to_float
 from mechsing.numeric.blocks import block_svd
+from mechsing.numeric.tolerances import SUPPORT_RTOL
 
 
 def _numerical_backend(*arrays: Any) -> Backend:
@@ -127,3 +128,24 @@ def lstsq(A: Any, b: Any) -> np.ndarray:
 def pinv_truncated(U: np.ndarray, s: np.ndarray, Vt: np.ndarray, r: int) -> np.ndarray:
     """Pseudo-inverse of the rank-``r`` truncation of ``U diag(s) Vt`` (any backend)."""
     return (Vt[:r].T / s[:r][None, :]) @ U[:, :r].T
+
+
+def first_nonzero_sign(v: Any) -> float:
+    """+1.0 or -1.0: the sign that makes the float vector ``v``'s first non-zero component
+    positive (DESIGN's convention for a direction, a twist, a wrench, joint rates), +1.0
+    for a zero vector.  A component is zero when at most :data:`SUPPORT_RTOL` times the
+    largest ``|component|``, so rounding noise in the components that are zero (a
+    direction (1e-17, -2e-17, -1), the sign of an SVD vector) never decides the sign."""
+    x = np.asarray(to_float(v), dtype=float).ravel()
+    big = float(np.max(np.abs(x))) if x.size else 0.0
+    if not big > 0:
+        return 1.0
+    first = x[int(np.argmax(np.abs(x) > SUPPORT_RTOL * big))]
+    return -1.0 if first < 0 else 1.0
+
+
+def first_nonzero_positive(v: Any) -> np.ndarray:
+    """The float vector ``v`` times :func:`first_nonzero_sign` (its first component above
+    the rounding level positive)."""
+    x = np.asarray(to_float(v), dtype=float)
+    return first_nonzero_sign(x) * x + 0.0  # no -0.0

@@ -14,6 +14,7 @@ import sympy
 
 from mechsing.numeric.backend import Backend, to_float
 from mechsing.numeric.numbers import safe_norm
+from mechsing.numeric.tolerances import NEAR_ZERO_VECTOR
 
 
 def characteristic_length(points: Any, override: float | None = None) -> tuple[float, np.ndarray]:
@@ -31,8 +32,12 @@ def characteristic_length(points: Any, override: float | None = None) -> tuple[f
     Returns
     -------
     L : float
-        RMS distance of the points from their centroid; ``|c|`` if that is 0;
-        1 if that is 0 too.
+        RMS distance of the points from their centroid; ``|c|`` if that is 0 or
+        no more than :data:`NEAR_ZERO_VECTOR` times the largest ``|point|`` (the
+        points coincide, and their spread is the rounding of their coordinates: a
+        length of 1e-137 next to points 3.37 from the origin would divide the
+        commensurate v rows by it and blow their rounding up to 1e119); 1 if ``|c|``
+        is 0 too.
     c : ndarray, shape (3,)
         The centroid (zeros when there are no points).
     """
@@ -46,7 +51,8 @@ def characteristic_length(points: Any, override: float | None = None) -> tuple[f
     rms = big * float(np.sqrt(np.mean(np.sum((d / big) ** 2, axis=1)))) if big > 0 else 0.0
     if 1e-100 < big < 1e100:  # squares far from both ends of the range: the same rounding
         rms = float(np.sqrt(np.mean(np.sum(d**2, axis=1))))  # as always (results unchanged)
-    if rms > 0:
+    far = max((safe_norm(p) for p in pts), default=0.0)
+    if rms > NEAR_ZERO_VECTOR * far:
         return rms, c
     nc = safe_norm(c)
     if nc > 0:

@@ -21,7 +21,9 @@ from typing import Any
 #: decisions on float data, relative to the largest entry involved.
 MEMBERSHIP_RTOL_FLOAT = 1e-9
 #: norm below which a geometric vector given by a user (an axis, a normal) is
-#: refused as near-zero (relative to the largest length of the mechanism or 1).
+#: refused as near-zero (relative to the largest length of the mechanism or 1); and
+#: the spread of the axis points below which they coincide (relative to the farthest
+#: from the origin), so that the characteristic length is not their rounding
 NEAR_ZERO_VECTOR = 1e-9
 #: support threshold of a kernel vector (entries above 1e-9 of the largest)
 SUPPORT_RTOL = 1e-9

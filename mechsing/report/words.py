@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.analysis.contract import subgroup_params
-from mechsing.numeric import MEMBERSHIP_RTOL_FLOAT, unit_vector
+from mechsing.numeric import MEMBERSHIP_RTOL_FLOAT, first_nonzero_positive, unit_vector
 from mechsing.subgroups import Subgroup
 
 __all__ = [
@@ -112,7 +112,7 @@ def velocity_space_words(velocities: Sequence[Sequence[float]]) -> str:
         return f"moves along {_direction(V[0])} only"
     if len(V) == 2:
         n = np.cross(V[0], V[1])
-        n = n if n[np.argmax(np.abs(n) > MEMBERSHIP_RTOL_FLOAT * np.linalg.norm(n))] > 0 else -n
+        n = first_nonzero_positive(n)
         return f"moves in the plane normal to {_direction(n)}"
     return "moves in every direction"
 

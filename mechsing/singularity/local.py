@@ -33,6 +33,7 @@ from mechsing.numeric import (
     RankDecision,
     decide_from_exact,
     decide_rank,
+    first_nonzero_positive,
     numeric_precision,
     svd,
     to_float,
@@ -104,10 +105,7 @@ def _si_rates(model: Any, x: np.ndarray) -> list[float]:
     big = float(np.max(np.abs(v))) if v.size else 0.0
     if big == 0:
         return [0.0 for _ in v]
-    v = v / big
-    nz = np.flatnonzero(np.abs(v) > SUPPORT_RTOL)
-    if len(nz) and v[nz[0]] < 0:
-        v = -v
+    v = first_nonzero_positive(v / big)
     v = np.where(np.abs(v) > SUPPORT_RTOL, v, 0.0)
     return [float(a) + 0.0 for a in v]
 
@@ -532,13 +530,16 @@ def _most_moved(z: np.ndarray, A: np.ndarray) -> np.ndarray:
 
 
 def _output_si(mech: Any, fm: Any, t: np.ndarray) -> list[float]:
+    """The output's SI twist (a unit rotation, else a unit translation) or its point's
+    unit velocity from a commensurate twist, first non-zero component positive (its sign
+    otherwise the SVD's, which rounding decides)."""
     if mech.output.point is not None:
         v = fm.float_frame.velocity_back(t)
         n = float(np.linalg.norm(v))
-        return [float(a) for a in (v / n if n else v)]
+        return [float(a) for a in first_nonzero_positive(v / n if n else v)]
     tw = fm.float_frame.twist_back(t)
     n = float(np.linalg.norm(tw[ANGULAR])) or float(np.linalg.norm(tw[LINEAR])) or 1.0
-    return [float(a) + 0.0 for a in tw / n]
+    return [float(a) for a in first_nonzero_positive(tw / n)]
 
 
 def _coordinate_names(mech: Any, fm: Any) -> list[str]:

@@ -40,6 +40,7 @@ from mechsing.numeric import (
     CommensurateFrame,
     RankDecision,
     decide_rank,
+    first_nonzero_positive,
     to_float,
 )
 from mechsing.screws import chain_matrix
@@ -72,11 +73,7 @@ def _unit_first_positive(v: np.ndarray) -> np.ndarray:
     level (below SUPPORT_RTOL of the largest) reported as 0."""
     v = np.asarray(v, dtype=float)
     big = max(1.0, float(np.max(np.abs(v)))) if v.size else 1.0
-    v = np.where(np.abs(v) > SUPPORT_RTOL * big, v, 0.0)
-    nz = np.flatnonzero(v)
-    if len(nz) and v[nz[0]] < 0:
-        v = -v
-    return v + 0.0  # no -0.0
+    return first_nonzero_positive(np.where(np.abs(v) > SUPPORT_RTOL * big, v, 0.0))
 
 
 def _si_wrenches(
