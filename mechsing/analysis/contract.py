@@ -128,6 +128,7 @@ def _finding(
                 "wrenches": _lists(f.wrenches),
                 "twist": list(f.twist),
                 "null_joint_rates": list(f.null_joint_rates),
+                "name": f.name,
             }
         )
         return _decided(f, out)

@@ -26,6 +26,7 @@ from mechsing.singularity.findings import (
     SerialFinding,
     UndecidedFinding,
 )
+from mechsing.singularity.names import NAMES
 from mechsing.subgroups import Subgroup
 
 
@@ -87,8 +88,9 @@ def explain(f: Finding) -> str:
     j = _names(f.joints)
     if isinstance(f, SerialFinding):
         what = f"leg {f.leg}" if f.chain == "leg" else "the chain to the output"
+        named = f"{f.name} singularity ({NAMES[f.name]}): " if f.name else ""
         return (
-            f"{what} loses {f.corank} direction(s) of motion (rank {f.rank} instead of "
+            f"{named}{what} loses {f.corank} direction(s) of motion (rank {f.rank} instead of "
             f"{f.generic_rank}): joints {j} can move while its end stays still, and it resists "
             f"{f.corank} more wrench(es) than usual with no joint effort ({len(f.wrenches)} in all)"
         )

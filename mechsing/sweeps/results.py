@@ -18,7 +18,7 @@ import numpy as np
 
 from mechsing.analysis import ConfigurationResult
 from mechsing.analysis.contract import finding_class, finding_margin
-from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
+from mechsing.analysis.html import VERDICT_HEADERS, finding_label, html_table, verdict_row
 from mechsing.model import Mechanism
 from mechsing.numeric import SWEEP_TIE_RTOL
 
@@ -408,7 +408,8 @@ def _located_line(r: SweepResult, p: LocatedSingularity) -> str:
         return f"{head} (measure {p.ratio:.2g}; not classified: beyond --max-classified)"
     if p.configuration.error:
         return f"{head}: not analysed: {p.configuration.error}"
-    classes = ", ".join(p.classes or ()) or "no singularity found by the full analysis"
+    labels = dict.fromkeys(finding_label(f) for f in p.configuration.singularities)
+    classes = ", ".join(labels) or "no singularity found by the full analysis"
     margin = p.margin or {}
     shown = ""
     if margin.get("dropped") is not None:
