@@ -49,7 +49,9 @@ def test_analyze_names_the_arm_singularity_as_condition_does(arm: str, kind: str
 
 
 def test_regular_configuration_has_no_serial_finding_to_name() -> None:
-    doc = json.loads(_run("analyze", "examples/ur5.yaml", "--config", "regular", "--format", "json"))
+    doc = json.loads(
+        _run("analyze", "examples/ur5.yaml", "--config", "regular", "--format", "json")
+    )
     assert doc["configurations"][0]["singularities"] == []
 
 
