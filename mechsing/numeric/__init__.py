@@ -86,6 +86,8 @@ from mechsing.numeric.linalg import (
 )
 from mechsing.numeric.precision import (
     Precision,
+    display_floor,
+    floored,
     numeric_precision,
     order3_residual_rtol,
     parse_precision,
@@ -242,6 +244,8 @@ __all__ = [
     "mp_svd",
     "norm",
     "numeric_precision",
+    "display_floor",
+    "floored",
     "order3_residual_rtol",
     "orthonormal_columns",
     "parse_precision",

@@ -29,10 +29,10 @@ from mechsing.analysis.describe import OutputMotion
 from mechsing.analysis.html import VERDICT_HEADERS, class_words, largest_drop, verdict_row
 from mechsing.analysis.results import Mobility
 from mechsing.model import Mechanism, load
-from mechsing.numeric import Precision, parse_precision, to_float
+from mechsing.numeric import Precision, display_floor, floored, parse_precision, to_float
 from mechsing.report import document as doc
 from mechsing.report.figures import graph_figure, grid_figure, path_figure, svg
-from mechsing.report.render import _margin, explain, scene_line
+from mechsing.report.render import _margin, explain, joint_values_text, scene_line
 from mechsing.report.sketch import Screw, choose_view, sketch_figure
 from mechsing.singularity.findings import (
     ConstraintFinding,
@@ -547,10 +547,11 @@ def _configurations(r: Report) -> list[doc.Block]:
                 ),
             )
         )
-        vals = ", ".join(f"{name} = {', '.join(f'{x:.6g}' for x in v)}" for name, v in c.joints)
-        items = [f"joint values (m, rad): {vals}"]
+        L = r.analysis.length_scale
+        items = [f"joint values (m, rad): {joint_values_text(c, L)}"]
         if c.closure_residual is not None:
-            items.append(f"closure residual {c.closure_residual:.3g} m")
+            res = floored(c.closure_residual, display_floor(c.precision, L))
+            items.append(f"closure residual {res:.3g} m")
         if c.mobility is not None:
             m = c.mobility
             items.append(

@@ -55,7 +55,7 @@ NAMES = {
         "the wrist centre in the plane through the first axis parallel to the second, "
         "on the first axis for an arm without shoulder offset"
     ),
-    LEG: "a leg's pivots in line: the leg fully stretched or folded",
+    LEG: "its pivots in line",
 }
 
 #: a joint line: its name, a point on it (None for a prismatic joint), its unit direction

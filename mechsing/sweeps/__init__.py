@@ -27,7 +27,7 @@ import numpy as np
 
 from mechsing.errors import UserError, working_on
 from mechsing.model import Mechanism, load
-from mechsing.numeric import Precision, parse_precision
+from mechsing.numeric import Precision, display_floor, parse_precision
 from mechsing.sweeps.engine import Located, RowResult, Sweep, classify_located
 from mechsing.sweeps.loci import loci_of
 from mechsing.sweeps.results import (
@@ -136,9 +136,17 @@ class SweepRun:
         self.from_config = eng.from_config
         self.tests = eng.tests
         self.generic = {t: int(eng.measures.generic[t]) for t in self.tests}
+        L = float(eng.model.length_scale)
+        floor = display_floor(prec, L)
         self.variables = tuple(
             SweptVariable(
-                v.name, v.unit, v.file_unit, v.factor, v.values, (w.start, w.stop, w.step)
+                v.name,
+                v.unit,
+                v.file_unit,
+                v.factor,
+                v.values,
+                (w.start, w.stop, w.step),
+                floor if v.unit == "m" else floor / L,
             )
             for v, w in zip(self.vars, varies, strict=True)
         )

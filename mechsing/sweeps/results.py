@@ -20,7 +20,7 @@ from mechsing.analysis import ConfigurationResult
 from mechsing.analysis.contract import finding_class, finding_margin
 from mechsing.analysis.html import VERDICT_HEADERS, finding_label, html_table, verdict_row
 from mechsing.model import Mechanism
-from mechsing.numeric import SWEEP_TIE_RTOL
+from mechsing.numeric import SWEEP_TIE_RTOL, floored
 
 __all__ = [
     "LocatedSingularity",
@@ -46,9 +46,13 @@ class SweptVariable:
     factor: float
     values: np.ndarray = field(repr=False, compare=False)
     range: tuple[float, float, float] = (0.0, 0.0, 0.0)  # start, stop, step (file units)
+    #: the display floor in the SI unit (:func:`mechsing.numeric.display_floor`): a value
+    #: below it is round-off and is shown as 0
+    floor: float = field(default=0.0, compare=False)
 
     def shown(self, si: float) -> str:
-        """A value in the file's units (and in SI when they differ)."""
+        """A value in the file's units (and in SI when they differ), 0 below the floor."""
+        si = floored(si, self.floor)
         text = f"{si / self.factor:.10g} {self.file_unit}"
         if self.file_unit != self.unit:
             text += f" ({si:.10g} {self.unit})"
