@@ -33,7 +33,8 @@ from mechsing.numeric import Precision, display_floor, floored, parse_precision,
 from mechsing.report import document as doc
 from mechsing.report.figures import graph_figure, grid_figure, path_figure, svg
 from mechsing.report.render import _margin, explain, joint_values_text, scene_line
-from mechsing.report.sketch import Screw, choose_view, sketch_figure
+from mechsing.report.sketch import Screw, View, choose_view, sketch_figure
+from mechsing.report.sphere import choose_sphere_view, sphere_figure, spherical_centre
 from mechsing.singularity.findings import (
     ConstraintFinding,
     MotionFinding,
@@ -514,9 +515,36 @@ def _legs_and_motion(r: Report) -> list[doc.Block]:
     return out
 
 
+def _sketch(
+    r: Report, c: ConfigurationResult, view: View, screws: list[Screw]
+) -> tuple[object, str]:
+    """A configuration's sketch and its caption: on a sphere for a spherical mechanism."""
+    mech, q = r.mechanism, _configuration_q(r.mechanism, c)
+    if spherical_centre(mech) is not None:
+        fig = sphere_figure(mech, q, view, screws, f"{c.name}: {view.name}")
+        caption = (
+            "A spherical mechanism (every joint axis through one centre) on its unit sphere: "
+            "each joint axis as the unit vector from the centre, each link as the great-circle "
+            "arc between its joints (the ground's dashed), the far half of the sphere fainter"
+        )
+        lost = (
+            "; the screws of the findings as coloured axes (a lost rotation's through the centre)."
+        )
+        return fig, caption + (lost if screws else ".")
+    fig = sketch_figure(mech, q, view, screws, r.analysis.length_scale, f"{c.name}: {view.name}")
+    caption = (
+        "Links as segments between their joints (filled: a link with three joints or "
+        "more), ground hatched, revolute axes as dash-dot lines or circles seen end "
+        "on, sliders as boxes"
+    )
+    return fig, caption + (
+        "; the screws of the findings as coloured axes with their pitch." if screws else "."
+    )
+
+
 def _configurations(r: Report) -> list[doc.Block]:
     mech = r.mechanism
-    view = choose_view(mech)
+    view = choose_sphere_view(mech) if spherical_centre(mech) is not None else choose_view(mech)
     out: list[doc.Block] = [doc.Heading(2, "Configurations")]
     for c in r.analysis.configurations:
         out.append(doc.Heading(3, f"Configuration {c.name}"))
@@ -524,27 +552,13 @@ def _configurations(r: Report) -> list[doc.Block]:
             out.append(doc.Paragraph(f"not analysed: {c.error}"))
             continue
         screws = _screws(mech, c)
-        fig = sketch_figure(
-            mech,
-            _configuration_q(mech, c),
-            view,
-            screws,
-            r.analysis.length_scale,
-            f"{c.name}: {view.name}",
-        )
+        fig, caption = _sketch(r, c, view, screws)
         out.append(
             doc.Figure(
                 f"config-{doc.slug(c.name)}",
                 svg(fig),
                 f"sketch of {mech.name} at {c.name}",
-                "Links as segments between their joints (filled: a link with three joints or "
-                "more), ground hatched, revolute axes as dash-dot lines or circles seen end "
-                "on, sliders as boxes"
-                + (
-                    "; the screws of the findings as coloured axes with their pitch."
-                    if screws
-                    else "."
-                ),
+                caption,
             )
         )
         L = r.analysis.length_scale
