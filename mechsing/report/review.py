@@ -537,9 +537,10 @@ def _sketch(
         "more), ground hatched, revolute axes as dash-dot lines or circles seen end "
         "on, sliders as boxes"
     )
-    return fig, caption + (
-        "; the screws of the findings as coloured axes with their pitch." if screws else "."
-    )
+    caption += "; the screws of the findings as coloured axes with their pitch." if screws else "."
+    if view.why:
+        caption += f" {view.name[:1].upper()}{view.name[1:]} because the mechanism is {view.why}."
+    return fig, caption
 
 
 def _configurations(r: Report) -> list[doc.Block]:
