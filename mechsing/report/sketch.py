@@ -349,6 +349,7 @@ def sketch_figure(
         for p in gpts:
             _ground_hatch(ax, view.project(p), mark)
         # joints
+        labels: list[tuple[np.ndarray, list[str], bool]] = []
         for j in mech.joints:
             e = places.get(j.name)
             if not e:
@@ -403,10 +404,19 @@ def sketch_figure(
                 ax.add_patch(
                     Circle(xy, 0.6 * mark, facecolor="white", edgecolor="black", lw=1.5, zorder=3)
                 )
+            # joints that meet on the page (a wrist centre, a shoulder) share one label; a
+            # slider's label goes below (it may sit on a pin)
+            for at, names, slider in labels:
+                if slider == (j.type == "P") and float(np.linalg.norm(at - xy)) < 0.03 * span:
+                    names.append(j.name)
+                    break
+            else:
+                labels.append((xy, [j.name], j.type == "P"))
+        for xy, names, slider in labels:
             ax.annotate(
-                j.name,
+                ", ".join(names),
                 xy,
-                xytext=(6, -14) if j.type == "P" else (6, 5),  # a slider may sit on a pin
+                xytext=(6, -14) if slider else (6, 5),
                 textcoords="offset points",
                 fontsize=8,
                 zorder=5,
@@ -453,16 +463,12 @@ def sketch_figure(
                         [a0[0], a1[0]], [a0[1], a1[1]], color=colour, lw=1.8, ls=(0, (6, 2, 1, 2))
                     )
                 text = f"{s.label}: pitch {pitch:.3g} m/rad"
-            # the label toward the middle of the drawing
-            rel = (float(at[0]) - float(lo[0] + hi[0]) / 2) / span
-            ha = "center" if abs(rel) < 0.15 else ("right" if rel > 0 else "left")
-            dx = {"center": 0, "right": -8, "left": 8}[ha]
-            ax.annotate(
+            # the label below the drawing, in the screw's colour: never over a link
+            ax.text(
+                0.02,
+                0.03 + 0.07 * (len(screws) - 1 - k),
                 text,
-                at,
-                xytext=(dx, (6 if ha == "center" else -12) - 12 * k),
-                textcoords="offset points",
-                ha=ha,
+                transform=ax.transAxes,
                 fontsize=8,
                 color=colour,
                 zorder=7,
@@ -475,7 +481,9 @@ def sketch_figure(
             hi = np.maximum(hi, np.max(extra, axis=0))
         pad = 0.12 * span
         ax.set_xlim(lo[0] - pad, hi[0] + pad)
-        ax.set_ylim(lo[1] - pad - 2 * mark, hi[1] + pad)
+        # room below for the screws' labels (each about 0.07 of the height)
+        below = 0.1 * len(screws) * (hi[1] - lo[1] + 2 * pad + 2 * mark)
+        ax.set_ylim(lo[1] - pad - 2 * mark - below, hi[1] + pad)
         ax.set_title(title or view.name, fontsize=9, loc="left")
     return fig
 
