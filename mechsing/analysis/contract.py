@@ -128,10 +128,11 @@ def _finding(
                 "wrenches": _lists(f.wrenches),
                 "twist": list(f.twist),
                 "null_joint_rates": list(f.null_joint_rates),
-                "name": f.name,
             }
         )
-        return _decided(f, out)
+        out = _decided(f, out)
+        out["name"] = f.name  # added after the contract's first keys
+        return out
     out["joints"] = list(f.joints)
     if isinstance(f, BranchFinding):
         out["order"] = f.order

@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.analysis.solve import value_text
 from mechsing.errors import UserError, working_on
 from mechsing.model import Mechanism, load
 from mechsing.numeric import Precision, display_floor, parse_precision
@@ -97,6 +98,20 @@ def sweep(
     for _ in run.rows(progress, workers=workers, scheduler=scheduler):
         pass
     return run.result()
+
+
+def _texts(eng: Sweep, q: Any, analysed: Any) -> tuple[Any, Any]:
+    """The swept values (None when one is a pose variable) and every joint value of a
+    point found again at N digits, as text at its analysis's N digits."""
+    prec = parse_precision(analysed.precision)
+    joints = tuple(
+        (jk.name, tuple(value_text(x, prec) for x in q[jk.columns])) for jk in eng.model.joints
+    )
+    n = eng.model.n
+    values = (
+        tuple(value_text(q[c], prec) for c in eng.cols) if all(c < n for c in eng.cols) else None
+    )
+    return values, joints
 
 
 class SweepRun:
@@ -262,7 +277,7 @@ class SweepRun:
                 f"{len(chosen)} of them, spread over the grid (max_classified)"
             )
         with working_on(file=self.mechanism.path or self.mechanism.name):
-            analysed, moved = classify_located(eng, chosen, self.prec)
+            analysed, moved, at = classify_located(eng, chosen, self.prec)
         if self.prec.mode == "mp" and chosen or self.prec.mode == "auto" and any(moved):
             self.notes.append(
                 f"{sum(moved)} of the {len(chosen)} classified points were located again at "
@@ -270,10 +285,17 @@ class SweepRun:
                 + ("" if all(moved) else "; the others keep their float values")
             )
         by_id = {id(p): a for p, a in zip(chosen, analysed, strict=True)}
+        # the points found again at N digits: their joints as text at those digits
+        texts = {
+            id(p): _texts(eng, q, a)
+            for p, a, m, q in zip(chosen, analysed, moved, at, strict=True)
+            if m and a.error is None and a.precision.startswith("mp:")
+        }
         model = eng.model
         out = []
         for p in located:
             joints = tuple((k, tuple(v)) for k, v in model.values(p.q).items())
+            values_text, joints_text = texts.get(id(p), (None, None))
             out.append(
                 LocatedSingularity(
                     p.values,
@@ -284,6 +306,8 @@ class SweepRun:
                     by_id.get(id(p)),
                     p.far_side,
                     p.edge,
+                    values_text,
+                    joints_text,
                 )
             )
         loci = loci_of(self, out) if self.grid else ()

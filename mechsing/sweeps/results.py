@@ -82,7 +82,10 @@ class LocatedSingularity:
     analysis of the point at the sweep's precision (None when it was not classified:
     a grid classifies at most ``max_classified`` points); ``far_side``: a fold met on
     the other assembly mode, past which the path resumed; ``between``: for a grid,
-    ``row`` (found along a row) or ``column`` (between two rows)."""
+    ``row`` (found along a row) or ``column`` (between two rows); ``values_text`` and
+    ``joints_text``: at mp:N, for a point found again at N digits before its analysis,
+    the swept values (None for a pose variable's sweep) and the joint values as text at N
+    digits (the float fields keep float64's 17)."""
 
     values: tuple[float, ...]
     kind: str
@@ -92,6 +95,8 @@ class LocatedSingularity:
     configuration: ConfigurationResult | None = None
     far_side: bool = False
     between: str = "row"
+    values_text: tuple[str, ...] | None = None
+    joints_text: tuple[tuple[str, tuple[str, ...]], ...] | None = None
 
     @property
     def classes(self) -> tuple[str, ...] | None:
@@ -141,6 +146,10 @@ class LocatedSingularity:
             "precision": self.precision,
             "joints": {k: list(v) for k, v in self.joints},
             "configuration": None if self.configuration is None else self.configuration.to_json(),
+            "values_text": None if self.values_text is None else list(self.values_text),
+            "joints_text": (
+                None if self.joints_text is None else {k: list(v) for k, v in self.joints_text}
+            ),
         }
 
 
