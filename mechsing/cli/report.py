@@ -108,7 +108,8 @@ def run(args: argparse.Namespace) -> int:
                 "--precision exact: a sweep locates its singularities numerically, so their "
                 "values are not exact data; use --precision auto (the default) or mp:N"
             )
-        from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set
+        from mechsing.cli.options import apply_scene, apply_set
+        from mechsing.model.adhoc import set_start
 
         mech = apply_set(
             apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
@@ -116,7 +117,7 @@ def run(args: argparse.Namespace) -> int:
             args.from_config if args.set_values else None,  # without --set: the sweep's start
             args.file,
         )
-        start = SET_CONFIG if args.set_values else args.from_config
+        start = set_start(mech, args.set_values, "a report's sweep") or args.from_config
         command = "mechsing report " + shlex.join(_argv(args))
         rep = report(mech, args.config, args.vary, prec, start, command=command)
         try:

@@ -35,7 +35,8 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.cli import UserError, load_mechanism, precision_option
 
     prec = precision_option(args.precision)
-    from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set
+    from mechsing.cli.options import apply_scene, apply_set
+    from mechsing.model.adhoc import set_start
 
     mech = apply_set(
         apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
@@ -46,7 +47,7 @@ def run(args: argparse.Namespace) -> int:
     if args.config is None:
         if not args.set_values:
             raise UserError("solve needs --config NAME (or --set JOINT=VALUE for an ad-hoc one)")
-        args.config = SET_CONFIG
+        args.config = set_start(mech, args.set_values, "solve")
     if args.config not in mech.configurations:
         raise UserError(
             f"{args.file}: no configuration named {args.config!r}; the file has: {', '.join(mech.configurations)}"

@@ -152,7 +152,8 @@ def run(args: argparse.Namespace) -> int:
                 "--workers and --scheduler distribute the rows of a grid: give two --vary"
             )
         fmt = output_format(args.format, args.output)
-        from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set
+        from mechsing.cli.options import apply_scene, apply_set
+        from mechsing.model.adhoc import set_start
 
         mech = apply_set(
             apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
@@ -163,7 +164,7 @@ def run(args: argparse.Namespace) -> int:
         sweep_run = SweepRun(
             mech,
             list(varies),
-            SET_CONFIG if args.set_values else args.from_config,
+            set_start(mech, args.set_values, "a sweep") or args.from_config,
             prec,
             max_classified=args.max_classified or MAX_CLASSIFIED,
         )
