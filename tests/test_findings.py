@@ -131,6 +131,7 @@ def test_each_kind_serializes_with_the_contract_keys_in_order():
         "null_joint_rates",
         "margin",
         "precision",
+        "name",
     ]
     assert got["serial"]["corank"] == 1 and got["serial"]["wrenches"] == [[1.0, 0, 0, 0, 0, 0]]
     assert list(got["bifurcation"]) == [

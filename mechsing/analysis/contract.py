@@ -130,7 +130,9 @@ def _finding(
                 "null_joint_rates": list(f.null_joint_rates),
             }
         )
-        return _decided(f, out)
+        out = _decided(f, out)
+        out["name"] = f.name  # added after the contract's first keys
+        return out
     out["joints"] = list(f.joints)
     if isinstance(f, BranchFinding):
         out["order"] = f.order

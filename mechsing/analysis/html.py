@@ -18,7 +18,9 @@ from collections.abc import Sequence
 from html import escape
 from typing import Any
 
+from mechsing.analysis.contract import finding_class
 from mechsing.numeric import Margin
+from mechsing.singularity.names import NAMES
 
 #: a ConfigurationResult (not imported: the results import this module)
 ConfigurationResult = Any
@@ -28,6 +30,7 @@ __all__ = [
     "VERDICT_HEADERS",
     "class_words",
     "decided_in",
+    "finding_label",
     "html_table",
     "largest_drop",
     "margin_words",
@@ -53,10 +56,25 @@ CLASS_WORDS = {
 VERDICT_HEADERS = ("configuration", "singular", "classes", "margin", "decided in")
 
 
+def finding_label(f: Any) -> str:
+    """A finding's class, with the name people give it where it has one (``serial (elbow)``)."""
+    cls, name = finding_class(f), getattr(f, "name", None)
+    return f"{cls} ({name})" if name else cls
+
+
 def class_words(classes: Sequence[str]) -> str:
     """The classes in words, in order, each once (``none`` when there is none)."""
     seen = list(dict.fromkeys(classes))
-    return "; ".join(CLASS_WORDS.get(c, c) for c in seen) or "none"
+    return "; ".join(_words(c) for c in seen) or "none"
+
+
+def _words(label: str) -> str:
+    """The words of a class, or of a named finding's label (``serial (elbow)``)."""
+    cls, _, name = label.partition(" (")
+    if not name:
+        return CLASS_WORDS.get(cls, cls)
+    name = name.rstrip(")")
+    return f"{cls} ({name}: {NAMES.get(name, name)})"
 
 
 def _relative(m: Margin, value: float | None) -> float | None:
@@ -107,7 +125,7 @@ def verdict_row(c: ConfigurationResult, name: str | None = None) -> tuple[str, .
     if c.error is not None:
         return (name or c.name, "not analysed", c.error, "-", c.precision)
     singular = {True: "yes", False: "no", None: "undecided"}[c.singular]
-    classes = class_words([s.cls for s in c.singularities])
+    classes = class_words([finding_label(s) for s in c.singularities])
     margin = margin_words(c)
     below = getattr(c, "data_resolution", None)
     if below is not None:  # the verdict holds of the written decimals only

@@ -22,11 +22,11 @@ refused (exit 2).
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import re
 from typing import Any
 
 from mechsing.errors import UserError
+from mechsing.model.adhoc import SET_CONFIG  # the name of the configuration unnamed values make
 
 __all__ = [
     "SET_CONFIG",
@@ -44,8 +44,6 @@ __all__ = [
     "warn_varies",
 ]
 
-#: the name of the configuration --set adds
-SET_CONFIG = "cli"
 #: a number of seconds as written on the command line: ASCII decimal syntax only
 _DECIMAL = re.compile(r"^\s*[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?\s*$", re.ASCII)
 
@@ -104,10 +102,11 @@ def add_set_option(p: argparse.ArgumentParser, from_option: bool = True) -> None
         "--set",
         dest="set_values",
         action="append",
-        metavar="JOINT=VALUE",
+        metavar="[NAME:]JOINT=VALUE",
         help=f"a joint value in the file's units (repeatable; a joint of several coordinates "
-        f"takes a comma-separated list, e.g. --set S1=0.1,0,0.2): together they make a "
-        f"configuration named {SET_CONFIG}, solved by closure from reference (or --from)",
+        f"takes a comma-separated list, e.g. --set S1=0.1,0,0.2): the values with the same "
+        f"NAME make a configuration of that name, those without one a configuration named "
+        f"{SET_CONFIG}; each solved by closure from reference (or --from)",
     )
     if from_option:
         add_from_option(
@@ -187,61 +186,11 @@ def check_shared(args: argparse.Namespace, sweeps: str = "a sweep") -> None:
 
 
 def apply_set(mech: Any, sets: list[str] | None, start: str | None, path: str) -> Any:
-    """``mech`` with the configuration ``cli`` the ``--set`` values give (``mech`` itself
-    when there is none); ``start`` is the configuration it is solved from (None:
-    reference); ``path`` names the file in messages."""
-    from mechsing.errors import ExpressionError
-    from mechsing.model.expressions import parse_number
-    from mechsing.model.mechanism import Configuration
+    """``mech`` with the configurations the ``--set [NAME:]JOINT=VALUE`` values give
+    (:func:`mechsing.model.adhoc.with_set_values`)."""
+    from mechsing.model.adhoc import with_set_values
 
-    if not sets:
-        return mech
-    if SET_CONFIG in mech.configurations:
-        raise UserError(
-            f"{path}: the file already has a configuration named {SET_CONFIG!r}, the name "
-            f"--set gives its values; rename the file's configuration or use --config "
-            f"{SET_CONFIG} without --set"
-        )
-    start = start or "reference"
-    if start not in mech.configurations:
-        raise UserError(
-            f"{path}: --from {start!r}: no such configuration; the file has: "
-            f"{', '.join(mech.configurations)}"
-        )
-    units = mech.units
-    values: dict[str, tuple[Any, ...]] = {}
-    for text in sets:
-        name, eq, raw = text.partition("=")
-        name = name.strip()
-        if not eq or not name or not raw.strip():
-            raise UserError(f"--set {text!r}: expected JOINT=VALUE, e.g. --set J2=30")
-        if name not in mech.joint_names:
-            shown = ", ".join(mech.joint_names[:12]) + (", ..." if len(mech.joints) > 12 else "")
-            raise UserError(f"--set {text!r}: {path} has no joint {name!r}; its joints are {shown}")
-        if name in values:
-            raise UserError(f"--set {name} is given twice; give each joint once")
-        j = mech.joint(name)
-        parts = [t.strip() for t in raw.split(",")]
-        if j.dof == 0:
-            raise UserError(f"--set {text!r}: joint {name!r} ({j.type}) has no coordinates")
-        if len(parts) != j.dof:
-            raise UserError(
-                f"--set {text!r}: joint {name!r} ({j.type}) has {j.dof} coordinate"
-                f"{'s' if j.dof > 1 else ''}; give {j.dof} comma-separated value"
-                f"{'s' if j.dof > 1 else ''} in the file's units"
-            )
-        coords = []
-        for t, unit in zip(parts, j.units, strict=True):
-            try:
-                x = parse_number(t)
-            except ExpressionError as exc:
-                raise UserError(f"--set {text!r}: {exc}") from None
-            factor = units.angle_factor if unit == "rad" else units.length_factor
-            coords.append(x * factor if factor != 1 else x)
-        values[name] = tuple(coords)
-    conf = Configuration(SET_CONFIG, values, start, None, {}, None)
-    configs = {**mech.configurations, SET_CONFIG: conf}
-    return dataclasses.replace(mech, configurations=configs)
+    return with_set_values(mech, sets, start, path)
 
 
 # ------------------------------------------------------------------ the scene options

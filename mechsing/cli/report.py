@@ -76,7 +76,6 @@ def output_path(file: str, out: str | None) -> tuple[Path, str]:
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
     from mechsing.cli.options import (
-        SET_CONFIG,
         apply_scene,
         apply_set,
         check_shared,
@@ -91,6 +90,7 @@ def run(args: argparse.Namespace) -> int:
         # before the work: a missing directory or the input file is refused now
         check_output(path, [args.file], "-o" if args.output else "the default output")
         check_shared(args, "a report")  # the options' own errors before the file is read
+        from mechsing.model.adhoc import set_start
 
         mech = apply_set(
             apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
@@ -99,7 +99,7 @@ def run(args: argparse.Namespace) -> int:
             args.file,
         )
         warn_varies(mech, args.varies)
-        start = SET_CONFIG if args.set_values else args.from_config
+        start = set_start(mech, args.set_values, "a report's sweep") or args.from_config
         command = "mechsing report " + shlex.join(_argv(args))
         rep = report(
             mech,

@@ -30,9 +30,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from mechsing.analysis.solve import solve
     from mechsing.cli import UserError, load_mechanism
-    from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set, check_shared
+    from mechsing.cli.options import apply_scene, apply_set, check_shared
 
     check_shared(args)
+    from mechsing.model.adhoc import set_start
 
     mech = apply_set(
         apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
@@ -43,7 +44,7 @@ def run(args: argparse.Namespace) -> int:
     if args.config is None:
         if not args.set_values:
             raise UserError("solve needs --config NAME (or --set JOINT=VALUE for an ad-hoc one)")
-        args.config = SET_CONFIG
+        args.config = set_start(mech, args.set_values, "solve")
     if args.config not in mech.configurations:
         raise UserError(
             f"{args.file}: no configuration named {args.config!r}; the file has: {', '.join(mech.configurations)}"

@@ -167,7 +167,8 @@ def run(args: argparse.Namespace) -> int:
             from mechsing.files import check_output
 
             check_output(args.output, [args.file])
-        from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set
+        from mechsing.cli.options import apply_scene, apply_set
+        from mechsing.model.adhoc import set_start
 
         mech = apply_set(
             apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
@@ -179,7 +180,7 @@ def run(args: argparse.Namespace) -> int:
         sweep_run = SweepRun(
             mech,
             list(varies),
-            SET_CONFIG if args.set_values else args.from_config,
+            set_start(mech, args.set_values, "a sweep") or args.from_config,
             args.prec,
             max_classified=args.max_classified or MAX_CLASSIFIED,
             time_limit=args.time_limit,

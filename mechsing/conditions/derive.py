@@ -68,6 +68,7 @@ from mechsing.numeric import (
     unit_vector,
 )
 from mechsing.reader import read_mechanism
+from mechsing.singularity.names import line_facts, name_of, named
 from mechsing.timelimit import TimeLimit
 
 __all__ = ["ELIMINATION_SECONDS", "MAX_MINORS", "condition"]
@@ -232,7 +233,9 @@ def _symbolic_mechanism(source: str | Path | Mechanism, names: list[str]) -> Mec
 
 
 def _printable(c: Condition, printable: dict[Any, Any]) -> Condition:
-    factors = tuple(Factor(f.expression.xreplace(printable), f.power, f.meaning) for f in c.factors)
+    factors = tuple(
+        Factor(f.expression.xreplace(printable), f.power, f.meaning, name=f.name) for f in c.factors
+    )
     return Condition(
         c.name,
         c.form,
@@ -268,7 +271,7 @@ def _conditions_from(
         if number.is_number and number != 1 and rest.free_symbols:
             const, trig = const * number**p, rest
         meaning = meanings(f) if meanings is not None else None
-        out.append(Factor(trig, p, meaning))
+        out.append(Factor(trig, p, meaning, name=named(meaning)))
     variables = sorted(
         {str(s) for f in out for s in f.expression.free_symbols} - {str(p) for p in params}
     )
@@ -442,82 +445,9 @@ class _Explainer:
                 out.append((n, np.cross(w, v) / nw**2, w / nw))
         return out
 
-    def facts(self, pt: dict[Any, Any]) -> set[str]:
-        tol = CONDITION_GEOMETRY_RTOL
-        L = self.lines(pt)
-        facts: set[str] = set()
-        for (a, pa, ua), (b, pb, ub) in itertools.combinations(L, 2):
-            if pa is None or pb is None:
-                continue
-            if np.linalg.norm(np.cross(ua, ub)) < tol:
-                d = np.linalg.norm(np.cross(pb - pa, ua))
-                if d < tol * self.scale:
-                    facts.add(f"the axes of {a} and {b} coincide")
-                elif not self.planar:
-                    facts.add(f"the axes of {a} and {b} are parallel")
-        P = None
-        if self.point is not None:
-            P = _numeric(self.point, pt, self.params).ravel()
-            for n, p, u in L:
-                if p is not None and np.linalg.norm(np.cross(P - p, u)) < tol * self.scale:
-                    facts.add(f"the output point is on the axis of {n}")
-        facts |= self.centre_facts(L)
-        # three parallel axes (or two and the output point) in one plane
-        items = [(n, p, u) for n, p, u in L if p is not None]
-        if P is not None and items:
-            items.append(("the output point", P, items[0][2]))
-        for (a, pa, ua), (b, pb, ub), (c, pc, uc) in itertools.combinations(items, 3):
-            if max(np.linalg.norm(np.cross(ua, ub)), np.linalg.norm(np.cross(ua, uc))) > tol:
-                continue
-            d1 = pb - pa - ua * np.dot(pb - pa, ua)
-            d2 = pc - pa - ua * np.dot(pc - pa, ua)
-            if np.linalg.norm(np.cross(d1, d2)) < tol * self.scale**2:
-                if self.planar:
-                    facts.add(
-                        f"the pivots of {a}, {b} and {c} are in line (the links between them "
-                        "stretched or folded)"
-                    )
-                else:
-                    facts.add(
-                        f"the parallel axes of {a}, {b} and {c} lie in one plane (the links "
-                        "between them stretched or folded)"
-                    )
-        return facts
-
-    def centre_facts(self, L: list[tuple[str, Any, Any]]) -> set[str]:
-        """Where three or more axes meet (a wrist centre): is it in the plane of two
-        parallel axes, or in the plane through one axis parallel to another?"""
-        tol = CONDITION_GEOMETRY_RTOL
-        R = [(n, p, u) for n, p, u in L if p is not None]
-        out: set[str] = set()
-        for trio in itertools.combinations(R, 3):
-            us = [u for _, _, u in trio]
-            if min(np.linalg.norm(np.cross(a, b)) for a, b in itertools.combinations(us, 2)) < tol:
-                continue
-            (_, p1, u1), (_, p2, u2) = trio[0], trio[1]
-            A = np.column_stack([u1, -u2])
-            t = np.linalg.lstsq(A, p2 - p1, rcond=None)[0]
-            W = p1 + t[0] * u1
-            if any(np.linalg.norm(np.cross(W - p, u)) > tol * self.scale for _, p, u in trio):
-                continue
-            who = ", ".join(n for n, _, _ in trio)
-            if abs(np.linalg.det(np.column_stack(us))) < tol:
-                out.add(f"the axes of {who} (meeting at one point) are in one plane")
-            for (a, pa, ua), (b, pb, ub) in itertools.combinations(R, 2):
-                if a in who.split(", ") or b in who.split(", "):
-                    continue
-                normal = np.cross(ua, ub)
-                if np.linalg.norm(normal) < tol:
-                    normal = np.cross(ua, pb - pa)
-                    if np.linalg.norm(normal) < tol * self.scale:
-                        continue
-                    where = f"the plane of the parallel axes of {a} and {b}"
-                else:
-                    where = f"the plane through the axis of {a} parallel to the axis of {b}"
-                normal = unit_vector(normal)
-                if abs(np.dot(W - pa, normal)) < tol * self.scale:
-                    out.add(f"the wrist centre (where {who} meet) is in {where}")
-        return out
+    def facts(self, pt: dict[Any, Any]) -> dict[str, Any]:
+        P = None if self.point is None else _numeric(self.point, pt, self.params).ravel()
+        return line_facts(self.lines(pt), P, self.planar, self.scale)
 
     def __call__(self, f: Any) -> str | None:
         rng = random.Random(7)
@@ -537,7 +467,8 @@ class _Explainer:
                 continue
             pt[var.c], pt[var.s] = sympy.Float(math.cos(root), 30), sympy.Float(math.sin(root), 30)
             pt[var.q] = sympy.Float(root, 30)
-            new = sorted(self.facts(pt) - generic)
+            facts = self.facts(pt)
+            new = sorted(t for t in facts if t not in generic)
             joints = sorted(
                 {
                     js.q.name
@@ -546,22 +477,11 @@ class _Explainer:
                 }
             )
             if new:
-                kind = _kind(new) if self.arm else ""
+                name = name_of([facts[t][0] for t in new]) if self.arm else None
+                kind = f"{name}: " if name else ""
                 return kind + "vanishes when " + "; ".join(new)
             return f"a condition on {', '.join(joints)} (no parallel axes or aligned pivots there)"
         return None
-
-
-def _kind(facts: list[str]) -> str:
-    """The name arm designers give a singularity with these geometric facts."""
-    text = " ".join(facts)
-    if "plane through the axis" in text:
-        return "shoulder: "
-    if "plane of the parallel axes" in text or "in line" in text or "lie in one plane" in text:
-        return "elbow: "
-    if "coincide" in text or "are parallel" in text:
-        return "wrist: "
-    return ""
 
 
 def _root_of(f: Any, var: JointSymbols, pt: dict[Any, Any], params: list[Any]) -> float | None:
@@ -1070,5 +990,5 @@ def _evaluate(c: Condition, values: dict[str, float], params: list[Any]) -> Cond
         ]
         scale = sum(abs(complex(sympy.N(t.xreplace(sub), 30))) for t in bound) or 1.0
         vanishes = abs(val) <= CONDITION_VANISH_RTOL * scale if not e.free_symbols else None
-        out.append(Factor(f.expression, f.power, f.meaning, float(val.real), vanishes))
+        out.append(Factor(f.expression, f.power, f.meaning, float(val.real), vanishes, f.name))
     return Condition(c.name, c.form, c.variables, c.constant, tuple(out), c.note, c.roots, c.units)

@@ -31,7 +31,9 @@ class Factor:
     ``meaning`` says what its vanishing means where it is recognised (None
     otherwise); ``value`` and ``vanishes`` are set when a configuration was
     given (the factor's value there, and whether it is zero to the precision
-    of the evaluation).
+    of the evaluation); ``name`` is the name people give the singularity
+    (``"wrist"``, ``"elbow"``, ``"shoulder"``: :data:`mechsing.singularity.names.NAMES`),
+    where its geometry shows one.
     """
 
     expression: Any
@@ -39,6 +41,7 @@ class Factor:
     meaning: str | None = None
     value: float | None = None
     vanishes: bool | None = None
+    name: str | None = None
 
 
 @dataclass(frozen=True)
@@ -135,6 +138,7 @@ class ConditionResult:
                             "meaning": f.meaning,
                             "value": f.value,
                             "vanishes": f.vanishes,
+                            "name": f.name,
                         }
                         for f in c.factors
                     ],

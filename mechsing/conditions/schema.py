@@ -29,6 +29,11 @@ def condition_schema() -> dict[str, Any]:
             },
             "value": {**nullable_number, "description": "its value at the configuration"},
             "vanishes": {**nullable_bool, "description": "zero at the configuration"},
+            "name": {
+                "type": ["string", "null"],
+                "description": "the name people give the singularity (wrist, elbow, shoulder), "
+                "where its geometry shows one",
+            },
         },
         "required": ["expression", "power", "meaning", "value", "vanishes"],
         "additionalProperties": False,

@@ -101,6 +101,8 @@ from mechsing.numeric.numbers import (
 )
 from mechsing.numeric.precision import (
     Precision,
+    display_floor,
+    floored,
     numeric_precision,
     order3_residual_rtol,
     parse_precision,
@@ -280,6 +282,8 @@ __all__ = [
     "mp_svd",
     "norm",
     "numeric_precision",
+    "display_floor",
+    "floored",
     "order3_residual_rtol",
     "orthonormal_columns",
     "parse_precision",

@@ -98,6 +98,20 @@ class Precision:
         return 0.0
 
 
+def display_floor(precision: Precision | str, length_scale: float) -> float:
+    """The display floor: a length below it is round-off and is shown as 0 (an angle below
+    ``display_floor / L``): the closure tolerance of the precision, 1e-12 L in float,
+    min(10^(15-N), 10^-12) L at mp:N, 0 in exact mode.  Text and reports show values
+    through :func:`floored`; the JSON keeps the numbers."""
+    p = parse_precision(precision) if isinstance(precision, str) else precision
+    return float(p.closure_tolerance(float(length_scale)))
+
+
+def floored(x: float, floor: float) -> float:
+    """``x`` as it is displayed: 0 below the display ``floor`` (never -0)."""
+    return 0.0 if abs(x) < floor else float(x) + 0.0
+
+
 def parse_precision(text: str) -> Precision:
     """Parse ``float``, ``mp:N`` (20 <= N <= 10000), ``exact`` or ``auto``.
 

@@ -214,14 +214,34 @@ def path_figure(
         ax.axhspan(tau_lo, tau_hi, color="#7f7f7f", alpha=0.22, lw=0)
         lowest = 1.0
         xmin, xmax = math.inf, -math.inf
+        reached = [float(xm) for xm, _, _ in marks]  # the swept values reached, and marked
         for test, x, y in curves:
             xmin, xmax = min(xmin, float(np.min(x))), max(xmax, float(np.max(x)))
+            ok = np.isfinite(y)
+            if np.any(ok):
+                reached += [float(np.min(x[ok])), float(np.max(x[ok]))]
             yy = np.where(np.isfinite(y), np.maximum(y, FLOOR), np.nan)
             if np.any(np.isfinite(yy)):
                 lowest = min(lowest, float(np.nanmin(yy)))
             ax.semilogy(x, yy, color=TEST_COLOURS.get(test, "#333333"), lw=1.4, label=test)
         bottom = max(FLOOR, min(lowest, tau_lo) / 30)
         ax.set_ylim(bottom, 2.0)
+        # zoom to what was reached when it is a small part of the requested range; the rest
+        # is said, not drawn empty
+        full = (xmin, xmax)
+        if reached and max(reached) - min(reached) < 0.8 * (xmax - xmin):
+            pad = 0.05 * max(max(reached) - min(reached), 1e-9 * max(1.0, abs(xmax - xmin)))
+            xmin, xmax = max(full[0], min(reached) - pad), min(full[1], max(reached) + pad)
+            gone = [f"{a:.4g} to {b:.4g}" for a, b in ((full[0], xmin), (xmax, full[1])) if b > a]
+            ax.text(
+                0.005,
+                0.02,
+                "not reached: " + " and ".join(gone),
+                transform=ax.transAxes,
+                fontsize=7,
+                color="#444444",
+                bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "#bbbbbb", "alpha": 0.9},
+            )
         last = -math.inf
         numbered = sorted((xm, k, ym, label) for k, (xm, ym, label) in enumerate(marks))
         for xm, k, ym, label in numbered:

@@ -18,7 +18,7 @@ from mechsing.analysis.contract import subgroup_params
 from mechsing.analysis.describe import OutputMotion
 from mechsing.analysis.results import AnalysisResult, to_json
 from mechsing.model.couplings import coupling_source, describe_coupling
-from mechsing.numeric import Margin
+from mechsing.numeric import Margin, display_floor, floored
 from mechsing.report.words import describe, subgroup_words, velocity_space_words
 from mechsing.singularity.findings import (
     BranchFinding,
@@ -27,6 +27,7 @@ from mechsing.singularity.findings import (
     SerialFinding,
     UndecidedFinding,
 )
+from mechsing.singularity.names import NAMES
 from mechsing.singularity.zfb import not_run_sentences
 from mechsing.subgroups import Subgroup
 
@@ -90,8 +91,11 @@ def explain(f: Finding) -> str:
     j = _names(f.joints)
     if isinstance(f, SerialFinding):
         what = f"leg {f.leg}" if f.chain == "leg" else "the chain to the output"
+        # "wrist singularity (...)", "leg fully stretched or folded (...)"
+        kind = f"{f.name} singularity" if f.name and " " not in f.name else f.name
+        named = f"{kind} ({NAMES[f.name]}): " if f.name else ""
         return (
-            f"{what} loses {f.corank} direction(s) of motion (rank {f.rank} instead of "
+            f"{named}{what} loses {f.corank} direction(s) of motion (rank {f.rank} instead of "
             f"{f.generic_rank}): joints {j} can move while its end stays still, and it resists "
             f"{f.corank} more wrench(es) than usual with no joint effort ({len(f.wrenches)} in all)"
         )
@@ -221,6 +225,17 @@ def scene_line(note: str) -> str:
     return f"{note[:1].upper()}{note[1:]}."
 
 
+def joint_values_text(c: Any, length_scale: float) -> str:
+    """A configuration's joint values (m, rad) as text, each below the display floor of
+    its precision (:func:`mechsing.numeric.display_floor`; the smaller of a length's and
+    an angle's, as a coordinate may be either) shown as 0."""
+    floor = display_floor(c.precision, length_scale)
+    floor = min(floor, floor / length_scale)
+    return ", ".join(
+        f"{k} = [{', '.join(f'{floored(x, floor):.6g}' for x in v)}]" for k, v in c.joints
+    )
+
+
 def render_text(result: AnalysisResult, markdown: bool = False) -> str:
     """The text (or Markdown) report of ``result``: the precision, the mechanism's
     properties, then each configuration with its loops, closure rank, mobility and
@@ -281,6 +296,7 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         if c.error is not None:
             lines.append(f"{bullet}not analysed: {c.error}")
             continue
+        floor = display_floor(c.precision, result.length_scale)
         if c.pose is not None:
             gp = c.pose
             rel = (
@@ -290,17 +306,17 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             )
             lines.append(
                 f"{bullet}given pose of {gp.body}{rel} (m, rad): reference point at "
-                f"({', '.join(f'{x:.6g}' for x in gp.position)}), rotation vector "
-                f"({', '.join(f'{x:.6g}' for x in gp.rotation_vector)}) about it"
+                f"({', '.join(f'{floored(x, floor):.6g}' for x in gp.position)}), rotation "
+                f"vector ({', '.join(f'{floored(x, floor / L):.6g}' for x in gp.rotation_vector)})"
+                " about it"
             )
-        vals = ", ".join(f"{k} = [{', '.join(f'{x:.6g}' for x in v)}]" for k, v in c.joints)
-        lines.append(f"{bullet}joint values (m, rad): {vals}")
+        lines.append(f"{bullet}joint values (m, rad): {joint_values_text(c, L)}")
         if c.underdetermined:
             lines.append(f"{bullet}{_underdetermined(result.mechanism, c)}")
         outside = _outside_limits(result.mechanism.limits, c.joints)
         if outside:
             lines.append(f"{bullet}outside the joint limits: {', '.join(outside)}")
-        lines.append(f"{bullet}closure residual {c.closure_residual:.3g} m")
+        lines.append(f"{bullet}closure residual {floored(c.closure_residual, floor):.3g} m")
         for note in c.notes:
             lines.append(f"{bullet}note: {note}")
         for lp in c.loops:

@@ -30,12 +30,13 @@ from mechsing.analysis.html import VERDICT_HEADERS, class_words, largest_drop, v
 from mechsing.analysis.results import Mobility
 from mechsing.model import Mechanism
 from mechsing.model.couplings import coupling_source, describe_coupling
-from mechsing.numeric import Precision, parse_precision, to_float
+from mechsing.numeric import Precision, display_floor, floored, parse_precision, to_float
 from mechsing.reader import read_mechanism
 from mechsing.report import document as doc
 from mechsing.report.figures import graph_figure, grid_figure, path_figure, svg
-from mechsing.report.render import _margin, explain, scene_line
-from mechsing.report.sketch import Screw, choose_view, sketch_figure
+from mechsing.report.render import _margin, explain, joint_values_text, scene_line
+from mechsing.report.sketch import Screw, View, choose_view, sketch_figure
+from mechsing.report.sphere import choose_sphere_view, sphere_figure, spherical_centre
 from mechsing.report.words import twist_words
 from mechsing.singularity.findings import (
     ConstraintFinding,
@@ -577,9 +578,37 @@ def _legs_and_motion(r: Report) -> list[doc.Block]:
     return out
 
 
+def _sketch(
+    r: Report, c: ConfigurationResult, view: View, screws: list[Screw]
+) -> tuple[object, str]:
+    """A configuration's sketch and its caption: on a sphere for a spherical mechanism."""
+    mech, q = r.mechanism, _configuration_q(r.mechanism, c)
+    if spherical_centre(mech) is not None:
+        fig = sphere_figure(mech, q, view, screws, f"{c.name}: {view.name}")
+        caption = (
+            "A spherical mechanism (every joint axis through one centre) on its unit sphere: "
+            "each joint axis as the unit vector from the centre, each link as the great-circle "
+            "arc between its joints (the ground's dashed), the far half of the sphere fainter"
+        )
+        lost = (
+            "; the screws of the findings as coloured axes (a lost rotation's through the centre)."
+        )
+        return fig, caption + (lost if screws else ".")
+    fig = sketch_figure(mech, q, view, screws, r.analysis.length_scale, f"{c.name}: {view.name}")
+    caption = (
+        "Links as segments between their joints (filled: a link with three joints or "
+        "more), ground hatched, revolute axes as dash-dot lines or circles seen end "
+        "on, sliders as boxes"
+    )
+    caption += "; the screws of the findings as coloured axes with their pitch." if screws else "."
+    if view.why:
+        caption += f" {view.name[:1].upper()}{view.name[1:]} because the mechanism is {view.why}."
+    return fig, caption
+
+
 def _configurations(r: Report) -> list[doc.Block]:
     mech = r.mechanism
-    view = choose_view(mech)
+    view = choose_sphere_view(mech) if spherical_centre(mech) is not None else choose_view(mech)
     out: list[doc.Block] = [doc.Heading(2, "Configurations")]
     for c in r.analysis.configurations:
         out.append(doc.Heading(3, f"Configuration {c.name}"))
@@ -587,33 +616,20 @@ def _configurations(r: Report) -> list[doc.Block]:
             out.append(doc.Paragraph(f"not analysed: {c.error}"))
             continue
         screws = _screws(mech, c)
-        fig = sketch_figure(
-            mech,
-            _configuration_q(mech, c),
-            view,
-            screws,
-            r.analysis.length_scale,
-            f"{c.name}: {view.name}",
-        )
+        fig, caption = _sketch(r, c, view, screws)
         out.append(
             doc.Figure(
                 f"config-{doc.slug(c.name)}",
                 svg(fig),
                 f"sketch of {mech.name} at {c.name}",
-                "Links as segments between their joints (filled: a link with three joints or "
-                "more), ground hatched, revolute axes as dash-dot lines or circles seen end "
-                "on, sliders as boxes"
-                + (
-                    "; the screws of the findings as coloured axes with their pitch."
-                    if screws
-                    else "."
-                ),
+                caption,
             )
         )
-        vals = ", ".join(f"{name} = {', '.join(f'{x:.6g}' for x in v)}" for name, v in c.joints)
-        items = [f"joint values (m, rad): {vals}"]
+        L = r.analysis.length_scale
+        items = [f"joint values (m, rad): {joint_values_text(c, L)}"]
         if c.closure_residual is not None:
-            items.append(f"closure residual {c.closure_residual:.3g} m")
+            res = floored(c.closure_residual, display_floor(c.precision, L))
+            items.append(f"closure residual {res:.3g} m")
         if c.mobility is not None:
             m = c.mobility
             items.append(

@@ -39,6 +39,7 @@ __all__ = [
     "body_poses",
     "View",
     "choose_view",
+    "motion_axis",
     "joint_places",
     "screw_axis",
     "sketch_figure",
@@ -61,6 +62,8 @@ class View:
     right: np.ndarray
     up: np.ndarray
     name: str
+    #: why this view was chosen (empty for the default oblique view)
+    why: str = ""
 
     def project(self, p: np.ndarray) -> np.ndarray:
         p = np.asarray(p, dtype=float)
@@ -109,24 +112,62 @@ def planar_normal(mech: Mechanism) -> np.ndarray | None:
     return n if n[np.argmax(np.abs(n))] > 0 else -n
 
 
-def choose_view(mech: Mechanism) -> View:
-    """Along the normal of a planar mechanism (seen from its positive side); else, z up,
-    the oblique view (elevation 30 degrees, azimuth a multiple of 45) in which the joints
-    at the reference configuration stand farthest apart: the smallest projected distance
-    between two distinct joint points, largest (the first such azimuth on a tie)."""
+def motion_axis(mech: Mechanism) -> tuple[np.ndarray, str] | None:
+    """The axis to look along and why, from the geometry at the reference configuration:
+    the normal of a planar mechanism; else the common direction of every revolute,
+    helical and cylindrical axis when the other joints are sliders (across it or along it)
+    and ball joints (a planar linkage whose loop a ball joint closes, as an MJCF
+    ``connect`` does, with its joints in one plane across that direction; or a
+    Schoenflies (X) mechanism such as a SCARA: rotations about that direction and
+    translations); else None."""
     n = planar_normal(mech)
     if n is not None:
+        return n, "planar: it moves in the plane across this direction"
+    axes = [_unit(_f(j.params["axis"])) for j in mech.joints if j.type in AXIAL]
+    if not axes or any(j.type not in (*AXIAL, "P", "S") for j in mech.joints):
+        return None
+    n = axes[0] if axes[0][np.argmax(np.abs(axes[0]))] > 0 else -axes[0]
+    if any(np.linalg.norm(np.cross(n, a)) > DRAWING_TOLERANCE for a in axes):
+        return None
+    along = False
+    for j in mech.joints:
+        if j.type == "P":
+            c = abs(float(_unit(_f(j.params["axis"])) @ n))
+            if DRAWING_TOLERANCE < c < 1 - DRAWING_TOLERANCE:
+                return None  # a slider neither across nor along: no one good direction
+            along = along or c > 0.5
+    heights = [float(_f(j.params["point"]) @ n) for j in mech.joints if "point" in j.params]
+    flat = not heights or max(heights) - min(heights) <= DRAWING_TOLERANCE * max(
+        1.0, max(map(abs, heights))
+    )
+    if flat and not along:
+        return n, (
+            "planar: its revolute axes are parallel and its joints in one plane across "
+            "them (the ball joint closes the loop), so it moves in that plane"
+        )
+    return n, (
+        "a Schoenflies mechanism (X): its revolute axes are parallel, so its links turn "
+        "about this direction and translate"
+    )
+
+
+def choose_view(mech: Mechanism) -> View:
+    """Along the direction :func:`motion_axis` gives (seen from its positive side; the
+    view's name says why); else, z up, the oblique view (elevation 30 degrees, azimuth a
+    multiple of 45) in which the joints at the reference configuration stand farthest
+    apart: the smallest projected distance between two distinct joint points, largest
+    (the first such azimuth on a tie)."""
+    found = motion_axis(mech)
+    if found is not None:
+        n, why = found
         toward = -n
         ref = np.array([1.0, 0.0, 0.0]) if abs(n[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
         right = _unit(ref - (ref @ n) * n)
         up = np.cross(n, right)
         axis = "xyz"[int(np.argmax(np.abs(n)))]
-        name = (
-            f"seen along the plane's normal ({axis})"
-            if np.max(np.abs(n)) > 0.999
-            else "seen along the plane's normal"
-        )
-        return View(toward, right, up, name)
+        where = f" ({axis})" if np.max(np.abs(n)) > 0.999 else ""
+        what = "the plane's normal" if why.startswith("planar") else "the common revolute axis"
+        return View(toward, right, up, f"seen along {what}{where}", why)
     places = joint_places(mech, [0.0] * mech.dof)
     pts = np.array(
         [p for e in places.values() for k, p in e.items() if k not in ("axis", "ends", "rail")]
@@ -307,6 +348,7 @@ def sketch_figure(
         for p in gpts:
             _ground_hatch(ax, view.project(p), mark)
         # joints
+        labels: list[tuple[np.ndarray, list[str], bool]] = []
         for j in mech.joints:
             e = places.get(j.name)
             if not e:
@@ -361,10 +403,19 @@ def sketch_figure(
                 ax.add_patch(
                     Circle(xy, 0.6 * mark, facecolor="white", edgecolor="black", lw=1.5, zorder=3)
                 )
+            # joints that meet on the page (a wrist centre, a shoulder) share one label; a
+            # slider's label goes below (it may sit on a pin)
+            for at, names, slider in labels:
+                if slider == (j.type == "P") and float(np.linalg.norm(at - xy)) < 0.03 * span:
+                    names.append(j.name)
+                    break
+            else:
+                labels.append((xy, [j.name], j.type == "P"))
+        for xy, names, slider in labels:
             ax.annotate(
-                j.name,
+                ", ".join(names),
                 xy,
-                xytext=(6, -14) if j.type == "P" else (6, 5),  # a slider may sit on a pin
+                xytext=(6, -14) if slider else (6, 5),
                 textcoords="offset points",
                 fontsize=8,
                 zorder=5,
@@ -411,16 +462,12 @@ def sketch_figure(
                         [a0[0], a1[0]], [a0[1], a1[1]], color=colour, lw=1.8, ls=(0, (6, 2, 1, 2))
                     )
                 text = f"{s.label}: pitch {pitch:.3g} m/rad"
-            # the label toward the middle of the drawing
-            rel = (float(at[0]) - float(lo[0] + hi[0]) / 2) / span
-            ha = "center" if abs(rel) < 0.15 else ("right" if rel > 0 else "left")
-            dx = {"center": 0, "right": -8, "left": 8}[ha]
-            ax.annotate(
+            # the label below the drawing, in the screw's colour: never over a link
+            ax.text(
+                0.02,
+                0.03 + 0.07 * (len(screws) - 1 - k),
                 text,
-                at,
-                xytext=(dx, (6 if ha == "center" else -12) - 12 * k),
-                textcoords="offset points",
-                ha=ha,
+                transform=ax.transAxes,
                 fontsize=8,
                 color=colour,
                 zorder=7,
@@ -433,7 +480,9 @@ def sketch_figure(
             hi = np.maximum(hi, np.max(extra, axis=0))
         pad = 0.12 * span
         ax.set_xlim(lo[0] - pad, hi[0] + pad)
-        ax.set_ylim(lo[1] - pad - 2 * mark, hi[1] + pad)
+        # room below for the screws' labels (each about 0.07 of the height)
+        below = 0.1 * len(screws) * (hi[1] - lo[1] + 2 * pad + 2 * mark)
+        ax.set_ylim(lo[1] - pad - 2 * mark - below, hi[1] + pad)
         ax.set_title(title or view.name, fontsize=9, loc="left")
     return fig
 

@@ -30,6 +30,7 @@ from mechsing.singularity.serial import (
     GENERIC_SAMPLES,
     chain_system,
     generic_span,
+    named,
     serial_finding,
 )
 from mechsing.timelimit import activity
@@ -89,16 +90,18 @@ def _tree_serial(mech: Any, model: Any, q: np.ndarray) -> tuple[list[Finding], l
     with activity("deciding the rank of the output chain's screw system"):
         poses = model.poses(q)
         x = _output_point(mech, model, q, poses)
-        here = chain_system(model, model.current_screws(q, poses), cols, x, model.precision)
+        screws = model.current_screws(q, poses)
+        here = chain_system(model, screws, cols, x, model.precision)
     xf = None if x is None else np.asarray(to_float(x), dtype=float)
     # ... against the generic rank found at random configurations (float)
     generic = here.rank.rank or 0
     samples = []
+    first: tuple[Any, Any] | None = None  # a generic configuration's screws and point
     for qr in random_configurations(fm, GENERIC_SAMPLES):
         pr = fm.poses(qr)
-        sysr = chain_system(
-            fm, fm.current_screws(qr, pr), cols, _output_point(mech, fm, qr, pr), "float"
-        )
+        Sr, xr = fm.current_screws(qr, pr), _output_point(mech, fm, qr, pr)
+        sysr = chain_system(fm, Sr, cols, xr, "float")
+        first = first or (Sr[:, cols], xr)
         samples.append(sysr.matrix)
         if sysr.rank.rank is not None:
             generic = max(generic, sysr.rank.rank)
@@ -108,6 +111,9 @@ def _tree_serial(mech: Any, model: Any, q: np.ndarray) -> tuple[list[Finding], l
     if here.rank.rank is not None and here.rank.rank < generic:
         span = generic_span([here.matrix, *samples], generic)
     f = serial_finding(model, here, generic, names, label, xf, span)
+    if first is not None:
+        L = float(fm.length_scale)
+        f = named(f, names, screws[:, cols], first[0], L, xf, first[1])
     if f is None and here.rank.rank is None:
         return [undecided_rank("output screw system", here.rank)], decisions
     return ([f] if f else []), decisions

@@ -103,7 +103,10 @@ class SerialFinding:
     """``serial``: an open chain's screw system below its generic rank.
 
     ``chain`` is ``"output"`` (with ``body`` and ``relative_to``) or ``"leg"`` (with
-    ``leg``, from 1); SI vectors as in :mod:`mechsing.singularity.serial`."""
+    ``leg``, from 1); SI vectors as in :mod:`mechsing.singularity.serial`; ``name``: the
+    name people give it (``"wrist"``, ``"elbow"``, ``"shoulder"``, ``"leg fully stretched or
+    folded"``: :data:`mechsing.singularity.names.NAMES`) where the chain's axes show the
+    pattern, else None."""
 
     chain: str
     joints: tuple[str, ...]
@@ -117,6 +120,7 @@ class SerialFinding:
     body: str | None = None
     relative_to: str | None = None
     leg: int | None = None
+    name: str | None = None
 
     cls = "serial"
 

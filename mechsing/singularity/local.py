@@ -55,6 +55,7 @@ from mechsing.singularity.generic import SampleValues, mechanism_plan, sample_va
 from mechsing.singularity.serial import (
     chain_system,
     generic_span,
+    named,
     serial_finding,
     wrenches_of,
 )
@@ -586,6 +587,11 @@ def _leg_serial(
         if here.rank.rank is not None and here.rank.rank < gen:
             span = generic_span([here.matrix, *samples], gen)
         f = serial_finding(fm, here, gen, leg.names, {"chain": "leg", "leg": i + 1}, xf, span)
+        if regular:
+            # the leg's SI screws at a regular sample (its matrix is commensurate)
+            back = fm.float_frame.twist_back
+            generic = np.column_stack([back(c) for c in np.asarray(regular[0].legs[i][0]).T])
+            f = named(f, leg.names, cs.screws[:, leg.columns], generic, float(fm.length_scale))
         if f:
             findings.append(f)
     return findings

@@ -28,7 +28,7 @@ along the line of its pivots and its new wrench as the force along that line.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -46,6 +46,7 @@ from mechsing.numeric import (
 from mechsing.screws import chain_matrix
 from mechsing.screws.readable import echelon, simplest
 from mechsing.singularity.findings import SerialFinding
+from mechsing.singularity.names import lines_of_screws, singularity_name
 
 #: random configurations sampled to find a chain's generic rank
 GENERIC_SAMPLES = 8
@@ -233,3 +234,25 @@ def chain_system(
         Ms, kept, follows = fold_columns(model, Ms, list(columns))
     dec = decide_rank(Ms, precision, model.length_scale)
     return ChainSystem(Ms, dec, columns, point_x is not None, kept, follows)
+
+
+def named(
+    f: SerialFinding | None,
+    columns: list[str],
+    here: Any,
+    generic: Any,
+    scale: float,
+    point: Any = None,
+    generic_point: Any = None,
+) -> SerialFinding | None:
+    """``f`` with the name people give it (:mod:`mechsing.singularity.names`), from the
+    chain's SI screws ``here`` and at a generic configuration (columns named ``columns``;
+    ``point``: the output point, if the task is one); None stays None."""
+    if f is None or generic is None:
+        return f
+    here_lines = lines_of_screws(columns, np.asarray(to_float(here), dtype=float))
+    generic_lines = lines_of_screws(columns, np.asarray(generic, dtype=float))
+    name = singularity_name(
+        here_lines, generic_lines, scale, point, generic_point, f.chain == "leg", f.joints
+    )
+    return replace(f, name=name)

@@ -25,9 +25,10 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.analysis.solve import value_text
 from mechsing.errors import UserError, working_on
 from mechsing.model import Mechanism
-from mechsing.numeric import Precision, parse_precision
+from mechsing.numeric import Precision, display_floor, parse_precision
 from mechsing.reader import read_mechanism
 from mechsing.singularity.zfb import not_run_sentences
 from mechsing.sweeps.engine import Located, RowResult, Sweep, classify_located
@@ -119,6 +120,20 @@ def sweep(
     return run.result()
 
 
+def _texts(eng: Sweep, q: Any, analysed: Any) -> tuple[Any, Any]:
+    """The swept values (None when one is a pose variable) and every joint value of a
+    point found again at N digits, as text at its analysis's N digits."""
+    prec = parse_precision(analysed.precision)
+    joints = tuple(
+        (jk.name, tuple(value_text(x, prec) for x in q[jk.columns])) for jk in eng.model.joints
+    )
+    n = eng.model.n
+    values = (
+        tuple(value_text(q[c], prec) for c in eng.cols) if all(c < n for c in eng.cols) else None
+    )
+    return values, joints
+
+
 class SweepRun:
     """A sweep run row by row: :meth:`rows` yields each row's samples as they are done
     (the arrays of the whole sweep are filled as it goes), :meth:`result` then locates,
@@ -157,9 +172,17 @@ class SweepRun:
         self.from_config = eng.from_config
         self.tests = eng.tests
         self.generic = {t: int(eng.measures.generic[t]) for t in self.tests}
+        L = float(eng.model.length_scale)
+        floor = display_floor(prec, L)
         self.variables = tuple(
             SweptVariable(
-                v.name, v.unit, v.file_unit, v.factor, v.values, (w.start, w.stop, w.step)
+                v.name,
+                v.unit,
+                v.file_unit,
+                v.factor,
+                v.values,
+                (w.start, w.stop, w.step),
+                floor if v.unit == "m" else floor / L,
             )
             for v, w in zip(self.vars, varies, strict=True)
         )
@@ -308,7 +331,7 @@ class SweepRun:
                 f"{len(chosen)} of them, spread over the grid (max_classified)"
             )
         with working_on(file=self.mechanism.path or self.mechanism.name):
-            analysed, moved = classify_located(eng, chosen, self.prec, self.time_limit)
+            analysed, moved, at = classify_located(eng, chosen, self.prec, self.time_limit)
         if self.prec.mode == "mp" and chosen or self.prec.mode == "auto" and any(moved):
             self.notes.append(
                 f"{sum(moved)} of the {len(chosen)} classified points were located again at "
@@ -317,6 +340,12 @@ class SweepRun:
             )
         by_id = {id(p): a for p, a in zip(chosen, analysed, strict=True)}
         moved_by_id = {id(p): m for p, m in zip(chosen, moved, strict=True)}
+        # the points found again at N digits: their joints as text at those digits
+        texts = {
+            id(p): _texts(eng, q, a)
+            for p, a, m, q in zip(chosen, analysed, moved, at, strict=True)
+            if m and a.error is None and a.precision.startswith("mp:")
+        }
         model = eng.model
         out = []
         for p in located:
@@ -330,6 +359,7 @@ class SweepRun:
                     f"{', '.join(v.shown(x) for v, x in zip(self.variables, p.values, strict=True))} "
                     f"was not resolved: {unresolved}"
                 )
+            values_text, joints_text = texts.get(id(p), (None, None))
             out.append(
                 LocatedSingularity(
                     p.values,
@@ -341,6 +371,8 @@ class SweepRun:
                     p.far_side,
                     p.edge,
                     unresolved,
+                    values_text,
+                    joints_text,
                 )
             )
         loci = loci_of(self, out) if self.grid else ()

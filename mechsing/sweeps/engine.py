@@ -1252,12 +1252,13 @@ def _merge(located: list[Located], sw: Sweep) -> list[Located]:
 
 def classify_located(
     sweep: Sweep, located: list[Located], precision: Precision, time_limit: float | None = None
-) -> tuple[list[Any], list[bool]]:
+) -> tuple[list[Any], list[bool], list[Any]]:
     """The full analysis of each located point at the sweep's precision, each within
     ``time_limit`` seconds (None: no limit); at mp:N each point is first found again at N
-    digits (:mod:`.relocate`).  Also says, per point, whether it was relocated."""
+    digits (:mod:`.relocate`).  Also says, per point, whether it was relocated, and gives
+    the joints it was analysed at (at N digits when relocated)."""
     if not located:
-        return [], []
+        return [], [], []
     points: dict[str, Any] = {}
     moved = []
     relocators: dict[str, Any] = {}
@@ -1302,4 +1303,5 @@ def classify_located(
                 res2 = analyze_found(sweep.mech, {f"located-{i + 1}": again}, deep, time_limit)[0]
                 results[i] = replace(res2, escalated_for=res.escalated_for)
                 moved[i] = True
-    return results, moved
+                points[f"located-{i + 1}"] = again
+    return results, moved, list(points.values())

@@ -65,13 +65,12 @@ def loci_of(run: Any, located: list[LocatedSingularity]) -> list[Locus]:
         for comp in nx.connected_components(g):
             if len(comp) < 2:
                 continue
-            sub = g.subgraph(comp)
-            order, closed = _walk(sub)
-            classes: dict[str, None] = {}
-            for k in order:
-                for c in pts[k].classes or ():
-                    classes[c] = None
-            out.append(Locus(test, tuple(classes), xy[order], closed))
+            for order, closed in _chains(g.subgraph(comp)):
+                classes: dict[str, None] = {}
+                for k in order:
+                    for c in pts[k].classes or ():
+                        classes[c] = None
+                out.append(Locus(test, tuple(classes), xy[order], closed))
     return out
 
 
@@ -124,6 +123,32 @@ def _pairs(ks: list[int], xy: np.ndarray) -> list[tuple[int, int]]:
         if len(ks) > 6:
             break
     return pairs
+
+
+def _chains(g: nx.Graph) -> list[tuple[list[int], bool]]:
+    """A connected piece as polylines that follow its segments only: the piece itself
+    when no point joins more than two segments (:func:`_walk`); else one polyline from
+    each such junction (or end) to the next, so no polyline jumps between two branches
+    (a straight line that is no locus)."""
+    if max(d for _, d in g.degree) <= 2:
+        return [_walk(g)]
+    stops = {v for v in g.nodes if g.degree(v) != 2}
+    used: set[frozenset[int]] = set()
+    out = []
+    for a in sorted(stops):
+        for b in sorted(g.neighbors(a)):
+            if frozenset((a, b)) in used:
+                continue
+            chain = [a, b]
+            used.add(frozenset((a, b)))
+            while chain[-1] not in stops:
+                nxt = [v for v in g.neighbors(chain[-1]) if frozenset((chain[-1], v)) not in used]
+                if not nxt:
+                    break
+                used.add(frozenset((chain[-1], nxt[0])))
+                chain.append(nxt[0])
+            out.append((chain, False))
+    return out
 
 
 def _walk(g: nx.Graph) -> tuple[list[int], bool]:

@@ -18,9 +18,9 @@ import numpy as np
 
 from mechsing.analysis import ConfigurationResult
 from mechsing.analysis.contract import finding_class, finding_margin
-from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
+from mechsing.analysis.html import VERDICT_HEADERS, finding_label, html_table, verdict_row
 from mechsing.model import Mechanism
-from mechsing.numeric import SWEEP_TIE_RTOL
+from mechsing.numeric import SWEEP_TIE_RTOL, floored
 
 __all__ = [
     "LocatedSingularity",
@@ -46,9 +46,13 @@ class SweptVariable:
     factor: float
     values: np.ndarray = field(repr=False, compare=False)
     range: tuple[float, float, float] = (0.0, 0.0, 0.0)  # start, stop, step (file units)
+    #: the display floor in the SI unit (:func:`mechsing.numeric.display_floor`): a value
+    #: below it is round-off and is shown as 0
+    floor: float = field(default=0.0, compare=False)
 
     def shown(self, si: float) -> str:
-        """A value in the file's units (and in SI when they differ)."""
+        """A value in the file's units (and in SI when they differ), 0 below the floor."""
+        si = floored(si, self.floor)
         text = f"{si / self.factor:.10g} {self.file_unit}"
         if self.file_unit != self.unit:
             text += f" ({si:.10g} {self.unit})"
@@ -80,7 +84,10 @@ class LocatedSingularity:
     the other assembly mode, past which the path resumed; ``between``: for a grid,
     ``row`` (found along a row) or ``column`` (between two rows); ``unresolved``: why a
     limit of travel the full analysis found regular was not resolved (at a fold of the
-    swept value some test drops rank, so "regular" there is never the answer)."""
+    swept value some test drops rank, so "regular" there is never the answer);
+    ``values_text`` and ``joints_text``: at mp:N, for a point found again at N digits
+    before its analysis, the swept values (None for a pose variable's sweep) and the joint
+    values as text at N digits (the float fields keep float64's 17)."""
 
     values: tuple[float, ...]
     kind: str
@@ -91,6 +98,8 @@ class LocatedSingularity:
     far_side: bool = False
     between: str = "row"
     unresolved: str | None = None
+    values_text: tuple[str, ...] | None = None
+    joints_text: tuple[tuple[str, tuple[str, ...]], ...] | None = None
 
     @property
     def classes(self) -> tuple[str, ...] | None:
@@ -141,6 +150,10 @@ class LocatedSingularity:
             "joints": {k: list(v) for k, v in self.joints},
             "unresolved": self.unresolved,
             "configuration": None if self.configuration is None else self.configuration.to_json(),
+            "values_text": None if self.values_text is None else list(self.values_text),
+            "joints_text": (
+                None if self.joints_text is None else {k: list(v) for k, v in self.joints_text}
+            ),
         }
 
 
@@ -424,7 +437,8 @@ def _located_line(r: SweepResult, p: LocatedSingularity) -> str:
         return f"{head}: not analysed: {p.configuration.error}"
     if p.unresolved:
         return f"{head} -> not resolved: {p.unresolved}"
-    classes = ", ".join(p.classes or ()) or "no singularity found by the full analysis"
+    labels = dict.fromkeys(finding_label(f) for f in p.configuration.singularities)
+    classes = ", ".join(labels) or "no singularity found by the full analysis"
     if p.kind == "fold" and not p.classes:
         # not unresolved: the coordinate that turns back is a passive joint's
         classes += " (a passive joint at its extreme: the mechanism moves on through it)"

@@ -99,6 +99,18 @@ def sweep_schema() -> dict[str, Any]:
             },
             "unresolved": {"type": ["string", "null"]},
             "configuration": {"type": ["object", "null"]},
+            "values_text": {
+                "type": ["array", "null"],
+                "items": {"type": "string"},
+                "description": "at mp:N, the swept values of a point found again at N digits, "
+                "as text at N digits (null otherwise, or for a pose variable's sweep)",
+            },
+            "joints_text": {
+                "type": ["object", "null"],
+                "additionalProperties": {"type": "array", "items": {"type": "string"}},
+                "description": "at mp:N, every joint value of a point found again at N "
+                "digits, as text at N digits (null otherwise)",
+            },
         },
         "required": [
             "values",

@@ -1,0 +1,80 @@
+"""The names people give an arm's singularities (wrist, elbow, shoulder) and a leg's, the same
+in ``analyze`` (text and JSON) and ``condition``: the bundled PUMA 560 and UR5 at the
+configurations their files name after them, run as a user runs them."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechsing.singularity.names import LEG, NAMES, singularity_name
+
+ROOT = Path(__file__).resolve().parents[1]
+ARMS = [(arm, kind) for arm in ("puma560", "ur5") for kind in ("wrist", "elbow", "shoulder")]
+
+
+def _run(*args: str) -> str:
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+    out = subprocess.run(
+        [sys.executable, "-m", "mechsing", *args],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env=env,
+        check=False,
+    )
+    assert out.returncode == 0, out.stderr
+    return out.stdout
+
+
+@pytest.mark.parametrize(("arm", "kind"), ARMS)
+def test_analyze_names_the_arm_singularity_as_condition_does(arm: str, kind: str) -> None:
+    path = f"examples/{arm}.yaml"
+    doc = json.loads(_run("analyze", path, "--config", kind, "--format", "json"))
+    (conf,) = doc["configurations"]
+    serial = [f for f in conf["singularities"] if f["class"] == "serial"]
+    assert [f["name"] for f in serial] == [kind]
+    text = _run("analyze", path, "--config", kind)
+    assert f"serial: {kind} singularity ({NAMES[kind]})" in text
+    # condition's factors that vanish at the same configuration carry the same name
+    cond = json.loads(_run("condition", path, "--config", kind, "--format", "json"))
+    vanishing = {f["name"] for c in cond["conditions"] for f in c["factors"] if f["vanishes"]}
+    assert vanishing == {kind}
+
+
+def test_regular_configuration_has_no_serial_finding_to_name() -> None:
+    doc = json.loads(
+        _run("analyze", "examples/ur5.yaml", "--config", "regular", "--format", "json")
+    )
+    assert doc["configurations"][0]["singularities"] == []
+
+
+def _planar_lines(points: list[tuple[float, float]]) -> list:
+    z = np.array([0.0, 0.0, 1.0])
+    return [(f"R{i}", np.array([x, y, 0.0]), z) for i, (x, y) in enumerate(points, 1)]
+
+
+def test_a_leg_with_its_pivots_in_line_is_named_stretched() -> None:
+    # three parallel pivots of a planar RRR leg: on one line (stretched) here, a triangle at a
+    # generic pose; every joint moves in the lost motion
+    here = _planar_lines([(0, 0), (1, 0), (2.5, 0)])
+    generic = _planar_lines([(0, 0), (1, 0), (1.7, 0.9)])
+    moving = ("R1", "R2", "R3")
+    assert singularity_name(here, generic, 1.0, leg=True, moving=moving) == LEG
+    # the same geometry on an arm is an elbow
+    assert singularity_name(here, generic, 1.0, moving=moving) == "elbow"
+
+
+def test_no_pattern_no_name() -> None:
+    # a fact about a joint that does not move in the lost motion names nothing
+    here = _planar_lines([(0, 0), (1, 0), (2.5, 0)])
+    generic = _planar_lines([(0, 0), (1, 0), (1.7, 0.9)])
+    assert singularity_name(here, generic, 1.0, leg=True, moving=("R1", "R2")) is None
+    # nor does a pose with no special fact
+    assert singularity_name(generic, generic, 1.0, moving=("R1", "R2", "R3")) is None
