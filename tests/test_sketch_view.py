@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mechsing.model.loader import load
+from mechsing import load
 from mechsing.report.sketch import choose_view, joint_places
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -587,8 +587,10 @@ def _leg_serial(
         if here.rank.rank is not None and here.rank.rank < gen:
             span = generic_span([here.matrix, *samples], gen)
         f = serial_finding(fm, here, gen, leg.names, {"chain": "leg", "leg": i + 1}, xf, span)
-        if regular:
-            # the leg's SI screws at a regular sample (its matrix is commensurate)
+        if regular and xf is None:
+            # the leg's SI screws at a regular sample (its matrix is commensurate twists;
+            # with an output point it holds the point's velocities, which name no axes:
+            # such a leg keeps the generic sentence rather than a guessed name)
             back = fm.float_frame.twist_back
             generic = np.column_stack([back(c) for c in np.asarray(regular[0].legs[i][0]).T])
             f = named(f, leg.names, cs.screws[:, leg.columns], generic, float(fm.length_scale))
