@@ -946,7 +946,9 @@ def _tied_given(fm: KinematicModel, q: np.ndarray, gmask: np.ndarray) -> str:
     the loops: J_g dg + J_u du = 0.  Those dg form a space of dimension
     n_g - (rank J - rank J_u): when rank J > rank J_u the given values obey that many
     relations, and a straight path between a start and a target (even two that both
-    close) generally leaves the set where they hold."""
+    close) generally leaves the set where they hold.  Said only where J_u has full
+    column rank (the other coordinates determined): at a fold of the given values J_u
+    loses rank instead, and the given values are not tied elsewhere."""
     free = ~gmask
     if isinstance(fm, PoseModel) or not fm.chords or not np.any(free):
         return ""
@@ -956,7 +958,11 @@ def _tied_given(fm: KinematicModel, q: np.ndarray, gmask: np.ndarray) -> str:
     L = fm.length_scale
     whole = decide_rank(Js[:, np.ones(fm.n, dtype=bool)], "float", L).rank
     part = decide_rank(Js[:, free], "float", L).rank
-    if whole is None or part is None or whole <= part:
+    # the other coordinates determined (J_u of full column rank) and still fewer
+    # constraints absorbed than there are: the given values over-determine; where J_u
+    # loses column rank instead, the start is a singularity of the given values (a fold
+    # of the inputs), which the caller's words describe
+    if whole is None or part is None or whole <= part or part < int(np.sum(free)):
         return ""
     dof = {j.name: j.dof for j in fm.mech.joints}
     labels = [
