@@ -220,3 +220,38 @@ def test_solve_as_a_subprocess():
     assert proc.status == 2
     assert "nope" in proc.err and "Traceback" not in proc.err
     assert proc.out == ""
+
+
+def test_given_values_the_loop_ties_together_are_named_as_such():
+    """The four-bar has one degree of freedom (planar Gruebler: 3 (4 - 1) - 2 * 4 = 1), so
+    crank A and the coupler's turn B are tied by one relation: given both, even values that
+    close together (B from the closed form at A = 30 deg), a straight path between the
+    reference and the target leaves the mechanism's motion.  The error says why, not that
+    a singularity lies on the path."""
+    b = math.degrees(fourbar_expected(math.pi / 6)["B"])
+    status, out, err = run_cli(["solve", FOURBAR, "--set", "A=30", "--set", f"B={b:.6f}"])
+    assert status == 3 and out == ""
+    assert "A, B are not independent" in err and "1 relation" in err, err
+    assert "only 1 of the 2 can be chosen" in err
+    assert "a singularity or a limit of motion" not in err
+
+
+def test_given_values_tied_linearly_still_close():
+    """The parallelogram's coupler translates, so the rocker turns with the crank: C = A,
+    B = D = -A.  Given A and C equal, the straight path in them stays on the motion."""
+    doc = solve_json(ROOT / "examples" / "parallelogram.yaml", "--set", "A=0.5", "--set", "C=0.5")
+    for k, v in {"A": 0.5, "B": -0.5, "C": 0.5, "D": -0.5}.items():
+        assert doc["joints"][k][0] == pytest.approx(v, abs=1e-12)
+
+
+def test_a_target_beyond_a_limit_of_travel_is_not_called_tied():
+    """The double rocker's input A stops at 2 pi / 3 (law of cosines in triangle ABD with
+    |BD| = b + c = 7: cos A = (3^2 + 5^2 - 7^2) / (2 * 3 * 5) = -1/2).  From that limit,
+    A = 2.3 is beyond it: the one given value is not tied to anything, and the error says
+    that a limit of motion lies on the path."""
+    assert 2.3 > 2 * math.pi / 3
+    status, _, err = run_cli(
+        ["solve", ROOT / "examples" / "double_rocker.yaml", "--from", "limit", "--set", "A=2.3"]
+    )
+    assert status == 3
+    assert "a singularity or a limit of motion" in err and "not independent" not in err, err

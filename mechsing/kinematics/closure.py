@@ -617,8 +617,9 @@ class Closer:
                         q, info = landed
                         t, steps, at_fold = 1.0, steps + 1, True
                         continue
-                    # a target beyond a limit of travel: which value, by how much
-                    why = beyond_target(fm, q, qt, gmask)
+                    # values the loops tie together, or a target beyond a limit of travel
+                    # (which value, by how much)
+                    why = _tied_given(fm, q_start, gmask) or beyond_target(fm, q, qt, gmask)
                     raise ClosureError(
                         f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} stopped at step "
                         f"{steps + 1}: {_given_reached(fm, q, qt, gmask)}; "
@@ -950,6 +951,50 @@ def _g(x: Any, digits: int) -> str:
 
 def _fmt(m: KinematicModel, q: np.ndarray) -> str:
     return ", ".join(f"{k}={[round(x, 6) for x in v]}" for k, v in m.values(q).items())
+
+
+def _tied_given(fm: KinematicModel, q: np.ndarray, gmask: np.ndarray) -> str:
+    """Why a path in the given coordinates leaves the mechanism's motion when the loops
+    tie those coordinates together at ``q`` ('' when they are independent there, or
+    when the ranks are not decided).
+
+    The given rates dg can be followed when some rates du of the other coordinates close
+    the loops: J_g dg + J_u du = 0.  Those dg form a space of dimension
+    n_g - (rank J - rank J_u): when rank J > rank J_u the given values obey that many
+    relations, and a straight path between a start and a target (even two that both
+    close) generally leaves the set where they hold.  Said only where J_u has full
+    column rank (the other coordinates determined): at a fold of the given values J_u
+    loses rank instead, and the given values are not tied elsewhere."""
+    free = ~gmask
+    if isinstance(fm, PoseModel) or not fm.chords or not np.any(free):
+        return ""
+    Js = _closure_matrix(fm, q)
+    if not finite_system(Js):
+        return ""
+    L = fm.length_scale
+    whole = decide_rank(Js[:, np.ones(fm.n, dtype=bool)], "float", L).rank
+    part = decide_rank(Js[:, free], "float", L).rank
+    # the other coordinates determined (J_u of full column rank) and still fewer
+    # constraints absorbed than there are: the given values over-determine; where J_u
+    # loses column rank instead, the start is a singularity of the given values (a fold
+    # of the inputs), which the caller's words describe
+    if whole is None or part is None or whole <= part or part < int(np.sum(free)):
+        return ""
+    dof = {j.name: j.dof for j in fm.mech.joints}
+    labels = [
+        jname if dof[jname] == 1 else f"{jname}[{i}]"
+        for col, (jname, i) in enumerate(fm.mech.coordinates())
+        if gmask[col]
+    ]
+    n_given = len(labels)
+    free_dims = n_given - (whole - part)
+    return (
+        f"the given coordinates {', '.join(labels)} are not independent: the loops tie them by "
+        f"{whole - part} relation(s), so only {free_dims} of the {n_given} can be chosen and the "
+        "others follow; give at most "
+        f"{free_dims} of them and let mechsing solve the rest (or every joint value of a "
+        "configuration that closes)"
+    )
 
 
 def _given_reached(m: Any, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> str:

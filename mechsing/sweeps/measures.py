@@ -238,7 +238,7 @@ class Measures:
             "closure": bool(mech.loops),
             # T N needs the output; E N only the inputs (every test whose ingredients
             # the file has is measured: :func:`mechsing.singularity.zfb.tests_run`)
-            "input": self.E is not None and out is not None,
+            "input": out is not None,
             "output": self.E is not None,
             "constraint": bool(self.legs),
         }
