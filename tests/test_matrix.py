@@ -34,6 +34,12 @@ FILES = (
     sorted((ROOT / "examples").glob("*.yaml"))
     + sorted((ROOT / "tests" / "data").glob("*.yaml"))
     + [ROOT / "examples" / "ur5.urdf", ROOT / "examples" / "fourbar_mjcf.xml"]
+    # the exercises' mechanisms (not their answers, nor the variants' templates)
+    + sorted(
+        p
+        for p in (ROOT / "examples" / "exercises").glob("*/*.yaml")
+        if p.name not in ("answers.yaml", "template.yaml")
+    )
 )
 MODES = ("float", "mp:30", "mp:50", "auto", "exact")
 #: the seconds a configuration may take: a hang, not a speed, is what this catches

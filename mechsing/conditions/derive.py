@@ -149,7 +149,7 @@ def _condition(
     if mech.output is None:
         raise UserError(
             f"{source}: the file has no output; a condition is about the output's motion: "
-            "add output: {body: NAME}"
+            "name one with --output-body BODY (in a mechsing file, add output: {body: NAME})"
         )
     S = joint_symbols(mech)
     params = _parameters(mech)
