@@ -42,7 +42,9 @@ from typing import Any
 import numpy as np
 import sympy
 
+from mechsing.conditions.elimination import half_angle
 from mechsing.conditions.factoring import factor_condition
+from mechsing.conditions.linkage import linkage_conditions
 from mechsing.conditions.results import Condition, ConditionResult, Factor
 from mechsing.conditions.symbolic import (
     SE3,
@@ -78,6 +80,7 @@ def condition(
     source: str | Path,
     config: str | None = None,
     symbolic: str | list[str] | tuple[str, ...] = (),
+    time_limit: float | None = ELIMINATION_SECONDS,
 ) -> ConditionResult:
     """The singularity conditions of a mechanism file as factored formulas.
 
@@ -86,6 +89,8 @@ def condition(
     source : path of the mechanism file
     config : a configuration of the file: each factor is evaluated there
     symbolic : parameters of the file to keep as symbols (a list, or ``"a2,a3"``)
+    time_limit : seconds allowed to eliminate the passive joints of a linkage (each
+        condition); past it the condition is given in the joint variables (None: no limit)
 
     Raises
     ------
@@ -112,15 +117,19 @@ def condition(
     if mech.graph.num_loops == 0:
         method, conds, notes = "open chain", *_open_chain(mech, S)
     elif mech.graph.num_loops == 1 and len(mech.input_coordinates()) == 1:
-        method, conds, notes = "single loop, one input", *_single_loop(mech, S)
-    else:
-        legs = mech.legs
-        if len(legs) < 2:
+        method, conds, notes = "single loop, one input", *_single_loop(mech, S, time_limit)
+    elif len(mech.input_coordinates()) == 1:
+        ((in_joint, _),) = mech.input_coordinates()
+        found = linkage_conditions(mech, S[in_joint], set(_parameters(mech)), time_limit, True)
+        if isinstance(found, str):
             raise UserError(
-                f"{source}: symbolic conditions cover open chains, single loops with one "
-                "input and planar parallel robots of R-P-R legs; this mechanism has "
-                f"{mech.graph.num_loops} loops; use 'mechsing analyze' for its singularities"
+                f"{source}: a linkage of {mech.graph.num_loops} loops with one input: symbolic "
+                "conditions of multi-loop linkages cover planar linkages of R and P joints "
+                "with the input on the ground (Watt and Stephenson six-bars ...); this one is "
+                f"not: {found}; use 'mechsing analyze' for its singularities"
             )
+        method, conds, notes = "linkage, one input", *found
+    else:
         method, conds, notes = "parallel robot, pose variables", *_parallel(mech, S, str(source))
     printable = {p: sympy.Symbol(p.name, real=True) for p in params}
     conds = [_printable(c, printable) for c in conds]
@@ -614,7 +623,9 @@ def _size(mech: Mechanism) -> float:
 # ---------------------------------------------------------------------------
 
 
-def _single_loop(mech: Mechanism, S: dict[str, JointSymbols]) -> tuple[list[Condition], list[str]]:
+def _single_loop(
+    mech: Mechanism, S: dict[str, JointSymbols], time_limit: float | None
+) -> tuple[list[Condition], list[str]]:
     loop = mech.graph.loops[0]
     ground = mech.ground
     if ground not in loop.bodies:
@@ -696,7 +707,20 @@ def _single_loop(mech: Mechanism, S: dict[str, JointSymbols]) -> tuple[list[Cond
         M = Kr.extract(list(range(r)), [i for i, n in enumerate(names) if n != drop])
         det = sympy.expand(M.det(method="berkowitz"))
         conds.append(_conditions_from(name, "determinant", det, Sl, pset, note, explain))
-        elim = _eliminate(det, closure, S, in_joint, pset)
+    if pset:
+        found = linkage_conditions(mech, S[in_joint], pset, time_limit, False)
+        if isinstance(found, str):
+            notes.append(
+                "the passive joints are eliminated with symbolic parameters for planar "
+                f"linkages of R and P joints with the input on the ground; not here ({found}): "
+                "the conditions above are in all joint variables"
+            )
+            return conds, notes
+        return conds + found[0], notes + found[1]
+    for name, drop, _ in wanted:
+        M = Kr.extract(list(range(r)), [i for i, n in enumerate(names) if n != drop])
+        det = sympy.expand(M.det(method="berkowitz"))
+        elim = _eliminate(det, closure, S, in_joint, pset, time_limit)
         if isinstance(elim, str):
             notes.append(f"{name}: {elim}")
         else:
@@ -727,14 +751,15 @@ def _closure_equations(start: SE3, end: SE3) -> list[Any]:
 
 
 def _eliminate(
-    det: Any, closure: list[Any], S: dict[str, JointSymbols], in_joint: str, params: set[Any]
+    det: Any,
+    closure: list[Any],
+    S: dict[str, JointSymbols],
+    in_joint: str,
+    params: set[Any],
+    time_limit: float | None,
 ) -> Condition | str:
-    """``det`` with the passive joints eliminated by a lex Groebner basis, or why not."""
-    if params:
-        return (
-            "the passive joints are eliminated only with numeric parameters (drop --symbolic); "
-            "the condition above is in all joint variables"
-        )
+    """``det`` with the passive joints eliminated by a lex Groebner basis, or why not
+    (numeric parameters)."""
     inp = S[in_joint]
     passive = [js for n, js in S.items() if n != in_joint]
     pvars: list[Any] = []
@@ -745,7 +770,7 @@ def _eliminate(
     Sl = list(S.values())
     eqs = [reduce_trig(det, Sl), *[reduce_trig(e, Sl) for e in closure], *circle]
     try:
-        with TimeLimit(ELIMINATION_SECONDS):
+        with TimeLimit(time_limit):
             G = sympy.groebner(eqs, *pvars, *ivars, order="grevlex")
             if G.is_zero_dimensional:
                 G = G.fglm("lex")
@@ -753,7 +778,7 @@ def _eliminate(
                 G = sympy.groebner(eqs, *pvars, *ivars, order="lex")
     except TimeLimitExceeded:
         return (
-            f"sympy could not eliminate the passive joints within {ELIMINATION_SECONDS:g} s; "
+            f"sympy could not eliminate the passive joints within {time_limit:g} s; "
             "the condition above is in all joint variables"
         )
     own = sympy.expand(inp.s**2 + inp.c**2 - 1) if inp.c is not None else None
@@ -788,14 +813,6 @@ def _eliminate(
     )
 
 
-def _half_angle(p: Any, js: JointSymbols, t: Any) -> Any:
-    """The numerator of ``p(c, s)`` in ``t = tan(J/2)`` (degree twice p's in c, s, less
-    the multiplicity of the zero at J = pi)."""
-    k = int(sympy.Poly(p, js.c, js.s).total_degree()) if p.has(js.c) or p.has(js.s) else 0
-    sub = {js.c: (1 - t**2) / (1 + t**2), js.s: 2 * t / (1 + t**2)}
-    return sympy.expand(sympy.cancel(p.xreplace(sub) * (1 + t**2) ** k))
-
-
 def _eliminant(polys: list[Any], js: JointSymbols) -> tuple[Any, bool]:
     """One polynomial in the input whose zeros are those common to ``polys`` (a lex
     basis may give two: ``s - p(c)`` and ``q(c)``, whose common zeros are fewer than
@@ -808,9 +825,9 @@ def _eliminant(polys: list[Any], js: JointSymbols) -> tuple[Any, bool]:
     if len(polys) == 1:
         return polys[0], True
     t = sympy.Dummy("t")
-    g = _half_angle(polys[0], js, t)
+    g = half_angle(polys[0], js, t)
     for p in polys[1:]:
-        g = sympy.gcd(g, _half_angle(p, js, t))
+        g = sympy.gcd(g, half_angle(p, js, t))
     at_pi = all(p.xreplace({js.c: -1, js.s: 0}) == 0 for p in polys)
     deg = int(sympy.degree(g, t))
     k = (deg + 1) // 2 + (1 if at_pi and deg % 2 == 0 else 0)
