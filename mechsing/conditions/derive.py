@@ -781,6 +781,11 @@ def _eliminate(
             f"sympy could not eliminate the passive joints within {time_limit:g} s; "
             "the condition above is in all joint variables"
         )
+    if G.exprs == [1]:
+        return (
+            "no configuration of the loop makes it vanish: this singularity is never reached; "
+            "no condition on the input"
+        )
     own = sympy.expand(inp.s**2 + inp.c**2 - 1) if inp.c is not None else None
     polys = [
         g

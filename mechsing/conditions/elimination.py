@@ -112,7 +112,7 @@ def eliminate(
         todo = [u for u in todo if any(_has(e, u) for e in eqs)]
         if not todo:
             break
-        step = _slide_step(eqs, todo) or _single_step(eqs, todo) or _pair_step(eqs, todo)
+        step = _slide_step(eqs, todo) or _single_step(eqs, todo) or _pair_step(eqs, todo, keep)
         if step is None:
             step = _resultant_step(eqs, todo)
         new: list[Any] = []
@@ -162,7 +162,7 @@ def _single_step(eqs: list[Any], todo: list[JointSymbols]) -> list[Any] | None:
     return None
 
 
-def _pair_step(eqs: list[Any], todo: list[JointSymbols]) -> list[Any] | None:
+def _pair_step(eqs: list[Any], todo: list[JointSymbols], keep: JointSymbols) -> list[Any] | None:
     best = None
     for u in todo:
         if u.c is None:
@@ -174,8 +174,10 @@ def _pair_step(eqs: list[Any], todo: list[JointSymbols]) -> list[Any] | None:
             if den == 0:
                 continue
             # a determinant free of the unknowns brings no spurious zeros: first choice
-            moving = any(den.has(*_names(w)) for w in todo)
-            cost = (moving, _size(eqs[i]) * _size(eqs[j]))
+            moving = any(den.has(*_names(w)) for w in todo) or den.has(*_names(keep))
+            # then an angle the other equations do not hold (nothing to substitute)
+            others = sum(1 for k, e in enumerate(eqs) if k not in (i, j) and _has(e, u))
+            cost = (moving, others, _size(eqs[i]) * _size(eqs[j]))
             if best is None or cost < best[0]:
                 best = (cost, u, i, j, (a1, b1, e1, a2, b2, e2, den))
     if best is None:
@@ -259,7 +261,11 @@ def genuine(
     G = sympy.groebner([*num, *circles], *pvars, *ivars, order="grevlex")
     if G.exprs == [1]:
         return [False] * len(factors)
-    G = G.fglm("lex") if G.is_zero_dimensional else sympy.groebner(G.exprs, *pvars, *ivars, order="lex")
+    G = (
+        G.fglm("lex")
+        if G.is_zero_dimensional
+        else sympy.groebner(G.exprs, *pvars, *ivars, order="lex")
+    )
     mine = [g for g in G.exprs if not (g.free_symbols & set(pvars))]
     own = circles[-1:] if keep.c is not None else []
     out = []

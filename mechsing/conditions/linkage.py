@@ -97,9 +97,7 @@ def linkage_conditions(
     out_var = _output(mech, L)
     keep = L.angles[in_var[1]] if in_var[0] == "angle" else JointSymbols(L.slides[name], None, None)
     unknowns = [js for js in L.symbols if js.q != keep.q]
-    to_input = (
-        {keep.c: in_joint.c, keep.s: sign * in_joint.s} if keep.c is not None else {}
-    )
+    to_input = {keep.c: in_joint.c, keep.s: sign * in_joint.s} if keep.c is not None else {}
     values = {p: p.parameter_value for p in params}
     wanted: list[tuple[str, tuple[str, str], str]] = []
     if out_var is not None and out_var != in_var:
@@ -120,26 +118,32 @@ def linkage_conditions(
         )
     )
     conds: list[Condition] = []
-    notes = [
-        "phi_X is the angle body X has turned from its drawn pose (rad; bodies joined by a P "
-        "joint turn together); a P joint's name is its slide (m)"
-    ] if determinants else []
+    notes = (
+        [
+            "phi_X is the angle body X has turned from its drawn pose (rad; bodies joined by a P "
+            "joint turn together); a P joint's name is its slide (m)"
+        ]
+        if determinants
+        else []
+    )
     for cname, drop, note in wanted:
         J = L.jacobian([v for v in variables if v != drop])
         det = sympy.expand(J.det(method="berkowitz"))
         const, factors = factor_condition(det, L.symbols, params)
         meanings = [L.meaning(g) for g, _ in factors]
         if determinants:
+            shown = []
+            for (g, p), m in zip(factors, meanings, strict=True):
+                number, trig = _split(to_trig(g, L.symbols), L.symbols)
+                const *= number**p
+                shown.append(Factor(trig, p, m))
             conds.append(
                 Condition(
                     cname,
                     "determinant",
                     _names(factors, L.symbols, params),
                     const,
-                    tuple(
-                        Factor(to_trig(g, L.symbols), p, m)
-                        for (g, p), m in zip(factors, meanings, strict=True)
-                    ),
+                    tuple(shown),
                     note,
                 )
             )
@@ -211,13 +215,17 @@ def _eliminated(
             poly = reduce_trig(sympy.expand(poly.xreplace(to_input)), [in_joint])
         _, hs = factor_condition(poly, [in_joint], params)
         backs = [
-            sympy.expand(h.xreplace({in_joint.c: keep.c, in_joint.s: keep.s * _sign(to_input, keep, in_joint)}))
+            sympy.expand(
+                h.xreplace(
+                    {in_joint.c: keep.c, in_joint.s: keep.s * _sign(to_input, keep, in_joint)}
+                )
+            )
             for h, _ in hs
         ]
         ok = genuine(backs, [*L.equations, g], unknowns, keep, values)
         for (h, _), real in zip(hs, ok, strict=True):
             if real:
-                out.append(Factor(to_trig(h, [in_joint]), 1, meaning))
+                out.append(Factor(_in_input(h, in_joint), 1, meaning))
             else:
                 dropped += 1
     note = (
@@ -233,8 +241,31 @@ def _eliminated(
     if never:
         note += "; never reached (no configuration): " + "; ".join(never)
     if not out:
-        return "no factor is reached by the linkage: " + note
+        return (
+            "no configuration of the linkage makes it vanish at the file's parameter values: "
+            "this singularity is never reached there; no condition on the input"
+        )
     return out, note
+
+
+def _in_input(h: Any, js: JointSymbols) -> Any:
+    """A polynomial in the input's ``c``, ``s`` written in ``cos``, ``sin`` as it is (a
+    polynomial in cos(A) and sin(A), collected by powers of cos(A)), a slide as it is."""
+    if js.c is None:
+        return h
+    poly = sympy.Poly(h, js.c, js.s)
+    cos, sin = sympy.cos(js.q), sympy.sin(js.q)
+    return sympy.Add(*(sympy.factor(coeff) * cos**i * sin**j for (i, j), coeff in poly.terms()))
+
+
+def _split(trig: Any, syms: list[JointSymbols]) -> tuple[Any, Any]:
+    """A number (or parameters) brought out by combining angles, and the rest:
+    ``-sin(x)`` is ``-1`` times ``sin(x)``, ``sqrt(2)*cos(x + pi/4)`` is ``sqrt(2)`` times."""
+    names = [js.q for js in syms]
+    number, rest = trig.as_independent(*names, as_Add=False)
+    if number != 1 and rest.free_symbols:
+        return number, rest
+    return sympy.Integer(1), trig
 
 
 def _sign(to_input: dict[Any, Any], keep: JointSymbols, in_joint: JointSymbols) -> int:

@@ -66,7 +66,10 @@ class PlanarLinkage:
         for kind, name in variables:
             if kind == "angle":
                 js = self.angles[name]
-                col = [sympy.diff(e, js.c) * (-js.s) + sympy.diff(e, js.s) * js.c for e in self.equations]
+                col = [
+                    sympy.diff(e, js.c) * (-js.s) + sympy.diff(e, js.s) * js.c
+                    for e in self.equations
+                ]
             else:
                 col = [sympy.diff(e, self.slides[name]) for e in self.equations]
             cols.append(col)
@@ -98,15 +101,30 @@ class PlanarLinkage:
                     m = next(p for p in lb.split(",") if p != j)
                     out.append((f"{ba} and {bb} in line (pivots {k}, {j} and {m} in line)", cross))
                 elif ba != bb:
-                    out.append((f"{ba} ({la.replace(',', '-')}) parallel to {bb} "
-                                f"({lb.replace(',', '-')})", cross))
-                out.append((f"{ba} ({la.replace(',', '-')}) perpendicular to {bb} "
-                            f"({lb.replace(',', '-')})", dot))
+                    out.append(
+                        (
+                            f"{ba} ({la.replace(',', '-')}) parallel to {bb} "
+                            f"({lb.replace(',', '-')})",
+                            cross,
+                        )
+                    )
+                out.append(
+                    (
+                        f"{ba} ({la.replace(',', '-')}) perpendicular to {bb} "
+                        f"({lb.replace(',', '-')})",
+                        dot,
+                    )
+                )
             elif va is not None or vb is not None:
                 (lv, bv), lu = ((la, ba), lb) if va is not None else ((lb, bb), la)
-                out.append((f"{bv} (pivots {lv.replace(',', ' and ')}) along the slide of {lu}", cross))
                 out.append(
-                    (f"{bv} (pivots {lv.replace(',', ' and ')}) perpendicular to the slide of {lu}", dot)
+                    (f"{bv} (pivots {lv.replace(',', ' and ')}) along the slide of {lu}", cross)
+                )
+                out.append(
+                    (
+                        f"{bv} (pivots {lv.replace(',', ' and ')}) perpendicular to the slide of {lu}",
+                        dot,
+                    )
                 )
             else:
                 out.append((f"the slides of {la} and {lb} parallel", cross))
@@ -135,7 +153,10 @@ def planar_linkage(mech: Mechanism) -> PlanarLinkage | str:
     for j in mech.joints:
         if j.type not in ("R", "P"):
             return f"joint {j.name!r} is of type {j.type} (the planar form has R and P joints)"
-        axis = [sympy.nsimplify(x) if isinstance(x, float) else sympy.sympify(x) for x in j.params["axis"]]
+        axis = [
+            sympy.nsimplify(x) if isinstance(x, float) else sympy.sympify(x)
+            for x in j.params["axis"]
+        ]
         if j.type == "R" and not (axis[0] == 0 and axis[1] == 0 and axis[2] in (1, -1)):
             return f"joint {j.name!r} turns about {list(axis)}, not about z"
         if j.type == "P" and axis[2] != 0:
@@ -172,7 +193,9 @@ def planar_linkage(mech: Mechanism) -> PlanarLinkage | str:
         if name != ground:
             q = sympy.Symbol(f"phi_{name}", real=True)
             angles[name] = JointSymbols(
-                q, sympy.Symbol(f"c_phi_{name}", real=True), sympy.Symbol(f"s_phi_{name}", real=True)
+                q,
+                sympy.Symbol(f"c_phi_{name}", real=True),
+                sympy.Symbol(f"s_phi_{name}", real=True),
             )
     slides = {j.name: sympy.Symbol(j.name, real=True) for j in mech.joints if j.type == "P"}
 
