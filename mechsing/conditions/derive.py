@@ -71,7 +71,7 @@ from mechsing.timelimit import TimeLimit, TimeLimitExceeded
 __all__ = ["ELIMINATION_SECONDS", "MAX_MINORS", "condition"]
 
 #: time allowed to eliminate the passive joints of a loop (s)
-ELIMINATION_SECONDS = 10.0
+ELIMINATION_SECONDS = 60.0
 #: most maximal minors computed for a redundant or deficient chain
 MAX_MINORS = 84
 
