@@ -42,6 +42,8 @@ from typing import Any
 import numpy as np
 import sympy
 
+from mechsing.conditions.elimination import angles as _angles
+from mechsing.conditions.elimination import distinct as _distinct
 from mechsing.conditions.elimination import half_angle
 from mechsing.conditions.factoring import factor_condition
 from mechsing.conditions.linkage import linkage_conditions
@@ -62,7 +64,6 @@ from mechsing.model.parameters import ParameterSymbol
 from mechsing.numeric import (
     CONDITION_GENERIC_RANK_RTOL,
     CONDITION_GEOMETRY_RTOL,
-    CONDITION_ROOT_MERGE,
     CONDITION_ROOT_RTOL,
     CONDITION_VANISH_RTOL,
 )
@@ -870,41 +871,6 @@ def _common_roots(polys: list[Any], js: JointSymbols) -> list[float]:
     return out
 
 
-def _angles(g: Any, js: JointSymbols) -> list[float]:
-    """Real values of a joint where a polynomial in its ``c``, ``s`` (or ``q``) vanishes."""
-    if js.c is None:
-        coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(g, js.q).all_coeffs()]
-        return sorted(
-            r.real for r in np.roots(coeffs) if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r))
-        )
-    t = sympy.Dummy("t")
-    k = int(sympy.Poly(g, js.c, js.s).total_degree())
-    N = sympy.expand(
-        sympy.cancel(
-            g.xreplace({js.c: (1 - t**2) / (1 + t**2), js.s: 2 * t / (1 + t**2)}) * (1 + t**2) ** k
-        )
-    )
-    if N == 0:
-        return []
-    coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(N, t).all_coeffs()]
-    out = []
-    if len(coeffs) - 1 < 2 * k:
-        out.append(math.pi)
-    for r in np.roots(coeffs) if len(coeffs) > 1 else []:
-        if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r)):
-            out.append(2 * math.atan(r.real))
-    return _distinct(out)
-
-
-def _distinct(values: list[float]) -> list[float]:
-    """Sorted values, each once (roots of different factors may meet)."""
-    distinct: list[float] = []
-    for a in sorted(values):
-        if not distinct or abs(a - distinct[-1]) > CONDITION_ROOT_MERGE:
-            distinct.append(a)
-    return distinct
-
-
 # ---------------------------------------------------------------------------
 # planar parallel robots in pose variables
 # ---------------------------------------------------------------------------
@@ -918,9 +884,11 @@ def _parallel(
     inputs = {n for n, _ in mech.input_coordinates()}
     legs = mech.legs
     refuse = UserError(
-        f"{source}: symbolic conditions of a parallel robot cover planar legs of three joints "
-        "R-P-R (revolute pivots with parallel axes, the P joint actuated: a 3-RPR); this one "
-        "is not; use 'mechsing analyze' or 'mechsing sweep' with pose configurations"
+        f"{source}: a mechanism of {mech.graph.num_loops} loops with {len(inputs)} inputs: "
+        "symbolic conditions of mechanisms with several inputs cover planar parallel robots "
+        "whose legs are R-P-R (revolute pivots with parallel axes, the P joint actuated: a "
+        "3-RPR); this one is not; use 'mechsing analyze' or 'mechsing sweep' with pose "
+        "configurations"
     )
     if not _is_planar(mech, list(mech.joint_names)):
         raise refuse

@@ -24,13 +24,16 @@ kept once.  Every step is exact; the parameters stay symbols.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
+import numpy as np
 import sympy
 
 from mechsing.conditions.symbolic import JointSymbols, reduce_trig
+from mechsing.numeric import CONDITION_ROOT_MERGE, CONDITION_ROOT_RTOL
 
-__all__ = ["eliminate", "half_angle"]
+__all__ = ["angles", "distinct", "eliminate", "genuine", "half_angle"]
 
 
 def half_angle(p: Any, js: JointSymbols, t: Any) -> Any:
@@ -277,3 +280,38 @@ def genuine(
         B = sympy.groebner([h, *mine, *own], *ivars, order="lex")
         out.append(B.exprs != [1])
     return out
+
+
+def angles(g: Any, js: JointSymbols) -> list[float]:
+    """Real values of a joint where a polynomial in its ``c``, ``s`` (or ``q``) vanishes."""
+    if js.c is None:
+        coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(g, js.q).all_coeffs()]
+        return sorted(
+            r.real for r in np.roots(coeffs) if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r))
+        )
+    t = sympy.Dummy("t")
+    k = int(sympy.Poly(g, js.c, js.s).total_degree())
+    N = sympy.expand(
+        sympy.cancel(
+            g.xreplace({js.c: (1 - t**2) / (1 + t**2), js.s: 2 * t / (1 + t**2)}) * (1 + t**2) ** k
+        )
+    )
+    if N == 0:
+        return []
+    coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(N, t).all_coeffs()]
+    out = []
+    if len(coeffs) - 1 < 2 * k:
+        out.append(math.pi)
+    for r in np.roots(coeffs) if len(coeffs) > 1 else []:
+        if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r)):
+            out.append(2 * math.atan(r.real))
+    return distinct(out)
+
+
+def distinct(values: list[float]) -> list[float]:
+    """Sorted values, each once (roots of different factors may meet)."""
+    distinct: list[float] = []
+    for a in sorted(values):
+        if not distinct or abs(a - distinct[-1]) > CONDITION_ROOT_MERGE:
+            distinct.append(a)
+    return distinct

@@ -19,7 +19,7 @@ from typing import Any
 
 import sympy
 
-from mechsing.conditions.elimination import eliminate, genuine, half_angle
+from mechsing.conditions.elimination import angles, distinct, eliminate, genuine, half_angle
 from mechsing.conditions.factoring import factor_condition, to_circle
 from mechsing.conditions.planar import PlanarLinkage, planar_linkage
 from mechsing.conditions.results import Condition, Factor
@@ -161,7 +161,7 @@ def linkage_conditions(
         if isinstance(elim, str):
             notes.append(f"{cname}: {elim}")
             continue
-        efactors, enote = elim
+        efactors, enote, roots = elim
         conds.append(
             Condition(
                 f"{cname} in the input {name}",
@@ -170,7 +170,7 @@ def linkage_conditions(
                 sympy.Integer(1),
                 tuple(efactors),
                 enote,
-                (),
+                tuple(roots),
                 ("rad",) if keep.c is not None else ("m",),
             )
         )
@@ -196,8 +196,9 @@ def _eliminated(
     to_input: dict[Any, Any],
     params: set[Any],
     values: dict[Any, Any],
-) -> tuple[list[Factor], str] | str:
+) -> tuple[list[Factor], str, list[float]] | str:
     out: list[Factor] = []
+    found: list[float] = []
     dropped = 0
     never = []
     for (g, _), meaning in zip(factors, meanings, strict=True):
@@ -226,6 +227,8 @@ def _eliminated(
         for (h, _), real in zip(hs, ok, strict=True):
             if real:
                 out.append(Factor(_in_input(h, in_joint), 1, meaning))
+                if not params:
+                    found += angles(h, in_joint)
             else:
                 dropped += 1
     note = (
@@ -245,7 +248,7 @@ def _eliminated(
             "no configuration of the linkage makes it vanish at the file's parameter values: "
             "this singularity is never reached there; no condition on the input"
         )
-    return out, note
+    return out, note, distinct(found)
 
 
 def _in_input(h: Any, js: JointSymbols) -> Any:
