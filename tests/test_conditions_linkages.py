@@ -128,7 +128,9 @@ def test_quick_return_extremes_of_the_lever() -> None:
     # cos(angle between AB and AC) = r/d with A measured away from C: d cos A + r = 0
     assert _proportional(_product(ext), d * sympy.cos(A) + r, "A")
     assert ext["factors"][0]["meaning"] == "crank (pivots A and B) perpendicular to the slide of S"
-    md = run_cli(["condition", str(EXAMPLES / "quick_return.yaml"), "--symbolic", "r,d", "--format", "md"])
+    md = run_cli(
+        ["condition", str(EXAMPLES / "quick_return.yaml"), "--symbolic", "r,d", "--format", "md"]
+    )
     assert md.status == 0
     assert r"$d \cos{\left(A \right)} + r = 0$" in md.out
 
@@ -162,6 +164,7 @@ def _rot(angle: float, v: tuple[float, float]) -> np.ndarray:
 def _toggles(E_of, F: np.ndarray, m: float, n: float) -> list[float]:
     """Crank angles where the output dyad E-G-F is in line: |E - F| = m + n or |m - n|, on a
     fine grid (sign changes, refined by bisection)."""
+
     def gap(theta: float, branch: int) -> float:
         poses = _four_bar_branches(theta)
         if len(poses) <= branch:
@@ -226,3 +229,40 @@ def test_watt_ii_toggles_of_the_output_dyad() -> None:
         assert np.allclose(got, expected, atol=1e-3)
         reached += len(expected)
     assert reached  # the toggles of the output dyad are reached at one of the values
+
+
+def test_gough_stewart_constant_orientation_cubic() -> None:
+    # Dietmaier's 6-6 platform at the generic orientation the file draws: the leg lines'
+    # determinant (Plücker coordinates (u, b x u), u from base to platform pivot), computed
+    # here with numpy from the file's points, at 20 random positions of the platform
+    import yaml
+
+    path = EXAMPLES / "stewart_dietmaier.yaml"
+    doc = _json([str(path)])
+    (c,) = doc["conditions"]
+    x, y, z = sympy.symbols("x y z")
+    expr = sympy.sympify(c["expression"])
+    assert sympy.Poly(expr, x, y, z).total_degree() == 3
+    f = sympy.lambdify((x, y, z), expr, "numpy")
+    data = yaml.safe_load(path.read_text())
+    joints = {j["name"]: j for j in data["joints"]}
+    a = np.array([[float(v) for v in joints[f"U{i}"]["point"]] for i in range(1, 7)])
+    b0 = np.array([[float(v) for v in joints[f"S{i}"]["point"]] for i in range(1, 7)])
+    c0 = np.array([float(v) for v in data["output"]["point"]])
+    rng = np.random.default_rng(5)
+    mine, theirs = [], []
+    for _ in range(20):
+        t = c0 + rng.uniform(-1, 1, 3)
+        b = b0 - c0 + t
+        u = b - a
+        theirs.append(np.linalg.det(np.hstack([u, np.cross(b, u)])))
+        mine.append(float(f(*t)))
+    scale = max(abs(v) for v in theirs)
+    assert np.allclose(mine, theirs, rtol=1e-9, atol=1e-9 * scale)
+
+
+def test_octahedral_platform_cubic_is_a_power_of_z() -> None:
+    doc = _json([str(EXAMPLES / "stewart_octahedral.yaml")])
+    (c,) = doc["conditions"]
+    assert [(f["expression"], f["power"]) for f in c["factors"]] == [("z", 3)]
+    assert c["latex"].endswith("z^{3}")

@@ -48,6 +48,7 @@ from mechsing.conditions.elimination import half_angle
 from mechsing.conditions.factoring import factor_condition
 from mechsing.conditions.linkage import linkage_conditions
 from mechsing.conditions.results import Condition, ConditionResult, Factor
+from mechsing.conditions.spatial import gough_stewart
 from mechsing.conditions.symbolic import (
     SE3,
     JointSymbols,
@@ -112,6 +113,23 @@ def condition(
         raise UserError(
             f"{source}: the file has no output; a condition is about the output's motion: "
             "add output: {body: NAME}"
+        )
+    platform = gough_stewart(mech)
+    if platform is not None:
+        if config is not None:
+            raise UserError(
+                f"{source}: --config: the Gough-Stewart condition is written at the drawn "
+                "orientation of the platform; evaluate it at a pose with that orientation by "
+                "putting x, y, z into it, or use 'mechsing analyze --config'"
+            )
+        return ConditionResult(
+            mechanism=mech.name,
+            method="parallel robot, pose variables",
+            symbolic=tuple(names),
+            parameters={k: v for k, v in _file_parameters(source).items() if k not in names},
+            conditions=tuple(platform[0]),
+            notes=tuple(platform[1]),
+            file_angle_unit=mech.units.angle,
         )
     S = joint_symbols(mech)
     params = _parameters(mech)
