@@ -350,6 +350,9 @@ def test_the_python_function_is_public() -> None:
         ("planar_3rpr.yaml", None),
         ("parallelogram.yaml", None),
         ("ur5.yaml", "wrist"),
+        ("quick_return.yaml", "crank-60"),
+        ("watt_ii.yaml", None),
+        ("stewart_octahedral.yaml", None),
     ],
 )
 def test_json_follows_its_schema(example: str, config: str | None) -> None:
