@@ -14,6 +14,8 @@ import sympy
 from tests.cli import ROOT, run_cli
 
 EXAMPLES = ROOT / "examples"
+#: the quick return with its crank r and centre distance d as named parameters
+QUICK_RETURN = EXAMPLES / "exercises" / "16-quick-return-extremes" / "mechanism.yaml"
 #: where the scans of the crank angle start (no root there)
 START = 0.1234
 
@@ -121,16 +123,14 @@ def test_slider_crank_dead_centres_with_symbols(tmp_path: Path) -> None:
 
 
 def test_quick_return_extremes_of_the_lever() -> None:
-    doc = _json([str(EXAMPLES / "quick_return.yaml"), "--symbolic", "r,d"])
+    doc = _json([str(QUICK_RETURN), "--symbolic", "r,d"])
     r, d, A = sympy.symbols("r d A")
     ext = _named(doc, "input (type I) in the input A")
     # the lever is tangent to the crank circle: right angle at B in the triangle A B C,
     # cos(angle between AB and AC) = r/d with A measured away from C: d cos A + r = 0
     assert _proportional(_product(ext), d * sympy.cos(A) + r, "A")
     assert ext["factors"][0]["meaning"] == "crank (pivots A and B) perpendicular to the slide of S"
-    md = run_cli(
-        ["condition", str(EXAMPLES / "quick_return.yaml"), "--symbolic", "r,d", "--format", "md"]
-    )
+    md = run_cli(["condition", str(QUICK_RETURN), "--symbolic", "r,d", "--format", "md"])
     assert md.status == 0
     assert r"$d \cos{\left(A \right)} + r = 0$" in md.out
 
@@ -209,10 +209,20 @@ def _dyad_factors(c: dict) -> sympy.Expr:
     return out
 
 
-def test_watt_ii_toggles_of_the_output_dyad() -> None:
+def test_watt_ii_toggles_of_the_output_dyad(tmp_path: Path) -> None:
     # the first four-bar's rocker carries E = (5, 1) about D = (4, 0); the output dyad E-G-F
-    # has the lengths m (symbolic) and n = 2, F = (5 + m, 1 - n)
-    doc = _json([str(EXAMPLES / "watt_ii.yaml"), "--symbolic", "m"])
+    # has the lengths m (symbolic) and n = 2, F = (5 + m, 1 - n): examples/watt_ii.yaml with
+    # its dyad's lengths named
+    text = (
+        (EXAMPLES / "watt_ii.yaml")
+        .read_text()
+        .replace("bodies: [ground", "parameters: {m: 2, n: 2}\nbodies: [ground")
+        .replace("point: [7, 1, 0]", 'point: ["5 + m", 1, 0]')
+        .replace("point: [7, -1, 0]", 'point: ["5 + m", "1 - n", 0]')
+    )
+    path = tmp_path / "watt_ii.yaml"
+    path.write_text(text)
+    doc = _json([str(path), "--symbolic", "m"])
     tog = _named(doc, "output (type II) in the input A")
     assert "m" in {str(s) for s in _dyad_factors(tog).free_symbols}
     reached = 0
