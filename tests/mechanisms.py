@@ -166,6 +166,13 @@ PUBLISHED: dict[str, Published] = {
     "tsai_3upu.yaml": Published(3, 3, ("reference", "raised", "lateral")),
     # octahedral hexapod: mobility 6, Gruebler 6; centred pose regular
     "stewart_octahedral.yaml": Published(6, 6, ("reference",)),
+    # general 6-6 platform (Dietmaier's geometry): mobility 6
+    "stewart_dietmaier.yaml": Published(6, 6, ("reference", "longer")),
+    # quick return (crank and slotted lever): a planar single loop, regular where drawn
+    "quick_return.yaml": Published(1, -2, ("reference", "crank-60"), _loop("A B S C", "G", 3)),
+    # Watt II and Stephenson III six-bars: mobility 1, spatial Grubler 6(6-1-7)+7 = -5
+    "watt_ii.yaml": Published(1, -5, ("reference", "crank-20")),
+    "stephenson_iii.yaml": Published(1, -5, ("reference", "crank-20")),
     # serial arms: mobility 6, no loops (every configuration is a regular point of the c-space,
     # which is the whole joint space)
     "ur5.yaml": Published(

@@ -42,7 +42,6 @@ from tests.mechanisms import (
 EXAMPLE_FILES = sorted(p.name for p in EXAMPLES.glob("*.yaml"))
 
 
-
 def loop_map(config: dict) -> dict[frozenset[str], dict]:
     return {frozenset(lp["joints"]): lp for lp in config["loops"]}
 
@@ -204,7 +203,11 @@ def test_a_rigid_spatial_loop_is_a_structure_with_redundant_constraints(tmp_path
     res = analyze_json(path)
     (c,) = res["configurations"]
     assert c["closure_rank"]["rank"] == 4
-    assert (c["mobility"]["finite"], c["mobility"]["group"], c["mobility"]["grubler"]) == (0, -2, -2)
+    assert (c["mobility"]["finite"], c["mobility"]["group"], c["mobility"]["grubler"]) == (
+        0,
+        -2,
+        -2,
+    )
     (prop,) = [p for p in res["properties"] if p["kind"] == "overconstrained"]
     assert "does not move (a structure)" in prop["explanation"]
     assert "2 of its constraints are redundant" in prop["explanation"]

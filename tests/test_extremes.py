@@ -145,6 +145,10 @@ MP30_CONFIGS = {
     "slider_crank_crank_input.yaml": ["dead-centre"],
     "slider_crank_slider_input.yaml": ["dead-centre"],
     "spherical_4r.yaml": ["crank-60"],
+    "quick_return.yaml": ["reference"],
+    "stephenson_iii.yaml": ["reference"],
+    "stewart_dietmaier.yaml": ["reference"],
+    "watt_ii.yaml": ["reference"],
     "stewart_octahedral.yaml": ["rotated+90"],
     "tsai_3upu.yaml": ["flat"],
     "ur5.yaml": ["reference"],
@@ -163,6 +167,10 @@ EXACT_CONFIGS = {
     "slider_crank_crank_input.yaml": ["dead-centre"],
     "slider_crank_slider_input.yaml": ["dead-centre"],
     "spherical_4r.yaml": ["reference"],
+    "quick_return.yaml": ["reference"],
+    "stephenson_iii.yaml": ["reference"],
+    "stewart_dietmaier.yaml": ["reference"],
+    "watt_ii.yaml": ["reference"],
     "stewart_octahedral.yaml": ["reference"],
     "tsai_3upu.yaml": ["reference"],
     "ur5.yaml": ["wrist"],
@@ -279,10 +287,18 @@ def assert_published(name: str, res: dict) -> None:
             assert c["closure_rank"]["rank"] == pub.ranks[c["name"]], where
 
 
+#: (mode, example) not scaled: exact mode on the general 6-6 platform's six-digit data needs
+#: more than its 60 s limit per configuration once every length is scaled by 1e+-6 (its
+#: unscaled exact analysis runs in tests/test_matrix.py)
+UNSCALED = {("exact", "stewart_dietmaier.yaml")}
+
+
 def _mode_cases() -> list:
     out = []
     for mode in ("float", "mp:30", "exact"):
         for name in EXAMPLE_FILES:
+            if (mode, name) in UNSCALED:
+                continue
             for scale in sorted(SCALES):
                 marks = [slow] if (mode, name) in HEAVY else []
                 out.append(

@@ -124,7 +124,9 @@ def test_located_points_analysed_together_as_each_alone():
     # samples closed one Newton each)
     configs = dict(mech.configurations)
     for n, q in found.items():
-        values = {j: tuple(float(x) for x in q[model.joint(j).columns]) for j, _ in mech.coordinates()}
+        values = {
+            j: tuple(float(x) for x in q[model.joint(j).columns]) for j, _ in mech.coordinates()
+        }
         configs[n] = Configuration(n, values, start="reference")
     plain = replace(mech, configurations=configs)
     alone = [mechsing.analyze(plain, [n], "float").configurations[0] for n in found]

@@ -27,13 +27,18 @@ def test_text_and_markdown_render_a_test_left_undecided_in_float(tmp_path, fmt):
     cannot decide the input test there; the report says so instead of crashing."""
     text = SLIDER_CRANK.replace('crank-60: {A: "pi/3"}', 'near: {A: "2*atan(4/3) - 1e-10"}')
     path = write(tmp_path, "near", text)
-    rc, out, err = run_cli(["analyze", str(path), "--config", "near", "--precision", "float",
-                            "--format", fmt])
+    rc, out, err = run_cli(
+        ["analyze", str(path), "--config", "near", "--precision", "float", "--format", fmt]
+    )
     assert rc == 0, err
-    rc_j, out_j, _ = run_cli(["analyze", str(path), "--config", "near", "--precision", "float",
-                              "--format", "json"])
-    undecided = [f for f in json.loads(out_j)["configurations"][0]["singularities"]
-                 if f["class"] == "undecided"]
+    rc_j, out_j, _ = run_cli(
+        ["analyze", str(path), "--config", "near", "--precision", "float", "--format", "json"]
+    )
+    undecided = [
+        f
+        for f in json.loads(out_j)["configurations"][0]["singularities"]
+        if f["class"] == "undecided"
+    ]
     assert undecided, "1e-10 from the dead centre, float must leave a test undecided"
     for f in undecided:
         assert f"cannot decide the {f['what']}" in out
@@ -42,8 +47,16 @@ def test_text_and_markdown_render_a_test_left_undecided_in_float(tmp_path, fmt):
 
 
 def test_text_labels_the_grubler_count_as_spatial():
-    rc, out, _ = run_cli(["analyze", str(ROOT / "examples" / "fourbar.yaml"), "--config",
-                          "crank-30", "--precision", "float"])
+    rc, out, _ = run_cli(
+        [
+            "analyze",
+            str(ROOT / "examples" / "fourbar.yaml"),
+            "--config",
+            "crank-30",
+            "--precision",
+            "float",
+        ]
+    )
     assert rc == 0
     assert "spatial Grubler-Kutzbach count -2" in out
 
@@ -75,8 +88,14 @@ def test_identify_text_in_exact_mode_shows_exact_parameters():
 
 
 def test_identify_text_in_float_never_prints_none():
-    unit = ["1,0,0,0,0,0", "0,1,0,0,0,0", "0,0,1,0,0,0", "0,0,0,1,0,0", "0,0,0,0,1,0",
-            "0,0,0,0,0,1"]
+    unit = [
+        "1,0,0,0,0,0",
+        "0,1,0,0,0,0",
+        "0,0,1,0,0,0",
+        "0,0,0,1,0,0",
+        "0,0,0,0,1,0",
+        "0,0,0,0,0,1",
+    ]
     rc, out, _ = run_cli(["identify", "--precision", "float", "--", *unit])
     assert rc == 0 and "None" not in out and "nothing dropped" in out
 
@@ -114,8 +133,9 @@ def test_an_unreachable_input_reports_the_value_reached_in_the_file_units(tmp_pa
     acos((4 + 16 - |BD|^2) / 16), and A (measured from AB's reference angle, 90 deg) stops there."""
     bd = 3 + math.sqrt(5)
     limit = math.degrees(math.acos((4 + 16 - bd**2) / 16)) - 90
-    rc, out, err = run_cli(["analyze", str(write(tmp_path, "rocker", ROCKER)), "--precision",
-                            "float"])
+    rc, out, err = run_cli(
+        ["analyze", str(write(tmp_path, "rocker", ROCKER)), "--precision", "float"]
+    )
     assert rc == 3
     reached = float(err.split("A reached ")[1].split(" deg")[0])
     assert limit - 0.05 < reached <= limit + 1e-6
@@ -214,8 +234,9 @@ def test_auto_re_decides_fully_given_float_values_instead_of_refusing_them(tmp_p
     centre is 1e-10 away)."""
     vals = _slider_crank_near_dead_centre("1e-10")
     given = ", ".join(f"{k}: {v}" for k, v in vals.items())
-    path = write(tmp_path, "near", SLIDER_CRANK.replace('crank-60: {A: "pi/3"}',
-                                                        f"near: {{{given}}}"))
+    path = write(
+        tmp_path, "near", SLIDER_CRANK.replace('crank-60: {A: "pi/3"}', f"near: {{{given}}}")
+    )
     rc, out, err = run_cli(["analyze", str(path), "--config", "near", "--format", "json"])
     assert rc == 0, err
     (c,) = json.loads(out)["configurations"]
@@ -232,14 +253,18 @@ def test_auto_re_decides_fully_given_float_values_instead_of_refusing_them(tmp_p
 def test_errors_raised_while_solving_name_the_file(tmp_path):
     """A displacement outside its joint's subgroup is found while closing, not while reading:
     the message still names the file (and the configuration, joint and line)."""
-    path = write(tmp_path, "bad", """mechanism: s-bad
+    path = write(
+        tmp_path,
+        "bad",
+        """mechanism: s-bad
 bodies: [g, b]
 joints:
   - {name: S1, type: S, between: [g, b], point: [0, 1, 2]}
 configurations:
   c1:
     S1: {rotation: [[1, 0, 0], [0, 0, -1], [0, 1, 0]], translation: [0, 3, 1.001]}
-""")
+""",
+    )
     rc, _out, err = run_cli(["analyze", str(path)])
     assert rc == 2
     assert err.startswith(f"mechsing: error: {path}: configuration 'c1', joint 'S1' (line 7)")
@@ -254,8 +279,18 @@ def test_an_undecided_rank_whose_bounds_give_one_verdict_is_no_finding(tmp_path,
     is 5: a constraint singularity is a rank below 5, so either rank is regular and no
     'undecided' finding may make the configuration's verdict null."""
     text = SLIDER_CRANK.replace('crank-60: {A: "pi/3"}', f'near: {{A: "2*atan(4/3) - 1e-{k}"}}')
-    rc, out, err = run_cli(["analyze", str(write(tmp_path, "sc", text)), "--config", "near",
-                            "--precision", "float", "--format", "json"])
+    rc, out, err = run_cli(
+        [
+            "analyze",
+            str(write(tmp_path, "sc", text)),
+            "--config",
+            "near",
+            "--precision",
+            "float",
+            "--format",
+            "json",
+        ]
+    )
     assert rc == 0, err
     (c,) = json.loads(out)["configurations"]
     assert c["singular"] is False, c["singularities"]
@@ -291,11 +326,17 @@ def test_a_fold_given_by_its_input_is_reached_and_classified_as_when_fully_given
     decide; auto decides at mp:50 and gives the classes of the fully given dead centre
     (decided exactly); the solved joints are the dead centre's closed form."""
     path = write(tmp_path, "dead", _with_config(SLIDER_INPUT, 'dead: {P: "8/5"}'))
-    full = write(tmp_path, "full", _with_config(
-        SLIDER_INPUT, 'dead: {A: "2*atan(4/3)", B: "-2*atan(2)", C: "2*atan(2/11)", P: "8/5"}'))
+    full = write(
+        tmp_path,
+        "full",
+        _with_config(
+            SLIDER_INPUT, 'dead: {A: "2*atan(4/3)", B: "-2*atan(2)", C: "2*atan(2/11)", P: "8/5"}'
+        ),
+    )
     closed_form = {"A": 2 * math.atan(4 / 3), "B": -2 * math.atan(2), "C": 2 * math.atan(2 / 11)}
-    rc, out, err = run_cli(["analyze", str(path), "--config", "dead", "--precision", "float",
-                            "--format", "json"])
+    rc, out, err = run_cli(
+        ["analyze", str(path), "--config", "dead", "--precision", "float", "--format", "json"]
+    )
     assert rc == 0, err
     (c,) = json.loads(out)["configurations"]
     assert c["singular"] is None and any("fold" in f["what"] for f in c["singularities"])
@@ -305,12 +346,14 @@ def test_a_fold_given_by_its_input_is_reached_and_classified_as_when_fully_given
     rc, out, err = run_cli(["analyze", str(path), "--config", "dead", "--format", "json"])
     assert rc == 0, err
     (a,) = json.loads(out)["configurations"]
-    rc, out, _ = run_cli(["analyze", str(full), "--config", "dead", "--precision", "exact",
-                          "--format", "json"])
+    rc, out, _ = run_cli(
+        ["analyze", str(full), "--config", "dead", "--precision", "exact", "--format", "json"]
+    )
     (e,) = json.loads(out)["configurations"]
     assert a["precision"] == "mp:50" and a["singular"] is True
     assert sorted(f["class"] for f in a["singularities"]) == sorted(
-        f["class"] for f in e["singularities"])
+        f["class"] for f in e["singularities"]
+    )
     for k, v in closed_form.items():
         assert abs(a["joints"][k][0] - v) < 1e-14
 

@@ -2,7 +2,8 @@
 variables (named by the joints, measured from the drawn pose, radians and metres) or, for a
 parallel robot, its pose variables x, y, phi; keep the parameters named in --symbolic as
 symbols; with --config, evaluate each factor there and say which vanish.  Output as text,
-JSON (its schema: mechsing schema --condition) or LaTeX.
+JSON (its schema: mechsing schema --condition; each formula also in LaTeX), LaTeX, or
+Markdown with the formulas as $...$ (--format md).
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         metavar="A,B",
         help="parameters of the file to keep as symbols (comma-separated)",
     )
-    p.add_argument("--format", choices=("text", "json", "latex"), default="text")
+    p.add_argument("--format", choices=("text", "json", "latex", "md"), default="text")
     from mechsing.cli import options
 
     options.add_time_limit_option(p)
@@ -64,6 +65,8 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.write(json.dumps(result.to_json(), indent=2) + "\n")
     elif args.format == "latex":
         sys.stdout.write(result.latex())
+    elif args.format == "md":
+        sys.stdout.write(result.markdown())
     else:
         sys.stdout.write(result.text())
     return 0

@@ -44,8 +44,17 @@ from typing import Any
 import numpy as np
 import sympy
 
+from mechsing.conditions.elimination import angles as _angles
+from mechsing.conditions.elimination import distinct as _distinct
+from mechsing.conditions.elimination import half_angle
+from mechsing.conditions.explain import Explainer
+from mechsing.conditions.explain import numeric as _numeric
+from mechsing.conditions.explain import random_point as _random_point
+from mechsing.conditions.explain import rank as _rank
 from mechsing.conditions.factoring import factor_condition
+from mechsing.conditions.linkage import linkage_conditions
 from mechsing.conditions.results import Condition, ConditionResult, Factor
+from mechsing.conditions.spatial import gough_stewart
 from mechsing.conditions.symbolic import (
     SE3,
     JointSymbols,
@@ -60,21 +69,18 @@ from mechsing.model import Mechanism
 from mechsing.model.couplings import refuse_couplings
 from mechsing.model.parameters import ParameterSymbol
 from mechsing.numeric import (
-    CONDITION_GENERIC_RANK_RTOL,
     CONDITION_GEOMETRY_RTOL,
-    CONDITION_ROOT_MERGE,
     CONDITION_ROOT_RTOL,
     CONDITION_VANISH_RTOL,
-    unit_vector,
 )
 from mechsing.reader import read_mechanism
-from mechsing.singularity.names import line_facts, name_of, named
-from mechsing.timelimit import TimeLimit
+from mechsing.singularity.names import named
+from mechsing.timelimit import SHORTEST_TIME_LIMIT, TimeLimit
 
 __all__ = ["ELIMINATION_SECONDS", "MAX_MINORS", "condition"]
 
 #: time allowed to eliminate the passive joints of a loop (s)
-ELIMINATION_SECONDS = 10.0
+ELIMINATION_SECONDS = 60.0
 #: most maximal minors computed for a redundant or deficient chain
 MAX_MINORS = 84
 
@@ -103,7 +109,10 @@ def condition(
         (a mechanism given as ``source`` is taken as it is).
     time_limit : float or None
         The most seconds the derivation may take (None: no limit); stopped there, a
-        ConfigurationError (exit status 3) that says so.
+        ConfigurationError (exit status 3) that says so.  The elimination of a linkage's
+        passive joints gets half of it for each condition (without a limit,
+        :data:`ELIMINATION_SECONDS`): past that the condition is given in the joint
+        variables, with a note.
 
     Returns
     -------
@@ -125,7 +134,13 @@ def condition(
     refuse_couplings(mech, "symbolic conditions (mechsing condition)")
     try:
         with TimeLimit(time_limit):
-            return _condition(mech, config, names, scene)
+            # the elimination gets half the limit: past it, the joint-variable form within it
+            elim = (
+                ELIMINATION_SECONDS
+                if time_limit is None
+                else max(time_limit / 2, SHORTEST_TIME_LIMIT)
+            )
+            return _condition(mech, config, names, scene, elim)
     except TimeLimitExceeded:
         raise ConfigurationError(
             f"{mech.path or mech.name}: the conditions were stopped by the time limit after "
@@ -139,7 +154,10 @@ def _condition(
     config: str | None,
     names: list[str],
     scene: Callable[[Mechanism], Mechanism] | None,
+    time_limit: float | None,
 ) -> ConditionResult:
+    """The conditions of ``mech``; ``time_limit``: the seconds the elimination of a
+    linkage's passive joints may take for each condition."""
     source = mech.path or mech.name
     if config is not None and config not in mech.configurations:
         raise UserError(
@@ -151,20 +169,41 @@ def _condition(
             f"{source}: the file has no output; a condition is about the output's motion: "
             "name one with --output-body BODY (in a mechsing file, add output: {body: NAME})"
         )
+    platform = gough_stewart(mech)
+    if platform is not None:
+        if config is not None:
+            raise UserError(
+                f"{source}: --config: the Gough-Stewart condition is written at the drawn "
+                "orientation of the platform; evaluate it at a pose with that orientation by "
+                "putting x, y, z into it, or use 'mechsing analyze --config'"
+            )
+        return ConditionResult(
+            mechanism=mech.name,
+            method="parallel robot, pose variables",
+            symbolic=tuple(names),
+            parameters={k: v for k, v in mech.parameters.items() if k not in names},
+            conditions=tuple(platform[0]),
+            notes=tuple(platform[1]),
+            file_angle_unit=mech.units.angle,
+        )
     S = joint_symbols(mech)
     params = _parameters(mech)
     if mech.graph.num_loops == 0:
         method, conds, notes = "open chain", *_open_chain(mech, S)
     elif mech.graph.num_loops == 1 and len(mech.input_coordinates()) == 1:
-        method, conds, notes = "single loop, one input", *_single_loop(mech, S)
-    else:
-        legs = mech.legs
-        if len(legs) < 2:
+        method, conds, notes = "single loop, one input", *_single_loop(mech, S, time_limit)
+    elif len(mech.input_coordinates()) == 1:
+        ((in_joint, _),) = mech.input_coordinates()
+        found = linkage_conditions(mech, S[in_joint], set(_parameters(mech)), time_limit, True)
+        if isinstance(found, str):
             raise UserError(
-                f"{source}: symbolic conditions cover open chains, single loops with one "
-                "input and planar parallel robots of R-P-R legs; this mechanism has "
-                f"{mech.graph.num_loops} loops; use 'mechsing analyze' for its singularities"
+                f"{source}: a linkage of {mech.graph.num_loops} loops with one input: symbolic "
+                "conditions of multi-loop linkages cover planar linkages of R and P joints "
+                "with the input on the ground (Watt and Stephenson six-bars ...); this one is "
+                f"not: {found}; use 'mechsing analyze' for its singularities"
             )
+        method, conds, notes = "linkage, one input", *found
+    else:
         method, conds, notes = "parallel robot, pose variables", *_parallel(mech, S, str(source))
     printable = {p: sympy.Symbol(p.name, real=True) for p in params}
     conds = [_printable(c, printable) for c in conds]
@@ -278,34 +317,6 @@ def _conditions_from(
     return Condition(name, form, tuple(variables), const, tuple(out), note)
 
 
-def _random_point(S: list[JointSymbols], rng: random.Random) -> dict[Any, Any]:
-    """Random joint values as exact rationals on the circle (c, s) and for q."""
-    pt: dict[Any, Any] = {}
-    for js in S:
-        u = sympy.Rational(rng.randint(-900, 900), 400)
-        if js.c is not None:
-            pt[js.c] = (1 - u**2) / (1 + u**2)
-            pt[js.s] = 2 * u / (1 + u**2)
-            pt[js.q] = 2 * sympy.atan(u)
-        else:
-            pt[js.q] = u / 3
-    return pt
-
-
-def _numeric(M: Any, pt: dict[Any, Any], params: list[Any]) -> np.ndarray:
-    sub = dict(pt)
-    for p in params:
-        sub[p] = p.parameter_value
-    return np.array(M.xreplace(sub).evalf(30).tolist(), dtype=float)
-
-
-def _rank(A: np.ndarray) -> int:
-    s = np.linalg.svd(A, compute_uv=False)
-    if s.size == 0 or s[0] == 0:
-        return 0
-    return int(np.sum(s > CONDITION_GENERIC_RANK_RTOL * s[0]))
-
-
 # ---------------------------------------------------------------------------
 # columns of a chain in the frame of one of its bodies
 # ---------------------------------------------------------------------------
@@ -408,106 +419,6 @@ def _maximal(
 
 
 # ---------------------------------------------------------------------------
-# explanations: geometry where a factor vanishes
-# ---------------------------------------------------------------------------
-
-
-class _Explainer:
-    """Tests the geometry of a chain's columns at a zero of a factor: parallel or
-    coincident axes, the output point on an axis, three planar pivots in line."""
-
-    def __init__(
-        self,
-        names: list[str],
-        types: list[str],
-        cols: list[Any],
-        S: list[JointSymbols],
-        params: list[Any],
-        point: Any = None,
-        planar: bool = False,
-        scale: float = 1.0,
-        arm: bool = True,
-    ) -> None:
-        self.arm = arm  # name the factors as an arm's (wrist, elbow, shoulder)
-        self.names, self.types, self.cols = names, types, cols
-        self.S, self.params, self.point, self.planar = S, params, point, planar
-        self.scale = scale
-
-    def lines(self, pt: dict[Any, Any]) -> list[tuple[str, np.ndarray | None, np.ndarray]]:
-        out = []
-        for n, t, c in zip(self.names, self.types, self.cols, strict=True):
-            x = _numeric(c, pt, self.params).ravel()
-            w, v = x[:3], x[3:]
-            if t == "P":
-                out.append((n, None, unit_vector(v)))
-            else:
-                nw = np.linalg.norm(w)
-                out.append((n, np.cross(w, v) / nw**2, w / nw))
-        return out
-
-    def facts(self, pt: dict[Any, Any]) -> dict[str, Any]:
-        P = None if self.point is None else _numeric(self.point, pt, self.params).ravel()
-        return line_facts(self.lines(pt), P, self.planar, self.scale)
-
-    def __call__(self, f: Any) -> str | None:
-        rng = random.Random(7)
-        base = _random_point(self.S, rng)
-        generic = self.facts(base)
-        var = None
-        for js in self.S:
-            if js.c is not None and (f.has(js.c) or f.has(js.s)):
-                var = js
-                break
-        if var is None:
-            return None
-        for _ in range(4):
-            pt = _random_point(self.S, rng)
-            root = _root_of(f, var, pt, self.params)
-            if root is None:
-                continue
-            pt[var.c], pt[var.s] = sympy.Float(math.cos(root), 30), sympy.Float(math.sin(root), 30)
-            pt[var.q] = sympy.Float(root, 30)
-            facts = self.facts(pt)
-            new = sorted(t for t in facts if t not in generic)
-            joints = sorted(
-                {
-                    js.q.name
-                    for js in self.S
-                    if f.has(js.q) or (js.c is not None and (f.has(js.c) or f.has(js.s)))
-                }
-            )
-            if new:
-                name = name_of([facts[t][0] for t in new]) if self.arm else None
-                kind = f"{name}: " if name else ""
-                return kind + "vanishes when " + "; ".join(new)
-            return f"a condition on {', '.join(joints)} (no parallel axes or aligned pivots there)"
-        return None
-
-
-def _root_of(f: Any, var: JointSymbols, pt: dict[Any, Any], params: list[Any]) -> float | None:
-    """A real angle of ``var`` where ``f`` vanishes, the other joints at ``pt``."""
-    sub = {k: v for k, v in pt.items() if k not in (var.c, var.s, var.q)}
-    for p in params:
-        sub[p] = p.parameter_value
-    t = sympy.Dummy("t")
-    g = sympy.sympify(f).xreplace(sub)
-    g = sympy.together(g.xreplace({var.c: (1 - t**2) / (1 + t**2), var.s: 2 * t / (1 + t**2)}))
-    num = sympy.numer(g)
-    try:
-        coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(num, t).all_coeffs()]
-    except (sympy.PolynomialError, TypeError):
-        return None
-    if len(coeffs) < 2:
-        return math.pi if len(coeffs) == 1 else None
-    roots = [
-        r.real for r in np.roots(coeffs) if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r))
-    ]
-    if not roots:
-        return None
-    return 2 * math.atan(roots[0])
-
-
-# ---------------------------------------------------------------------------
 # open chains
 # ---------------------------------------------------------------------------
 
@@ -542,7 +453,7 @@ def _open_chain(mech: Mechanism, S: dict[str, JointSymbols]) -> tuple[list[Condi
         what = "output twist"
     Jr, fixed, r = _reduce_rows(J, Sl, params)
     planar = _is_planar(mech, [s for s, _ in steps])
-    explain = _Explainer(
+    explain = Explainer(
         [s for s, _ in steps],
         [mech.joint(s).type for s, _ in steps],
         cols,
@@ -591,7 +502,9 @@ def _size(mech: Mechanism) -> float:
 # ---------------------------------------------------------------------------
 
 
-def _single_loop(mech: Mechanism, S: dict[str, JointSymbols]) -> tuple[list[Condition], list[str]]:
+def _single_loop(
+    mech: Mechanism, S: dict[str, JointSymbols], time_limit: float | None
+) -> tuple[list[Condition], list[str]]:
     loop = mech.graph.loops[0]
     ground = mech.ground
     if ground not in loop.bodies:
@@ -631,7 +544,7 @@ def _single_loop(mech: Mechanism, S: dict[str, JointSymbols]) -> tuple[list[Cond
             f"the loop's twists span {r} directions at every configuration (a subgroup); the "
             f"conditions are written in {r} of its coordinates"
         )
-    explain = _Explainer(
+    explain = Explainer(
         names,
         [mech.joint(n).type for n in names],
         cols,
@@ -673,7 +586,20 @@ def _single_loop(mech: Mechanism, S: dict[str, JointSymbols]) -> tuple[list[Cond
         M = Kr.extract(list(range(r)), [i for i, n in enumerate(names) if n != drop])
         det = sympy.expand(M.det(method="berkowitz"))
         conds.append(_conditions_from(name, "determinant", det, Sl, pset, note, explain))
-        elim = _eliminate(det, closure, S, in_joint, pset)
+    if pset:
+        found = linkage_conditions(mech, S[in_joint], pset, time_limit, False)
+        if isinstance(found, str):
+            notes.append(
+                "the passive joints are eliminated with symbolic parameters for planar "
+                f"linkages of R and P joints with the input on the ground; not here ({found}): "
+                "the conditions above are in all joint variables"
+            )
+            return conds, notes
+        return conds + found[0], notes + found[1]
+    for name, drop, _ in wanted:
+        M = Kr.extract(list(range(r)), [i for i, n in enumerate(names) if n != drop])
+        det = sympy.expand(M.det(method="berkowitz"))
+        elim = _eliminate(det, closure, S, in_joint, pset, time_limit)
         if isinstance(elim, str):
             notes.append(f"{name}: {elim}")
         else:
@@ -704,14 +630,15 @@ def _closure_equations(start: SE3, end: SE3) -> list[Any]:
 
 
 def _eliminate(
-    det: Any, closure: list[Any], S: dict[str, JointSymbols], in_joint: str, params: set[Any]
+    det: Any,
+    closure: list[Any],
+    S: dict[str, JointSymbols],
+    in_joint: str,
+    params: set[Any],
+    time_limit: float | None,
 ) -> Condition | str:
-    """``det`` with the passive joints eliminated by a lex Groebner basis, or why not."""
-    if params:
-        return (
-            "the passive joints are eliminated only with numeric parameters (drop --symbolic); "
-            "the condition above is in all joint variables"
-        )
+    """``det`` with the passive joints eliminated by a lex Groebner basis, or why not
+    (numeric parameters)."""
     inp = S[in_joint]
     passive = [js for n, js in S.items() if n != in_joint]
     pvars: list[Any] = []
@@ -722,7 +649,7 @@ def _eliminate(
     Sl = list(S.values())
     eqs = [reduce_trig(det, Sl), *[reduce_trig(e, Sl) for e in closure], *circle]
     try:
-        with TimeLimit(ELIMINATION_SECONDS):
+        with TimeLimit(time_limit):
             G = sympy.groebner(eqs, *pvars, *ivars, order="grevlex")
             if G.is_zero_dimensional:
                 G = G.fglm("lex")
@@ -730,8 +657,13 @@ def _eliminate(
                 G = sympy.groebner(eqs, *pvars, *ivars, order="lex")
     except TimeLimitExceeded:
         return (
-            f"sympy could not eliminate the passive joints within {ELIMINATION_SECONDS:g} s; "
+            f"sympy could not eliminate the passive joints within {time_limit:g} s; "
             "the condition above is in all joint variables"
+        )
+    if G.exprs == [1]:
+        return (
+            "no configuration of the loop makes it vanish: this singularity is never reached; "
+            "no condition on the input"
         )
     own = sympy.expand(inp.s**2 + inp.c**2 - 1) if inp.c is not None else None
     polys = [
@@ -765,14 +697,6 @@ def _eliminate(
     )
 
 
-def _half_angle(p: Any, js: JointSymbols, t: Any) -> Any:
-    """The numerator of ``p(c, s)`` in ``t = tan(J/2)`` (degree twice p's in c, s, less
-    the multiplicity of the zero at J = pi)."""
-    k = int(sympy.Poly(p, js.c, js.s).total_degree()) if p.has(js.c) or p.has(js.s) else 0
-    sub = {js.c: (1 - t**2) / (1 + t**2), js.s: 2 * t / (1 + t**2)}
-    return sympy.expand(sympy.cancel(p.xreplace(sub) * (1 + t**2) ** k))
-
-
 def _eliminant(polys: list[Any], js: JointSymbols) -> tuple[Any, bool]:
     """One polynomial in the input whose zeros are those common to ``polys`` (a lex
     basis may give two: ``s - p(c)`` and ``q(c)``, whose common zeros are fewer than
@@ -785,9 +709,9 @@ def _eliminant(polys: list[Any], js: JointSymbols) -> tuple[Any, bool]:
     if len(polys) == 1:
         return polys[0], True
     t = sympy.Dummy("t")
-    g = _half_angle(polys[0], js, t)
+    g = half_angle(polys[0], js, t)
     for p in polys[1:]:
-        g = sympy.gcd(g, _half_angle(p, js, t))
+        g = sympy.gcd(g, half_angle(p, js, t))
     at_pi = all(p.xreplace({js.c: -1, js.s: 0}) == 0 for p in polys)
     deg = int(sympy.degree(g, t))
     k = (deg + 1) // 2 + (1 if at_pi and deg % 2 == 0 else 0)
@@ -825,41 +749,6 @@ def _common_roots(polys: list[Any], js: JointSymbols) -> list[float]:
     return out
 
 
-def _angles(g: Any, js: JointSymbols) -> list[float]:
-    """Real values of a joint where a polynomial in its ``c``, ``s`` (or ``q``) vanishes."""
-    if js.c is None:
-        coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(g, js.q).all_coeffs()]
-        return sorted(
-            r.real for r in np.roots(coeffs) if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r))
-        )
-    t = sympy.Dummy("t")
-    k = int(sympy.Poly(g, js.c, js.s).total_degree())
-    N = sympy.expand(
-        sympy.cancel(
-            g.xreplace({js.c: (1 - t**2) / (1 + t**2), js.s: 2 * t / (1 + t**2)}) * (1 + t**2) ** k
-        )
-    )
-    if N == 0:
-        return []
-    coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(N, t).all_coeffs()]
-    out = []
-    if len(coeffs) - 1 < 2 * k:
-        out.append(math.pi)
-    for r in np.roots(coeffs) if len(coeffs) > 1 else []:
-        if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r)):
-            out.append(2 * math.atan(r.real))
-    return _distinct(out)
-
-
-def _distinct(values: list[float]) -> list[float]:
-    """Sorted values, each once (roots of different factors may meet)."""
-    distinct: list[float] = []
-    for a in sorted(values):
-        if not distinct or abs(a - distinct[-1]) > CONDITION_ROOT_MERGE:
-            distinct.append(a)
-    return distinct
-
-
 # ---------------------------------------------------------------------------
 # planar parallel robots in pose variables
 # ---------------------------------------------------------------------------
@@ -873,9 +762,11 @@ def _parallel(
     inputs = {n for n, _ in mech.input_coordinates()}
     legs = mech.legs
     refuse = UserError(
-        f"{source}: symbolic conditions of a parallel robot cover planar legs of three joints "
-        "R-P-R (revolute pivots with parallel axes, the P joint actuated: a 3-RPR); this one "
-        "is not; use 'mechsing analyze' or 'mechsing sweep' with pose configurations"
+        f"{source}: a mechanism of {mech.graph.num_loops} loops with {len(inputs)} inputs: "
+        "symbolic conditions of mechanisms with several inputs cover planar parallel robots "
+        "whose legs are R-P-R (revolute pivots with parallel axes, the P joint actuated: a "
+        "3-RPR); this one is not; use 'mechsing analyze' or 'mechsing sweep' with pose "
+        "configurations"
     )
     if not _is_planar(mech, list(mech.joint_names)):
         raise refuse

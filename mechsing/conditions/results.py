@@ -89,6 +89,22 @@ class Condition:
             parts.append(e if f.power == 1 else f"{e}**{f.power}")
         return sign + ("*".join(parts) if parts else "1")
 
+    def latex(self) -> str:
+        """``constant \\cdot factor \\cdot factor^{2} ...`` in LaTeX (without ``= 0``)."""
+        parts = []
+        for f in self.factors:
+            body = sympy.latex(f.expression)
+            alone = len(self.factors) == 1 and f.power == 1 and self.constant == 1
+            if isinstance(f.expression, sympy.Add) and not alone:
+                body = rf"\left({body}\right)"
+            parts.append(body if f.power == 1 else f"{body}^{{{f.power}}}")
+        const = sympy.latex(self.constant)
+        if self.constant == 1 and parts:
+            return r" \cdot ".join(parts)
+        if self.constant == -1 and parts:
+            return "-" + r" \cdot ".join(parts)
+        return r" \cdot ".join([const, *parts])
+
     @property
     def vanishes(self) -> bool | None:
         """True when a factor vanishes at the configuration, None when one cannot be evaluated."""
@@ -130,10 +146,12 @@ class ConditionResult:
                     "form": c.form,
                     "variables": list(c.variables),
                     "expression": c.product_text(),
+                    "latex": c.latex(),
                     "constant": str(c.constant),
                     "factors": [
                         {
                             "expression": str(f.expression),
+                            "latex": sympy.latex(f.expression),
                             "power": int(f.power),
                             "meaning": f.meaning,
                             "value": f.value,
@@ -192,6 +210,54 @@ class ConditionResult:
         for n in self.notes:
             lines.append("")
             lines.append(f"Note: {n}")
+        return "\n".join(lines) + "\n"
+
+    def markdown(self) -> str:
+        """The conditions as Markdown, formulas as ``$...$`` (for notes and slides)."""
+        lines = [f"# {self.mechanism}: singularity conditions", "", f"Method: {self.method}."]
+        if self.symbolic:
+            lines.append(
+                "Symbolic parameters: "
+                + ", ".join(f"${sympy.latex(sympy.Symbol(n))}$" for n in self.symbolic)
+                + "."
+            )
+        fixed = {k: v for k, v in self.parameters.items() if k not in self.symbolic}
+        if fixed:
+            lines.append(
+                "Parameters at their values: "
+                + ", ".join(f"{k} = {v}" for k, v in fixed.items())
+                + "."
+            )
+        if self.configuration is not None:
+            vals = ", ".join(f"{k} = {v:.6g}" for k, v in self.values.items())
+            lines.append(f"At configuration `{self.configuration}`: {vals}.")
+        for c in self.conditions:
+            lines += ["", f"## {c.name} ({c.form})", "", f"${c.latex()} = 0$", ""]
+            if c.note:
+                lines += [c.note[0].upper() + c.note[1:] + ".", ""]
+            for i, f in enumerate(c.factors, 1):
+                power = f" (power {f.power})" if f.power != 1 else ""
+                text = f"{i}. ${sympy.latex(f.expression)}${power}"
+                if f.meaning:
+                    text += f": {f.meaning}"
+                if f.value is not None:
+                    state = "vanishes" if f.vanishes else "does not vanish"
+                    text += f"; at `{self.configuration}`: {f.value:.6g} ({state})"
+                lines.append(text)
+            if c.roots:
+                unit = c.units[0] if c.units else ""
+                shown = ", ".join(f"{r:.6g}" for r in c.roots)
+                lines += [
+                    "",
+                    f"Vanishes at ${sympy.latex(sympy.Symbol(c.variables[0]))}$ = {shown} {unit}".rstrip()
+                    + ".",
+                ]
+            if c.vanishes is not None:
+                verdict = "singular" if c.vanishes else "regular"
+                lines += ["", f"`{self.configuration}` is {verdict} for this condition."]
+        if self.notes:
+            lines += ["", "## Notes", ""]
+            lines += [f"- {n}" for n in self.notes]
         return "\n".join(lines) + "\n"
 
     def latex(self) -> str:

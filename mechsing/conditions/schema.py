@@ -22,6 +22,7 @@ def condition_schema() -> dict[str, Any]:
         "type": "object",
         "properties": {
             "expression": {"type": "string", "description": "the factor (sympy text)"},
+            "latex": {"type": "string", "description": "the factor in LaTeX (sympy.latex)"},
             "power": {"type": "integer", "minimum": 1},
             "meaning": {
                 "type": ["string", "null"],
@@ -35,7 +36,7 @@ def condition_schema() -> dict[str, Any]:
                 "where its geometry shows one",
             },
         },
-        "required": ["expression", "power", "meaning", "value", "vanishes"],
+        "required": ["expression", "latex", "power", "meaning", "value", "vanishes"],
         "additionalProperties": False,
     }
     condition = {
@@ -45,6 +46,10 @@ def condition_schema() -> dict[str, Any]:
             "form": {"enum": ["determinant", "gcd of maximal minors", "eliminated"]},
             "variables": {"type": "array", "items": {"type": "string"}},
             "expression": {"type": "string", "description": "constant*(factor)*... = 0"},
+            "latex": {
+                "type": "string",
+                "description": "the same product in LaTeX, without '= 0' (for $...$)",
+            },
             "constant": {"type": "string"},
             "factors": {"type": "array", "items": factor},
             "note": {"type": "string"},
@@ -62,6 +67,7 @@ def condition_schema() -> dict[str, Any]:
             "form",
             "variables",
             "expression",
+            "latex",
             "constant",
             "factors",
             "note",
@@ -76,13 +82,18 @@ def condition_schema() -> dict[str, Any]:
         "$id": CONDITION_SCHEMA_ID,
         "title": "mechsing condition document",
         "description": "Singularity conditions as factored formulas in the joint variables "
-        "(named by the joints, measured from the drawn pose, rad or m) or the pose variables "
-        "x, y (m) and phi (rad).",
+        "(named by the joints, measured from the drawn pose, rad or m), the angles phi_X of "
+        "the bodies of a linkage (rad), or the pose variables x, y, z (m) and phi (rad).",
         "type": "object",
         "properties": {
             "mechanism": {"type": "string"},
             "method": {
-                "enum": ["open chain", "single loop, one input", "parallel robot, pose variables"]
+                "enum": [
+                    "open chain",
+                    "single loop, one input",
+                    "linkage, one input",
+                    "parallel robot, pose variables",
+                ]
             },
             "symbolic": {"type": "array", "items": {"type": "string"}},
             "parameters": {"type": "object", "additionalProperties": {"type": "number"}},
