@@ -83,6 +83,13 @@ def linkage_conditions(
     L = planar_linkage(mech)
     if isinstance(L, str):
         return L
+    irrational = _irrational_parameters(L)
+    if irrational is not None:
+        return (
+            f"its closure holds {irrational}, an irrational function of the parameters (a P "
+            "joint's axis written with symbols is normalised by its length), and elimination "
+            "works on polynomials"
+        )
     name = str(in_joint.q)
     found = _input(mech, L, name)
     if isinstance(found, str):
@@ -175,6 +182,20 @@ def linkage_conditions(
             )
         )
     return conds, notes
+
+
+def _irrational_parameters(L: PlanarLinkage) -> Any:
+    """A radical or a function of the parameters alone in the closure equations (None when
+    they are polynomials in the parameters)."""
+    variables = {x for js in L.symbols for x in (js.c, js.s, js.q) if x is not None}
+    for e in L.equations:
+        e = sympy.sympify(e)
+        for a in sorted(e.atoms(sympy.Pow, sympy.Function), key=str):
+            if a.free_symbols & variables or not a.free_symbols:
+                continue
+            if isinstance(a, sympy.Function) or not a.exp.is_Integer:
+                return a
+    return None
 
 
 def _names(factors: list[tuple[Any, int]], syms: list[JointSymbols], params: set[Any]) -> tuple:
