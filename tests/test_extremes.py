@@ -287,9 +287,9 @@ def assert_published(name: str, res: dict) -> None:
             assert c["closure_rank"]["rank"] == pub.ranks[c["name"]], where
 
 
-#: (mode, example) not scaled: exact mode on the general 6-6 platform's six-digit data needs
-#: more than its 60 s limit per configuration once every length is scaled by 1e+-6 (its
-#: unscaled exact analysis runs in tests/test_matrix.py)
+#: (mode, example) not compared across scales: exact mode on the general 6-6 platform's
+#: six-digit data does not finish within its time limit, scaled or not (unscaled: stopped
+#: after 300 s here; tests/test_matrix.py checks that it stops with exit status 3 and says so)
 UNSCALED = {("exact", "stewart_dietmaier.yaml")}
 
 
@@ -339,7 +339,7 @@ def test_exact_margins_are_scale_invariant(scaled_dir: Path) -> None:
     x 10^6 as unscaled (to its 30 digits, here 1e-12 relative)."""
     wrong = []
     for name in EXAMPLE_FILES:
-        if ("exact", name) in HEAVY and not SLOW:
+        if (("exact", name) in HEAVY and not SLOW) or ("exact", name) in UNSCALED:
             continue
         opts = _options("exact", name)
         base = _kept_margins(analyze_json(EXAMPLES / name, *opts))
