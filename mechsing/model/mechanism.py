@@ -342,15 +342,15 @@ class Mechanism:
     warnings: tuple[str, ...] = ()
     # joint limits: joint name -> ((lower, upper), ...) per coordinate, SI units and radians
     limits: Mapping[str, tuple[tuple[float, float], ...]] = field(default_factory=dict)
-    #: linear couplings of joint coordinates (URDF ``<mimic>``), in file order
+    # linear couplings of joint coordinates (URDF ``<mimic>``), in file order
     couplings: tuple[Coupling, ...] = ()
-    #: what the command line's scene options chose and left out (None: no such option)
+    # what the command line's scene options chose and left out (None: no such option)
     scene: Scene | None = None
-    #: the file's named parameters: name -> exact value (or ParameterSymbol), as written
+    # the file's named parameters: name -> exact value (or ParameterSymbol), as written
     parameters: Mapping[str, Any] = field(default_factory=dict)
-    #: the geometry written with digits to spare: (joint, parameter, entry, resolution in
-    #: SI, significant digits) -- half a unit in the last written digit of a decimal of
-    #: RESOLUTION_MIN_DIGITS digits or more (a direction's entry before normalisation)
+    # the geometry written with digits to spare: (joint, parameter, entry, resolution in
+    # SI, significant digits) -- half a unit in the last written digit of a decimal of
+    # RESOLUTION_MIN_DIGITS digits or more (a direction's entry before normalisation)
     resolution: tuple[tuple[str, str, int, float, int], ...] = ()
 
     def joint(self, name: str) -> Joint:

@@ -431,7 +431,7 @@ def data_resolution(digits: int, last: int, factor: float = 1.0) -> float:
 
 def resolution_spread(slopes: list[float], resolutions: list[float]) -> float:
     """The first-order bound on how far the data's resolution can move a relative
-    singular value: sum_i |d sigma / d x_i| res_i (``slopes`` relative to sigma_max per
+    singular value: ``sum_i |d sigma / d x_i| res_i`` (``slopes`` relative to sigma_max per
     SI unit of each given value, ``resolutions`` in SI)."""
     return float(sum(abs(s) * r for s, r in zip(slopes, resolutions, strict=True)))
 

@@ -77,7 +77,7 @@ def _scaled(v: Any) -> tuple[np.ndarray, float]:
 
 def safe_norm(v: Any) -> float:
     """The Euclidean norm of a finite float vector, computed as ``m |v / m|`` with ``m``
-    its largest |component| (no overflow or underflow in the squares); ``inf`` only
+    its largest component in absolute value (no overflow or underflow in the squares); ``inf`` only
     when the norm itself is beyond the float range."""
     u, m = _scaled(v)
     return m * math.sqrt(float(u @ u)) if m > 0.0 else 0.0

@@ -296,5 +296,5 @@ EXACT_FIELD_MAX_DEGREE = 32
 
 # -- grading exercises (mechsing.exercises) --------------------------------------
 #: a student's formula agrees with the key's at a random point when they differ there by
-#: at most this times max(1, |key's value|); a key's question may set its own ``tol``
+#: at most this times ``max(1, |key's value|)``; a key's question may set its own ``tol``
 EXERCISE_FORMULA_RTOL = 1e-9
