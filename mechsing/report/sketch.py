@@ -286,6 +286,18 @@ def _ground_hatch(ax: object, xy: np.ndarray, size: float) -> None:
     ax.plot([x, x], [y - 0.9 * size, y], color="#333333", lw=1.0, zorder=2)  # type: ignore[attr-defined]
 
 
+def sketch_axes(fig: object) -> object:
+    """The axes of a sketch (a mechanism's or a sphere's): equal scales, no ticks, a light
+    frame.  Called inside the figures' ``rc_context``."""
+    ax = fig.add_subplot()  # type: ignore[attr-defined]
+    ax.set_aspect("equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    for side in ax.spines.values():
+        side.set_color("#bbbbbb")
+    return ax
+
+
 def sketch_figure(
     mech: Mechanism,
     q: Sequence[float],
@@ -299,12 +311,7 @@ def sketch_figure(
     places = joint_places(mech, q)
     fig = new_figure(6.4, 4.6)
     with matplotlib.rc_context(RC):
-        ax = fig.add_subplot()
-        ax.set_aspect("equal")
-        ax.set_xticks([])
-        ax.set_yticks([])
-        for side in ax.spines.values():
-            side.set_color("#bbbbbb")
+        ax = sketch_axes(fig)
         pts3 = [
             p for e in places.values() for k, p in e.items() if k not in ("axis", "ends", "rail")
         ]

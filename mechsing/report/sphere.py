@@ -31,6 +31,7 @@ from mechsing.report.sketch import (
     _unit,
     joint_places,
     screw_axis,
+    sketch_axes,
 )
 
 __all__ = ["choose_sphere_view", "sphere_figure", "spherical_centre"]
@@ -155,12 +156,7 @@ def sphere_figure(
     tips = _tips(mech, q)
     fig = new_figure(6.4, 4.6)
     with matplotlib.rc_context(RC):
-        ax = fig.add_subplot()
-        ax.set_aspect("equal")
-        ax.set_xticks([])
-        ax.set_yticks([])
-        for side in ax.spines.values():
-            side.set_color("#bbbbbb")
+        ax = sketch_axes(fig)
         _wireframe(ax, view)
         o = view.project(np.zeros(3))
         ax.plot([o[0]], [o[1]], "o", color="black", ms=4, zorder=4)
