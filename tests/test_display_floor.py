@@ -6,15 +6,13 @@ analysed and reported as a user runs them."""
 from __future__ import annotations
 
 import json
-import os
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from mechsing.numeric import display_floor, floored
+from tests.cli import run_cli_subprocess
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = sorted(
@@ -27,17 +25,9 @@ VALUE_LINES = ("joint values", "closure residual", "given pose")
 
 
 def _run(*args: str) -> str:
-    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
-    out = subprocess.run(
-        [sys.executable, "-m", "mechsing", *args],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-        env=env,
-        check=False,
-    )
-    assert out.returncode in (0, 3), out.stderr
-    return out.stdout
+    run = run_cli_subprocess(list(args))
+    assert run.status in (0, 3), run.err
+    return run.out
 
 
 def test_floor_follows_the_closure_tolerance() -> None:

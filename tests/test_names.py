@@ -5,32 +5,22 @@ configurations their files name after them, run as a user runs them."""
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from mechsing.singularity.names import LEG, NAMES, singularity_name
+from tests.cli import run_cli_subprocess
 
 ROOT = Path(__file__).resolve().parents[1]
 ARMS = [(arm, kind) for arm in ("puma560", "ur5") for kind in ("wrist", "elbow", "shoulder")]
 
 
 def _run(*args: str) -> str:
-    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
-    out = subprocess.run(
-        [sys.executable, "-m", "mechsing", *args],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-        env=env,
-        check=False,
-    )
-    assert out.returncode == 0, out.stderr
-    return out.stdout
+    run = run_cli_subprocess(list(args))
+    assert run.status in (0,), run.err
+    return run.out
 
 
 @pytest.mark.parametrize(("arm", "kind"), ARMS)
