@@ -22,7 +22,7 @@ LAYERS: list[set[str]] = [
     {"subgroups"},
     {"model"},
     {"formats"},
-    {"reader"},
+    {"reader", "adhoc"},
     {"kinematics"},
     {"screws"},
     {"singularity"},

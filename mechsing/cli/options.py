@@ -25,8 +25,8 @@ import argparse
 import re
 from typing import Any
 
+from mechsing.adhoc import SET_CONFIG  # the name of the configuration unnamed values make
 from mechsing.errors import UserError
-from mechsing.model.adhoc import SET_CONFIG  # the name of the configuration unnamed values make
 
 __all__ = [
     "SET_CONFIG",
@@ -187,8 +187,8 @@ def check_shared(args: argparse.Namespace, sweeps: str = "a sweep") -> None:
 
 def apply_set(mech: Any, sets: list[str] | None, start: str | None, path: str) -> Any:
     """``mech`` with the configurations the ``--set [NAME:]JOINT=VALUE`` values give
-    (:func:`mechsing.model.adhoc.with_set_values`)."""
-    from mechsing.model.adhoc import with_set_values
+    (:func:`mechsing.adhoc.with_set_values`)."""
+    from mechsing.adhoc import with_set_values
 
     return with_set_values(mech, sets, start, path)
 

@@ -90,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
         # before the work: a missing directory or the input file is refused now
         check_output(path, [args.file], "-o" if args.output else "the default output")
         check_shared(args, "a report")  # the options' own errors before the file is read
-        from mechsing.model.adhoc import set_start
+        from mechsing.adhoc import set_start
 
         mech = apply_set(
             apply_scene(load_mechanism(args.file, args.verbose), args, args.file),

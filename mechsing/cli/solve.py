@@ -33,7 +33,7 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.cli.options import apply_scene, apply_set, check_shared
 
     check_shared(args)
-    from mechsing.model.adhoc import set_start
+    from mechsing.adhoc import set_start
 
     mech = apply_set(
         apply_scene(load_mechanism(args.file, args.verbose), args, args.file),

@@ -167,8 +167,8 @@ def run(args: argparse.Namespace) -> int:
             from mechsing.files import check_output
 
             check_output(args.output, [args.file])
+        from mechsing.adhoc import set_start
         from mechsing.cli.options import apply_scene, apply_set
-        from mechsing.model.adhoc import set_start
 
         mech = apply_set(
             apply_scene(load_mechanism(args.file, args.verbose), args, args.file),

@@ -8,7 +8,9 @@ the configuration ``start`` names.  A name the file already uses is refused (exi
 is a joint given twice in one configuration.  A joint whose own name holds a colon is read
 as a joint (``a:b=1`` sets joint ``a:b`` when the file has one).
 
-Owns :data:`SET_CONFIG`, :func:`with_set_values` and :func:`set_start`.
+Owns :data:`SET_CONFIG`, :func:`with_set_values` and :func:`set_start`.  It sits above the
+model, which it imports only inside its functions, so that the command line's parser can
+name :data:`SET_CONFIG` without loading the model (``mechsing --version`` stays fast).
 """
 
 from __future__ import annotations
