@@ -83,3 +83,14 @@ def test_a_joint_twice_in_one_configuration_is_refused() -> None:
     assert apart.returncode == 0, apart.stderr
     taken = _run("analyze", "examples/fourbar.yaml", "--set", "reference:A=1")
     assert taken.returncode == 2 and "already has a configuration named 'reference'" in taken.stderr
+
+
+def test_condition_is_evaluated_at_the_named_configuration() -> None:
+    """`condition --set wrist:B=0` evaluates the factors at the configuration `wrist` the
+    values make (it looked for `cli`, which no named value makes). At B = 0 from the drawn
+    pose the slider-crank's input condition 4 cos B - 3 sin B (its crank and rod in line, by
+    the file's geometry) is 4, and no other factor vanishes there either."""
+    r = _run("condition", "examples/slider_crank_crank_input.yaml", "--set", "wrist:B=0")
+    assert r.returncode == 0, r.stderr
+    assert "at wrist:" in r.stdout and "at cli" not in r.stdout
+    assert "(vanishes)" not in r.stdout

@@ -40,8 +40,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from mechsing.adhoc import set_start
     from mechsing.cli import load_mechanism
-    from mechsing.cli.options import SET_CONFIG, apply_scene, apply_set, check_shared
+    from mechsing.cli.options import apply_scene, apply_set, check_shared
     from mechsing.conditions import condition
 
     check_shared(args)
@@ -52,7 +53,7 @@ def run(args: argparse.Namespace) -> int:
         args.from_config,
         args.file,
     )
-    config = args.config or (SET_CONFIG if args.set_values else None)
+    config = args.config or set_start(mech, args.set_values, "condition")
     result = condition(
         mech,
         config=config,
