@@ -2,7 +2,7 @@
 snapshots: the check that a restructuring changed no verdict.
 
 usage:
-    python benchmarks/json_snapshot.py dump OUT.json [--modes float mp:30 exact auto]
+    python benchmarks/json_snapshot.py dump OUT.json [--modes float mp:30 exact auto] [--sweeps]
     python benchmarks/json_snapshot.py compare OLD.json NEW.json
 
 ``dump`` runs ``mechsing analyze --format json`` on examples/*.yaml in each mode (exact
@@ -13,6 +13,10 @@ must be equal; floats must agree to 1e-12 relative in float and auto configurati
 decided in float, to 10^(5-N) relative at mp:N, and exactly in exact mode (margins are
 compared with the same tolerance as the values).  It prints each difference with its
 path and exits 1 when there is one.
+
+``--sweeps`` also stores, under the mode ``sweep``, the JSON of ``mechsing sweep`` on the
+sweep benchmark's paths (benchmarks/sweep.py, density 2, and its five-bar grid, coarser);
+their floats are compared to 1e-9 relative.
 """
 
 from __future__ import annotations
@@ -27,7 +31,7 @@ from typing import Any
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def dump(out: Path, modes: list[str], *, text: bool = False) -> None:
+def dump(out: Path, modes: list[str], *, text: bool = False, sweeps: bool = False) -> None:
     """Run the command line (not the Python API, which a restructuring may move) on
     every example in every mode and store its JSON, or its error text when it exits
     with status 2; ``text`` also stores the text report."""
@@ -46,7 +50,40 @@ def dump(out: Path, modes: list[str], *, text: bool = False) -> None:
                     cmd, capture_output=True, text=True
                 ).stdout
             print(f"{mode:6s} {path.name} exit {run.returncode}", file=sys.stderr)
+    if sweeps:
+        dump_sweeps(snap)
     out.write_text(json.dumps(snap, indent=1, sort_keys=True))
+
+
+def _sweep_cases() -> list[tuple[str, list[str]]]:
+    """The sweep benchmark's paths as (label, command-line arguments after ``sweep``)."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import numpy as np
+    from sweep import _mechsing_cases, _spec
+
+    out = []
+    for file, specs, _ in _mechsing_cases(2):
+        args = [str(ROOT / "examples" / file)]
+        for spec in specs:
+            args += ["--vary", spec]
+        out.append((file, args))
+    v = np.linspace(-0.4, 0.4, 11)
+    five = [str(ROOT / "examples" / "five_bar.yaml")]
+    out.append(("five_bar.yaml", [*five, "--vary", _spec("A1", v), "--vary", _spec("A2", v)]))
+    return out
+
+
+def dump_sweeps(snap: dict[str, dict[str, Any]]) -> None:
+    """Store the sweep JSON of the benchmark's paths under ``snap["sweep"]``."""
+    snap["sweep"] = {}
+    for label, args in _sweep_cases():
+        cmd = [sys.executable, "-m", "mechsing", "sweep", *args, "--format", "json"]
+        run = subprocess.run(cmd, capture_output=True, text=True)
+        if run.returncode not in (0, 1):
+            snap["sweep"][label] = {"refused": run.stderr.strip()}
+        else:
+            snap["sweep"][label] = json.loads(run.stdout)
+        print(f"sweep  {label} exit {run.returncode}", file=sys.stderr)
 
 
 def _tolerance(precision: str) -> float:
@@ -93,8 +130,9 @@ def compare(old_path: Path, new_path: Path) -> int:
         if mode not in new:
             diffs.append(f"{mode}: missing")
             continue
+        tol = 1e-9 if mode == "sweep" else 1e-12
         for name in old[mode]:
-            _walk(old[mode][name], new[mode].get(name), f"{mode}/{name}", 1e-12, diffs)
+            _walk(old[mode][name], new[mode].get(name), f"{mode}/{name}", tol, diffs)
     for d in diffs:
         print(d)
     print(f"{len(diffs)} difference(s)")
@@ -108,12 +146,13 @@ def main() -> int:
     d.add_argument("out", type=Path)
     d.add_argument("--modes", nargs="+", default=["float", "mp:30", "exact", "auto"])
     d.add_argument("--text", action="store_true", help="also store the text reports")
+    d.add_argument("--sweeps", action="store_true", help="also store the benchmark's sweeps")
     c = sub.add_parser("compare")
     c.add_argument("old", type=Path)
     c.add_argument("new", type=Path)
     args = p.parse_args()
     if args.cmd == "dump":
-        dump(args.out, args.modes, text=args.text)
+        dump(args.out, args.modes, text=args.text, sweeps=args.sweeps)
         return 0
     return compare(args.old, args.new)
 
