@@ -8,9 +8,11 @@ dead centre is an input singularity (the slider's rate vanishes for any crank ra
 
 Written as a degree value rounded to 15 significant digits, A is within half a unit of
 its 15th digit of A* (a 15-digit value: 101.536959032815 deg): float finds it singular,
-while mp:50 (and auto, which re-decides float's drop above its own rounding there) finds
-the written decimals regular by about 1e-15 -- below what the value's resolution can
-move the tests by.  Each says so, in every format; with A* given exactly no verdict does.
+while mp:50 finds the written decimals regular by about 1e-15 -- below what the value's
+resolution can move the tests by.  auto re-decides float's drop (above float's own
+rounding) at mp:50, finds that, and keeps float's singular verdict: the data cannot tell
+the drawn dead centre from the written decimals.  Each says so, in every format; with A*
+given exactly no verdict does.
 """
 
 from __future__ import annotations
@@ -71,13 +73,35 @@ def test_written_digits_and_resolution() -> None:
     assert data_resolution(RESOLUTION_MIN_DIGITS - 1, -3) == 0.0
 
 
-@pytest.mark.parametrize("precision", ["auto", "mp:50"])
-def test_regular_below_the_resolution_of_15_digits(tmp_path: Path, precision: str) -> None:
+def test_auto_keeps_the_dead_centre_drawn_to_15_digits_singular(tmp_path: Path) -> None:
+    """The dead centre drawn to 15 digits is a dead centre to auto (what the data can
+    tell), decided in float by float's margins, with the written decimals' verdict at
+    mp:50 said beside it."""
+    path = _rounded(tmp_path)
+    c = cli_json(["analyze", path, "--format", "json"])["configurations"][0]
+    assert c["precision"] == "float"
+    assert c["singular"] is True
+    assert "input" in {s["class"] for s in c["singularities"]}
+    assert all(s["precision"] == "float" for s in c["singularities"])
+    below = c["data_resolution"]
+    assert below["verdict_from"] == "float"
+    assert below["written_decimals"] == "regular"
+    assert below["digits"] == 15
+    assert below["value"] < below["spread"]
+    for fmt in ("text", "md"):
+        rc, out, _ = run_cli(["analyze", path, "--format", fmt])
+        assert rc == 0
+        assert "singular in float, within the resolution of its 15-digit data" in out
+        assert "give more digits or exact values to decide the written decimals" in out
+
+
+def test_regular_below_the_resolution_of_15_digits(tmp_path: Path) -> None:
+    precision = "mp:50"
     path = _rounded(tmp_path)
     c = cli_json(["analyze", path, "--precision", precision, "--format", "json"])["configurations"][
         0
     ]
-    assert c["precision"] == "mp:50"  # auto re-decided float's drop at mp:50
+    assert c["precision"] == "mp:50"
     assert c["singular"] is False  # the written decimals are regular ...
     below = c["data_resolution"]  # ... by less than their resolution can move them
     assert below["below_resolution"] is True

@@ -228,6 +228,7 @@ def _analyze(
         motion = res.output_motion is not None and res.output_motion.undecided and not located
         if prec.mode == "auto" and res.error is None and (res.undecided or doubtful or motion):
             why = res.doubtful or ("undecided",)
+            in_float = res
             res = _within(
                 time_limit,
                 name,
@@ -235,7 +236,10 @@ def _analyze(
                 lambda name=name: _analyze_one(mech, name, stage(Precision("mp", 50))),
             )
             res = replace(res, escalated_for=why)
-        if not located:  # a located point is float data, placed as near as float can
+            if doubtful and not in_float.undecided and not located:
+                res = _kept_within_resolution(mech, in_float, res, stage(first)[0])
+        if not located and res.data_resolution is None:
+            # a located point is float data, placed as near as float can
             res = _with_resolution(mech, res, stage(first)[0])
         results.append(replace(res, seconds=time.perf_counter() - start))
     km0 = stage(first)[0]
@@ -262,6 +266,35 @@ def _with_resolution(
     if found is None:
         return res
     return replace(res, data_resolution=found, notes=(*res.notes, found.note))
+
+
+def _kept_within_resolution(
+    mech: Mechanism,
+    in_float: ConfigurationResult,
+    written: ConfigurationResult,
+    model: KinematicModel,
+) -> ConfigurationResult:
+    """Auto's verdict on a configuration float found singular on a drop above its own
+    rounding (``in_float``) and mp:50 re-decided (``written``).
+
+    When mp:50 finds the written decimals regular by less than the resolution of the given
+    values can move its tests (a dead centre drawn to 15 digits), the data cannot tell the
+    configuration from the singular one float finds: auto keeps float's verdict, decided
+    in float with float's margins, and says that the written decimals are regular below
+    the data's resolution.  Otherwise mp:50's verdict stands."""
+    if written.error is not None or written.singular is not False or in_float.singular is not True:
+        return written
+    with working_on(configuration=written.name):
+        below = resolution_check(mech, written, model)
+    if below is None:
+        return written
+    kept = replace(below, verdict_from=in_float.precision)
+    return replace(
+        in_float,
+        escalated_for=written.escalated_for,
+        data_resolution=kept,
+        notes=(*in_float.notes, kept.note),
+    )
 
 
 def _generic_motion(results: list[ConfigurationResult]) -> Any:

@@ -49,11 +49,23 @@ class DataResolution:
     value: float
     test: str
     singular: bool
+    #: the precision whose singular verdict ``auto`` keeps because the written decimals'
+    #: verdict at mp:50 (``singular`` False) is below the data's resolution; None when the
+    #: verdict reported is the written decimals' own
+    verdict_from: str | None = None
 
     @property
     def note(self) -> str:
         """The sentence a reader sees (text, Markdown, report and JSON ``notes``)."""
         data = f"its {self.digits}-digit data"
+        if self.verdict_from is not None:
+            return (
+                f"at 50 digits the written decimals are regular by {self.value:.1g} "
+                f"({self.test} test), below the resolution of {data}, which can move it by "
+                f"{self.spread:.1g}: the singular configuration {self.verdict_from} finds "
+                "lies within the data's resolution, so auto keeps its verdict; give more "
+                "digits or exact values to decide the written decimals"
+            )
         if self.singular:
             return (
                 f"singular at the written decimals (the {self.test} test's dropped singular "
@@ -71,6 +83,12 @@ class DataResolution:
     def verdict(self) -> str:
         """The verdict's words: what holds of the written decimals, and that it is below
         the data's resolution."""
+        if self.verdict_from is not None:
+            return (
+                f"singular in {self.verdict_from}, within the resolution of its "
+                f"{self.digits}-digit data (the written decimals are regular by "
+                f"{self.value:.1g} at 50 digits)"
+            )
         side = "singular" if self.singular else "regular"
         return (
             f"{side} at the written decimals, below the resolution of its {self.digits}-digit data"

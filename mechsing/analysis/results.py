@@ -420,6 +420,9 @@ def _configuration(c: ConfigurationResult) -> dict[str, Any]:
             "value": d.value,
             "test": d.test,
         }
+        if d.verdict_from is not None:  # auto kept float's singular verdict (see notes)
+            out["data_resolution"]["verdict_from"] = d.verdict_from
+            out["data_resolution"]["written_decimals"] = "regular"
     return out
 
 
