@@ -336,6 +336,36 @@ def test_cli_formats_and_errors(tmp_path: Path) -> None:
     assert sph.status == 2 and "types R, P, H" in sph.err
 
 
+FOURBAR_3_1_SQRT10_2 = """\
+mechanism: fourbar
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler], axis: [0, 0, 1], point: [0, 1, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
+  - {name: D, type: R, between: [rocker, ground], axis: [0, 0, 1], point: [3, 0, 0]}
+inputs: [A]
+output: {body: rocker}
+configurations:
+  reference: {}
+"""
+
+
+def test_latex_document_writes_each_condition_as_its_json_latex(tmp_path: Path) -> None:
+    """``--format latex`` writes each condition as the JSON's ``latex`` (one definition):
+    a factor that is a sum, times a constant, is in parentheses (it once printed
+    ``-2 \\cdot \\sin(C) + 3\\cos(C)`` for -2 (sin C + 3 cos C))."""
+    path = _write(tmp_path, FOURBAR_3_1_SQRT10_2)
+    doc = json.loads(run_cli(["condition", path, "--format", "json"]).out)
+    tex = run_cli(["condition", path, "--format", "latex"])
+    assert tex.status == 0, tex.err
+    for c in doc["conditions"]:
+        assert f"&& {c['latex']} = 0" in tex.out
+        sums = [f for f in c["factors"] if "+" in f["expression"] or " - " in f["expression"]]
+        if sums and (len(c["factors"]) > 1 or c["constant"] not in (1, "1")):
+            assert r"\left(" in c["latex"]
+
+
 def test_the_python_function_is_public() -> None:
     import mechsing
 

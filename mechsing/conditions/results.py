@@ -264,15 +264,6 @@ class ConditionResult:
         """The conditions as LaTeX (one ``align*`` environment)."""
         rows = []
         for c in self.conditions:
-            body = r" \cdot ".join(
-                (
-                    sympy.latex(f.expression)
-                    if f.power == 1
-                    else rf"\left({sympy.latex(f.expression)}\right)^{{{f.power}}}"
-                )
-                for f in c.factors
-            )
-            const = sympy.latex(c.constant)
-            expr = f"{const} \\cdot {body}" if body else const
+            expr = c.latex()  # each condition's own form: factors that are sums in parentheses
             rows.append(rf"  &\text{{{c.name}}}: && {expr} = 0")
         return "\\begin{align*}\n" + " \\\\\n".join(rows) + "\n\\end{align*}\n"
