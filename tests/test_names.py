@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 from mechsing.singularity.names import LEG, NAMES, singularity_name
 from tests.cli import run_cli_subprocess
@@ -36,6 +37,24 @@ def test_analyze_names_the_arm_singularity_as_condition_does(arm: str, kind: str
     cond = json.loads(_run("condition", path, "--config", kind, "--format", "json"))
     vanishing = {f["name"] for c in cond["conditions"] for f in c["factors"] if f["vanishes"]}
     assert vanishing == {kind}
+
+
+def test_elbow_and_wrist_at_once_are_both_named() -> None:
+    """The PUMA's elbow configuration with the wrist's J5 = 0 as well: J4 and J6 coincide
+    (a loss of the wrist alone) while the arm is stretched (a loss of the arm's
+    translations): two independent losses, rank 4 of 6, both named, the elbow first.  (On
+    the UR5 the same values lose one direction only: J2, J3, J4 and J6 are then four
+    parallel axes whose twists span 3 dimensions, as they do with the elbow alone.)"""
+    path = "examples/puma560.yaml"
+    elbow = yaml.safe_load((ROOT / path).read_text())["configurations"]["elbow"]
+    values = [f"both:{j}={v}" for j, v in {**elbow, "J5": 0}.items()]
+    args = ["analyze", path, "--config", "both"] + [a for v in values for a in ("--set", v)]
+    doc = json.loads(_run(*args, "--format", "json"))
+    (serial,) = [f for f in doc["configurations"][0]["singularities"] if f["class"] == "serial"]
+    assert serial["rank"] == 4 and serial["corank"] == 2
+    assert serial["name"] == "elbow and wrist"
+    text = _run(*args)
+    assert f"elbow and wrist singularity ({NAMES['elbow']}; {NAMES['wrist']})" in text
 
 
 def test_regular_configuration_has_no_serial_finding_to_name() -> None:

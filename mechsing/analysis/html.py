@@ -20,7 +20,7 @@ from typing import Any
 
 from mechsing.analysis.contract import finding_class
 from mechsing.numeric import Margin
-from mechsing.singularity.names import NAMES
+from mechsing.singularity.names import NAMES, meaning_of
 
 #: a ConfigurationResult (not imported: the results import this module)
 ConfigurationResult = Any
@@ -74,7 +74,8 @@ def _words(label: str) -> str:
     if not name:
         return CLASS_WORDS.get(cls, cls)
     name = name.rstrip(")")
-    return f"{cls} ({name}: {NAMES.get(name, name)})"
+    known = all(part in NAMES for part in name.split(" and "))
+    return f"{cls} ({name}: {meaning_of(name) if known else name})"
 
 
 def _relative(m: Margin, value: float | None) -> float | None:

@@ -27,7 +27,7 @@ from mechsing.singularity.findings import (
     SerialFinding,
     UndecidedFinding,
 )
-from mechsing.singularity.names import NAMES
+from mechsing.singularity.names import LEG, meaning_of
 from mechsing.singularity.zfb import not_run_sentences
 from mechsing.subgroups import Subgroup
 
@@ -92,8 +92,8 @@ def explain(f: Finding) -> str:
     if isinstance(f, SerialFinding):
         what = f"leg {f.leg}" if f.chain == "leg" else "the chain to the output"
         # "wrist singularity (...)", "leg fully stretched or folded (...)"
-        kind = f"{f.name} singularity" if f.name and " " not in f.name else f.name
-        named = f"{kind} ({NAMES[f.name]}): " if f.name else ""
+        kind = f.name if f.name == LEG else f"{f.name} singularity"
+        named = f"{kind} ({meaning_of(f.name)}): " if f.name else ""
         return (
             f"{named}{what} loses {f.corank} direction(s) of motion (rank {f.rank} instead of "
             f"{f.generic_rank}): joints {j} can move while its end stays still, and it resists "

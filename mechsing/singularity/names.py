@@ -37,6 +37,7 @@ __all__ = [
     "Line",
     "line_facts",
     "lines_of_screws",
+    "meaning_of",
     "name_of",
     "named",
     "singularity_name",
@@ -192,12 +193,21 @@ def _centre_facts(lines: Sequence[Line], scale: float) -> _Facts:
     return out
 
 
-def name_of(kinds: Sequence[str | None], leg: bool = False) -> str | None:
-    """The name of a singularity whose new facts have these kinds (None: no pattern)."""
-    for name in (SHOULDER, ELBOW, WRIST):
-        if name in kinds:
-            return LEG if leg and name == ELBOW else (None if leg else name)
-    return None
+def name_of(kinds: Sequence[str | None], leg: bool = False, corank: int = 1) -> str | None:
+    """The name of a singularity whose new facts have these kinds (None: no pattern).
+
+    A chain that loses one direction gets one name, the first of shoulder, elbow, wrist
+    its facts show; one that loses ``corank`` directions gets up to that many, joined by
+    "and" (an arm stretched with its wrist axes in line: "elbow and wrist")."""
+    found = [n for n in (SHOULDER, ELBOW, WRIST) if n in kinds]
+    if leg:
+        return LEG if ELBOW in found[:1] else None
+    return " and ".join(found[: max(1, corank)]) or None
+
+
+def meaning_of(name: str) -> str:
+    """What a name given by :func:`name_of` means (a joined name: each part's meaning)."""
+    return "; ".join(NAMES[part] for part in name.split(" and "))
 
 
 def singularity_name(
@@ -208,6 +218,7 @@ def singularity_name(
     generic_point: Any = None,
     leg: bool = False,
     moving: Sequence[str] = (),
+    corank: int = 1,
 ) -> str | None:
     """The name of a chain's singularity from its joint lines ``here`` and at a ``generic``
     configuration (the facts that hold there do not count, nor those about an axis whose
@@ -217,7 +228,8 @@ def singularity_name(
     new = line_facts(here, point, planar, scale)
     old = line_facts(generic, generic_point, planar, scale)
     moving = set(moving)
-    return name_of([k for t, (k, about) in new.items() if t not in old and about <= moving], leg)
+    kinds = [k for t, (k, about) in new.items() if t not in old and about <= moving]
+    return name_of(kinds, leg, corank)
 
 
 def _planar(lines: Sequence[Line]) -> bool:
@@ -233,4 +245,5 @@ def named(meaning: str | None) -> str | None:
     if meaning is None:
         return None
     head = meaning.split(": ", 1)[0]
-    return head if head in NAMES and head != meaning else None
+    known = all(part in NAMES for part in head.split(" and "))
+    return head if known and head != meaning else None

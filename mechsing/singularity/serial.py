@@ -253,6 +253,13 @@ def named(
     here_lines = lines_of_screws(columns, np.asarray(to_float(here), dtype=float))
     generic_lines = lines_of_screws(columns, np.asarray(generic, dtype=float))
     name = singularity_name(
-        here_lines, generic_lines, scale, point, generic_point, f.chain == "leg", f.joints
+        here_lines,
+        generic_lines,
+        scale,
+        point,
+        generic_point,
+        f.chain == "leg",
+        f.joints,
+        f.corank,
     )
     return replace(f, name=name)
