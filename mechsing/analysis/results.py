@@ -220,6 +220,9 @@ class ConfigurationResult:
     #: the verdict rests on a margin below the resolution of the given values (JSON
     #: ``data_resolution``; None: it does not, or the values are exact)
     data_resolution: DataResolution | None = None
+    #: the statics under the configuration's load (:class:`mechsing.statics.Kinetostatics`;
+    #: JSON ``efforts`` and ``kinetostatics``), None without a load
+    kinetostatics: Any = None
 
     @property
     def singular(self) -> bool | None:
@@ -420,6 +423,8 @@ def _configuration(c: ConfigurationResult) -> dict[str, Any]:
             "value": d.value,
             "test": d.test,
         }
+    if c.kinetostatics is not None:
+        out.update(c.kinetostatics.to_json())
     return out
 
 

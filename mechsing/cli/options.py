@@ -255,3 +255,19 @@ def apply_scene(mech: Any, args: argparse.Namespace, path: str) -> Any:
         for note in chosen.notes[len(mech.notes) :]:
             print(f"mechsing: {note}", file=sys.stderr)
     return chosen
+
+
+def add_load_option(p: argparse.ArgumentParser) -> None:
+    """Add ``--load`` (a wrench on the output: :mod:`mechsing.statics.loads`)."""
+    from mechsing.statics.loads import LOAD_HELP
+
+    p.add_argument("--load", metavar='"force=FX,FY,FZ ..."', help=LOAD_HELP)
+
+
+def with_load(result: Any, mech: Any, text: str | None) -> Any:
+    """The analysis ``result`` with the statics of its configurations under ``--load``
+    (``text``) or the file's loads (docs/kinetostatics.md)."""
+    from mechsing.statics import with_kinetostatics
+    from mechsing.statics.loads import parse_load
+
+    return with_kinetostatics(result, mech, None if text is None else parse_load(text, mech))

@@ -272,6 +272,8 @@ class Configuration:
     resolution: Mapping[str, tuple[tuple[float, int], ...]] = field(
         default_factory=dict, hash=False, compare=False
     )
+    #: the load on the output the configuration gives (:class:`mechsing.model.loads.Load`)
+    load: Any = field(default=None, hash=False, compare=False)
 
     @property
     def is_reference(self) -> bool:

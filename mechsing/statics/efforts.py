@@ -1,0 +1,198 @@
+"""Actuator efforts and constraint wrenches under a load, by virtual work on the motion
+test's matrices (:mod:`mechsing.statics.matrices`).
+
+With ``y`` the commensurate load (the wrench the environment applies to the output
+body), ``tau`` the actuator efforts and ``lambda`` one wrench per loop (its coordinates
+in the loop's subalgebra) the equilibrium of every joint coordinate is
+
+    E^T tau + A^T lambda = -T^T y,
+
+the passive coordinates carrying no effort.  For a serial chain (no A, E = I) this is
+``tau = -J^T w``.  Its solvability is the Type II test: the system has a solution iff
+the load does no power on the output twists T z of the motions z in K cap ker E (closure
+kept, inputs locked).  A non-zero power makes the efforts unbounded; a zero power leaves
+them bounded but not unique, and so do redundant actuators.  Among the solutions the
+efforts of least (commensurate) norm are given; loop wrenches left free by the null
+space are statically indeterminate (an overconstrained loop: only the part within the
+loop's subgroup is carried by its rows, the rest is indeterminate).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from mechsing.numeric import SUPPORT_RTOL, Precision, RankDecision, decide_rank, first_nonzero_positive
+from mechsing.statics.matrices import MotionMatrices
+
+__all__ = ["Equilibrium", "EffortMap", "effort_map", "equilibrium", "load_wrench"]
+
+_FLOAT = Precision("float")
+
+
+def load_wrench(force: Any, moment: Any, point: np.ndarray) -> np.ndarray:
+    """The SI wrench (f, m) at the ground origin of a force and a moment about ``point``."""
+    f = np.asarray(force, dtype=float)
+    m = np.asarray(moment, dtype=float) + np.cross(np.asarray(point, dtype=float), f)
+    return np.concatenate([f, m])
+
+
+@dataclass(frozen=True)
+class EffortMap:
+    """The linear map from an SI load wrench at the ground origin to the efforts, at one
+    configuration: ``efforts = G w`` (SI; least-norm where not unique), bounded for the
+    loads with no power on the uncontrolled output twists ``uncontrolled`` (SI, each a
+    unit rotation or else a unit translation; empty when the inputs control the
+    output)."""
+
+    G: np.ndarray  # a x 6
+    #: the loop wrench map (commensurate, per loop rows of lambda) and joint wrenches
+    Lam: np.ndarray  # r x 6 (commensurate lambda per SI wrench)
+    uncontrolled: np.ndarray  # k x 6 SI twists
+    uncontrolled_commensurate: np.ndarray  # 6 x k commensurate twists T z
+    non_unique: tuple[str, ...]
+    indeterminate_loops: tuple[int, ...]
+    decision: RankDecision
+    Tz_rows: np.ndarray = field(repr=False)  # k x n: the motions z (rows)
+
+
+def _truncated_pinv(M: np.ndarray, rank: int) -> np.ndarray:
+    U, s, Vt = np.linalg.svd(M, full_matrices=False)
+    r = min(rank, len(s))
+    if r == 0:
+        return np.zeros((M.shape[1], M.shape[0]))
+    return (Vt[:r].T / s[:r]) @ U[:, :r].T
+
+
+def _si_twist(mm: MotionMatrices, t: np.ndarray) -> np.ndarray:
+    tw = mm.twist_out(t)
+    n = float(np.linalg.norm(tw[:3])) or float(np.linalg.norm(tw[3:])) or 1.0
+    return np.asarray(first_nonzero_positive(tw / n), dtype=float)
+
+
+def effort_map(mm: MotionMatrices, precision: Precision = _FLOAT) -> EffortMap:
+    """The effort map at the configuration of ``mm`` (see the module)."""
+    A, E, T = mm.A, mm.E, mm.T
+    n = A.shape[1]
+    r, a = A.shape[0], E.shape[0]
+    AE = np.vstack([A, E]) if r + a else np.zeros((0, n))
+    dec = decide_rank(AE, precision, mm.L, want_spaces=True)
+    rank = dec.rank if dec.rank is not None else dec.rank_bounds[1]
+    Z = dec.null_space if dec.null_space is not None else np.zeros((n, 0))
+    M = AE.T  # unknowns (lambda, tau)
+    P = _truncated_pinv(M, rank)  # (r + a) x n, least-norm least-squares
+    W_in = np.linalg.inv(np.column_stack([mm.frame.wrench_back(e) for e in np.eye(6)]))
+    B = -T.T @ W_in  # n x 6: right-hand side per SI wrench
+    X = P @ B  # (r + a) x 6
+    # the null space of M: (lambda, tau) with A^T lambda + E^T tau = 0
+    if M.shape[1]:
+        U, s, Vt = np.linalg.svd(M, full_matrices=True)
+        Nm = Vt[rank:].T  # (r + a) x k
+    else:
+        Nm = np.zeros((0, 0))
+    Nl, Nt = Nm[:r], Nm[r:]
+    non_unique: list[str] = []
+    if Nt.size:
+        # least-norm efforts: move along the null directions that change tau
+        C = -np.linalg.pinv(Nt) @ X[r:]
+        X = X + Nm @ C
+        sup = np.linalg.norm(Nt, axis=1)
+        big = max(float(sup.max()), 1e-300)
+        non_unique = [mm.inputs[i] for i in range(a) if sup[i] > SUPPORT_RTOL * max(big, 1.0)]
+    indeterminate = []
+    if Nl.size:
+        for li, lp in enumerate(mm.loops):
+            if np.linalg.norm(Nl[lp.rows]) > SUPPORT_RTOL:
+                indeterminate.append(li)
+    G = mm.effort_scale()[:, None] * X[r:]
+    Tz = T @ Z
+    unc = [_si_twist(mm, Tz[:, i]) for i in range(Z.shape[1]) if np.linalg.norm(Tz[:, i]) > 0]
+    return EffortMap(
+        G,
+        X[:r],
+        np.array(unc).reshape(-1, 6),
+        Tz,
+        tuple(non_unique),
+        tuple(indeterminate),
+        dec,
+        Z.T,
+    )
+
+
+@dataclass(frozen=True)
+class Equilibrium:
+    """The efforts for one load at one configuration.
+
+    ``bounded``: False at a Type II configuration for a load with power on an
+    uncontrolled output twist (then ``efforts`` are None), None when the rank that
+    decides it is undecided; ``uncontrolled``: those twists (SI) with the load's power
+    on each (``powers``: W per unit angular rate, or per m/s for a translation);
+    ``joint_wrenches``: per joint, the wrench its ``between[0]`` body applies to its
+    ``between[1]`` body (SI, (f, m) at the ground origin), None where indeterminate."""
+
+    wrench: np.ndarray
+    point: np.ndarray
+    efforts: dict[str, float] | None
+    bounded: bool | None
+    uncontrolled: list[list[float]]
+    powers: list[float]
+    non_unique: tuple[str, ...]
+    joint_wrenches: dict[str, list[float] | None]
+    indeterminate_loops: list[tuple[str, ...]]
+    margin: Any
+
+
+def equilibrium(mm: MotionMatrices, emap: EffortMap, wrench: np.ndarray, point: np.ndarray) -> Equilibrium:
+    """The efforts for the SI load ``wrench`` at the ground origin (applied at ``point``,
+    reported) from the configuration's effort map."""
+    w = np.asarray(wrench, dtype=float)
+    powers = [float(t @ np.concatenate([w[3:], w[:3]])) for t in emap.uncontrolled]
+    # the power decision, on commensurate numbers relative to the load's generalised force
+    W_in = np.linalg.inv(np.column_stack([mm.frame.wrench_back(e) for e in np.eye(6)]))
+    y = W_in @ w
+    b = -mm.T.T @ y
+    p = emap.Tz_rows @ b if emap.Tz_rows.size else np.zeros(0)
+    bounded: bool | None = True
+    if p.size:
+        d = decide_rank(p[:, None], _FLOAT, mm.L, reference=max(float(np.linalg.norm(b)), 1e-300))
+        bounded = None if d.rank is None else d.rank == 0
+    efforts = None
+    if bounded is not False:
+        tau = emap.G @ w
+        efforts = {name: float(v) for name, v in zip(mm.inputs, tau, strict=True)}
+    jw: dict[str, list[float] | None] = {}
+    if bounded is not False:
+        lam = emap.Lam @ w
+        bad = {j for li in emap.indeterminate_loops for j in mm.loops[li].joints}
+        loopw = np.zeros((len(mm.loops), 6))
+        for li, lp in enumerate(mm.loops):
+            loopw[li] = lp.basis @ lam[lp.rows]
+        for jk in mm.model.joints:
+            c = jk.columns.start
+            Y = mm.chain_signs[c] * y
+            for li, lp in enumerate(mm.loops):
+                if jk.name in lp.joints:
+                    Y = Y + _loop_sign(mm, li, jk.name) * loopw[li]
+            jw[jk.name] = None if jk.name in bad else [float(x) for x in -mm.wrench_out(Y)]
+    return Equilibrium(
+        w,
+        np.asarray(point, dtype=float),
+        efforts,
+        bounded,
+        [list(map(float, t)) for t in emap.uncontrolled],
+        powers,
+        emap.non_unique,
+        jw,
+        [mm.loops[li].joints for li in emap.indeterminate_loops],
+        emap.decision.margin,
+    )
+
+
+def _loop_sign(mm: MotionMatrices, li: int, joint: str) -> float:
+    loop = mm.model.mech.loops[li]
+    for name, sign in zip(loop.joints, loop.signs, strict=True):
+        if name == joint:
+            return float(sign)
+    return 0.0
