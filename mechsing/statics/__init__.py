@@ -75,7 +75,9 @@ class Kinetostatics:
         """Sentences for the text and Markdown reports (one bullet each)."""
         lines: list[str] = []
         eq = self.equilibrium
-        unit = {n: ("N" if ln else "N m") for n, ln in zip(self.inputs, self.input_lengths, strict=True)}
+        unit = {
+            n: ("N" if ln else "N m") for n, ln in zip(self.inputs, self.input_lengths, strict=True)
+        }
         if eq is not None:
             f, m0 = eq.wrench[:3], eq.wrench[3:]
             m = m0 - np.cross(eq.point, f)
@@ -131,7 +133,9 @@ def load_of(mech: Any, name: str, override: Any = None) -> Any:
     return None if c is None else c.load
 
 
-def kinetostatics(mech: Any, joints: Any, load: Any = None, model: Any = None) -> Kinetostatics | None:
+def kinetostatics(
+    mech: Any, joints: Any, load: Any = None, model: Any = None
+) -> Kinetostatics | None:
     """The statics at the closed configuration of joint values ``joints`` (by name, SI),
     under ``load`` (a :class:`~mechsing.model.loads.Load` or None); None for a mechanism
     without inputs or output."""
@@ -146,7 +150,11 @@ def kinetostatics(mech: Any, joints: Any, load: Any = None, model: Any = None) -
     if load is not None:
         x0 = mech.output_reference_point() if load.point is None else load.point
         p = mm.point_now(np.array(to_float(np.array(x0, dtype=object)), dtype=float))
-        w = load_wrench(to_float(np.array(load.force, dtype=object)), to_float(np.array(load.moment, dtype=object)), p)
+        w = load_wrench(
+            to_float(np.array(load.force, dtype=object)),
+            to_float(np.array(load.moment, dtype=object)),
+            p,
+        )
         eq = equilibrium(mm, emap, w, p)
     x0 = mech.output_reference_point() if load is None or load.point is None else load.point
     p = mm.point_now(np.array(to_float(np.array(x0, dtype=object)), dtype=float))

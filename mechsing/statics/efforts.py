@@ -24,7 +24,13 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import SUPPORT_RTOL, Precision, RankDecision, decide_rank, first_nonzero_positive
+from mechsing.numeric import (
+    SUPPORT_RTOL,
+    Precision,
+    RankDecision,
+    decide_rank,
+    first_nonzero_positive,
+)
 from mechsing.statics.matrices import MotionMatrices
 
 __all__ = ["Equilibrium", "EffortMap", "effort_map", "equilibrium", "load_wrench"]
@@ -144,7 +150,9 @@ class Equilibrium:
     margin: Any
 
 
-def equilibrium(mm: MotionMatrices, emap: EffortMap, wrench: np.ndarray, point: np.ndarray) -> Equilibrium:
+def equilibrium(
+    mm: MotionMatrices, emap: EffortMap, wrench: np.ndarray, point: np.ndarray
+) -> Equilibrium:
     """The efforts for the SI load ``wrench`` at the ground origin (applied at ``point``,
     reported) from the configuration's effort map."""
     w = np.asarray(wrench, dtype=float)

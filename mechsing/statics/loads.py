@@ -42,7 +42,7 @@ def parse_load(text: str, mech: Any) -> Load:
         if not eq or key not in LOAD_KEYS:
             raise UserError(
                 f"--load {text!r}: {word!r} is not KEY=x,y,z with KEY one of "
-                f"{', '.join(LOAD_KEYS)}; write e.g. --load \"force=0,0,-10 point=1,0,0\""
+                f'{", ".join(LOAD_KEYS)}; write e.g. --load "force=0,0,-10 point=1,0,0"'
             )
         if key in got:
             raise UserError(f"--load {text!r}: {key} is given twice; give it once")

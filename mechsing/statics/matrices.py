@@ -105,7 +105,9 @@ def float_configuration(model: KinematicModel, joints: Any) -> np.ndarray:
     return q
 
 
-def motion_matrices(mech: Any, q: np.ndarray, model: KinematicModel | None = None) -> MotionMatrices:
+def motion_matrices(
+    mech: Any, q: np.ndarray, model: KinematicModel | None = None
+) -> MotionMatrices:
     """The motion test's matrices at the closed configuration ``q`` (float): the closure
     system (:func:`mechsing.screws.closure_system`), the output body's twists and the
     input rows (:mod:`mechsing.singularity.zfb`)."""

@@ -114,10 +114,14 @@ def transmission(mech: Any, mm: MotionMatrices) -> Transmission:
         # rotations about x_P: (e_i, x_P x e_i) as columns
         rot = np.vstack([np.eye(3), np.cross(xP[None, :], np.eye(3)).T])
         extra = np.asarray(mm.frame.twists(rot), dtype=float)
-    span = decide_rank(np.hstack([Ss, extra]), _FLOAT, L, want_spaces=True)
+    span = decide_rank(Ss, _FLOAT, L, want_spaces=True)
     if span.rank is None:
         return _none("the motion space's dimension is undecided at float")
     Q = span.range_space  # 6 x d, commensurate motion space
+    if extra.shape[1]:  # only the rotations about the point that lie in the motion space
+        inside = decide_rank(extra - Q @ (Q.T @ extra), _FLOAT, L, want_spaces=True)
+        C = inside.null_space if inside.null_space is not None else np.zeros((3, 0))
+        extra = extra @ C
     AE = np.vstack([mm.A, mm.E])
     # at a Type II configuration (the output moves with the inputs locked) an input's
     # output twist is unbounded along a twist no transmission wrench does power on: the
@@ -136,7 +140,9 @@ def transmission(mech: Any, mm: MotionMatrices) -> Transmission:
         aj, ai = acts[0]
         acol = fm.joint(aj).columns.start + ai
         cols = [
-            c for j in leg.joints for c in range(fm.joint(j).columns.start, fm.joint(j).columns.stop)
+            c
+            for j in leg.joints
+            for c in range(fm.joint(j).columns.start, fm.joint(j).columns.stop)
         ]
         passive = [c for c in cols if c != acol]
         Pm = np.hstack([Ss[:, passive], extra])
@@ -147,8 +153,13 @@ def transmission(mech: Any, mm: MotionMatrices) -> Transmission:
         Y = dec.null_space  # d x s: wrenches reciprocal to the passive screws (in Q coordinates)
         if Y is None or Y.shape[1] == 0:
             return _none(f"leg {k} transmits no wrench: its passive joints span the motion space")
-        full = decide_rank((Q.T @ Ss[:, cols]).T, _FLOAT, L, want_spaces=True)
+        full = decide_rank((Q.T @ np.hstack([Ss[:, cols], extra])).T, _FLOAT, L, want_spaces=True)
         Yc = full.null_space if full.null_space is not None else np.zeros((Q.shape[1], 0))
+        # the leg at an input singularity: its one transmission wrench is reciprocal to
+        # the actuated joint too (the input index is 0)
+        at_input = Y.shape[1] == 1 and Yc.shape[1] == 1
+        if at_input:
+            Yc = np.zeros((Y.shape[0], 0))
         if Y.shape[1] - Yc.shape[1] != 1:
             return _none(
                 f"leg {k}: its transmission wrench is not unique ({Y.shape[1] - Yc.shape[1]} "
@@ -168,7 +179,7 @@ def transmission(mech: Any, mm: MotionMatrices) -> Transmission:
         after = names[names.index(aj) + 1] if names.index(aj) + 1 < len(names) else None
         x_in = None if after is None else _joint_point(mech, mm, after)
         t_in = mm.S[:, acol]
-        lam = _index(w, t_in, x_in, L)
+        lam = 0.0 if at_input else _index(w, t_in, x_in, L)
         # the output twist with every other input locked
         rhs = np.zeros(AE.shape[0])
         rhs[mm.A.shape[0] + inputs.index((aj, ai))] = 1.0

@@ -1,0 +1,318 @@
+"""Kinetostatics through the command line (issue 35): actuator efforts under a load,
+checked against closed forms computed here from the reported joint values (leg lines,
+Jacobians, velocity ratios), independently of mechsing's screws; the Type II case; the
+transmission indices against the five-bar's transmission angles; scale invariance."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.cli import ROOT, run_cli
+from tests.mechanisms import scaled_text
+
+EX = ROOT / "examples"
+
+
+def _json(argv: list[str]) -> dict:
+    r = run_cli(["analyze", *map(str, argv), "--format", "json", "--precision", "float"])
+    assert r.status == 0, r.err
+    return json.loads(r.out)
+
+
+def _config(doc: dict, name: str) -> dict:
+    return next(c for c in doc["configurations"] if c["name"] == name)
+
+
+def _rot(a: float) -> np.ndarray:
+    return np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+
+
+def _cross2(a: np.ndarray, b: np.ndarray) -> float:
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
+PLANAR_2R = """\
+mechanism: planar-2r
+bodies: [ground, l1, l2]
+joints:
+  - {name: A, type: R, between: [ground, l1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [l1, l2], axis: [0, 0, 1], point: [1, 0, 0]}
+inputs: [A, B]
+output: {body: l2, point: [1.5, 0, 0]}
+configurations:
+  bent: {A: 0.3, B: 0.9, load: {force: [1, -2, 0]}}
+  straight: {A: 0.3, B: 0}
+"""
+
+
+def test_planar_2r_torques_are_minus_jacobian_transpose_times_the_tip_force(tmp_path: Path) -> None:
+    f = tmp_path / "r2.yaml"
+    f.write_text(PLANAR_2R)
+    doc = _json([f, "--config", "bent"])
+    c = _config(doc, "bent")
+    a, b, l1, l2 = 0.3, 0.9, 1.0, 0.5
+    J = np.array(
+        [
+            [-l1 * np.sin(a) - l2 * np.sin(a + b), -l2 * np.sin(a + b)],
+            [l1 * np.cos(a) + l2 * np.cos(a + b), l2 * np.cos(a + b)],
+        ]
+    )
+    tau = -J.T @ np.array([1.0, -2.0])
+    assert c["efforts"]["A"] == pytest.approx(tau[0], rel=1e-12)
+    assert c["efforts"]["B"] == pytest.approx(tau[1], rel=1e-12)
+    ks = c["kinetostatics"]
+    assert ks["bounded"] is True and ks["effort_units"] == {"A": "N m", "B": "N m"}
+    # the load point moved with l2: the tip now
+    tip = l1 * np.array([np.cos(a), np.sin(a)]) + l2 * np.array([np.cos(a + b), np.sin(a + b)])
+    assert ks["load"]["point"][:2] == pytest.approx(tip, abs=1e-12)
+    # the largest torque over unit tip forces: the norm of each row of J^T
+    best = max(np.linalg.norm(J.T, axis=1))
+    assert ks["largest_unit_efforts"]["force"]["N m"]["value"] == pytest.approx(best, rel=1e-12)
+    # a unit couple on l2 needs 1 N m at each joint (minus the couple)
+    assert ks["largest_unit_efforts"]["couple"]["N m"]["value"] == pytest.approx(1.0, rel=1e-12)
+
+
+def test_load_on_the_command_line_replaces_the_file_load_and_the_text_says_it(
+    tmp_path: Path,
+) -> None:
+    f = tmp_path / "r2.yaml"
+    f.write_text(PLANAR_2R)
+    doc = _json([f, "--config", "straight", "--load", "moment=0,0,2"])
+    # a couple M on the tip link: tau = -(M, M)
+    assert _config(doc, "straight")["efforts"] == pytest.approx({"A": -2.0, "B": -2.0}, rel=1e-12)
+    r = run_cli(["analyze", f, "--config", "bent", "--precision", "float"])
+    assert "actuator efforts A 3.03457 N m, B 0.828377 N m" in r.out
+    r = run_cli(["analyze", f, "--config", "bent", "--precision", "float", "--format", "md"])
+    assert "- load on the output: force (1, -2, 0) N" in r.out
+
+
+def test_slider_crank_crank_torque_for_a_piston_force() -> None:
+    doc = _json(
+        [EX / "slider_crank_crank_input.yaml", "--config", "crank-60", "--load", "force=-5,0,0"]
+    )
+    c = _config(doc, "crank-60")
+    q = {k: v[0] for k, v in c["joints"].items()}
+    # positions from the joint values: B on the crank, C on the slider (moved along x)
+    B0, C0 = np.array([0.0, -1.0]), np.array([16 / 5, 7 / 5])
+    B = _rot(q["A"]) @ B0
+    C = C0 + np.array([q["P"], 0.0])
+    # velocities for a unit crank rate: v_B = k x B; v_C = v_B + w3 k x (C - B) along x
+    vB = np.array([-B[1], B[0]])
+    r = C - B
+    # unknowns w3, xdot: vB + w3 (-r_y, r_x) = (xdot, 0)
+    M = np.array([[-r[1], -1.0], [r[0], 0.0]])
+    w3, xdot = np.linalg.solve(M, -vB)
+    # virtual work: tau * 1 + F * xdot = 0
+    assert c["efforts"]["A"] == pytest.approx(5.0 * xdot, rel=1e-10)
+
+
+def test_four_bar_input_torque_is_the_virtual_work_ratio() -> None:
+    doc = _json([EX / "fourbar.yaml", "--config", "crank-30", "--load", "moment=0,0,3"])
+    c = _config(doc, "crank-30")
+    q = {k: v[0] for k, v in c["joints"].items()}
+    A, B0, C0, D = (np.array(p, dtype=float) for p in ([0, 0], [1, 0], [3, 2], [4, 0]))
+    B = _rot(q["A"]) @ B0
+    C = D + _rot(-q["D"]) @ (C0 - D)  # D is between [rocker, ground]
+    # unit crank rate: v_B + w3 k x (C - B) = w4 k x (C - D)
+    vB = np.array([-B[1], B[0]])
+    rc, rd = C - B, C - D
+    M = np.array([[-rc[1], rd[1]], [rc[0], -rd[0]]])
+    w3, w4 = np.linalg.solve(M, -vB)
+    assert c["efforts"]["A"] == pytest.approx(-3.0 * w4, rel=1e-10)
+
+
+def _rpr_lines(q: dict) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    A = [np.array([0.0, 0]), np.array([4.0, 0]), np.array([0.0, 4])]
+    B0 = [np.array([0.9, 0.3]), np.array([2.5, 1.5]), np.array([-0.3, 1.9])]
+    u0 = [np.array([0.9, 0.3]), np.array([-1.5, 1.5]), np.array([-0.3, -2.1])]
+    pts, dirs = [], []
+    for i in range(3):
+        u = u0[i] / np.linalg.norm(u0[i])
+        R = _rot(q[f"Rb{i + 1}"])
+        pts.append(A[i] + R @ (B0[i] + q[f"P{i + 1}"] * u - A[i]))
+        dirs.append(R @ u)
+    return pts, dirs
+
+
+def test_3rpr_leg_forces_balance_the_platform_wrench_along_three_leg_lines() -> None:
+    doc = _json(
+        [
+            EX / "planar_3rpr.yaml",
+            "--config",
+            "stroke",
+            "--load",
+            "force=1,2,0 moment=0,0,0.5 point=1,1,0",
+        ]
+    )
+    c = _config(doc, "stroke")
+    q = {k: v[0] for k, v in c["joints"].items()}
+    pts, dirs = _rpr_lines(q)
+    # the load point (1, 1) moves with the platform: where the JSON says it is now
+    p = np.array(c["kinetostatics"]["load"]["point"][:2])
+    # the legs push the platform with tau_i along their lines: sum + load = 0 (planar)
+    M = np.array([[d[0], d[1], _cross2(b, d)] for b, d in zip(pts, dirs, strict=True)]).T
+    w = np.array([1.0, 2.0, 0.5 + _cross2(p, np.array([1.0, 2.0]))])
+    tau = np.linalg.solve(M, -w)
+    got = [c["efforts"][f"P{i}"] for i in (1, 2, 3)]
+    assert got == pytest.approx(tau, rel=1e-10)
+    assert c["kinetostatics"]["effort_units"]["P1"] == "N"
+
+
+def test_3rpr_type2_efforts_unbounded_with_the_load_power_and_min_norm_for_zero_power() -> None:
+    doc = _json([EX / "planar_3rpr.yaml", "--config", "concurrent", "--load", "moment=0,0,1"])
+    ks = _config(doc, "concurrent")["kinetostatics"]
+    assert _config(doc, "concurrent")["efforts"] is None and ks["bounded"] is False
+    # the uncontrolled twist: a rotation about the legs' common point (1, 1) along z, on
+    # which a couple of 1 N m does 1 W per unit rate
+    (t,) = ks["uncontrolled_twists"]
+    assert t == pytest.approx([0, 0, 1, 1, -1, 0], abs=1e-12)
+    assert ks["load_power"] == pytest.approx([1.0], rel=1e-12)
+    # a force through the common point does no power on it: bounded, not unique
+    doc = _json(
+        [EX / "planar_3rpr.yaml", "--config", "concurrent", "--load", "force=0,-3,0 point=1,1,0"]
+    )
+    c = _config(doc, "concurrent")
+    ks = c["kinetostatics"]
+    assert ks["bounded"] is True and set(ks["non_unique"]) == {"P1", "P2", "P3"}
+    # every solution balances the force along the three lines through (1, 1); the
+    # least-norm one is the pseudo-inverse solution of that 2 x 3 system
+    q = {k: v[0] for k, v in c["joints"].items()}
+    _, dirs = _rpr_lines(q)
+    D = np.array(dirs).T
+    tau = -np.linalg.pinv(D) @ np.array([0.0, -3.0])
+    assert [c["efforts"][f"P{i}"] for i in (1, 2, 3)] == pytest.approx(tau, rel=1e-9)
+
+
+def test_stewart_six_leg_forces_along_the_leg_lines() -> None:
+    doc = _json(
+        [
+            EX / "stewart_octahedral.yaml",
+            "--config",
+            "reference",
+            "--load",
+            "force=1,-2,-10 moment=0.5,0,0.2",
+        ]
+    )
+    c = _config(doc, "reference")
+    s3 = np.sqrt(3)
+    a = [
+        (1, 0, 0),
+        (-0.5, s3 / 2, 0),
+        (-0.5, s3 / 2, 0),
+        (-0.5, -s3 / 2, 0),
+        (-0.5, -s3 / 2, 0),
+        (1, 0, 0),
+    ]
+    b = [
+        (0.3, 0.3 * s3, 1), (0.3, 0.3 * s3, 1), (-0.6, 0, 1),
+        (-0.6, 0, 1), (0.3, -0.3 * s3, 1), (0.3, -0.3 * s3, 1),
+    ]  # fmt: skip
+    cols = []
+    for ai, bi in zip(a, b, strict=True):
+        u = np.subtract(bi, ai)
+        u = u / np.linalg.norm(u)
+        cols.append(np.concatenate([u, np.cross(bi, u)]))
+    p = np.array(c["kinetostatics"]["load"]["point"])
+    f = np.array([1.0, -2, -10])
+    w = np.concatenate([f, np.array([0.5, 0, 0.2]) + np.cross(p, f)])
+    tau = np.linalg.solve(np.array(cols).T, -w)
+    assert [c["efforts"][f"P{i}"] for i in range(1, 7)] == pytest.approx(tau, rel=1e-10)
+
+
+def _five_bar_angles(q: dict) -> tuple[float, float, float]:
+    A1, B10, P0 = np.array([-1.5, 0]), np.array([-1.5, 2]), np.array([0.0, 4])
+    A2, B20 = np.array([1.5, 0]), np.array([1.5, 2])
+    B1 = A1 + _rot(q["A1"]) @ (B10 - A1)
+    P = B1 + _rot(q["A1"] + q["B1"]) @ (P0 - B10)
+    B2 = A2 + _rot(q["A2"]) @ (B20 - A2)
+
+    def sin(u: np.ndarray, v: np.ndarray) -> float:
+        return abs(_cross2(u, v)) / (np.linalg.norm(u) * np.linalg.norm(v))
+
+    return sin(B1 - A1, P - B1), sin(B2 - A2, P - B2), sin(P - B1, P - B2)
+
+
+def test_five_bar_transmission_indices_are_the_sines_of_its_transmission_angles() -> None:
+    rng = np.random.default_rng(35)
+    sets = []
+    names = []
+    for k in range(20):
+        a1, a2 = (float(x) for x in rng.uniform(-0.5, 0.5, size=2))
+        names.append(f"p{k}")
+        sets += ["--set", f"p{k}:A1={a1!r}", "--set", f"p{k}:A2={a2!r}"]
+    doc = _json(
+        [
+            EX / "five_bar.yaml",
+            *sets,
+            "--load",
+            "force=0,-1,0",
+            *[x for n in names for x in ("--config", n)],
+        ]
+    )
+    for n in names:
+        c = _config(doc, n)
+        q = {k: v[0] for k, v in c["joints"].items()}
+        s1, s2, s_out = _five_bar_angles(q)
+        tr = c["kinetostatics"]["transmission"]
+        assert tr["input"] == pytest.approx([s1, s2], rel=1e-9)
+        assert tr["output"] == pytest.approx([s_out, s_out], rel=1e-9)
+        assert tr["local"] == pytest.approx(min(s1, s2, s_out), rel=1e-9)
+
+
+def test_transmission_indices_null_with_the_reason_outside_their_setting(tmp_path: Path) -> None:
+    f = tmp_path / "r2.yaml"
+    f.write_text(PLANAR_2R)
+    tr = _config(_json([f, "--config", "bent"]), "bent")["kinetostatics"]["transmission"]
+    assert tr["local"] is None and "two legs" in tr["reason"]
+
+
+def test_five_bar_output_index_is_zero_at_its_type2_and_input_index_at_its_type1() -> None:
+    doc = _json(
+        [EX / "five_bar.yaml", "--load", "force=0,-1,0", "--config", "type1", "--config", "type2"]
+    )
+    t2 = _config(doc, "type2")["kinetostatics"]["transmission"]
+    assert t2["output"] == [0.0, 0.0]
+    t1 = _config(doc, "type1")["kinetostatics"]["transmission"]
+    assert min(t1["input"]) == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("k", ["1000", "1/1000"])
+def test_scaling_the_mechanism_scales_efforts_by_their_powers_and_not_the_indices(
+    tmp_path: Path, k: str
+) -> None:
+    from fractions import Fraction
+
+    s = float(Fraction(k))
+    op = f"*{k}" if "/" not in k else f"/{k.split('/')[1]}"
+    path = tmp_path / "five_bar_scaled.yaml"
+    path.write_text(scaled_text(EX / "five_bar.yaml", op))
+    load = "force=0.3,-1,0 point=0.2,3.5,0"
+    base = _config(_json([EX / "five_bar.yaml", "--config", "inputs", "--load", load]), "inputs")
+    scaled_load = f"force=0.3,-1,0 point={0.2 * s!r},{3.5 * s!r},0"
+    got = _config(_json([path, "--config", "inputs", "--load", scaled_load]), "inputs")
+    # revolute actuators: N m = N times a length, so times k; indices unchanged
+    for j in ("A1", "A2"):
+        assert got["efforts"][j] == pytest.approx(base["efforts"][j] * s, rel=1e-9)
+    for key in ("input", "output"):
+        assert got["kinetostatics"]["transmission"][key] == pytest.approx(
+            base["kinetostatics"]["transmission"][key], rel=1e-9
+        )
+    base_u = base["kinetostatics"]["largest_unit_efforts"]
+    got_u = got["kinetostatics"]["largest_unit_efforts"]
+    assert got_u["force"]["N m"]["value"] == pytest.approx(
+        base_u["force"]["N m"]["value"] * s, rel=1e-9
+    )
+    assert got_u["couple"]["N m"]["value"] == pytest.approx(
+        base_u["couple"]["N m"]["value"], rel=1e-9
+    )
+
+
+def test_bad_load_option_names_the_fix() -> None:
+    r = run_cli(["analyze", EX / "fourbar.yaml", "--load", "forse=1,2,3"])
+    assert r.status == 2 and "KEY=x,y,z" in r.err and "force" in r.err
+    r = run_cli(["analyze", EX / "fourbar.yaml", "--load", "force=1,2"])
+    assert r.status == 2 and "needs 3 numbers" in r.err
