@@ -316,3 +316,39 @@ def test_bad_load_option_names_the_fix() -> None:
     assert r.status == 2 and "KEY=x,y,z" in r.err and "force" in r.err
     r = run_cli(["analyze", EX / "fourbar.yaml", "--load", "force=1,2"])
     assert r.status == 2 and "needs 3 numbers" in r.err
+
+
+def _approach(joint: str, value: str, held: str, ks: range) -> dict:
+    """The five-bar analysed at ``joint = value + 10^-k`` (a passive or input angle that
+    moves the configuration linearly towards a singularity), ``held`` fixed."""
+    argv: list = [EX / "five_bar.yaml", "--load", "force=0.3,-1,0"]
+    for k in ks:
+        argv += ["--set", f"d{k}:{joint}={value}+{10.0**-k!r}", "--set", f"d{k}:{held}"]
+        argv += ["--config", f"d{k}"]
+    return _json(argv)
+
+
+def test_largest_effort_grows_as_one_over_sigma_into_a_type2_and_the_output_index_vanishes() -> (
+    None
+):
+    # the distal links' angle P -> 2 atan(4/3) with A2 = -pi/6: the type2 configuration
+    doc = _approach("P", "2*atan(4/3)", "A2=-pi/6", range(1, 6))
+    sig, eff, out = [], [], []
+    for c in doc["configurations"]:
+        (dec,) = [d for d in c["decisions"] if d.get("test") == "output"]
+        sig.append(dec["margin"]["kept"])  # the output test's smallest singular value
+        eff.append(max(abs(v) for v in c["efforts"].values()))
+        out.append(max(c["kinetostatics"]["transmission"]["output"]))
+    assert sig[0] / sig[-1] > 1e3  # more than three decades
+    slope = np.polyfit(np.log(sig), np.log(eff), 1)[0]
+    assert slope == pytest.approx(-1.0, rel=0.05)
+    # the output index is the sine of the distal links' angle, which the path takes to 0
+    assert out == pytest.approx([np.sin(10.0**-k) for k in range(1, 6)], rel=1e-6)
+
+
+def test_input_index_vanishes_into_a_type1() -> None:
+    # B1 -> 2 atan(1/3) with A2 = 0: the type1 configuration (A1, B1, P aligned)
+    doc = _approach("B1", "2*atan(1/3)", "A2=0", range(1, 5))
+    got = [c["kinetostatics"]["transmission"]["input"][0] for c in doc["configurations"]]
+    # leg 1's input index is |sin| of the angle between crank and distal link: B1's offset
+    assert got == pytest.approx([np.sin(10.0**-k) for k in range(1, 5)], rel=1e-6)
