@@ -352,3 +352,38 @@ def test_input_index_vanishes_into_a_type1() -> None:
     got = [c["kinetostatics"]["transmission"]["input"][0] for c in doc["configurations"]]
     # leg 1's input index is |sin| of the angle between crank and distal link: B1's offset
     assert got == pytest.approx([np.sin(10.0**-k) for k in range(1, 5)], rel=1e-6)
+
+
+def _tau_a(a: float, b: float) -> float:
+    """The 2R's shoulder torque for the tip force (1, -2): -(J^T f)[0]."""
+    col = np.array([-np.sin(a) - 0.5 * np.sin(a + b), np.cos(a) + 0.5 * np.cos(a + b)])
+    return -float(col @ np.array([1.0, -2.0]))
+
+
+def test_sweep_load_gives_each_sample_its_efforts_and_max_effort_locates_the_limit(
+    tmp_path: Path,
+) -> None:
+    import jsonschema
+    from scipy.optimize import brentq
+
+    f = tmp_path / "r2.yaml"
+    f.write_text(PLANAR_2R)
+    argv = ["sweep", f, "--vary", "A=0:1.5:0.1", "--from", "bent", "--precision", "float"]
+    r = run_cli([*argv, "--format", "json", "--max-effort", "A=2.5"])
+    assert r.status == 0, r.err
+    doc = json.loads(r.out)
+    schema = json.loads(run_cli(["schema", "--sweep"]).out)
+    jsonschema.validate(doc, schema)
+    # the load is the --from configuration's (the file's): each sample's torques
+    for p in doc["points"]:
+        a = p["values"][0]
+        assert p["efforts"]["A"] == pytest.approx(_tau_a(a, 0.9), rel=1e-10, abs=1e-12)
+    # |tau_A| = 3.04 at A = 0.3 falls to 2.5 once along the path: the root of the closed form
+    (lim,) = doc["effort_limits"]
+    root = brentq(lambda a: abs(_tau_a(a, 0.9)) - 2.5, 0.0, 1.5, xtol=1e-14)
+    assert lim["kind"] == "effort limit" and lim["input"] == "A"
+    assert lim["values"][0] == pytest.approx(root, abs=1e-9)
+    assert abs(lim["efforts"]["A"]) == pytest.approx(2.5, rel=1e-8)
+    assert lim not in doc["located"]  # an effort limit is not a singularity
+    text = run_cli([*argv, "--max-effort", "A=2.5"]).out
+    assert "effort limit: |A|" in text and "largest |effort| of A" in text

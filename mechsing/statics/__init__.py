@@ -26,6 +26,7 @@ from mechsing.statics.units import UnitEfforts, unit_efforts
 __all__ = [
     "Kinetostatics",
     "kinetostatics",
+    "kinetostatics_at",
     "load_of",
     "motion_matrices",
     "with_kinetostatics",
@@ -144,20 +145,20 @@ def kinetostatics(
     from mechsing.kinematics import KinematicModel
 
     fm = model if model is not None else KinematicModel(mech, "float")
-    mm = motion_matrices(mech, float_configuration(fm, joints), fm)
+    return kinetostatics_at(mech, float_configuration(fm, joints), load, fm)
+
+
+def kinetostatics_at(mech: Any, q: np.ndarray, load: Any, model: Any) -> Kinetostatics:
+    """:func:`kinetostatics` at the coordinate vector ``q`` of the float ``model``."""
+    mm = motion_matrices(mech, q, model)
     emap = effort_map(mm)
-    eq = None
-    if load is not None:
-        x0 = mech.output_reference_point() if load.point is None else load.point
-        p = mm.point_now(np.array(to_float(np.array(x0, dtype=object)), dtype=float))
-        w = load_wrench(
-            to_float(np.array(load.force, dtype=object)),
-            to_float(np.array(load.moment, dtype=object)),
-            p,
-        )
-        eq = equilibrium(mm, emap, w, p)
     x0 = mech.output_reference_point() if load is None or load.point is None else load.point
     p = mm.point_now(np.array(to_float(np.array(x0, dtype=object)), dtype=float))
+    eq = None
+    if load is not None:
+        force = to_float(np.array(load.force, dtype=object))
+        moment = to_float(np.array(load.moment, dtype=object))
+        eq = equilibrium(mm, emap, load_wrench(force, moment, p), p)
     return Kinetostatics(
         eq, unit_efforts(mm, emap, p), transmission(mech, mm), mm.inputs, mm.input_lengths
     )

@@ -208,6 +208,8 @@ class SweepRun:
         self.notes += vary_warnings(mech, varies)
         self.outside = {c.name: np.zeros(shape, dtype=bool) for c in eng.limited}
         self.newton_iterations = 0
+        #: the statics of the samples under a load (:class:`mechsing.statics.along.SweepStatics`)
+        self.statics: Any = None
 
     @property
     def grid(self) -> bool:
@@ -296,6 +298,8 @@ class SweepRun:
             self.ratio[t][at] = row.ratio[t]
         self.located += row.located
         self.newton_iterations += row.newton
+        if self.statics is not None:
+            self.statics.store(at, row)
         for name, beyond in row.outside.items():
             self.outside[name][at] = beyond
         for s in row.stopped:
@@ -376,6 +380,8 @@ class SweepRun:
                 )
             )
         loci = loci_of(self, out) if self.grid else ()
+        if self.statics is not None and not self.grid:
+            self.statics.locate_limits(eng, self.vars[0].values)
         return SweepResult(
             self.mechanism,
             self.variables,
@@ -393,6 +399,7 @@ class SweepRun:
             self.newton_iterations,
             time.perf_counter() - self.start_time,
             self.outside,
+            statics=self.statics,
         )
 
 
