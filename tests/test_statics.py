@@ -387,3 +387,33 @@ def test_sweep_load_gives_each_sample_its_efforts_and_max_effort_locates_the_lim
     assert lim not in doc["located"]  # an effort limit is not a singularity
     text = run_cli([*argv, "--max-effort", "A=2.5"]).out
     assert "effort limit: |A|" in text and "largest |effort| of A" in text
+
+
+def test_report_shows_efforts_and_indices_of_a_bundled_parallel_robot(tmp_path: Path) -> None:
+    load = "force=1,2,0 moment=0,0,0.5"
+    doc = _json([EX / "planar_3rpr.yaml", "--config", "stroke", "--load", load])
+    c = _config(doc, "stroke")
+    out = tmp_path / "review.md"
+    argv = ["report", EX / "planar_3rpr.yaml", "--config", "stroke", "--precision", "float"]
+    argv += ["--vary", "P1=0:0.2:0.05", "--from", "stroke", "--load", load, "-o", out]
+    r = run_cli(argv)
+    assert r.status == 0, r.err
+    text = out.read_text()
+    section = text[text.index("## Kinetostatics") :]
+    for name in ("P1", "P2", "P3"):
+        assert f"{name} {c['efforts'][name]:.4g} N" in section
+    local = c["kinetostatics"]["transmission"]["local"]
+    assert f"local {local:.3g}" in section
+    assert (tmp_path / "review_files" / "kinetostatics-sweep.svg").exists()
+    assert "--load" in text  # the command shown at the end
+
+
+def test_file_load_errors_name_the_line_and_the_fix(tmp_path: Path) -> None:
+    f = tmp_path / "r2.yaml"
+    f.write_text(PLANAR_2R.replace("load: {force: [1, -2, 0]}", "load: {forse: [1, -2, 0]}"))
+    r = run_cli(["analyze", f])
+    assert r.status == 2
+    assert "r2.yaml:9:" in r.err and "'forse'" in r.err and "did you mean 'force'" in r.err
+    f.write_text(PLANAR_2R.replace("load: {force: [1, -2, 0]}", "load: {point: [1, 0, 0]}"))
+    r = run_cli(["analyze", f])
+    assert r.status == 2 and "give force and/or moment" in r.err

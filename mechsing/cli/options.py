@@ -288,21 +288,19 @@ def add_max_effort_option(p: argparse.ArgumentParser) -> None:
 def with_sweep_load(sweep_run: Any, mech: Any, text: str | None, limits: list[str] | None) -> None:
     """Give ``sweep_run`` the statics of its samples under ``--load`` (``text``), or the
     load of the configuration it starts from, and the ``--max-effort`` limits."""
-    from mechsing.errors import UserError
-    from mechsing.statics import load_of
-    from mechsing.statics.along import SweepStatics, parse_max_effort
+    from mechsing.statics.along import attach, parse_max_effort
     from mechsing.statics.loads import parse_load
 
-    if text is None and not limits:
-        return
-    load = load_of(mech, sweep_run.from_config, None if text is None else parse_load(text, mech))
-    if load is None:
-        raise UserError(
-            '--max-effort needs a load: give --load "force=FX,FY,FZ ..." or a load in the '
-            f"configuration {sweep_run.from_config!r} the sweep starts from"
-        )
-    if limits and sweep_run.grid:
-        raise UserError("--max-effort locates effort limits along a path: give one --vary")
-    sweep_run.statics = SweepStatics(
-        mech, load, sweep_run.reached.shape, parse_max_effort(limits, mech)
-    )
+    load = None if text is None else parse_load(text, mech)
+    attach(sweep_run, load, parse_max_effort(limits, mech))
+
+
+def report_load(mech: Any, text: str | None, limits: list[str] | None) -> dict[str, Any]:
+    """``report``'s keyword arguments for ``--load`` and ``--max-effort``."""
+    from mechsing.statics.along import parse_max_effort
+    from mechsing.statics.loads import parse_load
+
+    return {
+        "load": None if text is None else parse_load(text, mech),
+        "max_effort": parse_max_effort(limits, mech) or None,
+    }

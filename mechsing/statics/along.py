@@ -16,7 +16,13 @@ from mechsing.errors import UserError
 from mechsing.numeric import SWEEP_LOCATE_TOL
 from mechsing.statics import kinetostatics_at
 
-__all__ = ["EffortLimit", "SweepStatics", "parse_max_effort", "KINETOSTATICS_SCHEMA"]
+__all__ = [
+    "KINETOSTATICS_SCHEMA",
+    "EffortLimit",
+    "SweepStatics",
+    "attach",
+    "parse_max_effort",
+]
 
 #: most bisection steps of an effort limit (each halves the bracket)
 _BISECTIONS = 60
@@ -238,6 +244,26 @@ class SweepStatics:
                 f"{shown(p.values)}" + (" (first)" if p.first and p.exceeds else "")
             )
         return lines
+
+
+def attach(run: Any, load: Any, limits: dict[str, float] | None) -> None:
+    """Give the sweep ``run`` (a :class:`~mechsing.sweeps.SweepRun`, before its rows) the
+    statics of its samples under ``load`` (None: the load of the configuration it starts
+    from) and the effort ``limits`` by input name."""
+    from mechsing.statics import load_of
+
+    mech = run.mechanism
+    load = load_of(mech, run.from_config, load)
+    if load is None:
+        if not limits:
+            return
+        raise UserError(
+            '--max-effort needs a load: give --load "force=FX,FY,FZ ..." or a load in the '
+            f"configuration {run.from_config!r} the sweep starts from"
+        )
+    if limits and run.grid:
+        raise UserError("--max-effort locates effort limits along a path: give one --vary")
+    run.statics = SweepStatics(mech, load, run.reached.shape, dict(limits or {}))
 
 
 #: the sweep document's keys this module adds (:func:`mechsing.sweeps.schema.sweep_schema`)

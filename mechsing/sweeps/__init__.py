@@ -70,6 +70,8 @@ def sweep(
     max_classified: int = MAX_CLASSIFIED,
     time_limit: float | None = None,
     connect_timeout: float | None = None,
+    load: Any = None,
+    max_effort: dict[str, float] | None = None,
 ) -> SweepResult:
     """Sweep a mechanism (or a file) over one variable (a path) or two (a grid).
 
@@ -99,6 +101,10 @@ def sweep(
     connect_timeout : float or None
         Seconds a scheduler has to accept the connection and answer (default
         :data:`mechsing.sweeps.distributed.CONNECT_TIMEOUT`, 5 s).
+    load, max_effort : Load, dict, optional
+        The samples' efforts under ``load`` (default: the start configuration's file
+        load, if any) and where an input's |effort| crosses ``max_effort[input]``
+        (:mod:`mechsing.statics.along`).
 
     Returns
     -------
@@ -114,6 +120,9 @@ def sweep(
         max_classified=max_classified,
         time_limit=time_limit,
     )
+    from mechsing.statics.along import attach
+
+    attach(run, load, max_effort)
     rows = run.rows(progress, workers=workers, scheduler=scheduler, connect_timeout=connect_timeout)
     for _ in rows:
         pass
