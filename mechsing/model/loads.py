@@ -46,8 +46,13 @@ def read_load(r: Any, v: Any, item: str, line: int, has_output: bool) -> Load:
         )
     m = r.mapping(v, item, f"{LOAD_KEY} (e.g. {{force: [0, 0, -10], point: [1, 0, 0]}})")
     r.keys(m, item, LOAD_KEYS, hint="the wrench the environment applies to the output")
-    if not m.items:
-        raise r.error(item, m.line, f"{LOAD_KEY}: give force and/or moment")
+    if m.get("force") is None and m.get("moment") is None:
+        raise r.error(
+            item,
+            m.line,
+            f"{LOAD_KEY}: give force and/or moment (a point alone is no load), e.g. "
+            "{force: [0, 0, -10], point: [1, 0, 0]}",
+        )
     lf = r.units.length_factor
     force = (0, 0, 0)
     moment = (0, 0, 0)
