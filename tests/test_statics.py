@@ -417,3 +417,54 @@ def test_file_load_errors_name_the_line_and_the_fix(tmp_path: Path) -> None:
     f.write_text(PLANAR_2R.replace("load: {force: [1, -2, 0]}", "load: {point: [1, 0, 0]}"))
     r = run_cli(["analyze", f])
     assert r.status == 2 and "give force and/or moment" in r.err
+
+
+def test_four_bar_coupler_carries_a_force_along_its_line_and_the_loop_is_indeterminate_out_of_plane() -> (
+    None
+):
+    doc = _json([EX / "fourbar.yaml", "--config", "crank-30", "--load", "moment=0,0,3"])
+    c = _config(doc, "crank-30")
+    q = {k: v[0] for k, v in c["joints"].items()}
+    B = _rot(q["A"]) @ np.array([1.0, 0])
+    D = np.array([4.0, 0])
+    C = D + _rot(-q["D"]) @ (np.array([3.0, 2]) - D)
+    ks = c["kinetostatics"]
+    f = np.array(ks["joint_wrenches"]["B"])
+    # the coupler is a two-force member: the wrench through B is a force along BC (no
+    # moment about B nor about C), of magnitude M / (distance from D to the line BC)
+    u = (C - B) / np.linalg.norm(C - B)
+    assert abs(_cross2(f[:2], u)) < 1e-12 * np.linalg.norm(f[:2])
+    m_b = f[5] - _cross2(B, f[:2])  # moment about B (planar: z)
+    assert abs(m_b) < 1e-12 * np.linalg.norm(f[:2]) * 4
+    arm = abs(_cross2(D - B, u))
+    assert np.linalg.norm(f[:2]) == pytest.approx(3.0 / arm, rel=1e-10)
+    # a planar loop seen in space: 3 wrench dimensions (out of the plane) indeterminate
+    (loop,) = ks["loop_wrenches"]
+    assert loop["subgroup"] == "G" and loop["indeterminate_dimensions"] == 3
+    assert ks["indeterminate_loops"] == []
+
+
+def test_bennett_input_torque_by_virtual_work_and_its_loop_wrench_indeterminate() -> None:
+    from scipy.spatial.transform import Rotation
+
+    h = 1e-5
+    argv: list = [EX / "bennett.yaml", "--load", "moment=0,0,1", "--config", "q1-1rad"]
+    for name, v in (("lo", 1 - h), ("hi", 1 + h)):
+        argv += ["--set", f"{name}:J1={v!r}", "--from", "q1-1rad", "--config", name]
+    doc = _json(argv)
+    a1 = np.array([0.0, 0, 1])
+    a2 = np.array([12 / 25, -9 / 25, 4 / 5])
+
+    def link2(c: dict) -> Rotation:  # spatial product of exponentials (rotation part)
+        q = {k: v[0] for k, v in c["joints"].items()}
+        return Rotation.from_rotvec(q["J1"] * a1) * Rotation.from_rotvec(q["J2"] * a2)
+
+    lo, hi = link2(_config(doc, "lo")), link2(_config(doc, "hi"))
+    omega = (hi * lo.inv()).as_rotvec() / (2 * h)  # link2's angular velocity per unit J1 rate
+    c = _config(doc, "q1-1rad")
+    # virtual work: tau * 1 + M . omega = 0
+    assert c["efforts"]["J1"] == pytest.approx(-omega[2], rel=1e-6)
+    ks = c["kinetostatics"]
+    assert ks["indeterminate_loops"] == [["J1", "J2", "J3", "J4"]]
+    assert ks["loop_wrenches"][0]["wrench"] is None
+    assert ks["loop_wrenches"][0]["indeterminate_dimensions"] == 3

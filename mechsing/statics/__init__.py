@@ -69,6 +69,7 @@ class Kinetostatics:
             body["non_unique"] = list(eq.non_unique)
             body["joint_wrenches"] = eq.joint_wrenches
             body["indeterminate_loops"] = [list(j) for j in eq.indeterminate_loops]
+            body["loop_wrenches"] = eq.loop_wrenches
         out["kinetostatics"] = body
         return out
 

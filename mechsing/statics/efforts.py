@@ -60,6 +60,8 @@ class EffortMap:
     uncontrolled_commensurate: np.ndarray  # 6 x k commensurate twists T z
     non_unique: tuple[str, ...]
     indeterminate_loops: tuple[int, ...]
+    #: per loop, how many dimensions of its wrench within its subgroup are free
+    loop_freedom: tuple[int, ...]
     decision: RankDecision
     Tz_rows: np.ndarray = field(repr=False)  # k x n: the motions z (rows)
 
@@ -101,17 +103,24 @@ def effort_map(mm: MotionMatrices, precision: Precision = _FLOAT) -> EffortMap:
     Nl, Nt = Nm[:r], Nm[r:]
     non_unique: list[str] = []
     if Nt.size:
-        # least-norm efforts: move along the null directions that change tau
-        C = -np.linalg.pinv(Nt) @ X[r:]
-        X = X + Nm @ C
+        # least-norm efforts: move along the null directions that change tau (Nm is
+        # orthonormal: a direction whose tau part is below the support threshold leaves
+        # tau unique, its rounding is not a freedom)
+        u, sv, vt = np.linalg.svd(Nt, full_matrices=False)
+        k = int(np.sum(sv > SUPPORT_RTOL))
+        if k:
+            C = -(vt[:k].T / sv[:k]) @ (u[:, :k].T @ X[r:])
+            X = X + Nm @ C
         sup = np.linalg.norm(Nt, axis=1)
-        big = max(float(sup.max()), 1e-300)
-        non_unique = [mm.inputs[i] for i in range(a) if sup[i] > SUPPORT_RTOL * max(big, 1.0)]
+        non_unique = [mm.inputs[i] for i in range(a) if sup[i] > SUPPORT_RTOL]
     indeterminate = []
+    freedom = [0] * len(mm.loops)
     if Nl.size:
         for li, lp in enumerate(mm.loops):
-            if np.linalg.norm(Nl[lp.rows]) > SUPPORT_RTOL:
+            block = Nl[lp.rows]
+            if block.size and np.linalg.norm(block) > SUPPORT_RTOL:
                 indeterminate.append(li)
+                freedom[li] = int(np.sum(np.linalg.svd(block, compute_uv=False) > SUPPORT_RTOL))
     G = mm.effort_scale()[:, None] * X[r:]
     Tz = T @ Z
     unc = [_si_twist(mm, Tz[:, i]) for i in range(Z.shape[1]) if np.linalg.norm(Tz[:, i]) > 0]
@@ -122,6 +131,7 @@ def effort_map(mm: MotionMatrices, precision: Precision = _FLOAT) -> EffortMap:
         Tz,
         tuple(non_unique),
         tuple(indeterminate),
+        tuple(freedom),
         dec,
         Z.T,
     )
@@ -148,6 +158,10 @@ class Equilibrium:
     joint_wrenches: dict[str, list[float] | None]
     indeterminate_loops: list[tuple[str, ...]]
     margin: Any
+    #: per loop: its joints, subgroup, the wrench it carries within its subgroup (SI at
+    #: the ground origin; None when indeterminate) and how many wrench dimensions
+    #: (those reciprocal to its subgroup) are statically indeterminate
+    loop_wrenches: list[dict[str, Any]] = field(default_factory=list)
 
 
 def equilibrium(
@@ -171,12 +185,23 @@ def equilibrium(
         tau = emap.G @ w
         efforts = {name: float(v) for name, v in zip(mm.inputs, tau, strict=True)}
     jw: dict[str, list[float] | None] = {}
+    lw: list[dict[str, Any]] = []
     if bounded is not False:
         lam = emap.Lam @ w
         bad = {j for li in emap.indeterminate_loops for j in mm.loops[li].joints}
         loopw = np.zeros((len(mm.loops), 6))
         for li, lp in enumerate(mm.loops):
             loopw[li] = lp.basis @ lam[lp.rows]
+            lw.append(
+                {
+                    "joints": list(lp.joints),
+                    "subgroup": lp.subgroup,
+                    "wrench": None
+                    if li in emap.indeterminate_loops
+                    else [float(x) for x in mm.wrench_out(loopw[li])],
+                    "indeterminate_dimensions": 6 - lp.basis.shape[1] + emap.loop_freedom[li],
+                }
+            )
         for jk in mm.model.joints:
             c = jk.columns.start
             Y = mm.chain_signs[c] * y
@@ -195,6 +220,7 @@ def equilibrium(
         jw,
         [mm.loops[li].joints for li in emap.indeterminate_loops],
         emap.decision.margin,
+        lw,
     )
 
 

@@ -127,7 +127,7 @@ def motion_matrices(
                 tuple(ls.loop.joints),
                 slice(start, start + h),
                 np.asarray(ls.basis_float, dtype=float),
-                None if sg is None else sg.type,
+                None if sg is None else str(getattr(sg.type, "symbol", sg.type)),
             )
         )
         start += h
