@@ -468,3 +468,26 @@ def test_bennett_input_torque_by_virtual_work_and_its_loop_wrench_indeterminate(
     assert ks["indeterminate_loops"] == [["J1", "J2", "J3", "J4"]]
     assert ks["loop_wrenches"][0]["wrench"] is None
     assert ks["loop_wrenches"][0]["indeterminate_dimensions"] == 3
+
+
+def test_bodies_weights_under_gravity_add_their_torques(tmp_path: Path) -> None:
+    f = tmp_path / "r2w.yaml"
+    f.write_text(
+        PLANAR_2R.replace(
+            "configurations:",
+            "mass: {l1: {kg: 2, centre: [0.5, 0, 0]}, l2: {kg: 1, centre: [1.25, 0, 0]}}\n"
+            "gravity: [0, -9.81, 0]\nconfigurations:",
+        )
+    )
+    doc = _json([f, "--config", "bent", "--config", "straight"])
+    a, b, g = 0.3, 0.9, 9.81
+    # holding a weight m g at horizontal distance x from a joint takes m g x (counter-clockwise)
+    tau_b = g * 1 * 0.25 * np.cos(a + b)
+    tau_a = g * (2 * 0.5 * np.cos(a) + 1 * (np.cos(a) + 0.25 * np.cos(a + b)))
+    tip = _tau_a(a, b), -np.array([-0.5 * np.sin(a + b), 0.5 * np.cos(a + b)]) @ [1.0, -2.0]
+    c = _config(doc, "bent")  # the file's tip load and the weights
+    assert c["efforts"]["A"] == pytest.approx(tau_a + tip[0], rel=1e-12)
+    assert c["efforts"]["B"] == pytest.approx(tau_b + tip[1], rel=1e-12)
+    assert c["kinetostatics"]["weighed_bodies"] == ["l1", "l2"]
+    c = _config(doc, "straight")  # no load: the weights alone, arm straight at A = 0.3
+    assert c["efforts"]["B"] == pytest.approx(g * 0.25 * np.cos(a), rel=1e-12)

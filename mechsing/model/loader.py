@@ -20,7 +20,7 @@ from mechsing.errors import ExpressionError, InputRefError, MechanismError, YAML
 from mechsing.model.couplings import read_couplings
 from mechsing.model.expressions import is_plain_decimal, parse_number, radian_power, written_digits
 from mechsing.model.graph import build_graph, connected_to, coupled_loops
-from mechsing.model.loads import LOAD_KEY, read_load
+from mechsing.model.loads import LOAD_KEY, read_load, read_weights
 from mechsing.model.mechanism import (
     POSE_KEY,
     U_JOINT,
@@ -79,6 +79,8 @@ TOP_LEVEL_KEYS = (
     "limits",
     "dh",
     "couplings",
+    "mass",
+    "gravity",
 )
 JOINT_BASE_KEYS = ("name", "type", "between")
 U_KEYS = (("axes", "axes"), ("point", "point"))
@@ -523,6 +525,7 @@ class _Builder:
             couplings=read_couplings(r, top.get("couplings"), jmap),
             parameters=dict(r.parameters),
             resolution=tuple(r.geometry),
+            weights=read_weights(r, top.get("mass"), top.get("gravity"), bodies, ground),
         )
 
     # -- units --------------------------------------------------------------

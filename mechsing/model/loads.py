@@ -64,3 +64,61 @@ def read_load(r: Any, v: Any, item: str, line: int, has_output: bool) -> Load:
     if m.get("point") is not None:
         point = r.vector(m.get("point"), item, f"{LOAD_KEY}: point", lf)
     return Load(force, moment, point, line)
+
+
+#: the top-level keys of the bodies' weights
+WEIGHT_KEYS = ("mass", "gravity")
+#: the keys of one body's ``mass`` entry
+MASS_KEYS = ("kg", "centre")
+
+
+@dataclass(frozen=True)
+class Weights:
+    """The bodies' weights: ``gravity`` (m/s^2, SI, ground axes) and per body its mass (kg)
+    and centre of mass (SI, in the drawn pose, moving with the body; None: the centroid
+    of the body's joint points)."""
+
+    gravity: tuple[Any, Any, Any]
+    masses: tuple[tuple[str, Any, tuple[Any, Any, Any] | None], ...]
+
+
+def read_weights(r: Any, mass: Any, gravity: Any, bodies: list[str], ground: str) -> Weights | None:
+    """The file's ``mass: {BODY: {kg: M, centre: [x, y, z]}}`` and ``gravity: [gx, gy, gz]``
+    (the file's length unit per s^2) as :class:`Weights` (None without ``mass``)."""
+    if mass is None:
+        if gravity is not None:
+            raise r.error(
+                "gravity",
+                gravity.line,
+                "gravity without mass weighs nothing; add mass: {BODY: {kg: M, centre: "
+                "[x, y, z]}} or remove gravity",
+            )
+        return None
+    if gravity is None:
+        raise r.error(
+            "mass",
+            mass.line,
+            "mass needs gravity, the acceleration of gravity in ground axes (the file's "
+            "length unit per s^2), e.g. gravity: [0, 0, -9.81]",
+        )
+    g = r.vector(gravity, "gravity", "gravity", r.units.length_factor)
+    m = r.mapping(mass, "mass", "mass (e.g. {crank: {kg: 2, centre: [0.5, 0, 0]}})")
+    out = []
+    for k, v in m.items:
+        body = k.text
+        if body not in bodies:
+            raise r.error("mass", k.line, f"unknown body {body!r}; use one of {', '.join(bodies)}")
+        if body == ground:
+            raise r.error(
+                "mass", k.line, f"{body!r} is the ground: its weight does no work; remove it"
+            )
+        e = r.mapping(v, f"mass of {body!r}", "a body's mass ({kg: M, centre: [x, y, z]})")
+        r.keys(e, f"mass of {body!r}", MASS_KEYS, ("kg",), hint="kg and the centre of mass")
+        kg = r.number(e.get("kg"), f"mass of {body!r}", "kg")
+        if not kg >= 0:
+            raise r.error(f"mass of {body!r}", e.line, f"kg must not be negative, got {kg}")
+        centre = None
+        if e.get("centre") is not None:
+            centre = r.vector(e.get("centre"), f"mass of {body!r}", "centre", r.units.length_factor)
+        out.append((body, kg, centre))
+    return Weights(g, tuple(out))

@@ -354,6 +354,8 @@ class Mechanism:
     # SI, significant digits) -- half a unit in the last written digit of a decimal of
     # RESOLUTION_MIN_DIGITS digits or more (a direction's entry before normalisation)
     resolution: tuple[tuple[str, str, int, float, int], ...] = ()
+    # the bodies' weights (file keys mass and gravity; :class:`mechsing.model.loads.Weights`)
+    weights: Any = None
 
     def joint(self, name: str) -> Joint:
         """The joint called ``name`` (KeyError if none)."""

@@ -195,6 +195,26 @@ def mechanism_schema() -> dict[str, Any]:
                 "additionalProperties": False,
             },
             "characteristic_length": {"$ref": "#/$defs/number"},
+            "mass": {
+                "type": "object",
+                "description": "the bodies' masses for their weights under gravity "
+                "(docs/kinetostatics.md): kg, and the centre of mass where it is in the drawn "
+                "pose (the file's lengths; default the centroid of the body's joint points)",
+                "additionalProperties": {
+                    "type": "object",
+                    "properties": {
+                        "kg": {"$ref": "#/$defs/number"},
+                        "centre": {"$ref": "#/$defs/vector"},
+                    },
+                    "required": ["kg"],
+                    "additionalProperties": False,
+                },
+            },
+            "gravity": {
+                "$ref": "#/$defs/vector",
+                "description": "the acceleration of gravity in ground axes (the file's length "
+                "unit per s^2), with mass",
+            },
             "configurations": {
                 "type": "object",
                 "additionalProperties": {"$ref": "#/$defs/configuration"},

@@ -43,6 +43,8 @@ class Kinetostatics:
     transmission: Transmission
     inputs: tuple[str, ...]
     input_lengths: tuple[bool, ...]
+    #: the bodies whose weights the efforts hold too (the file's mass and gravity)
+    weighed: tuple[str, ...] = ()
 
     def to_json(self) -> dict[str, Any]:
         """The configuration's JSON keys: ``efforts`` (null when unbounded) and
@@ -63,6 +65,7 @@ class Kinetostatics:
                 "wrench": [float(x) for x in eq.wrench],
                 "point": [float(x) for x in eq.point],
             }
+            body["weighed_bodies"] = list(self.weighed)
             body["bounded"] = eq.bounded
             body["uncontrolled_twists"] = eq.uncontrolled
             body["load_power"] = eq.powers
@@ -87,6 +90,8 @@ class Kinetostatics:
                 f"load on the output: force ({_v(f)}) N and moment ({_v(m)}) N m at "
                 f"({_v(eq.point)}) m"
             )
+            if self.weighed:
+                load += f", with the weights of {', '.join(self.weighed)}"
             if eq.bounded is False:
                 tw = "; ".join(
                     f"twist ({_v(t)}) takes {p:.4g} W per unit rate"
@@ -156,13 +161,43 @@ def kinetostatics_at(mech: Any, q: np.ndarray, load: Any, model: Any) -> Kinetos
     x0 = mech.output_reference_point() if load is None or load.point is None else load.point
     p = mm.point_now(np.array(to_float(np.array(x0, dtype=object)), dtype=float))
     eq = None
-    if load is not None:
-        force = to_float(np.array(load.force, dtype=object))
-        moment = to_float(np.array(load.moment, dtype=object))
-        eq = equilibrium(mm, emap, load_wrench(force, moment, p), p)
+    weights = _weights(mech, mm)
+    if load is not None or weights:
+        force = np.zeros(3) if load is None else to_float(np.array(load.force, dtype=object))
+        moment = np.zeros(3) if load is None else to_float(np.array(load.moment, dtype=object))
+        eq = equilibrium(mm, emap, load_wrench(force, moment, p), p, weights)
     return Kinetostatics(
-        eq, unit_efforts(mm, emap, p), transmission(mech, mm), mm.inputs, mm.input_lengths
+        eq,
+        unit_efforts(mm, emap, p),
+        transmission(mech, mm),
+        mm.inputs,
+        mm.input_lengths,
+        tuple(b for b, _ in weights),
     )
+
+
+def _weights(mech: Any, mm: MotionMatrices) -> list[tuple[str, np.ndarray]]:
+    """Each weighed body's weight (SI wrench at the ground origin) at ``mm``'s
+    configuration: m g through its centre of mass (default: the centroid of its joints'
+    points in the drawn pose), which moves with it."""
+    wt = mech.weights
+    if wt is None:
+        return []
+    g = np.asarray(to_float(np.array(wt.gravity, dtype=object)), dtype=float)
+    out = []
+    for body, kg, centre in wt.masses:
+        if centre is None:
+            pts = [
+                np.asarray(to_float(np.array(j.params["point"], dtype=object)), dtype=float)
+                for j in mech.joints
+                if body in j.between and "point" in j.params
+            ]
+            x0 = np.mean(pts, axis=0) if pts else np.zeros(3)
+        else:
+            x0 = np.asarray(to_float(np.array(centre, dtype=object)), dtype=float)
+        c = mm.body_point_now(body, x0)
+        out.append((body, load_wrench(float(to_float(kg)) * g, np.zeros(3), c)))
+    return out
 
 
 def with_kinetostatics(result: Any, mech: Any, override: Any = None) -> Any:
@@ -176,7 +211,7 @@ def with_kinetostatics(result: Any, mech: Any, override: Any = None) -> Any:
     configs = []
     for c in result.configurations:
         load = load_of(mech, c.name, override)
-        if c.error is None and load is not None:
+        if c.error is None and (load is not None or mech.weights is not None):
             fm = fm or KinematicModel(mech, "float")
             c = dataclasses.replace(c, kinetostatics=kinetostatics(mech, c.joints, load, fm))
         configs.append(c)

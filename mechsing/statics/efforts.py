@@ -54,6 +54,8 @@ class EffortMap:
     output)."""
 
     G: np.ndarray  # a x 6
+    #: (lambda, tau) commensurate of a right-hand side b (n): ``solve @ b``
+    solve: np.ndarray
     #: the loop wrench map (commensurate, per loop rows of lambda) and joint wrenches
     Lam: np.ndarray  # r x 6 (commensurate lambda per SI wrench)
     uncontrolled: np.ndarray  # k x 6 SI twists
@@ -93,7 +95,6 @@ def effort_map(mm: MotionMatrices, precision: Precision = _FLOAT) -> EffortMap:
     P = _truncated_pinv(M, rank)  # (r + a) x n, least-norm least-squares
     W_in = np.linalg.inv(np.column_stack([mm.frame.wrench_back(e) for e in np.eye(6)]))
     B = -T.T @ W_in  # n x 6: right-hand side per SI wrench
-    X = P @ B  # (r + a) x 6
     # the null space of M: (lambda, tau) with A^T lambda + E^T tau = 0
     if M.shape[1]:
         U, s, Vt = np.linalg.svd(M, full_matrices=True)
@@ -109,8 +110,8 @@ def effort_map(mm: MotionMatrices, precision: Precision = _FLOAT) -> EffortMap:
         u, sv, vt = np.linalg.svd(Nt, full_matrices=False)
         k = int(np.sum(sv > SUPPORT_RTOL))
         if k:
-            C = -(vt[:k].T / sv[:k]) @ (u[:, :k].T @ X[r:])
-            X = X + Nm @ C
+            C = -(vt[:k].T / sv[:k]) @ (u[:, :k].T @ P[r:])
+            P = P + Nm @ C
         sup = np.linalg.norm(Nt, axis=1)
         non_unique = [mm.inputs[i] for i in range(a) if sup[i] > SUPPORT_RTOL]
     indeterminate = []
@@ -121,11 +122,13 @@ def effort_map(mm: MotionMatrices, precision: Precision = _FLOAT) -> EffortMap:
             if block.size and np.linalg.norm(block) > SUPPORT_RTOL:
                 indeterminate.append(li)
                 freedom[li] = int(np.sum(np.linalg.svd(block, compute_uv=False) > SUPPORT_RTOL))
+    X = P @ B  # (r + a) x 6
     G = mm.effort_scale()[:, None] * X[r:]
     Tz = T @ Z
     unc = [_si_twist(mm, Tz[:, i]) for i in range(Z.shape[1]) if np.linalg.norm(Tz[:, i]) > 0]
     return EffortMap(
         G,
+        P,
         X[:r],
         np.array(unc).reshape(-1, 6),
         Tz,
@@ -165,16 +168,24 @@ class Equilibrium:
 
 
 def equilibrium(
-    mm: MotionMatrices, emap: EffortMap, wrench: np.ndarray, point: np.ndarray
+    mm: MotionMatrices,
+    emap: EffortMap,
+    wrench: np.ndarray,
+    point: np.ndarray,
+    weights: list[tuple[str, np.ndarray]] | None = None,
 ) -> Equilibrium:
     """The efforts for the SI load ``wrench`` at the ground origin (applied at ``point``,
-    reported) from the configuration's effort map."""
+    reported) from the configuration's effort map; ``weights``: more wrenches (SI, at the
+    ground origin) each on a body (the bodies' weights)."""
     w = np.asarray(wrench, dtype=float)
     powers = [float(t @ np.concatenate([w[3:], w[:3]])) for t in emap.uncontrolled]
     # the power decision, on commensurate numbers relative to the load's generalised force
     W_in = np.linalg.inv(np.column_stack([mm.frame.wrench_back(e) for e in np.eye(6)]))
     y = W_in @ w
     b = -mm.T.T @ y
+    extra = [(mm.body_signs(body), W_in @ wb) for body, wb in weights or ()]
+    for signs, yb in extra:
+        b = b - (mm.Ss * signs[None, :]).T @ yb
     p = emap.Tz_rows @ b if emap.Tz_rows.size else np.zeros(0)
     bounded: bool | None = True
     if p.size:
@@ -182,12 +193,13 @@ def equilibrium(
         bounded = None if d.rank is None else d.rank == 0
     efforts = None
     if bounded is not False:
-        tau = emap.G @ w
+        x = emap.solve @ b
+        tau = mm.effort_scale() * x[mm.A.shape[0] :]
         efforts = {name: float(v) for name, v in zip(mm.inputs, tau, strict=True)}
     jw: dict[str, list[float] | None] = {}
     lw: list[dict[str, Any]] = []
     if bounded is not False:
-        lam = emap.Lam @ w
+        lam = (emap.solve @ b)[: mm.A.shape[0]]
         bad = {j for li in emap.indeterminate_loops for j in mm.loops[li].joints}
         loopw = np.zeros((len(mm.loops), 6))
         for li, lp in enumerate(mm.loops):
@@ -205,6 +217,8 @@ def equilibrium(
         for jk in mm.model.joints:
             c = jk.columns.start
             Y = mm.chain_signs[c] * y
+            for signs, yb in extra:
+                Y = Y + signs[c] * yb
             for li, lp in enumerate(mm.loops):
                 if jk.name in lp.joints:
                     Y = Y + _loop_sign(mm, li, jk.name) * loopw[li]

@@ -90,6 +90,22 @@ class MotionMatrices:
         effort (power per commensurate rate, N m) divided by L."""
         return np.where(np.array(self.input_lengths, dtype=bool), 1.0 / self.L, 1.0)
 
+    @property
+    def Ss(self) -> np.ndarray:
+        """The commensurate screws (6 x n) of every coordinate."""
+        return np.asarray(self.frame.screws(self.S), dtype=float)
+
+    def body_signs(self, body: str) -> np.ndarray:
+        """The signs (n,) of the ground-to-``body`` tree chain (0 off it): its twists are
+        the screws times them."""
+        mech = self.model.mech
+        return np.asarray(tree_chain(self.model, body, mech.ground).signs, dtype=float)
+
+    def body_point_now(self, body: str, x0: Any) -> np.ndarray:
+        """Where the point ``x0`` of ``body`` (given in the drawn pose) is now."""
+        g = self.poses[body]
+        return np.asarray(lie.act_point(g, np.asarray(to_float(x0), dtype=float)), dtype=float)
+
     def point_now(self, x0: Any) -> np.ndarray:
         """Where the output body's point ``x0`` (given in the reference pose) is now."""
         g = self.poses[self.model.mech.output.body]
