@@ -491,3 +491,25 @@ def test_bodies_weights_under_gravity_add_their_torques(tmp_path: Path) -> None:
     assert c["kinetostatics"]["weighed_bodies"] == ["l1", "l2"]
     c = _config(doc, "straight")  # no load: the weights alone, arm straight at A = 0.3
     assert c["efforts"]["B"] == pytest.approx(g * 0.25 * np.cos(a), rel=1e-12)
+
+
+def test_the_file_schema_takes_load_mass_and_gravity(tmp_path: Path) -> None:
+    import jsonschema
+    import yaml
+
+    schema = json.loads(run_cli(["schema"]).out)
+    text = PLANAR_2R.replace(
+        "configurations:",
+        "mass: {l1: {kg: 2, centre: [0.5, 0, 0]}}\ngravity: [0, 0, -9.81]\nconfigurations:",
+    )
+    jsonschema.validate(yaml.safe_load(text), schema)
+    bad = yaml.safe_load(text.replace("{force: [1, -2, 0]}", "{forse: [1, -2, 0]}"))
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.validate(bad, schema)
+
+
+def test_load_without_inputs_is_refused_with_the_fix(tmp_path: Path) -> None:
+    f = tmp_path / "r2.yaml"
+    f.write_text(PLANAR_2R.replace("inputs: [A, B]\n", ""))
+    r = run_cli(["analyze", f, "--config", "straight", "--load", "force=1,0,0"])
+    assert r.status == 2 and "no inputs; add inputs:" in r.err

@@ -253,6 +253,8 @@ def attach(run: Any, load: Any, limits: dict[str, float] | None) -> None:
     from mechsing.statics import load_of
 
     mech = run.mechanism
+    if load is None and not limits and (not mech.inputs or mech.output is None):
+        return  # a file load with no inputs to hold it: nothing asked
     load = load_of(mech, run.from_config, load)
     if load is None:
         if not limits:

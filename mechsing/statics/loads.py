@@ -34,6 +34,11 @@ def parse_load(text: str, mech: Any) -> Load:
             "--load is a wrench applied to the output body, but the file has no output; add "
             "output: {body: NAME} to the file (or --output-body)"
         )
+    if not mech.inputs:
+        raise UserError(
+            "--load asks for the actuator efforts, but the file has no inputs; add inputs: "
+            "[JOINT, ...] to the file (or --inputs)"
+        )
     lf = mech.units.length_factor
     got: dict[str, tuple[Any, Any, Any]] = {}
     for word in text.replace(";", " ").split():
