@@ -513,3 +513,35 @@ def test_load_without_inputs_is_refused_with_the_fix(tmp_path: Path) -> None:
     f.write_text(PLANAR_2R.replace("inputs: [A, B]\n", ""))
     r = run_cli(["analyze", f, "--config", "straight", "--load", "force=1,0,0"])
     assert r.status == 2 and "no inputs; add inputs:" in r.err
+
+
+def test_redundantly_actuated_five_bar_gives_the_least_norm_efforts_and_says_they_are_not_unique(
+    tmp_path: Path,
+) -> None:
+    f = tmp_path / "five_bar_redundant.yaml"
+    f.write_text(
+        (EX / "five_bar.yaml").read_text().replace("inputs: [A1, A2]", "inputs: [A1, A2, B1]")
+    )
+    c = _config(_json([f, "--config", "inputs", "--load", "force=0.3,-1,0"]), "inputs")
+    q = {k: v[0] for k, v in c["joints"].items()}
+    A1, B10, P0 = np.array([-1.5, 0]), np.array([-1.5, 2]), np.array([0.0, 4])
+    A2, B20 = np.array([1.5, 0]), np.array([1.5, 2])
+    B1 = A1 + _rot(q["A1"]) @ (B10 - A1)
+    P = B1 + _rot(q["A1"] + q["B1"]) @ (P0 - B10)
+    B2 = A2 + _rot(q["A2"]) @ (B20 - A2)
+
+    def perp(r: np.ndarray) -> np.ndarray:
+        return np.array([-r[1], r[0]])
+
+    rows = []  # for each basis motion (w1, w2): the rates of A1, A2, B1 and the power of f
+    for w1, w2 in ((1.0, 0.0), (0.0, 1.0)):
+        vB1, vB2 = w1 * perp(B1 - A1), w2 * perp(B2 - A2)
+        # v_B1 + d1 perp(P - B1) = v_B2 + d2 perp(P - B2)
+        d1, d2 = np.linalg.solve(np.column_stack([perp(P - B1), -perp(P - B2)]), vB2 - vB1)
+        vP = vB1 + d1 * perp(P - B1)
+        rows.append(([w1, w2, d1 - w1], float(np.array([0.3, -1.0]) @ vP)))
+    M = np.array([r for r, _ in rows])
+    power = np.array([p for _, p in rows])
+    tau = np.linalg.pinv(M) @ -power  # the least-norm efforts with tau . rates + power = 0
+    assert [c["efforts"][j] for j in ("A1", "A2", "B1")] == pytest.approx(tau, rel=1e-10)
+    assert set(c["kinetostatics"]["non_unique"]) == {"A1", "A2", "B1"}
