@@ -160,6 +160,15 @@ def test_3rpr_leg_forces_balance_the_platform_wrench_along_three_leg_lines() -> 
     got = [c["efforts"][f"P{i}"] for i in (1, 2, 3)]
     assert got == pytest.approx(tau, rel=1e-10)
     assert c["kinetostatics"]["effort_units"]["P1"] == "N"
+    # the largest leg force over unit forces through p: the largest row norm of
+    # M^-1 [I; p x]; over unit couples: the largest |entry| of M^-1's last column
+    Minv = np.linalg.inv(M)
+    per_force = Minv @ np.array([[1.0, 0], [0, 1], [-p[1], p[0]]])
+    largest = c["kinetostatics"]["largest_unit_efforts"]
+    assert largest["force"]["N"]["value"] == pytest.approx(
+        max(np.linalg.norm(per_force, axis=1)), rel=1e-10
+    )
+    assert largest["couple"]["N"]["value"] == pytest.approx(max(abs(Minv[:, 2])), rel=1e-10)
 
 
 def test_3rpr_type2_efforts_unbounded_with_the_load_power_and_min_norm_for_zero_power() -> None:
@@ -545,3 +554,26 @@ def test_redundantly_actuated_five_bar_gives_the_least_norm_efforts_and_says_the
     tau = np.linalg.pinv(M) @ -power  # the least-norm efforts with tau . rates + power = 0
     assert [c["efforts"][j] for j in ("A1", "A2", "B1")] == pytest.approx(tau, rel=1e-10)
     assert set(c["kinetostatics"]["non_unique"]) == {"A1", "A2", "B1"}
+
+
+@pytest.mark.parametrize("k", ["1000", "1/1000"])
+def test_scaling_the_3rpr_keeps_its_leg_forces_and_indices(tmp_path: Path, k: str) -> None:
+    from fractions import Fraction
+
+    s = float(Fraction(k))
+    op = f"*{k}" if "/" not in k else f"/{k.split('/')[1]}"
+    path = tmp_path / "rpr_scaled.yaml"
+    path.write_text(scaled_text(EX / "planar_3rpr.yaml", op))
+    base = _config(
+        _json([EX / "planar_3rpr.yaml", "--config", "stroke", "--load", "force=1,2,0 point=1,1,0"]),
+        "stroke",
+    )
+    got = _config(
+        _json([path, "--config", "stroke", "--load", f"force=1,2,0 point={s!r},{s!r},0"]), "stroke"
+    )
+    # prismatic actuators under a force: N for N, whatever the scale; couples: 1/k
+    assert got["efforts"] == pytest.approx(base["efforts"], rel=1e-9)
+    bt, gt = base["kinetostatics"], got["kinetostatics"]
+    assert gt["transmission"]["output"] == pytest.approx(bt["transmission"]["output"], rel=1e-9)
+    b_c = bt["largest_unit_efforts"]["couple"]["N"]["value"]
+    assert gt["largest_unit_efforts"]["couple"]["N"]["value"] == pytest.approx(b_c / s, rel=1e-9)
