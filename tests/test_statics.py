@@ -230,6 +230,18 @@ def test_stewart_six_leg_forces_along_the_leg_lines() -> None:
     w = np.concatenate([f, np.array([0.5, 0, 0.2]) + np.cross(p, f)])
     tau = np.linalg.solve(np.array(cols).T, -w)
     assert [c["efforts"][f"P{i}"] for i in range(1, 7)] == pytest.approx(tau, rel=1e-10)
+    # output index of leg i: the platform twist t_i with the other legs locked (no power
+    # of their forces on it); the cosine between leg i's line and its S point's velocity
+    W = np.array(cols)  # rows (u, b x u): power on (omega, v0) is (b x u).omega + u.v0
+    T = np.linalg.solve(np.hstack([W[:, 3:], W[:, :3]]), np.eye(6))  # columns (omega, v0)
+    want = []
+    for i, bi in enumerate(b):
+        om, v0 = T[:3, i], T[3:, i]
+        vs = v0 + np.cross(om, bi)
+        want.append(abs(W[i, :3] @ vs) / np.linalg.norm(vs))
+    tr = c["kinetostatics"]["transmission"]
+    assert tr["output"] == pytest.approx(want, rel=1e-9)
+    assert tr["input"] == pytest.approx([1.0] * 6, rel=1e-12)
 
 
 def _five_bar_angles(q: dict) -> tuple[float, float, float]:

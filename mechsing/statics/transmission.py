@@ -108,16 +108,21 @@ def transmission(mech: Any, mm: MotionMatrices) -> Transmission:
     L = mm.L
     Ss = np.asarray(mm.frame.screws(mm.S), dtype=float)  # commensurate screws
     out = mech.output
-    xP = None if out.point is None else mm.point_now(out.point)
-    extra = np.zeros((6, 0))
-    if xP is not None:  # the output body's rotations about its point do no task work
-        # rotations about x_P: (e_i, x_P x e_i) as columns
-        rot = np.vstack([np.eye(3), np.cross(xP[None, :], np.eye(3)).T])
-        extra = np.asarray(mm.frame.twists(rot), dtype=float)
     span = decide_rank(Ss, _FLOAT, L, want_spaces=True)
     if span.rank is None:
         return _none("the motion space's dimension is undecided at float")
     Q = span.range_space  # 6 x d, commensurate motion space
+    # a positioning task (an output point) when the inputs are fewer than the motion
+    # space's dimension: the output body's rotations about its point do no task work;
+    # with as many inputs the inputs fix the body, whose twist is the output
+    xP = None
+    if out.point is not None and len(inputs) < Q.shape[1]:
+        xP = mm.point_now(out.point)
+    extra = np.zeros((6, 0))
+    if xP is not None:
+        # rotations about x_P: (e_i, x_P x e_i) as columns
+        rot = np.vstack([np.eye(3), np.cross(xP[None, :], np.eye(3)).T])
+        extra = np.asarray(mm.frame.twists(rot), dtype=float)
     if extra.shape[1]:  # only the rotations about the point that lie in the motion space
         inside = decide_rank(extra - Q @ (Q.T @ extra), _FLOAT, L, want_spaces=True)
         C = inside.null_space if inside.null_space is not None else np.zeros((3, 0))
