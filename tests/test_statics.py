@@ -589,3 +589,18 @@ def test_scaling_the_3rpr_keeps_its_leg_forces_and_indices(tmp_path: Path, k: st
     assert gt["transmission"]["output"] == pytest.approx(bt["transmission"]["output"], rel=1e-9)
     b_c = bt["largest_unit_efforts"]["couple"]["N"]["value"]
     assert gt["largest_unit_efforts"]["couple"]["N"]["value"] == pytest.approx(b_c / s, rel=1e-9)
+
+
+def test_grid_sweep_samples_carry_the_efforts_analyze_gives_there() -> None:
+    load = "force=0.3,-1,0"
+    r = run_cli(["sweep", EX / "five_bar.yaml", "--vary", "A1=0.2:0.4:0.1", "--vary", "A2=-0.3:-0.1:0.1",
+                 "--load", load, "--precision", "float", "--format", "json"])  # fmt: skip
+    assert r.status == 0, r.err
+    points = json.loads(r.out)["points"]
+    assert len(points) == 9 and all(p["reached"] for p in points)
+    p = next(p for p in points if p["values"] == pytest.approx([0.3, -0.2]))
+    c = _config(_json([EX / "five_bar.yaml", "--config", "inputs", "--load", load]), "inputs")
+    assert p["efforts"] == pytest.approx(c["efforts"], rel=1e-9)
+    assert p["transmission"]["local"] == pytest.approx(
+        c["kinetostatics"]["transmission"]["local"], rel=1e-9
+    )
