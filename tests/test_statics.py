@@ -604,3 +604,14 @@ def test_grid_sweep_samples_carry_the_efforts_analyze_gives_there() -> None:
     assert p["transmission"]["local"] == pytest.approx(
         c["kinetostatics"]["transmission"]["local"], rel=1e-9
     )
+
+
+def test_no_runtime_warning_at_singular_configurations_under_a_load() -> None:
+    from tests.cli import runtime_warnings
+
+    for argv in (
+        ["analyze", EX / "planar_3rpr.yaml", "--precision", "float", "--load", "moment=0,0,1"],
+        ["analyze", EX / "five_bar.yaml", "--config", "type1", "--config", "type2",
+         "--precision", "float", "--load", "force=0,1,0"],
+    ):  # fmt: skip
+        assert runtime_warnings(argv) == []
