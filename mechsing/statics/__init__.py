@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import to_float
+from mechsing.numeric import Precision, display_floor, floored, to_float
 from mechsing.statics.efforts import EffortMap, Equilibrium, effort_map, equilibrium, load_wrench
 from mechsing.statics.matrices import MotionMatrices, float_configuration, motion_matrices
 from mechsing.statics.transmission import Transmission, transmission
@@ -45,6 +45,8 @@ class Kinetostatics:
     input_lengths: tuple[bool, ...]
     #: the bodies whose weights the efforts hold too (the file's mass and gravity)
     weighed: tuple[str, ...] = ()
+    #: the characteristic length L (m): a force times L compares with a torque
+    length_scale: float = 1.0
 
     def to_json(self) -> dict[str, Any]:
         """The configuration's JSON keys: ``efforts`` (null when unbounded) and
@@ -103,7 +105,18 @@ class Kinetostatics:
                 )
             else:
                 assert eq.efforts is not None
-                eff = ", ".join(f"{n} {v:.6g} {unit[n]}" for n, v in eq.efforts.items())
+                # shown as 0 below float's display floor relative to the largest effort
+                # (commensurate: a force times L), as lengths are (the JSON keeps them)
+                comm = {
+                    n: abs(v) * (self.length_scale if unit[n] == "N" else 1.0)
+                    for n, v in eq.efforts.items()
+                }
+                rel = display_floor(Precision("float"), 1.0) * max(comm.values(), default=0.0)
+                eff = ", ".join(
+                    f"{n} {floored(v, rel / (self.length_scale if unit[n] == 'N' else 1.0)):.6g} "
+                    f"{unit[n]}"
+                    for n, v in eq.efforts.items()
+                )
                 lines.append(f"{load}: actuator efforts {eff}")
                 if eq.bounded is None:
                     lines.append("whether the efforts are bounded is undecided at float")
@@ -123,7 +136,7 @@ class Kinetostatics:
                         f"constraint wrenches statically indeterminate in loop(s) {loops} "
                         "(overconstrained)"
                     )
-        lines += self.units.text_lines()
+        lines += self.units.text_lines(self.length_scale)
         lines += self.transmission.text_lines()
         return lines
 
@@ -173,6 +186,7 @@ def kinetostatics_at(mech: Any, q: np.ndarray, load: Any, model: Any) -> Kinetos
         mm.inputs,
         mm.input_lengths,
         tuple(b for b, _ in weights),
+        mm.L,
     )
 
 

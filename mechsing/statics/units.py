@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import Precision, decide_rank
+from mechsing.numeric import Precision, decide_rank, display_floor, floored
 from mechsing.statics.efforts import EffortMap
 from mechsing.statics.matrices import MotionMatrices
 
@@ -47,15 +47,31 @@ class UnitEfforts:
 
         return {"force": one(self.force), "couple": one(self.couple)}
 
-    def text_lines(self) -> list[str]:
+    def text_lines(self, L: float = 1.0) -> list[str]:
+        """Sentences; a value below float's display floor relative to the largest (per
+        newton, a couple's times 1/L and a torque's times 1/L: commensurate) shows as 0."""
         out = []
-        for what, d, per in (("unit force", self.force, "N"), ("unit couple", self.couple, "N m")):
+
+        def comm(d: dict[str, tuple[float, str] | None], per_length: float) -> list[float]:
+            return [
+                v[0] * (L if unit == "N" else 1.0) * per_length
+                for unit, v in d.items()
+                if v is not None
+            ]
+
+        big = max([*comm(self.force, 1.0 / L), *comm(self.couple, 1.0)], default=0.0)
+        rel = display_floor(Precision("float"), 1.0) * big
+        for what, d, per, pl in (
+            ("unit force", self.force, "N", 1.0 / L),
+            ("unit couple", self.couple, "N m", 1.0),
+        ):
             parts = []
             for unit, v in d.items():
                 if v is None:
                     parts.append(f"unbounded for {unit} inputs")
                 else:
-                    parts.append(f"{v[0]:.4g} {unit} per {per} ({v[1]})")
+                    floor = rel / ((L if unit == "N" else 1.0) * pl)
+                    parts.append(f"{floored(v[0], floor):.4g} {unit} per {per} ({v[1]})")
             if parts:
                 out.append(f"largest effort over a {what} on the output: {', '.join(parts)}")
         return out
