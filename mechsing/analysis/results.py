@@ -220,6 +220,9 @@ class ConfigurationResult:
     #: the verdict rests on a margin below the resolution of the given values (JSON
     #: ``data_resolution``; None: it does not, or the values are exact)
     data_resolution: DataResolution | None = None
+    #: the statics under the configuration's load (:class:`mechsing.statics.Kinetostatics`;
+    #: JSON ``efforts`` and ``kinetostatics``), None without a load
+    kinetostatics: Any = None
 
     @property
     def singular(self) -> bool | None:
@@ -423,6 +426,8 @@ def _configuration(c: ConfigurationResult) -> dict[str, Any]:
         if d.verdict_from is not None:  # auto kept float's singular verdict (see notes)
             out["data_resolution"]["verdict_from"] = d.verdict_from
             out["data_resolution"]["written_decimals"] = "regular"
+    if c.kinetostatics is not None:
+        out.update(c.kinetostatics.to_json())
     return out
 
 

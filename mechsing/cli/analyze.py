@@ -35,6 +35,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     options.add_verbose_option(p)
     options.add_set_option(p)
     options.add_scene_options(p)
+    options.add_load_option(p)
 
 
 def _progress(line: str) -> None:
@@ -44,7 +45,7 @@ def _progress(line: str) -> None:
 def run(args: argparse.Namespace) -> int:
     from mechsing.analysis import analyze
     from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
-    from mechsing.cli.options import apply_scene, apply_set, check_shared
+    from mechsing.cli.options import apply_scene, apply_set, check_shared, with_load
     from mechsing.files import check_output, write_output
     from mechsing.report import render
 
@@ -58,6 +59,7 @@ def run(args: argparse.Namespace) -> int:
         args.file,
     )
     result = analyze(mech, args.config, args.prec, time_limit=args.time_limit, progress=_progress)
+    result = with_load(result, mech, args.load)
     text = render(result, args.format)
     if args.output:
         write_output(args.output, text, [args.file])

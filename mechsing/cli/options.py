@@ -255,3 +255,52 @@ def apply_scene(mech: Any, args: argparse.Namespace, path: str) -> Any:
         for note in chosen.notes[len(mech.notes) :]:
             print(f"mechsing: {note}", file=sys.stderr)
     return chosen
+
+
+def add_load_option(p: argparse.ArgumentParser) -> None:
+    """Add ``--load`` (a wrench on the output: :mod:`mechsing.statics.loads`)."""
+    from mechsing.statics.loads import LOAD_HELP
+
+    p.add_argument("--load", metavar='"force=FX,FY,FZ ..."', help=LOAD_HELP)
+
+
+def with_load(result: Any, mech: Any, text: str | None) -> Any:
+    """The analysis ``result`` with the statics of its configurations under ``--load``
+    (``text``) or the file's loads (docs/kinetostatics.md)."""
+    from mechsing.statics import with_kinetostatics
+    from mechsing.statics.loads import parse_load
+
+    return with_kinetostatics(result, mech, None if text is None else parse_load(text, mech))
+
+
+def add_max_effort_option(p: argparse.ArgumentParser) -> None:
+    """Add ``--max-effort INPUT=VALUE`` (repeatable; :mod:`mechsing.statics.along`)."""
+    p.add_argument(
+        "--max-effort",
+        action="append",
+        metavar="INPUT=VALUE",
+        help="locate where the input's |effort| under the load (--load or the --from "
+        "configuration's) first exceeds VALUE (N for a prismatic input, N m for a rotation); "
+        "reported as an effort limit, not a singularity (repeatable; a path only)",
+    )
+
+
+def with_sweep_load(sweep_run: Any, mech: Any, text: str | None, limits: list[str] | None) -> None:
+    """Give ``sweep_run`` the statics of its samples under ``--load`` (``text``), or the
+    load of the configuration it starts from, and the ``--max-effort`` limits."""
+    from mechsing.statics.along import attach, parse_max_effort
+    from mechsing.statics.loads import parse_load
+
+    load = None if text is None else parse_load(text, mech)
+    attach(sweep_run, load, parse_max_effort(limits, mech))
+
+
+def report_load(mech: Any, text: str | None, limits: list[str] | None) -> dict[str, Any]:
+    """``report``'s keyword arguments for ``--load`` and ``--max-effort``."""
+    from mechsing.statics.along import parse_max_effort
+    from mechsing.statics.loads import parse_load
+
+    return {
+        "load": None if text is None else parse_load(text, mech),
+        "max_effort": parse_max_effort(limits, mech) or None,
+    }

@@ -55,6 +55,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     options.add_time_limit_option(p)
     options.add_verbose_option(p)
+    options.add_load_option(p)
+    options.add_max_effort_option(p)
 
 
 def output_path(file: str, out: str | None) -> tuple[Path, str]:
@@ -79,6 +81,7 @@ def run(args: argparse.Namespace) -> int:
         apply_scene,
         apply_set,
         check_shared,
+        report_load,
         warn_varies,
     )
     from mechsing.errors import working_on
@@ -109,6 +112,7 @@ def run(args: argparse.Namespace) -> int:
             start,
             command=command,
             time_limit=args.time_limit,
+            **report_load(mech, args.load, args.max_effort),
         )
         rep.write(path, [args.file])
     print(f"mechsing: report written to {path}", file=sys.stderr)
@@ -135,4 +139,8 @@ def _argv(args: argparse.Namespace) -> list[str]:
         out += ["--set", v]
     if args.precision != "auto":
         out += ["--precision", args.precision]
+    if args.load:
+        out += ["--load", args.load]
+    for m in args.max_effort or ():
+        out += ["--max-effort", m]
     return out

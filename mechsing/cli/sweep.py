@@ -96,6 +96,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         help="most located points of a grid classified by the full analysis (default 200)",
     )
     options.add_verbose_option(p)
+    options.add_load_option(p)
+    options.add_max_effort_option(p)
 
 
 def _positive_int(option: str) -> Callable[[str], int]:
@@ -140,7 +142,7 @@ def output_format(fmt: str | None, out: str | None) -> str:
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
-    from mechsing.cli.options import check_shared, warn_varies
+    from mechsing.cli.options import check_shared, warn_varies, with_sweep_load
     from mechsing.errors import UserError, working_on
     from mechsing.sweeps import MAX_CLASSIFIED, SweepRun
 
@@ -185,6 +187,7 @@ def run(args: argparse.Namespace) -> int:
             max_classified=args.max_classified or MAX_CLASSIFIED,
             time_limit=args.time_limit,
         )
+        with_sweep_load(sweep_run, mech, args.load, args.max_effort)
         with (
             _destination(args.output, args.file) as out,
             _progress_bar(sweep_run, args.quiet) as progress,

@@ -20,6 +20,7 @@ from mechsing.errors import ExpressionError, InputRefError, MechanismError, YAML
 from mechsing.model.couplings import read_couplings
 from mechsing.model.expressions import is_plain_decimal, parse_number, radian_power, written_digits
 from mechsing.model.graph import build_graph, connected_to, coupled_loops
+from mechsing.model.loads import LOAD_KEY, read_load, read_weights
 from mechsing.model.mechanism import (
     POSE_KEY,
     U_JOINT,
@@ -78,6 +79,8 @@ TOP_LEVEL_KEYS = (
     "limits",
     "dh",
     "couplings",
+    "mass",
+    "gravity",
 )
 JOINT_BASE_KEYS = ("name", "type", "between")
 U_KEYS = (("axes", "axes"), ("point", "point"))
@@ -87,7 +90,7 @@ DISPLACEMENT_KEYS = ("rotation", "translation")
 #: rotation about it written one way (a matrix, a rotation vector, or axis and angle)
 POSE_KEYS = ("position", "rotation", "rotation_vector", "axis", "angle")
 #: configuration keys that are not joint names (so no joint may be called so)
-RESERVED_CONFIGURATION_KEYS = ("start", POSE_KEY)
+RESERVED_CONFIGURATION_KEYS = ("start", POSE_KEY, LOAD_KEY)
 
 #: most bodies / joints / configurations in one file
 MAX_BODIES = 2000
@@ -522,6 +525,7 @@ class _Builder:
             couplings=read_couplings(r, top.get("couplings"), jmap),
             parameters=dict(r.parameters),
             resolution=tuple(r.geometry),
+            weights=read_weights(r, top.get("mass"), top.get("gravity"), bodies, ground),
         )
 
     # -- units --------------------------------------------------------------
@@ -690,7 +694,11 @@ class _Builder:
                 "coordinates in inputs); rename it",
             )
         if name in RESERVED_CONFIGURATION_KEYS:
-            what = {"start": "the start configuration", POSE_KEY: "the output body's pose"}[name]
+            what = {
+                "start": "the start configuration",
+                POSE_KEY: "the output body's pose",
+                LOAD_KEY: "the load on the output",
+            }[name]
             raise r.error(
                 item,
                 nv.line,
@@ -949,7 +957,11 @@ class _Builder:
             resolution: dict[str, tuple[tuple[float, int], ...]] = {}
             start: str | None = None if cname == "reference" else "reference"
             pose: OutputPose | None = None
+            load = None
             for jk, jv in cmap.items:
+                if jk.text == LOAD_KEY:
+                    load = read_load(r, jv, item, jk.line, self.output_given is not None)
+                    continue
                 if jk.text == POSE_KEY:
                     if cname == "reference":
                         raise r.error(
@@ -975,8 +987,8 @@ class _Builder:
                     raise r.error(
                         item,
                         jk.line,
-                        f"unknown joint {jk.text!r}; use one of {_few(list(jmap))}, start or "
-                        f"{POSE_KEY}",
+                        f"unknown joint {jk.text!r}; use one of {_few(list(jmap))}, start, "
+                        f"{POSE_KEY} or {LOAD_KEY}",
                     )
                 values[jk.text] = self.value(jv, jmap[jk.text], item)
                 lines[jk.text] = jk.line
@@ -1004,7 +1016,7 @@ class _Builder:
                     "be solved",
                 )
             out[cname] = Configuration(
-                cname, values, start, k.line, lines, pose, resolution=resolution
+                cname, values, start, k.line, lines, pose, resolution=resolution, load=load
             )
         for cname, (start, line) in starts.items():
             if start not in out:

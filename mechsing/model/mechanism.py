@@ -272,6 +272,8 @@ class Configuration:
     resolution: Mapping[str, tuple[tuple[float, int], ...]] = field(
         default_factory=dict, hash=False, compare=False
     )
+    #: the load on the output the configuration gives (:class:`mechsing.model.loads.Load`)
+    load: Any = field(default=None, hash=False, compare=False)
 
     @property
     def is_reference(self) -> bool:
@@ -352,6 +354,8 @@ class Mechanism:
     # SI, significant digits) -- half a unit in the last written digit of a decimal of
     # RESOLUTION_MIN_DIGITS digits or more (a direction's entry before normalisation)
     resolution: tuple[tuple[str, str, int, float, int], ...] = ()
+    # the bodies' weights (file keys mass and gravity; :class:`mechsing.model.loads.Weights`)
+    weights: Any = None
 
     def joint(self, name: str) -> Joint:
         """The joint called ``name`` (KeyError if none)."""

@@ -18,6 +18,7 @@ from mechsing.model.loader import (
     RESERVED_CONFIGURATION_KEYS,
     U_KEYS,
 )
+from mechsing.model.loads import LOAD_KEY, LOAD_KEYS
 from mechsing.model.mechanism import POSE_KEY, U_JOINT
 
 __all__ = ["SCHEMA_ID", "mechanism_schema"]
@@ -194,6 +195,26 @@ def mechanism_schema() -> dict[str, Any]:
                 "additionalProperties": False,
             },
             "characteristic_length": {"$ref": "#/$defs/number"},
+            "mass": {
+                "type": "object",
+                "description": "the bodies' masses for their weights under gravity "
+                "(docs/kinetostatics.md): kg, and the centre of mass where it is in the drawn "
+                "pose (the file's lengths; default the centroid of the body's joint points)",
+                "additionalProperties": {
+                    "type": "object",
+                    "properties": {
+                        "kg": {"$ref": "#/$defs/number"},
+                        "centre": {"$ref": "#/$defs/vector"},
+                    },
+                    "required": ["kg"],
+                    "additionalProperties": False,
+                },
+            },
+            "gravity": {
+                "$ref": "#/$defs/vector",
+                "description": "the acceleration of gravity in ground axes (the file's length "
+                "unit per s^2), with mass",
+            },
             "configurations": {
                 "type": "object",
                 "additionalProperties": {"$ref": "#/$defs/configuration"},
@@ -276,6 +297,23 @@ def mechanism_schema() -> dict[str, Any]:
                     ]
                 },
             },
+            "load": {
+                "type": "object",
+                "description": "the wrench the environment applies to the output body "
+                "(mechsing analyze/sweep/report give the actuator efforts that hold it): force "
+                "(N) and moment (N times the file's length unit, about point) in ground axes; "
+                "point: a point of the output body where it is in the drawn pose (the file's "
+                "lengths; it moves with the body), default the output's reference point",
+                "properties": {
+                    "force": {"$ref": "#/$defs/vector"},
+                    "moment": {"$ref": "#/$defs/vector"},
+                    "point": {"$ref": "#/$defs/vector"},
+                },
+                "minProperties": 1,
+                "additionalProperties": False,
+                "propertyNames": {"enum": list(LOAD_KEYS)},
+                "anyOf": [{"required": ["force"]}, {"required": ["moment"]}],
+            },
             "joint_value": {
                 "anyOf": [
                     {"$ref": "#/$defs/number"},
@@ -285,7 +323,7 @@ def mechanism_schema() -> dict[str, Any]:
             },
             "configuration": {
                 "description": "joint values by joint name (the others are solved by "
-                f"closure), start, and the output body's {POSE_KEY}; the configuration named "
+                f"closure), start, the output body's {POSE_KEY} and the {LOAD_KEY} on it; the configuration named "
                 "reference has every joint at identity and may list only identity values",
                 "anyOf": [
                     {"type": "null"},
@@ -294,6 +332,7 @@ def mechanism_schema() -> dict[str, Any]:
                         "properties": {
                             "start": {"$ref": "#/$defs/name"},
                             POSE_KEY: {"$ref": "#/$defs/pose"},
+                            LOAD_KEY: {"$ref": "#/$defs/load"},
                         },
                         "additionalProperties": {"$ref": "#/$defs/joint_value"},
                     },

@@ -346,6 +346,8 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             lines.append(f"{bullet}output motion: {_motion_words(c.output_motion, L)}")
         if c.data_resolution is not None:
             lines.append(f"{bullet}verdict: {c.data_resolution.verdict} (see the note).")
+        if c.kinetostatics is not None:
+            lines += [f"{bullet}{t}." for t in c.kinetostatics.text_lines()]
         if not c.singularities:
             lines.append(f"{bullet}regular: no singularity.")
         for s in c.singularities:

@@ -19,6 +19,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -37,6 +38,7 @@ from mechsing.report.figures import graph_figure, grid_figure, path_figure, svg
 from mechsing.report.render import _margin, explain, joint_values_text, scene_line
 from mechsing.report.sketch import Screw, View, choose_view, sketch_figure
 from mechsing.report.sphere import choose_sphere_view, sphere_figure, spherical_centre
+from mechsing.report.statics import kinetostatics_blocks
 from mechsing.report.words import twist_words
 from mechsing.singularity.findings import (
     ConstraintFinding,
@@ -44,6 +46,7 @@ from mechsing.singularity.findings import (
     SerialFinding,
 )
 from mechsing.singularity.zfb import not_run_sentences
+from mechsing.statics import with_kinetostatics
 from mechsing.subgroups import Subgroup, load_catalog
 from mechsing.sweeps import SweepResult, sweep
 from mechsing.sweeps.results import located_rows
@@ -118,6 +121,8 @@ def report(
     *,
     command: str | None = None,
     time_limit: float | None = None,
+    load: Any = None,
+    max_effort: dict[str, float] | None = None,
 ) -> Report:
     """A design review of a mechanism (or a file), ready to write as HTML or Markdown.
 
@@ -139,6 +144,9 @@ def report(
     time_limit : float or None
         The most seconds one configuration (or located point) may take, as for
         ``mechsing.analyze``.
+    load, max_effort : Load, dict, optional
+        A load on the output replacing the file's (:class:`mechsing.model.loads.Load`)
+        and effort limits by input: the kinetostatics section (docs/kinetostatics.md).
 
     Returns
     -------
@@ -154,10 +162,13 @@ def report(
     )
     prec = parse_precision(precision) if isinstance(precision, str) else precision
     result = analyze(mech, list(configs) if configs else None, prec, time_limit=time_limit)
+    result = with_kinetostatics(result, mech, load)
     swept = None
     if vary:
         varies = [vary] if isinstance(vary, str | Vary) else list(vary)
-        swept = sweep(mech, varies, from_config, prec, time_limit=time_limit)
+        swept = sweep(
+            mech, varies, from_config, prec, time_limit=time_limit, load=load, max_effort=max_effort
+        )
     if command is None:
         args = [repr(mech.path or mech.name)]
         if configs:
@@ -818,5 +829,6 @@ def _blocks(r: Report) -> list[doc.Block]:
     out += _configurations(r)
     if r.sweep is not None:
         out += _sweep(r)
+    out += kinetostatics_blocks(r)
     out += _how(r)
     return out

@@ -70,6 +70,8 @@ def sweep(
     max_classified: int = MAX_CLASSIFIED,
     time_limit: float | None = None,
     connect_timeout: float | None = None,
+    load: Any = None,
+    max_effort: dict[str, float] | None = None,
 ) -> SweepResult:
     """Sweep a mechanism (or a file) over one variable (a path) or two (a grid).
 
@@ -99,6 +101,10 @@ def sweep(
     connect_timeout : float or None
         Seconds a scheduler has to accept the connection and answer (default
         :data:`mechsing.sweeps.distributed.CONNECT_TIMEOUT`, 5 s).
+    load, max_effort : Load, dict, optional
+        The samples' efforts under ``load`` (default: the start configuration's file
+        load, if any) and where an input's |effort| crosses ``max_effort[input]``
+        (:mod:`mechsing.statics.along`).
 
     Returns
     -------
@@ -114,6 +120,9 @@ def sweep(
         max_classified=max_classified,
         time_limit=time_limit,
     )
+    from mechsing.statics.along import attach
+
+    attach(run, load, max_effort)
     rows = run.rows(progress, workers=workers, scheduler=scheduler, connect_timeout=connect_timeout)
     for _ in rows:
         pass
@@ -208,6 +217,8 @@ class SweepRun:
         self.notes += vary_warnings(mech, varies)
         self.outside = {c.name: np.zeros(shape, dtype=bool) for c in eng.limited}
         self.newton_iterations = 0
+        #: the statics of the samples under a load (:class:`mechsing.statics.along.SweepStatics`)
+        self.statics: Any = None
 
     @property
     def grid(self) -> bool:
@@ -296,6 +307,8 @@ class SweepRun:
             self.ratio[t][at] = row.ratio[t]
         self.located += row.located
         self.newton_iterations += row.newton
+        if self.statics is not None:
+            self.statics.store(at, row)
         for name, beyond in row.outside.items():
             self.outside[name][at] = beyond
         for s in row.stopped:
@@ -376,6 +389,8 @@ class SweepRun:
                 )
             )
         loci = loci_of(self, out) if self.grid else ()
+        if self.statics is not None and not self.grid:
+            self.statics.locate_limits(eng, self.vars[0].values)
         return SweepResult(
             self.mechanism,
             self.variables,
@@ -393,6 +408,7 @@ class SweepRun:
             self.newton_iterations,
             time.perf_counter() - self.start_time,
             self.outside,
+            statics=self.statics,
         )
 
 

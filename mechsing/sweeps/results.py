@@ -205,6 +205,8 @@ class SweepResult:
     newton_iterations: int = 0
     seconds: float = field(default=0.0, compare=False)
     outside: dict[str, np.ndarray] = field(default_factory=dict, repr=False, compare=False)
+    #: the samples' statics under a load (:class:`mechsing.statics.along.SweepStatics`)
+    statics: Any = field(default=None, repr=False, compare=False)
 
     @property
     def grid(self) -> bool:
@@ -258,6 +260,7 @@ def json_header(r: Any) -> dict[str, Any]:
         "held": list(r.held),
         "tests": list(r.tests),
         "generic": dict(r.generic),
+        **({} if r.statics is None else r.statics.header_json()),
     }
 
 
@@ -275,6 +278,8 @@ def json_point(r: Any, idx: tuple[int, ...]) -> dict[str, Any]:
         out[t] = {"rank": None if rk < 0 else rk, "ratio": _num(float(r.ratio[t][idx]))}
     if r.outside:  # the file has limits: the coordinates beyond theirs here
         out["outside_limits"] = [name for name, beyond in r.outside.items() if beyond[idx]]
+    if r.statics is not None:
+        out.update(r.statics.point_json(idx))
     return out
 
 
@@ -284,6 +289,7 @@ def json_tail(r: Any) -> dict[str, Any]:
         "loci": [lo.to_json() for lo in r.loci],
         "notes": list(r.notes),
         "newton_iterations": r.newton_iterations,
+        **({} if r.statics is None else r.statics.tail_json()),
     }
 
 
@@ -401,6 +407,10 @@ def text_report(r: SweepResult) -> str:
             f"{len(lo.vertices)} vertices from ({r.variables[0].shown(a[0])}, "
             f"{r.variables[1].shown(a[1])}) to ({r.variables[0].shown(b[0])}, "
             f"{r.variables[1].shown(b[1])})" + (", closed" if lo.closed else "")
+        )
+    if r.statics is not None:
+        lines += r.statics.text_lines(
+            lambda k: _where(r, tuple(_values_at(r.variables, k))), lambda v: _where(r, v)
         )
     for note in r.notes:
         lines.append(f"  note: {note}")

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from mechsing.statics.along import KINETOSTATICS_SCHEMA
 from mechsing.sweeps.measures import TESTS
 
 __all__ = ["SWEEP_SCHEMA_ID", "sweep_schema"]
@@ -61,6 +62,7 @@ def sweep_schema() -> dict[str, Any]:
                 "description": "present when the file has joint limits: the coordinates "
                 "beyond theirs at this sample (J2, or C1[1] for a joint of several)",
             },
+            **KINETOSTATICS_SCHEMA["point"],
         },
         "required": ["values", "reached"],
         "additionalProperties": False,
@@ -195,6 +197,7 @@ def sweep_schema() -> dict[str, Any]:
             "loci": {"type": "array", "items": {"$ref": "#/$defs/locus"}},
             "notes": _STRINGS,
             "newton_iterations": {"type": "integer", "minimum": 0},
+            **KINETOSTATICS_SCHEMA["top"],
         },
         "required": [
             "mechanism",
