@@ -54,19 +54,13 @@ from mechsing.numeric import (
     Precision,
     to_float,
 )
+from mechsing.sweeps.arc import Arc, Fold
 from mechsing.sweeps.limits import limited_coordinates, outside
 from mechsing.sweeps.measures import Measures, PointMeasures
-from mechsing.sweeps.path import (
-    Fold,
-    PathTrace,
-    Problem,
-    _Arc,
-    _nodes,
-    close_segments,
-    first_nodes_of,
-    follow,
-    follow_together,
-)
+from mechsing.sweeps.nodes import reach_node
+from mechsing.sweeps.path import PathTrace, first_nodes_of, follow, follow_together
+from mechsing.sweeps.problem import Problem
+from mechsing.sweeps.segments import close_segments
 from mechsing.sweeps.spec import Variable
 
 __all__ = ["Located", "RowResult", "Sweep"]
@@ -339,7 +333,7 @@ class Sweep:
         """From a singular start (a fold: continuation has no direction there), a short
         step along the path's curve towards ``value``, then continuation to it."""
         d = 1 if value > z[col] else -1
-        arc = _Arc(self.problem, col, d)
+        arc = Arc(self.problem, col, d)
         tau = arc.tangent(np.asarray(z, dtype=float))
         if tau is None:
             return None
@@ -349,7 +343,7 @@ class Sweep:
                 continue
             # along the curve (near a fold the joints move like the square root of the
             # swept value: continuation in the swept value cannot leave it)
-            out = _Arc(self.problem, col, d).to_fold_or(zn, value)
+            out = Arc(self.problem, col, d).to_fold_or(zn, value)
             if out is not None and out[0] == "passed":
                 return np.asarray(out[1], dtype=float)
         return None
@@ -363,7 +357,7 @@ class Sweep:
         ``value`` along the curve.  The branch taken is said in the sweep's notes."""
         pb = self.problem
         d = 1 if value > z[col] else -1
-        arc = _Arc(pb, col, d)
+        arc = Arc(pb, col, d)
         z = np.asarray(z, dtype=float)
         Js, _ = scaled_system(pb.cm, z)
         _, s, Vt = np.linalg.svd(Js[:, arc.free], full_matrices=True)
@@ -387,7 +381,7 @@ class Sweep:
                 best = (off, zn)
         if best is None:
             return None
-        out = _Arc(pb, col, d).to_fold_or(best[1], value)
+        out = Arc(pb, col, d).to_fold_or(best[1], value)
         if out is None or out[0] != "passed":
             return None
         var = self._variable(col)
@@ -415,7 +409,7 @@ class Sweep:
             return Q[0]
         # along the path from za by the tangent in halved steps, then the careful
         # continuation
-        walked = _nodes(pb, np.asarray(za, dtype=float), None, col, t)
+        walked = reach_node(pb, np.asarray(za, dtype=float), None, col, t)
         return walked if walked is not None else pb.reach(za, col, t)
 
     # ------------------------------------------------------------------ rows
@@ -996,7 +990,7 @@ class Sweep:
                 v = float(z[col])
                 if abs(g - v) <= 4 * delta:
                     break
-                zn = _nodes(self.problem, z, zp, col, v + (g - v) / 2)
+                zn = reach_node(self.problem, z, zp, col, v + (g - v) / 2)
                 if zn is None:
                     return None
                 rn = self._ratio(t, zn)
@@ -1016,7 +1010,7 @@ class Sweep:
         for (z, zp, _), side in zip(walks, (-1.0, 1.0), strict=True):
             pts = []
             for k in (3.0, 2.0, 1.0):
-                zn = _nodes(self.problem, z, zp, col, guess + side * k * delta)
+                zn = reach_node(self.problem, z, zp, col, guess + side * k * delta)
                 if zn is None:
                     return None
                 z, zp = np.asarray(zn, dtype=float), z
