@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -29,12 +28,14 @@ from mechsing.numeric.tolerances import (
     SWEEP_LOCATE_TOL,
     SWEEP_TANGENT_KEPT,
 )
+from mechsing.sweeps.problem import Problem
 
-if TYPE_CHECKING:
-    from mechsing.sweeps.problem import Problem
+__all__ = ["Arc", "Fold", "curve_tangent"]
 
-__all__ = ["Arc", "Fold"]
-
+#: tangents a Problem keeps (a row's start asks for the same one up to three times, and
+#: the rows of a grid are started together: a chunk of rows' starts, then their first
+#: nodes; a tangent is a few hundred bytes)
+_TANGENTS_KEPT = 4096
 #: most arclength steps spent on the far side of one fold
 _ARC_BUDGET = 4000
 #: the longest step along a curve (commensurate): the tangent may turn less than SWEEP_ARC_MAX_TURN_DEG degrees
@@ -284,6 +285,26 @@ class Arc:
             return self._turn(z, tau, h)
         finally:
             self.direction = -self.direction
+
+
+def curve_tangent(pb: Problem, z: np.ndarray, col: int) -> np.ndarray | None:
+    """The unit commensurate tangent of the path's curve at the closed z (every
+    coordinate of cm, zero on the given ones but ``col``; its sign arbitrary), or None
+    where the curve is not one-dimensional.  The last ones are kept (in ``pb.tangents``):
+    a row's start asks for it once to check that it can leave and once per direction."""
+    key = (col, np.asarray(z, dtype=float).tobytes())
+    if key in pb.tangents:
+        return pb.tangents[key]
+    arc = Arc(pb, col, 1)
+    t = arc.tangent(np.asarray(z, dtype=float))
+    out = None
+    if t is not None:
+        out = np.zeros(pb.n)
+        out[arc.free] = t
+    if len(pb.tangents) >= _TANGENTS_KEPT:
+        pb.tangents.pop(next(iter(pb.tangents)))
+    pb.tangents[key] = out
+    return out
 
 
 def _next_sample(

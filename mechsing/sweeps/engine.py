@@ -31,9 +31,9 @@ from mechsing.sweeps.bridge import between_rows, bridge_column
 from mechsing.sweeps.limits import outside
 from mechsing.sweeps.locate import Locator, measured
 from mechsing.sweeps.measures import Measures, PointMeasures
-from mechsing.sweeps.path import PathTrace, first_nodes_of, follow_together
+from mechsing.sweeps.path import first_nodes_of, follow_together
 from mechsing.sweeps.plan import check_determined, plan_sweep
-from mechsing.sweeps.records import Located, RowResult, RowSamples, merge_located
+from mechsing.sweeps.records import Located, PathTrace, RowResult, RowSamples, merge_located
 from mechsing.sweeps.segments import close_segments
 from mechsing.sweeps.spec import Variable
 from mechsing.sweeps.start import start_of

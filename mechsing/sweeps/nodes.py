@@ -15,6 +15,7 @@ import numpy as np
 
 from mechsing.numeric import SWEEP_NODE_STEP
 from mechsing.numeric.tolerances import SWEEP_NODE_CORRECTION
+from mechsing.sweeps.arc import curve_tangent
 from mechsing.sweeps.problem import Problem
 
 __all__ = [
@@ -156,7 +157,7 @@ def _tangent_prediction(pb: Problem, z: np.ndarray, col: int, value: float) -> n
 def tangent_step(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
     """The increment along the tangent at z that takes coordinate ``col`` to ``value``
     (None where the tangent is not defined or does not move ``col``)."""
-    tau = pb.tangent(z, col)
+    tau = curve_tangent(pb, z, col)
     if tau is None or tau[col] == 0:
         return None
     return pb.cm.float_frame.rates_back(tau * ((value - z[col]) / pb.scale(col) / tau[col]))

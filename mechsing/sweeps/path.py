@@ -52,10 +52,10 @@ from mechsing.sweeps.nodes import (
     tangent_step,
 )
 from mechsing.sweeps.problem import Problem
+from mechsing.sweeps.records import PathTrace
 from mechsing.sweeps.segments import close_segments, close_to_fold, near_fold
 
 __all__ = [
-    "PathTrace",
     "first_nodes_of",
     "follow",
     "follow_together",
@@ -65,22 +65,6 @@ __all__ = [
 _MAX_FOLDS = 8
 #: nodes a node's predictor is extrapolated through, besides the last (a cubic)
 _HISTORY = 3
-
-
-@dataclass
-class PathTrace:
-    """The closed configurations of one direction of a path: ``Z`` (K, n), NaN rows at
-    samples not reached; its folds; ``stopped``: why the path ended early (None: it
-    reached every sample it could); ``newton``: batched Newton iterations per sample."""
-
-    Z: np.ndarray
-    folds: list[Fold]
-    stopped: str | None = None
-    newton: np.ndarray | None = None
-    #: node pairs whose samples in between are still to be closed (``follow(...,
-    #: fine=False)``: :func:`close_segments` closes them, several traces together)
-    segments: list[tuple[int, int]] = field(default_factory=list)
-    values: np.ndarray | None = None
 
 
 def first_nodes_of(

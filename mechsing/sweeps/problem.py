@@ -3,7 +3,7 @@
 Owns :class:`Problem`: the float model a sweep closes (the mechanism's, or its pose model
 when the output's pose is swept), which coordinates are given (held at the start's values
 or swept), the closure tolerance, the tools that close (continuation of a named
-configuration's closure, batched Newton), and the path's tangent at a closed point.
+configuration's closure, batched Newton).
 """
 
 from __future__ import annotations
@@ -15,14 +15,8 @@ import numpy as np
 
 from mechsing.kinematics import Closer, KinematicModel
 from mechsing.kinematics.batch import BatchClosure
-from mechsing.sweeps.arc import Arc
 
 __all__ = ["Problem"]
-
-#: tangents a Problem keeps (a row's start asks for the same one up to three times, and
-#: the rows of a grid are started together: a chunk of rows' starts, then their first
-#: nodes; a tangent is a few hundred bytes)
-_TANGENTS_KEPT = 4096
 
 
 @dataclass
@@ -39,8 +33,9 @@ class Problem:
     tolerance: float
     #: which columns of cm are revolute angles (a value and itself plus 2 pi are one pose)
     periodic: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
-    #: the tangents asked last (:meth:`tangent`), by (column, configuration's bytes)
-    _tangents: dict[tuple[int, bytes], np.ndarray | None] = field(
+    #: the tangents asked last (:func:`~mechsing.sweeps.arc.curve_tangent` keeps them), by
+    #: (column, configuration's bytes)
+    tangents: dict[tuple[int, bytes], np.ndarray | None] = field(
         default_factory=dict, repr=False, compare=False
     )
 
@@ -68,25 +63,6 @@ class Problem:
         moved = np.linalg.norm(self.cm.float_frame.rates(Q - Qp), axis=1)
         ok = (res <= self.tolerance) & np.isfinite(res) & (moved <= bound)
         return Q, ok, its
-
-    def tangent(self, z: np.ndarray, col: int) -> np.ndarray | None:
-        """The unit commensurate tangent of the path's curve at the closed z (every
-        coordinate of cm, zero on the given ones but ``col``; its sign arbitrary), or None
-        where the curve is not one-dimensional.  The last ones are kept: a row's start
-        asks for it once to check that it can leave and once per direction."""
-        key = (col, np.asarray(z, dtype=float).tobytes())
-        if key in self._tangents:
-            return self._tangents[key]
-        arc = Arc(self, col, 1)
-        t = arc.tangent(np.asarray(z, dtype=float))
-        out = None
-        if t is not None:
-            out = np.zeros(self.n)
-            out[arc.free] = t
-        if len(self._tangents) >= _TANGENTS_KEPT:
-            self._tangents.pop(next(iter(self._tangents)))
-        self._tangents[key] = out
-        return out
 
     def reach(self, z: np.ndarray, col: int, value: float) -> np.ndarray:
         """From the closed z, the configuration with coordinate ``col`` at ``value`` (the

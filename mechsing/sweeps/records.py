@@ -1,7 +1,7 @@
 """The records of a sweep's work: located points, rows, refined points, brackets.
 
 Owns the named records the sweep's modules pass each other (:class:`Located`,
-:class:`RowResult`, :class:`Refined`, :class:`RowSamples`, :class:`RowPairs`,
+:class:`RowResult`, :class:`PathTrace`, :class:`Refined`, :class:`RowSamples`, :class:`RowPairs`,
 :class:`ColumnBrackets`), how a located point is made from the sweep's coordinates
 (:func:`located_at`) and how the points of one row found by several tests become one
 (:func:`merge_located`).
@@ -18,11 +18,13 @@ from mechsing.numeric import SWEEP_LOCATE_TOL
 from mechsing.numeric.tolerances import SWEEP_MERGE_FACTOR, SWEEP_MERGE_RTOL
 
 if TYPE_CHECKING:
+    from mechsing.sweeps.arc import Fold
     from mechsing.sweeps.measures import PointMeasures
 
 __all__ = [
     "ColumnBrackets",
     "Located",
+    "PathTrace",
     "Refined",
     "RowPairs",
     "RowResult",
@@ -68,6 +70,22 @@ class RowResult:
     measures: PointMeasures | None = None
     #: limited coordinate -> the samples beyond its limits (:mod:`mechsing.sweeps.limits`)
     outside: dict[str, np.ndarray] = field(default_factory=dict)
+
+
+@dataclass
+class PathTrace:
+    """The closed configurations of one direction of a path: ``Z`` (K, n), NaN rows at
+    samples not reached; its folds; ``stopped``: why the path ended early (None: it
+    reached every sample it could); ``newton``: batched Newton iterations per sample."""
+
+    Z: np.ndarray
+    folds: list[Fold]
+    stopped: str | None = None
+    newton: np.ndarray | None = None
+    #: node pairs whose samples in between are still to be closed (``follow(...,
+    #: fine=False)``: :func:`close_segments` closes them, several traces together)
+    segments: list[tuple[int, int]] = field(default_factory=list)
+    values: np.ndarray | None = None
 
 
 class Refined(NamedTuple):

@@ -10,16 +10,13 @@ A sample that does not close near its prediction is left NaN for continuation.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mechsing.errors import ClosureError
 from mechsing.numeric import SWEEP_JUMP_RATIO, SWEEP_KNOT_STEP
 from mechsing.sweeps.problem import Problem
-
-if TYPE_CHECKING:
-    from mechsing.sweeps.path import PathTrace
+from mechsing.sweeps.records import PathTrace
 
 __all__ = ["close_segments", "close_to_fold", "near_fold"]
 

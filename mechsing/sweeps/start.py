@@ -16,7 +16,7 @@ import numpy as np
 from mechsing.errors import ClosureError
 from mechsing.kinematics.newton import scaled_system
 from mechsing.numeric.tolerances import SWEEP_BRANCH_MIN_SWEPT, SWEEP_CURVE_RANK_RTOL
-from mechsing.sweeps.arc import Arc
+from mechsing.sweeps.arc import Arc, curve_tangent
 from mechsing.sweeps.problem import Problem
 from mechsing.sweeps.spec import Variable
 
@@ -45,7 +45,7 @@ def start_of(
     order = np.argsort(np.abs(values - z[col]), kind="stable")
     k0 = int(order[0])
     if z[col] == values[k0]:
-        if pb.tangent(np.asarray(z, dtype=float), col) is not None:
+        if curve_tangent(pb, np.asarray(z, dtype=float), col) is not None:
             return k0, np.array(z, dtype=float)
         # a start where branches cross (a bifurcation): onto one of them
         for k in (k0 + 1, k0 - 1):
