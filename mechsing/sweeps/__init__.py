@@ -23,11 +23,10 @@ from mechsing.sweeps.results import (
     SweepResult,
     SweptVariable,
 )
-from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun, sweep
+from mechsing.sweeps.run import SweepRun, sweep
 from mechsing.sweeps.spec import Vary
 
 __all__ = [
-    "MAX_CLASSIFIED",
     "LocatedSingularity",
     "Locus",
     "SweepResult",

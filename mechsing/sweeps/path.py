@@ -1,9 +1,11 @@
 """Following one path of a sweep: the closed configuration at each sample, and its folds.
 
-Owns :class:`Problem` (what a sweep holds fixed and what it solves) and
-:func:`follow`: from a closed configuration at the first sample value, the swept
+Owns :func:`follow` (and :func:`follow_together`, several paths in lockstep, and
+:func:`first_nodes_of`): from a closed configuration at the first sample value, the swept
 coordinate moves through the sample values in order, and every sample is closed on the
-assembly mode the path started on.
+assembly mode the path started on.  The steps it strings together live beside it: the
+problem it closes (:mod:`.problem`), the nodes (:mod:`.nodes`), the samples between them
+(:mod:`.segments`) and the curve through folds (:mod:`.arc`).
 
 * **Nodes.**  Samples at most :data:`~mechsing.numeric.SWEEP_NODE_STEP` apart (radians,
   or lengths / L) are *nodes*, reached one after the other by the continuation of a
@@ -12,7 +14,7 @@ assembly mode the path started on.
   first step from the tangent at the start) and kept when Newton corrects it little.
   The samples between two nodes are closed together by batched Newton
   (:class:`~mechsing.kinematics.batch.BatchClosure`) from their interpolation on the
-  group (a row's two directions in one batch: :func:`close_segments`); one whose
+  group (a row's two directions in one batch: :func:`~.segments.close_segments`); one whose
   correction is large next to the node spacing is closed again by continuation from
   its predecessor.
 * **Folds.**  Where continuation cannot reach the next node, the path is followed along
@@ -73,7 +75,7 @@ def first_nodes_of(
     """The first node of each path of several starts (the rows of a grid), all in one
     batched Newton: each start's closed z0 and its paths (each path's ``values`` start at
     z0's value); per start, its paths' first nodes: the prediction and the test
-    :func:`_node` makes for a first step (the tangent at z0).  None for a path whose first
+    :func:`~.nodes.reach_node` makes for a first step (the tangent at z0).  None for a path whose first
     node is not kept that way (:func:`follow` then takes it as it takes any node)."""
     out: list[list[np.ndarray | None]] = [[None] * len(paths) for _, paths in starts]
     steps, which, targets = [], [], []
@@ -143,7 +145,7 @@ def follow(
 ) -> PathTrace:
     """Follow the swept coordinate ``col`` through ``values`` (monotone) from ``z0``,
     closed at ``values[0]``.  With ``fine=False`` only the nodes (and the samples near
-    folds) are closed: the trace's ``segments`` are left to :func:`close_segments`.
+    folds) are closed: the trace's ``segments`` are left to :func:`~.segments.close_segments`.
     ``first``: the first node when it is already closed (:func:`first_nodes_of`);
     ``walk``: where the path already is (:func:`follow_together`), to go on from."""
     K = len(values)
@@ -238,7 +240,7 @@ def follow_together(
 ) -> list[PathTrace]:
     """:func:`follow` (``fine=False``) of several paths (the rows of a grid), each
     ``(z0, values, first)``, in lockstep: at each step, every path whose next node
-    :func:`_node` predicts from its last two nodes (the secant or the polynomial through
+    :func:`~.nodes.reach_node` predicts from its last two nodes (the secant or the polynomial through
     the older ones) has it closed by one batched Newton over all of them, kept by the
     same test.  A path whose node is not kept that way (a fold, a sharp bend), or that
     needs the tangent's prediction, leaves the lockstep where it is: :func:`follow`
