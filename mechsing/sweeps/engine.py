@@ -65,7 +65,6 @@ class Sweep:
         self.problem = plan.problem
         #: said once, in the first row's notes: how the path left a singular start
         self.start_notes: list[str] = []
-        self.generic_mobility = plan.generic_mobility
         self.measures = Measures(self.model, plan.generic)
         check_determined(plan, mech, variables)
         #: the commensurate unit of each swept coordinate
@@ -78,9 +77,6 @@ class Sweep:
 
     def scale(self, col: int) -> float:
         return self.problem.scale(col)
-
-    def values_of(self, z: np.ndarray) -> tuple[float, ...]:
-        return tuple(float(z[c]) for c in self.cols)
 
     def _variable(self, col: int) -> Variable:
         return self.variables[self.cols.index(col)]
@@ -219,8 +215,8 @@ class Sweep:
     def _measure_rows(
         self, Zs: list[np.ndarray], reacheds: list[np.ndarray]
     ) -> tuple[PointMeasures | list[PointMeasures], list[int]]:
-        """The measures of several rows' reached samples: one batch (in chunks of
-        _CHUNK configurations), with each row's offset in it, when the measures are per
+        """The measures of several rows' reached samples: one batch (in chunks:
+        :func:`~.locate.measured`), with each row's offset in it, when the measures are per
         configuration; otherwise a list, row by row (each row its own batch, as alone)."""
         sizes = [int(np.sum(r)) for r in reacheds]
         offsets = [int(x) for x in np.cumsum([0, *sizes[:-1]])]

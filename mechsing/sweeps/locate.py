@@ -94,6 +94,8 @@ class Locator:
         return stopped
 
     def fold(self, f: Fold, index: int, values: np.ndarray) -> Located:
+        """The located point of a fold the path of row ``index`` met (through ``values``),
+        listed under the tests whose measure vanishes there."""
         pm = self.measures(f.z[None, : self.n])
         vanishing = tuple(t for t in self.tests if pm.ratio[t][0] <= SWEEP_FOLD_TEST_RTOL)
         ratio = min((float(pm.ratio[t][0]) for t in self.tests), default=0.0)
