@@ -38,8 +38,8 @@ __all__ = ["Arc", "Fold", "curve_tangent"]
 _TANGENTS_KEPT = 4096
 #: most arclength steps spent on the far side of one fold
 _ARC_BUDGET = 4000
-#: the longest step along a curve (commensurate): the tangent may turn less than SWEEP_ARC_MAX_TURN_DEG degrees
-#: per step, which shortens it where the curve bends
+#: the longest step along a curve (commensurate): the tangent may turn less than
+#: SWEEP_ARC_MAX_TURN_DEG degrees per step, which shortens it where the curve bends
 _ARC_LONGEST = 10 * SWEEP_ARC_STEP
 #: Newton iterations of one arclength step
 _ARC_NEWTON = 10

@@ -10,7 +10,7 @@ not resolved).
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import Any
+from typing import Any, NamedTuple
 
 from mechsing.analysis import analyze_found
 from mechsing.analysis.solve import value_text
@@ -18,18 +18,28 @@ from mechsing.numeric import Precision, parse_precision
 from mechsing.sweeps.engine import Sweep
 from mechsing.sweeps.records import Located
 
-__all__ = ["classify_located", "located_texts", "unresolved"]
+__all__ = ["Classified", "classify_located", "located_texts", "unresolved"]
+
+
+class Classified(NamedTuple):
+    """The full analyses of located points, in their order: each point's analysis result
+    (:class:`~mechsing.analysis.results.ConfigurationResult`), whether it was placed again
+    at N digits first, and the joints it was analysed at."""
+
+    results: list[Any]
+    moved: list[bool]
+    points: list[Any]
 
 
 def classify_located(
     sweep: Sweep, located: list[Located], precision: Precision, time_limit: float | None = None
-) -> tuple[list[Any], list[bool], list[Any]]:
+) -> Classified:
     """The full analysis of each located point at the sweep's precision, each within
     ``time_limit`` seconds (None: no limit); at mp:N each point is first found again at N
     digits (:mod:`.relocate`).  Also says, per point, whether it was relocated, and gives
     the joints it was analysed at (at N digits when relocated)."""
     if not located:
-        return [], [], []
+        return Classified([], [], [])
     points: dict[str, Any] = {}
     moved = []
     relocators: dict[str, Any] = {}
@@ -75,7 +85,7 @@ def classify_located(
                 results[i] = replace(res2, escalated_for=res.escalated_for)
                 moved[i] = True
                 points[f"located-{i + 1}"] = again
-    return results, moved, list(points.values())
+    return Classified(results, moved, list(points.values()))
 
 
 def located_texts(eng: Sweep, q: Any, analysed: Any) -> tuple[Any, Any]:

@@ -75,8 +75,9 @@ def first_nodes_of(
     """The first node of each path of several starts (the rows of a grid), all in one
     batched Newton: each start's closed z0 and its paths (each path's ``values`` start at
     z0's value); per start, its paths' first nodes: the prediction and the test
-    :func:`~.nodes.reach_node` makes for a first step (the tangent at z0).  None for a path whose first
-    node is not kept that way (:func:`follow` then takes it as it takes any node)."""
+    :func:`~.nodes.reach_node` makes for a first step (the tangent at z0).  None for a
+    path whose first node is not kept that way (:func:`follow` then takes it as it takes
+    any node)."""
     out: list[list[np.ndarray | None]] = [[None] * len(paths) for _, paths in starts]
     steps, which, targets = [], [], []
     sc = pb.scale(col)
@@ -240,9 +241,9 @@ def follow_together(
 ) -> list[PathTrace]:
     """:func:`follow` (``fine=False``) of several paths (the rows of a grid), each
     ``(z0, values, first)``, in lockstep: at each step, every path whose next node
-    :func:`~.nodes.reach_node` predicts from its last two nodes (the secant or the polynomial through
-    the older ones) has it closed by one batched Newton over all of them, kept by the
-    same test.  A path whose node is not kept that way (a fold, a sharp bend), or that
+    :func:`~.nodes.reach_node` predicts from its last two nodes (the secant or the
+    polynomial through the older ones) has it closed by one batched Newton over all of
+    them, kept by the same test.  A path whose node is not kept that way (a fold, a sharp bend), or that
     needs the tangent's prediction, leaves the lockstep where it is: :func:`follow`
     goes on from there, as it would have alone.  Each path's trace is the one
     :func:`follow` gives it alone."""

@@ -1,10 +1,10 @@
 """The records of a sweep's work: located points, rows, refined points, brackets.
 
 Owns the named records the sweep's modules pass each other (:class:`Located`,
-:class:`RowResult`, :class:`PathTrace`, :class:`Refined`, :class:`RowSamples`, :class:`RowPairs`,
-:class:`ColumnBrackets`), how a located point is made from the sweep's coordinates
-(:func:`located_at`) and how the points of one row found by several tests become one
-(:func:`merge_located`).
+:class:`RowResult`, :class:`PathTrace`, :class:`Refined`, :class:`RowSamples`,
+:class:`RowPairs`, :class:`ColumnBrackets`), how a located point is made from the sweep's
+coordinates (:func:`located_at`) and how the points of one row found by several tests
+become one (:func:`merge_located`).
 """
 
 from __future__ import annotations
@@ -164,8 +164,8 @@ def merge_located(located: list[Located], scales: tuple[float, ...]) -> list[Loc
     """Points of one row found by several tests (or a fold and a test) at the same value
     are one point: their tests together, placed by the fold if there is one, else by the
     closure's test (near a singular point of the closure the other tests' measures are
-    blurred by its double root; the closure's own placement is not).  ``scales``: the commensurate unit of each swept
-    coordinate."""
+    blurred by its double root; the closure's own placement is not).  ``scales``: the
+    commensurate unit of each swept coordinate."""
     order = {"fold": 0, "crossing": 1, "minimum": 2}
     located = sorted(located, key=lambda p: (p.values, order[p.kind]))
     groups: list[list[Located]] = []

@@ -310,7 +310,8 @@ class SweepRun:
                 f"{len(chosen)} of them, spread over the grid (max_classified)"
             )
         with working_on(file=self.mechanism.path or self.mechanism.name):
-            analysed, moved, at = classify_located(eng, chosen, self.prec, self.time_limit)
+            classified = classify_located(eng, chosen, self.prec, self.time_limit)
+        analysed, moved, at = classified.results, classified.moved, classified.points
         if self.prec.mode == "mp" and chosen or self.prec.mode == "auto" and any(moved):
             self.notes.append(
                 f"{sum(moved)} of the {len(chosen)} classified points were located again at "
