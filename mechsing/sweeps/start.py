@@ -66,12 +66,11 @@ def start_of(
             off = onto_branch(pb, z, col, float(values[k]), variable, from_config, notes)
         if off is not None:
             return int(k), off
-    var = variable
     assert first is not None
     why = str(first).split(": ", 1)[-1]
     raise ClosureError(
         f"the sweep cannot start: none of the {min(_START_TRIES, len(values))} samples of "
-        f"{var.name} nearest its value at {from_config!r} ({var.shown(z[col])}) can be "
+        f"{variable.name} nearest its value at {from_config!r} ({variable.shown(z[col])}) can be "
         f"reached from that configuration on its assembly mode ({why}); start from another "
         "configuration (--from) or sweep a range that contains the start's value",
         from_config,
@@ -142,10 +141,9 @@ def onto_branch(
     out = Arc(pb, col, d).to_fold_or(best[1], value)
     if out is None or out[0] != "passed":
         return None
-    var = variable
     notes.append(
         f"the start {from_config!r} is a singular point where branches of the path "
-        f"cross ({var.name} = {var.shown(float(z[col]))}): the path follows one of them; "
+        f"cross ({variable.name} = {variable.shown(float(z[col]))}): the path follows one of them; "
         "start from a configuration on a branch (--from) to choose"
     )
     return np.asarray(out[1], dtype=float)
