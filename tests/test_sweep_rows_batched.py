@@ -18,12 +18,8 @@ import pytest
 
 from mechsing.kinematics import ClosureError
 from mechsing.sweeps import SweepRun
-from mechsing.sweeps.path import (
-    close_segments,
-    first_nodes_of,
-    follow,
-    follow_together,
-)
+from mechsing.sweeps.path import first_nodes_of, follow, follow_together
+from mechsing.sweeps.segments import close_segments
 
 ROOT = Path(__file__).resolve().parent.parent
 FILE = str(ROOT / "examples" / "five_bar.yaml")

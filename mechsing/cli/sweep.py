@@ -144,7 +144,7 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
     from mechsing.cli.options import check_shared, warn_varies, with_sweep_load
     from mechsing.errors import UserError, working_on
-    from mechsing.sweeps import MAX_CLASSIFIED, SweepRun
+    from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
 
     with working_on(file=args.file):
         check_shared(args)  # the options' own errors before the file is read

@@ -211,6 +211,54 @@ SWEEP_FOLD_KERNEL_RTOL = 1e-5
 #: a swept sample is beyond a joint's limits when it passes one by more than this part of
 #: the limits' width (float's rounding of a sample placed on a limit is not leaving it)
 SWEEP_LIMIT_RTOL = 1e-9
+#: a node of a path closed from its prediction is kept when Newton moved it at most this
+#: fraction of the step (commensurate): a well-predicted step stays on its branch, a
+#: larger correction may have jumped to another assembly mode
+SWEEP_NODE_CORRECTION = 0.3
+#: the rank of a path's closure Jacobian in its unknowns and the swept coordinate (whose
+#: kernel is the curve's tangent, or the branches' directions where branches cross):
+#: singular values above this fraction of the largest count (a regular point of the curve
+#: keeps them of the order of its conditioning; float's rounding leaves ~1e-16)
+SWEEP_CURVE_RANK_RTOL = 1e-9
+#: where that kernel has several directions, the one nearest the previous tangent is the
+#: curve's only when it keeps at least this much of it (the norm of its projection)
+SWEEP_TANGENT_KEPT = 0.5
+#: a pseudo-arclength step is accepted when the tangent turns by at most this many
+#: degrees over it (a longer step is halved where the curve bends)
+SWEEP_ARC_MAX_TURN_DEG = 30.0
+#: a pseudo-arclength corrector has converged when its last correction is at most
+#: SWEEP_ARC_STEP_ATOL + SWEEP_ARC_STEP_RTOL times the step (and the residual closes)
+SWEEP_ARC_STEP_ATOL = 1e-13
+SWEEP_ARC_STEP_RTOL = 1e-9
+#: the tests a fold is listed under: those whose relative measure there is below this
+#: (a fold is located on the path's curve to rounding, where the vanishing measure is
+#: ~1e-12 or less; the others stay of order one)
+SWEEP_FOLD_TEST_RTOL = 1e-6
+#: a swept pose coordinate is refused when adding its column raises the rank of the
+#: closure system in the solved joints; its singular values above this fraction of the
+#: largest count
+SWEEP_DETERMINED_RTOL = 1e-8
+#: a start where branches cross: a direction over the kernel is tried only where the
+#: swept value's share of it is at least this (a direction that hardly moves the swept
+#: value does not lead along the sweep)
+SWEEP_BRANCH_MIN_SWEPT = 0.05
+#: points of one row located by several tests (or a fold and a test) are one point when
+#: their swept values agree to SWEEP_MERGE_FACTOR times SWEEP_LOCATE_TOL plus
+#: SWEEP_MERGE_RTOL (both in radians, or lengths / L): each test locates to
+#: SWEEP_LOCATE_TOL, a blurred one (near a singular point of the closure) to far less
+SWEEP_MERGE_FACTOR = 1e3
+SWEEP_MERGE_RTOL = 1e-9
+#: a path through a singular point of the closure: the six points around it, the
+#: measure signed by side, make one smooth signed curve when their cubic fits them to
+#: this fraction of their largest value; its roots count as real where their imaginary
+#: part is below SWEEP_BRANCH_ROOT_IMAG (in offsets, of order one)
+SWEEP_BRANCH_FIT_RTOL = 1e-6
+SWEEP_BRANCH_ROOT_IMAG = 1e-9
+#: a --vary range START:STOP:STEP holds floor(|STOP - START| / STEP (1 + SWEEP_RANGE_RTOL)
+#: + SWEEP_RANGE_ATOL) + 1 samples: STOP is included when the steps land on it up to the
+#: rounding of the decimal numbers written (0.3 / 0.1 is 2.9999999999999996)
+SWEEP_RANGE_RTOL = 1e-12
+SWEEP_RANGE_ATOL = 1e-9
 #: an end of a --vary range within this of a non-zero multiple of pi/2 (in the file's
 #: number) looks like radians in a degree file (3.14 is pi to 0.0016): a warning
 RADIAN_LOOK_ATOL = 0.01

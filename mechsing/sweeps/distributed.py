@@ -61,7 +61,8 @@ from typing import Any
 import numpy as np
 
 from mechsing.errors import UserError
-from mechsing.sweeps.engine import RowResult, Sweep
+from mechsing.sweeps.engine import Sweep
+from mechsing.sweeps.records import RowResult
 
 __all__ = [
     "AHEAD_PER_THREAD",

@@ -24,6 +24,7 @@ from mechsing.errors import UserError
 from mechsing.kinematics.pose import POSE_COORDINATES
 from mechsing.model import Mechanism
 from mechsing.numeric import RADIAN_LOOK_ATOL, Precision, decimal_float, is_decimal_text
+from mechsing.numeric.tolerances import SWEEP_RANGE_ATOL, SWEEP_RANGE_RTOL
 
 __all__ = ["MAX_SAMPLES", "Variable", "Vary", "check_varies", "resolve", "sweep_precision"]
 
@@ -86,7 +87,7 @@ class Vary:
                 f"--vary {self.name}: STEP must be positive ({self.step:g}); to go down, "
                 "give START above STOP"
             )
-        steps = abs(self.stop - self.start) / self.step * (1 + 1e-12) + 1e-9
+        steps = abs(self.stop - self.start) / self.step * (1 + SWEEP_RANGE_RTOL) + SWEEP_RANGE_ATOL
         if not steps < MAX_SAMPLES:  # also an infinite quotient of a tiny STEP
             raise UserError(
                 f"--vary {self}: more than {MAX_SAMPLES:,} samples, more than a sweep takes; "

@@ -1,0 +1,173 @@
+"""The nodes of a path: predicting the next closed configuration and keeping it.
+
+Owns the node step of :func:`~mechsing.sweeps.path.follow`: which sample is the next
+node (:func:`node_index`: at most :data:`~mechsing.numeric.SWEEP_NODE_STEP` on), its
+prediction (the tangent at a first step, the secant or the polynomial through the last
+nodes after that), and :func:`reach_node`: one batched Newton from the prediction, kept
+when the correction is small next to the step (the step halved when it is not).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from mechsing.numeric import SWEEP_NODE_STEP
+from mechsing.numeric.tolerances import SWEEP_NODE_CORRECTION
+from mechsing.sweeps.arc import curve_tangent
+from mechsing.sweeps.problem import Problem
+
+__all__ = [
+    "node_index",
+    "polynomial_prediction",
+    "reach_node",
+    "tangent_points",
+    "tangent_step",
+]
+
+#: a badly predicted node is tried again in this many halvings of its step
+_NODE_HALVINGS = 3
+
+
+def node_index(values: np.ndarray, i: int, sc: float) -> int:
+    """The next node after sample i: the farthest sample at most SWEEP_NODE_STEP away
+    (and at least the next one)."""
+    j = i + 1
+    while j + 1 < len(values) and abs(values[j + 1] - values[i]) / sc <= SWEEP_NODE_STEP:
+        j += 1
+    return j
+
+
+def reach_node(
+    pb: Problem,
+    z: np.ndarray,
+    z_prev: np.ndarray | None,
+    col: int,
+    value: float,
+    older: list[np.ndarray] | None = None,
+) -> np.ndarray | None:
+    """The next node by :func:`_node`, in halved steps when the whole one is not well
+    predicted (at most _NODE_HALVINGS times), before the careful continuation.
+    ``older``: the nodes before z_prev on the same stretch of the path (oldest first)."""
+    parts = 1
+    for attempt in range(_NODE_HALVINGS + 1):
+        # the previous nodes' extrapolation, then the tangent (a secant from a point just
+        # behind): a far previous node predicts a short step no better than a long one
+        here, prev = z, (z_prev if attempt == 0 else None)
+        start = float(z[col])
+        for k in range(1, parts + 1):
+            nxt = _node(
+                pb,
+                here,
+                prev,
+                col,
+                start + (value - start) * k / parts,
+                older if attempt == 0 and k == 1 else None,
+            )
+            if nxt is None:
+                break
+            here, prev = nxt, here
+        else:
+            return here
+        parts *= 2
+    return None
+
+
+def _node(
+    pb: Problem,
+    z: np.ndarray,
+    z_prev: np.ndarray | None,
+    col: int,
+    value: float,
+    older: list[np.ndarray] | None = None,
+) -> np.ndarray | None:
+    """The next node by one batched Newton from the secant predictor (the last step
+    repeated, scaled to the new one; with ``older`` nodes before z_prev, the polynomial
+    through them all, extrapolated on the group; a first step from the tangent at z);
+    None when it does not close there or its correction is not small next to the step
+    (the careful continuation then takes it)."""
+    bc = pb.batch
+    if z_prev is None or z_prev[col] == z[col]:
+        # a first step: the tangent at z (the kernel of the closure Jacobian, no Newton)
+        # predicts it
+        zp = _tangent_prediction(pb, z, col, value)
+        if zp is not None:
+            Q, ok, _ = pb.close_near(zp[None, :], SWEEP_NODE_CORRECTION * pb.comm(zp - z))
+            if ok[0]:
+                return Q[0]
+        # where the tangent's step is not kept: a point a thousandth of it behind,
+        # closed from z itself, gives the secant (the tangent, to first order)
+        zq = np.array(z, dtype=float)
+        zq[col] = z[col] - 1e-3 * (value - z[col])
+        Q, ok, _ = pb.close_near(zq[None, :], np.inf)
+        if not ok[0]:
+            return None
+        z_prev = Q[0]
+    zp = polynomial_prediction(pb, z, z_prev, col, value, older)
+    if zp is None:
+        # the last step repeated, scaled to the new one: z_prev -> z continued past z
+        f = (value - z[col]) / (z[col] - z_prev[col])
+        zp = bc.between(z[None, :], z_prev[None, :], np.array([-f]))[0]
+    zp[col] = value
+    Q, ok, _ = pb.close_near(zp[None, :], SWEEP_NODE_CORRECTION * pb.comm(zp - z))
+    return Q[0] if ok[0] else None
+
+
+def polynomial_prediction(
+    pb: Problem,
+    z: np.ndarray,
+    z_prev: np.ndarray,
+    col: int,
+    value: float,
+    older: list[np.ndarray] | None,
+) -> np.ndarray | None:
+    """:func:`_node`'s prediction through the older nodes: the polynomial through them,
+    z_prev and z (increments on the group from z), at ``value``; None when there are no
+    older nodes of distinct values (the secant predicts then)."""
+    bc = pb.batch
+    knots = [p for p in (older or []) if p[col] != z[col]]
+    if not (knots and len({float(p[col]) for p in [*knots, z_prev, z]}) == len(knots) + 2):
+        return None
+    pts = np.array([*knots, z_prev])
+    D = bc.difference(pts, np.repeat(np.asarray(z, dtype=float)[None, :], len(pts), 0))
+    tk = np.concatenate([pts[:, col], [z[col]]])
+    D = np.concatenate([D, np.zeros((1, D.shape[1]))])
+    w = np.ones(len(tk))
+    for a in range(len(tk)):
+        for b in range(len(tk)):
+            if a != b:
+                w[a] *= (value - tk[b]) / (tk[a] - tk[b])
+    d = w @ D
+    zp = bc.update(np.asarray(z, dtype=float)[None, :], d[None, : bc.nb])[0]
+    zp[bc.nb :] = z[bc.nb :] + d[bc.nb :]
+    return zp
+
+
+def _tangent_prediction(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
+    """The point on the tangent of the path's curve at z where coordinate ``col`` is
+    ``value`` (on the group, as :meth:`BatchClosure.update` moves), or None where the
+    tangent is not defined or does not move ``col``."""
+    d = tangent_step(pb, z, col, value)
+    if d is None:
+        return None
+    return tangent_points(pb, np.asarray(z, dtype=float)[None, :], d[None, :], col, [value])[0]
+
+
+def tangent_step(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
+    """The increment along the tangent at z that takes coordinate ``col`` to ``value``
+    (None where the tangent is not defined or does not move ``col``)."""
+    tau = curve_tangent(pb, z, col)
+    if tau is None or tau[col] == 0:
+        return None
+    return pb.cm.float_frame.rates_back(tau * ((value - z[col]) / pb.scale(col) / tau[col]))
+
+
+def tangent_points(pb: Problem, Z: np.ndarray, D: np.ndarray, col: int, values: Any) -> np.ndarray:
+    """The points reached from the rows of Z by the increments D (:func:`tangent_step`),
+    on the group, with ``col`` set to ``values``: one batched update for every row."""
+    bc = pb.batch
+    zp = bc.update(Z, D[:, : bc.nb])
+    zp[:, bc.nb :] = Z[:, bc.nb :] + D[:, bc.nb :]
+    zp[:, col] = values
+    return zp

@@ -1,0 +1,244 @@
+"""Closing the samples between a path's closed points, many at a time.
+
+Owns :func:`close_segments` (the samples between a path's nodes, every segment of
+several traces in batched Newton from the cubic through the closed points around them,
+in one or two passes of knots) and the samples near a fold (:func:`close_to_fold`,
+:func:`near_fold`: the swept value is quadratic in the distance along the curve there).
+A sample that does not close near its prediction is left NaN for continuation.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mechsing.errors import ClosureError
+from mechsing.numeric import SWEEP_JUMP_RATIO, SWEEP_KNOT_STEP
+from mechsing.sweeps.problem import Problem
+from mechsing.sweeps.records import PathTrace
+
+__all__ = ["close_segments", "close_to_fold", "near_fold"]
+
+#: samples closed by one batched Newton call at most (bounds its working memory)
+_FINE_CHUNK = 8192
+#: fewer samples than this between the nodes of a row are closed in one pass (no knots)
+_KNOTS_FROM = 1000
+
+
+def close_to_fold(
+    pb: Problem, Z: np.ndarray, col: int, values: np.ndarray, ks: list[int], trail: list[np.ndarray]
+) -> None:
+    """The samples ``ks`` between a path's last node and the fold at ``trail[-1]``, all
+    together: each predicted between the two points of the curve traced to the fold that
+    bracket its value (by the square-root law in the last stretch, where the swept value is
+    quadratic in the distance along the curve), then batched Newton; a sample that does
+    not close near its prediction is left for the caller (NaN)."""
+    cm, bc = pb.cm, pb.batch
+    tt = np.array([float(p[col]) for p in trail])
+    sign = 1.0 if tt[-1] >= tt[0] else -1.0
+    A, B, F, spans = [], [], [], []
+    last = len(trail) - 2
+    for k in ks:
+        v = float(values[k])
+        m = int(np.clip(np.searchsorted(sign * tt, sign * v) - 1, 0, last))
+        ta, tb = tt[m], tt[m + 1]
+        if m == last and tb != ta:
+            f = 1.0 - math.sqrt(max(0.0, (tb - v) / (tb - ta)))
+        else:
+            f = 0.0 if tb == ta else (v - ta) / (tb - ta)
+        A.append(trail[m])
+        B.append(trail[m + 1])
+        F.append(f)
+        spans.append(pb.comm(cm.difference(trail[m + 1], trail[m])))
+    Qp = bc.between(np.array(A), np.array(B), np.array(F))
+    idx = np.array(ks)
+    Qp[:, col] = values[idx]
+    Q, ok, _ = pb.close_near(Qp, SWEEP_JUMP_RATIO * np.array(spans), polish=False)
+    Z[idx[ok]] = Q[ok]
+
+
+def near_fold(
+    pb: Problem, z: np.ndarray, zf: np.ndarray, col: int, value: float
+) -> np.ndarray | None:
+    """A sample between z and the fold zf: near a fold the swept value is quadratic in
+    the distance along the curve, so the sample lies at the fraction
+    ``1 - sqrt((t* - value) / (t* - t))`` of the way from z to zf; Newton from there."""
+    cm, bc = pb.cm, pb.batch
+    tz, tf = float(z[col]), float(zf[col])
+    if (value - tz) * (tf - tz) <= 0 or (tf - value) * (tf - tz) < 0:
+        return None
+    f = 1.0 - math.sqrt((tf - value) / (tf - tz))
+    zp = bc.between(z[None, :], zf[None, :], np.array([f]))[0]
+    zp[col] = value
+    Q, ok, _ = pb.close_near(zp[None, :], SWEEP_JUMP_RATIO * pb.comm(cm.difference(zf, z)))
+    return Q[0] if ok[0] else None
+
+
+def close_segments(
+    pb: Problem, traces: list[PathTrace], col: int, groups: list[list[int]] | None = None
+) -> None:
+    """The samples strictly between the nodes of each segment (i, j) of each trace, all
+    segments of the traces together (the two directions of a path are one batch), in two
+    passes of batched Newton (in chunks of _FINE_CHUNK rows):
+
+    1. where the samples are closer together than SWEEP_KNOT_STEP, *knots*: every m-th
+       sample of the segment, m the samples in that step; otherwise every sample;
+    2. the samples between the knots.
+
+    (One pass, every sample from the nodes' cubic, when the traces hold fewer than
+    _KNOTS_FROM samples to close: a grid's short rows, where a second batched call costs
+    more than the Newton steps it saves.)
+
+    Each sample is predicted by the cubic through the two closed points around it (nodes,
+    or knots) and the one before and after them (a quadratic at the ends of the path), on
+    the group, from the first of the two: knots only some hundredths of a radian apart
+    predict to about 1e-10, so one Newton step closes a sample where the nodes' cubic
+    needs two or three.  A sample that does not close near its prediction is closed
+    again by continuation from the previous one.  Fills each trace's Z and newton in
+    place.
+
+    ``groups``: the traces (indices) of each path, when several paths are closed together
+    (the rows of a grid): whether a path's samples are closed in one pass or two is
+    decided by its own traces, as when it is closed alone (default: one path)."""
+    sc = pb.scale(col)
+    first: list[tuple[int, int, int, list[int], list[int]]] = []
+    later: list[tuple[int, list[int]]] = []  # (trace, its knots in order) per segment
+    many_of = {}
+    for group in groups if groups is not None else [list(range(len(traces)))]:
+        many = sum(j - i - 1 for m in group for i, j in traces[m].segments) >= _KNOTS_FROM
+        many_of.update({m: many for m in group})
+    for m, tr in enumerate(traces):
+        many = many_of[m]
+        Z, values = tr.Z, tr.values
+        assert values is not None
+        for i, j in tr.segments:
+            stride = _knot_stride(values, i, j, sc) if many else 1
+            knots = [i, *range(i + stride, j - stride // 2, stride), j] if stride > 1 else [i, j]
+            if len(knots) == 2:
+                first.append((m, i, j, _cubic_knots(Z, i, j), list(range(i + 1, j))))
+                continue
+            first.append((m, i, j, _cubic_knots(Z, i, j), knots[1:-1]))
+            later.append((m, knots))
+    _close_between(pb, traces, col, first)
+    second = []
+    for m, knots in later:
+        Z = traces[m].Z
+        closed = [k for k in knots if not np.isnan(Z[k, 0])]
+        for p in range(len(closed) - 1):
+            a, b = closed[p], closed[p + 1]
+            if b - a < 2:
+                continue
+            around = [closed[p - 1]] if p > 0 else []
+            around += [a, b] + ([closed[p + 2]] if p + 2 < len(closed) else [])
+            # at the ends of the segment, the nodes' neighbours as for the first pass
+            if p == 0 or p + 2 == len(closed):
+                around = sorted(set(around) | set(_cubic_knots(Z, a, b)))
+                around = _nearest(around, a, b)
+            second.append((m, a, b, around, list(range(a + 1, b))))
+    _close_between(pb, traces, col, second)
+    # the samples Newton did not close near their prediction: continuation, in order
+    for tr in traces:
+        Z, values = tr.Z, tr.values
+        assert values is not None
+        for i, j in tr.segments:
+            for k in range(i + 1, j):
+                if not np.isnan(Z[k, 0]):
+                    continue
+                prev = Z[k - 1]
+                if np.isnan(prev[0]):
+                    continue
+                try:
+                    Z[k] = pb.reach(prev, col, values[k])
+                except ClosureError:
+                    continue
+        tr.segments = []
+
+
+def _knot_stride(values: np.ndarray, i: int, j: int, sc: float) -> int:
+    """Samples per knot between nodes i and j: as many samples as SWEEP_KNOT_STEP holds
+    (commensurate), at least 1."""
+    spacing = abs(float(values[j]) - float(values[i])) / (j - i) / sc
+    return max(1, int(SWEEP_KNOT_STEP / spacing)) if spacing > 0 else 1
+
+
+def _cubic_knots(Z: np.ndarray, i: int, j: int) -> list[int]:
+    """The closed points a segment (i, j) is interpolated through: its ends and the points
+    as far before and after them, where closed."""
+    return [k for k in (2 * i - j, i, j, 2 * j - i) if 0 <= k < len(Z) and not np.isnan(Z[k, 0])]
+
+
+def _nearest(knots: list[int], a: int, b: int) -> list[int]:
+    """At most four of the sorted closed points ``knots``: a, b and the nearest one before
+    a and after b."""
+    before = [k for k in knots if k < a][-1:]
+    after = [k for k in knots if k > b][:1]
+    return [*before, a, b, *after]
+
+
+def _close_between(
+    pb: Problem,
+    traces: list[PathTrace],
+    col: int,
+    jobs: list[tuple[int, int, int, list[int], list[int]]],
+) -> None:
+    """One batched Newton over ``jobs``: (trace, a, b, knots, rows) closes the samples
+    ``rows`` of a trace from the Lagrange interpolation through its closed samples
+    ``knots`` (a among them), as increments on the group from sample a; a sample moved
+    by Newton more than SWEEP_JUMP_RATIO times the distance from a to b is left NaN."""
+    bc = pb.batch
+    nb = bc.nb
+    jobs = [job for job in jobs if job[4]]
+    if not jobs:
+        return
+    # every knot's increment from its job's first point, in one call
+    K1 = np.concatenate([traces[m].Z[knots] for m, _, _, knots, _ in jobs])
+    K0 = np.concatenate(
+        [np.repeat(traces[m].Z[a][None, :], len(kn), axis=0) for m, a, _, kn, _ in jobs]
+    )
+    Dall = bc.difference(K1, K0)
+    which, rows, base, preds, spans, tvals = [], [], [], [], [], []
+    at = 0
+    for m, a, b, knots, ks_list in jobs:
+        Z, values = traces[m].Z, traces[m].values
+        assert values is not None
+        D = Dall[at : at + len(knots)]
+        at += len(knots)
+        tk = values[knots]
+        ks = np.array(ks_list)
+        tv = values[ks]
+        # Lagrange weights of the knots at the samples
+        W = np.ones((len(ks), len(knots)))
+        for p in range(len(knots)):
+            for q in range(len(knots)):
+                if p != q:
+                    W[:, p] *= (tv - tk[q]) / (tk[p] - tk[q])
+        preds.append(W @ D)
+        rows.extend(ks_list)
+        which.extend([m] * len(ks))
+        base.append(np.repeat(Z[a][None, :], len(ks), axis=0))
+        tvals.append(tv)
+        spans.extend([pb.comm(D[knots.index(b)])] * len(ks))
+    if not rows:
+        return
+    rows_a, which_a = np.array(rows), np.array(which)
+    A = np.concatenate(base)
+    P = np.concatenate(preds)
+    T = np.concatenate(tvals)
+    span_a = np.array(spans)
+    for lo in range(0, len(rows_a), _FINE_CHUNK):
+        sl = slice(lo, lo + _FINE_CHUNK)
+        Qp = bc.update(A[sl], P[sl, :nb])
+        Qp[:, nb:] = A[sl, nb:] + P[sl, nb:]
+        Qp[:, col] = T[sl]
+        # closed to the tolerance and no further: a sample read near a singularity is
+        # closed again (polished) by the refinement that locates it
+        Q, ok, it = pb.close_near(Qp, SWEEP_JUMP_RATIO * span_a[sl], polish=False)
+        Q[~ok] = np.nan
+        for m, tr in enumerate(traces):
+            mine = which_a[sl] == m
+            if not np.any(mine):
+                continue
+            tr.Z[rows_a[sl][mine]] = Q[mine]
+            assert tr.newton is not None
+            tr.newton[rows_a[sl][mine]] += it[mine]
