@@ -261,3 +261,14 @@ def test_the_summary_does_not_depend_on_the_blas_kernel():
     assert outs[0] == outs[1]
     line = next(x for x in outs[0].splitlines() if x.strip().startswith("constraint"))
     assert f"constant {1 / math.sqrt(2):.3g} over the reached samples" in line
+
+
+def test_two_swept_joints_of_a_one_dof_linkage_are_refused_by_name():
+    """The slider-crank has mobility 1 (one loop of four one-dof joints, planar: 4 - 3):
+    two swept joints cannot both move freely; the message names the swept coordinates,
+    not the file's inputs."""
+    path = ROOT / "examples" / "slider_crank_slider_input.yaml"
+    rc, _, err = run_cli(["sweep", path, "--vary", "B=0:1:0.5", "--vary", "C=0:1:0.5"])
+    assert rc == 2
+    assert "the coordinates swept (B, C) are 2 for a mechanism of mobility 1" in err
+    assert "such as the file's inputs (P)" in err

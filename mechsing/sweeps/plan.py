@@ -163,10 +163,20 @@ def check_determined(plan: Plan, mech: Mechanism, variables: list[Variable]) -> 
                 + ", or declare inputs (inputs: [...]) so that the sweep holds them"
             )
         if g > M:
+            coords = list(mech.coordinates())
+            fixed = [
+                j if mech.joint(j).dof == 1 else f"{j}[{i}]"
+                for (j, i), given in zip(coords, pb.given, strict=True)
+                if given
+            ]
+            swept = {v.name for v in variables}
+            held = [c for c in fixed if c not in swept]
+            what = f"swept ({names})" + (f" and held ({', '.join(held)})" if held else "")
             raise UserError(
-                f"--vary {names}: the file's inputs ({inputs}) are {g} coordinates for a "
-                f"mechanism of mobility {M}; held at their start values they leave the swept "
-                "one no motion; sweep a mechanism whose inputs match its mobility"
+                f"--vary {names}: the coordinates {what} are {g} for a mechanism of "
+                f"mobility {M}: they cannot all move independently, so the path is "
+                f"over-determined; sweep at most {M} independent coordinate(s)"
+                + (f", such as the file's inputs ({inputs})" if inputs else "")
             )
         return
     Js, _ = scaled_system(pb.cm, plan.z0)
