@@ -8,7 +8,10 @@
 * :mod:`~mechsing.kinematics.chains`: the coordinates a chain between two bodies
   crosses, with their signs (tree-path sign sums);
 * :mod:`~mechsing.kinematics.newton`: Newton on the group;
-* :mod:`~mechsing.kinematics.closure`: closure of named configurations by continuation.
+* :mod:`~mechsing.kinematics.closure`: closure of named configurations (:class:`Closer`),
+  from their given values (:mod:`~mechsing.kinematics.given`) by continuation
+  (:mod:`~mechsing.kinematics.continuation`), polished at N digits in mp
+  (:mod:`~mechsing.kinematics.polish`).
 """
 
 from mechsing.errors import ClosureError, ConfigurationError, ExactDataError
