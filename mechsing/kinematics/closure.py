@@ -35,7 +35,8 @@ from mechsing.kinematics.given import GivenValues
 from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.polish import MpPolisher, newton_mp
 from mechsing.kinematics.pose import PoseModel, pose_problem
-from mechsing.model import Configuration
+from mechsing.kinematics.protocol import ClosureModel
+from mechsing.model import Configuration, Mechanism
 from mechsing.model.couplings import coupling_source, describe_coupling
 from mechsing.numeric import EXACT_ZERO_DIGITS, Precision, exact_is_zero, to_float
 from mechsing.timelimit import activity
@@ -218,7 +219,11 @@ class Closer:
         return self.continuation.run(cfg, q0, target, tuple(given), model)
 
     def polish(
-        self, q: np.ndarray, target: np.ndarray, given: tuple[int, ...], model: Any = None
+        self,
+        q: np.ndarray,
+        target: np.ndarray,
+        given: tuple[int, ...],
+        model: ClosureModel | None = None,
     ) -> tuple[np.ndarray, Any]:
         """Newton at the model's digits (mp:N) from ``q`` (float or mp), the coordinates in
         ``given`` held at their values in ``target`` (``model``: a pose model on this
@@ -330,7 +335,7 @@ class Closer:
 
 
 def solve_configuration(
-    mech: Any, name: str, precision: Precision | str = "float"
+    mech: Mechanism, name: str, precision: Precision | str = "float"
 ) -> tuple[KinematicModel, ClosedConfiguration]:
     """Close one named configuration; returns the model and the closed configuration."""
     model = KinematicModel(mech, precision)

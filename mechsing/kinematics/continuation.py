@@ -24,6 +24,7 @@ from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import damped_least_squares, finite_system, newton_on_group
 from mechsing.kinematics.polish import MpPolisher
 from mechsing.kinematics.pose import PoseModel
+from mechsing.kinematics.protocol import ClosureModel
 from mechsing.kinematics.travel import beyond_target, beyond_travel
 from mechsing.model import Configuration
 from mechsing.numeric import (
@@ -75,9 +76,9 @@ class Continuation:
     ) -> ClosedConfiguration:
         """Continuation from ``q0`` to the given coordinates of ``target`` in the model
         (``model``: a pose model of this configuration, else the Closer's own)."""
-        m: Any = self.model if model is None else model
+        m: ClosureModel = self.model if model is None else model
         # policy: continuation is float by design (an mp model polishes its end point)
-        fm: Any = m.float_twin()
+        fm = m.float_twin()
         gmask = np.zeros(m.n, dtype=bool)
         gmask[list(given)] = True
         q = to_float(q0).copy()
@@ -198,7 +199,7 @@ class Continuation:
         )
 
     def _land_on_fold(
-        self, fm: KinematicModel, q: np.ndarray, qt: np.ndarray, gmask: np.ndarray
+        self, fm: ClosureModel, q: np.ndarray, qt: np.ndarray, gmask: np.ndarray
     ) -> tuple[np.ndarray, dict] | None:
         """The target, when continuation stalls just short of it because it is a fold
         (a limit of the given values: a dead centre, a Type II pose given by the inputs).
@@ -246,7 +247,7 @@ class Continuation:
         return qn, info
 
     def _same_branch(
-        self, fm: KinematicModel, q: np.ndarray, qn: np.ndarray, info: dict, gmask: np.ndarray
+        self, fm: ClosureModel, q: np.ndarray, qn: np.ndarray, info: dict, gmask: np.ndarray
     ) -> bool:
         """Did the step stay on the assembly mode it started from?
 
@@ -282,7 +283,7 @@ class Continuation:
         return True
 
     def _correct(
-        self, fm: KinematicModel, q_prev: np.ndarray, qg: np.ndarray, gmask: np.ndarray, final: bool
+        self, fm: ClosureModel, q_prev: np.ndarray, qg: np.ndarray, gmask: np.ndarray, final: bool
     ) -> tuple[bool, np.ndarray, dict]:
         """Predictor (tangent) + damped Newton on the unknown coordinates."""
         free = ~gmask
@@ -359,20 +360,20 @@ class Continuation:
         return True, q, info
 
 
-def closure_matrix(fm: KinematicModel, q: np.ndarray) -> Any:
+def closure_matrix(fm: ClosureModel, q: np.ndarray) -> Any:
     """The commensurate closure Jacobian of the float model at q: sparse for a big
     mechanism (:attr:`KinematicModel.sparse_closure`: built from each loop's own
-    joints and factorised block by block), dense otherwise."""
-    if fm.sparse_closure:
+    joints and factorised block by block; only a mechanism's model is), dense otherwise."""
+    if isinstance(fm, KinematicModel) and fm.sparse_closure:
         return fm.sparse_closure_jacobian(q, fm.float_frame)
     return fm.scaled_closure_jacobian(q, fm.float_frame)
 
 
-def _fmt(m: KinematicModel, q: np.ndarray) -> str:
+def _fmt(m: ClosureModel, q: np.ndarray) -> str:
     return ", ".join(f"{k}={[round(x, 6) for x in v]}" for k, v in m.values(q).items())
 
 
-def _tied_given(fm: KinematicModel, q: np.ndarray, gmask: np.ndarray) -> str:
+def _tied_given(fm: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> str:
     """Why a path in the given coordinates leaves the mechanism's motion when the loops
     tie those coordinates together at ``q`` ('' when they are independent there, or
     when the ranks are not decided).
@@ -416,7 +417,7 @@ def _tied_given(fm: KinematicModel, q: np.ndarray, gmask: np.ndarray) -> str:
     )
 
 
-def _given_reached(m: Any, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> str:
+def _given_reached(m: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> str:
     """The given coordinates where continuation stopped, against their targets,
     in the file's units: ``A reached 173.13 deg, 26.87 deg short of the target 200 deg``."""
     units = m.mech.units

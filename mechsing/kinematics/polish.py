@@ -14,6 +14,7 @@ import numpy as np
 from mechsing.kinematics.given import GivenValues
 from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import mp_least_squares, newton_on_group
+from mechsing.kinematics.protocol import ClosureModel
 from mechsing.model import Configuration
 from mechsing.numeric import POLISH_DIGITS_SPARE, POLISH_MAX_STEPS, Precision
 
@@ -41,7 +42,7 @@ class MpPolisher:
 
     def polish(
         self,
-        m: KinematicModel,
+        m: ClosureModel,
         q: np.ndarray,
         target: np.ndarray,
         gmask: np.ndarray,
@@ -85,7 +86,7 @@ class MpPolisher:
         return self._deep
 
 
-def newton_mp(m: KinematicModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> Polished:
+def newton_mp(m: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> Polished:
     """Newton on the group at the model's digits: (coordinates, residual, whether a
     step was slow).  A step is slow when it lowers the residual by less than
     POLISH_SLOW_RATIO (Newton at a multiple root halves the distance, so lowers the
