@@ -300,7 +300,7 @@ def test_an_undecided_rank_whose_bounds_give_one_verdict_is_no_finding(tmp_path,
 
 
 def test_an_undecided_finding_at_mp_suggests_more_digits_not_the_same_mode():
-    from mechsing.report.render import explain
+    from mechsing.analysis.words import explain
     from mechsing.singularity.findings import UndecidedFinding
 
     f = UndecidedFinding("input test", (0, 1), None, "mp:50")

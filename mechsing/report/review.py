@@ -27,7 +27,8 @@ import numpy as np
 
 from mechsing import __version__
 from mechsing.analysis import AnalysisResult, analyze
-from mechsing.analysis.html import VERDICT_HEADERS, class_words, largest_drop, verdict_row
+from mechsing.analysis.html import VERDICT_HEADERS, largest_drop, verdict_row
+from mechsing.analysis.words import class_words
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, parse_precision
 from mechsing.reader import read_mechanism

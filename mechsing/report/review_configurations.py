@@ -9,11 +9,12 @@ import numpy as np
 
 from mechsing.analysis import AnalysisResult, ConfigurationResult
 from mechsing.analysis.html import VERDICT_HEADERS
+from mechsing.analysis.words import explain, margin_text
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, display_floor, floored, to_float
 from mechsing.report import document as doc
 from mechsing.report.figures import grid_figure, path_figure, svg
-from mechsing.report.render import _margin, explain, joint_values_text
+from mechsing.report.render import joint_values_text
 from mechsing.report.sketch import Screw, View, choose_view, sketch_figure
 from mechsing.report.sphere import choose_sphere_view, sphere_figure, spherical_centre
 from mechsing.singularity.findings import ConstraintFinding, MotionFinding, SerialFinding
@@ -140,7 +141,7 @@ def configuration_sections(analysis: AnalysisResult) -> list[doc.Block]:
             verb = "tested" if s.cls == "undecided" else "decided"
             out.append(
                 doc.Paragraph(
-                    f"{explain(s)}. {verb.capitalize()} in {s.precision}; margin: {_margin(s.margin)}.",
+                    f"{explain(s)}. {verb.capitalize()} in {s.precision}; margin: {margin_text(s.margin)}.",
                     f"{s.cls}:",
                 )
             )

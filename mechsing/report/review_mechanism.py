@@ -12,12 +12,12 @@ from mechsing.analysis import AnalysisResult
 from mechsing.analysis.contract import subgroup_params
 from mechsing.analysis.describe import OutputMotion
 from mechsing.analysis.results import Mobility
+from mechsing.analysis.words import margin_text, twist_words
 from mechsing.model.couplings import coupling_source, describe_coupling
 from mechsing.numeric import to_float
 from mechsing.report import document as doc
 from mechsing.report.figures import graph_figure, svg
-from mechsing.report.render import _margin, scene_line
-from mechsing.report.words import twist_words
+from mechsing.report.render import scene_line
 from mechsing.subgroups import Subgroup, load_catalog
 
 __all__ = [
@@ -311,7 +311,7 @@ def _legs_and_motion(analysis: AnalysisResult) -> list[doc.Block]:
                 f"{m.body} relative to {m.relative_to} has one degree of freedom: at the "
                 f"regular configuration {m.configuration} it moves by {screw}, its "
                 f"instantaneous screw {subgroup_words(m.subgroup)} (decided in {m.precision}; "
-                f"margin: {_margin(m.margin)}). An instantaneous screw is not a motion type "
+                f"margin: {margin_text(m.margin)}). An instantaneous screw is not a motion type "
                 "(a subgroup the output's motions stay in): it can change as the mechanism moves."
             )
         )
@@ -321,7 +321,7 @@ def _legs_and_motion(analysis: AnalysisResult) -> list[doc.Block]:
             doc.Paragraph(
                 f"The twists of {m.body} relative to {m.relative_to} span "
                 f"{motion_words(m)}: its motion type at the regular configuration "
-                f"{m.configuration} (decided in {m.precision}; margin: {_margin(m.margin)})."
+                f"{m.configuration} (decided in {m.precision}; margin: {margin_text(m.margin)})."
             )
         )
     if m is not None:
