@@ -14,7 +14,8 @@ an mp model's landing is polished by :class:`~mechsing.kinematics.polish.MpPolis
 from __future__ import annotations
 
 import math
-from typing import Any
+from dataclasses import dataclass
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -54,6 +55,28 @@ _NEWTON_ITERATIONS = 12
 _MAX_STEPS = 20000
 #: step attempts allowed per planned step before continuation gives up
 _MAX_ATTEMPTS_PER_STEP = 20
+
+
+@dataclass
+class StepInfo:
+    """What a step of continuation found: the residual (m) it closed to, the rank of the
+    closure Jacobian in the unknown coordinates there (None: not decided) with its
+    smallest kept relative singular value, whether the unknowns are underdetermined, and
+    where the predictor put the step."""
+
+    residual: float
+    rank: int | None
+    smin: float
+    underdetermined: bool
+    predicted: np.ndarray
+
+
+class Corrected(NamedTuple):
+    """A corrected step: whether it closed (``ok``), where it ended (``q``), what it found."""
+
+    ok: bool
+    q: np.ndarray
+    info: StepInfo
 
 
 class Continuation:
@@ -125,7 +148,7 @@ class Continuation:
                 if dt < 1.0 / nsteps / 2**_MAX_HALVINGS:
                     landed = self._land_on_fold(fm, q, qt, gmask)
                     if landed is not None:  # the target is the fold itself: reached
-                        q, info = landed
+                        q, info = landed.q, landed.info
                         t, steps, at_fold = 1.0, steps + 1, True
                         continue
                     # values the loops tie together, or a target beyond a limit of travel
@@ -142,19 +165,19 @@ class Continuation:
                             "intermediate configuration or change the target"
                         ),
                         cfg.name,
-                        info["residual"],
+                        info.residual,
                     )
                 continue
             steps += 1
-            underdetermined = underdetermined or info["underdetermined"]
+            underdetermined = underdetermined or info.underdetermined
             # loss of rank of the closure Jacobian in the unknowns before the target
             if not final:
-                r = info["rank"]
+                r = info.rank
                 if (
                     best_rank is not None
                     and r is not None
                     and r < best_rank
-                    and info["smin"] < CONTINUATION_SINGULAR_RTOL
+                    and info.smin < CONTINUATION_SINGULAR_RTOL
                 ):
                     raise ClosureError(
                         f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} meets a "
@@ -162,14 +185,14 @@ class Continuation:
                         f"loses rank ({r} < {best_rank}); joint values there: {_fmt(fm, qn)}; "
                         "choose a target on this side of the singularity, or start from a configuration beyond it",
                         cfg.name,
-                        info["residual"],
+                        info.residual,
                     )
                 if r is not None:
                     best_rank = r if best_rank is None else max(best_rank, r)
             q = qn
             t = t_next
             dt = min(dt * 1.5, 1.0 / nsteps)
-        res = info["residual"]
+        res = info.residual
         notes = []
         if at_fold:
             notes.append(
@@ -200,7 +223,7 @@ class Continuation:
 
     def _land_on_fold(
         self, fm: ClosureModel, q: np.ndarray, qt: np.ndarray, gmask: np.ndarray
-    ) -> tuple[np.ndarray, dict] | None:
+    ) -> Corrected | None:
         """The target, when continuation stalls just short of it because it is a fold
         (a limit of the given values: a dead centre, a Type II pose given by the inputs).
 
@@ -237,17 +260,11 @@ class Continuation:
         if not len(sigma) or sigma[-1] > CONTINUATION_SINGULAR_RTOL * sigma[0]:
             return None
         rank = int(np.sum(sigma > CONTINUATION_SINGULAR_RTOL * sigma[0]))
-        info = {
-            "residual": res,
-            "rank": rank,
-            "smin": float(sigma[-1] / sigma[0]),
-            "underdetermined": False,
-            "predicted": qn,
-        }
-        return qn, info
+        info = StepInfo(res, rank, float(sigma[-1] / sigma[0]), False, qn)
+        return Corrected(True, qn, info)
 
     def _same_branch(
-        self, fm: ClosureModel, q: np.ndarray, qn: np.ndarray, info: dict, gmask: np.ndarray
+        self, fm: ClosureModel, q: np.ndarray, qn: np.ndarray, info: StepInfo, gmask: np.ndarray
     ) -> bool:
         """Did the step stay on the assembly mode it started from?
 
@@ -259,20 +276,20 @@ class Continuation:
         def comm(d: np.ndarray) -> float:
             return float(np.linalg.norm(fm.float_frame.rates(d)))
 
-        step = comm(fm.difference(info["predicted"], q))
+        step = comm(fm.difference(info.predicted, q))
         if step == 0.0:
             return True
         # the whole predicted step, passive joints included, stays short: a path on
         # which the passive joints move much faster than the given ones is cut finer
         if step > _MAX_PREDICTED_STEP:
             return False
-        if comm(fm.difference(qn, info["predicted"])) > max(
+        if comm(fm.difference(qn, info.predicted)) > max(
             CONTINUATION_CORRECTOR_RATIO * step, CONTINUATION_JUMP_FLOOR
         ):
             return False
         # with a continuum of solutions (underdetermined) stepping back may land
         # elsewhere on it: reversibility only means something for a determined step
-        if info["smin"] < CONTINUATION_REVERSE_RTOL and not info["underdetermined"]:
+        if info.smin < CONTINUATION_REVERSE_RTOL and not info.underdetermined:
             back_target = qn.copy()
             back_target[gmask] = q[gmask]
             ok, qb, _ = self._correct(fm, qn, back_target, gmask, False)
@@ -284,7 +301,7 @@ class Continuation:
 
     def _correct(
         self, fm: ClosureModel, q_prev: np.ndarray, qg: np.ndarray, gmask: np.ndarray, final: bool
-    ) -> tuple[bool, np.ndarray, dict]:
+    ) -> Corrected:
         """Predictor (tangent) + damped Newton on the unknown coordinates."""
         free = ~gmask
         L = fm.length_scale
@@ -307,13 +324,7 @@ class Continuation:
         q[gmask] = qg[gmask]
         predicted = q.copy()
         res = fm.residual_norm(fm.chord_residuals(q))
-        info: dict[str, Any] = {
-            "residual": res,
-            "rank": None,
-            "smin": 1.0,
-            "underdetermined": False,
-            "predicted": predicted,
-        }
+        info = StepInfo(res, None, 1.0, False, predicted)
         polish = 0
 
         def stop(it: int, res: float) -> bool:
@@ -339,25 +350,25 @@ class Continuation:
                 not np.isfinite(new) or new > 10 * max(res, tol) and it > 2
             ),
         )
-        info["residual"] = out.residual
+        info.residual = out.residual
         if out.diverged:
-            return False, out.q, info
+            return Corrected(False, out.q, info)
         q, res = out.q, out.residual
         if res > tol:
-            return False, q, info
+            return Corrected(False, q, info)
         if np.any(free) and fm.blocks:
             Js = closure_matrix(fm, q)
             if not finite_system(Js):
                 # closed, but at coordinates so far off that the Jacobian's series
                 # overflow (a degenerate loop whose S joint turned without end): no step
-                return False, q, info
+                return Corrected(False, q, info)
             dec = decide_rank(Js[:, free], "float", L)
             rank = dec.rank if dec.rank is not None else dec.rank_bounds[0]
-            info["rank"] = rank
+            info.rank = rank
             s = [x / dec.sigma[0] for x in dec.sigma] if dec.sigma and dec.sigma[0] > 0 else [0.0]
-            info["smin"] = s[min(rank, len(s)) - 1] if rank else 0.0
-            info["underdetermined"] = rank < int(np.sum(free))
-        return True, q, info
+            info.smin = s[min(rank, len(s)) - 1] if rank else 0.0
+            info.underdetermined = rank < int(np.sum(free))
+        return Corrected(True, q, info)
 
 
 def closure_matrix(fm: ClosureModel, q: np.ndarray) -> Any:
