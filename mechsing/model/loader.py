@@ -22,7 +22,7 @@ import sympy
 from mechsing.errors import InputRefError, MechanismError, YAMLReadError
 from mechsing.model.configurations import ConfigurationReader
 from mechsing.model.couplings import read_couplings
-from mechsing.model.graph import build_graph, connected_to, coupled_loops
+from mechsing.model.graph import MechanismGraph, build_graph, connected_to, coupled_loops
 from mechsing.model.joints import MAX_JOINTS, JointReader
 from mechsing.model.mechanism import InputRef, Joint, Mechanism, Output, Units
 from mechsing.model.parameters import check_names, read_parameters
@@ -83,7 +83,7 @@ COST_PER_DENSE_UNIT = 2.6e-8
 BYTES_PER_ENTRY = 64
 
 
-def analysis_cost(graph: Any) -> tuple[float, float]:
+def analysis_cost(graph: MechanismGraph) -> tuple[float, float]:
     """Estimated (seconds, bytes) of the float analysis of one configuration.
 
     Linear in the joints, plus each group of loops that share joints
@@ -161,7 +161,7 @@ def read_text(path: str | Path, largest: int = MAX_FILE_BYTES) -> str:
 #: what turns a file's ``dh`` table into its bodies and joints: ``expand(top, reader)`` ->
 #: the top-level mapping without ``dh`` (:func:`mechsing.formats.dh.expand_dh`, given by
 #: the reader above both layers, :mod:`mechsing.reader`; the model reads no other format)
-TableExpander = Callable[[YMap, Any], YMap]
+TableExpander = Callable[[YMap, Reader], YMap]
 
 
 def loads(
@@ -476,7 +476,9 @@ class _Builder:
             out.append(InputRef(jname, index))
         return out
 
-    def output(self, v: YValue | None, bodies: list[str], ground: str, graph: Any) -> Output | None:
+    def output(
+        self, v: YValue | None, bodies: list[str], ground: str, graph: MechanismGraph
+    ) -> Output | None:
         r = self.r
         if v is None:
             if graph.num_loops == 0:
