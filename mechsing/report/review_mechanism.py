@@ -1,7 +1,7 @@
 """The design review's mechanism section (:func:`mechanism_section`): the joints table,
 the graph drawing, each loop's subgroup in words, the mobility numbers with why they
 differ, the legs and the output's motion; and the words it shows them in
-(:func:`subgroup_words`, :func:`loop_meaning`, :func:`mobility_sentences`,
+(:func:`subgroup_summary`, :func:`loop_meaning`, :func:`mobility_sentences`,
 :func:`motion_words`)."""
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ __all__ = [
     "mechanism_section",
     "mobility_sentences",
     "motion_words",
-    "subgroup_words",
+    "subgroup_summary",
 ]
 
 
@@ -39,8 +39,9 @@ def _vec(v: Sequence[float]) -> str:
     return "(" + ", ".join(f"{x if abs(x) > DISPLAY_ZERO * big else 0.0:.4g}" for x in v) + ")"
 
 
-def subgroup_words(sg: Subgroup | None) -> str:
-    """A subgroup in words: its symbol, catalog name, dimension and parameters (SI)."""
+def subgroup_summary(sg: Subgroup | None) -> str:
+    """A subgroup in one line: its symbol, catalog name, dimension and parameters (SI
+    numbers; the phrase with named directions is :func:`mechsing.analysis.words.subgroup_words`)."""
     if sg is None:
         return "not identified"
     name = load_catalog()[sg.symbol].name
@@ -88,7 +89,7 @@ def loop_meaning(sg: Subgroup | None) -> str:
     p = {k: _vec(v) if isinstance(v, list) else f"{v:.4g}" for k, v in subgroup_params(sg).items()}
     text = LOOP_MEANING.get(sg.symbol)
     if text is None:
-        return f"this loop moves inside {subgroup_words(sg)}: it imposes {sg.dim} constraints"
+        return f"this loop moves inside {subgroup_summary(sg)}: it imposes {sg.dim} constraints"
     try:
         return text.format(**p)
     except KeyError:  # a catalog whose parameters are named otherwise
@@ -230,7 +231,7 @@ def mechanism_section(analysis: AnalysisResult) -> list[doc.Block]:
             doc.Bullets(
                 tuple(
                     f"loop {k + 1} ({'-'.join(lp.joints)}): {loop_meaning(lp.subgroup)}; "
-                    f"generated subgroup {subgroup_words(lp.subgroup)}"
+                    f"generated subgroup {subgroup_summary(lp.subgroup)}"
                     for k, lp in enumerate(first.loops)
                 )
             )
@@ -268,9 +269,9 @@ def motion_words(m: OutputMotion) -> str:
     if m.dim is None:
         return f"undecided at {m.precision}"
     if m.instantaneous_screw and m.subgroup is not None:
-        return f"instantaneous screw {subgroup_words(m.subgroup)}"
+        return f"instantaneous screw {subgroup_summary(m.subgroup)}"
     if m.is_subgroup and m.subgroup is not None:
-        return subgroup_words(m.subgroup)
+        return subgroup_summary(m.subgroup)
     if m.is_subgroup is False:
         return f"not a subgroup: {m.dim} independent twists whose brackets leave their span"
     return f"dimension {m.dim} ({m.note or 'type not identified'})"
@@ -310,7 +311,7 @@ def _legs_and_motion(analysis: AnalysisResult) -> list[doc.Block]:
             doc.Paragraph(
                 f"{m.body} relative to {m.relative_to} has one degree of freedom: at the "
                 f"regular configuration {m.configuration} it moves by {screw}, its "
-                f"instantaneous screw {subgroup_words(m.subgroup)} (decided in {m.precision}; "
+                f"instantaneous screw {subgroup_summary(m.subgroup)} (decided in {m.precision}; "
                 f"margin: {margin_text(m.margin)}). An instantaneous screw is not a motion type "
                 "(a subgroup the output's motions stay in): it can change as the mechanism moves."
             )
