@@ -33,7 +33,7 @@ import sympy
 
 import mechsing
 from mechsing.kinematics import batched
-from mechsing.kinematics.closure import Closer
+from mechsing.kinematics.given import GivenValues
 from mechsing.kinematics.model import KinematicModel
 from mechsing.model.loader import load
 from mechsing.numeric.field import (
@@ -53,7 +53,7 @@ def _degree(K: object) -> int:
 def _configuration(path: Path, name: str) -> tuple[KinematicModel, np.ndarray]:
     mech = load(path)
     model = KinematicModel(mech, "exact")
-    q, _given = Closer(model)._given(mech.configurations[name])
+    q = GivenValues(model).of(mech.configurations[name]).target
     return model, q
 
 

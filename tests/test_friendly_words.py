@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from mechsing.analysis import analyze
+from mechsing.analysis.words import twist_words, velocity_words, wrench_words
 from mechsing.report.render import render_text
-from mechsing.report.words import twist_words, velocity_words, wrench_words
 from tests.mechanisms import CENTRED_SLIDER_CRANK_MM
 
 EX = Path(__file__).resolve().parents[1] / "examples"
@@ -127,7 +127,7 @@ def test_3rpr_type_ii_turns_about_the_common_point_of_its_legs():
 
 
 def test_point_velocity_spaces():
-    from mechsing.report.words import velocity_space_words
+    from mechsing.analysis.words import velocity_space_words
 
     assert velocity_space_words([]) == "stays still"
     assert velocity_space_words([[0, 0, -1]]) == "moves along -z only"

@@ -147,12 +147,12 @@ def test_an_unreachable_input_reports_the_value_reached_in_the_file_units(tmp_pa
 
 
 def test_an_escaping_exception_is_one_line_exit_4_naming_file_and_configuration(monkeypatch):
-    import mechsing.analysis
+    import mechsing.analysis.run
 
     def broken(*args, **kwargs):
         raise RuntimeError("svd: no convergence")
 
-    monkeypatch.setattr(mechsing.analysis, "classify", broken)
+    monkeypatch.setattr(mechsing.analysis.run, "classify", broken)
     path = str(ROOT / "examples" / "fourbar.yaml")
     rc, out, err = run_cli(["analyze", path, "--config", "crank-30", "--precision", "float"])
     assert rc == 4
@@ -300,7 +300,7 @@ def test_an_undecided_rank_whose_bounds_give_one_verdict_is_no_finding(tmp_path,
 
 
 def test_an_undecided_finding_at_mp_suggests_more_digits_not_the_same_mode():
-    from mechsing.report.render import explain
+    from mechsing.analysis.words import explain
     from mechsing.singularity.findings import UndecidedFinding
 
     f = UndecidedFinding("input test", (0, 1), None, "mp:50")

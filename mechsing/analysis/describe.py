@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 import sympy
 
+from mechsing.kinematics import KinematicModel
 from mechsing.model import Mechanism
 from mechsing.numeric import (
     Margin,
@@ -38,6 +39,7 @@ from mechsing.numeric import (
     svd,
     to_float,
 )
+from mechsing.screws import ClosureSystem
 from mechsing.screws.readable import readable_basis
 from mechsing.singularity.zfb import output_chain
 from mechsing.subgroups import Subgroup, identify
@@ -157,14 +159,14 @@ class OutputMotion:
         return f"dim {self.dim} ({self.note or 'type not identified'})"
 
 
-def _mode(model: Any) -> Precision:
+def _mode(model: KinematicModel) -> Precision:
     prec: Precision = model.precision
     # policy: exact mode decides a rank of a product with a kernel at mp:50 from the exact
     # data when they have no number field (see _exact_kernel)
     return Precision("mp", 50) if prec.mode == "exact" else prec
 
 
-def _exact_kernel(model: Any, cs: Any) -> np.ndarray | None:
+def _exact_kernel(model: KinematicModel, cs: ClosureSystem) -> np.ndarray | None:
     """Exact mode: the closure matrix's exact kernel basis (columns, sympy numbers; the
     identity without loops), or None (not exact mode, or no exact basis)."""
     if model.precision.mode != "exact":
@@ -179,7 +181,9 @@ def _exact_kernel(model: Any, cs: Any) -> np.ndarray | None:
     return cs.rank.exact_null_space
 
 
-def _exact_span(model: Any, cs: Any, A: Any, Z: np.ndarray) -> tuple[Any, np.ndarray] | None:
+def _exact_span(
+    model: KinematicModel, cs: ClosureSystem, A: Any, Z: np.ndarray
+) -> tuple[Any, np.ndarray] | None:
     """The exact product ``A Z`` (A exact, Z the exact kernel), its exact rank decision
     (with its exact range basis), and an orthonormal float basis of its span (columns,
     in the order of the left singular vectors of ``A N``, N the kernel's orthonormal
@@ -204,7 +208,7 @@ def _exact_span(model: Any, cs: Any, A: Any, Z: np.ndarray) -> tuple[Any, np.nda
 
 
 def output_motion(
-    mech: Mechanism, model: Any, q: Any, cs: Any, configuration: str
+    mech: Mechanism, model: KinematicModel, q: Any, cs: ClosureSystem, configuration: str
 ) -> OutputMotion | None:
     """The output twist space at the closed configuration ``q`` (``cs``: the closure
     system there; None without an output), and its point's velocity space when the
@@ -240,7 +244,9 @@ def output_motion(
     return replace(motion, point=_point_motion(mech, model, q, cs, N))
 
 
-def _point_motion(mech: Any, model: Any, q: Any, cs: Any, N: Any) -> PointMotion:
+def _point_motion(
+    mech: Mechanism, model: KinematicModel, q: Any, cs: ClosureSystem, N: Any
+) -> PointMotion:
     """The velocity space of the output point over the closure's kernel ``N``."""
     prec = _mode(model)
     L = model.length_scale
@@ -260,7 +266,7 @@ def _point_motion(mech: Any, model: Any, q: Any, cs: Any, N: Any) -> PointMotion
 
 
 def _exact_point_motion(
-    mech: Any, model: Any, q: Any, cs: Any, Z: np.ndarray
+    mech: Mechanism, model: KinematicModel, q: Any, cs: ClosureSystem, Z: np.ndarray
 ) -> PointMotion | None:
     """:func:`_point_motion` in exact mode: the rank of ``V K`` exactly, in the number
     field of the data (None: no field)."""
@@ -275,7 +281,12 @@ def _exact_point_motion(
 
 
 def _exact_output_motion(
-    mech: Mechanism, model: Any, q: Any, cs: Any, configuration: str, Z: np.ndarray
+    mech: Mechanism,
+    model: KinematicModel,
+    q: Any,
+    cs: ClosureSystem,
+    configuration: str,
+    Z: np.ndarray,
 ) -> OutputMotion | None:
     """:func:`_output_motion` in exact mode: ``T K`` and its rank exactly, its span's
     exact twists identified exactly (None: the data have no number field)."""
@@ -295,7 +306,7 @@ def _exact_output_motion(
 
 
 def _output_motion(
-    mech: Mechanism, model: Any, q: Any, cs: Any, configuration: str, N: Any
+    mech: Mechanism, model: KinematicModel, q: Any, cs: ClosureSystem, configuration: str, N: Any
 ) -> OutputMotion:
     out = mech.output
     prec = _mode(model)
@@ -342,7 +353,7 @@ def _output_motion(
 
 def _motion_of_span(
     mech: Mechanism,
-    model: Any,
+    model: KinematicModel,
     configuration: str,
     dec: Any,
     si: list[Any],

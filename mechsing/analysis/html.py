@@ -1,8 +1,7 @@
 """The verdict of an analysis in words and as a small HTML table (a notebook's view).
 
-Owns the words of each singularity class (:data:`CLASS_WORDS`), the verdict row of a
-configuration (:func:`verdict_row`: singular or not, classes in words, margin, the precision
-that decided it), and :func:`html_table`, an escaped HTML table with no style of its own.
+Owns the verdict row of a configuration (:func:`verdict_row`: singular or not, classes in words, margin, the precision
+that decided it; the classes' words are :mod:`mechsing.analysis.words`'), and :func:`html_table`, an escaped HTML table with no style of its own.
 :meth:`AnalysisResult._repr_html_ <mechsing.analysis.results.AnalysisResult>` and the
 sweeps' result show these tables in a Jupyter notebook; the design-review report
 (:mod:`mechsing.report`) builds its verdict table from the same rows, so the two agree.
@@ -18,64 +17,22 @@ from collections.abc import Sequence
 from html import escape
 from typing import Any
 
-from mechsing.analysis.contract import finding_class
+from mechsing.analysis.words import class_words, finding_label
 from mechsing.numeric import Margin
-from mechsing.singularity.names import NAMES, meaning_of
 
 #: a ConfigurationResult (not imported: the results import this module)
 ConfigurationResult = Any
 
 __all__ = [
-    "CLASS_WORDS",
     "VERDICT_HEADERS",
-    "class_words",
     "decided_in",
-    "finding_label",
     "html_table",
     "largest_drop",
     "margin_words",
     "verdict_row",
 ]
 
-#: each singularity class of the JSON contract in a few words
-CLASS_WORDS = {
-    "serial": "serial: a chain loses a direction of motion",
-    "bifurcation": "bifurcation: branches of motion cross",
-    "isolated": "isolated: a rigid assembly, nothing nearby closes",
-    "degenerate": "degenerate: the rank drops and the motion is not described",
-    "increased-mobility": "increased instantaneous mobility",
-    "input": "input (type I): an input moves while the output stays still",
-    "output": "output (type II): the output moves with the inputs locked",
-    "passive-motion": "passive motion with inputs and output still",
-    "impossible-input": "impossible input: the inputs lose independent rates",
-    "impossible-output": "impossible output: the output loses independent motions",
-    "constraint": "constraint: the output gains a motion outside its type",
-    "undecided": "undecided at this precision",
-}
-
 VERDICT_HEADERS = ("configuration", "singular", "classes", "margin", "decided in")
-
-
-def finding_label(f: Any) -> str:
-    """A finding's class, with the name people give it where it has one (``serial (elbow)``)."""
-    cls, name = finding_class(f), getattr(f, "name", None)
-    return f"{cls} ({name})" if name else cls
-
-
-def class_words(classes: Sequence[str]) -> str:
-    """The classes in words, in order, each once (``none`` when there is none)."""
-    seen = list(dict.fromkeys(classes))
-    return "; ".join(_words(c) for c in seen) or "none"
-
-
-def _words(label: str) -> str:
-    """The words of a class, or of a named finding's label (``serial (elbow)``)."""
-    cls, _, name = label.partition(" (")
-    if not name:
-        return CLASS_WORDS.get(cls, cls)
-    name = name.rstrip(")")
-    known = all(part in NAMES for part in name.split(" and "))
-    return f"{cls} ({name}: {meaning_of(name) if known else name})"
 
 
 def _relative(m: Margin, value: float | None) -> float | None:

@@ -3,12 +3,18 @@
 * :mod:`~mechsing.kinematics.model`: the kinematic model (reference screws of the
   joints in one precision mode, coordinates, closure residuals and Jacobian, updates
   on the group);
+* :mod:`~mechsing.kinematics.protocol`: :class:`ClosureModel`, what closure and Newton
+  ask of a model (a :class:`KinematicModel`, or a pose model,
+  :mod:`~mechsing.kinematics.pose`);
 * :mod:`~mechsing.kinematics.batched`: poses and current screws of one configuration
   or a batch (the analysis and the scanner), the serial fast Jacobian;
 * :mod:`~mechsing.kinematics.chains`: the coordinates a chain between two bodies
   crosses, with their signs (tree-path sign sums);
 * :mod:`~mechsing.kinematics.newton`: Newton on the group;
-* :mod:`~mechsing.kinematics.closure`: closure of named configurations by continuation.
+* :mod:`~mechsing.kinematics.closure`: closure of named configurations (:class:`Closer`),
+  from their given values (:mod:`~mechsing.kinematics.given`) by continuation
+  (:mod:`~mechsing.kinematics.continuation`), polished at N digits in mp
+  (:mod:`~mechsing.kinematics.polish`).
 """
 
 from mechsing.errors import ClosureError, ConfigurationError, ExactDataError
@@ -16,10 +22,12 @@ from mechsing.kinematics.chains import Chain, path_chain, tree_chain
 from mechsing.kinematics.closure import ClosedConfiguration, Closer, solve_configuration
 from mechsing.kinematics.model import JointKinematics, KinematicModel, axis_points
 from mechsing.kinematics.newton import NewtonResult, newton_on_group
+from mechsing.kinematics.protocol import ClosureModel
 
 __all__ = [
     "Chain",
     "ClosedConfiguration",
+    "ClosureModel",
     "Closer",
     "ClosureError",
     "ConfigurationError",

@@ -15,12 +15,12 @@ limit it is and where that limit is (SI units and radians).
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import mpmath
 import numpy as np
 
 from mechsing.kinematics.newton import damped_least_squares, newton_on_group, scaled_system
+from mechsing.kinematics.protocol import ClosureModel
 from mechsing.numeric import (
     CONTINUATION_SINGULAR_RTOL,
     POLISH_MAX_STEPS,
@@ -32,7 +32,7 @@ from mechsing.numeric import (
 __all__ = ["beyond_target", "beyond_travel"]
 
 
-def beyond_travel(m: Any, q: np.ndarray, gmask: np.ndarray) -> str | None:
+def beyond_travel(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> str | None:
     """Why configuration ``q`` of model ``m`` (its given coordinates ``gmask``, the others
     solved as far as they go) does not close, when it is beyond a limit of travel: the
     unknown joints' Jacobian is singular there (relative smallest singular value at most
@@ -87,7 +87,9 @@ def beyond_travel(m: Any, q: np.ndarray, gmask: np.ndarray) -> str | None:
     )
 
 
-def beyond_target(fm: Any, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> str | None:
+def beyond_target(
+    fm: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray
+) -> str | None:
     """:func:`beyond_travel` for a continuation (float model ``fm``) that stalled at ``q``
     short of ``target``: the unknown joints are first brought as near closure as they go
     with the given values at the target (Newton, least squares: it stops at the fold

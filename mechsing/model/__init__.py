@@ -6,6 +6,9 @@ Public API::
     mech = load("examples/fourbar.yaml")      # a Mechanism (or MechanismError)
     mech.joints, mech.loops, mech.legs, mech.configurations, mech.graph.tree_paths
 
+The file is read by :mod:`mechsing.model.loader` (the top level), with
+:mod:`mechsing.model.joints`, :mod:`mechsing.model.configurations` and the
+reading context :mod:`mechsing.model.reading`.
 See :mod:`mechsing.model.mechanism` for the data model,
 :mod:`mechsing.model.graph` for loops, legs and the spanning tree,
 :mod:`mechsing.model.expressions` for exact numbers and whitelisted

@@ -10,14 +10,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from mechsing.model.loader import (
-    ANGLE_UNITS,
+from mechsing.model.configurations import (
     DISPLACEMENT_KEYS,
-    LENGTH_UNITS,
     POSE_KEYS,
     RESERVED_CONFIGURATION_KEYS,
-    U_KEYS,
 )
+from mechsing.model.joints import U_KEYS
+from mechsing.model.loader import ANGLE_UNITS, LENGTH_UNITS
 from mechsing.model.loads import LOAD_KEY, LOAD_KEYS
 from mechsing.model.mechanism import POSE_KEY, U_JOINT
 

@@ -11,23 +11,28 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Sequence
 from typing import Any
 
 from mechsing.analysis.contract import subgroup_params
 from mechsing.analysis.describe import OutputMotion
 from mechsing.analysis.results import AnalysisResult, to_json
+from mechsing.analysis.words import (
+    describe,
+    explain,
+    joint_list,
+    margin_text,
+    number_text,
+    subgroup_words,
+    velocity_space_words,
+)
 from mechsing.model.couplings import coupling_source, describe_coupling
-from mechsing.numeric import Margin, display_floor, floored
-from mechsing.report.words import describe, subgroup_words, velocity_space_words
+from mechsing.numeric import display_floor, floored
 from mechsing.singularity.findings import (
-    BranchFinding,
     ConstraintFinding,
     Finding,
     SerialFinding,
     UndecidedFinding,
 )
-from mechsing.singularity.names import LEG, meaning_of
 from mechsing.singularity.zfb import not_run_sentences
 from mechsing.subgroups import Subgroup
 
@@ -48,110 +53,6 @@ def _clean(x: Any) -> Any:
 def to_json_text(result: AnalysisResult) -> str:
     """The JSON contract as text (non-finite floats as null)."""
     return json.dumps(_clean(to_json(result)), indent=2) + "\n"
-
-
-def _fmt_num(x: Any) -> str:
-    if x is None:
-        return "-"
-    if isinstance(x, float):
-        return f"{x:.4g}"
-    return str(x)
-
-
-def _margin(m: Margin | None) -> str:
-    if m is None:
-        return ""
-    parts = [f"kept {_fmt_num(m.kept)}", f"dropped {_fmt_num(m.dropped)}"]
-    if m.eig_margin is not None:
-        parts.append(f"eigenvalue margin {_fmt_num(m.eig_margin)}")
-    lo, hi = m.thresholds
-    return ", ".join(parts) + f" (thresholds {lo}/{hi}, L = {m.length_scale:.4g} m)"
-
-
-def _names(xs: Sequence[str]) -> str:
-    if not xs:
-        return "no joint"
-    return ", ".join(xs[:-1]) + (" and " if len(xs) > 1 else "") + xs[-1]
-
-
-def explain(f: Finding) -> str:
-    """One sentence a student understands, with the finding's own numbers."""
-    cls = f.cls
-    if isinstance(f, UndecidedFinding):
-        why = (
-            f"its rank lies between {f.rank_bounds[0]} and {f.rank_bounds[1]}"
-            if f.rank_bounds
-            else (
-                f.note if f.note is not None else "a singular value lies between the two thresholds"
-            )
-        )
-        return (
-            f"the precision used cannot decide the {f.what} ({why}); {_more_precise(f.precision)}"
-        )
-    j = _names(f.joints)
-    if isinstance(f, SerialFinding):
-        what = f"leg {f.leg}" if f.chain == "leg" else "the chain to the output"
-        # "wrist singularity (...)", "leg fully stretched or folded (...)"
-        kind = f.name if f.name == LEG else f"{f.name} singularity"
-        named = f"{kind} ({meaning_of(f.name)}): " if f.name else ""
-        return (
-            f"{named}{what} loses {f.corank} direction(s) of motion (rank {f.rank} instead of "
-            f"{f.generic_rank}): joints {j} can move while its end stays still, and it resists "
-            f"{f.corank} more wrench(es) than usual with no joint effort ({len(f.wrenches)} in all)"
-        )
-    if isinstance(f, ConstraintFinding):
-        return (
-            f"the legs' constraint wrenches drop to rank {f.rank} (generically {f.generic_rank}): the output "
-            "gains a motion outside its usual motion type"
-        )
-    if isinstance(f, BranchFinding):
-        if cls == "bifurcation":
-            mobs = ", ".join("?" if m is None else str(m) for m in f.branch_mobility or ())
-            kin = (
-                " (branches of different mobility meet: a kinematotropic point)"
-                if f.kinematotropic
-                else ""
-            )
-            return (
-                f"{f.branches} branches of motion cross here (branch mobilities {mobs}){kin}: from this "
-                f"configuration the mechanism can leave along different paths, decided at order {f.order}"
-            )
-        if cls == "isolated":
-            return (
-                f"the joints have {f.instantaneous} instantaneous motion(s), but none extends to a real "
-                "motion: this assembly is rigid and no nearby configuration closes"
-            )
-        if cls == "degenerate":
-            return f"the loops lose rank and the higher-order test cannot describe the motion here ({f.note or ''})"
-        return (
-            f"the joints have {f.instantaneous} instantaneous motion(s) where the mechanism moves with "
-            f"{f.generic}: the extra ones do not extend, and one smooth branch passes through"
-        )
-    if cls == "input":
-        return f"an input can move while the output stays still (moving joints: {j}): the output loses a direction"
-    if cls == "output":
-        return (
-            f"with the inputs locked the output can still move (moving joints: {j}): the mechanism loses "
-            "stiffness and actuator forces can grow without bound"
-        )
-    if cls == "passive-motion":
-        return f"passive joints {j} can move while the inputs and the output stay still"
-    if cls == "impossible-input":
-        return f"the inputs can take only {f.rank} independent rates here instead of {f.generic}"
-    return f"the output can make only {f.rank} independent motions here instead of {f.generic}"
-
-
-def _more_precise(precision: str) -> str:
-    """What to try after an undecided test, from the precision that left it open."""
-    if precision.startswith("mp:"):
-        digits = int(precision[3:])
-        return (
-            f"try --precision mp:{2 * digits}, or exact with exact data (the configuration may "
-            f"be within 10^-{digits // 2} of a singularity)"
-        )
-    if precision == "exact":
-        return "the test ran at mp:50 from the exact data: try a larger --precision mp:N"
-    return "try --precision mp:50 or exact"
 
 
 def _subgroup(sg: Subgroup | None) -> str:
@@ -273,7 +174,7 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         lines += ["", f"{h2}{title}" if markdown else f"{title}:"]
         for leg in result.legs:
             inner = (
-                f" (and {_names(leg.other_joints)} in loops inside the leg)"
+                f" (and {joint_list(leg.other_joints)} in loops inside the leg)"
                 if leg.other_joints
                 else ""
             )
@@ -323,7 +224,7 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             sig = ", ".join(f"{s:.4g}" for s in (lp.sigma or ()))
             lines.append(
                 f"{bullet}loop {'-'.join(lp.joints)}: moves inside {_subgroup(lp.subgroup)}; "
-                f"rank {_fmt_num(lp.rank)}" + (f", singular values {sig}" if sig else "")
+                f"rank {number_text(lp.rank)}" + (f", singular values {sig}" if sig else "")
             )
         for cp in result.mechanism.couplings:
             lines.append(
@@ -333,14 +234,14 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         cr = c.closure_rank
         assert cr is not None and c.mobility is not None  # an analysed configuration has both
         lines.append(
-            f"{bullet}closure system: rank {_fmt_num(cr.rank)}, nullity {_fmt_num(cr.nullity)}; "
-            f"margin: {_margin(cr.margin)}"
+            f"{bullet}closure system: rank {number_text(cr.rank)}, nullity {number_text(cr.nullity)}; "
+            f"margin: {margin_text(cr.margin)}"
         )
         m = c.mobility
         lines.append(
-            f"{bullet}mobility: finite {_fmt_num(m.finite)} (generic {_fmt_num(m.generic)}, "
-            f"instantaneous {_fmt_num(m.instantaneous)}, group {_fmt_num(m.group)}, "
-            f"spatial Grubler-Kutzbach count {_fmt_num(m.grubler)})"
+            f"{bullet}mobility: finite {number_text(m.finite)} (generic {number_text(m.generic)}, "
+            f"instantaneous {number_text(m.instantaneous)}, group {number_text(m.group)}, "
+            f"spatial Grubler-Kutzbach count {number_text(m.grubler)})"
         )
         if c.output_motion is not None:
             lines.append(f"{bullet}output motion: {_motion_words(c.output_motion, L)}")
@@ -355,7 +256,7 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
             sub = "  - " if markdown else "    "
             lines += [f"{sub}{line}" for line in screw_lines(s, L)]
             verb = "tested" if isinstance(s, UndecidedFinding) else "decided"
-            lines.append(f"{sub}{verb} in {s.precision}; margin: {_margin(s.margin)}")
+            lines.append(f"{sub}{verb} in {s.precision}; margin: {margin_text(s.margin)}")
     return "\n".join(lines) + "\n"
 
 

@@ -18,7 +18,8 @@ import numpy as np
 
 from mechsing.analysis import ConfigurationResult
 from mechsing.analysis.contract import finding_class, finding_margin
-from mechsing.analysis.html import VERDICT_HEADERS, finding_label, html_table, verdict_row
+from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
+from mechsing.analysis.words import finding_label
 from mechsing.model import Mechanism
 from mechsing.numeric import SWEEP_TIE_RTOL, floored
 

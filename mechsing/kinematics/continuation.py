@@ -1,0 +1,456 @@
+"""Continuation: from a closed configuration to given coordinates on the same
+assembly mode.
+
+The given values move along a straight line in small steps; at each step a
+first-order predictor and a damped Newton corrector on the group (each update in the
+joint's own subalgebra, :meth:`KinematicModel.update`) close the loops again, and the
+step is accepted only when it stayed on its branch (:meth:`Continuation._same_branch`).
+The path stops with :class:`ClosureError` naming the step when the closure Jacobian
+in the unknown coordinates loses rank before the target; a target that is a fold of
+the given values is landed on (:meth:`Continuation._land_on_fold`).  Float by design:
+an mp model's landing is polished by :class:`~mechsing.kinematics.polish.MpPolisher`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from mechsing.errors import ClosureError, UserError
+from mechsing.kinematics.closed import ClosedConfiguration, shown_residual
+from mechsing.kinematics.model import KinematicModel
+from mechsing.kinematics.newton import damped_least_squares, finite_system, newton_on_group
+from mechsing.kinematics.polish import MpPolisher
+from mechsing.kinematics.pose import PoseModel
+from mechsing.kinematics.protocol import ClosureModel
+from mechsing.kinematics.travel import beyond_target, beyond_travel
+from mechsing.model import Configuration
+from mechsing.numeric import (
+    CONTINUATION_CORRECTOR_RATIO,
+    CONTINUATION_FOLD_GAP,
+    CONTINUATION_FOLD_REACH,
+    CONTINUATION_JUMP_FLOOR,
+    CONTINUATION_RETURN_RATIO,
+    CONTINUATION_REVERSE_RTOL,
+    CONTINUATION_SINGULAR_RTOL,
+    CONTINUATION_STEP_RTOL,
+    POLISH_MAX_STEPS,
+    decide_rank,
+    to_float,
+)
+from mechsing.numeric.blocks import block_svd
+
+__all__ = ["Continuation", "closure_matrix"]
+
+#: largest step of a given coordinate: radians, or this times L for a length
+_MAX_STEP = 0.1
+#: largest predicted step of all coordinates together (commensurate norm)
+_MAX_PREDICTED_STEP = 0.15
+_MAX_HALVINGS = 14
+_NEWTON_ITERATIONS = 12
+#: most planned steps of one continuation (a crank of 300 turns)
+_MAX_STEPS = 20000
+#: step attempts allowed per planned step before continuation gives up
+_MAX_ATTEMPTS_PER_STEP = 20
+
+
+@dataclass
+class StepInfo:
+    """What a step of continuation found: the residual (m) it closed to, the rank of the
+    closure Jacobian in the unknown coordinates there (None: not decided) with its
+    smallest kept relative singular value, whether the unknowns are underdetermined, and
+    where the predictor put the step."""
+
+    residual: float
+    rank: int | None
+    smin: float
+    underdetermined: bool
+    predicted: np.ndarray
+
+
+class Corrected(NamedTuple):
+    """A corrected step: whether it closed (``ok``), where it ended (``q``), what it found."""
+
+    ok: bool
+    q: np.ndarray
+    info: StepInfo
+
+
+class Continuation:
+    """Continuation in one kinematic model (or a pose model of it), accepting at
+    ``tolerance`` (the model's closure tolerance); ``polisher`` polishes an mp model's
+    landing."""
+
+    def __init__(self, model: KinematicModel, tolerance: Any, polisher: MpPolisher) -> None:
+        self.model = model
+        self.tolerance = tolerance
+        self.polisher = polisher
+
+    def run(
+        self,
+        cfg: Configuration,
+        q0: np.ndarray,
+        target: np.ndarray,
+        given: tuple[int, ...],
+        model: PoseModel | None = None,
+    ) -> ClosedConfiguration:
+        """Continuation from ``q0`` to the given coordinates of ``target`` in the model
+        (``model``: a pose model of this configuration, else the Closer's own)."""
+        m: ClosureModel = self.model if model is None else model
+        # policy: continuation is float by design (an mp model polishes its end point)
+        fm = m.float_twin()
+        gmask = np.zeros(m.n, dtype=bool)
+        gmask[list(given)] = True
+        q = to_float(q0).copy()
+        qt = to_float(target)
+        # straight line in the given coordinates
+        span = np.abs(qt - q)[gmask]
+        scale = fm.float_frame.rates_back(np.ones(int(gmask.sum())), np.flatnonzero(gmask))
+        nsteps = max(1, math.ceil(float(np.max(span / scale, initial=0.0)) / _MAX_STEP))
+        if nsteps > _MAX_STEPS:
+            raise UserError(
+                f"configuration {cfg.name!r}: the given values are {nsteps * _MAX_STEP:.3g} (rad, or lengths / L) "
+                f"from {cfg.start or 'reference'!r}, more than continuation follows ({_MAX_STEPS * _MAX_STEP:g}); "
+                "add intermediate configurations with start, or give values nearer the start"
+            )
+        q_start = q.copy()
+        t = 0.0
+        dt = 1.0 / nsteps
+        steps = 0
+        underdetermined = False
+        at_fold = False
+        best_rank = None
+        attempts = 0
+        while t < 1.0:
+            attempts += 1
+            if attempts > _MAX_ATTEMPTS_PER_STEP * nsteps + 4 * _MAX_HALVINGS:
+                raise ClosureError(
+                    f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} makes no progress "
+                    f"after {attempts - 1} step attempts ({_given_reached(fm, q, qt, gmask)}): the path keeps meeting "
+                    "near-singular configurations; add intermediate configurations",
+                    cfg.name,
+                    None,
+                )
+            t_next = min(1.0, t + dt)
+            final = t_next >= 1.0
+            qg = q.copy()
+            qg[gmask] = (
+                qt[gmask] if final else q_start[gmask] + t_next * (qt[gmask] - q_start[gmask])
+            )
+            ok, qn, info = self._correct(fm, q, qg, gmask, final)
+            if ok and not self._same_branch(fm, q, qn, info, gmask):
+                ok = False
+            if not ok:
+                dt /= 2
+                if dt < 1.0 / nsteps / 2**_MAX_HALVINGS:
+                    landed = self._land_on_fold(fm, q, qt, gmask)
+                    if landed is not None:  # the target is the fold itself: reached
+                        q, info = landed.q, landed.info
+                        t, steps, at_fold = 1.0, steps + 1, True
+                        continue
+                    # values the loops tie together, or a target beyond a limit of travel
+                    # (which value, by how much)
+                    why = _tied_given(fm, q_start, gmask) or beyond_target(fm, q, qt, gmask)
+                    raise ClosureError(
+                        f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} stopped at step "
+                        f"{steps + 1}: {_given_reached(fm, q, qt, gmask)}; "
+                        + (
+                            f"{why}"
+                            if why
+                            else "the given values cannot be followed further on this assembly "
+                            "mode (a singularity or a limit of motion lies on the path); add an "
+                            "intermediate configuration or change the target"
+                        ),
+                        cfg.name,
+                        info.residual,
+                    )
+                continue
+            steps += 1
+            underdetermined = underdetermined or info.underdetermined
+            # loss of rank of the closure Jacobian in the unknowns before the target
+            if not final:
+                r = info.rank
+                if (
+                    best_rank is not None
+                    and r is not None
+                    and r < best_rank
+                    and info.smin < CONTINUATION_SINGULAR_RTOL
+                ):
+                    raise ClosureError(
+                        f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} meets a "
+                        f"singularity at step {steps} ({_given_reached(fm, qn, qt, gmask)}): the closure Jacobian in the unknown joints "
+                        f"loses rank ({r} < {best_rank}); joint values there: {_fmt(fm, qn)}; "
+                        "choose a target on this side of the singularity, or start from a configuration beyond it",
+                        cfg.name,
+                        info.residual,
+                    )
+                if r is not None:
+                    best_rank = r if best_rank is None else max(best_rank, r)
+            q = qn
+            t = t_next
+            dt = min(dt * 1.5, 1.0 / nsteps)
+        res = info.residual
+        notes = []
+        if at_fold:
+            notes.append(
+                "the given values are a fold (a limit of their motion): the unknown joints were "
+                "found by Newton from just short of it; float places them only to about 1e-8 there"
+            )
+        if m.precision.mode == "mp":  # policy: only mp polishes the float landing
+            # (a pose model is not rebuilt deeper: its target is polished at N digits)
+            qm, res = self.polisher.polish(m, q, target, gmask, cfg if model is None else None)
+            q_out = qm
+        else:
+            q_out = q
+        if res > self.tolerance:
+            # just beyond a fold of the given values: say which limit, and by how much
+            with m.precision.context():
+                why = beyond_travel(m, q_out, gmask)
+            raise ClosureError(
+                f"configuration {cfg.name!r} does not close: "
+                + (f"{why}; " if why else "")
+                + f"residual {shown_residual(res, 3)} m after continuation "
+                f"(accepted: {shown_residual(self.tolerance, 1)} m)",
+                cfg.name,
+                float(res),
+            )
+        return ClosedConfiguration(
+            cfg.name, q_out, float(res), underdetermined, steps, given, notes, at_fold
+        )
+
+    def _land_on_fold(
+        self, fm: ClosureModel, q: np.ndarray, qt: np.ndarray, gmask: np.ndarray
+    ) -> Corrected | None:
+        """The target, when continuation stalls just short of it because it is a fold
+        (a limit of the given values: a dead centre, a Type II pose given by the inputs).
+
+        There the unknown joints move like the square root of the given ones, so no
+        step is short enough for the predictor, and Newton at the double root only
+        halves the distance at each step.  From the last point reached, Newton with the
+        given values at the target (a slow step is doubled, which converges at a double
+        root) must close; the landing is accepted only where the two branches meet: the
+        Jacobian in the unknown joints is singular there (relative smallest singular
+        value below CONTINUATION_SINGULAR_RTOL) and the joints moved at most
+        CONTINUATION_FOLD_REACH times the square root of what was left.  None otherwise
+        (a target beyond the fold has no solution; one before it is not a fold)."""
+        L = fm.length_scale
+
+        def comm(d: np.ndarray) -> float:
+            return float(np.linalg.norm(fm.float_frame.rates(d)))
+
+        left = comm(np.where(gmask, qt - q, 0.0))
+        free = ~gmask
+        if left > CONTINUATION_FOLD_GAP or not np.any(free) or not fm.blocks:
+            return None
+        tol = fm.precision.closure_tolerance(L)
+        qn = q.copy()
+        qn[gmask] = qt[gmask]
+        # the doubled step removes the halving at a double root
+        landed = newton_on_group(
+            fm, qn, free, solve=damped_least_squares, max_steps=POLISH_MAX_STEPS, doubling=True
+        )
+        qn, res = landed.q, landed.residual
+        if res > tol or comm(fm.difference(qn, q)) > CONTINUATION_FOLD_REACH * math.sqrt(left):
+            return None
+        Js = closure_matrix(fm, qn)
+        sigma = block_svd(Js[:, free], compute_uv=False)
+        if not len(sigma) or sigma[-1] > CONTINUATION_SINGULAR_RTOL * sigma[0]:
+            return None
+        rank = int(np.sum(sigma > CONTINUATION_SINGULAR_RTOL * sigma[0]))
+        info = StepInfo(res, rank, float(sigma[-1] / sigma[0]), False, qn)
+        return Corrected(True, qn, info)
+
+    def _same_branch(
+        self, fm: ClosureModel, q: np.ndarray, qn: np.ndarray, info: StepInfo, gmask: np.ndarray
+    ) -> bool:
+        """Did the step stay on the assembly mode it started from?
+
+        Newton's correction must be small next to the predictor step, and near a
+        singularity (where two modes are close) the step must be reversible:
+        stepping back from ``qn`` returns to ``q``.
+        """
+
+        def comm(d: np.ndarray) -> float:
+            return float(np.linalg.norm(fm.float_frame.rates(d)))
+
+        step = comm(fm.difference(info.predicted, q))
+        if step == 0.0:
+            return True
+        # the whole predicted step, passive joints included, stays short: a path on
+        # which the passive joints move much faster than the given ones is cut finer
+        if step > _MAX_PREDICTED_STEP:
+            return False
+        if comm(fm.difference(qn, info.predicted)) > max(
+            CONTINUATION_CORRECTOR_RATIO * step, CONTINUATION_JUMP_FLOOR
+        ):
+            return False
+        # with a continuum of solutions (underdetermined) stepping back may land
+        # elsewhere on it: reversibility only means something for a determined step
+        if info.smin < CONTINUATION_REVERSE_RTOL and not info.underdetermined:
+            back_target = qn.copy()
+            back_target[gmask] = q[gmask]
+            ok, qb, _ = self._correct(fm, qn, back_target, gmask, False)
+            if not ok or comm(fm.difference(qb, q)) > max(
+                CONTINUATION_RETURN_RATIO * step, CONTINUATION_JUMP_FLOOR
+            ):
+                return False
+        return True
+
+    def _correct(
+        self, fm: ClosureModel, q_prev: np.ndarray, qg: np.ndarray, gmask: np.ndarray, final: bool
+    ) -> Corrected:
+        """Predictor (tangent) + damped Newton on the unknown coordinates."""
+        free = ~gmask
+        L = fm.length_scale
+        # the float stage accepts at float's tolerance (an mp model polishes afterwards)
+        tol_final = fm.precision.closure_tolerance(L)
+        tol = tol_final if final else max(tol_final, CONTINUATION_STEP_RTOL * L)
+        # predictor: J_u du = -J_g dg at the previous point
+        Js = closure_matrix(fm, q_prev)
+        dg = np.where(gmask, qg - q_prev, 0.0)
+        dgs = fm.float_frame.rates(dg)
+        q = q_prev.copy()
+        if np.any(free) and Js.shape[0]:
+            du = damped_least_squares(Js[:, free], -Js[:, gmask] @ dgs[gmask])
+            dus = np.zeros(fm.n)
+            dus[free] = du
+            dus = fm.float_frame.rates_back(dus)
+            q = fm.update(q_prev, np.where(gmask, dg, dus))
+        else:
+            q = fm.update(q_prev, dg)
+        q[gmask] = qg[gmask]
+        predicted = q.copy()
+        res = fm.residual_norm(fm.chord_residuals(q))
+        info = StepInfo(res, None, 1.0, False, predicted)
+        polish = 0
+
+        def stop(it: int, res: float) -> bool:
+            nonlocal polish
+            if res <= tol and it > 0:
+                # at the target, keep iterating while Newton still gains (rounding level)
+                if not final or polish >= 2:
+                    return True
+                polish += 1
+            return not fm.blocks or not np.any(free)
+
+        out = newton_on_group(
+            fm,
+            q,
+            free,
+            solve=damped_least_squares,
+            max_steps=_NEWTON_ITERATIONS,
+            residual=res,
+            stop=stop,
+            # polishing at the target stops when it no longer gains
+            keep=lambda res, new: not (res <= tol and new >= res),
+            diverged=lambda it, res, new: (
+                not np.isfinite(new) or new > 10 * max(res, tol) and it > 2
+            ),
+        )
+        info.residual = out.residual
+        if out.diverged:
+            return Corrected(False, out.q, info)
+        q, res = out.q, out.residual
+        if res > tol:
+            return Corrected(False, q, info)
+        if np.any(free) and fm.blocks:
+            Js = closure_matrix(fm, q)
+            if not finite_system(Js):
+                # closed, but at coordinates so far off that the Jacobian's series
+                # overflow (a degenerate loop whose S joint turned without end): no step
+                return Corrected(False, q, info)
+            dec = decide_rank(Js[:, free], "float", L)
+            rank = dec.rank if dec.rank is not None else dec.rank_bounds[0]
+            info.rank = rank
+            s = [x / dec.sigma[0] for x in dec.sigma] if dec.sigma and dec.sigma[0] > 0 else [0.0]
+            info.smin = s[min(rank, len(s)) - 1] if rank else 0.0
+            info.underdetermined = rank < int(np.sum(free))
+        return Corrected(True, q, info)
+
+
+def closure_matrix(fm: ClosureModel, q: np.ndarray) -> Any:
+    """The commensurate closure Jacobian of the float model at q: sparse for a big
+    mechanism (:attr:`KinematicModel.sparse_closure`: built from each loop's own
+    joints and factorised block by block; only a mechanism's model is), dense otherwise."""
+    if isinstance(fm, KinematicModel) and fm.sparse_closure:
+        return fm.sparse_closure_jacobian(q, fm.float_frame)
+    return fm.scaled_closure_jacobian(q, fm.float_frame)
+
+
+def _fmt(m: ClosureModel, q: np.ndarray) -> str:
+    return ", ".join(f"{k}={[round(x, 6) for x in v]}" for k, v in m.values(q).items())
+
+
+def _tied_given(fm: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> str:
+    """Why a path in the given coordinates leaves the mechanism's motion when the loops
+    tie those coordinates together at ``q`` ('' when they are independent there, or
+    when the ranks are not decided).
+
+    The given rates dg can be followed when some rates du of the other coordinates close
+    the loops: J_g dg + J_u du = 0.  Those dg form a space of dimension
+    n_g - (rank J - rank J_u): when rank J > rank J_u the given values obey that many
+    relations, and a straight path between a start and a target (even two that both
+    close) generally leaves the set where they hold.  Said only where J_u has full
+    column rank (the other coordinates determined): at a fold of the given values J_u
+    loses rank instead, and the given values are not tied elsewhere."""
+    free = ~gmask
+    if isinstance(fm, PoseModel) or not fm.chords or not np.any(free):
+        return ""
+    Js = closure_matrix(fm, q)
+    if not finite_system(Js):
+        return ""
+    L = fm.length_scale
+    whole = decide_rank(Js[:, np.ones(fm.n, dtype=bool)], "float", L).rank
+    part = decide_rank(Js[:, free], "float", L).rank
+    # the other coordinates determined (J_u of full column rank) and still fewer
+    # constraints absorbed than there are: the given values over-determine; where J_u
+    # loses column rank instead, the start is a singularity of the given values (a fold
+    # of the inputs), which the caller's words describe
+    if whole is None or part is None or whole <= part or part < int(np.sum(free)):
+        return ""
+    dof = {j.name: j.dof for j in fm.mech.joints}
+    labels = [
+        jname if dof[jname] == 1 else f"{jname}[{i}]"
+        for col, (jname, i) in enumerate(fm.mech.coordinates())
+        if gmask[col]
+    ]
+    n_given = len(labels)
+    free_dims = n_given - (whole - part)
+    return (
+        f"the given coordinates {', '.join(labels)} are not independent: the loops tie them by "
+        f"{whole - part} relation(s), so only {free_dims} of the {n_given} can be chosen and the "
+        "others follow; give at most "
+        f"{free_dims} of them and let mechsing solve the rest (or every joint value of a "
+        "configuration that closes)"
+    )
+
+
+def _given_reached(m: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> str:
+    """The given coordinates where continuation stopped, against their targets,
+    in the file's units: ``A reached 173.13 deg, 26.87 deg short of the target 200 deg``."""
+    units = m.mech.units
+    joints = {j.name: j for j in m.mech.joints}
+    parts = []
+    for col, (jname, i) in enumerate(m.mech.coordinates()):
+        if not gmask[col]:
+            continue
+        j = joints[jname]
+        length = j.units[i] == "m"
+        factor = float(units.length_factor if length else units.angle_factor)
+        unit = units.length if length else units.angle
+        label = jname if j.dof == 1 else f"{jname}[{i}]"
+        reached, goal = float(q[col]) / factor, float(target[col]) / factor
+        parts.append(
+            f"{label} reached {reached:.10g} {unit}, {abs(goal - reached):.3g} {unit} short "
+            f"of the target {goal:.10g} {unit}"
+        )
+    if isinstance(m, PoseModel):
+        dx, angle = m.distance(q, target)
+        parts.append(
+            f"the output {m.mech.output.body!r} is {dx:.3g} m and {angle:.3g} rad "
+            f"({math.degrees(angle):.3g} deg) from the target pose"
+        )
+    return "; ".join(parts)
