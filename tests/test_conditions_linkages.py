@@ -276,3 +276,39 @@ def test_octahedral_platform_cubic_is_a_power_of_z() -> None:
     (c,) = doc["conditions"]
     assert [(f["expression"], f["power"]) for f in c["factors"]] == [("z", 3)]
     assert c["latex"].endswith("z^{3}")
+
+
+def test_stephenson_iii_toggles_of_the_output_dyad(tmp_path: Path) -> None:
+    # the coupler B-C-E of the four-bar carries E = (2, 3); the output dyad E-G-F has the
+    # lengths m (symbolic) and n = 2, F = (2 + m, 3 - n): examples/stephenson_iii.yaml with its
+    # dyad's lengths named. The published toggle (Hartenberg & Denavit): the link E-G and the
+    # output G-F in line, |E - F| = m + n or |m - n|, with E the coupler point of the four-bar
+    text = (
+        (EXAMPLES / "stephenson_iii.yaml")
+        .read_text()
+        .replace("bodies: [ground", "parameters: {m: 3, n: 2}\nbodies: [ground")
+        .replace("point: [5, 3, 0]", 'point: ["2 + m", 3, 0]')
+        .replace("point: [5, 1, 0]", 'point: ["2 + m", "3 - n", 0]')
+    )
+    path = tmp_path / "stephenson_iii.yaml"
+    path.write_text(text)
+    # the time limit only keeps a loaded machine's wall clock from cutting the elimination
+    # short (about 35 s of one quiet core for both conditions)
+    doc = _json([str(path), "--symbolic", "m", "--time-limit", "1200"])
+    tog = _named(doc, "output (type II) in the input A")
+    assert "m" in {str(s) for s in _dyad_factors(tog).free_symbols}
+    reached = 0
+    for m in (3.0, 0.6, 0.75):  # the file's m, and two where |m - n| is reached
+        n = 2.0
+        F = np.array([2 + m, 3 - n])
+
+        def E_of(theta: float, coupler: float, rocker: float) -> np.ndarray:
+            B = np.array([math.cos(theta), math.sin(theta)])
+            return B + _rot(coupler, (1.0, 3.0))
+
+        expected = _toggles(E_of, F, m, n)
+        got = _real_roots(_dyad_factors(tog), {"m": m})
+        assert len(got) == len(expected)
+        assert np.allclose(got, expected, atol=1e-3)
+        reached += len(expected)
+    assert reached  # the toggles of the output dyad are reached at one of the values
