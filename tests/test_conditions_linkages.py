@@ -312,3 +312,79 @@ def test_stephenson_iii_toggles_of_the_output_dyad(tmp_path: Path) -> None:
         assert np.allclose(got, expected, atol=1e-3)
         reached += len(expected)
     assert reached  # the toggles of the output dyad are reached at one of the values
+
+
+def test_tsai_3upu_constraint_and_actuation_in_the_pose() -> None:
+    # Tsai's 3-UPU: leg i from the ground pivot a_i (U, first axis s1 fixed in the ground) to
+    # the platform pivot b_i = b_i0 + t - c0; its second axis s2 = s1 x u is normal to s1 and
+    # to the leg u = b - a. Its constraint couple n_i = s1 x s2 (Zlatanov, Bonev, Gosselin
+    # 2002), checked here to be reciprocal to the leg's five joint screws; the actuation
+    # wrench is the force along the leg. Everything below is numpy on the file's numbers.
+    import yaml
+
+    path = EXAMPLES / "tsai_3upu.yaml"
+    doc = _json([str(path)])
+    constraint = _named(doc, "constraint")
+    actuation = _named(doc, "output (type II)")
+    x, y, z = sympy.symbols("x y z")
+    f_con = sympy.lambdify((x, y, z), sympy.sympify(_product(constraint)), "numpy")
+    f_act = sympy.lambdify((x, y, z), sympy.sympify(_product(actuation)), "numpy")
+    data = yaml.safe_load(path.read_text())
+    joints = {j["name"]: j for j in data["joints"]}
+
+    def vec(v: list) -> np.ndarray:
+        return np.array([float(sympy.sympify(c)) for c in v])
+
+    legs = [
+        (
+            vec(joints[f"U{i}a"]["point"]),
+            vec(joints[f"U{i}b"]["point"]),
+            vec(joints[f"U{i}a"]["axes"][0]),
+        )
+        for i in (1, 2, 3)
+    ]
+    c0 = np.mean([b for _, b, _ in legs], axis=0)  # the output's reference point: the centroid
+
+    def wrenches(t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        U, N, rows = [], [], []
+        for a, b0, s1 in legs:
+            b = b0 + t - c0
+            u = b - a
+            s2 = np.cross(s1, u)
+            n = np.cross(s1, s2)
+            # the leg's screws (omega, v): s1 and s2 through a, the slide, s2 and s1 through b
+            screws = [
+                np.r_[s1, np.cross(a, s1)],
+                np.r_[s2, np.cross(a, s2)],
+                np.r_[np.zeros(3), u],
+                np.r_[s2, np.cross(b, s2)],
+                np.r_[s1, np.cross(b, s1)],
+            ]
+            couple = np.r_[np.zeros(3), n]  # (force, moment)
+            for s in screws:  # reciprocal: force . v + moment . omega = 0
+                assert abs(couple[:3] @ s[3:] + couple[3:] @ s[:3]) < 1e-9 * np.linalg.norm(n)
+            U.append(u)
+            N.append(n)
+            rows.append(np.r_[u, np.cross(a, u)])
+        rows += [np.r_[np.zeros(3), n] for n in N]
+        return np.array(U), np.array(N), np.array(rows)
+
+    rng = np.random.default_rng(7)
+    ratios_con, ratios_act = [], []
+    for _ in range(20):
+        t = c0 + rng.uniform(-1.5, 1.5, 3)
+        _, N, W = wrenches(t)
+        ratios_con.append(f_con(*t) / np.linalg.det(N))
+        ratios_act.append(f_act(*t) / np.linalg.det(W))
+    assert np.allclose(ratios_con, ratios_con[0], rtol=1e-9)
+    assert np.allclose(ratios_act, ratios_act[0], rtol=1e-9)
+    # the published singular pose: the flat one (platform in the base plane) is a
+    # constraint singularity, where the couples lose rank; the raised pose (height 2) is not
+    flat = c0 - np.array([0.0, 0.0, 1.0])
+    assert np.linalg.matrix_rank(wrenches(flat)[1], tol=1e-9) < 3 and abs(f_con(*flat)) < 1e-12
+    raised = c0 + np.array([0.0, 0.0, 1.0])
+    assert np.linalg.matrix_rank(wrenches(raised)[2], tol=1e-9) == 6 and abs(f_act(*raised)) > 0.1
+    # each factor carries its meaning
+    assert all("constraint couples" in f["meaning"] for f in constraint["factors"])
+    assert any("parallel to one plane" in f["meaning"] for f in actuation["factors"])
+    assert all(f["latex"] for f in actuation["factors"])

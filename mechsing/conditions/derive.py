@@ -64,6 +64,7 @@ from mechsing.conditions.symbolic import (
     reference_twist,
     to_trig,
 )
+from mechsing.conditions.translational import translational_3upu
 from mechsing.errors import ConfigurationError, TimeLimitExceeded, UserError
 from mechsing.model import Mechanism
 from mechsing.model.couplings import refuse_couplings
@@ -169,13 +170,13 @@ def _condition(
             f"{source}: the file has no output; a condition is about the output's motion: "
             "name one with --output-body BODY (in a mechsing file, add output: {body: NAME})"
         )
-    platform = gough_stewart(mech)
+    platform = gough_stewart(mech) or translational_3upu(mech)
     if platform is not None:
         if config is not None:
             raise UserError(
-                f"{source}: --config: the Gough-Stewart condition is written at the drawn "
-                "orientation of the platform; evaluate it at a pose with that orientation by "
-                "putting x, y, z into it, or use 'mechsing analyze --config'"
+                f"{source}: --config: the conditions of this platform are written in the "
+                "position x, y, z of its reference point at the drawn orientation; evaluate "
+                "them at a pose by putting x, y, z into them, or use 'mechsing analyze --config'"
             )
         return ConditionResult(
             mechanism=mech.name,
