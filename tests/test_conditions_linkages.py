@@ -388,3 +388,40 @@ def test_tsai_3upu_constraint_and_actuation_in_the_pose() -> None:
     assert all("constraint couples" in f["meaning"] for f in constraint["factors"])
     assert any("parallel to one plane" in f["meaning"] for f in actuation["factors"])
     assert all(f["latex"] for f in actuation["factors"])
+
+
+# a slider-crank whose slide runs along [a, b] (symbols: the loader normalises the axis by
+# sqrt(a^2 + b^2)), through C = (r + l, 0)
+INCLINED = """\
+mechanism: slider-crank-inclined
+parameters: {r: 1, l: 3, a: 2, b: 1}
+bodies: [ground, crank, rod, slider]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, rod], axis: [0, 0, 1], point: [r, 0, 0]}
+  - {name: C, type: R, between: [rod, slider], axis: [0, 0, 1], point: [r + l, 0, 0]}
+  - {name: P, type: P, between: [ground, slider], axis: [a, b, 0]}
+inputs: [A]
+output: {body: slider}
+"""
+
+
+def test_slide_axis_with_symbols_is_eliminated(tmp_path: Path) -> None:
+    path = tmp_path / "inclined.yaml"
+    path.write_text(INCLINED)
+    doc = _json([str(path), "--symbolic", "r,l,a,b"])
+    r, l, a, b, A = sympy.symbols("r l a b A")
+    c, s = sympy.cos(A), sympy.sin(A)
+    # dead centres: crank and rod in line, C = (r +- l)(cos A, sin A), on the slide's line
+    # through (r + l, 0) along (a, b): the cross product with (a, b) vanishes
+    dead = sympy.Integer(1)
+    for k in (r + l, r - l):
+        dead *= b * (k * c - (r + l)) - a * k * s
+    # the rod perpendicular to the slide: C = B +- l (-b, a)/|(a, b)| on the slide's line
+    perpendicular = (b * (r * c - r - l) - a * r * s) ** 2 - l**2 * (a**2 + b**2)
+    perpendicular = sympy.expand(perpendicular).subs(s**2, 1 - c**2)  # on the circle
+    assert _proportional(_product(_named(doc, "input (type I) in the input A")), dead, "A")
+    assert _proportional(
+        _product(_named(doc, "output (type II) in the input A")), perpendicular, "A"
+    )
+    assert any("P joint P (axis [a, b])" in n for n in doc["notes"])
