@@ -33,13 +33,7 @@ import sympy
 from mechsing.conditions.symbolic import JointSymbols, reduce_trig, tan_half
 from mechsing.numeric import CONDITION_ROOT_MERGE, CONDITION_ROOT_RTOL
 
-__all__ = ["angles", "distinct", "eliminate", "genuine", "half_angle"]
-
-
-def half_angle(p: Any, js: JointSymbols, t: Any) -> Any:
-    """The numerator of ``p(c, s)`` in ``t = tan(J/2)`` (degree twice p's in c, s, less
-    the multiplicity of the zero at J = pi)."""
-    return tan_half(p, js, t)
+__all__ = ["angles", "distinct", "eliminate", "genuine"]
 
 
 def _has(e: Any, js: JointSymbols) -> bool:
@@ -207,7 +201,7 @@ def _resultant_step(eqs: list[Any], todo: list[JointSymbols]) -> list[Any]:
         polys = sorted(holding, key=lambda e: (sympy.degree(e, u.q), _size(e)))
         var, forms = u.q, polys
     else:
-        forms = sorted((half_angle(e, u, t) for e in holding), key=lambda p: sympy.degree(p, t))
+        forms = sorted((tan_half(e, u, t) for e in holding), key=lambda p: sympy.degree(p, t))
         var = t
     first = forms[0]
     out = []

@@ -19,11 +19,11 @@ from typing import Any
 
 import sympy
 
-from mechsing.conditions.elimination import angles, distinct, eliminate, genuine, half_angle
+from mechsing.conditions.elimination import angles, distinct, eliminate, genuine
 from mechsing.conditions.factoring import factor_condition, to_circle
 from mechsing.conditions.planar import PlanarLinkage, planar_linkage, slide_axis
 from mechsing.conditions.results import Condition, Factor
-from mechsing.conditions.symbolic import JointSymbols, reduce_trig, to_trig
+from mechsing.conditions.symbolic import JointSymbols, reduce_trig, tan_half, to_trig
 from mechsing.model import Mechanism
 from mechsing.timelimit import TimeLimit, TimeLimitExceeded
 
@@ -341,8 +341,8 @@ def _common(polys: list[Any], js: JointSymbols) -> Any:
             g = sympy.gcd(g, p)
         return g
     t = sympy.Dummy("t")
-    g = half_angle(polys[0], js, t)
+    g = tan_half(polys[0], js, t)
     for p in polys[1:]:
-        g = sympy.gcd(g, half_angle(p, js, t))
+        g = sympy.gcd(g, tan_half(p, js, t))
     deg = int(sympy.degree(g, t))
     return to_circle(g, t, (deg + 1) // 2, js)

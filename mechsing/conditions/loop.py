@@ -17,7 +17,6 @@ import sympy
 
 from mechsing.conditions.elimination import angles as _angles
 from mechsing.conditions.elimination import distinct as _distinct
-from mechsing.conditions.elimination import half_angle
 from mechsing.conditions.explain import Explainer
 from mechsing.conditions.factoring import factor_condition
 from mechsing.conditions.jacobians import (
@@ -35,6 +34,7 @@ from mechsing.conditions.symbolic import (
     SE3,
     JointSymbols,
     reduce_trig,
+    tan_half,
     to_trig,
 )
 from mechsing.errors import TimeLimitExceeded, UserError
@@ -252,9 +252,9 @@ def _eliminant(polys: list[Any], js: JointSymbols) -> tuple[Any, bool]:
     if len(polys) == 1:
         return polys[0], True
     t = sympy.Dummy("t")
-    g = half_angle(polys[0], js, t)
+    g = tan_half(polys[0], js, t)
     for p in polys[1:]:
-        g = sympy.gcd(g, half_angle(p, js, t))
+        g = sympy.gcd(g, tan_half(p, js, t))
     at_pi = all(p.xreplace({js.c: -1, js.s: 0}) == 0 for p in polys)
     deg = int(sympy.degree(g, t))
     k = (deg + 1) // 2 + (1 if at_pi and deg % 2 == 0 else 0)
