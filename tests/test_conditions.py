@@ -363,6 +363,7 @@ def test_the_python_function_is_public() -> None:
         ("quick_return.yaml", "crank-60"),
         ("watt_ii.yaml", None),
         ("stewart_octahedral.yaml", None),
+        ("tsai_3upu.yaml", None),
     ],
 )
 def test_json_follows_its_schema(example: str, config: str | None) -> None:
