@@ -332,7 +332,17 @@ def test_cli_formats_and_errors(tmp_path: Path) -> None:
     assert bad.status == 2 and "'a9'" in bad.err and "a1, a2" in bad.err
     nocfg = run_cli(["condition", path, "--config", "nowhere"])
     assert nocfg.status == 2 and "bent, folded" in nocfg.err
-    sph = run_cli(["condition", EXAMPLES / "tsai_3upu.yaml"])
+    # a 3-UPU whose first platform U has its axes swapped (not Tsai's translational
+    # conditions): no pose-variable derivation applies, and its U joints are refused
+    upu = (EXAMPLES / "tsai_3upu.yaml").read_text()
+    swapped = upu.replace(
+        "axes: [[1, 0, 1], [0, 1, 0]], point: [1, 0, 1]",
+        "axes: [[0, 1, 0], [1, 0, 1]], point: [1, 0, 1]",
+    )
+    assert swapped != upu
+    other = tmp_path / "upu_swapped.yaml"
+    other.write_text(swapped)
+    sph = run_cli(["condition", other])
     assert sph.status == 2 and "types R, P, H" in sph.err
 
 
@@ -383,6 +393,7 @@ def test_the_python_function_is_public() -> None:
         ("quick_return.yaml", "crank-60"),
         ("watt_ii.yaml", None),
         ("stewart_octahedral.yaml", None),
+        ("tsai_3upu.yaml", None),
     ],
 )
 def test_json_follows_its_schema(example: str, config: str | None) -> None:

@@ -276,3 +276,152 @@ def test_octahedral_platform_cubic_is_a_power_of_z() -> None:
     (c,) = doc["conditions"]
     assert [(f["expression"], f["power"]) for f in c["factors"]] == [("z", 3)]
     assert c["latex"].endswith("z^{3}")
+
+
+def test_stephenson_iii_toggles_of_the_output_dyad(tmp_path: Path) -> None:
+    # the coupler B-C-E of the four-bar carries E = (2, 3); the output dyad E-G-F has the
+    # lengths m (symbolic) and n = 2, F = (2 + m, 3 - n): examples/stephenson_iii.yaml with its
+    # dyad's lengths named. The published toggle (Hartenberg & Denavit): the link E-G and the
+    # output G-F in line, |E - F| = m + n or |m - n|, with E the coupler point of the four-bar
+    text = (
+        (EXAMPLES / "stephenson_iii.yaml")
+        .read_text()
+        .replace("bodies: [ground", "parameters: {m: 3, n: 2}\nbodies: [ground")
+        .replace("point: [5, 3, 0]", 'point: ["2 + m", 3, 0]')
+        .replace("point: [5, 1, 0]", 'point: ["2 + m", "3 - n", 0]')
+    )
+    path = tmp_path / "stephenson_iii.yaml"
+    path.write_text(text)
+    # the time limit only keeps a loaded machine's wall clock from cutting the elimination
+    # short (about 35 s of one quiet core for both conditions)
+    doc = _json([str(path), "--symbolic", "m", "--time-limit", "1200"])
+    tog = _named(doc, "output (type II) in the input A")
+    assert "m" in {str(s) for s in _dyad_factors(tog).free_symbols}
+    reached = 0
+    for m in (3.0, 0.6, 0.75):  # the file's m, and two where |m - n| is reached
+        n = 2.0
+        F = np.array([2 + m, 3 - n])
+
+        def E_of(theta: float, coupler: float, rocker: float) -> np.ndarray:
+            B = np.array([math.cos(theta), math.sin(theta)])
+            return B + _rot(coupler, (1.0, 3.0))
+
+        expected = _toggles(E_of, F, m, n)
+        got = _real_roots(_dyad_factors(tog), {"m": m})
+        assert len(got) == len(expected)
+        assert np.allclose(got, expected, atol=1e-3)
+        reached += len(expected)
+    assert reached  # the toggles of the output dyad are reached at one of the values
+
+
+def test_tsai_3upu_constraint_and_actuation_in_the_pose() -> None:
+    # Tsai's 3-UPU: leg i from the ground pivot a_i (U, first axis s1 fixed in the ground) to
+    # the platform pivot b_i = b_i0 + t - c0; its second axis s2 = s1 x u is normal to s1 and
+    # to the leg u = b - a. Its constraint couple n_i = s1 x s2 (Zlatanov, Bonev, Gosselin
+    # 2002), checked here to be reciprocal to the leg's five joint screws; the actuation
+    # wrench is the force along the leg. Everything below is numpy on the file's numbers.
+    import yaml
+
+    path = EXAMPLES / "tsai_3upu.yaml"
+    doc = _json([str(path)])
+    constraint = _named(doc, "constraint")
+    actuation = _named(doc, "output (type II)")
+    x, y, z = sympy.symbols("x y z")
+    f_con = sympy.lambdify((x, y, z), sympy.sympify(_product(constraint)), "numpy")
+    f_act = sympy.lambdify((x, y, z), sympy.sympify(_product(actuation)), "numpy")
+    data = yaml.safe_load(path.read_text())
+    joints = {j["name"]: j for j in data["joints"]}
+
+    def vec(v: list) -> np.ndarray:
+        return np.array([float(sympy.sympify(c)) for c in v])
+
+    legs = [
+        (
+            vec(joints[f"U{i}a"]["point"]),
+            vec(joints[f"U{i}b"]["point"]),
+            vec(joints[f"U{i}a"]["axes"][0]),
+        )
+        for i in (1, 2, 3)
+    ]
+    c0 = np.mean([b for _, b, _ in legs], axis=0)  # the output's reference point: the centroid
+
+    def wrenches(t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        U, N, rows = [], [], []
+        for a, b0, s1 in legs:
+            b = b0 + t - c0
+            u = b - a
+            s2 = np.cross(s1, u)
+            n = np.cross(s1, s2)
+            # the leg's screws (omega, v): s1 and s2 through a, the slide, s2 and s1 through b
+            screws = [
+                np.r_[s1, np.cross(a, s1)],
+                np.r_[s2, np.cross(a, s2)],
+                np.r_[np.zeros(3), u],
+                np.r_[s2, np.cross(b, s2)],
+                np.r_[s1, np.cross(b, s1)],
+            ]
+            couple = np.r_[np.zeros(3), n]  # (force, moment)
+            for s in screws:  # reciprocal: force . v + moment . omega = 0
+                assert abs(couple[:3] @ s[3:] + couple[3:] @ s[:3]) < 1e-9 * np.linalg.norm(n)
+            U.append(u)
+            N.append(n)
+            rows.append(np.r_[u, np.cross(a, u)])
+        rows += [np.r_[np.zeros(3), n] for n in N]
+        return np.array(U), np.array(N), np.array(rows)
+
+    rng = np.random.default_rng(7)
+    ratios_con, ratios_act = [], []
+    for _ in range(20):
+        t = c0 + rng.uniform(-1.5, 1.5, 3)
+        _, N, W = wrenches(t)
+        ratios_con.append(f_con(*t) / np.linalg.det(N))
+        ratios_act.append(f_act(*t) / np.linalg.det(W))
+    assert np.allclose(ratios_con, ratios_con[0], rtol=1e-9)
+    assert np.allclose(ratios_act, ratios_act[0], rtol=1e-9)
+    # the published singular pose: the flat one (platform in the base plane) is a
+    # constraint singularity, where the couples lose rank; the raised pose (height 2) is not
+    flat = c0 - np.array([0.0, 0.0, 1.0])
+    assert np.linalg.matrix_rank(wrenches(flat)[1], tol=1e-9) < 3 and abs(f_con(*flat)) < 1e-12
+    raised = c0 + np.array([0.0, 0.0, 1.0])
+    assert np.linalg.matrix_rank(wrenches(raised)[2], tol=1e-9) == 6 and abs(f_act(*raised)) > 0.1
+    # each factor carries its meaning
+    assert all("constraint couples" in f["meaning"] for f in constraint["factors"])
+    assert any("parallel to one plane" in f["meaning"] for f in actuation["factors"])
+    assert all(f["latex"] for f in actuation["factors"])
+
+
+# a slider-crank whose slide runs along [a, b] (symbols: the loader normalises the axis by
+# sqrt(a^2 + b^2)), through C = (r + l, 0)
+INCLINED = """\
+mechanism: slider-crank-inclined
+parameters: {r: 1, l: 3, a: 2, b: 1}
+bodies: [ground, crank, rod, slider]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, rod], axis: [0, 0, 1], point: [r, 0, 0]}
+  - {name: C, type: R, between: [rod, slider], axis: [0, 0, 1], point: [r + l, 0, 0]}
+  - {name: P, type: P, between: [ground, slider], axis: [a, b, 0]}
+inputs: [A]
+output: {body: slider}
+"""
+
+
+def test_slide_axis_with_symbols_is_eliminated(tmp_path: Path) -> None:
+    path = tmp_path / "inclined.yaml"
+    path.write_text(INCLINED)
+    doc = _json([str(path), "--symbolic", "r,l,a,b"])
+    r, l, a, b, A = sympy.symbols("r l a b A")
+    c, s = sympy.cos(A), sympy.sin(A)
+    # dead centres: crank and rod in line, C = (r +- l)(cos A, sin A), on the slide's line
+    # through (r + l, 0) along (a, b): the cross product with (a, b) vanishes
+    dead = sympy.Integer(1)
+    for k in (r + l, r - l):
+        dead *= b * (k * c - (r + l)) - a * k * s
+    # the rod perpendicular to the slide: C = B +- l (-b, a)/|(a, b)| on the slide's line
+    perpendicular = (b * (r * c - r - l) - a * r * s) ** 2 - l**2 * (a**2 + b**2)
+    perpendicular = sympy.expand(perpendicular).subs(s**2, 1 - c**2)  # on the circle
+    assert _proportional(_product(_named(doc, "input (type I) in the input A")), dead, "A")
+    assert _proportional(
+        _product(_named(doc, "output (type II) in the input A")), perpendicular, "A"
+    )
+    assert any("P joint P (axis [a, b])" in n for n in doc["notes"])

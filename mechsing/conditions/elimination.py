@@ -30,18 +30,10 @@ from typing import Any
 import numpy as np
 import sympy
 
-from mechsing.conditions.symbolic import JointSymbols, reduce_trig
+from mechsing.conditions.symbolic import JointSymbols, reduce_trig, tan_half
 from mechsing.numeric import CONDITION_ROOT_MERGE, CONDITION_ROOT_RTOL
 
-__all__ = ["angles", "distinct", "eliminate", "genuine", "half_angle"]
-
-
-def half_angle(p: Any, js: JointSymbols, t: Any) -> Any:
-    """The numerator of ``p(c, s)`` in ``t = tan(J/2)`` (degree twice p's in c, s, less
-    the multiplicity of the zero at J = pi)."""
-    k = int(sympy.Poly(p, js.c, js.s).total_degree()) if p.has(js.c) or p.has(js.s) else 0
-    sub = {js.c: (1 - t**2) / (1 + t**2), js.s: 2 * t / (1 + t**2)}
-    return sympy.expand(sympy.cancel(p.xreplace(sub) * (1 + t**2) ** k))
+__all__ = ["angles", "distinct", "eliminate", "genuine"]
 
 
 def _has(e: Any, js: JointSymbols) -> bool:
@@ -209,7 +201,7 @@ def _resultant_step(eqs: list[Any], todo: list[JointSymbols]) -> list[Any]:
         polys = sorted(holding, key=lambda e: (sympy.degree(e, u.q), _size(e)))
         var, forms = u.q, polys
     else:
-        forms = sorted((half_angle(e, u, t) for e in holding), key=lambda p: sympy.degree(p, t))
+        forms = sorted((tan_half(e, u, t) for e in holding), key=lambda p: sympy.degree(p, t))
         var = t
     first = forms[0]
     out = []
@@ -224,13 +216,9 @@ def _resultant_step(eqs: list[Any], todo: list[JointSymbols]) -> list[Any]:
 def _without_isotropic(res: Any, p: Any, q: Any, t: Any) -> Any:
     """``res`` without the factors where ``p`` and ``q`` share the root ``t = i`` (the
     circle's points at infinity, ``c = oo``): zeros of the resultant no real angle has."""
-    norms = []
-    for f in (p, q):
-        v = sympy.expand(f.xreplace({t: sympy.I}))
-        re, im = v.as_real_imag()
-        norms.append(sympy.expand(re**2 + im**2))
     if res == 0:
         return res
+    norms = [_norm_at_i(f, t) for f in (p, q)]
     const, factors = sympy.factor_list(res)
     out = sympy.Integer(1)
     for g, e in factors:
@@ -243,6 +231,19 @@ def _without_isotropic(res: Any, p: Any, q: Any, t: Any) -> Any:
     return sympy.expand(out)
 
 
+def _norm_at_i(f: Any, t: Any) -> Any:
+    """``|f(i)|**2`` for a polynomial in ``t`` with real coefficients: with
+    ``f(i) = sum a_k i**k``, its real part takes the even powers (sign ``(-1)**(k/2)``),
+    its imaginary part the odd ones."""
+    re, im = sympy.Integer(0), sympy.Integer(0)
+    for (k,), a in sympy.Poly(f, t).terms():
+        if k % 2 == 0:
+            re += (-1) ** (k // 2) * a
+        else:
+            im += (-1) ** (k // 2) * a
+    return sympy.expand(re**2 + im**2)
+
+
 def genuine(
     factors: list[Any],
     equations: list[Any],
@@ -251,34 +252,25 @@ def genuine(
     values: dict[Any, Any],
 ) -> list[bool]:
     """Which of ``factors`` (polynomials in ``keep`` and the parameters) have a zero
-    where ``equations`` have a solution, with the parameters at ``values``: an exact
-    lex Groebner basis of the equations (numbers only) gives the true eliminant there;
-    the resultants above can bring extra factors (where a Cramer determinant
-    vanishes), which it does not have."""
+    where ``equations`` have a (complex) solution, with the parameters at ``values``: the
+    resultants above can bring extra factors (where a Cramer determinant vanishes), which
+    have none.  For each factor, the equations, the circles and the factor have a common
+    zero unless their exact Groebner basis is [1] (Hilbert's Nullstellensatz); with the
+    factor added the system has finitely many solutions, whose degree-ordered basis is
+    quick (no elimination order needed)."""
     num = [sympy.expand(sympy.sympify(e).xreplace(values)) for e in equations]
     circles = [js.s**2 + js.c**2 - 1 for js in [*unknowns, keep] if js.c is not None]
-    pvars: list[Any] = []
-    for js in unknowns:
-        pvars += [js.s, js.c] if js.c is not None else [js.q]
-    ivars = [keep.s, keep.c] if keep.c is not None else [keep.q]
-    G = sympy.groebner([*num, *circles], *pvars, *ivars, order="grevlex")
-    if G.exprs == [1]:
-        return [False] * len(factors)
-    G = (
-        G.fglm("lex")
-        if G.is_zero_dimensional
-        else sympy.groebner(G.exprs, *pvars, *ivars, order="lex")
-    )
-    mine = [g for g in G.exprs if not (g.free_symbols & set(pvars))]
-    own = circles[-1:] if keep.c is not None else []
+    gens: list[Any] = []
+    for js in [*unknowns, keep]:
+        gens += [js.s, js.c] if js.c is not None else [js.q]
     out = []
     for f in factors:
         h = sympy.expand(sympy.sympify(f).xreplace(values))
         if not h.free_symbols:
             out.append(h == 0)
             continue
-        B = sympy.groebner([h, *mine, *own], *ivars, order="lex")
-        out.append(B.exprs != [1])
+        G = sympy.groebner([*num, *circles, h], *gens, order="grevlex")
+        out.append(G.exprs != [1])
     return out
 
 
@@ -291,11 +283,7 @@ def angles(g: Any, js: JointSymbols) -> list[float]:
         )
     t = sympy.Dummy("t")
     k = int(sympy.Poly(g, js.c, js.s).total_degree())
-    N = sympy.expand(
-        sympy.cancel(
-            g.xreplace({js.c: (1 - t**2) / (1 + t**2), js.s: 2 * t / (1 + t**2)}) * (1 + t**2) ** k
-        )
-    )
+    N = tan_half(g, js, t, k)
     if N == 0:
         return []
     coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(N, t).all_coeffs()]

@@ -21,7 +21,7 @@ from typing import Any
 
 import sympy
 
-from mechsing.conditions.symbolic import JointSymbols, reduce_trig
+from mechsing.conditions.symbolic import JointSymbols, reduce_trig, tan_half
 
 __all__ = ["factor_condition", "to_circle"]
 
@@ -50,12 +50,7 @@ def _split_joint(
     if k == 0 or expr.has(js.q):
         return [], expr
     t = sympy.Dummy("t")
-    N = sympy.expand(
-        sympy.cancel(
-            expr.xreplace({js.c: (1 - t**2) / (1 + t**2), js.s: 2 * t / (1 + t**2)})
-            * (1 + t**2) ** k
-        )
-    )
+    N = tan_half(expr, js, t, k)
     if N == 0:
         return [], expr
     deficit = 2 * k - int(sympy.degree(N, t))

@@ -19,11 +19,11 @@ from typing import Any
 
 import sympy
 
-from mechsing.conditions.elimination import angles, distinct, eliminate, genuine, half_angle
+from mechsing.conditions.elimination import angles, distinct, eliminate, genuine
 from mechsing.conditions.factoring import factor_condition, to_circle
-from mechsing.conditions.planar import PlanarLinkage, planar_linkage
+from mechsing.conditions.planar import PlanarLinkage, planar_linkage, slide_axis
 from mechsing.conditions.results import Condition, Factor
-from mechsing.conditions.symbolic import JointSymbols, reduce_trig, to_trig
+from mechsing.conditions.symbolic import JointSymbols, reduce_trig, tan_half, to_trig
 from mechsing.model import Mechanism
 from mechsing.timelimit import TimeLimit, TimeLimitExceeded
 
@@ -83,14 +83,33 @@ def linkage_conditions(
     L = planar_linkage(mech)
     if isinstance(L, str):
         return L
+    name = str(in_joint.q)
+    scaled: list[str] = []
     irrational = _irrational_parameters(L)
+    if irrational is not None and mech.joint(name).type != "P":
+        # a P joint's axis written with symbols is normalised by its length, a radical of
+        # the parameters: measure its slide in units of that length (the slide is a passive
+        # variable, eliminated; the conditions in the input do not change)
+        written = planar_linkage(mech, written_axes=True)
+        assert not isinstance(written, str)  # the same joints as L
+        if _irrational_parameters(written) is None:
+            scaled = [
+                f"{j.name} (axis {list(_printed(slide_axis(j, True)))})"
+                for j in mech.joints
+                if j.type == "P" and list(slide_axis(j, True)) != list(slide_axis(j, False))
+            ]
+            L, irrational = written, None
     if irrational is not None:
         return (
             f"its closure holds {irrational}, an irrational function of the parameters (a P "
             "joint's axis written with symbols is normalised by its length), and elimination "
             "works on polynomials"
+            + (
+                "; with the input a P joint, its slide cannot be measured in other units"
+                if mech.joint(name).type == "P"
+                else ""
+            )
         )
-    name = str(in_joint.q)
     found = _input(mech, L, name)
     if isinstance(found, str):
         return found
@@ -133,6 +152,12 @@ def linkage_conditions(
         if determinants
         else []
     )
+    if scaled:
+        notes.append(
+            "the slide of P joint " + ", ".join(scaled) + " is measured in units of the length "
+            "of its axis as written (that length is a radical of the parameters): the "
+            "conditions in the input do not depend on it"
+        )
     for cname, drop, note in wanted:
         J = L.jacobian([v for v in variables if v != drop])
         det = sympy.expand(J.det(method="berkowitz"))
@@ -182,6 +207,13 @@ def linkage_conditions(
             )
         )
     return conds, notes
+
+
+def _printed(m: Any) -> Any:
+    """``m`` with the parameters' symbols by their names (a Dummy prints as ``_d``)."""
+    return m.xreplace(
+        {p: sympy.Symbol(p.name) for p in m.free_symbols if isinstance(p, sympy.Dummy)}
+    )
 
 
 def _irrational_parameters(L: PlanarLinkage) -> Any:
@@ -309,8 +341,8 @@ def _common(polys: list[Any], js: JointSymbols) -> Any:
             g = sympy.gcd(g, p)
         return g
     t = sympy.Dummy("t")
-    g = half_angle(polys[0], js, t)
+    g = tan_half(polys[0], js, t)
     for p in polys[1:]:
-        g = sympy.gcd(g, half_angle(p, js, t))
+        g = sympy.gcd(g, tan_half(p, js, t))
     deg = int(sympy.degree(g, t))
     return to_circle(g, t, (deg + 1) // 2, js)

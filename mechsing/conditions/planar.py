@@ -33,7 +33,7 @@ import sympy
 from mechsing.conditions.symbolic import JointSymbols, reduce_trig
 from mechsing.model import Mechanism
 
-__all__ = ["PlanarLinkage", "planar_linkage"]
+__all__ = ["PlanarLinkage", "planar_linkage", "slide_axis"]
 
 
 @dataclass
@@ -147,9 +147,14 @@ def _rot(js: JointSymbols | None, v: Any) -> Any:
     return sympy.Matrix([js.c * v[0] - js.s * v[1], js.s * v[0] + js.c * v[1]])
 
 
-def planar_linkage(mech: Mechanism) -> PlanarLinkage | str:
+def planar_linkage(mech: Mechanism, written_axes: bool = False) -> PlanarLinkage | str:
     """The vector-loop form of ``mech``, or why it is not a planar linkage of R and P
-    joints (R axes along z, P axes in the xy plane)."""
+    joints (R axes along z, P axes in the xy plane).
+
+    ``written_axes``: a P joint's axis as written, not normalised when its length is a
+    radical of the parameters (``[d, r, 0]``, not divided by ``sqrt(d**2 + r**2)``): its
+    slide is then measured in units of that length, and the equations stay polynomials
+    in the parameters (see :func:`slide_axis`)."""
     for j in mech.joints:
         if j.type not in ("R", "P"):
             return f"joint {j.name!r} is of type {j.type} (the planar form has R and P joints)"
@@ -216,7 +221,7 @@ def planar_linkage(mech: Mechanism) -> PlanarLinkage | str:
                 if b in pos:
                     continue
                 tree.add(j.name)
-                pos[b] = _expand(pos[a] + _relative(j, a, b, R, slides))
+                pos[b] = _expand(pos[a] + _relative(j, a, b, R, slides, written_axes))
                 nxt.append(b)
         frontier = nxt
     equations = []
@@ -226,7 +231,7 @@ def planar_linkage(mech: Mechanism) -> PlanarLinkage | str:
         a, b = j.between
         if a not in pos or b not in pos:
             return f"body {a if a not in pos else b!r} is not connected to the ground"
-        diff = _expand(pos[a] + _relative(j, a, b, R, slides) - pos[b])
+        diff = _expand(pos[a] + _relative(j, a, b, R, slides, written_axes) - pos[b])
         equations += [e for e in diff if e != 0]
     # directions: each body's pivot pairs and each slide axis, as they turn
     directions: list[tuple[str, str, Any, Any]] = []
@@ -239,17 +244,37 @@ def planar_linkage(mech: Mechanism) -> PlanarLinkage | str:
             directions.append((f"{j1.name},{j2.name}", b, _expand(_rot(R(b), v)), None))
     for j in mech.joints:
         if j.type == "P":
-            u = sympy.Matrix(j.params["axis"][:2])
+            u = slide_axis(j, written_axes)
             directions.append((j.name, j.between[0], None, _expand(_rot(R(j.between[0]), u))))
     return PlanarLinkage(classes, angles, slides, equations, directions)
 
 
-def _relative(j: Any, a: str, b: str, R: Any, slides: dict[str, Any]) -> Any:
+def slide_axis(j: Any, written: bool) -> Any:
+    """The in-plane axis of P joint ``j`` (a 2-vector): the unit axis, or with ``written``
+    the unit axis times the radicals of the parameters that normalised it (its length
+    ``sqrt(d**2 + r**2)`` when written ``[d, r, 0]``)."""
+    u = sympy.Matrix([sympy.sympify(x) for x in j.params["axis"][:2]])
+    if not written:
+        return u
+    norms = {
+        a.base ** sympy.Rational(1, a.exp.q)
+        for x in u
+        for a in x.atoms(sympy.Pow)
+        if a.free_symbols and a.exp.is_Rational and not a.exp.is_Integer
+    }
+    for a in sorted(norms, key=str):
+        u = (u * a).applyfunc(lambda x: sympy.expand(sympy.cancel(x)))
+    return u
+
+
+def _relative(
+    j: Any, a: str, b: str, R: Any, slides: dict[str, Any], written_axes: bool = False
+) -> Any:
     """``p_b - p_a`` across joint ``j`` (traversed from ``a`` to ``b``)."""
     if j.type == "R":
         P = sympy.Matrix(j.params["point"][:2])
         return _rot(R(a), P) - _rot(R(b), P)
-    u = sympy.Matrix(j.params["axis"][:2])
+    u = slide_axis(j, written_axes)
     step = _rot(R(j.between[0]), u) * slides[j.name]
     return step if a == j.between[0] else -step
 

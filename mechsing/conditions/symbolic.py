@@ -14,6 +14,7 @@ at the origin of the frame used; lengths in metres, angles in radians.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -31,6 +32,7 @@ __all__ = [
     "motion",
     "to_trig",
     "reduce_trig",
+    "tan_half",
 ]
 
 #: joint types the symbolic kinematics handles (one coordinate each)
@@ -130,17 +132,65 @@ def motion(joint: Any, sym: JointSymbols, sign: int = 1) -> SE3:
 
 
 def reduce_trig(expr: Any, syms: list[JointSymbols]) -> Any:
-    """``expr`` with every ``s**2`` replaced by ``1 - c**2`` (degree at most 1 in each s)."""
+    """``expr`` with every ``s**2`` replaced by ``1 - c**2`` (degree at most 1 in each s),
+    expanded.  Works on the exponents of the polynomial's terms (a power ``s**k`` becomes
+    ``s**(k % 2) * (1 - c**2)**(k // 2)`` by the binomial theorem), which is much faster
+    than expanding expressions."""
     e = sympy.expand(expr)
-    for js in syms:
-        if js.s is None or not e.has(js.s):
-            continue
-        poly = sympy.Poly(e, js.s)
-        out = sympy.Integer(0)
-        for (k,), coeff in poly.terms():
-            out += coeff * js.s ** (k % 2) * (1 - js.c**2) ** (k // 2)
-        e = sympy.expand(out)
-    return e
+    pairs = [(js.s, js.c) for js in syms if js.s is not None and e.has(js.s)]
+    if not pairs:
+        return e
+    poly = sympy.Poly(e)
+    gens = list(poly.gens)
+    missing = [c for _, c in pairs if c not in gens]
+    if missing:
+        gens += missing
+        poly = sympy.Poly(e, *gens)
+    terms = dict(poly.terms())
+    for s, c in pairs:
+        i, j = gens.index(s), gens.index(c)
+        out: dict[tuple[int, ...], Any] = {}
+        for monom, coeff in terms.items():
+            k = monom[i]
+            if k < 2:
+                out[monom] = out.get(monom, 0) + coeff
+                continue
+            n = k // 2
+            for m in range(n + 1):
+                mon = list(monom)
+                mon[i] = k % 2
+                mon[j] += 2 * m
+                key = tuple(mon)
+                out[key] = out.get(key, 0) + coeff * math.comb(n, m) * (-1) ** m
+        terms = {m: v for m, v in out.items() if v != 0}
+    if not terms:
+        return sympy.Integer(0)
+    return sympy.Poly.from_dict(terms, *gens, domain=poly.domain).as_expr()
+
+
+def tan_half(p: Any, js: JointSymbols, t: Any, k: int | None = None) -> Any:
+    """The polynomial ``p(c, s) * (1 + t**2)**k`` with ``c = (1 - t**2)/(1 + t**2)``,
+    ``s = 2 t/(1 + t**2)`` (``t = tan(J/2)``), expanded; ``k`` is p's total degree in
+    ``c``, ``s`` unless given (at least that).  Its degree in t is ``2 k`` less the
+    multiplicity of the zero at ``J = pi`` (``t = oo``).  Composed term by term as
+    polynomials in t (no rational functions to cancel)."""
+    if not (p.has(js.c) or p.has(js.s)):
+        return sympy.expand(p * (1 + t**2) ** (k or 0))
+    poly = sympy.Poly(p, js.c, js.s)
+    if k is None:
+        k = int(poly.total_degree())
+    pw: dict[tuple[int, int], sympy.Poly] = {}
+
+    def power(which: int, n: int) -> sympy.Poly:
+        if (which, n) not in pw:
+            base = (1 - t**2, 2 * t, 1 + t**2)[which]
+            pw[(which, n)] = sympy.Poly(base**n, t)
+        return pw[(which, n)]
+
+    out = sympy.Poly(0, t)
+    for (i, j), coeff in poly.terms():
+        out += power(0, i) * power(1, j) * power(2, k - i - j) * sympy.Poly(coeff, t)
+    return sympy.expand(out.as_expr())
 
 
 def to_trig(expr: Any, syms: list[JointSymbols]) -> Any:

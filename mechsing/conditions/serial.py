@@ -1,0 +1,85 @@
+"""The condition of an open chain (``mechsing condition`` on a serial arm).
+
+The determinant of its output Jacobian, the columns being the joint twists (or,
+with ``output.point``, the velocities of that point) written in the frame of the
+chain's middle body (determinants do not depend on the frame, and the middle frame
+keeps the expressions short).  When the twists span a subgroup smaller than SE(3)
+(a planar chain spans 3 directions, a point in a plane 2), only the rows of that
+subgroup's coordinates are kept; a redundant chain gives the gcd of its maximal
+minors (:mod:`mechsing.conditions.jacobians`)."""
+
+from __future__ import annotations
+
+import sympy
+
+from mechsing.conditions.explain import Explainer
+from mechsing.conditions.jacobians import (
+    all_joints,
+    chain_twists,
+    is_planar,
+    maximal_condition,
+    mechanism_size,
+    parameter_symbols,
+    reduce_rows,
+)
+from mechsing.conditions.results import Condition
+from mechsing.conditions.symbolic import JointSymbols
+from mechsing.errors import UserError
+from mechsing.model import Mechanism
+
+__all__ = ["open_chain"]
+
+
+def open_chain(mech: Mechanism, S: dict[str, JointSymbols]) -> tuple[list[Condition], list[str]]:
+    out = mech.output
+    assert out is not None
+    tp = mech.graph.tree_paths
+    base = list(tp.get(out.relative_to, ()))
+    path = list(tp[out.body])
+    if path[: len(base)] == base:
+        steps = [(s.joint, s.sign) for s in path[len(base) :]]
+    else:
+        raise UserError(
+            f"{mech.path}: output: the output body {out.body!r} is not further from the ground "
+            f"than {out.relative_to!r} along the chain; measure it relative to the ground"
+        )
+    n = len(steps)
+    k = n // 2
+    cols, end, _ = chain_twists(mech, S, steps, k)
+    params = parameter_symbols(mech)
+    Sl = all_joints(S)
+    point = None
+    if out.point is not None:
+        P = end.point(sympy.Matrix(out.point))
+        point = P
+        cols_p = [c[3:, :] + c[:3, :].cross(P) for c in cols]
+        J = sympy.Matrix.hstack(*cols_p)
+        what = "output point's velocity"
+    else:
+        J = sympy.Matrix.hstack(*cols)
+        what = "output twist"
+    Jr, fixed, r = reduce_rows(J, Sl, params)
+    planar = is_planar(mech, [s for s, _ in steps])
+    explain = Explainer(
+        [s for s, _ in steps],
+        [mech.joint(s).type for s, _ in steps],
+        cols,
+        Sl,
+        params,
+        point,
+        planar,
+        mechanism_size(mech),
+    )
+    notes = []
+    if fixed and r < J.rows:
+        notes.append(
+            f"the chain's {what} spans {r} of {J.rows} directions at every configuration (a "
+            f"subgroup); the condition is written in {r} of its coordinates"
+        )
+    cond = maximal_condition(Jr, r, Sl, params, f"output Jacobian ({what})", explain)
+    if not fixed:
+        notes.append(
+            f"the chain's {what}s span a space that turns with the configuration; the condition "
+            "is the gcd of all maximal minors"
+        )
+    return [cond], notes
