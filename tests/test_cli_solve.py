@@ -248,10 +248,12 @@ def test_a_target_beyond_a_limit_of_travel_is_not_called_tied():
     """The double rocker's input A stops at 2 pi / 3 (law of cosines in triangle ABD with
     |BD| = b + c = 7: cos A = (3^2 + 5^2 - 7^2) / (2 * 3 * 5) = -1/2).  From that limit,
     A = 2.3 is beyond it: the one given value is not tied to anything, and the error says
-    that a limit of motion lies on the path."""
+    that the start is a limit of motion and the target beyond it."""
     assert 2.3 > 2 * math.pi / 3
     status, _, err = run_cli(
         ["solve", ROOT / "examples" / "double_rocker.yaml", "--from", "limit", "--set", "A=2.3"]
     )
     assert status == 3
-    assert "a singularity or a limit of motion" in err and "not independent" not in err, err
+    # the start is that limit (a fold of A): the message says so, and that A lies beyond it
+    assert "'limit' is a fold of the given values (a limit of their travel" in err, err
+    assert "the target lies beyond it" in err and "not independent" not in err, err

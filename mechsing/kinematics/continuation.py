@@ -33,6 +33,9 @@ from mechsing.numeric import (
     CONTINUATION_FOLD_GAP,
     CONTINUATION_FOLD_REACH,
     CONTINUATION_JUMP_FLOOR,
+    CONTINUATION_LEAVE_FRACTION,
+    CONTINUATION_LEAVE_OFF,
+    CONTINUATION_LEAVE_SIZES,
     CONTINUATION_RETURN_RATIO,
     CONTINUATION_REVERSE_RTOL,
     CONTINUATION_SINGULAR_RTOL,
@@ -122,6 +125,7 @@ class Continuation:
         steps = 0
         underdetermined = False
         at_fold = False
+        left_fold = start_is_fold = False
         best_rank = None
         attempts = 0
         while t < 1.0:
@@ -151,9 +155,25 @@ class Continuation:
                         q, info = landed.q, landed.info
                         t, steps, at_fold = 1.0, steps + 1, True
                         continue
+                    if steps == 0 and not left_fold:
+                        # a start drawn at a fold: no step of the predictor leaves it
+                        t1 = CONTINUATION_LEAVE_FRACTION / nsteps
+                        fold, left = self._leave_fold(fm, q_start, qt, gmask, t1)
+                        if left is not None:
+                            q, t, steps, left_fold = left, t1, 1, True
+                            dt = 1.0 / nsteps
+                            continue
+                        start_is_fold = fold
                     # values the loops tie together, or a target beyond a limit of travel
                     # (which value, by how much)
                     why = _tied_given(fm, q_start, gmask) or beyond_target(fm, q, qt, gmask)
+                    if not why and start_is_fold:
+                        why = (
+                            f"the start {cfg.start or 'reference'!r} is a fold of the given "
+                            "values (a limit of their travel: the unknown joints lose a "
+                            "direction there) and the target lies beyond it; give values on "
+                            "the other side of the start"
+                        )
                     raise ClosureError(
                         f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} stopped at step "
                         f"{steps + 1}: {_given_reached(fm, q, qt, gmask)}; "
@@ -194,6 +214,12 @@ class Continuation:
             dt = min(dt * 1.5, 1.0 / nsteps)
         res = info.residual
         notes = []
+        if left_fold:
+            notes.append(
+                f"the start {cfg.start or 'reference'!r} is a fold of the given values (two "
+                "assembly modes meet there): continuation left it along the first of the two "
+                "that reaches the target; the other may be reached from a start beyond it"
+            )
         if at_fold:
             notes.append(
                 "the given values are a fold (a limit of their motion): the unknown joints were "
@@ -262,6 +288,57 @@ class Continuation:
         rank = int(np.sum(sigma > CONTINUATION_SINGULAR_RTOL * sigma[0]))
         info = StepInfo(res, rank, float(sigma[-1] / sigma[0]), False, qn)
         return Corrected(True, qn, info)
+
+    def _leave_fold(
+        self, fm: ClosureModel, q0: np.ndarray, qt: np.ndarray, gmask: np.ndarray, t1: float
+    ) -> tuple[bool, np.ndarray | None]:
+        """Leave a start ``q0`` that is a fold of the given values (a dead centre, a toggle):
+        whether it is one, and the configuration at ``t1`` of the way to ``qt`` (None when
+        no landing closes).
+
+        At a fold the unknown joints' Jacobian loses one rank, and the closed
+        configurations with the given values moved by d lie about sqrt(d) away along its
+        kernel k, on both sides (the two assembly modes that meet there) when d points
+        into the motion's range, on neither when it points out of it.  Newton from q0
+        cannot find them (its linear step has no component along k), but from q0 + e k
+        with e of the order of sqrt(d) it converges: each sign of k is tried at a few
+        such e, the + side first, and a landing is kept when Newton closes and the
+        joints moved off the fold.  (False, None) when the start is not such a fold (the
+        Jacobian keeps its rank, or loses more than one); (True, None) when no landing
+        closes (the target lies beyond the limit the fold is)."""
+        free = ~gmask
+        if not np.any(free) or not fm.blocks:
+            return False, None
+        Js = closure_matrix(fm, q0)
+        A = Js[:, free]
+        A = A.toarray() if hasattr(A, "toarray") else np.asarray(A)
+        _, sigma, Vt = np.linalg.svd(A)
+        if len(sigma) < int(np.sum(free)) or not sigma[0]:
+            return False, None
+        rel = sigma / sigma[0]
+        if rel[-1] > CONTINUATION_SINGULAR_RTOL or (
+            len(rel) > 1 and rel[-2] <= CONTINUATION_SINGULAR_RTOL
+        ):
+            return False, None
+        k = np.zeros(fm.n)
+        k[free] = Vt[-1]
+        k = fm.float_frame.rates_back(k)
+        qg = q0.copy()
+        qg[gmask] = q0[gmask] + t1 * (qt[gmask] - q0[gmask])
+        moved = float(np.linalg.norm(fm.float_frame.rates(np.where(gmask, qg - q0, 0.0))))
+        if moved == 0.0:
+            return False, None
+        for sign in (1.0, -1.0):
+            for size in CONTINUATION_LEAVE_SIZES:
+                e = sign * size * math.sqrt(moved)
+                q1 = fm.update(q0, e * k)
+                ok, qn, _ = self._correct(fm, q1, qg, gmask, False)
+                if not ok:
+                    continue
+                off = float(np.linalg.norm(fm.float_frame.rates(fm.difference(qn, q0))))
+                if off > CONTINUATION_LEAVE_OFF * math.sqrt(moved):
+                    return True, qn
+        return True, None
 
     def _same_branch(
         self, fm: ClosureModel, q: np.ndarray, qn: np.ndarray, info: StepInfo, gmask: np.ndarray

@@ -69,6 +69,15 @@ CONTINUATION_JUMP_FLOOR = 1e-9
 #: CONTINUATION_SINGULAR_RTOL, and the landing moved them at most CONTINUATION_FOLD_REACH
 #: times the square root of what was left (the two branches meet like a square root)
 CONTINUATION_FOLD_GAP = 1e-4
+#: continuation from a start drawn at a fold of the given values (its unknown joints'
+#: Jacobian one rank short: a dead centre, a toggle): the first configuration is closed at
+#: CONTINUATION_LEAVE_FRACTION of the first step, from the start moved along the
+#: Jacobian's kernel by each of CONTINUATION_LEAVE_SIZES times the square root of the given
+#: values' move d (the two modes that meet at a fold lie about sqrt(d) away), and kept when
+#: it closes at least CONTINUATION_LEAVE_OFF sqrt(d) away from the start (off the fold)
+CONTINUATION_LEAVE_FRACTION = 1e-2
+CONTINUATION_LEAVE_SIZES = (1.0, 0.25, 4.0)
+CONTINUATION_LEAVE_OFF = 0.05
 CONTINUATION_FOLD_REACH = 10.0
 
 
