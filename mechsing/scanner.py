@@ -52,6 +52,7 @@ from mechsing.numeric import (
     SCAN_ROUNDING_FACTOR,
     SCAN_SCREEN_FACTOR,
     Precision,
+    dispatch,
     rank_bounds,
 )
 from mechsing.reader import read_mechanism
@@ -187,7 +188,7 @@ class ChainScanner:
         product of exponentials in the commensurate frame).
         """
         Q = self._checked(Q)
-        if self._serial is not None:
+        if self._serial is not None and dispatch.enabled():
             return self._serial(Q)
         out = self.mech.output
         need = [jk.a for jk in self._chain_joints]

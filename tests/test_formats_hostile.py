@@ -233,6 +233,8 @@ def test_a_mimic_of_an_undefined_joint_is_refused_only_where_analysed(tmp_path) 
     r = run_cli(["analyze", str(f), "--output-body", "b", "--format", "json"])
     assert r.status == 0, r.err
     assert json.loads(r.out)["scene"]["dropped_couplings"] == ["J2"]
+
+
 @pytest.mark.parametrize("case", CASES)
 def test_no_runtime_warning_on_hostile_xml(case: str, tmp_path) -> None:
     f = tmp_path / "robot.xml"

@@ -45,13 +45,21 @@ from mechsing.kinematics.couplings import (
     coupling_kinematics,
     coupling_residuals,
 )
-from mechsing.kinematics.field import FieldKinematics
 from mechsing.model import Mechanism
-from mechsing.numeric import CommensurateFrame, Precision, blocks, characteristic_length, to_float
+from mechsing.numeric import (
+    CommensurateFrame,
+    Precision,
+    blocks,
+    characteristic_length,
+    dispatch,
+    to_float,
+)
 from mechsing.subgroups import Subgroup
 
 if TYPE_CHECKING:
     from scipy.sparse import csc_matrix
+
+    from mechsing.kinematics.field import FieldKinematics
 
 
 @dataclass(frozen=True)
@@ -337,12 +345,15 @@ class KinematicModel:
         then serves).  Kept for the last few configurations."""
         if self.backend.name != "exact" or q.ndim != 1:
             return None
+        of = _EXP.get("number field")
+        if of is None:
+            return None
         key = tuple(q.tolist())
         cache = self._field_cache
         if key not in cache:
             if len(cache) >= _FIELD_CACHE_SIZE:
                 cache.pop(next(iter(cache)))
-            cache[key] = FieldKinematics.of(self, q)
+            cache[key] = of(self, q)
         return cache[key]
 
     def current_screws(
@@ -377,8 +388,9 @@ class KinematicModel:
         self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
     ) -> list[np.ndarray]:
         poses = self.poses(q) if poses is None else poses
-        if q.ndim == 1 and q.dtype != object and len(self.chords) > 1:
-            ms = batched.elements_at_once(self, q, self.chords)
+        at_once = _EXP.for_float("stacked joints", q) if q.ndim == 1 else None
+        if at_once is not None and len(self.chords) > 1:
+            ms = at_once(self, q, self.chords)
             elements = [ms.get(jk.name) for jk in self.chords]
             if all(M is not None for M in elements):
                 Ga = np.stack([poses[jk.a] for jk in self.chords])
@@ -496,8 +508,8 @@ class KinematicModel:
     def sparse_closure(self) -> bool:
         """Whether the float closure Jacobian is big enough to be built and solved sparse
         (:meth:`sparse_closure_jacobian`, block by block): a float model whose closure
-        matrix has more than :data:`mechsing.numeric.blocks.DENSE_ENTRIES` entries."""
-        return self.backend.name == "float" and 6 * self.blocks * self.n > blocks.DENSE_ENTRIES
+        matrix is not factorised whole (:func:`mechsing.numeric.blocks.dense`)."""
+        return self.backend.name == "float" and not blocks.dense(6 * self.blocks * self.n)
 
     def sparse_closure_jacobian(
         self, q: np.ndarray, frame: Any, screws: np.ndarray | None = None
@@ -695,6 +707,9 @@ class KinematicModel:
 
 #: exact configurations whose field kinematics a model keeps
 _FIELD_CACHE_SIZE = 8
+#: the exponential's fast forms (:mod:`mechsing.kinematics.field` registers the number
+#: field's; :mod:`mechsing.numeric.dispatch`)
+_EXP = dispatch.table("exp")
 #: body poses (4 x 4 matrices) the pose cache of a float model holds at most: a sweep's
 #: located points of a small mechanism, a few configurations of a big one
 _POSE_CACHE_MATRICES = 4096

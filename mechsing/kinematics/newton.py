@@ -79,7 +79,7 @@ def _big(A: Any) -> bool:
     dense and solved as before)."""
     return (
         issparse(A)
-        and A.shape[0] * A.shape[1] > blocks.DENSE_ENTRIES
+        and not blocks.dense(A.shape[0] * A.shape[1])
         and bool(np.isfinite(A.data).all())
     )
 

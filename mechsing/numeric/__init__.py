@@ -5,6 +5,8 @@ modules, from the bottom up (each imports only those before it):
 
 ``tolerances``
     every decision tolerance (constants) and the two rank thresholds;
+``dispatch``
+    the one place that chooses fast paths (tables of fast forms, ``MECHSING_FAST``);
 ``numbers``
     the one syntax of a written number, its sensible size, and directions made unit
     without overflow;

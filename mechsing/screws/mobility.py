@@ -29,7 +29,7 @@ from mechsing.numeric import (
     rank_bounds,
     to_float,
 )
-from mechsing.numeric.blocks import DENSE_ENTRIES
+from mechsing.numeric.blocks import dense
 
 _FLOAT = Precision("float")
 #: relative distances (radians or multiples of L) of the sample points
@@ -191,7 +191,7 @@ def _decided_many(model: KinematicModel, Q: np.ndarray) -> list[tuple[int | None
     two-threshold rule."""
     n = model.n
     rows = 6 * model.blocks
-    if not len(Q) or rows * n > DENSE_ENTRIES:
+    if not len(Q) or not dense(rows * n):
         # decide_rank factorises a big matrix block by block: one sample at a time
         out = []
         for q1 in Q:

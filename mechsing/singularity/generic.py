@@ -33,7 +33,7 @@ from mechsing.kinematics import batched
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.couplings import fold_columns
 from mechsing.numeric import Precision, decide_rank, rank_bounds
-from mechsing.numeric.blocks import DENSE_ENTRIES
+from mechsing.numeric.blocks import dense
 from mechsing.screws import chain_matrix, closure_system
 from mechsing.screws.mobility import NearbySample, stacked_jacobian
 from mechsing.singularity.serial import chain_system
@@ -169,7 +169,7 @@ def sample_values(mech: Any, model: Any, samples: list[NearbySample]) -> list[Sa
         return []
     plan = mechanism_plan(mech, model)
     samples = [_with_kernel(model, s) for s in samples]
-    if 6 * model.n > DENSE_ENTRIES or model.sparse_closure:
+    if not dense(6 * model.n) or model.sparse_closure:
         # a big mechanism: its matrices are factorised block by block (decide_rank's
         # block_svd), one sample at a time
         return [one_sample_values(mech, model, s) for s in samples]

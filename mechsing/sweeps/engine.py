@@ -52,6 +52,7 @@ from mechsing.numeric import (
     SWEEP_LOCATE_TOL,
     SWEEP_MINIMUM_SCREEN,
     Precision,
+    dispatch,
     to_float,
 )
 from mechsing.sweeps.limits import limited_coordinates, outside
@@ -592,7 +593,7 @@ class Sweep:
         configuration; otherwise a list, row by row (each row its own batch, as alone)."""
         sizes = [int(np.sum(r)) for r in reacheds]
         offsets = [int(x) for x in np.cumsum([0, *sizes[:-1]])]
-        if not self.measures.pointwise:
+        if not (self.measures.pointwise and dispatch.enabled()):
             return [self._measure(Z, r) for Z, r in zip(Zs, reacheds, strict=True)], offsets
         Z = np.concatenate([Z[r] for Z, r in zip(Zs, reacheds, strict=True)])
         return self._measure(Z, np.ones(len(Z), dtype=bool)), offsets
