@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.kinematics.model import KinematicModel
-from mechsing.numeric import POLISH_SLOW_RATIO, Precision, blocks, svd_r
+from mechsing.numeric import NEWTON_DAMPING, POLISH_SLOW_RATIO, Precision, blocks, svd_r
 from mechsing.numeric.blocks import block_factors, block_svd, issparse
 
 __all__ = [
@@ -35,9 +35,6 @@ __all__ = [
     "scaled_system",
     "truncated_least_squares",
 ]
-
-#: damping of :func:`damped_least_squares`, relative to sigma_max
-_DAMPING = 1e-7
 
 
 @dataclass(frozen=True)
@@ -104,14 +101,14 @@ def damped_least_squares(A: Any, b: np.ndarray) -> np.ndarray:
         F = block_factors(A)
         if not len(F.s) or F.s[0] == 0:
             return np.zeros(A.shape[1])
-        lam = _DAMPING * F.s[0]
+        lam = NEWTON_DAMPING * F.s[0]
         return F.solve(b, lambda s: s / (s * s + lam * lam))
     if issparse(A):
         A = A.toarray()
     U, s, Vt = block_svd(A, full_matrices=False)
     if not len(s) or s[0] == 0:
         return np.zeros(A.shape[1])
-    lam = _DAMPING * s[0]
+    lam = NEWTON_DAMPING * s[0]
     f = s / (s * s + lam * lam)
     return Vt.T @ (f * (U.T @ b))
 
