@@ -1,6 +1,6 @@
 """The scanner's screen compiled with numba (optional: the ``fast`` extra).
 
-One pass per configuration does what :class:`mechsing.kinematics.batched.SerialJacobian`
+One pass per configuration does what :class:`mechsing.kinematics.forward.SerialJacobian`
 and the screen of :mod:`mechsing.scanner` do with numpy arrays: the product of
 exponentials of a serial chain of one-dof joints in the commensurate frame (the
 same Rodrigues update, the same table ``[K, K^2, K a, K^2 a, u, v]`` per joint),
@@ -176,7 +176,7 @@ def _build() -> Any:
 )
 def screen_bounds(serial: Any, Q: np.ndarray, err: float) -> np.ndarray:
     """The screen's lower bound of sigma_min / sigma_max at every row of Q, for a
-    :class:`~mechsing.kinematics.batched.SerialJacobian` chain (compiled on first use)."""
+    :class:`~mechsing.kinematics.forward.SerialJacobian` chain (compiled on first use)."""
     if not _KERNEL:
         _KERNEL.append(_build())
     tables = serial._table

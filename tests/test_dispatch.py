@@ -26,7 +26,7 @@ import scipy.linalg
 import mechsing
 import mechsing.scanner
 from mechsing import lie, load
-from mechsing.kinematics import KinematicModel, batched
+from mechsing.kinematics import KinematicModel, forward
 from mechsing.kinematics.closure import Closer
 from mechsing.lie import _so3
 from mechsing.lie._series import SWITCH_T2
@@ -290,7 +290,7 @@ def _check_number_field(rng: np.random.Generator) -> None:
         model = KinematicModel(mech, "exact")
         q, _given = Closer(model)._given(mech.configurations[name])
         fast = of(model, q).poses()
-        slow = generic(batched.poses, model, q)
+        slow = generic(forward.poses, model, q)
         for body, g in slow.items():
             diff = [sympy.N(a - b, 60) for a, b in zip(g.flat, fast[body].flat, strict=True)]
             assert all(abs(d) < 1e-50 for d in diff), (file, body)
@@ -338,8 +338,8 @@ def _check_stacked_joints(rng: np.random.Generator) -> None:
     for name in ("stewart_octahedral", "five_bar", "tsai_3upu", "planar_3rpr"):
         model = KinematicModel(load(EXAMPLES / f"{name}.yaml"), "float")
         for q in rng.normal(size=(5, model.n)) * 1.5:
-            fast = batched.poses(model, q)
-            slow = generic(batched.poses, model, q)
+            fast = forward.poses(model, q)
+            slow = generic(forward.poses, model, q)
             assert fast.keys() == slow.keys()
             for body, g in slow.items():
                 _same(fast[body], g)
@@ -377,14 +377,14 @@ def test_current_screws_table_parity(form: str) -> None:
         Q[:10] *= 1e-9
         Q[10] = 0.0
         if form == "batch":
-            P = batched.poses(model, Q, fast=True)
-            _same(batched.current_screws(model, Q, P), generic(batched.current_screws, model, Q, P))
+            P = forward.poses(model, Q, fast=True)
+            _same(forward.current_screws(model, Q, P), generic(forward.current_screws, model, Q, P))
         else:
             for q in Q[::9]:
-                P = batched.poses(model, q)
+                P = forward.poses(model, q)
                 _same(
-                    batched.current_screws(model, q, P),
-                    generic(batched.current_screws, model, q, P),
+                    forward.current_screws(model, q, P),
+                    generic(forward.current_screws, model, q, P),
                 )
 
 

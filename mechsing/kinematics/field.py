@@ -287,7 +287,7 @@ class FieldKinematics:
                     continue
                 last = steps[-1]
                 if last.part is not None:
-                    continue  # hidden cross bodies (as batched.poses)
+                    continue  # hidden cross bodies (as forward.poses)
                 jk = model.joint(last.joint)
                 prev = out[jk.a if last.sign > 0 else jk.b]
                 M = self._elements[jk.name]

@@ -1,6 +1,6 @@
 """The kinematic model of a mechanism in one precision mode: its joints' reference
 screws and coordinates, closure residuals, closure Jacobian and updates on the
-group (poses and current screws are computed by :mod:`mechsing.kinematics.batched`).
+group (poses and current screws are computed by :mod:`mechsing.kinematics.forward`).
 
 Conventions (those of the mechanism file; the README states them):
 
@@ -37,7 +37,7 @@ import mpmath
 import numpy as np
 
 from mechsing import lie
-from mechsing.kinematics import batched
+from mechsing.kinematics import forward
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.couplings import (
     CouplingKinematics,
@@ -297,7 +297,7 @@ class KinematicModel:
 
     def element(self, jk: JointKinematics, q: np.ndarray) -> np.ndarray:
         """The joint's relative displacement M (g_b = g_a M)."""
-        return batched.element(jk, q)
+        return forward.element(jk, q)
 
     def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
         """The pose of every user body (ground = identity) from the spanning tree;
@@ -310,11 +310,11 @@ class KinematicModel:
         if fk is not None:
             return fk.poses()
         if q.ndim != 1 or q.dtype != float:
-            return batched.poses(self, q)
+            return forward.poses(self, q)
         key = q.tobytes()
         got = self._pose_cache.get(key)
         if got is None:
-            got = batched.poses(self, q)
+            got = forward.poses(self, q)
             self._keep_poses(key, got)
         return dict(got)
 
@@ -366,7 +366,7 @@ class KinematicModel:
             return fk.current_screws()
         if poses is None and q.ndim == 1 and q.dtype == float:
             poses = self.poses(q)
-        return batched.current_screws(self, q, poses)
+        return forward.current_screws(self, q, poses)
 
     # ------------------------------------------------------------------ closure
 

@@ -18,8 +18,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mechsing.kinematics import KinematicModel, batched
-from mechsing.kinematics.batch import BatchClosure, truncated_steps
+from mechsing.kinematics import KinematicModel, forward
+from mechsing.kinematics.batch_newton import BatchClosure, truncated_steps
 from mechsing.kinematics.newton import newton_on_group, truncated_least_squares
 from mechsing.numeric import (
     SAMPLE_CLOSURE_RTOL,
@@ -200,7 +200,7 @@ def _decided_many(model: KinematicModel, Q: np.ndarray) -> list[tuple[int | None
             )
             out.append((None if dec.rank is None else n - dec.rank, dec.null_space))
         return out
-    S = batched.current_screws(model, Q, batched.poses(model, Q))
+    S = forward.current_screws(model, Q, forward.poses(model, Q))
     # stacked_jacobian of each: the chords' signed screws, each 6-row block commensurate
     J = model.closure_jacobian(Q, S).reshape(len(Q), model.blocks, 6, n)
     J = model.float_frame.screws(J).reshape(len(Q), rows, n)

@@ -11,7 +11,7 @@ assembly mode the path started on.
   Newton on the group, branch checks), each first predicted from the last step (the
   first step from the tangent at the start) and kept when Newton corrects it little.
   The samples between two nodes are closed together by batched Newton
-  (:class:`~mechsing.kinematics.batch.BatchClosure`) from their interpolation on the
+  (:class:`~mechsing.kinematics.batch_newton.BatchClosure`) from their interpolation on the
   group (a row's two directions in one batch: :func:`close_segments`); one whose
   correction is large next to the node spacing is closed again by continuation from
   its predecessor.
@@ -45,7 +45,7 @@ import numpy as np
 
 from mechsing.errors import ClosureError
 from mechsing.kinematics import Closer, KinematicModel
-from mechsing.kinematics.batch import BatchClosure
+from mechsing.kinematics.batch_newton import BatchClosure
 from mechsing.kinematics.newton import scaled_system
 from mechsing.numeric import (
     SWEEP_ARC_MIN_STEP,

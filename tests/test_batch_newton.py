@@ -13,7 +13,7 @@ import scipy.linalg
 
 from mechsing import lie, load
 from mechsing.kinematics import KinematicModel
-from mechsing.kinematics.batch import BatchClosure
+from mechsing.kinematics.batch_newton import BatchClosure
 from mechsing.lie import exp_so3, log_so3
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"

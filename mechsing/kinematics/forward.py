@@ -1,4 +1,4 @@
-"""Poses and current joint screws of one configuration or of a batch of them.
+"""Forward kinematics: poses and current joint screws of one configuration or a batch.
 
 Owns the product of exponentials of a mechanism's spanning tree: the joint
 elements, the body poses and the current screws (the Jacobian columns), written
@@ -29,7 +29,7 @@ from mechsing.numeric import dispatch
 #: the exponential's fast forms (:mod:`mechsing.lie._rodrigues` registers the joints')
 _EXP = dispatch.table("exp")
 #: the fast forms of :func:`current_screws` (float configurations), by q's dimensions
-_SCREWS = dispatch.table("current screws", "mechsing.kinematics.batched.current_screws")
+_SCREWS = dispatch.table("current screws", "mechsing.kinematics.forward.current_screws")
 _SCREW_FORMS = {1: "one configuration", 2: "batch"}
 
 __all__ = ["SerialJacobian", "current_screws", "element", "poses"]

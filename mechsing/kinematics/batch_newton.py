@@ -6,7 +6,7 @@ the output's pose, of its :class:`~mechsing.kinematics.pose.PoseModel`), written
 array of configurations ``Q`` of shape ``(N, n)`` with :mod:`mechsing.lie` (which
 broadcasts over leading axes), and :meth:`BatchClosure.newton`, damped Gauss-Newton on
 the group for all rows together.  The one-configuration kinematics
-(:mod:`mechsing.kinematics.batched`) computes the poses and screws; this module adds what
+(:mod:`mechsing.kinematics.forward`) computes the poses and screws; this module adds what
 closing a batch needs.  Nothing here decides a rank: it closes.
 
 Conventions: those of :mod:`mechsing.kinematics.model`.  Residual twists and Jacobian
@@ -25,7 +25,7 @@ from typing import Any, Literal
 import numpy as np
 
 from mechsing import lie
-from mechsing.kinematics import batched
+from mechsing.kinematics import forward
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.couplings import coupling_residuals
 from mechsing.lie import exp_so3, log_so3
@@ -100,11 +100,11 @@ class BatchClosure:
         """The closure residual of every chord (and the pose), (N, blocks, 4, 4); ``T``:
         the output's displacements :meth:`target` of Q's pose coordinates, when known."""
         q = Q[:, : self.nb]
-        P = batched.poses(self.base, q, fast=True) if P is None else P
+        P = forward.poses(self.base, q, fast=True) if P is None else P
         out = np.empty((Q.shape[0], self.blocks, 4, 4))
         for i, jk in enumerate(self.chords):
             np.matmul(
-                P[jk.a] @ batched.element(jk, q, fast=True), lie.inverse(P[jk.b]), out=out[:, i]
+                P[jk.a] @ forward.element(jk, q, fast=True), lie.inverse(P[jk.b]), out=out[:, i]
             )
         if self.couplings:
             k = len(self.chords)
@@ -146,8 +146,8 @@ class BatchClosure:
     def screws(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
         """The commensurate current screws of the joint coordinates: (N, 6, nb)."""
         q = Q[:, : self.nb]
-        P = batched.poses(self.base, q, fast=True) if P is None else P
-        return self.frame.screws(batched.current_screws(self.base, q, P))
+        P = forward.poses(self.base, q, fast=True) if P is None else P
+        return self.frame.screws(forward.current_screws(self.base, q, P))
 
     def jacobian(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
         """The commensurate closure Jacobian in the joint coordinates: (N, 6 * blocks, nb)
@@ -189,7 +189,7 @@ class BatchClosure:
                 continue
             if jk.name in self._turns:
                 continue
-            M = lie.exp(d @ jk.basis) @ batched.element(jk, q, fast=True)
+            M = lie.exp(d @ jk.basis) @ forward.element(jk, q, fast=True)
             x = self.frame.twists(lie.log(M)[..., None])[..., 0]  # (N, 6) commensurate
             out[:, jk.columns] = x @ self._pinv[jk.name].T
         return out
@@ -218,7 +218,7 @@ class BatchClosure:
         for jk in self.base.joints:
             if jk.abelian or jk.name in self._turns:
                 continue
-            M = batched.element(jk, q1, fast=True) @ lie.inverse(batched.element(jk, q0, fast=True))
+            M = forward.element(jk, q1, fast=True) @ lie.inverse(forward.element(jk, q0, fast=True))
             x = self.frame.twists(lie.log(M)[..., None])[..., 0]
             D[:, jk.columns] = x @ self._pinv[jk.name].T
         return D
@@ -259,7 +259,7 @@ class BatchClosure:
         # the poses and residuals of the current rows, carried from one iteration to the
         # next (each trial point's are computed once)
         P = {
-            k: np.array(v) for k, v in batched.poses(self.base, Q[:, : self.nb], fast=True).items()
+            k: np.array(v) for k, v in forward.poses(self.base, Q[:, : self.nb], fast=True).items()
         }
         # the pose coordinates are given: the output's target is computed once
         T = None if self.pose is None else self.target(Q[:, self.nb :])
@@ -300,7 +300,7 @@ class BatchClosure:
             step = np.zeros((len(idx), self.nb))
             step[:, cols] = du
             Qn = self.update(Qa, step)
-            Pn = batched.poses(self.base, Qn[:, : self.nb], fast=True)
+            Pn = forward.poses(self.base, Qn[:, : self.nb], fast=True)
             Dn = self.deltas(Qn, Pn, None if T is None else T[idx])
             rn = self.residual_norm(Dn)
             better = rn < res[idx] if accept == "better" else np.isfinite(rn)
