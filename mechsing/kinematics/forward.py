@@ -24,7 +24,7 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
-from mechsing.numeric import dispatch
+from mechsing.numeric import dispatch, holds_objects
 
 #: the exponential's fast forms (:mod:`mechsing.lie._rodrigues` registers the joints')
 _EXP = dispatch.table("exp")
@@ -89,7 +89,7 @@ def poses(
         if jk.name not in elements:
             elements[jk.name] = element(jk, q, fast)
         M = elements[jk.name]
-        if sign > 0 and prev == mech.ground and fast and M.dtype != object:
+        if sign > 0 and prev == mech.ground and fast and not holds_objects(M):
             # a float body after a joint from ground: its element (the identity's product
             # is exact)
             out[body] = M
@@ -185,7 +185,7 @@ def elements_at_once(model: Any, q: np.ndarray, joints: Any = None) -> dict[str,
     joints, rows, cols, basis, others = _element_plan(model, joints)
     if not joints:
         return {}
-    if joints[0].basis.dtype == object:  # a model in mp or exact numbers
+    if holds_objects(joints[0].basis):  # a model in mp or exact numbers
         Ms = lie.exp(np.stack([q[jk.columns] @ jk.basis for jk in joints]))
         return {jk.name: Ms[i] for i, jk in enumerate(joints)}
     twists = np.empty((len(joints), 6))

@@ -52,6 +52,8 @@ from mechsing.numeric import (
     blocks,
     characteristic_length,
     dispatch,
+    holds_objects,
+    is_float64,
     to_float,
 )
 from mechsing.subgroups import Subgroup
@@ -309,7 +311,7 @@ class KinematicModel:
         fk = self.field_kinematics(q)
         if fk is not None:
             return fk.poses()
-        if q.ndim != 1 or q.dtype != float:
+        if q.ndim != 1 or not is_float64(q):
             return forward.poses(self, q)
         key = q.tobytes()
         got = self._pose_cache.get(key)
@@ -323,7 +325,7 @@ class KinematicModel:
         ``poses(qs)``, each (N, 4, 4), configuration by configuration bitwise those of one
         configuration) for :meth:`poses` of each of them: configurations closed together
         and then analysed one by one."""
-        if self.backend.name != "float" or qs.ndim != 2 or qs.dtype != float:
+        if self.backend.name != "float" or qs.ndim != 2 or not is_float64(qs):
             return
         for i, q in enumerate(qs):
             self._keep_poses(q.tobytes(), {b: P[i].copy() for b, P in poses.items()})
@@ -364,7 +366,7 @@ class KinematicModel:
         fk = self.field_kinematics(q)
         if fk is not None and _same_poses(fk, poses):
             return fk.current_screws()
-        if poses is None and q.ndim == 1 and q.dtype == float:
+        if poses is None and q.ndim == 1 and is_float64(q):
             poses = self.poses(q)
         return forward.current_screws(self, q, poses)
 
@@ -427,7 +429,7 @@ class KinematicModel:
         # measure (exact closure is proved, not measured)
         mp = self.backend.name == "mp"
         c = (self.frame if mp else self.float_frame).c
-        if not mp and len(deltas) > 1 and all(D.dtype == float for D in deltas):
+        if not mp and len(deltas) > 1 and all(is_float64(D) for D in deltas):
             # float residuals of every chord in one batch (the same formula, the same numbers)
             Dm = np.stack(deltas)
             R = Dm[:, :3, :3]
@@ -478,11 +480,11 @@ class KinematicModel:
         signs = self._chord_signs()
         if not signs:
             return bk.zeros(S.shape[:-2] + (0, self.n))
-        if S.ndim == 3 and S.dtype != object:
+        if S.ndim == 3 and not holds_objects(S):
             # a float batch: the same products, configuration by configuration
             J = np.stack(signs)[None, :, None, :] * S[:, None, :, :]
             return J.reshape(S.shape[0], -1, self.n)
-        if S.ndim == 2 and S.dtype != object:
+        if S.ndim == 2 and not holds_objects(S):
             # one float configuration: one broadcast product (the same products)
             return (np.stack(signs)[:, None, :] * S[None, :, :]).reshape(-1, self.n)
         rows = [S * coef[None, :] for coef in signs]
@@ -495,7 +497,7 @@ class KinematicModel:
         then signed per chord (the signs are -1, 0 or 1, so the numbers are the same)."""
         S = self.current_screws(q) if screws is None else screws
         signs = self._chord_signs()
-        if not signs or S.ndim != 2 or S.dtype == object:
+        if not signs or S.ndim != 2 or holds_objects(S):
             J = frame.blocks(self._chord_jacobian(S))
         else:
             Ss = frame.blocks(np.asarray(S, dtype=float))
@@ -565,7 +567,7 @@ class KinematicModel:
         """log of each chord residual, stacked (6 * n_chords,)."""
         if not deltas:
             return self.backend.zeros(0)
-        if len(deltas) > 1 and all(D.dtype != object for D in deltas):
+        if len(deltas) > 1 and all(not holds_objects(D) for D in deltas):
             return lie.log(np.stack(deltas)).reshape(-1)
         return np.concatenate([lie.log(D) for D in deltas])
 
@@ -619,7 +621,7 @@ class KinematicModel:
         and logarithms (:func:`mechsing.lie.exp` and :func:`~mechsing.lie.log` give each
         row of a stack the numbers they give it alone)."""
         return self.backend.name == "float" and all(
-            isinstance(a, np.ndarray) and a.ndim == 1 and a.dtype == float for a in arrays
+            isinstance(a, np.ndarray) and a.ndim == 1 and is_float64(a) for a in arrays
         )
 
     def _elements_of(self, q: np.ndarray) -> np.ndarray:

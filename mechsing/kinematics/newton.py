@@ -23,7 +23,14 @@ from typing import Any
 import numpy as np
 
 from mechsing.kinematics.model import KinematicModel
-from mechsing.numeric import NEWTON_DAMPING, POLISH_SLOW_RATIO, Precision, blocks, svd_r
+from mechsing.numeric import (
+    NEWTON_DAMPING,
+    POLISH_SLOW_RATIO,
+    Precision,
+    blocks,
+    is_float64,
+    svd_r,
+)
 from mechsing.numeric.blocks import block_factors, block_svd, issparse
 
 __all__ = [
@@ -87,7 +94,7 @@ def finite_system(A: Any, b: np.ndarray | None = None) -> bool:
     overflow: such a system is no step, Newton stops there as on a step that does not
     lower the residual.  Always True for mp and exact numbers."""
     data = A.data if issparse(A) else np.asarray(A)
-    if data.dtype != float:
+    if not is_float64(data):
         return True
     return bool(np.isfinite(data).all()) and (
         b is None or bool(np.isfinite(np.asarray(b, dtype=float)).all())

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.lie._series import factorial_series, half_cot_series, safe, use_series
-from mechsing.numeric import backend_of, dispatch
+from mechsing.numeric import backend_of, bool_mask, dispatch, holds_objects
 
 #: the fast forms of the exponential, and of the other Lie functions on float64 arrays
 #: (:mod:`mechsing.lie._float` registers them; :mod:`mechsing.numeric.dispatch`)
@@ -29,13 +29,12 @@ def _asarr(x: Any) -> np.ndarray:
     if isinstance(x, np.ndarray):
         return x
     a = np.asarray(x)
-    return a if a.dtype == object else a.astype(np.float64)
+    return a if holds_objects(a) else a.astype(np.float64)
 
 
 def _mask(c: Any) -> np.ndarray:
     """Boolean ndarray of a comparison (object arrays of sympy booleans included)."""
-    c = np.asarray(c)
-    return c.astype(bool) if c.dtype != bool else c
+    return bool_mask(c)
 
 
 def cross(a: Any, b: Any) -> np.ndarray:

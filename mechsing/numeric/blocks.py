@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import dispatch
+from mechsing.numeric.dispatch import table, threshold
 
 __all__ = ["BlockFactors", "block_factors", "block_svd", "blocks_of", "dense", "issparse"]
 
@@ -45,7 +45,7 @@ def dense(entries: int) -> bool:
     (the dispatch table ``factorisation``: :func:`mechsing.numeric.dispatch.threshold`,
     so that ``MECHSING_FAST=0`` factorises every matrix whole, and
     ``fast_paths("always")`` every one block by block)."""
-    return entries <= dispatch.threshold(DENSE_ENTRIES)
+    return entries <= threshold(DENSE_ENTRIES)
 
 
 def issparse(A: Any) -> bool:
@@ -277,7 +277,7 @@ def block_svd(
     return U, F.s, Vt
 
 
-dispatch.table("factorisation", "numpy.linalg.svd of the whole matrix").register(
+table("factorisation", "numpy.linalg.svd of the whole matrix").register(
     "blocks",
     "a float matrix of more than DENSE_ENTRIES entries, or sparse: block by block "
     "(the whole matrix's singular values; its vectors another basis of each space)",
