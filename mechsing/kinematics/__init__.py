@@ -15,7 +15,6 @@
 """
 
 from mechsing.errors import ClosureError, ConfigurationError, ExactDataError
-from mechsing.kinematics import field as _field  # noqa: F401 (registers its fast form)
 from mechsing.kinematics.chains import Chain, path_chain, tree_chain
 from mechsing.kinematics.closure import ClosedConfiguration, Closer, solve_configuration
 from mechsing.kinematics.model import JointKinematics, KinematicModel, axis_points

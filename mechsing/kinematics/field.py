@@ -15,9 +15,10 @@ elements, a U joint the product of its two turns.
 An S joint's rotation vector w turns by the angle |w| (its cosine and sine as radicals)
 about the unit axis w / |w| through the joint's centre c: ``p = (I - R) c``.
 
-A fast form of the exponential (the dispatch table ``exp``,
-:mod:`mechsing.numeric.dispatch`; ``MECHSING_FAST=0`` sends every exact configuration
-to the sympy path).  What does not fit falls back to the sympy path (:meth:`FieldKinematics.of` returns
+Not a fast path that ``MECHSING_FAST=0`` turns off (:mod:`mechsing.numeric.dispatch`):
+the sympy path does not prove every zero the field proves (without it, the 3-RPR's
+concurrent configuration is not proved closed).  What does not fit falls back to the
+sympy path (:meth:`FieldKinematics.of` returns
 None): an H joint (its translation ``pitch * theta`` is transcendental), a non-abelian
 joint other than S at a non-zero value, an angle whose sine sympy cannot write as
 radicals, an S joint's axis that is not, geometry that is not written in radicals.
@@ -32,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import cos_sin, dispatch, from_field, number_field
+from mechsing.numeric import cos_sin, from_field, number_field
 
 __all__ = ["FieldKinematics"]
 
@@ -353,10 +354,3 @@ class FieldKinematics:
         if self._residuals_sympy is None:
             self._residuals_sympy = [from_field(self.K, D) for D in self.residuals_in_field()]
         return [D.copy() for D in self._residuals_sympy]
-
-
-dispatch.table("exp").register(
-    "number field",
-    "an exact configuration whose data fit a number field: the Rodrigues form in K "
-    "(the sympy numbers of the generic path, exactly)",
-)(FieldKinematics.of)

@@ -45,6 +45,7 @@ from mechsing.kinematics.couplings import (
     coupling_kinematics,
     coupling_residuals,
 )
+from mechsing.kinematics.field import FieldKinematics
 from mechsing.model import Mechanism
 from mechsing.numeric import (
     CommensurateFrame,
@@ -347,15 +348,12 @@ class KinematicModel:
         then serves).  Kept for the last few configurations."""
         if self.backend.name != "exact" or q.ndim != 1:
             return None
-        of = _EXP.get("number field")
-        if of is None:
-            return None
         key = tuple(q.tolist())
         cache = self._field_cache
         if key not in cache:
             if len(cache) >= _FIELD_CACHE_SIZE:
                 cache.pop(next(iter(cache)))
-            cache[key] = of(self, q)
+            cache[key] = FieldKinematics.of(self, q)
         return cache[key]
 
     def current_screws(
@@ -709,8 +707,7 @@ class KinematicModel:
 
 #: exact configurations whose field kinematics a model keeps
 _FIELD_CACHE_SIZE = 8
-#: the exponential's fast forms (:mod:`mechsing.kinematics.field` registers the number
-#: field's; :mod:`mechsing.numeric.dispatch`)
+#: the exponential's fast forms (:mod:`mechsing.numeric.dispatch`)
 _EXP = dispatch.table("exp")
 #: body poses (4 x 4 matrices) the pose cache of a float model holds at most: a sweep's
 #: located points of a small mechanism, a few configurations of a big one
