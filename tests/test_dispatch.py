@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -439,3 +440,20 @@ def test_the_environment_switch_turns_every_fast_path_off() -> None:
     with pytest.raises(ValueError, match="fast_paths takes"):
         with dispatch.fast_paths("yes"):  # type: ignore[arg-type]
             pass
+
+
+def test_no_test_chooses_a_path_by_patching_mechsing() -> None:
+    """Tests choose a path through dispatch.fast_paths, never by patching the module
+    constants or switches that used to choose one, nor by setting the switch's
+    environment variables in-process (read once, when mechsing is imported)."""
+    patched = re.compile(
+        r"monkeypatch\.(setattr\([^\n]*\b(DENSE_ENTRIES|ENTRYWISE|_ENTRYWISE|pointwise|F64)\b"
+        r"|(setenv|delenv)\(\s*\"MECHSING_(FAST|NO_COMPILED))"
+    )
+    offenders = [
+        f"{p.name}:{text[: m.start()].count(chr(10)) + 1}"
+        for p in sorted((ROOT / "tests").glob("*.py"))
+        for text in [p.read_text(encoding="utf-8")]
+        for m in patched.finditer(text)
+    ]
+    assert offenders == []
