@@ -37,7 +37,7 @@ _KERNEL: list[Any] = []
 
 def available() -> bool:
     """Is the compiled screen usable (numba installed, not switched off)?"""
-    if not dispatch.enabled():
+    if dispatch.table("exp").get("compiled serial chain") is None:
         return False
     try:
         import numba  # noqa: F401

@@ -437,6 +437,10 @@ def test_the_environment_switch_turns_every_fast_path_off() -> None:
         assert dispatch.threshold(64) == math.inf
         with dispatch.fast_paths("always"):
             assert dispatch.threshold(64) == 0
+    exp = dispatch.table("exp")
+    with exp.disabled("one-dof"):
+        assert exp.get("one-dof") is None and exp.get("spherical") is not None
+    assert exp.get("one-dof") is not None
     with pytest.raises(ValueError, match="fast_paths takes"):
         with dispatch.fast_paths("yes"):  # type: ignore[arg-type]
             pass

@@ -21,7 +21,8 @@ Tests and benchmarks choose a path through :func:`fast_paths` (a context manager
 never by changing a module's attribute: ``fast_paths(False)`` is the generic code,
 ``fast_paths(True)`` the default (fast forms above their thresholds),
 ``fast_paths("always")`` takes every fast form whatever the input's size (its
-thresholds zero), so that a small test input reaches the form a big mechanism takes.
+thresholds zero), so that a small test input reaches the form a big mechanism takes;
+``table(name).disabled(form)`` turns one form off.
 :func:`tables` lists every table and its forms; one parity test per table runs every
 registered form against the generic definition (and fails on a form it does not know).
 """
@@ -136,6 +137,16 @@ class Table:
             return function
 
         return add
+
+    @contextmanager
+    def disabled(self, name: str) -> Iterator[None]:
+        """Within the block, the form ``name`` alone is off (a benchmark's or a test's
+        comparison of one form with the rest of the fast paths kept)."""
+        form = self.forms.pop(name)
+        try:
+            yield
+        finally:
+            self.forms[name] = form
 
     def get(self, name: str) -> Callable[..., Any] | None:
         """The form ``name`` when fast paths are on and it is registered, else None
