@@ -10,7 +10,8 @@ the alignment of joints 1, 3 and 5).  Pipelines, timed in the same run (median o
 
 - ``mechsing.scan``, compiled screen (the ``fast`` extra: numba), numpy matrices
   and SVD only where the screen cannot certify;
-- ``mechsing.scan``, numpy path (``MECHSING_NO_COMPILED=1``);
+- ``mechsing.scan``, numpy path (the dispatch table ``exp`` without its form
+  ``compiled serial chain``);
 - Pinocchio's Jacobians (``computeJointJacobians``, one call per configuration,
   the only way its Python API offers), moved to mechsing's commensurate frame,
   then numpy's batched SVD everywhere and the two-threshold rule;
@@ -28,7 +29,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 import sys
 import tempfile
 import time
@@ -90,7 +90,7 @@ def _bandwidth() -> float:
 
 
 def _arm(name: str, mech, Q: np.ndarray, repeat: int, rows: list[str]) -> dict:
-    from mechsing.numeric import SCAN_ROUNDING_FACTOR, SCAN_SCREEN_FACTOR, scale_screws
+    from mechsing.numeric import SCAN_ROUNDING_FACTOR, SCAN_SCREEN_FACTOR, dispatch, scale_screws
     from mechsing.scanner import ChainScanner
 
     sc = ChainScanner(mech)
@@ -98,12 +98,9 @@ def _arm(name: str, mech, Q: np.ndarray, repeat: int, rows: list[str]) -> dict:
     n = Q.shape[0]
     res = sc.scan(Q)
     t_compiled = _median(lambda: sc.scan(Q), repeat) if sc.compiled else math.nan
-    os.environ["MECHSING_NO_COMPILED"] = "1"
-    try:
+    with dispatch.table("exp").disabled("compiled serial chain"):
         t_numpy = _median(lambda: sc.scan(Q), repeat)
         res_numpy = sc.scan(Q)
-    finally:
-        del os.environ["MECHSING_NO_COMPILED"]
     out = {"n": n, "compiled": t_compiled, "numpy": t_numpy}
     diff_numpy = int(np.count_nonzero(res_numpy.rank != res.rank))
     try:

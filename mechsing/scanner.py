@@ -43,15 +43,16 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie, scanner_kernel
-from mechsing.kinematics import KinematicModel, batched
-from mechsing.kinematics.batched import SerialJacobian
+from mechsing.kinematics import KinematicModel, forward
 from mechsing.kinematics.chains import tree_chain
+from mechsing.kinematics.forward import SerialJacobian
 from mechsing.model import Mechanism
 from mechsing.numeric import (
     MAX_JOINT_VALUE,
     SCAN_ROUNDING_FACTOR,
     SCAN_SCREEN_FACTOR,
     Precision,
+    dispatch,
     rank_bounds,
 )
 from mechsing.reader import read_mechanism
@@ -181,20 +182,20 @@ class ChainScanner:
     def matrices(self, Q: np.ndarray) -> np.ndarray:
         """The chain's commensurate matrices, shape (N, rows, columns), for the rows of Q.
 
-        The batched kinematics of :mod:`mechsing.kinematics.batched` and the chain
+        The batched kinematics of :mod:`mechsing.kinematics.forward` and the chain
         builder :func:`mechsing.screws.chain_matrix`, as the one-configuration
         analysis uses them (equal to rounding: the serial fast path is the same
         product of exponentials in the commensurate frame).
         """
         Q = self._checked(Q)
-        if self._serial is not None:
+        if self._serial is not None and dispatch.enabled():
             return self._serial(Q)
         out = self.mech.output
         need = [jk.a for jk in self._chain_joints]
         if self.point is not None:
             need.append(out.body)
-        poses = batched.poses(self.model, Q, need)
-        S = batched.current_screws(self.model, Q, poses, self._chain_joints)
+        poses = forward.poses(self.model, Q, need)
+        S = forward.current_screws(self.model, Q, poses, self._chain_joints)
         x = None if self.point is None else lie.act_point(poses[out.body], self.point)
         return chain_matrix(self.model, S, self.chain.columns, x)
 

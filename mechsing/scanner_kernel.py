@@ -1,6 +1,6 @@
 """The scanner's screen compiled with numba (optional: the ``fast`` extra).
 
-One pass per configuration does what :class:`mechsing.kinematics.batched.SerialJacobian`
+One pass per configuration does what :class:`mechsing.kinematics.forward.SerialJacobian`
 and the screen of :mod:`mechsing.scanner` do with numpy arrays: the product of
 exponentials of a serial chain of one-dof joints in the commensurate frame (the
 same Rodrigues update, the same table ``[K, K^2, K a, K^2 a, u, v]`` per joint),
@@ -16,17 +16,19 @@ The determinant is LU with partial pivoting written out, so the bound differs fr
 numpy's (LAPACK) by rounding only; configurations at the screen's threshold get
 the SVD in both paths, so the verdicts are the same (tested).
 
-Numba is imported lazily; :func:`available` is False without it, or when the
-environment variable ``MECHSING_NO_COMPILED`` is set, and the scanner then uses
-its numpy path.
+Numba is imported lazily; :func:`available` is False without it, or when fast paths
+are off (``MECHSING_FAST=0``, or its alias ``MECHSING_NO_COMPILED=1``:
+:mod:`mechsing.numeric.dispatch`, where :func:`screen_bounds` is registered in the
+table ``exp``), and the scanner then uses its numpy path.
 """
 
 from __future__ import annotations
 
-import os
 from typing import Any
 
 import numpy as np
+
+from mechsing.numeric import dispatch
 
 __all__ = ["available", "screen_bounds"]
 
@@ -35,7 +37,7 @@ _KERNEL: list[Any] = []
 
 def available() -> bool:
     """Is the compiled screen usable (numba installed, not switched off)?"""
-    if os.environ.get("MECHSING_NO_COMPILED"):
+    if dispatch.table("exp").get("compiled serial chain") is None:
         return False
     try:
         import numba  # noqa: F401
@@ -167,9 +169,14 @@ def _build() -> Any:
     return kernel
 
 
+@dispatch.table("exp").register(
+    "compiled serial chain",
+    "the scanner's serial chain of one-dof joints, compiled with numba (its screen's bound "
+    "to the determinant's backward error)",
+)
 def screen_bounds(serial: Any, Q: np.ndarray, err: float) -> np.ndarray:
     """The screen's lower bound of sigma_min / sigma_max at every row of Q, for a
-    :class:`~mechsing.kinematics.batched.SerialJacobian` chain (compiled on first use)."""
+    :class:`~mechsing.kinematics.forward.SerialJacobian` chain (compiled on first use)."""
     if not _KERNEL:
         _KERNEL.append(_build())
     tables = serial._table

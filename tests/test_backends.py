@@ -170,6 +170,7 @@ def test_series_switch_and_simplify() -> None:
 #: mechsing.numeric's modules from the bottom up: each imports only modules before it
 NUMERIC_ORDER = [
     "tolerances",
+    "dispatch",
     "numbers",
     "_mp",
     "field",

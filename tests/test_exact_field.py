@@ -32,7 +32,7 @@ import pytest
 import sympy
 
 import mechsing
-from mechsing.kinematics import batched
+from mechsing.kinematics import forward
 from mechsing.kinematics.given import GivenValues
 from mechsing.kinematics.model import KinematicModel
 from mechsing.model.loader import load
@@ -192,12 +192,12 @@ def test_field_path_equals_the_sympy_path() -> None:
         model, q = _configuration(EXAMPLES / file, name)
         fk = model.field_kinematics(q)
         assert fk is not None, file
-        slow = batched.poses(model, q)
+        slow = forward.poses(model, q)
         fast = fk.poses()
         for body, g in slow.items():
             diff = [sympy.N(a - b, 60) for a, b in zip(g.flat, fast[body].flat, strict=True)]
             assert all(abs(d) < 1e-50 for d in diff), (file, body)
-        S_slow = batched.current_screws(model, q, slow)
+        S_slow = forward.current_screws(model, q, slow)
         S_fast = fk.current_screws()
         diff = [sympy.N(a - b, 60) for a, b in zip(S_slow.flat, S_fast.flat, strict=True)]
         assert all(abs(d) < 1e-50 for d in diff), file
@@ -225,14 +225,14 @@ def test_spherical_joint_in_the_field_equals_the_sympy_path(tmp_path: Path) -> N
         model, q = _configuration(path, name)
         fk = model.field_kinematics(q)
         assert fk is not None and fk.degree == degree, name
-        slow = batched.poses(model, q)
+        slow = forward.poses(model, q)
         fast = fk.poses()
         for body, g in slow.items():
             assert all(
                 abs(sympy.N(a - b, 60)) < 1e-50
                 for a, b in zip(g.flat, fast[body].flat, strict=True)
             ), (name, body)
-        S_slow = batched.current_screws(model, q, slow)
+        S_slow = forward.current_screws(model, q, slow)
         S_fast = fk.current_screws()
         assert all(
             abs(sympy.N(a - b, 60)) < 1e-50 for a, b in zip(S_slow.flat, S_fast.flat, strict=True)

@@ -20,8 +20,7 @@ from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import damped_least_squares, truncated_least_squares
 from mechsing.model import load
 from mechsing.model.graph import NETWORKX_LOOP_WORK, canonical_loops, short_cycle_basis
-from mechsing.numeric import blocks as blocks_module
-from mechsing.numeric import decide_rank
+from mechsing.numeric import decide_rank, dispatch
 from mechsing.numeric.blocks import block_factors, block_svd, blocks_of
 from tests.cli import run_cli
 
@@ -127,8 +126,17 @@ def _block_matrix(rng: np.random.Generator) -> np.ndarray:
     return A
 
 
-def test_block_svd_equals_the_dense_svd(monkeypatch):
-    monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 0)
+@pytest.fixture
+def blockwise():
+    """Every float matrix factorised block by block, whatever its size (the dispatch table
+    ``factorisation`` taken at every size)."""
+    with dispatch.fast_paths("always"):
+        yield
+
+
+def test_block_svd_equals_the_dense_svd(blockwise):
+    """The parity test of the dispatch table ``factorisation``: block by block, the whole
+    matrix's singular values and an SVD of it."""
     rng = np.random.default_rng(5)
     for _ in range(60):
         A = _block_matrix(rng)
@@ -178,37 +186,35 @@ def _ladder(n: int, fold: int) -> str:
 
 
 @pytest.mark.parametrize("dense", [False, True])
-def test_a_ladder_with_one_parallelogram_folded_flat(tmp_path, monkeypatch, dense):
+def test_a_ladder_with_one_parallelogram_folded_flat(tmp_path, dense):
     """40 parallelograms: 40 degrees of freedom; the folded one is a change point
     (parallelogram and anti-parallelogram branches cross), so the kernel gains one
     direction and two branches of 40 degrees of freedom cross.  The block path and
     the dense path (every factorisation on the whole matrix) agree."""
-    if dense:
-        monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 10**12)
-    path = tmp_path / "ladder.yaml"
-    path.write_text(_ladder(40, 17))
-    run = run_cli(["analyze", str(path), "--precision", "float", "--format", "json"])
-    assert run.status == 0, run.err
-    import json
+    with dispatch.fast_paths(not dense):  # dense: every matrix factorised whole
+        path = tmp_path / "ladder.yaml"
+        path.write_text(_ladder(40, 17))
+        run = run_cli(["analyze", str(path), "--precision", "float", "--format", "json"])
+        assert run.status == 0, run.err
+        import json
 
-    reference, flat = json.loads(run.out)["configurations"]
-    assert reference["mobility"]["finite"] == 40
-    assert reference["mobility"]["instantaneous"] == 40
-    assert not reference.get("singularities")
-    assert flat["mobility"]["instantaneous"] == 41
-    assert flat["mobility"]["finite"] == 40
-    (bif,) = [s for s in flat["singularities"] if s["class"] == "bifurcation"]
-    assert bif["branch_mobility"] == [40, 40]
-    # the folded loop, and only it, loses rank
-    ranks = {tuple(lp["joints"]): lp["rank"] for lp in flat["loops"]}
-    assert ranks[("A17", "C17", "D17", "B17")] == 2
-    assert sum(1 for r in ranks.values() if r == 3) == 39
+        reference, flat = json.loads(run.out)["configurations"]
+        assert reference["mobility"]["finite"] == 40
+        assert reference["mobility"]["instantaneous"] == 40
+        assert not reference.get("singularities")
+        assert flat["mobility"]["instantaneous"] == 41
+        assert flat["mobility"]["finite"] == 40
+        (bif,) = [s for s in flat["singularities"] if s["class"] == "bifurcation"]
+        assert bif["branch_mobility"] == [40, 40]
+        # the folded loop, and only it, loses rank
+        ranks = {tuple(lp["joints"]): lp["rank"] for lp in flat["loops"]}
+        assert ranks[("A17", "C17", "D17", "B17")] == 2
+        assert sum(1 for r in ranks.values() if r == 3) == 39
 
 
-def test_a_sparse_matrix_gets_the_dense_block_svd(monkeypatch):
+def test_a_sparse_matrix_gets_the_dense_block_svd(blockwise):
     """A matrix given sparse has the blocks and the factorisation of the same matrix
     given dense, to the last bit (each block is the same dense sub-matrix)."""
-    monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 0)
     rng = np.random.default_rng(11)
     for _ in range(40):
         A = _block_matrix(rng)
@@ -224,11 +230,10 @@ def test_a_sparse_matrix_gets_the_dense_block_svd(monkeypatch):
             assert all(np.array_equal(x, y) for x, y in pairs)
 
 
-def test_block_factors_solve_least_squares_block_by_block(monkeypatch):
+def test_block_factors_solve_least_squares_block_by_block(blockwise):
     """The filtered pseudo-inverse applied block by block is numpy's pseudo-inverse
     (singular values kept above a floor) and Tikhonov's damped least squares
     ``(A^T A + lam^2 I)^-1 A^T b``, both computed on the whole dense matrix."""
-    monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 0)
     rng = np.random.default_rng(12)
     for _ in range(40):
         A = _block_matrix(rng)
@@ -278,21 +283,20 @@ def test_a_ladder_closure_jacobian_built_sparse(tmp_path):
 
 
 @pytest.mark.parametrize("dense", [False, True])
-def test_a_ladder_folded_flat_by_continuation(tmp_path, monkeypatch, dense):
+def test_a_ladder_folded_flat_by_continuation(tmp_path, dense):
     """Folding one square of a ladder (its verticals turned by -90 deg, its rung kept
     level) moves no other joint: the squares above ride on a rung that only
     translates.  Continuation from the reference with the four values alone finds
     every other joint at 0, on the sparse path and on the dense one."""
-    if dense:
-        monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 10**12)
-    m = _ladder_model(40, tmp_path)
-    assert m.sparse_closure is not dense
-    closed = Closer(m).solve("flat-solved")
-    expected = {jk.name: 0.0 for jk in m.joints}
-    expected.update({"A20": -np.pi / 2, "B20": -np.pi / 2, "C20": np.pi / 2, "D20": np.pi / 2})
-    got = m.values(closed.q)
-    assert max(abs(got[name][0] - v) for name, v in expected.items()) < 1e-9
-    assert closed.residual <= 1e-12 * m.length_scale
+    with dispatch.fast_paths(not dense):  # dense: every matrix factorised whole
+        m = _ladder_model(40, tmp_path)
+        assert m.sparse_closure is not dense
+        closed = Closer(m).solve("flat-solved")
+        expected = {jk.name: 0.0 for jk in m.joints}
+        expected.update({"A20": -np.pi / 2, "B20": -np.pi / 2, "C20": np.pi / 2, "D20": np.pi / 2})
+        got = m.values(closed.q)
+        assert max(abs(got[name][0] - v) for name, v in expected.items()) < 1e-9
+        assert closed.residual <= 1e-12 * m.length_scale
 
 
 _BENNETT = (
@@ -348,10 +352,9 @@ def test_a_bennett_chain_solved_sparse_moves_one_loop(tmp_path):
         assert abs(v - expected) < 1e-9, name
 
 
-def test_a_sparse_matrix_gets_the_dense_rank_decision(monkeypatch):
+def test_a_sparse_matrix_gets_the_dense_rank_decision(blockwise):
     """decide_rank of a sparse float matrix: the rank, the singular values and the
     margin of the same matrix given dense (its spaces, when asked, from the dense one)."""
-    monkeypatch.setattr(blocks_module, "DENSE_ENTRIES", 0)
     rng = np.random.default_rng(13)
     for _ in range(20):
         A = _block_matrix(rng)

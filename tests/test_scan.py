@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 
 import mechsing
 from mechsing import lie
-from mechsing.kinematics import KinematicModel, batched
+from mechsing.kinematics import KinematicModel, forward
 from mechsing.kinematics.chains import tree_chain
 from mechsing.model.mechanism import MechanismError
 from mechsing.numeric import decide_rank, scale_screws
@@ -162,7 +162,7 @@ def test_batched_poses_are_products_of_lie_exponentials(tmp_path: Path) -> None:
     for mech in _mechanisms(tmp_path):
         model = KinematicModel(mech, "float")
         Q = random_configurations(model, 12, seed=5)
-        poses = batched.poses(model, Q)
+        poses = forward.poses(model, Q)
         for i, q in enumerate(Q):
             one = model.poses(q)
             for body in mech.bodies:
@@ -188,7 +188,7 @@ def test_current_screws_are_finite_differences_of_poses(tmp_path: Path) -> None:
     for mech in _mechanisms(tmp_path, open_only=True):
         model = KinematicModel(mech, "float")
         Q = random_configurations(model, 4, seed=9)
-        S = batched.current_screws(model, Q)
+        S = forward.current_screws(model, Q)
         for i, q in enumerate(Q):
             for jk in model.joints:
                 for col in range(jk.columns.start, jk.columns.stop):

@@ -16,7 +16,7 @@ import pytest
 
 import mechsing
 from mechsing import scanner_kernel
-from mechsing.numeric import SCAN_ROUNDING_FACTOR
+from mechsing.numeric import SCAN_ROUNDING_FACTOR, dispatch
 from mechsing.scanner import ChainScanner
 from tests.mechanisms import EXAMPLES
 
@@ -74,13 +74,13 @@ def _configurations(n: int, joints: int, special: list[tuple[int, float | None]]
     return Q
 
 
-def _both(sc: ChainScanner, Q: np.ndarray, monkeypatch) -> tuple:
-    assert sc.compiled
-    fast = sc.scan(Q)
-    monkeypatch.setenv("MECHSING_NO_COMPILED", "1")
-    assert not sc.compiled
-    slow = sc.scan(Q)
-    monkeypatch.delenv("MECHSING_NO_COMPILED")
+def _both(sc: ChainScanner, Q: np.ndarray) -> tuple:
+    with dispatch.fast_paths(True):
+        assert sc.compiled
+        fast = sc.scan(Q)
+        with dispatch.table("exp").disabled("compiled serial chain"):  # the numpy path
+            assert not sc.compiled
+            slow = sc.scan(Q)
     return fast, slow
 
 
@@ -104,33 +104,33 @@ def _check(fast, slow, square: bool = True, m: int = 6) -> None:
         ("rphrrr", []),
     ],
 )
-def test_compiled_screen_gives_the_numpy_verdicts(path, special, tmp_path, monkeypatch):
+def test_compiled_screen_gives_the_numpy_verdicts(path, special, tmp_path):
     if path == "rphrrr":
         path = tmp_path / "rphrrr.yaml"
         path.write_text(RPHRRR)
     sc = ChainScanner(mechsing.load(path))
     Q = _configurations(4000, sc.n, special)
-    fast, slow = _both(sc, Q, monkeypatch)
+    fast, slow = _both(sc, Q)
     _check(fast, slow)
     if special:
         assert np.count_nonzero(fast.rank < 6) > 0  # a singular set was reached
 
 
-def test_a_7r_arm_and_a_point_output(tmp_path, monkeypatch):
+def test_a_7r_arm_and_a_point_output(tmp_path):
     panda = tmp_path / "panda.yaml"
     panda.write_text(PANDA)
     sc = ChainScanner(mechsing.load(panda))
     Q = _configurations(3000, 7, [(1, None), (3, None), (5, None)])
     # joints 1, 3 and 5 on one line: q2 = q4 = q6 = 0 (three equal screws, rank 5)
     Q[-300:, [1, 3, 5]] = 0.0
-    fast, slow = _both(sc, Q, monkeypatch)
+    fast, slow = _both(sc, Q)
     _check(fast, slow, square=False)
     assert np.all(fast.rank[-300:] == 5)
     arm = tmp_path / "arm2r.yaml"
     arm.write_text(ARM_2R_POINT)
     sc = ChainScanner(mechsing.load(arm))
     Q = _configurations(2000, 2, [(1, None), (1, math.pi)])
-    fast, slow = _both(sc, Q, monkeypatch)
+    fast, slow = _both(sc, Q)
     _check(fast, slow, square=False, m=2)
     # the tip's velocity loses rank exactly where the arm is stretched or folded
     assert np.all(fast.rank[200:400] == 1)

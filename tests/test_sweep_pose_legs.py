@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechsing.kinematics.batch import _damped_step
+from mechsing.kinematics.batch_newton import _damped_step
 from mechsing.sweeps import SweepRun, sweep
 from tests.reference.files import MechanismFile
 

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from mechsing.kinematics import ClosureError
+from mechsing.numeric import dispatch
 from mechsing.sweeps import SweepRun
 from mechsing.sweeps.path import first_nodes_of, follow, follow_together
 from mechsing.sweeps.segments import close_segments
@@ -170,14 +171,14 @@ def test_paths_followed_in_lockstep_are_each_followed_alone(grid) -> None:
         ]
 
 
-def test_rows_measured_row_by_row_where_measures_depend_on_their_batch(grid, monkeypatch) -> None:
+def test_rows_measured_row_by_row_where_measures_depend_on_their_batch(grid) -> None:
     # measures that take a rank over their batch (a leg's inner loops) are taken row by
     # row, as alone; the five-bar's are per configuration, so both ways agree exactly
     eng, values, column = grid
     starts = [(j, column.Z[j]) for j in range(0, len(values[1]), 5) if column.reached[j]]
     batched = eng.rows_of(starts, eng.cols[0], values[0])
-    monkeypatch.setattr(type(eng.measures), "pointwise", property(lambda self: False))
-    measured, _ = eng._measure_rows([r.Z for r in batched], [r.reached for r in batched])
+    with dispatch.fast_paths(False):  # each row measured alone
+        measured, _ = eng._measure_rows([r.Z for r in batched], [r.reached for r in batched])
     assert isinstance(measured, list) and len(measured) == len(batched)
     apart = eng.rows_of(starts, eng.cols[0], values[0])
     for a, b in zip(batched, apart, strict=True):

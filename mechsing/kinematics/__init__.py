@@ -6,8 +6,11 @@
 * :mod:`~mechsing.kinematics.protocol`: :class:`ClosureModel`, what closure and Newton
   ask of a model (a :class:`KinematicModel`, or a pose model,
   :mod:`~mechsing.kinematics.pose`);
-* :mod:`~mechsing.kinematics.batched`: poses and current screws of one configuration
-  or a batch (the analysis and the scanner), the serial fast Jacobian;
+* :mod:`~mechsing.kinematics.forward`: the forward kinematics (product of exponentials):
+  poses and current screws of one configuration or a batch (the analysis and the
+  scanner), the serial fast Jacobian;
+* :mod:`~mechsing.kinematics.batch_newton`: closure of many float configurations at
+  once, by one batched Gauss-Newton on the group (the sweeps, the nearby samples);
 * :mod:`~mechsing.kinematics.chains`: the coordinates a chain between two bodies
   crosses, with their signs (tree-path sign sums);
 * :mod:`~mechsing.kinematics.newton`: Newton on the group;

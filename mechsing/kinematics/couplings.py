@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.model import Coupling
+from mechsing.numeric import is_float64
 
 #: a :class:`~mechsing.kinematics.model.KinematicModel` (which imports this module)
 KinematicModel = Any
@@ -161,7 +162,7 @@ def fold_columns(
             factor = (
                 ck.multiplier * (L if ck.leader_length else 1) / (L if ck.follower_length else 1)
             )
-            if out.dtype == float:
+            if is_float64(out):
                 factor = float(factor)
             pf, pl = pos[ck.follower], pos[ck.leader]
             out[..., pl] = out[..., pl] + factor * out[..., pf]

@@ -15,7 +15,10 @@ elements, a U joint the product of its two turns.
 An S joint's rotation vector w turns by the angle |w| (its cosine and sine as radicals)
 about the unit axis w / |w| through the joint's centre c: ``p = (I - R) c``.
 
-What does not fit falls back to the sympy path (:meth:`FieldKinematics.of` returns
+Not a fast path that ``MECHSING_FAST=0`` turns off (:mod:`mechsing.numeric.dispatch`):
+the sympy path does not prove every zero the field proves (without it, the 3-RPR's
+concurrent configuration is not proved closed).  What does not fit falls back to the
+sympy path (:meth:`FieldKinematics.of` returns
 None): an H joint (its translation ``pitch * theta`` is transcendental), a non-abelian
 joint other than S at a non-zero value, an angle whose sine sympy cannot write as
 radicals, an S joint's axis that is not, geometry that is not written in radicals.
@@ -285,7 +288,7 @@ class FieldKinematics:
                     continue
                 last = steps[-1]
                 if last.part is not None:
-                    continue  # hidden cross bodies (as batched.poses)
+                    continue  # hidden cross bodies (as forward.poses)
                 jk = model.joint(last.joint)
                 prev = out[jk.a if last.sign > 0 else jk.b]
                 M = self._elements[jk.name]

@@ -1,6 +1,6 @@
 """The kinematic model of a mechanism in one precision mode: its joints' reference
 screws and coordinates, closure residuals, closure Jacobian and updates on the
-group (poses and current screws are computed by :mod:`mechsing.kinematics.batched`).
+group (poses and current screws are computed by :mod:`mechsing.kinematics.forward`).
 
 Conventions (those of the mechanism file; the README states them):
 
@@ -37,7 +37,7 @@ import mpmath
 import numpy as np
 
 from mechsing import lie
-from mechsing.kinematics import batched
+from mechsing.kinematics import forward
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.couplings import (
     CouplingKinematics,
@@ -47,11 +47,22 @@ from mechsing.kinematics.couplings import (
 )
 from mechsing.kinematics.field import FieldKinematics
 from mechsing.model import Mechanism
-from mechsing.numeric import CommensurateFrame, Precision, blocks, characteristic_length, to_float
+from mechsing.numeric import (
+    CommensurateFrame,
+    Precision,
+    blocks,
+    characteristic_length,
+    dispatch,
+    holds_objects,
+    is_float64,
+    to_float,
+)
 from mechsing.subgroups import Subgroup
 
 if TYPE_CHECKING:
     from scipy.sparse import csc_matrix
+
+    from mechsing.kinematics.field import FieldKinematics
 
 
 @dataclass(frozen=True)
@@ -289,7 +300,7 @@ class KinematicModel:
 
     def element(self, jk: JointKinematics, q: np.ndarray) -> np.ndarray:
         """The joint's relative displacement M (g_b = g_a M)."""
-        return batched.element(jk, q)
+        return forward.element(jk, q)
 
     def poses(self, q: np.ndarray) -> dict[str, np.ndarray]:
         """The pose of every user body (ground = identity) from the spanning tree;
@@ -301,12 +312,12 @@ class KinematicModel:
         fk = self.field_kinematics(q)
         if fk is not None:
             return fk.poses()
-        if q.ndim != 1 or q.dtype != float:
-            return batched.poses(self, q)
+        if q.ndim != 1 or not is_float64(q):
+            return forward.poses(self, q)
         key = q.tobytes()
         got = self._pose_cache.get(key)
         if got is None:
-            got = batched.poses(self, q)
+            got = forward.poses(self, q)
             self._keep_poses(key, got)
         return dict(got)
 
@@ -315,7 +326,7 @@ class KinematicModel:
         ``poses(qs)``, each (N, 4, 4), configuration by configuration bitwise those of one
         configuration) for :meth:`poses` of each of them: configurations closed together
         and then analysed one by one."""
-        if self.backend.name != "float" or qs.ndim != 2 or qs.dtype != float:
+        if self.backend.name != "float" or qs.ndim != 2 or not is_float64(qs):
             return
         for i, q in enumerate(qs):
             self._keep_poses(q.tobytes(), {b: P[i].copy() for b, P in poses.items()})
@@ -353,9 +364,9 @@ class KinematicModel:
         fk = self.field_kinematics(q)
         if fk is not None and _same_poses(fk, poses):
             return fk.current_screws()
-        if poses is None and q.ndim == 1 and q.dtype == float:
+        if poses is None and q.ndim == 1 and is_float64(q):
             poses = self.poses(q)
-        return batched.current_screws(self, q, poses)
+        return forward.current_screws(self, q, poses)
 
     # ------------------------------------------------------------------ closure
 
@@ -377,8 +388,9 @@ class KinematicModel:
         self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
     ) -> list[np.ndarray]:
         poses = self.poses(q) if poses is None else poses
-        if q.ndim == 1 and q.dtype != object and len(self.chords) > 1:
-            ms = batched.elements_at_once(self, q, self.chords)
+        at_once = _EXP.for_float("stacked joints", q) if q.ndim == 1 else None
+        if at_once is not None and len(self.chords) > 1:
+            ms = at_once(self, q, self.chords)
             elements = [ms.get(jk.name) for jk in self.chords]
             if all(M is not None for M in elements):
                 Ga = np.stack([poses[jk.a] for jk in self.chords])
@@ -415,7 +427,7 @@ class KinematicModel:
         # measure (exact closure is proved, not measured)
         mp = self.backend.name == "mp"
         c = (self.frame if mp else self.float_frame).c
-        if not mp and len(deltas) > 1 and all(D.dtype == float for D in deltas):
+        if not mp and len(deltas) > 1 and all(is_float64(D) for D in deltas):
             # float residuals of every chord in one batch (the same formula, the same numbers)
             Dm = np.stack(deltas)
             R = Dm[:, :3, :3]
@@ -466,11 +478,11 @@ class KinematicModel:
         signs = self._chord_signs()
         if not signs:
             return bk.zeros(S.shape[:-2] + (0, self.n))
-        if S.ndim == 3 and S.dtype != object:
+        if S.ndim == 3 and not holds_objects(S):
             # a float batch: the same products, configuration by configuration
             J = np.stack(signs)[None, :, None, :] * S[:, None, :, :]
             return J.reshape(S.shape[0], -1, self.n)
-        if S.ndim == 2 and S.dtype != object:
+        if S.ndim == 2 and not holds_objects(S):
             # one float configuration: one broadcast product (the same products)
             return (np.stack(signs)[:, None, :] * S[None, :, :]).reshape(-1, self.n)
         rows = [S * coef[None, :] for coef in signs]
@@ -483,7 +495,7 @@ class KinematicModel:
         then signed per chord (the signs are -1, 0 or 1, so the numbers are the same)."""
         S = self.current_screws(q) if screws is None else screws
         signs = self._chord_signs()
-        if not signs or S.ndim != 2 or S.dtype == object:
+        if not signs or S.ndim != 2 or holds_objects(S):
             J = frame.blocks(self._chord_jacobian(S))
         else:
             Ss = frame.blocks(np.asarray(S, dtype=float))
@@ -496,8 +508,8 @@ class KinematicModel:
     def sparse_closure(self) -> bool:
         """Whether the float closure Jacobian is big enough to be built and solved sparse
         (:meth:`sparse_closure_jacobian`, block by block): a float model whose closure
-        matrix has more than :data:`mechsing.numeric.blocks.DENSE_ENTRIES` entries."""
-        return self.backend.name == "float" and 6 * self.blocks * self.n > blocks.DENSE_ENTRIES
+        matrix is not factorised whole (:func:`mechsing.numeric.blocks.dense`)."""
+        return self.backend.name == "float" and not blocks.dense(6 * self.blocks * self.n)
 
     def sparse_closure_jacobian(
         self, q: np.ndarray, frame: Any, screws: np.ndarray | None = None
@@ -553,7 +565,7 @@ class KinematicModel:
         """log of each chord residual, stacked (6 * n_chords,)."""
         if not deltas:
             return self.backend.zeros(0)
-        if len(deltas) > 1 and all(D.dtype != object for D in deltas):
+        if len(deltas) > 1 and all(not holds_objects(D) for D in deltas):
             return lie.log(np.stack(deltas)).reshape(-1)
         return np.concatenate([lie.log(D) for D in deltas])
 
@@ -607,7 +619,7 @@ class KinematicModel:
         and logarithms (:func:`mechsing.lie.exp` and :func:`~mechsing.lie.log` give each
         row of a stack the numbers they give it alone)."""
         return self.backend.name == "float" and all(
-            isinstance(a, np.ndarray) and a.ndim == 1 and a.dtype == float for a in arrays
+            isinstance(a, np.ndarray) and a.ndim == 1 and is_float64(a) for a in arrays
         )
 
     def _elements_of(self, q: np.ndarray) -> np.ndarray:
@@ -695,6 +707,8 @@ class KinematicModel:
 
 #: exact configurations whose field kinematics a model keeps
 _FIELD_CACHE_SIZE = 8
+#: the exponential's fast forms (:mod:`mechsing.numeric.dispatch`)
+_EXP = dispatch.table("exp")
 #: body poses (4 x 4 matrices) the pose cache of a float model holds at most: a sweep's
 #: located points of a small mechanism, a few configurations of a big one
 _POSE_CACHE_MATRICES = 4096

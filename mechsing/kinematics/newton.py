@@ -23,7 +23,14 @@ from typing import Any
 import numpy as np
 
 from mechsing.kinematics.model import KinematicModel
-from mechsing.numeric import POLISH_SLOW_RATIO, Precision, blocks, svd_r
+from mechsing.numeric import (
+    NEWTON_DAMPING,
+    POLISH_SLOW_RATIO,
+    Precision,
+    blocks,
+    is_float64,
+    svd_r,
+)
 from mechsing.numeric.blocks import block_factors, block_svd, issparse
 
 __all__ = [
@@ -35,9 +42,6 @@ __all__ = [
     "scaled_system",
     "truncated_least_squares",
 ]
-
-#: damping of :func:`damped_least_squares`, relative to sigma_max
-_DAMPING = 1e-7
 
 
 @dataclass(frozen=True)
@@ -79,7 +83,7 @@ def _big(A: Any) -> bool:
     dense and solved as before)."""
     return (
         issparse(A)
-        and A.shape[0] * A.shape[1] > blocks.DENSE_ENTRIES
+        and not blocks.dense(A.shape[0] * A.shape[1])
         and bool(np.isfinite(A.data).all())
     )
 
@@ -90,7 +94,7 @@ def finite_system(A: Any, b: np.ndarray | None = None) -> bool:
     overflow: such a system is no step, Newton stops there as on a step that does not
     lower the residual.  Always True for mp and exact numbers."""
     data = A.data if issparse(A) else np.asarray(A)
-    if data.dtype != float:
+    if not is_float64(data):
         return True
     return bool(np.isfinite(data).all()) and (
         b is None or bool(np.isfinite(np.asarray(b, dtype=float)).all())
@@ -104,14 +108,14 @@ def damped_least_squares(A: Any, b: np.ndarray) -> np.ndarray:
         F = block_factors(A)
         if not len(F.s) or F.s[0] == 0:
             return np.zeros(A.shape[1])
-        lam = _DAMPING * F.s[0]
+        lam = NEWTON_DAMPING * F.s[0]
         return F.solve(b, lambda s: s / (s * s + lam * lam))
     if issparse(A):
         A = A.toarray()
     U, s, Vt = block_svd(A, full_matrices=False)
     if not len(s) or s[0] == 0:
         return np.zeros(A.shape[1])
-    lam = _DAMPING * s[0]
+    lam = NEWTON_DAMPING * s[0]
     f = s / (s * s + lam * lam)
     return Vt.T @ (f * (U.T @ b))
 

@@ -12,8 +12,10 @@ generic one exactly, as the analysis snapshots require) with fewer numpy calls: 
 hat matrix as one product with a constant 0/+-1 table (exact), the series of all the
 coefficients in one Horner loop over a table of their terms, each branch of a switch
 evaluated only when some entry takes it, outputs filled in place instead of stacked.
-Only float64 arrays come here (the callers dispatch on the dtype), so mp and exact
-never leave the generic code.
+Each kernel registers itself in the dispatch table of its generic function
+(:mod:`mechsing.numeric.dispatch`: ``exp`` and ``lie.float64``), which hands it float64
+arrays only, so mp and exact never leave the generic code; ``MECHSING_FAST=0`` sends
+float64 arrays there too.
 
 Switch points and numbers of terms: those of :mod:`mechsing.lie._series`.
 """
@@ -31,9 +33,8 @@ from mechsing.lie._series import (
     _n_terms_bernoulli,
     _n_terms_factorial,
 )
+from mechsing.lie._so3 import _EXP, _FLOAT
 from mechsing.numeric import FLOAT
-
-F64 = np.dtype(np.float64)
 
 _EYE3 = np.eye(3)
 _EYE3.flags.writeable = False
@@ -279,3 +280,19 @@ def act_screw(g: np.ndarray, xi: np.ndarray) -> np.ndarray:
     out[..., :3] = w
     np.add(cross(g[..., :3, 3], w), Rv, out=out[..., 3:])
     return out
+
+
+_BIT_FOR_BIT = "float64 arrays: the generic formula's numbers bit for bit, fewer numpy calls"
+for _name, _function in [
+    ("cross", cross),
+    ("hat3", hat3),
+    ("quaternion_parts", quaternion_parts),
+    ("log_so3_parts", log_so3_parts),
+    ("pose", pose),
+    ("log", log),
+    ("inverse", inverse),
+    ("act_screw", act_screw),
+]:
+    _FLOAT.register(_name, _BIT_FOR_BIT)(_function)
+_EXP.register("float64", _BIT_FOR_BIT)(exp)
+_EXP.register("float64 rotation", _BIT_FOR_BIT + " (exp_so3)")(exp_so3)

@@ -24,9 +24,10 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.lie import _float
 from mechsing.lie._series import factorial_series, half_cot_series, safe, use_series
 from mechsing.lie._so3 import (
+    _EXP,
+    _FLOAT,
     _asarr,
     _mask,
     cross,
@@ -65,8 +66,9 @@ def pose(R: Any, p: Any) -> np.ndarray:
     """The displacement ``x -> R x + p`` as a 4x4 matrix: (..., 3, 3), (..., 3) -> (..., 4, 4)."""
     R = _asarr(R)
     p = _asarr(p)
-    if R.dtype == _float.F64 and p.dtype == _float.F64:
-        return _float.pose(R, p)
+    fast = _FLOAT.for_float("pose", R, p)
+    if fast is not None:
+        return fast(R, p)
     bk = backend_of(R, p)
     shape = np.broadcast_shapes(R.shape[:-2], p.shape[:-1])
     R = np.broadcast_to(R, shape + (3, 3))
@@ -111,8 +113,9 @@ def exp(xi: Any) -> np.ndarray:
     References: the exponential of D.
     """
     xi = _asarr(xi)
-    if xi.dtype == _float.F64:
-        return _float.exp(xi)
+    fast = _EXP.for_float("float64", xi)
+    if fast is not None:
+        return fast(xi)
     w = xi[..., ANGULAR]
     v = xi[..., LINEAR]
     _t2, A, B, C = so3_coefficients(w)
@@ -138,8 +141,9 @@ def log(g: Any) -> np.ndarray:
     References: the logarithm of D.
     """
     g = _asarr(g)
-    if g.dtype == _float.F64:
-        return _float.log(g)
+    fast = _FLOAT.for_float("log", g)
+    if fast is not None:
+        return fast(g)
     R = rotation(g)
     p = translation(g)
     w, theta, qw, n = log_so3_parts(R)
@@ -161,8 +165,9 @@ def log(g: Any) -> np.ndarray:
 def inverse(g: Any) -> np.ndarray:
     """g^-1 = (R^T, -R^T p): (..., 4, 4) -> (..., 4, 4)."""
     g = _asarr(g)
-    if g.dtype == _float.F64:
-        return _float.inverse(g)
+    fast = _FLOAT.for_float("inverse", g)
+    if fast is not None:
+        return fast(g)
     Rt = np.swapaxes(rotation(g), -1, -2)
     return pose(Rt, -(Rt @ translation(g)[..., None])[..., 0])
 
@@ -192,8 +197,9 @@ def act_screw(g: Any, xi: Any) -> np.ndarray:
     """Ad(g) xi: a twist (or (f, m) wrench) moved by g; (..., 4, 4), (..., 6) -> (..., 6)."""
     g = _asarr(g)
     xi = _asarr(xi)
-    if g.dtype == _float.F64 and xi.dtype == _float.F64:
-        return _float.act_screw(g, xi)
+    fast = _FLOAT.for_float("act_screw", g, xi)
+    if fast is not None:
+        return fast(g, xi)
     R = rotation(g)
     w = (R @ xi[..., ANGULAR, None])[..., 0]
     Rv = (R @ xi[..., LINEAR, None])[..., 0]

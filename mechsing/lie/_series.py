@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 import sympy
 
-from mechsing.numeric import Backend
+from mechsing.numeric import Backend, bool_mask
 
 #: the closed forms are used above this value of t^2 (float and mp)
 SWITCH_T2 = 1
@@ -32,7 +32,7 @@ SWITCH_T2 = 1
 def use_series(bk: Backend, t2: Any) -> np.ndarray:
     """Boolean mask: where the series (not the closed form) must be used."""
     cond = np.asarray(t2 <= bk.series_switch(SWITCH_T2))
-    return cond.astype(bool) if cond.dtype == object else cond
+    return bool_mask(cond)
 
 
 def safe(bk: Backend, mask: np.ndarray, x: Any, fill: Any = 1) -> Any:

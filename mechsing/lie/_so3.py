@@ -15,9 +15,13 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.lie import _float
 from mechsing.lie._series import factorial_series, half_cot_series, safe, use_series
-from mechsing.numeric import backend_of
+from mechsing.numeric import backend_of, bool_mask, dispatch, holds_objects
+
+#: the fast forms of the exponential, and of the other Lie functions on float64 arrays
+#: (:mod:`mechsing.lie._float` registers them; :mod:`mechsing.numeric.dispatch`)
+_EXP = dispatch.table("exp", "mechsing.lie.exp (and exp_so3)")
+_FLOAT = dispatch.table("lie.float64", "mechsing.lie")
 
 
 def _asarr(x: Any) -> np.ndarray:
@@ -25,21 +29,21 @@ def _asarr(x: Any) -> np.ndarray:
     if isinstance(x, np.ndarray):
         return x
     a = np.asarray(x)
-    return a if a.dtype == object else a.astype(np.float64)
+    return a if holds_objects(a) else a.astype(np.float64)
 
 
 def _mask(c: Any) -> np.ndarray:
     """Boolean ndarray of a comparison (object arrays of sympy booleans included)."""
-    c = np.asarray(c)
-    return c.astype(bool) if c.dtype != bool else c
+    return bool_mask(c)
 
 
 def cross(a: Any, b: Any) -> np.ndarray:
     """Cross product over the last axis (backend-generic; numpy's cross rejects objects)."""
     a = _asarr(a)
     b = _asarr(b)
-    if a.dtype == _float.F64 and b.dtype == _float.F64:
-        return _float.cross(a, b)
+    fast = _FLOAT.for_float("cross", a, b)
+    if fast is not None:
+        return fast(a, b)
     return np.stack(
         [
             a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1],
@@ -60,8 +64,9 @@ def dot(a: Any, b: Any) -> np.ndarray:
 def hat3(w: Any) -> np.ndarray:
     """Skew matrix of a 3-vector: (..., 3) -> (..., 3, 3), ``hat3(w) @ x = w x x``."""
     w = _asarr(w)
-    if w.dtype == _float.F64:
-        return _float.hat3(w)
+    fast = _FLOAT.for_float("hat3", w)
+    if fast is not None:
+        return fast(w)
     z = w[..., 0] * 0
     return np.stack(
         [
@@ -119,8 +124,9 @@ def exp_so3(w: Any) -> np.ndarray:
     Any angle is accepted (tangents beyond pi wrap as rotations do).
     """
     w = _asarr(w)
-    if w.dtype == _float.F64:
-        return _float.exp_so3(w)
+    fast = _EXP.for_float("float64 rotation", w)
+    if fast is not None:
+        return fast(w)
     _t2, A, B, _C = so3_coefficients(w)
     W = hat3(w)
     return _eye3_like(w) + A[..., None, None] * W + B[..., None, None] * (W @ W)
@@ -177,8 +183,9 @@ def quaternion_parts(R: Any) -> tuple[np.ndarray, np.ndarray]:
     q : ndarray, shape (..., 3)
     """
     R = _asarr(R)
-    if R.dtype == _float.F64:
-        return _float.quaternion_parts(R)
+    fast = _FLOAT.for_float("quaternion_parts", R)
+    if fast is not None:
+        return fast(R)
     bk = backend_of(R)
     tr = np.asarray(R[..., 0, 0] + R[..., 1, 1]) + R[..., 2, 2]
     t = np.stack(
@@ -221,8 +228,9 @@ def quaternion_parts(R: Any) -> tuple[np.ndarray, np.ndarray]:
 def log_so3_parts(R: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(w_rotvec, theta, cos(theta/2), sin(theta/2)) of a rotation matrix."""
     R = _asarr(R)
-    if R.dtype == _float.F64:
-        return _float.log_so3_parts(R)
+    fast = _FLOAT.for_float("log_so3_parts", R)
+    if fast is not None:
+        return fast(R)
     bk = backend_of(R)
     qw, qv = quaternion_parts(R)
     n2 = dot(qv, qv)

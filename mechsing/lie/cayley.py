@@ -42,7 +42,7 @@ from mechsing.lie._se3 import ANGULAR, LINEAR
 from mechsing.lie._so3 import _asarr as _arr
 from mechsing.lie._so3 import cross, hat3, vee3
 from mechsing.lie._so3 import dot as _dot
-from mechsing.numeric import backend_of
+from mechsing.numeric import backend_of, bool_mask
 
 __all__ = [
     "cayley_se3",
@@ -101,7 +101,7 @@ def cayley_so3_inverse(R: Any) -> np.ndarray:
     _check(R, (3, 3), "cayley_so3_inverse", "a rotation matrix")
     den = np.asarray(1 + R[..., 0, 0] + R[..., 1, 1] + R[..., 2, 2])
     bad = np.asarray(den <= 0)
-    bad = bad.astype(bool) if bad.dtype != bool else bad
+    bad = bool_mask(bad)
     if np.any(bad):
         where = tuple(int(i) for i in np.argwhere(bad)[0]) if bad.ndim else ()
         raise ValueError(

@@ -5,6 +5,8 @@ modules, from the bottom up (each imports only those before it):
 
 ``tolerances``
     every decision tolerance (constants) and the two rank thresholds;
+``dispatch``
+    the one place that chooses fast paths (tables of fast forms, ``MECHSING_FAST``);
 ``numbers``
     the one syntax of a written number, its sensible size, and directions made unit
     without overflow;
@@ -43,9 +45,12 @@ from mechsing.numeric.backend import (
     FloatBackend,
     MpBackend,
     backend_of,
+    bool_mask,
     coarser_backend,
     exact_is_zero,
     exact_normal_form,
+    holds_objects,
+    is_float64,
     screw_zero_rtol,
     to_float,
 )
@@ -144,6 +149,7 @@ from mechsing.numeric.tolerances import (
     MEMBERSHIP_RTOL_FLOAT,
     MP_MIN_DIGITS,
     NEAR_ZERO_VECTOR,
+    NEWTON_DAMPING,
     ORDER3_RESIDUAL_FACTOR,
     PARALLEL_AXES_ATOL,
     POLISH_DIGITS_SPARE,
@@ -197,6 +203,7 @@ __all__ = [
     "CONDITION_GEOMETRY_RTOL",
     "CONDITION_ROOT_MERGE",
     "CONDITION_ROOT_RTOL",
+    "NEWTON_DAMPING",
     "CONDITION_VANISH_RTOL",
     "Backend",
     "CLOSURE_RTOL_FLOAT",
@@ -268,6 +275,9 @@ __all__ = [
     "TRAVEL_RESIDUAL_ALIGNMENT",
     "Tolerances",
     "backend_of",
+    "bool_mask",
+    "holds_objects",
+    "is_float64",
     "coarser_backend",
     "characteristic_length",
     "data_resolution",

@@ -427,6 +427,29 @@ def backend_of(*arrays: Any) -> Backend:
     return found
 
 
+def holds_objects(a: Any) -> bool:
+    """Does the array hold Python objects (mp or exact numbers, or a mix)?  The one test
+    of an array's kind outside the backends' own code: formulas ask it (or
+    :func:`is_float64`) instead of comparing dtypes."""
+    return a.dtype == object
+
+
+def is_float64(a: Any) -> bool:
+    """Is the array one of float64 numbers (the float mode's; an int or bool array is
+    not)?"""
+    return a.dtype == _F64
+
+
+def bool_mask(c: Any) -> np.ndarray:
+    """A boolean array of a comparison's result (an object array of sympy or mpmath
+    truth values included)."""
+    c = np.asarray(c)
+    return c if c.dtype == bool else c.astype(bool)
+
+
+_F64 = np.dtype(np.float64)
+
+
 def coarser_backend(a: Backend, b: Backend) -> Backend:
     """The backend two numbers are compared in: the coarser arithmetic of the two
     (float before mp before exact), so a float is never compared exactly."""

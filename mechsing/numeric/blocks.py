@@ -31,10 +31,21 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["BlockFactors", "block_factors", "block_svd", "blocks_of", "issparse"]
+from mechsing.numeric.dispatch import table, threshold
+
+__all__ = ["BlockFactors", "block_factors", "block_svd", "blocks_of", "dense", "issparse"]
 
 #: below this many entries the dense SVD is cheaper than finding blocks
 DENSE_ENTRIES = 4096
+
+
+def dense(entries: int) -> bool:
+    """Is a float matrix of this many entries factorised whole (dense)?  Up to
+    :data:`DENSE_ENTRIES`; above it the block-by-block factorisation is the fast path
+    (the dispatch table ``factorisation``: :func:`mechsing.numeric.dispatch.threshold`,
+    so that ``MECHSING_FAST=0`` factorises every matrix whole, and
+    ``fast_paths("always")`` every one block by block)."""
+    return entries <= threshold(DENSE_ENTRIES)
 
 
 def issparse(A: Any) -> bool:
@@ -206,11 +217,11 @@ def block_svd(
     splits (module docstring)."""
     m, n = A.shape
     if issparse(A):
-        if m * n <= DENSE_ENTRIES or not np.isfinite(A.data).all():
+        if dense(m * n) or not np.isfinite(A.data).all():
             A = A.toarray()
     else:
         A = np.asarray(A, dtype=float)
-    if not issparse(A) and (A.size <= DENSE_ENTRIES or not np.isfinite(A).all()):
+    if not issparse(A) and (dense(A.size) or not np.isfinite(A).all()):
         return np.linalg.svd(A, full_matrices=full_matrices, compute_uv=compute_uv)
     r, c, v = _entries(A)
     st = _structure(m, n, r, c)
@@ -264,3 +275,10 @@ def block_svd(
             Vt[v_next, j] = 1.0
         v_next += 1
     return U, F.s, Vt
+
+
+table("factorisation", "numpy.linalg.svd of the whole matrix").register(
+    "blocks",
+    "a float matrix of more than DENSE_ENTRIES entries, or sparse: block by block "
+    "(the whole matrix's singular values; its vectors another basis of each space)",
+)(block_svd)

@@ -89,6 +89,9 @@ POLISH_MAX_STEPS = 24
 #: a polish step that lowers the residual by less than this factor is slow (Newton at a
 #: multiple root lowers it by 4): the doubled step is tried too
 POLISH_SLOW_RATIO = 8
+#: damping of the float Newton steps on the closure (damped least squares, one
+#: configuration or a batch), relative to sigma_max (or a bound of it)
+NEWTON_DAMPING = 1e-7
 #: largest joint value accepted in a configuration: radians, or times the
 #: characteristic length L for a length; larger is an absurd size (an angle of
 #: 1e6 rad is 160 000 turns)

@@ -18,8 +18,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mechsing.kinematics import KinematicModel, batched
-from mechsing.kinematics.batch import BatchClosure
+from mechsing.kinematics import KinematicModel, forward
+from mechsing.kinematics.batch_newton import BatchClosure, truncated_steps
 from mechsing.kinematics.newton import newton_on_group, truncated_least_squares
 from mechsing.numeric import (
     SAMPLE_CLOSURE_RTOL,
@@ -29,7 +29,7 @@ from mechsing.numeric import (
     rank_bounds,
     to_float,
 )
-from mechsing.numeric.blocks import DENSE_ENTRIES
+from mechsing.numeric.blocks import dense
 
 _FLOAT = Precision("float")
 #: relative distances (radians or multiples of L) of the sample points
@@ -191,7 +191,7 @@ def _decided_many(model: KinematicModel, Q: np.ndarray) -> list[tuple[int | None
     two-threshold rule."""
     n = model.n
     rows = 6 * model.blocks
-    if not len(Q) or rows * n > DENSE_ENTRIES:
+    if not len(Q) or not dense(rows * n):
         # decide_rank factorises a big matrix block by block: one sample at a time
         out = []
         for q1 in Q:
@@ -200,7 +200,7 @@ def _decided_many(model: KinematicModel, Q: np.ndarray) -> list[tuple[int | None
             )
             out.append((None if dec.rank is None else n - dec.rank, dec.null_space))
         return out
-    S = batched.current_screws(model, Q, batched.poses(model, Q))
+    S = forward.current_screws(model, Q, forward.poses(model, Q))
     # stacked_jacobian of each: the chords' signed screws, each 6-row block commensurate
     J = model.closure_jacobian(Q, S).reshape(len(Q), model.blocks, 6, n)
     J = model.float_frame.screws(J).reshape(len(Q), rows, n)
@@ -224,34 +224,10 @@ def reclose_many(model: KinematicModel, Q: np.ndarray) -> tuple[np.ndarray, np.n
     rules per row (stop once the residual is within the float
     closure tolerance or after as many steps; a step is taken when its residual is finite,
     and a row whose system is not finite stops).  Returns (Q, residual (m) per row)."""
-    tol = _FLOAT.closure_tolerance(model.length_scale)
-    tau = _FLOAT.tolerances.tau_lo
     bc = BatchClosure(model)
-    Q = np.array(Q, dtype=float, copy=True)
-    lengths = bc.frame.length_columns
-    res = bc.residual_norm(bc.deltas(Q))
-    active = np.ones(len(Q), dtype=bool)
-    for _ in range(_NEWTON):
-        active &= ~(res <= tol)
-        idx = np.flatnonzero(active)
-        if not len(idx):
-            break
-        Qa = Q[idx]
-        J = bc.jacobian(Qa)
-        r = bc.residual_twists(bc.deltas(Qa))
-        finite = np.isfinite(J).all(axis=(1, 2)) & np.isfinite(r).all(axis=1)
-        active[idx[~finite]] = False
-        idx, Qa, J, r = idx[finite], Qa[finite], J[finite], r[finite]
-        if not len(idx):
-            break
-        U, s, Vt = np.linalg.svd(J, full_matrices=False)
-        keep = s > tau * s[:, :1]
-        inv = np.where(keep, 1.0 / np.where(keep, s, 1.0), 0.0)
-        du = -np.einsum("nji,nj->ni", Vt, inv * np.einsum("nji,nj->ni", U, r))
-        du = np.where(lengths[None, :], du * bc.L, du)
-        Qn = bc.update(Qa, du)
-        rn = bc.residual_norm(bc.deltas(Qn))
-        take = np.isfinite(rn)
-        Q[idx[take]], res[idx[take]] = Qn[take], rn[take]
-        active[idx[~take]] = False
+    free = np.ones(model.n, dtype=bool)
+    tol = _FLOAT.closure_tolerance(model.length_scale)
+    Q, res, _its = bc.newton(
+        Q, free, tol, iterations=_NEWTON, polish=False, solve=truncated_steps, accept="finite"
+    )
     return Q, res

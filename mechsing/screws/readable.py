@@ -20,6 +20,8 @@ ones that do not depend on the origin.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from mechsing.numeric import ECHELON_PIVOT_RTOL, SUPPORT_RTOL
@@ -42,58 +44,30 @@ def echelon(rows: np.ndarray, length_scale: float) -> tuple[np.ndarray, list[int
     rounding level (SUPPORT_RTOL of the largest entry) are dropped."""
     scale = _scale(length_scale)
     A = np.array(rows, dtype=float).reshape(-1, 6) * scale
-    pivots: list[int] = []
     if A.size == 0:
-        return A / scale, pivots
-    if np.isfinite(A).all():
-        return _echelon_lists(A, scale)
-    return _echelon_arrays(A, scale)
-
-
-def _echelon_arrays(A: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, list[int]]:
-    """:func:`echelon` of commensurate rows ``A`` (k, 6), k >= 1, in numpy (a row with a
-    non-finite entry: numpy's NaN rules)."""
-    A = A.copy()
-    pivots: list[int] = []
-    tol = SUPPORT_RTOL * float(np.max(np.abs(A)))
-    r = 0
-    for j in range(A.shape[1]):
-        if r == A.shape[0]:
-            break
-        rest = float(np.max(np.abs(A[r:, j:])))
-        if rest <= tol:
-            break
-        i = r + int(np.argmax(np.abs(A[r:, j])))
-        if abs(A[i, j]) <= ECHELON_PIVOT_RTOL * rest:
-            continue
-        A[[r, i]] = A[[i, r]]
-        A[r] /= A[r, j]
-        others = np.arange(A.shape[0]) != r
-        A[others] -= np.outer(A[others, j], A[r])
-        pivots.append(j)
-        r += 1
-    return A[:r] / scale, pivots
-
-
-def _echelon_lists(A: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, list[int]]:
-    """:func:`echelon` of finite commensurate rows ``A`` (k, 6) in Python floats: the same
-    operations on the same numbers (a few rows of six: numpy's per-call cost is most of
-    the work there), the same first largest pivot, the same result bit for bit."""
+        return A / scale, []
+    # in Python floats: a few rows of six, where numpy's per-call cost would be most of
+    # the work; a non-finite entry propagates as numpy's elimination would (a NaN is the
+    # largest entry and the first such is the pivot)
     rows = A.tolist()
     k = len(rows)
-    tol = SUPPORT_RTOL * max(abs(x) for row in rows for x in row)
+    top = max if np.isfinite(A).all() else _largest
+    tol = SUPPORT_RTOL * top(abs(x) for row in rows for x in row)
     pivots: list[int] = []
     r = 0
     for j in range(6):
         if r == k:
             break
-        rest = max(abs(x) for row in rows[r:] for x in row[j:])
+        rest = top(abs(x) for row in rows[r:] for x in row[j:])
         if rest <= tol:
             break
         i, best = r, abs(rows[r][j])
         for t in range(r + 1, k):
-            if abs(rows[t][j]) > best:
-                i, best = t, abs(rows[t][j])
+            if best != best:  # NaN: the first one is the pivot
+                break
+            x = abs(rows[t][j])
+            if x > best or x != x:
+                i, best = t, x
         if best <= ECHELON_PIVOT_RTOL * rest:
             continue
         rows[r], rows[i] = rows[i], rows[r]
@@ -106,6 +80,17 @@ def _echelon_lists(A: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, list[i
         pivots.append(j)
         r += 1
     return np.array(rows[:r], dtype=float).reshape(r, 6) / scale, pivots
+
+
+def _largest(values: Any) -> float:
+    """The largest of non-negative numbers (0.0 for none), NaN if one is NaN."""
+    top = 0.0
+    for x in values:
+        if x != x:
+            return x
+        if x > top:
+            top = x
+    return top
 
 
 def _pure(R: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]:

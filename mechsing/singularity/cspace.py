@@ -44,6 +44,7 @@ from mechsing.numeric import (
     decide_definiteness,
     decide_rank,
     eigh,
+    holds_objects,
     lstsq,
     max_abs,
     norm,
@@ -104,7 +105,7 @@ class Expansion:
     def __init__(self, chains: list[LoopChain], Ss: np.ndarray) -> None:
         self.chains = chains
         arr = np.asarray(Ss)
-        self.Ss = arr if arr.dtype == object else np.asarray(arr, dtype=float)
+        self.Ss = arr if holds_objects(arr) else np.asarray(arr, dtype=float)
         self.bk = backend_of(self.Ss)
 
     def _zetas(self, chain: LoopChain, u: np.ndarray) -> list[np.ndarray]:

@@ -12,7 +12,7 @@ matrix by matrix) and the ranks by the same two-threshold rule
 (:func:`mechsing.numeric.rank_bounds`, relative to the same references as
 :func:`~mechsing.numeric.decide_rank`).  Only the Python work is shared: the poses and
 screws of all the samples come from one batched product of exponentials
-(:mod:`mechsing.kinematics.batched`, the analysis's own exponential), each test's
+(:mod:`mechsing.kinematics.forward`, the analysis's own exponential), each test's
 matrices are stacked and factorised together, and what depends only on the mechanism
 (the input rows, the output chain, the legs' columns and paths) is built once per model.
 
@@ -29,11 +29,11 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
-from mechsing.kinematics import batched
+from mechsing.kinematics import forward
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.couplings import fold_columns
 from mechsing.numeric import Precision, decide_rank, rank_bounds
-from mechsing.numeric.blocks import DENSE_ENTRIES
+from mechsing.numeric.blocks import dense
 from mechsing.screws import chain_matrix, closure_system
 from mechsing.screws.mobility import NearbySample, stacked_jacobian
 from mechsing.singularity.serial import chain_system
@@ -169,13 +169,13 @@ def sample_values(mech: Any, model: Any, samples: list[NearbySample]) -> list[Sa
         return []
     plan = mechanism_plan(mech, model)
     samples = [_with_kernel(model, s) for s in samples]
-    if 6 * model.n > DENSE_ENTRIES or model.sparse_closure:
+    if not dense(6 * model.n) or model.sparse_closure:
         # a big mechanism: its matrices are factorised block by block (decide_rank's
         # block_svd), one sample at a time
         return [one_sample_values(mech, model, s) for s in samples]
     Q = np.array([s.q for s in samples], dtype=float)
-    P = batched.poses(model, Q)
-    S = batched.current_screws(model, Q, P)
+    P = forward.poses(model, Q)
+    S = forward.current_screws(model, Q, P)
     has_io = bool(tests_run(mech))
     io = _io_values(mech, model, plan, samples, S, P) if has_io else [None] * len(samples)
     constraint: list[int | None] = [None] * len(samples)

@@ -20,6 +20,7 @@ from mechsing.numeric import (
     Precision,
     backend_of,
     coarser_backend,
+    holds_objects,
     parse_precision,
     scale_screws,
     screw_zero_rtol,
@@ -458,6 +459,6 @@ class Subgroup:
 
 def _show(v: Any) -> str:
     arr = np.asarray(v)
-    if arr.dtype == object:
+    if holds_objects(arr):
         return "[" + ", ".join(str(x) for x in arr.flat) + "]" if arr.ndim else str(arr[()])
     return np.array2string(arr, precision=6) if arr.ndim else f"{float(arr):.6g}"

@@ -27,6 +27,7 @@ from collections.abc import Callable, Iterator
 import numpy as np
 
 from mechsing.model import Mechanism
+from mechsing.numeric import dispatch
 from mechsing.sweeps.bridge import between_rows, bridge_column
 from mechsing.sweeps.limits import outside
 from mechsing.sweeps.locate import Locator, measured
@@ -220,7 +221,7 @@ class Sweep:
         configuration; otherwise a list, row by row (each row its own batch, as alone)."""
         sizes = [int(np.sum(r)) for r in reacheds]
         offsets = [int(x) for x in np.cumsum([0, *sizes[:-1]])]
-        if not self.measures.pointwise:
+        if not (self.measures.pointwise and dispatch.enabled()):
             return [
                 measured(self.measures, Z, r, self.model.n)
                 for Z, r in zip(Zs, reacheds, strict=True)

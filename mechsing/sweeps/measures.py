@@ -56,7 +56,7 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.kinematics import batched
+from mechsing.kinematics import forward
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.couplings import coupling_rows
 from mechsing.numeric import SWEEP_GRAM_RATIO, SWEEP_SCREEN_ROUNDING, Precision, rank_bounds
@@ -317,8 +317,8 @@ class Measures:
 
     def _screws(self, Q: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
         """The body poses, the current screws and the commensurate screws at the rows of Q."""
-        P = batched.poses(self.model, Q, fast=True)
-        S = batched.current_screws(self.model, Q, P)
+        P = forward.poses(self.model, Q, fast=True)
+        S = forward.current_screws(self.model, Q, P)
         return P, S, self.frame.screws(S)
 
     def _closure(self, Ss: np.ndarray) -> np.ndarray:

@@ -13,7 +13,7 @@ problem it closes (:mod:`.problem`), the nodes (:mod:`.nodes`), the samples betw
   Newton on the group, branch checks), each first predicted from the last step (the
   first step from the tangent at the start) and kept when Newton corrects it little.
   The samples between two nodes are closed together by batched Newton
-  (:class:`~mechsing.kinematics.batch.BatchClosure`) from their interpolation on the
+  (:class:`~mechsing.kinematics.batch_newton.BatchClosure`) from their interpolation on the
   group (a row's two directions in one batch: :func:`~.segments.close_segments`); one whose
   correction is large next to the node spacing is closed again by continuation from
   its predecessor.

@@ -23,7 +23,7 @@ import numpy as np
 from mechsing.analysis import analyze
 from mechsing.errors import UserError
 from mechsing.kinematics import Closer, KinematicModel
-from mechsing.kinematics.batch import BatchClosure
+from mechsing.kinematics.batch_newton import BatchClosure
 from mechsing.kinematics.newton import scaled_system
 from mechsing.kinematics.pose import PoseModel
 from mechsing.lie import log_so3

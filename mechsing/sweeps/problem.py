@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.kinematics import Closer, KinematicModel
-from mechsing.kinematics.batch import BatchClosure
+from mechsing.kinematics.batch_newton import BatchClosure
 
 __all__ = ["Problem"]
 

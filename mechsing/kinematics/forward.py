@@ -1,4 +1,4 @@
-"""Poses and current joint screws of one configuration or of a batch of them.
+"""Forward kinematics: poses and current joint screws of one configuration or a batch.
 
 Owns the product of exponentials of a mechanism's spanning tree: the joint
 elements, the body poses and the current screws (the Jacobian columns), written
@@ -24,6 +24,13 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
+from mechsing.numeric import dispatch, holds_objects
+
+#: the exponential's fast forms (:mod:`mechsing.lie._rodrigues` registers the joints')
+_EXP = dispatch.table("exp")
+#: the fast forms of :func:`current_screws` (float configurations), by q's dimensions
+_SCREWS = dispatch.table("current screws", "mechsing.kinematics.forward.current_screws")
+_SCREW_FORMS = {1: "one configuration", 2: "batch"}
 
 __all__ = ["SerialJacobian", "current_screws", "element", "poses"]
 
@@ -31,102 +38,22 @@ __all__ = ["SerialJacobian", "current_screws", "element", "poses"]
 def element(jk: Any, q: np.ndarray, fast: bool = False) -> np.ndarray:
     """The joint's relative displacement M (``g_b = g_a M``): (..., 4, 4) for q of shape (..., n).
 
-    ``fast``: a one-dof float joint by its Rodrigues closed form (:func:`_one_dof_exp`,
-    equal to :func:`mechsing.lie.exp` to rounding): the sweeps' batches use it; the
-    analysis keeps :func:`mechsing.lie.exp`, so its numbers do not move with the batches'."""
+    ``fast``: a one-dof or spherical float joint by the Rodrigues forms of the dispatch
+    table ``exp`` (:mod:`mechsing.numeric.dispatch`; equal to :func:`mechsing.lie.exp`
+    to rounding): the sweeps' batches use them; the analysis keeps
+    :func:`mechsing.lie.exp`, so its numbers do not move with the batches'."""
     qj = q[..., jk.columns]
-    floats = fast and jk.basis.dtype != object
+    one = _EXP.for_float("one-dof", jk.basis) if fast else None
     if jk.type == "U":
-        if floats:
-            return _one_dof_exp(jk.basis[0], qj[..., 0]) @ _one_dof_exp(jk.basis[1], qj[..., 1])
+        if one is not None:
+            return one(jk.basis[0], qj[..., 0]) @ one(jk.basis[1], qj[..., 1])
         return lie.exp(jk.basis[0] * qj[..., 0, None]) @ lie.exp(jk.basis[1] * qj[..., 1, None])
-    if floats and jk.basis.shape[0] == 1:
-        return _one_dof_exp(jk.basis[0], qj[..., 0])
-    if floats and jk.type == "S":
-        return _spherical_exp(jk.basis, qj)
+    if one is not None and jk.basis.shape[0] == 1:
+        return one(jk.basis[0], qj[..., 0])
+    turn = _EXP.for_float("spherical", jk.basis) if fast and jk.type == "S" else None
+    if turn is not None:
+        return turn(jk.basis, qj)
     return lie.exp(qj @ jk.basis)
-
-
-def _spherical_exp(basis: np.ndarray, qj: np.ndarray) -> np.ndarray:
-    """``exp(q B)`` of a spherical joint (float): the turn ``R = exp(w)`` with ``w`` the
-    angular part of ``q B``, about the joint's centre c (``v = c x w``): ``p = (I - R) c``."""
-    x = qj @ basis
-    R = lie.exp_so3(x[..., ANGULAR])
-    key = basis.tobytes()
-    c = _CENTRES.get(key)
-    if c is None:
-        B = np.asarray(basis, dtype=float)
-        # the centre from the basis: v_i = c x w_i = -w_i^ c for the three rotations
-        A = -np.concatenate([_hat(w) for w in B[:, ANGULAR]])
-        c = _CENTRES[key] = np.linalg.lstsq(A, B[:, LINEAR].reshape(-1), rcond=None)[0]
-    return lie.pose(R, c - R @ c)
-
-
-#: the centres of spherical float bases (their bytes -> c)
-_CENTRES: dict[bytes, np.ndarray] = {}
-
-
-def _hat(w: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
-
-
-#: the Rodrigues tables of one-dof float screws (their bytes -> K, K^2, v, rotates)
-_ONE_DOF: dict[bytes, tuple[np.ndarray, np.ndarray, np.ndarray, bool]] = {}
-
-
-def _one_dof_exp(e: np.ndarray, th: np.ndarray) -> np.ndarray:
-    """``exp(th e)`` of a one-dof float screw ``e = (u, v)`` (|u| = 1, or u = 0) for an
-    array of angles: ``R = I + sin K + (1 - cos) K^2`` and
-    ``p = (th I + (1 - cos) K + (th - sin) K^2) v`` with ``K = u^`` (the closed form
-    :func:`mechsing.lie.exp` evaluates by series; this skips the general case's work)."""
-    key = e.tobytes()
-    table = _ONE_DOF.get(key)
-    if table is None:
-        u, v = np.asarray(e[ANGULAR], dtype=float), np.asarray(e[LINEAR], dtype=float)
-        K = np.array([[0.0, -u[2], u[1]], [u[2], 0.0, -u[0]], [-u[1], u[0], 0.0]])
-        table = (K, K @ K, v, bool(np.any(u)))
-        _ONE_DOF[key] = table
-    K, K2, v, rotates = table
-    if rotates and th.size >= _ENTRYWISE and np.isfinite(th).all():
-        return _one_dof_entrywise(table, th)
-    out = np.zeros(th.shape + (4, 4))
-    out[..., 3, 3] = 1.0
-    if not rotates:
-        out[..., 0, 0] = out[..., 1, 1] = out[..., 2, 2] = 1.0
-        out[..., :3, 3] = th[..., None] * v
-        return out
-    s, c1 = np.sin(th), 1.0 - np.cos(th)
-    out[..., :3, :3] = np.eye(3) + s[..., None, None] * K + c1[..., None, None] * K2
-    out[..., :3, 3] = th[..., None] * v + c1[..., None] * (K @ v) + (th - s)[..., None] * (K2 @ v)
-    return out
-
-
-#: from this many angles on, :func:`_one_dof_exp` fills its entries one by one
-_ENTRYWISE = 64
-
-
-def _one_dof_entrywise(table: tuple[Any, ...], th: np.ndarray) -> np.ndarray:
-    """:func:`_one_dof_exp` of a rotating screw at finite angles, entry by entry: the same
-    sums ``(I + sin K) + (1 - cos) K^2`` and ``(th v + (1 - cos) K v) + (th - sin) K^2 v``
-    in the same order, each over the batch at once, those of an entry where K and K^2
-    vanish (exactly I's entry, for finite angles) not computed; fewer passes over a
-    large batch than the (N, 3, 3) broadcasts, the same numbers bit for bit."""
-    K, K2, v, _ = table
-    s, c1 = np.sin(th), 1.0 - np.cos(th)
-    out = np.zeros(th.shape + (4, 4))
-    for i in range(3):
-        for j in range(3):
-            one = 1.0 if i == j else 0.0
-            if K[i, j] == 0 and K2[i, j] == 0:
-                if one:
-                    out[..., i, j] = one
-                continue
-            np.add(one + s * K[i, j], c1 * K2[i, j], out=out[..., i, j])
-    Kv, K2v, ts = K @ v, K2 @ v, th - s
-    for i in range(3):
-        np.add(th * v[i] + c1 * Kv[i], ts * K2v[i], out=out[..., i, 3])
-    out[..., 3, 3] = 1.0
-    return out
 
 
 def poses(
@@ -153,15 +80,16 @@ def poses(
                 jk = model.joint(st.joint)
                 here = jk.b if st.sign > 0 else jk.a
                 wanted.add(here)
-    if not batch and wanted is None and q.dtype != object:
-        elements.update(elements_at_once(model, q))
+    at_once = _EXP.for_float("stacked joints", q) if not batch and wanted is None else None
+    if at_once is not None:
+        elements.update(at_once(model, q))
     for body, jk, prev, sign in _pose_plan(model):
         if wanted is not None and body not in wanted:
             continue
         if jk.name not in elements:
             elements[jk.name] = element(jk, q, fast)
         M = elements[jk.name]
-        if sign > 0 and prev == mech.ground and fast and M.dtype != object:
+        if sign > 0 and prev == mech.ground and fast and not holds_objects(M):
             # a float body after a joint from ground: its element (the identity's product
             # is exact)
             out[body] = M
@@ -189,6 +117,10 @@ def _pose_plan(model: Any) -> list[tuple[str, Any, str, int]]:
     return plan
 
 
+@_SCREWS.register(
+    "one configuration",
+    "one float configuration: every joint's screws by one act_screw on the stacked poses",
+)
 def _screws_at_once(model: Any, q: np.ndarray, body_poses: dict[str, np.ndarray]) -> np.ndarray:
     """:func:`current_screws` of every joint at one float configuration, by one call of
     :func:`mechsing.lie.act_screw` on the stacked poses and basis screws (a U joint's
@@ -203,6 +135,9 @@ def _screws_at_once(model: Any, q: np.ndarray, body_poses: dict[str, np.ndarray]
     return lie.act_screw(np.stack(G), E).T
 
 
+@_SCREWS.register(
+    "batch", "a float batch (N, n): each joint's screws written into the (N, 6, n) array"
+)
 def _screws_of_batch(model: Any, q: np.ndarray, body_poses: dict[str, np.ndarray]) -> np.ndarray:
     """:func:`current_screws` of every joint at a float batch of configurations q (N, n):
     the same :func:`mechsing.lie.act_screw` of each joint's basis screws (a U joint's
@@ -238,6 +173,10 @@ def _screw_plan(model: Any) -> tuple[list[str], Any, list[Any]]:
     return plan
 
 
+@_EXP.register(
+    "stacked joints",
+    "one float configuration: every joint's element (but U) by one exp of the stacked twists",
+)
 def elements_at_once(model: Any, q: np.ndarray, joints: Any = None) -> dict[str, np.ndarray]:
     """The elements of every joint (or of ``joints``) but the U joints at one float
     configuration, by one call of :func:`mechsing.lie.exp` on the stacked twists
@@ -246,7 +185,7 @@ def elements_at_once(model: Any, q: np.ndarray, joints: Any = None) -> dict[str,
     joints, rows, cols, basis, others = _element_plan(model, joints)
     if not joints:
         return {}
-    if joints[0].basis.dtype == object:  # a model in mp or exact numbers
+    if holds_objects(joints[0].basis):  # a model in mp or exact numbers
         Ms = lie.exp(np.stack([q[jk.columns] @ jk.basis for jk in joints]))
         return {jk.name: Ms[i] for i, jk in enumerate(joints)}
     twists = np.empty((len(joints), 6))
@@ -294,10 +233,10 @@ def current_screws(
     With ``joints``, only theirs (the other columns zero; ``body_poses`` then needs only
     the poses of their ``between[0]`` bodies)."""
     body_poses = poses(model, q) if body_poses is None else body_poses
-    if joints is None and q.ndim == 1 and q.dtype != object:
-        return _screws_at_once(model, q, body_poses)
-    if joints is None and q.ndim == 2 and q.dtype == np.float64:
-        return _screws_of_batch(model, q, body_poses)
+    if joints is None and q.ndim in (1, 2):
+        fast = _SCREWS.for_float(_SCREW_FORMS[q.ndim], q)
+        if fast is not None:
+            return fast(model, q, body_poses)
     cols = []
     for jk in model.joints if joints is None else joints:
         ga = body_poses[jk.a]
@@ -414,3 +353,10 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
     out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
     return out
+
+
+_EXP.register(
+    "serial chain",
+    "a serial chain of one-dof joints from ground, batched: the Rodrigues update in the "
+    "commensurate frame (the scanner's matrices, to rounding)",
+)(SerialJacobian)

@@ -6,7 +6,7 @@ the output's pose, of its :class:`~mechsing.kinematics.pose.PoseModel`), written
 array of configurations ``Q`` of shape ``(N, n)`` with :mod:`mechsing.lie` (which
 broadcasts over leading axes), and :meth:`BatchClosure.newton`, damped Gauss-Newton on
 the group for all rows together.  The one-configuration kinematics
-(:mod:`mechsing.kinematics.batched`) computes the poses and screws; this module adds what
+(:mod:`mechsing.kinematics.forward`) computes the poses and screws; this module adds what
 closing a batch needs.  Nothing here decides a rank: it closes.
 
 Conventions: those of :mod:`mechsing.kinematics.model`.  Residual twists and Jacobian
@@ -19,21 +19,19 @@ always given (never moved by Newton).
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import Any, Literal
 
 import numpy as np
 
 from mechsing import lie
-from mechsing.kinematics import batched
+from mechsing.kinematics import forward
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.couplings import coupling_residuals
 from mechsing.lie import exp_so3, log_so3
+from mechsing.numeric import NEWTON_DAMPING, Precision
 
-__all__ = ["BatchClosure"]
-
-#: damping of the batched Gauss-Newton step, relative to each row's sigma_max (the same
-#: as the one-configuration damped least squares)
-_DAMPING = 1e-7
+__all__ = ["BatchClosure", "truncated_steps"]
 
 
 class BatchClosure:
@@ -102,11 +100,11 @@ class BatchClosure:
         """The closure residual of every chord (and the pose), (N, blocks, 4, 4); ``T``:
         the output's displacements :meth:`target` of Q's pose coordinates, when known."""
         q = Q[:, : self.nb]
-        P = batched.poses(self.base, q, fast=True) if P is None else P
+        P = forward.poses(self.base, q, fast=True) if P is None else P
         out = np.empty((Q.shape[0], self.blocks, 4, 4))
         for i, jk in enumerate(self.chords):
             np.matmul(
-                P[jk.a] @ batched.element(jk, q, fast=True), lie.inverse(P[jk.b]), out=out[:, i]
+                P[jk.a] @ forward.element(jk, q, fast=True), lie.inverse(P[jk.b]), out=out[:, i]
             )
         if self.couplings:
             k = len(self.chords)
@@ -148,8 +146,8 @@ class BatchClosure:
     def screws(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
         """The commensurate current screws of the joint coordinates: (N, 6, nb)."""
         q = Q[:, : self.nb]
-        P = batched.poses(self.base, q, fast=True) if P is None else P
-        return self.frame.screws(batched.current_screws(self.base, q, P))
+        P = forward.poses(self.base, q, fast=True) if P is None else P
+        return self.frame.screws(forward.current_screws(self.base, q, P))
 
     def jacobian(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
         """The commensurate closure Jacobian in the joint coordinates: (N, 6 * blocks, nb)
@@ -191,7 +189,7 @@ class BatchClosure:
                 continue
             if jk.name in self._turns:
                 continue
-            M = lie.exp(d @ jk.basis) @ batched.element(jk, q, fast=True)
+            M = lie.exp(d @ jk.basis) @ forward.element(jk, q, fast=True)
             x = self.frame.twists(lie.log(M)[..., None])[..., 0]  # (N, 6) commensurate
             out[:, jk.columns] = x @ self._pinv[jk.name].T
         return out
@@ -220,7 +218,7 @@ class BatchClosure:
         for jk in self.base.joints:
             if jk.abelian or jk.name in self._turns:
                 continue
-            M = batched.element(jk, q1, fast=True) @ lie.inverse(batched.element(jk, q0, fast=True))
+            M = forward.element(jk, q1, fast=True) @ lie.inverse(forward.element(jk, q0, fast=True))
             x = self.frame.twists(lie.log(M)[..., None])[..., 0]
             D[:, jk.columns] = x @ self._pinv[jk.name].T
         return D
@@ -241,19 +239,27 @@ class BatchClosure:
         tolerance: float,
         iterations: int = 8,
         polish: bool = True,
+        solve: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+        accept: Literal["better", "finite"] = "better",
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Damped Gauss-Newton on the group for every row of Q, moving the joint
-        coordinates in ``free`` (bool, nb); stops a row once its residual is below
-        ``tolerance`` (m) and, with ``polish``, one more step no longer gains (the last
-        digits, for a point whose singular values are read near zero).  Returns (Q,
-        residual (m), Newton iterations per row)."""
+        """Gauss-Newton on the group for every row of Q, moving the joint coordinates in
+        ``free`` (bool, nb); stops a row once its residual is below ``tolerance`` (m)
+        and, with ``polish``, one more step no longer gains (the last digits, for a point
+        whose singular values are read near zero).  Returns (Q, residual (m), Newton
+        iterations per row).
+
+        ``solve(J, r)``: the steps of a batch of commensurate systems (N, rows, moved) and
+        residual twists (N, rows); by default the damped least squares (legs apart where
+        the closure splits into them: :meth:`split`), else e.g. :func:`truncated_steps`.
+        A row whose system is not finite stops; a step is taken when its residual is
+        lower (``accept="better"``) or finite (``"finite"``), else the row stops."""
         Q = np.array(Q, dtype=float, copy=True)
         cols = np.flatnonzero(free)
         lengths = self.frame.length_columns[cols]
         # the poses and residuals of the current rows, carried from one iteration to the
         # next (each trial point's are computed once)
         P = {
-            k: np.array(v) for k, v in batched.poses(self.base, Q[:, : self.nb], fast=True).items()
+            k: np.array(v) for k, v in forward.poses(self.base, Q[:, : self.nb], fast=True).items()
         }
         # the pose coordinates are given: the output's target is computed once
         T = None if self.pose is None else self.target(Q[:, self.nb :])
@@ -274,29 +280,37 @@ class BatchClosure:
             if not np.any(active):
                 break
             idx = np.flatnonzero(active)
+            its[idx] += 1
             Qa = Q[idx]
             Pa = {k: v[idx] for k, v in P.items()}
             r = self.residual_twists(D[idx])
-            if split is not None:
+            if split is not None and solve is None:
                 du = split.step(self.screws(Qa, Pa), r)
             else:
-                du = _damped_step(self.jacobian(Qa, Pa)[:, :, cols], r)
+                J = self.jacobian(Qa, Pa)[:, :, cols]
+                finite = np.isfinite(J).all(axis=(1, 2)) & np.isfinite(r).all(axis=1)
+                if not finite.all():  # such a system is no step: its row stops
+                    active[idx[~finite]] = False
+                    idx, Qa, J, r = idx[finite], Qa[finite], J[finite], r[finite]
+                    Pa = {k: v[finite] for k, v in Pa.items()}
+                    if not len(idx):
+                        break
+                du = (_damped_step if solve is None else solve)(J, r)
             du = np.where(lengths[None, :], du * self.L, du)
             step = np.zeros((len(idx), self.nb))
             step[:, cols] = du
             Qn = self.update(Qa, step)
-            Pn = batched.poses(self.base, Qn[:, : self.nb], fast=True)
+            Pn = forward.poses(self.base, Qn[:, : self.nb], fast=True)
             Dn = self.deltas(Qn, Pn, None if T is None else T[idx])
             rn = self.residual_norm(Dn)
-            better = rn < res[idx]
+            better = rn < res[idx] if accept == "better" else np.isfinite(rn)
             keep = idx[better]
             Q[keep] = Qn[better]
             res[keep] = rn[better]
             D[keep] = Dn[better]
             for k in P:
                 P[k][keep] = Pn[k][better]
-            its[idx] += 1
-            # a row that no longer gains stops
+            # a row whose step is not taken stops
             active[idx[~better]] = False
         return Q, res, its
 
@@ -408,10 +422,21 @@ class _Split:
 def _damped_step(J: np.ndarray, r: np.ndarray) -> np.ndarray:
     """The damped least-squares steps ``-(J^T J + lam^2 I)^-1 J^T r`` of a batch (the
     normal equations: a batched Cholesky-sized solve instead of an SVD per row), with
-    ``lam`` = _DAMPING times the row's Frobenius norm (a bound of sigma_max)."""
+    ``lam`` = NEWTON_DAMPING times the row's Frobenius norm (a bound of sigma_max)."""
     JtJ = np.matmul(np.swapaxes(J, 1, 2), J)
     g = np.einsum("nji,nj->ni", J, r)
-    lam2 = (_DAMPING**2) * np.einsum("nii->n", JtJ)
+    lam2 = (NEWTON_DAMPING**2) * np.einsum("nii->n", JtJ)
     k = JtJ.shape[1]
     JtJ[:, np.arange(k), np.arange(k)] += np.maximum(lam2, np.finfo(float).tiny)[:, None]
     return -np.linalg.solve(JtJ, g[..., None])[..., 0]
+
+
+def truncated_steps(J: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """The minimum-norm steps ``-J^+ r`` of a batch, singular values at or below float's
+    ``tau_lo`` times the largest dropped (the batched
+    :func:`~mechsing.kinematics.newton.truncated_least_squares`)."""
+    tau = Precision("float").tolerances.tau_lo
+    U, s, Vt = np.linalg.svd(J, full_matrices=False)
+    keep = s > tau * s[:, :1]
+    inv = np.where(keep, 1.0 / np.where(keep, s, 1.0), 0.0)
+    return -np.einsum("nji,nj->ni", Vt, inv * np.einsum("nji,nj->ni", U, r))
