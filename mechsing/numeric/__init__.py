@@ -116,6 +116,8 @@ from mechsing.numeric.scaling import (
     scale_screws,
 )
 from mechsing.numeric.tolerances import (
+    MODE_CERTIFY_RADIUS,
+    MODE_MATCH_DISTANCE,
     BRANCH_ALIGNMENT,
     CENTRE_ROTATION_RTOL,
     CLOSURE_RTOL_FLOAT,
@@ -176,6 +178,8 @@ from mechsing.numeric.tolerances import (
 )
 
 __all__ = [
+    "MODE_CERTIFY_RADIUS",
+    "MODE_MATCH_DISTANCE",
     "cos_sin",
     "FieldEchelon",
     "echelon_form",
