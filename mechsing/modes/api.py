@@ -104,21 +104,22 @@ class ModesResult:
 def _given(mech: Mechanism, config: str) -> dict[str, tuple[Any, ...]]:
     from mechsing.model.mechanism import Displacement
 
+    where = f"{mech.path or mech.name}: "
     cfg = mech.configurations[config]
     if cfg.pose is not None:
         raise UserError(
-            f"configuration {config!r} gives the output's pose: modes takes given joint "
+            f"{where}configuration {config!r} gives the output's pose: modes takes given joint "
             "values (the inputs); give them with --set JOINT=VALUE"
         )
     out = {}
     for name, v in cfg.values.items():
         if isinstance(v, Displacement):
-            raise UserError(f"configuration {config!r}: joint {name} is given as a displacement; "
+            raise UserError(f"{where}configuration {config!r}: joint {name} is given as a displacement; "
                             "modes takes joint values")
         out[name] = tuple(sympy.nsimplify(x) if isinstance(x, float) else sympy.sympify(x) for x in v)
     if not out:
         raise UserError(
-            f"configuration {config!r} gives no joint value: the closed configurations form "
+            f"{where}configuration {config!r} gives no joint value: the closed configurations form "
             "the whole configuration space, not a finite set of modes; give the inputs "
             "(--set JOINT=VALUE)"
         )
