@@ -144,7 +144,10 @@ def test_every_command_reads_every_format(fmt: str, command: str, tmp_path: Path
     if command == "modes":  # the file's first configuration after the reference
         from mechsing import load
 
-        argv += ["--config", [*(c for c in load(path).configurations if c != "reference"), "reference"][0]]
+        argv += [
+            "--config",
+            [*(c for c in load(path).configurations if c != "reference"), "reference"][0],
+        ]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         rc, out, err = run_cli(argv)

@@ -47,7 +47,9 @@ def run(args: argparse.Namespace) -> int:
     check_shared(args)
     if args.output:
         check_output(args.output, [args.file])
-    mech = apply_set(load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file)
+    mech = apply_set(
+        load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file
+    )
     if args.config is None:
         if not args.set_values:
             raise UserError("modes needs --config NAME (or --set JOINT=VALUE for the inputs)")

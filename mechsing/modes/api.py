@@ -18,7 +18,7 @@ import mpmath
 import numpy as np
 import sympy
 
-from mechsing.errors import ConfigurationError, UserError
+from mechsing.errors import ConfigurationError, FormulationError, UserError
 from mechsing.model import Mechanism
 from mechsing.numeric import MODE_CERTIFY_RADIUS, MODE_MATCH_DISTANCE, Precision, parse_precision
 
@@ -114,9 +114,13 @@ def _given(mech: Mechanism, config: str) -> dict[str, tuple[Any, ...]]:
     out = {}
     for name, v in cfg.values.items():
         if isinstance(v, Displacement):
-            raise UserError(f"{where}configuration {config!r}: joint {name} is given as a displacement; "
-                            "modes takes joint values")
-        out[name] = tuple(sympy.nsimplify(x) if isinstance(x, float) else sympy.sympify(x) for x in v)
+            raise UserError(
+                f"{where}configuration {config!r}: joint {name} is given as a displacement; "
+                "modes takes joint values"
+            )
+        out[name] = tuple(
+            sympy.nsimplify(x) if isinstance(x, float) else sympy.sympify(x) for x in v
+        )
     if not out:
         raise UserError(
             f"{where}configuration {config!r} gives no joint value: the closed configurations form "
@@ -158,25 +162,29 @@ def modes(
     """
     from mechsing.modes.certify import krawczyk
     from mechsing.modes.exact import eliminate_planar
-    from mechsing.modes.planar import C, S, X, Y, NotApplicable, joint_values, planar_system
+    from mechsing.modes.planar import C, S, X, Y, joint_values, planar_system
     from mechsing.reader import read_mechanism
     from mechsing.timelimit import TimeLimit
 
     mech = mechanism if isinstance(mechanism, Mechanism) else read_mechanism(mechanism)
     prec = parse_precision(precision) if isinstance(precision, str) else precision
     if prec.mode == "exact":
-        raise UserError("modes classifies modes found numerically (certified, not exact "
-                        "values): use --precision auto, float or mp:N")
+        raise UserError(
+            "modes classifies modes found numerically (certified, not exact "
+            "values): use --precision auto, float or mp:N"
+        )
     if config not in mech.configurations:
-        raise UserError(f"{mech.path or mech.name}: no configuration named {config!r}; the "
-                        f"file has: {', '.join(mech.configurations)}")
+        raise UserError(
+            f"{mech.path or mech.name}: no configuration named {config!r}; the "
+            f"file has: {', '.join(mech.configurations)}"
+        )
     dps = max(50, (prec.digits or 0) + 10)
     given = _given(mech, config)
     with TimeLimit(time_limit), mpmath.workdps(dps):
         try:
             system = planar_system(mech, given)
             found = eliminate_planar(system, dps)
-        except NotApplicable as exc:
+        except FormulationError as exc:
             raise UserError(
                 f"{mech.path or mech.name}: configuration {config!r}: the built-in exact "
                 f"method does not apply ({exc}); the homotopy-continuation engine is not "
@@ -187,8 +195,9 @@ def modes(
         rows = []
         for c, s, x, y in found.poses:
             coords = joint_values(mech, system, given, (c, s, x, y))
-            ok = krawczyk(square, [X, Y, theta], [x, y, mpmath.atan2(s, c)],
-                          mpmath.mpf(MODE_CERTIFY_RADIUS))
+            ok = krawczyk(
+                square, [X, Y, theta], [x, y, mpmath.atan2(s, c)], mpmath.mpf(MODE_CERTIFY_RADIUS)
+            )
             rows.append((coords, ok))
     formulation = {
         "name": "planar platform pose",
@@ -200,8 +209,18 @@ def modes(
         "offset": str(2 * sympy.atan(found.offset)),
     }
     if not found.finite:
-        return ModesResult(mech.name, config, {"mode": str(prec)}, None, "infinite",
-                           formulation, None, (), {"joints": [], "pose": []}, found.notes)
+        return ModesResult(
+            mech.name,
+            config,
+            {"mode": str(prec)},
+            None,
+            "infinite",
+            formulation,
+            None,
+            (),
+            {"joints": [], "pose": []},
+            found.notes,
+        )
     return _result(mech, config, prec, formulation, found, rows, dps)
 
 
@@ -211,8 +230,15 @@ def _text(x: Any, prec: Precision) -> str:
     return repr(float(x))
 
 
-def _result(mech: Mechanism, config: str, prec: Precision, formulation: dict[str, Any],
-            found: Any, rows: list[Any], dps: int) -> ModesResult:
+def _result(
+    mech: Mechanism,
+    config: str,
+    prec: Precision,
+    formulation: dict[str, Any],
+    found: Any,
+    rows: list[Any],
+    dps: int,
+) -> ModesResult:
     from mechsing.analysis import analyze_found
     from mechsing.kinematics import KinematicModel
 
@@ -220,13 +246,16 @@ def _result(mech: Mechanism, config: str, prec: Precision, formulation: dict[str
     L = float(km.length_scale)
     coords = mech.coordinates()
     names = {f"{config}#mode{k + 1}": q for k, (q, _ok) in enumerate(rows)}
-    data = {n: ([mpmath.mpf(x) for x in q] if prec.mode == "mp" else [float(x) for x in q])
-            for n, q in names.items()}
+    data = {
+        n: ([mpmath.mpf(x) for x in q] if prec.mode == "mp" else [float(x) for x in q])
+        for n, q in names.items()
+    }
     analysed = analyze_found(mech, data, prec) if data else []
     reached, notes = _reached(mech, config, [[float(x) for x in q] for q, _ in rows], km)
     out_body = mech.output.body if mech.output is not None else None
-    poses = [km.poses(np.array([float(x) for x in q]))[out_body] if out_body else None
-             for q, _ in rows]
+    poses = [
+        km.poses(np.array([float(x) for x in q]))[out_body] if out_body else None for q, _ in rows
+    ]
     result_modes = []
     for k, ((q, ok), res) in enumerate(zip(rows, analysed, strict=True)):
         joints: dict[str, list[float]] = {}
@@ -239,17 +268,35 @@ def _result(mech: Mechanism, config: str, prec: Precision, formulation: dict[str
             if lim and not (lim[i][0] <= float(x) <= lim[i][1]) and name not in outside:
                 outside.append(name)
         pose = poses[k]
-        result_modes.append(Mode(
-            joints, texts, bool(ok), float(MODE_CERTIFY_RADIUS), res.to_json(), k == reached,
-            outside, None if pose is None else np.asarray(pose, dtype=float).tolist()))
+        result_modes.append(
+            Mode(
+                joints,
+                texts,
+                bool(ok),
+                float(MODE_CERTIFY_RADIUS),
+                res.to_json(),
+                k == reached,
+                outside,
+                None if pose is None else np.asarray(pose, dtype=float).tolist(),
+            )
+        )
     return ModesResult(
-        mech.name, config, {"mode": str(prec), "length_scale": L, "digits": dps},
-        len(result_modes), "proven" if found.proven else "not proven", formulation, None,
-        tuple(result_modes), _distances(mech, [q for q, _ in rows], poses, L),
-        (*found.notes, *notes))
+        mech.name,
+        config,
+        {"mode": str(prec), "length_scale": L, "digits": dps},
+        len(result_modes),
+        "proven" if found.proven else "not proven",
+        formulation,
+        None,
+        tuple(result_modes),
+        _distances(mech, [q for q, _ in rows], poses, L),
+        (*found.notes, *notes),
+    )
 
 
-def _reached(mech: Mechanism, config: str, qs: list[list[float]], km: Any) -> tuple[int | None, tuple[str, ...]]:
+def _reached(
+    mech: Mechanism, config: str, qs: list[list[float]], km: Any
+) -> tuple[int | None, tuple[str, ...]]:
     """Which mode continuation from the configuration's start reaches (its index)."""
     from mechsing.analysis.solve import solve
 
@@ -281,7 +328,9 @@ def _joint_distance(mech: Mechanism, q1: list[float], q2: list[float], L: float)
     return float(np.sqrt(total))
 
 
-def _distances(mech: Mechanism, qs: list[Any], poses: list[Any], L: float) -> dict[str, list[list[float]]]:
+def _distances(
+    mech: Mechanism, qs: list[Any], poses: list[Any], L: float
+) -> dict[str, list[list[float]]]:
     n = len(qs)
     joints = [[_joint_distance(mech, qs[i], qs[k], L) for k in range(n)] for i in range(n)]
     pose = []
@@ -290,8 +339,13 @@ def _distances(mech: Mechanism, qs: list[Any], poses: list[Any], L: float) -> di
             row = []
             for k in range(n):
                 Ri, Rk = np.asarray(poses[i])[:3, :3], np.asarray(poses[k])[:3, :3]
-                cosang = np.clip((np.trace(Ri.T @ Rk) - 1) / 2, -1.0, 1.0)
+                Rr = Ri.T @ Rk  # its angle from both its cosine and its sine: exact at 0
+                sine = (
+                    np.linalg.norm([Rr[2, 1] - Rr[1, 2], Rr[0, 2] - Rr[2, 0], Rr[1, 0] - Rr[0, 1]])
+                    / 2
+                )
+                angle = np.arctan2(sine, (np.trace(Rr) - 1) / 2)
                 dp = np.linalg.norm(np.asarray(poses[i])[:3, 3] - np.asarray(poses[k])[:3, 3])
-                row.append(float(np.arccos(cosang) + dp / L))
+                row.append(float(angle + dp / L))
             pose.append(row)
     return {"joints": joints, "pose": pose}

@@ -41,7 +41,12 @@ def _interval_function(exprs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]
 
     fixed = [replace(sympy.expand(e)) for e in exprs]
     args = [*gens, *consts]
-    module = {"sin": mpmath.iv.sin, "cos": mpmath.iv.cos, "sqrt": mpmath.iv.sqrt, "mpf": mpmath.iv.mpf}
+    module = {
+        "sin": mpmath.iv.sin,
+        "cos": mpmath.iv.cos,
+        "sqrt": mpmath.iv.sqrt,
+        "mpf": mpmath.iv.mpf,
+    }
     fn = sympy.lambdify(args, fixed, modules=[module, "mpmath"])
     values = list(consts.values())
 
@@ -58,7 +63,9 @@ def krawczyk(
     (the current mpmath precision; the interval context is set to the same)."""
     n = len(gens)
     if len(exprs) != n:
-        raise ValueError(f"krawczyk takes a square system, not {len(exprs)} equations in {n} unknowns")
+        raise ValueError(
+            f"krawczyk takes a square system, not {len(exprs)} equations in {n} unknowns"
+        )
     before = mpmath.iv.dps
     mpmath.iv.dps = mpmath.mp.dps
     try:

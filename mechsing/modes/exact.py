@@ -23,7 +23,8 @@ from typing import Any
 import mpmath
 import sympy
 
-from mechsing.modes.planar import OFFSETS, C, NotApplicable, PlanarSystem, S, X, Y
+from mechsing.errors import FormulationError
+from mechsing.modes.planar import OFFSETS, C, PlanarSystem, S, X, Y
 
 __all__ = ["Eliminated", "eliminate_planar", "interval_digits"]
 
@@ -55,7 +56,7 @@ def _split(system: PlanarSystem) -> tuple[list[sympy.Expr], sympy.Expr, int]:
         base = quads[0]
         lins += [sympy.expand(q - base) for q in quads[1:]]
         if any(sympy.Poly(e, X, Y).total_degree() > 1 for e in lins):
-            raise NotApplicable("the distance equations do not share their quadratic part")
+            raise FormulationError("the distance equations do not share their quadratic part")
         return lins, base, 2
     return lins[:2], lins[2], 1
 
@@ -91,7 +92,7 @@ def eliminate_planar(system: PlanarSystem, dps: int) -> Eliminated:
         if at_infinity != 0:
             break
     else:
-        raise NotApplicable("every offset tried has a solution at theta0 + pi")
+        raise FormulationError("every offset tried has a solution at theta0 + pi")
     Ft = _in_t(F, r)
     if Ft == 0:
         return Eliminated(False, (), True, 0, r, ("the solutions form a curve",))
@@ -105,7 +106,9 @@ def eliminate_planar(system: PlanarSystem, dps: int) -> Eliminated:
             for tr in _certified_real_roots(Dt, dps)[0]:
                 dx = _value(_in_t(Dx, r), tr)
                 dy = _value(_in_t(Dy, r), tr)
-                if abs(dx) < mpmath.mpf(10) ** (-dps // 2) and abs(dy) < mpmath.mpf(10) ** (-dps // 2):
+                if abs(dx) < mpmath.mpf(10) ** (-dps // 2) and abs(dy) < mpmath.mpf(10) ** (
+                    -dps // 2
+                ):
                     proven = False
                     notes.append("Cramer's rule degenerates at a possible solution")
         poses = []
@@ -180,8 +183,12 @@ def _certified_real_roots(F: sympy.Expr, dps: int) -> tuple[list[Any], bool]:
         for (e,), c in P.terms():
             rep = field.from_sympy(c).to_list()
             Fa += T**e * sum(
-                (sympy.Rational(int(q.numerator), int(q.denominator)) * a**i
-                 for i, q in enumerate(reversed(rep))), sympy.S.Zero)
+                (
+                    sympy.Rational(int(q.numerator), int(q.denominator)) * a**i
+                    for i, q in enumerate(reversed(rep))
+                ),
+                sympy.S.Zero,
+            )
         norm = sympy.Poly(sympy.resultant(sympy.expand(Fa), minpoly, a), T)
     else:
         norm = P
@@ -189,8 +196,11 @@ def _certified_real_roots(F: sympy.Expr, dps: int) -> tuple[list[Any], bool]:
     if sqf.degree() <= 0:
         return [], True
     coeffs = _interval_coeffs(sympy.Poly(sympy.sqf_part(P.as_expr()), T) if not irrational else P)
-    dcoeffs = _interval_coeffs(P.diff(T)) if irrational else _interval_coeffs(
-        sympy.Poly(sympy.sqf_part(P.as_expr()), T).diff(T))
+    dcoeffs = (
+        _interval_coeffs(P.diff(T))
+        if irrational
+        else _interval_coeffs(sympy.Poly(sympy.sqf_part(P.as_expr()), T).diff(T))
+    )
     eps = sympy.Rational(1, 10 ** (dps + 3))
     roots, decided = [], True
     for (lo, hi), _m in sqf.intervals(eps=eps):

@@ -30,13 +30,10 @@ import mpmath
 import networkx as nx
 import sympy
 
+from mechsing.errors import FormulationError
 from mechsing.model import Mechanism
 
-__all__ = ["NotApplicable", "PlanarSystem", "joint_values", "planar_system"]
-
-
-class NotApplicable(Exception):  # noqa: N818 -- a reason, not an error
-    """The formulation does not apply (the reason, for the user)."""
+__all__ = ["PlanarSystem", "joint_values", "planar_system"]
 
 
 #: tan(theta0 / 2) of the offsets tried for the platform angle (rational: theta0's sine
@@ -81,18 +78,22 @@ def _check_planar(mech: Mechanism) -> None:
         if j.type == "R":
             a = j.params["axis"]
             if a[0] != 0 or a[1] != 0:
-                raise NotApplicable(f"joint {j.name}'s axis is not along z (a planar formulation)")
+                raise FormulationError(
+                    f"joint {j.name}'s axis is not along z (a planar formulation)"
+                )
         elif j.type == "P":
             if j.params["axis"][2] != 0:
-                raise NotApplicable(f"joint {j.name}'s axis is not in the xy plane")
+                raise FormulationError(f"joint {j.name}'s axis is not in the xy plane")
         else:
-            raise NotApplicable(f"joint {j.name} is {j.type}; the planar formulation takes R and P")
+            raise FormulationError(
+                f"joint {j.name} is {j.type}; the planar formulation takes R and P"
+            )
 
 
 def _algebraic(x: Any, what: str) -> Any:
     x = sympy.simplify(x)
     if not (x.is_number and x.is_algebraic):
-        raise NotApplicable(
+        raise FormulationError(
             f"{what} is {x}, not an algebraic number; exact elimination needs given angles "
             "whose sine and cosine are algebraic (e.g. 30 deg, pi/5, 2*atan(1/3))"
         )
@@ -151,21 +152,24 @@ def planar_system(mech: Mechanism, given: dict[str, tuple[Any, ...]]) -> PlanarS
             changed = True
     unknown = [b for b in mech.bodies if b not in known]
     if not unknown:
-        raise NotApplicable("the given values place every body (nothing is left to solve)")
-    candidates = sorted(unknown, key=lambda b: (mech.output is None or b != mech.output.body,
-                                                 -G.degree(b)))
+        raise FormulationError("the given values place every body (nothing is left to solve)")
+    candidates = sorted(
+        unknown, key=lambda b: (mech.output is None or b != mech.output.body, -G.degree(b))
+    )
     reasons = []
     for platform in candidates:
         try:
             legs = _legs(mech, G, known, platform, given)
-        except NotApplicable as exc:
+        except FormulationError as exc:
             reasons.append(f"{platform}: {exc}")
             continue
         n = sum(len(leg.equations) for leg in legs)
         if n == 3:
             return PlanarSystem(platform, known, tuple(legs))
         reasons.append(f"{platform}: its legs give {n} equations, not 3")
-    raise NotApplicable("no body's pose is fixed by three leg constraints (" + "; ".join(reasons) + ")")
+    raise FormulationError(
+        "no body's pose is fixed by three leg constraints (" + "; ".join(reasons) + ")"
+    )
 
 
 def _legs(mech: Mechanism, G: nx.MultiGraph, known: dict, platform: str, given: dict) -> list[Leg]:
@@ -175,9 +179,9 @@ def _legs(mech: Mechanism, G: nx.MultiGraph, known: dict, platform: str, given: 
             j = mech.joint(name)
             other = a if b == platform else b
             if name in given:
-                raise NotApplicable(f"joint {name} is given and joins it to a known body")
+                raise FormulationError(f"joint {name} is given and joins it to a known body")
             if j.type != "R":
-                raise NotApplicable(f"joint {name} (P) joins it to a known body")
+                raise FormulationError(f"joint {name} (P) joins it to a known body")
             p = _xy(j.params["point"])
             gk = _apply(known[other], p)
             gp = _apply((C, S, X, Y), p)
@@ -188,15 +192,16 @@ def _legs(mech: Mechanism, G: nx.MultiGraph, known: dict, platform: str, given: 
     return legs
 
 
-def _chain_leg(mech: Mechanism, G: nx.MultiGraph, known: dict, platform: str,
-               comp: list[str], given: dict) -> Leg:
+def _chain_leg(
+    mech: Mechanism, G: nx.MultiGraph, known: dict, platform: str, comp: list[str], given: dict
+) -> Leg:
     """The leg through the unknown bodies ``comp``: a path known - ... - platform."""
     edges = [(a, b, k) for a, b, k in G.edges(keys=True) if a in comp or b in comp]
     H = nx.MultiGraph()
     H.add_edges_from(edges)
     ends = [n for n in H if n not in comp]
     if len(edges) != len(comp) + 1 or platform not in ends or len(ends) != 2:
-        raise NotApplicable(f"bodies {', '.join(comp)} do not form one leg to it")
+        raise FormulationError(f"bodies {', '.join(comp)} do not form one leg to it")
     start = next(n for n in ends if n != platform)
     path = nx.shortest_path(H, start, platform)
     names = []
@@ -235,15 +240,18 @@ def _chain_leg(mech: Mechanism, G: nx.MultiGraph, known: dict, platform: str,
         pk, pa = _apply(gk, a), _apply(plat, a)
         eq = up[0] * (pk[1] - pa[1]) - up[1] * (pk[0] - pa[0])
         return Leg("line-moving", tuple(names), start, (sympy.expand(eq),))
-    raise NotApplicable(f"leg {'-'.join(names)} ({types}) is not R, R-R, R-P-R (slide given), P-R or R-P")
+    raise FormulationError(
+        f"leg {'-'.join(names)} ({types}) is not R, R-R, R-P-R (slide given), P-R or R-P"
+    )
 
 
 # -- from the platform's pose back to every joint value --------------------------------
 
 
 def _num(g: tuple) -> tuple:
-    return tuple(mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) if not isinstance(v, mpmath.mpf) else v
-                 for v in g)
+    return tuple(
+        mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) if not isinstance(v, mpmath.mpf) else v for v in g
+    )
 
 
 def _angle_of(g: tuple) -> Any:
@@ -253,8 +261,12 @@ def _angle_of(g: tuple) -> Any:
 def _rotation_pose(theta: Any, fixed_ref: tuple, fixed_now: tuple) -> tuple:
     """The planar pose of rotation ``theta`` that takes ``fixed_ref`` to ``fixed_now``."""
     c, s = mpmath.cos(theta), mpmath.sin(theta)
-    return (c, s, fixed_now[0] - (c * fixed_ref[0] - s * fixed_ref[1]),
-            fixed_now[1] - (s * fixed_ref[0] + c * fixed_ref[1]))
+    return (
+        c,
+        s,
+        fixed_now[0] - (c * fixed_ref[0] - s * fixed_ref[1]),
+        fixed_now[1] - (s * fixed_ref[0] + c * fixed_ref[1]),
+    )
 
 
 def joint_values(mech: Mechanism, system: PlanarSystem, given: dict, pose: tuple) -> list[Any]:
@@ -269,15 +281,23 @@ def joint_values(mech: Mechanism, system: PlanarSystem, given: dict, pose: tuple
         gk = poses[leg.known]
         mids = _leg_bodies(mech, leg, system.platform)
         if leg.kind == "distance" and len(joints) == 2:
-            a, b = (tuple(mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(j.params["point"]))
-                    for j in joints)
+            a, b = (
+                tuple(mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(j.params["point"]))
+                for j in joints
+            )
             pa, pb = _apply(gk, a), _apply(pose, b)
-            theta = _angle_of((pb[0] - pa[0], pb[1] - pa[1])) - mpmath.atan2(b[1] - a[1], b[0] - a[0])
+            theta = _angle_of((pb[0] - pa[0], pb[1] - pa[1])) - mpmath.atan2(
+                b[1] - a[1], b[0] - a[0]
+            )
             poses[mids[0]] = _rotation_pose(theta, a, pa)
         elif leg.kind == "distance":
-            a, b = (tuple(mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(j.params["point"]))
-                    for j in (joints[0], joints[2]))
-            u = tuple(mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(joints[1].params["axis"]))
+            a, b = (
+                tuple(mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(j.params["point"]))
+                for j in (joints[0], joints[2])
+            )
+            u = tuple(
+                mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(joints[1].params["axis"])
+            )
             q = mpmath.mpf(sympy.N(given[leg.joints[1]][0], mpmath.mp.dps + 5))
             sign = 1 if joints[1].between[0] == mids[0] else -1
             w = (b[0] + sign * q * u[0] - a[0], b[1] + sign * q * u[1] - a[1])
@@ -288,10 +308,14 @@ def joint_values(mech: Mechanism, system: PlanarSystem, given: dict, pose: tuple
             poses[mids[0]] = first
             poses[mids[1]] = _compose(first, slide)
         elif leg.kind == "line-fixed":  # known -P- body -R- platform: the body turns with known
-            b = tuple(mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(joints[1].params["point"]))
+            b = tuple(
+                mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(joints[1].params["point"])
+            )
             poses[mids[0]] = _rotation_pose(_angle_of(gk), b, _apply(pose, b))
         else:  # known -R- body -P- platform: the body turns with the platform about a
-            a = tuple(mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(joints[0].params["point"]))
+            a = tuple(
+                mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(joints[0].params["point"])
+            )
             poses[mids[0]] = _rotation_pose(_angle_of(pose), a, _apply(gk, a))
     out = []
     for name, _i in mech.coordinates():
@@ -304,8 +328,10 @@ def joint_values(mech: Mechanism, system: PlanarSystem, given: dict, pose: tuple
             out.append(_angle_of(rel) * mpmath.mpf(sympy.N(j.params["axis"][2])))
         else:
             u = _xy(j.params["axis"])
-            out.append(rel[2] * mpmath.mpf(sympy.N(u[0], mpmath.mp.dps + 5))
-                       + rel[3] * mpmath.mpf(sympy.N(u[1], mpmath.mp.dps + 5)))
+            out.append(
+                rel[2] * mpmath.mpf(sympy.N(u[0], mpmath.mp.dps + 5))
+                + rel[3] * mpmath.mpf(sympy.N(u[1], mpmath.mp.dps + 5))
+            )
     return out
 
 

@@ -24,11 +24,15 @@ def _verdict(m: dict) -> str:
 def _heading(res: ModesResult) -> str:
     f = res.formulation
     if res.count is None:
-        return (f"{res.mechanism}, configuration {res.configuration}: the closed configurations "
-                "with these values form a curve, not a finite set of modes (no count)")
-    return (f"{res.mechanism}, configuration {res.configuration}: {res.count} assembly "
-            f"mode{'s' if res.count != 1 else ''} (complete: {res.complete}; {f['method']} "
-            f"in the {f['name']}, a polynomial of degree {f['polynomial_degree']})")
+        return (
+            f"{res.mechanism}, configuration {res.configuration}: the closed configurations "
+            "with these values form a curve, not a finite set of modes (no count)"
+        )
+    return (
+        f"{res.mechanism}, configuration {res.configuration}: {res.count} assembly "
+        f"mode{'s' if res.count != 1 else ''} (complete: {res.complete}; {f['method']} "
+        f"in the {f['name']}, a polynomial of degree {f['polynomial_degree']})"
+    )
 
 
 def render_modes(res: ModesResult, fmt: str) -> str:
@@ -44,8 +48,9 @@ def render_modes(res: ModesResult, fmt: str) -> str:
             marks.append("reached by continuation")
         if m["outside_limits"]:
             marks.append("outside the limits of " + ", ".join(m["outside_limits"]))
-        cert = (f"certified (radius {m['certified_radius']:.0e})" if m["certified"]
-                else "not certified")
+        cert = (
+            f"certified (radius {m['certified_radius']:.0e})" if m["certified"] else "not certified"
+        )
         head = f"mode {k}: {_verdict(m)}, {cert}" + (f" [{'; '.join(marks)}]" if marks else "")
         lines.append(("## " if md else "") + head)
         if md:

@@ -116,8 +116,6 @@ from mechsing.numeric.scaling import (
     scale_screws,
 )
 from mechsing.numeric.tolerances import (
-    MODE_CERTIFY_RADIUS,
-    MODE_MATCH_DISTANCE,
     BRANCH_ALIGNMENT,
     CENTRE_ROTATION_RTOL,
     CLOSURE_RTOL_FLOAT,
@@ -141,6 +139,8 @@ from mechsing.numeric.tolerances import (
     MAX_JOINT_VALUE,
     MAX_NUMBER,
     MEMBERSHIP_RTOL_FLOAT,
+    MODE_CERTIFY_RADIUS,
+    MODE_MATCH_DISTANCE,
     MP_MIN_DIGITS,
     NEAR_ZERO_VECTOR,
     ORDER3_RESIDUAL_FACTOR,

@@ -1,0 +1,161 @@
+"""mechsing modes: every assembly mode of a configuration (issue 34).
+
+The counts and the modes come from an independent solver (tests/reference/
+modes_independent.py: Gosselin's elimination scanned in the platform angle, and a
+circle intersection), never from mechsing; each mode's classification is compared with
+``mechsing analyze`` of the same joint values; the command runs as a user runs it, in
+an empty directory that must stay empty.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.cli import run_cli, run_cli_subprocess
+from tests.mechanisms import ROOT
+from tests.reference.modes_independent import circle_points, rpr_poses
+
+SIX = ROOT / "examples" / "planar_3rpr_six.yaml"
+FOURBAR = ROOT / "examples" / "fourbar.yaml"
+# the 3-RPR's data as its file states them (base pivots, platform pivots in the
+# platform's frame, reference offset of the platform, leg lengths of configuration six)
+A = np.array([[0, 0], [8, 0], [-4, 11]], float)
+B_FRAME = np.array([[0, 0], [6, 0], [11, 6]], float)
+OFFSET = np.array([3, 4], float)
+LENGTHS = np.array([11, 12, 8], float)
+
+
+def _rot(theta: float) -> np.ndarray:
+    c, s = np.cos(theta), np.sin(theta)
+    return np.array([[c, -s], [s, c]])
+
+
+@pytest.fixture(scope="module")
+def six(tmp_path_factory: pytest.TempPathFactory) -> dict:
+    """The modes of the 3-RPR's configuration six, run as a user runs the command, in an
+    empty working directory (listed afterwards: nothing may be written there)."""
+    cwd = tmp_path_factory.mktemp("cwd")
+    rc, out, err = run_cli_subprocess(
+        ["modes", str(SIX), "--config", "six", "--format", "json"], timeout=300, cwd=cwd
+    )
+    assert rc == 0, err
+    assert list(cwd.iterdir()) == [], "modes wrote into the working directory"
+    return json.loads(out)
+
+
+def _pivots(joints: dict) -> np.ndarray:
+    """The platform pivots B_i from a mode's joint values (leg i: Rb_i at A_i, then the
+    slide P_i along A_i B_i of the reference)."""
+    out = []
+    for i in range(3):
+        ref = B_FRAME[i] + OFFSET - A[i]
+        u = ref / np.linalg.norm(ref)
+        out.append(A[i] + _rot(joints[f"Rb{i + 1}"][0]) @ (ref + joints[f"P{i + 1}"][0] * u))
+    return np.array(out)
+
+
+def test_3rpr_has_six_proven_certified_modes_matching_the_independent_solver(six: dict) -> None:
+    poses = rpr_poses(A, B_FRAME, LENGTHS)
+    assert len(poses) == 6  # the geometry was built to have six
+    assert six["count"] == 6 and six["complete"] == "proven"
+    assert all(m["certified"] for m in six["modes"])
+    matched = set()
+    for m in six["modes"]:
+        B = _pivots(m["joints"])
+        # every leg has its length to 1e-12 m
+        assert np.allclose(np.linalg.norm(B - A, axis=1), LENGTHS, atol=1e-12, rtol=0)
+        # the platform is rigid: the pivots are a pose of the platform's frame
+        hits = [
+            k
+            for k, (theta, p) in enumerate(poses)
+            if np.allclose(B, (_rot(theta) @ B_FRAME.T).T + p, atol=1e-8)
+        ]
+        assert len(hits) == 1
+        matched.add(hits[0])
+    assert matched == set(range(6))  # none counted twice, none missed
+
+
+def test_each_mode_is_classified_as_analyze_classifies_it(six: dict) -> None:
+    argv = ["analyze", str(SIX), "--format", "json"]
+    for k, m in enumerate(six["modes"], 1):
+        for name, values in m["joints_text"].items():
+            argv += ["--set", f"m{k}:{name}={values[0]}"]
+    rc, out, err = run_cli(argv)
+    assert rc == 0, err
+    by_name = {c["name"]: c for c in json.loads(out)["configurations"]}
+    for k, m in enumerate(six["modes"], 1):
+        ref = by_name[f"m{k}"]
+        assert m["singular"] == ref["singular"]
+        assert [s["class"] for s in m["singularities"]] == [
+            s["class"] for s in ref["singularities"]
+        ]
+
+
+def test_continuation_reaches_one_marked_mode(six: dict) -> None:
+    rc, out, err = run_cli(["solve", str(SIX), "--config", "six", "--format", "json"])
+    assert rc == 0, err
+    solved = json.loads(out)["joints"]
+    marked = [m for m in six["modes"] if m["reached_by_continuation"]]
+    assert len(marked) == 1
+    for name, values in solved.items():
+        assert np.allclose(marked[0]["joints"][name], values, atol=1e-9)
+
+
+def test_distances_between_modes_are_a_metric(six: dict) -> None:
+    for key in ("joints", "pose"):
+        D = np.array(six["distances"][key])
+        assert D.shape == (6, 6)
+        assert np.allclose(np.diag(D), 0) and np.allclose(D, D.T)
+        assert (D[~np.eye(6, dtype=bool)] > 1e-6).all()  # the modes are distinct
+
+
+def test_the_document_follows_its_schema(six: dict) -> None:
+    import jsonschema
+
+    rc, out, _ = run_cli(["schema", "--modes"])
+    assert rc == 0
+    jsonschema.validate(six, json.loads(out))
+
+
+def test_fourbar_has_two_modes_the_circles_give() -> None:
+    """Crank at 30 deg (the file is in degrees): the rocker's pin C lies on the circle
+    about the crank's end B of radius |BC| and the circle about the pivot D of radius
+    |DC|; the two intersections are the two modes."""
+    rc, out, err = run_cli(["modes", str(FOURBAR), "--set", "A=30", "--format", "json"])
+    assert rc == 0, err
+    doc = json.loads(out)
+    assert doc["count"] == 2 and doc["complete"] == "proven"
+    b_ref, c_ref, d = np.array([1.0, 0]), np.array([3.0, 2]), np.array([4.0, 0])
+    b = _rot(np.pi / 6) @ b_ref
+    expected = circle_points(b, np.linalg.norm(c_ref - b_ref), d, np.linalg.norm(c_ref - d))
+    got = []
+    for m in doc["modes"]:
+        # D is between [rocker, ground]: the rocker turns by -D about the pivot
+        got.append(d + _rot(-m["joints"]["D"][0]) @ (c_ref - d))
+        assert m["certified"]
+    for e in expected:
+        assert min(np.linalg.norm(e - g) for g in got) < 1e-12
+    assert sum(m["reached_by_continuation"] for m in doc["modes"]) == 1
+
+
+def test_text_and_markdown_say_the_count_and_the_marked_mode() -> None:
+    for fmt, head in (("text", "four-bar"), ("md", "# four-bar")):
+        rc, out, err = run_cli(["modes", str(FOURBAR), "--config", "crank-30", "--format", fmt])
+        assert rc == 0, err
+        assert out.startswith(head) and "2 assembly modes (complete: proven" in out
+        assert out.count("reached by continuation") == 1
+
+
+def test_no_method_applies_exit_2_with_the_reason(tmp_path: Path) -> None:
+    rc, _, err = run_cli(["modes", str(ROOT / "examples" / "ur5.yaml"), "--set", "J1=10"])
+    assert rc == 2
+    assert "does not apply" in err and "axis is not along z" in err
+
+
+def test_no_given_value_is_refused_not_counted() -> None:
+    rc, _, err = run_cli(["modes", str(FOURBAR), "--config", "reference"])
+    assert rc == 2 and "gives no joint value" in err
