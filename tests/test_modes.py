@@ -159,3 +159,36 @@ def test_no_method_applies_exit_2_with_the_reason(tmp_path: Path) -> None:
 def test_no_given_value_is_refused_not_counted() -> None:
     rc, _, err = run_cli(["modes", str(FOURBAR), "--config", "reference"])
     assert rc == 2 and "gives no joint value" in err
+
+
+CONGRUENT = """\
+mechanism: 3rpr-congruent
+bodies: [ground, cyl1, pis1, cyl2, pis2, cyl3, pis3, platform]
+joints:
+  - {name: Rb1, type: R, between: [ground, cyl1],   axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: P1, type: P, between: [cyl1, pis1],     axis: [1, 1, 0]}
+  - {name: Rp1, type: R, between: [pis1, platform], axis: [0, 0, 1], point: [1, 1, 0]}
+  - {name: Rb2, type: R, between: [ground, cyl2],   axis: [0, 0, 1], point: [4, 0, 0]}
+  - {name: P2, type: P, between: [cyl2, pis2],     axis: [1, 1, 0]}
+  - {name: Rp2, type: R, between: [pis2, platform], axis: [0, 0, 1], point: [5, 1, 0]}
+  - {name: Rb3, type: R, between: [ground, cyl3],   axis: [0, 0, 1], point: [0, 4, 0]}
+  - {name: P3, type: P, between: [cyl3, pis3],     axis: [1, 1, 0]}
+  - {name: Rp3, type: R, between: [pis3, platform], axis: [0, 0, 1], point: [1, 5, 0]}
+inputs: [P1, P2, P3]
+output: {body: platform}
+configurations:
+  equal: {P1: 0, P2: 0, P3: 0}
+"""
+
+
+def test_a_curve_of_closed_configurations_gets_no_count(tmp_path: Path) -> None:
+    """Platform congruent to the base with three parallel legs of equal length: the
+    platform translates on a circle without turning (a parallelogram in each pair of
+    legs), so there is no finite set of modes and no count."""
+    path = tmp_path / "congruent.yaml"
+    path.write_text(CONGRUENT)
+    rc, out, err = run_cli(["modes", str(path), "--config", "equal", "--format", "json"])
+    assert rc == 0, err
+    doc = json.loads(out)
+    assert doc["count"] is None and doc["complete"] == "infinite" and doc["modes"] == []
+    assert any("curve" in n for n in doc["notes"])

@@ -102,23 +102,79 @@ def eliminate_planar(system: PlanarSystem, dps: int) -> Eliminated:
         proven = proven_roots
         if not proven_roots:
             notes.append("a real root of the norm could be neither certified nor excluded")
+        tiny = mpmath.mpf(10) ** (-dps // 2)
+        degenerate = []  # angles where Cramer's rule has 0/0: solved apart
         if Dt != 0 and sympy.sympify(Dt).has(T):
             for tr in _certified_real_roots(Dt, dps)[0]:
-                dx = _value(_in_t(Dx, r), tr)
-                dy = _value(_in_t(Dy, r), tr)
-                if abs(dx) < mpmath.mpf(10) ** (-dps // 2) and abs(dy) < mpmath.mpf(10) ** (
-                    -dps // 2
-                ):
-                    proven = False
-                    notes.append("Cramer's rule degenerates at a possible solution")
+                if abs(_value(_in_t(Dx, r), tr)) < tiny and abs(_value(_in_t(Dy, r), tr)) < tiny:
+                    degenerate.append(tr)
         poses = []
         theta0 = 2 * mpmath.atan(mpmath.mpf(r.p) / r.q)
         for tr in roots:
             theta = theta0 + 2 * mpmath.atan(tr)
             c, s = mpmath.cos(theta), mpmath.sin(theta)
             d = _at(D, c, s)
-            poses.append((c, s, _at(Dx, c, s) / d, _at(Dy, c, s) / d))
+            if abs(d) >= tiny:
+                poses.append((c, s, _at(Dx, c, s) / d, _at(Dy, c, s) / d))
+        for tr in degenerate:
+            proven = False
+            notes.append("Cramer's rule degenerates at a platform angle; solved there numerically")
+            theta = theta0 + 2 * mpmath.atan(tr)
+            extra = _degenerate_poses(lins, base, mpmath.cos(theta), mpmath.sin(theta), tiny)
+            if extra is None:
+                return Eliminated(
+                    False,
+                    (),
+                    True,
+                    sympy.Poly(Ft, T).degree(),
+                    r,
+                    (
+                        f"the closed configurations form a curve at the platform angle "
+                        f"{mpmath.nstr(theta, 12)} rad",
+                    ),
+                )
+            poses.extend(extra)
     return Eliminated(True, tuple(poses), proven, sympy.Poly(Ft, T).degree(), r, tuple(notes))
+
+
+def _degenerate_poses(
+    lins: list[sympy.Expr], base: sympy.Expr, c: Any, s: Any, tiny: Any
+) -> list[tuple[Any, Any, Any, Any]] | None:
+    """The poses at a platform angle where both linear equations are dependent: the
+    line they leave (rank 1) met with the third equation, or None when they vanish and
+    the third leaves a curve (a circle of positive radius or a line)."""
+    rows = [
+        [_at(sympy.expand(e).coeff(v), c, s) for v in (X, Y)]
+        + [_at(sympy.expand(e).subs({X: 0, Y: 0}), c, s)]
+        for e in lins
+    ]
+    row = max(rows, key=lambda w: abs(w[0]) + abs(w[1]))
+    b3 = sympy.Poly(sympy.expand(base), X, Y)
+    q = {m: _at(k, c, s) for m, k in b3.terms()}
+    if abs(row[0]) + abs(row[1]) < tiny:
+        if any(abs(w[2]) >= tiny for w in rows):
+            return []  # 0 = non-zero: no pose at this angle
+        quad = q.get((2, 0), 0)
+        if quad == 0:
+            return None  # a line of positions
+        gx, gy, h = q.get((1, 0), 0) / quad, q.get((0, 1), 0) / quad, q.get((0, 0), 0) / quad
+        return None if (gx**2 + gy**2) / 4 - h > tiny else []
+    a, b, e = row
+    n2 = a * a + b * b
+    p0 = (-e * a / n2, -e * b / n2)
+    u = (-b, a)
+
+    def at(lam: Any) -> Any:
+        x, y = p0[0] + lam * u[0], p0[1] + lam * u[1]
+        return sum(k * x**i * y**j for (i, j), k in q.items())
+
+    c0, c1, c2 = at(0), (at(1) - at(-1)) / 2, (at(1) + at(-1)) / 2 - at(0)
+    lams = [-c0 / c1] if abs(c2) < tiny and abs(c1) >= tiny else []
+    if abs(c2) >= tiny:
+        disc = c1 * c1 - 4 * c2 * c0
+        if disc >= 0:
+            lams = [(-c1 + sgn * mpmath.sqrt(disc)) / (2 * c2) for sgn in (1, -1)]
+    return [(c, s, p0[0] + lam * u[0], p0[1] + lam * u[1]) for lam in lams]
 
 
 @contextlib.contextmanager
