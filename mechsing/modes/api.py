@@ -160,9 +160,6 @@ def modes(
     UserError
         No built-in formulation applies (the message names the reason and the extra).
     """
-    from mechsing.modes.certify import krawczyk
-    from mechsing.modes.exact import eliminate_planar
-    from mechsing.modes.planar import C, S, X, Y, joint_values, planar_system
     from mechsing.reader import read_mechanism
     from mechsing.timelimit import TimeLimit
 
@@ -182,23 +179,62 @@ def modes(
     given = _given(mech, config)
     with TimeLimit(time_limit), mpmath.workdps(dps):
         try:
-            system = planar_system(mech, given)
-            found = eliminate_planar(system, dps)
-        except FormulationError as exc:
-            raise UserError(
-                f"{mech.path or mech.name}: configuration {config!r}: the built-in exact "
-                f"method does not apply ({exc}); the homotopy-continuation engine is not "
-                f"built into this version either ({EXTRA} installs Bertini 2 for a later one)"
-            ) from None
-        theta = sympy.Symbol("theta", real=True)
-        square = [e.subs({C: sympy.cos(theta), S: sympy.sin(theta)}) for e in system.equations]
-        rows = []
-        for c, s, x, y in found.poses:
-            coords = joint_values(mech, system, given, (c, s, x, y))
-            ok = krawczyk(
-                square, [X, Y, theta], [x, y, mpmath.atan2(s, c)], mpmath.mpf(MODE_CERTIFY_RADIUS)
-            )
-            rows.append((coords, ok))
+            found = _planar(mech, given, dps)
+        except FormulationError as planar_reason:
+            try:
+                found = _spatial(mech, given, dps)
+            except FormulationError as spatial_reason:
+                raise UserError(
+                    f"{mech.path or mech.name}: configuration {config!r}: no method applies "
+                    f"(the planar exact method does not apply: {planar_reason}; the spatial "
+                    f"platform in Study coordinates does not apply: {spatial_reason})"
+                ) from None
+    if found.count is None:
+        return ModesResult(
+            mech.name,
+            config,
+            {"mode": str(prec)},
+            None,
+            "infinite",
+            found.formulation,
+            found.paths,
+            (),
+            {"joints": [], "pose": []},
+            found.notes,
+        )
+    return _result(mech, config, prec, found, dps)
+
+
+@dataclass(frozen=True)
+class _Found:
+    """What a formulation and its method found: the formulation's JSON, the modes' joint
+    coordinates with their certification, what the count claims, the paths' account."""
+
+    formulation: dict[str, Any]
+    rows: list[tuple[list[Any], bool]]
+    count: int | None
+    complete: str
+    paths: dict[str, Any] | None
+    notes: tuple[str, ...]
+    equivalent: int = 1
+
+
+def _planar(mech: Mechanism, given: dict, dps: int) -> _Found:
+    from mechsing.modes.certify import krawczyk
+    from mechsing.modes.exact import eliminate_planar
+    from mechsing.modes.planar import C, S, X, Y, joint_values, planar_system
+
+    system = planar_system(mech, given)
+    found = eliminate_planar(system, dps)
+    theta = sympy.Symbol("theta", real=True)
+    square = [e.subs({C: sympy.cos(theta), S: sympy.sin(theta)}) for e in system.equations]
+    rows = []
+    for c, s, x, y in found.poses:
+        coords = joint_values(mech, system, given, (c, s, x, y))
+        ok = krawczyk(
+            square, [X, Y, theta], [x, y, mpmath.atan2(s, c)], mpmath.mpf(MODE_CERTIFY_RADIUS)
+        )
+        rows.append((coords, ok))
     formulation = {
         "name": "planar platform pose",
         "method": "exact elimination",
@@ -209,19 +245,55 @@ def modes(
         "offset": str(2 * sympy.atan(found.offset)),
     }
     if not found.finite:
-        return ModesResult(
-            mech.name,
-            config,
-            {"mode": str(prec)},
-            None,
-            "infinite",
-            formulation,
-            None,
-            (),
-            {"joints": [], "pose": []},
-            found.notes,
-        )
-    return _result(mech, config, prec, formulation, found, rows, dps)
+        return _Found(formulation, [], None, "infinite", None, found.notes)
+    complete = "proven" if found.proven else "not proven"
+    return _Found(formulation, rows, len(rows), complete, None, found.notes)
+
+
+def _spatial(mech: Mechanism, given: dict, dps: int) -> _Found:
+    from mechsing.modes.certify import krawczyk
+    from mechsing.modes.spatial import (
+        GENERIC_COUNT,
+        XS,
+        YS,
+        joint_values_spatial,
+        patch_equation,
+        pose_of,
+        solve_study,
+        spatial_system,
+    )
+
+    system = spatial_system(mech, given)
+    studies, paths = solve_study(system, dps)
+    # one mode per platform pose (the Study coordinates' sign is fixed by the patch)
+    kept: list[list[Any]] = []
+    for z in studies:
+        R, t = pose_of(z)
+        if all(
+            mpmath.norm(R - pose_of(k)[0]) + mpmath.norm(t - pose_of(k)[1]) > MODE_MATCH_DISTANCE
+            for k in kept
+        ):
+            kept.append(z)
+    eqs = [*system.equations, patch_equation()]
+    rows = []
+    for z in kept:
+        ok = krawczyk(eqs, [*XS, *YS], z, mpmath.mpf(MODE_CERTIFY_RADIUS))
+        rows.append((joint_values_spatial(mech, system, given, z), ok))
+    paths["duplicates"] = len(studies) - len(kept)
+    distinct = all(ok for _, ok in rows)
+    complete = "maximal" if len(rows) == GENERIC_COUNT and distinct else "not proven"
+    formulation = {
+        "name": "Study coordinates",
+        "method": "homotopy continuation (Bertini 2), Newton refinement",
+        "platform": system.platform,
+        "unknowns": [str(v) for v in (*XS, *YS)],
+        "legs": [{"kind": "distance", "joints": list(n)} for n, *_ in system.legs],
+        "polynomial_degree": 2,
+        "bezout": 2**7,
+        "generic_count": GENERIC_COUNT,
+    }
+    equivalent = 2 ** sum(1 for n, *_ in system.legs if mech.joint(n[0]).type == "U")
+    return _Found(formulation, rows, len(rows), complete, paths, (), equivalent)
 
 
 def _text(x: Any, prec: Precision) -> str:
@@ -230,21 +302,14 @@ def _text(x: Any, prec: Precision) -> str:
     return repr(float(x))
 
 
-def _result(
-    mech: Mechanism,
-    config: str,
-    prec: Precision,
-    formulation: dict[str, Any],
-    found: Any,
-    rows: list[Any],
-    dps: int,
-) -> ModesResult:
+def _result(mech: Mechanism, config: str, prec: Precision, found: _Found, dps: int) -> ModesResult:
     from mechsing.analysis import analyze_found
     from mechsing.kinematics import KinematicModel
 
     km = KinematicModel(mech, "float")
     L = float(km.length_scale)
     coords = mech.coordinates()
+    rows = found.rows
     names = {f"{config}#mode{k + 1}": q for k, (q, _ok) in enumerate(rows)}
     data = {
         n: ([mpmath.mpf(x) for x in q] if prec.mode == "mp" else [float(x) for x in q])
@@ -278,6 +343,7 @@ def _result(
                 k == reached,
                 outside,
                 None if pose is None else np.asarray(pose, dtype=float).tolist(),
+                found.equivalent,
             )
         )
     return ModesResult(
@@ -285,9 +351,9 @@ def _result(
         config,
         {"mode": str(prec), "length_scale": L, "digits": dps},
         len(result_modes),
-        "proven" if found.proven else "not proven",
-        formulation,
-        None,
+        found.complete,
+        found.formulation,
+        found.paths,
         tuple(result_modes),
         _distances(mech, [q for q, _ in rows], poses, L),
         (*found.notes, *notes),
