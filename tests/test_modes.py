@@ -192,3 +192,62 @@ def test_a_curve_of_closed_configurations_gets_no_count(tmp_path: Path) -> None:
     doc = json.loads(out)
     assert doc["count"] is None and doc["complete"] == "infinite" and doc["modes"] == []
     assert any("curve" in n for n in doc["notes"])
+
+
+DIETMAIER = ROOT / "examples" / "stewart_dietmaier.yaml"
+#: Dietmaier's published leg lengths (ARK 1998), which configuration dietmaier gives exactly
+DIETMAIER_LENGTHS = np.array([1, 0.645275, 1.086284, 1.503439, 1.281933, 0.771071])
+
+
+def test_dietmaier_has_forty_real_postures(tmp_path: Path) -> None:
+    """All 40 real postures of Dietmaier's platform by the Bertini 2 engine, in an empty
+    working directory that stays empty; each posture's platform pose (from leg 1's joint
+    values alone, by the tests' own kinematics) puts every leg at its published length to
+    1e-12 m, and the 40 poses are distinct."""
+    pytest.importorskip("bertini")
+    import yaml
+
+    from tests.reference.modes_independent import ups_platform_pose
+
+    rc, out, err = run_cli_subprocess(
+        [
+            "modes",
+            str(DIETMAIER),
+            "--config",
+            "dietmaier",
+            "--precision",
+            "float",
+            "--format",
+            "json",
+        ],
+        timeout=900,
+        cwd=tmp_path,
+    )
+    assert rc == 0, err
+    assert list(tmp_path.iterdir()) == []  # no records directory, no file
+    doc = json.loads(out)
+    assert doc["count"] == 40 and doc["complete"] == "maximal"
+    assert doc["paths"]["tracked"] == 128
+    assert all(m["certified"] for m in doc["modes"])
+    assert sum(m["reached_by_continuation"] for m in doc["modes"]) == 1
+    joints = {j["name"]: j for j in yaml.safe_load(DIETMAIER.read_text())["joints"]}
+    base = [np.array(joints[f"U{i}"]["point"], float) for i in range(1, 7)]
+    plat = [np.array(joints[f"S{i}"]["point"], float) for i in range(1, 7)]
+    poses = []
+    for m in doc["modes"]:
+        q = m["joints"]
+        R, t = ups_platform_pose(
+            joints["U1"]["axes"],
+            np.array(joints["P1"]["axis"], float),
+            q["P1"][0],
+            np.array(q["S1"]),
+            base[0],
+            plat[0],
+            tuple(q["U1"]),
+        )
+        lengths = [np.linalg.norm(R @ plat[i] + t - base[i]) for i in range(6)]
+        assert np.allclose(lengths, DIETMAIER_LENGTHS, atol=1e-12, rtol=0)
+        poses.append(np.concatenate([R.ravel(), t]))
+    P = np.array(poses)
+    gaps = np.linalg.norm(P[:, None] - P[None], axis=2) + np.eye(40)
+    assert gaps.min() > 1e-6

@@ -76,3 +76,34 @@ def circle_points(c1: np.ndarray, r1: float, c2: np.ndarray, r2: float) -> list[
     n = np.array([-e[1], e[0]])
     base = c1 + a * e
     return [base + np.sqrt(h2) * n, base - np.sqrt(h2) * n]
+
+
+def rotation(axis: np.ndarray, angle: float) -> np.ndarray:
+    """Rodrigues' rotation about the unit ``axis``."""
+    x, y, z = np.asarray(axis, float) / np.linalg.norm(axis)
+    K = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])
+    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+
+
+def ups_platform_pose(
+    u_axes: tuple,
+    slide_axis: np.ndarray,
+    slide: float,
+    s_vector: np.ndarray,
+    base: np.ndarray,
+    platform_ref: np.ndarray,
+    u_angles: tuple,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The platform's pose (R, t) that one U-P-S leg's joint values give (spatial product
+    of exponentials, every axis at the reference in the ground frame): the U turns about
+    its first then its second axis through the base point, the P slides along its axis,
+    the S turns by its rotation vector about the platform point."""
+    Rc = rotation(u_axes[0], u_angles[0]) @ rotation(u_axes[1], u_angles[1])
+    angle = float(np.linalg.norm(s_vector))
+    Rs = np.eye(3) if angle == 0 else rotation(s_vector / angle, angle)
+    R = Rc @ Rs
+    # the platform point: the U about base, then the slide
+    point_now = base + Rc @ (
+        platform_ref - base + slide * np.asarray(slide_axis) / np.linalg.norm(slide_axis)
+    )
+    return R, point_now - R @ platform_ref
