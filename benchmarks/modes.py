@@ -5,7 +5,7 @@
   and classification) against Bertini 2 on the same three pose equations in (x, y, c, s)
   with c^2 + s^2 = 1.
 * Dietmaier's platform (examples/stewart_dietmaier.yaml, configuration dietmaier):
-  ``mechsing.modes.modes`` against ``bertini.solve`` on the same Study-coordinate system
+  ``mechsing.assembly.modes`` against ``bertini.solve`` on the same Study-coordinate system
   (recording off in both), with the share of paths that fail or go to infinity.
 
 Times are CPU seconds of this process (the machine is shared).  Run from the repository
@@ -33,10 +33,10 @@ def rpr() -> None:
     import sympy
 
     from mechsing import load
-    from mechsing.modes import modes
-    from mechsing.modes.api import _given
-    from mechsing.modes.exact import eliminate_planar
-    from mechsing.modes.planar import C, S, planar_system
+    from mechsing.assembly import modes
+    from mechsing.assembly.api import _given
+    from mechsing.assembly.exact import eliminate_planar
+    from mechsing.assembly.planar import C, S, planar_system
 
     mech = load(ROOT / "examples" / "planar_3rpr_six.yaml")
     given = _given(mech, "six")
@@ -68,9 +68,9 @@ def dietmaier() -> None:
     import bertini
 
     from mechsing import load
-    from mechsing.modes import modes
-    from mechsing.modes.api import _given
-    from mechsing.modes.spatial import _bertini_text, patch_equation, spatial_system
+    from mechsing.assembly import modes
+    from mechsing.assembly.api import _given
+    from mechsing.assembly.spatial import _bertini_text, patch_equation, spatial_system
 
     mech = load(ROOT / "examples" / "stewart_dietmaier.yaml")
     system = spatial_system(mech, _given(mech, "dietmaier"))

@@ -38,11 +38,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from mechsing.adhoc import set_start
+    from mechsing.assembly import modes
+    from mechsing.assembly.render import render_modes
     from mechsing.cli import NOT_ANALYSED, UserError, load_mechanism
     from mechsing.cli.options import apply_set, check_shared
     from mechsing.files import check_output, write_output
-    from mechsing.modes import modes
-    from mechsing.modes.render import render_modes
 
     check_shared(args)
     if args.output:

@@ -40,7 +40,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     if getattr(args, "modes", False):
-        from mechsing.modes.schema import modes_schema
+        from mechsing.assembly.schema import modes_schema
 
         schema = modes_schema()
     elif getattr(args, "condition", False):

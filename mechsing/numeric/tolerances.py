@@ -299,7 +299,7 @@ EXACT_FIELD_MAX_DEGREE = 32
 #: at most this times ``max(1, |key's value|)``; a key's question may set its own ``tol``
 EXERCISE_FORMULA_RTOL = 1e-9
 
-# -- every assembly mode (mechsing.modes) -------------------------------------------
+# -- every assembly mode (mechsing.assembly) -------------------------------------------
 #: the half-width of the box (m, rad: the formulation's unknowns) in which the Krawczyk
 #: test proves each mode's one true solution; the modes are found to 50 digits or more
 MODE_CERTIFY_RADIUS = 1e-30

@@ -23,8 +23,8 @@ from typing import Any
 import mpmath
 import sympy
 
+from mechsing.assembly.planar import OFFSETS, C, PlanarSystem, S, X, Y
 from mechsing.errors import FormulationError
-from mechsing.modes.planar import OFFSETS, C, PlanarSystem, S, X, Y
 
 __all__ = ["Eliminated", "eliminate_planar", "interval_digits"]
 

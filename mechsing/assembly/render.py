@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import json
 
-from mechsing.modes.api import ModesResult
+from mechsing.assembly.api import ModesResult
 
 __all__ = ["render_modes"]
 

@@ -220,9 +220,9 @@ class _Found:
 
 
 def _planar(mech: Mechanism, given: dict, dps: int) -> _Found:
-    from mechsing.modes.certify import krawczyk
-    from mechsing.modes.exact import eliminate_planar
-    from mechsing.modes.planar import C, S, X, Y, joint_values, planar_system
+    from mechsing.assembly.certify import krawczyk
+    from mechsing.assembly.exact import eliminate_planar
+    from mechsing.assembly.planar import C, S, X, Y, joint_values, planar_system
 
     system = planar_system(mech, given)
     found = eliminate_planar(system, dps)
@@ -251,8 +251,8 @@ def _planar(mech: Mechanism, given: dict, dps: int) -> _Found:
 
 
 def _spatial(mech: Mechanism, given: dict, dps: int) -> _Found:
-    from mechsing.modes.certify import krawczyk
-    from mechsing.modes.spatial import (
+    from mechsing.assembly.certify import krawczyk
+    from mechsing.assembly.spatial import (
         GENERIC_COUNT,
         XS,
         YS,
