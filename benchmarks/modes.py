@@ -4,7 +4,8 @@
   (elimination and certified isolation alone, then the whole command with certification
   and classification) against Bertini 2 on the same three pose equations in (x, y, c, s)
   with c^2 + s^2 = 1.
-* Dietmaier's platform (examples/stewart_dietmaier.yaml, configuration dietmaier):
+* Dietmaier's platform (examples/stewart_dietmaier.yaml, the slides set to the published
+  leg lengths):
   ``mechsing.assembly.modes`` against ``bertini.solve`` on the same Study-coordinate system
   (recording off in both), with the share of paths that fail or go to infinity.
 
@@ -18,8 +19,11 @@ import time
 from pathlib import Path
 
 import mpmath
+import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
+#: Dietmaier's published leg lengths (ARK 1998)
+DIETMAIER_LENGTHS = (1, 0.645275, 1.086284, 1.503439, 1.281933, 0.771071)
 
 
 def _cpu(f):
@@ -68,11 +72,20 @@ def dietmaier() -> None:
     import bertini
 
     from mechsing import load
+    from mechsing.adhoc import with_set_values
     from mechsing.assembly import modes
     from mechsing.assembly.api import _given
     from mechsing.assembly.spatial import _bertini_text, patch_equation, spatial_system
 
     mech = load(ROOT / "examples" / "stewart_dietmaier.yaml")
+    sets = []
+    for i, length in enumerate(DIETMAIER_LENGTHS, 1):  # the slides giving the published lengths
+        a = np.array(mech.joint(f"U{i}").params["point"], float)
+        b = np.array(mech.joint(f"S{i}").params["point"], float)
+        u = np.array(mech.joint(f"P{i}").params["axis"], float)
+        d = b - a
+        sets.append(f"dietmaier:P{i}={float(-d @ u + np.sqrt((d @ u) ** 2 - d @ d + length**2))!r}")
+    mech = with_set_values(mech, sets, None, "stewart_dietmaier.yaml")
     system = spatial_system(mech, _given(mech, "dietmaier"))
     text = _bertini_text([*system.equations, patch_equation()])
     was = bertini.recording()

@@ -195,7 +195,7 @@ def test_a_curve_of_closed_configurations_gets_no_count(tmp_path: Path) -> None:
 
 
 DIETMAIER = ROOT / "examples" / "stewart_dietmaier.yaml"
-#: Dietmaier's published leg lengths (ARK 1998), which configuration dietmaier gives exactly
+#: Dietmaier's published leg lengths (ARK 1998), which the --set slides give
 DIETMAIER_LENGTHS = np.array([1, 0.645275, 1.086284, 1.503439, 1.281933, 0.771071])
 
 
@@ -209,12 +209,21 @@ def test_dietmaier_has_forty_real_postures(tmp_path: Path) -> None:
 
     from tests.reference.modes_independent import ups_platform_pose
 
+    joints = {j["name"]: j for j in yaml.safe_load(DIETMAIER.read_text())["joints"]}
+    base = [np.array(joints[f"U{i}"]["point"], float) for i in range(1, 7)]
+    plat = [np.array(joints[f"S{i}"]["point"], float) for i in range(1, 7)]
+    sets = []
+    for i in range(6):  # the slide that makes leg i as long as published
+        u = np.array(joints[f"P{i + 1}"]["axis"], float)
+        u /= np.linalg.norm(u)
+        d = plat[i] - base[i]
+        q = -d @ u + np.sqrt((d @ u) ** 2 - d @ d + DIETMAIER_LENGTHS[i] ** 2)
+        sets += ["--set", f"dietmaier:P{i + 1}={float(q)!r}"]
     rc, out, err = run_cli_subprocess(
         [
             "modes",
             str(DIETMAIER),
-            "--config",
-            "dietmaier",
+            *sets,
             "--precision",
             "float",
             "--format",
@@ -230,9 +239,6 @@ def test_dietmaier_has_forty_real_postures(tmp_path: Path) -> None:
     assert doc["paths"]["tracked"] == 128
     assert all(m["certified"] for m in doc["modes"])
     assert sum(m["reached_by_continuation"] for m in doc["modes"]) == 1
-    joints = {j["name"]: j for j in yaml.safe_load(DIETMAIER.read_text())["joints"]}
-    base = [np.array(joints[f"U{i}"]["point"], float) for i in range(1, 7)]
-    plat = [np.array(joints[f"S{i}"]["point"], float) for i in range(1, 7)]
     poses = []
     for m in doc["modes"]:
         q = m["joints"]

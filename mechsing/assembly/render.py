@@ -28,10 +28,14 @@ def _heading(res: ModesResult) -> str:
             f"{res.mechanism}, configuration {res.configuration}: the closed configurations "
             "with these values form a curve, not a finite set of modes (no count)"
         )
+    how = (
+        f"{f['method']} in {f['name']}: {res.paths['tracked']} paths, {res.paths['finite']} finite"
+        if res.paths
+        else f"{f['method']} in the {f['name']}, a polynomial of degree {f['polynomial_degree']}"
+    )
     return (
         f"{res.mechanism}, configuration {res.configuration}: {res.count} assembly "
-        f"mode{'s' if res.count != 1 else ''} (complete: {res.complete}; {f['method']} "
-        f"in the {f['name']}, a polynomial of degree {f['polynomial_degree']})"
+        f"mode{'s' if res.count != 1 else ''} (complete: {res.complete}; {how})"
     )
 
 
@@ -51,6 +55,8 @@ def render_modes(res: ModesResult, fmt: str) -> str:
         cert = (
             f"certified (radius {m['certified_radius']:.0e})" if m["certified"] else "not certified"
         )
+        if m["equivalent_solutions"] > 1:
+            marks.append(f"stands for {m['equivalent_solutions']} joint solutions")
         head = f"mode {k}: {_verdict(m)}, {cert}" + (f" [{'; '.join(marks)}]" if marks else "")
         lines.append(("## " if md else "") + head)
         if md:
