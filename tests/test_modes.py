@@ -257,3 +257,30 @@ def test_dietmaier_has_forty_real_postures(tmp_path: Path) -> None:
     P = np.array(poses)
     gaps = np.linalg.norm(P[:, None] - P[None], axis=2) + np.eye(40)
     assert gaps.min() > 1e-6
+
+
+def test_mp_digits_and_no_runtime_warning() -> None:
+    """At mp:30 every joint value is given to 30 digits, and they agree with the float
+    run; no numpy RuntimeWarning is raised on the way."""
+    from tests.cli import runtime_warnings
+
+    argv = ["modes", str(FOURBAR), "--config", "crank-30", "--format", "json"]
+    assert runtime_warnings([*argv, "--precision", "mp:30"]) == []
+    rc, out, err = run_cli([*argv, "--precision", "mp:30"])
+    assert rc == 0, err
+    mp = json.loads(out)
+    flt = json.loads(run_cli(argv)[1])
+    for a, b in zip(mp["modes"], flt["modes"], strict=True):
+        for name, texts in a["joints_text"].items():
+            assert len(texts[0].lstrip("-").replace(".", "").lstrip("0")) >= 30
+            assert abs(float(texts[0]) - b["joints"][name][0]) < 1e-14
+
+
+def test_a_platform_without_the_extra_names_it(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without Bertini 2 installed, a spatial platform exits 2 naming the extra."""
+    import sys
+
+    monkeypatch.setitem(sys.modules, "bertini", None)  # import bertini raises ImportError
+    argv = ["modes", str(DIETMAIER)] + [f"--set=P{i}=0" for i in range(1, 7)]
+    rc, _, err = run_cli(argv)
+    assert rc == 2 and "mechsing[modes]" in err and "GPL-3.0-or-later" in err
