@@ -284,3 +284,17 @@ def test_a_platform_without_the_extra_names_it(monkeypatch: pytest.MonkeyPatch) 
     argv = ["modes", str(DIETMAIER)] + [f"--set=P{i}=0" for i in range(1, 7)]
     rc, _, err = run_cli(argv)
     assert rc == 2 and "mechsing[modes]" in err and "GPL-3.0-or-later" in err
+
+
+def test_modes_outside_the_limits_are_flagged(tmp_path: Path) -> None:
+    """The four-bar with its rocker's joint D limited to [-45, 45] deg: at crank 30 deg,
+    mode 1 has D = 5.7 deg (inside) and mode 2 D = -114.5 deg (outside): only mode 2 is
+    flagged, and only for D."""
+    text = FOURBAR.read_text().replace("inputs: [A]", "inputs: [A]\nlimits: {D: [-45, 45]}")
+    path = tmp_path / "limited.yaml"
+    path.write_text(text)
+    rc, out, err = run_cli(["modes", str(path), "--config", "crank-30", "--format", "json"])
+    assert rc == 0, err
+    flagged = [m["outside_limits"] for m in json.loads(out)["modes"]]
+    inside = [abs(np.degrees(m["joints"]["D"][0])) <= 45 for m in json.loads(out)["modes"]]
+    assert flagged == [[] if ok else ["D"] for ok in inside] and inside.count(False) == 1
