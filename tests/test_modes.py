@@ -298,3 +298,28 @@ def test_modes_outside_the_limits_are_flagged(tmp_path: Path) -> None:
     flagged = [m["outside_limits"] for m in json.loads(out)["modes"]]
     inside = [abs(np.degrees(m["joints"]["D"][0])) <= 45 for m in json.loads(out)["modes"]]
     assert flagged == [[] if ok else ["D"] for ok in inside] and inside.count(False) == 1
+
+
+def test_a_type_ii_configuration_is_one_singular_uncertified_mode() -> None:
+    """planar_3rpr.yaml's configuration concurrent (every joint given: the modes share its
+    inputs) has its three leg lines through one point: two assembly modes merge there (a
+    double root, kept once), analyze calls it an output (type II) singularity, and no
+    Krawczyk test can prove a double root: certified is false, honestly."""
+    rc, out, err = run_cli(
+        [
+            "modes",
+            str(ROOT / "examples" / "planar_3rpr.yaml"),
+            "--config",
+            "concurrent",
+            "--format",
+            "json",
+        ]
+    )
+    assert rc == 0, err
+    doc = json.loads(out)
+    merged = [m for m in doc["modes"] if m["reached_by_continuation"]]
+    assert len(merged) == 1 and merged[0]["singular"] and not merged[0]["certified"]
+    assert "output" in [s["class"] for s in merged[0]["singularities"]]
+    # the leg lines meet at c = (1, 1): leg 1, along (9/10, 3/10) at the reference (angle
+    # atan(1/3)), is turned by Rb1 onto the line from A1 = (0, 0) through c (angle pi/4)
+    assert np.isclose(np.arctan(1 / 3) + merged[0]["joints"]["Rb1"][0], np.pi / 4, atol=1e-12)

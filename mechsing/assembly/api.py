@@ -121,6 +121,10 @@ def _given(mech: Mechanism, config: str) -> dict[str, tuple[Any, ...]]:
         out[name] = tuple(
             sympy.nsimplify(x) if isinstance(x, float) else sympy.sympify(x) for x in v
         )
+    inputs = {ref.joint for ref in mech.inputs}
+    if inputs and inputs <= set(out) and set(out) - inputs:
+        # every value given: the modes share the inputs' values (the rest is one of them)
+        out = {name: v for name, v in out.items() if name in inputs}
     if not out:
         raise UserError(
             f"{where}configuration {config!r} gives no joint value: the closed configurations form "

@@ -230,6 +230,11 @@ def _certified_real_roots(F: sympy.Expr, dps: int) -> tuple[list[Any], bool]:
     P = sympy.Poly(F, T)
     irrational = [c for c in set(P.coeffs()) if not c.is_Rational]
     if irrational:
+        # square-free over the coefficients' field: a double root (two modes merging at a
+        # singular configuration) stays a simple root that interval Newton can prove
+        P = sympy.Poly(sympy.Poly(F, T, extension=True).sqf_part().as_expr(), T)
+        irrational = [c for c in set(P.coeffs()) if not c.is_Rational]
+    if irrational:
         a = sympy.Dummy("a")
         _, combo = sympy.primitive_element(irrational, a)
         theta = sum((k * c for k, c in zip(combo, irrational, strict=True)), sympy.S.Zero)
