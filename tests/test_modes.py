@@ -323,3 +323,18 @@ def test_a_type_ii_configuration_is_one_singular_uncertified_mode() -> None:
     # the leg lines meet at c = (1, 1): leg 1, along (9/10, 3/10) at the reference (angle
     # atan(1/3)), is turned by Rb1 onto the line from A1 = (0, 0) through c (angle pi/4)
     assert np.isclose(np.arctan(1 / 3) + merged[0]["joints"]["Rb1"][0], np.pi / 4, atol=1e-12)
+
+
+def test_the_report_has_a_section_with_every_mode_sketched(tmp_path: Path) -> None:
+    out = tmp_path / "review.md"
+    rc, _, err = run_cli(
+        ["report", str(FOURBAR), "--config", "crank-30", "--modes", "crank-30", "-o", str(out)]
+    )
+    assert rc == 0, err
+    text = out.read_text()
+    section = text.split("## Assembly modes", 1)[1]
+    assert "2 assembly modes (complete: proven" in section
+    assert section.count("### Mode ") == 2
+    for k in (1, 2):
+        assert (tmp_path / "review_files" / f"mode-crank-30-{k}.svg").is_file()
+    assert section.count("continuation from the configuration's start reaches") == 1

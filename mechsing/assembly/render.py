@@ -9,7 +9,7 @@ import json
 
 from mechsing.assembly.api import ModesResult
 
-__all__ = ["render_modes"]
+__all__ = ["modes_heading", "render_modes"]
 
 
 def _verdict(m: dict) -> str:
@@ -21,7 +21,7 @@ def _verdict(m: dict) -> str:
     return "singular: " + ", ".join(classes)
 
 
-def _heading(res: ModesResult) -> str:
+def modes_heading(res: ModesResult) -> str:
     f = res.formulation
     if res.count is None:
         return (
@@ -45,7 +45,7 @@ def render_modes(res: ModesResult, fmt: str) -> str:
     if fmt == "json":
         return json.dumps(doc, indent=2) + "\n"
     md = fmt == "md"
-    lines = [("# " if md else "") + _heading(res), ""]
+    lines = [("# " if md else "") + modes_heading(res), ""]
     for k, m in enumerate(doc["modes"], 1):
         marks = []
         if m["reached_by_continuation"]:

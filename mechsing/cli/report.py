@@ -55,6 +55,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     )
     options.add_time_limit_option(p)
     options.add_verbose_option(p)
+    p.add_argument(
+        "--modes",
+        dest="modes_of",
+        metavar="NAME",
+        help="add a section with every assembly mode of configuration NAME (as `mechsing modes`)",
+    )
 
 
 def output_path(file: str, out: str | None) -> tuple[Path, str]:
@@ -109,6 +115,7 @@ def run(args: argparse.Namespace) -> int:
             start,
             command=command,
             time_limit=args.time_limit,
+            modes_of=args.modes_of,
         )
         rep.write(path, [args.file])
     print(f"mechsing: report written to {path}", file=sys.stderr)

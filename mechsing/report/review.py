@@ -67,6 +67,7 @@ class Report:
     sweep: SweepResult | None = None
     command: str = ""
     seconds: float = field(default=0.0, compare=False)
+    modes: object | None = None  # a ModesResult: the section "Assembly modes"
 
     @property
     def mechanism(self) -> Mechanism:
@@ -118,6 +119,7 @@ def report(
     *,
     command: str | None = None,
     time_limit: float | None = None,
+    modes_of: str | None = None,
 ) -> Report:
     """A design review of a mechanism (or a file), ready to write as HTML or Markdown.
 
@@ -139,6 +141,9 @@ def report(
     time_limit : float or None
         The most seconds one configuration (or located point) may take, as for
         ``mechsing.analyze``.
+    modes_of : str, optional
+        A configuration whose every assembly mode (``mechsing.modes``) the report shows
+        in a section "Assembly modes", each with a sketch.
 
     Returns
     -------
@@ -168,7 +173,12 @@ def report(
         if from_config:
             args.append(f"from_config={from_config!r}")
         command = f"mechsing.report({', '.join(args)})"
-    return Report(result, swept, command, time.perf_counter() - t0)
+    found = None
+    if modes_of is not None:
+        from mechsing.assembly import modes
+
+        found = modes(mech, modes_of, prec, time_limit=time_limit)
+    return Report(result, swept, command, time.perf_counter() - t0, found)
 
 
 # --------------------------------------------------------------------------- words
@@ -818,5 +828,9 @@ def _blocks(r: Report) -> list[doc.Block]:
     out += _configurations(r)
     if r.sweep is not None:
         out += _sweep(r)
+    if r.modes is not None:
+        from mechsing.report.modes_section import modes_blocks
+
+        out += modes_blocks(mech, r.modes, r.analysis.length_scale)
     out += _how(r)
     return out
