@@ -4,9 +4,12 @@ within the stated radius) and classified exactly as ``mechsing analyze`` classif
 with the one continuation from the configuration's start reaches marked, the distances
 between modes and the joints outside their limits.  ``complete`` says what the count
 claims: ``proven`` (exact elimination with certified real-root isolation), ``not
-proven``, or ``infinite`` (the given values leave a curve: no count).  The built-in
-method takes planar mechanisms whose unknown part is one body held by legs (a four-bar,
-a slider-crank, a 3-RPR); others exit 2 with the reason.  Exit status: 0 success, 2 bad
+proven``, ``maximal`` (the generic count, every mode certified) or ``infinite`` (the given
+values leave a curve: no count).  Planar mechanisms whose unknown part is one body held by
+legs (a four-bar, a slider-crank, a 3-RPR) are solved by built-in exact elimination;
+platforms on six U-P-S or S-P-S legs by homotopy continuation in Study coordinates, with
+the ``modes`` extra (pip install 'mechsing[modes]': Bertini 2, GPL-3.0-or-later); others
+exit 2 with the reason.  Exit status: 0 success, 2 bad
 input or no method applies, 3 a mode that could not be analysed.
 """
 
