@@ -22,7 +22,8 @@ a ``SweepResult`` with the measures at every sample, the located and classified
 singularities and a grid's loci), :func:`condition` (singularity conditions as
 factored formulas in the joint or pose variables), :func:`report` (a design-review
 document, HTML or Markdown), :func:`mechsing.analysis.solve.solve` (one configuration
-closed, every joint value to the precision's digits), :mod:`mechsing.lie`,
+closed, every joint value to the precision's digits), :func:`modes` (every assembly mode
+of a configuration, certified and classified: :mod:`mechsing.assembly`), :mod:`mechsing.lie`,
 :func:`mechsing.subgroups.identify`.
 """
 
@@ -37,6 +38,7 @@ _FUNCTIONS = {
     "analyze": ("mechsing.analysis", "analyze"),
     "condition": ("mechsing.conditions", "condition"),
     "load": ("mechsing.reader", "read_mechanism"),  # any format: YAML, JSON, DH, URDF, MJCF
+    "modes": ("mechsing.assembly", "modes"),
     "report": ("mechsing.report", "report"),
     "scan": ("mechsing.scanner", "scan"),
     "sweep": ("mechsing.sweeps", "sweep"),

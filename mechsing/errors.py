@@ -43,6 +43,7 @@ __all__ = [
     "ConfigurationError",
     "ExactDataError",
     "ExpressionError",
+    "FormulationError",
     "InputError",
     "InputRefError",
     "MechanismError",
@@ -139,6 +140,11 @@ class ParameterError(UserError):
 
 class ClosureError(ConfigurationError):
     """A configuration that cannot be closed."""
+
+
+class FormulationError(UserError):
+    """A formulation of every assembly mode (``mechsing modes``) does not apply to the
+    mechanism or its given values: the reason, which the command completes."""
 
 
 class ExactDataError(ConfigurationError):

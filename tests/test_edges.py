@@ -291,7 +291,7 @@ def test_urdf_elements_need_the_attributes_the_specification_requires(
 
 # --------------------------------------------------------------------------- item 11, 28.7
 
-COMMANDS_READING = ("analyze", "solve", "sweep", "report", "condition")
+COMMANDS_READING = ("analyze", "solve", "sweep", "report", "condition", "modes")
 
 
 def _option_help(command: str, option: str) -> str:

@@ -27,7 +27,7 @@ LAYERS: list[set[str]] = [
     {"screws"},
     {"singularity"},
     {"analysis", "scanner", "scanner_kernel", "conditions"},
-    {"sweeps", "statics"},
+    {"sweeps", "statics", "assembly"},
     {"exercises"},
     {"report"},
     {"cli", "__main__"},

@@ -111,6 +111,7 @@ def _terminated(signum: int, frame: object) -> None:
 COMMANDS = (
     "analyze",
     "solve",
+    "modes",
     "sweep",
     "report",
     "condition",

@@ -57,6 +57,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     options.add_verbose_option(p)
     options.add_load_option(p)
     options.add_max_effort_option(p)
+    p.add_argument(
+        "--modes",
+        dest="modes_of",
+        metavar="NAME",
+        help="add a section with every assembly mode of configuration NAME (as `mechsing modes`)",
+    )
 
 
 def output_path(file: str, out: str | None) -> tuple[Path, str]:
@@ -113,6 +119,7 @@ def run(args: argparse.Namespace) -> int:
             command=command,
             time_limit=args.time_limit,
             **report_load(mech, args.load, args.max_effort),
+            modes_of=args.modes_of,
         )
         rep.write(path, [args.file])
     print(f"mechsing: report written to {path}", file=sys.stderr)

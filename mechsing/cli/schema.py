@@ -27,6 +27,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="the schema of mechsing sweep's JSON document instead of the file format's",
     )
     parser.add_argument(
+        "--modes",
+        action="store_true",
+        help="the schema of mechsing modes' JSON document instead of the file format's",
+    )
+    parser.add_argument(
         "--condition",
         action="store_true",
         help="the schema of mechsing condition's JSON document instead of the file format's",
@@ -34,7 +39,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    if getattr(args, "condition", False):
+    if getattr(args, "modes", False):
+        from mechsing.assembly.schema import modes_schema
+
+        schema = modes_schema()
+    elif getattr(args, "condition", False):
         from mechsing.conditions.schema import condition_schema
 
         schema = condition_schema()

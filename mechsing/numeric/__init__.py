@@ -147,6 +147,8 @@ from mechsing.numeric.tolerances import (
     MAX_JOINT_VALUE,
     MAX_NUMBER,
     MEMBERSHIP_RTOL_FLOAT,
+    MODE_CERTIFY_RADIUS,
+    MODE_MATCH_DISTANCE,
     MP_MIN_DIGITS,
     NEAR_ZERO_VECTOR,
     NEWTON_DAMPING,
@@ -185,6 +187,8 @@ from mechsing.numeric.tolerances import (
 )
 
 __all__ = [
+    "MODE_CERTIFY_RADIUS",
+    "MODE_MATCH_DISTANCE",
     "cos_sin",
     "FieldEchelon",
     "echelon_form",

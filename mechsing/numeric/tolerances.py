@@ -358,3 +358,11 @@ EXACT_FIELD_MAX_DEGREE = 32
 #: a student's formula agrees with the key's at a random point when they differ there by
 #: at most this times ``max(1, |key's value|)``; a key's question may set its own ``tol``
 EXERCISE_FORMULA_RTOL = 1e-9
+
+# -- every assembly mode (mechsing.assembly) -------------------------------------------
+#: the half-width of the box (m, rad: the formulation's unknowns) in which the Krawczyk
+#: test proves each mode's one true solution; the modes are found to 50 digits or more
+MODE_CERTIFY_RADIUS = 1e-30
+#: the mode that continuation reaches is the one within this commensurate distance
+#: (angles in rad, lengths over L) of continuation's float closure (closed to 1e-12 L)
+MODE_MATCH_DISTANCE = 1e-8

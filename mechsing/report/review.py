@@ -58,6 +58,7 @@ class Report:
     sweep: SweepResult | None = None
     command: str = ""
     seconds: float = field(default=0.0, compare=False)
+    modes: object | None = None  # a ModesResult: the section "Assembly modes"
 
     @property
     def mechanism(self) -> Mechanism:
@@ -111,6 +112,7 @@ def report(
     time_limit: float | None = None,
     load: Any = None,
     max_effort: dict[str, float] | None = None,
+    modes_of: str | None = None,
 ) -> Report:
     """A design review of a mechanism (or a file), ready to write as HTML or Markdown.
 
@@ -135,6 +137,9 @@ def report(
     load, max_effort : Load, dict, optional
         A load on the output replacing the file's (:class:`mechsing.model.loads.Load`)
         and effort limits by input: the kinetostatics section (docs/kinetostatics.md).
+    modes_of : str, optional
+        A configuration whose every assembly mode (``mechsing.modes``) the report shows
+        in a section "Assembly modes", each with a sketch.
 
     Returns
     -------
@@ -167,7 +172,12 @@ def report(
         if from_config:
             args.append(f"from_config={from_config!r}")
         command = f"mechsing.report({', '.join(args)})"
-    return Report(result, swept, command, time.perf_counter() - t0)
+    found = None
+    if modes_of is not None:
+        from mechsing.assembly import modes
+
+        found = modes(mech, modes_of, prec, time_limit=time_limit)
+    return Report(result, swept, command, time.perf_counter() - t0, found)
 
 
 # --------------------------------------------------------------------------- sections
@@ -264,5 +274,9 @@ def _blocks(r: Report) -> list[doc.Block]:
     if r.sweep is not None:
         out += sweep_section(r.analysis, r.sweep)
     out += kinetostatics_blocks(r)
+    if r.modes is not None:
+        from mechsing.report.modes_section import modes_blocks
+
+        out += modes_blocks(mech, r.modes, r.analysis.length_scale)
     out += _how(r)
     return out

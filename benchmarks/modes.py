@@ -1,0 +1,109 @@
+"""``mechsing modes`` against its engine run directly on the same system.
+
+* 3-RPR (examples/planar_3rpr_six.yaml, configuration six): the built-in exact method
+  (elimination and certified isolation alone, then the whole command with certification
+  and classification) against Bertini 2 on the same three pose equations in (x, y, c, s)
+  with c^2 + s^2 = 1.
+* Dietmaier's platform (examples/stewart_dietmaier.yaml, the slides set to the published
+  leg lengths):
+  ``mechsing.assembly.modes`` against ``bertini.solve`` on the same Study-coordinate system
+  (recording off in both), with the share of paths that fail or go to infinity.
+
+Times are CPU seconds of this process (the machine is shared).  Run from the repository
+root: ``OPENBLAS_NUM_THREADS=1 python benchmarks/modes.py``.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import mpmath
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+#: Dietmaier's published leg lengths (ARK 1998)
+DIETMAIER_LENGTHS = (1, 0.645275, 1.086284, 1.503439, 1.281933, 0.771071)
+
+
+def _cpu(f):
+    t0 = time.process_time()
+    out = f()
+    return time.process_time() - t0, out
+
+
+def rpr() -> None:
+    import bertini
+    import sympy
+
+    from mechsing import load
+    from mechsing.assembly import modes
+    from mechsing.assembly.api import _given
+    from mechsing.assembly.exact import eliminate_planar
+    from mechsing.assembly.planar import C, S, planar_system
+
+    mech = load(ROOT / "examples" / "planar_3rpr_six.yaml")
+    given = _given(mech, "six")
+    system = planar_system(mech, given)
+    with mpmath.workdps(50):
+        t_exact, found = _cpu(lambda: eliminate_planar(system, 50))
+    t_all, res = _cpu(lambda: modes(mech, "six", "auto"))
+    eqs = [*system.equations, C**2 + S**2 - 1]
+    text = "variable_group x,y,c,s;\nfunction " + ",".join(f"f{i}" for i in range(4)) + ";\n"
+    for i, e in enumerate(eqs):
+        text += f"f{i} = {sympy.sstr(sympy.N(sympy.expand(e), 17)).replace('**', '^')};\n"
+    was = bertini.recording()
+    bertini.recording(False)
+    try:
+        t_b, r = _cpu(lambda: bertini.solve(bertini.parse.system(text), seed=34))
+    finally:
+        bertini.recording(was)
+    real = [z for z in r.solutions if max(abs(complex(v).imag) for v in z) < 1e-8]
+    paths = r.solver.num_paths() if callable(r.solver.num_paths) else r.solver.num_paths
+    print(
+        f"3-RPR six: exact elimination + isolation {t_exact:.2f} s ({len(found.poses)} real, "
+        f"proven={found.proven}); modes (certified, classified) {t_all:.2f} s ({res.count}); "
+        f"Bertini 2 on the pose system {t_b:.2f} s ({len(r.solutions)} finite of {paths} "
+        f"paths, {len(real)} real)"
+    )
+
+
+def dietmaier() -> None:
+    import bertini
+
+    from mechsing import load
+    from mechsing.adhoc import with_set_values
+    from mechsing.assembly import modes
+    from mechsing.assembly.api import _given
+    from mechsing.assembly.spatial import _bertini_text, patch_equation, spatial_system
+
+    mech = load(ROOT / "examples" / "stewart_dietmaier.yaml")
+    sets = []
+    for i, length in enumerate(DIETMAIER_LENGTHS, 1):  # the slides giving the published lengths
+        a = np.array(mech.joint(f"U{i}").params["point"], float)
+        b = np.array(mech.joint(f"S{i}").params["point"], float)
+        u = np.array(mech.joint(f"P{i}").params["axis"], float)
+        d = b - a
+        sets.append(f"dietmaier:P{i}={float(-d @ u + np.sqrt((d @ u) ** 2 - d @ d + length**2))!r}")
+    mech = with_set_values(mech, sets, None, "stewart_dietmaier.yaml")
+    system = spatial_system(mech, _given(mech, "dietmaier"))
+    text = _bertini_text([*system.equations, patch_equation()])
+    was = bertini.recording()
+    bertini.recording(False)
+    try:
+        t_b, r = _cpu(lambda: bertini.solve(bertini.parse.system(text), seed=34))
+    finally:
+        bertini.recording(was)
+    t_m, res = _cpu(lambda: modes(mech, "dietmaier", "float"))
+    p = res.paths
+    print(
+        f"Dietmaier: bertini.solve {t_b:.1f} s ({len(r.solutions)} finite); modes (float "
+        f"classification) {t_m:.1f} s: {res.count} real, complete {res.complete}, paths "
+        f"{p['tracked']}, {p['finite']} finite, failed or at infinity {p['failed_or_infinite']} "
+        f"({100 * p['failed_or_infinite'] / p['tracked']:.0f} %)"
+    )
+
+
+if __name__ == "__main__":
+    rpr()
+    dietmaier()

@@ -1,0 +1,344 @@
+"""The planar platform-pose formulation: one body's pose ``(x, y, theta)`` from three
+scalar constraints that the legs between it and the known bodies impose.
+
+The *known* bodies are ground and those the given joint values place (a crank whose
+angle is given).  The *platform* is one unknown body; every other unknown body lies on
+a leg from a known body to the platform, and each leg is one constraint on the platform
+pose (Gosselin, Sefrioui & Richard 1992 for the 3-RPR):
+
+* a revolute joint straight to a known body: the joint's point is shared (2 equations);
+* R-R through one body (a binary link, a four-bar's rocker): a fixed distance (1);
+* R-P-R with the slide given (a 3-RPR leg): a distance ``|b - a + q u|`` (1);
+* P-R or R-P with the slide unknown (a slider-crank's slider): a point on a line (1).
+
+Distances are quadratic in ``(x, y)`` with leading term ``x^2 + y^2``: subtracting one
+from the others leaves equations linear in ``(x, y)``; two of them give ``(x, y)`` by
+Cramer's rule and the third becomes one univariate polynomial in ``t = tan((theta -
+theta0) / 2)`` (``theta0`` an offset with rational sine and cosine, chosen so that no
+solution sits at ``t = oo``).  The mechanism's joints must have axes along z (R) or in
+the xy plane (P).
+
+Owns :class:`PlanarSystem`, :func:`planar_system` and :func:`joint_values`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import mpmath
+import networkx as nx
+import sympy
+
+from mechsing.errors import FormulationError
+from mechsing.model import Mechanism
+
+__all__ = ["PlanarSystem", "joint_values", "planar_system"]
+
+
+#: tan(theta0 / 2) of the offsets tried for the platform angle (rational: theta0's sine
+#: and cosine are rational); the next is taken when a solution sits at theta0 + pi
+OFFSETS = (sympy.Rational(1, 7), sympy.Rational(-2, 9), sympy.Rational(3, 11))
+
+X, Y, C, S = sympy.symbols("x y c s", real=True)
+
+
+@dataclass(frozen=True)
+class Leg:
+    """One leg: ``kind`` (``point``, ``distance``, ``line-fixed``, ``line-moving``), its
+    joints from the known body to the platform, the known body, and its equations in
+    (x, y, c, s)."""
+
+    kind: str
+    joints: tuple[str, ...]
+    known: str
+    equations: tuple[sympy.Expr, ...]
+
+
+@dataclass(frozen=True)
+class PlanarSystem:
+    """The platform ``platform``, the known bodies' exact planar poses, the legs and the
+    equations in (x, y, c, s) (with ``c^2 + s^2 = 1``)."""
+
+    platform: str
+    known: dict[str, tuple[Any, Any, Any, Any]]  # body -> (cos, sin, px, py)
+    legs: tuple[Leg, ...]
+
+    @property
+    def equations(self) -> list[sympy.Expr]:
+        return [e for leg in self.legs for e in leg.equations]
+
+
+def _xy(v: Any) -> tuple[Any, Any]:
+    return sympy.sympify(v[0]), sympy.sympify(v[1])
+
+
+def _check_planar(mech: Mechanism) -> None:
+    for j in mech.joints:
+        if j.type == "R":
+            a = j.params["axis"]
+            if a[0] != 0 or a[1] != 0:
+                raise FormulationError(
+                    f"joint {j.name}'s axis is not along z (a planar formulation)"
+                )
+        elif j.type == "P":
+            if j.params["axis"][2] != 0:
+                raise FormulationError(f"joint {j.name}'s axis is not in the xy plane")
+        else:
+            raise FormulationError(
+                f"joint {j.name} is {j.type}; the planar formulation takes R and P"
+            )
+
+
+def _algebraic(x: Any, what: str) -> Any:
+    x = sympy.simplify(x)
+    if not (x.is_number and x.is_algebraic):
+        raise FormulationError(
+            f"{what} is {x}, not an algebraic number; exact elimination needs given angles "
+            "whose sine and cosine are algebraic (e.g. 30 deg, pi/5, 2*atan(1/3))"
+        )
+    return x
+
+
+def _compose(g: tuple, h: tuple) -> tuple:
+    """g . h for planar poses (cos, sin, px, py)."""
+    c1, s1, x1, y1 = g
+    c2, s2, x2, y2 = h
+    return (c1 * c2 - s1 * s2, s1 * c2 + c1 * s2, c1 * x2 - s1 * y2 + x1, s1 * x2 + c1 * y2 + y1)
+
+
+def _joint_motion(j: Any, q: Any) -> tuple:
+    """The planar pose exp(q e) of joint ``j`` at value ``q`` (exact)."""
+    if j.type == "P":
+        ux, uy = _xy(j.params["axis"])
+        return (sympy.S.One, sympy.S.Zero, q * ux, q * uy)
+    sign = sympy.sympify(j.params["axis"][2])
+    c = _algebraic(sympy.cos(q), f"the cosine of {j.name}'s given angle")
+    s = sign * _algebraic(sympy.sin(q), f"the sine of {j.name}'s given angle")
+    px, py = _xy(j.params["point"])
+    return (c, s, px - c * px + s * py, py - s * px - c * py)
+
+
+def _inverse(g: tuple) -> tuple:
+    c, s, x, y = g
+    return (c, -s, -(c * x + s * y), s * x - c * y)
+
+
+def _apply(g: tuple, p: tuple) -> tuple:
+    c, s, x, y = g
+    return (c * p[0] - s * p[1] + x, s * p[0] + c * p[1] + y)
+
+
+def planar_system(mech: Mechanism, given: dict[str, tuple[Any, ...]]) -> PlanarSystem:
+    """The legs' constraints on one unknown body's pose (the output body first)."""
+    _check_planar(mech)
+    G = nx.MultiGraph()
+    G.add_nodes_from(mech.bodies)
+    for j in mech.joints:
+        G.add_edge(*j.between, key=j.name)
+    known: dict[str, tuple] = {mech.ground: (sympy.S.One, sympy.S.Zero, sympy.S.Zero, sympy.S.Zero)}
+    changed = True
+    while changed:
+        changed = False
+        for j in mech.joints:
+            a, b = j.between
+            if j.name not in given or (a in known) == (b in known):
+                continue
+            m = _joint_motion(j, sympy.sympify(given[j.name][0]))
+            if a in known:
+                known[b] = tuple(sympy.simplify(v) for v in _compose(known[a], m))
+            else:
+                known[a] = tuple(sympy.simplify(v) for v in _compose(known[b], _inverse(m)))
+            changed = True
+    unknown = [b for b in mech.bodies if b not in known]
+    if not unknown:
+        raise FormulationError("the given values place every body (nothing is left to solve)")
+    candidates = sorted(
+        unknown, key=lambda b: (mech.output is None or b != mech.output.body, -G.degree(b))
+    )
+    reasons = []
+    for platform in candidates:
+        try:
+            legs = _legs(mech, G, known, platform, given)
+        except FormulationError as exc:
+            reasons.append(f"{platform}: {exc}")
+            continue
+        n = sum(len(leg.equations) for leg in legs)
+        if n == 3:
+            return PlanarSystem(platform, known, tuple(legs))
+        reasons.append(f"{platform}: its legs give {n} equations, not 3")
+    raise FormulationError(
+        "no body's pose is fixed by three leg constraints (" + "; ".join(reasons) + ")"
+    )
+
+
+def _legs(mech: Mechanism, G: nx.MultiGraph, known: dict, platform: str, given: dict) -> list[Leg]:
+    legs = []
+    for a, b, name in G.edges(keys=True):  # joints straight between a known body and the platform
+        if {a, b} & {platform} and ({a, b} - {platform}) <= set(known) and a != b:
+            j = mech.joint(name)
+            other = a if b == platform else b
+            if name in given:
+                raise FormulationError(f"joint {name} is given and joins it to a known body")
+            if j.type != "R":
+                raise FormulationError(f"joint {name} (P) joins it to a known body")
+            p = _xy(j.params["point"])
+            gk = _apply(known[other], p)
+            gp = _apply((C, S, X, Y), p)
+            legs.append(Leg("point", (name,), other, (gp[0] - gk[0], gp[1] - gk[1])))
+    rest = G.subgraph([n for n in G if n not in known and n != platform])
+    for comp in nx.connected_components(rest):
+        legs.append(_chain_leg(mech, G, known, platform, sorted(comp), given))
+    return legs
+
+
+def _chain_leg(
+    mech: Mechanism, G: nx.MultiGraph, known: dict, platform: str, comp: list[str], given: dict
+) -> Leg:
+    """The leg through the unknown bodies ``comp``: a path known - ... - platform."""
+    edges = [(a, b, k) for a, b, k in G.edges(keys=True) if a in comp or b in comp]
+    H = nx.MultiGraph()
+    H.add_edges_from(edges)
+    ends = [n for n in H if n not in comp]
+    if len(edges) != len(comp) + 1 or platform not in ends or len(ends) != 2:
+        raise FormulationError(f"bodies {', '.join(comp)} do not form one leg to it")
+    start = next(n for n in ends if n != platform)
+    path = nx.shortest_path(H, start, platform)
+    names = []
+    for u, v in zip(path, path[1:], strict=False):
+        names.append(next(iter(H.get_edge_data(u, v))))
+    joints = [mech.joint(n) for n in names]
+    types = "".join(j.type for j in joints)
+    free = [n for n in names if n not in given]
+    gk = known[start]
+    plat = (C, S, X, Y)
+    if types == "RR" and not (set(names) & set(given)):
+        a, b = (_xy(j.params["point"]) for j in joints)
+        pa, pb = _apply(gk, a), _apply(plat, b)
+        d2 = (a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2
+        eq = (pb[0] - pa[0]) ** 2 + (pb[1] - pa[1]) ** 2 - d2
+        return Leg("distance", tuple(names), start, (sympy.expand(eq),))
+    if types == "RPR" and free == [names[0], names[2]]:
+        a, b = _xy(joints[0].params["point"]), _xy(joints[2].params["point"])
+        u = _xy(joints[1].params["axis"])
+        q = sympy.sympify(given[names[1]][0])
+        # the slide is along u in the frame of the body before it on the path: q u or -q u
+        sign = 1 if joints[1].between[0] == path[1] else -1
+        w = (b[0] + sign * q * u[0] - a[0], b[1] + sign * q * u[1] - a[1])
+        pa, pb = _apply(gk, a), _apply(plat, b)
+        eq = (pb[0] - pa[0]) ** 2 + (pb[1] - pa[1]) ** 2 - sympy.simplify(w[0] ** 2 + w[1] ** 2)
+        return Leg("distance", tuple(names), start, (sympy.expand(eq),))
+    if types == "PR" and not (set(names) & set(given)):
+        u, b = _xy(joints[0].params["axis"]), _xy(joints[1].params["point"])
+        uk = _apply((gk[0], gk[1], 0, 0), u)
+        pk, pb = _apply(gk, b), _apply(plat, b)
+        eq = uk[0] * (pb[1] - pk[1]) - uk[1] * (pb[0] - pk[0])
+        return Leg("line-fixed", tuple(names), start, (sympy.expand(eq),))
+    if types == "RP" and not (set(names) & set(given)):
+        a, u = _xy(joints[0].params["point"]), _xy(joints[1].params["axis"])
+        up = _apply((C, S, 0, 0), u)
+        pk, pa = _apply(gk, a), _apply(plat, a)
+        eq = up[0] * (pk[1] - pa[1]) - up[1] * (pk[0] - pa[0])
+        return Leg("line-moving", tuple(names), start, (sympy.expand(eq),))
+    raise FormulationError(
+        f"leg {'-'.join(names)} ({types}) is not R, R-R, R-P-R (slide given), P-R or R-P"
+    )
+
+
+# -- from the platform's pose back to every joint value --------------------------------
+
+
+def _num(g: tuple) -> tuple:
+    return tuple(
+        mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) if not isinstance(v, mpmath.mpf) else v for v in g
+    )
+
+
+def _angle_of(g: tuple) -> Any:
+    return mpmath.atan2(g[1], g[0])
+
+
+def _rotation_pose(theta: Any, fixed_ref: tuple, fixed_now: tuple) -> tuple:
+    """The planar pose of rotation ``theta`` that takes ``fixed_ref`` to ``fixed_now``."""
+    c, s = mpmath.cos(theta), mpmath.sin(theta)
+    return (
+        c,
+        s,
+        fixed_now[0] - (c * fixed_ref[0] - s * fixed_ref[1]),
+        fixed_now[1] - (s * fixed_ref[0] + c * fixed_ref[1]),
+    )
+
+
+def joint_values(mech: Mechanism, system: PlanarSystem, given: dict, pose: tuple) -> list[Any]:
+    """Every joint coordinate (the mechanism's order) at the platform pose ``pose``
+    (cos, sin, x, y as mpmath numbers)."""
+    poses = {b: _num(g) for b, g in system.known.items()}
+    poses[system.platform] = pose
+    for leg in system.legs:
+        if leg.kind == "point":
+            continue
+        joints = [mech.joint(n) for n in leg.joints]
+        gk = poses[leg.known]
+        mids = _leg_bodies(mech, leg, system.platform)
+        if leg.kind == "distance" and len(joints) == 2:
+            a, b = (
+                tuple(mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(j.params["point"]))
+                for j in joints
+            )
+            pa, pb = _apply(gk, a), _apply(pose, b)
+            theta = _angle_of((pb[0] - pa[0], pb[1] - pa[1])) - mpmath.atan2(
+                b[1] - a[1], b[0] - a[0]
+            )
+            poses[mids[0]] = _rotation_pose(theta, a, pa)
+        elif leg.kind == "distance":
+            a, b = (
+                tuple(mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(j.params["point"]))
+                for j in (joints[0], joints[2])
+            )
+            u = tuple(
+                mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(joints[1].params["axis"])
+            )
+            q = mpmath.mpf(sympy.N(given[leg.joints[1]][0], mpmath.mp.dps + 5))
+            sign = 1 if joints[1].between[0] == mids[0] else -1
+            w = (b[0] + sign * q * u[0] - a[0], b[1] + sign * q * u[1] - a[1])
+            pa, pb = _apply(gk, a), _apply(pose, b)
+            theta = _angle_of((pb[0] - pa[0], pb[1] - pa[1])) - mpmath.atan2(w[1], w[0])
+            first = _rotation_pose(theta, a, pa)
+            slide = (1, 0, sign * q * u[0], sign * q * u[1])
+            poses[mids[0]] = first
+            poses[mids[1]] = _compose(first, slide)
+        elif leg.kind == "line-fixed":  # known -P- body -R- platform: the body turns with known
+            b = tuple(
+                mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(joints[1].params["point"])
+            )
+            poses[mids[0]] = _rotation_pose(_angle_of(gk), b, _apply(pose, b))
+        else:  # known -R- body -P- platform: the body turns with the platform about a
+            a = tuple(
+                mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(joints[0].params["point"])
+            )
+            poses[mids[0]] = _rotation_pose(_angle_of(pose), a, _apply(gk, a))
+    out = []
+    for name, _i in mech.coordinates():
+        if name in given:
+            out.append(mpmath.mpf(sympy.N(given[name][0], mpmath.mp.dps + 5)))
+            continue
+        j = mech.joint(name)
+        rel = _compose(_inverse(poses[j.between[0]]), poses[j.between[1]])
+        if j.type == "R":
+            out.append(_angle_of(rel) * mpmath.mpf(sympy.N(j.params["axis"][2])))
+        else:
+            u = _xy(j.params["axis"])
+            out.append(
+                rel[2] * mpmath.mpf(sympy.N(u[0], mpmath.mp.dps + 5))
+                + rel[3] * mpmath.mpf(sympy.N(u[1], mpmath.mp.dps + 5))
+            )
+    return out
+
+
+def _leg_bodies(mech: Mechanism, leg: Leg, platform: str) -> list[str]:
+    """The unknown bodies along ``leg`` from its known body to the platform."""
+    bodies, at = [], leg.known
+    for name in leg.joints[:-1]:
+        at = mech.joint(name).other(at)
+        bodies.append(at)
+    return bodies

@@ -1,0 +1,72 @@
+"""The ``modes`` document as text, Markdown or JSON.
+
+Owns :func:`render_modes`.
+"""
+
+from __future__ import annotations
+
+import json
+
+from mechsing.assembly.api import ModesResult
+
+__all__ = ["modes_heading", "render_modes"]
+
+
+def _verdict(m: dict) -> str:
+    if m["singular"] is None and not m["singularities"]:
+        return "not classified"
+    if not m["singular"]:
+        return "regular"
+    classes = sorted({s["class"] for s in m["singularities"]})
+    return "singular: " + ", ".join(classes)
+
+
+def modes_heading(res: ModesResult) -> str:
+    f = res.formulation
+    if res.count is None:
+        return (
+            f"{res.mechanism}, configuration {res.configuration}: the closed configurations "
+            "with these values form a curve, not a finite set of modes (no count)"
+        )
+    how = (
+        f"{f['method']} in {f['name']}: {res.paths['tracked']} paths, {res.paths['finite']} finite"
+        if res.paths
+        else f"{f['method']} in the {f['name']}, a polynomial of degree {f['polynomial_degree']}"
+    )
+    return (
+        f"{res.mechanism}, configuration {res.configuration}: {res.count} assembly "
+        f"mode{'s' if res.count != 1 else ''} (complete: {res.complete}; {how})"
+    )
+
+
+def render_modes(res: ModesResult, fmt: str) -> str:
+    """``res`` as ``text``, ``md`` or ``json``."""
+    doc = res.to_json()
+    if fmt == "json":
+        return json.dumps(doc, indent=2) + "\n"
+    md = fmt == "md"
+    lines = [("# " if md else "") + modes_heading(res), ""]
+    for k, m in enumerate(doc["modes"], 1):
+        marks = []
+        if m["reached_by_continuation"]:
+            marks.append("reached by continuation")
+        if m["outside_limits"]:
+            marks.append("outside the limits of " + ", ".join(m["outside_limits"]))
+        cert = (
+            f"certified (radius {m['certified_radius']:.0e})" if m["certified"] else "not certified"
+        )
+        if m["equivalent_solutions"] > 1:
+            marks.append(f"stands for {m['equivalent_solutions']} joint solutions")
+        head = f"mode {k}: {_verdict(m)}, {cert}" + (f" [{'; '.join(marks)}]" if marks else "")
+        lines.append(("## " if md else "") + head)
+        if md:
+            lines.append("")
+            lines.append("| joint | value |")
+            lines.append("|---|---|")
+        for name, vals in m["joints_text"].items():
+            shown = ", ".join(vals)
+            lines.append(f"| {name} | {shown} |" if md else f"  {name}: {shown}")
+        lines.append("")
+    for note in doc["notes"]:
+        lines.append(f"note: {note}")
+    return "\n".join(lines).rstrip() + "\n"

@@ -1,0 +1,130 @@
+"""A JSON Schema (draft 2020-12) of the modes document (``mechsing modes --format json``).
+
+Owns :func:`modes_schema`, printed by ``mechsing schema --modes``.  Every number is in SI
+units and radians.  A mode's ``analysis`` is the analysis of one configuration as
+``mechsing analyze``'s JSON gives it (its own contract, checked by the analysis tests).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+__all__ = ["MODES_SCHEMA_ID", "modes_schema"]
+
+MODES_SCHEMA_ID = "urn:mechsing:schema:modes-document"
+
+_MATRIX = {"type": "array", "items": {"type": "array", "items": {"type": "number"}}}
+
+
+def _mode() -> dict[str, Any]:
+    return {
+        "type": "object",
+        "required": [
+            "joints",
+            "joints_text",
+            "certified",
+            "certified_radius",
+            "singular",
+            "singularities",
+            "reached_by_continuation",
+            "outside_limits",
+            "equivalent_solutions",
+            "analysis",
+        ],
+        "properties": {
+            "joints": {
+                "type": "object",
+                "additionalProperties": {"type": "array", "items": {"type": "number"}},
+                "description": "every joint's values (SI, radians), as in solve's JSON",
+            },
+            "joints_text": {
+                "type": "object",
+                "additionalProperties": {"type": "array", "items": {"type": "string"}},
+                "description": "the same values as text at the precision's digits",
+            },
+            "certified": {
+                "type": "boolean",
+                "description": "a Krawczyk proof that one true solution lies within certified_radius",
+            },
+            "certified_radius": {
+                "type": "number",
+                "description": "the half-width of the proven box in the formulation's unknowns",
+            },
+            "singular": {"type": ["boolean", "null"], "description": "as analyze's"},
+            "singularities": {
+                "type": "array",
+                "items": {"type": "object"},
+                "description": "as analyze's findings",
+            },
+            "reached_by_continuation": {
+                "type": "boolean",
+                "description": "the mode continuation from the configuration's start closes at",
+            },
+            "outside_limits": {
+                "type": "array",
+                "items": {"type": "string"},
+                "description": "the joints whose value lies outside the file's limits",
+            },
+            "equivalent_solutions": {
+                "type": "integer",
+                "minimum": 1,
+                "description": "joint-space solutions this mode stands for",
+            },
+            "output_pose": {"type": ["array", "null"], "description": "the output body's 4x4 pose"},
+            "analysis": {"type": "object", "description": "analyze's JSON of this configuration"},
+        },
+    }
+
+
+def modes_schema() -> dict[str, Any]:
+    """The JSON Schema of the modes document (a JSON-serialisable dict)."""
+    return {
+        "$schema": "https://json-schema.org/draft/2020-12/schema",
+        "$id": MODES_SCHEMA_ID,
+        "title": "mechsing modes document",
+        "type": "object",
+        "required": [
+            "mechanism",
+            "configuration",
+            "precision",
+            "count",
+            "complete",
+            "formulation",
+            "paths",
+            "modes",
+            "distances",
+            "notes",
+        ],
+        "properties": {
+            "mechanism": {"type": "string"},
+            "configuration": {"type": "string"},
+            "precision": {"type": "object", "required": ["mode"]},
+            "count": {
+                "type": ["integer", "null"],
+                "minimum": 0,
+                "description": "the number of real modes; null when the set is not finite",
+            },
+            "complete": {"enum": ["proven", "maximal", "not proven", "infinite"]},
+            "formulation": {
+                "type": "object",
+                "required": ["name", "method", "unknowns", "polynomial_degree"],
+                "properties": {
+                    "name": {"type": "string"},
+                    "method": {"type": "string"},
+                    "unknowns": {"type": "array", "items": {"type": "string"}},
+                    "polynomial_degree": {"type": "integer", "minimum": 0},
+                },
+            },
+            "paths": {
+                "type": ["object", "null"],
+                "description": "homotopy paths tracked, succeeded, failed (null: exact elimination)",
+            },
+            "modes": {"type": "array", "items": _mode()},
+            "distances": {
+                "type": "object",
+                "required": ["joints", "pose"],
+                "properties": {"joints": _MATRIX, "pose": _MATRIX},
+            },
+            "notes": {"type": "array", "items": {"type": "string"}},
+        },
+    }

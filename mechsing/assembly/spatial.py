@@ -1,0 +1,305 @@
+"""Spatial platforms on distance legs (U-P-S or S-P-S with the slides given): every
+platform pose in Study coordinates, by homotopy continuation (Bertini 2, the ``modes``
+extra), refined by Newton's method at the working precision.
+
+The pose ``x -> R x + t`` is the dual quaternion ``X + eps Y`` with ``Y = t X / 2``:
+``R b = X b X* / |X|^2`` and ``t = 2 Y X* / |X|^2``.  A leg from the base point ``a`` to
+the platform point ``b`` of length ``l`` is then one quadric (M. Husty, Mech. Mach.
+Theory 31(4), 1996):
+
+    (|a|^2 + |b|^2 - l^2) |X|^2 + 4 |Y|^2 + 4 b.vec(X* Y) - 2 a.vec(X b X*) - 4 a.vec(Y X*) = 0,
+
+with the Study quadric ``X.Y = 0`` and a random affine patch: eight quadrics in eight
+unknowns, 2^7 = 128 paths, 40 finite solutions for a general platform.  A mode is a
+platform pose; each leg's U (or S) joint then has two solutions (the U's half-turn flip
+with the leg turned about its axis), the same mode: one joint vector is listed, the
+nearest the reference, and ``equivalent_solutions`` counts the others.
+
+Owns :class:`SpatialSystem`, :func:`spatial_system`, :func:`solve_study`,
+:func:`joint_values_spatial`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import mpmath
+import numpy as np
+import sympy
+
+from mechsing.errors import FormulationError, UserError
+from mechsing.model import Mechanism
+
+__all__ = [
+    "GENERIC_COUNT",
+    "SpatialSystem",
+    "joint_values_spatial",
+    "patch_equation",
+    "pose_of",
+    "solve_study",
+    "spatial_system",
+]
+
+XS = sympy.symbols("x0:4", real=True)
+YS = sympy.symbols("y0:4", real=True)
+#: the seed of the homotopy (its random gamma, start points and patch): runs repeat
+SEED = 34
+#: the generic number of finite solutions (Raghavan 1993; Dietmaier's platform has 40 real)
+GENERIC_COUNT = 40
+
+
+@dataclass(frozen=True)
+class SpatialSystem:
+    """The platform, each leg's (joints, base point a, platform point b, length^2) and
+    the Study-coordinate equations (sympy, exact data)."""
+
+    platform: str
+    legs: tuple[tuple[tuple[str, str, str], Any, Any, Any], ...]
+    equations: tuple[sympy.Expr, ...]
+
+
+def _qmul(p: list, q: list) -> list:
+    w1, x1, y1, z1 = p
+    w2, x2, y2, z2 = q
+    return [
+        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+    ]
+
+
+def _conj(q: list) -> list:
+    return [q[0], -q[1], -q[2], -q[3]]
+
+
+def spatial_system(mech: Mechanism, given: dict[str, tuple[Any, ...]]) -> SpatialSystem:
+    """The Study-coordinate system of a platform on six U-P-S / S-P-S legs."""
+    out = mech.output.body if mech.output is not None else None
+    legs = []
+    for leg in mech.legs:
+        types = [mech.joint(n).type for n in leg.joints]
+        if len(types) != 3 or types[0] not in ("U", "S") or types[1:] != ["P", "S"]:
+            raise FormulationError(f"leg {'-'.join(leg.joints)} is not U-P-S or S-P-S")
+        first, slide, last = (mech.joint(n) for n in leg.joints)
+        if slide.name not in given or first.name in given or last.name in given:
+            raise FormulationError(f"leg {'-'.join(leg.joints)}: give its slide and only it")
+        if first.between[0] != mech.ground or last.between[1] != out:
+            raise FormulationError(
+                f"leg {'-'.join(leg.joints)} is not written from ground to {out}"
+            )
+        a = sympy.Matrix(first.params["point"])
+        b = sympy.Matrix(last.params["point"])
+        u = sympy.Matrix(slide.params["axis"])
+        w = b - a + u * given[slide.name][0]
+        legs.append(((first.name, slide.name, last.name), a, b, sympy.nsimplify(w.dot(w))))
+    if len(legs) != 6:
+        raise FormulationError(f"{len(legs)} legs, not six")
+    X, Y = list(XS), list(YS)
+    delta = sum(x * x for x in X)
+    eqs = []
+    for _names, a, b, l2 in legs:
+        XbX = _qmul(_qmul(X, [0, *b]), _conj(X))
+        XcY = _qmul(_conj(X), Y)
+        YXc = _qmul(Y, _conj(X))
+        k = a.dot(a) + b.dot(b) - l2
+        eq = (
+            k * delta
+            + 4 * sum(y * y for y in Y)
+            + 4 * sum(b[i] * XcY[i + 1] for i in range(3))
+            - 2 * sum(a[i] * XbX[i + 1] for i in range(3))
+            - 4 * sum(a[i] * YXc[i + 1] for i in range(3))
+        )
+        eqs.append(sympy.expand(eq))
+    eqs.append(sum(x * y for x, y in zip(X, Y, strict=True)))
+    return SpatialSystem(out or "", tuple(legs), tuple(eqs))
+
+
+def patch_equation() -> sympy.Expr:
+    """The affine patch: a fixed random linear form of the Study coordinates equal to 1
+    (its coefficients are the floats written, exactly)."""
+    coeffs = np.random.default_rng(SEED).normal(size=8)
+    return sum(sympy.Rational(float(c)) * v for c, v in zip(coeffs, (*XS, *YS), strict=True)) - 1
+
+
+def _bertini_text(eqs: list[sympy.Expr]) -> str:
+    names = [str(v) for v in (*XS, *YS)]
+    lines = [
+        "variable_group " + ",".join(names) + ";",
+        "function " + ",".join(f"f{i}" for i in range(len(eqs))) + ";",
+    ]
+    for i, e in enumerate(eqs):
+        text = sympy.sstr(sympy.N(e, 17), full_prec=False).replace("**", "^")
+        lines.append(f"f{i} = {text};")
+    return "\n".join(lines) + "\n"
+
+
+def solve_study(system: SpatialSystem, dps: int) -> tuple[list[list[Any]], dict[str, Any]]:
+    """The real finite solutions (8 Study coordinates, refined to ``dps`` digits) and
+    the paths' account: tracked, finite, real, at infinity, failed."""
+    try:
+        import bertini
+    except ImportError:
+        raise UserError(
+            "this configuration needs homotopy continuation: install the extra with "
+            "pip install 'mechsing[modes]' (Bertini 2, GPL-3.0-or-later)"
+        ) from None
+    eqs = [*system.equations, patch_equation()]
+    was = bertini.recording()
+    bertini.recording(False)  # no records directory in the user's cwd, no replayed paths
+    try:
+        result = bertini.solve(bertini.parse.system(_bertini_text(eqs)), seed=SEED)
+    finally:
+        bertini.recording(was)
+    solver = result.solver
+    raw = [np.asarray(s, dtype=complex) for s in result.solutions]
+    paths = {
+        "tracked": int(solver.num_paths()) if callable(solver.num_paths) else int(solver.num_paths),
+        "finite": len(raw),
+    }
+    real = []
+    for z in raw:
+        scale = max(1.0, float(np.max(np.abs(z))))
+        if float(np.max(np.abs(z.imag))) <= 1e-6 * scale:
+            real.append(z.real)
+    refined = [r for r in (_newton(eqs, z, dps) for z in real) if r is not None]
+    paths["real"] = len(real)
+    paths["refined"] = len(refined)
+    paths["failed_or_infinite"] = paths["tracked"] - paths["finite"]
+    return refined, paths
+
+
+def _newton(eqs: list[sympy.Expr], z: np.ndarray, dps: int) -> list[Any] | None:
+    gens = [*XS, *YS]
+    f = sympy.lambdify(gens, eqs, "mpmath")
+    J = sympy.lambdify(gens, [[sympy.diff(e, g) for g in gens] for e in eqs], "mpmath")
+    x = mpmath.matrix([mpmath.mpf(float(v)) for v in z])
+    for _ in range(60):
+        fx = mpmath.matrix(f(*x))
+        try:
+            dx = mpmath.lu_solve(mpmath.matrix(J(*x)), fx)
+        except ZeroDivisionError:
+            return None
+        x -= dx
+        if mpmath.norm(dx) <= mpmath.mpf(10) ** (-dps):
+            break
+    if mpmath.norm(mpmath.matrix(f(*x))) > mpmath.mpf(10) ** (-(dps // 2)):
+        return None
+    return list(x)
+
+
+def pose_of(study: list[Any]) -> tuple[mpmath.matrix, mpmath.matrix]:
+    """(R, t) of Study coordinates (mpmath)."""
+    X, Y = study[:4], study[4:]
+    delta = sum(x * x for x in X)
+    R = mpmath.matrix(3, 3)
+    for j in range(3):
+        e = [0, 0, 0, 0]
+        e[j + 1] = 1
+        col = _qmul(_qmul(X, e), _conj(X))
+        for i in range(3):
+            R[i, j] = col[i + 1] / delta
+    t = _qmul(Y, _conj(X))
+    return R, mpmath.matrix([2 * t[i + 1] / delta for i in range(3)])
+
+
+def _rot(axis: Any, q: Any) -> mpmath.matrix:
+    x, y, z = axis
+    c, s, v = mpmath.cos(q), mpmath.sin(q), 1 - mpmath.cos(q)
+    return mpmath.matrix(
+        [
+            [c + x * x * v, x * y * v - z * s, x * z * v + y * s],
+            [y * x * v + z * s, c + y * y * v, y * z * v - x * s],
+            [z * x * v - y * s, z * y * v + x * s, c + z * z * v],
+        ]
+    )
+
+
+def _angle(axis: Any, p: Any, q: Any) -> Any:
+    """The angle about unit ``axis`` taking p to q (their components normal to it)."""
+    w = mpmath.matrix(axis)
+    pp = p - w * (w.T * p)[0]
+    qq = q - w * (w.T * q)[0]
+    cross = mpmath.matrix(
+        [
+            pp[1] * qq[2] - pp[2] * qq[1],
+            pp[2] * qq[0] - pp[0] * qq[2],
+            pp[0] * qq[1] - pp[1] * qq[0],
+        ]
+    )
+    return mpmath.atan2((w.T * cross)[0], (pp.T * qq)[0])
+
+
+def _two_axes(a1: Any, a2: Any, p: Any, t: Any) -> list[tuple[Any, Any]]:
+    """(q1, q2) with Rot(a1, q1) Rot(a2, q2) p = t (Paden-Kahan subproblem 2)."""
+    w1, w2 = mpmath.matrix(a1), mpmath.matrix(a2)
+    d = (w1.T * w2)[0]
+    n = mpmath.matrix(
+        [
+            w1[1] * w2[2] - w1[2] * w2[1],
+            w1[2] * w2[0] - w1[0] * w2[2],
+            w1[0] * w2[1] - w1[1] * w2[0],
+        ]
+    )
+    u1, u2 = (w1.T * t)[0], (w2.T * p)[0]
+    alpha = (d * u2 - u1) / (d * d - 1)
+    beta = (d * u1 - u2) / (d * d - 1)
+    g2 = ((p.T * p)[0] - alpha**2 - beta**2 - 2 * alpha * beta * d) / (n.T * n)[0]
+    out = []
+    for sgn in (1, -1):
+        z = alpha * w1 + beta * w2 + sgn * mpmath.sqrt(max(g2, 0)) * n
+        out.append((_angle(w1, z, t), _angle(w2, p, z)))
+    return out
+
+
+def _log(R: mpmath.matrix) -> list[Any]:
+    """The rotation vector of R (angle in [0, pi))."""
+    c = (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
+    v = [R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]]
+    s = mpmath.sqrt(sum(x * x for x in v)) / 2
+    angle = mpmath.atan2(s, c)
+    if s == 0:
+        return [mpmath.mpf(0)] * 3
+    return [angle * x / (2 * s) for x in v]
+
+
+def joint_values_spatial(
+    mech: Mechanism, system: SpatialSystem, given: dict, study: list[Any]
+) -> list[Any]:
+    """Every joint coordinate at the platform pose of ``study`` (mpmath)."""
+    R, t = pose_of(study)
+    values: dict[str, list[Any]] = {}
+    for (n1, n2, n3), a, b, _l2 in system.legs:
+        first, slide = mech.joint(n1), mech.joint(n2)
+        av = mpmath.matrix([mpmath.mpf(sympy.N(x, mpmath.mp.dps + 5)) for x in a])
+        bv = mpmath.matrix([mpmath.mpf(sympy.N(x, mpmath.mp.dps + 5)) for x in b])
+        u = mpmath.matrix([mpmath.mpf(sympy.N(x, mpmath.mp.dps + 5)) for x in slide.params["axis"]])
+        q = mpmath.mpf(sympy.N(given[n2][0], mpmath.mp.dps + 5))
+        ref = bv - av + u * q
+        now = R * bv + t - av
+        ref_dir, now_dir = ref / mpmath.norm(ref), now / mpmath.norm(now)
+        if first.type == "U":
+            a1, a2 = (
+                [mpmath.mpf(sympy.N(x, mpmath.mp.dps + 5)) for x in ax]
+                for ax in first.params["axes"]
+            )
+            pairs = _two_axes(a1, a2, ref_dir, now_dir)
+            q1, q2 = min(pairs, key=lambda p: abs(p[0]) + abs(p[1]))
+            values[n1] = [q1, q2]
+            Rc = _rot(a1, q1) * _rot(a2, q2)
+        else:  # S: the rotation taking the leg's direction onto the current one, least angle
+            axis = mpmath.matrix(
+                [
+                    ref_dir[1] * now_dir[2] - ref_dir[2] * now_dir[1],
+                    ref_dir[2] * now_dir[0] - ref_dir[0] * now_dir[2],
+                    ref_dir[0] * now_dir[1] - ref_dir[1] * now_dir[0],
+                ]
+            )
+            ang = mpmath.atan2(mpmath.norm(axis), (ref_dir.T * now_dir)[0])
+            unit = axis / mpmath.norm(axis)
+            values[n1] = [unit[i] * ang for i in range(3)]
+            Rc = _rot(list(unit), ang)
+        values[n2] = [q]
+        values[n3] = _log(Rc.T * R)
+    return [values[name][i] for name, i in mech.coordinates()]

@@ -1,0 +1,69 @@
+"""Every assembly mode of a configuration: all real closed configurations that have its
+given values (the inputs), each certified (a Krawczyk proof that one true solution lies
+within the stated radius) and classified exactly as ``mechsing analyze`` classifies it,
+with the one continuation from the configuration's start reaches marked, the distances
+between modes and the joints outside their limits.  ``complete`` says what the count
+claims: ``proven`` (exact elimination with certified real-root isolation), ``not
+proven``, ``maximal`` (the generic count, every mode certified) or ``infinite`` (the given
+values leave a curve: no count).  Planar mechanisms whose unknown part is one body held by
+legs (a four-bar, a slider-crank, a 3-RPR) are solved by built-in exact elimination;
+platforms on six U-P-S or S-P-S legs by homotopy continuation in Study coordinates, with
+the ``modes`` extra (pip install 'mechsing[modes]': Bertini 2, GPL-3.0-or-later); others
+exit 2 with the reason.  Exit status: 0 success, 2 bad
+input or no method applies, 3 a mode that could not be analysed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+NAME = "modes"
+HELP = "every assembly mode of a configuration, certified and classified"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("file", metavar="FILE", help="mechanism file (YAML or JSON), URDF or MJCF")
+    p.add_argument(
+        "--config", metavar="NAME", help="the configuration whose given values the modes share"
+    )
+    from mechsing.cli import options
+
+    options.add_precision_option(p, "auto", "auto (default), float or mp:N (the classification's)")
+    options.add_time_limit_option(p)
+    p.add_argument("--format", choices=("text", "json", "md"), default="text")
+    p.add_argument(
+        "-o", "--output", metavar="OUT", help="write the result to OUT instead of standard output"
+    )
+    options.add_verbose_option(p)
+    options.add_set_option(p)
+
+
+def run(args: argparse.Namespace) -> int:
+    from mechsing.adhoc import set_start
+    from mechsing.assembly import modes
+    from mechsing.assembly.render import render_modes
+    from mechsing.cli import NOT_ANALYSED, UserError, load_mechanism
+    from mechsing.cli.options import apply_set, check_shared
+    from mechsing.files import check_output, write_output
+
+    check_shared(args)
+    if args.output:
+        check_output(args.output, [args.file])
+    mech = apply_set(
+        load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file
+    )
+    if args.config is None:
+        if not args.set_values:
+            raise UserError("modes needs --config NAME (or --set JOINT=VALUE for the inputs)")
+        args.config = set_start(mech, args.set_values, "modes")
+    result = modes(mech, args.config, args.prec, time_limit=args.time_limit)
+    text = render_modes(result, args.format)
+    if args.output:
+        write_output(args.output, text, [args.file])
+    else:
+        sys.stdout.write(text)
+    failed = [m for m in result.modes if m.analysis.get("error")]
+    for m in failed:
+        print(f"mechsing: {args.file}: {m.analysis['error']}", file=sys.stderr)
+    return NOT_ANALYSED if failed else 0
