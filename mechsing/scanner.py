@@ -52,10 +52,11 @@ from mechsing.numeric import (
     SCAN_ROUNDING_FACTOR,
     SCAN_SCREEN_FACTOR,
     Precision,
-    rank_bounds,
+    relative_singular_values,
 )
 from mechsing.reader import read_mechanism
 from mechsing.screws import chain_matrix
+from mechsing.singularity.criteria import SerialTest
 
 __all__ = ["ChainScanner", "ScanResult", "scan"]
 
@@ -161,6 +162,8 @@ class ChainScanner:
         self.centroid = np.asarray(self.model.centroid, dtype=float)
         self.length_columns = np.asarray(self.model.length_columns[self.columns], dtype=bool)
         self.tolerances = Precision("float").tolerances
+        #: the serial test (:class:`mechsing.singularity.criteria.SerialTest`) that decides
+        self.test = SerialTest.of(mech, self.model)
         names = list(dict.fromkeys(self.chain.joints))
         self._chain_joints = [self.model.joint(j) for j in names]
         self._generic: int | None = None
@@ -250,11 +253,9 @@ class ChainScanner:
         todo = np.ones(N, dtype=bool) if all_sigma else ~screened
         if np.any(todo):
             s = np.linalg.svd(J[todo], compute_uv=False)  # (N', m), descending
-            smax = s[:, :1]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                rel = np.where(smax > 0, s / smax, 0.0)
-            lo_rank, hi_rank = rank_bounds(rel, tol)
-            decided = np.where(lo_rank == hi_rank, lo_rank, UNDECIDED).astype(np.int8)
+            rel = relative_singular_values(s)
+            # the serial test's rule (UNDECIDED is its -1)
+            decided = self.test.ranks_of_relative(rel).decided.astype(np.int8)
             # the screen and the SVD agree where both ran (the bound is certified)
             rank[todo] = np.where(screened[todo], rank[todo], decided)
             ratio[todo] = rel[:, -1]

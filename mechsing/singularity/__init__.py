@@ -17,6 +17,7 @@ from mechsing import lie
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.couplings import impose_couplings
 from mechsing.numeric import to_float
+from mechsing.singularity.criteria import SerialTest
 from mechsing.singularity.findings import (
     Classification,
     Decision,
@@ -28,7 +29,6 @@ from mechsing.singularity.findings import (
 from mechsing.singularity.local import float_model, local_analysis
 from mechsing.singularity.serial import (
     GENERIC_SAMPLES,
-    chain_system,
     generic_span,
     named,
     serial_finding,
@@ -91,16 +91,17 @@ def _tree_serial(mech: Any, model: Any, q: np.ndarray) -> tuple[list[Finding], l
         poses = model.poses(q)
         x = _output_point(mech, model, q, poses)
         screws = model.current_screws(q, poses)
-        here = chain_system(model, screws, cols, x, model.precision)
+        here = SerialTest.of(mech, model).decide(screws, cols, x, model.precision)
     xf = None if x is None else np.asarray(to_float(x), dtype=float)
     # ... against the generic rank found at random configurations (float)
     generic = here.rank.rank or 0
     samples = []
     first: tuple[Any, Any] | None = None  # a generic configuration's screws and point
+    serial_f = SerialTest.of(mech, fm)
     for qr in random_configurations(fm, GENERIC_SAMPLES):
         pr = fm.poses(qr)
         Sr, xr = fm.current_screws(qr, pr), _output_point(mech, fm, qr, pr)
-        sysr = chain_system(fm, Sr, cols, xr, "float")
+        sysr = serial_f.decide(Sr, cols, xr, "float")
         first = first or (Sr[:, cols], xr)
         samples.append(sysr.matrix)
         if sysr.rank.rank is not None:
