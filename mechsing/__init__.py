@@ -38,7 +38,7 @@ _FUNCTIONS = {
     "condition": ("mechsing.conditions", "condition"),
     "load": ("mechsing.reader", "read_mechanism"),  # any format: YAML, JSON, DH, URDF, MJCF
     "report": ("mechsing.report", "report"),
-    "scan": ("mechsing.scanner", "scan"),
+    "scan": ("mechsing.sweeps.scan", "scan"),
     "sweep": ("mechsing.sweeps", "sweep"),
 }
 _MODULES = ("errors", "lie", "numeric", "subgroups", "model", "kinematics", "screws", "singularity")

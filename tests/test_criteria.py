@@ -171,3 +171,15 @@ def test_the_rank_rule_is_called_only_from_numeric_and_the_criteria():
         str(p.relative_to(PACKAGE)) for p in callers if not any(a in p.parents for a in allowed)
     )
     assert outside == []
+
+
+def test_the_scan_s_compiled_screen_is_a_backend_registered_with_the_serial_test():
+    """The scan (mechsing.sweeps.scan) registers its compiled screen with the serial test;
+    the screen reads the serial chain's public table, not a private attribute."""
+    import mechsing.sweeps.scan  # noqa: F401 - registers the screen
+    from mechsing.sweeps import scan_kernel
+
+    want = scan_kernel if scan_kernel.available() else None
+    assert SerialTest.compiled_screen() is want
+    source = (PACKAGE / "sweeps" / "scan_kernel.py").read_text(encoding="utf-8")
+    assert "._table" not in source

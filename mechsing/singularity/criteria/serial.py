@@ -44,6 +44,12 @@ class ChainSystem:
     follows: list[tuple[int, int, Any]] = field(default_factory=list)
 
 
+#: compiled screens of serial chains, registered by the modules that provide them
+#: (:meth:`SerialTest.register_screen`); each has ``available()`` and
+#: ``screen_bounds(chain, Q, err)``
+_SCREENS: list[Any] = []
+
+
 class SerialTest(Criterion):
     """The serial test of chains of one model (the output chain of an open mechanism, a
     leg of a parallel one); plan: whether the model has couplings to fold."""
@@ -88,6 +94,26 @@ class SerialTest(Criterion):
         Ms, kept, follows = self.matrix(S, columns, point_x, scaled)
         dec = decide_rank(Ms, precision, self.model.length_scale)
         return ChainSystem(Ms, dec, columns, point_x is not None, kept, follows)
+
+    @staticmethod
+    def register_screen(backend: Any) -> None:
+        """Register a compiled screen (an object with ``available()`` and
+        ``screen_bounds(chain, Q, err)``): :meth:`screen` then serves through it."""
+        if backend not in _SCREENS:
+            _SCREENS.append(backend)
+
+    @staticmethod
+    def compiled_screen() -> Any:
+        """The first registered compiled screen that is available here, or None."""
+        return next((b for b in _SCREENS if b.available()), None)
+
+    def screen(self, chain: Any, Q: np.ndarray, err: float) -> np.ndarray | None:
+        """The certified lower bound of sigma_min / sigma_max of the serial chain ``chain``
+        (a :class:`~mechsing.kinematics.batched.SerialJacobian`) at every row of Q, lowered
+        by the determinant's backward error ``err``, by the compiled screen; None when no
+        compiled screen is available (the caller's numpy screen then serves)."""
+        backend = self.compiled_screen()
+        return None if backend is None else backend.screen_bounds(chain, Q, err)
 
     def batch_ranks(self, M: np.ndarray) -> RankBounds:
         """The float rank bounds of a batch of the chain's matrices (..., rows, k)."""

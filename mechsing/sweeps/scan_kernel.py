@@ -1,7 +1,7 @@
 """The scanner's screen compiled with numba (optional: the ``fast`` extra).
 
 One pass per configuration does what :class:`mechsing.kinematics.batched.SerialJacobian`
-and the screen of :mod:`mechsing.scanner` do with numpy arrays: the product of
+and the screen of :mod:`mechsing.sweeps.scan` do with numpy arrays: the product of
 exponentials of a serial chain of one-dof joints in the commensurate frame (the
 same Rodrigues update, the same table ``[K, K^2, K a, K^2 a, u, v]`` per joint),
 the chain's matrix (current screws, or the output point's velocity), its length
@@ -24,9 +24,12 @@ its numpy path.
 from __future__ import annotations
 
 import os
+import sys
 from typing import Any
 
 import numpy as np
+
+from mechsing.singularity.criteria import SerialTest
 
 __all__ = ["available", "screen_bounds"]
 
@@ -172,7 +175,7 @@ def screen_bounds(serial: Any, Q: np.ndarray, err: float) -> np.ndarray:
     :class:`~mechsing.kinematics.batched.SerialJacobian` chain (compiled on first use)."""
     if not _KERNEL:
         _KERNEL.append(_build())
-    tables = serial._table
+    tables = serial.table
     cols = np.array([t[0] for t in tables], dtype=np.int64)
     pos = np.array([t[1] for t in tables], dtype=np.int64)
     T = np.ascontiguousarray(np.stack([t[2] for t in tables]), dtype=float)
@@ -200,3 +203,7 @@ def screen_bounds(serial: Any, Q: np.ndarray, err: float) -> np.ndarray:
         out,
     )
     return out
+
+
+# the serial test's optional compiled screen (its numpy screen stays the scan's default)
+SerialTest.register_screen(sys.modules[__name__])

@@ -42,7 +42,7 @@ from typing import Any
 
 import numpy as np
 
-from mechsing import lie, scanner_kernel
+from mechsing import lie
 from mechsing.kinematics import KinematicModel, batched
 from mechsing.kinematics.batched import SerialJacobian
 from mechsing.kinematics.chains import tree_chain
@@ -57,6 +57,7 @@ from mechsing.numeric import (
 from mechsing.reader import read_mechanism
 from mechsing.screws import chain_matrix
 from mechsing.singularity.criteria import SerialTest
+from mechsing.sweeps import scan_kernel  # noqa: F401 - registers the compiled screen
 
 __all__ = ["ChainScanner", "ScanResult", "scan"]
 
@@ -148,7 +149,7 @@ class ChainScanner:
             )
         from mechsing.model.couplings import refuse_couplings
 
-        refuse_couplings(mech, "the chain scanner (mechsing.scanner)")
+        refuse_couplings(mech, "the chain scanner (mechsing.sweeps.scan)")
         self.mech = mech
         self.model = KinematicModel(mech, "float")
         self.chain = tree_chain(self.model, mech.output.body, mech.output.relative_to)
@@ -263,9 +264,9 @@ class ChainScanner:
 
     @property
     def compiled(self) -> bool:
-        """Does :meth:`scan` screen with the compiled kernel (:mod:`mechsing.scanner_kernel`:
+        """Does :meth:`scan` screen with the compiled kernel (:mod:`mechsing.sweeps.scan_kernel`:
         a serial chain of one-dof joints from ground, and numba installed)?"""
-        return self._serial is not None and scanner_kernel.available()
+        return self._serial is not None and self.test.compiled_screen() is not None
 
     def _decide_compiled(self, Q: np.ndarray) -> tuple[np.ndarray, ...]:
         """:meth:`_decide` with the compiled screen: the numpy matrices and SVD only at the
@@ -277,7 +278,7 @@ class ChainScanner:
         if m < 2:
             return self._decide(self.matrices(Q), False)
         err = SCAN_ROUNDING_FACTOR * m * _EPS
-        bound = scanner_kernel.screen_bounds(self._serial, Q, err if rows == k else np.sqrt(err))
+        bound = self.test.screen(self._serial, Q, err if rows == k else np.sqrt(err))
         screened = bound >= SCAN_SCREEN_FACTOR * self.tolerances.tau_hi
         rank = np.full(N, m, dtype=np.int8)
         ratio = np.full(N, np.nan)
