@@ -26,7 +26,8 @@ from mechsing.kinematics.chains import tree_chain
 from mechsing.model.mechanism import MechanismError
 from mechsing.numeric import decide_rank, scale_screws
 from mechsing.screws import chain_matrix
-from mechsing.singularity import _output_point, output_chain, random_configurations
+from mechsing.singularity import output_chain, random_configurations
+from mechsing.singularity.classification import _output_point
 from mechsing.sweeps.scan import ChainScanner, scan
 from tests.mechanisms import EXAMPLES, ROOT, scaled_text
 
