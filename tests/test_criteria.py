@@ -183,3 +183,18 @@ def test_the_scan_s_compiled_screen_is_a_backend_registered_with_the_serial_test
     assert SerialTest.compiled_screen() is want
     source = (PACKAGE / "sweeps" / "scan_kernel.py").read_text(encoding="utf-8")
     assert "._table" not in source
+
+
+def test_a_test_keeps_its_plan_for_the_last_models_only():
+    """The plan is built once per model (the same object when asked again) and the cache is
+    bounded: after PLANS_KEPT other models, the first model's plan is built afresh (a plan
+    holds its model, which is let go)."""
+    from mechsing.singularity.criteria.base import PLANS_KEPT
+
+    mech, model = _arm()
+    first = SerialTest.of(mech, model)
+    assert SerialTest.of(mech, model) is first
+    others = [KinematicModel(mech, "float") for _ in range(PLANS_KEPT)]
+    for m in others:
+        SerialTest.of(mech, m)
+    assert SerialTest.of(mech, model) is not first

@@ -1,5 +1,6 @@
 """What every singularity test shares: its plan (what depends only on the mechanism,
-built once per model and owned by the test's class, :class:`PerModel`), its reference
+built once per model and kept by the test's class for the last few models,
+:class:`PerModel`), its reference
 (what its singular values are relative to) and the one batched rank rule
 (:func:`mechsing.numeric.batched_rank_bounds`) through which every batch of its
 matrices is decided (:meth:`Criterion.ranks`).
@@ -12,7 +13,8 @@ reference.
 
 from __future__ import annotations
 
-import weakref
+import threading
+from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
@@ -23,6 +25,9 @@ from mechsing.numeric import Precision, batched_rank_bounds, rank_bounds
 __all__ = ["Criterion", "PerModel", "RankBounds", "singular_values"]
 
 _FLOAT = Precision("float").tolerances
+
+#: models whose plans each test keeps (an analysis holds two: its own and its float twin)
+PLANS_KEPT = 8
 
 
 @dataclass(frozen=True)
@@ -64,17 +69,28 @@ def singular_values(A: np.ndarray) -> np.ndarray:
 
 
 class PerModel:
-    """Plans kept per model: an entry lives as long as its model (a weak key), so the
-    cache is bounded by the models alive and nothing is attached to the model."""
+    """Plans kept per model, for the :data:`PLANS_KEPT` models asked for last (a bounded
+    cache: a plan holds its model, so older ones are let go), nothing attached to the
+    model itself."""
 
     def __init__(self) -> None:
-        self._plans: weakref.WeakKeyDictionary[Any, Any] = weakref.WeakKeyDictionary()
+        self._plans: OrderedDict[int, tuple[Any, Any]] = OrderedDict()
+        self._lock = threading.Lock()  # a threaded sweep's workers share the cache
 
     def get(self, model: Any, build: Any) -> Any:
-        got = self._plans.get(model)
-        if got is None:
-            got = self._plans[model] = build()
-        return got
+        key = id(model)
+        with self._lock:
+            got = self._plans.get(key)
+            if got is not None and got[0] is model:
+                self._plans.move_to_end(key)
+                return got[1]
+        plan = build()
+        with self._lock:
+            self._plans[key] = (model, plan)
+            self._plans.move_to_end(key)
+            while len(self._plans) > PLANS_KEPT:
+                self._plans.popitem(last=False)
+        return plan
 
 
 class Criterion:
