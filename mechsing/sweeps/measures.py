@@ -317,10 +317,7 @@ class Measures:
     ) -> tuple[np.ndarray, np.ndarray]:
         """The commensurate output rows T (twists, or the output point's velocities) and
         their norms |T|."""
-        x = None
-        p = self.motion.out_point
-        if p is not None:
-            x = (P[self.mech.output.body][:, :3, :3] @ p) + P[self.mech.output.body][:, :3, 3]
+        x = self.motion.output_point(P, float_point=True)
         T = self.motion.output_rows(S, x)  # makes it commensurate
         return T, _largest_singular_value(T)
 

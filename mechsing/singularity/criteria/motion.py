@@ -124,6 +124,11 @@ def _difference(a: tuple[int, int], b: tuple[int, int]) -> int | None:
     return lo if lo == hi else None
 
 
+def _decided(b: tuple[int, int]) -> int | None:
+    """The rank of bounds (lowest, highest): decided when they agree."""
+    return b[0] if b[0] == b[1] else None
+
+
 def _null(A: np.ndarray, L: float, prec: Precision, reference: Any = None) -> np.ndarray:
     if A.shape[0] == 0:
         return prec.backend.eye(A.shape[1])
@@ -241,10 +246,10 @@ class MotionTest(Criterion):
     def _one(
         self, bT: tuple[int, int], bE: tuple[int, int], bB: tuple[int, int], k: int
     ) -> dict[str, int | None]:
-        decided = lambda b: b[0] if b[0] == b[1] else None  # noqa: E731
+        """The values from the rank bounds of T N, E N and [T N; E N] (kernel width k)."""
         passive = k - bB[0] if bB[0] == bB[1] else None
         return _values(
-            decided(bT), decided(bE), _difference(bB, bT), _difference(bB, bE), passive, self.run
+            _decided(bT), _decided(bE), _difference(bB, bT), _difference(bB, bE), passive, self.run
         )
 
     def batch_output_rows(self, S: np.ndarray, P: dict[str, np.ndarray]) -> tuple[Any, Any]:
