@@ -370,7 +370,7 @@ class Measures:
                 bounds = self.motion.ranks_of_relative(rel)
             else:
                 rel = relative_singular_values(s)
-                bounds = Criterion.ranks(s)
+                bounds = Criterion.ranks_of_relative(rel)
             rank[t] = bounds.decided.astype(np.int16)
             ratio[t] = rel[:, g - 1] if g <= rel.shape[1] else np.zeros(len(rel))
             top[t] = s[:, 0] if s.shape[1] else np.zeros(len(s))

@@ -15,8 +15,7 @@ from __future__ import annotations
 
 import threading
 from collections import OrderedDict
-from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any, ClassVar, NamedTuple
 
 import numpy as np
 
@@ -30,13 +29,12 @@ _FLOAT = Precision("float").tolerances
 PLANS_KEPT = 8
 
 
-@dataclass(frozen=True)
-class RankBounds:
+class RankBounds(NamedTuple):
     """The two-threshold rank bounds of a batch of matrices (integer arrays of the batch
-    shape): decided where ``lo == hi``."""
+    shape): decided where ``lo == hi``.  (A named tuple: made for every batch decided.)"""
 
-    lo: np.ndarray
-    hi: np.ndarray
+    lo: Any
+    hi: Any
 
     @property
     def decided(self) -> np.ndarray:
@@ -123,12 +121,10 @@ class Criterion:
         """The float rank bounds of a batch of matrices from their singular values ``s``
         (..., k), descending, relative to the largest of each or to ``reference`` where
         it is larger: the one rule (:func:`mechsing.numeric.batched_rank_bounds`)."""
-        lo, hi = batched_rank_bounds(s, _FLOAT, reference)
-        return RankBounds(np.asarray(lo), np.asarray(hi))
+        return RankBounds(*batched_rank_bounds(s, _FLOAT, reference))
 
     @staticmethod
     def ranks_of_relative(rel: np.ndarray) -> RankBounds:
         """The float rank bounds of singular values already relative to the test's
         reference (a matrix divided by its operator's norm)."""
-        lo, hi = rank_bounds(rel, _FLOAT)
-        return RankBounds(np.asarray(lo), np.asarray(hi))
+        return RankBounds(*rank_bounds(rel, _FLOAT))
