@@ -187,13 +187,16 @@ def rank_bounds(rel: Any, tol: Tolerances) -> tuple[Any, Any]:
     relative to the largest (``rel``, descending along the last axis, any leading batch
     shape; floats, or mp numbers compared as they are), the (lowest, highest) rank
     consistent with them, i.e. the counts ``sigma >= tau_hi`` and ``sigma > tau_lo``.
-    The rank is decided when the two agree.  Integers (arrays of the batch shape)."""
+    The rank is decided when the two agree.  Integers (arrays of the batch shape; Python
+    ints for one matrix's values given as a list)."""
+    if isinstance(rel, list):
+        # one matrix's values (a few, floats or mp numbers): counted in Python, where an
+        # array would cost more than the comparisons (decide_rank's every decision)
+        return sum(x >= tol.tau_hi for x in rel), sum(x > tol.tau_lo for x in rel)
     r = np.asarray(rel)
     if r.dtype != object:
         r = r.astype(float, copy=False)
-    lo = np.count_nonzero(r >= tol.tau_hi, axis=-1)
-    hi = np.count_nonzero(r > tol.tau_lo, axis=-1)
-    return lo, hi
+    return np.count_nonzero(r >= tol.tau_hi, axis=-1), np.count_nonzero(r > tol.tau_lo, axis=-1)
 
 
 def relative_singular_values(s: Any, reference: Any = None) -> np.ndarray:
