@@ -91,7 +91,7 @@ def _bandwidth() -> float:
 
 def _arm(name: str, mech, Q: np.ndarray, repeat: int, rows: list[str]) -> dict:
     from mechsing.numeric import SCAN_ROUNDING_FACTOR, SCAN_SCREEN_FACTOR, dispatch, scale_screws
-    from mechsing.scanner import ChainScanner
+    from mechsing.sweeps.scan import ChainScanner
 
     sc = ChainScanner(mech)
     sc.generic_rank  # noqa: B018 -- once, outside the timings

@@ -52,7 +52,7 @@ from _timing import median_time, timed_median  # noqa: E402
 
 import mechsing  # noqa: E402
 from mechsing.numeric import Precision, rank_bounds, scale_screws  # noqa: E402
-from mechsing.scanner import ChainScanner  # noqa: E402
+from mechsing.sweeps.scan import ChainScanner  # noqa: E402
 
 MODES = ("float", "mp:30", "mp:50", "auto", "exact")
 #: configurations 10^-k from singular with k up to this are "far from singular" (timing of auto)
@@ -293,7 +293,7 @@ _CHILD = """
 import math, os, resource, sys, time
 import numpy as np
 import mechsing
-from mechsing.scanner import ChainScanner
+from mechsing.sweeps.scan import ChainScanner
 n, chunk = int(sys.argv[1]), int(sys.argv[2])
 sc = ChainScanner(mechsing.load(sys.argv[3]))
 def gen():

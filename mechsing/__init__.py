@@ -40,7 +40,7 @@ _FUNCTIONS = {
     "load": ("mechsing.reader", "read_mechanism"),  # any format: YAML, JSON, DH, URDF, MJCF
     "modes": ("mechsing.assembly", "modes"),
     "report": ("mechsing.report", "report"),
-    "scan": ("mechsing.scanner", "scan"),
+    "scan": ("mechsing.sweeps.scan", "scan"),
     "sweep": ("mechsing.sweeps", "sweep"),
 }
 _MODULES = ("errors", "lie", "numeric", "subgroups", "model", "kinematics", "screws", "singularity")

@@ -28,7 +28,7 @@ DOCUMENTED_MODULES = (
     "mechsing.analysis.results",
     "mechsing.analysis.solve",
     "mechsing.sweeps",
-    "mechsing.scanner",
+    "mechsing.sweeps.scan",
     "mechsing.report.review",
     "mechsing.conditions.results",
     "mechsing.singularity.findings",

@@ -265,7 +265,7 @@ def test_a_coupling_inside_a_loop_is_closed_by_newton_with_the_loop(tmp_path: Pa
 
 
 def test_the_chain_scanner_refuses_a_coupling_naming_it() -> None:
-    from mechsing.scanner import ChainScanner
+    from mechsing.sweeps.scan import ChainScanner
 
     with pytest.raises(MechanismError) as exc:
         ChainScanner(loads(_three_r("  bent: {A: 0.3, B: 0.7}\n")))

@@ -25,7 +25,7 @@ import pytest
 import scipy.linalg
 
 import mechsing
-import mechsing.scanner
+import mechsing.sweeps.scan
 from mechsing import lie, load
 from mechsing.kinematics import KinematicModel, forward
 from mechsing.lie import _so3
@@ -283,8 +283,8 @@ def _check_spherical(rng: np.random.Generator) -> None:
 def _scanners(path: Path) -> tuple:
     mech = load(path)
     with dispatch.fast_paths(False):
-        slow = mechsing.scanner.ChainScanner(mech)
-    return mechsing.scanner.ChainScanner(mech), slow
+        slow = mechsing.sweeps.scan.ChainScanner(mech)
+    return mechsing.sweeps.scan.ChainScanner(mech), slow
 
 
 def _check_serial_chain(rng: np.random.Generator) -> None:
@@ -411,7 +411,7 @@ def test_mp_and_exact_arrays_keep_the_generic_code() -> None:
 
 def _probe(env: dict[str, str]) -> str:
     code = (
-        "import mechsing.scanner_kernel as k; from mechsing.numeric import dispatch; "
+        "import mechsing.sweeps.scan_kernel as k; from mechsing.numeric import dispatch; "
         "print(dispatch.mode(), k.available())"
     )
     switches = ("MECHSING_FAST", "MECHSING_NO_COMPILED")

@@ -26,7 +26,7 @@ LAYERS: list[set[str]] = [
     {"kinematics"},
     {"screws"},
     {"singularity"},
-    {"analysis", "scanner", "scanner_kernel", "conditions"},
+    {"analysis", "conditions"},
     {"sweeps", "statics", "assembly"},
     {"exercises"},
     {"report"},

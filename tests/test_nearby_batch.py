@@ -169,7 +169,7 @@ def _samples_of(mech, names):
 )
 def test_the_tests_values_at_many_samples_are_those_of_one_sample_at_a_time(file):
     """sample_values (every sample's poses, screws and decisions in stacked arrays) gives the
-    values one_sample_values takes from io_quantities, leg_constraint_rank and chain_system,
+    values one_sample_values takes from io_quantities, ConstraintTest.decide and SerialTest.decide,
     the functions that decide the tests at the configuration itself."""
     mech = mechsing.load(EX / file)
     model, samples = _samples_of(mech, list(mech.configurations))

@@ -25,9 +25,10 @@ from mechsing.kinematics import KinematicModel, forward
 from mechsing.kinematics.chains import tree_chain
 from mechsing.model.mechanism import MechanismError
 from mechsing.numeric import decide_rank, scale_screws
-from mechsing.scanner import ChainScanner, scan
 from mechsing.screws import chain_matrix
-from mechsing.singularity import _output_point, output_chain, random_configurations
+from mechsing.singularity import output_chain, random_configurations
+from mechsing.singularity.classification import _output_point
+from mechsing.sweeps.scan import ChainScanner, scan
 from tests.mechanisms import EXAMPLES, ROOT, scaled_text
 
 SERIAL_FILES = [
@@ -372,12 +373,12 @@ def test_scan_agrees_with_analyze_on_the_file_configurations() -> None:
 
 
 def test_the_package_function_survives_importing_the_module() -> None:
-    """`mechsing.scan` is the function, also after `mechsing.scanner` has been imported."""
-    import mechsing.scanner
+    """`mechsing.scan` is the function, also after `mechsing.sweeps.scan` has been imported."""
+    import mechsing.sweeps.scan
 
     assert callable(mechsing.scan)
     res = mechsing.scan(EXAMPLES / "ur5.yaml", [[0.1, -0.7, 1.1, -0.4, 0.9, 0.2]])
-    assert res.rank.tolist() == [6] and mechsing.scanner.scan is mechsing.scan
+    assert res.rank.tolist() == [6] and mechsing.sweeps.scan.scan is mechsing.scan
 
 
 def test_rows_given_as_lists_and_ragged_blocks() -> None:

@@ -15,13 +15,13 @@ import numpy as np
 import pytest
 
 import mechsing
-from mechsing import scanner_kernel
 from mechsing.numeric import SCAN_ROUNDING_FACTOR, dispatch
-from mechsing.scanner import ChainScanner
+from mechsing.sweeps import scan_kernel
+from mechsing.sweeps.scan import ChainScanner
 from tests.mechanisms import EXAMPLES
 
 pytestmark = pytest.mark.skipif(
-    not scanner_kernel.available(), reason="numba is not installed (the `fast` extra)"
+    not scan_kernel.available(), reason="numba is not installed (the `fast` extra)"
 )
 
 PANDA = """mechanism: panda

@@ -69,7 +69,7 @@ def describe_legs(mech: Mechanism) -> tuple[LegDescription, ...]:
     """The legs between ``output.relative_to`` and the output body, each with its joints
     from the base to the output (empty without an output, or with fewer than two legs:
     a mechanism with one leg is a chain, not a parallel mechanism)."""
-    from mechsing.singularity.zfb import leg_path
+    from mechsing.singularity.criteria import leg_path
 
     out = mech.output
     if out is None or len(mech.legs) < 2:

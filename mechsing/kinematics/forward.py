@@ -303,6 +303,13 @@ class SerialJacobian:
             start = jk.columns.start
             self._table.append((start, order.index(start), T, h, bool(np.any(u))))
 
+    @property
+    def table(self) -> tuple[tuple[int, int, np.ndarray, float, bool], ...]:
+        """Per joint, ground first: its column, its position in the matrix, its table
+        ``[K, K^2, K a, K^2 a, u, v]`` (3 x 12), its pitch and whether it rotates (what a
+        compiled form of this product reads)."""
+        return tuple(self._table)
+
     @staticmethod
     def applies(model: Any, body: str, joints: list[Any]) -> bool:
         """Is the chain ``joints`` the forward tree path from ground to ``body`` of one-dof joints?"""

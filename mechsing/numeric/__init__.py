@@ -58,6 +58,8 @@ from mechsing.numeric.decisions import (
     DefinitenessDecision,
     Margin,
     RankDecision,
+    batched_kernels,
+    batched_rank_bounds,
     data_resolution,
     decide_definiteness,
     decide_from_exact,
@@ -67,6 +69,7 @@ from mechsing.numeric.decisions import (
     float_drop_is_real,
     rank_bounds,
     rank_difference,
+    relative_singular_values,
     resolution_spread,
 )
 from mechsing.numeric.field import (
@@ -308,7 +311,10 @@ __all__ = [
     "orthonormal_columns",
     "parse_precision",
     "pinv_truncated",
+    "batched_kernels",
+    "batched_rank_bounds",
     "rank_bounds",
+    "relative_singular_values",
     "rank_difference",
     "resolution_spread",
     "rotation_orthonormal_atol",

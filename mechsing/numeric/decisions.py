@@ -182,20 +182,68 @@ def _drop_is_rounding(m: Margin) -> bool:
     )
 
 
-def rank_bounds(rel: Any, tol: Tolerances) -> tuple[np.ndarray, np.ndarray]:
-    """The two-threshold rank rule on singular values
-    relative to the largest, batched over leading axes: (lowest, highest) rank
+def rank_bounds(rel: Any, tol: Tolerances) -> tuple[Any, Any]:
+    """The two-threshold rank rule, the one place it is written: on singular values
+    relative to the largest (``rel``, descending along the last axis, any leading batch
+    shape; floats, or mp numbers compared as they are), the (lowest, highest) rank
     consistent with them, i.e. the counts ``sigma >= tau_hi`` and ``sigma > tau_lo``.
-    The rank is decided when the two agree."""
-    r = np.asarray(rel, dtype=float)
+    The rank is decided when the two agree.  Integers (arrays of the batch shape; Python
+    ints for one matrix's values given as a list)."""
+    if isinstance(rel, list):
+        # one matrix's values (a few, floats or mp numbers): counted in Python, where an
+        # array would cost more than the comparisons (decide_rank's every decision)
+        return sum(x >= tol.tau_hi for x in rel), sum(x > tol.tau_lo for x in rel)
+    r = np.asarray(rel)
+    if r.dtype != object:
+        r = r.astype(float, copy=False)
     return np.count_nonzero(r >= tol.tau_hi, axis=-1), np.count_nonzero(r > tol.tau_lo, axis=-1)
 
 
+def relative_singular_values(s: Any, reference: Any = None) -> np.ndarray:
+    """Float singular values ``s`` (..., k), descending, relative to the largest of each
+    matrix, or to ``reference`` (a number or an array of the batch shape) where it is
+    larger: what :func:`rank_bounds` reads (0 where the largest is 0)."""
+    s = np.asarray(s, dtype=float)
+    if s.shape[-1] == 0:
+        return s
+    if reference is None:  # the same numbers as below, in fewer array operations
+        big = s[..., :1]
+        return np.where(big > 0, s / np.where(big > 0, big, 1.0), 0.0)
+    smax = s[..., 0].copy()
+    if reference is not None:
+        ref = np.broadcast_to(np.asarray(reference, dtype=float), smax.shape)
+        smax = np.where(ref > smax, ref, smax)
+    positive = smax > 0
+    return np.where(positive[..., None], s / np.where(positive, smax, 1.0)[..., None], 0.0)
+
+
+def batched_rank_bounds(s: Any, tol: Tolerances, reference: Any = None) -> tuple[Any, Any]:
+    """:func:`rank_bounds` of float singular values ``s`` (..., k) relative to the largest
+    of each matrix or to ``reference`` where larger (:func:`relative_singular_values`),
+    as :func:`decide_rank` decides one matrix."""
+    return rank_bounds(relative_singular_values(s, reference), tol)
+
+
+def batched_kernels(J: np.ndarray, tol: Tolerances) -> list[tuple[int | None, np.ndarray]]:
+    """Each float matrix of ``J`` (B, m, n): its nullity (None: rank undecided) and an
+    orthonormal basis of its kernel at the lowest rank the bounds allow (n, n - r), by
+    numpy's batched SVD and :func:`batched_rank_bounds` relative to its largest singular
+    value, as :func:`decide_rank` decides one matrix with its spaces."""
+    n = J.shape[2]
+    s = np.linalg.svd(J, compute_uv=False)
+    Vt = np.linalg.svd(J, full_matrices=True)[2]
+    lo, hi = batched_rank_bounds(s, tol)
+    out = []
+    for b in range(J.shape[0]):
+        r = int(lo[b])
+        out.append((n - r if r == int(hi[b]) else None, Vt[b, r:].T.copy()))
+    return out
+
+
 def _split_rank(rel: list[Any], tol: Tolerances) -> tuple[int | None, tuple[int, int]]:
-    # rank_bounds on one list of floats (or mp numbers), counted in Python (the same
-    # comparisons)
-    lo_rank = sum(1 for x in rel if x >= tol.tau_hi)
-    hi_rank = sum(1 for x in rel if x > tol.tau_lo)
+    """:func:`rank_bounds` of one matrix's relative singular values, as Python ints."""
+    lo, hi = rank_bounds(rel, tol)
+    lo_rank, hi_rank = int(lo), int(hi)
     return (lo_rank if lo_rank == hi_rank else None), (lo_rank, hi_rank)
 
 

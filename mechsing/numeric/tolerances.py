@@ -138,7 +138,7 @@ REFERENCE_SCREEN_RTOL = 1e-6
 #: a given rotation matrix must satisfy ``|R^T R - I|`` below this in float (and det R > 0);
 #: at mp:N below 10^(-N/2), exactly in exact mode (:func:`rotation_orthonormal_atol`)
 ROTATION_ORTHONORMAL_ATOL = 1e-9
-#: batched scans (:mod:`mechsing.scanner`) decide "full rank" without an SVD when
+#: batched scans (:mod:`mechsing.sweeps.scan`) decide "full rank" without an SVD when
 #: the determinant bound on sigma_min / sigma_max is at least this many times
 #: float's tau_hi (room for the SVD's own rounding, which is near eps)
 SCAN_SCREEN_FACTOR = 10.0

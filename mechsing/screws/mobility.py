@@ -25,8 +25,8 @@ from mechsing.numeric import (
     SAMPLE_CLOSURE_RTOL,
     SAMPLE_DISTINCT_RATIO,
     Precision,
+    batched_kernels,
     decide_rank,
-    rank_bounds,
     to_float,
 )
 from mechsing.numeric.blocks import dense
@@ -204,16 +204,7 @@ def _decided_many(model: KinematicModel, Q: np.ndarray) -> list[tuple[int | None
     # stacked_jacobian of each: the chords' signed screws, each 6-row block commensurate
     J = model.closure_jacobian(Q, S).reshape(len(Q), model.blocks, 6, n)
     J = model.float_frame.screws(J).reshape(len(Q), rows, n)
-    s = np.linalg.svd(J, compute_uv=False)
-    Vt = np.linalg.svd(J, full_matrices=True)[2]
-    smax = s[:, 0]
-    rel = np.where(smax[:, None] > 0, s / np.where(smax > 0, smax, 1.0)[:, None], 0.0)
-    lo, hi = rank_bounds(rel, _FLOAT.tolerances)
-    out = []
-    for b in range(len(Q)):
-        r = int(lo[b])
-        out.append((n - r if r == int(hi[b]) else None, Vt[b, r:].T.copy()))
-    return out
+    return batched_kernels(J, _FLOAT.tolerances)
 
 
 def reclose_many(model: KinematicModel, Q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -39,6 +39,7 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.screws.mobility import NearbySample, nearby_samples, reclose, stacked_jacobian
+from mechsing.singularity.criteria import ConstraintTest, SerialTest, tests_run
 from mechsing.singularity.cspace import Cone, Expansion, closure_expansion, tangent_cone
 from mechsing.singularity.findings import (
     BranchFinding,
@@ -51,15 +52,14 @@ from mechsing.singularity.findings import (
     decision,
     degenerate,
 )
-from mechsing.singularity.generic import SampleValues, mechanism_plan, sample_values
+from mechsing.singularity.generic import SampleValues, sample_values
 from mechsing.singularity.serial import (
-    chain_system,
     generic_span,
     named,
     serial_finding,
     wrenches_of,
 )
-from mechsing.singularity.zfb import io_quantities, leg_constraint_rank, output_chain, tests_run
+from mechsing.singularity.zfb import io_quantities, output_chain
 
 # The higher-order forms (tangent cone) and the input/output and constraint
 # ranks at q are computed and decided at the analysis precision
@@ -422,7 +422,7 @@ def _io_findings(
                     d = replace(d, rank=None, note=RESTS_ON_UNDECIDED)
                 out.decisions.append(d)
             findings.extend(_zfb(mech, fm, here, hv, generic, tprec))
-    legs = leg_constraint_rank(mech, model, q, cs, tprec) if mech.output is not None else None
+    legs = ConstraintTest.of(mech, model).decide(cs, tprec)
     if legs is not None:
         dec, wr = legs
         gen_ranks = [v.constraint for v in regular if v.constraint is not None]
@@ -565,7 +565,8 @@ def _leg_serial(
     output chain of an open chain), against the float ranks at the samples
     (``regular``: their values, with each leg's screw matrix)."""
     findings: list[Finding] = []
-    legs = mechanism_plan(mech, fm).legs
+    legs = ConstraintTest.of(mech, fm).legs
+    serial = SerialTest.of(mech, model)
     # one rule for every leg, the output chain's: the twists of the output body, or the
     # velocities of the output point when the output names one (a leg whose last joint
     # turns about the point moves it no more than one that ends before that joint: the
@@ -574,7 +575,7 @@ def _leg_serial(
     xf = None if x is None else np.asarray(to_float(x), dtype=float)
     for i, leg in enumerate(legs):
         with model.precision.context():
-            here = chain_system(model, cs.screws, leg.columns, x, model.precision, cs.scaled_screws)
+            here = serial.decide(cs.screws, leg.columns, x, model.precision, cs.scaled_screws)
         gen = here.rank.rank or 0
         samples = []
         for v in regular:

@@ -28,8 +28,7 @@ import numpy as np
 from mechsing.kinematics import KinematicModel
 from mechsing.numeric import RESOLUTION_STEP, Precision, RankDecision, decide_rank
 from mechsing.screws import closure_system
-from mechsing.singularity.generic import mechanism_plan
-from mechsing.singularity.serial import chain_system
+from mechsing.singularity.criteria import ConstraintTest, SerialTest
 from mechsing.singularity.zfb import io_quantities, output_chain
 
 __all__ = ["geometry_slopes", "test_sigmas", "value_slopes"]
@@ -63,8 +62,9 @@ def test_sigmas(mech: Any, fm: Any, q: np.ndarray) -> list[np.ndarray]:
         io = io_quantities(mech, fm, q, N, _FLOAT, screws=cs.screws, cs=cs)
         if io is not None:
             out += [_relative(io.input_rank), _relative(io.output_rank)]
-    for leg in mechanism_plan(mech, fm).legs:
-        here = chain_system(fm, cs.screws, leg.columns, None, _FLOAT, cs.scaled_screws)
+    serial = SerialTest.of(mech, fm)
+    for leg in ConstraintTest.of(mech, fm).legs:
+        here = serial.decide(cs.screws, leg.columns, None, _FLOAT, cs.scaled_screws)
         out.append(_relative(here.rank))
     # not the legs' constraint wrenches: each leg's wrenches are the complement of its
     # decided rank, so their matrix jumps where a leg's rank does (no derivative there);

@@ -28,45 +28,27 @@ along the line of its pivots and its new wrench as the force along that line.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
-from mechsing.kinematics.couplings import expand_rates, fold_columns
+from mechsing.kinematics.couplings import expand_rates
 from mechsing.numeric import (
     MEMBERSHIP_RTOL_FLOAT,
     SUPPORT_RTOL,
     CommensurateFrame,
-    RankDecision,
     decide_rank,
     first_nonzero_positive,
     to_float,
 )
-from mechsing.screws import chain_matrix
 from mechsing.screws.readable import echelon, simplest
+from mechsing.singularity.criteria.serial import ChainSystem
 from mechsing.singularity.findings import SerialFinding
 from mechsing.singularity.names import lines_of_screws, singularity_name
 
 #: random configurations sampled to find a chain's generic rank
 GENERIC_SAMPLES = 8
-
-
-@dataclass
-class ChainSystem:
-    """A chain's screw system at q: commensurate matrix, its rank decision and
-    the maps back to SI quantities."""
-
-    matrix: np.ndarray  # commensurate (rows: 6 twist or 3 point-velocity; cols: chain coordinates)
-    rank: RankDecision
-    columns: list[int]  # coordinate indices of the chain
-    point: bool  # positioning task (3 rows)
-    #: the positions (in ``columns``) of the matrix's columns: a coupled follower whose
-    #: leader is in the chain is folded into its leader's column
-    #: (:func:`mechsing.kinematics.couplings.fold_columns`); None: every column
-    kept: list[int] | None = None
-    #: the folded followers: (position, leader's position, commensurate factor)
-    follows: list[tuple[int, int, Any]] = field(default_factory=list)
 
 
 def _unit_first_positive(v: np.ndarray) -> np.ndarray:
@@ -212,28 +194,6 @@ def serial_finding(
         relative_to=label.get("relative_to"),
         leg=label.get("leg"),
     )
-
-
-def chain_system(
-    model: Any,
-    S: np.ndarray,
-    columns: list[int],
-    point_x: np.ndarray | None,
-    precision: Any,
-    scaled: np.ndarray | None = None,
-) -> ChainSystem:
-    """The screw system of the chain of joint coordinates ``columns`` (``S``: the current
-    screws; ``scaled``: ``model.frame.screws(S)`` when already computed, whose columns
-    are then taken: commensurate column by column, the same numbers) and its rank."""
-    if scaled is not None and point_x is None:
-        Ms = scaled[:, list(columns)]
-    else:
-        Ms = chain_matrix(model, S, columns, point_x)
-    kept, follows = None, []
-    if getattr(model, "couplings", ()):
-        Ms, kept, follows = fold_columns(model, Ms, list(columns))
-    dec = decide_rank(Ms, precision, model.length_scale)
-    return ChainSystem(Ms, dec, columns, point_x is not None, kept, follows)
 
 
 def named(

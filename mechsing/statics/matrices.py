@@ -22,7 +22,8 @@ from mechsing.kinematics import KinematicModel
 from mechsing.kinematics.chains import tree_chain
 from mechsing.numeric import to_float
 from mechsing.screws import closure_system
-from mechsing.singularity.zfb import input_rows, output_chain
+from mechsing.singularity.criteria import input_rows
+from mechsing.singularity.zfb import output_chain
 
 __all__ = ["LoopRows", "MotionMatrices", "motion_matrices", "float_configuration"]
 

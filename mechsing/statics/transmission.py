@@ -25,7 +25,7 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.numeric import MEMBERSHIP_RTOL_FLOAT, Precision, decide_rank, to_float
-from mechsing.singularity.zfb import leg_path
+from mechsing.singularity.criteria import leg_path
 from mechsing.statics.matrices import MotionMatrices
 
 __all__ = ["Transmission", "transmission"]

@@ -57,18 +57,14 @@ from typing import Any
 import numpy as np
 
 from mechsing.kinematics import forward
-from mechsing.kinematics.chains import tree_chain
-from mechsing.kinematics.couplings import coupling_rows
-from mechsing.numeric import SWEEP_GRAM_RATIO, SWEEP_SCREEN_ROUNDING, Precision, rank_bounds
-from mechsing.screws import chain_matrix
-from mechsing.singularity.zfb import input_rows, leg_path
+from mechsing.numeric import SWEEP_GRAM_RATIO, SWEEP_SCREEN_ROUNDING, relative_singular_values
+from mechsing.singularity.criteria import ClosureTest, ConstraintTest, Criterion, MotionTest
 
 __all__ = ["SIGNED", "TESTS", "Measures", "PointMeasures"]
 
 #: the tests a sweep measures, in the order of every output
 TESTS = ("closure", "input", "output", "constraint")
 
-_FLOAT = Precision("float").tolerances
 
 #: tests whose singular values are relative to the operator applied to the motion space
 #: (T N over |T|, E N with |E| = 1), as the full analysis decides them; the others are
@@ -201,39 +197,14 @@ class Measures:
         self.model = model
         self.mech = mech = model.mech
         self.frame = model.float_frame
-        n = model.n
-        self.loop_signs = np.zeros((len(mech.loops), n))
-        for i, loop in enumerate(mech.loops):
-            for name, sign in zip(loop.joints, loop.signs, strict=True):
-                self.loop_signs[i, model.joint(name).columns] = sign
-        #: the couplings' commensurate rows (k, n), after the loops' in the closure; and,
-        #: without loops, the constant kernel of those rows (the joint rates they allow)
-        self.coupling_rows, self.coupling_kernel = coupling_rows(model, self.frame)
-        if mech.loops:
-            self.coupling_kernel = None
-        out = mech.output
-        E = input_rows(mech, model)
+        # the tests, each defined once (their plans built once per model)
+        self.closure = ClosureTest.of(mech, model)
+        self.motion = MotionTest.of(mech, model)
+        self.constraint = ConstraintTest.of(mech, model)
+        E = self.motion.E
         self.E = None if E is None else np.asarray(E, dtype=float)
-        self.out_signs = None
-        self.out_point = None
-        if out is not None:
-            self.out_signs = tree_chain(model, out.body, out.relative_to).signs
-            if out.point is not None:
-                self.out_point = np.array([float(x) for x in out.point])
-        self.legs = []
-        if out is not None and len(mech.legs) >= 2:
-            for leg in mech.legs:
-                legset = set(leg.joints)
-                cols = [
-                    c
-                    for j in leg.joints
-                    for c in range(model.joint(j).columns.start, model.joint(j).columns.stop)
-                ]
-                inner = [i for i, lp in enumerate(mech.loops) if set(lp.joints) <= legset]
-                coef = np.zeros(n)
-                for jn, sg in leg_path(mech, leg, out.relative_to, out.body):
-                    coef[model.joint(jn).columns] = sg
-                self.legs.append((np.array(cols), inner, coef))
+        out = mech.output
+        self.legs = self.constraint.legs
         present = {
             "closure": bool(mech.loops),
             # T N needs the output; E N only the inputs (every test whose ingredients
@@ -248,12 +219,27 @@ class Measures:
         self.tests = tuple(self.generic)
 
     @property
+    def loop_signs(self) -> np.ndarray:
+        """Each loop's crossing signs per coordinate (:class:`ClosureTest`'s plan)."""
+        return self.closure.loop_signs
+
+    @property
+    def out_signs(self) -> np.ndarray | None:
+        """The output chain's signs per coordinate (:class:`MotionTest`'s plan)."""
+        return self.motion.out_signs
+
+    @property
+    def out_point(self) -> np.ndarray | None:
+        """The output point in floats (:class:`MotionTest`'s plan)."""
+        return self.motion.out_point
+
+    @property
     def pointwise(self) -> bool:
         """Whether each configuration's measures are independent of the others measured
         with it (so that several rows may be measured in one batch).  Not so where a
         rank is taken over the whole batch: a leg with inner loops (the rank of their
         system, :meth:`_constraint`), a closure without a generic rank."""
-        if any(inner for _, inner, _ in self.legs) and "constraint" in self.tests:
+        if any(leg.inner_loops for leg in self.legs) and "constraint" in self.tests:
             return False
         return not (self.mech.loops and not self.generic.get("closure"))
 
@@ -299,7 +285,7 @@ class Measures:
                 self._closure_svd = ("svd", U, s, Vt)
             # without loops every joint rate is a motion: N is the identity
             # without loops, the couplings' kernel (constant) stands for the closure's
-            K = kernel if kernel is not None else self.coupling_kernel
+            K = kernel if kernel is not None else self.closure.coupling_kernel
             if "input" in self.tests:
                 T, nT = self._output_rows(P, S)
                 TN = T if K is None else T @ K
@@ -323,25 +309,16 @@ class Measures:
 
     def _closure(self, Ss: np.ndarray) -> np.ndarray:
         """The stacked loop screw systems from the commensurate screws, then the couplings'
-        rows, (N, 6 loops + couplings, n)."""
-        C = Ss[:, None, :, :] * self.loop_signs[None, :, None, :]
-        C = C.reshape(Ss.shape[0], -1, self.model.n)
-        if self.coupling_rows is None:
-            return C
-        R = np.broadcast_to(self.coupling_rows, (C.shape[0], *self.coupling_rows.shape))
-        return np.concatenate([C, R], axis=1)
+        rows, (N, 6 loops + couplings, n) (:meth:`ClosureTest.matrices`)."""
+        return self.closure.matrices(Ss)
 
     def _output_rows(
         self, P: dict[str, np.ndarray], S: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray]:
         """The commensurate output rows T (twists, or the output point's velocities) and
         their norms |T|."""
-        x = None
-        if self.out_point is not None:
-            x = (P[self.mech.output.body][:, :3, :3] @ self.out_point) + P[self.mech.output.body][
-                :, :3, 3
-            ]
-        T = chain_matrix(self.model, S, None, x, self.out_signs)  # makes it commensurate
+        x = self.motion.output_point(P, float_point=True)
+        T = self.motion.output_rows(S, x)  # makes it commensurate
         return T, _largest_singular_value(T)
 
     def unkept(self, Q: np.ndarray) -> dict[str, np.ndarray]:
@@ -365,25 +342,9 @@ class Measures:
         return "closure" in self.tests and g is not None and g == rows
 
     def _constraint(self, Ss: np.ndarray) -> np.ndarray:
-        """The legs' combined constraint wrenches as rows, (N, wrenches, 6)."""
-        N = Ss.shape[0]
-        blocks = []
-        for cols, inner, coef in self.legs:
-            Tl = (Ss * coef[None, None, :])[:, :, cols]
-            if inner:
-                Mi = (Ss[:, None, :, :] * self.loop_signs[inner][None, :, None, :]).reshape(
-                    N, -1, Ss.shape[2]
-                )[:, :, cols]
-                _, s, Vt = np.linalg.svd(Mi, full_matrices=True)
-                lo, hi = rank_bounds(_relative(s), _FLOAT)
-                r = int(np.max(hi))
-                Tl = Tl @ np.swapaxes(Vt[:, r:, :], 1, 2)
-            U, s, _ = np.linalg.svd(Tl, full_matrices=True)
-            lo, hi = rank_bounds(_relative(s), _FLOAT)
-            # columns of U beyond each row's rank: the leg's wrenches (zero elsewhere)
-            mask = np.arange(6)[None, :] >= hi[:, None]
-            blocks.append(np.swapaxes(U * mask[:, None, :], 1, 2))
-        return np.concatenate(blocks, axis=1)
+        """The legs' combined constraint wrenches as rows, (N, wrenches, 6)
+        (:meth:`ConstraintTest.wrench_rows`)."""
+        return self.constraint.wrench_rows(Ss, self.closure.loop_signs)
 
     # ------------------------------------------------------------------ measures
 
@@ -406,10 +367,11 @@ class Measures:
                 U, s, Vt = np.linalg.svd(A, full_matrices=False)
             if t in _UNIT_REFERENCE:
                 rel = s  # already relative to the operator's norm (|T| or |E| = 1)
+                bounds = self.motion.ranks_of_relative(rel)
             else:
-                rel = _relative(s)
-            lo, hi = rank_bounds(rel, _FLOAT)
-            rank[t] = np.where(lo == hi, lo, -1).astype(np.int16)
+                rel = relative_singular_values(s)
+                bounds = Criterion.ranks_of_relative(rel)
+            rank[t] = bounds.decided.astype(np.int16)
             ratio[t] = rel[:, g - 1] if g <= rel.shape[1] else np.zeros(len(rel))
             top[t] = s[:, 0] if s.shape[1] else np.zeros(len(s))
             if t not in deferred:
@@ -697,16 +659,8 @@ def _singular_values(R: np.ndarray) -> np.ndarray:
     return s
 
 
-def _relative(s: np.ndarray) -> np.ndarray:
-    """Singular values (N, k) relative to each row's largest (0 where it is 0)."""
-    big = s[:, :1]
-    return np.where(big > 0, s / np.where(big > 0, big, 1.0), 0.0)
-
-
 def _max_rank(A: np.ndarray) -> int:
-    s = np.linalg.svd(A, compute_uv=False)
-    lo, hi = rank_bounds(_relative(s), _FLOAT)
-    return int(np.max(hi))
+    return int(np.max(Criterion.ranks(np.linalg.svd(A, compute_uv=False)).hi))
 
 
 def _steps(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -42,7 +42,7 @@ from typing import Any
 
 import numpy as np
 
-from mechsing import lie, scanner_kernel
+from mechsing import lie
 from mechsing.kinematics import KinematicModel, forward
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.forward import SerialJacobian
@@ -53,10 +53,12 @@ from mechsing.numeric import (
     SCAN_SCREEN_FACTOR,
     Precision,
     dispatch,
-    rank_bounds,
+    relative_singular_values,
 )
 from mechsing.reader import read_mechanism
 from mechsing.screws import chain_matrix
+from mechsing.singularity.criteria import SerialTest
+from mechsing.sweeps import scan_kernel  # noqa: F401 - registers the compiled screen
 
 __all__ = ["ChainScanner", "ScanResult", "scan"]
 
@@ -148,7 +150,7 @@ class ChainScanner:
             )
         from mechsing.model.couplings import refuse_couplings
 
-        refuse_couplings(mech, "the chain scanner (mechsing.scanner)")
+        refuse_couplings(mech, "the chain scanner (mechsing.sweeps.scan)")
         self.mech = mech
         self.model = KinematicModel(mech, "float")
         self.chain = tree_chain(self.model, mech.output.body, mech.output.relative_to)
@@ -162,6 +164,8 @@ class ChainScanner:
         self.centroid = np.asarray(self.model.centroid, dtype=float)
         self.length_columns = np.asarray(self.model.length_columns[self.columns], dtype=bool)
         self.tolerances = Precision("float").tolerances
+        #: the serial test (:class:`mechsing.singularity.criteria.SerialTest`) that decides
+        self.test = SerialTest.of(mech, self.model)
         names = list(dict.fromkeys(self.chain.joints))
         self._chain_joints = [self.model.joint(j) for j in names]
         self._generic: int | None = None
@@ -251,11 +255,9 @@ class ChainScanner:
         todo = np.ones(N, dtype=bool) if all_sigma else ~screened
         if np.any(todo):
             s = np.linalg.svd(J[todo], compute_uv=False)  # (N', m), descending
-            smax = s[:, :1]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                rel = np.where(smax > 0, s / smax, 0.0)
-            lo_rank, hi_rank = rank_bounds(rel, tol)
-            decided = np.where(lo_rank == hi_rank, lo_rank, UNDECIDED).astype(np.int8)
+            rel = relative_singular_values(s)
+            # the serial test's rule (UNDECIDED is its -1)
+            decided = self.test.ranks_of_relative(rel).decided.astype(np.int8)
             # the screen and the SVD agree where both ran (the bound is certified)
             rank[todo] = np.where(screened[todo], rank[todo], decided)
             ratio[todo] = rel[:, -1]
@@ -263,9 +265,9 @@ class ChainScanner:
 
     @property
     def compiled(self) -> bool:
-        """Does :meth:`scan` screen with the compiled kernel (:mod:`mechsing.scanner_kernel`:
+        """Does :meth:`scan` screen with the compiled kernel (:mod:`mechsing.sweeps.scan_kernel`:
         a serial chain of one-dof joints from ground, and numba installed)?"""
-        return self._serial is not None and scanner_kernel.available()
+        return self._serial is not None and self.test.compiled_screen() is not None
 
     def _decide_compiled(self, Q: np.ndarray) -> tuple[np.ndarray, ...]:
         """:meth:`_decide` with the compiled screen: the numpy matrices and SVD only at the
@@ -277,7 +279,7 @@ class ChainScanner:
         if m < 2:
             return self._decide(self.matrices(Q), False)
         err = SCAN_ROUNDING_FACTOR * m * _EPS
-        bound = scanner_kernel.screen_bounds(self._serial, Q, err if rows == k else np.sqrt(err))
+        bound = self.test.screen(self._serial, Q, err if rows == k else np.sqrt(err))
         screened = bound >= SCAN_SCREEN_FACTOR * self.tolerances.tau_hi
         rank = np.full(N, m, dtype=np.int8)
         ratio = np.full(N, np.nan)

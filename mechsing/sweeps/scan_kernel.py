@@ -1,7 +1,7 @@
 """The scanner's screen compiled with numba (optional: the ``fast`` extra).
 
 One pass per configuration does what :class:`mechsing.kinematics.forward.SerialJacobian`
-and the screen of :mod:`mechsing.scanner` do with numpy arrays: the product of
+and the screen of :mod:`mechsing.sweeps.scan` do with numpy arrays: the product of
 exponentials of a serial chain of one-dof joints in the commensurate frame (the
 same Rodrigues update, the same table ``[K, K^2, K a, K^2 a, u, v]`` per joint),
 the chain's matrix (current screws, or the output point's velocity), its length
@@ -19,16 +19,19 @@ the SVD in both paths, so the verdicts are the same (tested).
 Numba is imported lazily; :func:`available` is False without it, or when fast paths
 are off (``MECHSING_FAST=0``, or its alias ``MECHSING_NO_COMPILED=1``:
 :mod:`mechsing.numeric.dispatch`, where :func:`screen_bounds` is registered in the
-table ``exp``), and the scanner then uses its numpy path.
+table ``exp``), and the scanner then uses its numpy path.  It is the serial test's
+optional backend (:meth:`mechsing.singularity.criteria.SerialTest.screen`).
 """
 
 from __future__ import annotations
 
+import sys
 from typing import Any
 
 import numpy as np
 
 from mechsing.numeric import dispatch
+from mechsing.singularity.criteria import SerialTest
 
 __all__ = ["available", "screen_bounds"]
 
@@ -171,7 +174,7 @@ def _build() -> Any:
 
 @dispatch.table("exp").register(
     "compiled serial chain",
-    "the scanner's serial chain of one-dof joints, compiled with numba (its screen's bound "
+    "the scan's serial chain of one-dof joints, compiled with numba (its screen's bound "
     "to the determinant's backward error)",
 )
 def screen_bounds(serial: Any, Q: np.ndarray, err: float) -> np.ndarray:
@@ -179,7 +182,7 @@ def screen_bounds(serial: Any, Q: np.ndarray, err: float) -> np.ndarray:
     :class:`~mechsing.kinematics.forward.SerialJacobian` chain (compiled on first use)."""
     if not _KERNEL:
         _KERNEL.append(_build())
-    tables = serial._table
+    tables = serial.table
     cols = np.array([t[0] for t in tables], dtype=np.int64)
     pos = np.array([t[1] for t in tables], dtype=np.int64)
     T = np.ascontiguousarray(np.stack([t[2] for t in tables]), dtype=float)
@@ -207,3 +210,7 @@ def screen_bounds(serial: Any, Q: np.ndarray, err: float) -> np.ndarray:
         out,
     )
     return out
+
+
+# the serial test's optional compiled screen (its numpy screen stays the scan's default)
+SerialTest.register_screen(sys.modules[__name__])

@@ -1,0 +1,200 @@
+"""The singularity tests, each defined once (:mod:`mechsing.singularity.criteria`), and
+the one rank rule of :mod:`mechsing.numeric` they decide through.
+
+Each test is checked against a closed form, for any leading batch shape, and a batch's
+decision against the one-configuration decision of the same test object (the single
+definition).  A last test reads every module's source: the rank rule is called only from
+``numeric`` and the test objects.
+"""
+
+from __future__ import annotations
+
+import ast
+import math
+from pathlib import Path
+
+import mpmath
+import numpy as np
+
+import mechsing
+from mechsing.kinematics import Closer, KinematicModel, batched
+from mechsing.model.loader import loads
+from mechsing.numeric import Precision, parse_precision, rank_bounds, to_float
+from mechsing.screws import closure_system
+from mechsing.singularity.criteria import ConstraintTest, MotionTest, SerialTest
+
+PACKAGE = Path(__file__).resolve().parents[1] / "mechsing"
+EX = PACKAGE.parent / "examples"
+
+#: a planar 3R arm whose output is the point at the end of its last link (unit links)
+PLANAR_3R_POINT = """\
+mechanism: planar-3r-point
+bodies: [base, l1, l2, l3]
+joints:
+  - {name: R1, type: R, between: [base, l1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: R2, type: R, between: [l1, l2], axis: [0, 0, 1], point: [1, 0, 0]}
+  - {name: R3, type: R, between: [l2, l3], axis: [0, 0, 1], point: [2, 0, 0]}
+output: {body: l3, point: [3, 0, 0]}
+"""
+
+
+def test_the_rank_rule_counts_the_two_thresholds_over_any_batch_shape():
+    """rank_bounds: lowest = #(sigma >= tau_hi), highest = #(sigma > tau_lo), per matrix,
+    for a batch of shape (2, 2) as for one matrix (shape ())."""
+    tol = Precision("float").tolerances  # tau_lo 1e-12, tau_hi 1e-9
+    rel = np.array(
+        [
+            [[1.0, 1e-3, 0.0], [1.0, 1e-10, 0.0]],  # rank 2; undecided 1..2
+            [[1.0, 1e-9, 1e-12], [0.0, 0.0, 0.0]],  # tau_hi kept, tau_lo dropped: 2; 0
+        ]
+    )
+    lo, hi = rank_bounds(rel, tol)
+    assert lo.tolist() == [[2, 1], [2, 0]]
+    assert hi.tolist() == [[2, 2], [2, 0]]
+    one = rank_bounds(rel[0, 1], tol)
+    assert (int(one[0]), int(one[1])) == (1, 2)
+
+
+def test_the_rank_rule_compares_mp_numbers_below_the_float_range():
+    """At mp:400 tau_lo = 10^-390 and tau_hi = 10^-200 are below the float range: the rule
+    compares the mp numbers themselves (10^-300 lies between them: undecided; 10^-395 is
+    dropped), which as floats would both be 0."""
+    prec = parse_precision("mp:400")
+    with prec.context():
+        rel = [mpmath.mpf(1), mpmath.mpf("1e-150"), mpmath.mpf("1e-300"), mpmath.mpf("1e-395")]
+        lo, hi = rank_bounds(rel, prec.tolerances)
+    assert (int(lo), int(hi)) == (2, 3)
+
+
+def _arm():
+    mech = loads(PLANAR_3R_POINT)
+    return mech, KinematicModel(mech, "float")
+
+
+def test_the_serial_test_of_a_planar_arm_is_its_closed_form_for_any_batch_shape():
+    """The velocity of the arm's end point spans the plane (rank 2) unless every link is
+    aligned (q2 = q3 = 0 mod pi: rank 1).  The serial test's matrices and ranks for a batch
+    of shape (2, 2), and its one-configuration decision, all say so."""
+    mech, model = _arm()
+    test = SerialTest.of(mech, model)
+    motion = MotionTest.of(mech, model)
+    Q = np.array(
+        [[[0.0, 0.0, 0.0], [0.3, 0.5, -0.2]], [[1.0, math.pi, 0.0], [-0.4, 1.2, 0.7]]]
+    )  # (2, 2, 3)
+    want = [[1, 2], [1, 2]]
+    flat = Q.reshape(-1, 3)
+    S = np.stack([model.current_screws(q) for q in flat])
+    x = np.stack([motion.output_point(model.poses(q), float_point=True) for q in flat])
+    M = test.matrix(S.reshape(2, 2, 6, 3), [0, 1, 2], x.reshape(2, 2, 3))[0]
+    assert M.shape == (2, 2, 3, 3)
+    assert test.batch_ranks(M).decided.tolist() == want
+    for q, r in zip(flat, np.ravel(want), strict=True):
+        one = test.decide(
+            model.current_screws(q), [0, 1, 2], motion.output_point(model.poses(q)), "float"
+        )
+        assert one.rank.rank == r
+        assert test.batch_ranks(one.matrix).decided.tolist() == r  # batch shape ()
+
+
+def test_the_motion_test_of_the_five_bar_at_a_batch_is_its_one_configuration_decision():
+    """The five-bar's inputs and output point both span its two-dof motion (file
+    comment): T N and E N of rank 2, no input, output or passive motion, at every closed
+    configuration of the file; the batch decision of the motion test equals its
+    one-configuration decision (the same object)."""
+    mech = mechsing.load(EX / "five_bar.yaml")
+    model = KinematicModel(mech, "float")
+    closer = Closer(model)
+    test = MotionTest.of(mech, model)
+    assert MotionTest.of(mech, model) is test  # one plan per model
+    Qs, Ns, ones = [], [], []
+    for name in ["reference", "inputs"]:
+        q = np.asarray(to_float(closer.solve(name).q), dtype=float)
+        cs = closure_system(model, q)
+        N = np.asarray(to_float(cs.rank.null_space), dtype=float)
+        T = test.output_rows(cs.screws, test.output_point(model.poses(q)))
+        one = test.decide(T, test.E, N, Precision("float"))
+        Qs.append(q)
+        Ns.append(N)
+        ones.append(one.values())
+    Q = np.array(Qs)
+    P = batched.poses(model, Q)
+    S = batched.current_screws(model, Q, P)
+    T, nT = test.batch_output_rows(S, P)
+    many = test.batch_values(T, nT, np.array(Ns))
+    want = {
+        "input": 0,
+        "output": 0,
+        "passive-motion": 0,
+        "impossible-input": 2,
+        "impossible-output": 2,
+    }
+    assert many == ones == [want, want]
+
+
+def test_the_constraint_test_of_the_five_bar_counts_the_planar_wrenches():
+    """Each leg of the five-bar (planar) resists the three out-of-plane wrenches; leg 1
+    (two joints up to the output body) also resists the force along its distal link:
+    together four independent wrenches, in a batch as at one configuration."""
+    mech = mechsing.load(EX / "five_bar.yaml")
+    model = KinematicModel(mech, "float")
+    test = ConstraintTest.of(mech, model)
+    assert len(test.legs) == 2
+    q = np.asarray(to_float(Closer(model).solve("reference").q), dtype=float)
+    cs = closure_system(model, q)
+    dec, _ = test.decide(cs, Precision("float"))
+    Ss = model.frame.screws(cs.screws)[None]
+    assert dec.rank == 4
+    assert test.batch_values(Ss) == [4]
+    rows = test.wrench_rows(Ss, np.zeros((len(mech.loops), model.n)))
+    assert np.linalg.matrix_rank(rows[0]) == 4
+
+
+#: the functions that apply the rank rule: called only from numeric and the test objects
+_RULE = {"rank_bounds", "batched_rank_bounds", "_split_rank"}
+
+
+def test_the_rank_rule_is_called_only_from_numeric_and_the_criteria():
+    """Every call of the two-threshold rank rule (by any name it is exported under) in the
+    package's source stands in mechsing/numeric or mechsing/singularity/criteria."""
+    allowed = (PACKAGE / "numeric", PACKAGE / "singularity" / "criteria")
+    callers = set()
+    for path in PACKAGE.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not isinstance(node, ast.Call):
+                continue
+            f = node.func
+            name = f.id if isinstance(f, ast.Name) else getattr(f, "attr", None)
+            if name in _RULE:
+                callers.add(path)
+    assert callers, "the rule's callers were not found: the names changed"
+    outside = sorted(
+        str(p.relative_to(PACKAGE)) for p in callers if not any(a in p.parents for a in allowed)
+    )
+    assert outside == []
+
+
+def test_the_scan_s_compiled_screen_is_a_backend_registered_with_the_serial_test():
+    """The scan (mechsing.sweeps.scan) registers its compiled screen with the serial test;
+    the screen reads the serial chain's public table, not a private attribute."""
+    import mechsing.sweeps.scan  # noqa: F401 - registers the screen
+    from mechsing.sweeps import scan_kernel
+
+    want = scan_kernel if scan_kernel.available() else None
+    assert SerialTest.compiled_screen() is want
+    source = (PACKAGE / "sweeps" / "scan_kernel.py").read_text(encoding="utf-8")
+    assert "._table" not in source
+
+
+def test_a_test_keeps_its_plan_for_the_last_models_only():
+    """The plan is built once per model (the same object when asked again) and the cache is
+    bounded: after PLANS_KEPT other models, the first model's plan is built afresh (a plan
+    holds its model, which is let go)."""
+    from mechsing.singularity.criteria.base import PLANS_KEPT
+
+    mech, model = _arm()
+    first = SerialTest.of(mech, model)
+    assert SerialTest.of(mech, model) is first
+    others = [KinematicModel(mech, "float") for _ in range(PLANS_KEPT)]
+    for m in others:
+        SerialTest.of(mech, m)
+    assert SerialTest.of(mech, model) is not first
