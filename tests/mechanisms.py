@@ -162,6 +162,9 @@ PUBLISHED: dict[str, Published] = {
     # 3-RPR: mobility 3, Gruebler -3; its two loops (two of the three leg pairs: which two is a
     # tie of the minimum cycle basis) are checked in test_planar_3rpr_loops
     "planar_3rpr.yaml": Published(3, -3, ("reference", "stroke")),
+    # the 3-RPR of six real assembly modes: mobility 3, spatial Gruebler 6(8-1-9)+9 = -3;
+    # its configuration space is smooth wherever no leg has zero length
+    "planar_3rpr_six.yaml": Published(3, -3, ("reference", "six")),
     # Tsai 3-UPU: mobility 3, Gruebler 3; the flat pose is constraint-singular
     "tsai_3upu.yaml": Published(3, 3, ("reference", "raised", "lateral")),
     # octahedral hexapod: mobility 6, Gruebler 6; centred pose regular
