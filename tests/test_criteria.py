@@ -17,7 +17,7 @@ import mpmath
 import numpy as np
 
 import mechsing
-from mechsing.kinematics import Closer, KinematicModel, batched
+from mechsing.kinematics import Closer, KinematicModel, forward
 from mechsing.model.loader import loads
 from mechsing.numeric import Precision, parse_precision, rank_bounds, to_float
 from mechsing.screws import closure_system
@@ -117,8 +117,8 @@ def test_the_motion_test_of_the_five_bar_at_a_batch_is_its_one_configuration_dec
         Ns.append(N)
         ones.append(one.values())
     Q = np.array(Qs)
-    P = batched.poses(model, Q)
-    S = batched.current_screws(model, Q, P)
+    P = forward.poses(model, Q)
+    S = forward.current_screws(model, Q, P)
     T, nT = test.batch_output_rows(S, P)
     many = test.batch_values(T, nT, np.array(Ns))
     want = {
