@@ -16,6 +16,7 @@ import pytest
 from scipy.sparse import csc_matrix
 
 from mechsing.kinematics.closure import Closer
+from mechsing.kinematics.jacobians import chord_signs
 from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import damped_least_squares, truncated_least_squares
 from mechsing.model import load
@@ -272,7 +273,7 @@ def test_a_ladder_closure_jacobian_built_sparse(tmp_path):
     names = [jk.name for jk in m.joints]
     for k, jk in enumerate(m.chords, 1):
         assert jk.name == f"D{k}"
-        signs = m._chord_signs()[k - 1]
+        signs = chord_signs(m)[k - 1]
         crossed = {names[i]: int(signs[i]) for i in np.flatnonzero(signs)}
         assert crossed == {f"A{k}": -1, f"B{k}": 1, f"C{k}": -1, f"D{k}": 1}
     rng = np.random.default_rng(3)

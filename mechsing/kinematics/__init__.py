@@ -3,6 +3,10 @@
 * :mod:`~mechsing.kinematics.model`: the kinematic model (reference screws of the
   joints in one precision mode, coordinates, closure residuals and Jacobian, updates
   on the group);
+* :mod:`~mechsing.kinematics.jacobians`: the model's closure Jacobians (raw,
+  commensurate, sparse) and the chords' closure chains under them;
+* :mod:`~mechsing.kinematics.coordinates`: the model's coordinate updates on the group
+  (update, difference, first-kind coordinates of a joint's element);
 * :mod:`~mechsing.kinematics.protocol`: :class:`ClosureModel`, what closure and Newton
   ask of a model (a :class:`KinematicModel`, or a pose model,
   :mod:`~mechsing.kinematics.pose`);

@@ -28,6 +28,7 @@ from mechsing import lie
 from mechsing.kinematics import forward
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.couplings import coupling_residuals
+from mechsing.kinematics.jacobians import chord_signs
 from mechsing.lie import exp_so3, log_so3
 from mechsing.numeric import NEWTON_DAMPING, Precision
 
@@ -55,7 +56,7 @@ class BatchClosure:
         self.c = np.asarray(base.float_frame.c, dtype=float)
         self.frame = base.float_frame
         self.chords = list(base.chords)
-        self.signs = np.array(base._chord_signs(), dtype=float).reshape(-1, self.nb)
+        self.signs = np.array(chord_signs(base), dtype=float).reshape(-1, self.nb)
         if self.pose is not None:
             out = base.mech.output
             self.pose_a, self.pose_b = out.relative_to, out.body

@@ -1,6 +1,9 @@
 """The kinematic model of a mechanism in one precision mode: its joints' reference
 screws and coordinates, closure residuals, closure Jacobian and updates on the
-group (poses and current screws are computed by :mod:`mechsing.kinematics.forward`).
+group (poses and current screws are computed by :mod:`mechsing.kinematics.forward`,
+the closure Jacobians by :mod:`mechsing.kinematics.jacobians`, the updates on the group
+by :mod:`mechsing.kinematics.coordinates`: the model's methods call them, and the model
+keeps their caches).
 
 Conventions (those of the mechanism file; the README states them):
 
@@ -37,8 +40,7 @@ import mpmath
 import numpy as np
 
 from mechsing import lie
-from mechsing.kinematics import forward
-from mechsing.kinematics.chains import tree_chain
+from mechsing.kinematics import coordinates, forward, jacobians
 from mechsing.kinematics.couplings import (
     CouplingKinematics,
     coupling_block,
@@ -50,10 +52,8 @@ from mechsing.model import Mechanism
 from mechsing.numeric import (
     CommensurateFrame,
     Precision,
-    blocks,
     characteristic_length,
     dispatch,
-    holds_objects,
     is_float64,
     to_float,
 )
@@ -239,11 +239,14 @@ class KinematicModel:
         self.blocks: int = len(self.chords) + len(self.couplings)
         #: the commensurate coupling blocks, per frame (:meth:`coupling_block`)
         self._coupling_blocks: dict[int, tuple[Any, np.ndarray]] = {}
+        #: each chord's closure chain and its non-zero entries, built once by
+        #: :mod:`.jacobians` (:func:`~.jacobians.chord_signs`)
         self._chords_signs: list[np.ndarray] | None = None
         self._chord_nonzeros: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         self._points: dict[tuple[Any, ...], np.ndarray] = {}
         #: the elements of the non-abelian joints at the last float configuration, and
-        #: each such joint's basis in the commensurate metric (:meth:`update`)
+        #: each such joint's basis in the commensurate metric (:meth:`update`, kept here
+        #: by :mod:`.coordinates`)
         self._last_elements: tuple[bytes, np.ndarray] | None = None
         self._basis_twists: dict[str, np.ndarray] = {}
         #: the basis rows of loops at rest (:func:`mechsing.screws.closure_system`)
@@ -450,17 +453,9 @@ class KinematicModel:
         return worst
 
     def closure_jacobian(self, q: np.ndarray, screws: np.ndarray | None = None) -> np.ndarray:
-        """Linearised closure: (6 * blocks, n); row block j is ``screws(j) + V_a - V_b``
-        with ``V_x`` the tree velocity of body x, then each coupling's block.  A float
-        batch of configurations (N, n) gives (N, 6 * blocks, n)."""
-        S = self.current_screws(q) if screws is None else screws
-        J = self._chord_jacobian(S)
-        if not self.couplings:
-            return J
-        C = self.coupling_block(None)
-        if J.ndim == 3:
-            C = np.broadcast_to(C, (J.shape[0],) + C.shape)
-        return np.concatenate([J, C], axis=-2)
+        """Linearised closure (6 * blocks, n), or (N, 6 * blocks, n) for a float batch:
+        :func:`.jacobians.closure_jacobian`."""
+        return jacobians.closure_jacobian(self, q, screws)
 
     def coupling_block(self, frame: Any) -> np.ndarray:
         """The couplings' closure rows (6 * couplings, n): commensurate in ``frame``, or
@@ -472,237 +467,44 @@ class KinematicModel:
             self._coupling_blocks[key] = got
         return got[1]
 
-    def _chord_jacobian(self, S: np.ndarray) -> np.ndarray:
-        """The chords' rows of :meth:`closure_jacobian` from the current screws."""
-        bk = self.backend
-        signs = self._chord_signs()
-        if not signs:
-            return bk.zeros(S.shape[:-2] + (0, self.n))
-        if S.ndim == 3 and not holds_objects(S):
-            # a float batch: the same products, configuration by configuration
-            J = np.stack(signs)[None, :, None, :] * S[:, None, :, :]
-            return J.reshape(S.shape[0], -1, self.n)
-        if S.ndim == 2 and not holds_objects(S):
-            # one float configuration: one broadcast product (the same products)
-            return (np.stack(signs)[:, None, :] * S[None, :, :]).reshape(-1, self.n)
-        rows = [S * coef[None, :] for coef in signs]
-        return np.concatenate(rows, axis=0)
-
     def scaled_closure_jacobian(
         self, q: np.ndarray, frame: Any, screws: np.ndarray | None = None
     ) -> np.ndarray:
-        """``frame.blocks(closure_jacobian(q))``: the screws are made commensurate once and
-        then signed per chord (the signs are -1, 0 or 1, so the numbers are the same)."""
-        S = self.current_screws(q) if screws is None else screws
-        signs = self._chord_signs()
-        if not signs or S.ndim != 2 or holds_objects(S):
-            J = frame.blocks(self._chord_jacobian(S))
-        else:
-            Ss = frame.blocks(np.asarray(S, dtype=float))
-            J = (np.stack(signs)[:, None, :] * Ss[None, :, :]).reshape(-1, self.n)
-        if not self.couplings:
-            return J
-        return np.concatenate([J, self.coupling_block(frame)], axis=0)
+        """``frame.blocks(closure_jacobian(q))``: :func:`.jacobians.scaled_closure_jacobian`."""
+        return jacobians.scaled_closure_jacobian(self, q, frame, screws)
 
     @property
     def sparse_closure(self) -> bool:
-        """Whether the float closure Jacobian is big enough to be built and solved sparse
-        (:meth:`sparse_closure_jacobian`, block by block): a float model whose closure
-        matrix is not factorised whole (:func:`mechsing.numeric.blocks.dense`)."""
-        return self.backend.name == "float" and not blocks.dense(6 * self.blocks * self.n)
+        """Whether the float closure Jacobian is built and solved sparse:
+        :func:`.jacobians.sparse_closure`."""
+        return jacobians.sparse_closure(self)
 
     def sparse_closure_jacobian(
         self, q: np.ndarray, frame: Any, screws: np.ndarray | None = None
     ) -> csc_matrix:
-        """:meth:`scaled_closure_jacobian` of one float configuration as a sparse matrix
-        (the same numbers): row block j holds the commensurate screws of chord j's chain
-        times their signs, and only the coordinates the chain crosses are stored, so
-        building it is linear in the loops' lengths, not loops x coordinates."""
-        from scipy.sparse import csc_matrix  # big models only: not at every start
-
-        S = self.current_screws(q) if screws is None else screws
-        chord, col, sign = self._chord_entries()
-        Ss = frame.blocks(np.asarray(S, dtype=float))
-        vals = sign[:, None] * Ss[:, col].T
-        rows = 6 * chord[:, None] + np.arange(6)
-        cols = np.broadcast_to(col[:, None], vals.shape)
-        v, r, c = vals.ravel(), rows.ravel(), cols.ravel()
-        if self.couplings:
-            C = self.coupling_block(frame)
-            cr, cc = np.nonzero(C)
-            v = np.concatenate([v, np.asarray(C[cr, cc], dtype=float)])
-            r = np.concatenate([r, 6 * len(self.chords) + cr])
-            c = np.concatenate([c, cc])
-        return csc_matrix((v, (r, c)), shape=(6 * self.blocks, self.n))
-
-    def _chord_entries(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The non-zero chord signs (:meth:`_chord_signs`) as (chord, column, sign)
-        arrays, chord by chord, columns ascending (built once)."""
-        if self._chord_nonzeros is None:
-            signs = self._chord_signs()
-            if signs:
-                chord, col = np.nonzero(np.stack(signs))
-                sign = np.stack(signs)[chord, col].astype(float)
-            else:
-                chord = col = np.zeros(0, dtype=np.intp)
-                sign = np.zeros(0)
-            self._chord_nonzeros = (chord, col, sign)
-        return self._chord_nonzeros
-
-    def _chord_signs(self) -> list[np.ndarray]:
-        """Each chord's closure chain (integers, n): the chord itself, then back through
-        the tree from its body a to its body b (built once)."""
-        if self._chords_signs is None:
-            out = []
-            for jk in self.chords:
-                coef = tree_chain(self, jk.a, jk.b).signs.copy()
-                coef[jk.columns] += 1
-                out.append(coef)
-            self._chords_signs = out
-        return self._chords_signs
+        """:meth:`scaled_closure_jacobian` as a sparse matrix:
+        :func:`.jacobians.sparse_closure_jacobian`."""
+        return jacobians.sparse_closure_jacobian(self, q, frame, screws)
 
     def chord_twists(self, deltas: list[np.ndarray]) -> np.ndarray:
-        """log of each chord residual, stacked (6 * n_chords,)."""
-        if not deltas:
-            return self.backend.zeros(0)
-        if len(deltas) > 1 and all(not holds_objects(D) for D in deltas):
-            return lie.log(np.stack(deltas)).reshape(-1)
-        return np.concatenate([lie.log(D) for D in deltas])
+        """log of each chord residual, stacked (6 * n_chords,): :func:`.jacobians.chord_twists`."""
+        return jacobians.chord_twists(self, deltas)
+
+    # ------------------------------------------------------------------ updates on the group
 
     def update(self, q: np.ndarray, delta: np.ndarray) -> np.ndarray:
-        """Apply trivialised increments ``delta`` (one per coordinate) on the group:
-        ``M <- exp(sum d_i e_i) M`` (coordinates add for abelian joints and U)."""
-        out = np.array(q, copy=True)
-        # the abelian joints' coordinates add, all in one
-        ab = self._abelian_columns
-        out[ab] = np.asarray(q)[ab] + np.asarray(delta)[ab]
-        if self._float_joints(q, delta):
-            return self._update_float(q, np.asarray(delta), out)
-        for jk in self._non_abelian:
-            d = delta[jk.columns]
-            # zero tested in the model's numbers: at mp:N beyond float's range (N > 300) a
-            # correction of 1e-350 is not zero, and adding it to a non-abelian joint's
-            # coordinates would be wrong at first order
-            if not any(x != 0 for x in d):
-                out[jk.columns] = q[jk.columns] + d
-                continue
-            M = lie.exp(d @ jk.basis) @ self.element(jk, q)
-            out[jk.columns] = self.coordinates_in(jk, M)
-        return out
+        """Apply trivialised increments ``delta`` on the group: :func:`.coordinates.update`."""
+        return coordinates.update(self, q, delta)
 
     def difference(self, q1: np.ndarray, q0: np.ndarray) -> np.ndarray:
-        """The increments ``d`` (one per coordinate) with ``update(q0, d) == q1``: measured on
-        the group, so two coordinate vectors of the same joint pose are no distance apart.
-
-        Coordinates of a non-abelian joint are first-kind coordinates read by the principal
-        log (an S joint's rotation vector has norm at most pi); a path through a half-turn
-        makes them jump by 2 pi although the joint barely moved.  Steps, corrections and
-        distances along a path are therefore compared with this difference, never with
-        ``q1 - q0``."""
-        d = np.asarray(q1) - np.asarray(q0)
-        if self._non_abelian and self._float_joints(q1, q0):
-            # every non-abelian joint at once: the same products, stacked
-            M = self._elements_of(q1) @ lie.inverse(self._elements_of(q0))
-            for jk, x in zip(self._non_abelian, lie.log(M), strict=True):
-                d[jk.columns] = self._float_coordinates(jk, x)
-            return d
-        for jk in self.joints:
-            if jk.abelian:
-                continue
-            M = self.element(jk, q1) @ lie.inverse(self.element(jk, q0))
-            d[jk.columns] = self.coordinates_in(jk, M)
-        return d
-
-    def _float_joints(self, *arrays: Any) -> bool:
-        """Whether the non-abelian joints of a float model are updated at float
-        coordinates (one configuration each): then all together, by stacked exponentials
-        and logarithms (:func:`mechsing.lie.exp` and :func:`~mechsing.lie.log` give each
-        row of a stack the numbers they give it alone)."""
-        return self.backend.name == "float" and all(
-            isinstance(a, np.ndarray) and a.ndim == 1 and is_float64(a) for a in arrays
-        )
-
-    def _elements_of(self, q: np.ndarray) -> np.ndarray:
-        """The elements (k, 4, 4) of the non-abelian joints at the float configuration q:
-        :meth:`element`'s ``exp(q_j B_j)``, stacked (the last configuration's kept)."""
-        key = q.tobytes()
-        last = self._last_elements  # read once: another thread may replace it
-        if last is None or last[0] != key:
-            twists = np.stack([q[jk.columns] @ jk.basis for jk in self._non_abelian])
-            last = self._last_elements = (key, lie.exp(twists))
-        return last[1]
-
-    def _update_float(self, q: np.ndarray, delta: np.ndarray, out: np.ndarray) -> np.ndarray:
-        """:meth:`update` of the non-abelian joints of a float model, all at once: the
-        same ``exp(d_j B_j) M_j`` and coordinates, the exponentials and logarithms stacked."""
-        moving = []
-        for i, jk in enumerate(self._non_abelian):
-            d = delta[jk.columns]
-            if not any(x != 0 for x in d):
-                out[jk.columns] = q[jk.columns] + d
-            else:
-                moving.append(i)
-        if not moving:
-            return out
-        joints = [self._non_abelian[i] for i in moving]
-        steps = lie.exp(np.stack([delta[jk.columns] @ jk.basis for jk in joints]))
-        M = steps @ self._elements_of(q)[moving]
-        for jk, x in zip(joints, lie.log(M), strict=True):
-            out[jk.columns] = self._float_coordinates(jk, x)
-        return out
-
-    def _float_coordinates(self, jk: JointKinematics, x: np.ndarray) -> np.ndarray:
-        """:meth:`coordinates_in` of a float model from the logarithm ``x`` of the element
-        (the basis of the joint in the commensurate metric computed once)."""
-        B = self._basis_twists.get(jk.name)
-        if B is None:
-            B = self._basis_twists[jk.name] = self.float_frame.twists(to_float(jk.basis).T)
-        xs = self.float_frame.twists(to_float(x)[:, None])[:, 0]
-        coef, *_ = np.linalg.lstsq(B, xs, rcond=None)
-        return coef
+        """The increments ``d`` with ``update(q0, d) == q1``, measured on the group:
+        :func:`.coordinates.difference`."""
+        return coordinates.difference(self, q1, q0)
 
     def coordinates_in(self, jk: JointKinematics, M: np.ndarray) -> np.ndarray:
-        """First-kind coordinates of an element of the joint's subgroup (log, then the basis).
-
-        Solved in the commensurate metric (screws moved to the centroid, v / L):
-        in raw units a joint far from the origin mixes rows of very different
-        sizes and loses the coordinates along its own axis to rounding.
-
-        At mp:N the float solution is refined (iterative refinement: the residual
-        ``x - c B`` at N digits, its correction solved in float, each pass gaining
-        about 15 digits) until the correction is below the working precision, so
-        the coordinates of a non-abelian joint (S, G, Y, X, D) carry N digits and
-        Newton at N digits can close a loop to 10^(5-N) L.
-        """
-        x = lie.log(M)
-        ff = self.float_frame
-        B = ff.twists(to_float(jk.basis).T)
-        xs = ff.twists(to_float(x)[:, None])[:, 0]
-        coef, *_ = np.linalg.lstsq(B, xs, rcond=None)
-        bk = self.backend
-        if bk.name == "float":  # policy: float's solve is the answer; exact and mp refine
-            return coef
-        cm = bk.asarray(coef)
-        if bk.name == "exact":
-            # exact mode only checks given values: one refinement step
-            r = x - cm @ jk.basis
-            rs = ff.twists(to_float(r)[:, None])[:, 0]
-            corr, *_ = np.linalg.lstsq(B, rs, rcond=None)
-            return cm + bk.asarray(corr)
-        for _pass in range(_refinement_passes()):
-            r = x - cm @ jk.basis
-            # normalised before the float solve: at N > 300 digits the residual itself
-            # would underflow in float
-            size = max(abs(v) for v in r)
-            if not size:
-                break
-            rs = ff.twists(to_float(r / size)[:, None])[:, 0]
-            corr, *_ = np.linalg.lstsq(B, rs, rcond=None)
-            step = bk.asarray(corr) * size
-            cm = cm + step
-            if max(abs(v) for v in step) <= mpmath.mp.eps * max(1, max(abs(v) for v in cm)):
-                break
-        return cm
+        """First-kind coordinates of an element of the joint's subgroup:
+        :func:`.coordinates.coordinates_in`."""
+        return coordinates.coordinates_in(self, jk, M)
 
 
 #: exact configurations whose field kinematics a model keeps
@@ -730,10 +532,3 @@ def _is_abelian(B: np.ndarray) -> bool:
             if np.any(to_float(lie.bracket(B[i], B[j])) != 0):
                 return False
     return True
-
-
-def _refinement_passes() -> int:
-    """Most iterative-refinement passes of :meth:`KinematicModel.coordinates_in` at the
-    working precision: a float solve gains at least 10 digits per pass (the commensurate
-    bases are well conditioned), plus two to spare."""
-    return mpmath.mp.dps // 10 + 2

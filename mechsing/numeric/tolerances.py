@@ -266,8 +266,8 @@ SWEEP_MERGE_RTOL = 1e-9
 #: part is below SWEEP_BRANCH_ROOT_IMAG (in offsets, of order one)
 SWEEP_BRANCH_FIT_RTOL = 1e-6
 SWEEP_BRANCH_ROOT_IMAG = 1e-9
-#: a --vary range START:STOP:STEP holds floor(|STOP - START| / STEP (1 + SWEEP_RANGE_RTOL)
-#: + SWEEP_RANGE_ATOL) + 1 samples: STOP is included when the steps land on it up to the
+#: a --vary range START:STOP:STEP holds ``floor(|STOP - START| / STEP (1 + SWEEP_RANGE_RTOL)
+#: + SWEEP_RANGE_ATOL) + 1`` samples: STOP is included when the steps land on it up to the
 #: rounding of the decimal numbers written (0.3 / 0.1 is 2.9999999999999996)
 SWEEP_RANGE_RTOL = 1e-12
 SWEEP_RANGE_ATOL = 1e-9

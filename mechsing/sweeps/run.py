@@ -96,7 +96,7 @@ def sweep(
         :data:`mechsing.sweeps.distributed.CONNECT_TIMEOUT`, 5 s).
     load, max_effort : Load, dict, optional
         The samples' efforts under ``load`` (default: the start configuration's file
-        load, if any) and where an input's |effort| crosses ``max_effort[input]``
+        load, if any) and where an input's ``|effort|`` crosses ``max_effort[input]``
         (:mod:`mechsing.statics.along`).
 
     Returns

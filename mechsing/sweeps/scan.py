@@ -1,5 +1,7 @@
 """Batched float scans of an open chain over many configurations.
 
+Owns :func:`scan`, :class:`ChainScanner` and :class:`ScanResult`.
+
 A workspace scan asks one question of each of many configurations of an open
 chain: is the output screw system of full (generic) rank there?  The answer is
 the same rank decision as :func:`mechsing.analyze` makes for the output chain

@@ -1,5 +1,7 @@
 """The scanner's screen compiled with numba (optional: the ``fast`` extra).
 
+Owns :func:`screen_bounds` (the compiled screen) and :func:`available`.
+
 One pass per configuration does what :class:`mechsing.kinematics.forward.SerialJacobian`
 and the screen of :mod:`mechsing.sweeps.scan` do with numpy arrays: the product of
 exponentials of a serial chain of one-dof joints in the commensurate frame (the
