@@ -473,5 +473,11 @@ def test_condition_takes_set_as_the_other_commands(tmp_path: Path) -> None:
     data = json.loads(out)
     assert data["configuration"] == "cli"
     vanish = {c["name"]: [f["vanishes"] for f in c["factors"]] for c in data["conditions"]}
-    assert vanish == {"input (type I)": [True], "output (type II)": [False]}
+    # the joint-variable conditions, and (the slide's symbolic axis now eliminated) the
+    # input's condition in the input O2 alone, which vanishes at the dead centre too
+    assert vanish == {
+        "input (type I)": [True],
+        "output (type II)": [False],
+        "input (type I) in the input O2": [True],
+    }
     assert _option_help("condition", "--set") == _option_help("analyze", "--set")
