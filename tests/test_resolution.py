@@ -216,3 +216,38 @@ def test_an_input_beyond_its_limit_is_named_in_the_file_units(tmp_path: Path) ->
     rc, _, err = run_cli(["analyze", path, "--precision", "float"])
     assert rc == 3
     assert f"A is {27.6149 - limit:.3g} deg beyond its limit at about A = {limit:.3f} deg" in err
+
+
+PARALLELOGRAM = """\
+mechanism: parallelogram
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler], axis: [0, 0, 1], point: [0, 1, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [2, 1, 0]}
+  - {name: D, type: R, between: [rocker, ground], axis: [0, 0, 1], point: [2, 0, 0]}
+inputs: [A]
+output: {body: rocker}
+configurations:
+  flat: {A: -1.57079632679490}
+"""
+
+
+def test_auto_keeps_float_when_the_written_decimals_do_not_close_at_50_digits(
+    tmp_path: Path,
+) -> None:
+    """A parallelogram four-bar (crank and rocker 1, ground and coupler 2) with its crank
+    turned to -pi/2 written to 15 digits: the crank lies along the ground line, the
+    linkage flat, the change point where the parallelogram and the antiparallelogram
+    branches cross (a bifurcation).  Float closes it; at 50 digits the polish from float's
+    landing, at a double root, does not reach 50 digits' tolerance (the refusal reads
+    1.7e-15 rad beyond a limit, less than the value's resolution).  auto keeps float's
+    analysis (a bifurcation) and says what 50 digits found, instead of refusing the
+    configuration."""
+    path = tmp_path / "parallelogram.yaml"
+    path.write_text(PARALLELOGRAM)
+    c = cli_json(["analyze", path, "--format", "json"])["configurations"][0]
+    assert c["precision"] == "float"
+    assert "error" not in c
+    assert "bifurcation" in {s["class"] for s in c["singularities"]}
+    assert any("at 50 digits the written decimals did not close" in n for n in c["notes"])

@@ -224,7 +224,9 @@ def _analyze(
                 lambda name=name: _analyze_one(mech, name, stage(Precision("mp", 50))),
             )
             res = replace(res, escalated_for=why)
-            if doubtful and not in_float.undecided and not located:
+            if res.error is not None and not located:
+                res = _float_when_written_digits_fail(mech, in_float, res)
+            elif doubtful and not in_float.undecided and not located:
                 res = _kept_within_resolution(mech, in_float, res, stage(first)[0])
         if not located and res.data_resolution is None:
             # a located point is float data, placed as near as float can
@@ -254,6 +256,29 @@ def _with_resolution(
     if found is None:
         return res
     return replace(res, data_resolution=found, notes=(*res.notes, found.note))
+
+
+def _float_when_written_digits_fail(
+    mech: Mechanism, in_float: ConfigurationResult, written: ConfigurationResult
+) -> ConfigurationResult:
+    """Auto's result when float analysed a configuration and its re-decision at mp:50 did
+    not (the written decimals do not close at 50 digits, or the time ran out).
+
+    Given values written with digits to spare (a change point drawn to 15 digits) are
+    roundings of the values meant: at 50 digits the written decimals may lie just beyond
+    a limit of travel, by less than their resolution, where float closes them to its own
+    tolerance.  Auto then keeps float's analysis, decided in float, and says what 50 digits
+    found.  Values without such a resolution (exact expressions, short decimals) keep the
+    refusal: their digits are the data."""
+    cfg = mech.configurations.get(in_float.name)
+    if cfg is None or not cfg.resolution:
+        return written
+    note = (
+        f"at 50 digits the written decimals did not close ({written.error}); they are "
+        "roundings of the values meant, and float closes them within its tolerance: the "
+        "analysis is float's; give more digits or exact values to decide at 50 digits"
+    )
+    return replace(in_float, escalated_for=written.escalated_for, notes=(*in_float.notes, note))
 
 
 def _kept_within_resolution(
