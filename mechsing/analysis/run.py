@@ -273,10 +273,11 @@ def _float_when_written_digits_fail(
     cfg = mech.configurations.get(in_float.name)
     if cfg is None or not cfg.resolution:
         return written
+    what = "did not close" if "does not close" in (written.error or "") else "were not analysed"
     note = (
-        f"at 50 digits the written decimals did not close ({written.error}); they are "
-        "roundings of the values meant, and float closes them within its tolerance: the "
-        "analysis is float's; give more digits or exact values to decide at 50 digits"
+        f"at 50 digits the written decimals {what} ({written.error}); they are roundings "
+        "of the values meant, and float closes them within its tolerance: the analysis is "
+        "float's; give more digits or exact values to decide at 50 digits"
     )
     return replace(in_float, escalated_for=written.escalated_for, notes=(*in_float.notes, note))
 
