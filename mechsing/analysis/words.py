@@ -37,7 +37,7 @@ from mechsing.singularity.findings import (
     SerialFinding,
     UndecidedFinding,
 )
-from mechsing.singularity.names import LEG, NAMES, meaning_of
+from mechsing.singularity.names import LEG, meaning_of
 from mechsing.subgroups import Subgroup
 
 __all__ = [
@@ -200,8 +200,7 @@ def _words(label: str) -> str:
     if not name:
         return CLASS_WORDS.get(cls, cls)
     name = name.rstrip(")")
-    known = all(part in NAMES for part in name.split(" and "))
-    return f"{cls} ({name}: {meaning_of(name) if known else name})"
+    return f"{cls} ({name}: {meaning_of(name) or name})"
 
 
 def number_text(x: Any) -> str:

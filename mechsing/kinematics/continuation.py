@@ -518,7 +518,7 @@ def _given_reached(m: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np
         length = j.units[i] == "m"
         factor = float(units.length_factor if length else units.angle_factor)
         unit = units.length if length else units.angle
-        label = jname if j.dof == 1 else f"{jname}[{i}]"
+        label = m.mech.coordinate_label(jname, i)
         reached, goal = float(q[col]) / factor, float(target[col]) / factor
         parts.append(
             f"{label} reached {reached:.10g} {unit}, {abs(goal - reached):.3g} {unit} short "

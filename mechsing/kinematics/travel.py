@@ -79,7 +79,7 @@ def beyond_travel(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> str | No
     rel = max(beyond / max(abs(float(limit)), 1e-300), 1e-16)
     shown = mpmath.nstr(limit, max(3, min(16, int(-math.log10(rel)))))
     name, index = m.mech.coordinates()[col]
-    label = name if m.mech.joint(name).dof == 1 else f"{name}[{index}]"
+    label = m.mech.coordinate_label(name, index)
     return (
         f"its given values are beyond a limit of travel (a fold of the closure, where the "
         f"unknown joints lose a direction): {label} is {beyond:.3g} {unit} beyond its limit "

@@ -404,6 +404,11 @@ class Mechanism:
         """Every joint coordinate as ``(joint, index)`` in file and catalog order."""
         return tuple((j.name, i) for j in self.joints for i in range(j.dof))
 
+    def coordinate_label(self, joint: str, index: int) -> str:
+        """How messages name a coordinate: the joint's name for a one-dof joint, else
+        ``joint[index]``."""
+        return joint if self.joint(joint).dof == 1 else f"{joint}[{index}]"
+
     def output_reference_point(self) -> Vector:
         """The output's reference point at the reference configuration (exact, SI, ground
         frame): ``output.point`` when the file gives one, else the centroid of the points

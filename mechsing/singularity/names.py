@@ -205,9 +205,13 @@ def name_of(kinds: Sequence[str | None], leg: bool = False, corank: int = 1) -> 
     return " and ".join(found[: max(1, corank)]) or None
 
 
-def meaning_of(name: str) -> str:
-    """What a name given by :func:`name_of` means (a joined name: each part's meaning)."""
-    return "; ".join(NAMES[part] for part in name.split(" and "))
+def meaning_of(name: str) -> str | None:
+    """What a name given by :func:`name_of` means (a joined name: each part's meaning);
+    None for a text that is not such a name."""
+    parts = name.split(" and ")
+    if not all(part in NAMES for part in parts):
+        return None
+    return "; ".join(NAMES[part] for part in parts)
 
 
 def singularity_name(
@@ -245,5 +249,4 @@ def named(meaning: str | None) -> str | None:
     if meaning is None:
         return None
     head = meaning.split(": ", 1)[0]
-    known = all(part in NAMES for part in head.split(" and "))
-    return head if known and head != meaning else None
+    return head if meaning_of(head) is not None and head != meaning else None

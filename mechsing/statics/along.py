@@ -34,7 +34,7 @@ def parse_max_effort(texts: list[str] | None, mech: Any) -> dict[str, float]:
     from mechsing.model.expressions import parse_number
     from mechsing.numeric import to_float
 
-    names = [j if mech.joint(j).dof == 1 else f"{j}[{i}]" for j, i in mech.input_coordinates()]
+    names = [mech.coordinate_label(j, i) for j, i in mech.input_coordinates()]
     out: dict[str, float] = {}
     for text in texts or []:
         name, eq, value = text.partition("=")
@@ -95,7 +95,7 @@ class SweepStatics:
             )
         self.mech, self.load, self.limits = mech, load, limits
         self.model = KinematicModel(mech, "float")
-        names = [j if mech.joint(j).dof == 1 else f"{j}[{i}]" for j, i in mech.input_coordinates()]
+        names = [mech.coordinate_label(j, i) for j, i in mech.input_coordinates()]
         self.inputs = tuple(names)
         self.units = {
             n: (

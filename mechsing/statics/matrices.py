@@ -152,8 +152,7 @@ def motion_matrices(
     lengths = []
     for j, k in mech.input_coordinates():
         jk = fm.joint(j)
-        dof = jk.columns.stop - jk.columns.start
-        names.append(j if dof == 1 else f"{j}[{k}]")
+        names.append(mech.coordinate_label(j, k))
         lengths.append(bool(fm.frame.length_columns[jk.columns.start + k]))
     columns = [""] * fm.n
     for jk in fm.joints:

@@ -47,7 +47,7 @@ def limited_coordinates(mech: Mechanism) -> list[LimitedCoordinate]:
             continue
         joint = mech.joint(jname)
         lo, hi = mech.limits[jname][i]
-        name = jname if joint.dof == 1 else f"{jname}[{i}]"
+        name = mech.coordinate_label(jname, i)
         periodic = joint.type in _TURNING and joint.units[i] == "rad"
         angle = joint.units[i] == "rad"
         unit = mech.units.angle if angle else mech.units.length

@@ -151,9 +151,7 @@ def check_determined(plan: Plan, mech: Mechanism, variables: list[Variable]) -> 
         return
     if not plan.pose:
         g = int(np.sum(pb.given))
-        inputs = ", ".join(
-            j if mech.joint(j).dof == 1 else f"{j}[{i}]" for j, i in mech.input_coordinates()
-        )
+        inputs = ", ".join(mech.coordinate_label(j, i) for j, i in mech.input_coordinates())
         if g < M:
             raise UserError(
                 f"--vary {names}: with the other coordinates solved, the mechanism keeps "
@@ -165,7 +163,7 @@ def check_determined(plan: Plan, mech: Mechanism, variables: list[Variable]) -> 
         if g > M:
             coords = list(mech.coordinates())
             fixed = [
-                j if mech.joint(j).dof == 1 else f"{j}[{i}]"
+                mech.coordinate_label(j, i)
                 for (j, i), given in zip(coords, pb.given, strict=True)
                 if given
             ]

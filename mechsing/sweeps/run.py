@@ -29,22 +29,13 @@ from mechsing.sweeps.loci import loci_of
 from mechsing.sweeps.records import Located, RowResult
 from mechsing.sweeps.results import (
     LocatedSingularity,
-    Locus,
     SweepResult,
     SweptVariable,
 )
 from mechsing.sweeps.spec import Vary, resolve, sweep_precision, vary_warnings, with_limits
 from mechsing.timelimit import check_time_limit
 
-__all__ = [
-    "LocatedSingularity",
-    "Locus",
-    "SweepResult",
-    "SweepRun",
-    "SweptVariable",
-    "Vary",
-    "sweep",
-]
+__all__ = ["MAX_CLASSIFIED", "SweepRun", "sweep"]
 
 #: a grid classifies at most this many located points by the full analysis (evenly
 #: spread over the located points); a path classifies every one
@@ -174,7 +165,7 @@ class SweepRun:
             )
             for v, w in zip(self.vars, varies, strict=True)
         )
-        names = [f"{j}" if mech.joint(j).dof == 1 else f"{j}[{i}]" for j, i in mech.coordinates()]
+        names = [mech.coordinate_label(j, i) for j, i in mech.coordinates()]
         pm = eng.problem
         held = [
             names[c]
