@@ -14,7 +14,7 @@ import numpy as np
 
 from mechsing.errors import UserError
 from mechsing.numeric import SWEEP_LOCATE_TOL
-from mechsing.statics import kinetostatics_at
+from mechsing.statics.configuration import kinetostatics_at
 
 __all__ = [
     "KINETOSTATICS_SCHEMA",
@@ -250,7 +250,7 @@ def attach(run: Any, load: Any, limits: dict[str, float] | None) -> None:
     """Give the sweep ``run`` (a :class:`~mechsing.sweeps.SweepRun`, before its rows) the
     statics of its samples under ``load`` (None: the load of the configuration it starts
     from) and the effort ``limits`` by input name."""
-    from mechsing.statics import load_of
+    from mechsing.statics.configuration import load_of
 
     mech = run.mechanism
     if load is None and not limits and (not mech.inputs or mech.output is None):
