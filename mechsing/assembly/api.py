@@ -180,6 +180,17 @@ def modes(
             f"file has: {', '.join(mech.configurations)}"
         )
     dps = max(50, (prec.digits or 0) + 10)
+    where = f"{mech.path or mech.name}: configuration {config!r}"
+    if not mech.loops:  # a serial arm: the output's pose (given, or reached) is what is given
+        with TimeLimit(time_limit), mpmath.workdps(dps):
+            try:
+                found = _serial(mech, config, dps)
+            except FormulationError as reason:
+                raise UserError(
+                    f"{where}: no method applies (a mechanism without loops is solved as a "
+                    f"serial arm for the output's pose, and {reason})"
+                ) from None
+        return _finish(mech, config, prec, found, dps)
     given = _given(mech, config)
     with TimeLimit(time_limit), mpmath.workdps(dps):
         try:
@@ -189,10 +200,14 @@ def modes(
                 found = _spatial(mech, given, dps)
             except FormulationError as spatial_reason:
                 raise UserError(
-                    f"{mech.path or mech.name}: configuration {config!r}: no method applies "
+                    f"{where}: no method applies "
                     f"(the planar exact method does not apply: {planar_reason}; the spatial "
                     f"platform in Study coordinates does not apply: {spatial_reason})"
                 ) from None
+    return _finish(mech, config, prec, found, dps)
+
+
+def _finish(mech: Mechanism, config: str, prec: Precision, found: _Found, dps: int) -> ModesResult:
     if found.count is None:
         return ModesResult(
             mech.name,
@@ -298,6 +313,61 @@ def _spatial(mech: Mechanism, given: dict, dps: int) -> _Found:
     }
     equivalent = 2 ** sum(1 for n, *_ in system.legs if mech.joint(n[0]).type == "U")
     return _Found(formulation, rows, len(rows), complete, paths, (), equivalent)
+
+
+def _serial(mech: Mechanism, config: str, dps: int) -> _Found:
+    from mechsing.assembly.certify import krawczyk
+    from mechsing.assembly.serial import serial_arm, serial_system, serial_target, solve_serial
+    from mechsing.kinematics import KinematicModel
+
+    arm = serial_arm(mech, float(KinematicModel(mech, "float").length_scale))
+    target, from_joints = serial_target(mech, config, arm)
+    system = serial_system(arm, target)
+    found, paths, curve = solve_serial(system, dps)
+    unknowns = []
+    for i in system.outer:
+        n = arm.joints[i]
+        unknowns += (
+            [f"cos({n}/2)", f"sin({n}/2)"] if arm.kinds[i] == "R" else [f"1 ({n})", f"{n}/(2L)"]
+        )
+    formulation = {
+        "name": "half-angle pairs of a serial arm",
+        "method": "homotopy continuation (Bertini 2, multihomogeneous start), Newton refinement",
+        "unknowns": unknowns,
+        "joints": list(arm.joints),
+        "pair": [arm.joints[i] for i in system.middle],
+        "polynomial_degree": 4,
+        "bezout": paths["tracked"],
+        "generic_count": arm.generic_count,
+        "generic_count_reason": arm.pieper
+        or "a six-joint arm has at most 16 (Lee & Liang 1988, Raghavan & Roth 1993)",
+    }
+    notes = []
+    if from_joints:
+        notes.append(
+            f"configuration {config!r} gives every joint: its modes are the arm's postures "
+            "that reach the output's pose these values give"
+        )
+    if curve is not None:
+        notes.append(
+            "the output's pose is reached along a curve of joint values (a self-motion at "
+            f"a singularity, through {curve}): the postures are not finitely many"
+        )
+        return _Found(formulation, [], None, "infinite", paths, tuple(notes))
+    rows = []
+    radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
+    for pairs, q, regular in found:
+        values = dict(zip(arm.joints, q, strict=True))
+        ok = regular and krawczyk(system.square, system.gens, pairs, radius)
+        rows.append(([values[name] for name, _ in mech.coordinates()], ok))
+    certified = all(ok for _, ok in rows)
+    complete = "maximal" if len(rows) == arm.generic_count and certified else "not proven"
+    if complete != "maximal" and paths["solutions"] == arm.generic_count:
+        notes.append(
+            f"continuation found {arm.generic_count} solutions in all (real and complex), "
+            "the most this arm can have: only the real ones are postures"
+        )
+    return _Found(formulation, rows, len(rows), complete, paths, tuple(notes))
 
 
 def _text(x: Any, prec: Precision) -> str:

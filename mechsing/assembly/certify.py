@@ -8,7 +8,9 @@ with ``Y`` an approximate inverse of ``f'(m)``, ``K = m - Y f(m) + (I - Y f'(Z))
 enclosed at the working precision plus guard digits, so the proof holds for the exact
 coefficients.
 
-Owns :func:`krawczyk`.
+Owns :func:`krawczyk`, :func:`newton` (the refinement whose result it certifies) and
+:func:`singular_root` (a root no interval test can certify: a multiple root, polished,
+or a point of a curve of solutions, found by a local dimension test).
 """
 
 from __future__ import annotations
@@ -19,7 +21,9 @@ from typing import Any
 import mpmath
 import sympy
 
-__all__ = ["krawczyk"]
+from mechsing.numeric import MODE_CURVE_STEP, MODE_SINGULAR_RTOL
+
+__all__ = ["krawczyk", "newton", "regular", "singular_root"]
 
 
 def _interval_function(exprs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> Any:
@@ -99,3 +103,97 @@ def krawczyk(
         return True
     finally:
         mpmath.iv.dps = before
+
+
+def newton(
+    eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], z: Sequence[Any], dps: int
+) -> list[Any] | None:
+    """Newton's method at ``dps`` digits from ``z`` on a square system: the root to
+    ``10^-dps`` (None when the Jacobian is singular on the way or the residual stays
+    above ``10^-(dps/2)``: not a regular root)."""
+    f = sympy.lambdify(gens, list(eqs), "mpmath")
+    J = sympy.lambdify(gens, [[sympy.diff(e, g) for g in gens] for e in eqs], "mpmath")
+    x = mpmath.matrix([mpmath.mpf(float(v)) for v in z])
+    for _ in range(60):
+        fx = mpmath.matrix(f(*x))
+        try:
+            dx = mpmath.lu_solve(mpmath.matrix(J(*x)), fx)
+        except ZeroDivisionError:
+            return None
+        x -= dx
+        if mpmath.norm(dx) <= mpmath.mpf(10) ** (-dps):
+            break
+    if mpmath.norm(mpmath.matrix(f(*x))) > mpmath.mpf(10) ** (-(dps // 2)):
+        return None
+    return list(x)
+
+
+def _functions(eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> tuple[Any, Any]:
+    f = sympy.lambdify(gens, list(eqs), "mpmath")
+    J = sympy.lambdify(gens, [[sympy.diff(e, g) for g in gens] for e in eqs], "mpmath")
+    return (lambda x: mpmath.matrix(f(*x))), (lambda x: mpmath.matrix(J(*x)))
+
+
+def regular(eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], x: Sequence[Any]) -> bool:
+    """Is the Jacobian at ``x`` far from singular (its singular values' ratio above
+    ``MODE_SINGULAR_RTOL``)?"""
+    _, J = _functions(eqs, gens)
+    s = mpmath.svd_r(J(list(x)), compute_uv=False)
+    return bool(min(s) > MODE_SINGULAR_RTOL * max(s))
+
+
+def _least_squares_newton(f: Any, J: Any, x: Any, dps: int, steps: int) -> Any:
+    """Gauss-Newton with the Jacobian's pseudo-inverse (singular values below
+    ``10^-(dps/2)`` of the largest dropped): onto a curve of roots quadratically, onto a
+    multiple root linearly."""
+    tiny = mpmath.mpf(10) ** (-(dps // 2))
+    for _ in range(steps):
+        U, S, V = mpmath.svd_r(J(x))
+        fx = f(x)
+        Utf = U.T * fx
+        dx = mpmath.matrix(len(x), 1)
+        for k in range(len(S)):
+            if S[k] > tiny * S[0]:
+                coef = Utf[k] / S[k]
+                for i in range(len(x)):
+                    dx[i] += V[k, i] * coef
+        x = x - dx
+        if mpmath.norm(dx) <= mpmath.mpf(10) ** (-dps):
+            break
+    return x
+
+
+def singular_root(
+    eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], z: Sequence[Any], dps: int
+) -> tuple[list[Any] | None, bool]:
+    """A root near ``z`` where the Jacobian is singular: (the root, polished, or None
+    when none is near; whether it lies on a curve of roots).  The local dimension test
+    steps ``MODE_CURVE_STEP`` along the Jacobian's null direction and corrects on the
+    hyperplane at that distance: it closes to the working digits only on a curve."""
+    f, J = _functions(eqs, gens)
+    x = _least_squares_newton(f, J, mpmath.matrix([mpmath.mpf(float(v)) for v in z]), dps, 400)
+    if mpmath.norm(f(x)) > mpmath.mpf(10) ** (-(dps // 3)):
+        return None, False
+    _, _, V = mpmath.svd_r(J(x))
+    n = len(x)
+    v = mpmath.matrix([V[n - 1, i] for i in range(n)])
+    h = mpmath.mpf(MODE_CURVE_STEP)
+
+    def fa(y: Any) -> Any:
+        out = f(y)
+        extra = (v.T * (y - x))[0] - h
+        return mpmath.matrix([*out, extra])
+
+    def Ja(y: Any) -> Any:
+        Jy = J(y)
+        A = mpmath.matrix(n + 1, n)
+        for i in range(n):
+            for k in range(n):
+                A[i, k] = Jy[i, k]
+        for k in range(n):
+            A[n, k] = v[k]
+        return A
+
+    y = _least_squares_newton(fa, Ja, x + h * v, dps, 30)
+    curve = mpmath.norm(fa(y)) <= mpmath.mpf(10) ** (-(dps // 2))
+    return list(x), bool(curve)

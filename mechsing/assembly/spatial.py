@@ -28,7 +28,10 @@ import mpmath
 import numpy as np
 import sympy
 
-from mechsing.errors import FormulationError, UserError
+from mechsing.assembly.certify import newton
+from mechsing.assembly.engine import SEED, real_endpoints, track
+from mechsing.assembly.study import qconj, qmul
+from mechsing.errors import FormulationError
 from mechsing.model import Mechanism
 
 __all__ = [
@@ -43,8 +46,6 @@ __all__ = [
 
 XS = sympy.symbols("x0:4", real=True)
 YS = sympy.symbols("y0:4", real=True)
-#: the seed of the homotopy (its random gamma, start points and patch): runs repeat
-SEED = 34
 #: the generic number of finite solutions (Raghavan 1993; Dietmaier's platform has 40 real)
 GENERIC_COUNT = 40
 
@@ -57,21 +58,6 @@ class SpatialSystem:
     platform: str
     legs: tuple[tuple[tuple[str, str, str], Any, Any, Any], ...]
     equations: tuple[sympy.Expr, ...]
-
-
-def _qmul(p: list, q: list) -> list:
-    w1, x1, y1, z1 = p
-    w2, x2, y2, z2 = q
-    return [
-        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
-    ]
-
-
-def _conj(q: list) -> list:
-    return [q[0], -q[1], -q[2], -q[3]]
 
 
 def spatial_system(mech: Mechanism, given: dict[str, tuple[Any, ...]]) -> SpatialSystem:
@@ -100,9 +86,9 @@ def spatial_system(mech: Mechanism, given: dict[str, tuple[Any, ...]]) -> Spatia
     delta = sum(x * x for x in X)
     eqs = []
     for _names, a, b, l2 in legs:
-        XbX = _qmul(_qmul(X, [0, *b]), _conj(X))
-        XcY = _qmul(_conj(X), Y)
-        YXc = _qmul(Y, _conj(X))
+        XbX = qmul(qmul(X, [0, *b]), qconj(X))
+        XcY = qmul(qconj(X), Y)
+        YXc = qmul(Y, qconj(X))
         k = a.dot(a) + b.dot(b) - l2
         eq = (
             k * delta
@@ -123,70 +109,21 @@ def patch_equation() -> sympy.Expr:
     return sum(sympy.Rational(float(c)) * v for c, v in zip(coeffs, (*XS, *YS), strict=True)) - 1
 
 
-def _bertini_text(eqs: list[sympy.Expr]) -> str:
-    names = [str(v) for v in (*XS, *YS)]
-    lines = [
-        "variable_group " + ",".join(names) + ";",
-        "function " + ",".join(f"f{i}" for i in range(len(eqs))) + ";",
-    ]
-    for i, e in enumerate(eqs):
-        text = sympy.sstr(sympy.N(e, 17), full_prec=False).replace("**", "^")
-        lines.append(f"f{i} = {text};")
-    return "\n".join(lines) + "\n"
-
-
 def solve_study(system: SpatialSystem, dps: int) -> tuple[list[list[Any]], dict[str, Any]]:
     """The real finite solutions (8 Study coordinates, refined to ``dps`` digits) and
     the paths' account: tracked, finite, real, at infinity, failed."""
-    try:
-        import bertini
-    except ImportError:
-        raise UserError(
-            "this configuration needs homotopy continuation: install the extra with "
-            "pip install 'mechsing[modes]' (Bertini 2, GPL-3.0-or-later)"
-        ) from None
     eqs = [*system.equations, patch_equation()]
-    was = bertini.recording()
-    bertini.recording(False)  # no records directory in the user's cwd, no replayed paths
-    try:
-        result = bertini.solve(bertini.parse.system(_bertini_text(eqs)), seed=SEED)
-    finally:
-        bertini.recording(was)
-    solver = result.solver
-    raw = [np.asarray(s, dtype=complex) for s in result.solutions]
+    raw, tracked = track(eqs, [[*XS, *YS]])
+    real = real_endpoints(raw)
+    refined = [r for r in (newton(eqs, [*XS, *YS], z, dps) for z in real) if r is not None]
     paths = {
-        "tracked": int(solver.num_paths()) if callable(solver.num_paths) else int(solver.num_paths),
+        "tracked": tracked,
         "finite": len(raw),
+        "real": len(real),
+        "refined": len(refined),
+        "failed_or_infinite": tracked - len(raw),
     }
-    real = []
-    for z in raw:
-        scale = max(1.0, float(np.max(np.abs(z))))
-        if float(np.max(np.abs(z.imag))) <= 1e-6 * scale:
-            real.append(z.real)
-    refined = [r for r in (_newton(eqs, z, dps) for z in real) if r is not None]
-    paths["real"] = len(real)
-    paths["refined"] = len(refined)
-    paths["failed_or_infinite"] = paths["tracked"] - paths["finite"]
     return refined, paths
-
-
-def _newton(eqs: list[sympy.Expr], z: np.ndarray, dps: int) -> list[Any] | None:
-    gens = [*XS, *YS]
-    f = sympy.lambdify(gens, eqs, "mpmath")
-    J = sympy.lambdify(gens, [[sympy.diff(e, g) for g in gens] for e in eqs], "mpmath")
-    x = mpmath.matrix([mpmath.mpf(float(v)) for v in z])
-    for _ in range(60):
-        fx = mpmath.matrix(f(*x))
-        try:
-            dx = mpmath.lu_solve(mpmath.matrix(J(*x)), fx)
-        except ZeroDivisionError:
-            return None
-        x -= dx
-        if mpmath.norm(dx) <= mpmath.mpf(10) ** (-dps):
-            break
-    if mpmath.norm(mpmath.matrix(f(*x))) > mpmath.mpf(10) ** (-(dps // 2)):
-        return None
-    return list(x)
 
 
 def pose_of(study: list[Any]) -> tuple[mpmath.matrix, mpmath.matrix]:
@@ -197,10 +134,10 @@ def pose_of(study: list[Any]) -> tuple[mpmath.matrix, mpmath.matrix]:
     for j in range(3):
         e = [0, 0, 0, 0]
         e[j + 1] = 1
-        col = _qmul(_qmul(X, e), _conj(X))
+        col = qmul(qmul(X, e), qconj(X))
         for i in range(3):
             R[i, j] = col[i + 1] / delta
-    t = _qmul(Y, _conj(X))
+    t = qmul(Y, qconj(X))
     return R, mpmath.matrix([2 * t[i + 1] / delta for i in range(3)])
 
 

@@ -366,3 +366,28 @@ MODE_CERTIFY_RADIUS = 1e-30
 #: the mode that continuation reaches is the one within this commensurate distance
 #: (angles in rad, lengths over L) of continuation's float closure (closed to 1e-12 L)
 MODE_MATCH_DISTANCE = 1e-8
+#: a continuation endpoint (double precision, Bertini 2) is real when each imaginary part
+#: is below this times ``max(1, |z|)``; a real one is then refined at 50 digits or more,
+#: and only a refined one is a mode
+MODE_IMAGINARY_RTOL = 1e-6
+#: a serial arm's joint pair (c, s) is isotropic, c^2 + s^2 = 0 (no joint value: an
+#: extraneous solution of the half-angle formulation), when |c^2 + s^2| is below this
+#: times |c|^2 + |s|^2; a prismatic pair's c is zero (an infinite slide) likewise
+MODE_ISOTROPIC_RTOL = 1e-8
+#: two consecutive joints of a serial arm can carry the formulation when the Study
+#: quadric restricted to the span of their displacements has every eigenvalue above this
+#: (lengths over L): their lines are skew, neither parallel nor meeting
+MODE_PAIR_SKEW = 1e-6
+#: three consecutive revolute axes meet in a point or are parallel (Pieper's arms: at
+#: most 8 solutions) when their distances (over L) and angles are below this
+MODE_PIEPER_ATOL = 1e-9
+#: a refined root is singular (a multiple root, or a point of a curve of solutions: no
+#: interval test can certify it) when its Jacobian's least singular value is below this
+#: times its largest
+MODE_SINGULAR_RTOL = 1e-12
+#: the local dimension test at a singular root: a step of this length (the
+#: formulation's unknowns) along the Jacobian's null direction, corrected back to the
+#: solutions on the hyperplane at that distance; the root lies on a curve when the
+#: correction closes to the working digits (an isolated multiple root leaves a residual
+#: of the order of the step squared)
+MODE_CURVE_STEP = 1e-6

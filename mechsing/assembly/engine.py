@@ -1,0 +1,68 @@
+"""The continuation engine: Bertini 2 (the ``modes`` extra) on a polynomial system, and
+the sorting of its endpoints.
+
+Bertini's records are turned off for the solve (``bertini.recording(False)``): nothing is
+written in the user's directory and no path is replayed from an earlier run.  The seed is
+fixed, so a run repeats: the same random gamma, start points and patches.
+
+Owns :func:`track`, :func:`real_endpoints`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import sympy
+
+from mechsing.errors import UserError
+from mechsing.numeric import MODE_IMAGINARY_RTOL
+
+__all__ = ["SEED", "real_endpoints", "track"]
+
+#: the seed of every homotopy (its random gamma, start points and patches): runs repeat
+SEED = 34
+
+
+def _text(eqs: Sequence[sympy.Expr], groups: Sequence[Sequence[sympy.Symbol]]) -> str:
+    lines = ["variable_group " + ",".join(str(v) for v in g) + ";" for g in groups]
+    lines.append("function " + ",".join(f"f{i}" for i in range(len(eqs))) + ";")
+    for i, e in enumerate(eqs):
+        text = sympy.sstr(sympy.N(e, 17), full_prec=False).replace("**", "^")
+        lines.append(f"f{i} = {text};")
+    return "\n".join(lines) + "\n"
+
+
+def track(
+    eqs: Sequence[sympy.Expr], groups: Sequence[Sequence[sympy.Symbol]]
+) -> tuple[list[np.ndarray], int]:
+    """Every finite endpoint (complex, double precision, the groups' variables in order)
+    of the system's homotopy, and the number of paths tracked.  Several variable groups
+    make Bertini's start system multihomogeneous (one path per multihomogeneous Bezout
+    root), one group a total-degree start."""
+    try:
+        import bertini
+    except ImportError:
+        raise UserError(
+            "this configuration needs homotopy continuation: install the extra with "
+            "pip install 'mechsing[modes]' (Bertini 2, GPL-3.0-or-later)"
+        ) from None
+    was = bertini.recording()
+    bertini.recording(False)  # no records directory in the user's cwd, no replayed paths
+    try:
+        result = bertini.solve(bertini.parse.system(_text(eqs, groups)), seed=SEED)
+    finally:
+        bertini.recording(was)
+    solver = result.solver
+    tracked = int(solver.num_paths()) if callable(solver.num_paths) else int(solver.num_paths)
+    return [np.asarray(s, dtype=complex) for s in result.solutions], tracked
+
+
+def real_endpoints(points: Sequence[np.ndarray]) -> list[np.ndarray]:
+    """The endpoints whose imaginary parts are negligible (their real parts)."""
+    out = []
+    for z in points:
+        scale = max(1.0, float(np.max(np.abs(z))))
+        if float(np.max(np.abs(z.imag))) <= MODE_IMAGINARY_RTOL * scale:
+            out.append(z.real)
+    return out

@@ -1,0 +1,441 @@
+"""Serial arms: every inverse-kinematics solution of a six-joint arm (revolute and
+prismatic joints) for the output's pose, in the half-angle pairs of four of its joints.
+
+Each joint's displacement is a dual quaternion (:mod:`.study`) linear in a homogeneous
+pair ``(c, s)``: ``F = c + s A`` with ``A`` the joint's line ``w + eps (p x w)`` and
+``(c, s) ~ (cos q/2, sin q/2)`` for a revolute, ``A = eps u`` and ``q = 2 s / c`` (over
+L) for a prismatic joint.  The arm reaches the output's displacement ``T`` (from the
+reference configuration) when ``F1 F2 F3 F4 F5 F6 = T`` up to a scalar.
+
+Two consecutive joints a, b whose lines are skew (neither parallel nor meeting) reach
+exactly the displacements of the Study quadric in the four-dimensional span
+``V = (1, Aa, Ab, Aa Ab)`` (M. Husty, M. Pfurner, H.-P. Schroecker, Mech. Mach. Theory
+42(1), 2007).  With the loop turned so that such a pair sits third and fourth (a joint
+taken past the target becomes ``T* F T``), the arm closes when
+
+    ``G2* G1* T G6* G5*``  lies in ``V``:
+
+four linear conditions on a product that is linear in each of the other four joints'
+pairs, so four equations of multidegree (1, 1, 1, 1) in four projective lines, with a
+fixed random real patch on each pair: 4! = 24 paths from a multihomogeneous start
+system.  An endpoint with an isotropic pair (``c^2 + s^2 = 0``: a zero divisor, no joint
+value) is extraneous; the others are the arm's solutions, at most 16 (H.-Y. Lee and
+C.-G. Liang, Mech. Mach. Theory 23(3), 1988; M. Raghavan and B. Roth, ASME J. Mech. Des.
+115(3), 1993) and at most 8 when three consecutive revolute axes meet in a point or are
+parallel (D. Pieper, 1968).  The pair in the middle follows from the rank-one
+factorisation of the coordinates in ``V``: ``(c3 c4, s3 c4, c3 s4, s3 s4)``.
+
+Owns :class:`SerialArm`, :func:`serial_arm`, :func:`serial_target`,
+:class:`SerialSystem`, :func:`serial_system`, :func:`solve_serial`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import mpmath
+import numpy as np
+import sympy
+
+from mechsing.assembly.certify import newton, regular, singular_root
+from mechsing.assembly.engine import SEED, real_endpoints, track
+from mechsing.assembly.study import dconj, dmul, line, qmul, rotation_quaternion, slide
+from mechsing.errors import FormulationError
+from mechsing.model import Mechanism
+from mechsing.numeric import (
+    MODE_ISOTROPIC_RTOL,
+    MODE_MATCH_DISTANCE,
+    MODE_PAIR_SKEW,
+    MODE_PIEPER_ATOL,
+)
+
+__all__ = [
+    "SerialArm",
+    "SerialSystem",
+    "serial_arm",
+    "serial_system",
+    "serial_target",
+    "solve_serial",
+]
+
+#: the most solutions of a six-joint arm, and of Pieper's arms
+GENERIC_COUNT, PIEPER_COUNT = 16, 8
+
+
+def _mp(x: Any) -> Any:
+    """A number of the file (exact or float) at the working digits plus guard digits."""
+    if isinstance(x, float):
+        return mpmath.mpf(x)
+    return mpmath.mpf(sympy.N(sympy.sympify(x), mpmath.mp.dps + 10))
+
+
+@dataclass(frozen=True)
+class SerialArm:
+    """The six joints from ground to the output (names, ``R``/``P``), each joint's line
+    (8 Study coordinates, lengths over ``L``, oriented from ground to the output), the
+    length scale and the most solutions the arm can have (with why)."""
+
+    joints: tuple[str, ...]
+    kinds: tuple[str, ...]
+    lines: tuple[list[Any], ...]
+    L: Any
+    generic_count: int
+    pieper: str | None
+
+
+def serial_arm(mech: Mechanism, L: float) -> SerialArm:
+    """The arm of a mechanism without loops whose output is reached from ground through
+    six one-dof R or P joints (every joint of the file on that chain)."""
+    out = mech.output
+    if mech.loops:
+        raise FormulationError("the mechanism has loops: it is not a serial arm")
+    if out is None:
+        raise FormulationError("the file has no output: the arm's end is not named")
+    if out.relative_to != mech.ground:
+        raise FormulationError(f"the output is relative to {out.relative_to}, not to ground")
+    steps = mech.graph.tree_paths[out.body]
+    names = [st.joint for st in steps]
+    off = [j.name for j in mech.joints if j.name not in names]
+    if off:
+        raise FormulationError(
+            f"joint {off[0]} is not on the chain from ground to the output {out.body}"
+        )
+    bad = [n for n in names if mech.joint(n).type not in ("R", "P")]
+    if len(names) != 6 or bad:
+        why = f"joint {bad[0]} is {mech.joint(bad[0]).type}" if bad else f"{len(names)} joints"
+        raise FormulationError(f"the arm needs six R or P joints from ground ({why})")
+    Lm = mpmath.mpf(L)
+    lines = []
+    for st in steps:
+        j = mech.joint(st.joint)
+        axis = [_mp(x) for x in j.params["axis"]]
+        n = mpmath.sqrt(sum(x * x for x in axis))
+        axis = [st.sign * x / n for x in axis]
+        if j.type == "R":
+            lines.append(line(axis, [_mp(x) / Lm for x in j.params["point"]]))
+        else:
+            lines.append(slide(axis))
+    kinds = tuple(mech.joint(n).type for n in names)
+    pieper = _pieper(names, kinds, lines)
+    count = PIEPER_COUNT if pieper else GENERIC_COUNT
+    return SerialArm(tuple(names), kinds, tuple(lines), Lm, count, pieper)
+
+
+def _pieper(names: list[str], kinds: tuple[str, ...], lines: list[list[Any]]) -> str | None:
+    """Three consecutive revolute axes that meet in a point or are parallel, in words."""
+    w = [np.array([float(x) for x in ln[1:4]]) for ln in lines]
+    m = [np.array([float(x) for x in ln[5:8]]) for ln in lines]
+    for i in range(4):
+        if kinds[i : i + 3] != ("R", "R", "R"):
+            continue
+        trio = ", ".join(names[i : i + 3])
+        ws = w[i : i + 3]
+        if all(np.linalg.norm(np.cross(ws[0], v)) <= MODE_PIEPER_ATOL for v in ws[1:]):
+            return f"the axes of {trio} are parallel"
+        # the point nearest the three lines: p x w = m on each, in least squares
+        rows = np.vstack([_skew(v) for v in ws])
+        rhs = np.concatenate([-mm for mm in m[i : i + 3]])
+        p, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
+        if float(np.linalg.norm(rows @ p - rhs)) <= MODE_PIEPER_ATOL:
+            return f"the axes of {trio} meet in a point"
+    return None
+
+
+def _skew(w: np.ndarray) -> np.ndarray:
+    """The matrix of ``p -> w x p`` (so ``p x w = -skew(w) p``)."""
+    return np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+
+
+def _factor(c: Any, s: Any, ln: list[Any]) -> list[Any]:
+    return [c * (1 if i == 0 else 0) + s * ln[i] for i in range(8)]
+
+
+def _pair(kind: str, q: Any, L: Any) -> tuple[Any, Any]:
+    """The pair ``(c, s)`` of a joint value (rad, or m for a slide)."""
+    if kind == "R":
+        return mpmath.cos(q / 2), mpmath.sin(q / 2)
+    return mpmath.mpf(1), q / (2 * L)
+
+
+def serial_target(mech: Mechanism, config: str, arm: SerialArm) -> tuple[list[Any], bool]:
+    """The output's displacement ``T`` (Study coordinates, lengths over L) a configuration
+    asks for: its ``pose`` (an omitted position or rotation is the reference's), or the
+    pose its six joint values reach; and whether the values were given (then the given
+    configuration is one of the modes)."""
+    cfg = mech.configurations[config]
+    given = [n for n in arm.joints if n in cfg.values]
+    if cfg.pose is None:
+        T: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
+        for n, kind, ln in zip(arm.joints, arm.kinds, arm.lines, strict=True):
+            T = dmul(T, _factor(*_pair(kind, _mp(_arm_value(mech, config, n)), arm.L), ln))
+        return T, True
+    if given:
+        raise FormulationError(
+            f"configuration {config!r} gives the output's pose and joint {given[0]}: the "
+            "pose alone fixes the arm's modes"
+        )
+    pose = cfg.pose
+    if pose.rotation is not None:
+        R = mpmath.matrix([[_mp(x) for x in row] for row in pose.rotation])
+    elif pose.rotation_vector is not None:
+        R = _exp_so3([_mp(x) for x in pose.rotation_vector])
+    else:
+        R = mpmath.eye(3)
+    c0 = mpmath.matrix([_mp(x) for x in mech.output_reference_point()])
+    x1 = c0 if pose.position is None else mpmath.matrix([_mp(x) for x in pose.position])
+    t = (x1 - R * c0) / arm.L
+    X = rotation_quaternion(R)
+    Y = [v / 2 for v in qmul([0, t[0], t[1], t[2]], X)]
+    return [*X, *Y], False
+
+
+def _arm_value(mech: Mechanism, config: str, name: str) -> Any:
+    """A joint's value in a configuration of an arm without loops: given there, else in
+    its start's (the chain of starts), else the reference's 0."""
+    cur: str | None = config
+    while cur is not None:
+        cfg = mech.configurations[cur]
+        if name in cfg.values:
+            return cfg.values[name][0]
+        if cfg.pose is not None:
+            raise FormulationError(
+                f"configuration {config!r} leaves joint {name} to its start {cur!r}, which "
+                "gives the output's pose: give every joint, or the pose"
+            )
+        cur = cfg.start
+    return 0
+
+
+def _exp_so3(r: list[Any]) -> mpmath.matrix:
+    angle = mpmath.sqrt(sum(x * x for x in r))
+    K = mpmath.matrix([[0, -r[2], r[1]], [r[2], 0, -r[0]], [-r[1], r[0], 0]])
+    if angle == 0:
+        return mpmath.eye(3)
+    return (
+        mpmath.eye(3)
+        + K * (mpmath.sin(angle) / angle)
+        + K * K * ((1 - mpmath.cos(angle)) / angle**2)
+    )
+
+
+@dataclass(frozen=True)
+class SerialSystem:
+    """The formulation for one target: the loop's turn (``order``: the arm's joint
+    indices as G1..G6, the last ones taken past the target), the middle pair's basis of
+    ``V`` (8 x 4, orthonormal) and its triangular factor, the four unknown pairs
+    (``gens``: c, s per outer joint), the patched equations the engine tracks
+    (``patched``, by ``groups``) and the square system every mode is refined and
+    certified in (``square``: each revolute pair on its unit circle, each slide's c = 1)."""
+
+    arm: SerialArm
+    target: list[Any]
+    order: tuple[int, ...]
+    lines: tuple[list[Any], ...]
+    basis: Any
+    triangle: Any
+    skew: float
+    gens: tuple[sympy.Symbol, ...]
+    groups: tuple[tuple[sympy.Symbol, sympy.Symbol], ...]
+    patched: tuple[sympy.Expr, ...]
+    square: tuple[sympy.Expr, ...]
+
+    @property
+    def outer(self) -> tuple[int, ...]:
+        """The arm's indices of the four joints whose pairs are the unknowns."""
+        o = self.order
+        return (o[0], o[1], o[4], o[5])
+
+    @property
+    def middle(self) -> tuple[int, int]:
+        return self.order[2], self.order[3]
+
+
+def _pair_space(a: list[Any], b: list[Any]) -> tuple[Any, Any, Any, float]:
+    """V = span(1, a, b, ab): its orthonormal basis Q (8 x 4), R (B = Q R), the
+    orthonormal basis of its complement (8 x 4) and how far from degenerate it is (the
+    least |eigenvalue| of the Study quadric on V; 0 when the lines are parallel or meet,
+    or the span has not four dimensions)."""
+    B = mpmath.matrix(8, 4)
+    for k, v in enumerate(([1, 0, 0, 0, 0, 0, 0, 0], a, b, dmul(a, b))):
+        for i in range(8):
+            B[i, k] = v[i]
+    full, R8 = mpmath.qr(B, mode="full")
+    Q, N, R = mpmath.matrix(8, 4), mpmath.matrix(8, 4), mpmath.matrix(4, 4)
+    for i in range(8):
+        for k in range(4):
+            Q[i, k], N[i, k] = full[i, k], full[i, k + 4]
+    for i in range(4):
+        for k in range(4):
+            R[i, k] = R8[i, k]
+    if min(abs(R[k, k]) for k in range(4)) <= MODE_PAIR_SKEW:
+        return Q, R, N, 0.0
+    S = mpmath.matrix(4, 4)
+    for i in range(4):
+        for k in range(4):
+            S[i, k] = sum(Q[r, i] * Q[r + 4, k] + Q[r + 4, i] * Q[r, k] for r in range(4)) / 2
+    eig = mpmath.eigsy(S)[0]
+    return Q, R, N, float(min(abs(e) for e in eig))
+
+
+def serial_system(arm: SerialArm, target: list[Any]) -> SerialSystem:
+    """The formulation on the consecutive pair (a joint and the next, or the last and the
+    first past the target) whose lines are the farthest from parallel or meeting."""
+    Tc = dconj(target)
+    moved = [dmul(dmul(Tc, ln), target) for ln in arm.lines]  # T* A T: past the target
+    best = None
+    for shift in range(6):
+        order = tuple((shift + i) % 6 for i in range(6))
+        lines = tuple(arm.lines[j] if shift + i < 6 else moved[j] for i, j in enumerate(order))
+        Q, R, N, skew = _pair_space(lines[2], lines[3])
+        if best is None or skew > best[3]:
+            best = (order, lines, (Q, R, N), skew)
+    assert best is not None
+    order, lines, (Q, R, N), skew = best
+    if skew <= MODE_PAIR_SKEW:
+        raise FormulationError(
+            "no two consecutive joints have skew lines (each pair is parallel, meets or "
+            "slides along the other): the half-angle formulation has no pair to stand on"
+        )
+    gens = sympy.symbols("c0 s0 c1 s1 c2 s2 c3 s3")
+    groups = tuple((gens[2 * k], gens[2 * k + 1]) for k in range(4))
+    digits = mpmath.mp.dps + 10
+
+    def num(x: Any) -> Any:
+        return sympy.Float(x, digits) if not isinstance(x, int) else x
+
+    G = [[num(x) for x in lines[i]] for i in (0, 1, 4, 5)]
+    F = [_factor(c, s, g) for (c, s), g in zip(groups, G, strict=True)]
+    M = dmul(
+        dmul(dmul(dmul(dconj(F[1]), dconj(F[0])), [num(x) for x in target]), dconj(F[3])),
+        dconj(F[2]),
+    )
+    # M in V: its components along V's complement (N's columns) vanish
+    eqs = [sympy.expand(sum(num(N[i, k]) * M[i] for i in range(8))) for k in range(4)]
+    rng = np.random.default_rng(SEED)
+    patched = [*eqs]
+    square = [*eqs]
+    for (c, s), j in zip(groups, (order[0], order[1], order[4], order[5]), strict=True):
+        r = rng.normal(size=2)
+        patched.append(sympy.Rational(float(r[0])) * c + sympy.Rational(float(r[1])) * s - 1)
+        square.append(c * c + s * s - 1 if arm.kinds[j] == "R" else c - 1)
+    return SerialSystem(
+        arm, target, order, lines, Q, R, skew, gens, groups, tuple(patched), tuple(square)
+    )
+
+
+def _extraneous(z: np.ndarray, kinds: list[str]) -> bool:
+    """An endpoint with an isotropic revolute pair or an infinite slide."""
+    for k, kind in enumerate(kinds):
+        c, s = z[2 * k], z[2 * k + 1]
+        size = abs(c) ** 2 + abs(s) ** 2
+        if kind == "R" and abs(c * c + s * s) <= MODE_ISOTROPIC_RTOL * size:
+            return True
+        if kind == "P" and abs(c) ** 2 <= MODE_ISOTROPIC_RTOL * size:
+            return True
+    return False
+
+
+def _normalised(z: np.ndarray, kinds: list[str]) -> list[float]:
+    out = []
+    for k, kind in enumerate(kinds):
+        c, s = float(z[2 * k]), float(z[2 * k + 1])
+        n = np.hypot(c, s) if kind == "R" else c
+        out += [c / n, s / n]
+    return out
+
+
+def _value(kind: str, c: Any, s: Any, L: Any) -> Any:
+    if kind == "R":
+        q = 2 * mpmath.atan2(s, c)  # in (-2 pi, 2 pi]: brought to (-pi, pi]
+        if q > mpmath.pi:
+            return q - 2 * mpmath.pi
+        return q + 2 * mpmath.pi if q <= -mpmath.pi else q
+    return 2 * L * s / c
+
+
+def joint_values_serial(system: SerialSystem, pairs: list[Any]) -> list[Any]:
+    """The arm's six joint values (in the arm's order) from the four outer pairs: the
+    middle pair from the rank-one coordinates of the product in V."""
+    arm = system.arm
+    F = [
+        _factor(pairs[2 * k], pairs[2 * k + 1], system.lines[i]) for k, i in enumerate((0, 1, 4, 5))
+    ]
+    M = dmul(dmul(dmul(dmul(dconj(F[1]), dconj(F[0])), system.target), dconj(F[3])), dconj(F[2]))
+    Qt = system.basis.T * mpmath.matrix(M)
+    q = mpmath.lu_solve(system.triangle, Qt)  # (c3 c4, s3 c4, c3 s4, s3 s4)
+    col = (q[0], q[1]) if abs(q[0]) + abs(q[1]) >= abs(q[2]) + abs(q[3]) else (q[2], q[3])
+    row = (q[0], q[2]) if abs(q[0]) + abs(q[2]) >= abs(q[1]) + abs(q[3]) else (q[1], q[3])
+    values: dict[int, Any] = {}
+    for k, i in enumerate(system.outer):
+        values[i] = _value(arm.kinds[i], pairs[2 * k], pairs[2 * k + 1], arm.L)
+    a, b = system.middle
+    values[a] = _value(arm.kinds[a], col[0], col[1], arm.L)
+    values[b] = _value(arm.kinds[b], row[0], row[1], arm.L)
+    return [values[i] for i in range(6)]
+
+
+def solve_serial(
+    system: SerialSystem, dps: int
+) -> tuple[list[tuple[list[Any], list[Any], bool]], dict[str, Any], str | None]:
+    """Every real solution: (its four outer pairs refined to ``dps`` digits, the arm's
+    six joint values, whether the root is regular), the paths' account, and where the
+    solutions are not finitely many (a real endpoint on a curve of solutions: None when
+    none is)."""
+    kinds = [system.arm.kinds[i] for i in system.outer]
+    raw, tracked = track(system.patched, system.groups)
+    genuine = [z for z in raw if not _extraneous(z, kinds)]
+    real = real_endpoints(genuine)
+    found: list[tuple[list[Any], list[Any], bool]] = []
+    duplicates = singular = 0
+    for z in real:
+        start = _normalised(z, kinds)
+        pairs = newton(system.square, system.gens, start, dps)
+        ok = pairs is not None and regular(system.square, system.gens, pairs)
+        if not ok:
+            pairs, curve = singular_root(system.square, system.gens, start, dps)
+            if pairs is None:
+                continue
+            q = joint_values_serial(system, pairs)
+            if curve:
+                names = system.arm.joints
+                at = ", ".join(f"{n} = {float(v):.6g}" for n, v in zip(names, q, strict=True))
+                return [], _account(tracked, raw, genuine, real, found, 0, 0), at
+            singular += 1
+        q = joint_values_serial(system, pairs)
+        if any(
+            _angle_distance(system.arm, q, other) <= MODE_MATCH_DISTANCE for _, other, _ in found
+        ):
+            duplicates += 1
+            continue
+        found.append((pairs, q, ok))
+    found.sort(key=lambda f: [float(x) for x in f[1]])
+    return found, _account(tracked, raw, genuine, real, found, duplicates, singular), None
+
+
+def _account(
+    tracked: int, raw: list, genuine: list, real: list, found: list, duplicates: int, singular: int
+) -> dict[str, Any]:
+    return {
+        "tracked": tracked,
+        "finite": len(raw),
+        "extraneous": len(raw) - len(genuine),
+        "solutions": len(genuine),
+        "real": len(real),
+        "refined": len(found) + duplicates,
+        "singular": singular,
+        "failed_or_infinite": tracked - len(raw),
+        "duplicates": duplicates,
+    }
+
+
+def _angle_distance(arm: SerialArm, q1: list[Any], q2: list[Any]) -> float:
+    total = 0.0
+    for kind, a, b in zip(arm.kinds, q1, q2, strict=True):
+        d = float(a - b)
+        if kind == "R":
+            d = (d + np.pi) % (2 * np.pi) - np.pi
+        else:
+            d /= float(arm.L)
+        total += d * d
+    return float(np.sqrt(total))

@@ -1,0 +1,87 @@
+"""Dual quaternions, the coordinates of D the assembly formulations share.
+
+A displacement ``x -> R x + t`` is the dual quaternion ``X + eps Y`` with ``X`` the unit
+quaternion of ``R`` and ``Y = t X / 2``; its eight Study coordinates are ``(X, Y)``, a
+point of the Study quadric ``X.Y = 0``.  A quaternion is ``[w, x, y, z]``; a dual
+quaternion the list of its eight coordinates.  Every function takes any numbers that add
+and multiply (float, mpmath, sympy), so one formula serves the solver's polynomial text,
+its refinement at 50 digits and its interval certificate.
+
+Owns :func:`qmul`, :func:`qconj`, :func:`dmul`, :func:`dconj`, :func:`line`,
+:func:`slide`, :func:`rotation_quaternion`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import mpmath
+
+__all__ = ["dconj", "dmul", "line", "qconj", "qmul", "rotation_quaternion", "slide"]
+
+
+def qmul(p: Sequence[Any], q: Sequence[Any]) -> list[Any]:
+    """The quaternion product ``p q``."""
+    w1, x1, y1, z1 = p
+    w2, x2, y2, z2 = q
+    return [
+        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+    ]
+
+
+def qconj(q: Sequence[Any]) -> list[Any]:
+    """The quaternion conjugate ``q*``."""
+    return [q[0], -q[1], -q[2], -q[3]]
+
+
+def dmul(a: Sequence[Any], b: Sequence[Any]) -> list[Any]:
+    """The dual-quaternion product ``a b`` (``a`` after ``b`` as displacements)."""
+    x = qmul(a[:4], b[:4])
+    y1, y2 = qmul(a[:4], b[4:]), qmul(a[4:], b[:4])
+    return [*x, *(u + v for u, v in zip(y1, y2, strict=True))]
+
+
+def dconj(a: Sequence[Any]) -> list[Any]:
+    """The conjugate ``a*`` (both parts conjugated): ``a a* = |X|^2 + 2 eps X.Y``, so on
+    the Study quadric ``a*`` is the inverse displacement up to a scalar."""
+    return [*qconj(a[:4]), *qconj(a[4:])]
+
+
+def line(axis: Sequence[Any], point: Sequence[Any]) -> list[Any]:
+    """The line through ``point`` along the unit ``axis``: ``w + eps (p x w)``; the
+    rotation by ``q`` about it is ``cos(q/2) + sin(q/2) line``."""
+    w, p = axis, point
+    m = [p[1] * w[2] - p[2] * w[1], p[2] * w[0] - p[0] * w[2], p[0] * w[1] - p[1] * w[0]]
+    return [0, *w, 0, *m]
+
+
+def slide(axis: Sequence[Any]) -> list[Any]:
+    """``eps u`` for the unit ``axis`` u: the translation by ``d`` along it is
+    ``1 + (d/2) eps u``."""
+    return [0, 0, 0, 0, 0, *axis]
+
+
+def rotation_quaternion(R: Any) -> list[Any]:
+    """The unit quaternion (either sign) of a rotation matrix (mpmath), from its largest
+    diagonal combination (no cancellation near a half-turn)."""
+    t = R[0, 0] + R[1, 1] + R[2, 2]
+    cases = [
+        t,
+        R[0, 0] - R[1, 1] - R[2, 2],
+        R[1, 1] - R[0, 0] - R[2, 2],
+        R[2, 2] - R[0, 0] - R[1, 1],
+    ]
+    k = max(range(4), key=lambda i: cases[i])
+    r = mpmath.sqrt(1 + cases[k])
+    h = 1 / (2 * r)
+    if k == 0:
+        return [r / 2, (R[2, 1] - R[1, 2]) * h, (R[0, 2] - R[2, 0]) * h, (R[1, 0] - R[0, 1]) * h]
+    if k == 1:
+        return [(R[2, 1] - R[1, 2]) * h, r / 2, (R[0, 1] + R[1, 0]) * h, (R[0, 2] + R[2, 0]) * h]
+    if k == 2:
+        return [(R[0, 2] - R[2, 0]) * h, (R[0, 1] + R[1, 0]) * h, r / 2, (R[1, 2] + R[2, 1]) * h]
+    return [(R[1, 0] - R[0, 1]) * h, (R[0, 2] + R[2, 0]) * h, (R[1, 2] + R[2, 1]) * h, r / 2]
