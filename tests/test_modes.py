@@ -151,9 +151,11 @@ def test_text_and_markdown_say_the_count_and_the_marked_mode() -> None:
 
 
 def test_no_method_applies_exit_2_with_the_reason(tmp_path: Path) -> None:
-    rc, _, err = run_cli(["modes", str(ROOT / "examples" / "ur5.yaml"), "--set", "J1=10"])
+    # a spatial single loop (Bennett's 4R): neither planar nor a platform on distance legs
+    rc, _, err = run_cli(["modes", str(ROOT / "examples" / "bennett.yaml"), "--set", "J1=1"])
     assert rc == 2
     assert "does not apply" in err and "axis is not along z" in err
+    assert "not U-P-S or S-P-S" in err
 
 
 def test_no_given_value_is_refused_not_counted() -> None:

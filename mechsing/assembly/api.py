@@ -316,14 +316,37 @@ def _spatial(mech: Mechanism, given: dict, dps: int) -> _Found:
 
 
 def _serial(mech: Mechanism, config: str, dps: int) -> _Found:
-    from mechsing.assembly.certify import krawczyk
-    from mechsing.assembly.serial import serial_arm, serial_system, serial_target, solve_serial
+    from mechsing.assembly.certify import krawczyk, regular, singular_root
+    from mechsing.assembly.serial import (
+        given_solution,
+        serial_arm,
+        serial_system,
+        serial_target,
+        solve_serial,
+    )
     from mechsing.kinematics import KinematicModel
 
     arm = serial_arm(mech, float(KinematicModel(mech, "float").length_scale))
     target, from_joints = serial_target(mech, config, arm)
     system = serial_system(arm, target)
     found, paths, curve = solve_serial(system, dps)
+    if from_joints and curve is None:
+        # the given joints are one of the modes: where they are a singular root, the
+        # local dimension test decides at the exact values (continuation's endpoints on a
+        # curve of solutions are complex)
+        pairs, q = given_solution(mech, config, system)
+        if not regular(system.square, system.gens, pairs):
+            at, on_curve = singular_root(system.square, system.gens, pairs, dps)
+            if on_curve:
+                curve = ", ".join(
+                    f"{n} = {float(v):.6g}" for n, v in zip(arm.joints, q, strict=True)
+                )
+            elif not any(
+                _joint_distance(mech, _in_file(mech, arm, q), _in_file(mech, arm, o), float(arm.L))
+                <= MODE_MATCH_DISTANCE
+                for _, o, _ in found
+            ):
+                found = [*found, (pairs, q, False)]
     unknowns = []
     for i in system.outer:
         n = arm.joints[i]
@@ -356,18 +379,29 @@ def _serial(mech: Mechanism, config: str, dps: int) -> _Found:
         return _Found(formulation, [], None, "infinite", paths, tuple(notes))
     rows = []
     radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
-    for pairs, q, regular in found:
-        values = dict(zip(arm.joints, q, strict=True))
-        ok = regular and krawczyk(system.square, system.gens, pairs, radius)
-        rows.append(([values[name] for name, _ in mech.coordinates()], ok))
+    for pairs, q, is_regular in found:
+        ok = is_regular and krawczyk(system.square, system.gens, pairs, radius)
+        rows.append((_in_file(mech, arm, q), ok))
     certified = all(ok for _, ok in rows)
-    complete = "maximal" if len(rows) == arm.generic_count and certified else "not proven"
+    maximal = len(rows) == arm.generic_count and certified and not paths["singular"]
+    complete = "maximal" if maximal else "not proven"
+    if paths["singular"]:
+        notes.append(
+            f"{paths['singular']} of continuation's endpoints are singular (multiple roots, "
+            "or points of a curve of solutions): the count is not proven"
+        )
     if complete != "maximal" and paths["solutions"] == arm.generic_count:
         notes.append(
             f"continuation found {arm.generic_count} solutions in all (real and complex), "
             "the most this arm can have: only the real ones are postures"
         )
     return _Found(formulation, rows, len(rows), complete, paths, tuple(notes))
+
+
+def _in_file(mech: Mechanism, arm: Any, q: list[Any]) -> list[Any]:
+    """An arm's joint values (in its order from ground) in the file's coordinate order."""
+    values = dict(zip(arm.joints, q, strict=True))
+    return [values[name] for name, _ in mech.coordinates()]
 
 
 def _text(x: Any, prec: Precision) -> str:

@@ -15,6 +15,7 @@ or a point of a curve of solutions, found by a local dimension test).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from typing import Any
 
@@ -111,24 +112,31 @@ def newton(
     """Newton's method at ``dps`` digits from ``z`` on a square system: the root to
     ``10^-dps`` (None when the Jacobian is singular on the way or the residual stays
     above ``10^-(dps/2)``: not a regular root)."""
-    f = sympy.lambdify(gens, list(eqs), "mpmath")
-    J = sympy.lambdify(gens, [[sympy.diff(e, g) for g in gens] for e in eqs], "mpmath")
-    x = mpmath.matrix([mpmath.mpf(float(v)) for v in z])
+    f, J = _functions(eqs, gens)
+    x = mpmath.matrix(
+        [mpmath.mpf(v) if isinstance(v, mpmath.mpf) else mpmath.mpf(float(v)) for v in z]
+    )
     for _ in range(60):
-        fx = mpmath.matrix(f(*x))
         try:
-            dx = mpmath.lu_solve(mpmath.matrix(J(*x)), fx)
+            dx = mpmath.lu_solve(J(x), f(x))
         except ZeroDivisionError:
             return None
         x -= dx
         if mpmath.norm(dx) <= mpmath.mpf(10) ** (-dps):
             break
-    if mpmath.norm(mpmath.matrix(f(*x))) > mpmath.mpf(10) ** (-(dps // 2)):
+    if mpmath.norm(f(x)) > mpmath.mpf(10) ** (-(dps // 2)):
         return None
     return list(x)
 
 
 def _functions(eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> tuple[Any, Any]:
+    """The system and its Jacobian as mpmath functions of a vector (built once per system:
+    every endpoint of one solve refines in the same)."""
+    return _compiled(tuple(eqs), tuple(gens))
+
+
+@functools.lru_cache(maxsize=8)
+def _compiled(eqs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...]) -> tuple[Any, Any]:
     f = sympy.lambdify(gens, list(eqs), "mpmath")
     J = sympy.lambdify(gens, [[sympy.diff(e, g) for g in gens] for e in eqs], "mpmath")
     return (lambda x: mpmath.matrix(f(*x))), (lambda x: mpmath.matrix(J(*x)))

@@ -113,11 +113,53 @@ def modes_schema() -> dict[str, Any]:
                     "method": {"type": "string"},
                     "unknowns": {"type": "array", "items": {"type": "string"}},
                     "polynomial_degree": {"type": "integer", "minimum": 0},
+                    "bezout": {
+                        "type": "integer",
+                        "description": "the start system's root count: the paths tracked",
+                    },
+                    "generic_count": {
+                        "type": "integer",
+                        "description": "the most real modes the mechanism can have here",
+                    },
+                    "generic_count_reason": {"type": ["string", "null"]},
+                    "joints": {
+                        "type": "array",
+                        "items": {"type": "string"},
+                        "description": "a serial arm's joints, from ground to the output",
+                    },
+                    "pair": {
+                        "type": "array",
+                        "items": {"type": "string"},
+                        "description": "a serial arm's two consecutive joints whose span "
+                        "carries the formulation (solved last, by factorisation)",
+                    },
                 },
             },
             "paths": {
                 "type": ["object", "null"],
                 "description": "homotopy paths tracked, succeeded, failed (null: exact elimination)",
+                "properties": {
+                    k: {"type": "integer", "minimum": 0, "description": d}
+                    for k, d in (
+                        ("tracked", "paths tracked"),
+                        ("finite", "endpoints at finite values"),
+                        (
+                            "extraneous",
+                            "endpoints that are no solution (a serial arm: an "
+                            "isotropic half-angle pair, or off the pair's span)",
+                        ),
+                        ("solutions", "finite solutions, real and complex (a serial arm)"),
+                        ("real", "real endpoints"),
+                        ("refined", "real endpoints refined at 50 digits or more"),
+                        (
+                            "singular",
+                            "endpoints where the Jacobian is singular (a multiple "
+                            "root or a curve of solutions: the count is not proven)",
+                        ),
+                        ("failed_or_infinite", "paths that ended at infinity or failed"),
+                        ("duplicates", "refined endpoints that repeat a mode"),
+                    )
+                },
             },
             "modes": {"type": "array", "items": _mode()},
             "distances": {

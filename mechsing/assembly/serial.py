@@ -44,10 +44,13 @@ from mechsing.assembly.study import dconj, dmul, line, qmul, rotation_quaternion
 from mechsing.errors import FormulationError
 from mechsing.model import Mechanism
 from mechsing.numeric import (
+    MODE_ENDPOINT_SINGULAR_RTOL,
+    MODE_EXTRANEOUS_RTOL,
     MODE_ISOTROPIC_RTOL,
     MODE_MATCH_DISTANCE,
     MODE_PAIR_SKEW,
     MODE_PIEPER_ATOL,
+    MODE_SINGULAR_IMAGINARY_RTOL,
 )
 
 __all__ = [
@@ -55,6 +58,7 @@ __all__ = [
     "SerialSystem",
     "serial_arm",
     "serial_system",
+    "given_solution",
     "serial_target",
     "solve_serial",
 ]
@@ -207,6 +211,19 @@ def _arm_value(mech: Mechanism, config: str, name: str) -> Any:
     return 0
 
 
+def given_solution(
+    mech: Mechanism, config: str, system: SerialSystem
+) -> tuple[list[Any], list[Any]]:
+    """The four outer pairs and six joint values of a configuration that gives the arm's
+    joints (one of its own modes)."""
+    arm = system.arm
+    q = [_mp(_arm_value(mech, config, n)) for n in arm.joints]
+    pairs: list[Any] = []
+    for i in system.outer:
+        pairs += list(_pair(arm.kinds[i], q[i], arm.L))
+    return pairs, [_value(k, *_pair(k, v, arm.L), arm.L) for k, v in zip(arm.kinds, q, strict=True)]
+
+
 def _exp_so3(r: list[Any]) -> mpmath.matrix:
     angle = mpmath.sqrt(sum(x * x for x in r))
     K = mpmath.matrix([[0, -r[2], r[1]], [r[2], 0, -r[0]], [-r[1], r[0], 0]])
@@ -226,7 +243,10 @@ class SerialSystem:
     ``V`` (8 x 4, orthonormal) and its triangular factor, the four unknown pairs
     (``gens``: c, s per outer joint), the patched equations the engine tracks
     (``patched``, by ``groups``) and the square system every mode is refined and
-    certified in (``square``: each revolute pair on its unit circle, each slide's c = 1)."""
+    certified in (``square``: each revolute pair on its unit circle, each slide's c = 1),
+    and the four conditions of ``M`` in ``V`` (``linear``; with a pair that is not skew,
+    ``skew`` is 0 and the system holds three combinations of them and the rank-one
+    condition)."""
 
     arm: SerialArm
     target: list[Any]
@@ -239,6 +259,7 @@ class SerialSystem:
     groups: tuple[tuple[sympy.Symbol, sympy.Symbol], ...]
     patched: tuple[sympy.Expr, ...]
     square: tuple[sympy.Expr, ...]
+    linear: tuple[sympy.Expr, ...]
 
     @property
     def outer(self) -> tuple[int, ...]:
@@ -251,11 +272,12 @@ class SerialSystem:
         return self.order[2], self.order[3]
 
 
-def _pair_space(a: list[Any], b: list[Any]) -> tuple[Any, Any, Any, float]:
+def _pair_space(a: list[Any], b: list[Any]) -> tuple[Any, Any, Any, float, float]:
     """V = span(1, a, b, ab): its orthonormal basis Q (8 x 4), R (B = Q R), the
     orthonormal basis of its complement (8 x 4) and how far from degenerate it is (the
     least |eigenvalue| of the Study quadric on V; 0 when the lines are parallel or meet,
-    or the span has not four dimensions)."""
+    or the span has not four dimensions) and how far the span is from fewer dimensions
+    (the least pivot of R)."""
     B = mpmath.matrix(8, 4)
     for k, v in enumerate(([1, 0, 0, 0, 0, 0, 0, 0], a, b, dmul(a, b))):
         for i in range(8):
@@ -268,35 +290,45 @@ def _pair_space(a: list[Any], b: list[Any]) -> tuple[Any, Any, Any, float]:
     for i in range(4):
         for k in range(4):
             R[i, k] = R8[i, k]
-    if min(abs(R[k, k]) for k in range(4)) <= MODE_PAIR_SKEW:
-        return Q, R, N, 0.0
+    span = float(min(abs(R[k, k]) for k in range(4)))
+    if span <= MODE_PAIR_SKEW:
+        return Q, R, N, 0.0, span
     S = mpmath.matrix(4, 4)
     for i in range(4):
         for k in range(4):
             S[i, k] = sum(Q[r, i] * Q[r + 4, k] + Q[r + 4, i] * Q[r, k] for r in range(4)) / 2
     eig = mpmath.eigsy(S)[0]
-    return Q, R, N, float(min(abs(e) for e in eig))
+    return Q, R, N, float(min(abs(e) for e in eig)), span
 
 
-def serial_system(arm: SerialArm, target: list[Any]) -> SerialSystem:
+def serial_system(arm: SerialArm, target: list[Any], shift: int | None = None) -> SerialSystem:
     """The formulation on the consecutive pair (a joint and the next, or the last and the
-    first past the target) whose lines are the farthest from parallel or meeting."""
+    first past the target) whose lines are the farthest from parallel or meeting
+    (``shift``: on the pair of the arm's joints ``shift + 2`` and ``shift + 3``, counted
+    from 0 and past the target, whatever its lines)."""
     Tc = dconj(target)
     moved = [dmul(dmul(Tc, ln), target) for ln in arm.lines]  # T* A T: past the target
-    best = None
-    for shift in range(6):
-        order = tuple((shift + i) % 6 for i in range(6))
-        lines = tuple(arm.lines[j] if shift + i < 6 else moved[j] for i, j in enumerate(order))
-        Q, R, N, skew = _pair_space(lines[2], lines[3])
-        if best is None or skew > best[3]:
-            best = (order, lines, (Q, R, N), skew)
-    assert best is not None
-    order, lines, (Q, R, N), skew = best
+    pairs = []
+    for turn in range(6):
+        order = tuple((turn + i) % 6 for i in range(6))
+        lines = tuple(arm.lines[j] if turn + i < 6 else moved[j] for i, j in enumerate(order))
+        pairs.append((order, lines, _pair_space(lines[2], lines[3])))
+    order, lines, (Q, R, N, skew, span) = max(pairs, key=lambda p: (p[2][3], p[2][4]))
+    if shift is not None:
+        order, lines, (Q, R, N, skew, span) = pairs[shift]
     if skew <= MODE_PAIR_SKEW:
-        raise FormulationError(
-            "no two consecutive joints have skew lines (each pair is parallel, meets or "
-            "slides along the other): the half-angle formulation has no pair to stand on"
-        )
+        # no skew pair (the tool's axis parallel to the base's, say): the pair whose span
+        # is the best conditioned, its rank-one condition written out
+        if shift is None:  # a parallel pair first (its endpoints are cleaner), then the span
+            order, lines, (Q, R, N, skew, span) = max(
+                pairs, key=lambda p: (_parallel(p[1][2], p[1][3]), p[2][4])
+            )
+        if span <= MODE_PAIR_SKEW:
+            raise FormulationError(
+                "no two consecutive joints span four dimensions of displacements (each "
+                "pair is coaxial, or two slides): the half-angle formulation has no pair"
+            )
+        skew = 0.0
     gens = sympy.symbols("c0 s0 c1 s1 c2 s2 c3 s3")
     groups = tuple((gens[2 * k], gens[2 * k + 1]) for k in range(4))
     digits = mpmath.mp.dps + 10
@@ -311,8 +343,27 @@ def serial_system(arm: SerialArm, target: list[Any]) -> SerialSystem:
         dconj(F[2]),
     )
     # M in V: its components along V's complement (N's columns) vanish
-    eqs = [sympy.expand(sum(num(N[i, k]) * M[i] for i in range(8))) for k in range(4)]
+    linear = [sympy.expand(sum(num(N[i, k]) * M[i] for i in range(8))) for k in range(4)]
     rng = np.random.default_rng(SEED)
+    if skew:
+        # on the Study quadric (where M lies), V holds only the pair's displacements
+        eqs = linear
+    else:
+        # V lies in the Study quadric (a subgroup): three random combinations of the four
+        # conditions (V and one more 3-space V') and the rank-one condition on M's
+        # coordinates in V, (c3 c4)(s3 s4) = (s3 c4)(c3 s4); the endpoints in V' are
+        # extraneous (the fourth condition fails there): 2 x 4! = 48 paths
+        mix = rng.normal(size=(3, 4))
+        eqs = [
+            sympy.expand(sum(sympy.Rational(float(mix[r, k])) * linear[k] for k in range(4)))
+            for r in range(3)
+        ]
+        Rinv = mpmath.inverse(R)
+        coords = [
+            sum(num(sum(Rinv[a, b] * Q[i, b] for b in range(4))) * M[i] for i in range(8))
+            for a in range(4)
+        ]
+        eqs.append(sympy.expand(coords[0] * coords[3] - coords[1] * coords[2]))
     patched = [*eqs]
     square = [*eqs]
     for (c, s), j in zip(groups, (order[0], order[1], order[4], order[5]), strict=True):
@@ -320,12 +371,34 @@ def serial_system(arm: SerialArm, target: list[Any]) -> SerialSystem:
         patched.append(sympy.Rational(float(r[0])) * c + sympy.Rational(float(r[1])) * s - 1)
         square.append(c * c + s * s - 1 if arm.kinds[j] == "R" else c - 1)
     return SerialSystem(
-        arm, target, order, lines, Q, R, skew, gens, groups, tuple(patched), tuple(square)
+        arm,
+        target,
+        order,
+        lines,
+        Q,
+        R,
+        skew,
+        gens,
+        groups,
+        tuple(patched),
+        tuple(square),
+        tuple(linear),
     )
 
 
-def _extraneous(z: np.ndarray, kinds: list[str]) -> bool:
-    """An endpoint with an isotropic revolute pair or an infinite slide."""
+def _parallel(a: list[Any], b: list[Any]) -> bool:
+    """Are two revolute lines parallel (their directions, to ``MODE_PIEPER_ATOL``)?"""
+    wa = np.array([float(x) for x in a[1:4]])
+    wb = np.array([float(x) for x in b[1:4]])
+    both = np.linalg.norm(wa) > 0.5 and np.linalg.norm(wb) > 0.5
+    return bool(both and np.linalg.norm(np.cross(wa, wb)) <= MODE_PIEPER_ATOL)
+
+
+def _extraneous(z: np.ndarray, kinds: list[str], off: Any = None) -> bool:
+    """An endpoint with an isotropic revolute pair or an infinite slide, or (``off``:
+    the relative residual of the four conditions of M in V) one off the pair's span."""
+    if off is not None and off(z) > MODE_EXTRANEOUS_RTOL:
+        return True
     for k, kind in enumerate(kinds):
         c, s = z[2 * k], z[2 * k + 1]
         size = abs(c) ** 2 + abs(s) ** 2
@@ -334,6 +407,20 @@ def _extraneous(z: np.ndarray, kinds: list[str]) -> bool:
         if kind == "P" and abs(c) ** 2 <= MODE_ISOTROPIC_RTOL * size:
             return True
     return False
+
+
+def _off(system: SerialSystem) -> Any:
+    """The relative residual of the four conditions of M in V at an endpoint (numpy)."""
+    f = sympy.lambdify(system.gens, list(system.linear), "numpy")
+    size = sympy.lambdify(
+        system.gens, [sum(abs(t) for t in sympy.Add.make_args(e)) for e in system.linear], "numpy"
+    )
+
+    def off(z: np.ndarray) -> float:
+        w = [complex(v) for v in z]
+        return float(np.max(np.abs(f(*w))) / max(1e-300, float(np.max(np.abs(size(*w))))))
+
+    return off
 
 
 def _normalised(z: np.ndarray, kinds: list[str]) -> list[float]:
@@ -384,11 +471,17 @@ def solve_serial(
     none is)."""
     kinds = [system.arm.kinds[i] for i in system.outer]
     raw, tracked = track(system.patched, system.groups)
-    genuine = [z for z in raw if not _extraneous(z, kinds)]
+    off = None if system.skew else _off(system)
+    genuine = [z for z in raw if not _extraneous(z, kinds, off)]
     real = real_endpoints(genuine)
+    singular = _singular_endpoints(system, genuine, kinds)
+    flat = len(singular)
+    # a multiple root's endpoint is accurate to the square root of the engine's precision
+    # or worse: a singular endpoint nearly real may be a real root
+    near = [z for z in singular if not real_endpoints([z]) and _nearly_real(z)]
     found: list[tuple[list[Any], list[Any], bool]] = []
-    duplicates = singular = 0
-    for z in real:
+    duplicates = 0
+    for z in [*real, *(z.real for z in near)]:
         start = _normalised(z, kinds)
         pairs = newton(system.square, system.gens, start, dps)
         ok = pairs is not None and regular(system.square, system.gens, pairs)
@@ -400,8 +493,7 @@ def solve_serial(
             if curve:
                 names = system.arm.joints
                 at = ", ".join(f"{n} = {float(v):.6g}" for n, v in zip(names, q, strict=True))
-                return [], _account(tracked, raw, genuine, real, found, 0, 0), at
-            singular += 1
+                return [], _account(tracked, raw, genuine, real, found, 0, flat), at
         q = joint_values_serial(system, pairs)
         if any(
             _angle_distance(system.arm, q, other) <= MODE_MATCH_DISTANCE for _, other, _ in found
@@ -410,7 +502,33 @@ def solve_serial(
             continue
         found.append((pairs, q, ok))
     found.sort(key=lambda f: [float(x) for x in f[1]])
-    return found, _account(tracked, raw, genuine, real, found, duplicates, singular), None
+    return found, _account(tracked, raw, genuine, real, found, duplicates, flat), None
+
+
+def _singular_endpoints(
+    system: SerialSystem, points: list[np.ndarray], kinds: list[str]
+) -> list[np.ndarray]:
+    """The endpoints (complex, double precision) that are singular roots of the square
+    system: multiple roots, or points of a curve of solutions."""
+    jac = sympy.lambdify(
+        system.gens, [[sympy.diff(e, g) for g in system.gens] for e in system.square], "numpy"
+    )
+    out = []
+    for z in points:
+        w = []
+        for k, kind in enumerate(kinds):
+            c, s = complex(z[2 * k]), complex(z[2 * k + 1])
+            n = np.sqrt(c * c + s * s) if kind == "R" else c
+            w += [c / n, s / n]
+        sv = np.linalg.svd(np.array(jac(*w), dtype=complex), compute_uv=False)
+        if sv[-1] <= MODE_ENDPOINT_SINGULAR_RTOL * sv[0]:
+            out.append(z)
+    return out
+
+
+def _nearly_real(z: np.ndarray) -> bool:
+    scale = max(1.0, float(np.max(np.abs(z))))
+    return float(np.max(np.abs(z.imag))) <= MODE_SINGULAR_IMAGINARY_RTOL * scale
 
 
 def _account(
@@ -423,7 +541,7 @@ def _account(
         "solutions": len(genuine),
         "real": len(real),
         "refined": len(found) + duplicates,
-        "singular": singular,
+        "singular": singular,  # endpoints (real or complex) where the Jacobian is singular
         "failed_or_infinite": tracked - len(raw),
         "duplicates": duplicates,
     }

@@ -391,3 +391,17 @@ MODE_SINGULAR_RTOL = 1e-12
 #: correction closes to the working digits (an isolated multiple root leaves a residual
 #: of the order of the step squared)
 MODE_CURVE_STEP = 1e-6
+#: a continuation endpoint (double precision) is a singular root -- a multiple root or
+#: a point of a curve of solutions, where the count cannot be proven -- when its
+#: Jacobian's least singular value is below this times its largest (a regular root of
+#: the bundled arms stays above 1e-4; an endpoint on a curve is within its accuracy, 1e-9)
+MODE_ENDPOINT_SINGULAR_RTOL = 1e-7
+#: with a pair of joints whose lines are parallel or meet, a continuation endpoint is
+#: extraneous (off the pair's displacements) when the four conditions of the product in
+#: their span leave a residual above this times the sum of their terms' magnitudes
+MODE_EXTRANEOUS_RTOL = 1e-6
+#: a singular continuation endpoint (a multiple root's: accurate to about the square root
+#: of double precision, or worse after the endgame) may be a real root when its imaginary
+#: parts are below this times ``max(1, |z|)``: it is polished in real arithmetic at 50
+#: digits and kept only where that closes
+MODE_SINGULAR_IMAGINARY_RTOL = 1e-3
