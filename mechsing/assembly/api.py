@@ -188,7 +188,8 @@ def modes(
             except FormulationError as reason:
                 raise UserError(
                     f"{where}: no method applies (a mechanism without loops is solved as a "
-                    f"serial arm for the output's pose, and {reason})"
+                    f"serial arm for the output's pose, and that formulation does not apply: "
+                    f"{reason})"
                 ) from None
         return _finish(mech, config, prec, found, dps)
     given = _given(mech, config)
