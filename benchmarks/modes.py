@@ -8,6 +8,8 @@
   leg lengths):
   ``mechsing.assembly.modes`` against ``bertini.solve`` on the same Study-coordinate system
   (recording off in both), with the share of paths that fail or go to infinity.
+* UR5 at a generic pose (examples/ur5.yaml with a configuration given by the output's
+  pose): ``modes`` against ``bertini.solve`` on the same half-angle system (24 paths).
 
 Times are CPU seconds of this process (the machine is shared).  Run from the repository
 root: ``OPENBLAS_NUM_THREADS=1 python benchmarks/modes.py``.
@@ -75,7 +77,8 @@ def dietmaier() -> None:
     from mechsing.adhoc import with_set_values
     from mechsing.assembly import modes
     from mechsing.assembly.api import _given
-    from mechsing.assembly.spatial import _bertini_text, patch_equation, spatial_system
+    from mechsing.assembly.engine import system_text
+    from mechsing.assembly.spatial import XS, YS, patch_equation, spatial_system
 
     mech = load(ROOT / "examples" / "stewart_dietmaier.yaml")
     sets = []
@@ -87,7 +90,7 @@ def dietmaier() -> None:
         sets.append(f"dietmaier:P{i}={float(-d @ u + np.sqrt((d @ u) ** 2 - d @ d + length**2))!r}")
     mech = with_set_values(mech, sets, None, "stewart_dietmaier.yaml")
     system = spatial_system(mech, _given(mech, "dietmaier"))
-    text = _bertini_text([*system.equations, patch_equation()])
+    text = system_text([*system.equations, patch_equation()], [[*XS, *YS]])
     was = bertini.recording()
     bertini.recording(False)
     try:
@@ -104,6 +107,45 @@ def dietmaier() -> None:
     )
 
 
+UR5_POSE = "{pose: {position: [-0.3, -0.4, 0.5], axis: [1, 1, 0], angle: 2.1}}"
+
+
+def ur5() -> None:
+    import bertini
+    import yaml
+
+    from mechsing import load
+    from mechsing.assembly import modes
+    from mechsing.assembly.engine import system_text
+    from mechsing.assembly.serial import serial_arm, serial_system, serial_target
+    from mechsing.kinematics import KinematicModel
+
+    text = (ROOT / "examples" / "ur5.yaml").read_text() + f"  reach: {UR5_POSE}\n"
+    path = Path("/tmp") / "mechsing-bench-ur5.yaml"
+    path.write_text(text)
+    yaml.safe_load(text)
+    mech = load(path)
+    with mpmath.workdps(50):
+        arm = serial_arm(mech, float(KinematicModel(mech, "float").length_scale))
+        system = serial_system(arm, serial_target(mech, "reach", arm)[0])
+    was = bertini.recording()
+    bertini.recording(False)
+    try:
+        src = system_text(system.patched, system.groups)
+        t_b, r = _cpu(lambda: bertini.solve(bertini.parse.system(src), seed=34))
+    finally:
+        bertini.recording(was)
+    t_m, res = _cpu(lambda: modes(mech, "reach", "float"))
+    p = res.paths
+    print(
+        f"UR5 at a generic pose: bertini.solve {t_b:.1f} s ({len(r.solutions)} finite); modes "
+        f"(float classification) {t_m:.1f} s: {res.count} real, complete {res.complete}, "
+        f"paths {p['tracked']}, {p['finite']} finite, {p['extraneous']} extraneous, failed or "
+        f"at infinity {p['failed_or_infinite']} ({100 * p['failed_or_infinite'] / p['tracked']:.0f} %)"
+    )
+
+
 if __name__ == "__main__":
     rpr()
     dietmaier()
+    ur5()

@@ -5,7 +5,8 @@ Bertini's records are turned off for the solve (``bertini.recording(False)``): n
 written in the user's directory and no path is replayed from an earlier run.  The seed is
 fixed, so a run repeats: the same random gamma, start points and patches.
 
-Owns :func:`track`, :func:`real_endpoints`.
+Owns :func:`track`, :func:`real_endpoints`, :func:`system_text` (the system in Bertini's
+input language, its variable groups first).
 """
 
 from __future__ import annotations
@@ -18,13 +19,14 @@ import sympy
 from mechsing.errors import UserError
 from mechsing.numeric import MODE_IMAGINARY_RTOL
 
-__all__ = ["SEED", "real_endpoints", "track"]
+__all__ = ["SEED", "real_endpoints", "system_text", "track"]
 
 #: the seed of every homotopy (its random gamma, start points and patches): runs repeat
 SEED = 34
 
 
-def _text(eqs: Sequence[sympy.Expr], groups: Sequence[Sequence[sympy.Symbol]]) -> str:
+def system_text(eqs: Sequence[sympy.Expr], groups: Sequence[Sequence[sympy.Symbol]]) -> str:
+    """The system in Bertini's input language (coefficients to 17 digits)."""
     lines = ["variable_group " + ",".join(str(v) for v in g) + ";" for g in groups]
     lines.append("function " + ",".join(f"f{i}" for i in range(len(eqs))) + ";")
     for i, e in enumerate(eqs):
@@ -50,7 +52,7 @@ def track(
     was = bertini.recording()
     bertini.recording(False)  # no records directory in the user's cwd, no replayed paths
     try:
-        result = bertini.solve(bertini.parse.system(_text(eqs, groups)), seed=SEED)
+        result = bertini.solve(bertini.parse.system(system_text(eqs, groups)), seed=SEED)
     finally:
         bertini.recording(was)
     solver = result.solver
