@@ -107,6 +107,7 @@ def _modes(path: Path, config: str, cwd: Path) -> dict:
         ["modes", str(path), "--config", config, "--format", "json"], timeout=600, cwd=cwd
     )
     assert rc == 0, err
+    assert "Warning" not in err, err
     assert list(cwd.iterdir()) == [], "modes wrote into the working directory"
     return json.loads(out)
 
