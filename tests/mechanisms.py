@@ -184,6 +184,8 @@ PUBLISHED: dict[str, Published] = {
     "puma560.yaml": Published(
         6, 6, ("reference", "regular", "wrist", "elbow", "shoulder"), {}, serial=True
     ),
+    # a general 6R (every two consecutive axes skew): mobility 6, no loops
+    "general_6r.yaml": Published(6, 6, ("reference", "generic"), {}, serial=True),
 }
 
 #: degrees of freedom of each joint type (a U joint has two)

@@ -159,7 +159,7 @@ def test_planar_3rpr_loops() -> None:
         assert c["mobility"]["group"] == 3
 
 
-@pytest.mark.parametrize("name", ["ur5.yaml", "puma560.yaml"])
+@pytest.mark.parametrize("name", ["ur5.yaml", "puma560.yaml", "general_6r.yaml"])
 def test_serial_arms(name: str) -> None:
     res = analyze_json(EXAMPLES / name)
     for c in res["configurations"]:
