@@ -268,3 +268,62 @@ def test_each_mode_is_classified_as_analyze_classifies_it(
         assert [s["class"] for s in m["singularities"]] == [
             s["class"] for s in ref["singularities"]
         ]
+
+
+# ----------------------------------------------------------------------------- special poses
+
+#: the tool's axis along the base's (J2 + J3 + J4 = -pi/2, J5 = pi/2): J6 and J1 taken past
+#: the target are parallel, so no consecutive pair of the UR5 is skew; not singular
+UR5_DOWN = np.array([0.3, -0.9, 1.2, -math.pi / 2 - 0.3, math.pi / 2, 0.4])
+#: the wrist singularity (theta5 = 0): J2, J3, J4 and J6 parallel, a self-motion
+UR5_WRIST = np.array([0.3, -0.9, 1.2, -0.7, 0.0, 0.4])
+
+
+def test_ur5_with_its_tool_along_the_base_axis_has_the_postures_of_its_closed_form(
+    tmp_path: Path,
+) -> None:
+    """No skew pair: the formulation stands on a parallel pair (its rank-one condition
+    written out, 48 paths) and still finds every posture of the closed form."""
+    (tmp_path / "f").mkdir()
+    path = _with(UR5_ARM.path, tmp_path / "f", "down", _joints_entry(UR5_DOWN))
+    (tmp_path / "cwd").mkdir()
+    doc = _modes(path, "down", tmp_path / "cwd")
+    assert doc["paths"]["tracked"] == 48
+    closed = ur5_ik(dh_product(UR5, UR5_DOWN))
+    assert len(closed) >= 2
+    found = _postures(doc)
+    assert same_sets(found, closed, ANGLE_TOL)
+    assert doc["count"] == len(closed)
+    T = UR5_ARM.pose(UR5_DOWN)
+    assert all(_pose_gap(UR5_ARM.pose(q), T) <= POSE_TOL for q in found)
+
+
+def test_ur5_at_its_wrist_singularity_has_no_count(tmp_path: Path) -> None:
+    """theta5 = 0: the pose is reached along a curve of postures (J4 and J6 turn together
+    with J2 and J3), so there is no count, never a wrong one."""
+    (tmp_path / "f").mkdir()
+    path = _with(UR5_ARM.path, tmp_path / "f", "wrist-generic", _joints_entry(UR5_WRIST))
+    (tmp_path / "cwd").mkdir()
+    doc = _modes(path, "wrist-generic", tmp_path / "cwd")
+    assert doc["count"] is None and doc["complete"] == "infinite" and doc["modes"] == []
+    assert any("curve" in n for n in doc["notes"])
+
+
+def test_ur5_at_its_shoulder_singularity_lists_each_double_posture_once(tmp_path: Path) -> None:
+    """The bundled shoulder configuration: the wrist centre on the plane through axis 1,
+    so the postures merge in pairs (double roots: none certified, the count not proven);
+    they are the closed form's distinct solutions, each singular as analyze says."""
+    (tmp_path / "cwd").mkdir()
+    doc = _modes(UR5_ARM.path, "shoulder", tmp_path / "cwd")
+    q = UR5_ARM.values("shoulder")
+    closed = ur5_ik(dh_product(UR5, q))
+    distinct: list[np.ndarray] = []
+    for c in closed:
+        if all(angle_gap(c, d) > 1e-6 for d in distinct):
+            distinct.append(c)
+    found = _postures(doc)
+    assert doc["complete"] == "not proven" and doc["count"] == len(distinct)
+    # at a double root the closed form (a square root of a vanishing quantity) is itself
+    # accurate only to about the square root of double precision: 3e-8 rad in theta1 here
+    assert same_sets(found, distinct, 1e-6)
+    assert all(m["singular"] and not m["certified"] for m in doc["modes"])
