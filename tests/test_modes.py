@@ -340,3 +340,34 @@ def test_the_report_has_a_section_with_every_mode_sketched(tmp_path: Path) -> No
     for k in (1, 2):
         assert (tmp_path / "review_files" / f"mode-crank-30-{k}.svg").is_file()
     assert section.count("continuation from the configuration's start reaches") == 1
+
+
+def test_from_marks_the_mode_continuation_from_another_start_reaches(tmp_path: Path) -> None:
+    """--from CONFIG: continuation from a configuration on the other assembly mode (every
+    joint given, the crank at 30 deg) stays on it, so the crank at 60 deg marks the other
+    mode than continuation from the reference does."""
+    rc, out, err = run_cli(["modes", str(FOURBAR), "--config", "crank-30", "--format", "json"])
+    assert rc == 0, err
+    other = next(m for m in json.loads(out)["modes"] if not m["reached_by_continuation"])
+    # the file's angles are in degrees; the JSON's in radians
+    entry = ", ".join(f"{n}: {float(np.degrees(v[0]))!r}" for n, v in other["joints"].items())
+    path = tmp_path / "fourbar.yaml"
+    extra = f"  other: {{{entry}}}\n  crank-60: {{A: 60}}\n"
+    path.write_text(FOURBAR.read_text().rstrip() + "\n" + extra)
+    marked = {}
+    for start in (None, "other"):
+        argv = ["modes", str(path), "--config", "crank-60", "--format", "json"]
+        rc, out, err = run_cli(argv + (["--from", start] if start else []))
+        assert rc == 0, err
+        doc = json.loads(out)
+        assert doc["count"] == 2
+        marked[start] = [k for k, m in enumerate(doc["modes"]) if m["reached_by_continuation"]]
+    assert len(marked[None]) == 1 and len(marked["other"]) == 1
+    assert marked[None] != marked["other"]
+
+
+def test_from_refuses_an_unknown_start_and_a_cycle() -> None:
+    rc, _, err = run_cli(["modes", str(FOURBAR), "--config", "crank-30", "--from", "nope"])
+    assert rc == 2 and "no such configuration" in err
+    rc, _, err = run_cli(["modes", str(FOURBAR), "--config", "crank-30", "--from", "crank-200"])
+    assert rc == 2 and "a cycle" in err

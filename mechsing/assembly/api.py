@@ -139,6 +139,7 @@ def modes(
     config: str,
     precision: Precision | str = "auto",
     time_limit: float | None = None,
+    start: str | None = None,
 ) -> ModesResult:
     """Every real assembly mode of configuration ``config`` (its given joint values).
 
@@ -154,6 +155,9 @@ def modes(
         found at max(50, N + 10) digits whatever it is.
     time_limit : float or None
         The most seconds (None: no limit).
+    start : str or None
+        The configuration continuation starts from to mark the mode it reaches (None: the
+        configuration's own ``start``).
 
     Returns
     -------
@@ -179,6 +183,8 @@ def modes(
             f"{mech.path or mech.name}: no configuration named {config!r}; the "
             f"file has: {', '.join(mech.configurations)}"
         )
+    if start is not None:
+        mech = _started_from(mech, config, start)
     dps = max(50, (prec.digits or 0) + 10)
     where = f"{mech.path or mech.name}: configuration {config!r}"
     if not mech.loops:  # a serial arm: the output's pose (given, or reached) is what is given
@@ -206,6 +212,28 @@ def modes(
                     f"platform in Study coordinates does not apply: {spatial_reason})"
                 ) from None
     return _finish(mech, config, prec, found, dps)
+
+
+def _started_from(mech: Mechanism, config: str, start: str) -> Mechanism:
+    """``mech`` with configuration ``config`` continued from ``start``."""
+    import dataclasses
+
+    where = mech.path or mech.name
+    if start not in mech.configurations:
+        raise UserError(
+            f"{where}: --from {start!r}: no such configuration; the file has: "
+            f"{', '.join(mech.configurations)}"
+        )
+    cur: str | None = start
+    while cur is not None:
+        if cur == config:
+            raise UserError(
+                f"{where}: --from {start!r}: it starts from {config!r} itself (a cycle); "
+                "choose a configuration that does not"
+            )
+        cur = mech.configurations[cur].start
+    cfg = dataclasses.replace(mech.configurations[config], start=start)
+    return dataclasses.replace(mech, configurations={**mech.configurations, config: cfg})
 
 
 def _finish(mech: Mechanism, config: str, prec: Precision, found: _Found, dps: int) -> ModesResult:

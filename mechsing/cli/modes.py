@@ -47,17 +47,21 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.cli.options import apply_set, check_shared
     from mechsing.files import check_output, write_output
 
-    check_shared(args)
+    check_shared(args, from_alone=args.config is not None)
     if args.output:
         check_output(args.output, [args.file])
+    # --from with --config: the start whose continuation marks a mode; with --set: the
+    # start the --set values are solved from (and so marked from)
+    from_config = args.from_config if args.set_values else None
     mech = apply_set(
-        load_mechanism(args.file, args.verbose), args.set_values, args.from_config, args.file
+        load_mechanism(args.file, args.verbose), args.set_values, from_config, args.file
     )
     if args.config is None:
         if not args.set_values:
             raise UserError("modes needs --config NAME (or --set JOINT=VALUE for the inputs)")
         args.config = set_start(mech, args.set_values, "modes")
-    result = modes(mech, args.config, args.prec, time_limit=args.time_limit)
+    start = None if args.set_values else args.from_config
+    result = modes(mech, args.config, args.prec, time_limit=args.time_limit, start=start)
     text = render_modes(result, args.format)
     if args.output:
         write_output(args.output, text, [args.file])

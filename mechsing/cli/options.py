@@ -153,11 +153,14 @@ def warn_varies(mech: Any, varies: list[Any]) -> None:
         print(f"mechsing: warning: {warning}", file=sys.stderr)
 
 
-def check_shared(args: argparse.Namespace, sweeps: str = "a sweep") -> None:
+def check_shared(
+    args: argparse.Namespace, sweeps: str = "a sweep", from_alone: bool = False
+) -> None:
     """Check the shared options a command was given, before its file is read: sets
     ``args.prec`` (the Precision of ``--precision``) and ``args.varies`` (the ``--vary``
     values read, each range checked; a joint without a range is checked once its limits
-    are read).  ``sweeps``: what sweeps in the command, for the messages."""
+    are read).  ``sweeps``: what sweeps in the command, for the messages; ``from_alone``:
+    ``--from`` means something without ``--set`` (modes: where continuation starts)."""
     texts = getattr(args, "vary", None) or []
     if texts:
         from mechsing.sweeps.spec import check_varies
@@ -172,7 +175,7 @@ def check_shared(args: argparse.Namespace, sweeps: str = "a sweep") -> None:
 
             sweep_precision(args.prec)
     set_values = getattr(args, "set_values", None)
-    if getattr(args, "from_config", None) and not set_values and not args.varies:
+    if getattr(args, "from_config", None) and not (set_values or args.varies or from_alone):
         if hasattr(args, "vary"):
             raise UserError(
                 f"--from {args.from_config}: names where a sweep starts (or where --set values "

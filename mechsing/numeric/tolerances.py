@@ -371,8 +371,9 @@ MODE_MATCH_DISTANCE = 1e-8
 #: and only a refined one is a mode
 MODE_IMAGINARY_RTOL = 1e-6
 #: a serial arm's joint pair (c, s) is isotropic, c^2 + s^2 = 0 (no joint value: an
-#: extraneous solution of the half-angle formulation), when |c^2 + s^2| is below this
-#: times |c|^2 + |s|^2; a prismatic pair's c is zero (an infinite slide) likewise
+#: extraneous solution of the half-angle formulation), when ``abs(c^2 + s^2)`` is below
+#: this times ``abs(c)^2 + abs(s)^2``; a prismatic pair's c is zero (an infinite slide)
+#: likewise
 MODE_ISOTROPIC_RTOL = 1e-8
 #: two consecutive joints of a serial arm can carry the formulation when the Study
 #: quadric restricted to the span of their displacements has every eigenvalue above this
