@@ -233,6 +233,9 @@ def test_general_6r_has_sixteen_solutions_and_the_real_ones_numeric_ik_finds(
     real ones are the postures damped Newton reaches from 3000 random starts."""
     assert general["formulation"]["generic_count"] == 16
     assert general["paths"]["solutions"] == 16
+    # all 16 certified distinct (real and complex): no real posture can be missing
+    assert general["complete"] == "maximal"
+    assert any("all 16 solutions" in n for n in general["notes"])
     T = G6R_ARM.pose(G6R_ARM.values("generic"))
     found = _postures(general)
     for q in found:

@@ -347,6 +347,7 @@ def _spatial(mech: Mechanism, given: dict, dps: int) -> _Found:
 def _serial(mech: Mechanism, config: str, dps: int) -> _Found:
     from mechsing.assembly.certify import krawczyk, regular, singular_root
     from mechsing.assembly.serial import (
+        all_certified,
         given_solution,
         serial_arm,
         serial_system,
@@ -358,7 +359,7 @@ def _serial(mech: Mechanism, config: str, dps: int) -> _Found:
     arm = serial_arm(mech, float(KinematicModel(mech, "float").length_scale))
     target, from_joints = serial_target(mech, config, arm)
     system = serial_system(arm, target)
-    found, paths, curve = solve_serial(system, dps)
+    found, paths, curve, solutions = solve_serial(system, dps)
     if from_joints and curve is None:
         # the given joints are one of the modes: where they are a singular root, the
         # local dimension test decides at the exact values (continuation's endpoints on a
@@ -411,18 +412,31 @@ def _serial(mech: Mechanism, config: str, dps: int) -> _Found:
     for pairs, q, is_regular in found:
         ok = is_regular and krawczyk(system.square, system.gens, pairs, radius)
         rows.append((_in_file(mech, arm, q), ok))
-    certified = all(ok for _, ok in rows)
-    maximal = len(rows) == arm.generic_count and certified and not paths["singular"]
-    complete = "maximal" if maximal else "not proven"
-    if paths["singular"]:
-        notes.append(
-            f"{paths['singular']} of continuation's endpoints are singular (multiple roots, "
-            "or points of a curve of solutions): the count is not proven"
-        )
+    certified = all(ok for _, ok in rows) and not paths["singular"]
+    if certified and len(rows) == arm.generic_count:
+        complete = "maximal"
+    elif certified and paths["solutions"] == arm.generic_count:
+        # every solution, real and complex, certified and distinct: the most the arm can
+        # have, so none is missing, and the real ones are every posture
+        real = all_certified(system, solutions, dps)
+        complete = "maximal" if real == len(rows) else "not proven"
+        if complete == "maximal":
+            notes.append(
+                f"all {arm.generic_count} solutions, real and complex, are certified and "
+                f"distinct: the most this arm has, so no real posture is missing "
+                f"({len(rows)} are real)"
+            )
+    else:
+        complete = "not proven"
     if complete != "maximal" and paths["solutions"] == arm.generic_count:
         notes.append(
             f"continuation found {arm.generic_count} solutions in all (real and complex), "
             "the most this arm can have: only the real ones are postures"
+        )
+    if paths["singular"]:
+        notes.append(
+            f"{paths['singular']} of continuation's endpoints are singular (multiple roots, "
+            "or points of a curve of solutions): the count is not proven"
         )
     return _Found(formulation, rows, len(rows), complete, paths, tuple(notes))
 

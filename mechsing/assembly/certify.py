@@ -8,7 +8,8 @@ with ``Y`` an approximate inverse of ``f'(m)``, ``K = m - Y f(m) + (I - Y f'(Z))
 enclosed at the working precision plus guard digits, so the proof holds for the exact
 coefficients.
 
-Owns :func:`krawczyk`, :func:`newton` (the refinement whose result it certifies) and
+Owns :func:`krawczyk` (and :func:`krawczyk_complex`, the same test on the real and
+imaginary parts of a complex root), :func:`newton` (the refinement whose result it certifies) and
 :func:`singular_root` (a root no interval test can certify: a multiple root, polished,
 or a point of a curve of solutions, found by a local dimension test).
 """
@@ -24,7 +25,7 @@ import sympy
 
 from mechsing.numeric import MODE_CURVE_STEP, MODE_SINGULAR_RTOL
 
-__all__ = ["krawczyk", "newton", "regular", "singular_root"]
+__all__ = ["krawczyk", "krawczyk_complex", "newton", "regular", "singular_root"]
 
 
 def _interval_function(exprs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> Any:
@@ -106,6 +107,40 @@ def krawczyk(
         mpmath.iv.dps = before
 
 
+def _number(v: Any) -> Any:
+    """An mpmath number of a start value (float, complex or mpmath)."""
+    if isinstance(v, (mpmath.mpf, mpmath.mpc)):
+        return v
+    if isinstance(v, complex) and v.imag != 0:
+        return mpmath.mpc(v)
+    return mpmath.mpf(float(v.real if isinstance(v, complex) else v))
+
+
+def krawczyk_complex(
+    exprs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], m: Sequence[Any], radius: Any
+) -> bool:
+    """:func:`krawczyk` for a complex root ``m`` of a system with real coefficients: the
+    test on the real and imaginary parts (twice the unknowns), in the box ``m +- radius``
+    in each part."""
+    real_exprs, real_gens = _realified(tuple(exprs), tuple(gens))
+    mid = [mpmath.re(v) for v in m] + [mpmath.im(v) for v in m]
+    return krawczyk(real_exprs, real_gens, mid, radius)
+
+
+@functools.lru_cache(maxsize=4)
+def _realified(
+    exprs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...]
+) -> tuple[list[sympy.Expr], list[sympy.Symbol]]:
+    re_parts = [sympy.Symbol(f"re_{g}", real=True) for g in gens]
+    im_parts = [sympy.Symbol(f"im_{g}", real=True) for g in gens]
+    sub = {g: a + sympy.I * b for g, a, b in zip(gens, re_parts, im_parts, strict=True)}
+    out = []
+    for e in exprs:
+        re, im = sympy.expand(e.xreplace(sub)).as_real_imag()
+        out += [sympy.expand(re), sympy.expand(im)]
+    return out, [*re_parts, *im_parts]
+
+
 def newton(
     eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], z: Sequence[Any], dps: int
 ) -> list[Any] | None:
@@ -113,9 +148,7 @@ def newton(
     ``10^-dps`` (None when the Jacobian is singular on the way or the residual stays
     above ``10^-(dps/2)``: not a regular root)."""
     f, J = _functions(eqs, gens)
-    x = mpmath.matrix(
-        [mpmath.mpf(v) if isinstance(v, mpmath.mpf) else mpmath.mpf(float(v)) for v in z]
-    )
+    x = mpmath.matrix([_number(v) for v in z])
     for _ in range(60):
         try:
             dx = mpmath.lu_solve(J(x), f(x))

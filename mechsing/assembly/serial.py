@@ -31,6 +31,7 @@ Owns :class:`SerialArm`, :func:`serial_arm`, :func:`serial_target`,
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 from typing import Any
 
@@ -38,12 +39,13 @@ import mpmath
 import numpy as np
 import sympy
 
-from mechsing.assembly.certify import newton, regular, singular_root
+from mechsing.assembly.certify import krawczyk_complex, newton, regular, singular_root
 from mechsing.assembly.engine import SEED, real_endpoints, track
 from mechsing.assembly.study import dconj, dmul, line, qmul, rotation_quaternion, slide
 from mechsing.errors import FormulationError
 from mechsing.model import Mechanism
 from mechsing.numeric import (
+    MODE_CERTIFY_RADIUS,
     MODE_ENDPOINT_SINGULAR_RTOL,
     MODE_EXTRANEOUS_RTOL,
     MODE_ISOTROPIC_RTOL,
@@ -55,6 +57,7 @@ from mechsing.numeric import (
 
 __all__ = [
     "SerialArm",
+    "all_certified",
     "SerialSystem",
     "serial_arm",
     "serial_system",
@@ -464,11 +467,11 @@ def joint_values_serial(system: SerialSystem, pairs: list[Any]) -> list[Any]:
 
 def solve_serial(
     system: SerialSystem, dps: int
-) -> tuple[list[tuple[list[Any], list[Any], bool]], dict[str, Any], str | None]:
+) -> tuple[list[tuple[list[Any], list[Any], bool]], dict[str, Any], str | None, list[np.ndarray]]:
     """Every real solution: (its four outer pairs refined to ``dps`` digits, the arm's
-    six joint values, whether the root is regular), the paths' account, and where the
+    six joint values, whether the root is regular), the paths' account, where the
     solutions are not finitely many (a real endpoint on a curve of solutions: None when
-    none is)."""
+    none is), and every solution's endpoint, real or complex (not extraneous)."""
     kinds = [system.arm.kinds[i] for i in system.outer]
     raw, tracked = track(system.patched, system.groups)
     off = None if system.skew else _off(system)
@@ -493,7 +496,7 @@ def solve_serial(
             if curve:
                 names = system.arm.joints
                 at = ", ".join(f"{n} = {float(v):.6g}" for n, v in zip(names, q, strict=True))
-                return [], _account(tracked, raw, genuine, real, found, 0, flat), at
+                return [], _account(tracked, raw, genuine, real, found, 0, flat), at, genuine
         q = joint_values_serial(system, pairs)
         if any(
             _angle_distance(system.arm, q, other) <= MODE_MATCH_DISTANCE for _, other, _ in found
@@ -502,7 +505,45 @@ def solve_serial(
             continue
         found.append((pairs, q, ok))
     found.sort(key=lambda f: [float(x) for x in f[1]])
-    return found, _account(tracked, raw, genuine, real, found, duplicates, flat), None
+    return found, _account(tracked, raw, genuine, real, found, duplicates, flat), None, genuine
+
+
+def all_certified(system: SerialSystem, points: list[np.ndarray], dps: int) -> int | None:
+    """How many of the endpoints are real roots, when every endpoint, real or complex, is
+    a regular root refined at ``dps`` digits and certified by the Krawczyk test (on its
+    real and imaginary parts), the certified boxes pairwise disjoint even after turning
+    any revolute pair's sign (the same posture): so many distinct solutions, none missing
+    when they number the arm's most (None: not all certified).  A root whose box meets the
+    real space is real (the box is symmetric under conjugation and holds one root); one
+    whose box does not is not."""
+    kinds = [system.arm.kinds[i] for i in system.outer]
+    radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
+    roots = []
+    for z in points:
+        w = []
+        for k, kind in enumerate(kinds):
+            c, s = complex(z[2 * k]), complex(z[2 * k + 1])
+            n = np.sqrt(c * c + s * s) if kind == "R" else c
+            w += [c / n, s / n]
+        x = newton(system.square, system.gens, w, dps)
+        if x is None or not krawczyk_complex(system.square, system.gens, x, radius):
+            return None
+        roots.append(x)
+    flips = [k for k, kind in enumerate(kinds) if kind == "R"]
+    for i, a in enumerate(roots):
+        for b in roots[i + 1 :]:
+            for signs in itertools.product((1, -1), repeat=len(flips)):
+                turned = list(a)
+                for k, sg in zip(flips, signs, strict=True):
+                    turned[2 * k] *= sg
+                    turned[2 * k + 1] *= sg
+                gap = max(
+                    max(abs(mpmath.re(u - v)), abs(mpmath.im(u - v)))
+                    for u, v in zip(turned, b, strict=True)
+                )
+                if gap <= 2 * radius:
+                    return None
+    return sum(1 for x in roots if all(abs(mpmath.im(v)) <= radius for v in x))
 
 
 def _singular_endpoints(
