@@ -186,6 +186,8 @@ PUBLISHED: dict[str, Published] = {
     ),
     # a general 6R (every two consecutive axes skew): mobility 6, no loops
     "general_6r.yaml": Published(6, 6, ("reference", "generic"), {}, serial=True),
+    # a general 7R loop: mobility 1, its screws span D at the reference
+    "general_7r.yaml": Published(1, 1, ("reference",), _loop("J1 J2 J3 J4 J5 J6 J7", "D", 6)),
 }
 
 #: degrees of freedom of each joint type (a U joint has two)

@@ -371,3 +371,15 @@ def test_from_refuses_an_unknown_start_and_a_cycle() -> None:
     assert rc == 2 and "no such configuration" in err
     rc, _, err = run_cli(["modes", str(FOURBAR), "--config", "crank-30", "--from", "crank-200"])
     assert rc == 2 and "a cycle" in err
+
+
+def test_time_limit_stops_modes_with_exit_3_and_writes_nothing(tmp_path: Path) -> None:
+    """--time-limit interrupts the engine (Bertini 2, inside its path tracking): exit 3
+    with the reason, no output file, no traceback."""
+    pytest.importorskip("bertini")
+    out = tmp_path / "modes.json"
+    argv = ["modes", str(ROOT / "examples" / "stewart_dietmaier.yaml"), "--config", "longer"]
+    rc, _, err = run_cli_subprocess([*argv, "--time-limit", "1", "-o", str(out)], timeout=300)
+    assert rc == 3, err
+    assert "within --time-limit 1 s" in err and "Traceback" not in err
+    assert not out.exists()

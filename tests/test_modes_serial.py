@@ -258,7 +258,12 @@ def test_each_mode_is_classified_as_analyze_classifies_it(
     else:
         doc = request.getfixturevalue(which)
         arm = PUMA_ARM if which == "puma" else G6R_ARM
-    argv = ["analyze", str(arm.path), "--format", "json"]
+    _classified_as_analyze(doc, arm.path)
+
+
+def _classified_as_analyze(doc: dict, path: Path) -> None:
+    """Each mode's verdict and singularity classes are analyze's of the same joints."""
+    argv = ["analyze", str(path), "--format", "json"]
     for k, m in enumerate(doc["modes"], 1):
         for name, values in m["joints_text"].items():
             argv += ["--set", f"m{k}:{name}={values[0]}"]
@@ -330,3 +335,42 @@ def test_ur5_at_its_shoulder_singularity_lists_each_double_posture_once(tmp_path
     # accurate only to about the square root of double precision: 3e-8 rad in theta1 here
     assert same_sets(found, distinct, 1e-6)
     assert all(m["singular"] and not m["certified"] for m in doc["modes"])
+
+
+# ----------------------------------------------------------------------------- a 7R loop
+
+G7R = EXAMPLES / "general_7r.yaml"
+
+
+def test_general_7r_loop_has_sixteen_modes_and_the_real_ones_numeric_ik_finds(
+    tmp_path: Path,
+) -> None:
+    """A single loop of seven revolutes with J1 given: J2..J7 must reach exp(-q1 xi1) (the
+    loop's product of exponentials is the identity), the general 6R problem: 16 complex
+    solutions (Lee & Liang 1988), all certified distinct, so the real ones are complete; they
+    are the solutions damped Newton finds from 3000 random starts, each closing the loop."""
+    data = yaml.safe_load(G7R.read_text())
+    joints = data["joints"]
+    assert [j["between"] for j in joints][-1] == ["l6", "ground"]  # written around the loop
+    axes = [vec(j["axis"]) for j in joints]
+    points = [vec(j["point"]) for j in joints]
+    q1 = num(data["configurations"]["turned"]["J1"])
+    first = poe(axes[:1], points[:1])(np.array([[q1]]))[0]
+    rest = poe(axes[1:], points[1:])
+    target = np.linalg.inv(first)
+    L = float(np.mean([np.linalg.norm(p) for p in points]))
+    (tmp_path / "cwd").mkdir()
+    doc = _modes(G7R, "turned", tmp_path / "cwd")
+    assert doc["formulation"]["name"] == "half-angle pairs of a single loop"
+    assert doc["paths"]["solutions"] == 16 and doc["complete"] == "maximal"
+    names = [j["name"] for j in joints]
+    found = [np.array([m["joints"][n][0] for n in names]) for m in doc["modes"]]
+    for q in found:
+        assert abs(q[0] - q1) <= 1e-15
+        closure = poe(axes, points)(q[None])[0]
+        assert _pose_gap(closure, np.eye(4)) <= POSE_TOL
+    numeric = numeric_ik(rest, target, starts=3000, L=L)
+    assert same_sets([q[1:] for q in found], numeric, ANGLE_TOL)
+    assert doc["count"] == len(numeric) >= 4
+    assert sum(m["reached_by_continuation"] for m in doc["modes"]) == 1
+    _classified_as_analyze(doc, G7R)

@@ -18,6 +18,7 @@ import mpmath
 import numpy as np
 import sympy
 
+from mechsing.assembly.chains import Found, loop_found, serial_found
 from mechsing.errors import ConfigurationError, FormulationError, UserError
 from mechsing.model import Mechanism
 from mechsing.numeric import MODE_CERTIFY_RADIUS, MODE_MATCH_DISTANCE, Precision, parse_precision
@@ -190,7 +191,7 @@ def modes(
     if not mech.loops:  # a serial arm: the output's pose (given, or reached) is what is given
         with TimeLimit(time_limit), mpmath.workdps(dps):
             try:
-                found = _serial(mech, config, dps)
+                found = serial_found(mech, config, dps)
             except FormulationError as reason:
                 raise UserError(
                     f"{where}: no method applies (a mechanism without loops is solved as a "
@@ -206,11 +207,15 @@ def modes(
             try:
                 found = _spatial(mech, given, dps)
             except FormulationError as spatial_reason:
-                raise UserError(
-                    f"{where}: no method applies "
-                    f"(the planar exact method does not apply: {planar_reason}; the spatial "
-                    f"platform in Study coordinates does not apply: {spatial_reason})"
-                ) from None
+                try:
+                    found = loop_found(mech, config, given, dps)
+                except FormulationError as loop_reason:
+                    raise UserError(
+                        f"{where}: no method applies (the planar exact method does not "
+                        f"apply: {planar_reason}; the spatial platform in Study coordinates "
+                        f"does not apply: {spatial_reason}; the single loop of six unknown "
+                        f"joints does not apply: {loop_reason})"
+                    ) from None
     return _finish(mech, config, prec, found, dps)
 
 
@@ -236,7 +241,7 @@ def _started_from(mech: Mechanism, config: str, start: str) -> Mechanism:
     return dataclasses.replace(mech, configurations={**mech.configurations, config: cfg})
 
 
-def _finish(mech: Mechanism, config: str, prec: Precision, found: _Found, dps: int) -> ModesResult:
+def _finish(mech: Mechanism, config: str, prec: Precision, found: Found, dps: int) -> ModesResult:
     if found.count is None:
         return ModesResult(
             mech.name,
@@ -253,21 +258,7 @@ def _finish(mech: Mechanism, config: str, prec: Precision, found: _Found, dps: i
     return _result(mech, config, prec, found, dps)
 
 
-@dataclass(frozen=True)
-class _Found:
-    """What a formulation and its method found: the formulation's JSON, the modes' joint
-    coordinates with their certification, what the count claims, the paths' account."""
-
-    formulation: dict[str, Any]
-    rows: list[tuple[list[Any], bool]]
-    count: int | None
-    complete: str
-    paths: dict[str, Any] | None
-    notes: tuple[str, ...]
-    equivalent: int = 1
-
-
-def _planar(mech: Mechanism, given: dict, dps: int) -> _Found:
+def _planar(mech: Mechanism, given: dict, dps: int) -> Found:
     from mechsing.assembly.certify import krawczyk
     from mechsing.assembly.exact import eliminate_planar
     from mechsing.assembly.planar import C, S, X, Y, joint_values, planar_system
@@ -293,12 +284,12 @@ def _planar(mech: Mechanism, given: dict, dps: int) -> _Found:
         "offset": str(2 * sympy.atan(found.offset)),
     }
     if not found.finite:
-        return _Found(formulation, [], None, "infinite", None, found.notes)
+        return Found(formulation, [], None, "infinite", None, found.notes)
     complete = "proven" if found.proven else "not proven"
-    return _Found(formulation, rows, len(rows), complete, None, found.notes)
+    return Found(formulation, rows, len(rows), complete, None, found.notes)
 
 
-def _spatial(mech: Mechanism, given: dict, dps: int) -> _Found:
+def _spatial(mech: Mechanism, given: dict, dps: int) -> Found:
     from mechsing.assembly.certify import krawczyk
     from mechsing.assembly.spatial import (
         GENERIC_COUNT,
@@ -341,110 +332,7 @@ def _spatial(mech: Mechanism, given: dict, dps: int) -> _Found:
         "generic_count": GENERIC_COUNT,
     }
     equivalent = 2 ** sum(1 for n, *_ in system.legs if mech.joint(n[0]).type == "U")
-    return _Found(formulation, rows, len(rows), complete, paths, (), equivalent)
-
-
-def _serial(mech: Mechanism, config: str, dps: int) -> _Found:
-    from mechsing.assembly.certify import krawczyk, regular, singular_root
-    from mechsing.assembly.serial import (
-        all_certified,
-        given_solution,
-        serial_arm,
-        serial_system,
-        serial_target,
-        solve_serial,
-    )
-    from mechsing.kinematics import KinematicModel
-
-    arm = serial_arm(mech, float(KinematicModel(mech, "float").length_scale))
-    target, from_joints = serial_target(mech, config, arm)
-    system = serial_system(arm, target)
-    found, paths, curve, solutions = solve_serial(system, dps)
-    if from_joints and curve is None:
-        # the given joints are one of the modes: where they are a singular root, the
-        # local dimension test decides at the exact values (continuation's endpoints on a
-        # curve of solutions are complex)
-        pairs, q = given_solution(mech, config, system)
-        if not regular(system.square, system.gens, pairs):
-            at, on_curve = singular_root(system.square, system.gens, pairs, dps)
-            if on_curve:
-                curve = ", ".join(
-                    f"{n} = {float(v):.6g}" for n, v in zip(arm.joints, q, strict=True)
-                )
-            elif not any(
-                _joint_distance(mech, _in_file(mech, arm, q), _in_file(mech, arm, o), float(arm.L))
-                <= MODE_MATCH_DISTANCE
-                for _, o, _ in found
-            ):
-                found = [*found, (pairs, q, False)]
-    unknowns = []
-    for i in system.outer:
-        n = arm.joints[i]
-        unknowns += (
-            [f"cos({n}/2)", f"sin({n}/2)"] if arm.kinds[i] == "R" else [f"1 ({n})", f"{n}/(2L)"]
-        )
-    formulation = {
-        "name": "half-angle pairs of a serial arm",
-        "method": "homotopy continuation (Bertini 2, multihomogeneous start), Newton refinement",
-        "unknowns": unknowns,
-        "joints": list(arm.joints),
-        "pair": [arm.joints[i] for i in system.middle],
-        "polynomial_degree": 4,
-        "bezout": paths["tracked"],
-        "generic_count": arm.generic_count,
-        "generic_count_reason": arm.pieper
-        or "a six-joint arm has at most 16 (Lee & Liang 1988, Raghavan & Roth 1993)",
-    }
-    notes = []
-    if from_joints:
-        notes.append(
-            f"configuration {config!r} gives every joint: its modes are the arm's postures "
-            "that reach the output's pose these values give"
-        )
-    if curve is not None:
-        notes.append(
-            "the output's pose is reached along a curve of joint values (a self-motion at "
-            f"a singularity, through {curve}): the postures are not finitely many"
-        )
-        return _Found(formulation, [], None, "infinite", paths, tuple(notes))
-    rows = []
-    radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
-    for pairs, q, is_regular in found:
-        ok = is_regular and krawczyk(system.square, system.gens, pairs, radius)
-        rows.append((_in_file(mech, arm, q), ok))
-    certified = all(ok for _, ok in rows) and not paths["singular"]
-    if certified and len(rows) == arm.generic_count:
-        complete = "maximal"
-    elif certified and paths["solutions"] == arm.generic_count:
-        # every solution, real and complex, certified and distinct: the most the arm can
-        # have, so none is missing, and the real ones are every posture
-        real = all_certified(system, solutions, dps)
-        complete = "maximal" if real == len(rows) else "not proven"
-        if complete == "maximal":
-            notes.append(
-                f"all {arm.generic_count} solutions, real and complex, are certified and "
-                f"distinct: the most this arm has, so no real posture is missing "
-                f"({len(rows)} are real)"
-            )
-    else:
-        complete = "not proven"
-    if complete != "maximal" and paths["solutions"] == arm.generic_count:
-        notes.append(
-            f"continuation found {arm.generic_count} solutions in all (real and complex), "
-            "the most this arm can have: only the real ones are postures"
-        )
-    if paths["singular"]:
-        notes.append(
-            f"{paths['singular']} of continuation's endpoints are singular (multiple roots, "
-            "or points of a curve of solutions): the count is not proven"
-        )
-    return _Found(formulation, rows, len(rows), complete, paths, tuple(notes))
-
-
-def _in_file(mech: Mechanism, arm: Any, q: list[Any]) -> list[Any]:
-    """An arm's joint values (in its order from ground) in the file's coordinate order."""
-    values = dict(zip(arm.joints, q, strict=True))
-    return [values[name] for name, _ in mech.coordinates()]
+    return Found(formulation, rows, len(rows), complete, paths, (), equivalent)
 
 
 def _text(x: Any, prec: Precision) -> str:
@@ -453,7 +341,7 @@ def _text(x: Any, prec: Precision) -> str:
     return repr(float(x))
 
 
-def _result(mech: Mechanism, config: str, prec: Precision, found: _Found, dps: int) -> ModesResult:
+def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: int) -> ModesResult:
     from mechsing.analysis import analyze_found
     from mechsing.kinematics import KinematicModel
 

@@ -62,6 +62,8 @@ __all__ = [
     "serial_arm",
     "serial_system",
     "given_solution",
+    "loop_arm",
+    "posture_distance",
     "serial_target",
     "solve_serial",
 ]
@@ -113,20 +115,59 @@ def serial_arm(mech: Mechanism, L: float) -> SerialArm:
         why = f"joint {bad[0]} is {mech.joint(bad[0]).type}" if bad else f"{len(names)} joints"
         raise FormulationError(f"the arm needs six R or P joints from ground ({why})")
     Lm = mpmath.mpf(L)
-    lines = []
-    for st in steps:
-        j = mech.joint(st.joint)
-        axis = [_mp(x) for x in j.params["axis"]]
-        n = mpmath.sqrt(sum(x * x for x in axis))
-        axis = [st.sign * x / n for x in axis]
-        if j.type == "R":
-            lines.append(line(axis, [_mp(x) / Lm for x in j.params["point"]]))
-        else:
-            lines.append(slide(axis))
+    lines = [_joint_line(mech, st.joint, st.sign, Lm) for st in steps]
+    return _arm(mech, names, lines, Lm)
+
+
+def _arm(mech: Mechanism, names: list[str], lines: list[list[Any]], L: Any) -> SerialArm:
     kinds = tuple(mech.joint(n).type for n in names)
     pieper = _pieper(names, kinds, lines)
     count = PIEPER_COUNT if pieper else GENERIC_COUNT
-    return SerialArm(tuple(names), kinds, tuple(lines), Lm, count, pieper)
+    return SerialArm(tuple(names), kinds, tuple(lines), L, count, pieper)
+
+
+def _joint_line(mech: Mechanism, name: str, sign: int, L: Any) -> list[Any]:
+    """A joint's line (Study coordinates, lengths over L), turned by ``sign``."""
+    j = mech.joint(name)
+    axis = [_mp(x) for x in j.params["axis"]]
+    n = mpmath.sqrt(sum(x * x for x in axis))
+    axis = [sign * x / n for x in axis]
+    if j.type == "R":
+        return line(axis, [_mp(x) / L for x in j.params["point"]])
+    return slide(axis)
+
+
+def loop_arm(
+    mech: Mechanism, given: dict[str, tuple[Any, ...]], L: float
+) -> tuple[SerialArm, list[Any]]:
+    """A single loop with six joints left unknown by ``given``: the six-joint chain (its
+    lines past the given joints' constant displacements) and the displacement it reaches
+    (:mod:`mechsing.assembly.chains`)."""
+    if len(mech.loops) != 1:
+        raise FormulationError(f"the mechanism has {len(mech.loops)} loops, not one")
+    loop = mech.loops[0]
+    off = [j.name for j in mech.joints if j.name not in loop.joints]
+    if off:
+        raise FormulationError(f"joint {off[0]} is not on the loop")
+    bad = [n for n in loop.joints if mech.joint(n).type not in ("R", "P")]
+    if bad:
+        raise FormulationError(f"joint {bad[0]} is {mech.joint(bad[0]).type}, not R or P")
+    unknown = [n for n in loop.joints if n not in given]
+    if len(unknown) != 6:
+        raise FormulationError(
+            f"the loop has {len(unknown)} joints left unknown, not six (a six-joint chain)"
+        )
+    Lm = mpmath.mpf(L)
+    C: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]  # the given joints' displacements so far
+    lines = []
+    for name, sign in zip(loop.joints, loop.signs, strict=True):
+        ln = _joint_line(mech, name, sign, Lm)
+        if name in given:
+            kind = mech.joint(name).type
+            C = dmul(C, _factor(*_pair(kind, _mp(given[name][0]), Lm), ln))
+        else:  # X C = C (C* X C): moved before the constants, its line conjugated
+            lines.append(dmul(dmul(C, ln), dconj(C)))
+    return _arm(mech, unknown, lines, Lm), dconj(C)
 
 
 def _pieper(names: list[str], kinds: tuple[str, ...], lines: list[list[Any]]) -> str | None:
@@ -499,7 +540,7 @@ def solve_serial(
                 return [], _account(tracked, raw, genuine, real, found, 0, flat), at, genuine
         q = joint_values_serial(system, pairs)
         if any(
-            _angle_distance(system.arm, q, other) <= MODE_MATCH_DISTANCE for _, other, _ in found
+            posture_distance(system.arm, q, other) <= MODE_MATCH_DISTANCE for _, other, _ in found
         ):
             duplicates += 1
             continue
@@ -588,7 +629,8 @@ def _account(
     }
 
 
-def _angle_distance(arm: SerialArm, q1: list[Any], q2: list[Any]) -> float:
+def posture_distance(arm: SerialArm, q1: list[Any], q2: list[Any]) -> float:
+    """The commensurate distance between two postures (angles modulo 2 pi, slides over L)."""
     total = 0.0
     for kind, a, b in zip(arm.kinds, q1, q2, strict=True):
         d = float(a - b)

@@ -45,6 +45,7 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.assembly.render import render_modes
     from mechsing.cli import NOT_ANALYSED, UserError, load_mechanism
     from mechsing.cli.options import apply_set, check_shared
+    from mechsing.errors import TimeLimitExceeded
     from mechsing.files import check_output, write_output
 
     check_shared(args, from_alone=args.config is not None)
@@ -61,7 +62,16 @@ def run(args: argparse.Namespace) -> int:
             raise UserError("modes needs --config NAME (or --set JOINT=VALUE for the inputs)")
         args.config = set_start(mech, args.set_values, "modes")
     start = None if args.set_values else args.from_config
-    result = modes(mech, args.config, args.prec, time_limit=args.time_limit, start=start)
+    try:
+        result = modes(mech, args.config, args.prec, time_limit=args.time_limit, start=start)
+    except TimeLimitExceeded:
+        print(
+            f"mechsing: {args.file}: configuration {args.config!r}: the modes were not all "
+            f"found and classified within --time-limit {args.time_limit:g} s; give it more "
+            "time (nothing was written)",
+            file=sys.stderr,
+        )
+        return NOT_ANALYSED
     text = render_modes(result, args.format)
     if args.output:
         write_output(args.output, text, [args.file])

@@ -1,0 +1,181 @@
+"""Six unknown joints in one chain: a serial arm for the output's pose, or a single loop
+for its given joint values, both solved by the half-angle formulation (:mod:`.serial`).
+
+A single loop (every joint of the file on it, each R or P) closes when the product of its
+joints' displacements around it is the identity, ``prod_i exp(q_i xi_i)^(sign_i) = 1``
+(the reference configuration, all values 0, closes it).  A given joint's factor is a
+constant ``C``; moved past the joints after it (``X C = C (C* X C)``: each later joint's
+line conjugated), the constants gather at the end, and with exactly six joints unknown
+the loop is a six-joint chain reaching ``T = C*``: a general 7R with one input is the
+general 6R arm (H.-Y. Lee and C.-G. Liang, Mech. Mach. Theory 23(3), 1988: at most 16).
+
+Owns :class:`Found` (what a formulation found) and :func:`serial_found`,
+:func:`loop_found`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import mpmath
+
+from mechsing.model import Mechanism
+from mechsing.numeric import MODE_CERTIFY_RADIUS, MODE_MATCH_DISTANCE
+
+__all__ = ["Found", "loop_found", "serial_found"]
+
+
+@dataclass(frozen=True)
+class Found:
+    """What a formulation and its method found: the formulation's JSON, the modes' joint
+    coordinates (the file's order) with their certification, what the count claims, the
+    paths' account, notes, and how many joint-space solutions each mode stands for."""
+
+    formulation: dict[str, Any]
+    rows: list[tuple[list[Any], bool]]
+    count: int | None
+    complete: str
+    paths: dict[str, Any] | None
+    notes: tuple[str, ...]
+    equivalent: int = 1
+
+
+def _length(mech: Mechanism) -> float:
+    from mechsing.kinematics import KinematicModel
+
+    return float(KinematicModel(mech, "float").length_scale)
+
+
+def serial_found(mech: Mechanism, config: str, dps: int) -> Found:
+    """The postures of a serial arm for the pose configuration ``config`` gives (or the
+    pose its joints reach: then they are tested as one of the modes)."""
+    from mechsing.assembly.serial import given_solution, serial_arm, serial_target
+
+    arm = serial_arm(mech, _length(mech))
+    target, from_joints = serial_target(mech, config, arm)
+    notes = []
+    if from_joints:
+        notes.append(
+            f"configuration {config!r} gives every joint: its modes are the arm's postures "
+            "that reach the output's pose these values give"
+        )
+    own = (lambda system: given_solution(mech, config, system)) if from_joints else None
+    return _found(mech, arm, target, {}, dps, own, notes, "serial arm", "output's pose")
+
+
+def loop_found(mech: Mechanism, config: str, given: dict[str, tuple[Any, ...]], dps: int) -> Found:
+    """The assembly modes of a single loop with six joints left unknown by ``given``."""
+    from mechsing.assembly.serial import loop_arm
+
+    arm, target = loop_arm(mech, given, _length(mech))
+    values = {n: v[0] for n, v in given.items()}
+    return _found(mech, arm, target, values, dps, None, [], "single loop", "given values")
+
+
+def _found(
+    mech: Mechanism,
+    arm: Any,
+    target: list[Any],
+    given: dict[str, Any],
+    dps: int,
+    own: Any,
+    notes: list[str],
+    what: str,
+    fixed: str,
+) -> Found:
+    """Solve, test the configuration's own joints (``own``: their pairs and values, for
+    an arm given by its joints), certify, and say what the count claims."""
+    from mechsing.assembly.certify import krawczyk, regular, singular_root
+    from mechsing.assembly.serial import (
+        all_certified,
+        posture_distance,
+        serial_system,
+        solve_serial,
+    )
+
+    system = serial_system(arm, target)
+    found, paths, curve, solutions = solve_serial(system, dps)
+    if own is not None and curve is None:
+        # the given joints are one of the modes: where they are a singular root, the
+        # local dimension test decides at the exact values (continuation's endpoints on a
+        # curve of solutions are complex)
+        pairs, q = own(system)
+        if not regular(system.square, system.gens, pairs):
+            _, on_curve = singular_root(system.square, system.gens, pairs, dps)
+            if on_curve:
+                curve = ", ".join(
+                    f"{n} = {float(v):.6g}" for n, v in zip(arm.joints, q, strict=True)
+                )
+            elif not any(posture_distance(arm, q, o) <= MODE_MATCH_DISTANCE for _, o, _ in found):
+                found = [*found, (pairs, q, False)]
+    unknowns = []
+    for i in system.outer:
+        n = arm.joints[i]
+        unknowns += (
+            [f"cos({n}/2)", f"sin({n}/2)"] if arm.kinds[i] == "R" else [f"1 ({n})", f"{n}/(2L)"]
+        )
+    formulation = {
+        "name": f"half-angle pairs of a {what}",
+        "method": "homotopy continuation (Bertini 2, multihomogeneous start), Newton refinement",
+        "unknowns": unknowns,
+        "joints": list(arm.joints),
+        "pair": [arm.joints[i] for i in system.middle],
+        "polynomial_degree": 4,
+        "bezout": paths["tracked"],
+        "generic_count": arm.generic_count,
+        "generic_count_reason": arm.pieper
+        or "six unknown joints in a chain have at most 16 (Lee & Liang 1988, Raghavan & Roth 1993)",
+    }
+    if curve is not None:
+        notes.append(
+            f"the {fixed} is reached along a curve of joint values (a self-motion at a "
+            f"singularity, through {curve}): the modes are not finitely many"
+        )
+        return Found(formulation, [], None, "infinite", paths, tuple(notes))
+    radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
+    rows = []
+    for pairs, q, is_regular in found:
+        ok = is_regular and krawczyk(system.square, system.gens, pairs, radius)
+        values = {**given, **dict(zip(arm.joints, q, strict=True))}
+        rows.append(([values[name] for name, _ in mech.coordinates()], ok))
+    complete = _claim(arm, system, paths, rows, solutions, dps, notes, all_certified)
+    return Found(formulation, rows, len(rows), complete, paths, tuple(notes))
+
+
+def _claim(
+    arm: Any,
+    system: Any,
+    paths: dict[str, Any],
+    rows: list[tuple[list[Any], bool]],
+    solutions: list[Any],
+    dps: int,
+    notes: list[str],
+    all_certified: Any,
+) -> str:
+    """``maximal`` when the real modes, all certified, are the most the chain can have,
+    or when every solution, real and complex, is certified distinct and they are that
+    many (then none is missing); else ``not proven``, with the notes that say why."""
+    most = arm.generic_count
+    certified = all(ok for _, ok in rows) and not paths["singular"]
+    complete = "not proven"
+    if certified and len(rows) == most:
+        complete = "maximal"
+    elif certified and paths["solutions"] == most:
+        if all_certified(system, solutions, dps) == len(rows):
+            complete = "maximal"
+            notes.append(
+                f"all {most} solutions, real and complex, are certified and distinct: the "
+                f"most this chain has, so no real mode is missing ({len(rows)} are real)"
+            )
+    if complete != "maximal" and paths["solutions"] == most:
+        notes.append(
+            f"continuation found {most} solutions in all (real and complex), the most this "
+            "chain can have: only the real ones are modes"
+        )
+    if paths["singular"]:
+        notes.append(
+            f"{paths['singular']} of continuation's endpoints are singular (multiple roots, "
+            "or points of a curve of solutions): the count is not proven"
+        )
+    return complete
