@@ -214,3 +214,32 @@ configurations:
     assert status == 3 and "not exact data" in err and "'B'" in err
     status, _out, err = _run(tmp_path, text, "--precision", "exact", "--config", "quarter")
     assert status == 0, err
+
+
+ARM_WITH_A_SIDE_BODY = """\
+mechanism: arm-with-camera
+bodies: [base, l1, l2, l3, l4, l5, l6, cam]
+joints:
+  - {name: J1, type: R, between: [base, l1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [l1, l2], axis: [0, 1, 0], point: [0.1, 0, 0.5]}
+  - {name: J3, type: R, between: [l2, l3], axis: [0, 1, 0], point: [0.1, 0, 0.9]}
+  - {name: J4, type: R, between: [l3, l4], axis: [0, 0, 1], point: [0.15, 0.12, 1.25]}
+  - {name: J5, type: R, between: [l4, l5], axis: [0, 1, 0], point: [0.15, 0.12, 1.25]}
+  - {name: J6, type: R, between: [l5, l6], axis: [0, 0, 1], point: [0.15, 0.12, 1.25]}
+  - {name: C1, type: R, between: [l2, cam], axis: [1, 0, 0], point: [0.1, 0, 0.7]}
+output: {body: l6, point: [0.15, 0.12, 1.35]}
+configurations:
+  reference: {}
+  far: {pose: {position: [3, 0, 0.5]}}
+"""
+
+
+def test_a_pose_out_of_reach_names_the_pose_coordinate_beyond_its_travel(tmp_path) -> None:
+    """An arm with a joint off its chain (a camera), asked for a pose 2.6 m out of reach:
+    the fold the continuation stops at is most sensitive to a pose coordinate, which the
+    message names (it indexed the joints' coordinates with it: an internal error)."""
+    path = tmp_path / "arm.yaml"
+    path.write_text(ARM_WITH_A_SIDE_BODY)
+    rc, _, err = run_cli(["solve", str(path), "--config", "far"])
+    assert rc == 3, err
+    assert "beyond a limit of travel" in err and "pose.x" in err

@@ -374,3 +374,52 @@ def test_general_7r_loop_has_sixteen_modes_and_the_real_ones_numeric_ik_finds(
     assert doc["count"] == len(numeric) >= 4
     assert sum(m["reached_by_continuation"] for m in doc["modes"]) == 1
     _classified_as_analyze(doc, G7R)
+
+
+def test_ur5_wrist_singularity_given_by_its_pose_has_no_count(tmp_path: Path) -> None:
+    """The bundled wrist configuration's self-motion given by the output's pose, exactly:
+    the homotopy's endpoints on the curve are complex, but continuation from the reference
+    closes on it, and the local dimension test there finds the curve.  (A pose rounded to
+    float is 1e-16 off the singular pose, where the curve breaks into isolated postures.)"""
+    q = UR5_ARM.values("wrist")
+    position = ["-3269*sqrt(2)/8000", "-0.10915", "-5491/1000000 + 131*sqrt(2)/8000"]
+    G = UR5_ARM.pose(q)
+    assert _pose_gap(G[:3, :3], np.eye(3)) <= 1e-15  # J2 + J3 + J4 = J5 = J6 = J1 = 0
+    reached = G[:3, :3] @ UR5_ARM.point + G[:3, 3]
+    assert np.max(np.abs(reached - [num(x) for x in position])) <= 1e-15
+    entry = "{pose: {position: [" + ", ".join(f'"{x}"' for x in position) + "]}}"
+    (tmp_path / "f").mkdir()
+    path = _with(UR5_ARM.path, tmp_path / "f", "wrist-pose", entry)
+    (tmp_path / "cwd").mkdir()
+    doc = _modes(path, "wrist-pose", tmp_path / "cwd")
+    assert doc["count"] is None and doc["complete"] == "infinite"
+
+
+def test_a_rotation_that_is_not_orthonormal_is_refused_as_solve_refuses_it(tmp_path: Path) -> None:
+    """A rotation matrix rounded to 7 digits (R^T R - I about 1e-7, above float's 1e-9)."""
+    entry = (
+        "{pose: {position: [-0.3, -0.4, 0.5], rotation: [[0.7071068, -0.7071068, 0], "
+        "[0.7071068, 0.7071068, 0], [0, 0, 1]]}}"
+    )
+    path = _with(UR5_ARM.path, tmp_path, "rounded", entry)
+    for command in ("modes", "solve"):
+        rc, _, err = run_cli([command, str(path), "--config", "rounded"])
+        assert rc in (2, 3) and "not a rotation matrix" in err, err
+
+
+def test_postures_1e13_from_the_wrist_singularity_are_regular_certified_and_as_analyze_says(
+    tmp_path: Path,
+) -> None:
+    """J5 = 1e-13: det J is proportional to sin J5, not zero. At 50 digits the roots are
+    well conditioned (1e-13), so each is certified, and auto decides them regular as analyze
+    does (at mp:50)."""
+    q = UR5_Q.copy()
+    q[4] = 1e-13
+    (tmp_path / "f").mkdir()
+    path = _with(UR5_ARM.path, tmp_path / "f", "near-wrist", _joints_entry(q))
+    (tmp_path / "cwd").mkdir()
+    doc = _modes(path, "near-wrist", tmp_path / "cwd")
+    mine = [m for m in doc["modes"] if angle_gap(_postures({"modes": [m]})[0], q) <= 1e-12]
+    assert len(mine) == 1 and mine[0]["certified"] and mine[0]["singular"] is False
+    assert all(m["certified"] for m in doc["modes"])
+    _classified_as_analyze(doc, path)

@@ -102,10 +102,13 @@ def analyze_found(
     found: dict[str, Any],
     precision: Precision | str = "auto",
     time_limit: float | None = None,
+    located: bool = True,
 ) -> list[ConfigurationResult]:
     """The analysis of configurations found numerically in float (a sweep's located
     singularities): ``found`` maps a name to every joint coordinate (SI, radians, the
-    mechanism's coordinate order), closed to float's tolerance.
+    mechanism's coordinate order), closed to float's tolerance.  ``located=False``: the
+    values are data known to their digits (mpmath numbers, every assembly mode refined to
+    50 digits or more), analysed as a file's values are.
 
     Their values are float data: at mp:N (and when auto re-decides an undecided rank at
     mp:50) each is first projected onto closure at N digits (the inputs kept), as a
@@ -139,7 +142,8 @@ def analyze_found(
 
     share_loop_identifications(mechanism, mech)  # the same joints: the same loops
     with working_on(file=mech.path or mech.name):
-        res = _analyze(mech, list(found), prec, time_limit, None, Precision("float"), located=True)
+        data = Precision("float") if located else None
+        res = _analyze(mech, list(found), prec, time_limit, None, data, located=located)
     return list(res.configurations)
 
 

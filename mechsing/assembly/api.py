@@ -21,7 +21,13 @@ import sympy
 from mechsing.assembly.chains import Found, loop_found, serial_found
 from mechsing.errors import ConfigurationError, FormulationError, UserError
 from mechsing.model import Mechanism
-from mechsing.numeric import MODE_CERTIFY_RADIUS, MODE_MATCH_DISTANCE, Precision, parse_precision
+from mechsing.numeric import (
+    MODE_CERTIFY_RADIUS,
+    MODE_MATCH_DISTANCE,
+    Precision,
+    parse_precision,
+    rotation_orthonormal_atol,
+)
 
 __all__ = ["Mode", "ModesResult", "modes"]
 
@@ -191,7 +197,7 @@ def modes(
     if not mech.loops:  # a serial arm: the output's pose (given, or reached) is what is given
         with TimeLimit(time_limit), mpmath.workdps(dps):
             try:
-                found = serial_found(mech, config, dps)
+                found = serial_found(mech, config, dps, rotation_orthonormal_atol(prec))
             except FormulationError as reason:
                 raise UserError(
                     f"{where}: no method applies (a mechanism without loops is solved as a "
@@ -351,10 +357,11 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
     rows = found.rows
     names = {f"{config}#mode{k + 1}": q for k, (q, _ok) in enumerate(rows)}
     data = {
-        n: ([mpmath.mpf(x) for x in q] if prec.mode == "mp" else [float(x) for x in q])
+        n: ([mpmath.mpf(x) for x in q] if prec.mode in ("mp", "auto") else [float(x) for x in q])
         for n, q in names.items()
     }
-    analysed = analyze_found(mech, data, prec) if data else []
+    # the modes are data to dps digits (not points float located): analysed as a file's
+    analysed = analyze_found(mech, data, prec, located=prec.mode == "float") if data else []
     reached, notes = _reached(mech, config, [[float(x) for x in q] for q, _ in rows], km)
     out_body = mech.output.body if mech.output is not None else None
     poses = [

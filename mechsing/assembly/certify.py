@@ -23,7 +23,7 @@ from typing import Any
 import mpmath
 import sympy
 
-from mechsing.numeric import MODE_CURVE_STEP, MODE_SINGULAR_RTOL
+from mechsing.numeric import MODE_CURVE_STEP, MODE_SINGULAR_DIGITS
 
 __all__ = ["krawczyk", "krawczyk_complex", "newton", "regular", "singular_root"]
 
@@ -176,11 +176,12 @@ def _compiled(eqs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...]) -> tu
 
 
 def regular(eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], x: Sequence[Any]) -> bool:
-    """Is the Jacobian at ``x`` far from singular (its singular values' ratio above
-    ``MODE_SINGULAR_RTOL``)?"""
+    """Is the Jacobian at ``x`` (refined at the working digits N) far from singular: its
+    singular values' ratio above ``10^(-N / MODE_SINGULAR_DIGITS)``?"""
     _, J = _functions(eqs, gens)
-    s = mpmath.svd_r(J(list(x)), compute_uv=False)
-    return bool(min(s) > MODE_SINGULAR_RTOL * max(s))
+    s = mpmath.svd(J(list(x)), compute_uv=False)
+    floor = mpmath.mpf(10) ** (-(mpmath.mp.dps // MODE_SINGULAR_DIGITS))
+    return bool(min(s) > floor * max(s))
 
 
 def _least_squares_newton(f: Any, J: Any, x: Any, dps: int, steps: int) -> Any:

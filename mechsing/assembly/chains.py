@@ -47,21 +47,22 @@ def _length(mech: Mechanism) -> float:
     return float(KinematicModel(mech, "float").length_scale)
 
 
-def serial_found(mech: Mechanism, config: str, dps: int) -> Found:
+def serial_found(mech: Mechanism, config: str, dps: int, atol: Any = 1e-9) -> Found:
     """The postures of a serial arm for the pose configuration ``config`` gives (or the
-    pose its joints reach: then they are tested as one of the modes)."""
+    pose its joints reach: then they are tested as one of the modes); ``atol``: how far
+    from orthonormal a given rotation matrix may be."""
     from mechsing.assembly.serial import given_solution, serial_arm, serial_target
 
     arm = serial_arm(mech, _length(mech))
-    target, from_joints = serial_target(mech, config, arm)
+    target, from_joints = serial_target(mech, config, arm, atol)
     notes = []
     if from_joints:
         notes.append(
-            f"configuration {config!r} gives every joint: its modes are the arm's postures "
-            "that reach the output's pose these values give"
+            f"configuration {config!r} gives joint values, not the output's pose: its modes "
+            "are the arm's postures that reach the pose of its joints (given, or its start's)"
         )
     own = (lambda system: given_solution(mech, config, system)) if from_joints else None
-    return _found(mech, arm, target, {}, dps, own, notes, "serial arm", "output's pose")
+    return _found(mech, config, arm, target, {}, dps, own, notes, "serial arm", "output's pose")
 
 
 def loop_found(mech: Mechanism, config: str, given: dict[str, tuple[Any, ...]], dps: int) -> Found:
@@ -70,11 +71,12 @@ def loop_found(mech: Mechanism, config: str, given: dict[str, tuple[Any, ...]], 
 
     arm, target = loop_arm(mech, given, _length(mech))
     values = {n: v[0] for n, v in given.items()}
-    return _found(mech, arm, target, values, dps, None, [], "single loop", "given values")
+    return _found(mech, config, arm, target, values, dps, None, [], "single loop", "given values")
 
 
 def _found(
     mech: Mechanism,
+    config: str,
     arm: Any,
     target: list[Any],
     given: dict[str, Any],
@@ -86,9 +88,10 @@ def _found(
 ) -> Found:
     """Solve, test the configuration's own joints (``own``: their pairs and values, for
     an arm given by its joints), certify, and say what the count claims."""
-    from mechsing.assembly.certify import krawczyk, regular, singular_root
+    from mechsing.assembly.certify import krawczyk, newton, regular, singular_root
     from mechsing.assembly.serial import (
         all_certified,
+        joint_values_serial,
         posture_distance,
         serial_system,
         solve_serial,
@@ -96,19 +99,33 @@ def _found(
 
     system = serial_system(arm, target)
     found, paths, curve, solutions = solve_serial(system, dps)
-    if own is not None and curve is None:
-        # the given joints are one of the modes: where they are a singular root, the
-        # local dimension test decides at the exact values (continuation's endpoints on a
-        # curve of solutions are complex)
-        pairs, q = own(system)
-        if not regular(system.square, system.gens, pairs):
-            _, on_curve = singular_root(system.square, system.gens, pairs, dps)
-            if on_curve:
-                curve = ", ".join(
-                    f"{n} = {float(v):.6g}" for n, v in zip(arm.joints, q, strict=True)
-                )
-            elif not any(posture_distance(arm, q, o) <= MODE_MATCH_DISTANCE for _, o, _ in found):
-                found = [*found, (pairs, q, False)]
+    # the configuration's own joints (given) and continuation's closure from its start
+    # are modes too: where one is a singular root, the local dimension test decides there
+    # (continuation's endpoints on a curve of solutions are complex, so they cannot); one
+    # the homotopy missed makes the count not proven
+    missed = False
+    for pairs, exact in _candidates(mech, config, arm, system, own):
+        if curve is not None:
+            break
+        root = pairs if exact else newton(system.square, system.gens, pairs, dps)
+        if root is not None and regular(system.square, system.gens, root):
+            q = joint_values_serial(system, root)
+            if not any(posture_distance(arm, q, o) <= MODE_MATCH_DISTANCE for _, o, _ in found):
+                found, missed = [*found, (root, q, True)], True
+            continue
+        root, on_curve = singular_root(system.square, system.gens, pairs, dps)
+        if root is None:
+            continue
+        q = joint_values_serial(system, root)
+        if on_curve:
+            curve = ", ".join(f"{n} = {float(v):.6g}" for n, v in zip(arm.joints, q, strict=True))
+        elif not any(posture_distance(arm, q, o) <= MODE_MATCH_DISTANCE for _, o, _ in found):
+            found = [*found, (root, q, False)]
+    if missed:
+        notes.append(
+            "continuation from the configuration's start closes at a regular mode the "
+            "homotopy's paths missed (added): the count is not proven"
+        )
     unknowns = []
     for i in system.outer:
         n = arm.joints[i]
@@ -140,7 +157,30 @@ def _found(
         values = {**given, **dict(zip(arm.joints, q, strict=True))}
         rows.append(([values[name] for name, _ in mech.coordinates()], ok))
     complete = _claim(arm, system, paths, rows, solutions, dps, notes, all_certified)
+    if missed:
+        complete = "not proven"
     return Found(formulation, rows, len(rows), complete, paths, tuple(notes))
+
+
+def _candidates(
+    mech: Mechanism, config: str, arm: Any, system: Any, own: Any
+) -> list[tuple[list[Any], bool]]:
+    """Postures known before the homotopy: the configuration's own joints (``own``:
+    exact) and where continuation from its start closes (float), as outer pairs."""
+    from mechsing.analysis.solve import solve
+    from mechsing.assembly.serial import pairs_of
+    from mechsing.errors import ConfigurationError, UserError
+
+    out = []
+    if own is not None:
+        out.append((own(system)[0], True))
+    try:
+        res = solve(mech, config, "float")
+    except (ConfigurationError, UserError):
+        return out
+    values = dict(res.joints)
+    out.append((pairs_of(system, [mpmath.mpf(values[n][0]) for n in arm.joints]), False))
+    return out
 
 
 def _claim(
@@ -161,7 +201,9 @@ def _claim(
     complete = "not proven"
     if certified and len(rows) == most:
         complete = "maximal"
-    elif certified and paths["solutions"] == most:
+    elif certified and paths["solutions"] == most and system.skew:
+        # (with a pair that is not skew the rank-one condition's real and imaginary parts
+        # are too large an interval system to certify in reasonable time)
         if all_certified(system, solutions, dps) == len(rows):
             complete = "maximal"
             notes.append(

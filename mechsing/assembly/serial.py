@@ -42,7 +42,7 @@ import sympy
 from mechsing.assembly.certify import krawczyk_complex, newton, regular, singular_root
 from mechsing.assembly.engine import SEED, real_endpoints, track
 from mechsing.assembly.study import dconj, dmul, line, qmul, rotation_quaternion, slide
-from mechsing.errors import FormulationError
+from mechsing.errors import FormulationError, UserError
 from mechsing.model import Mechanism
 from mechsing.numeric import (
     MODE_CERTIFY_RADIUS,
@@ -63,6 +63,7 @@ __all__ = [
     "serial_system",
     "given_solution",
     "loop_arm",
+    "pairs_of",
     "posture_distance",
     "serial_target",
     "solve_serial",
@@ -206,11 +207,15 @@ def _pair(kind: str, q: Any, L: Any) -> tuple[Any, Any]:
     return mpmath.mpf(1), q / (2 * L)
 
 
-def serial_target(mech: Mechanism, config: str, arm: SerialArm) -> tuple[list[Any], bool]:
+def serial_target(
+    mech: Mechanism, config: str, arm: SerialArm, atol: Any = 1e-9
+) -> tuple[list[Any], bool]:
     """The output's displacement ``T`` (Study coordinates, lengths over L) a configuration
     asks for: its ``pose`` (an omitted position or rotation is the reference's), or the
     pose its six joint values reach; and whether the values were given (then the given
-    configuration is one of the modes)."""
+    configuration is one of the modes).  A rotation matrix must be orthonormal to ``atol``
+    (largest entry of ``R^T R - I``: the classification's precision, as ``solve`` asks);
+    the modes are then found for the nearest rotation."""
     cfg = mech.configurations[config]
     given = [n for n in arm.joints if n in cfg.values]
     if cfg.pose is None:
@@ -226,6 +231,7 @@ def serial_target(mech: Mechanism, config: str, arm: SerialArm) -> tuple[list[An
     pose = cfg.pose
     if pose.rotation is not None:
         R = mpmath.matrix([[_mp(x) for x in row] for row in pose.rotation])
+        _check_rotation(mech, config, R, atol)
     elif pose.rotation_vector is not None:
         R = _exp_so3([_mp(x) for x in pose.rotation_vector])
     else:
@@ -234,8 +240,21 @@ def serial_target(mech: Mechanism, config: str, arm: SerialArm) -> tuple[list[An
     x1 = c0 if pose.position is None else mpmath.matrix([_mp(x) for x in pose.position])
     t = (x1 - R * c0) / arm.L
     X = rotation_quaternion(R)
+    norm = mpmath.sqrt(sum(x * x for x in X))  # the nearest rotation's, when R is rounded
+    X = [x / norm for x in X]
     Y = [v / 2 for v in qmul([0, t[0], t[1], t[2]], X)]
     return [*X, *Y], False
+
+
+def _check_rotation(mech: Mechanism, config: str, R: Any, atol: Any) -> None:
+    E = R.T * R - mpmath.eye(3)
+    err = max(abs(E[i, k]) for i in range(3) for k in range(3))
+    if mpmath.det(R) <= 0 or err > atol:
+        raise UserError(
+            f"{mech.path or mech.name}: configuration {config!r}: the pose's rotation is not "
+            f"a rotation matrix (R^T R = I, det R = 1) to {mpmath.nstr(mpmath.mpf(atol), 3)}; "
+            "give an orthonormal matrix (with more digits)"
+        )
 
 
 def _arm_value(mech: Mechanism, config: str, name: str) -> Any:
@@ -262,10 +281,18 @@ def given_solution(
     joints (one of its own modes)."""
     arm = system.arm
     q = [_mp(_arm_value(mech, config, n)) for n in arm.joints]
+    return pairs_of(system, q), [
+        _value(k, *_pair(k, v, arm.L), arm.L) for k, v in zip(arm.kinds, q, strict=True)
+    ]
+
+
+def pairs_of(system: SerialSystem, q: list[Any]) -> list[Any]:
+    """The four outer pairs (the formulation's unknowns) of six joint values."""
+    arm = system.arm
     pairs: list[Any] = []
     for i in system.outer:
         pairs += list(_pair(arm.kinds[i], q[i], arm.L))
-    return pairs, [_value(k, *_pair(k, v, arm.L), arm.L) for k, v in zip(arm.kinds, q, strict=True)]
+    return pairs
 
 
 def _exp_so3(r: list[Any]) -> mpmath.matrix:
@@ -480,8 +507,13 @@ def _value(kind: str, c: Any, s: Any, L: Any) -> Any:
     if kind == "R":
         q = 2 * mpmath.atan2(s, c)  # in (-2 pi, 2 pi]: brought to (-pi, pi]
         if q > mpmath.pi:
-            return q - 2 * mpmath.pi
-        return q + 2 * mpmath.pi if q <= -mpmath.pi else q
+            q -= 2 * mpmath.pi
+        elif q <= -mpmath.pi:
+            q += 2 * mpmath.pi
+        # a half-turn refined to the working digits from either side is +pi
+        if abs(q + mpmath.pi) <= mpmath.mpf(10) ** (-(mpmath.mp.dps // 2)):
+            return +mpmath.pi
+        return q
     return 2 * L * s / c
 
 
@@ -518,7 +550,7 @@ def solve_serial(
     off = None if system.skew else _off(system)
     genuine = [z for z in raw if not _extraneous(z, kinds, off)]
     real = real_endpoints(genuine)
-    singular = _singular_endpoints(system, genuine, kinds)
+    singular = _singular_endpoints(system, genuine, kinds, dps)
     flat = len(singular)
     # a multiple root's endpoint is accurate to the square root of the engine's precision
     # or worse: a singular endpoint nearly real may be a real root
@@ -554,9 +586,10 @@ def all_certified(system: SerialSystem, points: list[np.ndarray], dps: int) -> i
     a regular root refined at ``dps`` digits and certified by the Krawczyk test (on its
     real and imaginary parts), the certified boxes pairwise disjoint even after turning
     any revolute pair's sign (the same posture): so many distinct solutions, none missing
-    when they number the arm's most (None: not all certified).  A root whose box meets the
-    real space is real (the box is symmetric under conjugation and holds one root); one
-    whose box does not is not."""
+    when they number the arm's most (None: not all certified).  A root refined to real
+    values to half the digits is certified in a box centred on its real part: the box is
+    symmetric under conjugation and holds one root, which is then its own conjugate, real;
+    the others' boxes lie clear of the real space, so their roots are not real."""
     kinds = [system.arm.kinds[i] for i in system.outer]
     radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
     roots = []
@@ -567,7 +600,13 @@ def all_certified(system: SerialSystem, points: list[np.ndarray], dps: int) -> i
             n = np.sqrt(c * c + s * s) if kind == "R" else c
             w += [c / n, s / n]
         x = newton(system.square, system.gens, w, dps)
-        if x is None or not krawczyk_complex(system.square, system.gens, x, radius):
+        if x is None:
+            return None
+        if all(abs(mpmath.im(v)) <= mpmath.mpf(10) ** (-(dps // 2)) for v in x):
+            x = [mpmath.mpc(mpmath.re(v)) for v in x]  # a real centre: a box symmetric
+        elif all(abs(mpmath.im(v)) <= radius for v in x):
+            return None  # neither real nor clear of the real space
+        if not krawczyk_complex(system.square, system.gens, x, radius):
             return None
         roots.append(x)
     flips = [k for k, kind in enumerate(kinds) if kind == "R"]
@@ -584,11 +623,11 @@ def all_certified(system: SerialSystem, points: list[np.ndarray], dps: int) -> i
                 )
                 if gap <= 2 * radius:
                     return None
-    return sum(1 for x in roots if all(abs(mpmath.im(v)) <= radius for v in x))
+    return sum(1 for x in roots if all(mpmath.im(v) == 0 for v in x))
 
 
 def _singular_endpoints(
-    system: SerialSystem, points: list[np.ndarray], kinds: list[str]
+    system: SerialSystem, points: list[np.ndarray], kinds: list[str], dps: int
 ) -> list[np.ndarray]:
     """The endpoints (complex, double precision) that are singular roots of the square
     system: multiple roots, or points of a curve of solutions."""
@@ -603,7 +642,11 @@ def _singular_endpoints(
             n = np.sqrt(c * c + s * s) if kind == "R" else c
             w += [c / n, s / n]
         sv = np.linalg.svd(np.array(jac(*w), dtype=complex), compute_uv=False)
-        if sv[-1] <= MODE_ENDPOINT_SINGULAR_RTOL * sv[0]:
+        if sv[-1] > MODE_ENDPOINT_SINGULAR_RTOL * sv[0]:
+            continue
+        # ill-conditioned in double precision: singular only if it is at the working digits
+        root = newton(system.square, system.gens, w, dps)
+        if root is None or not regular(system.square, system.gens, root):
             out.append(z)
     return out
 

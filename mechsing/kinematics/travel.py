@@ -78,8 +78,13 @@ def beyond_travel(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> str | No
     # first order: the limit is known to about the square of the distance beyond it
     rel = max(beyond / max(abs(float(limit)), 1e-300), 1e-16)
     shown = mpmath.nstr(limit, max(3, min(16, int(-math.log10(rel)))))
-    name, index = m.mech.coordinates()[col]
-    label = m.mech.coordinate_label(name, index)
+    coords = m.mech.coordinates()
+    if col < len(coords):
+        label = m.mech.coordinate_label(*coords[col])
+    else:  # a pose model's own coordinates follow the joints'
+        from mechsing.kinematics.pose import POSE_COORDINATES
+
+        label = POSE_COORDINATES[col - len(coords)]
     return (
         f"its given values are beyond a limit of travel (a fold of the closure, where the "
         f"unknown joints lose a direction): {label} is {beyond:.3g} {unit} beyond its limit "

@@ -382,20 +382,24 @@ MODE_PAIR_SKEW = 1e-6
 #: three consecutive revolute axes meet in a point or are parallel (Pieper's arms: at
 #: most 8 solutions) when their distances (over L) and angles are below this
 MODE_PIEPER_ATOL = 1e-9
-#: a refined root is singular (a multiple root, or a point of a curve of solutions: no
-#: interval test can certify it) when its Jacobian's least singular value is below this
-#: times its largest
-MODE_SINGULAR_RTOL = 1e-12
+#: a root refined at N digits is singular (a multiple root, or a point of a curve of
+#: solutions: no interval test can certify it) when its Jacobian's least singular value
+#: is below 10^(-N / this) times its largest: 1e-16 at 50 digits, where Newton stops
+#: within about 10^(-N/2) of a double root (a regular root as ill-conditioned as 1e-13,
+#: an arm 1e-13 rad from its wrist singularity, is refined to 37 digits and certified)
+MODE_SINGULAR_DIGITS = 3
 #: the local dimension test at a singular root: a step of this length (the
 #: formulation's unknowns) along the Jacobian's null direction, corrected back to the
 #: solutions on the hyperplane at that distance; the root lies on a curve when the
 #: correction closes to the working digits (an isolated multiple root leaves a residual
 #: of the order of the step squared)
 MODE_CURVE_STEP = 1e-6
-#: a continuation endpoint (double precision) is a singular root -- a multiple root or
-#: a point of a curve of solutions, where the count cannot be proven -- when its
+#: a continuation endpoint (double precision) may be a singular root -- a multiple root
+#: or a point of a curve of solutions, where the count cannot be proven -- when its
 #: Jacobian's least singular value is below this times its largest (a regular root of
-#: the bundled arms stays above 1e-4; an endpoint on a curve is within its accuracy, 1e-9)
+#: the bundled arms stays above 1e-4; an endpoint on a curve is within its accuracy,
+#: 1e-9); it is then refined at N digits and singular only if it is there
+#: (``MODE_SINGULAR_DIGITS``)
 MODE_ENDPOINT_SINGULAR_RTOL = 1e-7
 #: with a pair of joints whose lines are parallel or meet, a continuation endpoint is
 #: extraneous (off the pair's displacements) when the four conditions of the product in
