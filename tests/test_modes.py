@@ -340,6 +340,9 @@ def test_the_report_has_a_section_with_every_mode_sketched(tmp_path: Path) -> No
     for k in (1, 2):
         assert (tmp_path / "review_files" / f"mode-crank-30-{k}.svg").is_file()
     assert section.count("continuation from the configuration's start reaches") == 1
+    # the command the report records reproduces it, --modes included
+    recorded = [line for line in text.splitlines() if "command: mechsing report" in line]
+    assert recorded and "--modes crank-30" in recorded[0]
 
 
 def test_from_marks_the_mode_continuation_from_another_start_reaches(tmp_path: Path) -> None:

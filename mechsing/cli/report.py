@@ -150,4 +150,8 @@ def _argv(args: argparse.Namespace) -> list[str]:
         out += ["--load", args.load]
     for m in args.max_effort or ():
         out += ["--max-effort", m]
+    if getattr(args, "modes_of", None):
+        out += ["--modes", args.modes_of]
+    if getattr(args, "time_limit", None) is not None:
+        out += ["--time-limit", f"{args.time_limit:g}"]
     return out
