@@ -423,3 +423,63 @@ def test_postures_1e13_from_the_wrist_singularity_are_regular_certified_and_as_a
     assert len(mine) == 1 and mine[0]["certified"] and mine[0]["singular"] is False
     assert all(m["certified"] for m in doc["modes"])
     _classified_as_analyze(doc, path)
+
+
+# ----------------------------------------------------------------------------- a redundant arm
+
+SRS_7R = """\
+mechanism: srs-7r
+bodies: [base, l1, l2, l3, l4, l5, l6, l7]
+joints:
+  - {name: J1, type: R, between: [base, l1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [l1, l2], axis: [0, 1, 0], point: [0, 0, 0.34]}
+  - {name: J3, type: R, between: [l2, l3], axis: [0, 0, 1], point: [0, 0, 0.34]}
+  - {name: J4, type: R, between: [l3, l4], axis: [0, -1, 0], point: [0, 0, 0.74]}
+  - {name: J5, type: R, between: [l4, l5], axis: [0, 0, 1], point: [0, 0, 0.74]}
+  - {name: J6, type: R, between: [l5, l6], axis: [0, 1, 0], point: [0, 0, 1.14]}
+  - {name: J7, type: R, between: [l6, l7], axis: [0, 0, 1], point: [0, 0, 1.14]}
+output: {body: l7}
+configurations:
+  reference: {}
+  reach: {J3: 0.4, pose: {position: [0.25, 0.3, 0.9], rotation_vector: [0.3, 2.0, 0.1]}}
+"""
+
+
+def test_a_seven_joint_arm_with_one_joint_given_has_the_postures_of_its_six(
+    tmp_path: Path,
+) -> None:
+    """A 7R arm (shoulder, elbow, spherical wrist) with the pose and J3 given: the six other
+    joints must reach it; J5, J6, J7 meet in a point, so at most 8 (Pieper); every one
+    reproduces the pose, and they are damped Newton's set over the six unknown joints."""
+    from scipy.spatial.transform import Rotation
+
+    data = yaml.safe_load(SRS_7R)
+    joints = data["joints"]
+    axes = [vec(j["axis"]) for j in joints]
+    points = [vec(j["point"]) for j in joints]
+    fk7 = poe(axes, points)
+    cfg = data["configurations"]["reach"]
+    q3 = num(cfg["J3"])
+    R = Rotation.from_rotvec(vec(cfg["pose"]["rotation_vector"])).as_matrix()
+    c0 = points[6]  # the output's reference point: its one joint's point
+    T = np.eye(4)
+    T[:3, :3], T[:3, 3] = R, vec(cfg["pose"]["position"]) - R @ c0
+
+    def fk6(Q: np.ndarray) -> np.ndarray:
+        Q = np.atleast_2d(Q)
+        return fk7(np.insert(Q, 2, q3, axis=1))
+
+    path = tmp_path / "srs.yaml"
+    path.write_text(SRS_7R)
+    (tmp_path / "cwd").mkdir()
+    doc = _modes(path, "reach", tmp_path / "cwd")
+    assert doc["formulation"]["joints"] == ["J1", "J2", "J4", "J5", "J6", "J7"]
+    assert doc["formulation"]["generic_count"] == 8 and doc["complete"] == "maximal"
+    names = [j["name"] for j in joints]
+    found = [np.array([m["joints"][n][0] for n in names]) for m in doc["modes"]]
+    for q in found:
+        assert q[2] == q3
+        assert _pose_gap(fk7(q[None])[0], T) <= POSE_TOL
+    numeric = numeric_ik(fk6, T, starts=2000, L=0.5)
+    assert same_sets([np.delete(q, 2) for q in found], numeric, ANGLE_TOL)
+    assert doc["count"] == len(numeric) == 8

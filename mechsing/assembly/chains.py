@@ -48,14 +48,33 @@ def _length(mech: Mechanism) -> float:
 
 
 def serial_found(mech: Mechanism, config: str, dps: int, atol: Any = 1e-9) -> Found:
-    """The postures of a serial arm for the pose configuration ``config`` gives (or the
-    pose its joints reach: then they are tested as one of the modes); ``atol``: how far
+    """The postures of a serial arm for the pose configuration ``config`` gives (with, for
+    an arm of more than six joints, the values of all but six), or for a six-joint arm the
+    pose its joints reach (then they are tested as one of the modes); ``atol``: how far
     from orthonormal a given rotation matrix may be."""
-    from mechsing.assembly.serial import given_solution, serial_arm, serial_target
+    from mechsing.assembly.serial import (
+        arm_chain,
+        given_solution,
+        pose_target,
+        serial_arm,
+        serial_target,
+        six_joint_chain,
+    )
 
-    arm = serial_arm(mech, _length(mech))
-    target, from_joints = serial_target(mech, config, arm, atol)
+    cfg = mech.configurations[config]
+    L = _length(mech)
+    names, signs = arm_chain(mech)
     notes = []
+    if cfg.pose is not None and len(names) > 6:
+        given = {n: cfg.values[n] for n in names if n in cfg.values}
+        target = pose_target(mech, config, L, atol)
+        arm, target = six_joint_chain(mech, names, signs, given, target, L)
+        values = {n: v[0] for n, v in given.items()}
+        return _found(
+            mech, config, arm, target, values, dps, None, notes, "serial arm", "output's pose"
+        )
+    arm = serial_arm(mech, L)
+    target, from_joints = serial_target(mech, config, arm, atol)
     if from_joints:
         notes.append(
             f"configuration {config!r} gives joint values, not the output's pose: its modes "

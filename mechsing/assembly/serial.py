@@ -66,6 +66,9 @@ __all__ = [
     "pairs_of",
     "posture_distance",
     "serial_target",
+    "six_joint_chain",
+    "arm_chain",
+    "pose_target",
     "solve_serial",
 ]
 
@@ -94,9 +97,9 @@ class SerialArm:
     pieper: str | None
 
 
-def serial_arm(mech: Mechanism, L: float) -> SerialArm:
-    """The arm of a mechanism without loops whose output is reached from ground through
-    six one-dof R or P joints (every joint of the file on that chain)."""
+def arm_chain(mech: Mechanism) -> tuple[list[str], list[int]]:
+    """The joints of a mechanism without loops from ground to its output, each R or P
+    (every joint of the file on that chain), and each one's direction along it."""
     out = mech.output
     if mech.loops:
         raise FormulationError("the mechanism has loops: it is not a serial arm")
@@ -109,15 +112,68 @@ def serial_arm(mech: Mechanism, L: float) -> SerialArm:
     off = [j.name for j in mech.joints if j.name not in names]
     if off:
         raise FormulationError(
-            f"joint {off[0]} is not on the chain from ground to the output {out.body}"
+            f"joint {off[0]} is not on the chain from ground to the output {out.body} (each "
+            "joint must be: remove the side branch, or make its body the output)"
         )
     bad = [n for n in names if mech.joint(n).type not in ("R", "P")]
-    if len(names) != 6 or bad:
-        why = f"joint {bad[0]} is {mech.joint(bad[0]).type}" if bad else f"{len(names)} joints"
-        raise FormulationError(f"the arm needs six R or P joints from ground ({why})")
+    if bad:
+        raise FormulationError(
+            f"the arm's joints must be R or P, and joint {bad[0]} is {mech.joint(bad[0]).type}"
+        )
+    if len(names) < 6:
+        raise FormulationError(
+            f"the arm needs six R or P joints from ground, and it has {len(names)} (its "
+            "postures for a whole pose are the solutions of more equations than unknowns)"
+        )
+    return names, [st.sign for st in steps]
+
+
+def serial_arm(mech: Mechanism, L: float) -> SerialArm:
+    """The six-joint arm of a mechanism without loops (:func:`arm_chain`)."""
+    names, signs = arm_chain(mech)
+    if len(names) != 6:
+        raise FormulationError(
+            f"the arm has {len(names)} joints: give the output's pose and {len(names) - 6} "
+            "joint values (a redundant arm reaches a pose alone along a curve)"
+        )
+    return six_joint_chain(mech, names, signs, {}, IDENTITY, L)[0]
+
+
+#: the identity displacement's Study coordinates
+IDENTITY = (1, 0, 0, 0, 0, 0, 0, 0)
+
+
+def six_joint_chain(
+    mech: Mechanism,
+    names: list[str],
+    signs: list[int],
+    given: dict[str, tuple[Any, ...]],
+    T: Any,
+    L: float,
+) -> tuple[SerialArm, list[Any]]:
+    """Joints ``names`` in a chain whose product is ``T`` (a serial arm's output pose; a
+    loop's identity), ``given`` fixing all but six: the six-joint chain (its lines past the
+    given joints' constant displacements) and the displacement it reaches.  The constants
+    are moved to the end, ``X C = C (C* X C)``: each later joint's line is conjugated, and
+    ``G1 ... G6 C = T`` gives ``G1 ... G6 = T C*``."""
+    unknown = [n for n in names if n not in given]
+    if len(unknown) != 6:
+        raise FormulationError(
+            f"{len(names)} joints and {len(names) - len(unknown)} given values leave "
+            f"{len(unknown)} unknown, not six; give "
+            + (f"{len(unknown) - 6} more joint values" if len(unknown) > 6 else "fewer")
+        )
     Lm = mpmath.mpf(L)
-    lines = [_joint_line(mech, st.joint, st.sign, Lm) for st in steps]
-    return _arm(mech, names, lines, Lm)
+    C: list[Any] = list(IDENTITY)  # the given joints' displacements so far
+    lines = []
+    for name, sign in zip(names, signs, strict=True):
+        ln = _joint_line(mech, name, sign, Lm)
+        if name in given:
+            kind = mech.joint(name).type
+            C = dmul(C, _factor(*_pair(kind, _mp(given[name][0]), Lm), ln))
+        else:
+            lines.append(dmul(dmul(C, ln), dconj(C)))
+    return _arm(mech, unknown, lines, Lm), dmul(list(T), dconj(C))
 
 
 def _arm(mech: Mechanism, names: list[str], lines: list[list[Any]], L: Any) -> SerialArm:
@@ -141,9 +197,8 @@ def _joint_line(mech: Mechanism, name: str, sign: int, L: Any) -> list[Any]:
 def loop_arm(
     mech: Mechanism, given: dict[str, tuple[Any, ...]], L: float
 ) -> tuple[SerialArm, list[Any]]:
-    """A single loop with six joints left unknown by ``given``: the six-joint chain (its
-    lines past the given joints' constant displacements) and the displacement it reaches
-    (:mod:`mechsing.assembly.chains`)."""
+    """A single loop with six joints left unknown by ``given``: the six-joint chain and
+    the displacement it reaches (:func:`six_joint_chain` with the identity)."""
     if len(mech.loops) != 1:
         raise FormulationError(f"the mechanism has {len(mech.loops)} loops, not one")
     loop = mech.loops[0]
@@ -153,22 +208,7 @@ def loop_arm(
     bad = [n for n in loop.joints if mech.joint(n).type not in ("R", "P")]
     if bad:
         raise FormulationError(f"joint {bad[0]} is {mech.joint(bad[0]).type}, not R or P")
-    unknown = [n for n in loop.joints if n not in given]
-    if len(unknown) != 6:
-        raise FormulationError(
-            f"the loop has {len(unknown)} joints left unknown, not six (a six-joint chain)"
-        )
-    Lm = mpmath.mpf(L)
-    C: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]  # the given joints' displacements so far
-    lines = []
-    for name, sign in zip(loop.joints, loop.signs, strict=True):
-        ln = _joint_line(mech, name, sign, Lm)
-        if name in given:
-            kind = mech.joint(name).type
-            C = dmul(C, _factor(*_pair(kind, _mp(given[name][0]), Lm), ln))
-        else:  # X C = C (C* X C): moved before the constants, its line conjugated
-            lines.append(dmul(dmul(C, ln), dconj(C)))
-    return _arm(mech, unknown, lines, Lm), dconj(C)
+    return six_joint_chain(mech, list(loop.joints), list(loop.signs), given, IDENTITY, L)
 
 
 def _pieper(names: list[str], kinds: tuple[str, ...], lines: list[list[Any]]) -> str | None:
@@ -211,24 +251,32 @@ def serial_target(
     mech: Mechanism, config: str, arm: SerialArm, atol: Any = 1e-9
 ) -> tuple[list[Any], bool]:
     """The output's displacement ``T`` (Study coordinates, lengths over L) a configuration
-    asks for: its ``pose`` (an omitted position or rotation is the reference's), or the
-    pose its six joint values reach; and whether the values were given (then the given
-    configuration is one of the modes).  A rotation matrix must be orthonormal to ``atol``
-    (largest entry of ``R^T R - I``: the classification's precision, as ``solve`` asks);
-    the modes are then found for the nearest rotation."""
+    of a six-joint arm asks for: its ``pose`` (:func:`pose_target`), or the pose its six
+    joint values reach; and whether the values were given (then the given configuration
+    is one of the modes)."""
     cfg = mech.configurations[config]
     given = [n for n in arm.joints if n in cfg.values]
     if cfg.pose is None:
-        T: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
+        T: list[Any] = list(IDENTITY)
         for n, kind, ln in zip(arm.joints, arm.kinds, arm.lines, strict=True):
             T = dmul(T, _factor(*_pair(kind, _mp(_arm_value(mech, config, n)), arm.L), ln))
         return T, True
     if given:
         raise FormulationError(
             f"configuration {config!r} gives the output's pose and joint {given[0]}: the "
-            "pose alone fixes the arm's modes"
+            "pose alone fixes a six-joint arm's modes"
         )
-    pose = cfg.pose
+    return pose_target(mech, config, arm.L, atol), False
+
+
+def pose_target(mech: Mechanism, config: str, L: Any, atol: Any = 1e-9) -> list[Any]:
+    """The displacement (Study coordinates, lengths over L) a configuration's ``pose``
+    asks of the output (an omitted position or rotation is the reference's).  A rotation
+    matrix must be orthonormal to ``atol`` (largest entry of ``R^T R - I``: the
+    classification's precision, as ``solve`` asks); the modes are then found for the
+    nearest rotation."""
+    pose = mech.configurations[config].pose
+    assert pose is not None
     if pose.rotation is not None:
         R = mpmath.matrix([[_mp(x) for x in row] for row in pose.rotation])
         _check_rotation(mech, config, R, atol)
@@ -238,12 +286,12 @@ def serial_target(
         R = mpmath.eye(3)
     c0 = mpmath.matrix([_mp(x) for x in mech.output_reference_point()])
     x1 = c0 if pose.position is None else mpmath.matrix([_mp(x) for x in pose.position])
-    t = (x1 - R * c0) / arm.L
+    t = (x1 - R * c0) / mpmath.mpf(L)
     X = rotation_quaternion(R)
     norm = mpmath.sqrt(sum(x * x for x in X))  # the nearest rotation's, when R is rounded
     X = [x / norm for x in X]
     Y = [v / 2 for v in qmul([0, t[0], t[1], t[2]], X)]
-    return [*X, *Y], False
+    return [*X, *Y]
 
 
 def _check_rotation(mech: Mechanism, config: str, R: Any, atol: Any) -> None:
