@@ -25,8 +25,17 @@ C.-G. Liang, Mech. Mach. Theory 23(3), 1988; M. Raghavan and B. Roth, ASME J. Me
 parallel (D. Pieper, 1968).  The pair in the middle follows from the rank-one
 factorisation of the coordinates in ``V``: ``(c3 c4, s3 c4, c3 s4, s3 s4)``.
 
-Owns :class:`SerialArm`, :func:`serial_arm`, :func:`serial_target`,
-:class:`SerialSystem`, :func:`serial_system`, :func:`solve_serial`.
+When no consecutive pair is skew (a UR arm with its tool's axis along the base's), a
+parallel (else meeting) pair carries the formulation: its displacements form a subgroup
+whose span lies in the Study quadric, so the system holds three random combinations of the
+four span conditions and the rank-one condition ``(c3 c4)(s3 s4) = (s3 c4)(c3 s4)``:
+2 x 4! = 48 paths, the endpoints off the span extraneous.  A chain of more joints with
+all but six given (a redundant arm, a single loop) is reduced to six first
+(:func:`six_joint_chain`).
+
+Owns :class:`SerialArm`, :func:`arm_chain`, :func:`serial_arm`, :func:`six_joint_chain`,
+:func:`loop_arm`, :func:`serial_target`, :func:`pose_target`, :class:`SerialSystem`,
+:func:`serial_system`, :func:`solve_serial`, :func:`all_certified`.
 """
 
 from __future__ import annotations
