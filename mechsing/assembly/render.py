@@ -39,8 +39,11 @@ def modes_heading(res: ModesResult) -> str:
     )
 
 
-def render_modes(res: ModesResult, fmt: str) -> str:
-    """``res`` as ``text``, ``md`` or ``json``."""
+def render_modes(
+    res: ModesResult, fmt: str, units: dict[str, tuple[str, ...]] | None = None
+) -> str:
+    """``res`` as ``text``, ``md`` or ``json``; ``units``: each joint's coordinates' units
+    (SI, radians: :attr:`Joint.units`), shown after the values in text and Markdown."""
     doc = res.to_json()
     if fmt == "json":
         return json.dumps(doc, indent=2) + "\n"
@@ -64,7 +67,10 @@ def render_modes(res: ModesResult, fmt: str) -> str:
             lines.append("| joint | value |")
             lines.append("|---|---|")
         for name, vals in m["joints_text"].items():
-            shown = ", ".join(vals)
+            marks_of = (units or {}).get(name, ())
+            shown = ", ".join(
+                f"{v} {marks_of[i]}" if i < len(marks_of) else v for i, v in enumerate(vals)
+            )
             lines.append(f"| {name} | {shown} |" if md else f"  {name}: {shown}")
         lines.append("")
     for note in doc["notes"]:

@@ -72,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
         return NOT_ANALYSED
-    text = render_modes(result, args.format)
+    text = render_modes(result, args.format, {j.name: j.units for j in mech.joints})
     if args.output:
         write_output(args.output, text, [args.file])
     else:
