@@ -17,6 +17,7 @@ root: ``OPENBLAS_NUM_THREADS=1 python benchmarks/modes.py``.
 
 from __future__ import annotations
 
+import tempfile
 import time
 from pathlib import Path
 
@@ -34,15 +35,28 @@ def _cpu(f):
     return time.process_time() - t0, out
 
 
-def rpr() -> None:
+def _engine(text: str):
+    """``bertini.solve`` on a system's text with recording off (as ``modes`` runs it):
+    its CPU seconds and result."""
     import bertini
+
+    was = bertini.recording()
+    bertini.recording(False)
+    try:
+        return _cpu(lambda: bertini.solve(bertini.parse.system(text), seed=34))
+    finally:
+        bertini.recording(was)
+
+
+def rpr() -> None:
     import sympy
 
     from mechsing import load
     from mechsing.assembly import modes
     from mechsing.assembly.api import _given
+    from mechsing.assembly.engine import system_text
     from mechsing.assembly.exact import eliminate_planar
-    from mechsing.assembly.planar import C, S, planar_system
+    from mechsing.assembly.planar import C, S, X, Y, planar_system
 
     mech = load(ROOT / "examples" / "planar_3rpr_six.yaml")
     given = _given(mech, "six")
@@ -50,16 +64,8 @@ def rpr() -> None:
     with mpmath.workdps(50):
         t_exact, found = _cpu(lambda: eliminate_planar(system, 50))
     t_all, res = _cpu(lambda: modes(mech, "six", "auto"))
-    eqs = [*system.equations, C**2 + S**2 - 1]
-    text = "variable_group x,y,c,s;\nfunction " + ",".join(f"f{i}" for i in range(4)) + ";\n"
-    for i, e in enumerate(eqs):
-        text += f"f{i} = {sympy.sstr(sympy.N(sympy.expand(e), 17)).replace('**', '^')};\n"
-    was = bertini.recording()
-    bertini.recording(False)
-    try:
-        t_b, r = _cpu(lambda: bertini.solve(bertini.parse.system(text), seed=34))
-    finally:
-        bertini.recording(was)
+    eqs = [sympy.expand(e) for e in (*system.equations, C**2 + S**2 - 1)]
+    t_b, r = _engine(system_text(eqs, [[X, Y, C, S]]))
     real = [z for z in r.solutions if max(abs(complex(v).imag) for v in z) < 1e-8]
     paths = r.solver.num_paths() if callable(r.solver.num_paths) else r.solver.num_paths
     print(
@@ -71,7 +77,6 @@ def rpr() -> None:
 
 
 def dietmaier() -> None:
-    import bertini
 
     from mechsing import load
     from mechsing.adhoc import with_set_values
@@ -91,12 +96,7 @@ def dietmaier() -> None:
     mech = with_set_values(mech, sets, None, "stewart_dietmaier.yaml")
     system = spatial_system(mech, _given(mech, "dietmaier"))
     text = system_text([*system.equations, patch_equation()], [[*XS, *YS]])
-    was = bertini.recording()
-    bertini.recording(False)
-    try:
-        t_b, r = _cpu(lambda: bertini.solve(bertini.parse.system(text), seed=34))
-    finally:
-        bertini.recording(was)
+    t_b, r = _engine(text)
     t_m, res = _cpu(lambda: modes(mech, "dietmaier", "float"))
     p = res.paths
     print(
@@ -111,30 +111,20 @@ UR5_POSE = "{pose: {position: [-0.3, -0.4, 0.5], axis: [1, 1, 0], angle: 2.1}}"
 
 
 def ur5() -> None:
-    import bertini
-    import yaml
-
     from mechsing import load
     from mechsing.assembly import modes
     from mechsing.assembly.engine import system_text
     from mechsing.assembly.serial import serial_arm, serial_system, serial_target
     from mechsing.kinematics import KinematicModel
 
-    text = (ROOT / "examples" / "ur5.yaml").read_text() + f"  reach: {UR5_POSE}\n"
-    path = Path("/tmp") / "mechsing-bench-ur5.yaml"
-    path.write_text(text)
-    yaml.safe_load(text)
-    mech = load(path)
+    with tempfile.TemporaryDirectory() as tmp:  # the example with one configuration more
+        path = Path(tmp) / "ur5.yaml"
+        path.write_text((ROOT / "examples" / "ur5.yaml").read_text() + f"  reach: {UR5_POSE}\n")
+        mech = load(path)
     with mpmath.workdps(50):
         arm = serial_arm(mech, float(KinematicModel(mech, "float").length_scale))
         system = serial_system(arm, serial_target(mech, "reach", arm)[0])
-    was = bertini.recording()
-    bertini.recording(False)
-    try:
-        src = system_text(system.patched, system.groups)
-        t_b, r = _cpu(lambda: bertini.solve(bertini.parse.system(src), seed=34))
-    finally:
-        bertini.recording(was)
+    t_b, r = _engine(system_text(system.patched, system.groups))
     t_m, res = _cpu(lambda: modes(mech, "reach", "float"))
     p = res.paths
     print(

@@ -18,8 +18,8 @@ import mpmath
 import numpy as np
 import sympy
 
-from mechsing.assembly.chains import Found, loop_found, serial_found
-from mechsing.errors import ConfigurationError, FormulationError, UserError
+from mechsing.assembly.chains import Found, closure_from_start, loop_found, serial_found
+from mechsing.errors import FormulationError, UserError
 from mechsing.model import Mechanism
 from mechsing.numeric import (
     MODE_CERTIFY_RADIUS,
@@ -362,7 +362,8 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
     }
     # the modes are data to dps digits (not points float located): analysed as a file's
     analysed = analyze_found(mech, data, prec, located=prec.mode == "float") if data else []
-    reached, notes = _reached(mech, config, [[float(x) for x in q] for q, _ in rows], km)
+    closure = found.closure or closure_from_start(mech, config)
+    reached, notes = _reached(mech, [[float(x) for x in q] for q, _ in rows], km, closure)
     out_body = mech.output.body if mech.output is not None else None
     poses = [
         km.poses(np.array([float(x) for x in q]))[out_body] if out_body else None for q, _ in rows
@@ -407,15 +408,13 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
 
 
 def _reached(
-    mech: Mechanism, config: str, qs: list[list[float]], km: Any
+    mech: Mechanism, qs: list[list[float]], km: Any, closure: tuple[Any, str | None]
 ) -> tuple[int | None, tuple[str, ...]]:
-    """Which mode continuation from the configuration's start reaches (its index)."""
-    from mechsing.analysis.solve import solve
-
-    try:
-        res = solve(mech, config, "float")
-    except (ConfigurationError, UserError) as exc:
-        return None, (f"continuation from the start does not close the configuration: {exc}",)
+    """Which mode continuation from the configuration's start reaches (its index), from
+    its closure (:func:`~mechsing.assembly.chains.closure_from_start`)."""
+    res, failed = closure
+    if res is None:
+        return None, (f"continuation from the start does not close the configuration: {failed}",)
     q0 = [x for _, v in res.joints for x in v]
     best, where = None, None
     for k, q in enumerate(qs):

@@ -9,8 +9,8 @@ line conjugated), the constants gather at the end, and with exactly six joints u
 the loop is a six-joint chain reaching ``T = C*``: a general 7R with one input is the
 general 6R arm (H.-Y. Lee and C.-G. Liang, Mech. Mach. Theory 23(3), 1988: at most 16).
 
-Owns :class:`Found` (what a formulation found) and :func:`serial_found`,
-:func:`loop_found`.
+Owns :class:`Found` (what a formulation found), :func:`closure_from_start`,
+:func:`serial_found` and :func:`loop_found`.
 """
 
 from __future__ import annotations
@@ -21,16 +21,17 @@ from typing import Any
 import mpmath
 
 from mechsing.model import Mechanism
-from mechsing.numeric import MODE_CERTIFY_RADIUS, MODE_MATCH_DISTANCE
+from mechsing.numeric import MODE_CERTIFY_RADIUS
 
-__all__ = ["Found", "loop_found", "serial_found"]
+__all__ = ["Found", "closure_from_start", "loop_found", "serial_found"]
 
 
 @dataclass(frozen=True)
 class Found:
     """What a formulation and its method found: the formulation's JSON, the modes' joint
     coordinates (the file's order) with their certification, what the count claims, the
-    paths' account, notes, and how many joint-space solutions each mode stands for."""
+    paths' account, notes, how many joint-space solutions each mode stands for, and
+    continuation's closure from the start when the formulation already has it."""
 
     formulation: dict[str, Any]
     rows: list[tuple[list[Any], bool]]
@@ -39,6 +40,9 @@ class Found:
     paths: dict[str, Any] | None
     notes: tuple[str, ...]
     equivalent: int = 1
+    #: continuation's closure from the start, when the formulation computed it
+    #: (:func:`closure_from_start`: the result or None, the reason it failed or None)
+    closure: tuple[Any, str | None] | None = None
 
 
 def _length(mech: Mechanism) -> float:
@@ -109,9 +113,8 @@ def _found(
     an arm given by its joints), certify, and say what the count claims."""
     from mechsing.assembly.certify import krawczyk, newton, regular, singular_root
     from mechsing.assembly.serial import (
-        all_certified,
+        already_found,
         joint_values_serial,
-        posture_distance,
         serial_system,
         solve_serial,
     )
@@ -123,13 +126,14 @@ def _found(
     # (continuation's endpoints on a curve of solutions are complex, so they cannot); one
     # the homotopy missed makes the count not proven
     missed = False
-    for pairs, exact in _candidates(mech, config, arm, system, own):
+    closure = closure_from_start(mech, config)
+    for pairs, exact in _candidates(arm, system, own, closure[0]):
         if curve is not None:
             break
         root = pairs if exact else newton(system.square, system.gens, pairs, dps)
         if root is not None and regular(system.square, system.gens, root):
             q = joint_values_serial(system, root)
-            if not any(posture_distance(arm, q, o) <= MODE_MATCH_DISTANCE for _, o, _ in found):
+            if not already_found(arm, q, found):
                 found, missed = [*found, (root, q, True)], True
             continue
         root, on_curve = singular_root(system.square, system.gens, pairs, dps)
@@ -138,7 +142,7 @@ def _found(
         q = joint_values_serial(system, root)
         if on_curve:
             curve = ", ".join(f"{n} = {float(v):.6g}" for n, v in zip(arm.joints, q, strict=True))
-        elif not any(posture_distance(arm, q, o) <= MODE_MATCH_DISTANCE for _, o, _ in found):
+        elif not already_found(arm, q, found):
             found = [*found, (root, q, False)]
     if missed:
         notes.append(
@@ -168,37 +172,44 @@ def _found(
             f"the {fixed} is reached along a curve of joint values (a self-motion at a "
             f"singularity, through {curve}): the modes are not finitely many"
         )
-        return Found(formulation, [], None, "infinite", paths, tuple(notes))
+        return Found(formulation, [], None, "infinite", paths, tuple(notes), 1, closure)
     radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
     rows = []
     for pairs, q, is_regular in found:
         ok = is_regular and krawczyk(system.square, system.gens, pairs, radius)
         values = {**given, **dict(zip(arm.joints, q, strict=True))}
         rows.append(([values[name] for name, _ in mech.coordinates()], ok))
-    complete = _claim(arm, system, paths, rows, solutions, dps, notes, all_certified)
+    complete = _claim(arm, system, paths, rows, solutions, dps, notes)
     if missed:
         complete = "not proven"
-    return Found(formulation, rows, len(rows), complete, paths, tuple(notes))
+    return Found(formulation, rows, len(rows), complete, paths, tuple(notes), 1, closure)
 
 
-def _candidates(
-    mech: Mechanism, config: str, arm: Any, system: Any, own: Any
-) -> list[tuple[list[Any], bool]]:
-    """Postures known before the homotopy: the configuration's own joints (``own``:
-    exact) and where continuation from its start closes (float), as outer pairs."""
+def closure_from_start(mech: Mechanism, config: str) -> tuple[Any, str | None]:
+    """Where continuation from the configuration's start closes it (``solve`` in float),
+    or why it does not: (the SolveResult or None, the reason or None).  Computed once per
+    ``modes``: the formulations test it as a posture, the result marks the mode it is."""
     from mechsing.analysis.solve import solve
-    from mechsing.assembly.serial import pairs_of
     from mechsing.errors import ConfigurationError, UserError
+
+    try:
+        return solve(mech, config, "float"), None
+    except (ConfigurationError, UserError) as exc:
+        return None, str(exc)
+
+
+def _candidates(arm: Any, system: Any, own: Any, closed: Any) -> list[tuple[list[Any], bool]]:
+    """Postures known before the homotopy: the configuration's own joints (``own``:
+    exact) and where continuation from its start closes (``closed``: float), as outer
+    pairs."""
+    from mechsing.assembly.serial import pairs_of
 
     out = []
     if own is not None:
         out.append((own(system)[0], True))
-    try:
-        res = solve(mech, config, "float")
-    except (ConfigurationError, UserError):
-        return out
-    values = dict(res.joints)
-    out.append((pairs_of(system, [mpmath.mpf(values[n][0]) for n in arm.joints]), False))
+    if closed is not None:
+        values = dict(closed.joints)
+        out.append((pairs_of(system, [mpmath.mpf(values[n][0]) for n in arm.joints]), False))
     return out
 
 
@@ -210,11 +221,12 @@ def _claim(
     solutions: list[Any],
     dps: int,
     notes: list[str],
-    all_certified: Any,
 ) -> str:
     """``maximal`` when the real modes, all certified, are the most the chain can have,
     or when every solution, real and complex, is certified distinct and they are that
     many (then none is missing); else ``not proven``, with the notes that say why."""
+    from mechsing.assembly.serial import all_certified
+
     most = arm.generic_count
     certified = all(ok for _, ok in rows) and not paths["singular"]
     complete = "not proven"

@@ -50,7 +50,15 @@ import sympy
 
 from mechsing.assembly.certify import krawczyk_complex, newton, regular, singular_root
 from mechsing.assembly.engine import SEED, real_endpoints, track
-from mechsing.assembly.study import dconj, dmul, line, qmul, rotation_quaternion, slide
+from mechsing.assembly.study import (
+    dconj,
+    dmul,
+    line,
+    qmul,
+    rotation,
+    rotation_quaternion,
+    slide,
+)
 from mechsing.errors import FormulationError, UserError
 from mechsing.model import Mechanism
 from mechsing.numeric import (
@@ -67,6 +75,7 @@ from mechsing.numeric import (
 __all__ = [
     "SerialArm",
     "all_certified",
+    "already_found",
     "SerialSystem",
     "serial_arm",
     "serial_system",
@@ -290,7 +299,7 @@ def pose_target(mech: Mechanism, config: str, L: Any, atol: Any = 1e-9) -> list[
         R = mpmath.matrix([[_mp(x) for x in row] for row in pose.rotation])
         _check_rotation(mech, config, R, atol)
     elif pose.rotation_vector is not None:
-        R = _exp_so3([_mp(x) for x in pose.rotation_vector])
+        R = rotation([_mp(x) for x in pose.rotation_vector])
     else:
         R = mpmath.eye(3)
     c0 = mpmath.matrix([_mp(x) for x in mech.output_reference_point()])
@@ -350,18 +359,6 @@ def pairs_of(system: SerialSystem, q: list[Any]) -> list[Any]:
     for i in system.outer:
         pairs += list(_pair(arm.kinds[i], q[i], arm.L))
     return pairs
-
-
-def _exp_so3(r: list[Any]) -> mpmath.matrix:
-    angle = mpmath.sqrt(sum(x * x for x in r))
-    K = mpmath.matrix([[0, -r[2], r[1]], [r[2], 0, -r[0]], [-r[1], r[0], 0]])
-    if angle == 0:
-        return mpmath.eye(3)
-    return (
-        mpmath.eye(3)
-        + K * (mpmath.sin(angle) / angle)
-        + K * K * ((1 - mpmath.cos(angle)) / angle**2)
-    )
 
 
 @dataclass(frozen=True)
@@ -551,13 +548,25 @@ def _off(system: SerialSystem) -> Any:
     return off
 
 
-def _normalised(z: np.ndarray, kinds: list[str]) -> list[float]:
-    out = []
+def _normalised(z: np.ndarray, kinds: list[str]) -> list[Any]:
+    """An endpoint's pairs scaled to the square system's: each revolute pair onto
+    ``c^2 + s^2 = 1``, each slide's ``c`` to 1 (real endpoints stay real floats)."""
+    out: list[Any] = []
+    real = not np.iscomplexobj(z)
     for k, kind in enumerate(kinds):
-        c, s = float(z[2 * k]), float(z[2 * k + 1])
-        n = np.hypot(c, s) if kind == "R" else c
+        c, s = z[2 * k], z[2 * k + 1]
+        if real:
+            c, s = float(c), float(s)
+            n = np.hypot(c, s) if kind == "R" else c
+        else:
+            n = np.sqrt(c * c + s * s) if kind == "R" else c
         out += [c / n, s / n]
     return out
+
+
+def already_found(arm: SerialArm, q: list[Any], found: list[tuple[Any, list[Any], bool]]) -> bool:
+    """Is posture ``q`` one of ``found``'s (within ``MODE_MATCH_DISTANCE``)?"""
+    return any(posture_distance(arm, q, other) <= MODE_MATCH_DISTANCE for _, other, _ in found)
 
 
 def _value(kind: str, c: Any, s: Any, L: Any) -> Any:
@@ -628,9 +637,7 @@ def solve_serial(
                 at = ", ".join(f"{n} = {float(v):.6g}" for n, v in zip(names, q, strict=True))
                 return [], _account(tracked, raw, genuine, real, found, 0, flat), at, genuine
         q = joint_values_serial(system, pairs)
-        if any(
-            posture_distance(system.arm, q, other) <= MODE_MATCH_DISTANCE for _, other, _ in found
-        ):
+        if already_found(system.arm, q, found):
             duplicates += 1
             continue
         found.append((pairs, q, ok))
@@ -651,11 +658,7 @@ def all_certified(system: SerialSystem, points: list[np.ndarray], dps: int) -> i
     radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
     roots = []
     for z in points:
-        w = []
-        for k, kind in enumerate(kinds):
-            c, s = complex(z[2 * k]), complex(z[2 * k + 1])
-            n = np.sqrt(c * c + s * s) if kind == "R" else c
-            w += [c / n, s / n]
+        w = _normalised(z.astype(complex), kinds)
         x = newton(system.square, system.gens, w, dps)
         if x is None:
             return None
@@ -693,11 +696,7 @@ def _singular_endpoints(
     )
     out = []
     for z in points:
-        w = []
-        for k, kind in enumerate(kinds):
-            c, s = complex(z[2 * k]), complex(z[2 * k + 1])
-            n = np.sqrt(c * c + s * s) if kind == "R" else c
-            w += [c / n, s / n]
+        w = _normalised(z.astype(complex), kinds)
         sv = np.linalg.svd(np.array(jac(*w), dtype=complex), compute_uv=False)
         if sv[-1] > MODE_ENDPOINT_SINGULAR_RTOL * sv[0]:
             continue

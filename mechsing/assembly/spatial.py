@@ -30,7 +30,7 @@ import sympy
 
 from mechsing.assembly.certify import newton
 from mechsing.assembly.engine import SEED, real_endpoints, track
-from mechsing.assembly.study import qconj, qmul
+from mechsing.assembly.study import qconj, qmul, rotation
 from mechsing.errors import FormulationError
 from mechsing.model import Mechanism
 
@@ -141,18 +141,6 @@ def pose_of(study: list[Any]) -> tuple[mpmath.matrix, mpmath.matrix]:
     return R, mpmath.matrix([2 * t[i + 1] / delta for i in range(3)])
 
 
-def _rot(axis: Any, q: Any) -> mpmath.matrix:
-    x, y, z = axis
-    c, s, v = mpmath.cos(q), mpmath.sin(q), 1 - mpmath.cos(q)
-    return mpmath.matrix(
-        [
-            [c + x * x * v, x * y * v - z * s, x * z * v + y * s],
-            [y * x * v + z * s, c + y * y * v, y * z * v - x * s],
-            [z * x * v - y * s, z * y * v + x * s, c + z * z * v],
-        ]
-    )
-
-
 def _angle(axis: Any, p: Any, q: Any) -> Any:
     """The angle about unit ``axis`` taking p to q (their components normal to it)."""
     w = mpmath.matrix(axis)
@@ -224,7 +212,7 @@ def joint_values_spatial(
             pairs = _two_axes(a1, a2, ref_dir, now_dir)
             q1, q2 = min(pairs, key=lambda p: abs(p[0]) + abs(p[1]))
             values[n1] = [q1, q2]
-            Rc = _rot(a1, q1) * _rot(a2, q2)
+            Rc = rotation(a1, q1) * rotation(a2, q2)
         else:  # S: the rotation taking the leg's direction onto the current one, least angle
             axis = mpmath.matrix(
                 [
@@ -236,7 +224,7 @@ def joint_values_spatial(
             ang = mpmath.atan2(mpmath.norm(axis), (ref_dir.T * now_dir)[0])
             unit = axis / mpmath.norm(axis)
             values[n1] = [unit[i] * ang for i in range(3)]
-            Rc = _rot(list(unit), ang)
+            Rc = rotation(list(unit), ang)
         values[n2] = [q]
         values[n3] = _log(Rc.T * R)
     return [values[name][i] for name, i in mech.coordinates()]

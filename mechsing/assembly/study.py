@@ -8,7 +8,8 @@ and multiply (float, mpmath, sympy), so one formula serves the solver's polynomi
 its refinement at 50 digits and its interval certificate.
 
 Owns :func:`qmul`, :func:`qconj`, :func:`dmul`, :func:`dconj`, :func:`line`,
-:func:`slide`, :func:`rotation_quaternion`.
+:func:`slide`, :func:`rotation_quaternion`, :func:`rotation` (a rotation matrix of mpmath
+numbers, from an axis and an angle or from a rotation vector).
 """
 
 from __future__ import annotations
@@ -18,7 +19,16 @@ from typing import Any
 
 import mpmath
 
-__all__ = ["dconj", "dmul", "line", "qconj", "qmul", "rotation_quaternion", "slide"]
+__all__ = [
+    "dconj",
+    "dmul",
+    "line",
+    "qconj",
+    "qmul",
+    "rotation",
+    "rotation_quaternion",
+    "slide",
+]
 
 
 def qmul(p: Sequence[Any], q: Sequence[Any]) -> list[Any]:
@@ -85,3 +95,22 @@ def rotation_quaternion(R: Any) -> list[Any]:
     if k == 2:
         return [(R[0, 2] - R[2, 0]) * h, (R[0, 1] + R[1, 0]) * h, r / 2, (R[1, 2] + R[2, 1]) * h]
     return [(R[1, 0] - R[0, 1]) * h, (R[0, 2] + R[2, 0]) * h, (R[1, 2] + R[2, 1]) * h, r / 2]
+
+
+def rotation(axis: Sequence[Any], q: Any | None = None) -> Any:
+    """The rotation by ``q`` about the unit ``axis`` (Rodrigues, mpmath); without ``q``,
+    ``axis`` is a rotation vector (its direction and length)."""
+    if q is None:
+        q = mpmath.sqrt(sum(x * x for x in axis))
+        if q == 0:
+            return mpmath.eye(3)
+        axis = [x / q for x in axis]
+    x, y, z = axis
+    c, s, v = mpmath.cos(q), mpmath.sin(q), 1 - mpmath.cos(q)
+    return mpmath.matrix(
+        [
+            [c + x * x * v, x * y * v - z * s, x * z * v + y * s],
+            [y * x * v + z * s, c + y * y * v, y * z * v - x * s],
+            [z * x * v - y * s, z * y * v + x * s, c + z * z * v],
+        ]
+    )
