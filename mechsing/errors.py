@@ -46,6 +46,7 @@ __all__ = [
     "FormulationError",
     "InputError",
     "InputRefError",
+    "Interrupted",
     "MechanismError",
     "MechsingError",
     "ParameterError",
@@ -179,6 +180,15 @@ class TimeLimitExceeded(BaseException):
     """
 
     activity: str | None = None
+
+
+class Interrupted(KeyboardInterrupt):
+    """A command stopped by a signal (SIGTERM as Ctrl-C is): ``signum`` is its number.
+    A KeyboardInterrupt, so that what cleans up after Ctrl-C does so after SIGTERM too."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
 
 
 _WORK: ContextVar[tuple[tuple[str, str], ...]] = ContextVar("mechsing_work", default=())

@@ -12,6 +12,13 @@ stop it.  :class:`TimeLimit` interrupts the running Python code wherever it is:
   exception in the working thread (CPython's ``PyThreadState_SetAsyncExc``), with the same
   effect.
 
+A call into compiled code that releases the GIL (Bertini's path tracking) runs no Python
+code, so neither a time limit nor a stop signal (SIGINT, SIGTERM: the command line's) is
+delivered until it returns.  :func:`interruptible` lets such a call be stopped: while it
+runs, a helper thread wakes on every signal that has a Python handler and calls the
+library's own stop function; once the call returns, the handler runs and raises as
+usual.
+
 A worker process would also survive a long call into C code (neither way above interrupts a
 single huge integer product before it returns), but it would have to send the whole analysis
 (sympy arrays, models, closures) back to the parent and pay a process start per configuration;
@@ -27,12 +34,15 @@ names what the code is doing, so that the exception can say what was cut short.
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
 import math
+import os
+import select
 import signal
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from types import TracebackType
 
@@ -48,6 +58,7 @@ __all__ = [
     "TimeLimitExceeded",
     "activity",
     "check_time_limit",
+    "interruptible",
 ]
 
 #: seconds exact mode may spend on one configuration (``mechsing analyze --time-limit``,
@@ -212,3 +223,61 @@ def _raise_in_thread(thread_id: int, exc: type[BaseException] | None) -> None:
     ctypes.pythonapi.PyThreadState_SetAsyncExc(
         ctypes.c_ulong(thread_id), ctypes.py_object(exc) if exc is not None else None
     )
+
+
+#: the signals that interrupt a computation: a time limit (SIGALRM), Ctrl-C, SIGTERM
+_INTERRUPTING = frozenset({signal.SIGALRM, signal.SIGINT, signal.SIGTERM})
+
+
+@contextmanager
+def interruptible(stop: Callable[[], None]) -> Iterator[Callable[[], bool]]:
+    """Run the block, a call into compiled code that releases the GIL, so that a time
+    limit (SIGALRM) or a stop signal (SIGINT, SIGTERM) stops it: on such a signal a helper
+    thread calls ``stop()`` (the library's request to return early), and the signal's
+    Python handler raises once the call has returned.  Yields a function that says
+    whether ``stop()`` was called: a caller whose handler did not raise (a signal that
+    ends nothing) runs the call again.  In a thread other than the main one (which
+    receives no signals) the block runs as it is.
+
+    It works through :func:`signal.set_wakeup_fd` (the interpreter writes each signal's
+    number to a pipe when it arrives); a wake-up file the program had set gets the same
+    bytes and is put back afterwards."""
+    stopped = threading.Event()
+    if threading.current_thread() is not threading.main_thread():
+        yield stopped.is_set
+        return
+    r, w = os.pipe()
+    os.set_blocking(w, False)
+    try:
+        old = signal.set_wakeup_fd(w, warn_on_full_buffer=False)
+    except ValueError:  # signals unavailable here (an embedded interpreter)
+        os.close(r)
+        os.close(w)
+        yield stopped.is_set
+        return
+    done = threading.Event()
+
+    def watch() -> None:
+        while not done.is_set():
+            if not select.select([r], [], [], REPEAT)[0]:
+                continue
+            data = os.read(r, 64)
+            if old >= 0:
+                with contextlib.suppress(OSError):
+                    os.write(old, data)
+            if _INTERRUPTING.intersection(data):
+                stopped.set()
+                stop()
+
+    watcher = threading.Thread(target=watch, name="mechsing-interruptible", daemon=True)
+    watcher.start()
+    try:
+        yield stopped.is_set
+    finally:
+        signal.set_wakeup_fd(old)
+        done.set()
+        with contextlib.suppress(OSError):
+            os.write(w, b"\0")  # no signal has number 0: wakes the helper to leave
+        watcher.join()
+        os.close(r)
+        os.close(w)

@@ -18,6 +18,7 @@ import sympy
 
 from mechsing.errors import UserError
 from mechsing.numeric import MODE_IMAGINARY_RTOL
+from mechsing.timelimit import interruptible
 
 __all__ = ["SEED", "real_endpoints", "system_text", "track"]
 
@@ -52,7 +53,11 @@ def track(
     was = bertini.recording()
     bertini.recording(False)  # no records directory in the user's cwd, no replayed paths
     try:
-        result = bertini.solve(bertini.parse.system(system_text(eqs, groups)), seed=SEED)
+        while True:  # a signal stops the tracking; its handler raises once the solve returns
+            with interruptible(bertini.request_stop) as stopped:
+                result = bertini.solve(bertini.parse.system(system_text(eqs, groups)), seed=SEED)
+            if not stopped():  # (a handler that did not raise: the solve is run again)
+                break
     finally:
         bertini.recording(was)
     solver = result.solver

@@ -1,230 +1,31 @@
-"""The ``mechsing`` command.
+"""The ``mechsing`` command (a face: :mod:`mechsing.cli.main` holds :func:`main` and the
+parser; each sub-command is a module of this package, :mod:`mechsing.cli.options` holds
+the options several share)."""
 
-Each sub-command lives in its own module of this package and exposes
-``NAME`` (the sub-command), ``HELP`` (one line), ``add_arguments(parser)`` and
-``run(args) -> int``.  Exit status: 0 success, 2 bad input, 3 some
-configuration could not be analysed (not closed, or stopped by exact mode's
-time limit; the others are reported), 4 an internal defect (an exception that
-escaped: one line on stderr, the traceback with ``-T``).
-"""
-
-from __future__ import annotations
-
-import argparse
-import contextlib
-import importlib
-import os
-import signal
-import sys
-import threading
-from collections.abc import Iterator, Sequence
-from typing import TYPE_CHECKING
-
-from mechsing import __version__
-from mechsing.errors import (
-    ConfigurationError,
-    MechsingError,
-    UserError,
-    current_work,
-    forget_work,
-    work_item,
+from mechsing.cli.main import (
+    BAD_INPUT,
+    COMMANDS,
+    INTERNAL_ERROR,
+    NOT_ANALYSED,
+    build_parser,
+    exit_status,
+    load_mechanism,
+    main,
+    with_file,
 )
+from mechsing.errors import ConfigurationError, MechsingError, UserError
 
-if TYPE_CHECKING:  # the commands import their layers lazily: `mechsing --version` stays fast
-    from mechsing.model import Mechanism
-    from mechsing.numeric import Precision
-    from mechsing.reader import Source
-
-#: exit statuses: bad input, a configuration that could not be analysed, a defect
-BAD_INPUT, NOT_ANALYSED, INTERNAL_ERROR = 2, 3, 4
-
-
-def exit_status(exc: BaseException) -> int:
-    """The exit status of an exception that reaches the command line (the only place
-    exceptions become statuses): 3 for a configuration that could not be analysed, 2
-    for any other error of mechsing's (bad input), 4 for anything else (a defect)."""
-    if isinstance(exc, ConfigurationError):
-        return NOT_ANALYSED
-    if isinstance(exc, MechsingError):
-        return BAD_INPUT
-    return INTERNAL_ERROR
-
-
-def with_file(message: str, path: str | None = None) -> str:
-    """An error message that names its file: the one given, else the one being worked on
-    when the error was raised (messages from reading a file name it already)."""
-    path = path or work_item("file")
-    return message if not path or path in message else f"{path}: {message}"
-
-
-def _few_blas_threads() -> None:
-    """mechsing works on many tiny matrices: BLAS threads only add overhead there (and
-    on a loaded machine make a 4x4 product hundreds of times slower).  Set before the
-    commands load numpy; a user's own setting wins.  Only the command does this: a
-    program that imports mechsing keeps its own threads."""
-    for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(var, "1")
-
-
-@contextlib.contextmanager
-def _private_library_files() -> Iterator[None]:
-    """The libraries a command uses keep their caches and records (matplotlib's font list
-    and configuration folder, Dask's scratch space and locks) in one temporary folder of
-    the command's, removed when it ends: a command writes no file it was not asked to,
-    not in the working directory, the home folder or the shared temporary folder.  A
-    user's own MPLCONFIGDIR or DASK_TEMPORARY_DIRECTORY wins."""
-    import shutil
-    import tempfile
-
-    names = [v for v in ("MPLCONFIGDIR", "DASK_TEMPORARY_DIRECTORY") if v not in os.environ]
-    if not names:
-        yield
-        return
-    folder = tempfile.mkdtemp(prefix="mechsing-")
-    for var in names:
-        os.environ[var] = folder
-    try:
-        with contextlib.ExitStack() as stack:
-            if "DASK_TEMPORARY_DIRECTORY" in names and "dask" in sys.modules:
-                # Dask read its configuration when it was imported (an earlier command
-                # of this process): set it for this command too
-                import dask
-
-                stack.enter_context(dask.config.set({"temporary-directory": folder}))
-            yield
-    finally:
-        for var in names:
-            if os.environ.get(var) == folder:
-                del os.environ[var]
-        dask = sys.modules.get("dask")
-        if dask is not None and dask.config.get("temporary-directory", None) == folder:
-            dask.config.set({"temporary-directory": None})  # imported by this command
-        shutil.rmtree(folder, ignore_errors=True)
-
-
-def _terminated(signum: int, frame: object) -> None:
-    """SIGTERM ends the command as Ctrl-C does: its temporary files are removed."""
-    raise SystemExit(128 + signum)
-
-
-#: sub-command modules, in the order ``--help`` lists them
-COMMANDS = (
-    "analyze",
-    "solve",
-    "modes",
-    "sweep",
-    "report",
-    "condition",
-    "convert",
-    "catalog",
-    "identify",
-    "schema",
-    "exercise",
-)
-
-
-def precision_option(text: str) -> Precision:
-    """The ``--precision`` option, or a UserError that says what is accepted."""
-    from mechsing.numeric import parse_precision
-
-    try:
-        return parse_precision(text)
-    except ValueError as exc:
-        raise UserError(f"--precision: {exc}") from None
-
-
-def load_mechanism(
-    path: str | Source, verbose: bool = False, symbolic: Sequence[str] = ()
-) -> Mechanism:
-    """Read a mechanism file of any format (:func:`mechsing.reader.read_mechanism`, the
-    one reader of every command); print its warnings (likely mistakes that are not
-    errors), and with ``verbose`` what was done silently (axes normalised...)."""
-    from mechsing.errors import working_on
-    from mechsing.reader import read_mechanism
-
-    with working_on(file=path if isinstance(path, str) else path.path):
-        mech = read_mechanism(path, symbolic=symbolic)
-    for warning in mech.warnings:
-        print(f"mechsing: warning: {warning}", file=sys.stderr)
-    if verbose:
-        for note in mech.notes:
-            print(f"mechsing: {note}", file=sys.stderr)
-    return mech
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # argparse exits 2 already; keep its words
-        self.print_usage(sys.stderr)
-        self.exit(2, f"mechsing: error: {message}\n")
-
-
-def _load_commands() -> list:
-    mods = []
-    for name in COMMANDS:
-        try:
-            mods.append(importlib.import_module(f"mechsing.cli.{name}"))
-        except ModuleNotFoundError as exc:  # a command not built yet
-            if exc.name != f"mechsing.cli.{name}":
-                raise
-    return mods
-
-
-def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(
-        prog="mechsing",
-        description="Find and classify the singularities of mechanisms with Lie groups.",
-    )
-    parser.add_argument("--version", action="version", version=f"mechsing {__version__}")
-    parser.add_argument(
-        "-T",
-        "--traceback",
-        action="store_true",
-        help="show a Python traceback on errors (debugging)",
-    )
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    for mod in _load_commands():
-        p = sub.add_parser(mod.NAME, help=mod.HELP, description=mod.__doc__)
-        mod.add_arguments(p)
-        p.set_defaults(_run=mod.run)
-    return parser
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    _few_blas_threads()
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    if not getattr(args, "_run", None):
-        parser.print_help()
-        return 0
-    forget_work()
-    main_thread = threading.current_thread() is threading.main_thread()
-    before = signal.signal(signal.SIGTERM, _terminated) if main_thread else None
-    try:
-        with _private_library_files():
-            return int(args._run(args))
-    except MechsingError as exc:
-        if args.traceback:
-            raise
-        print(f"mechsing: error: {with_file(str(exc))}", file=sys.stderr)
-        return exit_status(exc)
-    except BrokenPipeError:
-        return 0
-    except Exception as exc:  # a defect: one line that says where, exit 4
-        if args.traceback:
-            raise
-        where = current_work() or f"mechsing {args.command}"
-        what = " ".join(str(exc).split())[:300]
-        print(
-            f"mechsing: internal error in {where}: {type(exc).__name__}: {what}. "
-            "This is a defect of mechsing, not of your input: please report it with the "
-            "file and the command (add -T after mechsing for the traceback)",
-            file=sys.stderr,
-        )
-        return INTERNAL_ERROR
-    finally:
-        if before is not None:
-            signal.signal(signal.SIGTERM, before)
-
-
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+__all__ = [
+    "BAD_INPUT",
+    "COMMANDS",
+    "INTERNAL_ERROR",
+    "NOT_ANALYSED",
+    "ConfigurationError",
+    "MechsingError",
+    "UserError",
+    "build_parser",
+    "exit_status",
+    "load_mechanism",
+    "main",
+    "with_file",
+]

@@ -261,10 +261,17 @@ def apply_scene(mech: Any, args: argparse.Namespace, path: str) -> Any:
 
 
 def add_load_option(p: argparse.ArgumentParser) -> None:
-    """Add ``--load`` (a wrench on the output: :mod:`mechsing.statics.loads`)."""
-    from mechsing.statics.loads import LOAD_HELP
-
-    p.add_argument("--load", metavar='"force=FX,FY,FZ ..."', help=LOAD_HELP)
+    """Add ``--load`` (a wrench on the output): its text is kept as given and read when the
+    command runs (:func:`mechsing.statics.loads.parse_load`), so the parser imports no
+    statics (``--help`` stays light)."""
+    p.add_argument(
+        "--load",
+        metavar='"force=FX,FY,FZ ..."',
+        help='a load on the output: "force=FX,FY,FZ moment=MX,MY,MZ point=X,Y,Z" (N; moment '
+        "in N times the file's length unit about the point, a point of the output body in the "
+        "drawn pose in the file's length unit; each part optional, the point defaults to the "
+        "output's reference point); it replaces the file's load",
+    )
 
 
 def with_load(result: Any, mech: Any, text: str | None) -> Any:

@@ -14,14 +14,7 @@ from typing import Any
 from mechsing.errors import ExpressionError, UserError
 from mechsing.model.loads import LOAD_KEYS, Load
 
-__all__ = ["LOAD_HELP", "parse_load"]
-
-LOAD_HELP = (
-    'a load on the output: "force=FX,FY,FZ moment=MX,MY,MZ point=X,Y,Z" (N; moment in N '
-    "times the file's length unit about the point, a point of the output body in the drawn "
-    "pose in the file's length unit; each part optional, the point defaults to the output's "
-    "reference point); it replaces the file's load"
-)
+__all__ = ["parse_load"]
 
 
 def parse_load(text: str, mech: Any) -> Load:
