@@ -29,6 +29,10 @@ DIETMAIER = ROOT / "examples" / "stewart_dietmaier.yaml"
 PREVIOUS = "the previous output\n"
 STATUS = {signal.SIGINT: 130, signal.SIGTERM: 143}
 
+pytestmark = pytest.mark.skipif(
+    not Path("/proc/self/stat").exists(), reason="reads a process's CPU time from /proc"
+)
+
 
 def _cpu(pid: int) -> float:
     """The CPU seconds (user and system) the process has used so far."""
