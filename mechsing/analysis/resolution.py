@@ -114,6 +114,18 @@ def resolution_check(mech: Mechanism, result: Any, model: Any) -> DataResolution
     singular = result.singular
     if singular is None:
         return None  # undecided: nothing rests on a margin
+    if singular:
+        margins = [
+            (_test_of(f), f.margin)
+            for f in result.singularities
+            if not isinstance(f, UndecidedFinding) and f.margin is not None
+        ]
+    else:
+        margins = [(d.test, d.margin) for d in result.decisions if d.rank is not None]
+    if not margins or (not mech.loops and mech.output is None):
+        # nothing rests on a margin, or no test whose singular values the data move (a
+        # tree with no loop and no output: :func:`test_sigmas` has none)
+        return None
     fm = float_model(model)
     columns: list[int] = []
     resolutions: list[float] = []
@@ -135,14 +147,6 @@ def resolution_check(mech: Mechanism, result: Any, model: Any) -> DataResolution
     resolutions += [res for *_, res, _d in mech.resolution]
     digits += [d for *_, d in mech.resolution]
     spread = resolution_spread(slopes, resolutions)
-    if singular:
-        margins = [
-            (_test_of(f), f.margin)
-            for f in result.singularities
-            if not isinstance(f, UndecidedFinding) and f.margin is not None
-        ]
-    else:
-        margins = [(d.test, d.margin) for d in result.decisions if d.rank is not None]
     flips = [(v, t) for t, m in margins if (v := flips_within(m, spread, singular)) is not None]
     if not flips:
         return None
