@@ -31,7 +31,7 @@ from mechsing.screws import closure_system
 from mechsing.singularity.criteria import ConstraintTest, SerialTest
 from mechsing.singularity.zfb import io_quantities, output_chain
 
-__all__ = ["geometry_slopes", "test_sigmas", "value_slopes"]
+__all__ = ["closure_nullity", "geometry_slopes", "test_sigmas", "value_slopes"]
 
 _FLOAT = Precision("float")
 
@@ -42,9 +42,17 @@ def _relative(dec: RankDecision) -> np.ndarray:
     return s / smax if smax else s
 
 
-def test_sigmas(mech: Any, fm: Any, q: np.ndarray) -> list[np.ndarray]:
+def test_sigmas(
+    mech: Any, fm: Any, q: np.ndarray, nullity: int | None = None
+) -> list[np.ndarray]:
     """The relative singular values of every test at ``q`` (float model ``fm``), in a
-    fixed order for a given mechanism (so that two configurations can be compared)."""
+    fixed order for a given mechanism (so that two configurations can be compared).
+
+    ``nullity``: the closure kernel's dimension to hold (the one decided at the
+    configuration compared with, :func:`closure_nullity`): the input/output tests are
+    then those of the closure's ``nullity`` smallest singular directions, which move as
+    continuously as the data, where the kernel decided at ``q`` would jump with its
+    rank (a kernel of dimension 2 at a bifurcation, of 1 beside it)."""
     q = np.asarray(q, dtype=float)
     out: list[np.ndarray] = []
     cs = closure_system(fm, q, _FLOAT)
@@ -58,6 +66,8 @@ def test_sigmas(mech: Any, fm: Any, q: np.ndarray) -> list[np.ndarray]:
         out.append(_relative(decide_rank(T, _FLOAT, fm.length_scale)))
         return out
     N = cs.rank.null_space
+    if nullity is not None and nullity != cs.nullity:
+        N = _smallest_directions(np.asarray(cs.matrix, dtype=float), nullity)
     if N is not None and mech.inputs:
         io = io_quantities(mech, fm, q, N, _FLOAT, screws=cs.screws, cs=cs)
         if io is not None:
@@ -70,6 +80,20 @@ def test_sigmas(mech: Any, fm: Any, q: np.ndarray) -> list[np.ndarray]:
     # decided rank, so their matrix jumps where a leg's rank does (no derivative there);
     # the legs' own chains above move as continuously as the data
     return out
+
+
+def closure_nullity(fm: Any, q: np.ndarray) -> int | None:
+    """The closure kernel's dimension decided at ``q`` (float), to hold in
+    :func:`test_sigmas` at the configurations compared with it."""
+    return closure_system(fm, np.asarray(q, dtype=float), _FLOAT).nullity
+
+
+def _smallest_directions(A: np.ndarray, k: int) -> np.ndarray | None:
+    """The right singular directions of ``A``'s ``k`` smallest singular values (n x k)."""
+    if k <= 0:
+        return None
+    _, _, vt = np.linalg.svd(A, full_matrices=True)
+    return vt[-k:].T
 
 
 def _change(a: list[np.ndarray], b: list[np.ndarray]) -> float:
@@ -88,7 +112,8 @@ def value_slopes(mech: Any, fm: Any, q: np.ndarray, columns: list[int]) -> list[
     differences on both sides (a singular value that vanishes at q grows like |x| on
     both, which a central difference would cancel)."""
     q = np.asarray(q, dtype=float)
-    here = test_sigmas(mech, fm, q)
+    k = closure_nullity(fm, q)
+    here = test_sigmas(mech, fm, q, k)
     out = []
     for col in columns:
         step = RESOLUTION_STEP * (fm.length_scale if fm.length_columns[col] else 1.0)
@@ -96,7 +121,7 @@ def value_slopes(mech: Any, fm: Any, q: np.ndarray, columns: list[int]) -> list[
         for sign in (1.0, -1.0):
             qq = q.copy()
             qq[col] += sign * step
-            worst = max(worst, _change(here, test_sigmas(mech, fm, qq)))
+            worst = max(worst, _change(here, test_sigmas(mech, fm, qq, k)))
         out.append(worst / step)
     return out
 
@@ -110,7 +135,8 @@ def geometry_slopes(
     of the mechanism with that entry moved (a direction renormalised), one-sided on
     both sides as :func:`value_slopes`."""
     q = np.asarray(q, dtype=float)
-    here = test_sigmas(mech, fm, q)
+    k = closure_nullity(fm, q)
+    here = test_sigmas(mech, fm, q, k)
     out = []
     for joint, key, index in entries:
         j = mech.joint(joint)
@@ -135,6 +161,7 @@ def geometry_slopes(
                     for jj in mech.joints
                 ),
             )
-            worst = max(worst, _change(here, test_sigmas(other, KinematicModel(other, _FLOAT), q)))
+            moved_model = KinematicModel(other, _FLOAT)
+            worst = max(worst, _change(here, test_sigmas(other, moved_model, q, k)))
         out.append(worst / step)
     return out
