@@ -268,9 +268,7 @@ def test_flat_parallelogram_rounding_does_not_reach_floats_threshold(
     those of a kernel of dimension 1 beside it, which do not move continuously."""
     path = tmp_path / "parallelogram.yaml"
     path.write_text(PARALLELOGRAM.replace("-1.57079632679490", f"{-math.pi / 2:.{digits}g}"))
-    c = cli_json(["analyze", path, "--precision", "float", "--format", "json"])[
-        "configurations"
-    ][0]
+    c = cli_json(["analyze", path, "--precision", "float", "--format", "json"])["configurations"][0]
     assert c["singular"] is True
     assert "bifurcation" in {s["class"] for s in c["singularities"]}
     assert "data_resolution" not in c

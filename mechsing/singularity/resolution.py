@@ -42,9 +42,7 @@ def _relative(dec: RankDecision) -> np.ndarray:
     return s / smax if smax else s
 
 
-def test_sigmas(
-    mech: Any, fm: Any, q: np.ndarray, nullity: int | None = None
-) -> list[np.ndarray]:
+def test_sigmas(mech: Any, fm: Any, q: np.ndarray, nullity: int | None = None) -> list[np.ndarray]:
     """The relative singular values of every test at ``q`` (float model ``fm``), in a
     fixed order for a given mechanism (so that two configurations can be compared).
 
