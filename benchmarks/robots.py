@@ -5,8 +5,8 @@ Run from the repository root (the ``bench`` extra installs example-robot-data)::
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/robots.py --timeout 120 \
         --tree before=/path/to/old/checkout --tree after=.
 
-Each robot is analysed by ``python -m mechsing analyze FILE`` in a child process, once per
-tree (``NAME=PATH``: the checkout put first on ``PYTHONPATH``), the trees in turn robot by
+Each robot is analysed by ``python -m mechsing analyze FILE --format json`` in a child process, once per
+tree (``NAME=PATH``: the checkout, the child's working folder and ``PYTHONPATH``), the trees in turn robot by
 robot, so that a change of the machine's load falls on all of them alike.  The time is the
 child's CPU time (user + system, from ``getrusage``), which other processes on a shared
 machine do not inflate.  A child still running after ``--timeout`` seconds of wall clock is
@@ -51,8 +51,9 @@ def run_one(tree: Path, urdf: Path, timeout: float) -> dict:
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     proc = subprocess.Popen(
-        [sys.executable, "-m", "mechsing", "analyze", str(urdf)],
+        [sys.executable, "-m", "mechsing", "analyze", str(urdf), "--format", "json"],
         env=env,
+        cwd=tree,  # python -m puts the working folder first on the path: the tree's own
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
@@ -69,10 +70,7 @@ def run_one(tree: Path, urdf: Path, timeout: float) -> dict:
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     said = ""
     if code == 0:
-        verdicts = [
-            ln.strip() for ln in out.splitlines() if ln.strip().startswith(("regular", "singular"))
-        ]
-        said = verdicts[0] if verdicts else ""
+        said = "; ".join(_verdict(c) for c in json.loads(out)["configurations"])
     elif code != "timeout":
         lines = [ln.strip() for ln in (err or out).splitlines() if ln.strip()]
         said = lines[0] if lines else ""
@@ -83,6 +81,17 @@ def run_one(tree: Path, urdf: Path, timeout: float) -> dict:
         "wall_s": round(time.perf_counter() - t0, 3),
         "said": said,
     }
+
+
+def _verdict(c: dict) -> str:
+    """A configuration's verdict in a few words: regular, or singular and its classes."""
+    if c.get("error"):
+        return f"not analysed: {c['error']}"
+    if c.get("singular") is None:
+        return "undecided"
+    if not c["singular"]:
+        return "regular"
+    return "singular (" + ", ".join(sorted({s["class"] for s in c["singularities"]})) + ")"
 
 
 def summary(rows: list[dict]) -> str:
