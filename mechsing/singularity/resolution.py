@@ -28,6 +28,7 @@ import numpy as np
 from mechsing.kinematics import KinematicModel
 from mechsing.numeric import RESOLUTION_STEP, Precision, RankDecision, decide_rank
 from mechsing.screws import closure_system
+from mechsing.screws.systems import share_loop_identifications
 from mechsing.singularity.criteria import ConstraintTest, SerialTest
 from mechsing.singularity.zfb import io_quantities, output_chain
 
@@ -124,6 +125,32 @@ def value_slopes(mech: Any, fm: Any, q: np.ndarray, columns: list[int]) -> list[
     return out
 
 
+def _float_params(value: Any) -> Any:
+    """A joint parameter in float (tuples entry by entry); what has no float (a symbol) as
+    it is."""
+    if isinstance(value, tuple):
+        return tuple(_float_params(x) for x in value)
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return value
+
+
+def _in_float(mech: Any) -> Any:
+    """``mech`` with its joints' parameters in float (the models built from it then need
+    no exact arithmetic: about a millisecond each), sharing its loop identifications (the
+    subgroups identified from the file's values)."""
+    out = replace(
+        mech,
+        joints=tuple(
+            replace(j, params={k: _float_params(v) for k, v in j.params.items()})
+            for j in mech.joints
+        ),
+    )
+    share_loop_identifications(mech, out)
+    return out
+
+
 def geometry_slopes(
     mech: Any, fm: Any, q: np.ndarray, entries: list[tuple[str, str, int]]
 ) -> list[float]:
@@ -131,34 +158,40 @@ def geometry_slopes(
     direction's component), the largest rate of change of a test's relative singular
     value per SI unit of it at the joint values ``q`` (held): the tests of a float model
     of the mechanism with that entry moved (a direction renormalised), one-sided on
-    both sides as :func:`value_slopes`."""
+    both sides as :func:`value_slopes`.
+
+    The moved models are built from the mechanism's parameters in float and keep its
+    loops' subgroups (identified once, from the file's values): the tests' matrices are
+    those of the configuration, moved, and each model costs no exact arithmetic."""
+    if not entries:
+        return []
     q = np.asarray(q, dtype=float)
     k = closure_nullity(fm, q)
-    here = test_sigmas(mech, fm, q, k)
+    base = _in_float(mech)
+    here = test_sigmas(base, KinematicModel(base, _FLOAT), q, k)
+    index_of = {j.name: i for i, j in enumerate(base.joints)}
     out = []
     for joint, key, index in entries:
-        j = mech.joint(joint)
+        at = index_of[joint]
+        j = base.joints[at]
         value = j.params[key]
         direction = key in ("axis", "normal")
         step = RESOLUTION_STEP * (1.0 if direction else fm.length_scale)
         worst = 0.0
         for sign in (1.0, -1.0):
             if isinstance(value, tuple):
-                moved = [float(x) for x in value]
+                moved = list(value)
                 moved[index] += sign * step
                 if direction:
                     n = float(np.linalg.norm(moved))
                     moved = [x / n for x in moved]
                 new = tuple(moved)
             else:
-                new = float(value) + sign * step
-            other = replace(
-                mech,
-                joints=tuple(
-                    replace(jj, params={**jj.params, key: new}) if jj.name == joint else jj
-                    for jj in mech.joints
-                ),
-            )
+                new = value + sign * step
+            joints = list(base.joints)
+            joints[at] = replace(j, params={**j.params, key: new})
+            other = replace(base, joints=tuple(joints))
+            share_loop_identifications(mech, other)
             moved_model = KinematicModel(other, _FLOAT)
             worst = max(worst, _change(here, test_sigmas(other, moved_model, q, k)))
         out.append(worst / step)
