@@ -130,7 +130,10 @@ def resolution_check(mech: Mechanism, result: Any, model: Any) -> DataResolution
     columns: list[int] = []
     resolutions: list[float] = []
     digits: list[int] = []
+    kept = set(mech.joint_names)  # the joints analysed: a scene's output leaves branches out
     for joint, entries in cfg.resolution.items():
+        if joint not in kept:
+            continue
         start = fm.joint(joint).columns.start
         for i, (res, ndigits) in enumerate(entries):
             if res > 0:
@@ -142,10 +145,11 @@ def resolution_check(mech: Mechanism, result: Any, model: Any) -> DataResolution
     slopes = value_slopes(mech, fm, q, columns)
     # the geometry's resolution too (a point, a pitch, a direction written with digits
     # to spare), with the joint values held
-    geometry = [(j, key, i) for j, key, i, _res, _d in mech.resolution]
+    written = [entry for entry in mech.resolution if entry[0] in kept]
+    geometry = [(j, key, i) for j, key, i, _res, _d in written]
     slopes += geometry_slopes(mech, fm, q, geometry)
-    resolutions += [res for *_, res, _d in mech.resolution]
-    digits += [d for *_, d in mech.resolution]
+    resolutions += [res for *_, res, _d in written]
+    digits += [d for *_, d in written]
     spread = resolution_spread(slopes, resolutions)
     flips = [(v, t) for t, m in margins if (v := flips_within(m, spread, singular)) is not None]
     if not flips:

@@ -5,6 +5,8 @@ Owns :func:`read_urdf`.  The mapping (also in the docs' import page):
 * each ``<link>`` is a body; a ``fixed`` joint merges its two links into one
   body (named after the link nearer the root); the root link (the one that is
   no joint's child) is the ground;
+* a link merged into another's body keeps its origin (``merged_links``): ``--output-body``
+  may name it, the output then being that point of the body (a tool centre point);
 * ``revolute`` and ``continuous`` -> R (``axis`` and ``point``), ``prismatic``
   -> P (``axis``), ``planar`` -> G (``normal`` = the URDF axis, the plane's
   normal), ``floating`` -> D; the joint's ``between`` is ``[parent, child]``;
@@ -248,6 +250,11 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         if bodies.find(tip) != bodies.find(base):
             output = bodies.find(tip)
     name = root.get("name")
+    merged = {
+        link: (bodies.find(link), tuple(float(x) for x in world[link][:3, 3]))
+        for link in links
+        if bodies.find(link) != link
+    }
     return MechanismSpec(
         name=name,
         source=f"Converted by mechsing from the URDF file {path} (robot {name!r}).",
@@ -259,6 +266,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         inputs=[j.name for j in out_joints if j.type in ("R", "P") and j.name not in followers],
         couplings=couplings,
         notes=notes,
+        merged_links=merged,  # type: ignore[arg-type]
     )
 
 
