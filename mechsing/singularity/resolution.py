@@ -32,7 +32,14 @@ from mechsing.screws.systems import share_loop_identifications
 from mechsing.singularity.criteria import ConstraintTest, SerialTest
 from mechsing.singularity.zfb import io_quantities, output_chain
 
-__all__ = ["closure_nullity", "geometry_slopes", "test_sigmas", "value_slopes"]
+__all__ = [
+    "closure_nullity",
+    "geometry_slopes",
+    "geometry_step",
+    "test_sigmas",
+    "value_slopes",
+    "value_step",
+]
 
 _FLOAT = Precision("float")
 
@@ -81,6 +88,18 @@ def test_sigmas(mech: Any, fm: Any, q: np.ndarray, nullity: int | None = None) -
     return out
 
 
+def value_step(fm: Any, column: int) -> float:
+    """The finite-difference step of a coordinate column (:func:`value_slopes`): radians,
+    or metres (lengths / L)."""
+    return RESOLUTION_STEP * (fm.length_scale if fm.length_columns[column] else 1.0)
+
+
+def geometry_step(fm: Any, key: str) -> float:
+    """The finite-difference step of a geometry entry (:func:`geometry_slopes`): a
+    direction's component, or metres (lengths / L)."""
+    return RESOLUTION_STEP * (1.0 if key in ("axis", "normal") else fm.length_scale)
+
+
 def closure_nullity(fm: Any, q: np.ndarray) -> int | None:
     """The closure kernel's dimension decided at ``q`` (float), to hold in
     :func:`test_sigmas` at the configurations compared with it."""
@@ -115,7 +134,7 @@ def value_slopes(mech: Any, fm: Any, q: np.ndarray, columns: list[int]) -> list[
     here = test_sigmas(mech, fm, q, k)
     out = []
     for col in columns:
-        step = RESOLUTION_STEP * (fm.length_scale if fm.length_columns[col] else 1.0)
+        step = value_step(fm, col)
         worst = 0.0
         for sign in (1.0, -1.0):
             qq = q.copy()
@@ -176,7 +195,7 @@ def geometry_slopes(
         j = base.joints[at]
         value = j.params[key]
         direction = key in ("axis", "normal")
-        step = RESOLUTION_STEP * (1.0 if direction else fm.length_scale)
+        step = geometry_step(fm, key)
         worst = 0.0
         for sign in (1.0, -1.0):
             if isinstance(value, tuple):
