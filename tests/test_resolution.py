@@ -251,3 +251,25 @@ def test_auto_keeps_float_when_the_written_decimals_do_not_close_at_50_digits(
     assert "error" not in c
     assert "bifurcation" in {s["class"] for s in c["singularities"]}
     assert any("at 50 digits the written decimals did not close" in n for n in c["notes"])
+
+
+@pytest.mark.parametrize("digits", [13, 15])
+def test_flat_parallelogram_rounding_does_not_reach_floats_threshold(
+    tmp_path: Path, digits: int
+) -> None:
+    """The flat parallelogram with its crank at -pi/2 written to 13 or 15 digits: the
+    rounding (at most 5e-13 or 5e-15 rad) moves every test's singular values by at most
+    the change of its matrix (Weyl), a unit-order rate per radian for a linkage of unit
+    lengths: a few times the resolution, far from carrying the closure's dropped value
+    (about 3e-13 of the largest, float's rounding) past float's lower threshold 1e-12.
+    The singular verdict (a bifurcation) stands with no note of the data's resolution.
+    The spread used to be 4e-9 at 15 digits (4e-7 at 13): its finite differences
+    compared the input/output tests of a kernel of dimension 2 at the bifurcation with
+    those of a kernel of dimension 1 beside it, which do not move continuously."""
+    path = tmp_path / "parallelogram.yaml"
+    path.write_text(PARALLELOGRAM.replace("-1.57079632679490", f"{-math.pi / 2:.{digits}g}"))
+    c = cli_json(["analyze", path, "--precision", "float", "--format", "json"])["configurations"][0]
+    assert c["singular"] is True
+    assert "bifurcation" in {s["class"] for s in c["singularities"]}
+    assert "data_resolution" not in c
+    assert not any("resolution" in n for n in c.get("notes", []))

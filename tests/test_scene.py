@@ -161,7 +161,7 @@ def test_the_options_replace_the_files_output_and_inputs_and_say_so_with_v() -> 
 @pytest.mark.parametrize(
     ("argv", "words"),
     [
-        (["--output-body", "l_tip"], "has no body 'l_tip'"),
+        (["--output-body", "l_nope"], "has no body 'l_nope'"),
         (["--output-body", "l_fore", "--relative-to", "l_fore"], "relative to"),
         (["--output-body", "l_fore", "--output-point", "1,2"], "three comma-separated"),
         (["--output-body", "l_fore", "--output-point", "1,2,x"], "--output-point"),
@@ -226,3 +226,12 @@ def test_the_converted_scene_analyses_as_the_robot_with_the_options(tmp_path: Pa
     direct = cli_json(["analyze", URDF, *LEFT_TIP, *common])
     converted = cli_json(["analyze", conv, *common])
     assert direct["configurations"] == converted["configurations"]
+
+
+def test_the_left_tip_link_is_the_left_tip_point() -> None:
+    """``--output-body l_tip`` names the link fixed to the left forearm at its tip: the
+    output is the forearm's point (1.5, 0.5, 0) (issue 44), the same analysis as
+    ``LEFT_TIP`` written out."""
+    by_link = cli_json(["analyze", URDF, "--output-body", "l_tip", "--format", "json"])
+    by_point = cli_json(["analyze", URDF, *LEFT_TIP, "--format", "json"])
+    assert by_link["configurations"] == by_point["configurations"]

@@ -27,7 +27,12 @@ from mechsing.model import Mechanism
 from mechsing.numeric import flips_within, resolution_spread
 from mechsing.singularity.findings import UndecidedFinding
 from mechsing.singularity.local import float_model
-from mechsing.singularity.resolution import geometry_slopes, value_slopes
+from mechsing.singularity.resolution import (
+    geometry_slopes,
+    geometry_step,
+    value_slopes,
+    value_step,
+)
 
 __all__ = ["DataResolution", "resolution_check"]
 
@@ -114,27 +119,6 @@ def resolution_check(mech: Mechanism, result: Any, model: Any) -> DataResolution
     singular = result.singular
     if singular is None:
         return None  # undecided: nothing rests on a margin
-    fm = float_model(model)
-    columns: list[int] = []
-    resolutions: list[float] = []
-    digits: list[int] = []
-    for joint, entries in cfg.resolution.items():
-        start = fm.joint(joint).columns.start
-        for i, (res, ndigits) in enumerate(entries):
-            if res > 0:
-                columns.append(start + i)
-                resolutions.append(res)
-                digits.append(ndigits)
-    values = dict(result.joints)
-    q = np.array([float(values[j][i]) for j, i in mech.coordinates()], dtype=float)
-    slopes = value_slopes(mech, fm, q, columns)
-    # the geometry's resolution too (a point, a pitch, a direction written with digits
-    # to spare), with the joint values held
-    geometry = [(j, key, i) for j, key, i, _res, _d in mech.resolution]
-    slopes += geometry_slopes(mech, fm, q, geometry)
-    resolutions += [res for *_, res, _d in mech.resolution]
-    digits += [d for *_, d in mech.resolution]
-    spread = resolution_spread(slopes, resolutions)
     if singular:
         margins = [
             (_test_of(f), f.margin)
@@ -143,6 +127,44 @@ def resolution_check(mech: Mechanism, result: Any, model: Any) -> DataResolution
         ]
     else:
         margins = [(d.test, d.margin) for d in result.decisions if d.rank is not None]
+    if not margins or (not mech.loops and mech.output is None):
+        # nothing rests on a margin, or no test whose singular values the data move (a
+        # tree with no loop and no output: :func:`test_sigmas` has none)
+        return None
+    fm = float_model(model)
+    columns: list[int] = []
+    resolutions: list[float] = []
+    digits: list[int] = []
+    kept = set(mech.joint_names)  # the joints analysed: a scene's output leaves branches out
+    for joint, entries in cfg.resolution.items():
+        if joint not in kept:
+            continue
+        start = fm.joint(joint).columns.start
+        for i, (res, ndigits) in enumerate(entries):
+            if res > 0:
+                columns.append(start + i)
+                resolutions.append(res)
+                digits.append(ndigits)
+    # the geometry's resolution too (a point, a pitch, a direction written with digits
+    # to spare), with the joint values held
+    written = [entry for entry in mech.resolution if entry[0] in kept]
+    geometry = [(j, key, i) for j, key, i, _res, _d in written]
+    # within reach?  A slope is a change of a relative singular value (in [0, 1]: at most
+    # 1, twice that on the safe side of rounding) over its step, so the spread is at most
+    # sum(2 res / step): a verdict whose every margin is farther than that cannot flip
+    # (a larger spread flips more), and needs no slope
+    steps = [value_step(fm, c) for c in columns] + [
+        geometry_step(fm, key) for _, key, _ in geometry
+    ]
+    resolutions += [res for *_, res, _d in written]
+    digits += [d for *_, d in written]
+    reach = resolution_spread([2 / h for h in steps], resolutions)
+    if all(flips_within(m, reach, singular) is None for _, m in margins):
+        return None
+    values = dict(result.joints)
+    q = np.array([float(values[j][i]) for j, i in mech.coordinates()], dtype=float)
+    slopes = value_slopes(mech, fm, q, columns) + geometry_slopes(mech, fm, q, geometry)
+    spread = resolution_spread(slopes, resolutions)
     flips = [(v, t) for t, m in margins if (v := flips_within(m, spread, singular)) is not None]
     if not flips:
         return None

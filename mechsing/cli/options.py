@@ -230,16 +230,39 @@ def add_scene_options(p: argparse.ArgumentParser) -> None:
     )
 
 
+def _merged_link(mech: Any, path: str, name: str | None) -> tuple[str, Any] | None:
+    """For ``--output-body`` naming a link of a URDF or MJCF file that is joined rigidly
+    into a body named after another link: (that body, the link's origin: m, ground frame,
+    reference configuration); None for a body's own name or anything else."""
+    if not name or name.strip() in mech.bodies or not isinstance(path, str):
+        return None
+    from mechsing.formats import xml_spec
+    from mechsing.reader import read_source
+
+    src = read_source(path)
+    if src.kind == "yaml":
+        return None
+    return xml_spec(src.text, src.path).merged_links.get(name.strip())
+
+
 def apply_scene(mech: Any, args: argparse.Namespace, path: str) -> Any:
     """``mech`` with the output and inputs of ``add_scene_options``'s options and only the
     part of it they require; the mechanism's notes (``-v``) say what replaced what.
-    ``path`` names the file in messages."""
+    ``path`` names the file in messages.  ``--output-body`` may name a link of a URDF
+    or MJCF file joined rigidly to another (a tool centre point): the output is then that
+    link's origin on the body it belongs to (:func:`_merged_link`)."""
     from mechsing.errors import working_on
     from mechsing.model.scene import SceneChoice, choose_scene, refuse_left_out
 
+    body = getattr(args, "output_body", None)
+    point = getattr(args, "output_point", None)
+    link = _merged_link(mech, path, body)
+    if link is not None:  # a link joined rigidly into another's body: its origin
+        body, origin = link
+        point = point if point is not None else ",".join(repr(x) for x in origin)
     choice = SceneChoice(
-        output_body=getattr(args, "output_body", None),
-        output_point=getattr(args, "output_point", None),
+        output_body=body,
+        output_point=point,
         relative_to=getattr(args, "relative_to", None),
         inputs=getattr(args, "inputs", None),
     )
@@ -247,6 +270,15 @@ def apply_scene(mech: Any, args: argparse.Namespace, path: str) -> Any:
         return mech
     with working_on(file=path):
         chosen = choose_scene(mech, choice)
+        if link is not None:
+            import dataclasses
+
+            said = (
+                f"--output-body {args.output_body.strip()}: the link is joined rigidly to "
+                f"body {body!r}; the output is the point {point} m of it"
+                + (" (the link's origin)" if getattr(args, "output_point", None) is None else "")
+            )
+            chosen = dataclasses.replace(chosen, notes=(*chosen.notes, said))
         for option in ("set_values", "vary"):
             given = [
                 t.partition("=")[0].split("[")[0].strip() for t in getattr(args, option, None) or ()

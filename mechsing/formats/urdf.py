@@ -5,6 +5,8 @@ Owns :func:`read_urdf`.  The mapping (also in the docs' import page):
 * each ``<link>`` is a body; a ``fixed`` joint merges its two links into one
   body (named after the link nearer the root); the root link (the one that is
   no joint's child) is the ground;
+* a link merged into another's body keeps its origin (``merged_links``): ``--output-body``
+  may name it, the output then being that point of the body (a tool centre point);
 * ``revolute`` and ``continuous`` -> R (``axis`` and ``point``), ``prismatic``
   -> P (``axis``), ``planar`` -> G (``normal`` = the URDF axis, the plane's
   normal), ``floating`` -> D; the joint's ``between`` is ``[parent, child]``;
@@ -14,7 +16,9 @@ Owns :func:`read_urdf`.  The mapping (also in the docs' import page):
   turned into the ground frame and its point is the joint frame's origin.  A
   joint value is then the URDF joint position (radians or metres) and the
   reference configuration is the URDF zero configuration;
-* ``<limit lower upper>`` of revolute and prismatic joints -> ``limits``;
+* ``<limit lower upper>`` of revolute and prismatic joints -> ``limits``; a bound beyond
+  1e12 or infinite (``lower="-1e+16"``: how URDF writers say "no limit") and a continuous
+  joint's ``<limit>`` leave the joint unlimited, said in the notes;
 * the inputs: every revolute and prismatic joint (a robot arm's actuated joints) but
   those of a ``<mimic>`` (their leader drives them);
 * the output: for a serial chain (no link with two children), the body of the
@@ -51,7 +55,13 @@ from mechsing.formats.writer import (
     name_problem,
 )
 from mechsing.formats.xmlsafe import Element, floats, parse, required
-from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
+from mechsing.numeric import (
+    MAX_NUMBER,
+    NEAR_ZERO_VECTOR,
+    is_decimal_text,
+    safe_norm,
+    unit_vector,
+)
 
 __all__ = ["URDF_TYPES", "read_urdf"]
 
@@ -178,6 +188,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         if el.get("type") == "fixed":
             bodies.merge(el.find("parent").get("link"), el.find("child").get("link"))  # type: ignore[union-attr]
     out_joints: list[JointSpec] = []
+    unlimited: list[tuple[str, str, Element]] = []
     for el, tj in ordered:
         jtype = URDF_TYPES[el.get("type")]  # type: ignore[index]
         if not jtype:
@@ -201,14 +212,33 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
             spec.normal = tuple(w)  # type: ignore[assignment]
         limit = el.find("limit")
         if limit is not None and el.get("type") in ("revolute", "prismatic"):
-            lo = floats(limit, "lower", 1, path, [0])[0]
-            hi = floats(limit, "upper", 1, path, [0])[0]
-            if hi < lo:
+            lo, hi = _limit_side(limit, "lower", path), _limit_side(limit, "upper", path)
+            if lo is None or hi is None:
+                unlimited.append((el.get("name"), el.get("type"), limit))  # type: ignore[arg-type]
+            elif hi < lo:
                 raise err(limit, f"lower {lo} is above upper {hi}; swap them")
-            if hi > lo:
+            elif hi > lo:
                 spec.limits = [(lo, hi)]
+        elif (
+            limit is not None
+            and el.get("type") == "continuous"
+            and (limit.get("lower") is not None or limit.get("upper") is not None)
+        ):
+            unlimited.append((el.get("name"), el.get("type"), limit))  # type: ignore[arg-type]
         out_joints.append(spec)
     notes: list[str] = []
+    for name, kind, limit in unlimited:
+        notes.append(
+            f"joint {name!r} (line {limit.line}) is read without limits: its <limit "
+            f'lower="{limit.get("lower")}" upper="{limit.get("upper")}"> '
+            + (
+                "is on a continuous joint, which has none"
+                if kind == "continuous"
+                else "says no limit (a bound beyond "
+                f"{UNLIMITED:g} or infinite; mechsing's limits are two-sided, so a finite "
+                "other bound is not kept)"
+            )
+        )
     couplings = _mimics(joints, seen, path, notes)
     followers = {c.joint for c in couplings}  # driven by their leaders: not inputs
     # the output: the tip link of a serial chain
@@ -220,6 +250,11 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         if bodies.find(tip) != bodies.find(base):
             output = bodies.find(tip)
     name = root.get("name")
+    merged = {
+        link: (bodies.find(link), tuple(float(x) for x in world[link][:3, 3]))
+        for link in links
+        if bodies.find(link) != link
+    }
     return MechanismSpec(
         name=name,
         source=f"Converted by mechsing from the URDF file {path} (robot {name!r}).",
@@ -231,7 +266,27 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         inputs=[j.name for j in out_joints if j.type in ("R", "P") and j.name not in followers],
         couplings=couplings,
         notes=notes,
+        merged_links=merged,  # type: ignore[arg-type]
     )
+
+
+#: a joint limit beyond this (in magnitude: radians or metres), or infinite, is how URDF
+#: writers say "no limit" (``lower="-1e+16"``): the bound of absurd numbers the reader keeps
+#: for geometry (:data:`mechsing.numeric.MAX_NUMBER`)
+UNLIMITED = MAX_NUMBER
+
+
+def _limit_side(limit: Element, key: str, path: str) -> float | None:
+    """A ``<limit>``'s ``lower`` or ``upper`` (default 0), or None when it says "no
+    limit": infinite, or beyond :data:`UNLIMITED` on its own side (below -UNLIMITED for
+    ``lower``, above it for ``upper``).  Anything else is read as any number is."""
+    text = (limit.get(key) or "").strip()
+    word = text.lower().lstrip("+")
+    sign = -1.0 if key == "lower" else 1.0
+    if word in ("inf", "infinity", "-inf", "-infinity") or is_decimal_text(text):
+        if sign * float(word) > UNLIMITED:  # infinite included
+            return None
+    return floats(limit, key, 1, path, [0])[0]
 
 
 #: URDF joint types a <mimic> may couple (one coordinate each)

@@ -147,6 +147,10 @@ class MechanismSpec:
     inputs: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     couplings: list[CouplingSpec] = field(default_factory=list)
+    #: each link joined rigidly into a body named after another link: link -> (its body,
+    #: its origin: m, ground frame, reference configuration); not written to the YAML
+    #: (the command line's ``--output-body LINK`` reads it)
+    merged_links: dict[str, tuple[str, tuple[float, float, float]]] = field(default_factory=dict)
     #: the output's point (m, ground frame, reference configuration) and relative_to
     output_point: tuple[float, float, float] | None = None
     output_relative_to: str | None = None

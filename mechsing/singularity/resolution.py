@@ -28,10 +28,18 @@ import numpy as np
 from mechsing.kinematics import KinematicModel
 from mechsing.numeric import RESOLUTION_STEP, Precision, RankDecision, decide_rank
 from mechsing.screws import closure_system
+from mechsing.screws.systems import share_loop_identifications
 from mechsing.singularity.criteria import ConstraintTest, SerialTest
 from mechsing.singularity.zfb import io_quantities, output_chain
 
-__all__ = ["geometry_slopes", "test_sigmas", "value_slopes"]
+__all__ = [
+    "closure_nullity",
+    "geometry_slopes",
+    "geometry_step",
+    "test_sigmas",
+    "value_slopes",
+    "value_step",
+]
 
 _FLOAT = Precision("float")
 
@@ -42,9 +50,15 @@ def _relative(dec: RankDecision) -> np.ndarray:
     return s / smax if smax else s
 
 
-def test_sigmas(mech: Any, fm: Any, q: np.ndarray) -> list[np.ndarray]:
+def test_sigmas(mech: Any, fm: Any, q: np.ndarray, nullity: int | None = None) -> list[np.ndarray]:
     """The relative singular values of every test at ``q`` (float model ``fm``), in a
-    fixed order for a given mechanism (so that two configurations can be compared)."""
+    fixed order for a given mechanism (so that two configurations can be compared).
+
+    ``nullity``: the closure kernel's dimension to hold (the one decided at the
+    configuration compared with, :func:`closure_nullity`): the input/output tests are
+    then those of the closure's ``nullity`` smallest singular directions, which move as
+    continuously as the data, where the kernel decided at ``q`` would jump with its
+    rank (a kernel of dimension 2 at a bifurcation, of 1 beside it)."""
     q = np.asarray(q, dtype=float)
     out: list[np.ndarray] = []
     cs = closure_system(fm, q, _FLOAT)
@@ -58,6 +72,8 @@ def test_sigmas(mech: Any, fm: Any, q: np.ndarray) -> list[np.ndarray]:
         out.append(_relative(decide_rank(T, _FLOAT, fm.length_scale)))
         return out
     N = cs.rank.null_space
+    if nullity is not None and nullity != cs.nullity:
+        N = _smallest_directions(np.asarray(cs.matrix, dtype=float), nullity)
     if N is not None and mech.inputs:
         io = io_quantities(mech, fm, q, N, _FLOAT, screws=cs.screws, cs=cs)
         if io is not None:
@@ -70,6 +86,32 @@ def test_sigmas(mech: Any, fm: Any, q: np.ndarray) -> list[np.ndarray]:
     # decided rank, so their matrix jumps where a leg's rank does (no derivative there);
     # the legs' own chains above move as continuously as the data
     return out
+
+
+def value_step(fm: Any, column: int) -> float:
+    """The finite-difference step of a coordinate column (:func:`value_slopes`): radians,
+    or metres (lengths / L)."""
+    return RESOLUTION_STEP * (fm.length_scale if fm.length_columns[column] else 1.0)
+
+
+def geometry_step(fm: Any, key: str) -> float:
+    """The finite-difference step of a geometry entry (:func:`geometry_slopes`): a
+    direction's component, or metres (lengths / L)."""
+    return RESOLUTION_STEP * (1.0 if key in ("axis", "normal") else fm.length_scale)
+
+
+def closure_nullity(fm: Any, q: np.ndarray) -> int | None:
+    """The closure kernel's dimension decided at ``q`` (float), to hold in
+    :func:`test_sigmas` at the configurations compared with it."""
+    return closure_system(fm, np.asarray(q, dtype=float), _FLOAT).nullity
+
+
+def _smallest_directions(A: np.ndarray, k: int) -> np.ndarray | None:
+    """The right singular directions of ``A``'s ``k`` smallest singular values (n x k)."""
+    if k <= 0:
+        return None
+    _, _, vt = np.linalg.svd(A, full_matrices=True)
+    return vt[-k:].T
 
 
 def _change(a: list[np.ndarray], b: list[np.ndarray]) -> float:
@@ -88,16 +130,43 @@ def value_slopes(mech: Any, fm: Any, q: np.ndarray, columns: list[int]) -> list[
     differences on both sides (a singular value that vanishes at q grows like |x| on
     both, which a central difference would cancel)."""
     q = np.asarray(q, dtype=float)
-    here = test_sigmas(mech, fm, q)
+    k = closure_nullity(fm, q)
+    here = test_sigmas(mech, fm, q, k)
     out = []
     for col in columns:
-        step = RESOLUTION_STEP * (fm.length_scale if fm.length_columns[col] else 1.0)
+        step = value_step(fm, col)
         worst = 0.0
         for sign in (1.0, -1.0):
             qq = q.copy()
             qq[col] += sign * step
-            worst = max(worst, _change(here, test_sigmas(mech, fm, qq)))
+            worst = max(worst, _change(here, test_sigmas(mech, fm, qq, k)))
         out.append(worst / step)
+    return out
+
+
+def _float_params(value: Any) -> Any:
+    """A joint parameter in float (tuples entry by entry); what has no float (a symbol) as
+    it is."""
+    if isinstance(value, tuple):
+        return tuple(_float_params(x) for x in value)
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return value
+
+
+def _in_float(mech: Any) -> Any:
+    """``mech`` with its joints' parameters in float (the models built from it then need
+    no exact arithmetic: about a millisecond each), sharing its loop identifications (the
+    subgroups identified from the file's values)."""
+    out = replace(
+        mech,
+        joints=tuple(
+            replace(j, params={k: _float_params(v) for k, v in j.params.items()})
+            for j in mech.joints
+        ),
+    )
+    share_loop_identifications(mech, out)
     return out
 
 
@@ -108,33 +177,41 @@ def geometry_slopes(
     direction's component), the largest rate of change of a test's relative singular
     value per SI unit of it at the joint values ``q`` (held): the tests of a float model
     of the mechanism with that entry moved (a direction renormalised), one-sided on
-    both sides as :func:`value_slopes`."""
+    both sides as :func:`value_slopes`.
+
+    The moved models are built from the mechanism's parameters in float and keep its
+    loops' subgroups (identified once, from the file's values): the tests' matrices are
+    those of the configuration, moved, and each model costs no exact arithmetic."""
+    if not entries:
+        return []
     q = np.asarray(q, dtype=float)
-    here = test_sigmas(mech, fm, q)
+    k = closure_nullity(fm, q)
+    base = _in_float(mech)
+    here = test_sigmas(base, KinematicModel(base, _FLOAT), q, k)
+    index_of = {j.name: i for i, j in enumerate(base.joints)}
     out = []
     for joint, key, index in entries:
-        j = mech.joint(joint)
+        at = index_of[joint]
+        j = base.joints[at]
         value = j.params[key]
         direction = key in ("axis", "normal")
-        step = RESOLUTION_STEP * (1.0 if direction else fm.length_scale)
+        step = geometry_step(fm, key)
         worst = 0.0
         for sign in (1.0, -1.0):
             if isinstance(value, tuple):
-                moved = [float(x) for x in value]
+                moved = list(value)
                 moved[index] += sign * step
                 if direction:
                     n = float(np.linalg.norm(moved))
                     moved = [x / n for x in moved]
                 new = tuple(moved)
             else:
-                new = float(value) + sign * step
-            other = replace(
-                mech,
-                joints=tuple(
-                    replace(jj, params={**jj.params, key: new}) if jj.name == joint else jj
-                    for jj in mech.joints
-                ),
-            )
-            worst = max(worst, _change(here, test_sigmas(other, KinematicModel(other, _FLOAT), q)))
+                new = value + sign * step
+            joints = list(base.joints)
+            joints[at] = replace(j, params={**j.params, key: new})
+            other = replace(base, joints=tuple(joints))
+            share_loop_identifications(mech, other)
+            moved_model = KinematicModel(other, _FLOAT)
+            worst = max(worst, _change(here, test_sigmas(other, moved_model, q, k)))
         out.append(worst / step)
     return out
