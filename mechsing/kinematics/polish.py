@@ -2,7 +2,8 @@
 
 :func:`newton_mp` closes the loops at the model's digits from a float (or mp) point,
 the given coordinates held; :class:`MpPolisher` polishes a continuation's landing to
-working precision and, at a multiple root, again at 2N + 10 digits.
+working precision and, at a multiple root, again at 2N + 10 digits; :func:`fold_mp` places
+a fold of one given coordinate (a limit of its travel) at the model's digits.
 """
 
 from __future__ import annotations
@@ -13,12 +14,12 @@ import numpy as np
 
 from mechsing.kinematics.given import GivenValues
 from mechsing.kinematics.model import KinematicModel
-from mechsing.kinematics.newton import mp_least_squares, newton_on_group
+from mechsing.kinematics.newton import mp_least_squares, newton_on_group, scaled_system
 from mechsing.kinematics.protocol import ClosureModel
 from mechsing.model import Configuration
-from mechsing.numeric import POLISH_DIGITS_SPARE, POLISH_MAX_STEPS, Precision
+from mechsing.numeric import POLISH_DIGITS_SPARE, POLISH_MAX_STEPS, Precision, svd
 
-__all__ = ["MpPolisher", "Polished", "newton_mp"]
+__all__ = ["MpPolisher", "Polished", "fold_mp", "newton_mp"]
 
 
 class Polished(NamedTuple):
@@ -117,3 +118,78 @@ def newton_mp(m: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np.ndar
             doubling=True,
         )
         return Polished(out.q, out.residual, out.slow)
+
+
+def fold_mp(m: ClosureModel, q: np.ndarray, col: int) -> Polished | None:
+    """The fold of coordinate ``col`` (a limit of its travel, where the other coordinates'
+    closure Jacobian loses a direction) nearest the closed configuration ``q`` (mp, near
+    it), at the model's digits; None when it is not found (``q`` is not near a fold of
+    ``col``: a bifurcation, where the whole Jacobian loses rank, or no fold at all).
+
+    Near a fold the closure is regular in the coordinates other than the one y the lost
+    direction moves most (``col`` freed, y held), and ``col`` is extremal there: the
+    secant method on y finds the zero of ``d col / d y`` (implicit function: the free
+    coordinates' least-squares rates for a unit rate of y), each point closed by Newton
+    at N digits.  The lost direction's singular value is linear in y's distance to the
+    fold, so the fold is placed to the working precision, not its square root."""
+    import mpmath
+
+    with m.precision.context():
+        n = len(q)
+        others = np.ones(n, dtype=bool)
+        others[col] = False
+        Js, _ = scaled_system(m, q)
+        _U, _s, Vt = svd(m.precision.asarray(Js)[:, others])
+        lost = np.asarray([abs(float(x)) for x in Vt[-1]])
+        y = int(np.flatnonzero(others)[int(np.argmax(lost))])
+        free = np.ones(n, dtype=bool)
+        free[y] = False
+        at = int(np.flatnonzero(free).tolist().index(col))
+        small = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - mpmath.mp.dps)
+        goal = small * m.length_scale
+
+        def closed(qy: np.ndarray) -> Polished:
+            out = newton_on_group(
+                m,
+                qy,
+                free,
+                solve=mp_least_squares,
+                max_steps=POLISH_MAX_STEPS,
+                native=True,
+                converged=lambda res, du: (
+                    res <= goal and max((abs(x) for x in du), default=0) <= small
+                ),
+            )
+            return Polished(out.q, out.residual, out.slow)
+
+        def slope(qc: np.ndarray) -> Any:
+            J, _ = scaled_system(m, qc)
+            J = m.precision.asarray(J)
+            return mp_least_squares(J[:, free], -J[:, y])[at]
+
+        pts = [closed(np.array(q, dtype=object))]
+        if pts[0].residual > goal:
+            return None
+        step = mpmath.mpf(10) ** (-mpmath.mp.dps // 4)
+        q1 = np.array(pts[0].q, dtype=object)
+        q1[y] = q1[y] + step
+        pts.append(closed(q1))
+        f = [slope(pts[0].q), slope(pts[1].q)]
+        for _ in range(POLISH_MAX_STEPS):
+            y0, y1 = pts[-2].q[y], pts[-1].q[y]
+            if f[-1] == f[-2]:
+                break
+            y2 = y1 - f[-1] * (y1 - y0) / (f[-1] - f[-2])
+            if abs(y2 - y1) <= small:
+                break
+            qn = np.array(pts[-1].q, dtype=object)
+            qn[y] = y2
+            pts.append(closed(qn))
+            if pts[-1].residual > goal:
+                return None
+            f.append(slope(pts[-1].q))
+        best = pts[-1]
+        # a fold: col's rate along the curve vanishes there and the residual closes
+        if best.residual > goal or abs(f[-1]) > mpmath.sqrt(small):
+            return None
+        return best
