@@ -232,8 +232,7 @@ class Continuation:
         if at_fold:
             notes.append(fold_note)
         if m.precision.mode == "mp":  # policy: only mp polishes the float landing
-            # (a pose model is not rebuilt deeper: its target is polished at N digits)
-            qm, res = self.polisher.polish(m, q, target, gmask, cfg if model is None else None)
+            qm, res = self.polisher.polish(m, q, target, gmask, cfg)
             q_out = qm
         else:
             q_out = q

@@ -15,6 +15,7 @@ import numpy as np
 from mechsing.kinematics.given import GivenValues
 from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import mp_least_squares, newton_on_group, scaled_system
+from mechsing.kinematics.pose import PoseModel, pose_problem
 from mechsing.kinematics.protocol import ClosureModel
 from mechsing.model import Configuration
 from mechsing.numeric import POLISH_DIGITS_SPARE, POLISH_MAX_STEPS, Precision, svd
@@ -57,21 +58,29 @@ class MpPolisher:
         dropped singular value of 1e-17 lies between mp:30's thresholds).
 
         A target that is itself singular (a change point, a flat parallelogram reached
-        from its input) is a multiple root: the residual is quadratic in the distance d
+        from its input, a slider's dead centre given by its pose) is a multiple root: the residual is quadratic in the distance d
         along the kernel, so N digits of residual place the configuration only to
         d = 10^(-N/2), where its rank cannot be decided at N digits (the kernel's
         singular value is d).  Such a root shows itself by slow steps (see
         :func:`newton_mp`); it is then polished again at 2N + 10 digits (the model
-        rebuilt from the file's numbers at those digits) and rounded back to N digits.
+        rebuilt from the file's numbers at those digits; a pose model with it, in the same
+        rotation coordinates) and rounded back to N digits.
         """
         qm, res, slow = newton_mp(m, q, target, gmask)
-        if slow and cfg is not None:
+        # a pose model's deeper twin needs the configuration's pose (a sweep's node has none)
+        pose_less = isinstance(m, PoseModel) and (cfg is None or cfg.pose is None)
+        if slow and cfg is not None and not pose_less:
             import mpmath
 
             deep = self._deeper_model()
             with deep.precision.context():
                 dtarget, _ = GivenValues(deep).of(cfg)
-                qd, _rd, _ = newton_mp(deep, qm, dtarget, gmask)
+                dm: ClosureModel = deep
+                if isinstance(m, PoseModel):
+                    # the pose model at 2N + 10 digits, in the rotation coordinates of m's
+                    dm, _, goal = pose_problem(deep, cfg, None, R0=m.R0)
+                    dtarget = np.concatenate([dtarget, goal])
+                qd, _rd, _ = newton_mp(dm, qm, dtarget, gmask)
             with m.precision.context():
                 qn = np.array([+mpmath.mpf(x) for x in qd], dtype=object)
                 rn = m.residual_norm(m.chord_residuals(qn), native=True)
