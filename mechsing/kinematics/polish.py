@@ -22,6 +22,10 @@ from mechsing.numeric import POLISH_DIGITS_SPARE, POLISH_MAX_STEPS, Precision, s
 
 __all__ = ["MpPolisher", "Polished", "fold_mp", "newton_mp"]
 
+#: fold_mp's second point: y moved by 10^(-N / FOLD_FIRST_STEP_ROOT) from the first (a
+#: fourth of the digits: far above rounding, well inside the fold's quadratic region)
+FOLD_FIRST_STEP_ROOT = 4
+
 
 class Polished(NamedTuple):
     """Newton's result at N digits: the coordinates, their residual (m, the model's
@@ -179,7 +183,7 @@ def fold_mp(m: ClosureModel, q: np.ndarray, col: int) -> Polished | None:
         pts = [closed(np.array(q, dtype=object))]
         if pts[0].residual > goal:
             return None
-        step = mpmath.mpf(10) ** (-mpmath.mp.dps // 4)
+        step = mpmath.mpf(10) ** (-mpmath.mp.dps // FOLD_FIRST_STEP_ROOT)
         q1 = np.array(pts[0].q, dtype=object)
         q1[y] = q1[y] + step
         pts.append(closed(q1))
