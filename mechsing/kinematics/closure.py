@@ -59,7 +59,9 @@ class Closer:
         self.data_precision: Precision = data_precision or prec
         self.given = GivenValues(model, self.data_precision, self.tolerance)
         self.polisher = MpPolisher(model, self.tolerance)
-        self.continuation = Continuation(model, self.tolerance, self.polisher)
+        self.continuation = Continuation(
+            model, self.tolerance, self.polisher, at_folds=self.data_precision == prec
+        )
 
     # ---------------------------------------------------------------- public
 

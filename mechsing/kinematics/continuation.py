@@ -23,10 +23,10 @@ from mechsing.errors import ClosureError, UserError
 from mechsing.kinematics.closed import ClosedConfiguration, shown_residual
 from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import damped_least_squares, finite_system, newton_on_group
-from mechsing.kinematics.polish import MpPolisher
+from mechsing.kinematics.polish import MpPolisher, fold_mp
 from mechsing.kinematics.pose import PoseModel
 from mechsing.kinematics.protocol import ClosureModel
-from mechsing.kinematics.travel import beyond_target, beyond_travel
+from mechsing.kinematics.travel import Fold, beyond_target, fold_excess
 from mechsing.model import Configuration
 from mechsing.numeric import (
     CONTINUATION_CORRECTOR_RATIO,
@@ -87,10 +87,15 @@ class Continuation:
     ``tolerance`` (the model's closure tolerance); ``polisher`` polishes an mp model's
     landing."""
 
-    def __init__(self, model: KinematicModel, tolerance: Any, polisher: MpPolisher) -> None:
+    def __init__(
+        self, model: KinematicModel, tolerance: Any, polisher: MpPolisher, at_folds: bool = False
+    ) -> None:
         self.model = model
         self.tolerance = tolerance
         self.polisher = polisher
+        #: given values just beyond a fold, within their resolution, are analysed at the
+        #: fold (an mp:N the user asked for; auto's re-decision keeps float's analysis)
+        self.at_folds = at_folds
 
     def run(
         self,
@@ -220,21 +225,30 @@ class Continuation:
                 "assembly modes meet there): continuation left it along the first of the two "
                 "that reaches the target; the other may be reached from a start beyond it"
             )
+        fold_note = (
+            "the given values are a fold (a limit of their motion): the unknown joints were "
+            "found by Newton from just short of it; float places them only to about 1e-8 there"
+        )
         if at_fold:
-            notes.append(
-                "the given values are a fold (a limit of their motion): the unknown joints were "
-                "found by Newton from just short of it; float places them only to about 1e-8 there"
-            )
+            notes.append(fold_note)
         if m.precision.mode == "mp":  # policy: only mp polishes the float landing
-            # (a pose model is not rebuilt deeper: its target is polished at N digits)
-            qm, res = self.polisher.polish(m, q, target, gmask, cfg if model is None else None)
+            qm, res = self.polisher.polish(m, q, target, gmask, cfg)
             q_out = qm
         else:
             q_out = q
         if res > self.tolerance:
             # just beyond a fold of the given values: say which limit, and by how much
             with m.precision.context():
-                why = beyond_travel(m, q_out, gmask)
+                fold = fold_excess(m, q_out, gmask)
+            at_limit = self._within_resolution(m, cfg, q_out, target, fold, model)
+            if at_limit is not None:
+                qf, rf, note, on_fold = at_limit
+                # placed on the fold at N digits: float's caveat about folds no longer holds
+                kept = [x for x in notes if not (on_fold and x == fold_note)]
+                return ClosedConfiguration(
+                    cfg.name, qf, float(rf), underdetermined, steps, given, [*kept, note]
+                )
+            why = None if fold is None else fold.sentence
             raise ClosureError(
                 f"configuration {cfg.name!r} does not close: "
                 + (f"{why}; " if why else "")
@@ -246,6 +260,64 @@ class Continuation:
         return ClosedConfiguration(
             cfg.name, q_out, float(res), underdetermined, steps, given, notes, at_fold
         )
+
+    def _within_resolution(
+        self,
+        m: ClosureModel,
+        cfg: Configuration,
+        q: np.ndarray,
+        target: np.ndarray,
+        fold: Fold | None,
+        model: PoseModel | None,
+    ) -> tuple[np.ndarray, Any, str, bool] | None:
+        """Given values beyond a limit of travel (``fold``) by no more than the resolution
+        of the value the fold is most sensitive to (a configuration drawn at a fold to its
+        data's digits): the nearest closed configuration, every coordinate free (Newton's
+        least-norm steps from ``q``), polished at the model's digits (and deeper at a
+        multiple root, as joint values are), and placed on the fold near it when there is one
+        (:func:`~mechsing.kinematics.polish.fold_mp`): the configuration, its residual, the
+        note that says so, and whether it is on the fold; None otherwise."""
+        if fold is None or model is not None or m.precision.mode != "mp" or not self.at_folds:
+            return None
+        coords = m.mech.coordinates()
+        if fold.col >= len(coords):
+            return None
+        joint, index = coords[fold.col]
+        written = cfg.resolution.get(joint)
+        if not written or index >= len(written):
+            return None
+        resolution, digits = written[index]
+        if not resolution or fold.beyond > resolution:
+            return None
+        # the nearest closed configuration (every coordinate free), then the fold near it
+        qf, rf = self.polisher.polish(m, q, target, np.zeros(m.n, dtype=bool), cfg)
+        if rf > self.tolerance:
+            return None
+        located = fold_mp(m, qf, fold.col)
+        label = m.mech.coordinate_label(joint, index)
+        unit = "m" if m.length_columns[fold.col] else "rad"
+        digits_here = m.precision.digits
+        on_fold = located is not None and located.residual <= self.tolerance
+        if located is not None and on_fold:
+            qf, rf = located.q, located.residual
+            with m.precision.context():
+                moved = abs(to_float(qf[fold.col]) - to_float(target[fold.col]))
+            if moved > resolution:
+                return None
+            where = f"the limit itself ({label} moved by {moved:.2g} {unit} onto it)"
+        else:
+            # not a fold of this value (a bifurcation, where the whole closure loses rank)
+            with m.precision.context():
+                moved = abs(to_float(qf[fold.col]) - to_float(target[fold.col]))
+            where = f"the nearest closed configuration ({label} moved by {moved:.2g} {unit})"
+        note = (
+            f"at {digits_here} digits the written decimals do not close ({label} is "
+            f"{fold.beyond:.2g} {unit} beyond where the unknown joints lose a direction), "
+            f"within the resolution of its {digits}-digit data ({resolution:.2g} {unit}): "
+            f"analysed at {where}, polished at {digits_here} digits; give more digits or "
+            "exact values to decide the written decimals"
+        )
+        return qf, rf, note, on_fold
 
     def _land_on_fold(
         self, fm: ClosureModel, q: np.ndarray, qt: np.ndarray, gmask: np.ndarray

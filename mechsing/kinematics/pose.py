@@ -198,23 +198,31 @@ class PoseModel:
 
 
 def pose_problem(
-    base: KinematicModel, cfg: Configuration, q0: np.ndarray
-) -> tuple[PoseModel, np.ndarray, np.ndarray]:
+    base: KinematicModel, cfg: Configuration, q0: np.ndarray | None, R0: Any = None
+) -> tuple[PoseModel, np.ndarray | None, np.ndarray]:
     """The pose model of a configuration that gives the output's pose, continued from the
     joints ``q0`` (the start's): the model, the start's coordinates (joints, then the
     start's pose: no rotation from it, its reference point's position) and the target's
     pose coordinates (the rotation vector from the start's rotation to the given one, the
-    given position)."""
+    given position).  ``R0``: the start's rotation when known (the same problem at more
+    digits, whose rotation coordinates must be those of the model it refines); then
+    ``q0`` may be None and no start is returned."""
     pose: OutputPose | None = cfg.pose
     assert pose is not None
     mech = base.mech
     with base.precision.context():
         bk = base.backend
         c0 = base.asarray(list(mech.output_reference_point()))
-        trial = PoseModel(base, c0, bk.eye(3))
-        g0 = trial.output_pose(np.concatenate([q0, bk.zeros(6)]))
-        R0 = g0[:3, :3]
-        x0 = R0 @ c0 + g0[:3, 3]
+        start = None
+        if R0 is None:
+            assert q0 is not None
+            trial = PoseModel(base, c0, bk.eye(3))
+            g0 = trial.output_pose(np.concatenate([q0, bk.zeros(6)]))
+            R0 = g0[:3, :3]
+            x0 = R0 @ c0 + g0[:3, 3]
+            start = np.concatenate([q0, bk.zeros(3), x0])
+        else:
+            R0 = base.asarray([list(row) for row in R0])
         if pose.rotation is not None:
             R1 = base.asarray([list(row) for row in pose.rotation])
         elif pose.rotation_vector is not None:
@@ -224,6 +232,5 @@ def pose_problem(
         x1 = c0 if pose.position is None else base.asarray(list(pose.position))
         r1 = lie.log_so3(R0.T @ R1)
         model = PoseModel(base, c0, R0)
-        start = np.concatenate([q0, bk.zeros(3), x0])
         goal = np.concatenate([r1, x1])
     return model, start, goal

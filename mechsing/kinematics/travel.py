@@ -7,14 +7,15 @@ left along its left kernel u.  To first order the residual's component ``u . r``
 is what the given values add beyond the fold, ``u . J_g dg``: so each given value alone
 is ``|u . r| / |u . J_g e_i|`` beyond its limit (commensurate units: lengths over L).
 
-Owns :func:`beyond_travel`, the sentence that names the given value nearest to bringing
-the configuration back (the one the residual is most sensitive to), how far beyond its
-limit it is and where that limit is (SI units and radians).
+Owns :func:`fold_excess` (which given value is nearest to bringing the configuration
+back, the one the residual is most sensitive to, how far beyond its limit it is and where
+that limit is) and :func:`beyond_travel`, the sentence that says so (in the file's units).
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import mpmath
 import numpy as np
@@ -29,10 +30,28 @@ from mechsing.numeric import (
     to_float,
 )
 
-__all__ = ["beyond_target", "beyond_travel"]
+__all__ = ["Fold", "beyond_target", "beyond_travel", "fold_excess"]
+
+
+@dataclass(frozen=True)
+class Fold:
+    """Given values beyond a limit of travel (:func:`fold_excess`): the coordinate ``col``
+    the fold is most sensitive to, how far beyond its limit it is (``beyond``, SI: m or
+    rad) and the sentence that says so in the file's units."""
+
+    col: int
+    beyond: float
+    sentence: str
 
 
 def beyond_travel(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> str | None:
+    """The sentence of :func:`fold_excess` (None when the configuration is not beyond a
+    limit of travel)."""
+    fold = fold_excess(m, q, gmask)
+    return None if fold is None else fold.sentence
+
+
+def fold_excess(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> Fold | None:
     """Why configuration ``q`` of model ``m`` (its given coordinates ``gmask``, the others
     solved as far as they go) does not close, when it is beyond a limit of travel: the
     unknown joints' Jacobian is singular there (relative smallest singular value at most
@@ -72,7 +91,8 @@ def beyond_travel(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> str | No
     units = m.mech.units
     factor = float(units.length_factor if length else units.angle_factor)
     unit = units.length if length else units.angle
-    beyond = abs(r / g[i]) * scale / factor
+    beyond_si = abs(r / g[i]) * scale
+    beyond = beyond_si / factor
     with m.precision.context():  # the limit at the model's digits (q is given to them)
         limit = (mpmath.mpf(q[col]) - mpmath.mpf(r / g[i] * scale)) / mpmath.mpf(factor)
     # first order: the limit is known to about the square of the distance beyond it
@@ -85,11 +105,12 @@ def beyond_travel(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> str | No
         from mechsing.kinematics.pose import POSE_COORDINATES
 
         label = POSE_COORDINATES[col - len(coords)]
-    return (
+    sentence = (
         f"its given values are beyond a limit of travel (a fold of the closure, where the "
         f"unknown joints lose a direction): {label} is {beyond:.3g} {unit} beyond its limit "
         f"at about {label} = {shown} {unit}; give {label} within its travel"
     )
+    return Fold(col, float(beyond_si), sentence)
 
 
 def beyond_target(

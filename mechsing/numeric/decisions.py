@@ -136,23 +136,26 @@ def rank_difference(a: RankDecision, b: RankDecision) -> RankDecision:
     )
     lo, hi = max(0, alo - bhi), max(0, ahi - blo)
     rank = lo if lo == hi else None
-    return RankDecision(rank, None, _tighter(a.margin, b.margin), a.precision, (lo, hi))
+    margin = _tighter(a.margin, b.margin, a.precision)
+    return RankDecision(rank, None, margin, a.precision, (lo, hi))
 
 
-def _tighter(a: Margin, b: Margin) -> Margin:
+def _tighter(a: Margin, b: Margin, precision: str = "float") -> Margin:
     """The margin nearer to flipping (:func:`_slack`), with the other's dropped value
     when it has none of its own: a dropped value that is zero never flips (exactly zero,
-    or in float within the rounding of the matrix: :func:`_drop_is_rounding`), so a
-    kept one is the nearer, but the difference rests on that drop too and shows it
-    (relative to the kept margin's sigma_max; exact margins have none and drop 0)."""
-    near, far = (a, b) if _slack(a) <= _slack(b) else (b, a)
+    or within the rounding of the matrix at the decisions' precision:
+    :func:`_drop_is_rounding`), so a kept one is the nearer, but the difference rests on
+    that drop too and shows it (relative to the kept margin's sigma_max; exact margins
+    have none and drop 0).  The same margin is chosen in float and at mp:N."""
+    digits = int(precision[3:]) if precision.startswith("mp:") else None
+    near, far = (a, b) if _slack(a, digits) <= _slack(b, digits) else (b, a)
     if near.dropped is not None or far.dropped is None:
         return near
     scale = 1.0 if not far.sigma_max or not near.sigma_max else near.sigma_max / far.sigma_max
     return replace(near, dropped=far.dropped * scale)
 
 
-def _slack(m: Margin) -> float:
+def _slack(m: Margin, digits: int | None = None) -> float:
     """How far a margin is from flipping its decision: the smaller of the kept value's
     ratio to tau_hi and tau_lo's ratio to the dropped value (relative to sigma_max);
     exact margins (no thresholds) never flip, nor does a dropped value that is zero.
@@ -160,21 +163,29 @@ def _slack(m: Margin) -> float:
     A float drop within the rounding of its matrix (:func:`_drop_is_rounding`) counts as
     zero: whether such a singular value comes out as 5e-17 or exactly 0 is decided by
     rounding (the same matrix at another length scale, on another machine's BLAS), and
-    the margin chosen must not be."""
+    the margin chosen must not be; nor at mp:N (``digits`` N) a drop within the rounding of N
+    digits."""
     if not m.tau_hi or not m.sigma_max:
         return math.inf
     out = math.inf
     if m.kept is not None:
         out = min(out, m.kept / m.sigma_max / m.tau_hi)
-    if m.dropped is not None and m.dropped > 0 and not _drop_is_rounding(m):
+    if m.dropped is not None and m.dropped > 0 and not _drop_is_rounding(m, digits):
         out = min(out, m.tau_lo / (m.dropped / m.sigma_max))
     return out
 
 
-def _drop_is_rounding(m: Margin) -> bool:
-    """Is a float margin's dropped singular value within its matrix's rounding
+def _drop_is_rounding(m: Margin, digits: int | None = None) -> bool:
+    """Is a margin's dropped singular value within its matrix's rounding
     (:data:`FLOAT_ROUNDING_FACTOR` times ``rounding``, the bound below which a computed
-    singular value cannot be told from zero: :func:`float_drop_is_real`)?"""
+    singular value cannot be told from zero: :func:`float_drop_is_real`)?  At mp:N
+    (``digits`` N; its margins record no ``rounding``) the rounding is 10^-N sigma_max."""
+    if digits is not None and m.rounding is None:
+        return (
+            m.dropped is not None
+            and m.sigma_max is not None
+            and m.dropped <= FLOAT_ROUNDING_FACTOR * 10.0**-digits * m.sigma_max
+        )
     return (
         m.rounding is not None
         and m.dropped is not None

@@ -55,11 +55,20 @@ def to_json_text(result: AnalysisResult) -> str:
     return json.dumps(_clean(to_json(result)), indent=2) + "\n"
 
 
-def _subgroup(sg: Subgroup | None) -> str:
+def _subgroup(sg: Subgroup | None, floor: float = 0.0, L: float = 1.0) -> str:
+    """A subgroup and its parameters as text, shown through the display ``floor`` (a
+    point's coordinates below it, a direction's below ``floor / L``, are round-off: 0)."""
     if sg is None:
         return "undecided"
+    kinds = dict(sg.type.parameters)
+
+    def shown(k: str, v: float) -> float:
+        return floored(v, floor if kinds.get(k) == "point" else floor / L)
+
     ps = ", ".join(
-        f"{k} [{', '.join(f'{v:.4g}' for v in val)}]" if isinstance(val, list) else f"{k} {val:.4g}"
+        f"{k} [{', '.join(f'{shown(k, v):.4g}' for v in val)}]"
+        if isinstance(val, list)
+        else f"{k} {val:.4g}"
         for k, val in subgroup_params(sg).items()
     )
     return f"{sg.symbol} (dimension {sg.dim}{', ' + ps if ps else ''})"
@@ -223,7 +232,7 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         for lp in c.loops:
             sig = ", ".join(f"{s:.4g}" for s in (lp.sigma or ()))
             lines.append(
-                f"{bullet}loop {'-'.join(lp.joints)}: moves inside {_subgroup(lp.subgroup)}; "
+                f"{bullet}loop {'-'.join(lp.joints)}: moves inside {_subgroup(lp.subgroup, floor, L)}; "
                 f"rank {number_text(lp.rank)}" + (f", singular values {sig}" if sig else "")
             )
         for cp in result.mechanism.couplings:
