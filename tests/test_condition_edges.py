@@ -114,3 +114,67 @@ def test_an_s_joint_is_three_revolutes_without_their_own_singularity(tmp_path: P
     (c,) = doc["conditions"]
     assert c["factors"] == []
     assert any("left out: cos(S1[1])" in n for n in doc["notes"])
+
+
+RRR = Path(__file__).resolve().parent / "data" / "planar_3rrr.yaml"
+
+
+def test_a_planar_3rrr_with_its_three_inputs(tmp_path: Path) -> None:
+    """Type II: the determinant of the legs' lines B_i C_i (each a force through the two
+    passive pivots, with its moment about the origin), worked here from the file's pivots
+    (A_i on the ground, B_i turned about A_i by the input, C_i on the platform, whose
+    reference point is the centroid of C1, C2, C3: the origin); type I of leg 1: A1, B1
+    and C1 in line."""
+    import sympy
+
+    run = run_cli(["condition", RRR, "--format", "json"])
+    assert run.status == 0, run.err
+    doc = json.loads(run.out)
+    conds = {c["name"]: c for c in doc["conditions"]}
+    s3, s7, s21 = sympy.sqrt(3), sympy.sqrt(7), sympy.sqrt(21)
+    A = [sympy.Matrix([0, 2]), sympy.Matrix([-s3, -1]), sympy.Matrix([s3, -1])]
+    B0 = [
+        sympy.Matrix([s7 / 4, sympy.Rational(5, 4)]),
+        sympy.Matrix([-s7 / 8 - 5 * s3 / 8, s21 / 8 - sympy.Rational(5, 8)]),
+        sympy.Matrix([-s7 / 8 + 5 * s3 / 8, -s21 / 8 - sympy.Rational(5, 8)]),
+    ]
+    C0 = [
+        sympy.Matrix([0, sympy.Rational(1, 2)]),
+        sympy.Matrix([-s3 / 4, -sympy.Rational(1, 4)]),
+        sympy.Matrix([s3 / 4, -sympy.Rational(1, 4)]),
+    ]
+
+    def rot(t: float) -> sympy.Matrix:
+        return sympy.Matrix([[sympy.cos(t), -sympy.sin(t)], [sympy.sin(t), sympy.cos(t)]])
+
+    def geometry(x, y, phi, q):
+        B = [A[i] + rot(q[i]) * (B0[i] - A[i]) for i in range(3)]
+        C = [sympy.Matrix([x, y]) + rot(phi) * C0[i] for i in range(3)]
+        return B, C
+
+    def value(cond: dict, at: dict) -> float:
+        names = {n: sympy.Symbol(n, real=True) for n in ("x", "y", "phi", "A1", "A2", "A3")}
+        e = sympy.sympify(cond["expression"], locals=names)
+        return float(e.subs({names[k]: v for k, v in at.items()}))
+
+    ratios = []
+    for x, y, phi, q in ((0.1, 0.2, 0.3, (0.4, -0.2, 0.7)), (-0.3, 0.1, -0.5, (1.1, 0.2, -0.9))):
+        B, C = geometry(x, y, phi, q)
+        rows = []
+        for b, c in zip(B, C, strict=True):
+            f = c - b
+            rows.append([f[0], f[1], b[0] * f[1] - b[1] * f[0]])
+        det = float(sympy.Matrix(rows).det())
+        at = {"x": x, "y": y, "phi": phi, "A1": q[0], "A2": q[1], "A3": q[2]}
+        ratios.append(value(conds["output (type II)"], at) / det)
+    assert abs(ratios[0] - ratios[1]) < 1e-9 * abs(ratios[0])
+    # leg 1 in line: C1 on the line A1 B1, 1.5 times as far from A1 as B1
+    q, phi = (0.3, 0.1, 0.2), 0.2
+    B, _ = geometry(0, 0, phi, q)
+    c1 = A[0] + sympy.Rational(3, 2) * (B[0] - A[0])
+    x, y = c1 - rot(phi) * C0[0]
+    at = {"x": float(x), "y": float(y), "phi": phi, "A1": q[0], "A2": q[1], "A3": q[2]}
+    leg1 = conds["input (type I), leg A1"]
+    assert abs(value(leg1, at)) < 1e-12
+    at["x"] += 0.1
+    assert abs(value(leg1, at)) > 1e-3

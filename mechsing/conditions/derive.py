@@ -9,7 +9,8 @@ derivations, on mechanisms of R, P and H joints
 * an open chain: :mod:`mechsing.conditions.serial`;
 * a single loop with one input: :mod:`mechsing.conditions.loop`;
 * a multi-loop planar linkage with one input: :mod:`mechsing.conditions.linkage`;
-* a planar parallel robot of R-P-R legs: :mod:`mechsing.conditions.rpr`;
+* a planar parallel robot of three legs of three R or P joints, one actuated in each
+  (3-RPR, 3-RRR, 3-PRR ...): :mod:`mechsing.conditions.rpr`;
 * a Gough-Stewart platform: :mod:`mechsing.conditions.spatial`; a translational
   3-UPU: :mod:`mechsing.conditions.translational` (both in the pose variables).
 
@@ -283,7 +284,10 @@ def _configuration_values(
         g = np.array(model.poses(closed.q)[numeric.output.body], dtype=float)
         c0 = np.array([float(sympy.N(v)) for v in numeric.output_reference_point()])
         pos = g[:3, :3] @ c0 + g[:3, 3]
-        return {"x": float(pos[0]), "y": float(pos[1]), "phi": math.atan2(g[1, 0], g[0, 0])}
+        # the joints' too: the conditions of legs other than R-P-R also hold a variable
+        # of each leg's first joint
+        phi = math.atan2(g[1, 0], g[0, 0])
+        return {**vals, "x": float(pos[0]), "y": float(pos[1]), "phi": phi}
     return vals
 
 
