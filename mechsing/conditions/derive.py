@@ -200,6 +200,9 @@ def _condition(
             if added:
                 numeric = replace(numeric, configurations={**numeric.configurations, **added})
         values = _configuration_values(numeric, config, method, bool(split_notes))
+        if method.startswith("parallel"):  # the pose, and the joints the conditions hold
+            used = {"x", "y", "phi"} | {v for c in conds for v in c.variables}
+            values = {k: v for k, v in values.items() if k in used}
         conds = [_evaluate(c, values, params) for c in conds]
     fixed = {k: v for k, v in mech.parameters.items() if k not in names}
     return ConditionResult(
