@@ -178,3 +178,23 @@ def test_a_planar_3rrr_with_its_three_inputs(tmp_path: Path) -> None:
     assert abs(value(leg1, at)) < 1e-12
     at["x"] += 0.1
     assert abs(value(leg1, at)) > 1e-3
+
+
+def test_a_planar_3prr_with_its_three_inputs() -> None:
+    """Leg 1: B1 = (P1 - 1, 3) on the slide along x, C1 = (x, y) + Rot(phi) (0, 4/3) (C1 =
+    (0, 1) from the centroid (0, -1/3)); the leg transmits a force along C1 - B1, which
+    does no work on the slide (along x) when C1 is straight above B1:
+    x - 4/3 sin(phi) - (P1 - 1) = 0."""
+    import sympy
+
+    path = Path(__file__).resolve().parent / "data" / "planar_3prr.yaml"
+    run = run_cli(["condition", path, "--format", "json"])
+    assert run.status == 0, run.err
+    conds = {c["name"]: c for c in json.loads(run.out)["conditions"]}
+    names = {n: sympy.Symbol(n, real=True) for n in ("x", "y", "phi", "P1")}
+    got = sympy.sympify(conds["input (type I), leg P1"]["expression"], locals=names)
+    x, phi, p1 = names["x"], names["phi"], names["P1"]
+    want = x - sympy.Rational(4, 3) * sympy.sin(phi) - (p1 - 1)
+    ratio = sympy.simplify(got / want)
+    assert ratio.is_number and ratio != 0
+    assert set(conds) >= {"output (type II)", "input (type I), leg P2", "input (type I), leg P3"}

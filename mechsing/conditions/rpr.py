@@ -48,7 +48,8 @@ def planar_parallel(
     )
     if not is_planar(mech, list(mech.joint_names)):
         raise refuse
-    normal = sympy.Matrix(mech.joints[0].params["axis"]) if mech.joints[0].type == "R" else None
+    revolutes = [j for j in mech.joints if j.type == "R"]
+    normal = sympy.Matrix(revolutes[0].params["axis"]) if revolutes else None
     if normal is None or list(normal) != [0, 0, 1]:
         raise refuse
     clash = [p.name for p in parameter_symbols(mech) if p.name in ("x", "y", "phi")]
@@ -125,9 +126,11 @@ def planar_parallel(
 
 
 def _is_rpr(mech: Mechanism, joints: tuple[str, ...], inputs: set[str]) -> bool:
-    types = sorted(mech.joint(n).type for n in joints)
-    acts = [n for n in joints if n in inputs]
-    return types == ["P", "R", "R"] and len(acts) == 1 and mech.joint(acts[0]).type == "P"
+    """An R-P-R leg (in order from the ground) whose P joint is actuated."""
+    chain = _chain(mech, joints)
+    if chain is None or [mech.joint(n).type for n in chain] != ["R", "P", "R"]:
+        return False
+    return [n for n in chain if n in inputs] == [chain[1]]
 
 
 def _chain(mech: Mechanism, joints: tuple[str, ...]) -> list[str] | None:
