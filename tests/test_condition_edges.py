@@ -198,3 +198,103 @@ def test_a_planar_3prr_with_its_three_inputs() -> None:
     ratio = sympy.simplify(got / want)
     assert ratio.is_number and ratio != 0
     assert set(conds) >= {"output (type II)", "input (type I), leg P2", "input (type I), leg P3"}
+
+
+def _dh_jacobian_det(rows: list[tuple[float, float, float]], q: list[float]) -> float:
+    """det of the 6x6 Jacobian of joint twists (omega, o x omega) of a standard-DH arm
+    (rows: d, a, alpha; every joint revolute), worked here with numpy."""
+    import numpy as np
+
+    T = np.eye(4)
+    cols = []
+    for (d, a, alpha), theta in zip(rows, q, strict=True):
+        z, o = T[:3, 2], T[:3, 3]
+        cols.append(np.concatenate([z, np.cross(o, z)]))
+        ct, st, ca, sa = np.cos(theta), np.sin(theta), np.cos(alpha), np.sin(alpha)
+        A = np.array(
+            [
+                [ct, -st * ca, st * sa, a * ct],
+                [st, ct * ca, -ct * sa, a * st],
+                [0, sa, ca, d],
+                [0, 0, 0, 1],
+            ]
+        )
+        T = T @ A
+    return float(np.linalg.det(np.column_stack(cols)))
+
+
+def test_a_kinova_jaco2_condition_is_derived() -> None:
+    """The JACO2 (Kinova's published DH table, its 60 degree curved wrist): the
+    determinant comes out (it ran for many minutes in sympy's expression domain), and at
+    the file's configuration its value is the numeric Jacobian's determinant."""
+    import math
+
+    import sympy
+
+    path = Path(__file__).resolve().parent / "data" / "jaco2_dh.yaml"
+    run = run_cli(["condition", path, "--config", "wrist", "--format", "json"])
+    assert run.status == 0, run.err
+    (c,) = json.loads(run.out)["conditions"]
+    value = float(sympy.sympify(c["constant"]))
+    for f in c["factors"]:
+        value *= f["value"] ** f["power"]
+    aa = math.pi / 6
+    k = math.sin(aa) / math.sin(2 * aa)
+    d4b, d5b, d6b = 0.2073 + k * 0.0741, 2 * k * 0.0741, k * 0.0741 + 0.16
+    rows = [
+        (0.2755, 0, math.pi / 2),
+        (0, 0.41, math.pi),
+        (-0.0098, 0, math.pi / 2),
+        (-d4b, 0, 2 * aa),
+        (-d5b, 0, 2 * aa),
+        (-d6b, 0, math.pi),
+    ]
+    want = _dh_jacobian_det(rows, [0.3, 2.9, 1.3, 4.2, 0, 1])
+    assert abs(abs(value) - abs(want)) <= 1e-9 * abs(want), (value, want)
+
+
+def test_the_jansen_leg_type_ii_dyads() -> None:
+    """Theo Jansen's leg (his holy numbers): its type II condition has a factor for each
+    dyad whose pivots come in line, c sin(t) + s cos(t) in the angle t one link of the dyad
+    has turned relative to the other, with c/s = (u . v)/(u x v), u and v the links' arms
+    from the common pivot at the drawn pose (cross(u, R(t) v) = (u . v) sin t + (u x v) cos t)."""
+    import sympy
+
+    path = Path(__file__).resolve().parent / "data" / "jansen_leg.yaml"
+    run = run_cli(["condition", path, "--format", "json"])
+    assert run.status == 0, run.err
+    doc = json.loads(run.out)
+    (c,) = [
+        c
+        for c in doc["conditions"]
+        if c["name"] == "output (type II)" and c["form"] != "eliminated"
+    ]
+    pts = {
+        "A": (0.075, 0.129903810568),
+        "B": (-0.38, -0.078),
+        "C": (-0.380094685529, 0.336999989198),
+        "D": (-0.197334955621, -0.42596908133),
+        "E": (-0.780155732298, -0.0519925028342),
+        "F": (-0.561405049492, -0.3796876947),
+    }
+    dyads = {  # (the first link's far pivot, the common pivot, the second link's far pivot)
+        "pivots Ak, Dk and Bc in line": ("A", "D", "B"),
+        "pivots Aj, C and Bb in line": ("A", "C", "B"),
+        "pivots E, F and Dg in line": ("E", "F", "D"),
+    }
+    found = 0
+    for f in c["factors"]:
+        (key,) = [k for k in dyads if k in (f["meaning"] or "")] or [None]
+        if key is None:
+            continue
+        p, o, q = (pts[n] for n in dyads[key])
+        u = (p[0] - o[0], p[1] - o[1])
+        v = (q[0] - o[0], q[1] - o[1])
+        want = (u[0] * v[0] + u[1] * v[1]) / (u[0] * v[1] - u[1] * v[0])
+        e = sympy.sympify(f["expression"])
+        (s,) = e.atoms(sympy.sin)
+        (co,) = e.atoms(sympy.cos)
+        got = float(e.coeff(s) / e.coeff(co))
+        assert abs(abs(got) - abs(want)) < 1e-9 * abs(want), (key, got, want)
+        found += 1
+    assert found == 3, c["factors"]
