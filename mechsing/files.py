@@ -22,7 +22,10 @@ work, :func:`check_output` applies the rules every command shares:
 
 An output that names a symbolic link is written to the file the link points to.  An
 output that exists and is not a regular file (``/dev/null``, ``/dev/stdout``, a FIFO)
-is written to as a stream.  Errors are :class:`~mechsing.errors.UserError` (exit 2)
+is written to as a stream.  With ``follow_links=False`` (the files a command names itself,
+such as ``exercise make``'s in its variant folders) no link is followed: whatever the
+name holds (a symbolic link, a FIFO) is replaced by the new file, and what it pointed to
+is left as it was.  Errors are :class:`~mechsing.errors.UserError` (exit 2)
 whose message names the file.
 """
 
@@ -171,22 +174,33 @@ def _read_pipe(fd: int, limit: int, shown: str, what: str) -> bytes:
 # --------------------------------------------------------------------------- writing
 
 
-def _identity(path: PathLike) -> tuple[str, tuple[int, int] | None]:
-    """A file's resolved path and (device, inode) when it exists."""
-    real = os.path.realpath(path)
+def _identity(path: PathLike, follow: bool = True) -> tuple[str, tuple[int, int] | None]:
+    """A file's resolved path and (device, inode) when it exists (without ``follow``, of
+    the name itself: a symbolic link is not followed, its directory is resolved)."""
+    if follow:
+        real = os.path.realpath(path)
+    else:
+        head, tail = os.path.split(os.fspath(path))
+        real = os.path.join(os.path.realpath(head or "."), tail)
     try:  # the path itself: the kernel follows /dev/stdout to a pipe realpath cannot name
-        st = os.stat(path)
+        st = os.stat(path, follow_symlinks=follow)
     except OSError:
         return real, None
     return real, (st.st_dev, st.st_ino)
 
 
-def check_output(path: PathLike, inputs: Iterable[PathLike] = (), option: str = "-o") -> Path:
-    """The file to write for the output ``path`` (a symbolic link resolved), after the
-    rules every output follows: its directory exists, it is not a directory, and it is
-    not the same file as any of ``inputs``.  ``option`` names it in messages (``-o``)."""
+def check_output(
+    path: PathLike,
+    inputs: Iterable[PathLike] = (),
+    option: str = "-o",
+    follow_links: bool = True,
+) -> Path:
+    """The file to write for the output ``path`` (a symbolic link resolved, unless
+    ``follow_links`` is false), after the rules every output follows: its directory
+    exists, it is not a directory, and it is not the same file as any of ``inputs``.
+    ``option`` names it in messages (``-o``)."""
     shown = os.fspath(path)
-    real, ident = _identity(path)
+    real, ident = _identity(path, follow_links)
     if ident is None and not os.path.isdir(os.path.dirname(real)):
         # named as given, or where the link points
         missing = os.path.dirname(real if os.path.islink(shown) else shown)
@@ -194,7 +208,7 @@ def check_output(path: PathLike, inputs: Iterable[PathLike] = (), option: str = 
             f"{option} {shown}: the directory {missing} does not exist; create it first "
             "(mechsing creates no directories) or choose another path"
         )
-    if os.path.isdir(path):
+    if os.path.isdir(path) and (follow_links or not os.path.islink(path)):
         raise UserError(
             f"{option} {shown}: is a directory; name a file in it (e.g. {os.path.join(shown, 'out')})"
         )
@@ -249,7 +263,7 @@ def _cannot(option: str, shown: str, exc: OSError) -> UserError:
     )
 
 
-def _temporary(target: Path) -> tuple[int, Path]:
+def _temporary(target: Path, follow: bool = True) -> tuple[int, Path]:
     """A new, uniquely named file beside ``target``, created exclusively (a name that
     exists, a link included, is never opened), with the target's permissions when it
     exists and the usual ones (0666 less the umask) when not."""
@@ -262,7 +276,9 @@ def _temporary(target: Path) -> tuple[int, Path]:
         except FileExistsError:
             continue
         with contextlib.suppress(OSError):
-            os.fchmod(fd, stat.S_IMODE(os.stat(target).st_mode))
+            st = os.stat(target, follow_symlinks=follow)
+            if stat.S_ISREG(st.st_mode):
+                os.fchmod(fd, stat.S_IMODE(st.st_mode))
         return fd, tmp
     raise FileExistsError(errno.EEXIST, "no free temporary name", str(target))  # pragma: no cover
 
@@ -273,23 +289,25 @@ def open_output(
     inputs: Iterable[PathLike] = (),
     binary: bool = False,
     option: str = "-o",
+    follow_links: bool = True,
 ) -> Iterator[IO]:
     """A file object to write the output ``path`` through (text in UTF-8, or ``binary``):
     a temporary file beside it, renamed over ``path`` when the block ends normally and
     removed when it raises (an interrupt included), so ``path`` is never half written.
-    The rules of :func:`check_output` apply."""
+    The rules of :func:`check_output` apply; without ``follow_links``, whatever ``path``
+    names (a link included) is replaced."""
     shown = os.fspath(path)
-    target = check_output(path, inputs, option)
+    target = check_output(path, inputs, option, follow_links)
     try:
         st = os.stat(path)
     except OSError:
         st = None
-    if st is not None and not stat.S_ISREG(st.st_mode):
+    if follow_links and st is not None and not stat.S_ISREG(st.st_mode):
         with _stream(Path(path), shown, binary, option) as f:
             yield f
         return
     try:
-        fd, tmp = _temporary(target)
+        fd, tmp = _temporary(target, follow_links)
     except OSError as exc:
         raise _cannot(option, shown, exc) from None
     try:
@@ -329,10 +347,16 @@ def _stream(target: Path, shown: str, binary: bool, option: str) -> Iterator[IO]
 
 
 def write_output(
-    path: PathLike, data: str | bytes, inputs: Iterable[PathLike] = (), option: str = "-o"
+    path: PathLike,
+    data: str | bytes,
+    inputs: Iterable[PathLike] = (),
+    option: str = "-o",
+    follow_links: bool = True,
 ) -> Path:
     """Write ``data`` (text in UTF-8, or bytes) to the output ``path`` atomically (see
-    :func:`open_output`); the file written (a symbolic link resolved)."""
-    with open_output(path, inputs, binary=isinstance(data, bytes), option=option) as f:
+    :func:`open_output`); the file written (a symbolic link resolved, unless
+    ``follow_links`` is false)."""
+    binary = isinstance(data, bytes)
+    with open_output(path, inputs, binary, option, follow_links) as f:
         f.write(data)
-    return Path(os.path.realpath(path))
+    return Path(_identity(path, follow_links)[0])

@@ -41,7 +41,8 @@ def test_an_exactly_singular_output_finding_shows_its_dropped_zero(
     assert out["margin"]["dropped"] == 0.0
     rc, text, _ = run_cli(["analyze", path, "--precision", precision])
     assert rc == 0
-    block = text[text.index("  output: with the inputs locked") :]
+    block = text[text.index("  output: ") :]  # "output: [its name (...): ]with the inputs locked"
+    assert "with the inputs locked" in block.splitlines()[0]
     margin_line = next(line for line in block.splitlines() if "margin:" in line)
     assert "dropped 0 " in margin_line and "dropped -" not in margin_line
 

@@ -164,7 +164,10 @@ def _finding(
             out["joint_rates"] = _lists(f.joint_rates)
             if f.output_twist is not None:
                 out["output_twist"] = list(f.output_twist)
-        return _decided(f, out)
+        out = _decided(f, out)
+        if f.name is not None:  # added after the contract's first keys
+            out["name"] = f.name
+        return out
     out.update(
         {
             "rank": f.rank,

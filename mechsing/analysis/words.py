@@ -283,11 +283,13 @@ def explain(f: Finding) -> str:
             f"the joints have {f.instantaneous} instantaneous motion(s) where the mechanism moves with "
             f"{f.generic}: the extra ones do not extend, and one smooth branch passes through"
         )
+    # "dead centre: ... leg fully stretched or folded (...)": named as a leg's would be
+    named = f"{f.name} ({meaning_of(f.name)}): " if getattr(f, "name", None) else ""
     if cls == "input":
-        return f"an input can move while the output stays still (moving joints: {j}): the output loses a direction"
+        return f"{named}an input can move while the output stays still (moving joints: {j}): the output loses a direction"
     if cls == "output":
         return (
-            f"with the inputs locked the output can still move (moving joints: {j}): the mechanism loses "
+            f"{named}with the inputs locked the output can still move (moving joints: {j}): the mechanism loses "
             "stiffness and actuator forces can grow without bound"
         )
     if cls == "passive-motion":

@@ -10,7 +10,8 @@
 EXERCISE is an exercise folder (or its template.yaml), or, in a checkout of mechsing, the
 name of a bundled exercise (12, 12-crank-rocker-sweep).  The same seed gives the same
 files.  docs/exercises.md explains templates, keys and sheets.  Exit status of check: 0
-when the sheet was graded, whatever the grade; 2 for a sheet or key that cannot be read.
+when every answer is right, 1 when one is wrong or missing (the grades are printed all the
+same); 2 for a sheet or key that cannot be read.
 """
 
 from __future__ import annotations
@@ -53,7 +54,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="write into DIR even if it is not empty (variant files of the same names are replaced)",
     )
     p.add_argument("--quiet", action="store_true", help="print nothing on success")
-    p = sub.add_parser("check", help="grade an answer sheet against a key")
+    p = sub.add_parser(
+        "check",
+        help="grade an answer sheet against a key (exit 0: all right, 1: not all right)",
+        description="Grade a student's answer sheet against a variant's key.  Exit status: 0 "
+        "when every answer is right, 1 when one is wrong or missing (the grades are printed "
+        "all the same), 2 when the sheet or the key cannot be read.",
+    )
     p.add_argument("sheet", metavar="SHEET", help="the student's answer sheet (YAML)")
     p.add_argument("--key", required=True, metavar="KEY", help="the variant's key.yaml")
     p.add_argument("--format", choices=("text", "json"), default="text", help="output format")
@@ -101,4 +108,5 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(result.text())
     sys.stdout.flush()
-    return 0
+    # as graders and CI scripts expect: success only when the sheet is all right
+    return 0 if result.count("right") == len(result.marks) else 1

@@ -9,7 +9,8 @@ derivations, on mechanisms of R, P and H joints
 * an open chain: :mod:`mechsing.conditions.serial`;
 * a single loop with one input: :mod:`mechsing.conditions.loop`;
 * a multi-loop planar linkage with one input: :mod:`mechsing.conditions.linkage`;
-* a planar parallel robot of R-P-R legs: :mod:`mechsing.conditions.rpr`;
+* a planar parallel robot of three legs of three R or P joints, one actuated in each
+  (3-RPR, 3-RRR, 3-PRR ...): :mod:`mechsing.conditions.rpr`;
 * a Gough-Stewart platform: :mod:`mechsing.conditions.spatial`; a translational
   3-UPU: :mod:`mechsing.conditions.translational` (both in the pose variables).
 
@@ -36,6 +37,7 @@ from mechsing.conditions.results import Condition, ConditionResult, Factor
 from mechsing.conditions.rpr import planar_parallel
 from mechsing.conditions.serial import open_chain
 from mechsing.conditions.spatial import gough_stewart
+from mechsing.conditions.split import gimbal_factor, split_joints, split_values
 from mechsing.conditions.symbolic import joint_symbols
 from mechsing.conditions.translational import translational_3upu
 from mechsing.errors import ConfigurationError, TimeLimitExceeded, UserError
@@ -153,6 +155,8 @@ def _condition(
             notes=tuple(platform[1]),
             file_angle_unit=mech.units.angle,
         )
+    original = mech
+    mech, split_notes = split_joints(mech)
     S = joint_symbols(mech)
     params = parameter_symbols(mech)
     if mech.graph.num_loops == 0:
@@ -179,9 +183,12 @@ def _condition(
         )
     printable = {p: sympy.Symbol(p.name, real=True) for p in params}
     conds = [_printable(c, printable) for c in conds]
+    if split_notes:
+        conds, dropped = _without_gimbal(original, conds)
+        notes = [*split_notes, *dropped, *notes]
     values: dict[str, float] = {}
     if config is not None:
-        numeric = mech
+        numeric = original
         if names and mech.path:  # the same file with its parameters' values
             numeric = read_mechanism(mech.path)
             if scene is not None:
@@ -192,7 +199,10 @@ def _condition(
             }
             if added:
                 numeric = replace(numeric, configurations={**numeric.configurations, **added})
-        values = _configuration_values(numeric, config, method)
+        values = _configuration_values(numeric, config, method, bool(split_notes))
+        if method.startswith("parallel"):  # the pose, and the joints the conditions hold
+            used = {"x", "y", "phi"} | {v for c in conds for v in c.variables}
+            values = {k: v for k, v in values.items() if k in used}
         conds = [_evaluate(c, values, params) for c in conds]
     fixed = {k: v for k, v in mech.parameters.items() if k not in names}
     return ConditionResult(
@@ -206,6 +216,24 @@ def _condition(
         values=values,
         file_angle_unit=mech.units.angle,
     )
+
+
+def _without_gimbal(mech: Mechanism, conds: list[Condition]) -> tuple[list[Condition], list[str]]:
+    """The conditions without the factors that are the three-revolute parametrisation's
+    of an S joint (:func:`.split.gimbal_factor`), and a note for those left out."""
+    out, dropped = [], []
+    for c in conds:
+        kept = tuple(f for f in c.factors if not gimbal_factor(mech, f.expression))
+        dropped += [sympy.sstr(f.expression) for f in c.factors if f not in kept]
+        out.append(replace(c, factors=kept) if len(kept) != len(c.factors) else c)
+    notes = []
+    if dropped:
+        notes.append(
+            f"left out: {', '.join(dict.fromkeys(dropped))}, which vanishes where the middle of "
+            "the three revolutes an S joint is written as has turned a right angle (a "
+            "singularity of those angles, not of the mechanism)"
+        )
+    return out, notes
 
 
 def _symbolic_mechanism(source: str | Path | Mechanism, names: list[str]) -> Mechanism:
@@ -241,18 +269,28 @@ def _printable(c: Condition, printable: dict[Any, Any]) -> Condition:
     )
 
 
-def _configuration_values(numeric: Mechanism, config: str, method: str) -> dict[str, float]:
-    """The joint (or pose) variables of a configuration of ``numeric`` (no symbols)."""
+def _configuration_values(
+    numeric: Mechanism, config: str, method: str, split: bool = False
+) -> dict[str, float]:
+    """The joint (or pose) variables of a configuration of ``numeric`` (no symbols);
+    ``split``: its U, C and S joints' as their one-dof factors' (:mod:`.split`)."""
     from mechsing.kinematics import solve_configuration
 
     model, closed = solve_configuration(numeric, config, "float")
-    vals = {k: float(v[0]) for k, v in model.values(closed.q).items() if k in numeric.joint_names}
+    joint_values = {k: v for k, v in model.values(closed.q).items() if k in numeric.joint_names}
+    if split:
+        vals = split_values(numeric, joint_values)
+    else:
+        vals = {k: float(v[0]) for k, v in joint_values.items()}
     if method.startswith("parallel"):
         assert numeric.output is not None
         g = np.array(model.poses(closed.q)[numeric.output.body], dtype=float)
         c0 = np.array([float(sympy.N(v)) for v in numeric.output_reference_point()])
         pos = g[:3, :3] @ c0 + g[:3, 3]
-        return {"x": float(pos[0]), "y": float(pos[1]), "phi": math.atan2(g[1, 0], g[0, 0])}
+        # the joints' too: the conditions of legs other than R-P-R also hold a variable
+        # of each leg's first joint
+        phi = math.atan2(g[1, 0], g[0, 0])
+        return {**vals, "x": float(pos[0]), "y": float(pos[1]), "phi": phi}
     return vals
 
 

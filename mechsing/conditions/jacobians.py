@@ -136,16 +136,37 @@ def reduce_rows(J: Any, S: list[JointSymbols], params: list[Any]) -> tuple[Any, 
     return J.extract(rows, list(range(J.cols))), True, r
 
 
+def symbolic_det(M: Any) -> Any:
+    """The determinant of a square sympy matrix, computed fraction-free in a polynomial
+    ring.  The numbers that are not rational (``sqrt(3)`` of a 60 degree twist,
+    ``cos(pi/9)``) stand for symbols during the computation and are put back after: a
+    determinant is a polynomial in the entries, so this is exact, and it keeps sympy out
+    of its expression domain, whose every step simplifies (a 6R arm's Jacobian took
+    minutes there, seconds here)."""
+    from sympy.polys.matrices import DomainMatrix
+
+    numbers: dict[Any, Any] = {}
+    for e in M:
+        for a in sympy.sympify(e).atoms(sympy.Pow, sympy.Function, sympy.NumberSymbol):
+            if a.is_number and not a.is_Rational and a not in numbers:
+                numbers[a] = sympy.Dummy(f"number{len(numbers)}")
+    # the largest first: sqrt(2 + sqrt(3)) is one number, not a function of sqrt(3)
+    order = sorted(numbers, key=sympy.count_ops, reverse=True)
+    plain = M.applyfunc(
+        lambda e: sympy.expand(sympy.sympify(e).xreplace({a: numbers[a] for a in order}))
+    )
+    dm = DomainMatrix.from_Matrix(plain)
+    det = dm.domain.to_sympy(dm.det())
+    return sympy.expand(det.xreplace({v: k for k, v in numbers.items()}))
+
+
 def maximal_condition(
     J: Any, r: int, S: list[JointSymbols], params: list[Any], what: str, explain: Any
 ) -> Condition:
     """The determinant of a square ``J``, else the gcd of its maximal (r x r) minors."""
-    from sympy.polys.matrices import DomainMatrix
-
     pset = set(params)
     if J.rows == J.cols == r:
-        det = DomainMatrix.from_Matrix(J).det()
-        det = DomainMatrix.from_Matrix(J).domain.to_sympy(det)
+        det = symbolic_det(J)
         return condition_from(
             what,
             "determinant",
@@ -160,9 +181,7 @@ def maximal_condition(
     pairs = list(itertools.product(row_sets, col_sets))[:MAX_MINORS]
     common: dict[Any, int] | None = None
     for rows, cols in pairs:
-        M = J.extract(list(rows), list(cols))
-        dm = DomainMatrix.from_Matrix(M)
-        d = dm.domain.to_sympy(dm.det())
+        d = symbolic_det(J.extract(list(rows), list(cols)))
         if d == 0:
             continue
         _, fs = factor_condition(d, S, pset)

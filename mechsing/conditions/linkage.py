@@ -101,9 +101,10 @@ def linkage_conditions(
             L, irrational = written, None
     if irrational is not None:
         return (
-            f"its closure holds {irrational}, an irrational function of the parameters (a P "
-            "joint's axis written with symbols is normalised by its length), and elimination "
-            "works on polynomials"
+            f"its closure holds {_printed(irrational)}, an irrational function of the "
+            "parameters (a radical in a joint's point or axis, or a P joint's axis written "
+            "with symbols, which is normalised by its length), and elimination works on "
+            "polynomials"
             + (
                 "; with the input a P joint, its slide cannot be measured in other units"
                 if mech.joint(name).type == "P"

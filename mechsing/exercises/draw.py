@@ -21,7 +21,12 @@ import numpy as np
 import yaml
 
 from mechsing.errors import ParameterError, UserError
-from mechsing.exercises.template import Template, set_parameters
+from mechsing.exercises.template import (
+    CONSTRAINT_SYNTAX,
+    Template,
+    constraint_tree,
+    set_parameters,
+)
 
 __all__ = ["MAX_DRAWS", "Draw", "check_constraints", "draws", "evaluate", "parameter_values"]
 
@@ -99,11 +104,9 @@ def _floats(exact: dict[str, Any]) -> dict[str, float]:
 def evaluate(text: str, values: dict[str, float]) -> Any:
     """A constraint's expression in floats: numbers, names of ``values``, ``pi``, ``+ - *
     / **``, comparisons (chained too), ``and``, ``or``, ``not`` and the functions sqrt,
-    sin, cos, tan, asin, acos, atan, atan2, abs, min, max.  Never ``eval``."""
-    try:
-        tree = ast.parse(text.strip(), mode="eval")
-    except SyntaxError as exc:
-        raise UserError(f"constraint {text!r} is not valid ({exc.msg})") from None
+    sin, cos, tan, asin, acos, atan, atan2, abs, min, max.  Never ``eval``; bounded as a
+    mechanism file's expressions are (:func:`mechsing.model.expressions.syntax_tree`)."""
+    tree = constraint_tree(text)
 
     def build(node: ast.AST) -> Any:
         if isinstance(node, ast.Expression):
@@ -144,10 +147,7 @@ def evaluate(text: str, values: dict[str, float]) -> Any:
         ):
             return _FUNCTIONS[node.func.id](*(build(a) for a in node.args))
         what = ast.get_source_segment(text.strip(), node) or type(node).__name__
-        raise UserError(
-            f"constraint {text!r}: {what!r} is not allowed (numbers, parameters, pi, "
-            "+ - * / **, < <= > >=, and or not, sqrt sin cos tan asin acos atan atan2 abs min max)"
-        )
+        raise UserError(f"constraint {text!r}: {what!r} is not allowed ({CONSTRAINT_SYNTAX})")
 
     return build(tree)
 
@@ -176,8 +176,8 @@ def check_constraints(
 
 def _uses_only(text: str, values: dict[str, float]) -> bool:
     try:
-        tree = ast.parse(text.strip(), mode="eval")
-    except SyntaxError:
+        tree = constraint_tree(text)
+    except UserError:
         return True  # evaluate() says what is wrong
     names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
     return names <= set(values) | set(_FUNCTIONS) | {"pi"}

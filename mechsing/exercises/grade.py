@@ -11,25 +11,24 @@ A sheet (YAML)::
 Each question of the key is ``right``, ``wrong`` or ``missing`` (no entry, or empty).
 Numbers are converted to SI units before they are compared, within the key's tolerance
 (in the key's unit); class names are compared as sets; a formula is right when sympy
-proves it equal to the key's, or, failing that, when the two agree at random points to
-the key's tolerance (relative; default
+proves it equal to the key's, or, failing that, when the two agree at points drawn over
+the whole domain of each variable to the key's tolerance (relative; default
 :data:`~mechsing.numeric.tolerances.EXERCISE_FORMULA_RTOL`), up to a constant factor when
-the key says ``up_to_factor: true`` (a condition ``det J = 0`` is one up to a factor).
+the key says ``up_to_factor: true`` (a condition ``det J = 0`` is one up to a factor):
+:mod:`mechsing.exercises.formulas`.
 """
 
 from __future__ import annotations
 
-import ast
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-import sympy
 import yaml
 
 from mechsing.errors import UserError
+from mechsing.exercises.formulas import DOMAINS, same_formula
 from mechsing.exercises.template import KINDS
 from mechsing.exercises.units import UNITS, parse_quantity, to_si
 from mechsing.numeric.tolerances import EXERCISE_FORMULA_RTOL
@@ -60,15 +59,6 @@ CLASSES = (
 KEY_VERSION = 1
 #: largest sheet or key read (bytes)
 MAX_FILE_BYTES = 1_000_000
-#: random points at which two formulas are compared when sympy proves nothing
-_FORMULA_POINTS = 12
-#: the formulas' variables are drawn in [-_SPAN, _SPAN] (a fixed seed: grading is reproducible)
-_SPAN = 2.0
-_FORMULA_SEED = 20240533
-#: sympy simplifies a difference of formulas only up to this size (a sheet may hold a long
-#: formula: past it, the random points decide)
-_SIMPLIFY_OPS = 120
-_FUNCTION_NAMES = {"sqrt", "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "pi"}
 
 
 @dataclass(frozen=True)
@@ -198,6 +188,12 @@ def read_key(path: str | Path) -> dict[str, Any]:
         tol = q.get("tol", 0)
         if isinstance(tol, bool) or not isinstance(tol, int | float) or not tol >= 0:
             raise UserError(f"{path}: questions[{i}] ({q['id']}): tol {tol!r} is not a number >= 0")
+        domains = q.get("variables", {})
+        if not isinstance(domains, dict) or not set(map(str, domains.values())) <= set(DOMAINS):
+            raise UserError(
+                f"{path}: questions[{i}] ({q['id']}): variables maps each variable of the "
+                f"formula to its domain, one of {', '.join(DOMAINS)}"
+            )
         if q["kind"] == "number" and (q.get("unit") is not None and q["unit"] not in UNITS):
             raise UserError(f"{path}: questions[{i}] ({q['id']}): unknown unit {q['unit']!r}")
     return doc
@@ -212,77 +208,6 @@ def read_sheet(path: str | Path) -> dict[str, Any]:
     if not isinstance(answers, dict):
         raise UserError(f"{path}: answers: is a mapping, one line per question (id: answer)")
     return {str(k): v for k, v in answers.items()}
-
-
-def _names(text: str) -> set[str]:
-    try:
-        tree = ast.parse(text, mode="eval")
-    except SyntaxError:
-        return set()
-    return {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)} - _FUNCTION_NAMES
-
-
-def _formula(text: str, symbols: dict[str, Any]) -> Any:
-    """A whitelisted formula as a sympy expression of plain symbols."""
-    from mechsing.model.expressions import parse_number
-    from mechsing.model.parameters import ParameterSymbol
-
-    probe = {n: ParameterSymbol(n, v) for n, v in symbols.items()}
-    value = parse_number(str(text), names=probe)
-    return value.xreplace({s: sympy.Symbol(s.name, real=True) for s in probe.values()})
-
-
-def same_formula(
-    expected: str, given: str, rtol: float, up_to_factor: bool = False
-) -> tuple[bool, str]:
-    """Whether two formulas are the same (and why not); see the module's docstring."""
-    names = sorted(_names(expected) | _names(given))
-    extra = sorted(_names(given) - _names(expected))
-    if extra:
-        return False, f"uses {', '.join(extra)}, which the expected formula does not"
-    rng = np.random.default_rng(_FORMULA_SEED)
-    # a point where the parser can check that both are finite reals (it probes there)
-    probe = {n: sympy.Rational(1, 3) + k * sympy.Rational(1, 7) for k, n in enumerate(names)}
-    try:
-        a = _formula(expected, probe)
-        b = _formula(given, probe)
-    except UserError as exc:
-        return False, f"not a formula: {exc}"
-    difference = a - b
-    if not up_to_factor and sympy.count_ops(difference) <= _SIMPLIFY_OPS:
-        if sympy.simplify(difference) == 0:
-            return True, ""
-    symbols = sorted(a.free_symbols | b.free_symbols, key=lambda s: s.name)
-    fa = sympy.lambdify(symbols, a, "math")
-    fb = sympy.lambdify(symbols, b, "math")
-    ratio = None
-    used = 0
-    for _ in range(4 * _FORMULA_POINTS):
-        point = [float(x) for x in rng.uniform(-_SPAN, _SPAN, len(symbols))]
-        try:
-            va, vb = float(fa(*point)), float(fb(*point))
-        except (ValueError, ZeroDivisionError, OverflowError, TypeError):
-            continue
-        if not (math.isfinite(va) and math.isfinite(vb)):
-            continue
-        if up_to_factor:
-            if abs(vb) <= rtol * max(1.0, abs(va)):
-                if abs(va) > rtol:
-                    return False, "zero where the expected formula is not"
-                continue
-            r = va / vb
-            if ratio is None:
-                ratio = r
-            if abs(r - ratio) > rtol * max(1.0, abs(ratio)):
-                return False, "not a constant multiple of the expected formula"
-        elif abs(va - vb) > rtol * max(1.0, abs(va)):
-            return False, "differs from the expected formula at " + ", ".join(
-                f"{s}={x:.3g}" for s, x in zip(symbols, point, strict=True)
-            )
-        used += 1
-        if used == _FORMULA_POINTS:
-            return True, ""
-    return False, "cannot be evaluated at enough points to compare it"
 
 
 def expected_text(q: dict[str, Any]) -> str:
@@ -335,7 +260,9 @@ def _mark(q: dict[str, Any], given: Any) -> tuple[bool, str]:
         return names == set(value), ""
     if kind == "formula":
         rtol = float(q.get("tol", EXERCISE_FORMULA_RTOL))
-        return same_formula(str(value), str(given), rtol, bool(q.get("up_to_factor")))
+        return same_formula(
+            str(value), str(given), rtol, bool(q.get("up_to_factor")), q.get("variables")
+        )
     return str(given).strip() == str(value), ""
 
 

@@ -27,10 +27,12 @@ import yaml
 
 from mechsing.errors import MechsingError, UserError
 from mechsing.exercises.draw import ANSWERED, Draw, draws
+from mechsing.exercises.formulas import formula_names
 from mechsing.exercises.grade import CLASSES, KEY_VERSION, expected_text
 from mechsing.exercises.paths import walk
 from mechsing.exercises.template import Question, Template
 from mechsing.exercises.units import UNITS
+from mechsing.files import write_output
 
 __all__ = ["Variant", "answer_key", "check_output", "make_variants", "render", "write_variants"]
 
@@ -134,10 +136,28 @@ def _key_value(q: Question, got: Any) -> Any:
     return got
 
 
+def _domains(formula: str, path: Path, draw: Draw) -> dict[str, str]:
+    """The domain of each variable of a formula answer (grading draws its values there):
+    a joint's angle or a pose's angle ``phi`` over a period, a parameter of positive value
+    positive, anything else (a slide, a pose's coordinate) of either sign."""
+    from mechsing.reader import read_mechanism
+
+    units = {j.name: j.units[0] for j in read_mechanism(path).joints if len(j.units) == 1}
+    out = {}
+    for name in sorted(formula_names(formula)):
+        if name in units:
+            out[name] = "angle" if units[name] == "rad" else "real"
+        elif name in draw.values:
+            out[name] = "positive" if draw.values[name] > 0 else "real"
+        else:
+            out[name] = "angle" if name == "phi" or name.startswith("phi_") else "real"
+    return out
+
+
 def answer_key(template: Template, draw: Draw, workdir: Path) -> list[dict[str, Any]]:
     """The key's entries, computed by mechsing on the draw's mechanism file."""
     path = workdir / "mechanism.yaml"
-    path.write_text(draw.mechanism, encoding="utf-8")
+    write_output(path, draw.mechanism, [template.path], follow_links=False)
     cache: dict[str, dict[str, Any]] = {}
     entries = []
     for q in template.questions:
@@ -158,6 +178,8 @@ def answer_key(template: Template, draw: Draw, workdir: Path) -> list[dict[str, 
             entry["tol"] = q.tol
         if q.up_to_factor:
             entry["up_to_factor"] = True
+        if q.kind == "formula":
+            entry["variables"] = _domains(entry["value"], path, draw)
         if q.up_to_sign:
             entry["up_to_sign"] = True
         entries.append(entry)
@@ -260,12 +282,16 @@ def _files(template: Template, variant: Variant, seed: int) -> dict[str, str]:
 
 
 def check_output(template: Template, out: Path, force: bool = False) -> None:
-    """Refuse (UserError) an output directory that is a file, the template's folder, or
-    not empty without ``force``: called before the variants are computed."""
+    """Refuse (UserError) an output directory that is a file, the template's folder or a
+    folder inside it, or not empty without ``force``: called before the variants are
+    computed."""
     out = Path(out)
     template_dir = template.path.resolve().parent
-    if out.resolve() == template_dir:
-        raise UserError(f"{out}: is the template's folder; write the variants elsewhere (-o)")
+    if out.resolve() == template_dir or template_dir in out.resolve().parents:
+        raise UserError(
+            f"{out}: is the template's folder {template_dir} or inside it; mechsing never "
+            "writes into an exercise's folder: write the variants elsewhere (-o)"
+        )
     if out.exists() and not out.is_dir():
         raise UserError(f"{out}: is a file, not a directory: give a directory for -o")
     if out.exists() and any(out.iterdir()) and not force:
@@ -275,11 +301,32 @@ def check_output(template: Template, out: Path, force: bool = False) -> None:
         )
 
 
+def _variant_folder(folder: Path, template_dir: Path) -> None:
+    """Create a variant's folder (or keep it, under --force): a real directory, never a
+    symbolic link (the files would go where it points) nor the exercise's folder."""
+    if folder.is_symlink():
+        raise UserError(
+            f"{folder}: is a symbolic link; mechsing writes no file through a link: remove "
+            "it or choose another -o"
+        )
+    if folder.resolve() == template_dir:
+        raise UserError(f"{folder}: is the template's folder; choose another -o")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UserError(f"-o {folder}: cannot create the folder ({exc.strerror})") from None
+    if not folder.is_dir() or folder.is_symlink():
+        raise UserError(f"{folder}: exists and is not a directory; choose another -o")
+
+
 def write_variants(
     template: Template, variants: list[Variant], seed: int, out: Path, force: bool = False
 ) -> list[Path]:
     """Write each variant's folder under ``out`` (checked by :func:`check_output`); never
-    over a template.  Returns the folders written."""
+    into the exercise's folder, never through a link planted in ``out``
+    (:func:`mechsing.files.write_output` with ``follow_links=False``: each file is written
+    whole beside its name and renamed over it), never over the template (a hard link to it
+    is refused).  Returns the folders written."""
     out = Path(out)
     check_output(template, out, force)
     template_dir = template.path.resolve().parent
@@ -287,13 +334,8 @@ def write_variants(
     written = []
     for v in variants:
         folder = out / f"variant-{v.number:0{width}d}"
-        if (
-            folder.resolve() == template_dir
-            or (folder / template.path.name).resolve() == template.path.resolve()
-        ):
-            raise UserError(f"{folder}: is the template's folder; choose another -o")
-        folder.mkdir(parents=True, exist_ok=True)
+        _variant_folder(folder, template_dir)
         for name, text in _files(template, v, seed).items():
-            (folder / name).write_text(text, encoding="utf-8")
+            write_output(folder / name, text, [template.path], "-o", follow_links=False)
         written.append(folder)
     return written

@@ -34,6 +34,7 @@ file's own expressions.  Constraints are expressions over every parameter of the
 
 from __future__ import annotations
 
+import ast
 import re
 from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
@@ -46,12 +47,14 @@ from mechsing.errors import UserError
 
 __all__ = [
     "COMPUTE_OPERATIONS",
+    "CONSTRAINT_SYNTAX",
     "KINDS",
     "TEMPLATE_FILE",
     "Constraint",
     "Question",
     "Template",
     "Varied",
+    "constraint_tree",
     "load_template",
     "set_parameters",
 ]
@@ -143,6 +146,25 @@ class Template:
     def exercise(self) -> str:
         """The exercise's name: its folder's."""
         return self.path.resolve().parent.name
+
+
+#: what a constraint may be written with
+CONSTRAINT_SYNTAX = (
+    "numbers, parameters, pi, + - * / **, < <= > >=, and or not, "
+    "sqrt sin cos tan asin acos atan atan2 abs min max"
+)
+
+
+def constraint_tree(text: str) -> ast.Expression:
+    """A constraint's syntax tree, of bounded size (a UserError says why not)."""
+    from mechsing.errors import ExpressionError
+    from mechsing.model.expressions import syntax_tree
+
+    try:
+        return syntax_tree(text, CONSTRAINT_SYNTAX)
+    except ExpressionError as exc:
+        shown = text.strip() if len(text.strip()) <= 60 else text.strip()[:40] + "..."
+        raise UserError(f"constraint {shown!r}: {exc}") from None
 
 
 def _fail(path: Path, item: str, message: str) -> UserError:
@@ -268,7 +290,12 @@ def load_template(path: str | Path) -> Template:
             c = {"name": c, "holds": c}
         if not isinstance(c, dict) or "holds" not in c:
             raise _fail(path, f"constraints[{i}]", "write {name: WHAT IT MEANS, holds: EXPRESSION}")
-        constraints.append(Constraint(str(c.get("name", c["holds"])), str(c["holds"])))
+        constraint = Constraint(str(c.get("name", c["holds"])), str(c["holds"]))
+        try:  # bounded as the mechanism file's expressions are: refused here, before a draw
+            constraint_tree(constraint.holds)
+        except UserError as exc:
+            raise _fail(path, f"constraints[{i}]", f"{exc}; write a shorter expression") from None
+        constraints.append(constraint)
     if not isinstance(doc["questions"], list):
         raise _fail(path, "questions", "is a list of questions")
     questions = tuple(_question(path, i, q) for i, q in enumerate(doc["questions"]))

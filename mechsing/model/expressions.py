@@ -54,6 +54,7 @@ __all__ = [
     "is_plain_decimal",
     "parse_number",
     "radian_power",
+    "syntax_tree",
     "written_digits",
 ]
 
@@ -351,6 +352,33 @@ def decimal_text_to_rational(text: str, context: str | None = None) -> sympy.Rat
     return -value if sign == "-" else value
 
 
+def syntax_tree(text: str, allowed: str = _ALLOWED_TEXT) -> ast.Expression:
+    """The syntax tree of an expression's text, of bounded size: at most
+    :data:`MAX_EXPRESSION_CHARS` characters and :data:`MAX_EXPRESSION_NODES` nodes (an
+    ExpressionError otherwise, or for text that is not Python's expression syntax;
+    ``allowed`` says what may be written)."""
+    t = text.strip()
+    if len(t) > MAX_EXPRESSION_CHARS:
+        raise ExpressionError(
+            f"expression of {len(t)} characters is too long (at most {MAX_EXPRESSION_CHARS})"
+        )
+    try:
+        tree = ast.parse(t, mode="eval")
+    except (SyntaxError, ValueError) as exc:
+        raise ExpressionError(
+            f"expression {_short(t)!r} is not valid ({getattr(exc, 'msg', exc)}); "
+            f"allowed: {allowed}"
+        ) from None
+    except (RecursionError, MemoryError):
+        raise ExpressionError(f"expression {t[:40]!r}... is nested too deeply") from None
+    count = sum(1 for _ in ast.walk(tree))
+    if count > MAX_EXPRESSION_NODES:
+        raise ExpressionError(
+            f"expression {t[:40]!r}... has {count} parts, too many (at most {MAX_EXPRESSION_NODES})"
+        )
+    return tree
+
+
 def parse_number(text: str, names: Mapping[str, Any] | None = None) -> Any:
     """The exact sympy value of a number or whitelisted expression.
 
@@ -382,26 +410,9 @@ def parse_number(text: str, names: Mapping[str, Any] | None = None) -> Any:
     t = text.strip()
     if not t:
         raise ExpressionError("an empty text is not a number")
-    if len(t) > MAX_EXPRESSION_CHARS:
-        raise ExpressionError(
-            f"expression of {len(t)} characters is too long (at most {MAX_EXPRESSION_CHARS})"
-        )
-    if SIGNED_DECIMAL.match(t):
+    if len(t) <= MAX_EXPRESSION_CHARS and SIGNED_DECIMAL.match(t):
         return _sensible(decimal_text_to_rational(t), t)
-    try:
-        tree = ast.parse(t, mode="eval")
-    except (SyntaxError, ValueError) as exc:
-        raise ExpressionError(
-            f"expression {_short(t)!r} is not valid ({getattr(exc, 'msg', exc)}); "
-            f"allowed: {_ALLOWED_TEXT}"
-        ) from None
-    except (RecursionError, MemoryError):
-        raise ExpressionError(f"expression {t[:40]!r}... is nested too deeply") from None
-    count = sum(1 for _ in ast.walk(tree))
-    if count > MAX_EXPRESSION_NODES:
-        raise ExpressionError(
-            f"expression {t[:40]!r}... has {count} parts, too many (at most {MAX_EXPRESSION_NODES})"
-        )
+    tree = syntax_tree(t)
     try:
         value = _Builder(t, names).build(tree)
     except ExpressionError:

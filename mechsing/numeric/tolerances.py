@@ -355,8 +355,9 @@ CONDITION_ROOT_MERGE = 1e-9
 EXACT_FIELD_MAX_DEGREE = 32
 
 # -- grading exercises (mechsing.exercises) --------------------------------------
-#: a student's formula agrees with the key's at a random point when they differ there by
-#: at most this times ``max(1, |key's value|)``; a key's question may set its own ``tol``
+#: a student's formula agrees with the key's at a point when they differ there by at most
+#: this times the larger of their values (a relative test); a key's question may set its
+#: own ``tol``
 EXERCISE_FORMULA_RTOL = 1e-9
 
 # -- every assembly mode (mechsing.assembly) -------------------------------------------

@@ -269,6 +269,9 @@ class MotionFinding:
     rank: int | None = None
     joint_rates: Floats | None = None
     output_twist: Floats | None = None
+    #: the name people give it where its moving joints show one (a dead centre: "leg fully
+    #: stretched or folded", as a crank's leg is named), :func:`mechsing.singularity.serial.moving_name`
+    name: str | None = None
 
     def __post_init__(self) -> None:
         if self.cls in MOTION_CLASSES:

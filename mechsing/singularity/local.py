@@ -55,6 +55,7 @@ from mechsing.singularity.findings import (
 from mechsing.singularity.generic import SampleValues, sample_values
 from mechsing.singularity.serial import (
     generic_span,
+    moving_name,
     named,
     serial_finding,
     wrenches_of,
@@ -421,7 +422,10 @@ def _io_findings(
                     # a motion space built on an undecided rank (IOQuantities.values)
                     d = replace(d, rank=None, note=RESTS_ON_UNDECIDED)
                 out.decisions.append(d)
-            findings.extend(_zfb(mech, fm, here, hv, generic, tprec))
+            first = samples[idx[0]].q if len(samples) else None
+            generic_screws = None if first is None else fm.current_screws(first)
+            named_by = (cs.screws, generic_screws)
+            findings.extend(_zfb(mech, fm, here, hv, generic, tprec, named_by))
     legs = ConstraintTest.of(mech, model).decide(cs, tprec)
     if legs is not None:
         dec, wr = legs
@@ -454,7 +458,10 @@ def _zfb(
     hv: dict[str, Any],
     generic: dict[str, Any],
     tprec: Precision,
+    named_by: tuple[Any, Any] = (None, None),
 ) -> list[Finding]:
+    """The input/output findings at q (``named_by``: the SI screws at q and at a regular
+    sample, which name an output singularity whose moving joints show a pattern)."""
     findings: list[Finding] = []
     names = _coordinate_names(mech, fm)
     sp = here.spaces
@@ -482,15 +489,21 @@ def _zfb(
         if cls == "output":
             t = to_float(sp["T"] @ (N @ basis[:, 0]))
             twist = tuple(_output_si(mech, fm, t))
+        joints = tuple(
+            sorted(
+                {names[i] for i, r in enumerate(rates) if abs(r) > SUPPORT_RTOL},
+                key=[j.name for j in mech.joints].index,
+            )
+        )
+        name = None
+        if cls == "output" and named_by[0] is not None:
+            # a dead centre of the output (a slider-crank driven by its slider): named as
+            # the leg of a crank's is (an input singularity's leg has its serial finding)
+            name = moving_name(joints, names, named_by[0], named_by[1], float(L))
         findings.append(
             MotionFinding(
                 cls,
-                joints=tuple(
-                    sorted(
-                        {names[i] for i, r in enumerate(rates) if abs(r) > SUPPORT_RTOL},
-                        key=[j.name for j in mech.joints].index,
-                    )
-                ),
+                joints=joints,
                 generic=g,
                 margin=dec.margin,
                 precision=dec.precision,
@@ -498,6 +511,7 @@ def _zfb(
                 dimension=v,
                 joint_rates=tuple(rates),
                 output_twist=twist,
+                name=name,
             )
         )
     for cls in ("impossible-input", "impossible-output"):

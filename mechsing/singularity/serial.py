@@ -28,6 +28,7 @@ along the line of its pivots and its new wrench as the force along that line.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
 
@@ -194,6 +195,22 @@ def serial_finding(
         relative_to=label.get("relative_to"),
         leg=label.get("leg"),
     )
+
+
+def moving_name(
+    joints: Sequence[str], columns: list[str], here: Any, generic: Any, scale: float
+) -> str | None:
+    """The name of an output singularity whose moving ``joints`` (each one column
+    of the screws ``here`` and at a generic configuration, named ``columns``) show a
+    pattern, as a leg's would: a dead centre, the pivots of the moving joints come in
+    line (:data:`~mechsing.singularity.names.LEG`); None where none fits."""
+    cols = [i for i, n in enumerate(columns) if n in joints]
+    if generic is None or len(cols) != len(joints) or len(cols) < 3:
+        return None
+    moving = [columns[i] for i in cols]
+    here_lines = lines_of_screws(moving, np.asarray(to_float(here), dtype=float)[:, cols])
+    generic_lines = lines_of_screws(moving, np.asarray(generic, dtype=float)[:, cols])
+    return singularity_name(here_lines, generic_lines, scale, leg=True, moving=joints)
 
 
 def named(

@@ -68,13 +68,17 @@ class UnitEfforts:
             parts = []
             for unit, v in d.items():
                 if v is None:
-                    parts.append(f"unbounded for {unit} inputs")
+                    parts.append(f"unbounded for the {_INPUT_KIND[unit]} inputs ({unit})")
                 else:
                     floor = rel / ((L if unit == "N" else 1.0) * pl)
                     parts.append(f"{floored(v[0], floor):.4g} {unit} per {per} ({v[1]})")
             if parts:
                 out.append(f"largest effort over a {what} on the output: {', '.join(parts)}")
         return out
+
+
+#: the inputs whose efforts are in a unit, by that unit (a force drives a slide)
+_INPUT_KIND = {"N": "prismatic", "N m": "revolute"}
 
 
 def unit_efforts(mm: MotionMatrices, emap: EffortMap, point: np.ndarray) -> UnitEfforts:

@@ -90,6 +90,11 @@ def plan_sweep(mech: Mechanism, variables: list[Variable], from_config: str | No
         given = np.zeros(cm.n, dtype=bool)
         given[n:] = True
         cols = [n + v.column for v in variables]
+        if mech.output is not None and mech.output.point is not None:
+            # a point output has no rotation: the point's coordinates are held, its body's
+            # rotation follows (unless swept)
+            given[n : n + 3] = False
+            given[[c for c in cols if c < n + 3]] = True
     else:
         cm = model
         z0 = q0
