@@ -410,3 +410,8 @@ MODE_EXTRANEOUS_RTOL = 1e-6
 #: parts are below this times ``max(1, |z|)``: it is polished in real arithmetic at 50
 #: digits and kept only where that closes
 MODE_SINGULAR_IMAGINARY_RTOL = 1e-3
+#: a body's inertia (about its centre of mass) is refused when it is not symmetric, when
+#: an eigenvalue is negative or when its principal moments break the triangle inequality
+#: (I1 <= I2 + I3) by more than this times its trace (exact numbers written to a few digits,
+#: a thin rod's I1 = I2 + I3, pass)
+INERTIA_RTOL = 1e-9

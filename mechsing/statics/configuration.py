@@ -189,7 +189,7 @@ def _weights(mech: Any, mm: MotionMatrices) -> list[tuple[str, np.ndarray]]:
     configuration: m g through its centre of mass (default: the centroid of its joints'
     points in the drawn pose), which moves with it."""
     wt = mech.weights
-    if wt is None:
+    if wt is None or not wt.weighs:  # no gravity: masses for the dynamics only
         return []
     g = np.asarray(to_float(np.array(wt.gravity, dtype=object)), dtype=float)
     out = []
@@ -219,7 +219,9 @@ def with_kinetostatics(result: Any, mech: Any, override: Any = None) -> Any:
     configs = []
     for c in result.configurations:
         load = load_of(mech, c.name, override)
-        if c.error is None and (load is not None or mech.weights is not None):
+        if c.error is None and (
+            load is not None or (mech.weights is not None and mech.weights.weighs)
+        ):
             fm = fm or KinematicModel(mech, "float")
             c = dataclasses.replace(c, kinetostatics=kinetostatics(mech, c.joints, load, fm))
         configs.append(c)
