@@ -20,20 +20,14 @@ from mechsing.dynamics.rigid import (
     newton_euler,
     newton_euler_in_frame,
 )
+from tests.strategies import body_inertias
 
 vec = st.lists(st.floats(-2, 2), min_size=3, max_size=3).map(np.array)
 screws = st.lists(st.floats(-2, 2), min_size=6, max_size=6).map(np.array)
 
 
-@st.composite
-def inertias(draw: st.DrawFn) -> Inertia:
-    """A body: mass in (0.1, 10], centre within 2 m, principal moments that satisfy the
-    triangle inequality (of a box of sides a, b, c), turned by a random rotation."""
-    m = draw(st.floats(0.1, 10))
-    a, b, c = (draw(st.floats(0.05, 2)) for _ in range(3))
-    diag = m / 12 * np.array([b * b + c * c, a * a + c * c, a * a + b * b])
-    R = lie.exp_so3(draw(vec))
-    return Inertia(m, draw(vec), R @ np.diag(diag) @ R.T)
+def inertias() -> st.SearchStrategy[Inertia]:
+    return body_inertias().map(lambda b: Inertia(*b))
 
 
 def _textbook(I: Inertia, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:

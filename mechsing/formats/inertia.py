@@ -6,7 +6,7 @@ mechanism file's ``mass`` entry gives them: ground axes, the drawn pose) and
 ``<inertial>`` and MJCF ``<inertial>``) in the ground frame and adds the links a rigid
 joint merges into one body (the centre of the total mass, the inertias moved to it by the
 parallel-axis theorem: Huygens-Steiner).  The checks of a rigid body's inertia are the
-loader's (:func:`mechsing.model.loads.inertia_problem`), asked here too so that the error
+loader's (:func:`mechsing.numeric.inertia.inertia_problem`), asked here too so that the error
 names the element and line of the file.
 """
 

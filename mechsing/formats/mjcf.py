@@ -425,7 +425,7 @@ def _inertial(
     ``from_geoms`` when MuJoCo derives its inertia from its geoms (``inertiafromgeom``:
     "true", or "auto" without an <inertial>).  A negative mass or an inertia that is not
     a rigid body's is refused with the element's line."""
-    from mechsing.model.loads import inertia_problem
+    from mechsing.numeric.inertia import inertia_problem
 
     inertial = el.find("inertial")
     has_geoms = any(c.tag == "geom" for c in el.children)

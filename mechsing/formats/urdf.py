@@ -246,7 +246,7 @@ def _inertials(links: dict[str, Element], world: dict[str, np.ndarray], path: st
     ixx ... izz>`` about the centre of mass in the origin's axes) placed in the ground frame
     at the zero configuration; refused with its line when the mass is negative or the
     inertia is not a rigid body's."""
-    from mechsing.model.loads import inertia_problem
+    from mechsing.numeric.inertia import inertia_problem
 
     out = []
     for name, link in links.items():

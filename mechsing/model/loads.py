@@ -93,6 +93,17 @@ class Weights:
         return self.gravity is not None
 
 
+def mass_centre(mech: Any, body: str, centre: Any) -> tuple[Any, Any, Any]:
+    """A body's centre of mass in the drawn pose (exact numbers): the file's ``centre``,
+    else the centroid of the points of the body's joints (the origin without any)."""
+    if centre is not None:
+        return centre
+    pts = [j.params["point"] for j in mech.joints if body in j.between and "point" in j.params]
+    if not pts:
+        return (0, 0, 0)
+    return tuple(sum(p[i] for p in pts) / len(pts) for i in range(3))  # type: ignore[return-value]
+
+
 def read_weights(r: Any, mass: Any, gravity: Any, bodies: list[str], ground: str) -> Weights | None:
     """The file's ``mass: {BODY: {kg: M, centre: [x, y, z], inertia: [...]}}`` and
     ``gravity: [gx, gy, gz]`` (the file's length unit per s^2) as :class:`Weights` (None
@@ -172,38 +183,9 @@ def read_inertia(r: Any, v: Any, body: str) -> tuple[tuple[Any, ...], ...]:
         rows = tuple(r.vector(x, item, f"{what} row {i}", lf2) for i, x in enumerate(items))
     else:
         raise r.error(item, v.line, f"{shape}, got {len(items)} entries")
+    from mechsing.numeric.inertia import inertia_problem
+
     problem = inertia_problem(rows)
     if problem:
         raise r.error(item, v.line, f"the inertia of {body!r} {problem}")
     return rows
-
-
-def inertia_problem(rows: Any) -> str | None:
-    """Why a 3x3 inertia (about the centre of mass) is not a rigid body's, None when it
-    is one: not symmetric, a negative principal moment, or principal moments breaking the
-    triangle inequality I1 <= I2 + I3, each beyond :data:`mechsing.numeric.INERTIA_RTOL`
-    times the trace (the importers ask it too)."""
-    import numpy as np
-
-    from mechsing.numeric import INERTIA_RTOL, to_float
-
-    a = np.array(to_float(np.array(rows, dtype=object)), dtype=float).reshape(3, 3)
-    scale = max(abs(float(np.trace(a))), float(np.abs(a).max()), 1e-300)
-    tol = INERTIA_RTOL * scale
-    if not np.all(np.isfinite(a)):
-        return "is not finite"
-    if np.abs(a - a.T).max() > tol:
-        return "is not symmetric; give a symmetric matrix (or the six numbers ixx, iyy, izz, ixy, ixz, iyz)"
-    ev = np.linalg.eigvalsh((a + a.T) / 2)
-    if ev[0] < -tol:
-        return (
-            f"has a negative principal moment ({ev[0]:.6g}): it is not positive "
-            "semi-definite; check the products of inertia' signs"
-        )
-    if ev[2] > ev[0] + ev[1] + tol:
-        return (
-            f"has principal moments {ev[0]:.6g}, {ev[1]:.6g}, {ev[2]:.6g}: the largest "
-            "exceeds the sum of the other two (the triangle inequality of a rigid body's "
-            "moments); no mass distribution has it"
-        )
-    return None

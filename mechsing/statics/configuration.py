@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.model.loads import mass_centre
 from mechsing.numeric import Precision, display_floor, floored, to_float
 from mechsing.statics.efforts import EffortMap, Equilibrium, effort_map, equilibrium, load_wrench
 from mechsing.statics.matrices import MotionMatrices, float_configuration, motion_matrices
@@ -194,15 +195,9 @@ def _weights(mech: Any, mm: MotionMatrices) -> list[tuple[str, np.ndarray]]:
     g = np.asarray(to_float(np.array(wt.gravity, dtype=object)), dtype=float)
     out = []
     for body, kg, centre in wt.masses:
-        if centre is None:
-            pts = [
-                np.asarray(to_float(np.array(j.params["point"], dtype=object)), dtype=float)
-                for j in mech.joints
-                if body in j.between and "point" in j.params
-            ]
-            x0 = np.mean(pts, axis=0) if pts else np.zeros(3)
-        else:
-            x0 = np.asarray(to_float(np.array(centre, dtype=object)), dtype=float)
+        x0 = np.asarray(
+            to_float(np.array(mass_centre(mech, body, centre), dtype=object)), dtype=float
+        )
         c = mm.body_point_now(body, x0)
         out.append((body, load_wrench(float(to_float(kg)) * g, np.zeros(3), c)))
     return out
