@@ -37,6 +37,7 @@ import importlib
 _FUNCTIONS = {
     "analyze": ("mechsing.analysis", "analyze"),
     "condition": ("mechsing.conditions", "condition"),
+    "dynamics": ("mechsing.dynamics", "dynamics"),
     "load": ("mechsing.reader", "read_mechanism"),  # any format: YAML, JSON, DH, URDF, MJCF
     "modes": ("mechsing.assembly", "modes"),
     "report": ("mechsing.report", "report"),

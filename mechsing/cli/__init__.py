@@ -120,6 +120,7 @@ COMMANDS = (
     "identify",
     "schema",
     "exercise",
+    "dynamics",
 )
 
 
