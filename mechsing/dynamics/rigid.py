@@ -123,7 +123,10 @@ def momentum(inertia: Inertia, xi: Any) -> np.ndarray:
     w, v = xi[..., ANGULAR], xi[..., LINEAR]
     c = inertia.centre
     p = _last(inertia.mass) * (v + lie.cross(w, c))
-    L = (inertia.about_centre @ w[..., None])[..., 0] + lie.cross(c, p)
+    Ic = np.asarray(inertia.about_centre)
+    # one inertia for every sample (a body at its drawn pose): one matrix product
+    Icw = w @ Ic.T if Ic.ndim == 2 else (Ic @ w[..., None])[..., 0]
+    L = Icw + lie.cross(c, p)
     return np.concatenate([p, L], axis=-1)
 
 

@@ -40,9 +40,12 @@ from mechsing.dynamics.rigid import Inertia, kinetic_energy, newton_euler
 from mechsing.errors import UserError
 from mechsing.kinematics import forward
 from mechsing.model.loads import mass_centre
-from mechsing.numeric import holds_objects
+from mechsing.numeric import dispatch, holds_objects
 
 __all__ = ["TreeDynamics"]
+
+#: the fast forms of the inverse dynamics (:mod:`mechsing.dynamics._compiled`)
+_INVERSE = dispatch.table("inverse dynamics", "mechsing.dynamics.tree.TreeDynamics.inverse")
 
 #: the joint types the tree dynamics takes (one coordinate each)
 ONE_COORDINATE = ("R", "P", "H")
@@ -109,7 +112,8 @@ class TreeDynamics:
     ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray], dict[str, np.ndarray], dict]:
         """The bodies' poses, twists and accelerations (spatial, at the ground origin) and
         the joints' current screws times their signs, by the forward recursion."""
-        poses = forward.poses(self.model, q)
+        # float batches take the joints' Rodrigues forms (equal to lie.exp to rounding)
+        poses = forward.poses(self.model, q, fast=q.ndim > 1 and not holds_objects(q))
         batch = q.shape[:-1]
         zero = self._zero_twist(batch)
         xi = {self.ground: zero}
@@ -141,11 +145,21 @@ class TreeDynamics:
         """The joint efforts (N, N m) for the joint values ``q``, rates ``qd`` and
         accelerations ``qdd`` (each (..., n)): the recursive Newton-Euler algorithm."""
         q, qd, qdd = (self._arr(x) for x in (q, qd, qdd))
+        fast = _INVERSE.for_float("compiled tree", q, qd, qdd)
+        got = None if fast is None else fast(self, q, qd, qdd, gravity)
+        if got is not None:
+            return got
         poses, xi, acc, screws = self.motion(q, qd, qdd, gravity)
-        inert = self.inertias_at(poses)
         carried: dict[str, np.ndarray] = {}
-        for body, I in inert.items():
-            carried[body] = newton_euler(I, xi[body], acc[body])
+        for body, I0 in self.inertia.items():
+            # the law where the body's inertia is the drawn one: the twist and acceleration
+            # brought back by Ad(g^-1), the wrench carried to the pose by the coadjoint
+            # action (Ad(g) in the (f, m) layout); the same as newton_euler(I0.moved(g),
+            # xi, acc) without moving the inertia sample by sample
+            g = poses[body]
+            back = lie.inverse(g)
+            w0 = newton_euler(I0, lie.act_screw(back, xi[body]), lie.act_screw(back, acc[body]))
+            carried[body] = lie.act_screw(g, w0)
         tau: list[Any] = [None] * self.n
         for body, jk, prev, _sign in reversed(self.plan):
             F = carried.get(body)
@@ -289,3 +303,7 @@ def _refuse(mech: Any) -> None:
             "[x, y, z], inertia: [ixx, iyy, izz, ixy, ixz, iyz]}} (URDF and MJCF: "
             "<inertial>; mechsing does not derive an inertia from MJCF geoms)"
         )
+
+
+# the compiled form registers itself in the table (when numba is installed)
+from mechsing.dynamics import _compiled  # noqa: E402,F401
