@@ -153,9 +153,9 @@ def test_bad_options_exit_2_with_the_reason(tmp_path: Path, argv: list[str], wor
     assert r.status == 2 and words in r.err
 
 
-def test_a_closed_chain_is_refused_naming_the_file() -> None:
+def test_a_file_without_masses_is_refused_naming_the_file() -> None:
     r = run_cli(["dynamics", str(ROOT / "examples" / "fourbar.yaml")])
-    assert r.status == 2 and "fourbar.yaml" in r.err and "closed loop" in r.err
+    assert r.status == 2 and "fourbar.yaml" in r.err and "gives no masses" in r.err
 
 
 def test_the_package_is_callable_as_the_function() -> None:

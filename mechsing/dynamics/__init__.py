@@ -6,6 +6,9 @@
 * :mod:`~mechsing.dynamics.tree`: trees of bodies -- inverse dynamics (a recursive
   Newton-Euler on twists and wrenches of D), the mass matrix, the bias efforts, forward
   dynamics; float (batched), mp:N and exact (chapter 8);
+* :mod:`~mechsing.dynamics.closed`: closed chains' inverse dynamics (the passive joints'
+  rates and accelerations from the loop closure, the closure's rate by the Lie bracket,
+  the loops' multipliers) and the Type II crossing condition;
 * :mod:`~mechsing.dynamics.api`: :func:`dynamics`, the dynamics of a file's
   configurations (``mechsing dynamics``), and its result; :mod:`~mechsing.dynamics.schema`
   the schema of its JSON.

@@ -192,14 +192,26 @@ def dynamics(
     grav = None if gravity is None else tuple(_number(x, "gravity") for x in gravity)
     out = []
     td = None
+    loops = bool(mech.graph.loops)
+    if loops and (efforts is not None or prec.mode != "float"):
+        raise UserError(
+            f"{mech.name}: a closed chain's dynamics is its inverse dynamics in float: the "
+            "inputs' efforts for the inputs' rates and accelerations (forward dynamics and "
+            "mp/exact are not implemented for closed chains)"
+        )
     for name in names:
         model, closed = solve_configuration(mech, name, prec)
         if td is None:
-            td = TreeDynamics(model, grav)
+            td = TreeDynamics(model, grav, closed=loops)
+        crossing = None
         with prec.context():
             q = closed.q
             qd = _vector(td, rates, "rates")
-            if efforts is not None:
+            if loops:
+                qd, qdd, tau, crossing = _closed(
+                    td, mech, q, qd, _vector(td, accelerations, "accelerations")
+                )
+            elif efforts is not None:
                 tau = _vector(td, efforts, "efforts")
                 qdd = td.forward(q, qd, tau)
             else:
@@ -224,7 +236,7 @@ def dynamics(
                 named(bias),
                 [[float(x) for x in row] for row in to_float(np.asarray(M))],
                 float(to_float(T)),
-                None,
+                crossing,
                 kinds,
             )
         )
@@ -237,6 +249,24 @@ def dynamics(
         None if shown is None else tuple(float(to_float(x)) for x in shown),  # type: ignore[arg-type]
         tuple(out),
     )
+
+
+def _closed(td: Any, mech: Any, q: Any, qd: Any, qdd: Any) -> tuple[Any, Any, Any, dict]:
+    """A closed chain's motion from its inputs' rates and accelerations (the others' given
+    values are not read: the closure gives them), its inputs' efforts, and the crossing
+    condition: whether the inputs can produce the efforts the motion needs (the effort
+    balance's relative residual below :data:`mechsing.numeric.tolerances.CROSSING_RTOL`)."""
+    from mechsing.dynamics.closed import closed_inverse
+    from mechsing.numeric import CROSSING_RTOL
+
+    model = td.model
+    inputs = []
+    for name in mech.inputs:
+        jk = model.joint(str(name))
+        inputs.append(jk.columns.start)
+    res = closed_inverse(td, q, inputs, np.asarray(qd)[inputs], np.asarray(qdd)[inputs])
+    crossing = {"possible": bool(res.residual <= CROSSING_RTOL), "residual": res.residual}
+    return res.qd, res.qdd, res.efforts, crossing
 
 
 def _mechanism(source: Any) -> Any:

@@ -61,13 +61,16 @@ class TreeDynamics:
         exact); its mechanism gives the masses (``mass``) and gravity.
     gravity : sequence of 3 numbers or None
         The acceleration of gravity (m/s^2, ground axes); None: the file's (none: zero).
+    closed : bool
+        Take a closed chain: the dynamics of its spanning tree (the chords' coordinates
+        move no body: their efforts are 0), closed by :mod:`mechsing.dynamics.closed`.
     """
 
-    def __init__(self, model: Any, gravity: Any = None) -> None:
+    def __init__(self, model: Any, gravity: Any = None, closed: bool = False) -> None:
         mech = model.mech
         self.model = model
         self.backend = model.backend
-        _refuse(mech)
+        _refuse(mech, closed)
         wt = mech.weights
         with model.precision.context():
             grav = gravity if gravity is not None else (wt.gravity if wt is not None else None)
@@ -160,7 +163,9 @@ class TreeDynamics:
             back = lie.inverse(g)
             w0 = newton_euler(I0, lie.act_screw(back, xi[body]), lie.act_screw(back, acc[body]))
             carried[body] = lie.act_screw(g, w0)
-        tau: list[Any] = [None] * self.n
+        batch = q.shape[:-1]
+        zero = self.backend.zeros(batch) if batch else self.backend.zeros(())
+        tau: list[Any] = [zero] * self.n  # a chord's coordinate moves no body
         for body, jk, prev, _sign in reversed(self.plan):
             F = carried.get(body)
             if F is None:
@@ -277,9 +282,9 @@ class TreeDynamics:
         return out
 
 
-def _refuse(mech: Any) -> None:
+def _refuse(mech: Any, closed: bool = False) -> None:
     """The mechanisms the tree dynamics does not take, with the reason."""
-    if mech.graph.loops:
+    if mech.graph.loops and not closed:
         raise UserError(
             f"{mech.name}: the tree dynamics takes an open chain or a tree; this mechanism "
             f"has {len(mech.graph.loops)} closed loop(s)"

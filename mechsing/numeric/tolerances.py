@@ -415,3 +415,9 @@ MODE_SINGULAR_IMAGINARY_RTOL = 1e-3
 #: (I1 <= I2 + I3) by more than this times its trace (exact numbers written to a few digits,
 #: a thin rod's I1 = I2 + I3, pass)
 INERTIA_RTOL = 1e-9
+#: a closed chain's motion can be produced by its inputs (the Type II crossing condition:
+#: the motion's dynamic efforts are balanced by the inputs' efforts and the loops'
+#: constraint wrenches) when the balance's least-squares residual is below this times the
+#: size of its terms; at a Type II singularity a motion that does not satisfy the condition
+#: leaves a residual of the order of the efforts themselves
+CROSSING_RTOL = 1e-9
