@@ -114,7 +114,11 @@ class DynamicsResult:
             for row in c.mass_matrix:
                 out.append("    [" + ", ".join(f"{x:.6g}" for x in row) + "]")
             if c.crossing is not None:
-                out.append(f"  crossing: {c.crossing}")
+                can = "possible" if c.crossing["possible"] else "not possible"
+                out.append(
+                    f"  Type II crossing: {can} (the effort balance's relative residual "
+                    f"{c.crossing['residual']:.2g})"
+                )
         return "\n".join(out) + "\n"
 
     def markdown(self) -> str:

@@ -67,6 +67,7 @@ def closed_inverse(
         E[r, k] = 1.0
     zeros = np.zeros(C.shape[0])
     qd, _ = _solve(np.vstack([C, E]), np.concatenate([zeros, u]))
+    qd[inputs] = u  # the inputs' rates as given (the solve returns them to rounding)
     # the closure's rate: each column's bracket with the twist of its joint's first body
     _, xi, _, _ = td.motion(q, qd, None, False)
     rate = np.zeros(C.shape[0])
@@ -79,6 +80,7 @@ def closed_inverse(
         for b in range(0, C.shape[0], 6):
             rate[b : b + 6] += lie.bracket(twist, col[b : b + 6]) * qd[k]
     qdd, _ = _solve(np.vstack([C, E]), np.concatenate([-rate, udd]))
+    qdd[inputs] = udd
     tau = td.inverse(q, qd, qdd)
     x, residual = _solve(np.hstack([E.T, C.T]), tau)
     efforts = E.T @ x[: len(inputs)]
