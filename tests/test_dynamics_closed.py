@@ -83,3 +83,45 @@ def test_the_rocker_effort_grows_as_one_over_the_distance_to_the_dead_point() ->
 def test_forward_dynamics_of_a_closed_chain_is_refused_with_the_reason() -> None:
     with pytest.raises(mechsing.errors.UserError, match="inverse dynamics in float"):
         mechsing.dynamics(_fourbar("A", ANGLES), efforts={"A": 1})
+
+
+SLIDER_CRANK = """\
+mechanism: slider-crank
+bodies: [ground, crank, rod, slider]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, rod], axis: [0, 0, 1], point: [0, 1, 0]}
+  - {name: C, type: R, between: [rod, slider], axis: [0, 0, 1], point: [2*sqrt(2), 0, 0]}
+  - {name: P, type: P, between: [ground, slider], axis: [1, 0, 0]}
+inputs: [A]
+mass:
+  crank: {kg: 1.2, centre: [0, 0.5, 0], inertia: [0.1, 0.01, 0.1, 0, 0, 0]}
+  rod: {kg: 2, centre: [1.4, 0.5, 0], inertia: [0.02, 1.5, 1.5, 0, 0, 0]}
+  slider: {kg: 3, centre: [2.9, 0, 0], inertia: [0.05, 0.05, 0.05, 0, 0, 0]}
+gravity: [0, -9.81, 0]
+configurations:
+CONFIGS
+"""
+
+
+@pytest.mark.parametrize("acc", [0.0, -1.5])
+def test_slider_crank_torque_is_the_lagrangian(acc: float) -> None:
+    """A loop with a prismatic joint: the crank's torque at 3 rad/s (and decelerating)."""
+    from tests.reference.fourbar import SliderCrank
+
+    angles = {"s1": 0.4, "s2": 2.0, "s3": -2.5, "s4": 4.0}
+    configs = "\n".join(f"  {name}: {{A: {a!r}}}" for name, a in angles.items())
+    mech = loads(SLIDER_CRANK.replace("CONFIGS", configs), path="slider.yaml")
+    ref = SliderCrank(
+        {
+            "crank": (sp.Rational(6, 5), (0, 0.5), sp.Rational(1, 10)),
+            "rod": (2, (1.4, 0.5), sp.Rational(3, 2)),
+            "slider": (3, (2.9, 0), 0),
+        },
+        (0, sp.Rational(-981, 100)),
+    )
+    res = mechsing.dynamics(mech, list(angles), rates={"A": 3}, accelerations={"A": acc})
+    for c in res.configurations:
+        want = float(ref.torque(sp.Float(c.joints["A"], 30), 3, sp.Float(acc)))
+        assert abs(c.efforts["A"] - want) <= 1e-10 * max(1.0, abs(want))
+        assert c.efforts["P"] == 0

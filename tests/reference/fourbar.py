@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-__all__ = ["FourBar"]
+__all__ = ["FourBar", "SliderCrank"]
 
 th = sp.Symbol("theta", real=True)
 
@@ -65,3 +65,39 @@ class FourBar:
             self.J.subs(at) * acceleration + self.dJ.subs(at) * rate**2 / 2 + self.dV.subs(at),
             digits,
         )
+
+
+class SliderCrank:
+    """A slider-crank in the plane z = 0: crank A = (0, 0) -> B of length 1 drawn at
+    B = (0, 1), rod BC of length 3, the slider's pin C on the line y = 0 drawn at
+    C = (2 sqrt(2), 0); the crank's joint value theta turns it from the drawn pose
+    (B = (cos a, sin a), a = pi/2 + theta).  ``bodies`` as for :class:`FourBar` (crank,
+    rod, slider: the slider translates, its inertia unused)."""
+
+    def __init__(self, bodies: dict[str, tuple], gravity: tuple) -> None:
+        a = sp.pi / 2 + th
+        B = sp.Matrix([sp.cos(a), sp.sin(a)])
+        C = sp.Matrix([sp.cos(a) + sp.sqrt(9 - sp.sin(a) ** 2), 0])
+        rod = sp.atan2(C[1] - B[1], C[0] - B[0])
+        rod0 = sp.atan2(-1, 2 * sp.sqrt(2))
+        C0 = sp.Matrix([2 * sp.sqrt(2), 0])
+        J = 0
+        V = 0
+        for name, (m, c0, inertia) in bodies.items():
+            c0 = sp.Matrix([sp.nsimplify(c0[0]), sp.nsimplify(c0[1])])
+            if name == "crank":
+                angle, c = th, _rot(th, (c0[0], c0[1]))
+            elif name == "rod":
+                angle = rod - rod0
+                rel = c0 - sp.Matrix([0, 1])
+                c = B + _rot(angle, (rel[0], rel[1]))
+            else:
+                angle, c = sp.Integer(0), c0 + (C - C0)
+            dc = c.diff(th)
+            J += m * dc.dot(dc) + inertia * sp.diff(angle, th) ** 2
+            V += -m * (gravity[0] * c[0] + gravity[1] * c[1])
+        self.J = J
+        self.dJ = sp.diff(J, th)
+        self.dV = sp.diff(V, th)
+
+    torque = FourBar.torque
