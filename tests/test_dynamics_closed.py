@@ -80,9 +80,21 @@ def test_the_rocker_effort_grows_as_one_over_the_distance_to_the_dead_point() ->
     assert np.allclose(slopes, -1, atol=0.01)
 
 
-def test_forward_dynamics_of_a_closed_chain_is_refused_with_the_reason() -> None:
-    with pytest.raises(mechsing.errors.UserError, match="inverse dynamics in float"):
-        mechsing.dynamics(_fourbar("A", ANGLES), efforts={"A": 1})
+def test_forward_dynamics_of_a_four_bar_inverts_the_lagrangian() -> None:
+    """The crank's acceleration under the torque the Lagrangian gives for 0.5 rad/s^2 at
+    2 rad/s is 0.5 rad/s^2."""
+    for name, theta in ANGLES.items():
+        tau = float(REFERENCE.torque(sp.Float(theta, 30), 2, sp.Rational(1, 2)))
+        res = mechsing.dynamics(_fourbar("A", ANGLES), name, rates={"A": 2}, efforts={"A": tau})
+        c = res.configurations[0]
+        assert res.problem == "forward"
+        assert abs(c.accelerations["A"] - 0.5) <= 1e-10
+        assert abs(c.efforts["A"] - tau) <= 1e-10 * abs(tau)
+
+
+def test_a_closed_chain_at_mp_is_refused_with_the_reason() -> None:
+    with pytest.raises(mechsing.errors.UserError, match="computed in float"):
+        mechsing.dynamics(_fourbar("A", ANGLES), precision="mp:30")
 
 
 SLIDER_CRANK = """\

@@ -197,11 +197,10 @@ def dynamics(
     out = []
     td = None
     loops = bool(mech.graph.loops)
-    if loops and (efforts is not None or prec.mode != "float"):
+    if loops and prec.mode != "float":
         raise UserError(
-            f"{mech.name}: a closed chain's dynamics is its inverse dynamics in float: the "
-            "inputs' efforts for the inputs' rates and accelerations (forward dynamics and "
-            "mp/exact are not implemented for closed chains)"
+            f"{mech.name}: a closed chain's dynamics is computed in float (mp:N and exact "
+            "are not implemented for closed chains); use --precision float"
         )
     for name in names:
         model, closed = solve_configuration(mech, name, prec)
@@ -213,7 +212,12 @@ def dynamics(
             qd = _vector(td, rates, "rates")
             if loops:
                 qd, qdd, tau, crossing = _closed(
-                    td, mech, q, qd, _vector(td, accelerations, "accelerations")
+                    td,
+                    mech,
+                    q,
+                    qd,
+                    _vector(td, accelerations, "accelerations"),
+                    None if efforts is None else _vector(td, efforts, "efforts"),
                 )
             elif efforts is not None:
                 tau = _vector(td, efforts, "efforts")
@@ -255,12 +259,13 @@ def dynamics(
     )
 
 
-def _closed(td: Any, mech: Any, q: Any, qd: Any, qdd: Any) -> tuple[Any, Any, Any, dict]:
+def _closed(td: Any, mech: Any, q: Any, qd: Any, qdd: Any, tau: Any) -> tuple[Any, Any, Any, dict]:
     """A closed chain's motion from its inputs' rates and accelerations (the others' given
-    values are not read: the closure gives them), its inputs' efforts, and the crossing
-    condition: whether the inputs can produce the efforts the motion needs (the effort
-    balance's relative residual below :data:`mechsing.numeric.tolerances.CROSSING_RTOL`)."""
-    from mechsing.dynamics.closed import closed_inverse
+    values are not read: the closure gives them), or under its inputs' efforts ``tau``
+    (forward: the accelerations first), its inputs' efforts, and the crossing condition:
+    whether the inputs can produce the efforts the motion needs (the effort balance's
+    relative residual below :data:`mechsing.numeric.tolerances.CROSSING_RTOL`)."""
+    from mechsing.dynamics.closed import closed_forward, closed_inverse
     from mechsing.numeric import CROSSING_RTOL
 
     model = td.model
@@ -268,7 +273,10 @@ def _closed(td: Any, mech: Any, q: Any, qd: Any, qdd: Any) -> tuple[Any, Any, An
     for name in mech.inputs:
         jk = model.joint(str(name))
         inputs.append(jk.columns.start)
-    res = closed_inverse(td, q, inputs, np.asarray(qd)[inputs], np.asarray(qdd)[inputs])
+    u = np.asarray(qd)[inputs]
+    if tau is not None:
+        qdd = closed_forward(td, q, inputs, u, np.asarray(tau)[inputs])
+    res = closed_inverse(td, q, inputs, u, np.asarray(qdd)[inputs])
     crossing = {"possible": bool(res.residual <= CROSSING_RTOL), "residual": res.residual}
     return res.qd, res.qdd, res.efforts, crossing
 

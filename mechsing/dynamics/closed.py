@@ -16,7 +16,13 @@ current screws of its loop's joints, SI twists at the ground origin,
   in the least-squares sense; a residual means the inputs cannot produce the motion's
   efforts (a Type II singularity), and its size is reported.
 
-Owns :func:`closed_inverse`.  Float only.
+Forward dynamics (:func:`closed_forward`): with ``N`` the passive motions of unit input
+rates (``[C; E] N = [0; 1]``) and ``qdd_0`` the acceleration of zero input accelerations,
+every admissible acceleration is ``qdd_0 + N udd``, and virtual work along the admissible
+motions (``N^T C^T = 0``, ``N^T E^T = 1``) gives the inputs' equation
+``N^T M N udd = tau_in - N^T (M qdd_0 + bias)``: the mass matrix reduced to the inputs.
+
+Owns :func:`closed_inverse` and :func:`closed_forward`.  Float only.
 """
 
 from __future__ import annotations
@@ -28,7 +34,7 @@ import numpy as np
 
 from mechsing import lie
 
-__all__ = ["ClosedMotion", "closed_inverse"]
+__all__ = ["ClosedMotion", "closed_forward", "closed_inverse"]
 
 
 @dataclass(frozen=True)
@@ -85,3 +91,26 @@ def closed_inverse(
     x, residual = _solve(np.hstack([E.T, C.T]), tau)
     efforts = E.T @ x[: len(inputs)]
     return ClosedMotion(qd, qdd, efforts, x[len(inputs) :], residual, tau)
+
+
+def closed_forward(
+    td: Any, q: np.ndarray, inputs: list[int], u: np.ndarray, tau_in: np.ndarray
+) -> np.ndarray:
+    """The inputs' accelerations under the inputs' efforts ``tau_in`` at the closed
+    configuration ``q`` with the inputs' rates ``u`` (the reduced equation of the module
+    docstring); every coordinate's acceleration."""
+    model = td.model
+    n = model.n
+    q = np.asarray(q, dtype=float)
+    C = np.asarray(model.closure_jacobian(q), dtype=float)
+    E = np.zeros((len(inputs), n))
+    for r, k in enumerate(inputs):
+        E[r, k] = 1.0
+    K = np.vstack([C, E])
+    rhs = np.vstack([np.zeros((C.shape[0], len(inputs))), np.eye(len(inputs))])
+    N, *_ = np.linalg.lstsq(K, rhs, rcond=None)
+    still = closed_inverse(td, q, inputs, u, np.zeros(len(inputs)))
+    M = np.asarray(td.mass_matrix(q), dtype=float)
+    reduced = N.T @ M @ N
+    udd = np.linalg.solve(reduced, np.asarray(tau_in, dtype=float) - N.T @ still.tree_efforts)
+    return still.qdd + N @ udd
