@@ -23,7 +23,9 @@ singularities and a grid's loci), :func:`condition` (singularity conditions as
 factored formulas in the joint or pose variables), :func:`report` (a design-review
 document, HTML or Markdown), :func:`mechsing.analysis.solve.solve` (one configuration
 closed, every joint value to the precision's digits), :func:`modes` (every assembly mode
-of a configuration, certified and classified: :mod:`mechsing.assembly`), :mod:`mechsing.lie`,
+of a configuration, certified and classified: :mod:`mechsing.assembly`), :func:`dynamics`
+(inverse and forward dynamics of a configuration: efforts, accelerations, the mass matrix;
+:mod:`mechsing.dynamics`), :mod:`mechsing.lie`,
 :func:`mechsing.subgroups.identify`.
 """
 
@@ -37,6 +39,7 @@ import importlib
 _FUNCTIONS = {
     "analyze": ("mechsing.analysis", "analyze"),
     "condition": ("mechsing.conditions", "condition"),
+    "dynamics": ("mechsing.dynamics", "dynamics"),
     "load": ("mechsing.reader", "read_mechanism"),  # any format: YAML, JSON, DH, URDF, MJCF
     "modes": ("mechsing.assembly", "modes"),
     "report": ("mechsing.report", "report"),

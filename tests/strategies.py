@@ -6,6 +6,9 @@
 * Mechanism files (tests/test_kinematics.py, test_model_graph.py): geometry and joint values as
   a file writes them (unnormalised axes, angles beyond a turn, random units), random trees of
   every joint type, planar frames, random body graphs.
+* Dynamics (tests/test_dynamics_rigid.py, test_dynamics_tree.py): rigid bodies' inertia
+  (boxes turned at random), robots as URDF trees of revolute and prismatic joints with
+  random inertials.
 """
 
 from __future__ import annotations
@@ -315,3 +318,59 @@ def body_graphs(draw: st.DrawFn, max_bodies: int = 8, max_extra: int = 8) -> tup
             Joint(f"J{k}", jtype, (bodies[a], bodies[b]), {}, None, 2 if jtype == "U" else 1)
         )
     return bodies, joints
+
+
+def _box_moments(m: float, a: float, b: float, c: float) -> tuple[float, float, float]:
+    """The principal moments of a solid box of mass m and sides a, b, c (they satisfy the
+    triangle inequality, as every rigid body's)."""
+    return (m / 12 * (b * b + c * c), m / 12 * (a * a + c * c), m / 12 * (a * a + b * b))
+
+
+@st.composite
+def body_inertias(draw: st.DrawFn) -> tuple[float, np.ndarray, np.ndarray]:
+    """A body's (mass, centre, inertia about the centre in ground axes): mass in [0.1, 10]
+    kg, centre within 2 m, a box of sides in [0.05, 2] m turned by a random rotation."""
+    from scipy.spatial.transform import Rotation
+
+    m = draw(st.floats(0.1, 10))
+    moments = _box_moments(m, *(draw(st.floats(0.05, 2)) for _ in range(3)))
+    R = Rotation.from_rotvec([draw(st.floats(-2, 2)) for _ in range(3)]).as_matrix()
+    centre = np.array([draw(st.floats(-2, 2)) for _ in range(3)])
+    return m, centre, R @ np.diag(moments) @ R.T
+
+
+@st.composite
+def robot_trees(draw: st.DrawFn) -> tuple[str, np.ndarray]:
+    """A URDF tree of 2 to 7 revolute and prismatic joints (each link's parent any earlier
+    link), random origins, axes and inertials (every link massive); and 3 samples of
+    (q, qd, qdd), shape (3, 3, n)."""
+    n = draw(st.integers(2, 7))
+    fl = st.floats(-1, 1, allow_nan=False)
+    links = ['<link name="l0"/>']
+    joints = []
+    for i in range(1, n + 1):
+        m = draw(st.floats(0.2, 5))
+        ixx, iyy, izz = _box_moments(m, *(draw(st.floats(0.05, 1)) for _ in range(3)))
+        com = " ".join(f"{draw(fl):.6f}" for _ in range(3))
+        rot = " ".join(f"{3 * draw(fl):.6f}" for _ in range(3))
+        links.append(
+            f'<link name="l{i}"><inertial><origin xyz="{com}" rpy="{rot}"/>'
+            f'<mass value="{m:.6f}"/><inertia ixx="{ixx:.8f}" iyy="{iyy:.8f}" '
+            f'izz="{izz:.8f}" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+        )
+        parent = draw(st.integers(0, i - 1))
+        kind = draw(st.sampled_from(["revolute", "revolute", "prismatic"]))
+        xyz = " ".join(f"{draw(fl):.6f}" for _ in range(3))
+        rpy = " ".join(f"{3 * draw(fl):.6f}" for _ in range(3))
+        axis = np.array([draw(fl) for _ in range(3)])
+        if np.linalg.norm(axis) < 0.1:
+            axis = np.array([0.0, 0.0, 1.0])
+        ax = " ".join(f"{x:.6f}" for x in axis)
+        joints.append(
+            f'<joint name="j{i}" type="{kind}"><parent link="l{parent}"/><child link="l{i}"/>'
+            f'<origin xyz="{xyz}" rpy="{rpy}"/><axis xyz="{ax}"/>'
+            '<limit lower="-10" upper="10" effort="1" velocity="1"/></joint>'
+        )
+    text = '<robot name="tree">' + "".join(links) + "".join(joints) + "</robot>"
+    values = draw(st.lists(st.floats(-2, 2, allow_nan=False), min_size=9 * n, max_size=9 * n))
+    return text, np.array(values).reshape(3, 3, n)

@@ -27,7 +27,7 @@ LAYERS: list[set[str]] = [
     {"screws"},
     {"singularity"},
     {"analysis", "conditions"},
-    {"sweeps", "statics", "assembly"},
+    {"sweeps", "statics", "assembly", "dynamics"},
     {"exercises"},
     {"report"},
     {"cli", "__main__"},

@@ -170,6 +170,7 @@ COMMANDS = (
     "identify",
     "schema",
     "exercise",
+    "dynamics",
 )
 
 

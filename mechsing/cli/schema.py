@@ -36,10 +36,19 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         action="store_true",
         help="the schema of mechsing condition's JSON document instead of the file format's",
     )
+    parser.add_argument(
+        "--dynamics",
+        action="store_true",
+        help="the schema of mechsing dynamics' JSON document instead of the file format's",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
-    if getattr(args, "modes", False):
+    if getattr(args, "dynamics", False):
+        from mechsing.dynamics.schema import dynamics_schema
+
+        schema = dynamics_schema()
+    elif getattr(args, "modes", False):
         from mechsing.assembly.schema import modes_schema
 
         schema = modes_schema()

@@ -45,6 +45,7 @@ import numpy as np
 
 from mechsing.errors import MechanismError
 from mechsing.formats.frames import axis_angle, euler, frame, quaternion, xyaxes, zaxis
+from mechsing.formats.inertia import body_masses, placed
 from mechsing.formats.writer import (
     Bodies,
     JointSpec,
@@ -79,6 +80,9 @@ class _Reader:
         if len(self.eulerseq) != 3 or any(ch not in "xyzXYZ" for ch in self.eulerseq):
             raise self.err(comp[-1], f"eulerseq {self.eulerseq!r} must be three of x y z X Y Z")
         self.autolimits = attrs.get("autolimits", "true") == "true"
+        #: MuJoCo's rule for the bodies' inertia: "auto" (from the geoms when a body has no
+        #: <inertial>), "true" (always from the geoms), "false" (never)
+        self.inertiafromgeom = attrs.get("inertiafromgeom", "auto")
         # default classes: class -> (parent class, {element tag: attributes})
         self.classes: dict[str, tuple[str | None, dict[str, dict[str, str]]]] = {}
         for d in root.findall("default"):
@@ -200,6 +204,8 @@ def _read(root: Element, path: str) -> MechanismSpec:
     joints: list[JointSpec] = []
     names: set[str] = set()
     counter = [0]
+    inertials: list = []
+    from_geoms: list[str] = []
 
     # the tree is walked with a stack, not by recursion (a chain nested up to the parser's
     # MAX_DEPTH needs no Python frame per level): in document order, each element with
@@ -277,6 +283,7 @@ def _read(root: Element, path: str) -> MechanismSpec:
             bodies.add(name)
             placed[name] = t
             bodies.merge(parent, name)
+        _inertial(rd, el, name, t, inertials, from_geoms)
         visit(el, name, t, cc)
 
     visit(world, _WORLD, np.eye(4), None)
@@ -388,7 +395,67 @@ def _read(root: Element, path: str) -> MechanismSpec:
         angle_unit="deg" if rd.degree else "rad",
         output=output,
         inputs=inputs,
+        notes=[_geoms_note(from_geoms)] if from_geoms else [],
+        masses=(
+            []
+            if from_geoms
+            else body_masses(inertials, {b: bodies.find(b) for b in placed}, bodies.find(_WORLD))
+        ),
     )
+
+
+def _geoms_note(bodies: list[str]) -> str:
+    shown = ", ".join(repr(b) for b in bodies[:4]) + (", ..." if len(bodies) > 4 else "")
+    return (
+        f"no masses written: the inertia of {shown} comes from its geoms by MuJoCo's "
+        "inertiafromgeom, which mechsing does not compute (the dynamics needs every "
+        "moving body's mass); give each body an <inertial>"
+    )
+
+
+#: the attributes of an MJCF <inertial>'s fullinertia, in MuJoCo's order
+_FULL = ("M11", "M22", "M33", "M12", "M13", "M23")
+
+
+def _inertial(
+    rd: _Reader, el: Element, name: str, t: np.ndarray, out: list, from_geoms: list[str]
+) -> None:
+    """The body's ``<inertial pos quat mass diaginertia|fullinertia>`` placed in the ground
+    frame (``t``: the body's frame at the initial pose), or the body's name in
+    ``from_geoms`` when MuJoCo derives its inertia from its geoms (``inertiafromgeom``:
+    "true", or "auto" without an <inertial>).  A negative mass or an inertia that is not
+    a rigid body's is refused with the element's line."""
+    from mechsing.numeric.inertia import inertia_problem
+
+    inertial = el.find("inertial")
+    has_geoms = any(c.tag == "geom" for c in el.children)
+    if has_geoms and (
+        rd.inertiafromgeom == "true" or (inertial is None and rd.inertiafromgeom == "auto")
+    ):
+        from_geoms.append(name)
+        return
+    if inertial is None:
+        return
+    a = dict(inertial.attrib)
+    kg = rd.nums(inertial, a, "mass", 1, [0.0])[0]
+    if "mass" not in a:
+        raise rd.err(inertial, 'an <inertial> gives its mass; add mass="..."')
+    if not kg >= 0:
+        raise rd.err(inertial, f"body {name!r}: the mass is {kg}; a mass is not negative")
+    if "fullinertia" in a:
+        xx, yy, zz, xy, xz, yz = rd.nums(inertial, a, "fullinertia", 6, [0.0] * 6)
+    elif "diaginertia" in a:
+        xx, yy, zz = rd.nums(inertial, a, "diaginertia", 3, [0.0] * 3)
+        xy = xz = yz = 0.0
+    else:
+        raise rd.err(
+            inertial, "an <inertial> gives diaginertia or fullinertia (MuJoCo requires one)"
+        )
+    local = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+    problem = inertia_problem(local)
+    if problem:
+        raise rd.err(inertial, f"body {name!r}: the inertia {problem}")
+    out.append(placed(name, t @ rd.pose(inertial, a), kg, local))
 
 
 def _walk(el: Element):  # type: ignore[no-untyped-def]

@@ -46,6 +46,7 @@ import numpy as np
 
 from mechsing.errors import MechanismError
 from mechsing.formats.frames import frame, rpy
+from mechsing.formats.inertia import body_masses, placed
 from mechsing.formats.writer import (
     Bodies,
     CouplingSpec,
@@ -187,6 +188,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
     for el, _ in ordered:
         if el.get("type") == "fixed":
             bodies.merge(el.find("parent").get("link"), el.find("child").get("link"))  # type: ignore[union-attr]
+    inertials = _inertials(links, world, path)
     out_joints: list[JointSpec] = []
     unlimited: list[tuple[str, str, Element]] = []
     for el, tj in ordered:
@@ -267,6 +269,7 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         couplings=couplings,
         notes=notes,
         merged_links=merged,  # type: ignore[arg-type]
+        masses=body_masses(inertials, {n: bodies.find(n) for n in links}, bodies.find(base)),
     )
 
 
@@ -287,6 +290,50 @@ def _limit_side(limit: Element, key: str, path: str) -> float | None:
         if sign * float(word) > UNLIMITED:  # infinite included
             return None
     return floats(limit, key, 1, path, [0])[0]
+
+
+#: the attributes of a URDF <inertia>, in the order of a mechsing inertia's six numbers
+_URDF_INERTIA = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
+
+
+def _inertials(links: dict[str, Element], world: dict[str, np.ndarray], path: str) -> list:
+    """Each link's ``<inertial>`` (``<origin xyz rpy>``, ``<mass value>``, ``<inertia
+    ixx ... izz>`` about the centre of mass in the origin's axes) placed in the ground frame
+    at the zero configuration; refused with its line when the mass is negative or the
+    inertia is not a rigid body's."""
+    from mechsing.numeric.inertia import inertia_problem
+
+    out = []
+    for name, link in links.items():
+        el = link.find("inertial")
+        if el is None or name not in world:
+            continue
+
+        def err(e: Element, message: str, name: str = name) -> MechanismError:
+            return MechanismError(f"{e.where()}: link {name!r}: {message}", path=path, line=e.line)
+
+        origin = el.find("origin")
+        xyz = floats(origin, "xyz", 3, path, [0, 0, 0]) if origin is not None else [0, 0, 0]
+        angles = floats(origin, "rpy", 3, path, [0, 0, 0]) if origin is not None else [0, 0, 0]
+        mass_el = el.find("mass")
+        if mass_el is None:
+            raise err(el, 'an <inertial> gives its <mass value="..."/>; add it')
+        required(mass_el, path, "a URDF <mass> gives its value", ("value",))
+        kg = floats(mass_el, "value", 1, path)[0]
+        if not kg >= 0:
+            raise err(mass_el, f"the mass is {kg}; a mass is not negative")
+        inertia_el = el.find("inertia")
+        xx, yy, zz, xy, xz, yz = (
+            [floats(inertia_el, a, 1, path, [0.0])[0] for a in _URDF_INERTIA]
+            if inertia_el is not None
+            else [0.0] * 6
+        )
+        local = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+        problem = inertia_problem(local)
+        if problem:
+            raise err(inertia_el if inertia_el is not None else el, f"the inertia {problem}")
+        out.append(placed(name, world[name] @ frame(rpy(*angles), np.array(xyz)), kg, local))
+    return out
 
 
 #: URDF joint types a <mimic> may couple (one coordinate each)

@@ -154,6 +154,8 @@ class MechanismSpec:
     #: the output's point (m, ground frame, reference configuration) and relative_to
     output_point: tuple[float, float, float] | None = None
     output_relative_to: str | None = None
+    #: the bodies' masses and inertia (:class:`mechsing.formats.inertia.MassSpec`)
+    masses: list[Any] = field(default_factory=list)
 
 
 def restrict_to(spec: MechanismSpec, mech: Any) -> MechanismSpec:
@@ -176,6 +178,7 @@ def restrict_to(spec: MechanismSpec, mech: Any) -> MechanismSpec:
             out.relative_to if out is not None and out.relative_to != mech.ground else None
         ),
         couplings=[c for c in spec.couplings if c.joint in kept],
+        masses=[m for m in spec.masses if m.body in mech.bodies and m.body != mech.ground],
         notes=[*spec.notes, *(mech.scene.notes if mech.scene else ())],
     )
 
@@ -265,6 +268,18 @@ def to_yaml(spec: MechanismSpec) -> str:
             lines.append(
                 f"  - {{joint: {_name(c.joint)}, leader: {_name(c.leader)}, "
                 f"multiplier: {float(c.multiplier)!r}, offset: {float(c.offset)!r}{src}}}"
+            )
+    if spec.masses:
+        lines.append(
+            "mass:  # kg; centre of mass (m, drawn pose); inertia about it, ground axes "
+            "(kg m^2): [ixx, iyy, izz, ixy, ixz, iyz]"
+        )
+        for ms in spec.masses:
+            i = ms.inertia
+            six = (i[0][0], i[1][1], i[2][2], i[0][1], i[0][2], i[1][2])
+            lines.append(
+                f"  {_name(ms.body)}: {{kg: {number(ms.kg)}, centre: {_vec(ms.centre)}, "
+                f"inertia: {_vec(six)}}}"
             )
     lines.append("configurations:")
     lines.append("  reference: {}")

@@ -204,6 +204,12 @@ def mechanism_schema() -> dict[str, Any]:
                     "properties": {
                         "kg": {"$ref": "#/$defs/number"},
                         "centre": {"$ref": "#/$defs/vector"},
+                        "inertia": {
+                            "description": "the inertia about the centre of mass in ground "
+                            "axes at the drawn pose (docs/dynamics.md): [ixx, iyy, izz, ixy, "
+                            "ixz, iyz] or a 3x3 matrix, kg times the file's length squared",
+                            "type": "array",
+                        },
                     },
                     "required": ["kg"],
                     "additionalProperties": False,

@@ -411,3 +411,14 @@ MODE_EXTRANEOUS_RTOL = 1e-6
 #: parts are below this times ``max(1, |z|)``: it is polished in real arithmetic at 50
 #: digits and kept only where that closes
 MODE_SINGULAR_IMAGINARY_RTOL = 1e-3
+#: a body's inertia (about its centre of mass) is refused when it is not symmetric, when
+#: an eigenvalue is negative or when its principal moments break the triangle inequality
+#: (I1 <= I2 + I3) by more than this times its trace (exact numbers written to a few digits,
+#: a thin rod's I1 = I2 + I3, pass)
+INERTIA_RTOL = 1e-9
+#: a closed chain's motion can be produced by its inputs (the Type II crossing condition:
+#: the motion's dynamic efforts are balanced by the inputs' efforts and the loops'
+#: constraint wrenches) when the balance's least-squares residual is below this times the
+#: size of its terms; at a Type II singularity a motion that does not satisfy the condition
+#: leaves a residual of the order of the efforts themselves
+CROSSING_RTOL = 1e-9

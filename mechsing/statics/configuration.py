@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.model.loads import mass_centre
 from mechsing.numeric import Precision, display_floor, floored, to_float
 from mechsing.statics.efforts import EffortMap, Equilibrium, effort_map, equilibrium, load_wrench
 from mechsing.statics.matrices import MotionMatrices, float_configuration, motion_matrices
@@ -189,20 +190,14 @@ def _weights(mech: Any, mm: MotionMatrices) -> list[tuple[str, np.ndarray]]:
     configuration: m g through its centre of mass (default: the centroid of its joints'
     points in the drawn pose), which moves with it."""
     wt = mech.weights
-    if wt is None:
+    if wt is None or not wt.weighs:  # no gravity: masses for the dynamics only
         return []
     g = np.asarray(to_float(np.array(wt.gravity, dtype=object)), dtype=float)
     out = []
     for body, kg, centre in wt.masses:
-        if centre is None:
-            pts = [
-                np.asarray(to_float(np.array(j.params["point"], dtype=object)), dtype=float)
-                for j in mech.joints
-                if body in j.between and "point" in j.params
-            ]
-            x0 = np.mean(pts, axis=0) if pts else np.zeros(3)
-        else:
-            x0 = np.asarray(to_float(np.array(centre, dtype=object)), dtype=float)
+        x0 = np.asarray(
+            to_float(np.array(mass_centre(mech, body, centre), dtype=object)), dtype=float
+        )
         c = mm.body_point_now(body, x0)
         out.append((body, load_wrench(float(to_float(kg)) * g, np.zeros(3), c)))
     return out
@@ -219,7 +214,9 @@ def with_kinetostatics(result: Any, mech: Any, override: Any = None) -> Any:
     configs = []
     for c in result.configurations:
         load = load_of(mech, c.name, override)
-        if c.error is None and (load is not None or mech.weights is not None):
+        if c.error is None and (
+            load is not None or (mech.weights is not None and mech.weights.weighs)
+        ):
             fm = fm or KinematicModel(mech, "float")
             c = dataclasses.replace(c, kinetostatics=kinetostatics(mech, c.joints, load, fm))
         configs.append(c)

@@ -1,0 +1,139 @@
+"""Closed chains' inverse dynamics (mechsing.dynamics.closed, issue 43): a four-bar with
+masses driven by its crank at constant speed (and accelerating) against its Lagrangian
+computed by sympy in tests/reference/fourbar.py; the Type II crossing condition at the
+dead point of the crank when the rocker drives (the weights cannot be held there, a motion
+at rest without gravity can), and the input effort growing as 1/distance approaching it."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import mechsing
+from mechsing.model import loads
+from tests.reference.fourbar import FourBar
+
+FOURBAR = """\
+mechanism: four-bar
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [1, 0, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
+  - {name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [4, 0, 0]}
+inputs: [INPUT]
+mass:
+  crank: {kg: 1, centre: [0.5, 0, 0], inertia: [0.01, 0.09, 0.09, 0, 0, 0]}
+  coupler: {kg: 2, centre: [2, 1, 0], inertia: [0.02, 1.3, 1.3, 0, 0, 0]}
+  rocker: {kg: 1.5, centre: [3.5, 1, 0], inertia: [0.015, 0.6, 0.6, 0, 0, 0]}
+gravity: [0, -9.81, 0]
+configurations:
+CONFIGS
+"""
+REFERENCE = FourBar(
+    {"crank": (1, (0.5, 0), 0.09), "coupler": (2, (2, 1), 1.3), "rocker": (1.5, (3.5, 1), 0.6)},
+    (0, sp.Rational(-981, 100)),
+)
+#: the crank's dead point when the rocker drives: crank and coupler in line, |AC| = 1 + 2 sqrt(2)
+DEAD = math.acos(((1 + 2 * math.sqrt(2)) ** 2 + 16 - 5) / 8 / (1 + 2 * math.sqrt(2)))
+
+
+def _fourbar(inputs: str, angles: dict[str, float]) -> object:
+    configs = "\n".join(f"  {name}: {{A: {a!r}}}" for name, a in angles.items())
+    return loads(FOURBAR.replace("INPUT", inputs).replace("CONFIGS", configs), path="fourbar.yaml")
+
+
+ANGLES = {"a03": 0.3, "a17": 1.7, "a35": 3.5, "a52": 5.2}
+
+
+@pytest.mark.parametrize("acc", [0.0, 0.5])
+def test_crank_torque_for_a_motion_of_the_crank_is_the_lagrangian(acc: float) -> None:
+    res = mechsing.dynamics(_fourbar("A", ANGLES), rates={"A": 2}, accelerations={"A": acc})
+    for c in res.configurations:
+        theta = c.joints["A"]
+        want = float(REFERENCE.torque(sp.Float(theta, 30), 2, sp.Float(acc)))
+        assert abs(c.efforts["A"] - want) <= 1e-10 * max(1.0, abs(want))
+        assert c.efforts["B"] == c.efforts["C"] == c.efforts["D"] == 0  # passive
+        assert c.crossing["possible"] and c.crossing["residual"] < 1e-12
+
+
+def test_at_the_dead_point_the_rocker_cannot_hold_the_weights() -> None:
+    mech = _fourbar("D", {"dead": DEAD, "near": DEAD + 0.2})
+    held = mechsing.dynamics(mech, "near").configurations[0]
+    assert held.crossing["possible"]
+    dead = mechsing.dynamics(mech, "dead").configurations[0]
+    assert not dead.crossing["possible"] and dead.crossing["residual"] > 1e-3
+    # without gravity, at rest: nothing to balance, the crossing is possible
+    free = mechsing.dynamics(mech, "dead", gravity=(0, 0, 0)).configurations[0]
+    assert free.crossing["possible"]
+
+
+def test_the_rocker_effort_grows_as_one_over_the_distance_to_the_dead_point() -> None:
+    steps = [1e-3, 1e-4, 1e-5, 1e-6]
+    names = {f"d{i}": DEAD + d for i, d in enumerate(steps)}
+    res = mechsing.dynamics(_fourbar("D", names), list(names))
+    efforts = [abs(c.efforts["D"]) for c in res.configurations]
+    slopes = np.diff(np.log(efforts)) / np.diff(np.log(steps))
+    assert np.allclose(slopes, -1, atol=0.01)
+
+
+def test_forward_dynamics_of_a_four_bar_inverts_the_lagrangian() -> None:
+    """The crank's acceleration under the torque the Lagrangian gives for 0.5 rad/s^2 at
+    2 rad/s is 0.5 rad/s^2."""
+    for name, theta in ANGLES.items():
+        tau = float(REFERENCE.torque(sp.Float(theta, 30), 2, sp.Rational(1, 2)))
+        res = mechsing.dynamics(_fourbar("A", ANGLES), name, rates={"A": 2}, efforts={"A": tau})
+        c = res.configurations[0]
+        assert res.problem == "forward"
+        assert abs(c.accelerations["A"] - 0.5) <= 1e-10
+        assert abs(c.efforts["A"] - tau) <= 1e-10 * abs(tau)
+
+
+def test_a_closed_chain_at_mp_is_refused_with_the_reason() -> None:
+    with pytest.raises(mechsing.errors.UserError, match="computed in float"):
+        mechsing.dynamics(_fourbar("A", ANGLES), precision="mp:30")
+
+
+SLIDER_CRANK = """\
+mechanism: slider-crank
+bodies: [ground, crank, rod, slider]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, rod], axis: [0, 0, 1], point: [0, 1, 0]}
+  - {name: C, type: R, between: [rod, slider], axis: [0, 0, 1], point: [2*sqrt(2), 0, 0]}
+  - {name: P, type: P, between: [ground, slider], axis: [1, 0, 0]}
+inputs: [A]
+mass:
+  crank: {kg: 1.2, centre: [0, 0.5, 0], inertia: [0.1, 0.01, 0.1, 0, 0, 0]}
+  rod: {kg: 2, centre: [1.4, 0.5, 0], inertia: [0.02, 1.5, 1.5, 0, 0, 0]}
+  slider: {kg: 3, centre: [2.9, 0, 0], inertia: [0.05, 0.05, 0.05, 0, 0, 0]}
+gravity: [0, -9.81, 0]
+configurations:
+CONFIGS
+"""
+
+
+@pytest.mark.parametrize("acc", [0.0, -1.5])
+def test_slider_crank_torque_is_the_lagrangian(acc: float) -> None:
+    """A loop with a prismatic joint: the crank's torque at 3 rad/s (and decelerating)."""
+    from tests.reference.fourbar import SliderCrank
+
+    angles = {"s1": 0.4, "s2": 2.0, "s3": -2.5, "s4": 4.0}
+    configs = "\n".join(f"  {name}: {{A: {a!r}}}" for name, a in angles.items())
+    mech = loads(SLIDER_CRANK.replace("CONFIGS", configs), path="slider.yaml")
+    ref = SliderCrank(
+        {
+            "crank": (sp.Rational(6, 5), (0, 0.5), sp.Rational(1, 10)),
+            "rod": (2, (1.4, 0.5), sp.Rational(3, 2)),
+            "slider": (3, (2.9, 0), 0),
+        },
+        (0, sp.Rational(-981, 100)),
+    )
+    res = mechsing.dynamics(mech, list(angles), rates={"A": 3}, accelerations={"A": acc})
+    for c in res.configurations:
+        want = float(ref.torque(sp.Float(c.joints["A"], 30), 3, sp.Float(acc)))
+        assert abs(c.efforts["A"] - want) <= 1e-10 * max(1.0, abs(want))
+        assert c.efforts["P"] == 0
