@@ -1,5 +1,5 @@
 """Batched inverse dynamics: mechsing's recursive Newton-Euler on twists and wrenches of D
-(``mechsing.dynamics.tree.TreeDynamics.inverse`` on all the samples at once) against a
+(``mechsing.kinetics.tree.TreeDynamics.inverse`` on all the samples at once) against a
 Python loop over ``pinocchio.rnea``, one call per sample: 10,000 random samples (joint
 values, rates and accelerations) of the UR5 of ``examples/ur5.urdf`` and of a 7-joint arm
 (the one of tests/test_dynamics_tree.py: synthetic inertials; no Panda URDF with inertials
@@ -25,8 +25,8 @@ sys.path.insert(0, str(ROOT))
 
 from _timing import timed_medians_interleaved  # noqa: E402
 
-from mechsing.dynamics.tree import TreeDynamics  # noqa: E402
 from mechsing.kinematics import KinematicModel  # noqa: E402
+from mechsing.kinetics.tree import TreeDynamics  # noqa: E402
 from mechsing.reader import mechanism_from_text  # noqa: E402
 
 GRAVITY = (0.0, 0.0, -9.81)

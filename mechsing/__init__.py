@@ -25,7 +25,7 @@ document, HTML or Markdown), :func:`mechsing.analysis.solve.solve` (one configur
 closed, every joint value to the precision's digits), :func:`modes` (every assembly mode
 of a configuration, certified and classified: :mod:`mechsing.assembly`), :func:`dynamics`
 (inverse and forward dynamics of a configuration: efforts, accelerations, the mass matrix;
-:mod:`mechsing.dynamics`), :mod:`mechsing.lie`,
+:mod:`mechsing.kinetics`), :mod:`mechsing.lie`,
 :func:`mechsing.subgroups.identify`.
 """
 
@@ -39,7 +39,7 @@ import importlib
 _FUNCTIONS = {
     "analyze": ("mechsing.analysis", "analyze"),
     "condition": ("mechsing.conditions", "condition"),
-    "dynamics": ("mechsing.dynamics", "dynamics"),
+    "dynamics": ("mechsing.kinetics", "dynamics"),
     "load": ("mechsing.reader", "read_mechanism"),  # any format: YAML, JSON, DH, URDF, MJCF
     "modes": ("mechsing.assembly", "modes"),
     "report": ("mechsing.report", "report"),

@@ -25,7 +25,7 @@ import pytest
 import scipy.linalg
 
 import mechsing
-import mechsing.dynamics.tree
+import mechsing.kinetics.tree
 import mechsing.sweeps.scan
 from mechsing import lie, load
 from mechsing.kinematics import KinematicModel, forward
@@ -489,7 +489,7 @@ def test_inverse_dynamics_table_parity(form: str) -> None:
     arrays), to rounding, on the UR5 and on a tree with R, P and H joints, one crossed
     backwards; with and without gravity."""
     pytest.importorskip("numba")
-    from mechsing.dynamics.tree import TreeDynamics
+    from mechsing.kinetics.tree import TreeDynamics
     from mechsing.model import loads
 
     rng = np.random.default_rng(43)

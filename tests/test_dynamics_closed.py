@@ -1,4 +1,4 @@
-"""Closed chains' inverse dynamics (mechsing.dynamics.closed, issue 43): a four-bar with
+"""Closed chains' inverse dynamics (mechsing.kinetics.closed, issue 43): a four-bar with
 masses driven by its crank at constant speed (and accelerating) against its Lagrangian
 computed by sympy in tests/reference/fourbar.py; the Type II crossing condition at the
 dead point of the crank when the rocker drives (the weights cannot be held there, a motion

@@ -1,4 +1,4 @@
-"""The rigid body in the Lie form (mechsing.dynamics.rigid, issue 43), property-tested:
+"""The rigid body in the Lie form (mechsing.kinetics.rigid, issue 43), property-tested:
 the momentum against its textbook form (m v_c, I_c omega + c x p), the coadjoint action's
 defining identities (the Klein pairing kept), invariance under a change of frame, the
 Galilean law against the rate of the momentum computed by finite differences at 50 digits
@@ -13,7 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechsing import lie
-from mechsing.dynamics.rigid import (
+from mechsing.kinetics.rigid import (
     Inertia,
     kinetic_energy,
     momentum,

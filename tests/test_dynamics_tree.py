@@ -1,4 +1,4 @@
-"""The dynamics of trees (mechsing.dynamics.tree, issue 43) against answers computed
+"""The dynamics of trees (mechsing.kinetics.tree, issue 43) against answers computed
 elsewhere: Pinocchio's RNEA, CRBA and ABA on examples/ur5.urdf and on random trees of
 revolute and prismatic joints (to 1e-10 relative; skipped without ``pinocchio``), a
 Lagrangian of planar 2R and 3R arms derived in tests/reference/lagrangian.py at 50
@@ -15,9 +15,9 @@ import pytest
 import sympy
 from hypothesis import given, settings
 
-from mechsing.dynamics.tree import TreeDynamics
 from mechsing.errors import UserError
 from mechsing.kinematics import KinematicModel
+from mechsing.kinetics.tree import TreeDynamics
 from mechsing.model import loads
 from mechsing.reader import mechanism_from_text, read_mechanism
 from tests.reference.lagrangian import PlanarArm

@@ -27,7 +27,7 @@ LAYERS: list[set[str]] = [
     {"screws"},
     {"singularity"},
     {"analysis", "conditions"},
-    {"sweeps", "statics", "assembly", "dynamics"},
+    {"sweeps", "statics", "assembly", "kinetics"},
     {"exercises"},
     {"report"},
     {"cli", "__main__"},

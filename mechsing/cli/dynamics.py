@@ -62,8 +62,8 @@ def _pairs(values: list[str] | None, option: str) -> dict[str, str] | None:
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import load_mechanism
     from mechsing.cli.options import precision_option
-    from mechsing.dynamics.api import dynamics
     from mechsing.errors import UserError, working_on
+    from mechsing.kinetics.api import dynamics
 
     gravity = None
     if args.gravity is not None:

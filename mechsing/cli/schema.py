@@ -45,7 +45,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     if getattr(args, "dynamics", False):
-        from mechsing.dynamics.schema import dynamics_schema
+        from mechsing.kinetics.schema import dynamics_schema
 
         schema = dynamics_schema()
     elif getattr(args, "modes", False):

@@ -6,7 +6,7 @@ closed at the precision asked for: with ``accelerations`` the **inverse dynamics
 efforts that give them), with ``efforts`` the **forward dynamics** (the accelerations they
 give), with neither the inverse dynamics at zero acceleration; always the mass matrix, the
 bias efforts (Coriolis, centrifugal, gravity) and the kinetic energy
-(:class:`mechsing.dynamics.tree.TreeDynamics`).  Rates, accelerations and efforts are in
+(:class:`mechsing.kinetics.tree.TreeDynamics`).  Rates, accelerations and efforts are in
 SI: rad/s, m/s, rad/s^2, m/s^2, N m and N; a joint not given has 0.
 """
 
@@ -168,8 +168,8 @@ def dynamics(
     gravity : 3 numbers or None
         The acceleration of gravity in ground axes (m/s^2); None: the file's (none: zero).
     """
-    from mechsing.dynamics.tree import TreeDynamics
     from mechsing.kinematics import solve_configuration
+    from mechsing.kinetics.tree import TreeDynamics
 
     if accelerations is not None and efforts is not None:
         raise UserError(
@@ -265,7 +265,7 @@ def _closed(td: Any, mech: Any, q: Any, qd: Any, qdd: Any, tau: Any) -> tuple[An
     (forward: the accelerations first), its inputs' efforts, and the crossing condition:
     whether the inputs can produce the efforts the motion needs (the effort balance's
     relative residual below :data:`mechsing.numeric.tolerances.CROSSING_RTOL`)."""
-    from mechsing.dynamics.closed import closed_forward, closed_inverse
+    from mechsing.kinetics.closed import closed_forward, closed_inverse
     from mechsing.numeric import CROSSING_RTOL
 
     model = td.model

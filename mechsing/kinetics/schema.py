@@ -16,7 +16,7 @@ def _by_joint(description: str) -> dict[str, Any]:
 
 
 def dynamics_schema() -> dict[str, Any]:
-    """The schema of :meth:`mechsing.dynamics.api.DynamicsResult.to_json`."""
+    """The schema of :meth:`mechsing.kinetics.api.DynamicsResult.to_json`."""
     config = {
         "type": "object",
         "required": [

@@ -2,7 +2,7 @@
 
 Owns :func:`inverse_compiled`, the form ``"compiled tree"`` of the dispatch table
 ``"inverse dynamics"`` (:mod:`mechsing.numeric.dispatch`), whose generic definition is
-:meth:`mechsing.dynamics.tree.TreeDynamics.inverse`.  One pass per sample does what the
+:meth:`mechsing.kinetics.tree.TreeDynamics.inverse`.  One pass per sample does what the
 generic code does on whole arrays, with the same formulas: each joint's element by the
 closed form of the exponential of a one-dof screw (Rodrigues, ``|omega| = 1`` or a
 translation), the poses composed from the ground, the twists and accelerations forward
@@ -263,7 +263,7 @@ def inverse_compiled(
 #: numba is installed (the ``fast`` extra): without it the form answers None
 _NUMBA = importlib.util.find_spec("numba") is not None
 
-dispatch.table("inverse dynamics", "mechsing.dynamics.tree.TreeDynamics.inverse").register(
+dispatch.table("inverse dynamics", "mechsing.kinetics.tree.TreeDynamics.inverse").register(
     "compiled tree",
     "a float batch of a tree of R, P, H joints: the recursive Newton-Euler compiled with "
     "numba, one pass per sample (equal to the generic code to rounding; None without numba)",

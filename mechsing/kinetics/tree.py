@@ -12,7 +12,7 @@ screw of joint k (``Ad(g_a) e_k``, the joint's reference screw carried by the po
   screw is the Lie bracket ``s_k' = [xi_p, s_k]``), the ground accelerating by ``-g``
   so that the weights come with the inertia efforts;
 * each body needs the wrench ``W_b = I_b(a_b) + [xi_b, I_b(xi_b)]``
-  (:func:`mechsing.dynamics.rigid.newton_euler`, ``I_b`` its inertia carried to its pose);
+  (:func:`mechsing.kinetics.rigid.newton_euler`, ``I_b`` its inertia carried to its pose);
 * backward, from the leaves in: the joint before b carries ``F_b = W_b + sum of the F of
   b's children`` and its effort is the power pairing ``tau_k = sigma_k <F_b, s_k>``.
 
@@ -36,16 +36,16 @@ from typing import Any
 import numpy as np
 
 from mechsing import lie
-from mechsing.dynamics.rigid import Inertia, kinetic_energy, newton_euler
 from mechsing.errors import UserError
 from mechsing.kinematics import forward
+from mechsing.kinetics.rigid import Inertia, kinetic_energy, newton_euler
 from mechsing.model.loads import mass_centre
 from mechsing.numeric import dispatch, holds_objects
 
 __all__ = ["TreeDynamics"]
 
-#: the fast forms of the inverse dynamics (:mod:`mechsing.dynamics._compiled`)
-_INVERSE = dispatch.table("inverse dynamics", "mechsing.dynamics.tree.TreeDynamics.inverse")
+#: the fast forms of the inverse dynamics (:mod:`mechsing.kinetics._compiled`)
+_INVERSE = dispatch.table("inverse dynamics", "mechsing.kinetics.tree.TreeDynamics.inverse")
 
 #: the joint types the tree dynamics takes (one coordinate each)
 ONE_COORDINATE = ("R", "P", "H")
@@ -63,7 +63,7 @@ class TreeDynamics:
         The acceleration of gravity (m/s^2, ground axes); None: the file's (none: zero).
     closed : bool
         Take a closed chain: the dynamics of its spanning tree (the chords' coordinates
-        move no body: their efforts are 0), closed by :mod:`mechsing.dynamics.closed`.
+        move no body: their efforts are 0), closed by :mod:`mechsing.kinetics.closed`.
     """
 
     def __init__(self, model: Any, gravity: Any = None, closed: bool = False) -> None:
@@ -311,4 +311,4 @@ def _refuse(mech: Any, closed: bool = False) -> None:
 
 
 # the compiled form registers itself in the table (when numba is installed)
-from mechsing.dynamics import _compiled  # noqa: E402,F401
+from mechsing.kinetics import _compiled  # noqa: E402,F401

@@ -1,6 +1,6 @@
 """The inverse dynamics of a closed chain: the inputs' efforts for a motion of the inputs.
 
-The mechanism's spanning tree carries the bodies (:class:`~mechsing.dynamics.tree.TreeDynamics`
+The mechanism's spanning tree carries the bodies (:class:`~mechsing.kinetics.tree.TreeDynamics`
 on the tree's joints: a chord joint moves no body of its own); the loops close it.  With
 ``C`` the closure system at the configuration (each chord's block of six rows: the signed
 current screws of its loop's joints, SI twists at the ground origin,
