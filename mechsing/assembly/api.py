@@ -18,6 +18,7 @@ import mpmath
 import numpy as np
 import sympy
 
+from mechsing.assembly.certify import krawczyk
 from mechsing.assembly.chains import Found, closure_from_start, loop_found, serial_found
 from mechsing.errors import FormulationError, UserError
 from mechsing.model import Mechanism
@@ -265,30 +266,36 @@ def _finish(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
 
 
 def _planar(mech: Mechanism, given: dict, dps: int) -> Found:
-    from mechsing.assembly.certify import krawczyk
-    from mechsing.assembly.exact import eliminate_planar
-    from mechsing.assembly.planar import C, S, X, Y, joint_values, planar_system
+    from mechsing.assembly.exact import eliminate_stages
+    from mechsing.assembly.planar import joint_values, planar_stages, stages_system
 
-    system = planar_system(mech, given)
-    found = eliminate_planar(system, dps)
-    theta = sympy.Symbol("theta", real=True)
-    square = [e.subs({C: sympy.cos(theta), S: sympy.sin(theta)}) for e in system.equations]
+    stages = planar_stages(mech, given)
+    found = eliminate_stages(stages, dps)
+    square, unknowns = stages_system(stages)
     rows = []
-    for c, s, x, y in found.poses:
-        coords = joint_values(mech, system, given, (c, s, x, y))
-        ok = krawczyk(
-            square, [X, Y, theta], [x, y, mpmath.atan2(s, c)], mpmath.mpf(MODE_CERTIFY_RADIUS)
-        )
-        rows.append((coords, ok))
+    for platforms in found.branches:
+        coords = joint_values(mech, stages, given, list(platforms))
+        z = [v for c, s, x, y in platforms for v in (x, y, mpmath.atan2(s, c))]
+        rows.append((coords, krawczyk(square, unknowns, z, mpmath.mpf(MODE_CERTIFY_RADIUS))))
+    system = stages[0]
     formulation = {
         "name": "planar platform pose",
         "method": "exact elimination",
         "platform": system.platform,
         "unknowns": ["x", "y", "theta"],
         "legs": [{"kind": leg.kind, "joints": list(leg.joints)} for leg in system.legs],
-        "polynomial_degree": found.degree,
+        "polynomial_degree": found.degrees[0],
         "offset": str(2 * sympy.atan(found.offset)),
     }
+    if len(stages) > 1:
+        formulation["stages"] = [
+            {
+                "platform": st.platform,
+                "legs": [{"kind": leg.kind, "joints": list(leg.joints)} for leg in st.legs],
+                "polynomial_degree": degree,
+            }
+            for st, degree in zip(stages, found.degrees, strict=True)
+        ]
     if not found.finite:
         return Found(formulation, [], None, "infinite", None, found.notes)
     complete = "proven" if found.proven else "not proven"
@@ -296,7 +303,6 @@ def _planar(mech: Mechanism, given: dict, dps: int) -> Found:
 
 
 def _spatial(mech: Mechanism, given: dict, dps: int) -> Found:
-    from mechsing.assembly.certify import krawczyk
     from mechsing.assembly.spatial import (
         GENERIC_COUNT,
         XS,
@@ -354,12 +360,15 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
     km = KinematicModel(mech, "float")
     L = float(km.length_scale)
     coords = mech.coordinates()
-    rows = found.rows
+    rows = sorted(found.rows, key=lambda row: _order(mech, row[0]))
     names = {f"{config}#mode{k + 1}": q for k, (q, _ok) in enumerate(rows)}
-    data = {
-        n: ([mpmath.mpf(x) for x in q] if prec.mode in ("mp", "auto") else [float(x) for x in q])
-        for n, q in names.items()
-    }
+    with mpmath.workdps(dps):  # the modes' digits carried (mpf() rounds to the context's)
+        data = {
+            n: (
+                [mpmath.mpf(x) for x in q] if prec.mode in ("mp", "auto") else [float(x) for x in q]
+            )
+            for n, q in names.items()
+        }
     # the modes are data to dps digits (not points float located): analysed as a file's
     analysed = analyze_found(mech, data, prec, located=prec.mode == "float") if data else []
     closure = found.closure or closure_from_start(mech, config)
@@ -405,6 +414,21 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
         _distances(mech, [q for q, _ in rows], poses, L),
         (*found.notes, *notes),
     )
+
+
+def _order(mech: Mechanism, q: list[Any]) -> tuple[int, ...]:
+    """A mode's place in the list: its joint values rounded to the match distance (angles
+    taken in [-pi, pi), pi and -pi alike), so that noise far below it (a joint at 0 as
+    1e-51 in one mode and -1e-51 in another) does not reorder the modes."""
+    key = []
+    for (name, i), x in zip(mech.coordinates(), q, strict=True):
+        v = float(x)
+        if mech.joint(name).units[i] == "rad":
+            v = (v + np.pi) % (2 * np.pi) - np.pi
+            if v > np.pi - MODE_MATCH_DISTANCE / 2:
+                v -= 2 * np.pi
+        key.append(round(v / MODE_MATCH_DISTANCE))
+    return tuple(key)
 
 
 def _reached(
