@@ -166,7 +166,7 @@ def test_a_3rrr_whose_eliminant_has_radicals_in_a_denominator_gets_its_modes() -
         assert rc == 0, err
         doc = json.loads(out)
         expected = rpr_poses(*_rrr_pivots([a1, 0, 0]), samples=100_000)
-        assert doc["count"] == len(expected)
+        assert doc["count"] == len(expected) and doc["complete"] == "proven"
         for theta, _p in expected:  # the platform turns by C1's and the dist1's turns
             hits = [
                 m

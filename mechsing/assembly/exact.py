@@ -450,9 +450,26 @@ def _enclosed_real_roots(P: sympy.Poly, at: dict) -> tuple[list[Any], list[Any],
             continue
         # twice the bound: room for the rounding of the product of the gaps
         radii.append(2 * n * _sup_abs_value(coeffs, z) / (low * gaps))
+    # the components of overlapping discs: each holds as many roots as discs
+    part = list(range(n))
+
+    def root(i: int) -> int:
+        while part[i] != i:
+            i = part[i]
+        return i
+
+    for i in range(n):
+        for k in range(i + 1, n):
+            if abs(zs[i] - zs[k]) <= radii[i] + radii[k]:
+                part[root(i)] = root(k)
+    components: dict[int, list[int]] = {}
+    for i in range(n):
+        components.setdefault(root(i), []).append(i)
+    # decided: a lone disc on the real axis (one real root), or discs all clear of it
     proven = all(
-        abs(zs[i] - zs[k]) > radii[i] + radii[k] for i in range(n) for k in range(i + 1, n)
-    ) and all(z.imag == 0 or abs(z.imag) > r for z, r in zip(zs, radii, strict=True))
+        (len(c) == 1 and zs[c[0]].imag == 0) or all(abs(zs[i].imag) > radii[i] for i in c)
+        for c in components.values()
+    )
     roots: list[Any] = []
     spans: list[Any] = []
     for z, r in sorted(((z.real, r) for z, r in zip(zs, radii, strict=True) if z.imag == 0)):
