@@ -174,3 +174,92 @@ def test_a_3rrr_whose_eliminant_has_radicals_in_a_denominator_gets_its_modes() -
                 if abs(wrap(sum(m["joints"][n][0] for n in ("A1", "B1", "C1")) - theta)) < 1e-7
             ]
             assert len(hits) == 1
+
+
+def test_the_double_rocker_at_pi_over_5_gets_its_two_modes() -> None:
+    """examples/double_rocker.yaml at A = pi/5 (cos(pi/5) has nested radicals, with
+    sqrt(15) from the file's geometry: the norm over Q ran past a probe's limit): B at the
+    input's end, C where the circles about B (the coupler) and about D (the output)
+    meet; the coupler turns by A + B."""
+    doc = _modes("double_rocker.yaml", "--set", "A=pi/5")
+    assert doc["count"] == 2 and doc["complete"] == "proven"
+    a = np.pi / 5
+    B_ref, C_ref, D = P2([3, 0]), P2([23 / 4, 3 * np.sqrt(15) / 4]), P2([5, 0])
+    B = place(P2([0, 0]), P2([0, 0]), a, B_ref)
+    expected = [
+        (turn(C_ref - B_ref, C - B), turn(C_ref - D, C - D))
+        for C in circle_points(B, np.linalg.norm(C_ref - B_ref), D, np.linalg.norm(C_ref - D))
+    ]
+    found = [
+        (m["joints"]["A"][0] + m["joints"]["B"][0], -m["joints"]["D"][0]) for m in doc["modes"]
+    ]
+    _matches(expected, found)
+
+
+def test_an_absurd_input_is_refused_before_solving() -> None:
+    """--set A=1e12 (degrees) on the four-bar: refused as bad input naming the joint (it
+    was found, then refused in the classification under an internal name)."""
+    rc, _, err = run_cli(["modes", str(ROOT / "examples" / "fourbar.yaml"), "--set", "A=1e12"])
+    assert rc == 2
+    assert "fourbar.yaml" in err and "joint 'A'" in err and "#mode" not in err
+
+
+POINT = """\
+mechanism: 3rpr-point
+bodies: [ground, cyl1, pis1, cyl2, pis2, cyl3, pis3, platform]
+joints:
+  - {name: Rb1, type: R, between: [ground, cyl1],   axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: P1, type: P, between: [cyl1, pis1],     axis: [3, 4, 0]}
+  - {name: Rp1, type: R, between: [pis1, platform], axis: [0, 0, 1], point: [3, 4, 0]}
+  - {name: Rb2, type: R, between: [ground, cyl2],   axis: [0, 0, 1], point: [8, 0, 0]}
+  - {name: P2, type: P, between: [cyl2, pis2],     axis: [-5, 4, 0]}
+  - {name: Rp2, type: R, between: [pis2, platform], axis: [0, 0, 1], point: [3, 4, 0]}
+  - {name: Rb3, type: R, between: [ground, cyl3],   axis: [0, 0, 1], point: [-4, 11, 0]}
+  - {name: P3, type: P, between: [cyl3, pis3],     axis: [7, -7, 0]}
+  - {name: Rp3, type: R, between: [pis3, platform], axis: [0, 0, 1], point: [3, 4, 0]}
+inputs: [P1, P2, P3]
+output: {body: platform}
+configurations:
+  reference: {}
+"""
+
+
+def test_a_3rpr_whose_platform_is_a_point(tmp_path) -> None:
+    """Three legs to one platform point (3, 4): at the reference slides the point is
+    placed and the platform turns freely about it (a curve: no count); with P1 = 1/2
+    leg 1 reaches 5.5 from (0, 0) while legs 2 and 3 keep the point at (3, 4), 5 away:
+    no closed configuration (0 modes, proven)."""
+    path = tmp_path / "point.yaml"
+    path.write_text(POINT)
+    rc, out, err = run_cli(
+        ["modes", str(path), "--set", "P1=0", "--set", "P2=0", "--set", "P3=0", "--format", "json"]
+    )
+    assert rc == 0, err
+    doc = json.loads(out)
+    assert doc["complete"] == "infinite" and doc["count"] is None
+    rc, out, err = run_cli(
+        [
+            "modes",
+            str(path),
+            "--set",
+            "P1=1/2",
+            "--set",
+            "P2=0",
+            "--set",
+            "P3=0",
+            "--format",
+            "json",
+        ]
+    )
+    assert rc == 0, err
+    doc = json.loads(out)
+    assert doc["count"] == 0 and doc["complete"] == "proven"
+
+
+def test_time_limit_stops_the_planar_elimination_and_classification() -> None:
+    """--time-limit covers the exact method and the classification too (they ran outside
+    it): the 3-RRR with three decimal inputs stops with exit 3 and the reason."""
+    path = ROOT / "tests" / "data" / "planar_3rrr.yaml"
+    argv = ["modes", str(path), "--set", "A1=0.2", "--set", "A2=-0.1", "--set", "A3=0.05"]
+    rc, _, err = run_cli([*argv, "--time-limit", "1"])
+    assert rc == 3 and "within --time-limit 1 s" in err and "Traceback" not in err

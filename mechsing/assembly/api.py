@@ -20,7 +20,7 @@ import sympy
 
 from mechsing.assembly.certify import krawczyk
 from mechsing.assembly.chains import Found, closure_from_start, loop_found, serial_found
-from mechsing.errors import FormulationError, UserError
+from mechsing.errors import ConfigurationError, FormulationError, UserError
 from mechsing.model import Mechanism
 from mechsing.numeric import (
     MODE_CERTIFY_RADIUS,
@@ -195,35 +195,51 @@ def modes(
         mech = _started_from(mech, config, start)
     dps = max(50, (prec.digits or 0) + 10)
     where = f"{mech.path or mech.name}: configuration {config!r}"
+    # one time limit for the whole: the solving, the certification and the classification
     if not mech.loops:  # a serial arm: the output's pose (given, or reached) is what is given
-        with TimeLimit(time_limit), mpmath.workdps(dps):
-            try:
-                found = serial_found(mech, config, dps, rotation_orthonormal_atol(prec))
-            except FormulationError as reason:
-                raise UserError(
-                    f"{where}: no method applies (a mechanism without loops is solved as a "
-                    f"serial arm for the output's pose, and that formulation does not apply: "
-                    f"{reason})"
-                ) from None
-        return _finish(mech, config, prec, found, dps)
-    given = _given(mech, config)
-    with TimeLimit(time_limit), mpmath.workdps(dps):
-        try:
-            found = _planar(mech, given, dps)
-        except FormulationError as planar_reason:
-            try:
-                found = _spatial(mech, given, dps)
-            except FormulationError as spatial_reason:
+        with TimeLimit(time_limit):
+            with mpmath.workdps(dps):
                 try:
-                    found = loop_found(mech, config, given, dps)
-                except FormulationError as loop_reason:
+                    found = serial_found(mech, config, dps, rotation_orthonormal_atol(prec))
+                except FormulationError as reason:
                     raise UserError(
-                        f"{where}: no method applies (the planar exact method does not "
-                        f"apply: {planar_reason}; the spatial platform in Study coordinates "
-                        f"does not apply: {spatial_reason}; the single loop of six unknown "
-                        f"joints does not apply: {loop_reason})"
+                        f"{where}: no method applies (a mechanism without loops is solved as "
+                        f"a serial arm for the output's pose, and that formulation does not "
+                        f"apply: {reason})"
                     ) from None
-    return _finish(mech, config, prec, found, dps)
+            return _finish(mech, config, prec, found, dps)
+    given = _given(mech, config)
+    with TimeLimit(time_limit):
+        with mpmath.workdps(dps):
+            _check_values(mech, config)
+            try:
+                found = _planar(mech, given, dps)
+            except FormulationError as planar_reason:
+                try:
+                    found = _spatial(mech, given, dps)
+                except FormulationError as spatial_reason:
+                    try:
+                        found = loop_found(mech, config, given, dps)
+                    except FormulationError as loop_reason:
+                        raise UserError(
+                            f"{where}: no method applies (the planar exact method does not "
+                            f"apply: {planar_reason}; the spatial platform in Study "
+                            f"coordinates does not apply: {spatial_reason}; the single loop "
+                            f"of six unknown joints does not apply: {loop_reason})"
+                        ) from None
+        return _finish(mech, config, prec, found, dps)
+
+
+def _check_values(mech: Mechanism, config: str) -> None:
+    """The given values are finite and of a sensible size (the analysis's bound, its
+    message naming the configuration and the joint): refused before any solving."""
+    from mechsing.kinematics import KinematicModel
+    from mechsing.kinematics.given import GivenValues
+
+    try:
+        GivenValues(KinematicModel(mech, "float")).of(mech.configurations[config])
+    except UserError as exc:
+        raise UserError(f"{mech.path or mech.name}: {exc}") from None
 
 
 def _started_from(mech: Mechanism, config: str, start: str) -> Mechanism:
@@ -308,6 +324,7 @@ def _spatial(mech: Mechanism, given: dict, dps: int) -> Found:
         XS,
         YS,
         joint_values_spatial,
+        out_of_reach,
         patch_equation,
         pose_of,
         solve_study,
@@ -315,7 +332,23 @@ def _spatial(mech: Mechanism, given: dict, dps: int) -> Found:
     )
 
     system = spatial_system(mech, given)
-    studies, paths = solve_study(system, dps)
+    formulation = {
+        "name": "Study coordinates",
+        "method": "homotopy continuation (Bertini 2), Newton refinement",
+        "platform": system.platform,
+        "unknowns": [str(v) for v in (*XS, *YS)],
+        "legs": [{"kind": "distance", "joints": list(n)} for n, *_ in system.legs],
+        "polynomial_degree": 2,
+        "bezout": 2**7,
+        "generic_count": GENERIC_COUNT,
+    }
+    reason = out_of_reach(system)
+    if reason is not None:  # proved without tracking: no real (or complex) pose
+        return Found(formulation, [], 0, "proven", None, (reason,))
+    try:
+        studies, paths = solve_study(system, dps)
+    except ConfigurationError as exc:
+        raise ConfigurationError(f"{mech.path or mech.name}: {exc}", exc.configuration) from None
     # one mode per platform pose (the Study coordinates' sign is fixed by the patch)
     kept: list[list[Any]] = []
     for z in studies:
@@ -333,16 +366,6 @@ def _spatial(mech: Mechanism, given: dict, dps: int) -> Found:
     paths["duplicates"] = len(studies) - len(kept)
     distinct = all(ok for _, ok in rows)
     complete = "maximal" if len(rows) == GENERIC_COUNT and distinct else "not proven"
-    formulation = {
-        "name": "Study coordinates",
-        "method": "homotopy continuation (Bertini 2), Newton refinement",
-        "platform": system.platform,
-        "unknowns": [str(v) for v in (*XS, *YS)],
-        "legs": [{"kind": "distance", "joints": list(n)} for n, *_ in system.legs],
-        "polynomial_degree": 2,
-        "bezout": 2**7,
-        "generic_count": GENERIC_COUNT,
-    }
     equivalent = 2 ** sum(1 for n, *_ in system.legs if mech.joint(n[0]).type == "U")
     return Found(formulation, rows, len(rows), complete, paths, (), equivalent)
 

@@ -100,6 +100,8 @@ def eliminate_planar(system: PlanarSystem, dps: int, at: dict | None = None) -> 
         )
     )
     notes: list[str] = []
+    if _is_zero(F, dps, at):  # every platform angle has a position (a point platform)
+        return Eliminated(False, (), True, 0, OFFSETS[0], ("the solutions form a curve",))
     for r in OFFSETS:
         c0 = (1 - r**2) / (1 + r**2)
         s0 = 2 * r / (1 + r**2)
@@ -349,8 +351,12 @@ def _certified_real_roots(F: sympy.Expr, dps: int, at: dict) -> tuple[list[Any],
     interval about each that holds it, and whether each interval of the isolation was
     decided (root certified or excluded)."""
     P = sympy.Poly(F, T)
-    if any(_transcendental(c) for c in P.coeffs()):
-        return _enclosed_real_roots(P, at)
+    # Smith's discs first: they prove simple roots in any field, fast; the norm over Q
+    # (slow in a field of high degree: cos(pi/5) with sqrt(15)) only where they cannot
+    # decide and the coefficients are algebraic (a double root: two modes merging)
+    enclosed = _enclosed_real_roots(P, at)
+    if enclosed[2] or any(_transcendental(c) for c in P.coeffs()):
+        return enclosed
     irrational = [c for c in set(P.coeffs()) if not c.is_Rational]
     if irrational:
         # square-free over the coefficients' field: a double root (two modes merging at a
