@@ -153,19 +153,22 @@ def _rrr_pivots(angles: list[float]) -> tuple[np.ndarray, np.ndarray, np.ndarray
 def test_a_3rrr_whose_eliminant_has_radicals_in_a_denominator_gets_its_modes() -> None:
     """The planar 3-RRR (tests/data) with A1 = pi/6 and A2 = A3 = 0 ended in a sympy
     PolynomialError (exit 4): its count is now the closed form's (none: the elbows are
-    then out of the distal links' reach), and with A1 = 0.1 rad (decimal) two modes, as
+    then out of the distal links' reach), and with decimal inputs two modes, as
     Gosselin's elimination (the reference's 3-RPR scan, legs from the elbows) finds."""
     from tests.reference.modes_independent import rpr_poses
 
     path = ROOT / "tests" / "data" / "planar_3rrr.yaml"
-    for a1, text in ((np.pi / 6, "pi/6"), (0.1, "0.1")):
-        rc, out, err = run_cli(
-            ["modes", str(path), "--set", f"A1={text}", "--set", "A2=0", "--set", "A3=0"]
-            + ["--format", "json"]
-        )
+    cases = (
+        ((np.pi / 6, 0, 0), ("pi/6", "0", "0")),
+        ((0.1, 0, 0), ("0.1", "0", "0")),
+        ((0.2, -0.1, 0.05), ("0.2", "-0.1", "0.05")),  # three decimals: minutes in sympy
+    )
+    for angles, texts in cases:
+        sets = [f"--set=A{i + 1}={t}" for i, t in enumerate(texts)]
+        rc, out, err = run_cli(["modes", str(path), *sets, "--format", "json"])
         assert rc == 0, err
         doc = json.loads(out)
-        expected = rpr_poses(*_rrr_pivots([a1, 0, 0]), samples=100_000)
+        expected = rpr_poses(*_rrr_pivots(list(angles)), samples=100_000)
         assert doc["count"] == len(expected) and doc["complete"] == "proven"
         for theta, _p in expected:  # the platform turns by C1's and the dist1's turns
             hits = [

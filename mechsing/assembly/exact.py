@@ -64,16 +64,37 @@ def _split(system: PlanarSystem) -> tuple[list[sympy.Expr], sympy.Expr, int]:
     return lins[:2], lins[2], 1
 
 
+def _constants(*exprs: sympy.Expr) -> list[sympy.Expr]:
+    """The irrational constants of the expressions (radicals, cos(3/10), the earlier
+    stages' symbols): generators of sympy polynomials, whose products are far faster
+    than expanding expressions (three decimal inputs of a 3-RRR took minutes)."""
+    found: set[sympy.Expr] = set()
+    for e in exprs:
+        for a in sympy.preorder_traversal(e):
+            if a.is_Symbol and a not in (X, Y, C, S, T):
+                found.add(a)
+            elif a.is_number and (
+                isinstance(a, sympy.Function) or (a.is_Pow and not a.is_Rational)
+            ):
+                found.add(a)
+            elif a in (sympy.pi, sympy.E):
+                found.add(a)
+    return sorted(found, key=sympy.default_sort_key)
+
+
 def _in_t(F: sympy.Expr, r: Any) -> sympy.Expr:
     """F(cos, sin) as a polynomial in t, theta = theta0 + 2 atan t, tan(theta0/2) = r."""
     P = sympy.Poly(F, C, S)
     m = P.total_degree()
     tau_n, tau_d = r + T, 1 - r * T  # tan(theta/2) = tau_n / tau_d
-    cn, sn, dn = tau_d**2 - tau_n**2, 2 * tau_n * tau_d, tau_d**2 + tau_n**2
-    out = sympy.S.Zero
+    gens = [T, *_constants(F)]
+    cn, sn, dn = (
+        sympy.Poly(e, *gens) for e in (tau_d**2 - tau_n**2, 2 * tau_n * tau_d, tau_d**2 + tau_n**2)
+    )
+    out = sympy.Poly(0, *gens)
     for (i, j), coeff in P.terms():
-        out += coeff * cn**i * sn**j * dn ** (m - i - j)
-    return sympy.expand(out)
+        out += sympy.Poly(coeff, *gens) * cn**i * sn**j * dn ** (m - i - j)
+    return out.as_expr()
 
 
 def eliminate_planar(system: PlanarSystem, dps: int, at: dict | None = None) -> Eliminated:
@@ -88,33 +109,16 @@ def eliminate_planar(system: PlanarSystem, dps: int, at: dict | None = None) -> 
     D = sympy.expand(a1 * b2 - a2 * b1)
     Dx = sympy.expand(-(e1 * b2 - e2 * b1))
     Dy = sympy.expand(-(a1 * e2 - a2 * e1))
-    # D^k base(Dx/D, Dy/D), each term homogenised by D (no division: sympy's cancel
-    # cannot always clear a denominator that holds radicals)
-    F = sympy.expand(
-        sum(
-            (
-                coeff * Dx**i * Dy**j * D ** (k - i - j)
-                for (i, j), coeff in sympy.Poly(base, X, Y).terms()
-            ),
-            sympy.S.Zero,
-        )
-    )
     notes: list[str] = []
-    if _is_zero(F, dps, at):  # every platform angle has a position (a point platform)
-        return Eliminated(False, (), True, 0, OFFSETS[0], ("the solutions form a curve",))
-    for r in OFFSETS:
-        c0 = (1 - r**2) / (1 + r**2)
-        s0 = 2 * r / (1 + r**2)
-        if not _is_zero(F.subs({C: -c0, S: -s0}), dps, at):
-            break
+    if any(_transcendental(c) for c in _constants(D, Dx, Dy, base)):
+        solved = _enclosed_eliminant(D, Dx, Dy, base, k, dps, at)
     else:
-        raise FormulationError("every offset tried has a solution at theta0 + pi")
-    Ft = _in_t(F, r)
-    if _is_zero(Ft, dps, at):
-        return Eliminated(False, (), True, 0, r, ("the solutions form a curve",))
+        solved = _exact_eliminant(D, Dx, Dy, base, k, dps, at)
+    if solved[0] is None:
+        return Eliminated(False, (), True, 0, OFFSETS[0], ("the solutions form a curve",))
+    r, roots, radii, proven_roots, degree = solved
     Dt = _in_t(D, r) if D.has(C, S) else D
     with mpmath.workdps(dps + 20), interval_digits(dps + 20):
-        roots, radii, proven_roots = _certified_real_roots(Ft, dps, at)
         proven = proven_roots
         if not proven_roots:
             notes.append("a real root of the eliminant could be neither certified nor excluded")
@@ -147,7 +151,7 @@ def eliminate_planar(system: PlanarSystem, dps: int, at: dict | None = None) -> 
                     False,
                     (),
                     True,
-                    sympy.Poly(Ft, T).degree(),
+                    degree,
                     r,
                     (
                         f"the closed configurations form a curve at the platform angle "
@@ -156,8 +160,107 @@ def eliminate_planar(system: PlanarSystem, dps: int, at: dict | None = None) -> 
                 )
             poses.extend(extra)
             boxes.extend(tuple(mpmath.iv.mpf([v - tiny, v + tiny]) for v in p) for p in extra)
-    degree = sympy.Poly(Ft, T).degree()
     return Eliminated(True, tuple(poses), proven, degree, r, tuple(notes), tuple(boxes))
+
+
+def _exact_eliminant(
+    D: sympy.Expr, Dx: sympy.Expr, Dy: sympy.Expr, base: sympy.Expr, k: int, dps: int, at: dict
+) -> tuple:
+    """The eliminant with algebraic coefficients, exactly: (offset, real roots, their
+    radii, proven, degree), or (None, ...) for a curve."""
+    # D^k base(Dx/D, Dy/D), each term homogenised by D (no division: sympy's cancel
+    # cannot always clear a denominator that holds radicals)
+    gens = [C, S, *_constants(D, Dx, Dy, base)]
+    Dp, Dxp, Dyp = (sympy.Poly(e, *gens) for e in (D, Dx, Dy))
+    F = sum(
+        (
+            sympy.Poly(coeff, *gens) * Dxp**i * Dyp**j * Dp ** (k - i - j)
+            for (i, j), coeff in sympy.Poly(base, X, Y).terms()
+        ),
+        sympy.Poly(0, *gens),
+    ).as_expr()
+    if _is_zero(F, dps, at):  # every platform angle has a position (a point platform)
+        return (None,)
+    for r in OFFSETS:
+        c0 = (1 - r**2) / (1 + r**2)
+        s0 = 2 * r / (1 + r**2)
+        if not _is_zero(F.subs({C: -c0, S: -s0}), dps, at):
+            break
+    else:
+        raise FormulationError("every offset tried has a solution at theta0 + pi")
+    Ft = _in_t(F, r)
+    if _is_zero(Ft, dps, at):
+        return (None,)
+    with mpmath.workdps(dps + 20), interval_digits(dps + 20):
+        roots, radii, proven = _certified_real_roots(Ft, dps, at)
+    return r, roots, radii, proven, sympy.Poly(Ft, T).degree()
+
+
+def _enclosed_eliminant(
+    D: sympy.Expr, Dx: sympy.Expr, Dy: sympy.Expr, base: sympy.Expr, k: int, dps: int, at: dict
+) -> tuple:
+    """The eliminant whose coefficients hold transcendental values (cos(3/10)) or an
+    earlier stage's symbols: the same polynomial, its coefficients enclosed and combined
+    in interval arithmetic (no exact expansion: three decimal inputs of a 3-RRR took
+    minutes in sympy); (offset, real roots, radii, proven, degree), or (None, ...) for
+    a curve to the working digits."""
+    with mpmath.workdps(dps + 20), interval_digits(dps + 20):
+        Dp, Dxp, Dyp = (_enclosed_poly(e, at) for e in (D, Dx, Dy))
+        F: dict[tuple[int, int], Any] = {}
+        for (i, j), coeff in sympy.Poly(base, X, Y).terms():
+            term = _enclosed_poly(coeff, at)
+            for factor, n in ((Dxp, i), (Dyp, j), (Dp, k - i - j)):
+                for _ in range(n):
+                    term = _imul(term, factor)
+            for m, v in term.items():
+                F[m] = F[m] + v if m in F else v
+        if all(v.a <= 0 <= v.b for v in F.values()):
+            return (None,)
+        for r in OFFSETS:
+            c0 = (1 - r**2) / (1 + r**2)
+            s0 = 2 * r / (1 + r**2)
+            v = sum(
+                (
+                    a * (mpmath.iv.mpf(-c0.p) / c0.q) ** i * (mpmath.iv.mpf(-s0.p) / s0.q) ** j
+                    for (i, j), a in F.items()
+                ),
+                mpmath.iv.mpf(0),
+            )
+            if not v.a <= 0 <= v.b:
+                break
+        else:
+            raise FormulationError("every offset tried has a solution at theta0 + pi")
+        m = max(i + j for i, j in F)
+        tau_n, tau_d = r + T, 1 - r * T  # as in _in_t
+        cn, sn, dn = (
+            sympy.Poly(e, T) for e in (tau_d**2 - tau_n**2, 2 * tau_n * tau_d, tau_d**2 + tau_n**2)
+        )
+        Ft = [mpmath.iv.mpf(0)] * (2 * m + 1)  # lowest power first
+        for (i, j), a in F.items():
+            for (e,), q in (cn**i * sn**j * dn ** (m - i - j)).terms():
+                Ft[e] += a * (mpmath.iv.mpf(q.p) / q.q)
+        while len(Ft) > 1 and Ft[-1].a == 0 == Ft[-1].b:
+            Ft.pop()
+        if all(v.a <= 0 <= v.b for v in Ft):
+            return (None,)
+        roots, radii, proven = _roots_of_enclosed(Ft[::-1])
+    return r, roots, radii, proven, len(Ft) - 1
+
+
+def _enclosed_poly(expr: sympy.Expr, at: dict) -> dict[tuple[int, int], Any]:
+    """A polynomial in (cos, sin) as {exponents: the enclosure of its coefficient}."""
+    P = sympy.Poly(expr, C, S)
+    return dict(zip(P.monoms(), _interval_coeffs_of(P.coeffs(), at), strict=True))
+
+
+def _imul(p: dict, q: dict) -> dict:
+    """The product of two polynomials with interval coefficients."""
+    out: dict = {}
+    for m1, a in p.items():
+        for m2, b in q.items():
+            m = (m1[0] + m2[0], m1[1] + m2[1])
+            out[m] = out[m] + a * b if m in out else a * b
+    return out
 
 
 def _pose_enclosure(D: sympy.Expr, Dx: sympy.Expr, Dy: sympy.Expr, r: Any, at: dict) -> Any:
@@ -416,6 +519,12 @@ def _certified_real_roots(F: sympy.Expr, dps: int, at: dict) -> tuple[list[Any],
 
 
 def _enclosed_real_roots(P: sympy.Poly, at: dict) -> tuple[list[Any], list[Any], bool]:
+    """:func:`_roots_of_enclosed` of ``P``'s coefficients enclosed (``at``: the symbols'
+    enclosures)."""
+    return _roots_of_enclosed(_interval_coeffs(P, at))
+
+
+def _roots_of_enclosed(coeffs: list[Any]) -> tuple[list[Any], list[Any], bool]:
     """The real roots of ``P`` whose coefficients are known only by their enclosures
     (a given angle of 0.3 rad puts cos(3/10) in them), and whether the count is proven.
 
@@ -428,8 +537,8 @@ def _enclosed_real_roots(P: sympy.Poly, at: dict) -> tuple[list[Any], list[Any],
     bound holds for the exact polynomial.  Pairwise disjoint discs each hold one root:
     one centred on the real axis holds a real root (its conjugate is in the same disc),
     one clear of the axis a root that is not real.  Discs that touch (a double root: two
-    modes merging) leave the count unproven; the near roots are then kept once."""
-    coeffs = _interval_coeffs(P, at)
+    modes merging) leave the count unproven; the near roots are then kept once.
+    ``coeffs``: the enclosures, highest power first."""
     n = len(coeffs) - 1
     if n <= 0:
         return [], [], True
