@@ -1,16 +1,25 @@
-"""Exact elimination of a planar platform system to one univariate polynomial, and the
+"""Elimination of a planar platform system to one univariate polynomial, and the
 certified isolation of its real roots (the built-in method; no extra needed).
 
-The polynomial ``F(t)`` has algebraic coefficients (a given crank angle of 30 deg puts
-sqrt(3) in them).  Its real roots are among those of its norm ``N(t) = res_a(F(t, a),
-m(a))`` over Q (``a`` a primitive element of the coefficients' field, ``m`` its minimal
-polynomial), which sympy isolates exactly in rational intervals.  In each interval, an
-interval Newton step on ``F`` itself (mpmath interval arithmetic) either proves one root
-of F there or an interval evaluation proves there is none; an interval neither proves
-leaves the count unproven.  So ``proven`` means: every real solution is listed, each
-exactly once.
+The polynomial ``F(t)`` has algebraic coefficients when the given angles' cosines are
+algebraic (30 deg puts sqrt(3) in them), and transcendental ones otherwise (0.3 rad puts
+cos(3/10)), or the earlier stages' symbols in a linkage solved in stages.  Its real
+roots are isolated first by Smith's discs (:func:`_roots_of_enclosed`): the
+coefficients enclosed in intervals, every complex root approximated, and a disc about
+each that provably holds it; lone discs on the real axis are real roots, discs clear of
+it are not.  That proves simple roots in any field.  Where discs touch (a double root:
+two modes merging at a configuration given exactly) and the coefficients are
+algebraic, the real roots are among those of the norm ``N(t) = res_a(F(t, a), m(a))``
+over Q (``a`` a primitive element of the coefficients' field, ``m`` its minimal
+polynomial), which sympy isolates exactly in rational intervals; in each, an interval
+Newton step on ``F`` itself either proves one root of F there or an interval evaluation
+proves there is none.  An interval neither proves leaves the count unproven.  So
+``proven`` means: every real solution is listed, each exactly once.  With transcendental
+coefficients ``F`` is formed in interval arithmetic from the start
+(:func:`_enclosed_eliminant`).
 
-Owns :class:`Eliminated` and :func:`eliminate_planar`.
+Owns :class:`Eliminated`, :class:`Staged`, :func:`eliminate_planar` and
+:func:`eliminate_stages`.
 """
 
 from __future__ import annotations

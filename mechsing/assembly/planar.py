@@ -16,9 +16,15 @@ from the others leaves equations linear in ``(x, y)``; two of them give ``(x, y)
 Cramer's rule and the third becomes one univariate polynomial in ``t = tan((theta -
 theta0) / 2)`` (``theta0`` an offset with rational sine and cosine, chosen so that no
 solution sits at ``t = oo``).  The mechanism's joints must have axes along z (R) or in
-the xy plane (P).
+the xy plane (P).  A given angle enters by its cosine and sine: in radicals where sympy
+writes them so, else as ``cos(q)``, ``sin(q)`` (0.3 rad), which the elimination encloses.
 
-Owns :class:`PlanarSystem`, :func:`planar_system` and :func:`joint_values`.
+A linkage of several loops that no one body's legs fix is taken in stages
+(:func:`planar_stages`): a Watt II's four-bar first, then the dyad on its rocker, whose
+known bodies' poses are the first stage's symbols.
+
+Owns :class:`PlanarSystem`, :func:`planar_system`, :func:`planar_stages`,
+:func:`stages_system` and :func:`joint_values`.
 """
 
 from __future__ import annotations
