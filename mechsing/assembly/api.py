@@ -18,8 +18,9 @@ import mpmath
 import numpy as np
 import sympy
 
+from mechsing.assembly.certify import krawczyk
 from mechsing.assembly.chains import Found, closure_from_start, loop_found, serial_found
-from mechsing.errors import FormulationError, UserError
+from mechsing.errors import ConfigurationError, FormulationError, UserError
 from mechsing.model import Mechanism
 from mechsing.numeric import (
     MODE_CERTIFY_RADIUS,
@@ -194,35 +195,51 @@ def modes(
         mech = _started_from(mech, config, start)
     dps = max(50, (prec.digits or 0) + 10)
     where = f"{mech.path or mech.name}: configuration {config!r}"
+    # one time limit for the whole: the solving, the certification and the classification
     if not mech.loops:  # a serial arm: the output's pose (given, or reached) is what is given
-        with TimeLimit(time_limit), mpmath.workdps(dps):
-            try:
-                found = serial_found(mech, config, dps, rotation_orthonormal_atol(prec))
-            except FormulationError as reason:
-                raise UserError(
-                    f"{where}: no method applies (a mechanism without loops is solved as a "
-                    f"serial arm for the output's pose, and that formulation does not apply: "
-                    f"{reason})"
-                ) from None
-        return _finish(mech, config, prec, found, dps)
-    given = _given(mech, config)
-    with TimeLimit(time_limit), mpmath.workdps(dps):
-        try:
-            found = _planar(mech, given, dps)
-        except FormulationError as planar_reason:
-            try:
-                found = _spatial(mech, given, dps)
-            except FormulationError as spatial_reason:
+        with TimeLimit(time_limit):
+            with mpmath.workdps(dps):
                 try:
-                    found = loop_found(mech, config, given, dps)
-                except FormulationError as loop_reason:
+                    found = serial_found(mech, config, dps, rotation_orthonormal_atol(prec))
+                except FormulationError as reason:
                     raise UserError(
-                        f"{where}: no method applies (the planar exact method does not "
-                        f"apply: {planar_reason}; the spatial platform in Study coordinates "
-                        f"does not apply: {spatial_reason}; the single loop of six unknown "
-                        f"joints does not apply: {loop_reason})"
+                        f"{where}: no method applies (a mechanism without loops is solved as "
+                        f"a serial arm for the output's pose, and that formulation does not "
+                        f"apply: {reason})"
                     ) from None
-    return _finish(mech, config, prec, found, dps)
+            return _finish(mech, config, prec, found, dps)
+    given = _given(mech, config)
+    with TimeLimit(time_limit):
+        with mpmath.workdps(dps):
+            _check_values(mech, config)
+            try:
+                found = _planar(mech, given, dps)
+            except FormulationError as planar_reason:
+                try:
+                    found = _spatial(mech, given, dps)
+                except FormulationError as spatial_reason:
+                    try:
+                        found = loop_found(mech, config, given, dps)
+                    except FormulationError as loop_reason:
+                        raise UserError(
+                            f"{where}: no method applies (the planar exact method does not "
+                            f"apply: {planar_reason}; the spatial platform in Study "
+                            f"coordinates does not apply: {spatial_reason}; the single loop "
+                            f"of six unknown joints does not apply: {loop_reason})"
+                        ) from None
+        return _finish(mech, config, prec, found, dps)
+
+
+def _check_values(mech: Mechanism, config: str) -> None:
+    """The given values are finite and of a sensible size (the analysis's bound, its
+    message naming the configuration and the joint): refused before any solving."""
+    from mechsing.kinematics import KinematicModel
+    from mechsing.kinematics.given import GivenValues
+
+    try:
+        GivenValues(KinematicModel(mech, "float")).of(mech.configurations[config])
+    except UserError as exc:
+        raise UserError(f"{mech.path or mech.name}: {exc}") from None
 
 
 def _started_from(mech: Mechanism, config: str, start: str) -> Mechanism:
@@ -265,30 +282,36 @@ def _finish(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
 
 
 def _planar(mech: Mechanism, given: dict, dps: int) -> Found:
-    from mechsing.assembly.certify import krawczyk
-    from mechsing.assembly.exact import eliminate_planar
-    from mechsing.assembly.planar import C, S, X, Y, joint_values, planar_system
+    from mechsing.assembly.exact import eliminate_stages
+    from mechsing.assembly.planar import joint_values, planar_stages, stages_system
 
-    system = planar_system(mech, given)
-    found = eliminate_planar(system, dps)
-    theta = sympy.Symbol("theta", real=True)
-    square = [e.subs({C: sympy.cos(theta), S: sympy.sin(theta)}) for e in system.equations]
+    stages = planar_stages(mech, given)
+    found = eliminate_stages(stages, dps)
+    square, unknowns = stages_system(stages)
     rows = []
-    for c, s, x, y in found.poses:
-        coords = joint_values(mech, system, given, (c, s, x, y))
-        ok = krawczyk(
-            square, [X, Y, theta], [x, y, mpmath.atan2(s, c)], mpmath.mpf(MODE_CERTIFY_RADIUS)
-        )
-        rows.append((coords, ok))
+    for platforms in found.branches:
+        coords = joint_values(mech, stages, given, list(platforms))
+        z = [v for c, s, x, y in platforms for v in (x, y, mpmath.atan2(s, c))]
+        rows.append((coords, krawczyk(square, unknowns, z, mpmath.mpf(MODE_CERTIFY_RADIUS))))
+    system = stages[0]
     formulation = {
         "name": "planar platform pose",
         "method": "exact elimination",
         "platform": system.platform,
         "unknowns": ["x", "y", "theta"],
         "legs": [{"kind": leg.kind, "joints": list(leg.joints)} for leg in system.legs],
-        "polynomial_degree": found.degree,
+        "polynomial_degree": found.degrees[0],
         "offset": str(2 * sympy.atan(found.offset)),
     }
+    if len(stages) > 1:
+        formulation["stages"] = [
+            {
+                "platform": st.platform,
+                "legs": [{"kind": leg.kind, "joints": list(leg.joints)} for leg in st.legs],
+                "polynomial_degree": degree,
+            }
+            for st, degree in zip(stages, found.degrees, strict=True)
+        ]
     if not found.finite:
         return Found(formulation, [], None, "infinite", None, found.notes)
     complete = "proven" if found.proven else "not proven"
@@ -296,12 +319,12 @@ def _planar(mech: Mechanism, given: dict, dps: int) -> Found:
 
 
 def _spatial(mech: Mechanism, given: dict, dps: int) -> Found:
-    from mechsing.assembly.certify import krawczyk
     from mechsing.assembly.spatial import (
         GENERIC_COUNT,
         XS,
         YS,
         joint_values_spatial,
+        out_of_reach,
         patch_equation,
         pose_of,
         solve_study,
@@ -309,7 +332,23 @@ def _spatial(mech: Mechanism, given: dict, dps: int) -> Found:
     )
 
     system = spatial_system(mech, given)
-    studies, paths = solve_study(system, dps)
+    formulation = {
+        "name": "Study coordinates",
+        "method": "homotopy continuation (Bertini 2), Newton refinement",
+        "platform": system.platform,
+        "unknowns": [str(v) for v in (*XS, *YS)],
+        "legs": [{"kind": "distance", "joints": list(n)} for n, *_ in system.legs],
+        "polynomial_degree": 2,
+        "bezout": 2**7,
+        "generic_count": GENERIC_COUNT,
+    }
+    reason = out_of_reach(system)
+    if reason is not None:  # proved without tracking: no real (or complex) pose
+        return Found(formulation, [], 0, "proven", None, (reason,))
+    try:
+        studies, paths = solve_study(system, dps)
+    except ConfigurationError as exc:
+        raise ConfigurationError(f"{mech.path or mech.name}: {exc}", exc.configuration) from None
     # one mode per platform pose (the Study coordinates' sign is fixed by the patch)
     kept: list[list[Any]] = []
     for z in studies:
@@ -327,16 +366,6 @@ def _spatial(mech: Mechanism, given: dict, dps: int) -> Found:
     paths["duplicates"] = len(studies) - len(kept)
     distinct = all(ok for _, ok in rows)
     complete = "maximal" if len(rows) == GENERIC_COUNT and distinct else "not proven"
-    formulation = {
-        "name": "Study coordinates",
-        "method": "homotopy continuation (Bertini 2), Newton refinement",
-        "platform": system.platform,
-        "unknowns": [str(v) for v in (*XS, *YS)],
-        "legs": [{"kind": "distance", "joints": list(n)} for n, *_ in system.legs],
-        "polynomial_degree": 2,
-        "bezout": 2**7,
-        "generic_count": GENERIC_COUNT,
-    }
     equivalent = 2 ** sum(1 for n, *_ in system.legs if mech.joint(n[0]).type == "U")
     return Found(formulation, rows, len(rows), complete, paths, (), equivalent)
 
@@ -354,12 +383,15 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
     km = KinematicModel(mech, "float")
     L = float(km.length_scale)
     coords = mech.coordinates()
-    rows = found.rows
+    rows = sorted(found.rows, key=lambda row: _order(mech, row[0]))
     names = {f"{config}#mode{k + 1}": q for k, (q, _ok) in enumerate(rows)}
-    data = {
-        n: ([mpmath.mpf(x) for x in q] if prec.mode in ("mp", "auto") else [float(x) for x in q])
-        for n, q in names.items()
-    }
+    with mpmath.workdps(dps):  # the modes' digits carried (mpf() rounds to the context's)
+        data = {
+            n: (
+                [mpmath.mpf(x) for x in q] if prec.mode in ("mp", "auto") else [float(x) for x in q]
+            )
+            for n, q in names.items()
+        }
     # the modes are data to dps digits (not points float located): analysed as a file's
     analysed = analyze_found(mech, data, prec, located=prec.mode == "float") if data else []
     closure = found.closure or closure_from_start(mech, config)
@@ -405,6 +437,21 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
         _distances(mech, [q for q, _ in rows], poses, L),
         (*found.notes, *notes),
     )
+
+
+def _order(mech: Mechanism, q: list[Any]) -> tuple[int, ...]:
+    """A mode's place in the list: its joint values rounded to the match distance (angles
+    taken in [-pi, pi), pi and -pi alike), so that noise far below it (a joint at 0 as
+    1e-51 in one mode and -1e-51 in another) does not reorder the modes."""
+    key = []
+    for (name, i), x in zip(mech.coordinates(), q, strict=True):
+        v = float(x)
+        if mech.joint(name).units[i] == "rad":
+            v = (v + np.pi) % (2 * np.pi) - np.pi
+            if v > np.pi - MODE_MATCH_DISTANCE / 2:
+                v -= 2 * np.pi
+        key.append(round(v / MODE_MATCH_DISTANCE))
+    return tuple(key)
 
 
 def _reached(

@@ -25,10 +25,20 @@ import sympy
 
 from mechsing.numeric import MODE_CURVE_STEP, MODE_SINGULAR_DIGITS
 
-__all__ = ["krawczyk", "krawczyk_complex", "newton", "regular", "singular_root"]
+__all__ = [
+    "interval_function",
+    "krawczyk",
+    "krawczyk_complex",
+    "newton",
+    "regular",
+    "singular_root",
+]
 
 
-def _interval_function(exprs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> Any:
+def interval_function(exprs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> Any:
+    """The expressions as one function of intervals for ``gens`` (a list in, a list of
+    intervals out); every constant that is not rational enclosed at the working digits
+    (sympy's value padded by 10^-(digits - 5) relative)."""
     consts: dict[sympy.Symbol, Any] = {}
     pad = mpmath.mpf(10) ** (-(mpmath.mp.dps - 5))
 
@@ -76,8 +86,8 @@ def krawczyk(
     mpmath.iv.dps = mpmath.mp.dps
     try:
         jac = [[sympy.diff(e, g) for g in gens] for e in exprs]
-        f = _interval_function(exprs, gens)
-        J = _interval_function([x for row in jac for x in row], gens)
+        f = interval_function(exprs, gens)
+        J = interval_function([x for row in jac for x in row], gens)
         # Y: the inverse of the Jacobian at the midpoint (floating, any approximation works)
         jm = J([mpmath.iv.mpf(x) for x in m])
         Jmid = mpmath.matrix(n, n)

@@ -16,9 +16,15 @@ from the others leaves equations linear in ``(x, y)``; two of them give ``(x, y)
 Cramer's rule and the third becomes one univariate polynomial in ``t = tan((theta -
 theta0) / 2)`` (``theta0`` an offset with rational sine and cosine, chosen so that no
 solution sits at ``t = oo``).  The mechanism's joints must have axes along z (R) or in
-the xy plane (P).
+the xy plane (P).  A given angle enters by its cosine and sine: in radicals where sympy
+writes them so, else as ``cos(q)``, ``sin(q)`` (0.3 rad), which the elimination encloses.
 
-Owns :class:`PlanarSystem`, :func:`planar_system` and :func:`joint_values`.
+A linkage of several loops that no one body's legs fix is taken in stages
+(:func:`planar_stages`): a Watt II's four-bar first, then the dyad on its rocker, whose
+known bodies' poses are the first stage's symbols.
+
+Owns :class:`PlanarSystem`, :func:`planar_system`, :func:`planar_stages`,
+:func:`stages_system` and :func:`joint_values`.
 """
 
 from __future__ import annotations
@@ -32,8 +38,9 @@ import sympy
 
 from mechsing.errors import FormulationError
 from mechsing.model import Mechanism
+from mechsing.numeric import cos_sin
 
-__all__ = ["PlanarSystem", "joint_values", "planar_system"]
+__all__ = ["PlanarSystem", "joint_values", "planar_stages", "planar_system", "stages_system"]
 
 
 #: tan(theta0 / 2) of the offsets tried for the platform angle (rational: theta0's sine
@@ -61,8 +68,10 @@ class PlanarSystem:
     equations in (x, y, c, s) (with ``c^2 + s^2 = 1``)."""
 
     platform: str
-    known: dict[str, tuple[Any, Any, Any, Any]]  # body -> (cos, sin, px, py)
+    known: dict[str, tuple[Any, Any, Any, Any] | None]  # body -> (cos, sin, px, py)
     legs: tuple[Leg, ...]
+    #: a stage's own platform pose as symbols (cos, sin, x, y) for the later stages
+    symbols: tuple[sympy.Symbol, ...] = ()
 
     @property
     def equations(self) -> list[sympy.Expr]:
@@ -90,14 +99,17 @@ def _check_planar(mech: Mechanism) -> None:
             )
 
 
-def _algebraic(x: Any, what: str) -> Any:
-    x = sympy.simplify(x)
-    if not (x.is_number and x.is_algebraic):
-        raise FormulationError(
-            f"{what} is {x}, not an algebraic number; exact elimination needs given angles "
-            "whose sine and cosine are algebraic (e.g. 30 deg, pi/5, 2*atan(1/3))"
-        )
-    return x
+def _cos_sin(q: Any, what: str) -> tuple[Any, Any]:
+    """The cosine and sine of a given angle: in radicals where sympy can write them so
+    (30 deg, 2*atan(1/3)), else as ``cos(q)``, ``sin(q)`` (0.3 rad: known to any number
+    of digits, which the elimination encloses in intervals)."""
+    q = sympy.sympify(q)
+    if not (q.is_number and q.is_real and q.is_finite):
+        raise FormulationError(f"{what} is {q}, not a real number")
+    exact = cos_sin(q)
+    if exact is not None:
+        return exact
+    return sympy.cos(q), sympy.sin(q)
 
 
 def _compose(g: tuple, h: tuple) -> tuple:
@@ -113,8 +125,8 @@ def _joint_motion(j: Any, q: Any) -> tuple:
         ux, uy = _xy(j.params["axis"])
         return (sympy.S.One, sympy.S.Zero, q * ux, q * uy)
     sign = sympy.sympify(j.params["axis"][2])
-    c = _algebraic(sympy.cos(q), f"the cosine of {j.name}'s given angle")
-    s = sign * _algebraic(sympy.sin(q), f"the sine of {j.name}'s given angle")
+    c, s = _cos_sin(q, f"{j.name}'s given angle")
+    s = sign * s
     px, py = _xy(j.params["point"])
     return (c, s, px - c * px + s * py, py - s * px - c * py)
 
@@ -132,11 +144,56 @@ def _apply(g: tuple, p: tuple) -> tuple:
 def planar_system(mech: Mechanism, given: dict[str, tuple[Any, ...]]) -> PlanarSystem:
     """The legs' constraints on one unknown body's pose (the output body first)."""
     _check_planar(mech)
+    G, known = _graph(mech), _known(mech, given)
+    return _stage(mech, G, known, given, defer=False)
+
+
+def planar_stages(mech: Mechanism, given: dict[str, tuple[Any, ...]]) -> list[PlanarSystem]:
+    """One platform on its legs (:func:`planar_system`), or, for a mechanism of several
+    loops that no one body's legs fix (a Watt or Stephenson six-bar), stages: a body
+    whose supported legs give three equations, the other unknown bodies left for later;
+    then, that body known (its pose the symbols of the stage, ``c1, s1, x1, y1``), the
+    next stage among the rest.  A later stage may rest on the known bodies and the
+    earlier platforms, not on the bodies inside an earlier leg."""
+    _check_planar(mech)
+    G, known = _graph(mech), _known(mech, given)
+    try:
+        return [_stage(mech, G, known, given, defer=False)]
+    except FormulationError as whole:
+        stages: list[PlanarSystem] = []
+        while len(stages) < len(mech.bodies):
+            try:
+                system = _stage(mech, G, known, given, defer=True, index=len(stages) + 1)
+            except FormulationError as exc:
+                if not stages:
+                    raise whole from None
+                raise FormulationError(
+                    f"{whole}; in stages: {', '.join(st.platform for st in stages)} placed, "
+                    f"then {exc}"
+                ) from None
+            stages.append(system)
+            known = {**known, system.platform: system.symbols}
+            for leg in system.legs:
+                for body in _leg_bodies(mech, leg, system.platform):
+                    known[body] = None  # placed by the leg, not a base for later stages
+            if all(b in known for b in mech.bodies):
+                return stages
+        raise whole from None
+
+
+def _graph(mech: Mechanism) -> nx.MultiGraph:
     G = nx.MultiGraph()
     G.add_nodes_from(mech.bodies)
     for j in mech.joints:
         G.add_edge(*j.between, key=j.name)
-    known: dict[str, tuple] = {mech.ground: (sympy.S.One, sympy.S.Zero, sympy.S.Zero, sympy.S.Zero)}
+    return G
+
+
+def _known(mech: Mechanism, given: dict) -> dict[str, tuple | None]:
+    """The exact planar poses of ground and of the bodies the given values place."""
+    known: dict[str, tuple | None] = {
+        mech.ground: (sympy.S.One, sympy.S.Zero, sympy.S.Zero, sympy.S.Zero)
+    }
     changed = True
     while changed:
         changed = False
@@ -150,29 +207,40 @@ def planar_system(mech: Mechanism, given: dict[str, tuple[Any, ...]]) -> PlanarS
             else:
                 known[a] = tuple(sympy.simplify(v) for v in _compose(known[b], _inverse(m)))
             changed = True
+    return known
+
+
+def _stage(
+    mech: Mechanism, G: nx.MultiGraph, known: dict, given: dict, defer: bool, index: int = 0
+) -> PlanarSystem:
+    """One unknown body fixed by three leg equations (``defer``: the unknown bodies that
+    form no supported leg to it are left for a later stage)."""
     unknown = [b for b in mech.bodies if b not in known]
     if not unknown:
         raise FormulationError("the given values place every body (nothing is left to solve)")
     candidates = sorted(
         unknown, key=lambda b: (mech.output is None or b != mech.output.body, -G.degree(b))
     )
+    symbols = sympy.symbols(f"c{index} s{index} x{index} y{index}", real=True) if index else ()
     reasons = []
     for platform in candidates:
         try:
-            legs = _legs(mech, G, known, platform, given)
+            legs = _legs(mech, G, known, platform, given, defer)
         except FormulationError as exc:
             reasons.append(f"{platform}: {exc}")
             continue
         n = sum(len(leg.equations) for leg in legs)
         if n == 3:
-            return PlanarSystem(platform, known, tuple(legs))
+            return PlanarSystem(platform, known, tuple(legs), tuple(symbols))
         reasons.append(f"{platform}: its legs give {n} equations, not 3")
     raise FormulationError(
         "no body's pose is fixed by three leg constraints (" + "; ".join(reasons) + ")"
     )
 
 
-def _legs(mech: Mechanism, G: nx.MultiGraph, known: dict, platform: str, given: dict) -> list[Leg]:
+def _legs(
+    mech: Mechanism, G: nx.MultiGraph, known: dict, platform: str, given: dict, defer: bool
+) -> list[Leg]:
     legs = []
     for a, b, name in G.edges(keys=True):  # joints straight between a known body and the platform
         if {a, b} & {platform} and ({a, b} - {platform}) <= set(known) and a != b:
@@ -182,13 +250,19 @@ def _legs(mech: Mechanism, G: nx.MultiGraph, known: dict, platform: str, given: 
                 raise FormulationError(f"joint {name} is given and joins it to a known body")
             if j.type != "R":
                 raise FormulationError(f"joint {name} (P) joins it to a known body")
+            if known[other] is None:
+                raise FormulationError(f"joint {name} joins it to {other}, inside an earlier leg")
             p = _xy(j.params["point"])
             gk = _apply(known[other], p)
             gp = _apply((C, S, X, Y), p)
             legs.append(Leg("point", (name,), other, (gp[0] - gk[0], gp[1] - gk[1])))
     rest = G.subgraph([n for n in G if n not in known and n != platform])
     for comp in nx.connected_components(rest):
-        legs.append(_chain_leg(mech, G, known, platform, sorted(comp), given))
+        try:
+            legs.append(_chain_leg(mech, G, known, platform, sorted(comp), given))
+        except FormulationError:
+            if not defer:
+                raise
     return legs
 
 
@@ -203,6 +277,8 @@ def _chain_leg(
     if len(edges) != len(comp) + 1 or platform not in ends or len(ends) != 2:
         raise FormulationError(f"bodies {', '.join(comp)} do not form one leg to it")
     start = next(n for n in ends if n != platform)
+    if known[start] is None:
+        raise FormulationError(f"bodies {', '.join(comp)} rest on {start}, inside an earlier leg")
     path = nx.shortest_path(H, start, platform)
     names = []
     for u, v in zip(path, path[1:], strict=False):
@@ -245,6 +321,21 @@ def _chain_leg(
     )
 
 
+def stages_system(stages: list[PlanarSystem]) -> tuple[list[sympy.Expr], list[sympy.Symbol]]:
+    """Every stage's leg equations as one square system in each platform's ``x, y,
+    theta`` (the cosines and sines written as cos and sin of theta): the system the
+    Krawczyk test certifies each closed configuration on."""
+    eqs, unknowns, sub = [], [], {}
+    for k, system in enumerate(stages, start=1):
+        x, y, theta = sympy.symbols(f"x{k} y{k} theta{k}", real=True)
+        own = {X: x, Y: y, C: sympy.cos(theta), S: sympy.sin(theta)}
+        eqs += [e.xreplace(own).xreplace(sub) for e in system.equations]
+        unknowns += [x, y, theta]
+        if system.symbols:
+            sub.update(zip(system.symbols, (own[C], own[S], x, y), strict=True))
+    return eqs, unknowns
+
+
 # -- from the platform's pose back to every joint value --------------------------------
 
 
@@ -269,10 +360,36 @@ def _rotation_pose(theta: Any, fixed_ref: tuple, fixed_now: tuple) -> tuple:
     )
 
 
-def joint_values(mech: Mechanism, system: PlanarSystem, given: dict, pose: tuple) -> list[Any]:
-    """Every joint coordinate (the mechanism's order) at the platform pose ``pose``
-    (cos, sin, x, y as mpmath numbers)."""
-    poses = {b: _num(g) for b, g in system.known.items()}
+def joint_values(
+    mech: Mechanism, stages: list[PlanarSystem], given: dict, platforms: list[tuple]
+) -> list[Any]:
+    """Every joint coordinate (the mechanism's order) at the platform poses ``platforms``
+    of the stages (cos, sin, x, y as mpmath numbers; one stage for one platform)."""
+    poses = {b: _num(g) for b, g in stages[0].known.items() if g is not None}
+    for system, pose in zip(stages, platforms, strict=True):
+        _place_legs(mech, system, given, pose, poses)
+    out = []
+    for name, _i in mech.coordinates():
+        if name in given:
+            out.append(mpmath.mpf(sympy.N(given[name][0], mpmath.mp.dps + 5)))
+            continue
+        j = mech.joint(name)
+        rel = _compose(_inverse(poses[j.between[0]]), poses[j.between[1]])
+        if j.type == "R":
+            out.append(_angle_of(rel) * mpmath.mpf(sympy.N(j.params["axis"][2])))
+        else:
+            u = _xy(j.params["axis"])
+            out.append(
+                rel[2] * mpmath.mpf(sympy.N(u[0], mpmath.mp.dps + 5))
+                + rel[3] * mpmath.mpf(sympy.N(u[1], mpmath.mp.dps + 5))
+            )
+    return out
+
+
+def _place_legs(
+    mech: Mechanism, system: PlanarSystem, given: dict, pose: tuple, poses: dict
+) -> None:
+    """The platform's and its legs' bodies' poses into ``poses``."""
     poses[system.platform] = pose
     for leg in system.legs:
         if leg.kind == "point":
@@ -317,22 +434,6 @@ def joint_values(mech: Mechanism, system: PlanarSystem, given: dict, pose: tuple
                 mpmath.mpf(sympy.N(v, mpmath.mp.dps + 5)) for v in _xy(joints[0].params["point"])
             )
             poses[mids[0]] = _rotation_pose(_angle_of(pose), a, _apply(gk, a))
-    out = []
-    for name, _i in mech.coordinates():
-        if name in given:
-            out.append(mpmath.mpf(sympy.N(given[name][0], mpmath.mp.dps + 5)))
-            continue
-        j = mech.joint(name)
-        rel = _compose(_inverse(poses[j.between[0]]), poses[j.between[1]])
-        if j.type == "R":
-            out.append(_angle_of(rel) * mpmath.mpf(sympy.N(j.params["axis"][2])))
-        else:
-            u = _xy(j.params["axis"])
-            out.append(
-                rel[2] * mpmath.mpf(sympy.N(u[0], mpmath.mp.dps + 5))
-                + rel[3] * mpmath.mpf(sympy.N(u[1], mpmath.mp.dps + 5))
-            )
-    return out
 
 
 def _leg_bodies(mech: Mechanism, leg: Leg, platform: str) -> list[str]:

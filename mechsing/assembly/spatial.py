@@ -31,13 +31,14 @@ import sympy
 from mechsing.assembly.certify import newton
 from mechsing.assembly.engine import SEED, real_endpoints, track
 from mechsing.assembly.study import qconj, qmul, rotation
-from mechsing.errors import FormulationError
+from mechsing.errors import ConfigurationError, FormulationError
 from mechsing.model import Mechanism
 
 __all__ = [
     "GENERIC_COUNT",
     "SpatialSystem",
     "joint_values_spatial",
+    "out_of_reach",
     "patch_equation",
     "pose_of",
     "solve_study",
@@ -102,6 +103,25 @@ def spatial_system(mech: Mechanism, given: dict[str, tuple[Any, ...]]) -> Spatia
     return SpatialSystem(out or "", tuple(legs), tuple(eqs))
 
 
+def out_of_reach(system: SpatialSystem) -> str | None:
+    """Why no pose can close the legs, when two legs' lengths differ by more than their
+    base points' and platform points' distances together (the triangle inequality:
+    ``|l_i - l_j| <= |a_i - a_j| + |b_i - b_j|`` at every pose), or None."""
+    legs = system.legs
+    for i in range(len(legs)):
+        for k in range(i + 1, len(legs)):
+            (ni, ai, bi, li), (nk, ak, bk, lk) = legs[i], legs[k]
+            room = sympy.sqrt((ai - ak).dot(ai - ak)) + sympy.sqrt((bi - bk).dot(bi - bk))
+            gap = sympy.Abs(sympy.sqrt(li) - sympy.sqrt(lk))
+            if sympy.N(gap - room, 30) > 0:
+                return (
+                    f"legs {'-'.join(ni)} and {'-'.join(nk)} differ in length by "
+                    f"{float(gap):.6g} m, more than their base and platform points' distances "
+                    f"together ({float(room):.6g} m): no pose closes them"
+                )
+    return None
+
+
 def patch_equation() -> sympy.Expr:
     """The affine patch: a fixed random linear form of the Study coordinates equal to 1
     (its coefficients are the floats written, exactly)."""
@@ -113,7 +133,17 @@ def solve_study(system: SpatialSystem, dps: int) -> tuple[list[list[Any]], dict[
     """The real finite solutions (8 Study coordinates, refined to ``dps`` digits) and
     the paths' account: tracked, finite, real, at infinity, failed."""
     eqs = [*system.equations, patch_equation()]
-    raw, tracked = track(eqs, [[*XS, *YS]])
+    try:
+        raw, tracked = track(eqs, [[*XS, *YS]])
+    except RuntimeError as exc:  # Bertini 2 refuses the system (rank-deficient in double)
+        lengths = ", ".join(f"{float(sympy.sqrt(l2)):.3g}" for *_, l2 in system.legs)
+        raise ConfigurationError(
+            f"the platform's system could not be solved by homotopy continuation at these "
+            f"slides (leg lengths {lengths} m): Bertini 2 says: {exc}; legs many times "
+            "longer than the base and the platform are wide put the system beyond double "
+            "precision",
+            "",
+        ) from None
     real = real_endpoints(raw)
     refined = [r for r in (newton(eqs, [*XS, *YS], z, dps) for z in real) if r is not None]
     paths = {
