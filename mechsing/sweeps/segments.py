@@ -204,40 +204,40 @@ def _close_between(
     if not jobs:
         return
     # every knot's increment from its job's first point, in one call
+    sizes = np.array([len(kn) for *_, kn, _ in jobs])
+    firsts = np.stack([traces[m].Z[a] for m, a, *_ in jobs])
     K1 = np.concatenate([traces[m].Z[knots] for m, _, _, knots, _ in jobs])
-    K0 = np.concatenate(
-        [np.repeat(traces[m].Z[a][None, :], len(kn), axis=0) for m, a, _, kn, _ in jobs]
-    )
-    Dall = bc.difference(K1, K0)
-    which, rows, base, preds, spans, tvals = [], [], [], [], [], []
-    at = 0
-    for m, a, b, knots, ks_list in jobs:
-        Z, values = traces[m].Z, traces[m].values
-        assert values is not None
-        D = Dall[at : at + len(knots)]
-        at += len(knots)
-        tk = values[knots]
-        ks = np.array(ks_list)
-        tv = values[ks]
-        # Lagrange weights of the knots at the samples
-        W = np.ones((len(ks), len(knots)))
-        for p in range(len(knots)):
-            for q in range(len(knots)):
+    Dall = bc.difference(K1, firsts[np.repeat(np.arange(len(jobs)), sizes)])
+    # per sample: its job, row, trace and swept value; per knot: its swept value
+    counts = np.array([len(ks) for *_, ks in jobs])
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    job_of = np.repeat(np.arange(len(jobs)), counts)
+    rows_a = np.concatenate([np.asarray(ks, dtype=int) for *_, ks in jobs])
+    which_a = np.repeat([m for m, *_ in jobs], counts)
+    values_of = [traces[m].values for m, *_ in jobs]
+    T = np.concatenate([v[ks] for v, (*_, ks) in zip(values_of, jobs, strict=True)])  # type: ignore[index]
+    tk = np.concatenate([v[kn] for v, (*_, kn, _) in zip(values_of, jobs, strict=True)])  # type: ignore[index]
+    A = firsts[job_of]
+    # each job's span, from a to b, commensurate
+    at_b = starts + np.array([kn.index(b) for _, _, b, kn, _ in jobs])
+    span_a = np.linalg.norm(pb.cm.float_frame.rates(Dall[at_b]), axis=1)[job_of]
+    # the Lagrange interpolation of the knots' increments at the samples, the samples
+    # of stencils of one size together (the same operations, sample by sample, as one
+    # job at a time)
+    P = np.empty((len(rows_a), Dall.shape[1]))
+    for size in np.unique(sizes):
+        at = np.flatnonzero(sizes[job_of] == size)
+        idx = starts[job_of[at]][:, None] + np.arange(size)  # the samples' knots
+        tks, tv = tk[idx], T[at]
+        W = np.ones((len(at), size))
+        for p in range(size):
+            for q in range(size):
                 if p != q:
-                    W[:, p] *= (tv - tk[q]) / (tk[p] - tk[q])
-        preds.append(W @ D)
-        rows.extend(ks_list)
-        which.extend([m] * len(ks))
-        base.append(np.repeat(Z[a][None, :], len(ks), axis=0))
-        tvals.append(tv)
-        spans.extend([pb.comm(D[knots.index(b)])] * len(ks))
-    if not rows:
-        return
-    rows_a, which_a = np.array(rows), np.array(which)
-    A = np.concatenate(base)
-    P = np.concatenate(preds)
-    T = np.concatenate(tvals)
-    span_a = np.array(spans)
+                    W[:, p] *= (tv - tks[:, q]) / (tks[:, p] - tks[:, q])
+        acc = W[:, :1] * Dall[idx[:, 0]]
+        for p in range(1, size):
+            acc += W[:, p, None] * Dall[idx[:, p]]
+        P[at] = acc
     for lo in range(0, len(rows_a), _FINE_CHUNK):
         sl = slice(lo, lo + _FINE_CHUNK)
         Qp = bc.update(A[sl], P[sl, :nb])
