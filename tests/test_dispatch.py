@@ -469,3 +469,29 @@ def test_no_test_chooses_a_path_by_patching_mechsing() -> None:
         for m in patched.finditer(text)
     ]
     assert offenders == []
+
+
+def test_callers_hand_their_arguments_to_the_table() -> None:
+    """Outside mechsing.numeric no code names a fast form (for_float, fast=): each
+    formula's generic definition hands its arguments to its table, which picks."""
+    named = re.compile(r"\.for_float\(|\bfast\s*=\s*(True|False|fast)\b|\bfast: bool\b")
+    offenders = [
+        f"{p.relative_to(ROOT)}:{text[: m.start()].count(chr(10)) + 1}"
+        for p in sorted((ROOT / "mechsing").rglob("*.py"))
+        if "numeric" not in p.parts
+        for text in [p.read_text(encoding="utf-8")]
+        for m in named.finditer(text)
+    ]
+    assert offenders == []
+    # the table chooses from the arguments: float64 arrays take the float64 form,
+    # object arrays (mp, exact) the generic definition
+    table = dispatch.table("exp")
+    assert table.pick(np.zeros(6)) is table.forms["float64"].function
+    assert table.pick(np.zeros(6, dtype=object)) is None
+    model = KinematicModel(load(EXAMPLES / "stewart_octahedral.yaml"), "float")
+    joint = dispatch.table("joint element")
+    Q = np.zeros((4, model.n))
+    for jk in model.joints:
+        kind = {"U": "universal", "S": "spherical"}.get(jk.type, "one-dof")
+        assert joint.pick(jk, Q) is joint.forms[kind].function
+        assert joint.pick(jk, Q[0]) is None  # one configuration: lie.exp's numbers
