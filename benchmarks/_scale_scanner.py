@@ -10,8 +10,8 @@ the alignment of joints 1, 3 and 5).  Pipelines, timed in the same run (median o
 
 - ``mechsing.scan``, compiled screen (the ``fast`` extra: numba), numpy matrices
   and SVD only where the screen cannot certify;
-- ``mechsing.scan``, numpy path (the dispatch table ``exp`` without its form
-  ``compiled serial chain``);
+- ``mechsing.scan``, numpy path (the dispatch table ``serial screen`` without its
+  form ``compiled``);
 - Pinocchio's Jacobians (``computeJointJacobians``, one call per configuration,
   the only way its Python API offers), moved to mechsing's commensurate frame,
   then numpy's batched SVD everywhere and the two-threshold rule;
@@ -98,7 +98,7 @@ def _arm(name: str, mech, Q: np.ndarray, repeat: int, rows: list[str]) -> dict:
     n = Q.shape[0]
     res = sc.scan(Q)
     t_compiled = _median(lambda: sc.scan(Q), repeat) if sc.compiled else math.nan
-    with dispatch.table("exp").disabled("compiled serial chain"):
+    with dispatch.table("serial screen").disabled("compiled"):
         t_numpy = _median(lambda: sc.scan(Q), repeat)
         res_numpy = sc.scan(Q)
     out = {"n": n, "compiled": t_compiled, "numpy": t_numpy}

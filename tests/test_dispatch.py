@@ -36,30 +36,30 @@ from mechsing.numeric import dispatch
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
 
-#: the forms each table must hold (the parity checks below cover exactly these)
+#: the Lie functions with a float64 form, each its own table
+LIE_TABLES = (
+    "exp",
+    "exp_so3",
+    "cross",
+    "hat3",
+    "quaternion_parts",
+    "log_so3_parts",
+    "pose",
+    "log",
+    "inverse",
+    "act_screw",
+)
+
+#: the forms each table must hold (the parity checks below cover exactly these): one
+#: table per formula (one signature), its forms chosen by the table from the arguments
 EXPECTED = {
-    "exp": {
-        "float64",
-        "float64 rotation",
-        "one-dof",
-        "one-dof entrywise",
-        "spherical",
-        "serial chain",
-        "compiled serial chain",
-        "stacked joints",
-    },
+    **{name: {"float64"} for name in LIE_TABLES},
+    "joint element": {"one-dof", "universal", "spherical"},
+    "joint elements": {"stacked joints"},
     "current screws": {"one configuration", "batch"},
     "inverse dynamics": {"compiled tree"},
-    "lie.float64": {
-        "cross",
-        "hat3",
-        "quaternion_parts",
-        "log_so3_parts",
-        "pose",
-        "log",
-        "inverse",
-        "act_screw",
-    },
+    "serial chain": {"batched"},
+    "serial screen": {"compiled"},
     # its parity: tests/test_scale.py::test_block_svd_equals_the_dense_svd (with the
     # block-diagonal matrices of that module)
     "factorisation": {"blocks"},
@@ -168,10 +168,12 @@ def _one_dof_screws(rng: np.random.Generator) -> list[np.ndarray]:
     ]
 
 
-# ------------------------------------------------------------- table lie.float64
+# ------------------------------------------------------ the Lie functions' tables
 
 
 LIE_FLOAT64 = {
+    "exp": (lie.exp, "twist"),
+    "exp_so3": (lambda x: lie.exp_so3(x[..., :3]), "twist"),
     "hat3": (lambda x: _so3.hat3(x[..., :3]), "twist"),
     "cross": (lambda x: _so3.cross(x[..., :3], x[..., 3:]), "twist"),
     "log": (lie.log, "displacement"),
@@ -221,7 +223,7 @@ def _bit_for_bit_row_by_row(f, x: np.ndarray) -> None:
     )
 
 
-@pytest.mark.parametrize("form", sorted(EXPECTED["lie.float64"]))
+@pytest.mark.parametrize("form", sorted(LIE_TABLES))
 def test_lie_float64_table_parity(form: str) -> None:
     f, kind = LIE_FLOAT64[form]
     _bit_for_bit_row_by_row(f, _lie_input(kind, np.random.default_rng(11)))
@@ -235,51 +237,55 @@ def test_lie_float64_table_parity(form: str) -> None:
 # ------------------------------------------------------------------------ table exp
 
 
-def _check_float64(rng: np.random.Generator) -> None:
-    _bit_for_bit_row_by_row(lie.exp, _twists(rng))
-
-
-def _check_float64_rotation(rng: np.random.Generator) -> None:
-    _bit_for_bit_row_by_row(lambda x: lie.exp_so3(x[..., :3]), _twists(rng))
+def _stewart_joints() -> tuple:
+    model = KinematicModel(load(EXAMPLES / "stewart_octahedral.yaml"), "float")
+    return model, {jk.type: jk for jk in model.joints}
 
 
 def _check_one_dof(rng: np.random.Generator) -> None:
-    one = dispatch.table("exp").forms["one-dof"].function
+    from mechsing.lie._rodrigues import one_dof_exp
+
     th = _joint_angles(rng)[:40]  # below the entrywise threshold: the broadcasts
     for e in _one_dof_screws(rng):
-        got = one(e, th)
+        got = one_dof_exp(e, th)
         _close(got, generic(lie.exp, th[:, None] * e), np.maximum(1.0, np.abs(th))[:, None, None])
         assert np.array_equal(got[:2], [np.eye(4)] * 2)  # 0 and -0: the identity
-
-
-def _check_one_dof_entrywise(rng: np.random.Generator) -> None:
     # a large batch of finite angles is filled entry by entry: the numbers of the
     # broadcast form (each angle alone) bit for bit; "always" takes it at any size
-    one = dispatch.table("exp").forms["one-dof"].function
     th = _joint_angles(rng)
     for e in _one_dof_screws(rng):
-        got = one(e, th)
+        got = one_dof_exp(e, th)
         with dispatch.fast_paths("always"):
-            _same(one(e, th[:3]), got[:3])
+            _same(one_dof_exp(e, th[:3]), got[:3])
         for i in range(0, th.size, 13):
-            _same(one(e, th[i : i + 1])[0], got[i])
+            _same(one_dof_exp(e, th[i : i + 1])[0], got[i])
+    # the table takes it for a float batch of a one-dof joint, not for one configuration
+    model, kinds = _stewart_joints()
+    jk = kinds["P"]
+    Q = rng.uniform(-1, 1, size=(50, model.n))
+    assert dispatch.table("joint element").pick(jk, Q) is not None
+    assert dispatch.table("joint element").pick(jk, Q[0]) is None
+    _close(forward.batch_element(jk, Q), generic(forward.batch_element, jk, Q))
+    _same(generic(forward.batch_element, jk, Q), forward.element(jk, Q))
+
+
+def _check_universal(rng: np.random.Generator) -> None:
+    model, kinds = _stewart_joints()
+    jk = kinds["U"]
+    Q = rng.uniform(-7, 7, size=(60, model.n))
+    Q[:4, jk.columns] = [[0.0, 0.0], [math.pi, 0.0], [1e-12, -math.pi], [-0.0, 1e-300]]
+    _close(forward.batch_element(jk, Q), forward.element(jk, Q), 8.0)
 
 
 def _check_spherical(rng: np.random.Generator) -> None:
-    model = KinematicModel(load(EXAMPLES / "stewart_octahedral.yaml"), "float")
-    turn = dispatch.table("exp").forms["spherical"].function
-    for jk in model.joints:
-        if jk.type != "S":
-            continue
-        u = rng.normal(size=(60, 3))
-        u /= np.linalg.norm(u, axis=1)[:, None]
-        qj = (
-            u
-            * np.concatenate([[0.0, 1e-12, math.pi, math.pi - 1e-9], rng.uniform(0, 7, 56)])[
-                :, None
-            ]
-        )
-        _close(turn(jk.basis, qj), generic(lie.exp, qj @ jk.basis), 4.0)
+    model, kinds = _stewart_joints()
+    jk = kinds["S"]
+    u = rng.normal(size=(60, 3))
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    angles = np.concatenate([[0.0, 1e-12, math.pi, math.pi - 1e-9], rng.uniform(0, 7, 56)])
+    Q = np.zeros((60, model.n))
+    Q[:, jk.columns] = u * angles[:, None]
+    _close(forward.batch_element(jk, Q), forward.element(jk, Q), 4.0)
 
 
 def _scanners(path: Path) -> tuple:
@@ -331,21 +337,20 @@ def _check_stacked_joints(rng: np.random.Generator) -> None:
                 _same(fast[body], g)
 
 
-EXP_CHECKS = {
-    "stacked joints": _check_stacked_joints,
-    "float64": _check_float64,
-    "float64 rotation": _check_float64_rotation,
-    "one-dof": _check_one_dof,
-    "one-dof entrywise": _check_one_dof_entrywise,
-    "spherical": _check_spherical,
-    "serial chain": _check_serial_chain,
-    "compiled serial chain": _check_compiled_serial_chain,
+JOINT_CHECKS = {
+    ("joint element", "one-dof"): _check_one_dof,
+    ("joint element", "universal"): _check_universal,
+    ("joint element", "spherical"): _check_spherical,
+    ("joint elements", "stacked joints"): _check_stacked_joints,
+    ("serial chain", "batched"): _check_serial_chain,
+    ("serial screen", "compiled"): _check_compiled_serial_chain,
 }
 
 
-@pytest.mark.parametrize("form", sorted(EXPECTED["exp"]))
-def test_exp_table_parity(form: str) -> None:
-    EXP_CHECKS[form](np.random.default_rng(21))
+@pytest.mark.parametrize("table, form", sorted(JOINT_CHECKS))
+def test_joint_table_parity(table: str, form: str) -> None:
+    assert form in EXPECTED[table]
+    JOINT_CHECKS[table, form](np.random.default_rng(21))
 
 
 # --------------------------------------------------------------- table current screws
@@ -362,7 +367,7 @@ def test_current_screws_table_parity(form: str) -> None:
         Q[:10] *= 1e-9
         Q[10] = 0.0
         if form == "batch":
-            P = forward.poses(model, Q, fast=True)
+            P = forward.batch_poses(model, Q)
             _same(forward.current_screws(model, Q, P), generic(forward.current_screws, model, Q, P))
         else:
             for q in Q[::9]:
@@ -435,14 +440,17 @@ def test_the_environment_switch_turns_every_fast_path_off() -> None:
     assert _probe({"MECHSING_FAST": "1"}).startswith("on ")
     with dispatch.fast_paths(False):
         assert not dispatch.enabled()
-        assert dispatch.table("exp").get("one-dof") is None
+        assert dispatch.table("joint element").get("one-dof") is None
+        assert dispatch.table("exp").pick(np.zeros(6)) is None
         assert dispatch.threshold(64) == math.inf
         with dispatch.fast_paths("always"):
             assert dispatch.threshold(64) == 0
-    exp = dispatch.table("exp")
-    with exp.disabled("one-dof"):
-        assert exp.get("one-dof") is None and exp.get("spherical") is not None
-    assert exp.get("one-dof") is not None
+    joint = dispatch.table("joint element")
+    with joint.disabled("one-dof"):
+        assert joint.get("one-dof") is None and joint.get("spherical") is not None
+    assert joint.get("one-dof") is not None
+    assert dispatch.table("exp").pick(np.zeros(6)) is not None
+    assert dispatch.table("exp").pick(np.zeros(6, dtype=object)) is None
     with pytest.raises(ValueError, match="fast_paths takes"):
         with dispatch.fast_paths("yes"):  # type: ignore[arg-type]
             pass
@@ -463,6 +471,32 @@ def test_no_test_chooses_a_path_by_patching_mechsing() -> None:
         for m in patched.finditer(text)
     ]
     assert offenders == []
+
+
+def test_callers_hand_their_arguments_to_the_table() -> None:
+    """Outside mechsing.numeric no code names a fast form (for_float, fast=): each
+    formula's generic definition hands its arguments to its table, which picks."""
+    named = re.compile(r"\.for_float\(|\bfast\s*=\s*(True|False|fast)\b|\bfast: bool\b")
+    offenders = [
+        f"{p.relative_to(ROOT)}:{text[: m.start()].count(chr(10)) + 1}"
+        for p in sorted((ROOT / "mechsing").rglob("*.py"))
+        if "numeric" not in p.parts
+        for text in [p.read_text(encoding="utf-8")]
+        for m in named.finditer(text)
+    ]
+    assert offenders == []
+    # the table chooses from the arguments: float64 arrays take the float64 form,
+    # object arrays (mp, exact) the generic definition
+    table = dispatch.table("exp")
+    assert table.pick(np.zeros(6)) is table.forms["float64"].function
+    assert table.pick(np.zeros(6, dtype=object)) is None
+    model = KinematicModel(load(EXAMPLES / "stewart_octahedral.yaml"), "float")
+    joint = dispatch.table("joint element")
+    Q = np.zeros((4, model.n))
+    for jk in model.joints:
+        kind = {"U": "universal", "S": "spherical"}.get(jk.type, "one-dof")
+        assert joint.pick(jk, Q) is joint.forms[kind].function
+        assert joint.pick(jk, Q[0]) is None  # one configuration: lie.exp's numbers
 
 
 # --------------------------------------------------------------- table inverse dynamics

@@ -78,7 +78,7 @@ def _both(sc: ChainScanner, Q: np.ndarray) -> tuple:
     with dispatch.fast_paths(True):
         assert sc.compiled
         fast = sc.scan(Q)
-        with dispatch.table("exp").disabled("compiled serial chain"):  # the numpy path
+        with dispatch.table("serial screen").disabled("compiled"):  # the numpy path
             assert not sc.compiled
             slow = sc.scan(Q)
     return fast, slow

@@ -101,11 +101,11 @@ class BatchClosure:
         """The closure residual of every chord (and the pose), (N, blocks, 4, 4); ``T``:
         the output's displacements :meth:`target` of Q's pose coordinates, when known."""
         q = Q[:, : self.nb]
-        P = forward.poses(self.base, q, fast=True) if P is None else P
+        P = forward.batch_poses(self.base, q) if P is None else P
         out = np.empty((Q.shape[0], self.blocks, 4, 4))
         for i, jk in enumerate(self.chords):
             np.matmul(
-                P[jk.a] @ forward.element(jk, q, fast=True), lie.inverse(P[jk.b]), out=out[:, i]
+                P[jk.a] @ forward.batch_element(jk, q), lie.inverse(P[jk.b]), out=out[:, i]
             )
         if self.couplings:
             k = len(self.chords)
@@ -147,7 +147,7 @@ class BatchClosure:
     def screws(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
         """The commensurate current screws of the joint coordinates: (N, 6, nb)."""
         q = Q[:, : self.nb]
-        P = forward.poses(self.base, q, fast=True) if P is None else P
+        P = forward.batch_poses(self.base, q) if P is None else P
         return self.frame.screws(forward.current_screws(self.base, q, P))
 
     def jacobian(self, Q: np.ndarray, P: dict[str, np.ndarray] | None = None) -> np.ndarray:
@@ -190,7 +190,7 @@ class BatchClosure:
                 continue
             if jk.name in self._turns:
                 continue
-            M = lie.exp(d @ jk.basis) @ forward.element(jk, q, fast=True)
+            M = lie.exp(d @ jk.basis) @ forward.batch_element(jk, q)
             x = self.frame.twists(lie.log(M)[..., None])[..., 0]  # (N, 6) commensurate
             out[:, jk.columns] = x @ self._pinv[jk.name].T
         return out
@@ -219,7 +219,7 @@ class BatchClosure:
         for jk in self.base.joints:
             if jk.abelian or jk.name in self._turns:
                 continue
-            M = forward.element(jk, q1, fast=True) @ lie.inverse(forward.element(jk, q0, fast=True))
+            M = forward.batch_element(jk, q1) @ lie.inverse(forward.batch_element(jk, q0))
             x = self.frame.twists(lie.log(M)[..., None])[..., 0]
             D[:, jk.columns] = x @ self._pinv[jk.name].T
         return D
@@ -260,7 +260,7 @@ class BatchClosure:
         # the poses and residuals of the current rows, carried from one iteration to the
         # next (each trial point's are computed once)
         P = {
-            k: np.array(v) for k, v in forward.poses(self.base, Q[:, : self.nb], fast=True).items()
+            k: np.array(v) for k, v in forward.batch_poses(self.base, Q[:, : self.nb]).items()
         }
         # the pose coordinates are given: the output's target is computed once
         T = None if self.pose is None else self.target(Q[:, self.nb :])
@@ -301,7 +301,7 @@ class BatchClosure:
             step = np.zeros((len(idx), self.nb))
             step[:, cols] = du
             Qn = self.update(Qa, step)
-            Pn = forward.poses(self.base, Qn[:, : self.nb], fast=True)
+            Pn = forward.batch_poses(self.base, Qn[:, : self.nb])
             Dn = self.deltas(Qn, Pn, None if T is None else T[idx])
             rn = self.residual_norm(Dn)
             better = rn < res[idx] if accept == "better" else np.isfinite(rn)

@@ -24,44 +24,96 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
+from mechsing.lie._rodrigues import one_dof_exp, spherical_exp
 from mechsing.numeric import dispatch, holds_objects
 
-#: the exponential's fast forms (:mod:`mechsing.lie._rodrigues` registers the joints')
-_EXP = dispatch.table("exp")
+#: the fast forms of :func:`element` (a float batch: by the joint's kind)
+_ELEMENT = dispatch.table("joint element", "mechsing.kinematics.forward.element")
+#: the fast forms of every joint's element at once (one float configuration)
+_ELEMENTS = dispatch.table("joint elements", "mechsing.kinematics.forward.element, joint by joint")
 #: the fast forms of :func:`current_screws` (float configurations), by q's dimensions
 _SCREWS = dispatch.table("current screws", "mechsing.kinematics.forward.current_screws")
-_SCREW_FORMS = {1: "one configuration", 2: "batch"}
-
-__all__ = ["SerialJacobian", "current_screws", "element", "poses"]
 
 
-def element(jk: Any, q: np.ndarray, fast: bool = False) -> np.ndarray:
-    """The joint's relative displacement M (``g_b = g_a M``): (..., 4, 4) for q of shape (..., n).
+def _float_batch(jk: Any, q: Any) -> bool:
+    """A float joint at float configurations (N, n)?"""
+    return (
+        isinstance(q, np.ndarray)
+        and q.dtype == np.float64
+        and q.ndim == 2
+        and jk.basis.dtype == np.float64
+    )
 
-    ``fast``: a one-dof or spherical float joint by the Rodrigues forms of the dispatch
-    table ``exp`` (:mod:`mechsing.numeric.dispatch`; equal to :func:`mechsing.lie.exp`
-    to rounding): the sweeps' batches use them; the analysis keeps
-    :func:`mechsing.lie.exp`, so its numbers do not move with the batches'."""
+
+@_ELEMENT.register(
+    "one-dof",
+    "a one-dof float joint at a float batch: the Rodrigues closed form (to rounding)",
+    accepts=lambda jk, q: _float_batch(jk, q) and jk.type != "U" and jk.basis.shape[0] == 1,
+)
+def _one_dof_element(jk: Any, q: np.ndarray) -> np.ndarray:
+    return one_dof_exp(jk.basis[0], q[..., jk.columns.start])
+
+
+@_ELEMENT.register(
+    "universal",
+    "a float U joint at a float batch: the product of its two turns' closed forms",
+    accepts=lambda jk, q: _float_batch(jk, q) and jk.type == "U",
+)
+def _universal_element(jk: Any, q: np.ndarray) -> np.ndarray:
+    c = jk.columns.start
+    return one_dof_exp(jk.basis[0], q[..., c]) @ one_dof_exp(jk.basis[1], q[..., c + 1])
+
+
+@_ELEMENT.register(
+    "spherical",
+    "a float S joint at a float batch: the turn about its centre (to rounding)",
+    accepts=lambda jk, q: _float_batch(jk, q) and jk.type == "S",
+)
+def _spherical_element(jk: Any, q: np.ndarray) -> np.ndarray:
+    return spherical_exp(jk.basis, q[..., jk.columns])
+
+__all__ = [
+    "SerialJacobian",
+    "batch_element",
+    "batch_poses",
+    "current_screws",
+    "element",
+    "poses",
+]
+
+
+def element(jk: Any, q: np.ndarray) -> np.ndarray:
+    """The joint's relative displacement M (``g_b = g_a M``): (..., 4, 4) for q of shape
+    (..., n); each configuration's bitwise as alone (:func:`mechsing.lie.exp`)."""
     qj = q[..., jk.columns]
-    one = _EXP.for_float("one-dof", jk.basis) if fast else None
     if jk.type == "U":
-        if one is not None:
-            return one(jk.basis[0], qj[..., 0]) @ one(jk.basis[1], qj[..., 1])
         return lie.exp(jk.basis[0] * qj[..., 0, None]) @ lie.exp(jk.basis[1] * qj[..., 1, None])
-    if one is not None and jk.basis.shape[0] == 1:
-        return one(jk.basis[0], qj[..., 0])
-    turn = _EXP.for_float("spherical", jk.basis) if fast and jk.type == "S" else None
-    if turn is not None:
-        return turn(jk.basis, qj)
     return lie.exp(qj @ jk.basis)
 
 
-def poses(
-    model: Any, q: np.ndarray, bodies: Any = None, fast: bool = False
-) -> dict[str, np.ndarray]:
+def batch_element(jk: Any, q: np.ndarray) -> np.ndarray:
+    """:func:`element` at a batch of configurations (N, n), to rounding: the dispatch
+    table ``joint element`` picks a closed form from the joint's kind and the numbers'
+    dtype (Rodrigues, for a float joint at float values: equal to :func:`element` to
+    rounding, not bit for bit); the sweeps' batched Newton and measures."""
+    fast = _ELEMENT.pick(jk, q)
+    return fast(jk, q) if fast is not None else element(jk, q)
+
+
+def poses(model: Any, q: np.ndarray, bodies: Any = None) -> dict[str, np.ndarray]:
     """The pose of every user body (ground = identity) from the spanning tree, or only of
-    ``bodies`` and those on their tree paths: (..., 4, 4) for q of shape (..., n)
-    (``fast``: see :func:`element`)."""
+    ``bodies`` and those on their tree paths: (..., 4, 4) for q of shape (..., n), each
+    configuration's bitwise as alone (the joints' elements: :func:`element`)."""
+    return _poses(model, q, bodies, element)
+
+
+def batch_poses(model: Any, q: np.ndarray, bodies: Any = None) -> dict[str, np.ndarray]:
+    """:func:`poses` of a batch of configurations (N, n), to rounding (the joints'
+    elements: :func:`batch_element`): the sweeps' batches."""
+    return _poses(model, q, bodies, batch_element)
+
+
+def _poses(model: Any, q: np.ndarray, bodies: Any, of: Any) -> dict[str, np.ndarray]:
     mech = model.mech
     eye = model.backend.eye(4)
     batch = q.shape[:-1]
@@ -80,16 +132,16 @@ def poses(
                 jk = model.joint(st.joint)
                 here = jk.b if st.sign > 0 else jk.a
                 wanted.add(here)
-    at_once = _EXP.for_float("stacked joints", q) if not batch and wanted is None else None
+    at_once = _ELEMENTS.pick(model, q) if wanted is None else None
     if at_once is not None:
         elements.update(at_once(model, q))
     for body, jk, prev, sign in _pose_plan(model):
         if wanted is not None and body not in wanted:
             continue
         if jk.name not in elements:
-            elements[jk.name] = element(jk, q, fast)
+            elements[jk.name] = of(jk, q)
         M = elements[jk.name]
-        if sign > 0 and prev == mech.ground and fast and not holds_objects(M):
+        if sign > 0 and prev == mech.ground and of is batch_element and not holds_objects(M):
             # a float body after a joint from ground: its element (the identity's product
             # is exact)
             out[body] = M
@@ -117,9 +169,14 @@ def _pose_plan(model: Any) -> list[tuple[str, Any, str, int]]:
     return plan
 
 
+def _float_rows(q: Any, ndim: int) -> bool:
+    return isinstance(q, np.ndarray) and q.dtype == np.float64 and q.ndim == ndim
+
+
 @_SCREWS.register(
     "one configuration",
     "one float configuration: every joint's screws by one act_screw on the stacked poses",
+    accepts=lambda model, q, body_poses: _float_rows(q, 1),
 )
 def _screws_at_once(model: Any, q: np.ndarray, body_poses: dict[str, np.ndarray]) -> np.ndarray:
     """:func:`current_screws` of every joint at one float configuration, by one call of
@@ -136,7 +193,9 @@ def _screws_at_once(model: Any, q: np.ndarray, body_poses: dict[str, np.ndarray]
 
 
 @_SCREWS.register(
-    "batch", "a float batch (N, n): each joint's screws written into the (N, 6, n) array"
+    "batch",
+    "a float batch (N, n): each joint's screws written into the (N, 6, n) array",
+    accepts=lambda model, q, body_poses: _float_rows(q, 2),
 )
 def _screws_of_batch(model: Any, q: np.ndarray, body_poses: dict[str, np.ndarray]) -> np.ndarray:
     """:func:`current_screws` of every joint at a float batch of configurations q (N, n):
@@ -173,9 +232,12 @@ def _screw_plan(model: Any) -> tuple[list[str], Any, list[Any]]:
     return plan
 
 
-@_EXP.register(
+@_ELEMENTS.register(
     "stacked joints",
     "one float configuration: every joint's element (but U) by one exp of the stacked twists",
+    accepts=lambda model, q, joints=None: (
+        isinstance(q, np.ndarray) and q.dtype == np.float64 and q.ndim == 1
+    ),
 )
 def elements_at_once(model: Any, q: np.ndarray, joints: Any = None) -> dict[str, np.ndarray]:
     """The elements of every joint (or of ``joints``) but the U joints at one float
@@ -233,8 +295,8 @@ def current_screws(
     With ``joints``, only theirs (the other columns zero; ``body_poses`` then needs only
     the poses of their ``between[0]`` bodies)."""
     body_poses = poses(model, q) if body_poses is None else body_poses
-    if joints is None and q.ndim in (1, 2):
-        fast = _SCREWS.for_float(_SCREW_FORMS[q.ndim], q)
+    if joints is None:
+        fast = _SCREWS.pick(model, q, body_poses)
         if fast is not None:
             return fast(model, q, body_poses)
     cols = []
@@ -362,8 +424,11 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-_EXP.register(
-    "serial chain",
+dispatch.table(
+    "serial chain", "the scanner's matrices from mechsing.kinematics.forward.current_screws"
+).register(
+    "batched",
     "a serial chain of one-dof joints from ground, batched: the Rodrigues update in the "
     "commensurate frame (the scanner's matrices, to rounding)",
+    accepts=None,  # the scanner builds it where SerialJacobian.applies
 )(SerialJacobian)

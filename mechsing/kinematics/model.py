@@ -391,7 +391,7 @@ class KinematicModel:
         self, q: np.ndarray, poses: dict[str, np.ndarray] | None = None
     ) -> list[np.ndarray]:
         poses = self.poses(q) if poses is None else poses
-        at_once = _EXP.for_float("stacked joints", q) if q.ndim == 1 else None
+        at_once = _ELEMENTS.pick(self, q, self.chords)
         if at_once is not None and len(self.chords) > 1:
             ms = at_once(self, q, self.chords)
             elements = [ms.get(jk.name) for jk in self.chords]
@@ -509,8 +509,8 @@ class KinematicModel:
 
 #: exact configurations whose field kinematics a model keeps
 _FIELD_CACHE_SIZE = 8
-#: the exponential's fast forms (:mod:`mechsing.numeric.dispatch`)
-_EXP = dispatch.table("exp")
+#: the fast forms of the joints' elements at once (:mod:`mechsing.numeric.dispatch`)
+_ELEMENTS = dispatch.table("joint elements")
 #: body poses (4 x 4 matrices) the pose cache of a float model holds at most: a sweep's
 #: located points of a small mechanism, a few configurations of a big one
 _POSE_CACHE_MATRICES = 4096

@@ -267,4 +267,5 @@ dispatch.table("inverse dynamics", "mechsing.kinetics.tree.TreeDynamics.inverse"
     "compiled tree",
     "a float batch of a tree of R, P, H joints: the recursive Newton-Euler compiled with "
     "numba, one pass per sample (equal to the generic code to rounding; None without numba)",
+    accepts=lambda _tree, q, qd, qdd, _gravity: dispatch.float64_arrays(q, qd, qdd),
 )(inverse_compiled)

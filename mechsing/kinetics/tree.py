@@ -115,8 +115,9 @@ class TreeDynamics:
     ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray], dict[str, np.ndarray], dict]:
         """The bodies' poses, twists and accelerations (spatial, at the ground origin) and
         the joints' current screws times their signs, by the forward recursion."""
-        # float batches take the joints' Rodrigues forms (equal to lie.exp to rounding)
-        poses = forward.poses(self.model, q, fast=q.ndim > 1 and not holds_objects(q))
+        # a batch takes the batch poses (the dispatch picks the joints' closed forms for
+        # float numbers: equal to lie.exp to rounding)
+        poses = forward.batch_poses(self.model, q) if q.ndim > 1 else forward.poses(self.model, q)
         batch = q.shape[:-1]
         zero = self._zero_twist(batch)
         xi = {self.ground: zero}
@@ -148,7 +149,7 @@ class TreeDynamics:
         """The joint efforts (N, N m) for the joint values ``q``, rates ``qd`` and
         accelerations ``qdd`` (each (..., n)): the recursive Newton-Euler algorithm."""
         q, qd, qdd = (self._arr(x) for x in (q, qd, qdd))
-        fast = _INVERSE.for_float("compiled tree", q, qd, qdd)
+        fast = _INVERSE.pick(self, q, qd, qdd, gravity)
         got = None if fast is None else fast(self, q, qd, qdd, gravity)
         if got is not None:
             return got

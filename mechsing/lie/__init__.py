@@ -20,7 +20,8 @@ from mechsing.lie._so3 import log_so3, quaternion_parts, vee3
 
 __all__ = [*_se3_all, "log_so3", "quaternion_parts", "vee3"]
 
-# _float and _rodrigues register themselves as the fast forms of the functions above
+# _float registers itself as the fast forms of the functions above; _rodrigues holds the
+# joints' closed forms (mechsing.kinematics.forward registers them)
 # (their float64 kernels and the joints' Rodrigues forms: mechsing.numeric.dispatch)
 from mechsing.lie import _float, _rodrigues, cayley, dual, quaternion  # noqa: E402,F401
 from mechsing.lie.cayley import *  # noqa: E402,F403

@@ -12,9 +12,9 @@ generic one exactly, as the analysis snapshots require) with fewer numpy calls: 
 hat matrix as one product with a constant 0/+-1 table (exact), the series of all the
 coefficients in one Horner loop over a table of their terms, each branch of a switch
 evaluated only when some entry takes it, outputs filled in place instead of stacked.
-Each kernel registers itself in the dispatch table of its generic function
-(:mod:`mechsing.numeric.dispatch`: ``exp`` and ``lie.float64``), which hands it float64
-arrays only, so mp and exact never leave the generic code; ``MECHSING_FAST=0`` sends
+Each kernel registers itself as the form ``float64`` in the dispatch table of its
+generic function (:mod:`mechsing.numeric.dispatch`: one table per function, named after
+it), which picks it for float64 arrays only, so mp and exact never leave the generic code; ``MECHSING_FAST=0`` sends
 float64 arrays there too.
 
 Switch points and numbers of terms: those of :mod:`mechsing.lie._series`.
@@ -33,7 +33,7 @@ from mechsing.lie._series import (
     _n_terms_bernoulli,
     _n_terms_factorial,
 )
-from mechsing.lie._so3 import _EXP, _FLOAT
+from mechsing.lie._so3 import _LIE
 from mechsing.numeric import FLOAT
 
 _EYE3 = np.eye(3)
@@ -292,7 +292,7 @@ for _name, _function in [
     ("log", log),
     ("inverse", inverse),
     ("act_screw", act_screw),
+    ("exp", exp),
+    ("exp_so3", exp_so3),
 ]:
-    _FLOAT.register(_name, _BIT_FOR_BIT)(_function)
-_EXP.register("float64", _BIT_FOR_BIT)(exp)
-_EXP.register("float64 rotation", _BIT_FOR_BIT + " (exp_so3)")(exp_so3)
+    _LIE[_name].register("float64", _BIT_FOR_BIT)(_function)

@@ -1,14 +1,15 @@
 """The Rodrigues closed forms of the exponential of a joint's float screws.
 
-Fast forms of :func:`mechsing.lie.exp` (registered in the dispatch table ``exp``,
-:mod:`mechsing.numeric.dispatch`), for the sweeps' batches of one joint's values:
+The fast forms of a joint's element at a float batch (the dispatch table ``joint
+element`` of :func:`mechsing.kinematics.forward.element` takes them,
+:mod:`mechsing.numeric.dispatch`), for the sweeps' and the scanner's batches:
 
 ``one-dof``
     ``exp(th e)`` of a one-dof float screw ``e = (u, v)`` (|u| = 1, or u = 0) for an
     array of angles: ``R = I + sin K + (1 - cos) K^2``,
     ``p = (th I + (1 - cos) K + (th - sin) K^2) v`` with ``K = u^`` (the closed form
     :func:`mechsing.lie.exp` evaluates by series; equal to it to rounding);
-``one-dof entrywise``
+the entrywise one-dof form
     the same sums in the same order for a large batch of finite angles, entry by entry
     (bit for bit the ``one-dof`` numbers, fewer passes over the batch);
 ``spherical``
@@ -26,13 +27,13 @@ from typing import Any
 import numpy as np
 
 from mechsing.lie._se3 import ANGULAR, LINEAR, pose
-from mechsing.lie._so3 import _EXP, exp_so3
+from mechsing.lie._so3 import exp_so3
 from mechsing.numeric import dispatch
 
 __all__: list[str] = []
 
-#: from this many angles on, the one-dof form fills its entries one by one (the
-#: threshold of the ``one-dof entrywise`` form, :func:`mechsing.numeric.dispatch.threshold`)
+#: from this many angles on, the one-dof form fills its entries one by one
+#: (:func:`one_dof_entrywise`; a size threshold, :func:`mechsing.numeric.dispatch.threshold`)
 ENTRYWISE = 64
 
 
@@ -49,7 +50,6 @@ def _one_dof_table(key: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool
     return K, K @ K, v, bool(np.any(u))
 
 
-@_EXP.register("one-dof", "a one-dof float screw at an array of angles (Rodrigues)")
 def one_dof_exp(e: np.ndarray, th: np.ndarray) -> np.ndarray:
     """``exp(th e)`` of a one-dof float screw ``e`` (6,) at the angles ``th`` (...,):
     (..., 4, 4) (module docstring)."""
@@ -69,10 +69,6 @@ def one_dof_exp(e: np.ndarray, th: np.ndarray) -> np.ndarray:
     return out
 
 
-@_EXP.register(
-    "one-dof entrywise",
-    "the one-dof form on a large batch of finite angles, entry by entry (bit for bit)",
-)
 def one_dof_entrywise(table: tuple[Any, ...], th: np.ndarray) -> np.ndarray:
     """The one-dof form of a rotating screw at finite angles, entry by entry: the same
     sums ``(I + sin K) + (1 - cos) K^2`` and ``(th v + (1 - cos) K v) + (th - sin) K^2 v``
@@ -106,7 +102,6 @@ def _centre(key: bytes) -> np.ndarray:
     return np.linalg.lstsq(A, B[:, LINEAR].reshape(-1), rcond=None)[0]
 
 
-@_EXP.register("spherical", "a spherical joint's float basis: the turn about its centre")
 def spherical_exp(basis: np.ndarray, qj: np.ndarray) -> np.ndarray:
     """``exp(q B)`` of a spherical joint (float) at the values ``qj`` (..., 3):
     ``R = exp(w)`` with ``w`` the angular part of ``q B``, ``p = (I - R) c``."""

@@ -26,8 +26,7 @@ import numpy as np
 
 from mechsing.lie._series import factorial_series, half_cot_series, safe, use_series
 from mechsing.lie._so3 import (
-    _EXP,
-    _FLOAT,
+    _LIE,
     _asarr,
     _mask,
     cross,
@@ -66,7 +65,7 @@ def pose(R: Any, p: Any) -> np.ndarray:
     """The displacement ``x -> R x + p`` as a 4x4 matrix: (..., 3, 3), (..., 3) -> (..., 4, 4)."""
     R = _asarr(R)
     p = _asarr(p)
-    fast = _FLOAT.for_float("pose", R, p)
+    fast = _LIE["pose"].pick(R, p)
     if fast is not None:
         return fast(R, p)
     bk = backend_of(R, p)
@@ -113,7 +112,7 @@ def exp(xi: Any) -> np.ndarray:
     References: the exponential of D.
     """
     xi = _asarr(xi)
-    fast = _EXP.for_float("float64", xi)
+    fast = _LIE["exp"].pick(xi)
     if fast is not None:
         return fast(xi)
     w = xi[..., ANGULAR]
@@ -141,7 +140,7 @@ def log(g: Any) -> np.ndarray:
     References: the logarithm of D.
     """
     g = _asarr(g)
-    fast = _FLOAT.for_float("log", g)
+    fast = _LIE["log"].pick(g)
     if fast is not None:
         return fast(g)
     R = rotation(g)
@@ -165,7 +164,7 @@ def log(g: Any) -> np.ndarray:
 def inverse(g: Any) -> np.ndarray:
     """g^-1 = (R^T, -R^T p): (..., 4, 4) -> (..., 4, 4)."""
     g = _asarr(g)
-    fast = _FLOAT.for_float("inverse", g)
+    fast = _LIE["inverse"].pick(g)
     if fast is not None:
         return fast(g)
     Rt = np.swapaxes(rotation(g), -1, -2)
@@ -197,7 +196,7 @@ def act_screw(g: Any, xi: Any) -> np.ndarray:
     """Ad(g) xi: a twist (or (f, m) wrench) moved by g; (..., 4, 4), (..., 6) -> (..., 6)."""
     g = _asarr(g)
     xi = _asarr(xi)
-    fast = _FLOAT.for_float("act_screw", g, xi)
+    fast = _LIE["act_screw"].pick(g, xi)
     if fast is not None:
         return fast(g, xi)
     R = rotation(g)

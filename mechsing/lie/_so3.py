@@ -18,10 +18,23 @@ import numpy as np
 from mechsing.lie._series import factorial_series, half_cot_series, safe, use_series
 from mechsing.numeric import backend_of, bool_mask, dispatch, holds_objects
 
-#: the fast forms of the exponential, and of the other Lie functions on float64 arrays
-#: (:mod:`mechsing.lie._float` registers them; :mod:`mechsing.numeric.dispatch`)
-_EXP = dispatch.table("exp", "mechsing.lie.exp (and exp_so3)")
-_FLOAT = dispatch.table("lie.float64", "mechsing.lie")
+#: the dispatch table of each Lie function with fast forms (one per signature; their
+#: float64 forms: :mod:`mechsing.lie._float`; :mod:`mechsing.numeric.dispatch`)
+_LIE = {
+    name: dispatch.table(name, f"mechsing.lie.{name}")
+    for name in (
+        "exp",
+        "exp_so3",
+        "cross",
+        "hat3",
+        "quaternion_parts",
+        "log_so3_parts",
+        "pose",
+        "log",
+        "inverse",
+        "act_screw",
+    )
+}
 
 
 def _asarr(x: Any) -> np.ndarray:
@@ -41,7 +54,7 @@ def cross(a: Any, b: Any) -> np.ndarray:
     """Cross product over the last axis (backend-generic; numpy's cross rejects objects)."""
     a = _asarr(a)
     b = _asarr(b)
-    fast = _FLOAT.for_float("cross", a, b)
+    fast = _LIE["cross"].pick(a, b)
     if fast is not None:
         return fast(a, b)
     return np.stack(
@@ -64,7 +77,7 @@ def dot(a: Any, b: Any) -> np.ndarray:
 def hat3(w: Any) -> np.ndarray:
     """Skew matrix of a 3-vector: (..., 3) -> (..., 3, 3), ``hat3(w) @ x = w x x``."""
     w = _asarr(w)
-    fast = _FLOAT.for_float("hat3", w)
+    fast = _LIE["hat3"].pick(w)
     if fast is not None:
         return fast(w)
     z = w[..., 0] * 0
@@ -124,7 +137,7 @@ def exp_so3(w: Any) -> np.ndarray:
     Any angle is accepted (tangents beyond pi wrap as rotations do).
     """
     w = _asarr(w)
-    fast = _EXP.for_float("float64 rotation", w)
+    fast = _LIE["exp_so3"].pick(w)
     if fast is not None:
         return fast(w)
     _t2, A, B, _C = so3_coefficients(w)
@@ -183,7 +196,7 @@ def quaternion_parts(R: Any) -> tuple[np.ndarray, np.ndarray]:
     q : ndarray, shape (..., 3)
     """
     R = _asarr(R)
-    fast = _FLOAT.for_float("quaternion_parts", R)
+    fast = _LIE["quaternion_parts"].pick(R)
     if fast is not None:
         return fast(R)
     bk = backend_of(R)
@@ -228,7 +241,7 @@ def quaternion_parts(R: Any) -> tuple[np.ndarray, np.ndarray]:
 def log_so3_parts(R: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(w_rotvec, theta, cos(theta/2), sin(theta/2)) of a rotation matrix."""
     R = _asarr(R)
-    fast = _FLOAT.for_float("log_so3_parts", R)
+    fast = _LIE["log_so3_parts"].pick(R)
     if fast is not None:
         return fast(R)
     bk = backend_of(R)

@@ -5,10 +5,14 @@ layer, the Rodrigues closed form of a one-dof joint's exponential (filled entry 
 entry on large batches), the block-by-block factorisations of big sparse matrices,
 the compiled screen of the scanner, the sweeps' measures of several rows in one
 batch.  Each such formula has ONE generic definition (the code that runs on every
-backend); its faster forms register themselves here, in a :class:`Table` named
-after the formula, and the generic code asks its table for a form (it never names
-the fast module).  As :mod:`scipy.spatial.transform` picks its backend once, the
-switch is read once, from the environment, when mechsing is imported:
+backend) and ONE :class:`Table`, named after the formula (one signature per table);
+its faster forms register themselves there, each with the inputs it accepts (a
+predicate on the formula's own arguments: their dtype, their shape, the joint's
+kind).  The generic code hands its arguments to its table (:meth:`Table.pick`), which
+answers the first registered form that accepts them, or None (the generic definition
+then runs): the caller never names a form nor the fast module.  As
+:mod:`scipy.spatial.transform` picks its backend once, the switch is read once, from
+the environment, when mechsing is imported:
 
 ``MECHSING_FAST=0``
     every fast path off: each table answers ``None`` and every size threshold is
@@ -44,6 +48,7 @@ __all__ = [
     "Table",
     "enabled",
     "fast_paths",
+    "float64_arrays",
     "mode",
     "table",
     "tables",
@@ -102,17 +107,30 @@ def fast_paths(on: bool | Literal["always"]) -> Iterator[None]:
         _MODE.pop()
 
 
+def float64_arrays(*args: Any) -> bool:
+    """Whether every one of ``args`` is a float64 ndarray (the default predicate of a form
+    for float numbers: mp and exact arrays, objects, take the generic definition)."""
+    for a in args:
+        if not isinstance(a, np.ndarray) or a.dtype != _F64:
+            return False
+    return True
+
+
 @dataclass(frozen=True)
 class Form:
     """A fast form of a table's formula.
 
-    ``function``: the form itself (its own signature, which its caller knows);
-    ``when``: in words, the inputs it serves, what it saves and how close it is to the
-    generic definition (bit for bit, or to rounding)."""
+    ``function``: the form itself (the formula's signature, or, for a form that serves
+    another form of its table, its own); ``when``: in words, the inputs it serves, what
+    it saves and how close it is to the generic definition (bit for bit, or to
+    rounding); ``accepts``: the predicate on the formula's arguments that chooses it
+    (None: a form :meth:`Table.pick` never answers, which another form of the table
+    calls, as the entrywise one-dof exponential)."""
 
     name: str
     function: Callable[..., Any]
     when: str
+    accepts: Callable[..., bool] | None = float64_arrays
 
 
 @dataclass
@@ -127,16 +145,31 @@ class Table:
         self,
         name: str,
         when: str,
+        accepts: Callable[..., bool] | None = float64_arrays,
     ) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
-        """Decorator: register the decorated function as the form ``name``."""
+        """Decorator: register the decorated function as the form ``name``, taken for the
+        arguments ``accepts`` (a predicate on the formula's arguments) returns True for
+        (forms are asked in the order they were registered)."""
 
         def add(function: Callable[..., Any]) -> Callable[..., Any]:
             if name in self.forms and self.forms[name].function is not function:
                 raise ValueError(f"dispatch table {self.name!r} has a form {name!r} already")
-            self.forms[name] = Form(name, function, when)
+            self.forms[name] = Form(name, function, when, accepts)
             return function
 
         return add
+
+    def pick(self, *args: Any) -> Callable[..., Any] | None:
+        """The form for these arguments of the formula: the first registered form that
+        accepts them, when fast paths are on; else None (the caller then runs the
+        generic definition)."""
+        if _MODE[-1] == "off":
+            return None
+        for form in self.forms.values():
+            accepts = form.accepts
+            if accepts is not None and accepts(*args):
+                return form.function
+        return None
 
     @contextmanager
     def disabled(self, name: str) -> Iterator[None]:
@@ -149,22 +182,10 @@ class Table:
             self.forms[name] = form
 
     def get(self, name: str) -> Callable[..., Any] | None:
-        """The form ``name`` when fast paths are on and it is registered, else None
-        (the caller then runs the generic definition)."""
+        """The form ``name`` when fast paths are on and it is registered, else None (a
+        parity test's or a benchmark's access to one form; the code asks :meth:`pick`)."""
         if _MODE[-1] == "off":
             return None
-        form = self.forms.get(name)
-        return None if form is None else form.function
-
-    def for_float(self, name: str, *arrays: Any) -> Callable[..., Any] | None:
-        """The form ``name`` when fast paths are on and every one of ``arrays`` is a
-        float64 ndarray (a form for float numbers; mp and exact arrays, objects, always
-        take the generic definition), else None."""
-        if _MODE[-1] == "off":
-            return None
-        for a in arrays:
-            if a.dtype != _F64:
-                return None
         form = self.forms.get(name)
         return None if form is None else form.function
 

@@ -303,7 +303,7 @@ class Measures:
 
     def _screws(self, Q: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
         """The body poses, the current screws and the commensurate screws at the rows of Q."""
-        P = forward.poses(self.model, Q, fast=True)
+        P = forward.batch_poses(self.model, Q)
         S = forward.current_screws(self.model, Q, P)
         return P, S, self.frame.screws(S)
 

@@ -20,8 +20,8 @@ the SVD in both paths, so the verdicts are the same (tested).
 
 Numba is imported lazily; :func:`available` is False without it, or when fast paths
 are off (``MECHSING_FAST=0``, or its alias ``MECHSING_NO_COMPILED=1``:
-:mod:`mechsing.numeric.dispatch`, where :func:`screen_bounds` is registered in the
-table ``exp``), and the scanner then uses its numpy path.  It is the serial test's
+:mod:`mechsing.numeric.dispatch`, where :func:`screen_bounds` is the form ``compiled``
+of the table ``serial screen``), and the scanner then uses its numpy path.  It is the serial test's
 optional backend (:meth:`mechsing.singularity.criteria.SerialTest.screen`).
 """
 
@@ -42,7 +42,7 @@ _KERNEL: list[Any] = []
 
 def available() -> bool:
     """Is the compiled screen usable (numba installed, not switched off)?"""
-    if dispatch.table("exp").get("compiled serial chain") is None:
+    if dispatch.table("serial screen").get("compiled") is None:
         return False
     try:
         import numba  # noqa: F401
@@ -174,10 +174,13 @@ def _build() -> Any:
     return kernel
 
 
-@dispatch.table("exp").register(
-    "compiled serial chain",
+@dispatch.table(
+    "serial screen", "mechsing.singularity.criteria.SerialTest's numpy screen"
+).register(
+    "compiled",
     "the scan's serial chain of one-dof joints, compiled with numba (its screen's bound "
     "to the determinant's backward error)",
+    accepts=None,  # the scanner asks for it where its chain is a SerialJacobian's
 )
 def screen_bounds(serial: Any, Q: np.ndarray, err: float) -> np.ndarray:
     """The screen's lower bound of sigma_min / sigma_max at every row of Q, for a

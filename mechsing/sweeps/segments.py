@@ -24,6 +24,12 @@ __all__ = ["close_segments", "close_to_fold", "near_fold"]
 _FINE_CHUNK = 8192
 #: fewer samples than this between the nodes of a row are closed in one pass (no knots)
 _KNOTS_FROM = 1000
+#: the samples between knots are predicted by the polynomial through this many closed
+#: points around them: of degree 7, knots SWEEP_KNOT_STEP apart predict to about 1e-14
+#: (the hexapod's turn: median residual 2e-14 m, 99% below 1e-12), within the closure
+#: tolerance, so most samples take no Newton step, where a cubic's 1e-9 takes one (and a
+#: quintic's 2e-12 one every other sample)
+_STENCIL = 8
 
 
 def close_to_fold(
@@ -90,11 +96,12 @@ def close_segments(
     _KNOTS_FROM samples to close: a grid's short rows, where a second batched call costs
     more than the Newton steps it saves.)
 
-    Each sample is predicted by the cubic through the two closed points around it (nodes,
-    or knots) and the one before and after them (a quadratic at the ends of the path), on
-    the group, from the first of the two: knots only some hundredths of a radian apart
-    predict to about 1e-10, so one Newton step closes a sample where the nodes' cubic
-    needs two or three.  A sample that does not close near its prediction is closed
+    In the first pass each sample (or knot) is predicted by the cubic through the two
+    nodes around it and the one before and after them (a quadratic at the ends of the
+    path); in the second, by the polynomial through the _STENCIL closed knots nearest it
+    (:func:`_stencil`), on the group, from the knot before it: knots a hundredth of a
+    radian apart predict to about 1e-14, within the closure tolerance, so most samples
+    take no Newton step where the nodes' cubic needs two or three.  A sample that does not close near its prediction is closed
     again by continuation from the previous one.  Fills each trace's Z and newton in
     place.
 
@@ -125,17 +132,13 @@ def close_segments(
     for m, knots in later:
         Z = traces[m].Z
         closed = [k for k in knots if not np.isnan(Z[k, 0])]
+        # where a segment has too few knots, the nodes around it complete the stencils
+        pool = sorted(set(closed) | set(_cubic_knots(Z, knots[0], knots[-1])))
         for p in range(len(closed) - 1):
             a, b = closed[p], closed[p + 1]
             if b - a < 2:
                 continue
-            around = [closed[p - 1]] if p > 0 else []
-            around += [a, b] + ([closed[p + 2]] if p + 2 < len(closed) else [])
-            # at the ends of the segment, the nodes' neighbours as for the first pass
-            if p == 0 or p + 2 == len(closed):
-                around = sorted(set(around) | set(_cubic_knots(Z, a, b)))
-                around = _nearest(around, a, b)
-            second.append((m, a, b, around, list(range(a + 1, b))))
+            second.append((m, a, b, _stencil(pool, a, b), list(range(a + 1, b))))
     _close_between(pb, traces, col, second)
     # the samples Newton did not close near their prediction: continuation, in order
     for tr in traces:
@@ -168,12 +171,21 @@ def _cubic_knots(Z: np.ndarray, i: int, j: int) -> list[int]:
     return [k for k in (2 * i - j, i, j, 2 * j - i) if 0 <= k < len(Z) and not np.isnan(Z[k, 0])]
 
 
-def _nearest(knots: list[int], a: int, b: int) -> list[int]:
-    """At most four of the sorted closed points ``knots``: a, b and the nearest one before
-    a and after b."""
-    before = [k for k in knots if k < a][-1:]
-    after = [k for k in knots if k > b][:1]
-    return [*before, a, b, *after]
+def _stencil(knots: list[int], a: int, b: int) -> list[int]:
+    """The closed points the samples between the neighbouring knots a and b are
+    interpolated through: a, b and the _STENCIL - 2 nearest others of the sorted
+    ``knots`` (as many on each side where there are, the rest on the other side)."""
+    at = knots.index(a)
+    lo, hi = at, at + 1  # knots[lo : hi + 1] is the stencil
+    while hi - lo + 1 < _STENCIL and (lo > 0 or hi + 1 < len(knots)):
+        # the side whose next knot is nearer the interval (the one before a on a tie)
+        before = a - knots[lo - 1] if lo > 0 else None
+        after = knots[hi + 1] - b if hi + 1 < len(knots) else None
+        if after is None or (before is not None and before <= after):
+            lo -= 1
+        else:
+            hi += 1
+    return knots[lo : hi + 1]
 
 
 def _close_between(
@@ -192,40 +204,40 @@ def _close_between(
     if not jobs:
         return
     # every knot's increment from its job's first point, in one call
+    sizes = np.array([len(kn) for *_, kn, _ in jobs])
+    firsts = np.stack([traces[m].Z[a] for m, a, *_ in jobs])
     K1 = np.concatenate([traces[m].Z[knots] for m, _, _, knots, _ in jobs])
-    K0 = np.concatenate(
-        [np.repeat(traces[m].Z[a][None, :], len(kn), axis=0) for m, a, _, kn, _ in jobs]
-    )
-    Dall = bc.difference(K1, K0)
-    which, rows, base, preds, spans, tvals = [], [], [], [], [], []
-    at = 0
-    for m, a, b, knots, ks_list in jobs:
-        Z, values = traces[m].Z, traces[m].values
-        assert values is not None
-        D = Dall[at : at + len(knots)]
-        at += len(knots)
-        tk = values[knots]
-        ks = np.array(ks_list)
-        tv = values[ks]
-        # Lagrange weights of the knots at the samples
-        W = np.ones((len(ks), len(knots)))
-        for p in range(len(knots)):
-            for q in range(len(knots)):
+    Dall = bc.difference(K1, firsts[np.repeat(np.arange(len(jobs)), sizes)])
+    # per sample: its job, row, trace and swept value; per knot: its swept value
+    counts = np.array([len(ks) for *_, ks in jobs])
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    job_of = np.repeat(np.arange(len(jobs)), counts)
+    rows_a = np.concatenate([np.asarray(ks, dtype=int) for *_, ks in jobs])
+    which_a = np.repeat([m for m, *_ in jobs], counts)
+    values_of = [traces[m].values for m, *_ in jobs]
+    T = np.concatenate([v[ks] for v, (*_, ks) in zip(values_of, jobs, strict=True)])  # type: ignore[index]
+    tk = np.concatenate([v[kn] for v, (*_, kn, _) in zip(values_of, jobs, strict=True)])  # type: ignore[index]
+    A = firsts[job_of]
+    # each job's span, from a to b, commensurate
+    at_b = starts + np.array([kn.index(b) for _, _, b, kn, _ in jobs])
+    span_a = np.linalg.norm(pb.cm.float_frame.rates(Dall[at_b]), axis=1)[job_of]
+    # the Lagrange interpolation of the knots' increments at the samples, the samples
+    # of stencils of one size together (the same operations, sample by sample, as one
+    # job at a time)
+    P = np.empty((len(rows_a), Dall.shape[1]))
+    for size in np.unique(sizes):
+        at = np.flatnonzero(sizes[job_of] == size)
+        idx = starts[job_of[at]][:, None] + np.arange(size)  # the samples' knots
+        tks, tv = tk[idx], T[at]
+        W = np.ones((len(at), size))
+        for p in range(size):
+            for q in range(size):
                 if p != q:
-                    W[:, p] *= (tv - tk[q]) / (tk[p] - tk[q])
-        preds.append(W @ D)
-        rows.extend(ks_list)
-        which.extend([m] * len(ks))
-        base.append(np.repeat(Z[a][None, :], len(ks), axis=0))
-        tvals.append(tv)
-        spans.extend([pb.comm(D[knots.index(b)])] * len(ks))
-    if not rows:
-        return
-    rows_a, which_a = np.array(rows), np.array(which)
-    A = np.concatenate(base)
-    P = np.concatenate(preds)
-    T = np.concatenate(tvals)
-    span_a = np.array(spans)
+                    W[:, p] *= (tv - tks[:, q]) / (tks[:, p] - tks[:, q])
+        acc = W[:, :1] * Dall[idx[:, 0]]
+        for p in range(1, size):
+            acc += W[:, p, None] * Dall[idx[:, p]]
+        P[at] = acc
     for lo in range(0, len(rows_a), _FINE_CHUNK):
         sl = slice(lo, lo + _FINE_CHUNK)
         Qp = bc.update(A[sl], P[sl, :nb])
