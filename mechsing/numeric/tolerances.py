@@ -410,3 +410,9 @@ MODE_EXTRANEOUS_RTOL = 1e-6
 #: parts are below this times ``max(1, |z|)``: it is polished in real arithmetic at 50
 #: digits and kept only where that closes
 MODE_SINGULAR_IMAGINARY_RTOL = 1e-3
+#: the general formulation: a direction of Study coordinates is in the span of a loop's
+#: products (the coordinates of its own subgroup) when its singular value is above this
+#: times the largest (the coefficients are known to the working digits, 50 or more; a
+#: direction not in the span has an exact zero there); a serial arm's target lies in the
+#: subgroup its end moves in when its part outside that span is below this times its size
+MODE_SPAN_RTOL = 1e-20
