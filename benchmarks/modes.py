@@ -10,9 +10,11 @@
   (recording off in both), with the share of paths that fail or go to infinity.
 * UR5 at a generic pose (examples/ur5.yaml with a configuration given by the output's
   pose): ``modes`` against ``bertini.solve`` on the same half-angle system (24 paths).
+* The general formulation (Bennett's 4R, the spherical four-bar, a SCARA at a pose):
+  ``find`` against ``bertini.solve`` on the same patched system (:func:`general`).
 
 Times are CPU seconds of this process (the machine is shared).  Run from the repository
-root: ``OPENBLAS_NUM_THREADS=1 python benchmarks/modes.py``.
+root: ``OPENBLAS_NUM_THREADS=1 python benchmarks/modes.py [rpr|dietmaier|ur5|general]``.
 """
 
 from __future__ import annotations
@@ -35,15 +37,15 @@ def _cpu(f):
     return time.process_time() - t0, out
 
 
-def _engine(text: str):
-    """``bertini.solve`` on a system's text with recording off (as ``modes`` runs it):
-    its CPU seconds and result."""
+def _engine(text: str, mptype: str = "adaptive"):
+    """``bertini.solve`` on a system's text with recording off (as ``modes`` runs it, in
+    the precision model ``mptype``): its CPU seconds and result."""
     import bertini
 
     was = bertini.recording()
     bertini.recording(False)
     try:
-        return _cpu(lambda: bertini.solve(bertini.parse.system(text), seed=34))
+        return _cpu(lambda: bertini.solve(bertini.parse.system(text), seed=34, mptype=mptype))
     finally:
         bertini.recording(was)
 
@@ -157,12 +159,13 @@ configurations:
 
 def general() -> None:
     """The general formulation (joint displacements in Study coordinates) against
-    ``bertini.solve`` on the same patched system: Bennett's 4R and the spherical four-bar
-    with their inputs, a SCARA at a pose."""
+    ``bertini.solve`` on the same patched system in the same precision model: Bennett's 4R
+    and the spherical four-bar with their inputs, a SCARA at a pose.  The formulation's
+    time holds its second, sliced homotopy (the search for curves of solutions)."""
     from mechsing import load
     from mechsing.assembly import modes
     from mechsing.assembly.engine import system_text
-    from mechsing.assembly.general import FORMULATION, patched_system, problem
+    from mechsing.assembly.general import FORMULATION, MPTYPE, patched_system, problem
     from mechsing.assembly.given import read_given
     from mechsing.numeric import parse_precision
 
@@ -182,7 +185,7 @@ def general() -> None:
         with mpmath.workdps(50):
             given = read_given(mech, config, parse_precision("float"), 50, 1e-9)
             eqs, groups = patched_system(problem(given))
-            t_b, r = _engine(system_text(eqs, groups))
+            t_b, r = _engine(system_text(eqs, groups), MPTYPE)
             # the formulation alone: its system built, tracked, refined and certified
             t_f, found = _cpu(lambda g=given: (FORMULATION.applies(g), FORMULATION.find(g))[1])
         t_m, res = _cpu(lambda m=mech, c=config: modes(m, c, "float"))

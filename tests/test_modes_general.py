@@ -184,7 +184,11 @@ def test_scara_at_a_target_has_the_two_postures_of_its_closed_form(tmp_path: Pat
     assert all(m["certified"] for m in doc["modes"])
 
 
-def test_sarrus_with_its_input_has_the_modes_damped_newton_finds() -> None:
+def test_sarrus_with_its_input_is_a_curve_as_damped_newton_finds() -> None:
+    """Sarrus's linkage with J1 given: besides its two isolated modes, the closed
+    configurations with J2 = J5 = pi/2 (J1 + J2 + J3 = 0) form a curve along which J4 and
+    J6 turn: damped Newton from random starts lands on many points of it.  modes says
+    infinite, with dimension 1, and counts nothing."""
     doc = _modes([str(ROOT / "examples" / "sarrus.yaml"), "--config", "lowered"])
     x, y = _vec(1, 0, 0), _vec(0, 1, 0)
     joints = [
@@ -195,10 +199,12 @@ def test_sarrus_with_its_input_has_the_modes_damped_newton_finds() -> None:
         ("R", y, _vec(2, 0, 1)),
         ("R", y, _vec(1, 0, 0)),
     ]
-    expected = solve_all(joints, [[(i, 1) for i in range(6)]], {0: -np.pi / 12}, starts=800)
-    assert doc["count"] == len(expected) == 2
-    _same(_joint_vectors(doc, [f"J{i}" for i in range(1, 7)]), expected, ["R"] * 6)
-    assert doc["formulation"]["randomized"] and doc["paths"]["tracked"] == 120  # 5!
+    found = solve_all(joints, [[(i, 1) for i in range(6)]], {0: -np.pi / 12}, starts=150)
+    curve = [q for q in found if abs(q[1] - np.pi / 2) < 1e-6 and abs(q[4] - np.pi / 2) < 1e-6]
+    assert len({round(q[3], 3) for q in curve}) > 5  # J4 takes many values on it
+    assert doc["count"] is None and doc["complete"] == "infinite" and doc["modes"] == []
+    assert doc["formulation"]["dimension"] == 1 and doc["formulation"]["randomized"]
+    assert doc["paths"]["tracked"] == 120  # 5!: five pairs
 
 
 def test_a_redundant_planar_arm_at_a_target_is_a_curve_of_dimension_one(tmp_path: Path) -> None:
@@ -214,3 +220,79 @@ def test_a_redundant_planar_arm_at_a_target_is_a_curve_of_dimension_one(tmp_path
     # four pairs, three closure equations in G: a curve, by the local dimension test
     assert doc["formulation"]["dimension"] == 1
     assert any("local dimension test" in n for n in doc["notes"])
+
+
+AGILE_EYE = """
+mechanism: agile-eye
+bodies: [ground, a1, b1, a2, b2, a3, b3, platform]
+joints:
+  - {name: A1, type: R, between: [ground, a1], axis: [1, 0, 0], point: [0, 0, 0]}
+  - {name: B1, type: R, between: [a1, b1], axis: [0, 1, 0], point: [0, 0, 0]}
+  - {name: C1, type: R, between: [b1, platform], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: A2, type: R, between: [ground, a2], axis: [0, 1, 0], point: [0, 0, 0]}
+  - {name: B2, type: R, between: [a2, b2], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: C2, type: R, between: [b2, platform], axis: [1, 0, 0], point: [0, 0, 0]}
+  - {name: A3, type: R, between: [ground, a3], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B3, type: R, between: [a3, b3], axis: [1, 0, 0], point: [0, 0, 0]}
+  - {name: C3, type: R, between: [b3, platform], axis: [0, 1, 0], point: [0, 0, 0]}
+inputs: [A1, A2, A3]
+output: {body: platform}
+configurations:
+  reference: {}
+  turned: {A1: 0.3, A2: -0.2, A3: 0.5}
+"""
+
+
+def test_agile_eye_has_eight_modes_in_two_spherical_loops(tmp_path: Path) -> None:
+    """Gosselin's agile eye (a spherical 3-RRR, every axis through the origin, each leg's
+    three axes orthogonal at the reference) with decimal inputs: at most 8 modes; here all
+    8 are real, as damped Newton on the two loops' 4x4 closures finds."""
+    f = tmp_path / "agile_eye.yaml"
+    f.write_text(AGILE_EYE)
+    doc = _modes([str(f), "--config", "turned"])
+    o = _vec(0, 0, 0)
+    x, y, z = _vec(1, 0, 0), _vec(0, 1, 0), _vec(0, 0, 1)
+    joints = [("R", u, o) for u in (x, y, z, y, z, x, z, x, y)]
+    loops = [
+        [(0, 1), (1, 1), (2, 1), (5, -1), (4, -1), (3, -1)],
+        [(0, 1), (1, 1), (2, 1), (8, -1), (7, -1), (6, -1)],
+    ]
+    expected = solve_all(joints, loops, {0: 0.3, 3: -0.2, 6: 0.5}, starts=400)
+    assert doc["count"] == len(expected) == 8
+    names = ["A1", "B1", "C1", "A2", "B2", "C2", "A3", "B3", "C3"]
+    _same(_joint_vectors(doc, names), expected, ["R"] * 9)
+    assert [c["subgroup"] for c in doc["formulation"]["closures"]] == ["S", "S"]
+    assert [c["equations"] for c in doc["formulation"]["closures"]] == [3, 3]
+    assert all(m["certified"] for m in doc["modes"])
+
+
+RSSR = """
+mechanism: rssr
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: S, between: [crank, coupler], point: [1, 0, 0]}
+  - {name: C, type: S, between: [coupler, rocker], point: [3, 1, 2]}
+  - {name: D, type: R, between: [rocker, ground], axis: [1, 0, 0], point: [3, 1, 0]}
+inputs: [A]
+output: {body: rocker}
+configurations:
+  reference: {}
+  crank-30: {A: "pi/6"}
+"""
+
+
+def test_rssr_with_its_input_is_a_curve_the_couplers_spin(tmp_path: Path) -> None:
+    """An RSSR's coupler turns freely about the line through its two ball joints: with
+    the crank given, the closed configurations form a curve (dimension 1), whatever the
+    rocker's two positions; modes says so, from the local dimension test, with no count."""
+    f = tmp_path / "rssr.yaml"
+    f.write_text(RSSR)
+    doc = _modes([str(f), "--config", "crank-30"])
+    assert doc["count"] is None and doc["complete"] == "infinite"
+    assert doc["formulation"]["dimension"] == 1
+    assert doc["formulation"]["unknowns"] == [
+        "B (quaternion)",
+        "C (quaternion)",
+        "D (half-angle pair)",
+    ]

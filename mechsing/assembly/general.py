@@ -420,11 +420,11 @@ def _normalisations(prob: Problem) -> list[sympy.Expr]:
     return out
 
 
-def _randomized(prob: Problem) -> list[sympy.Expr]:
-    """As many equations as unknowns: the closures' own when they are as many, else random
-    combinations (within one closure when one holds the excess)."""
+def _randomized(prob: Problem, n: int | None = None) -> list[sympy.Expr]:
+    """As many equations as unknowns (``n``: as many as that): the closures' own when they
+    are as many or fewer, else random combinations of them."""
     eqs = prob.equations
-    n = prob.unknowns
+    n = prob.unknowns if n is None else n
     if len(eqs) <= n:
         return eqs
     rng = np.random.default_rng(SEED)
@@ -618,6 +618,24 @@ def _find(given: Given) -> Found:
             duplicates += 1
             continue
         found.append((root, row, ok))
+    # components of dimension 1 or more (an overconstrained loop's second branch, where
+    # the homotopy's paths end singular or fail): one slice, the local dimension test at
+    # each real point of it
+    for z in _sliced(prob, 1) if n > 1 or m > n else []:
+        dim = local_dimension(full, gens, z, dps)
+        if dim > 0:
+            formulation["dimension"] = dim
+            row = _row(mech, prob, z)
+            at = ", ".join(
+                f"{c[0]} = {float(v):.6g}" for c, v in zip(mech.coordinates(), row, strict=True)
+            )
+            notes.append(
+                f"the given values are also reached along a set of dimension {dim} (the local "
+                f"dimension test at a real point of a slice, through {at}): the modes are not "
+                "finitely many"
+            )
+            paths = account(tracked, raw, genuine, real, found, duplicates, singular)
+            return Found(formulation, [], None, "infinite", paths, tuple(notes), 1, given.closure)
     found.sort(key=lambda f: [float(x) for x in f[1]])
     radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
     rows = [(q, ok and krawczyk(square, gens, root, radius)) for root, q, ok in found]
@@ -662,26 +680,34 @@ def _dimension_at_start(given: Given, prob: Problem, full: list[Any]) -> tuple[i
 
 
 def _real_point(prob: Problem) -> list[Any] | None:
-    """A real closed configuration of an underdetermined system: the groups sliced by as
-    many random real linear forms as the unknowns exceed the equations (a revolute's
-    form fixes its angle), the square system tracked, its first real genuine endpoint
-    (None: none in ``SLICE_TRIES`` slicings)."""
+    """A real closed configuration of an underdetermined system (the first of
+    :func:`_sliced`; None: none)."""
+    points = _sliced(prob, prob.unknowns - len(prob.equations))
+    return points[0] if points else None
+
+
+def _sliced(prob: Problem, k: int) -> list[list[Any]]:
+    """Real closed configurations on the components of dimension ``k`` or more: the
+    closure equations (random combinations of them, down to ``n - k``) and ``k`` random
+    real linear forms, each in one group (a revolute's fixes its angle), tracked; the real
+    endpoints that close every loop (none in ``SLICE_TRIES`` slicings: an empty list)."""
     from mechsing.assembly.engine import real_endpoints, track
 
     rng = np.random.default_rng(SEED + 2)
     product = sympy.lambdify(prob.gens, [list(c.product) for c in prob.closures], "numpy")
-    for _ in range(SLICE_TRIES):
+    n = prob.unknowns
+    for attempt in range(SLICE_TRIES):
         left = [g.dim for g in prob.groups]
-        eqs = list(prob.equations)
-        k = len(left) - 1
-        while len(eqs) < prob.unknowns:
-            while not left[k]:
-                k = (k - 1) % len(left)
-            left[k] -= 1
-            g = prob.groups[k]
+        eqs = _randomized(prob, n - k)
+        at = (len(left) - 1 - attempt) % len(left)  # each try slices other groups first
+        while len(eqs) < n:
+            while not left[at]:
+                at = (at - 1) % len(left)
+            left[at] -= 1
+            g = prob.groups[at]
             r = rng.normal(size=len(g.gens))
             eqs.append(sum(sympy.Rational(float(c)) * x for c, x in zip(r, g.gens, strict=True)))
-            k = (k - 1) % len(left)
+            at = (at - 1) % len(left)
         patched = list(eqs)
         for g in prob.groups:
             r = rng.normal(size=len(g.gens))
@@ -691,8 +717,8 @@ def _real_point(prob: Problem) -> list[Any] | None:
         raw, _ = track(patched, [g.gens for g in prob.groups], mptype=MPTYPE)
         real = real_endpoints([z for z in raw if _genuine(prob, z, product)])
         if real:
-            return _unit(prob, real[0])
-    return None
+            return [_unit(prob, z) for z in real]
+    return []
 
 
 def _coordinates(prob: Problem, values: dict[str, Any]) -> list[Any]:
