@@ -185,7 +185,9 @@ def general() -> None:
         with mpmath.workdps(50):
             given = read_given(mech, config, parse_precision("float"), 50, 1e-9)
             eqs, groups = patched_system(problem(given))
-            t_b, r = _engine(system_text(eqs, groups), MPTYPE)
+            prob = problem(given)
+            randomized = len(prob.equations) > prob.unknowns
+            t_b, r = _engine(system_text(eqs, groups), MPTYPE if randomized else "adaptive")
             # the formulation alone: its system built, tracked, refined and certified
             t_f, found = _cpu(lambda g=given: (FORMULATION.applies(g), FORMULATION.find(g))[1])
         t_m, res = _cpu(lambda m=mech, c=config: modes(m, c, "float"))
