@@ -10,9 +10,11 @@
   (recording off in both), with the share of paths that fail or go to infinity.
 * UR5 at a generic pose (examples/ur5.yaml with a configuration given by the output's
   pose): ``modes`` against ``bertini.solve`` on the same half-angle system (24 paths).
+* The general formulation (Bennett's 4R, the spherical four-bar, a SCARA at a pose):
+  ``find`` against ``bertini.solve`` on the same patched system (:func:`general`).
 
 Times are CPU seconds of this process (the machine is shared).  Run from the repository
-root: ``OPENBLAS_NUM_THREADS=1 python benchmarks/modes.py``.
+root: ``OPENBLAS_NUM_THREADS=1 python benchmarks/modes.py [rpr|dietmaier|ur5|general]``.
 """
 
 from __future__ import annotations
@@ -35,17 +37,25 @@ def _cpu(f):
     return time.process_time() - t0, out
 
 
-def _engine(text: str):
-    """``bertini.solve`` on a system's text with recording off (as ``modes`` runs it):
-    its CPU seconds and result."""
+def _engine(text: str, mptype: str = "adaptive"):
+    """``bertini.solve`` on a system's text with recording off (as ``modes`` runs it, in
+    the precision model ``mptype``): its CPU seconds and result."""
     import bertini
 
     was = bertini.recording()
     bertini.recording(False)
     try:
-        return _cpu(lambda: bertini.solve(bertini.parse.system(text), seed=34))
+        return _cpu(lambda: bertini.solve(bertini.parse.system(text), seed=34, mptype=mptype))
     finally:
         bertini.recording(was)
+
+
+def _given(mech, config: str) -> dict:
+    """The configuration's given values, read as ``modes`` reads them."""
+    from mechsing.assembly.given import read_given
+    from mechsing.numeric import parse_precision
+
+    return read_given(mech, config, parse_precision("float"), 50, 1e-9).values
 
 
 def rpr() -> None:
@@ -53,14 +63,12 @@ def rpr() -> None:
 
     from mechsing import load
     from mechsing.assembly import modes
-    from mechsing.assembly.api import _given
     from mechsing.assembly.engine import system_text
     from mechsing.assembly.exact import eliminate_planar
     from mechsing.assembly.planar import C, S, X, Y, planar_system
 
     mech = load(ROOT / "examples" / "planar_3rpr_six.yaml")
-    given = _given(mech, "six")
-    system = planar_system(mech, given)
+    system = planar_system(mech, _given(mech, "six"))
     with mpmath.workdps(50):
         t_exact, found = _cpu(lambda: eliminate_planar(system, 50))
     t_all, res = _cpu(lambda: modes(mech, "six", "auto"))
@@ -81,7 +89,6 @@ def dietmaier() -> None:
     from mechsing import load
     from mechsing.adhoc import with_set_values
     from mechsing.assembly import modes
-    from mechsing.assembly.api import _given
     from mechsing.assembly.engine import system_text
     from mechsing.assembly.spatial import XS, YS, patch_equation, spatial_system
 
@@ -135,7 +142,65 @@ def ur5() -> None:
     )
 
 
+SCARA = """
+mechanism: scara
+bodies: [ground, arm1, arm2, quill, tool]
+joints:
+  - {name: J1, type: R, between: [ground, arm1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [arm1, arm2], axis: [0, 0, 1], point: ["0.4", 0, 0]}
+  - {name: J3, type: P, between: [arm2, quill], axis: [0, 0, 1]}
+  - {name: J4, type: R, between: [quill, tool], axis: [0, 0, 1], point: ["0.65", 0, 0]}
+output: {body: tool, point: ["0.65", 0, "-0.1"]}
+configurations:
+  reference: {}
+  target: {pose: {position: ["0.3", "0.5", "-0.2"], rotation_vector: [0, 0, 1.1]}}
+"""
+
+
+def general() -> None:
+    """The general formulation (joint displacements in Study coordinates) against
+    ``bertini.solve`` on the same patched system in the same precision model: Bennett's 4R
+    and the spherical four-bar with their inputs, a SCARA at a pose.  The formulation's
+    time holds its second, sliced homotopy (the search for curves of solutions)."""
+    from mechsing import load
+    from mechsing.assembly import modes
+    from mechsing.assembly.engine import system_text
+    from mechsing.assembly.general import FORMULATION, MPTYPE, patched_system, problem
+    from mechsing.assembly.given import read_given
+    from mechsing.numeric import parse_precision
+
+    with tempfile.TemporaryDirectory() as tmp:
+        scara = Path(tmp) / "scara.yaml"
+        scara.write_text(SCARA)
+        cases = [
+            ("Bennett 4R, J1 = 1 rad", load(ROOT / "examples" / "bennett.yaml"), "q1-1rad"),
+            (
+                "spherical four-bar, A = 60 deg",
+                load(ROOT / "examples" / "spherical_4r.yaml"),
+                "crank-60",
+            ),
+            ("SCARA at a pose", load(scara), "target"),
+        ]
+    for label, mech, config in cases:
+        with mpmath.workdps(50):
+            given = read_given(mech, config, parse_precision("float"), 50, 1e-9)
+            eqs, groups = patched_system(problem(given))
+            prob = problem(given)
+            randomized = len(prob.equations) > prob.unknowns
+            t_b, r = _engine(system_text(eqs, groups), MPTYPE if randomized else "adaptive")
+            # the formulation alone: its system built, tracked, refined and certified
+            t_f, found = _cpu(lambda g=given: (FORMULATION.applies(g), FORMULATION.find(g))[1])
+        t_m, res = _cpu(lambda m=mech, c=config: modes(m, c, "float"))
+        print(
+            f"{label}: bertini.solve {t_b:.2f} s ({len(r.solutions)} finite); the general "
+            f"formulation {t_f:.2f} s ({found.count} real, {found.paths['tracked']} paths, "
+            f"ratio {t_f / t_b:.1f}); modes with classification {t_m:.2f} s"
+        )
+
+
 if __name__ == "__main__":
-    rpr()
-    dietmaier()
-    ur5()
+    import sys
+
+    which = sys.argv[1:] or ["rpr", "dietmaier", "ur5", "general"]
+    for name in which:
+        globals()[name]()

@@ -151,11 +151,17 @@ def test_text_and_markdown_say_the_count_and_the_marked_mode() -> None:
 
 
 def test_no_method_applies_exit_2_with_the_reason(tmp_path: Path) -> None:
-    # a spatial single loop (Bennett's 4R): neither planar nor a platform on distance legs
-    rc, _, err = run_cli(["modes", str(ROOT / "examples" / "bennett.yaml"), "--set", "J1=1"])
+    # Bennett's 4R with its third joint helical: neither planar, nor a platform on distance
+    # legs, nor a loop of R and P joints, nor polynomial in the general formulation
+    text = (ROOT / "examples" / "bennett.yaml").read_text()
+    text = text.replace("{name: J3, type: R,", "{name: J3, type: H, pitch: 0.1,")
+    f = tmp_path / "helical.yaml"
+    f.write_text(text)
+    rc, _, err = run_cli(["modes", str(f), "--set", "J1=1"])
     assert rc == 2
-    assert "does not apply" in err and "axis is not along z" in err
+    assert "does not apply" in err and "not the planar motions G" in err
     assert "not U-P-S or S-P-S" in err
+    assert "joint J3 is of type H" in err and "not polynomial in its angle" in err
 
 
 def test_no_given_value_is_refused_not_counted() -> None:

@@ -1,5 +1,20 @@
 """Every assembly mode of a configuration (``mechsing modes``, :func:`mechsing.modes`).
 
+A registry of formulations (:mod:`~mechsing.assembly.registry`), one module per problem,
+each with ``applies(given)`` and ``find(given)``; what is given read once
+(:mod:`~mechsing.assembly.given`); :mod:`~mechsing.assembly.api` only dispatches and
+:mod:`~mechsing.assembly.result` classifies and reports:
+
+* :mod:`~mechsing.assembly.planar_pose` -- a planar mechanism (in any plane) whose unknown
+  part is one body on legs, by exact elimination;
+* :mod:`~mechsing.assembly.platform` -- a six-leg platform in Study coordinates;
+* :mod:`~mechsing.assembly.chains` -- six unknown joints in a chain: a single loop, a
+  serial arm (:mod:`~mechsing.assembly.serial`);
+* :mod:`~mechsing.assembly.general` -- any mechanism of R, P, C, U and S joints, each loop
+  in its subgroup's coordinates; arms of fewer than six joints at a pose;
+
+and what they share:
+
 * :mod:`~mechsing.assembly.planar` -- the planar platform-pose formulation (legs as
   distance, point and line constraints on one body's pose);
 * :mod:`~mechsing.assembly.exact` -- exact elimination to one polynomial and certified

@@ -29,6 +29,7 @@ __all__ = [
     "interval_function",
     "krawczyk",
     "krawczyk_complex",
+    "local_dimension",
     "newton",
     "regular",
     "singular_root",
@@ -226,7 +227,7 @@ def singular_root(
     x = _least_squares_newton(f, J, mpmath.matrix([mpmath.mpf(float(v)) for v in z]), dps, 400)
     if mpmath.norm(f(x)) > mpmath.mpf(10) ** (-(dps // 3)):
         return None, False
-    _, _, V = mpmath.svd_r(J(x))
+    _, _, V = mpmath.svd_r(J(x), full_matrices=True)
     n = len(x)
     v = mpmath.matrix([V[n - 1, i] for i in range(n)])
     h = mpmath.mpf(MODE_CURVE_STEP)
@@ -237,15 +238,38 @@ def singular_root(
         return mpmath.matrix([*out, extra])
 
     def Ja(y: Any) -> Any:
-        Jy = J(y)
-        A = mpmath.matrix(n + 1, n)
-        for i in range(n):
+        Jy = J(y)  # (a system of more or fewer equations than unknowns: its rows)
+        A = mpmath.matrix(Jy.rows + 1, n)
+        for i in range(Jy.rows):
             for k in range(n):
                 A[i, k] = Jy[i, k]
         for k in range(n):
-            A[n, k] = v[k]
+            A[Jy.rows, k] = v[k]
         return A
 
     y = _least_squares_newton(fa, Ja, x + h * v, dps, 30)
     curve = mpmath.norm(fa(y)) <= mpmath.mpf(10) ** (-(dps // 2))
     return list(x), bool(curve)
+
+
+def local_dimension(
+    eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], x: Sequence[Any], dps: int
+) -> int:
+    """The dimension of the solutions at ``x`` (a root, polished): 0 where it is isolated
+    (:func:`singular_root` finds no curve); else the unknowns less the Jacobian's rank at
+    a smooth point a step ``MODE_CURVE_STEP`` away along its null directions, corrected
+    back onto the solutions (ranks to ``10^(-N / MODE_SINGULAR_DIGITS)``)."""
+    root, curve = singular_root(eqs, gens, x, dps)
+    if root is None or not curve:
+        return 0
+    f, J = _functions(eqs, gens)
+    y = mpmath.matrix(root)
+    floor = mpmath.mpf(10) ** (-(mpmath.mp.dps // MODE_SINGULAR_DIGITS))
+    _, S, V = mpmath.svd_r(J(y), full_matrices=True)
+    n = len(y)
+    null = [k for k in range(n) if k >= len(S) or S[k] <= floor * S[0]]
+    step = mpmath.matrix([sum(V[k, i] for k in null) for i in range(n)])
+    step *= mpmath.mpf(MODE_CURVE_STEP) / mpmath.norm(step)
+    y = _least_squares_newton(f, J, y + step, dps, 60)
+    S = mpmath.svd_r(J(y), compute_uv=False)
+    return n - sum(1 for s in S if s > floor * S[0])

@@ -9,8 +9,9 @@ line conjugated), the constants gather at the end, and with exactly six joints u
 the loop is a six-joint chain reaching ``T = C*``: a general 7R with one input is the
 general 6R arm (H.-Y. Lee and C.-G. Liang, Mech. Mach. Theory 23(3), 1988: at most 16).
 
-Owns :class:`Found` (what a formulation found), :func:`closure_from_start`,
-:func:`serial_found` and :func:`loop_found`.
+Owns :class:`Found` (what a formulation found),
+:func:`serial_found`, :func:`loop_found` and the two registered problems
+:data:`SERIAL_ARM` and :data:`SINGLE_LOOP`.
 """
 
 from __future__ import annotations
@@ -20,10 +21,11 @@ from typing import Any
 
 import mpmath
 
+from mechsing.assembly.given import NO_INPUTS, Formulation, Given, closure_from_start
 from mechsing.model import Mechanism
 from mechsing.numeric import MODE_CERTIFY_RADIUS
 
-__all__ = ["Found", "closure_from_start", "loop_found", "serial_found"]
+__all__ = ["SERIAL_ARM", "SINGLE_LOOP", "Found", "loop_found", "serial_found"]
 
 
 @dataclass(frozen=True)
@@ -41,7 +43,7 @@ class Found:
     notes: tuple[str, ...]
     equivalent: int = 1
     #: continuation's closure from the start, when the formulation computed it
-    #: (:func:`closure_from_start`: the result or None, the reason it failed or None)
+    #: (:func:`~mechsing.assembly.given.closure_from_start`: the result or None, the reason it failed or None)
     closure: tuple[Any, str | None] | None = None
 
 
@@ -51,7 +53,9 @@ def _length(mech: Mechanism) -> float:
     return float(KinematicModel(mech, "float").length_scale)
 
 
-def serial_found(mech: Mechanism, config: str, dps: int, atol: Any = 1e-9) -> Found:
+def serial_found(
+    mech: Mechanism, config: str, dps: int, atol: Any = 1e-9, closure: Any = None
+) -> Found:
     """The postures of a serial arm for the pose configuration ``config`` gives (with, for
     an arm of more than six joints, the values of all but six), or for a six-joint arm the
     pose its joints reach (then they are tested as one of the modes); ``atol``: how far
@@ -75,7 +79,17 @@ def serial_found(mech: Mechanism, config: str, dps: int, atol: Any = 1e-9) -> Fo
         arm, target = six_joint_chain(mech, names, signs, given, target, L)
         values = {n: v[0] for n, v in given.items()}
         return _found(
-            mech, config, arm, target, values, dps, None, notes, "serial arm", "output's pose"
+            mech,
+            config,
+            arm,
+            target,
+            values,
+            dps,
+            None,
+            notes,
+            "serial arm",
+            "output's pose",
+            closure,
         )
     arm = serial_arm(mech, L)
     target, from_joints = serial_target(mech, config, arm, atol)
@@ -85,16 +99,26 @@ def serial_found(mech: Mechanism, config: str, dps: int, atol: Any = 1e-9) -> Fo
             "are the arm's postures that reach the pose of its joints (given, or its start's)"
         )
     own = (lambda system: given_solution(mech, config, system)) if from_joints else None
-    return _found(mech, config, arm, target, {}, dps, own, notes, "serial arm", "output's pose")
+    return _found(
+        mech, config, arm, target, {}, dps, own, notes, "serial arm", "output's pose", closure
+    )
 
 
-def loop_found(mech: Mechanism, config: str, given: dict[str, tuple[Any, ...]], dps: int) -> Found:
+def loop_found(
+    mech: Mechanism,
+    config: str,
+    given: dict[str, tuple[Any, ...]],
+    dps: int,
+    closure: Any = None,
+) -> Found:
     """The assembly modes of a single loop with six joints left unknown by ``given``."""
     from mechsing.assembly.serial import loop_arm
 
     arm, target = loop_arm(mech, given, _length(mech))
     values = {n: v[0] for n, v in given.items()}
-    return _found(mech, config, arm, target, values, dps, None, [], "single loop", "given values")
+    return _found(
+        mech, config, arm, target, values, dps, None, [], "single loop", "given values", closure
+    )
 
 
 def _found(
@@ -108,6 +132,7 @@ def _found(
     notes: list[str],
     what: str,
     fixed: str,
+    closure: Any = None,
 ) -> Found:
     """Solve, test the configuration's own joints (``own``: their pairs and values, for
     an arm given by its joints), certify, and say what the count claims."""
@@ -126,7 +151,7 @@ def _found(
     # (continuation's endpoints on a curve of solutions are complex, so they cannot); one
     # the homotopy missed makes the count not proven
     missed = False
-    closure = closure_from_start(mech, config)
+    closure = closure or closure_from_start(mech, config)
     for pairs, exact in _candidates(arm, system, own, closure[0]):
         if curve is not None:
             break
@@ -185,19 +210,6 @@ def _found(
     return Found(formulation, rows, len(rows), complete, paths, tuple(notes), 1, closure)
 
 
-def closure_from_start(mech: Mechanism, config: str) -> tuple[Any, str | None]:
-    """Where continuation from the configuration's start closes it (``solve`` in float),
-    or why it does not: (the SolveResult or None, the reason or None).  Computed once per
-    ``modes``: the formulations test it as a posture, the result marks the mode it is."""
-    from mechsing.analysis.solve import solve
-    from mechsing.errors import ConfigurationError, UserError
-
-    try:
-        return solve(mech, config, "float"), None
-    except (ConfigurationError, UserError) as exc:
-        return None, str(exc)
-
-
 def _candidates(arm: Any, system: Any, own: Any, closed: Any) -> list[tuple[list[Any], bool]]:
     """Postures known before the homotopy: the configuration's own joints (``own``:
     exact) and where continuation from its start closes (``closed``: float), as outer
@@ -252,3 +264,47 @@ def _claim(
             "or points of a curve of solutions): the count is not proven"
         )
     return complete
+
+
+def _serial_applies(given: Given) -> str | None:
+    from mechsing.assembly.serial import arm_chain
+    from mechsing.errors import FormulationError
+
+    try:
+        names, _ = arm_chain(given.mech)
+    except FormulationError as reason:
+        return str(reason)
+    cfg = given.mech.configurations[given.config]
+    if len(names) > 6 and cfg.pose is None:
+        return (
+            f"the arm has {len(names)} joints: give the output's pose and {len(names) - 6} "
+            "joint values (a redundant arm reaches a pose alone along a curve)"
+        )
+    return None
+
+
+def _serial_find(given: Given) -> Found:
+    return serial_found(given.mech, given.config, given.dps, given.atol, given.closure)
+
+
+def _loop_applies(given: Given) -> str | None:
+    from mechsing.assembly.serial import loop_arm
+    from mechsing.errors import FormulationError
+
+    if given.values is None:
+        return NO_INPUTS
+    try:
+        given.cache["loop"] = loop_arm(given.mech, given.values, _length(given.mech))
+    except FormulationError as reason:
+        return str(reason)
+    return None
+
+
+def _loop_find(given: Given) -> Found:
+    return loop_found(given.mech, given.config, given.values, given.dps, given.closure)
+
+
+#: a serial arm of six R or P joints (or more, with all but six given) for the output's pose
+SERIAL_ARM = Formulation("half-angle pairs of a serial arm", _serial_applies, _serial_find)
+#: a single loop of R and P joints whose given values leave six unknown
+SINGLE_LOOP = Formulation("half-angle pairs of a single loop", _loop_applies, _loop_find)

@@ -37,12 +37,17 @@ def system_text(eqs: Sequence[sympy.Expr], groups: Sequence[Sequence[sympy.Symbo
 
 
 def track(
-    eqs: Sequence[sympy.Expr], groups: Sequence[Sequence[sympy.Symbol]]
+    eqs: Sequence[sympy.Expr],
+    groups: Sequence[Sequence[sympy.Symbol]],
+    mptype: str = "adaptive",
 ) -> tuple[list[np.ndarray], int]:
     """Every finite endpoint (complex, double precision, the groups' variables in order)
     of the system's homotopy, and the number of paths tracked.  Several variable groups
     make Bertini's start system multihomogeneous (one path per multihomogeneous Bezout
-    root), one group a total-degree start."""
+    root), one group a total-degree start.  ``mptype``: Bertini's precision model
+    (``adaptive``, or ``double`` where the endpoints are refined afterwards anyway and
+    adaptive precision would crawl along the many singular paths of an overconstrained
+    loop's isotropic components)."""
     try:
         import bertini
     except ImportError:
@@ -53,9 +58,10 @@ def track(
     was = bertini.recording()
     bertini.recording(False)  # no records directory in the user's cwd, no replayed paths
     try:
+        text = system_text(eqs, groups)
         while True:  # a signal stops the tracking; its handler raises once the solve returns
             with interruptible(bertini.request_stop) as stopped:
-                result = bertini.solve(bertini.parse.system(system_text(eqs, groups)), seed=SEED)
+                result = bertini.solve(bertini.parse.system(text), seed=SEED, mptype=mptype)
             if not stopped():  # (a handler that did not raise: the solve is run again)
                 break
     finally:

@@ -133,6 +133,31 @@ def modes_schema() -> dict[str, Any]:
                         "description": "a serial arm's two consecutive joints whose span "
                         "carries the formulation (solved last, by factorisation)",
                     },
+                    "closures": {
+                        "type": "array",
+                        "description": "the general formulation: each loop (or an arm's chain "
+                        "to its target), the subgroup its joints generate and its closure "
+                        "equations in that subgroup's coordinates",
+                        "items": {
+                            "type": "object",
+                            "properties": {
+                                "joints": {"type": "array", "items": {"type": "string"}},
+                                "subgroup": {"type": ["string", "null"]},
+                                "equations": {"type": "integer", "minimum": 0},
+                            },
+                        },
+                    },
+                    "randomized": {
+                        "type": "boolean",
+                        "description": "more closure equations than unknowns (an "
+                        "overconstrained mechanism): solved as random combinations",
+                    },
+                    "dimension": {
+                        "type": "integer",
+                        "minimum": 1,
+                        "description": "complete infinite: the dimension of the closed "
+                        "configurations with the given values (local dimension test)",
+                    },
                 },
             },
             "paths": {

@@ -51,15 +51,14 @@ import sympy
 from mechsing.assembly.certify import krawczyk_complex, newton, regular, singular_root
 from mechsing.assembly.engine import SEED, real_endpoints, track
 from mechsing.assembly.study import (
-    dconj,
-    dmul,
     line,
-    qmul,
     rotation,
     rotation_quaternion,
     slide,
 )
 from mechsing.errors import FormulationError, UserError
+from mechsing.lie.dual import study_conjugate, study_multiply
+from mechsing.lie.quaternion import quat_multiply
 from mechsing.model import Mechanism
 from mechsing.numeric import (
     MODE_CERTIFY_RADIUS,
@@ -85,7 +84,11 @@ __all__ = [
     "posture_distance",
     "serial_target",
     "six_joint_chain",
+    "account",
     "arm_chain",
+    "arm_value",
+    "chain_to_output",
+    "half_angle_value",
     "pose_target",
     "solve_serial",
 ]
@@ -117,7 +120,24 @@ class SerialArm:
 
 def arm_chain(mech: Mechanism) -> tuple[list[str], list[int]]:
     """The joints of a mechanism without loops from ground to its output, each R or P
-    (every joint of the file on that chain), and each one's direction along it."""
+    (every joint of the file on that chain, six or more), and each one's direction along it."""
+    names, signs = chain_to_output(mech)
+    bad = [n for n in names if mech.joint(n).type not in ("R", "P")]
+    if bad:
+        raise FormulationError(
+            f"the arm's joints must be R or P, and joint {bad[0]} is {mech.joint(bad[0]).type}"
+        )
+    if len(names) < 6:
+        raise FormulationError(
+            f"the arm needs six R or P joints from ground, and it has {len(names)} (its "
+            "postures for a whole pose are the solutions of more equations than unknowns)"
+        )
+    return names, signs
+
+
+def chain_to_output(mech: Mechanism) -> tuple[list[str], list[int]]:
+    """The joints of a mechanism without loops from ground to its output (every joint of
+    the file on that chain), and each one's direction along it."""
     out = mech.output
     if mech.loops:
         raise FormulationError("the mechanism has loops: it is not a serial arm")
@@ -132,16 +152,6 @@ def arm_chain(mech: Mechanism) -> tuple[list[str], list[int]]:
         raise FormulationError(
             f"joint {off[0]} is not on the chain from ground to the output {out.body} (each "
             "joint must be: remove the side branch, or make its body the output)"
-        )
-    bad = [n for n in names if mech.joint(n).type not in ("R", "P")]
-    if bad:
-        raise FormulationError(
-            f"the arm's joints must be R or P, and joint {bad[0]} is {mech.joint(bad[0]).type}"
-        )
-    if len(names) < 6:
-        raise FormulationError(
-            f"the arm needs six R or P joints from ground, and it has {len(names)} (its "
-            "postures for a whole pose are the solutions of more equations than unknowns)"
         )
     return names, [st.sign for st in steps]
 
@@ -188,10 +198,10 @@ def six_joint_chain(
         ln = _joint_line(mech, name, sign, Lm)
         if name in given:
             kind = mech.joint(name).type
-            C = dmul(C, _factor(*_pair(kind, _mp(given[name][0]), Lm), ln))
+            C = study_multiply(C, _factor(*_pair(kind, _mp(given[name][0]), Lm), ln))
         else:
-            lines.append(dmul(dmul(C, ln), dconj(C)))
-    return _arm(mech, unknown, lines, Lm), dmul(list(T), dconj(C))
+            lines.append(study_multiply(study_multiply(C, ln), study_conjugate(C)))
+    return _arm(mech, unknown, lines, Lm), study_multiply(list(T), study_conjugate(C))
 
 
 def _arm(mech: Mechanism, names: list[str], lines: list[list[Any]], L: Any) -> SerialArm:
@@ -277,7 +287,7 @@ def serial_target(
     if cfg.pose is None:
         T: list[Any] = list(IDENTITY)
         for n, kind, ln in zip(arm.joints, arm.kinds, arm.lines, strict=True):
-            T = dmul(T, _factor(*_pair(kind, _mp(_arm_value(mech, config, n)), arm.L), ln))
+            T = study_multiply(T, _factor(*_pair(kind, _mp(arm_value(mech, config, n)), arm.L), ln))
         return T, True
     if given:
         raise FormulationError(
@@ -308,7 +318,7 @@ def pose_target(mech: Mechanism, config: str, L: Any, atol: Any = 1e-9) -> list[
     X = rotation_quaternion(R)
     norm = mpmath.sqrt(sum(x * x for x in X))  # the nearest rotation's, when R is rounded
     X = [x / norm for x in X]
-    Y = [v / 2 for v in qmul([0, t[0], t[1], t[2]], X)]
+    Y = [v / 2 for v in quat_multiply([0, t[0], t[1], t[2]], X)]
     return [*X, *Y]
 
 
@@ -323,7 +333,7 @@ def _check_rotation(mech: Mechanism, config: str, R: Any, atol: Any) -> None:
         )
 
 
-def _arm_value(mech: Mechanism, config: str, name: str) -> Any:
+def arm_value(mech: Mechanism, config: str, name: str) -> Any:
     """A joint's value in a configuration of an arm without loops: given there, else in
     its start's (the chain of starts), else the reference's 0."""
     cur: str | None = config
@@ -346,7 +356,7 @@ def given_solution(
     """The four outer pairs and six joint values of a configuration that gives the arm's
     joints (one of its own modes)."""
     arm = system.arm
-    q = [_mp(_arm_value(mech, config, n)) for n in arm.joints]
+    q = [_mp(arm_value(mech, config, n)) for n in arm.joints]
     return pairs_of(system, q), [
         _value(k, *_pair(k, v, arm.L), arm.L) for k, v in zip(arm.kinds, q, strict=True)
     ]
@@ -404,7 +414,7 @@ def _pair_space(a: list[Any], b: list[Any]) -> tuple[Any, Any, Any, float, float
     or the span has not four dimensions) and how far the span is from fewer dimensions
     (the least pivot of R)."""
     B = mpmath.matrix(8, 4)
-    for k, v in enumerate(([1, 0, 0, 0, 0, 0, 0, 0], a, b, dmul(a, b))):
+    for k, v in enumerate(([1, 0, 0, 0, 0, 0, 0, 0], a, b, study_multiply(a, b))):
         for i in range(8):
             B[i, k] = v[i]
     full, R8 = mpmath.qr(B, mode="full")
@@ -431,8 +441,10 @@ def serial_system(arm: SerialArm, target: list[Any], shift: int | None = None) -
     first past the target) whose lines are the farthest from parallel or meeting
     (``shift``: on the pair of the arm's joints ``shift + 2`` and ``shift + 3``, counted
     from 0 and past the target, whatever its lines)."""
-    Tc = dconj(target)
-    moved = [dmul(dmul(Tc, ln), target) for ln in arm.lines]  # T* A T: past the target
+    Tc = study_conjugate(target)
+    moved = [
+        study_multiply(study_multiply(Tc, ln), target) for ln in arm.lines
+    ]  # T* A T: past the target
     pairs = []
     for turn in range(6):
         order = tuple((turn + i) % 6 for i in range(6))
@@ -463,9 +475,15 @@ def serial_system(arm: SerialArm, target: list[Any], shift: int | None = None) -
 
     G = [[num(x) for x in lines[i]] for i in (0, 1, 4, 5)]
     F = [_factor(c, s, g) for (c, s), g in zip(groups, G, strict=True)]
-    M = dmul(
-        dmul(dmul(dmul(dconj(F[1]), dconj(F[0])), [num(x) for x in target]), dconj(F[3])),
-        dconj(F[2]),
+    M = study_multiply(
+        study_multiply(
+            study_multiply(
+                study_multiply(study_conjugate(F[1]), study_conjugate(F[0])),
+                [num(x) for x in target],
+            ),
+            study_conjugate(F[3]),
+        ),
+        study_conjugate(F[2]),
     )
     # M in V: its components along V's complement (N's columns) vanish
     linear = [sympy.expand(sum(num(N[i, k]) * M[i] for i in range(8))) for k in range(4)]
@@ -570,6 +588,7 @@ def already_found(arm: SerialArm, q: list[Any], found: list[tuple[Any, list[Any]
 
 
 def _value(kind: str, c: Any, s: Any, L: Any) -> Any:
+    """A joint value (rad in (-pi, pi], or a slide) of its pair ``(c, s)``."""
     if kind == "R":
         q = 2 * mpmath.atan2(s, c)  # in (-2 pi, 2 pi]: brought to (-pi, pi]
         if q > mpmath.pi:
@@ -590,7 +609,15 @@ def joint_values_serial(system: SerialSystem, pairs: list[Any]) -> list[Any]:
     F = [
         _factor(pairs[2 * k], pairs[2 * k + 1], system.lines[i]) for k, i in enumerate((0, 1, 4, 5))
     ]
-    M = dmul(dmul(dmul(dmul(dconj(F[1]), dconj(F[0])), system.target), dconj(F[3])), dconj(F[2]))
+    M = study_multiply(
+        study_multiply(
+            study_multiply(
+                study_multiply(study_conjugate(F[1]), study_conjugate(F[0])), system.target
+            ),
+            study_conjugate(F[3]),
+        ),
+        study_conjugate(F[2]),
+    )
     Qt = system.basis.T * mpmath.matrix(M)
     q = mpmath.lu_solve(system.triangle, Qt)  # (c3 c4, s3 c4, c3 s4, s3 s4)
     col = (q[0], q[1]) if abs(q[0]) + abs(q[1]) >= abs(q[2]) + abs(q[3]) else (q[2], q[3])
@@ -635,14 +662,14 @@ def solve_serial(
             if curve:
                 names = system.arm.joints
                 at = ", ".join(f"{n} = {float(v):.6g}" for n, v in zip(names, q, strict=True))
-                return [], _account(tracked, raw, genuine, real, found, 0, flat), at, genuine
+                return [], account(tracked, raw, genuine, real, found, 0, flat), at, genuine
         q = joint_values_serial(system, pairs)
         if already_found(system.arm, q, found):
             duplicates += 1
             continue
         found.append((pairs, q, ok))
     found.sort(key=lambda f: [float(x) for x in f[1]])
-    return found, _account(tracked, raw, genuine, real, found, duplicates, flat), None, genuine
+    return found, account(tracked, raw, genuine, real, found, duplicates, flat), None, genuine
 
 
 def all_certified(system: SerialSystem, points: list[np.ndarray], dps: int) -> int | None:
@@ -712,9 +739,10 @@ def _nearly_real(z: np.ndarray) -> bool:
     return float(np.max(np.abs(z.imag))) <= MODE_SINGULAR_IMAGINARY_RTOL * scale
 
 
-def _account(
+def account(
     tracked: int, raw: list, genuine: list, real: list, found: list, duplicates: int, singular: int
 ) -> dict[str, Any]:
+    """The paths' account of a homotopy (``found``: the distinct real modes refined)."""
     return {
         "tracked": tracked,
         "finite": len(raw),
@@ -739,3 +767,7 @@ def posture_distance(arm: SerialArm, q1: list[Any], q2: list[Any]) -> float:
             d /= float(arm.L)
         total += d * d
     return float(np.sqrt(total))
+
+
+#: a joint's value of its half-angle pair (the general formulation reads its pairs so)
+half_angle_value = _value

@@ -30,8 +30,9 @@ import sympy
 
 from mechsing.assembly.certify import newton
 from mechsing.assembly.engine import SEED, real_endpoints, track
-from mechsing.assembly.study import qconj, qmul, rotation
+from mechsing.assembly.study import rotation
 from mechsing.errors import ConfigurationError, FormulationError
+from mechsing.lie.quaternion import quat_conjugate, quat_multiply
 from mechsing.model import Mechanism
 
 __all__ = [
@@ -87,9 +88,9 @@ def spatial_system(mech: Mechanism, given: dict[str, tuple[Any, ...]]) -> Spatia
     delta = sum(x * x for x in X)
     eqs = []
     for _names, a, b, l2 in legs:
-        XbX = qmul(qmul(X, [0, *b]), qconj(X))
-        XcY = qmul(qconj(X), Y)
-        YXc = qmul(Y, qconj(X))
+        XbX = quat_multiply(quat_multiply(X, [0, *b]), quat_conjugate(X))
+        XcY = quat_multiply(quat_conjugate(X), Y)
+        YXc = quat_multiply(Y, quat_conjugate(X))
         k = a.dot(a) + b.dot(b) - l2
         eq = (
             k * delta
@@ -164,10 +165,10 @@ def pose_of(study: list[Any]) -> tuple[mpmath.matrix, mpmath.matrix]:
     for j in range(3):
         e = [0, 0, 0, 0]
         e[j + 1] = 1
-        col = qmul(qmul(X, e), qconj(X))
+        col = quat_multiply(quat_multiply(X, e), quat_conjugate(X))
         for i in range(3):
             R[i, j] = col[i + 1] / delta
-    t = qmul(Y, qconj(X))
+    t = quat_multiply(Y, quat_conjugate(X))
     return R, mpmath.matrix([2 * t[i + 1] / delta for i in range(3)])
 
 

@@ -7,7 +7,10 @@ quaternion the list of its eight coordinates.  Every function takes any numbers 
 and multiply (float, mpmath, sympy), so one formula serves the solver's polynomial text,
 its refinement at 50 digits and its interval certificate.
 
-Owns :func:`qmul`, :func:`qconj`, :func:`dmul`, :func:`dconj`, :func:`line`,
+The products and conjugates are :mod:`mechsing.lie`'s (:func:`~mechsing.lie.quat_multiply`,
+:func:`~mechsing.lie.study_multiply`, :func:`~mechsing.lie.study_conjugate`).
+
+Owns :func:`line`,
 :func:`slide`, :func:`rotation_quaternion`, :func:`rotation` (a rotation matrix of mpmath
 numbers, from an axis and an angle or from a rotation vector).
 """
@@ -20,45 +23,11 @@ from typing import Any
 import mpmath
 
 __all__ = [
-    "dconj",
-    "dmul",
     "line",
-    "qconj",
-    "qmul",
     "rotation",
     "rotation_quaternion",
     "slide",
 ]
-
-
-def qmul(p: Sequence[Any], q: Sequence[Any]) -> list[Any]:
-    """The quaternion product ``p q``."""
-    w1, x1, y1, z1 = p
-    w2, x2, y2, z2 = q
-    return [
-        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
-    ]
-
-
-def qconj(q: Sequence[Any]) -> list[Any]:
-    """The quaternion conjugate ``q*``."""
-    return [q[0], -q[1], -q[2], -q[3]]
-
-
-def dmul(a: Sequence[Any], b: Sequence[Any]) -> list[Any]:
-    """The dual-quaternion product ``a b`` (``a`` after ``b`` as displacements)."""
-    x = qmul(a[:4], b[:4])
-    y1, y2 = qmul(a[:4], b[4:]), qmul(a[4:], b[:4])
-    return [*x, *(u + v for u, v in zip(y1, y2, strict=True))]
-
-
-def dconj(a: Sequence[Any]) -> list[Any]:
-    """The conjugate ``a*`` (both parts conjugated): ``a a* = |X|^2 + 2 eps X.Y``, so on
-    the Study quadric ``a*`` is the inverse displacement up to a scalar."""
-    return [*qconj(a[:4]), *qconj(a[4:])]
 
 
 def line(axis: Sequence[Any], point: Sequence[Any]) -> list[Any]:

@@ -5,12 +5,19 @@ with the one continuation from the configuration's start reaches marked, the dis
 between modes and the joints outside their limits.  ``complete`` says what the count
 claims: ``proven`` (exact elimination with certified real-root isolation), ``not
 proven``, ``maximal`` (the generic count, every mode certified) or ``infinite`` (the given
-values leave a curve: no count).  Planar mechanisms whose unknown part is one body held by
-legs (a four-bar, a slider-crank, a 3-RPR) are solved by built-in exact elimination;
-platforms on six U-P-S or S-P-S legs by homotopy continuation in Study coordinates, with
-the ``modes`` extra (pip install 'mechsing[modes]': Bertini 2, GPL-3.0-or-later); others
-exit 2 with the reason.  Exit status: 0 success, 2 bad
-input or no method applies, 3 a mode that could not be analysed.
+values leave a curve: no count, the dimension in the notes).  The first formulation of
+the registry that applies is used: (1) a planar mechanism (its joints generate the planar
+motions, in any plane) whose unknown part is one body held by legs (a four-bar, a
+slider-crank, a 3-RPR): built-in exact elimination; (2) a platform on six U-P-S or S-P-S
+legs: Study coordinates; (3) a single loop of R and P joints with six unknown: half-angle
+pairs of a single loop; (4) a serial arm of six R or P joints (or more, with all but six
+given) at a pose: half-angle pairs of a serial arm; (5) any other mechanism of R, P, C, U
+and S joints, or an arm of fewer joints at a pose in the subgroup its end moves in (a
+pose outside it exits 2, naming the subgroup): each joint's displacement in Study
+coordinates, each loop's closure in its own subgroup's (three equations for a planar or
+spherical loop, six in general).  (2) to (5) use homotopy continuation with the ``modes``
+extra (pip install 'mechsing[modes]': Bertini 2, GPL-3.0-or-later).  Exit status: 0
+success, 2 bad input or no method applies, 3 a mode that could not be analysed.
 """
 
 from __future__ import annotations

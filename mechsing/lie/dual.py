@@ -72,6 +72,8 @@ __all__ = [
     "dual_to_screw",
     "screw_displacement",
     "screw_to_dual",
+    "study_conjugate",
+    "study_multiply",
 ]
 
 
@@ -414,6 +416,31 @@ def dual_quat_conjugate(Q: Dual) -> Dual:
     (The other two conjugates, ``r - eps d`` and ``r* - eps d*``, are not used.)
     """
     return Dual(quat_conjugate(Q.a), quat_conjugate(Q.b))
+
+
+def study_multiply(a: Any, b: Any) -> list[Any]:
+    """:func:`dual_quat_multiply` on Study coordinates: ``a``, ``b`` the eight numbers
+    ``(r, d)`` of ``r + eps d`` (any that add and multiply: float, mpmath, sympy
+    expressions, so one formula serves a polynomial system, its refinement and its
+    interval certificate); the product's eight, as a list."""
+    ar, ad, br, bd = (_quaternion_of(x) for x in (a[:4], a[4:], b[:4], b[4:]))
+    r = quat_multiply(ar, br)
+    d = quat_multiply(ar, bd) + quat_multiply(ad, br)
+    return [*r.tolist(), *d.tolist()]
+
+
+def _quaternion_of(x: Any) -> np.ndarray:
+    """Four numbers as an array quat_multiply takes: float64 for Python floats, objects
+    else (ints, mpmath and sympy stay what they are)."""
+    out = np.empty(4, dtype=object)
+    out[:] = list(x)
+    return out.astype(float) if all(isinstance(v, float) for v in out) else out
+
+
+def study_conjugate(a: Any) -> list[Any]:
+    """:func:`dual_quat_conjugate` on Study coordinates (both parts conjugated): ``a a* =
+    |r|^2 + 2 eps r.d``, so on the Study quadric ``a*`` is the inverse up to a scalar."""
+    return [a[0], -a[1], -a[2], -a[3], a[4], -a[5], -a[6], -a[7]]
 
 
 # ---------------------------------------------------------------------------

@@ -422,3 +422,9 @@ INERTIA_RTOL = 1e-9
 #: size of its terms; at a Type II singularity a motion that does not satisfy the condition
 #: leaves a residual of the order of the efforts themselves
 CROSSING_RTOL = 1e-9
+#: the general formulation: a direction of Study coordinates is in the span of a loop's
+#: products (the coordinates of its own subgroup) when its singular value is above this
+#: times the largest (the coefficients are known to the working digits, 50 or more; a
+#: direction not in the span has an exact zero there); a serial arm's target lies in the
+#: subgroup its end moves in when its part outside that span is below this times its size
+MODE_SPAN_RTOL = 1e-20

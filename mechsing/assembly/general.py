@@ -1,0 +1,744 @@
+"""The general formulation: every mechanism of R, P, C, U and S joints whose given values
+leave finitely many closed configurations (or say that they do not, with the dimension).
+
+Each unknown joint's displacement is a dual quaternion (Study coordinates, lengths over
+L) linear in its own homogeneous coordinates: a revolute's half-angle pair ``(c, s)`` ~
+``(cos(q/2), sin(q/2))``, ``c + s A`` with ``A`` its line; a prismatic joint's pair
+``(1, q/(2L))``, ``c + s eps u``; a C joint the two, a U joint its two revolutes'
+(``exp(q1 e1) exp(q2 e2)``); an S joint the quaternion ``r`` of its rotation, ``r + eps
+(p x r)`` about its point p (four homogeneous coordinates, three dimensions).  A given
+joint is the constant its values make.
+
+Every independent loop closes when the product of its joints' displacements (each
+reversed where the loop crosses it backwards) is the identity up to a scalar; a serial
+arm when its chain's product is the output's target pose ``T`` (``F1 ... Fn T* ~ 1``).
+The product lies in the span of the loop's displacements, the linear hull of the
+subgroup its joints generate in Study coordinates (``{1, k, eps i, eps j}`` for planar
+motions across z, the quaternions for rotations about the origin, all eight for D).  The
+closure is written in those coordinates: the product's components along the span
+orthogonal to ``1`` and ``eps`` (on the Study quadric they vanish only at the
+identity), three equations for a planar or spherical loop, four for a Schoenflies one,
+six in general.  Each equation is linear in each pair, so Bertini 2 tracks the paths of
+a multihomogeneous start system, one variable group per joint coordinate set (the
+multihomogeneous Bezout number).  With more equations than unknowns (an overconstrained
+loop: Bennett's, Bricard's, Sarrus's) the system is randomized to as many random
+combinations and each endpoint is checked on every equation.
+
+An endpoint with an isotropic pair (``c^2 + s^2 = 0``), an infinite slide or a product
+off the identity is extraneous; the real ones are refined by Newton's method at the
+working digits and certified by the Krawczyk test, as the other formulations' are; a
+singular one gets the local dimension test (:func:`~mechsing.assembly.certify.local_dimension`):
+on a curve of closed configurations there is no count, only ``infinite`` with the
+dimension.
+
+Owns :class:`Problem`, :func:`problem`, :func:`bezout` and :data:`FORMULATION`.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+from typing import Any
+
+import mpmath
+import numpy as np
+import sympy
+
+from mechsing.assembly.chains import Found
+from mechsing.assembly.given import Formulation, Given
+from mechsing.errors import FormulationError, UserError
+from mechsing.lie.dual import study_conjugate, study_multiply
+from mechsing.model import Mechanism
+from mechsing.numeric import (
+    MODE_CERTIFY_RADIUS,
+    MODE_EXTRANEOUS_RTOL,
+    MODE_ISOTROPIC_RTOL,
+    MODE_MATCH_DISTANCE,
+    MODE_SPAN_RTOL,
+)
+
+__all__ = ["FORMULATION", "Problem", "bezout", "patched_system", "problem"]
+
+#: the most paths the general formulation tracks (its multihomogeneous Bezout number);
+#: a system of more is refused with the count (a multi-loop platform of U joints: Tsai's
+#: 3-UPU has millions), not left running for hours
+MAX_PATHS = 4000
+#: Bertini's precision model for a randomized system (an overconstrained loop's, and the
+#: slices'): double precision (each real endpoint is refined at 50 digits afterwards;
+#: adaptive precision crawls for minutes along the singular paths of such a system's
+#: isotropic components: Sarrus's); a square system keeps adaptive precision (in double,
+#: 8 of a SCARA's 24 paths fail)
+MPTYPE = "double"
+#: how many random slicings of an underdetermined system are tried for a real point
+SLICE_TRIES = 4
+#: the seed of the randomization of an overconstrained system and of the patches
+SEED = 41
+
+_WRITTEN = ("R", "P", "C", "U", "S")
+
+
+@dataclass(frozen=True)
+class Group:
+    """One variable group: the joint it belongs to, ``kind`` (``R`` a half-angle pair,
+    ``P`` a slide's pair, ``S`` a rotation's quaternion), its symbols."""
+
+    joint: str
+    kind: str
+    gens: tuple[sympy.Symbol, ...]
+
+    @property
+    def dim(self) -> int:
+        return len(self.gens) - 1
+
+
+@dataclass(frozen=True)
+class Closure:
+    """One closure: the joints in order, the subgroup they generate (its symbol), the
+    product's eight Study coordinates and the closure equations in the span's coordinates."""
+
+    joints: tuple[str, ...]
+    subgroup: str | None
+    product: tuple[sympy.Expr, ...]
+    equations: tuple[sympy.Expr, ...]
+
+
+@dataclass(frozen=True)
+class Problem:
+    """The system: the variable groups, each unknown joint's groups, the closures, the
+    length scale, the target (a serial arm's) and the given joints' values."""
+
+    groups: tuple[Group, ...]
+    joints: dict[str, tuple[int, ...]]
+    closures: tuple[Closure, ...]
+    L: Any
+    given: dict[str, list[Any]]
+    arm: bool
+
+    @property
+    def gens(self) -> list[sympy.Symbol]:
+        return [g for grp in self.groups for g in grp.gens]
+
+    @property
+    def unknowns(self) -> int:
+        return sum(g.dim for g in self.groups)
+
+    @property
+    def equations(self) -> list[sympy.Expr]:
+        return [e for c in self.closures for e in c.equations]
+
+
+def _num(x: Any) -> Any:
+    """A number at the working digits plus guard digits, as a sympy Float."""
+    if isinstance(x, (int, sympy.Integer)):
+        return sympy.Integer(x)
+    return sympy.Float(
+        mpmath.mpf(x) if not isinstance(x, sympy.Basic) else sympy.N(x, mpmath.mp.dps + 10),
+        mpmath.mp.dps + 10,
+    )
+
+
+def _expand(v: list[Any]) -> list[Any]:
+    return [sympy.expand(x) for x in v]
+
+
+class _Joints:
+    """Each joint's displacement in Study coordinates: unknown (linear in its groups) or
+    given (a constant)."""
+
+    def __init__(self, mech: Mechanism, given: dict[str, list[Any]]) -> None:
+        from mechsing.kinematics import KinematicModel
+
+        self.mech = mech
+        self.km = KinematicModel(mech, f"mp:{mpmath.mp.dps + 10}")
+        self.L = mpmath.mpf(self.km.length_scale)
+        self.given = given
+        self.groups: list[Group] = []
+        self.of: dict[str, tuple[int, ...]] = {}
+        self.cache: dict[str, list[Any]] = {}
+
+    def _line(self, e: Any) -> list[Any]:
+        w = [_num(x) for x in e[:3]]
+        v = [_num(mpmath.mpf(x) / self.L) for x in e[3:]]
+        return [0, *w, 0, *v]
+
+    def _group(self, name: str, kind: str, n: int) -> tuple[sympy.Symbol, ...]:
+        k = len(self.groups)
+        gens = sympy.symbols(f"g{k}_0:{n}")
+        self.groups.append(Group(name, kind, gens))
+        self.of[name] = (*self.of.get(name, ()), k)
+        return gens
+
+    def element(self, name: str) -> list[Any]:
+        """The joint's displacement (8 sympy expressions)."""
+        if name in self.cache:
+            return self.cache[name]
+        j = self.mech.joint(name)
+        if j.type not in _WRITTEN:
+            raise FormulationError(
+                f"joint {name} is of type {j.type}: the general formulation writes R, P, C, U "
+                "and S joints (a helical joint's slide is not polynomial in its angle)"
+            )
+        basis = self.km.joint(name).basis
+        values = self.given.get(name)
+        factors = []
+        if j.type == "S":
+            p = [mpmath.mpf(x) / self.L for x in self.km.point_array(j.params["point"])]
+            if values is None:
+                r = list(self._group(name, "S", 4))
+            else:
+                r = _quaternion_of_vector([_mpf(x) for x in values])
+            cross = [
+                p[1] * r[3] - p[2] * r[2],
+                p[2] * r[1] - p[0] * r[3],
+                p[0] * r[2] - p[1] * r[1],
+            ]
+            factors.append([*r, 0, *(c if values is None else _num(c) for c in cross)])
+            factors[0][:4] = [x if values is None else _num(x) for x in factors[0][:4]]
+        else:
+            for i, e in enumerate(basis):
+                rotates = any(mpmath.mpf(x) != 0 for x in e[:3])
+                A = self._line(e) if rotates else [0, 0, 0, 0, 0, *(_num(x) for x in e[3:])]
+                kind = "R" if rotates else "P"
+                if values is None:
+                    c, s = self._group(name, kind, 2)
+                else:
+                    q = _mpf(values[i])
+                    c, s = (
+                        (mpmath.cos(q / 2), mpmath.sin(q / 2))
+                        if rotates
+                        else (mpmath.mpf(1), q / (2 * self.L))
+                    )
+                    c, s = _num(c), _num(s)
+                factors.append([c if k == 0 else 0 for k in range(8)])
+                factors[-1] = [a + s * b for a, b in zip(factors[-1], A, strict=True)]
+        out = factors[0]
+        for f in factors[1:]:
+            out = _expand(study_multiply(out, f))
+        self.cache[name] = out
+        return out
+
+
+def _quaternion_of_vector(v: list[Any]) -> list[Any]:
+    """The unit quaternion of a rotation vector (mpmath)."""
+    r = [mpmath.mpf(x) for x in v]
+    t = mpmath.sqrt(sum(x * x for x in r))
+    if t == 0:
+        return [mpmath.mpf(1), 0, 0, 0]
+    return [mpmath.cos(t / 2), *(mpmath.sin(t / 2) * x / t for x in r)]
+
+
+def _span(product: list[Any], gens: list[sympy.Symbol]) -> Any:
+    """An orthonormal basis (8 x r, mpmath) of the span of the product's coefficient
+    vectors and of 1."""
+    cols: dict[Any, list[Any]] = {}
+    for k, comp in enumerate(product):
+        poly = sympy.Poly(comp, *gens) if gens else None
+        terms = poly.terms() if poly is not None else [((), comp)]
+        for mono, coeff in terms:
+            cols.setdefault(mono, [0] * 8)[k] = mpmath.mpf(sympy.N(coeff, mpmath.mp.dps))
+    M = mpmath.matrix(8, len(cols) + 1)
+    M[0, 0] = 1
+    for j, col in enumerate(cols.values()):
+        for k in range(8):
+            M[k, j + 1] = col[k]
+    U, S, _ = mpmath.svd_r(M)
+    r = sum(1 for x in S if x > MODE_SPAN_RTOL * S[0])
+    return U[:, :r] if r < U.cols else U
+
+
+def _closure_equations(product: list[Any], gens: list[sympy.Symbol]) -> list[sympy.Expr]:
+    """The product's components along its span orthogonal to ``1`` and ``eps``."""
+    V = _span(product, gens)
+    r = V.cols
+    M = mpmath.matrix(max(r, 2), r)  # the span's components along 1 and eps, padded square
+    for k in range(r):
+        M[0, k], M[1, k] = V[0, k], V[4, k]
+    _, S, Vt = mpmath.svd_r(M)
+    rank = sum(1 for x in S if x > MODE_SPAN_RTOL)
+    eqs = []
+    for i in range(rank, r):
+        w = [sum(V[n, k] * Vt[i, k] for k in range(r)) for n in range(8)]
+        eqs.append(sympy.expand(sum(_num(w[n]) * product[n] for n in range(8))))
+    return eqs
+
+
+def problem(given: Given) -> Problem:
+    """The general formulation of ``given``: the loops' closures with the given values, or
+    a serial arm's chain to its target."""
+    mech = given.mech
+    if mech.loops:
+        values = {n: list(vals) for n, vals in given.values.items()}
+        joints = _Joints(mech, values)
+        chains = [(list(lp.joints), list(lp.signs), None) for lp in mech.loops]
+        arm = False
+    else:
+        chains, values = _arm_chain(given)
+        joints = _Joints(mech, values)
+        arm = True
+    closures = []
+    for names, signs, target in chains:
+        product: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
+        for name, sign in zip(names, signs, strict=True):
+            F = joints.element(name)
+            product = _expand(study_multiply(product, F if sign > 0 else study_conjugate(F)))
+        gens = [
+            g
+            for k in sorted({k for n in names for k in joints.of.get(n, ())})
+            for g in joints.groups[k].gens
+        ]
+        if target is not None:
+            T = _target(given, joints.L, target)
+            _check_in_span(given, product, gens, T, names)
+            product = _expand(study_multiply(product, [_num(x) for x in study_conjugate(T)]))
+        closures.append(
+            Closure(
+                tuple(names),
+                _symbol(mech, names),
+                tuple(product),
+                tuple(_closure_equations(product, gens)),
+            )
+        )
+    return Problem(tuple(joints.groups), joints.of, tuple(closures), joints.L, values, arm)
+
+
+def _symbol(mech: Mechanism, names: list[str]) -> str | None:
+    from mechsing.kinematics.family import family
+
+    return family(mech, names).symbol
+
+
+def _arm_chain(given: Given) -> tuple[list[tuple[list[str], list[int], Any]], dict[str, list[Any]]]:
+    """A serial arm's chain to its output, its given joints and what its target is (the
+    configuration's pose, or the joint values whose pose it is)."""
+    from mechsing.assembly.serial import chain_to_output
+
+    mech, config = given.mech, given.config
+    names, signs = chain_to_output(mech)
+    cfg = mech.configurations[config]
+    if cfg.pose is not None:
+        values = {n: list(cfg.values[n]) for n in names if n in cfg.values}
+        return [(names, signs, "pose")], values
+    return [(names, signs, {n: _arm_values(mech, config, n) for n in names})], {}
+
+
+def _arm_values(mech: Mechanism, config: str, name: str) -> list[Any]:
+    """A joint's values in a configuration of an arm without loops: given there, else in
+    its start's (the chain of starts), else the reference's zeros."""
+    cur: str | None = config
+    while cur is not None:
+        cfg = mech.configurations[cur]
+        if name in cfg.values:
+            return list(cfg.values[name])
+        cur = cfg.start
+    return [0] * mech.joint(name).dof
+
+
+def _mpf(x: Any) -> Any:
+    """A given value (float, exact) at the working digits plus guard digits."""
+    if isinstance(x, (float, int)):
+        return mpmath.mpf(x)
+    return mpmath.mpf(sympy.N(sympy.sympify(x), mpmath.mp.dps + 10))
+
+
+def _target(given: Given, L: Any, target: Any) -> list[Any]:
+    """The target's Study coordinates (lengths over L): the configuration's pose, or the
+    displacement the arm's joints reach at ``target``'s values."""
+    from mechsing.assembly.serial import chain_to_output, pose_target
+
+    if target == "pose":
+        return pose_target(given.mech, given.config, L, given.atol)
+    fixed = _Joints(given.mech, target)
+    T: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
+    for name, sign in zip(*chain_to_output(given.mech), strict=True):
+        F = fixed.element(name)
+        T = study_multiply(T, F if sign > 0 else study_conjugate(F))
+    return [mpmath.mpf(sympy.N(x, mpmath.mp.dps + 10)) for x in T]
+
+
+def _check_in_span(
+    given: Given, product: list[Any], gens: list[Any], T: list[Any], names: list[str]
+) -> None:
+    """Refuse (exit 2) a target outside the subgroup the arm's end moves in, naming it."""
+    from mechsing.kinematics.family import family
+
+    V = _span(product, gens)
+    coeffs = [sum(V[i, k] * T[i] for i in range(8)) for k in range(V.cols)]
+    off = mpmath.sqrt(
+        sum((T[i] - sum(V[i, k] * coeffs[k] for k in range(V.cols))) ** 2 for i in range(8))
+    )
+    size = mpmath.sqrt(sum(x * x for x in T))
+    if off <= MODE_SPAN_RTOL * size:
+        return
+    fam = family(given.mech, names)
+    words = {
+        "planar": "the planar motions G across the normal {normal}: give the pose by its "
+        "position in the plane through the reference and its angle about the normal",
+        "schoenflies": "the Schoenflies motions X (every translation, rotations about "
+        "{axis}): give the pose by its position and its angle about that axis",
+        "spherical": "the rotations S about the point {point}: give the pose by its "
+        "rotation only (that point stays where it is)",
+        "translational": "the translations T: give the pose by its position only",
+    }
+    text = words.get(fam.kind, "the subgroup {symbol} its joints generate")
+    params = {
+        k: [float(f"{round(float(x), 12):.6g}") + 0.0 for x in v] for k, v in fam.params.items()
+    }
+    raise UserError(
+        f"{given.where}: the pose lies outside the subgroup the arm's end moves in, "
+        + text.format(symbol=fam.symbol, **params)
+        + f" (the target's Study coordinates are {float(off):.3g} of their size outside its span)"
+    )
+
+
+def bezout(supports: list[set[int]], dims: list[int]) -> int:
+    """The multihomogeneous Bezout number of equations each of degree one in each group of
+    its support (``dims``: each group's projective dimension): the number of ways to give
+    every group as many equations as its dimension, each from its support."""
+
+    @functools.cache
+    def count(i: int, left: tuple[int, ...]) -> int:
+        if i == len(supports):
+            return int(not any(left))
+        total = 0
+        for g in supports[i]:
+            if left[g]:
+                rest = list(left)
+                rest[g] -= 1
+                total += count(i + 1, tuple(rest))
+        return total
+
+    return count(0, tuple(dims))
+
+
+def _normalisations(prob: Problem) -> list[sympy.Expr]:
+    """One equation per group fixing its scale: a revolute pair on its unit circle, a
+    slide's c = 1, a quaternion of norm 1."""
+    out = []
+    for g in prob.groups:
+        if g.kind == "P":
+            out.append(g.gens[0] - 1)
+        else:
+            out.append(sum(x * x for x in g.gens) - 1)
+    return out
+
+
+def _randomized(prob: Problem, n: int | None = None) -> list[sympy.Expr]:
+    """As many equations as unknowns (``n``: as many as that): the closures' own when they
+    are as many or fewer, else random combinations of them."""
+    eqs = prob.equations
+    n = prob.unknowns if n is None else n
+    if len(eqs) <= n:
+        return eqs
+    rng = np.random.default_rng(SEED)
+    mix = rng.normal(size=(n, len(eqs)))
+    return [
+        sympy.expand(sum(sympy.Rational(float(mix[r, k])) * eqs[k] for k in range(len(eqs))))
+        for r in range(n)
+    ]
+
+
+def patched_system(prob: Problem) -> tuple[list[sympy.Expr], list[tuple[sympy.Symbol, ...]]]:
+    """The system Bertini tracks: the closure equations (randomized to as many as the
+    unknowns) and a fixed random affine patch on each group; and the groups."""
+    rng = np.random.default_rng(SEED + 1)
+    patched = [*_randomized(prob)]
+    for g in prob.groups:
+        r = rng.normal(size=len(g.gens))
+        patched.append(
+            sum(sympy.Rational(float(c)) * x for c, x in zip(r, g.gens, strict=True)) - 1
+        )
+    return patched, [g.gens for g in prob.groups]
+
+
+def _applies(given: Given) -> str | None:
+    try:
+        prob = problem(given)
+    except FormulationError as reason:
+        return str(reason)
+    if prob.unknowns == 0:
+        return "the given values fix every joint (nothing is left to solve)"
+    given.cache["general"] = prob
+    if len(prob.equations) >= prob.unknowns:
+        eqs = _randomized(prob)
+        supports = [
+            {k for k, g in enumerate(prob.groups) if set(g.gens) & e.free_symbols} for e in eqs
+        ]
+        paths = bezout(supports, [g.dim for g in prob.groups])
+        if paths > MAX_PATHS:
+            return (
+                f"its multihomogeneous start system has {paths} paths (the most tracked is "
+                f"{MAX_PATHS})"
+            )
+        given.cache["general paths"] = paths
+    return None
+
+
+def _values(prob: Problem, z: list[Any]) -> dict[str, list[Any]]:
+    """Each unknown joint's values from its groups' coordinates (mpmath)."""
+    from mechsing.assembly.serial import half_angle_value
+    from mechsing.lie.quaternion import quat_log
+
+    out: dict[str, list[Any]] = {}
+    at = 0
+    for g in prob.groups:
+        v = z[at : at + len(g.gens)]
+        at += len(g.gens)
+        if g.kind == "S":
+            r = np.empty(4, dtype=object)
+            r[:] = [mpmath.mpf(mpmath.re(x)) for x in v]
+            out.setdefault(g.joint, []).extend(list(quat_log(r)))
+        else:
+            out.setdefault(g.joint, []).append(half_angle_value(g.kind, v[0], v[1], prob.L))
+    return out
+
+
+def _row(mech: Mechanism, prob: Problem, z: list[Any]) -> list[Any]:
+    values = {**{n: [_mpf(x) for x in v] for n, v in prob.given.items()}, **_values(prob, z)}
+    return [values[name][i] for name, i in mech.coordinates()]
+
+
+def _genuine(prob: Problem, z: np.ndarray, product: Any) -> bool:
+    """Not extraneous: no isotropic pair or quaternion, no infinite slide, every closure's
+    product the identity up to a non-zero scalar."""
+    at = 0
+    w = []
+    for g in prob.groups:
+        v = z[at : at + len(g.gens)]
+        at += len(g.gens)
+        size = float(np.sum(np.abs(v) ** 2))
+        if g.kind == "P":
+            if abs(v[0]) ** 2 <= MODE_ISOTROPIC_RTOL * size:
+                return False
+            w += list(v / v[0])
+        else:
+            norm2 = complex(np.sum(v * v))
+            if abs(norm2) <= MODE_ISOTROPIC_RTOL * size:
+                return False
+            w += list(v / np.sqrt(norm2))
+    for P in product(*w):
+        P = np.asarray(P, dtype=complex)
+        if abs(P[0]) <= MODE_EXTRANEOUS_RTOL or np.max(np.abs(P[1:])) > MODE_EXTRANEOUS_RTOL * abs(
+            P[0]
+        ):
+            return False
+    return True
+
+
+def _unit(prob: Problem, z: Any) -> list[Any]:
+    """A real endpoint scaled onto the normalisations."""
+    out: list[Any] = []
+    at = 0
+    for g in prob.groups:
+        v = [float(x) for x in z[at : at + len(g.gens)]]
+        at += len(g.gens)
+        n = v[0] if g.kind == "P" else float(np.sqrt(sum(x * x for x in v)))
+        out += [x / n for x in v]
+    return out
+
+
+def _find(given: Given) -> Found:
+    from mechsing.assembly.certify import krawczyk, local_dimension, newton, regular
+    from mechsing.assembly.engine import real_endpoints, track
+    from mechsing.assembly.result import joint_distance
+    from mechsing.assembly.serial import account
+
+    mech, dps = given.mech, given.dps
+    prob: Problem = given.cache["general"]
+    gens = prob.gens
+    norms = _normalisations(prob)
+    full = [*prob.equations, *norms]
+    n, m = prob.unknowns, len(prob.equations)
+    formulation: dict[str, Any] = {
+        "name": "joint displacements in Study coordinates, each loop in its subgroup's",
+        "method": "homotopy continuation (Bertini 2, multihomogeneous start), Newton refinement",
+        "unknowns": [
+            f"{g.joint} ({'quaternion' if g.kind == 'S' else 'half-angle pair' if g.kind == 'R' else 'slide pair'})"
+            for g in prob.groups
+        ],
+        "closures": [
+            {"joints": list(c.joints), "subgroup": c.subgroup, "equations": len(c.equations)}
+            for c in prob.closures
+        ],
+        "polynomial_degree": 1,
+        "randomized": m > n,
+    }
+    notes: list[str] = []
+    if m < n:
+        # fewer closure equations than unknowns: no finite set (where it is not empty)
+        dim, at = _dimension_at_start(given, prob, full)
+        formulation["dimension"] = dim if dim is not None else n - m
+        notes.append(
+            f"the given values leave {n} unknowns and {m} closure equations: the closed "
+            f"configurations are not finitely many (dimension "
+            + (
+                f"{dim}, by the local dimension test at {at})"
+                if dim is not None
+                else f"at least {n - m})"
+            )
+        )
+        return Found(formulation, [], None, "infinite", None, tuple(notes), 1, given.closure)
+    square = [*_randomized(prob), *norms]
+    raw, tracked = track(*patched_system(prob), mptype=MPTYPE if m > n else "adaptive")
+    product = sympy.lambdify(gens, [list(c.product) for c in prob.closures], "numpy")
+    genuine = [z for z in raw if _genuine(prob, z, product)]
+    real = real_endpoints(genuine)
+    found: list[tuple[list[Any], list[Any], bool]] = []
+    duplicates = singular = 0
+    L = float(prob.L)
+    for z in real:
+        start = _unit(prob, z)
+        root = newton(square, gens, start, dps)
+        ok = root is not None and regular(square, gens, root)
+        if not ok:
+            singular += 1
+            dim = local_dimension(full, gens, start, dps)
+            if dim > 0:
+                formulation["dimension"] = dim
+                row = _row(mech, prob, start)
+                at = ", ".join(
+                    f"{c[0]} = {float(v):.6g}" for c, v in zip(mech.coordinates(), row, strict=True)
+                )
+                notes.append(
+                    f"the given values are reached along a set of dimension {dim} (the local "
+                    f"dimension test at a real endpoint, through {at}): the modes are not finitely many"
+                )
+                paths = account(tracked, raw, genuine, real, found, duplicates, singular)
+                return Found(
+                    formulation, [], None, "infinite", paths, tuple(notes), 1, given.closure
+                )
+            from mechsing.assembly.certify import singular_root
+
+            root, _ = singular_root(full, gens, start, dps)
+            if root is None:
+                continue
+        row = _row(mech, prob, root)
+        if any(
+            joint_distance(mech, [float(x) for x in row], [float(x) for x in q], L)
+            <= MODE_MATCH_DISTANCE
+            for _, q, _ in found
+        ):
+            duplicates += 1
+            continue
+        found.append((root, row, ok))
+    # components of dimension 1 or more (an overconstrained loop's second branch, where
+    # the homotopy's paths end singular or fail): one slice, the local dimension test at
+    # each real point of it
+    for z in _sliced(prob, 1) if n > 1 or m > n else []:
+        dim = local_dimension(full, gens, z, dps)
+        if dim > 0:
+            formulation["dimension"] = dim
+            row = _row(mech, prob, z)
+            at = ", ".join(
+                f"{c[0]} = {float(v):.6g}" for c, v in zip(mech.coordinates(), row, strict=True)
+            )
+            notes.append(
+                f"the given values are also reached along a set of dimension {dim} (the local "
+                f"dimension test at a real point of a slice, through {at}): the modes are not "
+                "finitely many"
+            )
+            paths = account(tracked, raw, genuine, real, found, duplicates, singular)
+            return Found(formulation, [], None, "infinite", paths, tuple(notes), 1, given.closure)
+    found.sort(key=lambda f: [float(x) for x in f[1]])
+    radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
+    rows = [(q, ok and krawczyk(square, gens, root, radius)) for root, q, ok in found]
+    paths = account(tracked, raw, genuine, real, found, duplicates, singular)
+    formulation["bezout"] = tracked
+    if m > n:
+        notes.append(
+            f"{m} closure equations in {n} unknowns (an overconstrained mechanism): solved as "
+            f"{n} random combinations, every endpoint checked on all {m}; each certificate "
+            "proves one root of the combinations in its box"
+        )
+    notes.append(
+        f"continuation found {len(genuine)} solutions (real and complex) on {tracked} paths; "
+        "a path that failed could hide a mode, so the count is not proven"
+    )
+    return Found(formulation, rows, len(rows), "not proven", paths, tuple(notes), 1, given.closure)
+
+
+def _dimension_at_start(given: Given, prob: Problem, full: list[Any]) -> tuple[int | None, str]:
+    """The local dimension where continuation from the start closes the configuration,
+    else at the closed configuration least-squares Newton reaches from the reference (None
+    where neither closes), and where."""
+    from mechsing.assembly.certify import local_dimension
+
+    res, _ = given.closure
+    starts = []
+    if res is not None:
+        at = ", ".join(f"{n} = {float(v[0]):.6g}" for n, v in res.joints)
+        starts.append((_coordinates(prob, dict(res.joints)), f"continuation's closure, {at}"))
+    z = _real_point(prob)
+    if z is not None:
+        row = _row(given.mech, prob, z)
+        at = ", ".join(
+            f"{c[0]} = {float(v):.6g}" for c, v in zip(given.mech.coordinates(), row, strict=True)
+        )
+        starts.append((z, f"a real endpoint of the sliced system, {at}"))
+    for z, where in starts:
+        dim = local_dimension(full, prob.gens, z, given.dps)
+        if dim > 0:
+            return dim, where
+    return None, ""
+
+
+def _real_point(prob: Problem) -> list[Any] | None:
+    """A real closed configuration of an underdetermined system (the first of
+    :func:`_sliced`; None: none)."""
+    points = _sliced(prob, prob.unknowns - len(prob.equations))
+    return points[0] if points else None
+
+
+def _sliced(prob: Problem, k: int) -> list[list[Any]]:
+    """Real closed configurations on the components of dimension ``k`` or more: the
+    closure equations (random combinations of them, down to ``n - k``) and ``k`` random
+    real linear forms, each in one group (a revolute's fixes its angle), tracked; the real
+    endpoints that close every loop (none in ``SLICE_TRIES`` slicings: an empty list)."""
+    from mechsing.assembly.engine import real_endpoints, track
+
+    rng = np.random.default_rng(SEED + 2)
+    product = sympy.lambdify(prob.gens, [list(c.product) for c in prob.closures], "numpy")
+    n = prob.unknowns
+    for attempt in range(SLICE_TRIES):
+        left = [g.dim for g in prob.groups]
+        eqs = _randomized(prob, n - k)
+        at = (len(left) - 1 - attempt) % len(left)  # each try slices other groups first
+        while len(eqs) < n:
+            while not left[at]:
+                at = (at - 1) % len(left)
+            left[at] -= 1
+            g = prob.groups[at]
+            r = rng.normal(size=len(g.gens))
+            eqs.append(sum(sympy.Rational(float(c)) * x for c, x in zip(r, g.gens, strict=True)))
+            at = (at - 1) % len(left)
+        patched = list(eqs)
+        for g in prob.groups:
+            r = rng.normal(size=len(g.gens))
+            patched.append(
+                sum(sympy.Rational(float(c)) * x for c, x in zip(r, g.gens, strict=True)) - 1
+            )
+        raw, _ = track(patched, [g.gens for g in prob.groups], mptype=MPTYPE)
+        real = real_endpoints([z for z in raw if _genuine(prob, z, product)])
+        if real:
+            return [_unit(prob, z) for z in real]
+    return []
+
+
+def _coordinates(prob: Problem, values: dict[str, Any]) -> list[Any]:
+    """The groups' coordinates of joint values."""
+    z: list[Any] = []
+    for i, g in enumerate(prob.groups):
+        vals = values[g.joint]
+        k = prob.joints[g.joint].index(i)
+        if g.kind == "S":
+            z += _quaternion_of_vector([mpmath.mpf(x) for x in vals])
+        elif g.kind == "R":
+            q = mpmath.mpf(vals[k])
+            z += [mpmath.cos(q / 2), mpmath.sin(q / 2)]
+        else:
+            z += [mpmath.mpf(1), mpmath.mpf(vals[k]) / (2 * prob.L)]
+    return z
+
+
+FORMULATION = Formulation(
+    "joint displacements in Study coordinates (homotopy continuation)", _applies, _find
+)

@@ -1,0 +1,251 @@
+"""The result of :func:`~mechsing.assembly.api.modes`: what a formulation found, each mode
+classified as :func:`mechsing.analyze` classifies it (the same code: :func:`analyze_found`),
+the one continuation from ``start`` reaches marked, with the distances between modes.
+
+Owns :class:`Mode`, :class:`ModesResult` and :func:`finish`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import mpmath
+import numpy as np
+
+from mechsing.assembly.chains import Found
+from mechsing.assembly.given import closure_from_start
+from mechsing.model import Mechanism
+from mechsing.numeric import MODE_CERTIFY_RADIUS, MODE_MATCH_DISTANCE, Precision
+
+__all__ = ["Mode", "ModesResult", "finish", "joint_distance"]
+
+
+@dataclass(frozen=True)
+class Mode:
+    """One assembly mode: every joint value (``joints``: floats, SI and radians;
+    ``joints_text``: at the working precision), whether the Krawczyk test certified it
+    (``certified``, within ``radius`` in the formulation's unknowns), the analysis of
+    the configuration (``analysis``: analyze's configuration JSON, whose ``singular``
+    and ``singularities`` the mode repeats), whether continuation from the
+    configuration's start reaches it, the joints outside their ``limits``, and how
+    many joint-space solutions it stands for."""
+
+    joints: dict[str, list[float]]
+    joints_text: dict[str, list[str]]
+    certified: bool
+    radius: float
+    analysis: dict[str, Any]
+    reached_by_continuation: bool
+    outside_limits: list[str]
+    output_pose: list[list[float]] | None
+    equivalent_solutions: int = 1
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "joints": self.joints,
+            "joints_text": self.joints_text,
+            "certified": self.certified,
+            "certified_radius": self.radius,
+            "singular": self.analysis.get("singular"),
+            "singularities": self.analysis.get("singularities", []),
+            "reached_by_continuation": self.reached_by_continuation,
+            "outside_limits": self.outside_limits,
+            "equivalent_solutions": self.equivalent_solutions,
+            "output_pose": self.output_pose,
+            "analysis": self.analysis,
+        }
+
+
+@dataclass(frozen=True)
+class ModesResult:
+    """Every assembly mode of one configuration (``to_json()``: the ``modes`` JSON).
+
+    ``count``: the number of real modes (None when the solution set is not finite);
+    ``complete``: ``"proven"`` (exact elimination with certified real-root isolation),
+    ``"not proven"`` or ``"infinite"`` (the given values leave a curve of closed
+    configurations: no count); ``distances``: between modes, over the joint coordinates
+    in the commensurate metric (angles in rad, lengths divided by L) and as the output's
+    pose distance (rotation angle plus translation over L)."""
+
+    mechanism: str
+    configuration: str
+    precision: dict[str, Any]
+    count: int | None
+    complete: str
+    formulation: dict[str, Any]
+    paths: dict[str, Any] | None
+    modes: tuple[Mode, ...]
+    distances: dict[str, list[list[float]]]
+    notes: tuple[str, ...] = field(default=())
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "mechanism": self.mechanism,
+            "configuration": self.configuration,
+            "precision": self.precision,
+            "count": self.count,
+            "complete": self.complete,
+            "formulation": self.formulation,
+            "paths": self.paths,
+            "modes": [m.to_json() for m in self.modes],
+            "distances": self.distances,
+            "notes": list(self.notes),
+        }
+
+
+def finish(mech: Mechanism, config: str, prec: Precision, found: Found, dps: int) -> ModesResult:
+    """The result of what a formulation found (no mode listed when the set is infinite)."""
+    if found.count is None:
+        return ModesResult(
+            mech.name,
+            config,
+            {"mode": str(prec)},
+            None,
+            "infinite",
+            found.formulation,
+            found.paths,
+            (),
+            {"joints": [], "pose": []},
+            found.notes,
+        )
+    return _result(mech, config, prec, found, dps)
+
+
+def _text(x: Any, prec: Precision) -> str:
+    if prec.mode == "mp":
+        return mpmath.nstr(x, prec.digits, strip_zeros=False)
+    return repr(float(x))
+
+
+def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: int) -> ModesResult:
+    from mechsing.analysis import analyze_found
+    from mechsing.kinematics import KinematicModel
+
+    km = KinematicModel(mech, "float")
+    L = float(km.length_scale)
+    coords = mech.coordinates()
+    rows = sorted(found.rows, key=lambda row: _order(mech, row[0]))
+    names = {f"{config}#mode{k + 1}": q for k, (q, _ok) in enumerate(rows)}
+    with mpmath.workdps(dps):  # the modes' digits carried (mpf() rounds to the context's)
+        data = {
+            n: (
+                [mpmath.mpf(x) for x in q] if prec.mode in ("mp", "auto") else [float(x) for x in q]
+            )
+            for n, q in names.items()
+        }
+    # the modes are data to dps digits (not points float located): analysed as a file's
+    analysed = analyze_found(mech, data, prec, located=prec.mode == "float") if data else []
+    closure = found.closure or closure_from_start(mech, config)
+    reached, notes = _reached(mech, [[float(x) for x in q] for q, _ in rows], km, closure)
+    out_body = mech.output.body if mech.output is not None else None
+    poses = [
+        km.poses(np.array([float(x) for x in q]))[out_body] if out_body else None for q, _ in rows
+    ]
+    result_modes = []
+    for k, ((q, ok), res) in enumerate(zip(rows, analysed, strict=True)):
+        joints: dict[str, list[float]] = {}
+        texts: dict[str, list[str]] = {}
+        outside = []
+        for (name, i), x in zip(coords, q, strict=True):
+            joints.setdefault(name, []).append(float(x))
+            texts.setdefault(name, []).append(_text(x, prec))
+            lim = mech.limits.get(name)
+            if lim and not (lim[i][0] <= float(x) <= lim[i][1]) and name not in outside:
+                outside.append(name)
+        pose = poses[k]
+        result_modes.append(
+            Mode(
+                joints,
+                texts,
+                bool(ok),
+                float(MODE_CERTIFY_RADIUS),
+                res.to_json(),
+                k == reached,
+                outside,
+                None if pose is None else np.asarray(pose, dtype=float).tolist(),
+                found.equivalent,
+            )
+        )
+    return ModesResult(
+        mech.name,
+        config,
+        {"mode": str(prec), "length_scale": L, "digits": dps},
+        len(result_modes),
+        found.complete,
+        found.formulation,
+        found.paths,
+        tuple(result_modes),
+        _distances(mech, [q for q, _ in rows], poses, L),
+        (*found.notes, *notes),
+    )
+
+
+def _order(mech: Mechanism, q: list[Any]) -> tuple[int, ...]:
+    """A mode's place in the list: its joint values rounded to the match distance (angles
+    taken in [-pi, pi), pi and -pi alike), so that noise far below it (a joint at 0 as
+    1e-51 in one mode and -1e-51 in another) does not reorder the modes."""
+    key = []
+    for (name, i), x in zip(mech.coordinates(), q, strict=True):
+        v = float(x)
+        if mech.joint(name).units[i] == "rad":
+            v = (v + np.pi) % (2 * np.pi) - np.pi
+            if v > np.pi - MODE_MATCH_DISTANCE / 2:
+                v -= 2 * np.pi
+        key.append(round(v / MODE_MATCH_DISTANCE))
+    return tuple(key)
+
+
+def _reached(
+    mech: Mechanism, qs: list[list[float]], km: Any, closure: tuple[Any, str | None]
+) -> tuple[int | None, tuple[str, ...]]:
+    """Which mode continuation from the configuration's start reaches (its index), from
+    its closure (:func:`~mechsing.assembly.given.closure_from_start`)."""
+    res, failed = closure
+    if res is None:
+        return None, (f"continuation from the start does not close the configuration: {failed}",)
+    q0 = [x for _, v in res.joints for x in v]
+    best, where = None, None
+    for k, q in enumerate(qs):
+        d = joint_distance(mech, q0, q, km.length_scale)
+        if best is None or d < best:
+            best, where = d, k
+    if best is None or best > MODE_MATCH_DISTANCE:
+        return None, ("continuation closes the configuration at none of the modes",)
+    return where, ()
+
+
+def joint_distance(mech: Mechanism, q1: list[float], q2: list[float], L: float) -> float:
+    """The commensurate distance over the joint coordinates: angles modulo 2 pi (rad),
+    lengths over L."""
+    total = 0.0
+    for (name, i), a, b in zip(mech.coordinates(), q1, q2, strict=True):
+        if mech.joint(name).units[i] == "rad":
+            d = (float(a) - float(b) + np.pi) % (2 * np.pi) - np.pi
+        else:
+            d = (float(a) - float(b)) / L
+        total += d * d
+    return float(np.sqrt(total))
+
+
+def _distances(
+    mech: Mechanism, qs: list[Any], poses: list[Any], L: float
+) -> dict[str, list[list[float]]]:
+    n = len(qs)
+    joints = [[joint_distance(mech, qs[i], qs[k], L) for k in range(n)] for i in range(n)]
+    pose = []
+    if poses and poses[0] is not None:
+        for i in range(n):
+            row = []
+            for k in range(n):
+                Ri, Rk = np.asarray(poses[i])[:3, :3], np.asarray(poses[k])[:3, :3]
+                Rr = Ri.T @ Rk  # its angle from both its cosine and its sine: exact at 0
+                sine = (
+                    np.linalg.norm([Rr[2, 1] - Rr[1, 2], Rr[0, 2] - Rr[2, 0], Rr[1, 0] - Rr[0, 1]])
+                    / 2
+                )
+                angle = np.arctan2(sine, (np.trace(Rr) - 1) / 2)
+                dp = np.linalg.norm(np.asarray(poses[i])[:3, 3] - np.asarray(poses[k])[:3, 3])
+                row.append(float(angle + dp / L))
+            pose.append(row)
+    return {"joints": joints, "pose": pose}

@@ -1,0 +1,298 @@
+"""``mechsing modes`` by the registry of formulations: the family decided once from the
+subgroup the joints generate (a four-bar drawn in the xz plane has the modes of the one in
+the xy plane), and the general formulation (joint displacements in Study coordinates,
+each loop in its subgroup's) on spatial and spherical loops and on arms of fewer than six
+joints at a target.
+
+The modes are checked against closed forms and against the independent solver of
+``tests/reference/loop_modes_independent.py`` (damped Newton from random starts on 4x4
+closure matrices; it imports nothing from mechsing).
+"""
+
+from __future__ import annotations
+
+import json
+from fractions import Fraction
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.cli import run_cli
+from tests.mechanisms import ROOT
+from tests.reference.loop_modes_independent import solve_all, wrap_angles
+
+pytest.importorskip("bertini")
+
+FOURBAR = ROOT / "examples" / "fourbar.yaml"
+
+
+def _modes(argv: list[str]) -> dict:
+    rc, out, err = run_cli(["modes", *argv, "--format", "json"])
+    assert rc == 0, err
+    return json.loads(out)
+
+
+def _joint_vectors(doc: dict, names: list[str]) -> list[np.ndarray]:
+    return [np.array([m["joints"][n][0] for n in names]) for m in doc["modes"]]
+
+
+def _same(found: list[np.ndarray], expected: list[np.ndarray], kinds: list[str]) -> None:
+    assert len(found) == len(expected), (found, expected)
+    for e in expected:
+        assert min(np.linalg.norm(wrap_angles(kinds, e - f)) for f in found) < 1e-9, (e, found)
+
+
+def _vec(*xs: str | int) -> np.ndarray:
+    return np.array([float(Fraction(x)) for x in xs])
+
+
+def test_a_fourbar_in_the_xz_plane_has_the_modes_of_the_xy_one(tmp_path: Path) -> None:
+    # the four-bar turned by +90 deg about x: (x, y, z) -> (x, -z, y)
+    text = FOURBAR.read_text()
+    for old, new in (
+        ("axis: [0, 0, 1]", "axis: [0, -1, 0]"),
+        ("point: [1, 0, 0]", "point: [1, 0, 0]"),
+        ("point: [3, 2, 0]", "point: [3, 0, 2]"),
+    ):
+        text = text.replace(old, new)
+    turned = tmp_path / "fourbar_xz.yaml"
+    turned.write_text(text)
+    flat, upright = (_modes([str(f), "--config", "crank-30"]) for f in (FOURBAR, turned))
+    assert upright["formulation"]["name"] == flat["formulation"]["name"] == "planar platform pose"
+    assert upright["count"] == flat["count"] == 2 and upright["complete"] == "proven"
+    names = ["A", "B", "C", "D"]
+    _same(_joint_vectors(upright, names), _joint_vectors(flat, names), ["R"] * 4)
+
+
+BENNETT = [
+    ("R", _vec(0, 0, 1), _vec(0, 0, 0)),
+    ("R", _vec("12/25", "-9/25", "4/5"), _vec("3/5", "4/5", 0)),
+    ("R", _vec("-156/701", "429/701", "532/701"), _vec("-2353/3505", "-364/3505", "1248/3505")),
+    ("R", _vec(0, "24/25", "7/25"), _vec("-8/5", 0, 0)),
+]
+
+
+def test_bennett_with_its_input_has_the_modes_damped_newton_finds() -> None:
+    doc = _modes([str(ROOT / "examples" / "bennett.yaml"), "--config", "q1-1rad"])
+    loop = [[(i, 1) for i in range(4)]]
+    expected = solve_all(BENNETT, loop, {0: 1.0}, starts=600)
+    assert doc["count"] == len(expected) == 1
+    _same(_joint_vectors(doc, ["J1", "J2", "J3", "J4"]), expected, ["R"] * 4)
+    # Bennett's relations: theta3 = -theta1, theta4 = -theta2 (q relative to the reference)
+    (q,) = _joint_vectors(doc, ["J1", "J2", "J3", "J4"])
+    assert abs(q[0] + q[2]) < 1e-12 and abs(q[1] + q[3]) < 1e-12
+    assert doc["formulation"]["closures"][0]["subgroup"] == "D"
+    assert all(m["certified"] for m in doc["modes"])
+
+
+def test_spherical_fourbar_has_two_modes_in_the_rotations_about_its_centre() -> None:
+    doc = _modes([str(ROOT / "examples" / "spherical_4r.yaml"), "--config", "crank-60"])
+    o = _vec(0, 0, 0)
+    joints = [
+        ("R", _vec(0, 0, 1), o),
+        ("R", _vec(0, "5/13", "12/13"), o),
+        ("R", _vec("4/9", "8/9", "1/9"), o),
+        ("R", _vec("15/17", 0, "8/17"), o),
+    ]
+    expected = solve_all(joints, [[(i, 1) for i in range(4)]], {0: np.pi / 3}, starts=600)
+    assert doc["count"] == len(expected) == 2
+    _same(_joint_vectors(doc, ["A", "B", "C", "D"]), expected, ["R"] * 4)
+    closure = doc["formulation"]["closures"][0]
+    assert closure["subgroup"] == "S" and closure["equations"] == 3
+    assert doc["paths"]["tracked"] == 6  # 3! paths: three pairs, three equations
+    assert sum(m["reached_by_continuation"] for m in doc["modes"]) == 1
+
+
+PLANAR_3R = """
+mechanism: planar-3r
+bodies: [ground, l1, l2, l3]
+joints:
+  - {name: J1, type: R, between: [ground, l1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [l1, l2], axis: [0, 0, 1], point: [1, 0, 0]}
+  - {name: J3, type: R, between: [l2, l3], axis: [0, 0, 1], point: [2, 0, 0]}
+output: {body: l3, point: [3, 0, 0]}
+configurations:
+  reference: {}
+  target: {pose: {position: [1.5, 1.2, 0], rotation_vector: [0, 0, 0.7]}}
+  tilted: {pose: {position: [1.5, 1.2, 0], rotation_vector: [0.1, 0, 0.7]}}
+  lifted: {pose: {position: [1.5, 1.2, 0.3], rotation_vector: [0, 0, 0.7]}}
+"""
+
+
+def _two_link(x: float, y: float, a: float, b: float) -> list[tuple[float, float]]:
+    """The elbow-up and elbow-down angles of a planar two-link arm reaching (x, y)."""
+    c2 = (x * x + y * y - a * a - b * b) / (2 * a * b)
+    out = []
+    for s2 in (np.sqrt(1 - c2 * c2), -np.sqrt(1 - c2 * c2)):
+        q2 = np.arctan2(s2, c2)
+        q1 = np.arctan2(y, x) - np.arctan2(b * s2, a + b * c2)
+        out.append((q1, q2))
+    return out
+
+
+def test_planar_3r_at_a_target_has_the_two_postures_of_its_closed_form(tmp_path: Path) -> None:
+    f = tmp_path / "planar_3r.yaml"
+    f.write_text(PLANAR_3R)
+    doc = _modes([str(f), "--config", "target"])
+    phi = 0.7
+    wx, wy = 1.5 - np.cos(phi), 1.2 - np.sin(phi)  # the wrist: the target less the last link
+    expected = [np.array([q1, q2, phi - q1 - q2]) for q1, q2 in _two_link(wx, wy, 1, 1)]
+    assert doc["count"] == 2
+    _same(_joint_vectors(doc, ["J1", "J2", "J3"]), expected, ["R"] * 3)
+    assert doc["formulation"]["closures"][0]["subgroup"] == "G"
+    assert doc["formulation"]["closures"][0]["equations"] == 3
+
+
+def test_a_target_outside_the_arms_subgroup_is_refused_naming_it(tmp_path: Path) -> None:
+    f = tmp_path / "planar_3r.yaml"
+    f.write_text(PLANAR_3R)
+    for config in ("tilted", "lifted"):
+        rc, _, err = run_cli(["modes", str(f), "--config", config])
+        assert rc == 2, err
+        assert "outside the subgroup the arm's end moves in" in err
+        assert "planar motions G across the normal [0.0, 0.0, 1.0]" in err
+        assert "angle about the normal" in err
+
+
+SCARA = """
+mechanism: scara
+bodies: [ground, arm1, arm2, quill, tool]
+joints:
+  - {name: J1, type: R, between: [ground, arm1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [arm1, arm2], axis: [0, 0, 1], point: ["0.4", 0, 0]}
+  - {name: J3, type: P, between: [arm2, quill], axis: [0, 0, 1]}
+  - {name: J4, type: R, between: [quill, tool], axis: [0, 0, 1], point: ["0.65", 0, 0]}
+output: {body: tool, point: ["0.65", 0, "-0.1"]}
+configurations:
+  reference: {}
+  target: {pose: {position: ["0.3", "0.5", "-0.2"], rotation_vector: [0, 0, 1.1]}}
+"""
+
+
+def test_scara_at_a_target_has_the_two_postures_of_its_closed_form(tmp_path: Path) -> None:
+    f = tmp_path / "scara.yaml"
+    f.write_text(SCARA)
+    doc = _modes([str(f), "--config", "target"])
+    expected = [
+        np.array([q1, q2, -0.1, 1.1 - q1 - q2]) for q1, q2 in _two_link(0.3, 0.5, 0.4, 0.25)
+    ]
+    assert doc["count"] == 2
+    _same(_joint_vectors(doc, ["J1", "J2", "J3", "J4"]), expected, ["R", "R", "P", "R"])
+    closure = doc["formulation"]["closures"][0]
+    assert closure["subgroup"] == "X" and closure["equations"] == 4
+    assert all(m["certified"] for m in doc["modes"])
+
+
+def test_sarrus_with_its_input_is_a_curve_as_damped_newton_finds() -> None:
+    """Sarrus's linkage with J1 given: besides its two isolated modes, the closed
+    configurations with J2 = J5 = pi/2 (J1 + J2 + J3 = 0) form a curve along which J4 and
+    J6 turn: damped Newton from random starts lands on many points of it.  modes says
+    infinite, with dimension 1, and counts nothing."""
+    doc = _modes([str(ROOT / "examples" / "sarrus.yaml"), "--config", "lowered"])
+    x, y = _vec(1, 0, 0), _vec(0, 1, 0)
+    joints = [
+        ("R", x, _vec(0, 0, 0)),
+        ("R", x, _vec(0, 1, 1)),
+        ("R", x, _vec(0, 0, 2)),
+        ("R", y, _vec(1, 0, 2)),
+        ("R", y, _vec(2, 0, 1)),
+        ("R", y, _vec(1, 0, 0)),
+    ]
+    found = solve_all(joints, [[(i, 1) for i in range(6)]], {0: -np.pi / 12}, starts=150)
+    curve = [q for q in found if abs(q[1] - np.pi / 2) < 1e-6 and abs(q[4] - np.pi / 2) < 1e-6]
+    assert len({round(q[3], 3) for q in curve}) > 5  # J4 takes many values on it
+    assert doc["count"] is None and doc["complete"] == "infinite" and doc["modes"] == []
+    assert doc["formulation"]["dimension"] == 1 and doc["formulation"]["randomized"]
+    assert doc["paths"]["tracked"] == 120  # 5!: five pairs
+
+
+def test_a_redundant_planar_arm_at_a_target_is_a_curve_of_dimension_one(tmp_path: Path) -> None:
+    text = PLANAR_3R.replace(
+        "output: {body: l3, point: [3, 0, 0]}",
+        "  - {name: J4, type: R, between: [l3, l4], axis: [0, 0, 1], point: [3, 0, 0]}\n"
+        "output: {body: l4, point: [4, 0, 0]}",
+    ).replace("bodies: [ground, l1, l2, l3]", "bodies: [ground, l1, l2, l3, l4]")
+    f = tmp_path / "planar_4r.yaml"
+    f.write_text(text)
+    doc = _modes([str(f), "--config", "target"])
+    assert doc["count"] is None and doc["complete"] == "infinite" and doc["modes"] == []
+    # four pairs, three closure equations in G: a curve, by the local dimension test
+    assert doc["formulation"]["dimension"] == 1
+    assert any("local dimension test" in n for n in doc["notes"])
+
+
+AGILE_EYE = """
+mechanism: agile-eye
+bodies: [ground, a1, b1, a2, b2, a3, b3, platform]
+joints:
+  - {name: A1, type: R, between: [ground, a1], axis: [1, 0, 0], point: [0, 0, 0]}
+  - {name: B1, type: R, between: [a1, b1], axis: [0, 1, 0], point: [0, 0, 0]}
+  - {name: C1, type: R, between: [b1, platform], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: A2, type: R, between: [ground, a2], axis: [0, 1, 0], point: [0, 0, 0]}
+  - {name: B2, type: R, between: [a2, b2], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: C2, type: R, between: [b2, platform], axis: [1, 0, 0], point: [0, 0, 0]}
+  - {name: A3, type: R, between: [ground, a3], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B3, type: R, between: [a3, b3], axis: [1, 0, 0], point: [0, 0, 0]}
+  - {name: C3, type: R, between: [b3, platform], axis: [0, 1, 0], point: [0, 0, 0]}
+inputs: [A1, A2, A3]
+output: {body: platform}
+configurations:
+  reference: {}
+  turned: {A1: 0.3, A2: -0.2, A3: 0.5}
+"""
+
+
+def test_agile_eye_has_eight_modes_in_two_spherical_loops(tmp_path: Path) -> None:
+    """Gosselin's agile eye (a spherical 3-RRR, every axis through the origin, each leg's
+    three axes orthogonal at the reference) with decimal inputs: at most 8 modes; here all
+    8 are real, as damped Newton on the two loops' 4x4 closures finds."""
+    f = tmp_path / "agile_eye.yaml"
+    f.write_text(AGILE_EYE)
+    doc = _modes([str(f), "--config", "turned"])
+    o = _vec(0, 0, 0)
+    x, y, z = _vec(1, 0, 0), _vec(0, 1, 0), _vec(0, 0, 1)
+    joints = [("R", u, o) for u in (x, y, z, y, z, x, z, x, y)]
+    loops = [
+        [(0, 1), (1, 1), (2, 1), (5, -1), (4, -1), (3, -1)],
+        [(0, 1), (1, 1), (2, 1), (8, -1), (7, -1), (6, -1)],
+    ]
+    expected = solve_all(joints, loops, {0: 0.3, 3: -0.2, 6: 0.5}, starts=400)
+    assert doc["count"] == len(expected) == 8
+    names = ["A1", "B1", "C1", "A2", "B2", "C2", "A3", "B3", "C3"]
+    _same(_joint_vectors(doc, names), expected, ["R"] * 9)
+    assert [c["subgroup"] for c in doc["formulation"]["closures"]] == ["S", "S"]
+    assert [c["equations"] for c in doc["formulation"]["closures"]] == [3, 3]
+    assert all(m["certified"] for m in doc["modes"])
+
+
+RSSR = """
+mechanism: rssr
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: S, between: [crank, coupler], point: [1, 0, 0]}
+  - {name: C, type: S, between: [coupler, rocker], point: [3, 1, 2]}
+  - {name: D, type: R, between: [rocker, ground], axis: [1, 0, 0], point: [3, 1, 0]}
+inputs: [A]
+output: {body: rocker}
+configurations:
+  reference: {}
+  crank-30: {A: "pi/6"}
+"""
+
+
+def test_rssr_with_its_input_is_a_curve_the_couplers_spin(tmp_path: Path) -> None:
+    """An RSSR's coupler turns freely about the line through its two ball joints: with
+    the crank given, the closed configurations form a curve (dimension 1), whatever the
+    rocker's two positions; modes says so, from the local dimension test, with no count."""
+    f = tmp_path / "rssr.yaml"
+    f.write_text(RSSR)
+    doc = _modes([str(f), "--config", "crank-30"])
+    assert doc["count"] is None and doc["complete"] == "infinite"
+    assert doc["formulation"]["dimension"] == 1
+    assert doc["formulation"]["unknowns"] == [
+        "B (quaternion)",
+        "C (quaternion)",
+        "D (half-angle pair)",
+    ]
