@@ -180,6 +180,7 @@ NUMERIC_ORDER = [
     "linalg",
     "scaling",
     "decisions",
+    "inertia",
 ]
 
 

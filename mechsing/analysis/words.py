@@ -200,6 +200,9 @@ def _words(label: str) -> str:
     if not name:
         return CLASS_WORDS.get(cls, cls)
     name = name.rstrip(")")
+    head = CLASS_WORDS.get(cls, cls).split(":")[0]  # "output (type II)", or "serial"
+    if head != cls:  # the class's own name kept beside the finding's (type II, a dead centre)
+        return f"{head}, {name}: {meaning_of(name) or name}"
     return f"{cls} ({name}: {meaning_of(name) or name})"
 
 

@@ -240,7 +240,11 @@ class Continuation:
             # just beyond a fold of the given values: say which limit, and by how much
             with m.precision.context():
                 fold = fold_excess(m, q_out, gmask)
-            at_limit = self._within_resolution(m, cfg, q_out, target, fold, model)
+            at_limit = (
+                _within_resolution(self.polisher, self.tolerance, m, cfg, q_out, target, fold)
+                if self.at_folds and model is None  # joint values the user gave, at mp:N
+                else None
+            )
             if at_limit is not None:
                 qf, rf, note, on_fold = at_limit
                 # placed on the fold at N digits: float's caveat about folds no longer holds
@@ -260,64 +264,6 @@ class Continuation:
         return ClosedConfiguration(
             cfg.name, q_out, float(res), underdetermined, steps, given, notes, at_fold
         )
-
-    def _within_resolution(
-        self,
-        m: ClosureModel,
-        cfg: Configuration,
-        q: np.ndarray,
-        target: np.ndarray,
-        fold: Fold | None,
-        model: PoseModel | None,
-    ) -> tuple[np.ndarray, Any, str, bool] | None:
-        """Given values beyond a limit of travel (``fold``) by no more than the resolution
-        of the value the fold is most sensitive to (a configuration drawn at a fold to its
-        data's digits): the nearest closed configuration, every coordinate free (Newton's
-        least-norm steps from ``q``), polished at the model's digits (and deeper at a
-        multiple root, as joint values are), and placed on the fold near it when there is one
-        (:func:`~mechsing.kinematics.polish.fold_mp`): the configuration, its residual, the
-        note that says so, and whether it is on the fold; None otherwise."""
-        if fold is None or model is not None or m.precision.mode != "mp" or not self.at_folds:
-            return None
-        coords = m.mech.coordinates()
-        if fold.col >= len(coords):
-            return None
-        joint, index = coords[fold.col]
-        written = cfg.resolution.get(joint)
-        if not written or index >= len(written):
-            return None
-        resolution, digits = written[index]
-        if not resolution or fold.beyond > resolution:
-            return None
-        # the nearest closed configuration (every coordinate free), then the fold near it
-        qf, rf = self.polisher.polish(m, q, target, np.zeros(m.n, dtype=bool), cfg)
-        if rf > self.tolerance:
-            return None
-        located = fold_mp(m, qf, fold.col)
-        label = m.mech.coordinate_label(joint, index)
-        unit = "m" if m.length_columns[fold.col] else "rad"
-        digits_here = m.precision.digits
-        on_fold = located is not None and located.residual <= self.tolerance
-        if located is not None and on_fold:
-            qf, rf = located.q, located.residual
-            with m.precision.context():
-                moved = abs(to_float(qf[fold.col]) - to_float(target[fold.col]))
-            if moved > resolution:
-                return None
-            where = f"the limit itself ({label} moved by {moved:.2g} {unit} onto it)"
-        else:
-            # not a fold of this value (a bifurcation, where the whole closure loses rank)
-            with m.precision.context():
-                moved = abs(to_float(qf[fold.col]) - to_float(target[fold.col]))
-            where = f"the nearest closed configuration ({label} moved by {moved:.2g} {unit})"
-        note = (
-            f"at {digits_here} digits the written decimals do not close ({label} is "
-            f"{fold.beyond:.2g} {unit} beyond where the unknown joints lose a direction), "
-            f"within the resolution of its {digits}-digit data ({resolution:.2g} {unit}): "
-            f"analysed at {where}, polished at {digits_here} digits; give more digits or "
-            "exact values to decide the written decimals"
-        )
-        return qf, rf, note, on_fold
 
     def _land_on_fold(
         self, fm: ClosureModel, q: np.ndarray, qt: np.ndarray, gmask: np.ndarray
@@ -603,3 +549,62 @@ def _given_reached(m: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np
             f"({math.degrees(angle):.3g} deg) from the target pose"
         )
     return "; ".join(parts)
+
+
+def _within_resolution(
+    polisher: MpPolisher,
+    tolerance: Any,
+    m: ClosureModel,
+    cfg: Configuration,
+    q: np.ndarray,
+    target: np.ndarray,
+    fold: Fold | None,
+) -> tuple[np.ndarray, Any, str, bool] | None:
+    """Given values beyond a limit of travel (``fold``) by no more than the resolution
+    of the value the fold is most sensitive to (a configuration drawn at a fold to its
+    data's digits): the nearest closed configuration, every coordinate free (Newton's
+    least-norm steps from ``q``), polished at the model's digits (and deeper at a
+    multiple root, as joint values are), and placed on the fold near it when there is one
+    (:func:`~mechsing.kinematics.polish.fold_mp`): the configuration, its residual, the
+    note that says so, and whether it is on the fold; None otherwise."""
+    if fold is None or m.precision.mode != "mp":
+        return None
+    coords = m.mech.coordinates()
+    if fold.col >= len(coords):
+        return None
+    joint, index = coords[fold.col]
+    written = cfg.resolution.get(joint)
+    if not written or index >= len(written):
+        return None
+    resolution, digits = written[index]
+    if not resolution or fold.beyond > resolution:
+        return None
+    # the nearest closed configuration (every coordinate free), then the fold near it
+    qf, rf = polisher.polish(m, q, target, np.zeros(m.n, dtype=bool), cfg)
+    if rf > tolerance:
+        return None
+    located = fold_mp(m, qf, fold.col)
+    label = m.mech.coordinate_label(joint, index)
+    unit = "m" if m.length_columns[fold.col] else "rad"
+    digits_here = m.precision.digits
+    on_fold = located is not None and located.residual <= tolerance
+    if located is not None and on_fold:
+        qf, rf = located.q, located.residual
+        with m.precision.context():
+            moved = abs(to_float(qf[fold.col]) - to_float(target[fold.col]))
+        if moved > resolution:
+            return None
+        where = f"the limit itself ({label} moved by {moved:.2g} {unit} onto it)"
+    else:
+        # not a fold of this value (a bifurcation, where the whole closure loses rank)
+        with m.precision.context():
+            moved = abs(to_float(qf[fold.col]) - to_float(target[fold.col]))
+        where = f"the nearest closed configuration ({label} moved by {moved:.2g} {unit})"
+    note = (
+        f"at {digits_here} digits the written decimals do not close ({label} is "
+        f"{fold.beyond:.2g} {unit} beyond where the unknown joints lose a direction), "
+        f"within the resolution of its {digits}-digit data ({resolution:.2g} {unit}): "
+        f"analysed at {where}, polished at {digits_here} digits; give more digits or "
+        "exact values to decide the written decimals"
+    )
+    return qf, rf, note, on_fold
