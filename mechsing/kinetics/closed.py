@@ -58,26 +58,32 @@ def _solve(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
     return x, float(np.linalg.norm(A @ x - b)) / scale
 
 
+def _closure_and_inputs(
+    model: Any, q: np.ndarray, inputs: list[int]
+) -> tuple[np.ndarray, np.ndarray]:
+    """The closure's Jacobian at ``q`` (float) and the rows selecting the inputs'
+    coordinates ``inputs`` among the model's."""
+    C = np.asarray(model.closure_jacobian(q), dtype=float)
+    E = np.zeros((len(inputs), model.n))
+    E[np.arange(len(inputs)), inputs] = 1.0
+    return C, E
+
+
 def closed_inverse(
     td: Any, q: np.ndarray, inputs: list[int], u: np.ndarray, udd: np.ndarray
 ) -> ClosedMotion:
     """The motion and efforts of the closed chain of ``td`` (its model in float) at the
     closed configuration ``q`` for the inputs' coordinates ``inputs`` moving with the rates
     ``u`` and the accelerations ``udd``."""
-    model = td.model
-    n = model.n
     q = np.asarray(q, dtype=float)
-    C = np.asarray(model.closure_jacobian(q), dtype=float)
-    E = np.zeros((len(inputs), n))
-    for r, k in enumerate(inputs):
-        E[r, k] = 1.0
+    C, E = _closure_and_inputs(td.model, q, inputs)
     zeros = np.zeros(C.shape[0])
     qd, _ = _solve(np.vstack([C, E]), np.concatenate([zeros, u]))
     qd[inputs] = u  # the inputs' rates as given (the solve returns them to rounding)
     # the closure's rate: each column's bracket with the twist of its joint's first body
     _, xi, _, _ = td.motion(q, qd, None, False)
     rate = np.zeros(C.shape[0])
-    for jk in model.joints:
+    for jk in td.model.joints:
         k = jk.columns.start
         col = C[:, k]
         if not np.any(col):
@@ -99,13 +105,8 @@ def closed_forward(
     """The inputs' accelerations under the inputs' efforts ``tau_in`` at the closed
     configuration ``q`` with the inputs' rates ``u`` (the reduced equation of the module
     docstring); every coordinate's acceleration."""
-    model = td.model
-    n = model.n
     q = np.asarray(q, dtype=float)
-    C = np.asarray(model.closure_jacobian(q), dtype=float)
-    E = np.zeros((len(inputs), n))
-    for r, k in enumerate(inputs):
-        E[r, k] = 1.0
+    C, E = _closure_and_inputs(td.model, q, inputs)
     K = np.vstack([C, E])
     rhs = np.vstack([np.zeros((C.shape[0], len(inputs))), np.eye(len(inputs))])
     N, *_ = np.linalg.lstsq(K, rhs, rcond=None)
