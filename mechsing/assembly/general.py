@@ -584,6 +584,22 @@ def _find(given: Given) -> Found:
     real = real_endpoints(genuine)
     found: list[tuple[list[Any], list[Any], bool]] = []
     duplicates = singular = 0
+
+    def along_a_set(dim: int, point: list[Any], also: str, where: str) -> Found:
+        """The answer where the given values are reached along a set of dimension ``dim``
+        through ``point`` (found by the local dimension test at ``where``): no count."""
+        formulation["dimension"] = dim
+        row = _row(mech, prob, point)
+        at = ", ".join(
+            f"{c[0]} = {float(v):.6g}" for c, v in zip(mech.coordinates(), row, strict=True)
+        )
+        notes.append(
+            f"the given values are {also}reached along a set of dimension {dim} (the local "
+            f"dimension test at {where}, through {at}): the modes are not finitely many"
+        )
+        paths = account(tracked, raw, genuine, real, found, duplicates, singular)
+        return Found(formulation, [], None, "infinite", paths, tuple(notes), 1, given.closure)
+
     L = float(prob.L)
     for z in real:
         start = _unit(prob, z)
@@ -593,19 +609,7 @@ def _find(given: Given) -> Found:
             singular += 1
             dim = local_dimension(full, gens, start, dps)
             if dim > 0:
-                formulation["dimension"] = dim
-                row = _row(mech, prob, start)
-                at = ", ".join(
-                    f"{c[0]} = {float(v):.6g}" for c, v in zip(mech.coordinates(), row, strict=True)
-                )
-                notes.append(
-                    f"the given values are reached along a set of dimension {dim} (the local "
-                    f"dimension test at a real endpoint, through {at}): the modes are not finitely many"
-                )
-                paths = account(tracked, raw, genuine, real, found, duplicates, singular)
-                return Found(
-                    formulation, [], None, "infinite", paths, tuple(notes), 1, given.closure
-                )
+                return along_a_set(dim, start, "", "a real endpoint")
             from mechsing.assembly.certify import singular_root
 
             root, _ = singular_root(full, gens, start, dps)
@@ -626,18 +630,7 @@ def _find(given: Given) -> Found:
     for z in _sliced(prob, 1) if n > 1 or m > n else []:
         dim = local_dimension(full, gens, z, dps)
         if dim > 0:
-            formulation["dimension"] = dim
-            row = _row(mech, prob, z)
-            at = ", ".join(
-                f"{c[0]} = {float(v):.6g}" for c, v in zip(mech.coordinates(), row, strict=True)
-            )
-            notes.append(
-                f"the given values are also reached along a set of dimension {dim} (the local "
-                f"dimension test at a real point of a slice, through {at}): the modes are not "
-                "finitely many"
-            )
-            paths = account(tracked, raw, genuine, real, found, duplicates, singular)
-            return Found(formulation, [], None, "infinite", paths, tuple(notes), 1, given.closure)
+            return along_a_set(dim, z, "also ", "a real point of a slice")
     found.sort(key=lambda f: [float(x) for x in f[1]])
     radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
     rows = [(q, ok and krawczyk(square, gens, root, radius)) for root, q, ok in found]
