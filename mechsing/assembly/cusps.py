@@ -174,9 +174,15 @@ def cusps(
         evidence = {
             "kind": "no-triple-root",
             "reason": (
-                "no real triple root of the eliminant over the section: Newton on "
-                "P = dP/dt = d2P/dt2 = 0 from each of the "
-                f"{sec.seeds} located singular points converged to none in the section"
+                "no real triple root of the eliminant over the section: of its "
+                f"{len(sec.points)} located singular points, no two neighbours on which "
+                "d2P/dt2 changes sign (where a cusp lies between)"
+                + (
+                    f"; Newton on P = dP/dt = d2P/dt2 = 0 from the {sec.seeds} that do "
+                    "converged to none in the section"
+                    if sec.seeds
+                    else ""
+                )
                 + ("" if not found else " that the Krawczyk test certifies")
             ),
         }

@@ -12,7 +12,7 @@ test (:func:`~mechsing.assembly.certify.krawczyk`: one true triple root in the b
 How they are found: the number of real roots on a grid of the section (the modes'
 regions); on every grid edge whose ends differ, the crossing bisected on that count and
 then placed by Newton on ``P = P_t = 0`` along the edge (to 1e-12 relative); from every
-located singular point (first between two of one curve on which d2P/dt2 changes sign),
+pair of neighbouring located singular points on which d2P/dt2 has opposite signs,
 Newton on the triple-root system, the points it converges to in the section kept once.  The count of cusps is therefore what the grid sees: a cusp whose
 curves cross no grid edge is missed (a finer grid, ``points``, finds it).
 
@@ -149,7 +149,7 @@ class Section:
     counts: np.ndarray  # (len(a), len(b))
     points: list[SingularPoint]
     cusps: list[TripleRoot]
-    seeds: int
+    seeds: int  # Newton runs on the triple-root system
 
 
 def section(
@@ -172,7 +172,12 @@ def section(
                         located.append(p)
     span = np.array([a_range[1] - a_range[0], b_range[1] - b_range[0]])
     found: list[np.ndarray] = []
-    for seed in _seeds(family, located, span / (points - 1)):
+    step = span / (points - 1)
+    runs = 0
+    for seed in _seeds(family, located, step):
+        if any(np.all(np.abs(seed[1:] - w[1:]) <= 2 * step) for w in found):
+            continue  # beside a cusp already found
+        runs += 1
         z = _triple(family, seed, span)
         if z is None:
             continue
@@ -180,13 +185,13 @@ def section(
         if inside and not any(_same(z, w, span) for w in found):
             found.append(z)
     cusps = [_certified(family, z) for z in sorted(found, key=lambda z: (z[1], z[2]))]
-    return Section(A, B, counts, located, cusps, len(located))
+    return Section(A, B, counts, located, cusps, runs)
 
 
 def _seeds(family: Family, located: list[SingularPoint], step: np.ndarray) -> list[np.ndarray]:
     """Where Newton on the triple-root system starts: first between two located points
-    (within a grid cell and a half) on which d2P/dt2 has opposite signs -- a cusp may
-    lie between them; then every located point."""
+    (within a grid cell and a half) on which d2P/dt2 has opposite signs: a cusp may
+    lie between them (along one curve d2P/dt2 changes sign only there)."""
     if not located:
         return []
     z = np.array([[p.t, p.a, p.b] for p in located])
@@ -199,7 +204,7 @@ def _seeds(family: Family, located: list[SingularPoint], step: np.ndarray) -> li
     mids = (z[i] + z[j]) / 2
     # the half-angle tangent stretches: the midpoint's angle, not its tangent
     mids[:, 0] = np.tan((np.arctan(z[i, 0]) + np.arctan(z[j, 0])) / 2)
-    return list(mids) + list(z)
+    return list(mids)
 
 
 def _same(z: np.ndarray, w: np.ndarray, span: np.ndarray) -> bool:
