@@ -149,8 +149,15 @@ def cusps(
     a_rng, b_rng = ranges[a_name], ranges[b_name]
     if built.get("decoupled"):
         return CuspsResult(
-            mech.name, built["problem"], (a_name, b_name), (a_rng, b_rng), built["fixed"],
-            built["formulation"], [], False, built["decoupled"],
+            mech.name,
+            built["problem"],
+            (a_name, b_name),
+            (a_rng, b_rng),
+            built["fixed"],
+            built["formulation"],
+            [],
+            False,
+            built["decoupled"],
         )
     fam = built["family"]
     sec = discriminant.section(fam, a_rng, b_rng, n)
@@ -160,8 +167,13 @@ def cusps(
         modes["real_modes_at_cusp"] = c.real_roots
         modes["coalescing"] = 3
         found.append(
-            Cusp({a_name: float(c.a), b_name: float(c.b)}, float(c.t), c.certified,
-                 float(c.radius), modes)
+            Cusp(
+                {a_name: float(c.a), b_name: float(c.b)},
+                float(c.t),
+                c.certified,
+                float(c.radius),
+                modes,
+            )
         )
     certified = [c for c in found if c.certified]
     if certified:
@@ -174,23 +186,25 @@ def cusps(
         evidence = {
             "kind": "no-triple-root",
             "reason": (
-                "no real triple root of the eliminant over the section: of its "
-                f"{len(sec.points)} located singular points, no two neighbours on which "
-                "d2P/dt2 changes sign (where a cusp lies between)"
-                + (
-                    f"; Newton on P = dP/dt = d2P/dt2 = 0 from the {sec.seeds} that do "
-                    "converged to none in the section"
-                    if sec.seeds
-                    else ""
-                )
+                "no real triple root of the eliminant over the section: Newton on "
+                f"P = dP/dt = d2P/dt2 = 0 from each of its {len(sec.points)} located "
+                "singular points, and from between each two neighbours on which "
+                f"d2P/dt2 changes sign ({sec.seeds} starts), reached none in the section"
                 + ("" if not found else " that the Krawczyk test certifies")
             ),
         }
     evidence.update({"grid": n, "singular_points": len(sec.points)})
     counts = sorted({int(v) for v in sec.counts.ravel()})
     return CuspsResult(
-        mech.name, built["problem"], (a_name, b_name), (a_rng, b_rng), built["fixed"],
-        {**built["formulation"], "modes_counts": counts}, found, bool(certified), evidence,
+        mech.name,
+        built["problem"],
+        (a_name, b_name),
+        (a_rng, b_rng),
+        built["fixed"],
+        {**built["formulation"], "modes_counts": counts},
+        found,
+        bool(certified),
+        evidence,
         [(p.a, p.b) for p in sec.points],
         {
             a_name: [float(v) for v in sec.a_values],
@@ -252,9 +266,7 @@ def _planar_family(
     a_name, b_name = (n for n in inputs if n in ranges)
     (fixed_name,) = (n for n in inputs if n not in ranges)
     if config is None:  # the first configuration that gives the fixed input
-        config = next(
-            (n for n, c in mech.configurations.items() if fixed_name in c.values), None
-        )
+        config = next((n for n, c in mech.configurations.items() if fixed_name in c.values), None)
     if config is not None and config not in mech.configurations:
         raise UserError(
             f"{where}: no configuration named {config!r}; the file has: "
@@ -287,8 +299,11 @@ def _planar_family(
                 "platform": {"x": float(pose[2]), "y": float(pose[3]), "theta": float(theta)}
             }
             try:
-                num = {fixed_name: (value,), a_name: (sympy.Float(a, 30),),
-                       b_name: (sympy.Float(b, 30),)}
+                num = {
+                    fixed_name: (value,),
+                    a_name: (sympy.Float(a, 30),),
+                    b_name: (sympy.Float(b, 30),),
+                }
                 coords = joint_values(turned, [planar_system(turned, num)], num, [pose])
                 names = [n for n, _ in turned.coordinates()]
                 out["joints"] = {n: float(v) for n, v in zip(names, coords, strict=True)}
@@ -329,8 +344,9 @@ def _without_free_factor(
     return sympy.expand(q) if rem == 0 else sympy.expand(F)
 
 
-def decoupled_evidence(P: sympy.Expr, t: sympy.Symbol, a: sympy.Symbol, b: sympy.Symbol,
-                       what: str) -> dict[str, Any] | None:
+def decoupled_evidence(
+    P: sympy.Expr, t: sympy.Symbol, a: sympy.Symbol, b: sympy.Symbol, what: str
+) -> dict[str, Any] | None:
     """Evidence that ``P`` has no triple root of its modes because every factor that
     holds ``t`` is repeated (the modes come in pairs of a lower-degree polynomial's
     roots: the kinematics decouples), or None."""

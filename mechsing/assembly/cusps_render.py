@@ -30,12 +30,13 @@ def render_cusps(doc: dict[str, Any], fmt: str) -> str:
     if fmt == "json":
         return json.dumps(doc, indent=2) + "\n"
     names = tuple(doc["section"]["vary"])
-    ranges = ", ".join(f"{n} in [{lo:.6g}, {hi:.6g}]" for n, (lo, hi) in doc["section"]["vary"].items())
+    ranges = ", ".join(
+        f"{n} in [{lo:.6g}, {hi:.6g}]" for n, (lo, hi) in doc["section"]["vary"].items()
+    )
     fixed = ", ".join(f"{n} = {v:.12g}" for n, v in doc["section"]["fixed"].items())
     verdict = "cuspidal" if doc["cuspidal"] else "not cuspidal"
-    head = (
-        f"{doc['mechanism']} ({doc['problem']}): {verdict}; section {ranges}"
-        + (f", {fixed}" if fixed else "")
+    head = f"{doc['mechanism']} ({doc['problem']}): {verdict}; section {ranges}" + (
+        f", {fixed}" if fixed else ""
     )
     lines = [head, f"evidence: {doc['evidence']['reason']}"]
     counts = doc["formulation"].get("modes_counts")
@@ -50,7 +51,10 @@ def render_cusps(doc: dict[str, Any], fmt: str) -> str:
     if fmt == "md":
         out = [f"## {head}", "", f"*Evidence:* {doc['evidence']['reason']}", ""]
         if doc["cusps"]:
-            out += [f"| # | {names[0]} | {names[1]} | certified | modes there |", "|---|---|---|---|---|"]
+            out += [
+                f"| # | {names[0]} | {names[1]} | certified | modes there |",
+                "|---|---|---|---|---|",
+            ]
             for k, c in enumerate(doc["cusps"], start=1):
                 out.append(
                     f"| {k} | {c['inputs'][names[0]]:.12g} | {c['inputs'][names[1]]:.12g} | "

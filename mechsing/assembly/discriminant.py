@@ -12,8 +12,8 @@ test (:func:`~mechsing.assembly.certify.krawczyk`: one true triple root in the b
 How they are found: the number of real roots on a grid of the section (the modes'
 regions); on every grid edge whose ends differ, the crossing bisected on that count and
 then placed by Newton on ``P = P_t = 0`` along the edge (to 1e-12 relative); from every
-pair of neighbouring located singular points on which d2P/dt2 has opposite signs,
-Newton on the triple-root system, the points it converges to in the section kept once.  The count of cusps is therefore what the grid sees: a cusp whose
+pair of neighbouring located singular points on which d2P/dt2 has opposite signs, and
+from every located point, Newton on the triple-root system (all at once, in numpy), the points it converges to in the section kept once.  The count of cusps is therefore what the grid sees: a cusp whose
 curves cross no grid edge is missed (a finer grid, ``points``, finds it).
 
 Owns :class:`Family`, :class:`Section` and :func:`section`.
@@ -89,6 +89,17 @@ class Family:
             cache[(p, q, r)] = C
         return cache[(p, q, r)]
 
+    @property
+    def flipped(self) -> Family:
+        """``t^n P(-1/t)``: the same modes in ``s = -1/t`` (theta moved by pi), where a
+        root near t = oo (the platform angle near theta0 + pi) is near s = 0 and Newton
+        on it is well conditioned; its triple roots are P's at t = -1/s."""
+        if "flipped" not in self.cache:
+            n = self.degree
+            expr = sympy.expand(self.t**n * self.poly.as_expr().subs(self.t, -1 / self.t))
+            self.cache["flipped"] = Family.of(expr, self.t, self.a, self.b)
+        return self.cache["flipped"]
+
     def in_t(self, a: float, b: float) -> np.ndarray:
         """The coefficients in t at (a, b), highest power first."""
         out = np.zeros(self.degree + 1)
@@ -153,7 +164,9 @@ class Section:
 
 
 def section(
-    family: Family, a_range: tuple[float, float], b_range: tuple[float, float],
+    family: Family,
+    a_range: tuple[float, float],
+    b_range: tuple[float, float],
     points: int = GRID_POINTS,
 ) -> Section:
     """The singular curves and the cusps of ``family`` over the box ``a_range x
@@ -172,28 +185,22 @@ def section(
                         located.append(p)
     span = np.array([a_range[1] - a_range[0], b_range[1] - b_range[0]])
     found: list[np.ndarray] = []
-    step = span / (points - 1)
-    runs = 0
-    for seed in _seeds(family, located, step):
-        if any(np.all(np.abs(seed[1:] - w[1:]) <= 2 * step) for w in found):
-            continue  # beside a cusp already found
-        runs += 1
-        z = _triple(family, seed, span)
-        if z is None:
-            continue
+    seeds = _seeds(family, located, span / (points - 1))
+    for z in _triple_batch(family, seeds, span):
         inside = a_range[0] <= z[1] <= a_range[1] and b_range[0] <= z[2] <= b_range[1]
         if inside and not any(_same(z, w, span) for w in found):
             found.append(z)
     cusps = [_certified(family, z) for z in sorted(found, key=lambda z: (z[1], z[2]))]
-    return Section(A, B, counts, located, cusps, runs)
+    return Section(A, B, counts, located, cusps, len(seeds))
 
 
-def _seeds(family: Family, located: list[SingularPoint], step: np.ndarray) -> list[np.ndarray]:
+def _seeds(family: Family, located: list[SingularPoint], step: np.ndarray) -> np.ndarray:
     """Where Newton on the triple-root system starts: first between two located points
     (within a grid cell and a half) on which d2P/dt2 has opposite signs: a cusp may
-    lie between them (along one curve d2P/dt2 changes sign only there)."""
+    lie between them (along one curve d2P/dt2 changes sign only there); then every
+    located point (the tip of a wedge thinner than a grid cell has only one side's)."""
     if not located:
-        return []
+        return np.zeros((0, 3))
     z = np.array([[p.t, p.a, p.b] for p in located])
     sign = np.sign(family.derivative(2, 0, 0, z[:, 0], z[:, 1], z[:, 2]))
     near = (np.abs(z[:, None, 1] - z[None, :, 1]) <= 1.5 * step[0]) & (
@@ -202,9 +209,10 @@ def _seeds(family: Family, located: list[SingularPoint], step: np.ndarray) -> li
     opposite = sign[:, None] * sign[None, :] < 0
     i, j = np.nonzero(np.triu(near & opposite, 1))
     mids = (z[i] + z[j]) / 2
-    # the half-angle tangent stretches: the midpoint's angle, not its tangent
-    mids[:, 0] = np.tan((np.arctan(z[i, 0]) + np.arctan(z[j, 0])) / 2)
-    return list(mids)
+    # the half-angle tangent stretches and wraps at oo: the mean of the angles
+    half = np.angle(np.exp(2j * np.arctan(z[i, 0])) + np.exp(2j * np.arctan(z[j, 0]))) / 2
+    mids[:, 0] = np.tan(half)
+    return np.array([*mids, *z]).reshape(-1, 3)
 
 
 def _same(z: np.ndarray, w: np.ndarray, span: np.ndarray) -> bool:
@@ -238,8 +246,14 @@ def _crossing(
     for _ in range(NEWTON_STEPS):
         a, b = u[0] + s * du[0], u[1] + s * du[1]
         f = np.array([family.derivative(0, 0, 0, t, a, b), family.derivative(1, 0, 0, t, a, b)])
-        ds_p = family.derivative(0, 1, 0, t, a, b) * du[0] + family.derivative(0, 0, 1, t, a, b) * du[1]
-        ds_pt = family.derivative(1, 1, 0, t, a, b) * du[0] + family.derivative(1, 0, 1, t, a, b) * du[1]
+        ds_p = (
+            family.derivative(0, 1, 0, t, a, b) * du[0]
+            + family.derivative(0, 0, 1, t, a, b) * du[1]
+        )
+        ds_pt = (
+            family.derivative(1, 1, 0, t, a, b) * du[0]
+            + family.derivative(1, 0, 1, t, a, b) * du[1]
+        )
         J = np.array([[f[1], ds_p], [family.derivative(2, 0, 0, t, a, b), ds_pt]])
         try:
             step = np.linalg.solve(J, f)
@@ -255,38 +269,79 @@ def _crossing(
     return SingularPoint(u[0] + s * du[0], u[1] + s * du[1], float(roots[k]), False)
 
 
-def _triple_residual(family: Family, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    t, a, b = z
+def _triple_batch(family: Family, seeds: np.ndarray, span: np.ndarray) -> list[np.ndarray]:
+    """Newton on the triple-root system from every seed at once (steps limited to a
+    tenth of the section; a run that wanders a section away is dropped): the real
+    triple roots reached.  Seeds with |t| > 1 run in the flipped polynomial
+    (:attr:`Family.flipped`) and come back in t."""
+    out = []
+    far = np.abs(seeds[:, 0]) > 1
+    for fam, part, flip in ((family, seeds[~far], False), (family.flipped, seeds[far], True)):
+        if not len(part):
+            continue
+        z = part.copy()
+        if flip:
+            z[:, 0] = -1 / z[:, 0]
+        done = _newton_batch(fam, z, span)
+        for w in done:
+            if flip:
+                if w[0] == 0:
+                    continue
+                w = np.array([-1 / w[0], w[1], w[2]])
+            out.append(w)
+    return out
+
+
+def _newton_batch(family: Family, z: np.ndarray, span: np.ndarray) -> list[np.ndarray]:
+    start = z.copy()
+    alive = np.ones(len(z), dtype=bool)
+    converged = np.zeros(len(z), dtype=bool)
     d = family.derivative
-    f = np.array([d(0, 0, 0, t, a, b), d(1, 0, 0, t, a, b), d(2, 0, 0, t, a, b)])
-    J = np.array([[d(p + 1, 0, 0, t, a, b), d(p, 1, 0, t, a, b), d(p, 0, 1, t, a, b)] for p in range(3)])
-    return f, J
-
-
-def _triple(family: Family, z: np.ndarray, span: np.ndarray) -> np.ndarray | None:
-    """Newton on the triple-root system from ``z`` (steps limited to a tenth of the
-    section): the real triple root it converges to, or None."""
-    limit = np.array([max(1.0, abs(z[0])), *span]) * 0.1
-    start = z
     for _ in range(TRIPLE_STEPS):
-        f, J = _triple_residual(family, z)
-        try:
-            step = np.linalg.solve(J, f)
-        except np.linalg.LinAlgError:
-            return None
-        if not np.all(np.isfinite(step)):
-            return None
-        step = step * min(1.0, float(np.min(limit / np.maximum(np.abs(step), 1e-300))))
-        z = z - step
-        if np.any(np.abs(z[1:] - start[1:]) > span):  # wandered off: not this seed's cusp
-            return None
-        if np.all(np.abs(step) <= 1e-13 * np.array([max(1.0, abs(z[0])), *np.maximum(1.0, np.abs(z[1:]))])):
-            return z
-    return None
+        idx = np.nonzero(alive & ~converged)[0]
+        if not len(idx):
+            break
+        t, a, b = z[idx, 0], z[idx, 1], z[idx, 2]
+        f = np.stack([d(p, 0, 0, t, a, b) for p in range(3)], axis=-1)
+        J = np.stack(
+            [
+                np.stack([d(p + 1, 0, 0, t, a, b), d(p, 1, 0, t, a, b), d(p, 0, 1, t, a, b)], -1)
+                for p in range(3)
+            ],
+            axis=-2,
+        )
+        ok = np.abs(np.linalg.det(J)) > 0
+        step = np.zeros_like(f)
+        step[ok] = np.linalg.solve(J[ok], f[ok][..., None])[..., 0]
+        limit = (
+            np.stack([np.maximum(1.0, np.abs(t)), *(np.full(len(t), x) for x in span)], -1) * 0.1
+        )
+        scale = np.minimum(1.0, np.min(limit / np.maximum(np.abs(step), 1e-300), axis=1))
+        z[idx] = z[idx] - step * scale[:, None]
+        bad = (
+            ~ok
+            | ~np.all(np.isfinite(z[idx]), axis=1)
+            | np.any(np.abs(z[idx, 1:] - start[idx, 1:]) > span, axis=1)
+        )
+        alive[idx[bad]] = False
+        tol = 1e-13 * np.maximum(1.0, np.abs(z[idx]))
+        converged[idx[~bad & np.all(np.abs(step) <= tol, axis=1)]] = True
+    return [z[i] for i in np.nonzero(converged & alive)[0]]
 
 
 def _certified(family: Family, z: np.ndarray) -> TripleRoot:
     """The triple root near ``z`` refined at CUSP_DIGITS digits and Krawczyk-tested."""
+    if abs(z[0]) > 1:  # certified in the flipped polynomial, where the root is near 0
+        flip = _certified(family.flipped, np.array([-1 / z[0], z[1], z[2]]))
+        with mpmath.workdps(CUSP_DIGITS):
+            return TripleRoot(
+                flip.a,
+                flip.b,
+                -1 / flip.t,
+                flip.certified,
+                flip.radius,
+                family.count(float(flip.a), float(flip.b)),
+            )
     t, a, b = family.t, family.a, family.b
     P = family.poly
     eqs = [P.as_expr(), P.diff(t).as_expr(), P.diff(t).diff(t).as_expr()]

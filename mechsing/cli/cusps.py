@@ -43,7 +43,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "-o", "--output", metavar="OUT", help="write the result to OUT instead of standard output"
     )
     p.add_argument(
-        "--plot", metavar="PNG", help="draw the section (modes, singular curves, cusps) to PNG or SVG"
+        "--plot",
+        metavar="PNG",
+        help="draw the section (modes, singular curves, cusps) to PNG or SVG",
     )
 
 

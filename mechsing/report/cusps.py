@@ -31,8 +31,13 @@ def cusps_figure(doc: dict[str, Any]) -> Figure:
             da, db = (A[1] - A[0]) / 2, (B[1] - B[0]) / 2
             levels = sorted({int(v) for v in counts.ravel()})
             image = ax.imshow(
-                counts.T, extent=(A[0] - da, A[-1] + da, B[0] - db, B[-1] + db),
-                origin="lower", cmap="Blues", vmin=-1, vmax=max(levels) + 2, aspect="auto",
+                counts.T,
+                extent=(A[0] - da, A[-1] + da, B[0] - db, B[-1] + db),
+                origin="lower",
+                cmap="Blues",
+                vmin=-1,
+                vmax=max(levels) + 2,
+                aspect="auto",
                 interpolation="nearest",
             )
             bar = fig.colorbar(image, ax=ax, ticks=levels, shrink=0.8)
@@ -42,9 +47,16 @@ def cusps_figure(doc: dict[str, Any]) -> Figure:
             ax.plot(pts[:, 0], pts[:, 1], ".", color="#d62728", ms=2.0, label="singular curves")
         for k, c in enumerate(doc["cusps"]):
             x, y = c["inputs"][a_name], c["inputs"][b_name]
-            ax.plot([x], [y], marker="o", ms=8, ls="", mec="black",
-                    mfc="gold" if c["certified"] else "white",
-                    label=None if k else "cusp (filled: certified)")
+            ax.plot(
+                [x],
+                [y],
+                marker="o",
+                ms=8,
+                ls="",
+                mec="black",
+                mfc="gold" if c["certified"] else "white",
+                label=None if k else "cusp (filled: certified)",
+            )
             ax.annotate(f"{k + 1}", (x, y), xytext=(5, 5), textcoords="offset points")
         ax.set_xlim(*a_rng)
         ax.set_ylim(*b_rng)

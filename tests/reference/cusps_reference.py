@@ -77,8 +77,11 @@ def _solve_on_torus(f: Callable, fj: Callable, n: int) -> list[np.ndarray]:
 
 
 def rpr_cusps(
-    base: Sequence[Sequence[float]], platform: Sequence[Sequence[float]], rho1: float,
-    box: tuple[tuple[float, float], tuple[float, float]], n: int = 40,
+    base: Sequence[Sequence[float]],
+    platform: Sequence[Sequence[float]],
+    rho1: float,
+    box: tuple[tuple[float, float], tuple[float, float]],
+    n: int = 40,
 ) -> list[tuple[float, float, float]]:
     """The cusps (rho2, rho3, theta) of a 3-RPR's section rho1 fixed, in ``box``:
     ``base`` the points A_i, ``platform`` the points b_i in the platform's frame."""
@@ -108,8 +111,12 @@ def _dh(a: float, alpha: float, d: float, q: sympy.Expr) -> sympy.Matrix:
     ca, sa = sympy.cos(alpha), sympy.sin(alpha)
     cq, sq = sympy.cos(q), sympy.sin(q)
     return sympy.Matrix(
-        [[cq, -sq, 0, a], [sq * ca, cq * ca, -sa, -sa * d], [sq * sa, cq * sa, ca, ca * d],
-         [0, 0, 0, 1]]
+        [
+            [cq, -sq, 0, a],
+            [sq * ca, cq * ca, -sa, -sa * d],
+            [sq * sa, cq * sa, ca, ca * d],
+            [0, 0, 0, 1],
+        ]
     )
 
 
@@ -123,7 +130,9 @@ def arm_point(dh: Sequence[tuple], tool: Sequence, qs: Sequence[sympy.Expr]) -> 
 
 
 def arm_cusps(
-    dh: Sequence[tuple], tool: Sequence, box: tuple[tuple[float, float], tuple[float, float]],
+    dh: Sequence[tuple],
+    tool: Sequence,
+    box: tuple[tuple[float, float], tuple[float, float]],
     n: int = 36,
 ) -> list[tuple[float, float]]:
     """The cusps (rho, z) of a positional 3R arm's workspace section in ``box``."""
@@ -151,8 +160,10 @@ def ik_quartic(dh: Sequence[tuple], tool: Sequence) -> tuple[sympy.Expr, sympy.S
     p = arm_point(dh, tool, (sympy.S.Zero, q2, q3))
     eqs = [sympy.expand(p.dot(p)) - rho**2 - zt**2, sympy.expand(p[2]) - zt]
     half = {
-        sympy.cos(q2): (1 - t2**2) / (1 + t2**2), sympy.sin(q2): 2 * t2 / (1 + t2**2),
-        sympy.cos(q3): (1 - t3**2) / (1 + t3**2), sympy.sin(q3): 2 * t3 / (1 + t3**2),
+        sympy.cos(q2): (1 - t2**2) / (1 + t2**2),
+        sympy.sin(q2): 2 * t2 / (1 + t2**2),
+        sympy.cos(q3): (1 - t3**2) / (1 + t3**2),
+        sympy.sin(q3): 2 * t3 / (1 + t3**2),
     }
     polys = [sympy.numer(sympy.together(sympy.expand(e).subs(half))) for e in eqs]
     res = sympy.resultant(polys[0], polys[1], t2)
@@ -168,7 +179,9 @@ def triple_root_residual(
 ) -> tuple[float, float]:
     """At the target (rho, z): the smallest ``max(|Q|, |Q'|, |Q''|) / max|coeff|`` over the
     real roots of Q'' (a triple root makes it zero), and that root (q3 = 2 atan t3)."""
-    Q = sympy.Poly(quartic.subs({target[0]: sympy.nsimplify(rho), target[1]: sympy.nsimplify(z)}), t3)
+    Q = sympy.Poly(
+        quartic.subs({target[0]: sympy.nsimplify(rho), target[1]: sympy.nsimplify(z)}), t3
+    )
     c = np.array([float(x) for x in Q.all_coeffs()])
     c = c / np.max(np.abs(c))
     d1, d2 = np.polyder(c), np.polyder(c, 2)
