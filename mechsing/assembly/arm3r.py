@@ -75,8 +75,7 @@ def _chain(mech: Mechanism) -> list[Any]:
 
 def arm_family(mech: Mechanism, ranges: dict[str, tuple[float, float]]) -> dict[str, Any]:
     """The section's polynomial of a positional 3R arm (see the module)."""
-    from mechsing.assembly.cusps import _without_free_factor, decoupled_evidence
-    from mechsing.assembly.discriminant import Family
+    from mechsing.assembly.discriminant import Family, decoupled_evidence, without_free_factor
     from mechsing.assembly.exact import T, eliminant_of
     from mechsing.assembly.planar import OFFSETS, C, S, X, Y
 
@@ -101,7 +100,7 @@ def arm_family(mech: Mechanism, ranges: dict[str, tuple[float, float]]) -> dict[
     eq_z = sympy.expand(w[0].dot(d21 + ru) - Z)
     eq_r = sympy.expand(d21.dot(d21) + u.dot(u) + 2 * d21.dot(ru) - RHO**2 - Z**2)
     F, (D, Dx, Dy) = eliminant_of([eq_r, eq_z], X**2 + Y**2 - 1, 2)
-    P = _without_free_factor(F, T, RHO, Z)
+    P = without_free_factor(F, T, RHO, Z)
     formulation = {
         "name": "positional 3R arm",
         "joints": [j1.name, j2.name, j3.name],

@@ -157,7 +157,7 @@ def cusps(
             built["formulation"],
             [],
             False,
-            built["decoupled"],
+            {**built["decoupled"], "cusps": 0},
         )
     fam = built["family"]
     sec = discriminant.section(fam, a_rng, b_rng, n)
@@ -193,7 +193,7 @@ def cusps(
                 + ("" if not found else " that the Krawczyk test certifies")
             ),
         }
-    evidence.update({"grid": n, "singular_points": len(sec.points)})
+    evidence.update({"cusps": len(certified), "grid": n, "singular_points": len(sec.points)})
     counts = sorted({int(v) for v in sec.counts.ravel()})
     return CuspsResult(
         mech.name,
@@ -242,7 +242,7 @@ def _planar_family(
     mech: Mechanism, ranges: dict[str, tuple[float, float]], config: str | None
 ) -> dict[str, Any]:
     """The section's eliminant of a planar mechanism with three inputs."""
-    from mechsing.assembly.discriminant import Family
+    from mechsing.assembly.discriminant import Family, without_free_factor
     from mechsing.assembly.exact import T, eliminant
     from mechsing.assembly.planar import OFFSETS, C, S, joint_values, planar_system
     from mechsing.assembly.planar_pose import turned_to_xy
@@ -284,7 +284,7 @@ def _planar_family(
         F, (D, Dx, Dy) = eliminant(system)
     except FormulationError as exc:
         raise UserError(f"{where}: the planar formulation does not apply: {exc}") from None
-    P = _without_free_factor(F, T, A, B)
+    P = without_free_factor(F, T, A, B)
     r = OFFSETS[0]
     theta0 = 2 * mpmath.atan(mpmath.mpf(r.p) / r.q)
     cramer = sympy.lambdify([C, S, A, B], [D, Dx, Dy], "mpmath")
@@ -325,41 +325,3 @@ def _planar_family(
         },
         "mode_at": mode_at,
     }
-
-
-def _without_free_factor(
-    F: sympy.Expr, t: sympy.Symbol, a: sympy.Symbol, b: sympy.Symbol
-) -> sympy.Expr:
-    """``F`` divided by its factor free of ``a`` and ``b`` (the gcd of its coefficients
-    as a polynomial in them): roots that every point of the section shares are not modes."""
-    poly = sympy.Poly(F, a, b)
-    g = sympy.S.Zero
-    for c in poly.coeffs():
-        g = sympy.gcd(g, c)
-        if g == 1:
-            return sympy.expand(F)
-    if not g.has(t):
-        return sympy.expand(F)
-    q, rem = sympy.div(sympy.expand(F), sympy.expand(g), t, a, b)
-    return sympy.expand(q) if rem == 0 else sympy.expand(F)
-
-
-def decoupled_evidence(
-    P: sympy.Expr, t: sympy.Symbol, a: sympy.Symbol, b: sympy.Symbol, what: str
-) -> dict[str, Any] | None:
-    """Evidence that ``P`` has no triple root of its modes because every factor that
-    holds ``t`` is repeated (the modes come in pairs of a lower-degree polynomial's
-    roots: the kinematics decouples), or None."""
-    _, factors = sympy.sqf_list(sympy.Poly(P, t, a, b))
-    moving = [(f, m) for f, m in factors if f.degree(t) > 0]
-    if moving and all(m >= 2 for _, m in moving):
-        degree = sum(f.degree(t) for f, _ in moving)
-        return {
-            "kind": "decoupled",
-            "reason": (
-                f"the eliminant is a power of a polynomial of degree {degree} in t: {what}; "
-                "its modes meet at most in pairs of that polynomial's double roots, never "
-                "three at one point: no cusp anywhere"
-            ),
-        }
-    return None

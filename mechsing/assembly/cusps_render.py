@@ -14,8 +14,12 @@ __all__ = ["render_cusps"]
 def _line(k: int, c: dict[str, Any], names: tuple[str, str]) -> str:
     where = ", ".join(f"{n} = {c['inputs'][n]:.12g}" for n in names)
     how = "certified" if c["certified"] else "not certified"
-    pose = c["modes"].get("platform") or c["modes"].get("joints_meeting") or {}
-    at = ", ".join(f"{n} = {v:.6g}" for n, v in pose.items())
+    if "platform" in c["modes"]:
+        at = "the platform at " + ", ".join(
+            f"{n} = {v:.6g}" for n, v in c["modes"]["platform"].items()
+        )
+    else:
+        at = ", ".join(f"{n} = {v:.6g}" for n, v in c["modes"].get("joints", {}).items())
     return (
         f"{k}. {where}: three modes meet ({how}"
         + (f", radius {c['radius']:.0e}" if c["certified"] else "")

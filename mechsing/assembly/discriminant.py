@@ -16,7 +16,8 @@ pair of neighbouring located singular points on which d2P/dt2 has opposite signs
 from every located point, Newton on the triple-root system (all at once, in numpy), the points it converges to in the section kept once.  The count of cusps is therefore what the grid sees: a cusp whose
 curves cross no grid edge is missed (a finer grid, ``points``, finds it).
 
-Owns :class:`Family`, :class:`Section` and :func:`section`.
+Owns :class:`Family`, :class:`Section`, :func:`section`, :func:`without_free_factor`
+and :func:`decoupled_evidence`.
 """
 
 from __future__ import annotations
@@ -32,7 +33,7 @@ import sympy
 from mechsing.assembly.certify import krawczyk, newton
 from mechsing.numeric import CUSP_DISTINCT_RTOL, CUSP_REAL_RTOL, MODE_CERTIFY_RADIUS
 
-__all__ = ["Family", "Section", "section"]
+__all__ = ["Family", "Section", "decoupled_evidence", "section", "without_free_factor"]
 
 #: grid points along each side of the section (the modes' count is taken at each)
 GRID_POINTS = 81
@@ -106,6 +107,16 @@ class Family:
         vals = self.coeffs * a ** self.monos[:, 1] * b ** self.monos[:, 2]
         np.add.at(out, self.degree - self.monos[:, 0], vals)
         return out
+
+    def vanishes(self, a: float, b: float) -> bool:
+        """Is P(t; a, b) zero for every t (each coefficient below CUSP_DISTINCT_RTOL of
+        its terms' size)?"""
+        vals = self.coeffs * a ** self.monos[:, 1] * b ** self.monos[:, 2]
+        size = np.zeros(self.degree + 1)
+        np.add.at(size, self.degree - self.monos[:, 0], np.abs(vals))
+        return bool(
+            np.all(np.abs(self.in_t(a, b)) <= CUSP_DISTINCT_RTOL * np.maximum(size, 1e-300))
+        )
 
     def real_roots(self, a: float, b: float) -> np.ndarray:
         """The real roots in t at (a, b), sorted."""
@@ -190,7 +201,13 @@ def section(
         inside = a_range[0] <= z[1] <= a_range[1] and b_range[0] <= z[2] <= b_range[1]
         if inside and not any(_same(z, w, span) for w in found):
             found.append(z)
-    cusps = [_certified(family, z) for z in sorted(found, key=lambda z: (z[1], z[2]))]
+    refined = (_certified(family, z) for z in sorted(found, key=lambda z: (z[1], z[2])))
+    cusps: list[TripleRoot] = []
+    for c in refined:  # two starts' points that refine to one triple root: kept once
+        if c is not None and not any(
+            abs(c.a - d.a) + abs(c.b - d.b) <= 1e-20 * (1 + abs(c.a) + abs(c.b)) for d in cusps
+        ):
+            cusps.append(c)
     return Section(A, B, counts, located, cusps, len(seeds))
 
 
@@ -329,10 +346,13 @@ def _newton_batch(family: Family, z: np.ndarray, span: np.ndarray) -> list[np.nd
     return [z[i] for i in np.nonzero(converged & alive)[0]]
 
 
-def _certified(family: Family, z: np.ndarray) -> TripleRoot:
-    """The triple root near ``z`` refined at CUSP_DIGITS digits and Krawczyk-tested."""
+def _certified(family: Family, z: np.ndarray) -> TripleRoot | None:
+    """The triple root near ``z`` refined at CUSP_DIGITS digits and Krawczyk-tested
+    (None: Newton at those digits does not close there: no triple root)."""
     if abs(z[0]) > 1:  # certified in the flipped polynomial, where the root is near 0
         flip = _certified(family.flipped, np.array([-1 / z[0], z[1], z[2]]))
+        if flip is None:
+            return None
         with mpmath.workdps(CUSP_DIGITS):
             return TripleRoot(
                 flip.a,
@@ -342,14 +362,54 @@ def _certified(family: Family, z: np.ndarray) -> TripleRoot:
                 flip.radius,
                 family.count(float(flip.a), float(flip.b)),
             )
+    if family.vanishes(z[1], z[2]):
+        return None  # every t solves there (a curve of modes), not three meeting
     t, a, b = family.t, family.a, family.b
     P = family.poly
     eqs = [P.as_expr(), P.diff(t).as_expr(), P.diff(t).diff(t).as_expr()]
     with mpmath.workdps(CUSP_DIGITS + 10):
         root = newton(eqs, [t, a, b], list(z), CUSP_DIGITS)
     with mpmath.workdps(CUSP_DIGITS):
-        if root is None:
-            return TripleRoot(z[1], z[2], z[0], False, 0.0, family.count(z[1], z[2]))
+        if root is None:  # double precision's point is not a triple root at 50 digits
+            return None
         ok = krawczyk(eqs, [t, a, b], root, mpmath.mpf(MODE_CERTIFY_RADIUS))
     tr, ar, br = root
     return TripleRoot(ar, br, tr, ok, MODE_CERTIFY_RADIUS, family.count(float(ar), float(br)))
+
+
+def without_free_factor(
+    F: sympy.Expr, t: sympy.Symbol, a: sympy.Symbol, b: sympy.Symbol
+) -> sympy.Expr:
+    """``F`` divided by its factor free of ``a`` and ``b`` (the gcd of its coefficients
+    as a polynomial in them): roots that every point of the section shares are not modes."""
+    poly = sympy.Poly(F, a, b)
+    g = sympy.S.Zero
+    for c in poly.coeffs():
+        g = sympy.gcd(g, c)
+        if g == 1:
+            return sympy.expand(F)
+    if not g.has(t):
+        return sympy.expand(F)
+    q, rem = sympy.div(sympy.expand(F), sympy.expand(g), t, a, b)
+    return sympy.expand(q) if rem == 0 else sympy.expand(F)
+
+
+def decoupled_evidence(
+    P: sympy.Expr, t: sympy.Symbol, a: sympy.Symbol, b: sympy.Symbol, what: str
+) -> dict[str, Any] | None:
+    """Evidence that ``P`` has no triple root of its modes because every factor that
+    holds ``t`` is repeated (the modes come in pairs of a lower-degree polynomial's
+    roots: the kinematics decouples), or None."""
+    _, factors = sympy.sqf_list(sympy.Poly(P, t, a, b))
+    moving = [(f, m) for f, m in factors if f.degree(t) > 0]
+    if moving and all(m >= 2 for _, m in moving):
+        degree = sum(f.degree(t) for f, _ in moving)
+        return {
+            "kind": "decoupled",
+            "reason": (
+                f"the eliminant is a power of a polynomial of degree {degree} in t: {what}; "
+                "its modes meet at most in pairs of that polynomial's double roots, never "
+                "three at one point: no cusp anywhere"
+            ),
+        }
+    return None

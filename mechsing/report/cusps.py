@@ -2,7 +2,8 @@
 cusps): the number of modes on the grid coloured, the located points of the singular
 curves, the cusps marked (filled: certified).
 
-Owns :func:`cusps_figure` and :func:`write_figure`.
+Owns :func:`cusps_figure`, :func:`write_figure` and :func:`cusps_blocks` (the report's
+section).
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from matplotlib.figure import Figure
 
 from mechsing.report.figures import RC, new_figure, svg
 
-__all__ = ["cusps_figure", "write_figure"]
+__all__ = ["cusps_blocks", "cusps_figure", "write_figure"]
 
 
 def cusps_figure(doc: dict[str, Any]) -> Figure:
@@ -84,3 +85,29 @@ def write_figure(doc: dict[str, Any], path: str) -> None:
     with matplotlib.rc_context(RC):
         fig.savefig(buf, format="png", bbox_inches="tight", metadata={"Software": None})
     write_output(path, buf.getvalue(), [], option="--plot")
+
+
+def cusps_blocks(res: Any) -> list[Any]:
+    """The report's section "Cusps" of a :class:`~mechsing.assembly.cusps.CuspsResult`:
+    the verdict with its evidence, the figure, each cusp."""
+    from mechsing.assembly.cusps_render import render_cusps
+    from mechsing.report import document as doc
+
+    data = res.to_json()
+    lines = render_cusps(data, "text").splitlines()
+    out: list[Any] = [
+        doc.Heading(2, "Cusps"),
+        doc.Paragraph(lines[0] + "."),
+        doc.Paragraph("Evidence: " + data["evidence"]["reason"] + "."),
+        doc.Figure(
+            "cusps-section",
+            svg(cusps_figure(data)),
+            f"the section of {data['mechanism']}: real modes, singular curves, cusps",
+            "The number of real modes on the grid coloured, the singular curves' located "
+            "points in red, the cusps circled (filled: certified).",
+        ),
+    ]
+    cusp_lines = [ln for ln in lines if ln[:1].isdigit()]
+    if cusp_lines:
+        out.append(doc.Bullets(tuple(cusp_lines)))
+    return out
