@@ -191,3 +191,21 @@ def test_cusps_bad_vary_exits_2(tmp_path: Path, vary: str, words: str) -> None:
     path = _write(tmp_path, "orth.yaml", ORTHOGONAL_3R)
     run = run_cli(["cusps", str(path), "--vary", vary])
     assert run.status == 2 and words in run.err
+
+
+def test_exercise_variants_key_matches_the_reference(tmp_path: Path) -> None:
+    """Exercise 17's variants: the key mechsing writes (cuspidal, how many cusps) is the
+    reference's count for the variant's drawn r2 and d4."""
+    import yaml
+
+    out = tmp_path / "variants"
+    run = run_cli(["exercise", "make", "17", "--variants", "1", "--seed", "5", "-o", str(out)])
+    assert run.status == 0, run.err
+    key = yaml.safe_load((out / "variant-01" / "key.yaml").read_text(encoding="utf-8"))
+    r2, d4 = (sympy.Rational(key["numbers"][n]) for n in ("r2", "d4"))
+    want = arm_cusps(
+        [(0, 0, 0), (1, -sympy.pi / 2, r2), (2, sympy.pi / 2, 0)], (d4, 0, 0), ((0, 6), (-5, 5))
+    )
+    answers = {q["id"]: q["value"] for q in key["questions"]}
+    assert answers["cusps"] == len(want)
+    assert answers["cuspidal"] is (len(want) > 0)
