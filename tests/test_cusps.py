@@ -209,3 +209,15 @@ def test_exercise_variants_key_matches_the_reference(tmp_path: Path) -> None:
     answers = {q["id"]: q["value"] for q in key["questions"]}
     assert answers["cusps"] == len(want)
     assert answers["cuspidal"] is (len(want) > 0)
+
+
+def test_report_has_a_cusps_section(tmp_path: Path) -> None:
+    path = _write(tmp_path, "orth.yaml", ORTHOGONAL_3R)
+    out = tmp_path / "review.html"
+    run = run_cli(["report", str(path), "--cusps", "rho=0:6,z=-5:5", "-o", str(out)])
+    assert run.status == 0, run.err
+    html = out.read_text(encoding="utf-8")
+    section = html[html.index(">Cusps<") :]
+    assert "orthogonal-3r (inverse kinematics): cuspidal" in section
+    assert "data:image/svg+xml" in section  # the section's figure
+    assert section.count("three modes meet") == 4
