@@ -45,6 +45,7 @@ _FUNCTIONS = {
     "report": ("mechsing.report", "report"),
     "scan": ("mechsing.sweeps.scan", "scan"),
     "sweep": ("mechsing.sweeps", "sweep"),
+    "cusps": ("mechsing.assembly.cusps", "cusps"),
 }
 _MODULES = ("errors", "lie", "numeric", "subgroups", "model", "kinematics", "screws", "singularity")
 

@@ -502,3 +502,39 @@ def assert_same_lines(got: list, expected: list, tol: float = 1e-8, contract: bo
         hit = [i for i in unmatched if np.max(np.abs(g - e[i])) < tol]
         assert hit, (got, expected)
         unmatched.remove(hit[0])
+
+
+# ------------------------------------------------------------------- a cuspidal 3-RPR
+
+#: A cuspidal 3-RPR (Innocenti & Parenti-Castelli, ASME J. Mech. Des. 1998; the design of
+#: Zein, Wenger & Chablat, Mech. Mach. Theory 43, 2008): base A1 = (0, 0), A2 = (15.91, 0),
+#: A3 = (0, 10); platform sides d1 = |B1B2| = 17.04, d2 = |B2B3| = 16.54, d3 = |B3B1| =
+#: 20.84 (B3's height rounded to 16.0967085: the sides hold to 1e-7), drawn with B1 = (4, 6)
+#: and the platform angle 0.  Input P_i is the leg's length less its length in the drawing
+#: (:data:`CUSPIDAL_3RPR_REST`); configuration ``section`` fixes rho1 = 14.98.  Its section
+#: rho2, rho3 in [0, 32] holds six cusps (tests/test_cusps.py, against
+#: tests/reference/cusps_reference.py), among them one at rho2 = 13.8514600894, rho3 =
+#: 6.2601004357 where three modes meet at the platform angle -0.0453759 rad.
+CUSPIDAL_3RPR = """\
+mechanism: planar-3rpr-cuspidal
+bodies: [ground, cyl1, pis1, cyl2, pis2, cyl3, pis3, platform]
+joints:
+  - {name: Rb1, type: R, between: [ground, cyl1],   axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: P1, type: P, between: [cyl1, pis1],     axis: [4, 6, 0]}
+  - {name: Rp1, type: R, between: [pis1, platform], axis: [0, 0, 1], point: [4, 6, 0]}
+  - {name: Rb2, type: R, between: [ground, cyl2],   axis: [0, 0, 1], point: ["1591/100", 0, 0]}
+  - {name: P2, type: P, between: [cyl2, pis2],     axis: ["513/100", 6, 0]}
+  - {name: Rp2, type: R, between: [pis2, platform], axis: [0, 0, 1], point: ["526/25", 6, 0]}
+  - {name: Rb3, type: R, between: [ground, cyl3],   axis: [0, 0, 1], point: [0, 10, 0]}
+  - {name: P3, type: P, between: [cyl3, pis3],     axis: ["489513/28400", "120967085/10000000", 0]}
+  - {name: Rp3, type: R, between: [pis3, platform], axis: [0, 0, 1], point: ["489513/28400", "220967085/10000000", 0]}
+inputs: [P1, P2, P3]
+output: {body: platform}
+configurations:
+  section: {P1: "749/50 - 2*sqrt(13)"}
+"""
+#: the legs' lengths in the drawing of :data:`CUSPIDAL_3RPR` (rho_i = P_i + these)
+CUSPIDAL_3RPR_REST = ("2*sqrt(13)", "3*sqrt(69241)/100", "sqrt(8941179738376016449)/142000000")
+#: base and platform points (the platform's in its own frame, B1 at its origin)
+CUSPIDAL_3RPR_BASE = ((0, 0), ("1591/100", 0), (0, 10))
+CUSPIDAL_3RPR_PLATFORM = ((0, 0), ("426/25", 0), ("375913/28400", "160967085/10000000"))

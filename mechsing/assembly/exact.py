@@ -36,7 +36,15 @@ from mechsing.assembly.certify import interval_function
 from mechsing.assembly.planar import OFFSETS, C, PlanarSystem, S, X, Y
 from mechsing.errors import FormulationError
 
-__all__ = ["Eliminated", "Staged", "eliminate_planar", "eliminate_stages", "interval_digits"]
+__all__ = [
+    "Eliminated",
+    "Staged",
+    "eliminant",
+    "eliminant_of",
+    "eliminate_planar",
+    "eliminate_stages",
+    "interval_digits",
+]
 
 T = sympy.Symbol("t", real=True)
 
@@ -111,13 +119,7 @@ def eliminate_planar(system: PlanarSystem, dps: int, at: dict | None = None) -> 
     the earlier stages' symbols (each an mpmath number and its interval enclosure)."""
     at = at or {}
     lins, base, k = _split(system)
-    (a1, b1, e1), (a2, b2, e2) = (
-        [sympy.expand(e).coeff(X), sympy.expand(e).coeff(Y), sympy.expand(e).subs({X: 0, Y: 0})]
-        for e in lins
-    )
-    D = sympy.expand(a1 * b2 - a2 * b1)
-    Dx = sympy.expand(-(e1 * b2 - e2 * b1))
-    Dy = sympy.expand(-(a1 * e2 - a2 * e1))
+    D, Dx, Dy = _cramer(lins)
     notes: list[str] = []
     if any(_transcendental(c) for c in _constants(D, Dx, Dy, base)):
         solved = _enclosed_eliminant(D, Dx, Dy, base, k, dps, at)
@@ -172,22 +174,63 @@ def eliminate_planar(system: PlanarSystem, dps: int, at: dict | None = None) -> 
     return Eliminated(True, tuple(poses), proven, degree, r, tuple(notes), tuple(boxes))
 
 
-def _exact_eliminant(
-    D: sympy.Expr, Dx: sympy.Expr, Dy: sympy.Expr, base: sympy.Expr, k: int, dps: int, at: dict
-) -> tuple:
-    """The eliminant with algebraic coefficients, exactly: (offset, real roots, their
-    radii, proven, degree), or (None, ...) for a curve."""
-    # D^k base(Dx/D, Dy/D), each term homogenised by D (no division: sympy's cancel
-    # cannot always clear a denominator that holds radicals)
+def _cramer(lins: list[sympy.Expr]) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
+    """Cramer's rule on the two equations linear in (x, y): (D, Dx, Dy), x = Dx / D."""
+    (a1, b1, e1), (a2, b2, e2) = (
+        [sympy.expand(e).coeff(X), sympy.expand(e).coeff(Y), sympy.expand(e).subs({X: 0, Y: 0})]
+        for e in lins
+    )
+    D = sympy.expand(a1 * b2 - a2 * b1)
+    Dx = sympy.expand(-(e1 * b2 - e2 * b1))
+    Dy = sympy.expand(-(a1 * e2 - a2 * e1))
+    return D, Dx, Dy
+
+
+def _homogenised(
+    D: sympy.Expr, Dx: sympy.Expr, Dy: sympy.Expr, base: sympy.Expr, k: int
+) -> sympy.Expr:
+    """D^k base(Dx/D, Dy/D), each term homogenised by D (no division: sympy's cancel
+    cannot always clear a denominator that holds radicals): a polynomial in (c, s)."""
     gens = [C, S, *_constants(D, Dx, Dy, base)]
     Dp, Dxp, Dyp = (sympy.Poly(e, *gens) for e in (D, Dx, Dy))
-    F = sum(
+    return sum(
         (
             sympy.Poly(coeff, *gens) * Dxp**i * Dyp**j * Dp ** (k - i - j)
             for (i, j), coeff in sympy.Poly(base, X, Y).terms()
         ),
         sympy.Poly(0, *gens),
     ).as_expr()
+
+
+def eliminant(
+    system: PlanarSystem, r: Any = OFFSETS[0]
+) -> tuple[sympy.Expr, tuple[sympy.Expr, sympy.Expr, sympy.Expr]]:
+    """The univariate eliminant ``F(t)`` of ``system`` (t = tan((theta - theta0)/2),
+    tan(theta0/2) = ``r``) and Cramer's (D, Dx, Dy) in (c, s) that give the platform's
+    position at a root; the system's other symbols (given values left as symbols: a
+    section of the input space, :mod:`~mechsing.assembly.cusps`) stay in both."""
+    lins, base, k = _split(system)
+    return eliminant_of(lins, base, k, r)
+
+
+def eliminant_of(
+    lins: list[sympy.Expr], base: sympy.Expr, k: int, r: Any = OFFSETS[0]
+) -> tuple[sympy.Expr, tuple[sympy.Expr, sympy.Expr, sympy.Expr]]:
+    """:func:`eliminant` of two equations ``lins`` linear in (x, y) and a third ``base``
+    of degree ``k`` in them, every coefficient a polynomial in (c, s): the planar
+    symbols :data:`~.planar.X`, :data:`~.planar.Y`, :data:`~.planar.C`,
+    :data:`~.planar.S` (a 3R arm's inverse kinematics has this shape too: x, y the
+    cosine and sine of one joint angle, c, s of another)."""
+    D, Dx, Dy = _cramer(lins)
+    return _in_t(_homogenised(D, Dx, Dy, base, k), r), (D, Dx, Dy)
+
+
+def _exact_eliminant(
+    D: sympy.Expr, Dx: sympy.Expr, Dy: sympy.Expr, base: sympy.Expr, k: int, dps: int, at: dict
+) -> tuple:
+    """The eliminant with algebraic coefficients, exactly: (offset, real roots, their
+    radii, proven, degree), or (None, ...) for a curve."""
+    F = _homogenised(D, Dx, Dy, base, k)
     if _is_zero(F, dps, at):  # every platform angle has a position (a point platform)
         return (None,)
     for r in OFFSETS:

@@ -171,6 +171,7 @@ COMMANDS = (
     "schema",
     "exercise",
     "dynamics",
+    "cusps",
 )
 
 

@@ -63,6 +63,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         metavar="NAME",
         help="add a section with every assembly mode of configuration NAME (as `mechsing modes`)",
     )
+    p.add_argument(
+        "--cusps",
+        dest="cusps_vary",
+        metavar="NAME=lo:hi,NAME=lo:hi",
+        help="add a section with the singular curves and cusps of that section of the input "
+        "space, drawn (as `mechsing cusps --vary`)",
+    )
 
 
 def output_path(file: str, out: str | None) -> tuple[Path, str]:
@@ -120,6 +127,7 @@ def run(args: argparse.Namespace) -> int:
             time_limit=args.time_limit,
             **report_load(mech, args.load, args.max_effort),
             modes_of=args.modes_of,
+            cusps_vary=args.cusps_vary,
         )
         rep.write(path, [args.file])
     print(f"mechsing: report written to {path}", file=sys.stderr)
@@ -152,6 +160,8 @@ def _argv(args: argparse.Namespace) -> list[str]:
         out += ["--max-effort", m]
     if getattr(args, "modes_of", None):
         out += ["--modes", args.modes_of]
+    if getattr(args, "cusps_vary", None):
+        out += ["--cusps", args.cusps_vary]
     if getattr(args, "time_limit", None) is not None:
         out += ["--time-limit", f"{args.time_limit:g}"]
     return out

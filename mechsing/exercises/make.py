@@ -1,6 +1,6 @@
 """Making the variants of an exercise: new numbers, the mechanism file, the statement, and
 the answer key computed by mechsing (:func:`mechsing.analyze`, :func:`mechsing.sweep`,
-:func:`mechsing.condition`).
+:func:`mechsing.condition`, :func:`mechsing.cusps`).
 
 Each variant is a folder ``variant-NN`` of the output directory with
 
@@ -91,6 +91,10 @@ def _compute(op: str, args: dict[str, Any], path: Path, draw: Draw) -> dict[str,
         return sweep(
             path, vary, args.get("from"), precision=args.get("precision", "float")
         ).to_json()
+    if op == "cusps":
+        from mechsing.assembly.cusps import cusps
+
+        return cusps(path, args["vary"], args.get("config"), args.get("points")).to_json()
     from mechsing.conditions import condition
 
     symbolic = args.get("symbolic") or ()

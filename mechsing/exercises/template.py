@@ -68,6 +68,7 @@ COMPUTE_OPERATIONS = {
     "analyze": ("config", "precision"),
     "sweep": ("vary", "from", "precision"),
     "condition": ("config", "symbolic"),
+    "cusps": ("vary", "config", "points"),
 }
 #: largest number of grid points of one varied number
 _MAX_GRID = 10**6
@@ -220,7 +221,10 @@ def _question(path: Path, i: int, q: Any) -> Question:
     compute = q["compute"]
     if not isinstance(compute, dict) or len(compute) != 1:
         raise _fail(
-            path, item, "compute is one of {analyze: {...}}, {sweep: {...}}, {condition: {...}}"
+            path,
+            item,
+            "compute is one of {analyze: {...}}, {sweep: {...}}, {condition: {...}}, "
+            "{cusps: {...}}",
         )
     ((op, args),) = compute.items()
     if op not in COMPUTE_OPERATIONS:
@@ -229,6 +233,8 @@ def _question(path: Path, i: int, q: Any) -> Question:
     if not isinstance(args, dict) or set(args) - set(COMPUTE_OPERATIONS[op]):
         known = ", ".join(COMPUTE_OPERATIONS[op])
         raise _fail(path, item, f"compute.{op} takes a mapping of {known}")
+    if op == "cusps" and "vary" not in args:
+        raise _fail(path, item, 'compute.cusps needs vary: "NAME=lo:hi,NAME=lo:hi"')
     if op == "sweep" and "vary" not in args:
         raise _fail(path, item, 'compute.sweep needs vary: "NAME=START:STOP:STEP"')
     tol = q.get("tol")

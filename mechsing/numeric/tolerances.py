@@ -428,3 +428,12 @@ CROSSING_RTOL = 1e-9
 #: direction not in the span has an exact zero there); a serial arm's target lies in the
 #: subgroup its end moves in when its part outside that span is below this times its size
 MODE_SPAN_RTOL = 1e-20
+# -- cusps of a section of the input space (mechsing.assembly.cusps) ---------------------
+#: a root of the eliminant (double precision, np.roots) counts as real on the section's
+#: grid when its imaginary part is below this times ``max(1, |t|)``: two roots that leave
+#: the real axis at a fold separate as the square root of the distance to it, so a grid
+#: point 1e-12 of the input's span from a singular curve still counts right
+CUSP_REAL_RTOL = 1e-7
+#: two real roots closer than this times ``max(1, |t|)`` are one (a double root counted
+#: once: the modes on a singular curve)
+CUSP_DISTINCT_RTOL = 1e-6

@@ -59,6 +59,7 @@ class Report:
     command: str = ""
     seconds: float = field(default=0.0, compare=False)
     modes: object | None = None  # a ModesResult: the section "Assembly modes"
+    cusps: object | None = None  # a CuspsResult: the section "Cusps"
 
     @property
     def mechanism(self) -> Mechanism:
@@ -113,6 +114,7 @@ def report(
     load: Any = None,
     max_effort: dict[str, float] | None = None,
     modes_of: str | None = None,
+    cusps_vary: str | None = None,
 ) -> Report:
     """A design review of a mechanism (or a file), ready to write as HTML or Markdown.
 
@@ -140,6 +142,10 @@ def report(
     modes_of : str, optional
         A configuration whose every assembly mode (``mechsing.modes``) the report shows
         in a section "Assembly modes", each with a sketch.
+    cusps_vary : str, optional
+        ``NAME=lo:hi,NAME=lo:hi``: a section "Cusps" with the singular curves and the
+        cusps of that section (``mechsing.cusps``; the third input from ``modes_of``'s
+        configuration, else the first that gives it), drawn.
 
     Returns
     -------
@@ -177,7 +183,12 @@ def report(
         from mechsing.assembly import modes
 
         found = modes(mech, modes_of, prec, time_limit=time_limit)
-    return Report(result, swept, command, time.perf_counter() - t0, found)
+    sections = None
+    if cusps_vary is not None:
+        from mechsing.assembly.cusps import cusps
+
+        sections = cusps(mech, cusps_vary, modes_of)
+    return Report(result, swept, command, time.perf_counter() - t0, found, sections)
 
 
 # --------------------------------------------------------------------------- sections
@@ -278,5 +289,9 @@ def _blocks(r: Report) -> list[doc.Block]:
         from mechsing.report.modes_section import modes_blocks
 
         out += modes_blocks(mech, r.modes, r.analysis.length_scale)
+    if r.cusps is not None:
+        from mechsing.report.cusps import cusps_blocks
+
+        out += cusps_blocks(r.cusps)
     out += _how(r)
     return out

@@ -1,0 +1,223 @@
+"""``mechsing cusps``: singular curves and cusps of a section, cuspidal or not.
+
+Checked against tests/reference/cusps_reference.py, which imports nothing from mechsing:
+the cusps of the mechanism's forward map (Whitney's cusp: det dF = 0 and its derivative
+along the kernel = 0), solved from its own formulas, no eliminant; and, for the arm, the
+inverse-kinematics quartic built by a resultant and its triple root.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy
+
+from tests.cli import run_cli
+from tests.mechanisms import (
+    CUSPIDAL_3RPR,
+    CUSPIDAL_3RPR_BASE,
+    CUSPIDAL_3RPR_PLATFORM,
+    CUSPIDAL_3RPR_REST,
+)
+from tests.reference.cusps_reference import (
+    arm_cusps,
+    ik_quartic,
+    rpr_cusps,
+    triple_root_residual,
+)
+
+#: a 3-RPR whose platform is the base triangle halved (similar triangles, same
+#: orientation): a design known not to be cuspidal
+SIMILAR_3RPR = """\
+mechanism: planar-3rpr-similar
+bodies: [ground, cyl1, pis1, cyl2, pis2, cyl3, pis3, platform]
+joints:
+  - {name: Rb1, type: R, between: [ground, cyl1],   axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: P1, type: P, between: [cyl1, pis1],     axis: [1, 1, 0]}
+  - {name: Rp1, type: R, between: [pis1, platform], axis: [0, 0, 1], point: [1, 1, 0]}
+  - {name: Rb2, type: R, between: [ground, cyl2],   axis: [0, 0, 1], point: [4, 0, 0]}
+  - {name: P2, type: P, between: [cyl2, pis2],     axis: [-1, 1, 0]}
+  - {name: Rp2, type: R, between: [pis2, platform], axis: [0, 0, 1], point: [3, 1, 0]}
+  - {name: Rb3, type: R, between: [ground, cyl3],   axis: [0, 0, 1], point: [0, 4, 0]}
+  - {name: P3, type: P, between: [cyl3, pis3],     axis: [1, -1, 0]}
+  - {name: Rp3, type: R, between: [pis3, platform], axis: [0, 0, 1], point: [1, 3, 0]}
+inputs: [P1, P2, P3]
+output: {body: platform}
+configurations:
+  section: {P1: 1}
+"""
+
+#: an orthogonal 3R arm (Baili, Wenger & Chablat, ICRA 2004: modified DH d2 = 1, r2 =
+#: 3/2, d3 = 2, alpha2 = -90 deg, alpha3 = 90 deg, the point at d4 = 3/2 on x3): cuspidal
+ORTHOGONAL_DH = [(0, 0, 0), (1, -sympy.pi / 2, sympy.Rational(3, 2)), (2, sympy.pi / 2, 0)]
+ORTHOGONAL_TOOL = (sympy.Rational(3, 2), 0, 0)
+ORTHOGONAL_3R = """\
+mechanism: orthogonal-3r
+bodies: [base, link1, link2, link3]
+joints:
+  - {name: J1, type: R, between: [base, link1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [link1, link2], axis: [0, 1, 0], point: [1, "3/2", 0]}
+  - {name: J3, type: R, between: [link2, link3], axis: [0, 0, 1], point: [3, "3/2", 0]}
+inputs: [J1, J2, J3]
+output: {body: link3, point: ["9/2", "3/2", 0]}
+"""
+#: a PUMA-like 3R arm: the first two axes meet, the last two parallel
+PUMA_DH = [(0, 0, 0), (0, -sympy.pi / 2, 0), (2, 0, 0)]
+PUMA_3R = """\
+mechanism: puma-like-3r
+bodies: [base, link1, link2, link3]
+joints:
+  - {name: J1, type: R, between: [base, link1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [link1, link2], axis: [0, 1, 0], point: [0, 0, 0]}
+  - {name: J3, type: R, between: [link2, link3], axis: [0, 1, 0], point: [2, 0, 0]}
+inputs: [J1, J2, J3]
+output: {body: link3, point: ["7/2", 0, 0]}
+"""
+
+
+def _write(tmp_path: Path, name: str, text: str) -> Path:
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _cusps(path: Path, vary: str, *more: str) -> dict:
+    run = run_cli(["cusps", str(path), "--vary", vary, "--format", "json", *more])
+    assert run.status == 0, run.err
+    return json.loads(run.out)
+
+
+def test_cuspidal_3rpr_cusps_match_the_forward_map(tmp_path: Path) -> None:
+    rest = [float(sympy.sympify(r)) for r in CUSPIDAL_3RPR_REST]
+    path = _write(tmp_path, "zwc.yaml", CUSPIDAL_3RPR)
+    vary = f"P2={-rest[1]!r}:{32 - rest[1]!r},P3={-rest[2]!r}:{32 - rest[2]!r}"
+    doc = _cusps(path, vary)
+    assert doc["cuspidal"] is True and doc["evidence"]["kind"] == "cusps"
+    assert doc["section"]["fixed"]["P1"] == pytest.approx(14.98 - rest[0], abs=1e-12)
+    got = sorted(
+        ((c["inputs"]["P2"] + rest[1], c["inputs"]["P3"] + rest[2]) for c in doc["cusps"]),
+        key=lambda p: (round(p[0], 6), round(p[1], 6)),
+    )
+    base = [[float(sympy.sympify(x)) for x in p] for p in CUSPIDAL_3RPR_BASE]
+    plat = [[float(sympy.sympify(x)) for x in p] for p in CUSPIDAL_3RPR_PLATFORM]
+    want = sorted(
+        rpr_cusps(base, plat, 14.98, ((0, 32), (0, 32))),
+        key=lambda p: (round(p[0], 6), round(p[1], 6)),
+    )
+    assert len(want) >= 2  # a cuspidal design
+    assert len(got) == len(want)
+    for (g2, g3), (w2, w3, _theta) in zip(got, want, strict=True):
+        assert g2 == pytest.approx(w2, abs=1e-9) and g3 == pytest.approx(w3, abs=1e-9)
+    for c in doc["cusps"]:
+        assert c["certified"] and c["multiplicity"] == 3 and c["radius"] <= 1e-20
+    # the modes meet where the reference says: the platform angle at each cusp
+    thetas = sorted(round(c["modes"]["platform"]["theta"], 6) for c in doc["cusps"])
+    assert thetas == sorted(round(w[2], 6) for w in want)
+
+
+def test_similar_3rpr_is_not_cuspidal(tmp_path: Path) -> None:
+    path = _write(tmp_path, "similar.yaml", SIMILAR_3RPR)
+    doc = _cusps(path, "P2=-1:5,P3=-1:5", "--points", "41")
+    assert doc["cuspidal"] is False and doc["cusps"] == []
+    assert doc["evidence"]["kind"] == "no-triple-root"
+    assert doc["evidence"]["singular_points"] > 0  # it has singular curves, no cusp
+    rest = np.sqrt(2)  # every leg's length in the drawing
+    want = rpr_cusps(
+        [(0, 0), (4, 0), (0, 4)],
+        [(0, 0), (2, 0), (0, 2)],
+        1 + rest,
+        ((rest - 1, rest + 5), (rest - 1, rest + 5)),
+    )
+    # the platform parallel to the base (theta = 0) is singular at every leg length, its
+    # kernel along that curve of the map: every point of it solves the reference's
+    # system (a curve, not three modes meeting); off it, no cusp
+    assert [w for w in want if abs(np.sin(w[2])) > 1e-3] == []
+
+
+def test_orthogonal_3r_arm_is_cuspidal(tmp_path: Path) -> None:
+    path = _write(tmp_path, "orth.yaml", ORTHOGONAL_3R)
+    doc = _cusps(path, "rho=0:6,z=-5:5")
+    assert doc["cuspidal"] is True and doc["problem"] == "inverse kinematics"
+    got = sorted(
+        ((c["inputs"]["rho"], c["inputs"]["z"]) for c in doc["cusps"]),
+        key=lambda p: (round(p[0], 6), round(p[1], 6)),
+    )
+    want = sorted(
+        arm_cusps(ORTHOGONAL_DH, ORTHOGONAL_TOOL, ((0, 6), (-5, 5))),
+        key=lambda p: (round(p[0], 6), round(p[1], 6)),
+    )
+    assert len(got) == len(want) == 4
+    for (gr, gz), (wr, wz) in zip(got, want, strict=True):
+        assert gr == pytest.approx(wr, abs=1e-9) and gz == pytest.approx(wz, abs=1e-9)
+    quartic, t3, target = ik_quartic(ORTHOGONAL_DH, ORTHOGONAL_TOOL)
+    assert sympy.Poly(quartic, t3).degree() == 4
+    for c in doc["cusps"]:
+        assert c["certified"]
+        residual, _q3 = triple_root_residual(quartic, t3, target, *c["inputs"].values())
+        assert residual < 1e-8
+
+
+def test_puma_like_arm_is_not_cuspidal(tmp_path: Path) -> None:
+    path = _write(tmp_path, "puma3.yaml", PUMA_3R)
+    doc = _cusps(path, "rho=0:6,z=-5:5")
+    assert doc["cuspidal"] is False and doc["cusps"] == []
+    assert doc["evidence"]["kind"] == "decoupled"
+    assert arm_cusps(PUMA_DH, ORTHOGONAL_TOOL, ((1e-3, 6), (-5, 5))) == []
+
+
+def test_cusps_text_and_plot(tmp_path: Path) -> None:
+    path = _write(tmp_path, "orth.yaml", ORTHOGONAL_3R)
+    png = tmp_path / "section.png"
+    run = run_cli(
+        ["cusps", str(path), "--vary", "rho=0:6,z=-5:5", "--points", "41", "--plot", str(png)]
+    )
+    assert run.status == 0, run.err
+    assert "cuspidal" in run.out and "three modes meet" in run.out
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize(
+    ("vary", "words"),
+    [
+        ("rho=0:6", "two coordinates"),
+        ("rho=6:0,z=-1:1", "lo < hi"),
+        ("x=0:1,z=0:1", "rho=lo:hi,z=lo:hi"),
+    ],
+)
+def test_cusps_bad_vary_exits_2(tmp_path: Path, vary: str, words: str) -> None:
+    path = _write(tmp_path, "orth.yaml", ORTHOGONAL_3R)
+    run = run_cli(["cusps", str(path), "--vary", vary])
+    assert run.status == 2 and words in run.err
+
+
+def test_exercise_variants_key_matches_the_reference(tmp_path: Path) -> None:
+    """Exercise 17's variants: the key mechsing writes (cuspidal, how many cusps) is the
+    reference's count for the variant's drawn r2 and d4."""
+    import yaml
+
+    out = tmp_path / "variants"
+    run = run_cli(["exercise", "make", "17", "--variants", "1", "--seed", "5", "-o", str(out)])
+    assert run.status == 0, run.err
+    key = yaml.safe_load((out / "variant-01" / "key.yaml").read_text(encoding="utf-8"))
+    r2, d4 = (sympy.Rational(key["numbers"][n]) for n in ("r2", "d4"))
+    want = arm_cusps(
+        [(0, 0, 0), (1, -sympy.pi / 2, r2), (2, sympy.pi / 2, 0)], (d4, 0, 0), ((0, 6), (-5, 5))
+    )
+    answers = {q["id"]: q["value"] for q in key["questions"]}
+    assert answers["cusps"] == len(want)
+    assert answers["cuspidal"] is (len(want) > 0)
+
+
+def test_report_has_a_cusps_section(tmp_path: Path) -> None:
+    path = _write(tmp_path, "orth.yaml", ORTHOGONAL_3R)
+    out = tmp_path / "review.html"
+    run = run_cli(["report", str(path), "--cusps", "rho=0:6,z=-5:5", "-o", str(out)])
+    assert run.status == 0, run.err
+    html = out.read_text(encoding="utf-8")
+    section = html[html.index(">Cusps<") :]
+    assert "orthogonal-3r (inverse kinematics): cuspidal" in section
+    assert "data:image/svg+xml" in section  # the section's figure
+    assert section.count("three modes meet") == 4
