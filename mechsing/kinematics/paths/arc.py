@@ -12,12 +12,14 @@ which the swept value moves forward again (modulo 2 pi for a revolute angle).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from mechsing.errors import ClosureError
 from mechsing.kinematics.newton import scaled_system
+from mechsing.kinematics.paths.crossing import locate_crossing
+from mechsing.kinematics.paths.folds import Fold
+from mechsing.kinematics.paths.problem import Problem
 from mechsing.numeric.tolerances import (
     SWEEP_ARC_MAX_TURN_DEG,
     SWEEP_ARC_MIN_STEP,
@@ -28,9 +30,8 @@ from mechsing.numeric.tolerances import (
     SWEEP_LOCATE_TOL,
     SWEEP_TANGENT_KEPT,
 )
-from mechsing.sweeps.problem import Problem
 
-__all__ = ["Arc", "Fold", "curve_tangent"]
+__all__ = ["Arc", "curve_tangent"]
 
 #: tangents a Problem keeps (a row's start asks for the same one up to three times, and
 #: the rows of a grid are started together: a chunk of rows' starts, then their first
@@ -43,19 +44,6 @@ _ARC_BUDGET = 4000
 _ARC_LONGEST = 10 * SWEEP_ARC_STEP
 #: Newton iterations of one arclength step
 _ARC_NEWTON = 10
-
-
-@dataclass(frozen=True)
-class Fold:
-    """A limit of the swept value: where the path's curve turns back.  ``value`` (SI) is
-    the limit, ``z`` the configuration there, ``direction`` +1 when the swept value was
-    increasing, ``far_side`` True for a fold met on the other assembly mode (the limit
-    the path comes back past)."""
-
-    value: float
-    z: np.ndarray
-    direction: int
-    far_side: bool = False
 
 
 class Arc:
@@ -151,30 +139,26 @@ class Arc:
         return None
 
     def _turn(self, z: np.ndarray, tau: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
-        """The fold between z (g > 0) and its step h (g <= 0): Brent on g(s)."""
-        from scipy.optimize import brentq
-
+        """The fold between z (g > 0) and its step h (g <= 0): where the tangent's swept
+        component changes sign (:func:`~.crossing.locate_crossing`); the step h itself
+        when the curve is lost on the way."""
         cache: dict[float, tuple[np.ndarray, np.ndarray]] = {0.0: (z, tau)}
 
-        def g(s: float) -> float:
+        def g(s: float) -> float | None:
             if s == 0.0:  # z itself (the fold when the path starts on it)
                 return self._g(tau)
             zs = self.step(z, tau, s)
             ts = None if zs is None else self.tangent(zs, tau)
             if zs is None or ts is None:
-                raise _Lost
+                return None
             cache[s] = (zs, ts)
             return self._g(ts)
 
-        try:
-            s = brentq(g, 0.0, h, xtol=SWEEP_LOCATE_TOL, rtol=4 * np.finfo(float).eps)
-        except (_Lost, ValueError):
+        s = locate_crossing(g, 0.0, h, SWEEP_LOCATE_TOL)
+        if s is None:
             s = h
-        if s not in cache:
-            try:
-                g(s)
-            except _Lost:
-                return cache[0.0]
+        if s not in cache and g(s) is None:
+            return cache[0.0]
         return cache[s]
 
     # -- what the path asks ---------------------------------------------------------
@@ -325,7 +309,3 @@ def _next_sample(
         if (vv - values[last]) * direction > 0 and (values[k] - vv) * direction >= 0:
             return k, m * wrap
     return None
-
-
-class _Lost(Exception):
-    """The curve was lost while locating a fold."""
