@@ -1,12 +1,15 @@
 """Following a path's curve itself: pseudo-arclength continuation through folds.
 
 Owns :class:`Arc` (the swept coordinate solved with the unknown ones, one more equation
-fixing the step along the tangent) and :class:`Fold`.  Where continuation in the swept
-value cannot go on, a path follows its curve: a fold of the swept value (a limit of its
-travel: a dead centre, the end of a rocker's swing) is where the tangent's swept
-component changes sign, located by Brent's method on that component; past it the curve
-comes back on the other assembly mode (:meth:`Arc.other_side`) to its next fold, after
-which the swept value moves forward again (modulo 2 pi for a revolute angle).
+fixing the step along the tangent), the curve's tangent (:func:`curve_tangent`) and the
+ways off a singular start along the curve (:func:`off_singular` at a fold,
+:func:`onto_branch` where branches cross).  Where continuation in the swept value cannot
+go on, a path follows its curve: a fold of the swept value (a limit of its travel: a dead
+centre, the end of a rocker's swing, a :class:`~.folds.Fold`) is where the tangent's
+swept component changes sign, located by the crossing locator on that component
+(:func:`~.crossing.locate_crossing`); past it the curve comes back on the other assembly
+mode (:meth:`Arc.other_side`) to its next fold, after which the swept value moves forward
+again (modulo 2 pi for a revolute angle).
 """
 
 from __future__ import annotations
@@ -26,12 +29,13 @@ from mechsing.numeric.tolerances import (
     SWEEP_ARC_STEP,
     SWEEP_ARC_STEP_ATOL,
     SWEEP_ARC_STEP_RTOL,
+    SWEEP_BRANCH_MIN_SWEPT,
     SWEEP_CURVE_RANK_RTOL,
     SWEEP_LOCATE_TOL,
     SWEEP_TANGENT_KEPT,
 )
 
-__all__ = ["Arc", "curve_tangent"]
+__all__ = ["Arc", "curve_tangent", "off_singular", "onto_branch"]
 
 #: tangents a Problem keeps (a row's start asks for the same one up to three times, and
 #: the rows of a grid are started together: a chunk of rows' starts, then their first
@@ -44,6 +48,10 @@ _ARC_BUDGET = 4000
 _ARC_LONGEST = 10 * SWEEP_ARC_STEP
 #: Newton iterations of one arclength step
 _ARC_NEWTON = 10
+#: the step (commensurate arclength) that leaves a singular start along its curve
+_OFF_SINGULAR_STEP = 1e-3
+#: a start where branches cross: directions tried over the kernel
+_BRANCH_DIRECTIONS = 24
 
 
 class Arc:
@@ -289,6 +297,64 @@ def curve_tangent(pb: Problem, z: np.ndarray, col: int) -> np.ndarray | None:
         pb.tangents.pop(next(iter(pb.tangents)))
     pb.tangents[key] = out
     return out
+
+
+def off_singular(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
+    """From a singular start (a fold: continuation has no direction there), a short
+    step along the path's curve towards ``value``, then continuation to it."""
+    d = 1 if value > z[col] else -1
+    arc = Arc(pb, col, d)
+    tau = arc.tangent(np.asarray(z, dtype=float))
+    if tau is None:
+        return None
+    for sign in (1.0, -1.0):
+        zn = arc.step(np.asarray(z, dtype=float), sign * tau, _OFF_SINGULAR_STEP)
+        if zn is None or (zn[col] - z[col]) * d <= 0:
+            continue
+        # along the curve (near a fold the joints move like the square root of the
+        # swept value: continuation in the swept value cannot leave it)
+        out = Arc(pb, col, d).to_fold_or(zn, value)
+        if out is not None and out[0] == "passed":
+            return np.asarray(out[1], dtype=float)
+    return None
+
+
+def onto_branch(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
+    """From a start where branches cross (the curve of the path has a kernel of more
+    than one direction there, as at a change-point four-bar's flat position): the
+    branches leave along some directions of that kernel.  A short pseudo-arclength
+    step is tried along directions spread over it (towards ``value``); the step whose
+    corrector moves least lies on a branch, and the path goes on from there to
+    ``value`` along the curve (None when none does)."""
+    d = 1 if value > z[col] else -1
+    arc = Arc(pb, col, d)
+    z = np.asarray(z, dtype=float)
+    Js, _ = scaled_system(pb.cm, z)
+    _, s, Vt = np.linalg.svd(Js[:, arc.free], full_matrices=True)
+    K = Vt[int(np.sum(s > SWEEP_CURVE_RANK_RTOL * (s[0] if len(s) else 1.0))) :]
+    if K.shape[0] < 2:
+        return None
+    fr = pb.cm.float_frame
+    best: tuple[float, np.ndarray] | None = None
+    for th in np.linspace(0.0, math.pi, _BRANCH_DIRECTIONS, endpoint=False):
+        tau = math.cos(th) * K[0] + math.sin(th) * K[1]
+        if abs(tau[arc.cidx]) < SWEEP_BRANCH_MIN_SWEPT:
+            continue  # hardly moves the swept value
+        tau = tau if tau[arc.cidx] * d > 0 else -tau
+        zn = arc.step(z, tau, _OFF_SINGULAR_STEP)
+        if zn is None or (zn[col] - z[col]) * d <= 0 or arc.tangent(zn) is None:
+            continue
+        moved = np.zeros(pb.cm.n)
+        moved[arc.free] = _OFF_SINGULAR_STEP * tau
+        off = float(np.linalg.norm(fr.rates(pb.cm.difference(zn, z)) - moved))
+        if best is None or off < best[0]:
+            best = (off, zn)
+    if best is None:
+        return None
+    out = Arc(pb, col, d).to_fold_or(best[1], value)
+    if out is None or out[0] != "passed":
+        return None
+    return np.asarray(out[1], dtype=float)
 
 
 def _next_sample(

@@ -10,10 +10,11 @@ says what the path engine does there:
   of a path just short of a fold, predicted by the square-root law between the points of
   the curve traced to it; :func:`close_to_fold` and :func:`near_fold` ask it for many
   samples or one);
-* **turning** at a fold: :func:`leave_fold` (a start drawn at a fold, left along the kernel
-  of the unknown joints' Jacobian onto the mode that reaches the target); a sweep's path
-  turns along its curve (:meth:`~mechsing.kinematics.paths.arc.Arc.other_side`), from the
-  :class:`Fold` that pseudo-arclength located.
+* **turning** at a fold: :func:`leave_fold` (continuation's start drawn at a fold, left
+  along the kernel of the unknown joints' Jacobian onto the mode that reaches the target);
+  a swept path, whose curve pseudo-arclength follows, turns along it
+  (:meth:`~mechsing.kinematics.paths.arc.Arc.other_side` past a :class:`Fold` it located,
+  :func:`~mechsing.kinematics.paths.arc.off_singular` from a start at one).
 """
 
 from __future__ import annotations
