@@ -21,7 +21,7 @@ import numpy as np
 from mechsing.errors import ClosureError
 from mechsing.kinematics.newton import scaled_system
 from mechsing.kinematics.paths.crossing import locate_crossing
-from mechsing.kinematics.paths.folds import Fold
+from mechsing.kinematics.paths.folds import Fold, leave_fold
 from mechsing.kinematics.paths.problem import Problem
 from mechsing.numeric.tolerances import (
     SWEEP_ARC_MAX_TURN_DEG,
@@ -300,22 +300,26 @@ def curve_tangent(pb: Problem, z: np.ndarray, col: int) -> np.ndarray | None:
 
 
 def off_singular(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
-    """From a singular start (a fold: continuation has no direction there), a short
-    step along the path's curve towards ``value``, then continuation to it."""
+    """From a start at a fold of the swept value (continuation has no direction there):
+    turned at the fold onto the assembly mode that goes towards ``value``, as continuation
+    leaves a start drawn at a fold (:func:`~.folds.leave_fold`: the swept value moved by
+    so little that the joints move about _OFF_SINGULAR_STEP along the kernel), then along
+    the path's curve to ``value`` (near a fold the joints move like the square root of
+    the swept value: continuation in the swept value cannot leave it).  None when the
+    start is not such a fold or the curve does not get there."""
+    z = np.asarray(z, dtype=float)
     d = 1 if value > z[col] else -1
-    arc = Arc(pb, col, d)
-    tau = arc.tangent(np.asarray(z, dtype=float))
-    if tau is None:
+    target = z.copy()
+    target[col] = value
+    span = abs(value - float(z[col])) / pb.scale(col)
+    if span == 0.0:
         return None
-    for sign in (1.0, -1.0):
-        zn = arc.step(np.asarray(z, dtype=float), sign * tau, _OFF_SINGULAR_STEP)
-        if zn is None or (zn[col] - z[col]) * d <= 0:
-            continue
-        # along the curve (near a fold the joints move like the square root of the
-        # swept value: continuation in the swept value cannot leave it)
-        out = Arc(pb, col, d).to_fold_or(zn, value)
-        if out is not None and out[0] == "passed":
-            return np.asarray(out[1], dtype=float)
+    _, left = leave_fold(pb.cm, z, target, pb.given, min(1.0, _OFF_SINGULAR_STEP**2 / span))
+    if left is None:
+        return None
+    out = Arc(pb, col, d).to_fold_or(left, value)
+    if out is not None and out[0] == "passed":
+        return np.asarray(out[1], dtype=float)
     return None
 
 
