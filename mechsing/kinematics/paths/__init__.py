@@ -16,7 +16,8 @@ grids (:mod:`mechsing.sweeps`) and the effort limits located along them
   (the square-root law), locating one along the curve, and turning at one (leaving it
   on the other assembly mode);
 * :mod:`.arc`: pseudo-arclength continuation of a path's curve through its folds;
-* :mod:`.follow`: a path followed through its samples (and several in lockstep);
+* :mod:`.follow`: a path followed through its samples (and several in lockstep), its
+  record :class:`~.trace.PathTrace` (:mod:`.trace`);
 * :mod:`.crossing`: where a scalar read along a path crosses a value.
 
 The package's modules are imported by name (this file imports none: continuation, which

@@ -1,4 +1,5 @@
-"""A sweep's kinematic problem: what it holds fixed, what it solves, and how it closes.
+"""A path's kinematic problem (a sweep's): what it holds fixed, what it solves, and how
+it closes.
 
 Owns :class:`Problem`: the float model a sweep closes (the mechanism's, or its pose model
 when the output's pose is swept), which coordinates are given (held at the start's values
