@@ -17,10 +17,10 @@ import numpy as np
 import pytest
 
 from mechsing.kinematics import ClosureError
+from mechsing.kinematics.paths.follow import first_nodes_of, follow, follow_together
+from mechsing.kinematics.paths.segments import close_segments
 from mechsing.numeric import dispatch
 from mechsing.sweeps import SweepRun
-from mechsing.sweeps.path import first_nodes_of, follow, follow_together
-from mechsing.sweeps.segments import close_segments
 
 ROOT = Path(__file__).resolve().parent.parent
 FILE = str(ROOT / "examples" / "five_bar.yaml")

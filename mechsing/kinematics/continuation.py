@@ -4,82 +4,47 @@ assembly mode.
 The given values move along a straight line in small steps; at each step a
 first-order predictor and a damped Newton corrector on the group (each update in the
 joint's own subalgebra, :meth:`KinematicModel.update`) close the loops again, and the
-step is accepted only when it stayed on its branch (:meth:`Continuation._same_branch`).
+step is accepted only when it stayed on its branch (:func:`~mechsing.kinematics.paths.steps.same_branch`).
 The path stops with :class:`ClosureError` naming the step when the closure Jacobian
 in the unknown coordinates loses rank before the target; a target that is a fold of
-the given values is landed on (:meth:`Continuation._land_on_fold`).  Float by design:
+the given values is landed on (:func:`~mechsing.kinematics.paths.folds.land_on_fold`).  Float by design:
 an mp model's landing is polished by :class:`~mechsing.kinematics.polish.MpPolisher`.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
 from mechsing.errors import ClosureError, UserError
 from mechsing.kinematics.closed import ClosedConfiguration, shown_residual
 from mechsing.kinematics.model import KinematicModel
-from mechsing.kinematics.newton import damped_least_squares, finite_system, newton_on_group
+from mechsing.kinematics.newton import finite_system
+from mechsing.kinematics.paths.folds import land_on_fold, leave_fold
+from mechsing.kinematics.paths.steps import closure_matrix, correct, same_branch
 from mechsing.kinematics.polish import MpPolisher, fold_mp
 from mechsing.kinematics.pose import PoseModel
 from mechsing.kinematics.protocol import ClosureModel
 from mechsing.kinematics.travel import Fold, beyond_target, fold_excess
 from mechsing.model import Configuration
 from mechsing.numeric import (
-    CONTINUATION_CORRECTOR_RATIO,
-    CONTINUATION_FOLD_GAP,
-    CONTINUATION_FOLD_REACH,
-    CONTINUATION_JUMP_FLOOR,
     CONTINUATION_LEAVE_FRACTION,
-    CONTINUATION_LEAVE_OFF,
-    CONTINUATION_LEAVE_SIZES,
-    CONTINUATION_RETURN_RATIO,
-    CONTINUATION_REVERSE_RTOL,
     CONTINUATION_SINGULAR_RTOL,
-    CONTINUATION_STEP_RTOL,
-    POLISH_MAX_STEPS,
     decide_rank,
     to_float,
 )
-from mechsing.numeric.blocks import block_svd
 
 __all__ = ["Continuation", "closure_matrix"]
 
 #: largest step of a given coordinate: radians, or this times L for a length
 _MAX_STEP = 0.1
-#: largest predicted step of all coordinates together (commensurate norm)
-_MAX_PREDICTED_STEP = 0.15
 _MAX_HALVINGS = 14
-_NEWTON_ITERATIONS = 12
 #: most planned steps of one continuation (a crank of 300 turns)
 _MAX_STEPS = 20000
 #: step attempts allowed per planned step before continuation gives up
 _MAX_ATTEMPTS_PER_STEP = 20
-
-
-@dataclass
-class StepInfo:
-    """What a step of continuation found: the residual (m) it closed to, the rank of the
-    closure Jacobian in the unknown coordinates there (None: not decided) with its
-    smallest kept relative singular value, whether the unknowns are underdetermined, and
-    where the predictor put the step."""
-
-    residual: float
-    rank: int | None
-    smin: float
-    underdetermined: bool
-    predicted: np.ndarray
-
-
-class Corrected(NamedTuple):
-    """A corrected step: whether it closed (``ok``), where it ended (``q``), what it found."""
-
-    ok: bool
-    q: np.ndarray
-    info: StepInfo
 
 
 class Continuation:
@@ -149,13 +114,13 @@ class Continuation:
             qg[gmask] = (
                 qt[gmask] if final else q_start[gmask] + t_next * (qt[gmask] - q_start[gmask])
             )
-            ok, qn, info = self._correct(fm, q, qg, gmask, final)
-            if ok and not self._same_branch(fm, q, qn, info, gmask):
+            ok, qn, info = correct(fm, q, qg, gmask, final)
+            if ok and not same_branch(fm, q, qn, info, gmask):
                 ok = False
             if not ok:
                 dt /= 2
                 if dt < 1.0 / nsteps / 2**_MAX_HALVINGS:
-                    landed = self._land_on_fold(fm, q, qt, gmask)
+                    landed = land_on_fold(fm, q, qt, gmask)
                     if landed is not None:  # the target is the fold itself: reached
                         q, info = landed.q, landed.info
                         t, steps, at_fold = 1.0, steps + 1, True
@@ -163,7 +128,7 @@ class Continuation:
                     if steps == 0 and not left_fold:
                         # a start drawn at a fold: no step of the predictor leaves it
                         t1 = CONTINUATION_LEAVE_FRACTION / nsteps
-                        fold, left = self._leave_fold(fm, q_start, qt, gmask, t1)
+                        fold, left = leave_fold(fm, q_start, qt, gmask, t1)
                         if left is not None:
                             q, t, steps, left_fold = left, t1, 1, True
                             dt = 1.0 / nsteps
@@ -264,215 +229,6 @@ class Continuation:
         return ClosedConfiguration(
             cfg.name, q_out, float(res), underdetermined, steps, given, notes, at_fold
         )
-
-    def _land_on_fold(
-        self, fm: ClosureModel, q: np.ndarray, qt: np.ndarray, gmask: np.ndarray
-    ) -> Corrected | None:
-        """The target, when continuation stalls just short of it because it is a fold
-        (a limit of the given values: a dead centre, a Type II pose given by the inputs).
-
-        There the unknown joints move like the square root of the given ones, so no
-        step is short enough for the predictor, and Newton at the double root only
-        halves the distance at each step.  From the last point reached, Newton with the
-        given values at the target (a slow step is doubled, which converges at a double
-        root) must close; the landing is accepted only where the two branches meet: the
-        Jacobian in the unknown joints is singular there (relative smallest singular
-        value below CONTINUATION_SINGULAR_RTOL) and the joints moved at most
-        CONTINUATION_FOLD_REACH times the square root of what was left.  None otherwise
-        (a target beyond the fold has no solution; one before it is not a fold)."""
-        L = fm.length_scale
-
-        def comm(d: np.ndarray) -> float:
-            return float(np.linalg.norm(fm.float_frame.rates(d)))
-
-        left = comm(np.where(gmask, qt - q, 0.0))
-        free = ~gmask
-        if left > CONTINUATION_FOLD_GAP or not np.any(free) or not fm.blocks:
-            return None
-        tol = fm.precision.closure_tolerance(L)
-        qn = q.copy()
-        qn[gmask] = qt[gmask]
-        # the doubled step removes the halving at a double root
-        landed = newton_on_group(
-            fm, qn, free, solve=damped_least_squares, max_steps=POLISH_MAX_STEPS, doubling=True
-        )
-        qn, res = landed.q, landed.residual
-        if res > tol or comm(fm.difference(qn, q)) > CONTINUATION_FOLD_REACH * math.sqrt(left):
-            return None
-        Js = closure_matrix(fm, qn)
-        sigma = block_svd(Js[:, free], compute_uv=False)
-        if not len(sigma) or sigma[-1] > CONTINUATION_SINGULAR_RTOL * sigma[0]:
-            return None
-        rank = int(np.sum(sigma > CONTINUATION_SINGULAR_RTOL * sigma[0]))
-        info = StepInfo(res, rank, float(sigma[-1] / sigma[0]), False, qn)
-        return Corrected(True, qn, info)
-
-    def _leave_fold(
-        self, fm: ClosureModel, q0: np.ndarray, qt: np.ndarray, gmask: np.ndarray, t1: float
-    ) -> tuple[bool, np.ndarray | None]:
-        """Leave a start ``q0`` that is a fold of the given values (a dead centre, a toggle):
-        whether it is one, and the configuration at ``t1`` of the way to ``qt`` (None when
-        no landing closes).
-
-        At a fold the unknown joints' Jacobian loses one rank, and the closed
-        configurations with the given values moved by d lie about sqrt(d) away along its
-        kernel k, on both sides (the two assembly modes that meet there) when d points
-        into the motion's range, on neither when it points out of it.  Newton from q0
-        cannot find them (its linear step has no component along k), but from q0 + e k
-        with e of the order of sqrt(d) it converges: each sign of k is tried at a few
-        such e, the + side first, and a landing is kept when Newton closes and the
-        joints moved off the fold.  (False, None) when the start is not such a fold (the
-        Jacobian keeps its rank, or loses more than one); (True, None) when no landing
-        closes (the target lies beyond the limit the fold is)."""
-        free = ~gmask
-        if not np.any(free) or not fm.blocks:
-            return False, None
-        Js = closure_matrix(fm, q0)
-        A = Js[:, free]
-        A = A.toarray() if hasattr(A, "toarray") else np.asarray(A)
-        _, sigma, Vt = np.linalg.svd(A)
-        if len(sigma) < int(np.sum(free)) or not sigma[0]:
-            return False, None
-        rel = sigma / sigma[0]
-        if rel[-1] > CONTINUATION_SINGULAR_RTOL or (
-            len(rel) > 1 and rel[-2] <= CONTINUATION_SINGULAR_RTOL
-        ):
-            return False, None
-        k = np.zeros(fm.n)
-        k[free] = Vt[-1]
-        k = fm.float_frame.rates_back(k)
-        qg = q0.copy()
-        qg[gmask] = q0[gmask] + t1 * (qt[gmask] - q0[gmask])
-        moved = float(np.linalg.norm(fm.float_frame.rates(np.where(gmask, qg - q0, 0.0))))
-        if moved == 0.0:
-            return False, None
-        for sign in (1.0, -1.0):
-            for size in CONTINUATION_LEAVE_SIZES:
-                e = sign * size * math.sqrt(moved)
-                q1 = fm.update(q0, e * k)
-                ok, qn, _ = self._correct(fm, q1, qg, gmask, False)
-                if not ok:
-                    continue
-                off = float(np.linalg.norm(fm.float_frame.rates(fm.difference(qn, q0))))
-                if off > CONTINUATION_LEAVE_OFF * math.sqrt(moved):
-                    return True, qn
-        return True, None
-
-    def _same_branch(
-        self, fm: ClosureModel, q: np.ndarray, qn: np.ndarray, info: StepInfo, gmask: np.ndarray
-    ) -> bool:
-        """Did the step stay on the assembly mode it started from?
-
-        Newton's correction must be small next to the predictor step, and near a
-        singularity (where two modes are close) the step must be reversible:
-        stepping back from ``qn`` returns to ``q``.
-        """
-
-        def comm(d: np.ndarray) -> float:
-            return float(np.linalg.norm(fm.float_frame.rates(d)))
-
-        step = comm(fm.difference(info.predicted, q))
-        if step == 0.0:
-            return True
-        # the whole predicted step, passive joints included, stays short: a path on
-        # which the passive joints move much faster than the given ones is cut finer
-        if step > _MAX_PREDICTED_STEP:
-            return False
-        if comm(fm.difference(qn, info.predicted)) > max(
-            CONTINUATION_CORRECTOR_RATIO * step, CONTINUATION_JUMP_FLOOR
-        ):
-            return False
-        # with a continuum of solutions (underdetermined) stepping back may land
-        # elsewhere on it: reversibility only means something for a determined step
-        if info.smin < CONTINUATION_REVERSE_RTOL and not info.underdetermined:
-            back_target = qn.copy()
-            back_target[gmask] = q[gmask]
-            ok, qb, _ = self._correct(fm, qn, back_target, gmask, False)
-            if not ok or comm(fm.difference(qb, q)) > max(
-                CONTINUATION_RETURN_RATIO * step, CONTINUATION_JUMP_FLOOR
-            ):
-                return False
-        return True
-
-    def _correct(
-        self, fm: ClosureModel, q_prev: np.ndarray, qg: np.ndarray, gmask: np.ndarray, final: bool
-    ) -> Corrected:
-        """Predictor (tangent) + damped Newton on the unknown coordinates."""
-        free = ~gmask
-        L = fm.length_scale
-        # the float stage accepts at float's tolerance (an mp model polishes afterwards)
-        tol_final = fm.precision.closure_tolerance(L)
-        tol = tol_final if final else max(tol_final, CONTINUATION_STEP_RTOL * L)
-        # predictor: J_u du = -J_g dg at the previous point
-        Js = closure_matrix(fm, q_prev)
-        dg = np.where(gmask, qg - q_prev, 0.0)
-        dgs = fm.float_frame.rates(dg)
-        q = q_prev.copy()
-        if np.any(free) and Js.shape[0]:
-            du = damped_least_squares(Js[:, free], -Js[:, gmask] @ dgs[gmask])
-            dus = np.zeros(fm.n)
-            dus[free] = du
-            dus = fm.float_frame.rates_back(dus)
-            q = fm.update(q_prev, np.where(gmask, dg, dus))
-        else:
-            q = fm.update(q_prev, dg)
-        q[gmask] = qg[gmask]
-        predicted = q.copy()
-        res = fm.residual_norm(fm.chord_residuals(q))
-        info = StepInfo(res, None, 1.0, False, predicted)
-        polish = 0
-
-        def stop(it: int, res: float) -> bool:
-            nonlocal polish
-            if res <= tol and it > 0:
-                # at the target, keep iterating while Newton still gains (rounding level)
-                if not final or polish >= 2:
-                    return True
-                polish += 1
-            return not fm.blocks or not np.any(free)
-
-        out = newton_on_group(
-            fm,
-            q,
-            free,
-            solve=damped_least_squares,
-            max_steps=_NEWTON_ITERATIONS,
-            residual=res,
-            stop=stop,
-            # polishing at the target stops when it no longer gains
-            keep=lambda res, new: not (res <= tol and new >= res),
-            diverged=lambda it, res, new: (
-                not np.isfinite(new) or new > 10 * max(res, tol) and it > 2
-            ),
-        )
-        info.residual = out.residual
-        if out.diverged:
-            return Corrected(False, out.q, info)
-        q, res = out.q, out.residual
-        if res > tol:
-            return Corrected(False, q, info)
-        if np.any(free) and fm.blocks:
-            Js = closure_matrix(fm, q)
-            if not finite_system(Js):
-                # closed, but at coordinates so far off that the Jacobian's series
-                # overflow (a degenerate loop whose S joint turned without end): no step
-                return Corrected(False, q, info)
-            dec = decide_rank(Js[:, free], "float", L)
-            rank = dec.rank if dec.rank is not None else dec.rank_bounds[0]
-            info.rank = rank
-            s = [x / dec.sigma[0] for x in dec.sigma] if dec.sigma and dec.sigma[0] > 0 else [0.0]
-            info.smin = s[min(rank, len(s)) - 1] if rank else 0.0
-            info.underdetermined = rank < int(np.sum(free))
-        return Corrected(True, q, info)
-
-
-def closure_matrix(fm: ClosureModel, q: np.ndarray) -> Any:
-    """The commensurate closure Jacobian of the float model at q: sparse for a big
-    mechanism (:attr:`KinematicModel.sparse_closure`: built from each loop's own
-    joints and factorised block by block; only a mechanism's model is), dense otherwise."""
-    if isinstance(fm, KinematicModel) and fm.sparse_closure:
-        return fm.sparse_closure_jacobian(q, fm.float_frame)
-    return fm.scaled_closure_jacobian(q, fm.float_frame)
 
 
 def _fmt(m: ClosureModel, q: np.ndarray) -> str:

@@ -1,7 +1,7 @@
 """Kinetostatics along a sweep: each reached sample's efforts under the load and its
 transmission indices, and ``--max-effort NAME=VALUE``: where an actuator's |effort| first
-crosses a limit, located between samples and refined by bisection on the swept value
-(each trial configuration closed by the sweep's own continuation), reported as an
+crosses a limit, located between samples by the path engine's crossing locator on the swept value
+(each trial configuration closed by the sweep's own path following), reported as an
 "effort limit", never as a singularity.
 """
 
@@ -23,9 +23,6 @@ __all__ = [
     "attach",
     "parse_max_effort",
 ]
-
-#: most bisection steps of an effort limit (each halves the bracket)
-_BISECTIONS = 60
 
 
 def parse_max_effort(texts: list[str] | None, mech: Any) -> dict[str, float]:
@@ -139,12 +136,11 @@ class SweepStatics:
 
     def locate_limits(self, engine: Any, values: np.ndarray) -> None:
         """Where each limited input's |effort| crosses its limit along a path (between
-        consecutive reached samples), refined by bisection on the swept value."""
+        consecutive reached samples): the path engine's crossing locator on |effort| less
+        the limit, each trial point closed by following the path from the sample before
+        it (an unbounded effort, at a Type II, reads as over the limit)."""
         if not self.limits or self.Z is None:
             return
-        from mechsing.sweeps.path import follow
-
-        pb, col = engine.problem, engine.cols[0]
         reached = ~np.isnan(self.Z[:, 0])
         for name, limit in self.limits.items():
             i = self.inputs.index(name)
@@ -153,28 +149,43 @@ class SweepStatics:
             for k in range(len(values) - 1):
                 if not (reached[k] and reached[k + 1]) or over[k] == over[k + 1]:
                     continue
-                lo, hi, z = float(values[k]), float(values[k + 1]), self.Z[k]
-                x0 = lo
-                for _ in range(_BISECTIONS):
-                    mid = 0.5 * (lo + hi)
-                    zm = follow(pb, z, col, np.array([x0, mid])).Z[-1]
-                    if np.isnan(zm[0]):
-                        break
-                    e = self._one(zm).equilibrium
-                    bad = e is None or e.efforts is None or abs(e.efforts[name]) > limit
-                    if bad == over[k]:
-                        lo, z, x0 = mid, zm, mid
-                    else:
-                        hi = mid
-                    if abs(hi - lo) <= SWEEP_LOCATE_TOL * max(1.0, abs(hi)):
-                        break
-                zf = follow(pb, z, col, np.array([x0, hi])).Z[-1]
-                e = self._one(zf).equilibrium if not np.isnan(zf[0]) else None
-                eff = (
-                    {n: None for n in self.inputs} if e is None or e.efforts is None else e.efforts
+                v, eff = self._limit_between(
+                    engine, self.Z[k], float(values[k]), float(values[k + 1]), name, limit
                 )
-                self.located.append(EffortLimit(name, limit, (hi,), bool(not over[k]), eff, first))
+                self.located.append(EffortLimit(name, limit, (v,), bool(not over[k]), eff, first))
                 first = False
+
+    def _limit_between(
+        self, engine: Any, z: np.ndarray, lo: float, hi: float, name: str, limit: float
+    ) -> tuple[float, dict[str, Any]]:
+        """Where ``name``'s |effort| crosses ``limit`` between the closed sample z (at
+        ``lo``) and ``hi``, and the efforts there: the crossing locator on |effort| less
+        the limit, each trial point closed by following the path from z (an unbounded
+        effort, at a Type II, reads as over the limit); ``hi`` when the path is lost on
+        the way."""
+        from mechsing.kinematics.paths.crossing import locate_crossing
+        from mechsing.kinematics.paths.follow import follow
+
+        pb, col = engine.problem, engine.cols[0]
+        closed: dict[float, Any] = {}
+
+        def excess(v: float) -> float | None:
+            zv = z if v == lo else follow(pb, z, col, np.array([lo, v])).Z[-1]
+            if np.isnan(zv[0]):
+                return None
+            e = closed[v] = self._one(zv).equilibrium
+            if e is None or e.efforts is None:
+                return 1.0  # unbounded: over any limit
+            return abs(float(e.efforts[name])) - limit
+
+        at = locate_crossing(excess, lo, hi, SWEEP_LOCATE_TOL * max(1.0, abs(hi)))
+        v = hi if at is None else at
+        if v not in closed:
+            excess(v)
+        e = closed.get(v)
+        if e is None or e.efforts is None:
+            return v, {n: None for n in self.inputs}
+        return v, e.efforts
 
     # -- output ---------------------------------------------------------------------
 

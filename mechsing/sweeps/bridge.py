@@ -12,10 +12,10 @@ from __future__ import annotations
 import numpy as np
 
 from mechsing.errors import ClosureError
+from mechsing.kinematics.paths.follow import follow
+from mechsing.kinematics.paths.problem import Problem
 from mechsing.sweeps.locate import Locator
 from mechsing.sweeps.measures import PointMeasures
-from mechsing.sweeps.path import follow
-from mechsing.sweeps.problem import Problem
 from mechsing.sweeps.records import ColumnBrackets, Located, Refined, RowResult
 
 __all__ = ["between_rows", "bridge_column"]

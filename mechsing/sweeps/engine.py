@@ -6,7 +6,7 @@ row-by-row work, which it composes from the modules that own each step:
 * a **path** (one swept variable) starts at the sample nearest the ``--from``
   configuration's value (:mod:`.start`, reached from it by continuation), and is
   followed forward to the end of the range and back to its beginning
-  (:func:`mechsing.sweeps.path.follow`);
+  (:func:`mechsing.kinematics.paths.follow.follow`);
 * a **grid** (two) is rows of paths in the first variable, each started from a first
   column (a path in the second variable at the first variable's start sample, bridged
   to the rows it misses: :mod:`.bridge`); the rows are computed in chunks
@@ -26,16 +26,16 @@ from collections.abc import Callable, Iterator
 
 import numpy as np
 
+from mechsing.kinematics.paths.follow import first_nodes_of, follow_together
+from mechsing.kinematics.paths.segments import close_segments
 from mechsing.model import Mechanism
 from mechsing.numeric import dispatch
 from mechsing.sweeps.bridge import between_rows, bridge_column
 from mechsing.sweeps.limits import outside
 from mechsing.sweeps.locate import Locator, measured
 from mechsing.sweeps.measures import Measures, PointMeasures
-from mechsing.sweeps.path import first_nodes_of, follow_together
 from mechsing.sweeps.plan import check_determined, plan_sweep
 from mechsing.sweeps.records import Located, PathTrace, RowResult, RowSamples, merge_located
-from mechsing.sweeps.segments import close_segments
 from mechsing.sweeps.spec import Variable
 from mechsing.sweeps.start import start_of
 

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from mechsing.kinematics.paths.folds import Fold
+from mechsing.kinematics.paths.problem import Problem
 from mechsing.numeric import SWEEP_MINIMUM_SCREEN, Precision
 from mechsing.numeric.tolerances import SWEEP_FOLD_TEST_RTOL
-from mechsing.sweeps.arc import Fold
 from mechsing.sweeps.measures import Measures, PointMeasures
-from mechsing.sweeps.problem import Problem
 from mechsing.sweeps.records import Located, Refined, RowPairs, RowSamples, located_at
 from mechsing.sweeps.refine import Refiner
 

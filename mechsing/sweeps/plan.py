@@ -25,6 +25,7 @@ from mechsing.errors import UserError
 from mechsing.kinematics import Closer, KinematicModel
 from mechsing.kinematics.batch_newton import BatchClosure
 from mechsing.kinematics.newton import scaled_system
+from mechsing.kinematics.paths.problem import Problem
 from mechsing.kinematics.pose import PoseModel
 from mechsing.lie import log_so3
 from mechsing.model import Mechanism
@@ -32,7 +33,6 @@ from mechsing.model.couplings import describe_coupling
 from mechsing.numeric import to_float
 from mechsing.numeric.tolerances import SWEEP_DETERMINED_RTOL
 from mechsing.sweeps.limits import LimitedCoordinate, limited_coordinates
-from mechsing.sweeps.problem import Problem
 from mechsing.sweeps.spec import Variable
 
 __all__ = ["GenericRanks", "Plan", "check_determined", "generic_ranks", "plan_sweep"]

@@ -14,11 +14,11 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
+from mechsing.kinematics.paths.trace import PathTrace
 from mechsing.numeric import SWEEP_LOCATE_TOL
 from mechsing.numeric.tolerances import SWEEP_MERGE_FACTOR, SWEEP_MERGE_RTOL
 
 if TYPE_CHECKING:
-    from mechsing.sweeps.arc import Fold
     from mechsing.sweeps.measures import PointMeasures
 
 __all__ = [
@@ -70,22 +70,6 @@ class RowResult:
     measures: PointMeasures | None = None
     #: limited coordinate -> the samples beyond its limits (:mod:`mechsing.sweeps.limits`)
     outside: dict[str, np.ndarray] = field(default_factory=dict)
-
-
-@dataclass
-class PathTrace:
-    """The closed configurations of one direction of a path: ``Z`` (K, n), NaN rows at
-    samples not reached; its folds; ``stopped``: why the path ended early (None: it
-    reached every sample it could); ``newton``: batched Newton iterations per sample."""
-
-    Z: np.ndarray
-    folds: list[Fold]
-    stopped: str | None = None
-    newton: np.ndarray | None = None
-    #: node pairs whose samples in between are still to be closed (``follow(...,
-    #: fine=False)``: :func:`close_segments` closes them, several traces together)
-    segments: list[tuple[int, int]] = field(default_factory=list)
-    values: np.ndarray | None = None
 
 
 class Refined(NamedTuple):

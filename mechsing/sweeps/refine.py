@@ -22,6 +22,8 @@ import math
 import numpy as np
 
 from mechsing.errors import ClosureError
+from mechsing.kinematics.paths.nodes import reach_node
+from mechsing.kinematics.paths.problem import Problem
 from mechsing.numeric import (
     SWEEP_BRANCH_OFFSET,
     SWEEP_JUMP_RATIO,
@@ -30,8 +32,6 @@ from mechsing.numeric import (
 )
 from mechsing.numeric.tolerances import SWEEP_BRANCH_FIT_RTOL, SWEEP_BRANCH_ROOT_IMAG
 from mechsing.sweeps.measures import Measures, PointMeasures
-from mechsing.sweeps.nodes import reach_node
-from mechsing.sweeps.problem import Problem
 from mechsing.sweeps.records import Refined
 
 __all__ = ["Refiner"]

@@ -1,36 +1,41 @@
 """Following a path's curve itself: pseudo-arclength continuation through folds.
 
 Owns :class:`Arc` (the swept coordinate solved with the unknown ones, one more equation
-fixing the step along the tangent) and :class:`Fold`.  Where continuation in the swept
-value cannot go on, a path follows its curve: a fold of the swept value (a limit of its
-travel: a dead centre, the end of a rocker's swing) is where the tangent's swept
-component changes sign, located by Brent's method on that component; past it the curve
-comes back on the other assembly mode (:meth:`Arc.other_side`) to its next fold, after
-which the swept value moves forward again (modulo 2 pi for a revolute angle).
+fixing the step along the tangent), the curve's tangent (:func:`curve_tangent`) and the
+ways off a singular start along the curve (:func:`off_singular` at a fold,
+:func:`onto_branch` where branches cross).  Where continuation in the swept value cannot
+go on, a path follows its curve: a fold of the swept value (a limit of its travel: a dead
+centre, the end of a rocker's swing, a :class:`~.folds.Fold`) is where the tangent's
+swept component changes sign, located by the crossing locator on that component
+(:func:`~.crossing.locate_crossing`); past it the curve comes back on the other assembly
+mode (:meth:`Arc.other_side`) to its next fold, after which the swept value moves forward
+again (modulo 2 pi for a revolute angle).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from mechsing.errors import ClosureError
 from mechsing.kinematics.newton import scaled_system
+from mechsing.kinematics.paths.crossing import locate_crossing
+from mechsing.kinematics.paths.folds import Fold, leave_fold
+from mechsing.kinematics.paths.problem import Problem
 from mechsing.numeric.tolerances import (
     SWEEP_ARC_MAX_TURN_DEG,
     SWEEP_ARC_MIN_STEP,
     SWEEP_ARC_STEP,
     SWEEP_ARC_STEP_ATOL,
     SWEEP_ARC_STEP_RTOL,
+    SWEEP_BRANCH_MIN_SWEPT,
     SWEEP_CURVE_RANK_RTOL,
     SWEEP_LOCATE_TOL,
     SWEEP_TANGENT_KEPT,
 )
-from mechsing.sweeps.problem import Problem
 
-__all__ = ["Arc", "Fold", "curve_tangent"]
+__all__ = ["Arc", "curve_tangent", "off_singular", "onto_branch"]
 
 #: tangents a Problem keeps (a row's start asks for the same one up to three times, and
 #: the rows of a grid are started together: a chunk of rows' starts, then their first
@@ -43,19 +48,10 @@ _ARC_BUDGET = 4000
 _ARC_LONGEST = 10 * SWEEP_ARC_STEP
 #: Newton iterations of one arclength step
 _ARC_NEWTON = 10
-
-
-@dataclass(frozen=True)
-class Fold:
-    """A limit of the swept value: where the path's curve turns back.  ``value`` (SI) is
-    the limit, ``z`` the configuration there, ``direction`` +1 when the swept value was
-    increasing, ``far_side`` True for a fold met on the other assembly mode (the limit
-    the path comes back past)."""
-
-    value: float
-    z: np.ndarray
-    direction: int
-    far_side: bool = False
+#: the step (commensurate arclength) that leaves a singular start along its curve
+_OFF_SINGULAR_STEP = 1e-3
+#: a start where branches cross: directions tried over the kernel
+_BRANCH_DIRECTIONS = 24
 
 
 class Arc:
@@ -151,30 +147,26 @@ class Arc:
         return None
 
     def _turn(self, z: np.ndarray, tau: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
-        """The fold between z (g > 0) and its step h (g <= 0): Brent on g(s)."""
-        from scipy.optimize import brentq
-
+        """The fold between z (g > 0) and its step h (g <= 0): where the tangent's swept
+        component changes sign (:func:`~.crossing.locate_crossing`); the step h itself
+        when the curve is lost on the way."""
         cache: dict[float, tuple[np.ndarray, np.ndarray]] = {0.0: (z, tau)}
 
-        def g(s: float) -> float:
+        def g(s: float) -> float | None:
             if s == 0.0:  # z itself (the fold when the path starts on it)
                 return self._g(tau)
             zs = self.step(z, tau, s)
             ts = None if zs is None else self.tangent(zs, tau)
             if zs is None or ts is None:
-                raise _Lost
+                return None
             cache[s] = (zs, ts)
             return self._g(ts)
 
-        try:
-            s = brentq(g, 0.0, h, xtol=SWEEP_LOCATE_TOL, rtol=4 * np.finfo(float).eps)
-        except (_Lost, ValueError):
+        s = locate_crossing(g, 0.0, h, SWEEP_LOCATE_TOL)
+        if s is None:
             s = h
-        if s not in cache:
-            try:
-                g(s)
-            except _Lost:
-                return cache[0.0]
+        if s not in cache and g(s) is None:
+            return cache[0.0]
         return cache[s]
 
     # -- what the path asks ---------------------------------------------------------
@@ -307,6 +299,68 @@ def curve_tangent(pb: Problem, z: np.ndarray, col: int) -> np.ndarray | None:
     return out
 
 
+def off_singular(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
+    """From a start at a fold of the swept value (continuation has no direction there):
+    turned at the fold onto the assembly mode that goes towards ``value``, as continuation
+    leaves a start drawn at a fold (:func:`~.folds.leave_fold`: the swept value moved by
+    so little that the joints move about _OFF_SINGULAR_STEP along the kernel), then along
+    the path's curve to ``value`` (near a fold the joints move like the square root of
+    the swept value: continuation in the swept value cannot leave it).  None when the
+    start is not such a fold or the curve does not get there."""
+    z = np.asarray(z, dtype=float)
+    d = 1 if value > z[col] else -1
+    target = z.copy()
+    target[col] = value
+    span = abs(value - float(z[col])) / pb.scale(col)
+    if span == 0.0:
+        return None
+    _, left = leave_fold(pb.cm, z, target, pb.given, min(1.0, _OFF_SINGULAR_STEP**2 / span))
+    if left is None:
+        return None
+    out = Arc(pb, col, d).to_fold_or(left, value)
+    if out is not None and out[0] == "passed":
+        return np.asarray(out[1], dtype=float)
+    return None
+
+
+def onto_branch(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
+    """From a start where branches cross (the curve of the path has a kernel of more
+    than one direction there, as at a change-point four-bar's flat position): the
+    branches leave along some directions of that kernel.  A short pseudo-arclength
+    step is tried along directions spread over it (towards ``value``); the step whose
+    corrector moves least lies on a branch, and the path goes on from there to
+    ``value`` along the curve (None when none does)."""
+    d = 1 if value > z[col] else -1
+    arc = Arc(pb, col, d)
+    z = np.asarray(z, dtype=float)
+    Js, _ = scaled_system(pb.cm, z)
+    _, s, Vt = np.linalg.svd(Js[:, arc.free], full_matrices=True)
+    K = Vt[int(np.sum(s > SWEEP_CURVE_RANK_RTOL * (s[0] if len(s) else 1.0))) :]
+    if K.shape[0] < 2:
+        return None
+    fr = pb.cm.float_frame
+    best: tuple[float, np.ndarray] | None = None
+    for th in np.linspace(0.0, math.pi, _BRANCH_DIRECTIONS, endpoint=False):
+        tau = math.cos(th) * K[0] + math.sin(th) * K[1]
+        if abs(tau[arc.cidx]) < SWEEP_BRANCH_MIN_SWEPT:
+            continue  # hardly moves the swept value
+        tau = tau if tau[arc.cidx] * d > 0 else -tau
+        zn = arc.step(z, tau, _OFF_SINGULAR_STEP)
+        if zn is None or (zn[col] - z[col]) * d <= 0 or arc.tangent(zn) is None:
+            continue
+        moved = np.zeros(pb.cm.n)
+        moved[arc.free] = _OFF_SINGULAR_STEP * tau
+        off = float(np.linalg.norm(fr.rates(pb.cm.difference(zn, z)) - moved))
+        if best is None or off < best[0]:
+            best = (off, zn)
+    if best is None:
+        return None
+    out = Arc(pb, col, d).to_fold_or(best[1], value)
+    if out is None or out[0] != "passed":
+        return None
+    return np.asarray(out[1], dtype=float)
+
+
 def _next_sample(
     values: np.ndarray, last: int, v: float, direction: int, wrap: float | None
 ) -> tuple[int, float] | None:
@@ -325,7 +379,3 @@ def _next_sample(
         if (vv - values[last]) * direction > 0 and (values[k] - vv) * direction >= 0:
             return k, m * wrap
     return None
-
-
-class _Lost(Exception):
-    """The curve was lost while locating a fold."""

@@ -9,16 +9,18 @@ A sample that does not close near its prediction is left NaN for continuation.
 
 from __future__ import annotations
 
-import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mechsing.errors import ClosureError
+from mechsing.kinematics.paths.problem import Problem
 from mechsing.numeric import SWEEP_JUMP_RATIO, SWEEP_KNOT_STEP
-from mechsing.sweeps.problem import Problem
-from mechsing.sweeps.records import PathTrace
 
-__all__ = ["close_segments", "close_to_fold", "near_fold"]
+if TYPE_CHECKING:
+    from mechsing.kinematics.paths.trace import PathTrace
+
+__all__ = ["close_segments"]
 
 #: samples closed by one batched Newton call at most (bounds its working memory)
 _FINE_CHUNK = 8192
@@ -30,55 +32,6 @@ _KNOTS_FROM = 1000
 #: tolerance, so most samples take no Newton step, where a cubic's 1e-9 takes one (and a
 #: quintic's 2e-12 one every other sample)
 _STENCIL = 8
-
-
-def close_to_fold(
-    pb: Problem, Z: np.ndarray, col: int, values: np.ndarray, ks: list[int], trail: list[np.ndarray]
-) -> None:
-    """The samples ``ks`` between a path's last node and the fold at ``trail[-1]``, all
-    together: each predicted between the two points of the curve traced to the fold that
-    bracket its value (by the square-root law in the last stretch, where the swept value is
-    quadratic in the distance along the curve), then batched Newton; a sample that does
-    not close near its prediction is left for the caller (NaN)."""
-    cm, bc = pb.cm, pb.batch
-    tt = np.array([float(p[col]) for p in trail])
-    sign = 1.0 if tt[-1] >= tt[0] else -1.0
-    A, B, F, spans = [], [], [], []
-    last = len(trail) - 2
-    for k in ks:
-        v = float(values[k])
-        m = int(np.clip(np.searchsorted(sign * tt, sign * v) - 1, 0, last))
-        ta, tb = tt[m], tt[m + 1]
-        if m == last and tb != ta:
-            f = 1.0 - math.sqrt(max(0.0, (tb - v) / (tb - ta)))
-        else:
-            f = 0.0 if tb == ta else (v - ta) / (tb - ta)
-        A.append(trail[m])
-        B.append(trail[m + 1])
-        F.append(f)
-        spans.append(pb.comm(cm.difference(trail[m + 1], trail[m])))
-    Qp = bc.between(np.array(A), np.array(B), np.array(F))
-    idx = np.array(ks)
-    Qp[:, col] = values[idx]
-    Q, ok, _ = pb.close_near(Qp, SWEEP_JUMP_RATIO * np.array(spans), polish=False)
-    Z[idx[ok]] = Q[ok]
-
-
-def near_fold(
-    pb: Problem, z: np.ndarray, zf: np.ndarray, col: int, value: float
-) -> np.ndarray | None:
-    """A sample between z and the fold zf: near a fold the swept value is quadratic in
-    the distance along the curve, so the sample lies at the fraction
-    ``1 - sqrt((t* - value) / (t* - t))`` of the way from z to zf; Newton from there."""
-    cm, bc = pb.cm, pb.batch
-    tz, tf = float(z[col]), float(zf[col])
-    if (value - tz) * (tf - tz) <= 0 or (tf - value) * (tf - tz) < 0:
-        return None
-    f = 1.0 - math.sqrt((tf - value) / (tf - tz))
-    zp = bc.between(z[None, :], zf[None, :], np.array([f]))[0]
-    zp[col] = value
-    Q, ok, _ = pb.close_near(zp[None, :], SWEEP_JUMP_RATIO * pb.comm(cm.difference(zf, z)))
-    return Q[0] if ok[0] else None
 
 
 def close_segments(

@@ -1,6 +1,6 @@
 """The nodes of a path: predicting the next closed configuration and keeping it.
 
-Owns the node step of :func:`~mechsing.sweeps.path.follow`: which sample is the next
+Owns the node step of :func:`~mechsing.kinematics.paths.follow.follow`: which sample is the next
 node (:func:`node_index`: at most :data:`~mechsing.numeric.SWEEP_NODE_STEP` on), its
 prediction (the tangent at a first step, the secant or the polynomial through the last
 nodes after that), and :func:`reach_node`: one batched Newton from the prediction, kept
@@ -13,10 +13,10 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.kinematics.paths.arc import curve_tangent
+from mechsing.kinematics.paths.problem import Problem
 from mechsing.numeric import SWEEP_NODE_STEP
 from mechsing.numeric.tolerances import SWEEP_NODE_CORRECTION
-from mechsing.sweeps.arc import curve_tangent
-from mechsing.sweeps.problem import Problem
 
 __all__ = [
     "node_index",

@@ -44,20 +44,22 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mechsing.errors import ClosureError
-from mechsing.numeric.tolerances import SWEEP_NODE_CORRECTION
-from mechsing.sweeps.arc import Arc, Fold
-from mechsing.sweeps.nodes import (
+from mechsing.kinematics.paths.arc import Arc
+from mechsing.kinematics.paths.folds import Fold, close_to_fold, near_fold
+from mechsing.kinematics.paths.nodes import (
     node_index,
     polynomial_prediction,
     reach_node,
     tangent_points,
     tangent_step,
 )
-from mechsing.sweeps.problem import Problem
-from mechsing.sweeps.records import PathTrace
-from mechsing.sweeps.segments import close_segments, close_to_fold, near_fold
+from mechsing.kinematics.paths.problem import Problem
+from mechsing.kinematics.paths.segments import close_segments
+from mechsing.kinematics.paths.trace import PathTrace
+from mechsing.numeric.tolerances import SWEEP_NODE_CORRECTION
 
 __all__ = [
+    "PathTrace",
     "first_nodes_of",
     "follow",
     "follow_together",

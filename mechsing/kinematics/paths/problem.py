@@ -1,4 +1,5 @@
-"""A sweep's kinematic problem: what it holds fixed, what it solves, and how it closes.
+"""A path's kinematic problem (a sweep's): what it holds fixed, what it solves, and how
+it closes.
 
 Owns :class:`Problem`: the float model a sweep closes (the mechanism's, or its pose model
 when the output's pose is swept), which coordinates are given (held at the start's values
@@ -9,12 +10,13 @@ configuration's closure, batched Newton).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mechsing.kinematics import Closer, KinematicModel
-from mechsing.kinematics.batch_newton import BatchClosure
+if TYPE_CHECKING:
+    from mechsing.kinematics.batch_newton import BatchClosure
+    from mechsing.kinematics.model import KinematicModel
 
 __all__ = ["Problem"]
 
@@ -28,12 +30,14 @@ class Problem:
     model: KinematicModel
     cm: Any  # the model continuation works in (a PoseModel for a pose sweep)
     given: np.ndarray  # bool over cm.n
-    closer: Closer
+    #: the :class:`~mechsing.kinematics.closure.Closer` whose continuation :meth:`reach` asks
+    #: (typed loosely: the closure's continuation is built on this package)
+    closer: Any
     batch: BatchClosure
     tolerance: float
     #: which columns of cm are revolute angles (a value and itself plus 2 pi are one pose)
     periodic: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
-    #: the tangents asked last (:func:`~mechsing.sweeps.arc.curve_tangent` keeps them), by
+    #: the tangents asked last (:func:`~mechsing.kinematics.paths.arc.curve_tangent` keeps them), by
     #: (column, configuration's bytes)
     tangents: dict[tuple[int, bytes], np.ndarray | None] = field(
         default_factory=dict, repr=False, compare=False
