@@ -428,3 +428,8 @@ CROSSING_RTOL = 1e-9
 #: direction not in the span has an exact zero there); a serial arm's target lies in the
 #: subgroup its end moves in when its part outside that span is below this times its size
 MODE_SPAN_RTOL = 1e-20
+#: a sweep's closed configuration and an assembly mode (or two closed configurations) with
+#: the same given values are on one mode when their commensurate joint distance (angles in
+#: rad modulo 2 pi, lengths over L) is below this: each sample is closed to 1e-12 L, and
+#: distinct modes lie orders of magnitude farther apart
+SWEEP_SAME_MODE_DISTANCE = 1e-6

@@ -23,15 +23,18 @@ from mechsing.sweeps.results import (
     SweepResult,
     SweptVariable,
 )
+from mechsing.sweeps.permode import ModeSweeps, sweep_modes
 from mechsing.sweeps.run import SweepRun, sweep
 from mechsing.sweeps.spec import Vary
 
 __all__ = [
     "LocatedSingularity",
     "Locus",
+    "ModeSweeps",
     "SweepResult",
     "SweepRun",
     "SweptVariable",
     "Vary",
     "sweep",
+    "sweep_modes",
 ]
