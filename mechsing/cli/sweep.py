@@ -98,6 +98,27 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     options.add_verbose_option(p)
     options.add_load_option(p)
     options.add_max_effort_option(p)
+    which = p.add_mutually_exclusive_group()
+    which.add_argument(
+        "--mode",
+        type=_positive_int("--mode"),
+        metavar="K",
+        help="start on assembly mode K of the --from configuration, as `mechsing modes` numbers "
+        "them (default: the mode continuation reaches); every sample is labelled with it",
+    )
+    which.add_argument(
+        "--modes",
+        choices=("all",),
+        help="all: one sweep per assembly mode of the --from configuration, each sample "
+        "labelled with its mode",
+    )
+    p.add_argument(
+        "--loop",
+        action="store_true",
+        help="with two --vary: follow the closed path around the rectangle of their ranges "
+        "(from START, START) instead of the grid, and report a return on another assembly "
+        "mode without a located singularity (mode_changes)",
+    )
 
 
 def _positive_int(option: str) -> Callable[[str], int]:
@@ -149,6 +170,12 @@ def run(args: argparse.Namespace) -> int:
     with working_on(file=args.file):
         check_shared(args)  # the options' own errors before the file is read
         varies = args.varies
+        if args.loop and len(varies) != 2:
+            raise UserError("--loop follows the rectangle of two ranges: give two --vary")
+        if args.loop and (args.workers or args.scheduler):
+            raise UserError("--loop is one path per mode: it is not distributed (no --workers)")
+        if args.loop and args.format == "csv":
+            raise UserError("--loop writes text or json")
         if (args.workers or args.scheduler) and len(varies) != 2:
             raise UserError(
                 "--workers and --scheduler distribute the rows of a grid: give two --vary"
@@ -179,10 +206,13 @@ def run(args: argparse.Namespace) -> int:
             args.file,
         )
         warn_varies(mech, varies)
+        start_config = set_start(mech, args.set_values, "a sweep") or args.from_config
+        if args.modes or args.mode or args.loop:
+            return _run_modes(args, mech, start_config, fmt)
         sweep_run = SweepRun(
             mech,
             list(varies),
-            set_start(mech, args.set_values, "a sweep") or args.from_config,
+            start_config,
             args.prec,
             max_classified=args.max_classified or MAX_CLASSIFIED,
             time_limit=args.time_limit,
@@ -210,6 +240,110 @@ def run(args: argparse.Namespace) -> int:
     for error in filter(None, stopped):
         print(f"mechsing: {with_file(error, args.file)}", file=sys.stderr)
     return NOT_ANALYSED if any(stopped) else 0
+
+
+def _run_modes(args: argparse.Namespace, mech: Any, start_config: str | None, fmt: str) -> int:
+    """``--mode K``, ``--modes all`` and ``--loop``: one sweep (or loop) per mode asked for."""
+    from mechsing.cli import NOT_ANALYSED, with_file
+    from mechsing.errors import UserError
+    from mechsing.sweeps.permode import loops_json, loops_text, mode_loops, mode_runs
+    from mechsing.sweeps.results import json_header
+    from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
+
+    if args.load or args.max_effort:
+        raise UserError("--load and --max-effort sweep one mode: give them without --mode/--modes/--loop")
+    options = {
+        "max_classified": args.max_classified or MAX_CLASSIFIED,
+        "time_limit": args.time_limit,
+    }
+    wanted = "all" if args.modes else [args.mode] if args.mode else None
+    if wanted is None:
+        runs, found = [SweepRun(mech, list(args.varies), start_config, args.prec, **options)], None
+    else:
+        runs, found = mode_runs(mech, list(args.varies), start_config, args.prec, wanted, **options)
+    with _destination(args.output, args.file) as out:
+        if args.loop:
+            loops = mode_loops(runs, found)
+            variables = runs[0].variables
+
+            def shown(v: Any) -> str:
+                return "(" + ", ".join(x.shown(a) for x, a in zip(variables, v, strict=True)) + ")"
+
+            if fmt == "json":
+                head = {k: v for k, v in json_header(runs[0]).items() if k != "mode"}
+                head["modes"] = [r.mode for r in runs]
+                out.write(_json_text({**head, **loops_json(loops)}) + "\n")
+            else:
+                what = f"{mech.name}: loops of {', '.join(v.name for v in variables)} from {runs[0].from_config!r}"
+                out.write(what + "\n" + loops_text(loops, shown))
+            return 0  # a loop that does not close says why in its entry
+        if len(runs) == 1:
+            run = runs[0]
+            with _progress_bar(run, args.quiet) as progress:
+                rows = run.rows(
+                    progress, workers=args.workers, scheduler=args.scheduler,
+                    connect_timeout=args.connect_timeout,
+                )
+                if fmt == "json":
+                    write_json(run, rows, out)
+                elif fmt == "csv":
+                    write_csv(run, rows, out)
+                else:
+                    for _ in rows:
+                        pass
+                    out.write(run.result().to_text())
+        else:
+            _write_runs(args, runs, fmt, out)
+    stopped = [p.configuration.error for r in runs for p in r.result().located if p.configuration]
+    for error in filter(None, stopped):
+        print(f"mechsing: {with_file(error, args.file)}", file=sys.stderr)
+    return NOT_ANALYSED if any(stopped) else 0
+
+
+def _write_runs(args: argparse.Namespace, runs: list[Any], fmt: str, out: IO[str]) -> None:
+    """Several modes' sweeps as one document: JSON (the header once with ``modes``, every
+    mode's points, their located points, loci and aspects joined), CSV (one after the
+    other, each line with its mode) or text."""
+    from mechsing.sweeps.permode import merged_tail
+    from mechsing.sweeps.results import csv_header, csv_located, csv_rows, json_header, json_point, json_tail
+
+    def rows(run: Any) -> Iterator[int]:
+        with _progress_bar(run, args.quiet) as progress:
+            yield from run.rows(
+                progress, workers=args.workers, scheduler=args.scheduler,
+                connect_timeout=args.connect_timeout,
+            )
+
+    if fmt == "json":
+        out.write("{\n")
+        head = {k: v for k, v in json_header(runs[0]).items() if k != "mode"}
+        head["modes"] = [r.mode for r in runs]
+        for key, value in head.items():
+            out.write(f'  "{key}": {_json_text(value)},\n')
+        out.write('  "points": [')
+        sep = "\n    "
+        for run in runs:
+            for j in rows(run):
+                for idx in _row_indices(run, j):
+                    out.write(sep + _json_text(json_point(run, idx)))
+                    sep = ",\n    "
+        out.write("\n  ]")
+        tail = merged_tail([json_tail(r.result()) for r in runs], [r.mode for r in runs])
+        for key, value in tail.items():
+            out.write(f',\n  "{key}": {_json_text(value)}')
+        out.write("\n}\n")
+    elif fmt == "csv":
+        out.write(csv_header(runs[0]))
+        for run in runs:
+            for j in rows(run):
+                out.writelines(csv_rows(run, [j]))
+        for run in runs:
+            out.writelines(csv_located(run.result()))
+    else:
+        for k, run in enumerate(runs):
+            for _ in rows(run):
+                pass
+            out.write(("\n" if k else "") + run.result().to_text())
 
 
 # --------------------------------------------------------------------------- writers

@@ -321,6 +321,8 @@ def csv_header(r: Any) -> str:
     cols += ["classes", "precision", "tests", "between", "dropped"]
     if r.outside:  # the file has limits
         cols.append("outside limits")
+    if r.mode is not None:  # a sweep on an assembly mode that modes found
+        cols.append("mode")
     return ",".join(cols) + "\n"
 
 
@@ -342,6 +344,8 @@ def csv_rows(r: Any, rows: Any) -> list[str]:
             cells += ["", "", "", "", ""]
             if r.outside:
                 cells.append(";".join(p["outside_limits"]))
+            if r.mode is not None:
+                cells.append(str(r.mode))
             out.append(",".join(cells) + "\n")
     return out
 
@@ -364,6 +368,8 @@ def csv_located(r: Any) -> list[str]:
         ]
         if r.outside:
             cells.append("")
+        if r.mode is not None:
+            cells.append(str(r.mode))
         out.append(",".join(cells) + "\n")
     return out
 
