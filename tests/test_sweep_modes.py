@@ -165,3 +165,19 @@ def test_aspects_of_a_2r_arm(tmp_path: Path, j2: str, below: tuple, above: tuple
     np.testing.assert_allclose(got[0][0], below, atol=1e-12)
     np.testing.assert_allclose(got[1][0], above, atol=1e-12)
     assert got[0][1] == 5 * per_side and got[0][2] == (0.0, 1.0)
+
+
+def test_modes_all_grid_document(design: tuple[Path, np.ndarray]) -> None:
+    """--modes all on a grid: one document valid against the sweep schema, every point and
+    every aspect labelled with its mode, each mode's samples all there."""
+    jsonschema = pytest.importorskip("jsonschema")
+    from mechsing.sweeps.schema import sweep_schema
+
+    path, _ = design
+    d = cli_json(["sweep", path, "--from", "corner", "--modes", "all", "--vary", "P2=0:0.04:0.02", "--vary", "P3=0:0.04:0.02", "--format", "json"])
+    jsonschema.Draft202012Validator(sweep_schema()).validate(d)
+    assert d["modes"] == [1, 2, 3, 4, 5, 6]
+    assert [p["mode"] for p in d["points"]] == [m for m in d["modes"] for _ in range(9)]
+    # a small grid inside the cusp's wedge: every mode regular throughout, one region each
+    assert sorted(a["mode"] for a in d["aspects"]) == d["modes"]
+    assert all(a["cells"] == 9 for a in d["aspects"])
