@@ -426,6 +426,15 @@ def text_report(r: SweepResult) -> str:
             f"{r.variables[1].shown(a[1])}) to ({r.variables[0].shown(b[0])}, "
             f"{r.variables[1].shown(b[1])})" + (", closed" if lo.closed else "")
         )
+    if r.aspects:
+        lines.append(f"  singularity-free regions (aspects): {len(r.aspects)}")
+        for k, a in enumerate(r.aspects):
+            (x0, x1), (y0, y1) = a.box
+            vx, vy = r.variables
+            lines.append(
+                f"    {k + 1}: {a.cells} samples, {vx.name} {vx.shown(x0)} to {vx.shown(x1)}, "
+                f"{vy.name} {vy.shown(y0)} to {vy.shown(y1)}"
+            )
     if r.statics is not None:
         lines += r.statics.text_lines(
             lambda k: _where(r, tuple(_values_at(r.variables, k))), lambda v: _where(r, v)
