@@ -181,3 +181,26 @@ def test_modes_all_grid_document(design: tuple[Path, np.ndarray]) -> None:
     # a small grid inside the cusp's wedge: every mode regular throughout, one region each
     assert sorted(a["mode"] for a in d["aspects"]) == d["modes"]
     assert all(a["cells"] == 9 for a in d["aspects"])
+
+
+def test_the_docs_design_is_the_tested_one(design: tuple[Path, np.ndarray]) -> None:
+    """docs/sweeps.md carries the file its loop example runs: the design tested here."""
+    page = (Path(__file__).resolve().parents[1] / "docs" / "sweeps.md").read_text()
+    head = "```yaml\n# file: cuspidal_3rpr.yaml\n"
+    start = page.index(head) + len(head)
+    assert page[start : page.index("```", start)] == design[0].read_text()
+
+
+def test_loops_in_markdown_and_bad_options(design: tuple[Path, np.ndarray]) -> None:
+    path, _ = design
+    vary = [f"--vary={v}" for v in AROUND]
+    rc, out, _ = run_cli(["sweep", path, "--from", "corner", "--modes", "all", "--loop", "--format", "md", *vary])
+    assert rc == 0 and "| 3 | yes | mode 5 | 0 | **yes** |" in out
+    assert "- mode 3 → mode 5" in out
+    for argv, words in (
+        (["--loop", "--vary", "P2=0:1:0.1"], "give two --vary"),
+        (["--loop", "--format", "csv", *vary], "not csv"),
+        (["--format", "md", "--vary", "P2=0:1:0.1"], "mechsing report"),
+    ):
+        rc, _, err = run_cli(["sweep", path, "--from", "corner", *argv])
+        assert rc == 2 and words in err, (argv, err)

@@ -37,8 +37,8 @@ NAME = "sweep"
 HELP = "locate singularities along a path or over a grid of joint values or poses"
 
 #: the formats, and the extensions of -o that choose them when --format is not given
-FORMATS = ("text", "json", "csv")
-_BY_EXTENSION = {".json": "json", ".csv": "csv", ".txt": "text"}
+FORMATS = ("text", "json", "csv", "md")
+_BY_EXTENSION = {".json": "json", ".csv": "csv", ".txt": "text", ".md": "md"}
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -65,7 +65,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--format",
         choices=FORMATS,
         default=None,
-        help="text (default), json or csv; with -o and no --format, from OUT's extension",
+        help="text (default), json, csv or md (with --loop); with -o and no --format, from "
+        "OUT's extension",
     )
     p.add_argument("-o", "--output", metavar="OUT", help="write to OUT instead of standard output")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -174,8 +175,14 @@ def run(args: argparse.Namespace) -> int:
             raise UserError("--loop follows the rectangle of two ranges: give two --vary")
         if args.loop and (args.workers or args.scheduler):
             raise UserError("--loop is one path per mode: it is not distributed (no --workers)")
-        if args.loop and args.format == "csv":
-            raise UserError("--loop writes text or json")
+        fmt = output_format(args.format, args.output)
+        if args.loop and fmt == "csv":
+            raise UserError("--loop writes text, json or md (not csv)")
+        if fmt == "md" and not args.loop:
+            raise UserError(
+                "--format md is the loops' (--loop); a sweep's Markdown is its design review: "
+                "mechsing report FILE --vary ... -o review.md"
+            )
         if (args.workers or args.scheduler) and len(varies) != 2:
             raise UserError(
                 "--workers and --scheduler distribute the rows of a grid: give two --vary"
@@ -191,7 +198,6 @@ def run(args: argparse.Namespace) -> int:
                 check_workers(args.workers)
             else:
                 parse_scheduler(args.scheduler)
-        fmt = output_format(args.format, args.output)
         if args.output:  # before the work: a missing directory or the input file is refused now
             from mechsing.files import check_output
 
@@ -246,7 +252,13 @@ def _run_modes(args: argparse.Namespace, mech: Any, start_config: str | None, fm
     """``--mode K``, ``--modes all`` and ``--loop``: one sweep (or loop) per mode asked for."""
     from mechsing.cli import NOT_ANALYSED, with_file
     from mechsing.errors import UserError
-    from mechsing.sweeps.permode import loops_json, loops_text, mode_loops, mode_runs
+    from mechsing.sweeps.permode import (
+        loops_json,
+        loops_markdown,
+        loops_text,
+        mode_loops,
+        mode_runs,
+    )
     from mechsing.sweeps.results import json_header
     from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
 
@@ -269,12 +281,17 @@ def _run_modes(args: argparse.Namespace, mech: Any, start_config: str | None, fm
             def shown(v: Any) -> str:
                 return "(" + ", ".join(x.shown(a) for x, a in zip(variables, v, strict=True)) + ")"
 
+            what = (
+                f"{mech.name}: loops of {', '.join(v.name for v in variables)} from "
+                f"{runs[0].from_config!r}"
+            )
             if fmt == "json":
                 head = {k: v for k, v in json_header(runs[0]).items() if k != "mode"}
                 head["modes"] = [r.mode for r in runs]
                 out.write(_json_text({**head, **loops_json(loops)}) + "\n")
+            elif fmt == "md":
+                out.write(loops_markdown(what, loops, shown))
             else:
-                what = f"{mech.name}: loops of {', '.join(v.name for v in variables)} from {runs[0].from_config!r}"
                 out.write(what + "\n" + loops_text(loops, shown))
             return 0  # a loop that does not close says why in its entry
         if len(runs) == 1:

@@ -29,7 +29,7 @@ from mechsing.sweeps.loop import LoopResult, follow_loop
 from mechsing.sweeps.results import SweepResult
 from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
 
-__all__ = ["ModeSweeps", "mode_loops", "mode_runs", "sweep_modes"]
+__all__ = ["ModeSweeps", "loops_markdown", "mode_loops", "mode_runs", "sweep_modes"]
 
 
 @dataclass(frozen=True)
@@ -191,6 +191,39 @@ def loops_text(loops: tuple[LoopResult, ...] | list[LoopResult], shown: Any = No
         )
     else:
         lines.append("  no mode change without a singularity")
+    return "\n".join(lines) + "\n"
+
+
+def loops_markdown(
+    title: str, loops: tuple[LoopResult, ...] | list[LoopResult], shown: Any
+) -> str:
+    """The loops as Markdown: a table (one row per loop) and the mode changes without a
+    singularity, each with its loop."""
+    lines = [f"# {title}", ""]
+    corners = loops[0].corners if loops else ()
+    if corners:
+        lines += [f"The loop: {' → '.join(shown(c) for c in corners)}.", ""]
+    lines += [
+        "| from mode | closed | back on | singularities located | mode change without a singularity |",
+        "|---|---|---|---|---|",
+    ]
+    for lo in loops:
+        back = "-" if not lo.closed else "another mode" if lo.end_mode is None else f"mode {lo.end_mode}"
+        sing = sum(1 for *_, s in lo.located if s is not False)
+        lines.append(
+            f"| {lo.mode if lo.mode is not None else 'start'} | "
+            f"{'yes' if lo.closed else 'no: ' + '; '.join(lo.notes)} | {back} | {sing} | "
+            f"{'**yes**' if lo.mode_change else 'no'} |"
+        )
+    changes = [lo for lo in loops if lo.mode_change]
+    lines += ["", "## Mode changes without a singularity", ""]
+    if not changes:
+        lines.append("None: no loop came back on another assembly mode without a singularity.")
+    for lo in changes:
+        lines.append(
+            f"- mode {lo.mode} → mode {lo.end_mode}: around the loop, no singularity located "
+            f"({len(lo.values)} samples; joint distance between start and end {lo.distance:.3g})"
+        )
     return "\n".join(lines) + "\n"
 
 
