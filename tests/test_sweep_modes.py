@@ -28,7 +28,9 @@ BESIDE = ["P2=0:0.08:0.01", "P3=0:0.1:0.01"]
 
 
 def _rect(vary: list[str]) -> list[tuple[float, float]]:
-    (a0, a1), (b0, b1) = ((float(v.split("=")[1].split(":")[0]), float(v.split(":")[1])) for v in vary)
+    (a0, a1), (b0, b1) = (
+        (float(v.split("=")[1].split(":")[0]), float(v.split(":")[1])) for v in vary
+    )
     c = np.array(CORNER)
     return [tuple(c + d) for d in ((a0, b0), (a1, b0), (a1, b1), (a0, b1))]
 
@@ -44,6 +46,12 @@ def design(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, np.ndarray]:
     path = tmp_path_factory.mktemp("cusp") / "cuspidal_3rpr.yaml"
     path.write_text(text)
     return path, x
+
+
+def _loops(path: Path, vary: list[str]) -> dict:
+    """The JSON of the loops of every mode of 'corner' around the rectangle ``vary``."""
+    argv = ["sweep", path, "--from", "corner", "--modes", "all", "--loop", "--format", "json"]
+    return cli_json([*argv, *(f"--vary={v}" for v in vary)])
 
 
 def _pose(x_ref: np.ndarray, joints: dict) -> np.ndarray:
@@ -78,7 +86,7 @@ def test_loop_around_a_cusp_changes_mode(design: tuple[Path, np.ndarray]) -> Non
     comes back at the reference's pose; where the reference meets a fold, mechsing's loop
     does not close (or locates the singularity); the others come back on their own mode."""
     path, x_ref = design
-    d = cli_json(["sweep", path, "--from", "corner", "--modes", "all", "--loop", "--format", "json", *(f"--vary={v}" for v in AROUND)])
+    d = _loops(path, AROUND)
     assert d["modes"] == [1, 2, 3, 4, 5, 6]
     changes = d["mode_changes"]
     assert len(changes) >= 1
@@ -100,10 +108,12 @@ def test_loop_around_a_cusp_changes_mode(design: tuple[Path, np.ndarray]) -> Non
 
 def test_loop_around_no_cusp_keeps_modes(design: tuple[Path, np.ndarray]) -> None:
     path, x_ref = design
-    d = cli_json(["sweep", path, "--from", "corner", "--modes", "all", "--loop", "--format", "json", *(f"--vary={v}" for v in BESIDE)])
+    d = _loops(path, BESIDE)
     assert d["mode_changes"] == []
     for loop in d["loops"]:
-        back = ref.follow_rectangle(RHO1, _pose(x_ref, loop["joints_start"]), _rect(BESIDE), step=2e-3)
+        back = ref.follow_rectangle(
+            RHO1, _pose(x_ref, loop["joints_start"]), _rect(BESIDE), step=2e-3
+        )
         assert back is not None
         assert loop["closed"] and loop["end_mode"] == loop["mode"]
         assert _wrapped(_pose(x_ref, loop["joints_end"]) - back) < 1e-6
@@ -126,7 +136,9 @@ def test_sweep_from_a_mode(design: tuple[Path, np.ndarray]) -> None:
     # the default sweep has no mode key (its JSON unchanged)
     plain = mechsing.sweep(str(path), "P2=0:0.05:0.01", "corner", "float").to_json()
     assert "mode" not in plain and "mode" not in plain["points"][0]
-    rc, _, err = run_cli(["sweep", path, "--from", "corner", "--vary", "P2=0:0.05:0.01", "--mode", "9"])
+    rc, _, err = run_cli(
+        ["sweep", path, "--from", "corner", "--vary", "P2=0:0.05:0.01", "--mode", "9"]
+    )
     assert rc == 2 and "--mode 1 to 6" in err
 
 
@@ -155,7 +167,9 @@ def test_aspects_of_a_2r_arm(tmp_path: Path, j2: str, below: tuple, above: tuple
     the elbow's line J2 = 0 (det J = sin J2, closed form) splits it into two."""
     path = tmp_path / "arm.yaml"
     path.write_text(ARM)
-    d = cli_json(["sweep", path, "--from", "bent", "--vary", "J1=0:1:0.25", "--vary", j2, "--format", "json"])
+    d = cli_json(
+        ["sweep", path, "--from", "bent", "--vary", "J1=0:1:0.25", "--vary", j2, "--format", "json"]
+    )
     ys = np.asarray([p["values"][1] for p in d["points"]])
     per_side = len(set(ys[ys < 0].tolist()))
     assert len(d["aspects"]) == 2
@@ -174,7 +188,22 @@ def test_modes_all_grid_document(design: tuple[Path, np.ndarray]) -> None:
     from mechsing.sweeps.schema import sweep_schema
 
     path, _ = design
-    d = cli_json(["sweep", path, "--from", "corner", "--modes", "all", "--vary", "P2=0:0.04:0.02", "--vary", "P3=0:0.04:0.02", "--format", "json"])
+    d = cli_json(
+        [
+            "sweep",
+            path,
+            "--from",
+            "corner",
+            "--modes",
+            "all",
+            "--vary",
+            "P2=0:0.04:0.02",
+            "--vary",
+            "P3=0:0.04:0.02",
+            "--format",
+            "json",
+        ]
+    )
     jsonschema.Draft202012Validator(sweep_schema()).validate(d)
     assert d["modes"] == [1, 2, 3, 4, 5, 6]
     assert [p["mode"] for p in d["points"]] == [m for m in d["modes"] for _ in range(9)]
@@ -194,7 +223,9 @@ def test_the_docs_design_is_the_tested_one(design: tuple[Path, np.ndarray]) -> N
 def test_loops_in_markdown_and_bad_options(design: tuple[Path, np.ndarray]) -> None:
     path, _ = design
     vary = [f"--vary={v}" for v in AROUND]
-    rc, out, _ = run_cli(["sweep", path, "--from", "corner", "--modes", "all", "--loop", "--format", "md", *vary])
+    rc, out, _ = run_cli(
+        ["sweep", path, "--from", "corner", "--modes", "all", "--loop", "--format", "md", *vary]
+    )
     assert rc == 0 and "| 3 | yes | mode 5 | 0 | **yes** |" in out
     assert "- mode 3 → mode 5" in out
     for argv, words in (

@@ -263,7 +263,9 @@ def _run_modes(args: argparse.Namespace, mech: Any, start_config: str | None, fm
     from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
 
     if args.load or args.max_effort:
-        raise UserError("--load and --max-effort sweep one mode: give them without --mode/--modes/--loop")
+        raise UserError(
+            "--load and --max-effort sweep one mode: give them without --mode/--modes/--loop"
+        )
     options = {
         "max_classified": args.max_classified or MAX_CLASSIFIED,
         "time_limit": args.time_limit,
@@ -298,7 +300,9 @@ def _run_modes(args: argparse.Namespace, mech: Any, start_config: str | None, fm
             run = runs[0]
             with _progress_bar(run, args.quiet) as progress:
                 rows = run.rows(
-                    progress, workers=args.workers, scheduler=args.scheduler,
+                    progress,
+                    workers=args.workers,
+                    scheduler=args.scheduler,
                     connect_timeout=args.connect_timeout,
                 )
                 if fmt == "json":
@@ -322,12 +326,21 @@ def _write_runs(args: argparse.Namespace, runs: list[Any], fmt: str, out: IO[str
     mode's points, their located points, loci and aspects joined), CSV (one after the
     other, each line with its mode) or text."""
     from mechsing.sweeps.permode import merged_tail
-    from mechsing.sweeps.results import csv_header, csv_located, csv_rows, json_header, json_point, json_tail
+    from mechsing.sweeps.results import (
+        csv_header,
+        csv_located,
+        csv_rows,
+        json_header,
+        json_point,
+        json_tail,
+    )
 
     def rows(run: Any) -> Iterator[int]:
         with _progress_bar(run, args.quiet) as progress:
             yield from run.rows(
-                progress, workers=args.workers, scheduler=args.scheduler,
+                progress,
+                workers=args.workers,
+                scheduler=args.scheduler,
                 connect_timeout=args.connect_timeout,
             )
 

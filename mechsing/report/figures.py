@@ -47,7 +47,14 @@ TEST_COLOURS = {
 }
 #: the singularity-free regions (aspects) of a grid, one colour each, in turn
 REGION_COLOURS = (
-    "#a6cee3", "#b2df8a", "#fdbf6f", "#cab2d6", "#fb9a99", "#ffff99", "#80cdc1", "#d9d9d9",
+    "#a6cee3",
+    "#b2df8a",
+    "#fdbf6f",
+    "#cab2d6",
+    "#fb9a99",
+    "#ffff99",
+    "#80cdc1",
+    "#d9d9d9",
 )
 #: the regions named in a grid figure's legend (the others are tinted, not listed)
 _REGIONS_IN_LEGEND = 8
@@ -318,7 +325,12 @@ def grid_figure(
                 tint[np.asarray(mask, dtype=bool)] = (*colour, 0.45)
                 if k < _REGIONS_IN_LEGEND:
                     ax.plot(
-                        [], [], "s", color=colour, alpha=0.45, ms=8,
+                        [],
+                        [],
+                        "s",
+                        color=colour,
+                        alpha=0.45,
+                        ms=8,
                         label=f"region {k + 1} ({int(np.sum(mask))} samples)",
                     )
             ax.imshow(

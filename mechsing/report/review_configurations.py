@@ -254,7 +254,12 @@ def sweep_section(analysis: AnalysisResult, sw: SweepResult) -> list[doc.Block]:
         if sw.aspects:
             out.append(
                 doc.Table(
-                    ("region", "samples", f"{vx.name} ({vx.file_unit})", f"{vy.name} ({vy.file_unit})"),
+                    (
+                        "region",
+                        "samples",
+                        f"{vx.name} ({vx.file_unit})",
+                        f"{vy.name} ({vy.file_unit})",
+                    ),
                     tuple(
                         (
                             str(k + 1),

@@ -17,13 +17,13 @@ come (the command line streams its CSV and JSON that way, in bounded memory) or
 distributes them (``workers``/``scheduler``: Dask, see :mod:`.distributed`).
 """
 
+from mechsing.sweeps.permode import ModeSweeps, sweep_modes
 from mechsing.sweeps.results import (
     LocatedSingularity,
     Locus,
     SweepResult,
     SweptVariable,
 )
-from mechsing.sweeps.permode import ModeSweeps, sweep_modes
 from mechsing.sweeps.run import SweepRun, sweep
 from mechsing.sweeps.spec import Vary
 

@@ -60,7 +60,9 @@ class LoopResult:
     @property
     def changed(self) -> bool:
         """Back at its start values on another assembly mode."""
-        return self.closed and self.distance is not None and self.distance > SWEEP_SAME_MODE_DISTANCE
+        return (
+            self.closed and self.distance is not None and self.distance > SWEEP_SAME_MODE_DISTANCE
+        )
 
     @property
     def singular_on_the_way(self) -> bool:
@@ -116,7 +118,9 @@ class LoopResult:
         if not self.changed:
             end = "back on the same assembly mode"
         else:
-            end = "back on " + ("another mode" if self.end_mode is None else f"mode {self.end_mode}")
+            end = "back on " + (
+                "another mode" if self.end_mode is None else f"mode {self.end_mode}"
+            )
             end += f" (joint distance {self.distance:.3g})"
         if self.mode_change:
             end += ": a mode change without a singularity"

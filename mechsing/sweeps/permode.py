@@ -153,7 +153,9 @@ def mode_loops(runs: list[SweepRun], found: Any = None) -> list[LoopResult]:
         ]
     for lo in loops:
         if lo.mode is not None:
-            candidates.append((lo.mode, [float(x) for j in lo.joints_start for x in lo.joints_start[j]]))
+            candidates.append(
+                (lo.mode, [float(x) for j in lo.joints_start for x in lo.joints_start[j]])
+            )
     out = []
     for lo in loops:
         if lo.joints_end is not None and lo.end_mode is None:
@@ -194,9 +196,7 @@ def loops_text(loops: tuple[LoopResult, ...] | list[LoopResult], shown: Any = No
     return "\n".join(lines) + "\n"
 
 
-def loops_markdown(
-    title: str, loops: tuple[LoopResult, ...] | list[LoopResult], shown: Any
-) -> str:
+def loops_markdown(title: str, loops: tuple[LoopResult, ...] | list[LoopResult], shown: Any) -> str:
     """The loops as Markdown: a table (one row per loop) and the mode changes without a
     singularity, each with its loop."""
     lines = [f"# {title}", ""]
@@ -208,7 +208,13 @@ def loops_markdown(
         "|---|---|---|---|---|",
     ]
     for lo in loops:
-        back = "-" if not lo.closed else "another mode" if lo.end_mode is None else f"mode {lo.end_mode}"
+        back = (
+            "-"
+            if not lo.closed
+            else "another mode"
+            if lo.end_mode is None
+            else f"mode {lo.end_mode}"
+        )
         sing = sum(1 for *_, s in lo.located if s is not False)
         lines.append(
             f"| {lo.mode if lo.mode is not None else 'start'} | "

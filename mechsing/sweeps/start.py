@@ -203,11 +203,12 @@ def mode_start(
     else:
         index = int(start)
         if not 0 <= index < len(listed):
-            count = "no assembly mode" if not listed else f"{len(listed)} assembly modes"
+            if not listed:
+                raise UserError(f"--mode {index + 1}: {eng.from_config!r} has no assembly mode")
             raise UserError(
-                f"--mode {index + 1}: configuration {eng.from_config!r} has {count} "
-                f"(mechsing modes FILE --config {eng.from_config}); give --mode 1 to "
-                f"{len(listed)}" if listed else f"--mode {index + 1}: {eng.from_config!r} has {count}"
+                f"--mode {index + 1}: configuration {eng.from_config!r} has {len(listed)} "
+                f"assembly modes (mechsing modes FILE --config {eng.from_config}); give "
+                f"--mode 1 to {len(listed)}"
             )
     mode = listed[index]
     q = np.array([float(mode.joints[j][i]) for j, i in coords])
