@@ -235,3 +235,26 @@ def test_loops_in_markdown_and_bad_options(design: tuple[Path, np.ndarray]) -> N
     ):
         rc, _, err = run_cli(["sweep", path, "--from", "corner", *argv])
         assert rc == 2 and words in err, (argv, err)
+
+
+@pytest.mark.skipif(
+    __import__("importlib").util.find_spec("distributed") is None,
+    reason="Dask distributed is not installed (pip install 'mechsing[dask]')",
+)
+def test_per_mode_grids_distributed_give_the_serial_result(
+    design: tuple[Path, np.ndarray],
+) -> None:
+    """Each mode's grid on a local Dask cluster is its serial grid (the whole document,
+    aspects included); the grid crosses the cusp's singular curves."""
+    from mechsing.sweeps import sweep_modes
+    from mechsing.sweeps.distributed import usable_cpus
+
+    path, _ = design
+    grid = ["P2=0:0.2:0.05", "P3=-1:0:0.25"]
+    serial = sweep_modes(str(path), grid, "corner", "float", modes=[3, 4])
+    assert any(r.located for r in serial.sweeps)
+    spread = sweep_modes(
+        str(path), grid, "corner", "float", modes=[3, 4], workers=min(2, usable_cpus())
+    )
+    assert spread.to_json() == serial.to_json()
+    assert [r.mode for r in spread.sweeps] == [3, 4]
