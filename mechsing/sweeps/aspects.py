@@ -28,11 +28,20 @@ __all__ = ["Aspect", "aspects_of", "regular_samples"]
 class Aspect:
     """A connected singularity-free region of a grid: ``cells`` samples, its bounding box
     ``box`` ((x_min, x_max), (y_min, y_max)) over the two swept variables (SI, first
-    variable first), and ``mask`` (the grid's shape, rows by columns: its samples)."""
+    variable first); ``labels`` (the grid's shape, rows by columns, shared by the grid's
+    regions) holds ``label`` at its samples."""
 
     cells: int
     box: tuple[tuple[float, float], tuple[float, float]]
-    mask: np.ndarray = field(repr=False, compare=False)
+    label: int = field(default=0, repr=False, compare=False)
+    labels: np.ndarray = field(
+        default_factory=lambda: np.zeros((0, 0), int), repr=False, compare=False
+    )
+
+    @property
+    def mask(self) -> np.ndarray:
+        """The region's samples (rows by columns)."""
+        return self.labels == self.label
 
     def to_json(self) -> dict[str, Any]:
         """The region as an entry of the sweep JSON's ``aspects``."""
@@ -105,14 +114,35 @@ def aspects_of(
     n = rows * cols
     graph = coo_matrix((np.ones(len(a)), (a, b)), shape=(n, n))
     _, labels = connected_components(graph, directed=False)
-    labels = labels.reshape(shape)
-    out = []
-    for lab in dict.fromkeys(labels[regular].tolist()):
-        mask = (labels == lab) & regular
-        jj, ii = np.nonzero(mask)
-        x = np.asarray(xs, float)[ii]
-        y = np.asarray(ys, float)[jj]
-        box = ((float(x.min()), float(x.max())), (float(y.min()), float(y.max())))
-        out.append(Aspect(int(mask.sum()), box, mask))
-    out.sort(key=lambda r: -r.cells)  # stable: ties keep their first sample's order
-    return tuple(out)
+    labels = np.where(regular, labels.reshape(shape), -1)
+    flat = labels.ravel()
+    regions, first = np.unique(flat[flat >= 0], return_index=True)
+    if not len(regions):
+        return ()
+    where = np.flatnonzero(flat >= 0)
+    lab = np.searchsorted(regions, flat[where])  # each regular sample's region, 0..k-1
+    jj, ii = np.divmod(where, cols)
+    x = np.asarray(xs, float)[ii]
+    y = np.asarray(ys, float)[jj]
+    k = len(regions)
+    cells = np.bincount(lab, minlength=k)
+    lo_x, hi_x = np.full(k, np.inf), np.full(k, -np.inf)
+    lo_y, hi_y = np.full(k, np.inf), np.full(k, -np.inf)
+    np.minimum.at(lo_x, lab, x)
+    np.maximum.at(hi_x, lab, x)
+    np.minimum.at(lo_y, lab, y)
+    np.maximum.at(hi_y, lab, y)
+    # largest first; ties: the one whose first sample (row by row) comes first
+    first_at = where[first]
+    order = sorted(range(k), key=lambda r: (-int(cells[r]), int(first_at[r])))
+    out_labels = np.full(shape, -1, dtype=np.int64)
+    out_labels[regular] = np.searchsorted(regions, labels[regular])
+    return tuple(
+        Aspect(
+            int(cells[r]),
+            ((float(lo_x[r]), float(hi_x[r])), (float(lo_y[r]), float(hi_y[r]))),
+            r,
+            out_labels,
+        )
+        for r in order
+    )
