@@ -51,7 +51,17 @@ def design(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, np.ndarray]:
 def _loops(path: Path, vary: list[str]) -> dict:
     """The JSON of the loops of every mode of 'corner' around the rectangle ``vary``."""
     argv = ["sweep", path, "--from", "corner", "--modes", "all", "--loop", "--format", "json"]
-    return cli_json([*argv, *(f"--vary={v}" for v in vary)])
+    d = cli_json([*argv, *(f"--vary={v}" for v in vary)])
+    jsonschema = pytest.importorskip("jsonschema")
+    from mechsing.sweeps.schema import sweep_schema
+
+    jsonschema.Draft202012Validator(sweep_schema()).validate(d)
+    # the points: every loop's samples, labelled with its mode, reached where it closed
+    for loop in d["loops"]:
+        mine = [p for p in d["points"] if p["mode"] == loop["mode"]]
+        assert mine[0]["values"] == [0.0, 0.0]
+        assert all(p["reached"] for p in mine) == loop["closed"]
+    return d
 
 
 def _pose(x_ref: np.ndarray, joints: dict) -> np.ndarray:

@@ -253,13 +253,13 @@ def _run_modes(args: argparse.Namespace, mech: Any, start_config: str | None, fm
     from mechsing.cli import NOT_ANALYSED, with_file
     from mechsing.errors import UserError
     from mechsing.sweeps.permode import (
+        loop_header,
         loops_json,
         loops_markdown,
         loops_text,
         mode_loops,
         mode_runs,
     )
-    from mechsing.sweeps.results import json_header
     from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
 
     if args.load or args.max_effort:
@@ -288,9 +288,7 @@ def _run_modes(args: argparse.Namespace, mech: Any, start_config: str | None, fm
                 f"{runs[0].from_config!r}"
             )
             if fmt == "json":
-                head = {k: v for k, v in json_header(runs[0]).items() if k != "mode"}
-                head["modes"] = [r.mode for r in runs]
-                out.write(_json_text({**head, **loops_json(loops)}) + "\n")
+                out.write(_json_text({**loop_header(runs), **loops_json(loops)}) + "\n")
             elif fmt == "md":
                 out.write(loops_markdown(what, loops, shown))
             else:

@@ -28,6 +28,7 @@ from mechsing.errors import ClosureError
 from mechsing.numeric.tolerances import SWEEP_SAME_MODE_DISTANCE
 from mechsing.sweeps.classify import classify_located
 from mechsing.sweeps.records import Located
+from mechsing.sweeps.results import LocatedSingularity
 
 __all__ = ["LoopResult", "follow_loop"]
 
@@ -56,6 +57,8 @@ class LoopResult:
     joints_end: dict[str, list[float]] | None
     distance: float | None
     notes: tuple[str, ...] = ()
+    #: the located singularities as a sweep lists them (its JSON's ``located``)
+    singularities: tuple[Any, ...] = field(default=(), repr=False, compare=False)
 
     @property
     def changed(self) -> bool:
@@ -92,6 +95,20 @@ class LoopResult:
             "joints_end": self.joints_end,
             "notes": list(self.notes),
         }
+
+    def points_json(self) -> list[dict[str, Any]]:
+        """The loop's samples as a sweep's ``points`` (each with its ``mode`` when the
+        loop started on a numbered one)."""
+        out = []
+        for k, (a, b) in enumerate(self.values):
+            p: dict[str, Any] = {"values": [float(a), float(b)], "reached": bool(self.reached[k])}
+            for t in self.rank:
+                rk, ra = int(self.rank[t][k]), float(self.ratio[t][k])
+                p[t] = {"rank": None if rk < 0 else rk, "ratio": ra if np.isfinite(ra) else None}
+            if self.mode is not None:
+                p["mode"] = self.mode
+            out.append(p)
+        return out
 
     def change_json(self) -> dict[str, Any]:
         """The loop as an entry of the sweep JSON's ``mode_changes`` (a mode change
@@ -195,6 +212,20 @@ def follow_loop(run: Any, match: Any = None) -> LoopResult:
             break
         z = np.asarray(row.Z[-1], dtype=float)
     classified = classify_located(eng, located, run.prec, run.time_limit).results
+    model = eng.model
+    listed = tuple(
+        LocatedSingularity(
+            p.values,
+            p.kind,
+            p.tests,
+            float(p.ratio),
+            tuple((k, tuple(v)) for k, v in model.values(p.q).items()),
+            c,
+            p.far_side,
+            p.edge,
+        )
+        for p, c in zip(located, classified, strict=True)
+    )
     found = tuple(
         (
             tuple(float(x) for x in p.values),
@@ -230,4 +261,5 @@ def follow_loop(run: Any, match: Any = None) -> LoopResult:
         joints_end,
         distance,
         tuple(notes),
+        listed,
     )

@@ -14,7 +14,7 @@ Owns :func:`sweep_modes`, :func:`mode_runs`, :func:`mode_loops` and :class:`Mode
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -42,6 +42,8 @@ class ModeSweeps:
     sweeps: tuple[SweepResult, ...]
     loops: tuple[LoopResult, ...]
     count: int | None
+    #: the JSON keys before a loop sweep's points (the sweep's header, with ``modes``)
+    header: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def mode_changes(self) -> tuple[LoopResult, ...]:
@@ -51,7 +53,7 @@ class ModeSweeps:
     def to_json(self) -> dict[str, Any]:
         """The document ``mechsing sweep --modes all`` writes (``--loop``: the loops)."""
         if self.loops:
-            return loops_json(self.loops)
+            return {**self.header, **loops_json(self.loops)}
         from mechsing.sweeps.results import json_header, json_point, json_tail
 
         first = self.sweeps[0]
@@ -171,9 +173,36 @@ def mode_loops(runs: list[SweepRun], found: Any = None) -> list[LoopResult]:
     return out
 
 
+def loop_header(runs: list[SweepRun]) -> dict[str, Any]:
+    """The header of a loop sweep's JSON: the sweep's (without ``mode``), ``modes`` (the
+    modes the loops started on; null entries for the one continuation reaches) and the
+    Newton iterations of every loop."""
+    from mechsing.sweeps.results import json_header
+
+    head = {k: v for k, v in json_header(runs[0]).items() if k != "mode"}
+    head["modes"] = [r.mode for r in runs]
+    head["newton_iterations"] = int(sum(r.newton_iterations for r in runs))
+    return head
+
+
 def loops_json(loops: tuple[LoopResult, ...] | list[LoopResult]) -> dict[str, Any]:
-    """The ``loops`` and ``mode_changes`` keys of a loop sweep's JSON."""
+    """The keys after the header of a loop sweep's JSON: ``points`` (every loop's samples,
+    one loop after the other), ``located`` (their singularities, each with its loop's
+    ``mode``), ``loci`` (none), ``notes``, ``newton_iterations`` (0: counted by the
+    sweeps' runs), ``loops`` and ``mode_changes``."""
+
+    def mode(lo: LoopResult) -> dict[str, Any]:
+        return {} if lo.mode is None else {"mode": lo.mode}
+
     return {
+        "points": [p for lo in loops for p in lo.points_json()],
+        "located": [{**s.to_json(), **mode(lo)} for lo in loops for s in lo.singularities],
+        "loci": [],
+        "notes": [
+            (f"mode {lo.mode}: " if lo.mode is not None else "") + f"loop not closed: {n}"
+            for lo in loops
+            for n in lo.notes
+        ],
         "loops": [lo.to_json() for lo in loops],
         "mode_changes": [lo.change_json() for lo in loops if lo.mode_change],
     }
@@ -275,7 +304,8 @@ def sweep_modes(
     if loop:
         if not runs[0].grid:
             raise UserError("--loop follows the rectangle of two ranges: give two --vary")
-        return ModeSweeps((), tuple(mode_loops(runs, found)), len(found.modes) if found else None)
+        loops = tuple(mode_loops(runs, found))
+        return ModeSweeps((), loops, len(found.modes) if found else None, loop_header(runs))
     if modes is None:
         raise UserError("sweep_modes: give modes ('all' or their numbers), or loop=True")
     out = []

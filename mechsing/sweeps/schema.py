@@ -212,8 +212,34 @@ def sweep_schema() -> dict[str, Any]:
             "mode": MODE,
             "modes": {
                 "type": "array",
-                "items": {"type": "integer", "minimum": 1},
+                "items": {"type": ["integer", "null"], "minimum": 1},
                 "description": "--modes all: the assembly modes swept, one after the other",
+            },
+            "loops": {
+                "type": "array",
+                "items": {"type": "object"},
+                "description": "--loop: each mode's loop around the rectangle of the two "
+                "ranges (mode, end_mode, corners, closed, changed_mode, "
+                "mode_change_without_singularity, distance, located, joints_start, "
+                "joints_end, notes)",
+            },
+            "mode_changes": {
+                "type": "array",
+                "items": {
+                    "type": "object",
+                    "properties": {
+                        "start_mode": {"type": ["integer", "null"]},
+                        "end_mode": {"type": ["integer", "null"]},
+                        "loop": {"type": "array"},
+                        "path": {"type": "array"},
+                        "distance": {"type": "number"},
+                        "joints_start": {"type": "object"},
+                        "joints_end": {"type": "object"},
+                    },
+                    "required": ["start_mode", "end_mode", "loop", "path"],
+                },
+                "description": "--loop: the loops back on another assembly mode with no "
+                "singularity located on the way",
             },
             "aspects": {
                 "type": "array",
