@@ -13,6 +13,12 @@ JSON and CSV are in SI units and radians; they are written as the rows are done
 units.  With -o OUT and no --format, the format follows OUT's extension (.json,
 .csv; anything else is text); OUT appears only once the sweep is complete.
 
+--mode K starts on assembly mode K of --from (as `mechsing modes` numbers them),
+--modes all sweeps from every one (each sample labelled with its mode); with two
+--vary, --loop follows the rectangle of their ranges instead of the grid and
+reports a return on another mode without a singularity (mode_changes; --format md
+too).  A grid reports its singularity-free regions (aspects).
+
 A progress bar is shown on standard error when it is a terminal (not with
 --quiet).  Exit status: 0 success, 2 bad input, 3 the sweep cannot start (its
 --from configuration does not close, or the first sample cannot be reached) or a
@@ -163,7 +169,7 @@ def output_format(fmt: str | None, out: str | None) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
+    from mechsing.cli import load_mechanism
     from mechsing.cli.options import check_shared, warn_varies, with_sweep_load
     from mechsing.errors import UserError, working_on
     from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
@@ -224,25 +230,35 @@ def run(args: argparse.Namespace) -> int:
             time_limit=args.time_limit,
         )
         with_sweep_load(sweep_run, mech, args.load, args.max_effort)
-        with (
-            _destination(args.output, args.file) as out,
-            _progress_bar(sweep_run, args.quiet) as progress,
-        ):
-            rows = sweep_run.rows(
-                progress,
-                workers=args.workers,
-                scheduler=args.scheduler,
-                connect_timeout=args.connect_timeout,
-            )
-            if fmt == "json":
-                write_json(sweep_run, rows, out)
-            elif fmt == "csv":
-                write_csv(sweep_run, rows, out)
-            else:
-                for _ in rows:
-                    pass
-                out.write(sweep_run.result().to_text())
-    stopped = [p.configuration.error for p in sweep_run.result().located if p.configuration]
+        with _destination(args.output, args.file) as out:
+            _write_one(args, sweep_run, fmt, out)
+    return _exit_status(args, sweep_run.result().located)
+
+
+def _write_one(args: argparse.Namespace, sweep_run: SweepRun, fmt: str, out: IO[str]) -> None:
+    """One sweep written as its rows are done, with its progress bar."""
+    with _progress_bar(sweep_run, args.quiet) as progress:
+        rows = sweep_run.rows(
+            progress,
+            workers=args.workers,
+            scheduler=args.scheduler,
+            connect_timeout=args.connect_timeout,
+        )
+        if fmt == "json":
+            write_json(sweep_run, rows, out)
+        elif fmt == "csv":
+            write_csv(sweep_run, rows, out)
+        else:
+            for _ in rows:
+                pass
+            out.write(sweep_run.result().to_text())
+
+
+def _exit_status(args: argparse.Namespace, located: Any) -> int:
+    """3 (each error on standard error) when a located point could not be analysed."""
+    from mechsing.cli import NOT_ANALYSED, with_file
+
+    stopped = [p.configuration.error for p in located if p.configuration]
     for error in filter(None, stopped):
         print(f"mechsing: {with_file(error, args.file)}", file=sys.stderr)
     return NOT_ANALYSED if any(stopped) else 0
@@ -250,7 +266,6 @@ def run(args: argparse.Namespace) -> int:
 
 def _run_modes(args: argparse.Namespace, mech: Any, start_config: str | None, fmt: str) -> int:
     """``--mode K``, ``--modes all`` and ``--loop``: one sweep (or loop) per mode asked for."""
-    from mechsing.cli import NOT_ANALYSED, with_file
     from mechsing.errors import UserError
     from mechsing.sweeps.permode import (
         loop_header,
@@ -293,30 +308,13 @@ def _run_modes(args: argparse.Namespace, mech: Any, start_config: str | None, fm
                 out.write(loops_markdown(what, loops, shown))
             else:
                 out.write(what + "\n" + loops_text(loops, shown))
-            return 0  # a loop that does not close says why in its entry
+            # a loop that does not close says why in its entry (exit 0)
+            return _exit_status(args, [p for lo in loops for p in lo.singularities])
         if len(runs) == 1:
-            run = runs[0]
-            with _progress_bar(run, args.quiet) as progress:
-                rows = run.rows(
-                    progress,
-                    workers=args.workers,
-                    scheduler=args.scheduler,
-                    connect_timeout=args.connect_timeout,
-                )
-                if fmt == "json":
-                    write_json(run, rows, out)
-                elif fmt == "csv":
-                    write_csv(run, rows, out)
-                else:
-                    for _ in rows:
-                        pass
-                    out.write(run.result().to_text())
+            _write_one(args, runs[0], fmt, out)
         else:
             _write_runs(args, runs, fmt, out)
-    stopped = [p.configuration.error for r in runs for p in r.result().located if p.configuration]
-    for error in filter(None, stopped):
-        print(f"mechsing: {with_file(error, args.file)}", file=sys.stderr)
-    return NOT_ANALYSED if any(stopped) else 0
+    return _exit_status(args, [p for r in runs for p in r.result().located])
 
 
 def _write_runs(args: argparse.Namespace, runs: list[Any], fmt: str, out: IO[str]) -> None:
