@@ -13,6 +13,12 @@ JSON and CSV are in SI units and radians; they are written as the rows are done
 units.  With -o OUT and no --format, the format follows OUT's extension (.json,
 .csv; anything else is text); OUT appears only once the sweep is complete.
 
+--mode K starts on assembly mode K of --from (as `mechsing modes` numbers them),
+--modes all sweeps from every one (each sample labelled with its mode); with two
+--vary, --loop follows the rectangle of their ranges instead of the grid and
+reports a return on another mode without a singularity (mode_changes; --format md
+too).  A grid reports its singularity-free regions (aspects).
+
 A progress bar is shown on standard error when it is a terminal (not with
 --quiet).  Exit status: 0 success, 2 bad input, 3 the sweep cannot start (its
 --from configuration does not close, or the first sample cannot be reached) or a
@@ -37,8 +43,8 @@ NAME = "sweep"
 HELP = "locate singularities along a path or over a grid of joint values or poses"
 
 #: the formats, and the extensions of -o that choose them when --format is not given
-FORMATS = ("text", "json", "csv")
-_BY_EXTENSION = {".json": "json", ".csv": "csv", ".txt": "text"}
+FORMATS = ("text", "json", "csv", "md")
+_BY_EXTENSION = {".json": "json", ".csv": "csv", ".txt": "text", ".md": "md"}
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -65,7 +71,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--format",
         choices=FORMATS,
         default=None,
-        help="text (default), json or csv; with -o and no --format, from OUT's extension",
+        help="text (default), json, csv or md (with --loop); with -o and no --format, from "
+        "OUT's extension",
     )
     p.add_argument("-o", "--output", metavar="OUT", help="write to OUT instead of standard output")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -98,6 +105,27 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     options.add_verbose_option(p)
     options.add_load_option(p)
     options.add_max_effort_option(p)
+    which = p.add_mutually_exclusive_group()
+    which.add_argument(
+        "--mode",
+        type=_positive_int("--mode"),
+        metavar="K",
+        help="start on assembly mode K of the --from configuration, as `mechsing modes` numbers "
+        "them (default: the mode continuation reaches); every sample is labelled with it",
+    )
+    which.add_argument(
+        "--modes",
+        choices=("all",),
+        help="all: one sweep per assembly mode of the --from configuration, each sample "
+        "labelled with its mode",
+    )
+    p.add_argument(
+        "--loop",
+        action="store_true",
+        help="with two --vary: follow the closed path around the rectangle of their ranges "
+        "(from START, START) instead of the grid, and report a return on another assembly "
+        "mode without a located singularity (mode_changes)",
+    )
 
 
 def _positive_int(option: str) -> Callable[[str], int]:
@@ -141,7 +169,7 @@ def output_format(fmt: str | None, out: str | None) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
+    from mechsing.cli import load_mechanism
     from mechsing.cli.options import check_shared, warn_varies, with_sweep_load
     from mechsing.errors import UserError, working_on
     from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
@@ -149,6 +177,18 @@ def run(args: argparse.Namespace) -> int:
     with working_on(file=args.file):
         check_shared(args)  # the options' own errors before the file is read
         varies = args.varies
+        if args.loop and len(varies) != 2:
+            raise UserError("--loop follows the rectangle of two ranges: give two --vary")
+        if args.loop and (args.workers or args.scheduler):
+            raise UserError("--loop is one path per mode: it is not distributed (no --workers)")
+        fmt = output_format(args.format, args.output)
+        if args.loop and fmt == "csv":
+            raise UserError("--loop writes text, json or md (not csv)")
+        if fmt == "md" and not args.loop:
+            raise UserError(
+                "--format md is the loops' (--loop); a sweep's Markdown is its design review: "
+                "mechsing report FILE --vary ... -o review.md"
+            )
         if (args.workers or args.scheduler) and len(varies) != 2:
             raise UserError(
                 "--workers and --scheduler distribute the rows of a grid: give two --vary"
@@ -164,7 +204,6 @@ def run(args: argparse.Namespace) -> int:
                 check_workers(args.workers)
             else:
                 parse_scheduler(args.scheduler)
-        fmt = output_format(args.format, args.output)
         if args.output:  # before the work: a missing directory or the input file is refused now
             from mechsing.files import check_output
 
@@ -179,37 +218,158 @@ def run(args: argparse.Namespace) -> int:
             args.file,
         )
         warn_varies(mech, varies)
+        start_config = set_start(mech, args.set_values, "a sweep") or args.from_config
+        if args.modes or args.mode or args.loop:
+            return _run_modes(args, mech, start_config, fmt)
         sweep_run = SweepRun(
             mech,
             list(varies),
-            set_start(mech, args.set_values, "a sweep") or args.from_config,
+            start_config,
             args.prec,
             max_classified=args.max_classified or MAX_CLASSIFIED,
             time_limit=args.time_limit,
         )
         with_sweep_load(sweep_run, mech, args.load, args.max_effort)
-        with (
-            _destination(args.output, args.file) as out,
-            _progress_bar(sweep_run, args.quiet) as progress,
-        ):
-            rows = sweep_run.rows(
+        with _destination(args.output, args.file) as out:
+            _write_one(args, sweep_run, fmt, out)
+    return _exit_status(args, sweep_run.result().located)
+
+
+def _write_one(args: argparse.Namespace, sweep_run: SweepRun, fmt: str, out: IO[str]) -> None:
+    """One sweep written as its rows are done, with its progress bar."""
+    with _progress_bar(sweep_run, args.quiet) as progress:
+        rows = sweep_run.rows(
+            progress,
+            workers=args.workers,
+            scheduler=args.scheduler,
+            connect_timeout=args.connect_timeout,
+        )
+        if fmt == "json":
+            write_json(sweep_run, rows, out)
+        elif fmt == "csv":
+            write_csv(sweep_run, rows, out)
+        else:
+            for _ in rows:
+                pass
+            out.write(sweep_run.result().to_text())
+
+
+def _exit_status(args: argparse.Namespace, located: Any) -> int:
+    """3 (each error on standard error) when a located point could not be analysed."""
+    from mechsing.cli import NOT_ANALYSED, with_file
+
+    stopped = [p.configuration.error for p in located if p.configuration]
+    for error in filter(None, stopped):
+        print(f"mechsing: {with_file(error, args.file)}", file=sys.stderr)
+    return NOT_ANALYSED if any(stopped) else 0
+
+
+def _run_modes(args: argparse.Namespace, mech: Any, start_config: str | None, fmt: str) -> int:
+    """``--mode K``, ``--modes all`` and ``--loop``: one sweep (or loop) per mode asked for."""
+    from mechsing.errors import UserError
+    from mechsing.sweeps.permode import (
+        loop_header,
+        loops_json,
+        loops_markdown,
+        loops_text,
+        mode_loops,
+        mode_runs,
+    )
+    from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
+
+    if args.load or args.max_effort:
+        raise UserError(
+            "--load and --max-effort sweep one mode: give them without --mode/--modes/--loop"
+        )
+    options = {
+        "max_classified": args.max_classified or MAX_CLASSIFIED,
+        "time_limit": args.time_limit,
+    }
+    wanted = "all" if args.modes else [args.mode] if args.mode else None
+    if wanted is None:
+        runs, found = [SweepRun(mech, list(args.varies), start_config, args.prec, **options)], None
+    else:
+        runs, found = mode_runs(mech, list(args.varies), start_config, args.prec, wanted, **options)
+    with _destination(args.output, args.file) as out:
+        if args.loop:
+            loops = mode_loops(runs, found)
+            variables = runs[0].variables
+
+            def shown(v: Any) -> str:
+                return "(" + ", ".join(x.shown(a) for x, a in zip(variables, v, strict=True)) + ")"
+
+            what = (
+                f"{mech.name}: loops of {', '.join(v.name for v in variables)} from "
+                f"{runs[0].from_config!r}"
+            )
+            if fmt == "json":
+                out.write(_json_text({**loop_header(runs), **loops_json(loops)}) + "\n")
+            elif fmt == "md":
+                out.write(loops_markdown(what, loops, shown))
+            else:
+                out.write(what + "\n" + loops_text(loops, shown))
+            # a loop that does not close says why in its entry (exit 0)
+            return _exit_status(args, [p for lo in loops for p in lo.singularities])
+        if len(runs) == 1:
+            _write_one(args, runs[0], fmt, out)
+        else:
+            _write_runs(args, runs, fmt, out)
+    return _exit_status(args, [p for r in runs for p in r.result().located])
+
+
+def _write_runs(args: argparse.Namespace, runs: list[Any], fmt: str, out: IO[str]) -> None:
+    """Several modes' sweeps as one document: JSON (the header once with ``modes``, every
+    mode's points, their located points, loci and aspects joined), CSV (one after the
+    other, each line with its mode) or text."""
+    from mechsing.sweeps.permode import merged_tail
+    from mechsing.sweeps.results import (
+        csv_header,
+        csv_located,
+        csv_rows,
+        json_header,
+        json_point,
+        json_tail,
+    )
+
+    def rows(run: Any) -> Iterator[int]:
+        with _progress_bar(run, args.quiet) as progress:
+            yield from run.rows(
                 progress,
                 workers=args.workers,
                 scheduler=args.scheduler,
                 connect_timeout=args.connect_timeout,
             )
-            if fmt == "json":
-                write_json(sweep_run, rows, out)
-            elif fmt == "csv":
-                write_csv(sweep_run, rows, out)
-            else:
-                for _ in rows:
-                    pass
-                out.write(sweep_run.result().to_text())
-    stopped = [p.configuration.error for p in sweep_run.result().located if p.configuration]
-    for error in filter(None, stopped):
-        print(f"mechsing: {with_file(error, args.file)}", file=sys.stderr)
-    return NOT_ANALYSED if any(stopped) else 0
+
+    if fmt == "json":
+        out.write("{\n")
+        head = {k: v for k, v in json_header(runs[0]).items() if k != "mode"}
+        head["modes"] = [r.mode for r in runs]
+        for key, value in head.items():
+            out.write(f'  "{key}": {_json_text(value)},\n')
+        out.write('  "points": [')
+        sep = "\n    "
+        for run in runs:
+            for j in rows(run):
+                for idx in _row_indices(run, j):
+                    out.write(sep + _json_text(json_point(run, idx)))
+                    sep = ",\n    "
+        out.write("\n  ]")
+        tail = merged_tail([json_tail(r.result()) for r in runs], [r.mode for r in runs])
+        for key, value in tail.items():
+            out.write(f',\n  "{key}": {_json_text(value)}')
+        out.write("\n}\n")
+    elif fmt == "csv":
+        out.write(csv_header(runs[0]))
+        for run in runs:
+            for j in rows(run):
+                out.writelines(csv_rows(run, [j]))
+        for run in runs:
+            out.writelines(csv_located(run.result()))
+    else:
+        for k, run in enumerate(runs):
+            for _ in rows(run):
+                pass
+            out.write(("\n" if k else "") + run.result().to_text())
 
 
 # --------------------------------------------------------------------------- writers

@@ -437,3 +437,8 @@ CUSP_REAL_RTOL = 1e-7
 #: two real roots closer than this times ``max(1, |t|)`` are one (a double root counted
 #: once: the modes on a singular curve)
 CUSP_DISTINCT_RTOL = 1e-6
+#: a sweep's closed configuration and an assembly mode (or two closed configurations) with
+#: the same given values are on one mode when their commensurate joint distance (angles in
+#: rad modulo 2 pi, lengths over L) is below this: each sample is closed to 1e-12 L, and
+#: distinct modes lie orders of magnitude farther apart
+SWEEP_SAME_MODE_DISTANCE = 1e-6

@@ -6,8 +6,8 @@ mechanism's graph: bodies as nodes, joints as labelled edges, each loop shaded i
 colour, the ground grey), :func:`path_figure` (a path sweep: the smallest relative singular
 value of each test on a log scale against the swept value, float's thresholds shaded,
 located singularities marked and labelled) and :func:`grid_figure` (a grid sweep: the
-singularity loci over the two swept variables coloured by class, the samples not reached
-greyed, the start marked).  Swept values are shown in the file's units (the axis labels
+singularity loci over the two swept variables coloured by class, each singularity-free
+region tinted in its own colour, the samples not reached greyed, the start marked).  Swept values are shown in the file's units (the axis labels
 say which); everything else is SI.  Figures are made with :class:`matplotlib.figure.Figure`
 (no pyplot, no display, no global state).
 """
@@ -45,6 +45,19 @@ TEST_COLOURS = {
     "output": "#2ca02c",
     "constraint": "#9467bd",
 }
+#: the singularity-free regions (aspects) of a grid, one colour each, in turn
+REGION_COLOURS = (
+    "#a6cee3",
+    "#b2df8a",
+    "#fdbf6f",
+    "#cab2d6",
+    "#fb9a99",
+    "#ffff99",
+    "#80cdc1",
+    "#d9d9d9",
+)
+#: the regions named in a grid figure's legend (the others are tinted, not listed)
+_REGIONS_IN_LEGEND = 8
 CLASS_COLOURS = {
     "input": "#d62728",
     "output": "#2ca02c",
@@ -293,13 +306,40 @@ def grid_figure(
     loci: Sequence[tuple[str, np.ndarray]],
     points: Sequence[tuple[float, float, str]],
     start: tuple[float, float] | None,
+    regions: Sequence[np.ndarray] = (),
 ) -> Figure:
     """A grid sweep over ``x`` (columns) and ``y`` (rows), in the file's units: the
-    samples not reached greyed, each locus (class label, (k, 2) vertices) in its class's
-    colour, each located point (x, y, class label), and the ``start`` as a star."""
+    samples not reached greyed, each singularity-free region (``regions``: a mask of the
+    grid's shape each, the aspects) tinted in its own colour, each locus (class label,
+    (k, 2) vertices) in its class's colour, each located point (x, y, class label), and
+    the ``start`` as a star."""
     fig = new_figure(6.4, 5.2)
     with matplotlib.rc_context(RC):
         ax = fig.add_subplot()
+        if len(regions):
+            dx = (x[-1] - x[0]) / max(len(x) - 1, 1) / 2
+            dy = (y[-1] - y[0]) / max(len(y) - 1, 1) / 2
+            tint = np.zeros((*reached.shape, 4))
+            for k, mask in enumerate(regions):
+                colour = matplotlib.colors.to_rgb(REGION_COLOURS[k % len(REGION_COLOURS)])
+                tint[np.asarray(mask, dtype=bool)] = (*colour, 0.45)
+                if k < _REGIONS_IN_LEGEND:
+                    ax.plot(
+                        [],
+                        [],
+                        "s",
+                        color=colour,
+                        alpha=0.45,
+                        ms=8,
+                        label=f"region {k + 1} ({int(np.sum(mask))} samples)",
+                    )
+            ax.imshow(
+                tint,
+                extent=(x[0] - dx, x[-1] + dx, y[0] - dy, y[-1] + dy),
+                origin="lower",
+                aspect="auto",
+                interpolation="nearest",
+            )
         if not np.all(reached):
             dx = (x[-1] - x[0]) / max(len(x) - 1, 1) / 2
             dy = (y[-1] - y[0]) / max(len(y) - 1, 1) / 2

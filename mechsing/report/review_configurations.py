@@ -237,17 +237,41 @@ def sweep_section(analysis: AnalysisResult, sw: SweepResult) -> list[doc.Block]:
             loci,
             points,
             _start(analysis, sw),
+            [a.mask for a in sw.aspects],
         )
+        on = "the start's assembly mode" if sw.mode is None else f"assembly mode {sw.mode}"
         out.append(
             doc.Figure(
                 "sweep",
                 svg(fig),
                 f"singularity loci over {vx.name} and {vy.name}",
                 "The singularity loci over the two swept variables, coloured by the class "
-                "found at their points (dots: the located points); grey: samples not reached "
-                "on the start's assembly mode; star: the start.",
+                "found at their points (dots: the located points); tinted, each "
+                f"singularity-free region (aspect) of {on}, one colour each; grey: samples "
+                "not reached on the start's assembly mode; star: the start.",
             )
         )
+        if sw.aspects:
+            out.append(
+                doc.Table(
+                    (
+                        "region",
+                        "samples",
+                        f"{vx.name} ({vx.file_unit})",
+                        f"{vy.name} ({vy.file_unit})",
+                    ),
+                    tuple(
+                        (
+                            str(k + 1),
+                            str(a.cells),
+                            f"{a.box[0][0] / vx.factor:.6g} to {a.box[0][1] / vx.factor:.6g}",
+                            f"{a.box[1][0] / vy.factor:.6g} to {a.box[1][1] / vy.factor:.6g}",
+                        )
+                        for k, a in enumerate(sw.aspects)
+                    ),
+                    caption=f"The {len(sw.aspects)} singularity-free regions (aspects) of {on}",
+                )
+            )
         rows = located_rows(sw)
         if rows:
             out.append(

@@ -17,6 +17,7 @@ come (the command line streams its CSV and JSON that way, in bounded memory) or
 distributes them (``workers``/``scheduler``: Dask, see :mod:`.distributed`).
 """
 
+from mechsing.sweeps.permode import ModeSweeps, sweep_modes
 from mechsing.sweeps.results import (
     LocatedSingularity,
     Locus,
@@ -29,9 +30,11 @@ from mechsing.sweeps.spec import Vary
 __all__ = [
     "LocatedSingularity",
     "Locus",
+    "ModeSweeps",
     "SweepResult",
     "SweepRun",
     "SweptVariable",
     "Vary",
     "sweep",
+    "sweep_modes",
 ]

@@ -208,6 +208,11 @@ class SweepResult:
     outside: dict[str, np.ndarray] = field(default_factory=dict, repr=False, compare=False)
     #: the samples' statics under a load (:class:`mechsing.statics.along.SweepStatics`)
     statics: Any = field(default=None, repr=False, compare=False)
+    #: the number of the assembly mode the sweep started on (as ``mechsing modes``
+    #: numbers them; None: the mode continuation reaches from the start configuration)
+    mode: int | None = None
+    #: a grid's singularity-free regions (:class:`~mechsing.sweeps.aspects.Aspect`)
+    aspects: tuple[Any, ...] = ()
 
     @property
     def grid(self) -> bool:
@@ -262,6 +267,7 @@ def json_header(r: Any) -> dict[str, Any]:
         "tests": list(r.tests),
         "generic": dict(r.generic),
         **({} if r.statics is None else r.statics.header_json()),
+        **({} if r.mode is None else {"mode": r.mode}),
     }
 
 
@@ -281,16 +287,20 @@ def json_point(r: Any, idx: tuple[int, ...]) -> dict[str, Any]:
         out["outside_limits"] = [name for name, beyond in r.outside.items() if beyond[idx]]
     if r.statics is not None:
         out.update(r.statics.point_json(idx))
+    if r.mode is not None:  # the assembly mode the sweep started on
+        out["mode"] = r.mode
     return out
 
 
 def json_tail(r: Any) -> dict[str, Any]:
+    mode = {} if r.mode is None else {"mode": r.mode}
     return {
-        "located": [p.to_json() for p in r.located],
-        "loci": [lo.to_json() for lo in r.loci],
+        "located": [{**p.to_json(), **mode} for p in r.located],
+        "loci": [{**lo.to_json(), **mode} for lo in r.loci],
         "notes": list(r.notes),
         "newton_iterations": r.newton_iterations,
         **({} if r.statics is None else r.statics.tail_json()),
+        **({"aspects": [{**a.to_json(), **mode} for a in r.aspects]} if r.grid else {}),
     }
 
 
@@ -311,6 +321,8 @@ def csv_header(r: Any) -> str:
     cols += ["classes", "precision", "tests", "between", "dropped"]
     if r.outside:  # the file has limits
         cols.append("outside limits")
+    if r.mode is not None:  # a sweep on an assembly mode that modes found
+        cols.append("mode")
     return ",".join(cols) + "\n"
 
 
@@ -332,6 +344,8 @@ def csv_rows(r: Any, rows: Any) -> list[str]:
             cells += ["", "", "", "", ""]
             if r.outside:
                 cells.append(";".join(p["outside_limits"]))
+            if r.mode is not None:
+                cells.append(str(r.mode))
             out.append(",".join(cells) + "\n")
     return out
 
@@ -354,6 +368,8 @@ def csv_located(r: Any) -> list[str]:
         ]
         if r.outside:
             cells.append("")
+        if r.mode is not None:
+            cells.append(str(r.mode))
         out.append(",".join(cells) + "\n")
     return out
 
@@ -373,7 +389,8 @@ def text_report(r: SweepResult) -> str:
         f"{v.name} from {v.range[0]:g} to {v.range[1]:g} {v.file_unit} by {v.range[2]:g}"
         for v in r.variables
     )
-    lines.append(f"{mech.name}: sweep ({kind}) of {what}, from {r.from_config!r}")
+    on = "" if r.mode is None else f" on its assembly mode {r.mode}"
+    lines.append(f"{mech.name}: sweep ({kind}) of {what}, from {r.from_config!r}{on}")
     held = ", ".join(r.held) if r.held else "nothing"
     lines.append(
         f"  {r.points()} samples, {int(r.reached.sum())} reached on the start's assembly mode; "
@@ -409,6 +426,15 @@ def text_report(r: SweepResult) -> str:
             f"{r.variables[1].shown(a[1])}) to ({r.variables[0].shown(b[0])}, "
             f"{r.variables[1].shown(b[1])})" + (", closed" if lo.closed else "")
         )
+    if r.aspects:
+        lines.append(f"  singularity-free regions (aspects): {len(r.aspects)}")
+        for k, a in enumerate(r.aspects):
+            (x0, x1), (y0, y1) = a.box
+            vx, vy = r.variables
+            lines.append(
+                f"    {k + 1}: {a.cells} samples, {vx.name} {vx.shown(x0)} to {vx.shown(x1)}, "
+                f"{vy.name} {vy.shown(y0)} to {vy.shown(y1)}"
+            )
     if r.statics is not None:
         lines += r.statics.text_lines(
             lambda k: _where(r, tuple(_values_at(r.variables, k))), lambda v: _where(r, v)

@@ -56,6 +56,7 @@ def sweep(
     connect_timeout: float | None = None,
     load: Any = None,
     max_effort: dict[str, float] | None = None,
+    start: Any = None,
 ) -> SweepResult:
     """Sweep a mechanism (or a file) over one variable (a path) or two (a grid).
 
@@ -89,6 +90,11 @@ def sweep(
         The samples' efforts under ``load`` (default: the start configuration's file
         load, if any) and where an input's ``|effort|`` crosses ``max_effort[input]``
         (:mod:`mechsing.statics.along`).
+    start : Mode or int, optional
+        The assembly mode the sweep starts on: an item of ``mechsing.modes(mechanism,
+        from_config).modes`` or its index in that tuple; every sample is then labelled
+        with the mode's number (``mode``: the index plus 1, as ``mechsing modes``
+        numbers them).  Default: the mode continuation reaches from ``from_config``.
 
     Returns
     -------
@@ -103,6 +109,7 @@ def sweep(
         precision,
         max_classified=max_classified,
         time_limit=time_limit,
+        start=start,
     )
     from mechsing.statics.along import attach
 
@@ -126,6 +133,8 @@ class SweepRun:
         precision: Precision | str = "auto",
         max_classified: int = MAX_CLASSIFIED,
         time_limit: float | None = None,
+        start: Any = None,
+        modes_found: Any = None,
     ) -> None:
         self.start_time = time.perf_counter()
         if time_limit is not None:
@@ -149,6 +158,14 @@ class SweepRun:
             self.engine = Sweep(mech, self.vars, from_config)
         eng = self.engine
         self.from_config = eng.from_config
+        #: the number of the assembly mode the sweep starts on (None: the one continuation
+        #: reaches from the start configuration)
+        self.mode: int | None = None
+        if start is not None:
+            from mechsing.sweeps.start import mode_start
+
+            with working_on(file=mech.path or mech.name):
+                self.mode, eng.z0 = mode_start(mech, eng, start, modes_found)
         self.tests = eng.tests
         self.generic = {t: int(eng.measures.generic[t]) for t in self.tests}
         L = float(eng.model.length_scale)
@@ -360,6 +377,16 @@ class SweepRun:
                 )
             )
         loci = loci_of(self, out) if self.grid else ()
+        aspects: tuple[Any, ...] = ()
+        if self.grid:
+            from mechsing.sweeps.aspects import aspects_of, regular_samples
+
+            aspects = aspects_of(
+                self.vars[0].values,
+                self.vars[1].values,
+                regular_samples(self.reached, self.rank, self.generic),
+                out,
+            )
         if self.statics is not None and not self.grid:
             self.statics.locate_limits(eng, self.vars[0].values)
         return SweepResult(
@@ -380,4 +407,6 @@ class SweepRun:
             time.perf_counter() - self.start_time,
             self.outside,
             statics=self.statics,
+            mode=self.mode,
+            aspects=aspects,
         )

@@ -37,6 +37,14 @@ def _values() -> dict[str, Any]:
     }
 
 
+MODE: dict[str, Any] = {
+    "type": "integer",
+    "minimum": 1,
+    "description": "the assembly mode the sweep started on (--mode, --modes), as mechsing "
+    "modes numbers them",
+}
+
+
 def sweep_schema() -> dict[str, Any]:
     """The JSON Schema of the sweep document (a JSON-serialisable dict)."""
     measure = {
@@ -63,6 +71,7 @@ def sweep_schema() -> dict[str, Any]:
                 "beyond theirs at this sample (J2, or C1[1] for a joint of several)",
             },
             **KINETOSTATICS_SCHEMA["point"],
+            "mode": MODE,
         },
         "required": ["values", "reached"],
         "additionalProperties": False,
@@ -113,6 +122,7 @@ def sweep_schema() -> dict[str, Any]:
                 "description": "at mp:N, every joint value of a point found again at N "
                 "digits, as text at N digits (null otherwise)",
             },
+            "mode": MODE,
         },
         "required": [
             "values",
@@ -138,6 +148,7 @@ def sweep_schema() -> dict[str, Any]:
             "test": {"enum": list(TESTS)},
             "classes": _STRINGS,
             "closed": {"type": "boolean"},
+            "mode": MODE,
             "vertices": {
                 "type": "array",
                 "items": {
@@ -198,6 +209,44 @@ def sweep_schema() -> dict[str, Any]:
             "notes": _STRINGS,
             "newton_iterations": {"type": "integer", "minimum": 0},
             **KINETOSTATICS_SCHEMA["top"],
+            "mode": MODE,
+            "modes": {
+                "type": "array",
+                "items": {"type": ["integer", "null"], "minimum": 1},
+                "description": "--modes all: the assembly modes swept, one after the other",
+            },
+            "loops": {
+                "type": "array",
+                "items": {"type": "object"},
+                "description": "--loop: each mode's loop around the rectangle of the two "
+                "ranges (mode, end_mode, corners, closed, changed_mode, "
+                "mode_change_without_singularity, distance, located, joints_start, "
+                "joints_end, notes)",
+            },
+            "mode_changes": {
+                "type": "array",
+                "items": {
+                    "type": "object",
+                    "properties": {
+                        "start_mode": {"type": ["integer", "null"]},
+                        "end_mode": {"type": ["integer", "null"]},
+                        "loop": {"type": "array"},
+                        "path": {"type": "array"},
+                        "distance": {"type": "number"},
+                        "joints_start": {"type": "object"},
+                        "joints_end": {"type": "object"},
+                    },
+                    "required": ["start_mode", "end_mode", "loop", "path"],
+                },
+                "description": "--loop: the loops back on another assembly mode with no "
+                "singularity located on the way",
+            },
+            "aspects": {
+                "type": "array",
+                "items": {"$ref": "#/$defs/aspect"},
+                "description": "a grid's connected singularity-free regions (each mode's, "
+                "largest first)",
+            },
         },
         "required": [
             "mechanism",
@@ -224,5 +273,20 @@ def sweep_schema() -> dict[str, Any]:
             "variable": variable,
             "located": located,
             "locus": locus,
+            "aspect": {
+                "type": "object",
+                "properties": {
+                    "cells": {"type": "integer", "minimum": 1},
+                    "box": {
+                        "type": "array",
+                        "items": {"type": "array", "items": {"type": "number"}},
+                        "description": "[[min, max] of the first variable, [min, max] of "
+                        "the second] over the region's samples (SI)",
+                    },
+                    "mode": MODE,
+                },
+                "required": ["cells", "box"],
+                "additionalProperties": False,
+            },
         },
     }

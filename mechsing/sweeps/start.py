@@ -1,6 +1,7 @@
 """Where a path of a sweep starts: the first sample, reached from the start configuration.
 
-Owns :func:`start_of`: the sample nearest the ``--from`` configuration's value of the
+Owns :func:`mode_start` (the start on an assembly mode that ``mechsing modes`` found,
+instead of the one continuation reaches from the start configuration) and :func:`start_of`: the sample nearest the ``--from`` configuration's value of the
 swept coordinate that can be reached from it on its assembly mode (the start may be at a
 limit of travel, its nearest samples beyond it), stepping off a singular start along the
 path's curve (:func:`off_singular`) or onto one of the branches that cross there
@@ -9,15 +10,22 @@ path's curve (:func:`off_singular`) or onto one of the branches that cross there
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 
-from mechsing.errors import ClosureError
+from mechsing.errors import ClosureError, UserError
 from mechsing.kinematics.paths.arc import curve_tangent, off_singular
 from mechsing.kinematics.paths.arc import onto_branch as branch_of
 from mechsing.kinematics.paths.problem import Problem
+from mechsing.model import Mechanism
+from mechsing.numeric.tolerances import SWEEP_SAME_MODE_DISTANCE
 from mechsing.sweeps.spec import Variable
 
-__all__ = ["off_singular", "onto_branch", "start_of"]
+if TYPE_CHECKING:
+    from mechsing.assembly.result import ModesResult
+
+__all__ = ["mode_start", "off_singular", "onto_branch", "start_of"]
 
 #: the samples nearest the start's value tried as the sweep's first (the start may be at a
 #: limit of travel, with its nearest samples beyond it)
@@ -92,3 +100,61 @@ def onto_branch(
         "start from a configuration on a branch (--from) to choose"
     )
     return out
+
+
+def mode_start(
+    mech: Mechanism, eng: Any, start: Any, found: ModesResult | None = None
+) -> tuple[int, np.ndarray]:
+    """The number (its index plus 1, as ``mechsing modes`` numbers them) and the
+    coordinates of the assembly mode a sweep starts on: ``start`` is an item of
+    ``mechsing.modes(mech, from_config).modes`` or its index there (``found``: that
+    result when it is already computed).  A sweep of the output's pose holds the pose,
+    not the inputs, so it has no modes of the inputs to start on (UserError)."""
+    from mechsing.assembly.api import modes
+    from mechsing.assembly.result import Mode, joint_distance
+
+    if eng.pose:
+        raise UserError(
+            "--mode/--modes: a sweep of the output's pose solves every joint for the pose; "
+            "the assembly modes are those of the inputs: sweep joint coordinates (the inputs)"
+        )
+    if found is None:
+        found = modes(mech, eng.from_config, "float")
+    listed = found.modes
+    if isinstance(start, bool) or not isinstance(start, int | np.integer | Mode):
+        raise UserError(
+            f"start={start!r}: give an assembly mode (an item of mechsing.modes(...).modes) "
+            "or its index"
+        )
+    coords = mech.coordinates()
+    L = float(eng.model.length_scale)
+    if isinstance(start, Mode):
+        q = [float(start.joints[j][i]) for j, i in coords]
+        near = [
+            k
+            for k, m in enumerate(listed)
+            if joint_distance(mech, q, [float(m.joints[j][i]) for j, i in coords], L)
+            <= SWEEP_SAME_MODE_DISTANCE
+        ]
+        if not near:
+            raise UserError(
+                f"the mode given is not one of the {len(listed)} assembly modes of "
+                f"{eng.from_config!r}; give one of mechsing.modes(mechanism, "
+                f"{eng.from_config!r}).modes, or --from the configuration it was found at"
+            )
+        index = near[0]
+    else:
+        index = int(start)
+        if not 0 <= index < len(listed):
+            if not listed:
+                raise UserError(f"--mode {index + 1}: {eng.from_config!r} has no assembly mode")
+            raise UserError(
+                f"--mode {index + 1}: configuration {eng.from_config!r} has {len(listed)} "
+                f"assembly modes (mechsing modes FILE --config {eng.from_config}); give "
+                f"--mode 1 to {len(listed)}"
+            )
+    mode = listed[index]
+    q = np.array([float(mode.joints[j][i]) for j, i in coords])
+    z = np.array(eng.z0, dtype=float)
+    z[: len(q)] = q
+    return index + 1, z
