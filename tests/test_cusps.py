@@ -90,6 +90,14 @@ def _cusps(path: Path, vary: str, *more: str) -> dict:
     return json.loads(run.out)
 
 
+def _follows_the_schema(doc: dict) -> None:
+    """The document validates against ``mechsing schema --cusps``."""
+    jsonschema = pytest.importorskip("jsonschema")
+    run = run_cli(["schema", "--cusps"])
+    assert run.status == 0, run.err
+    jsonschema.Draft202012Validator(json.loads(run.out)).validate(doc)
+
+
 def test_cuspidal_3rpr_cusps_match_the_forward_map(tmp_path: Path) -> None:
     rest = [float(sympy.sympify(r)) for r in CUSPIDAL_3RPR_REST]
     path = _write(tmp_path, "zwc.yaml", CUSPIDAL_3RPR)
@@ -116,6 +124,7 @@ def test_cuspidal_3rpr_cusps_match_the_forward_map(tmp_path: Path) -> None:
     # the modes meet where the reference says: the platform angle at each cusp
     thetas = sorted(round(c["modes"]["platform"]["theta"], 6) for c in doc["cusps"])
     assert thetas == sorted(round(w[2], 6) for w in want)
+    _follows_the_schema(doc)
 
 
 def test_similar_3rpr_is_not_cuspidal(tmp_path: Path) -> None:
@@ -124,6 +133,7 @@ def test_similar_3rpr_is_not_cuspidal(tmp_path: Path) -> None:
     assert doc["cuspidal"] is False and doc["cusps"] == []
     assert doc["evidence"]["kind"] == "no-triple-root"
     assert doc["evidence"]["singular_points"] > 0  # it has singular curves, no cusp
+    _follows_the_schema(doc)
     rest = np.sqrt(2)  # every leg's length in the drawing
     want = rpr_cusps(
         [(0, 0), (4, 0), (0, 4)],
@@ -166,6 +176,31 @@ def test_puma_like_arm_is_not_cuspidal(tmp_path: Path) -> None:
     assert doc["cuspidal"] is False and doc["cusps"] == []
     assert doc["evidence"]["kind"] == "decoupled"
     assert arm_cusps(PUMA_DH, ORTHOGONAL_TOOL, ((1e-3, 6), (-5, 5))) == []
+    _follows_the_schema(doc)
+
+
+def test_the_schema_rejects_a_document_without_its_verdict(tmp_path: Path) -> None:
+    """The schema is no blank cheque: a document missing ``cuspidal``, or with a cusp of
+    multiplicity 2 (two modes meeting is a singular curve, not a cusp), fails it."""
+    jsonschema = pytest.importorskip("jsonschema")
+    schema = json.loads(run_cli(["schema", "--cusps"]).out)
+    doc = _cusps(_write(tmp_path, "puma3.yaml", PUMA_3R), "rho=0:6,z=-5:5")
+    del doc["cuspidal"]
+    with pytest.raises(jsonschema.ValidationError, match="cuspidal"):
+        jsonschema.Draft202012Validator(schema).validate(doc)
+    doc["cuspidal"] = False
+    doc["cusps"] = [
+        {
+            "inputs": {"rho": 1.0, "z": 0.0},
+            "multiplicity": 2,
+            "certified": False,
+            "radius": None,
+            "t": 0.0,
+            "modes": {"real_modes_at_cusp": 2, "coalescing": 3},
+        }
+    ]
+    with pytest.raises(jsonschema.ValidationError, match="3 was expected"):
+        jsonschema.Draft202012Validator(schema).validate(doc)
 
 
 def test_cusps_text_and_plot(tmp_path: Path) -> None:
