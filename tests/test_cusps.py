@@ -228,6 +228,35 @@ def test_cusps_bad_vary_exits_2(tmp_path: Path, vary: str, words: str) -> None:
     assert run.status == 2 and words in run.err
 
 
+#: a planar 2R arm (unit links): two joints, no cusp to look for
+ARM_2R = """\
+mechanism: arm-2r
+bodies: [base, link1, link2]
+joints:
+  - {name: J1, type: R, between: [base, link1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [link1, link2], axis: [0, 0, 1], point: [1, 0, 0]}
+inputs: [J1, J2]
+output: {body: link2, point: [2, 0, 0]}
+"""
+
+
+@pytest.mark.parametrize(
+    ("text", "vary", "words"),
+    [
+        (ARM_2R, "J1=0:1,J2=-3:3", "three revolute joints"),
+        (ARM_2R, "rho=0:2,z=-1:1", "it has J1 (R), J2 (R)"),
+        (SIMILAR_3RPR, "Rb1=0:1,P3=0:1", "--vary Rb1: not an input"),
+        (SIMILAR_3RPR, "P2=5:-1,P3=-1:5", "(write P2=-1:5)"),
+        (SIMILAR_3RPR, "P2=0:1,P2=0:2", "P2 is given twice"),
+    ],
+)
+def test_cusps_bad_input_names_the_item_and_the_fix(
+    tmp_path: Path, text: str, vary: str, words: str
+) -> None:
+    run = run_cli(["cusps", str(_write(tmp_path, "m.yaml", text)), "--vary", vary])
+    assert run.status == 2 and words in run.err and "Traceback" not in run.err
+
+
 def test_exercise_variants_key_matches_the_reference(tmp_path: Path) -> None:
     """Exercise 17's variants: the key mechsing writes (cuspidal, how many cusps) is the
     reference's count for the variant's drawn r2 and d4."""
