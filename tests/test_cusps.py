@@ -214,6 +214,32 @@ def test_cusps_text_and_plot(tmp_path: Path) -> None:
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_the_figure_has_one_colour_band_per_count_and_its_legend_off_the_section() -> None:
+    """A hand-written section (counts 0, 2 and 4 on a 3 x 3 grid, one cusp at the
+    centre): the colour bar reads 0, 2, 4, one colour each, nothing between; the
+    legend lies below the axes, so no cusp is under it."""
+    from mechsing.report.cusps import cusps_figure
+
+    doc = {
+        "mechanism": "hand-made",
+        "section": {"vary": {"a": [0.0, 2.0], "b": [0.0, 2.0]}, "fixed": {}},
+        "modes_grid": {"a": [0, 1, 2], "b": [0, 1, 2], "modes": [[0, 0, 2], [0, 2, 4], [2, 4, 4]]},
+        "singular_curves": {"points": [[0.5, 1.0], [1.0, 0.5]]},
+        "cusps": [{"inputs": {"a": 1.0, "b": 1.0}, "certified": True}],
+        "cuspidal": True,
+    }
+    fig = cusps_figure(doc)
+    ax, bar = fig.axes
+    image = ax.images[0]
+    assert [t.get_text() for t in bar.get_yticklabels()] == ["0", "2", "4"]
+    assert image.cmap.N == 3  # three colours, one per count
+    colours = [tuple(image.cmap(image.norm(i))) for i in range(3)]
+    assert len(set(colours)) == 3
+    fig.canvas.draw()
+    legend = ax.get_legend().get_window_extent()
+    assert legend.y1 < ax.get_window_extent().y0
+
+
 @pytest.mark.parametrize(
     ("vary", "words"),
     [
