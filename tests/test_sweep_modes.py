@@ -315,3 +315,14 @@ def test_aspects_of_a_2r_arm_across_its_stretched_elbow(tmp_path: Path) -> None:
     want = [(r[0], r[-1]) for r in runs if r]
     assert len(want) == 4
     np.testing.assert_allclose(got, want, atol=1e-12)
+
+
+@pytest.mark.parametrize("vary", ["J1=0:0:0.1", "J1=0:0.05:0.1"])
+def test_a_loop_needs_a_rectangle(tmp_path: Path, vary: str) -> None:
+    """A --vary of one sample makes the rectangle a segment: nothing inside to go round."""
+    path = tmp_path / "arm.yaml"
+    path.write_text(ARM)
+    rc, _, err = run_cli(
+        ["sweep", path, "--from", "bent", "--vary", vary, "--vary", "J2=0:1:0.1", "--loop"]
+    )
+    assert rc == 2 and "--vary J1 has one sample (0 rad)" in err and "STEP apart" in err

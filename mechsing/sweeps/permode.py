@@ -136,6 +136,12 @@ def mode_loops(runs: list[SweepRun], found: Any = None) -> list[LoopResult]:
     back."""
     from mechsing.assembly.result import joint_distance
 
+    for v in runs[0].vars if runs else ():
+        if len(v.values) < 2:  # START = STOP: the rectangle has no area, no inside
+            raise UserError(
+                f"--loop: --vary {v.name} has one sample ({v.shown(float(v.values[0]))}): "
+                "a loop goes round a rectangle; give each --vary a START and STOP at least a STEP apart"
+            )
     loops = [follow_loop(run) for run in runs]
     if not runs:
         return loops
