@@ -179,6 +179,23 @@ def test_puma_like_arm_is_not_cuspidal(tmp_path: Path) -> None:
     _follows_the_schema(doc)
 
 
+def test_cusps_output_format_follows_its_extension(tmp_path: Path) -> None:
+    """-o NAME.json writes the JSON document (as sweep's -o does), -o NAME.md Markdown;
+    --plot of a name that is neither .png nor .svg is refused before the work. The PUMA-like
+    arm's first two axes meet: not cuspidal (its inverse kinematics decouples)."""
+    path = _write(tmp_path, "puma3.yaml", PUMA_3R)
+    for name, first in (("c.json", "{"), ("c.md", "## puma-like-3r")):
+        run = run_cli(["cusps", str(path), "--vary", "rho=0:6,z=-5:5", "-o", str(tmp_path / name)])
+        assert run.status == 0, run.err
+        assert (tmp_path / name).read_text().startswith(first)
+    assert json.loads((tmp_path / "c.json").read_text())["cuspidal"] is False
+    run = run_cli(
+        ["cusps", str(path), "--vary", "rho=0:6,z=-5:5", "--plot", str(tmp_path / "c.jpg")]
+    )
+    assert run.status == 2 and "name it .png or .svg" in run.err
+    assert not (tmp_path / "c.jpg").exists()
+
+
 def test_the_schema_rejects_a_document_without_its_verdict(tmp_path: Path) -> None:
     """The schema is no blank cheque: a document missing ``cuspidal``, or with a cusp of
     multiplicity 2 (two modes meeting is a singular curve, not a cusp), fails it."""
