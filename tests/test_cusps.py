@@ -257,6 +257,18 @@ def test_the_figure_has_one_colour_band_per_count_and_its_legend_off_the_section
     assert legend.y1 < ax.get_window_extent().y0
 
 
+def test_the_figure_of_a_decoupled_arm_says_why_it_is_empty(tmp_path: Path) -> None:
+    """The PUMA-like arm (first two axes meet: its inverse kinematics decouples, no cusp
+    anywhere) is decided without a grid: the figure says so, its axes in metres."""
+    from mechsing.report.cusps import cusps_figure
+
+    doc = _cusps(_write(tmp_path, "puma3.yaml", PUMA_3R), "rho=0:6,z=-5:5")
+    assert doc["evidence"]["kind"] == "decoupled"
+    ax = cusps_figure(doc).axes[0]
+    assert any("no cusp anywhere" in t.get_text() for t in ax.texts)
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("rho (m)", "z (m)")
+
+
 @pytest.mark.parametrize(
     ("vary", "words"),
     [

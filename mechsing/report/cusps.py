@@ -66,8 +66,20 @@ def cusps_figure(doc: dict[str, Any]) -> Figure:
             ax.annotate(f"{k + 1}", (x, y), xytext=(5, 5), textcoords="offset points")
         ax.set_xlim(*a_rng)
         ax.set_ylim(*b_rng)
-        ax.set_xlabel(a_name)
-        ax.set_ylabel(b_name)
+        if not grid:  # decoupled: proved without a grid; say so rather than draw nothing
+            ax.text(
+                0.5,
+                0.5,
+                "no grid computed: no cusp anywhere\n(the modes meet in pairs only; "
+                "see the evidence)",
+                ha="center",
+                va="center",
+                transform=ax.transAxes,
+            )
+        # an arm's section is the workspace half-plane: lengths (the document is in SI)
+        unit = " (m)" if doc.get("problem") == "inverse kinematics" else ""
+        ax.set_xlabel(a_name + unit)
+        ax.set_ylabel(b_name + unit)
         fixed = ", ".join(f"{n} = {v:.6g}" for n, v in doc["section"]["fixed"].items())
         verdict = "cuspidal" if doc["cuspidal"] else "not cuspidal"
         ax.set_title(f"{doc['mechanism']}: {verdict}" + (f" ({fixed})" if fixed else ""))
