@@ -196,6 +196,15 @@ def test_cusps_output_format_follows_its_extension(tmp_path: Path) -> None:
     assert not (tmp_path / "c.jpg").exists()
 
 
+def test_schema_prints_one_document_at_a_time(capsys: pytest.CaptureFixture[str]) -> None:
+    from mechsing.cli import main
+
+    with pytest.raises(SystemExit) as exc:
+        main(["schema", "--sweep", "--cusps"])
+    assert exc.value.code == 2 and "not allowed with argument" in capsys.readouterr().err
+    assert json.loads(run_cli(["schema", "--cusps"]).out)["title"] == "mechsing cusps document"
+
+
 def test_the_schema_rejects_a_document_without_its_verdict(tmp_path: Path) -> None:
     """The schema is no blank cheque: a document missing ``cuspidal``, or with a cusp of
     multiplicity 2 (two modes meeting is a singular curve, not a cusp), fails it."""

@@ -15,34 +15,36 @@ import argparse
 import json
 
 NAME = "schema"
-HELP = "print the JSON Schema of the mechanism file format (or of the sweep or condition document)"
+HELP = "print the JSON Schema of the mechanism file format (or of a command's JSON document)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--compact", action="store_true", help="print on one line instead of indented"
     )
-    parser.add_argument(
+    # one document at a time (two of these printed one of them, silently)
+    one = parser.add_mutually_exclusive_group()
+    one.add_argument(
         "--sweep",
         action="store_true",
         help="the schema of mechsing sweep's JSON document instead of the file format's",
     )
-    parser.add_argument(
+    one.add_argument(
         "--modes",
         action="store_true",
         help="the schema of mechsing modes' JSON document instead of the file format's",
     )
-    parser.add_argument(
+    one.add_argument(
         "--condition",
         action="store_true",
         help="the schema of mechsing condition's JSON document instead of the file format's",
     )
-    parser.add_argument(
+    one.add_argument(
         "--dynamics",
         action="store_true",
         help="the schema of mechsing dynamics' JSON document instead of the file format's",
     )
-    parser.add_argument(
+    one.add_argument(
         "--cusps",
         action="store_true",
         help="the schema of mechsing cusps' JSON document instead of the file format's",
