@@ -179,6 +179,22 @@ def test_puma_like_arm_is_not_cuspidal(tmp_path: Path) -> None:
     _follows_the_schema(doc)
 
 
+def test_a_section_beyond_the_reach_says_so(tmp_path: Path) -> None:
+    """The orthogonal 3R arm drawn in mm, its section given in mm by mistake (--vary is
+    SI): rho from 100 m up is beyond its reach (its links and tool sum to under 6.5 m),
+    so no point of the grid has a real posture, and the evidence says the section missed
+    the arm and that --vary is not in the file's units."""
+    mm = ORTHOGONAL_3R.replace("mechanism: orthogonal-3r", "units: {length: mm}\nmechanism: x")
+    for a, b in (('[1, "3/2", 0]', "[1000, 1500, 0]"), ('[3, "3/2", 0]', "[3000, 1500, 0]")):
+        mm = mm.replace(a, b)
+    mm = mm.replace('["9/2", "3/2", 0]', "[4500, 1500, 0]")
+    assert "3/2" not in mm
+    doc = _cusps(_write(tmp_path, "orth_mm.yaml", mm), "rho=100:6000,z=-5000:5000", "--points", "9")
+    assert doc["formulation"]["modes_counts"] == [0] and doc["cuspidal"] is False
+    assert "no real mode anywhere on the grid" in doc["evidence"]["reason"]
+    assert "the file is in mm and rad, --vary is not" in doc["evidence"]["reason"]
+
+
 def test_cusps_output_format_follows_its_extension(tmp_path: Path) -> None:
     """-o NAME.json writes the JSON document (as sweep's -o does), -o NAME.md Markdown;
     --plot of a name that is neither .png nor .svg is refused before the work. The PUMA-like

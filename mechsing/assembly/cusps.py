@@ -195,6 +195,17 @@ def cusps(
         }
     evidence.update({"cusps": len(certified), "grid": n, "singular_points": len(sec.points)})
     counts = sorted({int(v) for v in sec.counts.ravel()})
+    if counts == [0]:  # nothing searched: the section misses every assembly (or posture)
+        units = mech.units
+        scale = (
+            f"; the file is in {units.length} and {units.angle}, --vary is not"
+            if (units.length, units.angle) != ("m", "rad")
+            else ""
+        )
+        evidence["reason"] += (
+            "; but no real mode anywhere on the grid: the section misses the mechanism's "
+            f"reach (--vary is in SI units, m and rad{scale})"
+        )
     return CuspsResult(
         mech.name,
         built["problem"],
