@@ -22,7 +22,10 @@ every admissible acceleration is ``qdd_0 + N udd``, and virtual work along the a
 motions (``N^T C^T = 0``, ``N^T E^T = 1``) gives the inputs' equation
 ``N^T M N udd = tau_in - N^T (M qdd_0 + bias)``: the mass matrix reduced to the inputs.
 
-Owns :func:`closed_inverse` and :func:`closed_forward`.  Float only.
+Owns :func:`closed_inverse` and :func:`closed_forward`, and their parts: the closure's
+rate (:func:`closure_rate`), a motion driven by any rows of the rates
+(:func:`driven_motion`: a sweep's timed motion drives its swept coordinate) and the
+effort balance (:func:`balance`).  Float only.
 """
 
 from __future__ import annotations
@@ -34,7 +37,14 @@ import numpy as np
 
 from mechsing import lie
 
-__all__ = ["ClosedMotion", "closed_forward", "closed_inverse"]
+__all__ = [
+    "ClosedMotion",
+    "balance",
+    "closed_forward",
+    "closed_inverse",
+    "closure_rate",
+    "driven_motion",
+]
 
 
 @dataclass(frozen=True)
@@ -69,18 +79,10 @@ def _closure_and_inputs(
     return C, E
 
 
-def closed_inverse(
-    td: Any, q: np.ndarray, inputs: list[int], u: np.ndarray, udd: np.ndarray
-) -> ClosedMotion:
-    """The motion and efforts of the closed chain of ``td`` (its model in float) at the
-    closed configuration ``q`` for the inputs' coordinates ``inputs`` moving with the rates
-    ``u`` and the accelerations ``udd``."""
-    q = np.asarray(q, dtype=float)
-    C, E = _closure_and_inputs(td.model, q, inputs)
-    zeros = np.zeros(C.shape[0])
-    qd, _ = _solve(np.vstack([C, E]), np.concatenate([zeros, u]))
-    qd[inputs] = u  # the inputs' rates as given (the solve returns them to rounding)
-    # the closure's rate: each column's bracket with the twist of its joint's first body
+def closure_rate(td: Any, q: np.ndarray, C: np.ndarray, qd: np.ndarray) -> np.ndarray:
+    """``Cdot qd``: the rate of the closure's rows along the motion ``qd`` at ``q``, each
+    column's the Lie bracket of the twist of its joint's first body with it
+    (``s_k' = [xi_a, s_k]``), times the column's rate."""
     _, xi, _, _ = td.motion(q, qd, None, False)
     rate = np.zeros(C.shape[0])
     for jk in td.model.joints:
@@ -91,12 +93,55 @@ def closed_inverse(
         twist = xi.get(jk.a)
         for b in range(0, C.shape[0], 6):
             rate[b : b + 6] += lie.bracket(twist, col[b : b + 6]) * qd[k]
-    qdd, _ = _solve(np.vstack([C, E]), np.concatenate([-rate, udd]))
+    return rate
+
+
+def driven_motion(
+    td: Any,
+    q: np.ndarray,
+    C: np.ndarray,
+    G: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    drift: Any = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Every coordinate's rate and acceleration at the closed ``q`` when the rows ``G``
+    of the rates are driven: ``[C; G] qd = [0; v]`` and
+    ``[C; G] qdd = [-Cdot qd; a - drift(qd)]`` (``drift``: the part of the driven rows'
+    second derivative that is not ``G qdd``, a function of the rates; None: rows of
+    constant coefficients, the coordinates themselves)."""
+    K = np.vstack([C, G])
+    qd, _ = _solve(K, np.concatenate([np.zeros(C.shape[0]), v]))
+    rhs = np.asarray(a, dtype=float) - (0.0 if drift is None else drift(qd))
+    qdd, _ = _solve(K, np.concatenate([-closure_rate(td, q, C, qd), rhs]))
+    return qd, qdd
+
+
+def balance(
+    C: np.ndarray, E: np.ndarray, tau: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """The inputs' efforts (every coordinate's: 0 off the inputs ``E`` selects), the
+    loops' multipliers and the relative residual of ``E^T tau_in + C^T lambda = tau``
+    (virtual work) for the tree's efforts ``tau``."""
+    x, residual = _solve(np.hstack([E.T, C.T]), tau)
+    m = E.shape[0]
+    return E.T @ x[:m], x[m:], residual
+
+
+def closed_inverse(
+    td: Any, q: np.ndarray, inputs: list[int], u: np.ndarray, udd: np.ndarray
+) -> ClosedMotion:
+    """The motion and efforts of the closed chain of ``td`` (its model in float) at the
+    closed configuration ``q`` for the inputs' coordinates ``inputs`` moving with the rates
+    ``u`` and the accelerations ``udd``."""
+    q = np.asarray(q, dtype=float)
+    C, E = _closure_and_inputs(td.model, q, inputs)
+    qd, qdd = driven_motion(td, q, C, E, u, udd)
+    qd[inputs] = u  # the inputs' rates as given (the solve returns them to rounding)
     qdd[inputs] = udd
     tau = td.inverse(q, qd, qdd)
-    x, residual = _solve(np.hstack([E.T, C.T]), tau)
-    efforts = E.T @ x[: len(inputs)]
-    return ClosedMotion(qd, qdd, efforts, x[len(inputs) :], residual, tau)
+    efforts, multipliers, residual = balance(C, E, tau)
+    return ClosedMotion(qd, qdd, efforts, multipliers, residual, tau)
 
 
 def closed_forward(
