@@ -42,7 +42,9 @@ def arm7() -> str:
 def run(name: str, text: str, samples: int, repeat: int) -> dict:
     import pinocchio as pin
 
-    td = TreeDynamics(KinematicModel(mechanism_from_text(text, path=f"{name}.urdf"), "float"), GRAVITY)
+    td = TreeDynamics(
+        KinematicModel(mechanism_from_text(text, path=f"{name}.urdf"), "float"), GRAVITY
+    )
     pm = pin.buildModelFromXML(text)
     pm.gravity.linear = np.array(GRAVITY)
     pd = pm.createData()
@@ -63,7 +65,9 @@ def run(name: str, text: str, samples: int, repeat: int) -> dict:
             out[i] = pin.rnea(pm, pd, Qp[i], Vp[i], Ap[i])
         return out[:, order]
 
-    (t_ours, tau), (t_pin, tau_pin) = timed_medians_interleaved([ours, theirs], repeat, warmup=1, cpu=True)
+    (t_ours, tau), (t_pin, tau_pin) = timed_medians_interleaved(
+        [ours, theirs], repeat, warmup=1, cpu=True
+    )
     err = np.linalg.norm(tau - tau_pin, axis=1) / np.maximum(np.linalg.norm(tau_pin, axis=1), 1.0)
     return {
         "name": name,
@@ -85,7 +89,9 @@ def main() -> None:
         run("ur5", (ROOT / "examples" / "ur5.urdf").read_text(), args.samples, args.repeat),
         run("arm7", arm7(), args.samples, args.repeat),
     ]
-    print("| arm | joints | samples | mechsing samples/s | pinocchio loop samples/s | ratio | worst relative difference |")
+    print(
+        "| arm | joints | samples | mechsing samples/s | pinocchio loop samples/s | ratio | worst relative difference |"
+    )
     print("|---|---|---|---|---|---|---|")
     for r in rows:
         print(

@@ -98,6 +98,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     options.add_verbose_option(p)
     options.add_load_option(p)
     options.add_max_effort_option(p)
+    options.add_duration_option(p)
 
 
 def _positive_int(option: str) -> Callable[[str], int]:
@@ -188,6 +189,10 @@ def run(args: argparse.Namespace) -> int:
             time_limit=args.time_limit,
         )
         with_sweep_load(sweep_run, mech, args.load, args.max_effort)
+        if args.duration is not None:
+            from mechsing.kinetics.timed import attach
+
+            attach(sweep_run, args.duration)
         with (
             _destination(args.output, args.file) as out,
             _progress_bar(sweep_run, args.quiet) as progress,

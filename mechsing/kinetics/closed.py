@@ -117,9 +117,7 @@ def driven_motion(
     return qd, qdd
 
 
-def balance(
-    C: np.ndarray, E: np.ndarray, tau: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, float]:
+def balance(C: np.ndarray, E: np.ndarray, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
     """The inputs' efforts (every coordinate's: 0 off the inputs ``E`` selects), the
     loops' multipliers and the relative residual of ``E^T tau_in + C^T lambda = tau``
     (virtual work) for the tree's efforts ``tau``."""

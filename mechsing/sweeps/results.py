@@ -208,6 +208,8 @@ class SweepResult:
     outside: dict[str, np.ndarray] = field(default_factory=dict, repr=False, compare=False)
     #: the samples' statics under a load (:class:`mechsing.statics.along.SweepStatics`)
     statics: Any = field(default=None, repr=False, compare=False)
+    #: the timed motion along a path (``--duration``: :class:`mechsing.kinetics.timed.TimedSweep`)
+    dynamics: Any = field(default=None, repr=False, compare=False)
 
     @property
     def grid(self) -> bool:
@@ -262,6 +264,7 @@ def json_header(r: Any) -> dict[str, Any]:
         "tests": list(r.tests),
         "generic": dict(r.generic),
         **({} if r.statics is None else r.statics.header_json()),
+        **({} if r.dynamics is None else r.dynamics.header_json()),
     }
 
 
@@ -281,6 +284,8 @@ def json_point(r: Any, idx: tuple[int, ...]) -> dict[str, Any]:
         out["outside_limits"] = [name for name, beyond in r.outside.items() if beyond[idx]]
     if r.statics is not None:
         out.update(r.statics.point_json(idx))
+    if r.dynamics is not None:
+        out.update(r.dynamics.point_json(idx))
     return out
 
 
@@ -291,6 +296,7 @@ def json_tail(r: Any) -> dict[str, Any]:
         "notes": list(r.notes),
         "newton_iterations": r.newton_iterations,
         **({} if r.statics is None else r.statics.tail_json()),
+        **({} if r.dynamics is None else r.dynamics.tail_json()),
     }
 
 
@@ -411,6 +417,10 @@ def text_report(r: SweepResult) -> str:
         )
     if r.statics is not None:
         lines += r.statics.text_lines(
+            lambda k: _where(r, tuple(_values_at(r.variables, k))), lambda v: _where(r, v)
+        )
+    if r.dynamics is not None:
+        lines += r.dynamics.text_lines(
             lambda k: _where(r, tuple(_values_at(r.variables, k))), lambda v: _where(r, v)
         )
     for note in r.notes:

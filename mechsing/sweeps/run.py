@@ -56,6 +56,7 @@ def sweep(
     connect_timeout: float | None = None,
     load: Any = None,
     max_effort: dict[str, float] | None = None,
+    duration: float | None = None,
 ) -> SweepResult:
     """Sweep a mechanism (or a file) over one variable (a path) or two (a grid).
 
@@ -89,6 +90,10 @@ def sweep(
         The samples' efforts under ``load`` (default: the start configuration's file
         load, if any) and where an input's ``|effort|`` crosses ``max_effort[input]``
         (:mod:`mechsing.statics.along`).
+    duration : float, optional
+        A path's swept value follows a quintic rest-to-rest law over ``duration``
+        seconds: each sample's efforts for that motion and the Type II crossing
+        condition at the located Type II points (:mod:`mechsing.kinetics.timed`).
 
     Returns
     -------
@@ -107,6 +112,9 @@ def sweep(
     from mechsing.statics.along import attach
 
     attach(run, load, max_effort)
+    from mechsing.kinetics.timed import attach as timed
+
+    timed(run, duration)
     rows = run.rows(progress, workers=workers, scheduler=scheduler, connect_timeout=connect_timeout)
     for _ in rows:
         pass
@@ -189,6 +197,8 @@ class SweepRun:
         self.newton_iterations = 0
         #: the statics of the samples under a load (:class:`mechsing.statics.along.SweepStatics`)
         self.statics: Any = None
+        #: the timed motion along a path (:class:`mechsing.kinetics.timed.TimedSweep`)
+        self.dynamics: Any = None
 
     @property
     def grid(self) -> bool:
@@ -279,6 +289,8 @@ class SweepRun:
         self.newton_iterations += row.newton
         if self.statics is not None:
             self.statics.store(at, row)
+        if self.dynamics is not None:
+            self.dynamics.store(at, row)
         for name, beyond in row.outside.items():
             self.outside[name][at] = beyond
         for s in row.stopped:
@@ -362,6 +374,8 @@ class SweepRun:
         loci = loci_of(self, out) if self.grid else ()
         if self.statics is not None and not self.grid:
             self.statics.locate_limits(eng, self.vars[0].values)
+        if self.dynamics is not None:
+            self.dynamics.locate(out)
         return SweepResult(
             self.mechanism,
             self.variables,
@@ -380,4 +394,5 @@ class SweepRun:
             time.perf_counter() - self.start_time,
             self.outside,
             statics=self.statics,
+            dynamics=self.dynamics,
         )

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from mechsing.kinetics.timed import TIMED_SCHEMA
 from mechsing.statics.along import KINETOSTATICS_SCHEMA
 from mechsing.sweeps.measures import TESTS
 
@@ -63,6 +64,7 @@ def sweep_schema() -> dict[str, Any]:
                 "beyond theirs at this sample (J2, or C1[1] for a joint of several)",
             },
             **KINETOSTATICS_SCHEMA["point"],
+            **TIMED_SCHEMA["point"],
         },
         "required": ["values", "reached"],
         "additionalProperties": False,
@@ -198,6 +200,7 @@ def sweep_schema() -> dict[str, Any]:
             "notes": _STRINGS,
             "newton_iterations": {"type": "integer", "minimum": 0},
             **KINETOSTATICS_SCHEMA["top"],
+            **TIMED_SCHEMA["top"],
         },
         "required": [
             "mechanism",
