@@ -197,11 +197,6 @@ def dynamics(
     out = []
     td = None
     loops = bool(mech.graph.loops)
-    if loops and prec.mode != "float":
-        raise UserError(
-            f"{mech.name}: a closed chain's dynamics is computed in float (mp:N and exact "
-            "are not implemented for closed chains); use --precision float"
-        )
     for name in names:
         model, closed = solve_configuration(mech, name, prec)
         if td is None:

@@ -213,30 +213,28 @@ class TimedSweep:
 
         return rows[pick], (v, a), drift
 
-    def motion(
-        self, q: np.ndarray, s: float
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    def motion(self, q: np.ndarray, s: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, Any]:
         """At the closed ``q`` (float) where the swept value is ``s``: every coordinate's
-        rate and acceleration, the tree's efforts and the closure's Jacobian."""
-        from mechsing.kinetics.closed import driven_motion
+        rate and acceleration, the tree's efforts and the closure's rows."""
+        from mechsing.kinetics.closed import ClosureRows, driven_motion
 
         q = np.asarray(q, dtype=float)
         G, (v, a), drift = self._driven(q, s)
-        C = np.asarray(self.model.closure_jacobian(q), dtype=float)
-        qd, qdd = driven_motion(self.td, q, C, G, v, a, drift)
+        rows = ClosureRows(self.td, q)
+        qd, qdd = driven_motion(rows, G, v, a, drift)
         tau = np.asarray(self.td.inverse(q, qd, qdd), dtype=float)
         self.scale = max(self.scale, float(np.linalg.norm(tau)))
-        return qd, qdd, tau, C
+        return qd, qdd, tau, rows
 
     def at(self, q: np.ndarray, s: float) -> tuple[np.ndarray, float]:
         """The efforts of :attr:`names` at the closed ``q`` where the swept value is ``s``
         and the effort balance's relative residual (0 for an open chain)."""
         from mechsing.kinetics.closed import balance
 
-        _, _, tau, C = self.motion(q, s)
+        _, _, tau, rows = self.motion(q, s)
         if not self.loops:
             return tau, 0.0
-        efforts, _, residual = balance(C, self._selector(), tau)
+        efforts, _, residual = balance(rows, self._selector(), tau)
         return efforts[self.inputs], residual
 
     def _selector(self) -> np.ndarray:
@@ -268,9 +266,9 @@ class TimedSweep:
             for jk in self.model.joints:
                 q[jk.columns] = np.asarray(joints[jk.name], dtype=float)
             s = float(p.values[0])
-            _, _, tau, C = self.motion(q, s)
-            # the uncontrolled twist: the kernel of [C; E] (its last right singular vector)
-            _, _, Vt = np.linalg.svd(np.vstack([C, self._selector()]))
+            _, _, tau, rows = self.motion(q, s)
+            # the uncontrolled twist: the kernel of [A; E] (its last right singular vector)
+            _, _, Vt = np.linalg.svd(np.vstack([rows.A, self._selector()]))
             power = abs(float(Vt[-1] @ tau))
             residual = 0.0 if power == 0 else power / max(self.scale, float(np.linalg.norm(tau)))
             self.crossings.append(
