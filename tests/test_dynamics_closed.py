@@ -7,6 +7,7 @@ at rest without gravity can), and the input effort growing as 1/distance approac
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import mpmath
 import numpy as np
@@ -213,3 +214,59 @@ def test_slider_crank_torque_at_50_digits_is_the_lagrangian() -> None:
         res, k = _closed_at(mech, "s1", "mp:50", 3, R(-3, 2))
         want = mpmath.mpf(str(ref.torque(sp.Float(R(2, 5), 80), 3, R(-3, 2), digits=60)))
         assert abs(res.efforts[k] - want) <= mpmath.mpf("1e-40") * max(1, abs(want))
+
+
+RPR = (
+    (Path(__file__).resolve().parents[1] / "examples" / "planar_3rpr.yaml")
+    .read_text()
+    .replace(
+        "configurations:",
+        "mass:\n  platform: {kg: 3, centre: [1, '6/5', 0], inertia: [0.2, 0.2, 0.4, 0, 0, 0]}\n"
+        "gravity: [0, '-981/100', 0]\nconfigurations:",
+    )
+)
+
+
+@pytest.mark.parametrize("precision", ["float", "mp:50"])
+def test_3rpr_holds_its_platform_by_forces_along_the_three_legs(precision: str) -> None:
+    """Two loops with prismatic inputs, at rest at the drawn pose under gravity: the legs
+    are massless with a pin at each end, so each pushes the platform along its line with
+    its actuator's force f_i; the platform's balance (force and moment about its centre)
+    is a 3x3 linear system, solved here in mpmath at 60 digits."""
+    mech = loads(RPR, path="rpr.yaml")
+    with mpmath.workdps(60):
+        f = mpmath.mpf
+        base = [(0, 0), (4, 0), (0, 4)]
+        pins = [(f(9) / 10, f(3) / 10), (f(5) / 2, f(3) / 2), (-f(3) / 10, f(19) / 10)]
+        centre = (f(1), f(6) / 5)
+        rows = [[], [], []]
+        for (bx, by), (px, py) in zip(base, pins, strict=True):
+            ux, uy = px - bx, py - by
+            n = mpmath.sqrt(ux**2 + uy**2)
+            ux, uy = ux / n, uy / n
+            rows[0].append(ux)
+            rows[1].append(uy)
+            rows[2].append((px - centre[0]) * uy - (py - centre[1]) * ux)
+        want = mpmath.lu_solve(mpmath.matrix(rows), mpmath.matrix([0, 3 * f(981) / 100, 0]))
+    if precision == "float":
+        c = mechsing.dynamics(mech, "reference").configurations[0]
+        got = [c.efforts[j] for j in ("P1", "P2", "P3")]
+        for g, w in zip(got, want, strict=True):
+            assert abs(g - float(w)) <= 1e-10 * max(1.0, float(abs(w)))
+        assert c.efforts["Rb1"] == c.efforts["Rp3"] == 0 and c.crossing["possible"]
+        return
+    with mpmath.workdps(50):
+        from mechsing.kinematics import solve_configuration
+        from mechsing.kinetics.closed import closed_inverse
+        from mechsing.kinetics.tree import TreeDynamics
+        from mechsing.numeric import parse_precision
+
+        prec = parse_precision(precision)
+        model, closed = solve_configuration(mech, "reference", prec)
+        with prec.context():
+            td = TreeDynamics(model, None, closed=True)
+            ins = [model.joint(j).columns.start for j in ("P1", "P2", "P3")]
+            zero = model.backend.zeros(3)
+            res = closed_inverse(td, closed.q, ins, zero, zero)
+        for k, w in zip(ins, want, strict=True):
+            assert abs(res.efforts[k] - w) <= mpmath.mpf("1e-40") * max(1, abs(w))
