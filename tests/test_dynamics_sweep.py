@@ -224,3 +224,53 @@ def test_duration_needs_masses() -> None:
         ["sweep", ROOT / "examples" / "five_bar.yaml", "--vary", "A1=0:0.2:0.1", "--duration", "1"]
     )
     assert rc == 2 and "gives no masses" in err, err
+
+
+def test_ur5_straight_line_of_its_tool_point_efforts_are_pinocchio_rnea() -> None:
+    """A pose sweep: the output's reference point moves along x, its rotation held.  The
+    joints' rates and accelerations from Pinocchio's frame Jacobian and the drift of the
+    frame's classical acceleration, then pinocchio.rnea."""
+    pin = pytest.importorskip("pinocchio")
+    from mechsing.adhoc import with_set_values
+
+    mech = mechsing.load(UR5)
+    pm = pin.buildModelFromXML(UR5.read_text())
+    pm.gravity.linear = np.zeros(3)
+    pd = pm.createData()
+    names = [f"joint{i}" for i in range(1, 7)]
+    order = [pm.joints[pm.getJointId(n)].idx_q for n in names]
+    frame = pm.getFrameId(mech.output.body)
+    pin.framesForwardKinematics(pm, pd, np.zeros(6))  # the drawn pose: every joint at 0
+    c0 = np.array([float(x) for x in mech.output_reference_point()])
+    local = pd.oMf[frame].actInv(c0)  # the point in the output link's frame
+    # a regular start (at the drawn pose the wrist is singular: the rates are not unique)
+    start = {"joint1": 0.3, "joint2": -1.0, "joint3": 1.2, "joint4": -0.8, "joint5": 0.9}
+    mech = with_set_values(mech, [f"{j}={v}" for j, v in start.items()], None, str(UR5))
+    q0 = np.zeros(6)
+    q0[[order[names.index(j)] for j in start]] = list(start.values())
+    pin.framesForwardKinematics(pm, pd, q0)
+    x0 = float(pd.oMf[frame].act(local)[0])
+    res = mechsing.sweep(mech, f"pose.x={x0 - 0.1!r}:{x0 + 0.1!r}:0.02", "cli", duration=1.5)
+    assert res.reached.all()
+    dy = res.dynamics
+    values = res.variables[0].values
+    frame_type = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+    for k, s in enumerate(values):
+        _, sd, sdd = law(float(s), float(values[0]), float(values[-1]), 1.5)
+        q = np.empty(6)
+        q[order] = dy.joints[k]
+        pin.computeJointJacobians(pm, pd, q)
+        pin.framesForwardKinematics(pm, pd, q)
+        J = pin.getFrameJacobian(pm, pd, frame, frame_type)  # (v of the frame's origin, w)
+        r = pd.oMf[frame].rotation @ local
+        Jp = np.vstack([J[3:], J[:3] - np.cross(r, J[3:].T).T])  # (w, v of the point)
+        qd = np.linalg.solve(Jp, np.array([0, 0, 0, sd, 0, 0]))
+        pin.forwardKinematics(pm, pd, q, qd, np.zeros(6))
+        acc = pin.getFrameClassicalAcceleration(pm, pd, frame, frame_type)
+        w = Jp[:3] @ qd  # zero: the rotation is held
+        drift = np.concatenate(
+            [acc.angular, acc.linear + np.cross(acc.angular, r) + np.cross(w, np.cross(w, r))]
+        )
+        qdd = np.linalg.solve(Jp, np.array([0, 0, 0, sdd, 0, 0]) - drift)
+        want = np.asarray(pin.rnea(pm, pd, q, qd, qdd))[order]
+        assert np.linalg.norm(dy.efforts[k] - want) <= 1e-9 * max(1.0, np.linalg.norm(want))

@@ -176,8 +176,10 @@ class TimedSweep:
         self.times = self.law.time(values)
         shape = run.reached.shape
         self.efforts = np.full((*shape, len(names)), np.nan)
+        #: each sample's joint values (SI, the model's coordinates; NaN where not reached)
+        self.joints = np.full((*shape, n), np.nan)
         self.residual = np.full(shape, np.nan)
-        #: the largest |tree effort| over the samples (the crossing residual's scale)
+        #: the largest norm of the tree's efforts over the samples (the crossings' scale)
         self.scale = 0.0
         self.crossings: list[Crossing] = []
         self.gravity = self.td.has_gravity
@@ -200,8 +202,9 @@ class TimedSweep:
         for k in td.path_columns[self.out_body]:
             T[:, k] = screws[td._body_of_column[k]]
         P = lie.act_point(poses[self.out_body], self.point)
-        skew = np.array([[0, -P[2], P[1]], [P[2], 0, -P[0]], [-P[1], P[0], 0]])
-        rows = np.vstack([T[:3], -skew @ T[:3] + T[3:]])  # (w, v_P) of the coordinates' rates
+        rows = np.vstack(
+            [T[:3], -lie.hat3(P) @ T[:3] + T[3:]]
+        )  # (w, v_P) of the coordinates' rates
         pick = [c - n for c in self.given]
 
         def drift(qd: np.ndarray) -> np.ndarray:
@@ -251,6 +254,7 @@ class TimedSweep:
         n = self.model.n
         for k in np.flatnonzero(row.reached):
             eff, res = self.at(row.Z[k][:n], float(self.values[k]))
+            self.joints[k] = row.Z[k][:n]
             self.efforts[k] = eff
             self.residual[k] = res
 
