@@ -206,14 +206,17 @@ def dynamics(
             q = closed.q
             qd = _vector(td, rates, "rates")
             if loops:
-                qd, qdd, tau, crossing = _closed(
-                    td,
-                    mech,
-                    q,
-                    qd,
-                    _vector(td, accelerations, "accelerations"),
-                    None if efforts is None else _vector(td, efforts, "efforts"),
-                )
+                try:
+                    qd, qdd, tau, crossing = _closed(
+                        td,
+                        mech,
+                        q,
+                        qd,
+                        _vector(td, accelerations, "accelerations"),
+                        None if efforts is None else _vector(td, efforts, "efforts"),
+                    )
+                except UserError as exc:  # mp:N or exact at a Type II: say where
+                    raise UserError(f"configuration {name!r}: {exc}") from None
             elif efforts is not None:
                 tau = _vector(td, efforts, "efforts")
                 qdd = td.forward(q, qd, tau)
