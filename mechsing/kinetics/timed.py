@@ -84,7 +84,7 @@ class TimeLaw:
             mid = 0.5 * (lo + hi)
             below = _h(mid) < w
             lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
-        x = 0.5 * (lo + hi)
+        x = np.where(w == 0, 0.0, 0.5 * (lo + hi))  # the ends exactly
         return np.where(u > 0.5, 1.0 - x, x) * self.duration
 
     def rates(self, s: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
