@@ -213,6 +213,8 @@ class SweepResult:
     mode: int | None = None
     #: a grid's singularity-free regions (:class:`~mechsing.sweeps.aspects.Aspect`)
     aspects: tuple[Any, ...] = ()
+    #: the timed motion along a path (``--duration``: :class:`mechsing.kinetics.timed.TimedSweep`)
+    dynamics: Any = field(default=None, repr=False, compare=False)
 
     @property
     def grid(self) -> bool:
@@ -268,6 +270,7 @@ def json_header(r: Any) -> dict[str, Any]:
         "generic": dict(r.generic),
         **({} if r.statics is None else r.statics.header_json()),
         **({} if r.mode is None else {"mode": r.mode}),
+        **({} if r.dynamics is None else r.dynamics.header_json()),
     }
 
 
@@ -289,6 +292,8 @@ def json_point(r: Any, idx: tuple[int, ...]) -> dict[str, Any]:
         out.update(r.statics.point_json(idx))
     if r.mode is not None:  # the assembly mode the sweep started on
         out["mode"] = r.mode
+    if r.dynamics is not None:
+        out.update(r.dynamics.point_json(idx))
     return out
 
 
@@ -301,6 +306,7 @@ def json_tail(r: Any) -> dict[str, Any]:
         "newton_iterations": r.newton_iterations,
         **({} if r.statics is None else r.statics.tail_json()),
         **({"aspects": [{**a.to_json(), **mode} for a in r.aspects]} if r.grid else {}),
+        **({} if r.dynamics is None else r.dynamics.tail_json()),
     }
 
 
@@ -437,6 +443,10 @@ def text_report(r: SweepResult) -> str:
             )
     if r.statics is not None:
         lines += r.statics.text_lines(
+            lambda k: _where(r, tuple(_values_at(r.variables, k))), lambda v: _where(r, v)
+        )
+    if r.dynamics is not None:
+        lines += r.dynamics.text_lines(
             lambda k: _where(r, tuple(_values_at(r.variables, k))), lambda v: _where(r, v)
         )
     for note in r.notes:

@@ -57,6 +57,7 @@ def sweep(
     load: Any = None,
     max_effort: dict[str, float] | None = None,
     start: Any = None,
+    duration: float | None = None,
 ) -> SweepResult:
     """Sweep a mechanism (or a file) over one variable (a path) or two (a grid).
 
@@ -95,6 +96,10 @@ def sweep(
         from_config).modes`` or its index in that tuple; every sample is then labelled
         with the mode's number (``mode``: the index plus 1, as ``mechsing modes``
         numbers them).  Default: the mode continuation reaches from ``from_config``.
+    duration : float, optional
+        A path's swept value follows a quintic rest-to-rest law over ``duration``
+        seconds: each sample's efforts for that motion and the Type II crossing
+        condition at the located Type II points (:mod:`mechsing.kinetics.timed`).
 
     Returns
     -------
@@ -114,6 +119,9 @@ def sweep(
     from mechsing.statics.along import attach
 
     attach(run, load, max_effort)
+    from mechsing.kinetics.timed import attach as timed
+
+    timed(run, duration)
     rows = run.rows(progress, workers=workers, scheduler=scheduler, connect_timeout=connect_timeout)
     for _ in rows:
         pass
@@ -206,6 +214,8 @@ class SweepRun:
         self.newton_iterations = 0
         #: the statics of the samples under a load (:class:`mechsing.statics.along.SweepStatics`)
         self.statics: Any = None
+        #: the timed motion along a path (:class:`mechsing.kinetics.timed.TimedSweep`)
+        self.dynamics: Any = None
 
     @property
     def grid(self) -> bool:
@@ -296,6 +306,8 @@ class SweepRun:
         self.newton_iterations += row.newton
         if self.statics is not None:
             self.statics.store(at, row)
+        if self.dynamics is not None:
+            self.dynamics.store(at, row)
         for name, beyond in row.outside.items():
             self.outside[name][at] = beyond
         for s in row.stopped:
@@ -389,6 +401,8 @@ class SweepRun:
             )
         if self.statics is not None and not self.grid:
             self.statics.locate_limits(eng, self.vars[0].values)
+        if self.dynamics is not None:
+            self.dynamics.locate(out)
         return SweepResult(
             self.mechanism,
             self.variables,
@@ -409,4 +423,5 @@ class SweepRun:
             statics=self.statics,
             mode=self.mode,
             aspects=aspects,
+            dynamics=self.dynamics,
         )
