@@ -28,14 +28,8 @@ import numpy as np
 import pytest
 import yaml
 
-from mechsing.numeric import (
-    decide_definiteness,
-    decide_rank,
-    eigh,
-    parse_precision,
-    spectral_norm,
-    svd,
-)
+from mechsing.numeric import decide_definiteness, decide_rank, parse_precision
+from mechsing.numeric.linalg import eigh, spectral_norm, svd
 from tests.cli import cli_json
 from tests.mechanisms import EXAMPLES, by_name, classes, write
 from tests.reference.expressions import mp_num

@@ -29,7 +29,9 @@ from typing import Any
 import numpy as np
 
 from mechsing.analysis.contract import finding_class, subgroup_params
-from mechsing.numeric import MEMBERSHIP_RTOL_FLOAT, Margin, first_nonzero_positive, unit_vector
+from mechsing.numeric import MEMBERSHIP_RTOL_FLOAT, Margin
+from mechsing.numeric.linalg import first_nonzero_positive
+from mechsing.numeric.numbers import unit_vector
 from mechsing.singularity.findings import (
     BranchFinding,
     ConstraintFinding,

@@ -22,8 +22,8 @@ from typing import Any
 import mpmath
 
 from mechsing.assembly.given import NO_INPUTS, Formulation, Given, closure_from_start
+from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.model import Mechanism
-from mechsing.numeric import MODE_CERTIFY_RADIUS
 
 __all__ = ["SERIAL_ARM", "SINGLE_LOOP", "Found", "loop_found", "serial_found"]
 
@@ -54,7 +54,7 @@ def _length(mech: Mechanism) -> float:
 
 
 def serial_found(
-    mech: Mechanism, config: str, dps: int, atol: Any = 1e-9, closure: Any = None
+    mech: Mechanism, config: str, dps: int, atol: Any, closure: Any = None
 ) -> Found:
     """The postures of a serial arm for the pose configuration ``config`` gives (with, for
     an arm of more than six joints, the values of all but six), or for a six-joint arm the

@@ -116,7 +116,7 @@ def _positive_int(option: str) -> Callable[[str], int]:
 
 
 def _timeout(text: str) -> float:
-    from mechsing.numeric import decimal_float
+    from mechsing.numeric.numbers import decimal_float
     from mechsing.sweeps.distributed import MAX_CONNECT_TIMEOUT
 
     try:

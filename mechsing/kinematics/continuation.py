@@ -26,9 +26,7 @@ from mechsing.kinematics.newton import damped_least_squares, finite_system, newt
 from mechsing.kinematics.polish import MpPolisher, fold_mp
 from mechsing.kinematics.pose import PoseModel
 from mechsing.kinematics.protocol import ClosureModel
-from mechsing.kinematics.travel import Fold, beyond_target, fold_excess
-from mechsing.model import Configuration
-from mechsing.numeric import (
+from mechsing.kinematics.settings import (
     CONTINUATION_CORRECTOR_RATIO,
     CONTINUATION_FOLD_GAP,
     CONTINUATION_FOLD_REACH,
@@ -41,9 +39,10 @@ from mechsing.numeric import (
     CONTINUATION_SINGULAR_RTOL,
     CONTINUATION_STEP_RTOL,
     POLISH_MAX_STEPS,
-    decide_rank,
-    to_float,
 )
+from mechsing.kinematics.travel import Fold, beyond_target, fold_excess
+from mechsing.model import Configuration
+from mechsing.numeric import decide_rank, to_float
 from mechsing.numeric.blocks import block_svd
 
 __all__ = ["Continuation", "closure_matrix"]

@@ -31,7 +31,8 @@ from matplotlib.patches import Circle, Polygon, Rectangle
 
 from mechsing.kinematics import KinematicModel
 from mechsing.model import Mechanism
-from mechsing.numeric import to_float, unit_vector
+from mechsing.numeric import to_float
+from mechsing.numeric.numbers import unit_vector
 from mechsing.report.figures import RC, new_figure
 
 __all__ = [

@@ -28,14 +28,9 @@ from mechsing import lie
 from mechsing.kinematics import KinematicModel
 from mechsing.lie import ANGULAR, LINEAR
 from mechsing.model import Loop, Mechanism
-from mechsing.numeric import (
-    Precision,
-    RankDecision,
-    decide_rank,
-    field_solve,
-    orthonormal_columns,
-    to_float,
-)
+from mechsing.numeric import Precision, RankDecision, decide_rank, to_float
+from mechsing.numeric.field import field_solve
+from mechsing.numeric.linalg import orthonormal_columns
 from mechsing.subgroups import Identification, Subgroup, generate
 
 __all__ = [

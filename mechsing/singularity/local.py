@@ -24,21 +24,24 @@ import numpy as np
 
 from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
-    BRANCH_ALIGNMENT,
-    SAMPLE_CLOSURE_RTOL,
-    SAMPLE_DISTINCT_RATIO,
     SUPPORT_RTOL,
     Margin,
     Precision,
     RankDecision,
     decide_from_exact,
     decide_rank,
-    first_nonzero_positive,
     numeric_precision,
-    svd,
     to_float,
 )
-from mechsing.screws.mobility import NearbySample, nearby_samples, reclose, stacked_jacobian
+from mechsing.numeric.linalg import first_nonzero_positive, svd
+from mechsing.screws.mobility import (
+    SAMPLE_CLOSURE_RTOL,
+    SAMPLE_DISTINCT_RATIO,
+    NearbySample,
+    nearby_samples,
+    reclose,
+    stacked_jacobian,
+)
 from mechsing.singularity.criteria import ConstraintTest, SerialTest, tests_run
 from mechsing.singularity.cspace import Cone, Expansion, closure_expansion, tangent_cone
 from mechsing.singularity.findings import (
@@ -61,6 +64,10 @@ from mechsing.singularity.serial import (
     wrenches_of,
 )
 from mechsing.singularity.zfb import io_quantities, output_chain
+
+#: a branch probe follows its tangent when the cosine between the tangent and
+#: the displacement found is above this (a smooth branch through the point)
+BRANCH_ALIGNMENT = 0.9
 
 # The higher-order forms (tangent cone) and the input/output and constraint
 # ranks at q are computed and decided at the analysis precision

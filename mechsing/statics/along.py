@@ -13,8 +13,8 @@ from typing import Any
 import numpy as np
 
 from mechsing.errors import UserError
-from mechsing.numeric import SWEEP_LOCATE_TOL
 from mechsing.statics.configuration import kinetostatics_at
+from mechsing.sweeps.settings import SWEEP_LOCATE_TOL
 
 __all__ = [
     "KINETOSTATICS_SCHEMA",

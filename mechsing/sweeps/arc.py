@@ -18,7 +18,8 @@ import numpy as np
 
 from mechsing.errors import ClosureError
 from mechsing.kinematics.newton import scaled_system
-from mechsing.numeric.tolerances import (
+from mechsing.sweeps.problem import Problem
+from mechsing.sweeps.settings import (
     SWEEP_ARC_MAX_TURN_DEG,
     SWEEP_ARC_MIN_STEP,
     SWEEP_ARC_STEP,
@@ -28,7 +29,6 @@ from mechsing.numeric.tolerances import (
     SWEEP_LOCATE_TOL,
     SWEEP_TANGENT_KEPT,
 )
-from mechsing.sweeps.problem import Problem
 
 __all__ = ["Arc", "Fold", "curve_tangent"]
 

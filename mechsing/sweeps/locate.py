@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechsing.numeric import SWEEP_MINIMUM_SCREEN, Precision
-from mechsing.numeric.tolerances import SWEEP_FOLD_TEST_RTOL
+from mechsing.numeric import Precision
 from mechsing.sweeps.arc import Fold
 from mechsing.sweeps.measures import Measures, PointMeasures
 from mechsing.sweeps.problem import Problem
 from mechsing.sweeps.records import Located, Refined, RowPairs, RowSamples, located_at
 from mechsing.sweeps.refine import Refiner
+from mechsing.sweeps.settings import SWEEP_FOLD_TEST_RTOL, SWEEP_MINIMUM_SCREEN
 
 __all__ = ["Locator", "measured"]
 

@@ -1,7 +1,7 @@
 """The nodes of a path: predicting the next closed configuration and keeping it.
 
 Owns the node step of :func:`~mechsing.sweeps.path.follow`: which sample is the next
-node (:func:`node_index`: at most :data:`~mechsing.numeric.SWEEP_NODE_STEP` on), its
+node (:func:`node_index`: at most :data:`~mechsing.sweeps.settings.SWEEP_NODE_STEP` on), its
 prediction (the tangent at a first step, the secant or the polynomial through the last
 nodes after that), and :func:`reach_node`: one batched Newton from the prediction, kept
 when the correction is small next to the step (the step halved when it is not).
@@ -13,10 +13,9 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import SWEEP_NODE_STEP
-from mechsing.numeric.tolerances import SWEEP_NODE_CORRECTION
 from mechsing.sweeps.arc import curve_tangent
 from mechsing.sweeps.problem import Problem
+from mechsing.sweeps.settings import SWEEP_NODE_CORRECTION, SWEEP_NODE_STEP
 
 __all__ = [
     "node_index",

@@ -7,7 +7,7 @@ assembly mode the path started on.  The steps it strings together live beside it
 problem it closes (:mod:`.problem`), the nodes (:mod:`.nodes`), the samples between them
 (:mod:`.segments`) and the curve through folds (:mod:`.arc`).
 
-* **Nodes.**  Samples at most :data:`~mechsing.numeric.SWEEP_NODE_STEP` apart (radians,
+* **Nodes.**  Samples at most :data:`~mechsing.sweeps.settings.SWEEP_NODE_STEP` apart (radians,
   or lengths / L) are *nodes*, reached one after the other by the continuation of a
   named configuration's closure (:meth:`mechsing.kinematics.Closer.follow`: predictor,
   Newton on the group, branch checks), each first predicted from the last step (the
@@ -23,7 +23,7 @@ problem it closes (:mod:`.problem`), the nodes (:mod:`.nodes`), the samples betw
   value (a limit of its travel: a dead centre, the end of a rocker's swing) is where the
   tangent's swept component changes sign; it is located by Brent's method on that
   component, so the limit value itself (quadratic in the arclength there) is known to
-  far better than :data:`~mechsing.numeric.SWEEP_LOCATE_TOL`.
+  far better than :data:`~mechsing.sweeps.settings.SWEEP_LOCATE_TOL`.
 * **The other side.**  Past a fold the curve comes back on the other assembly mode; it
   is followed to its next fold, after which the swept value moves forward again.  For a
   revolute angle that value is taken modulo 2 pi into what is left of the range, and the
@@ -44,7 +44,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mechsing.errors import ClosureError
-from mechsing.numeric.tolerances import SWEEP_NODE_CORRECTION
 from mechsing.sweeps.arc import Arc, Fold
 from mechsing.sweeps.nodes import (
     node_index,
@@ -56,6 +55,7 @@ from mechsing.sweeps.nodes import (
 from mechsing.sweeps.problem import Problem
 from mechsing.sweeps.records import PathTrace
 from mechsing.sweeps.segments import close_segments, close_to_fold, near_fold
+from mechsing.sweeps.settings import SWEEP_NODE_CORRECTION
 
 __all__ = [
     "first_nodes_of",

@@ -14,8 +14,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from mechsing.numeric import SWEEP_LOCATE_TOL
-from mechsing.numeric.tolerances import SWEEP_MERGE_FACTOR, SWEEP_MERGE_RTOL
+from mechsing.sweeps.settings import SWEEP_LOCATE_TOL, SWEEP_MERGE_FACTOR, SWEEP_MERGE_RTOL
 
 if TYPE_CHECKING:
     from mechsing.sweeps.arc import Fold

@@ -21,7 +21,8 @@ from mechsing.analysis.contract import finding_class, finding_margin
 from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
 from mechsing.analysis.words import finding_label
 from mechsing.model import Mechanism
-from mechsing.numeric import SWEEP_TIE_RTOL, floored
+from mechsing.numeric import floored
+from mechsing.sweeps.settings import SWEEP_TIE_RTOL
 
 __all__ = [
     "LocatedSingularity",

@@ -14,9 +14,9 @@ import math
 import numpy as np
 
 from mechsing.errors import ClosureError
-from mechsing.numeric import SWEEP_JUMP_RATIO, SWEEP_KNOT_STEP
 from mechsing.sweeps.problem import Problem
 from mechsing.sweeps.records import PathTrace
+from mechsing.sweeps.settings import SWEEP_JUMP_RATIO, SWEEP_KNOT_STEP
 
 __all__ = ["close_segments", "close_to_fold", "near_fold"]
 

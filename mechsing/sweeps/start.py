@@ -15,9 +15,9 @@ import numpy as np
 
 from mechsing.errors import ClosureError
 from mechsing.kinematics.newton import scaled_system
-from mechsing.numeric.tolerances import SWEEP_BRANCH_MIN_SWEPT, SWEEP_CURVE_RANK_RTOL
 from mechsing.sweeps.arc import Arc, curve_tangent
 from mechsing.sweeps.problem import Problem
+from mechsing.sweeps.settings import SWEEP_BRANCH_MIN_SWEPT, SWEEP_CURVE_RANK_RTOL
 from mechsing.sweeps.spec import Variable
 
 __all__ = ["off_singular", "onto_branch", "start_of"]

@@ -21,7 +21,8 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import Precision, RankDecision, decide_rank, svd
+from mechsing.numeric import Precision, RankDecision, decide_rank
+from mechsing.numeric.linalg import svd
 from mechsing.singularity.criteria.base import Criterion, singular_values
 
 __all__ = ["ConstraintTest", "LegPlan", "leg_path"]

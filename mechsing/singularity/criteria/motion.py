@@ -28,7 +28,8 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.kinematics.chains import tree_chain
-from mechsing.numeric import Precision, RankDecision, decide_rank, rank_difference, spectral_norm
+from mechsing.numeric import Precision, RankDecision, decide_rank, rank_difference
+from mechsing.numeric.linalg import spectral_norm
 from mechsing.screws import chain_matrix
 from mechsing.singularity.criteria.base import Criterion, singular_values
 
