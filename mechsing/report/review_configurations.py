@@ -8,10 +8,11 @@ from __future__ import annotations
 import numpy as np
 
 from mechsing.analysis import AnalysisResult, ConfigurationResult
+from mechsing.analysis.display import floor_for
 from mechsing.analysis.html import VERDICT_HEADERS
 from mechsing.analysis.words import explain, margin_text
 from mechsing.model import Mechanism
-from mechsing.numeric import Precision, display_floor, floored, to_float
+from mechsing.numeric import Precision, floored, to_float
 from mechsing.report import document as doc
 from mechsing.report.figures import grid_figure, path_figure, svg
 from mechsing.report.render import joint_values_text
@@ -116,7 +117,7 @@ def configuration_sections(analysis: AnalysisResult) -> list[doc.Block]:
         L = analysis.length_scale
         items = [f"joint values (m, rad): {joint_values_text(c, L)}"]
         if c.closure_residual is not None:
-            res = floored(c.closure_residual, display_floor(c.precision, L))
+            res = floored(c.closure_residual, floor_for(c.precision, L))
             items.append(f"closure residual {res:.3g} m")
         if c.mobility is not None:
             m = c.mobility
