@@ -26,6 +26,7 @@ import sympy
 
 from mechsing import lie
 from mechsing.kinematics import KinematicModel
+from mechsing.kinematics.protocol import ClosureModel
 from mechsing.lie import ANGULAR, LINEAR
 from mechsing.model import Loop, Mechanism
 from mechsing.numeric import Precision, RankDecision, decide_rank, to_float
@@ -104,7 +105,7 @@ class ClosureSystem:
 
 
 def chain_matrix(
-    model: KinematicModel,
+    model: ClosureModel,
     S: np.ndarray,
     columns: Sequence[int] | None,
     point: np.ndarray | None = None,
