@@ -13,6 +13,8 @@
   commensurate metric (characteristic length, centroid, planar reduced coordinates).
 * :data:`CENTRED_SLIDER_CRANK_MM`: a centred slider-crank in millimetres whose pivots are not
   on a coordinate line in the drawn pose (the condition and serial-finding tests).
+* :data:`NON_GRASHOF_ROCKER`, :data:`PLANAR_3R_POINT`: mechanisms several test modules use
+  (one text each, a test adding its own configurations).
 """
 
 from __future__ import annotations
@@ -502,3 +504,29 @@ def assert_same_lines(got: list, expected: list, tol: float = 1e-8, contract: bo
         hit = [i for i in unmatched if np.max(np.abs(g - e[i])) < tol]
         assert hit, (got, expected)
         unmatched.remove(hit[0])
+
+
+#: a non-Grashof four-bar in degrees (2 + 4 > 3 + sqrt 5): the crank AB (2, drawn along y)
+#: stops where B, C and D line up; input A (no configurations: a test adds its own)
+NON_GRASHOF_ROCKER = """\
+mechanism: rocker
+units: {angle: deg}
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler], axis: [0, 0, 1], point: [0, 2, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
+  - {name: D, type: R, between: [rocker, ground], axis: [0, 0, 1], point: [4, 0, 0]}
+inputs: [A]
+"""
+
+#: a planar 3R arm whose output is the point at the end of its last link (unit links)
+PLANAR_3R_POINT = """\
+mechanism: planar-3r-point
+bodies: [base, l1, l2, l3]
+joints:
+  - {name: R1, type: R, between: [base, l1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: R2, type: R, between: [l1, l2], axis: [0, 0, 1], point: [1, 0, 0]}
+  - {name: R3, type: R, between: [l2, l3], axis: [0, 0, 1], point: [2, 0, 0]}
+output: {body: l3, point: [3, 0, 0]}
+"""
