@@ -34,6 +34,7 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.numeric.linalg import first_nonzero_positive, svd
+from mechsing.screws import closure_system
 from mechsing.screws.mobility import (
     SAMPLE_CLOSURE_RTOL,
     SAMPLE_DISTINCT_RATIO,
@@ -458,6 +459,13 @@ def _io_findings(
     if legs is not None:
         dec, wr = legs
         gen_ranks = [v.constraint for v in regular if v.constraint is not None]
+        if (
+            tprec.mode != "float"
+            and dec.rank is not None
+            and gen_ranks
+            and dec.rank < max(gen_ranks)
+        ):
+            gen_ranks = _constraint_ranks_at(mech, model, [samples[i].q for i in idx], tprec)
         decisions.append(decision("constraint", dec, max(gen_ranks) if gen_ranks else None))
         if dec.rank is not None and gen_ranks and dec.rank < max(gen_ranks):
             g = max(gen_ranks)
@@ -477,6 +485,29 @@ def _io_findings(
     if mech.output is not None:
         findings.extend(_leg_serial(mech, model, fm, q, cs, regular, decisions))
     return findings
+
+
+def _constraint_ranks_at(mech: Any, model: Any, qs: list[Any], tprec: Precision) -> list[int]:
+    """The constraint test's ranks at the regular samples ``qs`` (float configurations)
+    decided again at the test precision ``tprec`` (mp:N).
+
+    A drop at q decided at mp:N is a drop only against the generic rank decided at mp:N
+    too: the samples are closed and decided in float, and float does not resolve what is
+    below its thresholds (a helical joint of pitch 1e-13 m/rad turns like a revolute one
+    there, while mp:50 and exact see its slide), so that a float generic rank can be one
+    that no configuration has at mp:N.  Called at a candidate drop only."""
+    from mechsing.kinematics import KinematicModel
+
+    mp_model = model if model.precision.mode == "mp" else KinematicModel(mech, tprec)
+    test = ConstraintTest.of(mech, mp_model)
+    out = []
+    with tprec.context():
+        for q in qs:
+            qt = tprec.backend.asarray([float(x) for x in q])
+            r = test.decide(closure_system(mp_model, qt, tprec), tprec)
+            if r is not None and r[0].rank is not None:
+                out.append(int(r[0].rank))
+    return out
 
 
 def _zfb(
