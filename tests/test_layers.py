@@ -29,7 +29,7 @@ LAYERS: list[set[str]] = [
     {"analysis", "conditions"},
     {"sweeps", "statics", "assembly", "kinetics"},
     {"exercises"},
-    {"report"},
+    {"reports"},
     {"cli", "__main__"},
 ]
 

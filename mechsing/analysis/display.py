@@ -2,7 +2,7 @@
 Markdown.
 
 Every text and Markdown rendering takes its primitives from here -- an analysis
-(:mod:`mechsing.report.render`), a sweep (:mod:`mechsing.sweeps.results`), the assembly
+(:mod:`mechsing.reports.render`), a sweep (:mod:`mechsing.sweeps.results`), the assembly
 modes (:mod:`mechsing.assembly.render`) and the conditions
 (:mod:`mechsing.conditions.results`) -- so that a change made here shows in all of them:
 

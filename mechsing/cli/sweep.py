@@ -217,7 +217,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _json_text(value: Any) -> str:
     """One JSON value on one line (non-finite floats as null, like every mechsing JSON)."""
-    from mechsing.report.render import _clean
+    from mechsing.reports.render import _clean
 
     return json.dumps(_clean(value), allow_nan=False)
 

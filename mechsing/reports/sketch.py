@@ -33,7 +33,7 @@ from mechsing.kinematics import KinematicModel
 from mechsing.model import Mechanism
 from mechsing.numeric import to_float
 from mechsing.numeric.numbers import unit_vector
-from mechsing.report.figures import RC, new_figure
+from mechsing.reports.figures import RC, new_figure
 
 __all__ = [
     "Screw",

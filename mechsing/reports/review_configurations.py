@@ -13,11 +13,11 @@ from mechsing.analysis.html import VERDICT_HEADERS
 from mechsing.analysis.words import explain, margin_text
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, floored, to_float
-from mechsing.report import document as doc
-from mechsing.report.figures import grid_figure, path_figure, svg
-from mechsing.report.render import joint_values_text
-from mechsing.report.sketch import Screw, View, choose_view, sketch_figure
-from mechsing.report.sphere import choose_sphere_view, sphere_figure, spherical_centre
+from mechsing.reports import document as doc
+from mechsing.reports.figures import grid_figure, path_figure, svg
+from mechsing.reports.render import joint_values_text
+from mechsing.reports.sketch import Screw, View, choose_view, sketch_figure
+from mechsing.reports.sphere import choose_sphere_view, sphere_figure, spherical_centre
 from mechsing.singularity.findings import ConstraintFinding, MotionFinding, SerialFinding
 from mechsing.sweeps import SweepResult
 from mechsing.sweeps.results import located_rows
