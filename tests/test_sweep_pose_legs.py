@@ -223,8 +223,8 @@ def test_the_closure_singular_values_from_the_gram_matrix_where_it_is_far_from_s
     built with known singular values (random orthogonal factors), the first within their
     bound (30 eps / (2 rho^2) relative, rho the smallest relative one), the others the
     SVD's exactly."""
-    from mechsing.numeric import SWEEP_GRAM_RATIO
     from mechsing.sweeps.measures import _singular_values
+    from mechsing.sweeps.settings import SWEEP_GRAM_RATIO
 
     rng = np.random.default_rng(7)
     k = 30

@@ -361,7 +361,7 @@ def add_duration_option(p: argparse.ArgumentParser) -> None:
 
 
 def _seconds(text: str) -> float:
-    from mechsing.numeric import decimal_float
+    from mechsing.numeric.numbers import decimal_float
 
     try:
         x = decimal_float(text)

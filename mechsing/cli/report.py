@@ -100,7 +100,7 @@ def run(args: argparse.Namespace) -> int:
     )
     from mechsing.errors import working_on
     from mechsing.files import check_output
-    from mechsing.report import report
+    from mechsing.reports import report
 
     with working_on(file=args.file):
         path, _ = output_path(args.file, args.output)

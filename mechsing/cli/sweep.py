@@ -145,7 +145,7 @@ def _positive_int(option: str) -> Callable[[str], int]:
 
 
 def _timeout(text: str) -> float:
-    from mechsing.numeric import decimal_float
+    from mechsing.numeric.numbers import decimal_float
     from mechsing.sweeps.distributed import MAX_CONNECT_TIMEOUT
 
     try:
@@ -383,7 +383,7 @@ def _write_runs(args: argparse.Namespace, runs: list[Any], fmt: str, out: IO[str
 
 def _json_text(value: Any) -> str:
     """One JSON value on one line (non-finite floats as null, like every mechsing JSON)."""
-    from mechsing.report.render import _clean
+    from mechsing.reports.render import _clean
 
     return json.dumps(_clean(value), allow_nan=False)
 

@@ -32,7 +32,7 @@ motion happens to be at rest) and whether it is below
 grow as one over the distance to the point.
 
 Owns :class:`TimeLaw`, :class:`TimedSweep` and :func:`attach`; the report's figure is
-:mod:`mechsing.report.dynamics`'.
+:mod:`mechsing.reports.dynamics`'.
 """
 
 from __future__ import annotations

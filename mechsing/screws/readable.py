@@ -24,7 +24,14 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import ECHELON_PIVOT_RTOL, SUPPORT_RTOL
+from mechsing.numeric import SUPPORT_RTOL
+
+#: a reduced row echelon form written to be read (screws.readable.echelon) takes its
+#: pivots in column order, but not one below this fraction of the largest entry still
+#: to eliminate: a smaller pivot would scale its row by more than 1e6 and bring the
+#: data's rounding up to the digits shown (an axis tilted by 3e-8 rad out of a plane is
+#: then read in the plane's own columns; the span is unchanged)
+ECHELON_PIVOT_RTOL = 1e-6
 
 __all__ = ["echelon", "readable_basis", "simplest"]
 

@@ -40,9 +40,9 @@ from mechsing.numeric import (
     SUPPORT_RTOL,
     CommensurateFrame,
     decide_rank,
-    first_nonzero_positive,
     to_float,
 )
+from mechsing.numeric.linalg import first_nonzero_positive
 from mechsing.screws.readable import echelon, simplest
 from mechsing.singularity.criteria.serial import ChainSystem
 from mechsing.singularity.findings import SerialFinding

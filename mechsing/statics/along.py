@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.errors import UserError
-from mechsing.numeric import SWEEP_LOCATE_TOL
+from mechsing.kinematics.settings import SWEEP_LOCATE_TOL
 from mechsing.statics.configuration import kinetostatics_at
 
 __all__ = [

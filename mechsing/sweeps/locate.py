@@ -14,11 +14,11 @@ import numpy as np
 
 from mechsing.kinematics.paths.folds import Fold
 from mechsing.kinematics.paths.problem import Problem
-from mechsing.numeric import SWEEP_MINIMUM_SCREEN, Precision
-from mechsing.numeric.tolerances import SWEEP_FOLD_TEST_RTOL
+from mechsing.numeric import Precision
 from mechsing.sweeps.measures import Measures, PointMeasures
 from mechsing.sweeps.records import Located, Refined, RowPairs, RowSamples, located_at
 from mechsing.sweeps.refine import Refiner
+from mechsing.sweeps.settings import SWEEP_FOLD_TEST_RTOL, SWEEP_MINIMUM_SCREEN
 
 __all__ = ["Locator", "measured"]
 

@@ -57,8 +57,9 @@ from typing import Any
 import numpy as np
 
 from mechsing.kinematics import forward
-from mechsing.numeric import SWEEP_GRAM_RATIO, SWEEP_SCREEN_ROUNDING, relative_singular_values
+from mechsing.numeric import relative_singular_values
 from mechsing.singularity.criteria import ClosureTest, ConstraintTest, Criterion, MotionTest
+from mechsing.sweeps.settings import SWEEP_GRAM_RATIO, SWEEP_SCREEN_ROUNDING
 
 __all__ = ["SIGNED", "TESTS", "Measures", "PointMeasures"]
 

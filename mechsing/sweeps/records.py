@@ -15,8 +15,8 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from mechsing.kinematics.paths.trace import PathTrace
-from mechsing.numeric import SWEEP_LOCATE_TOL
-from mechsing.numeric.tolerances import SWEEP_MERGE_FACTOR, SWEEP_MERGE_RTOL
+from mechsing.kinematics.settings import SWEEP_LOCATE_TOL
+from mechsing.sweeps.settings import SWEEP_MERGE_FACTOR, SWEEP_MERGE_RTOL
 
 if TYPE_CHECKING:
     from mechsing.sweeps.measures import PointMeasures

@@ -1,7 +1,7 @@
 """Refining a located singularity between samples of a sweep: where exactly it lies.
 
 Owns :class:`Refiner`: given two closed samples that bracket a singularity of one test,
-it places the singular point to :data:`~mechsing.numeric.SWEEP_LOCATE_TOL` in the swept
+it places the singular point to :data:`~mechsing.sweeps.settings.SWEEP_LOCATE_TOL` in the swept
 value:
 
 * a sign change of the test's compressed determinant, by the Illinois variant of regula
@@ -24,15 +24,15 @@ import numpy as np
 from mechsing.errors import ClosureError
 from mechsing.kinematics.paths.nodes import reach_node
 from mechsing.kinematics.paths.problem import Problem
-from mechsing.numeric import (
-    SWEEP_BRANCH_OFFSET,
-    SWEEP_JUMP_RATIO,
-    SWEEP_LOCATE_TOL,
-    Precision,
-)
-from mechsing.numeric.tolerances import SWEEP_BRANCH_FIT_RTOL, SWEEP_BRANCH_ROOT_IMAG
+from mechsing.kinematics.settings import SWEEP_JUMP_RATIO, SWEEP_LOCATE_TOL
+from mechsing.numeric import Precision
 from mechsing.sweeps.measures import Measures, PointMeasures
 from mechsing.sweeps.records import Refined
+from mechsing.sweeps.settings import (
+    SWEEP_BRANCH_FIT_RTOL,
+    SWEEP_BRANCH_OFFSET,
+    SWEEP_BRANCH_ROOT_IMAG,
+)
 
 __all__ = ["Refiner"]
 

@@ -18,10 +18,12 @@ import numpy as np
 
 from mechsing.analysis import ConfigurationResult
 from mechsing.analysis.contract import finding_class, finding_margin
+from mechsing.analysis.display import quantity, unit_text
 from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
 from mechsing.analysis.words import finding_label
 from mechsing.model import Mechanism
-from mechsing.numeric import SWEEP_TIE_RTOL, floored
+from mechsing.numeric import floored
+from mechsing.sweeps.settings import SWEEP_TIE_RTOL
 
 __all__ = [
     "LocatedSingularity",
@@ -47,16 +49,16 @@ class SweptVariable:
     factor: float
     values: np.ndarray = field(repr=False, compare=False)
     range: tuple[float, float, float] = (0.0, 0.0, 0.0)  # start, stop, step (file units)
-    #: the display floor in the SI unit (:func:`mechsing.numeric.display_floor`): a value
-    #: below it is round-off and is shown as 0
+    #: the display floor in the SI unit (:func:`mechsing.analysis.display.floor_for`): a
+    #: value below it is round-off and is shown as 0
     floor: float = field(default=0.0, compare=False)
 
     def shown(self, si: float) -> str:
         """A value in the file's units (and in SI when they differ), 0 below the floor."""
         si = floored(si, self.floor)
-        text = f"{si / self.factor:.10g} {self.file_unit}"
+        text = quantity(si / self.factor, self.file_unit, spec=".10g")
         if self.file_unit != self.unit:
-            text += f" ({si:.10g} {self.unit})"
+            text += f" ({quantity(si, self.unit, spec='.10g')})"
         return text
 
     def to_json(self) -> dict[str, Any]:
@@ -392,7 +394,7 @@ def text_report(r: SweepResult) -> str:
     lines = []
     kind = "grid" if r.grid else "path"
     what = " x ".join(
-        f"{v.name} from {v.range[0]:g} to {v.range[1]:g} {v.file_unit} by {v.range[2]:g}"
+        f"{v.name} from {v.range[0]:g} to {v.range[1]:g} {unit_text(v.file_unit)} by {v.range[2]:g}"
         for v in r.variables
     )
     on = "" if r.mode is None else f" on its assembly mode {r.mode}"

@@ -17,9 +17,10 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.analysis.display import angle_floor, floor_for
 from mechsing.errors import UserError, working_on
 from mechsing.model import Mechanism
-from mechsing.numeric import Precision, display_floor, parse_precision
+from mechsing.numeric import Precision, parse_precision
 from mechsing.reader import read_mechanism
 from mechsing.singularity.zfb import not_run_sentences
 from mechsing.sweeps.classify import classify_located, located_texts, unresolved
@@ -177,7 +178,7 @@ class SweepRun:
         self.tests = eng.tests
         self.generic = {t: int(eng.measures.generic[t]) for t in self.tests}
         L = float(eng.model.length_scale)
-        floor = display_floor(prec, L)
+        floor = floor_for(prec, L)
         self.variables = tuple(
             SweptVariable(
                 v.name,
@@ -186,7 +187,7 @@ class SweepRun:
                 v.factor,
                 v.values,
                 (w.start, w.stop, w.step),
-                floor if v.unit == "m" else floor / L,
+                floor if v.unit == "m" else angle_floor(floor, L),
             )
             for v, w in zip(self.vars, varies, strict=True)
         )

@@ -8,8 +8,8 @@ loop's subgroup in words, the mobility numbers with why they differ), each confi
 (a sketch with the screws of its findings, the findings in sentences with their numbers),
 the sweep (curves or loci) and how it was computed.  This module owns the record, the
 order of the document, its verdict table and its last section; the mechanism's section is
-:mod:`mechsing.report.review_mechanism`'s, the configurations' and the sweep's
-:mod:`mechsing.report.review_configurations`'.  Everything is in SI units and radians
+:mod:`mechsing.reports.review_mechanism`'s, the configurations' and the sweep's
+:mod:`mechsing.reports.review_configurations`'.  Everything is in SI units and radians
 except the swept values of a sweep, which are also shown in the file's units.
 
 The document is deterministic: the same inputs give the same bytes, except the one line
@@ -33,11 +33,11 @@ from mechsing.analysis.words import class_words
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, parse_precision
 from mechsing.reader import read_mechanism
-from mechsing.report import document as doc
-from mechsing.report.dynamics import dynamics_blocks
-from mechsing.report.review_configurations import configuration_sections, sweep_section
-from mechsing.report.review_mechanism import mechanism_section
-from mechsing.report.statics import kinetostatics_blocks
+from mechsing.reports import document as doc
+from mechsing.reports.dynamics import dynamics_blocks
+from mechsing.reports.review_configurations import configuration_sections, sweep_section
+from mechsing.reports.review_mechanism import mechanism_section
+from mechsing.reports.statics import kinetostatics_blocks
 from mechsing.singularity.zfb import not_run_sentences
 from mechsing.statics import with_kinetostatics
 from mechsing.sweeps import SweepResult, sweep
@@ -68,7 +68,7 @@ class Report:
         return self.analysis.mechanism
 
     def blocks(self) -> list[doc.Block]:
-        """The document as blocks (:mod:`mechsing.report.document`)."""
+        """The document as blocks (:mod:`mechsing.reports.document`)."""
         return _blocks(self)
 
     def to_html(self) -> str:
@@ -303,11 +303,11 @@ def _blocks(r: Report) -> list[doc.Block]:
     out += kinetostatics_blocks(r)
     out += dynamics_blocks(r)
     if r.modes is not None:
-        from mechsing.report.modes_section import modes_blocks
+        from mechsing.reports.modes_section import modes_blocks
 
         out += modes_blocks(mech, r.modes, r.analysis.length_scale)
     if r.cusps is not None:
-        from mechsing.report.cusps import cusps_blocks
+        from mechsing.reports.cusps import cusps_blocks
 
         out += cusps_blocks(r.cusps)
     out += _how(r)
