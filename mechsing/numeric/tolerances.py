@@ -428,3 +428,8 @@ CROSSING_RTOL = 1e-9
 #: direction not in the span has an exact zero there); a serial arm's target lies in the
 #: subgroup its end moves in when its part outside that span is below this times its size
 MODE_SPAN_RTOL = 1e-20
+#: a sweep's fold placed again by its own conditions (the closure and the vanishing rate of
+#: the swept value) is kept when its swept value moved by at most this fraction of the
+#: value's unit (1 rad, or L): the path placed it to about 1e-8 along the curve, so its
+#: value to about 1e-16; a larger move is another fold
+SWEEP_FOLD_MOVE_RTOL = 1e-6

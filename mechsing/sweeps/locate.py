@@ -18,7 +18,11 @@ from mechsing.numeric import (
     SWEEP_SCREEN_ROUNDING,
     Precision,
 )
-from mechsing.numeric.tolerances import SWEEP_FOLD_TEST_RTOL, SWEEP_MERGE_FACTOR
+from mechsing.numeric.tolerances import (
+    SWEEP_FOLD_MOVE_RTOL,
+    SWEEP_FOLD_TEST_RTOL,
+    SWEEP_MERGE_FACTOR,
+)
 from mechsing.sweeps.arc import Fold
 from mechsing.sweeps.measures import SIGNED, Measures, PointMeasures
 from mechsing.sweeps.problem import Problem
@@ -110,12 +114,45 @@ class Locator:
 
     def fold(self, f: Fold, index: int, values: np.ndarray) -> Located:
         """The located point of a fold the path of row ``index`` met (through ``values``),
-        listed under the tests whose measure vanishes there."""
+        listed under the tests whose measure vanishes there.  The path places a fold along
+        the swept value, which is quadratic in the distance to it there (float then knows
+        the point only to about 1e-8 along the curve, and a measure that vanishes at the
+        fold keeps that size): the point is placed again by the fold's own conditions
+        (:meth:`Refiner.fold`: Newton on the closure and the vanishing singular value,
+        which is linear in the distance), and kept when it closes and lowers the
+        measures."""
+        z = self._fold_again(f)
+        if z is not f.z:
+            f = Fold(
+                float(z[min(self.cols, key=lambda c: abs(f.z[c] - f.value))]),
+                z,
+                f.direction,
+                f.far_side,
+            )
         pm = self.measures(f.z[None, : self.n])
         vanishing = tuple(t for t in self.tests if pm.ratio[t][0] <= SWEEP_FOLD_TEST_RTOL)
         ratio = min((float(pm.ratio[t][0]) for t in self.tests), default=0.0)
         i = int(np.searchsorted(np.sort(values), f.value)) - 1
         return self.at(f.z, "fold", vanishing, ratio, "row", (index, max(i, 0)), f.far_side)
+
+    def _fold_again(self, f: Fold) -> np.ndarray:
+        """The fold ``f``'s configuration placed by its own conditions (see :meth:`fold`),
+        or ``f.z`` itself when that does not close to the sweep's tolerance, moves the
+        swept value by more than SWEEP_FOLD_MOVE_RTOL of its unit, or does not lower the
+        smallest measure."""
+        pb = self.problem
+        col = min(self.cols, key=lambda c: abs(f.z[c] - f.value))
+        try:
+            z = self.refiner.fold(f.z, col)
+        except (ArithmeticError, ValueError, np.linalg.LinAlgError):
+            return f.z
+        if z is None or not abs(z[col] - f.value) <= SWEEP_FOLD_MOVE_RTOL * pb.scale(col):
+            return f.z
+        before = self.measures(f.z[None, : self.n])
+        after = self.measures(z[None, : self.n])
+        low = min((float(before.ratio[t][0]) for t in self.tests), default=0.0)
+        low2 = min((float(after.ratio[t][0]) for t in self.tests), default=0.0)
+        return z if low2 < low else f.z
 
     def at(
         self,
