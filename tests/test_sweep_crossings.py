@@ -8,6 +8,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from mechsing.sweeps import sweep
 
@@ -113,3 +114,34 @@ def test_3rpr_type_ii_line_on_a_sampled_row_is_one_locus(tmp_path):
     assert all(abs(p.values[1]) < LOCATED for p in out)
     loci = [lc for lc in r.loci if lc.test == "output"]
     assert len(loci) == 1 and len(loci[0].vertices) == 7
+
+
+def _tau_a(a: float, b: float) -> float:
+    """The planar 2R's (links 1 and 0.5) shoulder torque holding the tip force (1, -2):
+    -(J^T f)[0], its Jacobian in closed form."""
+    col = np.array([-np.sin(a) - 0.5 * np.sin(a + b), np.cos(a) + 0.5 * np.cos(a + b)])
+    return -float(col @ np.array([1.0, -2.0]))
+
+
+def test_max_effort_on_a_grid_locates_the_limit_along_every_row(tmp_path):
+    """--max-effort on a grid (refused before): along each row (B held at its sample) the
+    shoulder's |torque| falls to 2.5 where the closed form's root is."""
+    import json
+
+    from scipy.optimize import brentq
+
+    from tests.cli import run_cli
+    from tests.test_statics import PLANAR_2R
+
+    f = tmp_path / "r2.yaml"
+    f.write_text(PLANAR_2R)
+    argv = ["sweep", f, "--vary", "A=0:1.5:0.1", "--vary", "B=0.7:1.11:0.2", "--from", "bent"]
+    r = run_cli([*argv, "--precision", "float", "--format", "json", "--max-effort", "A=2.5"])
+    assert r.status == 0, r.err
+    limits = json.loads(r.out)["effort_limits"]
+    assert len(limits) == 3
+    for lim, b in zip(sorted(limits, key=lambda p: p["values"][1]), (0.7, 0.9, 1.1), strict=True):
+        root = brentq(lambda a, b=b: abs(_tau_a(a, b)) - 2.5, 0.0, 1.5, xtol=1e-14)
+        assert lim["values"][1] == pytest.approx(b, abs=1e-12)
+        assert lim["values"][0] == pytest.approx(root, abs=1e-9)
+        assert abs(lim["efforts"]["A"]) == pytest.approx(2.5, rel=1e-8)

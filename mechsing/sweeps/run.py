@@ -360,8 +360,9 @@ class SweepRun:
                 )
             )
         loci = loci_of(self, out) if self.grid else ()
-        if self.statics is not None and not self.grid:
-            self.statics.locate_limits(eng, self.vars[0].values)
+        if self.statics is not None:
+            rows = self.vars[1].values if self.grid else None
+            self.statics.locate_limits(eng, self.vars[0].values, rows)
         return SweepResult(
             self.mechanism,
             self.variables,
