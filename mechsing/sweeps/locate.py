@@ -340,9 +340,9 @@ class Locator:
                 continue
             M = pm.matrices[t]
             U, V = pm.bases[t]
-            u, v = U[ia][:, :, g - 2], V[ia][:, :, g - 2]
+            u, v = U[ia, :, g - 2], V[ia, :, g - 2]
             Ma = M[ia]
-            second = np.abs(np.einsum("ni,nij,nj->n", u, Ma, v))
+            second = np.abs(np.einsum("ni,ni->n", u, np.einsum("nij,nj->ni", Ma, v)))
             size = np.sqrt(np.einsum("nij,nij->n", Ma, Ma))
             moved = np.zeros(len(ia))
             for lo in range(0, len(ia), _CHUNK):
