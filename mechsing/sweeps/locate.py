@@ -329,7 +329,9 @@ class Locator:
         through zero); 1 at the other pairs.  Which can: ``sigma_(g-1)`` at a is at most
         how far the matrix moved from a to b (Weyl; for an input or output test of a
         closed chain, the operator's rows' move plus the closure kernel's, as
-        :meth:`Measures.compressed_pairs` bounds it), with the roundings."""
+        :meth:`Measures.compressed_pairs` bounds it), with the roundings.  Not for a test
+        whose rows the batch does not keep (a closure of full row rank: read again at
+        every pair they would cost the kinematics again)."""
         out: dict[str, np.ndarray] = {}
         if pm.matrices is None or not len(ia):
             return out
@@ -337,6 +339,12 @@ class Locator:
         for t in self.tests:
             g = self.measures.generic[t]
             if t not in SIGNED or t in pm.deferred or t not in pm.bases or g is None or g < 2:
+                continue
+            rows = pm.matrices.get(f"{t}_rows")
+            if rows is not None and not isinstance(rows, np.ndarray):
+                # rows not kept but computed again where read (a closure of full row
+                # rank: a spatial parallel robot's); reading them at every pair would
+                # cost the kinematics again: its second singular value is not screened
                 continue
             M = pm.matrices[t]
             U, V = pm.bases[t]
@@ -357,9 +365,8 @@ class Locator:
                         np.sqrt(np.einsum("nij,nij->n", D, D)),
                         np.sqrt(np.maximum(apart, 0.0) + SWEEP_SCREEN_ROUNDING * (n + k) * k * eps),
                     )
-                    rows = pm.matrices.get(f"{t}_rows")
                     if rows is not None:
-                        DX = np.asarray(rows[ib[sl]]) - np.asarray(rows[ia[sl]])
+                        DX = rows[ib[sl]] - rows[ia[sl]]
                         moved[sl] += np.sqrt(np.einsum("nij,nij->n", DX, DX))
                 else:
                     D = M[ib[sl]] - Ma[sl]
