@@ -13,6 +13,7 @@ import numpy as np
 
 from mechsing.errors import ClosureError
 from mechsing.numeric import Precision
+from mechsing.sweeps.falling import column_samples
 from mechsing.sweeps.locate import Locator
 from mechsing.sweeps.measures import PointMeasures
 from mechsing.sweeps.path import follow
@@ -54,7 +55,7 @@ def between_rows(
         for t in dets:
             # between two samples both singular for the test its sign is noise (a row's
             # rule, :meth:`Locator._sign_changes`): one end must be regular; an end
-            # decided singular is itself the point (:meth:`Locator.column_samples`)
+            # decided singular is itself the point (:func:`~.falling.column_samples`)
             ends = np.stack([ra.ratio[t][both], rb.ratio[t][both]])
             regular = (ends.max(axis=0) > _TAU_HI) & (ends.min(axis=0) > _TAU_LO)
             hits = np.flatnonzero((dets[t] < 0) & regular)
@@ -84,7 +85,7 @@ def between_rows(
                     z, r = f
                     got.append(loc.at(z, "crossing", (t,), r, "column", (ra.index, int(k))))
             at[t] += len(K)
-        loc.column_samples(ra, rb, got)
+        column_samples(loc, ra, rb, got)
         out.append(got)
     return out
 

@@ -13,24 +13,21 @@ from __future__ import annotations
 import numpy as np
 
 from mechsing.numeric import (
-    SWEEP_LOCATE_TOL,
     SWEEP_MINIMUM_SCREEN,
-    SWEEP_SCREEN_ROUNDING,
     Precision,
 )
 from mechsing.numeric.tolerances import (
     SWEEP_FOLD_MOVE_RTOL,
     SWEEP_FOLD_TEST_RTOL,
-    SWEEP_MERGE_FACTOR,
 )
 from mechsing.sweeps.arc import Fold
-from mechsing.sweeps.measures import SIGNED, Measures, PointMeasures
+from mechsing.sweeps.falling import others_fall, singular_samples
+from mechsing.sweeps.measures import Measures, PointMeasures
 from mechsing.sweeps.problem import Problem
 from mechsing.sweeps.records import (
     Located,
     Refined,
     RowPairs,
-    RowResult,
     RowSamples,
     located_at,
 )
@@ -65,8 +62,9 @@ class Locator:
         self.measures = measures
         self.refiner = Refiner(problem, measures)
         self.n = self.refiner.n
-        #: per row of a grid, its samples listed as singular between rows (:meth:`column_samples`)
-        self._listed: dict[int, set[int]] = {}
+        #: per row of a grid, its samples listed as singular between rows
+        #: (:func:`~mechsing.sweeps.falling.column_samples`)
+        self.listed: dict[int, set[int]] = {}
 
     @property
     def tests(self) -> tuple[str, ...]:
@@ -212,7 +210,7 @@ class Locator:
         dets_all = self.measures.compressed_pairs(pm, ia_all, ib_all)
         # a sign change of a weaker-than-generic pair other than the weakest (the UR5's
         # elbow just past its shoulder): the whole compressed determinant's sign
-        for t, deeper in self._others_fall(pm, ia_all, ib_all).items():
+        for t, deeper in others_fall(self, pm, ia_all, ib_all).items():
             dets_all[t] = np.where(deeper < 0, np.minimum(dets_all[t], deeper), dets_all[t])
         dets: list[dict[str, np.ndarray] | None] = []
         at = 0
@@ -249,134 +247,8 @@ class Locator:
                 self._minima(
                     t, Z, row.reached, row.ratio[t], got.inner, crossed[r], col, index, out
                 )
-                self._singular_samples(t, row, out)
+                singular_samples(self, t, row, out)
         return outs
-
-    def _singular_samples(self, t: str, row: RowSamples, out: list[Located]) -> None:
-        """A row's samples that are themselves singular for test ``t`` (its rank decided
-        below the generic one: the measure at most float's tau_lo) next to a reached
-        sample where it is not (above tau_hi): located at the sample (kind ``sample``)
-        unless a point found there already zeroes the test.  A sign test between such a
-        sample and its neighbour reads a vanishing value whose sign is rounding."""
-        Z, reached, rho, col = row.Z, row.reached, row.ratio[t], row.col
-        K = len(Z)
-        with np.errstate(invalid="ignore"):
-            zero = reached & (rho <= _TAU_LO)
-            regular = reached & (rho > _TAU_HI)
-        beside = np.zeros(K, dtype=bool)
-        beside[1:] |= regular[:-1]
-        beside[:-1] |= regular[1:]
-        for k in np.flatnonzero(zero & beside).tolist():
-            v, w = float(Z[k, col]), SWEEP_MERGE_FACTOR * SWEEP_LOCATE_TOL * self.problem.scale(col)
-            if self._holds(out, t, v - w, v + w, col):
-                continue
-            out.append(self.at(Z[k], "sample", (t,), float(rho[k]), "row", (row.index, k)))
-
-    def column_samples(self, ra: RowResult, rb: RowResult, got: list[Located]) -> None:
-        """The samples of two neighbouring rows of a grid that are singular for a test
-        (measure at most float's tau_lo) where the other row's sample is regular (above
-        tau_hi): located at the sample (kind ``sample``, between the rows; added to
-        ``got``, the pair's points), unless a point found along its row or between these
-        rows lies there and zeroes the test.  A locus along a sampled row (a 3-RPR's type
-        II line rz = 0) crosses the columns at samples, where the sign between the rows
-        reads a vanishing value's rounding.  Each sample is listed once: the pairs of a
-        grid come in row order, and the samples listed are kept per row."""
-        assert ra.Z is not None and rb.Z is not None
-        cx, cy = self.cols[0], self.cols[-1]
-        wx = SWEEP_MERGE_FACTOR * SWEEP_LOCATE_TOL * self.problem.scale(cx)
-        wy = SWEEP_MERGE_FACTOR * SWEEP_LOCATE_TOL * self.problem.scale(cy)
-        for t in self.tests:
-            for sing, other in ((rb, ra), (ra, rb)):
-                assert sing.Z is not None
-                with np.errstate(invalid="ignore"):
-                    zero = (
-                        sing.reached
-                        & other.reached
-                        & (sing.ratio[t] <= _TAU_LO)
-                        & (other.ratio[t] > _TAU_HI)
-                    )
-                listed = self._listed.setdefault(sing.index, set())
-                for k in np.flatnonzero(zero).tolist():
-                    if k in listed:
-                        continue
-                    z = sing.Z[k]
-                    near = [
-                        p
-                        for p in [*got, *sing.located]
-                        if p.z is not None
-                        and abs(p.z[cx] - z[cx]) <= wx
-                        and abs(p.z[cy] - z[cy]) <= wy
-                    ]
-                    if near and any(
-                        t in p.tests
-                        or "closure" in p.tests
-                        or self.refiner.ratio(t, p.z) <= _TAU_HI
-                        for p in near
-                    ):
-                        continue
-                    listed.add(k)
-                    got.append(
-                        self.at(z, "sample", (t,), float(sing.ratio[t][k]), "column", (ra.index, k))
-                    )
-
-    def _others_fall(
-        self, pm: PointMeasures, ia: np.ndarray, ib: np.ndarray
-    ) -> dict[str, np.ndarray]:
-        """Per signed test kept with its singular vectors, at the pairs (ia, ib) of the
-        batch ``pm`` where a singular value other than the weakest can reach zero between
-        a and b, the determinant of b's matrix compressed on a's leading singular vectors
-        (:meth:`Measures.compressed_measured`, whose sign changes when any of them passes
-        through zero); 1 at the other pairs.  Which can: ``sigma_(g-1)`` at a is at most
-        how far the matrix moved from a to b (Weyl; for an input or output test of a
-        closed chain, the operator's rows' move plus the closure kernel's, as
-        :meth:`Measures.compressed_pairs` bounds it), with the roundings.  Not for a test
-        whose rows the batch does not keep (a closure of full row rank: read again at
-        every pair they would cost the kinematics again)."""
-        out: dict[str, np.ndarray] = {}
-        if pm.matrices is None or not len(ia):
-            return out
-        eps = float(np.finfo(float).eps)
-        for t in self.tests:
-            g = self.measures.generic[t]
-            if t not in SIGNED or t in pm.deferred or t not in pm.bases or g is None or g < 2:
-                continue
-            rows = pm.matrices.get(f"{t}_rows")
-            if rows is not None and not isinstance(rows, np.ndarray):
-                # rows not kept but computed again where read (a closure of full row
-                # rank: a spatial parallel robot's); reading them at every pair would
-                # cost the kinematics again: its second singular value is not screened
-                continue
-            M = pm.matrices[t]
-            U, V = pm.bases[t]
-            u, v = U[ia, :, g - 2], V[ia, :, g - 2]
-            Ma = M[ia]
-            second = np.abs(np.einsum("ni,ni->n", u, np.einsum("nij,nj->ni", Ma, v)))
-            size = np.sqrt(np.einsum("nij,nij->n", Ma, Ma))
-            moved = np.zeros(len(ia))
-            for lo in range(0, len(ia), _CHUNK):
-                sl = slice(lo, lo + _CHUNK)
-                if t in ("input", "output") and pm.kernel is not None:
-                    Na, Nb = pm.kernel[ia[sl]], pm.kernel[ib[sl]]
-                    n, k = Na.shape[1:]
-                    W = np.swapaxes(Na, 1, 2) @ Nb
-                    apart = 2 * k - 2 * np.einsum("nij,nij->n", W, W)
-                    D = Nb - Na
-                    moved[sl] = np.minimum(
-                        np.sqrt(np.einsum("nij,nij->n", D, D)),
-                        np.sqrt(np.maximum(apart, 0.0) + SWEEP_SCREEN_ROUNDING * (n + k) * k * eps),
-                    )
-                    if rows is not None:
-                        DX = rows[ib[sl]] - rows[ia[sl]]
-                        moved[sl] += np.sqrt(np.einsum("nij,nij->n", DX, DX))
-                else:
-                    D = M[ib[sl]] - Ma[sl]
-                    moved[sl] = np.sqrt(np.einsum("nij,nij->n", D, D))
-            near = np.flatnonzero(~(second > moved + SWEEP_SCREEN_ROUNDING * eps * size))
-            det = np.ones(len(ia))
-            if len(near):
-                det[near] = self.measures.compressed_measured(pm, ia[near], pm, ib[near])[t]
-            out[t] = det
-        return out
 
     def _sign_changes(
         self,
@@ -415,7 +287,7 @@ class Locator:
             done = [
                 k
                 for k in hits
-                if self._holds(outs[r], t, Z[pairs[k][0], col], Z[pairs[k][1], col], col)
+                if self.holds(outs[r], t, Z[pairs[k][0], col], Z[pairs[k][1], col], col)
             ]
             crossed[r].update(x for k in done for x in pairs[k])
             hits = [k for k in hits if k not in done]
@@ -493,7 +365,7 @@ class Locator:
         for k in np.flatnonzero(low).tolist():
             if k in crossed:
                 continue
-            if self._holds(out, t, Z[k - 1, col], Z[k + 1, col], col):
+            if self.holds(out, t, Z[k - 1, col], Z[k + 1, col], col):
                 continue  # the point located there for another test zeroes this one
             found = None
             if t == "closure":
@@ -504,7 +376,7 @@ class Locator:
                 z, r = found
                 out.append(self.at(z, "minimum", (t,), r, "row", (index, k)))
 
-    def _holds(self, out: list[Located], t: str, va: float, vb: float, col: int) -> bool:
+    def holds(self, out: list[Located], t: str, va: float, vb: float, col: int) -> bool:
         """Whether a point of ``out`` lies between the swept values va and vb and is
         singular for test ``t`` too (its measure below float's tau_hi there), or is a
         singular point of the closure (where the input and output tests' sign, read
