@@ -323,7 +323,8 @@ def add_max_effort_option(p: argparse.ArgumentParser) -> None:
         metavar="INPUT=VALUE",
         help="locate where the input's |effort| under the load (--load or the --from "
         "configuration's) first exceeds VALUE (N for a prismatic input, N m for a rotation); "
-        "reported as an effort limit, not a singularity (repeatable; a path only)",
+        "reported as an effort limit, not a singularity (repeatable; along a path, or along "
+        "each row of a grid)",
     )
 
 

@@ -479,7 +479,8 @@ def _located_line(r: SweepResult, p: LocatedSingularity) -> str:
             " (met on the other assembly mode; the path resumes past it)" if p.far_side else ""
         )
     else:
-        head = f"{where}: {'sign change' if p.kind == 'crossing' else 'minimum'} of {', '.join(p.tests)}"
+        how = {"crossing": "sign change", "sample": "singular sample"}.get(p.kind, "minimum")
+        head = f"{where}: {how} of {', '.join(p.tests)}"
     if p.configuration is None:
         return f"{head} (measure {p.ratio:.2g}; not classified: beyond --max-classified)"
     if p.configuration.error:

@@ -400,8 +400,9 @@ class SweepRun:
                 regular_samples(self.reached, self.rank, self.generic),
                 out,
             )
-        if self.statics is not None and not self.grid:
-            self.statics.locate_limits(eng, self.vars[0].values)
+        if self.statics is not None:
+            rows = self.vars[1].values if self.grid else None
+            self.statics.locate_limits(eng, self.vars[0].values, rows)
         if self.dynamics is not None:
             self.dynamics.locate(out)
         return SweepResult(

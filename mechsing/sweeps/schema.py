@@ -97,7 +97,7 @@ def sweep_schema() -> dict[str, Any]:
         "type": "object",
         "properties": {
             "values": {"$ref": "#/$defs/values"},
-            "kind": {"enum": ["fold", "crossing", "minimum"]},
+            "kind": {"enum": ["fold", "crossing", "minimum", "sample"]},
             "between": {"enum": ["row", "column"]},
             "far_side": {"type": "boolean"},
             "tests": {"type": "array", "items": {"enum": list(TESTS)}},

@@ -85,3 +85,9 @@ SWEEP_RANGE_ATOL = 1e-9
 #: an end of a --vary range within this of a non-zero multiple of pi/2 (in the file's
 #: number) looks like radians in a degree file (3.14 is pi to 0.0016): a warning
 RADIAN_LOOK_ATOL = 0.01
+
+#: a sweep's fold placed again by its own conditions (the closure and the vanishing rate of
+#: the swept value) is kept when its swept value moved by at most this fraction of the
+#: value's unit (1 rad, or L): the path placed it to about 1e-8 along the curve, so its
+#: value to about 1e-16; a larger move is another fold
+SWEEP_FOLD_MOVE_RTOL = 1e-6
