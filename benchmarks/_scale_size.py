@@ -18,8 +18,8 @@ files in a temporary folder:
 
 Each analysis runs in a child process, which reports its time (reading the
 file and the analysis; not the interpreter's start nor mechsing's import) and
-its peak resident memory.  The
-growth exponent is the least-squares slope of log(seconds) against
+its peak resident memory (wall and CPU seconds: under load the CPU seconds compare).  The
+growth exponent is the least-squares slope of log(CPU seconds) against
 log(bodies) over each family's sizes.
 """
 
@@ -40,13 +40,13 @@ _CHILD = """
 import json, resource, sys, time
 import mechsing
 import mechsing.analysis
-t = time.perf_counter()
+t, c0 = time.perf_counter(), time.process_time()
 res = mechsing.analyze(sys.argv[1], configs=[sys.argv[2]], precision="float")
-dt = time.perf_counter() - t
+dt, cpu = time.perf_counter() - t, time.process_time() - c0
 c = res.to_json()["configurations"][0]
 kinds = sorted({s["class"] for s in c.get("singularities", [])})
 mob = c.get("mobility", {})
-print(json.dumps({"seconds": dt, "rss": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss,
+print(json.dumps({"seconds": dt, "cpu": cpu, "rss": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss,
                   "classes": kinds, "finite": mob.get("finite"),
                   "instantaneous": mob.get("instantaneous"), "error": c.get("error")}))
 """
@@ -184,8 +184,8 @@ def _exponent(xs: list[float], ys: list[float]) -> float:
 def part_size(repeat: int, quick: bool) -> str:
     """The size table (Markdown): bodies, loops, seconds (median), peak memory, verdict."""
     lines = [
-        "| family | configuration | bodies | loops | seconds | peak MiB | mobility (finite / instantaneous) | classes |",
-        "|---|---|---|---|---|---|---|---|",
+        "| family | configuration | bodies | loops | seconds | CPU s | peak MiB | mobility (finite / instantaneous) | classes |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     fits = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -202,19 +202,22 @@ def part_size(repeat: int, quick: bool) -> str:
                     n_loops = size if family != "six-bar" else 2 * size
                     runs = [_run(path, config) for _ in range(repeat)]
                     sec = statistics.median(r["seconds"] for r in runs)
+                    cpu = statistics.median(r["cpu"] for r in runs)
                     rss = max(r["rss"] for r in runs) / 1024
                     r = runs[0]
                     verdict = r["error"] or ", ".join(r["classes"]) or "regular"
                     lines.append(
-                        f"| {family} | {config} | {n_bodies} | {n_loops} | {sec:.2f} | {rss:.0f} "
+                        f"| {family} | {config} | {n_bodies} | {n_loops} | {sec:.2f} | {cpu:.2f} | {rss:.0f} "
                         f"| {r['finite']} / {r['instantaneous']} | {verdict} |"
                     )
                     xs.append(n_bodies)
-                    ys.append(sec)
+                    ys.append(cpu)
                     print(lines[-1], file=sys.stderr, flush=True)
                 if len(xs) >= 2:
                     fits.append(f"{family} {config}: {_exponent(xs, ys):.2f}")
-    return "\n".join(lines) + "\n\nFitted growth exponent (seconds ~ bodies^k): " + "; ".join(fits)
+    return (
+        "\n".join(lines) + "\n\nFitted growth exponent (CPU seconds ~ bodies^k): " + "; ".join(fits)
+    )
 
 
 _SWEEP_CHILD = """

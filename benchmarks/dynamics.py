@@ -1,9 +1,11 @@
 """Batched inverse dynamics: mechsing's recursive Newton-Euler on twists and wrenches of D
 (``mechsing.kinetics.tree.TreeDynamics.inverse`` on all the samples at once) against a
 Python loop over ``pinocchio.rnea``, one call per sample: 10,000 random samples (joint
-values, rates and accelerations) of the UR5 of ``examples/ur5.urdf`` and of a 7-joint arm
-(the one of tests/test_dynamics_tree.py: synthetic inertials; no Panda URDF with inertials
-ships with mechsing and example-robot-data is not a dependency), with gravity.  Both are
+values, rates and accelerations) of the UR5 of ``examples/ur5.urdf``, of a 7-joint arm
+(the one of tests/test_dynamics_tree.py: synthetic inertials) and of example-robot-data's
+Panda (its URDF with the published inertials; the two finger joints, a prismatic joint and
+its mimic, are made fixed in both models: mechsing's dynamics takes no coupled joints; the
+row is left out, with a note, when example-robot-data is not installed), with gravity.  Both are
 timed in turn, round by round, CPU time, medians; the efforts must agree to 1e-10
 relative (checked and printed).
 
@@ -39,10 +41,28 @@ def arm7() -> str:
     return ARM7
 
 
+def panda() -> str | None:
+    """example-robot-data's Panda URDF with its fingers fixed, or None when the package is
+    not installed (the ``bench`` extra installs it)."""
+    import re
+
+    from robots import urdfs
+
+    try:
+        found = [p for p in urdfs() if p.name == "panda.urdf" and "panda_description" in str(p)]
+    except SystemExit:
+        return None
+    text = found[0].read_text()
+    text = re.sub(r'(<joint name="panda_finger_joint[12]" type=)"prismatic"', r'\1"fixed"', text)
+    return re.sub(r"<mimic[^>]*/>", "", text)
+
+
 def run(name: str, text: str, samples: int, repeat: int) -> dict:
     import pinocchio as pin
 
-    td = TreeDynamics(KinematicModel(mechanism_from_text(text, path=f"{name}.urdf"), "float"), GRAVITY)
+    td = TreeDynamics(
+        KinematicModel(mechanism_from_text(text, path=f"{name}.urdf"), "float"), GRAVITY
+    )
     pm = pin.buildModelFromXML(text)
     pm.gravity.linear = np.array(GRAVITY)
     pd = pm.createData()
@@ -63,7 +83,9 @@ def run(name: str, text: str, samples: int, repeat: int) -> dict:
             out[i] = pin.rnea(pm, pd, Qp[i], Vp[i], Ap[i])
         return out[:, order]
 
-    (t_ours, tau), (t_pin, tau_pin) = timed_medians_interleaved([ours, theirs], repeat, warmup=1, cpu=True)
+    (t_ours, tau), (t_pin, tau_pin) = timed_medians_interleaved(
+        [ours, theirs], repeat, warmup=1, cpu=True
+    )
     err = np.linalg.norm(tau - tau_pin, axis=1) / np.maximum(np.linalg.norm(tau_pin, axis=1), 1.0)
     return {
         "name": name,
@@ -85,7 +107,14 @@ def main() -> None:
         run("ur5", (ROOT / "examples" / "ur5.urdf").read_text(), args.samples, args.repeat),
         run("arm7", arm7(), args.samples, args.repeat),
     ]
-    print("| arm | joints | samples | mechsing samples/s | pinocchio loop samples/s | ratio | worst relative difference |")
+    text = panda()
+    if text is None:
+        print("no Panda row: example-robot-data is not installed (pip install -e '.[bench]')")
+    else:
+        rows.append(run("panda", text, args.samples, args.repeat))
+    print(
+        "| arm | joints | samples | mechsing samples/s | pinocchio loop samples/s | ratio | worst relative difference |"
+    )
     print("|---|---|---|---|---|---|---|")
     for r in rows:
         print(

@@ -42,7 +42,7 @@ _FUNCTIONS = {
     "dynamics": ("mechsing.kinetics", "dynamics"),
     "load": ("mechsing.reader", "read_mechanism"),  # any format: YAML, JSON, DH, URDF, MJCF
     "modes": ("mechsing.assembly", "modes"),
-    "report": ("mechsing.report", "report"),
+    "report": ("mechsing.reports", "report"),
     "scan": ("mechsing.sweeps.scan", "scan"),
     "sweep": ("mechsing.sweeps", "sweep"),
     "cusps": ("mechsing.assembly.cusps", "cusps"),

@@ -13,6 +13,8 @@
   commensurate metric (characteristic length, centroid, planar reduced coordinates).
 * :data:`CENTRED_SLIDER_CRANK_MM`: a centred slider-crank in millimetres whose pivots are not
   on a coordinate line in the drawn pose (the condition and serial-finding tests).
+* :data:`NON_GRASHOF_ROCKER`, :data:`PLANAR_3R_POINT`: mechanisms several test modules use
+  (one text each, a test adding its own configurations).
 """
 
 from __future__ import annotations
@@ -538,3 +540,28 @@ CUSPIDAL_3RPR_REST = ("2*sqrt(13)", "3*sqrt(69241)/100", "sqrt(89411797383760164
 #: base and platform points (the platform's in its own frame, B1 at its origin)
 CUSPIDAL_3RPR_BASE = ((0, 0), ("1591/100", 0), (0, 10))
 CUSPIDAL_3RPR_PLATFORM = ((0, 0), ("426/25", 0), ("375913/28400", "160967085/10000000"))
+
+#: a non-Grashof four-bar in degrees (2 + 4 > 3 + sqrt 5): the crank AB (2, drawn along y)
+#: stops where B, C and D line up; input A (no configurations: a test adds its own)
+NON_GRASHOF_ROCKER = """\
+mechanism: rocker
+units: {angle: deg}
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler], axis: [0, 0, 1], point: [0, 2, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
+  - {name: D, type: R, between: [rocker, ground], axis: [0, 0, 1], point: [4, 0, 0]}
+inputs: [A]
+"""
+
+#: a planar 3R arm whose output is the point at the end of its last link (unit links)
+PLANAR_3R_POINT = """\
+mechanism: planar-3r-point
+bodies: [base, l1, l2, l3]
+joints:
+  - {name: R1, type: R, between: [base, l1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: R2, type: R, between: [l1, l2], axis: [0, 0, 1], point: [1, 0, 0]}
+  - {name: R3, type: R, between: [l2, l3], axis: [0, 0, 1], point: [2, 0, 0]}
+output: {body: l3, point: [3, 0, 0]}
+"""

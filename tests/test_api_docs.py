@@ -29,7 +29,7 @@ DOCUMENTED_MODULES = (
     "mechsing.analysis.solve",
     "mechsing.sweeps",
     "mechsing.sweeps.scan",
-    "mechsing.report.review",
+    "mechsing.reports.review",
     "mechsing.conditions.results",
     "mechsing.singularity.findings",
     "mechsing.lie",
@@ -67,8 +67,7 @@ def _anchors(html: Path) -> set[str]:
 def _anchors_of(module: types.ModuleType, name: str) -> set[str]:
     """The ids Sphinx may give the documentation of ``module.name``: ``module-X`` for a
     module, else its dotted name there, or ``mechsing.NAME`` for a function of
-    ``mechsing.__all__`` (documented once, under the name a user calls it by;
-    ``mechsing.report`` is also a package, made callable)."""
+    ``mechsing.__all__`` (documented once, under the name a user calls it by)."""
     import mechsing
 
     if name in mechsing.__all__ and callable(getattr(mechsing, name)):

@@ -16,7 +16,7 @@ from mechsing.analysis import analyze
 from mechsing.analysis.contract import subgroup_json, subgroup_params, to_json
 from mechsing.analysis.words import explain
 from mechsing.numeric import Margin
-from mechsing.report.render import render_text
+from mechsing.reports.render import render_text
 from mechsing.singularity.findings import (
     ConstraintFinding,
     MotionFinding,

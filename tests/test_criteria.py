@@ -22,20 +22,10 @@ from mechsing.model.loader import loads
 from mechsing.numeric import Precision, parse_precision, rank_bounds, to_float
 from mechsing.screws import closure_system
 from mechsing.singularity.criteria import ConstraintTest, MotionTest, SerialTest
+from tests.mechanisms import PLANAR_3R_POINT
 
 PACKAGE = Path(__file__).resolve().parents[1] / "mechsing"
 EX = PACKAGE.parent / "examples"
-
-#: a planar 3R arm whose output is the point at the end of its last link (unit links)
-PLANAR_3R_POINT = """\
-mechanism: planar-3r-point
-bodies: [base, l1, l2, l3]
-joints:
-  - {name: R1, type: R, between: [base, l1], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: R2, type: R, between: [l1, l2], axis: [0, 0, 1], point: [1, 0, 0]}
-  - {name: R3, type: R, between: [l2, l3], axis: [0, 0, 1], point: [2, 0, 0]}
-output: {body: l3, point: [3, 0, 0]}
-"""
 
 
 def test_the_rank_rule_counts_the_two_thresholds_over_any_batch_shape():

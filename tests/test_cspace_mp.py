@@ -28,7 +28,7 @@ import pytest
 
 from mechsing import numeric
 from mechsing.analysis import analyze
-from mechsing.numeric import Precision
+from mechsing.numeric import Precision, linalg
 from mechsing.singularity.cspace import Expansion, LoopChain, _zero_set, tangent_cone
 from tests import families as fam
 from tests.mechanisms import assert_same_lines, by_name, classes, finding, normalised, write
@@ -117,25 +117,25 @@ def test_generic_factorisations_keep_every_digit_at_mp() -> None:
             ],
             dtype=object,
         )
-        U, s, Vt = numeric.svd(A)
+        U, s, Vt = linalg.svd(A)
         assert U.dtype == object and isinstance(s[0], mpmath.mpf)
         assert list(s) == sorted(s, reverse=True)
         S = np.zeros((4, 3), dtype=object)
         S.fill(mpmath.mpf(0))
         for i in range(3):
             S[i, i] = s[i]
-        assert numeric.max_abs(U @ S @ Vt - A) < mpmath.mpf(10) ** -45
-        assert numeric.max_abs(U.T @ U - np.eye(4)) < mpmath.mpf(10) ** -45
+        assert linalg.max_abs(U @ S @ Vt - A) < mpmath.mpf(10) ** -45
+        assert linalg.max_abs(U.T @ U - np.eye(4)) < mpmath.mpf(10) ** -45
         Sym = A.T @ A
-        w, V = numeric.eigh(Sym)
+        w, V = linalg.eigh(Sym)
         assert list(w) == sorted(w)
         for i in range(3):
-            assert numeric.norm(Sym @ V[:, i] - w[i] * V[:, i]) < mpmath.mpf(10) ** -45
-        Q = numeric.orthonormal_columns(A)
-        assert Q.shape == (4, 3) and numeric.max_abs(Q.T @ Q - np.eye(3)) < mpmath.mpf(10) ** -45
+            assert linalg.norm(Sym @ V[:, i] - w[i] * V[:, i]) < mpmath.mpf(10) ** -45
+        Q = linalg.orthonormal_columns(A)
+        assert Q.shape == (4, 3) and linalg.max_abs(Q.T @ Q - np.eye(3)) < mpmath.mpf(10) ** -45
         b = A @ np.array([mpmath.mpf(1), mpmath.mpf(-2), mpmath.mpf(3)], dtype=object)
-        x = numeric.lstsq(A, b)
-        assert numeric.max_abs(x - np.array([1, -2, 3])) < mpmath.mpf(10) ** -40
+        x = linalg.lstsq(A, b)
+        assert linalg.max_abs(x - np.array([1, -2, 3])) < mpmath.mpf(10) ** -40
 
 
 # ----------------------------------------------------------------------------- 2. the cone machinery
@@ -171,7 +171,7 @@ def test_form_float_cannot_decide_is_decided_at_mp() -> None:
     with prec.context():
         for line in lines:
             v = np.array(line, dtype=object) / mpmath.sqrt(line[0] ** 2 + line[1] ** 2)
-            dist = min(numeric.norm(v - S[:, 0] * (S[:, 0] @ v)) for S in subs)
+            dist = min(linalg.norm(v - S[:, 0] * (S[:, 0] @ v)) for S in subs)
             assert dist < mpmath.mpf(10) ** -25
 
 
@@ -208,7 +208,7 @@ def test_tangent_cone_of_a_folded_parallelogram_at_mp(prec: Precision) -> None:
     with prec.context():
         for t in expected:
             v = np.array(t, dtype=object) / mpmath.sqrt(sum(x * x for x in t))
-            dist = min(numeric.norm(v - W[:, 0] * (W[:, 0] @ v)) for W in cone.subspaces)
+            dist = min(linalg.norm(v - W[:, 0] * (W[:, 0] @ v)) for W in cone.subspaces)
             assert dist < mpmath.mpf(10) ** (-(prec.digits // 2))
 
 

@@ -260,7 +260,7 @@ def test_the_figure_has_one_colour_band_per_count_and_its_legend_off_the_section
     """A hand-written section (counts 0, 2 and 4 on a 3 x 3 grid, one cusp at the
     centre): the colour bar reads 0, 2, 4, one colour each, nothing between; the
     legend lies below the axes, so no cusp is under it."""
-    from mechsing.report.cusps import cusps_figure
+    from mechsing.reports.cusps import cusps_figure
 
     doc = {
         "mechanism": "hand-made",
@@ -285,7 +285,7 @@ def test_the_figure_has_one_colour_band_per_count_and_its_legend_off_the_section
 def test_the_figure_of_a_decoupled_arm_says_why_it_is_empty(tmp_path: Path) -> None:
     """The PUMA-like arm (first two axes meet: its inverse kinematics decouples, no cusp
     anywhere) is decided without a grid: the figure says so, its axes in metres."""
-    from mechsing.report.cusps import cusps_figure
+    from mechsing.reports.cusps import cusps_figure
 
     doc = _cusps(_write(tmp_path, "puma3.yaml", PUMA_3R), "rho=0:6,z=-5:5")
     assert doc["evidence"]["kind"] == "decoupled"

@@ -63,6 +63,7 @@ EXPECTED = {
     # its parity: tests/test_scale.py::test_block_svd_equals_the_dense_svd (with the
     # block-diagonal matrices of that module)
     "factorisation": {"blocks"},
+    "sweep test factors": {"values first"},
 }
 
 
@@ -534,3 +535,40 @@ def test_inverse_dynamics_table_parity(form: str) -> None:
             fast = td.inverse(Q, V, A, gravity)
             slow = generic(td.inverse, Q, V, A, gravity)
             assert np.all(np.abs(fast - slow) <= 1e-13 * np.maximum(1.0, np.abs(slow).max()))
+
+
+# --------------------------------------------------------------- table sweep test factors
+
+
+def test_sweep_values_first_parity() -> None:
+    """A sweep test's singular values without its vectors: numpy's thin SVD's own values
+    (bit for bit) at the matrices near a rank decision (the g-th value under 5% of the
+    largest, or a later one neither negligible nor large), the same values to a few eps
+    elsewhere; the vectors, read later, are the thin SVD's of the same matrix."""
+    from mechsing.sweeps import factors
+
+    rng = np.random.default_rng(23)
+    A = rng.normal(size=(400, 6, 6))
+    # rank 5 (a zero singular value), a small sixth one, a small fifth one
+    A[:100, :, 5] = A[:100, :, :5] @ rng.normal(size=5)
+    A[100:200, :, 5] = A[100:200, :, :5] @ rng.normal(size=5) + 1e-6 * rng.normal(size=(100, 6))
+    A[200:250, :, 4] = A[200:250, :, 3] + 1e-7 * rng.normal(size=(50, 6))
+    form = dispatch.table("sweep test factors").get("values first")
+    for g, unit in ((5, False), (6, False), (5, True)):
+        got = form(A, g, unit)
+        want = np.linalg.svd(A, full_matrices=False)[1]
+        rel = want / want[:, :1]
+        near = rel[:, g - 1] < 0.05
+        if g < 6:
+            near |= (rel[:, g:] > 1e-13).any(axis=1) & (rel[:, g:] < 0.05).any(axis=1)
+        if unit:
+            near |= want[:, g - 1] < 0.05
+        assert near[100:250].all()
+        _same(got[near], want[near])
+        assert np.allclose(got[~near], want[~near], rtol=1e-13, atol=1e-15 * want[~near, :1])
+    # a matrix's values are the same in any batch (a grid's rows alone or together)
+    _same(form(A[95:105], 5, False), form(A, 5, False)[95:105])
+    # the generic definition with the fast paths off
+    with dispatch.fast_paths(False):
+        assert dispatch.table("sweep test factors").pick(A, 5, False) is None
+    assert factors.VALUES is dispatch.table("sweep test factors")

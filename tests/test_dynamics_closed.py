@@ -7,7 +7,9 @@ at rest without gravity can), and the input effort growing as 1/distance approac
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
+import mpmath
 import numpy as np
 import pytest
 import sympy as sp
@@ -36,6 +38,16 @@ CONFIGS
 REFERENCE = FourBar(
     {"crank": (1, (0.5, 0), 0.09), "coupler": (2, (2, 1), 1.3), "rocker": (1.5, (3.5, 1), 0.6)},
     (0, sp.Rational(-981, 100)),
+)
+#: the same with the file's decimals as exact rationals (the 50-digit comparisons)
+R = sp.Rational
+EXACT = FourBar(
+    {
+        "crank": (1, (R(1, 2), 0), R(9, 100)),
+        "coupler": (2, (2, 1), R(13, 10)),
+        "rocker": (R(3, 2), (R(7, 2), 1), R(3, 5)),
+    },
+    (0, R(-981, 100)),
 )
 #: the crank's dead point when the rocker drives: crank and coupler in line, |AC| = 1 + 2 sqrt(2)
 DEAD = math.acos(((1 + 2 * math.sqrt(2)) ** 2 + 16 - 5) / 8 / (1 + 2 * math.sqrt(2)))
@@ -92,9 +104,54 @@ def test_forward_dynamics_of_a_four_bar_inverts_the_lagrangian() -> None:
         assert abs(c.efforts["A"] - tau) <= 1e-10 * abs(tau)
 
 
-def test_a_closed_chain_at_mp_is_refused_with_the_reason() -> None:
-    with pytest.raises(mechsing.errors.UserError, match="computed in float"):
-        mechsing.dynamics(_fourbar("A", ANGLES), precision="mp:30")
+def _closed_at(mech: object, name: str, precision: str, rate: object, acc: object) -> object:
+    """The crank's motion and efforts at ``name`` in ``precision`` (kinetics.closed)."""
+    from mechsing.kinematics import solve_configuration
+    from mechsing.kinetics.closed import closed_inverse
+    from mechsing.kinetics.tree import TreeDynamics
+    from mechsing.numeric import parse_precision
+
+    prec = parse_precision(precision)
+    model, closed = solve_configuration(mech, name, prec)
+    with prec.context():
+        td = TreeDynamics(model, None, closed=True)
+        k = model.joint("A").columns.start
+        one = model.asarray([rate, acc])
+        return closed_inverse(td, closed.q, [k], one[:1], one[1:]), k
+
+
+@pytest.mark.parametrize("acc", [0, sp.Rational(1, 2)])
+def test_crank_torque_at_50_digits_is_the_lagrangian(acc: object) -> None:
+    """A closed chain in mp:50: the crank's torque at 2 rad/s to 1e-40 (the configuration
+    A = 3/10 exactly, the sympy Lagrangian evaluated at 60 digits)."""
+    mech = _fourbar("A", {"a03": "3/10", "a17": "17/10"})
+    with mpmath.workdps(50):
+        for name, theta in (("a03", sp.Rational(3, 10)), ("a17", sp.Rational(17, 10))):
+            res, k = _closed_at(mech, name, "mp:50", 2, acc)
+            want = mpmath.mpf(str(EXACT.torque(sp.Float(theta, 80), 2, acc, digits=60)))
+            got = res.efforts[k]
+            assert isinstance(got, mpmath.mpf)
+            assert abs(got - want) <= mpmath.mpf("1e-40") * max(1, abs(want))
+            assert res.residual <= 1e-40
+
+
+def test_crank_torque_in_exact_mode_at_the_drawn_pose() -> None:
+    """Exact mode: at the drawn pose (crank angle 0, every position rational) the torque
+    is the Lagrangian's exactly (compared at 40 digits)."""
+    text = FOURBAR.replace("INPUT", "A").replace("CONFIGS", "  drawn: {A: 0, B: 0, C: 0, D: 0}")
+    mech = loads(text, path="fourbar.yaml")
+    res, k = _closed_at(mech, "drawn", "exact", 2, sp.Rational(1, 2))
+    want = EXACT.torque(sp.Float(0, 80), 2, sp.Rational(1, 2), digits=50)
+    assert abs(sp.N(sp.sympify(res.efforts[k]) - want, 50)) <= sp.Float("1e-40")
+    assert res.residual == 0
+
+
+def test_a_closed_chain_at_its_type_ii_in_mp_is_refused_with_the_reason() -> None:
+    """At the crank's dead point the rocker cannot drive: in mp the balance is singular."""
+    mech = _fourbar("D", {"dead": "acos(((1 + 2*sqrt(2))**2 + 11)/8/(1 + 2*sqrt(2)))"})
+    with pytest.raises(mechsing.errors.UserError, match="--precision float"):
+        mechsing.dynamics(mech, "dead", precision="mp:30")
+    assert mechsing.dynamics(mech, "dead", precision="float").configurations[0].crossing
 
 
 SLIDER_CRANK = """\
@@ -137,3 +194,79 @@ def test_slider_crank_torque_is_the_lagrangian(acc: float) -> None:
         want = float(ref.torque(sp.Float(c.joints["A"], 30), 3, sp.Float(acc)))
         assert abs(c.efforts["A"] - want) <= 1e-10 * max(1.0, abs(want))
         assert c.efforts["P"] == 0
+
+
+def test_slider_crank_torque_at_50_digits_is_the_lagrangian() -> None:
+    """A loop with a prismatic joint (a length column of the closure's rows) in mp:50."""
+    from tests.reference.fourbar import SliderCrank
+
+    R = sp.Rational
+    mech = loads(SLIDER_CRANK.replace("CONFIGS", "  s1: {A: '2/5'}"), path="slider.yaml")
+    ref = SliderCrank(
+        {
+            "crank": (R(6, 5), (0, R(1, 2)), R(1, 10)),
+            "rod": (2, (R(7, 5), R(1, 2)), R(3, 2)),
+            "slider": (3, (R(29, 10), 0), 0),
+        },
+        (0, R(-981, 100)),
+    )
+    with mpmath.workdps(50):
+        res, k = _closed_at(mech, "s1", "mp:50", 3, R(-3, 2))
+        want = mpmath.mpf(str(ref.torque(sp.Float(R(2, 5), 80), 3, R(-3, 2), digits=60)))
+        assert abs(res.efforts[k] - want) <= mpmath.mpf("1e-40") * max(1, abs(want))
+
+
+RPR = (
+    (Path(__file__).resolve().parents[1] / "examples" / "planar_3rpr.yaml")
+    .read_text()
+    .replace(
+        "configurations:",
+        "mass:\n  platform: {kg: 3, centre: [1, '6/5', 0], inertia: [0.2, 0.2, 0.4, 0, 0, 0]}\n"
+        "gravity: [0, '-981/100', 0]\nconfigurations:",
+    )
+)
+
+
+@pytest.mark.parametrize("precision", ["float", "mp:50"])
+def test_3rpr_holds_its_platform_by_forces_along_the_three_legs(precision: str) -> None:
+    """Two loops with prismatic inputs, at rest at the drawn pose under gravity: the legs
+    are massless with a pin at each end, so each pushes the platform along its line with
+    its actuator's force f_i; the platform's balance (force and moment about its centre)
+    is a 3x3 linear system, solved here in mpmath at 60 digits."""
+    mech = loads(RPR, path="rpr.yaml")
+    with mpmath.workdps(60):
+        f = mpmath.mpf
+        base = [(0, 0), (4, 0), (0, 4)]
+        pins = [(f(9) / 10, f(3) / 10), (f(5) / 2, f(3) / 2), (-f(3) / 10, f(19) / 10)]
+        centre = (f(1), f(6) / 5)
+        rows = [[], [], []]
+        for (bx, by), (px, py) in zip(base, pins, strict=True):
+            ux, uy = px - bx, py - by
+            n = mpmath.sqrt(ux**2 + uy**2)
+            ux, uy = ux / n, uy / n
+            rows[0].append(ux)
+            rows[1].append(uy)
+            rows[2].append((px - centre[0]) * uy - (py - centre[1]) * ux)
+        want = mpmath.lu_solve(mpmath.matrix(rows), mpmath.matrix([0, 3 * f(981) / 100, 0]))
+    if precision == "float":
+        c = mechsing.dynamics(mech, "reference").configurations[0]
+        got = [c.efforts[j] for j in ("P1", "P2", "P3")]
+        for g, w in zip(got, want, strict=True):
+            assert abs(g - float(w)) <= 1e-10 * max(1.0, float(abs(w)))
+        assert c.efforts["Rb1"] == c.efforts["Rp3"] == 0 and c.crossing["possible"]
+        return
+    with mpmath.workdps(50):
+        from mechsing.kinematics import solve_configuration
+        from mechsing.kinetics.closed import closed_inverse
+        from mechsing.kinetics.tree import TreeDynamics
+        from mechsing.numeric import parse_precision
+
+        prec = parse_precision(precision)
+        model, closed = solve_configuration(mech, "reference", prec)
+        with prec.context():
+            td = TreeDynamics(model, None, closed=True)
+            ins = [model.joint(j).columns.start for j in ("P1", "P2", "P3")]
+            zero = model.backend.zeros(3)
+            res = closed_inverse(td, closed.q, ins, zero, zero)
+        for k, w in zip(ins, want, strict=True):
+            assert abs(res.efforts[k] - w) <= mpmath.mpf("1e-40") * max(1, abs(w))

@@ -132,6 +132,7 @@ def test_each_kind_serializes_with_the_contract_keys_in_order():
         "margin",
         "precision",
         "name",
+        "null_joint_rate_basis",
     ]
     assert got["serial"]["corank"] == 1 and got["serial"]["wrenches"] == [[1.0, 0, 0, 0, 0, 0]]
     assert list(got["bifurcation"]) == [

@@ -13,7 +13,7 @@ import pytest
 
 from mechsing.analysis import analyze
 from mechsing.analysis.words import twist_words, velocity_words, wrench_words
-from mechsing.report.render import render_text
+from mechsing.reports.render import render_text
 from tests.mechanisms import CENTRED_SLIDER_CRANK_MM
 
 EX = Path(__file__).resolve().parents[1] / "examples"

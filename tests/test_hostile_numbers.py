@@ -14,13 +14,8 @@ import pytest
 import sympy
 
 from mechsing.model.expressions import ExpressionError, parse_number
-from mechsing.numeric import (
-    MAX_NUMBER,
-    decimal_float,
-    is_decimal_text,
-    safe_norm,
-    unit_vector,
-)
+from mechsing.numeric import MAX_NUMBER
+from mechsing.numeric.numbers import decimal_float, is_decimal_text, safe_norm, unit_vector
 from tests.cli import ROOT, run_cli, run_cli_subprocess, runtime_warnings
 
 FOURBAR = ROOT / "examples" / "fourbar.yaml"

@@ -157,3 +157,50 @@ def test_no_project_file_points_at_documents_outside_the_project() -> None:
         assert any(f.startswith(part) for f in files), part
     bad = outside_references(ROOT)
     assert not bad, "state the rule itself, or name the README section or the paper: " + str(bad)
+
+
+#: the package whose modules hold the decision thresholds (mechsing.numeric.tolerances)
+PACKAGE = ROOT / "mechsing"
+
+
+def tolerance_defaults(source: str) -> list[str]:
+    """``function(arg=default)`` for every argument of ``source`` whose name speaks of a
+    tolerance (``atol``, ``rtol``, ``tol``, ``*_tol``, ``eps``) and whose default is not None:
+    a tolerance hidden as a default argument, which a caller never sees."""
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+            continue
+        a = node.args
+        pos = a.posonlyargs + a.args
+        pairs = list(zip(pos[len(pos) - len(a.defaults) :], a.defaults, strict=True))
+        pairs += [(k, d) for k, d in zip(a.kwonlyargs, a.kw_defaults, strict=True) if d]
+        for arg, default in pairs:
+            name = arg.arg.lower()
+            if not ("tol" in name.split("_") or name.endswith("tol") or name == "eps"):
+                continue
+            if isinstance(default, ast.Constant) and default.value is None:
+                continue
+            found.append(f"{getattr(node, 'name', 'lambda')}({arg.arg}={ast.unparse(default)})")
+    return found
+
+
+def test_the_default_search_finds_a_planted_tolerance() -> None:
+    planted = (
+        "def f(x, atol=1e-9, closure=None): pass\n"
+        "def g(*, rtol=TOL, tol=None): pass\n"
+        "h = lambda v, eps=1e-12: v\n"
+        "def k(stol_ratio=2, tolerance=None, protocol=3): pass\n"
+    )
+    assert tolerance_defaults(planted) == ["f(atol=1e-09)", "g(rtol=TOL)", "lambda(eps=1e-12)"]
+
+
+def test_no_tolerance_is_a_default_argument_outside_numeric() -> None:
+    """Every decision tolerance lives in mechsing.numeric; elsewhere a tolerance is passed
+    by the caller (from numeric, or from a named setting beside its code), never a default."""
+    bad = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if path.relative_to(PACKAGE).parts[0] == "numeric":
+            continue
+        bad += [f"{path.relative_to(ROOT)}: {d}" for d in tolerance_defaults(path.read_text())]
+    assert not bad, "pass the tolerance from mechsing.numeric (or a named setting): " + str(bad)

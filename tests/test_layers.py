@@ -31,7 +31,7 @@ LAYERS: list[set[str]] = [
     {"statics", "kinetics"},
     {"sweeps"},
     {"exercises"},
-    {"report"},
+    {"reports"},
     {"cli", "__main__"},
 ]
 

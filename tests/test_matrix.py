@@ -26,7 +26,7 @@ import pytest
 from mechsing.analysis import analyze
 from mechsing.cli import exit_status
 from mechsing.errors import UserError
-from mechsing.report import render
+from mechsing.reports import render
 from tests.cli import run_cli
 from tests.mechanisms import ROOT
 

@@ -28,14 +28,8 @@ import numpy as np
 import pytest
 import yaml
 
-from mechsing.numeric import (
-    decide_definiteness,
-    decide_rank,
-    eigh,
-    parse_precision,
-    spectral_norm,
-    svd,
-)
+from mechsing.numeric import decide_definiteness, decide_rank, parse_precision
+from mechsing.numeric.linalg import eigh, spectral_norm, svd
 from tests.cli import cli_json
 from tests.mechanisms import EXAMPLES, by_name, classes, write
 from tests.reference.expressions import mp_num
@@ -213,6 +207,39 @@ def test_screw_jack_in_every_mode(tmp_path: Path, mode: str) -> None:
         (r1,), (h1,), (p1,) = c["joints"]["R1"], c["joints"]["H1"], c["joints"]["P1"]
         assert h1 == pytest.approx(-r1, abs=1e-15), where
         assert p1 == pytest.approx(JACK_PITCH * r1, rel=1e-14, abs=1e-18), where
+
+
+#: the screw jack with a pitch of 1e-13 m/rad (in metres), every joint value given exactly
+FINE_JACK = """mechanism: fine-screw-jack
+bodies: [ground, screw, nut]
+joints:
+  - {name: R1, type: R, between: [ground, screw], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: H1, type: H, between: [screw, nut], axis: [0, 0, 1], point: [0, 0, 0], pitch: 1e-13}
+  - {name: P1, type: P, between: [nut, ground], axis: [0, 0, 1]}
+inputs: [R1]
+output: {body: nut}
+configurations:
+  turned: {R1: "pi/4", H1: "-pi/4", P1: "pi/4*1e-13"}
+"""
+
+
+@pytest.mark.parametrize("mode", ["float", "mp:50", "exact", "auto"])
+def test_a_fine_pitch_gives_no_constraint_singularity_in_any_mode(tmp_path: Path, mode) -> None:
+    """Issue 44: a helical joint of pitch 1e-13 m/rad.  For any pitch h != 0 the legs are
+    R1-H1 (twists (z, 0) and (z, h z): the cylindrical subgroup C, constraint wrenches the
+    forces along x, y and the couples about x, y) and P1 (constraint wrenches the forces
+    along x, y and the couples about x, y, z): together rank 5 at every configuration, so
+    no constraint singularity anywhere.  float does not resolve the pitch (1e-13 is below
+    its thresholds: the screw turns like a revolute joint there, and the combined rank is
+    6 at every configuration, again regular); mp:50 and exact resolve it, and their
+    generic rank must be theirs, not float's 6 (which made the configuration a false
+    constraint singularity, rank 5 'generically 6')."""
+    path = write(tmp_path, "fine_jack", FINE_JACK)
+    res = cli_json(["analyze", str(path), "--precision", mode, "--format", "json"])
+    (c,) = res["configurations"]
+    assert "error" not in c, c
+    assert c["singular"] is False and classes(c) == [], (mode, classes(c))
+    assert (c["closure_rank"]["rank"], c["mobility"]["generic"]) == (2, 1)
 
 
 # ============================================================================ 1. Newton at N digits

@@ -9,7 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechsing import numeric
-from mechsing.numeric import Precision, decide_definiteness, decide_rank, parse_precision
+from mechsing.numeric import Precision, decide_definiteness, decide_rank, linalg, parse_precision
 
 
 def test_parse_precision() -> None:
@@ -203,11 +203,11 @@ def test_first_nonzero_sign_is_not_decided_by_noise(pattern: list[float], seed: 
     noisy = v + np.where(v == 0, rng.uniform(-1e-15, 1e-15, len(v)), 0.0)
     first = v[np.flatnonzero(v)[0]]
     for x in (v, noisy, 1e-6 * noisy, 1e6 * noisy):  # relative to the vector's size
-        assert numeric.first_nonzero_sign(x) == np.sign(first)
-        u = numeric.first_nonzero_positive(x)
+        assert linalg.first_nonzero_sign(x) == np.sign(first)
+        u = linalg.first_nonzero_positive(x)
         assert u[np.flatnonzero(v)[0]] > 0
         assert np.array_equal(u, np.sign(first) * np.asarray(x) + 0.0)
-    assert numeric.first_nonzero_sign(np.zeros(3)) == 1.0
+    assert linalg.first_nonzero_sign(np.zeros(3)) == 1.0
 
 
 @settings(max_examples=100, deadline=None)

@@ -9,7 +9,7 @@ import numpy as np
 
 matplotlib.use("Agg")
 
-from mechsing.report.figures import path_figure  # noqa: E402
+from mechsing.reports.figures import path_figure  # noqa: E402
 
 X = np.linspace(0.0, 360.0, 181)
 

@@ -242,7 +242,7 @@ def test_results_and_reports_show_themselves_in_a_notebook() -> None:
 
 
 def test_screw_axes_are_their_closed_forms() -> None:
-    from mechsing.report.sketch import Screw, screw_axis
+    from mechsing.reports.sketch import Screw, screw_axis
 
     # a twist of rate 1 about the axis u through p with pitch h: omega = u,
     # v (velocity of the body point at the origin) = p x u + h u
@@ -264,7 +264,7 @@ def test_screw_axes_are_their_closed_forms() -> None:
 
 
 def test_planar_mechanisms_are_seen_along_their_normal() -> None:
-    from mechsing.report.sketch import choose_view
+    from mechsing.reports.sketch import choose_view
 
     view = choose_view(mechsing.load(str(ROOT / "examples/fourbar.yaml")))
     assert np.allclose(np.abs(view.toward), [0, 0, 1])

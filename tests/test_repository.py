@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 #: folders of test fixtures whose names end like a report's figure folder (``STEM_files``)
 FIXTURE_FOLDERS = {"tests/bad_files"}
-#: the first line of every Markdown report (mechsing.report.review's title)
+#: the first line of every Markdown report (mechsing.reports.review's title)
 REPORT_TITLE = "# Design review:"
 
 
@@ -75,7 +75,7 @@ def test_the_rule_tells_outputs_from_sources() -> None:
         ("docs/reports.md", "# Design-review reports"),
         ("README.md", "# mechsing"),
         ("docs/images/report-fourbar.png", ""),
-        ("mechsing/report/review.py", ""),
+        ("mechsing/reports/review.py", ""),
     ]
     assert all(generated(PurePosixPath(p), f) for p, f in outputs)
     assert not any(generated(PurePosixPath(p), f) for p, f in sources)

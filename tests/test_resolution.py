@@ -25,6 +25,7 @@ import pytest
 from mechsing.model.expressions import written_digits
 from mechsing.numeric import RESOLUTION_MIN_DIGITS, data_resolution
 from tests.cli import ROOT, cli_json, run_cli
+from tests.mechanisms import NON_GRASHOF_ROCKER
 
 GEOMETRY = """\
 mechanism: offset-slider-crank
@@ -189,19 +190,7 @@ def test_a_target_beyond_a_limit_of_travel_names_it(
     assert f"P is {beyond} m beyond its limit at about P = 1.6 m" in err
 
 
-ROCKER = """\
-mechanism: rocker
-units: {angle: deg}
-bodies: [ground, crank, coupler, rocker]
-joints:
-  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [crank, coupler], axis: [0, 0, 1], point: [0, 2, 0]}
-  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
-  - {name: D, type: R, between: [rocker, ground], axis: [0, 0, 1], point: [4, 0, 0]}
-inputs: [A]
-configurations:
-  near: {A: 27.6149}
-"""
+ROCKER = NON_GRASHOF_ROCKER + "configurations:\n  near: {A: 27.6149}\n"
 
 
 def test_an_input_beyond_its_limit_is_named_in_the_file_units(tmp_path: Path) -> None:

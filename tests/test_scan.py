@@ -29,7 +29,7 @@ from mechsing.screws import chain_matrix
 from mechsing.singularity import output_chain, random_configurations
 from mechsing.singularity.classification import _output_point
 from mechsing.sweeps.scan import ChainScanner, scan
-from tests.mechanisms import EXAMPLES, ROOT, scaled_text
+from tests.mechanisms import EXAMPLES, PLANAR_3R_POINT, ROOT, scaled_text
 
 SERIAL_FILES = [
     EXAMPLES / "ur5.yaml",
@@ -40,15 +40,6 @@ SERIAL_FILES = [
 #: UR5 DH lengths (examples/ur5.yaml header)
 A2, A3, D5 = -0.425, -0.39225, 0.09465
 
-PLANAR_3R_POINT = """\
-mechanism: planar-3r-point
-bodies: [base, l1, l2, l3]
-joints:
-  - {name: R1, type: R, between: [base, l1], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: R2, type: R, between: [l1, l2], axis: [0, 0, 1], point: [1, 0, 0]}
-  - {name: R3, type: R, between: [l2, l3], axis: [0, 0, 1], point: [2, 0, 0]}
-output: {body: l3, point: [3, 0, 0]}
-"""
 
 REDUNDANT_7R = """\
 mechanism: redundant-7r

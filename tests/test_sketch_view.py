@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from mechsing import load
-from mechsing.report.sketch import choose_view, joint_places
+from mechsing.reports.sketch import choose_view, joint_places
 
 ROOT = Path(__file__).resolve().parents[1]
 Z = np.array([0.0, 0.0, 1.0])

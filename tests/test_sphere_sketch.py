@@ -14,8 +14,8 @@ matplotlib.use("Agg")
 
 from mechsing import analyze  # noqa: E402
 from mechsing.model.loader import load  # noqa: E402
-from mechsing.report.sketch import Screw  # noqa: E402
-from mechsing.report.sphere import (  # noqa: E402
+from mechsing.reports.sketch import Screw  # noqa: E402
+from mechsing.reports.sphere import (  # noqa: E402
     choose_sphere_view,
     great_arc,
     sphere_figure,

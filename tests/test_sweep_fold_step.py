@@ -56,7 +56,8 @@ def expected_limit() -> float:
 @pytest.fixture(scope="module")
 def sweeps() -> dict[str, dict]:
     out = {}
-    for step in ("0.5", "0.1", "0.001"):
+    # 0.7 and 0.4 left the fold "not resolved" when it was placed along the swept value
+    for step in ("0.7", "0.5", "0.4", "0.1", "0.001"):
         r = run_cli(
             ["sweep", DATA, "--vary", f"pose.rz=0:-3:{step}", "--format", "json", "--quiet"]
         )
@@ -75,7 +76,9 @@ def test_the_limit_of_travel_is_located_and_classed_the_same_at_every_step(sweep
         (p,) = folds
         assert p["values"][0] == pytest.approx(limit, abs=1e-10), step
         assert p["unresolved"] is None, (step, p["unresolved"])
-        assert p["precision"] == "mp:50", step
+        # placed on its augmented system, float decides the fold at some steps (the
+        # smallest singular value at rounding level), mp:50 at the others (undecided)
+        assert p["precision"] in ("float", "mp:50"), step
         found[step] = set(p["classes"])
     assert all(c == {"input", "impossible-output", "serial"} for c in found.values()), found
 
@@ -92,8 +95,12 @@ def test_the_stop_note_is_the_same_at_every_step(sweeps):
 def test_a_limit_of_travel_not_placed_again_is_not_resolved_never_regular(monkeypatch):
     """When the fold cannot be placed again at the analysis's digits, the float point is
     regular at 50 digits: the sweep says the limit was not resolved, and why."""
+    from mechsing.sweeps.locate import Locator
     from mechsing.sweeps.relocate import Relocator
 
+    # the fold left where the path placed it (not on its augmented system), and not
+    # placed again at 50 digits
+    monkeypatch.setattr(Locator, "_fold_again", lambda self, f: f.z)
     monkeypatch.setattr(Relocator, "_fold", lambda self, z: None)
     r = run_cli(["sweep", DATA, "--vary", "pose.rz=0:-3:0.5", "--quiet"])
     assert r.status == 0, r.err

@@ -201,9 +201,9 @@ def test_the_input_and_output_sign_tests_screened_by_the_kernel_step_keep_their_
     assert np.all(near <= np.linalg.norm(Nb - Na, axis=(1, 2)) + 1e-14)
     screened = {}
     for t in ("input", "output"):
-        U, V = pm.bases[t]
+        U, V = pm.basis(t, ia)  # the leading singular vectors, kept or computed now
         M = pm.matrices[t]
-        direct = np.einsum("ni,nij,nj->n", U[ia][:, :, -1], M[ib] @ turn, V[ia][:, :, -1])
+        direct = np.einsum("ni,nij,nj->n", U[:, :, -1], M[ib] @ turn, V[:, :, -1])
         d = got[t]
         assert np.array_equal(np.sign(d), np.sign(direct)), t
         assert np.all(d <= direct + 1e-14), t
@@ -223,8 +223,8 @@ def test_the_closure_singular_values_from_the_gram_matrix_where_it_is_far_from_s
     built with known singular values (random orthogonal factors), the first within their
     bound (30 eps / (2 rho^2) relative, rho the smallest relative one), the others the
     SVD's exactly."""
-    from mechsing.numeric import SWEEP_GRAM_RATIO
-    from mechsing.sweeps.measures import _singular_values
+    from mechsing.sweeps.factors import singular_values as _singular_values
+    from mechsing.sweeps.settings import SWEEP_GRAM_RATIO
 
     rng = np.random.default_rng(7)
     k = 30
@@ -266,7 +266,9 @@ def test_the_closure_kernel_from_the_householder_vectors_is_the_complete_q_s_las
     columns already triangular (reflectors that are the identity, tau = 0), with a number
     of reflectors that is not a multiple of the block, more configurations than a chunk,
     one reflector, and no complement at all."""
-    from mechsing.sweeps.measures import _KERNEL_BLOCK, _KERNEL_CHUNK, _complement
+    from mechsing.sweeps.factors import KERNEL_BLOCK as _KERNEL_BLOCK
+    from mechsing.sweeps.factors import KERNEL_CHUNK as _KERNEL_CHUNK
+    from mechsing.sweeps.factors import complement as _complement
 
     rng = np.random.default_rng(11)
     eps = np.finfo(float).eps
@@ -310,7 +312,7 @@ def test_the_largest_singular_value_from_the_smaller_gram_matrix():
     the smaller Gram matrix) is the largest singular value the matrices were built with,
     within a few eps times their smaller side, and numpy's SVD's, whichever side is
     smaller, for matrices of any rank (0 for the zero matrix)."""
-    from mechsing.sweeps.measures import _largest_singular_value
+    from mechsing.sweeps.factors import largest_singular_value as _largest_singular_value
 
     rng = np.random.default_rng(5)
     eps = np.finfo(float).eps

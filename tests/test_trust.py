@@ -13,7 +13,7 @@ import pytest
 
 from mechsing.errors import current_work, forget_work, working_on
 from tests.cli import run_cli
-from tests.mechanisms import ROOT, write
+from tests.mechanisms import NON_GRASHOF_ROCKER, ROOT, write
 
 SLIDER_CRANK = (ROOT / "examples" / "slider_crank_crank_input.yaml").read_text()
 
@@ -113,18 +113,7 @@ def test_catalog_explains_the_universal_joint(fmt):
 
 # --------------------------------------------------------------------------- unreachable input
 
-ROCKER = """mechanism: triple-rocker
-units: {angle: deg}
-bodies: [ground, crank, coupler, rocker]
-joints:
-  - {name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [0, 2, 0]}
-  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
-  - {name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [4, 0, 0]}
-inputs: [A]
-configurations:
-  far: {A: 120}
-"""
+ROCKER = NON_GRASHOF_ROCKER + "configurations:\n  far: {A: 120}\n"
 
 
 def test_an_unreachable_input_reports_the_value_reached_in_the_file_units(tmp_path):

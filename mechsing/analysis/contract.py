@@ -132,6 +132,8 @@ def _finding(
         )
         out = _decided(f, out)
         out["name"] = f.name  # added after the contract's first keys
+        # the whole kernel in its canonical basis (null_joint_rates is its first row)
+        out["null_joint_rate_basis"] = _lists(f.null_joint_rate_basis)
         return out
     out["joints"] = list(f.joints)
     if isinstance(f, BranchFinding):

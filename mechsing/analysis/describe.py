@@ -29,16 +29,9 @@ import sympy
 
 from mechsing.kinematics import KinematicModel
 from mechsing.model import Mechanism
-from mechsing.numeric import (
-    Margin,
-    Precision,
-    decide_rank,
-    field_floats,
-    field_product,
-    spectral_norm,
-    svd,
-    to_float,
-)
+from mechsing.numeric import Margin, Precision, decide_rank, to_float
+from mechsing.numeric.field import field_floats, field_product
+from mechsing.numeric.linalg import spectral_norm, svd
 from mechsing.screws import ClosureSystem
 from mechsing.screws.readable import readable_basis
 from mechsing.singularity.zfb import output_chain

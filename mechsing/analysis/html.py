@@ -4,7 +4,7 @@ Owns the verdict row of a configuration (:func:`verdict_row`: singular or not, c
 that decided it; the classes' words are :mod:`mechsing.analysis.words`'), and :func:`html_table`, an escaped HTML table with no style of its own.
 :meth:`AnalysisResult._repr_html_ <mechsing.analysis.results.AnalysisResult>` and the
 sweeps' result show these tables in a Jupyter notebook; the design-review report
-(:mod:`mechsing.report`) builds its verdict table from the same rows, so the two agree.
+(:mod:`mechsing.reports`) builds its verdict table from the same rows, so the two agree.
 
 Margins are relative singular values: ``dropped / sigma_max`` for a singular verdict (the
 decision needed it at or below ``tau_lo``) and ``kept / sigma_max`` for the closest regular

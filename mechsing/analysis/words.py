@@ -8,7 +8,7 @@
   :func:`velocity_words` and :func:`subgroup_words`.
 
 The verdict table (:mod:`mechsing.analysis.html`), the text and Markdown renderings and
-the design review (:mod:`mechsing.report`) take their words from here.  Screws:  Conventions: SI at the ground origin; a twist is (omega, v)
+the design review (:mod:`mechsing.reports`) take their words from here.  Screws:  Conventions: SI at the ground origin; a twist is (omega, v)
 (rad/s, m/s: ``v`` is the velocity of the body point at the origin), a wrench (f, m)
 (N, N m: ``m`` the moment about the origin).  A twist with omega != 0 is a screw about
 the axis through ``p = omega x v / |omega|^2`` along omega with pitch
@@ -29,7 +29,9 @@ from typing import Any
 import numpy as np
 
 from mechsing.analysis.contract import finding_class, subgroup_params
-from mechsing.numeric import MEMBERSHIP_RTOL_FLOAT, Margin, first_nonzero_positive, unit_vector
+from mechsing.numeric import MEMBERSHIP_RTOL_FLOAT, Margin
+from mechsing.numeric.linalg import first_nonzero_positive
+from mechsing.numeric.numbers import unit_vector
 from mechsing.singularity.findings import (
     BranchFinding,
     ConstraintFinding,

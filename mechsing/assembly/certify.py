@@ -23,7 +23,7 @@ from typing import Any
 import mpmath
 import sympy
 
-from mechsing.numeric import MODE_CURVE_STEP, MODE_SINGULAR_DIGITS
+from mechsing.assembly.settings import MODE_CURVE_STEP, MODE_SINGULAR_DIGITS
 
 __all__ = [
     "interval_function",

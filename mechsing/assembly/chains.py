@@ -22,8 +22,8 @@ from typing import Any
 import mpmath
 
 from mechsing.assembly.given import NO_INPUTS, Formulation, Given, closure_from_start
+from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.model import Mechanism
-from mechsing.numeric import MODE_CERTIFY_RADIUS
 
 __all__ = ["SERIAL_ARM", "SINGLE_LOOP", "Found", "loop_found", "serial_found"]
 
@@ -53,9 +53,7 @@ def _length(mech: Mechanism) -> float:
     return float(KinematicModel(mech, "float").length_scale)
 
 
-def serial_found(
-    mech: Mechanism, config: str, dps: int, atol: Any = 1e-9, closure: Any = None
-) -> Found:
+def serial_found(mech: Mechanism, config: str, dps: int, atol: Any, closure: Any = None) -> Found:
     """The postures of a serial arm for the pose configuration ``config`` gives (with, for
     an arm of more than six joints, the values of all but six), or for a six-joint arm the
     pose its joints reach (then they are tested as one of the modes); ``atol``: how far

@@ -31,7 +31,8 @@ import numpy.polynomial.polynomial as P3
 import sympy
 
 from mechsing.assembly.certify import krawczyk, newton
-from mechsing.numeric import CUSP_DISTINCT_RTOL, CUSP_REAL_RTOL, MODE_CERTIFY_RADIUS
+from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
+from mechsing.numeric.tolerances import CUSP_DISTINCT_RTOL, CUSP_REAL_RTOL
 
 __all__ = ["Family", "Section", "decoupled_evidence", "section", "without_free_factor"]
 

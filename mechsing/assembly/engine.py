@@ -16,8 +16,8 @@ from collections.abc import Sequence
 import numpy as np
 import sympy
 
+from mechsing.assembly.settings import MODE_IMAGINARY_RTOL
 from mechsing.errors import UserError
-from mechsing.numeric import MODE_IMAGINARY_RTOL
 from mechsing.timelimit import interruptible
 
 __all__ = ["SEED", "real_endpoints", "system_text", "track"]

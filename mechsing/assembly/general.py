@@ -46,16 +46,15 @@ import sympy
 
 from mechsing.assembly.chains import Found
 from mechsing.assembly.given import Formulation, Given
-from mechsing.errors import FormulationError, UserError
-from mechsing.lie.dual import study_conjugate, study_multiply
-from mechsing.model import Mechanism
-from mechsing.numeric import (
+from mechsing.assembly.settings import (
     MODE_CERTIFY_RADIUS,
     MODE_EXTRANEOUS_RTOL,
     MODE_ISOTROPIC_RTOL,
-    MODE_MATCH_DISTANCE,
-    MODE_SPAN_RTOL,
 )
+from mechsing.errors import FormulationError, UserError
+from mechsing.lie.dual import study_conjugate, study_multiply
+from mechsing.model import Mechanism
+from mechsing.numeric import MODE_MATCH_DISTANCE, MODE_SPAN_RTOL
 
 __all__ = ["FORMULATION", "Problem", "bezout", "patched_system", "problem"]
 

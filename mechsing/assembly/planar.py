@@ -38,7 +38,7 @@ import sympy
 
 from mechsing.errors import FormulationError
 from mechsing.model import Mechanism
-from mechsing.numeric import cos_sin
+from mechsing.numeric.field import cos_sin
 
 __all__ = ["PlanarSystem", "joint_values", "planar_stages", "planar_system", "stages_system"]
 

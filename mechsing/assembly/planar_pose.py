@@ -20,9 +20,9 @@ import sympy
 
 from mechsing.assembly.chains import Found
 from mechsing.assembly.given import NO_INPUTS, Formulation, Given
+from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.errors import FormulationError
 from mechsing.model import Mechanism
-from mechsing.numeric import MODE_CERTIFY_RADIUS
 
 __all__ = ["FORMULATION", "turned_to_xy"]
 

@@ -12,8 +12,9 @@ import mpmath
 
 from mechsing.assembly.chains import Found
 from mechsing.assembly.given import NO_INPUTS, Formulation, Given
+from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.errors import ConfigurationError, FormulationError
-from mechsing.numeric import MODE_CERTIFY_RADIUS, MODE_MATCH_DISTANCE
+from mechsing.numeric import MODE_MATCH_DISTANCE
 
 __all__ = ["FORMULATION"]
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 
+from mechsing.analysis.display import angle_floor, floor_for, markdown_table, shown, with_unit
 from mechsing.assembly.api import ModesResult
 
 __all__ = ["modes_heading", "render_modes"]
@@ -19,6 +20,14 @@ def _verdict(m: dict) -> str:
         return "regular"
     classes = sorted({s["class"] for s in m["singularities"]})
     return "singular: " + ", ".join(classes)
+
+
+def _value(text: str, unit: str, floor: dict[str, float]) -> str:
+    """A joint value (its text at the working digits) with its unit: 0 below the display
+    floor of its unit (round-off of a joint at 0), else as computed."""
+    if abs(float(text)) < floor.get(unit, 0.0):
+        text = shown(0.0)
+    return with_unit(text, unit)
 
 
 def modes_heading(res: ModesResult) -> str:
@@ -48,6 +57,9 @@ def render_modes(
     if fmt == "json":
         return json.dumps(doc, indent=2) + "\n"
     md = fmt == "md"
+    L = res.precision.get("length_scale", 1.0)
+    floor = floor_for(res.precision["mode"], L)
+    floor = {"m": floor, "rad": angle_floor(floor, L)}
     lines = [("# " if md else "") + modes_heading(res), ""]
     for k, m in enumerate(doc["modes"], 1):
         marks = []
@@ -62,16 +74,18 @@ def render_modes(
             marks.append(f"stands for {m['equivalent_solutions']} joint solutions")
         head = f"mode {k}: {_verdict(m)}, {cert}" + (f" [{'; '.join(marks)}]" if marks else "")
         lines.append(("## " if md else "") + head)
-        if md:
-            lines.append("")
-            lines.append("| joint | value |")
-            lines.append("|---|---|")
+        rows = []
         for name, vals in m["joints_text"].items():
             marks_of = (units or {}).get(name, ())
             shown = ", ".join(
-                f"{v} {marks_of[i]}" if i < len(marks_of) else v for i, v in enumerate(vals)
+                _value(v, marks_of[i], floor) if i < len(marks_of) else v
+                for i, v in enumerate(vals)
             )
-            lines.append(f"| {name} | {shown} |" if md else f"  {name}: {shown}")
+            rows.append((name, shown))
+        if md:
+            lines += ["", *markdown_table(("joint", "value"), rows)]
+        else:
+            lines += [f"  {name}: {shown}" for name, shown in rows]
         lines.append("")
     for note in doc["notes"]:
         lines.append(f"note: {note}")

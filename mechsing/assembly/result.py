@@ -15,8 +15,9 @@ import numpy as np
 
 from mechsing.assembly.chains import Found
 from mechsing.assembly.given import closure_from_start
+from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.model import Mechanism
-from mechsing.numeric import MODE_CERTIFY_RADIUS, MODE_MATCH_DISTANCE, Precision
+from mechsing.numeric import MODE_MATCH_DISTANCE, Precision
 
 __all__ = ["Mode", "ModesResult", "finish", "joint_distance"]
 

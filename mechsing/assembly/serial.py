@@ -50,6 +50,15 @@ import sympy
 
 from mechsing.assembly.certify import krawczyk_complex, newton, regular, singular_root
 from mechsing.assembly.engine import SEED, real_endpoints, track
+from mechsing.assembly.settings import (
+    MODE_CERTIFY_RADIUS,
+    MODE_ENDPOINT_SINGULAR_RTOL,
+    MODE_EXTRANEOUS_RTOL,
+    MODE_ISOTROPIC_RTOL,
+    MODE_PAIR_SKEW,
+    MODE_PIEPER_ATOL,
+    MODE_SINGULAR_IMAGINARY_RTOL,
+)
 from mechsing.assembly.study import (
     line,
     rotation,
@@ -60,16 +69,7 @@ from mechsing.errors import FormulationError, UserError
 from mechsing.lie.dual import study_conjugate, study_multiply
 from mechsing.lie.quaternion import quat_multiply
 from mechsing.model import Mechanism
-from mechsing.numeric import (
-    MODE_CERTIFY_RADIUS,
-    MODE_ENDPOINT_SINGULAR_RTOL,
-    MODE_EXTRANEOUS_RTOL,
-    MODE_ISOTROPIC_RTOL,
-    MODE_MATCH_DISTANCE,
-    MODE_PAIR_SKEW,
-    MODE_PIEPER_ATOL,
-    MODE_SINGULAR_IMAGINARY_RTOL,
-)
+from mechsing.numeric import MODE_MATCH_DISTANCE
 
 __all__ = [
     "SerialArm",
@@ -276,7 +276,7 @@ def _pair(kind: str, q: Any, L: Any) -> tuple[Any, Any]:
 
 
 def serial_target(
-    mech: Mechanism, config: str, arm: SerialArm, atol: Any = 1e-9
+    mech: Mechanism, config: str, arm: SerialArm, atol: Any
 ) -> tuple[list[Any], bool]:
     """The output's displacement ``T`` (Study coordinates, lengths over L) a configuration
     of a six-joint arm asks for: its ``pose`` (:func:`pose_target`), or the pose its six
@@ -297,7 +297,7 @@ def serial_target(
     return pose_target(mech, config, arm.L, atol), False
 
 
-def pose_target(mech: Mechanism, config: str, L: Any, atol: Any = 1e-9) -> list[Any]:
+def pose_target(mech: Mechanism, config: str, L: Any, atol: Any) -> list[Any]:
     """The displacement (Study coordinates, lengths over L) a configuration's ``pose``
     asks of the output (an omitted position or rotation is the reference's).  A rotation
     matrix must be orthonormal to ``atol`` (largest entry of ``R^T R - I``: the

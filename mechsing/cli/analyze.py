@@ -47,7 +47,7 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
     from mechsing.cli.options import apply_scene, apply_set, check_shared, with_load
     from mechsing.files import check_output, write_output
-    from mechsing.report import render
+    from mechsing.reports import render
 
     check_shared(args)
     if args.output:  # before the work: a missing directory or the input file is refused now

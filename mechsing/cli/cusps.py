@@ -81,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
     else:
         sys.stdout.write(text)
     if args.plot:
-        from mechsing.report.cusps import write_figure
+        from mechsing.reports.cusps import write_figure
 
         write_figure(doc, args.plot)
     return 0

@@ -43,7 +43,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _length(text: str) -> float:
     """--length-scale: a positive decimal number of a sensible size (either way)."""
-    from mechsing.numeric import decimal_float, is_sensible_size
+    from mechsing.numeric.numbers import decimal_float, is_sensible_size
 
     try:
         x = decimal_float(text)

@@ -323,7 +323,8 @@ def add_max_effort_option(p: argparse.ArgumentParser) -> None:
         metavar="INPUT=VALUE",
         help="locate where the input's |effort| under the load (--load or the --from "
         "configuration's) first exceeds VALUE (N for a prismatic input, N m for a rotation); "
-        "reported as an effort limit, not a singularity (repeatable; a path only)",
+        "reported as an effort limit, not a singularity (repeatable; along a path, or along "
+        "each row of a grid)",
     )
 
 
@@ -346,3 +347,29 @@ def report_load(mech: Any, text: str | None, limits: list[str] | None) -> dict[s
         "load": None if text is None else parse_load(text, mech),
         "max_effort": parse_max_effort(limits, mech) or None,
     }
+
+
+def add_duration_option(p: argparse.ArgumentParser) -> None:
+    """Add ``--duration T`` (:mod:`mechsing.kinetics.timed`)."""
+    p.add_argument(
+        "--duration",
+        type=_seconds,
+        metavar="T",
+        help="time the path: the swept value follows a smooth rest-to-rest law over T seconds, "
+        "and each sample gets the efforts that motion needs (the file's masses and gravity; "
+        "a closed chain: its inputs' efforts and the Type II crossing condition; a path only)",
+    )
+
+
+def _seconds(text: str) -> float:
+    from mechsing.numeric.numbers import decimal_float
+
+    try:
+        x = decimal_float(text)
+    except ValueError:
+        x = 0.0
+    if not 0 < x < float("inf"):
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a positive number of seconds (e.g. --duration 2)"
+        )
+    return x

@@ -57,6 +57,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     options.add_verbose_option(p)
     options.add_load_option(p)
     options.add_max_effort_option(p)
+    options.add_duration_option(p)
     p.add_argument(
         "--modes",
         dest="modes_of",
@@ -99,7 +100,7 @@ def run(args: argparse.Namespace) -> int:
     )
     from mechsing.errors import working_on
     from mechsing.files import check_output
-    from mechsing.report import report
+    from mechsing.reports import report
 
     with working_on(file=args.file):
         path, _ = output_path(args.file, args.output)
@@ -128,6 +129,7 @@ def run(args: argparse.Namespace) -> int:
             **report_load(mech, args.load, args.max_effort),
             modes_of=args.modes_of,
             cusps_vary=args.cusps_vary,
+            duration=args.duration,
         )
         rep.write(path, [args.file])
     print(f"mechsing: report written to {path}", file=sys.stderr)
@@ -158,6 +160,8 @@ def _argv(args: argparse.Namespace) -> list[str]:
         out += ["--load", args.load]
     for m in args.max_effort or ():
         out += ["--max-effort", m]
+    if getattr(args, "duration", None) is not None:
+        out += ["--duration", f"{args.duration:g}"]
     if getattr(args, "modes_of", None):
         out += ["--modes", args.modes_of]
     if getattr(args, "cusps_vary", None):

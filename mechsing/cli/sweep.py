@@ -105,6 +105,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     options.add_verbose_option(p)
     options.add_load_option(p)
     options.add_max_effort_option(p)
+    options.add_duration_option(p)
     which = p.add_mutually_exclusive_group()
     which.add_argument(
         "--mode",
@@ -144,7 +145,7 @@ def _positive_int(option: str) -> Callable[[str], int]:
 
 
 def _timeout(text: str) -> float:
-    from mechsing.numeric import decimal_float
+    from mechsing.numeric.numbers import decimal_float
     from mechsing.sweeps.distributed import MAX_CONNECT_TIMEOUT
 
     try:
@@ -230,6 +231,10 @@ def run(args: argparse.Namespace) -> int:
             time_limit=args.time_limit,
         )
         with_sweep_load(sweep_run, mech, args.load, args.max_effort)
+        if args.duration is not None:
+            from mechsing.kinetics.timed import attach
+
+            attach(sweep_run, args.duration)
         with _destination(args.output, args.file) as out:
             _write_one(args, sweep_run, fmt, out)
     return _exit_status(args, sweep_run.result().located)
@@ -277,9 +282,10 @@ def _run_modes(args: argparse.Namespace, mech: Any, start_config: str | None, fm
     )
     from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
 
-    if args.load or args.max_effort:
+    if args.load or args.max_effort or args.duration is not None:
         raise UserError(
-            "--load and --max-effort sweep one mode: give them without --mode/--modes/--loop"
+            "--load, --max-effort and --duration sweep one mode: give them without "
+            "--mode/--modes/--loop"
         )
     options = {
         "max_classified": args.max_classified or MAX_CLASSIFIED,
@@ -377,7 +383,7 @@ def _write_runs(args: argparse.Namespace, runs: list[Any], fmt: str, out: IO[str
 
 def _json_text(value: Any) -> str:
     """One JSON value on one line (non-finite floats as null, like every mechsing JSON)."""
-    from mechsing.report.render import _clean
+    from mechsing.reports.render import _clean
 
     return json.dumps(_clean(value), allow_nan=False)
 

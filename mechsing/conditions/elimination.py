@@ -31,7 +31,10 @@ import numpy as np
 import sympy
 
 from mechsing.conditions.symbolic import JointSymbols, reduce_trig, tan_half
-from mechsing.numeric import CONDITION_ROOT_MERGE, CONDITION_ROOT_RTOL
+from mechsing.numeric import CONDITION_ROOT_RTOL
+
+#: two roots (rad or m) closer than this are one (a double root, or two factors' roots)
+CONDITION_ROOT_MERGE = 1e-9
 
 __all__ = ["angles", "distinct", "eliminate", "genuine"]
 

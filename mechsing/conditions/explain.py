@@ -18,11 +18,8 @@ import numpy as np
 import sympy
 
 from mechsing.conditions.symbolic import JointSymbols
-from mechsing.numeric import (
-    CONDITION_GENERIC_RANK_RTOL,
-    CONDITION_ROOT_RTOL,
-    unit_vector,
-)
+from mechsing.numeric import CONDITION_GENERIC_RANK_RTOL, CONDITION_ROOT_RTOL
+from mechsing.numeric.numbers import unit_vector
 from mechsing.singularity.names import line_facts, name_of
 
 __all__ = ["Explainer", "numeric", "random_point", "rank"]

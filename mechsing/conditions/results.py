@@ -21,6 +21,8 @@ from typing import Any
 
 import sympy
 
+from mechsing.analysis.display import floor_for, shown, with_unit
+
 __all__ = ["Condition", "ConditionResult", "Factor"]
 
 
@@ -114,6 +116,19 @@ class Condition:
         return any(flags)
 
 
+#: the display floor of a root: the roots are float's (numpy.roots), so a root below float's
+#: closure tolerance at a unit length scale is round-off of 0
+_ROOT_FLOOR_PRECISION = "float"
+
+
+def _roots(roots: Any, unit: str) -> str:
+    """The roots of a condition with their unit (``0.5, 2.1 rad``; a bare list when the
+    unit is not known), each below the display floor shown as 0."""
+    floor = floor_for(_ROOT_FLOOR_PRECISION, 1.0)
+    text = ", ".join(shown(r, floor) for r in roots)
+    return with_unit(text, unit) if unit else text
+
+
 @dataclass(frozen=True)
 class ConditionResult:
     """All the conditions of one mechanism file (see the module docstring)."""
@@ -198,12 +213,12 @@ class ConditionResult:
                     state = "vanishes" if f.vanishes else "does not vanish"
                     lines.append(f"    at {self.configuration}: {f.value:.6g} ({state})")
             if c.roots:
-                shown = ", ".join(f"{r:.6g}" for r in c.roots)
                 unit = c.units[0] if c.units else ""
+                text = _roots(c.roots, unit)
                 if unit == "rad" and self.file_angle_unit == "deg":
-                    deg = ", ".join(f"{r * 180 / math.pi:.6g}" for r in c.roots)
-                    unit = f"rad ({deg} deg)"
-                lines.append(f"  vanishes at {c.variables[0]} = {shown} {unit}".rstrip())
+                    deg = _roots([r * 180 / math.pi for r in c.roots], "deg")
+                    text += f" ({deg})"
+                lines.append(f"  vanishes at {c.variables[0]} = {text}".rstrip())
             if c.vanishes is not None:
                 verdict = "singular" if c.vanishes else "regular"
                 lines.append(f"  => {self.configuration} is {verdict} for this condition")
@@ -246,12 +261,8 @@ class ConditionResult:
                 lines.append(text)
             if c.roots:
                 unit = c.units[0] if c.units else ""
-                shown = ", ".join(f"{r:.6g}" for r in c.roots)
-                lines += [
-                    "",
-                    f"Vanishes at ${sympy.latex(sympy.Symbol(c.variables[0]))}$ = {shown} {unit}".rstrip()
-                    + ".",
-                ]
+                var = sympy.latex(sympy.Symbol(c.variables[0]))
+                lines += ["", f"Vanishes at ${var}$ = {_roots(c.roots, unit)}".rstrip() + "."]
             if c.vanishes is not None:
                 verdict = "singular" if c.vanishes else "regular"
                 lines += ["", f"`{self.configuration}` is {verdict} for this condition."]

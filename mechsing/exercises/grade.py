@@ -13,7 +13,7 @@ Numbers are converted to SI units before they are compared, within the key's tol
 (in the key's unit); class names are compared as sets; a formula is right when sympy
 proves it equal to the key's, or, failing that, when the two agree at points drawn over
 the whole domain of each variable to the key's tolerance (relative; default
-:data:`~mechsing.numeric.tolerances.EXERCISE_FORMULA_RTOL`), up to a constant factor when
+:data:`~mechsing.exercises.grade.EXERCISE_FORMULA_RTOL`), up to a constant factor when
 the key says ``up_to_factor: true`` (a condition ``det J = 0`` is one up to a factor):
 :mod:`mechsing.exercises.formulas`.
 """
@@ -31,8 +31,12 @@ from mechsing.errors import UserError
 from mechsing.exercises.formulas import DOMAINS, same_formula
 from mechsing.exercises.template import KINDS
 from mechsing.exercises.units import UNITS, parse_quantity, to_si
-from mechsing.numeric.tolerances import EXERCISE_FORMULA_RTOL
 from mechsing.singularity.findings import BRANCH_CLASSES, IMPOSSIBLE_CLASSES, MOTION_CLASSES
+
+#: a student's formula agrees with the key's at a point when they differ there by at most
+#: this times the larger of their values (a relative test); a key's question may set its
+#: own ``tol``
+EXERCISE_FORMULA_RTOL = 1e-9
 
 __all__ = [
     "CLASSES",

@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
+from mechsing.numeric import NEAR_ZERO_VECTOR
+from mechsing.numeric.numbers import safe_norm, unit_vector
 
 __all__ = [
     "axis_angle",

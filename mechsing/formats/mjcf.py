@@ -54,7 +54,8 @@ from mechsing.formats.writer import (
     name_problem,
 )
 from mechsing.formats.xmlsafe import Element, floats, parse, required
-from mechsing.numeric import NEAR_ZERO_VECTOR, safe_norm, unit_vector
+from mechsing.numeric import NEAR_ZERO_VECTOR
+from mechsing.numeric.numbers import safe_norm, unit_vector
 
 __all__ = ["MJCF_TYPES", "read_mjcf"]
 

@@ -56,13 +56,8 @@ from mechsing.formats.writer import (
     name_problem,
 )
 from mechsing.formats.xmlsafe import Element, floats, parse, required
-from mechsing.numeric import (
-    MAX_NUMBER,
-    NEAR_ZERO_VECTOR,
-    is_decimal_text,
-    safe_norm,
-    unit_vector,
-)
+from mechsing.numeric import MAX_NUMBER, NEAR_ZERO_VECTOR
+from mechsing.numeric.numbers import is_decimal_text, safe_norm, unit_vector
 
 __all__ = ["URDF_TYPES", "read_urdf"]
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from xml.parsers import expat
 
 from mechsing.errors import MechanismError
-from mechsing.numeric import decimal_float, is_decimal_text
+from mechsing.numeric.numbers import decimal_float, is_decimal_text
 
 __all__ = [
     "MAX_ATTRIBUTE_CHARS",

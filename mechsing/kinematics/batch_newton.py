@@ -29,8 +29,9 @@ from mechsing.kinematics import forward
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.couplings import coupling_residuals
 from mechsing.kinematics.jacobians import chord_signs
+from mechsing.kinematics.settings import NEWTON_DAMPING
 from mechsing.lie import exp_so3, log_so3
-from mechsing.numeric import NEWTON_DAMPING, Precision
+from mechsing.numeric import Precision
 
 __all__ = ["BatchClosure", "truncated_steps"]
 

@@ -38,7 +38,8 @@ from mechsing.kinematics.pose import PoseModel, pose_problem
 from mechsing.kinematics.protocol import ClosureModel
 from mechsing.model import Configuration, Mechanism
 from mechsing.model.couplings import coupling_source, describe_coupling
-from mechsing.numeric import EXACT_ZERO_DIGITS, Precision, exact_is_zero, to_float
+from mechsing.numeric import EXACT_ZERO_DIGITS, Precision, to_float
+from mechsing.numeric.backend import exact_is_zero
 from mechsing.timelimit import activity
 
 __all__ = ["ClosedConfiguration", "Closer", "solve_configuration"]

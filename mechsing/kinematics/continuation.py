@@ -27,14 +27,10 @@ from mechsing.kinematics.paths.steps import closure_matrix, correct, same_branch
 from mechsing.kinematics.polish import MpPolisher, fold_mp
 from mechsing.kinematics.pose import PoseModel
 from mechsing.kinematics.protocol import ClosureModel
+from mechsing.kinematics.settings import CONTINUATION_LEAVE_FRACTION, CONTINUATION_SINGULAR_RTOL
 from mechsing.kinematics.travel import Fold, beyond_target, fold_excess
 from mechsing.model import Configuration
-from mechsing.numeric import (
-    CONTINUATION_LEAVE_FRACTION,
-    CONTINUATION_SINGULAR_RTOL,
-    decide_rank,
-    to_float,
-)
+from mechsing.numeric import decide_rank, to_float
 
 __all__ = ["Continuation", "closure_matrix"]
 

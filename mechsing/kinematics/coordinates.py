@@ -18,7 +18,8 @@ import mpmath
 import numpy as np
 
 from mechsing import lie
-from mechsing.numeric import is_float64, to_float
+from mechsing.numeric import to_float
+from mechsing.numeric.backend import is_float64
 
 #: a :class:`~mechsing.kinematics.model.KinematicModel` (which imports this module)
 KinematicModel = Any

@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.model import Coupling
-from mechsing.numeric import is_float64
+from mechsing.numeric.backend import is_float64
 
 #: a :class:`~mechsing.kinematics.model.KinematicModel` (which imports this module)
 KinematicModel = Any
@@ -195,7 +195,8 @@ def couple_given(
     (``where``: the configuration, for the message)."""
     from mechsing.errors import UserError
     from mechsing.model.couplings import coupling_source, describe_coupling
-    from mechsing.numeric import exact_is_zero, to_float
+    from mechsing.numeric import to_float
+    from mechsing.numeric.backend import exact_is_zero
 
     out = np.array(target, copy=True)
     have = set(given)

@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import cos_sin, from_field, number_field
+from mechsing.numeric.field import cos_sin, from_field, number_field
 
 __all__ = ["FieldKinematics"]
 

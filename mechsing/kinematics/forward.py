@@ -25,7 +25,8 @@ import numpy as np
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
 from mechsing.lie._rodrigues import one_dof_exp, spherical_exp
-from mechsing.numeric import dispatch, holds_objects
+from mechsing.numeric import dispatch
+from mechsing.numeric.backend import holds_objects
 
 #: the fast forms of :func:`element` (a float batch: by the joint's kind)
 _ELEMENT = dispatch.table("joint element", "mechsing.kinematics.forward.element")

@@ -24,11 +24,11 @@ from mechsing.model import Configuration, Displacement
 from mechsing.numeric import (
     MAX_JOINT_VALUE,
     Precision,
-    exact_is_zero,
     rotation_orthonormal_atol,
     screw_zero_rtol,
     to_float,
 )
+from mechsing.numeric.backend import exact_is_zero
 from mechsing.timelimit import activity
 
 __all__ = ["Given", "GivenValues", "to_the_tolerance"]

@@ -16,7 +16,8 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.kinematics.chains import tree_chain
-from mechsing.numeric import blocks, holds_objects
+from mechsing.numeric import blocks
+from mechsing.numeric.backend import holds_objects
 
 if TYPE_CHECKING:
     from scipy.sparse import csc_matrix

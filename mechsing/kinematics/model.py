@@ -54,9 +54,9 @@ from mechsing.numeric import (
     Precision,
     characteristic_length,
     dispatch,
-    is_float64,
     to_float,
 )
+from mechsing.numeric.backend import is_float64
 from mechsing.subgroups import Subgroup
 
 if TYPE_CHECKING:

@@ -23,14 +23,9 @@ from typing import Any
 import numpy as np
 
 from mechsing.kinematics.model import KinematicModel
-from mechsing.numeric import (
-    NEWTON_DAMPING,
-    POLISH_SLOW_RATIO,
-    Precision,
-    blocks,
-    is_float64,
-    svd_r,
-)
+from mechsing.kinematics.settings import NEWTON_DAMPING, POLISH_SLOW_RATIO
+from mechsing.numeric import Precision, blocks, svd_r
+from mechsing.numeric.backend import is_float64
 from mechsing.numeric.blocks import block_factors, block_svd, issparse
 
 __all__ = [

@@ -17,8 +17,10 @@ from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import mp_least_squares, newton_on_group, scaled_system
 from mechsing.kinematics.pose import PoseModel, pose_problem
 from mechsing.kinematics.protocol import ClosureModel
+from mechsing.kinematics.settings import POLISH_DIGITS_SPARE, POLISH_MAX_STEPS
 from mechsing.model import Configuration
-from mechsing.numeric import POLISH_DIGITS_SPARE, POLISH_MAX_STEPS, Precision, svd
+from mechsing.numeric import Precision
+from mechsing.numeric.linalg import svd
 
 __all__ = ["MpPolisher", "Polished", "fold_mp", "newton_mp"]
 

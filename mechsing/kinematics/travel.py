@@ -22,13 +22,13 @@ import numpy as np
 
 from mechsing.kinematics.newton import damped_least_squares, newton_on_group, scaled_system
 from mechsing.kinematics.protocol import ClosureModel
-from mechsing.numeric import (
+from mechsing.kinematics.settings import (
     CONTINUATION_SINGULAR_RTOL,
     POLISH_MAX_STEPS,
     TRAVEL_RESIDUAL_ALIGNMENT,
-    svd,
-    to_float,
 )
+from mechsing.numeric import to_float
+from mechsing.numeric.linalg import svd
 
 __all__ = ["Fold", "beyond_target", "beyond_travel", "fold_excess"]
 

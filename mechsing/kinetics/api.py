@@ -197,11 +197,6 @@ def dynamics(
     out = []
     td = None
     loops = bool(mech.graph.loops)
-    if loops and prec.mode != "float":
-        raise UserError(
-            f"{mech.name}: a closed chain's dynamics is computed in float (mp:N and exact "
-            "are not implemented for closed chains); use --precision float"
-        )
     for name in names:
         model, closed = solve_configuration(mech, name, prec)
         if td is None:
@@ -211,14 +206,17 @@ def dynamics(
             q = closed.q
             qd = _vector(td, rates, "rates")
             if loops:
-                qd, qdd, tau, crossing = _closed(
-                    td,
-                    mech,
-                    q,
-                    qd,
-                    _vector(td, accelerations, "accelerations"),
-                    None if efforts is None else _vector(td, efforts, "efforts"),
-                )
+                try:
+                    qd, qdd, tau, crossing = _closed(
+                        td,
+                        mech,
+                        q,
+                        qd,
+                        _vector(td, accelerations, "accelerations"),
+                        None if efforts is None else _vector(td, efforts, "efforts"),
+                    )
+                except UserError as exc:  # mp:N or exact at a Type II: say where
+                    raise UserError(f"configuration {name!r}: {exc}") from None
             elif efforts is not None:
                 tau = _vector(td, efforts, "efforts")
                 qdd = td.forward(q, qd, tau)

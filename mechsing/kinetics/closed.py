@@ -1,40 +1,57 @@
 """The inverse dynamics of a closed chain: the inputs' efforts for a motion of the inputs.
 
 The mechanism's spanning tree carries the bodies (:class:`~mechsing.kinetics.tree.TreeDynamics`
-on the tree's joints: a chord joint moves no body of its own); the loops close it.  With
-``C`` the closure system at the configuration (each chord's block of six rows: the signed
-current screws of its loop's joints, SI twists at the ground origin,
-:meth:`mechsing.kinematics.KinematicModel.closure_jacobian`):
+on the tree's joints: a chord joint moves no body of its own); the loops close it.  The
+loops' rows are the closure system's, ``A`` (:func:`mechsing.screws.closure_system`: each
+loop's signed screws in coordinates of its subalgebra, independent rows; the same ``A`` the
+motion test and the statics use, :func:`mechsing.statics.motion_matrices`), its length
+columns divided by ``L`` so that it acts on SI rates (``A`` is commensurate):
 
-* velocity: ``C qd = 0`` with the inputs' rates given: ``[C; E] qd = [0; u]``;
-* acceleration: ``C qdd + Cdot qd = 0``, where the rate of each column is the Lie bracket
-  of the twist of the joint's first body with it (``s_k' = [xi_a, s_k]``: the closure
-  written at acceleration level on the Lie algebra), with the inputs' accelerations given;
+* velocity: ``A qd = 0`` with the inputs' rates given: ``[A; E] qd = [0; u]``;
+* acceleration: ``A qdd + Adot qd = 0``, where the rate of each loop's screw is the Lie
+  bracket of the twist of the joint's first body with it (``s_k' = [xi_a, s_k]``: the
+  closure written at acceleration level on the Lie algebra), the loop's sum of them taken
+  to its rows' coordinates as its screws are (:class:`ClosureRows`);
 * efforts: the tree's efforts ``tau = M qdd + bias`` (zero on the chords' coordinates) are
   balanced by the inputs' efforts and the loops' constraint wrenches (the multipliers
-  ``lambda``, one wrench per loop): ``E^T tau_in + C^T lambda = tau`` (virtual work), solved
-  in the least-squares sense; a residual means the inputs cannot produce the motion's
-  efforts (a Type II singularity), and its size is reported.
+  ``lambda``, in the coordinates of ``A``'s rows): ``E^T tau_in + A^T lambda = tau``
+  (virtual work), solved in the least-squares sense in float; a residual means the inputs
+  cannot produce the motion's efforts (a Type II singularity), and its size is reported.
+  In mp:N and exact the systems are solved in that arithmetic (normal equations,
+  :meth:`mechsing.numeric.backend.Backend.solve`); at a Type II singularity, where the
+  balance has no unique solution, they are refused with the reason.
 
 Forward dynamics (:func:`closed_forward`): with ``N`` the passive motions of unit input
-rates (``[C; E] N = [0; 1]``) and ``qdd_0`` the acceleration of zero input accelerations,
+rates (``[A; E] N = [0; 1]``) and ``qdd_0`` the acceleration of zero input accelerations,
 every admissible acceleration is ``qdd_0 + N udd``, and virtual work along the admissible
-motions (``N^T C^T = 0``, ``N^T E^T = 1``) gives the inputs' equation
+motions (``N^T A^T = 0``, ``N^T E^T = 1``) gives the inputs' equation
 ``N^T M N udd = tau_in - N^T (M qdd_0 + bias)``: the mass matrix reduced to the inputs.
 
-Owns :func:`closed_inverse` and :func:`closed_forward`.  Float only.
+Owns :class:`ClosureRows`, :func:`closed_inverse` and :func:`closed_forward`, and their
+parts: a motion driven by any rows of the rates (:func:`driven_motion`: a sweep's timed
+motion drives its swept coordinate) and the effort balance (:func:`balance`).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from mechsing import lie
+from mechsing.errors import UserError
+from mechsing.numeric import to_float
 
-__all__ = ["ClosedMotion", "closed_forward", "closed_inverse"]
+__all__ = [
+    "ClosedMotion",
+    "ClosureRows",
+    "balance",
+    "closed_forward",
+    "closed_inverse",
+    "driven_motion",
+]
 
 
 @dataclass(frozen=True)
@@ -52,51 +69,163 @@ class ClosedMotion:
     tree_efforts: np.ndarray
 
 
-def _solve(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float]:
-    x, *_ = np.linalg.lstsq(A, b, rcond=None)
-    scale = max(float(np.linalg.norm(b)), float(np.linalg.norm(A) * np.linalg.norm(x)), 1e-300)
-    return x, float(np.linalg.norm(A @ x - b)) / scale
+class ClosureRows:
+    """The closure's rows at the closed ``q`` in the model's precision: :attr:`A` (r x n,
+    acting on SI rates) from the one closure system, and :meth:`rate` (``Adot qd``)."""
+
+    def __init__(self, td: Any, q: np.ndarray) -> None:
+        from mechsing.screws import closure_system
+
+        model = td.model
+        self.td, self.q, self.model = td, q, model
+        with model.precision.context():
+            cs = closure_system(model, q)
+            A = np.array(cs.matrix, copy=True)
+            lengths = np.asarray(model.frame.length_columns, dtype=bool)
+            if np.any(lengths):  # commensurate length columns are times L: back to SI
+                A[:, lengths] = A[:, lengths] / model.length_scale
+        self.A = A
+        self.commensurate = cs.matrix
+        self.loops = cs.loops
+        self.screws = cs.screws  # SI current screws at the ground origin (6 x n)
+
+    def _coordinates(self, ls: Any, x: np.ndarray) -> np.ndarray:
+        """A twist's coordinates in the rows of the loop ``ls``, as its screws' are."""
+        from mechsing.screws.systems import reduced_coordinates
+
+        model = self.model
+        xs = model.frame.twists(x[:, None])
+        if ls.basis_rows is None:  # undecided subgroup: the six rows of se(3)
+            return xs[:, 0]
+        if model.backend.name == "float":
+            return (ls.basis_float.T @ xs)[:, 0]
+        return reduced_coordinates(model, ls.basis_rows, xs)[:, 0]
+
+    def rate(self, qd: np.ndarray) -> np.ndarray:
+        """``Adot qd``: each loop's ``sum_k sigma_k [xi_(a_k), s_k] qd_k`` in its rows."""
+        model, td = self.model, self.td
+        with model.precision.context():
+            _, xi, _, _ = td.motion(self.q, qd, None, False)
+            out = []
+            for ls in self.loops:
+                total = None
+                for name, sign in zip(ls.loop.joints, ls.loop.signs, strict=True):
+                    jk = model.joint(name)
+                    k = jk.columns.start
+                    term = lie.bracket(xi[jk.a], self.screws[:, k]) * (qd[k] * sign)
+                    total = term if total is None else total + term
+                out.append(self._coordinates(ls, total))
+            return np.concatenate(out) if out else model.backend.zeros(0)
+
+    def refuse_type_ii(self, inputs: list[int]) -> None:
+        """In mp:N and exact, refuse a configuration where the inputs leave a motion free
+        (``[A; E]`` below full column rank, decided with the precision's margins on the
+        commensurate rows): there the efforts are unbounded or not unique."""
+        from mechsing.numeric import decide_rank
+
+        model = self.model
+        if model.backend.name == "float":
+            return
+        with model.precision.context():
+            L = model.length_scale
+            E = np.array(self.selector(inputs), copy=True)
+            lengths = np.asarray(model.frame.length_columns, dtype=bool)
+            if np.any(lengths):  # a commensurate length rate is the rate / L: its row times L
+                E[:, lengths] = E[:, lengths] * L
+            K = np.vstack([self.commensurate, E])
+            dec = decide_rank(K, model.precision, float(to_float(L)))
+        if dec.rank is None or dec.rank < model.n:
+            raise UserError(
+                "the inputs leave a motion of the mechanism free here (a Type II singularity"
+                + ("" if dec.rank is not None else ", or too close to one to decide")
+                + "): the inputs' efforts are unbounded or not unique; --precision float gives "
+                "the least-squares efforts and the crossing condition's residual"
+            )
+
+    def selector(self, inputs: list[int]) -> np.ndarray:
+        """The rows selecting the coordinates ``inputs`` (in the model's numbers)."""
+        E = np.zeros((len(inputs), self.model.n), dtype=int)
+        E[np.arange(len(inputs)), inputs] = 1
+        return self.model.asarray(E)
 
 
-def _closure_and_inputs(
-    model: Any, q: np.ndarray, inputs: list[int]
+def _solve(backend: Any, A: np.ndarray, b: np.ndarray, what: str) -> tuple[np.ndarray, float]:
+    """x with ``A x = b`` (least squares) and the relative residual (float)."""
+    if backend.name == "float":
+        A, b = np.asarray(A, dtype=float), np.asarray(b, dtype=float)
+        x, *_ = np.linalg.lstsq(A, b, rcond=None)
+        scale = max(float(np.linalg.norm(b)), float(np.linalg.norm(A) * np.linalg.norm(x)), 1e-300)
+        return x, float(np.linalg.norm(A @ x - b)) / scale
+    try:
+        x = backend.solve(A, b)
+    except (ZeroDivisionError, ValueError, ArithmeticError) as exc:
+        raise UserError(
+            f"the {what} is singular here (a Type II singularity: the inputs' efforts are "
+            "unbounded or not unique); --precision float gives the least-squares efforts and "
+            "the crossing condition's residual"
+        ) from exc
+
+    def norm(v: np.ndarray) -> float:
+        return math.sqrt(sum(float(to_float(e)) ** 2 for e in np.ravel(v)))
+
+    r = A.dot(x) - b
+    scale = max(norm(b), 1e-300)
+    return x, norm(r) / scale
+
+
+def driven_motion(
+    rows: ClosureRows,
+    G: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    drift: Any = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The closure's Jacobian at ``q`` (float) and the rows selecting the inputs'
-    coordinates ``inputs`` among the model's."""
-    C = np.asarray(model.closure_jacobian(q), dtype=float)
-    E = np.zeros((len(inputs), model.n))
-    E[np.arange(len(inputs)), inputs] = 1.0
-    return C, E
+    """Every coordinate's rate and acceleration at the closed configuration of ``rows``
+    when the rows ``G`` of the rates are driven: ``[A; G] qd = [0; v]`` and
+    ``[A; G] qdd = [-Adot qd; a - drift(qd)]`` (``drift``: the part of the driven rows'
+    second derivative that is not ``G qdd``, a function of the rates; None: rows of
+    constant coefficients, the coordinates themselves)."""
+    model = rows.model
+    with model.precision.context():
+        K = np.vstack([rows.A, G])
+        zeros = model.backend.zeros(rows.A.shape[0])
+        qd, _ = _solve(model.backend, K, np.concatenate([zeros, v]), "closure at velocity level")
+        rhs = a if drift is None else a - drift(qd)
+        qdd, _ = _solve(
+            model.backend, K, np.concatenate([-rows.rate(qd), rhs]), "closure at acceleration level"
+        )
+    return qd, qdd
+
+
+def balance(
+    rows: ClosureRows, E: np.ndarray, tau: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """The inputs' efforts (every coordinate's: 0 off the inputs ``E`` selects), the
+    loops' multipliers and the relative residual of ``E^T tau_in + A^T lambda = tau``
+    (virtual work) for the tree's efforts ``tau``."""
+    model = rows.model
+    with model.precision.context():
+        M = np.hstack([E.T, rows.A.T])
+        x, residual = _solve(model.backend, M, tau, "balance of the efforts")
+        m = E.shape[0]
+        return E.T.dot(x[:m]), x[m:], residual
 
 
 def closed_inverse(
     td: Any, q: np.ndarray, inputs: list[int], u: np.ndarray, udd: np.ndarray
 ) -> ClosedMotion:
-    """The motion and efforts of the closed chain of ``td`` (its model in float) at the
-    closed configuration ``q`` for the inputs' coordinates ``inputs`` moving with the rates
-    ``u`` and the accelerations ``udd``."""
-    q = np.asarray(q, dtype=float)
-    C, E = _closure_and_inputs(td.model, q, inputs)
-    zeros = np.zeros(C.shape[0])
-    qd, _ = _solve(np.vstack([C, E]), np.concatenate([zeros, u]))
+    """The motion and efforts of the closed chain of ``td`` at the closed configuration
+    ``q`` (in the model's numbers) for the inputs' coordinates ``inputs`` moving with the
+    rates ``u`` and the accelerations ``udd``."""
+    rows = ClosureRows(td, q)
+    rows.refuse_type_ii(inputs)
+    E = rows.selector(inputs)
+    qd, qdd = driven_motion(rows, E, u, udd)
     qd[inputs] = u  # the inputs' rates as given (the solve returns them to rounding)
-    # the closure's rate: each column's bracket with the twist of its joint's first body
-    _, xi, _, _ = td.motion(q, qd, None, False)
-    rate = np.zeros(C.shape[0])
-    for jk in td.model.joints:
-        k = jk.columns.start
-        col = C[:, k]
-        if not np.any(col):
-            continue
-        twist = xi.get(jk.a)
-        for b in range(0, C.shape[0], 6):
-            rate[b : b + 6] += lie.bracket(twist, col[b : b + 6]) * qd[k]
-    qdd, _ = _solve(np.vstack([C, E]), np.concatenate([-rate, udd]))
     qdd[inputs] = udd
     tau = td.inverse(q, qd, qdd)
-    x, residual = _solve(np.hstack([E.T, C.T]), tau)
-    efforts = E.T @ x[: len(inputs)]
-    return ClosedMotion(qd, qdd, efforts, x[len(inputs) :], residual, tau)
+    efforts, multipliers, residual = balance(rows, E, tau)
+    return ClosedMotion(qd, qdd, efforts, multipliers, residual, tau)
 
 
 def closed_forward(
@@ -105,13 +234,26 @@ def closed_forward(
     """The inputs' accelerations under the inputs' efforts ``tau_in`` at the closed
     configuration ``q`` with the inputs' rates ``u`` (the reduced equation of the module
     docstring); every coordinate's acceleration."""
-    q = np.asarray(q, dtype=float)
-    C, E = _closure_and_inputs(td.model, q, inputs)
-    K = np.vstack([C, E])
-    rhs = np.vstack([np.zeros((C.shape[0], len(inputs))), np.eye(len(inputs))])
-    N, *_ = np.linalg.lstsq(K, rhs, rcond=None)
-    still = closed_inverse(td, q, inputs, u, np.zeros(len(inputs)))
-    M = np.asarray(td.mass_matrix(q), dtype=float)
-    reduced = N.T @ M @ N
-    udd = np.linalg.solve(reduced, np.asarray(tau_in, dtype=float) - N.T @ still.tree_efforts)
-    return still.qdd + N @ udd
+    rows = ClosureRows(td, q)
+    E = rows.selector(inputs)
+    model = rows.model
+    with model.precision.context():
+        K = np.vstack([rows.A, E])
+        m = len(inputs)
+        N = np.stack(
+            [
+                _solve(
+                    model.backend,
+                    K,
+                    np.concatenate([model.backend.zeros(rows.A.shape[0]), unit]),
+                    "closure at velocity level",
+                )[0]
+                for unit in model.backend.eye(m)
+            ],
+            axis=1,
+        )
+        still = closed_inverse(td, q, inputs, u, model.backend.zeros(m))
+        M = td.mass_matrix(q)
+        reduced = N.T.dot(M).dot(N)
+        udd = model.backend.solve(reduced, tau_in - N.T.dot(still.tree_efforts))
+        return still.qdd + N.dot(udd)

@@ -51,7 +51,7 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
-from mechsing.numeric import holds_objects
+from mechsing.numeric.backend import holds_objects
 
 __all__ = [
     "Inertia",

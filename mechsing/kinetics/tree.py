@@ -40,7 +40,8 @@ from mechsing.errors import UserError
 from mechsing.kinematics import forward
 from mechsing.kinetics.rigid import Inertia, kinetic_energy, newton_euler
 from mechsing.model.loads import mass_centre
-from mechsing.numeric import dispatch, holds_objects
+from mechsing.numeric import dispatch
+from mechsing.numeric.backend import holds_objects
 
 __all__ = ["TreeDynamics"]
 

@@ -23,7 +23,9 @@ Switch points and numbers of terms: those of :mod:`mechsing.lie._series`.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 
@@ -86,7 +88,7 @@ def coefficients(t2: np.ndarray, shifts: tuple[int, ...]) -> list[np.ndarray]:
     small = t2 <= SWITCH_T2
     anysmall = bool(small.any())
     series = _power_series(t2, _factorial_table(shifts)) if anysmall else None
-    if anysmall and bool(small.all()):
+    if series is not None and bool(small.all()):
         return list(series)
     t = np.sqrt(np.where(small, 1.0, t2))
     s = np.sin(t) if (1 in shifts or 3 in shifts) else None
@@ -101,7 +103,7 @@ def coefficients(t2: np.ndarray, shifts: tuple[int, ...]) -> list[np.ndarray]:
             closed = (t - s) / (t * (t * t))
         else:
             raise ValueError(f"no closed form for the factorial series of shift {shift}")
-        out.append(np.where(small, series[k], closed) if anysmall else closed)
+        out.append(closed if series is None else np.where(small, series[k], closed))
     return out
 
 
@@ -283,7 +285,7 @@ def act_screw(g: np.ndarray, xi: np.ndarray) -> np.ndarray:
 
 
 _BIT_FOR_BIT = "float64 arrays: the generic formula's numbers bit for bit, fewer numpy calls"
-for _name, _function in [
+_FORMS: list[tuple[str, Callable[..., Any]]] = [
     ("cross", cross),
     ("hat3", hat3),
     ("quaternion_parts", quaternion_parts),
@@ -294,5 +296,6 @@ for _name, _function in [
     ("act_screw", act_screw),
     ("exp", exp),
     ("exp_so3", exp_so3),
-]:
+]
+for _name, _function in _FORMS:
     _LIE[_name].register("float64", _BIT_FOR_BIT)(_function)

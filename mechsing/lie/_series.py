@@ -23,7 +23,8 @@ from typing import Any
 import numpy as np
 import sympy
 
-from mechsing.numeric import Backend, bool_mask
+from mechsing.numeric import Backend
+from mechsing.numeric.backend import bool_mask
 
 #: the closed forms are used above this value of t^2 (float and mp)
 SWITCH_T2 = 1

@@ -16,7 +16,8 @@ from typing import Any
 import numpy as np
 
 from mechsing.lie._series import factorial_series, half_cot_series, safe, use_series
-from mechsing.numeric import backend_of, bool_mask, dispatch, holds_objects
+from mechsing.numeric import backend_of, dispatch
+from mechsing.numeric.backend import bool_mask, holds_objects
 
 #: the dispatch table of each Lie function with fast forms (one per signature; their
 #: float64 forms: :mod:`mechsing.lie._float`; :mod:`mechsing.numeric.dispatch`)

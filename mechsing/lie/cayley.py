@@ -42,7 +42,8 @@ from mechsing.lie._se3 import ANGULAR, LINEAR
 from mechsing.lie._so3 import _asarr as _arr
 from mechsing.lie._so3 import cross, hat3, vee3
 from mechsing.lie._so3 import dot as _dot
-from mechsing.numeric import backend_of, bool_mask
+from mechsing.numeric import backend_of
+from mechsing.numeric.backend import bool_mask
 
 __all__ = [
     "cayley_se3",

@@ -15,7 +15,8 @@ from mechsing.model.configurations import RESERVED_CONFIGURATION_KEYS
 from mechsing.model.loads import LOAD_KEY
 from mechsing.model.mechanism import POSE_KEY, U_JOINT, Joint
 from mechsing.model.reading import Reader, few, show_vector
-from mechsing.numeric import MAX_NUMBER, NEAR_ZERO_VECTOR, is_sensible_size
+from mechsing.numeric import MAX_NUMBER, NEAR_ZERO_VECTOR
+from mechsing.numeric.numbers import is_sensible_size
 from mechsing.yamlnodes import YMap, YSeq, YValue
 
 __all__ = ["JOINT_BASE_KEYS", "MAX_JOINTS", "U_KEYS", "JointReader"]

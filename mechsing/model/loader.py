@@ -28,7 +28,8 @@ from mechsing.model.loads import read_weights
 from mechsing.model.mechanism import InputRef, Joint, Mechanism, Output, Units
 from mechsing.model.parameters import check_names, read_parameters
 from mechsing.model.reading import Reader, few
-from mechsing.numeric import MAX_NUMBER, is_sensible_size
+from mechsing.numeric import MAX_NUMBER
+from mechsing.numeric.numbers import is_sensible_size
 from mechsing.yamlnodes import MAX_FILE_BYTES, YMap, YScalar, YSeq, YValue, read_yaml_text
 
 __all__ = [

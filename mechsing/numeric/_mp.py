@@ -4,7 +4,7 @@ one-sided Jacobi fallbacks), and the conversions between numpy object arrays and
 ``mpmath.matrix``.
 
 This is the one mp SVD of mechsing: :func:`mp_svd` (object arrays in, object arrays
-out) serves :func:`mechsing.numeric.svd`, the mp backend's null and row spaces and
+out) serves :func:`mechsing.numeric.linalg.svd`, the mp backend's null and row spaces and
 the rank decisions.  Everything here works at the current ``mpmath.mp.dps``.
 """
 

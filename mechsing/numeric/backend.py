@@ -413,7 +413,7 @@ def backend_of(*arrays: Any) -> Backend:
     The mp backend works at the current ``mpmath.mp.dps`` (see
     :meth:`Precision.context`).
     """
-    found = FLOAT
+    found: Backend = FLOAT
     for a in arrays:
         arr = np.asarray(a) if not isinstance(a, np.ndarray) else a
         if arr.dtype != object:

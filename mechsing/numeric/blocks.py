@@ -189,10 +189,11 @@ def _factor(
             sel = at >= 0
             sub = np.zeros((len(members), nr, nc))
             sub[at[sel], rank[r[sel]], rank[m + c[sel]]] = v[sel]
+        Ub: np.ndarray | None = None
+        Vtb: np.ndarray | None = None
         if compute_uv:
             Ub, sb, Vtb = np.linalg.svd(sub, full_matrices=True)
         else:
-            Ub = Vtb = None
             sb = np.linalg.svd(sub, compute_uv=False)
         groups.append((R, C, Ub, sb, Vtb))
         sigmas.append(sb.reshape(-1))
@@ -210,6 +211,16 @@ def _factor(
     )
 
 
+def _dense_svd(
+    A: np.ndarray, full_matrices: bool, compute_uv: bool
+) -> tuple[np.ndarray, np.ndarray, np.ndarray] | np.ndarray:
+    """:func:`numpy.linalg.svd` of a dense float matrix: its factors, or its singular values."""
+    if compute_uv:
+        U, s, Vt = np.linalg.svd(A, full_matrices=full_matrices)
+        return U, s, Vt
+    return np.linalg.svd(A, compute_uv=False)
+
+
 def block_svd(
     A: Any, full_matrices: bool = True, compute_uv: bool = True
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | np.ndarray:
@@ -222,12 +233,12 @@ def block_svd(
     else:
         A = np.asarray(A, dtype=float)
     if not issparse(A) and (dense(A.size) or not np.isfinite(A).all()):
-        return np.linalg.svd(A, full_matrices=full_matrices, compute_uv=compute_uv)
+        return _dense_svd(A, full_matrices, compute_uv)
     r, c, v = _entries(A)
     st = _structure(m, n, r, c)
     if len(st.nrows) == 1:
         D = A.toarray() if issparse(A) else A
-        return np.linalg.svd(D, full_matrices=full_matrices, compute_uv=compute_uv)
+        return _dense_svd(D, full_matrices, compute_uv)
     F = _factor(A, r, c, v, st, compute_uv)
     if not compute_uv:
         return F.s

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import Any, cast
 
 import mpmath
 import numpy as np
@@ -337,7 +337,7 @@ def decide_rank(
             sigma = tuple(float(x) for x in s)
     else:
         F = arr if issparse(arr) else to_float(arr)
-        s_np = block_svd(F, compute_uv=False)
+        s_np = cast(np.ndarray, block_svd(F, compute_uv=False))
         smax = float(s_np[0]) if len(s_np) else 0.0
         if reference is not None and reference > smax:
             smax = float(reference)
@@ -346,7 +346,8 @@ def decide_rank(
         sigma = tuple(values)
         # the entries' rounding: of F itself, or of the factors of a product decided
         # against the norm of its first factor (``reference``)
-        norm = float(np.sqrt(np.sum(F.data**2))) if issparse(F) else float(np.linalg.norm(F))
+        sparse_data = cast(Any, F).data  # a sparse matrix's stored entries
+        norm = float(np.sqrt(np.sum(sparse_data**2))) if issparse(F) else float(np.linalg.norm(F))
         rounding = FLOAT.eps * max(norm, float(reference or 0.0))
     rank, bounds = _split_rank(rel, tol)
     r_eff = rank if rank is not None else bounds[0]
@@ -582,7 +583,11 @@ def _field_rank(arr: np.ndarray, length_scale: float, want_spaces: bool) -> Rank
 
 
 def _exact_decision(
-    rank: int, pivots: list[float], shape: tuple[int, ...], length_scale: float, spaces: tuple
+    rank: int,
+    pivots: list[float],
+    shape: tuple[int, ...],
+    length_scale: float,
+    spaces: tuple[Any, ...],
 ) -> RankDecision:
     """An exact rank decision: its smallest pivot magnitude kept, 0 dropped when the
     rank is below full; ``spaces``: (null, range, exact null, exact range) or Nones."""

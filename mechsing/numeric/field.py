@@ -40,7 +40,13 @@ from sympy.polys.constructor import construct_domain
 from sympy.polys.domains import QQ
 from sympy.polys.matrices import DomainMatrix
 
-from mechsing.numeric.tolerances import EXACT_FIELD_MAX_DEGREE
+#: the largest degree (bounded by the product of the radicals' indices) of a number field
+#: exact mode builds for a configuration's data (the bundled 6-UPS and 3-UPU platforms: 32,
+#: five square roots); beyond it, the primitive element and the factoring over it can take
+#: longer than the general sympy path, which then serves (float mode's loop identification
+#: at the drawn pose of a file with many different radicals stalled there)
+EXACT_FIELD_MAX_DEGREE = 32
+
 
 __all__ = [
     "FieldEchelon",

@@ -7,7 +7,7 @@ decisions and factorised by the exact backend's null/row spaces, not here.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, cast
 
 import mpmath
 import numpy as np
@@ -34,7 +34,8 @@ def svd(A: Any, full_matrices: bool = True) -> tuple[np.ndarray, np.ndarray, np.
     arr = np.asarray(A)
     bk = _numerical_backend(arr)
     if bk.name == "float":
-        return block_svd(to_float(arr), full_matrices=full_matrices)
+        factors = block_svd(to_float(arr), full_matrices=full_matrices)
+        return cast(tuple[np.ndarray, np.ndarray, np.ndarray], factors)
     return mp_svd(arr, full_matrices)
 
 

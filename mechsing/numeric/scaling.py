@@ -236,7 +236,8 @@ class CommensurateFrame:
 
     def rates(self, d: np.ndarray) -> np.ndarray:
         """SI joint rates or increments -> commensurate (lengths / L)."""
-        return np.where(self.length_columns, d / self.L, d)
+        lc = False if self.length_columns is None else self.length_columns  # False: none
+        return np.where(lc, d / self.L, d)
 
     def random_coordinates(self, rng: np.random.Generator, count: int) -> np.ndarray:
         """``count`` random joint coordinates (rows, float): angles uniform in
@@ -255,7 +256,7 @@ class CommensurateFrame:
         """Commensurate joint rates -> SI (lengths times L); ``columns`` as in
         :meth:`screws`."""
         lc = self.lengths(columns)
-        return np.where(lc, x * self.L, x)
+        return np.where(False if lc is None else lc, x * self.L, x)  # False: no lengths
 
     def twist_back(self, t: np.ndarray) -> np.ndarray:
         """An SI twist at the ground origin from a commensurate one:
@@ -284,6 +285,7 @@ class CommensurateFrame:
     def _wrench_maps(self) -> tuple[np.ndarray, np.ndarray]:
         """``Ad(T(-c))^T`` and ``D`` of :meth:`wrench_back` (float, built once)."""
         L, c = self.L_float, self.c_float
+        assert c is not None  # every constructor sets the float centre
         D = np.diag([1, 1, 1, 1 / L, 1 / L, 1 / L])
         # Ad of the translation by -c (rotation identity): [[I, 0], [hat(-c), I]]
         Ad = np.eye(6)

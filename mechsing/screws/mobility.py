@@ -21,15 +21,16 @@ import numpy as np
 from mechsing.kinematics import KinematicModel, forward
 from mechsing.kinematics.batch_newton import BatchClosure, truncated_steps
 from mechsing.kinematics.newton import newton_on_group, truncated_least_squares
-from mechsing.numeric import (
-    SAMPLE_CLOSURE_RTOL,
-    SAMPLE_DISTINCT_RATIO,
-    Precision,
-    batched_kernels,
-    decide_rank,
-    to_float,
-)
+from mechsing.numeric import Precision, batched_kernels, decide_rank, to_float
 from mechsing.numeric.blocks import dense
+
+#: a nearby configuration found by sampling or by following a branch counts as
+#: closed at this residual (times L)
+SAMPLE_CLOSURE_RTOL = 1e-10
+
+#: a sample that lands closer to q than this fraction of its step is q itself
+#: (Newton fell back): not a nearby configuration
+SAMPLE_DISTINCT_RATIO = 0.1
 
 _FLOAT = Precision("float")
 #: relative distances (radians or multiples of L) of the sample points

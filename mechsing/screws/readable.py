@@ -24,9 +24,16 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import ECHELON_PIVOT_RTOL, SUPPORT_RTOL
+from mechsing.numeric import SUPPORT_RTOL
 
-__all__ = ["echelon", "readable_basis", "simplest"]
+#: a reduced row echelon form written to be read (screws.readable.echelon) takes its
+#: pivots in column order, but not one below this fraction of the largest entry still
+#: to eliminate: a smaller pivot would scale its row by more than 1e6 and bring the
+#: data's rounding up to the digits shown (an axis tilted by 3e-8 rad out of a plane is
+#: then read in the plane's own columns; the span is unchanged)
+ECHELON_PIVOT_RTOL = 1e-6
+
+__all__ = ["echelon", "readable_basis", "reduced_echelon", "simplest"]
 
 
 def _scale(length_scale: float) -> np.ndarray:
@@ -44,9 +51,22 @@ def echelon(rows: np.ndarray, length_scale: float) -> tuple[np.ndarray, list[int
     rounding level (SUPPORT_RTOL of the largest entry) are dropped."""
     scale = _scale(length_scale)
     A = np.array(rows, dtype=float).reshape(-1, 6) * scale
+    out, pivots = reduced_echelon(A)
+    return out / scale, pivots
+
+
+def reduced_echelon(A: np.ndarray) -> tuple[np.ndarray, list[int]]:
+    """Reduced row echelon form of the rows of ``A`` (k, m), any width, with its pivot
+    columns (the rule of :func:`echelon`, whose columns are first made commensurate): a
+    pivot is the largest remaining entry of the first column where one exceeds
+    ECHELON_PIVOT_RTOL of the largest entry still to eliminate; rows of rounding level
+    (SUPPORT_RTOL of the largest entry) are dropped.  The form of a span is the same
+    whichever basis of it is given (a kernel's, from an SVD that picks any)."""
+    A = np.array(A, dtype=float)
+    m = A.shape[1] if A.ndim == 2 else 0
     if A.size == 0:
-        return A / scale, []
-    # in Python floats: a few rows of six, where numpy's per-call cost would be most of
+        return A.reshape(-1, m), []
+    # in Python floats: a few short rows, where numpy's per-call cost would be most of
     # the work; a non-finite entry propagates as numpy's elimination would (a NaN is the
     # largest entry and the first such is the pivot)
     rows = A.tolist()
@@ -55,7 +75,7 @@ def echelon(rows: np.ndarray, length_scale: float) -> tuple[np.ndarray, list[int
     tol = SUPPORT_RTOL * top(abs(x) for row in rows for x in row)
     pivots: list[int] = []
     r = 0
-    for j in range(6):
+    for j in range(m):
         if r == k:
             break
         rest = top(abs(x) for row in rows[r:] for x in row[j:])
@@ -79,7 +99,7 @@ def echelon(rows: np.ndarray, length_scale: float) -> tuple[np.ndarray, list[int
                 rows[t] = [a - f * b for a, b in zip(rows[t], pr, strict=True)]
         pivots.append(j)
         r += 1
-    return np.array(rows[:r], dtype=float).reshape(r, 6) / scale, pivots
+    return np.array(rows[:r], dtype=float).reshape(r, m), pivots
 
 
 def _largest(values: Any) -> float:

@@ -26,16 +26,12 @@ import sympy
 
 from mechsing import lie
 from mechsing.kinematics import KinematicModel
+from mechsing.kinematics.protocol import ClosureModel
 from mechsing.lie import ANGULAR, LINEAR
 from mechsing.model import Loop, Mechanism
-from mechsing.numeric import (
-    Precision,
-    RankDecision,
-    decide_rank,
-    field_solve,
-    orthonormal_columns,
-    to_float,
-)
+from mechsing.numeric import Precision, RankDecision, decide_rank, to_float
+from mechsing.numeric.field import field_solve
+from mechsing.numeric.linalg import orthonormal_columns
 from mechsing.subgroups import Identification, Subgroup, generate
 
 __all__ = [
@@ -109,7 +105,7 @@ class ClosureSystem:
 
 
 def chain_matrix(
-    model: KinematicModel,
+    model: ClosureModel,
     S: np.ndarray,
     columns: Sequence[int] | None,
     point: np.ndarray | None = None,

@@ -43,17 +43,12 @@ from mechsing.numeric import (
     backend_of,
     decide_definiteness,
     decide_rank,
-    eigh,
-    holds_objects,
-    lstsq,
-    max_abs,
-    norm,
     order3_residual_rtol,
-    pinv_truncated,
     subspace_containment_atol,
     subspace_rank_rtol,
-    svd,
 )
+from mechsing.numeric.backend import holds_objects
+from mechsing.numeric.linalg import eigh, lstsq, max_abs, norm, pinv_truncated, svd
 from mechsing.screws import loop_basis
 
 #: directions sampled on a candidate subspace for the order-3 test

@@ -121,6 +121,9 @@ class SerialFinding:
     relative_to: str | None = None
     leg: int | None = None
     name: str | None = None
+    #: the whole kernel, one row per vector, in its canonical basis (reduced row echelon
+    #: form; ``null_joint_rates`` is its first row)
+    null_joint_rate_basis: tuple[Floats, ...] = ()
 
     cls = "serial"
 

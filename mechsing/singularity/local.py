@@ -24,21 +24,25 @@ import numpy as np
 
 from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
-    BRANCH_ALIGNMENT,
-    SAMPLE_CLOSURE_RTOL,
-    SAMPLE_DISTINCT_RATIO,
     SUPPORT_RTOL,
     Margin,
     Precision,
     RankDecision,
     decide_from_exact,
     decide_rank,
-    first_nonzero_positive,
     numeric_precision,
-    svd,
     to_float,
 )
-from mechsing.screws.mobility import NearbySample, nearby_samples, reclose, stacked_jacobian
+from mechsing.numeric.linalg import first_nonzero_positive, svd
+from mechsing.screws import closure_system
+from mechsing.screws.mobility import (
+    SAMPLE_CLOSURE_RTOL,
+    SAMPLE_DISTINCT_RATIO,
+    NearbySample,
+    nearby_samples,
+    reclose,
+    stacked_jacobian,
+)
 from mechsing.singularity.criteria import ConstraintTest, SerialTest, tests_run
 from mechsing.singularity.cspace import Cone, Expansion, closure_expansion, tangent_cone
 from mechsing.singularity.findings import (
@@ -62,6 +66,10 @@ from mechsing.singularity.serial import (
 )
 from mechsing.singularity.zfb import io_quantities, output_chain
 
+#: a branch probe follows its tangent when the cosine between the tangent and
+#: the displacement found is above this (a smooth branch through the point)
+BRANCH_ALIGNMENT = 0.9
+
 # The higher-order forms (tangent cone) and the input/output and constraint
 # ranks at q are computed and decided at the analysis precision
 # (numeric.numeric_precision: float, mp:N, mp:50 for exact), from the
@@ -76,21 +84,21 @@ RESTS_ON_UNDECIDED = "rests on an undecided rank of the input or output map"
 BRANCH_STEPS = (3e-3, 3e-2)
 
 
-@dataclass
+@dataclass(frozen=True)
 class LocalAnalysis:
-    """Mobility fields and findings of one configuration, as the local analysis builds
-    them (its own working record: :func:`mechsing.singularity.classify` turns
-    it into a frozen :class:`~mechsing.singularity.findings.Classification`)."""
+    """Mobility fields and findings of one configuration, built once the local analysis
+    has computed them all (:func:`mechsing.singularity.classify` turns it into a
+    :class:`~mechsing.singularity.findings.Classification`)."""
 
     generic: int | None
     finite: int | None
-    findings: list[Finding] = field(default_factory=list)
-    samples: list[NearbySample] = field(default_factory=list)
+    findings: tuple[Finding, ...] = ()
+    samples: tuple[NearbySample, ...] = ()
     cone: Cone | None = None
     regular: bool = True
     io_generic: dict[str, int | None] = field(default_factory=dict)
     #: the rank decisions at q behind the input/output, constraint and leg tests
-    decisions: list[Decision] = field(default_factory=list)
+    decisions: tuple[Decision, ...] = ()
 
 
 def float_model(model: Any) -> Any:
@@ -179,7 +187,7 @@ def _local_analysis(
     inst = cs.nullity
     prec_name = cs.rank.precision
     if inst is None:
-        return LocalAnalysis(None, None, [], regular=False)
+        return LocalAnalysis(None, None, regular=False)
     fm = float_model(model)
     qf = to_float(q)
     N = to_float(cs.rank.null_space) if cs.rank.null_space is not None else np.zeros((model.n, 0))
@@ -189,7 +197,11 @@ def _local_analysis(
         samples = nearby_samples(fm, qf, N) if given is None else given
     null_s = [s.nullity for s in samples if s.nullity is not None]
     gen_s = min(null_s) if null_s else None
-    out = LocalAnalysis(inst, inst, [], samples)
+    generic: int | None = inst
+    finite: int | None = inst
+    cone: Cone | None = None
+    regular = True
+    findings: list[Finding] = []
     joints = _joints_of(mech, cs)
     margin = cs.rank.margin
     built: list[_TestSystem] = []
@@ -213,77 +225,90 @@ def _local_analysis(
         return tangent_cone(ts.exp, ts.M, tprec, max_order=max_order, rank=ts.rank)
 
     if inst == 0:
-        out.generic = out.finite = 0
+        generic = finite = 0
     elif not samples:
         cone = cone_of()
-        out.cone = cone
-        out.regular = False
+        regular = False
         if cone.kind == "zero":
-            out.generic, out.finite = None, 0
-            out.findings.append(branch_finding("isolated", joints, cone, margin, prec_name, inst))
+            generic, finite = None, 0
+            findings.append(branch_finding("isolated", joints, cone, margin, prec_name, inst))
         else:
             found = _branches(fm, qf, cone) if cone.kind == "subspaces" else []
             if found and any(b[1] is not None for b in found):
-                out.findings.append(
-                    _bifurcation_or_more(
-                        fm, joints, cone, found, margin, prec_name, inst, None, out
-                    )
+                finding, mobility = _bifurcation_or_more(
+                    fm, joints, cone, found, margin, prec_name, inst, None
                 )
+                findings.append(finding)
+                if mobility is not None:
+                    generic = finite = mobility
             else:
-                out.generic, out.finite = None, None
-                out.findings.append(
+                generic, finite = None, None
+                findings.append(
                     degenerate(
                         DegenerateReason.NOTHING_NEARBY, joints, cone, margin, prec_name, inst
                     )
                 )
     elif gen_s is not None and inst > gen_s:
-        out.regular = False
+        regular = False
         cone = cone_of()
-        out.cone = cone
-        out.generic = out.finite = gen_s
+        generic = finite = gen_s
         if cone.kind == "inconclusive":
-            out.findings.append(
+            findings.append(
                 degenerate(DegenerateReason.INCONCLUSIVE, joints, cone, margin, prec_name, inst)
             )
         elif cone.kind == "zero":
-            out.findings.append(
+            findings.append(
                 degenerate(DegenerateReason.ZERO_CONE_NEARBY, joints, cone, margin, prec_name, inst)
             )
         else:
             found = _branches(fm, qf, cone)
-            out.findings.append(
-                _bifurcation_or_more(fm, joints, cone, found, margin, prec_name, inst, gen_s, out)
+            finding, mobility = _bifurcation_or_more(
+                fm, joints, cone, found, margin, prec_name, inst, gen_s
             )
+            findings.append(finding)
+            if mobility is not None:
+                generic = finite = mobility
     else:
-        out.generic = gen_s if gen_s is not None else inst
-        out.finite = out.generic
+        generic = gen_s if gen_s is not None else inst
+        finite = generic
         # shakiness: a regular point whose second-order cone is smaller than the kernel
         if samples:
-            cone = cone_of(max_order=2)
+            second = cone_of(max_order=2)
             if (
-                cone.kind == "subspaces"
-                and len(cone.subspaces) == 1
-                and cone.subspaces[0].shape[1] < inst
+                second.kind == "subspaces"
+                and len(second.subspaces) == 1
+                and second.subspaces[0].shape[1] < inst
             ):
-                out.finite = cone.subspaces[0].shape[1]
-                out.cone = cone
+                finite = second.subspaces[0].shape[1]
+                cone = second
     # input / output / constraint, measured against the regular samples of the branch
-    if out.generic is not None and inst > 0 and samples:
-        out.findings.extend(
-            _io_findings(
-                mech,
-                model,
-                fm,
-                q,
-                system().rank,
-                cs,
-                samples,
-                out,
-                tprec,
-                values if given is not None else None,
-            )
+    io_generic: dict[str, int | None] = {}
+    decisions: list[Decision] = []
+    if generic is not None and inst > 0 and samples:
+        findings += _io_findings(
+            mech,
+            model,
+            fm,
+            q,
+            system().rank,
+            cs,
+            samples,
+            generic,
+            io_generic,
+            decisions,
+            tprec,
+            values if given is not None else None,
         )
-    return out
+    return LocalAnalysis(
+        generic,
+        finite,
+        tuple(findings),
+        tuple(samples),
+        cone,
+        regular,
+        io_generic,
+        tuple(decisions),
+    )
 
 
 #: exact mode takes the test system's spaces from the exact kernel (no SVD at 50 digits)
@@ -332,15 +357,15 @@ def _bifurcation_or_more(
     prec: str,
     inst: int,
     gen: int | None,
-    out: LocalAnalysis,
-) -> BranchFinding:
+) -> tuple[BranchFinding, int | None]:
+    """The finding of a singular point with branches, and the mobility its branches show
+    (the largest of their known mobilities, at two branches or more; else None: the
+    caller's stands)."""
     tangents = tuple(tuple(_si_rates(fm, x)) for x, _, _ in found)
     mobilities = tuple(n for _, n, _ in found)
     dims = tuple(W.shape[1] for W in cone.subspaces)
     if len(found) >= 2:
         known = [m for m in mobilities if m is not None]
-        if known:
-            out.generic = out.finite = max(known)
         return branch_finding(
             "bifurcation",
             joints,
@@ -353,7 +378,7 @@ def _bifurcation_or_more(
             branch_mobility=mobilities,
             branch_dimensions=dims,
             kinematotropic=len(set(known)) > 1 or None,
-        )
+        ), (max(known) if known else None)
     x, n, smooth = found[0]
     if smooth and gen is not None and dims[0] == gen:
         return branch_finding(
@@ -365,11 +390,11 @@ def _bifurcation_or_more(
             inst,
             generic=gen,
             branch_tangents=tangents,
-        )
+        ), None
     reason = DegenerateReason.NOT_SMOOTH if not smooth else DegenerateReason.WRONG_DIMENSION
     return degenerate(
         reason, joints, cone, margin, prec, inst, branch_tangents=tangents, generic=gen
-    )
+    ), None
 
 
 def _io_findings(
@@ -380,16 +405,20 @@ def _io_findings(
     rank: RankDecision,
     cs: Any,
     samples: list[NearbySample],
-    out: LocalAnalysis,
+    mobility: int,
+    io_generic: dict[str, int | None],
+    decisions: list[Decision],
     tprec: Precision,
     values: list[SampleValues] | None = None,
 ) -> list[Finding]:
     """ZFB and constraint findings: decided at q at the test precision ``tprec``
     (``rank``: the closure system's decision there, with its kernel), against
     the values at the regular nearby samples (float; ``values``: those of every sample
-    when already computed, else computed here for the regular ones)."""
+    when already computed, else computed here for the regular ones; ``mobility``: the
+    generic mobility, which makes a sample regular).  The tests' generic values go into
+    ``io_generic``, their rank decisions at q into ``decisions``."""
     findings: list[Finding] = []
-    idx = [i for i, s in enumerate(samples) if s.nullity == out.generic] or range(len(samples))
+    idx = [i for i, s in enumerate(samples) if s.nullity == mobility] or range(len(samples))
     # each regular sample's values, computed once for every test (all samples together)
     if values is None:
         regular = sample_values(mech, fm, [samples[i] for i in idx])
@@ -408,7 +437,7 @@ def _io_findings(
                 )
                 for k in hv
             }
-            out.io_generic = generic
+            io_generic.update(generic)
             for test, dec in (
                 ("input", here.input_motion),
                 ("output", here.output_motion),
@@ -421,7 +450,7 @@ def _io_findings(
                 if hv[test] is None and dec.rank is not None:
                     # a motion space built on an undecided rank (IOQuantities.values)
                     d = replace(d, rank=None, note=RESTS_ON_UNDECIDED)
-                out.decisions.append(d)
+                decisions.append(d)
             first = samples[idx[0]].q if len(samples) else None
             generic_screws = None if first is None else fm.current_screws(first)
             named_by = (cs.screws, generic_screws)
@@ -430,7 +459,14 @@ def _io_findings(
     if legs is not None:
         dec, wr = legs
         gen_ranks = [v.constraint for v in regular if v.constraint is not None]
-        out.decisions.append(decision("constraint", dec, max(gen_ranks) if gen_ranks else None))
+        if (
+            tprec.mode != "float"
+            and dec.rank is not None
+            and gen_ranks
+            and dec.rank < max(gen_ranks)
+        ):
+            gen_ranks = _constraint_ranks_at(mech, model, [samples[i].q for i in idx], tprec)
+        decisions.append(decision("constraint", dec, max(gen_ranks) if gen_ranks else None))
         if dec.rank is not None and gen_ranks and dec.rank < max(gen_ranks):
             g = max(gen_ranks)
             U, _s, _ = svd(np.concatenate(wr, axis=1))
@@ -447,8 +483,31 @@ def _io_findings(
                 )
             )
     if mech.output is not None:
-        findings.extend(_leg_serial(mech, model, fm, q, cs, regular, out))
+        findings.extend(_leg_serial(mech, model, fm, q, cs, regular, decisions))
     return findings
+
+
+def _constraint_ranks_at(mech: Any, model: Any, qs: list[Any], tprec: Precision) -> list[int]:
+    """The constraint test's ranks at the regular samples ``qs`` (float configurations)
+    decided again at the test precision ``tprec`` (mp:N).
+
+    A drop at q decided at mp:N is a drop only against the generic rank decided at mp:N
+    too: the samples are closed and decided in float, and float does not resolve what is
+    below its thresholds (a helical joint of pitch 1e-13 m/rad turns like a revolute one
+    there, while mp:50 and exact see its slide), so that a float generic rank can be one
+    that no configuration has at mp:N.  Called at a candidate drop only."""
+    from mechsing.kinematics import KinematicModel
+
+    mp_model = model if model.precision.mode == "mp" else KinematicModel(mech, tprec)
+    test = ConstraintTest.of(mech, mp_model)
+    out = []
+    with tprec.context():
+        for q in qs:
+            qt = tprec.backend.asarray([float(x) for x in q])
+            r = test.decide(closure_system(mp_model, qt, tprec), tprec)
+            if r is not None and r[0].rank is not None:
+                out.append(int(r[0].rank))
+    return out
 
 
 def _zfb(
@@ -572,12 +631,13 @@ def _leg_serial(
     q: np.ndarray,
     cs: Any,
     regular: list[SampleValues],
-    out: LocalAnalysis,
+    decisions: list[Decision],
 ) -> list[Finding]:
     """``serial`` for a leg whose own screw system loses rank (type I per leg):
     decided at the analysis precision from the closure system's screws (as the
     output chain of an open chain), against the float ranks at the samples
-    (``regular``: their values, with each leg's screw matrix)."""
+    (``regular``: their values, with each leg's screw matrix); each leg's rank decision
+    goes into ``decisions``."""
     findings: list[Finding] = []
     legs = ConstraintTest.of(mech, fm).legs
     serial = SerialTest.of(mech, model)
@@ -597,7 +657,7 @@ def _leg_serial(
             samples.append(matrix)
             if r is not None:
                 gen = max(gen, r)
-        out.decisions.append(decision(f"leg {i + 1} chain", here.rank, gen))
+        decisions.append(decision(f"leg {i + 1} chain", here.rank, gen))
         span = None
         if here.rank.rank is not None and here.rank.rank < gen:
             span = generic_span([here.matrix, *samples], gen)

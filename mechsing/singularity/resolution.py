@@ -6,7 +6,7 @@ chain, the input/output ranks ``T N`` and ``E N``) and
 :func:`value_slopes`, their first-order sensitivity to each given coordinate: the
 largest change of any relative singular value per unit of that coordinate (radians,
 metres), by finite one-sided
-differences of step :data:`mechsing.numeric.RESOLUTION_STEP`
+differences of step :data:`mechsing.singularity.resolution.RESOLUTION_STEP`
 (radians, or lengths / L) with the other joint values held.
 
 By Weyl's inequality every singular value of a matrix moves by at most the norm of the
@@ -26,11 +26,17 @@ from typing import Any
 import numpy as np
 
 from mechsing.kinematics import KinematicModel
-from mechsing.numeric import RESOLUTION_STEP, Precision, RankDecision, decide_rank
+from mechsing.numeric import Precision, RankDecision, decide_rank
 from mechsing.screws import closure_system
 from mechsing.screws.systems import share_loop_identifications
 from mechsing.singularity.criteria import ConstraintTest, SerialTest
 from mechsing.singularity.zfb import io_quantities, output_chain
+
+#: the finite-difference step (radians, or lengths / L) over which the tests' singular
+#: values are differentiated with respect to a given value, for the first-order bound
+#: of what the data's resolution can move them by: far above float's rounding of the
+#: differences (1e-16 / 1e-6 relative) and small enough that the first order holds
+RESOLUTION_STEP = 1e-6
 
 __all__ = [
     "closure_nullity",

@@ -10,9 +10,11 @@ generically could not: the reciprocal system grows.
 Reported keys (SI, (f, m) at the ground origin): ``wrenches`` -- a basis of the
 whole reciprocal system, each with unit force (unit moment for a couple) and
 first non-zero component positive; ``corank``; ``twist`` -- a lost twist with
-non-zero power against a new wrench; ``null_joint_rates`` -- a kernel vector
-(largest entry 1) and its support ``joints`` (entries above
-:data:`mechsing.numeric.SUPPORT_RTOL` of the largest).
+non-zero power against a new wrench; ``null_joint_rate_basis`` -- the whole kernel in a
+canonical basis (reduced row echelon form, each row largest entry 1: the same whatever
+basis an SVD picks), ``null_joint_rates`` its first row, and ``joints`` the kernel's
+support (the joints with an entry above :data:`mechsing.numeric.SUPPORT_RTOL` of its
+row's largest in some row).
 
 Which basis, and which lost twist, is a choice (theory: only the reciprocal system is
 intrinsic); it is made to be read (:mod:`mechsing.screws.readable`).  When the chain's
@@ -40,10 +42,10 @@ from mechsing.numeric import (
     SUPPORT_RTOL,
     CommensurateFrame,
     decide_rank,
-    first_nonzero_positive,
     to_float,
 )
-from mechsing.screws.readable import echelon, simplest
+from mechsing.numeric.linalg import first_nonzero_positive
+from mechsing.screws.readable import echelon, reduced_echelon, simplest
 from mechsing.singularity.criteria.serial import ChainSystem
 from mechsing.singularity.findings import SerialFinding
 from mechsing.singularity.names import lines_of_screws, singularity_name
@@ -128,6 +130,29 @@ def generic_span(matrices: list[np.ndarray], generic_rank: int) -> np.ndarray | 
     return U[:, :generic_rank]
 
 
+def null_rates_basis(kernel_rows: np.ndarray, frame: CommensurateFrame, system: Any) -> np.ndarray:
+    """The whole kernel of a chain's commensurate screw matrix (rows: an orthonormal
+    basis of it, from an SVD, which picks any where its dimension is 2 or more) in one
+    canonical basis: its reduced row echelon form (pivots decided with
+    ECHELON_PIVOT_RTOL, :func:`mechsing.screws.readable.reduced_echelon`), each row then
+    in SI joint rates (the couplings' followers expanded), largest entry 1, first
+    non-zero positive, rounding-level entries 0.  The same kernel gives the same rows
+    however it was computed (the fast paths on or off)."""
+    K = np.asarray(kernel_rows, dtype=float)
+    if K.shape[0] == 0:
+        return np.zeros((0, len(system.columns)))
+    rows, _ = reduced_echelon(K)
+    out = []
+    for v in rows:
+        if system.kept is not None:
+            v = expand_rates(v, len(system.columns), system.kept, system.follows)
+        v = frame.rates_back(v, system.columns)
+        big = float(np.max(np.abs(v))) if len(v) else 0.0
+        if big > 0:
+            out.append(_unit_first_positive(v / big))
+    return np.array(out).reshape(len(out), len(system.columns))
+
+
 def serial_finding(
     model: Any,
     system: ChainSystem,
@@ -169,16 +194,11 @@ def serial_finding(
     # left-null vector pairs with itself), in its simplest form modulo the chain's twists
     here = np.array([si_twist(u) for u in U[:, :r].T]).reshape(-1, 6)
     twist = _unit_twist(simplest(si_twist(new[:, 0]), here))
-    kernel = Vt[r:].T if Vt.shape[0] > r else np.zeros((Ms.shape[1], 0))
-    rates = kernel[:, 0] if kernel.shape[1] else np.zeros(Ms.shape[1])
-    if system.kept is not None:
-        rates = expand_rates(rates, len(system.columns), system.kept, system.follows)
-    rates = fr.rates_back(rates, system.columns)
-    big = float(np.max(np.abs(rates))) if len(rates) else 0.0
-    if big > 0:
-        rates = _unit_first_positive(rates / big)
+    basis = null_rates_basis(Vt[r:], fr, system)
+    rates = basis[0] if len(basis) else np.zeros(len(joints_of_columns))
+    # the moving joints: the support of the whole kernel (any of its rates)
     support = sorted(
-        {joints_of_columns[i] for i, x in enumerate(rates) if big > 0 and abs(x) > SUPPORT_RTOL},
+        {joints_of_columns[i] for row in basis for i, x in enumerate(row) if abs(x) > SUPPORT_RTOL},
         key=joints_of_columns.index,
     )
     return SerialFinding(
@@ -189,6 +209,7 @@ def serial_finding(
         wrenches=tuple(tuple(w) for w in wr),
         twist=tuple(twist),
         null_joint_rates=tuple(float(x) for x in rates),
+        null_joint_rate_basis=tuple(tuple(float(x) for x in row) for row in basis),
         margin=dec.margin,
         precision=dec.precision,
         body=label.get("body"),

@@ -36,7 +36,8 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import Precision, RankDecision, field_product
+from mechsing.numeric import Precision, RankDecision
+from mechsing.numeric.field import field_product
 from mechsing.singularity.criteria.motion import (
     IO_TESTS,
     NEED_INPUTS,

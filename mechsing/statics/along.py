@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.errors import UserError
-from mechsing.numeric import SWEEP_LOCATE_TOL
+from mechsing.kinematics.settings import SWEEP_LOCATE_TOL
 from mechsing.statics.configuration import kinetostatics_at
 
 __all__ = [
@@ -108,6 +108,7 @@ class SweepStatics:
         self.output_index: dict[tuple[int, ...], list[float] | None] = {}
         self.bounded = np.zeros(shape, dtype=bool)
         self.Z: np.ndarray | None = None  # a path's closed samples (for the limits)
+        self.rows: dict[int, np.ndarray] = {}  # a grid's, by row, with --max-effort
         self.located: list[EffortLimit] = []
 
     def _one(self, q: np.ndarray) -> Any:
@@ -120,6 +121,8 @@ class SweepStatics:
             return
         if at == slice(None):
             self.Z = np.array(row.Z)
+        elif self.limits:  # a grid's rows, for its effort limits along them
+            self.rows[int(at)] = np.array(row.Z)
         for k in np.flatnonzero(row.reached):
             idx = (int(k),) if at == slice(None) else (int(at), int(k))
             ks = self._one(row.Z[k])
@@ -134,25 +137,49 @@ class SweepStatics:
 
     # -- effort limits ----------------------------------------------------------------
 
-    def locate_limits(self, engine: Any, values: np.ndarray) -> None:
-        """Where each limited input's |effort| crosses its limit along a path (between
-        consecutive reached samples): the path engine's crossing locator on |effort| less
-        the limit, each trial point closed by following the path from the sample before
-        it (an unbounded effort, at a Type II, reads as over the limit)."""
-        if not self.limits or self.Z is None:
+    def locate_limits(
+        self, engine: Any, values: np.ndarray, rows: np.ndarray | None = None
+    ) -> None:
+        """Where each limited input's |effort| crosses its limit along a path, or along
+        each row of a grid (``rows``: the second variable's samples), between consecutive
+        reached samples: the path engine's crossing locator on |effort| less the limit
+        (:meth:`_limit_between`)."""
+        if not self.limits:
             return
-        reached = ~np.isnan(self.Z[:, 0])
+        if rows is None:
+            if self.Z is not None:
+                self._row_limits(engine, values, self.Z, self.efforts, self.bounded, ())
+            return
+        for j in sorted(self.rows):
+            self._row_limits(
+                engine, values, self.rows[j], self.efforts[j], self.bounded[j], (float(rows[j]),)
+            )
+
+    def _row_limits(
+        self,
+        engine: Any,
+        values: np.ndarray,
+        Z: np.ndarray,
+        efforts: np.ndarray,
+        bounded: np.ndarray,
+        other: tuple[float, ...],
+    ) -> None:
+        """:meth:`locate_limits` along one path or row (its closed samples Z, efforts and
+        bounded flags; ``other``: the row's value of the second variable, for a grid)."""
+        reached = ~np.isnan(Z[:, 0])
         for name, limit in self.limits.items():
             i = self.inputs.index(name)
-            over = np.where(self.bounded, np.abs(self.efforts[:, i]) > limit, True)
+            over = np.where(bounded, np.abs(efforts[:, i]) > limit, True)
             first = True
             for k in range(len(values) - 1):
                 if not (reached[k] and reached[k + 1]) or over[k] == over[k + 1]:
                     continue
                 v, eff = self._limit_between(
-                    engine, self.Z[k], float(values[k]), float(values[k + 1]), name, limit
+                    engine, Z[k], float(values[k]), float(values[k + 1]), name, limit
                 )
-                self.located.append(EffortLimit(name, limit, (v,), bool(not over[k]), eff, first))
+                self.located.append(
+                    EffortLimit(name, limit, (v, *other), bool(not over[k]), eff, first)
+                )
                 first = False
 
     def _limit_between(
@@ -274,8 +301,6 @@ def attach(run: Any, load: Any, limits: dict[str, float] | None) -> None:
             '--max-effort needs a load: give --load "force=FX,FY,FZ ..." or a load in the '
             f"configuration {run.from_config!r} the sweep starts from"
         )
-    if limits and run.grid:
-        raise UserError("--max-effort locates effort limits along a path: give one --vary")
     run.statics = SweepStatics(mech, load, run.reached.shape, dict(limits or {}))
 
 

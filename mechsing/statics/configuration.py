@@ -12,8 +12,9 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.analysis.display import floor_for
 from mechsing.model.loads import mass_centre
-from mechsing.numeric import Precision, display_floor, floored, to_float
+from mechsing.numeric import Precision, floored, to_float
 from mechsing.statics.efforts import EffortMap, Equilibrium, effort_map, equilibrium, load_wrench
 from mechsing.statics.matrices import MotionMatrices, float_configuration, motion_matrices
 from mechsing.statics.transmission import Transmission, transmission
@@ -106,7 +107,7 @@ class Kinetostatics:
                     n: abs(v) * (self.length_scale if unit[n] == "N" else 1.0)
                     for n, v in eq.efforts.items()
                 }
-                rel = display_floor(Precision("float"), 1.0) * max(comm.values(), default=0.0)
+                rel = floor_for(Precision("float"), 1.0) * max(comm.values(), default=0.0)
                 eff = ", ".join(
                     f"{n} {floored(v, rel / (self.length_scale if unit[n] == 'N' else 1.0)):.6g} "
                     f"{unit[n]}"

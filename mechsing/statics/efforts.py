@@ -24,13 +24,8 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import (
-    SUPPORT_RTOL,
-    Precision,
-    RankDecision,
-    decide_rank,
-    first_nonzero_positive,
-)
+from mechsing.numeric import SUPPORT_RTOL, Precision, RankDecision, decide_rank
+from mechsing.numeric.linalg import first_nonzero_positive
 from mechsing.statics.matrices import MotionMatrices
 
 __all__ = ["Equilibrium", "EffortMap", "effort_map", "equilibrium", "load_wrench"]

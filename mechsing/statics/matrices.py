@@ -5,9 +5,11 @@ Everything the statics need is the motion test's: the stacked closure system ``A
 loop's rows in orthonormal coordinates of its subalgebra, then the couplings), the
 output body's twists ``T`` and the input selection ``E``, all commensurate
 (:class:`~mechsing.numeric.scaling.CommensurateFrame`), plus the frame that carries them
-back to SI.  :func:`motion_matrices` gets them from today's
-:mod:`mechsing.screws` / :mod:`mechsing.singularity.zfb`; when the singularity tests
-become objects this is the one function to point at them.
+back to SI.  :func:`motion_matrices` builds them from the closure system
+(:func:`mechsing.screws.closure_system`), the input test's rows
+(:func:`mechsing.singularity.criteria.input_rows`) and the output chain
+(:func:`mechsing.singularity.zfb.output_chain`): the same matrices the singularity tests
+decide on, so that the statics and the tests cannot disagree.
 """
 
 from __future__ import annotations

@@ -17,7 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.numeric import Precision, decide_rank, display_floor, floored
+from mechsing.analysis.display import floor_for
+from mechsing.numeric import Precision, decide_rank, floored
 from mechsing.statics.efforts import EffortMap
 from mechsing.statics.matrices import MotionMatrices
 
@@ -60,7 +61,7 @@ class UnitEfforts:
             ]
 
         big = max([*comm(self.force, 1.0 / L), *comm(self.couple, 1.0)], default=0.0)
-        rel = display_floor(Precision("float"), 1.0) * big
+        rel = floor_for(Precision("float"), 1.0) * big
         for what, d, per, pl in (
             ("unit force", self.force, "N", 1.0 / L),
             ("unit couple", self.couple, "N m", 1.0),

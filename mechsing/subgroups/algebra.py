@@ -20,7 +20,6 @@ from sympy.polys.matrices import DomainMatrix
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
 from mechsing.numeric import (
-    CENTRE_ROTATION_RTOL,
     PARALLEL_AXES_ATOL,
     CommensurateFrame,
     Margin,
@@ -30,16 +29,20 @@ from mechsing.numeric import (
     characteristic_length,
     decide_nonzero,
     decide_rank,
-    echelon_form,
-    field_float,
-    field_normal_form,
-    number_field,
-    svd,
     to_float,
 )
+from mechsing.numeric.field import echelon_form, field_float, field_normal_form, number_field
+from mechsing.numeric.linalg import svd
 from mechsing.subgroups import _linalg
 from mechsing.subgroups.instance import Subgroup, as_precision
 from mechsing.subgroups.types import _cross, load_catalog
+
+#: the centre an identification moves the screws to is the mean of the axis points of
+#: the screws that rotate, but not of one whose rotation is below this fraction of the
+#: largest: its axis point is as far as its translation over that rotation (a
+#: translation with a trace of rotation: 1e4 away for a rotation of 1e-4), and a centre
+#: that far makes the commensurate rows ill-conditioned (an X axis then read to 1e-9)
+CENTRE_ROTATION_RTOL = 1e-3
 
 __all__ = [
     "Identification",

@@ -20,12 +20,12 @@ from mechsing.numeric import (
     Precision,
     backend_of,
     coarser_backend,
-    holds_objects,
     parse_precision,
     scale_screws,
     screw_zero_rtol,
     to_float,
 )
+from mechsing.numeric.backend import holds_objects
 from mechsing.subgroups import _linalg
 from mechsing.subgroups.types import SubgroupType, _cross, load_catalog
 

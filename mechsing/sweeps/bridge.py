@@ -14,6 +14,8 @@ import numpy as np
 from mechsing.errors import ClosureError
 from mechsing.kinematics.paths.follow import follow
 from mechsing.kinematics.paths.problem import Problem
+from mechsing.numeric import Precision
+from mechsing.sweeps.falling import column_samples
 from mechsing.sweeps.locate import Locator
 from mechsing.sweeps.measures import PointMeasures
 from mechsing.sweeps.records import ColumnBrackets, Located, Refined, RowResult
@@ -22,6 +24,8 @@ __all__ = ["between_rows", "bridge_column"]
 
 #: most samples of a reached row tried to start a neighbouring row the first column misses
 _BRIDGE_TRIES = 6
+_TAU_HI = Precision("float").tolerances.tau_hi
+_TAU_LO = Precision("float").tolerances.tau_lo
 
 
 def between_rows(
@@ -49,7 +53,12 @@ def between_rows(
         else:
             dets = loc.measures.compressed(ra.measures, ia, rb.Z[both][:, : loc.n])
         for t in dets:
-            hits = np.flatnonzero(dets[t] < 0)
+            # between two samples both singular for the test its sign is noise (a row's
+            # rule, :meth:`Locator._sign_changes`): one end must be regular; an end
+            # decided singular is itself the point (:func:`~.falling.column_samples`)
+            ends = np.stack([ra.ratio[t][both], rb.ratio[t][both]])
+            regular = (ends.max(axis=0) > _TAU_HI) & (ends.min(axis=0) > _TAU_LO)
+            hits = np.flatnonzero((dets[t] < 0) & regular)
             if len(hits):
                 K = both[hits]
                 mine[t] = ColumnBrackets(K, ra.Z[K], rb.Z[K], ia[hits])
@@ -76,6 +85,7 @@ def between_rows(
                     z, r = f
                     got.append(loc.at(z, "crossing", (t,), r, "column", (ra.index, int(k))))
             at[t] += len(K)
+        column_samples(loc, ra, rb, got)
         out.append(got)
     return out
 

@@ -66,7 +66,7 @@ class Sweep:
         self.problem = plan.problem
         #: said once, in the first row's notes: how the path left a singular start
         self.start_notes: list[str] = []
-        self.measures = Measures(self.model, plan.generic)
+        self.measures = Measures(self.model, plan.generic, vectors_everywhere=len(variables) > 1)
         check_determined(plan, mech, variables)
         #: the commensurate unit of each swept coordinate
         self.scales = tuple(self.scale(c) for c in self.cols)

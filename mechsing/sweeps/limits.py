@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechsing.model import Mechanism
-from mechsing.numeric import SWEEP_LIMIT_RTOL
+from mechsing.sweeps.settings import SWEEP_LIMIT_RTOL
 
 __all__ = ["LimitedCoordinate", "limited_coordinates", "limits_notes", "outside"]
 

@@ -14,15 +14,21 @@ import numpy as np
 
 from mechsing.kinematics.paths.folds import Fold
 from mechsing.kinematics.paths.problem import Problem
-from mechsing.numeric import SWEEP_MINIMUM_SCREEN, Precision
-from mechsing.numeric.tolerances import SWEEP_FOLD_TEST_RTOL
+from mechsing.numeric import Precision
+from mechsing.sweeps.falling import others_fall, singular_samples
 from mechsing.sweeps.measures import Measures, PointMeasures
 from mechsing.sweeps.records import Located, Refined, RowPairs, RowSamples, located_at
 from mechsing.sweeps.refine import Refiner
+from mechsing.sweeps.settings import (
+    SWEEP_FOLD_MOVE_RTOL,
+    SWEEP_FOLD_TEST_RTOL,
+    SWEEP_MINIMUM_SCREEN,
+)
 
 __all__ = ["Locator", "measured"]
 
 _TAU_HI = Precision("float").tolerances.tau_hi
+_TAU_LO = Precision("float").tolerances.tau_lo
 #: measures are computed this many configurations at a time (bounds the working memory)
 _CHUNK = 4096
 
@@ -48,6 +54,9 @@ class Locator:
         self.measures = measures
         self.refiner = Refiner(problem, measures)
         self.n = self.refiner.n
+        #: per row of a grid, its samples listed as singular between rows
+        #: (:func:`~mechsing.sweeps.falling.column_samples`)
+        self.listed: dict[int, set[int]] = {}
 
     @property
     def tests(self) -> tuple[str, ...]:
@@ -95,12 +104,45 @@ class Locator:
 
     def fold(self, f: Fold, index: int, values: np.ndarray) -> Located:
         """The located point of a fold the path of row ``index`` met (through ``values``),
-        listed under the tests whose measure vanishes there."""
+        listed under the tests whose measure vanishes there.  The path places a fold along
+        the swept value, which is quadratic in the distance to it there (float then knows
+        the point only to about 1e-8 along the curve, and a measure that vanishes at the
+        fold keeps that size): the point is placed again by the fold's own conditions
+        (:meth:`Refiner.fold`: Newton on the closure and the vanishing singular value,
+        which is linear in the distance), and kept when it closes and lowers the
+        measures."""
+        z = self._fold_again(f)
+        if z is not f.z:
+            f = Fold(
+                float(z[min(self.cols, key=lambda c: abs(f.z[c] - f.value))]),
+                z,
+                f.direction,
+                f.far_side,
+            )
         pm = self.measures(f.z[None, : self.n])
         vanishing = tuple(t for t in self.tests if pm.ratio[t][0] <= SWEEP_FOLD_TEST_RTOL)
         ratio = min((float(pm.ratio[t][0]) for t in self.tests), default=0.0)
         i = int(np.searchsorted(np.sort(values), f.value)) - 1
         return self.at(f.z, "fold", vanishing, ratio, "row", (index, max(i, 0)), f.far_side)
+
+    def _fold_again(self, f: Fold) -> np.ndarray:
+        """The fold ``f``'s configuration placed by its own conditions (see :meth:`fold`),
+        or ``f.z`` itself when that does not close to the sweep's tolerance, moves the
+        swept value by more than SWEEP_FOLD_MOVE_RTOL of its unit, or does not lower the
+        smallest measure."""
+        pb = self.problem
+        col = min(self.cols, key=lambda c: abs(f.z[c] - f.value))
+        try:
+            z = self.refiner.fold(f.z, col)
+        except (ArithmeticError, ValueError, np.linalg.LinAlgError):
+            return f.z
+        if z is None or not abs(z[col] - f.value) <= SWEEP_FOLD_MOVE_RTOL * pb.scale(col):
+            return f.z
+        before = self.measures(f.z[None, : self.n])
+        after = self.measures(z[None, : self.n])
+        low = min((float(before.ratio[t][0]) for t in self.tests), default=0.0)
+        low2 = min((float(after.ratio[t][0]) for t in self.tests), default=0.0)
+        return z if low2 < low else f.z
 
     def at(
         self,
@@ -156,7 +198,12 @@ class Locator:
             ibs.append(row.offset + first + 1)
         if not ias:
             return outs
-        dets_all = self.measures.compressed_pairs(pm, np.concatenate(ias), np.concatenate(ibs))
+        ia_all, ib_all = np.concatenate(ias), np.concatenate(ibs)
+        dets_all = self.measures.compressed_pairs(pm, ia_all, ib_all)
+        # a sign change of a weaker-than-generic pair other than the weakest (the UR5's
+        # elbow just past its shoulder): the whole compressed determinant's sign
+        for t, deeper in others_fall(self, pm, ia_all, ib_all).items():
+            dets_all[t] = np.where(deeper < 0, np.minimum(dets_all[t], deeper), dets_all[t])
         dets: list[dict[str, np.ndarray] | None] = []
         at = 0
         for got in info:
@@ -192,6 +239,7 @@ class Locator:
                 self._minima(
                     t, Z, row.reached, row.ratio[t], got.inner, crossed[r], col, index, out
                 )
+                singular_samples(self, t, row, out)
         return outs
 
     def _sign_changes(
@@ -231,7 +279,7 @@ class Locator:
             done = [
                 k
                 for k in hits
-                if self._holds(outs[r], t, Z[pairs[k][0], col], Z[pairs[k][1], col], col)
+                if self.holds(outs[r], t, Z[pairs[k][0], col], Z[pairs[k][1], col], col)
             ]
             crossed[r].update(x for k in done for x in pairs[k])
             hits = [k for k in hits if k not in done]
@@ -309,7 +357,7 @@ class Locator:
         for k in np.flatnonzero(low).tolist():
             if k in crossed:
                 continue
-            if self._holds(out, t, Z[k - 1, col], Z[k + 1, col], col):
+            if self.holds(out, t, Z[k - 1, col], Z[k + 1, col], col):
                 continue  # the point located there for another test zeroes this one
             found = None
             if t == "closure":
@@ -320,7 +368,7 @@ class Locator:
                 z, r = found
                 out.append(self.at(z, "minimum", (t,), r, "row", (index, k)))
 
-    def _holds(self, out: list[Located], t: str, va: float, vb: float, col: int) -> bool:
+    def holds(self, out: list[Located], t: str, va: float, vb: float, col: int) -> bool:
         """Whether a point of ``out`` lies between the swept values va and vb and is
         singular for test ``t`` too (its measure below float's tau_hi there), or is a
         singular point of the closure (where the input and output tests' sign, read

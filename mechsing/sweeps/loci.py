@@ -19,19 +19,28 @@ import networkx as nx
 import numpy as np
 
 from mechsing.sweeps.results import LocatedSingularity, Locus
+from mechsing.sweeps.settings import SWEEP_MERGE_RTOL
 
 __all__ = ["loci_of"]
 
 
-def _edge(p: LocatedSingularity, xs: np.ndarray, ys: np.ndarray) -> tuple[str, int, int]:
+def _edges(p: LocatedSingularity, xs: np.ndarray, ys: np.ndarray) -> list[tuple[str, int, int]]:
+    """The grid edges a located point lies on: its own (a row edge between two samples of
+    its row, or a column edge between two rows), and, when it lies on a sample of the
+    grid (a locus through the grid's vertices, as a 2R arm's elbow line on a sampled
+    value; within SWEEP_MERGE_RTOL of the range), the edges on both sides of that sample,
+    so that the points of a locus through vertices share cells whichever side their
+    rounding put them on."""
     x, y = p.values
-    if p.between == "row":
-        j = int(np.argmin(np.abs(ys - y)))
-        i = int(np.clip(np.searchsorted(xs, x) - 1, 0, max(len(xs) - 2, 0)))
-        return ("h", j, i)
-    i = int(np.argmin(np.abs(xs - x)))
-    j = int(np.clip(np.searchsorted(ys, y) - 1, 0, max(len(ys) - 2, 0)))
-    return ("v", j, i)
+    along, other, v, w = (xs, ys, x, y) if p.between == "row" else (ys, xs, y, x)
+    k = int(np.argmin(np.abs(other - w)))
+    i = int(np.clip(np.searchsorted(along, v) - 1, 0, max(len(along) - 2, 0)))
+    near = int(np.argmin(np.abs(along - v)))
+    ends = {i}
+    if abs(along[near] - v) <= SWEEP_MERGE_RTOL * max(float(np.ptp(along)), 1e-300):
+        ends = {e for e in (near - 1, near) if 0 <= e <= len(along) - 2} or {i}
+    kind = "h" if p.between == "row" else "v"
+    return [(kind, k, e) if kind == "h" else (kind, e, k) for e in sorted(ends)]
 
 
 def loci_of(run: Any, located: list[LocatedSingularity]) -> list[Locus]:
@@ -45,7 +54,8 @@ def loci_of(run: Any, located: list[LocatedSingularity]) -> list[Locus]:
             continue
         on: dict[tuple[str, int, int], list[int]] = {}
         for k, p in enumerate(pts):
-            on.setdefault(_edge(p, xs, ys), []).append(k)
+            for e in _edges(p, xs, ys):
+                on.setdefault(e, []).append(k)
         cells: dict[tuple[int, int], list[int]] = {}
         for (kind, j, i), ks in on.items():
             touching = [(j, i), (j - 1, i)] if kind == "h" else [(j, i), (j, i - 1)]

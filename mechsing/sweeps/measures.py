@@ -22,12 +22,16 @@ Factorisations.  Where the closure's generic rank is its number of rows (every l
 rows independent, as in a spatial parallel robot), its kernel is the orthogonal
 complement of its row space: a QR factorisation of its transpose gives that complement
 (the orthogonal factor's last columns, formed from its Householder vectors without the
-rest of it, :func:`_complement`) and a triangular factor with the same singular values,
+rest of it, :func:`complement`) and a triangular factor with the same singular values,
 so the closure's singular values come without singular vectors, at about half the cost
 of its SVD.  Its singular vectors
 are then computed only where they are used (:meth:`PointMeasures.basis`: the sign tests
 of the few pairs the screen of :meth:`Measures.compressed_pairs` keeps, and the
-refinements), by the same SVD of the same kept matrix as otherwise.
+refinements), by the same SVD of the same kept matrix as otherwise.  So are the other
+tests' where their vectors are not read at every configuration (on a path; on a grid,
+where the sign tests between rows read them all, the constraint test alone): their
+singular values come from LAPACK's values-only SVD (the form ``values first`` of the
+table ``sweep test factors``, :mod:`.factors`), the thin SVD's own near a rank decision.
 
 Each test's measure is its ``g``-th singular value, ``g`` its generic rank (the rank
 the full analysis finds at regular configurations of the sweep's start), relative to
@@ -57,8 +61,10 @@ from typing import Any
 import numpy as np
 
 from mechsing.kinematics import forward
-from mechsing.numeric import SWEEP_GRAM_RATIO, SWEEP_SCREEN_ROUNDING, relative_singular_values
+from mechsing.numeric import relative_singular_values
 from mechsing.singularity.criteria import ClosureTest, ConstraintTest, Criterion, MotionTest
+from mechsing.sweeps.factors import VALUES, complement, largest_singular_value, singular_values
+from mechsing.sweeps.settings import SWEEP_SCREEN_ROUNDING
 
 __all__ = ["SIGNED", "TESTS", "Measures", "PointMeasures"]
 
@@ -73,14 +79,6 @@ _UNIT_REFERENCE = ("input", "output")
 
 #: pairs of samples screened at a time (bounds the working memory of the differences)
 _SCREEN_CHUNK = 512
-
-#: the closure kernel of a closure of full row rank (:func:`_complement`) is formed from
-#: its QR's Householder vectors this many at a time (a block's reflectors applied at once,
-#: ``Y - W V``: three products of small matrices per block instead of two per reflector),
-#: for this many configurations at a time (the working set stays in cache): on the
-#: hexapod's 30 reflectors, 6 to 8 and 256 measured fastest of 2 to 15 and 128 to 1024
-_KERNEL_BLOCK = 6
-_KERNEL_CHUNK = 256
 
 #: tests with a continuous matrix, whose compressed determinant has a meaningful sign
 #: (the constraint wrenches are a basis found afresh at each point)
@@ -112,6 +110,8 @@ class PointMeasures:
     #: at each configuration and of the step to the next one (NaN where there is none),
     #: which :meth:`Measures.compressed_pairs` screens neighbours with
     steps: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+    #: deferred tests whose vectors are those of the thin SVD (the others': the full one)
+    thin: frozenset[str] = frozenset()
     _last: Any = field(default=None, repr=False, compare=False)
 
     def __len__(self) -> int:
@@ -161,6 +161,7 @@ class PointMeasures:
             dict(first.deferred),
             {t: cat(lambda pm, t=t: pm.top[t]) for t in first.top},
             {t: _gathered_steps([(pm.steps[t], idx) for pm, idx in parts]) for t in first.steps},
+            first.thin,
         )
 
     def basis(self, t: str, idx: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -176,7 +177,7 @@ class PointMeasures:
         if self._last is not None and self._last[0] == key:
             return self._last[1]
         g = self.deferred[t]
-        U, _, Vt = np.linalg.svd(self.matrices[t][idx], full_matrices=True)
+        U, _, Vt = np.linalg.svd(self.matrices[t][idx], full_matrices=t not in self.thin)
         out = U[..., :g], np.swapaxes(Vt[..., :g, :], -1, -2)
         self._last = (key, out)
         return out
@@ -191,10 +192,16 @@ class Measures:
     generic : the generic rank of each test (from the full analysis at the start); a
         test with no generic rank (None) or none at all (no loop, no inputs or output,
         fewer than two legs) is not measured
+    vectors_everywhere : whether the signed tests' singular vectors are read at every
+        configuration (a grid: the sign tests between its rows), so that they are
+        computed with the values rather than where they are read
     """
 
-    def __init__(self, model: Any, generic: dict[str, int | None]) -> None:
+    def __init__(
+        self, model: Any, generic: dict[str, int | None], vectors_everywhere: bool = False
+    ) -> None:
         self.model = model
+        self.vectors_everywhere = vectors_everywhere
         self.mech = mech = model.mech
         self.frame = model.float_frame
         # the tests, each defined once (their plans built once per model)
@@ -273,10 +280,10 @@ class Measures:
             rows = C.shape[1]
             h, tau = np.linalg.qr(np.swapaxes(C, 1, 2), mode="raw")  # h: (N, rows, n)
             if "input" in self.tests or "output" in self.tests:
-                kernel = _complement(h, tau)  # (N, n, n - rows)
+                kernel = complement(h, tau)  # (N, n, n - rows)
             # h's lower triangle (its first rows columns) is R^T
             Rt = h[:, :, :rows] * np.tri(rows)
-            self._closure_svd = ("qr", _singular_values(np.swapaxes(Rt, 1, 2)))
+            self._closure_svd = ("qr", singular_values(np.swapaxes(Rt, 1, 2)))
         if "input" in self.tests or "output" in self.tests:
             if self.mech.loops and kernel is None:
                 g = self.generic.get("closure") or _max_rank(out["closure"])
@@ -319,7 +326,7 @@ class Measures:
         their norms |T|."""
         x = self.motion.output_point(P, float_point=True)
         T = self.motion.output_rows(S, x)  # makes it commensurate
-        return T, _largest_singular_value(T)
+        return T, largest_singular_value(T)
 
     def unkept(self, Q: np.ndarray) -> dict[str, np.ndarray]:
         """The matrices a measured batch of a closure of full row rank does not keep
@@ -352,20 +359,20 @@ class Measures:
         self._closure_svd = None
         mats, kernel = self.matrices(Q)
         rank, ratio, bases, deferred, top = {}, {}, {}, {}, {}
+        thin: set[str] = set()
         for t in self.tests:
-            A = mats[t]
-            g = self.generic[t]
+            A, g, unit = mats[t], self.generic[t], t in _UNIT_REFERENCE
             done = self._closure_svd if t == "closure" else None
-            if done is not None and done[0] == "qr":
-                s = done[1]  # the singular values alone; the vectors where they are used
-                deferred[t] = g
-            elif done is not None:
-                _, U, s, Vt = done  # the kernel's SVD, already done
-                k = s.shape[1]
-                U, Vt = U[:, :, :k], Vt[:, :k, :]
+            # the vectors deferred where they are not read at every configuration
+            later = not (t in SIGNED and self.vectors_everywhere)
+            s, vectors = _test_factors(A, g, unit, done, later)
+            if vectors is not None:
+                bases[t] = vectors
             else:
-                U, s, Vt = np.linalg.svd(A, full_matrices=False)
-            if t in _UNIT_REFERENCE:
+                deferred[t] = g
+                if done is None:
+                    thin.add(t)
+            if unit:
                 rel = s  # already relative to the operator's norm (|T| or |E| = 1)
                 bounds = self.motion.ranks_of_relative(rel)
             else:
@@ -374,24 +381,10 @@ class Measures:
             rank[t] = bounds.decided.astype(np.int16)
             ratio[t] = rel[:, g - 1] if g <= rel.shape[1] else np.zeros(len(rel))
             top[t] = s[:, 0] if s.shape[1] else np.zeros(len(s))
-            if t not in deferred:
-                bases[t] = (U[:, :, :g], np.swapaxes(Vt[:, :g, :], 1, 2))
-        signed = {t: mats[t] for t in self.tests if t in SIGNED}
-        for t in ("input", "output"):
-            if self._bordered_test(t) and f"{t}_rows" in mats:
-                signed[f"{t}_rows"] = mats[f"{t}_rows"]
-        steps = {}
-        if deferred:
-            # the closure of full row rank is large (and its rows' neighbours are read
-            # only through the screen's norms): its matrices, and the bordered tests'
-            # rows, are computed again where they are read
-            for t in deferred:
-                steps[t] = _steps(mats[t])
-            source = _Source(self, Q)
-            for t in signed:
-                if t in source.keys:
-                    signed[t] = _Recomputed(source, t)
-        return PointMeasures(rank, ratio, bases, kernel, signed, deferred, top, steps)
+        signed, steps = _kept(self, Q, mats, kernel, deferred, thin)
+        return PointMeasures(
+            rank, ratio, bases, kernel, signed, deferred, top, steps, frozenset(thin)
+        )
 
     def _bordered_test(self, t: str) -> bool:
         """Whether the sign of test ``t`` is read from the bordered determinant: an input
@@ -440,15 +433,15 @@ class Measures:
         # their screen leaves (the same turn for both)
         turns: dict[bytes, np.ndarray] = {}
         for t, M in pm.matrices.items():
-            if t.endswith("_rows"):
+            if t.endswith("_rows") or t not in SIGNED:
+                continue
+            if t in ("input", "output") and pm.kernel is not None:
+                out[t] = self._turned_pairs(pm, t, M, ia, ib, turns)
                 continue
             if t in pm.deferred:
                 out[t] = self._screened_pairs(pm, t, M, ia, ib)
                 continue
             U, V = pm.bases[t]
-            if t in ("input", "output") and pm.kernel is not None:
-                out[t] = self._turned_pairs(pm, t, M, ia, ib, turns)
-                continue
             u, v = U[ia][:, :, -1], V[ia][:, :, -1]
             out[t] = np.einsum("ni,nij,nj->n", u, M[ib], v)
         return out
@@ -501,8 +494,8 @@ class Measures:
             if key not in turns:
                 turns.clear()
                 turns[key] = _turn(pm.kernel[ib[near]], pm.kernel[ia[near]])
-            U, V = pm.bases[t]
-            u, v = U[ia[near]][:, :, -1], V[ia[near]][:, :, -1]
+            U, V = pm.basis(t, ia[near])
+            u, v = U[:, :, -1], V[:, :, -1]
             d[near] = np.einsum("ni,nij,nj->n", u, M[ib[near]] @ turns[key], v)
         return d
 
@@ -514,7 +507,8 @@ class Measures:
         differences stay small in memory)."""
         g = pm.deferred[t]
         rounding = SWEEP_SCREEN_ROUNDING * np.finfo(float).eps
-        d = pm.ratio[t][ia] * pm.top[t][ia]  # sigma_g at a
+        # sigma_g at a (the input and output tests' ratio is sigma_g itself, |X| = 1)
+        d = pm.ratio[t][ia] * (1.0 if t in _UNIT_REFERENCE else pm.top[t][ia])
         ia, ib = np.asarray(ia), np.asarray(ib)
         if t in pm.steps:
             # the norms the measures kept: of each matrix and of its step to the next row
@@ -583,80 +577,64 @@ class Measures:
         return A @ _turn(kb, ka)
 
 
+def _test_factors(
+    A: np.ndarray, g: int, unit: bool, done: Any, later: bool
+) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray] | None]:
+    """A test's singular values and its ``g`` leading singular vectors (U, V), or None
+    where the vectors are deferred (computed where they are read,
+    :meth:`PointMeasures.basis`): the closure's factorisation done with its kernel
+    (``done``: the QR's values alone, or the SVD), the values alone where ``later``
+    allows and the table ``sweep test factors`` has a form (:mod:`.factors`), else
+    numpy's thin SVD (the generic definition)."""
+    if done is not None and done[0] == "qr":
+        return done[1], None
+    if done is not None:
+        _, U, s, Vt = done  # the kernel's SVD, already done
+    else:
+        values = VALUES.pick(A, g, unit) if later else None
+        if values is not None:
+            return values(A, g, unit), None
+        U, s, Vt = np.linalg.svd(A, full_matrices=False)
+    k = min(g, s.shape[1])
+    return s, (U[:, :, :k], np.swapaxes(Vt[:, :k, :], 1, 2))
+
+
+def _kept(
+    measures: Measures,
+    Q: np.ndarray,
+    mats: dict[str, np.ndarray],
+    kernel: np.ndarray | None,
+    deferred: dict[str, int],
+    thin: set[str],
+) -> tuple[dict[str, Any], dict[str, tuple[np.ndarray, np.ndarray]]]:
+    """The matrices a measured batch keeps (the signed tests', whose neighbours' signs
+    read them, the bordered tests' rows, and those of the tests whose vectors are
+    deferred), and the step norms of those its neighbours' screen reads."""
+    signed = {t: mats[t] for t in measures.tests if t in SIGNED or t in thin}
+    for t in ("input", "output"):
+        if measures._bordered_test(t) and f"{t}_rows" in mats:
+            signed[f"{t}_rows"] = mats[f"{t}_rows"]
+    steps = {}
+    for t in thin:
+        if t in SIGNED and not (t in ("input", "output") and kernel is not None):
+            steps[t] = _steps(mats[t])  # screened by Weyl's bound (_screened_pairs)
+    if deferred.keys() - thin:
+        # the closure of full row rank is large (and its rows' neighbours are read only
+        # through the screen's norms): its matrices, and the bordered tests' rows, are
+        # computed again where they are read
+        for t in deferred.keys() - thin:
+            steps[t] = _steps(mats[t])
+        source = _Source(measures, Q)
+        for t in signed:
+            if t in source.keys:
+                signed[t] = _Recomputed(source, t)
+    return signed, steps
+
+
 def _turn(kb: np.ndarray, ka: np.ndarray) -> np.ndarray:
     """The orthogonal factor of ``kb^T ka``: turns the kernel basis kb onto ka."""
     u, _, vt = np.linalg.svd(np.swapaxes(kb, 1, 2) @ ka)
     return u @ vt
-
-
-def _complement(h: np.ndarray, tau: np.ndarray) -> np.ndarray:
-    """The last ``n - k`` columns of the orthogonal factor Q of the QR factorisations
-    ``A = Q R`` of matrices A (N, n, k), k <= n, given in LAPACK's raw form (numpy's
-    ``qr(A, mode="raw")``: ``h`` (N, k, n), row j holding the j-th Householder vector
-    after its diagonal, and ``tau`` (N, k)): an orthonormal basis of the orthogonal
-    complement of each A's column space, the same columns as the complete Q's (which
-    LAPACK forms with the same reflectors).  Only ``Q [0; I]`` is formed,
-    ``H_1 ... H_k [0; I]``: the reflectors are applied _KERNEL_BLOCK at a time (the
-    block's product at once, ``Y - W V``, W from ``Y V^T`` and the vectors' products),
-    each block to the rows it touches, _KERNEL_CHUNK configurations at a time.
-    Products of reflectors, like LAPACK's, so as accurate however near A is to losing
-    rank."""
-    N, k, n = h.shape
-    d = n - k
-    out = np.zeros((N, d, n))  # the transposed basis, Y = (Q [0; I])^T
-    out[:, :, k:] = np.eye(d)
-    if d == 0 or k == 0:
-        return np.swapaxes(out, 1, 2)
-    after = np.triu(np.ones((k, n)), 1)
-    diagonal = np.arange(k)
-    for lo in range(0, N, _KERNEL_CHUNK):
-        t, Y = tau[lo : lo + _KERNEL_CHUNK], out[lo : lo + _KERNEL_CHUNK]
-        # the Householder vectors as rows: 1 on the diagonal, h after it, 0 before it
-        V_ = h[lo : lo + _KERNEL_CHUNK] * after
-        V_[:, diagonal, diagonal] = 1.0
-        hi = k
-        while hi > 0:  # the last block first: Y <- Y H_hi-1 ... H_a
-            a = max(hi - _KERNEL_BLOCK, 0)
-            V = V_[:, a:hi, a:]  # (m, b, n - a): the block's vectors, from row a on
-            Ya = Y[:, :, a:]
-            W = Ya @ np.swapaxes(V, 1, 2)  # (m, d, b): Y v_j
-            G = V @ np.swapaxes(V, 1, 2)  # v_i . v_j
-            # w_j = tau_j (Y H_hi-1 ... H_j+1) v_j = tau_j (Y v_j - sum_{i > j} w_i v_i . v_j)
-            for j in range(hi - a - 1, -1, -1):
-                if j < hi - a - 1:
-                    W[:, :, j] -= (W[:, :, j + 1 :] @ G[:, j + 1 :, j, None])[:, :, 0]
-                W[:, :, j] *= t[:, a + j, None]
-            Ya -= W @ V
-            hi = a
-    return np.swapaxes(out, 1, 2)
-
-
-def _largest_singular_value(A: np.ndarray) -> np.ndarray:
-    """The largest singular value of each matrix of A (N, r, c): the square root of the
-    largest eigenvalue of the smaller Gram matrix (A A^T or A^T A), a symmetric
-    eigenproblem of that size instead of the SVD.  As accurate: the largest eigenvalue
-    moves by at most the Gram matrix's rounding, a few eps |A|_F^2 <= a few eps
-    min(r, c) sigma_1^2, so sigma_1 by a few eps min(r, c) / 2 relative (numpy's SVD's
-    own is a few eps)."""
-    At = np.swapaxes(A, 1, 2)
-    G = A @ At if A.shape[1] <= A.shape[2] else At @ A
-    if G.shape[1] == 0:
-        return np.zeros(len(A))
-    return np.sqrt(np.maximum(np.linalg.eigvalsh(G)[:, -1], 0.0))
-
-
-def _singular_values(R: np.ndarray) -> np.ndarray:
-    """The singular values of square matrices R (N, k, k), descending: the square roots
-    of the eigenvalues of R^T R (a symmetric eigenproblem, cheaper than the SVD) where
-    the smallest relative one is at least SWEEP_GRAM_RATIO (there squaring loses at most
-    a factor 1 / (2 rho^2) of the rounding), the SVD of R elsewhere (a matrix nearer its
-    singularity, whose smallest singular values a Gram matrix would blur)."""
-    lam = np.linalg.eigvalsh(np.swapaxes(R, 1, 2) @ R)
-    s = np.sqrt(np.maximum(lam[:, ::-1], 0.0))
-    near = np.flatnonzero(~(s[:, -1] >= SWEEP_GRAM_RATIO * s[:, 0]))
-    if len(near):
-        s[near] = np.linalg.svd(R[near], compute_uv=False)
-    return s
 
 
 def _max_rank(A: np.ndarray) -> int:

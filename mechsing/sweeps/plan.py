@@ -31,8 +31,8 @@ from mechsing.lie import log_so3
 from mechsing.model import Mechanism
 from mechsing.model.couplings import describe_coupling
 from mechsing.numeric import to_float
-from mechsing.numeric.tolerances import SWEEP_DETERMINED_RTOL
 from mechsing.sweeps.limits import LimitedCoordinate, limited_coordinates
+from mechsing.sweeps.settings import SWEEP_DETERMINED_RTOL
 from mechsing.sweeps.spec import Variable
 
 __all__ = ["GenericRanks", "Plan", "check_determined", "generic_ranks", "plan_sweep"]

@@ -15,8 +15,8 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from mechsing.kinematics.paths.trace import PathTrace
-from mechsing.numeric import SWEEP_LOCATE_TOL
-from mechsing.numeric.tolerances import SWEEP_MERGE_FACTOR, SWEEP_MERGE_RTOL
+from mechsing.kinematics.settings import SWEEP_LOCATE_TOL
+from mechsing.sweeps.settings import SWEEP_MERGE_FACTOR, SWEEP_MERGE_RTOL
 
 if TYPE_CHECKING:
     from mechsing.sweeps.measures import PointMeasures
@@ -37,7 +37,8 @@ __all__ = [
 @dataclass
 class Located:
     """A singularity located on a sweep, before its classification: the swept values
-    (SI), how it was found (``fold``, ``crossing``, ``minimum``), the tests whose measure
+    (SI), how it was found (``fold``, ``crossing``, ``minimum``, ``sample``: a sample
+    itself singular), the tests whose measure
     vanishes there, the refined measure, the configuration (joint coordinates), and for
     a grid the row and column it lies between (``edge``: "row" or "column")."""
 
@@ -150,7 +151,7 @@ def merge_located(located: list[Located], scales: tuple[float, ...]) -> list[Loc
     closure's test (near a singular point of the closure the other tests' measures are
     blurred by its double root; the closure's own placement is not).  ``scales``: the
     commensurate unit of each swept coordinate."""
-    order = {"fold": 0, "crossing": 1, "minimum": 2}
+    order = {"fold": 0, "crossing": 1, "minimum": 2, "sample": 3}
     located = sorted(located, key=lambda p: (p.values, order[p.kind]))
     groups: list[list[Located]] = []
     for p in located:

@@ -1,7 +1,7 @@
 """Refining a located singularity between samples of a sweep: where exactly it lies.
 
 Owns :class:`Refiner`: given two closed samples that bracket a singularity of one test,
-it places the singular point to :data:`~mechsing.numeric.SWEEP_LOCATE_TOL` in the swept
+it places the singular point to :data:`~mechsing.sweeps.settings.SWEEP_LOCATE_TOL` in the swept
 value:
 
 * a sign change of the test's compressed determinant, by the Illinois variant of regula
@@ -24,15 +24,15 @@ import numpy as np
 from mechsing.errors import ClosureError
 from mechsing.kinematics.paths.nodes import reach_node
 from mechsing.kinematics.paths.problem import Problem
-from mechsing.numeric import (
-    SWEEP_BRANCH_OFFSET,
-    SWEEP_JUMP_RATIO,
-    SWEEP_LOCATE_TOL,
-    Precision,
-)
-from mechsing.numeric.tolerances import SWEEP_BRANCH_FIT_RTOL, SWEEP_BRANCH_ROOT_IMAG
+from mechsing.kinematics.settings import SWEEP_JUMP_RATIO, SWEEP_LOCATE_TOL
+from mechsing.numeric import Precision
 from mechsing.sweeps.measures import Measures, PointMeasures
 from mechsing.sweeps.records import Refined
+from mechsing.sweeps.settings import (
+    SWEEP_BRANCH_FIT_RTOL,
+    SWEEP_BRANCH_OFFSET,
+    SWEEP_BRANCH_ROOT_IMAG,
+)
 
 __all__ = ["Refiner"]
 
@@ -42,6 +42,13 @@ _TAU_HI = Precision("float").tolerances.tau_hi
 _ILLINOIS_ITERATIONS = 60
 #: most steps of a walk towards a singular point the path passes through
 _WALK_STEPS = 60
+#: most Newton steps of a fold's placement on its augmented system (quadratic: a few)
+_FOLD_NEWTON_STEPS = 8
+#: the central differences' step of the fold's singular value (commensurate; its error
+#: h^2 next to the singular value's rounding eps / h: about eps^(1/3))
+_FOLD_DIFFERENCE = 1e-5
+#: the fold's Newton stops when its step is this small (commensurate: rounding)
+_FOLD_STEP_STOP = 1e-14
 
 
 class Refiner:
@@ -269,6 +276,64 @@ class Refiner:
         z[col] = guess + root * delta
         r = self.ratio(t, z)
         return Refined(z, r) if r <= _TAU_LO else None
+
+    def fold(self, z: np.ndarray, col: int) -> np.ndarray | None:
+        """A fold of the swept coordinate ``col`` placed on its augmented system, from the
+        path's point z: the closure ``F = 0`` and the vanishing singular value of the
+        unknowns' Jacobian ``A`` (the closure's columns but the given ones and col),
+        ``u^T A v = 0`` with (u, v) its smallest singular pair at the iterate, solved by
+        Newton (least squares) in the unknowns and col together, the held coordinates
+        kept; the singular value's derivatives by central differences.  Along the path
+        the swept value is quadratic in the distance to the fold, so the path places the
+        point to about 1e-8 along the curve; the singular value is linear in it, so this
+        places it to rounding.  The iterate with the smallest singular value among those
+        that close to the sweep's tolerance (None: none does)."""
+        from mechsing.kinematics.newton import scaled_system
+
+        pb = self.problem
+        cm, fr = pb.cm, pb.cm.float_frame
+        free = ~np.asarray(pb.given, dtype=bool)
+        free[col] = True
+        fcols = np.flatnonzero(free)
+        unknowns = fcols != col
+        x = np.array(z, dtype=float)
+
+        def moved(q: np.ndarray, d: np.ndarray) -> np.ndarray:
+            dd = np.zeros(pb.n)
+            dd[fcols] = d
+            return np.asarray(cm.update(q, fr.rates_back(dd)), dtype=float)
+
+        def unknowns_jacobian(q: np.ndarray) -> np.ndarray:
+            J, _ = scaled_system(cm, q)
+            return np.asarray(J, dtype=float)[:, fcols][:, unknowns]
+
+        h = _FOLD_DIFFERENCE
+        best: tuple[float, np.ndarray] | None = None
+        for _ in range(_FOLD_NEWTON_STEPS):
+            J, r = scaled_system(cm, x)
+            J = np.asarray(J, dtype=float)[:, fcols]
+            r = np.asarray(r, dtype=float)
+            U, sv, Vt = np.linalg.svd(J[:, unknowns])
+            k = len(sv) - 1
+            if np.linalg.norm(r) * cm.length_scale <= pb.tolerance and (
+                best is None or sv[k] < best[0]
+            ):
+                best = (float(sv[k]), x)
+            u, v = U[:, k], Vt[k]
+            grad = np.empty(len(fcols))
+            for j in range(len(fcols)):
+                e = np.zeros(len(fcols))
+                e[j] = h
+                Ap, Am = unknowns_jacobian(moved(x, e)), unknowns_jacobian(moved(x, -e))
+                grad[j] = u @ ((Ap - Am) @ v) / (2 * h)
+            G = np.vstack([J, grad[None, :]])
+            step = np.linalg.lstsq(G, -np.concatenate([r, [sv[k]]]), rcond=None)[0]
+            if np.max(np.abs(step)) <= _FOLD_STEP_STOP:
+                break
+            x = moved(x, step)
+        # the iterate with the smallest singular value that closes (past it, at rounding
+        # level, the steps follow the rounding of the singular pair)
+        return None if best is None else best[1]
 
     def close_at(self, za: np.ndarray, zb: np.ndarray, col: int, t: float) -> np.ndarray:
         """The configuration with ``col`` at t between two closed neighbours za, zb (their

@@ -37,14 +37,10 @@ import numpy as np
 
 from mechsing.kinematics import Closer, KinematicModel
 from mechsing.kinematics.pose import PoseModel
-from mechsing.numeric import (
-    POLISH_DIGITS_SPARE,
-    SWEEP_FOLD_KERNEL_RTOL,
-    Precision,
-    decide_rank,
-    to_float,
-)
+from mechsing.kinematics.settings import POLISH_DIGITS_SPARE
+from mechsing.numeric import Precision, decide_rank, to_float
 from mechsing.screws import chain_matrix
+from mechsing.sweeps.settings import SWEEP_FOLD_KERNEL_RTOL
 
 __all__ = ["Relocator"]
 

@@ -18,10 +18,12 @@ import numpy as np
 
 from mechsing.analysis import ConfigurationResult
 from mechsing.analysis.contract import finding_class, finding_margin
+from mechsing.analysis.display import quantity, unit_text
 from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
 from mechsing.analysis.words import finding_label
 from mechsing.model import Mechanism
-from mechsing.numeric import SWEEP_TIE_RTOL, floored
+from mechsing.numeric import floored
+from mechsing.sweeps.settings import SWEEP_TIE_RTOL
 
 __all__ = [
     "LocatedSingularity",
@@ -47,16 +49,16 @@ class SweptVariable:
     factor: float
     values: np.ndarray = field(repr=False, compare=False)
     range: tuple[float, float, float] = (0.0, 0.0, 0.0)  # start, stop, step (file units)
-    #: the display floor in the SI unit (:func:`mechsing.numeric.display_floor`): a value
-    #: below it is round-off and is shown as 0
+    #: the display floor in the SI unit (:func:`mechsing.analysis.display.floor_for`): a
+    #: value below it is round-off and is shown as 0
     floor: float = field(default=0.0, compare=False)
 
     def shown(self, si: float) -> str:
         """A value in the file's units (and in SI when they differ), 0 below the floor."""
         si = floored(si, self.floor)
-        text = f"{si / self.factor:.10g} {self.file_unit}"
+        text = quantity(si / self.factor, self.file_unit, spec=".10g")
         if self.file_unit != self.unit:
-            text += f" ({si:.10g} {self.unit})"
+            text += f" ({quantity(si, self.unit, spec='.10g')})"
         return text
 
     def to_json(self) -> dict[str, Any]:
@@ -213,6 +215,8 @@ class SweepResult:
     mode: int | None = None
     #: a grid's singularity-free regions (:class:`~mechsing.sweeps.aspects.Aspect`)
     aspects: tuple[Any, ...] = ()
+    #: the timed motion along a path (``--duration``: :class:`mechsing.kinetics.timed.TimedSweep`)
+    dynamics: Any = field(default=None, repr=False, compare=False)
 
     @property
     def grid(self) -> bool:
@@ -268,6 +272,7 @@ def json_header(r: Any) -> dict[str, Any]:
         "generic": dict(r.generic),
         **({} if r.statics is None else r.statics.header_json()),
         **({} if r.mode is None else {"mode": r.mode}),
+        **({} if r.dynamics is None else r.dynamics.header_json()),
     }
 
 
@@ -289,6 +294,8 @@ def json_point(r: Any, idx: tuple[int, ...]) -> dict[str, Any]:
         out.update(r.statics.point_json(idx))
     if r.mode is not None:  # the assembly mode the sweep started on
         out["mode"] = r.mode
+    if r.dynamics is not None:
+        out.update(r.dynamics.point_json(idx))
     return out
 
 
@@ -301,6 +308,7 @@ def json_tail(r: Any) -> dict[str, Any]:
         "newton_iterations": r.newton_iterations,
         **({} if r.statics is None else r.statics.tail_json()),
         **({"aspects": [{**a.to_json(), **mode} for a in r.aspects]} if r.grid else {}),
+        **({} if r.dynamics is None else r.dynamics.tail_json()),
     }
 
 
@@ -386,7 +394,7 @@ def text_report(r: SweepResult) -> str:
     lines = []
     kind = "grid" if r.grid else "path"
     what = " x ".join(
-        f"{v.name} from {v.range[0]:g} to {v.range[1]:g} {v.file_unit} by {v.range[2]:g}"
+        f"{v.name} from {v.range[0]:g} to {v.range[1]:g} {unit_text(v.file_unit)} by {v.range[2]:g}"
         for v in r.variables
     )
     on = "" if r.mode is None else f" on its assembly mode {r.mode}"
@@ -439,6 +447,10 @@ def text_report(r: SweepResult) -> str:
         lines += r.statics.text_lines(
             lambda k: _where(r, tuple(_values_at(r.variables, k))), lambda v: _where(r, v)
         )
+    if r.dynamics is not None:
+        lines += r.dynamics.text_lines(
+            lambda k: _where(r, tuple(_values_at(r.variables, k))), lambda v: _where(r, v)
+        )
     for note in r.notes:
         lines.append(f"  note: {note}")
     return "\n".join(lines) + "\n"
@@ -467,7 +479,8 @@ def _located_line(r: SweepResult, p: LocatedSingularity) -> str:
             " (met on the other assembly mode; the path resumes past it)" if p.far_side else ""
         )
     else:
-        head = f"{where}: {'sign change' if p.kind == 'crossing' else 'minimum'} of {', '.join(p.tests)}"
+        how = {"crossing": "sign change", "sample": "singular sample"}.get(p.kind, "minimum")
+        head = f"{where}: {how} of {', '.join(p.tests)}"
     if p.configuration is None:
         return f"{head} (measure {p.ratio:.2g}; not classified: beyond --max-classified)"
     if p.configuration.error:

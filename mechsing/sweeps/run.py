@@ -17,9 +17,10 @@ from typing import Any
 
 import numpy as np
 
+from mechsing.analysis.display import angle_floor, floor_for
 from mechsing.errors import UserError, working_on
 from mechsing.model import Mechanism
-from mechsing.numeric import Precision, display_floor, parse_precision
+from mechsing.numeric import Precision, parse_precision
 from mechsing.reader import read_mechanism
 from mechsing.singularity.zfb import not_run_sentences
 from mechsing.sweeps.classify import classify_located, located_texts, unresolved
@@ -57,6 +58,7 @@ def sweep(
     load: Any = None,
     max_effort: dict[str, float] | None = None,
     start: Any = None,
+    duration: float | None = None,
 ) -> SweepResult:
     """Sweep a mechanism (or a file) over one variable (a path) or two (a grid).
 
@@ -95,6 +97,10 @@ def sweep(
         from_config).modes`` or its index in that tuple; every sample is then labelled
         with the mode's number (``mode``: the index plus 1, as ``mechsing modes``
         numbers them).  Default: the mode continuation reaches from ``from_config``.
+    duration : float, optional
+        A path's swept value follows a quintic rest-to-rest law over ``duration``
+        seconds: each sample's efforts for that motion and the Type II crossing
+        condition at the located Type II points (:mod:`mechsing.kinetics.timed`).
 
     Returns
     -------
@@ -114,6 +120,9 @@ def sweep(
     from mechsing.statics.along import attach
 
     attach(run, load, max_effort)
+    from mechsing.kinetics.timed import attach as timed
+
+    timed(run, duration)
     rows = run.rows(progress, workers=workers, scheduler=scheduler, connect_timeout=connect_timeout)
     for _ in rows:
         pass
@@ -169,7 +178,7 @@ class SweepRun:
         self.tests = eng.tests
         self.generic = {t: int(eng.measures.generic[t]) for t in self.tests}
         L = float(eng.model.length_scale)
-        floor = display_floor(prec, L)
+        floor = floor_for(prec, L)
         self.variables = tuple(
             SweptVariable(
                 v.name,
@@ -178,7 +187,7 @@ class SweepRun:
                 v.factor,
                 v.values,
                 (w.start, w.stop, w.step),
-                floor if v.unit == "m" else floor / L,
+                floor if v.unit == "m" else angle_floor(floor, L),
             )
             for v, w in zip(self.vars, varies, strict=True)
         )
@@ -206,6 +215,8 @@ class SweepRun:
         self.newton_iterations = 0
         #: the statics of the samples under a load (:class:`mechsing.statics.along.SweepStatics`)
         self.statics: Any = None
+        #: the timed motion along a path (:class:`mechsing.kinetics.timed.TimedSweep`)
+        self.dynamics: Any = None
 
     @property
     def grid(self) -> bool:
@@ -296,6 +307,8 @@ class SweepRun:
         self.newton_iterations += row.newton
         if self.statics is not None:
             self.statics.store(at, row)
+        if self.dynamics is not None:
+            self.dynamics.store(at, row)
         for name, beyond in row.outside.items():
             self.outside[name][at] = beyond
         for s in row.stopped:
@@ -387,8 +400,11 @@ class SweepRun:
                 regular_samples(self.reached, self.rank, self.generic),
                 out,
             )
-        if self.statics is not None and not self.grid:
-            self.statics.locate_limits(eng, self.vars[0].values)
+        if self.statics is not None:
+            rows = self.vars[1].values if self.grid else None
+            self.statics.locate_limits(eng, self.vars[0].values, rows)
+        if self.dynamics is not None:
+            self.dynamics.locate(out)
         return SweepResult(
             self.mechanism,
             self.variables,
@@ -409,4 +425,5 @@ class SweepRun:
             statics=self.statics,
             mode=self.mode,
             aspects=aspects,
+            dynamics=self.dynamics,
         )

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from mechsing.kinetics.timed import TIMED_SCHEMA
 from mechsing.statics.along import KINETOSTATICS_SCHEMA
 from mechsing.sweeps.measures import TESTS
 
@@ -72,6 +73,7 @@ def sweep_schema() -> dict[str, Any]:
             },
             **KINETOSTATICS_SCHEMA["point"],
             "mode": MODE,
+            **TIMED_SCHEMA["point"],
         },
         "required": ["values", "reached"],
         "additionalProperties": False,
@@ -95,7 +97,7 @@ def sweep_schema() -> dict[str, Any]:
         "type": "object",
         "properties": {
             "values": {"$ref": "#/$defs/values"},
-            "kind": {"enum": ["fold", "crossing", "minimum"]},
+            "kind": {"enum": ["fold", "crossing", "minimum", "sample"]},
             "between": {"enum": ["row", "column"]},
             "far_side": {"type": "boolean"},
             "tests": {"type": "array", "items": {"enum": list(TESTS)}},
@@ -247,6 +249,7 @@ def sweep_schema() -> dict[str, Any]:
                 "description": "a grid's connected singularity-free regions (each mode's, "
                 "largest first)",
             },
+            **TIMED_SCHEMA["top"],
         },
         "required": [
             "mechanism",

@@ -23,8 +23,9 @@ import numpy as np
 from mechsing.errors import UserError
 from mechsing.kinematics.pose import POSE_COORDINATES
 from mechsing.model import Mechanism
-from mechsing.numeric import RADIAN_LOOK_ATOL, Precision, decimal_float, is_decimal_text
-from mechsing.numeric.tolerances import SWEEP_RANGE_ATOL, SWEEP_RANGE_RTOL
+from mechsing.numeric import Precision
+from mechsing.numeric.numbers import decimal_float, is_decimal_text
+from mechsing.sweeps.settings import RADIAN_LOOK_ATOL, SWEEP_RANGE_ATOL, SWEEP_RANGE_RTOL
 
 __all__ = ["MAX_SAMPLES", "Variable", "Vary", "check_varies", "resolve", "sweep_precision"]
 
@@ -161,7 +162,7 @@ def vary_warnings(mech: Mechanism, varies: list[Vary]) -> list[str]:
     """Likely mistakes of the swept ranges that are not errors, worded as the file's
     warnings: in a file whose angles are in degrees, an angle's range that looks like
     radians (both ends within a full turn in radians and one of them within
-    :data:`~mechsing.numeric.RADIAN_LOOK_ATOL` of a multiple of pi/2: ``A=-3.14:1.5:0.01``), as a plain value
+    :data:`~mechsing.sweeps.settings.RADIAN_LOOK_ATOL` of a multiple of pi/2: ``A=-3.14:1.5:0.01``), as a plain value
     above a full turn in a file in radians is warned about."""
     if mech.units.angle == "rad":
         return []

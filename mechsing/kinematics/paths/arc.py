@@ -23,7 +23,7 @@ from mechsing.kinematics.newton import scaled_system
 from mechsing.kinematics.paths.crossing import locate_crossing
 from mechsing.kinematics.paths.folds import Fold, leave_fold
 from mechsing.kinematics.paths.problem import Problem
-from mechsing.numeric.tolerances import (
+from mechsing.kinematics.settings import (
     SWEEP_ARC_MAX_TURN_DEG,
     SWEEP_ARC_MIN_STEP,
     SWEEP_ARC_STEP,

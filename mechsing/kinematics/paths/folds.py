@@ -28,7 +28,7 @@ import numpy as np
 from mechsing.kinematics.newton import damped_least_squares, newton_on_group
 from mechsing.kinematics.paths.steps import Corrected, StepInfo, closure_matrix, correct
 from mechsing.kinematics.protocol import ClosureModel
-from mechsing.numeric import (
+from mechsing.kinematics.settings import (
     CONTINUATION_FOLD_GAP,
     CONTINUATION_FOLD_REACH,
     CONTINUATION_LEAVE_OFF,

@@ -7,7 +7,7 @@ assembly mode the path started on.  The steps it strings together live beside it
 problem it closes (:mod:`.problem`), the nodes (:mod:`.nodes`), the samples between them
 (:mod:`.segments`) and the curve through folds (:mod:`.arc`).
 
-* **Nodes.**  Samples at most :data:`~mechsing.numeric.SWEEP_NODE_STEP` apart (radians,
+* **Nodes.**  Samples at most :data:`~mechsing.sweeps.settings.SWEEP_NODE_STEP` apart (radians,
   or lengths / L) are *nodes*, reached one after the other by the continuation of a
   named configuration's closure (:meth:`mechsing.kinematics.Closer.follow`: predictor,
   Newton on the group, branch checks), each first predicted from the last step (the
@@ -23,7 +23,7 @@ problem it closes (:mod:`.problem`), the nodes (:mod:`.nodes`), the samples betw
   value (a limit of its travel: a dead centre, the end of a rocker's swing) is where the
   tangent's swept component changes sign; it is located by Brent's method on that
   component, so the limit value itself (quadratic in the arclength there) is known to
-  far better than :data:`~mechsing.numeric.SWEEP_LOCATE_TOL`.
+  far better than :data:`~mechsing.sweeps.settings.SWEEP_LOCATE_TOL`.
 * **The other side.**  Past a fold the curve comes back on the other assembly mode; it
   is followed to its next fold, after which the swept value moves forward again.  For a
   revolute angle that value is taken modulo 2 pi into what is left of the range, and the
@@ -56,7 +56,7 @@ from mechsing.kinematics.paths.nodes import (
 from mechsing.kinematics.paths.problem import Problem
 from mechsing.kinematics.paths.segments import close_segments
 from mechsing.kinematics.paths.trace import PathTrace
-from mechsing.numeric.tolerances import SWEEP_NODE_CORRECTION
+from mechsing.kinematics.settings import SWEEP_NODE_CORRECTION
 
 __all__ = [
     "PathTrace",

@@ -15,8 +15,7 @@ import numpy as np
 
 from mechsing.kinematics.paths.arc import curve_tangent
 from mechsing.kinematics.paths.problem import Problem
-from mechsing.numeric import SWEEP_NODE_STEP
-from mechsing.numeric.tolerances import SWEEP_NODE_CORRECTION
+from mechsing.kinematics.settings import SWEEP_NODE_CORRECTION, SWEEP_NODE_STEP
 
 __all__ = [
     "node_index",

@@ -15,7 +15,7 @@ import numpy as np
 
 from mechsing.errors import ClosureError
 from mechsing.kinematics.paths.problem import Problem
-from mechsing.numeric import SWEEP_JUMP_RATIO, SWEEP_KNOT_STEP
+from mechsing.kinematics.settings import SWEEP_JUMP_RATIO, SWEEP_KNOT_STEP
 
 if TYPE_CHECKING:
     from mechsing.kinematics.paths.trace import PathTrace

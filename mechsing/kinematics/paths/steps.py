@@ -19,14 +19,14 @@ import numpy as np
 from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import damped_least_squares, finite_system, newton_on_group
 from mechsing.kinematics.protocol import ClosureModel
-from mechsing.numeric import (
+from mechsing.kinematics.settings import (
     CONTINUATION_CORRECTOR_RATIO,
     CONTINUATION_JUMP_FLOOR,
     CONTINUATION_RETURN_RATIO,
     CONTINUATION_REVERSE_RTOL,
     CONTINUATION_STEP_RTOL,
-    decide_rank,
 )
+from mechsing.numeric import decide_rank
 
 __all__ = ["Corrected", "StepInfo", "closure_matrix", "correct", "same_branch"]
 

@@ -15,13 +15,18 @@ from __future__ import annotations
 
 import threading
 from collections import OrderedDict
-from typing import Any, ClassVar, NamedTuple
+from collections.abc import Callable
+from typing import Any, ClassVar, NamedTuple, Self, TypeVar
 
 import numpy as np
 
+from mechsing.kinematics.protocol import ClosureModel
+from mechsing.model import Mechanism
 from mechsing.numeric import Precision, batched_rank_bounds, rank_bounds
 
 __all__ = ["Criterion", "PerModel", "RankBounds", "singular_values"]
+
+T = TypeVar("T")
 
 _FLOAT = Precision("float").tolerances
 
@@ -33,8 +38,8 @@ class RankBounds(NamedTuple):
     """The two-threshold rank bounds of a batch of matrices (integer arrays of the batch
     shape): decided where ``lo == hi``.  (A named tuple: made for every batch decided.)"""
 
-    lo: Any
-    hi: Any
+    lo: np.ndarray
+    hi: np.ndarray
 
     @property
     def decided(self) -> np.ndarray:
@@ -63,7 +68,8 @@ def singular_values(A: np.ndarray) -> np.ndarray:
     """The singular values (..., min(m, n)) of a stack of float matrices (..., m, n)."""
     if A.shape[-2] == 0 or A.shape[-1] == 0:
         return np.zeros((*A.shape[:-2], 0))
-    return np.linalg.svd(A, compute_uv=False)
+    s: np.ndarray = np.linalg.svd(A, compute_uv=False)
+    return s
 
 
 class PerModel:
@@ -72,16 +78,17 @@ class PerModel:
     model itself."""
 
     def __init__(self) -> None:
-        self._plans: OrderedDict[int, tuple[Any, Any]] = OrderedDict()
+        self._plans: OrderedDict[int, tuple[ClosureModel, Any]] = OrderedDict()
         self._lock = threading.Lock()  # a threaded sweep's workers share the cache
 
-    def get(self, model: Any, build: Any) -> Any:
+    def get(self, model: ClosureModel, build: Callable[[], T]) -> T:
         key = id(model)
         with self._lock:
             got = self._plans.get(key)
             if got is not None and got[0] is model:
                 self._plans.move_to_end(key)
-                return got[1]
+                kept: T = got[1]
+                return kept
         plan = build()
         with self._lock:
             self._plans[key] = (model, plan)
@@ -104,12 +111,12 @@ class Criterion:
         super().__init_subclass__(**kwargs)
         cls._plans = PerModel()
 
-    def __init__(self, mech: Any, model: Any) -> None:
+    def __init__(self, mech: Mechanism, model: ClosureModel) -> None:
         self.mech = mech
         self.model = model
 
     @classmethod
-    def of(cls, mech: Any, model: Any) -> Any:
+    def of(cls, mech: Mechanism, model: ClosureModel) -> Self:
         """The test of ``mech`` for ``model``, its plan built once per model."""
         got = cls._plans.get(model, lambda: cls(mech, model))
         if got.mech is not mech:  # the same model asked for another mechanism

@@ -11,11 +11,11 @@ Reference: the largest singular value of the stacked system.
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 
 from mechsing.kinematics.couplings import coupling_rows
+from mechsing.kinematics.protocol import ClosureModel
+from mechsing.model import Mechanism
 from mechsing.singularity.criteria.base import Criterion
 
 __all__ = ["ClosureTest"]
@@ -29,7 +29,7 @@ class ClosureTest(Criterion):
     name = "closure"
     reference = "the largest singular value of the stacked loop screw systems"
 
-    def __init__(self, mech: Any, model: Any) -> None:
+    def __init__(self, mech: Mechanism, model: ClosureModel) -> None:
         super().__init__(mech, model)
         n = model.n
         self.loop_signs = np.zeros((len(mech.loops), n))

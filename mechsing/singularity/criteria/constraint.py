@@ -17,17 +17,23 @@ from __future__ import annotations
 
 from collections import deque
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechsing.numeric import Precision, RankDecision, decide_rank, svd
+from mechsing.kinematics.protocol import ClosureModel
+from mechsing.model import Leg, Mechanism
+from mechsing.numeric import Precision, RankDecision, decide_rank
+from mechsing.numeric.linalg import svd
 from mechsing.singularity.criteria.base import Criterion, singular_values
+
+if TYPE_CHECKING:
+    from mechsing.screws import ClosureSystem
 
 __all__ = ["ConstraintTest", "LegPlan", "leg_path"]
 
 
-def leg_path(mech: Any, leg: Any, base: str, body: str) -> list[tuple[str, int]]:
+def leg_path(mech: Mechanism, leg: Leg, base: str, body: str) -> list[tuple[str, int]]:
     """A path of (joint, sign) from base to body through the leg's joints (BFS, file order)."""
     joints = [mech.joint(j) for j in leg.joints]
     prev: dict[str, tuple[str, str, int] | None] = {base: None}
@@ -48,7 +54,9 @@ def leg_path(mech: Any, leg: Any, base: str, body: str) -> list[tuple[str, int]]
     path: list[tuple[str, int]] = []
     x = body
     while prev.get(x) is not None:
-        px, jn, sg = prev[x]
+        step = prev[x]
+        assert step is not None  # the loop's condition
+        px, jn, sg = step
         path.append((jn, sg))
         x = px
     return path[::-1]
@@ -78,14 +86,15 @@ class ConstraintTest(Criterion):
     name = "constraint"
     reference = "each leg's twists and the combined wrenches relative to their largest"
 
-    def __init__(self, mech: Any, model: Any) -> None:
+    def __init__(self, mech: Mechanism, model: ClosureModel) -> None:
         super().__init__(mech, model)
         out = mech.output
         legs: list[LegPlan] = []
         if out is not None and len(mech.legs) >= 2:
             for leg in mech.legs:
                 legset = set(leg.joints)
-                cols, names = [], []
+                cols: list[int] = []
+                names: list[str] = []
                 for j in leg.joints:
                     jk = model.joint(j)
                     cols.extend(range(jk.columns.start, jk.columns.stop))
@@ -99,7 +108,9 @@ class ConstraintTest(Criterion):
 
     # ------------------------------------------------------------------ one configuration
 
-    def decide(self, cs: Any, prec: Precision) -> tuple[RankDecision, list[np.ndarray]] | None:
+    def decide(
+        self, cs: ClosureSystem, prec: Precision
+    ) -> tuple[RankDecision, list[np.ndarray]] | None:
         """Rank of the combined constraint wrench system at the configuration of the
         closure system ``cs``, and each leg's constraint wrenches (commensurate vectors y
         with y . twist = 0 for every twist the leg lets the output make), computed and

@@ -28,7 +28,10 @@ import numpy as np
 
 from mechsing import lie
 from mechsing.kinematics.chains import tree_chain
-from mechsing.numeric import Precision, RankDecision, decide_rank, rank_difference, spectral_norm
+from mechsing.kinematics.protocol import ClosureModel
+from mechsing.model import Mechanism
+from mechsing.numeric import Precision, RankDecision, decide_rank, rank_difference
+from mechsing.numeric.linalg import spectral_norm
 from mechsing.screws import chain_matrix
 from mechsing.singularity.criteria.base import Criterion, singular_values
 
@@ -42,7 +45,7 @@ NEED_OUTPUT = ("input", "output", "passive-motion", "impossible-output", "constr
 NEED_INPUTS = ("input", "output", "passive-motion", "impossible-input")
 
 
-def tests_run(mech: Any) -> tuple[str, ...]:
+def tests_run(mech: Mechanism) -> tuple[str, ...]:
     """The input/output tests (:data:`IO_TESTS`) whose ingredients the mechanism has:
     all five with inputs and an output; ``impossible-input`` with inputs alone (the rank
     of the inputs on the motion space: where an input loses its independent rate);
@@ -55,7 +58,7 @@ def tests_run(mech: Any) -> tuple[str, ...]:
     )
 
 
-def input_rows(mech: Any, model: Any) -> np.ndarray | None:
+def input_rows(mech: Mechanism, model: ClosureModel) -> np.ndarray | None:
     """Selection E of the actuated coordinates (rows), commensurate (lengths / L)."""
     coords = mech.input_coordinates()
     if not coords:
@@ -129,7 +132,7 @@ def _decided(b: tuple[int, int]) -> int | None:
     return b[0] if b[0] == b[1] else None
 
 
-def _null(A: np.ndarray, L: float, prec: Precision, reference: Any = None) -> np.ndarray:
+def _null(A: np.ndarray, L: float, prec: Precision, reference: Any = None) -> np.ndarray | None:
     if A.shape[0] == 0:
         return prec.backend.eye(A.shape[1])
     dec = decide_rank(A, prec, L, want_spaces=True, reference=reference, native_spaces=True)
@@ -143,7 +146,7 @@ class MotionTest(Criterion):
     name = "motion"
     reference = "T N relative to |T|; E N relative to |E| = 1; [T N / |T|; E N] relative to 1"
 
-    def __init__(self, mech: Any, model: Any) -> None:
+    def __init__(self, mech: Mechanism, model: ClosureModel) -> None:
         super().__init__(mech, model)
         self.run = tests_run(mech)
         self.E = input_rows(mech, model)
@@ -155,7 +158,7 @@ class MotionTest(Criterion):
             self.out_signs = tree_chain(model, out.body, out.relative_to).signs
             if out.point is not None:
                 self.out_point = np.array([float(x) for x in out.point])
-                self.point = model.point_array(out.point)
+                self.point = model.asarray(list(out.point))
 
     # ------------------------------------------------------------------ matrices
 
@@ -165,7 +168,9 @@ class MotionTest(Criterion):
         if self.point is None:
             return None
         x0 = self.out_point if float_point else self.point
-        return lie.act_point(poses[self.mech.output.body], x0)
+        out = self.mech.output
+        assert out is not None  # a point is an output's
+        return lie.act_point(poses[out.body], x0)
 
     def output_rows(self, S: Any, x: Any = None) -> np.ndarray:
         """The commensurate output map T at current screws ``S`` (..., 6, n): twists, or the

@@ -20,6 +20,8 @@ from typing import Any
 import numpy as np
 
 from mechsing.kinematics.couplings import fold_columns
+from mechsing.kinematics.protocol import ClosureModel
+from mechsing.model import Mechanism
 from mechsing.numeric import RankDecision, decide_rank
 from mechsing.screws import chain_matrix
 from mechsing.singularity.criteria.base import Criterion, RankBounds, singular_values
@@ -57,7 +59,7 @@ class SerialTest(Criterion):
     name = "serial"
     reference = "the chain's largest singular value"
 
-    def __init__(self, mech: Any, model: Any) -> None:
+    def __init__(self, mech: Mechanism, model: ClosureModel) -> None:
         super().__init__(mech, model)
         self.coupled = bool(getattr(model, "couplings", ()))
 
@@ -76,7 +78,8 @@ class SerialTest(Criterion):
             Ms = scaled[..., list(columns)]
         else:
             Ms = chain_matrix(self.model, S, columns, point_x)
-        kept, follows = None, []
+        kept: list[int] | None = None
+        follows: list[tuple[int, int, Any]] = []
         if self.coupled:
             Ms, kept, follows = fold_columns(self.model, Ms, list(columns))
         return Ms, kept, follows

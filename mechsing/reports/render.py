@@ -15,6 +15,7 @@ from typing import Any
 
 from mechsing.analysis.contract import subgroup_params
 from mechsing.analysis.describe import OutputMotion
+from mechsing.analysis.display import angle_floor, floor_for, shown, unit_text
 from mechsing.analysis.results import AnalysisResult, to_json
 from mechsing.analysis.words import (
     describe,
@@ -26,7 +27,6 @@ from mechsing.analysis.words import (
     velocity_space_words,
 )
 from mechsing.model.couplings import coupling_source, describe_coupling
-from mechsing.numeric import display_floor, floored
 from mechsing.singularity.findings import (
     ConstraintFinding,
     Finding,
@@ -62,11 +62,11 @@ def _subgroup(sg: Subgroup | None, floor: float = 0.0, L: float = 1.0) -> str:
         return "undecided"
     kinds = dict(sg.type.parameters)
 
-    def shown(k: str, v: float) -> float:
-        return floored(v, floor if kinds.get(k) == "point" else floor / L)
+    def value(k: str, v: float) -> str:
+        return shown(v, floor if kinds.get(k) == "point" else angle_floor(floor, L), ".4g")
 
     ps = ", ".join(
-        f"{k} [{', '.join(f'{shown(k, v):.4g}' for v in val)}]"
+        f"{k} [{', '.join(value(k, v) for v in val)}]"
         if isinstance(val, list)
         else f"{k} {val:.4g}"
         for k, val in subgroup_params(sg).items()
@@ -83,8 +83,8 @@ def _motion_words(m: OutputMotion, length_scale: float) -> str:
         return text
     at = ", ".join(f"{x:.4g}" for x in p.position)
     if p.dim is None:
-        return f"{text}; its point at ({at}) m: undecided"
-    return f"{text}; its point at ({at}) m {velocity_space_words(p.velocities)}"
+        return f"{text}; its point at ({at}) {unit_text('m')}: undecided"
+    return f"{text}; its point at ({at}) {unit_text('m')} {velocity_space_words(p.velocities)}"
 
 
 def _body_motion_words(m: OutputMotion, head: str, length_scale: float) -> str:
@@ -137,13 +137,16 @@ def scene_line(note: str) -> str:
 
 def joint_values_text(c: Any, length_scale: float) -> str:
     """A configuration's joint values (m, rad) as text, each below the display floor of
-    its precision (:func:`mechsing.numeric.display_floor`; the smaller of a length's and
-    an angle's, as a coordinate may be either) shown as 0."""
-    floor = display_floor(c.precision, length_scale)
-    floor = min(floor, floor / length_scale)
-    return ", ".join(
-        f"{k} = [{', '.join(f'{floored(x, floor):.6g}' for x in v)}]" for k, v in c.joints
-    )
+    its precision (:func:`mechsing.analysis.display.floor_for`; the smaller of a length's
+    and an angle's, as a coordinate may be either) shown as 0."""
+    floor = floor_for(c.precision, length_scale)
+    floor = min(floor, angle_floor(floor, length_scale))
+    return ", ".join(f"{k} = [{', '.join(shown(x, floor) for x in v)}]" for k, v in c.joints)
+
+
+def _units() -> str:
+    """``m, rad``: the units of joint values, limits and poses, as the text spells them."""
+    return f"{unit_text('m')}, {unit_text('rad')}"
 
 
 def render_text(result: AnalysisResult, markdown: bool = False) -> str:
@@ -160,14 +163,15 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         else "rank thresholds {} and {} of the largest singular value".format(*t.shown())
     )
     lines.append(
-        f"Precision {mode} ({thresholds}); characteristic length L = {result.length_scale:.4g} m."
+        f"Precision {mode} ({thresholds}); characteristic length L = "
+        f"{result.length_scale:.4g} {unit_text('m')}."
     )
     if result.mechanism.limits:
-        shown = ", ".join(
+        limits = ", ".join(
             f"{k} " + " ".join(f"[{lo:.6g}, {hi:.6g}]" for lo, hi in v)
             for k, v in result.mechanism.limits.items()
         )
-        lines.append(f"Joint limits (m, rad): {shown}.")
+        lines.append(f"Joint limits ({_units()}): {limits}.")
     if result.mechanism.scene is not None:
         lines += [scene_line(note) for note in result.mechanism.scene.notes]
     for sentence in not_run_sentences(result.mechanism):
@@ -206,7 +210,7 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
         if c.error is not None:
             lines.append(f"{bullet}not analysed: {c.error}")
             continue
-        floor = display_floor(c.precision, result.length_scale)
+        floor = floor_for(c.precision, result.length_scale)
         if c.pose is not None:
             gp = c.pose
             rel = (
@@ -215,18 +219,20 @@ def render_text(result: AnalysisResult, markdown: bool = False) -> str:
                 else f" relative to {gp.relative_to}"
             )
             lines.append(
-                f"{bullet}given pose of {gp.body}{rel} (m, rad): reference point at "
-                f"({', '.join(f'{floored(x, floor):.6g}' for x in gp.position)}), rotation "
-                f"vector ({', '.join(f'{floored(x, floor / L):.6g}' for x in gp.rotation_vector)})"
+                f"{bullet}given pose of {gp.body}{rel} ({_units()}): reference point at "
+                f"({', '.join(shown(x, floor) for x in gp.position)}), rotation vector "
+                f"({', '.join(shown(x, angle_floor(floor, L)) for x in gp.rotation_vector)})"
                 " about it"
             )
-        lines.append(f"{bullet}joint values (m, rad): {joint_values_text(c, L)}")
+        lines.append(f"{bullet}joint values ({_units()}): {joint_values_text(c, L)}")
         if c.underdetermined:
             lines.append(f"{bullet}{_underdetermined(result.mechanism, c)}")
         outside = _outside_limits(result.mechanism.limits, c.joints)
         if outside:
             lines.append(f"{bullet}outside the joint limits: {', '.join(outside)}")
-        lines.append(f"{bullet}closure residual {floored(c.closure_residual, floor):.3g} m")
+        lines.append(
+            f"{bullet}closure residual {shown(c.closure_residual, floor, '.3g')} {unit_text('m')}"
+        )
         for note in c.notes:
             lines.append(f"{bullet}note: {note}")
         for lp in c.loops:

@@ -15,7 +15,7 @@ import numpy as np
 from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.figure import Figure
 
-from mechsing.report.figures import RC, new_figure, svg
+from mechsing.reports.figures import RC, new_figure, svg
 
 __all__ = ["cusps_blocks", "cusps_figure", "write_figure"]
 
@@ -108,7 +108,7 @@ def cusps_blocks(res: Any) -> list[Any]:
     """The report's section "Cusps" of a :class:`~mechsing.assembly.cusps.CuspsResult`:
     the verdict with its evidence, the figure, each cusp."""
     from mechsing.assembly.cusps_render import render_cusps
-    from mechsing.report import document as doc
+    from mechsing.reports import document as doc
 
     data = res.to_json()
     lines = render_cusps(data, "text").splitlines()

@@ -31,8 +31,9 @@ from matplotlib.patches import Circle, Polygon, Rectangle
 
 from mechsing.kinematics import KinematicModel
 from mechsing.model import Mechanism
-from mechsing.numeric import to_float, unit_vector
-from mechsing.report.figures import RC, new_figure
+from mechsing.numeric import to_float
+from mechsing.numeric.numbers import unit_vector
+from mechsing.reports.figures import RC, new_figure
 
 __all__ = [
     "Screw",

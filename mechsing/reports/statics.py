@@ -10,8 +10,8 @@ from typing import Any
 import matplotlib
 import numpy as np
 
-from mechsing.report import document as doc
-from mechsing.report.figures import RC, new_figure, svg
+from mechsing.reports import document as doc
+from mechsing.reports.figures import RC, new_figure, svg
 
 __all__ = ["kinetostatics_blocks"]
 

@@ -1,6 +1,6 @@
 """The sketch of a spherical mechanism: every joint axis through one centre, drawn on a sphere.
 
-A spherical chain drawn as :mod:`mechsing.report.sketch` draws others would be a star: every
+A spherical chain drawn as :mod:`mechsing.reports.sketch` draws others would be a star: every
 joint point is the centre, so every link has zero length.  Here it is drawn as what it is
 (Chiang, *Kinematics of Spherical Mechanisms*): each revolute axis as the unit vector from the
 centre along its current direction, each link as the great-circle arc between its joints'
@@ -22,8 +22,8 @@ import matplotlib
 import numpy as np
 
 from mechsing.model import Mechanism
-from mechsing.report.figures import RC, new_figure
-from mechsing.report.sketch import (
+from mechsing.reports.figures import RC, new_figure
+from mechsing.reports.sketch import (
     DRAWING_TOLERANCE,
     Screw,
     View,

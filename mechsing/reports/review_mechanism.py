@@ -15,9 +15,9 @@ from mechsing.analysis.results import Mobility
 from mechsing.analysis.words import margin_text, twist_words
 from mechsing.model.couplings import coupling_source, describe_coupling
 from mechsing.numeric import to_float
-from mechsing.report import document as doc
-from mechsing.report.figures import graph_figure, svg
-from mechsing.report.render import scene_line
+from mechsing.reports import document as doc
+from mechsing.reports.figures import graph_figure, svg
+from mechsing.reports.render import scene_line
 from mechsing.subgroups import Subgroup, load_catalog
 
 __all__ = [

@@ -8,15 +8,16 @@ from __future__ import annotations
 import numpy as np
 
 from mechsing.analysis import AnalysisResult, ConfigurationResult
+from mechsing.analysis.display import floor_for
 from mechsing.analysis.html import VERDICT_HEADERS
 from mechsing.analysis.words import explain, margin_text
 from mechsing.model import Mechanism
-from mechsing.numeric import Precision, display_floor, floored, to_float
-from mechsing.report import document as doc
-from mechsing.report.figures import grid_figure, path_figure, svg
-from mechsing.report.render import joint_values_text
-from mechsing.report.sketch import Screw, View, choose_view, sketch_figure
-from mechsing.report.sphere import choose_sphere_view, sphere_figure, spherical_centre
+from mechsing.numeric import Precision, floored, to_float
+from mechsing.reports import document as doc
+from mechsing.reports.figures import grid_figure, path_figure, svg
+from mechsing.reports.render import joint_values_text
+from mechsing.reports.sketch import Screw, View, choose_view, sketch_figure
+from mechsing.reports.sphere import choose_sphere_view, sphere_figure, spherical_centre
 from mechsing.singularity.findings import ConstraintFinding, MotionFinding, SerialFinding
 from mechsing.sweeps import SweepResult
 from mechsing.sweeps.results import located_rows
@@ -116,7 +117,7 @@ def configuration_sections(analysis: AnalysisResult) -> list[doc.Block]:
         L = analysis.length_scale
         items = [f"joint values (m, rad): {joint_values_text(c, L)}"]
         if c.closure_residual is not None:
-            res = floored(c.closure_residual, display_floor(c.precision, L))
+            res = floored(c.closure_residual, floor_for(c.precision, L))
             items.append(f"closure residual {res:.3g} m")
         if c.mobility is not None:
             m = c.mobility

@@ -10,9 +10,9 @@ from __future__ import annotations
 from mechsing.assembly import ModesResult
 from mechsing.assembly.render import modes_heading
 from mechsing.model import Mechanism
-from mechsing.report import document as doc
-from mechsing.report.figures import svg
-from mechsing.report.sketch import choose_view, sketch_figure
+from mechsing.reports import document as doc
+from mechsing.reports.figures import svg
+from mechsing.reports.sketch import choose_view, sketch_figure
 
 __all__ = ["modes_blocks"]
 

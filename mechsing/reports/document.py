@@ -1,7 +1,7 @@
 """A design-review document as a list of blocks, and its HTML and Markdown forms.
 
 Owns the blocks (:class:`Heading`, :class:`Paragraph`, :class:`Bullets`, :class:`Table`,
-:class:`Figure`, :class:`Details`) that :mod:`mechsing.report.review` builds, and the two
+:class:`Figure`, :class:`Details`) that :mod:`mechsing.reports.review` builds, and the two
 writers: :func:`to_html` (one self-contained HTML5 file: inline CSS, figures as SVG data
 URIs, no script, nothing fetched; tables scroll sideways and figures shrink on a narrow
 window; printable) and :func:`to_markdown` (GitHub-flavoured Markdown, the figures written

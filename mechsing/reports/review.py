@@ -8,8 +8,8 @@ loop's subgroup in words, the mobility numbers with why they differ), each confi
 (a sketch with the screws of its findings, the findings in sentences with their numbers),
 the sweep (curves or loci) and how it was computed.  This module owns the record, the
 order of the document, its verdict table and its last section; the mechanism's section is
-:mod:`mechsing.report.review_mechanism`'s, the configurations' and the sweep's
-:mod:`mechsing.report.review_configurations`'.  Everything is in SI units and radians
+:mod:`mechsing.reports.review_mechanism`'s, the configurations' and the sweep's
+:mod:`mechsing.reports.review_configurations`'.  Everything is in SI units and radians
 except the swept values of a sweep, which are also shown in the file's units.
 
 The document is deterministic: the same inputs give the same bytes, except the one line
@@ -33,10 +33,11 @@ from mechsing.analysis.words import class_words
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, parse_precision
 from mechsing.reader import read_mechanism
-from mechsing.report import document as doc
-from mechsing.report.review_configurations import configuration_sections, sweep_section
-from mechsing.report.review_mechanism import mechanism_section
-from mechsing.report.statics import kinetostatics_blocks
+from mechsing.reports import document as doc
+from mechsing.reports.dynamics import dynamics_blocks
+from mechsing.reports.review_configurations import configuration_sections, sweep_section
+from mechsing.reports.review_mechanism import mechanism_section
+from mechsing.reports.statics import kinetostatics_blocks
 from mechsing.singularity.zfb import not_run_sentences
 from mechsing.statics import with_kinetostatics
 from mechsing.sweeps import SweepResult, sweep
@@ -67,7 +68,7 @@ class Report:
         return self.analysis.mechanism
 
     def blocks(self) -> list[doc.Block]:
-        """The document as blocks (:mod:`mechsing.report.document`)."""
+        """The document as blocks (:mod:`mechsing.reports.document`)."""
         return _blocks(self)
 
     def to_html(self) -> str:
@@ -115,6 +116,7 @@ def report(
     max_effort: dict[str, float] | None = None,
     modes_of: str | None = None,
     cusps_vary: str | None = None,
+    duration: float | None = None,
 ) -> Report:
     """A design review of a mechanism (or a file), ready to write as HTML or Markdown.
 
@@ -146,6 +148,9 @@ def report(
         ``NAME=lo:hi,NAME=lo:hi``: a section "Cusps" with the singular curves and the
         cusps of that section (``mechsing.cusps``; the third input from ``modes_of``'s
         configuration, else the first that gives it), drawn.
+    duration : float, optional
+        Time the sweep's path over ``duration`` seconds (``sweep(..., duration=)``): the
+        section "Dynamics along the sweep" plots the efforts of that motion.
 
     Returns
     -------
@@ -154,6 +159,10 @@ def report(
         a notebook.
     """
     t0 = time.perf_counter()
+    if duration is not None and not vary:
+        from mechsing.errors import UserError
+
+        raise UserError("--duration times the report's sweep: give --vary NAME=START:STOP:STEP")
     mech = (
         mechanism_or_path
         if isinstance(mechanism_or_path, Mechanism)
@@ -166,7 +175,14 @@ def report(
     if vary:
         varies = [vary] if isinstance(vary, str | Vary) else list(vary)
         swept = sweep(
-            mech, varies, from_config, prec, time_limit=time_limit, load=load, max_effort=max_effort
+            mech,
+            varies,
+            from_config,
+            prec,
+            time_limit=time_limit,
+            load=load,
+            max_effort=max_effort,
+            duration=duration,
         )
     if command is None:
         args = [repr(mech.path or mech.name)]
@@ -285,12 +301,13 @@ def _blocks(r: Report) -> list[doc.Block]:
     if r.sweep is not None:
         out += sweep_section(r.analysis, r.sweep)
     out += kinetostatics_blocks(r)
+    out += dynamics_blocks(r)
     if r.modes is not None:
-        from mechsing.report.modes_section import modes_blocks
+        from mechsing.reports.modes_section import modes_blocks
 
         out += modes_blocks(mech, r.modes, r.analysis.length_scale)
     if r.cusps is not None:
-        from mechsing.report.cusps import cusps_blocks
+        from mechsing.reports.cusps import cusps_blocks
 
         out += cusps_blocks(r.cusps)
     out += _how(r)
