@@ -254,6 +254,13 @@ def test_cusps_text_and_plot(tmp_path: Path) -> None:
     assert run.status == 0, run.err
     assert "cuspidal" in run.out and "three modes meet" in run.out
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # Markdown keeps the grid's lines: an orthogonal 3R arm reaches a point of its
+    # workspace in 0, 2 or 4 postures (Baili, Wenger & Chablat, ICRA 2004)
+    md = run_cli(
+        ["cusps", str(path), "--vary", "rho=0:6,z=-5:5", "--points", "41", "--format", "md"]
+    )
+    assert md.status == 0 and "- real modes on the grid: 0, 2, 4\n" in md.out
+    assert "- singular curves: " in md.out and "| 4 |" in md.out
 
 
 def test_the_figure_has_one_colour_band_per_count_and_its_legend_off_the_section() -> None:
