@@ -272,3 +272,17 @@ def test_two_swept_joints_of_a_one_dof_linkage_are_refused_by_name():
     assert rc == 2
     assert "the coordinates swept (B, C) are 2 for a mechanism of mobility 1" in err
     assert "such as the file's inputs (P)" in err
+
+
+def test_a_stop_note_names_the_variable_and_its_last_sample() -> None:
+    """The slider-crank's dead centres (DEAD_CENTRES, closed form): from the reference, a
+    path by 0.03 m stops at the last sample before each, and the note says the swept
+    value it stopped at (not a bare length, read as a distance)."""
+    rc, out, err = run_cli(["sweep", str(SLIDER), "--vary", "P=-4:4:0.03"])
+    assert rc == 0, err
+    samples = [-4 + 0.03 * k for k in range(267)]
+    bottom = min(s for s in samples if s > DEAD_CENTRES[0])
+    top = max(s for s in samples if s < DEAD_CENTRES[1])
+    end = samples[-1]  # the last sample short of 4 m
+    assert f"towards P = {end:.10g} m: stopped after P = {top:.10g} m:" in out
+    assert f"towards P = -4 m: stopped after P = {bottom:.10g} m:" in out

@@ -90,6 +90,14 @@ def _cusps(path: Path, vary: str, *more: str) -> dict:
     return json.loads(run.out)
 
 
+def _follows_the_schema(doc: dict) -> None:
+    """The document validates against ``mechsing schema --cusps``."""
+    jsonschema = pytest.importorskip("jsonschema")
+    run = run_cli(["schema", "--cusps"])
+    assert run.status == 0, run.err
+    jsonschema.Draft202012Validator(json.loads(run.out)).validate(doc)
+
+
 def test_cuspidal_3rpr_cusps_match_the_forward_map(tmp_path: Path) -> None:
     rest = [float(sympy.sympify(r)) for r in CUSPIDAL_3RPR_REST]
     path = _write(tmp_path, "zwc.yaml", CUSPIDAL_3RPR)
@@ -116,6 +124,7 @@ def test_cuspidal_3rpr_cusps_match_the_forward_map(tmp_path: Path) -> None:
     # the modes meet where the reference says: the platform angle at each cusp
     thetas = sorted(round(c["modes"]["platform"]["theta"], 6) for c in doc["cusps"])
     assert thetas == sorted(round(w[2], 6) for w in want)
+    _follows_the_schema(doc)
 
 
 def test_similar_3rpr_is_not_cuspidal(tmp_path: Path) -> None:
@@ -124,6 +133,7 @@ def test_similar_3rpr_is_not_cuspidal(tmp_path: Path) -> None:
     assert doc["cuspidal"] is False and doc["cusps"] == []
     assert doc["evidence"]["kind"] == "no-triple-root"
     assert doc["evidence"]["singular_points"] > 0  # it has singular curves, no cusp
+    _follows_the_schema(doc)
     rest = np.sqrt(2)  # every leg's length in the drawing
     want = rpr_cusps(
         [(0, 0), (4, 0), (0, 4)],
@@ -166,6 +176,73 @@ def test_puma_like_arm_is_not_cuspidal(tmp_path: Path) -> None:
     assert doc["cuspidal"] is False and doc["cusps"] == []
     assert doc["evidence"]["kind"] == "decoupled"
     assert arm_cusps(PUMA_DH, ORTHOGONAL_TOOL, ((1e-3, 6), (-5, 5))) == []
+    _follows_the_schema(doc)
+
+
+def test_a_section_beyond_the_reach_says_so(tmp_path: Path) -> None:
+    """The orthogonal 3R arm drawn in mm, its section given in mm by mistake (--vary is
+    SI): rho from 100 m up is beyond its reach (its links and tool sum to under 6.5 m),
+    so no point of the grid has a real posture, and the evidence says the section missed
+    the arm and that --vary is not in the file's units."""
+    mm = ORTHOGONAL_3R.replace("mechanism: orthogonal-3r", "units: {length: mm}\nmechanism: x")
+    for a, b in (('[1, "3/2", 0]', "[1000, 1500, 0]"), ('[3, "3/2", 0]', "[3000, 1500, 0]")):
+        mm = mm.replace(a, b)
+    mm = mm.replace('["9/2", "3/2", 0]', "[4500, 1500, 0]")
+    assert "3/2" not in mm
+    doc = _cusps(_write(tmp_path, "orth_mm.yaml", mm), "rho=100:6000,z=-5000:5000", "--points", "9")
+    assert doc["formulation"]["modes_counts"] == [0] and doc["cuspidal"] is False
+    assert "no real mode anywhere on the grid" in doc["evidence"]["reason"]
+    assert "the file is in mm and rad, --vary is not" in doc["evidence"]["reason"]
+
+
+def test_cusps_output_format_follows_its_extension(tmp_path: Path) -> None:
+    """-o NAME.json writes the JSON document (as sweep's -o does), -o NAME.md Markdown;
+    --plot of a name that is neither .png nor .svg is refused before the work. The PUMA-like
+    arm's first two axes meet: not cuspidal (its inverse kinematics decouples)."""
+    path = _write(tmp_path, "puma3.yaml", PUMA_3R)
+    for name, first in (("c.json", "{"), ("c.md", "## puma-like-3r")):
+        run = run_cli(["cusps", str(path), "--vary", "rho=0:6,z=-5:5", "-o", str(tmp_path / name)])
+        assert run.status == 0, run.err
+        assert (tmp_path / name).read_text().startswith(first)
+    assert json.loads((tmp_path / "c.json").read_text())["cuspidal"] is False
+    run = run_cli(
+        ["cusps", str(path), "--vary", "rho=0:6,z=-5:5", "--plot", str(tmp_path / "c.jpg")]
+    )
+    assert run.status == 2 and "name it .png or .svg" in run.err
+    assert not (tmp_path / "c.jpg").exists()
+
+
+def test_schema_prints_one_document_at_a_time(capsys: pytest.CaptureFixture[str]) -> None:
+    from mechsing.cli import main
+
+    with pytest.raises(SystemExit) as exc:
+        main(["schema", "--sweep", "--cusps"])
+    assert exc.value.code == 2 and "not allowed with argument" in capsys.readouterr().err
+    assert json.loads(run_cli(["schema", "--cusps"]).out)["title"] == "mechsing cusps document"
+
+
+def test_the_schema_rejects_a_document_without_its_verdict(tmp_path: Path) -> None:
+    """The schema is no blank cheque: a document missing ``cuspidal``, or with a cusp of
+    multiplicity 2 (two modes meeting is a singular curve, not a cusp), fails it."""
+    jsonschema = pytest.importorskip("jsonschema")
+    schema = json.loads(run_cli(["schema", "--cusps"]).out)
+    doc = _cusps(_write(tmp_path, "puma3.yaml", PUMA_3R), "rho=0:6,z=-5:5")
+    del doc["cuspidal"]
+    with pytest.raises(jsonschema.ValidationError, match="cuspidal"):
+        jsonschema.Draft202012Validator(schema).validate(doc)
+    doc["cuspidal"] = False
+    doc["cusps"] = [
+        {
+            "inputs": {"rho": 1.0, "z": 0.0},
+            "multiplicity": 2,
+            "certified": False,
+            "radius": None,
+            "t": 0.0,
+            "modes": {"real_modes_at_cusp": 2, "coalescing": 3},
+        }
+    ]
+    with pytest.raises(jsonschema.ValidationError, match="3 was expected"):
+        jsonschema.Draft202012Validator(schema).validate(doc)
 
 
 def test_cusps_text_and_plot(tmp_path: Path) -> None:
@@ -177,6 +254,51 @@ def test_cusps_text_and_plot(tmp_path: Path) -> None:
     assert run.status == 0, run.err
     assert "cuspidal" in run.out and "three modes meet" in run.out
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # Markdown keeps the grid's lines: an orthogonal 3R arm reaches a point of its
+    # workspace in 0, 2 or 4 postures (Baili, Wenger & Chablat, ICRA 2004)
+    md = run_cli(
+        ["cusps", str(path), "--vary", "rho=0:6,z=-5:5", "--points", "41", "--format", "md"]
+    )
+    assert md.status == 0 and "- real modes on the grid: 0, 2, 4\n" in md.out
+    assert "- singular curves: " in md.out and "| 4 |" in md.out
+
+
+def test_the_figure_has_one_colour_band_per_count_and_its_legend_off_the_section() -> None:
+    """A hand-written section (counts 0, 2 and 4 on a 3 x 3 grid, one cusp at the
+    centre): the colour bar reads 0, 2, 4, one colour each, nothing between; the
+    legend lies below the axes, so no cusp is under it."""
+    from mechsing.reports.cusps import cusps_figure
+
+    doc = {
+        "mechanism": "hand-made",
+        "section": {"vary": {"a": [0.0, 2.0], "b": [0.0, 2.0]}, "fixed": {}},
+        "modes_grid": {"a": [0, 1, 2], "b": [0, 1, 2], "modes": [[0, 0, 2], [0, 2, 4], [2, 4, 4]]},
+        "singular_curves": {"points": [[0.5, 1.0], [1.0, 0.5]]},
+        "cusps": [{"inputs": {"a": 1.0, "b": 1.0}, "certified": True}],
+        "cuspidal": True,
+    }
+    fig = cusps_figure(doc)
+    ax, bar = fig.axes
+    image = ax.images[0]
+    assert [t.get_text() for t in bar.get_yticklabels()] == ["0", "2", "4"]
+    assert image.cmap.N == 3  # three colours, one per count
+    colours = [tuple(image.cmap(image.norm(i))) for i in range(3)]
+    assert len(set(colours)) == 3
+    fig.canvas.draw()
+    legend = ax.get_legend().get_window_extent()
+    assert legend.y1 < ax.get_window_extent().y0
+
+
+def test_the_figure_of_a_decoupled_arm_says_why_it_is_empty(tmp_path: Path) -> None:
+    """The PUMA-like arm (first two axes meet: its inverse kinematics decouples, no cusp
+    anywhere) is decided without a grid: the figure says so, its axes in metres."""
+    from mechsing.reports.cusps import cusps_figure
+
+    doc = _cusps(_write(tmp_path, "puma3.yaml", PUMA_3R), "rho=0:6,z=-5:5")
+    assert doc["evidence"]["kind"] == "decoupled"
+    ax = cusps_figure(doc).axes[0]
+    assert any("no cusp anywhere" in t.get_text() for t in ax.texts)
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("rho (m)", "z (m)")
 
 
 @pytest.mark.parametrize(
@@ -191,6 +313,35 @@ def test_cusps_bad_vary_exits_2(tmp_path: Path, vary: str, words: str) -> None:
     path = _write(tmp_path, "orth.yaml", ORTHOGONAL_3R)
     run = run_cli(["cusps", str(path), "--vary", vary])
     assert run.status == 2 and words in run.err
+
+
+#: a planar 2R arm (unit links): two joints, no cusp to look for
+ARM_2R = """\
+mechanism: arm-2r
+bodies: [base, link1, link2]
+joints:
+  - {name: J1, type: R, between: [base, link1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [link1, link2], axis: [0, 0, 1], point: [1, 0, 0]}
+inputs: [J1, J2]
+output: {body: link2, point: [2, 0, 0]}
+"""
+
+
+@pytest.mark.parametrize(
+    ("text", "vary", "words"),
+    [
+        (ARM_2R, "J1=0:1,J2=-3:3", "three revolute joints"),
+        (ARM_2R, "rho=0:2,z=-1:1", "it has J1 (R), J2 (R)"),
+        (SIMILAR_3RPR, "Rb1=0:1,P3=0:1", "--vary Rb1: not an input"),
+        (SIMILAR_3RPR, "P2=5:-1,P3=-1:5", "(write P2=-1:5)"),
+        (SIMILAR_3RPR, "P2=0:1,P2=0:2", "P2 is given twice"),
+    ],
+)
+def test_cusps_bad_input_names_the_item_and_the_fix(
+    tmp_path: Path, text: str, vary: str, words: str
+) -> None:
+    run = run_cli(["cusps", str(_write(tmp_path, "m.yaml", text)), "--vary", vary])
+    assert run.status == 2 and words in run.err and "Traceback" not in run.err
 
 
 def test_exercise_variants_key_matches_the_reference(tmp_path: Path) -> None:

@@ -268,3 +268,61 @@ def test_per_mode_grids_distributed_give_the_serial_result(
     )
     assert spread.to_json() == serial.to_json()
     assert [r.mode for r in spread.sweeps] == [3, 4]
+
+
+def test_a_2r_arm_has_one_mode_and_its_loop_keeps_it(tmp_path: Path) -> None:
+    """Both joints of a 2R arm are inputs: the joints are the inputs, one configuration
+    per input value (one mode), so --mode 2 is an error naming the fix, and a loop of
+    (J1, J2) around [0, 1] x [-0.5, 0.5] comes back on its start, crossing the elbow's
+    singular line J2 = 0 (det J = sin J2) on the sides J1 = 1 and J1 = 0 and nowhere else."""
+    path = tmp_path / "arm.yaml"
+    path.write_text(ARM)
+    rc, _, err = run_cli(["sweep", path, "--from", "bent", "--vary", "J2=0:1:0.1", "--mode", "2"])
+    assert rc == 2 and "has 1 assembly mode " in err and "give --mode 1 or leave" in err
+    assert "Traceback" not in err
+    vary = ["--vary", "J1=0:1:0.1", "--vary", "J2=-0.5:0.5:0.1"]
+    d = cli_json(["sweep", path, "--from", "bent", *vary, "--loop", "--format", "json"])
+    assert d["mode_changes"] == []
+    (loop,) = d["loops"]
+    assert loop["closed"] and not loop["changed_mode"]
+    assert loop["joints_end"]["J2"] == pytest.approx(loop["joints_start"]["J2"], abs=1e-12)
+    got = sorted(tuple(p["values"]) for p in loop["located"])
+    assert len(got) == 2
+    np.testing.assert_allclose(got, [(0.0, 0.0), (1.0, 0.0)], atol=1e-9)
+
+
+def test_aspects_of_a_2r_arm_across_its_stretched_elbow(tmp_path: Path) -> None:
+    """J2 over [-3.5, 3.5]: the elbow is singular at J2 = -pi, 0 and pi (sin J2 = 0), so
+    the grid has four aspects, bounded by the samples either side of those three lines."""
+    path = tmp_path / "arm.yaml"
+    path.write_text(ARM)
+    d = cli_json(
+        ["sweep", path, "--from", "bent", "--vary", "J1=0:1:0.25", "--vary", "J2=-3.5:3.5:0.25"]
+        + ["--format", "json"]
+    )
+    got = sorted(tuple(a["box"][1]) for a in d["aspects"])
+    # the samples' runs between the lines sin J2 = 0 (a sample on a line belongs to none)
+    samples = np.linspace(-3.5, 3.5, 29)
+    lines = (-math.pi, 0.0, math.pi)
+    runs: list[list[float]] = [[]]
+    for y in samples:
+        if any(abs(y - c) < 1e-12 for c in lines):
+            runs.append([])
+            continue
+        if runs[-1] and any(runs[-1][-1] < c < y for c in lines):
+            runs.append([])
+        runs[-1].append(float(y))
+    want = [(r[0], r[-1]) for r in runs if r]
+    assert len(want) == 4
+    np.testing.assert_allclose(got, want, atol=1e-12)
+
+
+@pytest.mark.parametrize("vary", ["J1=0:0:0.1", "J1=0:0.05:0.1"])
+def test_a_loop_needs_a_rectangle(tmp_path: Path, vary: str) -> None:
+    """A --vary of one sample makes the rectangle a segment: nothing inside to go round."""
+    path = tmp_path / "arm.yaml"
+    path.write_text(ARM)
+    rc, _, err = run_cli(
+        ["sweep", path, "--from", "bent", "--vary", vary, "--vary", "J2=0:1:0.1", "--loop"]
+    )
+    assert rc == 2 and "--vary J1 has one sample (0 rad)" in err and "STEP apart" in err

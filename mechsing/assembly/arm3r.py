@@ -80,6 +80,7 @@ def arm_family(mech: Mechanism, ranges: dict[str, tuple[float, float]]) -> dict[
     from mechsing.assembly.planar import OFFSETS, C, S, X, Y
 
     where = mech.path or mech.name
+    j1, j2, j3 = _chain(mech)  # first: a 2R arm is told it is not a 3R arm
     if set(ranges) != {"rho", "z"}:
         raise UserError(
             f"{where}: a 3R arm's section is its workspace half-plane: --vary rho=lo:hi,z=lo:hi "
@@ -87,7 +88,6 @@ def arm_family(mech: Mechanism, ranges: dict[str, tuple[float, float]]) -> dict[
         )
     if ranges["rho"][0] < 0:
         raise UserError(f"{where}: --vary rho={ranges['rho'][0]:g}:...: rho is a distance (>= 0)")
-    j1, j2, j3 = _chain(mech)
     w = [_vec(j.params["axis"]) for j in (j1, j2, j3)]
     w = [v / sympy.sqrt(v.dot(v)) for v in w]
     o = [_vec(j.params["point"]) for j in (j1, j2, j3)]

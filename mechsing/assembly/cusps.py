@@ -195,6 +195,17 @@ def cusps(
         }
     evidence.update({"cusps": len(certified), "grid": n, "singular_points": len(sec.points)})
     counts = sorted({int(v) for v in sec.counts.ravel()})
+    if counts == [0]:  # nothing searched: the section misses every assembly (or posture)
+        units = mech.units
+        scale = (
+            f"; the file is in {units.length} and {units.angle}, --vary is not"
+            if (units.length, units.angle) != ("m", "rad")
+            else ""
+        )
+        evidence["reason"] += (
+            "; but no real mode anywhere on the grid: the section misses the mechanism's "
+            f"reach (--vary is in SI units, m and rad{scale})"
+        )
     return CuspsResult(
         mech.name,
         built["problem"],
@@ -231,7 +242,13 @@ def parse_vary(text: str, where: str) -> dict[str, tuple[float, float]]:
         except (ValueError, TypeError, UserError) as exc:
             raise UserError(f"{where}: --vary {part!r}: {exc}") from None
         if not (np.isfinite(a) and np.isfinite(b) and a < b):
-            raise UserError(f"{where}: --vary {part!r}: need finite lo < hi")
+            fix = f" (write {name.strip()}={hi.strip()}:{lo.strip()})" if a > b else ""
+            raise UserError(f"{where}: --vary {part!r}: need finite lo < hi{fix}")
+        if name.strip() in out:
+            raise UserError(
+                f"{where}: --vary {text!r}: {name.strip()} is given twice; a section "
+                "varies two different coordinates"
+            )
         out[name.strip()] = (a, b)
     if len(out) != 2:
         raise UserError(f"{where}: --vary {text!r}: a section varies two coordinates")
@@ -250,6 +267,12 @@ def _planar_family(
 
     where = mech.path or mech.name
     inputs = [ref.joint for ref in mech.inputs]
+    if len(inputs) == 3 and len(ranges) == 2 and set(ranges) - set(inputs):
+        (stray, *_) = sorted(set(ranges) - set(inputs))
+        raise UserError(
+            f"{where}: --vary {stray}: not an input of the mechanism; vary two of its "
+            f"inputs {', '.join(inputs)} (the third is held at the configuration's value)"
+        )
     if len(inputs) != 3 or set(ranges) - set(inputs) or len(ranges) != 2:
         raise UserError(
             f"{where}: cusps of a parallel mechanism need three inputs, two of them varied "

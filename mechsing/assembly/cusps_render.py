@@ -54,6 +54,9 @@ def render_cusps(doc: dict[str, Any], fmt: str) -> str:
         lines += [_line(k, c, names) for k, c in enumerate(doc["cusps"], start=1)]
     if fmt == "md":
         out = [f"## {head}", "", f"*Evidence:* {doc['evidence']['reason']}", ""]
+        # the grid's lines of the text (counts of real modes, located points), as there
+        out += [f"- {ln}" for ln in lines[2:] if ln.startswith(("real", "sing"))]
+        out += [""] if out[-1] != "" else []
         if doc["cusps"]:
             out += [
                 f"| # | {names[0]} | {names[1]} | certified | modes there |",

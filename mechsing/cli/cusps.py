@@ -38,7 +38,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--points", type=int, metavar="N", help="grid points along each side (default 81)"
     )
-    p.add_argument("--format", choices=("text", "json", "md"), default="text")
+    p.add_argument(
+        "--format",
+        choices=("text", "json", "md"),
+        help="text (default), json or md; with -o and no --format, from OUT's extension "
+        "(.json, .md; anything else is text)",
+    )
     p.add_argument(
         "-o", "--output", metavar="OUT", help="write the result to OUT instead of standard output"
     )
@@ -53,16 +58,24 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.assembly.cusps import cusps
     from mechsing.assembly.cusps_render import render_cusps
     from mechsing.cli import UserError, load_mechanism
+    from mechsing.cli.sweep import output_format
     from mechsing.files import check_output, write_output
 
     if args.points is not None and not 5 <= args.points <= 1001:
         raise UserError(f"{args.file}: --points {args.points}: give 5 to 1001")
+    fmt = output_format(args.format, args.output)
+    if fmt not in ("text", "json", "md"):
+        raise UserError(f"{args.file}: -o {args.output}: cusps writes text, json or md")
+    if args.plot and not args.plot.lower().endswith((".png", ".svg")):
+        raise UserError(
+            f"{args.file}: --plot {args.plot}: the figure is PNG or SVG: name it .png or .svg"
+        )
     for out in (args.output, args.plot):
         if out:
             check_output(out, [args.file])
     mech = load_mechanism(args.file)
     doc = cusps(mech, args.vary, args.config, args.points).to_json()
-    text = render_cusps(doc, args.format)
+    text = render_cusps(doc, fmt)
     if args.output:
         write_output(args.output, text, [args.file])
     else:

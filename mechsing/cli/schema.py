@@ -5,7 +5,8 @@ checks while writing a mechanism file.  mechsing's own validation
 (``mechsing analyze``) checks more than the schema can (names, geometry,
 expressions) and is the authority.  With --sweep, the schema of the document
 ``mechsing sweep --format json`` writes instead; with --condition, that of
-``mechsing condition --format json``.
+``mechsing condition --format json``; with --modes, --dynamics or --cusps, that of
+the ``mechsing modes``, ``dynamics`` or ``cusps`` document.
 """
 
 from __future__ import annotations
@@ -14,37 +15,48 @@ import argparse
 import json
 
 NAME = "schema"
-HELP = "print the JSON Schema of the mechanism file format (or of the sweep or condition document)"
+HELP = "print the JSON Schema of the mechanism file format (or of a command's JSON document)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--compact", action="store_true", help="print on one line instead of indented"
     )
-    parser.add_argument(
+    # one document at a time (two of these printed one of them, silently)
+    one = parser.add_mutually_exclusive_group()
+    one.add_argument(
         "--sweep",
         action="store_true",
         help="the schema of mechsing sweep's JSON document instead of the file format's",
     )
-    parser.add_argument(
+    one.add_argument(
         "--modes",
         action="store_true",
         help="the schema of mechsing modes' JSON document instead of the file format's",
     )
-    parser.add_argument(
+    one.add_argument(
         "--condition",
         action="store_true",
         help="the schema of mechsing condition's JSON document instead of the file format's",
     )
-    parser.add_argument(
+    one.add_argument(
         "--dynamics",
         action="store_true",
         help="the schema of mechsing dynamics' JSON document instead of the file format's",
     )
+    one.add_argument(
+        "--cusps",
+        action="store_true",
+        help="the schema of mechsing cusps' JSON document instead of the file format's",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
-    if getattr(args, "dynamics", False):
+    if getattr(args, "cusps", False):
+        from mechsing.assembly.cusps_schema import cusps_schema
+
+        schema = cusps_schema()
+    elif getattr(args, "dynamics", False):
         from mechsing.kinetics.schema import dynamics_schema
 
         schema = dynamics_schema()

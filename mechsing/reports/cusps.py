@@ -12,6 +12,7 @@ from typing import Any
 
 import matplotlib
 import numpy as np
+from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.figure import Figure
 
 from mechsing.reports.figures import RC, new_figure, svg
@@ -30,18 +31,22 @@ def cusps_figure(doc: dict[str, Any]) -> Figure:
             A, B = np.asarray(grid[a_name]), np.asarray(grid[b_name])
             counts = np.asarray(grid["modes"], dtype=float)
             da, db = (A[1] - A[0]) / 2, (B[1] - B[0]) / 2
+            # one band of the colour bar per count seen (the counts are whole numbers:
+            # a continuous scale would suggest values between them)
             levels = sorted({int(v) for v in counts.ravel()})
+            shades = matplotlib.colormaps["Blues"](np.linspace(0.08, 0.85, len(levels)))
+            index = np.searchsorted(levels, counts.astype(int))
             image = ax.imshow(
-                counts.T,
+                index.T,
                 extent=(A[0] - da, A[-1] + da, B[0] - db, B[-1] + db),
                 origin="lower",
-                cmap="Blues",
-                vmin=-1,
-                vmax=max(levels) + 2,
+                cmap=ListedColormap(shades),
+                norm=BoundaryNorm(np.arange(len(levels) + 1) - 0.5, len(levels)),
                 aspect="auto",
                 interpolation="nearest",
             )
-            bar = fig.colorbar(image, ax=ax, ticks=levels, shrink=0.8)
+            bar = fig.colorbar(image, ax=ax, ticks=range(len(levels)), shrink=0.8)
+            bar.ax.set_yticklabels([str(v) for v in levels])
             bar.set_label("real modes")
         pts = np.asarray(doc["singular_curves"]["points"], dtype=float).reshape(-1, 2)
         if len(pts):
@@ -61,13 +66,25 @@ def cusps_figure(doc: dict[str, Any]) -> Figure:
             ax.annotate(f"{k + 1}", (x, y), xytext=(5, 5), textcoords="offset points")
         ax.set_xlim(*a_rng)
         ax.set_ylim(*b_rng)
-        ax.set_xlabel(a_name)
-        ax.set_ylabel(b_name)
+        if not grid:  # decoupled: proved without a grid; say so rather than draw nothing
+            ax.text(
+                0.5,
+                0.5,
+                "no grid computed: no cusp anywhere\n(the modes meet in pairs only; "
+                "see the evidence)",
+                ha="center",
+                va="center",
+                transform=ax.transAxes,
+            )
+        # an arm's section is the workspace half-plane: lengths (the document is in SI)
+        unit = " (m)" if doc.get("problem") == "inverse kinematics" else ""
+        ax.set_xlabel(a_name + unit)
+        ax.set_ylabel(b_name + unit)
         fixed = ", ".join(f"{n} = {v:.6g}" for n, v in doc["section"]["fixed"].items())
         verdict = "cuspidal" if doc["cuspidal"] else "not cuspidal"
         ax.set_title(f"{doc['mechanism']}: {verdict}" + (f" ({fixed})" if fixed else ""))
-        if len(pts) or doc["cusps"]:
-            ax.legend(loc="upper right")
+        if len(pts) or doc["cusps"]:  # below the axes: it hides no cusp
+            ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2)
     return fig
 
 

@@ -192,7 +192,11 @@ class Sweep:
                 if trace.stopped:
                     # where it stopped: the last sample reached towards that end
                     got = trace.Z[~np.isnan(trace.Z[:, 0])]
-                    last = var.shown(float(got[-1][col])) if len(got) else "its start"
+                    last = (
+                        f"{var.name} = {var.shown(float(got[-1][col]))}"
+                        if len(got)
+                        else "its start"
+                    )
                     stopped.append(
                         f"towards {var.name} = {var.shown(float(end))}: stopped after {last}: "
                         f"{trace.stopped}"

@@ -28,6 +28,7 @@ from mechsing.reader import read_mechanism
 from mechsing.sweeps.loop import LoopResult, follow_loop
 from mechsing.sweeps.results import SweepResult
 from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
+from mechsing.sweeps.start import mode_out_of_range
 
 __all__ = ["ModeSweeps", "loops_markdown", "mode_loops", "mode_runs", "sweep_modes"]
 
@@ -120,10 +121,7 @@ def mode_runs(
     numbers = list(range(1, count + 1)) if modes == "all" else list(modes)
     for k in numbers:
         if not 1 <= k <= count:
-            raise UserError(
-                f"--mode {k}: configuration {config!r} has {count} assembly modes "
-                f"(mechsing modes FILE --config {config}); give --mode 1 to {count}"
-            )
+            raise mode_out_of_range(k, config, count)
     runs = [
         SweepRun(mech, vary, from_config, precision, start=k - 1, modes_found=found, **options)
         for k in numbers
@@ -138,6 +136,12 @@ def mode_loops(runs: list[SweepRun], found: Any = None) -> list[LoopResult]:
     back."""
     from mechsing.assembly.result import joint_distance
 
+    for v in runs[0].vars if runs else ():
+        if len(v.values) < 2:  # START = STOP: the rectangle has no area, no inside
+            raise UserError(
+                f"--loop: --vary {v.name} has one sample ({v.shown(float(v.values[0]))}): "
+                "a loop goes round a rectangle; give each --vary a START and STOP at least a STEP apart"
+            )
     loops = [follow_loop(run) for run in runs]
     if not runs:
         return loops

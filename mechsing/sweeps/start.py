@@ -25,7 +25,24 @@ from mechsing.sweeps.spec import Variable
 if TYPE_CHECKING:
     from mechsing.assembly.result import ModesResult
 
-__all__ = ["mode_start", "off_singular", "onto_branch", "start_of"]
+__all__ = ["mode_out_of_range", "mode_start", "off_singular", "onto_branch", "start_of"]
+
+
+def mode_out_of_range(k: int, config: str, count: int) -> UserError:
+    """The error of ``--mode k`` when configuration ``config`` has ``count`` modes."""
+    see = f"(mechsing modes FILE --config {config})"
+    if count == 0:
+        return UserError(f"--mode {k}: configuration {config!r} has no real assembly mode {see}")
+    if count == 1:
+        return UserError(
+            f"--mode {k}: configuration {config!r} has 1 assembly mode {see}; give --mode 1 "
+            "or leave --mode out"
+        )
+    return UserError(
+        f"--mode {k}: configuration {config!r} has {count} assembly modes {see}; give "
+        f"--mode 1 to {count}"
+    )
+
 
 #: the samples nearest the start's value tried as the sweep's first (the start may be at a
 #: limit of travel, with its nearest samples beyond it)
@@ -146,13 +163,7 @@ def mode_start(
     else:
         index = int(start)
         if not 0 <= index < len(listed):
-            if not listed:
-                raise UserError(f"--mode {index + 1}: {eng.from_config!r} has no assembly mode")
-            raise UserError(
-                f"--mode {index + 1}: configuration {eng.from_config!r} has {len(listed)} "
-                f"assembly modes (mechsing modes FILE --config {eng.from_config}); give "
-                f"--mode 1 to {len(listed)}"
-            )
+            raise mode_out_of_range(index + 1, eng.from_config, len(listed))
     mode = listed[index]
     q = np.array([float(mode.joints[j][i]) for j, i in coords])
     z = np.array(eng.z0, dtype=float)
