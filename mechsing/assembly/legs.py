@@ -46,6 +46,24 @@ __all__ = ["FORMULATION", "Piece", "pieces"]
 #: the equations each kind of piece writes on the platform's pose
 _EQUATIONS = {"SS": 1, "US": 1, "RS": 2, "UU": 2}
 
+#: the most poses (complex, finitely many) of a platform on these pieces, published: six
+#: distances (the Stewart-Gough platform: M. Raghavan, ASME J. Mech. Des. 115, 1993; M.
+#: Husty, Mech. Mach. Theory 31(4), 1996), three R-S pieces (the 3-RPS: C. Innocenti and
+#: V. Parenti-Castelli, ASME J. Mech. Des. 112, 1990)
+_MAXIMA = {
+    "six distances": (40, "Raghavan 1993, Husty 1996"),
+    "three R-S pieces": (16, "Innocenti and Parenti-Castelli 1990"),
+}
+
+
+def _maximum(found: tuple[Piece, ...]) -> tuple[int, str] | None:
+    kinds = sorted(p.kind for p in found)
+    if len(kinds) == 6 and set(kinds) <= {"SS", "US"}:
+        return _MAXIMA["six distances"]
+    if kinds == ["RS"] * 3:
+        return _MAXIMA["three R-S pieces"]
+    return None
+
 
 @dataclass(frozen=True)
 class Piece:
@@ -188,8 +206,16 @@ def _piece(
     axes = _axes(inner, Rk)
     outer_axes = _axes(outer, Rk)
     piece = Piece(
-        kind, (inner.name, isign), (outer.name, osign), tuple(slides), a, axes, bq,
-        outer_axes, b, Rk,
+        kind,
+        (inner.name, isign),
+        (outer.name, osign),
+        tuple(slides),
+        a,
+        axes,
+        bq,
+        outer_axes,
+        b,
+        Rk,
     )
     return _with_equations(piece)
 
@@ -241,8 +267,10 @@ def _with_equations(p: Piece) -> Piece:
         v = moved_direction(p.known.T * s4)  # the platform's axis at the reference
         cross = sympy.Matrix(s1).cross(sympy.Matrix(w))
         eqs.append(sympy.expand(sum(cross[i] * v[i] for i in range(3))))
-    return Piece(*[getattr(p, f) for f in Piece.__dataclass_fields__ if f != "equations"],
-                 equations=tuple(eqs))
+    return Piece(
+        *[getattr(p, f) for f in Piece.__dataclass_fields__ if f != "equations"],
+        equations=tuple(eqs),
+    )
 
 
 def _applies(given: Given) -> str | None:
@@ -347,8 +375,11 @@ def _find(given: Given) -> Found:
         "platform": mech.output.body if mech.output else "",
         "unknowns": [str(v) for v in gens],
         "legs": [
-            {"kind": "-".join(p.kind), "joints": [p.inner[0], *p.slides, p.outer[0]],
-             "equations": len(p.equations)}
+            {
+                "kind": "-".join(p.kind),
+                "joints": [p.inner[0], *p.slides, p.outer[0]],
+                "equations": len(p.equations),
+            }
             for p in found
         ],
         "polynomial_degree": max(degrees),
@@ -359,8 +390,10 @@ def _find(given: Given) -> Found:
     raw, tracked = track(eqs, [gens], mptype="double" if max(degrees) > 2 else "adaptive")
     # an endpoint with |X|^2 = 0 (the exceptional quadric of Study's) is no displacement
     genuine = [
-        z for z in raw
-        if abs(sum(z[i] ** 2 for i in range(4))) > MODE_ISOTROPIC_RTOL * max(1.0, float(max(abs(z)))) ** 2
+        z
+        for z in raw
+        if abs(sum(z[i] ** 2 for i in range(4)))
+        > MODE_ISOTROPIC_RTOL * max(1.0, float(max(abs(z)))) ** 2
     ]
     real = real_endpoints(genuine)
     rows: list[tuple[list[Any], bool]] = []
@@ -380,18 +413,21 @@ def _find(given: Given) -> Found:
                     "finitely many"
                 )
                 paths = account(tracked, raw, genuine, real, rows, duplicates, singular)
-                return Found(formulation, [], None, "infinite", paths, tuple(notes), 1,
-                             given.closure)
+                return Found(
+                    formulation, [], None, "infinite", paths, tuple(notes), 1, given.closure
+                )
             if root is None:
                 continue
         R, t = pose_of(root)
-        if any(mpmath.norm(R - R2) + mpmath.norm(t - t2) <= MODE_MATCH_DISTANCE
-               for R2, t2 in poses):
+        if any(
+            mpmath.norm(R - R2) + mpmath.norm(t - t2) <= MODE_MATCH_DISTANCE for R2, t2 in poses
+        ):
             duplicates += 1
             continue
         poses.append((R, t))
-        values: dict[str, list[Any]] = {n: [mpmath.mpf(sympy.N(x, dps + 5)) for x in v]
-                                        for n, v in given.values.items()}
+        values: dict[str, list[Any]] = {
+            n: [mpmath.mpf(sympy.N(x, dps + 5)) for x in v] for n, v in given.values.items()
+        }
         for p in found:
             values.update(_piece_values(p, R, t))
         row = [values[name][i] for name, i in mech.coordinates()]
@@ -404,13 +440,48 @@ def _find(given: Given) -> Found:
             "each rod between two ball joints spins idly about its own axis: one joint "
             "vector per platform pose is listed, the rods without spin"
         )
-    notes.append(
-        f"continuation found {len(genuine)} solutions (real and complex, off the exceptional "
-        f"quadric |X|^2 = 0) on {tracked} paths; "
-        "a path that failed could hide a mode, so the count is not proven"
+    complete = _proven(eqs, gens, found, genuine, rows, dps, notes)
+    if complete != "proven":
+        notes.append(
+            f"continuation found {len(genuine)} solutions (real and complex, off the "
+            f"exceptional quadric |X|^2 = 0) on {tracked} paths; a path that failed could "
+            "hide a mode, so the count is not proven"
+        )
+    return Found(
+        formulation, rows, len(rows), complete, paths, tuple(notes), equivalent, given.closure
     )
-    return Found(formulation, rows, len(rows), "not proven", paths, tuple(notes), equivalent,
-                 given.closure)
+
+
+def _proven(
+    eqs: list[sympy.Expr],
+    gens: list[sympy.Symbol],
+    found: tuple[Piece, ...],
+    genuine: list[Any],
+    rows: list[tuple[list[Any], bool]],
+    dps: int,
+    notes: list[str],
+) -> str:
+    """``proven`` when the solutions number the published most for these pieces and each
+    is certified in its own box (:func:`~mechsing.assembly.certify.certified_roots`, the
+    boxes pairwise disjoint): none is missing, and the real ones are the modes."""
+    from mechsing.assembly.certify import apart, certified_roots
+
+    most = _maximum(found)
+    if most is None or len(genuine) != most[0] or not all(ok for _, ok in rows):
+        return "not proven"
+    roots = certified_roots(eqs, gens, list(genuine), dps)
+    if roots is None:
+        return "not proven"
+    if not apart(roots):
+        return "not proven"
+    real = sum(1 for x in roots if all(mpmath.im(v) == 0 for v in x))
+    if real != len(rows):
+        return "not proven"
+    notes.append(
+        f"all {most[0]} solutions (real and complex) of the published most for these legs "
+        f"({most[1]}) found, each certified in its own box: no mode is missing"
+    )
+    return "proven"
 
 
 FORMULATION = Formulation("leg constraints of a platform on legs", _applies, _find)

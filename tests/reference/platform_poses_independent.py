@@ -46,7 +46,11 @@ def platform_poses(
     found: list[tuple[np.ndarray, np.ndarray]] = []
     for _ in range(starts):
         x = np.concatenate(
-            [rng.uniform(-2, 2, 3), rng.uniform(-scale, scale, 3), rng.uniform(-np.pi, np.pi, extra)]
+            [
+                rng.uniform(-2, 2, 3),
+                rng.uniform(-scale, scale, 3),
+                rng.uniform(-np.pi, np.pi, extra),
+            ]
         )
         lam = 1e-3
         r = f(x)
