@@ -89,9 +89,7 @@ def krawczyk(
     before = mpmath.iv.dps
     mpmath.iv.dps = mpmath.mp.dps
     try:
-        jac = [[sympy.diff(e, g) for g in gens] for e in exprs]
-        f = interval_function(exprs, gens)
-        J = interval_function([x for row in jac for x in row], gens)
+        f, J = _interval_system(tuple(exprs), tuple(gens), mpmath.mp.dps)
         # Y: the inverse of the Jacobian at the midpoint (floating, any approximation works)
         jm = J([mpmath.iv.mpf(x) for x in m])
         Jmid = mpmath.matrix(n, n)
@@ -119,6 +117,16 @@ def krawczyk(
         return True
     finally:
         mpmath.iv.dps = before
+
+
+@functools.lru_cache(maxsize=8)
+def _interval_system(
+    exprs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...], dps: int
+) -> tuple[Any, Any]:
+    """The system and its Jacobian as interval functions (built once per system and
+    working digits: every root of one solve is certified with the same)."""
+    jac = [[sympy.diff(e, g) for g in gens] for e in exprs]
+    return interval_function(exprs, gens), interval_function([x for row in jac for x in row], gens)
 
 
 def _number(v: Any) -> Any:
