@@ -12,9 +12,11 @@
   pose): ``modes`` against ``bertini.solve`` on the same half-angle system (24 paths).
 * The general formulation (Bennett's 4R, the spherical four-bar, a SCARA at a pose):
   ``find`` against ``bertini.solve`` on the same patched system (:func:`general`).
+* The leg formulation (a 3-RPS and a Delta, tests/data): ``find`` against
+  ``bertini.solve`` on the same Study-coordinate system (:func:`legs`).
 
 Times are CPU seconds of this process (the machine is shared).  Run from the repository
-root: ``OPENBLAS_NUM_THREADS=1 python benchmarks/modes.py [rpr|dietmaier|ur5|general]``.
+root: ``OPENBLAS_NUM_THREADS=1 python benchmarks/modes.py [rpr|dietmaier|ur5|general|legs]``.
 """
 
 from __future__ import annotations
@@ -198,9 +200,39 @@ def general() -> None:
         )
 
 
+def legs() -> None:
+    """The leg formulation (each leg's constraint on the platform's Study coordinates)
+    against ``bertini.solve`` on the same system in the same precision model: the 3-RPS
+    and the Delta of tests/data with their inputs."""
+    from mechsing import load
+    from mechsing.assembly.engine import system_text
+    from mechsing.assembly.given import read_given
+    from mechsing.assembly.legs import FORMULATION
+    from mechsing.assembly.spatial import XS, YS, patch_equation, study_quadric
+    from mechsing.numeric import parse_precision
+
+    cases = [
+        ("3-RPS, slides 0.3, -0.2, 0.1", ROOT / "tests" / "data" / "three_rps.yaml", "tilted"),
+        ("Delta, arms 0.3, -0.2, 0.1 rad", ROOT / "tests" / "data" / "delta.yaml", "driven"),
+    ]
+    for label, path, config in cases:
+        mech = load(path)
+        with mpmath.workdps(50):
+            given = read_given(mech, config, parse_precision("float"), 50, 1e-9)
+            t_f, found = _cpu(lambda g=given: (FORMULATION.applies(g), FORMULATION.find(g))[1])
+            pieces = given.cache["legs"]
+            eqs = [*(e for p in pieces for e in p.equations), study_quadric(), patch_equation()]
+            t_b, r = _engine(system_text(eqs, [[*XS, *YS]]))
+        print(
+            f"{label}: bertini.solve {t_b:.2f} s ({len(r.solutions)} finite); the leg "
+            f"formulation {t_f:.2f} s ({found.count} real, {found.complete}, "
+            f"{found.paths['tracked']} paths, ratio {t_f / t_b:.1f})"
+        )
+
+
 if __name__ == "__main__":
     import sys
 
-    which = sys.argv[1:] or ["rpr", "dietmaier", "ur5", "general"]
+    which = sys.argv[1:] or ["rpr", "dietmaier", "ur5", "general", "legs"]
     for name in which:
         globals()[name]()

@@ -102,6 +102,10 @@ def test_spherical_fourbar_has_two_modes_in_the_rotations_about_its_centre() -> 
     assert closure["subgroup"] == "S" and closure["equations"] == 3
     assert doc["paths"]["tracked"] == 6  # 3! paths: three pairs, three equations
     assert sum(m["reached_by_continuation"] for m in doc["modes"]) == 1
+    # every one of the 6 paths (the multihomogeneous Bezout number) ends at its own
+    # certified solution: no mode can be missing
+    assert doc["paths"]["finite"] == 6
+    assert doc["complete"] == "proven"
 
 
 PLANAR_3R = """

@@ -106,6 +106,8 @@ def solve(
         with TimeLimit(time_limit):
             model, closed = solve_configuration(mech, name, prec)
     except TimeLimitExceeded:
+        if time_limit is None:  # a caller's limit (modes'): the caller reports it
+            raise
         raise ConfigurationError(
             f"configuration {name!r}: stopped by the time limit after {time_limit:g} s before "
             f"it closed at {prec}; allow more time with --time-limit S, or use a lower precision",

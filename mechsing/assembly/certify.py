@@ -9,7 +9,8 @@ enclosed at the working precision plus guard digits, so the proof holds for the 
 coefficients.
 
 Owns :func:`krawczyk` (and :func:`krawczyk_complex`, the same test on the real and
-imaginary parts of a complex root), :func:`newton` (the refinement whose result it certifies) and
+imaginary parts of a complex root, and :func:`certified_roots`, every endpoint of a solve
+refined and so certified, :func:`apart`, their boxes disjoint), :func:`newton` (the refinement whose result it certifies) and
 :func:`singular_root` (a root no interval test can certify: a multiple root, polished,
 or a point of a curve of solutions, found by a local dimension test).
 """
@@ -23,11 +24,13 @@ from typing import Any
 import mpmath
 import sympy
 
-from mechsing.assembly.settings import MODE_CURVE_STEP, MODE_SINGULAR_DIGITS
+from mechsing.assembly.settings import MODE_CERTIFY_RADIUS, MODE_CURVE_STEP, MODE_SINGULAR_DIGITS
 
 __all__ = [
     "interval_function",
     "krawczyk",
+    "apart",
+    "certified_roots",
     "krawczyk_complex",
     "local_dimension",
     "newton",
@@ -86,9 +89,7 @@ def krawczyk(
     before = mpmath.iv.dps
     mpmath.iv.dps = mpmath.mp.dps
     try:
-        jac = [[sympy.diff(e, g) for g in gens] for e in exprs]
-        f = interval_function(exprs, gens)
-        J = interval_function([x for row in jac for x in row], gens)
+        f, J = _interval_system(tuple(exprs), tuple(gens), mpmath.mp.dps)
         # Y: the inverse of the Jacobian at the midpoint (floating, any approximation works)
         jm = J([mpmath.iv.mpf(x) for x in m])
         Jmid = mpmath.matrix(n, n)
@@ -118,6 +119,16 @@ def krawczyk(
         mpmath.iv.dps = before
 
 
+@functools.lru_cache(maxsize=8)
+def _interval_system(
+    exprs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...], dps: int
+) -> tuple[Any, Any]:
+    """The system and its Jacobian as interval functions (built once per system and
+    working digits: every root of one solve is certified with the same)."""
+    jac = [[sympy.diff(e, g) for g in gens] for e in exprs]
+    return interval_function(exprs, gens), interval_function([x for row in jac for x in row], gens)
+
+
 def _number(v: Any) -> Any:
     """An mpmath number of a start value (float, complex or mpmath)."""
     if isinstance(v, (mpmath.mpf, mpmath.mpc)):
@@ -136,6 +147,45 @@ def krawczyk_complex(
     real_exprs, real_gens = _realified(tuple(exprs), tuple(gens))
     mid = [mpmath.re(v) for v in m] + [mpmath.im(v) for v in m]
     return krawczyk(real_exprs, real_gens, mid, radius)
+
+
+def certified_roots(
+    eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], points: Sequence[Any], dps: int
+) -> list[list[Any]] | None:
+    """Every endpoint (complex) refined at ``dps`` digits and certified by the Krawczyk
+    test on its real and imaginary parts (None: one is not).  A root refined to real
+    values to half the digits is certified in a box centred on its real part: the box is
+    symmetric under conjugation and holds one root, which is then its own conjugate, real
+    (its centre is returned with zero imaginary parts); the others' boxes lie clear of
+    the real space, so their roots are not real."""
+    radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
+    roots = []
+    for w in points:
+        x = newton(eqs, gens, w, dps)
+        if x is None:
+            return None
+        if all(abs(mpmath.im(v)) <= mpmath.mpf(10) ** (-(dps // 2)) for v in x):
+            x = [mpmath.mpc(mpmath.re(v)) for v in x]  # a real centre: a box symmetric
+        elif all(abs(mpmath.im(v)) <= radius for v in x):
+            return None  # neither real nor clear of the real space
+        if not krawczyk_complex(eqs, gens, x, radius):
+            return None
+        roots.append(x)
+    return roots
+
+
+def apart(roots: Sequence[Sequence[Any]]) -> bool:
+    """Are the certified boxes (radius ``MODE_CERTIFY_RADIUS`` about each root, in the real
+    and imaginary parts) pairwise disjoint: so many distinct roots?"""
+    radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
+    for i, a in enumerate(roots):
+        for b in roots[i + 1 :]:
+            gap = max(
+                max(abs(mpmath.re(u - v)), abs(mpmath.im(u - v))) for u, v in zip(a, b, strict=True)
+            )
+            if gap <= 2 * radius:
+                return False
+    return True
 
 
 @functools.lru_cache(maxsize=4)

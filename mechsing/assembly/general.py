@@ -68,6 +68,8 @@ MAX_PATHS = 4000
 #: isotropic components: Sarrus's); a square system keeps adaptive precision (in double,
 #: 8 of a SCARA's 24 paths fail)
 MPTYPE = "double"
+#: the most paths whose every endpoint is certified to prove a count (above: not tried)
+PROOF_PATHS = 200
 #: how many random slicings of an underdetermined system are tried for a real point
 SLICE_TRIES = 4
 #: the seed of the randomization of an overconstrained system and of the patches
@@ -641,11 +643,44 @@ def _find(given: Given) -> Found:
             f"{n} random combinations, every endpoint checked on all {m}; each certificate "
             "proves one root of the combinations in its box"
         )
+    if _every_root(prob, raw, tracked, genuine, rows, dps):
+        notes.append(
+            f"each of the {tracked} paths (the multihomogeneous Bezout number, a bound on the "
+            "isolated solutions) ended at its own certified solution: no mode is missing"
+        )
+        return Found(formulation, rows, len(rows), "proven", paths, tuple(notes), 1, given.closure)
     notes.append(
         f"continuation found {len(genuine)} solutions (real and complex) on {tracked} paths; "
         "a path that failed could hide a mode, so the count is not proven"
     )
     return Found(formulation, rows, len(rows), "not proven", paths, tuple(notes), 1, given.closure)
+
+
+def _every_root(
+    prob: Problem, raw: list[Any], tracked: int, genuine: list[Any], rows: list[Any], dps: int
+) -> bool:
+    """Has the tracked system as many isolated solutions as its multihomogeneous Bezout
+    number (its most): every path finite, every endpoint certified in its own box
+    (:func:`~mechsing.assembly.certify.certified_roots`, the boxes pairwise disjoint), and
+    the real genuine ones as many as the modes?  Then none is missing."""
+    from mechsing.assembly.certify import apart, certified_roots
+
+    if len(raw) != tracked or tracked > PROOF_PATHS or not all(ok for _, ok in rows):
+        return False
+    eqs, groups = patched_system(prob)
+    gens = [x for g in groups for x in g]
+    roots = certified_roots(eqs, gens, raw, dps)
+    if roots is None:
+        return False
+    if not apart(roots):
+        return False
+    kept = {id(z) for z in genuine}
+    real = sum(
+        1
+        for z, x in zip(raw, roots, strict=True)
+        if id(z) in kept and all(mpmath.im(v) == 0 for v in x)
+    )
+    return real == len(rows)
 
 
 def _dimension_at_start(given: Given, prob: Problem, full: list[Any]) -> tuple[int | None, str]:

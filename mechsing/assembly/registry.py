@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from mechsing.assembly import chains, general, planar_pose, platform
+from mechsing.assembly import chains, general, legs, planar_pose, platform
 from mechsing.assembly.given import Formulation, Given
 from mechsing.errors import FormulationError, UserError
 
@@ -18,6 +18,7 @@ __all__ = ["FORMULATIONS", "find"]
 FORMULATIONS: tuple[Formulation, ...] = (
     planar_pose.FORMULATION,
     platform.FORMULATION,
+    legs.FORMULATION,
     chains.SINGLE_LOOP,
     chains.SERIAL_ARM,
     general.FORMULATION,

@@ -211,6 +211,17 @@ def _reached(
         d = joint_distance(mech, q0, q, km.length_scale)
         if best is None or d < best:
             best, where = d, k
+    if (best is None or best > MODE_MATCH_DISTANCE) and mech.output is not None and qs:
+        # a mode stands for joint vectors of one output pose (a U's flip, a rod's idle
+        # spin): continuation may reach another of them; the pose tells the mode
+        body, L = mech.output.body, float(km.length_scale)
+        P0 = np.asarray(km.poses(np.array(q0, dtype=float))[body], dtype=float)
+        dists = [
+            float(np.linalg.norm(P0[:3, :3] - P[:3, :3]) + np.linalg.norm(P0[:3, 3] - P[:3, 3]) / L)
+            for P in (np.asarray(km.poses(np.array(q))[body], dtype=float) for q in qs)
+        ]
+        best = min(dists)
+        where = dists.index(best)
     if best is None or best > MODE_MATCH_DISTANCE:
         return None, ("continuation closes the configuration at none of the modes",)
     return where, ()

@@ -48,7 +48,7 @@ import mpmath
 import numpy as np
 import sympy
 
-from mechsing.assembly.certify import krawczyk_complex, newton, regular, singular_root
+from mechsing.assembly.certify import certified_roots, newton, regular, singular_root
 from mechsing.assembly.engine import SEED, real_endpoints, track
 from mechsing.assembly.settings import (
     MODE_CERTIFY_RADIUS,
@@ -683,19 +683,11 @@ def all_certified(system: SerialSystem, points: list[np.ndarray], dps: int) -> i
     the others' boxes lie clear of the real space, so their roots are not real."""
     kinds = [system.arm.kinds[i] for i in system.outer]
     radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
-    roots = []
-    for z in points:
-        w = _normalised(z.astype(complex), kinds)
-        x = newton(system.square, system.gens, w, dps)
-        if x is None:
-            return None
-        if all(abs(mpmath.im(v)) <= mpmath.mpf(10) ** (-(dps // 2)) for v in x):
-            x = [mpmath.mpc(mpmath.re(v)) for v in x]  # a real centre: a box symmetric
-        elif all(abs(mpmath.im(v)) <= radius for v in x):
-            return None  # neither real nor clear of the real space
-        if not krawczyk_complex(system.square, system.gens, x, radius):
-            return None
-        roots.append(x)
+    roots = certified_roots(
+        system.square, system.gens, [_normalised(z.astype(complex), kinds) for z in points], dps
+    )
+    if roots is None:
+        return None
     flips = [k for k, kind in enumerate(kinds) if kind == "R"]
     for i, a in enumerate(roots):
         for b in roots[i + 1 :]:

@@ -16,7 +16,10 @@ with the leg turned about its axis), the same mode: one joint vector is listed, 
 nearest the reference, and ``equivalent_solutions`` counts the others.
 
 Owns :class:`SpatialSystem`, :func:`spatial_system`, :func:`solve_study`,
-:func:`joint_values_spatial`.
+:func:`joint_values_spatial`, and the Study-coordinate pieces the leg formulation
+(:mod:`.legs`) shares: :func:`distance_equation`, :func:`moved_point`,
+:func:`moved_direction`, :func:`study_quadric`, :func:`two_axes`, :func:`angle_about`,
+:func:`rotation_log`.
 """
 
 from __future__ import annotations
@@ -37,6 +40,13 @@ from mechsing.model import Mechanism
 
 __all__ = [
     "GENERIC_COUNT",
+    "angle_about",
+    "distance_equation",
+    "moved_direction",
+    "moved_point",
+    "rotation_log",
+    "study_quadric",
+    "two_axes",
     "SpatialSystem",
     "joint_values_spatial",
     "out_of_reach",
@@ -84,24 +94,48 @@ def spatial_system(mech: Mechanism, given: dict[str, tuple[Any, ...]]) -> Spatia
         legs.append(((first.name, slide.name, last.name), a, b, sympy.nsimplify(w.dot(w))))
     if len(legs) != 6:
         raise FormulationError(f"{len(legs)} legs, not six")
-    X, Y = list(XS), list(YS)
-    delta = sum(x * x for x in X)
-    eqs = []
-    for _names, a, b, l2 in legs:
-        XbX = quat_multiply(quat_multiply(X, [0, *b]), quat_conjugate(X))
-        XcY = quat_multiply(quat_conjugate(X), Y)
-        YXc = quat_multiply(Y, quat_conjugate(X))
-        k = a.dot(a) + b.dot(b) - l2
-        eq = (
-            k * delta
-            + 4 * sum(y * y for y in Y)
-            + 4 * sum(b[i] * XcY[i + 1] for i in range(3))
-            - 2 * sum(a[i] * XbX[i + 1] for i in range(3))
-            - 4 * sum(a[i] * YXc[i + 1] for i in range(3))
-        )
-        eqs.append(sympy.expand(eq))
-    eqs.append(sum(x * y for x, y in zip(X, Y, strict=True)))
+    eqs = [distance_equation(a, b, l2) for _names, a, b, l2 in legs]
+    eqs.append(study_quadric())
     return SpatialSystem(out or "", tuple(legs), tuple(eqs))
+
+
+def study_quadric() -> sympy.Expr:
+    """``X.Y = 0``: the Study quadric, on which the coordinates are a displacement."""
+    return sum(x * y for x, y in zip(XS, YS, strict=True))
+
+
+def distance_equation(a: Any, b: Any, l2: Any) -> sympy.Expr:
+    """The platform point ``b`` (at the reference pose) at squared distance ``l2`` from the
+    fixed point ``a``: one quadric in the Study coordinates (Husty's, the module's)."""
+    X, Y = list(XS), list(YS)
+    XbX = quat_multiply(quat_multiply(X, [0, *b]), quat_conjugate(X))
+    XcY = quat_multiply(quat_conjugate(X), Y)
+    YXc = quat_multiply(Y, quat_conjugate(X))
+    k = a.dot(a) + b.dot(b) - l2
+    eq = (
+        k * sum(x * x for x in X)
+        + 4 * sum(y * y for y in Y)
+        + 4 * sum(b[i] * XcY[i + 1] for i in range(3))
+        - 2 * sum(a[i] * XbX[i + 1] for i in range(3))
+        - 4 * sum(a[i] * YXc[i + 1] for i in range(3))
+    )
+    return sympy.expand(eq)
+
+
+def moved_point(b: Any) -> list[sympy.Expr]:
+    """``|X|^2 (R b + t)``: where the pose carries the point ``b``, times ``|X|^2`` (three
+    quadratic forms in the Study coordinates)."""
+    X, Y = list(XS), list(YS)
+    XbX = quat_multiply(quat_multiply(X, [0, *b]), quat_conjugate(X))
+    YXc = quat_multiply(Y, quat_conjugate(X))
+    return [sympy.expand(XbX[i + 1] + 2 * YXc[i + 1]) for i in range(3)]
+
+
+def moved_direction(v: Any) -> list[sympy.Expr]:
+    """``|X|^2 R v``: the pose's rotation of the direction ``v``, times ``|X|^2``."""
+    X = list(XS)
+    XvX = quat_multiply(quat_multiply(X, [0, *v]), quat_conjugate(X))
+    return [sympy.expand(XvX[i + 1]) for i in range(3)]
 
 
 def out_of_reach(system: SpatialSystem) -> str | None:
@@ -172,7 +206,7 @@ def pose_of(study: list[Any]) -> tuple[mpmath.matrix, mpmath.matrix]:
     return R, mpmath.matrix([2 * t[i + 1] / delta for i in range(3)])
 
 
-def _angle(axis: Any, p: Any, q: Any) -> Any:
+def angle_about(axis: Any, p: Any, q: Any) -> Any:
     """The angle about unit ``axis`` taking p to q (their components normal to it)."""
     w = mpmath.matrix(axis)
     pp = p - w * (w.T * p)[0]
@@ -187,7 +221,7 @@ def _angle(axis: Any, p: Any, q: Any) -> Any:
     return mpmath.atan2((w.T * cross)[0], (pp.T * qq)[0])
 
 
-def _two_axes(a1: Any, a2: Any, p: Any, t: Any) -> list[tuple[Any, Any]]:
+def two_axes(a1: Any, a2: Any, p: Any, t: Any) -> list[tuple[Any, Any]]:
     """(q1, q2) with Rot(a1, q1) Rot(a2, q2) p = t (Paden-Kahan subproblem 2)."""
     w1, w2 = mpmath.matrix(a1), mpmath.matrix(a2)
     d = (w1.T * w2)[0]
@@ -205,11 +239,11 @@ def _two_axes(a1: Any, a2: Any, p: Any, t: Any) -> list[tuple[Any, Any]]:
     out = []
     for sgn in (1, -1):
         z = alpha * w1 + beta * w2 + sgn * mpmath.sqrt(max(g2, 0)) * n
-        out.append((_angle(w1, z, t), _angle(w2, p, z)))
+        out.append((angle_about(w1, z, t), angle_about(w2, p, z)))
     return out
 
 
-def _log(R: mpmath.matrix) -> list[Any]:
+def rotation_log(R: mpmath.matrix) -> list[Any]:
     """The rotation vector of R (angle in [0, pi))."""
     c = (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
     v = [R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]]
@@ -240,7 +274,7 @@ def joint_values_spatial(
                 [mpmath.mpf(sympy.N(x, mpmath.mp.dps + 5)) for x in ax]
                 for ax in first.params["axes"]
             )
-            pairs = _two_axes(a1, a2, ref_dir, now_dir)
+            pairs = two_axes(a1, a2, ref_dir, now_dir)
             q1, q2 = min(pairs, key=lambda p: abs(p[0]) + abs(p[1]))
             values[n1] = [q1, q2]
             Rc = rotation(a1, q1) * rotation(a2, q2)
@@ -257,5 +291,5 @@ def joint_values_spatial(
             values[n1] = [unit[i] * ang for i in range(3)]
             Rc = rotation(list(unit), ang)
         values[n2] = [q]
-        values[n3] = _log(Rc.T * R)
+        values[n3] = rotation_log(Rc.T * R)
     return [values[name][i] for name, i in mech.coordinates()]

@@ -9,7 +9,10 @@ values leave a curve: no count, the dimension in the notes).  The first formulat
 the registry that applies is used: (1) a planar mechanism (its joints generate the planar
 motions, in any plane) whose unknown part is one body held by legs (a four-bar, a
 slider-crank, a 3-RPR): built-in exact elimination; (2) a platform on six U-P-S or S-P-S
-legs: Study coordinates; (3) a single loop of R and P joints with six unknown: half-angle
+legs: Study coordinates; (2b) any other spatial platform on legs whose unknown part is,
+leg by leg, one piece between a known body (the ground, or an arm its given joints place)
+and the platform (R-S, S-S, U-S, U-U: a 3-RPS, a Delta, Tsai's 3-UPU): each leg's
+constraint on the platform's Study coordinates; (3) a single loop of R and P joints with six unknown: half-angle
 pairs of a single loop; (4) a serial arm of six R or P joints (or more, with all but six
 given) at a pose: half-angle pairs of a serial arm; (5) any other mechanism of R, P, C, U
 and S joints, or an arm of fewer joints at a pose in the subgroup its end moves in (a
