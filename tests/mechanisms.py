@@ -565,3 +565,18 @@ joints:
   - {name: R3, type: R, between: [l2, l3], axis: [0, 0, 1], point: [2, 0, 0]}
 output: {body: l3, point: [3, 0, 0]}
 """
+
+#: a planar 2R arm (links 1 and 0.5, the output at the tip) under a tip load at ``bent``;
+#: ``straight`` is its stretched singularity
+PLANAR_2R_LOADED = """\
+mechanism: planar-2r
+bodies: [ground, l1, l2]
+joints:
+  - {name: A, type: R, between: [ground, l1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [l1, l2], axis: [0, 0, 1], point: [1, 0, 0]}
+inputs: [A, B]
+output: {body: l2, point: [1.5, 0, 0]}
+configurations:
+  bent: {A: 0.3, B: 0.9, load: {force: [1, -2, 0]}}
+  straight: {A: 0.3, B: 0}
+"""

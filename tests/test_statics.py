@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from tests.cli import ROOT, run_cli
-from tests.mechanisms import scaled_text
+from tests.mechanisms import PLANAR_2R_LOADED, scaled_text
 
 EX = ROOT / "examples"
 
@@ -35,23 +35,9 @@ def _cross2(a: np.ndarray, b: np.ndarray) -> float:
     return float(a[0] * b[1] - a[1] * b[0])
 
 
-PLANAR_2R = """\
-mechanism: planar-2r
-bodies: [ground, l1, l2]
-joints:
-  - {name: A, type: R, between: [ground, l1], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [l1, l2], axis: [0, 0, 1], point: [1, 0, 0]}
-inputs: [A, B]
-output: {body: l2, point: [1.5, 0, 0]}
-configurations:
-  bent: {A: 0.3, B: 0.9, load: {force: [1, -2, 0]}}
-  straight: {A: 0.3, B: 0}
-"""
-
-
 def test_planar_2r_torques_are_minus_jacobian_transpose_times_the_tip_force(tmp_path: Path) -> None:
     f = tmp_path / "r2.yaml"
-    f.write_text(PLANAR_2R)
+    f.write_text(PLANAR_2R_LOADED)
     doc = _json([f, "--config", "bent"])
     c = _config(doc, "bent")
     a, b, l1, l2 = 0.3, 0.9, 1.0, 0.5
@@ -80,7 +66,7 @@ def test_load_on_the_command_line_replaces_the_file_load_and_the_text_says_it(
     tmp_path: Path,
 ) -> None:
     f = tmp_path / "r2.yaml"
-    f.write_text(PLANAR_2R)
+    f.write_text(PLANAR_2R_LOADED)
     doc = _json([f, "--config", "straight", "--load", "moment=0,0,2"])
     # a couple M on the tip link: tau = -(M, M)
     assert _config(doc, "straight")["efforts"] == pytest.approx({"A": -2.0, "B": -2.0}, rel=1e-12)
@@ -286,7 +272,7 @@ def test_five_bar_transmission_indices_are_the_sines_of_its_transmission_angles(
 
 def test_transmission_indices_null_with_the_reason_outside_their_setting(tmp_path: Path) -> None:
     f = tmp_path / "r2.yaml"
-    f.write_text(PLANAR_2R)
+    f.write_text(PLANAR_2R_LOADED)
     tr = _config(_json([f, "--config", "bent"]), "bent")["kinetostatics"]["transmission"]
     assert tr["local"] is None and "two legs" in tr["reason"]
 
@@ -388,7 +374,7 @@ def test_sweep_load_gives_each_sample_its_efforts_and_max_effort_locates_the_lim
     from scipy.optimize import brentq
 
     f = tmp_path / "r2.yaml"
-    f.write_text(PLANAR_2R)
+    f.write_text(PLANAR_2R_LOADED)
     argv = ["sweep", f, "--vary", "A=0:1.5:0.1", "--from", "bent", "--precision", "float"]
     r = run_cli([*argv, "--format", "json", "--max-effort", "A=2.5"])
     assert r.status == 0, r.err
@@ -431,11 +417,11 @@ def test_report_shows_efforts_and_indices_of_a_bundled_parallel_robot(tmp_path: 
 
 def test_file_load_errors_name_the_line_and_the_fix(tmp_path: Path) -> None:
     f = tmp_path / "r2.yaml"
-    f.write_text(PLANAR_2R.replace("load: {force: [1, -2, 0]}", "load: {forse: [1, -2, 0]}"))
+    f.write_text(PLANAR_2R_LOADED.replace("load: {force: [1, -2, 0]}", "load: {forse: [1, -2, 0]}"))
     r = run_cli(["analyze", f])
     assert r.status == 2
     assert "r2.yaml:9:" in r.err and "'forse'" in r.err and "did you mean 'force'" in r.err
-    f.write_text(PLANAR_2R.replace("load: {force: [1, -2, 0]}", "load: {point: [1, 0, 0]}"))
+    f.write_text(PLANAR_2R_LOADED.replace("load: {force: [1, -2, 0]}", "load: {point: [1, 0, 0]}"))
     r = run_cli(["analyze", f])
     assert r.status == 2 and "give force and/or moment" in r.err
 
@@ -494,7 +480,7 @@ def test_bennett_input_torque_by_virtual_work_and_its_loop_wrench_indeterminate(
 def test_bodies_weights_under_gravity_add_their_torques(tmp_path: Path) -> None:
     f = tmp_path / "r2w.yaml"
     f.write_text(
-        PLANAR_2R.replace(
+        PLANAR_2R_LOADED.replace(
             "configurations:",
             "mass: {l1: {kg: 2, centre: [0.5, 0, 0]}, l2: {kg: 1, centre: [1.25, 0, 0]}}\n"
             "gravity: [0, -9.81, 0]\nconfigurations:",
@@ -519,7 +505,7 @@ def test_the_file_schema_takes_load_mass_and_gravity(tmp_path: Path) -> None:
     import yaml
 
     schema = json.loads(run_cli(["schema"]).out)
-    text = PLANAR_2R.replace(
+    text = PLANAR_2R_LOADED.replace(
         "configurations:",
         "mass: {l1: {kg: 2, centre: [0.5, 0, 0]}}\ngravity: [0, 0, -9.81]\nconfigurations:",
     )
@@ -531,7 +517,7 @@ def test_the_file_schema_takes_load_mass_and_gravity(tmp_path: Path) -> None:
 
 def test_load_without_inputs_is_refused_with_the_fix(tmp_path: Path) -> None:
     f = tmp_path / "r2.yaml"
-    f.write_text(PLANAR_2R.replace("inputs: [A, B]\n", ""))
+    f.write_text(PLANAR_2R_LOADED.replace("inputs: [A, B]\n", ""))
     r = run_cli(["analyze", f, "--config", "straight", "--load", "force=1,0,0"])
     assert r.status == 2 and "no inputs; add inputs:" in r.err
 

@@ -131,7 +131,7 @@ def test_max_effort_on_a_grid_locates_the_limit_along_every_row(tmp_path):
     from scipy.optimize import brentq
 
     from tests.cli import run_cli
-    from tests.test_statics import PLANAR_2R
+    from tests.mechanisms import PLANAR_2R_LOADED as PLANAR_2R
 
     f = tmp_path / "r2.yaml"
     f.write_text(PLANAR_2R)

@@ -100,7 +100,7 @@ def column_samples(loc: Any, ra: RowResult, rb: RowResult, got: list[Located]) -
 def others_fall(
     loc: Any, pm: PointMeasures, ia: np.ndarray, ib: np.ndarray
 ) -> dict[str, np.ndarray]:
-    """Per signed test kept with its singular vectors, at the pairs (ia, ib) of the
+    """Per signed test whose matrices the batch keeps, at the pairs (ia, ib) of the
     batch ``pm`` where a singular value other than the weakest can reach zero between
     a and b, the determinant of b's matrix compressed on a's leading singular vectors
     (:meth:`Measures.compressed_measured`, whose sign changes when any of them passes
@@ -116,7 +116,7 @@ def others_fall(
     eps = float(np.finfo(float).eps)
     for t in loc.tests:
         g = loc.measures.generic[t]
-        if t not in SIGNED or t in pm.deferred or t not in pm.bases or g is None or g < 2:
+        if t not in SIGNED or g is None or g < 2 or t not in pm.matrices:
             continue
         rows = pm.matrices.get(f"{t}_rows")
         if rows is not None and not isinstance(rows, np.ndarray):
@@ -125,10 +125,16 @@ def others_fall(
             # cost the kinematics again: its second singular value is not screened
             continue
         M = pm.matrices[t]
-        U, V = pm.bases[t]
-        u, v = U[ia, :, g - 2], V[ia, :, g - 2]
+        if not isinstance(M, np.ndarray):
+            continue  # the matrices are computed again where read (as the rows above)
         Ma = M[ia]
-        second = np.abs(np.einsum("ni,ni->n", u, np.einsum("nij,nj->ni", Ma, v)))
+        if t in pm.bases:
+            U, V = pm.bases[t]
+            u, v = U[ia, :, g - 2], V[ia, :, g - 2]
+            second = np.abs(np.einsum("ni,ni->n", u, np.einsum("nij,nj->ni", Ma, v)))
+        else:
+            # measured without its singular vectors (a path's tests): the value itself
+            second = np.linalg.svd(Ma, compute_uv=False)[:, g - 2]
         size = np.sqrt(np.einsum("nij,nij->n", Ma, Ma))
         moved = np.zeros(len(ia))
         for lo in range(0, len(ia), _CHUNK):

@@ -1,5 +1,6 @@
-"""The settings of the sweeps' algorithms (the path engine's are in mechsing.kinematics.settings): locating and
-merging tolerances, the sign test's screens, the --vary range's rounding.
+"""Owns the settings of the sweeps' algorithms: locating and merging tolerances, the sign
+test's screens, the --vary range's rounding (the path engine's are in
+:mod:`mechsing.kinematics.settings`).
 
 They choose how a path is followed and where its singular points are placed -- not what a
 verdict decides (those thresholds are in :mod:`mechsing.numeric.tolerances`).  Lengths are
