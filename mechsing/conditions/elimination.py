@@ -31,11 +31,11 @@ import numpy as np
 import sympy
 
 from mechsing.conditions.symbolic import JointSymbols, reduce_trig, tan_half
+from mechsing.errors import EliminationTooLarge
 from mechsing.numeric import CONDITION_ROOT_MERGE, CONDITION_ROOT_RTOL
 
 __all__ = [
     "RESULTANT_MAX_WORK",
-    "EliminationTooLarge",
     "angles",
     "distinct",
     "eliminate",
@@ -55,11 +55,6 @@ RESULTANT_MAX_WORK = 50_000
 #: setting): the suite's linkages stay below 1,100; the closure of Jansen's leg in
 #: every variable but the output's reaches 5,107, whose factoring does not finish
 ELIMINATION_MAX_TERMS = 3_000
-
-
-class EliminationTooLarge(Exception):
-    """An elimination step past :data:`RESULTANT_MAX_WORK` or
-    :data:`ELIMINATION_MAX_TERMS` (the message says which, and by how much)."""
 
 
 def _degree_digits(f: Any, t: Any) -> tuple[int, int, int]:

@@ -19,17 +19,12 @@ from typing import Any
 
 import sympy
 
-from mechsing.conditions.elimination import (
-    EliminationTooLarge,
-    angles,
-    distinct,
-    eliminate,
-    genuine,
-)
+from mechsing.conditions.elimination import angles, distinct, eliminate, genuine
 from mechsing.conditions.factoring import factor_condition, to_circle
 from mechsing.conditions.planar import PlanarLinkage, planar_linkage, slide_axis
 from mechsing.conditions.results import Condition, Factor
 from mechsing.conditions.symbolic import JointSymbols, reduce_trig, tan_half, to_trig
+from mechsing.errors import EliminationTooLarge
 from mechsing.model import Mechanism
 from mechsing.timelimit import TimeLimit, TimeLimitExceeded
 
