@@ -20,7 +20,8 @@ them):
   :class:`ExactDataError` (exact mode cannot take it);
 * signals caught inside mechsing and turned into one of the above:
   :class:`YAMLReadError` (text that is not YAML mechsing accepts),
-  :class:`InputRefError` (an input that names no actuable coordinate);
+  :class:`InputRefError` (an input that names no actuable coordinate),
+  :class:`EliminationTooLarge` (an elimination of passive joints not attempted);
 * :class:`TimeLimitExceeded`, a :class:`BaseException` (so that no ``except
   Exception`` swallows it) raised by :class:`mechsing.timelimit.TimeLimit`.
 
@@ -41,6 +42,7 @@ __all__ = [
     "CatalogError",
     "ClosureError",
     "ConfigurationError",
+    "EliminationTooLarge",
     "ExactDataError",
     "ExpressionError",
     "FormulationError",
@@ -170,6 +172,12 @@ class InputRefError(ValueError):
         super().__init__(f"{item}: {problem}")
         self.item = item
         self.problem = problem
+
+
+class EliminationTooLarge(Exception):
+    """An elimination step of :mod:`mechsing.conditions.elimination` past its bounds
+    (``RESULTANT_MAX_WORK``, ``ELIMINATION_MAX_TERMS``): not attempted; the message says
+    which bound and by how much."""
 
 
 class TimeLimitExceeded(BaseException):

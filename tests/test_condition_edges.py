@@ -298,3 +298,12 @@ def test_the_jansen_leg_type_ii_dyads() -> None:
         assert abs(abs(got) - abs(want)) < 1e-9 * abs(want), (key, got, want)
         found += 1
     assert found == 3, c["factors"]
+    # the elimination of the output dyad (E, F and Dg in line: all three loops together,
+    # coefficients of 160+ digits from the twelve-digit pivots) is refused at once, by
+    # what it would cost, not after minutes of sympy: no condition in the input is given,
+    # and each determinant says why (issue 44)
+    assert not [c for c in doc["conditions"] if c["form"] == "eliminated"]
+    notes = " ".join(doc["notes"])
+    assert "within" not in notes  # no time limit was reached
+    assert "output (type II): the passive joints were not eliminated: for rod_f and dfg" in notes
+    assert "input (type I): the passive joints were not eliminated" in notes

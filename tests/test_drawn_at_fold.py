@@ -56,3 +56,46 @@ def test_flat_parallelogram_given_by_its_input_to_15_digits_is_not_refused_at_mp
     assert "error" not in conf
     assert abs(conf["joints"]["A"][0] + math.pi / 2) < 5e-15  # within the data's resolution
     assert any("nearest closed configuration" in n for n in conf["notes"])
+
+
+WRIST_AT_A_POSE = """\
+mechanism: zyz-wrist
+bodies: [g, a, b, c]
+joints:
+  - {name: W1, type: R, between: [g, a], axis: [0, 0, 1], point: [0, 0, 1]}
+  - {name: W2, type: R, between: [a, b], axis: [0, 1, 0], point: [0, 0, 1]}
+  - {name: W3, type: R, between: [b, c], axis: [0, 0, 1], point: [0, 0, 1]}
+output: {body: c}
+configurations:
+  reference: {}
+  drawn: {pose: {rotation_vector: [5.8e-18, 0, 0.500000000000000]}}
+"""
+
+
+def test_a_wrist_given_by_a_pose_drawn_at_its_singularity_is_analysed_there_at_mp50(tmp_path):
+    """A Z-Y-Z spherical wrist given the output's rotation vector (5.8e-18, 0, 0.5), its
+    rotation written to 15 digits (known to 5e-16 rad): within that, the rotation is the
+    turn by 0.5 rad about z, where the Z-Y-Z angles are W2 = 0, W1 + W3 = 0.5 (the wrist's
+    singularity: axes W1 and W3 aligned, the chain of rank 2).  Continuation at 50 digits
+    from the reference (W2 = 0 already) stops there, the lost direction being the one the
+    5.8e-18 asks for; the analysis is of the nearest closed configuration, with a note, not
+    a refusal "beyond a limit of travel"."""
+    path = tmp_path / "wrist.yaml"
+    path.write_text(WRIST_AT_A_POSE)
+    run = run_cli(
+        ["analyze", path, "--precision", "mp:50", "--config", "drawn", "--format", "json"]
+    )
+    assert run.status in (0, 1), run.err
+    assert "beyond a limit of travel" not in run.err
+    (conf,) = json.loads(run.out)["configurations"]
+    assert "error" not in conf
+    joints = conf["joints"]
+    assert abs(joints["W2"][0]) < 1e-40  # the Z-Y-Z middle angle of a turn about z
+    assert math.isclose(joints["W1"][0] + joints["W3"][0], 0.5, abs_tol=1e-15)
+    assert conf["singular"] is True
+    assert {s["class"] for s in conf["singularities"]} == {"serial"}
+    (serial,) = conf["singularities"]
+    assert serial["corank"] == 1 and serial["margin"]["dropped"] < 1e-40
+    (note,) = [n for n in conf["notes"] if "written pose" in n]
+    assert "within the resolution of its 15-digit data (its rotation to 5e-16 rad)" in note
+    assert "pose.rx moved by 5.8e-18 rad" in note

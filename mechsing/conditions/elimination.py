@@ -31,12 +31,46 @@ import numpy as np
 import sympy
 
 from mechsing.conditions.symbolic import JointSymbols, reduce_trig, tan_half
+from mechsing.errors import EliminationTooLarge
 from mechsing.numeric import CONDITION_ROOT_RTOL
 
 #: two roots (rad or m) closer than this are one (a double root, or two factors' roots)
 CONDITION_ROOT_MERGE = 1e-9
 
-__all__ = ["angles", "distinct", "eliminate", "genuine"]
+__all__ = [
+    "RESULTANT_MAX_WORK",
+    "angles",
+    "distinct",
+    "eliminate",
+    "genuine",
+]
+
+#: the largest resultant step attempted (an algorithm setting): an estimate of the size
+#: of what it produces, the eliminant's degree in the other variables (Bezout:
+#: ``deg_t f * deg g + deg_t g * deg f``) times the digits of its coefficients
+#: (``deg_t g * digits f + deg_t f * digits g``).  The linkages of the suite stay below
+#: 16,000; Jansen's leg (twelve-digit pivots: coefficients of 160+ digits) asks for
+#: 130,000 at its output dyad, which sympy's subresultants do not finish in minutes
+RESULTANT_MAX_WORK = 50_000
+
+
+#: the most terms an equation of a step may hold before it is factored (an algorithm
+#: setting): the suite's linkages stay below 1,100; the closure of Jansen's leg in
+#: every variable but the output's reaches 5,107, whose factoring does not finish
+ELIMINATION_MAX_TERMS = 3_000
+
+
+def _degree_digits(f: Any, t: Any) -> tuple[int, int, int]:
+    """The degree of ``f`` in ``t``, its total degree in its other symbols, and the most
+    digits of a numerator or denominator of its rational coefficients."""
+    others = sorted(f.free_symbols - {t}, key=str)
+    P = sympy.Poly(f, t, *others)
+    digits = max(
+        (len(str(abs(n))) for c in P.coeffs() for n in sympy.fraction(sympy.Rational(c))),
+        default=1,
+    )
+    rest = max((sum(m[1:]) for m in P.monoms()), default=0)
+    return P.degree(t), rest, digits
 
 
 def _has(e: Any, js: JointSymbols) -> bool:
@@ -114,6 +148,11 @@ def eliminate(
         if step is None:
             step = _resultant_step(eqs, todo)
         new: list[Any] = []
+        terms = max((_size(e) for e in step), default=0)
+        if terms > ELIMINATION_MAX_TERMS:
+            raise EliminationTooLarge(
+                f"to factor an equation of {terms:,} terms (past {ELIMINATION_MAX_TERMS:,})"
+            )
         for e in step:
             c = _clean(e, syms)
             if c is None:
@@ -207,6 +246,15 @@ def _resultant_step(eqs: list[Any], todo: list[JointSymbols]) -> list[Any]:
         forms = sorted((tan_half(e, u, t) for e in holding), key=lambda p: sympy.degree(p, t))
         var = t
     first = forms[0]
+    a = _degree_digits(first, var)
+    for f in forms[1:]:
+        b = _degree_digits(f, var)
+        work = (a[0] * b[1] + b[0] * a[1]) * (b[0] * a[2] + a[0] * b[2])
+        if work > RESULTANT_MAX_WORK:
+            raise EliminationTooLarge(
+                f"a resultant of estimated size {work:,} (past {RESULTANT_MAX_WORK:,}: "
+                "estimated degree times coefficient digits)"
+            )
     out = []
     for f in forms[1:]:
         res = sympy.expand(sympy.resultant(first, f, var))

@@ -24,6 +24,7 @@ from mechsing.conditions.factoring import factor_condition, to_circle
 from mechsing.conditions.planar import PlanarLinkage, planar_linkage, slide_axis
 from mechsing.conditions.results import Condition, Factor
 from mechsing.conditions.symbolic import JointSymbols, reduce_trig, tan_half, to_trig
+from mechsing.errors import EliminationTooLarge
 from mechsing.model import Mechanism
 from mechsing.timelimit import TimeLimit, TimeLimitExceeded
 
@@ -255,8 +256,22 @@ def _eliminated(
     found: list[float] = []
     dropped = 0
     never = []
+    # every factor eliminated before any is checked (the checks are the costly part): a
+    # condition in the input is given whole or not at all
+    eliminated = []
     for (g, _), meaning in zip(factors, meanings, strict=True):
-        polys = eliminate([*L.equations, g], unknowns, keep)
+        try:
+            eliminated.append(eliminate([*L.equations, g], unknowns, keep))
+        except EliminationTooLarge as e:
+            what = meaning or "a factor of the determinant"
+            return (
+                f"the passive joints were not eliminated: for {what}, sympy would need {e} "
+                "(the linkage's loops together, with coefficients of the file's digits); "
+                "the condition is given in the joint "
+                "(or body) variables; 'mechsing analyze' or 'mechsing sweep' finds the input's "
+                "values numerically"
+            )
+    for (g, _), meaning, polys in zip(factors, meanings, eliminated, strict=True):
         if polys is None:
             never.append(meaning or str(to_trig(g, L.symbols)))
             continue

@@ -25,7 +25,7 @@ from mechsing.kinematics.newton import finite_system
 from mechsing.kinematics.paths.folds import land_on_fold, leave_fold
 from mechsing.kinematics.paths.steps import closure_matrix, correct, same_branch
 from mechsing.kinematics.polish import MpPolisher, fold_mp
-from mechsing.kinematics.pose import PoseModel
+from mechsing.kinematics.pose import POSE_COORDINATES, PoseModel
 from mechsing.kinematics.protocol import ClosureModel
 from mechsing.kinematics.settings import CONTINUATION_LEAVE_FRACTION, CONTINUATION_SINGULAR_RTOL
 from mechsing.kinematics.travel import Fold, beyond_target, fold_excess
@@ -202,8 +202,10 @@ class Continuation:
             with m.precision.context():
                 fold = fold_excess(m, q_out, gmask)
             at_limit = (
-                _within_resolution(self.polisher, self.tolerance, m, cfg, q_out, target, fold)
-                if self.at_folds and model is None  # joint values the user gave, at mp:N
+                _within_resolution(
+                    self.polisher, self.tolerance, m, cfg, q_out, target, fold, gmask
+                )
+                if self.at_folds  # joint values or a pose the user gave, at mp:N
                 else None
             )
             if at_limit is not None:
@@ -311,6 +313,7 @@ def _within_resolution(
     q: np.ndarray,
     target: np.ndarray,
     fold: Fold | None,
+    gmask: np.ndarray,
 ) -> tuple[np.ndarray, Any, str, bool] | None:
     """Given values beyond a limit of travel (``fold``) by no more than the resolution
     of the value the fold is most sensitive to (a configuration drawn at a fold to its
@@ -322,10 +325,11 @@ def _within_resolution(
     if fold is None or m.precision.mode != "mp":
         return None
     coords = m.mech.coordinates()
-    if fold.col >= len(coords):
-        return None
+    if fold.col >= len(coords):  # a pose model's own coordinates follow the joints'
+        return _pose_within_resolution(polisher, tolerance, m, cfg, q, target, gmask)
     joint, index = coords[fold.col]
     written = cfg.resolution.get(joint)
+    label = m.mech.coordinate_label(joint, index)
     if not written or index >= len(written):
         return None
     resolution, digits = written[index]
@@ -336,7 +340,6 @@ def _within_resolution(
     if rf > tolerance:
         return None
     located = fold_mp(m, qf, fold.col)
-    label = m.mech.coordinate_label(joint, index)
     unit = "m" if m.length_columns[fold.col] else "rad"
     digits_here = m.precision.digits
     on_fold = located is not None and located.residual <= tolerance
@@ -360,3 +363,64 @@ def _within_resolution(
         "exact values to decide the written decimals"
     )
     return qf, rf, note, on_fold
+
+
+def _pose_within_resolution(
+    polisher: MpPolisher,
+    tolerance: Any,
+    m: ClosureModel,
+    cfg: Configuration,
+    q: np.ndarray,
+    target: np.ndarray,
+    gmask: np.ndarray,
+) -> tuple[np.ndarray, Any, str, bool] | None:
+    """:func:`_within_resolution` for a pose given with digits to spare
+    (:attr:`~mechsing.model.OutputPose.resolution`; a wrist drawn at its singularity,
+    where the written rotation lies a rounding off it): the nearest closed configuration
+    (every coordinate free, polished at the model's digits) when it moves the written
+    pose by no more than its decimals resolve (the rotation by at most the rotation's
+    bound: two rotation vectors ``d`` apart differ by a rotation of angle at most
+    ``|d|``; each position coordinate by its own; an exact pose coordinate or a given
+    joint value by no more than the closure tolerance).  Not placed on a fold: the
+    configuration, its residual, the note that says so, False; None otherwise."""
+    written = () if cfg.pose is None else cfg.pose.resolution
+    if not written or not isinstance(m, PoseModel):
+        return None
+    qf, rf = polisher.polish(m, q, target, np.zeros(m.n, dtype=bool), cfg)
+    if rf > tolerance:
+        return None
+    nb, L = m.nb, m.length_scale
+    with m.precision.context():
+        step = m.difference(np.asarray(qf), np.asarray(target))
+        moved = [abs(float(to_float(x))) for x in step]
+        exact = [float(to_float(tolerance)) / float(to_float(L)), float(to_float(tolerance))]
+    # a given joint value stays (the pose is what was written with digits to spare)
+    for c in np.flatnonzero(np.asarray(gmask[:nb], dtype=bool)):
+        if moved[c] > exact[int(bool(m.length_columns[c]))]:
+            return None
+    turned = math.hypot(*moved[nb : nb + 3])
+    rot_res = written[0][0]
+    if turned > (rot_res or exact[0]):
+        return None
+    for i in range(3, 6):
+        if moved[nb + i] > (written[i][0] or exact[1]):
+            return None
+    # the pose coordinate moved most (lengths over L), to name in the note
+    i = max(range(6), key=lambda k: moved[nb + k] / (float(to_float(L)) if k >= 3 else 1.0))
+    unit = "m" if i >= 3 else "rad"
+    digits = min(d for res, d in written if res)
+    parts = ([f"its rotation to {rot_res:.2g} rad"] if rot_res else []) + [
+        f"{POSE_COORDINATES[3 + k]} to {written[3 + k][0]:.2g} m"
+        for k in range(3)
+        if written[3 + k][0]
+    ]
+    digits_here = m.precision.digits
+    note = (
+        f"at {digits_here} digits continuation does not close the written pose (it stops "
+        f"where the unknown joints lose a direction), within the resolution of its {digits}-digit "
+        f"data ({', '.join(parts)}): analysed at the nearest closed configuration "
+        f"({POSE_COORDINATES[i]} moved by {moved[nb + i]:.2g} {unit}), polished at "
+        f"{digits_here} digits; give more digits or exact values to decide the written "
+        "decimals"
+    )
+    return qf, rf, note, False

@@ -226,7 +226,49 @@ class ConfigurationReader:
             angle = raw_angle * af
             rvec = (unit[0] * angle, unit[1] * angle, unit[2] * angle)
             form = "axis_angle"
-        return OutputPose(position, rotation, rvec, m.line, form)
+        resolution = self.pose_written(m, form, rvec)
+        return OutputPose(position, rotation, rvec, m.line, form, resolution)
+
+    def pose_written(
+        self, m: YMap, form: str | None, rvec: tuple[Any, Any, Any] | None
+    ) -> tuple[tuple[float, int], ...]:
+        """The resolution (SI, radians) and significant digits of a pose as written, in
+        the pose coordinates' order (rx, ry, rz, x, y, z): each position coordinate its
+        own; each rotation coordinate a bound on the angle of the rotation the written
+        decimals can move: the norm of the rotation vector's resolutions (the rotation's
+        differential has norm at most 1), the angle's plus the angle times the unit
+        axis's, or the Frobenius norm of a matrix's (sqrt(2) times the angle).  Empty when
+        every number is exact."""
+        r = self.r
+
+        def entries(node: Any, factor: Any = 1) -> list[tuple[float, int]]:
+            items = node.items if isinstance(node, YSeq) else (node,)
+            return [r.resolution(e, factor) for e in items if isinstance(e, YScalar)]
+
+        position = [(0.0, 0)] * 3
+        if m.get("position") is not None:
+            position = entries(m.get("position"), r.units.length_factor)
+        rot: list[tuple[float, int]] = []
+        bound = 0.0
+        if form == "rotation_vector":
+            rot = entries(m.get("rotation_vector"), r.units.angle_factor)
+            bound = sum(x * x for x, _ in rot) ** 0.5
+        elif form == "axis_angle" and rvec is not None:
+            axis = m.get("axis")
+            (a_res, a_digits) = r.resolution(m.get("angle"), r.units.angle_factor)
+            raw = [float(sympy.N(x, 17)) for x in r.vector(axis, "pose", "axis")]
+            size = sum(x * x for x in raw) ** 0.5
+            rot = [*entries(axis), (a_res, a_digits)]
+            angle = sum(float(sympy.N(x, 17)) ** 2 for x in rvec) ** 0.5
+            axis_res = sum(x * x for x, _ in rot[:-1]) ** 0.5 / size if size else 0.0
+            bound = a_res + angle * axis_res
+        elif form == "matrix":
+            rot = [e for row in m.get("rotation").items for e in entries(row)]
+            bound = sum(x * x for x, _ in rot) ** 0.5
+        digits = [d for res, d in rot if res]
+        rotation = (bound, min(digits)) if bound and digits else (0.0, 0)
+        out = (rotation,) * 3 + tuple(position)
+        return out if any(res for res, _ in out) else ()
 
     def angle_in_file_units(self, node: Any, raw: Any, item: str, what: str) -> None:
         """In a degree file, an angle of a pose written in radians (``pi``, an inverse

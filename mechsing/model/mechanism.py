@@ -245,6 +245,11 @@ class OutputPose:
     rotation_vector: Vector | None = None
     line: int | None = None
     form: str | None = None
+    #: what its decimals resolve, in the pose coordinates' order (rx, ry, rz, x, y, z):
+    #: (resolution in SI units and radians, significant digits), (0, 0) for an exact one;
+    #: each rotation coordinate carries the whole rotation's (its angle's bound); empty
+    #: when the pose is exact
+    resolution: tuple[tuple[float, int], ...] = ()
 
 
 @dataclass(frozen=True)
