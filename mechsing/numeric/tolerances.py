@@ -225,12 +225,16 @@ MODE_SPAN_RTOL = 1e-20
 #: grid when its imaginary part is below this times ``max(1, |t|)``: two roots that leave
 #: the real axis at a fold separate as the square root of the distance to it, so a grid
 #: point 1e-12 of the input's span from a singular curve still counts right
+#: margin: a cusp's certificate is decided apart from this (Krawczyk at 50 digits); this
+#: only counts the modes drawn on the section's grid
 CUSP_REAL_RTOL = 1e-7
 #: two real roots closer than this times ``max(1, |t|)`` are one (a double root counted
 #: once: the modes on a singular curve)
+#: margin: as CUSP_REAL_RTOL, the grid's count of modes only
 CUSP_DISTINCT_RTOL = 1e-6
 #: a sweep's closed configuration and an assembly mode (or two closed configurations) with
 #: the same given values are on one mode when their commensurate joint distance (angles in
 #: rad modulo 2 pi, lengths over L) is below this: each sample is closed to 1e-12 L, and
 #: distinct modes lie orders of magnitude farther apart
+#: margin: the distance to the nearest mode against this; a start matching none is refused
 SWEEP_SAME_MODE_DISTANCE = 1e-6
