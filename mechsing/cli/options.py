@@ -353,7 +353,7 @@ def add_duration_option(p: argparse.ArgumentParser) -> None:
     """Add ``--duration T`` (:mod:`mechsing.kinetics.timed`)."""
     p.add_argument(
         "--duration",
-        type=_seconds,
+        type=_duration,
         metavar="T",
         help="time the path: the swept value follows a smooth rest-to-rest law over T seconds, "
         "and each sample gets the efforts that motion needs (the file's masses and gravity; "
@@ -361,7 +361,8 @@ def add_duration_option(p: argparse.ArgumentParser) -> None:
     )
 
 
-def _seconds(text: str) -> float:
+def _duration(text: str) -> float:
+    """``--duration``: a positive, finite number of seconds (argparse: exit 2)."""
     from mechsing.numeric.numbers import decimal_float
 
     try:
