@@ -175,16 +175,61 @@ def test_the_scan_s_compiled_screen_is_a_backend_registered_with_the_serial_test
     assert "._table" not in source
 
 
-def test_a_test_keeps_its_plan_for_the_last_models_only():
-    """The plan is built once per model (the same object when asked again) and the cache is
-    bounded: after PLANS_KEPT other models, the first model's plan is built afresh (a plan
-    holds its model, which is let go)."""
-    from mechsing.singularity.criteria.base import PLANS_KEPT
+def test_a_test_s_plan_is_kept_by_its_model_and_by_no_other():
+    """The plan is built once per model (the same object when asked again) and kept in
+    the model's own plans: a model built after another was let go, at the same address,
+    gets plans of its own (the test's and the tree's), and building plans attaches
+    nothing to the model."""
+    import gc
+    import weakref
 
-    mech, model = _arm()
-    first = SerialTest.of(mech, model)
-    assert SerialTest.of(mech, model) is first
-    others = [KinematicModel(mech, "float") for _ in range(PLANS_KEPT)]
-    for m in others:
-        SerialTest.of(mech, m)
-    assert SerialTest.of(mech, model) is not first
+    from mechsing.kinematics.chains import tree_chain
+
+    mech = loads(PLANAR_3R_POINT)
+    seen: dict[int, tuple[weakref.ref[SerialTest], object]] = {}
+    reused = None
+    for _ in range(200):  # CPython gives a let-go model's address to a new one soon
+        model = KinematicModel(mech, "float")
+        fields = set(vars(model))
+        plan = SerialTest.of(mech, model)
+        assert SerialTest.of(mech, model) is plan and plan.model is model
+        chain = tree_chain(model, "l3", "base")  # holds no model: kept alive below
+        assert tree_chain(model, "l3", "base") is chain
+        forward.poses(model, np.zeros(model.n))
+        forward.current_screws(model, np.zeros(model.n))
+        assert set(vars(model)) == fields
+        if id(model) in seen:
+            reused = (plan, chain, *seen[id(model)])
+            break
+        seen[id(model)] = (weakref.ref(plan), chain)
+        del model, plan
+        gc.collect()
+    assert reused is not None, "no address was reused in 200 models"
+    plan, chain, old_plan, old_chain = reused
+    assert old_plan() is None  # let go with its model
+    assert chain is not old_chain and chain.signs is not old_chain.signs
+
+
+def test_threads_building_models_get_their_own_plans():
+    """Eight threads, each building its models in turn and asking for their tests and
+    chains at once, each get plans of their own model; threads sharing one model get
+    equal plans."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from mechsing.kinematics.chains import tree_chain
+
+    mech = loads(PLANAR_3R_POINT)
+    shared = KinematicModel(mech, "float")
+
+    def work(_: int) -> bool:
+        ok = True
+        for _ in range(5):
+            model = KinematicModel(mech, "float")
+            for cls in (SerialTest, MotionTest, ConstraintTest):
+                ok &= cls.of(mech, model).model is model
+            ok &= SerialTest.of(mech, shared).model is shared
+            ok &= tree_chain(model, "l3", "base").joints == ["R1", "R2", "R3"]
+        return ok
+
+    with ThreadPoolExecutor(8) as pool:
+        assert all(pool.map(work, range(8)))

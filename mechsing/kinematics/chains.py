@@ -42,12 +42,12 @@ class Chain:
 
 def _names(model: Any) -> tuple[str, ...]:
     """The joint of every coordinate (built once per model)."""
-    names = getattr(model, "_coordinate_joint_names", None)
+    names = model.plans.coordinate_joints
     if names is None:
         names = tuple(
             jk.name for jk in model.joints for _ in range(jk.columns.stop - jk.columns.start)
         )
-        model._coordinate_joint_names = names
+        model.plans.coordinate_joints = names
     return names
 
 
@@ -76,9 +76,7 @@ def path_chain(model: Any, steps: Iterable[tuple[str, int]]) -> Chain:
 def tree_chain(model: Any, body: str, relative_to: str) -> Chain:
     """The chain of ``body`` relative to ``relative_to`` through the spanning tree (built
     once per model and pair of bodies; its signs are read only)."""
-    cache = getattr(model, "_tree_chains", None)
-    if cache is None:
-        cache = model._tree_chains = {}
+    cache = model.plans.tree_chains
     got = cache.get((body, relative_to))
     if got is None:
         got = cache[(body, relative_to)] = _tree_chain(model, body, relative_to)

@@ -73,6 +73,7 @@ def _universal_element(jk: Any, q: np.ndarray) -> np.ndarray:
 def _spherical_element(jk: Any, q: np.ndarray) -> np.ndarray:
     return spherical_exp(jk.basis, q[..., jk.columns])
 
+
 __all__ = [
     "SerialJacobian",
     "batch_element",
@@ -156,7 +157,7 @@ def _pose_plan(model: Any) -> list[tuple[str, Any, str, int]]:
     user body (shorter tree paths first) with the joint of its path's last step, the
     body before that step and the step's sign (hidden cross bodies: see
     :func:`current_screws`)."""
-    plan = getattr(model, "_tree_pose_plan", None)
+    plan = model.plans.pose_order
     if plan is None:
         mech = model.mech
         plan = []
@@ -166,7 +167,7 @@ def _pose_plan(model: Any) -> list[tuple[str, Any, str, int]]:
             last = steps[-1]
             jk = model.joint(last.joint)
             plan.append((body, jk, jk.a if last.sign > 0 else jk.b, last.sign))
-        model._tree_pose_plan = plan
+        model.plans.pose_order = plan
     return plan
 
 
@@ -220,7 +221,7 @@ def _screw_plan(model: Any) -> tuple[list[str], Any, list[Any]]:
     """What :func:`_screws_at_once` stacks (built once per model): the body whose pose
     carries each coordinate's screw (``between[0]``; a U joint's second screw is fixed
     up from its first), the basis screws stacked, and the U joints."""
-    plan = getattr(model, "_screws_plan", None)
+    plan = model.plans.screws
     if plan is None:
         carriers, E = [], []
         for jk in model.joints:
@@ -229,7 +230,7 @@ def _screw_plan(model: Any) -> tuple[list[str], Any, list[Any]]:
                 E.append(e)
         crosses = [jk for jk in model.joints if jk.type == "U"]
         plan = (carriers, np.stack(E) if E else None, crosses)
-        model._screws_plan = plan
+        model.plans.screws = plan
     return plan
 
 
@@ -266,9 +267,7 @@ def _element_plan(
     """What :func:`elements_at_once` stacks for these joints (built once per model and
     set of joints): the joints but U, the rows of the one-dof joints with their
     coordinates and basis screws stacked, and the rows of the others."""
-    cache = getattr(model, "_element_plans", None)
-    if cache is None:
-        cache = model._element_plans = {}
+    cache = model.plans.elements
     key = None if joints is None else tuple(jk.name for jk in joints)
     plan = cache.get(key)
     if plan is None:

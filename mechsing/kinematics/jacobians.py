@@ -119,8 +119,8 @@ def sparse_closure_jacobian(
 
 def _chord_entries(model: KinematicModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The non-zero chord signs (:func:`chord_signs`) as (chord, column, sign)
-    arrays, chord by chord, columns ascending (built once, kept on the model)."""
-    if model._chord_nonzeros is None:
+    arrays, chord by chord, columns ascending (built once, kept in the model's plans)."""
+    if model.plans.chord_entries is None:
         signs = chord_signs(model)
         if signs:
             chord, col = np.nonzero(np.stack(signs))
@@ -128,21 +128,21 @@ def _chord_entries(model: KinematicModel) -> tuple[np.ndarray, np.ndarray, np.nd
         else:
             chord = col = np.zeros(0, dtype=np.intp)
             sign = np.zeros(0)
-        model._chord_nonzeros = (chord, col, sign)
-    return model._chord_nonzeros
+        model.plans.chord_entries = (chord, col, sign)
+    return model.plans.chord_entries
 
 
 def chord_signs(model: KinematicModel) -> list[np.ndarray]:
     """Each chord's closure chain (integers, n): the chord itself, then back through
-    the tree from its body a to its body b (built once, kept on the model)."""
-    if model._chords_signs is None:
+    the tree from its body a to its body b (built once, kept in the model's plans)."""
+    if model.plans.chord_signs is None:
         out = []
         for jk in model.chords:
             coef = tree_chain(model, jk.a, jk.b).signs.copy()
             coef[jk.columns] += 1
             out.append(coef)
-        model._chords_signs = out
-    return model._chords_signs
+        model.plans.chord_signs = out
+    return model.plans.chord_signs
 
 
 def chord_twists(model: KinematicModel, deltas: list[np.ndarray]) -> np.ndarray:

@@ -3,7 +3,8 @@ screws and coordinates, closure residuals, closure Jacobian and updates on the
 group (poses and current screws are computed by :mod:`mechsing.kinematics.forward`,
 the closure Jacobians by :mod:`mechsing.kinematics.jacobians`, the updates on the group
 by :mod:`mechsing.kinematics.coordinates`: the model's methods call them, and the model
-keeps their caches).
+keeps their caches; what depends only on the model, their plans, it keeps in its
+:class:`~mechsing.kinematics.plans.ModelPlans`).
 
 Conventions (those of the mechanism file; the README states them):
 
@@ -48,6 +49,7 @@ from mechsing.kinematics.couplings import (
     coupling_residuals,
 )
 from mechsing.kinematics.field import FieldKinematics
+from mechsing.kinematics.plans import ModelPlans
 from mechsing.model import Mechanism
 from mechsing.numeric import (
     CommensurateFrame,
@@ -168,6 +170,8 @@ class KinematicModel:
 
         refuse_orphan_couplings(mech)  # a <mimic> of a joint the robot does not define
         self.mech = mech
+        #: what depends only on this model, built when first asked (:mod:`.plans`)
+        self.plans = ModelPlans()
         self.precision = parse_precision(precision) if isinstance(precision, str) else precision
         if self.precision.mode == "auto":
             self.precision = Precision("float")
@@ -239,10 +243,6 @@ class KinematicModel:
         self.blocks: int = len(self.chords) + len(self.couplings)
         #: the commensurate coupling blocks, per frame (:meth:`coupling_block`)
         self._coupling_blocks: dict[int, tuple[Any, np.ndarray]] = {}
-        #: each chord's closure chain and its non-zero entries, built once by
-        #: :mod:`.jacobians` (:func:`~.jacobians.chord_signs`)
-        self._chords_signs: list[np.ndarray] | None = None
-        self._chord_nonzeros: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         self._points: dict[tuple[Any, ...], np.ndarray] = {}
         #: the elements of the non-abelian joints at the last float configuration, and
         #: each such joint's basis in the commensurate metric (:meth:`update`, kept here

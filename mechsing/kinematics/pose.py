@@ -28,6 +28,7 @@ import numpy as np
 from mechsing import lie
 from mechsing.kinematics.chains import tree_chain
 from mechsing.kinematics.model import KinematicModel
+from mechsing.kinematics.plans import ModelPlans
 from mechsing.lie import exp_so3, left_jacobian_so3
 from mechsing.model import Configuration, OutputPose
 from mechsing.numeric import CommensurateFrame, to_float
@@ -67,6 +68,8 @@ class PoseModel:
         assert out is not None
         self.base = base
         self.mech = base.mech
+        #: its own plans (its singularity tests'; the joints' are the base model's)
+        self.plans = ModelPlans()
         self.precision = base.precision
         self.backend = base.backend
         self.length_scale = base.length_scale

@@ -20,6 +20,7 @@ from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
+from mechsing.kinematics.plans import ModelPlans
 from mechsing.model import Mechanism
 from mechsing.numeric import CommensurateFrame, Precision
 
@@ -32,6 +33,8 @@ class ClosureModel(Protocol):
 
     #: the mechanism modelled
     mech: Mechanism
+    #: what depends only on this model, built when first asked and kept with it
+    plans: ModelPlans
     #: the precision mode of its numbers, and that mode's backend
     precision: Precision
     backend: Any

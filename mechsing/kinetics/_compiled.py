@@ -196,7 +196,7 @@ def _tables(td: Any) -> tuple[np.ndarray, ...]:
     """The tree's plan as arrays (built once per TreeDynamics): each body's previous body
     (the ground: the number of bodies), coordinate, sign, reference screw, and inertia at
     the drawn pose (zero for a body without mass)."""
-    got = getattr(td, "_compiled_tables", None)
+    got = td.compiled_tables
     if got is not None:
         return got
     index = {body: i for i, (body, _, _, _) in enumerate(td.plan)}
@@ -214,7 +214,7 @@ def _tables(td: Any) -> tuple[np.ndarray, ...]:
         C0[i] = np.asarray(inertia.centre, dtype=float)
         I0[i] = np.asarray(inertia.about_centre, dtype=float)
     got = (prev, col, sign, E, mass, C0, I0)
-    td._compiled_tables = got
+    td.compiled_tables = got
     return got
 
 

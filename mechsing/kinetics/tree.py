@@ -98,6 +98,11 @@ class TreeDynamics:
             last = steps[-1]
             jk = model.joint(last.joint)
             self.plan.append((body, jk, jk.a if last.sign > 0 else jk.b, last.sign))
+        #: the body each tree step's first coordinate moves
+        self._body_of_column = {jk.columns.start: body for body, jk, _, _ in self.plan}
+        #: the plan as arrays for the compiled kernels, built when first asked
+        #: (:mod:`._compiled`)
+        self.compiled_tables: tuple[np.ndarray, ...] | None = None
         #: each body's coordinates on its path from the ground (the mass matrix's pattern)
         self.path_columns: dict[str, list[int]] = {
             body: [model.joint(st.joint).columns.start for st in steps]
@@ -211,14 +216,6 @@ class TreeDynamics:
         zero = self.backend.zeros(batch) if batch else self.backend.zeros(())
         rows = [np.stack([x if x is not None else zero for x in row], axis=-1) for row in M]
         return np.stack(rows, axis=-2)
-
-    @property
-    def _body_of_column(self) -> dict[int, str]:
-        got = getattr(self, "_body_column_map", None)
-        if got is None:
-            got = {jk.columns.start: body for body, jk, _, _ in self.plan}
-            self._body_column_map = got
-        return got
 
     def forward(self, q: Any, qd: Any, tau: Any, gravity: bool = True) -> np.ndarray:
         """The joint accelerations under the efforts ``tau``: ``M qdd = tau - bias`` solved

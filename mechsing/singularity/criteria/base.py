@@ -1,6 +1,6 @@
 """What every singularity test shares: its plan (what depends only on the mechanism,
-built once per model and kept by the test's class for the last few models,
-:class:`PerModel`), its reference
+built once per model and kept in the model's own plans,
+:class:`~mechsing.kinematics.plans.ModelPlans`), its reference
 (what its singular values are relative to) and the one batched rank rule
 (:func:`mechsing.numeric.batched_rank_bounds`) through which every batch of its
 matrices is decided (:meth:`Criterion.ranks`).
@@ -13,10 +13,7 @@ reference.
 
 from __future__ import annotations
 
-import threading
-from collections import OrderedDict
-from collections.abc import Callable
-from typing import Any, ClassVar, NamedTuple, Self, TypeVar
+from typing import Any, ClassVar, NamedTuple, Self
 
 import numpy as np
 
@@ -24,14 +21,9 @@ from mechsing.kinematics.protocol import ClosureModel
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, batched_rank_bounds, rank_bounds
 
-__all__ = ["Criterion", "PerModel", "RankBounds", "singular_values"]
-
-T = TypeVar("T")
+__all__ = ["Criterion", "RankBounds", "singular_values"]
 
 _FLOAT = Precision("float").tolerances
-
-#: models whose plans each test keeps (an analysis holds two: its own and its float twin)
-PLANS_KEPT = 8
 
 
 class RankBounds(NamedTuple):
@@ -72,32 +64,6 @@ def singular_values(A: np.ndarray) -> np.ndarray:
     return s
 
 
-class PerModel:
-    """Plans kept per model, for the :data:`PLANS_KEPT` models asked for last (a bounded
-    cache: a plan holds its model, so older ones are let go), nothing attached to the
-    model itself."""
-
-    def __init__(self) -> None:
-        self._plans: OrderedDict[int, tuple[ClosureModel, Any]] = OrderedDict()
-        self._lock = threading.Lock()  # a threaded sweep's workers share the cache
-
-    def get(self, model: ClosureModel, build: Callable[[], T]) -> T:
-        key = id(model)
-        with self._lock:
-            got = self._plans.get(key)
-            if got is not None and got[0] is model:
-                self._plans.move_to_end(key)
-                kept: T = got[1]
-                return kept
-        plan = build()
-        with self._lock:
-            self._plans[key] = (model, plan)
-            self._plans.move_to_end(key)
-            while len(self._plans) > PLANS_KEPT:
-                self._plans.popitem(last=False)
-        return plan
-
-
 class Criterion:
     """A singularity test: ``name``, ``reference`` (what its singular values are relative
     to, in words) and its plan for one model (``plan``, built once per model by
@@ -105,11 +71,6 @@ class Criterion:
 
     name: ClassVar[str] = ""
     reference: ClassVar[str] = ""
-    _plans: ClassVar[PerModel]
-
-    def __init_subclass__(cls, **kwargs: Any) -> None:
-        super().__init_subclass__(**kwargs)
-        cls._plans = PerModel()
 
     def __init__(self, mech: Mechanism, model: ClosureModel) -> None:
         self.mech = mech
@@ -117,11 +78,16 @@ class Criterion:
 
     @classmethod
     def of(cls, mech: Mechanism, model: ClosureModel) -> Self:
-        """The test of ``mech`` for ``model``, its plan built once per model."""
-        got = cls._plans.get(model, lambda: cls(mech, model))
+        """The test of ``mech`` for ``model``, its plan built once per model and kept in
+        the model's plans (``model.plans``)."""
+        kept = model.plans.tests
+        got = kept.get(cls)
+        if got is None:
+            got = kept.setdefault(cls, cls(mech, model))
         if got.mech is not mech:  # the same model asked for another mechanism
-            got = cls(mech, model)
-        return got
+            return cls(mech, model)
+        plan: Self = got
+        return plan
 
     @staticmethod
     def ranks(s: np.ndarray, reference: Any = None) -> RankBounds:
