@@ -67,3 +67,33 @@ def test_the_display_floor_changes_in_all_four(monkeypatch: pytest.MonkeyPatch) 
     # condition: the roots of 28 cos^2 A + 4 cos A - 23 = 0, cos A = (-1 +- 9 sqrt 2) / 14
     assert "vanishes at A = -2.94412, -0.577722, 0.577722, 2.94412 rad" in before["condition"]
     assert "vanishes at A = 0, 0, 0, 0 rad" in after["condition"]
+
+
+PUMA = str(Path(__file__).resolve().parents[1] / "examples" / "puma560.yaml")
+
+
+def test_the_screw_sentences_spell_their_units_by_the_rule(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The lost twists and resisted wrenches of an analysis (the PUMA 560's wrist and
+    elbow), and a screw's pitch, spell the metre as the rule does."""
+    from mechsing.analysis.words import twist_words, wrench_words
+
+    before = run_cli(["analyze", PUMA]).out
+    monkeypatch.setitem(display.UNIT_TEXT, "m", "metre")
+    after = run_cli(["analyze", PUMA]).out
+    lines = before.splitlines()
+    lost = [x for x in lines if "lost twist: a rotation about the axis through" in x]
+    resisted = [x for x in lines if "resisted wrench: a force along" in x]
+    assert lost and resisted and "metre" not in before
+    for line in lost:
+        assert line.replace(") m along", ") metre along") in after
+    for line in resisted:
+        assert line.endswith(") m") and line[: -len("m")] + "metre" in after
+    assert after.replace("metre", "m") == before  # only the spelling changed
+    # a screw motion of pitch 0.5 m/rad about z through the origin; a wrench of pitch 2 m
+    # along x through (0, 0, 1) (m = p x f + h f = (2, 1, 0) for f = (1, 0, 0))
+    assert twist_words([0, 0, 1, 0, 0, 0.5]) == (
+        "a screw motion of pitch 0.5 metre/rad about the axis through (0, 0, 0) metre along z"
+    )
+    assert wrench_words([1, 0, 0, 2, 1, 0]) == (
+        "a force along x through (0, 0, 1) metre with a couple along it (a wrench of pitch 2 metre)"
+    )

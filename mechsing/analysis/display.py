@@ -11,7 +11,9 @@ modes (:mod:`mechsing.assembly.render`) and the conditions
   divided by L likewise (:func:`mechsing.numeric.display_floor`); the JSON keeps the
   numbers;
 * a unit as the text spells it (:data:`UNIT_TEXT`, :func:`unit_text`), and a number with
-  its unit (:func:`quantity`); JSON and CSV keep the SI identifiers (``m``, ``rad``);
+  its unit (:func:`quantity`, :func:`with_unit`: also the lengths and pitches of the screw
+  sentences, :mod:`mechsing.analysis.words`); JSON and CSV keep the SI identifiers
+  (``m``, ``rad``);
 * a table (:func:`markdown_table`);
 * a finding's sentence and a class's words stay in :mod:`mechsing.analysis.words` (the one
   place the words a student reads are made).
@@ -41,8 +43,9 @@ UNIT_TEXT: dict[str, str] = {"m": "m", "rad": "rad", "deg": "deg"}
 
 
 def unit_text(unit: str) -> str:
-    """The unit ``unit`` as text and Markdown spell it."""
-    return UNIT_TEXT.get(unit, unit)
+    """The unit ``unit`` as text and Markdown spell it (a quotient such as ``m/rad``:
+    each of its units so)."""
+    return "/".join(UNIT_TEXT.get(u, u) for u in unit.split("/"))
 
 
 def floor_for(precision: Precision | str, length_scale: float) -> float:

@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.analysis.contract import finding_class, subgroup_params
+from mechsing.analysis.display import with_unit
 from mechsing.numeric import MEMBERSHIP_RTOL_FLOAT, Margin
 from mechsing.numeric.linalg import first_nonzero_positive
 from mechsing.numeric.numbers import unit_vector
@@ -93,10 +94,10 @@ def twist_words(twist: Sequence[float], length_scale: float = 1.0) -> str:
         return f"a translation along {_direction(v)}"
     p = np.cross(w, v) / nw**2
     h = float(w @ v) / nw**2
-    where = f"the axis through {_point(p, L)} m along {_direction(w)}"
+    where = f"the axis through {with_unit(_point(p, L), 'm')} along {_direction(w)}"
     if abs(h) * nw <= MEMBERSHIP_RTOL_FLOAT * max(nv, nw * L):
         return f"a rotation about {where}"
-    return f"a screw motion of pitch {h:.4g} m/rad about {where}"
+    return f"a screw motion of pitch {with_unit(f'{h:.4g}', 'm/rad')} about {where}"
 
 
 def wrench_words(wrench: Sequence[float], length_scale: float = 1.0) -> str:
@@ -111,10 +112,11 @@ def wrench_words(wrench: Sequence[float], length_scale: float = 1.0) -> str:
         return f"a couple about {_direction(m)}"
     p = np.cross(f, m) / nf**2
     h = float(f @ m) / nf**2
-    where = f"along {_direction(f)} through {_point(p, L)} m"
+    where = f"along {_direction(f)} through {with_unit(_point(p, L), 'm')}"
     if abs(h) * nf <= MEMBERSHIP_RTOL_FLOAT * max(nm, nf * L):
         return f"a force {where}"
-    return f"a force {where} with a couple along it (a wrench of pitch {h:.4g} m)"
+    pitch = with_unit(f"{h:.4g}", "m")
+    return f"a force {where} with a couple along it (a wrench of pitch {pitch})"
 
 
 def velocity_words(velocity: Sequence[float]) -> str:
@@ -147,9 +149,9 @@ def subgroup_words(sub: Subgroup) -> str:
     for k, val in subgroup_params(sub).items():
         kind = dict(sub.type.parameters)[k]
         if kind == "point":
-            parts.append(f"{k} {_point(np.asarray(val, dtype=float), 1.0)} m")
+            parts.append(f"{k} {with_unit(_point(np.asarray(val, dtype=float), 1.0), 'm')}")
         elif kind == "pitch":
-            parts.append(f"pitch {float(val):.4g} m/rad")
+            parts.append(f"pitch {with_unit(f'{float(val):.4g}', 'm/rad')}")
         else:
             parts.append(f"{k} {_direction(np.asarray(val, dtype=float))}")
     tail = f": {', '.join(parts)}" if parts else ""
@@ -225,7 +227,8 @@ def margin_text(m: Margin | None) -> str:
     if m.eig_margin is not None:
         parts.append(f"eigenvalue margin {number_text(m.eig_margin)}")
     lo, hi = m.thresholds
-    return ", ".join(parts) + f" (thresholds {lo}/{hi}, L = {m.length_scale:.4g} m)"
+    L = with_unit(f"{m.length_scale:.4g}", "m")
+    return ", ".join(parts) + f" (thresholds {lo}/{hi}, L = {L})"
 
 
 def joint_list(xs: Sequence[str]) -> str:
