@@ -17,6 +17,8 @@ import sys
 
 NAME = "analyze"
 HELP = "analyse a mechanism file (loops, ranks, mobility, singularities)"
+#: the formats it writes (the first the default)
+FORMATS = ("text", "json", "md")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -24,14 +26,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--config", action="append", metavar="NAME", help="configuration to analyse (repeatable)"
     )
-    from mechsing.cli import options
+    from mechsing.cli import options, output
 
     options.add_precision_option(p, "auto", "auto (default), float, mp:N or exact")
     options.add_time_limit_option(p)
-    p.add_argument("--format", choices=("text", "json", "md"), default="text")
-    p.add_argument(
-        "-o", "--output", metavar="OUT", help="write the report to OUT instead of standard output"
-    )
+    output.add_output_options(p, FORMATS, "the report")
     options.add_verbose_option(p)
     options.add_set_option(p)
     options.add_scene_options(p)
@@ -46,10 +45,12 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.analysis import analyze
     from mechsing.cli import NOT_ANALYSED, load_mechanism, with_file
     from mechsing.cli.options import apply_scene, apply_set, check_shared, with_load
+    from mechsing.cli.output import output_format
     from mechsing.files import check_output, write_output
     from mechsing.reports import render
 
     check_shared(args)
+    fmt = output_format(args.format, args.output, FORMATS, NAME)
     if args.output:  # before the work: a missing directory or the input file is refused now
         check_output(args.output, [args.file])
     mech = apply_set(
@@ -60,7 +61,7 @@ def run(args: argparse.Namespace) -> int:
     )
     result = analyze(mech, args.config, args.prec, time_limit=args.time_limit, progress=_progress)
     result = with_load(result, mech, args.load)
-    text = render(result, args.format)
+    text = render(result, fmt)
     if args.output:
         write_output(args.output, text, [args.file])
     else:

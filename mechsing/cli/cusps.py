@@ -19,9 +19,13 @@ import sys
 
 NAME = "cusps"
 HELP = "singular curves and cusps of a section of the input space; cuspidal or not"
+#: the formats it writes (the first the default)
+FORMATS = ("text", "json", "md")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
+    from mechsing.cli import output
+
     p.add_argument("file", metavar="FILE", help="mechanism file (YAML or JSON), URDF or MJCF")
     p.add_argument(
         "--vary",
@@ -38,15 +42,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--points", type=int, metavar="N", help="grid points along each side (default 81)"
     )
-    p.add_argument(
-        "--format",
-        choices=("text", "json", "md"),
-        help="text (default), json or md; with -o and no --format, from OUT's extension "
-        "(.json, .md; anything else is text)",
-    )
-    p.add_argument(
-        "-o", "--output", metavar="OUT", help="write the result to OUT instead of standard output"
-    )
+    output.add_output_options(p, FORMATS, "the result")
     p.add_argument(
         "--plot",
         metavar="PNG",
@@ -58,14 +54,12 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.assembly.cusps import cusps
     from mechsing.assembly.cusps_render import render_cusps
     from mechsing.cli import UserError, load_mechanism
-    from mechsing.cli.sweep import output_format
+    from mechsing.cli.output import output_format
     from mechsing.files import check_output, write_output
 
     if args.points is not None and not 5 <= args.points <= 1001:
         raise UserError(f"{args.file}: --points {args.points}: give 5 to 1001")
-    fmt = output_format(args.format, args.output)
-    if fmt not in ("text", "json", "md"):
-        raise UserError(f"{args.file}: -o {args.output}: cusps writes text, json or md")
+    fmt = output_format(args.format, args.output, FORMATS, NAME)
     if args.plot and not args.plot.lower().endswith((".png", ".svg")):
         raise UserError(
             f"{args.file}: --plot {args.plot}: the figure is PNG or SVG: name it .png or .svg"

@@ -30,6 +30,8 @@ import sys
 
 NAME = "modes"
 HELP = "every assembly mode of a configuration, certified and classified"
+#: the formats it writes (the first the default)
+FORMATS = ("text", "json", "md")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -37,14 +39,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--config", metavar="NAME", help="the configuration whose given values the modes share"
     )
-    from mechsing.cli import options
+    from mechsing.cli import options, output
 
     options.add_precision_option(p, "auto", "auto (default), float or mp:N (the classification's)")
     options.add_time_limit_option(p)
-    p.add_argument("--format", choices=("text", "json", "md"), default="text")
-    p.add_argument(
-        "-o", "--output", metavar="OUT", help="write the result to OUT instead of standard output"
-    )
+    output.add_output_options(p, FORMATS, "the result")
     options.add_verbose_option(p)
     options.add_set_option(p)
 
@@ -55,10 +54,12 @@ def run(args: argparse.Namespace) -> int:
     from mechsing.assembly.render import render_modes
     from mechsing.cli import NOT_ANALYSED, UserError, load_mechanism
     from mechsing.cli.options import apply_set, check_shared
+    from mechsing.cli.output import output_format
     from mechsing.errors import TimeLimitExceeded
     from mechsing.files import check_output, write_output
 
     check_shared(args, from_alone=args.config is not None)
+    fmt = output_format(args.format, args.output, FORMATS, NAME)
     if args.output:
         check_output(args.output, [args.file])
     # --from with --config: the start whose continuation marks a mode; with --set: the
@@ -82,7 +83,7 @@ def run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
         return NOT_ANALYSED
-    text = render_modes(result, args.format, {j.name: j.units for j in mech.joints})
+    text = render_modes(result, fmt, {j.name: j.units for j in mech.joints})
     if args.output:
         write_output(args.output, text, [args.file])
     else:

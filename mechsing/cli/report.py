@@ -23,8 +23,8 @@ from pathlib import Path
 NAME = "report"
 HELP = "write a design-review report (HTML or Markdown, with figures)"
 
-#: the formats, by the extension of -o
-EXTENSIONS = {".html": "html", ".htm": "html", ".md": "md"}
+#: the formats it writes, named by the extension of -o (:mod:`mechsing.cli.output`)
+FORMATS = ("html", "md")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -75,13 +75,14 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def output_path(file: str, out: str | None) -> tuple[Path, str]:
     """Where the report goes and its format (``html`` or ``md``), or a UserError."""
+    from mechsing.cli.output import extension_format
     from mechsing.errors import UserError
 
     if not out:
         return Path(Path(file).stem + ".html"), "html"
     path = Path(out)
-    fmt = EXTENSIONS.get(path.suffix.lower())
-    if fmt is None:
+    fmt = extension_format(out)
+    if fmt is None or fmt not in FORMATS:
         raise UserError(
             f"-o {out}: a report is written as .html or .md; name the output review.html or "
             "review.md"

@@ -33,7 +33,6 @@ import json
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # the command's layers load when it runs: `mechsing --help` stays fast
@@ -42,14 +41,14 @@ if TYPE_CHECKING:  # the command's layers load when it runs: `mechsing --help` s
 NAME = "sweep"
 HELP = "locate singularities along a path or over a grid of joint values or poses"
 
-#: the formats, and the extensions of -o that choose them when --format is not given
+#: the formats it writes (the first the default; -o's extension chooses one:
+#: :mod:`mechsing.cli.output`)
 FORMATS = ("text", "json", "csv", "md")
-_BY_EXTENSION = {".json": "json", ".csv": "csv", ".txt": "text", ".md": "md"}
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("file", metavar="FILE", help="mechanism file (YAML or JSON), URDF or MJCF")
-    from mechsing.cli import options
+    from mechsing.cli import options, output
 
     options.add_vary_option(p, True, "what the sweep varies")
     options.add_from_option(
@@ -67,14 +66,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "float or mp:N (the measures are always float)",
     )
     options.add_time_limit_option(p)
-    p.add_argument(
-        "--format",
-        choices=FORMATS,
-        default=None,
-        help="text (default), json, csv or md (with --loop); with -o and no --format, from "
-        "OUT's extension",
-    )
-    p.add_argument("-o", "--output", metavar="OUT", help="write to OUT instead of standard output")
+    output.add_output_options(p, FORMATS, "the result (md: with --loop)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument(
         "--workers",
@@ -160,18 +152,10 @@ def _timeout(text: str) -> float:
     return x
 
 
-def output_format(fmt: str | None, out: str | None) -> str:
-    """The format asked for, else the one OUT's extension names, else text."""
-    if fmt:
-        return fmt
-    if out:
-        return _BY_EXTENSION.get(Path(out).suffix.lower(), "text")
-    return "text"
-
-
 def run(args: argparse.Namespace) -> int:
     from mechsing.cli import load_mechanism
     from mechsing.cli.options import check_shared, warn_varies, with_sweep_load
+    from mechsing.cli.output import output_format
     from mechsing.errors import UserError, working_on
     from mechsing.sweeps.run import MAX_CLASSIFIED, SweepRun
 
@@ -182,7 +166,7 @@ def run(args: argparse.Namespace) -> int:
             raise UserError("--loop follows the rectangle of two ranges: give two --vary")
         if args.loop and (args.workers or args.scheduler):
             raise UserError("--loop is one path per mode: it is not distributed (no --workers)")
-        fmt = output_format(args.format, args.output)
+        fmt = output_format(args.format, args.output, FORMATS, NAME)
         if args.loop and fmt == "csv":
             raise UserError("--loop writes text, json or md (not csv)")
         if fmt == "md" and not args.loop:
