@@ -144,19 +144,8 @@ def ur5() -> None:
     )
 
 
-SCARA = """
-mechanism: scara
-bodies: [ground, arm1, arm2, quill, tool]
-joints:
-  - {name: J1, type: R, between: [ground, arm1], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: J2, type: R, between: [arm1, arm2], axis: [0, 0, 1], point: ["0.4", 0, 0]}
-  - {name: J3, type: P, between: [arm2, quill], axis: [0, 0, 1]}
-  - {name: J4, type: R, between: [quill, tool], axis: [0, 0, 1], point: ["0.65", 0, 0]}
-output: {body: tool, point: ["0.65", 0, "-0.1"]}
-configurations:
-  reference: {}
-  target: {pose: {position: ["0.3", "0.5", "-0.2"], rotation_vector: [0, 0, 1.1]}}
-"""
+#: a SCARA at a target pose (the file tests/test_modes_general.py solves too)
+SCARA = ROOT / "tests" / "data" / "scara_at_a_pose.yaml"
 
 
 def general() -> None:
@@ -171,18 +160,15 @@ def general() -> None:
     from mechsing.assembly.given import read_given
     from mechsing.numeric import parse_precision
 
-    with tempfile.TemporaryDirectory() as tmp:
-        scara = Path(tmp) / "scara.yaml"
-        scara.write_text(SCARA)
-        cases = [
-            ("Bennett 4R, J1 = 1 rad", load(ROOT / "examples" / "bennett.yaml"), "q1-1rad"),
-            (
-                "spherical four-bar, A = 60 deg",
-                load(ROOT / "examples" / "spherical_4r.yaml"),
-                "crank-60",
-            ),
-            ("SCARA at a pose", load(scara), "target"),
-        ]
+    cases = [
+        ("Bennett 4R, J1 = 1 rad", load(ROOT / "examples" / "bennett.yaml"), "q1-1rad"),
+        (
+            "spherical four-bar, A = 60 deg",
+            load(ROOT / "examples" / "spherical_4r.yaml"),
+            "crank-60",
+        ),
+        ("SCARA at a pose", load(SCARA), "target"),
+    ]
     for label, mech, config in cases:
         with mpmath.workdps(50):
             given = read_given(mech, config, parse_precision("float"), 50, 1e-9)

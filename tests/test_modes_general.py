@@ -159,25 +159,12 @@ def test_a_target_outside_the_arms_subgroup_is_refused_naming_it(tmp_path: Path)
         assert "angle about the normal" in err
 
 
-SCARA = """
-mechanism: scara
-bodies: [ground, arm1, arm2, quill, tool]
-joints:
-  - {name: J1, type: R, between: [ground, arm1], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: J2, type: R, between: [arm1, arm2], axis: [0, 0, 1], point: ["0.4", 0, 0]}
-  - {name: J3, type: P, between: [arm2, quill], axis: [0, 0, 1]}
-  - {name: J4, type: R, between: [quill, tool], axis: [0, 0, 1], point: ["0.65", 0, 0]}
-output: {body: tool, point: ["0.65", 0, "-0.1"]}
-configurations:
-  reference: {}
-  target: {pose: {position: ["0.3", "0.5", "-0.2"], rotation_vector: [0, 0, 1.1]}}
-"""
+#: a SCARA at a target pose (the file benchmarks/modes.py times too)
+SCARA = ROOT / "tests" / "data" / "scara_at_a_pose.yaml"
 
 
-def test_scara_at_a_target_has_the_two_postures_of_its_closed_form(tmp_path: Path) -> None:
-    f = tmp_path / "scara.yaml"
-    f.write_text(SCARA)
-    doc = _modes([str(f), "--config", "target"])
+def test_scara_at_a_target_has_the_two_postures_of_its_closed_form() -> None:
+    doc = _modes([str(SCARA), "--config", "target"])
     expected = [
         np.array([q1, q2, -0.1, 1.1 - q1 - q2]) for q1, q2 in _two_link(0.3, 0.5, 0.4, 0.25)
     ]
