@@ -46,7 +46,7 @@ def add_output_options(p: argparse.ArgumentParser, formats: Sequence[str], what:
         choices=formats,
         default=None,
         help=f"{_either(formats)} (default {formats[0]}); with -o and no --format, from OUT's "
-        f"extension ({', '.join(_extensions(formats))}; any other: {formats[0]})",
+        f"extension ({', '.join(_extensions(formats))}; one that names no format: {formats[0]})",
     )
     p.add_argument(
         "-o", "--output", metavar="OUT", help=f"write {what} to OUT instead of standard output"
