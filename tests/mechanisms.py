@@ -15,6 +15,9 @@
   on a coordinate line in the drawn pose (the condition and serial-finding tests).
 * :data:`NON_GRASHOF_ROCKER`, :data:`PLANAR_3R_POINT`: mechanisms several test modules use
   (one text each, a test adding its own configurations).
+* :data:`FOURBAR_JOINTS`, :data:`PARALLELOGRAM_JOINTS`, :data:`ARM_2R_JOINTS`,
+  :data:`TWO_LEAVES`: bodies and joints several test modules use, each module adding its
+  name, inputs, masses and configurations.
 """
 
 from __future__ import annotations
@@ -579,4 +582,42 @@ output: {body: l2, point: [1.5, 0, 0]}
 configurations:
   bent: {A: 0.3, B: 0.9, load: {force: [1, -2, 0]}}
   straight: {A: 0.3, B: 0}
+"""
+
+#: the README's four-bar (examples/fourbar.yaml, in metres): its bodies and joints only, a
+#: test adding its name, inputs, output, masses and configurations
+FOURBAR_JOINTS = """\
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [1, 0, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
+  - {name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [4, 0, 0]}
+"""
+
+#: examples/parallelogram.yaml's bodies and joints (A (0, 0), B (0, 1), C (2, 1), D (2, 0))
+PARALLELOGRAM_JOINTS = """\
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [0, 1, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [2, 1, 0]}
+  - {name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [2, 0, 0]}
+"""
+
+#: a planar 2R arm about z (shoulder A at the origin, elbow B at (1, 0, 0)): bodies and
+#: joints only (the dynamics tests add the masses)
+ARM_2R_JOINTS = """\
+bodies: [ground, upper, fore]
+joints:
+  - {name: A, type: R, between: [ground, upper], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [upper, fore], axis: [0, 0, 1], point: [1, 0, 0]}
+"""
+
+#: a tree of two links hinged on the ground (no loop, two leaves: no output by default)
+TWO_LEAVES = """\
+bodies: [ground, a, b]
+joints:
+  - {name: A, type: R, between: [ground, a], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [ground, b], axis: [0, 0, 1], point: [1, 0, 0]}
 """

@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from tests.cli import run_cli
+from tests.mechanisms import FOURBAR_JOINTS
 
 WRIST = """mechanism: zyz-wrist
 bodies: [g, a, b, c]
@@ -19,16 +20,11 @@ configurations:
 {configs}
 """
 
-FOURBAR = """mechanism: four-bar
-bodies: [ground, crank, coupler, rocker]
-joints:
-  - {{name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}}
-  - {{name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [1, 0, 0]}}
-  - {{name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}}
-  - {{name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [4, 0, 0]}}
-configurations:
-{configs}
-"""
+FOURBAR = (
+    "mechanism: four-bar\n"
+    + FOURBAR_JOINTS.replace("{", "{{").replace("}", "}}")
+    + "configurations:\n{configs}\n"
+)
 
 
 def _run(tmp_path: Path, text: str, *args: str) -> tuple[int, str, str]:

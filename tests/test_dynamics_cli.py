@@ -14,14 +14,13 @@ import numpy as np
 import pytest
 
 from tests.cli import ROOT, run_cli
+from tests.mechanisms import ARM_2R_JOINTS
 from tests.reference.lagrangian import PlanarArm
 
-ARM = """\
-mechanism: planar-2r
-bodies: [ground, upper, fore]
-joints:
-  - {name: A, type: R, between: [ground, upper], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [upper, fore], axis: [0, 0, 1], point: [1, 0, 0]}
+ARM = (
+    "mechanism: planar-2r\n"
+    + ARM_2R_JOINTS
+    + """\
 inputs: [A, B]
 mass:
   upper: {kg: 2, centre: [0.5, 0, 0], inertia: [0.01, 0.17, 0.17, 0, 0, 0]}
@@ -30,6 +29,7 @@ gravity: [0, -9.81, 0]
 configurations:
   bent: {A: 0.3, B: 0.9}
 """
+)
 REFERENCE = PlanarArm([1, 0.5], [2, 1], [0.5, 0.25], [0.17, 0.02], gravity=(0, -9.81))
 
 

@@ -16,16 +16,13 @@ import sympy as sp
 
 import mechsing
 from mechsing.model import loads
+from tests.mechanisms import FOURBAR_JOINTS
 from tests.reference.fourbar import FourBar
 
-FOURBAR = """\
-mechanism: four-bar
-bodies: [ground, crank, coupler, rocker]
-joints:
-  - {name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [1, 0, 0]}
-  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
-  - {name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [4, 0, 0]}
+FOURBAR = (
+    "mechanism: four-bar\n"
+    + FOURBAR_JOINTS
+    + """\
 inputs: [INPUT]
 mass:
   crank: {kg: 1, centre: [0.5, 0, 0], inertia: [0.01, 0.09, 0.09, 0, 0, 0]}
@@ -35,6 +32,7 @@ gravity: [0, -9.81, 0]
 configurations:
 CONFIGS
 """
+)
 REFERENCE = FourBar(
     {"crank": (1, (0.5, 0), 0.09), "coupler": (2, (2, 1), 1.3), "rocker": (1.5, (3.5, 1), 0.6)},
     (0, sp.Rational(-981, 100)),

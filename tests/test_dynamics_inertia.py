@@ -14,20 +14,19 @@ from mechsing.errors import MechanismError
 from mechsing.model import loads
 from mechsing.numeric import to_float
 from mechsing.reader import mechanism_from_text
+from tests.mechanisms import ARM_2R_JOINTS
 
-ARM = """\
-mechanism: arm
-units: {length: LEN}
-bodies: [ground, upper, fore]
-joints:
-  - {name: A, type: R, between: [ground, upper], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [upper, fore], axis: [0, 0, 1], point: [1, 0, 0]}
+ARM = (
+    "mechanism: arm\nunits: {length: LEN}\n"
+    + ARM_2R_JOINTS
+    + """\
 inputs: [A, B]
 output: {body: fore}
 mass:
   upper: {kg: 2, centre: [0.5, 0, 0], inertia: INERTIA}
   fore: {kg: 1}
 """
+)
 
 
 def _arm(inertia: str, length: str = "m", gravity: str = "") -> object:

@@ -51,6 +51,7 @@ from tests.cli import run_cli, run_cli_subprocess
 from tests.mechanisms import (
     EXAMPLES,
     LENGTH_COORDS,
+    PARALLELOGRAM_JOINTS,
     PUBLISHED,
     SCALES,
     all_axis_points_at_origin,
@@ -439,19 +440,17 @@ def test_exact_refuses_the_stewart_rotation_promptly() -> None:
 # ============================================================================ 2. joints near pi
 
 #: examples/parallelogram.yaml geometry: A (0, 0), B (0, 1), C (2, 1), D (2, 0)
-PARALLELOGRAM = """mechanism: parallelogram-near-pi
-bodies: [ground, crank, coupler, rocker]
-joints:
-  - {name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [0, 1, 0]}
-  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [2, 1, 0]}
-  - {name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [2, 0, 0]}
+PARALLELOGRAM = (
+    "mechanism: parallelogram-near-pi\n"
+    + PARALLELOGRAM_JOINTS
+    + """\
 inputs: [A]
 output: {body: coupler}
 configurations:
   reference: {}
   three-quarter: {A: "3*pi/4", B: "-3*pi/4", C: "3*pi/4", D: "-3*pi/4"}
 """
+)
 #: crank angle phi (expression) of each configuration on the parallelogram branch
 NEAR_PI = {
     "at-pi": "pi",

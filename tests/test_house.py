@@ -5,6 +5,8 @@
 * the reference implementation (tests/reference/) imports nothing from mechsing, directly or
   through another module of tests/;
 * hypothesis strategies are defined in tests/strategies.py only;
+* no mechanism (its units, bodies and joints) is pasted in two places of tests/: one home,
+  tests/mechanisms.py (or a file), each test adding its own inputs and configurations;
 * no file of the project (README, docs, examples, catalog, mechsing, tests, benchmarks, .ci)
   points at documents outside it: every rule a docstring or comment relies on is stated there,
   or named by the README section or the published source that states it.
@@ -204,3 +206,52 @@ def test_no_tolerance_is_a_default_argument_outside_numeric() -> None:
             continue
         bad += [f"{path.relative_to(ROOT)}: {d}" for d in tolerance_defaults(path.read_text())]
     assert not bad, "pass the tolerance from mechsing.numeric (or a named setting): " + str(bad)
+
+
+def mechanism_texts(source: str) -> list[tuple[int, str]]:
+    """(line, the bodies and joints as read) of every string in ``source`` that reads as a
+    mechanism file (a YAML mapping with ``bodies`` and ``joints``); a template that does not
+    read as YAML (braces to fill) is not one."""
+    import json
+
+    import yaml
+
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        if not (isinstance(node, ast.Constant) and isinstance(node.value, str)):
+            continue
+        if "bodies" not in node.value or "joints" not in node.value:
+            continue
+        try:
+            doc = yaml.safe_load(node.value)
+        except yaml.YAMLError:
+            continue
+        if isinstance(doc, dict) and "bodies" in doc and "joints" in doc:
+            key = {k: doc.get(k) for k in ("units", "bodies", "joints")}
+            found.append((node.lineno, json.dumps(key, sort_keys=True, default=str)))
+    return found
+
+
+def test_the_text_search_finds_a_planted_pair() -> None:
+    joints = (
+        "bodies: [g, a]\\njoints:\\n  - {name: A, type: R, between: [g, a], axis: [0, 0, 1]}\\n"
+    )
+    planted = (
+        f'X = "mechanism: x\\n{joints}"\nY = "{joints}inputs: [A]\\n"\nZ = "bodies and joints"\n'
+    )
+    (a, ka), (b, kb) = mechanism_texts(planted)
+    assert (a, b) == (1, 2) and ka == kb
+
+
+def test_no_mechanism_is_pasted_twice_in_the_tests() -> None:
+    """A mechanism several test modules use (its units, bodies and joints) is written once, in a
+    helper module (tests/mechanisms.py) or a file (examples/, tests/data/), and each test adds
+    its name, inputs, masses and configurations to it."""
+    seen: dict[str, list[str]] = {}
+    for path in sorted(TESTS.rglob("*.py")):
+        if "reference" in path.relative_to(TESTS).parts:
+            continue  # the independent code states its own
+        for line, key in mechanism_texts(path.read_text(encoding="utf-8")):
+            seen.setdefault(key, []).append(f"{path.relative_to(ROOT)}:{line}")
+    pasted = [places for places in seen.values() if len(places) > 1]
+    assert not pasted, "give these texts one home in tests/mechanisms.py: " + str(pasted)

@@ -31,6 +31,7 @@ from mechsing.cli import exit_status
 from mechsing.kinematics import Closer, ClosureError, KinematicModel
 from mechsing.model import load, loads
 from mechsing.numeric import MAX_JOINT_VALUE
+from tests.mechanisms import FOURBAR_JOINTS
 from tests.reference.files import Spec
 from tests.reference.kinematics import (
     KINDS,
@@ -750,14 +751,10 @@ def test_finer_steps_reach_the_same_solution():
 # ---------------------------------------------------------------------------
 # 2c. fully given non-closing configurations, underdetermined configurations
 
-FOURBAR_NOT_CLOSING = """\
-mechanism: four-bar
-bodies: [ground, crank, coupler, rocker]
-joints:
-  - {name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [1, 0, 0]}
-  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
-  - {name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [4, 0, 0]}
+FOURBAR_NOT_CLOSING = (
+    "mechanism: four-bar\n"
+    + FOURBAR_JOINTS
+    + """\
 inputs: [A]
 output: {body: rocker}
 configurations:
@@ -765,6 +762,7 @@ configurations:
   crank-30: {A: 0.5235987755982988}
   wrong: {A: 0.5, B: -0.7, C: 0.1, D: 0.1}
 """
+)
 
 
 def test_fully_given_configuration_that_does_not_close_is_an_error():

@@ -17,20 +17,13 @@ from mechsing.model import (
     load,
     loads,
 )
+from tests.mechanisms import FOURBAR_JOINTS, TWO_LEAVES
 
 DATA = Path(__file__).parent / "data"
 pi = sympy.pi
 R = sympy.Rational
 
-FOURBAR = """
-mechanism: four-bar
-bodies: [ground, crank, coupler, rocker]
-joints:
-  - {name: A, type: R, between: [ground, crank],   axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [crank, coupler],  axis: [0, 0, 1], point: [1, 0, 0]}
-  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, 2, 0]}
-  - {name: D, type: R, between: [rocker, ground],  axis: [0, 0, 1], point: [4, 0, 0]}
-"""
+FOURBAR = "\nmechanism: four-bar\n" + FOURBAR_JOINTS
 
 
 def test_fourbar_mm_deg():
@@ -152,12 +145,7 @@ def test_serial_mixed_units_u_joint_and_displacements():
 
 
 def test_tree_without_unique_leaf_has_no_output():
-    m = loads("""
-bodies: [ground, a, b]
-joints:
-  - {name: A, type: R, between: [ground, a], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [ground, b], axis: [0, 0, 1], point: [1, 0, 0]}
-""")
+    m = loads(TWO_LEAVES)
     assert m.output is None
     assert m.legs == ()
 

@@ -17,6 +17,7 @@ import pytest
 import yaml
 
 from tests.cli import run_cli
+from tests.mechanisms import TWO_LEAVES
 from tests.reference.files import MechanismFile
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -283,12 +284,7 @@ def test_a_joint_named_pose_is_refused(tmp_path):
 
 def test_pose_needs_an_output(tmp_path):
     path = tmp_path / "no_output.yaml"
-    path.write_text(
-        "bodies: [ground, a, b]\njoints:\n"
-        "  - {name: A, type: R, between: [ground, a], axis: [0, 0, 1], point: [0, 0, 0]}\n"
-        "  - {name: B, type: R, between: [ground, b], axis: [0, 0, 1], point: [1, 0, 0]}\n"
-        "configurations:\n  c: {pose: {position: [0, 0, 0]}}\n"
-    )
+    path.write_text(TWO_LEAVES + "configurations:\n  c: {pose: {position: [0, 0, 0]}}\n")
     run = run_cli(["analyze", path])
     assert run.status == 2 and "no output" in run.err and "output: {body:" in run.err
 

@@ -25,7 +25,7 @@ import pytest
 from mechsing.model.expressions import written_digits
 from mechsing.numeric import RESOLUTION_MIN_DIGITS, data_resolution
 from tests.cli import ROOT, cli_json, run_cli
-from tests.mechanisms import NON_GRASHOF_ROCKER
+from tests.mechanisms import NON_GRASHOF_ROCKER, PARALLELOGRAM_JOINTS
 
 GEOMETRY = """\
 mechanism: offset-slider-crank
@@ -207,19 +207,16 @@ def test_an_input_beyond_its_limit_is_named_in_the_file_units(tmp_path: Path) ->
     assert f"A is {27.6149 - limit:.3g} deg beyond its limit at about A = {limit:.3f} deg" in err
 
 
-PARALLELOGRAM = """\
-mechanism: parallelogram
-bodies: [ground, crank, coupler, rocker]
-joints:
-  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: R, between: [crank, coupler], axis: [0, 0, 1], point: [0, 1, 0]}
-  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [2, 1, 0]}
-  - {name: D, type: R, between: [rocker, ground], axis: [0, 0, 1], point: [2, 0, 0]}
+PARALLELOGRAM = (
+    "mechanism: parallelogram\n"
+    + PARALLELOGRAM_JOINTS
+    + """\
 inputs: [A]
 output: {body: rocker}
 configurations:
   flat: {A: -1.57079632679490}
 """
+)
 
 
 def test_auto_keeps_float_when_the_written_decimals_do_not_close_at_50_digits(
