@@ -10,6 +10,9 @@
 * :mod:`~mechsing.kinematics.protocol`: :class:`ClosureModel`, what closure and Newton
   ask of a model (a :class:`KinematicModel`, or a pose model,
   :mod:`~mechsing.kinematics.pose`);
+* :mod:`~mechsing.kinematics.plans`: :class:`~.plans.ModelPlans`, what depends only on a
+  model (its tree's order, chains, the singularity tests' plans), one object per model,
+  made with it;
 * :mod:`~mechsing.kinematics.forward`: the forward kinematics (product of exponentials):
   poses and current screws of one configuration or a batch (the analysis and the
   scanner), the serial fast Jacobian;
