@@ -217,7 +217,6 @@ class Arc:
         beyond that the swept value moves forward again: the next sample it reaches
         (modulo 2 pi for a revolute angle) and its configuration, with the far fold."""
         h = SWEEP_ARC_STEP
-        z = zf
         if self.fold_tangent is not None:
             # on along the curve the way it came into the fold (the kernel direction
             # nearest it where several chains reach their limit there together)
@@ -229,9 +228,18 @@ class Arc:
             if tau is None:
                 return None
             # orient along the curve away from where the path came from
-            probe = self.step(z, tau, h)
+            probe = self.step(zf, tau, h)
             if probe is not None and (probe[self.col] - zf[self.col]) * self.direction > 0:
                 tau = -tau
+        # the turn onto the other assembly mode (:func:`~.folds.leave_fold`, as a start
+        # at a fold turns): the swept value moved back by so little that the joints move
+        # about _OFF_SINGULAR_STEP along tau
+        z = self._turned(zf, tau)
+        if z is None:
+            return None
+        tau = self.tangent(z, tau)
+        if tau is None:
+            return None
         passed = False
         for _ in range(_ARC_BUDGET):
             out = self._advance(z, tau, h)
@@ -270,6 +278,18 @@ class Arc:
             h = min(2 * h, _ARC_LONGEST)
         self.why = "the curve past the limit does not come back within the range"
         return None
+
+    def _turned(self, zf: np.ndarray, tau: np.ndarray) -> np.ndarray | None:
+        """The point of the curve past the fold zf along its tangent tau there (free
+        coordinates), by the engine's one turning at a fold (:func:`~.folds.leave_fold`)."""
+        target = np.array(zf, dtype=float)
+        target[self.col] -= self.direction * _OFF_SINGULAR_STEP**2 * self.pb.scale(self.col)
+        toward = np.zeros(self.pb.n)
+        toward[self.free] = tau
+        _, z = leave_fold(self.cm, zf, target, self.pb.given, 1.0, toward)
+        if z is None:
+            self.why = "the path's curve could not be turned at the limit of travel"
+        return z
 
     def _turn_back(self, z: np.ndarray, tau: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
         self.direction = -self.direction
