@@ -8,8 +8,9 @@ go on, a path follows its curve: a fold of the swept value (a limit of its trave
 centre, the end of a rocker's swing, a :class:`~.folds.Fold`) is where the tangent's
 swept component changes sign, located by the crossing locator on that component
 (:func:`~.crossing.locate_crossing`); past it the curve comes back on the other assembly
-mode (:meth:`Arc.other_side`) to its next fold, after which the swept value moves forward
-again (modulo 2 pi for a revolute angle).
+mode (:meth:`Arc.other_side`: turned onto it by the engine's one turning at a fold,
+:func:`~.folds.leave_fold`, then followed) to its next fold, after which the swept value
+moves forward again (modulo 2 pi for a revolute angle).
 """
 
 from __future__ import annotations
@@ -213,7 +214,8 @@ class Arc:
     def other_side(
         self, zf: np.ndarray, values: np.ndarray, last: int
     ) -> tuple[Fold, int, np.ndarray] | None:
-        """Past the fold at zf, the curve on the other assembly mode up to its next fold;
+        """Past the fold at zf, the curve on the other assembly mode (turned onto by
+        :func:`~.folds.leave_fold` along the way the path came) up to its next fold;
         beyond that the swept value moves forward again: the next sample it reaches
         (modulo 2 pi for a revolute angle) and its configuration, with the far fold."""
         h = SWEEP_ARC_STEP
