@@ -46,6 +46,8 @@ _FUNCTIONS = {
     "scan": ("mechsing.sweeps.scan", "scan"),
     "sweep": ("mechsing.sweeps", "sweep"),
     "cusps": ("mechsing.assembly.cusps", "cusps"),
+    # the frozen closed configuration analyze, modes and sweep hand on
+    "ClosedValue": ("mechsing.kinematics.closed", "ClosedValue"),
 }
 _MODULES = ("errors", "lie", "numeric", "subgroups", "model", "kinematics", "screws", "singularity")
 

@@ -111,6 +111,25 @@ def test_no_import_cycle() -> None:
     assert cycles == []
 
 
+def test_statics_sweeps_and_assembly_are_layers_of_their_own_without_a_cycle() -> None:
+    """Issue 42: statics, sweeps and assembly each in a layer no other of the three
+    shares (sweeps above both, which import no sweeps module), and no cycle between the
+    packages themselves (statics.along once imported sweeps while sweeps imported statics:
+    a cycle the shared layer hid)."""
+    layers = {p: _layer(f"mechsing.{p}") for p in ("statics", "sweeps", "assembly")}
+    assert len(set(layers.values())) == 3
+    assert layers["sweeps"] > max(layers["statics"], layers["assembly"])
+    g = _graph()
+    packages = nx.DiGraph()
+    for a, b in g.edges:
+        pa, pb = (m.split(".")[1] if "." in m else m for m in (a, b))
+        if pa != pb:
+            packages.add_edge(pa, pb)
+    assert list(nx.simple_cycles(packages)) == []
+    assert not [b for b in packages.successors("statics") if b in ("sweeps", "assembly")]
+    assert not [b for b in packages.successors("assembly") if b in ("sweeps", "statics")]
+
+
 def test_the_reader_sees_what_the_test_reads() -> None:
     """The walk finds imports inside functions, relative imports and 'from x import module'."""
     g = _graph()

@@ -16,6 +16,7 @@ from mechsing.analysis import contract
 from mechsing.analysis.describe import LegDescription, OutputMotion
 from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
 from mechsing.analysis.resolution import DataResolution
+from mechsing.kinematics.closed import ClosedValue
 from mechsing.model import Mechanism
 from mechsing.numeric import Margin, Precision
 from mechsing.singularity.findings import (
@@ -223,6 +224,10 @@ class ConfigurationResult:
     #: the statics under the configuration's load (:class:`mechsing.statics.Kinetostatics`;
     #: JSON ``efforts`` and ``kinetostatics``), None without a load
     kinetostatics: Any = None
+    #: the configuration analysed, as a frozen value: its coordinates at the digits of the
+    #: precision that decided, and where it came from (``given``: the file's; ``located``,
+    #: ``mode``: a point :func:`~mechsing.analysis.analyze_found` was handed); not in the JSON
+    point: ClosedValue | None = field(default=None, compare=False, repr=False)
 
     @property
     def singular(self) -> bool | None:

@@ -30,6 +30,7 @@ from mechsing.analysis.results import (
 )
 from mechsing.errors import TimeLimitExceeded, UserError, working_on
 from mechsing.kinematics import Closer, ConfigurationError, KinematicModel
+from mechsing.kinematics.closed import ClosedValue, digits_of
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, float_drop_is_real, parse_precision, to_float
 from mechsing.reader import read_mechanism
@@ -106,9 +107,11 @@ def analyze_found(
 ) -> list[ConfigurationResult]:
     """The analysis of configurations found numerically in float (a sweep's located
     singularities): ``found`` maps a name to every joint coordinate (SI, radians, the
-    mechanism's coordinate order), closed to float's tolerance.  ``located=False``: the
-    values are data known to their digits (mpmath numbers, every assembly mode refined to
-    50 digits or more), analysed as a file's values are.
+    mechanism's coordinate order), closed to float's tolerance, or to a
+    :class:`~mechsing.kinematics.closed.ClosedValue` (whose ``source`` and ``certified``
+    each result's ``point`` keeps).  ``located=False``: the values are data known to
+    their digits (mpmath numbers, every assembly mode refined to 50 digits or more),
+    analysed as a file's values are.
 
     Their values are float data: at mp:N (and when auto re-decides an undecided rank at
     mp:50) each is first projected onto closure at N digits (the inputs kept), as a
@@ -131,7 +134,8 @@ def analyze_found(
     configurations = dict(mechanism.configurations)
     for name, q in found.items():
         values: dict[str, list[float]] = {}
-        for (joint, _i), x in zip(coords, q, strict=True):
+        numbers = q.q if isinstance(q, ClosedValue) else q
+        for (joint, _i), x in zip(coords, numbers, strict=True):
             # N-digit values stay as they are (a point located again at mp:N)
             values.setdefault(joint, []).append(x if isinstance(x, mpmath.mpf) else float(x))
         configurations[name] = Configuration(
@@ -144,7 +148,18 @@ def analyze_found(
     with working_on(file=mech.path or mech.name):
         data = Precision("float") if located else None
         res = _analyze(mech, list(found), prec, time_limit, None, data, located=located)
-    return list(res.configurations)
+    return [_handed_on(r, found.get(r.name)) for r in res.configurations]
+
+
+def _handed_on(res: ConfigurationResult, given: Any) -> ConfigurationResult:
+    """The result of a configuration handed to :func:`analyze_found` as a
+    :class:`ClosedValue`: its ``point`` (the coordinates analysed, at their digits)
+    keeps the value's source and certification (an error entry: the value itself)."""
+    if not isinstance(given, ClosedValue):
+        return res
+    if res.point is None:
+        return replace(res, point=given)
+    return replace(res, point=given.at(res.point.q, res.point.digits, res.name))
 
 
 def _analyze(
@@ -504,6 +519,7 @@ def _analyze_one_in_context(
         classification=found,
         pose=given_pose(mech, name),
         output_motion=motion,
+        point=ClosedValue(tuple(q), digits_of(prec), "given", name),
     )
     doubtful = _doubtful_drops(
         res.singular, res.decisions, res.closure_residual or 0.0, model.length_scale

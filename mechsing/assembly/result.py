@@ -16,6 +16,7 @@ import numpy as np
 from mechsing.assembly.chains import Found
 from mechsing.assembly.given import closure_from_start
 from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
+from mechsing.kinematics.closed import FLOAT_DIGITS, ClosedValue
 from mechsing.model import Mechanism
 from mechsing.numeric import MODE_MATCH_DISTANCE, Precision
 
@@ -41,6 +42,9 @@ class Mode:
     outside_limits: list[str]
     output_pose: list[list[float]] | None
     equivalent_solutions: int = 1
+    #: the mode as found, a frozen value (source ``mode``, certified or not, at the digits
+    #: it was refined to): what ``sweep(start=mode)`` starts from; not in the JSON
+    point: ClosedValue | None = field(default=None, compare=False, repr=False)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -128,12 +132,17 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
     coords = mech.coordinates()
     rows = sorted(found.rows, key=lambda row: _order(mech, row[0]))
     names = {f"{config}#mode{k + 1}": q for k, (q, _ok) in enumerate(rows)}
+    carried = prec.mode in ("mp", "auto")
     with mpmath.workdps(dps):  # the modes' digits carried (mpf() rounds to the context's)
         data = {
-            n: (
-                [mpmath.mpf(x) for x in q] if prec.mode in ("mp", "auto") else [float(x) for x in q]
+            n: ClosedValue(
+                [mpmath.mpf(x) for x in q] if carried else [float(x) for x in q],
+                dps if carried else FLOAT_DIGITS,
+                "mode",
+                n,
+                bool(ok),
             )
-            for n, q in names.items()
+            for n, (q, ok) in zip(names, rows, strict=True)
         }
     # the modes are data to dps digits (not points float located): analysed as a file's
     analysed = analyze_found(mech, data, prec, located=prec.mode == "float") if data else []
@@ -166,6 +175,7 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
                 outside,
                 None if pose is None else np.asarray(pose, dtype=float).tolist(),
                 found.equivalent,
+                data[f"{config}#mode{k + 1}"],
             )
         )
     return ModesResult(

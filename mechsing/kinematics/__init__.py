@@ -29,6 +29,7 @@
 
 from mechsing.errors import ClosureError, ConfigurationError, ExactDataError
 from mechsing.kinematics.chains import Chain, path_chain, tree_chain
+from mechsing.kinematics.closed import ClosedValue
 from mechsing.kinematics.closure import ClosedConfiguration, Closer, solve_configuration
 from mechsing.kinematics.model import JointKinematics, KinematicModel, axis_points
 from mechsing.kinematics.newton import NewtonResult, newton_on_group
@@ -37,6 +38,7 @@ from mechsing.kinematics.protocol import ClosureModel
 __all__ = [
     "Chain",
     "ClosedConfiguration",
+    "ClosedValue",
     "ClosureModel",
     "Closer",
     "ClosureError",

@@ -12,8 +12,11 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Any, NamedTuple
 
+import numpy as np
+
 from mechsing.analysis import analyze_found
 from mechsing.analysis.solve import value_text
+from mechsing.kinematics.closed import FLOAT_DIGITS, ClosedValue, digits_of
 from mechsing.numeric import Precision, parse_precision
 from mechsing.sweeps.engine import Sweep
 from mechsing.sweeps.records import Located
@@ -24,7 +27,9 @@ __all__ = ["Classified", "classify_located", "located_texts", "unresolved"]
 class Classified(NamedTuple):
     """The full analyses of located points, in their order: each point's analysis result
     (:class:`~mechsing.analysis.results.ConfigurationResult`), whether it was placed again
-    at N digits first, and the joints it was analysed at."""
+    at N digits first, and the point it was analysed at (a
+    :class:`~mechsing.kinematics.closed.ClosedValue`, source ``located``, at N digits when
+    placed again)."""
 
     results: list[Any]
     moved: list[bool]
@@ -70,7 +75,10 @@ def classify_located(
         # policy: only mp places the points again, at its digits
         again = again_at(p, precision) if precision.mode == "mp" else None
         moved.append(again is not None)
-        points[f"located-{i + 1}"] = p.q if again is None else again
+        name = f"located-{i + 1}"
+        points[name] = ClosedValue(p.q, FLOAT_DIGITS, "located", name)
+        if again is not None:
+            points[name] = points[name].at(again, digits_of(precision))
     results = analyze_found(sweep.mech, points, precision, time_limit)
     if precision.mode == "auto":
         # auto re-decided some points at mp:50 (an undecided float rank): at 50 digits the
@@ -81,16 +89,20 @@ def classify_located(
                 continue
             again = again_at(p, deep)
             if again is not None:
-                res2 = analyze_found(sweep.mech, {f"located-{i + 1}": again}, deep, time_limit)[0]
+                name = f"located-{i + 1}"
+                points[name] = points[name].at(again, digits_of(deep))
+                res2 = analyze_found(sweep.mech, {name: points[name]}, deep, time_limit)[0]
                 results[i] = replace(res2, escalated_for=res.escalated_for)
                 moved[i] = True
-                points[f"located-{i + 1}"] = again
     return Classified(results, moved, list(points.values()))
 
 
 def located_texts(eng: Sweep, q: Any, analysed: Any) -> tuple[Any, Any]:
     """The swept values (None when one is a pose variable) and every joint value of a
-    point found again at N digits, as text at its analysis's N digits."""
+    point found again at N digits (its coordinates, or its
+    :class:`~mechsing.kinematics.closed.ClosedValue`), as text at its analysis's N digits."""
+    if isinstance(q, ClosedValue):
+        q = np.array(q.q, dtype=object)
     prec = parse_precision(analysed.precision)
     joints = tuple(
         (jk.name, tuple(value_text(x, prec) for x in q[jk.columns])) for jk in eng.model.joints

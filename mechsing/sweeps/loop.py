@@ -211,7 +211,8 @@ def follow_loop(run: Any, match: Any = None) -> LoopResult:
             notes += row.stopped or [f"edge {e + 1} of the loop not reached to its end"]
             break
         z = np.asarray(row.Z[-1], dtype=float)
-    classified = classify_located(eng, located, run.prec, run.time_limit).results
+    done = classify_located(eng, located, run.prec, run.time_limit)
+    classified = done.results
     model = eng.model
     listed = tuple(
         LocatedSingularity(
@@ -223,8 +224,9 @@ def follow_loop(run: Any, match: Any = None) -> LoopResult:
             c,
             p.far_side,
             p.edge,
+            point=v,
         )
-        for p, c in zip(located, classified, strict=True)
+        for p, c, v in zip(located, classified, done.points, strict=True)
     )
     found = tuple(
         (

@@ -21,6 +21,7 @@ from mechsing.analysis.contract import finding_class, finding_margin
 from mechsing.analysis.display import quantity, unit_text
 from mechsing.analysis.html import VERDICT_HEADERS, html_table, verdict_row
 from mechsing.analysis.words import finding_label
+from mechsing.kinematics.closed import ClosedValue
 from mechsing.model import Mechanism
 from mechsing.numeric import floored
 from mechsing.sweeps.settings import SWEEP_TIE_RTOL
@@ -103,6 +104,9 @@ class LocatedSingularity:
     unresolved: str | None = None
     values_text: tuple[str, ...] | None = None
     joints_text: tuple[tuple[str, tuple[str, ...]], ...] | None = None
+    #: the point as a frozen value (source ``located``; at N digits when it was placed
+    #: again at mp:N before its analysis); not in the JSON
+    point: ClosedValue | None = field(default=None, compare=False, repr=False)
 
     @property
     def classes(self) -> tuple[str, ...] | None:
@@ -217,6 +221,10 @@ class SweepResult:
     aspects: tuple[Any, ...] = ()
     #: the timed motion along a path (``--duration``: :class:`mechsing.kinetics.timed.TimedSweep`)
     dynamics: Any = field(default=None, repr=False, compare=False)
+    #: where the sweep started, a frozen value: the assembly mode given as ``start`` (its
+    #: own value, source ``mode``) or the start configuration closed (source ``given``);
+    #: not in the JSON
+    start: ClosedValue | None = field(default=None, repr=False, compare=False)
 
     @property
     def grid(self) -> bool:

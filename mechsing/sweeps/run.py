@@ -19,6 +19,7 @@ import numpy as np
 
 from mechsing.analysis.display import angle_floor, floor_for
 from mechsing.errors import UserError, working_on
+from mechsing.kinematics.closed import FLOAT_DIGITS, ClosedValue
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision, parse_precision
 from mechsing.reader import read_mechanism
@@ -170,11 +171,16 @@ class SweepRun:
         #: the number of the assembly mode the sweep starts on (None: the one continuation
         #: reaches from the start configuration)
         self.mode: int | None = None
+        #: where the sweep starts, a frozen value (:class:`~mechsing.kinematics.closed.ClosedValue`):
+        #: the mode's own (source ``mode``), or the start configuration closed (``given``)
+        self.start: ClosedValue = ClosedValue(
+            eng.z0[: eng.model.n], FLOAT_DIGITS, "given", eng.from_config
+        )
         if start is not None:
             from mechsing.sweeps.start import mode_start
 
             with working_on(file=mech.path or mech.name):
-                self.mode, eng.z0 = mode_start(mech, eng, start, modes_found)
+                self.mode, eng.z0, self.start = mode_start(mech, eng, start, modes_found)
         self.tests = eng.tests
         self.generic = {t: int(eng.measures.generic[t]) for t in self.tests}
         L = float(eng.model.length_scale)
@@ -353,6 +359,7 @@ class SweepRun:
                 + ("" if all(moved) else "; the others keep their float values")
             )
         by_id = {id(p): a for p, a in zip(chosen, analysed, strict=True)}
+        point_by_id = {id(p): v for p, v in zip(chosen, at, strict=True)}
         moved_by_id = {id(p): m for p, m in zip(chosen, moved, strict=True)}
         # the points found again at N digits: their joints as text at those digits
         texts = {
@@ -387,6 +394,7 @@ class SweepRun:
                     unresolved_why,
                     values_text,
                     joints_text,
+                    point_by_id.get(id(p), ClosedValue(p.q, FLOAT_DIGITS, "located")),
                 )
             )
         loci = loci_of(self, out) if self.grid else ()
@@ -426,4 +434,5 @@ class SweepRun:
             mode=self.mode,
             aspects=aspects,
             dynamics=self.dynamics,
+            start=self.start,
         )

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mechsing.errors import ClosureError, UserError
+from mechsing.kinematics.closed import FLOAT_DIGITS, ClosedValue
 from mechsing.kinematics.paths.arc import curve_tangent, off_singular
 from mechsing.kinematics.paths.arc import onto_branch as branch_of
 from mechsing.kinematics.paths.problem import Problem
@@ -121,12 +122,14 @@ def onto_branch(
 
 def mode_start(
     mech: Mechanism, eng: Any, start: Any, found: ModesResult | None = None
-) -> tuple[int, np.ndarray]:
-    """The number (its index plus 1, as ``mechsing modes`` numbers them) and the
-    coordinates of the assembly mode a sweep starts on: ``start`` is an item of
-    ``mechsing.modes(mech, from_config).modes`` or its index there (``found``: that
-    result when it is already computed).  A sweep of the output's pose holds the pose,
-    not the inputs, so it has no modes of the inputs to start on (UserError)."""
+) -> tuple[int, np.ndarray, ClosedValue]:
+    """The number (its index plus 1, as ``mechsing modes`` numbers them), the coordinates
+    and the frozen value (:class:`~mechsing.kinematics.closed.ClosedValue`, handed on
+    unchanged) of the assembly mode a sweep starts on: ``start`` is an item of
+    ``mechsing.modes(mech, from_config).modes``, its ``point`` or its index there
+    (``found``: that result when it is already computed).  A sweep of the output's pose
+    holds the pose, not the inputs, so it has no modes of the inputs to start on
+    (UserError)."""
     from mechsing.assembly.api import modes
     from mechsing.assembly.result import Mode, joint_distance
 
@@ -138,15 +141,25 @@ def mode_start(
     if found is None:
         found = modes(mech, eng.from_config, "float")
     listed = found.modes
-    if isinstance(start, bool) or not isinstance(start, int | np.integer | Mode):
+    given = start.point if isinstance(start, Mode) and start.point is not None else start
+    if isinstance(given, ClosedValue) and given.source != "mode":
+        raise UserError(
+            f"start: the value given comes from a {given.source} configuration, not an "
+            "assembly mode; give an item of mechsing.modes(...).modes, its point, or its index"
+        )
+    if isinstance(start, bool) or not isinstance(start, int | np.integer | Mode | ClosedValue):
         raise UserError(
             f"start={start!r}: give an assembly mode (an item of mechsing.modes(...).modes) "
             "or its index"
         )
     coords = mech.coordinates()
     L = float(eng.model.length_scale)
-    if isinstance(start, Mode):
-        q = [float(start.joints[j][i]) for j, i in coords]
+    if isinstance(start, Mode | ClosedValue):
+        q = (
+            list(given.floats())
+            if isinstance(given, ClosedValue)
+            else [float(start.joints[j][i]) for j, i in coords]
+        )
         near = [
             k
             for k, m in enumerate(listed)
@@ -165,7 +178,16 @@ def mode_start(
         if not 0 <= index < len(listed):
             raise mode_out_of_range(index + 1, eng.from_config, len(listed))
     mode = listed[index]
+    value = given if isinstance(given, ClosedValue) else mode.point
+    if value is None:  # a Mode built by hand, without its value
+        value = ClosedValue(
+            [float(mode.joints[j][i]) for j, i in coords],
+            FLOAT_DIGITS,
+            "mode",
+            f"{eng.from_config}#mode{index + 1}",
+            mode.certified,
+        )
     q = np.array([float(mode.joints[j][i]) for j, i in coords])
     z = np.array(eng.z0, dtype=float)
     z[: len(q)] = q
-    return index + 1, z
+    return index + 1, z, value

@@ -8,8 +8,9 @@ go on, a path follows its curve: a fold of the swept value (a limit of its trave
 centre, the end of a rocker's swing, a :class:`~.folds.Fold`) is where the tangent's
 swept component changes sign, located by the crossing locator on that component
 (:func:`~.crossing.locate_crossing`); past it the curve comes back on the other assembly
-mode (:meth:`Arc.other_side`) to its next fold, after which the swept value moves forward
-again (modulo 2 pi for a revolute angle).
+mode (:meth:`Arc.other_side`: turned onto it by the engine's one turning at a fold,
+:func:`~.folds.leave_fold`, then followed) to its next fold, after which the swept value
+moves forward again (modulo 2 pi for a revolute angle).
 """
 
 from __future__ import annotations
@@ -213,11 +214,11 @@ class Arc:
     def other_side(
         self, zf: np.ndarray, values: np.ndarray, last: int
     ) -> tuple[Fold, int, np.ndarray] | None:
-        """Past the fold at zf, the curve on the other assembly mode up to its next fold;
+        """Past the fold at zf, the curve on the other assembly mode (turned onto by
+        :func:`~.folds.leave_fold` along the way the path came) up to its next fold;
         beyond that the swept value moves forward again: the next sample it reaches
         (modulo 2 pi for a revolute angle) and its configuration, with the far fold."""
         h = SWEEP_ARC_STEP
-        z = zf
         if self.fold_tangent is not None:
             # on along the curve the way it came into the fold (the kernel direction
             # nearest it where several chains reach their limit there together)
@@ -229,9 +230,18 @@ class Arc:
             if tau is None:
                 return None
             # orient along the curve away from where the path came from
-            probe = self.step(z, tau, h)
+            probe = self.step(zf, tau, h)
             if probe is not None and (probe[self.col] - zf[self.col]) * self.direction > 0:
                 tau = -tau
+        # the turn onto the other assembly mode (:func:`~.folds.leave_fold`, as a start
+        # at a fold turns): the swept value moved back by so little that the joints move
+        # about _OFF_SINGULAR_STEP along tau
+        z = self._turned(zf, tau)
+        if z is None:
+            return None
+        tau = self.tangent(z, tau)
+        if tau is None:
+            return None
         passed = False
         for _ in range(_ARC_BUDGET):
             out = self._advance(z, tau, h)
@@ -270,6 +280,18 @@ class Arc:
             h = min(2 * h, _ARC_LONGEST)
         self.why = "the curve past the limit does not come back within the range"
         return None
+
+    def _turned(self, zf: np.ndarray, tau: np.ndarray) -> np.ndarray | None:
+        """The point of the curve past the fold zf along its tangent tau there (free
+        coordinates), by the engine's one turning at a fold (:func:`~.folds.leave_fold`)."""
+        target = np.array(zf, dtype=float)
+        target[self.col] -= self.direction * _OFF_SINGULAR_STEP**2 * self.pb.scale(self.col)
+        toward = np.zeros(self.pb.n)
+        toward[self.free] = tau
+        _, z = leave_fold(self.cm, zf, target, self.pb.given, 1.0, toward)
+        if z is None:
+            self.why = "the path's curve could not be turned at the limit of travel"
+        return z
 
     def _turn_back(self, z: np.ndarray, tau: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
         self.direction = -self.direction

@@ -10,11 +10,13 @@ says what the path engine does there:
   of a path just short of a fold, predicted by the square-root law between the points of
   the curve traced to it; :func:`close_to_fold` and :func:`near_fold` ask it for many
   samples or one);
-* **turning** at a fold: :func:`leave_fold` (continuation's start drawn at a fold, left
-  along the kernel of the unknown joints' Jacobian onto the mode that reaches the target);
-  a swept path, whose curve pseudo-arclength follows, turns along it
-  (:meth:`~mechsing.kinematics.paths.arc.Arc.other_side` past a :class:`Fold` it located,
-  :func:`~mechsing.kinematics.paths.arc.off_singular` from a start at one).
+* **turning** at a fold: :func:`leave_fold`, one definition (along the kernel of the
+  unknown joints' Jacobian, the given values moved a little, Newton closing on the side
+  asked for): continuation's start drawn at a fold, a sweep's start at one
+  (:func:`~mechsing.kinematics.paths.arc.off_singular`) and a swept path past a
+  :class:`Fold` it located, onto the other assembly mode
+  (:meth:`~mechsing.kinematics.paths.arc.Arc.other_side`, which then follows the curve
+  by pseudo-arclength).
 """
 
 from __future__ import annotations
@@ -102,22 +104,37 @@ def land_on_fold(
 
 
 def leave_fold(
-    fm: ClosureModel, q0: np.ndarray, qt: np.ndarray, gmask: np.ndarray, t1: float
+    fm: ClosureModel,
+    q0: np.ndarray,
+    qt: np.ndarray,
+    gmask: np.ndarray,
+    t1: float,
+    toward: np.ndarray | None = None,
 ) -> tuple[bool, np.ndarray | None]:
-    """Leave a start ``q0`` that is a fold of the given values (a dead centre, a toggle):
-    whether it is one, and the configuration at ``t1`` of the way to ``qt`` (None when
-    no landing closes).
+    """The turning at a fold, the one definition of the path engine: from ``q0`` at a fold
+    of the given values (a dead centre, a toggle, a limit of a swept value's travel),
+    whether it is one, and the configuration at ``t1`` of the way to ``qt`` on the side
+    of the fold asked for (None when no landing closes there).
 
     At a fold the unknown joints' Jacobian loses one rank, and the closed
     configurations with the given values moved by d lie about sqrt(d) away along its
     kernel k, on both sides (the two assembly modes that meet there) when d points
     into the motion's range, on neither when it points out of it.  Newton from q0
     cannot find them (its linear step has no component along k), but from q0 + e k
-    with e of the order of sqrt(d) it converges: each sign of k is tried at a few
-    such e, the + side first, and a landing is kept when Newton closes and the
-    joints moved off the fold.  (False, None) when the start is not such a fold (the
-    Jacobian keeps its rank, or loses more than one); (True, None) when no landing
-    closes (the target lies beyond the limit the fold is)."""
+    with e of the order of sqrt(d) it converges: a landing is kept when Newton closes
+    and the joints moved off the fold (with ``toward``: on the side of k they were sent
+    to).
+
+    ``toward`` (commensurate rates of every coordinate; None: either side): the side to
+    turn onto, the kernel direction nearest it.  Continuation leaving a start drawn at a
+    fold and a sweep's start at one take either side, the + side of k first; a path that
+    came into a fold along ``toward`` (the curve's tangent there, its swept component
+    zero) turns onto the other assembly mode by going on along it (its fold located by
+    the caller: the direction the Jacobian loses is then its smallest singular vector,
+    and the kernel may have more directions, several chains reaching their limits
+    together).  (False, None) when the start is not such a fold (without ``toward``: the
+    Jacobian keeps its rank, or loses more than one); (True, None) when no landing closes
+    (the target lies beyond the limit the fold is)."""
     free = ~gmask
     if not np.any(free) or not fm.blocks:
         return False, None
@@ -128,27 +145,36 @@ def leave_fold(
     if len(sigma) < int(np.sum(free)) or not sigma[0]:
         return False, None
     rel = sigma / sigma[0]
-    if rel[-1] > CONTINUATION_SINGULAR_RTOL or (
-        len(rel) > 1 and rel[-2] <= CONTINUATION_SINGULAR_RTOL
-    ):
-        return False, None
+    lost = int(np.sum(rel <= CONTINUATION_SINGULAR_RTOL))
+    if toward is None:
+        if lost != 1:
+            return False, None
+        ku, sides = Vt[-1], (1.0, -1.0)
+    else:
+        K = Vt[len(sigma) - max(lost, 1) :]
+        ku = K.T @ (K @ np.asarray(toward, dtype=float)[free])
+        if not np.linalg.norm(ku):
+            return False, None
+        ku, sides = ku / np.linalg.norm(ku), (1.0,)
     k = np.zeros(fm.n)
-    k[free] = Vt[-1]
-    k = fm.float_frame.rates_back(k)
+    k[free] = ku
+    kq = fm.float_frame.rates_back(k)
     qg = q0.copy()
     qg[gmask] = q0[gmask] + t1 * (qt[gmask] - q0[gmask])
     moved = float(np.linalg.norm(fm.float_frame.rates(np.where(gmask, qg - q0, 0.0))))
     if moved == 0.0:
         return False, None
-    for sign in (1.0, -1.0):
+    for sign in sides:
         for size in CONTINUATION_LEAVE_SIZES:
             e = sign * size * math.sqrt(moved)
-            q1 = fm.update(q0, e * k)
+            q1 = fm.update(q0, e * kq)
             ok, qn, _ = correct(fm, q1, qg, gmask, False)
             if not ok:
                 continue
-            off = float(np.linalg.norm(fm.float_frame.rates(fm.difference(qn, q0))))
-            if off > CONTINUATION_LEAVE_OFF * math.sqrt(moved):
+            off = fm.float_frame.rates(fm.difference(qn, q0))
+            if float(np.linalg.norm(off)) > CONTINUATION_LEAVE_OFF * math.sqrt(moved) and (
+                toward is None or float(off @ k) > 0
+            ):
                 return True, qn
     return True, None
 

@@ -13,8 +13,8 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.kinematics.paths.arc import curve_tangent
 from mechsing.kinematics.paths.problem import Problem
+from mechsing.kinematics.paths.steps import closure_matrix, tangent_increment
 from mechsing.kinematics.settings import SWEEP_NODE_CORRECTION, SWEEP_NODE_STEP
 
 __all__ = [
@@ -25,6 +25,9 @@ __all__ = [
     "tangent_step",
 ]
 
+#: unit predictor steps a Problem keeps (by column and configuration; a grid's rows are
+#: started together, each asking once per direction)
+_PREDICTORS_KEPT = 4096
 #: a badly predicted node is tried again in this many halvings of its step
 _NODE_HALVINGS = 3
 
@@ -88,8 +91,7 @@ def _node(
     (the careful continuation then takes it)."""
     bc = pb.batch
     if z_prev is None or z_prev[col] == z[col]:
-        # a first step: the tangent at z (the kernel of the closure Jacobian, no Newton)
-        # predicts it
+        # a first step: the tangent predictor at z (no Newton) predicts it
         zp = _tangent_prediction(pb, z, col, value)
         if zp is not None:
             Q, ok, _ = pb.close_near(zp[None, :], SWEEP_NODE_CORRECTION * pb.comm(zp - z))
@@ -144,9 +146,8 @@ def polynomial_prediction(
 
 
 def _tangent_prediction(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
-    """The point on the tangent of the path's curve at z where coordinate ``col`` is
-    ``value`` (on the group, as :meth:`BatchClosure.update` moves), or None where the
-    tangent is not defined or does not move ``col``."""
+    """The point of the tangent predictor at z where coordinate ``col`` is ``value`` (on
+    the group, as :meth:`BatchClosure.update` moves), or None where it is not finite."""
     d = tangent_step(pb, z, col, value)
     if d is None:
         return None
@@ -154,12 +155,23 @@ def _tangent_prediction(pb: Problem, z: np.ndarray, col: int, value: float) -> n
 
 
 def tangent_step(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarray | None:
-    """The increment along the tangent at z that takes coordinate ``col`` to ``value``
-    (None where the tangent is not defined or does not move ``col``)."""
-    tau = curve_tangent(pb, z, col)
-    if tau is None or tau[col] == 0:
-        return None
-    return pb.cm.float_frame.rates_back(tau * ((value - z[col]) / pb.scale(col) / tau[col]))
+    """The increment of the tangent predictor (:func:`~.steps.tangent_increment`, the one
+    continuation's steps take) at z that takes coordinate ``col`` to ``value``, the other
+    given coordinates held (None where it is not finite).  The predictor is linear in the
+    step: the one of a unit step is kept (in ``pb.predictors``): a row's start asks for it
+    once per direction."""
+    key = (col, np.asarray(z, dtype=float).tobytes())
+    unit = pb.predictors.get(key)
+    if unit is None:
+        z = np.asarray(z, dtype=float)
+        dg = np.zeros(pb.n)
+        dg[col] = pb.scale(col)
+        unit = tangent_increment(pb.cm, closure_matrix(pb.cm, z), dg, pb.given)
+        if len(pb.predictors) >= _PREDICTORS_KEPT:
+            pb.predictors.pop(next(iter(pb.predictors)))
+        pb.predictors[key] = unit
+    d = unit * ((value - float(z[col])) / pb.scale(col))
+    return d if np.all(np.isfinite(d)) else None
 
 
 def tangent_points(pb: Problem, Z: np.ndarray, D: np.ndarray, col: int, values: Any) -> np.ndarray:

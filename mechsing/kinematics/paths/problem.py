@@ -42,6 +42,11 @@ class Problem:
     tangents: dict[tuple[int, bytes], np.ndarray | None] = field(
         default_factory=dict, repr=False, compare=False
     )
+    #: the tangent predictor's unit steps asked last (:func:`~mechsing.kinematics.paths.nodes.tangent_step`
+    #: keeps them), by (column, configuration's bytes)
+    predictors: dict[tuple[int, bytes], np.ndarray] = field(
+        default_factory=dict, repr=False, compare=False
+    )
 
     @property
     def n(self) -> int:

@@ -1,12 +1,14 @@
 """One step of a path in the given coordinates: predict, correct, keep it on its mode.
 
-Owns the step the continuation of a named configuration takes (:func:`correct`: the
-tangent predictor, then damped Newton on the group in the unknown coordinates) and the
+Owns the tangent predictor every path takes (:func:`tangent_increment`), the step the
+continuation of a named configuration takes (:func:`correct`: that predictor, then damped
+Newton on the group in the unknown coordinates) and the
 assembly-mode jump check that accepts it (:func:`same_branch`: a correction small next to
 the predicted step, and near a singularity a step that can be taken back), with what a
 step finds (:class:`StepInfo`, :class:`Corrected`) and the closure Jacobian they read
 (:func:`closure_matrix`).  The sweeps' nodes (:mod:`.nodes`) take the same kind of step
-batched, with the same jump test: a correction bounded by a multiple of the step.
+batched (their first step predicted by the same :func:`tangent_increment`), with the same
+jump test: a correction bounded by a multiple of the step.
 """
 
 from __future__ import annotations
@@ -28,7 +30,14 @@ from mechsing.kinematics.settings import (
 )
 from mechsing.numeric import decide_rank
 
-__all__ = ["Corrected", "StepInfo", "closure_matrix", "correct", "same_branch"]
+__all__ = [
+    "Corrected",
+    "StepInfo",
+    "closure_matrix",
+    "correct",
+    "same_branch",
+    "tangent_increment",
+]
 
 #: largest predicted step of all coordinates together (commensurate norm)
 _MAX_PREDICTED_STEP = 0.15
@@ -103,19 +112,9 @@ def correct(
     # the float stage accepts at float's tolerance (an mp model polishes afterwards)
     tol_final = fm.precision.closure_tolerance(L)
     tol = tol_final if final else max(tol_final, CONTINUATION_STEP_RTOL * L)
-    # predictor: J_u du = -J_g dg at the previous point
-    Js = closure_matrix(fm, q_prev)
+    # predictor: the tangent step at the previous point
     dg = np.where(gmask, qg - q_prev, 0.0)
-    dgs = fm.float_frame.rates(dg)
-    q = q_prev.copy()
-    if np.any(free) and Js.shape[0]:
-        du = damped_least_squares(Js[:, free], -Js[:, gmask] @ dgs[gmask])
-        dus = np.zeros(fm.n)
-        dus[free] = du
-        dus = fm.float_frame.rates_back(dus)
-        q = fm.update(q_prev, np.where(gmask, dg, dus))
-    else:
-        q = fm.update(q_prev, dg)
+    q = fm.update(q_prev, tangent_increment(fm, closure_matrix(fm, q_prev), dg, gmask))
     q[gmask] = qg[gmask]
     predicted = q.copy()
     res = fm.residual_norm(fm.chord_residuals(q))
@@ -162,6 +161,23 @@ def correct(
         info.smin = s[min(rank, len(s)) - 1] if rank else 0.0
         info.underdetermined = rank < int(np.sum(free))
     return Corrected(True, q, info)
+
+
+def tangent_increment(fm: ClosureModel, Js: Any, dg: np.ndarray, gmask: np.ndarray) -> np.ndarray:
+    """The tangent predictor, the one every path of the engine takes: the increment of
+    every coordinate (the model's numbers) that moves the given ones by ``dg`` (zero
+    elsewhere) and the unknown ones by du with J_u du = -J_g dg, the closure Jacobian
+    ``Js`` (commensurate, :func:`closure_matrix`) kept to first order.  du is the damped
+    least-squares solution (minimum norm; damping NEWTON_DAMPING relative to the largest
+    singular value), bounded near a singularity where J_u loses rank."""
+    free = ~gmask
+    dgs = fm.float_frame.rates(dg)
+    if not (np.any(free) and Js.shape[0]):
+        return np.asarray(dg, dtype=float)
+    du = damped_least_squares(Js[:, free], -Js[:, gmask] @ dgs[gmask])
+    dus = np.zeros(fm.n)
+    dus[free] = du
+    return np.where(gmask, dg, fm.float_frame.rates_back(dus))
 
 
 def closure_matrix(fm: ClosureModel, q: np.ndarray) -> Any:
