@@ -133,6 +133,12 @@ def test_similar_3rpr_is_not_cuspidal(tmp_path: Path) -> None:
     assert doc["cuspidal"] is False and doc["cusps"] == []
     assert doc["evidence"]["kind"] == "no-triple-root"
     assert doc["evidence"]["singular_points"] > 0  # it has singular curves, no cusp
+    # what the search covers, said precisely: the curves crossing the grid's lines (its
+    # steps, (5 - (-1)) / 40), not a proof for the whole box
+    assert doc["evidence"]["covers"] == "grid"
+    reason = doc["evidence"]["reason"]
+    assert "41 x 41 grid, steps P2 0.15 and P3 0.15" in reason
+    assert "not a proof for the whole box" in reason
     _follows_the_schema(doc)
     rest = np.sqrt(2)  # every leg's length in the drawing
     want = rpr_cusps(

@@ -178,24 +178,36 @@ def cusps(
             )
         )
     certified = [c for c in found if c.certified]
+    steps = (
+        f"{n} x {n} grid, steps {a_name} {(a_rng[1] - a_rng[0]) / (n - 1):.3g} and "
+        f"{b_name} {(b_rng[1] - b_rng[0]) / (n - 1):.3g}"
+    )
     if certified:
         evidence = {
             "kind": "cusps",
             "reason": f"{len(certified)} cusp point(s) in the section, each certified: "
-            + CERTIFIED,
+            + CERTIFIED
+            + f"; the list holds the cusps on singular curves that cross the {steps}",
         }
     else:
         evidence = {
             "kind": "no-triple-root",
             "reason": (
-                "no real triple root of the eliminant over the section: Newton on "
+                "no real triple root of the eliminant found in the section: Newton on "
                 f"P = dP/dt = d2P/dt2 = 0 from each of its {len(sec.points)} located "
                 "singular points, and from between each two neighbours on which "
                 f"d2P/dt2 changes sign ({sec.seeds} starts), reached none in the section"
                 + ("" if not found else " that the Krawczyk test certifies")
+                + f". This covers the singular curves that cross the {steps}; it is not a "
+                "proof for the whole box: a cusp whose curves cross no grid line (a wedge "
+                "narrower than a cell, near its tip) is not excluded (a finer --points, or "
+                "a smaller box about it, finds it)"
             ),
         }
     evidence.update({"cusps": len(certified), "grid": n, "singular_points": len(sec.points)})
+    # added: what the search covers: the singular curves crossing the grid's lines (no
+    # proof over the whole box is made)
+    evidence["covers"] = "grid"
     counts = sorted({int(v) for v in sec.counts.ravel()})
     if counts == [0]:  # nothing searched: the section misses every assembly (or posture)
         units = mech.units
