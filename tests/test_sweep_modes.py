@@ -290,6 +290,10 @@ def test_a_2r_arm_has_one_mode_and_its_loop_keeps_it(tmp_path: Path) -> None:
     got = sorted(tuple(p["values"]) for p in loop["located"])
     assert len(got) == 2
     np.testing.assert_allclose(got, [(0.0, 0.0), (1.0, 0.0)], atol=1e-9)
+    # det J = sin J2 changes sign there on both sides (J2 = 0 a sample of each edge, where
+    # the sign test between neighbours reads a zero singular pair's arbitrary sign): one
+    # kind for both, a crossing (it was a minimum on one side)
+    assert [p["kind"] for p in loop["located"]] == ["crossing", "crossing"]
 
 
 def test_aspects_of_a_2r_arm_across_its_stretched_elbow(tmp_path: Path) -> None:
