@@ -133,6 +133,12 @@ def test_similar_3rpr_is_not_cuspidal(tmp_path: Path) -> None:
     assert doc["cuspidal"] is False and doc["cusps"] == []
     assert doc["evidence"]["kind"] == "no-triple-root"
     assert doc["evidence"]["singular_points"] > 0  # it has singular curves, no cusp
+    # what the search covers, said precisely: the curves crossing the grid's lines (its
+    # steps, (5 - (-1)) / 40), not a proof for the whole box
+    assert doc["evidence"]["covers"] == "grid"
+    reason = doc["evidence"]["reason"]
+    assert "41 x 41 grid, steps P2 0.15 and P3 0.15" in reason
+    assert "not a proof for the whole box" in reason
     _follows_the_schema(doc)
     rest = np.sqrt(2)  # every leg's length in the drawing
     want = rpr_cusps(
@@ -179,20 +185,43 @@ def test_puma_like_arm_is_not_cuspidal(tmp_path: Path) -> None:
     _follows_the_schema(doc)
 
 
-def test_a_section_beyond_the_reach_says_so(tmp_path: Path) -> None:
-    """The orthogonal 3R arm drawn in mm, its section given in mm by mistake (--vary is
-    SI): rho from 100 m up is beyond its reach (its links and tool sum to under 6.5 m),
-    so no point of the grid has a real posture, and the evidence says the section missed
-    the arm and that --vary is not in the file's units."""
+def _orthogonal_3r_in_mm() -> str:
     mm = ORTHOGONAL_3R.replace("mechanism: orthogonal-3r", "units: {length: mm}\nmechanism: x")
     for a, b in (('[1, "3/2", 0]', "[1000, 1500, 0]"), ('[3, "3/2", 0]', "[3000, 1500, 0]")):
         mm = mm.replace(a, b)
     mm = mm.replace('["9/2", "3/2", 0]', "[4500, 1500, 0]")
     assert "3/2" not in mm
-    doc = _cusps(_write(tmp_path, "orth_mm.yaml", mm), "rho=100:6000,z=-5000:5000", "--points", "9")
+    return mm
+
+
+def test_vary_is_read_in_the_files_units(tmp_path: Path) -> None:
+    """The orthogonal 3R arm drawn in mm, its section given in mm (--vary in the file's
+    units, as sweep's): the same four cusps as the arm in m, in SI in the document, at
+    the inverse-kinematics quartic's triple roots (the reference, in m).  Before, --vary
+    was read in m: rho = 0..6000 m, beyond the arm's reach but for its first 6 m."""
+    path = _write(tmp_path, "orth_mm.yaml", _orthogonal_3r_in_mm())
+    doc = _cusps(path, "rho=0:6000,z=-5000:5000")
+    assert doc["section"]["vary"] == {"rho": [0.0, 6.0], "z": [-5.0, 5.0]}
+
+    def key(p):
+        return (round(p[0], 6), round(p[1], 6))
+
+    got = sorted(((c["inputs"]["rho"], c["inputs"]["z"]) for c in doc["cusps"]), key=key)
+    want = sorted(arm_cusps(ORTHOGONAL_DH, ORTHOGONAL_TOOL, ((0, 6), (-5, 5))), key=key)
+    assert doc["cuspidal"] is True and len(got) == len(want) == 4
+    for (gr, gz), (wr, wz) in zip(got, want, strict=True):
+        assert gr == pytest.approx(wr, abs=1e-9) and gz == pytest.approx(wz, abs=1e-9)
+
+
+def test_a_section_beyond_the_reach_says_so(tmp_path: Path) -> None:
+    """The orthogonal 3R arm drawn in mm, a section from 100 m out (its links and tool
+    sum to under 6.5 m): no point of the grid has a real posture, and the evidence says
+    the section missed the arm and in which units --vary was read."""
+    path = _write(tmp_path, "orth_mm.yaml", _orthogonal_3r_in_mm())
+    doc = _cusps(path, "rho=100000:6000000,z=-5000:5000", "--points", "9")
     assert doc["formulation"]["modes_counts"] == [0] and doc["cuspidal"] is False
     assert "no real mode anywhere on the grid" in doc["evidence"]["reason"]
-    assert "the file is in mm and rad, --vary is not" in doc["evidence"]["reason"]
+    assert "read in the file's units, mm and rad" in doc["evidence"]["reason"]
 
 
 def test_cusps_output_format_follows_its_extension(tmp_path: Path) -> None:

@@ -98,3 +98,66 @@ def test_five_bar_sweep_is_the_same_with_the_fast_paths_off():
         # echelon form: each row's first non-zero entry after the row above's
         firsts = [int(np.flatnonzero(row)[0]) for row in basis]
         assert firsts == sorted(set(firsts))
+
+
+def _five_bar_both_legs_stretched(tmp_path: Path) -> Path:
+    """The example five-bar with a configuration where both legs are stretched: P on the
+    base's axis of symmetry at distance 2 + 5/2 = 9/2 from both base pivots (+-3/2, 0),
+    P = (0, 3 sqrt 2), each proximal link turned by asin(1/3) from the vertical."""
+    text = (ROOT / "examples" / "five_bar.yaml").read_text()
+    text = text[: text.index("configurations:")]
+    text += (
+        "configurations:\n"
+        '  both: {A1: "-asin(1/3)", B1: "2*atan(1/3)", P: "2*asin(1/3) - 2*atan(3/4)",'
+        ' B2: "-2*atan(1/3)", A2: "asin(1/3)"}\n'
+    )
+    path = tmp_path / "five_bar_both.yaml"
+    path.write_text(text)
+    return path
+
+
+def _analyze_json(path: Path, fast: bool) -> dict:
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "MECHSING_FAST": "1" if fast else "0"}
+    run = subprocess.run(
+        [sys.executable, "-m", "mechsing", "analyze", str(path), "--format", "json"],
+        capture_output=True,
+        text=True,
+        env=env,
+        check=False,
+    )
+    assert run.returncode in (0, 1), run.stderr
+    return json.loads(run.stdout)
+
+
+def test_closed_chain_motion_space_is_reported_whole_in_its_canonical_basis(tmp_path):
+    """Both legs of the five-bar stretched: with the output point P held, each leg turns
+    about its base pivot alone (a stretched 2R leg of links l1 = 2, l2 = 5/2 with its tip
+    held: A rate w, B rate -w (l1 + l2)/l2, the distal link held by P's rate w l1/l2), so
+    the input motion space has dimension 2 and is spanned by
+    leg 1: (A1, B1, P, B2, A2) = (l2, -(l1 + l2), l1, 0, 0) and
+    leg 2: (0, 0, l1, l1 + l2, -l2) (P joins the two distal links, turning the other way).
+    Its reduced echelon form (pivots A1, P), each row scaled to largest entry 1, first
+    entry positive, is the closed form below; the moving joints are all five; the same
+    with MECHSING_FAST=0.  Before, one vector (the SVD's pick) was reported and ``joints``
+    was its support (P missing)."""
+    l1, l2 = 2.0, 2.5
+    leg1 = np.array([l2, -(l1 + l2), l1, 0.0, 0.0])
+    leg2 = np.array([0.0, 0.0, l1, l1 + l2, -l2])
+    # echelon by hand: row 1 from leg 1 with its P entry eliminated by leg 2
+    row1 = leg1 / l2 - (l1 / l2) * (leg2 / l1)
+    row2 = leg2 / l1
+    expected = [r / np.max(np.abs(r)) for r in (row1, row2)]
+    expected = [r if r[np.flatnonzero(r)[0]] > 0 else -r for r in expected]
+    path = _five_bar_both_legs_stretched(tmp_path)
+    on, off = _analyze_json(path, True), _analyze_json(path, False)
+    diffs: list[str] = []
+    _differences(on, off, "", diffs)
+    assert not diffs, "\n".join(diffs[:20])
+    (config,) = on["configurations"]
+    assert config["closure_residual"] < 1e-12
+    (found,) = [s for s in config["singularities"] if s["class"] == "input"]
+    assert found["dimension"] == 2
+    assert found["joints"] == ["A1", "B1", "P", "B2", "A2"]
+    np.testing.assert_allclose(found["joint_rate_basis"], expected, atol=1e-12)
+    # a symmetric pair: no one motion moves the inputs most, joint_rates is the first row
+    np.testing.assert_allclose(found["joint_rates"], expected[0], atol=1e-12)

@@ -7,6 +7,7 @@ J2 = 0 and only there on the grid: two regions, J2 < 0 and J2 > 0)."""
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -289,6 +290,10 @@ def test_a_2r_arm_has_one_mode_and_its_loop_keeps_it(tmp_path: Path) -> None:
     got = sorted(tuple(p["values"]) for p in loop["located"])
     assert len(got) == 2
     np.testing.assert_allclose(got, [(0.0, 0.0), (1.0, 0.0)], atol=1e-9)
+    # det J = sin J2 changes sign there on both sides (J2 = 0 a sample of each edge, where
+    # the sign test between neighbours reads a zero singular pair's arbitrary sign): one
+    # kind for both, a crossing (it was a minimum on one side)
+    assert [p["kind"] for p in loop["located"]] == ["crossing", "crossing"]
 
 
 def test_aspects_of_a_2r_arm_across_its_stretched_elbow(tmp_path: Path) -> None:
@@ -326,3 +331,58 @@ def test_a_loop_needs_a_rectangle(tmp_path: Path, vary: str) -> None:
         ["sweep", path, "--from", "bent", "--vary", vary, "--vary", "J2=0:1:0.1", "--loop"]
     )
     assert rc == 2 and "--vary J1 has one sample (0 rad)" in err and "STEP apart" in err
+
+
+def test_a_fold_where_two_modes_meet_is_named_so_not_a_limit_of_travel(
+    design: tuple[Path, np.ndarray],
+) -> None:
+    """Mode 4 of the corner followed along P2 (P1, P3 held) stops at a fold where it
+    meets another mode: the independent count of real poses (tests/reference) drops by
+    two across the located value while P2 goes on (other modes stay real past it), so
+    the sweep names it a fold of the direct kinematics, in the located line and in the
+    stop note, and not a limit of travel (which reads as the joint's stroke)."""
+    path, _ = design
+    run = run_cli(["sweep", path, "--from", "corner", "--vary", "P2=0:0.5:0.01", "--mode", "4"])
+    assert run.status in (0, 1), run.err
+    (line,) = [ln for ln in run.out.splitlines() if ": fold of the direct kinematics" in ln]
+    assert "limit of travel" not in run.out and "output" in line
+    p2 = float(line.split("P2 = ")[1].split(" m")[0])
+    before = len(ref.poses_over(RHO1, CORNER[0] + p2 - 0.005, CORNER[1], samples=50_000))
+    after = len(ref.poses_over(RHO1, CORNER[0] + p2 + 0.005, CORNER[1], samples=50_000))
+    assert before - after == 2 and after > 0
+    (note,) = [ln for ln in run.out.splitlines() if "note: towards" in ln]
+    assert "past a fold of the direct kinematics" in note
+
+
+def test_every_modes_grid_shares_one_local_cluster(
+    design: tuple[Path, np.ndarray], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """--modes all --workers N: one Dask local cluster for all the modes' grids (it was
+    one per mode), through the API and the command line, with the serial documents."""
+    from mechsing.sweeps import distributed, sweep_modes
+
+    real = distributed._dask
+    started: list[int] = []
+
+    def counting() -> tuple:
+        client_cls, cluster_cls, as_completed = real()
+
+        def cluster(*args, **kwargs):
+            started.append(1)
+            return cluster_cls(*args, **kwargs)
+
+        return client_cls, cluster, as_completed
+
+    monkeypatch.setattr(distributed, "_dask", counting)
+    path, _ = design
+    grid = ["P2=0:0.1:0.05", "P3=-0.5:0:0.25"]
+    serial = sweep_modes(str(path), grid, "corner", "float", modes=[3, 4])
+    spread = sweep_modes(str(path), grid, "corner", "float", modes=[3, 4], workers=1)
+    assert started == [1]
+    assert spread.to_json() == serial.to_json()
+    started.clear()
+    argv = ["sweep", path, "--from", "corner", "--vary", grid[0], "--vary", grid[1]]
+    run = run_cli([*argv, "--modes", "all", "--workers", "1", "--format", "json", "--quiet"])
+    assert run.status in (0, 1), run.err
+    assert started == [1]
+    assert json.loads(run.out)["modes"] == list(range(1, 7))

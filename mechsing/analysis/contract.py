@@ -169,6 +169,8 @@ def _finding(
         out = _decided(f, out)
         if f.name is not None:  # added after the contract's first keys
             out["name"] = f.name
+        if f.joint_rate_basis is not None:  # the whole motion space, canonical basis
+            out["joint_rate_basis"] = _lists(f.joint_rate_basis)
         return out
     out.update(
         {

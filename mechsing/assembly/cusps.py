@@ -116,7 +116,8 @@ def cusps(
     vary : dict or str
         The two varied coordinates and their ranges, ``{"P2": (lo, hi), "P3": (lo, hi)}``
         or ``"P2=lo:hi,P3=lo:hi"``: two inputs of a parallel mechanism, ``rho`` and
-        ``z`` of an arm (SI units, radians).
+        ``z`` of an arm, in the file's units (``units:``, as ``sweep --vary``; the
+        result is in SI units and radians).
     config : str or None
         The configuration whose value of the third input is kept (None: the first that
         gives it; none: its reference value, 0).
@@ -137,7 +138,8 @@ def cusps(
 
     mech = mechanism if isinstance(mechanism, Mechanism) else read_mechanism(mechanism)
     where = mech.path or mech.name
-    ranges = parse_vary(vary, where) if isinstance(vary, str) else dict(vary)
+    given = parse_vary(vary, where) if isinstance(vary, str) else dict(vary)
+    ranges = _in_si(mech, given)
     n = points or discriminant.GRID_POINTS
     if not mech.loops:
         from mechsing.assembly.arm3r import arm_family
@@ -176,35 +178,42 @@ def cusps(
             )
         )
     certified = [c for c in found if c.certified]
+    steps = (
+        f"{n} x {n} grid, steps {a_name} {(a_rng[1] - a_rng[0]) / (n - 1):.3g} and "
+        f"{b_name} {(b_rng[1] - b_rng[0]) / (n - 1):.3g}"
+    )
     if certified:
         evidence = {
             "kind": "cusps",
             "reason": f"{len(certified)} cusp point(s) in the section, each certified: "
-            + CERTIFIED,
+            + CERTIFIED
+            + f"; the list holds the cusps on singular curves that cross the {steps}",
         }
     else:
         evidence = {
             "kind": "no-triple-root",
             "reason": (
-                "no real triple root of the eliminant over the section: Newton on "
+                "no real triple root of the eliminant found in the section: Newton on "
                 f"P = dP/dt = d2P/dt2 = 0 from each of its {len(sec.points)} located "
                 "singular points, and from between each two neighbours on which "
                 f"d2P/dt2 changes sign ({sec.seeds} starts), reached none in the section"
                 + ("" if not found else " that the Krawczyk test certifies")
+                + f". This covers the singular curves that cross the {steps}; it is not a "
+                "proof for the whole box: a cusp whose curves cross no grid line (a wedge "
+                "narrower than a cell, near its tip) is not excluded (a finer --points, or "
+                "a smaller box about it, finds it)"
             ),
         }
     evidence.update({"cusps": len(certified), "grid": n, "singular_points": len(sec.points)})
+    # added: what the search covers: the singular curves crossing the grid's lines (no
+    # proof over the whole box is made)
+    evidence["covers"] = "grid"
     counts = sorted({int(v) for v in sec.counts.ravel()})
     if counts == [0]:  # nothing searched: the section misses every assembly (or posture)
         units = mech.units
-        scale = (
-            f"; the file is in {units.length} and {units.angle}, --vary is not"
-            if (units.length, units.angle) != ("m", "rad")
-            else ""
-        )
         evidence["reason"] += (
             "; but no real mode anywhere on the grid: the section misses the mechanism's "
-            f"reach (--vary is in SI units, m and rad{scale})"
+            f"reach (--vary is read in the file's units, {units.length} and {units.angle})"
         )
     return CuspsResult(
         mech.name,
@@ -223,6 +232,21 @@ def cusps(
             "modes": sec.counts.astype(int).tolist(),
         },
     )
+
+
+def _in_si(
+    mech: Mechanism, ranges: dict[str, tuple[float, float]]
+) -> dict[str, tuple[float, float]]:
+    """The section's ranges, given in the file's units (``units:``; an input's own unit,
+    a length for an arm's ``rho`` and ``z``), in SI units and radians."""
+    units = mech.units
+    out = {}
+    for name, (lo, hi) in ranges.items():
+        joint = next((j for j in mech.joints if j.name == name), None)
+        angle = joint is not None and bool(joint.units) and joint.units[0] == "rad"
+        factor = float(units.angle_factor if angle else units.length_factor)
+        out[name] = (float(lo) * factor, float(hi) * factor)
+    return out
 
 
 def parse_vary(text: str, where: str) -> dict[str, tuple[float, float]]:

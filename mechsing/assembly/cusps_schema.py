@@ -142,6 +142,11 @@ def cusps_schema() -> dict[str, Any]:
                     "cusps": {"type": "integer", "minimum": 0},
                     "grid": {"type": "integer", "description": "grid points along each side"},
                     "singular_points": {"type": "integer", "minimum": 0},
+                    "covers": {
+                        "enum": ["grid"],
+                        "description": "what the search for cusps covers: the singular "
+                        "curves that cross the grid's lines (no proof over the whole box)",
+                    },
                 },
             },
             "singular_curves": {

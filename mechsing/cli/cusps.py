@@ -31,7 +31,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--vary",
         metavar="NAME=lo:hi,NAME=lo:hi",
         required=True,
-        help="the two varied coordinates: two inputs, or rho and z of a 3R arm (SI, rad)",
+        help="the two varied coordinates: two inputs, or rho and z of a 3R arm, in the "
+        "file's units (the output is in SI units and radians)",
     )
     p.add_argument(
         "--config",

@@ -32,7 +32,7 @@ import argparse
 import json
 import sys
 from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from contextlib import ExitStack, contextmanager
 from typing import IO, TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # the command's layers load when it runs: `mechsing --help` stays fast
@@ -311,6 +311,32 @@ def _write_runs(args: argparse.Namespace, runs: list[Any], fmt: str, out: IO[str
     """Several modes' sweeps as one document: JSON (the header once with ``modes``, every
     mode's points, their located points, loci and aspects joined), CSV (one after the
     other, each line with its mode) or text."""
+    with ExitStack() as stack:
+        client = None
+        if (args.workers or args.scheduler) and runs[0].grid:
+            # one Dask cluster for every mode's grid, not one per mode
+            from mechsing.sweeps.distributed import CONNECT_TIMEOUT, open_client
+
+            timeout = CONNECT_TIMEOUT if args.connect_timeout is None else args.connect_timeout
+            client = stack.enter_context(open_client(args.workers, args.scheduler, timeout))
+
+        def rows(run: Any) -> Iterator[int]:
+            with _progress_bar(run, args.quiet) as progress:
+                yield from run.rows(
+                    progress,
+                    workers=args.workers,
+                    scheduler=args.scheduler,
+                    connect_timeout=args.connect_timeout,
+                    client=client,
+                )
+
+        _write_runs_with(runs, fmt, out, rows)
+
+
+def _write_runs_with(
+    runs: list[Any], fmt: str, out: IO[str], rows: Callable[[Any], Iterator[int]]
+) -> None:
+    """:func:`_write_runs`'s documents, each run's rows from ``rows``."""
     from mechsing.sweeps.permode import merged_tail
     from mechsing.sweeps.results import (
         csv_header,
@@ -320,15 +346,6 @@ def _write_runs(args: argparse.Namespace, runs: list[Any], fmt: str, out: IO[str
         json_point,
         json_tail,
     )
-
-    def rows(run: Any) -> Iterator[int]:
-        with _progress_bar(run, args.quiet) as progress:
-            yield from run.rows(
-                progress,
-                workers=args.workers,
-                scheduler=args.scheduler,
-                connect_timeout=args.connect_timeout,
-            )
 
     if fmt == "json":
         out.write("{\n")

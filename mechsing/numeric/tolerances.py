@@ -238,3 +238,11 @@ CUSP_DISTINCT_RTOL = 1e-6
 #: distinct modes lie orders of magnitude farther apart
 #: margin: the distance to the nearest mode against this; a start matching none is refused
 SWEEP_SAME_MODE_DISTANCE = 1e-6
+#: an input/output finding's "most telling motion" (the direction of its motion space the
+#: inputs, or the output, move most) is decided when the largest singular value of that
+#: map on the space exceeds the second by more than this, relatively; within it (a
+#: symmetric pair of motions, which an SVD combines as rounding decides) the finding's
+#: ``joint_rates`` is the first row of its canonical ``joint_rate_basis`` instead
+#: margin: none needed: both choices lie in the reported space, and rounding (1e-16)
+#: moves the two values far less than this
+MOST_MOVED_RTOL = 1e-8

@@ -275,6 +275,10 @@ class MotionFinding:
     #: the name people give it where its moving joints show one (a dead centre: "leg fully
     #: stretched or folded", as a crank's leg is named), :func:`mechsing.singularity.serial.moving_name`
     name: str | None = None
+    #: the whole motion space, one row per vector, in its canonical basis (reduced row
+    #: echelon form of an orthonormal basis, rows in SI rates, largest entry 1, first
+    #: non-zero positive); ``joints`` is its support
+    joint_rate_basis: tuple[Floats, ...] | None = None
 
     def __post_init__(self) -> None:
         if self.cls in MOTION_CLASSES:

@@ -34,6 +34,7 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.numeric.linalg import first_nonzero_positive, svd
+from mechsing.numeric.tolerances import MOST_MOVED_RTOL
 from mechsing.screws import closure_system
 from mechsing.screws.mobility import (
     SAMPLE_CLOSURE_RTOL,
@@ -43,6 +44,7 @@ from mechsing.screws.mobility import (
     reclose,
     stacked_jacobian,
 )
+from mechsing.screws.readable import reduced_echelon
 from mechsing.singularity.criteria import ConstraintTest, SerialTest, tests_run
 from mechsing.singularity.cspace import Cone, Expansion, closure_expansion, tangent_cone
 from mechsing.singularity.findings import (
@@ -534,23 +536,32 @@ def _zfb(
             continue
         if cls == "input":  # in K cap ker T, the direction the inputs move most
             dec = here.input_motion
-            basis = _most_moved(sp["zT"], sp["E"] @ N)
+            space = sp["zT"]
+            basis = _most_moved(space, sp["E"] @ N)
         elif cls == "output":  # in K cap ker E, the direction the output moves most
             dec = here.output_motion
-            basis = _most_moved(sp["zE"], sp["T"] @ N)
+            space = sp["zE"]
+            basis = _most_moved(space, sp["T"] @ N)
         else:
             both = np.vstack([sp["T"] @ N / max(sp["nT"], 1e-300), sp["E"] @ N])
             dec = decide_rank(both, tprec, L, want_spaces=True, reference=1.0, native_spaces=True)
-            basis = dec.null_space
-        x = to_float(N @ basis[:, 0]) if basis.size else np.zeros(fm.n)
-        rates = _si_rates(fm, x)
+            space = basis = dec.null_space
+        # the whole motion space in its canonical basis: the same rows however an SVD
+        # picked its basis (the fast paths on or off)
+        rate_basis = _rates_basis(fm, to_float(N @ space) if space.size else np.zeros((fm.n, 0)))
+        if basis.size:  # the most telling motion where it is decided, else the first row
+            x = to_float(N @ basis[:, 0])
+            rates = _si_rates(fm, x)
+        else:
+            rates = list(rate_basis[0]) if rate_basis else [0.0] * fm.n
         twist = None
-        if cls == "output":
+        if cls == "output" and basis.size:
             t = to_float(sp["T"] @ (N @ basis[:, 0]))
             twist = tuple(_output_si(mech, fm, t))
+        # the moving joints: the support of the whole motion space (any of its rates)
         joints = tuple(
             sorted(
-                {names[i] for i, r in enumerate(rates) if abs(r) > SUPPORT_RTOL},
+                {names[i] for row in (rate_basis or [rates]) for i, r in enumerate(row) if r},
                 key=[j.name for j in mech.joints].index,
             )
         )
@@ -571,6 +582,7 @@ def _zfb(
                 joint_rates=tuple(rates),
                 output_twist=twist,
                 name=name,
+                joint_rate_basis=tuple(tuple(r) for r in rate_basis),
             )
         )
     for cls in ("impossible-input", "impossible-output"):
@@ -596,11 +608,30 @@ def _zfb(
 
 def _most_moved(z: np.ndarray, A: np.ndarray) -> np.ndarray:
     """The unit combination of the columns of ``z`` that ``A`` moves most (its first
-    right singular vector), as a one-column basis; empty when ``z`` is."""
+    right singular vector), as a one-column basis; empty when ``z`` is, or when no one
+    direction is moved most (the two largest singular values within MOST_MOVED_RTOL:
+    a symmetric pair of motions, where the SVD picks any combination)."""
     if not z.size:
         return z
-    _u, _s, vt = svd(A @ z)
+    _u, s, vt = svd(A @ z)
+    s = np.asarray(to_float(s), dtype=float)
+    if len(s) > 1 and s[1] >= (1.0 - MOST_MOVED_RTOL) * s[0]:
+        return z[:, :0]
     return z @ vt[:1].T
+
+
+def _rates_basis(fm: Any, X: np.ndarray) -> list[list[float]]:
+    """The span of the commensurate joint-rate columns ``X`` in one canonical basis: the
+    reduced row echelon form (:func:`mechsing.screws.readable.reduced_echelon`) of an
+    orthonormal basis of it, each row then in SI rates as :func:`_si_rates` gives them
+    (largest entry 1, first non-zero positive, rounding-level entries 0), as a serial
+    finding's ``null_joint_rate_basis`` (:func:`mechsing.singularity.serial.null_rates_basis`)."""
+    X = np.asarray(X, dtype=float)
+    if X.size == 0:
+        return []
+    Q, _r = np.linalg.qr(X)
+    rows, _ = reduced_echelon(Q.T)
+    return [_si_rates(fm, row) for row in rows]
 
 
 def _output_si(mech: Any, fm: Any, t: np.ndarray) -> list[float]:

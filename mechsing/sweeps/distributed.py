@@ -209,6 +209,7 @@ def distributed_rows(
     scheduler: str | None,
     progress: Callable[[int], None] | None = None,
     connect_timeout: float = CONNECT_TIMEOUT,
+    client: Any = None,
 ) -> Iterator[RowResult]:
     """The rows of a grid sweep, in row order, computed on a Dask cluster.
 
@@ -221,24 +222,45 @@ def distributed_rows(
     scheduler : or use the Dask scheduler at this address (``tcp://host:8786``)
     progress : called with the number of samples of each finished row
     connect_timeout : seconds the scheduler has to accept the connection and answer
+    client : a client already open (:func:`open_client`: one cluster for several
+        sweeps, each assembly mode's of ``--modes all``); None: one opened and closed here
 
     Yields exactly what ``run.engine.rows(values, progress)`` yields.
     """
-    client_cls, cluster_cls, as_completed = _dask()
+    if client is None:
+        with open_client(workers, scheduler, connect_timeout) as opened:
+            yield from distributed_rows(
+                run, values, workers, scheduler, progress, connect_timeout, opened
+            )
+        return
+    _, _, as_completed = _dask()
+    eng = run.engine
+    column = eng.first_column(values)
+    recipe = _recipe(run, eng, values[0])
+    (shared,) = client.scatter([recipe], broadcast=True, hash=False)
+    threads = sum(client.nthreads().values())
+    ahead = AHEAD_PER_THREAD * max(threads, 1)
+    yield from _in_order(client, as_completed, shared, eng, column, values, ahead, progress)
+
+
+@contextmanager
+def open_client(
+    workers: int | None, scheduler: str | None, connect_timeout: float = CONNECT_TIMEOUT
+) -> Iterator[Any]:
+    """A Dask client for grid sweeps: to a local cluster of ``workers`` processes, or to
+    the scheduler at ``scheduler`` (checked first: exit 2 with the reason); closed after.
+    Several sweeps share it (:func:`distributed_rows`'s ``client``): a worker keeps the
+    engines it built, keyed by mechanism and variables, whatever mode a sweep starts on
+    (a row's start is sent with it)."""
+    client_cls, cluster_cls, _ = _dask()
     if workers is not None and scheduler:
         raise UserError("give --workers N (a local cluster) or --scheduler ADDRESS, not both")
     if workers is not None:
         check_workers(workers)
     if scheduler:
         probe_scheduler(scheduler, connect_timeout)
-    eng = run.engine
     with _client(client_cls, cluster_cls, workers, scheduler, connect_timeout) as client:
-        column = eng.first_column(values)
-        recipe = _recipe(run, eng, values[0])
-        (shared,) = client.scatter([recipe], broadcast=True, hash=False)
-        threads = sum(client.nthreads().values())
-        ahead = AHEAD_PER_THREAD * max(threads, 1)
-        yield from _in_order(client, as_completed, shared, eng, column, values, ahead, progress)
+        yield client
 
 
 def _dask() -> tuple[Any, Any, Any]:

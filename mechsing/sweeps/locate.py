@@ -10,6 +10,8 @@ places it; the rows of a chunk are located together, each as alone.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from mechsing.kinematics.paths.folds import Fold
@@ -236,8 +238,20 @@ class Locator:
                             continue
                         z, rr = found
                         out.append(self.at(z, "crossing", (t,), rr, "row", (index, int(a))))
+                pos = row.offset + np.cumsum(row.reached) - 1  # each sample's batch row
                 self._minima(
-                    t, Z, row.reached, row.ratio[t], got.inner, crossed[r], col, index, out
+                    t,
+                    Z,
+                    row.reached,
+                    row.ratio[t],
+                    got.inner,
+                    crossed[r],
+                    col,
+                    index,
+                    out,
+                    lambda k, pos=pos, t=t: self._changes_sign(
+                        pm, t, int(pos[k - 1]), int(pos[k + 1])
+                    ),
                 )
                 singular_samples(self, t, row, out)
         return outs
@@ -338,10 +352,14 @@ class Locator:
         col: int,
         index: int,
         out: list[Located],
+        across: Callable[[int], bool] | None = None,
     ) -> None:
         """A row's sampled minima of test ``t`` that could hide a zero, refined (added to
         ``out``): not singular on both sides (no isolated zero to place there), at most
-        its neighbours, and low next to how far they rise."""
+        its neighbours, and low next to how far they rise.  A minimum whose neighbours'
+        determinants have opposite signs (``across(k)``: the sign test from sample k - 1
+        to k + 1, past a sample k singular itself, where the test between neighbours reads
+        the arbitrary sign of a zero singular pair) is a sign change: kind ``crossing``."""
         K = len(Z)
         lo, mid, hi = np.full(K, np.nan), rho, np.full(K, np.nan)
         lo[1:], hi[:-1] = rho[:-1], rho[1:]
@@ -366,7 +384,14 @@ class Locator:
                 found = self.refiner.minimum(t, Z[k - 1], Z[k], Z[k + 1], col)
             if found is not None:
                 z, r = found
-                out.append(self.at(z, "minimum", (t,), r, "row", (index, k)))
+                kind = "crossing" if across is not None and across(k) else "minimum"
+                out.append(self.at(z, kind, (t,), r, "row", (index, k)))
+
+    def _changes_sign(self, pm: PointMeasures, t: str, ia: int, ib: int) -> bool:
+        """Does test ``t``'s determinant change sign from batch row ``ia`` to ``ib``
+        (:meth:`~mechsing.sweeps.measures.Measures.compressed_pairs`)?"""
+        got = self.measures.compressed_pairs(pm, np.array([ia]), np.array([ib])).get(t)
+        return got is not None and bool(got[0] < 0)
 
     def holds(self, out: list[Located], t: str, va: float, vb: float, col: int) -> bool:
         """Whether a point of ``out`` lies between the swept values va and vb and is

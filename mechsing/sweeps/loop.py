@@ -29,6 +29,7 @@ from mechsing.numeric.tolerances import SWEEP_SAME_MODE_DISTANCE
 from mechsing.sweeps.classify import classify_located
 from mechsing.sweeps.records import Located
 from mechsing.sweeps.results import LocatedSingularity
+from mechsing.sweeps.words import stop_notes
 
 __all__ = ["LoopResult", "follow_loop"]
 
@@ -262,6 +263,6 @@ def follow_loop(run: Any, match: Any = None) -> LoopResult:
         joints(z_start[:n]),
         joints_end,
         distance,
-        tuple(notes),
+        tuple(stop_notes(mech, notes, (p.classes for p in listed if p.kind == "fold"))),
         listed,
     )

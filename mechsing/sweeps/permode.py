@@ -14,6 +14,7 @@ Owns :func:`sweep_modes`, :func:`mode_runs`, :func:`mode_loops` and :class:`Mode
 
 from __future__ import annotations
 
+from contextlib import ExitStack
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
@@ -313,8 +314,15 @@ def sweep_modes(
     if modes is None:
         raise UserError("sweep_modes: give modes ('all' or their numbers), or loop=True")
     out = []
-    for run in runs:
-        for _ in run.rows(None, workers=workers, scheduler=scheduler):
-            pass
-        out.append(run.result())
+    with ExitStack() as stack:
+        client = None
+        if (workers or scheduler) and runs and runs[0].grid:
+            # one cluster for every mode's grid (its workers keep the engine they built)
+            from mechsing.sweeps.distributed import open_client
+
+            client = stack.enter_context(open_client(workers, scheduler))
+        for run in runs:
+            for _ in run.rows(None, workers=workers, scheduler=scheduler, client=client):
+                pass
+            out.append(run.result())
     return ModeSweeps(tuple(out), (), len(found.modes) if found else None)

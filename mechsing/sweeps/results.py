@@ -25,6 +25,7 @@ from mechsing.kinematics.closed import ClosedValue
 from mechsing.model import Mechanism
 from mechsing.numeric import floored
 from mechsing.sweeps.settings import SWEEP_TIE_RTOL
+from mechsing.sweeps.words import fold_words
 
 __all__ = [
     "LocatedSingularity",
@@ -469,7 +470,11 @@ def located_rows(r: SweepResult) -> list[tuple[str, ...]]:
     singularity, named by where it is and what located it."""
     rows = []
     for p in r.located:
-        kind = "limit of travel" if p.kind == "fold" else f"{p.kind} of {', '.join(p.tests)}"
+        kind = (
+            fold_words(r.mechanism, p.classes)
+            if p.kind == "fold"
+            else f"{p.kind} of {', '.join(p.tests)}"
+        )
         name = f"sweep: {_where(r, p.values)} ({kind})"
         if p.configuration is None:
             rows.append(
@@ -483,7 +488,7 @@ def located_rows(r: SweepResult) -> list[tuple[str, ...]]:
 def _located_line(r: SweepResult, p: LocatedSingularity) -> str:
     where = _where(r, p.values)
     if p.kind == "fold":
-        head = f"{where}: limit of travel" + (
+        head = f"{where}: {fold_words(r.mechanism, p.classes)}" + (
             " (met on the other assembly mode; the path resumes past it)" if p.far_side else ""
         )
     else:

@@ -35,6 +35,7 @@ from mechsing.sweeps.results import (
     SweptVariable,
 )
 from mechsing.sweeps.spec import Vary, resolve, sweep_precision, vary_warnings, with_limits
+from mechsing.sweeps.words import stop_notes
 from mechsing.timelimit import check_time_limit
 
 __all__ = ["MAX_CLASSIFIED", "SweepRun", "sweep"]
@@ -235,13 +236,15 @@ class SweepRun:
         workers: int | None = None,
         scheduler: str | None = None,
         connect_timeout: float | None = None,
+        client: Any = None,
     ) -> Iterator[int]:
         """Run the sweep; yields the index of each finished row (0 for a path) once its
         entries of :attr:`reached`, :attr:`rank` and :attr:`ratio` are filled (rows of a
         grid on Dask with ``workers`` or ``scheduler``, see
-        :func:`~mechsing.sweeps.distributed.distributed_rows`)."""
+        :func:`~mechsing.sweeps.distributed.distributed_rows`; ``client``: one already
+        open, shared with other sweeps)."""
         values = [v.values for v in self.vars]
-        if workers or scheduler:
+        if workers or scheduler or client is not None:
             if not self.grid:
                 raise UserError(
                     "--workers and --scheduler distribute the rows of a grid (two --vary)"
@@ -250,7 +253,7 @@ class SweepRun:
 
             timeout = CONNECT_TIMEOUT if connect_timeout is None else connect_timeout
             source: Iterator[RowResult] = distributed_rows(
-                self, values, workers, scheduler, progress, timeout
+                self, values, workers, scheduler, progress, timeout, client
             )
         else:
             source = self.engine.rows(values, progress)
@@ -426,7 +429,9 @@ class SweepRun:
             self.ratio,
             tuple(out),
             tuple(loci),
-            tuple(self.notes),
+            tuple(
+                stop_notes(self.mechanism, self.notes, (p.classes for p in out if p.kind == "fold"))
+            ),
             self.newton_iterations,
             time.perf_counter() - self.start_time,
             self.outside,
