@@ -112,7 +112,7 @@ class PointMeasures:
     steps: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
     #: deferred tests whose vectors are those of the thin SVD (the others': the full one)
     thin: frozenset[str] = frozenset()
-    #: per test measured without its singular vectors and of generic rank g >= 2: its
+    #: per signed test measured without its singular vectors, of generic rank g >= 2: its
     #: matrix's singular value sigma_(g-1) (absolute), from the same factorisation as the
     #: measure (what :func:`~mechsing.sweeps.falling.others_fall` screens pairs with)
     second: dict[str, np.ndarray] = field(default_factory=dict)
@@ -377,7 +377,7 @@ class Measures:
                 deferred[t] = g
                 if done is None:
                     thin.add(t)
-                if 2 <= g <= s.shape[1]:
+                if t in SIGNED and 2 <= g <= s.shape[1]:
                     second[t] = s[:, g - 2]
             if unit:
                 rel = s  # already relative to the operator's norm (|T| or |E| = 1)
