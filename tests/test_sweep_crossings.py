@@ -145,3 +145,33 @@ def test_max_effort_on_a_grid_locates_the_limit_along_every_row(tmp_path):
         assert lim["values"][1] == pytest.approx(b, abs=1e-12)
         assert lim["values"][0] == pytest.approx(root, abs=1e-9)
         assert abs(lim["efforts"]["A"]) == pytest.approx(2.5, rel=1e-8)
+
+
+def test_the_second_weakest_singular_value_kept_by_the_measures_is_numpy_s():
+    """A path's tests are measured without their vectors; the screen of the other falling
+    values reads sigma_(g-1) from the measures' own factorisation (kept per signed test,
+    also through a gather) instead of a second SVD: numpy's singular values of the same
+    matrices, to rounding, on the UR5's path over J3 (input and output of rank 6)."""
+    from mechsing.sweeps import SweepRun
+    from mechsing.sweeps.measures import PointMeasures
+
+    run = SweepRun(EXAMPLES / "ur5.yaml", ["J3=0:6:0.01"], from_config="regular")
+    rows = list(run.engine.rows([v.values for v in run.vars], None))
+    Z = rows[0].Z
+    assert Z is not None
+    meas = run.engine.measures
+    Q = Z[:, : run.engine.model.n]
+    pm = PointMeasures.gather([(meas(Q[:200]), slice(None)), (meas(Q[200:]), slice(None))])
+    eps = float(np.finfo(float).eps)
+    checked = 0
+    for t in ("input", "output"):
+        g = meas.generic.get(t)
+        if g is None or g < 2 or t in pm.bases:
+            continue
+        M = np.asarray(pm.matrices[t])
+        want = np.linalg.svd(M, compute_uv=False)[:, g - 2]
+        size = np.linalg.norm(M, axis=(1, 2))
+        assert pm.second[t].shape == want.shape
+        assert np.all(np.abs(pm.second[t] - want) <= 16 * eps * size), t
+        checked += 1
+    assert checked == 2

@@ -52,6 +52,8 @@ def issparse(A: Any) -> bool:
     """Whether ``A`` is a scipy sparse matrix.  scipy.sparse is imported only where a
     big mechanism needs it (it costs a fifth of a second at every start); before that,
     nothing can be one."""
+    if type(A) is np.ndarray:  # the common case, at every rank decision: no lookup
+        return False
     sparse = sys.modules.get("scipy.sparse")
     return sparse is not None and bool(sparse.issparse(A))
 

@@ -42,7 +42,10 @@ from mechsing.sweeps.start import start_of
 __all__ = ["Sweep"]
 
 #: rows of a grid followed, measured and refined together hold about this many samples
-_ROWS_SAMPLES = 8192
+#: (8192 made the 3-RPR grid's arrays large enough to be mapped and faulted in again at
+#: every chunk, about 6% of its CPU time; 4096 measured as fast on the five-bar grid,
+#: 2048 slower, the chunks' own work counting more)
+_ROWS_SAMPLES = 4096
 #: ... and at most about this many bytes of their measures (a big mechanism's matrices)
 _ROWS_BYTES = 64 * 2**20
 

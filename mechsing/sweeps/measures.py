@@ -112,6 +112,10 @@ class PointMeasures:
     steps: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
     #: deferred tests whose vectors are those of the thin SVD (the others': the full one)
     thin: frozenset[str] = frozenset()
+    #: per signed test measured without its singular vectors, of generic rank g >= 2: its
+    #: matrix's singular value sigma_(g-1) (absolute), from the same factorisation as the
+    #: measure (what :func:`~mechsing.sweeps.falling.others_fall` screens pairs with)
+    second: dict[str, np.ndarray] = field(default_factory=dict)
     _last: Any = field(default=None, repr=False, compare=False)
 
     def __len__(self) -> int:
@@ -162,6 +166,7 @@ class PointMeasures:
             {t: cat(lambda pm, t=t: pm.top[t]) for t in first.top},
             {t: _gathered_steps([(pm.steps[t], idx) for pm, idx in parts]) for t in first.steps},
             first.thin,
+            {t: cat(lambda pm, t=t: pm.second[t]) for t in first.second},
         )
 
     def basis(self, t: str, idx: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -358,7 +363,7 @@ class Measures:
     def __call__(self, Q: np.ndarray) -> PointMeasures:
         self._closure_svd = None
         mats, kernel = self.matrices(Q)
-        rank, ratio, bases, deferred, top = {}, {}, {}, {}, {}
+        rank, ratio, bases, deferred, top, second = {}, {}, {}, {}, {}, {}
         thin: set[str] = set()
         for t in self.tests:
             A, g, unit = mats[t], self.generic[t], t in _UNIT_REFERENCE
@@ -372,6 +377,8 @@ class Measures:
                 deferred[t] = g
                 if done is None:
                     thin.add(t)
+                if t in SIGNED and 2 <= g <= s.shape[1]:
+                    second[t] = s[:, g - 2]
             if unit:
                 rel = s  # already relative to the operator's norm (|T| or |E| = 1)
                 bounds = self.motion.ranks_of_relative(rel)
@@ -383,7 +390,7 @@ class Measures:
             top[t] = s[:, 0] if s.shape[1] else np.zeros(len(s))
         signed, steps = _kept(self, Q, mats, kernel, deferred, thin)
         return PointMeasures(
-            rank, ratio, bases, kernel, signed, deferred, top, steps, frozenset(thin)
+            rank, ratio, bases, kernel, signed, deferred, top, steps, frozenset(thin), second
         )
 
     def _bordered_test(self, t: str) -> bool:
