@@ -237,7 +237,7 @@ class TimedSweep:
         _, _, tau, rows = self.motion(q, s)
         if not self.loops:
             return tau, 0.0
-        efforts, _, residual = balance(rows, self._selector(), tau)
+        efforts, _, residual, _ = balance(rows, self._selector(), tau)
         return efforts[self.inputs], residual
 
     def _selector(self) -> np.ndarray:
