@@ -15,7 +15,7 @@ import pytest
 
 import mechsing
 from mechsing.model import loads
-from tests.cli import ROOT, run_cli
+from tests.cli import ROOT, CliRun, run_cli
 from tests.reference.fivebar_point import torques
 from tests.reference.timelaw import law
 
@@ -135,22 +135,14 @@ def test_sweep_duration_json_follows_the_schema(tmp_path) -> None:  # type: igno
     f = tmp_path / "five_bar_mass.yaml"
     f.write_text(FIVE_BAR)
     y0, y1 = R3 - 0.5, R3 + 0.7
-    rc, out, err = run_cli(
-        [
-            "sweep",
-            f,
-            "--vary",
-            f"pose.y={y0!r}:{y1!r}:0.02",
-            "--from",
-            "type2",
-            "--duration",
-            "2",
-            "--format",
-            "json",
-            "--precision",
-            "float",
-        ]
-    )
+
+    def timed(*fmt: str) -> CliRun:
+        """The five-bar's timed sweep through its Type II, in the format ``fmt`` gives."""
+        vary = f"pose.y={y0!r}:{y1!r}:0.02"
+        argv = ["sweep", f, "--vary", vary, "--from", "type2", "--duration", "2"]
+        return run_cli([*argv, *fmt, "--precision", "float"])
+
+    rc, out, err = timed("--format", "json")
     assert rc == 0, err
     doc = json.loads(out)
     jsonschema.Draft202012Validator(sweep_schema()).validate(doc)
@@ -159,20 +151,7 @@ def test_sweep_duration_json_follows_the_schema(tmp_path) -> None:  # type: igno
     assert doc["points"][-1]["time"] <= 2
     (c,) = doc["type_ii_crossings"]
     assert c["possible"] is False and c["values"][0] == pytest.approx(R3, abs=1e-10)
-    rc, out, err = run_cli(
-        [
-            "sweep",
-            f,
-            "--vary",
-            f"pose.y={y0!r}:{y1!r}:0.02",
-            "--from",
-            "type2",
-            "--duration",
-            "2",
-            "--precision",
-            "float",
-        ]
-    )
+    rc, out, err = timed()
     assert rc == 0 and "Type II crossing at pose.y = 1.732050808 m" in out
     assert "not possible" in out
 
