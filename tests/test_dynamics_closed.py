@@ -144,12 +144,85 @@ def test_crank_torque_in_exact_mode_at_the_drawn_pose() -> None:
     assert res.residual == 0
 
 
-def test_a_closed_chain_at_its_type_ii_in_mp_is_refused_with_the_reason() -> None:
-    """At the crank's dead point the rocker cannot drive: in mp the balance is singular."""
+def test_at_the_dead_point_in_mp_and_exact_the_crossing_is_decided_as_in_float() -> None:
+    """At the crank's dead point the rocker cannot drive: in mp:30 the Type II is decided
+    and the crossing condition with it, as float's residual decides it: the weights cannot
+    be held, a motion at rest without gravity can."""
     mech = _fourbar("D", {"dead": "acos(((1 + 2*sqrt(2))**2 + 11)/8/(1 + 2*sqrt(2)))"})
-    with pytest.raises(mechsing.errors.UserError, match="--precision float"):
-        mechsing.dynamics(mech, "dead", precision="mp:30")
-    assert mechsing.dynamics(mech, "dead", precision="float").configurations[0].crossing
+    for precision in ("float", "mp:30"):
+        c = mechsing.dynamics(mech, "dead", precision=precision).configurations[0]
+        assert c.crossing["possible"] is False and c.crossing["residual"] > 1e-3, precision
+        c = mechsing.dynamics(mech, "dead", precision=precision, gravity=(0, 0, 0))
+        assert c.configurations[0].crossing["possible"] is True, precision
+
+
+def test_rates_that_are_no_motion_at_a_type_ii_are_refused_with_the_reason() -> None:
+    """At the dead point the rocker is at its extreme: a rate of the rocker is no motion."""
+    mech = _fourbar("D", {"dead": "acos(((1 + 2*sqrt(2))**2 + 11)/8/(1 + 2*sqrt(2)))"})
+    with pytest.raises(mechsing.errors.UserError, match="not a motion of the mechanism"):
+        mechsing.dynamics(mech, "dead", rates={"D": 1}, precision="mp:30")
+
+
+#: the five-bar of examples/five_bar.yaml with a point mass of 2 kg at its output point P
+FIVE_BAR = (
+    (Path(__file__).resolve().parents[1] / "examples" / "five_bar.yaml")
+    .read_text()
+    .replace(
+        "configurations:",
+        "mass:\n  dist1: {kg: 2, centre: [0, 4, 0], inertia: [0, 0, 0, 0, 0, 0]}\nconfigurations:",
+    )
+)
+
+
+@pytest.mark.parametrize("precision", ["mp:50", "exact"])
+def test_five_bar_at_its_type_ii_holds_a_weight_along_the_distal_links_only(
+    precision: str,
+) -> None:
+    """The configuration type2 (distal links aligned along x, P = (0, sqrt 3)) at rest.
+    The massless distal links push the mass along x only (two-force members), so the
+    crossing is possible iff gravity has no y component.  Along x (g = 9.81 m/s^2): the
+    links' forces f1 e1 + f2 e2 = -m g with e2 = -e1 = (-1, 0) leave f1 - f2 = -m g; the
+    motors' torques are tau_i = ((B_i - A_i) x f_i e_i)_z = (-sqrt 3 f1, sqrt 3 f2), and
+    the family's least-norm member is f1 = -m g / 2: tau1 = tau2 = sqrt(3) m g / 2.  Along
+    -y: not possible, as float says."""
+    mech = loads(FIVE_BAR, path="five_bar_mass.yaml")
+    with mpmath.workdps(60):
+        want = mpmath.sqrt(3) * 2 * mpmath.mpf("9.81") / 2
+    c = mechsing.dynamics(mech, "type2", precision=precision, gravity=(9.81, 0, 0))
+    c = c.configurations[0]
+    assert c.crossing["possible"] is True
+    assert abs(c.efforts["A1"] - float(want)) <= 1e-12 * float(want)
+    assert abs(c.efforts["A2"] - float(want)) <= 1e-12 * float(want)
+    if precision == "mp:50":
+        with mpmath.workdps(50):
+            res, ins = _closed_five_bar(mech, precision, (sp.Rational(981, 100), 0, 0))
+            for k in ins:
+                assert isinstance(res.efforts[k], mpmath.mpf)
+                assert abs(res.efforts[k] - want) <= mpmath.mpf("1e-40") * want
+        assert res.residual <= 1e-40
+    for g in ((0, -9.81, 0), (1, -9.81, 0)):
+        for p in (precision, "float"):
+            c = mechsing.dynamics(mech, "type2", precision=p, gravity=g).configurations[0]
+            assert c.crossing["possible"] is False and c.crossing["residual"] > 0.1, (g, p)
+    free = mechsing.dynamics(mech, "type2", precision=precision, gravity=(0, 0, 0))
+    c = free.configurations[0]
+    assert c.crossing == {"possible": True, "residual": 0.0}
+    assert c.efforts["A1"] == c.efforts["A2"] == 0
+
+
+def _closed_five_bar(mech: object, precision: str, gravity: object) -> object:
+    from mechsing.kinematics import solve_configuration
+    from mechsing.kinetics.closed import closed_inverse
+    from mechsing.kinetics.tree import TreeDynamics
+    from mechsing.numeric import parse_precision
+
+    prec = parse_precision(precision)
+    model, closed = solve_configuration(mech, "type2", prec)
+    with prec.context():
+        td = TreeDynamics(model, model.asarray(list(gravity)), closed=True)
+        ins = [model.joint(j).columns.start for j in ("A1", "A2")]
+        zero = model.backend.zeros(2)
+        return closed_inverse(td, closed.q, ins, zero, zero), ins
 
 
 SLIDER_CRANK = """\

@@ -15,7 +15,7 @@ import pytest
 
 import mechsing
 from mechsing.model import loads
-from tests.cli import ROOT, run_cli
+from tests.cli import ROOT, CliRun, run_cli
 from tests.reference.fivebar_point import torques
 from tests.reference.timelaw import law
 
@@ -135,22 +135,14 @@ def test_sweep_duration_json_follows_the_schema(tmp_path) -> None:  # type: igno
     f = tmp_path / "five_bar_mass.yaml"
     f.write_text(FIVE_BAR)
     y0, y1 = R3 - 0.5, R3 + 0.7
-    rc, out, err = run_cli(
-        [
-            "sweep",
-            f,
-            "--vary",
-            f"pose.y={y0!r}:{y1!r}:0.02",
-            "--from",
-            "type2",
-            "--duration",
-            "2",
-            "--format",
-            "json",
-            "--precision",
-            "float",
-        ]
-    )
+
+    def timed(*fmt: str) -> CliRun:
+        """The five-bar's timed sweep through its Type II, in the format ``fmt`` gives."""
+        vary = f"pose.y={y0!r}:{y1!r}:0.02"
+        argv = ["sweep", f, "--vary", vary, "--from", "type2", "--duration", "2"]
+        return run_cli([*argv, *fmt, "--precision", "float"])
+
+    rc, out, err = timed("--format", "json")
     assert rc == 0, err
     doc = json.loads(out)
     jsonschema.Draft202012Validator(sweep_schema()).validate(doc)
@@ -159,20 +151,7 @@ def test_sweep_duration_json_follows_the_schema(tmp_path) -> None:  # type: igno
     assert doc["points"][-1]["time"] <= 2
     (c,) = doc["type_ii_crossings"]
     assert c["possible"] is False and c["values"][0] == pytest.approx(R3, abs=1e-10)
-    rc, out, err = run_cli(
-        [
-            "sweep",
-            f,
-            "--vary",
-            f"pose.y={y0!r}:{y1!r}:0.02",
-            "--from",
-            "type2",
-            "--duration",
-            "2",
-            "--precision",
-            "float",
-        ]
-    )
+    rc, out, err = timed()
     assert rc == 0 and "Type II crossing at pose.y = 1.732050808 m" in out
     assert "not possible" in out
 
@@ -202,8 +181,10 @@ def test_report_shows_the_efforts_along_the_timed_sweep(tmp_path) -> None:  # ty
 @pytest.mark.parametrize(
     ("argv", "words"),
     [
-        (["--vary", "joint2=-1:0:0.5", "--vary", "joint3=-1:0:0.5", "--duration", "1"], "a path"),
-        (["--vary", "pose.rx=-0.1:0.1:0.05", "--duration", "1"], "pose.x, pose.y, pose.z"),
+        (
+            ["--vary", "joint2=-1:0:0.5", "--vary", "joint3=-1:0:0.5", "--duration", "1"],
+            "not one motion in time",
+        ),
     ],
 )
 def test_duration_refusals_say_why(argv: list[str], words: str) -> None:
@@ -226,10 +207,17 @@ def test_duration_needs_masses() -> None:
     assert rc == 2 and "gives no masses" in err, err
 
 
-def test_ur5_straight_line_of_its_tool_point_efforts_are_pinocchio_rnea() -> None:
-    """A pose sweep: the output's reference point moves along x, its rotation held.  The
-    joints' rates and accelerations from Pinocchio's frame Jacobian and the drift of the
-    frame's classical acceleration, then pinocchio.rnea."""
+#: a regular start of the UR5 (at the drawn pose the wrist is singular: rates not unique)
+UR5_START = {"joint1": 0.3, "joint2": -1.0, "joint3": 1.2, "joint4": -0.8, "joint5": 0.9}
+
+
+def _ur5_pose_sweep(vary: object, target: object) -> None:
+    """A pose sweep of the UR5 from UR5_START against pinocchio.rnea: ``vary(x0, r0)`` the
+    --vary text from the start's tool point x0 and rotation vector r0 (of the output
+    link's rotation from its drawn one, pin.log3), ``target(s, sd, sdd, r0)`` the tool's
+    angular velocity and acceleration (ground axes) and its point's velocity and
+    acceleration at the swept value s.  The joints' rates and accelerations from
+    Pinocchio's frame Jacobian and the drift of the frame's classical acceleration."""
     pin = pytest.importorskip("pinocchio")
     from mechsing.adhoc import with_set_values
 
@@ -241,16 +229,16 @@ def test_ur5_straight_line_of_its_tool_point_efforts_are_pinocchio_rnea() -> Non
     order = [pm.joints[pm.getJointId(n)].idx_q for n in names]
     frame = pm.getFrameId(mech.output.body)
     pin.framesForwardKinematics(pm, pd, np.zeros(6))  # the drawn pose: every joint at 0
+    drawn = pd.oMf[frame].rotation.copy()
     c0 = np.array([float(x) for x in mech.output_reference_point()])
     local = pd.oMf[frame].actInv(c0)  # the point in the output link's frame
-    # a regular start (at the drawn pose the wrist is singular: the rates are not unique)
-    start = {"joint1": 0.3, "joint2": -1.0, "joint3": 1.2, "joint4": -0.8, "joint5": 0.9}
-    mech = with_set_values(mech, [f"{j}={v}" for j, v in start.items()], None, str(UR5))
+    mech = with_set_values(mech, [f"{j}={v}" for j, v in UR5_START.items()], None, str(UR5))
     q0 = np.zeros(6)
-    q0[[order[names.index(j)] for j in start]] = list(start.values())
+    q0[[order[names.index(j)] for j in UR5_START]] = list(UR5_START.values())
     pin.framesForwardKinematics(pm, pd, q0)
-    x0 = float(pd.oMf[frame].act(local)[0])
-    res = mechsing.sweep(mech, f"pose.x={x0 - 0.1!r}:{x0 + 0.1!r}:0.02", "cli", duration=1.5)
+    x0 = pd.oMf[frame].act(local)
+    r0 = pin.log3(pd.oMf[frame].rotation @ drawn.T)
+    res = mechsing.sweep(mech, vary(x0, r0), "cli", duration=1.5)
     assert res.reached.all()
     dy = res.dynamics
     values = res.variables[0].values
@@ -264,13 +252,52 @@ def test_ur5_straight_line_of_its_tool_point_efforts_are_pinocchio_rnea() -> Non
         J = pin.getFrameJacobian(pm, pd, frame, frame_type)  # (v of the frame's origin, w)
         r = pd.oMf[frame].rotation @ local
         Jp = np.vstack([J[3:], J[:3] - np.cross(r, J[3:].T).T])  # (w, v of the point)
-        qd = np.linalg.solve(Jp, np.array([0, 0, 0, sd, 0, 0]))
+        velocity, acceleration = target(float(s), sd, sdd, r0, pd.oMf[frame].rotation @ drawn.T)
+        qd = np.linalg.solve(Jp, velocity)
         pin.forwardKinematics(pm, pd, q, qd, np.zeros(6))
         acc = pin.getFrameClassicalAcceleration(pm, pd, frame, frame_type)
-        w = Jp[:3] @ qd  # zero: the rotation is held
+        w = Jp[:3] @ qd
         drift = np.concatenate(
             [acc.angular, acc.linear + np.cross(acc.angular, r) + np.cross(w, np.cross(w, r))]
         )
-        qdd = np.linalg.solve(Jp, np.array([0, 0, 0, sdd, 0, 0]) - drift)
+        qdd = np.linalg.solve(Jp, acceleration - drift)
         want = np.asarray(pin.rnea(pm, pd, q, qd, qdd))[order]
         assert np.linalg.norm(dy.efforts[k] - want) <= 1e-9 * max(1.0, np.linalg.norm(want))
+
+
+def test_ur5_straight_line_of_its_tool_point_efforts_are_pinocchio_rnea() -> None:
+    """A pose sweep: the output's reference point moves along x, its rotation held."""
+
+    def target(s, sd, sdd, r0, R):  # type: ignore[no-untyped-def]
+        return np.array([0, 0, 0, sd, 0, 0]), np.array([0, 0, 0, sdd, 0, 0])
+
+    _ur5_pose_sweep(
+        lambda x0, r0: f"pose.x={float(x0[0]) - 0.1!r}:{float(x0[0]) + 0.1!r}:0.02", target
+    )
+
+
+def test_ur5_turn_of_its_tool_about_its_point_efforts_are_pinocchio_rnea() -> None:
+    """A pose sweep of a rotation: the output link's rotation exp(r) from its drawn one,
+    r = (s, r0_y, r0_z), about its tool point held.  Its angular velocity is
+    exp(r) Jexp3(r) r' (Pinocchio's right Jacobian of exp: the body's, turned to the ground
+    axes); the rate of that unit velocity along s by a fourth-order central difference."""
+    pin = pytest.importorskip("pinocchio")
+
+    def unit(s: float, r0: np.ndarray) -> np.ndarray:
+        r = np.array([s, r0[1], r0[2]])
+        return pin.exp3(r) @ pin.Jexp3(r) @ np.array([1.0, 0.0, 0.0])
+
+    def target(s, sd, sdd, r0, R):  # type: ignore[no-untyped-def]
+        # the sample's rotation is the law's: exp(s, r0_y, r0_z)
+        assert np.allclose(pin.log3(R), [s, r0[1], r0[2]], rtol=0, atol=1e-12)
+        h = 1e-4
+        dw = 8 * (unit(s + h, r0) - unit(s - h, r0)) - (unit(s + 2 * h, r0) - unit(s - 2 * h, r0))
+        dw /= 12 * h
+        w = unit(s, r0)
+        return np.concatenate([w * sd, np.zeros(3)]), np.concatenate(
+            [w * sdd + dw * sd**2, np.zeros(3)]
+        )
+
+    _ur5_pose_sweep(
+        lambda x0, r0: f"pose.rx={float(r0[0]) - 0.2!r}:{float(r0[0]) + 0.2!r}:0.05", target
+    )

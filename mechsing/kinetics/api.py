@@ -262,9 +262,10 @@ def _closed(td: Any, mech: Any, q: Any, qd: Any, qdd: Any, tau: Any) -> tuple[An
     values are not read: the closure gives them), or under its inputs' efforts ``tau``
     (forward: the accelerations first), its inputs' efforts, and the crossing condition:
     whether the inputs can produce the efforts the motion needs (the effort balance's
-    relative residual below :data:`mechsing.numeric.tolerances.CROSSING_RTOL`)."""
+    relative residual below :data:`mechsing.numeric.tolerances.CROSSING_RTOL`; at a
+    Type II configuration in mp:N and exact, decided on the power of the efforts on the
+    uncontrolled twists, :func:`mechsing.kinetics.closed.balance`)."""
     from mechsing.kinetics.closed import closed_forward, closed_inverse
-    from mechsing.numeric import CROSSING_RTOL
 
     model = td.model
     inputs = []
@@ -275,7 +276,7 @@ def _closed(td: Any, mech: Any, q: Any, qd: Any, qdd: Any, tau: Any) -> tuple[An
     if tau is not None:
         qdd = closed_forward(td, q, inputs, u, np.asarray(tau)[inputs])
     res = closed_inverse(td, q, inputs, u, np.asarray(qdd)[inputs])
-    crossing = {"possible": bool(res.residual <= CROSSING_RTOL), "residual": res.residual}
+    crossing = {"possible": res.possible, "residual": float(to_float(res.residual))}
     return res.qd, res.qdd, res.efforts, crossing
 
 

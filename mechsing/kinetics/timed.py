@@ -13,7 +13,9 @@ coordinates the sweep gives (the swept one and those it holds) are driven,
 * a coordinate of the output's pose (``pose.x`` ...) by the output body's twist: its
   reference point ``P`` moves with ``v_P = v + w x P`` and accelerates with
   ``a_P = a + alpha x P + w x v_P`` (``(w, v)`` the body's twist and ``(alpha, a)`` its
-  rate, at the ground origin); a held rotation has ``w = 0`` and ``alpha = 0``,
+  rate, at the ground origin); a held rotation has ``w = 0`` and ``alpha = 0``, a
+  turned one (``pose.rx`` ...: the rotation ``R0 exp(r)``, one component of ``r``
+  swept) ``w = R0 J_l(r) r'`` and its rate (:func:`turn_rates`),
 
 and the closure gives the rest (:func:`mechsing.kinetics.closed.driven_motion`).  The
 tree's efforts (:class:`~mechsing.kinetics.tree.TreeDynamics`) are every joint's for an
@@ -31,7 +33,7 @@ motion happens to be at rest) and whether it is below
 :data:`mechsing.numeric.tolerances.CROSSING_RTOL` (``possible``); elsewhere the efforts
 grow as one over the distance to the point.
 
-Owns :class:`TimeLaw`, :class:`TimedSweep` and :func:`attach`; the report's figure is
+Owns :class:`TimeLaw`, :class:`TimedSweep`, :func:`turn_rates` and :func:`attach`; the report's figure is
 :mod:`mechsing.reports.dynamics`'.
 """
 
@@ -47,7 +49,7 @@ from mechsing import lie
 from mechsing.errors import UserError
 from mechsing.numeric import CROSSING_RTOL
 
-__all__ = ["TIMED_SCHEMA", "TimeLaw", "TimedSweep", "attach"]
+__all__ = ["TIMED_SCHEMA", "TimeLaw", "TimedSweep", "attach", "turn_rates"]
 
 #: bisection steps inverting the time law (each halves the bracket of t / T in [0, 1])
 _INVERSION_STEPS = 60
@@ -127,7 +129,9 @@ class TimedSweep:
         mech = run.mechanism
         if run.grid:
             raise UserError(
-                "--duration times a motion along a path: give one --vary (a grid is not a motion)"
+                "--duration times a motion along a path: give one --vary (a grid of two "
+                "swept values is a region, not one motion in time: no order of its samples "
+                "is the motion, and its efforts would depend on the order chosen)"
             )
         if not (isinstance(duration, int | float) and math.isfinite(duration) and duration > 0):
             raise UserError(f"--duration {duration!r}: give a positive number of seconds")
@@ -141,12 +145,11 @@ class TimedSweep:
         self.pose = pb.cm is not pb.model
         if self.pose:
             out = mech.output
-            if self.col < n + 3:
-                raise UserError(
-                    f"--duration: the sweep turns the output ({run.vars[0].name}); a timed "
-                    "motion takes a joint coordinate or the output's position (pose.x, pose.y, "
-                    "pose.z)"
-                )
+            from mechsing.numeric import to_float
+
+            #: the start's rotation vector and the rotation it is measured from (a turn)
+            self.rotation = np.asarray(to_float(run.engine.z0[n : n + 3]), dtype=float)
+            self.R0 = np.asarray(to_float(pb.cm.R0), dtype=float)
             if out.relative_to not in (None, mech.ground):
                 raise UserError(
                     f"--duration: the output {out.body!r} is relative to {out.relative_to!r}; "
@@ -196,6 +199,12 @@ class TimedSweep:
             G = np.zeros((len(self.given), n))
             G[np.arange(len(self.given)), self.given] = 1.0
             return G, (v, a), None
+        pick = [c - n for c in self.given]
+        if self.col < n + 3:  # a turn: the output's angular velocity and acceleration
+            w, dw = turn_rates(self.R0, self.rotation, self.col - n, s)
+            v6, a6 = np.zeros(6), np.zeros(6)
+            v6[:3], a6[:3] = w * float(sd), w * float(sdd) + dw * float(sd) ** 2
+            v, a = v6[pick], a6[pick]
         td = self.td
         poses, _, _, screws = td.motion(q, np.zeros(n), None, False)
         T = np.zeros((6, n))
@@ -205,7 +214,6 @@ class TimedSweep:
         rows = np.vstack(
             [T[:3], -lie.hat3(P) @ T[:3] + T[3:]]
         )  # (w, v_P) of the coordinates' rates
-        pick = [c - n for c in self.given]
 
         def drift(qd: np.ndarray) -> np.ndarray:
             _, xi, acc, _ = td.motion(q, qd, np.zeros(n), False)
@@ -237,7 +245,7 @@ class TimedSweep:
         _, _, tau, rows = self.motion(q, s)
         if not self.loops:
             return tau, 0.0
-        efforts, _, residual = balance(rows, self._selector(), tau)
+        efforts, _, residual, _ = balance(rows, self._selector(), tau)
         return efforts[self.inputs], residual
 
     def _selector(self) -> np.ndarray:
@@ -337,6 +345,34 @@ class TimedSweep:
                 f"residual {c.residual:.2g}"
             )
         return lines
+
+
+def turn_rates(R0: np.ndarray, r0: np.ndarray, k: int, s: float) -> tuple[np.ndarray, np.ndarray]:
+    """The output's angular velocity per unit rate of its rotation vector's component
+    ``k`` and its rate per unit rate squared, where the rotation is ``R0 exp(r)`` with
+    ``r`` the start's ``r0`` but ``r_k = s`` (ground axes, SI).
+
+    ``w(s) = R0 J_l(r) e_k`` (``J_l`` the left Jacobian of SO(3)) and, with
+    ``J_l(r) = int_0^1 exp(tau r) dtau``, ``dw/ds = R0 int_0^1 [tau J_l(tau r) e_k]^
+    exp(tau r) e_k dtau``: the angular acceleration is ``w s'' + dw/ds s'^2``.  The
+    integrand is analytic in ``tau``: Gauss-Legendre nodes integrate it to rounding for
+    any rotation (:data:`_TURN_NODES`)."""
+    r = np.array(r0, dtype=float)
+    r[k] = s
+    e = np.zeros(3)
+    e[k] = 1.0
+    w = R0 @ (lie.left_jacobian_so3(r) @ e)
+    x, wt = np.polynomial.legendre.leggauss(_TURN_NODES)
+    tau = (x + 1) / 2
+    terms = [np.cross(t * (lie.left_jacobian_so3(t * r) @ e), lie.exp_so3(t * r) @ e) for t in tau]
+    dw = R0 @ (np.asarray(wt) @ np.asarray(terms) / 2)
+    return w, dw
+
+
+#: Gauss-Legendre nodes of :func:`turn_rates` (exact for polynomials of degree 47 in tau;
+#: the integrand's Taylor terms in tau fall as |r|^j / j!, below rounding by j = 48 for
+#: |r| <= pi)
+_TURN_NODES = 24
 
 
 def attach(run: Any, duration: float | None, gravity: Any = None) -> None:

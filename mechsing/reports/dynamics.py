@@ -7,11 +7,10 @@ from __future__ import annotations
 
 from typing import Any
 
-import matplotlib
 import numpy as np
 
 from mechsing.reports import document as doc
-from mechsing.reports.figures import RC, new_figure, svg
+from mechsing.reports.figures import svg, swept_axes
 
 __all__ = ["dynamics_blocks"]
 
@@ -19,10 +18,7 @@ __all__ = ["dynamics_blocks"]
 def _figure(sw: Any) -> Any:
     dy = sw.dynamics
     v = sw.variables[0]
-    x = np.asarray(v.values, dtype=float) / v.factor
-    fig = new_figure(7.0, 5.2)
-    with matplotlib.rc_context(RC):
-        ax = fig.add_subplot(2, 1, 1)
+    with swept_axes(sw, 5.2) as (fig, ax, ax2, x):
         for i, n in enumerate(dy.names):
             ax.plot(x, dy.efforts[:, i], lw=1.4, label=f"{n} ({dy.units[n]})")
         # linear, unless a few samples (a Type II) dwarf the rest: then linear up to the
@@ -30,8 +26,6 @@ def _figure(sw: Any) -> Any:
         size = np.abs(dy.efforts[np.isfinite(dy.efforts)])
         if size.size and np.max(size) > 10 * np.percentile(size, 90) > 0:
             ax.set_yscale("symlog", linthresh=float(np.percentile(size, 90)), linscale=2.0)
-        for p in sw.located:
-            ax.axvline(p.values[0] / v.factor, color="#7f7f7f", lw=0.8, ls=":")
         for c in dy.crossings:
             ax.axvline(c.values[0] / v.factor, color="#2ca02c" if c.possible else "#d62728", lw=1.0)
         ax.set_ylabel("effort")
@@ -46,7 +40,6 @@ def _figure(sw: Any) -> Any:
         # ticks away from the ends, where the law is slow and times crowd together
         top.set_xticks(dy.law.duration * np.array([0.1, 0.3, 0.5, 0.7, 0.9]))
         top.set_xlabel("time (s)")
-        ax2 = fig.add_subplot(2, 1, 2, sharex=ax)
         _, sd, sdd = dy.law.rates(np.asarray(v.values, dtype=float))
         ax2.plot(x, sd / v.factor, color="#1f77b4", lw=1.4, label=f"rate ({v.file_unit}/s)")
         ax2.plot(
@@ -57,7 +50,6 @@ def _figure(sw: Any) -> Any:
             ax2.axvline(
                 c.values[0] / v.factor, color="#2ca02c" if c.possible else "#d62728", lw=1.0
             )
-        ax2.set_xlabel(f"{v.name} ({v.file_unit})")
         ax2.legend(loc="best")
     return fig
 

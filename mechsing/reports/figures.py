@@ -7,7 +7,9 @@ colour, the ground grey), :func:`path_figure` (a path sweep: the smallest relati
 value of each test on a log scale against the swept value, float's thresholds shaded,
 located singularities marked and labelled) and :func:`grid_figure` (a grid sweep: the
 singularity loci over the two swept variables coloured by class, each singularity-free
-region tinted in its own colour, the samples not reached greyed, the start marked).  Swept values are shown in the file's units (the axis labels
+region tinted in its own colour, the samples not reached greyed, the start marked); and
+:func:`swept_axes`, the two axes the kinetostatics' and the dynamics' figures draw their
+efforts on along a path.  Swept values are shown in the file's units (the axis labels
 say which); everything else is SI.  Figures are made with :class:`matplotlib.figure.Figure`
 (no pyplot, no display, no global state).
 """
@@ -16,14 +18,24 @@ from __future__ import annotations
 
 import io
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from typing import Any
 
 import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrowPatch, Polygon
 
-__all__ = ["CLASS_COLOURS", "LOOP_COLOURS", "graph_figure", "grid_figure", "path_figure", "svg"]
+__all__ = [
+    "CLASS_COLOURS",
+    "LOOP_COLOURS",
+    "graph_figure",
+    "grid_figure",
+    "path_figure",
+    "svg",
+    "swept_axes",
+]
 
 #: the style every figure is drawn in (fixed fonts and sizes: reproducible output)
 RC = {
@@ -208,6 +220,25 @@ def graph_figure(
 
 #: the floor of the log scale (a measure of exactly zero is drawn there)
 FLOOR = 1e-18
+
+
+@contextmanager
+def swept_axes(sw: Any, height: float) -> Iterator[tuple[Figure, Any, Any, np.ndarray]]:
+    """The two axes of efforts along a path sweep ``sw`` (the kinetostatics' and the
+    dynamics' figures): yields the figure, the top axes (the efforts), the bottom ones
+    (sharing the swept value) and the swept values in the file's unit, the located
+    singularities marked on the top axes (dotted grey, under what is drawn next) and the
+    swept value named under the bottom ones.  Drawn inside the house style (``RC``)."""
+    v = sw.variables[0]
+    x = np.asarray(v.values, dtype=float) / v.factor
+    fig = new_figure(7.0, height)
+    with matplotlib.rc_context(RC):
+        ax = fig.add_subplot(2, 1, 1)
+        for p in sw.located:
+            ax.axvline(p.values[0] / v.factor, color="#7f7f7f", lw=0.8, ls=":")
+        below = fig.add_subplot(2, 1, 2, sharex=ax)
+        below.set_xlabel(f"{v.name} ({v.file_unit})")
+        yield fig, ax, below, x
 
 
 def path_figure(

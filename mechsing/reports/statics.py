@@ -7,11 +7,10 @@ from __future__ import annotations
 
 from typing import Any
 
-import matplotlib
 import numpy as np
 
 from mechsing.reports import document as doc
-from mechsing.reports.figures import RC, new_figure, svg
+from mechsing.reports.figures import svg, swept_axes
 
 __all__ = ["kinetostatics_blocks"]
 
@@ -58,26 +57,19 @@ def _configuration_rows(r: Any) -> list[tuple[str, ...]]:
 def _path_figure(sw: Any) -> Any:
     st = sw.statics
     v = sw.variables[0]
-    x = np.asarray(v.values, dtype=float) / v.factor
-    fig = new_figure(7.0, 4.6)
-    with matplotlib.rc_context(RC):
-        ax = fig.add_subplot(2, 1, 1)
+    with swept_axes(sw, 4.6) as (fig, ax, ax2, x):
         for i, n in enumerate(st.inputs):
             ax.plot(x, np.abs(st.efforts[:, i]), lw=1.4, label=f"|{n}| ({st.units[n]})")
         for n, lim in st.limits.items():
             ax.axhline(lim, color="#d62728", lw=0.8, ls="--")
             ax.annotate(f"limit {n}", (x[0], lim), fontsize=7, color="#d62728")
-        for p in sw.located:
-            ax.axvline(p.values[0] / v.factor, color="#7f7f7f", lw=0.8, ls=":")
         for p in st.located:
             ax.axvline(p.values[0] / v.factor, color="#d62728", lw=0.8)
         ax.set_yscale("log")
         ax.set_ylabel("|effort|")
         ax.legend(loc="best")
-        ax2 = fig.add_subplot(2, 1, 2, sharex=ax)
         ax2.plot(x, st.local, color="#2ca02c", lw=1.4, label="local transmission index")
         ax2.set_ylim(0, 1.05)
-        ax2.set_xlabel(f"{v.name} ({v.file_unit})")
         ax2.legend(loc="best")
     return fig
 
