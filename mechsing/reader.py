@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Collection
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 
 from mechsing.formats import xml_format, xml_to_yaml
@@ -62,16 +63,21 @@ def _source(text: str, path: str) -> Source:
     return Source(path, text, kind, xml_to_yaml(text, path))
 
 
-def read_mechanism(source: str | Path | Source, symbolic: Collection[str] = ()) -> Mechanism:
+def read_mechanism(
+    source: str | Path | Source, symbolic: Collection[str] = (), exact_tables: bool = False
+) -> Mechanism:
     """The mechanism of a file of any format mechsing reads (YAML or JSON, a ``dh``
     table, URDF, MJCF), with its ``warnings`` and ``notes``.
 
     ``symbolic`` names parameters of the file to keep as symbols
-    (:class:`~mechsing.model.parameters.ParameterSymbol`), for symbolic conditions.
+    (:class:`~mechsing.model.parameters.ParameterSymbol`), for symbolic conditions;
+    ``exact_tables`` has a ``dh`` table's frames computed exactly (as symbolic
+    conditions need), not in floats.
     Raises :class:`~mechsing.errors.MechanismError` for every problem of the file."""
     src = source if isinstance(source, Source) else read_source(source)
+    expand = partial(expand_dh, keep_exact=True) if exact_tables else expand_dh
     return loads(
-        src.yaml, path=src.path, default_name=src.name, symbolic=symbolic, expand_dh=expand_dh
+        src.yaml, path=src.path, default_name=src.name, symbolic=symbolic, expand_dh=expand
     )
 
 

@@ -253,12 +253,19 @@ def test_a_kinova_jaco2_condition_is_derived() -> None:
     assert abs(abs(value) - abs(want)) <= 1e-9 * abs(want), (value, want)
 
 
-def test_the_jansen_leg_type_ii_dyads() -> None:
+def test_the_jansen_leg_type_ii_dyads(monkeypatch) -> None:
     """Theo Jansen's leg (his holy numbers): its type II condition has a factor for each
     dyad whose pivots come in line, c sin(t) + s cos(t) in the angle t one link of the dyad
     has turned relative to the other, with c/s = (u . v)/(u x v), u and v the links' arms
-    from the common pivot at the drawn pose (cross(u, R(t) v) = (u . v) sin t + (u x v) cos t)."""
+    from the common pivot at the drawn pose (cross(u, R(t) v) = (u . v) sin t + (u x v) cos t).
+    The eliminations get no wall-clock limit: this test checks what is eliminated or
+    refused by its cost, not the machine's speed (at a load of 18 on two cores one
+    elimination ran past the 60 s of wall clock it is given)."""
     import sympy
+
+    from mechsing.conditions import derive
+
+    monkeypatch.setattr(derive, "ELIMINATION_SECONDS", None)
 
     path = Path(__file__).resolve().parent / "data" / "jansen_leg.yaml"
     run = run_cli(["condition", path, "--format", "json"])
@@ -307,3 +314,63 @@ def test_the_jansen_leg_type_ii_dyads() -> None:
     assert "within" not in notes  # no time limit was reached
     assert "output (type II): the passive joints were not eliminated: for rod_f and dfg" in notes
     assert "input (type I): the passive joints were not eliminated" in notes
+
+
+def test_a_spherical_wrist_jaco2_names_its_wrist_elbow_and_shoulder_factors() -> None:
+    """The JACO2 with its spherical wrist (Kinova's j2s6s300 DH table): a Pieper arm, so
+    its determinant is a wrist factor (J5), an elbow factor (J3) and a shoulder factor,
+    each named so (the wrist's first and last axes coinciding had read "shoulder"), and
+    exact (the table's frames had been taken in floats: one unfactored factor with
+    70-digit radicals).  Checked against the arm's 6x6 joint-twist determinant worked
+    with numpy from the DH table: the product at random joint values, and each factor's
+    zero a zero of it."""
+    import math
+    import random
+
+    import numpy as np
+    import sympy
+
+    path = Path(__file__).resolve().parent / "data" / "jaco2_spherical_dh.yaml"
+    run = run_cli(["condition", path, "--config", "wrist", "--format", "json"])
+    assert run.status == 0, run.err
+    (c,) = json.loads(run.out)["conditions"]
+    d1, d2, e2, d4, d6 = 0.2755, 0.41, 0.0098, 0.2073 + 0.1038, 0.1038 + 0.16
+    rows = [
+        (d1, 0, math.pi / 2),
+        (0, d2, math.pi),
+        (-e2, 0, math.pi / 2),
+        (-d4, 0, math.pi / 2),
+        (0, 0, math.pi / 2),
+        (-d6, 0, math.pi),
+    ]
+    J = sympy.symbols("J1:7")
+    names = {str(s): s for s in J}
+    constant = sympy.sympify(c["constant"])
+    factors = [(sympy.sympify(f["expression"], locals=names), f) for f in c["factors"]]
+    rng = random.Random(3)
+    for _ in range(3):
+        q = [rng.uniform(-math.pi, math.pi) for _ in range(6)]
+        got = float(constant) * math.prod(
+            float(e.subs(dict(zip(J, q, strict=True)))) ** f["power"] for e, f in factors
+        )
+        want = _dh_jacobian_det(rows, q)
+        assert abs(got - want) <= 1e-9 * abs(want), (got, want)
+    by_name = {(f["meaning"] or "").split(":")[0]: e for e, f in factors}
+    assert set(by_name) == {"wrist", "elbow", "shoulder"}, [f["meaning"] for _, f in factors]
+    assert by_name["wrist"].free_symbols == {J[4]}
+    assert by_name["elbow"].free_symbols == {J[2]}
+    # each factor's zero (its first variable bisected, the others random) is the arm's
+    samples = np.random.default_rng(1).uniform(-3, 3, (5, 6))
+    scale = max(abs(_dh_jacobian_det(rows, list(p))) for p in samples)
+    for e in by_name.values():
+        var = sorted(e.free_symbols, key=str)[0]
+        q = [rng.uniform(-math.pi, math.pi) for _ in range(6)]
+        f = sympy.lambdify(var, e.subs({s: v for s, v in zip(J, q, strict=True) if s != var}))
+        grid = np.linspace(-math.pi, math.pi, 721)
+        k = next(i for i in range(720) if f(grid[i]) * f(grid[i + 1]) <= 0)
+        lo, hi = grid[k], grid[k + 1]
+        for _ in range(60):
+            mid = (lo + hi) / 2
+            lo, hi = (lo, mid) if f(lo) * f(mid) <= 0 else (mid, hi)
+        q[J.index(var)] = lo
+        assert abs(_dh_jacobian_det(rows, q)) < 1e-12 * scale

@@ -18,6 +18,7 @@ from pathlib import Path
 from tests.cli import run_cli
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+ROOT_DATA = Path(__file__).resolve().parent / "data"
 
 
 def _with_configuration(tmp_path: Path, example: str, line: str) -> Path:
@@ -99,3 +100,73 @@ def test_a_wrist_given_by_a_pose_drawn_at_its_singularity_is_analysed_there_at_m
     (note,) = [n for n in conf["notes"] if "written pose" in n]
     assert "within the resolution of its 15-digit data (its rotation to 5e-16 rad)" in note
     assert "pose.rx moved by 5.8e-18 rad" in note
+
+
+def test_a_wrist_given_a_pose_a_hair_off_its_singularity_in_short_decimals_at_mp50(tmp_path):
+    """The same wrist given (5.8e-18, 0, 0.5), short decimals: exact data, 5.8e-18 rad off
+    the singularity (not within a resolution of it).  The pose is reachable (a Z-Y-Z
+    wrist reaches every rotation), but only by turning W1 and W3 along the singularity's
+    self-motion until W2's axis lies along the tilt asked for; continuation at 50 digits
+    stopped at the singularity and refused it "beyond a limit of travel".  Now the given
+    pose itself is analysed, regular at 50 digits.  Against the Z-Y-Z angles of the
+    rotation, worked here with mpmath (Rodrigues' formula at 60 digits): |W2| is the tilt
+    of the rotated z axis, W1 its direction (up to pi with the sign of W2), W1 + W3 = 0.5."""
+    import mpmath
+
+    path = tmp_path / "wrist.yaml"
+    path.write_text(WRIST_AT_A_POSE.replace("0.500000000000000", "0.5"))
+    run = run_cli(
+        ["analyze", path, "--precision", "mp:50", "--config", "drawn", "--format", "json"]
+    )
+    assert run.status == 0, run.err
+    (conf,) = json.loads(run.out)["configurations"]
+    assert "error" not in conf and conf["singular"] is False
+    with mpmath.workdps(60):
+        w = mpmath.matrix([mpmath.mpf("5.8e-18"), 0, mpmath.mpf("0.5")])
+        th = mpmath.norm(w)
+        k = w / th
+        K = mpmath.matrix([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+        R = mpmath.eye(3) + mpmath.sin(th) * K + (1 - mpmath.cos(th)) * K * K
+        tilt = mpmath.atan2(mpmath.hypot(R[0, 2], R[1, 2]), R[2, 2])
+        direction = float(mpmath.atan2(R[1, 2], R[0, 2]))
+    j = conf["joints"]
+    w1, w2, w3 = j["W1"][0], j["W2"][0], j["W3"][0]
+    assert math.isclose(abs(w2), float(tilt), rel_tol=1e-9)
+    turned = w1 if w2 > 0 else w1 + math.pi
+    assert abs(math.remainder(turned - direction, 2 * math.pi)) < 1e-12
+    assert math.isclose(w1 + w3, 0.5, abs_tol=1e-15)
+    assert any("self-motion" in n for n in conf["notes"])
+
+
+def test_a_3rrr_given_a_pose_at_its_fold_to_15_digits(tmp_path):
+    """tests/data/planar_3rrr.yaml: its platform turned by rz about its centre (held at
+    the origin) stretches the three legs at once at cos(rz) = 1/8 (the file's comment:
+    |A_i C_i|^2 = 17/4 - 2 cos(rz), legs of 1 + 1), a limit of travel of rz.  Given
+    rz = 1.44546849562683, acos(1/8) to 15 digits (5e-15 rad), the position exact: mp:50
+    refused it "beyond a limit of travel" (the nearest closed configuration moved the
+    exact position, not the rotation written with digits to spare), and auto, which
+    re-decides at mp:50, refused it too.  Now mp:50 analyses the nearest closed
+    configuration, the rotation moved within its resolution, with a note; auto keeps
+    float's analysis and says so."""
+    path = tmp_path / "rrr.yaml"
+    text = (ROOT_DATA / "planar_3rrr.yaml").read_text()
+    path.write_text(
+        text.replace(
+            "  reference: {}",
+            "  reference: {}\n  fold: {pose: {position: [0, 0, 0], rotation_vector: [0, 0, "
+            "1.44546849562683]}}",
+        )
+    )
+    run = run_cli(["analyze", path, "--precision", "mp:50", "--config", "fold", "--format", "json"])
+    assert run.status in (0, 1), run.err
+    (conf,) = json.loads(run.out)["configurations"]
+    assert "error" not in conf
+    assert abs(conf["pose"]["rotation"][0][0] - 1 / 8) < 5e-15
+    assert conf["pose"]["position"] == [0.0, 0.0, 0.0]
+    (note,) = [n for n in conf["notes"] if "nearest closed configuration" in n]
+    assert "within the resolution of its 15-digit data (its rotation to 5e-15 rad)" in note
+    run = run_cli(["analyze", path, "--config", "fold", "--format", "json"])
+    assert run.status in (0, 1), run.err
+    (conf,) = json.loads(run.out)["configurations"]
+    assert "error" not in conf
+    assert any("float closes them within its tolerance" in n for n in conf["notes"])

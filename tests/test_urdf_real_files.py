@@ -161,3 +161,61 @@ def test_output_body_naming_no_link_is_still_refused(tmp_path: Path) -> None:
     rc, _, err = run_cli(["analyze", _arm(tmp_path), "--output-body", "gripper"])
     assert rc == 2
     assert "has no body 'gripper'" in err
+
+
+HANDS = """\
+<?xml version="1.0" ?>
+<robot name="hands">
+  <link name="base"/>
+  <link name="Left_L1"/><link name="Left_L2"/><link name="Right_L1"/><link name="Right_L2"/>
+  <joint name="Left_index_q1" type="revolute">
+    <parent link="base"/><child link="Left_L1"/>
+    <origin xyz="0 0.2 0" rpy="0 0 0"/><axis xyz="0 0 1"/>
+    <limit effort="1" lower="0" upper="2" velocity="1"/>
+  </joint>
+  <joint name="Left_index_q2" type="revolute">
+    <parent link="Left_L1"/><child link="Left_L2"/>
+    <origin xyz="0.04 0 0" rpy="0 0 0"/><axis xyz="0 0 1"/>
+    <limit effort="1" lower="0" upper="2.6" velocity="1"/>
+    <mimic joint="{leader}" multiplier="1.05" offset="0.72"/>
+  </joint>
+  <joint name="Right_index_q1" type="revolute">
+    <parent link="base"/><child link="Right_L1"/>
+    <origin xyz="0 -0.2 0" rpy="0 0 0"/><axis xyz="0 0 1"/>
+    <limit effort="1" lower="0" upper="2" velocity="1"/>
+  </joint>
+  <joint name="Right_index_q2" type="revolute">
+    <parent link="Right_L1"/><child link="Right_L2"/>
+    <origin xyz="0.04 0 0" rpy="0 0 0"/><axis xyz="0 0 1"/>
+    <limit effort="1" lower="0" upper="2.6" velocity="1"/>
+    <mimic joint="index_q1" multiplier="1.05" offset="0.72"/>
+  </joint>
+</robot>
+"""
+
+
+def test_a_mimic_naming_its_leader_without_the_hands_prefix(tmp_path: Path) -> None:
+    """alex_psyonic_hands.urdf (example-robot-data): each finger's second joint mimics
+    ``index_q1``, a name the robot does not define: its xacro prefixed the joints of each
+    hand (``Left_index_q1``, ``Right_index_q1``) but not the mimics' names.  The leader is
+    the one joint between the follower and the root named so after a prefix: the left
+    finger follows ``Left_index_q1``, the right one ``Right_index_q1``, with a note."""
+    path = tmp_path / "hands.urdf"
+    path.write_text(HANDS.format(leader="index_q1"))
+    run = run_cli(["analyze", path, "--format", "json"])
+    assert run.status in (0, 1), run.err
+    run = run_cli(["convert", path])
+    assert run.status == 0, run.err
+    assert "names 'index_q1', which the robot does not define; read as 'Left_index_q1'" in run.out
+    assert "read as 'Right_index_q1'" in run.out
+    couplings = run.out.split("\ncouplings:", 1)[1]
+    assert "Left_index_q2" in couplings and "Left_index_q1" in couplings
+    assert "Right_index_q2" in couplings and "Right_index_q1" in couplings
+
+
+def test_a_mimic_naming_no_joint_on_its_branch_is_still_refused(tmp_path: Path) -> None:
+    path = tmp_path / "hands.urdf"
+    path.write_text(HANDS.format(leader="thumb_q1"))
+    run = run_cli(["analyze", path])
+    assert run.status == 2
+    assert "thumb_q1" in run.err

@@ -290,7 +290,8 @@ def _float_when_written_digits_fail(
     found.  Values without such a resolution (exact expressions, short decimals) keep the
     refusal: their digits are the data."""
     cfg = mech.configurations.get(in_float.name)
-    if cfg is None or not cfg.resolution:
+    posed = cfg is not None and cfg.pose is not None and bool(cfg.pose.resolution)
+    if cfg is None or not (cfg.resolution or posed):
         return written
     what = "did not close" if "does not close" in (written.error or "") else "were not analysed"
     note = (

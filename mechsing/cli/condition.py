@@ -57,7 +57,11 @@ def run(args: argparse.Namespace) -> int:
         check_output(args.output, [args.file])
     names = [s.strip() for s in args.symbolic.split(",") if s.strip()]
     mech = apply_set(
-        apply_scene(load_mechanism(args.file, args.verbose, symbolic=names), args, args.file),
+        apply_scene(
+            load_mechanism(args.file, args.verbose, symbolic=names, exact_tables=True),
+            args,
+            args.file,
+        ),
         args.set_values,
         args.from_config,
         args.file,

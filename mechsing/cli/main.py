@@ -176,16 +176,20 @@ COMMANDS = (
 
 
 def load_mechanism(
-    path: str | Source, verbose: bool = False, symbolic: Sequence[str] = ()
+    path: str | Source,
+    verbose: bool = False,
+    symbolic: Sequence[str] = (),
+    exact_tables: bool = False,
 ) -> Mechanism:
     """Read a mechanism file of any format (:func:`mechsing.reader.read_mechanism`, the
     one reader of every command); print its warnings (likely mistakes that are not
-    errors), and with ``verbose`` what was done silently (axes normalised...)."""
+    errors), and with ``verbose`` what was done silently (axes normalised...).
+    ``exact_tables``: a ``dh`` table's frames exact (``condition``)."""
     from mechsing.errors import working_on
     from mechsing.reader import read_mechanism
 
     with working_on(file=path if isinstance(path, str) else path.path):
-        mech = read_mechanism(path, symbolic=symbolic)
+        mech = read_mechanism(path, symbolic=symbolic, exact_tables=exact_tables)
     for warning in mech.warnings:
         print(f"mechsing: warning: {warning}", file=sys.stderr)
     if verbose:

@@ -240,7 +240,7 @@ def _symbolic_mechanism(source: str | Path | Mechanism, names: list[str]) -> Mec
     """The mechanism with the parameters ``names`` kept as symbols: read from the file,
     or ``source`` itself when it was read so."""
     if not isinstance(source, Mechanism):
-        return read_mechanism(source, symbolic=names)
+        return read_mechanism(source, symbolic=names, exact_tables=True)
     kept = {k for k, v in source.parameters.items() if isinstance(v, ParameterSymbol)}
     if kept == set(names):
         return source
@@ -250,7 +250,7 @@ def _symbolic_mechanism(source: str | Path | Mechanism, names: list[str]) -> Mec
             f"as symbols, not {', '.join(names) or 'none'}; read it with "
             "mechsing.load(path, symbolic=...) or pass its path"
         )
-    return read_mechanism(source.path, symbolic=names)
+    return read_mechanism(source.path, symbolic=names, exact_tables=True)
 
 
 def _printable(c: Condition, printable: dict[Any, Any]) -> Condition:

@@ -15,7 +15,8 @@ describes a serial chain; it stands for the file's ``bodies`` and ``joints``
   R, d_i - d for P);
 * lengths (d, a) in the file's length unit, angles (theta, alpha) in its angle
   unit; numbers may be exact expressions (``pi/2``); frames are computed in
-  floats and written with round-off below 1e-14 snapped;
+  floats and written with round-off below 1e-14 snapped (exactly, as expressions,
+  for symbolic conditions or a row holding a parameter kept as a symbol);
 * joints ``J1..Jn`` and bodies ``L0..Ln`` (``L0`` the ground) unless a row gives
   ``name`` (its joint) or ``body`` (the link after it); the default inputs are
   all the joints and the default output is the last body (its twist is the tool
@@ -135,11 +136,13 @@ def _angle_factor(top: YMap) -> Any:
     return sympy.Integer(1)
 
 
-def expand_dh(top: YMap, r: Any) -> YMap:
+def expand_dh(top: YMap, r: Any, keep_exact: bool = False) -> YMap:
     """``top`` with its ``dh`` table replaced by the bodies, joints (and output) it defines.
 
     ``r`` is the loader's reader (messages naming the file and line, numbers in the
-    file's units)."""
+    file's units).  The frames are computed in floats, or exactly (written as
+    expressions) when a row holds a parameter kept as a symbol or ``keep_exact`` asks
+    (symbolic conditions: a float frame's rounding, rationalised, hides the factors)."""
     dh = top.get("dh")
     line = top.key_line("dh")
     for clash in ("joints", "bodies"):
@@ -204,6 +207,7 @@ def expand_dh(top: YMap, r: Any) -> YMap:
         rows.append((theta, d, a, alpha))
         meta.append((jname, jtype, body, row.line))
     symbolic = any(sympy.sympify(x).free_symbols for row_values in exact for x in row_values)
+    symbolic = symbolic or keep_exact
     frames = exact_frames(exact, convention) if symbolic else dh_frames(rows, convention)
     vec = _exact_vec if symbolic else _vec
     joints: list[YValue] = []

@@ -183,7 +183,8 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
     for el, _ in ordered:
         if el.get("type") == "fixed":
             bodies.merge(el.find("parent").get("link"), el.find("child").get("link"))  # type: ignore[union-attr]
-    inertials = _inertials(links, world, path)
+    notes: list[str] = []
+    inertials = _inertials(links, world, path, notes)
     out_joints: list[JointSpec] = []
     unlimited: list[tuple[str, str, Element]] = []
     for el, tj in ordered:
@@ -223,7 +224,6 @@ def read_urdf(text: str, path: str) -> MechanismSpec:
         ):
             unlimited.append((el.get("name"), el.get("type"), limit))  # type: ignore[arg-type]
         out_joints.append(spec)
-    notes: list[str] = []
     for name, kind, limit in unlimited:
         notes.append(
             f"joint {name!r} (line {limit.line}) is read without limits: its <limit "
@@ -291,11 +291,13 @@ def _limit_side(limit: Element, key: str, path: str) -> float | None:
 _URDF_INERTIA = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
 
 
-def _inertials(links: dict[str, Element], world: dict[str, np.ndarray], path: str) -> list:
+def _inertials(
+    links: dict[str, Element], world: dict[str, np.ndarray], path: str, notes: list[str]
+) -> list:
     """Each link's ``<inertial>`` (``<origin xyz rpy>``, ``<mass value>``, ``<inertia
     ixx ... izz>`` about the centre of mass in the origin's axes) placed in the ground frame
-    at the zero configuration; refused with its line when the mass is negative or the
-    inertia is not a rigid body's."""
+    at the zero configuration; refused with its line when the mass is negative; an
+    inertia that is not a rigid body's is read as a point mass, said in ``notes``."""
     from mechsing.numeric.inertia import inertia_problem
 
     out = []
@@ -326,9 +328,35 @@ def _inertials(links: dict[str, Element], world: dict[str, np.ndarray], path: st
         local = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
         problem = inertia_problem(local)
         if problem:
-            raise err(inertia_el if inertia_el is not None else el, f"the inertia {problem}")
+            # written inertias in the wild often are no rigid body's (a dummy izz alone):
+            # the link kept as a point mass, said in the notes, not the robot refused
+            where = inertia_el if inertia_el is not None else el
+            notes.append(
+                f"link {name!r} (line {where.line}): the <inertia> {problem}; read as a point "
+                f"mass of {kg:g} kg at its centre of mass (the kinematics do not use it; the "
+                "dynamics do: fix the <inertia> for them)"
+            )
+            local = np.zeros((3, 3))
         out.append(placed(name, world[name] @ frame(rpy(*angles), np.array(xyz)), kg, local))
     return out
+
+
+def _prefixed_ancestor(el: Element, leader: str, joints: list[Element]) -> str | None:
+    """The one joint between ``el`` and the root whose name is ``leader`` after a prefix
+    (``Left_index_q1`` for ``index_q1``: a xacro that prefixed the joints of each copy of
+    a hand but not the names its mimics give); None when there is not exactly one."""
+    by_child = {j.find("child").get("link"): j for j in joints if j.find("child") is not None}  # type: ignore[union-attr]
+    found = []
+    seen = set()
+    link = el.find("parent").get("link") if el.find("parent") is not None else None  # type: ignore[union-attr]
+    while link in by_child and link not in seen:
+        seen.add(link)
+        j = by_child[link]
+        name = j.get("name") or ""
+        if len(name) > len(leader) and name.endswith(leader) and name[-len(leader) - 1] in "_-/:.":
+            found.append(name)
+        link = j.find("parent").get("link") if j.find("parent") is not None else None  # type: ignore[union-attr]
+    return found[0] if len(found) == 1 else None
 
 
 #: URDF joint types a <mimic> may couple (one coordinate each)
@@ -360,6 +388,16 @@ def _mimics(
         leader = mimic.get("joint")
         if not leader:
             raise err('a <mimic> names the joint it follows; add joint="..."')
+        if leader not in by_name:
+            prefixed = _prefixed_ancestor(el, leader, joints)
+            if prefixed is not None:
+                notes.append(
+                    f"the <mimic> of joint {el.get('name')!r} (line {mimic.line}) names "
+                    f"{leader!r}, which the robot does not define; read as {prefixed!r}, the "
+                    f"one joint between it and the root named {leader!r} after a prefix (the "
+                    "prefix its generator left out)"
+                )
+                leader = prefixed
         if leader == el.get("name"):
             raise err("a joint cannot mimic itself; name another joint")
         # a leader the robot does not define is kept as written: the coupling cannot be

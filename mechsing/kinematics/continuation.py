@@ -21,7 +21,7 @@ import numpy as np
 from mechsing.errors import ClosureError, UserError
 from mechsing.kinematics.closed import ClosedConfiguration, shown_residual
 from mechsing.kinematics.model import KinematicModel
-from mechsing.kinematics.newton import finite_system
+from mechsing.kinematics.newton import finite_system, increment, scaled_system
 from mechsing.kinematics.paths.folds import land_on_fold, leave_fold
 from mechsing.kinematics.paths.steps import closure_matrix, correct, same_branch
 from mechsing.kinematics.polish import MpPolisher, fold_mp
@@ -208,6 +208,10 @@ class Continuation:
                 if self.at_folds  # joint values or a pose the user gave, at mp:N
                 else None
             )
+            if at_limit is None and self.at_folds:
+                at_limit = _across_self_motion(
+                    self.polisher, self.tolerance, m, cfg, q_out, target, gmask
+                )
             if at_limit is not None:
                 qf, rf, note, on_fold = at_limit
                 # placed on the fold at N digits: float's caveat about folds no longer holds
@@ -365,6 +369,80 @@ def _within_resolution(
     return qf, rf, note, on_fold
 
 
+#: the turns (rad; times L for a length) tried along a singularity's self-motion
+_SELF_MOTION_TURNS = tuple(k * math.pi / 4 for k in (1, -1, 2, -2, 3, -3, 4))
+
+
+def _across_self_motion(
+    polisher: MpPolisher,
+    tolerance: Any,
+    m: ClosureModel,
+    cfg: Configuration,
+    q: np.ndarray,
+    target: np.ndarray,
+    gmask: np.ndarray,
+) -> tuple[np.ndarray, Any, str, bool] | None:
+    """Given values that do close, a hair off a singularity where continuation stopped
+    (a Z-Y-Z wrist given a rotation 5.8e-18 rad off its axis): at the singularity the
+    unknown joints have a self-motion (their Jacobian's kernel; the wrist's first and
+    last joints turning against each other), along which the direction the given values
+    ask for, out of reach at the stop, comes into reach (the wrist's middle axis turned
+    to it).  Newton at the model's digits from points a turn along the kernel that keep
+    the residual (a self-motion; a fold's kernel direction does not): the closed
+    configuration nearest the stop, with its note; None when none closes."""
+    free = ~np.asarray(gmask, dtype=bool)
+    if m.precision.mode != "mp" or not np.any(free):
+        return None
+
+    def residual(x: np.ndarray) -> float:
+        with m.precision.context():
+            return float(np.linalg.norm(np.asarray(to_float(scaled_system(m, x, False)[1]))))
+
+    with m.precision.context():
+        Js, _ = scaled_system(m, q, False)
+        Js = Js.toarray() if hasattr(Js, "toarray") else Js
+        A = np.asarray(to_float(m.precision.asarray(Js)[:, free]), dtype=float)
+    here = residual(q)
+    _u, s, vt = np.linalg.svd(A)
+    if not s.size or not s[0]:
+        return None
+    kernel = [
+        vt[i]
+        for i in range(vt.shape[0])
+        if i >= s.size or s[i] <= CONTINUATION_SINGULAR_RTOL * s[0]
+    ]
+    best = None
+    for k in kernel:
+        k = k / np.abs(k).max()
+        for turn in _SELF_MOTION_TURNS:
+            with m.precision.context():
+                start = m.update(q, increment(m, free, m.precision.asarray(turn * k)))
+            # a self-motion keeps the residual (a fold's kernel direction does not: its
+            # values beyond the fold have no configuration to turn to)
+            if residual(start) > 2 * here:
+                continue
+            qf, rf = polisher.polish(m, start, target, gmask, cfg)
+            if rf > tolerance:
+                continue
+            with m.precision.context():
+                moved = max(abs(float(to_float(x))) for x in m.difference(qf, q))
+            if best is None or moved < best[2]:
+                best = (qf, rf, moved)
+    if best is None:
+        return None
+    qf, rf, moved = best
+    digits = m.precision.digits
+    note = (
+        f"at {digits} digits continuation stopped at a singularity a hair from the given "
+        "values (the unknown joints lose a direction there, the one the given values ask "
+        "for); they are reached by a turn along the singularity's self-motion (joints "
+        f"moved by up to {moved:.3g}), closed by Newton at {digits} digits: the "
+        "configuration analysed is the given one, near the singularity, not on it; give "
+        "values at the singularity itself to analyse it there"
+    )
+    return qf, rf, note, False
+
+
 def _pose_within_resolution(
     polisher: MpPolisher,
     tolerance: Any,
@@ -377,7 +455,8 @@ def _pose_within_resolution(
     """:func:`_within_resolution` for a pose given with digits to spare
     (:attr:`~mechsing.model.OutputPose.resolution`; a wrist drawn at its singularity,
     where the written rotation lies a rounding off it): the nearest closed configuration
-    (every coordinate free, polished at the model's digits) when it moves the written
+    (the unknown joints and the pose coordinates written with digits to spare free,
+    polished at the model's digits) when it moves the written
     pose by no more than its decimals resolve (the rotation by at most the rotation's
     bound: two rotation vectors ``d`` apart differ by a rotation of angle at most
     ``|d|``; each position coordinate by its own; an exact pose coordinate or a given
@@ -386,10 +465,15 @@ def _pose_within_resolution(
     written = () if cfg.pose is None else cfg.pose.resolution
     if not written or not isinstance(m, PoseModel):
         return None
-    qf, rf = polisher.polish(m, q, target, np.zeros(m.n, dtype=bool), cfg)
+    nb, L = m.nb, m.length_scale
+    # free: the unknown joints and the pose coordinates written with digits to spare (an
+    # exact one, a given joint value, stays: least-norm steps would move it too)
+    held = np.array(gmask, dtype=bool)
+    for i in range(6):
+        held[nb + i] = held[nb + i] and not written[i][0]
+    qf, rf = polisher.polish(m, q, target, held, cfg)
     if rf > tolerance:
         return None
-    nb, L = m.nb, m.length_scale
     with m.precision.context():
         step = m.difference(np.asarray(qf), np.asarray(target))
         moved = [abs(float(to_float(x))) for x in step]

@@ -187,6 +187,15 @@ def _centre_facts(lines: Sequence[Line], scale: float) -> _Facts:
                 )
                 about = frozenset((a,))
             normal = normal / np.linalg.norm(normal)
+            # a centre on the second axis, when that axis lies in the plane, is in it by
+            # that alone (a wrist whose first axis coincides with its last puts the point
+            # where its last two meet on its first): no fact of the plane; on the first
+            # axis it is one (the shoulder of an arm without shoulder offset)
+            if (
+                abs(np.dot(pb - pa, normal)) < tol * scale
+                and np.linalg.norm(np.cross(W - pb, ub)) < tol * scale
+            ):
+                continue
             if abs(np.dot(W - pa, normal)) < tol * scale:
                 centre = "the wrist centre" if len(members) == 3 else "the wrist point"
                 out[f"{centre} (where {who} meet) is in {where}"] = (kind, about)
