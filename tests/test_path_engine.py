@@ -98,3 +98,65 @@ def test_continuation_and_a_sweep_land_on_a_fold_by_the_same_definitions(
     reached = np.asarray(s.reached)
     values = np.asarray(s.variables[0].values)
     assert reached[values <= 8 / 5].all()
+
+
+def test_one_turning_at_a_fold_onto_the_side_asked_for() -> None:
+    """folds.leave_fold is the one turning: from the dead centre with the slider moved back
+    by d, each side of the kernel gives one of the two assembly modes that meet there, in
+    closed form: the slider pin C = (24/5 - d, 7/5), the crank pin B = (sin A, -cos A),
+    |C - B| = 4, so sin(A - phi) = (|C|^2 - 15) / (2 |C|), phi = atan2(7/5, 24/5): the two
+    roots either side of the dead centre's A = phi + pi/2.  Continuation, a sweep's start
+    and a path past a fold turn by that same function."""
+    import mechsing.kinematics.continuation as continuation
+    from mechsing.kinematics import KinematicModel
+    from mechsing.kinematics.paths import arc
+
+    assert continuation.leave_fold is folds.leave_fold and arc.leave_fold is folds.leave_fold
+    mech = mechsing.load(EX / "slider_crank_slider_input.yaml")
+    fm = KinematicModel(mech, "float")
+    q0 = np.array([DEAD_CENTRE[j] for j in "ABCP"])
+    gmask = np.array([False, False, False, True])
+    d = 1e-6
+    target = q0.copy()
+    target[3] -= d
+    cx, cy = 24 / 5 - d, 7 / 5
+    rc, phi = math.hypot(cx, cy), math.atan2(cy, cx)
+    s = math.asin((rc * rc - 15) / (2 * rc))
+    roots = sorted([phi + s, phi + math.pi - s])
+    assert roots[0] < DEAD_CENTRE["A"] < roots[1]
+    for sign, want in ((1.0, roots[1]), (-1.0, roots[0])):
+        toward = np.array([sign, 0.0, 0.0, 0.0])  # the kernel's side where A grows or falls
+        fold, q = folds.leave_fold(fm, q0, target, gmask, 1.0, toward)
+        assert fold and q is not None
+        assert q[3] == pytest.approx(8 / 5 - d, abs=1e-15)
+        # closed to a step's tolerance (1e-9 L): at sigma_min ~ sqrt(d) the joints to 1e-6,
+        # the two roots 3e-3 apart
+        assert q[0] == pytest.approx(want, abs=1e-6)
+    # either side, the + one first, when no side is asked for (a start drawn at a fold)
+    fold, q = folds.leave_fold(fm, q0, target, gmask, 1.0)
+    assert fold and min(abs(q[0] - r) for r in roots) < 1e-6
+    # beyond the limit of travel there is no landing on either side
+    beyond = q0.copy()
+    beyond[3] += d
+    assert folds.leave_fold(fm, q0, beyond, gmask, 1.0, np.array([1.0, 0, 0, 0])) == (True, None)
+
+
+def test_a_path_past_a_fold_turns_by_the_one_turning(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A double rocker swept over a full turn meets a limit of travel on each side and
+    comes back past the other (Arc.other_side): it turns there by folds.leave_fold, onto
+    the side of the curve it came along, and finds both limits, +-2 pi/3 in closed form
+    (the coupler and rocker in line: the law of cosines on the file's lengths)."""
+    from mechsing.kinematics.paths import arc
+
+    sides: list[bool] = []
+
+    def spied(*a, **k):  # type: ignore[no-untyped-def]
+        out = folds.leave_fold(*a, **k)
+        sides.append(a[5] is not None if len(a) > 5 else k.get("toward") is not None)
+        return out
+
+    monkeypatch.setattr(arc, "leave_fold", spied)
+    r = mechsing.sweep(EX / "double_rocker.yaml", ["A=-3.1:3.1:0.01"])
+    folds_at = sorted(p.values[0] for p in r.located if p.kind == "fold")
+    assert folds_at == pytest.approx([-2 * math.pi / 3, 2 * math.pi / 3], abs=1e-9)
+    assert sides and all(sides)  # every turn past a fold asked for the side it came along
