@@ -341,3 +341,17 @@ def test_3rpr_holds_its_platform_by_forces_along_the_three_legs(precision: str) 
             res = closed_inverse(td, closed.q, ins, zero, zero)
         for k, w in zip(ins, want, strict=True):
             assert abs(res.efforts[k] - w) <= mpmath.mpf("1e-40") * max(1, abs(w))
+
+
+@pytest.mark.parametrize("precision", ["mp:30", "exact"])
+def test_forward_dynamics_at_a_type_ii_exits_2_with_the_reason(
+    tmp_path: Path, precision: str
+) -> None:
+    """At the five-bar's Type II the inputs' efforts do not determine the accelerations."""
+    from tests.cli import run_cli
+
+    f = tmp_path / "five_bar_mass.yaml"
+    f.write_text(FIVE_BAR)
+    argv = ["dynamics", f, "--config", "type2", "--efforts", "A1=1", "--precision"]
+    rc, _, err = run_cli([*argv, precision])
+    assert rc == 2 and "do not determine the accelerations" in err, err

@@ -38,6 +38,7 @@ rates (``[A; E] N = [0; 1]``) and ``qdd_0`` the acceleration of zero input accel
 every admissible acceleration is ``qdd_0 + N udd``, and virtual work along the admissible
 motions (``N^T A^T = 0``, ``N^T E^T = 1``) gives the inputs' equation
 ``N^T M N udd = tau_in - N^T (M qdd_0 + bias)``: the mass matrix reduced to the inputs.
+At a Type II singularity (decided in mp:N and exact) it is refused with the reason.
 
 Owns :class:`ClosureRows`, :class:`TypeII`, :func:`closed_inverse` and
 :func:`closed_forward`, and their parts: a motion driven by any rows of the rates
@@ -340,6 +341,13 @@ def closed_forward(
     configuration ``q`` with the inputs' rates ``u`` (the reduced equation of the module
     docstring); every coordinate's acceleration."""
     rows = ClosureRows(td, q)
+    if rows.type_ii(inputs) is not None:
+        raise UserError(
+            "the inputs leave a motion of the mechanism free here (a Type II singularity): "
+            "their efforts do not determine the accelerations (the mass matrix reduced to "
+            "the inputs is singular); --accelerations gives the inverse dynamics and the "
+            "crossing condition here"
+        )
     E = rows.selector(inputs)
     model = rows.model
     with model.precision.context():
