@@ -401,3 +401,26 @@ def test_report_has_a_cusps_section(tmp_path: Path) -> None:
     assert "orthogonal-3r (inverse kinematics): cuspidal" in section
     assert "data:image/svg+xml" in section  # the section's figure
     assert section.count("three modes meet") == 4
+
+
+def test_a_degenerate_cusp_is_listed_with_why_it_is_not_certified() -> None:
+    """P = t^3 - a^2 t + b: three real roots where 4 a^6 > 27 b^2 (two horns meeting at
+    the origin), all three meet at t = 0 at (a, b) = (0, 0), but there d(P_t)/da = -2a = 0:
+    the triple-root system's Jacobian is singular (the singular curve b = +-2 |a|^3 /
+    sqrt 27 is itself singular there), so the Krawczyk test cannot certify it, and the
+    cusp says so; the ordinary cusp of t^3 - a t + b is certified and regular (the
+    planar_3rpr_six example at its reference's P1 = 0, P2, P3 in [-20, 20], lists such
+    a degenerate cusp near P2 = 9.93, P3 = -12.17)."""
+    from mechsing.assembly.cusps import DEGENERATE, Cusp
+    from mechsing.assembly.discriminant import Family, section
+
+    t, a, b = sympy.symbols("t a b")
+    (horn,) = section(Family.of(t**3 - a**2 * t + b, t, a, b), (-1.0, 1.1), (-0.5, 0.6), 41).cusps
+    assert (float(horn.a), float(horn.b), float(horn.t)) == pytest.approx((0, 0, 0), abs=1e-12)
+    assert not horn.certified and horn.degenerate
+    # three real roots beside it (inside a horn), one alone outside
+    assert len([r for r in np.roots([1, 0, -(0.1**2), 1e-4]) if abs(r.imag) < 1e-12]) == 3
+    (plain,) = section(Family.of(t**3 - a * t + b, t, a, b), (-1.0, 1.1), (-0.5, 0.6), 41).cusps
+    assert plain.certified and not plain.degenerate
+    doc = Cusp({"a": 0.0, "b": 0.0}, 0.0, False, 1e-30, {}, DEGENERATE).to_json()
+    assert doc["radius"] is None and "degenerate cusp" in doc["not_certified"]

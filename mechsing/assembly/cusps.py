@@ -43,6 +43,20 @@ CERTIFIED = (
 )
 
 
+#: why a listed cusp is not certified: its triple-root system is singular there
+DEGENERATE = (
+    "the Jacobian of P = dP/dt = d2P/dt2 = 0 (in t and the two varied inputs) is singular "
+    "at the triple root, to 50 digits: a degenerate cusp (P_ttt (P_a P_tb - P_b P_ta) = 0, "
+    "the singular curve itself singular there), which the Krawczyk test, proving a "
+    "regular root, cannot certify; three modes do meet there to 50 digits"
+)
+#: why a listed cusp is not certified otherwise
+NOT_CONTRACTED = (
+    "the Krawczyk test did not contract on the box about the triple root (it closes to "
+    "50 digits, and its Jacobian is regular)"
+)
+
+
 @dataclass(frozen=True)
 class Cusp:
     """One cusp: the varied inputs' values, the triple root's mode (the pose or joint
@@ -53,9 +67,11 @@ class Cusp:
     certified: bool
     radius: float
     modes: dict[str, Any]
+    #: why it is not certified (None when it is)
+    why_not: str | None = None
 
     def to_json(self) -> dict[str, Any]:
-        return {
+        out = {
             "inputs": dict(self.inputs),
             "multiplicity": 3,
             "certified": self.certified,
@@ -63,6 +79,9 @@ class Cusp:
             "t": self.t,
             "modes": self.modes,
         }
+        if self.why_not is not None:  # added: a listed cusp that is not certified says why
+            out["not_certified"] = self.why_not
+        return out
 
 
 @dataclass
@@ -175,6 +194,7 @@ def cusps(
                 c.certified,
                 float(c.radius),
                 modes,
+                None if c.certified else (DEGENERATE if c.degenerate else NOT_CONTRACTED),
             )
         )
     certified = [c for c in found if c.certified]

@@ -14,6 +14,8 @@ __all__ = ["render_cusps"]
 def _line(k: int, c: dict[str, Any], names: tuple[str, str]) -> str:
     where = ", ".join(f"{n} = {c['inputs'][n]:.12g}" for n in names)
     how = "certified" if c["certified"] else "not certified"
+    if "degenerate cusp" in (c.get("not_certified") or ""):
+        how += ": a degenerate cusp, its triple-root system singular there"
     if "platform" in c["modes"]:
         at = "the platform at " + ", ".join(
             f"{n} = {v:.6g}" for n, v in c["modes"]["platform"].items()

@@ -39,6 +39,11 @@ def _cusp() -> dict[str, Any]:
                 "in -1/t for a root with abs(t) > 1); null when not certified",
             },
             "t": {"type": "number", "description": "the triple root of the eliminant"},
+            "not_certified": {
+                "type": "string",
+                "description": "why a listed cusp is not certified (a degenerate cusp: "
+                "its triple-root system's Jacobian singular there)",
+            },
             "modes": {
                 "type": "object",
                 "required": ["real_modes_at_cusp", "coalescing"],

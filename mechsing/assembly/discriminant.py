@@ -30,7 +30,7 @@ import numpy as np
 import numpy.polynomial.polynomial as P3
 import sympy
 
-from mechsing.assembly.certify import krawczyk, newton
+from mechsing.assembly.certify import krawczyk, newton, regular
 from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.numeric.tolerances import CUSP_DISTINCT_RTOL, CUSP_REAL_RTOL
 
@@ -160,6 +160,11 @@ class TripleRoot:
     certified: bool
     radius: float
     real_roots: int
+    #: not certified because the triple-root system's Jacobian is singular there (at the
+    #: working digits: :func:`~mechsing.assembly.certify.regular`): a degenerate cusp
+    #: (``P_ttt (P_a P_tb - P_b P_ta) = 0``: the singular curve is itself singular
+    #: there), which the Krawczyk test, on a regular root only, cannot certify
+    degenerate: bool = False
 
 
 @dataclass(frozen=True)
@@ -362,6 +367,7 @@ def _certified(family: Family, z: np.ndarray) -> TripleRoot | None:
                 flip.certified,
                 flip.radius,
                 family.count(float(flip.a), float(flip.b)),
+                flip.degenerate,
             )
     if family.vanishes(z[1], z[2]):
         return None  # every t solves there (a curve of modes), not three meeting
@@ -374,8 +380,11 @@ def _certified(family: Family, z: np.ndarray) -> TripleRoot | None:
         if root is None:  # double precision's point is not a triple root at 50 digits
             return None
         ok = krawczyk(eqs, [t, a, b], root, mpmath.mpf(MODE_CERTIFY_RADIUS))
+        degenerate = not ok and not regular(eqs, [t, a, b], root)
     tr, ar, br = root
-    return TripleRoot(ar, br, tr, ok, MODE_CERTIFY_RADIUS, family.count(float(ar), float(br)))
+    return TripleRoot(
+        ar, br, tr, ok, MODE_CERTIFY_RADIUS, family.count(float(ar), float(br)), degenerate
+    )
 
 
 def without_free_factor(

@@ -536,12 +536,10 @@ def _zfb(
             continue
         if cls == "input":  # in K cap ker T, the direction the inputs move most
             dec = here.input_motion
-            space = sp["zT"]
-            basis = _most_moved(space, sp["E"] @ N)
+            space, basis = _moved(sp["zT"], sp["E"] @ N, v)
         elif cls == "output":  # in K cap ker E, the direction the output moves most
             dec = here.output_motion
-            space = sp["zE"]
-            basis = _most_moved(space, sp["T"] @ N)
+            space, basis = _moved(sp["zE"], sp["T"] @ N, v)
         else:
             both = np.vstack([sp["T"] @ N / max(sp["nT"], 1e-300), sp["E"] @ N])
             dec = decide_rank(both, tprec, L, want_spaces=True, reference=1.0, native_spaces=True)
@@ -606,18 +604,22 @@ def _zfb(
     return findings
 
 
-def _most_moved(z: np.ndarray, A: np.ndarray) -> np.ndarray:
-    """The unit combination of the columns of ``z`` that ``A`` moves most (its first
-    right singular vector), as a one-column basis; empty when ``z`` is, or when no one
-    direction is moved most (the two largest singular values within MOST_MOVED_RTOL:
-    a symmetric pair of motions, where the SVD picks any combination)."""
+def _moved(z: np.ndarray, A: np.ndarray, v: int) -> tuple[np.ndarray, np.ndarray]:
+    """The motions of the columns of ``z`` that ``A`` moves (the inputs, or the output):
+    the ``v`` directions it moves (its first right singular vectors: ``z`` less its
+    passive motions, which ``A`` does not move and the passive-motion finding reports),
+    and the unit combination it moves most, as a one-column basis.  Both empty when
+    ``z`` is; the second also when no one direction is moved most (the two largest
+    singular values within MOST_MOVED_RTOL: a symmetric pair of motions, where the SVD
+    picks any combination)."""
     if not z.size:
-        return z
+        return z, z
     _u, s, vt = svd(A @ z)
     s = np.asarray(to_float(s), dtype=float)
+    space = z @ vt[: min(v, len(s))].T
     if len(s) > 1 and s[1] >= (1.0 - MOST_MOVED_RTOL) * s[0]:
-        return z[:, :0]
-    return z @ vt[:1].T
+        return space, z[:, :0]
+    return space, z @ vt[:1].T
 
 
 def _rates_basis(fm: Any, X: np.ndarray) -> list[list[float]]:
