@@ -31,19 +31,26 @@ __all__ = ["Locator", "measured"]
 
 _TAU_HI = Precision("float").tolerances.tau_hi
 _TAU_LO = Precision("float").tolerances.tau_lo
-#: measures are computed this many configurations at a time (bounds the working memory):
-#: a chunk's largest arrays (the hexapod's 30 x 36 closure and its QR, 8.8 kB a
-#: configuration) then stay under glibc's largest mmap threshold (32 MB), so that their
-#: memory is reused rather than mapped and faulted in again at every chunk (4096 cost the
-#: hexapod's path about 7% of its CPU time in page faults; 2048 and 1024 measured alike)
-_CHUNK = 2048
+#: measures are computed at most this many configurations at a time (bounds the working
+#: memory) ...
+_CHUNK = 4096
+#: ... and so many that a chunk's closure matrices take at most this many bytes: the
+#: chunk's largest arrays (the closure, its transposed copy and QR: the hexapod's 30 x 36,
+#: 8.6 kB a configuration) then stay under glibc's largest mmap threshold (32 MB), so that
+#: their memory is reused rather than mapped and faulted in again at every chunk (4096 of
+#: the hexapod's cost its path about 7% of its CPU time in page faults; 2048 and 1024
+#: measured alike); a small mechanism's chunks stay long (fewer batches)
+_CHUNK_BYTES = 16 * 2**20
 
 
 def measured(measures: Measures, Z: np.ndarray, reached: np.ndarray, n: int) -> PointMeasures:
     """The measures of the reached rows of the sweep's coordinates Z (their first ``n``,
-    the joints), in chunks of _CHUNK configurations."""
+    the joints), in chunks of at most _CHUNK configurations and _CHUNK_BYTES of
+    closure matrices."""
     Q = Z[reached][:, :n]
-    parts = [measures(Q[i : i + _CHUNK]) for i in range(0, max(len(Q), 1), _CHUNK)]
+    rows = 6 * len(measures.mech.loops) + len(measures.model.couplings)
+    step = max(1, min(_CHUNK, _CHUNK_BYTES // max(8 * rows * n, 1)))
+    parts = [measures(Q[i : i + step]) for i in range(0, max(len(Q), 1), step)]
     if len(parts) == 1:
         return parts[0]
     return PointMeasures.gather([(p, slice(None)) for p in parts])
