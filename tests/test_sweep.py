@@ -325,6 +325,24 @@ def test_located_points_classified_at_mp_digits(name, spec, start, cls):
     assert any("located again at mp:30" in n for n in r.notes)
 
 
+def test_a_bifurcation_is_placed_again_to_all_its_digits():
+    """The change-point four-bar's flat positions (A = 0, +-2 pi: the closure loses rank,
+    two branches cross) found again at mp:30 carry 30 correct digits, not the 15 a double
+    root of the closure leaves to a search on the test's determinant: each within a unit
+    in the 29th place of 2 pi k (the placed point solves the regular system of the
+    singular point, not the closure for a held crank angle)."""
+    import mpmath
+
+    r = sweep(EXAMPLES / "fourbar_changepoint.yaml", ["A=-7:7:0.2"], precision="mp:30")
+    flats = [p for p in r.located if "closure" in p.tests]
+    assert len(flats) == 3 and all(p.values_text is not None for p in flats)
+    with mpmath.workdps(60):
+        for p, k in zip(sorted(flats, key=lambda p: p.values[0]), (-1, 0, 1), strict=True):
+            error = abs(mpmath.mpf(p.values_text[0]) - 2 * k * mpmath.pi)
+            assert error < mpmath.mpf(10) ** -29 * max(1, 2 * mpmath.pi * abs(k)), (k, error)
+            assert p.margin is not None and p.margin["dropped"] < 1e-29
+
+
 def test_sweep_starting_at_a_limit_of_travel_goes_the_reachable_way():
     """From the double rocker's limit (a fold: continuation has no direction there) the
     sweep steps off along the curve and reaches the other limit."""

@@ -19,7 +19,14 @@ analysis classifies a located point at mp:N, the point is found again at N digit
   places the swept value of a fold to 1e-16 but its unknowns only to about 1e-8 (the
   curve is quadratic there); the system needs no test, no coordinate to drive, and stays
   solvable where several legs reach their limit at once (then ``lam`` is any point of an
-  affine set, along which the minimum-norm step does not move).
+  affine set, along which the minimum-norm step does not move);
+* a **bifurcation** (a crossing of the closure's own test: it loses rank, two branches
+  cross): the same system with ``F_v . lam = 0`` in place of ``= 1`` (the swept value is
+  not extremal there), so ``[F_x F_v]^T lam = 0``, and ``lam`` normalised by holding its
+  components on the left singular vectors that vanish there at the float point's.  Where
+  the branches cross transversally that system is regular, and Gauss-Newton places the
+  point to N digits, where the closure's double root leaves the secant on its test's
+  determinant N/2 (the secant remains where this does not converge).
 
 Each secant step gains digits superlinearly from float's point; it stops when the step is
 below 10^(5-N) of the variable's scale (10^(5-N/2) for the closure's test, whose point is
@@ -46,8 +53,12 @@ __all__ = ["Relocator"]
 
 #: most secant steps of one relocation (each gains digits superlinearly)
 _SECANT_STEPS = 16
-#: most Gauss-Newton steps of one fold's relocation (each about doubles its digits)
+#: most Gauss-Newton steps of one fold's or bifurcation's relocation (each about
+#: doubles its digits)
 _FOLD_STEPS = 12
+#: size of the move off a bifurcation (commensurate) at which the left singular vectors
+#: that vanish there are told apart: the closure's lost rank comes back in proportion
+_PROBE = 1e-2
 
 
 class Relocator:
@@ -114,6 +125,10 @@ class Relocator:
         nb = sw.model.n
         if kind == "fold":
             return self._fold(z)
+        if test == "closure":  # a bifurcation: placed by its own conditions, as a fold
+            q = self._bifurcation(z)
+            if q is not None:
+                return q
         # the float point's bases
         pm = sw.measures(np.asarray(z[:nb], dtype=float)[None, :])
         if test not in pm.rank:
@@ -124,20 +139,24 @@ class Relocator:
         drive = sw.cols[0] if kind == "row" else sw.cols[1]
         return self._secant(z, drive, self.given, test, U0, V0, N0)
 
-    def _fold(self, z: np.ndarray) -> np.ndarray | None:
-        """The fold near the float point z again at N digits (see the module's note): its
-        joints, or None when Gauss-Newton does not converge."""
-        from mechsing.kinematics.newton import mp_least_squares, scaled_system
+    def _free(self, z: np.ndarray) -> tuple[np.ndarray, int, Any, np.ndarray]:
+        """The free coordinates at the float point z (the unknowns and the swept one),
+        the swept one's place among them, the float closure model and its commensurate
+        Jacobian on them there."""
+        from mechsing.kinematics.newton import scaled_system
 
-        sw = self.sweep
-        pb = sw.problem
-        nb = sw.model.n
-        m: Any = self.pose if self.pose is not None else self.model
-        col = sw.cols[0]
+        pb = self.sweep.problem
+        col = self.sweep.cols[0]
         free = ~np.asarray(pb.given, dtype=bool)
         free[col] = True
         fcols = np.flatnonzero(free)
-        iv = int(fcols.tolist().index(col))
+        Jf, _ = scaled_system(pb.cm, np.asarray(z, dtype=float))
+        return fcols, int(fcols.tolist().index(col)), pb.cm, np.asarray(Jf, dtype=float)[:, fcols]
+
+    def _fold(self, z: np.ndarray) -> np.ndarray | None:
+        """The fold near the float point z again at N digits (see the module's note): its
+        joints, or None when Gauss-Newton does not converge."""
+        fcols, iv, _, A0 = self._free(z)
         nf = len(fcols)
         # the multiplier's start: the shortest combination of the left singular vectors
         # of the unknowns' Jacobian that vanish at the fold (one per chain at its limit)
@@ -146,8 +165,6 @@ class Relocator:
         # (P (lam - lam0) = 0, P across a within those vectors), so that every chain
         # keeps its share: a multiplier that drifts away from one chain leaves that
         # chain's limit a double root, which Gauss-Newton only halves towards
-        Jf, _ = scaled_system(pb.cm, np.asarray(z, dtype=float))
-        A0 = np.asarray(Jf, dtype=float)[:, fcols]
         U, s, _ = np.linalg.svd(A0[:, [i for i in range(nf) if i != iv]])
         # the vanishing singular values (at least one: this is a fold), and the left
         # vectors beyond the unknowns' count (rows every configuration satisfies, as a
@@ -161,6 +178,46 @@ class Relocator:
         P = np.linalg.svd(a[None, :])[2][1:] @ Uk.T
         rhs = np.zeros(nf)
         rhs[iv] = 1.0
+        return self._lagrange(z, fcols, rhs, lam0, P)
+
+    def _bifurcation(self, z: np.ndarray) -> np.ndarray | None:
+        """The point near the float point z where the closure itself loses rank, again at
+        N digits: the same Lagrange system as a fold's with ``[F_x F_v]^T lam = 0`` (the
+        swept value is not extremal there: ``F_v . lam`` vanishes too) and ``lam``
+        normalised by its components on the vanishing left singular vectors, held at the
+        float point's.  Where two branches cross transversally (the second-order form
+        ``lam . F''`` non-degenerate on the two-dimensional kernel) the system is
+        regular, and Gauss-Newton converges quadratically to the singular point; its
+        joints, or None when it does not converge."""
+        fcols, _, cm, A0 = self._free(z)
+        U, s, _ = np.linalg.svd(A0)
+        k = max(int(np.sum(s < SWEEP_FOLD_KERNEL_RTOL * (s[0] if len(s) else 1.0))), 1)
+        Uk = U[:, len(s) - k :]
+        # which of them are rows every configuration satisfies (a planar loop's
+        # out-of-plane ones): those stay vanishing at a configuration moved off the
+        # point, where the closure's own lost rank comes back
+        d = cm.zeros()
+        d[fcols] = _PROBE * np.random.default_rng(0).standard_normal(len(fcols))
+        *_, A1 = self._free(cm.update(np.asarray(z, dtype=float), cm.frame.rates_back(d)))
+        W, w, _ = np.linalg.svd(Uk.T @ A1)
+        lost = int(np.sum(w > SWEEP_FOLD_KERNEL_RTOL * (s[0] if len(s) else 1.0)))
+        if lost != 1:  # no rank the closure lost, or more than one (not a simple crossing)
+            return None
+        return self._lagrange(z, fcols, np.zeros(len(fcols)), Uk @ W[:, 0], Uk.T)
+
+    def _lagrange(
+        self, z: np.ndarray, fcols: np.ndarray, rhs: np.ndarray, lam0: np.ndarray, P: np.ndarray
+    ) -> np.ndarray | None:
+        """Gauss-Newton at N digits from the float point z and multiplier lam0 on
+        ``F(x, v) = 0``, ``[F_x F_v]^T lam = rhs``, ``P lam = P lam0`` (the free
+        coordinates ``fcols``; minimum-norm steps, the second derivatives by central
+        differences at N digits): the joints of its solution, or None when it does not
+        converge."""
+        from mechsing.kinematics.newton import mp_least_squares, scaled_system
+
+        nb = self.sweep.model.n
+        m: Any = self.pose if self.pose is not None else self.model
+        nf = len(fcols)
         with m.precision.context():
             small = mpmath.mpf(10) ** (POLISH_DIGITS_SPARE - mpmath.mp.dps)
             h = mpmath.mpf(10) ** (-(mpmath.mp.dps // 3))
