@@ -213,6 +213,7 @@ def canonical_loops(bodies: Sequence[str], joints: Sequence[Any]) -> tuple[Loop,
 def _networkx_cycles(bodies: Sequence[str], joints: Sequence[Any]) -> list[list[int]]:
     """networkx's minimum cycle basis, each cycle as its joints' file positions."""
     import networkx as nx
+
     index = {b: i for i, b in enumerate(bodies)}
     nb = len(bodies)
     H = nx.Graph()
