@@ -547,23 +547,40 @@ def field_product(A: Any, B: Any) -> np.ndarray | None:
     return out.reshape(m, n)
 
 
+def _exact_zero(x: Any) -> bool:
+    """Is ``x`` written as the exact zero (sympy's ``0`` or the integer 0; not a float)?"""
+    return x is sympy.S.Zero or (type(x) is int and x == 0)
+
+
 def field_solve(A: Any, b: Any) -> np.ndarray | None:
     """X with ``A^T A X = A^T b`` (A (m, n) of full column rank, b (m,) or (m, k)): the
     least-squares solution, exact when b is in the range; None when the entries have no
-    number field."""
+    number field.
+
+    The same X computed with less field arithmetic: a column of b that is zero has the
+    zero solution (a loop's screws are the mechanism's with the other joints' columns
+    zero), and a square A is invertible, so that ``A X = b`` is solved without the
+    normal equations' products (most of exact mode's reduced coordinates)."""
     arr = np.asarray(A, dtype=object)
     rhs = np.asarray(b, dtype=object)
     m, n = arr.shape
     vector = rhs.ndim == 1
     rhs = rhs.reshape(m, -1)
-    D = domain_matrix(np.concatenate([arr, rhs], axis=1))
+    live = [j for j in range(rhs.shape[1]) if not all(_exact_zero(x) for x in rhs[:, j])]
+    D = domain_matrix(np.concatenate([arr, rhs[:, live]], axis=1))
     if D is None:
         return None
-    Am = D[:, :n]
-    bm = D[:, n:]
-    At = Am.transpose()
-    x = (At * Am).lu_solve(At * bm)
-    K = x.domain
-    out = np.array([[K.to_sympy(v) for v in row] for row in x.to_list()], dtype=object)
-    out = out.reshape(n, rhs.shape[1])
+    out = np.full((n, rhs.shape[1]), sympy.S.Zero, dtype=object)
+    if live:
+        Am = D[:, :n]
+        bm = D[:, n:]
+        if m == n:
+            x = Am.lu_solve(bm)
+        else:
+            At = Am.transpose()
+            x = (At * Am).lu_solve(At * bm)
+        K = x.domain
+        for i, row in enumerate(x.to_list()):
+            for j, v in zip(live, row, strict=True):
+                out[i, j] = K.to_sympy(v)
     return out[:, 0] if vector else out
