@@ -426,17 +426,22 @@ def _echelon(D: DomainMatrix) -> FieldEchelon:
             continue
         rows[pr], rows[off] = rows[off], rows[pr]
         scale[pr], scale[off] = scale[off], scale[pr]
-        t = rows[pr][col]
+        prow = rows[pr]
+        t = prow[col]
         pv = scale[pr] * t
         inv = None  # 1 / t, once per pivot (the same element as each a / t, in K)
+        # the pivot row's non-zero columns: x - f * 0 is x, so only these change
+        live = [j for j in range(col, n) if not K.is_zero(prow[j])]
         for r in range(pr + 1, m):
-            a = rows[r][col]
+            row = rows[r]
+            a = row[col]
             if K.is_zero(a):
                 continue
             if inv is None:
                 inv = K.one / t
             f = a * inv
-            rows[r][col:] = [x - f * y for x, y in zip(rows[r][col:], rows[pr][col:], strict=True)]
+            for j in live:
+                row[j] = row[j] - f * prow[j]
             scale[r] = scale[r] * pv
         pivots.append(col)
         values.append(pv)
