@@ -108,10 +108,12 @@ def number_field(values: list[Any]) -> tuple[Any, list[Any]] | None:
     vals = [sympy.sympify(v) for v in values]
     if all(v.is_Rational for v in vals):
         return QQ, [QQ.from_sympy(v) for v in vals]
-    if not all(_algebraic_form(v) for v in vals):
+    # each distinct value once (a matrix repeats its entries: 5 times over on a platform)
+    distinct = list(dict.fromkeys(vals))
+    if not all(_algebraic_form(v) for v in distinct):
         return None
     gens: set[Any] = set()
-    for v in vals:
+    for v in distinct:
         _radicals(v, gens)
     if _degree_bound(gens) > EXACT_FIELD_MAX_DEGREE:
         return None
@@ -120,9 +122,10 @@ def number_field(values: list[Any]) -> tuple[Any, list[Any]] | None:
         return None
     K, images = fit
     try:
-        return K, [_evaluate(K, images, v) for v in vals]
+        elements = {v: _evaluate(K, images, v) for v in distinct}
     except (KeyError, ZeroDivisionError, NotImplementedError):
         return None
+    return K, [elements[v] for v in vals]
 
 
 def _radicals(x: Any, out: set[Any]) -> None:
