@@ -71,3 +71,17 @@ def test_a_command_imports_what_it_uses_when_it_runs(tmp_path: Path) -> None:
     )
     assert status == 0 and "four-bar" in out
     assert {"numpy", "mechsing.analysis"} <= names
+
+
+def test_a_float_analysis_of_one_loop_imports_no_graph_or_plot_library(tmp_path: Path) -> None:
+    # the four-bar's one loop is the unique cycle basis, found without networkx (which
+    # costs a fifth of the start-up with the email and XML modules it loads); nothing of
+    # a float analysis needs scipy or matplotlib either
+    status, out, names = _imported(
+        ["analyze", "examples/fourbar.yaml", "--config", "crank-30", "--precision", "float"],
+        tmp_path,
+    )
+    assert status == 0 and "regular: no singularity" in out
+    assert "mechsing.model.graph" in names
+    heavy = sorted(n for n in names if n.split(".")[0] in ("networkx", "scipy", "matplotlib"))
+    assert not heavy, heavy[:5]

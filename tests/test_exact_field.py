@@ -41,6 +41,7 @@ from mechsing.numeric.field import (
     field_echelon,
     field_null_space,
     field_row_space,
+    field_solve,
     number_field,
 )
 from tests.mechanisms import EXAMPLES, by_name, classes, write
@@ -310,3 +311,24 @@ def test_a_configuration_that_gives_nothing_is_its_start_in_exact_mode(tmp_path:
         assert c["closure_rank"] == o["closure_rank"] and c["mobility"] == o["mobility"]
         assert "underdetermined" not in c
     assert "input" in classes(res["again"])  # the file's type1 pose: a Type I singularity
+
+
+def test_field_solve_square_tall_and_zero_columns_against_sympy() -> None:
+    # the solution in Q(sqrt 2, sqrt 3) against sympy's own elimination (Matrix.LUsolve,
+    # then radsimp): a square system, whose zero right-hand column has the zero solution,
+    # and a tall one whose right-hand side is in the range (the least-squares solution is
+    # the exact one)
+    r2, r3 = sympy.sqrt(2), sympy.sqrt(3)
+    A = sympy.Matrix([[1, r2, 0], [r3, 2, 1], [0, sympy.Rational(1, 3), r2 + r3]])
+    b = sympy.Matrix([[r3, 0, 1], [1, 0, r2], [r2 * r3, 0, 0]])
+    got = field_solve(np.array(A.tolist(), dtype=object), np.array(b.tolist(), dtype=object))
+    want = A.LUsolve(b)
+    assert got.shape == (3, 3)
+    for i in range(3):
+        for j in range(3):
+            assert sympy.expand(sympy.radsimp(got[i, j] - want[i, j])) == 0, (i, j)
+        assert got[i, 1] == 0
+    T = A.col_join(sympy.Matrix([[1, 1, r2]]))
+    x = sympy.Matrix([r2, sympy.Rational(-2, 7), 1 + r3])
+    tall = field_solve(np.array(T.tolist(), dtype=object), np.array(list(T * x), dtype=object))
+    assert [sympy.expand(sympy.radsimp(t - w)) for t, w in zip(tall, x, strict=True)] == [0, 0, 0]

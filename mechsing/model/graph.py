@@ -28,9 +28,11 @@ import weakref
 from collections import deque
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from functools import cached_property
+from typing import TYPE_CHECKING, Any
 
-import networkx as nx
+if TYPE_CHECKING:
+    import networkx as nx
 
 __all__ = [
     "Leg",
@@ -96,11 +98,16 @@ class MechanismGraph:
     bodies: tuple[str, ...]
     ground: str
     joints: tuple[Any, ...]
-    multigraph: nx.MultiGraph = field(repr=False, compare=False)
     loops: tuple[Loop, ...]
     tree_paths: Mapping[str, tuple[PathStep, ...]] = field(repr=False)
     tree_joints: tuple[str, ...]
     chord_joints: tuple[str, ...]
+
+    @cached_property
+    def multigraph(self) -> nx.MultiGraph:
+        """The networkx multigraph (module docstring), built on first use: networkx is
+        imported only where a caller asks for it."""
+        return _multigraph(self.bodies, self.joints)
 
     @property
     def num_loops(self) -> int:
@@ -189,11 +196,12 @@ def canonical_loops(bodies: Sequence[str], joints: Sequence[Any]) -> tuple[Loop,
     :data:`NETWORKX_LOOP_WORK` the basis is :func:`short_cycle_basis` instead,
     also a minimum cycle basis (the same total length, so the same loops
     wherever the minimum basis is unique, as in a ladder of parallelograms),
-    with ties broken by the joints' file positions.
+    with ties broken by the joints' file positions.  With one loop or none the basis
+    is unique (the one cycle), and :func:`short_cycle_basis` finds it without networkx.
     """
     pos = {j.name: k for k, j in enumerate(joints)}
     n_loops = len(joints) - len(bodies) + 1
-    if n_loops * (len(bodies) + len(joints)) ** 2 <= NETWORKX_LOOP_WORK:
+    if 1 < n_loops and n_loops * (len(bodies) + len(joints)) ** 2 <= NETWORKX_LOOP_WORK:
         cycles = _networkx_cycles(bodies, joints)
     else:
         cycles = short_cycle_basis(bodies, [j.between for j in joints])
@@ -204,6 +212,8 @@ def canonical_loops(bodies: Sequence[str], joints: Sequence[Any]) -> tuple[Loop,
 
 def _networkx_cycles(bodies: Sequence[str], joints: Sequence[Any]) -> list[list[int]]:
     """networkx's minimum cycle basis, each cycle as its joints' file positions."""
+    import networkx as nx
+
     index = {b: i for i, b in enumerate(bodies)}
     nb = len(bodies)
     H = nx.Graph()
@@ -411,11 +421,10 @@ def connected_to(ground: str, bodies: Sequence[str], joints: Sequence[Any]) -> s
     return seen
 
 
-def build_graph(bodies: Sequence[str], ground: str, joints: Sequence[Any]) -> MechanismGraph:
-    """The graph model of bodies (file order), a ground and joints (file order).
+def _multigraph(bodies: Sequence[str], joints: Sequence[Any]) -> nx.MultiGraph:
+    """The networkx multigraph of :attr:`MechanismGraph.multigraph` (module docstring)."""
+    import networkx as nx
 
-    Every body must be connected to ground (the loader checks it first).
-    """
     G = nx.MultiGraph()
     for b in bodies:
         G.add_node(b, hidden=False)
@@ -428,7 +437,14 @@ def build_graph(bodies: Sequence[str], ground: str, joints: Sequence[Any]) -> Me
             G.add_edge(c, b, key=(j.name, 1), joint=j, part=1, tail=c, head=b)
         else:
             G.add_edge(a, b, key=j.name, joint=j, part=None, tail=a, head=b)
+    return G
 
+
+def build_graph(bodies: Sequence[str], ground: str, joints: Sequence[Any]) -> MechanismGraph:
+    """The graph model of bodies (file order), a ground and joints (file order).
+
+    Every body must be connected to ground (the loader checks it first).
+    """
     # breadth-first spanning tree from ground, neighbours in joint file order
     inc: dict[str, list[Any]] = {b: [] for b in bodies}
     for j in joints:
@@ -463,7 +479,6 @@ def build_graph(bodies: Sequence[str], ground: str, joints: Sequence[Any]) -> Me
         bodies=tuple(bodies),
         ground=ground,
         joints=tuple(joints),
-        multigraph=G,
         loops=loops,
         tree_paths=paths,
         tree_joints=tree_sorted,

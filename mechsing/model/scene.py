@@ -33,8 +33,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-import networkx as nx
-
 from mechsing.errors import InputRefError, UserError
 from mechsing.model.graph import build_graph
 from mechsing.model.mechanism import Configuration, InputRef, Joint, Mechanism, Output, Scene
@@ -177,6 +175,8 @@ def relevant_part(
     simple path between two vertices iff it shares a cycle with the edge joining them),
     in the graph whose nodes are the bodies and the joints (so parallel joints are two
     paths)."""
+    import networkx as nx
+
     g = nx.Graph()
     g.add_nodes_from(("body", b) for b in bodies)
     for j in joints:
@@ -199,6 +199,8 @@ def _branches(
 ) -> list[tuple[tuple[str, ...], tuple[str, ...]]]:
     """The parts left out, each (bodies, joints) in file order, in the order of their
     first joint in the file: connected through bodies left out."""
+    import networkx as nx
+
     g = nx.Graph()
     for j in mech.joints:
         if j.name in joints:

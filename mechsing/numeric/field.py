@@ -108,10 +108,12 @@ def number_field(values: list[Any]) -> tuple[Any, list[Any]] | None:
     vals = [sympy.sympify(v) for v in values]
     if all(v.is_Rational for v in vals):
         return QQ, [QQ.from_sympy(v) for v in vals]
-    if not all(_algebraic_form(v) for v in vals):
+    # each distinct value once (a matrix repeats its entries: 5 times over on a platform)
+    distinct = list(dict.fromkeys(vals))
+    if not all(_algebraic_form(v) for v in distinct):
         return None
     gens: set[Any] = set()
-    for v in vals:
+    for v in distinct:
         _radicals(v, gens)
     if _degree_bound(gens) > EXACT_FIELD_MAX_DEGREE:
         return None
@@ -120,9 +122,10 @@ def number_field(values: list[Any]) -> tuple[Any, list[Any]] | None:
         return None
     K, images = fit
     try:
-        return K, [_evaluate(K, images, v) for v in vals]
+        elements = {v: _evaluate(K, images, v) for v in distinct}
     except (KeyError, ZeroDivisionError, NotImplementedError):
         return None
+    return K, [elements[v] for v in vals]
 
 
 def _radicals(x: Any, out: set[Any]) -> None:
@@ -426,17 +429,22 @@ def _echelon(D: DomainMatrix) -> FieldEchelon:
             continue
         rows[pr], rows[off] = rows[off], rows[pr]
         scale[pr], scale[off] = scale[off], scale[pr]
-        t = rows[pr][col]
+        prow = rows[pr]
+        t = prow[col]
         pv = scale[pr] * t
         inv = None  # 1 / t, once per pivot (the same element as each a / t, in K)
+        # the pivot row's non-zero columns: x - f * 0 is x, so only these change
+        live = [j for j in range(col, n) if not K.is_zero(prow[j])]
         for r in range(pr + 1, m):
-            a = rows[r][col]
+            row = rows[r]
+            a = row[col]
             if K.is_zero(a):
                 continue
             if inv is None:
                 inv = K.one / t
             f = a * inv
-            rows[r][col:] = [x - f * y for x, y in zip(rows[r][col:], rows[pr][col:], strict=True)]
+            for j in live:
+                row[j] = row[j] - f * prow[j]
             scale[r] = scale[r] * pv
         pivots.append(col)
         values.append(pv)
@@ -547,23 +555,40 @@ def field_product(A: Any, B: Any) -> np.ndarray | None:
     return out.reshape(m, n)
 
 
+def _exact_zero(x: Any) -> bool:
+    """Is ``x`` written as the exact zero (sympy's ``0`` or the integer 0; not a float)?"""
+    return x is sympy.S.Zero or (type(x) is int and x == 0)
+
+
 def field_solve(A: Any, b: Any) -> np.ndarray | None:
     """X with ``A^T A X = A^T b`` (A (m, n) of full column rank, b (m,) or (m, k)): the
     least-squares solution, exact when b is in the range; None when the entries have no
-    number field."""
+    number field.
+
+    The same X computed with less field arithmetic: a column of b that is zero has the
+    zero solution (a loop's screws are the mechanism's with the other joints' columns
+    zero), and a square A is invertible, so that ``A X = b`` is solved without the
+    normal equations' products (most of exact mode's reduced coordinates)."""
     arr = np.asarray(A, dtype=object)
     rhs = np.asarray(b, dtype=object)
     m, n = arr.shape
     vector = rhs.ndim == 1
     rhs = rhs.reshape(m, -1)
-    D = domain_matrix(np.concatenate([arr, rhs], axis=1))
+    live = [j for j in range(rhs.shape[1]) if not all(_exact_zero(x) for x in rhs[:, j])]
+    D = domain_matrix(np.concatenate([arr, rhs[:, live]], axis=1))
     if D is None:
         return None
-    Am = D[:, :n]
-    bm = D[:, n:]
-    At = Am.transpose()
-    x = (At * Am).lu_solve(At * bm)
-    K = x.domain
-    out = np.array([[K.to_sympy(v) for v in row] for row in x.to_list()], dtype=object)
-    out = out.reshape(n, rhs.shape[1])
+    out = np.full((n, rhs.shape[1]), sympy.S.Zero, dtype=object)
+    if live:
+        Am = D[:, :n]
+        bm = D[:, n:]
+        if m == n:
+            x = Am.lu_solve(bm)
+        else:
+            At = Am.transpose()
+            x = (At * Am).lu_solve(At * bm)
+        K = x.domain
+        for i, row in enumerate(x.to_list()):
+            for j, v in zip(live, row, strict=True):
+                out[i, j] = K.to_sympy(v)
     return out[:, 0] if vector else out
