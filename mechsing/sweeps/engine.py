@@ -42,12 +42,12 @@ from mechsing.sweeps.start import start_of
 __all__ = ["Sweep"]
 
 #: rows of a grid followed, measured and refined together hold about this many samples
-#: (8192 made the 3-RPR grid's arrays large enough to be mapped and faulted in again at
-#: every chunk, about 6% of its CPU time; 4096 measured as fast on the five-bar grid,
-#: 2048 slower, the chunks' own work counting more)
-_ROWS_SAMPLES = 4096
-#: ... and at most about this many bytes of their measures (a big mechanism's matrices)
-_ROWS_BYTES = 64 * 2**20
+_ROWS_SAMPLES = 8192
+#: ... and at most about this many bytes of their measures (a big mechanism's matrices;
+#: 64 MB made the 3-RPR grid's chunks of 8192 samples large enough to be mapped and
+#: faulted in again at every chunk, about 6% of its CPU time; 16 MB keeps the five-bar's
+#: chunks of 8192, whose halves measured 5% slower)
+_ROWS_BYTES = 16 * 2**20
 
 
 class Sweep:
