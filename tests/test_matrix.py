@@ -124,7 +124,12 @@ FORMATS = {
     "urdf": (ROOT / "examples" / "ur5.urdf", "joint3=-3:3:0.25"),
     "mjcf": (ROOT / "examples" / "fourbar_mjcf.xml", "A=0:360:10"),
 }
-COMMANDS = ("analyze", "condition", "sweep", "report", "modes")
+COMMANDS = ("analyze", "condition", "sweep", "report", "modes", "cusps", "dynamics")
+#: the commands that only take mechanisms of some kinds: a refusal (2) must say what they need
+NEEDS = {
+    "cusps": ("three inputs", "positional task"),
+    "dynamics": ("gives no masses", "joints of one coordinate"),
+}
 
 
 @pytest.mark.parametrize("command", COMMANDS)
@@ -141,6 +146,11 @@ def test_every_command_reads_every_format(fmt: str, command: str, tmp_path: Path
         argv += ["--quiet", "--format", "json"]
     if command == "report":
         argv += ["-o", str(tmp_path / "review.md")]
+    if command == "cusps":  # the section of the file's first two joints
+        from mechsing import load
+
+        first, second = (j.name for j in load(path).joints[:2])
+        argv += ["--vary", f"{first}=0:1,{second}=0:1", "--points", "5"]
     if command == "modes":  # the file's first configuration after the reference
         from mechsing import load
 
@@ -160,6 +170,9 @@ def test_every_command_reads_every_format(fmt: str, command: str, tmp_path: Path
     if command == "modes" and fmt == "mjcf":  # a loop and only a reference: no given value
         assert rc == 2 and "gives no joint value" in err, err
         return
+    if command in NEEDS and rc == 2:  # a mechanism of another kind, refused with what it needs
+        assert str(path) in err and any(n in err for n in NEEDS[command]), err
+        return
     assert rc in (0, 3), err
     if command == "sweep":
         assert json.loads(out)["points"]
@@ -167,3 +180,31 @@ def test_every_command_reads_every_format(fmt: str, command: str, tmp_path: Path
         assert (tmp_path / "review.md").read_text().startswith("#")
     else:
         assert out
+
+
+#: the sweep's options of the newer commands, on the four-bar (its crank-30 has two modes)
+SWEEP_OPTIONS = {
+    "mode": ["--from", "crank-30", "--mode", "2"],
+    "modes-all": ["--from", "crank-30", "--modes", "all"],
+    "json-by-extension": ["--from", "crank-30"],
+}
+
+
+@pytest.mark.parametrize("option", SWEEP_OPTIONS)
+def test_the_sweeps_newer_options(option: str, tmp_path: Path) -> None:
+    """A sweep per assembly mode, every mode, and the format read from -o's extension: an
+    answer without a warning of Python's, each sample labelled with the mode it follows."""
+    out_file = tmp_path / "sweep.json"
+    argv = ["sweep", str(ROOT / "examples" / "fourbar.yaml"), "--vary", "A=0:360:10"]
+    argv += ["--quiet", "-o", str(out_file), *SWEEP_OPTIONS[option]]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        rc, _, err = run_cli(argv)
+    assert rc == 0 and "Traceback" not in err, err
+    document = json.loads(out_file.read_text())
+    runs = document if isinstance(document, list) else [document]
+    assert runs and all(run["points"] for run in runs)
+    if option == "mode":
+        assert {p["mode"] for run in runs for p in run["points"]} == {2}
+    if option == "modes-all":
+        assert {p["mode"] for run in runs for p in run["points"]} == {1, 2}
