@@ -597,7 +597,9 @@ def _find(given: Given) -> Found:
         )
         return Found(formulation, [], None, "infinite", None, tuple(notes), 1, given.closure)
     square = [*_randomized(prob), *norms]
-    raw, tracked = track(*patched_system(prob), mptype=MPTYPE if m > n or prob.spins else "adaptive")
+    raw, tracked = track(
+        *patched_system(prob), mptype=MPTYPE if m > n or prob.spins else "adaptive"
+    )
     product = sympy.lambdify(gens, [list(c.product) for c in prob.closures], "numpy")
     genuine = [z for z in raw if _genuine(prob, z, product)]
     real = real_endpoints(genuine)
