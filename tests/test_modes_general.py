@@ -273,17 +273,28 @@ configurations:
 """
 
 
-def test_rssr_with_its_input_is_a_curve_the_couplers_spin(tmp_path: Path) -> None:
-    """An RSSR's coupler turns freely about the line through its two ball joints: with
-    the crank given, the closed configurations form a curve (dimension 1), whatever the
-    rocker's two positions; modes says so, from the local dimension test, with no count."""
+def test_rssr_with_its_input_has_two_modes_the_coupler_listed_without_spin(
+    tmp_path: Path,
+) -> None:
+    """An RSSR's coupler turns idly about the line through its two ball joints: the
+    modes are the rocker's two positions (the coupler free of spin about that line), not a
+    curve.  Closed form: the crank's ball at B = (cos a, sin a, 0), the rocker's at C =
+    (3, 1 - 2 sin f, 2 cos f) (f its angle about x from the reference, the joint D's value
+    being -f: D is written from the rocker to ground), |C - B|^2 = 9 as at the reference,
+    so sin f = (u^2 + v^2 - 5) / (4 v) with u = 3 - cos a, v = 1 - sin a."""
     f = tmp_path / "rssr.yaml"
     f.write_text(RSSR)
     doc = _modes([str(f), "--config", "crank-30"])
-    assert doc["count"] is None and doc["complete"] == "infinite"
-    assert doc["formulation"]["dimension"] == 1
-    assert doc["formulation"]["unknowns"] == [
-        "B (quaternion)",
-        "C (quaternion)",
-        "D (half-angle pair)",
-    ]
+    a = np.pi / 6
+    u, v = 3 - np.cos(a), 1 - np.sin(a)
+    s = (u * u + v * v - 5) / (4 * v)
+    expected = sorted(wrap_angles(["R"] * 2, np.array([-np.arcsin(s), -(np.pi - np.arcsin(s))])))
+    assert doc["count"] == 2
+    got = sorted(m["joints"]["D"][0] for m in doc["modes"])
+    assert np.allclose(got, expected, atol=1e-12), (got, expected)
+    assert doc["formulation"]["idle_spins"] == [["coupler", "B", "C"]]
+    B0, C0 = np.array([1.0, 0, 0]), np.array([3.0, 1, 2])
+    for m in doc["modes"]:
+        assert m["certified"]
+        # B's rotation vector has no component along the coupler's line at the reference
+        assert abs(np.dot(m["joints"]["B"], C0 - B0)) < 1e-12

@@ -266,3 +266,19 @@ def test_time_limit_stops_the_planar_elimination_and_classification() -> None:
     argv = ["modes", str(path), "--set", "A1=0.2", "--set", "A2=-0.1", "--set", "A3=0.05"]
     rc, _, err = run_cli([*argv, "--time-limit", "1"])
     assert rc == 3 and "within --time-limit 1 s" in err and "Traceback" not in err
+
+
+def test_a_slider_crank_with_its_crank_given_is_planar_exactly() -> None:
+    """slider_crank_crank_input.yaml at A = pi/3: its plane's normal is taken from the
+    file's exact axes (the float one carried 1e-15 of rounding, which turned the
+    mechanism off the xy plane and sent it to the general formulation, not proven).
+    Closed form: B = (sin A, -cos A), C = (16/5 + P, 7/5) on the slide, |C - B| = 4 as at
+    the reference, so P = sin A - 16/5 +- sqrt(16 - (7/5 + cos A)^2)."""
+    doc = _modes("slider_crank_crank_input.yaml", "--config", "crank-60")
+    assert doc["formulation"]["name"] == "planar platform pose"
+    assert doc["count"] == 2 and doc["complete"] == "proven"
+    a = np.pi / 3
+    root = np.sqrt(16 - (7 / 5 + np.cos(a)) ** 2)
+    expected = sorted(np.sin(a) - 16 / 5 + k * root for k in (-1, 1))
+    found = sorted(m["joints"]["P"][0] for m in doc["modes"])
+    assert np.allclose(found, expected, atol=1e-12), (found, expected)

@@ -46,3 +46,48 @@ def test_slides_beyond_double_precision_are_refused_not_a_defect() -> None:
     assert rc == 3, err
     assert "stewart_dietmaier.yaml" in err and "homotopy continuation" in err
     assert "defect" not in err
+
+
+def test_dietmaier_longer_has_eighteen_modes_every_solution_certified() -> None:
+    """Dietmaier's platform with every slide 0.01 m longer (configuration ``longer``): 18
+    real poses of the 40 solutions a platform on six distance legs can have (Raghavan
+    1993); continuation finds all 40, each certified in its own box, so the count is
+    ``maximal``.  The poses are those damped Newton finds from 1500 random starts on the
+    legs' lengths written here from the file (tests/reference/platform_poses_independent),
+    each mode's pose read from leg 1's joint values by the tests' own kinematics."""
+    pytest.importorskip("bertini")
+    from tests.reference.modes_independent import ups_platform_pose
+    from tests.reference.platform_poses_independent import platform_poses
+
+    joints = {j["name"]: j for j in yaml.safe_load(DIETMAIER.read_text())["joints"]}
+    base = [np.array(joints[f"U{i}"]["point"], float) for i in range(1, 7)]
+    plat = [np.array(joints[f"S{i}"]["point"], float) for i in range(1, 7)]
+    lengths = []
+    for i in range(6):
+        u = np.array(joints[f"P{i + 1}"]["axis"], float)
+        lengths.append(np.linalg.norm(plat[i] - base[i] + 0.01 * u / np.linalg.norm(u)))
+
+    def closure(R: np.ndarray, t: np.ndarray, _x: np.ndarray) -> np.ndarray:
+        return np.array([np.linalg.norm(R @ plat[i] + t - base[i]) - lengths[i] for i in range(6)])
+
+    rc, out, err = run_cli(["modes", str(DIETMAIER), "--config", "longer", "--format", "json"])
+    assert rc == 0, err
+    doc = json.loads(out)
+    assert doc["count"] == 18 and doc["complete"] == "maximal"
+    assert doc["paths"]["solutions"] == 40
+    assert any("all 40 solutions" in n for n in doc["notes"])
+    expected = platform_poses(closure, starts=1500, scale=1.5)
+    assert len(expected) == 18
+    for m in doc["modes"]:
+        q = m["joints"]
+        R, t = ups_platform_pose(
+            joints["U1"]["axes"],
+            np.array(joints["P1"]["axis"], float),
+            q["P1"][0],
+            np.array(q["S1"]),
+            base[0],
+            plat[0],
+            tuple(q["U1"]),
+        )
+        assert np.allclose(closure(R, t, np.empty(0)), 0, atol=1e-12)
+        assert min(np.linalg.norm(R - R2) + np.linalg.norm(t - t2) for R2, t2 in expected) < 1e-8

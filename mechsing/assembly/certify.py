@@ -188,6 +188,23 @@ def apart(roots: Sequence[Sequence[Any]]) -> bool:
     return True
 
 
+def every_solution(
+    eqs: Sequence[sympy.Expr],
+    gens: Sequence[sympy.Symbol],
+    points: Sequence[Any],
+    dps: int,
+    real: int,
+) -> bool:
+    """Are ``points`` (every solution continuation found, as many as the most the system
+    can have) each certified in its own box (:func:`certified_roots`, the boxes pairwise
+    disjoint: :func:`apart`), ``real`` of them real?  Then none is missing, and the real
+    ones are every mode."""
+    roots = certified_roots(eqs, gens, list(points), dps)
+    if roots is None or not apart(roots):
+        return False
+    return sum(1 for x in roots if all(mpmath.im(v) == 0 for v in x)) == real
+
+
 @functools.lru_cache(maxsize=4)
 def _realified(
     exprs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...]
@@ -202,6 +219,13 @@ def _realified(
     return out, [*re_parts, *im_parts]
 
 
+#: Newton's most steps, and how much each small step must shrink the last (else the
+#: iteration has reached the rounding of the working digits: stop, the 60 steps at 1e-47
+#: were a Dietmaier platform's refinement's four seconds a root)
+NEWTON_STEPS = 60
+NEWTON_STALL = 10
+
+
 def newton(
     eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], z: Sequence[Any], dps: int
 ) -> list[Any] | None:
@@ -210,14 +234,19 @@ def newton(
     above ``10^-(dps/2)``: not a regular root)."""
     f, J = _functions(eqs, gens)
     x = mpmath.matrix([_number(v) for v in z])
-    for _ in range(60):
+    last = mpmath.inf
+    for _ in range(NEWTON_STEPS):
         try:
             dx = mpmath.lu_solve(J(x), f(x))
         except ZeroDivisionError:
             return None
         x -= dx
-        if mpmath.norm(dx) <= mpmath.mpf(10) ** (-dps):
+        step = mpmath.norm(dx)
+        if step <= mpmath.mpf(10) ** (-dps):
             break
+        if step <= mpmath.mpf(10) ** (-(dps // 2)) and step > last / NEWTON_STALL:
+            break  # no longer quadratic: at the working digits' rounding (the condition's)
+        last = step
     if mpmath.norm(f(x)) > mpmath.mpf(10) ** (-(dps // 2)):
         return None
     return list(x)
@@ -232,7 +261,10 @@ def _functions(eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> tuple
 @functools.lru_cache(maxsize=8)
 def _compiled(eqs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...]) -> tuple[Any, Any]:
     f = sympy.lambdify(gens, list(eqs), "mpmath")
-    J = sympy.lambdify(gens, [[sympy.diff(e, g) for g in gens] for e in eqs], "mpmath")
+    # the derivatives of the polynomials as polynomials (sympy.diff on an expanded sum of
+    # hundreds of terms asks each term's assumptions: most of a SCARA's system build)
+    polys = [sympy.Poly(e, *gens) for e in eqs]
+    J = sympy.lambdify(gens, [[p.diff(g).as_expr() for g in gens] for p in polys], "mpmath")
     return (lambda x: mpmath.matrix(f(*x))), (lambda x: mpmath.matrix(J(*x)))
 
 

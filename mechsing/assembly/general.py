@@ -66,7 +66,9 @@ MAX_PATHS = 4000
 #: slices'): double precision (each real endpoint is refined at 50 digits afterwards;
 #: adaptive precision crawls for minutes along the singular paths of such a system's
 #: isotropic components: Sarrus's); a square system keeps adaptive precision (in double,
-#: 8 of a SCARA's 24 paths fail)
+#: 8 of a SCARA's 24 paths fail); a system with an idle rod's spin equation in double too
+#: (its ball joints' isotropic quaternions make many singular endpoints: an RSSR's 60
+#: paths took minutes in adaptive precision, 4 s in double, the same two modes)
 MPTYPE = "double"
 #: the most paths whose every endpoint is certified to prove a count (above: not tried)
 PROOF_PATHS = 200
@@ -114,6 +116,9 @@ class Problem:
     L: Any
     given: dict[str, list[Any]]
     arm: bool
+    #: each idle rod (body, first S, second S) and its spin equation (:mod:`.spins`)
+    spins: tuple[tuple[str, str, str], ...] = ()
+    spin_equations: tuple[sympy.Expr, ...] = ()
 
     @property
     def gens(self) -> list[sympy.Symbol]:
@@ -125,7 +130,7 @@ class Problem:
 
     @property
     def equations(self) -> list[sympy.Expr]:
-        return [e for c in self.closures for e in c.equations]
+        return [*(e for c in self.closures for e in c.equations), *self.spin_equations]
 
 
 def _num(x: Any) -> Any:
@@ -299,7 +304,13 @@ def problem(given: Given) -> Problem:
                 tuple(_closure_equations(product, gens)),
             )
         )
-    return Problem(tuple(joints.groups), joints.of, tuple(closures), joints.L, values, arm)
+    from mechsing.assembly.spins import idle_rods, spin_equation
+
+    rods = tuple(r for r in idle_rods(mech, values) if r[1] in joints.of)
+    spins = tuple(spin_equation(mech, r, joints.groups[joints.of[r[1]][0]].gens) for r in rods)
+    return Problem(
+        tuple(joints.groups), joints.of, tuple(closures), joints.L, values, arm, rods, spins
+    )
 
 
 def _symbol(mech: Mechanism, names: list[str]) -> str | None:
@@ -564,6 +575,13 @@ def _find(given: Given) -> Found:
         "randomized": m > n,
     }
     notes: list[str] = []
+    if prob.spins:
+        formulation["idle_spins"] = [list(r) for r in prob.spins]
+        notes.extend(
+            f"body {body} spins idly about the line through its ball joints {a} and {b}: "
+            f"each mode is listed with {a}'s rotation free of spin about that line"
+            for body, a, b in prob.spins
+        )
     if m < n:
         # fewer closure equations than unknowns: no finite set (where it is not empty)
         dim, at = _dimension_at_start(given, prob, full)
@@ -579,7 +597,9 @@ def _find(given: Given) -> Found:
         )
         return Found(formulation, [], None, "infinite", None, tuple(notes), 1, given.closure)
     square = [*_randomized(prob), *norms]
-    raw, tracked = track(*patched_system(prob), mptype=MPTYPE if m > n else "adaptive")
+    raw, tracked = track(
+        *patched_system(prob), mptype=MPTYPE if m > n or prob.spins else "adaptive"
+    )
     product = sympy.lambdify(gens, [list(c.product) for c in prob.closures], "numpy")
     genuine = [z for z in raw if _genuine(prob, z, product)]
     real = real_endpoints(genuine)

@@ -37,7 +37,7 @@ import sympy
 
 from mechsing.assembly.chains import Found
 from mechsing.assembly.given import NO_INPUTS, Formulation, Given
-from mechsing.assembly.settings import MODE_CERTIFY_RADIUS, MODE_ISOTROPIC_RTOL
+from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.errors import FormulationError
 from mechsing.model import Mechanism
 from mechsing.numeric import MODE_MATCH_DISTANCE
@@ -360,7 +360,14 @@ def _find(given: Given) -> Found:
     from mechsing.assembly.certify import krawczyk, local_dimension, newton, regular
     from mechsing.assembly.engine import real_endpoints, track
     from mechsing.assembly.serial import account
-    from mechsing.assembly.spatial import XS, YS, patch_equation, pose_of, study_quadric
+    from mechsing.assembly.spatial import (
+        XS,
+        YS,
+        off_exceptional,
+        patch_equation,
+        pose_of,
+        study_quadric,
+    )
 
     mech, dps = given.mech, given.dps
     found: tuple[Piece, ...] = given.cache["legs"]
@@ -390,12 +397,7 @@ def _find(given: Given) -> Found:
     # crawls along the many paths to the exceptional quadric); every endpoint is refined
     raw, tracked = track(eqs, [gens], mptype="double" if max(degrees) > 2 else "adaptive")
     # an endpoint with |X|^2 = 0 (the exceptional quadric of Study's) is no displacement
-    genuine = [
-        z
-        for z in raw
-        if abs(sum(z[i] ** 2 for i in range(4)))
-        > MODE_ISOTROPIC_RTOL * max(1.0, float(max(abs(z)))) ** 2
-    ]
+    genuine = off_exceptional(raw)
     real = real_endpoints(genuine)
     rows: list[tuple[list[Any], bool]] = []
     poses: list[tuple[Any, Any]] = []
@@ -465,18 +467,12 @@ def _proven(
     """``proven`` when the solutions number the published most for these pieces and each
     is certified in its own box (:func:`~mechsing.assembly.certify.certified_roots`, the
     boxes pairwise disjoint): none is missing, and the real ones are the modes."""
-    from mechsing.assembly.certify import apart, certified_roots
+    from mechsing.assembly.certify import every_solution
 
     most = _maximum(found)
     if most is None or len(genuine) != most[0] or not all(ok for _, ok in rows):
         return "not proven"
-    roots = certified_roots(eqs, gens, list(genuine), dps)
-    if roots is None:
-        return "not proven"
-    if not apart(roots):
-        return "not proven"
-    real = sum(1 for x in roots if all(mpmath.im(v) == 0 for v in x))
-    if real != len(rows):
+    if not every_solution(eqs, gens, genuine, dps, len(rows)):
         return "not proven"
     notes.append(
         f"all {most[0]} solutions (real and complex) of the published most for these legs "

@@ -23,6 +23,7 @@ from mechsing.assembly.given import NO_INPUTS, Formulation, Given
 from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.errors import FormulationError
 from mechsing.model import Mechanism
+from mechsing.numeric import PARALLEL_AXES_ATOL
 
 __all__ = ["FORMULATION", "turned_to_xy"]
 
@@ -30,10 +31,10 @@ __all__ = ["FORMULATION", "turned_to_xy"]
 def turned_to_xy(mech: Mechanism, normal: np.ndarray) -> Mechanism:
     """``mech`` turned so that its plane's ``normal`` (a unit vector) becomes z: each
     joint's directions and points rotated, exactly when the normal is rational (the
-    rotation ``I + K + K^2 / (1 + c)``, ``K`` the cross-product matrix of ``n x z``)."""
-    n = [sympy.nsimplify(float(x), rational=True, tolerance=1e-15) for x in normal]
-    size = sympy.sqrt(sum(x * x for x in n))
-    n = [x / size for x in n]
+    rotation ``I + K + K^2 / (1 + c)``, ``K`` the cross-product matrix of ``n x z``).
+    The normal is taken exactly from the file (:func:`_exact_normal`): the float one the
+    subgroup test gives carries rounding (1e-15 off z on a slider-crank drawn in xy)."""
+    n = _exact_normal(mech, normal)
     if n == [0, 0, 1]:
         return mech
     if n == [0, 0, -1]:
@@ -57,6 +58,34 @@ def turned_to_xy(mech: Mechanism, normal: np.ndarray) -> Mechanism:
         for j in mech.joints
     )
     return dataclasses.replace(mech, joints=joints)
+
+
+def _exact_normal(mech: Mechanism, normal: np.ndarray) -> list[Any]:
+    """The plane's unit normal from the file's exact directions: a revolute's axis, else
+    the cross product of two slides' axes, whichever lies along ``normal`` (the float
+    normal, which chooses the sign); rounded from ``normal`` where none does."""
+    approx = np.asarray(normal, dtype=float)
+
+    def unit(v: Any) -> list[Any] | None:
+        w = sympy.Matrix([sympy.sympify(x) for x in v])
+        size = sympy.sqrt(w.dot(w))
+        if size == 0:
+            return None
+        w = w / size
+        dot = float(sum(float(a) * b for a, b in zip(w, approx, strict=True)))
+        return [sympy.nsimplify(x) if dot > 0 else -sympy.nsimplify(x) for x in w]
+
+    axes = [j.params["axis"] for j in mech.joints if j.type == "R"]
+    slides = [sympy.Matrix(j.params["axis"]) for j in mech.joints if j.type == "P"]
+    axes += [a.cross(b) for i, a in enumerate(slides) for b in slides[i + 1 :]]
+    for v in axes:
+        n = unit(v)
+        along = float(sum(float(a) * b for a, b in zip(n or [0, 0, 0], approx, strict=True)))
+        if n is not None and abs(abs(along) - 1) <= PARALLEL_AXES_ATOL:
+            return n
+    n = [sympy.nsimplify(float(x), rational=True, tolerance=1e-15) for x in approx]
+    size = sympy.sqrt(sum(x * x for x in n))
+    return [x / size for x in n]
 
 
 def _applies(given: Given) -> str | None:

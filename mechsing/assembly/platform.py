@@ -34,7 +34,7 @@ def _applies(given: Given) -> str | None:
 def _find(given: Given) -> Found:
     mech, dps = given.mech, given.dps
     system = given.cache["platform"]
-    from mechsing.assembly.certify import krawczyk
+    from mechsing.assembly.certify import every_solution, krawczyk
     from mechsing.assembly.spatial import (
         GENERIC_COUNT,
         XS,
@@ -60,7 +60,7 @@ def _find(given: Given) -> Found:
     if reason is not None:  # proved without tracking: no real (or complex) pose
         return Found(formulation, [], 0, "proven", None, (reason,))
     try:
-        studies, paths = solve_study(system, dps)
+        studies, paths, solutions = solve_study(system, dps)
     except ConfigurationError as exc:
         raise ConfigurationError(f"{mech.path or mech.name}: {exc}", exc.configuration) from None
     # one mode per platform pose (the Study coordinates' sign is fixed by the patch)
@@ -79,9 +79,29 @@ def _find(given: Given) -> Found:
         rows.append((joint_values_spatial(mech, system, given.values, z), ok))
     paths["duplicates"] = len(studies) - len(kept)
     distinct = all(ok for _, ok in rows)
-    complete = "maximal" if len(rows) == GENERIC_COUNT and distinct else "not proven"
+    complete, notes = "not proven", []
+    if len(rows) == GENERIC_COUNT and distinct:
+        complete = "maximal"
+    elif (
+        distinct
+        and len(solutions) == GENERIC_COUNT
+        and every_solution(eqs, [*XS, *YS], solutions, dps, len(rows))
+    ):
+        complete = "maximal"
+        notes.append(
+            f"all {GENERIC_COUNT} solutions (real and complex), the most a platform on six "
+            "distance legs has (Raghavan 1993), found and each certified in its own box: no "
+            f"mode is missing ({len(rows)} are real)"
+        )
+    else:
+        notes.append(
+            f"continuation found {len(solutions)} solutions (real and complex, off the "
+            f"exceptional quadric |X|^2 = 0) on {paths['tracked']} paths, of the "
+            f"{GENERIC_COUNT} a platform on six distance legs can have: a path that failed "
+            "could hide a mode, so the count is not proven"
+        )
     equivalent = 2 ** sum(1 for n, *_ in system.legs if mech.joint(n[0]).type == "U")
-    return Found(formulation, rows, len(rows), complete, paths, (), equivalent)
+    return Found(formulation, rows, len(rows), complete, paths, tuple(notes), equivalent)
 
 
 FORMULATION = Formulation("Study coordinates of a six-leg platform", _applies, _find)

@@ -33,6 +33,7 @@ import sympy
 
 from mechsing.assembly.certify import newton
 from mechsing.assembly.engine import SEED, real_endpoints, track
+from mechsing.assembly.settings import MODE_ISOTROPIC_RTOL
 from mechsing.assembly.study import rotation
 from mechsing.errors import ConfigurationError, FormulationError
 from mechsing.lie.quaternion import quat_conjugate, quat_multiply
@@ -49,6 +50,7 @@ __all__ = [
     "two_axes",
     "SpatialSystem",
     "joint_values_spatial",
+    "off_exceptional",
     "out_of_reach",
     "patch_equation",
     "pose_of",
@@ -164,9 +166,12 @@ def patch_equation() -> sympy.Expr:
     return sum(sympy.Rational(float(c)) * v for c, v in zip(coeffs, (*XS, *YS), strict=True)) - 1
 
 
-def solve_study(system: SpatialSystem, dps: int) -> tuple[list[list[Any]], dict[str, Any]]:
-    """The real finite solutions (8 Study coordinates, refined to ``dps`` digits) and
-    the paths' account: tracked, finite, real, at infinity, failed."""
+def solve_study(
+    system: SpatialSystem, dps: int
+) -> tuple[list[list[Any]], dict[str, Any], list[np.ndarray]]:
+    """The real finite solutions (8 Study coordinates, refined to ``dps`` digits), the
+    paths' account (tracked, finite, solutions, real, at infinity, failed) and every
+    solution continuation found (complex, off the exceptional quadric)."""
     eqs = [*system.equations, patch_equation()]
     try:
         raw, tracked = track(eqs, [[*XS, *YS]])
@@ -179,16 +184,29 @@ def solve_study(system: SpatialSystem, dps: int) -> tuple[list[list[Any]], dict[
             "precision",
             "",
         ) from None
-    real = real_endpoints(raw)
+    genuine = off_exceptional(raw)
+    real = real_endpoints(genuine)
     refined = [r for r in (newton(eqs, [*XS, *YS], z, dps) for z in real) if r is not None]
     paths = {
         "tracked": tracked,
         "finite": len(raw),
+        "solutions": len(genuine),
         "real": len(real),
         "refined": len(refined),
         "failed_or_infinite": tracked - len(raw),
     }
-    return refined, paths
+    return refined, paths, genuine
+
+
+def off_exceptional(raw: list[np.ndarray]) -> list[np.ndarray]:
+    """The endpoints off Study's exceptional quadric ``|X|^2 = 0`` (there the coordinates
+    are no displacement)."""
+    return [
+        z
+        for z in raw
+        if abs(sum(z[i] ** 2 for i in range(4)))
+        > MODE_ISOTROPIC_RTOL * max(1.0, float(max(abs(z)))) ** 2
+    ]
 
 
 def pose_of(study: list[Any]) -> tuple[mpmath.matrix, mpmath.matrix]:

@@ -4,7 +4,8 @@ within the stated radius) and classified exactly as ``mechsing analyze`` classif
 with the one continuation from the configuration's start reaches marked, the distances
 between modes and the joints outside their limits.  ``complete`` says what the count
 claims: ``proven`` (exact elimination with certified real-root isolation), ``not
-proven``, ``maximal`` (the generic count, every mode certified) or ``infinite`` (the given
+proven``, ``maximal`` (the generic count, every mode certified; or every solution, real and
+complex, found and certified, as many as the most there can be) or ``infinite`` (the given
 values leave a curve: no count, the dimension in the notes).  The first formulation of
 the registry that applies is used: (1) a planar mechanism (its joints generate the planar
 motions, in any plane) whose unknown part is one body held by legs (a four-bar, a
@@ -18,7 +19,8 @@ given) at a pose: half-angle pairs of a serial arm; (5) any other mechanism of R
 and S joints, or an arm of fewer joints at a pose in the subgroup its end moves in (a
 pose outside it exits 2, naming the subgroup): each joint's displacement in Study
 coordinates, each loop's closure in its own subgroup's (three equations for a planar or
-spherical loop, six in general).  (2) to (5) use homotopy continuation with the ``modes``
+spherical loop, six in general; a body on exactly two ball joints, an RSSR's coupler,
+taken free of its idle spin about their line).  (2) to (5) use homotopy continuation with the ``modes``
 extra (pip install 'mechsing[modes]': Bertini 2, GPL-3.0-or-later).  Exit status: 0
 success, 2 bad input or no method applies, 3 a mode that could not be analysed.
 """
