@@ -21,6 +21,8 @@ and what they share:
   isolation of its real roots (built in);
 * :mod:`~mechsing.assembly.spatial` -- platforms on U-P-S / S-P-S legs in Study
   coordinates, by homotopy continuation (Bertini 2, the ``modes`` extra);
+* :mod:`~mechsing.assembly.reach` -- no real pose for legs hung far from the base,
+  proven before tracking;
 * :mod:`~mechsing.assembly.certify` -- the Krawczyk test of each mode;
 * :mod:`~mechsing.assembly.api` -- :func:`modes` and its result types;
 * :mod:`~mechsing.assembly.render` -- text and Markdown;

@@ -35,6 +35,7 @@ def _find(given: Given) -> Found:
     mech, dps = given.mech, given.dps
     system = given.cache["platform"]
     from mechsing.assembly.certify import every_solution, krawczyk
+    from mechsing.assembly.reach import far_out_of_reach
     from mechsing.assembly.spatial import (
         GENERIC_COUNT,
         XS,
@@ -56,7 +57,7 @@ def _find(given: Given) -> Found:
         "bezout": 2**7,
         "generic_count": GENERIC_COUNT,
     }
-    reason = out_of_reach(system)
+    reason = out_of_reach(system) or far_out_of_reach(system.legs)
     if reason is not None:  # proved without tracking: no real (or complex) pose
         return Found(formulation, [], 0, "proven", None, (reason,))
     try:

@@ -246,3 +246,10 @@ SWEEP_SAME_MODE_DISTANCE = 1e-6
 #: margin: none needed: both choices lie in the reported space, and rounding (1e-16)
 #: moves the two values far less than this
 MOST_MOVED_RTOL = 1e-8
+#: a six-leg platform's far-reach proof (mechsing.assembly.reach) widens each leg's bound on
+#: the platform's direction, and the bound on the unit vectors' error, by this (absolute,
+#: on unit vectors), and calls the legs' equations dependent below this times the largest
+#: singular value
+#: margin: the proof runs at 40 digits (rounding about 1e-35): a conclusion holds with
+#: this to spare; within it nothing is concluded and the system is tracked
+REACH_PROOF_MARGIN = 1e-12
