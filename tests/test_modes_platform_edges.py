@@ -87,6 +87,8 @@ def test_every_slide_far_out_gives_no_mode_proven_without_tracking(slide: str) -
     assert doc["count"] == 0 and doc["complete"] == "proven" and doc["modes"] == []
     assert doc["paths"] is None  # nothing tracked
     assert any("no real pose" in n for n in doc["notes"])
+    # no mode to reach: no word on continuation from the file's start
+    assert not any("continuation from the start" in n for n in doc["notes"]), doc["notes"]
 
 
 def test_dietmaier_longer_has_eighteen_modes_every_solution_certified() -> None:

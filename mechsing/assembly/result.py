@@ -146,7 +146,10 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
         }
     # the modes are data to dps digits (not points float located): analysed as a file's
     analysed = analyze_found(mech, data, prec, located=prec.mode == "float") if data else []
-    closure = found.closure or closure_from_start(mech, config)
+    # which mode the start reaches; proven none: nothing to reach (and no note on a start
+    # continuation cannot close, which is all it could say)
+    nothing = not rows and found.complete == "proven"
+    closure = found.closure or ((None, None) if nothing else closure_from_start(mech, config))
     reached, notes = _reached(mech, [[float(x) for x in q] for q, _ in rows], km, closure)
     out_body = mech.output.body if mech.output is not None else None
     poses = [
@@ -213,6 +216,8 @@ def _reached(
     """Which mode continuation from the configuration's start reaches (its index), from
     its closure (:func:`~mechsing.assembly.given.closure_from_start`)."""
     res, failed = closure
+    if res is None and failed is None:  # no mode to reach
+        return None, ()
     if res is None:
         return None, (f"continuation from the start does not close the configuration: {failed}",)
     q0 = [x for _, v in res.joints for x in v]
