@@ -29,10 +29,12 @@ FIVE_BAR = [
 ROUNDING = 1e-12
 
 
-def _sweep_json(fast: bool) -> dict:
+def _json(args: list[str], fast: bool) -> dict:
+    """The JSON of ``python -m mechsing *args --format json`` in a fresh process, with
+    the fast paths on or off (MECHSING_FAST is read at import)."""
     env = {**os.environ, "PYTHONPATH": str(ROOT), "MECHSING_FAST": "1" if fast else "0"}
     run = subprocess.run(
-        [sys.executable, "-m", "mechsing", "sweep", *FIVE_BAR, "--format", "json", "--quiet"],
+        [sys.executable, "-m", "mechsing", *args, "--format", "json"],
         capture_output=True,
         text=True,
         env=env,
@@ -40,6 +42,16 @@ def _sweep_json(fast: bool) -> dict:
     )
     assert run.returncode in (0, 1), run.stderr
     return json.loads(run.stdout)
+
+
+def _same_fast_on_and_off(args: list[str]) -> dict:
+    """The JSON of ``mechsing *args``, after checking it is the same with MECHSING_FAST=0
+    (to rounding-level values)."""
+    on, off = _json(args, True), _json(args, False)
+    diffs: list[str] = []
+    _differences(on, off, "", diffs)
+    assert not diffs, "\n".join(diffs[:20])
+    return on
 
 
 def _differences(a, b, path, out):
@@ -79,10 +91,7 @@ def test_five_bar_sweep_is_the_same_with_the_fast_paths_off():
     """At the five-bar's leg 2 stretched, its leg chain's kernel has dimension 2: the
     whole kernel is reported (its canonical basis), the moving joints are its support,
     and the sweep's JSON is the same with MECHSING_FAST=0 (to rounding-level values)."""
-    on, off = _sweep_json(True), _sweep_json(False)
-    diffs: list[str] = []
-    _differences(on, off, "", diffs)
-    assert not diffs, "\n".join(diffs[:20])
+    on = _same_fast_on_and_off(["sweep", *FIVE_BAR, "--quiet"])
     wide = [
         s
         for p in on["located"]
@@ -116,19 +125,6 @@ def _five_bar_both_legs_stretched(tmp_path: Path) -> Path:
     return path
 
 
-def _analyze_json(path: Path, fast: bool) -> dict:
-    env = {**os.environ, "PYTHONPATH": str(ROOT), "MECHSING_FAST": "1" if fast else "0"}
-    run = subprocess.run(
-        [sys.executable, "-m", "mechsing", "analyze", str(path), "--format", "json"],
-        capture_output=True,
-        text=True,
-        env=env,
-        check=False,
-    )
-    assert run.returncode in (0, 1), run.stderr
-    return json.loads(run.stdout)
-
-
 def test_closed_chain_motion_space_is_reported_whole_in_its_canonical_basis(tmp_path):
     """Both legs of the five-bar stretched: with the output point P held, each leg turns
     about its base pivot alone (a stretched 2R leg of links l1 = 2, l2 = 5/2 with its tip
@@ -149,10 +145,7 @@ def test_closed_chain_motion_space_is_reported_whole_in_its_canonical_basis(tmp_
     expected = [r / np.max(np.abs(r)) for r in (row1, row2)]
     expected = [r if r[np.flatnonzero(r)[0]] > 0 else -r for r in expected]
     path = _five_bar_both_legs_stretched(tmp_path)
-    on, off = _analyze_json(path, True), _analyze_json(path, False)
-    diffs: list[str] = []
-    _differences(on, off, "", diffs)
-    assert not diffs, "\n".join(diffs[:20])
+    on = _same_fast_on_and_off(["analyze", str(path)])
     (config,) = on["configurations"]
     assert config["closure_residual"] < 1e-12
     (found,) = [s for s in config["singularities"] if s["class"] == "input"]

@@ -215,7 +215,7 @@ def test_dietmaier_has_forty_real_postures(tmp_path: Path) -> None:
     pytest.importorskip("bertini")
     import yaml
 
-    from tests.reference.modes_independent import ups_platform_pose
+    from tests.reference.modes_independent import leg1_platform_pose
 
     joints = {j["name"]: j for j in yaml.safe_load(DIETMAIER.read_text())["joints"]}
     base = [np.array(joints[f"U{i}"]["point"], float) for i in range(1, 7)]
@@ -249,16 +249,7 @@ def test_dietmaier_has_forty_real_postures(tmp_path: Path) -> None:
     assert sum(m["reached_by_continuation"] for m in doc["modes"]) == 1
     poses = []
     for m in doc["modes"]:
-        q = m["joints"]
-        R, t = ups_platform_pose(
-            joints["U1"]["axes"],
-            np.array(joints["P1"]["axis"], float),
-            q["P1"][0],
-            np.array(q["S1"]),
-            base[0],
-            plat[0],
-            tuple(q["U1"]),
-        )
+        R, t = leg1_platform_pose(joints, m["joints"])
         lengths = [np.linalg.norm(R @ plat[i] + t - base[i]) for i in range(6)]
         assert np.allclose(lengths, DIETMAIER_LENGTHS, atol=1e-12, rtol=0)
         poses.append(np.concatenate([R.ravel(), t]))

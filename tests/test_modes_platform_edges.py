@@ -99,7 +99,7 @@ def test_dietmaier_longer_has_eighteen_modes_every_solution_certified() -> None:
     legs' lengths written here from the file (tests/reference/platform_poses_independent),
     each mode's pose read from leg 1's joint values by the tests' own kinematics."""
     pytest.importorskip("bertini")
-    from tests.reference.modes_independent import ups_platform_pose
+    from tests.reference.modes_independent import leg1_platform_pose
     from tests.reference.platform_poses_independent import platform_poses
 
     joints = {j["name"]: j for j in yaml.safe_load(DIETMAIER.read_text())["joints"]}
@@ -117,15 +117,6 @@ def test_dietmaier_longer_has_eighteen_modes_every_solution_certified() -> None:
     expected = platform_poses(closure, starts=1500, scale=1.5)
     assert len(expected) == 18
     for m in doc["modes"]:
-        q = m["joints"]
-        R, t = ups_platform_pose(
-            joints["U1"]["axes"],
-            np.array(joints["P1"]["axis"], float),
-            q["P1"][0],
-            np.array(q["S1"]),
-            base[0],
-            plat[0],
-            tuple(q["U1"]),
-        )
+        R, t = leg1_platform_pose(joints, m["joints"])
         assert np.allclose(closure(R, t, np.empty(0)), 0, atol=1e-12)
         assert min(np.linalg.norm(R - R2) + np.linalg.norm(t - t2) for R2, t2 in expected) < 1e-8

@@ -45,6 +45,13 @@ def _rotors(tmp_path: Path, lower: str, upper: str, second: str = "revolute", x1
     return path
 
 
+def _converted_limits(path: Path) -> tuple[str, str]:
+    """The converted file's text and its ``limits:`` section."""
+    rc, yaml_text, err = run_cli(["convert", path])
+    assert rc == 0, err
+    return yaml_text, yaml_text.split("\nlimits:", 1)[1].split("\ninputs:")[0]
+
+
 @pytest.mark.parametrize(
     ("lower", "upper"), [("-1e+16", "1e+16"), ("-inf", "inf"), ("-1e16", "1.5")]
 )
@@ -54,9 +61,7 @@ def test_a_limit_that_says_no_limit_is_read_as_none(tmp_path: Path, lower: str, 
     assert rc == 0, err
     c = json.loads(out)["configurations"][0]
     assert c["singular"] is False
-    rc, yaml_text, err = run_cli(["convert", path])
-    assert rc == 0, err
-    limits = yaml_text.split("\nlimits:", 1)[1].split("\ninputs:")[0]
+    yaml_text, limits = _converted_limits(path)
     assert "spin0" not in limits  # no limit for the rotor
     assert '"spin1": [-1.0, 1.0]' in limits  # the other joint's limit is kept
     assert "joint 'spin0' (line 9) is read without limits" in yaml_text
@@ -65,9 +70,7 @@ def test_a_limit_that_says_no_limit_is_read_as_none(tmp_path: Path, lower: str, 
 
 def test_a_limit_on_a_continuous_joint_is_none_with_a_note(tmp_path: Path) -> None:
     path = _rotors(tmp_path, "-1", "1", second="continuous")
-    rc, yaml_text, err = run_cli(["convert", path])
-    assert rc == 0, err
-    limits = yaml_text.split("\nlimits:", 1)[1].split("\ninputs:")[0]
+    yaml_text, limits = _converted_limits(path)
     assert "spin1" not in limits and '"spin0": [-1.0, 1.0]' in limits
     assert "joint 'spin1' (line 14) is read without limits" in yaml_text
     assert "is on a continuous joint, which has none" in yaml_text
@@ -194,14 +197,19 @@ HANDS = """\
 """
 
 
+def _hands(tmp_path: Path, leader: str) -> Path:
+    path = tmp_path / "hands.urdf"
+    path.write_text(HANDS.format(leader=leader))
+    return path
+
+
 def test_a_mimic_naming_its_leader_without_the_hands_prefix(tmp_path: Path) -> None:
     """alex_psyonic_hands.urdf (example-robot-data): each finger's second joint mimics
     ``index_q1``, a name the robot does not define: its xacro prefixed the joints of each
     hand (``Left_index_q1``, ``Right_index_q1``) but not the mimics' names.  The leader is
     the one joint between the follower and the root named so after a prefix: the left
     finger follows ``Left_index_q1``, the right one ``Right_index_q1``, with a note."""
-    path = tmp_path / "hands.urdf"
-    path.write_text(HANDS.format(leader="index_q1"))
+    path = _hands(tmp_path, "index_q1")
     run = run_cli(["analyze", path, "--format", "json"])
     assert run.status in (0, 1), run.err
     run = run_cli(["convert", path])
@@ -214,8 +222,7 @@ def test_a_mimic_naming_its_leader_without_the_hands_prefix(tmp_path: Path) -> N
 
 
 def test_a_mimic_naming_no_joint_on_its_branch_is_still_refused(tmp_path: Path) -> None:
-    path = tmp_path / "hands.urdf"
-    path.write_text(HANDS.format(leader="thumb_q1"))
+    path = _hands(tmp_path, "thumb_q1")
     run = run_cli(["analyze", path])
     assert run.status == 2
     assert "thumb_q1" in run.err

@@ -107,3 +107,18 @@ def ups_platform_pose(
         platform_ref - base + slide * np.asarray(slide_axis) / np.linalg.norm(slide_axis)
     )
     return R, point_now - R @ platform_ref
+
+
+def leg1_platform_pose(file_joints: dict, mode_joints: dict) -> tuple[np.ndarray, np.ndarray]:
+    """A six-leg platform mode's pose (R, t) from leg 1's joint values alone: the file's
+    joints by name (``U1``, ``P1``, ``S1`` as written in the mechanism file) and the mode's
+    joint values by name, through :func:`ups_platform_pose`."""
+    return ups_platform_pose(
+        file_joints["U1"]["axes"],
+        np.array(file_joints["P1"]["axis"], float),
+        mode_joints["P1"][0],
+        np.array(mode_joints["S1"]),
+        np.array(file_joints["U1"]["point"], float),
+        np.array(file_joints["S1"]["point"], float),
+        tuple(mode_joints["U1"]),
+    )
