@@ -37,6 +37,25 @@ def test_a_leg_out_of_the_others_reach_gives_no_mode() -> None:
     doc = json.loads(out)
     assert doc["count"] == 0 and doc["complete"] == "proven" and doc["modes"] == []
     assert doc["paths"] is None  # nothing tracked
+    _says_proven_without_tracking(argv, doc, "differ in length")
+
+
+def _says_proven_without_tracking(argv: list[str], doc: dict, reason: str) -> None:
+    """The JSON's ``formulation.proven_without_tracking`` gives the proof (its note), and
+    the text and Markdown headings say that, not the method that was never run; the
+    document follows the schema."""
+    import jsonschema
+
+    jsonschema.validate(doc, json.loads(run_cli(["schema", "--modes"]).out))
+    said = doc["formulation"]["proven_without_tracking"]
+    assert reason in said and said in doc["notes"]
+    for fmt in ("text", "md"):
+        rc, out, err = run_cli([*argv, "--format", fmt])
+        assert rc == 0, err
+        heading = out.splitlines()[0]
+        assert f"(complete: proven; proven without tracking: {said})" in heading, heading
+        assert "homotopy" not in out and "polynomial of degree" not in out
+        assert out.count(said) == 1  # the heading says it, no note repeats it
 
 
 def _legs(slide: float) -> tuple[list, list, list]:
@@ -87,6 +106,7 @@ def test_every_slide_far_out_gives_no_mode_proven_without_tracking(slide: str) -
     assert doc["count"] == 0 and doc["complete"] == "proven" and doc["modes"] == []
     assert doc["paths"] is None  # nothing tracked
     assert any("no real pose" in n for n in doc["notes"])
+    _says_proven_without_tracking(argv, doc, "no real pose")
     # no mode to reach: no word on continuation from the file's start
     assert not any("continuation from the start" in n for n in doc["notes"]), doc["notes"]
 

@@ -59,6 +59,7 @@ def _find(given: Given) -> Found:
     }
     reason = out_of_reach(system) or far_out_of_reach(system.legs)
     if reason is not None:  # proved without tracking: no real (or complex) pose
+        formulation["proven_without_tracking"] = reason
         return Found(formulation, [], 0, "proven", None, (reason,))
     try:
         studies, paths, solutions = solve_study(system, dps)

@@ -37,11 +37,15 @@ def modes_heading(res: ModesResult) -> str:
             f"{res.mechanism}, configuration {res.configuration}: the closed configurations "
             "with these values form a curve, not a finite set of modes (no count)"
         )
-    how = (
-        f"{f['method']} in {f['name']}: {res.paths['tracked']} paths, {res.paths['finite']} finite"
-        if res.paths
-        else f"{f['method']} in the {f['name']}, a polynomial of degree {f['polynomial_degree']}"
-    )
+    if f.get("proven_without_tracking"):  # nothing solved: the proof is what happened
+        how = f"proven without tracking: {f['proven_without_tracking']}"
+    elif res.paths:
+        how = (
+            f"{f['method']} in {f['name']}: {res.paths['tracked']} paths, "
+            f"{res.paths['finite']} finite"
+        )
+    else:
+        how = f"{f['method']} in the {f['name']}, a polynomial of degree {f['polynomial_degree']}"
     return (
         f"{res.mechanism}, configuration {res.configuration}: {res.count} assembly "
         f"mode{'s' if res.count != 1 else ''} (complete: {res.complete}; {how})"
@@ -87,6 +91,8 @@ def render_modes(
         else:
             lines += [f"  {name}: {shown}" for name, shown in rows]
         lines.append("")
+    said = doc["formulation"].get("proven_without_tracking")
     for note in doc["notes"]:
-        lines.append(f"note: {note}")
+        if note != said:  # the heading says it
+            lines.append(f"note: {note}")
     return "\n".join(lines).rstrip() + "\n"

@@ -158,11 +158,17 @@ def modes_schema() -> dict[str, Any]:
                         "description": "complete infinite: the dimension of the closed "
                         "configurations with the given values (local dimension test)",
                     },
+                    "proven_without_tracking": {
+                        "type": "string",
+                        "description": "why no mode exists, proven before any path was "
+                        "tracked (then paths is null and the method was not run)",
+                    },
                 },
             },
             "paths": {
                 "type": ["object", "null"],
-                "description": "homotopy paths tracked, succeeded, failed (null: exact elimination)",
+                "description": "homotopy paths tracked, succeeded, failed (null: exact elimination, "
+                "or formulation.proven_without_tracking)",
                 "properties": {
                     k: {"type": "integer", "minimum": 0, "description": d}
                     for k, d in (
