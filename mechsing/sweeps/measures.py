@@ -54,7 +54,6 @@ times L); twists ``(omega, v)``.
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -116,7 +115,10 @@ class PointMeasures:
     #: matrix's singular value sigma_(g-1) (absolute), from the same factorisation as the
     #: measure (what :func:`~mechsing.sweeps.falling.others_fall` screens pairs with)
     second: dict[str, np.ndarray] = field(default_factory=dict)
-    _last: Any = field(default=None, repr=False, compare=False)
+    #: the singular vectors :meth:`basis` computed last, with their test and points
+    _last: tuple[Any, tuple[np.ndarray, np.ndarray]] | None = field(
+        default=None, repr=False, compare=False
+    )
 
     def __len__(self) -> int:
         return len(next(iter(self.ratio.values()))) if self.ratio else 0
@@ -132,9 +134,15 @@ class PointMeasures:
         point's next one is gathered after it (NaN elsewhere)."""
         first = parts[0][0]
 
-        def cat(get: Callable[[PointMeasures], Any]) -> np.ndarray:
-            got = [get(pm)[idx] for pm, idx in parts]
+        def cat(arrays: list[Any]) -> np.ndarray:
+            """The points ``idx`` of each part's array (``arrays``: one per part), in order."""
+            got = [a[idx] for a, (_, idx) in zip(arrays, parts, strict=True)]
             return got[0] if len(got) == 1 else np.concatenate(got)
+
+        def kept(pm: PointMeasures) -> dict[str, Any]:
+            """A part's matrices (every part keeps them where the first does)."""
+            assert pm.matrices is not None, "a gathered batch kept no matrices"
+            return pm.matrices
 
         matrices: dict[str, Any] | None = None
         if first.matrices is not None:
@@ -142,31 +150,32 @@ class PointMeasures:
             lazy = [
                 t
                 for t in first.matrices
-                if all(isinstance(pm.matrices[t], _Recomputed) for pm, _ in parts)  # type: ignore[index]
+                if all(isinstance(kept(pm)[t], _Recomputed) for pm, _ in parts)
             ]
             if lazy:
-                source = _Source.gather(
-                    [(pm.matrices[lazy[0]].source, idx) for pm, idx in parts]  # type: ignore[index]
-                )
+                source = _Source.gather([(kept(pm)[lazy[0]].source, idx) for pm, idx in parts])
             for t in first.matrices:
                 if t in lazy:
                     matrices[t] = _Recomputed(source, t)
                 else:
-                    matrices[t] = cat(lambda pm, t=t: pm.matrices[t])
+                    matrices[t] = cat([kept(pm)[t] for pm, _ in parts])
         return PointMeasures(
-            {t: cat(lambda pm, t=t: pm.rank[t]) for t in first.rank},
-            {t: cat(lambda pm, t=t: pm.ratio[t]) for t in first.ratio},
+            {t: cat([pm.rank[t] for pm, _ in parts]) for t in first.rank},
+            {t: cat([pm.ratio[t] for pm, _ in parts]) for t in first.ratio},
             {
-                t: (cat(lambda pm, t=t: pm.bases[t][0]), cat(lambda pm, t=t: pm.bases[t][1]))
+                t: (
+                    cat([pm.bases[t][0] for pm, _ in parts]),
+                    cat([pm.bases[t][1] for pm, _ in parts]),
+                )
                 for t in first.bases
             },
-            None if first.kernel is None else cat(lambda pm: pm.kernel),
+            None if first.kernel is None else cat([pm.kernel for pm, _ in parts]),
             matrices,
             dict(first.deferred),
-            {t: cat(lambda pm, t=t: pm.top[t]) for t in first.top},
+            {t: cat([pm.top[t] for pm, _ in parts]) for t in first.top},
             {t: _gathered_steps([(pm.steps[t], idx) for pm, idx in parts]) for t in first.steps},
             first.thin,
-            {t: cat(lambda pm, t=t: pm.second[t]) for t in first.second},
+            {t: cat([pm.second[t] for pm, _ in parts]) for t in first.second},
         )
 
     def basis(self, t: str, idx: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -225,9 +234,12 @@ class Measures:
             "output": self.E is not None,
             "constraint": bool(self.legs),
         }
-        self.generic = {
-            t: generic.get(t) for t in TESTS if present[t] and generic.get(t) not in (None, 0)
+        self.generic: dict[str, int] = {
+            t: g for t in TESTS if present[t] and (g := generic.get(t)) is not None and g != 0
         }
+        #: the closure's factorisation done with its kernel (:meth:`matrices`): ("qr",
+        #: its singular values) or ("svd", U, s, Vt); None before a batch is measured
+        self._closure_svd: tuple[Any, ...] | None = None
         self.tests = tuple(self.generic)
 
     @property
@@ -305,10 +317,11 @@ class Measures:
                 if kernel is not None:  # the rows themselves, for the bordered sign test
                     out["input_rows"] = T / np.maximum(nT, 1e-300)[:, None, None]
             if "output" in self.tests:
-                EK = self.E if K is None else self.E @ K
+                E = self._selection()
+                EK: np.ndarray = E if K is None else E @ K
                 out["output"] = EK if EK.ndim == 3 else np.broadcast_to(EK, (N, *EK.shape))
                 if kernel is not None:
-                    out["output_rows"] = np.broadcast_to(self.E, (N, *self.E.shape))
+                    out["output_rows"] = np.broadcast_to(E, (N, *E.shape))
         if "constraint" in self.tests and not signed:
             out["constraint"] = self._constraint(Ss)
         return out, kernel
@@ -343,8 +356,15 @@ class Measures:
             T, nT = self._output_rows(P, S)
             out["input_rows"] = T / np.maximum(nT, 1e-300)[:, None, None]
         if "output" in self.tests:
-            out["output_rows"] = np.broadcast_to(self.E, (Q.shape[0], *self.E.shape))
+            E = self._selection()
+            out["output_rows"] = np.broadcast_to(E, (Q.shape[0], *E.shape))
         return out
+
+    def _selection(self) -> np.ndarray:
+        """The input selection E: there when the output test is measured (it is measured
+        only where the file names inputs)."""
+        assert self.E is not None, "the output test is measured without inputs"
+        return self.E
 
     def _full_row_rank(self) -> bool:
         """Whether the closure is measured and its generic rank is its number of rows
@@ -406,7 +426,9 @@ class Measures:
             and g == self.model.n - gc
         )
 
-    def _bordered(self, t: str, a: PointMeasures, ia: np.ndarray, mats: dict) -> np.ndarray:
+    def _bordered(
+        self, t: str, a: PointMeasures, ia: np.ndarray, mats: dict[str, Any]
+    ) -> np.ndarray:
         """The determinant of the square matrix [U_c^T C; U_t^T X] at the points of
         ``mats``: the closure matrix C and the test's rows X (T or E, before the kernel),
         compressed on the leading left singular vectors of the points ``ia`` of ``a``.  It
@@ -416,7 +438,8 @@ class Measures:
         Ut = a.basis(t, ia)[0]
         top = np.swapaxes(Uc, 1, 2) @ mats["closure"]
         low = np.swapaxes(Ut, 1, 2) @ mats[f"{t}_rows"]
-        return np.linalg.det(np.concatenate([top, low], axis=1))
+        det: np.ndarray = np.linalg.det(np.concatenate([top, low], axis=1))
+        return det
 
     def compressed_pairs(
         self, pm: PointMeasures, ia: np.ndarray, ib: np.ndarray
@@ -515,7 +538,7 @@ class Measures:
         g = pm.deferred[t]
         rounding = SWEEP_SCREEN_ROUNDING * np.finfo(float).eps
         # sigma_g at a (the input and output tests' ratio is sigma_g itself, |X| = 1)
-        d = pm.ratio[t][ia] * (1.0 if t in _UNIT_REFERENCE else pm.top[t][ia])
+        d: np.ndarray = pm.ratio[t][ia] * (1.0 if t in _UNIT_REFERENCE else pm.top[t][ia])
         ia, ib = np.asarray(ia), np.asarray(ib)
         if t in pm.steps:
             # the norms the measures kept: of each matrix and of its step to the next row
@@ -581,7 +604,8 @@ class Measures:
         """The test's matrix at b with b's kernel basis turned to a's (the orthogonal
         factor of ``kb^T ka``), so that the matrix is continuous from a to b."""
         # A = X kb, with X the map the test applies to the kernel: A turned = A @ turn
-        return A @ _turn(kb, ka)
+        turned: np.ndarray = A @ _turn(kb, ka)
+        return turned
 
 
 def _test_factors(
@@ -617,7 +641,7 @@ def _kept(
     """The matrices a measured batch keeps (the signed tests', whose neighbours' signs
     read them, the bordered tests' rows, and those of the tests whose vectors are
     deferred), and the step norms of those its neighbours' screen reads."""
-    signed = {t: mats[t] for t in measures.tests if t in SIGNED or t in thin}
+    signed: dict[str, Any] = {t: mats[t] for t in measures.tests if t in SIGNED or t in thin}
     for t in ("input", "output"):
         if measures._bordered_test(t) and f"{t}_rows" in mats:
             signed[f"{t}_rows"] = mats[f"{t}_rows"]
@@ -641,7 +665,8 @@ def _kept(
 def _turn(kb: np.ndarray, ka: np.ndarray) -> np.ndarray:
     """The orthogonal factor of ``kb^T ka``: turns the kernel basis kb onto ka."""
     u, _, vt = np.linalg.svd(np.swapaxes(kb, 1, 2) @ ka)
-    return u @ vt
+    turn: np.ndarray = u @ vt
+    return turn
 
 
 def _max_rank(A: np.ndarray) -> int:
@@ -689,7 +714,8 @@ class _Source:
     def __init__(self, measures: Measures | None, Q: np.ndarray) -> None:
         self.measures = measures
         self.Q = np.array(Q, dtype=float)
-        self._last: Any = None
+        #: the rows asked last (their key) and their matrices
+        self._last: tuple[Any, dict[str, np.ndarray]] | None = None
         #: the matrices themselves, where the measures are not here (received whole)
         self._whole: dict[str, np.ndarray] = {}
 
