@@ -343,6 +343,53 @@ def test_a_bifurcation_is_placed_again_to_all_its_digits():
             assert p.margin is not None and p.margin["dropped"] < 1e-29
 
 
+def _joint_digits(p) -> list:
+    import mpmath
+
+    return [mpmath.mpf(x) for _, texts in p.joints_text for x in texts]
+
+
+def test_a_bifurcation_placed_at_n_digits_agrees_with_its_2n_plus_10_placement(monkeypatch):
+    """The anti-parallelogram's flat positions (A = +-pi/2) at mp:30: placed by their
+    regular system at N digits and a few guard digits, their joints agree with the
+    placement at 2N + 10 digits (the first attempt of the earlier rule) to 30 digits, with
+    the same classes; and where that system does not converge at N digits the point is
+    still placed, at 2N + 10 digits (the secant's fallback as before)."""
+    import mpmath
+
+    import mechsing.sweeps.classify as classify
+    from mechsing.sweeps.relocate import Relocator
+
+    args = (EXAMPLES / "parallelogram.yaml", ["A=-4:4:0.2"], "anti-parallelogram")
+
+    def flats(r) -> list:
+        out = sorted((p for p in r.located if "closure" in p.tests), key=lambda p: p.values[0])
+        assert len(out) == 2 and all("bifurcation" in p.classes for p in out)
+        assert all(p.margin is not None and p.margin["dropped"] < 1e-29 for p in out)
+        return out
+
+    at_n = flats(sweep(*args, precision="mp:30"))
+    with monkeypatch.context() as m:
+        m.setattr(classify, "BIFURCATION_GUARD_DIGITS", 30 + 10)
+        deep = flats(sweep(*args, precision="mp:30"))
+    asked = []
+    bifurcation = Relocator.bifurcation
+
+    def fails_below_70(self, z):
+        asked.append(self.prec.digits)
+        return None if self.prec.digits < 70 else bifurcation(self, z)
+
+    monkeypatch.setattr(Relocator, "bifurcation", fails_below_70)
+    fallback = flats(sweep(*args, precision="mp:30"))
+    assert sorted(set(asked)) == [30 + classify.BIFURCATION_GUARD_DIGITS, 70]
+    with mpmath.workdps(60):
+        for a, b, c in zip(at_n, deep, fallback, strict=True):
+            assert a.classes == b.classes == c.classes
+            for x, y, z in zip(_joint_digits(a), _joint_digits(b), _joint_digits(c), strict=True):
+                assert abs(x - y) < mpmath.mpf(10) ** -30 * max(1, abs(y)), (x, y)
+                assert abs(z - y) < mpmath.mpf(10) ** -30 * max(1, abs(y)), (z, y)
+
+
 def test_sweep_starting_at_a_limit_of_travel_goes_the_reachable_way():
     """From the double rocker's limit (a fold: continuation has no direction there) the
     sweep steps off along the curve and reaches the other limit."""

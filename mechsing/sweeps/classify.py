@@ -23,6 +23,9 @@ from mechsing.sweeps.records import Located
 
 __all__ = ["Classified", "classify_located", "located_texts", "unresolved"]
 
+#: digits beyond N at which a bifurcation's regular system is solved for mp:N
+BIFURCATION_GUARD_DIGITS = 5
+
 
 class Classified(NamedTuple):
     """The full analyses of located points, in their order: each point's analysis result
@@ -49,13 +52,9 @@ def classify_located(
     moved = []
     relocators: dict[str, Any] = {}
 
-    def relocator(test: str, prec: Precision) -> Any:
-        # a singular point of the closure is a double root of the closure for the held
-        # values: N digits of residual place it to N/2 digits only, so it is placed at
-        # 2N + 10 digits (and read at N)
+    def relocator(digits: int) -> Any:
         from mechsing.sweeps.relocate import Relocator
 
-        digits = prec.digits * 2 + 10 if test == "closure" else prec.digits
         key = str(digits)
         if key not in relocators:
             relocators[key] = Relocator(sweep, Precision("mp", digits))
@@ -65,11 +64,20 @@ def classify_located(
         if p.z is None:
             return None
         if p.kind == "fold":  # placed by its own conditions, whatever test vanishes there
-            return relocator("fold", prec).relocate(p.z, "fold", "fold")
+            return relocator(prec.digits).relocate(p.z, "fold", "fold")
         test = next((t for t in p.tests if t in sweep.tests), None)
         if test is None:
             return None
-        return relocator(test, prec).relocate(p.z, test, p.edge)
+        if test == "closure":
+            # a bifurcation: its own regular system places it at N digits (and a few
+            # guard digits); where that does not converge, the secant on the test's
+            # determinant, a double root of the closure for the held values, places it
+            # to half the working digits only: at 2N + 10 digits (read at N)
+            q = relocator(prec.digits + BIFURCATION_GUARD_DIGITS).bifurcation(p.z)
+            if q is not None:
+                return q
+            return relocator(prec.digits * 2 + 10).relocate(p.z, test, p.edge)
+        return relocator(prec.digits).relocate(p.z, test, p.edge)
 
     for i, p in enumerate(located):
         # policy: only mp places the points again, at its digits

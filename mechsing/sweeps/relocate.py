@@ -26,7 +26,9 @@ analysis classifies a located point at mp:N, the point is found again at N digit
   components on the left singular vectors that vanish there at the float point's.  Where
   the branches cross transversally that system is regular, and Gauss-Newton places the
   point to N digits, where the closure's double root leaves the secant on its test's
-  determinant N/2 (the secant remains where this does not converge).
+  determinant N/2 (the secant remains where this does not converge).  So at mp:N the
+  sweep (:mod:`.classify`) solves this system at N and a few guard digits, and only
+  where it does not converge relocates at 2N + 10 digits.
 
 Each secant step gains digits superlinearly from float's point; it stops when the step is
 below 10^(5-N) of the variable's scale (10^(5-N/2) for the closure's test, whose point is
@@ -126,7 +128,7 @@ class Relocator:
         if kind == "fold":
             return self._fold(z)
         if test == "closure":  # a bifurcation: placed by its own conditions, as a fold
-            q = self._bifurcation(z)
+            q = self.bifurcation(z)
             if q is not None:
                 return q
         # the float point's bases
@@ -180,7 +182,7 @@ class Relocator:
         rhs[iv] = 1.0
         return self._lagrange(z, fcols, rhs, lam0, P)
 
-    def _bifurcation(self, z: np.ndarray) -> np.ndarray | None:
+    def bifurcation(self, z: np.ndarray) -> np.ndarray | None:
         """The point near the float point z where the closure itself loses rank, again at
         N digits: the same Lagrange system as a fold's with ``[F_x F_v]^T lam = 0`` (the
         swept value is not extremal there: ``F_v . lam`` vanishes too) and ``lam``
