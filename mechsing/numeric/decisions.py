@@ -405,8 +405,11 @@ def decide_from_exact(M: Any, precision: Precision, exact: RankDecision) -> Rank
         C = None
         if k:
             Zm = _mp_matrix(Z)
-            Q, _ = mpmath.qr(Zm)
-            Y = _object_array(Q, (n, n))[:, k:]
+            # the complement Y serves only the range and left kernel of a rank below both
+            # sizes (full row rank: the range is everything, the left kernel empty)
+            if 0 < r < m:
+                Q, _ = mpmath.qr(Zm)
+                Y = _object_array(Q, (n, n))[:, k:]
             C = _gram_schmidt(Zm, n, k)
             N = _object_array(Zm * mpmath.matrix(C.tolist()), (n, k))
             AN = _object_array(A * mpmath.matrix(N.tolist()), (m, k))

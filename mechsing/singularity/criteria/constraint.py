@@ -138,8 +138,11 @@ class ConstraintTest(Criterion):
                 Tl = (Ss * leg.path_signs[None, :])[:, cols] @ K
                 dec = decide_rank(Tl, prec, L)
                 r = dec.rank if dec.rank is not None else dec.rank_bounds[1]
-                U, _s, _ = svd(Tl)
-                wrenches.append(U[:, r:])
+                if r < Tl.shape[0]:
+                    U, _s, _ = svd(Tl)
+                    wrenches.append(U[:, r:])
+                else:  # the leg moves the output freely: no constraint wrench, no SVD
+                    wrenches.append(prec.backend.zeros((Tl.shape[0], 0)))
             Wc = np.concatenate(wrenches, axis=1) if wrenches else prec.backend.zeros((6, 0))
             return decide_rank(Wc.T if Wc.shape[1] else np.zeros((0, 6)), prec, L), wrenches
 

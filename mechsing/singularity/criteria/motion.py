@@ -139,6 +139,16 @@ def _null(A: np.ndarray, L: float, prec: Precision, reference: Any = None) -> np
     return dec.null_space
 
 
+def _kernel(
+    A: np.ndarray, dec: RankDecision, L: float, prec: Precision, reference: Any
+) -> np.ndarray | None:
+    """:func:`_null` of ``A`` whose decision without spaces is ``dec``: a decided full
+    column rank has an empty kernel (no second SVD)."""
+    if dec.rank is not None and dec.rank == A.shape[1]:
+        return prec.backend.zeros((A.shape[1], 0))
+    return _null(A, L, prec, reference)
+
+
 class MotionTest(Criterion):
     """The input/output tests of one mechanism and model; plan: ``E`` (None without
     inputs), the output chain's signs and point (None without an output), the tests run."""
@@ -216,8 +226,8 @@ class MotionTest(Criterion):
         if prec.mode == "float" and m:
             zT, zE = rT.null_space, rE.null_space
         else:
-            zT = _null(TN, L, prec, nT) if m else bk.zeros((0, 0))
-            zE = _null(EN, L, prec, nE) if m else bk.zeros((0, 0))
+            zT = _kernel(TN, rT, L, prec, nT) if m else bk.zeros((0, 0))
+            zE = _kernel(EN, rE, L, prec, nE) if m else bk.zeros((0, 0))
         return IOQuantities(
             rank_difference(rB, rT),  # dim E(K cap ker T) = rank [TN; EN] - rank TN
             rank_difference(rB, rE),  # dim T(K cap ker E) = rank [TN; EN] - rank EN
