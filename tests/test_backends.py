@@ -206,3 +206,29 @@ def test_numeric_modules_import_only_downwards() -> None:
                     if NUMERIC_ORDER.index(target) >= i:
                         upward.append(f"{name} imports {target}")
     assert upward == []
+
+
+def test_exact_numbers_kept_in_float_are_their_nearest_doubles() -> None:
+    """A file's exact numbers are converted to float once and kept (a sweep builds its
+    model three times): the kept value is the fresh 20-digit evaluation's double, and
+    the normal form the fresh one, however often asked; sympy Floats of the same value at
+    two precisions are two numbers (kept apart)."""
+    from mechsing.numeric import backend
+
+    values = [
+        sympy.sqrt(3) / 10,
+        -7 * sympy.sqrt(3) / 10,
+        sympy.atan(sympy.Rational(1, 5)) * 2,
+        sympy.Rational(-3, 2),
+        sympy.pi / 6,
+        sympy.Float("0.1", 15),
+        sympy.Float("0.1", 30),
+    ]
+    for _ in range(2):
+        for v in values:
+            assert to_float(v) == float(sympy.N(v, 20))
+            fresh = v if v.is_Rational else backend._normal_form.__wrapped__(v)
+            assert backend.exact_normal_form(v) == fresh
+    assert backend.exact_normal_form(sympy.Float("0.1", 15)) != backend.exact_normal_form(
+        sympy.Float("0.1", 30)
+    )

@@ -63,6 +63,7 @@ EXPECTED = {
     # its parity: tests/test_scale.py::test_block_svd_equals_the_dense_svd (with the
     # block-diagonal matrices of that module)
     "factorisation": {"blocks"},
+    "dense factorisation": {"lapack"},
     "sweep test factors": {"values first"},
 }
 
@@ -572,3 +573,43 @@ def test_sweep_values_first_parity() -> None:
     with dispatch.fast_paths(False):
         assert dispatch.table("sweep test factors").pick(A, 5, False) is None
     assert factors.VALUES is dispatch.table("sweep test factors")
+
+
+# ------------------------------------------------------------- table dense factorisation
+
+
+def test_dense_factorisation_lapack_parity() -> None:
+    """A small float matrix's SVD by numpy's LAPACK gufunc called directly: numpy.linalg.svd's
+    factors and values bit for bit (full and thin, with and without vectors), on matrices
+    of every shape up to 12 x 12, rank-deficient, with zero columns, tiny and huge; a
+    matrix with a NaN or too many entries is not taken (numpy's wrapper decides it)."""
+    from mechsing.numeric import blocks
+
+    rng = np.random.default_rng(29)
+    mats = [np.zeros((6, 6)), np.ones((6, 3)), np.eye(6) * 1e-300, np.eye(4) * 1e300]
+    for _ in range(300):
+        m, n = rng.integers(1, 13, 2)
+        A = rng.normal(size=(m, n)) * 10.0 ** rng.uniform(-30, 30)
+        if n > 2:
+            A[:, 0] = A[:, 1] * 10.0 ** rng.uniform(-20, 0)
+            A[:, 2] = 0.0
+        mats.append(A)
+    table = dispatch.table("dense factorisation")
+    form = table.get("lapack")
+    for A in mats:
+        for full in (True, False):
+            assert table.pick(A, full, True) is form
+            got = form(A, full, True)
+            want = np.linalg.svd(A, full_matrices=full)
+            for g, w in zip(got, want, strict=True):
+                _same(g, w)
+        _same(form(A, True, False), np.linalg.svd(A, compute_uv=False))
+        # the caller's entry point takes it
+        _same(blocks.dense_svd(A, False, False), np.linalg.svd(A, compute_uv=False))
+    bad = np.ones((3, 3))
+    bad[1, 1] = np.nan
+    assert table.pick(bad, True, True) is None
+    assert table.pick(np.ones((70, 70)), True, True) is None
+    assert table.pick(np.ones((3, 3), dtype=np.float32), True, True) is None
+    with dispatch.fast_paths(False):
+        assert table.pick(mats[5], True, True) is None

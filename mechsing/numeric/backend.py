@@ -323,6 +323,12 @@ class ExactBackend(Backend):
         return np.array([exact_normal_form(v) for v in x], dtype=object)
 
 
+#: exact numbers converted to float (or put in normal form) are kept: a file's numbers
+#: are converted again at every model of it (a sweep builds three, and a script that
+#: sweeps or analyses a file again builds more), each a sympy evaluation of tens of us
+_EXACT_KEPT = 4096
+
+
 _FLOAT_DIGITS = -math.log10(float(np.finfo(np.float64).eps))
 
 
@@ -338,6 +344,11 @@ def exact_normal_form(x: Any) -> Any:
     denominators; ``sympy.simplify`` only when functions (atan2 ...) remain."""
     if not isinstance(x, sympy.Basic) or x.is_Rational:
         return x
+    return _normal_form(x)
+
+
+@lru_cache(maxsize=_EXACT_KEPT)
+def _normal_form(x: sympy.Basic) -> Any:
     y = sympy.expand(x)
     if y.has(sympy.Function):
         y = sympy.simplify(y)
@@ -472,10 +483,16 @@ def to_float(x: Any) -> Any:
 
 def _scalar_float(v: Any) -> float:
     if isinstance(v, sympy.Basic):
-        return float(sympy.N(v, 20))
+        return _sympy_float(v)
     if isinstance(v, str):
         return float(v)
     return float(v)
+
+
+@lru_cache(maxsize=_EXACT_KEPT)
+def _sympy_float(v: sympy.Basic) -> float:
+    """An exact number in float (through 20 digits: the nearest double)."""
+    return float(sympy.N(v, 20))
 
 
 def screw_zero_rtol(bk: Backend) -> Any:

@@ -14,7 +14,7 @@ import numpy as np
 
 from mechsing.numeric._mp import _mp_matrix, _object_array, eigsy, mp_svd, svd_r
 from mechsing.numeric.backend import Backend, backend_of, to_float
-from mechsing.numeric.blocks import block_svd
+from mechsing.numeric.blocks import block_svd, dense_svd
 from mechsing.numeric.tolerances import SUPPORT_RTOL
 
 
@@ -98,7 +98,8 @@ def spectral_norm(A: Any) -> Any:
         return 0.0
     bk = _numerical_backend(arr)
     if bk.name == "float":
-        return float(np.linalg.norm(to_float(arr), 2))
+        # numpy.linalg.norm(A, 2): the largest of the values-only SVD's values
+        return float(np.max(dense_svd(to_float(arr), compute_uv=False)))
     return singular_values(arr)[0]
 
 

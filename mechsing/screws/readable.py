@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from mechsing.numeric import SUPPORT_RTOL
+from mechsing.numeric.blocks import dense_svd
 
 #: a reduced row echelon form written to be read (screws.readable.echelon) takes its
 #: pivots in column order, but not one below this fraction of the largest entry still
@@ -116,7 +117,7 @@ def _largest(values: Any) -> float:
 def _pure(R: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]:
     """The SVD of the first halves of ``R`` (U, singular values, Vt), the span's elements
     with a zero first half (rows), and the magnitude the rank is judged against."""
-    U, sv, Vt = np.linalg.svd(R[:, :3], full_matrices=True)
+    U, sv, Vt = dense_svd(R[:, :3], full_matrices=True)
     big = max(float(np.max(np.abs(R))), float(sv.max(initial=0.0)))
     rank = int(np.sum(sv > SUPPORT_RTOL * big))
     return U[:, :rank], sv[:rank], Vt[:rank], U[:, rank:].T @ R, big
@@ -133,7 +134,7 @@ def simplest(v: np.ndarray, rows: np.ndarray) -> np.ndarray:
     U, sv, Vt, pure, big = _pure(R)
     out = out - (U @ ((Vt @ out[:3]) / sv)) @ R
     if len(pure):
-        Q, s2, _ = np.linalg.svd(pure[:, 3:].T, full_matrices=False)
+        Q, s2, _ = dense_svd(pure[:, 3:].T, full_matrices=False)
         Q = Q[:, s2 > SUPPORT_RTOL * big]
         out[3:] = out[3:] - Q @ (Q.T @ out[3:])
     return out

@@ -44,6 +44,7 @@ from mechsing.numeric import (
     decide_rank,
     to_float,
 )
+from mechsing.numeric.blocks import dense_svd
 from mechsing.numeric.linalg import first_nonzero_positive
 from mechsing.screws.readable import echelon, reduced_echelon, simplest
 from mechsing.singularity.criteria.serial import ChainSystem
@@ -114,7 +115,7 @@ def _split_new(left_null: np.ndarray, span: np.ndarray | None) -> tuple[np.ndarr
     new = left_null.shape[1] - (left_null.shape[0] - span.shape[1])
     if new <= 0:
         return left_null[:, :0], left_null
-    U, _, Vt = np.linalg.svd(span.T @ left_null)
+    U, _, Vt = dense_svd(span.T @ left_null)
     return span @ U[:, :new], left_null @ Vt[new:].T
 
 
@@ -126,7 +127,7 @@ def generic_span(matrices: list[np.ndarray], generic_rank: int) -> np.ndarray | 
     dec = decide_rank(M, "float")
     if dec.rank != generic_rank or generic_rank == M.shape[0]:
         return None
-    U = np.linalg.svd(M)[0]
+    U = dense_svd(M)[0]
     return U[:, :generic_rank]
 
 
@@ -171,7 +172,7 @@ def serial_finding(
     # the rank was decided at the analysis precision; the vectors that describe
     # the loss (wrenches, lost twist, null rates) come from a float SVD
     Ms = np.asarray(to_float(system.matrix), dtype=float)
-    U, s, Vt = np.linalg.svd(Ms)
+    U, s, Vt = dense_svd(Ms)
     r = dec.rank
     new, usual = _split_new(U[:, r:], span)
     fr = model.float_frame

@@ -35,6 +35,7 @@ from mechsing.kinematics.settings import (
     SWEEP_LOCATE_TOL,
     SWEEP_TANGENT_KEPT,
 )
+from mechsing.numeric.blocks import dense_svd
 
 __all__ = ["Arc", "curve_tangent", "off_singular", "onto_branch"]
 
@@ -83,7 +84,7 @@ class Arc:
         curve is not one-dimensional there."""
         Js, _ = scaled_system(self.cm, z)
         A = Js[:, self.free]
-        _, s, Vt = np.linalg.svd(A, full_matrices=True)
+        _, s, Vt = dense_svd(A, full_matrices=True)
         rank = int(np.sum(s > SWEEP_CURVE_RANK_RTOL * (s[0] if len(s) else 1.0)))
         K = Vt[rank:]
         if K.shape[0] == 0:
@@ -356,7 +357,7 @@ def onto_branch(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarra
     arc = Arc(pb, col, d)
     z = np.asarray(z, dtype=float)
     Js, _ = scaled_system(pb.cm, z)
-    _, s, Vt = np.linalg.svd(Js[:, arc.free], full_matrices=True)
+    _, s, Vt = dense_svd(Js[:, arc.free], full_matrices=True)
     K = Vt[int(np.sum(s > SWEEP_CURVE_RANK_RTOL * (s[0] if len(s) else 1.0))) :]
     if K.shape[0] < 2:
         return None
