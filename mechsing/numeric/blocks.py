@@ -30,9 +30,15 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.linalg import _umath_linalg as _ul
 
 from mechsing.numeric.dispatch import table, threshold
+
+try:  # numpy's private gufuncs (numpy 2's names); absent or renamed, the wrapper serves
+    from numpy.linalg import _umath_linalg as _ul
+
+    _GUFUNCS = all(hasattr(_ul, n) for n in ("svd", "svd_f", "svd_s"))
+except ImportError:  # pragma: no cover - depends on the installed numpy
+    _GUFUNCS = False
 
 __all__ = [
     "BlockFactors",
@@ -230,9 +236,11 @@ _DENSE = table(
 
 def _small_finite(A: Any, full_matrices: bool, compute_uv: bool) -> bool:
     """A non-empty finite float64 matrix of at most DENSE_ENTRIES entries (the rank
-    decisions' matrices: a few to a few hundred entries)."""
+    decisions' matrices: a few to a few hundred entries), where the installed numpy has
+    the gufuncs its wrapper calls under numpy 2's names (numpy 1 names them by shape)."""
     return (
-        type(A) is np.ndarray
+        _GUFUNCS
+        and type(A) is np.ndarray
         and A.dtype == np.float64
         and A.ndim == 2
         and 0 < A.size <= DENSE_ENTRIES
