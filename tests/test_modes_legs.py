@@ -115,8 +115,11 @@ def test_delta_has_the_two_mirror_translations_among_its_rod_assemblies() -> Non
             rods.append((pivot + rotation(n, angles[k]) @ (e0 - pivot), b, np.linalg.norm(b - e0)))
         centres.append(elbow - np.array([c / 2, s / 2, -2.0]))
 
+    E, B, L = (np.array([rod[k] for rod in rods]) for k in range(3))
+
     def closure(R: np.ndarray, t: np.ndarray, _x: np.ndarray) -> np.ndarray:
-        return np.array([np.linalg.norm(R @ b + t - e) - length for e, b, length in rods])
+        # the six rods at once (row i: |R b_i + t - e_i| - length_i)
+        return np.linalg.norm(B @ R.T + t - E, axis=1) - L
 
     found = _poses(doc)
     _same_poses(found, platform_poses(closure, starts=300))

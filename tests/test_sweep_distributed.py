@@ -116,6 +116,9 @@ def test_workers_start_a_local_cluster(serial: SweepResult) -> None:
 @needs_dask
 def test_unreachable_scheduler_is_a_user_error() -> None:
     import dask
+    import distributed  # noqa: F401  (its defaults in dask's config before the set below:
+    # on leaving, the set removes the keys it found missing, all of "distributed" when this
+    # test is a process's first to import it, as under pytest-xdist)
 
     with (
         dask.config.set({"distributed.comm.timeouts.connect": "2s"}),
