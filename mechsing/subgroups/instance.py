@@ -10,7 +10,6 @@ from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
-import sympy
 
 from mechsing import lie
 from mechsing.lie import ANGULAR
@@ -26,6 +25,7 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.numeric.backend import holds_objects
+from mechsing.numeric.lazy import sympy
 from mechsing.subgroups import _linalg
 from mechsing.subgroups.types import SubgroupType, _cross, load_catalog
 
