@@ -67,6 +67,8 @@ def test_arithmetic_and_order_are_sympys() -> None:
         assert (a < b) == bool(sa < sb) and (a >= b) == bool(sa >= sb)
         assert (a == b) == (sa == sb)
         assert (a < 0.5) == bool(sa < 0.5) and (a > -2.25) == bool(sa > -2.25)
+    # with a float: float arithmetic on the correctly rounded float
+    assert PI / 6 * 0.5 == float(PI / 6) * 0.5 and 2.0 - PiRational(Fraction(1, 10)) == 1.9
     # a sum of two powers of pi and a root are sympy's
     assert PiRational(1) + PI == 1 + sympy.pi
     assert sympy.sqrt(PiRational(Fraction(9, 4))) == sympy.Rational(3, 2)

@@ -227,7 +227,7 @@ class _Builder:
             raise ExpressionError(
                 f"expression {self.shown!r}: division by zero (0 to a negative power)"
             )
-        base_ratio = base.q if isinstance(base, PiRational) else _rational(base)
+        base_ratio = base.ratio if isinstance(base, PiRational) else _rational(base)
         if base_ratio is not None:
             bits = max(abs(int(n)).bit_length() for n in _pair(base_ratio))
             if bits * abs(p) > MAX_RATIONAL_BITS:
@@ -263,7 +263,7 @@ class _Builder:
 
     def check(self, value: Any) -> Any:
         if isinstance(value, PiRational):
-            if max(value.q.numerator.bit_length(), value.q.denominator.bit_length()) > (
+            if max(value.ratio.numerator.bit_length(), value.ratio.denominator.bit_length()) > (
                 MAX_RATIONAL_BITS
             ):
                 raise ExpressionError(f"expression {self.shown!r}: a number in it is too large")
@@ -318,7 +318,7 @@ def _rational(x: Any) -> tuple[int, int] | None:
     """Numerator and denominator of a rational value (a PiRational without pi or a
     sympy Rational), else None."""
     if isinstance(x, PiRational):
-        return (x.q.numerator, x.q.denominator) if x.k == 0 else None
+        return (x.ratio.numerator, x.ratio.denominator) if x.pi_power == 0 else None
     if is_sympy(x) and isinstance(x, sympy.Rational):
         return int(x.p), int(x.q)
     return None
@@ -545,7 +545,7 @@ def radian_power(value: Any) -> Any:
     converted to degrees) power 0.
     """
     if isinstance(value, PiRational):
-        return value.k
+        return value.pi_power
     if not is_sympy(value):
         return 0
     if value == sympy.pi:

@@ -7,8 +7,8 @@ configurations to :mod:`mechsing.model.configurations`, each node's checks to th
 reading context :mod:`mechsing.model.reading`.  Every problem
 raises :class:`~mechsing.errors.MechanismError` whose message names
 the file, the line, the item and the fix.  Numbers are read from their text
-as exact sympy values (:mod:`mechsing.model.expressions`) and converted to SI
-units and radians exactly.
+as exact values (:mod:`mechsing.model.expressions`: sympy's, or PiRational numbers with
+``plain_numbers``) and converted to SI units and radians exactly.
 """
 
 from __future__ import annotations

@@ -2,7 +2,8 @@
 messages of :class:`~mechsing.errors.MechanismError`: path, line, item), its units,
 scale and named parameters, collects notes and warnings, and checks the shape of each
 node (mapping, list, name, number, vector, direction) as it converts it to exact
-sympy values.  The loader (:mod:`mechsing.model.loader`), the joints'
+values (sympy's, or with ``plain`` a :class:`~mechsing.numeric.pirational.PiRational`
+where the number is a rational times a power of pi).  The loader (:mod:`mechsing.model.loader`), the joints'
 (:mod:`mechsing.model.joints`) and the configurations' readers
 (:mod:`mechsing.model.configurations`), the parameters and the couplings read
 through one.
@@ -195,9 +196,9 @@ def float_root(n2: Any) -> float:
 def _rational_root(n2: Any) -> PiRational | None:
     """The rational square root of a PiRational rational square (``9/4``: 3/2), else
     None."""
-    if not isinstance(n2, PiRational) or n2.k != 0 or n2.q < 0:
+    if not isinstance(n2, PiRational) or n2.pi_power != 0 or n2.ratio < 0:
         return None
-    p, q = n2.q.numerator, n2.q.denominator
+    p, q = n2.ratio.numerator, n2.ratio.denominator
     rp, rq = math.isqrt(p), math.isqrt(q)
     if rp * rp != p or rq * rq != q:
         return None

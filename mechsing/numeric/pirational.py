@@ -5,7 +5,8 @@ degrees is pi/6).  Most files write nothing else: decimals, degrees, ``pi/6``.  
 number is :class:`PiRational` ``q * pi**k`` (``q`` a :class:`fractions.Fraction`, ``k`` an
 integer), held without sympy: its float is correctly rounded (from pi to 380 bits), its
 sums, products and integer powers stay PiRationals where they can (a sum of two powers
-of pi, a root, a function's value cannot: those are computed by sympy, imported then).
+of pi, a root, a function's value cannot: those are computed by sympy, imported then); with
+a float they give the float of ``float(x)`` and the float (float arithmetic).
 An exact or mp computation asks for its sympy value (``sympy.sympify(x)``, which calls
 :meth:`PiRational._sympy_`: the very value the reader built before, ``Rational(1, 10)``,
 ``pi/6``), so those modes see what they always saw; a float analysis of such a file never
@@ -43,17 +44,19 @@ def _pi_power_bounds(k: int) -> tuple[Fraction, Fraction]:
 
 
 class PiRational:
-    """``q * pi**k``, exact, immutable; ``q`` a Fraction, ``k`` an int (0 when q is 0)."""
+    """``q * pi**k``, exact, immutable: ``ratio`` q (a Fraction) and ``pi_power`` k (an int,
+    0 when q is 0).  Equal to the sympy number of the same value; its hash is not sympy's
+    (do not mix the two kinds as keys of one dict)."""
 
-    __slots__ = ("q", "k", "_float", "_sympy")
+    __slots__ = ("ratio", "pi_power", "_float", "_sympy")
 
-    q: Fraction
-    k: int
+    ratio: Fraction
+    pi_power: int
 
     def __init__(self, q: Fraction | int, k: int = 0) -> None:
         q = Fraction(q)
-        object.__setattr__(self, "q", q)
-        object.__setattr__(self, "k", int(k) if q else 0)
+        object.__setattr__(self, "ratio", q)
+        object.__setattr__(self, "pi_power", int(k) if q else 0)
         object.__setattr__(self, "_float", None)
         object.__setattr__(self, "_sympy", None)
 
@@ -61,40 +64,40 @@ class PiRational:
         raise AttributeError("a PiRational is immutable")
 
     def __reduce__(self) -> tuple[Any, ...]:
-        return (PiRational, (self.q, self.k))
+        return (PiRational, (self.ratio, self.pi_power))
 
     # -- conversions -----------------------------------------------------------
 
     def _sympy_(self) -> Any:
         """The sympy value (``Rational(p, q) * pi**k``), built once."""
         if self._sympy is None:
-            value = sympy.Rational(self.q.numerator, self.q.denominator)
-            if self.k:
-                value = value * sympy.pi**self.k
+            value = sympy.Rational(self.ratio.numerator, self.ratio.denominator)
+            if self.pi_power:
+                value = value * sympy.pi**self.pi_power
             object.__setattr__(self, "_sympy", value)
         return self._sympy
 
     def __float__(self) -> float:
         """The float nearest the exact value (ties to even)."""
         if self._float is None:
-            object.__setattr__(self, "_float", _nearest_float(self.q, self.k))
+            object.__setattr__(self, "_float", _nearest_float(self.ratio, self.pi_power))
         return self._float  # type: ignore[return-value]
 
     def __int__(self) -> int:
-        if self.k:
+        if self.pi_power:
             return int(self._sympy_())
-        return int(self.q)
+        return int(self.ratio)
 
     def __bool__(self) -> bool:
-        return self.q != 0
+        return self.ratio != 0
 
     @property
     def is_Rational(self) -> bool:  # noqa: N802 - sympy's name
-        return self.k == 0
+        return self.pi_power == 0
 
     @property
     def is_zero(self) -> bool:
-        return self.q == 0
+        return self.ratio == 0
 
     def __getattr__(self, name: str) -> Any:
         # sympy's other attributes (free_symbols, evalf, is_algebraic ...) from the sympy
@@ -107,7 +110,7 @@ class PiRational:
     # -- text --------------------------------------------------------------------
 
     def __str__(self) -> str:
-        return str(self.q) if self.k == 0 else str(self._sympy_())
+        return str(self.ratio) if self.pi_power == 0 else str(self._sympy_())
 
     def __repr__(self) -> str:
         return str(self)
@@ -115,26 +118,25 @@ class PiRational:
     # -- arithmetic --------------------------------------------------------------
 
     def __hash__(self) -> int:
-        return hash(self.q) if self.k == 0 else hash((self.q, self.k))
+        return hash(self.ratio) if self.pi_power == 0 else hash((self.ratio, self.pi_power))
 
     def __eq__(self, other: object) -> Any:
         o = as_pirational(other)
         if o is not None:
-            return self.q == o.q and self.k == o.k
+            return self.ratio == o.ratio and self.pi_power == o.pi_power
         if isinstance(other, float):
-            return self.k == 0 and self.q == other  # pi**k times a rational is no float
+            return self.pi_power == 0 and self.ratio == other  # pi**k times a rational is no float
         return self._sympy_() == other
 
     def __ne__(self, other: object) -> Any:
-        eq = self.__eq__(other)
-        return not eq if isinstance(eq, bool) else eq.__class__(not eq)
+        return not self.__eq__(other)
 
     def _compare(self, other: Any) -> int | None:
         """The sign of ``self - other`` when it is decided without sympy (the same power
         of pi, or one of them zero), else None."""
         if isinstance(other, float) and math.isfinite(other):
-            if self.k == 0:
-                d = self.q - Fraction(other)
+            if self.pi_power == 0:
+                d = self.ratio - Fraction(other)
             elif float(self) != other:  # the float nearest self is on self's side of other
                 d = Fraction(float(self)) - Fraction(other)
             else:
@@ -143,12 +145,12 @@ class PiRational:
         o = as_pirational(other)
         if o is None:
             return None
-        if self.k == o.k:
-            d = self.q - o.q
-        elif not o.q:
-            d = self.q
-        elif not self.q:
-            d = -o.q
+        if self.pi_power == o.pi_power:
+            d = self.ratio - o.ratio
+        elif not o.ratio:
+            d = self.ratio
+        elif not self.ratio:
+            d = -o.ratio
         else:
             # two powers of pi: their correctly rounded floats tell the order unless
             # within a few units of rounding of each other (then sympy decides)
@@ -175,77 +177,93 @@ class PiRational:
         return c >= 0 if c is not None else self._sympy_() >= other
 
     def __neg__(self) -> PiRational:
-        return PiRational(-self.q, self.k)
+        return PiRational(-self.ratio, self.pi_power)
 
     def __pos__(self) -> PiRational:
         return self
 
     def __abs__(self) -> PiRational:
-        return PiRational(abs(self.q), self.k)
+        return PiRational(abs(self.ratio), self.pi_power)
 
     def __add__(self, other: Any) -> Any:
         o = as_pirational(other)
+        if isinstance(other, float):
+            return float(self) + other
         if o is None:
             return self._sympy_() + other
-        if not o.q:
+        if not o.ratio:
             return self
-        if not self.q:
+        if not self.ratio:
             return o
-        if self.k == o.k:
-            return PiRational(self.q + o.q, self.k)
+        if self.pi_power == o.pi_power:
+            return PiRational(self.ratio + o.ratio, self.pi_power)
         return self._sympy_() + o._sympy_()
 
     def __radd__(self, other: Any) -> Any:
         o = as_pirational(other)
+        if isinstance(other, float):
+            return other + float(self)
         if o is None:
             return other + self._sympy_()
         return o + self
 
     def __sub__(self, other: Any) -> Any:
         o = as_pirational(other)
+        if isinstance(other, float):
+            return float(self) - other
         if o is None:
             return self._sympy_() - other
         return self + (-o)
 
     def __rsub__(self, other: Any) -> Any:
         o = as_pirational(other)
+        if isinstance(other, float):
+            return other - float(self)
         if o is None:
             return other - self._sympy_()
         return o + (-self)
 
     def __mul__(self, other: Any) -> Any:
         o = as_pirational(other)
+        if isinstance(other, float):
+            return float(self) * other
         if o is None:
             return self._sympy_() * other
-        return PiRational(self.q * o.q, self.k + o.k)
+        return PiRational(self.ratio * o.ratio, self.pi_power + o.pi_power)
 
     def __rmul__(self, other: Any) -> Any:
         o = as_pirational(other)
+        if isinstance(other, float):
+            return other * float(self)
         if o is None:
             return other * self._sympy_()
         return o * self
 
     def __truediv__(self, other: Any) -> Any:
         o = as_pirational(other)
+        if isinstance(other, float):
+            return float(self) / other
         if o is None:
             return self._sympy_() / other
-        if not o.q:
+        if not o.ratio:
             raise ZeroDivisionError("division of an exact number by zero")
-        return PiRational(self.q / o.q, self.k - o.k)
+        return PiRational(self.ratio / o.ratio, self.pi_power - o.pi_power)
 
     def __rtruediv__(self, other: Any) -> Any:
         o = as_pirational(other)
+        if isinstance(other, float):
+            return other / float(self)
         if o is None:
             return other / self._sympy_()
         return o / self
 
     def __pow__(self, exponent: Any) -> Any:
         e = as_pirational(exponent)
-        if e is not None and e.k == 0 and e.q.denominator == 1:
-            n = e.q.numerator
-            if n < 0 and not self.q:
+        if e is not None and e.pi_power == 0 and e.ratio.denominator == 1:
+            n = e.ratio.numerator
+            if n < 0 and not self.ratio:
                 raise ZeroDivisionError("zero to a negative power")
-            return PiRational(self.q**n, self.k * n)
+            return PiRational(self.ratio**n, self.pi_power * n)
         return self._sympy_() ** exponent
 
     def __rpow__(self, base: Any) -> Any:
@@ -315,10 +333,10 @@ def evalf_float(x: Any, digits: int = 20) -> float:
     if not isinstance(x, PiRational):
         return float(sympy.N(x, digits))
     bits = _binary_digits(digits)
-    if x.k == 0:
-        return float(_round_bits(x.q, bits))
-    lo, hi = _pi_power_bounds(x.k)
-    a, b = _round_bits(x.q * lo, bits), _round_bits(x.q * hi, bits)
+    if x.pi_power == 0:
+        return float(_round_bits(x.ratio, bits))
+    lo, hi = _pi_power_bounds(x.pi_power)
+    a, b = _round_bits(x.ratio * lo, bits), _round_bits(x.ratio * hi, bits)
     if a == b:
         return float(a)
     return float(sympy.N(x._sympy_(), digits))  # within 2**-370 of a tie: as sympy rounds
