@@ -90,7 +90,7 @@ def _bernoulli_numbers(n: int) -> list[Fraction]:
     """B_0 ... B_n (B_1 = -1/2), exact, by the recurrence sum_{j<=m} C(m+1, j) B_j = 0."""
     b = [Fraction(1)]
     for m in range(1, n + 1):
-        b.append(-sum(math.comb(m + 1, j) * b[j] for j in range(m)) / (m + 1))
+        b.append(-sum((math.comb(m + 1, j) * b[j] for j in range(m)), Fraction(0)) / (m + 1))
     return b
 
 

@@ -81,7 +81,7 @@ class PiRational:
         """The float nearest the exact value (ties to even)."""
         if self._float is None:
             object.__setattr__(self, "_float", _nearest_float(self.ratio, self.pi_power))
-        return self._float  # type: ignore[return-value]
+        return self._float
 
     def __int__(self) -> int:
         if self.pi_power:
