@@ -12,7 +12,6 @@ through one.
 from __future__ import annotations
 
 import math
-from fractions import Fraction
 from typing import Any
 
 from mechsing.errors import ExpressionError, MechanismError
@@ -20,7 +19,7 @@ from mechsing.model.expressions import parse_number, written_digits
 from mechsing.model.mechanism import Units
 from mechsing.numeric import NEAR_ZERO_VECTOR, data_resolution
 from mechsing.numeric.lazy import sympy
-from mechsing.numeric.pirational import PiRational, evalf_float
+from mechsing.numeric.pirational import PiRational, evalf_float, rational_sqrt
 from mechsing.yamlnodes import YMap, YScalar, YSeq, YValue
 
 __all__ = ["Reader", "closest", "few", "show_vector"]
@@ -171,7 +170,7 @@ class Reader:
             )
         if n2 == 1:
             return vec, False
-        root = _rational_root(n2)
+        root = rational_sqrt(n2)
         if root is not None:  # a rational length: the unit vector is rational (as radsimp's)
             unit = tuple(c / root for c in vec)
             return (unit[0], unit[1], unit[2]), True
@@ -191,18 +190,6 @@ def float_root(n2: Any) -> float:
     if isinstance(n2, PiRational):
         return math.sqrt(float(n2))
     return float(sympy.N(sympy.sqrt(n2), 30))
-
-
-def _rational_root(n2: Any) -> PiRational | None:
-    """The rational square root of a PiRational rational square (``9/4``: 3/2), else
-    None."""
-    if not isinstance(n2, PiRational) or n2.pi_power != 0 or n2.ratio < 0:
-        return None
-    p, q = n2.ratio.numerator, n2.ratio.denominator
-    rp, rq = math.isqrt(p), math.isqrt(q)
-    if rp * rp != p or rq * rq != q:
-        return None
-    return PiRational(Fraction(rp, rq))
 
 
 def closest(word: str, choices: tuple[str, ...]) -> str | None:

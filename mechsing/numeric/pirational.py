@@ -22,7 +22,7 @@ from typing import Any
 
 from mechsing.numeric.lazy import sympy
 
-__all__ = ["PI", "PiRational", "as_pirational", "evalf_float"]
+__all__ = ["PI", "PiRational", "as_pirational", "evalf_float", "rational_sqrt"]
 
 #: pi * 2**380, rounded down: pi to 380 bits, enough that every float of q * pi**k is
 #: decided (the float of the value's lower and upper bound agree) for any sensible q, k
@@ -275,6 +275,18 @@ class PiRational:
 
 #: pi as a PiRational
 PI = PiRational(1, 1)
+
+
+def rational_sqrt(x: Any) -> PiRational | None:
+    """The rational square root of a PiRational that is a rational square (``9/4``: 3/2),
+    else None."""
+    if not isinstance(x, PiRational) or x.pi_power != 0 or x.ratio < 0:
+        return None
+    p, q = x.ratio.numerator, x.ratio.denominator
+    rp, rq = math.isqrt(p), math.isqrt(q)
+    if rp * rp != p or rq * rq != q:
+        return None
+    return PiRational(Fraction(rp, rq))
 
 
 def as_pirational(x: Any) -> PiRational | None:
