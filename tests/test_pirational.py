@@ -92,3 +92,23 @@ def test_parse_plain_leaves_the_rest_to_sympy(text: str) -> None:
     got = parse_number(text, plain=True)
     assert isinstance(got, sympy.Basic)
     assert got == sympy.sympify(text, rational=True)
+
+
+def test_a_subgroup_of_plain_numbers_stays_exact() -> None:
+    # a joint's subgroup read from the file's plain numbers: its axis is made unit exactly
+    # and an mp:50 basis (auto's second pass) has the exact values to 50 digits, not the
+    # floats of 1/10 or 2/7; reference: the row (u, p x u) in fractions
+    from mechsing.subgroups import Subgroup
+
+    u = (Fraction(2, 7), Fraction(3, 7), Fraction(6, 7))
+    p = (Fraction(1, 10), Fraction(-3, 10), Fraction(7, 3))
+    sg = Subgroup("R", axis=[PiRational(2 * x) for x in u], point=[PiRational(x) for x in p])
+    cross = (
+        p[1] * u[2] - p[2] * u[1],
+        p[2] * u[0] - p[0] * u[2],
+        p[0] * u[1] - p[1] * u[0],
+    )
+    (row,) = sg.basis("mp:50")
+    for got, want in zip(row, (*u, *cross), strict=True):
+        with mpmath.workdps(60):
+            assert abs(mpmath.mpf(got) - mpmath.mpf(want.numerator) / want.denominator) < 1e-48
