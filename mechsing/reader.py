@@ -64,7 +64,10 @@ def _source(text: str, path: str) -> Source:
 
 
 def read_mechanism(
-    source: str | Path | Source, symbolic: Collection[str] = (), exact_tables: bool = False
+    source: str | Path | Source,
+    symbolic: Collection[str] = (),
+    exact_tables: bool = False,
+    plain_numbers: bool = False,
 ) -> Mechanism:
     """The mechanism of a file of any format mechsing reads (YAML or JSON, a ``dh``
     table, URDF, MJCF), with its ``warnings`` and ``notes``.
@@ -72,12 +75,19 @@ def read_mechanism(
     ``symbolic`` names parameters of the file to keep as symbols
     (:class:`~mechsing.model.parameters.ParameterSymbol`), for symbolic conditions;
     ``exact_tables`` has a ``dh`` table's frames computed exactly (as symbolic
-    conditions need), not in floats.
+    conditions need), not in floats; ``plain_numbers`` keeps the file's rationals times
+    powers of pi as :class:`~mechsing.numeric.pirational.PiRational` numbers instead of
+    sympy values (what a float analysis reads: it then imports no sympy).
     Raises :class:`~mechsing.errors.MechanismError` for every problem of the file."""
     src = source if isinstance(source, Source) else read_source(source)
     expand = partial(expand_dh, keep_exact=True) if exact_tables else expand_dh
     return loads(
-        src.yaml, path=src.path, default_name=src.name, symbolic=symbolic, expand_dh=expand
+        src.yaml,
+        path=src.path,
+        default_name=src.name,
+        symbolic=symbolic,
+        expand_dh=expand,
+        plain_numbers=plain_numbers,
     )
 
 

@@ -172,6 +172,8 @@ NUMERIC_ORDER = [
     "tolerances",
     "dispatch",
     "numbers",
+    "lazy",
+    "pirational",
     "_mp",
     "field",
     "backend",

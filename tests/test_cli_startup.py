@@ -85,3 +85,36 @@ def test_a_float_analysis_of_one_loop_imports_no_graph_or_plot_library(tmp_path:
     assert "mechsing.model.graph" in names
     heavy = sorted(n for n in names if n.split(".")[0] in ("networkx", "scipy", "matplotlib"))
     assert not heavy, heavy[:5]
+
+
+def _slider_crank(tmp_path: Path) -> Path:
+    """The crank-input slider-crank example without its fully given dead centre (written
+    with atan: a value only sympy computes); its other configurations are plain numbers."""
+    text = (ROOT / "examples" / "slider_crank_crank_input.yaml").read_text(encoding="utf-8")
+    kept = [line for line in text.splitlines() if not line.lstrip().startswith("dead-centre:")]
+    assert len(kept) == len(text.splitlines()) - 1
+    path = tmp_path / "slider_crank.yaml"
+    path.write_text("\n".join(kept) + "\n", encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize(
+    "case",
+    ["fourbar float", "fourbar auto", "slider-crank float", "slider-crank auto"],
+)
+def test_a_float_analysis_of_plain_numbers_imports_no_sympy(case: str, tmp_path: Path) -> None:
+    # the file's numbers (decimals, degrees, pi/3) are PiRational: exact, with their float,
+    # and sympy is imported only by a computation that needs it (exact, mp, a root, a
+    # trigonometric value); auto's first pass is float and decides these configurations
+    name, precision = case.split()
+    if name == "fourbar":
+        argv = ["analyze", "examples/fourbar.yaml", "--config", "crank-30"]
+        regular = 1
+    else:
+        argv = ["analyze", str(_slider_crank(tmp_path))]
+        regular = 2
+    status, out, names = _imported([*argv, "--precision", precision], tmp_path)
+    assert status == 0 and out.count("regular: no singularity") == regular, out
+    assert "(float)" in out and "mechsing.model.expressions" in names
+    heavy = sorted(n for n in names if n.split(".")[0] in ("sympy", "mpmath"))
+    assert not heavy, heavy[:5]

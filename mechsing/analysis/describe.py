@@ -25,12 +25,12 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
-import sympy
 
 from mechsing.kinematics import KinematicModel
 from mechsing.model import Mechanism
 from mechsing.numeric import Margin, Precision, decide_rank, to_float
 from mechsing.numeric.field import field_floats, field_product
+from mechsing.numeric.lazy import sympy
 from mechsing.numeric.linalg import spectral_norm, svd
 from mechsing.screws import ClosureSystem
 from mechsing.screws.readable import readable_basis

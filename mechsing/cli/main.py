@@ -180,16 +180,20 @@ def load_mechanism(
     verbose: bool = False,
     symbolic: Sequence[str] = (),
     exact_tables: bool = False,
+    plain_numbers: bool = False,
 ) -> Mechanism:
     """Read a mechanism file of any format (:func:`mechsing.reader.read_mechanism`, the
     one reader of every command); print its warnings (likely mistakes that are not
     errors), and with ``verbose`` what was done silently (axes normalised...).
-    ``exact_tables``: a ``dh`` table's frames exact (``condition``)."""
+    ``exact_tables``: a ``dh`` table's frames exact (``condition``); ``plain_numbers``:
+    the file's plain numbers as PiRational, not sympy (a float analysis)."""
     from mechsing.errors import working_on
     from mechsing.reader import read_mechanism
 
     with working_on(file=path if isinstance(path, str) else path.path):
-        mech = read_mechanism(path, symbolic=symbolic, exact_tables=exact_tables)
+        mech = read_mechanism(
+            path, symbolic=symbolic, exact_tables=exact_tables, plain_numbers=plain_numbers
+        )
     for warning in mech.warnings:
         print(f"mechsing: warning: {warning}", file=sys.stderr)
     if verbose:

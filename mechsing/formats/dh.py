@@ -29,10 +29,10 @@ import math
 from typing import Any
 
 import numpy as np
-import sympy
 
 from mechsing.formats.frames import axis_angle, frame
 from mechsing.formats.writer import number
+from mechsing.numeric.lazy import sympy
 from mechsing.yamlnodes import YMap, YScalar, YSeq, YValue
 
 __all__ = ["CONVENTIONS", "ROW_KEYS", "dh_frames", "expand_dh"]

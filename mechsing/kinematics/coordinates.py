@@ -14,12 +14,12 @@ from __future__ import annotations
 
 from typing import Any
 
-import mpmath
 import numpy as np
 
 from mechsing import lie
 from mechsing.numeric import to_float
 from mechsing.numeric.backend import is_float64
+from mechsing.numeric.lazy import mpmath
 
 #: a :class:`~mechsing.kinematics.model.KinematicModel` (which imports this module)
 KinematicModel = Any

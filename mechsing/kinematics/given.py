@@ -13,7 +13,6 @@ from __future__ import annotations
 from typing import Any, NamedTuple
 
 import numpy as np
-import sympy
 
 from mechsing import lie
 from mechsing.errors import ExactDataError, UserError
@@ -29,6 +28,7 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.numeric.backend import exact_is_zero
+from mechsing.numeric.lazy import sympy
 from mechsing.timelimit import activity
 
 __all__ = ["Given", "GivenValues", "to_the_tolerance"]

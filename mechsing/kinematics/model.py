@@ -37,7 +37,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-import mpmath
 import numpy as np
 
 from mechsing import lie
@@ -59,6 +58,8 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.numeric.backend import is_float64
+from mechsing.numeric.lazy import mpmath
+from mechsing.numeric.pirational import PiRational
 from mechsing.subgroups import Subgroup
 
 if TYPE_CHECKING:
@@ -90,11 +91,16 @@ class JointKinematics:
 
 def axis_points(mech: Mechanism) -> list[list[Any]]:
     """Each joint's axis point nearest the origin (R, H, C), or centre (S, U), exact."""
-    import sympy
-
     pts = []
     for j in mech.joints:
         if j.type in ("R", "H", "C"):
+            u, p = j.params["axis"], j.params["point"]
+            if all(isinstance(x, PiRational) for x in (*u, *p)):  # the file's plain numbers
+                along = sum(a * b for a, b in zip(u, p, strict=True)) / sum(a * a for a in u)
+                pts.append([pk - uk * along for uk, pk in zip(u, p, strict=True)])
+                continue
+            import sympy
+
             u = sympy.Matrix(j.params["axis"])
             p = sympy.Matrix(j.params["point"])
             foot = p - u * (u.dot(p)) / u.dot(u)
@@ -233,7 +239,11 @@ class KinematicModel:
         #: the commensurate frame in the model's numbers, and its float twin: every map
         #: into the commensurate metric and back to SI goes through them
         self.frame: CommensurateFrame = CommensurateFrame.of(
-            L, c, self.length_columns, self.backend, _exact_centroid(pts)
+            L,
+            c,
+            self.length_columns,
+            self.backend,
+            _exact_centroid(pts) if self.backend.name == "exact" else None,
         )
         self.float_frame: CommensurateFrame = self.frame.as_float()
         self.chords = [self._by_name[name] for name in mech.graph.chord_joints]

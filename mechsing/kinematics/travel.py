@@ -17,7 +17,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import mpmath
 import numpy as np
 
 from mechsing.kinematics.newton import damped_least_squares, newton_on_group, scaled_system
@@ -28,6 +27,7 @@ from mechsing.kinematics.settings import (
     TRAVEL_RESIDUAL_ALIGNMENT,
 )
 from mechsing.numeric import to_float
+from mechsing.numeric.lazy import mpmath
 from mechsing.numeric.linalg import svd
 
 __all__ = ["Fold", "beyond_target", "beyond_travel", "fold_excess"]

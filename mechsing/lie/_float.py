@@ -58,7 +58,7 @@ def _factorial_table(shifts: tuple[int, ...]) -> np.ndarray:
 @lru_cache(maxsize=1)
 def _half_cot_table() -> np.ndarray:
     c = _bernoulli_coeffs(_n_terms_bernoulli(FLOAT))
-    return np.array([[FLOAT.rational(int(x.p), int(x.q)) for x in c]])
+    return np.array([[FLOAT.rational(x.numerator, x.denominator) for x in c]])
 
 
 def _power_series(x: np.ndarray, table: np.ndarray) -> np.ndarray:

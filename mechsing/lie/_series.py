@@ -17,11 +17,11 @@ beside it; decision tolerances live in mechsing.numeric):
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 from functools import lru_cache
 from typing import Any
 
 import numpy as np
-import sympy
 
 from mechsing.numeric import Backend
 from mechsing.numeric.backend import bool_mask
@@ -69,7 +69,7 @@ def factorial_series(bk: Backend, t2: Any, shift: int) -> Any:
 
 @lru_cache(maxsize=64)
 def _factorial_coeffs(shift: int, n: int) -> tuple[Any, ...]:
-    return tuple(sympy.Rational((-1) ** k, math.factorial(2 * k + shift)) for k in range(n))
+    return tuple(Fraction((-1) ** k, math.factorial(2 * k + shift)) for k in range(n))
 
 
 def _n_terms_bernoulli(bk: Backend) -> int:
@@ -82,7 +82,16 @@ def _n_terms_bernoulli(bk: Backend) -> int:
 @lru_cache(maxsize=8)
 def _bernoulli_coeffs(n: int) -> tuple[Any, ...]:
     # (1 - (t/2) cot(t/2)) / t^2 = sum_{k>=1} |B_2k| t^(2k-2) / (2k)!
-    return tuple(abs(sympy.bernoulli(2 * k)) / sympy.factorial(2 * k) for k in range(1, n + 1))
+    b = _bernoulli_numbers(2 * n)
+    return tuple(abs(b[2 * k]) / math.factorial(2 * k) for k in range(1, n + 1))
+
+
+def _bernoulli_numbers(n: int) -> list[Fraction]:
+    """B_0 ... B_n (B_1 = -1/2), exact, by the recurrence sum_{j<=m} C(m+1, j) B_j = 0."""
+    b = [Fraction(1)]
+    for m in range(1, n + 1):
+        b.append(-sum((math.comb(m + 1, j) * b[j] for j in range(m)), Fraction(0)) / (m + 1))
+    return b
 
 
 def half_cot_series(bk: Backend, t2: Any) -> Any:
@@ -116,7 +125,7 @@ def _converted(bk: Backend, coeffs: tuple[Any, ...]) -> tuple[Any, ...]:
     key = (bk.key, coeffs)
     out = _CONVERTED.get(key)
     if out is None:
-        out = _CONVERTED[key] = tuple(bk.rational(int(c.p), int(c.q)) for c in coeffs)
+        out = _CONVERTED[key] = tuple(bk.rational(c.numerator, c.denominator) for c in coeffs)
     return out
 
 

@@ -9,8 +9,6 @@ from __future__ import annotations
 
 from typing import Any
 
-import sympy
-
 from mechsing.model.expressions import is_plain_decimal, radian_power
 from mechsing.model.loads import LOAD_KEY, read_load
 from mechsing.model.mechanism import (
@@ -23,6 +21,8 @@ from mechsing.model.mechanism import (
 )
 from mechsing.model.reading import Reader, few
 from mechsing.numeric import REFERENCE_SCREEN_RTOL
+from mechsing.numeric.lazy import sympy
+from mechsing.numeric.pirational import PI, PiRational, evalf_float
 from mechsing.yamlnodes import YMap, YScalar, YSeq, YValue
 
 __all__ = [
@@ -256,10 +256,10 @@ class ConfigurationReader:
         elif form == "axis_angle" and rvec is not None:
             axis = m.get("axis")
             (a_res, a_digits) = r.resolution(m.get("angle"), r.units.angle_factor)
-            raw = [float(sympy.N(x, 17)) for x in r.vector(axis, "pose", "axis")]
+            raw = [evalf_float(x, 17) for x in r.vector(axis, "pose", "axis")]
             size = sum(x * x for x in raw) ** 0.5
             rot = [*entries(axis), (a_res, a_digits)]
-            angle = sum(float(sympy.N(x, 17)) ** 2 for x in rvec) ** 0.5
+            angle = sum(evalf_float(x, 17) ** 2 for x in rvec) ** 0.5
             axis_res = sum(x * x for x, _ in rot[:-1]) ** 0.5 / size if size else 0.0
             bound = a_res + angle * axis_res
         elif form == "matrix":
@@ -308,6 +308,8 @@ class ConfigurationReader:
             if x == 0:
                 return True
             bound = REFERENCE_SCREEN_RTOL * (size if unit == "m" else 1)
+            if isinstance(x, PiRational):
+                return bool(abs(x) <= bound)
             return bool(abs(sympy.N(x, 30)) <= bound)
 
         if isinstance(val, Displacement):
@@ -461,7 +463,7 @@ def radians_in_degree_file(label: str, node: Any, raw: Any, unit: str) -> str:
 
 
 #: a full turn (rad): a plain angle above it in a radian file gets a warning
-FULL_TURN = 2 * sympy.pi
+FULL_TURN = 2 * PI
 #: pitched joints: their angle is tied to a slide, many turns are ordinary
 _PITCHED = ("H", "Y")
 #: joints whose angular coordinates form a rotation vector (its norm is the angle)

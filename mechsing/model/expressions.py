@@ -35,13 +35,13 @@ from __future__ import annotations
 
 import ast
 from collections.abc import Mapping
+from fractions import Fraction
 from typing import Any
 
-import mpmath
-import sympy
-
 from mechsing.errors import ExpressionError
+from mechsing.numeric.lazy import is_sympy, mpmath, sympy
 from mechsing.numeric.numbers import DECIMAL, SIGNED_DECIMAL, is_decimal_text, is_sensible_size
+from mechsing.numeric.pirational import PI, PiRational
 from mechsing.numeric.tolerances import EXACT_ZERO_DIGITS, MAX_NUMBER
 
 __all__ = [
@@ -77,16 +77,16 @@ MAX_RATIONAL_BITS = 8192
 MAX_EXPRESSION_SIZE = 2000
 MAX_EXPRESSION_DEPTH = 64
 
-#: whitelisted functions and their number of arguments
-ALLOWED_FUNCTIONS: dict[str, tuple[Any, int]] = {
-    "sqrt": (sympy.sqrt, 1),
-    "sin": (sympy.sin, 1),
-    "cos": (sympy.cos, 1),
-    "tan": (sympy.tan, 1),
-    "asin": (sympy.asin, 1),
-    "acos": (sympy.acos, 1),
-    "atan": (sympy.atan, 1),
-    "atan2": (sympy.atan2, 2),
+#: whitelisted functions (sympy's of the same name) and their number of arguments
+ALLOWED_FUNCTIONS: dict[str, int] = {
+    "sqrt": 1,
+    "sin": 1,
+    "cos": 1,
+    "tan": 1,
+    "asin": 1,
+    "acos": 1,
+    "atan": 1,
+    "atan2": 2,
 }
 
 _ALLOWED_TEXT = "numbers, + - * / **, parentheses, pi, sqrt, sin, cos, tan, asin, acos, atan, atan2"
@@ -117,6 +117,10 @@ def _describe(node: ast.AST) -> str:
 
 
 class _Builder:
+    """The exact value of an expression's syntax tree: its numbers and pi as
+    :class:`~mechsing.numeric.pirational.PiRational` (their sums, products and integer
+    powers stay so), sympy for the rest (a function's value, a sum of two powers of pi)."""
+
     def __init__(self, text: str, names: Mapping[str, Any] | None = None) -> None:
         self.text = text
         self.shown = _short(text)
@@ -147,7 +151,7 @@ class _Builder:
             return self.binop(node)
         if isinstance(node, ast.Name):
             if node.id == "pi":
-                return sympy.pi
+                return PI
             if node.id in self.names:
                 return self.names[node.id]
             if node.id in ALLOWED_FUNCTIONS:
@@ -207,12 +211,13 @@ class _Builder:
         return self.power(left, right)
 
     def power(self, base: Any, exponent: Any) -> Any:
-        if not (isinstance(exponent, sympy.Rational)):
+        ratio = _rational(exponent)
+        if ratio is None:
             raise ExpressionError(
                 f"expression {self.shown!r}: the exponent of ** must be a rational number "
                 f"such as 2, -1 or 1/2 (got {exponent})"
             )
-        p, q = int(exponent.p), int(exponent.q)
+        p, q = ratio
         if abs(p) > MAX_POWER_EXPONENT or q > MAX_POWER_EXPONENT:
             raise ExpressionError(
                 f"expression {self.shown!r}: the exponent {exponent} of ** is too large "
@@ -222,8 +227,9 @@ class _Builder:
             raise ExpressionError(
                 f"expression {self.shown!r}: division by zero (0 to a negative power)"
             )
-        if isinstance(base, sympy.Rational):
-            bits = max(int(base.p).bit_length(), int(base.q).bit_length())
+        base_ratio = base.ratio if isinstance(base, PiRational) else _rational(base)
+        if base_ratio is not None:
+            bits = max(abs(int(n)).bit_length() for n in _pair(base_ratio))
             if bits * abs(p) > MAX_RATIONAL_BITS:
                 raise ExpressionError(
                     f"expression {self.shown!r}: a power in it is too large a number"
@@ -232,6 +238,8 @@ class _Builder:
             raise ExpressionError(
                 f"expression {self.shown!r}: the power is too large an expression"
             )
+        if isinstance(base, PiRational) and q == 1:
+            return self.check(base**p)
         return self.check(sympy.Pow(base, exponent))
 
     def call(self, node: ast.Call) -> Any:
@@ -242,7 +250,7 @@ class _Builder:
             raise self.fail(f"the function {name!r}")
         if node.keywords:
             raise self.fail("keyword arguments")
-        func, nargs = ALLOWED_FUNCTIONS[name]
+        nargs = ALLOWED_FUNCTIONS[name]
         if len(node.args) != nargs:
             raise ExpressionError(
                 f"expression {self.shown!r}: {name} takes {nargs} argument"
@@ -251,9 +259,15 @@ class _Builder:
         args = [self.build(a) for a in node.args]
         if name == "atan2" and _is_zero(args[0]) and _is_zero(args[1]):
             raise ExpressionError(f"expression {self.shown!r}: atan2(0, 0) is undefined")
-        return self.check(func(*args))
+        return self.check(getattr(sympy, name)(*args))
 
     def check(self, value: Any) -> Any:
+        if isinstance(value, PiRational):
+            if max(value.ratio.numerator.bit_length(), value.ratio.denominator.bit_length()) > (
+                MAX_RATIONAL_BITS
+            ):
+                raise ExpressionError(f"expression {self.shown!r}: a number in it is too large")
+            return value  # finite, and of one part (no sympy work grows with it)
         if isinstance(value, sympy.Rational):
             if max(int(value.p).bit_length(), int(value.q).bit_length()) > MAX_RATIONAL_BITS:
                 raise ExpressionError(f"expression {self.shown!r}: a number in it is too large")
@@ -300,8 +314,18 @@ def _with_values(value: Any) -> Any:
     )
 
 
-#: a value below this at EXACT_ZERO_DIGITS digits is zero for a divisor
-_ZERO_BOUND = sympy.Float(10) ** (15 - EXACT_ZERO_DIGITS)
+def _rational(x: Any) -> tuple[int, int] | None:
+    """Numerator and denominator of a rational value (a PiRational without pi or a
+    sympy Rational), else None."""
+    if isinstance(x, PiRational):
+        return (x.ratio.numerator, x.ratio.denominator) if x.pi_power == 0 else None
+    if is_sympy(x) and isinstance(x, sympy.Rational):
+        return int(x.p), int(x.q)
+    return None
+
+
+def _pair(x: Any) -> tuple[int, int]:
+    return (x.numerator, x.denominator) if isinstance(x, Fraction) else x
 
 
 def _is_zero(value: Any) -> bool:
@@ -309,17 +333,21 @@ def _is_zero(value: Any) -> bool:
     otherwise by sympy's evaluation at EXACT_ZERO_DIGITS digits (whose error it bounds):
     a value below 10^(15 - EXACT_ZERO_DIGITS) there is zero, or too close to zero to
     divide by."""
+    if isinstance(value, PiRational):
+        return not value
     value = sympy.sympify(value)
     if isinstance(value, sympy.Rational):
         return bool(value == 0)
     probe = _with_values(value)
     if probe.free_symbols:
         return False
-    return bool(abs(sympy.N(probe, EXACT_ZERO_DIGITS)) <= _ZERO_BOUND)
+    # a value below this at EXACT_ZERO_DIGITS digits is zero for a divisor
+    bound = sympy.Float(10) ** (15 - EXACT_ZERO_DIGITS)
+    return bool(abs(sympy.N(probe, EXACT_ZERO_DIGITS)) <= bound)
 
 
 def _zero_how(value: Any) -> str:
-    if isinstance(value, sympy.Rational):
+    if _rational(value) is not None:
         return ""
     return f" to {EXACT_ZERO_DIGITS} digits, however it is written"
 
@@ -328,8 +356,9 @@ def _short(text: str, n: int = 60) -> str:
     return text if len(text) <= n else text[: n - 3] + "..."
 
 
-def decimal_text_to_rational(text: str, context: str | None = None) -> sympy.Rational:
-    """Exact rational of a decimal literal such as ``-1.25e-3`` (bounded sizes)."""
+def decimal_text_to_rational(text: str, context: str | None = None) -> PiRational:
+    """Exact rational of a decimal literal such as ``-1.25e-3`` (bounded sizes), a
+    :class:`~mechsing.numeric.pirational.PiRational`."""
     where = _short(context if context is not None else text)
     t = text.strip()
     sign = ""
@@ -346,10 +375,10 @@ def decimal_text_to_rational(text: str, context: str | None = None) -> sympy.Rat
         raise ExpressionError(
             f"the number {where!r} has too large an exponent (at most {MAX_DECIMAL_EXPONENT})"
         )
-    value = sympy.Rational(mant)
+    value = Fraction(mant)
     if exp:
-        value = value * sympy.Integer(10) ** int(exp)
-    return -value if sign == "-" else value
+        value = value * Fraction(10) ** int(exp)
+    return PiRational(-value if sign == "-" else value)
 
 
 def syntax_tree(text: str, allowed: str = _ALLOWED_TEXT) -> ast.Expression:
@@ -379,8 +408,11 @@ def syntax_tree(text: str, allowed: str = _ALLOWED_TEXT) -> ast.Expression:
     return tree
 
 
-def parse_number(text: str, names: Mapping[str, Any] | None = None) -> Any:
-    """The exact sympy value of a number or whitelisted expression.
+def parse_number(text: str, names: Mapping[str, Any] | None = None, plain: bool = False) -> Any:
+    """The exact value of a number or whitelisted expression: a sympy value, or with
+    ``plain`` a :class:`~mechsing.numeric.pirational.PiRational` where the value is a
+    rational times a power of pi (then no sympy is imported; its sympy value is
+    ``sympy.sympify(x)``).
 
     Parameters
     ----------
@@ -391,11 +423,14 @@ def parse_number(text: str, names: Mapping[str, Any] | None = None) -> Any:
         Named values the expression may use (a file's parameters); a value
         may be a symbol that knows its value (``parameter_value``), which the
         finiteness test uses.
+    plain : bool
+        Keep a rational times a power of pi a PiRational instead of its sympy value.
 
     Returns
     -------
-    sympy.Expr
-        An exact, real, finite value (a ``sympy.Rational`` for decimal text).
+    sympy.Expr or PiRational
+        An exact, real, finite value (a ``sympy.Rational`` for decimal text, a PiRational
+        with ``plain``).
 
     Raises
     ------
@@ -411,7 +446,7 @@ def parse_number(text: str, names: Mapping[str, Any] | None = None) -> Any:
     if not t:
         raise ExpressionError("an empty text is not a number")
     if len(t) <= MAX_EXPRESSION_CHARS and SIGNED_DECIMAL.match(t):
-        return _sensible(decimal_text_to_rational(t), t)
+        return _exact_form(_sensible(decimal_text_to_rational(t), t), plain)
     tree = syntax_tree(t)
     try:
         value = _Builder(t, names).build(tree)
@@ -419,6 +454,8 @@ def parse_number(text: str, names: Mapping[str, Any] | None = None) -> Any:
         raise
     except RecursionError:
         raise ExpressionError(f"expression {t[:40]!r}... is nested too deeply") from None
+    if isinstance(value, PiRational):
+        return _exact_form(_sensible(value, t), plain)
     value = sympy.sympify(value)
     probe = _with_values(value)
     if not is_finite_real(probe):
@@ -428,10 +465,15 @@ def parse_number(text: str, names: Mapping[str, Any] | None = None) -> Any:
     return _sensible(value, t, probe)
 
 
+def _exact_form(value: PiRational, plain: bool) -> Any:
+    """A PiRational as parse_number gives it: itself (``plain``) or its sympy value."""
+    return value if plain else value._sympy_()
+
+
 def _sensible(value: Any, text: str, probe: Any = None) -> Any:
     """``value``, or an ExpressionError when it is larger than MAX_NUMBER in magnitude."""
     x = value if probe is None else probe
-    if isinstance(x, sympy.Rational):
+    if isinstance(x, PiRational) or isinstance(x, sympy.Rational):
         ok = is_sensible_size(x)
     else:
         ok = is_sensible_size(sympy.N(x, 20))
@@ -449,7 +491,7 @@ def _sensible(value: Any, text: str, probe: Any = None) -> Any:
 def is_finite_real(value: Any) -> bool:
     """True when a sympy value is a finite real number (decided at 30 digits
     when sympy cannot decide symbolically)."""
-    if isinstance(value, sympy.Rational):
+    if isinstance(value, PiRational) or isinstance(value, sympy.Rational):
         return True
     if value.has(sympy.zoo, sympy.nan, sympy.oo, -sympy.oo, sympy.I):
         return False
@@ -490,10 +532,6 @@ def written_digits(text: str) -> tuple[int, int] | None:
     return max(len(digits), 1), last
 
 
-#: functions whose value is an angle (in radians)
-_RADIAN_FUNCTIONS = (sympy.asin, sympy.acos, sympy.atan, sympy.atan2)
-
-
 def radian_power(value: Any) -> Any:
     """How many times an exact value carries the radian, read from its form.
 
@@ -506,9 +544,13 @@ def radian_power(value: Any) -> Any:
     and ``cos(pi/12)`` power 0, and ``asin(1/2)*180/pi`` (a radian value
     converted to degrees) power 0.
     """
+    if isinstance(value, PiRational):
+        return value.pi_power
+    if not is_sympy(value):
+        return 0
     if value == sympy.pi:
         return sympy.Integer(1)
-    if isinstance(value, _RADIAN_FUNCTIONS):
+    if isinstance(value, sympy.asin | sympy.acos | sympy.atan | sympy.atan2):
         return sympy.Integer(1)
     if isinstance(value, sympy.Mul):
         return sum((radian_power(a) for a in value.args), sympy.Integer(0))

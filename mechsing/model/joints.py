@@ -9,14 +9,13 @@ from __future__ import annotations
 import ast
 from typing import Any
 
-import sympy
-
 from mechsing.model.configurations import RESERVED_CONFIGURATION_KEYS
 from mechsing.model.loads import LOAD_KEY
 from mechsing.model.mechanism import POSE_KEY, U_JOINT, Joint
-from mechsing.model.reading import Reader, few, show_vector
+from mechsing.model.reading import Reader, few, float_root, show_vector
 from mechsing.numeric import MAX_NUMBER, NEAR_ZERO_VECTOR
 from mechsing.numeric.numbers import is_sensible_size
+from mechsing.numeric.pirational import evalf_float
 from mechsing.yamlnodes import YMap, YSeq, YValue
 
 __all__ = ["JOINT_BASE_KEYS", "MAX_JOINTS", "U_KEYS", "JointReader"]
@@ -76,7 +75,7 @@ class JointReader:
         not all at it) is of no sensible size: its residuals would underflow."""
         size = max(
             (
-                abs(float(sympy.N(c, 17)))
+                abs(evalf_float(c, 17))
                 for j in joints
                 if "point" in j.params
                 for c in j.params["point"]
@@ -241,7 +240,7 @@ class JointReader:
             a1[2] * a2[0] - a1[0] * a2[2],
             a1[0] * a2[1] - a1[1] * a2[0],
         )
-        s = float(sympy.N(sympy.sqrt(sum(c * c for c in cross)), 30))
+        s = float_root(sum(c * c for c in cross))
         if s < NEAR_ZERO_VECTOR:  # |a1 x a2| of unit vectors: the sine of their angle
             raise r.error(
                 item,

@@ -7,17 +7,16 @@ configurations to :mod:`mechsing.model.configurations`, each node's checks to th
 reading context :mod:`mechsing.model.reading`.  Every problem
 raises :class:`~mechsing.errors.MechanismError` whose message names
 the file, the line, the item and the fix.  Numbers are read from their text
-as exact sympy values (:mod:`mechsing.model.expressions`) and converted to SI
-units and radians exactly.
+as exact values (:mod:`mechsing.model.expressions`: sympy's, or PiRational numbers with
+``plain_numbers``) and converted to SI units and radians exactly.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Collection
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
-
-import sympy
 
 from mechsing.errors import InputRefError, MechanismError, YAMLReadError
 from mechsing.model.configurations import ConfigurationReader
@@ -29,7 +28,9 @@ from mechsing.model.mechanism import InputRef, Joint, Mechanism, Output, Units
 from mechsing.model.parameters import check_names, read_parameters
 from mechsing.model.reading import Reader, few
 from mechsing.numeric import MAX_NUMBER
+from mechsing.numeric.lazy import sympy
 from mechsing.numeric.numbers import is_sensible_size
+from mechsing.numeric.pirational import PI, PiRational, evalf_float
 from mechsing.yamlnodes import MAX_FILE_BYTES, YMap, YScalar, YSeq, YValue, read_yaml_text
 
 __all__ = [
@@ -42,14 +43,14 @@ __all__ = [
     "read_text",
 ]
 
-#: exact factors to metres
+#: exact factors to metres (a reader hands them on as its numbers: Reader.exact)
 LENGTH_UNITS: dict[str, Any] = {
-    "m": sympy.Integer(1),
-    "cm": sympy.Rational(1, 100),
-    "mm": sympy.Rational(1, 1000),
+    "m": PiRational(1),
+    "cm": PiRational(Fraction(1, 100)),
+    "mm": PiRational(Fraction(1, 1000)),
 }
 #: exact factors to radians
-ANGLE_UNITS: dict[str, Any] = {"rad": sympy.Integer(1), "deg": sympy.pi / 180}
+ANGLE_UNITS: dict[str, Any] = {"rad": PiRational(1), "deg": PI / 180}
 
 #: keys of the top-level mapping, in the order the file format lists them
 TOP_LEVEL_KEYS = (
@@ -174,11 +175,15 @@ def loads(
     default_name: str = "mechanism",
     symbolic: Collection[str] = (),
     expand_dh: TableExpander | None = None,
+    plain_numbers: bool = False,
 ) -> Mechanism:
     """Validate a mechanism given as YAML or JSON text (``path`` only for messages);
     ``expand_dh`` reads a ``dh`` table (None: a file with one is refused, naming the
-    reader that takes it, ``mechsing.load``)."""
-    r = Reader(path if path is not None else "<text>")
+    reader that takes it, ``mechsing.load``).  With ``plain_numbers`` the file's
+    rationals times powers of pi are kept as
+    :class:`~mechsing.numeric.pirational.PiRational` numbers (a float analysis then
+    needs no sympy), not as sympy values."""
+    r = Reader(path if path is not None else "<text>", plain=plain_numbers)
     if "\x00" in text:
         raise r.error(None, None, "the file contains NUL bytes: it is not a text file")
     if text.lstrip().startswith("<"):
@@ -229,7 +234,7 @@ def _limits(v: YValue | None, jmap: dict[str, Joint], r: Reader) -> dict[str, An
             if len(pair.items) != 2:
                 raise r.error(item, pair.line, "give two numbers [lower, upper]")
             f = r.units.angle_factor if j.units[i] == "rad" else r.units.length_factor
-            lo, hi = (float(sympy.N(r.number(e, item, "a limit", f), 17)) for e in pair.items)
+            lo, hi = (evalf_float(r.number(e, item, "a limit", f), 17) for e in pair.items)
             if not lo < hi:
                 raise r.error(item, pair.line, f"lower {lo:g} is not below upper {hi:g}; swap them")
             got.append((lo, hi))
@@ -368,7 +373,7 @@ class _Builder:
                     m.key_line("angle"),
                     f"angle unit {angle!r} is not one of {', '.join(ANGLE_UNITS)}",
                 )
-        r.units = Units(length, angle, LENGTH_UNITS[length], ANGLE_UNITS[angle])
+        r.units = Units(length, angle, r.exact(LENGTH_UNITS[length]), r.exact(ANGLE_UNITS[angle]))
 
     def scan_scale(self, v: YValue | None) -> None:
         """Largest point coordinate (file units), the scale of the near-zero test."""

@@ -1,7 +1,9 @@
 """The data model of a mechanism (frozen dataclasses).
 
-All numbers are exact sympy values in SI units and radians (the file's
-``units`` already applied); directions are exact unit vectors.  Vectors are
+All numbers are exact values in SI units and radians (the file's ``units`` already
+applied): sympy values, or, in a mechanism read with ``plain_numbers`` (a float analysis),
+:class:`~mechsing.numeric.pirational.PiRational` numbers where the file has a rational
+times a power of pi (sympy values elsewhere); directions are exact unit vectors.  Vectors are
 tuples of three exact values.  The kinematics layer converts them to the
 backend of its precision mode (``Precision.asarray``).
 """

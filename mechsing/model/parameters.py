@@ -29,15 +29,13 @@ import re
 from collections.abc import Collection, Mapping
 from typing import Any
 
-import sympy
-
 from mechsing.errors import ExpressionError
 from mechsing.model.expressions import ALLOWED_FUNCTIONS, parse_number
 from mechsing.yamlnodes import YMap, YScalar, YSeq
 
 __all__ = [
     "MAX_PARAMETERS",
-    "ParameterSymbol",
+    "ParameterSymbol",  # noqa: F822 - defined on first use (module __getattr__)
     "check_names",
     "read_parameters",
     "symbolic_values",
@@ -49,38 +47,21 @@ MAX_PARAMETERS = 1000
 _IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 
-class ParameterSymbol(sympy.Dummy):
-    """A parameter kept as a symbol that still knows its value.
+def __getattr__(name: str) -> Any:
+    # ParameterSymbol is a sympy class: defined (and sympy imported) when first asked for
+    if name == "ParameterSymbol":
+        from mechsing.model.symbols import ParameterSymbol
 
-    It evaluates (``sympy.N``, ``float``) to the value, so the loader's checks
-    of directions and scales work unchanged; it is real, and positive or
-    negative as its value is.  :func:`symbolic_values` lists the symbols of an
-    expression with their values; ``sympy.Symbol(s.name)`` is its printable
-    twin.
-    """
-
-    def __new__(cls, name: str, value: Any) -> ParameterSymbol:
-        sign = sympy.sign(sympy.N(value, 30))
-        assumptions: dict[str, bool] = {"real": True}
-        if sign > 0:
-            assumptions["positive"] = True
-        elif sign < 0:
-            assumptions["negative"] = True
-        obj = super().__new__(cls, name, **assumptions)
-        obj.parameter_value = value
-        return obj
-
-    def _eval_evalf(self, prec: int) -> Any:
-        return sympy.sympify(self.parameter_value).evalf(prec_to_dps(prec))
-
-
-def prec_to_dps(prec: int) -> int:
-    """Decimal digits of a binary precision (sympy's evalf speaks bits)."""
-    return max(1, int(prec * 0.30103))
+        return ParameterSymbol
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def symbolic_values(expr: Any) -> dict[Any, Any]:
     """The :class:`ParameterSymbol` atoms of ``expr`` mapped to their values."""
+    import sympy
+
+    from mechsing.model.symbols import ParameterSymbol
+
     return {s: s.parameter_value for s in sympy.sympify(expr).atoms(ParameterSymbol)}
 
 
@@ -173,7 +154,7 @@ def read_parameters(reader: Any, top: YMap, symbolic: Collection[str] = ()) -> d
                 f"the value must be a number or an expression of earlier parameters, got {got}",
             )
         try:
-            value = parse_number(pv.text, values)
+            value = parse_number(pv.text, values, plain=getattr(reader, "plain", False))
         except ExpressionError as exc:
             later = _later_name(pv.text, order, values)
             if later is not None:
@@ -209,10 +190,12 @@ def read_parameters(reader: Any, top: YMap, symbolic: Collection[str] = ()) -> d
     for k, pv in m.items:
         name = k.text.strip()
         if name in wanted:
+            from mechsing.model.symbols import ParameterSymbol
+
             out[name] = ParameterSymbol(name, values[name])
         else:
             assert isinstance(pv, YScalar)
-            out[name] = parse_number(pv.text, out)
+            out[name] = parse_number(pv.text, out, plain=getattr(reader, "plain", False))
     return out
 
 

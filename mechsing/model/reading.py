@@ -2,7 +2,8 @@
 messages of :class:`~mechsing.errors.MechanismError`: path, line, item), its units,
 scale and named parameters, collects notes and warnings, and checks the shape of each
 node (mapping, list, name, number, vector, direction) as it converts it to exact
-sympy values.  The loader (:mod:`mechsing.model.loader`), the joints'
+values (sympy's, or with ``plain`` a :class:`~mechsing.numeric.pirational.PiRational`
+where the number is a rational times a power of pi).  The loader (:mod:`mechsing.model.loader`), the joints'
 (:mod:`mechsing.model.joints`) and the configurations' readers
 (:mod:`mechsing.model.configurations`), the parameters and the couplings read
 through one.
@@ -10,14 +11,15 @@ through one.
 
 from __future__ import annotations
 
+import math
 from typing import Any
-
-import sympy
 
 from mechsing.errors import ExpressionError, MechanismError
 from mechsing.model.expressions import parse_number, written_digits
 from mechsing.model.mechanism import Units
 from mechsing.numeric import NEAR_ZERO_VECTOR, data_resolution
+from mechsing.numeric.lazy import sympy
+from mechsing.numeric.pirational import PiRational, evalf_float, rational_sqrt
 from mechsing.yamlnodes import YMap, YScalar, YSeq, YValue
 
 __all__ = ["Reader", "closest", "few", "show_vector"]
@@ -28,8 +30,10 @@ _NAME_HINT = "a name such as crank or link_2"
 class Reader:
     """Validation helpers that know the file (for messages) and collect notes."""
 
-    def __init__(self, path: str | None) -> None:
+    def __init__(self, path: str | None, plain: bool = False) -> None:
         self.path = path
+        #: keep the file's rationals times powers of pi as PiRational numbers (no sympy)
+        self.plain = plain
         self.notes: list[str] = []
         self.warnings: list[str] = []
         self.units = Units()
@@ -114,7 +118,7 @@ class Reader:
                 item, line, f"{what} is {v.text}, not a finite number; give a finite value"
             )
         try:
-            value = parse_number(v.text, self.parameters)
+            value = parse_number(v.text, self.parameters, plain=self.plain)
         except ExpressionError as exc:
             raise self.error(item, line, f"{what}: {exc}") from None
         return value * factor if factor != 1 else value
@@ -126,7 +130,7 @@ class Reader:
         form = written_digits(node.text) if isinstance(node, YScalar) else None
         if form is None:
             return 0.0, 0
-        res = data_resolution(form[0], form[1], float(sympy.N(factor, 17)))
+        res = data_resolution(form[0], form[1], evalf_float(factor, 17))
         return res, (form[0] if res else 0)
 
     def vector(
@@ -156,7 +160,7 @@ class Reader:
                 line,
                 f"{what} [0, 0, 0] is a zero vector; give a non-zero direction such as [0, 0, 1]",
             )
-        nf = float(sympy.N(sympy.sqrt(n2), 30))
+        nf = float_root(n2)
         if not nf > NEAR_ZERO_VECTOR * max(1.0, self.scale):
             raise self.error(
                 item,
@@ -166,9 +170,26 @@ class Reader:
             )
         if n2 == 1:
             return vec, False
+        root = rational_sqrt(n2)
+        if root is not None:  # a rational length: the unit vector is rational (as radsimp's)
+            unit = tuple(c / root for c in vec)
+            return (unit[0], unit[1], unit[2]), True
         n = sympy.sqrt(n2)
         unit = tuple(sympy.radsimp(c / n) for c in vec)
         return (unit[0], unit[1], unit[2]), True
+
+    def exact(self, x: Any) -> Any:
+        """An exact factor of the reader's own (a unit's, a PiRational) in the reader's
+        number type: itself with ``plain``, else its sympy value."""
+        return x if self.plain or not isinstance(x, PiRational) else x._sympy_()
+
+
+def float_root(n2: Any) -> float:
+    """``sqrt(n2)`` as a float (n2 a squared length): for a PiRational from its float,
+    else at 30 digits by sympy."""
+    if isinstance(n2, PiRational):
+        return math.sqrt(float(n2))
+    return float(sympy.N(sympy.sqrt(n2), 30))
 
 
 def closest(word: str, choices: tuple[str, ...]) -> str | None:

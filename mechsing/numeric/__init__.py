@@ -11,6 +11,11 @@ modules, from the bottom up (each imports only those before it):
 ``numbers``
     the one syntax of a written number, its sensible size, and directions made unit
     without overflow;
+``lazy``
+    sympy and mpmath imported when first used (the one place that defers them);
+``pirational``
+    :class:`~mechsing.numeric.pirational.PiRational`, the exact number of a file's plain
+    numbers (a rational times a power of pi) that needs no sympy;
 ``_mp``
     the mpmath kernels: the one mp SVD and eigensolver (always converging);
 ``backend``
@@ -37,13 +42,14 @@ syntax of numbers from ``numbers``, the backends' helpers from ``backend``.
 
 from __future__ import annotations
 
+from typing import Any
+
 from mechsing.numeric._mp import (
     eigsy,
     mp_svd,
     svd_r,
 )
 from mechsing.numeric.backend import (
-    EXACT,
     FLOAT,
     Backend,
     ExactBackend,
@@ -118,6 +124,16 @@ from mechsing.numeric.tolerances import (
     SUPPORT_RTOL,
     Tolerances,
 )
+
+
+def __getattr__(name: str) -> Any:
+    # the exact backend is made, and sympy imported, when first asked for
+    if name == "EXACT":
+        from mechsing.numeric.backend import _exact_backend
+
+        return _exact_backend()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
     "MODE_MATCH_DISTANCE",

@@ -12,14 +12,17 @@ from __future__ import annotations
 
 from typing import Any
 
-import mpmath
 import numpy as np
-import sympy
+
+from mechsing.numeric.lazy import mpmath, sympy
+from mechsing.numeric.pirational import PiRational
 
 
 def _mp_convert(x: Any) -> Any:
     if isinstance(x, mpmath.mpf | mpmath.mpc):
         return +x  # re-round at the current working precision
+    if isinstance(x, PiRational):
+        x = x._sympy_()  # the number as sympy evaluates it, as before PiRational
     if isinstance(x, sympy.Basic):
         return mpmath.mpf(sympy.N(x, mpmath.mp.dps + 5))
     if isinstance(x, bool | np.bool_):

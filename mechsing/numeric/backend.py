@@ -32,12 +32,12 @@ from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
 
-import mpmath
 import numpy as np
-import sympy
 
 from mechsing.numeric._mp import _mp_convert, mp_svd
 from mechsing.numeric.field import field_null_space, field_row_space, field_solve
+from mechsing.numeric.lazy import is_mp, is_sympy, mpmath, sympy
+from mechsing.numeric.pirational import PiRational, evalf_float
 from mechsing.numeric.tolerances import EXACT_ZERO_DIGITS, MEMBERSHIP_RTOL_FLOAT
 
 # ---------------------------------------------------------------------------
@@ -356,6 +356,8 @@ def _normal_form(x: sympy.Basic) -> Any:
 
 
 def _exact_convert(x: Any) -> Any:
+    if isinstance(x, PiRational):
+        return x._sympy_()
     if isinstance(x, sympy.Basic):
         return x
     if isinstance(x, np.integer | int):
@@ -404,17 +406,27 @@ def _exact_sqrt(x: Any) -> Any:
     return sympy.sqrt(x)
 
 
-EXACT = ExactBackend(
-    name="exact",
-    eps=0,
-    dtype=object,
-    sin=_objfunc(sympy.sin, 1),
-    cos=_objfunc(sympy.cos, 1),
-    sqrt=_objfunc(_exact_sqrt, 1),
-    atan2=_objfunc(sympy.atan2, 2),
-    convert=_exact_convert,
-    pi=sympy.pi,
-)
+@lru_cache(maxsize=1)
+def _exact_backend() -> ExactBackend:
+    """The exact backend, made (and sympy imported) when first asked for: ``EXACT``."""
+    return ExactBackend(
+        name="exact",
+        eps=0,
+        dtype=object,
+        sin=_objfunc(sympy.sin, 1),
+        cos=_objfunc(sympy.cos, 1),
+        sqrt=_objfunc(_exact_sqrt, 1),
+        atan2=_objfunc(sympy.atan2, 2),
+        convert=_exact_convert,
+        pi=sympy.pi,
+    )
+
+
+def __getattr__(name: str) -> Any:
+    # EXACT, the exact backend, is made when first asked for (it holds sympy's functions)
+    if name == "EXACT":
+        return _exact_backend()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def backend_of(*arrays: Any) -> Backend:
@@ -430,9 +442,9 @@ def backend_of(*arrays: Any) -> Backend:
         if arr.dtype != object:
             continue
         for x in arr.flat:
-            if isinstance(x, sympy.Basic):
-                return EXACT
-            if isinstance(x, mpmath.mpf | mpmath.mpc):
+            if is_sympy(x):
+                return _exact_backend()
+            if is_mp(x):
                 found = _mp_backend()
                 break
     return found
@@ -482,7 +494,9 @@ def to_float(x: Any) -> Any:
 
 
 def _scalar_float(v: Any) -> float:
-    if isinstance(v, sympy.Basic):
+    if isinstance(v, PiRational):
+        return evalf_float(v, 20)
+    if is_sympy(v):
         return _sympy_float(v)
     if isinstance(v, str):
         return float(v)

@@ -11,14 +11,13 @@ import math
 from dataclasses import dataclass, field, replace
 from typing import Any, cast
 
-import mpmath
 import numpy as np
-import sympy
 
 from mechsing.numeric._mp import _mp_convert, _mp_eye, _mp_matrix, _object_array, eigsy
 from mechsing.numeric.backend import FLOAT, to_float
 from mechsing.numeric.blocks import block_svd, issparse
 from mechsing.numeric.field import echelon_form, field_float, number_field
+from mechsing.numeric.lazy import is_mp, mpmath, sympy
 from mechsing.numeric.linalg import singular_values, svd
 from mechsing.numeric.precision import Precision, parse_precision
 from mechsing.numeric.tolerances import (
@@ -113,7 +112,7 @@ def decide_nonzero(value: Any, prec: Precision) -> bool | None:
         return bool(sympy.simplify(value) != 0)
     t = prec.tolerances
     # at mp:N in the mode's numbers: a float would underflow below 1e-308
-    a = abs(value) if isinstance(value, mpmath.mpf) else abs(float(to_float(value)))
+    a = abs(value) if is_mp(value) else abs(float(to_float(value)))
     if a >= t.tau_hi:
         return True
     if a <= t.tau_lo:

@@ -27,18 +27,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import mpmath
 import numpy as np
-import sympy
-from sympy.functions.elementary.trigonometric import (
-    InverseTrigonometricFunction,
-    TrigonometricFunction,
-)
-from sympy.polys.constructor import construct_domain
-from sympy.polys.domains import QQ
-from sympy.polys.matrices import DomainMatrix
+
+from mechsing.numeric.lazy import LazyModule, mpmath, sympy
+
+if TYPE_CHECKING:
+    from sympy.polys.matrices import DomainMatrix
+
+#: sympy's polynomial domains, imported when exact mode first builds a field
+_constructor = LazyModule("sympy.polys.constructor")
+_domains = LazyModule("sympy.polys.domains")
+_matrices = LazyModule("sympy.polys.matrices")
 
 #: the largest degree (bounded by the product of the radicals' indices) of a number field
 #: exact mode builds for a configuration's data (the bundled 6-UPS and 3-UPU platforms: 32,
@@ -65,7 +66,11 @@ __all__ = [
     "number_field",
 ]
 
-_TRIG = (TrigonometricFunction, InverseTrigonometricFunction)
+
+#: sympy's trigonometric functions and their inverses (a value holding one fits no field)
+def _trig() -> tuple[Any, ...]:
+    trig = sympy.functions.elementary.trigonometric
+    return (trig.TrigonometricFunction, trig.InverseTrigonometricFunction)
 
 
 def _algebraic_form(x: Any) -> bool:
@@ -93,7 +98,7 @@ def cos_sin(theta: Any) -> tuple[Any, Any] | None:
     theta = sympy.sympify(theta)
     c = sympy.expand_trig(sympy.cos(theta))
     s = sympy.expand_trig(sympy.sin(theta))
-    if c.has(*_TRIG) or s.has(*_TRIG) or not (_algebraic_form(c) and _algebraic_form(s)):
+    if c.has(*_trig()) or s.has(*_trig()) or not (_algebraic_form(c) and _algebraic_form(s)):
         return None
     return c, s
 
@@ -107,7 +112,7 @@ def number_field(values: list[Any]) -> tuple[Any, list[Any]] | None:
     (a value that is not written in rationals and radicals)."""
     vals = [sympy.sympify(v) for v in values]
     if all(v.is_Rational for v in vals):
-        return QQ, [QQ.from_sympy(v) for v in vals]
+        return _domains.QQ, [_domains.QQ.from_sympy(v) for v in vals]
     # each distinct value once (a matrix repeats its entries: 5 times over on a platform)
     distinct = list(dict.fromkeys(vals))
     if not all(_algebraic_form(v) for v in distinct):
@@ -211,17 +216,17 @@ def _field_of(gens: tuple[Any, ...]) -> tuple[Any, dict[Any, Any]] | None:
     dependent = _quadratic_basis(gens)
     build = [g for g in gens if g not in dependent]
     try:
-        K, elements = construct_domain(build, field=True, extension=True)
+        K, elements = _constructor.construct_domain(build, field=True, extension=True)
     except (sympy.polys.polyerrors.PolynomialError, NotImplementedError, ValueError):
         return None
     if K.is_ZZ or K.is_QQ:
-        K = QQ
-        elements = [QQ.from_sympy(g) for g in build]
+        K = _domains.QQ
+        elements = [_domains.QQ.from_sympy(g) for g in build]
     elif not K.is_AlgebraicField:
         return None
     images = dict(zip(build, elements, strict=True))
     for g, (factor, roots) in dependent.items():
-        el = K.convert_from(QQ.from_sympy(factor), QQ)
+        el = K.convert_from(_domains.QQ.from_sympy(factor), _domains.QQ)
         for b in roots:
             el = el * images[b]
         images[g] = el
@@ -265,7 +270,7 @@ def _evaluate(K: Any, images: dict[Any, Any], x: Any) -> Any:
     ``images``, +, *, integer powers) denotes: exact arithmetic in K, no minimal
     polynomial per value."""
     if x.is_Rational:
-        return K.convert_from(QQ.from_sympy(x), QQ)
+        return K.convert_from(_domains.QQ.from_sympy(x), _domains.QQ)
     if x.is_Add:
         total = K.zero
         for a in x.args:
@@ -332,13 +337,13 @@ def domain_matrix(A: Any) -> DomainMatrix | None:
     m, n = arr.shape
     flat = [sympy.sympify(x) for x in arr.flat]
     if not flat:
-        return DomainMatrix([[] for _ in range(m)], (m, n), QQ)
+        return _matrices.DomainMatrix([[] for _ in range(m)], (m, n), _domains.QQ)
     fit = number_field(flat)
     if fit is None:
         return None
     K, elements = fit
     rows = [elements[i * n : (i + 1) * n] for i in range(m)]
-    return DomainMatrix(rows, (m, n), K)
+    return _matrices.DomainMatrix(rows, (m, n), K)
 
 
 @dataclass
@@ -409,7 +414,7 @@ class FieldEchelon:
 def echelon_form(A: Any) -> FieldEchelon | None:
     """The echelon form of ``A`` (sympy numbers, or a DomainMatrix over its field) in the
     number field of its entries (None when they have none); see :func:`field_echelon`."""
-    D = A if isinstance(A, DomainMatrix) else domain_matrix(A)
+    D = A if isinstance(A, _matrices.DomainMatrix) else domain_matrix(A)
     return None if D is None else _echelon(D)
 
 
@@ -489,7 +494,7 @@ def field_float(K: Any, a: Any) -> float:
     rounding; an algebraic element's polynomial in the primitive element evaluated at
     60 digits (sympy's adaptive evaluation when its terms cancel to 30 digits)."""
     if K.is_QQ:
-        return int(QQ.numer(a)) / int(QQ.denom(a))
+        return int(_domains.QQ.numer(a)) / int(_domains.QQ.denom(a))
     coeffs = a.to_list()
     if not coeffs:
         return 0.0
@@ -499,7 +504,7 @@ def field_float(K: Any, a: Any) -> float:
         size = mpmath.mpf(0)
         ax = abs(x)
         for c in coeffs:
-            cq = mpmath.mpf(int(QQ.numer(c))) / int(QQ.denom(c))
+            cq = mpmath.mpf(int(_domains.QQ.numer(c))) / int(_domains.QQ.denom(c))
             val = val * x + cq
             size = size * ax + abs(cq)
         if abs(val) <= _EVAL_CANCELLATION * size:
@@ -547,9 +552,9 @@ def field_product(A: Any, B: Any) -> np.ndarray | None:
     if fit is None:
         return None
     K, els = fit
-    Da = DomainMatrix([els[i * k : (i + 1) * k] for i in range(m)], (m, k), K)
+    Da = _matrices.DomainMatrix([els[i * k : (i + 1) * k] for i in range(m)], (m, k), K)
     at = m * k
-    Db = DomainMatrix([els[at + i * n : at + (i + 1) * n] for i in range(k)], (k, n), K)
+    Db = _matrices.DomainMatrix([els[at + i * n : at + (i + 1) * n] for i in range(k)], (k, n), K)
     rows = (Da * Db).to_list()
     out = np.array([[K.to_sympy(x) for x in row] for row in rows], dtype=object)
     return out.reshape(m, n)

@@ -9,12 +9,12 @@ from __future__ import annotations
 
 from typing import Any, cast
 
-import mpmath
 import numpy as np
 
 from mechsing.numeric._mp import _mp_matrix, _object_array, eigsy, mp_svd, svd_r
 from mechsing.numeric.backend import Backend, backend_of, to_float
 from mechsing.numeric.blocks import block_svd, dense_svd
+from mechsing.numeric.lazy import mpmath
 from mechsing.numeric.tolerances import SUPPORT_RTOL
 
 

@@ -12,10 +12,10 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
-import mpmath
 import numpy as np
 
-from mechsing.numeric.backend import EXACT, FLOAT, Backend, _mp_backend, screw_zero_rtol
+from mechsing.numeric.backend import FLOAT, Backend, _exact_backend, _mp_backend, screw_zero_rtol
+from mechsing.numeric.lazy import mpmath
 from mechsing.numeric.tolerances import (
     CLOSURE_RTOL_FLOAT,
     EXACT_TEST_DIGITS,
@@ -63,7 +63,7 @@ class Precision:
             with self.context():
                 return _mp_backend()
         if self.mode == "exact":
-            return EXACT
+            return _exact_backend()
         return FLOAT
 
     @contextmanager

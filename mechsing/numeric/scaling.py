@@ -10,9 +10,9 @@ from functools import cached_property
 from typing import Any
 
 import numpy as np
-import sympy
 
 from mechsing.numeric.backend import Backend, to_float
+from mechsing.numeric.lazy import sympy
 from mechsing.numeric.numbers import safe_norm
 from mechsing.numeric.tolerances import NEAR_ZERO_VECTOR
 

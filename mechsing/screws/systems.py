@@ -22,7 +22,6 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
-import sympy
 
 from mechsing import lie
 from mechsing.kinematics import KinematicModel
@@ -31,6 +30,7 @@ from mechsing.lie import ANGULAR, LINEAR
 from mechsing.model import Loop, Mechanism
 from mechsing.numeric import Precision, RankDecision, decide_rank, to_float
 from mechsing.numeric.field import field_solve
+from mechsing.numeric.lazy import sympy
 from mechsing.numeric.linalg import orthonormal_columns
 from mechsing.subgroups import Identification, Subgroup, generate
 

@@ -15,7 +15,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from sympy.polys.matrices import DomainMatrix
 
 from mechsing import lie
 from mechsing.lie import ANGULAR, LINEAR
@@ -32,10 +31,14 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.numeric.field import echelon_form, field_float, field_normal_form, number_field
+from mechsing.numeric.lazy import LazyModule
 from mechsing.numeric.linalg import svd
 from mechsing.subgroups import _linalg
 from mechsing.subgroups.instance import Subgroup, as_precision
 from mechsing.subgroups.types import _cross, load_catalog
+
+#: sympy's domain matrices, imported when a subgroup is first identified exactly
+_matrices = LazyModule("sympy.polys.matrices")
 
 #: the centre an identification moves the screws to is the mean of the axis points of
 #: the screws that rotate, but not of one whose rotation is below this fraction of the
@@ -184,7 +187,7 @@ def _field_closure(
     rows = [els[6 * i : 6 * i + 6] for i in range(m)]
 
     def row_space(rows: list[list[Any]]) -> list[list[Any]]:
-        D = DomainMatrix(rows, (len(rows), 6), K)
+        D = _matrices.DomainMatrix(rows, (len(rows), 6), K)
         E = echelon_form(D)
         mags = E.pivot_magnitudes()
         margins.add_values(

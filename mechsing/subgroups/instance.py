@@ -10,7 +10,6 @@ from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
-import sympy
 
 from mechsing import lie
 from mechsing.lie import ANGULAR
@@ -26,6 +25,8 @@ from mechsing.numeric import (
     to_float,
 )
 from mechsing.numeric.backend import holds_objects
+from mechsing.numeric.lazy import sympy
+from mechsing.numeric.pirational import PiRational, rational_sqrt
 from mechsing.subgroups import _linalg
 from mechsing.subgroups.types import SubgroupType, _cross, load_catalog
 
@@ -42,6 +43,8 @@ def as_precision(p: Any, *arrays: Any) -> Precision:
         return parse_precision(p)
     if isinstance(p, Backend):
         bk = p
+    elif any(isinstance(x, PiRational) for a in arrays for x in np.asarray(a, dtype=object).flat):
+        return Precision("exact")  # the file's exact numbers
     else:
         bk = backend_of(*arrays)
     return Precision.of(bk)
@@ -49,6 +52,58 @@ def as_precision(p: Any, *arrays: Any) -> Precision:
 
 def _norm2(v: np.ndarray) -> Any:
     return v[0] * v[0] + v[1] * v[1] + v[2] * v[2]
+
+
+def _plain_parameters(t: SubgroupType, raw: Mapping[str, np.ndarray]) -> bool:
+    """Are the parameters the file's plain numbers (PiRational), every direction of a
+    rational length (normalised without sympy)?"""
+    values = [x for v in raw.values() for x in v.flat]
+    if not values or not all(isinstance(x, PiRational) for x in values):
+        return False
+    return all(
+        raw[n].shape == (3,) and rational_sqrt(_norm2(raw[n])) is not None
+        for n, kind in t.parameters
+        if kind in _VECTOR_KINDS and kind != "point"
+    )
+
+
+def _plain_params(t: SubgroupType, raw: Mapping[str, np.ndarray]) -> dict[str, Any]:
+    """The parameters of PiRational numbers, checked as the exact backend checks them,
+    directions made unit exactly (their lengths are rational)."""
+    out: dict[str, Any] = {}
+    for name, kind in t.parameters:
+        val = raw[name]
+        if kind in _VECTOR_KINDS:
+            if val.shape != (3,):
+                raise ValueError(f"subgroup {t.symbol}: {name} must be 3 numbers, got {val!r}")
+            if kind != "point":
+                if np.linalg.norm(to_float(val)) <= NEAR_ZERO_VECTOR:
+                    raise ValueError(
+                        f"subgroup {t.symbol}: {name} {val.tolist()!r} is zero or nearly so; "
+                        "give a non-zero direction"
+                    )
+                val = val / rational_sqrt(_norm2(val))
+            out[name] = val
+        else:
+            if val.shape != ():
+                raise ValueError(f"subgroup {t.symbol}: {name} must be one number")
+            if name in t.nonzero and val[()] == 0:
+                raise ValueError(
+                    f"subgroup {t.symbol}: {name} must not be zero "
+                    f"(a zero {name} is a different type)"
+                )
+            out[name] = val[()]
+    return out
+
+
+def _sympy_array(v: np.ndarray) -> np.ndarray:
+    """An array with its PiRational entries as sympy's values."""
+    if not any(isinstance(x, PiRational) for x in np.asarray(v).flat):
+        return v
+    out = np.empty(np.shape(v), dtype=object)
+    for idx, x in np.ndenumerate(np.asarray(v, dtype=object)):
+        out[idx] = x._sympy_() if isinstance(x, PiRational) else x
+    return out
 
 
 def _first_nonzero_positive(v: np.ndarray, bk: Backend) -> np.ndarray:
@@ -94,10 +149,19 @@ class Subgroup:
                 + (f"; unknown {', '.join(extra)}" if extra else "")
             )
         raw = {n: np.asarray(given[n], dtype=object) for n in names}
+        plain = _plain_parameters(t, raw)
+        if raw and not plain:  # the file's plain numbers where sympy is needed: its values
+            raw = {n: _sympy_array(v) for n, v in raw.items()}
         bk = backend_of(*raw.values()) if raw else Precision("float").backend
         self.type: SubgroupType = t
-        self.backend: Backend = bk
+        #: exact parameters the file wrote as PiRational numbers: made sympy's (and the
+        #: backend exact) only when a computation asks for the backend
+        self._plain = plain
+        self._backend: Backend | None = None if plain else bk
         self.params: dict[str, Any] = {}
+        if plain:
+            self.params = _plain_params(t, raw)
+            return
         for name, kind in t.parameters:
             val = raw[name]
             if kind in _VECTOR_KINDS:
@@ -132,6 +196,19 @@ class Subgroup:
                     )
                 self.params[name] = h
 
+    @property
+    def backend(self) -> Backend:
+        """The parameters' backend (exact for a file's numbers)."""
+        if self._backend is None:  # PiRational parameters: sympy's values, as exact mode has
+            self.params = {k: _sympy_array(v) for k, v in self.params.items()}
+            self._backend = backend_of(*self.params.values())
+            self._plain = False
+        return self._backend
+
+    @backend.setter
+    def backend(self, bk: Backend) -> None:
+        self._backend, self._plain = bk, False
+
     # -- description --------------------------------------------------------
 
     @property
@@ -147,7 +224,7 @@ class Subgroup:
         return f"Subgroup({self.symbol}{', ' if ps else ''}{ps})"
 
     def _params_in(self, prec: Precision) -> dict[str, Any]:
-        if prec.backend.accepts(self.backend):
+        if not self._plain and prec.backend.accepts(self.backend):
             return self.params
         out = {}
         for k, v in self.params.items():
