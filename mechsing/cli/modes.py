@@ -15,7 +15,10 @@ leg by leg, one piece between a known body (the ground, or an arm its given join
 and the platform (R-S, S-S, U-S, U-U: a 3-RPS, a Delta, Tsai's 3-UPU): each leg's
 constraint on the platform's Study coordinates; (3) a single loop of R and P joints with six unknown: half-angle
 pairs of a single loop; (4) a serial arm of six R or P joints (or more, with all but six
-given) at a pose: half-angle pairs of a serial arm; (5) any other mechanism of R, P, C, U
+given) at a pose: half-angle pairs of a serial arm; (4b) one loop closed by a rod
+between two ball joints with one other joint unknown (an RSSR with its crank given): the
+rod's length, a quadratic in that joint's half-angle pair (or slide) solved in closed
+form, both modes certified (proven); (5) any other mechanism of R, P, C, U
 and S joints, or an arm of fewer joints at a pose in the subgroup its end moves in (a
 pose outside it exits 2, naming the subgroup): each joint's displacement in Study
 coordinates, each loop's closure in its own subgroup's (three equations for a planar or
