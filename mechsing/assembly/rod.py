@@ -55,6 +55,7 @@ def _layout(given: Given) -> Any:
     cyclically (each with its sign), the unknown joint's place among ``k1 ... km``
     (FormulationError: why the mechanism is not such a loop)."""
     from mechsing.assembly.general import problem
+    from mechsing.assembly.spins import idle_rods
 
     mech = given.mech
     if given.values is None or len(mech.loops) != 1:
@@ -62,20 +63,18 @@ def _layout(given: Given) -> Any:
     loop = mech.loops[0]
     if {j.name for j in mech.joints} != set(loop.joints):
         raise FormulationError("not every joint lies on the loop")
-    prob = given.cache.get("general") or problem(given)
-    given.cache["general"] = prob
-    if len(prob.spins) != 1:
+    rods = idle_rods(mech, given.values)
+    if len(rods) != 1:
         raise FormulationError("the loop has no rod between two ball joints")
-    _, first, second = prob.spins[0]
-    others = [n for n in prob.joints if n not in (first, second)]
-    if len(others) != 1 or len(prob.joints[others[0]]) != 1:
+    _, first, second = rods[0]
+    others = [n for n in loop.joints if n not in (first, second, *given.values)]
+    if len(others) != 1 or mech.joint(others[0]).type not in ("R", "P"):
         raise FormulationError(
-            "besides the rod's ball joints, more than one joint (or a joint of several "
-            "values) is unknown"
+            "besides the rod's ball joints, the unknown joints are not one revolute or slide"
         )
     (k,) = others
-    if prob.groups[prob.joints[k][0]].kind not in ("R", "P"):
-        raise FormulationError(f"joint {k} is neither a revolute nor a slide")
+    prob = given.cache.get("general") or problem(given)  # (built once the rest applies)
+    given.cache["general"] = prob
     names, signs = list(loop.joints), list(loop.signs)
     n = len(names)
     i, j = names.index(first), names.index(second)
