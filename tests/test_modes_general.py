@@ -86,6 +86,32 @@ def test_bennett_with_its_input_has_the_modes_damped_newton_finds() -> None:
     assert all(m["certified"] for m in doc["modes"])
 
 
+BRICARD = [
+    ("R", _vec("2/7", "3/7", "6/7"), _vec(1, 0, 0)),
+    ("R", _vec("1/9", "-4/9", "8/9"), _vec(0, 2, 1)),
+    ("R", _vec("-4/9", "4/9", "7/9"), _vec(-1, 1, 2)),
+    ("R", _vec("-2/7", "-3/7", "6/7"), _vec(-1, 0, 0)),
+    ("R", _vec("-1/9", "4/9", "8/9"), _vec(0, -2, 1)),
+    ("R", _vec("4/9", "-4/9", "7/9"), _vec(1, -1, 2)),
+]
+
+
+def test_bricard_with_its_input_has_the_modes_damped_newton_finds() -> None:
+    """Bricard's line-symmetric 6R at J1 = 0.4: the two modes damped Newton finds from
+    400 random starts on the 4x4 closure, each line-symmetric (J4 = J1, J5 = J2, J6 =
+    J3).  The count is not proven: an overconstrained loop's six equations are tracked
+    as five random combinations, whose isotropic components take 72 of the 120 paths
+    (docs/modes.md)."""
+    doc = _modes([str(ROOT / "examples" / "bricard.yaml"), "--config", "q1-0.4"])
+    names = ["J1", "J2", "J3", "J4", "J5", "J6"]
+    expected = solve_all(BRICARD, [[(i, 1) for i in range(6)]], {0: 0.4}, starts=400)
+    assert doc["count"] == len(expected) == 2
+    _same(_joint_vectors(doc, names), expected, ["R"] * 6)
+    for q in expected:
+        assert np.allclose(q[3:], q[:3], atol=1e-9)
+    assert doc["formulation"]["randomized"] and all(m["certified"] for m in doc["modes"])
+
+
 def test_spherical_fourbar_has_two_modes_in_the_rotations_about_its_centre() -> None:
     doc = _modes([str(ROOT / "examples" / "spherical_4r.yaml"), "--config", "crank-60"])
     o = _vec(0, 0, 0)
@@ -270,6 +296,7 @@ output: {body: rocker}
 configurations:
   reference: {}
   crank-30: {A: "pi/6"}
+  crank-180: {A: "pi"}
 """
 
 
@@ -290,6 +317,8 @@ def test_rssr_with_its_input_has_two_modes_the_coupler_listed_without_spin(
     s = (u * u + v * v - 5) / (4 * v)
     expected = sorted(wrap_angles(["R"] * 2, np.array([-np.arcsin(s), -(np.pi - np.arcsin(s))])))
     assert doc["count"] == 2
+    # the rocker's half-angle pair solves a quadratic: two certified modes prove the count
+    assert doc["complete"] == "proven"
     got = sorted(m["joints"]["D"][0] for m in doc["modes"])
     assert np.allclose(got, expected, atol=1e-12), (got, expected)
     assert doc["formulation"]["idle_spins"] == [["coupler", "B", "C"]]
@@ -297,4 +326,51 @@ def test_rssr_with_its_input_has_two_modes_the_coupler_listed_without_spin(
     for m in doc["modes"]:
         assert m["certified"]
         # B's rotation vector has no component along the coupler's line at the reference
+        assert abs(np.dot(m["joints"]["B"], C0 - B0)) < 1e-12
+
+
+def test_rssr_whose_crank_cannot_be_reached_has_no_mode_proven(tmp_path: Path) -> None:
+    """The RSSR's crank at pi: by the closed form sin f = (u^2 + v^2 - 5) / (4 v) = 3 (u
+    = 4, v = 1), no real rocker angle; the rod's quadratic has two complex roots, each
+    certified not real, so no mode is proven (continuation's 60 paths proved nothing)."""
+    f = tmp_path / "rssr.yaml"
+    f.write_text(RSSR)
+    u, v = 3 - np.cos(np.pi), 1 - np.sin(np.pi)
+    assert abs((u * u + v * v - 5) / (4 * v)) > 1
+    doc = _modes([str(f), "--config", "crank-180"])
+    assert doc["count"] == 0 and doc["complete"] == "proven" and doc["modes"] == []
+
+
+RSSP = """
+mechanism: rssp
+bodies: [ground, crank, coupler, slider]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: S, between: [crank, coupler], point: [1, 0, 0]}
+  - {name: C, type: S, between: [coupler, slider], point: [3, 1, 2]}
+  - {name: D, type: P, between: [ground, slider], axis: [1, 0, 0]}
+inputs: [A]
+output: {body: slider}
+configurations:
+  reference: {}
+  crank-30: {A: "pi/6"}
+"""
+
+
+def test_rssp_with_its_input_has_two_modes_proven_by_the_rods_length(tmp_path: Path) -> None:
+    """An RSSP (the RSSR's rocker a slider along x): closed form, the crank's ball at B =
+    (cos a, sin a, 0), the slider's at C = (3 + x, 1, 2), |C - B|^2 = 9 as at the
+    reference, so x = cos a - 3 +- sqrt(5 - (1 - sin a)^2): two modes, the count proven
+    (a quadratic in the slide has at most two roots)."""
+    f = tmp_path / "rssp.yaml"
+    f.write_text(RSSP)
+    doc = _modes([str(f), "--config", "crank-30"])
+    a = np.pi / 6
+    r = np.sqrt(5 - (1 - np.sin(a)) ** 2)
+    assert doc["count"] == 2 and doc["complete"] == "proven"
+    got = sorted(m["joints"]["D"][0] for m in doc["modes"])
+    assert np.allclose(got, [np.cos(a) - 3 - r, np.cos(a) - 3 + r], atol=1e-12), got
+    assert all(m["certified"] for m in doc["modes"])
+    B0, C0 = np.array([1.0, 0, 0]), np.array([3.0, 1, 2])
+    for m in doc["modes"]:
         assert abs(np.dot(m["joints"]["B"], C0 - B0)) < 1e-12
