@@ -173,30 +173,16 @@ def _interval_terms(terms: list[dict[tuple[int, ...], Any]], n: int) -> tuple[An
         v = mpmath.mpf(sympy.N(c, mpmath.mp.dps + 10))
         return iv.mpf([v - pad * (1 + abs(v)), v + pad * (1 + abs(v))])
 
-    def table(polys: list[dict[tuple[int, ...], Any]]) -> list[list[tuple[Any, list]]]:
-        return [
-            [(enclose(c), [(k, e) for k, e in enumerate(m) if e]) for m, c in t.items()]
-            for t in polys
-        ]
+    return _term_rows(terms, enclose, iv.mpf(0)), _term_rows(
+        _derivatives(terms, n), enclose, iv.mpf(0)
+    )
 
-    def function(rows: list[list[tuple[Any, list]]]) -> Any:
-        def call(z: Sequence[Any]) -> list[Any]:
-            powers: dict[tuple[int, int], Any] = {}
-            out = []
-            for row in rows:
-                acc = iv.mpf(0)
-                for c, mono in row:
-                    for k, e in mono:
-                        if (k, e) not in powers:
-                            powers[k, e] = z[k] ** e
-                        c = c * powers[k, e]
-                    acc += c
-                out.append(acc)
-            return out
 
-        return call
-
-    jac = []
+def _derivatives(
+    terms: list[dict[tuple[int, ...], Any]], n: int
+) -> list[dict[tuple[int, ...], Any]]:
+    """The Jacobian's entries row by row, as terms."""
+    out = []
     for t in terms:
         for k in range(n):
             d: dict[tuple[int, ...], Any] = {}
@@ -204,8 +190,32 @@ def _interval_terms(terms: list[dict[tuple[int, ...], Any]], n: int) -> tuple[An
                 if m[k]:
                     dm = (*m[:k], m[k] - 1, *m[k + 1 :])
                     d[dm] = d.get(dm, 0) + c * m[k]
-            jac.append(d)
-    return function(table(terms)), function(table(jac))
+            out.append(d)
+    return out
+
+
+def _term_rows(terms: list[dict[tuple[int, ...], Any]], number: Any, zero: Any = 0) -> Any:
+    """A function of a list of values: each polynomial of ``terms`` at them, summed term
+    by term (``number``: a coefficient as the arithmetic's number), each power once."""
+    rows = [
+        [(number(c), [(k, e) for k, e in enumerate(m) if e]) for m, c in t.items()] for t in terms
+    ]
+
+    def call(z: Sequence[Any]) -> list[Any]:
+        powers: dict[tuple[int, int], Any] = {}
+        out = []
+        for row in rows:
+            acc = zero
+            for c, mono in row:
+                for k, e in mono:
+                    if (k, e) not in powers:
+                        powers[k, e] = z[k] ** e
+                    c = c * powers[k, e]
+                acc += c
+            out.append(acc)
+        return out
+
+    return call
 
 
 def _jacobian(exprs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> list[sympy.Expr]:
@@ -417,11 +427,27 @@ def newton(
 def _functions(eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> tuple[Any, Any]:
     """The system and its Jacobian as mpmath functions of a vector (built once per system:
     every endpoint of one solve refines in the same)."""
-    return _compiled(tuple(eqs), tuple(gens))
+    return _compiled(tuple(eqs), tuple(gens), mpmath.mp.dps)
 
 
-@functools.lru_cache(maxsize=8)
-def _compiled(eqs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...]) -> tuple[Any, Any]:
+@functools.lru_cache(maxsize=16)
+def _compiled(
+    eqs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...], dps: int
+) -> tuple[Any, Any]:
+    terms = _terms(eqs, gens)
+    if terms is not None:  # polynomials: term by term, coefficients at the digits + 10
+        with mpmath.workdps(dps + 10):
+            f = _term_rows(terms, lambda c: mpmath.mpf(sympy.N(c, dps + 10)))
+            J = _term_rows(
+                _derivatives(terms, len(gens)), lambda c: mpmath.mpf(sympy.N(c, dps + 10))
+            )
+        n, m = len(gens), len(eqs)
+
+        def jacobian(x: Any) -> Any:
+            v = J(list(x))
+            return mpmath.matrix([v[i * n : (i + 1) * n] for i in range(m)])
+
+        return (lambda x: mpmath.matrix(f(list(x)))), jacobian
     f = sympy.lambdify(gens, list(eqs), "mpmath")
     n = len(gens)
     jac = _jacobian(eqs, gens)
