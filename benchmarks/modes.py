@@ -12,8 +12,9 @@
   pose): ``modes`` against ``bertini.solve`` on the same half-angle system (24 paths).
 * The general formulation (Bennett's 4R, the spherical four-bar, a SCARA at a pose):
   ``find`` against ``bertini.solve`` on the same patched system (:func:`general`).
-* The leg formulation (a 3-RPS and a Delta, tests/data): ``find`` against
-  ``bertini.solve`` on the same Study-coordinate system (:func:`legs`).
+* The leg formulation (a 3-RPS and a Delta, tests/data; Tsai's 3-UPU): ``find`` against
+  ``bertini.solve`` on the same Study-coordinate system from its total-degree start
+  (:func:`legs`).
 
 Times are CPU seconds of this process (the machine is shared).  Run from the repository
 root: ``OPENBLAS_NUM_THREADS=1 python benchmarks/modes.py [rpr|dietmaier|ur5|general|legs]``.
@@ -200,6 +201,7 @@ def legs() -> None:
     cases = [
         ("3-RPS, slides 0.3, -0.2, 0.1", ROOT / "tests" / "data" / "three_rps.yaml", "tilted"),
         ("Delta, arms 0.3, -0.2, 0.1 rad", ROOT / "tests" / "data" / "delta.yaml", "driven"),
+        ("Tsai's 3-UPU, slides 0.1, -0.05, 0", ROOT / "examples" / "tsai_3upu.yaml", "lateral"),
     ]
     for label, path, config in cases:
         mech = load(path)
@@ -208,11 +210,15 @@ def legs() -> None:
             t_f, found = _cpu(lambda g=given: (FORMULATION.applies(g), FORMULATION.find(g))[1])
             pieces = given.cache["legs"]
             eqs = [*(e for p in pieces for e in p.equations), study_quadric(), patch_equation()]
-            t_b, r = _engine(system_text(eqs, [[*XS, *YS]]))
+            # the formulation's precision model: double along a U-U piece's quartics
+            mptype = "double" if found.formulation["polynomial_degree"] > 2 else "adaptive"
+            t_b, r = _engine(system_text(eqs, [[*XS, *YS]]), mptype)  # total-degree start
+        paths = r.solver.num_paths() if callable(r.solver.num_paths) else r.solver.num_paths
         print(
-            f"{label}: bertini.solve {t_b:.2f} s ({len(r.solutions)} finite); the leg "
-            f"formulation {t_f:.2f} s ({found.count} real, {found.complete}, "
-            f"{found.paths['tracked']} paths, ratio {t_f / t_b:.1f})"
+            f"{label}: bertini.solve {t_b:.2f} s ({len(r.solutions)} finite of {paths} "
+            f"paths); the leg formulation {t_f:.2f} s ({found.count} real, {found.complete}, "
+            f"{found.paths['tracked']} paths, {found.paths['solutions']} solutions, "
+            f"ratio {t_f / t_b:.1f})"
         )
 
 

@@ -132,6 +132,12 @@ def test_delta_has_the_two_mirror_translations_among_its_rod_assemblies() -> Non
     # six distances: at most 40 poses (Raghavan 1993), all found and certified
     assert doc["paths"]["solutions"] == 40
     assert doc["complete"] == "proven"
+    # the linear-product start: one sphere (two forms in X and Y), five differences of
+    # spheres (one form in X, one in X and Y), the Study quadric (X, Y), the patch (X);
+    # a choice is regular when at most four forms are in X alone: 2 * (sum over d
+    # differences and q = 0, 1 quadric forms in X with 1 + d + q <= 4 of C(5, d)) =
+    # 2 * (26 + 16) = 84 paths (total degree 128)
+    assert doc["paths"]["tracked"] == 84
 
 
 def test_tsai_3upu_has_its_two_translations_and_the_rest_of_its_modes() -> None:
@@ -169,3 +175,9 @@ def test_tsai_3upu_has_its_two_translations_and_the_rest_of_its_modes() -> None:
     for p in _three_spheres(centres, lengths):
         assert min(np.linalg.norm(p - t) for t in moving) < 1e-9
     assert all(m["equivalent_solutions"] == 8 for m in doc["modes"])
+    # the linear-product start: one sphere (two forms in X and Y), two differences of
+    # spheres (X; X and Y), three quartics (three forms in X, one in X and Y), the Study
+    # quadric (X; Y), the patch (X); regular when at most four forms are in X alone:
+    # 2 * (sum over d differences, k quartics, q quadric forms in X with 1 + d + k + q
+    # <= 4 of C(2, d) C(3, k) 3^k) = 2 * (148 + 58) = 412 paths (total degree 1024)
+    assert doc["paths"]["tracked"] == 412

@@ -22,15 +22,22 @@ from collections.abc import Sequence
 from typing import Any
 
 import mpmath
+import numpy as np
 import sympy
 
-from mechsing.assembly.settings import MODE_CERTIFY_RADIUS, MODE_CURVE_STEP, MODE_SINGULAR_DIGITS
+from mechsing.assembly.settings import (
+    MODE_CERTIFY_RADIUS,
+    MODE_CURVE_STEP,
+    MODE_ENDPOINT_SINGULAR_RTOL,
+    MODE_SINGULAR_DIGITS,
+)
 
 __all__ = [
     "interval_function",
     "krawczyk",
     "apart",
     "certified_roots",
+    "conditioning",
     "krawczyk_complex",
     "local_dimension",
     "newton",
@@ -89,34 +96,40 @@ def krawczyk(
     before = mpmath.iv.dps
     mpmath.iv.dps = mpmath.mp.dps
     try:
-        f, J = _interval_system(tuple(exprs), tuple(gens), mpmath.mp.dps)
-        # Y: the inverse of the Jacobian at the midpoint (floating, any approximation works)
-        jm = J([mpmath.iv.mpf(x) for x in m])
-        Jmid = mpmath.matrix(n, n)
-        for i in range(n):
-            for k in range(n):
-                Jmid[i, k] = jm[i * n + k].mid
-        try:
-            Yinv = mpmath.inverse(Jmid)
-        except ZeroDivisionError:
-            return False
-        Z = [mpmath.iv.mpf([x - radius, x + radius]) for x in m]
-        fm = f([mpmath.iv.mpf(x) for x in m])
-        jz = J(Z)
-        for i in range(n):
-            acc = mpmath.iv.mpf(m[i])
-            for k in range(n):
-                acc -= mpmath.iv.mpf(Yinv[i, k]) * fm[k]
-            for k in range(n):
-                coeff = mpmath.iv.mpf(1 if i == k else 0)
-                for l in range(n):
-                    coeff -= mpmath.iv.mpf(Yinv[i, l]) * jz[l * n + k]
-                acc += coeff * (Z[k] - mpmath.iv.mpf(m[k]))
-            if not (acc.a > Z[i].a and acc.b < Z[i].b):
-                return False
-        return True
+        return _krawczyk(*_interval_system(tuple(exprs), tuple(gens), mpmath.mp.dps), m, radius)
     finally:
         mpmath.iv.dps = before
+
+
+def _krawczyk(f: Any, J: Any, m: Sequence[Any], radius: Any) -> bool:
+    """The Krawczyk test of the interval functions ``f`` and ``J`` (the system and its
+    Jacobian, row by row) in the box ``m +- radius`` (the interval context's digits set)."""
+    n = len(m)
+    # Y: the inverse of the Jacobian at the midpoint (floating, any approximation works)
+    jm = J([mpmath.iv.mpf(x) for x in m])
+    Jmid = mpmath.matrix(n, n)
+    for i in range(n):
+        for k in range(n):
+            Jmid[i, k] = jm[i * n + k].mid
+    try:
+        Yinv = mpmath.inverse(Jmid)
+    except ZeroDivisionError:
+        return False
+    Z = [mpmath.iv.mpf([x - radius, x + radius]) for x in m]
+    fm = f([mpmath.iv.mpf(x) for x in m])
+    jz = J(Z)
+    for i in range(n):
+        acc = mpmath.iv.mpf(m[i])
+        for k in range(n):
+            acc -= mpmath.iv.mpf(Yinv[i, k]) * fm[k]
+        for k in range(n):
+            coeff = mpmath.iv.mpf(1 if i == k else 0)
+            for l in range(n):
+                coeff -= mpmath.iv.mpf(Yinv[i, l]) * jz[l * n + k]
+            acc += coeff * (Z[k] - mpmath.iv.mpf(m[k]))
+        if not (acc.a > Z[i].a and acc.b < Z[i].b):
+            return False
+    return True
 
 
 @functools.lru_cache(maxsize=8)
@@ -125,8 +138,99 @@ def _interval_system(
 ) -> tuple[Any, Any]:
     """The system and its Jacobian as interval functions (built once per system and
     working digits: every root of one solve is certified with the same)."""
-    jac = [[sympy.diff(e, g) for g in gens] for e in exprs]
-    return interval_function(exprs, gens), interval_function([x for row in jac for x in row], gens)
+    terms = _terms(exprs, gens)
+    if terms is not None:
+        return _interval_terms(terms, len(gens))
+    jac = _jacobian(exprs, gens)
+    return interval_function(exprs, gens), interval_function(jac, gens)
+
+
+def _terms(
+    exprs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]
+) -> list[dict[tuple[int, ...], Any]] | None:
+    """Each expression's terms (exponents: coefficient) where every one is a polynomial
+    in ``gens`` with real numbers for coefficients; else None."""
+    try:
+        out = [dict(sympy.Poly(e, *gens).as_dict()) for e in exprs]
+    except sympy.PolynomialError:
+        return None
+    if not gens or not all(c.is_number and c.is_extended_real for t in out for c in t.values()):
+        return None
+    return out
+
+
+def _interval_terms(terms: list[dict[tuple[int, ...], Any]], n: int) -> tuple[Any, Any]:
+    """The polynomials of ``terms`` and their Jacobian as interval functions, evaluated term
+    by term (no code generated: printing a Jacobian for lambdify, and sympy's polynomials
+    and back, were most of a small system's certificate); the coefficients enclosed as
+    :func:`interval_function` encloses them."""
+    iv = mpmath.iv
+    pad = mpmath.mpf(10) ** (-(mpmath.mp.dps - 5))
+
+    def enclose(c: Any) -> Any:
+        if c.is_Rational:
+            return iv.mpf(int(c.p)) / iv.mpf(int(c.q))
+        v = mpmath.mpf(sympy.N(c, mpmath.mp.dps + 10))
+        return iv.mpf([v - pad * (1 + abs(v)), v + pad * (1 + abs(v))])
+
+    return _term_rows(terms, enclose, iv.mpf(0)), _term_rows(
+        _derivatives(terms, n), enclose, iv.mpf(0)
+    )
+
+
+def _derivatives(
+    terms: list[dict[tuple[int, ...], Any]], n: int
+) -> list[dict[tuple[int, ...], Any]]:
+    """The Jacobian's entries row by row, as terms."""
+    out = []
+    for t in terms:
+        for k in range(n):
+            d: dict[tuple[int, ...], Any] = {}
+            for m, c in t.items():
+                if m[k]:
+                    dm = (*m[:k], m[k] - 1, *m[k + 1 :])
+                    d[dm] = d.get(dm, 0) + c * m[k]
+            out.append(d)
+    return out
+
+
+def _term_rows(terms: list[dict[tuple[int, ...], Any]], number: Any, zero: Any = 0) -> Any:
+    """A function of a list of values: each polynomial of ``terms`` at them, summed term
+    by term (``number``: a coefficient as the arithmetic's number), each power once."""
+    rows = [
+        [(number(c), [(k, e) for k, e in enumerate(m) if e]) for m, c in t.items()] for t in terms
+    ]
+
+    def call(z: Sequence[Any]) -> list[Any]:
+        powers: dict[tuple[int, int], Any] = {}
+        out = []
+        for row in rows:
+            acc = zero
+            for c, mono in row:
+                for k, e in mono:
+                    if (k, e) not in powers:
+                        powers[k, e] = z[k] ** e
+                    c = c * powers[k, e]
+                acc += c
+            out.append(acc)
+        return out
+
+    return call
+
+
+def _jacobian(exprs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> list[sympy.Expr]:
+    """The Jacobian's entries row by row: a polynomial's derivatives as polynomials
+    (sympy.diff on an expanded sum of hundreds of terms asks each term's assumptions: most
+    of a system's build), any other expression's by sympy.diff."""
+    out = []
+    for e in exprs:
+        try:
+            p = sympy.Poly(e, *gens)
+        except sympy.PolynomialError:  # not polynomial in gens (a sin or cos of one)
+            out += [sympy.diff(e, g) for g in gens]
+            continue
+        out += [p.diff(g).as_expr() for g in gens]
+    return out
 
 
 def _number(v: Any) -> Any:
@@ -144,9 +248,52 @@ def krawczyk_complex(
     """:func:`krawczyk` for a complex root ``m`` of a system with real coefficients: the
     test on the real and imaginary parts (twice the unknowns), in the box ``m +- radius``
     in each part."""
-    real_exprs, real_gens = _realified(tuple(exprs), tuple(gens))
     mid = [mpmath.re(v) for v in m] + [mpmath.im(v) for v in m]
+    before = mpmath.iv.dps
+    mpmath.iv.dps = mpmath.mp.dps
+    try:
+        system = _realified_system(tuple(exprs), tuple(gens), mpmath.mp.dps)
+        if system is not None:
+            return _krawczyk(*system, mid, radius)
+    finally:
+        mpmath.iv.dps = before
+    real_exprs, real_gens = _realified(tuple(exprs), tuple(gens))
     return krawczyk(real_exprs, real_gens, mid, radius)
+
+
+@functools.lru_cache(maxsize=8)
+def _realified_system(
+    exprs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...], dps: int
+) -> tuple[Any, Any] | None:
+    """:func:`_realified`'s system and its Jacobian as interval functions, built from the
+    polynomials' terms (each ``(a + i b)^e`` expanded: no sympy expansion); None where
+    the expressions are not polynomials with real coefficients."""
+    terms = _terms(exprs, gens)
+    if terms is None:
+        return None
+    n = len(gens)
+    out = []
+    for t in terms:
+        re: dict[tuple[int, ...], Any] = {}
+        im: dict[tuple[int, ...], Any] = {}
+        for mono, c in t.items():
+            parts = {(0,) * (2 * n): (1, 0)}  # the product so far: exponents -> (re, im)
+            for k, e in enumerate(mono):
+                for _ in range(e):  # times (a_k + i b_k)
+                    nxt: dict[tuple[int, ...], tuple[int, int]] = {}
+                    for m, (r, i) in parts.items():
+                        for at, (pr, pi) in ((k, (r, i)), (n + k, (-i, r))):
+                            mm = (*m[:at], m[at] + 1, *m[at + 1 :])
+                            qr, qi = nxt.get(mm, (0, 0))
+                            nxt[mm] = (qr + pr, qi + pi)
+                    parts = nxt
+            for m, (r, i) in parts.items():
+                if r:
+                    re[m] = re.get(m, 0) + c * r
+                if i:
+                    im[m] = im.get(m, 0) + c * i
+        out += [re, im]
+    return _interval_terms(out, 2 * n)
 
 
 def certified_roots(
@@ -157,13 +304,26 @@ def certified_roots(
     values to half the digits is certified in a box centred on its real part: the box is
     symmetric under conjugation and holds one root, which is then its own conjugate, real
     (its centre is returned with zero imaginary parts); the others' boxes lie clear of
-    the real space, so their roots are not real."""
+    the real space, so their roots are not real.
+
+    Every endpoint is refined before any is tested, the most ill-conditioned in double
+    precision first (:func:`conditioning`); one ill-conditioned there
+    (``MODE_ENDPOINT_SINGULAR_RTOL``) and singular at the working digits
+    (:func:`regular`: no interval test certifies it) ends the attempt before any
+    interval system is built."""
     radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
-    roots = []
-    for w in points:
-        x = newton(eqs, gens, w, dps)
+    refined: dict[int, list[Any]] = {}
+    ratio = [conditioning(eqs, gens, w) for w in points]
+    for i in sorted(range(len(points)), key=lambda i: ratio[i]):
+        x = newton(eqs, gens, points[i], dps)
         if x is None:
             return None
+        if ratio[i] <= MODE_ENDPOINT_SINGULAR_RTOL and not regular(eqs, gens, x):
+            return None  # ill-conditioned in double precision, singular at the digits
+        refined[i] = x
+    roots = []
+    for i in range(len(points)):
+        x = refined[i]
         if all(abs(mpmath.im(v)) <= mpmath.mpf(10) ** (-(dps // 2)) for v in x):
             x = [mpmath.mpc(mpmath.re(v)) for v in x]  # a real centre: a box symmetric
         elif all(abs(mpmath.im(v)) <= radius for v in x):
@@ -172,6 +332,18 @@ def certified_roots(
             return None
         roots.append(x)
     return roots
+
+
+def conditioning(
+    eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], z: Sequence[Any]
+) -> float:
+    """The Jacobian's least singular value over its largest at ``z`` (a continuation
+    endpoint), in double precision."""
+    _, J = _functions(eqs, gens)
+    with mpmath.workdps(15):
+        A = np.array(J([_number(v) for v in z]).tolist(), dtype=complex)
+    s = np.linalg.svd(A, compute_uv=False)
+    return float(s[-1] / s[0]) if s[0] > 0 else 0.0
 
 
 def apart(roots: Sequence[Sequence[Any]]) -> bool:
@@ -255,16 +427,31 @@ def newton(
 def _functions(eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> tuple[Any, Any]:
     """The system and its Jacobian as mpmath functions of a vector (built once per system:
     every endpoint of one solve refines in the same)."""
-    return _compiled(tuple(eqs), tuple(gens))
+    return _compiled(tuple(eqs), tuple(gens), mpmath.mp.dps)
 
 
-@functools.lru_cache(maxsize=8)
-def _compiled(eqs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...]) -> tuple[Any, Any]:
+@functools.lru_cache(maxsize=16)
+def _compiled(
+    eqs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...], dps: int
+) -> tuple[Any, Any]:
+    terms = _terms(eqs, gens)
+    if terms is not None:  # polynomials: term by term, coefficients at the digits + 10
+        with mpmath.workdps(dps + 10):
+            f = _term_rows(terms, lambda c: mpmath.mpf(sympy.N(c, dps + 10)))
+            J = _term_rows(
+                _derivatives(terms, len(gens)), lambda c: mpmath.mpf(sympy.N(c, dps + 10))
+            )
+        n, m = len(gens), len(eqs)
+
+        def jacobian(x: Any) -> Any:
+            v = J(list(x))
+            return mpmath.matrix([v[i * n : (i + 1) * n] for i in range(m)])
+
+        return (lambda x: mpmath.matrix(f(list(x)))), jacobian
     f = sympy.lambdify(gens, list(eqs), "mpmath")
-    # the derivatives of the polynomials as polynomials (sympy.diff on an expanded sum of
-    # hundreds of terms asks each term's assumptions: most of a SCARA's system build)
-    polys = [sympy.Poly(e, *gens) for e in eqs]
-    J = sympy.lambdify(gens, [[p.diff(g).as_expr() for g in gens] for p in polys], "mpmath")
+    n = len(gens)
+    jac = _jacobian(eqs, gens)
+    J = sympy.lambdify(gens, [jac[i : i + n] for i in range(0, len(jac), n)], "mpmath")
     return (lambda x: mpmath.matrix(f(*x))), (lambda x: mpmath.matrix(J(*x)))
 
 

@@ -5,13 +5,16 @@ Bertini's records are turned off for the solve (``bertini.recording(False)``): n
 written in the user's directory and no path is replayed from an earlier run.  The seed is
 fixed, so a run repeats: the same random gamma, start points and patches.
 
-Owns :func:`track`, :func:`real_endpoints`, :func:`system_text` (the system in Bertini's
-input language, its variable groups first).
+Owns :func:`track`, :func:`track_linear_product` (from a linear-product start system),
+:func:`linear_product_paths`, :func:`real_endpoints`, :func:`system_text` (the system in
+Bertini's input language, its variable groups first).
 """
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 import sympy
@@ -20,7 +23,14 @@ from mechsing.assembly.settings import MODE_IMAGINARY_RTOL
 from mechsing.errors import UserError
 from mechsing.timelimit import interruptible
 
-__all__ = ["SEED", "real_endpoints", "system_text", "track"]
+__all__ = [
+    "SEED",
+    "linear_product_paths",
+    "real_endpoints",
+    "system_text",
+    "track",
+    "track_linear_product",
+]
 
 #: the seed of every homotopy (its random gamma, start points and patches): runs repeat
 SEED = 34
@@ -36,6 +46,18 @@ def system_text(eqs: Sequence[sympy.Expr], groups: Sequence[Sequence[sympy.Symbo
     return "\n".join(lines) + "\n"
 
 
+def _bertini() -> Any:
+    """The Bertini 2 module (a UserError naming the extra without it)."""
+    try:
+        import bertini
+    except ImportError:
+        raise UserError(
+            "this configuration needs homotopy continuation: install the extra with "
+            "pip install 'mechsing[modes]' (Bertini 2, GPL-3.0-or-later)"
+        ) from None
+    return bertini
+
+
 def track(
     eqs: Sequence[sympy.Expr],
     groups: Sequence[Sequence[sympy.Symbol]],
@@ -48,13 +70,7 @@ def track(
     (``adaptive``, or ``double`` where the endpoints are refined afterwards anyway and
     adaptive precision would crawl along the many singular paths of an overconstrained
     loop's isotropic components)."""
-    try:
-        import bertini
-    except ImportError:
-        raise UserError(
-            "this configuration needs homotopy continuation: install the extra with "
-            "pip install 'mechsing[modes]' (Bertini 2, GPL-3.0-or-later)"
-        ) from None
+    bertini = _bertini()
     was = bertini.recording()
     bertini.recording(False)  # no records directory in the user's cwd, no replayed paths
     try:
@@ -69,6 +85,101 @@ def track(
     solver = result.solver
     tracked = int(solver.num_paths()) if callable(solver.num_paths) else int(solver.num_paths)
     return [np.asarray(s, dtype=complex) for s in result.solutions], tracked
+
+
+def _regular_choice(supports: Sequence[Sequence[int]], n: int) -> bool:
+    """Do linear forms with these supports (each a set of variable indices), generic
+    coefficients, make a regular n x n system?  So when each can take a variable of its
+    own (a perfect matching of the forms to the variables)."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import maximum_bipartite_matching
+
+    rows = [i for i, sup in enumerate(supports) for _ in sup]
+    cols = [k for sup in supports for k in sup]
+    graph = csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
+    return bool(np.all(maximum_bipartite_matching(graph, perm_type="column") >= 0))
+
+
+def linear_product_paths(
+    factors: Sequence[Sequence[Sequence[int]]], n: int
+) -> list[tuple[int, ...]]:
+    """The start points of a linear-product start system: each equation ``k`` a product of
+    affine linear forms, its ``j``-th in the variables ``factors[k][j]`` (indices); one
+    point per choice of a form in every equation whose generic linear system is regular.
+    Their number is the system's linear-product Bezout number, a bound on the isolated
+    solutions of every system whose equation ``k`` lies in the span of the products of
+    such forms (each of its terms a product of one variable or 1 from each form)."""
+    return [
+        choice
+        for choice in itertools.product(*(range(len(f)) for f in factors))
+        if _regular_choice([factors[k][j] for k, j in enumerate(choice)], n)
+    ]
+
+
+def track_linear_product(
+    eqs: Sequence[sympy.Expr],
+    gens: Sequence[sympy.Symbol],
+    factors: Sequence[Sequence[Sequence[int]]],
+    choices: Sequence[tuple[int, ...]],
+    mptype: str = "adaptive",
+) -> tuple[list[np.ndarray], int]:
+    """:func:`track` from a linear-product start system (``choices``, of
+    :func:`linear_product_paths`):
+    equation ``k`` replaced by a product of affine linear forms with random complex
+    coefficients (seeded), its ``j``-th in the variables ``factors[k][j]``; one path per
+    regular choice of a form in every equation, tracked by the straight-line homotopy
+    with a random gamma (seeded).  Every finite endpoint and the number of paths."""
+    bertini = _bertini()
+    from bertini import nag_algorithm
+
+    n = len(gens)
+    rng = np.random.default_rng(SEED)
+    forms = [
+        [
+            (rng.normal(size=(len(sup), 2)) @ [1, 1j], complex(rng.normal(size=2) @ [1, 1j]))
+            for sup in f
+        ]
+        for f in factors
+    ]
+    start = [
+        sympy.Mul(
+            *(
+                sum(
+                    sympy.Float(c.real, 17) * gens[i] + sympy.I * sympy.Float(c.imag, 17) * gens[i]
+                    for c, i in zip(a, sup, strict=True)
+                )
+                + sympy.Float(b.real, 17)
+                + sympy.I * sympy.Float(b.imag, 17)
+                for (a, b), sup in zip(f, fac, strict=True)
+            )
+        )
+        for f, fac in zip(forms, factors, strict=True)
+    ]
+    points = []
+    for choice in choices:
+        A = np.zeros((n, n), dtype=complex)
+        rhs = np.zeros(n, dtype=complex)
+        for k, j in enumerate(choice):
+            a, b = forms[k][j]
+            A[k, list(factors[k][j])] = a
+            rhs[k] = -b
+        points.append(np.linalg.solve(A, rhs))
+    was = bertini.recording()
+    bertini.recording(False)
+    try:
+        target = bertini.parse.system(system_text(eqs, [gens]))
+        begin = bertini.parse.system(system_text(start, [gens]))
+        while True:  # a signal stops the tracking; its handler raises once the solve returns
+            bertini.random.set_random_seed(SEED)  # the gamma
+            homotopy = nag_algorithm.straight_line_homotopy(target, begin)
+            solver = nag_algorithm.HomotopySolver(homotopy, points, mptype=mptype)
+            with interruptible(bertini.request_stop) as stopped:
+                result = solver.solve()
+            if not stopped():
+                break
+    finally:
+        bertini.recording(was)
+    return [np.asarray(s, dtype=complex) for s in result.solutions], len(points)
 
 
 def real_endpoints(points: Sequence[np.ndarray]) -> list[np.ndarray]:

@@ -48,6 +48,7 @@ from mechsing.assembly.chains import Found
 from mechsing.assembly.given import Formulation, Given
 from mechsing.assembly.settings import (
     MODE_CERTIFY_RADIUS,
+    MODE_ENDPOINT_SINGULAR_RTOL,
     MODE_EXTRANEOUS_RTOL,
     MODE_ISOTROPIC_RTOL,
 )
@@ -647,8 +648,13 @@ def _find(given: Given) -> Found:
         found.append((root, row, ok))
     # components of dimension 1 or more (an overconstrained loop's second branch, where
     # the homotopy's paths end singular or fail): one slice, the local dimension test at
-    # each real point of it
-    for z in _sliced(prob, 1) if n > 1 or m > n else []:
+    # each real point of it; not where every path ended finite at a genuine endpoint
+    # regular in double precision or at an extraneous one (paths end on every component)
+    for z in (
+        _sliced(prob, 1)
+        if (n > 1 or m > n) and _may_hide_a_set(prob, raw, tracked, genuine)
+        else []
+    ):
         dim = local_dimension(full, gens, z, dps)
         if dim > 0:
             return along_a_set(dim, z, "also ", "a real point of a slice")
@@ -674,6 +680,26 @@ def _find(given: Given) -> Found:
         "a path that failed could hide a mode, so the count is not proven"
     )
     return Found(formulation, rows, len(rows), "not proven", paths, tuple(notes), 1, given.closure)
+
+
+def _may_hide_a_set(prob: Problem, raw: list[Any], tracked: int, genuine: list[Any]) -> bool:
+    """Could the closed configurations hold a set of dimension 1 or more that the
+    endpoints do not show?  Yes where a path failed, went to infinity or shared its
+    endpoint (Bertini lists the distinct finite ones), or where a genuine endpoint is
+    singular in double precision (its Jacobian's least singular value at most
+    ``MODE_ENDPOINT_SINGULAR_RTOL`` of its largest: a point of a curve, or a multiple
+    root).  A component of the tracked system's solutions draws paths of the homotopy,
+    each ending singular on it (its share of the Bezout number: positive for a
+    total-degree start by Fulton's refined Bezout theorem, taken to be so for the
+    multihomogeneous start); with every path at its own regular genuine endpoint or at
+    an extraneous one, no genuine component is left for the slice to find."""
+    from mechsing.assembly.certify import conditioning
+
+    if len(raw) < tracked:
+        return True
+    eqs, groups = patched_system(prob)
+    gens = [x for g in groups for x in g]
+    return any(conditioning(eqs, gens, z) <= MODE_ENDPOINT_SINGULAR_RTOL for z in genuine)
 
 
 def _every_root(

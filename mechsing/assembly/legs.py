@@ -18,8 +18,9 @@ other joint's centre, a piece constrains the pose by
   ``s1 x (p - a)``, normal to the platform's axis ``s4``), a quadric and a quartic.
 
 Six equations in all (else the formulation does not apply), with the Study quadric and a
-random affine patch: eight in the eight Study coordinates, tracked from a total-degree
-start.  A mode is a platform pose; each piece's joints then follow in closed form (the U
+random affine patch: eight in the eight Study coordinates, tracked from a linear-product
+start where it has fewer paths than the total degree (:func:`~.spatial.track_study`:
+Tsai's 3-UPU 412 paths, not 1024).  A mode is a platform pose; each piece's joints then follow in closed form (the U
 joints up to their half-turn flip, counted in ``equivalent_solutions``; an S-S rod with no
 spin about its own axis, which is idle).  A real endpoint where the system is singular
 gets the local dimension test: on a curve there is no count, only ``infinite``.
@@ -358,7 +359,7 @@ def _piece_values(p: Piece, R: Any, t: Any) -> dict[str, list[Any]]:
 
 def _find(given: Given) -> Found:
     from mechsing.assembly.certify import krawczyk, local_dimension, newton, regular
-    from mechsing.assembly.engine import real_endpoints, track
+    from mechsing.assembly.engine import real_endpoints
     from mechsing.assembly.serial import account
     from mechsing.assembly.spatial import (
         XS,
@@ -367,6 +368,7 @@ def _find(given: Given) -> Found:
         patch_equation,
         pose_of,
         study_quadric,
+        track_study,
     )
 
     mech, dps = given.mech, given.dps
@@ -395,7 +397,8 @@ def _find(given: Given) -> Found:
     }
     # the quartics of U-U pieces: double precision along the paths (adaptive precision
     # crawls along the many paths to the exceptional quadric); every endpoint is refined
-    raw, tracked = track(eqs, [gens], mptype="double" if max(degrees) > 2 else "adaptive")
+    raw, tracked, start = track_study(eqs[:-1], "double" if max(degrees) > 2 else "adaptive")
+    formulation["method"] = f"homotopy continuation (Bertini 2, {start} start), Newton refinement"
     # an endpoint with |X|^2 = 0 (the exceptional quadric of Study's) is no displacement
     genuine = off_exceptional(raw)
     real = real_endpoints(genuine)

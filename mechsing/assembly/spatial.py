@@ -50,12 +50,14 @@ __all__ = [
     "two_axes",
     "SpatialSystem",
     "joint_values_spatial",
+    "linear_product_study",
     "off_exceptional",
     "out_of_reach",
     "patch_equation",
     "pose_of",
     "solve_study",
     "spatial_system",
+    "track_study",
 ]
 
 XS = sympy.symbols("x0:4", real=True)
@@ -164,6 +166,66 @@ def patch_equation() -> sympy.Expr:
     (its coefficients are the floats written, exactly)."""
     coeffs = np.random.default_rng(SEED).normal(size=8)
     return sum(sympy.Rational(float(c)) * v for c, v in zip(coeffs, (*XS, *YS), strict=True)) - 1
+
+
+def linear_product_study(eqs: list[sympy.Expr]) -> tuple[list[sympy.Expr], list[list[list[int]]]]:
+    """The homogeneous equations ``eqs`` in the Study coordinates as the system a
+    linear-product start system tracks in fewer paths than their total degree, and its
+    factors' variables (:func:`~mechsing.assembly.engine.track_linear_product`).
+
+    Each leg's sphere carries the same ``4 |Y|^2``: every sphere after the first less
+    its multiple of the first is linear in Y (the same solutions).  An equation whose
+    terms have Y-degree from ``b0`` to ``b1`` (total degree d) lies in the span of the
+    products of ``b0`` forms in Y, ``b1 - b0`` in X and Y and ``d - b1`` in X.  The patch
+    is a random form in X alone (a displacement has X != 0, so the form is non-zero at
+    each solution), one more form in X alone: few choices of forms leave a regular
+    system.  Tsai's 3-UPU: 412 paths (total degree 1024)."""
+    gens = [*XS, *YS]
+    polys = [sympy.Poly(e, *gens) for e in eqs]
+    y2 = tuple([0] * 4 + [2, 0, 0, 0])
+    first = next((p for p in polys if p.coeff_monomial(y2) != 0), None)
+    system, factors = [], []
+    for p in polys:
+        if first is not None and p is not first and p.coeff_monomial(y2) != 0:
+            less = p - first * (p.coeff_monomial(y2) / first.coeff_monomial(y2))
+            if max(sum(m[4:]) for m in less.monoms()) <= 1:
+                p = less
+        ydeg = [sum(m[4:]) for m in p.monoms()]
+        b0, b1, d = min(ydeg), max(ydeg), p.total_degree()
+        factors.append(
+            [[4, 5, 6, 7]] * b0 + [list(range(8))] * (b1 - b0) + [[0, 1, 2, 3]] * (d - b1)
+        )
+        system.append(p.as_expr())
+    coeffs = np.random.default_rng(SEED + 1).normal(size=4)
+    system.append(sum(sympy.Rational(float(c)) * v for c, v in zip(coeffs, XS, strict=True)) - 1)
+    factors.append([[0, 1, 2, 3]])
+    return system, factors
+
+
+def track_study(eqs: list[sympy.Expr], mptype: str) -> tuple[list[np.ndarray], int, str]:
+    """Every finite endpoint of the homogeneous equations ``eqs`` in the Study
+    coordinates with :func:`patch_equation` (on that patch), the paths tracked and the
+    start system: a linear-product one (:func:`linear_product_study`) where it has fewer
+    paths than the total degree, else the total degree's."""
+    from mechsing.assembly.engine import linear_product_paths, track_linear_product
+
+    gens = [*XS, *YS]
+    total = 1
+    for e in eqs:
+        total *= sympy.Poly(e, *gens).total_degree()
+    system, factors = linear_product_study(eqs)
+    choices = linear_product_paths(factors, 8)
+    if len(choices) >= total:
+        raw, tracked = track([*eqs, patch_equation()], [gens], mptype=mptype)
+        return raw, tracked, "total degree"
+    raw, tracked = track_linear_product(system, gens, factors, choices, mptype=mptype)
+    patch = np.random.default_rng(SEED).normal(size=8)  # patch_equation's form
+    out = []
+    for z in raw:
+        scale = complex(patch @ z)
+        if abs(scale) > 0:
+            out.append(z / scale)
+    return out, tracked, "linear product"
 
 
 def solve_study(
