@@ -283,35 +283,17 @@ def test_agile_eye_has_eight_modes_in_two_spherical_loops(tmp_path: Path) -> Non
     assert all(m["certified"] for m in doc["modes"])
 
 
-RSSR = """
-mechanism: rssr
-bodies: [ground, crank, coupler, rocker]
-joints:
-  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: B, type: S, between: [crank, coupler], point: [1, 0, 0]}
-  - {name: C, type: S, between: [coupler, rocker], point: [3, 1, 2]}
-  - {name: D, type: R, between: [rocker, ground], axis: [1, 0, 0], point: [3, 1, 0]}
-inputs: [A]
-output: {body: rocker}
-configurations:
-  reference: {}
-  crank-30: {A: "pi/6"}
-  crank-180: {A: "pi"}
-"""
+RSSR = ROOT / "tests" / "data" / "rssr.yaml"
 
 
-def test_rssr_with_its_input_has_two_modes_the_coupler_listed_without_spin(
-    tmp_path: Path,
-) -> None:
+def test_rssr_with_its_input_has_two_modes_the_coupler_listed_without_spin() -> None:
     """An RSSR's coupler turns idly about the line through its two ball joints: the
     modes are the rocker's two positions (the coupler free of spin about that line), not a
     curve.  Closed form: the crank's ball at B = (cos a, sin a, 0), the rocker's at C =
     (3, 1 - 2 sin f, 2 cos f) (f its angle about x from the reference, the joint D's value
     being -f: D is written from the rocker to ground), |C - B|^2 = 9 as at the reference,
     so sin f = (u^2 + v^2 - 5) / (4 v) with u = 3 - cos a, v = 1 - sin a."""
-    f = tmp_path / "rssr.yaml"
-    f.write_text(RSSR)
-    doc = _modes([str(f), "--config", "crank-30"])
+    doc = _modes([str(RSSR), "--config", "crank-30"])
     a = np.pi / 6
     u, v = 3 - np.cos(a), 1 - np.sin(a)
     s = (u * u + v * v - 5) / (4 * v)
@@ -329,15 +311,13 @@ def test_rssr_with_its_input_has_two_modes_the_coupler_listed_without_spin(
         assert abs(np.dot(m["joints"]["B"], C0 - B0)) < 1e-12
 
 
-def test_rssr_whose_crank_cannot_be_reached_has_no_mode_proven(tmp_path: Path) -> None:
+def test_rssr_whose_crank_cannot_be_reached_has_no_mode_proven() -> None:
     """The RSSR's crank at pi: by the closed form sin f = (u^2 + v^2 - 5) / (4 v) = 3 (u
     = 4, v = 1), no real rocker angle; the rod's quadratic has two complex roots, each
     certified not real, so no mode is proven (continuation's 60 paths proved nothing)."""
-    f = tmp_path / "rssr.yaml"
-    f.write_text(RSSR)
     u, v = 3 - np.cos(np.pi), 1 - np.sin(np.pi)
     assert abs((u * u + v * v - 5) / (4 * v)) > 1
-    doc = _modes([str(f), "--config", "crank-180"])
+    doc = _modes([str(RSSR), "--config", "crank-180"])
     assert doc["count"] == 0 and doc["complete"] == "proven" and doc["modes"] == []
 
 
