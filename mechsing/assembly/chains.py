@@ -25,7 +25,7 @@ from mechsing.assembly.given import NO_INPUTS, Formulation, Given, closure_from_
 from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.model import Mechanism
 
-__all__ = ["SERIAL_ARM", "SINGLE_LOOP", "Found", "loop_found", "serial_found"]
+__all__ = ["SERIAL_ARM", "SINGLE_LOOP", "Found", "arm_chain", "loop_found", "serial_found"]
 
 
 @dataclass(frozen=True)
@@ -306,3 +306,29 @@ def _loop_find(given: Given) -> Found:
 SERIAL_ARM = Formulation("half-angle pairs of a serial arm", _serial_applies, _serial_find)
 #: a single loop of R and P joints whose given values leave six unknown
 SINGLE_LOOP = Formulation("half-angle pairs of a single loop", _loop_applies, _loop_find)
+
+
+def arm_chain(given: Given) -> tuple[list[tuple[list[str], list[int], Any]], dict[str, list[Any]]]:
+    """A serial arm's chain to its output, its given joints and what its target is (the
+    configuration's pose, or the joint values whose pose it is)."""
+    from mechsing.assembly.serial import chain_to_output
+
+    mech, config = given.mech, given.config
+    names, signs = chain_to_output(mech)
+    cfg = mech.configurations[config]
+    if cfg.pose is not None:
+        values = {n: list(cfg.values[n]) for n in names if n in cfg.values}
+        return [(names, signs, "pose")], values
+    return [(names, signs, {n: arm_values(mech, config, n) for n in names})], {}
+
+
+def arm_values(mech: Mechanism, config: str, name: str) -> list[Any]:
+    """A joint's values in a configuration of an arm without loops: given there, else in
+    its start's (the chain of starts), else the reference's zeros."""
+    cur: str | None = config
+    while cur is not None:
+        cfg = mech.configurations[cur]
+        if name in cfg.values:
+            return list(cfg.values[name])
+        cur = cfg.start
+    return [0] * mech.joint(name).dof

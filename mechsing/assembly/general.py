@@ -44,7 +44,7 @@ import mpmath
 import numpy as np
 import sympy
 
-from mechsing.assembly.chains import Found
+from mechsing.assembly.chains import Found, arm_chain
 from mechsing.assembly.given import Formulation, Given
 from mechsing.assembly.settings import (
     MODE_CERTIFY_RADIUS,
@@ -279,7 +279,7 @@ def problem(given: Given) -> Problem:
         chains = [(list(lp.joints), list(lp.signs), None) for lp in mech.loops]
         arm = False
     else:
-        chains, values = _arm_chain(given)
+        chains, values = arm_chain(given)
         joints = _Joints(mech, values)
         arm = True
     closures = []
@@ -318,32 +318,6 @@ def _symbol(mech: Mechanism, names: list[str]) -> str | None:
     from mechsing.kinematics.family import family
 
     return family(mech, names).symbol
-
-
-def _arm_chain(given: Given) -> tuple[list[tuple[list[str], list[int], Any]], dict[str, list[Any]]]:
-    """A serial arm's chain to its output, its given joints and what its target is (the
-    configuration's pose, or the joint values whose pose it is)."""
-    from mechsing.assembly.serial import chain_to_output
-
-    mech, config = given.mech, given.config
-    names, signs = chain_to_output(mech)
-    cfg = mech.configurations[config]
-    if cfg.pose is not None:
-        values = {n: list(cfg.values[n]) for n in names if n in cfg.values}
-        return [(names, signs, "pose")], values
-    return [(names, signs, {n: _arm_values(mech, config, n) for n in names})], {}
-
-
-def _arm_values(mech: Mechanism, config: str, name: str) -> list[Any]:
-    """A joint's values in a configuration of an arm without loops: given there, else in
-    its start's (the chain of starts), else the reference's zeros."""
-    cur: str | None = config
-    while cur is not None:
-        cfg = mech.configurations[cur]
-        if name in cfg.values:
-            return list(cfg.values[name])
-        cur = cfg.start
-    return [0] * mech.joint(name).dof
 
 
 def _mpf(x: Any) -> Any:

@@ -305,12 +305,7 @@ class ConfigurationReader:
         size = self.r.scale * self.r.units.length_factor
 
         def small(x: Any, unit: str) -> bool:
-            if x == 0:
-                return True
-            bound = REFERENCE_SCREEN_RTOL * (size if unit == "m" else 1)
-            if isinstance(x, PiRational):
-                return bool(abs(x) <= bound)
-            return bool(abs(sympy.N(x, 30)) <= bound)
+            return _within(x, REFERENCE_SCREEN_RTOL * (size if unit == "m" else 1))
 
         if isinstance(val, Displacement):
             rot = val.rotation or ((1, 0, 0), (0, 1, 0), (0, 0, 1))
@@ -468,3 +463,13 @@ FULL_TURN = 2 * PI
 _PITCHED = ("H", "Y")
 #: joints whose angular coordinates form a rotation vector (its norm is the angle)
 _ROTATION_VECTORS = ("S", "D")
+
+
+def _within(x: Any, bound: float) -> bool:
+    """``|x| <= bound`` for one of the file's numbers (a PiRational, or a sympy value
+    compared at 30 digits)."""
+    if x == 0:
+        return True
+    if isinstance(x, PiRational):
+        return bool(abs(x) <= bound)
+    return bool(abs(sympy.N(x, 30)) <= bound)

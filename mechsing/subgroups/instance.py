@@ -419,7 +419,7 @@ class Subgroup:
         """Coordinates when all rotations are about one direction u: the angle a
         (global when pitched), then the other coordinates from the translation
         part of the twist ``(a u, V(a u)^-1 p)``."""
-        a, xi = self._xi_one_axis(R, p, prec)
+        a, xi = _xi_one_axis(self, R, p, prec)
         bk = prec.backend
         fw = to_float(B[:, ANGULAR])
         i = int(np.argmax(np.abs(fw).sum(axis=1)))
@@ -433,45 +433,6 @@ class Subgroup:
             for j, val in zip(others, rest, strict=True):
                 q[j] = val
         return bk.simplify(q)
-
-    def _xi_one_axis(self, R: np.ndarray, p: np.ndarray, prec: Precision) -> tuple[Any, np.ndarray]:
-        bk = prec.backend
-        u, _pt, h0 = self.rotation_axis(prec)  # type: ignore[misc]
-        slide = u @ p
-        axial = np.concatenate([bk.zeros(3), u])
-        if self.type.pitched and not self.contains_screw(axial, precision=prec):
-            a = slide / h0
-        else:
-            s_vec = lie.vee3((R - R.T) / 2)
-            y, x = u @ s_vec, (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
-            if bk.is_zero(y, 0) and bk.is_zero(x, 0):
-                # no rotation about u at all (a half turn about a perpendicular axis): the
-                # projection's angle is 0 (atan2(0, 0) is undefined, in exact arithmetic too)
-                a = bk.convert(0)
-            else:
-                a = bk.atan2(np.asarray(y), np.asarray(x))[()]
-        a = bk.simplify(a)
-        p_perp = p - slide * u
-        # V(a u) on the plane normal to u is s I + c J (J = u x): invert it.
-        # the series below the switch point (exactly a = 0 in exact mode: its limit)
-        small = a == 0 or abs(to_float(a)) < bk.threshold(4)
-        aa = a if not small else bk.convert(1)
-        s = 1 - a * a / 6 if small else bk.sin(np.asarray(aa))[()] / aa
-        c = a / 2 - a * a * a / 24 if small else (1 - bk.cos(np.asarray(aa))[()]) / aa
-        det = s * s + c * c
-        Jp = _cross(u, p_perp)
-        translations_across = self.dim > 1
-        if bk.is_zero(det, 0) or not translations_across:
-            if translations_across and not all(bk.is_zero(x, 0) for x in p_perp):
-                raise ValueError(
-                    f"{self.symbol}: this element turns a whole number of turns while moving "
-                    "across its axis; it has no first-kind exponential coordinates"
-                )
-            v_perp = p_perp * 0
-        else:
-            v_perp = (s * p_perp - c * Jp) / det
-        xi = np.concatenate([a * u, v_perp + slide * u])
-        return a, xi
 
     def contains(
         self,
@@ -539,3 +500,47 @@ def _show(v: Any) -> str:
     if holds_objects(arr):
         return "[" + ", ".join(str(x) for x in arr.flat) + "]" if arr.ndim else str(arr[()])
     return np.array2string(arr, precision=6) if arr.ndim else f"{float(arr):.6g}"
+
+
+def _xi_one_axis(
+    sg: Subgroup, R: np.ndarray, p: np.ndarray, prec: Precision
+) -> tuple[Any, np.ndarray]:
+    """The angle about a one-axis subgroup's direction u (global when pitched) and the
+    twist ``(a u, V(a u)^-1 p)`` of the displacement ``(R, p)``."""
+    bk = prec.backend
+    u, _pt, h0 = sg.rotation_axis(prec)  # type: ignore[misc]
+    slide = u @ p
+    axial = np.concatenate([bk.zeros(3), u])
+    if sg.type.pitched and not sg.contains_screw(axial, precision=prec):
+        a = slide / h0
+    else:
+        s_vec = lie.vee3((R - R.T) / 2)
+        y, x = u @ s_vec, (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
+        if bk.is_zero(y, 0) and bk.is_zero(x, 0):
+            # no rotation about u at all (a half turn about a perpendicular axis): the
+            # projection's angle is 0 (atan2(0, 0) is undefined, in exact arithmetic too)
+            a = bk.convert(0)
+        else:
+            a = bk.atan2(np.asarray(y), np.asarray(x))[()]
+    a = bk.simplify(a)
+    p_perp = p - slide * u
+    # V(a u) on the plane normal to u is s I + c J (J = u x): invert it.
+    # the series below the switch point (exactly a = 0 in exact mode: its limit)
+    small = a == 0 or abs(to_float(a)) < bk.threshold(4)
+    aa = a if not small else bk.convert(1)
+    s = 1 - a * a / 6 if small else bk.sin(np.asarray(aa))[()] / aa
+    c = a / 2 - a * a * a / 24 if small else (1 - bk.cos(np.asarray(aa))[()]) / aa
+    det = s * s + c * c
+    Jp = _cross(u, p_perp)
+    translations_across = sg.dim > 1
+    if bk.is_zero(det, 0) or not translations_across:
+        if translations_across and not all(bk.is_zero(x, 0) for x in p_perp):
+            raise ValueError(
+                f"{sg.symbol}: this element turns a whole number of turns while moving "
+                "across its axis; it has no first-kind exponential coordinates"
+            )
+        v_perp = p_perp * 0
+    else:
+        v_perp = (s * p_perp - c * Jp) / det
+    xi = np.concatenate([a * u, v_perp + slide * u])
+    return a, xi

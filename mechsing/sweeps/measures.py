@@ -323,7 +323,8 @@ class Measures:
                 if kernel is not None:
                     out["output_rows"] = np.broadcast_to(E, (N, *E.shape))
         if "constraint" in self.tests and not signed:
-            out["constraint"] = self._constraint(Ss)
+            # the legs' combined constraint wrenches as rows, (N, wrenches, 6)
+            out["constraint"] = self.constraint.wrench_rows(Ss, self.closure.loop_signs)
         return out, kernel
 
     def _screws(self, Q: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
@@ -372,11 +373,6 @@ class Measures:
         g = self.generic.get("closure")
         rows = 6 * len(self.mech.loops) + len(self.model.couplings)
         return "closure" in self.tests and g is not None and g == rows
-
-    def _constraint(self, Ss: np.ndarray) -> np.ndarray:
-        """The legs' combined constraint wrenches as rows, (N, wrenches, 6)
-        (:meth:`ConstraintTest.wrench_rows`)."""
-        return self.constraint.wrench_rows(Ss, self.closure.loop_signs)
 
     # ------------------------------------------------------------------ measures
 
@@ -594,18 +590,13 @@ class Measures:
                 continue
             A = mats[t]
             if t in ("input", "output") and a.kernel is not None and kernel is not None:
-                A = self._turned(A, kernel, a.kernel[ia])
+                # b's kernel basis turned to a's (the orthogonal factor of kb^T ka), so
+                # that the matrix (A = X kb, X the test's map) is continuous from a to b
+                A = A @ _turn(kernel, a.kernel[ia])
             U, V = a.basis(t, ia)
             C = np.swapaxes(U, 1, 2) @ A @ V
             out[t] = np.linalg.det(C)
         return out
-
-    def _turned(self, A: np.ndarray, kb: np.ndarray, ka: np.ndarray) -> np.ndarray:
-        """The test's matrix at b with b's kernel basis turned to a's (the orthogonal
-        factor of ``kb^T ka``), so that the matrix is continuous from a to b."""
-        # A = X kb, with X the map the test applies to the kernel: A turned = A @ turn
-        turned: np.ndarray = A @ _turn(kb, ka)
-        return turned
 
 
 def _test_factors(
