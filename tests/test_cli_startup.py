@@ -118,3 +118,26 @@ def test_a_float_analysis_of_plain_numbers_imports_no_sympy(case: str, tmp_path:
     assert "(float)" in out and "mechsing.model.expressions" in names
     heavy = sorted(n for n in names if n.split(".")[0] in ("sympy", "mpmath"))
     assert not heavy, heavy[:5]
+
+
+@pytest.mark.parametrize("command", ["sweep", "solve"])
+def test_a_float_sweep_or_solve_of_plain_numbers_imports_no_sympy(
+    command: str, tmp_path: Path
+) -> None:
+    # sweep, solve and report read the file as analyze does: a float or auto run (auto's
+    # first pass is float) keeps the file's plain numbers as PiRational; a path sweep
+    # draws no locus either, so networkx (the grid's loci) stays out too (mpmath may come:
+    # the rocker's limit the sweep locates is refined in auto's mp)
+    if command == "sweep":
+        argv = ["sweep", "examples/fourbar.yaml", "--vary", "A=0:60:5", "--format", "json"]
+    else:
+        argv = ["solve", "examples/fourbar.yaml", "--config", "crank-30", "--format", "json"]
+    status, out, names = _imported(argv, tmp_path)
+    assert status == 0, out
+    doc = json.loads(out)
+    assert doc["mechanism"] == "four-bar"
+    assert "mechsing.model.expressions" in names
+    if command == "sweep":
+        assert len(doc["located"]) == 1  # the rocker's limit in 0..60 deg
+    heavy = sorted(n for n in names if n.split(".")[0] in ("sympy", "networkx"))
+    assert not heavy, heavy[:5]

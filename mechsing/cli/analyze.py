@@ -53,11 +53,8 @@ def run(args: argparse.Namespace) -> int:
     fmt = output_format(args.format, args.output, FORMATS, NAME)
     if args.output:  # before the work: a missing directory or the input file is refused now
         check_output(args.output, [args.file])
-    # a float analysis (auto's first pass too) reads the file's plain numbers without
-    # sympy; mp and exact read them as sympy values, as they compute with them
-    plain = args.prec.mode in ("float", "auto")
     mech = apply_set(
-        apply_scene(load_mechanism(args.file, args.verbose, plain_numbers=plain), args, args.file),
+        apply_scene(load_mechanism(args.file, args.verbose, precision=args.prec), args, args.file),
         args.set_values,
         args.from_config,
         args.file,

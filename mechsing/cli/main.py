@@ -38,6 +38,7 @@ from mechsing.errors import (
 
 if TYPE_CHECKING:  # the commands import their layers lazily: `mechsing --version` stays fast
     from mechsing.model import Mechanism
+    from mechsing.numeric import Precision
     from mechsing.reader import Source
 
 #: exit statuses: bad input, a configuration that could not be analysed, a defect
@@ -180,19 +181,22 @@ def load_mechanism(
     verbose: bool = False,
     symbolic: Sequence[str] = (),
     exact_tables: bool = False,
-    plain_numbers: bool = False,
+    precision: Precision | None = None,
 ) -> Mechanism:
     """Read a mechanism file of any format (:func:`mechsing.reader.read_mechanism`, the
     one reader of every command); print its warnings (likely mistakes that are not
     errors), and with ``verbose`` what was done silently (axes normalised...).
-    ``exact_tables``: a ``dh`` table's frames exact (``condition``); ``plain_numbers``:
-    the file's plain numbers as PiRational, not sympy (a float analysis)."""
+    ``exact_tables``: a ``dh`` table's frames exact (``condition``).  ``precision``: the
+    command's ``--precision``; a float one (auto's first pass too) reads the file's plain
+    numbers as PiRational numbers, without sympy (mp and exact compute with sympy values,
+    and read them so)."""
     from mechsing.errors import working_on
     from mechsing.reader import read_mechanism
 
+    plain = precision is not None and precision.mode in ("float", "auto")
     with working_on(file=path if isinstance(path, str) else path.path):
         mech = read_mechanism(
-            path, symbolic=symbolic, exact_tables=exact_tables, plain_numbers=plain_numbers
+            path, symbolic=symbolic, exact_tables=exact_tables, plain_numbers=plain
         )
     for warning in mech.warnings:
         print(f"mechsing: warning: {warning}", file=sys.stderr)

@@ -111,7 +111,9 @@ def run(args: argparse.Namespace) -> int:
         from mechsing.adhoc import set_start
 
         mech = apply_set(
-            apply_scene(load_mechanism(args.file, args.verbose), args, args.file),
+            apply_scene(
+                load_mechanism(args.file, args.verbose, precision=args.prec), args, args.file
+            ),
             args.set_values,
             args.from_config if args.set_values else None,  # without --set: the sweep's start
             args.file,

@@ -13,13 +13,15 @@ the classes the full analysis found at its classified points.
 from __future__ import annotations
 
 import itertools
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import networkx as nx
 import numpy as np
 
 from mechsing.sweeps.results import LocatedSingularity, Locus
 from mechsing.sweeps.settings import SWEEP_MERGE_RTOL
+
+if TYPE_CHECKING:  # networkx is imported where a grid's loci are drawn (0.17 s at start-up)
+    import networkx as nx
 
 __all__ = ["loci_of"]
 
@@ -45,6 +47,8 @@ def _edges(p: LocatedSingularity, xs: np.ndarray, ys: np.ndarray) -> list[tuple[
 
 def loci_of(run: Any, located: list[LocatedSingularity]) -> list[Locus]:
     """The loci of a grid sweep (``run``: its SweepRun) through its located points."""
+    import networkx as nx
+
     xs = np.sort(run.vars[0].values)
     ys = np.sort(run.vars[1].values)
     out: list[Locus] = []
@@ -163,6 +167,8 @@ def _chains(g: nx.Graph) -> list[tuple[list[int], bool]]:
 
 def _walk(g: nx.Graph) -> tuple[list[int], bool]:
     """The points of a connected piece in order along it (from an end when it has one)."""
+    import networkx as nx
+
     ends = [v for v in g.nodes if g.degree(v) == 1]
     start = ends[0] if ends else min(g.nodes)
     order = list(nx.dfs_preorder_nodes(g, start))
