@@ -25,6 +25,7 @@ from mechsing.formats.dh import expand_dh
 from mechsing.formats.xmlsafe import MAX_XML_BYTES
 from mechsing.model import Mechanism, loads
 from mechsing.model.loader import read_text
+from mechsing.numeric import Precision, parse_precision
 from mechsing.yamlnodes import MAX_FILE_BYTES
 
 __all__ = ["LARGEST_FILE", "Source", "mechanism_from_text", "read_mechanism", "read_source"]
@@ -67,7 +68,7 @@ def read_mechanism(
     source: str | Path | Source,
     symbolic: Collection[str] = (),
     exact_tables: bool = False,
-    plain_numbers: bool = False,
+    precision: Precision | str | None = None,
 ) -> Mechanism:
     """The mechanism of a file of any format mechsing reads (YAML or JSON, a ``dh``
     table, URDF, MJCF), with its ``warnings`` and ``notes``.
@@ -75,10 +76,15 @@ def read_mechanism(
     ``symbolic`` names parameters of the file to keep as symbols
     (:class:`~mechsing.model.parameters.ParameterSymbol`), for symbolic conditions;
     ``exact_tables`` has a ``dh`` table's frames computed exactly (as symbolic
-    conditions need), not in floats; ``plain_numbers`` keeps the file's rationals times
-    powers of pi as :class:`~mechsing.numeric.pirational.PiRational` numbers instead of
-    sympy values (what a float analysis reads: it then imports no sympy).
+    conditions need), not in floats.  ``precision``: the precision the mechanism is read
+    for.  A float one, or auto (whose first pass is float), keeps the file's rationals
+    times powers of pi as :class:`~mechsing.numeric.pirational.PiRational` numbers instead
+    of sympy values (a float analysis then imports no sympy; an exact or mp computation
+    that needs one converts it); ``mp:N``, ``exact`` and None (the default: any use) read
+    sympy values.
     Raises :class:`~mechsing.errors.MechanismError` for every problem of the file."""
+    prec = parse_precision(precision) if isinstance(precision, str) else precision
+    plain_numbers = prec is not None and prec.mode in ("float", "auto")
     src = source if isinstance(source, Source) else read_source(source)
     expand = partial(expand_dh, keep_exact=True) if exact_tables else expand_dh
     return loads(

@@ -93,7 +93,11 @@ def analyze(
     """
     if time_limit is not None:
         check_time_limit(time_limit)
-    mech = mechanism if isinstance(mechanism, Mechanism) else read_mechanism(mechanism)
+    mech = (
+        mechanism
+        if isinstance(mechanism, Mechanism)
+        else read_mechanism(mechanism, precision=precision)
+    )
     with working_on(file=mech.path or mech.name):
         return _analyze(mech, configs, precision, time_limit, progress)
 

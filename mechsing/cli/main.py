@@ -187,16 +187,14 @@ def load_mechanism(
     one reader of every command); print its warnings (likely mistakes that are not
     errors), and with ``verbose`` what was done silently (axes normalised...).
     ``exact_tables``: a ``dh`` table's frames exact (``condition``).  ``precision``: the
-    command's ``--precision``; a float one (auto's first pass too) reads the file's plain
-    numbers as PiRational numbers, without sympy (mp and exact compute with sympy values,
-    and read them so)."""
+    command's ``--precision``, which decides how the file's plain numbers are read
+    (:func:`~mechsing.reader.read_mechanism`)."""
     from mechsing.errors import working_on
     from mechsing.reader import read_mechanism
 
-    plain = precision is not None and precision.mode in ("float", "auto")
     with working_on(file=path if isinstance(path, str) else path.path):
         mech = read_mechanism(
-            path, symbolic=symbolic, exact_tables=exact_tables, plain_numbers=plain
+            path, symbolic=symbolic, exact_tables=exact_tables, precision=precision
         )
     for warning in mech.warnings:
         print(f"mechsing: warning: {warning}", file=sys.stderr)

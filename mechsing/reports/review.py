@@ -166,7 +166,7 @@ def report(
     mech = (
         mechanism_or_path
         if isinstance(mechanism_or_path, Mechanism)
-        else read_mechanism(mechanism_or_path)
+        else read_mechanism(mechanism_or_path, precision=precision)
     )
     prec = parse_precision(precision) if isinstance(precision, str) else precision
     result = analyze(mech, list(configs) if configs else None, prec, time_limit=time_limit)

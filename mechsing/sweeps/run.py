@@ -152,7 +152,11 @@ class SweepRun:
             check_time_limit(time_limit)
         self.time_limit = time_limit
         self._result: SweepResult | None = None
-        mech = mechanism if isinstance(mechanism, Mechanism) else read_mechanism(mechanism)
+        mech = (
+            mechanism
+            if isinstance(mechanism, Mechanism)
+            else read_mechanism(mechanism, precision=precision)
+        )
         self.mechanism = mech
         prec = parse_precision(precision) if isinstance(precision, str) else precision
         sweep_precision(prec)  # policy: exact mode takes exact data only
