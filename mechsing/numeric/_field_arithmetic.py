@@ -20,8 +20,17 @@ class DomainArithmetic:
     """The field's own arithmetic (sympy's domain elements) in :func:`mechsing.numeric.field._eliminate`'s terms."""
 
     def __init__(self, K: Any) -> None:
+        self.K = K
         self.one = K.one
+        self.zero = K.zero
         self.is_zero = K.is_zero
+
+    def rational(self, p: int, q: int) -> Any:
+        return self.K.convert_from(_domains.QQ(p, q), _domains.QQ)
+
+    @staticmethod
+    def add(a: Any, b: Any) -> Any:
+        return a + b
 
     @staticmethod
     def vector(x: Any) -> Any:
@@ -74,6 +83,17 @@ class IntegerArithmetic:
         self.E = math.lcm(*(f.denominator for row in table for f in row)) if table else 1
         self.table = [[int(f * self.E) for f in row] for row in table]
         self.one: Vector = ((1,) + (0,) * (d - 1), 1)
+        self.zero: Vector = ((0,) * d, 1)
+
+    def rational(self, p: int, q: int) -> Vector:
+        """The rational ``p / q`` (q > 0, in lowest terms)."""
+        return ((p,) + (0,) * (self.d - 1), q)
+
+    def add(self, a: Vector, b: Vector) -> Vector:
+        (xs, qa), (ys, qb) = a, b
+        if qa == qb:
+            return self._cancel([u + v for u, v in zip(xs, ys, strict=True)], qa)
+        return self._cancel([u * qb + v * qa for u, v in zip(xs, ys, strict=True)], qa * qb)
 
     def vector(self, x: Any) -> Vector:
         coeffs = x.to_list()[::-1]

@@ -127,8 +127,10 @@ def number_field(values: list[Any]) -> tuple[Any, list[Any]] | None:
     if fit is None:
         return None
     K, images = fit
+    ar = arithmetic(K)
+    numbers = {g: ar.vector(e) for g, e in images.items()}
     try:
-        elements = {v: _evaluate(K, images, v) for v in distinct}
+        elements = {v: ar.element(_evaluate(ar, numbers, v)) for v in distinct}
     except (KeyError, ZeroDivisionError, NotImplementedError):
         return None
     return K, [elements[v] for v in vals]
@@ -266,31 +268,31 @@ def _quadratic_basis(gens: tuple[Any, ...]) -> dict[Any, tuple[Any, list[Any]]]:
     return dependent
 
 
-def _evaluate(K: Any, images: dict[Any, Any], x: Any) -> Any:
+def _evaluate(ar: Any, images: dict[Any, Any], x: Any) -> Any:
     """The element of K that the expression ``x`` (rationals, the radicals of
-    ``images``, +, *, integer powers) denotes: exact arithmetic in K, no minimal
-    polynomial per value."""
+    ``images``, +, *, integer powers) denotes, in the numbers of ``ar`` (:func:`arithmetic`
+    of K): exact arithmetic in K, no minimal polynomial per value."""
     if x.is_Rational:
-        return K.convert_from(_domains.QQ.from_sympy(x), _domains.QQ)
+        return ar.rational(int(x.p), int(x.q))
     if x.is_Add:
-        total = K.zero
+        total = ar.zero
         for a in x.args:
-            total = total + _evaluate(K, images, a)
+            total = ar.add(total, _evaluate(ar, images, a))
         return total
     if x.is_Mul:
-        prod = K.one
+        prod = ar.one
         for a in x.args:
-            prod = prod * _evaluate(K, images, a)
+            prod = ar.mul(prod, _evaluate(ar, images, a))
         return prod
     if x.is_Pow and x.exp.is_Integer:
-        base = _evaluate(K, images, x.base)
+        base = _evaluate(ar, images, x.base)
         e = int(x.exp)
         if e < 0:
-            base = K.one / base
+            base = ar.revert(base)
             e = -e
-        out = K.one
+        out = ar.one
         for _ in range(e):
-            out = out * base
+            out = ar.mul(out, base)
         return out
     return images[x]
 
@@ -357,8 +359,10 @@ class FieldEchelon:
     D: DomainMatrix
     pivots: list[int]
     pivot_elements: list[Any]
-    #: the rows of the elimination (with division) that hold the pivots, in order
+    #: the rows of the elimination (with division) that hold the pivots, in order, in the
+    #: numbers of ``arithmetic`` (:func:`mechsing.numeric._field_arithmetic.arithmetic`)
     rows: list[list[Any]] | None = None
+    arithmetic: Any = None
 
     @property
     def K(self) -> Any:
@@ -371,21 +375,24 @@ class FieldEchelon:
         if self.rows is None:
             R, piv = self.D.rref()
             return [list(r) for r in R.to_list()[: len(piv)]]
-        K = self.K
+        ar = self.arithmetic
         out = [list(r) for r in self.rows]
         for i in range(len(out) - 1, -1, -1):
             c = self.pivots[i]
             p = out[i][c]
-            if p != K.one:
+            if p != ar.one:
                 # one inversion per row (a division in K inverts its divisor each time)
-                inv = K.one / p
-                out[i] = [x * inv if x else x for x in out[i]]
+                inv = ar.revert(p)
+                out[i] = [x if ar.is_zero(x) else ar.mul(x, inv) for x in out[i]]
             row = out[i]
             for k in range(i):
                 a = out[k][c]
-                if a:
-                    out[k] = [x - a * y if y else x for x, y in zip(out[k], row, strict=True)]
-        return out
+                if not ar.is_zero(a):
+                    out[k] = [
+                        x if ar.is_zero(y) else ar.sub_mul(x, a, y)
+                        for x, y in zip(out[k], row, strict=True)
+                    ]
+        return [[ar.element(x) for x in r] for r in out]
 
     def pivot_values(self) -> list[Any]:
         """The pivot values as sympy numbers."""
@@ -425,9 +432,7 @@ def _echelon(D: DomainMatrix) -> FieldEchelon:
     ar = arithmetic(K)
     rows = [[ar.vector(x) for x in r] for r in D.to_list()]
     pivots, values, kept = _eliminate(ar, rows, m, n)
-    return FieldEchelon(
-        D, pivots, [ar.element(v) for v in values], [[ar.element(v) for v in r] for r in kept]
-    )
+    return FieldEchelon(D, pivots, [ar.element(v) for v in values], kept, ar)
 
 
 def _eliminate(
