@@ -20,7 +20,10 @@ This module owns:
 * :func:`domain_matrix`, :func:`field_echelon`, :func:`field_null_space`,
   :func:`field_row_space`, :func:`field_solve`, :func:`field_product`: exact linear algebra on object arrays of
   sympy numbers through :class:`sympy.polys.matrices.DomainMatrix` over their field
-  (None when the entries have no field: the caller keeps its sympy path).
+  (None when the entries have no field: the caller keeps its sympy path); the
+  elimination, the square solve and the evaluation into the field compute in
+  :func:`mechsing.numeric._field_arithmetic.arithmetic`'s numbers (integer coefficient
+  vectors in an algebraic field without python-flint).
 """
 
 from __future__ import annotations
