@@ -175,6 +175,7 @@ NUMERIC_ORDER = [
     "lazy",
     "pirational",
     "_mp",
+    "_field_arithmetic",
     "field",
     "backend",
     "precision",

@@ -130,6 +130,84 @@ def test_field_echelon_is_sympys() -> None:
             assert all(sympy.simplify(a - b) == 0 for a, b in zip(u, v, strict=True))
 
 
+@pytest.mark.parametrize(
+    "gens",
+    [
+        # degree 8, a minimal polynomial with integer coefficients
+        (sympy.sqrt(2), sympy.sqrt(3), sympy.sqrt(5)),
+        # primitive element sqrt(7)/3: minimal polynomial x^2 - 7/9 (the table's denominator)
+        (sympy.sqrt(7) / 3,),
+        (sympy.cbrt(2),),
+    ],
+)
+def test_integer_vectors_eliminate_as_the_field(gens) -> None:
+    """The elimination on integer coefficient vectors gives the pivots, pivot values and
+    rows of the elimination on the field's own elements, element for element; and a
+    product, an inverse and ``x - f y`` are the field's."""
+    import random
+
+    from sympy.polys.domains import QQ
+
+    from mechsing.numeric._field_arithmetic import DomainArithmetic, IntegerArithmetic
+    from mechsing.numeric.field import _eliminate, domain_matrix
+
+    K = QQ.algebraic_field(*gens)
+    ints = IntegerArithmetic(K)
+    rng = random.Random(2)
+    terms = [1, *gens, gens[0] ** 2, sympy.prod(gens)]
+
+    def element() -> object:
+        if rng.random() < 0.3:
+            return 0
+        return sum(sympy.Rational(rng.randint(-9, 9), rng.randint(1, 6)) * t for t in terms)
+
+    A = np.array([[element() for _ in range(7)] for _ in range(6)], dtype=object)
+    A[4] = A[0] * gens[0] + A[1] * sympy.Rational(3, 7)  # a dependent row
+    A[:, 2] = 0  # a zero column
+    D = domain_matrix(A).convert_to(K)
+    rows = [list(r) for r in D.to_list()]
+    want = _eliminate(DomainArithmetic(K), [list(r) for r in rows], *D.shape)
+    pivots, values, kept = _eliminate(ints, [[ints.vector(x) for x in r] for r in rows], *D.shape)
+    assert pivots == want[0] and len(pivots) == 5
+    assert [ints.element(v) for v in values] == want[1]
+    assert [[ints.element(v) for v in r] for r in kept] == want[2]
+    x, f, y = rows[0][0], rows[1][1], rows[3][3]
+    vx, vf, vy = ints.vector(x), ints.vector(f), ints.vector(y)
+    assert ints.element(ints.mul(vf, vy)) == f * y
+    assert ints.element(ints.revert(vf)) == K.one / f
+    assert ints.element(ints.sub_mul(vx, vf, vy)) == x - f * y
+    assert ints.element(ints.sub_mul(vx, ints.one, vx)) == K.zero
+
+
+@pytest.mark.parametrize("gens", [(sympy.sqrt(2), sympy.sqrt(3)), (sympy.sqrt(7) / 3,)])
+def test_field_solve_is_lu_solve(gens) -> None:
+    """The solve on integer vectors is ``DomainMatrix.lu_solve``'s solution element for
+    element, and raises as it does on a singular matrix."""
+    import random
+
+    from sympy.polys.matrices.exceptions import DMNonInvertibleMatrixError
+
+    from mechsing.numeric.field import _solve, domain_matrix
+
+    rng = random.Random(3)
+    terms = [1, *gens, sympy.prod(gens)]
+
+    def element() -> object:
+        if rng.random() < 0.3:
+            return 0
+        return sum(sympy.Rational(rng.randint(-9, 9), rng.randint(1, 6)) * t for t in terms)
+
+    A = np.array([[element() for _ in range(8)] for _ in range(8)], dtype=object)
+    B = np.array([[element() for _ in range(2)] for _ in range(8)], dtype=object)
+    D = domain_matrix(np.concatenate([A, B], axis=1))
+    Am, Bm = D[:, :8], D[:, 8:]
+    assert _solve(Am, Bm) == Am.lu_solve(Bm).to_list()
+    A[5] = A[1] * gens[0]
+    D = domain_matrix(np.concatenate([A, B], axis=1))
+    with pytest.raises(DMNonInvertibleMatrixError):
+        _solve(D[:, :8], D[:, 8:])
+
+
 # ============================================================================ Bennett closure
 
 

@@ -58,6 +58,28 @@ def test_field_product_is_the_matrix_product() -> None:
             assert sympy.simplify(got[i, j] - want[i, j]) == 0
 
 
+@pytest.mark.parametrize("radical", [S2 * S3 + S5, sympy.Rational(1, 3)])
+def test_field_product_sums_before_reducing(radical) -> None:
+    """Products summed before one reduction (and zero factors skipped) give sympy's
+    matrix product: a zero row, a zero column, sums that cancel to zero and to a
+    rational, in a degree-8 field and in QQ."""
+    r = radical
+    A = np.array(
+        [[0, 0, 0], [r, r, 1], [r**2, 2, r], [sympy.Rational(-5, 7), r**3, 0]], dtype=object
+    )
+    B = np.array([[1, 0, r], [-1, 0, -r], [0, 0, 3]], dtype=object)
+    got = field_product(A, B)
+    want = sympy.Matrix(A.tolist()) * sympy.Matrix(B.tolist())
+    assert got.shape == (4, 3)
+    for i in range(4):
+        for j in range(3):
+            assert sympy.expand(got[i, j] - want[i, j]) == 0
+    assert all(x == 0 for x in got[0]) and all(x == 0 for x in got[:, 1])
+    # r - r and r^2 - r^2 + 3: sums that cancel, to zero and to a rational
+    assert got[1, 0] == 0
+    assert got[1, 2] == 3
+
+
 def test_field_float_is_the_value_to_the_last_digit() -> None:
     vals = [
         S2 + S3 / 7,

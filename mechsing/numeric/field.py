@@ -20,7 +20,10 @@ This module owns:
 * :func:`domain_matrix`, :func:`field_echelon`, :func:`field_null_space`,
   :func:`field_row_space`, :func:`field_solve`, :func:`field_product`: exact linear algebra on object arrays of
   sympy numbers through :class:`sympy.polys.matrices.DomainMatrix` over their field
-  (None when the entries have no field: the caller keeps its sympy path).
+  (None when the entries have no field: the caller keeps its sympy path); the
+  elimination, the square solve and the evaluation into the field compute in
+  :func:`mechsing.numeric._field_arithmetic.arithmetic`'s numbers (integer coefficient
+  vectors in an algebraic field without python-flint).
 """
 
 from __future__ import annotations
@@ -31,6 +34,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from mechsing.numeric._field_arithmetic import arithmetic, integer_arithmetic
 from mechsing.numeric.lazy import LazyModule, mpmath, sympy
 
 if TYPE_CHECKING:
@@ -126,8 +130,10 @@ def number_field(values: list[Any]) -> tuple[Any, list[Any]] | None:
     if fit is None:
         return None
     K, images = fit
+    ar = arithmetic(K)
+    numbers = {g: ar.vector(e) for g, e in images.items()}
     try:
-        elements = {v: _evaluate(K, images, v) for v in distinct}
+        elements = {v: ar.element(_evaluate(ar, numbers, v)) for v in distinct}
     except (KeyError, ZeroDivisionError, NotImplementedError):
         return None
     return K, [elements[v] for v in vals]
@@ -265,31 +271,31 @@ def _quadratic_basis(gens: tuple[Any, ...]) -> dict[Any, tuple[Any, list[Any]]]:
     return dependent
 
 
-def _evaluate(K: Any, images: dict[Any, Any], x: Any) -> Any:
+def _evaluate(ar: Any, images: dict[Any, Any], x: Any) -> Any:
     """The element of K that the expression ``x`` (rationals, the radicals of
-    ``images``, +, *, integer powers) denotes: exact arithmetic in K, no minimal
-    polynomial per value."""
+    ``images``, +, *, integer powers) denotes, in the numbers of ``ar`` (:func:`arithmetic`
+    of K): exact arithmetic in K, no minimal polynomial per value."""
     if x.is_Rational:
-        return K.convert_from(_domains.QQ.from_sympy(x), _domains.QQ)
+        return ar.rational(int(x.p), int(x.q))
     if x.is_Add:
-        total = K.zero
+        total = ar.zero
         for a in x.args:
-            total = total + _evaluate(K, images, a)
+            total = ar.add(total, _evaluate(ar, images, a))
         return total
     if x.is_Mul:
-        prod = K.one
+        prod = ar.one
         for a in x.args:
-            prod = prod * _evaluate(K, images, a)
+            prod = ar.mul(prod, _evaluate(ar, images, a))
         return prod
     if x.is_Pow and x.exp.is_Integer:
-        base = _evaluate(K, images, x.base)
+        base = _evaluate(ar, images, x.base)
         e = int(x.exp)
         if e < 0:
-            base = K.one / base
+            base = ar.revert(base)
             e = -e
-        out = K.one
+        out = ar.one
         for _ in range(e):
-            out = out * base
+            out = ar.mul(out, base)
         return out
     return images[x]
 
@@ -356,8 +362,10 @@ class FieldEchelon:
     D: DomainMatrix
     pivots: list[int]
     pivot_elements: list[Any]
-    #: the rows of the elimination (with division) that hold the pivots, in order
+    #: the rows of the elimination (with division) that hold the pivots, in order, in the
+    #: numbers of ``arithmetic`` (:func:`mechsing.numeric._field_arithmetic.arithmetic`)
     rows: list[list[Any]] | None = None
+    arithmetic: Any = None
 
     @property
     def K(self) -> Any:
@@ -370,21 +378,24 @@ class FieldEchelon:
         if self.rows is None:
             R, piv = self.D.rref()
             return [list(r) for r in R.to_list()[: len(piv)]]
-        K = self.K
+        ar = self.arithmetic
         out = [list(r) for r in self.rows]
         for i in range(len(out) - 1, -1, -1):
             c = self.pivots[i]
             p = out[i][c]
-            if p != K.one:
+            if p != ar.one:
                 # one inversion per row (a division in K inverts its divisor each time)
-                inv = K.one / p
-                out[i] = [x * inv if x else x for x in out[i]]
+                inv = ar.revert(p)
+                out[i] = [x if ar.is_zero(x) else ar.mul(x, inv) for x in out[i]]
             row = out[i]
             for k in range(i):
                 a = out[k][c]
-                if a:
-                    out[k] = [x - a * y if y else x for x, y in zip(out[k], row, strict=True)]
-        return out
+                if not ar.is_zero(a):
+                    out[k] = [
+                        x if ar.is_zero(y) else ar.sub_mul(x, a, y)
+                        for x, y in zip(out[k], row, strict=True)
+                    ]
+        return [[ar.element(x) for x in r] for r in out]
 
     def pivot_values(self) -> list[Any]:
         """The pivot values as sympy numbers."""
@@ -421,7 +432,18 @@ def echelon_form(A: Any) -> FieldEchelon | None:
 def _echelon(D: DomainMatrix) -> FieldEchelon:
     K = D.domain
     m, n = D.shape
-    rows = [list(r) for r in D.to_list()]
+    ar = arithmetic(K)
+    rows = [[ar.vector(x) for x in r] for r in D.to_list()]
+    pivots, values, kept = _eliminate(ar, rows, m, n)
+    return FieldEchelon(D, pivots, [ar.element(v) for v in values], kept, ar)
+
+
+def _eliminate(
+    K: Any, rows: list[list[Any]], m: int, n: int
+) -> tuple[list[int], list[Any], list[list[Any]]]:
+    """The elimination of :func:`field_echelon` on ``rows`` (changed in place) in the
+    arithmetic ``K`` (:class:`DomainArithmetic` or :class:`IntegerArithmetic`): pivot columns,
+    pivot values and the rows holding the pivots."""
     scale = [K.one] * m
     pivots: list[int] = []
     values: list[Any] = []
@@ -436,7 +458,7 @@ def _echelon(D: DomainMatrix) -> FieldEchelon:
         scale[pr], scale[off] = scale[off], scale[pr]
         prow = rows[pr]
         t = prow[col]
-        pv = scale[pr] * t
+        pv = K.mul(scale[pr], t)
         inv = None  # 1 / t, once per pivot (the same element as each a / t, in K)
         # the pivot row's non-zero columns: x - f * 0 is x, so only these change
         live = [j for j in range(col, n) if not K.is_zero(prow[j])]
@@ -446,15 +468,15 @@ def _echelon(D: DomainMatrix) -> FieldEchelon:
             if K.is_zero(a):
                 continue
             if inv is None:
-                inv = K.one / t
-            f = a * inv
+                inv = K.revert(t)
+            f = K.mul(a, inv)
             for j in live:
-                row[j] = row[j] - f * prow[j]
-            scale[r] = scale[r] * pv
+                row[j] = K.sub_mul(row[j], f, prow[j])
+            scale[r] = K.mul(scale[r], pv)
         pivots.append(col)
         values.append(pv)
         pr += 1
-    return FieldEchelon(D, pivots, values, rows[:pr])
+    return pivots, values, rows[:pr]
 
 
 def field_echelon(A: Any) -> tuple[list[int], list[Any], list[list[Any]]] | None:
@@ -552,12 +574,69 @@ def field_product(A: Any, B: Any) -> np.ndarray | None:
     if fit is None:
         return None
     K, els = fit
-    Da = _matrices.DomainMatrix([els[i * k : (i + 1) * k] for i in range(m)], (m, k), K)
     at = m * k
-    Db = _matrices.DomainMatrix([els[at + i * n : at + (i + 1) * n] for i in range(k)], (k, n), K)
-    rows = (Da * Db).to_list()
+    rows = _matmul(
+        K, [els[i * k : (i + 1) * k] for i in range(m)], [els[at + j :: n] for j in range(n)]
+    )
     out = np.array([[K.to_sympy(x) for x in row] for row in rows], dtype=object)
     return out.reshape(m, n)
+
+
+def _matmul(K: Any, rows: list[list[Any]], cols: list[list[Any]]) -> list[list[Any]]:
+    """The product of a matrix over K given by its rows and one given by its columns
+    (elements of K): each entry the sum of the products of its non-zero factors.  In an
+    algebraic field the products are polynomials in the primitive element summed before
+    one reduction modulo the minimal polynomial per entry (the normal form of the sum:
+    the element ``DomainMatrix``'s product, which reduces each product, gives)."""
+    if not K.is_AlgebraicField:
+        out = []
+        for row in rows:
+            live = [(i, a) for i, a in enumerate(row) if a]
+            out.append([sum((a * col[i] for i, a in live if col[i]), K.zero) for col in cols])
+        return out
+    mod = K.one.mod_to_DMP()
+    dom = K.one.dom
+    polys = [[c.to_DMP() if c else None for c in col] for col in cols]
+    result = []
+    for row in rows:
+        live = [(i, a.to_DMP()) for i, a in enumerate(row) if a]
+        line = []
+        for col in polys:
+            acc = None
+            for i, a in live:
+                b = col[i]
+                if b is not None:
+                    acc = a.mul(b) if acc is None else acc.add(a.mul(b))
+            line.append(K.zero if acc is None else K.dtype.new(acc.rem(mod), mod, dom))
+        result.append(line)
+    return result
+
+
+def _solve(A: DomainMatrix, B: DomainMatrix) -> list[list[Any]]:
+    """X with ``A X = B`` (A square, invertible) as rows of elements of the field.  In an
+    algebraic field on Python or gmpy2 rationals: elimination on ``[A | B]``
+    (:func:`_eliminate` on :func:`integer_arithmetic`'s vectors), then back substitution,
+    the unique solution; else, or when A is singular, ``A.lu_solve(B)`` (which raises)."""
+    ar = integer_arithmetic(A.domain)
+    if ar is None:
+        return [list(r) for r in A.lu_solve(B).to_list()]
+    n, k = A.shape[0], B.shape[1]
+    rows = [[ar.vector(x) for x in (*a, *b)] for a, b in zip(A.to_list(), B.to_list(), strict=True)]
+    pivots, _, t = _eliminate(ar, rows, n, n + k)
+    if pivots[:n] != list(range(n)):
+        return [list(r) for r in A.lu_solve(B).to_list()]
+    X: list[list[Any]] = [[]] * n
+    for i in range(n - 1, -1, -1):
+        inv = ar.revert(t[i][i])
+        line = []
+        for c in range(k):
+            acc = t[i][n + c]
+            for j in range(i + 1, n):
+                if not ar.is_zero(t[i][j]):
+                    acc = ar.sub_mul(acc, t[i][j], X[j][c])
+            line.append(ar.mul(acc, inv))
+        X[i] = line
+    return [[ar.element(v) for v in row] for row in X]
 
 
 def _exact_zero(x: Any) -> bool:
@@ -587,13 +666,11 @@ def field_solve(A: Any, b: Any) -> np.ndarray | None:
     if live:
         Am = D[:, :n]
         bm = D[:, n:]
-        if m == n:
-            x = Am.lu_solve(bm)
-        else:
+        if m != n:
             At = Am.transpose()
-            x = (At * Am).lu_solve(At * bm)
-        K = x.domain
-        for i, row in enumerate(x.to_list()):
+            Am, bm = At * Am, At * bm
+        K = D.domain
+        for i, row in enumerate(_solve(Am, bm)):
             for j, v in zip(live, row, strict=True):
                 out[i, j] = K.to_sympy(v)
     return out[:, 0] if vector else out
