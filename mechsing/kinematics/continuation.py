@@ -21,7 +21,7 @@ import numpy as np
 from mechsing.errors import ClosureError, UserError
 from mechsing.kinematics.closed import ClosedConfiguration, shown_residual
 from mechsing.kinematics.model import KinematicModel
-from mechsing.kinematics.newton import finite_system, increment, scaled_system
+from mechsing.kinematics.newton import finite_system, increment, scaled_jacobian, scaled_system
 from mechsing.kinematics.paths.folds import land_on_fold, leave_fold
 from mechsing.kinematics.paths.steps import closure_matrix, correct, same_branch
 from mechsing.kinematics.polish import MpPolisher, fold_mp
@@ -399,7 +399,7 @@ def _across_self_motion(
             return float(np.linalg.norm(np.asarray(to_float(scaled_system(m, x, False)[1]))))
 
     with m.precision.context():
-        Js, _ = scaled_system(m, q, False)
+        Js = scaled_jacobian(m, q, False)
         Js = Js.toarray() if hasattr(Js, "toarray") else Js
         A = np.asarray(to_float(m.precision.asarray(Js)[:, free]), dtype=float)
     here = residual(q)

@@ -2,7 +2,7 @@
 
 Owns :func:`newton_on_group` and its pieces: the commensurate Newton system
 (:func:`scaled_system`: closure Jacobian and chord residual twists, moved to the
-centroid, lengths over L), the map of a commensurate step back to joint
+centroid, lengths over L; :func:`scaled_jacobian`: the Jacobian alone), the map of a commensurate step back to joint
 increments (:func:`increment`), applied on the group by
 :meth:`KinematicModel.update`, and the linear solvers of the step (damped least
 squares and truncated pseudo-inverse in float, minimum-norm SVD at mp:N).
@@ -34,6 +34,7 @@ __all__ = [
     "increment",
     "mp_least_squares",
     "newton_on_group",
+    "scaled_jacobian",
     "scaled_system",
     "truncated_least_squares",
 ]
@@ -57,12 +58,18 @@ def scaled_system(m: KinematicModel, q: np.ndarray, sparse: bool = False) -> tup
     With ``sparse`` (a big float model, :attr:`KinematicModel.sparse_closure`) the
     Jacobian is a :mod:`scipy.sparse` matrix of the same numbers."""
     r = m.chord_twists(m.chord_residuals(q))
-    if sparse:
-        Js = m.sparse_closure_jacobian(q, m.frame)
-    else:
-        Js = m.scaled_closure_jacobian(q, m.frame)
+    Js = scaled_jacobian(m, q, sparse)
     rs = m.frame.stacked(r)
     return Js, rs
+
+
+def scaled_jacobian(m: KinematicModel, q: np.ndarray, sparse: bool = False) -> Any:
+    """The commensurate closure Jacobian of :func:`scaled_system` alone (the same
+    numbers), for a caller that does not use the residual: the residual twists (a
+    logarithm per chord) cost several times the Jacobian."""
+    if sparse:
+        return m.sparse_closure_jacobian(q, m.frame)
+    return m.scaled_closure_jacobian(q, m.frame)
 
 
 def increment(m: KinematicModel, free: np.ndarray, du: np.ndarray) -> np.ndarray:

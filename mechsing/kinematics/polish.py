@@ -14,7 +14,7 @@ import numpy as np
 
 from mechsing.kinematics.given import GivenValues
 from mechsing.kinematics.model import KinematicModel
-from mechsing.kinematics.newton import mp_least_squares, newton_on_group, scaled_system
+from mechsing.kinematics.newton import mp_least_squares, newton_on_group, scaled_jacobian
 from mechsing.kinematics.pose import PoseModel, pose_problem
 from mechsing.kinematics.protocol import ClosureModel
 from mechsing.kinematics.settings import POLISH_DIGITS_SPARE, POLISH_MAX_STEPS
@@ -153,7 +153,7 @@ def fold_mp(m: ClosureModel, q: np.ndarray, col: int) -> Polished | None:
         n = len(q)
         others = np.ones(n, dtype=bool)
         others[col] = False
-        Js, _ = scaled_system(m, q)
+        Js = scaled_jacobian(m, q)
         _U, _s, Vt = svd(m.precision.asarray(Js)[:, others])
         lost = np.asarray([abs(float(x)) for x in Vt[-1]])
         y = int(np.flatnonzero(others)[int(np.argmax(lost))])
@@ -178,7 +178,7 @@ def fold_mp(m: ClosureModel, q: np.ndarray, col: int) -> Polished | None:
             return Polished(out.q, out.residual, out.slow)
 
         def slope(qc: np.ndarray) -> Any:
-            J, _ = scaled_system(m, qc)
+            J = scaled_jacobian(m, qc)
             J = m.precision.asarray(J)
             return mp_least_squares(J[:, free], -J[:, y])[at]
 

@@ -454,8 +454,7 @@ def _io_findings(
                     d = replace(d, rank=None, note=RESTS_ON_UNDECIDED)
                 decisions.append(d)
             first = samples[idx[0]].q if len(samples) else None
-            generic_screws = None if first is None else fm.current_screws(first)
-            named_by = (cs.screws, generic_screws)
+            named_by = (cs.screws, first)
             findings.extend(_zfb(mech, fm, here, hv, generic, tprec, named_by))
     legs = ConstraintTest.of(mech, model).decide(cs, tprec)
     if legs is not None:
@@ -521,8 +520,9 @@ def _zfb(
     tprec: Precision,
     named_by: tuple[Any, Any] = (None, None),
 ) -> list[Finding]:
-    """The input/output findings at q (``named_by``: the SI screws at q and at a regular
-    sample, which name an output singularity whose moving joints show a pattern)."""
+    """The input/output findings at q (``named_by``: the SI screws at q and a regular
+    sample's coordinates, whose screws, computed only for an output finding, name an
+    output singularity whose moving joints show a pattern)."""
     findings: list[Finding] = []
     names = _coordinate_names(mech, fm)
     sp = here.spaces
@@ -567,7 +567,8 @@ def _zfb(
         if cls == "output" and named_by[0] is not None:
             # a dead centre of the output (a slider-crank driven by its slider): named as
             # the leg of a crank's is (an input singularity's leg has its serial finding)
-            name = moving_name(joints, names, named_by[0], named_by[1], float(L))
+            generic_screws = None if named_by[1] is None else fm.current_screws(named_by[1])
+            name = moving_name(joints, names, named_by[0], generic_screws, float(L))
         findings.append(
             MotionFinding(
                 cls,

@@ -24,7 +24,7 @@ from mechsing.analysis import analyze
 from mechsing.errors import UserError
 from mechsing.kinematics import Closer, KinematicModel
 from mechsing.kinematics.batch_newton import BatchClosure
-from mechsing.kinematics.newton import scaled_system
+from mechsing.kinematics.newton import scaled_jacobian
 from mechsing.kinematics.paths.problem import Problem
 from mechsing.kinematics.pose import PoseModel
 from mechsing.lie import log_so3
@@ -182,7 +182,7 @@ def check_determined(plan: Plan, mech: Mechanism, variables: list[Variable]) -> 
                 + (f", such as the file's inputs ({inputs})" if inputs else "")
             )
         return
-    Js, _ = scaled_system(pb.cm, plan.z0)
+    Js = scaled_jacobian(pb.cm, plan.z0)
     free = ~pb.given
     A = Js[:, free]
     for v, c in zip(variables, plan.cols, strict=True):

@@ -288,7 +288,7 @@ class Refiner:
         point to about 1e-8 along the curve; the singular value is linear in it, so this
         places it to rounding.  The iterate with the smallest singular value among those
         that close to the sweep's tolerance (None: none does)."""
-        from mechsing.kinematics.newton import scaled_system
+        from mechsing.kinematics.newton import scaled_jacobian, scaled_system
 
         pb = self.problem
         cm, fr = pb.cm, pb.cm.float_frame
@@ -304,7 +304,7 @@ class Refiner:
             return np.asarray(cm.update(q, fr.rates_back(dd)), dtype=float)
 
         def unknowns_jacobian(q: np.ndarray) -> np.ndarray:
-            J, _ = scaled_system(cm, q)
+            J = scaled_jacobian(cm, q)
             return np.asarray(J, dtype=float)[:, fcols][:, unknowns]
 
         h = _FOLD_DIFFERENCE

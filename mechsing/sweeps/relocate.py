@@ -145,14 +145,14 @@ class Relocator:
         """The free coordinates at the float point z (the unknowns and the swept one),
         the swept one's place among them, the float closure model and its commensurate
         Jacobian on them there."""
-        from mechsing.kinematics.newton import scaled_system
+        from mechsing.kinematics.newton import scaled_jacobian
 
         pb = self.sweep.problem
         col = self.sweep.cols[0]
         free = ~np.asarray(pb.given, dtype=bool)
         free[col] = True
         fcols = np.flatnonzero(free)
-        Jf, _ = scaled_system(pb.cm, np.asarray(z, dtype=float))
+        Jf = scaled_jacobian(pb.cm, np.asarray(z, dtype=float))
         return fcols, int(fcols.tolist().index(col)), pb.cm, np.asarray(Jf, dtype=float)[:, fcols]
 
     def _fold(self, z: np.ndarray) -> np.ndarray | None:

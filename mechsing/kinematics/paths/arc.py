@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from mechsing.errors import ClosureError
-from mechsing.kinematics.newton import scaled_system
+from mechsing.kinematics.newton import scaled_jacobian, scaled_system
 from mechsing.kinematics.paths.crossing import locate_crossing
 from mechsing.kinematics.paths.folds import Fold, leave_fold
 from mechsing.kinematics.paths.problem import Problem
@@ -82,7 +82,7 @@ class Arc:
         """The unit commensurate tangent (free coordinates) at z, oriented along ``prev``
         (or with the swept value increasing in the path's direction); None when the
         curve is not one-dimensional there."""
-        Js, _ = scaled_system(self.cm, z)
+        Js = scaled_jacobian(self.cm, z)
         A = Js[:, self.free]
         _, s, Vt = dense_svd(A, full_matrices=True)
         rank = int(np.sum(s > SWEEP_CURVE_RANK_RTOL * (s[0] if len(s) else 1.0)))
@@ -356,7 +356,7 @@ def onto_branch(pb: Problem, z: np.ndarray, col: int, value: float) -> np.ndarra
     d = 1 if value > z[col] else -1
     arc = Arc(pb, col, d)
     z = np.asarray(z, dtype=float)
-    Js, _ = scaled_system(pb.cm, z)
+    Js = scaled_jacobian(pb.cm, z)
     _, s, Vt = dense_svd(Js[:, arc.free], full_matrices=True)
     K = Vt[int(np.sum(s > SWEEP_CURVE_RANK_RTOL * (s[0] if len(s) else 1.0))) :]
     if K.shape[0] < 2:
