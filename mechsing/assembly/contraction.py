@@ -9,8 +9,8 @@ rounding and on their variation over a box, in double precision.
 every operation in mpmath interval arithmetic).  In the Krawczyk operator
 ``K = m - Y f(m) + (I - Y f'(Z))(Z - m)`` the box's radius r (``MODE_CERTIFY_RADIUS``,
 1e-30) multiplies ``I - Y f'(Z)``, which only needs an upper bound B on its magnitude,
-entry by entry: B r must stay below r less ``|Y f(m)|``, so B of a few 1e-15 or 1e-2
-proves the same.  That bound, the n x n products of the test, is computed here in
+entry by entry: B r must stay below r less ``|Y f(m)|`` (about 1e-45 at a root refined
+to 50 digits), so a bound of 1e-15 or of 1e-2 proves the same box.  That bound, the n x n products of the test, is computed here in
 double precision with every rounding bounded (below); ``f(m)`` (where the root's
 digits matter) and ``Y f(m)`` stay in mpmath interval arithmetic at the working
 digits, as the generic definition has them.  The form answers True (proved) or None
@@ -18,7 +18,11 @@ digits, as the generic definition has them.  The form answers True (proved) or N
 
 The bound, for z in Z: ``|I - Y f'(z)| <= |I - Y J~| + |Y| (|J~ - f'(xc)| + |f'(z) -
 f'(xc)|)``, with xc the root rounded to double, ``J~`` the Jacobian evaluated at xc in
-double precision and Y a double inverse of ``J~`` (any Y serves Krawczyk's theorem).
+double precision and Y a double inverse of ``J~`` (any Y serves Krawczyk's theorem); the
+coefficients that are not rational are those of the interval functions' enclosures
+(``v +- 10^-(N - 5) (1 + |v|)`` at N digits, their half-widths added to the bound), so
+it holds for every system whose coefficients lie in them, as the generic test's proof
+does.
 Each term is bounded by the standard error analysis of floating-point arithmetic
 (Higham, Accuracy and Stability of Numerical Algorithms, 2002, ch. 3): a product of d
 factors and a sum of k terms carry a relative error at most ``gamma_{d+k}``, with
@@ -33,7 +37,7 @@ covers these roundings many times over.
 start"`` (generic definition: Newton's method at the working digits from the endpoint
 as it is, :func:`mechsing.assembly.certify.newton`): Newton's steps in double precision
 while they shrink, so that the steps at the working digits start at double precision's
-accuracy (two or three of them, rather than five or six from a continuation endpoint).
+accuracy (fewer of them than from a continuation endpoint).
 The root the working digits reach is the same; the digits' last places may differ.
 
 Owns :class:`TermArrays`, :func:`contraction_krawczyk` and :func:`double_newton`.
@@ -64,16 +68,24 @@ class TermArrays:
     """Polynomials in n unknowns as arrays: each term's coefficient (rounded to double),
     its exponents and the polynomial it belongs to."""
 
-    def __init__(self, terms: Sequence[dict[tuple[int, ...], Any]], n: int) -> None:
-        coeffs, exps, rows = [], [], []
+    def __init__(
+        self, terms: Sequence[dict[tuple[int, ...], Any]], n: int, pad: float = 0.0
+    ) -> None:
+        coeffs, exps, rows, slack = [], [], [], []
         for i, t in enumerate(terms):
             for mono, c in t.items():
                 coeffs.append(float(c))
                 exps.append(mono)
                 rows.append(i)
+                exact = isinstance(c, int) or getattr(c, "is_Rational", False)
+                slack.append(0.0 if exact else 2 * pad * (1 + abs(float(c))))
         self.n = n
         self.size = len(terms)
         self.coeffs = np.array(coeffs, dtype=float)
+        #: each coefficient's enclosure's half-width, above (0 for a rational one): the
+        #: interval functions enclose a coefficient that is not rational (a float standing
+        #: for an algebraic number) as ``v +- pad (1 + |v|)``, and so does the bound
+        self.slack = np.array(slack, dtype=float)
         self.exps = np.array(exps, dtype=np.int64).reshape(len(coeffs), n)
         self.rows = np.array(rows, dtype=np.int64)
         counts = np.bincount(self.rows, minlength=self.size) if coeffs else np.zeros(1)
@@ -94,6 +106,7 @@ class TermArrays:
             [self.exps[t] - np.eye(self.n, dtype=np.int64)[k] for k, t in enumerate(keep)]
         )
         out.rows = np.concatenate([self.rows[t] * self.n + k for k, t in enumerate(keep)])
+        out.slack = np.concatenate([self.slack[t] * self.exps[t, k] for k, t in enumerate(keep)])
         out.size = self.size * self.n
         counts = np.bincount(out.rows, minlength=out.size) if len(out.rows) else np.zeros(1)
         degree = int(out.exps.sum(axis=1).max()) if len(out.rows) else 0
@@ -122,9 +135,11 @@ class TermArrays:
             )
         return np.bincount(self.rows, terms, self.size)
 
-    def magnitudes(self, a: np.ndarray) -> np.ndarray:
-        """``sum |c| a^e`` for each polynomial (``a`` non-negative)."""
-        return np.bincount(self.rows, np.abs(self.coeffs) * self._monomials(a), self.size)
+    def magnitudes(self, a: np.ndarray, coeffs: np.ndarray | None = None) -> np.ndarray:
+        """``sum |c| a^e`` for each polynomial (``a`` non-negative; ``coeffs``: other
+        coefficients than the polynomials' own)."""
+        c = np.abs(self.coeffs if coeffs is None else coeffs)
+        return np.bincount(self.rows, c * self._monomials(a), self.size)
 
     def variation(self, x: np.ndarray, rho: np.ndarray) -> np.ndarray:
         """For each polynomial, a bound on ``|p(z) - p(x)|`` over ``|z - x| <= rho``
@@ -145,8 +160,10 @@ def _bound(jac: TermArrays, xc: np.ndarray, rho: np.ndarray) -> tuple[Any, Any] 
     except np.linalg.LinAlgError:
         return None
     eye = np.eye(n)
-    # |J~ - f'(xc)|: the evaluation's rounding; |f'(z) - f'(xc)|: the box's variation
+    # |J~ - f'(xc)|: the evaluation's rounding; |f'(z) - f'(xc)|: the box's variation;
+    # the coefficients' enclosures over the box
     err = jac.gamma * jac.magnitudes(np.abs(xc)).reshape(n, n)
+    err += jac.magnitudes(np.abs(xc) + rho, jac.slack).reshape(n, n) * (1 + jac.gamma)
     var = jac.variation(xc, rho).reshape(n, n) * (1 + jac.gamma)
     absY = np.abs(Y)
     g = (n + 2) * _U / (1 - (n + 2) * _U)  # I - Y J~ in double: n products and sums
