@@ -8,11 +8,17 @@ with ``Y`` an approximate inverse of ``f'(m)``, ``K = m - Y f(m) + (I - Y f'(Z))
 enclosed at the working precision plus guard digits, so the proof holds for the exact
 coefficients.
 
-Owns :func:`krawczyk` (and :func:`krawczyk_complex`, the same test on the real and
-imaginary parts of a complex root, and :func:`certified_roots`, every endpoint of a solve
-refined and so certified, :func:`apart`, their boxes disjoint), :func:`newton` (the refinement whose result it certifies) and
-:func:`singular_root` (a root no interval test can certify: a multiple root, polished,
-or a point of a curve of solutions, found by a local dimension test).
+Owns :func:`krawczyk` (on an :class:`IntervalSystem`, by :func:`krawczyk_box`, whose
+dispatch table ``"krawczyk test"`` holds the double-precision contraction bound of
+:mod:`mechsing.assembly.contraction`; :func:`krawczyk_complex`, the same test on the
+real and imaginary parts of a complex root; :func:`certified_roots`, every endpoint of a
+solve refined and so certified; :func:`apart`, their boxes disjoint), :func:`newton`
+(the refinement whose result it certifies; its first steps in double precision by the
+table ``"newton start"``), :func:`poly_terms` and :func:`polynomial_rows` (a
+polynomial's terms without sympy's coefficient domains, and polynomials evaluated from
+them in numpy) and :func:`singular_root` (a root no interval test can certify: a
+multiple root, polished, or a point of a curve of solutions, found by a local dimension
+test).
 """
 
 from __future__ import annotations
@@ -25,22 +31,28 @@ import mpmath
 import numpy as np
 import sympy
 
+from mechsing.assembly import contraction as _contraction  # noqa: F401 (its dispatch form)
 from mechsing.assembly.settings import (
     MODE_CERTIFY_RADIUS,
     MODE_CURVE_STEP,
     MODE_ENDPOINT_SINGULAR_RTOL,
     MODE_SINGULAR_DIGITS,
 )
+from mechsing.numeric import dispatch
 
 __all__ = [
+    "IntervalSystem",
     "interval_function",
     "krawczyk",
     "apart",
     "certified_roots",
     "conditioning",
+    "krawczyk_box",
     "krawczyk_complex",
     "local_dimension",
     "newton",
+    "poly_terms",
+    "polynomial_rows",
     "regular",
     "singular_root",
 ]
@@ -96,14 +108,48 @@ def krawczyk(
     before = mpmath.iv.dps
     mpmath.iv.dps = mpmath.mp.dps
     try:
-        return _krawczyk(*_interval_system(tuple(exprs), tuple(gens), mpmath.mp.dps), m, radius)
+        return krawczyk_box(_interval_system(tuple(exprs), tuple(gens), mpmath.mp.dps), m, radius)
     finally:
         mpmath.iv.dps = before
 
 
-def _krawczyk(f: Any, J: Any, m: Sequence[Any], radius: Any) -> bool:
-    """The Krawczyk test of the interval functions ``f`` and ``J`` (the system and its
-    Jacobian, row by row) in the box ``m +- radius`` (the interval context's digits set)."""
+class IntervalSystem:
+    """A square system for the Krawczyk test: ``f`` and ``J``, the system and its
+    Jacobian (row by row) as interval functions (each built on first use), and
+    ``arrays``, the Jacobian's terms as :class:`~mechsing.assembly.contraction.TermArrays`
+    (None where the system is not given by its terms)."""
+
+    def __init__(self, make: Any, jacobian: Any, arrays: Any = None) -> None:
+        self._make = (make, jacobian)
+        self._built: dict[int, Any] = {}
+        self.arrays = arrays
+
+    def _get(self, i: int) -> Any:
+        if i not in self._built:
+            self._built[i] = self._make[i]()
+        return self._built[i]
+
+    @property
+    def f(self) -> Any:
+        return self._get(0)
+
+    @property
+    def J(self) -> Any:
+        return self._get(1)
+
+
+#: the Krawczyk test's fast forms (:mod:`mechsing.assembly.contraction`)
+_KRAWCZYK = dispatch.table("krawczyk test", "mechsing.assembly.certify.krawczyk_box")
+
+
+def krawczyk_box(system: IntervalSystem, m: Sequence[Any], radius: Any) -> bool:
+    """The Krawczyk test of ``system`` in the box ``m +- radius`` (the interval context's
+    digits set): the table's fast form where it proves the box (it answers True or
+    None), else every operation in interval arithmetic."""
+    form = _KRAWCZYK.pick(system, m, radius)
+    if form is not None and form(system, m, radius):
+        return True
+    f, J = system.f, system.J
     n = len(m)
     # Y: the inverse of the Jacobian at the midpoint (floating, any approximation works)
     jm = J([mpmath.iv.mpf(x) for x in m])
@@ -135,23 +181,40 @@ def _krawczyk(f: Any, J: Any, m: Sequence[Any], radius: Any) -> bool:
 @functools.lru_cache(maxsize=8)
 def _interval_system(
     exprs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...], dps: int
-) -> tuple[Any, Any]:
+) -> IntervalSystem:
     """The system and its Jacobian as interval functions (built once per system and
     working digits: every root of one solve is certified with the same)."""
     terms = _terms(exprs, gens)
     if terms is not None:
         return _interval_terms(terms, len(gens))
-    jac = _jacobian(exprs, gens)
-    return interval_function(exprs, gens), interval_function(jac, gens)
+    return IntervalSystem(
+        lambda: interval_function(exprs, gens),
+        lambda: interval_function(_jacobian(exprs, gens), gens),
+    )
 
 
+def poly_terms(e: sympy.Expr, gens: Sequence[sympy.Symbol]) -> list[tuple[tuple[int, ...], Any]]:
+    """The terms of ``e`` as a polynomial in ``gens`` (exponents, coefficient; the
+    monomials in decreasing lexicographic order, as ``sympy.Poly(e, *gens).terms()``
+    lists them) with the coefficients as they stand: no coefficient domain is built
+    (a Float coefficient made sympy build a real field, and with it a new mpmath
+    context, for every polynomial: most of a small system's build).  Raises
+    ``sympy.PolynomialError`` where ``e`` is not a polynomial in ``gens``."""
+    from sympy.polys.polyutils import dict_from_expr
+
+    terms, _ = dict_from_expr(sympy.sympify(e), gens=tuple(gens))
+    out = sorted(((m, c) for m, c in terms.items() if c != 0), reverse=True)
+    return out or [((0,) * len(gens), sympy.Integer(0))]
+
+
+@functools.lru_cache(maxsize=16)
 def _terms(
     exprs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]
 ) -> list[dict[tuple[int, ...], Any]] | None:
     """Each expression's terms (exponents: coefficient) where every one is a polynomial
     in ``gens`` with real numbers for coefficients; else None."""
     try:
-        out = [dict(sympy.Poly(e, *gens).as_dict()) for e in exprs]
+        out = [dict(poly_terms(e, gens)) for e in exprs]
     except sympy.PolynomialError:
         return None
     if not gens or not all(c.is_number and c.is_extended_real for t in out for c in t.values()):
@@ -159,22 +222,46 @@ def _terms(
     return out
 
 
-def _interval_terms(terms: list[dict[tuple[int, ...], Any]], n: int) -> tuple[Any, Any]:
+def polynomial_rows(rows: Sequence[Sequence[sympy.Expr]], gens: Sequence[sympy.Symbol]) -> Any:
+    """A function of the values of ``gens`` (numpy numbers, float or complex) giving each
+    row of polynomials at them: from their terms where each is a polynomial with real
+    coefficients (no code generated), else by lambdify."""
+    from mechsing.assembly.contraction import TermArrays
+
+    arrays = []
+    for row in rows:
+        terms = _terms(tuple(row), tuple(gens))
+        if terms is None:
+            return sympy.lambdify(gens, [list(r) for r in rows], "numpy")
+        arrays.append(TermArrays(terms, len(gens)))
+    return lambda *z: [a.values(np.asarray(z)) for a in arrays]
+
+
+def _interval_terms(terms: list[dict[tuple[int, ...], Any]], n: int) -> IntervalSystem:
     """The polynomials of ``terms`` and their Jacobian as interval functions, evaluated term
     by term (no code generated: printing a Jacobian for lambdify, and sympy's polynomials
     and back, were most of a small system's certificate); the coefficients enclosed as
     :func:`interval_function` encloses them."""
+    from mechsing.assembly.contraction import TermArrays
+
     iv = mpmath.iv
-    pad = mpmath.mpf(10) ** (-(mpmath.mp.dps - 5))
+    dps = mpmath.mp.dps
+    pad = mpmath.mpf(10) ** (-(dps - 5))
 
     def enclose(c: Any) -> Any:
         if c.is_Rational:
             return iv.mpf(int(c.p)) / iv.mpf(int(c.q))
-        v = mpmath.mpf(sympy.N(c, mpmath.mp.dps + 10))
+        v = mpmath.mpf(sympy.N(c, dps + 10))
         return iv.mpf([v - pad * (1 + abs(v)), v + pad * (1 + abs(v))])
 
-    return _term_rows(terms, enclose, iv.mpf(0)), _term_rows(
-        _derivatives(terms, n), enclose, iv.mpf(0)
+    def rows(t: Any) -> Any:
+        with mpmath.workdps(dps):
+            return _term_rows(t, enclose, iv.mpf(0))
+
+    return IntervalSystem(
+        lambda: rows(terms),
+        lambda: rows(_derivatives(terms, n)),
+        TermArrays(terms, n, float(pad)).jacobian(),
     )
 
 
@@ -254,7 +341,7 @@ def krawczyk_complex(
     try:
         system = _realified_system(tuple(exprs), tuple(gens), mpmath.mp.dps)
         if system is not None:
-            return _krawczyk(*system, mid, radius)
+            return krawczyk_box(system, mid, radius)
     finally:
         mpmath.iv.dps = before
     real_exprs, real_gens = _realified(tuple(exprs), tuple(gens))
@@ -264,7 +351,7 @@ def krawczyk_complex(
 @functools.lru_cache(maxsize=8)
 def _realified_system(
     exprs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...], dps: int
-) -> tuple[Any, Any] | None:
+) -> IntervalSystem | None:
     """:func:`_realified`'s system and its Jacobian as interval functions, built from the
     polynomials' terms (each ``(a + i b)^e`` expanded: no sympy expansion); None where
     the expressions are not polynomials with real coefficients."""
@@ -339,9 +426,14 @@ def conditioning(
 ) -> float:
     """The Jacobian's least singular value over its largest at ``z`` (a continuation
     endpoint), in double precision."""
-    _, J = _functions(eqs, gens)
-    with mpmath.workdps(15):
-        A = np.array(J([_number(v) for v in z]).tolist(), dtype=complex)
+    arrays = _double_functions(tuple(eqs), tuple(gens))
+    if arrays is not None:  # from the terms, in double precision
+        n = len(gens)
+        A = arrays[1].values(np.array([complex(v) for v in z])).reshape(n, n)
+    else:
+        _, J = _functions(eqs, gens)
+        with mpmath.workdps(15):
+            A = np.array(J([_number(v) for v in z]).tolist(), dtype=complex)
     s = np.linalg.svd(A, compute_uv=False)
     return float(s[-1] / s[0]) if s[0] > 0 else 0.0
 
@@ -405,6 +497,9 @@ def newton(
     ``10^-dps`` (None when the Jacobian is singular on the way or the residual stays
     above ``10^-(dps/2)``: not a regular root)."""
     f, J = _functions(eqs, gens)
+    form = _NEWTON_START.pick(_double_functions(tuple(eqs), tuple(gens)), z)
+    if form is not None:
+        z = form(_double_functions(tuple(eqs), tuple(gens)), z)
     x = mpmath.matrix([_number(v) for v in z])
     last = mpmath.inf
     for _ in range(NEWTON_STEPS):
@@ -422,6 +517,27 @@ def newton(
     if mpmath.norm(f(x)) > mpmath.mpf(10) ** (-(dps // 2)):
         return None
     return list(x)
+
+
+#: Newton's start's fast forms (:mod:`mechsing.assembly.contraction`)
+_NEWTON_START = dispatch.table(
+    "newton start", "mechsing.assembly.certify.newton (from the endpoint as it is)"
+)
+
+
+@functools.lru_cache(maxsize=16)
+def _double_functions(
+    eqs: tuple[sympy.Expr, ...], gens: tuple[sympy.Symbol, ...]
+) -> tuple[Any, Any] | None:
+    """A square polynomial system and its Jacobian as term arrays (double precision;
+    None: not square, or not polynomials with real coefficients)."""
+    from mechsing.assembly.contraction import TermArrays
+
+    terms = _terms(eqs, gens)
+    if terms is None or len(eqs) != len(gens):
+        return None
+    f = TermArrays(terms, len(gens))
+    return f, f.jacobian()
 
 
 def _functions(eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> tuple[Any, Any]:

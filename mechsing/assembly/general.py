@@ -237,10 +237,11 @@ def _quaternion_of_vector(v: list[Any]) -> list[Any]:
 def _span(product: list[Any], gens: list[sympy.Symbol]) -> Any:
     """An orthonormal basis (8 x r, mpmath) of the span of the product's coefficient
     vectors and of 1."""
+    from mechsing.assembly.certify import poly_terms
+
     cols: dict[Any, list[Any]] = {}
     for k, comp in enumerate(product):
-        poly = sympy.Poly(comp, *gens) if gens else None
-        terms = poly.terms() if poly is not None else [((), comp)]
+        terms = poly_terms(comp, gens) if gens else [((), comp)]
         for mono, coeff in terms:
             cols.setdefault(mono, [0] * 8)[k] = mpmath.mpf(sympy.N(coeff, mpmath.mp.dps))
     M = mpmath.matrix(8, len(cols) + 1)
@@ -524,6 +525,7 @@ def _unit(prob: Problem, z: Any) -> list[Any]:
 
 
 def _find(given: Given) -> Found:
+    from mechsing.assembly import certify
     from mechsing.assembly.certify import krawczyk, local_dimension, newton, regular
     from mechsing.assembly.engine import real_endpoints, track
     from mechsing.assembly.result import joint_distance
@@ -575,7 +577,7 @@ def _find(given: Given) -> Found:
     raw, tracked = track(
         *patched_system(prob), mptype=MPTYPE if m > n or prob.spins else "adaptive"
     )
-    product = sympy.lambdify(gens, [list(c.product) for c in prob.closures], "numpy")
+    product = certify.polynomial_rows([c.product for c in prob.closures], gens)
     genuine = [z for z in raw if _genuine(prob, z, product)]
     real = real_endpoints(genuine)
     found: list[tuple[list[Any], list[Any], bool]] = []
@@ -740,10 +742,11 @@ def _sliced(prob: Problem, k: int) -> list[list[Any]]:
     closure equations (random combinations of them, down to ``n - k``) and ``k`` random
     real linear forms, each in one group (a revolute's fixes its angle), tracked; the real
     endpoints that close every loop (none in ``SLICE_TRIES`` slicings: an empty list)."""
+    from mechsing.assembly.certify import polynomial_rows
     from mechsing.assembly.engine import real_endpoints, track
 
     rng = np.random.default_rng(SEED + 2)
-    product = sympy.lambdify(prob.gens, [list(c.product) for c in prob.closures], "numpy")
+    product = polynomial_rows([c.product for c in prob.closures], prob.gens)
     n = prob.unknowns
     for attempt in range(SLICE_TRIES):
         left = [g.dim for g in prob.groups]

@@ -1,0 +1,249 @@
+"""The double-precision parts of a certificate, from a polynomial system's terms.
+
+:class:`TermArrays` holds polynomials (each a dictionary exponents -> real coefficient)
+as numpy arrays: their values at a float or complex point, and bounds on their
+rounding and on their variation over a box, in double precision.
+
+:func:`contraction_krawczyk` is the form ``"double contraction"`` of the dispatch table
+``"krawczyk test"`` (generic definition :func:`mechsing.assembly.certify.krawczyk_box`,
+every operation in mpmath interval arithmetic).  In the Krawczyk operator
+``K = m - Y f(m) + (I - Y f'(Z))(Z - m)`` the box's radius r (``MODE_CERTIFY_RADIUS``,
+1e-30) multiplies ``I - Y f'(Z)``, which only needs an upper bound B on its magnitude,
+entry by entry: B r must stay below r less ``|Y f(m)|`` (about 1e-45 at a root refined
+to 50 digits), so a bound of 1e-15 or of 1e-2 proves the same box.  That bound, the n x n products of the test, is computed here in
+double precision with every rounding bounded (below); ``f(m)`` (where the root's
+digits matter) and ``Y f(m)`` stay in mpmath interval arithmetic at the working
+digits, as the generic definition has them.  The form answers True (proved) or None
+(not proved here: the caller runs the generic definition, which decides).
+
+The bound, for z in Z: ``|I - Y f'(z)| <= |I - Y J~| + |Y| (|J~ - f'(xc)| + |f'(z) -
+f'(xc)|)``, with xc the root rounded to double, ``J~`` the Jacobian evaluated at xc in
+double precision and Y a double inverse of ``J~`` (any Y serves Krawczyk's theorem); the
+coefficients that are not rational are those of the interval functions' enclosures
+(``v +- 10^-(N - 5) (1 + |v|)`` at N digits, their half-widths added to the bound), so
+it holds for every system whose coefficients lie in them, as the generic test's proof
+does.
+Each term is bounded by the standard error analysis of floating-point arithmetic
+(Higham, Accuracy and Stability of Numerical Algorithms, 2002, ch. 3): a product of d
+factors and a sum of k terms carry a relative error at most ``gamma_{d+k}``, with
+``gamma_j = j u / (1 - j u)`` and u = 2^-53; a term's variation over the box
+``xc +- rho`` (which holds Z: rho is r plus xc's rounding) is at most ``|c| ((|xc| +
+rho)^a - |xc|^a) <= |c| (|xc| + rho)^a sum_k a_k rho_k / (|xc_k| + rho_k)``.  The
+computed bounds are sums and products of non-negative doubles, each within ``gamma``
+of its exact value; the result is doubled (and 1e-300 added, for underflow), which
+covers these roundings many times over.
+
+:func:`double_newton` is the form ``"double steps"`` of the dispatch table ``"newton
+start"`` (generic definition: Newton's method at the working digits from the endpoint
+as it is, :func:`mechsing.assembly.certify.newton`): Newton's steps in double precision
+while they shrink, so that the steps at the working digits start at double precision's
+accuracy (fewer of them than from a continuation endpoint).
+The root the working digits reach is the same; the digits' last places may differ.
+
+Owns :class:`TermArrays`, :func:`contraction_krawczyk` and :func:`double_newton`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import mpmath
+import numpy as np
+
+from mechsing.numeric import dispatch
+
+__all__ = ["TermArrays", "contraction_krawczyk", "double_newton"]
+
+#: the most double-precision Newton steps before the working digits take over
+DOUBLE_NEWTON_STEPS = 12
+
+#: the unit roundoff of double precision
+_U = 2.0**-53
+#: an absolute floor added to every bound (subnormal products' absolute rounding)
+_TINY = 1e-300
+
+
+class TermArrays:
+    """Polynomials in n unknowns as arrays: each term's coefficient (rounded to double),
+    its exponents and the polynomial it belongs to."""
+
+    def __init__(
+        self, terms: Sequence[dict[tuple[int, ...], Any]], n: int, pad: float = 0.0
+    ) -> None:
+        coeffs, exps, rows, slack = [], [], [], []
+        for i, t in enumerate(terms):
+            for mono, c in t.items():
+                coeffs.append(float(c))
+                exps.append(mono)
+                rows.append(i)
+                exact = isinstance(c, int) or getattr(c, "is_Rational", False)
+                slack.append(0.0 if exact else 2 * pad * (1 + abs(float(c))))
+        self.n = n
+        self.size = len(terms)
+        self.coeffs = np.array(coeffs, dtype=float)
+        #: each coefficient's enclosure's half-width, above (0 for a rational one): the
+        #: interval functions enclose a coefficient that is not rational (a float standing
+        #: for an algebraic number) as ``v +- pad (1 + |v|)``, and so does the bound
+        self.slack = np.array(slack, dtype=float)
+        self.exps = np.array(exps, dtype=np.int64).reshape(len(coeffs), n)
+        self.rows = np.array(rows, dtype=np.int64)
+        counts = np.bincount(self.rows, minlength=self.size) if coeffs else np.zeros(1)
+        degree = int(self.exps.sum(axis=1).max()) if coeffs else 0
+        # a term: its coefficient's rounding (to 2 u: mpmath rounds towards zero), 2 d
+        # products (powers, then the monomial), the product by its coefficient; the sum
+        # of a polynomial's k terms
+        j = 2 * degree + 4 + int(counts.max())
+        self.gamma = j * _U / (1 - j * _U)
+
+    def jacobian(self) -> TermArrays:
+        """The Jacobian's entries row by row (entry ``(i, k)`` the polynomial ``i n + k``),
+        each term's coefficient ``c a_k`` rounded once more (in :attr:`gamma`)."""
+        out = TermArrays([], self.n)
+        keep = [self.exps[:, k] > 0 for k in range(self.n)]
+        out.coeffs = np.concatenate([self.coeffs[t] * self.exps[t, k] for k, t in enumerate(keep)])
+        out.exps = np.concatenate(
+            [self.exps[t] - np.eye(self.n, dtype=np.int64)[k] for k, t in enumerate(keep)]
+        )
+        out.rows = np.concatenate([self.rows[t] * self.n + k for k, t in enumerate(keep)])
+        out.slack = np.concatenate([self.slack[t] * self.exps[t, k] for k, t in enumerate(keep)])
+        out.size = self.size * self.n
+        counts = np.bincount(out.rows, minlength=out.size) if len(out.rows) else np.zeros(1)
+        degree = int(out.exps.sum(axis=1).max()) if len(out.rows) else 0
+        j = 2 * degree + 5 + int(counts.max())
+        out.gamma = j * _U / (1 - j * _U)
+        return out
+
+    def _monomials(self, x: np.ndarray) -> np.ndarray:
+        """Every term's monomial at ``x`` (repeated products, no ``pow``)."""
+        out = np.ones(len(self.coeffs), dtype=x.dtype)
+        for k in range(self.n):
+            e = self.exps[:, k]
+            p = np.ones(len(self.coeffs), dtype=x.dtype)
+            for _ in range(int(e.max()) if len(e) else 0):
+                p = np.where(e > 0, p * x[k], p)
+                e = e - 1
+            out = out * p
+        return out
+
+    def values(self, x: np.ndarray) -> np.ndarray:
+        """The polynomials at ``x`` (float or complex)."""
+        terms = self.coeffs * self._monomials(x)
+        if np.iscomplexobj(terms):
+            return np.bincount(self.rows, terms.real, self.size) + 1j * np.bincount(
+                self.rows, terms.imag, self.size
+            )
+        return np.bincount(self.rows, terms, self.size)
+
+    def magnitudes(self, a: np.ndarray, coeffs: np.ndarray | None = None) -> np.ndarray:
+        """``sum |c| a^e`` for each polynomial (``a`` non-negative; ``coeffs``: other
+        coefficients than the polynomials' own)."""
+        c = np.abs(self.coeffs if coeffs is None else coeffs)
+        return np.bincount(self.rows, c * self._monomials(a), self.size)
+
+    def variation(self, x: np.ndarray, rho: np.ndarray) -> np.ndarray:
+        """For each polynomial, a bound on ``|p(z) - p(x)|`` over ``|z - x| <= rho``
+        (entrywise, rho > 0): ``sum |c| (|x| + rho)^a sum_k a_k rho_k / (|x_k| + rho_k)``."""
+        w = np.abs(x) + rho
+        share = self.exps @ (rho / w)
+        return np.bincount(self.rows, np.abs(self.coeffs) * self._monomials(w) * share, self.size)
+
+
+def _bound(jac: TermArrays, xc: np.ndarray, rho: np.ndarray) -> tuple[Any, Any] | None:
+    """(Y, B): a double inverse of the Jacobian at ``xc`` and an upper bound on
+    ``|I - Y f'(z)|`` for every ``|z - xc| <= rho`` (None: the Jacobian is singular in
+    double precision or a bound is not finite)."""
+    n = len(xc)
+    Jt = jac.values(xc).reshape(n, n)
+    try:
+        Y = np.linalg.inv(Jt)
+    except np.linalg.LinAlgError:
+        return None
+    eye = np.eye(n)
+    # |J~ - f'(xc)|: the evaluation's rounding; |f'(z) - f'(xc)|: the box's variation;
+    # the coefficients' enclosures over the box
+    err = jac.gamma * jac.magnitudes(np.abs(xc)).reshape(n, n)
+    err += jac.magnitudes(np.abs(xc) + rho, jac.slack).reshape(n, n) * (1 + jac.gamma)
+    var = jac.variation(xc, rho).reshape(n, n) * (1 + jac.gamma)
+    absY = np.abs(Y)
+    g = (n + 2) * _U / (1 - (n + 2) * _U)  # I - Y J~ in double: n products and sums
+    B = np.abs(eye - Y @ Jt) + g * (eye + absY @ np.abs(Jt)) + absY @ (err + var)
+    B = 2 * B + _TINY
+    if not np.all(np.isfinite(B)) or not np.all(np.isfinite(Y)):
+        return None
+    return Y, B
+
+
+@dispatch.table("krawczyk test", "mechsing.assembly.certify.krawczyk_box").register(
+    "double contraction",
+    "a polynomial system given by its terms (every system the formulations certify): "
+    "the contraction term's bound in double precision with its rounding bounded, f(m) "
+    "and Y f(m) in mpmath intervals; proves what the generic test proves, or answers "
+    "None and the generic test decides",
+    accepts=lambda system, m, radius: system.arrays is not None,
+)
+def contraction_krawczyk(system: Any, m: Sequence[Any], radius: Any) -> bool | None:
+    """True when the box ``m +- radius`` provably holds exactly one root of the system
+    (an :class:`~mechsing.assembly.certify.IntervalSystem` with its term arrays; the
+    interval context's digits set); None when this test does not prove it."""
+    iv = mpmath.iv
+    n = len(m)
+    Z = [iv.mpf([x - radius, x + radius]) for x in m]  # the box the generic test proves
+    xc = np.array([float(x) for x in m])
+    # upper bounds (in double) of |Z - m| and of |Z - xc|, from outward-rounded intervals
+    w = np.array([_magnitude(Zk - iv.mpf(x)) for Zk, x in zip(Z, m, strict=True)])
+    rho = np.array([_magnitude(Zk - iv.mpf(float(x))) for Zk, x in zip(Z, xc, strict=True)])
+    got = _bound(system.arrays, xc, rho)
+    if got is None:
+        return None
+    Y, B = got
+    spread = 2 * (B @ w) * (1 + (n + 2) * _U) + _TINY  # |(I - Y f'(Z))(Z - m)|, above
+    fm = system.f([iv.mpf(x) for x in m])
+    for i, mi in enumerate(m):
+        acc = iv.mpf(mi)
+        for k in range(n):
+            acc -= iv.mpf(float(Y[i, k])) * fm[k]
+        s = float(spread[i])
+        acc += iv.mpf([-s, s])
+        if not (acc.a > Z[i].a and acc.b < Z[i].b):
+            return None
+    return True
+
+
+def _magnitude(d: Any) -> float:
+    """An upper bound, in double, of the largest absolute value of the interval ``d``."""
+    a, b = (abs(mpmath.mp.make_mpf(e)) for e in d._mpi_)
+    return float(max(a, b)) * (1 + 4 * _U) + _TINY  # (float() rounds to within 1 ulp)
+
+
+@dispatch.table(
+    "newton start", "mechsing.assembly.certify.newton (from the endpoint as it is)"
+).register(
+    "double steps",
+    "a square polynomial system given by its terms: Newton's steps in double precision "
+    "while they shrink, before those at the working digits (the same root; its last "
+    "digits may differ)",
+    accepts=lambda arrays, z: arrays is not None,
+)
+def double_newton(arrays: tuple[TermArrays, TermArrays], z: Sequence[Any]) -> list[Any]:
+    """``z`` refined by Newton's steps in double precision (float, or complex where an
+    entry is complex) while each shrinks the last (by half at least); ``z`` itself where
+    the first does not."""
+    f, J = arrays
+    cplx = any(isinstance(v, (complex, mpmath.mpc)) for v in z)
+    x = np.array([complex(v) if cplx else float(v) for v in z])
+    n = len(x)
+    last = np.inf
+    for _ in range(DOUBLE_NEWTON_STEPS):
+        try:
+            dx = np.linalg.solve(J.values(x).reshape(n, n), f.values(x))
+        except np.linalg.LinAlgError:
+            break
+        step = float(np.max(np.abs(dx)))
+        if not np.isfinite(step) or step > last / 2:
+            break
+        x = x - dx
+        last = step
+        if step <= 4 * _U * max(1.0, float(np.max(np.abs(x)))):
+            break
+    return list(x) if np.isfinite(last) else list(z)
