@@ -99,9 +99,9 @@ BRICARD = [
 def test_bricard_with_its_input_has_the_modes_damped_newton_finds() -> None:
     """Bricard's line-symmetric 6R at J1 = 0.4: the two modes damped Newton finds from
     400 random starts on the 4x4 closure, each line-symmetric (J4 = J1, J5 = J2, J6 =
-    J3).  The count is not proven: an overconstrained loop's six equations are tracked
-    as five random combinations, whose isotropic components take 72 of the 120 paths
-    (docs/modes.md)."""
+    J3).  The count is proven by the axis formulation (mechsing/assembly/axis.py): J4
+    eliminated, 24 paths, every root certified (the general formulation tracks the six
+    equations as five random combinations, 72 of whose 120 paths fail: docs/modes.md)."""
     doc = _modes([str(ROOT / "examples" / "bricard.yaml"), "--config", "q1-0.4"])
     names = ["J1", "J2", "J3", "J4", "J5", "J6"]
     expected = solve_all(BRICARD, [[(i, 1) for i in range(6)]], {0: 0.4}, starts=400)
@@ -109,7 +109,9 @@ def test_bricard_with_its_input_has_the_modes_damped_newton_finds() -> None:
     _same(_joint_vectors(doc, names), expected, ["R"] * 6)
     for q in expected:
         assert np.allclose(q[3:], q[:3], atol=1e-9)
-    assert doc["formulation"]["randomized"] and all(m["certified"] for m in doc["modes"])
+    assert doc["formulation"]["eliminated"] == "J4" and doc["complete"] == "proven"
+    assert doc["paths"]["tracked"] == doc["paths"]["finite"] == 24
+    assert all(m["certified"] for m in doc["modes"])
 
 
 def test_spherical_fourbar_has_two_modes_in_the_rotations_about_its_centre() -> None:

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from mechsing.assembly import chains, general, legs, planar_pose, platform, rod
+from mechsing.assembly import axis, chains, general, legs, planar_pose, platform, rod
 from mechsing.assembly.given import Formulation, Given
 from mechsing.errors import FormulationError, UserError
 
@@ -22,6 +22,7 @@ FORMULATIONS: tuple[Formulation, ...] = (
     chains.SINGLE_LOOP,
     chains.SERIAL_ARM,
     rod.FORMULATION,
+    axis.FORMULATION,
     general.FORMULATION,
 )
 

@@ -147,6 +147,11 @@ def modes_schema() -> dict[str, Any]:
                             },
                         },
                     },
+                    "eliminated": {
+                        "type": "string",
+                        "description": "the axis formulation: the unknown revolute "
+                        "eliminated through its axis (its angle read off the others')",
+                    },
                     "randomized": {
                         "type": "boolean",
                         "description": "more closure equations than unknowns (an "
