@@ -21,8 +21,11 @@ symbols, the others take their exact values.
 
 from __future__ import annotations
 
+import dataclasses
+import hashlib
 import math
-from collections.abc import Callable
+import time
+from collections.abc import Callable, Mapping
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -157,30 +160,8 @@ def _condition(
         )
     original = mech
     mech, split_notes = split_joints(mech)
-    S = joint_symbols(mech)
     params = parameter_symbols(mech)
-    if mech.graph.num_loops == 0:
-        method, conds, notes = "open chain", *open_chain(mech, S)
-    elif mech.graph.num_loops == 1 and len(mech.input_coordinates()) == 1:
-        method, conds, notes = "single loop, one input", *single_loop(mech, S, time_limit)
-    elif len(mech.input_coordinates()) == 1:
-        ((in_joint, _),) = mech.input_coordinates()
-        found = linkage_conditions(
-            mech, S[in_joint], set(parameter_symbols(mech)), time_limit, True
-        )
-        if isinstance(found, str):
-            raise UserError(
-                f"{source}: a linkage of {mech.graph.num_loops} loops with one input: symbolic "
-                "conditions of multi-loop linkages cover planar linkages of R and P joints "
-                "with the input on the ground (Watt and Stephenson six-bars ...); this one is "
-                f"not: {found}; use 'mechsing analyze' for its singularities"
-            )
-        method, conds, notes = "linkage, one input", *found
-    else:
-        method, conds, notes = (
-            "parallel robot, pose variables",
-            *planar_parallel(mech, S, str(source)),
-        )
+    method, conds, notes = _derived(mech, str(source), time_limit)
     printable = {p: sympy.Symbol(p.name, real=True) for p in params}
     conds = [_printable(c, printable) for c in conds]
     if split_notes:
@@ -216,6 +197,101 @@ def _condition(
         values=values,
         file_angle_unit=mech.units.angle,
     )
+
+
+#: the derivations of this process by the content of what they derive from
+#: (:func:`_derived`): a test, a notebook or a sweep that derives one mechanism again
+#: pays once
+_DERIVED: dict[str, tuple[str, tuple[Condition, ...], tuple[str, ...]]] = {}
+
+
+def _derived(
+    mech: Mechanism, source: str, time_limit: float | None
+) -> tuple[str, list[Condition], list[str]]:
+    """The method, conditions and notes of ``mech`` (its U, C and S joints split),
+    remembered by its content (:func:`_content_key`) and the elimination's time limit.
+    A derivation that ran as long as that limit may have been stopped by it (its result
+    depends on the machine's speed): it is not remembered."""
+    key = _content_key((mech, source, time_limit))
+    if key is not None and key in _DERIVED:
+        method, conds, notes = _DERIVED[key]
+        return method, list(conds), list(notes)
+    start = time.monotonic()
+    method, conds, notes = _derive(mech, source, time_limit)
+    if key is not None and (time_limit is None or time.monotonic() - start < time_limit):
+        _DERIVED[key] = (method, tuple(conds), tuple(notes))
+    return method, list(conds), list(notes)
+
+
+def _derive(
+    mech: Mechanism, source: str, time_limit: float | None
+) -> tuple[str, list[Condition], list[str]]:
+    S = joint_symbols(mech)
+    if mech.graph.num_loops == 0:
+        method, conds, notes = "open chain", *open_chain(mech, S)
+    elif mech.graph.num_loops == 1 and len(mech.input_coordinates()) == 1:
+        method, conds, notes = "single loop, one input", *single_loop(mech, S, time_limit)
+    elif len(mech.input_coordinates()) == 1:
+        ((in_joint, _),) = mech.input_coordinates()
+        found = linkage_conditions(
+            mech, S[in_joint], set(parameter_symbols(mech)), time_limit, True
+        )
+        if isinstance(found, str):
+            raise UserError(
+                f"{source}: a linkage of {mech.graph.num_loops} loops with one input: symbolic "
+                "conditions of multi-loop linkages cover planar linkages of R and P joints "
+                "with the input on the ground (Watt and Stephenson six-bars ...); this one is "
+                f"not: {found}; use 'mechsing analyze' for its singularities"
+            )
+        method, conds, notes = "linkage, one input", *found
+    else:
+        method, conds, notes = (
+            "parallel robot, pose variables",
+            *planar_parallel(mech, S, str(source)),
+        )
+    return method, conds, notes
+
+
+def _content_key(value: Any) -> str | None:
+    """A hash of the content of ``value`` (a mechanism, its joints, sympy values: their
+    ``srepr``, which names each symbol with its assumptions and each float with its
+    precision), never of an object's identity; None when it holds a value of a kind
+    this does not know (nothing is remembered then).  A mechanism's graph (made from its
+    bodies and joints) and its configurations (no derivation reads them) are left out."""
+    parts: list[str] = []
+
+    def walk(v: Any) -> None:
+        if isinstance(v, sympy.Basic):
+            parts.append("S" + sympy.srepr(v))
+        elif v is None or isinstance(v, (str, int, float, bool, Path)):
+            parts.append(f"{type(v).__name__}:{v!r}")
+        elif dataclasses.is_dataclass(v) and not isinstance(v, type):
+            parts.append(f"D{type(v).__qualname__}(")
+            for f in dataclasses.fields(v):
+                if isinstance(v, Mechanism) and f.name in ("graph", "configurations"):
+                    continue
+                parts.append(f.name + "=")
+                walk(getattr(v, f.name))
+            parts.append(")")
+        elif isinstance(v, Mapping):
+            parts.append("M{")
+            for k in sorted(v, key=repr):
+                walk(k)
+                walk(v[k])
+            parts.append("}")
+        elif isinstance(v, (tuple, list)):
+            parts.append(f"T{len(v)}(")
+            for x in v:
+                walk(x)
+            parts.append(")")
+        else:
+            raise TypeError(type(v).__name__)
+
+    try:
+        walk(value)
+    except TypeError:
+        return None
+    return hashlib.sha256("\x1f".join(parts).encode()).hexdigest()
 
 
 def _without_gimbal(mech: Mechanism, conds: list[Condition]) -> tuple[list[Condition], list[str]]:

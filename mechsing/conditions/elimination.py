@@ -43,6 +43,7 @@ __all__ = [
     "distinct",
     "eliminate",
     "genuine",
+    "groebner",
 ]
 
 #: the largest resultant step attempted (an algorithm setting): an estimate of the size
@@ -295,6 +296,26 @@ def _norm_at_i(f: Any, t: Any) -> Any:
     return sympy.expand(re**2 + im**2)
 
 
+def groebner(equations: list[Any], gens: list[Any], order: str) -> Any:
+    """:func:`sympy.groebner` of ``equations`` in ``gens``; where their coefficients are
+    numbers with square roots (``sqrt(15)`` of a drawn pivot) and nothing else but
+    ``gens``, computed over the number field of those roots (``QQ<sqrt(15)>``) rather
+    than sympy's expression domain, whose every step simplifies.  The reduced basis is
+    unique, so it is the same one (the double rocker's closure: 0.6 s against 4 s)."""
+    plain = set(gens)
+    irrational = any(
+        a.is_number and not a.is_Rational
+        for e in equations
+        for a in sympy.sympify(e).atoms(sympy.Pow)
+    )
+    if irrational and all(sympy.sympify(e).free_symbols <= plain for e in equations):
+        try:
+            return sympy.groebner(equations, *gens, order=order, extension=True)
+        except (sympy.polys.polyerrors.PolynomialError, NotImplementedError):  # pragma: no cover
+            pass
+    return sympy.groebner(equations, *gens, order=order)
+
+
 def genuine(
     factors: list[Any],
     equations: list[Any],
@@ -320,7 +341,7 @@ def genuine(
         if not h.free_symbols:
             out.append(h == 0)
             continue
-        G = sympy.groebner([*num, *circles, h], *gens, order="grevlex")
+        G = groebner([*num, *circles, h], gens, "grevlex")
         out.append(G.exprs != [1])
     return out
 

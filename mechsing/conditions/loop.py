@@ -17,6 +17,7 @@ import sympy
 
 from mechsing.conditions.elimination import angles as _angles
 from mechsing.conditions.elimination import distinct as _distinct
+from mechsing.conditions.elimination import groebner
 from mechsing.conditions.explain import Explainer
 from mechsing.conditions.factoring import factor_condition
 from mechsing.conditions.jacobians import (
@@ -193,11 +194,11 @@ def _eliminate(
     eqs = [reduce_trig(det, Sl), *[reduce_trig(e, Sl) for e in closure], *circle]
     try:
         with TimeLimit(time_limit):
-            G = sympy.groebner(eqs, *pvars, *ivars, order="grevlex")
+            G = groebner(eqs, [*pvars, *ivars], "grevlex")
             if G.is_zero_dimensional:
                 G = G.fglm("lex")
             else:
-                G = sympy.groebner(eqs, *pvars, *ivars, order="lex")
+                G = groebner(eqs, [*pvars, *ivars], "lex")
     except TimeLimitExceeded:
         return (
             f"sympy could not eliminate the passive joints within {time_limit:g} s; "
