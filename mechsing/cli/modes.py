@@ -18,12 +18,16 @@ pairs of a single loop; (4) a serial arm of six R or P joints (or more, with all
 given) at a pose: half-angle pairs of a serial arm; (4b) one loop closed by a rod
 between two ball joints with one other joint unknown (an RSSR with its crank given): the
 rod's length, a quadratic in that joint's half-angle pair (or slide) solved in closed
-form, each root's solution certified, the count proven; (5) any other mechanism of R, P, C, U
+form, each root's solution certified, the count proven; (4c) one loop of six joints, one
+given and five unknown revolutes: one revolute eliminated through its axis (the product
+of the other five commutes with its line: four equations, 24 paths), the count proven
+when every path ends at its own certified root; (5) any other mechanism of R, P, C, U
 and S joints, or an arm of fewer joints at a pose in the subgroup its end moves in (a
 pose outside it exits 2, naming the subgroup): each joint's displacement in Study
 coordinates, each loop's closure in its own subgroup's (three equations for a planar or
 spherical loop, six in general; a body on exactly two ball joints, an RSSR's coupler,
-taken free of its idle spin about their line).  (2) to (5), but (4b), use homotopy continuation with the ``modes``
+taken free of its idle spin about their line).  (2) to (5), but (4b), use homotopy
+continuation with the ``modes``
 extra (pip install 'mechsing[modes]': Bertini 2, GPL-3.0-or-later).  Exit status: 0
 success, 2 bad input or no method applies, 3 a mode that could not be analysed.
 """
