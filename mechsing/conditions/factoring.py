@@ -17,6 +17,7 @@ factors polynomials in the ``c``, ``s`` symbols.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import sympy
@@ -172,40 +173,29 @@ def _split_in_ring(
     N = _tan_half_ring(E, ic, is_, it, k)
     if not N:
         return [], expr
-    deficit = 2 * k - N.degree(it)
     alone = _content_factors(N, it, params)
     if alone is None:
         _, factors = sympy.factor_list(sympy.expand(N.as_expr()))
         alone = [(f, e) for f, e in factors if f.has(t) and f.free_symbols <= {t} | params]
-    if not alone and deficit < 2:
-        return [], expr
-    found: list[tuple[Any, int]] = []
-    rest = N
-    used = 0
-    for f, e in alone:
-        d = int(sympy.degree(f, t))
-        if d > 2:
-            continue
-        fr = _in_ring(R, f)
-        for _ in range(e):
-            if d == 1:
-                if deficit < 1:
-                    continue
-                deficit -= 1
-            try:
-                rest = rest.exquo(fr)
-            except sympy.polys.polyerrors.ExactQuotientFailed as exc:  # pragma: no cover
-                raise _NotInRing from exc
-            used += 1
-            found.append((_circle_ring(fr, ic, is_, it, 1), 1))
-    while deficit >= 2 and used < k:  # a double root at J = pi: the factor 1 + cos(J)
-        deficit -= 2
-        used += 1
-        found.append((1 + js.c, 1))
-        rest = rest * QQ(1, 2)
-    if not found:
-        return [], expr
-    return found, _circle_ring(rest, ic, is_, it, k - used)
+
+    def divide(rest: Any, f: Any) -> Any:
+        try:
+            return rest.exquo(f)
+        except sympy.polys.polyerrors.ExactQuotientFailed as exc:  # pragma: no cover
+            raise _NotInRing from exc
+
+    return _peel(
+        expr,
+        js,
+        k,
+        N,
+        2 * k - N.degree(it),
+        _by_degree(alone, t),
+        convert=lambda f: _in_ring(R, f),
+        divide=divide,
+        circle=lambda P, kk: _circle_ring(P, ic, is_, it, kk),
+        halve=lambda P: P * QQ(1, 2),
+    )
 
 
 def _split_in_expressions(
@@ -218,36 +208,98 @@ def _split_in_expressions(
     N = tan_half(expr, js, t, k)
     if N == 0:
         return [], expr
-    deficit = 2 * k - int(sympy.degree(N, t))
     _, factors = sympy.factor_list(N)
     alone = [(f, e) for f, e in factors if f.has(t) and f.free_symbols <= {t} | params]
+    return _peel(
+        expr,
+        js,
+        k,
+        N,
+        2 * k - int(sympy.degree(N, t)),
+        _by_degree(alone, t),
+        convert=lambda f: f,
+        divide=lambda rest, f: sympy.quo(rest, f, t),
+        circle=lambda P, kk: to_circle(P, t, kk, js),
+        halve=lambda P: P / 2,
+    )
+
+
+def _by_degree(alone: list[tuple[Any, int]], t: Any) -> list[tuple[Any, int, int]]:
+    """The factors in ``t`` alone with their degrees in ``t``."""
+    return [(f, e, int(sympy.degree(f, t))) for f, e in alone]
+
+
+def _divides(g: Any, expr: Any) -> bool:
+    """Whether ``g`` divides ``expr`` as polynomials (not only on the circle)."""
+    gens = sorted(sympy.sympify(expr).free_symbols | sympy.sympify(g).free_symbols, key=str)
+    return bool(sympy.div(sympy.Poly(expr, *gens), sympy.Poly(g, *gens))[1].is_zero)
+
+
+def _peel(
+    expr: Any,
+    js: JointSymbols,
+    k: int,
+    N: Any,
+    deficit: int,
+    alone: list[tuple[Any, int, int]],
+    *,
+    convert: Callable[[Any], Any],
+    divide: Callable[[Any, Any], Any],
+    circle: Callable[[Any, int], Any],
+    halve: Callable[[Any], Any],
+) -> tuple[list[tuple[Any, int]], Any]:
+    """The factors of joint ``js`` alone, taken from ``N(t) = expr * (1 + t**2)**k``.
+
+    ``alone`` are the factors of ``N`` in ``t`` alone (factor, power, degree in ``t``);
+    ``deficit = 2k - deg N`` counts the roots at ``t = oo`` (``J = pi``).  A factor of
+    degree 2 is ``a*cos(J) + b*sin(J) + e``; one of degree 1 is such a factor with a root
+    at infinity (one of the deficit), or, where none is left, with the next factor of
+    degree 1 (``a**2 + b**2 - e**2`` a square: the quadratic's roots are rational), where
+    the pair is not already a factor of ``expr`` as a polynomial (whose factoring then
+    finds it, in its order); two roots left at infinity are the factor ``1 + cos(J)``.  ``convert``, ``divide``, ``circle`` (back to
+    ``c``, ``s`` over ``(1 + t**2)**kk``) and ``halve`` are the operations of the domain
+    ``N`` lives in: one polynomial ring over the rationals, or sympy's expressions."""
     if not alone and deficit < 2:
         return [], expr
     found: list[tuple[Any, int]] = []
     rest = N
     used = 0
-    for f, e in alone:
-        d = int(sympy.degree(f, t))
+    waiting: list[list[Any]] = []  # factors of degree 1 with no root at infinity left
+    for f, e, d in alone:
         if d > 2:
             continue
-        for _ in range(e):
-            kk = 1
-            if d == 1:
-                if deficit < 1:
-                    continue
-                deficit -= 1
-            rest = sympy.quo(rest, f, t)
-            used += kk
-            found.append((to_circle(f, t, kk, js), 1))
+        fd = convert(f)
+        for n in range(e):
+            if d == 1 and deficit < 1:
+                waiting.append([fd, e - n])
+                break
+            deficit -= d == 1
+            rest = divide(rest, fd)
+            used += 1
+            found.append((circle(fd, 1), 1))
+    # two real roots in t: (3t + 1)(t - 3) is 3*cos(J) + 4*sin(J); distinct factors are
+    # paired first ((3t + 1)**2 (t - 3)**2 is (3*cos(J) + 4*sin(J))**2)
+    turns = []
+    while any(w[1] for w in waiting):
+        for w in waiting:
+            if w[1]:
+                turns.append(w[0])
+                w[1] -= 1
+    for first, second in zip(turns[0::2], turns[1::2], strict=False):
+        factor = circle(first * second, 1)
+        if _divides(factor, expr):
+            continue  # a factor of the polynomial itself: its factoring finds it, in order
+        rest = divide(rest, first * second)
+        used += 1
+        found.append((factor, 1))
     while deficit >= 2 and used < k:  # a double root at J = pi: the factor 1 + cos(J)
         deficit -= 2
         used += 1
         found.append((1 + js.c, 1))
-        rest = rest / 2
+        rest = halve(rest)
     if not found:
         return [], expr
-    cofactor = to_circle(rest, t, k - used, js)
-    return found, cofactor
+    return found, circle(rest, k - used)
 
 
 def factor_condition(

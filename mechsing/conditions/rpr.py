@@ -103,7 +103,7 @@ def planar_parallel(
             "the determinant of the legs' actuation wrenches (rows: force along each leg line "
             "and its moment about the origin); it vanishes when the leg lines are concurrent or "
             "all parallel",
-            lambda f: "the leg lines are concurrent or all parallel",
+            lambda f: _concurrent("leg lines", f, x, y),
         )
     ]
     for name, L in zip(leg_names, lengths, strict=True):
@@ -123,6 +123,17 @@ def planar_parallel(
         "rotation about z from the file's pose (rad)"
     ]
     return conds, notes
+
+
+def _concurrent(lines: str, f: Any, x: Any, y: Any) -> str:
+    """The meaning of a factor of the type II determinant."""
+    if sympy.sympify(f).has(x, y):
+        return f"the {lines} are concurrent or all parallel"
+    return (
+        f"an orientation at which the {lines} are concurrent or all parallel wherever the "
+        "platform is (as when its pivots' triangle is similar to the base's and turned "
+        "parallel to it: the lines meet at the centre of similitude)"
+    )
 
 
 def _is_rpr(mech: Mechanism, joints: tuple[str, ...], inputs: set[str]) -> bool:
@@ -213,7 +224,7 @@ def _transmission(
             "the determinant of the legs' transmission wrenches (rows: the force each leg "
             "transmits with its actuator locked, through its passive pivots, and its moment "
             "about the origin); it vanishes when their lines are concurrent or all parallel",
-            lambda f: "the legs' transmission lines are concurrent or all parallel",
+            lambda f: _concurrent("legs' transmission lines", f, x, y),
         )
     ]
     for name, others, work in type1:
