@@ -66,8 +66,11 @@ EXPECTED = {
     "factorisation": {"blocks"},
     "dense factorisation": {"lapack"},
     "sweep test factors": {"values first"},
+    # their parity: tests/test_dispatch_certify.py
     "krawczyk test": {"double contraction"},
     "newton start": {"double steps"},
+    "newton steps": {"chord"},
+    "regular root": {"double bound"},
 }
 
 
@@ -616,106 +619,3 @@ def test_dense_factorisation_lapack_parity() -> None:
     assert table.pick(np.ones((3, 3), dtype=np.float32), True, True) is None
     with dispatch.fast_paths(False):
         assert table.pick(mats[5], True, True) is None
-
-
-# ------------------------------------------------- tables krawczyk test and newton start
-
-
-def _polynomial_system(rng: np.random.Generator, n: int, float_coefficients: bool):
-    """A square system of quadratics in n unknowns with a known real root r (rational):
-    ``f_i = sum_j a_ij (x_j - r_j) + sum_jk b_ijk (x_j - r_j)(x_k - r_k)``, expanded;
-    its coefficients rational, or 60-digit floats (enclosed, not exact)."""
-    import sympy
-
-    xs = sympy.symbols(f"x0:{n}")
-    r = [sympy.Rational(int(v), 7) for v in rng.integers(-9, 10, n)]
-    d = [x - v for x, v in zip(xs, r, strict=True)]
-    eqs = []
-    for _ in range(n):
-        e = sum(
-            sympy.Rational(int(a), 5) * t for a, t in zip(rng.integers(-9, 10, n), d, strict=True)
-        )
-        e += sum(
-            sympy.Rational(int(b), 3) * d[j] * d[k]
-            for j in range(n)
-            for k in range(j, n)
-            for b in [rng.integers(-4, 5)]
-        )
-        if float_coefficients:
-            e = sympy.Float(str(rng.uniform(0.5, 2)), 60) * e
-        eqs.append(sympy.expand(e))
-    return eqs, list(xs), r
-
-
-def test_krawczyk_double_contraction_proves_what_the_generic_test_proves() -> None:
-    """The double contraction bound (f(m) and Y f(m) in mpmath intervals) against every
-    operation in intervals: both prove a box about a root refined at 50 digits (real, and
-    a complex root's real and imaginary parts), and the fast form proves nothing the
-    generic test does not: a box shifted off the root, or about a double root, it leaves
-    undecided (None) and the generic test refutes."""
-    import sympy
-
-    from mechsing.assembly import certify
-
-    rng = np.random.default_rng(41)
-    form = dispatch.table("krawczyk test").get("double contraction")
-    radius = mpmath.mpf(1e-30)
-    with mpmath.workdps(50):
-        mpmath.iv.dps = 50
-        for n, floats in ((1, False), (2, True), (4, False), (6, True)):
-            eqs, xs, r = _polynomial_system(rng, n, floats)
-            system = certify._interval_system(tuple(eqs), tuple(xs), 50)
-            root = certify.newton(eqs, xs, [float(v) + 1e-9 for v in r], 50)
-            assert root is not None
-            for m, proved in ((root, True), ([v + 3 * radius for v in root], False)):
-                assert form(system, m, radius) is (True if proved else None)
-                assert generic(certify.krawczyk_box, system, m, radius) is proved
-                assert certify.krawczyk(eqs, xs, m, radius) is proved
-        # a complex root of x^2 + 1 and of a 2 x 2 system, in its real and imaginary parts
-        x, y = sympy.symbols("x y")
-        for eqs, gens, z in (
-            ([x**2 + 1], [x], [1j]),
-            ([x**2 + y**2 + 1, x - 2 * y], [x, y], [0.8944j, 0.4472j]),
-        ):
-            root = certify.newton(eqs, gens, z, 50)
-            assert certify.krawczyk_complex(eqs, gens, root, radius)
-            mid = [mpmath.re(v) for v in root] + [mpmath.im(v) for v in root]
-            system = certify._realified_system(tuple(eqs), tuple(gens), 50)
-            assert form(system, mid, radius) is True
-            assert generic(certify.krawczyk_box, system, mid, radius) is True
-        # a double root: no box is proved
-        eqs, gens = [(x - 1) ** 2], [x]
-        system = certify._interval_system((sympy.expand(eqs[0]),), (x,), 50)
-        m = [mpmath.mpf(1)]
-        assert form(system, m, radius) is None
-        assert generic(certify.krawczyk_box, system, m, radius) is False
-        mpmath.iv.dps = 15
-    with dispatch.fast_paths(False):
-        assert dispatch.table("krawczyk test").pick(system, m, radius) is None
-
-
-def test_newton_double_steps_reach_the_generic_root() -> None:
-    """Newton's steps in double precision first, then at 50 digits: the root the generic
-    refinement (50 digits from the start) reaches, to 1e-45, from starts 1e-6 off (real
-    and complex); from a start where the double steps do not shrink, the start itself."""
-    from mechsing.assembly import certify
-
-    rng = np.random.default_rng(42)
-    form = dispatch.table("newton start").get("double steps")
-    with mpmath.workdps(50):
-        for n, floats in ((1, False), (3, True), (5, False)):
-            eqs, xs, r = _polynomial_system(rng, n, floats)
-            for z in (
-                [float(v) + 1e-6 for v in r],
-                [complex(float(v), 1e-6) for v in r],
-            ):
-                fast = certify.newton(eqs, xs, z, 50)
-                slow = generic(certify.newton, eqs, xs, z, 50)
-                assert fast is not None and slow is not None
-                assert max(abs(a - b) for a, b in zip(fast, slow, strict=True)) < 1e-45
-                assert max(abs(a - b) for a, b in zip(fast, r, strict=True)) < 1e-45
-        import sympy
-
-        x = sympy.Symbol("x")
-        arrays = certify._double_functions((x**2 + 1,), (x,))
-        assert form(arrays, [0.0]) == [0.0]  # a singular Jacobian: the start itself

@@ -14,7 +14,8 @@ dispatch table ``"krawczyk test"`` holds the double-precision contraction bound 
 real and imaginary parts of a complex root; :func:`certified_roots`, every endpoint of a
 solve refined and so certified; :func:`apart`, their boxes disjoint), :func:`newton`
 (the refinement whose result it certifies; its first steps in double precision by the
-table ``"newton start"``), :func:`poly_terms` and :func:`polynomial_rows` (a
+table ``"newton start"``, the steps at the working digits by one double inverse of the
+Jacobian where the table ``"newton steps"`` finds it well-conditioned), :func:`poly_terms` and :func:`polynomial_rows` (a
 polynomial's terms without sympy's coefficient domains, and polynomials evaluated from
 them in numpy) and :func:`singular_root` (a root no interval test can certify: a
 multiple root, polished, or a point of a curve of solutions, found by a local dimension
@@ -115,12 +116,15 @@ def krawczyk(
 
 class IntervalSystem:
     """A square system for the Krawczyk test: ``f`` and ``J``, the system and its
-    Jacobian (row by row) as interval functions (each built on first use), and
-    ``arrays``, the Jacobian's terms as :class:`~mechsing.assembly.contraction.TermArrays`
-    (None where the system is not given by its terms)."""
+    Jacobian (row by row) as interval functions (each built on first use), ``arrays``,
+    the Jacobian's terms as :class:`~mechsing.assembly.contraction.TermArrays` (None
+    where the system is not given by its terms), and ``point``: the system at a point
+    of the working digits (mpmath numbers) with its terms as
+    :class:`~mechsing.assembly.contraction.TermArrays`, to bound that evaluation's error
+    (built on first use; None where the system is not given by its terms)."""
 
-    def __init__(self, make: Any, jacobian: Any, arrays: Any = None) -> None:
-        self._make = (make, jacobian)
+    def __init__(self, make: Any, jacobian: Any, arrays: Any = None, point: Any = None) -> None:
+        self._make = (make, jacobian, point)
         self._built: dict[int, Any] = {}
         self.arrays = arrays
 
@@ -136,6 +140,10 @@ class IntervalSystem:
     @property
     def J(self) -> Any:
         return self._get(1)
+
+    @property
+    def point(self) -> tuple[Any, Any] | None:
+        return None if self._make[2] is None else self._get(2)
 
 
 #: the Krawczyk test's fast forms (:mod:`mechsing.assembly.contraction`)
@@ -258,10 +266,13 @@ def _interval_terms(terms: list[dict[tuple[int, ...], Any]], n: int) -> Interval
         with mpmath.workdps(dps):
             return _term_rows(t, enclose, iv.mpf(0))
 
+    def point() -> tuple[Any, Any]:
+        with mpmath.workdps(dps + 10):
+            return _term_rows(terms, lambda c: mpmath.mpf(sympy.N(c, dps + 10))), arrays
+
+    arrays = TermArrays(terms, n, float(pad))
     return IntervalSystem(
-        lambda: rows(terms),
-        lambda: rows(_derivatives(terms, n)),
-        TermArrays(terms, n, float(pad)).jacobian(),
+        lambda: rows(terms), lambda: rows(_derivatives(terms, n)), arrays.jacobian(), point
     )
 
 
@@ -497,12 +508,17 @@ def newton(
     ``10^-dps`` (None when the Jacobian is singular on the way or the residual stays
     above ``10^-(dps/2)``: not a regular root)."""
     f, J = _functions(eqs, gens)
-    form = _NEWTON_START.pick(_double_functions(tuple(eqs), tuple(gens)), z)
+    arrays = _double_functions(tuple(eqs), tuple(gens))
+    form = _NEWTON_START.pick(arrays, z)
     if form is not None:
-        z = form(_double_functions(tuple(eqs), tuple(gens)), z)
+        z = form(arrays, z)
     x = mpmath.matrix([_number(v) for v in z])
+    steps = _NEWTON_STEPS_FORM.pick(arrays, f, x, dps, NEWTON_STEPS, NEWTON_STALL)
+    reached = False
+    if steps is not None:
+        x, reached = steps(arrays, f, x, dps, NEWTON_STEPS, NEWTON_STALL)
     last = mpmath.inf
-    for _ in range(NEWTON_STEPS):
+    for _ in range(0 if reached else NEWTON_STEPS):
         try:
             dx = mpmath.lu_solve(J(x), f(x))
         except ZeroDivisionError:
@@ -522,6 +538,13 @@ def newton(
 #: Newton's start's fast forms (:mod:`mechsing.assembly.contraction`)
 _NEWTON_START = dispatch.table(
     "newton start", "mechsing.assembly.certify.newton (from the endpoint as it is)"
+)
+
+#: the fast forms of Newton's steps at the working digits
+#: (:mod:`mechsing.assembly.contraction`)
+_NEWTON_STEPS_FORM = dispatch.table(
+    "newton steps",
+    "mechsing.assembly.certify.newton (each step solved at the working digits by mpmath's LU)",
 )
 
 
@@ -554,13 +577,20 @@ def _compiled(
     if terms is not None:  # polynomials: term by term, coefficients at the digits + 10
         with mpmath.workdps(dps + 10):
             f = _term_rows(terms, lambda c: mpmath.mpf(sympy.N(c, dps + 10)))
-            J = _term_rows(
-                _derivatives(terms, len(gens)), lambda c: mpmath.mpf(sympy.N(c, dps + 10))
-            )
         n, m = len(gens), len(eqs)
+        rows: list[Any] = []  # the Jacobian's, built when first asked for (seldom: the
+        # steps at the working digits mostly run on a double inverse)
 
         def jacobian(x: Any) -> Any:
-            v = J(list(x))
+            if not rows:
+                with mpmath.workdps(dps + 10):
+                    rows.append(
+                        _term_rows(
+                            _derivatives(terms, len(gens)),
+                            lambda c: mpmath.mpf(sympy.N(c, dps + 10)),
+                        )
+                    )
+            v = rows[0](list(x))
             return mpmath.matrix([v[i * n : (i + 1) * n] for i in range(m)])
 
         return (lambda x: mpmath.matrix(f(list(x)))), jacobian
@@ -574,10 +604,21 @@ def _compiled(
 def regular(eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], x: Sequence[Any]) -> bool:
     """Is the Jacobian at ``x`` (refined at the working digits N) far from singular: its
     singular values' ratio above ``10^(-N / MODE_SINGULAR_DIGITS)``?"""
+    floor = mpmath.mpf(10) ** (-(mpmath.mp.dps // MODE_SINGULAR_DIGITS))
+    arrays = _double_functions(tuple(eqs), tuple(gens))
+    form = _REGULAR.pick(arrays, x, floor)
+    if form is not None and form(arrays, x, floor):
+        return True
     _, J = _functions(eqs, gens)
     s = mpmath.svd(J(list(x)), compute_uv=False)
-    floor = mpmath.mpf(10) ** (-(mpmath.mp.dps // MODE_SINGULAR_DIGITS))
     return bool(min(s) > floor * max(s))
+
+
+#: the fast forms of :func:`regular` (:mod:`mechsing.assembly.contraction`)
+_REGULAR = dispatch.table(
+    "regular root",
+    "mechsing.assembly.certify.regular (the Jacobian's singular values at the working digits)",
+)
 
 
 def _least_squares_newton(f: Any, J: Any, x: Any, dps: int, steps: int) -> Any:

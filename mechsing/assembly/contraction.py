@@ -11,9 +11,11 @@ every operation in mpmath interval arithmetic).  In the Krawczyk operator
 1e-30) multiplies ``I - Y f'(Z)``, which only needs an upper bound B on its magnitude,
 entry by entry: B r must stay below r less ``|Y f(m)|`` (about 1e-45 at a root refined
 to 50 digits), so a bound of 1e-15 or of 1e-2 proves the same box.  That bound, the n x n products of the test, is computed here in
-double precision with every rounding bounded (below); ``f(m)`` (where the root's
-digits matter) and ``Y f(m)`` stay in mpmath interval arithmetic at the working
-digits, as the generic definition has them.  The form answers True (proved) or None
+double precision with every rounding bounded (below).  ``f(m)``, where the root's
+digits matter, is evaluated at the working digits at the point m and widened by a bound
+on its rounding (the same analysis with the working precision's unit roundoff) and on
+the coefficients' enclosures; ``Y f(m)`` stays in mpmath interval arithmetic at the
+working digits, as the generic definition has it.  The form answers True (proved) or None
 (not proved here: the caller runs the generic definition, which decides).
 
 The bound, for z in Z: ``|I - Y f'(z)| <= |I - Y J~| + |Y| (|J~ - f'(xc)| + |f'(z) -
@@ -40,7 +42,29 @@ while they shrink, so that the steps at the working digits start at double preci
 accuracy (fewer of them than from a continuation endpoint).
 The root the working digits reach is the same; the digits' last places may differ.
 
-Owns :class:`TermArrays`, :func:`contraction_krawczyk` and :func:`double_newton`.
+:func:`chord_steps` is the form ``"chord"`` of the dispatch table ``"newton steps"``
+(generic definition: each step's linear system solved at the working digits by
+mpmath's LU, :func:`mechsing.assembly.certify.newton`): the steps at the working digits
+reuse one double-precision inverse Y of the Jacobian at the root rounded to double, the
+step ``Y f(x)`` computed in double from ``f(x)`` at the working digits.  Each step
+multiplies the error by about ``|I - Y f'(x)|``, the Jacobian's condition times the
+double rounding (1e-16 to 1e-8 where ``MODE_CHORD_RTOL`` admits the root), so four or
+five steps take a root from double precision to 50 digits, with no Jacobian evaluated
+and no system solved at the working digits (the chord or simplified Newton method:
+Ortega and Rheinboldt, Iterative Solution of Nonlinear Equations in Several Variables,
+1970, 7.1).  The root is the same; the digits' last places may differ.
+
+:func:`regular_in_double` is the form ``"double bound"`` of the dispatch table
+``"regular root"`` (generic definition: the Jacobian's singular values at the working
+digits, :func:`mechsing.assembly.certify.regular`): the Jacobian at the root rounded to
+double, its entries' distance to the exact Jacobian at the root bounded as above, and
+the singular values moved by at most that distance's Frobenius norm (Weyl's inequality)
+plus LAPACK's backward error; it answers True where even so the least singular value
+stays above the floor times the largest, None (the generic definition decides)
+elsewhere.
+
+Owns :class:`TermArrays`, :func:`contraction_krawczyk`, :func:`double_newton`,
+:func:`chord_steps` and :func:`regular_in_double`.
 """
 
 from __future__ import annotations
@@ -51,9 +75,16 @@ from typing import Any
 import mpmath
 import numpy as np
 
+from mechsing.assembly.settings import MODE_CHORD_RTOL
 from mechsing.numeric import dispatch
 
-__all__ = ["TermArrays", "contraction_krawczyk", "double_newton"]
+__all__ = [
+    "TermArrays",
+    "chord_steps",
+    "contraction_krawczyk",
+    "double_newton",
+    "regular_in_double",
+]
 
 #: the most double-precision Newton steps before the working digits take over
 DOUBLE_NEWTON_STEPS = 12
@@ -94,6 +125,8 @@ class TermArrays:
         # products (powers, then the monomial), the product by its coefficient; the sum
         # of a polynomial's k terms
         j = 2 * degree + 4 + int(counts.max())
+        #: the roundings a polynomial's value carries, each term's and the sum's (gamma's j)
+        self.ops = j
         self.gamma = j * _U / (1 - j * _U)
 
     def jacobian(self) -> TermArrays:
@@ -111,6 +144,7 @@ class TermArrays:
         counts = np.bincount(out.rows, minlength=out.size) if len(out.rows) else np.zeros(1)
         degree = int(out.exps.sum(axis=1).max()) if len(out.rows) else 0
         j = 2 * degree + 5 + int(counts.max())
+        out.ops = j
         out.gamma = j * _U / (1 - j * _U)
         return out
 
@@ -198,7 +232,7 @@ def contraction_krawczyk(system: Any, m: Sequence[Any], radius: Any) -> bool | N
         return None
     Y, B = got
     spread = 2 * (B @ w) * (1 + (n + 2) * _U) + _TINY  # |(I - Y f'(Z))(Z - m)|, above
-    fm = system.f([iv.mpf(x) for x in m])
+    fm = _enclosed_values(system, m, xc)
     for i, mi in enumerate(m):
         acc = iv.mpf(mi)
         for k in range(n):
@@ -208,6 +242,25 @@ def contraction_krawczyk(system: Any, m: Sequence[Any], radius: Any) -> bool | N
         if not (acc.a > Z[i].a and acc.b < Z[i].b):
             return None
     return True
+
+
+def _enclosed_values(system: Any, m: Sequence[Any], xc: np.ndarray) -> list[Any]:
+    """Intervals that hold the system's values at ``m`` (``xc``: m rounded to double):
+    evaluated at the working digits at the point, each widened by a bound on that
+    evaluation's rounding (``gamma`` of the working precision's unit roundoff, with
+    the roundings the term arrays count) and on the coefficients' enclosures (their
+    slack, as the interval functions enclose them); the interval functions where the
+    system has no point form."""
+    iv = mpmath.iv
+    if system.point is None:
+        return list(system.f([iv.mpf(x) for x in m]))
+    values, arrays = system.point
+    v = values(list(m))
+    u = 2.0 ** (1 - mpmath.mp.prec)  # a rounding at the working digits, towards zero
+    gamma = arrays.ops * u / (1 - arrays.ops * u)
+    a = np.abs(xc) * (1 + 2 * _U) + _TINY  # above |m|
+    e = 2 * (gamma * arrays.magnitudes(a) + arrays.magnitudes(a, arrays.slack)) + _TINY
+    return [iv.mpf(x) + iv.mpf([-float(r), float(r)]) for x, r in zip(v, e, strict=True)]
 
 
 def _magnitude(d: Any) -> float:
@@ -247,3 +300,88 @@ def double_newton(arrays: tuple[TermArrays, TermArrays], z: Sequence[Any]) -> li
         if step <= 4 * _U * max(1.0, float(np.max(np.abs(x)))):
             break
     return list(x) if np.isfinite(last) else list(z)
+
+
+@dispatch.table(
+    "newton steps",
+    "mechsing.assembly.certify.newton (each step solved at the working digits by mpmath's LU)",
+).register(
+    "chord",
+    "a square polynomial system given by its terms, its Jacobian at the root rounded to "
+    "double well-conditioned (MODE_CHORD_RTOL): every step at the working digits "
+    "solved by one double-precision inverse (the same root; its last digits may differ)",
+    accepts=lambda arrays, f, x, dps, steps, stall: arrays is not None,
+)
+def chord_steps(
+    arrays: tuple[TermArrays, TermArrays], f: Any, x: Any, dps: int, steps: int, stall: float
+) -> tuple[Any, bool]:
+    """``x`` (an mpmath column) refined at ``dps`` digits by chord steps ``x - Y f(x)``,
+    Y a double inverse of the Jacobian at ``x`` rounded to double: (the point reached,
+    whether the steps reached ``10^-dps`` or the working digits' rounding below
+    ``10^-(dps/2)``, as :func:`mechsing.assembly.certify.newton`'s do).  Not reached
+    (an ill-conditioned Jacobian, a step that does not shrink the last by ``stall``
+    above ``10^-(dps/2)``): the point as far as the steps took it, for the generic
+    steps to go on from."""
+    _, J = arrays
+    n = len(x)
+    cplx = any(isinstance(v, mpmath.mpc) and v.imag != 0 for v in x)
+    xc = np.array([complex(v) if cplx else float(v) for v in x])
+    A = J.values(xc).reshape(n, n)
+    if not np.all(np.isfinite(A)):
+        return x, False
+    s = np.linalg.svd(A, compute_uv=False)
+    if not s[-1] >= MODE_CHORD_RTOL * s[0]:
+        return x, False
+    Y = np.linalg.inv(A)
+    tiny, half = mpmath.mpf(10) ** (-dps), mpmath.mpf(10) ** (-(dps // 2))
+    last = mpmath.inf
+    for _ in range(steps):
+        r = np.array([complex(v) if cplx else float(mpmath.re(v)) for v in f(x)])
+        d = Y @ r
+        step = mpmath.mpf(float(np.linalg.norm(d)))
+        slow = step > last / stall
+        if slow and step > half:
+            return x, False  # not contracting
+        x = x - mpmath.matrix([mpmath.mpc(v) if cplx else mpmath.mpf(v) for v in d])
+        if step <= tiny or slow:  # there, or no longer shrinking: the digits' rounding
+            return x, True
+        last = step
+    return x, False
+
+
+@dispatch.table(
+    "regular root",
+    "mechsing.assembly.certify.regular (the Jacobian's singular values at the working digits)",
+).register(
+    "double bound",
+    "a square polynomial system given by its terms: the Jacobian's singular values in "
+    "double precision, moved by a bound on the rounding (True where regular even so, "
+    "None where the generic definition decides)",
+    accepts=lambda arrays, x, floor: arrays is not None,
+)
+def regular_in_double(
+    arrays: tuple[TermArrays, TermArrays], x: Sequence[Any], floor: Any
+) -> bool | None:
+    """True when the Jacobian at ``x`` has its least singular value above ``floor``
+    times its largest, proved from the double-precision Jacobian at ``x`` rounded to
+    double; None where that does not prove it."""
+    _, J = arrays
+    n = len(x)
+    cplx = any(isinstance(v, (complex, mpmath.mpc)) and v.imag != 0 for v in x)
+    xc = np.array([complex(v) if cplx else float(mpmath.re(v)) for v in x])
+    Jt = J.values(xc).reshape(n, n)
+    if not np.all(np.isfinite(Jt)):
+        return None
+    s = np.linalg.svd(Jt, compute_uv=False)
+    # |J~ - f'(x)| entry by entry: the evaluation's rounding and x's rounding to double
+    # (each part to half an ulp: rho), over the ball |z - xc| <= rho
+    rho = 2 * _U * np.abs(xc) + _TINY
+    err = J.gamma * J.magnitudes(np.abs(xc)) + J.variation(xc, rho) * (1 + J.gamma)
+    # Weyl: each singular value moves by at most ||E||_2 <= ||E||_F; LAPACK's SVD is
+    # backward stable (a modest multiple of u sigma_max, taken as 8 n u sigma_max)
+    delta = 2 * (float(np.sqrt(np.sum(err**2))) + 8 * n * _U * float(s[0])) + _TINY
+    if not np.isfinite(delta):
+        return None
+    if float(s[-1]) - delta > float(floor) * (float(s[0]) + delta):
+        return True
+    return None

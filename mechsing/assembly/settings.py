@@ -48,6 +48,13 @@ MODE_SINGULAR_DIGITS = 3
 #: of the order of the step squared)
 MODE_CURVE_STEP = 1e-6
 
+#: Newton's steps at the working digits reuse one double-precision inverse of the
+#: Jacobian at the root rounded to double (chord steps: each gains about 16 digits less
+#: the condition's) when its least singular value is at least this times its largest,
+#: at least 8 digits a step; a worse-conditioned root is refined by steps solved at the
+#: working digits
+MODE_CHORD_RTOL = 1e-8
+
 #: a continuation endpoint (double precision) may be a singular root -- a multiple root
 #: or a point of a curve of solutions, where the count cannot be proven -- when its
 #: Jacobian's least singular value is below this times its largest (a regular root of
