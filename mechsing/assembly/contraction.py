@@ -320,8 +320,8 @@ def chord_steps(
     whether the steps reached ``10^-dps`` or the working digits' rounding below
     ``10^-(dps/2)``, as :func:`mechsing.assembly.certify.newton`'s do).  Not reached
     (an ill-conditioned Jacobian, a step that does not shrink the last by ``stall``
-    above ``10^-(dps/2)``): the point as far as the steps took it, for the generic
-    steps to go on from."""
+    above ``10^-(dps/2)``): ``x`` itself, for the generic steps to start from, as they
+    would without this form."""
     _, J = arrays
     n = len(x)
     cplx = any(isinstance(v, mpmath.mpc) and v.imag != 0 for v in x)
@@ -334,19 +334,19 @@ def chord_steps(
         return x, False
     Y = np.linalg.inv(A)
     tiny, half = mpmath.mpf(10) ** (-dps), mpmath.mpf(10) ** (-(dps // 2))
-    last = mpmath.inf
+    last, start = mpmath.inf, x
     for _ in range(steps):
         r = np.array([complex(v) if cplx else float(mpmath.re(v)) for v in f(x)])
         d = Y @ r
         step = mpmath.mpf(float(np.linalg.norm(d)))
         slow = step > last / stall
         if slow and step > half:
-            return x, False  # not contracting
+            return start, False  # not contracting
         x = x - mpmath.matrix([mpmath.mpc(v) if cplx else mpmath.mpf(v) for v in d])
         if step <= tiny or slow:  # there, or no longer shrinking: the digits' rounding
             return x, True
         last = step
-    return x, False
+    return start, False
 
 
 @dispatch.table(

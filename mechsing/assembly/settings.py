@@ -51,9 +51,10 @@ MODE_CURVE_STEP = 1e-6
 #: Newton's steps at the working digits reuse one double-precision inverse of the
 #: Jacobian at the root rounded to double (chord steps: each gains about 16 digits less
 #: the condition's) when its least singular value is at least this times its largest,
-#: at least 8 digits a step; a worse-conditioned root is refined by steps solved at the
-#: working digits
-MODE_CHORD_RTOL = 1e-8
+#: at least 10 digits a step; a worse-conditioned root (one that may be singular:
+#: ``MODE_ENDPOINT_SINGULAR_RTOL``, a double root's Jacobian in double precision is
+#: about 1e-8) is refined by steps solved at the working digits, from where it was
+MODE_CHORD_RTOL = 1e-6
 
 #: a continuation endpoint (double precision) may be a singular root -- a multiple root
 #: or a point of a curve of solutions, where the count cannot be proven -- when its
