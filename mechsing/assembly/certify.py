@@ -259,7 +259,7 @@ def _interval_terms(terms: list[dict[tuple[int, ...], Any]], n: int) -> Interval
     def enclose(c: Any) -> Any:
         if c.is_Rational:
             return iv.mpf(int(c.p)) / iv.mpf(int(c.q))
-        v = mpmath.mpf(sympy.N(c, dps + 10))
+        v = _mp_coefficient(c, dps + 10)
         return iv.mpf([v - pad * (1 + abs(v)), v + pad * (1 + abs(v))])
 
     def rows(t: Any) -> Any:
@@ -268,7 +268,7 @@ def _interval_terms(terms: list[dict[tuple[int, ...], Any]], n: int) -> Interval
 
     def point() -> tuple[Any, Any]:
         with mpmath.workdps(dps + 10):
-            return _term_rows(terms, lambda c: mpmath.mpf(sympy.N(c, dps + 10))), arrays
+            return _term_rows(terms, lambda c: _mp_coefficient(c, dps + 10)), arrays
 
     arrays = TermArrays(terms, n, float(pad))
     return IntervalSystem(
@@ -329,6 +329,17 @@ def _jacobian(exprs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol]) -> list
             continue
         out += [p.diff(g).as_expr() for g in gens]
     return out
+
+
+def _mp_coefficient(c: Any, dps: int) -> Any:
+    """A polynomial's real coefficient (a sympy number) as an mpmath number to ``dps``
+    digits (the caller's working digits hold them): a float and a rational directly,
+    anything else (an algebraic number written as an expression) by sympy's ``N``."""
+    if isinstance(c, sympy.Float):
+        return mpmath.mpf(c._mpf_)
+    if isinstance(c, sympy.Rational):
+        return mpmath.mpf(int(c.p)) / int(c.q)
+    return mpmath.mpf(sympy.N(c, dps))
 
 
 def _number(v: Any) -> Any:
@@ -576,7 +587,7 @@ def _compiled(
     terms = _terms(eqs, gens)
     if terms is not None:  # polynomials: term by term, coefficients at the digits + 10
         with mpmath.workdps(dps + 10):
-            f = _term_rows(terms, lambda c: mpmath.mpf(sympy.N(c, dps + 10)))
+            f = _term_rows(terms, lambda c: _mp_coefficient(c, dps + 10))
         n, m = len(gens), len(eqs)
         rows: list[Any] = []  # the Jacobian's, built when first asked for (seldom: the
         # steps at the working digits mostly run on a double inverse)
@@ -587,7 +598,7 @@ def _compiled(
                     rows.append(
                         _term_rows(
                             _derivatives(terms, len(gens)),
-                            lambda c: mpmath.mpf(sympy.N(c, dps + 10)),
+                            lambda c: _mp_coefficient(c, dps + 10),
                         )
                     )
             v = rows[0](list(x))

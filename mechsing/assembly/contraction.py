@@ -317,8 +317,9 @@ def chord_steps(
 ) -> tuple[Any, bool]:
     """``x`` (an mpmath column) refined at ``dps`` digits by chord steps ``x - Y f(x)``,
     Y a double inverse of the Jacobian at ``x`` rounded to double: (the point reached,
-    whether the steps reached ``10^-dps`` or the working digits' rounding below
-    ``10^-(dps/2)``, as :func:`mechsing.assembly.certify.newton`'s do).  Not reached
+    whether the steps reached ``10^-dps``, or a step that leaves less, at the rate of
+    the last two, or the working digits' rounding below ``10^-(dps/2)``, as
+    :func:`mechsing.assembly.certify.newton`'s do).  Not reached
     (an ill-conditioned Jacobian, a step that does not shrink the last by ``stall``
     above ``10^-(dps/2)``): ``x`` itself, for the generic steps to start from, as they
     would without this form."""
@@ -344,6 +345,10 @@ def chord_steps(
             return start, False  # not contracting
         x = x - mpmath.matrix([mpmath.mpc(v) if cplx else mpmath.mpf(v) for v in d])
         if step <= tiny or slow:  # there, or no longer shrinking: the digits' rounding
+            return x, True
+        if last < mpmath.inf and step * (step / last) <= tiny:
+            # the steps shrink by step / last each (linearly): the next, the error left,
+            # is below 10^-dps
             return x, True
         last = step
     return start, False
