@@ -89,6 +89,19 @@ def _rank(rows):
     ),
     1e-3,
 )
+@example(
+    # two rotations with moments of 1e-5 (their axes through points 1e-5 off the origin)
+    # whose span's x and y entries are nearly equal: the echelon form pivots on y's 1.4e-5
+    # and scales its rows by 7e4, the unit rows are then nearly parallel, and their
+    # moments (1e-10 of the row, 1e-5 of the pivot's unit) must stay to span the input
+    _well_posed(
+        [
+            _screw((0.0, 1e-5, 1.0), (0.0, 0.0, 0.0), 0.0),
+            _screw((1.0, 1.0, 0.0), (0.0, 0.0, 1e-5), 0.0),
+        ]
+    ),
+    1e-3,
+)
 def test_echelon_and_readable_basis_span_the_same_space(rows, L):
     """The same span, judged in the commensurate metric the forms decide in (second halves
     over L): in SI a small mechanism's second halves are L times smaller, and a first-half

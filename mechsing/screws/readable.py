@@ -140,10 +140,14 @@ def simplest(v: np.ndarray, rows: np.ndarray) -> np.ndarray:
     return out
 
 
-def _unit(row: np.ndarray, length_scale: float) -> np.ndarray:
+def _unit(row: np.ndarray, length_scale: float, pivot: int) -> np.ndarray:
     """A unit first half, or a unit second half when the first is of rounding level
     next to it (commensurate: at most SUPPORT_RTOL of the second half over L);
-    components of rounding level (SUPPORT_RTOL of the largest, commensurate) set to 0."""
+    components of rounding level set to 0: SUPPORT_RTOL of the smaller of the largest
+    entry and the echelon pivot's (commensurate).  The pivot holds the row's unit of
+    the data: a row scaled up by a small pivot (by as much as 1/ECHELON_PIVOT_RTOL) has
+    entries far above the largest's SUPPORT_RTOL that are still the data's, and a basis
+    of nearly parallel rows needs them to span the input."""
     scale = _scale(length_scale)
     first, second = np.linalg.norm(row[:3]), np.linalg.norm(row[3:] * scale[3:])
     if first <= SUPPORT_RTOL * second:
@@ -151,8 +155,9 @@ def _unit(row: np.ndarray, length_scale: float) -> np.ndarray:
         out = row / np.linalg.norm(row[3:])
     else:
         out = row / first
-    big = np.max(np.abs(out * scale))
-    return np.where(np.abs(out * scale) > SUPPORT_RTOL * big, out, 0.0) + 0.0
+    size = np.abs(out * scale)
+    big = min(float(np.max(size)), float(size[pivot]) or float(np.max(size)))
+    return np.where(size > SUPPORT_RTOL * big, out, 0.0) + 0.0
 
 
 def readable_basis(rows: np.ndarray, length_scale: float) -> np.ndarray:
@@ -169,4 +174,6 @@ def readable_basis(rows: np.ndarray, length_scale: float) -> np.ndarray:
             if j < 3:
                 v = simplest(np.r_[np.zeros(3), E[i, 3:]], T)[3:]
                 out[i] = np.concatenate([E[i, :3], v])
-    return np.array([_unit(row, length_scale) for row in out]).reshape(-1, 6)
+    return np.array(
+        [_unit(row, length_scale, j) for row, j in zip(out, pivots, strict=True)]
+    ).reshape(-1, 6)
