@@ -118,6 +118,20 @@ def test_echelon_and_readable_basis_span_the_same_space(rows, L):
 
 @settings(max_examples=150, deadline=None)
 @given(spans, screws)
+@example(
+    # a rotation about y (twice) and a screw of pitch 1 whose axis leans 1.6e-9 off it:
+    # the first halves' second singular value, about 1e-9, is kept, and the combination
+    # of rows it takes amplifies rounding by about 1e9; the first half is the orthogonal
+    # projection, taken as such
+    _well_posed(
+        [
+            np.array([0.0, 1.0, 0.0, 0.0, 0.0, 0.0]),
+            np.array([0.0, 1.0, 0.0, 0.0, 0.0, 0.0]),
+            _screw((0.0, 1.0, 1.616356439661559e-09), (0.0, 0.0, 0.0), 1.0),
+        ]
+    ),
+    _screw((0.0, 0.0, 1.0), (0.0, 0.0, 0.0), 0.0),
+)
 def test_simplest_stays_in_the_class_with_the_least_first_half(rows, v):
     s = simplest(v, rows)
     assert _in_span(s - v, rows) or np.linalg.norm(s - v) < 1e-9

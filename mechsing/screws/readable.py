@@ -132,7 +132,12 @@ def simplest(v: np.ndarray, rows: np.ndarray) -> np.ndarray:
         return out
     # least squares on the first halves, their rounding-level singular values dropped
     U, sv, Vt, pure, big = _pure(R)
+    first = out[:3] - Vt.T @ (Vt @ out[:3])
     out = out - (U @ ((Vt @ out[:3]) / sv)) @ R
+    # the first half is the projection orthogonal to the first halves' span, taken as
+    # such: through the combination of rows its rounding is amplified by the inverse of
+    # the least singular value kept (up to 1/SUPPORT_RTOL)
+    out[:3] = first
     if len(pure):
         Q, s2, _ = dense_svd(pure[:, 3:].T, full_matrices=False)
         Q = Q[:, s2 > SUPPORT_RTOL * big]
