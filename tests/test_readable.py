@@ -102,6 +102,20 @@ def _rank(rows):
     ),
     1e-3,
 )
+@example(
+    # a rotation about a z axis leaning 5.3e-6 towards y, the translation along that
+    # axis: the echelon form pivots on the 5.3e-6 and scales by 1.9e5, and the translation's
+    # row keeps a first half of 4.9e-7 (rounding beside its 1.9e5); the rotation's second
+    # half made least modulo it must take that first half off with it
+    _well_posed(
+        [
+            _screw((0.0, 5.346710167176784e-06, 1.0), (0.0, 1.0, 0.0), 0.0),
+            np.array([1.0, 0.0, 0.0, 0.0, 1.0, 0.0]),
+            _translation((0.0, 5.346710167176784e-06, 1.0)),
+        ]
+    ),
+    1.0,
+)
 def test_echelon_and_readable_basis_span_the_same_space(rows, L):
     """The same span, judged in the commensurate metric the forms decide in (second halves
     over L): in SI a small mechanism's second halves are L times smaller, and a first-half

@@ -175,10 +175,17 @@ def readable_basis(rows: np.ndarray, length_scale: float) -> np.ndarray:
     out = E.copy()
     if pure:
         T = E[pure]
+        pivot_at = [pivots[i] for i in pure]
+        columns = [j - 3 for j in pivot_at]
         for i, j in enumerate(pivots):
             if j < 3:
-                v = simplest(np.r_[np.zeros(3), E[i, 3:]], T)[3:]
-                out[i] = np.concatenate([E[i, :3], v])
+                # the second half made least modulo T's, then the same combination of
+                # T's whole rows taken off: each row of T is 0 at the others' pivots, so
+                # the combination is read there; a first half T keeps at rounding level
+                # goes with it (amplified by a small pivot, it is not negligible beside
+                # the row's own unit first half)
+                d = E[i, 3:] - simplest(np.r_[np.zeros(3), E[i, 3:]], T)[3:]
+                out[i] = E[i] - (d[columns] / T[range(len(pure)), pivot_at]) @ T
     return np.array(
         [_unit(row, length_scale, j) for row, j in zip(out, pivots, strict=True)]
     ).reshape(-1, 6)
