@@ -35,6 +35,7 @@ import sympy
 from mechsing.assembly import contraction as _contraction  # noqa: F401 (its dispatch form)
 from mechsing.assembly.settings import (
     MODE_CERTIFY_RADIUS,
+    MODE_CLOSURE_DIGITS,
     MODE_CURVE_STEP,
     MODE_ENDPOINT_SINGULAR_RTOL,
     MODE_SINGULAR_DIGITS,
@@ -51,6 +52,7 @@ __all__ = [
     "krawczyk_box",
     "krawczyk_complex",
     "local_dimension",
+    "misses",
     "newton",
     "poly_terms",
     "polynomial_rows",
@@ -653,6 +655,23 @@ def _least_squares_newton(f: Any, J: Any, x: Any, dps: int, steps: int) -> Any:
     return x
 
 
+def misses(
+    eqs: Sequence[sympy.Expr],
+    gens: Sequence[sympy.Symbol],
+    x: Sequence[Any],
+    dps: int,
+    accepted: Any = 0,
+) -> Any:
+    """The residual of the system at ``x`` (a root refined at ``dps`` digits: the norm of
+    its values) where it does not close (above ``10^(-dps / MODE_CLOSURE_DIGITS)`` and
+    above ``accepted``), else 0: a root of a square system's combinations may miss the
+    others."""
+    f, _ = _functions(eqs, gens)
+    r = mpmath.norm(f(x))
+    floor = mpmath.mpf(10) ** (-(dps // MODE_CLOSURE_DIGITS))
+    return r if r > floor and r > accepted else 0
+
+
 def singular_root(
     eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], z: Sequence[Any], dps: int
 ) -> tuple[list[Any] | None, bool]:
@@ -662,7 +681,7 @@ def singular_root(
     hyperplane at that distance: it closes to the working digits only on a curve."""
     f, J = _functions(eqs, gens)
     x = _least_squares_newton(f, J, mpmath.matrix([mpmath.mpf(float(v)) for v in z]), dps, 400)
-    if mpmath.norm(f(x)) > mpmath.mpf(10) ** (-(dps // 3)):
+    if misses(eqs, gens, x, dps):
         return None, False
     _, _, V = mpmath.svd_r(J(x), full_matrices=True)
     n = len(x)

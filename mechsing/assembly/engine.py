@@ -6,8 +6,9 @@ written in the user's directory and no path is replayed from an earlier run.  Th
 fixed, so a run repeats: the same random gamma, start points and patches.
 
 Owns :func:`track`, :func:`track_linear_product` (from a linear-product start system),
-:func:`linear_product_paths`, :func:`real_endpoints`, :func:`system_text` (the system in
-Bertini's input language, its variable groups first).
+:func:`linear_product_paths`, :func:`real_endpoints`, :func:`genuine_endpoint` and
+:func:`on_normalisations` (the general formulation's endpoints), :func:`system_text`
+(the system in Bertini's input language, its variable groups first).
 """
 
 from __future__ import annotations
@@ -19,13 +20,19 @@ from typing import Any
 import numpy as np
 import sympy
 
-from mechsing.assembly.settings import MODE_IMAGINARY_RTOL
+from mechsing.assembly.settings import (
+    MODE_EXTRANEOUS_RTOL,
+    MODE_IMAGINARY_RTOL,
+    MODE_ISOTROPIC_RTOL,
+)
 from mechsing.errors import UserError
 from mechsing.timelimit import interruptible
 
 __all__ = [
     "SEED",
+    "genuine_endpoint",
     "linear_product_paths",
+    "on_normalisations",
     "real_endpoints",
     "system_text",
     "track",
@@ -189,4 +196,45 @@ def real_endpoints(points: Sequence[np.ndarray]) -> list[np.ndarray]:
         scale = max(1.0, float(np.max(np.abs(z))))
         if float(np.max(np.abs(z.imag))) <= MODE_IMAGINARY_RTOL * scale:
             out.append(z.real)
+    return out
+
+
+def genuine_endpoint(groups: Sequence[Any], z: np.ndarray, product: Any) -> bool:
+    """An endpoint ``z`` of the general formulation (its ``groups``' homogeneous
+    coordinates in order) that is not extraneous: no isotropic pair or quaternion, no
+    infinite slide, every closure's ``product`` the identity up to a non-zero scalar."""
+    at = 0
+    w = []
+    for g in groups:
+        v = z[at : at + len(g.gens)]
+        at += len(g.gens)
+        size = float(np.sum(np.abs(v) ** 2))
+        if g.kind == "P":
+            if abs(v[0]) ** 2 <= MODE_ISOTROPIC_RTOL * size:
+                return False
+            w += list(v / v[0])
+        else:
+            norm2 = complex(np.sum(v * v))
+            if abs(norm2) <= MODE_ISOTROPIC_RTOL * size:
+                return False
+            w += list(v / np.sqrt(norm2))
+    for P in product(*w):
+        P = np.asarray(P, dtype=complex)
+        if abs(P[0]) <= MODE_EXTRANEOUS_RTOL or np.max(np.abs(P[1:])) > MODE_EXTRANEOUS_RTOL * abs(
+            P[0]
+        ):
+            return False
+    return True
+
+
+def on_normalisations(groups: Sequence[Any], z: Any) -> list[Any]:
+    """A real endpoint scaled onto the normalisations (a slide pair's first coordinate 1,
+    a half-angle pair or quaternion of norm 1)."""
+    out: list[Any] = []
+    at = 0
+    for g in groups:
+        v = [float(x) for x in z[at : at + len(g.gens)]]
+        at += len(g.gens)
+        n = v[0] if g.kind == "P" else float(np.sqrt(sum(x * x for x in v)))
+        out += [x / n for x in v]
     return out

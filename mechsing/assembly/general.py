@@ -45,12 +45,11 @@ import numpy as np
 import sympy
 
 from mechsing.assembly.chains import Found, arm_chain
+from mechsing.assembly.engine import genuine_endpoint, on_normalisations
 from mechsing.assembly.given import Formulation, Given
 from mechsing.assembly.settings import (
     MODE_CERTIFY_RADIUS,
     MODE_ENDPOINT_SINGULAR_RTOL,
-    MODE_EXTRANEOUS_RTOL,
-    MODE_ISOTROPIC_RTOL,
 )
 from mechsing.errors import FormulationError, UserError
 from mechsing.lie.dual import study_conjugate, study_multiply
@@ -485,50 +484,11 @@ def _row(mech: Mechanism, prob: Problem, z: list[Any]) -> list[Any]:
     return [values[name][i] for name, i in mech.coordinates()]
 
 
-def _genuine(prob: Problem, z: np.ndarray, product: Any) -> bool:
-    """Not extraneous: no isotropic pair or quaternion, no infinite slide, every closure's
-    product the identity up to a non-zero scalar."""
-    at = 0
-    w = []
-    for g in prob.groups:
-        v = z[at : at + len(g.gens)]
-        at += len(g.gens)
-        size = float(np.sum(np.abs(v) ** 2))
-        if g.kind == "P":
-            if abs(v[0]) ** 2 <= MODE_ISOTROPIC_RTOL * size:
-                return False
-            w += list(v / v[0])
-        else:
-            norm2 = complex(np.sum(v * v))
-            if abs(norm2) <= MODE_ISOTROPIC_RTOL * size:
-                return False
-            w += list(v / np.sqrt(norm2))
-    for P in product(*w):
-        P = np.asarray(P, dtype=complex)
-        if abs(P[0]) <= MODE_EXTRANEOUS_RTOL or np.max(np.abs(P[1:])) > MODE_EXTRANEOUS_RTOL * abs(
-            P[0]
-        ):
-            return False
-    return True
-
-
-def _unit(prob: Problem, z: Any) -> list[Any]:
-    """A real endpoint scaled onto the normalisations."""
-    out: list[Any] = []
-    at = 0
-    for g in prob.groups:
-        v = [float(x) for x in z[at : at + len(g.gens)]]
-        at += len(g.gens)
-        n = v[0] if g.kind == "P" else float(np.sqrt(sum(x * x for x in v)))
-        out += [x / n for x in v]
-    return out
-
-
 def _find(given: Given) -> Found:
     from mechsing.assembly import certify
     from mechsing.assembly.certify import krawczyk, local_dimension, newton, regular
     from mechsing.assembly.engine import real_endpoints, track
-    from mechsing.assembly.result import joint_distance
+    from mechsing.assembly.result import closure_gap, joint_distance
     from mechsing.assembly.serial import account
 
     mech, dps = given.mech, given.dps
@@ -578,8 +538,9 @@ def _find(given: Given) -> Found:
         *patched_system(prob), mptype=MPTYPE if m > n or prob.spins else "adaptive"
     )
     product = certify.polynomial_rows([c.product for c in prob.closures], gens)
-    genuine = [z for z in raw if _genuine(prob, z, product)]
-    real = real_endpoints(genuine)
+    genuine = [z for z in raw if genuine_endpoint(prob.groups, z, product)]
+    pairs = [(g, r[0]) for g in genuine for r in [real_endpoints([g])] if r]
+    real = [z for _, z in pairs]
     found: list[tuple[list[Any], list[Any], bool]] = []
     duplicates = singular = 0
 
@@ -599,10 +560,21 @@ def _find(given: Given) -> Found:
         return Found(formulation, [], None, "infinite", paths, tuple(notes), 1, given.closure)
 
     L = float(prob.L)
-    for z in real:
-        start = _unit(prob, z)
+    open_roots: list[Any] = []  # roots of the combinations that leave a loop open (m)
+    for endpoint, z in pairs:
+        start = on_normalisations(prob.groups, z)
         root = newton(square, gens, start, dps)
         ok = root is not None and regular(square, gens, root)
+        miss = ok and m > n and certify.misses(prob.equations, gens, root, dps)
+        # an arm's gap to its target read from the equations (t / 2L, half an angle)
+        gap = miss and closure_gap(
+            mech, given.prec, _row(mech, prob, root), prob.arm and 2 * L * miss
+        )
+        if gap:
+            open_roots.append(gap)
+            genuine = [g for g in genuine if g is not endpoint]
+            real = [x for x in real if x is not z]
+            continue
         if not ok:
             singular += 1
             dim = local_dimension(full, gens, start, dps)
@@ -638,6 +610,15 @@ def _find(given: Given) -> Found:
     radius = mpmath.mpf(MODE_CERTIFY_RADIUS)
     rows = [(q, ok and krawczyk(square, gens, root, radius)) for root, q, ok in found]
     paths = account(tracked, raw, genuine, real, found, duplicates, singular)
+    if open_roots:
+        notes.append(
+            f"{len(open_roots)} real root(s) of the random combinations miss the other "
+            f"closure equations at {dps} digits, "
+            + ("the arm's end off its target" if prob.arm else "the loops left open")
+            + f" by {float(min(open_roots)):.3g} m (the least), over the {given.prec} "
+            "tolerance: no mode with the numbers as written (where the data are rounded, "
+            "give them with more digits or exactly)"
+        )
     formulation["bezout"] = tracked
     if m > n:
         notes.append(
@@ -767,9 +748,9 @@ def _sliced(prob: Problem, k: int) -> list[list[Any]]:
                 sum(sympy.Rational(float(c)) * x for c, x in zip(r, g.gens, strict=True)) - 1
             )
         raw, _ = track(patched, [g.gens for g in prob.groups], mptype=MPTYPE)
-        real = real_endpoints([z for z in raw if _genuine(prob, z, product)])
+        real = real_endpoints([z for z in raw if genuine_endpoint(prob.groups, z, product)])
         if real:
-            return [_unit(prob, z) for z in real]
+            return [on_normalisations(prob.groups, z) for z in real]
     return []
 
 

@@ -242,6 +242,20 @@ def _reached(
     return where, ()
 
 
+def closure_gap(mech: Mechanism, prec: Precision, row: list[Any], target: Any = None) -> Any:
+    """How far the joint values ``row`` (the file's coordinates) leave the loops from
+    closing where that is more than ``prec`` accepts (m), else 0: as a configuration
+    giving every joint is checked when its mode is analysed (the kinematic model's
+    residual, at mp:N in its digits, else in float; exact accepts none); ``target``, an
+    arm's gap to its target pose (m), in place of the loops'."""
+    from mechsing.kinematics import KinematicModel
+
+    km = KinematicModel(mech, prec if prec.mode == "mp" else "float")
+    accepted = km.precision.closure_tolerance(km.length_scale) if prec.mode != "exact" else 0
+    gap = target or km.residual_norm(km.chord_residuals(km.asarray(row)), native=True)
+    return gap if gap > accepted else 0
+
+
 def joint_distance(mech: Mechanism, q1: list[float], q2: list[float], L: float) -> float:
     """The commensurate distance over the joint coordinates: angles modulo 2 pi (rad),
     lengths over L."""

@@ -41,6 +41,14 @@ MODE_PIEPER_ATOL = 1e-9
 #: an arm 1e-13 rad from its wrist singularity, is refined to 37 digits and certified)
 MODE_SINGULAR_DIGITS = 3
 
+#: a root refined at N digits closes a system when every equation's residual is below
+#: 10^(-N / this): 1e-16 at 50 digits, where a root of the equations (regular, or a
+#: multiple root's polish) is within 10^(-N/2); the real roots of an overconstrained
+#: system's random combinations that leave more on the other equations (data written with
+#: fewer digits than the geometry needs: a Bennett linkage's axes rounded to 10) are no
+#: closed configuration
+MODE_CLOSURE_DIGITS = 3
+
 #: the local dimension test at a singular root: a step of this length (the
 #: formulation's unknowns) along the Jacobian's null direction, corrected back to the
 #: solutions on the hyperplane at that distance; the root lies on a curve when the
