@@ -28,6 +28,7 @@ from mechsing.numeric import (
     characteristic_length,
     decide_nonzero,
     decide_rank,
+    display_floor,
     to_float,
 )
 from mechsing.numeric.field import echelon_form, field_float, field_normal_form, number_field
@@ -419,11 +420,15 @@ def _classify(
         return result("ill-conditioned", "no single catalog type fits", rotation_dim=r)
     t = candidates[0]
     params: dict[str, Any] = {}
+    # numerically, a component below the display floor (the precision's closure
+    # tolerance: 1e-12 L in float) is round-off of a zero, read as one: a plane's normal
+    # from float screws about z is [0, 0, 1], not [1e-16, -1e-16, 1]
+    floor = display_floor(prec, Lf)
     for name, kind in t.parameters:
         if kind in ("direction", "normal"):
-            params[name] = geo["direction"]
+            params[name] = _floored(geo["direction"], floor / Lf)
         elif kind == "point":
-            params[name] = frame.point_back(geo["point"])
+            params[name] = _floored(frame.point_back(geo["point"]), floor)
         else:
             params[name] = pitch * L
     sub = Subgroup(t, {n: _normal_form(v, prec) for n, v in params.items()})
@@ -442,6 +447,18 @@ def _classify(
     ident.pitch_scaled = None if pitch is None else float(to_float(pitch))
     ident.basis = B
     return ident
+
+
+def _floored(v: Any, floor: float) -> Any:
+    """``v`` with its components below ``floor`` in size set to zero (in their own numbers;
+    a floor of 0, exact mode's, leaves every one)."""
+    if not floor:
+        return v
+    out = np.array(v, dtype=object if np.asarray(v).dtype == object else float)
+    for i, x in enumerate(out):
+        if abs(x) < floor:
+            out[i] = x * 0
+    return out
 
 
 def _normal_form(v: Any, prec: Precision) -> Any:
