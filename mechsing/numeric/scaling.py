@@ -75,17 +75,13 @@ def scale_screws(
     S = np.array(S, copy=True)
     if centroid is not None:
         c = np.asarray(centroid)
-        w = S[..., 0:3, :]
-        # v - c x w, columnwise
-        cx = np.stack(
-            [
-                w[..., 2, :] * c[1] - w[..., 1, :] * c[2],
-                w[..., 0, :] * c[2] - w[..., 2, :] * c[0],
-                w[..., 1, :] * c[0] - w[..., 0, :] * c[1],
-            ],
-            axis=-2,
-        )
-        S[..., 3:6, :] = S[..., 3:6, :] - cx
+        c0, c1, c2 = c[0], c[1], c[2]
+        w0, w1, w2 = S[..., 0, :], S[..., 1, :], S[..., 2, :]
+        # v - c x w, columnwise, row by row (the omega rows are not written): the same
+        # operations as on the three rows stacked, without the stack's copies
+        S[..., 3, :] = S[..., 3, :] - (w2 * c1 - w1 * c2)
+        S[..., 4, :] = S[..., 4, :] - (w0 * c2 - w2 * c0)
+        S[..., 5, :] = S[..., 5, :] - (w1 * c0 - w0 * c1)
     S[..., 3:6, :] = S[..., 3:6, :] / length_scale
     if length_columns is not None:
         mask = np.asarray(length_columns, dtype=bool)
@@ -93,7 +89,7 @@ def scale_screws(
     return S
 
 
-def _cross(a: Any, b: Any) -> Any:
+def cross3(a: Any, b: Any) -> Any:
     """``numpy.cross`` of two 3-vectors; of two float ones in Python floats (the same
     products and differences, a fraction of numpy's per-call cost)."""
     if (
@@ -272,7 +268,7 @@ class CommensurateFrame:
         ``v_0 = L v_c + c x omega``."""
         w, v = t[0:3], t[3:6] * self.L
         return (
-            np.concatenate([w, v]) if self.c is None else np.concatenate([w, v + _cross(self.c, w)])
+            np.concatenate([w, v]) if self.c is None else np.concatenate([w, v + cross3(self.c, w)])
         )
 
     def point_back(self, x: Any) -> Any:

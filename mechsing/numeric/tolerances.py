@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import sys
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any
 
 # ---------------------------------------------------------------------------
@@ -163,6 +164,18 @@ class Tolerances:
 
 
 def _shown(x: Any) -> str:
+    if type(x) is float and x != 0:  # a float threshold: a few values, each written once
+        # (zero not cached: -0.0 equals 0.0 as a key, and is written "-0")
+        return _shown_float(x)
+    return _shown_any(x)
+
+
+@lru_cache(maxsize=256)
+def _shown_float(x: float) -> str:
+    return _shown_any(x)
+
+
+def _shown_any(x: Any) -> str:
     f = float(x)
     if x == 0 or abs(f) >= sys.float_info.min:  # a normal float (not a rounded subnormal)
         return f"{f:g}"

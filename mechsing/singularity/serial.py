@@ -46,6 +46,7 @@ from mechsing.numeric import (
 )
 from mechsing.numeric.blocks import dense_svd
 from mechsing.numeric.linalg import first_nonzero_positive
+from mechsing.numeric.scaling import cross3
 from mechsing.screws.readable import echelon, reduced_echelon, simplest
 from mechsing.singularity.criteria.serial import ChainSystem
 from mechsing.singularity.findings import SerialFinding
@@ -74,7 +75,7 @@ def _si_wrenches(
         if point:
             # a force through the point: f with f . v_point = 0 for all joint motions
             f = np.asarray(y, dtype=float)
-            m = np.zeros(3) if point_x is None else np.cross(point_x, f)
+            m = np.zeros(3) if point_x is None else cross3(point_x, f)
             out.append(np.concatenate([f, m]))
         else:
             out.append(frame.wrench_back(y))  # f . v + m . omega = y . (commensurate twist)

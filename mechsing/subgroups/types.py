@@ -37,6 +37,7 @@ import numpy as np
 from mechsing.errors import CatalogError
 from mechsing.lie import ANGULAR
 from mechsing.numeric import FLOAT, Backend
+from mechsing.numeric.scaling import cross3
 
 __all__ = [
     "CATALOG_PACKAGE",
@@ -79,6 +80,13 @@ _VectorFn = Callable[[Mapping[str, np.ndarray], Backend], np.ndarray]
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    if (
+        type(a) is np.ndarray
+        and type(b) is np.ndarray
+        and a.dtype == b.dtype == np.float64
+        and a.shape == b.shape == (3,)
+    ):
+        return cross3(a, b)  # the same products and differences, in Python floats
     return np.array(
         [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]],
         dtype=np.result_type(a, b),

@@ -198,15 +198,14 @@ class Locator:
             where = np.flatnonzero(reached)
             first = np.flatnonzero((where[:-1] + 1 == where[1:]) if len(where) else [])
             PA = where[first]
-            pairs = [(int(a), int(a) + 1) for a in PA]
-            if not pairs:
+            if not len(PA):
                 info.append(None)
                 continue
             K = len(row.Z)
             # the samples whose neighbours are both reached (the minima's candidates)
             inner = np.zeros(K, dtype=bool)
             inner[1:-1] = reached[:-2] & reached[1:-1] & reached[2:]
-            info.append(RowPairs(pairs, PA, row.offset + first, inner))
+            info.append(RowPairs(PA, row.offset + first, inner))
             ias.append(row.offset + first)
             ibs.append(row.offset + first + 1)
         if not ias:
@@ -223,7 +222,7 @@ class Locator:
             if got is None:
                 dets.append(None)
                 continue
-            n = len(got.pairs)
+            n = len(got.first)
             dets.append({t: d[at : at + n] for t, d in dets_all.items()})
             at += n
         crossed: list[set[int]] = [set() for _ in rows]
@@ -287,7 +286,7 @@ class Locator:
             if got is None or dr is None:
                 todo.append(None)
                 continue
-            pairs, PA = got.pairs, got.first
+            PA = got.first
             d = dr.get(t)
             rho = row.ratio[t]
             # between two samples that are both singular for the test, its sign is
@@ -304,9 +303,9 @@ class Locator:
             done = [
                 k
                 for k in hits
-                if self.holds(outs[r], t, Z[pairs[k][0], col], Z[pairs[k][1], col], col)
+                if self.holds(outs[r], t, Z[PA[k], col], Z[PA[k] + 1, col], col)
             ]
-            crossed[r].update(x for k in done for x in pairs[k])
+            crossed[r].update(x for k in done for x in (int(PA[k]), int(PA[k]) + 1))
             hits = [k for k in hits if k not in done]
             todo.append(np.array(hits, dtype=int) if hits else None)
         return todo

@@ -96,11 +96,10 @@ class RowSamples(NamedTuple):
 
 
 class RowPairs(NamedTuple):
-    """A row's neighbouring reached samples: the pairs (a, a + 1), their first samples
+    """A row's neighbouring reached samples: the pairs (a, a + 1) by their first samples
     ``first`` (an array), those samples' rows in the measured batch (``rows``), and which
     samples have both neighbours reached (``inner``: the minima's candidates)."""
 
-    pairs: list[tuple[int, int]]
     first: np.ndarray
     rows: np.ndarray
     inner: np.ndarray

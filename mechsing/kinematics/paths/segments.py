@@ -98,9 +98,8 @@ def close_segments(
         Z, values = tr.Z, tr.values
         assert values is not None
         for i, j in tr.segments:
-            for k in range(i + 1, j):
-                if not np.isnan(Z[k, 0]):
-                    continue
+            # the samples left open (a sample is written only at its own turn below)
+            for k in (i + 1 + np.flatnonzero(np.isnan(Z[i + 1 : j, 0]))).tolist():
                 prev = Z[k - 1]
                 if np.isnan(prev[0]):
                     continue
