@@ -26,7 +26,6 @@ import scipy.linalg
 
 import mechsing
 import mechsing.assembly.certify
-import mechsing.assembly.closure
 import mechsing.kinetics.tree
 import mechsing.sweeps.scan
 from mechsing import lie, load
@@ -72,7 +71,6 @@ EXPECTED = {
     "newton start": {"double steps"},
     "newton steps": {"chord"},
     "regular root": {"double bound"},
-    "closure basis": {"echelon"},
 }
 
 

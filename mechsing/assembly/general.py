@@ -45,7 +45,6 @@ import numpy as np
 import sympy
 
 from mechsing.assembly.chains import Found, arm_chain
-from mechsing.assembly.closure import closure_rows, generators, span_basis
 from mechsing.assembly.given import Formulation, Given
 from mechsing.assembly.settings import (
     MODE_CERTIFY_RADIUS,
@@ -238,15 +237,36 @@ def _quaternion_of_vector(v: list[Any]) -> list[Any]:
 def _span(product: list[Any], gens: list[sympy.Symbol]) -> Any:
     """An orthonormal basis (8 x r, mpmath) of the span of the product's coefficient
     vectors and of 1."""
-    return span_basis(generators(product, gens))
+    from mechsing.assembly.certify import poly_terms
+
+    cols: dict[Any, list[Any]] = {}
+    for k, comp in enumerate(product):
+        terms = poly_terms(comp, gens) if gens else [((), comp)]
+        for mono, coeff in terms:
+            cols.setdefault(mono, [0] * 8)[k] = mpmath.mpf(sympy.N(coeff, mpmath.mp.dps))
+    M = mpmath.matrix(8, len(cols) + 1)
+    M[0, 0] = 1
+    for j, col in enumerate(cols.values()):
+        for k in range(8):
+            M[k, j + 1] = col[k]
+    U, S, _ = mpmath.svd_r(M)
+    r = sum(1 for x in S if x > MODE_SPAN_RTOL * S[0])
+    return U[:, :r] if r < U.cols else U
 
 
 def _closure_equations(product: list[Any], gens: list[sympy.Symbol]) -> list[sympy.Expr]:
-    """The product's components along its span orthogonal to ``1`` and ``eps``
-    (:mod:`mechsing.assembly.closure`)."""
+    """The product's components along its span orthogonal to ``1`` and ``eps``."""
+    V = _span(product, gens)
+    r = V.cols
+    M = mpmath.matrix(max(r, 2), r)  # the span's components along 1 and eps, padded square
+    for k in range(r):
+        M[0, k], M[1, k] = V[0, k], V[4, k]
+    _, S, Vt = mpmath.svd_r(M)
+    rank = sum(1 for x in S if x > MODE_SPAN_RTOL)
     eqs = []
-    for w in closure_rows(generators(product, gens)):
-        eqs.append(sympy.expand(sum(_num(w[n]) * product[n] for n in range(8) if w[n] != 0)))
+    for i in range(rank, r):
+        w = [sum(V[n, k] * Vt[i, k] for k in range(r)) for n in range(8)]
+        eqs.append(sympy.expand(sum(_num(w[n]) * product[n] for n in range(8))))
     return eqs
 
 

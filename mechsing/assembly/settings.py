@@ -74,12 +74,3 @@ MODE_EXTRANEOUS_RTOL = 1e-6
 #: parts are below this times ``max(1, |z|)``: it is polished in real arithmetic at 50
 #: digits and kept only where that closes
 MODE_SINGULAR_IMAGINARY_RTOL = 1e-3
-
-#: the closure equations' basis by echelon form (:mod:`mechsing.assembly.closure`): a
-#: column's largest remaining entry is rounding (no pivot) below ``MODE_SPAN_ROUNDING_RTOL``
-#: of the generators' largest entry -- an exact dependence leaves 1e-48 at 50 digits, and
-#: eight eliminations with multipliers at most 1 keep that far below the SVDs'
-#: ``MODE_SPAN_RTOL`` = 1e-20 -- and a pivot above ``MODE_SPAN_CLEAR_RTOL``; between, the
-#: SVDs decide (as at fewer digits, where rounding is above 1e-30)
-MODE_SPAN_ROUNDING_RTOL = 1e-30
-MODE_SPAN_CLEAR_RTOL = 1e-8
