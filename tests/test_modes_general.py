@@ -356,3 +356,36 @@ def test_rssp_with_its_input_has_two_modes_proven_by_the_rods_length(tmp_path: P
     B0, C0 = np.array([1.0, 0, 0]), np.array([3.0, 1, 2])
     for m in doc["modes"]:
         assert abs(np.dot(m["joints"]["B"], C0 - B0)) < 1e-12
+
+
+def test_span_is_mpmath_svd_bit_for_bit() -> None:
+    """The closure's span skips only mpmath.svd_r's right singular vectors: its basis is
+    svd_r's U to the bit (wide, square and tall coefficient matrices, rank deficient)."""
+    import mpmath
+    import sympy
+
+    from mechsing.assembly.certify import poly_terms
+    from mechsing.assembly.general import _span
+
+    rng = np.random.default_rng(5)
+    xs = sympy.symbols("x0:3")
+    with mpmath.workdps(50):
+        for k, rank in ((3, 8), (8, 4), (17, 6)):
+            dirs = rng.integers(-9, 10, (rank, 8))
+            monos = [xs[i % 3] ** (1 + i // 3) for i in range(k)]
+            product = [
+                sum(
+                    sympy.Rational(int(c @ dirs[:, n]), 7) * m
+                    for c, m in zip(rng.integers(-5, 6, (k, rank)), monos, strict=True)
+                )
+                for n in range(8)
+            ]
+            V = _span(product, list(xs))
+            cols: dict = {}
+            for n, comp in enumerate(product):
+                for mono, c in poly_terms(comp, list(xs)):
+                    cols.setdefault(mono, [0] * 8)[n] = mpmath.mpf(sympy.N(c, 50))
+            M = mpmath.matrix([[int(n == 0)] + [c[n] for c in cols.values()] for n in range(8)])
+            U, S, _ = mpmath.svd_r(M)
+            r = sum(1 for x in S if x > 1e-20 * S[0])
+            assert V == (U[:, :r] if r < U.cols else U)

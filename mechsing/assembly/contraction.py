@@ -14,8 +14,10 @@ to 50 digits), so a bound of 1e-15 or of 1e-2 proves the same box.  That bound, 
 double precision with every rounding bounded (below).  ``f(m)``, where the root's
 digits matter, is evaluated at the working digits at the point m and widened by a bound
 on its rounding (the same analysis with the working precision's unit roundoff) and on
-the coefficients' enclosures; ``Y f(m)`` stays in mpmath interval arithmetic at the
-working digits, as the generic definition has it.  The form answers True (proved) or None
+the coefficients' enclosures; ``|Y f(m)|`` is bounded in double from those
+enclosures' magnitudes (at a root about 1e-45, r being 1e-30), and ``K``'s containment
+in the box is tested in mpmath intervals at the working digits, as the generic
+definition has it.  The form answers True (proved) or None
 (not proved here: the caller runs the generic definition, which decides).
 
 The bound, for z in Z: ``|I - Y f'(z)| <= |I - Y J~| + |Y| (|J~ - f'(xc)| + |f'(z) -
@@ -211,8 +213,8 @@ def _bound(jac: TermArrays, xc: np.ndarray, rho: np.ndarray) -> tuple[Any, Any] 
 @dispatch.table("krawczyk test", "mechsing.assembly.certify.krawczyk_box").register(
     "double contraction",
     "a polynomial system given by its terms (every system the formulations certify): "
-    "the contraction term's bound in double precision with its rounding bounded, f(m) "
-    "and Y f(m) in mpmath intervals; proves what the generic test proves, or answers "
+    "the contraction term's bound and |Y f(m)|'s in double precision with their rounding "
+    "bounded, f(m) enclosed at the working digits; proves what the generic test proves, or answers "
     "None and the generic test decides",
     accepts=lambda system, m, radius: system.arrays is not None,
 )
@@ -233,12 +235,16 @@ def contraction_krawczyk(system: Any, m: Sequence[Any], radius: Any) -> bool | N
     Y, B = got
     spread = 2 * (B @ w) * (1 + (n + 2) * _U) + _TINY  # |(I - Y f'(Z))(Z - m)|, above
     fm = _enclosed_values(system, m, xc)
+    # |Y f(m)| above, in double: f(m)'s enclosures' magnitudes (f(m) is of the working
+    # digits' rounding at a root, 1e-45, far below r); n products and sums of non-negative
+    # doubles, doubled as the spread is.  Then K_i lies in m_i +- (|Y f(m)|_i + spread_i)
+    phi = np.array([_magnitude(v) for v in fm])
+    reach = (2 * (np.abs(Y) @ phi) * (1 + (n + 2) * _U) + spread) * (1 + 4 * _U) + _TINY
+    if not np.all(np.isfinite(reach)):
+        return None
     for i, mi in enumerate(m):
-        acc = iv.mpf(mi)
-        for k in range(n):
-            acc -= iv.mpf(float(Y[i, k])) * fm[k]
-        s = float(spread[i])
-        acc += iv.mpf([-s, s])
+        t = float(reach[i])
+        acc = iv.mpf(mi) + iv.mpf([-t, t])
         if not (acc.a > Z[i].a and acc.b < Z[i].b):
             return None
     return True

@@ -248,7 +248,12 @@ def _span(product: list[Any], gens: list[sympy.Symbol]) -> Any:
     for j, col in enumerate(cols.values()):
         for k in range(8):
             M[k, j + 1] = col[k]
-    U, S, _ = mpmath.svd_r(M)
+    # mpmath.svd_r's steps less the right singular vectors (the same U and S, bit for bit)
+    from mpmath.matrices.eigen_symmetric import svd_r_raw
+
+    U = M.copy()
+    S = svd_r_raw(mpmath.mp, U, V=False, calc_u=True)[: min(U.rows, U.cols)]
+    U = U[:, : len(S)] if U.cols > U.rows else U
     r = sum(1 for x in S if x > MODE_SPAN_RTOL * S[0])
     return U[:, :r] if r < U.cols else U
 
