@@ -656,20 +656,14 @@ def _least_squares_newton(f: Any, J: Any, x: Any, dps: int, steps: int) -> Any:
 
 
 def misses(
-    eqs: Sequence[sympy.Expr],
-    gens: Sequence[sympy.Symbol],
-    x: Sequence[Any],
-    dps: int,
-    accepted: Any = 0,
+    eqs: Sequence[sympy.Expr], gens: Sequence[sympy.Symbol], x: Sequence[Any], dps: int
 ) -> Any:
     """The residual of the system at ``x`` (a root refined at ``dps`` digits: the norm of
-    its values) where it does not close (above ``10^(-dps / MODE_CLOSURE_DIGITS)`` and
-    above ``accepted``), else 0: a root of a square system's combinations may miss the
-    others."""
+    its values) where it does not close (above ``10^(-dps / MODE_CLOSURE_DIGITS)``), else
+    0: a root of a square system's combinations may miss the others."""
     f, _ = _functions(eqs, gens)
     r = mpmath.norm(f(x))
-    floor = mpmath.mpf(10) ** (-(dps // MODE_CLOSURE_DIGITS))
-    return r if r > floor and r > accepted else 0
+    return r if r > mpmath.mpf(10) ** (-(dps // MODE_CLOSURE_DIGITS)) else 0
 
 
 def singular_root(
