@@ -9,9 +9,15 @@ line conjugated), the constants gather at the end, and with exactly six joints u
 the loop is a six-joint chain reaching ``T = C*``: a general 7R with one input is the
 general 6R arm (H.-Y. Lee and C.-G. Liang, Mech. Mach. Theory 23(3), 1988: at most 16).
 
+The chains the general formulation closes on a target are defined here too: a serial
+arm's (:func:`arm_chain`), and a mechanism's with loops whose configuration gives the
+output's pose (:func:`pose_chains`: each serial leg to the pose, or the loops and one
+chain to the pose), with the target's Study coordinates (:func:`chain_target`) and the
+refusal of a target outside what the chain's end can reach (:func:`check_in_span`).
+
 Owns :class:`Found` (what a formulation found),
-:func:`serial_found`, :func:`loop_found` and the two registered problems
-:data:`SERIAL_ARM` and :data:`SINGLE_LOOP`.
+:func:`serial_found`, :func:`loop_found`, the two registered problems
+:data:`SERIAL_ARM` and :data:`SINGLE_LOOP`, and the chains above.
 """
 
 from __future__ import annotations
@@ -20,12 +26,26 @@ from dataclasses import dataclass
 from typing import Any
 
 import mpmath
+import sympy
 
 from mechsing.assembly.given import NO_INPUTS, Formulation, Given, closure_from_start
 from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
+from mechsing.errors import UserError
+from mechsing.lie.dual import study_conjugate, study_multiply
 from mechsing.model import Mechanism
+from mechsing.numeric import MODE_SPAN_RTOL
 
-__all__ = ["SERIAL_ARM", "SINGLE_LOOP", "Found", "arm_chain", "loop_found", "serial_found"]
+__all__ = [
+    "SERIAL_ARM",
+    "SINGLE_LOOP",
+    "Found",
+    "arm_chain",
+    "chain_target",
+    "check_in_span",
+    "loop_found",
+    "pose_chains",
+    "serial_found",
+]
 
 
 @dataclass(frozen=True)
@@ -320,6 +340,122 @@ def arm_chain(given: Given) -> tuple[list[tuple[list[str], list[int], Any]], dic
         values = {n: list(cfg.values[n]) for n in names if n in cfg.values}
         return [(names, signs, "pose")], values
     return [(names, signs, {n: arm_values(mech, config, n) for n in names})], {}
+
+
+def pose_chains(
+    given: Given,
+) -> tuple[list[tuple[list[str], list[int], Any]], dict[str, list[Any]]]:
+    """A mechanism with loops whose configuration gives the output's pose: its loops, and
+    the chain of the tree's joints from the output's ``relative_to`` body to the output
+    body closed on the pose (as ``solve`` adds the pose: a rigid chord between the two),
+    with the joint values the configuration also gives."""
+    from mechsing.errors import FormulationError
+    from mechsing.model.mechanism import Displacement
+
+    mech, config = given.mech, given.config
+    out = mech.output
+    if out is None:
+        raise FormulationError("the file has no output: the pose is nobody's")
+    cfg = mech.configurations[config]
+    for name, v in cfg.values.items():
+        if isinstance(v, Displacement):
+            raise FormulationError(
+                f"joint {name} is given as a displacement; modes takes joint values"
+            )
+    values = {n: list(v) for n, v in cfg.values.items()}
+    legs = [_leg_path(mech, leg.joints) for leg in mech.legs]
+    if legs and all(legs) and sum(len(p[0]) for p in legs if p) == len(mech.joints):
+        # serial legs holding the output: each reaches the pose alone (no loop is left)
+        return [(names, signs, "pose") for names, signs in (p for p in legs if p)], values
+    up, down = mech.graph.tree_paths[out.relative_to], mech.graph.tree_paths[out.body]
+    k = 0  # the paths' common start, which cancels
+    while k < min(len(up), len(down)) and up[k] == down[k]:
+        k += 1
+    steps = [(st.joint, -st.sign) for st in reversed(up[k:])]
+    steps += [(st.joint, st.sign) for st in down[k:]]
+    chains: list[tuple[list[str], list[int], Any]] = [
+        (list(lp.joints), list(lp.signs), None) for lp in mech.loops
+    ]
+    chains.append(([n for n, _ in steps], [s for _, s in steps], "pose"))
+    return chains, values
+
+
+def _leg_path(mech: Mechanism, joints: tuple[str, ...]) -> tuple[list[str], list[int]] | None:
+    """A leg's joints in order from the output's ``relative_to`` body to the output body,
+    each with its direction (+1 from ``between[0]`` to ``between[1]``), when they form
+    one chain between the two (None: they branch or close a loop of their own)."""
+    out = mech.output
+    assert out is not None
+    left = {n: mech.joint(n).between for n in joints}
+    at, names, signs = out.relative_to, [], []
+    while left:
+        step = [(n, 1 if b[0] == at else -1) for n, b in left.items() if at in b]
+        if len(step) != 1:
+            return None
+        name, sign = step[0]
+        names.append(name)
+        signs.append(sign)
+        a, b = left.pop(name)
+        at = b if sign > 0 else a
+    return (names, signs) if at == out.body else None
+
+
+def chain_target(given: Given, L: Any, target: Any) -> list[Any]:
+    """The target's Study coordinates (lengths over L): the configuration's pose, or the
+    displacement the arm's joints reach at ``target``'s values."""
+    from mechsing.assembly.general import _Joints
+    from mechsing.assembly.serial import chain_to_output, pose_target
+
+    if target == "pose":
+        return pose_target(given.mech, given.config, L, given.atol)
+    fixed = _Joints(given.mech, target)
+    T: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
+    for name, sign in zip(*chain_to_output(given.mech), strict=True):
+        F = fixed.element(name)
+        T = study_multiply(T, F if sign > 0 else study_conjugate(F))
+    return [mpmath.mpf(sympy.N(x, mpmath.mp.dps + 10)) for x in T]
+
+
+def check_in_span(
+    given: Given, product: list[Any], gens: list[Any], T: list[Any], names: list[str]
+) -> None:
+    """Refuse (exit 2) a target outside the subgroup the arm's end (the output, along its
+    chain) moves in, naming it."""
+    from mechsing.assembly.general import _span
+    from mechsing.kinematics.family import family
+
+    V = _span(product, gens)
+    coeffs = [sum(V[i, k] * T[i] for i in range(8)) for k in range(V.cols)]
+    off = mpmath.sqrt(
+        sum((T[i] - sum(V[i, k] * coeffs[k] for k in range(V.cols))) ** 2 for i in range(8))
+    )
+    size = mpmath.sqrt(sum(x * x for x in T))
+    if off <= MODE_SPAN_RTOL * size:
+        return
+    fam = family(given.mech, names)
+    words = {
+        "planar": "the planar motions G across the normal {normal}: give the pose by its "
+        "position in the plane through the reference and its angle about the normal",
+        "schoenflies": "the Schoenflies motions X (every translation, rotations about "
+        "{axis}): give the pose by its position and its angle about that axis",
+        "spherical": "the rotations S about the point {point}: give the pose by its "
+        "rotation only (that point stays where it is)",
+        "translational": "the translations T: give the pose by its position only",
+    }
+    text = words.get(fam.kind, "the subgroup {symbol} its joints generate")
+    params = {
+        k: [float(f"{round(float(x), 12):.6g}") + 0.0 for x in v] for k, v in fam.params.items()
+    }
+    raise UserError(
+        f"{given.where}: the pose lies outside the subgroup "
+        + (
+            "the arm's end moves in, "
+            if not given.mech.loops
+            else f"the output moves in on its chain {' - '.join(names)}, "
+        )
+        + text.format(symbol=fam.symbol, **params)
+        + f" (the target's Study coordinates are {float(off):.3g} of their size outside its span)"
+    )
 
 
 def arm_values(mech: Mechanism, config: str, name: str) -> list[Any]:

@@ -37,6 +37,7 @@ Owns :class:`Problem`, :func:`problem`, :func:`bezout` and :data:`FORMULATION`.
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -44,14 +45,14 @@ import mpmath
 import numpy as np
 import sympy
 
-from mechsing.assembly.chains import Found, arm_chain
+from mechsing.assembly.chains import Found, arm_chain, chain_target, check_in_span, pose_chains
 from mechsing.assembly.engine import genuine_endpoint, on_normalisations
 from mechsing.assembly.given import Formulation, Given
 from mechsing.assembly.settings import (
     MODE_CERTIFY_RADIUS,
     MODE_ENDPOINT_SINGULAR_RTOL,
 )
-from mechsing.errors import FormulationError, UserError
+from mechsing.errors import FormulationError
 from mechsing.lie.dual import study_conjugate, study_multiply
 from mechsing.model import Mechanism
 from mechsing.numeric import MODE_MATCH_DISTANCE, MODE_SPAN_RTOL
@@ -108,7 +109,9 @@ class Closure:
 @dataclass(frozen=True)
 class Problem:
     """The system: the variable groups, each unknown joint's groups, the closures, the
-    length scale, the target (a serial arm's) and the given joints' values."""
+    length scale, the given joints' values, whether it is a serial arm's (its chain
+    closed on a target) and whether a mechanism with loops is closed on the output's
+    pose (``pose``: its working modes)."""
 
     groups: tuple[Group, ...]
     joints: dict[str, tuple[int, ...]]
@@ -119,6 +122,10 @@ class Problem:
     #: each idle rod (body, first S, second S) and its spin equation (:mod:`.spins`)
     spins: tuple[tuple[str, str, str], ...] = ()
     spin_equations: tuple[sympy.Expr, ...] = ()
+    pose: bool = False
+    #: a part's (:func:`~mechsing.assembly.parts.split`): the other parts' unknown joints,
+    #: held at 0 in its rows
+    others: frozenset[str] = frozenset()
 
     @property
     def gens(self) -> list[sympy.Symbol]:
@@ -278,15 +285,13 @@ def problem(given: Given) -> Problem:
     """The general formulation of ``given``: the loops' closures with the given values, or
     a serial arm's chain to its target."""
     mech = given.mech
-    if mech.loops:
+    if mech.loops and given.values is not None:
         values = {n: list(vals) for n, vals in given.values.items()}
-        joints = _Joints(mech, values)
         chains = [(list(lp.joints), list(lp.signs), None) for lp in mech.loops]
-        arm = False
-    else:
-        chains, values = arm_chain(given)
-        joints = _Joints(mech, values)
-        arm = True
+    else:  # the output's pose given: a serial arm's chain, or the loops and a leg's
+        chains, values = pose_chains(given) if mech.loops else arm_chain(given)
+    joints = _Joints(mech, values)
+    arm = not mech.loops
     closures = []
     for names, signs, target in chains:
         product: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
@@ -299,8 +304,8 @@ def problem(given: Given) -> Problem:
             for g in joints.groups[k].gens
         ]
         if target is not None:
-            T = _target(given, joints.L, target)
-            _check_in_span(given, product, gens, T, names)
+            T = chain_target(given, joints.L, target)
+            check_in_span(given, product, gens, T, names)
             product = _expand(study_multiply(product, [_num(x) for x in study_conjugate(T)]))
         closures.append(
             Closure(
@@ -315,7 +320,15 @@ def problem(given: Given) -> Problem:
     rods = tuple(r for r in idle_rods(mech, values) if r[1] in joints.of)
     spins = tuple(spin_equation(mech, r, joints.groups[joints.of[r[1]][0]].gens) for r in rods)
     return Problem(
-        tuple(joints.groups), joints.of, tuple(closures), joints.L, values, arm, rods, spins
+        tuple(joints.groups),
+        joints.of,
+        tuple(closures),
+        joints.L,
+        values,
+        arm,
+        rods,
+        spins,
+        pose=bool(mech.loops) and given.values is None,
     )
 
 
@@ -330,56 +343,6 @@ def _mpf(x: Any) -> Any:
     if isinstance(x, (float, int)):
         return mpmath.mpf(x)
     return mpmath.mpf(sympy.N(sympy.sympify(x), mpmath.mp.dps + 10))
-
-
-def _target(given: Given, L: Any, target: Any) -> list[Any]:
-    """The target's Study coordinates (lengths over L): the configuration's pose, or the
-    displacement the arm's joints reach at ``target``'s values."""
-    from mechsing.assembly.serial import chain_to_output, pose_target
-
-    if target == "pose":
-        return pose_target(given.mech, given.config, L, given.atol)
-    fixed = _Joints(given.mech, target)
-    T: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
-    for name, sign in zip(*chain_to_output(given.mech), strict=True):
-        F = fixed.element(name)
-        T = study_multiply(T, F if sign > 0 else study_conjugate(F))
-    return [mpmath.mpf(sympy.N(x, mpmath.mp.dps + 10)) for x in T]
-
-
-def _check_in_span(
-    given: Given, product: list[Any], gens: list[Any], T: list[Any], names: list[str]
-) -> None:
-    """Refuse (exit 2) a target outside the subgroup the arm's end moves in, naming it."""
-    from mechsing.kinematics.family import family
-
-    V = _span(product, gens)
-    coeffs = [sum(V[i, k] * T[i] for i in range(8)) for k in range(V.cols)]
-    off = mpmath.sqrt(
-        sum((T[i] - sum(V[i, k] * coeffs[k] for k in range(V.cols))) ** 2 for i in range(8))
-    )
-    size = mpmath.sqrt(sum(x * x for x in T))
-    if off <= MODE_SPAN_RTOL * size:
-        return
-    fam = family(given.mech, names)
-    words = {
-        "planar": "the planar motions G across the normal {normal}: give the pose by its "
-        "position in the plane through the reference and its angle about the normal",
-        "schoenflies": "the Schoenflies motions X (every translation, rotations about "
-        "{axis}): give the pose by its position and its angle about that axis",
-        "spherical": "the rotations S about the point {point}: give the pose by its "
-        "rotation only (that point stays where it is)",
-        "translational": "the translations T: give the pose by its position only",
-    }
-    text = words.get(fam.kind, "the subgroup {symbol} its joints generate")
-    params = {
-        k: [float(f"{round(float(x), 12):.6g}") + 0.0 for x in v] for k, v in fam.params.items()
-    }
-    raise UserError(
-        f"{given.where}: the pose lies outside the subgroup the arm's end moves in, "
-        + text.format(symbol=fam.symbol, **params)
-        + f" (the target's Study coordinates are {float(off):.3g} of their size outside its span)"
-    )
 
 
 def bezout(supports: list[set[int]], dims: list[int]) -> int:
@@ -451,11 +414,17 @@ def _applies(given: Given) -> str | None:
         return "the given values fix every joint (nothing is left to solve)"
     given.cache["general"] = prob
     if len(prob.equations) >= prob.unknowns:
-        eqs = _randomized(prob)
-        supports = [
-            {k for k, g in enumerate(prob.groups) if set(g.gens) & e.free_symbols} for e in eqs
-        ]
-        paths = bezout(supports, [g.dim for g in prob.groups])
+        from mechsing.assembly.parts import split
+
+        counts = [_bezout(part) for part in split(prob)]
+        paths = sum(counts)
+        if prob.pose and math.prod(counts) > MAX_PATHS:
+            # each leg's postures combine with every other's: a mode per choice
+            return (
+                f"its legs' start systems have {', '.join(map(str, counts))} paths: their "
+                f"postures could combine into {math.prod(counts)} working modes (the most "
+                f"analysed is {MAX_PATHS})"
+            )
         if paths > MAX_PATHS:
             return (
                 f"its multihomogeneous start system has {paths} paths (the most tracked is "
@@ -463,6 +432,13 @@ def _applies(given: Given) -> str | None:
             )
         given.cache["general paths"] = paths
     return None
+
+
+def _bezout(prob: Problem) -> int:
+    """The multihomogeneous Bezout number of the system Bertini tracks for ``prob``."""
+    eqs = _randomized(prob)
+    supports = [{k for k, g in enumerate(prob.groups) if set(g.gens) & e.free_symbols} for e in eqs]
+    return bezout(supports, [g.dim for g in prob.groups])
 
 
 def _values(prob: Problem, z: list[Any]) -> dict[str, list[Any]]:
@@ -486,10 +462,21 @@ def _values(prob: Problem, z: list[Any]) -> dict[str, list[Any]]:
 
 def _row(mech: Mechanism, prob: Problem, z: list[Any]) -> list[Any]:
     values = {**{n: [_mpf(x) for x in v] for n, v in prob.given.items()}, **_values(prob, z)}
-    return [values[name][i] for name, i in mech.coordinates()]
+    zero = mpmath.mpf(0)
+    return [zero if name in prob.others else values[name][i] for name, i in mech.coordinates()]
 
 
 def _find(given: Given) -> Found:
+    from mechsing.assembly.parts import combined, split
+
+    prob: Problem = given.cache["general"]
+    parts = split(prob)
+    if len(parts) == 1:
+        return _find_part(given, prob)
+    return combined(given.mech, prob, parts, [_find_part(given, p) for p in parts])
+
+
+def _find_part(given: Given, prob: Problem) -> Found:
     from mechsing.assembly import certify
     from mechsing.assembly.certify import krawczyk, local_dimension, newton, regular
     from mechsing.assembly.engine import real_endpoints, track
@@ -497,7 +484,6 @@ def _find(given: Given) -> Found:
     from mechsing.assembly.serial import account
 
     mech, dps = given.mech, given.dps
-    prob: Problem = given.cache["general"]
     gens = prob.gens
     norms = _normalisations(prob)
     full = [*prob.equations, *norms]
@@ -555,7 +541,9 @@ def _find(given: Given) -> Found:
         formulation["dimension"] = dim
         row = _row(mech, prob, point)
         at = ", ".join(
-            f"{c[0]} = {float(v):.6g}" for c, v in zip(mech.coordinates(), row, strict=True)
+            f"{c[0]} = {float(v):.6g}"
+            for c, v in zip(mech.coordinates(), row, strict=True)
+            if c[0] not in prob.others
         )
         notes.append(
             f"the given values are {also}reached along a set of dimension {dim} (the local "
@@ -571,9 +559,12 @@ def _find(given: Given) -> Found:
         root = newton(square, gens, start, dps)
         ok = root is not None and regular(square, gens, root)
         miss = ok and m > n and certify.misses(prob.equations, gens, root, dps)
-        # an arm's gap to its target read from the equations (t / 2L, half an angle)
+        # a gap to a target pose read from the equations (t / 2L, half an angle)
         gap = miss and closure_gap(
-            mech, given.prec, _row(mech, prob, root), prob.arm and 2 * L * miss
+            mech,
+            given.prec,
+            _row(mech, prob, root),
+            (prob.arm or prob.pose or bool(prob.others)) and 2 * L * miss,
         )
         if gap:
             open_roots.append(gap)
@@ -619,7 +610,13 @@ def _find(given: Given) -> Found:
         notes.append(
             f"{len(open_roots)} real root(s) of the random combinations miss the other "
             f"closure equations at {dps} digits, "
-            + ("the arm's end off its target" if prob.arm else "the loops left open")
+            + (
+                "the arm's end off its target"
+                if prob.arm
+                else "the loops left open or the output off its pose"
+                if prob.pose
+                else "the loops left open"
+            )
             + f" by {float(min(open_roots)):.3g} m (the least), over the {given.prec} "
             "tolerance: no mode with the numbers as written (where the data are rounded, "
             "give them with more digits or exactly)"

@@ -1,5 +1,6 @@
 """What a ``modes`` call is given, read once: the mechanism, the configuration, its given
-joint values (the inputs), the output's pose (a serial arm's target), the start
+joint values (the inputs), the output's pose (a serial arm's target, or a parallel
+mechanism's: its working modes), the start
 continuation marks a mode from, and the family of the mechanism; and the contract of a
 formulation (:class:`Formulation`: ``applies(given)``, ``find(given)``).
 
@@ -21,16 +22,18 @@ from mechsing.numeric import Precision
 
 __all__ = ["NO_INPUTS", "Formulation", "Given", "closure_from_start", "read_given"]
 
-#: why a formulation of given joint values does not apply to a serial arm
-NO_INPUTS = "a mechanism without loops is given the output's pose, not inputs"
+#: why a formulation of given joint values does not apply to a configuration that gives
+#: the output's pose (a serial arm's, or a mechanism with loops at a pose)
+NO_INPUTS = "the configuration gives the output's pose, not inputs"
 
 
 @dataclass
 class Given:
     """One ``modes`` call's data: ``values`` the given joint values (exact; None for a
     mechanism without loops, whose configuration gives the output's pose or every joint,
-    read by the serial formulations), ``refusal`` why the configuration's values are not
-    inputs (None: they are), ``dps`` the digits the modes are found at, ``atol`` how far
+    read by the serial formulations, and for a mechanism with loops whose configuration
+    gives the output's pose, read by the general formulation), ``refusal`` why the
+    configuration's values are not inputs (None: they are), ``dps`` the digits the modes are found at, ``atol`` how far
     from orthonormal a given rotation may be; ``cache`` what one formulation's
     ``applies`` built for its ``find``."""
 
@@ -84,6 +87,9 @@ def read_given(
     if start is not None:
         mech = _started_from(mech, config, start)
     if not mech.loops:  # a serial arm: the output's pose (given, or reached) is what is given
+        return Given(mech, config, prec, dps, atol, None, _values(mech, config)[1])
+    if mech.configurations[config].pose is not None:
+        # loops and the output's pose: the legs' postures reaching it (working modes)
         return Given(mech, config, prec, dps, atol, None, _values(mech, config)[1])
     values, refusal = _values(mech, config)
     if refusal is not None:

@@ -163,6 +163,21 @@ def modes_schema() -> dict[str, Any]:
                         "description": "complete infinite: the dimension of the closed "
                         "configurations with the given values (local dimension test)",
                     },
+                    "parts": {
+                        "type": "array",
+                        "description": "the general formulation: the closure equations' "
+                        "parts that share no unknown (each serial leg of a mechanism at a "
+                        "pose), each solved alone; a mode is one solution of each",
+                        "items": {
+                            "type": "object",
+                            "properties": {
+                                "joints": {"type": "array", "items": {"type": "string"}},
+                                "bezout": {"type": ["integer", "null"]},
+                                "count": {"type": ["integer", "null"]},
+                                "complete": {"enum": ["proven", "not proven", "infinite"]},
+                            },
+                        },
+                    },
                     "proven_without_tracking": {
                         "type": "string",
                         "description": "why no mode exists, proven before any path was "
