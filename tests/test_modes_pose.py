@@ -172,3 +172,14 @@ def test_legs_whose_postures_multiply_beyond_the_limit_are_refused(
     rc, _out, err = run_cli(["modes", str(path), "--config", "target"])
     assert rc == 2
     assert "working modes" in err and "120, 120, 120" in err
+
+
+def test_a_leg_with_a_loop_of_its_own_is_refused_naming_it(tmp_path: Path) -> None:
+    """A Delta at a pose: its legs hold parallelograms, so no leg is one chain to the
+    platform; refused at once, naming the leg, not left to a system closed whole."""
+    path = _posed(
+        ROOT / "tests" / "data" / "delta.yaml", tmp_path, "{position: [0.01, 0.02, -0.05]}"
+    )
+    rc, _out, err = run_cli(["modes", str(path), "--config", "target"])
+    assert rc == 2
+    assert "leg 1 (R1, S1a, S1c, S1b, S1d) is not one chain of joints" in err

@@ -11,8 +11,7 @@ general 6R arm (H.-Y. Lee and C.-G. Liang, Mech. Mach. Theory 23(3), 1988: at mo
 
 The chains the general formulation closes on a target are defined here too: a serial
 arm's (:func:`arm_chain`), and a mechanism's with loops whose configuration gives the
-output's pose (:func:`pose_chains`: each serial leg to the pose, or the loops and one
-chain to the pose), with the target's Study coordinates (:func:`chain_target`) and the
+output's pose (:func:`pose_chains`: each serial leg to the pose), with the target's Study coordinates (:func:`chain_target`) and the
 refusal of a target outside what the chain's end can reach (:func:`check_in_span`).
 
 Owns :class:`Found` (what a formulation found),
@@ -345,10 +344,11 @@ def arm_chain(given: Given) -> tuple[list[tuple[list[str], list[int], Any]], dic
 def pose_chains(
     given: Given,
 ) -> tuple[list[tuple[list[str], list[int], Any]], dict[str, list[Any]]]:
-    """A mechanism with loops whose configuration gives the output's pose: its loops, and
-    the chain of the tree's joints from the output's ``relative_to`` body to the output
-    body closed on the pose (as ``solve`` adds the pose: a rigid chord between the two),
-    with the joint values the configuration also gives."""
+    """A mechanism with loops whose configuration gives the output's pose: each of its
+    legs, a serial chain from the output's ``relative_to`` body to the output body,
+    closed on the pose (as ``solve`` adds the pose: a rigid chord between the two; the
+    loops between legs then close), with the joint values the configuration also gives.
+    A leg that is not one chain (a loop of its own), or a joint on no leg: refused."""
     from mechsing.errors import FormulationError
     from mechsing.model.mechanism import Displacement
 
@@ -363,20 +363,26 @@ def pose_chains(
                 f"joint {name} is given as a displacement; modes takes joint values"
             )
     values = {n: list(v) for n, v in cfg.values.items()}
-    legs = [_leg_path(mech, leg.joints) for leg in mech.legs]
-    if legs and all(legs) and sum(len(p[0]) for p in legs if p) == len(mech.joints):
-        # serial legs holding the output: each reaches the pose alone (no loop is left)
-        return [(names, signs, "pose") for names, signs in (p for p in legs if p)], values
-    up, down = mech.graph.tree_paths[out.relative_to], mech.graph.tree_paths[out.body]
-    k = 0  # the paths' common start, which cancels
-    while k < min(len(up), len(down)) and up[k] == down[k]:
-        k += 1
-    steps = [(st.joint, -st.sign) for st in reversed(up[k:])]
-    steps += [(st.joint, st.sign) for st in down[k:]]
-    chains: list[tuple[list[str], list[int], Any]] = [
-        (list(lp.joints), list(lp.signs), None) for lp in mech.loops
-    ]
-    chains.append(([n for n, _ in steps], [s for _, s in steps], "pose"))
+    chains: list[tuple[list[str], list[int], Any]] = []
+    for i, leg in enumerate(mech.legs):
+        path = _leg_path(mech, leg.joints)
+        if path is None:
+            raise FormulationError(
+                f"the output's pose is reached leg by leg, and leg {i + 1} "
+                f"({', '.join(leg.joints)}) is not one chain of joints from "
+                f"{out.relative_to} to {out.body} (it holds a loop of its own, as a "
+                "Delta's parallelogram): give the inputs instead"
+            )
+        chains.append((path[0], path[1], "pose"))
+    on_legs = {n for names, _, _ in chains for n in names}
+    off = [j.name for j in mech.joints if j.name not in on_legs]
+    if not chains:
+        raise FormulationError(f"no leg joins {out.relative_to} to {out.body}")
+    if off:
+        raise FormulationError(
+            f"the output's pose is reached leg by leg, and joint {off[0]} is on no leg from "
+            f"{out.relative_to} to {out.body}: give the inputs instead"
+        )
     return chains, values
 
 
