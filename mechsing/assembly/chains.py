@@ -10,9 +10,10 @@ the loop is a six-joint chain reaching ``T = C*``: a general 7R with one input i
 general 6R arm (H.-Y. Lee and C.-G. Liang, Mech. Mach. Theory 23(3), 1988: at most 16).
 
 The chains the general formulation closes on a target are defined here too: a serial
-arm's (:func:`arm_chain`), and a mechanism's with loops whose configuration gives the
-output's pose (:func:`pose_chains`: each serial leg to the pose), with the target's Study coordinates (:func:`chain_target`) and the
-refusal of a target outside what the chain's end can reach (:func:`check_in_span`).
+arm's (:func:`arm_chain`), and those of a mechanism with loops whose configuration
+gives the output's pose (:func:`pose_chains`: each serial leg to the pose), with the
+target's Study coordinates (:func:`chain_target`) and the refusal of a target outside
+what the chain's end can reach (:func:`check_in_span`).
 
 Owns :class:`Found` (what a formulation found),
 :func:`serial_found`, :func:`loop_found`, the two registered problems

@@ -11,7 +11,9 @@ joint is the constant its values make.
 
 Every independent loop closes when the product of its joints' displacements (each
 reversed where the loop crosses it backwards) is the identity up to a scalar; a serial
-arm when its chain's product is the output's target pose ``T`` (``F1 ... Fn T* ~ 1``).
+arm when its chain's product is the output's target pose ``T`` (``F1 ... Fn T* ~ 1``),
+and a mechanism with loops given the output's pose when each of its serial legs' is
+(:func:`~mechsing.assembly.chains.pose_chains`: its working modes).
 The product lies in the span of the loop's displacements, the linear hull of the
 subgroup its joints generate in Study coordinates (``{1, k, eps i, eps j}`` for planar
 motions across z, the quaternions for rotations about the origin, all eight for D).  The
@@ -29,7 +31,8 @@ off the identity is extraneous; the real ones are refined by Newton's method at 
 working digits and certified by the Krawczyk test, as the other formulations' are; a
 singular one gets the local dimension test (:func:`~mechsing.assembly.certify.local_dimension`):
 on a curve of closed configurations there is no count, only ``infinite`` with the
-dimension.
+dimension.  Closures that share no unknown (a parallel mechanism's legs at a pose) are
+solved apart, and a mode is one solution of each (:mod:`.parts`).
 
 Owns :class:`Problem`, :func:`problem`, :func:`bezout` and :data:`FORMULATION`.
 """
@@ -288,7 +291,7 @@ def problem(given: Given) -> Problem:
     if mech.loops and given.values is not None:
         values = {n: list(vals) for n, vals in given.values.items()}
         chains = [(list(lp.joints), list(lp.signs), None) for lp in mech.loops]
-    else:  # the output's pose given: a serial arm's chain, or the loops and a leg's
+    else:  # the output's pose given: a serial arm's chain, or each serial leg's
         chains, values = pose_chains(given) if mech.loops else arm_chain(given)
     joints = _Joints(mech, values)
     arm = not mech.loops
@@ -473,7 +476,7 @@ def _find(given: Given) -> Found:
     parts = split(prob)
     if len(parts) == 1:
         return _find_part(given, prob)
-    return combined(given.mech, prob, parts, [_find_part(given, p) for p in parts])
+    return combined(given.mech, parts, [_find_part(given, p) for p in parts])
 
 
 def _find_part(given: Given, prob: Problem) -> Found:

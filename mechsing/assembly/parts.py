@@ -66,11 +66,12 @@ def split(prob: Any) -> list[Any]:
     return parts
 
 
-def combined(mech: Mechanism, prob: Any, parts: list[Any], found: list[Any]) -> Any:
+def combined(mech: Mechanism, parts: list[Any], found: list[Any]) -> Any:
     """One :class:`~mechsing.assembly.chains.Found` from each part's (``found``, in the
     order of ``parts``): every choice of one mode per part, certified where each is; the
-    count proven where every part's is; no count where a part's solutions are not finitely
-    many (``infinite``, that part's notes)."""
+    count proven where every part's is; none, proven, where a part has none, proven; else
+    no count where a part's solutions are not finitely many (``infinite``, that part's
+    notes)."""
     from mechsing.assembly.chains import Found
 
     formulation = dict(found[0].formulation)
@@ -97,6 +98,9 @@ def combined(mech: Mechanism, prob: Any, parts: list[Any], found: list[Any]) -> 
     paths: dict[str, Any] | None = None
     if all(f.paths is not None for f in found):
         paths = {k: sum(f.paths[k] for f in found) for k in found[0].paths}
+    if any(f.complete == "proven" and f.count == 0 for f in found):
+        # a part without solution: no mode at all, whatever the others have
+        return Found(formulation, [], 0, "proven", paths, tuple(notes), 1, found[0].closure)
     infinite = next((f for f in found if f.complete == "infinite"), None)
     if infinite is not None:
         formulation["dimension"] = infinite.formulation.get("dimension")
