@@ -40,3 +40,22 @@ def test_scara_is_seen_along_its_axis_and_its_stretched_arm_is_straight() -> Non
 def test_an_arm_with_crossed_axes_keeps_the_oblique_view() -> None:
     view = choose_view(load(str(ROOT / "examples/puma560.yaml")))
     assert view.why == "" and "oblique" in view.name
+
+
+def test_a_slider_keeps_its_place_on_its_cylinder() -> None:
+    """A 3-RPR leg's slider is drawn where its cylinder carries its reference place
+    (halfway between the leg's pivots at the reference): turned back past its base pivot
+    (a working mode with the slide negative), it is drawn behind that pivot, not halfway
+    to the platform as an unturned leg would be."""
+    mech = load(str(ROOT / "examples/planar_3rpr.yaml"))
+    a, b = np.array([0.0, 0.0, 0.0]), np.array([0.9, 0.3, 0.0])  # Rb1, Rp1 at the reference
+    # leg 1 turned back by pi with the slide -2 |b - a|: Rp1 at b again (a working mode)
+    coords = [c for c, _ in mech.coordinates()]
+    at_rest = joint_places(mech, [0.0] * len(coords))["P1"]
+    assert np.allclose(at_rest["cyl1"], (a + b) / 2)
+    q = [np.pi if c == "Rb1" else 0.0 for c in coords]
+    q[coords.index("P1")] = -2 * float(np.linalg.norm(b - a))
+    turned = joint_places(mech, q)
+    assert np.allclose(turned["P1"]["cyl1"], a - (b - a) / 2)
+    # the same platform pivot reached the other way: the piston through the base pivot
+    assert np.allclose(turned["Rp1"]["platform"], b)

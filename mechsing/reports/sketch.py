@@ -11,8 +11,9 @@ joints hatched; each screw of a finding drawn as its axis with its pitch).
 
 Conventions: a joint's ``point`` is its place at the reference configuration in the ground
 frame, so at a configuration it is ``g_a . point`` with ``g_a`` the pose of ``between[0]``;
-a joint without a point (prismatic, planar, translational...) is placed halfway between the
-other joints of its two bodies, or, on the ground, at its other body's joints on a rail.  A twist ``(omega, v)`` (v: the velocity of the body point
+a joint without a point (prismatic, planar, translational...) is placed where its first
+body carries the place halfway between the reference points of its two bodies' other
+joints, or, on the ground, at its other body's joints on a rail.  A twist ``(omega, v)`` (v: the velocity of the body point
 at the ground origin) has its axis through ``omega x v / |omega|^2``, direction ``omega``,
 pitch ``omega . v / |omega|^2`` (m/rad); with ``omega = 0`` it is a translation along v
 (infinite pitch).  A wrench ``(f, m)`` (m about the origin) has its axis through
@@ -241,7 +242,6 @@ def joint_places(mech: Mechanism, q: Sequence[float]) -> dict[str, dict[str, np.
                 if k.name != j.name and body in k.between and "point" in k.params
             ]
             ends.append(np.mean(pts, axis=0) if pts else None)
-        known = [e for e in ends if e is not None]
         entry = out.setdefault(j.name, {})
         moving = 1 if a == mech.ground else 0 if b == mech.ground else None
         if moving is not None and ends[moving] is not None:
@@ -249,7 +249,23 @@ def joint_places(mech: Mechanism, q: Sequence[float]) -> dict[str, dict[str, np.
             mid = ends[moving]
             entry["rail"] = mid
         else:
-            mid = np.mean(known, axis=0) if known else carry(a, np.zeros(3))
+            # where its first body carries the place it had at the reference (halfway
+            # between the reference points of its bodies' other joints): a slider keeps
+            # its place on its cylinder, so a leg turned back past its base pivot (the
+            # slide negative) shows it, where halfway would draw the same as unturned
+            rest = [
+                np.mean(pts, axis=0)
+                for body in (a, b)
+                for pts in [
+                    [
+                        _f(k.params["point"])
+                        for k in mech.joints
+                        if k.name != j.name and body in k.between and "point" in k.params
+                    ]
+                ]
+                if pts
+            ]
+            mid = carry(a, np.mean(rest, axis=0) if rest else np.zeros(3))
             entry["ends"] = np.array([e if e is not None else mid for e in ends])
         entry[a] = mid
         entry[b] = mid
