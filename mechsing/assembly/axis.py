@@ -126,9 +126,10 @@ def _applies(given: Given) -> str | None:
 def _system(given: Given, prob: Any, names: list[str], signs: list[int], joint: str) -> _System:
     """The square system of eliminating ``joint`` (FormulationError: the commutator's
     image is not four-dimensional)."""
-    from mechsing.assembly.general import _Joints, _num, bezout
+    from mechsing.assembly.displacements import Joints, study_number
+    from mechsing.assembly.general import bezout
 
-    joints = _Joints(given.mech, prob.given)
+    joints = Joints(given.mech, prob.given)
     e = names.index(joint)
     own = joints.element(joint)  # (its pair's symbols first: they take no part in R)
     product: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
@@ -160,7 +161,7 @@ def _system(given: Given, prob: Any, names: list[str], signs: list[int], joint: 
         a - b
         for a, b in zip(study_multiply(line, product), study_multiply(product, line), strict=True)
     ]
-    eqs = [sympy.expand(sum(_num(U[i, r]) * comm[i] for i in range(8))) for r in range(4)]
+    eqs = [sympy.expand(sum(study_number(U[i, r]) * comm[i] for i in range(8))) for r in range(4)]
     groups = [
         (joints.groups[g].joint, joints.groups[g].kind, joints.groups[g].gens)
         for n in names

@@ -11,9 +11,7 @@ general 6R arm (H.-Y. Lee and C.-G. Liang, Mech. Mach. Theory 23(3), 1988: at mo
 
 The chains the general formulation closes on a target are defined here too: a serial
 arm's (:func:`arm_chain`), and those of a mechanism with loops whose configuration
-gives the output's pose (:func:`pose_chains`: each serial leg to the pose), with the
-target's Study coordinates (:func:`chain_target`) and the refusal of a target outside
-what the chain's end can reach (:func:`check_in_span`).
+gives the output's pose (:func:`pose_chains`: each serial leg to the pose).
 
 Owns :class:`Found` (what a formulation found),
 :func:`serial_found`, :func:`loop_found`, the two registered problems
@@ -26,22 +24,16 @@ from dataclasses import dataclass
 from typing import Any
 
 import mpmath
-import sympy
 
 from mechsing.assembly.given import NO_INPUTS, Formulation, Given, closure_from_start
 from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
-from mechsing.errors import UserError
-from mechsing.lie.dual import study_conjugate, study_multiply
 from mechsing.model import Mechanism
-from mechsing.numeric import MODE_SPAN_RTOL
 
 __all__ = [
     "SERIAL_ARM",
     "SINGLE_LOOP",
     "Found",
     "arm_chain",
-    "chain_target",
-    "check_in_span",
     "loop_found",
     "pose_chains",
     "serial_found",
@@ -405,64 +397,6 @@ def _leg_path(mech: Mechanism, joints: tuple[str, ...]) -> tuple[list[str], list
         a, b = left.pop(name)
         at = b if sign > 0 else a
     return (names, signs) if at == out.body else None
-
-
-def chain_target(given: Given, L: Any, target: Any) -> list[Any]:
-    """The target's Study coordinates (lengths over L): the configuration's pose, or the
-    displacement the arm's joints reach at ``target``'s values."""
-    from mechsing.assembly.general import _Joints
-    from mechsing.assembly.serial import chain_to_output, pose_target
-
-    if target == "pose":
-        return pose_target(given.mech, given.config, L, given.atol)
-    fixed = _Joints(given.mech, target)
-    T: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
-    for name, sign in zip(*chain_to_output(given.mech), strict=True):
-        F = fixed.element(name)
-        T = study_multiply(T, F if sign > 0 else study_conjugate(F))
-    return [mpmath.mpf(sympy.N(x, mpmath.mp.dps + 10)) for x in T]
-
-
-def check_in_span(
-    given: Given, product: list[Any], gens: list[Any], T: list[Any], names: list[str]
-) -> None:
-    """Refuse (exit 2) a target outside the subgroup the arm's end (the output, along its
-    chain) moves in, naming it."""
-    from mechsing.assembly.general import _span
-    from mechsing.kinematics.family import family
-
-    V = _span(product, gens)
-    coeffs = [sum(V[i, k] * T[i] for i in range(8)) for k in range(V.cols)]
-    off = mpmath.sqrt(
-        sum((T[i] - sum(V[i, k] * coeffs[k] for k in range(V.cols))) ** 2 for i in range(8))
-    )
-    size = mpmath.sqrt(sum(x * x for x in T))
-    if off <= MODE_SPAN_RTOL * size:
-        return
-    fam = family(given.mech, names)
-    words = {
-        "planar": "the planar motions G across the normal {normal}: give the pose by its "
-        "position in the plane through the reference and its angle about the normal",
-        "schoenflies": "the Schoenflies motions X (every translation, rotations about "
-        "{axis}): give the pose by its position and its angle about that axis",
-        "spherical": "the rotations S about the point {point}: give the pose by its "
-        "rotation only (that point stays where it is)",
-        "translational": "the translations T: give the pose by its position only",
-    }
-    text = words.get(fam.kind, "the subgroup {symbol} its joints generate")
-    params = {
-        k: [float(f"{round(float(x), 12):.6g}") + 0.0 for x in v] for k, v in fam.params.items()
-    }
-    raise UserError(
-        f"{given.where}: the pose lies outside the subgroup "
-        + (
-            "the arm's end moves in, "
-            if not given.mech.loops
-            else f"the output moves in on its chain {' - '.join(names)}, "
-        )
-        + text.format(symbol=fam.symbol, **params)
-        + f" (the target's Study coordinates are {float(off):.3g} of their size outside its span)"
-    )
 
 
 def arm_values(mech: Mechanism, config: str, name: str) -> list[Any]:

@@ -48,14 +48,22 @@ import mpmath
 import numpy as np
 import sympy
 
-from mechsing.assembly.chains import Found, arm_chain, chain_target, check_in_span, pose_chains
+from mechsing.assembly.chains import Found, arm_chain, pose_chains
+from mechsing.assembly.displacements import (
+    Group,
+    Joints,
+    expanded,
+    quaternion_of_vector,
+    study_number,
+    working_mpf,
+)
 from mechsing.assembly.engine import genuine_endpoint, on_normalisations
 from mechsing.assembly.given import Formulation, Given
 from mechsing.assembly.settings import (
     MODE_CERTIFY_RADIUS,
     MODE_ENDPOINT_SINGULAR_RTOL,
 )
-from mechsing.errors import FormulationError
+from mechsing.errors import FormulationError, UserError
 from mechsing.lie.dual import study_conjugate, study_multiply
 from mechsing.model import Mechanism
 from mechsing.numeric import MODE_MATCH_DISTANCE, MODE_SPAN_RTOL
@@ -80,22 +88,6 @@ PROOF_PATHS = 200
 SLICE_TRIES = 4
 #: the seed of the randomization of an overconstrained system and of the patches
 SEED = 41
-
-_WRITTEN = ("R", "P", "C", "U", "S")
-
-
-@dataclass(frozen=True)
-class Group:
-    """One variable group: the joint it belongs to, ``kind`` (``R`` a half-angle pair,
-    ``P`` a slide's pair, ``S`` a rotation's quaternion), its symbols."""
-
-    joint: str
-    kind: str
-    gens: tuple[sympy.Symbol, ...]
-
-    @property
-    def dim(self) -> int:
-        return len(self.gens) - 1
 
 
 @dataclass(frozen=True)
@@ -143,106 +135,6 @@ class Problem:
         return [*(e for c in self.closures for e in c.equations), *self.spin_equations]
 
 
-def _num(x: Any) -> Any:
-    """A number at the working digits plus guard digits, as a sympy Float."""
-    if isinstance(x, (int, sympy.Integer)):
-        return sympy.Integer(x)
-    return sympy.Float(
-        mpmath.mpf(x) if not isinstance(x, sympy.Basic) else sympy.N(x, mpmath.mp.dps + 10),
-        mpmath.mp.dps + 10,
-    )
-
-
-def _expand(v: list[Any]) -> list[Any]:
-    return [sympy.expand(x) for x in v]
-
-
-class _Joints:
-    """Each joint's displacement in Study coordinates: unknown (linear in its groups) or
-    given (a constant)."""
-
-    def __init__(self, mech: Mechanism, given: dict[str, list[Any]]) -> None:
-        from mechsing.kinematics import KinematicModel
-
-        self.mech = mech
-        self.km = KinematicModel(mech, f"mp:{mpmath.mp.dps + 10}")
-        self.L = mpmath.mpf(self.km.length_scale)
-        self.given = given
-        self.groups: list[Group] = []
-        self.of: dict[str, tuple[int, ...]] = {}
-        self.cache: dict[str, list[Any]] = {}
-
-    def _line(self, e: Any) -> list[Any]:
-        w = [_num(x) for x in e[:3]]
-        v = [_num(mpmath.mpf(x) / self.L) for x in e[3:]]
-        return [0, *w, 0, *v]
-
-    def _group(self, name: str, kind: str, n: int) -> tuple[sympy.Symbol, ...]:
-        k = len(self.groups)
-        gens = sympy.symbols(f"g{k}_0:{n}")
-        self.groups.append(Group(name, kind, gens))
-        self.of[name] = (*self.of.get(name, ()), k)
-        return gens
-
-    def element(self, name: str) -> list[Any]:
-        """The joint's displacement (8 sympy expressions)."""
-        if name in self.cache:
-            return self.cache[name]
-        j = self.mech.joint(name)
-        if j.type not in _WRITTEN:
-            raise FormulationError(
-                f"joint {name} is of type {j.type}: the general formulation writes R, P, C, U "
-                "and S joints (a helical joint's slide is not polynomial in its angle)"
-            )
-        basis = self.km.joint(name).basis
-        values = self.given.get(name)
-        factors = []
-        if j.type == "S":
-            p = [mpmath.mpf(x) / self.L for x in self.km.point_array(j.params["point"])]
-            if values is None:
-                r = list(self._group(name, "S", 4))
-            else:
-                r = _quaternion_of_vector([_mpf(x) for x in values])
-            cross = [
-                p[1] * r[3] - p[2] * r[2],
-                p[2] * r[1] - p[0] * r[3],
-                p[0] * r[2] - p[1] * r[1],
-            ]
-            factors.append([*r, 0, *(c if values is None else _num(c) for c in cross)])
-            factors[0][:4] = [x if values is None else _num(x) for x in factors[0][:4]]
-        else:
-            for i, e in enumerate(basis):
-                rotates = any(mpmath.mpf(x) != 0 for x in e[:3])
-                A = self._line(e) if rotates else [0, 0, 0, 0, 0, *(_num(x) for x in e[3:])]
-                kind = "R" if rotates else "P"
-                if values is None:
-                    c, s = self._group(name, kind, 2)
-                else:
-                    q = _mpf(values[i])
-                    c, s = (
-                        (mpmath.cos(q / 2), mpmath.sin(q / 2))
-                        if rotates
-                        else (mpmath.mpf(1), q / (2 * self.L))
-                    )
-                    c, s = _num(c), _num(s)
-                factors.append([c if k == 0 else 0 for k in range(8)])
-                factors[-1] = [a + s * b for a, b in zip(factors[-1], A, strict=True)]
-        out = factors[0]
-        for f in factors[1:]:
-            out = _expand(study_multiply(out, f))
-        self.cache[name] = out
-        return out
-
-
-def _quaternion_of_vector(v: list[Any]) -> list[Any]:
-    """The unit quaternion of a rotation vector (mpmath)."""
-    r = [mpmath.mpf(x) for x in v]
-    t = mpmath.sqrt(sum(x * x for x in r))
-    if t == 0:
-        return [mpmath.mpf(1), 0, 0, 0]
-    return [mpmath.cos(t / 2), *(mpmath.sin(t / 2) * x / t for x in r)]
-
-
 def _span(product: list[Any], gens: list[sympy.Symbol]) -> Any:
     """An orthonormal basis (8 x r, mpmath) of the span of the product's coefficient
     vectors and of 1."""
@@ -280,7 +172,7 @@ def _closure_equations(product: list[Any], gens: list[sympy.Symbol]) -> list[sym
     eqs = []
     for i in range(rank, r):
         w = [sum(V[n, k] * Vt[i, k] for k in range(r)) for n in range(8)]
-        eqs.append(sympy.expand(sum(_num(w[n]) * product[n] for n in range(8))))
+        eqs.append(sympy.expand(sum(study_number(w[n]) * product[n] for n in range(8))))
     return eqs
 
 
@@ -293,23 +185,25 @@ def problem(given: Given) -> Problem:
         chains = [(list(lp.joints), list(lp.signs), None) for lp in mech.loops]
     else:  # the output's pose given: a serial arm's chain, or each serial leg's
         chains, values = pose_chains(given) if mech.loops else arm_chain(given)
-    joints = _Joints(mech, values)
+    joints = Joints(mech, values)
     arm = not mech.loops
     closures = []
     for names, signs, target in chains:
         product: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
         for name, sign in zip(names, signs, strict=True):
             F = joints.element(name)
-            product = _expand(study_multiply(product, F if sign > 0 else study_conjugate(F)))
+            product = expanded(study_multiply(product, F if sign > 0 else study_conjugate(F)))
         gens = [
             g
             for k in sorted({k for n in names for k in joints.of.get(n, ())})
             for g in joints.groups[k].gens
         ]
         if target is not None:
-            T = chain_target(given, joints.L, target)
-            check_in_span(given, product, gens, T, names)
-            product = _expand(study_multiply(product, [_num(x) for x in study_conjugate(T)]))
+            T = _target(given, joints.L, target)
+            _check_in_span(given, product, gens, T, names)
+            product = expanded(
+                study_multiply(product, [study_number(x) for x in study_conjugate(T)])
+            )
         closures.append(
             Closure(
                 tuple(names),
@@ -341,11 +235,60 @@ def _symbol(mech: Mechanism, names: list[str]) -> str | None:
     return family(mech, names).symbol
 
 
-def _mpf(x: Any) -> Any:
-    """A given value (float, exact) at the working digits plus guard digits."""
-    if isinstance(x, (float, int)):
-        return mpmath.mpf(x)
-    return mpmath.mpf(sympy.N(sympy.sympify(x), mpmath.mp.dps + 10))
+def _target(given: Given, L: Any, target: Any) -> list[Any]:
+    """The target's Study coordinates (lengths over L): the configuration's pose, or the
+    displacement the arm's joints reach at ``target``'s values."""
+    from mechsing.assembly.serial import chain_to_output, pose_target
+
+    if target == "pose":
+        return pose_target(given.mech, given.config, L, given.atol)
+    fixed = Joints(given.mech, target)
+    T: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
+    for name, sign in zip(*chain_to_output(given.mech), strict=True):
+        F = fixed.element(name)
+        T = study_multiply(T, F if sign > 0 else study_conjugate(F))
+    return [mpmath.mpf(sympy.N(x, mpmath.mp.dps + 10)) for x in T]
+
+
+def _check_in_span(
+    given: Given, product: list[Any], gens: list[Any], T: list[Any], names: list[str]
+) -> None:
+    """Refuse (exit 2) a target outside the subgroup the arm's end (the output, along its
+    chain) moves in, naming it."""
+    from mechsing.kinematics.family import family
+
+    V = _span(product, gens)
+    coeffs = [sum(V[i, k] * T[i] for i in range(8)) for k in range(V.cols)]
+    off = mpmath.sqrt(
+        sum((T[i] - sum(V[i, k] * coeffs[k] for k in range(V.cols))) ** 2 for i in range(8))
+    )
+    size = mpmath.sqrt(sum(x * x for x in T))
+    if off <= MODE_SPAN_RTOL * size:
+        return
+    fam = family(given.mech, names)
+    words = {
+        "planar": "the planar motions G across the normal {normal}: give the pose by its "
+        "position in the plane through the reference and its angle about the normal",
+        "schoenflies": "the Schoenflies motions X (every translation, rotations about "
+        "{axis}): give the pose by its position and its angle about that axis",
+        "spherical": "the rotations S about the point {point}: give the pose by its "
+        "rotation only (that point stays where it is)",
+        "translational": "the translations T: give the pose by its position only",
+    }
+    text = words.get(fam.kind, "the subgroup {symbol} its joints generate")
+    params = {
+        k: [float(f"{round(float(x), 12):.6g}") + 0.0 for x in v] for k, v in fam.params.items()
+    }
+    raise UserError(
+        f"{given.where}: the pose lies outside the subgroup "
+        + (
+            "the arm's end moves in, "
+            if not given.mech.loops
+            else f"the output moves in on its chain {' - '.join(names)}, "
+        )
+        + text.format(symbol=fam.symbol, **params)
+        + f" (the target's Study coordinates are {float(off):.3g} of their size outside its span)"
+    )
 
 
 def bezout(supports: list[set[int]], dims: list[int]) -> int:
@@ -464,7 +407,7 @@ def _values(prob: Problem, z: list[Any]) -> dict[str, list[Any]]:
 
 
 def _row(mech: Mechanism, prob: Problem, z: list[Any]) -> list[Any]:
-    values = {**{n: [_mpf(x) for x in v] for n, v in prob.given.items()}, **_values(prob, z)}
+    values = {**{n: [working_mpf(x) for x in v] for n, v in prob.given.items()}, **_values(prob, z)}
     zero = mpmath.mpf(0)
     return [zero if name in prob.others else values[name][i] for name, i in mech.coordinates()]
 
@@ -766,7 +709,7 @@ def _coordinates(prob: Problem, values: dict[str, Any]) -> list[Any]:
         vals = values[g.joint]
         k = prob.joints[g.joint].index(i)
         if g.kind == "S":
-            z += _quaternion_of_vector([mpmath.mpf(x) for x in vals])
+            z += quaternion_of_vector([mpmath.mpf(x) for x in vals])
         elif g.kind == "R":
             q = mpmath.mpf(vals[k])
             z += [mpmath.cos(q / 2), mpmath.sin(q / 2)]

@@ -134,11 +134,11 @@ class _Loop:
     centres, the given joints' products before and after the unknown one, its line."""
 
     def __init__(self, given: Given) -> None:
-        from mechsing.assembly.general import _Joints
+        from mechsing.assembly.displacements import Joints
 
         prob, rod, rest, place = _layout(given)
         self.prob, self.rod, self.rest, self.place = prob, rod, rest, place
-        joints = _Joints(given.mech, prob.given)
+        joints = Joints(given.mech, prob.given)
         self.joints = joints
         L = joints.L
 
