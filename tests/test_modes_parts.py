@@ -82,6 +82,25 @@ def test_modes_are_every_choice_of_one_per_part() -> None:
     assert "joints Rb1, P1, Rp1: a note" in out.notes
 
 
+def test_a_part_found_empty_leaves_no_mode_not_proven_beside_a_curve() -> None:
+    """A part with no real solution found (its count not proven) and a part on a curve:
+    no mode was found, and the count is not proven (the empty part may miss one)."""
+    curve = _found([], None, "infinite")
+    curve.formulation["dimension"] = 1
+    found = [_found([], 0, "not proven"), curve, _found([_row(2, 4.0)], 1, "proven")]
+    out = combined(load(RPR), _parts(), found)
+    assert out.count == 0 and out.complete == "not proven" and out.rows == []
+
+
+def test_parts_on_curves_add_their_dimensions() -> None:
+    curves = [_found([], None, "infinite") for _ in range(2)]
+    for c in curves:
+        c.formulation["dimension"] = 1
+    found = [curves[0], _found([_row(1, 3.0)], 1, "proven"), curves[1]]
+    out = combined(load(RPR), _parts(), found)
+    assert out.complete == "infinite" and out.formulation["dimension"] == 2
+
+
 @pytest.mark.parametrize("other", ["infinite", "not proven"])
 def test_a_part_proven_empty_leaves_no_mode_whatever_the_others(other: str) -> None:
     found = [

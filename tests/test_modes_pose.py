@@ -118,6 +118,36 @@ def test_3rpr_at_a_pose_has_eight_working_modes(tmp_path: Path) -> None:
     jsonschema.validate(doc, json.loads(out))
 
 
+@pytest.mark.parametrize("reaches", [True, False])
+def test_a_leg_given_whole_is_checked_not_solved(reaches: bool, tmp_path: Path) -> None:
+    """The 3-RPR at the pose with leg 1's three joints given too: where they put its
+    pivot on the platform's, the other two legs' 4 postures are the modes; where they do
+    not, there is none, proven at once (no span refusal, no system tracked whole)."""
+    position = (1.1, 0.9)
+    a, b_ref = np.array([0.0, 0.0]), np.array([0.9, 0.3])
+    b = _platform_points([(0.9, 0.3), (2.5, 1.5), (-0.3, 1.9)], position)[0]
+    turn = math.atan2(b[1] - a[1], b[0] - a[0]) - math.atan2(b_ref[1], b_ref[0])
+    slide = float(np.linalg.norm(b - a) - np.linalg.norm(b_ref))
+    if not reaches:
+        slide += 0.1
+    values = f"Rb1: {turn!r}, P1: {slide!r}, Rp1: {TURN - turn!r}, "
+    text = (ROOT / "examples" / "planar_3rpr.yaml").read_text()
+    path = tmp_path / "leg_given.yaml"
+    path.write_text(
+        text[: text.index("configurations:")]
+        + "configurations:\n  reference: {}\n"
+        + f"  target: {{{values}pose: {_pose(position)}}}\n"
+    )
+    doc = _modes(path)
+    if reaches:
+        assert doc["count"] == 4
+        assert all(abs(m["joints"]["P1"][0] - slide) < 1e-12 for m in doc["modes"])
+    else:
+        assert doc["count"] == 0 and doc["complete"] == "proven"
+        assert doc["paths"] is None
+        assert "leave it off the output's pose by 0.1 m" in doc["notes"][0]
+
+
 def test_3rrr_at_a_pose_has_eight_working_modes(tmp_path: Path) -> None:
     """A 3-RRR at a pose: each leg's elbow on either side of the line from its base pivot
     to its platform pivot (two-link inverse kinematics), 2^3 modes."""
@@ -183,3 +213,4 @@ def test_a_leg_with_a_loop_of_its_own_is_refused_naming_it(tmp_path: Path) -> No
     rc, _out, err = run_cli(["modes", str(path), "--config", "target"])
     assert rc == 2
     assert "leg 1 (R1, S1a, S1c, S1b, S1d) is not one chain of joints" in err
+    assert "holds a loop of its own" in err

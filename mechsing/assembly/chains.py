@@ -363,8 +363,8 @@ def pose_chains(
             raise FormulationError(
                 f"the output's pose is reached leg by leg, and leg {i + 1} "
                 f"({', '.join(leg.joints)}) is not one chain of joints from "
-                f"{out.relative_to} to {out.body} (it holds a loop of its own, as a "
-                "Delta's parallelogram): give the inputs instead"
+                f"{out.relative_to} to {out.body} (it branches, or holds a loop of its own "
+                "as a Delta's parallelogram does): give the inputs instead"
             )
         chains.append((path[0], path[1], "pose"))
     on_legs = {n for names, _, _ in chains for n in names}

@@ -121,6 +121,8 @@ class Problem:
     #: a part's (:func:`~mechsing.assembly.parts.split`): the other parts' unknown joints,
     #: held at 0 in its rows
     others: frozenset[str] = frozenset()
+    #: the closures of chains whose joints are all given: they close or leave no mode
+    fixed: tuple[Closure, ...] = ()
 
     @property
     def gens(self) -> list[sympy.Symbol]:
@@ -187,7 +189,8 @@ def problem(given: Given) -> Problem:
         chains, values = pose_chains(given) if mech.loops else arm_chain(given)
     joints = Joints(mech, values)
     arm = not mech.loops
-    closures = []
+    closures: list[Closure] = []
+    fixed: list[Closure] = []  # the chains of given joints only: checked, not solved
     for names, signs, target in chains:
         product: list[Any] = [1, 0, 0, 0, 0, 0, 0, 0]
         for name, sign in zip(names, signs, strict=True):
@@ -200,18 +203,18 @@ def problem(given: Given) -> Problem:
         ]
         if target is not None:
             T = _target(given, joints.L, target)
-            _check_in_span(given, product, gens, T, names)
+            if gens:  # a chain of given joints only reaches its target or misses it
+                _check_in_span(given, product, gens, T, names)
             product = expanded(
                 study_multiply(product, [study_number(x) for x in study_conjugate(T)])
             )
-        closures.append(
-            Closure(
-                tuple(names),
-                _symbol(mech, names),
-                tuple(product),
-                tuple(_closure_equations(product, gens)),
-            )
+        closure = Closure(
+            tuple(names),
+            _symbol(mech, names),
+            tuple(product),
+            tuple(_closure_equations(product, gens)),
         )
+        (closures if gens else fixed).append(closure)
     from mechsing.assembly.spins import idle_rods, spin_equation
 
     rods = tuple(r for r in idle_rods(mech, values) if r[1] in joints.of)
@@ -226,6 +229,7 @@ def problem(given: Given) -> Problem:
         rods,
         spins,
         pose=bool(mech.loops) and given.values is None,
+        fixed=tuple(fixed),
     )
 
 
@@ -416,10 +420,55 @@ def _find(given: Given) -> Found:
     from mechsing.assembly.parts import combined, split
 
     prob: Problem = given.cache["general"]
+    off = _fixed_gaps(given, prob)
+    if off:
+        names, gap = off
+        why = (
+            f"the given joints of the chain {' - '.join(names)} leave it "
+            + ("off the output's pose" if prob.pose or prob.arm else "open")
+            + f" by {float(gap):.3g} m, over the {given.prec} tolerance: no mode"
+        )
+        formulation = {**_formulation(prob), "proven_without_tracking": why}
+        return Found(formulation, [], 0, "proven", None, (why,), 1, given.closure)
     parts = split(prob)
     if len(parts) == 1:
         return _find_part(given, prob)
     return combined(given.mech, parts, [_find_part(given, p) for p in parts])
+
+
+def _fixed_gaps(given: Given, prob: Problem) -> tuple[tuple[str, ...], Any] | None:
+    """The first chain of given joints only that does not close (its joints, and its gap
+    read from its equations as a root's is, t / 2L and half an angle: 2L times their
+    norm, in metres), or None: every such chain closes to the precision's tolerance."""
+    from mechsing.assembly.result import closure_gap
+    from mechsing.assembly.settings import MODE_CLOSURE_DIGITS
+
+    for c in prob.fixed:
+        miss = mpmath.norm([mpmath.mpf(sympy.N(e, given.dps)) for e in c.equations] or [0])
+        if miss <= mpmath.mpf(10) ** (-(given.dps // MODE_CLOSURE_DIGITS)):
+            continue
+        gap = closure_gap(given.mech, given.prec, [], 2 * prob.L * miss)
+        if gap:
+            return c.joints, gap
+    return None
+
+
+def _formulation(prob: Problem) -> dict[str, Any]:
+    """The formulation's JSON: its name, method, unknowns and closures."""
+    return {
+        "name": "joint displacements in Study coordinates, each loop in its subgroup's",
+        "method": "homotopy continuation (Bertini 2, multihomogeneous start), Newton refinement",
+        "unknowns": [
+            f"{g.joint} ({'quaternion' if g.kind == 'S' else 'half-angle pair' if g.kind == 'R' else 'slide pair'})"
+            for g in prob.groups
+        ],
+        "closures": [
+            {"joints": list(c.joints), "subgroup": c.subgroup, "equations": len(c.equations)}
+            for c in prob.closures
+        ],
+        "polynomial_degree": 1,
+        "randomized": len(prob.equations) > prob.unknowns,
+    }
 
 
 def _find_part(given: Given, prob: Problem) -> Found:
@@ -434,20 +483,7 @@ def _find_part(given: Given, prob: Problem) -> Found:
     norms = _normalisations(prob)
     full = [*prob.equations, *norms]
     n, m = prob.unknowns, len(prob.equations)
-    formulation: dict[str, Any] = {
-        "name": "joint displacements in Study coordinates, each loop in its subgroup's",
-        "method": "homotopy continuation (Bertini 2, multihomogeneous start), Newton refinement",
-        "unknowns": [
-            f"{g.joint} ({'quaternion' if g.kind == 'S' else 'half-angle pair' if g.kind == 'R' else 'slide pair'})"
-            for g in prob.groups
-        ],
-        "closures": [
-            {"joints": list(c.joints), "subgroup": c.subgroup, "equations": len(c.equations)}
-            for c in prob.closures
-        ],
-        "polynomial_degree": 1,
-        "randomized": m > n,
-    }
+    formulation = _formulation(prob)
     notes: list[str] = []
     if prob.spins:
         formulation["idle_spins"] = [list(r) for r in prob.spins]

@@ -68,10 +68,10 @@ def split(prob: Any) -> list[Any]:
 
 def combined(mech: Mechanism, parts: list[Any], found: list[Any]) -> Any:
     """One :class:`~mechsing.assembly.chains.Found` from each part's (``found``, in the
-    order of ``parts``): every choice of one mode per part, certified where each is; the
-    count proven where every part's is; none, proven, where a part has none, proven; else
-    no count where a part's solutions are not finitely many (``infinite``, that part's
-    notes)."""
+    order of ``parts``): every choice of one mode per part, certified where each is, the
+    count proven where every part's is; none where a part has none (proven where that
+    part's count is); else, where some parts' solutions are not finitely many,
+    ``infinite`` with the sum of their dimensions."""
     from mechsing.assembly.chains import Found
 
     formulation = dict(found[0].formulation)
@@ -98,12 +98,16 @@ def combined(mech: Mechanism, parts: list[Any], found: list[Any]) -> Any:
     paths: dict[str, Any] | None = None
     if all(f.paths is not None for f in found):
         paths = {k: sum(f.paths[k] for f in found) for k in found[0].paths}
-    if any(f.complete == "proven" and f.count == 0 for f in found):
-        # a part without solution: no mode at all, whatever the others have
-        return Found(formulation, [], 0, "proven", paths, tuple(notes), 1, found[0].closure)
-    infinite = next((f for f in found if f.complete == "infinite"), None)
-    if infinite is not None:
-        formulation["dimension"] = infinite.formulation.get("dimension")
+    empty = [f for f in found if f.count == 0]
+    if empty:
+        # a part without a real solution: no mode at all, whatever the others have (proven
+        # where that part's count is)
+        complete = "proven" if any(f.complete == "proven" for f in empty) else "not proven"
+        return Found(formulation, [], 0, complete, paths, tuple(notes), 1, found[0].closure)
+    infinite = [f for f in found if f.complete == "infinite"]
+    if infinite:
+        # a product of sets: their dimensions add (a finite part adds none)
+        formulation["dimension"] = sum(f.formulation.get("dimension") or 0 for f in infinite)
         return Found(formulation, [], None, "infinite", paths, tuple(notes), 1, found[0].closure)
     coords = mech.coordinates()
     rows = []
