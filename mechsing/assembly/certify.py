@@ -662,8 +662,13 @@ def misses(
     its values) where it does not close (above ``10^(-dps / MODE_CLOSURE_DIGITS)``), else
     0: a root of a square system's combinations may miss the others."""
     f, _ = _functions(eqs, gens)
-    r = mpmath.norm(f(x))
-    return r if r > mpmath.mpf(10) ** (-(dps // MODE_CLOSURE_DIGITS)) else 0
+    return left_open(mpmath.norm(f(x)), dps)
+
+
+def left_open(residual: Any, dps: int) -> Any:
+    """``residual`` (the norm of closure equations' values at ``dps`` digits) where it
+    does not close (above ``10^(-dps / MODE_CLOSURE_DIGITS)``), else 0."""
+    return residual if residual > mpmath.mpf(10) ** (-(dps // MODE_CLOSURE_DIGITS)) else 0
 
 
 def singular_root(

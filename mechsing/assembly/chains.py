@@ -28,6 +28,7 @@ import mpmath
 from mechsing.assembly.given import NO_INPUTS, Formulation, Given, closure_from_start
 from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.model import Mechanism
+from mechsing.model.mechanism import Displacement
 
 __all__ = [
     "SERIAL_ARM",
@@ -343,19 +344,14 @@ def pose_chains(
     loops between legs then close), with the joint values the configuration also gives.
     A leg that is not one chain (a loop of its own), or a joint on no leg: refused."""
     from mechsing.errors import FormulationError
-    from mechsing.model.mechanism import Displacement
 
     mech, config = given.mech, given.config
     out = mech.output
     if out is None:
         raise FormulationError("the file has no output: the pose is nobody's")
     cfg = mech.configurations[config]
-    for name, v in cfg.values.items():
-        if isinstance(v, Displacement):
-            raise FormulationError(
-                f"joint {name} is given as a displacement; modes takes joint values"
-            )
-    values = {n: list(v) for n, v in cfg.values.items()}
+    # (a value given as a displacement is refused where the joint is written: Joints)
+    values = {n: v if isinstance(v, Displacement) else list(v) for n, v in cfg.values.items()}
     chains: list[tuple[list[str], list[int], Any]] = []
     for i, leg in enumerate(mech.legs):
         path = _leg_path(mech, leg.joints)

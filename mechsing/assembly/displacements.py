@@ -23,6 +23,7 @@ import sympy
 from mechsing.errors import FormulationError
 from mechsing.lie.dual import study_multiply
 from mechsing.model import Mechanism
+from mechsing.model.mechanism import Displacement
 
 __all__ = [
     "WRITTEN",
@@ -112,6 +113,10 @@ class Joints:
             )
         basis = self.km.joint(name).basis
         values = self.given.get(name)
+        if isinstance(values, Displacement):
+            raise FormulationError(
+                f"joint {name} is given as a displacement; modes takes joint values"
+            )
         factors = []
         if j.type == "S":
             p = [mpmath.mpf(x) / self.L for x in self.km.point_array(j.params["point"])]

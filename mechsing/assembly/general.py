@@ -440,12 +440,12 @@ def _fixed_gaps(given: Given, prob: Problem) -> tuple[tuple[str, ...], Any] | No
     """The first chain of given joints only that does not close (its joints, and its gap
     read from its equations as a root's is, t / 2L and half an angle: 2L times their
     norm, in metres), or None: every such chain closes to the precision's tolerance."""
+    from mechsing.assembly.certify import left_open
     from mechsing.assembly.result import closure_gap
-    from mechsing.assembly.settings import MODE_CLOSURE_DIGITS
 
     for c in prob.fixed:
         miss = mpmath.norm([mpmath.mpf(sympy.N(e, given.dps)) for e in c.equations] or [0])
-        if miss <= mpmath.mpf(10) ** (-(given.dps // MODE_CLOSURE_DIGITS)):
+        if not left_open(miss, given.dps):
             continue
         gap = closure_gap(given.mech, given.prec, [], 2 * prob.L * miss)
         if gap:

@@ -33,8 +33,8 @@ class Given:
     mechanism without loops, whose configuration gives the output's pose or every joint,
     read by the serial formulations, and for a mechanism with loops whose configuration
     gives the output's pose, read by the general formulation), ``refusal`` why the
-    configuration's values are not inputs (None: they are), ``dps`` the digits the modes are found at, ``atol`` how far
-    from orthonormal a given rotation may be; ``cache`` what one formulation's
+    configuration's values are not inputs (None: they are), ``dps`` the digits the modes
+    are found at, ``atol`` how far from orthonormal a given rotation may be; ``cache`` what one formulation's
     ``applies`` built for its ``find``."""
 
     mech: Mechanism
@@ -86,10 +86,9 @@ def read_given(
     for the configuration's own)."""
     if start is not None:
         mech = _started_from(mech, config, start)
-    if not mech.loops:  # a serial arm: the output's pose (given, or reached) is what is given
-        return Given(mech, config, prec, dps, atol, None, _values(mech, config)[1])
-    if mech.configurations[config].pose is not None:
-        # loops and the output's pose: the legs' postures reaching it (working modes)
+    if not mech.loops or mech.configurations[config].pose is not None:
+        # a serial arm: the output's pose (given, or reached) is what is given; loops and
+        # the output's pose: the legs' postures reaching it (working modes)
         return Given(mech, config, prec, dps, atol, None, _values(mech, config)[1])
     values, refusal = _values(mech, config)
     if refusal is not None:

@@ -113,7 +113,7 @@ def combined(mech: Mechanism, parts: list[Any], found: list[Any]) -> Any:
     rows = []
     for choice in itertools.product(*(f.rows for f in found)):
         q = list(choice[0][0])
-        for p, (row, _) in zip(parts[1:], choice[1:], strict=False):
+        for p, (row, _) in zip(parts[1:], choice[1:], strict=True):
             for i, (name, _) in enumerate(coords):
                 if name in p.joints:
                     q[i] = row[i]

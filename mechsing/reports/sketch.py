@@ -234,14 +234,16 @@ def joint_places(mech: Mechanism, q: Sequence[float]) -> dict[str, dict[str, np.
         a, b = j.between
         if "point" in j.params:
             continue
-        ends = []
+        ends, rest = [], []  # each body's other joints: where they are, where they were
         for body in (a, b):
-            pts = [
-                out[k.name][body]
+            others = [
+                k
                 for k in mech.joints
                 if k.name != j.name and body in k.between and "point" in k.params
             ]
-            ends.append(np.mean(pts, axis=0) if pts else None)
+            ends.append(np.mean([out[k.name][body] for k in others], axis=0) if others else None)
+            if others:
+                rest.append(np.mean([_f(k.params["point"]) for k in others], axis=0))
         entry = out.setdefault(j.name, {})
         moving = 1 if a == mech.ground else 0 if b == mech.ground else None
         if moving is not None and ends[moving] is not None:
@@ -253,18 +255,6 @@ def joint_places(mech: Mechanism, q: Sequence[float]) -> dict[str, dict[str, np.
             # between the reference points of its bodies' other joints): a slider keeps
             # its place on its cylinder, so a leg turned back past its base pivot (the
             # slide negative) shows it, where halfway would draw the same as unturned
-            rest = [
-                np.mean(pts, axis=0)
-                for body in (a, b)
-                for pts in [
-                    [
-                        _f(k.params["point"])
-                        for k in mech.joints
-                        if k.name != j.name and body in k.between and "point" in k.params
-                    ]
-                ]
-                if pts
-            ]
             mid = carry(a, np.mean(rest, axis=0) if rest else np.zeros(3))
             entry["ends"] = np.array([e if e is not None else mid for e in ends])
         entry[a] = mid
