@@ -191,17 +191,95 @@ def test_3rrr_at_a_pose_has_eight_working_modes(tmp_path: Path) -> None:
     _same_sets(found, expected, "R" * 9)
 
 
-@pytest.mark.parametrize("example", ["stewart_octahedral.yaml", "tsai_3upu.yaml"])
-def test_legs_whose_postures_multiply_beyond_the_limit_are_refused(
-    example: str, tmp_path: Path
+def _rps_pose() -> tuple[str, list[np.ndarray], list[np.ndarray], list[np.ndarray]]:
+    """A pose the 3-RPS of ``tests/data/three_rps.yaml`` reaches, found here with scipy
+    alone: its slides at (0.3, -0.2, 0.1), each leg turned about its R axis until the
+    ball centres are as far apart as the platform's (fsolve from the reference), the
+    platform's pose then fitted to those centres (Kabsch).  Returned: the pose as the
+    file writes it (its reference point, the centroid of the ball centres, and its
+    rotation vector), and per leg its R point, R axis and ball centre there."""
+    from scipy.optimize import fsolve
+    from scipy.spatial.transform import Rotation
+
+    s3 = math.sqrt(3)
+    bases = [np.array(b) for b in ([2, 0, 0], [-1, s3, 0], [-1, -s3, 0])]
+    axes = [np.array(a) for a in ([0, 1, 0], [-s3 / 2, -1 / 2, 0], [s3 / 2, -1 / 2, 0])]
+    balls0 = [np.array(c) for c in ([1, 0, 2], [-1 / 2, s3 / 2, 2], [-1 / 2, -s3 / 2, 2])]
+    slides = (0.3, -0.2, 0.1)
+
+    def ball(i: int, angle: float) -> np.ndarray:
+        d = balls0[i] - bases[i]
+        d = d + slides[i] * d / np.linalg.norm(d)
+        return bases[i] + Rotation.from_rotvec(angle * axes[i]).apply(d)
+
+    sides = [np.linalg.norm(balls0[i] - balls0[j]) for i, j in ((0, 1), (1, 2), (2, 0))]
+
+    def gaps(angles: np.ndarray) -> list[float]:
+        c = [ball(i, a) for i, a in enumerate(angles)]
+        return [
+            float(np.linalg.norm(c[i] - c[j]) - L)
+            for (i, j), L in zip(((0, 1), (1, 2), (2, 0)), sides, strict=True)
+        ]
+
+    angles = fsolve(gaps, np.zeros(3), xtol=1e-12)
+    assert max(map(abs, gaps(angles))) < 1e-13
+    balls = [ball(i, a) for i, a in enumerate(angles)]
+    c0, c1 = np.mean(balls0, axis=0), np.mean(balls, axis=0)
+    H = sum(np.outer(b0 - c0, b1 - c1) for b0, b1 in zip(balls0, balls, strict=True))
+    U, _, Vt = np.linalg.svd(H)
+    R = Vt.T @ np.diag([1, 1, np.linalg.det(Vt.T @ U.T)]) @ U.T
+    rv = Rotation.from_matrix(R).as_rotvec()
+    pose = f"{{position: [{', '.join(map(repr, map(float, c1)))}], rotation_vector: [{', '.join(map(repr, map(float, rv)))}]}}"
+    return pose, bases, axes, balls
+
+
+def test_3rps_at_a_pose_has_two_postures_a_leg(tmp_path: Path) -> None:
+    """A 3-RPS at a pose it reaches: each leg's line passes through its R point and its
+    ball centre, turned about the R axis to point at the ball (slide |p - b| - |d|) or
+    away from it (-|p - b| - |d|): 2 postures a leg, 8 working modes (each leg's start
+    system has 20 paths: their product, 8,000, was refused before the legs were
+    solved)."""
+    pose, bases, axes, balls = _rps_pose()
+    path = _posed(ROOT / "tests" / "data" / "three_rps.yaml", tmp_path, pose)
+    doc = _modes(path)
+    assert doc["count"] == 8
+    assert [p["count"] for p in doc["formulation"]["parts"]] == [2, 2, 2]
+    s3 = math.sqrt(3)
+    balls0 = [np.array(c) for c in ([1, 0, 2], [-1 / 2, s3 / 2, 2], [-1 / 2, -s3 / 2, 2])]
+    legs = []
+    for b, a, p, p0 in zip(bases, axes, balls, balls0, strict=True):
+        d0, d = p0 - b, p - b
+        reach = float(np.linalg.norm(d0))
+        # the turn about a that takes d0's direction to d's (both normal to a)
+        turn = math.atan2(float(a @ np.cross(d0, d)), float(d0 @ d))
+        legs.append(
+            [
+                [turn, float(np.linalg.norm(d)) - reach],
+                [_wrap(turn + math.pi), -float(np.linalg.norm(d)) - reach],
+            ]
+        )
+    expected = [[x for leg in choice for x in leg] for choice in itertools.product(*legs)]
+    names = ["R1", "P1", "R2", "P2", "R3", "P3"]
+    found = [[m["joints"][n][0] for n in names] for m in doc["modes"]]
+    _same_sets(found, expected, "RPRPRP")
+
+
+def test_parts_whose_solutions_combine_beyond_the_limit_are_refused(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """Six U-P-S legs, or three U-P-U legs, at a pose: each leg's start system has 120
-    paths, and their postures could combine into more modes than are analysed: refused at
-    once, with the counts, not left running."""
-    path = _posed(ROOT / "examples" / example, tmp_path, "{position: [0.05, -0.03, 1.1]}")
+    """The modes the parts' solutions combine into are counted once the parts are solved:
+    beyond the most analysed, refused (exit 2) with each part's count (a Gough-Stewart
+    platform at a pose, four postures a leg: 4,096; here the limit lowered to 4 on the
+    3-RPS's 2 x 2 x 2)."""
+    from mechsing.assembly import parts
+
+    monkeypatch.setattr(parts, "MAX_MODES", 4)
+    pose, *_ = _rps_pose()
+    path = _posed(ROOT / "tests" / "data" / "three_rps.yaml", tmp_path, pose)
     rc, _out, err = run_cli(["modes", str(path), "--config", "target"])
     assert rc == 2
-    assert "working modes" in err and "120, 120, 120" in err
+    assert "2 x 2 x 2 real solutions (R1, P1, S1: 2; R2, P2, S2: 2; R3, P3, S3: 2)" in err
+    assert "combine into 8 modes, more than the 4 analysed at most" in err
 
 
 def test_a_leg_with_a_loop_of_its_own_is_refused_naming_it(tmp_path: Path) -> None:

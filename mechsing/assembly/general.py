@@ -40,7 +40,6 @@ Owns :class:`Problem`, :func:`problem`, :func:`bezout` and :data:`FORMULATION`.
 from __future__ import annotations
 
 import functools
-import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -70,8 +69,8 @@ from mechsing.numeric import MODE_MATCH_DISTANCE, MODE_SPAN_RTOL
 
 __all__ = ["FORMULATION", "Problem", "bezout", "patched_system", "problem"]
 
-#: the most paths the general formulation tracks (its multihomogeneous Bezout number);
-#: a system of more is refused with the count (a multi-loop platform of U joints: Tsai's
+#: the most paths the general formulation tracks (its multihomogeneous Bezout number,
+#: summed over the parts solved apart); a system of more is refused with the count (a multi-loop platform of U joints: Tsai's
 #: 3-UPU has millions), not left running for hours
 MAX_PATHS = 4000
 #: Bertini's precision model for a randomized system (an overconstrained loop's, and the
@@ -366,15 +365,9 @@ def _applies(given: Given) -> str | None:
     if len(prob.equations) >= prob.unknowns:
         from mechsing.assembly.parts import split
 
-        counts = [_bezout(part) for part in split(prob)]
-        paths = sum(counts)
-        if prob.pose and math.prod(counts) > MAX_PATHS:
-            # each leg's postures combine with every other's: a mode per choice
-            return (
-                f"its legs' start systems have {', '.join(map(str, counts))} paths: their "
-                f"postures could combine into {math.prod(counts)} working modes (the most "
-                f"analysed is {MAX_PATHS})"
-            )
+        # the parts are tracked one after the other: their paths add (how many modes
+        # their solutions combine into is known once they are solved: parts.combined)
+        paths = sum(_bezout(part) for part in split(prob))
         if paths > MAX_PATHS:
             return (
                 f"its multihomogeneous start system has {paths} paths (the most tracked is "

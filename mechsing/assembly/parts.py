@@ -7,20 +7,29 @@ the system is a product.  Solved whole, its multihomogeneous start system has th
 product of the legs' path counts (216 for a 3-RPR's three legs of 6), nearly all ending
 extraneous; solved part by part, their sum (18).
 
-Owns :func:`split` and :func:`combined`.
+Owns :func:`split` and :func:`combined`.  The modes combined are counted once the
+parts are solved: more than :data:`MAX_MODES` (each would be analysed) is refused with
+each part's count.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import itertools
+import math
 from typing import Any
 
 import mpmath
 
+from mechsing.errors import FormulationError
 from mechsing.model import Mechanism
 
-__all__ = ["combined", "split"]
+__all__ = ["MAX_MODES", "combined", "split"]
+
+#: the most modes the parts' solutions may combine into (each mode is analysed): a
+#: Gough-Stewart platform's six U-P-S legs at a pose reach it in four postures each,
+#: 4,096 working modes, refused with the counts
+MAX_MODES = 4000
 
 
 def split(prob: Any) -> list[Any]:
@@ -109,6 +118,17 @@ def combined(mech: Mechanism, parts: list[Any], found: list[Any]) -> Any:
         # a product of sets: their dimensions add (a finite part adds none)
         formulation["dimension"] = sum(f.formulation.get("dimension") or 0 for f in infinite)
         return Found(formulation, [], None, "infinite", paths, tuple(notes), 1, found[0].closure)
+    sizes = [len(f.rows) for f in found]
+    if math.prod(sizes) > MAX_MODES:
+        each = "; ".join(
+            f"{', '.join(part['joints'])}: {n}"
+            for part, n in zip(formulation["parts"], sizes, strict=True)
+        )
+        raise FormulationError(
+            f"its {len(parts)} parts solved apart have {' x '.join(map(str, sizes))} real "
+            f"solutions ({each}): they combine into {math.prod(sizes)} modes, more than the "
+            f"{MAX_MODES} analysed at most"
+        )
     coords = mech.coordinates()
     rows = []
     for choice in itertools.product(*(f.rows for f in found)):
