@@ -38,8 +38,8 @@ def _posed(src: Path, tmp_path: Path, pose: str) -> Path:
     return out
 
 
-def _modes(path: Path) -> dict:
-    rc, out, err = run_cli(["modes", str(path), "--config", "target", "--format", "json"])
+def _modes(path: Path, config: str = "target") -> dict:
+    rc, out, err = run_cli(["modes", str(path), "--config", config, "--format", "json"])
     assert rc == 0, err
     return json.loads(out)
 
@@ -264,6 +264,54 @@ def test_3rps_at_a_pose_has_two_postures_a_leg(tmp_path: Path) -> None:
     _same_sets(found, expected, "RPRPRP")
 
 
+def test_3prs_at_a_pose_has_two_postures_a_leg() -> None:
+    """A 3-PRS with generic inclined sliders (``tests/data/three_prs.yaml``) at a pose it
+    reaches: a leg's R axis is normal to its slide, so the ball centre p stays at the
+    link's distance from the R axis: with d = p - r0 (r0 the R point at slide 0) and u
+    the slide's direction, t^2 - 2 t u.d + |d|^2 - |c0 - r0|^2 = 0 gives the slide's two
+    values, the turn about the R axis the angle from c0 - r0 to d - t u (their parts normal
+    to the axis).  The file's
+    numbers and the pose are read with yaml alone.  (In double precision a path of the
+    second leg failed and its long slide, 4.06 m, was missed: 4 modes of 8.)"""
+    from scipy.spatial.transform import Rotation
+
+    path = ROOT / "tests" / "data" / "three_prs.yaml"
+    data = yaml.safe_load(path.read_text())
+    joints = {j["name"]: j for j in data["joints"]}
+    pose = data["configurations"]["at-pose"]["pose"]
+    turn = Rotation.from_rotvec(pose["rotation_vector"])
+    o = np.array(data["output"]["point"], dtype=float)
+    legs = []
+    for i in (1, 2, 3):
+        u = np.array(joints[f"P{i}"]["axis"], dtype=float)
+        u /= np.linalg.norm(u)
+        a = np.array(joints[f"R{i}"]["axis"], dtype=float)
+        a /= np.linalg.norm(a)
+        r0 = np.array(joints[f"R{i}"]["point"], dtype=float)
+        c0 = np.array(joints[f"S{i}"]["point"], dtype=float)
+        assert abs(a @ u) < 1e-12  # the R axis normal to the slide
+        p = np.array(pose["position"]) + turn.apply(c0 - o)
+        d, v0 = p - r0, c0 - r0
+        assert abs(a @ d - a @ v0) < 1e-9  # the pose is reached: p in the R's plane
+        disc = (u @ d) ** 2 - d @ d + v0 @ v0
+        assert disc > 0.05
+        postures = []
+        for t in (u @ d + math.sqrt(disc), u @ d - math.sqrt(disc)):
+            # the turn about a: between the parts of c0 - r0 and d - t u normal to a
+            w, v = d - t * u - (a @ d) * a, v0 - (a @ v0) * a
+            postures.append([float(t), math.atan2(float(a @ np.cross(v, w)), float(v @ w))])
+        legs.append(postures)
+    doc = _modes(path, "at-pose")
+    assert [p["count"] for p in doc["formulation"]["parts"]] == [2, 2, 2]
+    expected = [[x for leg in choice for x in leg] for choice in itertools.product(*legs)]
+    found = [
+        [m["joints"][n][0] for n in ("P1", "R1", "P2", "R2", "P3", "R3")] for m in doc["modes"]
+    ]
+    assert doc["count"] == 8
+    _same_sets(found, expected, "PRPRPR")
+    assert all(m["certified"] for m in doc["modes"])
+
+
 def test_parts_whose_solutions_combine_beyond_the_limit_are_refused(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -278,8 +326,10 @@ def test_parts_whose_solutions_combine_beyond_the_limit_are_refused(
     path = _posed(ROOT / "tests" / "data" / "three_rps.yaml", tmp_path, pose)
     rc, _out, err = run_cli(["modes", str(path), "--config", "target"])
     assert rc == 2
+    assert "no method applies" not in err
     assert "2 x 2 x 2 real solutions (R1, P1, S1: 2; R2, P2, S2: 2; R3, P3, S3: 2)" in err
     assert "combine into 8 modes, more than the 4 analysed at most" in err
+    assert "configuration 'target'" in err and "give some of these joints' values" in err
 
 
 def test_a_leg_with_a_loop_of_its_own_is_refused_naming_it(tmp_path: Path) -> None:

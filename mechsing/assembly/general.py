@@ -70,8 +70,9 @@ from mechsing.numeric import MODE_MATCH_DISTANCE, MODE_SPAN_RTOL
 __all__ = ["FORMULATION", "Problem", "bezout", "patched_system", "problem"]
 
 #: the most paths the general formulation tracks (its multihomogeneous Bezout number,
-#: summed over the parts solved apart); a system of more is refused with the count (a multi-loop platform of U joints: Tsai's
-#: 3-UPU has millions), not left running for hours
+#: summed over the parts solved apart); a system of more is refused with the count (a
+#: multi-loop platform of U joints closed whole, Tsai's 3-UPU at its inputs, has
+#: millions), not left running for hours
 MAX_PATHS = 4000
 #: Bertini's precision model for a randomized system (an overconstrained loop's, and the
 #: slices'): double precision (each real endpoint is refined at 50 digits afterwards;
@@ -79,7 +80,11 @@ MAX_PATHS = 4000
 #: isotropic components: Sarrus's); a square system keeps adaptive precision (in double,
 #: 8 of a SCARA's 24 paths fail); a system with an idle rod's spin equation in double too
 #: (its ball joints' isotropic quaternions make many singular endpoints: an RSSR's 60
-#: paths took minutes in adaptive precision, 4 s in double, the same two modes)
+#: paths took minutes in adaptive precision, 4 s in double, the same two modes); but a
+#: leg closed on the output's pose keeps adaptive precision, overconstrained or not (a
+#: 3-PRS's leg of five joints: in double some paths fail and a posture with them, its
+#: long slide found or missed with the seed; adaptive found every posture of seven
+#: poses, 14 to 75 s for the three legs, where double took 5 to 10 s)
 MPTYPE = "double"
 #: the most paths whose every endpoint is certified to prove a count (above: not tried)
 PROOF_PATHS = 200
@@ -410,7 +415,7 @@ def _row(mech: Mechanism, prob: Problem, z: list[Any]) -> list[Any]:
 
 
 def _find(given: Given) -> Found:
-    from mechsing.assembly.parts import combined, split
+    from mechsing.assembly.parts import TooManyModes, combined, split
 
     prob: Problem = given.cache["general"]
     off = _fixed_gaps(given, prob)
@@ -426,7 +431,11 @@ def _find(given: Given) -> Found:
     parts = split(prob)
     if len(parts) == 1:
         return _find_part(given, prob)
-    return combined(given.mech, parts, [_find_part(given, p) for p in parts])
+    found = [_find_part(given, p) for p in parts]
+    try:
+        return combined(given.mech, parts, found)
+    except TooManyModes as exc:  # what was found, not a method that does not apply
+        raise UserError(f"{given.where}: {exc}") from None
 
 
 def _fixed_gaps(given: Given, prob: Problem) -> tuple[tuple[str, ...], Any] | None:
@@ -500,9 +509,9 @@ def _find_part(given: Given, prob: Problem) -> Found:
         )
         return Found(formulation, [], None, "infinite", None, tuple(notes), 1, given.closure)
     square = [*_randomized(prob), *norms]
-    raw, tracked = track(
-        *patched_system(prob), mptype=MPTYPE if m > n or prob.spins else "adaptive"
-    )
+    # a leg closed on the pose keeps adaptive precision (MPTYPE)
+    double = (m > n or prob.spins) and not prob.pose
+    raw, tracked = track(*patched_system(prob), mptype=MPTYPE if double else "adaptive")
     product = certify.polynomial_rows([c.product for c in prob.closures], gens)
     genuine = [z for z in raw if genuine_endpoint(prob.groups, z, product)]
     pairs = [(g, r[0]) for g in genuine for r in [real_endpoints([g])] if r]

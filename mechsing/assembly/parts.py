@@ -21,15 +21,20 @@ from typing import Any
 
 import mpmath
 
-from mechsing.errors import FormulationError
+from mechsing.errors import UserError
 from mechsing.model import Mechanism
 
-__all__ = ["MAX_MODES", "combined", "split"]
+__all__ = ["MAX_MODES", "TooManyModes", "combined", "split"]
 
 #: the most modes the parts' solutions may combine into (each mode is analysed): a
 #: Gough-Stewart platform's six U-P-S legs at a pose reach it in four postures each,
 #: 4,096 working modes, refused with the counts
 MAX_MODES = 4000
+
+
+class TooManyModes(UserError):
+    """The parts' solutions combine into more than :data:`MAX_MODES` modes (the message
+    gives each part's count; the caller names the file and configuration)."""
 
 
 def split(prob: Any) -> list[Any]:
@@ -124,10 +129,11 @@ def combined(mech: Mechanism, parts: list[Any], found: list[Any]) -> Any:
             f"{', '.join(part['joints'])}: {n}"
             for part, n in zip(formulation["parts"], sizes, strict=True)
         )
-        raise FormulationError(
-            f"its {len(parts)} parts solved apart have {' x '.join(map(str, sizes))} real "
-            f"solutions ({each}): they combine into {math.prod(sizes)} modes, more than the "
-            f"{MAX_MODES} analysed at most"
+        raise TooManyModes(
+            f"the closure equations fall into {len(parts)} systems solved apart, with "
+            f"{' x '.join(map(str, sizes))} real solutions ({each}): they combine into "
+            f"{math.prod(sizes)} modes, more than the {MAX_MODES} analysed at most; give "
+            "some of these joints' values in the configuration to choose their postures"
         )
     coords = mech.coordinates()
     rows = []
