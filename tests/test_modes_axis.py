@@ -115,3 +115,27 @@ def test_a_rigid_loop_with_its_given_slide_has_only_its_reference(tmp_path: Path
     assert doc["formulation"]["name"] == NAME and doc["complete"] == "proven"
     _check(doc, f, {1: 0.0}, 1)
     assert all(abs(v[0]) < 1e-40 for v in doc["modes"][0]["joints"].values())
+
+
+def test_a_loop_whose_paths_mostly_fail_in_double_is_not_tracked_again() -> None:
+    """Sarrus's linkage with J1 given: its closed configurations hold a curve (J2 = J5 =
+    pi/2), on which most of the axis system's paths end, and no precision makes a count
+    of them; each elimination tried loses most of its 24 paths in double precision and is
+    given up at once, not tracked again in adaptive precision (which crawled along the
+    curve for over ten minutes): the loop goes to the general formulation."""
+    import mpmath
+
+    from mechsing import load
+    from mechsing.assembly import axis
+    from mechsing.assembly.given import read_given
+    from mechsing.numeric import parse_precision
+
+    mech = load(ROOT / "examples" / "sarrus.yaml")
+    given = read_given(mech, "raised", parse_precision("float"), 50, 1e-9)
+    with mpmath.workdps(50):
+        prob, names, signs, order = axis._layout(given)
+        for joint in order[: axis.ELIMINATIONS]:
+            got = axis._attempt(given, prob, axis._system(given, prob, names, signs, joint))
+            assert isinstance(got, str) and got.endswith("in double precision")
+            lost = int(got.split(" of ")[0])
+            assert lost > axis.RETRY_LOST * 24
