@@ -105,9 +105,7 @@ class BatchClosure:
         P = forward.batch_poses(self.base, q) if P is None else P
         out = np.empty((Q.shape[0], self.blocks, 4, 4))
         for i, jk in enumerate(self.chords):
-            np.matmul(
-                P[jk.a] @ forward.batch_element(jk, q), lie.inverse(P[jk.b]), out=out[:, i]
-            )
+            np.matmul(P[jk.a] @ forward.batch_element(jk, q), lie.inverse(P[jk.b]), out=out[:, i])
         if self.couplings:
             k = len(self.chords)
             out[:, k : k + self.couplings] = np.stack(coupling_residuals(self.base, q), axis=1)
@@ -260,9 +258,7 @@ class BatchClosure:
         lengths = self.frame.length_columns[cols]
         # the poses and residuals of the current rows, carried from one iteration to the
         # next (each trial point's are computed once)
-        P = {
-            k: np.array(v) for k, v in forward.batch_poses(self.base, Q[:, : self.nb]).items()
-        }
+        P = {k: np.array(v) for k, v in forward.batch_poses(self.base, Q[:, : self.nb]).items()}
         # the pose coordinates are given: the output's target is computed once
         T = None if self.pose is None else self.target(Q[:, self.nb :])
         D = self.deltas(Q, P, T)

@@ -301,9 +301,7 @@ class Locator:
             # first) that zeroes this one too: the same point, placed by that test
             # (near a singular point of the closure this test's zero is blurred)
             done = [
-                k
-                for k in hits
-                if self.holds(outs[r], t, Z[PA[k], col], Z[PA[k] + 1, col], col)
+                k for k in hits if self.holds(outs[r], t, Z[PA[k], col], Z[PA[k] + 1, col], col)
             ]
             crossed[r].update(x for k in done for x in (int(PA[k]), int(PA[k]) + 1))
             hits = [k for k in hits if k not in done]
