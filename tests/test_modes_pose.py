@@ -85,7 +85,8 @@ def test_3rpr_at_a_pose_has_eight_working_modes(tmp_path: Path) -> None:
     """The 3-RPR example at a pose: each leg points at its platform pivot or away from
     it, 2^3 modes, the count proven leg by leg."""
     position = (1.1, 0.9)
-    doc = _modes(_posed(ROOT / "examples" / "planar_3rpr.yaml", tmp_path, _pose(position)))
+    path = _posed(ROOT / "examples" / "planar_3rpr.yaml", tmp_path, _pose(position))
+    doc = _modes(path)
     base = [(0.0, 0.0), (4.0, 0.0), (0.0, 4.0)]
     pivots = [(0.9, 0.3), (2.5, 1.5), (-0.3, 1.9)]
     legs = []
@@ -112,6 +113,10 @@ def test_3rpr_at_a_pose_has_eight_working_modes(tmp_path: Path) -> None:
     assert doc["formulation"]["bezout"] == 18
     assert [p["count"] for p in doc["formulation"]["parts"]] == [2, 2, 2]
     assert sum(m["reached_by_continuation"] for m in doc["modes"]) == 1
+    # what the modes are, in the JSON and in the heading
+    assert doc["formulation"]["working_modes"] is True
+    rc, text, _ = run_cli(["modes", str(path), "--config", "target"])
+    assert rc == 0 and ": 8 working modes (complete: proven;" in text.splitlines()[0]
     jsonschema = pytest.importorskip("jsonschema")
     rc, out, _ = run_cli(["schema", "--modes"])
     assert rc == 0

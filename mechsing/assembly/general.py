@@ -470,6 +470,7 @@ def _formulation(prob: Problem) -> dict[str, Any]:
         ],
         "polynomial_degree": 1,
         "randomized": len(prob.equations) > prob.unknowns,
+        "working_modes": prob.pose,
     }
 
 
@@ -619,8 +620,9 @@ def _find_part(given: Given, prob: Problem) -> Found:
         )
         return Found(formulation, rows, len(rows), "proven", paths, tuple(notes), 1, given.closure)
     notes.append(
-        f"continuation found {len(genuine)} solutions (real and complex) on {tracked} paths; "
-        "a path that failed could hide a mode, so the count is not proven"
+        f"continuation found {len(genuine)} solution{'' if len(genuine) == 1 else 's'} "
+        f"(real and complex) on {tracked} paths; a path that failed could hide a mode, so "
+        "the count is not proven"
     )
     return Found(formulation, rows, len(rows), "not proven", paths, tuple(notes), 1, given.closure)
 

@@ -449,9 +449,9 @@ def _find(given: Given) -> Found:
     complete = _proven(eqs, gens, found, genuine, rows, dps, notes)
     if complete != "proven":
         notes.append(
-            f"continuation found {len(genuine)} solutions (real and complex, off the "
-            f"exceptional quadric |X|^2 = 0) on {tracked} paths; a path that failed could "
-            "hide a mode, so the count is not proven"
+            f"continuation found {len(genuine)} solution{'' if len(genuine) == 1 else 's'} "
+            f"(real and complex, off the exceptional quadric |X|^2 = 0) on {tracked} paths; "
+            "a path that failed could hide a mode, so the count is not proven"
         )
     return Found(
         formulation, rows, len(rows), complete, paths, tuple(notes), equivalent, given.closure

@@ -97,10 +97,10 @@ def _find(given: Given) -> Found:
         )
     else:
         notes.append(
-            f"continuation found {len(solutions)} solutions (real and complex, off the "
-            f"exceptional quadric |X|^2 = 0) on {paths['tracked']} paths, of the "
-            f"{GENERIC_COUNT} a platform on six distance legs can have: a path that failed "
-            "could hide a mode, so the count is not proven"
+            f"continuation found {len(solutions)} solution{'' if len(solutions) == 1 else 's'} "
+            f"(real and complex, off the exceptional quadric |X|^2 = 0) on "
+            f"{paths['tracked']} paths, of the {GENERIC_COUNT} a platform on six distance "
+            "legs can have: a path that failed could hide a mode, so the count is not proven"
         )
     equivalent = 2 ** sum(1 for n, *_ in system.legs if mech.joint(n[0]).type == "U")
     return Found(formulation, rows, len(rows), complete, paths, tuple(notes), equivalent)

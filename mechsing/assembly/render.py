@@ -46,8 +46,9 @@ def modes_heading(res: ModesResult) -> str:
         )
     else:
         how = f"{f['method']} in the {f['name']}, a polynomial of degree {f['polynomial_degree']}"
+    kind = "working" if f.get("working_modes") else "assembly"
     return (
-        f"{res.mechanism}, configuration {res.configuration}: {res.count} assembly "
+        f"{res.mechanism}, configuration {res.configuration}: {res.count} {kind} "
         f"mode{'s' if res.count != 1 else ''} (complete: {res.complete}; {how})"
     )
 

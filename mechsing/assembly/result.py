@@ -218,6 +218,10 @@ def _reached(
     res, failed = closure
     if res is None and failed is None:  # no mode to reach
         return None, ()
+    if res is None and not qs:
+        # no mode: where continuation stopped, and its advice to add a configuration on
+        # the way, would only mislead (the values are reached nowhere, or not found)
+        return None, ("continuation from the start does not close the configuration either",)
     if res is None:
         return None, (f"continuation from the start does not close the configuration: {failed}",)
     q0 = [x for _, v in res.joints for x in v]

@@ -178,6 +178,12 @@ def modes_schema() -> dict[str, Any]:
                             },
                         },
                     },
+                    "working_modes": {
+                        "type": "boolean",
+                        "description": "the general formulation: the configuration gives "
+                        "the output's pose of a mechanism with loops, and each mode is a "
+                        "posture of its legs reaching it (a working mode)",
+                    },
                     "proven_without_tracking": {
                         "type": "string",
                         "description": "why no mode exists, proven before any path was "
