@@ -110,8 +110,13 @@ def test_a_part_proven_empty_leaves_no_mode_whatever_the_others(other: str) -> N
         ),
         _found([_row(2, 4.0)], 1, "proven"),
     ]
+    found[0].formulation["working_modes"] = True
     out = combined(load(RPR), _parts(), found)
     assert out.count == 0 and out.complete == "proven" and out.rows == []
+    assert (
+        "no mode: no real solution for joints Rb1, P1, Rp1 (the output's pose is out of that "
+        "leg's reach)"
+    ) in out.notes
 
 
 def test_a_part_on_a_curve_makes_the_whole_infinite() -> None:

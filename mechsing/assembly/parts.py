@@ -117,6 +117,20 @@ def combined(mech: Mechanism, parts: list[Any], found: list[Any]) -> Any:
         # a part without a real solution: no mode at all, whatever the others have (proven
         # where that part's count is)
         complete = "proven" if any(f.complete == "proven" for f in empty) else "not proven"
+        none = [
+            ", ".join(part["joints"])
+            for part, f in zip(formulation["parts"], found, strict=True)
+            if f.count == 0
+        ]
+        legs = "that leg's" if len(none) == 1 else "those legs'"
+        notes.append(
+            f"no mode: no real solution for joints {'; '.join(none)}"
+            + (
+                f" (the output's pose is out of {legs} reach)"
+                if found[0].formulation.get("working_modes")
+                else ""
+            )
+        )
         return Found(formulation, [], 0, complete, paths, tuple(notes), 1, found[0].closure)
     infinite = [f for f in found if f.complete == "infinite"]
     if infinite:
