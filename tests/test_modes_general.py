@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 from tests.cli import run_cli
 from tests.mechanisms import ROOT
@@ -35,6 +36,11 @@ def _modes(argv: list[str]) -> dict:
 
 def _joint_vectors(doc: dict, names: list[str]) -> list[np.ndarray]:
     return [np.array([m["joints"][n][0] for n in names]) for m in doc["modes"]]
+
+
+def _every_value(doc: dict, names: list[str]) -> list[np.ndarray]:
+    """Each mode's every coordinate of the joints ``names``, in order."""
+    return [np.array([x for n in names for x in m["joints"][n]]) for m in doc["modes"]]
 
 
 def _same(found: list[np.ndarray], expected: list[np.ndarray], kinds: list[str]) -> None:
@@ -389,3 +395,38 @@ def test_span_is_mpmath_svd_bit_for_bit() -> None:
             U, S, _ = mpmath.svd_r(M)
             r = sum(1 for x in S if x > 1e-20 * S[0])
             assert V == (U[:, :r] if r < U.cols else U)
+
+
+def test_translation_joints_are_written_as_slides(tmp_path: Path) -> None:
+    """A T2 joint (two slides in a plane) closes a loop: a crank A turning a plate that
+    only translates, pinned to the crank at B (2, 1): the plate moves by B's displacement
+    Rot(A) B - B, so T (plate to ground) is its opposite and B = -A; one mode.  And a T3
+    joint with a ball joint after it, at a pose: T moves the ball's centre, the ball turns
+    the rest: one mode, the given values."""
+    f = tmp_path / "crank_t2.yaml"
+    f.write_text(
+        "mechanism: crank-on-a-translating-plate\n"
+        "bodies: [ground, crank, plate]\n"
+        "joints:\n"
+        "  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}\n"
+        "  - {name: B, type: R, between: [crank, plate], axis: [0, 0, 1], point: [2, 1, 0]}\n"
+        "  - {name: T, type: T2, between: [plate, ground], normal: [0, 0, 1]}\n"
+        "inputs: [A]\n"
+        "configurations:\n  reference: {}\n  turned: {A: 0.7}\n"
+    )
+    doc = _modes([str(f), "--config", "turned"])
+    a, b0 = 0.7, np.array([2.0, 1.0])
+    rot = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+    moved = rot @ b0 - b0
+    assert doc["count"] == 1
+    _same(_every_value(doc, ["A", "B", "T"]), [np.array([a, -a, *(-moved)])], list("RRPP"))
+    assert all(m["certified"] for m in doc["modes"])
+    chain = ROOT / "tests" / "data" / "t3_s_chain.yaml"
+    given = yaml.safe_load(chain.read_text())["configurations"]["middle-axis"]
+    doc = _modes([str(chain), "--config", "middle-axis"])
+    assert doc["count"] == 1
+    _same(
+        _every_value(doc, ["T", "S"]),
+        [np.array([*given["T"], 0.0, np.pi / 2, 0.0])],
+        list("PPPPPP"),
+    )

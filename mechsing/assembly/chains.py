@@ -398,10 +398,17 @@ def _leg_path(mech: Mechanism, joints: tuple[str, ...]) -> tuple[list[str], list
 def arm_values(mech: Mechanism, config: str, name: str) -> list[Any]:
     """A joint's values in a configuration of an arm without loops: given there, else in
     its start's (the chain of starts), else the reference's zeros."""
+    from mechsing.errors import FormulationError
+
     cur: str | None = config
     while cur is not None:
         cfg = mech.configurations[cur]
         if name in cfg.values:
+            if isinstance(cfg.values[name], Displacement):
+                raise FormulationError(
+                    f"configuration {cur!r}: joint {name} is given as a displacement; modes "
+                    "takes joint values"
+                )
             return list(cfg.values[name])
         cur = cfg.start
     return [0] * mech.joint(name).dof

@@ -35,8 +35,13 @@ __all__ = [
     "working_mpf",
 ]
 
-#: the joint types the general formulation writes
-WRITTEN = ("R", "P", "C", "U", "S")
+#: the joint types the general formulation writes: each a product of factors, one per
+#: coordinate, a half-angle pair's rotation or a slide pair's translation (R, P; C and the
+#: translation joints T2 and T3, abelian, are the exponential of the sum the kinematic
+#: model writes; U, the model's two exponentials) and S by its quaternion; a helical
+#: joint's slide is not polynomial in its angle, nor are the exponential coordinates of a
+#: planar (E) or Schoenflies (X) joint, whose rotation and translations do not commute
+WRITTEN = ("R", "P", "C", "U", "S", "T2", "T3")
 
 
 @dataclass(frozen=True)
@@ -108,8 +113,9 @@ class Joints:
         j = self.mech.joint(name)
         if j.type not in WRITTEN:
             raise FormulationError(
-                f"joint {name} is of type {j.type}: the general formulation writes R, P, C, U "
-                "and S joints (a helical joint's slide is not polynomial in its angle)"
+                f"joint {name} is of type {j.type}: the general formulation writes R, P, C, U, "
+                "S, T2 and T3 joints (a helical joint's slide is not polynomial in its angle, "
+                "nor are a planar or Schoenflies joint's exponential coordinates)"
             )
         basis = self.km.joint(name).basis
         values = self.given.get(name)

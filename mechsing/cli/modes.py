@@ -21,8 +21,8 @@ rod's length, a quadratic in that joint's half-angle pair (or slide) solved in c
 form, each root's solution certified, the count proven; (4c) one loop of six joints, one
 given and five unknown revolutes: one revolute eliminated through its axis (the product
 of the other five commutes with its line: four equations, 24 paths), the count proven
-when every path ends at its own certified root; (5) any other mechanism of R, P, C, U
-and S joints, or an arm of fewer joints at a pose in the subgroup its end moves in (a
+when every path ends at its own certified root; (5) any other mechanism of R, P, C, U,
+S, T2 and T3 joints, or an arm of fewer joints at a pose in the subgroup its end moves in (a
 pose outside it exits 2, naming the subgroup): each joint's displacement in Study
 coordinates, each loop's closure in its own subgroup's (three equations for a planar or
 spherical loop, six in general; a body on exactly two ball joints, an RSSR's coupler,
