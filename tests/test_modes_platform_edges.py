@@ -143,3 +143,24 @@ def test_dietmaier_longer_has_eighteen_modes_every_solution_certified() -> None:
         R, t = leg1_platform_pose(joints, m["joints"])
         assert np.allclose(closure(R, t, np.empty(0)), 0, atol=1e-12)
         assert min(np.linalg.norm(R - R2) + np.linalg.norm(t - t2) for R2, t2 in expected) < 1e-8
+
+
+def test_real_endpoints_newton_cannot_refine_are_said_not_hidden() -> None:
+    """The octahedral platform turned 90 degrees is singular: its two modes are double
+    roots (the example written exactly lists them, singular).  Written with 25 digits, the
+    rounding splits them below what double precision tells apart, and Newton at 50 digits
+    refines neither: the count is not proven, a note says that two real endpoints were not
+    refined, and another that continuation closed the configuration at none of the modes
+    found (a closed configuration the count misses), not a bare 0."""
+    path = ROOT / "tests" / "data" / "stewart_octahedral_25digits.yaml"
+    rc, out, err = run_cli(["modes", str(path), "--config", "rotated+90", "--format", "json"])
+    assert rc == 0, err
+    doc = json.loads(out)
+    assert doc["complete"] == "not proven"
+    lost = doc["paths"]["real"] - doc["paths"]["refined"]
+    assert lost == 2
+    assert any(
+        n.startswith("2 real endpoints of continuation could not be refined") for n in doc["notes"]
+    )
+    assert doc["count"] == 0  # the two left out, as the notes say
+    assert any("a closed configuration the count misses" in n for n in doc["notes"])

@@ -102,6 +102,17 @@ def _find(given: Given) -> Found:
             f"{paths['tracked']} paths, of the {GENERIC_COUNT} a platform on six distance "
             "legs can have: a path that failed could hide a mode, so the count is not proven"
         )
+    lost = paths["real"] - paths["refined"]
+    if lost:
+        # (a singular pose's double root, once the data are rounded: two real roots closer
+        # than double precision tells apart, or a complex pair; 25-digit octahedral legs
+        # turned 90 degrees)
+        notes.append(
+            f"{lost} real endpoint{'' if lost == 1 else 's'} of continuation could not be "
+            f"refined by Newton's method at {dps} digits (a multiple root, or roots closer "
+            "together than double precision tells apart, as at a singular pose): not "
+            "counted, so a mode may be missing there"
+        )
     equivalent = 2 ** sum(1 for n, *_ in system.legs if mech.joint(n[0]).type == "U")
     return Found(formulation, rows, len(rows), complete, paths, tuple(notes), equivalent)
 

@@ -242,7 +242,10 @@ def _reached(
         best = min(dists)
         where = dists.index(best)
     if best is None or best > MODE_MATCH_DISTANCE:
-        return None, ("continuation closes the configuration at none of the modes",)
+        return None, (
+            "continuation from the start closes the configuration at none of the modes "
+            "found: a closed configuration the count misses",
+        )
     return where, ()
 
 
