@@ -10,8 +10,8 @@ each with ``applies(given)`` and ``find(given)``; what is given read once
 * :mod:`~mechsing.assembly.platform` -- a six-leg platform in Study coordinates;
 * :mod:`~mechsing.assembly.chains` -- six unknown joints in a chain: a single loop, a
   serial arm (:mod:`~mechsing.assembly.serial`);
-* :mod:`~mechsing.assembly.general` -- any mechanism of R, P, C, U, S, T2 and T3 joints, each loop
-  in its subgroup's coordinates; arms of fewer than six joints at a pose;
+* :mod:`~mechsing.assembly.general` -- any mechanism of R, P, C, U, S, T2 and T3 joints,
+  each loop in its subgroup's coordinates; arms of fewer than six joints at a pose;
 
 and what they share:
 

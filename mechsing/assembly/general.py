@@ -1,5 +1,6 @@
 """The general formulation: every mechanism of R, P, C, U, S, T2 and T3 joints whose given
-values leave finitely many closed configurations (or say that they do not, with the dimension).
+values leave finitely many closed configurations (or say that they do not, with the
+dimension).
 
 Each unknown joint's displacement is a dual quaternion (Study coordinates, lengths over
 L) linear in its own homogeneous coordinates: a revolute's half-angle pair ``(c, s)`` ~
