@@ -21,7 +21,8 @@ them):
 * signals caught inside mechsing and turned into one of the above:
   :class:`YAMLReadError` (text that is not YAML mechsing accepts),
   :class:`InputRefError` (an input that names no actuable coordinate),
-  :class:`EliminationTooLarge` (an elimination of passive joints not attempted);
+  :class:`EliminationTooLarge` (an elimination of passive joints not attempted),
+  :class:`TooManyModes` (assembly modes too many to analyse, said with the file's name);
 * :class:`TimeLimitExceeded`, a :class:`BaseException` (so that no ``except
   Exception`` swallows it) raised by :class:`mechsing.timelimit.TimeLimit`.
 
@@ -53,6 +54,7 @@ __all__ = [
     "MechsingError",
     "ParameterError",
     "TimeLimitExceeded",
+    "TooManyModes",
     "UserError",
     "YAMLReadError",
     "current_work",
@@ -148,6 +150,12 @@ class ClosureError(ConfigurationError):
 class FormulationError(UserError):
     """A formulation of every assembly mode (``mechsing modes``) does not apply to the
     mechanism or its given values: the reason, which the command completes."""
+
+
+class TooManyModes(UserError):
+    """The solutions of the parts of an assembly-mode problem, solved apart, combine into
+    more modes than are analysed: the message gives each part's count; the formulation
+    adds the file and the configuration."""
 
 
 class ExactDataError(ConfigurationError):

@@ -63,7 +63,7 @@ from mechsing.assembly.settings import (
     MODE_CERTIFY_RADIUS,
     MODE_ENDPOINT_SINGULAR_RTOL,
 )
-from mechsing.errors import FormulationError, UserError
+from mechsing.errors import FormulationError, TooManyModes, UserError
 from mechsing.lie.dual import study_conjugate, study_multiply
 from mechsing.model import Mechanism
 from mechsing.numeric import MODE_MATCH_DISTANCE, MODE_SPAN_RTOL
@@ -416,7 +416,7 @@ def _row(mech: Mechanism, prob: Problem, z: list[Any]) -> list[Any]:
 
 
 def _find(given: Given) -> Found:
-    from mechsing.assembly.parts import TooManyModes, combined, split
+    from mechsing.assembly.parts import combined, split
 
     prob: Problem = given.cache["general"]
     off = _fixed_gaps(given, prob)

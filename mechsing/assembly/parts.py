@@ -21,20 +21,15 @@ from typing import Any
 
 import mpmath
 
-from mechsing.errors import UserError
+from mechsing.errors import TooManyModes
 from mechsing.model import Mechanism
 
-__all__ = ["MAX_MODES", "TooManyModes", "combined", "split"]
+__all__ = ["MAX_MODES", "combined", "split"]
 
 #: the most modes the parts' solutions may combine into (each mode is analysed): a
 #: Gough-Stewart platform's six U-P-S legs at a pose reach it in four postures each,
 #: 4,096 working modes, refused with the counts
 MAX_MODES = 4000
-
-
-class TooManyModes(UserError):
-    """The parts' solutions combine into more than :data:`MAX_MODES` modes (the message
-    gives each part's count; the caller names the file and configuration)."""
 
 
 def split(prob: Any) -> list[Any]:
