@@ -430,3 +430,31 @@ def test_translation_joints_are_written_as_slides(tmp_path: Path) -> None:
         [np.array([*given["T"], 0.0, np.pi / 2, 0.0])],
         list("PPPPPP"),
     )
+
+
+@pytest.mark.parametrize("config", ["moved", "posed"])
+def test_an_arm_joint_given_as_a_displacement_is_refused_by_name(
+    config: str, tmp_path: Path
+) -> None:
+    """A serial arm whose configuration (or its start) gives a ball joint as a rotation
+    matrix: modes takes joint values, and says so naming the joint, exit 2 (both cases
+    were an internal error, exit 4)."""
+    f = tmp_path / "rcs_arm.yaml"
+    rot = "{rotation: [[1, 0, 0], [0, 0, -1], [0, 1, 0]]}"
+    f.write_text(
+        "mechanism: rcs-arm\n"
+        "bodies: [ground, a, b, c]\n"
+        "joints:\n"
+        "  - {name: J1, type: R, between: [ground, a], axis: [0, 0, 1], point: [0, 0, 0]}\n"
+        "  - {name: C1, type: C, between: [a, b], axis: [1, 0, 0], point: [0, 0, 1]}\n"
+        "  - {name: S1, type: S, between: [b, c], point: [1, 0, 1]}\n"
+        "output: {body: c}\n"
+        "configurations:\n"
+        "  reference: {}\n"
+        "  bent: {J1: 0.3, C1: [0.2, 0.1], S1: [0.1, 0.2, 0.3]}\n"
+        f"  moved: {{start: bent, S1: {rot}}}\n"
+        f"  posed: {{pose: {{position: [0.5, 0.2, 1.1]}}, S1: {rot}}}\n"
+    )
+    rc, _out, err = run_cli(["modes", str(f), "--config", config])
+    assert rc == 2, err
+    assert "joint S1 is given as a displacement; modes takes joint values" in err

@@ -330,7 +330,7 @@ def arm_chain(given: Given) -> tuple[list[tuple[list[str], list[int], Any]], dic
     names, signs = chain_to_output(mech)
     cfg = mech.configurations[config]
     if cfg.pose is not None:
-        values = {n: list(cfg.values[n]) for n in names if n in cfg.values}
+        values = {n: _written(cfg.values[n]) for n in names if n in cfg.values}
         return [(names, signs, "pose")], values
     return [(names, signs, {n: arm_values(mech, config, n) for n in names})], {}
 
@@ -350,8 +350,7 @@ def pose_chains(
     if out is None:
         raise FormulationError("the file has no output: the pose is nobody's")
     cfg = mech.configurations[config]
-    # (a value given as a displacement is refused where the joint is written: Joints)
-    values = {n: v if isinstance(v, Displacement) else list(v) for n, v in cfg.values.items()}
+    values = {n: _written(v) for n, v in cfg.values.items()}
     chains: list[tuple[list[str], list[int], Any]] = []
     for i, leg in enumerate(mech.legs):
         path = _leg_path(mech, leg.joints)
@@ -398,17 +397,17 @@ def _leg_path(mech: Mechanism, joints: tuple[str, ...]) -> tuple[list[str], list
 def arm_values(mech: Mechanism, config: str, name: str) -> list[Any]:
     """A joint's values in a configuration of an arm without loops: given there, else in
     its start's (the chain of starts), else the reference's zeros."""
-    from mechsing.errors import FormulationError
-
     cur: str | None = config
     while cur is not None:
         cfg = mech.configurations[cur]
         if name in cfg.values:
-            if isinstance(cfg.values[name], Displacement):
-                raise FormulationError(
-                    f"configuration {cur!r}: joint {name} is given as a displacement; modes "
-                    "takes joint values"
-                )
-            return list(cfg.values[name])
+            return _written(cfg.values[name])
         cur = cfg.start
     return [0] * mech.joint(name).dof
+
+
+def _written(value: Any) -> Any:
+    """A configuration's value of a joint as the chains hold it: its coordinates (a list),
+    or a displacement as it is, which :class:`~mechsing.assembly.displacements.Joints`
+    refuses where it writes the joint (modes takes joint values)."""
+    return value if isinstance(value, Displacement) else list(value)
