@@ -20,6 +20,7 @@ import mechsing
 from mechsing.kinematics import Closer, KinematicModel, forward
 from mechsing.model.loader import loads
 from mechsing.numeric import Precision, parse_precision, rank_bounds, to_float
+from mechsing.numeric.linalg import clear_complements
 from mechsing.screws import closure_system
 from mechsing.singularity.criteria import ConstraintTest, MotionTest, SerialTest
 from tests.mechanisms import PLANAR_3R_POINT
@@ -137,6 +138,45 @@ def test_the_constraint_test_of_the_five_bar_counts_the_planar_wrenches():
     assert test.batch_values(Ss) == [4]
     rows = test.wrench_rows(Ss, np.zeros((len(mech.loops), model.n)))
     assert np.linalg.matrix_rank(rows[0]) == 4
+
+
+def test_the_legs_wrenches_from_their_qr_span_the_svd_s_near_and_far_from_a_leg_singularity():
+    """The five-bar's legs' wrench rows over a batch of configurations (a crank turned
+    through a leg's serial singularity, where the distal links line up): leg by leg,
+    the rows span the same space as the left singular vectors beyond the leg's rank (the
+    same orthogonal projector to rounding), whether the leg was clearly of full rank
+    (its complement from its QR) or not (the SVD's), and the legs' combined wrenches
+    have the same singular values."""
+    mech = mechsing.load(EX / "five_bar.yaml")
+    model = KinematicModel(mech, "float")
+    test = ConstraintTest.of(mech, model)
+    q0 = np.asarray(to_float(Closer(model).solve("reference").q), dtype=float)
+    # the chain's screws with A1 turned a full turn (no closure needed for the wrench
+    # rows): the second leg's three screws pass through rank 2 and near it
+    Q = np.tile(q0, (241, 1))
+    Q[:, 0] = np.linspace(-np.pi, np.pi, 241)
+    P = forward.poses(model, Q)
+    Ss = model.frame.screws(forward.current_screws(model, Q, P))
+    got = test.wrench_rows(Ss, np.zeros((len(mech.loops), model.n)))
+    want, unclear = [], 0
+    for leg in test.legs:
+        Tl = (Ss * leg.path_signs[None, None, :])[:, :, leg.columns]
+        want.append(test._wrenches_by_svd(Tl))
+        unclear += int(np.sum(~clear_complements(Tl)[0]))
+    assert 0 < unclear < len(Q)  # both ways of forming them are compared
+    want_rows = np.concatenate(want, axis=1)
+    eps = np.finfo(float).eps
+    for i in range(len(test.legs)):
+        A, B = got[:, 6 * i : 6 * i + 6], want_rows[:, 6 * i : 6 * i + 6]
+        PA = np.swapaxes(A, 1, 2) @ A
+        PB = np.swapaxes(B, 1, 2) @ B
+        np.testing.assert_allclose(PA, PB, rtol=0, atol=100 * eps)
+    np.testing.assert_allclose(
+        np.linalg.svd(got, compute_uv=False),
+        np.linalg.svd(want_rows, compute_uv=False),
+        rtol=0,
+        atol=100 * eps,
+    )
 
 
 #: the functions that apply the rank rule: called only from numeric and the test objects

@@ -266,9 +266,9 @@ def test_the_closure_kernel_from_the_householder_vectors_is_the_complete_q_s_las
     columns already triangular (reflectors that are the identity, tau = 0), with a number
     of reflectors that is not a multiple of the block, more configurations than a chunk,
     one reflector, and no complement at all."""
-    from mechsing.sweeps.factors import KERNEL_BLOCK as _KERNEL_BLOCK
-    from mechsing.sweeps.factors import KERNEL_CHUNK as _KERNEL_CHUNK
-    from mechsing.sweeps.factors import complement as _complement
+    from mechsing.numeric.linalg import KERNEL_BLOCK as _KERNEL_BLOCK
+    from mechsing.numeric.linalg import KERNEL_CHUNK as _KERNEL_CHUNK
+    from mechsing.numeric.linalg import complement as _complement
 
     rng = np.random.default_rng(11)
     eps = np.finfo(float).eps

@@ -1,9 +1,9 @@
 """The batched factorisations of a sweep's measures, in float.
 
 Owns the kernels :class:`~mechsing.sweeps.measures.Measures` factorises its batches
-with: the closure kernel formed from a QR's Householder vectors alone
-(:func:`complement`), the singular values of a triangular factor from its Gram matrix
-(:func:`singular_values`), the largest singular value of each matrix
+with (beside the closure kernel formed from a QR's Householder vectors alone,
+:func:`mechsing.numeric.linalg.complement`): the singular values of a triangular factor
+from its Gram matrix (:func:`singular_values`), the largest singular value of each matrix
 (:func:`largest_singular_value`), and the table ``sweep test factors`` of
 :mod:`mechsing.numeric.dispatch`, whose form ``values first`` (:func:`values_first`)
 gives a test's singular values without its vectors (``MECHSING_FAST=0``: numpy's thin
@@ -18,23 +18,13 @@ from mechsing.numeric import Precision, dispatch
 from mechsing.sweeps.settings import SWEEP_GRAM_RATIO
 
 __all__ = [
-    "KERNEL_BLOCK",
-    "KERNEL_CHUNK",
     "NOISE",
     "VALUES",
-    "complement",
     "largest_singular_value",
     "singular_values",
     "values_first",
 ]
 
-#: the closure kernel of a closure of full row rank (:func:`complement`) is formed from
-#: its QR's Householder vectors this many at a time (a block's reflectors applied at once,
-#: ``Y - W V``: three products of small matrices per block instead of two per reflector),
-#: for this many configurations at a time (the working set stays in cache): on the
-#: hexapod's 30 reflectors, 6 to 8 and 256 measured fastest of 2 to 15 and 128 to 1024
-KERNEL_BLOCK = 6
-KERNEL_CHUNK = 256
 
 #: a singular value this far below the largest (a tenth of float's tau_lo) is rounding
 #: noise for both SVDs alike: its count against the thresholds cannot differ between them
@@ -44,48 +34,6 @@ VALUES = dispatch.table(
     "sweep test factors",
     "numpy.linalg.svd of each test's matrices with their vectors (Measures.__call__)",
 )
-
-
-def complement(h: np.ndarray, tau: np.ndarray) -> np.ndarray:
-    """The last ``n - k`` columns of the orthogonal factor Q of the QR factorisations
-    ``A = Q R`` of matrices A (N, n, k), k <= n, given in LAPACK's raw form (numpy's
-    ``qr(A, mode="raw")``: ``h`` (N, k, n), row j holding the j-th Householder vector
-    after its diagonal, and ``tau`` (N, k)): an orthonormal basis of the orthogonal
-    complement of each A's column space, the same columns as the complete Q's (which
-    LAPACK forms with the same reflectors).  Only ``Q [0; I]`` is formed,
-    ``H_1 ... H_k [0; I]``: the reflectors are applied KERNEL_BLOCK at a time (the
-    block's product at once, ``Y - W V``, W from ``Y V^T`` and the vectors' products),
-    each block to the rows it touches, KERNEL_CHUNK configurations at a time.
-    Products of reflectors, like LAPACK's, so as accurate however near A is to losing
-    rank."""
-    N, k, n = h.shape
-    d = n - k
-    out = np.zeros((N, d, n))  # the transposed basis, Y = (Q [0; I])^T
-    out[:, :, k:] = np.eye(d)
-    if d == 0 or k == 0:
-        return np.swapaxes(out, 1, 2)
-    after = np.triu(np.ones((k, n)), 1)
-    diagonal = np.arange(k)
-    for lo in range(0, N, KERNEL_CHUNK):
-        t, Y = tau[lo : lo + KERNEL_CHUNK], out[lo : lo + KERNEL_CHUNK]
-        # the Householder vectors as rows: 1 on the diagonal, h after it, 0 before it
-        V_ = h[lo : lo + KERNEL_CHUNK] * after
-        V_[:, diagonal, diagonal] = 1.0
-        hi = k
-        while hi > 0:  # the last block first: Y <- Y H_hi-1 ... H_a
-            a = max(hi - KERNEL_BLOCK, 0)
-            V = V_[:, a:hi, a:]  # (m, b, n - a): the block's vectors, from row a on
-            Ya = Y[:, :, a:]
-            W = Ya @ np.swapaxes(V, 1, 2)  # (m, d, b): Y v_j
-            G = V @ np.swapaxes(V, 1, 2)  # v_i . v_j
-            # w_j = tau_j (Y H_hi-1 ... H_j+1) v_j = tau_j (Y v_j - sum_{i > j} w_i v_i . v_j)
-            for j in range(hi - a - 1, -1, -1):
-                if j < hi - a - 1:
-                    W[:, :, j] -= (W[:, :, j + 1 :] @ G[:, j + 1 :, j, None])[:, :, 0]
-                W[:, :, j] *= t[:, a + j, None]
-            Ya -= W @ V
-            hi = a
-    return np.swapaxes(out, 1, 2)
 
 
 def largest_singular_value(A: np.ndarray) -> np.ndarray:

@@ -61,8 +61,9 @@ import numpy as np
 
 from mechsing.kinematics import forward
 from mechsing.numeric import relative_singular_values
+from mechsing.numeric.linalg import complement
 from mechsing.singularity.criteria import ClosureTest, ConstraintTest, Criterion, MotionTest
-from mechsing.sweeps.factors import VALUES, complement, largest_singular_value, singular_values
+from mechsing.sweeps.factors import VALUES, largest_singular_value, singular_values
 from mechsing.sweeps.settings import SWEEP_SCREEN_ROUNDING
 
 __all__ = ["SIGNED", "TESTS", "Measures", "PointMeasures"]

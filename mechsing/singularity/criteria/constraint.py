@@ -24,7 +24,7 @@ import numpy as np
 from mechsing.kinematics.protocol import ClosureModel
 from mechsing.model import Leg, Mechanism
 from mechsing.numeric import Precision, RankDecision, decide_rank
-from mechsing.numeric.linalg import svd
+from mechsing.numeric.linalg import clear_complements, svd
 from mechsing.singularity.criteria.base import Criterion, singular_values
 
 if TYPE_CHECKING:
@@ -196,9 +196,25 @@ class ConstraintTest(Criterion):
                 _, s, Vt = np.linalg.svd(Mi, full_matrices=True)
                 r = int(np.max(self.ranks(s).hi))
                 Tl = Tl @ np.swapaxes(Vt[:, r:, :], 1, 2)
-            U, s, _ = np.linalg.svd(Tl, full_matrices=True)
-            hi = self.ranks(s).hi
-            # columns of U beyond each row's rank: the leg's wrenches (zero elsewhere)
-            mask = np.arange(6)[None, :] >= hi[:, None]
-            blocks.append(np.swapaxes(U * mask[:, None, :], 1, 2))
+            k = Tl.shape[2]
+            if 0 < k < 6:
+                # a leg clearly of full rank: its wrenches are the complement of its
+                # twists' span from their QR (the same span as U's last columns below)
+                clear, K = clear_complements(Tl)
+                W = np.zeros((B, 6, 6))
+                W[:, k:, :] = np.swapaxes(K, 1, 2)
+                rest = np.flatnonzero(~clear)
+                if len(rest):
+                    W[rest] = self._wrenches_by_svd(Tl[rest])
+            else:
+                W = self._wrenches_by_svd(Tl)
+            blocks.append(W)
         return np.concatenate(blocks, axis=1)
+
+    def _wrenches_by_svd(self, Tl: np.ndarray) -> np.ndarray:
+        """A leg's wrenches as rows (B, 6, 6) at the rank each matrix of its twists ``Tl``
+        (B, 6, k) takes: the left singular vectors beyond it (rows before it zero)."""
+        U, s, _ = np.linalg.svd(Tl, full_matrices=True)
+        hi = self.ranks(s).hi
+        mask = np.arange(6)[None, :] >= hi[:, None]
+        return np.swapaxes(U * mask[:, None, :], 1, 2)
