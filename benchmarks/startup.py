@@ -137,9 +137,7 @@ def main() -> None:
                     t = cpu_seconds(argv, env, cwd)
                     if rnd:
                         times[name][i].append(t)
-        found = {
-            name: [imports(argv, env, cwd) for env in envs] for name, argv in COMMANDS.items()
-        }
+        found = {name: [imports(argv, env, cwd) for env in envs] for name, argv in COMMANDS.items()}
     load = os.getloadavg()[0]
     print(
         f"CPU seconds per run, median of {args.repeat} (after one untimed round), trees in "
