@@ -458,3 +458,61 @@ def test_an_arm_joint_given_as_a_displacement_is_refused_by_name(
     rc, _out, err = run_cli(["modes", str(f), "--config", config])
     assert rc == 2, err
     assert "joint S1 is given as a displacement; modes takes joint values" in err
+
+
+@pytest.mark.parametrize(
+    "failed, again",
+    [(0, False), (1, True), (2, True), (3, False)],  # of 8 paths: RETRY_FAILED is 1/4
+)
+def test_a_double_tracking_that_failed_a_few_paths_runs_again_in_adaptive_precision(
+    monkeypatch: pytest.MonkeyPatch, failed: int, again: bool
+) -> None:
+    """A failed path may hide a mode: where double precision failed some paths (neither
+    converged nor went to infinity), at most a quarter of them, the system is tracked again
+    in adaptive precision and its endpoints are those of the second run; where none failed,
+    or more than a quarter (paths ending on a set that is not finite), not.  The failure
+    codes of the double run are set by a wrapper around Bertini's own solve of a system
+    of two conics (four finite solutions, no path lost)."""
+    import bertini
+    import sympy
+
+    from mechsing.assembly import engine
+
+    x, y = sympy.symbols("x y")
+    eqs = [x**2 + y**2 - 4, x * y - 1]
+    real_solve = bertini.solve
+    runs: list[str] = []
+
+    class Meta:
+        def __init__(self, name: str) -> None:
+            self.endgame_success_code = type("Code", (), {"name": name})()
+
+    class Solver:
+        def __init__(self, inner: object, codes: list[str]) -> None:
+            self.inner, self.codes = inner, codes
+
+        def solution_metadata(self) -> list[Meta]:
+            return [Meta(c) for c in self.codes]
+
+        def num_paths(self) -> int:
+            return len(self.codes)
+
+    class Result:
+        def __init__(self, solutions: object, solver: Solver) -> None:
+            self.solutions, self.solver = solutions, solver
+
+    def solve(system: object, **kw: object) -> object:
+        result = real_solve(system, **kw)
+        runs.append(str(kw["mptype"]))
+        if kw["mptype"] == "double":
+            codes = ["FailedToConverge"] * failed + ["SecurityMaxNormReached"] * 4
+            codes += ["Success"] * (8 - len(codes))
+            return Result(result.solutions, Solver(result.solver, codes))
+        return result
+
+    monkeypatch.setattr(bertini, "solve", solve)
+    raw, _ = engine.track(eqs, [[x, y]], mptype="double")
+    assert runs == (["double", "adaptive"] if again else ["double"])
+    assert len(raw) == 4
+    for z in raw:
+        assert abs(z[0] ** 2 + z[1] ** 2 - 4) < 1e-9 and abs(z[0] * z[1] - 1) < 1e-9
