@@ -179,6 +179,47 @@ def test_the_legs_wrenches_from_their_qr_span_the_svd_s_near_and_far_from_a_leg_
     )
 
 
+def test_clear_complements_are_the_svd_s_and_only_clear_matrices_are_called_clear():
+    """numeric.linalg.clear_complements on random batches (N, 6, k), k = 1..5, scaled from
+    1e-150 to 1e150, with zero, rank-deficient and nearly rank-deficient matrices: a
+    matrix is called clear exactly when its smallest singular value is at least
+    CLEAR_RANK_RATIO of its largest (never a zero or rank-deficient one), and a clear
+    one's complement is orthonormal with the SVD's projector; the ratio is the sweeps'
+    Gram ratio (one rule, two modules)."""
+    from mechsing.numeric.linalg import CLEAR_RANK_RATIO
+    from mechsing.sweeps.settings import SWEEP_GRAM_RATIO
+
+    assert CLEAR_RANK_RATIO == SWEEP_GRAM_RATIO
+    rng = np.random.default_rng(5)
+    eps = np.finfo(float).eps
+    for k in range(1, 6):
+        A = rng.standard_normal((400, 6, k)) * 10.0 ** rng.uniform(-150, 150, (400, 1, 1))
+        A[:20] = 0.0
+        if k > 1:
+            A[20:60, :, -1] = A[20:60, :, 0] * 3.0  # rank k - 1
+            A[60:100, :, -1] = A[60:100, :, 0] + 1e-9 * A[60:100, :, 1]  # nearly
+        clear, K = clear_complements(A)
+        s = np.linalg.svd(A, compute_uv=False)
+        ratio = s[:, -1] / np.where(s[:, 0] > 0, s[:, 0], 1.0)
+        assert not clear[:20].any()
+        if k > 1:
+            assert not clear[20:100].any()
+        far = np.abs(ratio - CLEAR_RANK_RATIO) > 1e-6
+        assert np.array_equal(clear[far], (ratio >= CLEAR_RANK_RATIO)[far])
+        assert clear.sum() > 200
+        U = np.linalg.svd(A[clear])[0][:, :, k:]
+        Kc = K[clear]
+        np.testing.assert_allclose(
+            Kc @ np.swapaxes(Kc, 1, 2), U @ np.swapaxes(U, 1, 2), rtol=0, atol=50 * eps
+        )
+        np.testing.assert_allclose(
+            np.swapaxes(Kc, 1, 2) @ Kc,
+            np.broadcast_to(np.eye(6 - k), (len(Kc), 6 - k, 6 - k)),
+            rtol=0,
+            atol=50 * eps,
+        )
+
+
 #: the functions that apply the rank rule: called only from numeric and the test objects
 _RULE = {"rank_bounds", "batched_rank_bounds", "_split_rank"}
 

@@ -461,18 +461,20 @@ def test_an_arm_joint_given_as_a_displacement_is_refused_by_name(
 
 
 @pytest.mark.parametrize(
-    "failed, again",
-    [(0, False), (1, True), (2, True), (3, False)],  # of 8 paths: RETRY_FAILED is 1/4
+    "failed, again, metadata",
+    # of 8 paths (RETRY_FAILED is 1/4); a solver without the paths' metadata: no retry
+    [(0, False, True), (1, True, True), (2, True, True), (3, False, True), (1, False, False)],
 )
 def test_a_double_tracking_that_failed_a_few_paths_runs_again_in_adaptive_precision(
-    monkeypatch: pytest.MonkeyPatch, failed: int, again: bool
+    monkeypatch: pytest.MonkeyPatch, failed: int, again: bool, metadata: bool
 ) -> None:
     """A failed path may hide a mode: where double precision failed some paths (neither
     converged nor went to infinity), at most a quarter of them, the system is tracked again
     in adaptive precision and its endpoints are those of the second run; where none failed,
-    or more than a quarter (paths ending on a set that is not finite), not.  The failure
-    codes of the double run are set by a wrapper around Bertini's own solve of a system
-    of two conics (four finite solutions, no path lost)."""
+    or more than a quarter (paths ending on a set that is not finite), not; nor where the
+    caller asks for no retry.  The success codes of the double run (Bertini's own
+    ``SuccessCode`` members) are set by a wrapper around Bertini's solve of a system of
+    two conics (four finite solutions, no path lost)."""
     import bertini
     import sympy
 
@@ -482,17 +484,17 @@ def test_a_double_tracking_that_failed_a_few_paths_runs_again_in_adaptive_precis
     eqs = [x**2 + y**2 - 4, x * y - 1]
     real_solve = bertini.solve
     runs: list[str] = []
+    code = bertini.SuccessCode
 
     class Meta:
-        def __init__(self, name: str) -> None:
-            self.endgame_success_code = type("Code", (), {"name": name})()
+        def __init__(self, c: object) -> None:
+            self.endgame_success_code = c
 
     class Solver:
-        def __init__(self, inner: object, codes: list[str]) -> None:
-            self.inner, self.codes = inner, codes
-
-        def solution_metadata(self) -> list[Meta]:
-            return [Meta(c) for c in self.codes]
+        def __init__(self, codes: list[object]) -> None:
+            self.codes = codes
+            if metadata:
+                self.solution_metadata = lambda: [Meta(c) for c in self.codes]
 
         def num_paths(self) -> int:
             return len(self.codes)
@@ -505,14 +507,68 @@ def test_a_double_tracking_that_failed_a_few_paths_runs_again_in_adaptive_precis
         result = real_solve(system, **kw)
         runs.append(str(kw["mptype"]))
         if kw["mptype"] == "double":
-            codes = ["FailedToConverge"] * failed + ["SecurityMaxNormReached"] * 4
-            codes += ["Success"] * (8 - len(codes))
-            return Result(result.solutions, Solver(result.solver, codes))
+            codes = [code.FailedToConverge] * failed + [code.GoingToInfinity] * 2
+            codes += [code.SecurityMaxNormReached] * 2
+            codes += [code.Success] * (8 - len(codes))
+            return Result(result.solutions, Solver(codes))
         return result
 
     monkeypatch.setattr(bertini, "solve", solve)
     raw, _ = engine.track(eqs, [[x, y]], mptype="double")
     assert runs == (["double", "adaptive"] if again else ["double"])
+    assert len(raw) == 4
+    for z in raw:
+        assert abs(z[0] ** 2 + z[1] ** 2 - 4) < 1e-9 and abs(z[0] * z[1] - 1) < 1e-9
+    runs.clear()
+    engine.track(eqs, [[x, y]], mptype="double", retry=False)
+    assert runs == ["double"]
+
+
+def test_where_bertini_refuses_the_adaptive_run_the_double_run_s_endpoints_stand(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The retry in adaptive precision is a second chance, not a new way to fail: should
+    Bertini refuse it, the endpoints double precision found are returned."""
+    from mechsing.assembly import engine
+
+    calls: list[str] = []
+
+    def run(model: str) -> tuple[str, str]:
+        calls.append(model)
+        if model == "adaptive":
+            raise RuntimeError("refused")
+        return "double result", "solver"
+
+    monkeypatch.setattr(engine, "_failed_a_few", lambda solver: True)
+    assert engine._with_retry(run, "double", True) == ("double result", "solver")
+    assert calls == ["double", "adaptive"]
+
+
+def test_a_linear_product_tracking_is_run_again_in_adaptive_precision_too(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The linear-product start system's tracking takes the same rule: with its double
+    run's failures counted a few, it is tracked again in adaptive precision (the same two
+    conics, every solution found)."""
+    import sympy
+
+    from mechsing.assembly import engine
+
+    x, y = sympy.symbols("x y")
+    eqs = [x**2 + y**2 - 4, x * y - 1]
+    factors = [[[0, 1], [0, 1]], [[0], [1]]]
+    choices = engine.linear_product_paths(factors, 2)
+    asked: list[bool] = []
+    real = engine._failed_a_few
+
+    def failed_a_few(solver: object) -> bool:
+        asked.append(real(solver))  # the real solver's metadata is read
+        return True
+
+    monkeypatch.setattr(engine, "_failed_a_few", failed_a_few)
+    raw, tracked = engine.track_linear_product(eqs, [x, y], factors, choices, mptype="double")
+    assert asked == [False]  # asked once, of the double run only
+    assert tracked == len(choices) == 4
     assert len(raw) == 4
     for z in raw:
         assert abs(z[0] ** 2 + z[1] ** 2 - 4) < 1e-9 and abs(z[0] * z[1] - 1) < 1e-9

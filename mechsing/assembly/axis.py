@@ -254,7 +254,7 @@ def _attempt(given: Given, prob: Any, sy: _System) -> tuple[Any, ...] | str:
 
     gens = sy.gens
     groups = [g for _, _, g in sy.groups]
-    raw, tracked = track(sy.patched, groups, mptype="double")
+    raw, tracked = track(sy.patched, groups, mptype="double", retry=False)  # RETRY_LOST
     lost = sy.bezout - len(raw)
     if lost > RETRY_LOST * sy.bezout:
         return f"{lost} of {sy.bezout} paths failed or went to infinity in double precision"

@@ -14,7 +14,7 @@ Owns :func:`track`, :func:`track_linear_product` (from a linear-product start sy
 from __future__ import annotations
 
 import itertools
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -41,14 +41,17 @@ __all__ = [
 
 #: the seed of every homotopy (its random gamma, start points and patches): runs repeat
 SEED = 34
-#: a double-precision tracking in which some paths failed (neither converged nor went to
-#: infinity), at most this share of them, is run again in adaptive precision: a failed
-#: path may hide a mode (a ladder's overconstrained rung: double failed 11 to 15 of its
-#: 120 paths, and one of the two modes with them for one seed of four; adaptive failed
+#: a double-precision tracking of a count (``retry``) in which some paths failed (neither
+#: converged nor went to infinity), at most this share of them, is run again in adaptive
+#: precision: a failed path may hide a mode (the ladder's rung at ``tilted``: 11 to 15 of
+#: its 120 paths failed in double precision, and with them one or both of its two real
+#: solutions for some seeds, 2 or 0 of the ladder's 4 modes; adaptive precision failed
 #: none, 18 s more); where more failed, the paths end on a set of closed configurations
-#: that is not finite, which adaptive precision crawls along for minutes (Sarrus's)
+#: that is not finite, which adaptive precision crawls along for minutes (Sarrus's: 104
+#: to 108 of 120 failed)
 RETRY_FAILED = 0.25
 #: Bertini's success codes of a path that did not fail: converged, or left for infinity
+#: (names of ``bertini.SuccessCode``, resolved there: a renamed one fails loudly)
 _NOT_FAILED = ("Success", "SecurityMaxNormReached", "GoingToInfinity")
 
 
@@ -78,6 +81,7 @@ def track(
     eqs: Sequence[sympy.Expr],
     groups: Sequence[Sequence[sympy.Symbol]],
     mptype: str = "adaptive",
+    retry: bool = True,
 ) -> tuple[list[np.ndarray], int]:
     """Every finite endpoint (complex, double precision, the groups' variables in order)
     of the system's homotopy, and the number of paths tracked.  Several variable groups
@@ -85,39 +89,53 @@ def track(
     root), one group a total-degree start.  ``mptype``: Bertini's precision model
     (``adaptive``, or ``double`` where the endpoints are refined afterwards anyway and
     adaptive precision would crawl along the many singular paths of an overconstrained
-    loop's isotropic components; run again in adaptive precision where double failed a
-    few paths, :data:`RETRY_FAILED`)."""
+    loop's isotropic components); ``retry``: a double-precision run that failed a few
+    paths is run again in adaptive precision (:data:`RETRY_FAILED`; not for a search of
+    one real point, which tries other slices, or a caller with a rule of its own)."""
     bertini = _bertini()
     was = bertini.recording()
     bertini.recording(False)  # no records directory in the user's cwd, no replayed paths
     try:
         text = system_text(eqs, groups)
-        while True:  # a signal stops the tracking; its handler raises once the solve returns
-            with interruptible(bertini.request_stop) as stopped:
-                result = bertini.solve(bertini.parse.system(text), seed=SEED, mptype=mptype)
-            if not stopped():  # (a handler that did not raise: the solve is run again)
-                if _retried(result.solver, mptype):
-                    mptype = "adaptive"
-                    continue
-                break
+
+        def run(model: str) -> tuple[Any, Any]:
+            while True:  # a signal stops the tracking; its handler raises once it returns
+                with interruptible(bertini.request_stop) as stopped:
+                    result = bertini.solve(bertini.parse.system(text), seed=SEED, mptype=model)
+                if not stopped():  # (a handler that did not raise: the solve is run again)
+                    return result, result.solver
+
+        result, solver = _with_retry(run, mptype, retry)
     finally:
         bertini.recording(was)
-    solver = result.solver
     tracked = int(solver.num_paths()) if callable(solver.num_paths) else int(solver.num_paths)
     return [np.asarray(s, dtype=complex) for s in result.solutions], tracked
 
 
-def _retried(solver: Any, mptype: str) -> bool:
-    """Whether a tracking in ``mptype`` is to be run again in adaptive precision: double
-    precision failed some of its paths, at most :data:`RETRY_FAILED` of them."""
-    if mptype != "double":
-        return False
+def _with_retry(run: Callable[[str], tuple[Any, Any]], mptype: str, retry: bool) -> tuple[Any, Any]:
+    """``run(mptype)`` (the result and its solver), and again in adaptive precision where
+    ``retry`` and double precision failed a few paths (:func:`_failed_a_few`); should
+    Bertini refuse the adaptive run, the double run's endpoints."""
+    first = run(mptype)
+    if not (retry and mptype == "double" and _failed_a_few(first[1])):
+        return first
+    try:
+        return run("adaptive")
+    except RuntimeError:  # Bertini refused it: what double precision found stands
+        return first
+
+
+def _failed_a_few(solver: Any) -> bool:
+    """Whether some of the solver's paths failed, at most :data:`RETRY_FAILED` of them (a
+    solver without the paths' metadata: no)."""
     meta = getattr(solver, "solution_metadata", None)
     if meta is None:
         return False
-    codes = [m.endgame_success_code.name for m in (meta() if callable(meta) else meta)]
-    failed = sum(1 for c in codes if c not in _NOT_FAILED)
-    return 0 < failed <= RETRY_FAILED * len(codes)
+    codes = _bertini().SuccessCode
+    fine = {getattr(codes, name) for name in _NOT_FAILED}
+    paths = [m.endgame_success_code for m in (meta() if callable(meta) else meta)]
+    failed = sum(1 for c in paths if c not in fine)
+    return 0 < failed <= RETRY_FAILED * len(paths)
 
 
 def _regular_choice(supports: Sequence[Sequence[int]], n: int) -> bool:
@@ -155,13 +173,15 @@ def track_linear_product(
     factors: Sequence[Sequence[Sequence[int]]],
     choices: Sequence[tuple[int, ...]],
     mptype: str = "adaptive",
+    retry: bool = True,
 ) -> tuple[list[np.ndarray], int]:
     """:func:`track` from a linear-product start system (``choices``, of
     :func:`linear_product_paths`):
     equation ``k`` replaced by a product of affine linear forms with random complex
     coefficients (seeded), its ``j``-th in the variables ``factors[k][j]``; one path per
     regular choice of a form in every equation, tracked by the straight-line homotopy
-    with a random gamma (seeded).  Every finite endpoint and the number of paths."""
+    with a random gamma (seeded).  Every finite endpoint and the number of paths;
+    ``mptype`` and ``retry`` as for :func:`track`."""
     bertini = _bertini()
     from bertini import nag_algorithm
 
@@ -202,17 +222,18 @@ def track_linear_product(
     try:
         target = bertini.parse.system(system_text(eqs, [gens]))
         begin = bertini.parse.system(system_text(start, [gens]))
-        while True:  # a signal stops the tracking; its handler raises once the solve returns
-            bertini.random.set_random_seed(SEED)  # the gamma
-            homotopy = nag_algorithm.straight_line_homotopy(target, begin)
-            solver = nag_algorithm.HomotopySolver(homotopy, points, mptype=mptype)
-            with interruptible(bertini.request_stop) as stopped:
-                result = solver.solve()
-            if not stopped():
-                if _retried(solver, mptype):
-                    mptype = "adaptive"
-                    continue
-                break
+
+        def run(model: str) -> tuple[Any, Any]:
+            while True:  # a signal stops the tracking; its handler raises once it returns
+                bertini.random.set_random_seed(SEED)  # the gamma
+                homotopy = nag_algorithm.straight_line_homotopy(target, begin)
+                solver = nag_algorithm.HomotopySolver(homotopy, points, mptype=model)
+                with interruptible(bertini.request_stop) as stopped:
+                    result = solver.solve()
+                if not stopped():
+                    return result, solver
+
+        result, _ = _with_retry(run, mptype, retry)
     finally:
         bertini.recording(was)
     return [np.asarray(s, dtype=complex) for s in result.solutions], len(points)

@@ -85,7 +85,10 @@ MAX_PATHS = 4000
 #: leg closed on the output's pose keeps adaptive precision, overconstrained or not (a
 #: 3-PRS's leg of five joints: in double some paths fail and a posture with them, its
 #: long slide found or missed with the seed; adaptive found every posture of seven
-#: poses, 14 to 75 s for the three legs, where double took 5 to 10 s)
+#: poses, 14 to 75 s for the three legs, where double took 5 to 10 s); a double run of a
+#: count that failed a few paths is run again in adaptive precision (a failed path may hide
+#: a mode: :data:`mechsing.assembly.engine.RETRY_FAILED`; the RSSR's 41 of 60 are too
+#: many), a slice's is not (another slice is tried)
 MPTYPE = "double"
 #: the most paths whose every endpoint is certified to prove a count (above: not tried)
 PROOF_PATHS = 200
@@ -736,7 +739,8 @@ def _sliced(prob: Problem, k: int) -> list[list[Any]]:
             patched.append(
                 sum(sympy.Rational(float(c)) * x for c, x in zip(r, g.gens, strict=True)) - 1
             )
-        raw, _ = track(patched, [g.gens for g in prob.groups], mptype=MPTYPE)
+        # one real point is sought (the next try slices otherwise): no adaptive re-run
+        raw, _ = track(patched, [g.gens for g in prob.groups], mptype=MPTYPE, retry=False)
         real = real_endpoints([z for z in raw if genuine_endpoint(prob.groups, z, product)])
         if real:
             return [on_normalisations(prob.groups, z) for z in real]

@@ -396,7 +396,8 @@ def _find(given: Given) -> Found:
         "bezout": bezout,
     }
     # the quartics of U-U pieces: double precision along the paths (adaptive precision
-    # crawls along the many paths to the exceptional quadric); every endpoint is refined
+    # crawls along the many paths to the exceptional quadric; again in adaptive where a few
+    # failed, engine.RETRY_FAILED); every endpoint is refined
     raw, tracked, start = track_study(eqs[:-1], "double" if max(degrees) > 2 else "adaptive")
     formulation["method"] = f"homotopy continuation (Bertini 2, {start} start), Newton refinement"
     # an endpoint with |X|^2 = 0 (the exceptional quadric of Study's) is no displacement

@@ -2,8 +2,9 @@
 eigenproblems, orthonormal columns, norms, least squares (float: numpy; mp: mpmath at
 the working precision, through :mod:`mechsing.numeric._mp`, so call these inside
 ``Precision.context()``); and, for batches of float matrices, the orthogonal complement
-of each one's column space from its QR's Householder vectors (:func:`complement`).  Exact arrays are decided by the rank and definiteness
-decisions and factorised by the exact backend's null/row spaces, not here.
+of each one's column space from its QR's Householder vectors (:func:`complement`).
+Exact arrays are decided by the rank and definiteness decisions and factorised by the
+exact backend's null/row spaces, not here.
 """
 
 from __future__ import annotations
@@ -156,8 +157,8 @@ def first_nonzero_positive(v: Any) -> np.ndarray:
 
 #: an orthogonal complement (:func:`complement`: a sweep's closure kernel, a leg's
 #: constraint wrenches) is formed from its QR's Householder vectors this many at a time
-#: (a block's reflectors applied at once, ``Y - W V``: three products of small matrices per block instead of two per reflector),
-#: for this many configurations at a time (the working set stays in cache): on the
+#: (a block's reflectors applied at once, ``Y - W V``: three products of small matrices
+#: per block instead of two per reflector), for this many configurations at a time (the working set stays in cache): on the
 #: hexapod's 30 reflectors, 6 to 8 and 256 measured fastest of 2 to 15 and 128 to 1024
 KERNEL_BLOCK = 6
 KERNEL_CHUNK = 256
@@ -207,7 +208,9 @@ def complement(h: np.ndarray, tau: np.ndarray) -> np.ndarray:
 
 #: a matrix whose smallest singular value is at least this fraction of its largest has
 #: full column rank under every precision's thresholds, and R^T R's eigenvalues tell so
-#: (their rounding, a few eps sigma_1^2, moves that ratio by a few eps / ratio^2)
+#: (their rounding, a few eps sigma_1^2, moves that ratio by a few eps / ratio^2); the
+#: same ratio above which a sweep takes a triangular factor's singular values from its
+#: Gram matrix (``mechsing.sweeps.settings.SWEEP_GRAM_RATIO``)
 CLEAR_RANK_RATIO = 0.05
 
 
@@ -221,6 +224,9 @@ def clear_complements(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     k = A.shape[2]
     h, tau = np.linalg.qr(A, mode="raw")  # h (N, k, n): R^T is its first k columns' lower part
     Rt = h[:, :, :k] * np.tri(k)
+    # each R scaled to entries at most 1 (the ratio is scale-free; no Gram entry overflows)
+    top = np.max(np.abs(Rt), axis=(1, 2), keepdims=True)
+    Rt = Rt / np.where(top > 0, top, 1.0)
     lam = np.linalg.eigvalsh(Rt @ np.swapaxes(Rt, 1, 2))  # R^T R's eigenvalues, ascending
     clear = (lam[:, 0] >= CLEAR_RANK_RATIO**2 * lam[:, -1]) & (lam[:, -1] > 0)
     return clear, complement(h, tau)

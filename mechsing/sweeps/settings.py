@@ -39,7 +39,9 @@ SWEEP_SCREEN_ROUNDING = 1e3
 #: eigenvalues are off by a few eps sigma_1^2, so sigma_i by a few eps / (2 rho_i^2), at
 #: most 200 eps here (the SVD's own rounding is eps / rho, up to 20 eps: on the hexapod's
 #: turn, rho 0.094 to 0.14, the two differ by 1.3e-14 relative, as the SVDs of R and of
-#: the closure itself differ by 1.0e-14); nearer its singularity, the SVD of R
+#: the closure itself differ by 1.0e-14); nearer its singularity, the SVD of R (the same
+#: rule as ``mechsing.numeric.linalg.CLEAR_RANK_RATIO``'s, which this module, importing
+#: nothing, does not import: tests/test_criteria.py checks they agree)
 SWEEP_GRAM_RATIO = 0.05
 
 #: at a located fold, the unknowns' closure Jacobian has the singular values of the
