@@ -158,8 +158,9 @@ def first_nonzero_positive(v: Any) -> np.ndarray:
 #: an orthogonal complement (:func:`complement`: a sweep's closure kernel, a leg's
 #: constraint wrenches) is formed from its QR's Householder vectors this many at a time
 #: (a block's reflectors applied at once, ``Y - W V``: three products of small matrices
-#: per block instead of two per reflector), for this many configurations at a time (the working set stays in cache): on the
-#: hexapod's 30 reflectors, 6 to 8 and 256 measured fastest of 2 to 15 and 128 to 1024
+#: per block instead of two per reflector), for this many configurations at a time (the
+#: working set stays in cache): on the hexapod's 30 reflectors, 6 to 8 and 256 measured
+#: fastest of 2 to 15 and 128 to 1024
 KERNEL_BLOCK = 6
 KERNEL_CHUNK = 256
 
