@@ -127,6 +127,7 @@ def test_a_loop_whose_paths_mostly_fail_in_double_is_not_tracked_again() -> None
 
     from mechsing import load
     from mechsing.assembly import axis
+    from mechsing.assembly.engine import RETRY_FAILED
     from mechsing.assembly.given import read_given
     from mechsing.numeric import parse_precision
 
@@ -138,4 +139,4 @@ def test_a_loop_whose_paths_mostly_fail_in_double_is_not_tracked_again() -> None
             got = axis._attempt(given, prob, axis._system(given, prob, names, signs, joint))
             assert isinstance(got, str) and got.endswith("in double precision")
             lost = int(got.split(" of ")[0])
-            assert lost > axis.RETRY_LOST * 24
+            assert lost > RETRY_FAILED * 24

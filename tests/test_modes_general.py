@@ -539,7 +539,7 @@ def test_where_bertini_refuses_the_adaptive_run_the_double_run_s_endpoints_stand
             raise RuntimeError("refused")
         return "double result", "solver"
 
-    monkeypatch.setattr(engine, "_failed_a_few", lambda solver: True)
+    monkeypatch.setattr(engine, "_failed_a_few", lambda solver, tight: True)
     assert engine._with_retry(run, "double", True) == ("double result", "solver")
     assert calls == ["double", "adaptive"]
 
@@ -561,8 +561,8 @@ def test_a_linear_product_tracking_is_run_again_in_adaptive_precision_too(
     asked: list[bool] = []
     real = engine._failed_a_few
 
-    def failed_a_few(solver: object) -> bool:
-        asked.append(real(solver))  # the real solver's metadata is read
+    def failed_a_few(solver: object, tight: bool) -> bool:
+        asked.append(real(solver, tight))  # the real solver's metadata is read
         return True
 
     monkeypatch.setattr(engine, "_failed_a_few", failed_a_few)
@@ -572,3 +572,28 @@ def test_a_linear_product_tracking_is_run_again_in_adaptive_precision_too(
     assert len(raw) == 4
     for z in raw:
         assert abs(z[0] ** 2 + z[1] ** 2 - 4) < 1e-9 and abs(z[0] * z[1] - 1) < 1e-9
+
+
+def test_a_tight_tracking_counts_a_path_to_infinity_as_lost() -> None:
+    """Where every path is to end at a finite root (the axis formulation's 24), a path
+    that went to infinity is lost as a failed one is: one of eight is a few (tracked
+    again), three of eight too many; without ``tight`` neither is a failure."""
+    import bertini
+
+    from mechsing.assembly import engine
+
+    code = bertini.SuccessCode
+
+    class Meta:
+        def __init__(self, c: object) -> None:
+            self.endgame_success_code = c
+
+    class Solver:
+        def __init__(self, codes: list[object]) -> None:
+            self.solution_metadata = lambda: [Meta(c) for c in codes]
+
+    one = Solver([code.GoingToInfinity] + [code.Success] * 7)
+    three = Solver([code.SecurityMaxNormReached] * 3 + [code.Success] * 5)
+    assert engine._failed_a_few(one, tight=True)
+    assert not engine._failed_a_few(three, tight=True)
+    assert not engine._failed_a_few(one) and not engine._failed_a_few(three)

@@ -64,12 +64,6 @@ SEED = 43
 #: takes the loop (each failed try costs a tracking and a certification: 2 to 7 s on
 #: Sarrus's curve, where every choice fails)
 ELIMINATIONS = 2
-#: the paths are tracked again in adaptive precision where double precision lost at most
-#: this share of them (Bricard's 6R at q1-0.4: 1 of 24, then 24 of 24 and a proven count);
-#: where it lost more, most paths end on a set of closed configurations that is not
-#: finite (Sarrus's with J1 given: 23 of 24), which no precision turns into a count: the
-#: adaptive run crawled along it for over ten minutes; that elimination fails at once
-RETRY_LOST = 0.25
 
 
 @dataclass(frozen=True)
@@ -250,16 +244,18 @@ def _attempt(given: Given, prob: Any, sy: _System) -> tuple[Any, ...] | str:
     """The modes of eliminating ``sy.joint`` with their refined general coordinates and
     the paths' account, or why the count is not proven that way."""
     from mechsing.assembly.certify import apart, certified_roots
-    from mechsing.assembly.engine import track
+    from mechsing.assembly.engine import RETRY_FAILED, track
 
     gens = sy.gens
     groups = [g for _, _, g in sy.groups]
-    raw, tracked = track(sy.patched, groups, mptype="double", retry=False)  # RETRY_LOST
+    # tracked again in adaptive precision where double lost a few paths (engine.RETRY_FAILED,
+    # a path to infinity lost too); where it lost more, most paths end on a set of closed
+    # configurations that is not finite, which no precision turns into a count (Sarrus's
+    # with J1 given: 23 of 24): that elimination fails at once
+    raw, tracked = track(sy.patched, groups, mptype="double", tight=True)
     lost = sy.bezout - len(raw)
-    if lost > RETRY_LOST * sy.bezout:
+    if lost > RETRY_FAILED * sy.bezout:
         return f"{lost} of {sy.bezout} paths failed or went to infinity in double precision"
-    if len(raw) != sy.bezout or tracked != sy.bezout:
-        raw, tracked = track(sy.patched, groups, mptype="adaptive")
     if tracked != sy.bezout:
         return f"{tracked} paths, not the Bezout number {sy.bezout}"
     if len(raw) != tracked:
