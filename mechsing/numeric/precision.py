@@ -7,10 +7,9 @@ are in :mod:`mechsing.numeric.tolerances`).
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -26,6 +25,9 @@ from mechsing.numeric.tolerances import (
     SUBSPACE_RANK_FACTOR,
     Tolerances,
 )
+
+#: the context of a precision that sets nothing (float, exact, auto)
+_UNCHANGED: AbstractContextManager[Any] = nullcontext()
 
 
 @dataclass(frozen=True)
@@ -66,14 +68,12 @@ class Precision:
             return _exact_backend()
         return FLOAT
 
-    @contextmanager
-    def context(self) -> Iterator[None]:
-        """Set mpmath's working precision to N digits for the block (no-op otherwise)."""
+    def context(self) -> AbstractContextManager[Any]:
+        """Set mpmath's working precision to N digits for the block (no-op otherwise: one
+        shared empty context, as every analysis step enters it)."""
         if self.mode == "mp":
-            with mpmath.workdps(self.digits or 50):
-                yield
-        else:
-            yield
+            return cast(AbstractContextManager[Any], mpmath.workdps(self.digits or 50))
+        return _UNCHANGED
 
     def asarray(self, x: Any) -> np.ndarray:
         """Numbers of this mode from numbers, decimal strings or sympy numbers."""
