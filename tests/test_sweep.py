@@ -325,6 +325,48 @@ def test_located_points_classified_at_mp_digits(name, spec, start, cls):
     assert any("located again at mp:30" in n for n in r.notes)
 
 
+FIVE_BAR_IRRATIONAL_POINT = """\
+mechanism: five-bar-irrational-point
+bodies: [ground, prox1, dist1, prox2, dist2]
+joints:
+  - {name: A1, type: R, between: [ground, prox1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B1, type: R, between: [prox1, dist1], axis: [0, 0, 1], point: [0, "3/2", 0]}
+  - {name: P, type: R, between: [dist1, dist2], axis: [0, 0, 1], point: [1, "3/2 + sqrt(3)", 0]}
+  - {name: B2, type: R, between: [prox2, dist2], axis: [0, 0, 1], point: [2, "3/2", 0]}
+  - {name: A2, type: R, between: [ground, prox2], axis: [0, 0, 1], point: [2, 0, 0]}
+inputs: [A1, A2]
+output: {body: dist1, point: [1, "3/2 + sqrt(3)", 0]}
+"""
+
+
+def test_an_input_singularity_is_placed_again_with_the_files_output_point(tmp_path):
+    """A five-bar whose output point is irrational (x = 1, y = 3/2 + sqrt(3)): at mp:30 the
+    input singularity of leg 1 (its proximal and distal links in line, |P - A1| = 7/2,
+    with A2 held at 0) is found again to 30 digits, as the circle about A1 of radius 7/2
+    meets the circle about B2 = (2, 3/2) of radius 2; the test's matrix must take the
+    point at 30 digits (its float rounding moves the zero by about 1e-17, and the
+    analysis there then finds nothing decided)."""
+    import mpmath
+
+    f = tmp_path / "five_bar_irrational_point.yaml"
+    f.write_text(FIVE_BAR_IRRATIONAL_POINT)
+    r = sweep(f, ["A1=-0.5:-0.1:0.05"], precision="mp:30")
+    stretched = [p for p in r.located if "input" in p.tests]
+    assert len(stretched) == 1 and stretched[0].values_text is not None
+    with mpmath.workdps(40):
+        # the intersection of the two circles on the reference's side (P above B1 B2)
+        d = mpmath.mpf(5) / 2
+        along = (mpmath.mpf(7) ** 2 / 4 - 4 + d**2) / (2 * d)
+        h = mpmath.sqrt(mpmath.mpf(7) ** 2 / 4 - along**2)
+        e = (mpmath.mpf(2) / d, mpmath.mpf(3) / 2 / d)
+        px, py = along * e[0] - h * e[1], along * e[1] + h * e[0]
+        want = mpmath.atan2(-px, py)  # B1 = 3/2 (-sin A1, cos A1) points at P
+        got = mpmath.mpf(stretched[0].values_text[0])
+        assert abs(got - want) < mpmath.mpf(10) ** -28, (got, want)
+    assert "input" in (stretched[0].classes or ())
+    assert stretched[0].margin is not None and stretched[0].margin["dropped"] < 1e-25
+
+
 def test_a_bifurcation_is_placed_again_to_all_its_digits():
     """The change-point four-bar's flat positions (A = 0, +-2 pi: the closure loses rank,
     two branches cross) found again at mp:30 carry 30 correct digits, not the 15 a double

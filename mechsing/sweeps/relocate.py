@@ -47,7 +47,7 @@ import numpy as np
 from mechsing.kinematics import Closer, KinematicModel
 from mechsing.kinematics.pose import PoseModel
 from mechsing.kinematics.settings import POLISH_DIGITS_SPARE
-from mechsing.numeric import Precision, decide_rank, to_float
+from mechsing.numeric import Precision, decide_rank
 from mechsing.screws import chain_matrix
 from mechsing.sweeps.settings import SWEEP_FOLD_KERNEL_RTOL
 
@@ -75,11 +75,12 @@ class Relocator:
         self.given = tuple(int(i) for i in np.flatnonzero(pb.given))
         self.pose: PoseModel | None = None
         if sweep.pose:
-            fm = pb.cm
+            # the output's reference point as the file gives it, at N digits (the float
+            # sweep's is its rounding)
             with precision.context():
                 self.pose = PoseModel(
                     self.model,
-                    [self.model.backend.convert(float(x)) for x in to_float(fm.c0)],
+                    list(sweep.mech.output_reference_point()),
                     self.model.backend.eye(3),
                 )
 
@@ -103,9 +104,12 @@ class Relocator:
             P = m.backend.eye(n)
         if test == "input":
             x = None
-            if meas.out_point is not None:
-                g = m.poses(q)[self.sweep.mech.output.body]
-                x = g[:3, :3] @ m.asarray([float(v) for v in meas.out_point]) + g[:3, 3]
+            out = self.sweep.mech.output
+            if meas.out_point is not None and out is not None and out.point is not None:
+                # the point as the file gives it, at N digits (not the measures' float
+                # rounding, which would move the test's zero by about 1e-17)
+                g = m.poses(q)[out.body]
+                x = g[:3, :3] @ m.asarray(list(out.point)) + g[:3, 3]
             T = chain_matrix(m, S, None, x, meas.out_signs)
             return T @ P
         return m.asarray(meas.E.tolist()) @ P
