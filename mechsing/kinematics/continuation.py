@@ -22,7 +22,7 @@ from mechsing.errors import ClosureError, UserError
 from mechsing.kinematics.closed import ClosedConfiguration, shown_residual
 from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import finite_system, increment, scaled_jacobian, scaled_system
-from mechsing.kinematics.paths.folds import land_on_fold, leave_fold
+from mechsing.kinematics.paths.folds import approach_fold, land_on_fold, leave_fold
 from mechsing.kinematics.paths.steps import closure_matrix, correct, same_branch
 from mechsing.kinematics.polish import MpPolisher, fold_mp
 from mechsing.kinematics.pose import POSE_COORDINATES, PoseModel
@@ -120,6 +120,11 @@ class Continuation:
                     if landed is not None:  # the target is the fold itself: reached
                         q, info = landed.q, landed.info
                         t, steps, at_fold = 1.0, steps + 1, True
+                        continue
+                    near = approach_fold(fm, q, qt, gmask)
+                    if near is not None:  # the target lies just short of a fold: reached
+                        q, info = near[0].q, near[0].info
+                        t, steps = 1.0, steps + near[1]
                         continue
                     if steps == 0 and not left_fold:
                         # a start drawn at a fold: no step of the predictor leaves it

@@ -35,6 +35,13 @@ CONTINUATION_JUMP_FLOOR = 1e-9
 #: times the square root of what was left (the two branches meet like a square root)
 CONTINUATION_FOLD_GAP = 1e-4
 
+#: a target continuation cannot step onto, not a fold itself but just short of one
+#: (nearer it than the shortest step reaches): each step goes half the given values' way
+#: left, so the fold stays at least twice the step away, the whole way once Newton closes
+#: there on the same branch; at most this many halvings, after which the target is taken
+#: to lie beyond the fold
+CONTINUATION_APPROACH_HALVINGS = 40
+
 #: continuation from a start drawn at a fold of the given values (its unknown joints'
 #: Jacobian one rank short: a dead centre, a toggle): the first configuration is closed at
 #: CONTINUATION_LEAVE_FRACTION of the first step, from the start moved along the

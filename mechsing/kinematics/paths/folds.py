@@ -6,7 +6,9 @@ of the given values: two assembly modes meet there.  This module is the one plac
 says what the path engine does there:
 
 * **landing** on a fold: :func:`land_on_fold` (continuation's target is the fold itself:
-  Newton from just short of it, a slow step doubled) and :func:`fold_samples` (the samples
+  Newton from just short of it, a slow step doubled), :func:`approach_fold` (the target
+  lies just short of a fold, nearer it than continuation's shortest step: steps of half
+  the way left) and :func:`fold_samples` (the samples
   of a path just short of a fold, predicted by the square-root law between the points of
   the curve traced to it; :func:`close_to_fold` and :func:`near_fold` ask it for many
   samples or one);
@@ -28,9 +30,16 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mechsing.kinematics.newton import damped_least_squares, newton_on_group
-from mechsing.kinematics.paths.steps import Corrected, StepInfo, closure_matrix, correct
+from mechsing.kinematics.paths.steps import (
+    Corrected,
+    StepInfo,
+    closure_matrix,
+    correct,
+    same_branch,
+)
 from mechsing.kinematics.protocol import ClosureModel
 from mechsing.kinematics.settings import (
+    CONTINUATION_APPROACH_HALVINGS,
     CONTINUATION_FOLD_GAP,
     CONTINUATION_FOLD_REACH,
     CONTINUATION_LEAVE_OFF,
@@ -44,7 +53,15 @@ from mechsing.numeric.blocks import block_svd
 if TYPE_CHECKING:
     from mechsing.kinematics.paths.problem import Problem
 
-__all__ = ["Fold", "close_to_fold", "fold_samples", "land_on_fold", "leave_fold", "near_fold"]
+__all__ = [
+    "Fold",
+    "approach_fold",
+    "close_to_fold",
+    "fold_samples",
+    "land_on_fold",
+    "leave_fold",
+    "near_fold",
+]
 
 
 @dataclass(frozen=True)
@@ -101,6 +118,35 @@ def land_on_fold(
     rank = int(np.sum(sigma > CONTINUATION_SINGULAR_RTOL * sigma[0]))
     info = StepInfo(res, rank, float(sigma[-1] / sigma[0]), False, qn)
     return Corrected(True, qn, info)
+
+
+def approach_fold(
+    fm: ClosureModel, q: np.ndarray, qt: np.ndarray, gmask: np.ndarray
+) -> tuple[Corrected, int] | None:
+    """The target and the steps taken to it, when continuation stalls short of a target
+    that lies just short of a fold (a crank angle 1e-8 inside its limit): the fold is
+    nearer than continuation's shortest step, which then overshoots it.
+
+    From the last point reached, each step moves the given values half of their way left,
+    so the fold (beyond the target) stays at least twice the step away, where the
+    predictor and Newton stay on the branch; the whole way is tried first at every step,
+    and taken once it closes on the same branch.  None when what is left is more than
+    CONTINUATION_FOLD_GAP, or when a half step does not close (the target lies beyond
+    the fold) or CONTINUATION_APPROACH_HALVINGS are spent."""
+    left = float(np.linalg.norm(fm.float_frame.rates(np.where(gmask, qt - q, 0.0))))
+    if left > CONTINUATION_FOLD_GAP or not np.any(~gmask) or not fm.blocks:
+        return None
+    for steps in range(CONTINUATION_APPROACH_HALVINGS):
+        ok, qn, info = correct(fm, q, qt, gmask, True)
+        if ok and same_branch(fm, q, qn, info, gmask):
+            return Corrected(True, qn, info), steps + 1
+        qg = q.copy()
+        qg[gmask] = q[gmask] + 0.5 * (qt[gmask] - q[gmask])
+        ok, qn, info = correct(fm, q, qg, gmask, False)
+        if not ok or not same_branch(fm, q, qn, info, gmask):
+            return None
+        q = qn
+    return None
 
 
 def leave_fold(

@@ -1,0 +1,102 @@
+"""Continuation to a target just short of a fold of the given values.
+
+A four-bar (ground pivots A (0, 0) and D (4, 0), crank 2, coupler 3/2, rocker 3/2, drawn
+with B (2, 0) and C (3, sqrt(5)/2)) has its crank's limit where coupler and rocker fall
+in line, |BD| = 3: 20 - 16 cos A = 9, A = acos(11/16).  Just inside it the two assembly
+modes are about the square root of the distance apart (a crank 5e-8 rad inside: the
+rocker pins 3e-4 apart), nearer the fold than continuation's shortest step, which then
+overshoots it.  The configuration closes all the same, on the reference's side of BD
+(the mode continuation comes from), and a crank beyond the limit is still refused.  The
+closed forms (circles about B and D) are computed here with mpmath, not by mechsing.
+At the limit itself the two modes are one double root, which ``modes`` counts once and
+marks as the mode continuation reaches (float's closure there is known to about 1e-8).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import mpmath
+import pytest
+
+from mechsing.analysis.solve import solve
+from mechsing.model import load
+from tests.cli import run_cli
+
+FOUR_BAR = """\
+mechanism: four-bar-at-its-limit
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler], axis: [0, 0, 1], point: [2, 0, 0]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [0, 0, 1], point: [3, "sqrt(5)/2", 0]}
+  - {name: D, type: R, between: [rocker, ground], axis: [0, 0, 1], point: [4, 0, 0]}
+inputs: [A]
+output: {body: rocker}
+configurations:
+  inside-5e-8: {A: 0.8127555164}
+  inside-1e-9: {A: "acos(11/16) - 0.000000001"}
+  beyond-1e-9: {A: "acos(11/16) + 0.000000001"}
+  at-the-limit: {A: "acos(11/16)"}
+"""
+
+
+def _rocker_pin(crank: float | mpmath.mpf) -> tuple[mpmath.mpf, mpmath.mpf]:
+    """C at crank angle ``crank``: the circles about B (radius 3/2) and D (3/2) meet on the
+    reference's side of BD (C above BD at the reference)."""
+    with mpmath.workdps(40):
+        a = mpmath.mpf(crank)
+        bx, by = 2 * mpmath.cos(a), 2 * mpmath.sin(a)
+        ux, uy = 4 - bx, -by
+        d = mpmath.sqrt(ux**2 + uy**2)
+        ux, uy = ux / d, uy / d
+        h = mpmath.sqrt(max(mpmath.mpf(0), mpmath.mpf(9) / 4 - d**2 / 4))  # 0 at the limit
+        # the left normal of B -> D: the reference's C = (3, sqrt(5)/2) lies to its left
+        return bx + d / 2 * ux - h * uy, by + d / 2 * uy + h * ux
+
+
+def _solved_rocker_pin(q: dict[str, float]) -> tuple[float, float]:
+    """C from the solved joints: the coupler (B -> C, at atan2(sqrt(5)/2, 1) in the
+    reference) turned by A + B."""
+    a, b = q["A"], q["B"]
+    phi = math.atan2(math.sqrt(5) / 2, 1.0) + a + b
+    return 2 * math.cos(a) + 1.5 * math.cos(phi), 2 * math.sin(a) + 1.5 * math.sin(phi)
+
+
+@pytest.mark.parametrize("name", ["inside-5e-8", "inside-1e-9"])
+def test_a_crank_just_inside_its_limit_closes_on_the_reference_mode(
+    tmp_path: Path, name: str
+) -> None:
+    f = tmp_path / "four_bar_limit.yaml"
+    f.write_text(FOUR_BAR)
+    res = solve(load(str(f)), name, "float")
+    q = {joint: values[0] for joint, values in res.joints}
+    want = _rocker_pin(q["A"])
+    got = _solved_rocker_pin(q)
+    # the other mode's C is 1e-4 to 1e-3 away (its mirror image about BD)
+    assert abs(got[0] - float(want[0])) < 1e-9 and abs(got[1] - float(want[1])) < 1e-9
+    assert math.hypot(got[0] - 4.0, got[1]) == pytest.approx(1.5, abs=1e-12)
+
+
+def test_a_crank_just_beyond_its_limit_is_still_refused(tmp_path: Path) -> None:
+    f = tmp_path / "four_bar_limit.yaml"
+    f.write_text(FOUR_BAR)
+    with pytest.raises(Exception, match="beyond a limit of travel"):
+        solve(load(str(f)), "beyond-1e-9", "float")
+
+
+def test_modes_at_the_limit_count_the_double_root_the_start_reaches(tmp_path: Path) -> None:
+    f = tmp_path / "four_bar_limit.yaml"
+    f.write_text(FOUR_BAR)
+    rc, out, err = run_cli(["modes", str(f), "--config", "at-the-limit", "--format", "json"])
+    assert rc == 0, err
+    doc = json.loads(out)
+    (mode,) = doc["modes"]
+    assert mode["reached_by_continuation"] and not mode["certified"]
+    assert not any("misses" in n for n in doc["notes"]), doc["notes"]
+    with mpmath.workdps(40):
+        want = _rocker_pin(mpmath.acos(mpmath.mpf(11) / 16))
+    got = _solved_rocker_pin({k: v[0] for k, v in mode["joints"].items()})
+    assert abs(got[0] - float(want[0])) < 1e-9 and abs(got[1] - float(want[1])) < 1e-9
