@@ -483,7 +483,7 @@ def _find_part(given: Given, prob: Problem) -> Found:
     from mechsing.assembly.certify import krawczyk, local_dimension, newton, regular
     from mechsing.assembly.engine import real_endpoints, track
     from mechsing.assembly.result import closure_gap, joint_distance
-    from mechsing.assembly.serial import account
+    from mechsing.assembly.serial import account, unproven
 
     mech, dps = given.mech, given.dps
     gens = prob.gens
@@ -625,8 +625,7 @@ def _find_part(given: Given, prob: Problem) -> Found:
         return Found(formulation, rows, len(rows), "proven", paths, tuple(notes), 1, given.closure)
     notes.append(
         f"continuation found {len(genuine)} solution{'' if len(genuine) == 1 else 's'} "
-        f"(real and complex) on {tracked} paths; a path that failed could hide a mode, so "
-        "the count is not proven"
+        f"(real and complex) on {tracked} paths; {unproven(paths)}"
     )
     return Found(formulation, rows, len(rows), "not proven", paths, tuple(notes), 1, given.closure)
 

@@ -360,7 +360,7 @@ def _piece_values(p: Piece, R: Any, t: Any) -> dict[str, list[Any]]:
 def _find(given: Given) -> Found:
     from mechsing.assembly.certify import krawczyk, local_dimension, newton, regular
     from mechsing.assembly.engine import real_endpoints
-    from mechsing.assembly.serial import account
+    from mechsing.assembly.serial import account, unproven
     from mechsing.assembly.spatial import (
         XS,
         YS,
@@ -452,7 +452,7 @@ def _find(given: Given) -> Found:
         notes.append(
             f"continuation found {len(genuine)} solution{'' if len(genuine) == 1 else 's'} "
             f"(real and complex, off the exceptional quadric |X|^2 = 0) on {tracked} paths; "
-            "a path that failed could hide a mode, so the count is not proven"
+            f"{unproven(paths)}"
         )
     return Found(
         formulation, rows, len(rows), complete, paths, tuple(notes), equivalent, given.closure

@@ -36,6 +36,7 @@ def _find(given: Given) -> Found:
     system = given.cache["platform"]
     from mechsing.assembly.certify import every_solution, krawczyk
     from mechsing.assembly.reach import far_out_of_reach
+    from mechsing.assembly.serial import unproven
     from mechsing.assembly.spatial import (
         GENERIC_COUNT,
         XS,
@@ -100,7 +101,7 @@ def _find(given: Given) -> Found:
             f"continuation found {len(solutions)} solution{'' if len(solutions) == 1 else 's'} "
             f"(real and complex, off the exceptional quadric |X|^2 = 0) on "
             f"{paths['tracked']} paths, of the {GENERIC_COUNT} a platform on six distance "
-            "legs can have: a path that failed could hide a mode, so the count is not proven"
+            f"legs can have: {unproven(paths)}"
         )
     lost = paths["real"] - paths["refined"]
     if lost:

@@ -18,7 +18,7 @@ from mechsing.assembly.given import closure_from_start
 from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.kinematics.closed import FLOAT_DIGITS, ClosedValue
 from mechsing.model import Mechanism
-from mechsing.numeric import MODE_MATCH_DISTANCE, Precision
+from mechsing.numeric import MODE_FOLD_MATCH_DISTANCE, MODE_MATCH_DISTANCE, Precision
 
 __all__ = ["Mode", "ModesResult", "finish", "joint_distance"]
 
@@ -150,7 +150,9 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
     # continuation cannot close, which is all it could say)
     nothing = not rows and found.complete == "proven"
     closure = found.closure or ((None, None) if nothing else closure_from_start(mech, config))
-    reached, notes = _reached(mech, [[float(x) for x in q] for q, _ in rows], km, closure)
+    reached, notes = _reached(
+        mech, [[float(x) for x in q] for q, _ in rows], [bool(ok) for _, ok in rows], km, closure
+    )
     out_body = mech.output.body if mech.output is not None else None
     poses = [
         km.poses(np.array([float(x) for x in q]))[out_body] if out_body else None for q, _ in rows
@@ -211,10 +213,16 @@ def _order(mech: Mechanism, q: list[Any]) -> tuple[int, ...]:
 
 
 def _reached(
-    mech: Mechanism, qs: list[list[float]], km: Any, closure: tuple[Any, str | None]
+    mech: Mechanism,
+    qs: list[list[float]],
+    certified: list[bool],
+    km: Any,
+    closure: tuple[Any, str | None],
 ) -> tuple[int | None, tuple[str, ...]]:
     """Which mode continuation from the configuration's start reaches (its index), from
-    its closure (:func:`~mechsing.assembly.given.closure_from_start`)."""
+    its closure (:func:`~mechsing.assembly.given.closure_from_start`): the nearest, within
+    MODE_MATCH_DISTANCE, or MODE_FOLD_MATCH_DISTANCE of a mode not ``certified`` (a double
+    root, where float's closure is known to about 1e-8 only)."""
     res, failed = closure
     if res is None and failed is None:  # no mode to reach
         return None, ()
@@ -230,7 +238,12 @@ def _reached(
         d = joint_distance(mech, q0, q, km.length_scale)
         if best is None or d < best:
             best, where = d, k
-    if (best is None or best > MODE_MATCH_DISTANCE) and mech.output is not None and qs:
+
+    def within(d: float | None, k: int | None) -> bool:
+        reach = MODE_MATCH_DISTANCE if k is None or certified[k] else MODE_FOLD_MATCH_DISTANCE
+        return d is not None and d <= reach
+
+    if not within(best, where) and mech.output is not None and qs:
         # a mode stands for joint vectors of one output pose (a U's flip, a rod's idle
         # spin): continuation may reach another of them; the pose tells the mode
         body, L = mech.output.body, float(km.length_scale)
@@ -241,7 +254,7 @@ def _reached(
         ]
         best = min(dists)
         where = dists.index(best)
-    if best is None or best > MODE_MATCH_DISTANCE:
+    if not within(best, where):
         return None, (
             "continuation from the start closes the configuration at none of the modes "
             "found: a closed configuration the count misses",

@@ -748,6 +748,23 @@ def account(
     }
 
 
+def unproven(paths: dict[str, Any]) -> str:
+    """Why a homotopy's paths (their :func:`account`) do not prove its count: the clause
+    that ends a ``not proven`` note."""
+    lost = paths["failed_or_infinite"]
+    if lost:
+        return (
+            f"{lost} of the {paths['tracked']} paths failed or went to infinity (a failed "
+            "one could hide a mode), so the count is not proven"
+        )
+    return (
+        "every path ended finite, but not each at a solution certified in a box of its own "
+        f"({paths['finite'] - paths['solutions']} of the endpoints are extraneous: no "
+        "configuration), so the paths do not rule out one that jumped onto another's "
+        "solution and left a mode unreached: the count is not proven"
+    )
+
+
 def posture_distance(arm: SerialArm, q1: list[Any], q2: list[Any]) -> float:
     """The commensurate distance between two postures (angles modulo 2 pi, slides over L)."""
     total = 0.0

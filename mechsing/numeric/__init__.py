@@ -108,6 +108,7 @@ from mechsing.numeric.tolerances import (
     MAX_JOINT_VALUE,
     MAX_NUMBER,
     MEMBERSHIP_RTOL_FLOAT,
+    MODE_FOLD_MATCH_DISTANCE,
     MODE_MATCH_DISTANCE,
     MODE_SPAN_RTOL,
     MP_MIN_DIGITS,
@@ -136,6 +137,7 @@ def __getattr__(name: str) -> Any:
 
 
 __all__ = [
+    "MODE_FOLD_MATCH_DISTANCE",
     "MODE_MATCH_DISTANCE",
     "INERTIA_RTOL",
     "MODE_SPAN_RTOL",

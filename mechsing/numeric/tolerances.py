@@ -212,6 +212,10 @@ CONDITION_ROOT_RTOL = 1e-7
 #: margin: modes are certified to 1e-30 (``MODE_CERTIFY_RADIUS``): two distinct modes are
 #: farther apart than this by far, a match is within 1e-12 L
 MODE_MATCH_DISTANCE = 1e-8
+#: the same for a mode that is not certified (a double root, such as a crank at its limit):
+#: float places a fold's unknown joints only to about 1e-8 (the square root of its
+#: rounding), and continuation's closure there may lie that far from the mode
+MODE_FOLD_MATCH_DISTANCE = 1e-6
 #: a body's inertia (about its centre of mass) is refused when it is not symmetric, when
 #: an eigenvalue is negative or when its principal moments break the triangle inequality
 #: (I1 <= I2 + I3) by more than this times its trace (exact numbers written to a few digits,
