@@ -57,3 +57,23 @@ def test_a_target_beyond_the_dead_centre_start_is_still_refused(tmp_path: Path) 
     rc, _, err = run_cli(["analyze", path, "--config", "beyond"])
     assert rc == 3
     assert "is a fold of the given values" in err and "the target lies beyond it" in err
+
+
+def test_a_sweep_leaves_a_start_at_a_dead_centre_along_the_curve(tmp_path: Path) -> None:
+    """A sweep of P over [-2.5, 0.5] from the start drawn at P = 0 (the outer dead centre,
+    a sample of the sweep): both ways along the curve lead to P < 0, so the sweep steps
+    off the start onto one mode and reaches every P in [-2, 0] (the pin at x = 4 + P meets
+    the crank circle for 2 <= x <= 4), with the limits of travel at P = 0 (x = 1 + 3) and
+    P = -2 (x = 3 - 1)."""
+    import numpy as np
+
+    from mechsing.sweeps import sweep
+
+    path = tmp_path / "dead.yaml"
+    path.write_text(DEAD_CENTRE)
+    r = sweep(path, ["P=-2.5:0.5:0.01"])
+    P = r.variables[0].values
+    inside = (P >= -2 - 1e-9) & (P <= 1e-9)
+    assert np.array_equal(r.reached, inside), P[r.reached != inside]
+    folds = sorted(p.values[0] for p in r.located if p.kind == "fold")
+    assert len(folds) == 2 and abs(folds[0] + 2) < 1e-10 and abs(folds[1]) < 1e-10

@@ -193,7 +193,13 @@ class Continuation:
             )
         fold_note = (
             "the given values are a fold (a limit of their motion): the unknown joints were "
-            "found by Newton from just short of it; float places them only to about 1e-8 there"
+            "found by Newton from just short of it; "
+            + (
+                f"at a double root Newton at {m.precision.digits} digits places them to about "
+                "half of those digits"
+                if m.precision.mode == "mp"
+                else "float places them only to about 1e-8 there"
+            )
         )
         if at_fold:
             notes.append(fold_note)

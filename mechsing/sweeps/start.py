@@ -19,6 +19,7 @@ from mechsing.kinematics.closed import FLOAT_DIGITS, ClosedValue
 from mechsing.kinematics.paths.arc import curve_tangent, off_singular
 from mechsing.kinematics.paths.arc import onto_branch as branch_of
 from mechsing.kinematics.paths.problem import Problem
+from mechsing.kinematics.settings import CONTINUATION_SINGULAR_RTOL
 from mechsing.model import Mechanism
 from mechsing.numeric.tolerances import SWEEP_SAME_MODE_DISTANCE
 from mechsing.sweeps.spec import Variable
@@ -64,7 +65,17 @@ def start_of(
     order = np.argsort(np.abs(values - z[col]), kind="stable")
     k0 = int(order[0])
     if z[col] == values[k0]:
-        if curve_tangent(pb, np.asarray(z, dtype=float), col) is not None:
+        tangent = curve_tangent(pb, np.asarray(z, dtype=float), col)
+        if tangent is not None:
+            if abs(tangent[col]) <= CONTINUATION_SINGULAR_RTOL:
+                # a start at a fold of the swept value (a dead centre: the curve's tangent
+                # has no swept part, both its ways go to one side): left along the curve
+                # to the nearest sample on that side
+                for k in (k0 - 1, k0 + 1):
+                    if 0 <= k < len(values):
+                        off = off_singular(pb, z, col, float(values[k]))
+                        if off is not None:
+                            return k, off
             return k0, np.array(z, dtype=float)
         # a start where branches cross (a bifurcation): onto one of them
         for k in (k0 + 1, k0 - 1):
