@@ -40,6 +40,7 @@ from collections.abc import Iterator
 from contextvars import ContextVar
 
 __all__ = [
+    "BeyondTravelError",
     "CatalogError",
     "ClosureError",
     "ConfigurationError",
@@ -145,6 +146,21 @@ class ParameterError(UserError):
 
 class ClosureError(ConfigurationError):
     """A configuration that cannot be closed."""
+
+
+class BeyondTravelError(ClosureError):
+    """A configuration whose given values lie beyond a limit of travel of the assembly
+    mode continuation follows from its start; ``travel`` is the sentence that says which
+    value, by how much, and where its limit is."""
+
+    def __init__(
+        self, message: str, configuration: str, residual: float | None, travel: str
+    ) -> None:
+        super().__init__(message, configuration, residual)
+        self.travel = travel
+
+    def __reduce__(self) -> tuple[type, tuple[str, str, float | None, str]]:  # type: ignore[override]
+        return (type(self), (str(self), self.configuration, self.residual, self.travel))
 
 
 class FormulationError(UserError):

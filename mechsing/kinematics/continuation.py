@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.errors import ClosureError, UserError
+from mechsing.errors import BeyondTravelError, ClosureError, UserError
 from mechsing.kinematics.closed import ClosedConfiguration, shown_residual
 from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import finite_system, increment, scaled_jacobian, scaled_system
@@ -137,7 +137,9 @@ class Continuation:
                         start_is_fold = fold
                     # values the loops tie together, or a target beyond a limit of travel
                     # (which value, by how much)
-                    why = _tied_given(fm, q_start, gmask) or beyond_target(fm, q, qt, gmask)
+                    tied = _tied_given(fm, q_start, gmask)
+                    travel = None if tied else beyond_target(fm, q, qt, gmask)
+                    why = tied or travel
                     if not why and start_is_fold:
                         why = (
                             f"the start {cfg.start or 'reference'!r} is a fold of the given "
@@ -145,7 +147,7 @@ class Continuation:
                             "direction there) and the target lies beyond it; give values on "
                             "the other side of the start"
                         )
-                    raise ClosureError(
+                    message = (
                         f"configuration {cfg.name!r}: continuation from {cfg.start or 'reference'!r} stopped at step "
                         f"{steps + 1}: {_given_reached(fm, q, qt, gmask)}; "
                         + (
@@ -154,10 +156,11 @@ class Continuation:
                             else "the given values cannot be followed further on this assembly "
                             "mode (a singularity or a limit of motion lies on the path); add an "
                             "intermediate configuration or change the target"
-                        ),
-                        cfg.name,
-                        info.residual,
+                        )
                     )
+                    if travel:
+                        raise BeyondTravelError(message, cfg.name, info.residual, travel)
+                    raise ClosureError(message, cfg.name, info.residual)
                 continue
             steps += 1
             underdetermined = underdetermined or info.underdetermined
@@ -231,14 +234,15 @@ class Continuation:
                     cfg.name, qf, float(rf), underdetermined, steps, given, [*kept, note]
                 )
             why = None if fold is None else fold.sentence
-            raise ClosureError(
+            message = (
                 f"configuration {cfg.name!r} does not close: "
                 + (f"{why}; " if why else "")
                 + f"residual {shown_residual(res, 3)} m after continuation "
-                f"(accepted: {shown_residual(self.tolerance, 1)} m)",
-                cfg.name,
-                float(res),
+                f"(accepted: {shown_residual(self.tolerance, 1)} m)"
             )
+            if why:
+                raise BeyondTravelError(message, cfg.name, float(res), why)
+            raise ClosureError(message, cfg.name, float(res))
         return ClosedConfiguration(
             cfg.name, q_out, float(res), underdetermined, steps, given, notes, at_fold
         )
