@@ -40,6 +40,7 @@ configurations:
   inside-1e-9: {A: "acos(11/16) - 0.000000001"}
   beyond-1e-9: {A: "acos(11/16) + 0.000000001"}
   at-the-limit: {A: "acos(11/16)"}
+  from-beyond: {A: 0.5, start: beyond-1e-9}
 """
 
 
@@ -132,3 +133,18 @@ def test_the_error_beyond_a_limit_keeps_its_sentence_when_pickled(tmp_path: Path
     again = pickle.loads(pickle.dumps(caught.value))
     assert isinstance(again, BeyondTravelError) and again.travel == caught.value.travel
     assert "beyond its limit at about A = " in again.travel and str(again) == str(caught.value)
+
+
+def test_a_configuration_started_from_one_beyond_the_limit_is_a_closure_error(
+    tmp_path: Path,
+) -> None:
+    """The start's limit of travel is not the configuration's own: the error names the
+    start and is a plain closure error (exit status 3)."""
+    from mechsing.errors import BeyondTravelError, ClosureError
+
+    f = tmp_path / "four_bar_limit.yaml"
+    f.write_text(FOUR_BAR)
+    with pytest.raises(ClosureError) as caught:
+        solve(load(str(f)), "from-beyond", "float")
+    assert not isinstance(caught.value, BeyondTravelError)
+    assert "starts from 'beyond-1e-9', which could not be closed" in str(caught.value)

@@ -27,7 +27,13 @@ from typing import Any
 
 import numpy as np
 
-from mechsing.errors import ClosureError, ConfigurationError, ExactDataError, UserError
+from mechsing.errors import (
+    BeyondTravelError,
+    ClosureError,
+    ConfigurationError,
+    ExactDataError,
+    UserError,
+)
 from mechsing.kinematics.closed import ClosedConfiguration, shown_residual
 from mechsing.kinematics.continuation import Continuation
 from mechsing.kinematics.couplings import impose_couplings
@@ -154,8 +160,10 @@ class Closer:
                 try:
                     q0 = self._solve(start_name, _chain + (name,)).q
                 except ConfigurationError as exc:
-                    # the same kind of failure, now this configuration's
-                    raise type(exc)(
+                    # the same kind of failure, now this configuration's (the start's limit
+                    # of travel is not this configuration's: a closure error)
+                    kind = ClosureError if isinstance(exc, BeyondTravelError) else type(exc)
+                    raise kind(
                         f"configuration {name!r} starts from {start_name!r}, which could not be "
                         f"{'closed' if isinstance(exc, ClosureError) else 'analysed'}: {exc}",
                         name,
