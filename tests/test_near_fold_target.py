@@ -118,7 +118,7 @@ def test_no_mode_beyond_the_limit_says_where_the_limit_is(tmp_path: Path) -> Non
     limit = re.search(r"its limit at about A = ([0-9.]+) rad", note)
     assert limit is not None, note
     digits = len(limit.group(1)) - 2
-    assert abs(float(limit.group(1)) - math.acos(11 / 16)) <= 10.0 ** -digits, note
+    assert abs(float(limit.group(1)) - math.acos(11 / 16)) <= 10.0**-digits, note
 
 
 def test_the_error_beyond_a_limit_keeps_its_sentence_when_pickled(tmp_path: Path) -> None:
