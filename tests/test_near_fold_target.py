@@ -103,24 +103,6 @@ def test_modes_at_the_limit_count_the_double_root_the_start_reaches(tmp_path: Pa
     assert abs(got[0] - float(want[0])) < 1e-9 and abs(got[1] - float(want[1])) < 1e-9
 
 
-def test_no_mode_beyond_the_limit_says_where_the_limit_is(tmp_path: Path) -> None:
-    """A crank 1e-9 rad beyond its limit: no mode (proven), and a note saying by how
-    much and where the limit is (acos(11/16), to the digits the note gives)."""
-    import re
-
-    f = tmp_path / "four_bar_limit.yaml"
-    f.write_text(FOUR_BAR)
-    rc, out, err = run_cli(["modes", str(f), "--config", "beyond-1e-9", "--format", "json"])
-    assert rc == 0, err
-    doc = json.loads(out)
-    assert doc["count"] == 0 and doc["complete"] == "proven"
-    (note,) = [n for n in doc["notes"] if "beyond a limit of travel" in n]
-    limit = re.search(r"its limit at about A = ([0-9.]+) rad", note)
-    assert limit is not None, note
-    digits = len(limit.group(1)) - 2
-    assert abs(float(limit.group(1)) - math.acos(11 / 16)) <= 10.0**-digits, note
-
-
 def test_the_error_beyond_a_limit_keeps_its_sentence_when_pickled(tmp_path: Path) -> None:
     import pickle
 
