@@ -103,6 +103,24 @@ def test_modes_at_the_limit_count_the_double_root_the_start_reaches(tmp_path: Pa
     assert abs(got[0] - float(want[0])) < 1e-9 and abs(got[1] - float(want[1])) < 1e-9
 
 
+def test_no_mode_beyond_the_limit_says_where_the_limit_is(tmp_path: Path) -> None:
+    """A crank 1e-9 rad beyond its limit: no mode (proven), and a note saying by how
+    much and where the limit is (acos(11/16), to the digits the note gives)."""
+    import re
+
+    f = tmp_path / "four_bar_limit.yaml"
+    f.write_text(FOUR_BAR)
+    rc, out, err = run_cli(["modes", str(f), "--config", "beyond-1e-9", "--format", "json"])
+    assert rc == 0, err
+    doc = json.loads(out)
+    assert doc["count"] == 0 and doc["complete"] == "proven"
+    (note,) = [n for n in doc["notes"] if "beyond a limit of travel" in n]
+    limit = re.search(r"its limit at about A = ([0-9.]+) rad", note)
+    assert limit is not None, note
+    digits = len(limit.group(1)) - 2
+    assert abs(float(limit.group(1)) - math.acos(11 / 16)) <= 10.0**-digits, note
+
+
 def test_the_error_beyond_a_limit_keeps_its_sentence_when_pickled(tmp_path: Path) -> None:
     import pickle
 
@@ -130,3 +148,44 @@ def test_a_configuration_started_from_one_beyond_the_limit_is_a_closure_error(
         solve(load(str(f)), "from-beyond", "float")
     assert not isinstance(caught.value, BeyondTravelError)
     assert "starts from 'beyond-1e-9', which could not be closed" in str(caught.value)
+
+
+FAR = {"far": 2.0, "far-negative": -2.5}
+
+
+@pytest.mark.parametrize("name", sorted(FAR))
+def test_a_target_far_beyond_the_limit_gets_no_limit_outside_the_path(
+    tmp_path: Path, name: str
+) -> None:
+    """A crank far beyond its limit (acos(11/16) either way): the error never places the
+    limit outside the path from the value continuation reached to the target (a
+    first-order estimate at a least-squares landing far from the fold once put a
+    rocker's limit 2 pi/3 at -2.0); it says the value reached, which lies within 1e-4
+    short of the limit, and bounds the excess by the rest of the way."""
+    import re
+
+    f = tmp_path / "four_bar_limit.yaml"
+    f.write_text(FOUR_BAR + "".join(f"  {k}: {{A: {v}}}\n" for k, v in FAR.items()))
+    target = FAR[name]
+    limit = math.copysign(math.acos(11 / 16), target)
+    rc, _out, err = run_cli(["solve", str(f), "--config", name])
+    assert rc != 0
+    reached = float(re.search(r"A reached (-?[0-9.]+) rad", err).group(1))  # type: ignore[union-attr]
+    assert abs(reached) < abs(limit) and abs(limit - reached) < 1e-4, err
+    estimate = re.search(r"at about A = (-?[0-9.]+) rad", err)
+    if estimate is not None:
+        assert min(reached, target) <= float(estimate.group(1)) <= max(reached, target), err
+    else:
+        past = re.search(
+            r"A is at most ([0-9.]+) rad beyond its limit, which lies past A = (-?[0-9.]+)", err
+        )
+        assert past is not None, err
+        assert float(past.group(2)) == pytest.approx(reached, abs=1e-9)
+        assert float(past.group(1)) == pytest.approx(abs(target - reached), rel=5e-3)
+        assert float(past.group(1)) >= abs(target - limit)
+    rc, out, err = run_cli(["modes", str(f), "--config", name, "--format", "json"])
+    assert rc == 0, err
+    doc = json.loads(out)
+    assert doc["count"] == 0 and doc["complete"] == "proven"
+    (note,) = [n for n in doc["notes"] if "beyond a limit of travel" in n]
+    assert "lies past A = " in note or "at about A = " in note

@@ -4,7 +4,8 @@ mechanism's: its working modes), the start
 continuation marks a mode from, and the family of the mechanism; and the contract of a
 formulation (:class:`Formulation`: ``applies(given)``, ``find(given)``).
 
-Owns :class:`Given`, :func:`read_given`, :func:`closure_from_start` and :class:`Formulation`.
+Owns :class:`Given`, :func:`read_given`, :func:`closure_from_start`,
+:func:`travel_of_start` and :class:`Formulation`.
 """
 
 from __future__ import annotations
@@ -20,7 +21,14 @@ from mechsing.errors import UserError
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision
 
-__all__ = ["NO_INPUTS", "Formulation", "Given", "closure_from_start", "read_given"]
+__all__ = [
+    "NO_INPUTS",
+    "Formulation",
+    "Given",
+    "closure_from_start",
+    "read_given",
+    "travel_of_start",
+]
 
 #: why a formulation of given joint values does not apply to a configuration that gives
 #: the output's pose (a serial arm's, or a mechanism with loops at a pose)
@@ -161,3 +169,20 @@ def closure_from_start(mech: Mechanism, config: str) -> tuple[Any, str | None]:
         return solve(mech, config, "float"), None
     except (ConfigurationError, UserError) as exc:
         return None, str(exc)
+
+
+def travel_of_start(mech: Mechanism, config: str) -> str | None:
+    """Where the start's assembly mode ends, when the configuration's given values lie
+    beyond it: the sentence that says which value, by how much, and where its limit is
+    (continuation from the start in float stops at that limit of travel); None otherwise.
+    What ``modes`` says with a count of 0."""
+    from mechsing.analysis.solve import solve
+    from mechsing.errors import BeyondTravelError, ConfigurationError, UserError
+
+    try:
+        solve(mech, config, "float")
+    except BeyondTravelError as exc:
+        return exc.travel
+    except (ConfigurationError, UserError):
+        return None
+    return None

@@ -14,7 +14,7 @@ import mpmath
 import numpy as np
 
 from mechsing.assembly.chains import Found
-from mechsing.assembly.given import closure_from_start
+from mechsing.assembly.given import closure_from_start, travel_of_start
 from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
 from mechsing.kinematics.closed import FLOAT_DIGITS, ClosedValue
 from mechsing.model import Mechanism
@@ -153,6 +153,11 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
     reached, notes = _reached(
         mech, [[float(x) for x in q] for q, _ in rows], [bool(ok) for _, ok in rows], km, closure
     )
+    if nothing and mech.configurations[config].values:
+        # no mode: where the values given leave the start's assembly mode, if they do
+        travel = travel_of_start(mech, config)
+        if travel is not None:
+            notes = (*notes, f"no closed configuration: {travel}")
     out_body = mech.output.body if mech.output is not None else None
     poses = [
         km.poses(np.array([float(x) for x in q]))[out_body] if out_body else None for q, _ in rows

@@ -7,9 +7,17 @@ left along its left kernel u.  To first order the residual's component ``u . r``
 is what the given values add beyond the fold, ``u . J_g dg``: so each given value alone
 is ``|u . r| / |u . J_g e_i|`` beyond its limit (commensurate units: lengths over L).
 
+The estimate is sound only near the fold.  A continuation that stalls short of a target
+far beyond a limit (:func:`beyond_target`) lands the unknowns by least squares with the
+given values at the target, far from the fold, where the first-order limit can be
+anywhere (a rocker's limit 2 pi/3 read as -2.0): such a limit is kept only when it lies
+between the value continuation reached and the target, where the fold must be; else the
+sentence says that interval instead.
+
 Owns :func:`fold_excess` (which given value is nearest to bringing the configuration
 back, the one the residual is most sensitive to, how far beyond its limit it is and where
-that limit is) and :func:`beyond_travel`, the sentence that says so (in the file's units).
+that limit is), :func:`beyond_travel`, the sentence that says so (in the file's units), and
+:func:`beyond_target`, the same for a continuation stalled short of its target.
 """
 
 from __future__ import annotations
@@ -37,11 +45,39 @@ __all__ = ["Fold", "beyond_target", "beyond_travel", "fold_excess"]
 class Fold:
     """Given values beyond a limit of travel (:func:`fold_excess`): the coordinate ``col``
     the fold is most sensitive to, how far beyond its limit it is (``beyond``, SI: m or
-    rad) and the sentence that says so in the file's units."""
+    rad), the first-order limit itself (``limit``, SI) and the sentence that says so in
+    the file's units."""
 
     col: int
     beyond: float
     sentence: str
+    limit: float
+
+
+_LEAD = (
+    "its given values are beyond a limit of travel (a fold of the closure, where the "
+    "unknown joints lose a direction)"
+)
+
+
+def _words(m: ClosureModel, col: int) -> tuple[str, str, float, float]:
+    """Coordinate ``col``'s label, the file's unit for it, that unit's SI factor and the
+    model's scale of it (L for a length, 1 for an angle)."""
+    length = bool(m.length_columns[col])
+    units = m.mech.units
+    coords = m.mech.coordinates()
+    if col < len(coords):
+        label = m.mech.coordinate_label(*coords[col])
+    else:  # a pose model's own coordinates follow the joints'
+        from mechsing.kinematics.pose import POSE_COORDINATES
+
+        label = POSE_COORDINATES[col - len(coords)]
+    return (
+        label,
+        units.length if length else units.angle,
+        float(units.length_factor if length else units.angle_factor),
+        float(m.length_scale) if length else 1.0,
+    )
 
 
 def beyond_travel(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> str | None:
@@ -85,32 +121,21 @@ def fold_excess(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> Fold | Non
         return None
     i = int(np.argmax(np.abs(g)))  # the given value the fold is most sensitive to
     col = int(np.flatnonzero(~free)[i])
-    length = bool(m.length_columns[col])
-    scale = m.length_scale if length else 1.0
     # in the file's units (as the continuation's messages are)
-    units = m.mech.units
-    factor = float(units.length_factor if length else units.angle_factor)
-    unit = units.length if length else units.angle
+    label, unit, factor, scale = _words(m, col)
     beyond_si = abs(r / g[i]) * scale
     beyond = beyond_si / factor
     with m.precision.context():  # the limit at the model's digits (q is given to them)
-        limit = (mpmath.mpf(q[col]) - mpmath.mpf(r / g[i] * scale)) / mpmath.mpf(factor)
+        limit_si = mpmath.mpf(q[col]) - mpmath.mpf(r / g[i] * scale)
+        limit = limit_si / mpmath.mpf(factor)
     # first order: the limit is known to about the square of the distance beyond it
     rel = max(beyond / max(abs(float(limit)), 1e-300), 1e-16)
     shown = mpmath.nstr(limit, max(3, min(16, int(-math.log10(rel)))))
-    coords = m.mech.coordinates()
-    if col < len(coords):
-        label = m.mech.coordinate_label(*coords[col])
-    else:  # a pose model's own coordinates follow the joints'
-        from mechsing.kinematics.pose import POSE_COORDINATES
-
-        label = POSE_COORDINATES[col - len(coords)]
     sentence = (
-        f"its given values are beyond a limit of travel (a fold of the closure, where the "
-        f"unknown joints lose a direction): {label} is {beyond:.3g} {unit} beyond its limit "
+        f"{_LEAD}: {label} is {beyond:.3g} {unit} beyond its limit "
         f"at about {label} = {shown} {unit}; give {label} within its travel"
     )
-    return Fold(col, float(beyond_si), sentence)
+    return Fold(col, float(beyond_si), sentence, float(limit_si))
 
 
 def beyond_target(
@@ -119,10 +144,25 @@ def beyond_target(
     """:func:`beyond_travel` for a continuation (float model ``fm``) that stalled at ``q``
     short of ``target``: the unknown joints are first brought as near closure as they go
     with the given values at the target (Newton, least squares: it stops at the fold
-    when the target is beyond one)."""
+    when the target is beyond one).  The first-order limit is kept only when it lies
+    between the value reached at ``q`` and the target (module docstring); else the
+    sentence names that interval."""
     qn = np.asarray(q, dtype=float).copy()
     qn[gmask] = np.asarray(target, dtype=float)[gmask]
     landed = newton_on_group(
         fm, qn, ~gmask, solve=damped_least_squares, max_steps=POLISH_MAX_STEPS, doubling=True
     )
-    return beyond_travel(fm, landed.q, gmask)
+    fold = fold_excess(fm, landed.q, gmask)
+    if fold is None:
+        return None
+    reached, goal = float(q[fold.col]), float(qn[fold.col])
+    if min(reached, goal) <= fold.limit <= max(reached, goal):
+        return fold.sentence
+    label, unit, factor, _ = _words(fm, fold.col)
+    if reached == goal:  # the fold is most sensitive to a value the path does not change
+        return f"{_LEAD}, between the given values continuation reached and the target"
+    return (
+        f"{_LEAD}: {label} is at most {abs(goal - reached) / factor:.3g} {unit} beyond its "
+        f"limit, which lies past {label} = {reached / factor:.10g} {unit}, the value "
+        f"continuation reached; give {label} within its travel"
+    )
