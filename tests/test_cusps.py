@@ -424,3 +424,27 @@ def test_a_degenerate_cusp_is_listed_with_why_it_is_not_certified() -> None:
     assert plain.certified and not plain.degenerate
     doc = Cusp({"a": 0.0, "b": 0.0}, 0.0, False, 1e-30, {}, DEGENERATE).to_json()
     assert doc["radius"] is None and "degenerate cusp" in doc["not_certified"]
+
+
+def test_a_pose_configuration_fixes_the_input_it_closes_at(tmp_path: Path) -> None:
+    """The bundled 3-RPR with a configuration that gives the platform's pose, not the
+    legs: the fixed input P1 is the first leg's length at that pose less its drawn
+    length (the platform pivot (9/10, 3/10) turned by 0.1 rad about the centroid of the
+    three platform pivots, which moves to (1.1, 1.2); the base pivot at the origin and the
+    leg along the pivot's direction), not its reference value 0."""
+    root = Path(__file__).resolve().parents[1]
+    text = (root / "examples" / "planar_3rpr.yaml").read_text()
+    path = _write(
+        tmp_path,
+        "posed.yaml",
+        text + "  posed: {pose: {position: [1.1, 1.2, 0], rotation_vector: [0, 0, 0.1]}}\n",
+    )
+    pivots = np.array([[0.9, 0.3], [2.5, 1.5], [-0.3, 1.9]])
+    c = pivots.mean(axis=0)
+    t = 0.1
+    turn = np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
+    moved = np.array([1.1, 1.2]) + turn @ (pivots[0] - c)
+    want = float(np.linalg.norm(moved) - np.linalg.norm(pivots[0]))
+    doc = _cusps(path, "P2=0:1,P3=0:1", "--config", "posed", "--points", "21")
+    assert doc["section"]["fixed"]["P1"] == pytest.approx(want, abs=1e-12)
+    assert abs(want) > 0.05  # not the reference value it took before

@@ -139,7 +139,8 @@ def cusps(
         result is in SI units and radians).
     config : str or None
         The configuration whose value of the third input is kept (None: the first that
-        gives it; none: its reference value, 0).
+        gives it; none: its reference value, 0).  A configuration that does not give it
+        (one that gives the output's pose) is closed first, and its closed value kept.
     points : int or None
         Grid points along each side (None: :data:`~.discriminant.GRID_POINTS`).
 
@@ -299,6 +300,23 @@ def parse_vary(text: str, where: str) -> dict[str, tuple[float, float]]:
     return out
 
 
+def _closed_value(mech: Mechanism, config: str, name: str) -> Any:
+    """Joint ``name``'s value (SI) in configuration ``config``, which does not give it (it
+    gives the output's pose, or other joints): closed in float, as ``mechsing solve``
+    closes it, and kept as the rational of its 17 digits."""
+    from mechsing.analysis.solve import solve
+    from mechsing.errors import ConfigurationError
+
+    try:
+        joints = dict(solve(mech, config, "float").joints)
+    except ConfigurationError as exc:
+        raise UserError(
+            f"{mech.path or mech.name}: configuration {config!r} does not give {name}, and "
+            f"it does not close ({exc}); give {name} in it, or choose another with --config"
+        ) from None
+    return sympy.Rational(repr(float(joints[name][0])))
+
+
 def _planar_family(
     mech: Mechanism, ranges: dict[str, tuple[float, float]], config: str | None
 ) -> dict[str, Any]:
@@ -345,6 +363,8 @@ def _planar_family(
         if given is not None:
             v = given[0]
             value = sympy.nsimplify(v) if isinstance(v, float) else sympy.sympify(v)
+        else:  # a pose, or other joints: the value the configuration closes at
+            value = _closed_value(mech, config, fixed_name)
     A, B = sympy.symbols("a b", real=True)
     try:
         system = planar_system(turned, {fixed_name: (value,), a_name: (A,), b_name: (B,)})

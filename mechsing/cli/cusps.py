@@ -38,7 +38,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--config",
         metavar="NAME",
         help="the configuration whose value of the third input is kept (default: the "
-        "first that gives it)",
+        "first that gives it); one that gives the output's pose is closed first",
     )
     p.add_argument(
         "--points", type=int, metavar="N", help="grid points along each side (default 81)"
