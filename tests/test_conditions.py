@@ -103,6 +103,42 @@ def test_planar_2r_point_output_is_a1_a2_sin_b(tmp_path: Path) -> None:
     assert abs(n.constant) == sympy.Rational(7, 25)
 
 
+TILTED_2R = """\
+mechanism: tilted-2r
+bodies: [ground, upper, fore]
+joints:
+  - {name: S, type: R, between: [ground, upper], axis: [1, 2, 2], point: [0, 0, 0]}
+  - {name: E, type: R, between: [upper, fore], axis: [1, 2, 2], point: [2, -1, 0]}
+inputs: [S, E]
+output: {body: fore, point: [2, -3, 2]}
+configurations:
+  reference: {}
+"""
+
+
+def test_a_2r_arm_in_a_tilted_plane_has_the_planes_own_determinant(tmp_path: Path) -> None:
+    """A 2R arm in the plane normal to n = (1, 2, 2): links a = (2, -1, 0) and
+    b = (0, -2, 2), both normal to n.  Its determinant in an orthonormal basis of the plane
+    is n/|n| . (a x b(E)), b(E) = b cos E + (n/|n| x b) sin E (computed here with numpy):
+    the same amplitude l1 l2 = sqrt(40) as in any plane, not the 2/3 of it that the
+    plane's projection on x and y keeps."""
+    (c,) = condition(_write(tmp_path, TILTED_2R)).conditions
+    E = sympy.Symbol("E", real=True)
+    n = np.array([1.0, 2.0, 2.0]) / 3.0
+    a, b = np.array([2.0, -1.0, 0.0]), np.array([0.0, -2.0, 2.0])
+    for e in (0.0, 0.4, 1.3, -2.2):
+        be = b * math.cos(e) + np.cross(n, b) * math.sin(e)
+        want = float(n @ np.cross(a, be))
+        got = float(c.expression.subs(E, e))
+        assert abs(got) == pytest.approx(abs(want), rel=1e-12, abs=1e-12)
+    # and the sign is one sign for the whole circle: the same function up to a constant
+    ratios = []
+    for e in (0.1, 0.9, 2.0):
+        be = b * math.cos(e) + np.cross(n, b) * math.sin(e)
+        ratios.append(float(c.expression.subs(E, e)) / float(n @ np.cross(a, be)))
+    assert max(ratios) == pytest.approx(min(ratios), rel=1e-12)
+
+
 def test_puma_560_det_j_factors_as_published(tmp_path: Path) -> None:
     # Craig, Introduction to Robotics (PUMA 560 Jacobian): det J = a2 (d4 c3 - a3 s3)
     # (a2 c2 + a3 c23 - d4 s23) s5 up to the signs of theta2, theta3, which depend on the

@@ -2,7 +2,8 @@
 
 Owns the twists of a chain of joints written in the frame of one of its bodies
 (:func:`chain_twists`), the choice of the rows of a fixed span's coordinates
-(:func:`reduce_rows`), a condition as the determinant of a square Jacobian or the
+(:func:`reduce_rows`) and the volume those coordinates leave out (:func:`span_volume`),
+a condition as the determinant of a square Jacobian or the
 gcd of its maximal minors (:func:`maximal_condition`), a factored
 :class:`~mechsing.conditions.results.Condition` from one expression
 (:func:`condition_from`), and the symbolic parameters of a mechanism
@@ -47,6 +48,7 @@ __all__ = [
     "mechanism_size",
     "parameter_symbols",
     "reduce_rows",
+    "span_volume",
 ]
 
 
@@ -136,6 +138,30 @@ def reduce_rows(J: Any, S: list[JointSymbols], params: list[Any]) -> tuple[Any, 
     return J.extract(rows, list(range(J.cols))), True, r
 
 
+def span_volume(J: Any, Jr: Any, S: list[JointSymbols]) -> Any:
+    """The factor from a determinant in the kept coordinates ``Jr`` of a fixed span (the
+    rows :func:`reduce_rows` keeps of ``J``) to the determinant in an orthonormal basis of
+    the span: every vector of the span is ``M`` times its kept coordinates, a constant
+    matrix, and the factor is ``sqrt(det(M^T M))``, the volume of the span's unit cube
+    over its projection on the kept coordinates (1 when the other rows are zero: a plane
+    normal to z in x and y; 3/2 for the plane normal to (1, 2, 2), whose projection on x and
+    y shrinks areas by 2/3).  ``M`` is found exactly at a random rational configuration
+    (``J = M Jr`` at every one), and only a Euclidean span has this meaning: point
+    velocities, not twists, whose rotation and translation rows have no common metric."""
+    if Jr.rows == J.rows:
+        return sympy.Integer(1)
+    rng = random.Random(54321)
+    for _ in range(3):
+        pt = _random_point(S, rng)
+        Jx, Jrx = J.xreplace(pt), Jr.xreplace(pt)
+        G = sympy.expand(Jrx * Jrx.T)
+        if sympy.simplify(G.det()) == 0:
+            continue
+        M = (Jx * Jrx.T * G.inv()).applyfunc(sympy.simplify)
+        return sympy.sqrt(sympy.factor(sympy.simplify((M.T * M).det())))
+    return sympy.Integer(1)
+
+
 def symbolic_det(M: Any) -> Any:
     """The determinant of a square sympy matrix, computed fraction-free in a polynomial
     ring.  The numbers that are not rational (``sqrt(3)`` of a 60 degree twist,
@@ -161,12 +187,19 @@ def symbolic_det(M: Any) -> Any:
 
 
 def maximal_condition(
-    J: Any, r: int, S: list[JointSymbols], params: list[Any], what: str, explain: Any
+    J: Any,
+    r: int,
+    S: list[JointSymbols],
+    params: list[Any],
+    what: str,
+    explain: Any,
+    scale: Any = 1,
 ) -> Condition:
-    """The determinant of a square ``J``, else the gcd of its maximal (r x r) minors."""
+    """The determinant of a square ``J`` (times ``scale``: :func:`span_volume`), else the
+    gcd of its maximal (r x r) minors."""
     pset = set(params)
     if J.rows == J.cols == r:
-        det = symbolic_det(J)
+        det = sympy.expand(scale * symbolic_det(J))
         return condition_from(
             what,
             "determinant",
