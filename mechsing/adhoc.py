@@ -2,7 +2,8 @@
 
 Each value is one joint's, in the file's units (a joint of several coordinates takes a
 comma-separated list, ``S1=0.1,0,0.2``; exact expressions such as ``pi/4`` are read as in a
-mechanism file).  Values with the same ``NAME`` form one configuration of that name; without
+mechanism file, and a decimal written with digits to spare has the written resolution a
+file's has, which the verdicts are checked against).  Values with the same ``NAME`` form one configuration of that name; without
 ``NAME`` the configuration is ``cli``.  Each is solved by closure from ``reference`` or from
 the configuration ``start`` names.  A name the file already uses is refused (exit 2), and so
 is a joint given twice in one configuration.  A joint whose own name holds a colon is read
@@ -62,8 +63,10 @@ def with_set_values(mech: Any, sets: list[str] | None, start: str | None, path: 
     """``mech`` with the configurations the ``--set`` values give (``mech`` itself when
     there is none); ``start``: the configuration each is solved from (None: reference);
     ``path`` names the file in messages."""
-    from mechsing.model.expressions import ExpressionError, parse_number
+    from mechsing.model.expressions import ExpressionError, parse_number, written_digits
     from mechsing.model.mechanism import Configuration
+    from mechsing.numeric import data_resolution
+    from mechsing.numeric.pirational import evalf_float
 
     if not sets:
         if start is not None:
@@ -80,6 +83,8 @@ def with_set_values(mech: Any, sets: list[str] | None, start: str | None, path: 
         )
     units = mech.units
     values: dict[str, dict[str, tuple[Any, ...]]] = {}
+    # each value's written resolution, as a file's (half a unit in its last digit)
+    resolutions: dict[str, dict[str, tuple[tuple[float, int], ...]]] = {}
     for text in sets:
         config, name, raw = _split(mech, text)
         if config in mech.configurations:
@@ -106,6 +111,7 @@ def with_set_values(mech: Any, sets: list[str] | None, start: str | None, path: 
                 f"{'s' if j.dof > 1 else ''} in the file's units"
             )
         coords = []
+        written = []
         for t, unit in zip(parts, j.units, strict=True):
             try:
                 x = parse_number(t)
@@ -113,6 +119,14 @@ def with_set_values(mech: Any, sets: list[str] | None, start: str | None, path: 
                 raise UserError(f"--set {text!r}: {exc}") from None
             factor = units.angle_factor if unit == "rad" else units.length_factor
             coords.append(x * factor if factor != 1 else x)
+            form = written_digits(t)
+            res = 0.0 if form is None else data_resolution(*form, evalf_float(factor, 17))
+            written.append((res, form[0] if form is not None and res else 0))
         given[name] = tuple(coords)
-    added = {c: Configuration(c, v, start, None, {}, None) for c, v in values.items()}
+        if any(res for res, _ in written):
+            resolutions.setdefault(config, {})[name] = tuple(written)
+    added = {
+        c: Configuration(c, v, start, None, {}, None, resolution=resolutions.get(c, {}))
+        for c, v in values.items()
+    }
     return dataclasses.replace(mech, configurations={**mech.configurations, **added})

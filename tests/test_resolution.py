@@ -96,6 +96,24 @@ def test_auto_keeps_the_dead_centre_drawn_to_15_digits_singular(tmp_path: Path) 
         assert "give more digits or exact values to decide the written decimals" in out
 
 
+def test_a_value_given_with_set_has_the_resolution_it_has_in_a_file(tmp_path: Path) -> None:
+    """The same 15-digit dead centre given on the command line (``--set``) is judged as
+    the file's value is: auto keeps float's singular verdict, within the resolution of
+    the 15 digits written; the exact value given with --set gets no such note."""
+    path = tmp_path / "set.yaml"
+    path.write_text(GEOMETRY.format(units="units: {angle: deg}\n", value="0"))
+    value = repr(float(f"{math.degrees(DEAD_CENTRE):.15g}"))
+    doc = cli_json(["analyze", path, "--set", f"A={value}", "--format", "json"])
+    (c,) = [c for c in doc["configurations"] if c["name"] == "cli"]
+    assert c["singular"] is True
+    below = c["data_resolution"]
+    assert below["digits"] == 15 and below["verdict_from"] == "float"
+    assert below["resolution"] == pytest.approx(0.5e-12 * math.pi / 180, rel=1e-9)
+    exact = cli_json(["analyze", path, "--set", "A=90 + asin(1/5)*180/pi", "--format", "json"])
+    (e,) = [c for c in exact["configurations"] if c["name"] == "cli"]
+    assert e["singular"] is True and e.get("data_resolution") is None
+
+
 def test_regular_below_the_resolution_of_15_digits(tmp_path: Path) -> None:
     precision = "mp:50"
     path = _rounded(tmp_path)
