@@ -460,6 +460,26 @@ def test_an_arm_joint_given_as_a_displacement_is_refused_by_name(
     assert "joint S1 is given as a displacement; modes takes joint values" in err
 
 
+class _Meta:
+    """A path's metadata as Bertini 2 gives it: its endgame's success code."""
+
+    def __init__(self, c: object) -> None:
+        self.endgame_success_code = c
+
+
+class _Solver:
+    """A solver whose paths ended with ``codes`` (without ``metadata``: one that does not
+    say how its paths ended)."""
+
+    def __init__(self, codes: list[object], metadata: bool = True) -> None:
+        self.codes = codes
+        if metadata:
+            self.solution_metadata = lambda: [_Meta(c) for c in self.codes]
+
+    def num_paths(self) -> int:
+        return len(self.codes)
+
+
 @pytest.mark.parametrize(
     "failed, again, metadata",
     # of 8 paths (RETRY_FAILED is 1/4); a solver without the paths' metadata: no retry
@@ -486,21 +506,8 @@ def test_a_double_tracking_that_failed_a_few_paths_runs_again_in_adaptive_precis
     runs: list[str] = []
     code = bertini.SuccessCode
 
-    class Meta:
-        def __init__(self, c: object) -> None:
-            self.endgame_success_code = c
-
-    class Solver:
-        def __init__(self, codes: list[object]) -> None:
-            self.codes = codes
-            if metadata:
-                self.solution_metadata = lambda: [Meta(c) for c in self.codes]
-
-        def num_paths(self) -> int:
-            return len(self.codes)
-
     class Result:
-        def __init__(self, solutions: object, solver: Solver) -> None:
+        def __init__(self, solutions: object, solver: _Solver) -> None:
             self.solutions, self.solver = solutions, solver
 
     def solve(system: object, **kw: object) -> object:
@@ -510,7 +517,7 @@ def test_a_double_tracking_that_failed_a_few_paths_runs_again_in_adaptive_precis
             codes = [code.FailedToConverge] * failed + [code.GoingToInfinity] * 2
             codes += [code.SecurityMaxNormReached] * 2
             codes += [code.Success] * (8 - len(codes))
-            return Result(result.solutions, Solver(codes))
+            return Result(result.solutions, _Solver(codes, metadata))
         return result
 
     monkeypatch.setattr(bertini, "solve", solve)
@@ -583,17 +590,8 @@ def test_a_tight_tracking_counts_a_path_to_infinity_as_lost() -> None:
     from mechsing.assembly import engine
 
     code = bertini.SuccessCode
-
-    class Meta:
-        def __init__(self, c: object) -> None:
-            self.endgame_success_code = c
-
-    class Solver:
-        def __init__(self, codes: list[object]) -> None:
-            self.solution_metadata = lambda: [Meta(c) for c in codes]
-
-    one = Solver([code.GoingToInfinity] + [code.Success] * 7)
-    three = Solver([code.SecurityMaxNormReached] * 3 + [code.Success] * 5)
+    one = _Solver([code.GoingToInfinity] + [code.Success] * 7)
+    three = _Solver([code.SecurityMaxNormReached] * 3 + [code.Success] * 5)
     assert engine._failed_a_few(one, tight=True)
     assert not engine._failed_a_few(three, tight=True)
     assert not engine._failed_a_few(one) and not engine._failed_a_few(three)

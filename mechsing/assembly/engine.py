@@ -51,9 +51,11 @@ SEED = 34
 #: to 108 of 120 failed; the axis formulation's eliminations of Sarrus's J1, 23 of 24,
 #: for over ten minutes, where Bricard's 6R lost 1 of 24, then 24 of 24 and a proven count)
 RETRY_FAILED = 0.25
-#: Bertini's success codes of a path that did not fail: converged, or left for infinity
-#: (names of ``bertini.SuccessCode``, resolved there: a renamed one fails loudly)
-_NOT_FAILED = ("Success", "SecurityMaxNormReached", "GoingToInfinity")
+#: Bertini's success codes of a path that did not fail: converged (``_SOLVED``, all that
+#: a tight retry accepts), or left for infinity (names of ``bertini.SuccessCode``,
+#: resolved there: a renamed one fails loudly)
+_SOLVED = ("Success",)
+_NOT_FAILED = (*_SOLVED, "SecurityMaxNormReached", "GoingToInfinity")
 
 
 def system_text(eqs: Sequence[sympy.Expr], groups: Sequence[Sequence[sympy.Symbol]]) -> str:
@@ -138,7 +140,7 @@ def _failed_a_few(solver: Any, tight: bool = False) -> bool:
     if meta is None:
         return False
     codes = _bertini().SuccessCode
-    fine = {getattr(codes, name) for name in (_NOT_FAILED[:1] if tight else _NOT_FAILED)}
+    fine = {getattr(codes, name) for name in (_SOLVED if tight else _NOT_FAILED)}
     paths = [m.endgame_success_code for m in (meta() if callable(meta) else meta)]
     failed = sum(1 for c in paths if c not in fine)
     return 0 < failed <= RETRY_FAILED * len(paths)
