@@ -28,7 +28,7 @@ from mechsing.kinematics.polish import MpPolisher, fold_mp
 from mechsing.kinematics.pose import POSE_COORDINATES, PoseModel
 from mechsing.kinematics.protocol import ClosureModel
 from mechsing.kinematics.settings import CONTINUATION_LEAVE_FRACTION, CONTINUATION_SINGULAR_RTOL
-from mechsing.kinematics.travel import Fold, beyond_target, fold_excess
+from mechsing.kinematics.travel import Fold, beyond_target, coordinate_words, fold_excess
 from mechsing.model import Configuration
 from mechsing.numeric import decide_rank, to_float
 
@@ -299,17 +299,11 @@ def _tied_given(fm: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> str:
 def _given_reached(m: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> str:
     """The given coordinates where continuation stopped, against their targets,
     in the file's units: ``A reached 173.13 deg, 26.87 deg short of the target 200 deg``."""
-    units = m.mech.units
-    joints = {j.name: j for j in m.mech.joints}
     parts = []
-    for col, (jname, i) in enumerate(m.mech.coordinates()):
+    for col in range(len(m.mech.coordinates())):
         if not gmask[col]:
             continue
-        j = joints[jname]
-        length = j.units[i] == "m"
-        factor = float(units.length_factor if length else units.angle_factor)
-        unit = units.length if length else units.angle
-        label = m.mech.coordinate_label(jname, i)
+        label, unit, factor, _ = coordinate_words(m, col)
         reached, goal = float(q[col]) / factor, float(target[col]) / factor
         parts.append(
             f"{label} reached {reached:.10g} {unit}, {abs(goal - reached):.3g} {unit} short "

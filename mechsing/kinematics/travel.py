@@ -16,8 +16,9 @@ sentence says that interval instead.
 
 Owns :func:`fold_excess` (which given value is nearest to bringing the configuration
 back, the one the residual is most sensitive to, how far beyond its limit it is and where
-that limit is), :func:`beyond_travel`, the sentence that says so (in the file's units), and
-:func:`beyond_target`, the same for a continuation stalled short of its target.
+that limit is), :func:`beyond_travel`, the sentence that says so (in the file's units),
+:func:`beyond_target`, the same for a continuation stalled short of its target, and
+:func:`coordinate_words`, a coordinate's label and unit in those messages.
 """
 
 from __future__ import annotations
@@ -38,7 +39,7 @@ from mechsing.numeric import to_float
 from mechsing.numeric.lazy import mpmath
 from mechsing.numeric.linalg import svd
 
-__all__ = ["Fold", "beyond_target", "beyond_travel", "fold_excess"]
+__all__ = ["Fold", "beyond_target", "beyond_travel", "coordinate_words", "fold_excess"]
 
 
 @dataclass(frozen=True)
@@ -60,7 +61,7 @@ _LEAD = (
 )
 
 
-def _words(m: ClosureModel, col: int) -> tuple[str, str, float, float]:
+def coordinate_words(m: ClosureModel, col: int) -> tuple[str, str, float, float]:
     """Coordinate ``col``'s label, the file's unit for it, that unit's SI factor and the
     model's scale of it (L for a length, 1 for an angle)."""
     length = bool(m.length_columns[col])
@@ -122,7 +123,7 @@ def fold_excess(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> Fold | Non
     i = int(np.argmax(np.abs(g)))  # the given value the fold is most sensitive to
     col = int(np.flatnonzero(~free)[i])
     # in the file's units (as the continuation's messages are)
-    label, unit, factor, scale = _words(m, col)
+    label, unit, factor, scale = coordinate_words(m, col)
     beyond_si = abs(r / g[i]) * scale
     beyond = beyond_si / factor
     with m.precision.context():  # the limit at the model's digits (q is given to them)
@@ -158,7 +159,7 @@ def beyond_target(
     reached, goal = float(q[fold.col]), float(qn[fold.col])
     if min(reached, goal) <= fold.limit <= max(reached, goal):
         return fold.sentence
-    label, unit, factor, _ = _words(fm, fold.col)
+    label, unit, factor, _ = coordinate_words(fm, fold.col)
     if reached == goal:  # the fold is most sensitive to a value the path does not change
         return f"{_LEAD}, between the given values continuation reached and the target"
     return (
