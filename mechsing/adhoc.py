@@ -3,8 +3,8 @@
 Each value is one joint's, in the file's units (a joint of several coordinates takes a
 comma-separated list, ``S1=0.1,0,0.2``; exact expressions such as ``pi/4`` are read as in a
 mechanism file, and a decimal written with digits to spare has the written resolution a
-file's has, which the verdicts are checked against).  Values with the same ``NAME`` form one configuration of that name; without
-``NAME`` the configuration is ``cli``.  Each is solved by closure from ``reference`` or from
+file's has, which the verdicts are checked against).  Values with the same ``NAME`` form
+one configuration of that name; without ``NAME`` the configuration is ``cli``.  Each is solved by closure from ``reference`` or from
 the configuration ``start`` names.  A name the file already uses is refused (exit 2), and so
 is a joint given twice in one configuration.  A joint whose own name holds a colon is read
 as a joint (``a:b=1`` sets joint ``a:b`` when the file has one).

@@ -174,8 +174,9 @@ def closure_from_start(mech: Mechanism, config: str) -> tuple[Any, str | None]:
 def travel_of_start(mech: Mechanism, config: str) -> str | None:
     """Where the start's assembly mode ends, when the configuration's given values lie
     beyond it: the sentence that says which value, by how much, and where its limit is
-    (continuation from the start in float stops at that limit of travel); None otherwise.
-    What ``modes`` says with a count of 0."""
+    (continuation from the start in float stops at that limit of travel; far beyond it,
+    the value continuation reached, past which the limit lies); None otherwise.  What
+    ``modes`` says with a count of 0."""
     from mechsing.analysis.solve import solve
     from mechsing.errors import BeyondTravelError, ConfigurationError, UserError
 
