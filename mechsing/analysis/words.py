@@ -220,7 +220,10 @@ def number_text(x: Any) -> str:
 
 
 def margin_text(m: Margin | None) -> str:
-    """A margin's kept and dropped singular values, its thresholds and L, in a line."""
+    """A margin's kept and dropped singular values, its thresholds and L, in a line; the
+    thresholds are relative, so the largest singular value they multiply is said beside
+    them (the kept and dropped values are not relative: 4e-16 dropped of a largest 2.6 is
+    1.6e-16 of it, which is what tau_lo bounds)."""
     if m is None:
         return ""
     parts = [f"kept {number_text(m.kept)}", f"dropped {number_text(m.dropped)}"]
@@ -228,7 +231,8 @@ def margin_text(m: Margin | None) -> str:
         parts.append(f"eigenvalue margin {number_text(m.eig_margin)}")
     lo, hi = m.thresholds
     L = with_unit(f"{m.length_scale:.4g}", "m")
-    return ", ".join(parts) + f" (thresholds {lo}/{hi}, L = {L})"
+    of = f" of the largest, {number_text(m.sigma_max)}" if m.sigma_max else ""
+    return ", ".join(parts) + f" (thresholds {lo}/{hi}{of}; L = {L})"
 
 
 def joint_list(xs: Sequence[str]) -> str:
