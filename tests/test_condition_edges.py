@@ -9,6 +9,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
+
 from tests.cli import run_cli
 
 #: a four-bar whose rocker pivots lie at x = sqrt(a + 4), a radical of the symbolic a:
@@ -119,15 +121,25 @@ def test_an_s_joint_is_three_revolutes_without_their_own_singularity(tmp_path: P
 RRR = Path(__file__).resolve().parent / "data" / "planar_3rrr.yaml"
 
 
-def test_a_planar_3rrr_with_its_three_inputs(tmp_path: Path) -> None:
+@pytest.mark.parametrize("signs", [(1, 1, 1), (-1, 1, 1), (1, -1, 1)])
+def test_a_planar_3rrr_with_its_three_inputs(tmp_path: Path, signs: tuple[int, ...]) -> None:
     """Type II: the determinant of the legs' lines B_i C_i (each a force through the two
     passive pivots, with its moment about the origin), worked here from the file's pivots
     (A_i on the ground, B_i turned about A_i by the input, C_i on the platform, whose
     reference point is the centroid of C1, C2, C3: the origin); type I of leg 1: A1, B1
-    and C1 in line."""
+    and C1 in line.  A base joint whose axis is written -z (``signs``) turns its leg by
+    minus its value about z (the first revolute's too: the plane's normal is then -z)."""
     import sympy
 
-    run = run_cli(["condition", RRR, "--format", "json"])
+    text = RRR.read_text()
+    for i, sign in enumerate(signs):
+        if sign < 0:
+            head = f"{{name: A{i + 1}, type: R, between: [ground, prox{i + 1}],   axis: [0, 0, "
+            assert head + "1]" in text
+            text = text.replace(head + "1]", head + "-1]")
+    path = tmp_path / "planar_3rrr.yaml"
+    path.write_text(text)
+    run = run_cli(["condition", path, "--format", "json"])
     assert run.status == 0, run.err
     doc = json.loads(run.out)
     conds = {c["name"]: c for c in doc["conditions"]}
@@ -148,7 +160,7 @@ def test_a_planar_3rrr_with_its_three_inputs(tmp_path: Path) -> None:
         return sympy.Matrix([[sympy.cos(t), -sympy.sin(t)], [sympy.sin(t), sympy.cos(t)]])
 
     def geometry(x, y, phi, q):
-        B = [A[i] + rot(q[i]) * (B0[i] - A[i]) for i in range(3)]
+        B = [A[i] + rot(signs[i] * q[i]) * (B0[i] - A[i]) for i in range(3)]
         C = [sympy.Matrix([x, y]) + rot(phi) * C0[i] for i in range(3)]
         return B, C
 

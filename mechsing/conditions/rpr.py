@@ -50,7 +50,8 @@ def planar_parallel(
         raise refuse
     revolutes = [j for j in mech.joints if j.type == "R"]
     normal = sympy.Matrix(revolutes[0].params["axis"]) if revolutes else None
-    if normal is None or list(normal) != [0, 0, 1]:
+    # about z either way: a joint turning about -z turns by minus its value about z
+    if normal is None or list(normal) not in ([0, 0, 1], [0, 0, -1]):
         raise refuse
     clash = [p.name for p in parameter_symbols(mech) if p.name in ("x", "y", "phi")]
     if clash:
@@ -182,6 +183,8 @@ def _transmission(
     for chain in chains:
         j1, j2, j3 = (mech.joint(n) for n in chain)
         sign = 1 if j1.between[0] == ground else -1
+        if j1.type == "R" and sympy.sympify(j1.params["axis"][2]) < 0:
+            sign = -sign  # its value turns the leg about -z
         q1 = S[j1.name]
         used.append(q1)
         lines: list[tuple[str, Any]] = []  # ("R", pivot) or ("P", direction), 2-vectors
