@@ -139,6 +139,74 @@ def test_a_2r_arm_in_a_tilted_plane_has_the_planes_own_determinant(tmp_path: Pat
     assert max(ratios) == pytest.approx(min(ratios), rel=1e-12)
 
 
+TILTED_FOUR_BAR = """\
+mechanism: four-bar-122
+bodies: [ground, crank, coupler, rocker]
+joints:
+  - {name: A, type: R, between: [ground, crank], axis: [1, 2, 2], point: [0, 0, 0]}
+  - {name: B, type: R, between: [crank, coupler], axis: [1, 2, 2], point: ["2/3", "-2/3", "1/3"]}
+  - {name: C, type: R, between: [coupler, rocker], axis: [1, 2, 2], point: ["4/3", "2/3", "-4/3"]}
+  - {name: D, type: R, between: [rocker, ground], axis: [1, 2, 2], point: ["8/3", "-8/3", "4/3"]}
+inputs: [A]
+output: {body: rocker}
+configurations:
+  reference: {}
+"""
+
+
+def _amplitude(expr: sympy.Expr, name: str) -> float:
+    """The largest |value| of a condition in one angle ``name`` (a*sin + b*cos), sampled."""
+    q = sympy.Symbol(name, real=True)
+    f = sympy.lambdify(q, expr, "numpy")
+    return float(np.max(np.abs(f(np.linspace(-math.pi, math.pi, 20001)))))
+
+
+def test_a_loop_in_a_tilted_plane_has_the_conditions_it_has_in_the_xy_plane(
+    tmp_path: Path,
+) -> None:
+    """A four-bar in the plane normal to (1, 2, 2): the planar twists' determinant without
+    D is twice the area of triangle ABC, |AB| |BC| sin(angle at B), whose amplitude over
+    the coupler angle is |AB| |BC| = sqrt(5); without A, |BC| |CD| = 10 (lengths from the
+    pivots, computed here): not the 2/3 or 4/9 of them a projection on x and y keeps."""
+    conds = {c.name: c for c in condition(_write(tmp_path, TILTED_FOUR_BAR)).conditions}
+    P = {
+        k: np.array(v)
+        for k, v in {"A": (0, 0, 0), "B": (2, -2, 1), "C": (4, 2, -4), "D": (8, -8, 4)}.items()
+    }
+    P = {k: v / 3.0 for k, v in P.items()}
+    ab, bc, cd = (float(np.linalg.norm(P[b] - P[a])) for a, b in ("AB", "BC", "CD"))
+    typ1, typ2 = conds["input (type I)"], conds["output (type II)"]
+    assert _amplitude(typ1.expression, "B") == pytest.approx(ab * bc, rel=1e-6)
+    assert _amplitude(typ2.expression, "C") == pytest.approx(bc * cd, rel=1e-6)
+
+
+def test_a_planar_3r_arm_in_a_tilted_plane_has_l1_l2_sin_of_its_twists(tmp_path: Path) -> None:
+    """A 3R arm about (1, 2, 2) with the body's twist as output: the planar twists'
+    determinant is l1 l2 sin(angle at the second joint), l1 and l2 the distances between
+    the axes (C is drawn off the plane of A and B, along its axis: l2 is |BC| projected
+    on the plane), as in the xy plane."""
+    text = (
+        TILTED_FOUR_BAR.replace("four-bar-122", "arm-3r-122")
+        .replace(
+            "  - {name: D, type: R, between: [rocker, ground], axis: [1, 2, 2], point: "
+            '["8/3", "-8/3", "4/3"]}\n',
+            "",
+        )
+        .replace("inputs: [A]", "inputs: [A, B, C]")
+    )
+    text = text.replace('point: ["4/3", "2/3", "-4/3"]', 'point: ["8/3", "4/3", "-10/3"]')
+    (c,) = condition(_write(tmp_path, text)).conditions
+    n = np.array([1.0, 2.0, 2.0]) / 3.0
+
+    def across(d: np.ndarray) -> float:
+        return float(np.linalg.norm(d - (d @ n) * n))
+
+    l1 = across(np.array([2.0, -2.0, 1.0]) / 3)
+    l2 = across(np.array([8.0 - 2, 4 + 2, -10 - 1]) / 3)
+    assert c.form == "determinant"
+    assert _amplitude(c.expression, "B") == pytest.approx(l1 * l2, rel=1e-6)
+
+
 def test_puma_560_det_j_factors_as_published(tmp_path: Path) -> None:
     # Craig, Introduction to Robotics (PUMA 560 Jacobian): det J = a2 (d4 c3 - a3 s3)
     # (a2 c2 + a3 c23 - d4 s23) s5 up to the signs of theta2, theta3, which depend on the

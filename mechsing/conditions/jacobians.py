@@ -138,16 +138,21 @@ def reduce_rows(J: Any, S: list[JointSymbols], params: list[Any]) -> tuple[Any, 
     return J.extract(rows, list(range(J.cols))), True, r
 
 
-def span_volume(J: Any, Jr: Any, S: list[JointSymbols]) -> Any:
+def span_volume(J: Any, Jr: Any, S: list[JointSymbols], twists: bool) -> Any:
     """The factor from a determinant in the kept coordinates ``Jr`` of a fixed span (the
-    rows :func:`reduce_rows` keeps of ``J``) to the determinant in an orthonormal basis of
-    the span: every vector of the span is ``M`` times its kept coordinates, a constant
-    matrix, and the factor is ``sqrt(det(M^T M))``, the volume of the span's unit cube
-    over its projection on the kept coordinates (1 when the other rows are zero: a plane
-    normal to z in x and y; 3/2 for the plane normal to (1, 2, 2), whose projection on x and
-    y shrinks areas by 2/3).  ``M`` is found exactly at a random rational configuration
-    (``J = M Jr`` at every one), and only a Euclidean span has this meaning: point
-    velocities, not twists, whose rotation and translation rows have no common metric."""
+    rows :func:`reduce_rows` keeps of ``J``) to the determinant in the span's own
+    orthonormal coordinates, which do not depend on the frame or on the rows kept.
+
+    Every vector of the span is ``M`` times its kept coordinates, a constant matrix (found
+    exactly at a random rational configuration: ``J = M Jr`` at every one), and the
+    factor is the volume of ``M``'s columns.  Point velocities (``twists`` False) have the
+    Euclidean volume ``sqrt(det(M^T M))``: 3/2 for the plane normal to (1, 2, 2), whose
+    projection on x and y shrinks areas by 2/3.  Twists (``twists``: rows (omega, v)) have
+    no common metric of rotations and translations, but a span of them has one volume all
+    frames agree on, that of its pure translations T (omega = 0) times that of its
+    rotations modulo T: a change of origin only adds translations to each twist, a shear
+    of determinant 1.  A planar chain's twists about the plane normal to (1, 2, 2) then
+    have l1 l2 sin in any plane, a spherical chain's the volume of its rotations."""
     if Jr.rows == J.rows:
         return sympy.Integer(1)
     rng = random.Random(54321)
@@ -158,8 +163,25 @@ def span_volume(J: Any, Jr: Any, S: list[JointSymbols]) -> Any:
         if sympy.simplify(G.det()) == 0:
             continue
         M = (Jx * Jrx.T * G.inv()).applyfunc(sympy.simplify)
-        return sympy.sqrt(sympy.factor(sympy.simplify((M.T * M).det())))
+        r = M.cols
+        Mw, Mv = (M[:3, :], M[3:, :]) if twists else (sympy.zeros(0, r), M)
+        # kept coordinates of the pure translations, and their orthogonal complement
+        K = _columns(Mw.nullspace(), r)
+        L = _columns(K.T.nullspace(), r) if K.cols else sympy.eye(r)
+        num = _gram(Mv * K) * _gram(Mw * L)
+        den = _gram(K) * _gram(L)
+        return sympy.sqrt(sympy.factor(sympy.simplify(num / den)))
     return sympy.Integer(1)
+
+
+def _columns(vectors: list[Any], rows: int) -> Any:
+    """The column vectors side by side (a rows x 0 matrix when there is none)."""
+    return sympy.Matrix.hstack(*vectors) if vectors else sympy.zeros(rows, 0)
+
+
+def _gram(A: Any) -> Any:
+    """``det(A^T A)``, the squared volume of A's columns (1 with no column)."""
+    return (A.T * A).det() if A.cols else sympy.Integer(1)
 
 
 def symbolic_det(M: Any) -> Any:

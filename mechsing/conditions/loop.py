@@ -28,6 +28,7 @@ from mechsing.conditions.jacobians import (
     mechanism_size,
     parameter_symbols,
     reduce_rows,
+    span_volume,
 )
 from mechsing.conditions.linkage import linkage_conditions
 from mechsing.conditions.results import Condition, Factor
@@ -126,9 +127,12 @@ def single_loop(
         )
     )
     closure = _closure_equations(start, end)
+    # the span's own volume, not that of its projection on the rows kept (a loop drawn in
+    # a plane other than xy has the conditions it has in the xy plane)
+    scale = span_volume(K, Kr, Sl, twists=True)
     for name, drop, note in wanted:
         M = Kr.extract(list(range(r)), [i for i, n in enumerate(names) if n != drop])
-        det = sympy.expand(M.det(method="berkowitz"))
+        det = sympy.expand(scale * M.det(method="berkowitz"))
         conds.append(condition_from(name, "determinant", det, Sl, pset, note, explain))
     if pset:
         found = linkage_conditions(mech, S[in_joint], pset, time_limit, False)

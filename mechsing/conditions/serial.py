@@ -5,9 +5,9 @@ with ``output.point``, the velocities of that point) written in the frame of the
 chain's middle body (determinants do not depend on the frame, and the middle frame
 keeps the expressions short).  When the twists span a subgroup smaller than SE(3)
 (a planar chain spans 3 directions, a point in a plane 2), only the rows of that
-subgroup's coordinates are kept, and a point's velocities, which have a metric, are
-scaled back from that projection to the plane's own areas (a 2R arm in any plane has
-the determinant l1 l2 sin E); a redundant chain gives the gcd of its maximal
+subgroup's coordinates are kept, and the determinant is scaled back from that projection
+to the span's own volume (:func:`~mechsing.conditions.jacobians.span_volume`: a 2R or 3R
+arm in any plane has the determinant l1 l2 sin, as in the xy plane); a redundant chain gives the gcd of its maximal
 minors (:mod:`mechsing.conditions.jacobians`)."""
 
 from __future__ import annotations
@@ -78,17 +78,12 @@ def open_chain(mech: Mechanism, S: dict[str, JointSymbols]) -> tuple[list[Condit
     notes = []
     scale: Any = 1
     if fixed and r < J.rows:
-        if point is not None:
-            # velocities: their plane's own areas, not those of its projection on the rows
-            scale = span_volume(J, Jr, Sl)
+        # the span's own volume, not that of its projection on the rows kept
+        scale = span_volume(J, Jr, Sl, twists=point is None)
         notes.append(
             f"the chain's {what} spans {r} of {J.rows} directions at every configuration (a "
             f"subgroup); the condition is written in {r} of its coordinates"
-            + (
-                ", scaled to an orthonormal basis of that span"
-                if point is not None and scale != 1
-                else ""
-            )
+            + (", scaled to the span's own orthonormal coordinates" if scale != 1 else "")
         )
     cond = maximal_condition(Jr, r, Sl, params, f"output Jacobian ({what})", explain, scale)
     if not fixed:
