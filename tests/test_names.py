@@ -87,3 +87,33 @@ def test_no_pattern_no_name() -> None:
     assert singularity_name(here, generic, 1.0, leg=True, moving=("R1", "R2")) is None
     # nor does a pose with no special fact
     assert singularity_name(generic, generic, 1.0, moving=("R1", "R2", "R3")) is None
+
+
+ANTHROPOMORPHIC = """\
+mechanism: anthropomorphic-3r
+bodies: [base, link1, link2, link3]
+joints:
+  - {name: J1, type: R, between: [base, link1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [link1, link2], axis: [0, 1, 0], point: [0, 0, 1]}
+  - {name: J3, type: R, between: [link2, link3], axis: [0, 1, 0], point: [2, 0, 1]}
+inputs: [J1, J2, J3]
+output: {body: link3, point: ["7/2", 0, 1]}
+configurations:
+  stretched: {J1: 0.3, J2: 0.5, J3: 0}
+"""
+
+
+def test_a_positioning_arm_stretched_is_an_elbow(tmp_path: Path) -> None:
+    """An anthropomorphic 3R arm (J1 vertical, J2 and J3 parallel and horizontal, the
+    output point on the forearm) stretched: the output point lies in the plane of the
+    parallel axes of J2 and J3, its elbow singularity (det J = 3/2 sin J3 (4 cos J2 +
+    3 cos(J2 + J3)) by the arm's lengths 2 and 3/2; the factor sin J3 is the elbow),
+    named so by analyze and by condition."""
+    path = tmp_path / "arm.yaml"
+    path.write_text(ANTHROPOMORPHIC)
+    doc = json.loads(_run("analyze", str(path), "--config", "stretched", "--format", "json"))
+    (conf,) = doc["configurations"]
+    assert [f["name"] for f in conf["singularities"] if f["class"] == "serial"] == ["elbow"]
+    cond = json.loads(_run("condition", str(path), "--config", "stretched", "--format", "json"))
+    named = {f["expression"]: f["name"] for c in cond["conditions"] for f in c["factors"]}
+    assert named.get("sin(J3)") == "elbow", named

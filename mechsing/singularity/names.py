@@ -110,6 +110,9 @@ def line_facts(
     if P is not None and items:
         items.append(("the output point", P, items[0][2]))
     for (a, pa, ua), (b, pb, ub), (c, pc, uc) in itertools.combinations(items, 3):
+        point = c == "the output point"  # the point comes last; it has no direction
+        if point:
+            uc = ua
         if max(np.linalg.norm(np.cross(ua, ub)), np.linalg.norm(np.cross(ua, uc))) > tol:
             continue
         d1 = pb - pa - ua * np.dot(pb - pa, ua)
@@ -119,6 +122,11 @@ def line_facts(
                 text = (
                     f"the pivots of {a}, {b} and {c} are in line (the links between them "
                     "stretched or folded)"
+                )
+            elif point:
+                text = (
+                    f"the output point lies in the plane of the parallel axes of {a} and {b} "
+                    "(the links between them stretched or folded)"
                 )
             else:
                 text = (
