@@ -236,6 +236,33 @@ def test_pose_out_of_reach_says_how_far_it_got(tmp_path):
     assert 1.0 < dist < 3.5
 
 
+@pytest.mark.parametrize(
+    ("name", "pose"),
+    [
+        ("lifted", "{position: [1.0, 1.2, 0.5]}"),
+        ("tilted", "{position: [1.0, 1.2, 0], rotation_vector: [0.3, 0, 0]}"),
+    ],
+)
+def test_a_pose_off_the_plane_of_a_planar_robot_is_not_reachable(
+    tmp_path: Path, name: str, pose: str
+) -> None:
+    """The bundled 3-RPR's joints turn about z and slide in xy: every body moves in the
+    plane motions G normal to z, so a pose lifted 0.5 m along z, or turned about x, is
+    reached by no assembly mode, and the error says so, not that continuation stopped
+    (the same pose in the plane closes)."""
+    text = (ROOT / "examples" / "planar_3rpr.yaml").read_text()
+    path = tmp_path / "posed.yaml"
+    path.write_text(
+        text + f"  {name}: {{pose: {pose}}}\n  inside: {{pose: {{position: [1.0, 1.2, 0]}}}}\n"
+    )
+    run = run_cli(["solve", path, "--config", name])
+    assert run.status == 3, run.err
+    assert f"configuration {name!r}: the output's pose is not reachable" in run.err
+    assert "generate G (planar motion, dimension 3; normal (0, 0, 1))" in run.err
+    assert "stopped" not in run.err
+    assert run_cli(["solve", path, "--config", "inside"]).status == 0
+
+
 # ---------------------------------------------------------------------------- bad input
 
 

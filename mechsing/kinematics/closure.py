@@ -51,6 +51,15 @@ from mechsing.timelimit import activity
 __all__ = ["ClosedConfiguration", "Closer", "solve_configuration"]
 
 
+#: how a pose leaves the motion of a family (:meth:`Closer._pose_in_motion`)
+_LEAVES = {
+    "planar": " (it lifts the output off its plane, or turns it about an axis not normal to it)",
+    "spherical": " (it moves the centre every body turns about)",
+    "translational": " (it turns the output)",
+    "schoenflies": " (it turns the output about an axis not parallel to the motion's axis)",
+}
+
+
 class Closer:
     """Solves the named configurations of one kinematic model (memoised)."""
 
@@ -58,6 +67,7 @@ class Closer:
         self.model = model
         self.mech = model.mech
         self._solved: dict[str, ClosedConfiguration] = {}
+        self._family: Any = None  # the joints' family, once a pose is checked against it
         prec = model.precision
         self.tolerance = prec.closure_tolerance(model.length_scale)
         #: the mode whose tolerance decides whether a given value is what it claims
@@ -200,6 +210,7 @@ class Closer:
                     f"{self.mech.output.body if self.mech.output else ''!r}",
                     m.asarray([list(row) for row in pose.rotation]),
                 )
+        self._pose_in_motion(cfg)
         with m.precision.context():
             pm, start, goal = pose_problem(m, cfg, q0)
             full = np.concatenate([target, goal])
@@ -209,6 +220,57 @@ class Closer:
         res = m.residual_norm(m.chord_residuals(q), native=m.precision.mode == "mp")
         return ClosedConfiguration(
             cfg.name, q, float(res), out.underdetermined, out.steps, given, out.notes, out.at_fold
+        )
+
+    def _pose_in_motion(self, cfg: Configuration) -> None:
+        """Refuse a pose the output cannot take: where the joints generate a subgroup
+        smaller than D (a planar mechanism's G), every body, and so the output relative to
+        any body, moves in it; a pose that is not an element of it (a planar platform
+        lifted off its plane, or turned about an axis not normal to it) is reached by no
+        assembly mode, and continuation would only say it stopped (float's test of the
+        element, to 1e-9: the closure accepts 1e-12 L)."""
+        from mechsing import lie
+        from mechsing.kinematics.family import family
+
+        pose = cfg.pose
+        if pose is None:
+            return
+        if self._family is None:
+            self._family = family(self.mech)
+        fam = self._family
+        if fam.subgroup is None or fam.dim is None or fam.dim >= 6:
+            return
+        c0 = np.asarray(to_float(np.array(self.mech.output_reference_point(), dtype=object)))
+        c0 = c0.astype(float)
+        if pose.rotation is not None:
+            R = np.asarray(to_float(np.array(pose.rotation, dtype=object)), dtype=float)
+        elif pose.rotation_vector is not None:
+            rv = np.asarray(to_float(np.array(pose.rotation_vector, dtype=object)), dtype=float)
+            R = lie.exp(np.concatenate([rv, np.zeros(3)]))[:3, :3]
+        else:
+            R = np.eye(3)
+        x = (
+            c0
+            if pose.position is None
+            else np.asarray(to_float(np.array(pose.position, dtype=object)), dtype=float)
+        )
+        g = np.eye(4)
+        g[:3, :3], g[:3, 3] = R, x - R @ c0
+        if fam.subgroup.contains(g, float(self.model.length_scale), "float"):
+            return
+        params = "; ".join(
+            f"{k} ({', '.join(f'{float(v) + 0.0:.4g}' for v in np.ravel(val))})"
+            for k, val in fam.params.items()
+        )
+        how = _LEAVES.get(fam.kind, "")
+        raise ClosureError(
+            f"configuration {cfg.name!r}: the output's pose is not reachable: the "
+            f"mechanism's joints generate {fam.symbol} ({fam.kind} motion, dimension "
+            f"{fam.dim}{'; ' + params if params else ''}), in which every body moves, and "
+            f"the pose given is not a displacement of it from the drawn pose{how}; give a "
+            "pose in it",
+            cfg.name,
+            None,
         )
 
     def follow(
