@@ -258,7 +258,7 @@ def test_a_pose_off_the_plane_of_a_planar_robot_is_not_reachable(
     run = run_cli(["solve", path, "--config", name])
     assert run.status == 3, run.err
     assert f"configuration {name!r}: the output's pose is not reachable" in run.err
-    assert "generate G (planar motion, dimension 3; normal (0, 0, 1))" in run.err
+    assert "the planar motions G across the normal [0.0, 0.0, 1.0]" in run.err
     assert "stopped" not in run.err
     assert run_cli(["solve", path, "--config", "inside"]).status == 0
 

@@ -267,7 +267,7 @@ def _check_in_span(
 ) -> None:
     """Refuse (exit 2) a target outside the subgroup the arm's end (the output, along its
     chain) moves in, naming it."""
-    from mechsing.kinematics.family import family
+    from mechsing.kinematics.family import family, pose_words
 
     V = _span(product, gens)
     coeffs = [sum(V[i, k] * T[i] for i in range(8)) for k in range(V.cols)]
@@ -278,19 +278,6 @@ def _check_in_span(
     if off <= MODE_SPAN_RTOL * size:
         return
     fam = family(given.mech, names)
-    words = {
-        "planar": "the planar motions G across the normal {normal}: give the pose by its "
-        "position in the plane through the reference and its angle about the normal",
-        "schoenflies": "the Schoenflies motions X (every translation, rotations about "
-        "{axis}): give the pose by its position and its angle about that axis",
-        "spherical": "the rotations S about the point {point}: give the pose by its "
-        "rotation only (that point stays where it is)",
-        "translational": "the translations T: give the pose by its position only",
-    }
-    text = words.get(fam.kind, "the subgroup {symbol} its joints generate")
-    params = {
-        k: [float(f"{round(float(x), 12):.6g}") + 0.0 for x in v] for k, v in fam.params.items()
-    }
     raise UserError(
         f"{given.where}: the pose lies outside the subgroup "
         + (
@@ -298,7 +285,7 @@ def _check_in_span(
             if not given.mech.loops
             else f"the output moves in on its chain {' - '.join(names)}, "
         )
-        + text.format(symbol=fam.symbol, **params)
+        + pose_words(fam)
         + f" (the target's Study coordinates are {float(off):.3g} of their size outside its span)"
     )
 

@@ -51,15 +51,6 @@ from mechsing.timelimit import activity
 __all__ = ["ClosedConfiguration", "Closer", "solve_configuration"]
 
 
-#: how a pose leaves the motion of a family (:meth:`Closer._pose_in_motion`)
-_LEAVES = {
-    "planar": " (it lifts the output off its plane, or turns it about an axis not normal to it)",
-    "spherical": " (it moves the centre every body turns about)",
-    "translational": " (it turns the output)",
-    "schoenflies": " (it turns the output about an axis not parallel to the motion's axis)",
-}
-
-
 class Closer:
     """Solves the named configurations of one kinematic model (memoised)."""
 
@@ -230,7 +221,7 @@ class Closer:
         assembly mode, and continuation would only say it stopped (float's test of the
         element, to 1e-9: the closure accepts 1e-12 L)."""
         from mechsing import lie
-        from mechsing.kinematics.family import family
+        from mechsing.kinematics.family import family, pose_words
 
         pose = cfg.pose
         if pose is None:
@@ -258,17 +249,10 @@ class Closer:
         g[:3, :3], g[:3, 3] = R, x - R @ c0
         if fam.subgroup.contains(g, float(self.model.length_scale), "float"):
             return
-        params = "; ".join(
-            f"{k} ({', '.join(f'{float(v) + 0.0:.4g}' for v in np.ravel(val))})"
-            for k, val in fam.params.items()
-        )
-        how = _LEAVES.get(fam.kind, "")
         raise ClosureError(
-            f"configuration {cfg.name!r}: the output's pose is not reachable: the "
-            f"mechanism's joints generate {fam.symbol} ({fam.kind} motion, dimension "
-            f"{fam.dim}{'; ' + params if params else ''}), in which every body moves, and "
-            f"the pose given is not a displacement of it from the drawn pose{how}; give a "
-            "pose in it",
+            f"configuration {cfg.name!r}: the output's pose is not reachable: it is not a "
+            "displacement from the drawn pose in the subgroup every body moves in, "
+            f"{pose_words(fam)}",
             cfg.name,
             None,
         )

@@ -8,7 +8,8 @@ its joints' screws generate at the reference configuration (:func:`mechsing.subg
 * ``translational``: T, the translations;
 * ``spatial``: anything else (D, or a subgroup of another type).
 
-Owns :class:`Family` and :func:`family`.
+Owns :class:`Family`, :func:`family` and :func:`pose_words` (the family in words, and how
+to give a pose in it: what ``modes`` and the closure say of a pose outside it).
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ import numpy as np
 
 from mechsing.model import Mechanism
 
-__all__ = ["Family", "family"]
+__all__ = ["Family", "family", "pose_words"]
 
 #: the family of each subgroup type the modes and drawings tell apart
 _KINDS = {"G": "planar", "S": "spherical", "X": "schoenflies", "T": "translational"}
@@ -59,3 +60,27 @@ def family(mech: Mechanism, joints: Sequence[str] | None = None) -> Family:
         for k, v in sub.params.items()
     }
     return Family(_KINDS.get(sub.symbol, "spatial"), sub.symbol, ident.dim, sub, params)
+
+
+#: each family in words, with how a pose in it is given (:func:`pose_words`)
+_POSE_WORDS = {
+    "planar": "the planar motions G across the normal {normal}: give the pose by its "
+    "position in the plane through the reference and its angle about the normal",
+    "schoenflies": "the Schoenflies motions X (every translation, rotations about "
+    "{axis}): give the pose by its position and its angle about that axis",
+    "spherical": "the rotations S about the point {point}: give the pose by its "
+    "rotation only (that point stays where it is)",
+    "translational": "the translations T: give the pose by its position only",
+}
+
+
+def pose_words(fam: Family) -> str:
+    """The subgroup of ``fam`` in words, with how a pose in it is given (``the planar
+    motions G across the normal [0.0, 0.0, 1.0]: give the pose by its position in the
+    plane through the reference and its angle about the normal``)."""
+    text = _POSE_WORDS.get(fam.kind, "the subgroup {symbol} its joints generate")
+    params = {
+        k: [float(f"{round(float(x), 12):.6g}") + 0.0 for x in np.ravel(v)]
+        for k, v in fam.params.items()
+    }
+    return text.format(symbol=fam.symbol, **params)
