@@ -44,7 +44,7 @@ class Family:
 def family(mech: Mechanism, joints: Sequence[str] | None = None) -> Family:
     """The family of ``mech``'s joints (``joints``: of these only), from the subgroup their
     reference screws generate (decided at ``auto`` precision: float, mp:50 when undecided)."""
-    from mechsing.kinematics import KinematicModel
+    from mechsing.kinematics.model import KinematicModel
     from mechsing.numeric import to_float
     from mechsing.subgroups import identify
 
