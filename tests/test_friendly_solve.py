@@ -99,7 +99,7 @@ def test_mp_text_prints_every_digit():
 def test_float_json_keeps_its_keys_and_adds_joints_text():
     run = run_cli(["solve", str(FOURBAR), "--config", "crank-30", "--format", "json"])
     doc = json.loads(run.out)
-    assert list(doc) == [*OLD_KEYS, "joints_text"]
+    assert list(doc) == [*OLD_KEYS, "joints_text", "notes"]
     for name, values in doc["joints"].items():
         # the shortest decimal that reads back to the float itself
         assert [float(t) for t in doc["joints_text"][name]] == values
@@ -122,7 +122,7 @@ def test_exact_json_gives_the_exact_values_as_text():
         ]
     )
     doc = json.loads(run.out)
-    assert list(doc) == [*OLD_KEYS, "joints_text"] and doc["precision"] == "exact"
+    assert list(doc) == [*OLD_KEYS, "joints_text", "notes"] and doc["precision"] == "exact"
     # B = (3/5, 4/5) on the unit circle about A: the crank turned from +y by -2 atan(1/3)
     assert (
         sympy.simplify(

@@ -189,3 +189,19 @@ def test_a_target_far_beyond_the_limit_gets_no_limit_outside_the_path(
     assert doc["count"] == 0 and doc["complete"] == "proven"
     (note,) = [n for n in doc["notes"] if "beyond a limit of travel" in n]
     assert "lies past A = " in note or "at about A = " in note
+
+
+def test_solve_says_what_the_closure_notes(tmp_path: Path) -> None:
+    """At the crank's limit acos(11/16) itself, float places the unknown joints only to
+    about 1e-8: solve says so in its JSON ``notes`` and its text, as analyze does."""
+    f = tmp_path / "four_bar_limit.yaml"
+    f.write_text(FOUR_BAR)
+    rc, out, err = run_cli(["solve", str(f), "--config", "at-the-limit", "--format", "json"])
+    assert rc == 0, err
+    (note,) = json.loads(out)["notes"]
+    assert "the given values are a fold" in note and "about 1e-8" in note
+    rc, out, err = run_cli(["solve", str(f), "--config", "at-the-limit"])
+    assert rc == 0, err
+    assert f"  note: {note}" in out
+    rc, out, err = run_cli(["solve", str(f), "--config", "inside-1e-9", "--format", "json"])
+    assert rc == 0 and json.loads(out)["notes"] == [], err

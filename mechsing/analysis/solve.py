@@ -37,6 +37,9 @@ class SolveResult:
     closure_residual: float
     underdetermined: bool
     steps: int
+    #: what the closure says of the values it closed at (a given value moved onto the
+    #: limit of travel it lies on to within its resolution, a start at a fold ...)
+    notes: tuple[str, ...] = ()
 
     def to_json(self) -> dict[str, Any]:
         """The JSON of ``mechsing solve --format json`` (keys in this order; added keys
@@ -50,6 +53,7 @@ class SolveResult:
             "underdetermined": self.underdetermined,
             "steps": self.steps,
             "joints_text": {k: list(v) for k, v in self.joints_text},
+            "notes": list(self.notes),
         }
 
 
@@ -127,4 +131,5 @@ def solve(
         closure_residual=float(closed.residual),
         underdetermined=bool(closed.underdetermined),
         steps=int(closed.steps),
+        notes=tuple(closed.notes),
     )

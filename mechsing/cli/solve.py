@@ -67,4 +67,6 @@ def run(args: argparse.Namespace) -> int:
                 else ", ".join(v)
             )
             print(f"  {k}: {shown}")
+        for note in res.notes:
+            print(f"  note: {note}")
     return 0
