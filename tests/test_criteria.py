@@ -22,7 +22,7 @@ from mechsing.model.loader import loads
 from mechsing.numeric import Precision, parse_precision, rank_bounds, to_float
 from mechsing.numeric.linalg import clear_complements
 from mechsing.screws import closure_system
-from mechsing.singularity.criteria import ConstraintTest, MotionTest, SerialTest
+from mechsing.singularity.criteria import ClosureTest, ConstraintTest, MotionTest, SerialTest
 from tests.mechanisms import PLANAR_3R_POINT
 
 PACKAGE = Path(__file__).resolve().parents[1] / "mechsing"
@@ -120,6 +120,45 @@ def test_the_motion_test_of_the_five_bar_at_a_batch_is_its_one_configuration_dec
         "impossible-output": 2,
     }
     assert many == ones == [want, want]
+
+
+def _turned(mech, model, column, turn=np.pi, samples=121):
+    """The commensurate screws of the file's reference configuration with one joint
+    coordinate swept over [-turn, turn] (no closure needed for the rows)."""
+    q0 = np.asarray(to_float(Closer(model).solve("reference").q), dtype=float)
+    Q = np.tile(q0, (samples, 1))
+    Q[:, column] = np.linspace(-turn, turn, samples)
+    P = forward.poses(model, Q)
+    return model.frame.screws(forward.current_screws(model, Q, P))
+
+
+def test_the_closure_test_models_each_loop_in_its_own_subgroup():
+    """A loop through the ground stays in the subgroup its joints generate at the
+    reference (a planar loop in its plane's G, a spherical one in its S): its rows are
+    that subalgebra's coordinates, 3 rows not 6, with the singular values of the
+    six-row stacked screws at every configuration (an isometry of the span they lie
+    in), also where the loop is singular.  A loop that generates all of D keeps its
+    six rows."""
+    eps = np.finfo(float).eps
+    for name, loops, rows in [
+        ("five_bar.yaml", 1, 3),
+        ("planar_3rpr.yaml", 2, 6),
+        ("spherical_4r.yaml", 1, 3),
+        ("bennett.yaml", 1, 6),
+    ]:
+        mech = mechsing.load(EX / name)
+        model = KinematicModel(mech, "float")
+        test = ClosureTest.of(mech, model)
+        assert len(mech.loops) == loops and test.rows == rows, name
+        Ss = _turned(mech, model, 0)
+        got = test.matrices(Ss)
+        six = (Ss[:, None] * test.loop_signs[None, :, None, :]).reshape(len(Ss), -1, model.n)
+        assert got.shape == (len(Ss), rows, model.n)
+        s_got = np.linalg.svd(got, compute_uv=False)
+        s_six = np.linalg.svd(six, compute_uv=False)
+        np.testing.assert_allclose(s_got, s_six[:, :rows], rtol=0, atol=100 * eps, err_msg=name)
+        # the rows left out are zero: the six-row system has no other singular value
+        np.testing.assert_allclose(s_six[:, rows:], 0, rtol=0, atol=100 * eps, err_msg=name)
 
 
 def test_the_constraint_test_of_the_five_bar_counts_the_planar_wrenches():

@@ -39,6 +39,7 @@ __all__ = [
     "chain_matrix",
     "LoopSystem",
     "closure_system",
+    "fixed_loop_basis",
     "grubler",
     "group_mobility",
     "loop_basis",
@@ -288,6 +289,22 @@ def _loop_rows(
     if model.backend.name == "float" and ident is reference_loop_identification(model, loop):
         model._loop_rows[key] = (ident, Bs, Qf)
     return Bs, Qf
+
+
+def fixed_loop_basis(model: KinematicModel, loop: Loop) -> np.ndarray | None:
+    """The orthonormal commensurate basis (6 x dim h, float) of a float model's loop
+    subalgebra h that serves every configuration: the loop's first body is the ground,
+    so its subgroup is its reference one wherever the mechanism moves (as in
+    :func:`closure_system`).  None where the rows cannot be reduced that way: the
+    loop's first body moves (its subgroup is carried by its pose), its subgroup is
+    undecided, or it is all of D (nothing to reduce)."""
+    if loop.bodies[0] != model.mech.ground:
+        return None
+    ident = reference_loop_identification(model, loop)
+    if not ident.ok or ident.subgroup is None or ident.dim is None or ident.dim >= 6:
+        return None
+    _, Qf = _loop_rows(model, loop, ident, model.precision)
+    return np.asarray(Qf, dtype=float)
 
 
 def closure_system(

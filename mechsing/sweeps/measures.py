@@ -79,6 +79,10 @@ _UNIT_REFERENCE = ("input", "output")
 
 #: pairs of samples screened at a time (bounds the working memory of the differences)
 _SCREEN_CHUNK = 512
+#: a closure of full row rank whose matrix is larger than this (bytes per configuration:
+#: the hexapod's 30 x 36 is 8640) is computed again where its sign is read, not kept with
+#: every measured configuration; a planar loop's 3 x n is kept
+_KEPT_CLOSURE_BYTES = 2048
 
 #: tests with a continuous matrix, whose compressed determinant has a meaningful sign
 #: (the constraint wrenches are a basis found afresh at each point)
@@ -372,8 +376,7 @@ class Measures:
         """Whether the closure is measured and its generic rank is its number of rows
         (its kernel then needs no singular vectors)."""
         g = self.generic.get("closure")
-        rows = 6 * len(self.mech.loops) + len(self.model.couplings)
-        return "closure" in self.tests and g is not None and g == rows
+        return "closure" in self.tests and g is not None and g == self.closure.rows
 
     # ------------------------------------------------------------------ measures
 
@@ -430,12 +433,29 @@ class Measures:
         ``mats``: the closure matrix C and the test's rows X (T or E, before the kernel),
         compressed on the leading left singular vectors of the points ``ia`` of ``a``.  It
         vanishes exactly where X N loses rank (N the closure kernel), and, unlike X N, needs
-        no basis of the kernel: it is continuous from a to b, so its sign is a sure test."""
-        Uc = a.basis("closure", ia)[0]
+        no basis of the kernel: it is continuous from a to b, so its sign is a sure test.
+        Where the closure has full row rank, U_c is square and orthogonal: it only
+        multiplies the determinant by det U_c = +-1 at every b of one a, which the sign's
+        reading against a itself (:meth:`_compressed`) removes, so C is taken as it is."""
         Ut = a.basis(t, ia)[0]
-        top = np.swapaxes(Uc, 1, 2) @ mats["closure"]
+        if self._full_row_rank():
+            top = mats["closure"]
+        else:
+            top = np.swapaxes(a.basis("closure", ia)[0], 1, 2) @ mats["closure"]
         low = np.swapaxes(Ut, 1, 2) @ mats[f"{t}_rows"]
         det: np.ndarray = np.linalg.det(np.concatenate([top, low], axis=1))
+        return det
+
+    def _bordered_closure(self, a: PointMeasures, ia: np.ndarray, Cb: np.ndarray) -> np.ndarray:
+        """:meth:`compressed` of a closure of full row rank: ``det [C_b; N_a^T]``, N_a
+        the closure kernel at a, signed to be positive at a.  With C_a = U S V^T and
+        Q = [V N_a] orthogonal, ``[C_b; N_a^T] Q = [C_b V, C_b N_a; 0, I]``, so it is
+        ``det(C_b V) det Q`` = ``+-det(U^T C_b V)``, the compressed determinant itself,
+        with no singular vectors (a QR gave N_a)."""
+        Ka = np.swapaxes(a.kernel[ia], 1, 2)
+        Ca = a.matrices["closure"][ia]
+        at_a = np.linalg.det(np.concatenate([Ca, Ka], axis=1))
+        det: np.ndarray = np.linalg.det(np.concatenate([Cb, Ka], axis=1)) * np.sign(at_a)
         return det
 
     def compressed_pairs(
@@ -590,6 +610,9 @@ class Measures:
                 out[t] = self._bordered(t, a, ia, mats) * np.sign(self._bordered(t, a, ia, at_a))
                 continue
             A = mats[t]
+            if t == "closure" and a.kernel is not None and self._full_row_rank():
+                out[t] = self._bordered_closure(a, ia, A)
+                continue
             if t in ("input", "output") and a.kernel is not None and kernel is not None:
                 # b's kernel basis turned to a's (the orthogonal factor of kb^T ka), so
                 # that the matrix (A = X kb, X the test's map) is continuous from a to b
@@ -642,15 +665,16 @@ def _kept(
         if t in SIGNED and not (t in ("input", "output") and kernel is not None):
             steps[t] = _steps(mats[t])  # screened by Weyl's bound (_screened_pairs)
     if deferred.keys() - thin:
-        # the closure of full row rank is large (and its rows' neighbours are read only
-        # through the screen's norms): its matrices, and the bordered tests' rows, are
-        # computed again where they are read
+        # the closure of full row rank (its rows' neighbours are read only through the
+        # screen's norms); where it is large, its matrices, and the bordered tests' rows,
+        # are computed again where they are read
         for t in deferred.keys() - thin:
             steps[t] = _steps(mats[t])
-        source = _Source(measures, Q)
-        for t in signed:
-            if t in source.keys:
-                signed[t] = _Recomputed(source, t)
+        if mats["closure"][0].nbytes > _KEPT_CLOSURE_BYTES:
+            source = _Source(measures, Q)
+            for t in signed:
+                if t in source.keys:
+                    signed[t] = _Recomputed(source, t)
     return signed, steps
 
 

@@ -135,15 +135,13 @@ class Relocator:
             q = self.bifurcation(z)
             if q is not None:
                 return q
-        # the float point's bases
+        # the float point's closure kernel (the closure is regular there)
         pm = sw.measures(np.asarray(z[:nb], dtype=float)[None, :])
         if test not in pm.rank:
             return None
-        U, V = pm.basis(test, slice(0, 1))
-        U0, V0 = U[0], V[0]
         N0 = None if pm.kernel is None or test not in ("input", "output") else pm.kernel[0]
         drive = sw.cols[0] if kind == "row" else sw.cols[1]
-        return self._secant(z, drive, self.given, test, U0, V0, N0)
+        return self._secant(z, drive, self.given, test, sw.measures.generic[test], N0)
 
     def _free(self, z: np.ndarray) -> tuple[np.ndarray, int, Any, np.ndarray]:
         """The free coordinates at the float point z (the unknowns and the swept one),
@@ -283,10 +281,15 @@ class Relocator:
         drive: int,
         given: tuple[int, ...],
         test: str,
-        U0: np.ndarray,
-        V0: np.ndarray,
+        g: int,
         N0: np.ndarray | None,
     ) -> np.ndarray | None:
+        """The secant on the test's determinant compressed onto its ``g`` leading singular
+        vectors (generic rank g), from both sides of the float point ``z`` along the
+        swept value ``drive``.  The vectors are those at the first side, 1e-9 of the
+        value's scale away, where the test has its generic rank: at the float point itself
+        the g-th pair is any of the vectors the lost rank leaves, and such a one can be
+        blind to the matrix's motion (a planar loop's twist rows out of its plane)."""
         m, sw = self.model, self.sweep
         nb = sw.model.n
         scale = sw.scale(drive)
@@ -302,14 +305,20 @@ class Relocator:
             target = np.array([mpmath.mpf(repr(float(x))) for x in z], dtype=object)
             q = target.copy()
 
+            vectors: tuple[np.ndarray, np.ndarray] | None = None
+
             def f(v: Any) -> tuple[Any, np.ndarray]:
-                nonlocal q
+                nonlocal q, vectors
                 t = target.copy()
                 t[drive] = v
                 qn, _res = self.closer.polish(q, t, given, pose)
                 q = qn
                 A = self._matrix(qn[:nb], test)
-                return self._det(A, U0, V0, N0), qn
+                if vectors is None:
+                    Af = np.array(A if N0 is None else A @ m.asarray(N0.tolist()), dtype=float)
+                    U, _s, Vt = np.linalg.svd(Af)
+                    vectors = U[:, :g], Vt[:g].T
+                return self._det(A, *vectors, N0), qn
 
             v0 = target[drive]
             h = mpmath.mpf(1e-9) * scale
