@@ -122,12 +122,14 @@ def test_the_motion_test_of_the_five_bar_at_a_batch_is_its_one_configuration_dec
     assert many == ones == [want, want]
 
 
-def _turned(mech, model, column, turn=np.pi, samples=121):
+def _turned(mech, model, column, values=None):
     """The commensurate screws of the file's reference configuration with one joint
-    coordinate swept over [-turn, turn] (no closure needed for the rows)."""
+    coordinate given ``values`` (default: 121 over [-pi, pi]; no closure needed for
+    the rows)."""
+    values = np.linspace(-np.pi, np.pi, 121) if values is None else np.asarray(values)
     q0 = np.asarray(to_float(Closer(model).solve("reference").q), dtype=float)
-    Q = np.tile(q0, (samples, 1))
-    Q[:, column] = np.linspace(-turn, turn, samples)
+    Q = np.tile(q0, (len(values), 1))
+    Q[:, column] = values
     P = forward.poses(model, Q)
     return model.frame.screws(forward.current_screws(model, Q, P))
 
@@ -216,6 +218,70 @@ def test_the_legs_wrenches_from_their_qr_span_the_svd_s_near_and_far_from_a_leg_
         rtol=0,
         atol=100 * eps,
     )
+
+
+def test_the_legs_wrenches_within_their_subalgebra_have_the_six_row_singular_values():
+    """Where every leg moves in one subgroup (a planar five-bar or 3-RPR: the plane's G),
+    each leg resists the three out-of-plane wrenches and, within the plane, the
+    complement of its twists: the combined wrenches' singular values are sqrt(legs)
+    three times beside those of the in-plane rows, at every configuration, equal to
+    those of the six-row wrenches.  The five-bar's crank turns a full turn (its first
+    leg, two joints, always resists the force along its distal link: one in-plane row);
+    the 3-RPR's first leg is stretched through zero length, where its two revolute axes
+    meet and it resists a force through them (the one configuration with an in-plane
+    row).  A spatial parallel robot has no such subgroup."""
+    eps = np.finfo(float).eps
+    zero_length = -math.hypot(0.9, 0.3)  # P1 bringing Rp1 onto Rb1 (axis (9/10, 3/10))
+    for name, column, values, rows in [
+        ("five_bar.yaml", 0, np.linspace(-np.pi, np.pi, 241), 241),
+        ("planar_3rpr.yaml", 1, np.append(np.linspace(-2, 2, 81), zero_length), 1),
+    ]:
+        mech = mechsing.load(EX / name)
+        model = KinematicModel(mech, "float")
+        test = ConstraintTest.of(mech, model)
+        assert test.subalgebra is not None and test.subalgebra.shape == (6, 3), name
+        Ss = _turned(mech, model, column, values)
+        signs = ClosureTest.of(mech, model).loop_signs
+        six = test.wrench_rows(Ss, signs)
+        reduced = test.wrench_rows(Ss, signs, reduced=True)
+        assert reduced.shape == (len(Ss), 3 * len(test.legs), 3)
+        want = np.linalg.svd(six, compute_uv=False)
+        got = test.combined_values(np.linalg.svd(reduced, compute_uv=False))
+        # each leg's wrenches are its twists' complement, known to about eps times the
+        # twists' condition number (the six-row ones' out-of-plane rows are not exactly
+        # the plane's annihilator either): the values agree to that
+        cond = np.ones(len(Ss))
+        for leg in test.legs:
+            st = np.linalg.svd(Ss[:, :, leg.columns], compute_uv=False)
+            cond = np.maximum(cond, st[:, 0] / np.where(st[:, -1] > 0, st[:, -1], np.inf))
+        assert np.all(np.abs(got - want) <= 100 * eps * cond[:, None]), name
+        np.testing.assert_allclose(got[:, :3], math.sqrt(len(test.legs)), rtol=0, atol=0)
+        # one in-plane row (a unit force) where a leg resists one, none elsewhere
+        assert np.sum(np.abs(got[:, 3] - 1) < 1e-9) == rows, name
+        assert np.all((np.abs(got[:, 3] - 1) < 1e-9) | (got[:, 3] < 1e-9)), name
+    for name in ["stewart_octahedral.yaml", "tsai_3upu.yaml"]:
+        mech = mechsing.load(EX / name)
+        assert ConstraintTest.of(mech, KinematicModel(mech, "float")).subalgebra is None, name
+
+
+def test_clear_row_rank_calls_clear_only_matrices_far_from_losing_rank():
+    """A square or wide matrix is called clearly of full row rank exactly where its
+    smallest singular value is at least CLEAR_RANK_RATIO of its largest (the SVD's
+    answer), away from that ratio by more than the Gram matrix's rounding."""
+    from mechsing.numeric.linalg import CLEAR_RANK_RATIO, clear_row_rank
+
+    rng = np.random.default_rng(3)
+    A = rng.standard_normal((400, 3, 4))
+    # some of them brought to rank 2, and some near the ratio
+    A[:100, 2] = A[:100, 0] - 2 * A[:100, 1]
+    A[100:200, 2] = A[100:200, 0] + 1e-6 * A[100:200, 2]
+    s = np.linalg.svd(A, compute_uv=False)
+    ratio = s[:, -1] / s[:, 0]
+    got = clear_row_rank(A)
+    far = np.abs(ratio - CLEAR_RANK_RATIO) > 1e-6
+    assert np.array_equal(got[far], (ratio >= CLEAR_RANK_RATIO)[far])
+    assert not got[:200].any() and got[200:].any()
+    assert not clear_row_rank(np.zeros((2, 3, 3))).any()
 
 
 def test_clear_complements_are_the_svd_s_and_only_clear_matrices_are_called_clear():

@@ -215,6 +215,19 @@ def complement(h: np.ndarray, tau: np.ndarray) -> np.ndarray:
 CLEAR_RANK_RATIO = 0.05
 
 
+def clear_row_rank(A: np.ndarray) -> np.ndarray:
+    """For float matrices A (N, n, k), k >= n: which are clearly of full row rank (the
+    smallest singular value at least :data:`CLEAR_RANK_RATIO` of the largest, from the
+    eigenvalues of A A^T, each A scaled to entries at most 1; at that ratio the Gram
+    matrix's rounding, a few eps of its largest eigenvalue, cannot change the answer):
+    the orthogonal complement of their column space is then empty, with no SVD."""
+    top = np.max(np.abs(A), axis=(1, 2), keepdims=True)
+    As = A / np.where(top > 0, top, 1.0)
+    lam = np.linalg.eigvalsh(As @ np.swapaxes(As, 1, 2))  # ascending
+    clear: np.ndarray = (lam[:, 0] >= CLEAR_RANK_RATIO**2 * lam[:, -1]) & (lam[:, -1] > 0)
+    return clear
+
+
 def clear_complements(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """For float matrices A (N, n, k), 0 < k < n: which are clearly of full column rank
     (the smallest singular value at least :data:`CLEAR_RANK_RATIO` of the largest, from

@@ -329,7 +329,9 @@ class Measures:
                     out["output_rows"] = np.broadcast_to(E, (N, *E.shape))
         if "constraint" in self.tests and not signed:
             # the legs' combined constraint wrenches as rows, (N, wrenches, 6)
-            out["constraint"] = self.constraint.wrench_rows(Ss, self.closure.loop_signs)
+            out["constraint"] = self.constraint.wrench_rows(
+                Ss, self.closure.loop_signs, reduced=self.constraint.subalgebra is not None
+            )
         return out, kernel
 
     def _screws(self, Q: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray]:
@@ -355,7 +357,8 @@ class Measures:
     def unkept(self, Q: np.ndarray) -> dict[str, np.ndarray]:
         """The matrices a measured batch of a closure of full row rank does not keep
         (:class:`_Recomputed`), at the rows of Q: the closure and the bordered tests'
-        rows, computed as :meth:`matrices` computes them (the same numbers)."""
+        rows, computed as :meth:`matrices` computes them (the same numbers), and the
+        six-row constraint wrenches where the batch measured them reduced."""
         P, S, Ss = self._screws(Q)
         out = {"closure": self._closure(Ss)}
         if "input" in self.tests:
@@ -364,6 +367,10 @@ class Measures:
         if "output" in self.tests:
             E = self._selection()
             out["output_rows"] = np.broadcast_to(E, (Q.shape[0], *E.shape))
+        if "constraint" in self.tests and self.constraint.subalgebra is not None:
+            # the six-row wrenches, whose vectors are the test's (a batch holds the rows
+            # reduced to the legs' subalgebra, for their values)
+            out["constraint"] = self.constraint.wrench_rows(Ss, self.closure.loop_signs)
         return out
 
     def _selection(self) -> np.ndarray:
@@ -390,7 +397,14 @@ class Measures:
             done = self._closure_svd if t == "closure" else None
             # the vectors deferred where they are not read at every configuration
             later = not (t in SIGNED and self.vectors_everywhere)
-            s, vectors = _test_factors(A, g, unit, done, later)
+            if t == "constraint" and self.constraint.subalgebra is not None:
+                # the rows reduced to the legs' subalgebra: their values alone (the test
+                # has no sign; its vectors, read where a point is placed again, are the
+                # six-row ones, computed there: _kept)
+                s = self.constraint.combined_values(np.linalg.svd(A, compute_uv=False))
+                vectors = None
+            else:
+                s, vectors = _test_factors(A, g, unit, done, later)
             if vectors is not None:
                 bases[t] = vectors
             else:
@@ -595,7 +609,7 @@ class Measures:
         ``b`` (a grid's neighbouring row): b's matrices and kernel are the ones it kept,
         not computed again."""
         assert b.matrices is not None
-        mats = {k: v[ib] for k, v in b.matrices.items()}
+        mats = {k: v[ib] for k, v in b.matrices.items() if _signed_key(k)}
         return self._compressed(a, ia, mats, None if b.kernel is None else b.kernel[ib])
 
     def _compressed(
@@ -606,7 +620,7 @@ class Measures:
             if t not in SIGNED:
                 continue
             if a.matrices is not None and f"{t}_rows" in a.matrices and f"{t}_rows" in mats:
-                at_a = {k: v[ia] for k, v in a.matrices.items()}
+                at_a = {k: v[ia] for k, v in a.matrices.items() if _signed_key(k)}
                 out[t] = self._bordered(t, a, ia, mats) * np.sign(self._bordered(t, a, ia, at_a))
                 continue
             A = mats[t]
@@ -664,6 +678,13 @@ def _kept(
     for t in thin:
         if t in SIGNED and not (t in ("input", "output") and kernel is not None):
             steps[t] = _steps(mats[t])  # screened by Weyl's bound (_screened_pairs)
+    sources: list[_Source] = []
+
+    def recomputed(t: str) -> _Recomputed:
+        if not sources:
+            sources.append(_Source(measures, Q))
+        return _Recomputed(sources[0], t)
+
     if deferred.keys() - thin:
         # the closure of full row rank (its rows' neighbours are read only through the
         # screen's norms); where it is large, its matrices, and the bordered tests' rows,
@@ -671,11 +692,21 @@ def _kept(
         for t in deferred.keys() - thin:
             steps[t] = _steps(mats[t])
         if mats["closure"][0].nbytes > _KEPT_CLOSURE_BYTES:
-            source = _Source(measures, Q)
             for t in signed:
-                if t in source.keys:
-                    signed[t] = _Recomputed(source, t)
+                if t in _Source.keys:
+                    signed[t] = recomputed(t)
+    if "constraint" in signed and measures.constraint.subalgebra is not None:
+        # the batch measured the rows reduced to the legs' subalgebra: the six-row ones,
+        # whose vectors are the test's, are computed where they are read
+        signed["constraint"] = recomputed("constraint")
     return signed, steps
+
+
+def _signed_key(k: str) -> bool:
+    """Whether a kept matrix is read by the sign tests: a signed test's, or the rows a
+    bordered one reads (not a test kept only for its vectors, which may be computed
+    again where indexed)."""
+    return k in SIGNED or k.endswith("_rows")
 
 
 def _turn(kb: np.ndarray, ka: np.ndarray) -> np.ndarray:

@@ -10,7 +10,10 @@ their own largest singular value.
 
 :meth:`ConstraintTest.decide` decides one configuration at any precision from its
 closure system; :meth:`ConstraintTest.batch_values` and
-:meth:`ConstraintTest.wrench_rows` compute a batch of float configurations.
+:meth:`ConstraintTest.wrench_rows` compute a batch of float configurations.  Where every
+leg moves in one subgroup (a planar parallel robot in its plane's G), a batch is modelled
+only that far: each leg's wrenches within the subalgebra, the annihilator every leg
+resists counted in closed form (:meth:`ConstraintTest.combined_values`).
 """
 
 from __future__ import annotations
@@ -21,10 +24,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mechsing.kinematics import KinematicModel
 from mechsing.kinematics.protocol import ClosureModel
 from mechsing.model import Leg, Mechanism
 from mechsing.numeric import Precision, RankDecision, decide_rank
-from mechsing.numeric.linalg import clear_complements, svd
+from mechsing.numeric.linalg import clear_complements, clear_row_rank, svd
+from mechsing.screws import fixed_loop_basis
 from mechsing.singularity.criteria.base import Criterion, singular_values
 
 if TYPE_CHECKING:
@@ -105,6 +110,35 @@ class ConstraintTest(Criterion):
                 inner = tuple(i for i, lp in enumerate(mech.loops) if set(lp.joints) <= legset)
                 legs.append(LegPlan(cols, names, coef, inner, frozenset(legset)))
         self.legs = tuple(legs)
+        #: an orthonormal commensurate basis (6, d), d < 6, of the one subalgebra every
+        #: leg's twists stay in (:meth:`_common_subalgebra`), or None
+        self.subalgebra = self._common_subalgebra(mech, model) if self.legs else None
+
+    def _common_subalgebra(self, mech: Mechanism, model: ClosureModel) -> np.ndarray | None:
+        """The subalgebra h of the loops' one fixed subgroup (each loop's first body the
+        ground: :func:`mechsing.screws.fixed_loop_basis`; the loops' bases together span
+        no more than one of them, by the rank rule), when every joint on a leg's path
+        lies in a loop: the legs' twists then lie in h at every configuration (a planar
+        five-bar's in its plane's g).  None where there is no such h, or it is all of D."""
+        if not isinstance(model, KinematicModel) or not mech.loops:
+            return None
+        bases = [fixed_loop_basis(model, loop) for loop in mech.loops]
+        if any(b is None for b in bases):
+            return None
+        first = bases[0]
+        assert first is not None
+        d = first.shape[1]
+        if len(bases) > 1:
+            together = np.hstack([b for b in bases if b is not None])
+            if decide_rank(together, Precision("float")).rank != d:
+                return None
+        looped = np.zeros(model.n, dtype=bool)
+        for loop in mech.loops:
+            for name in loop.joints:
+                looped[model.joint(name).columns] = True
+        if any(np.any((leg.path_signs != 0) & ~looped) for leg in self.legs):
+            return None
+        return first
 
     # ------------------------------------------------------------------ one configuration
 
@@ -180,12 +214,20 @@ class ConstraintTest(Criterion):
                 out[b] = v
         return out
 
-    def wrench_rows(self, Ss: np.ndarray, loop_signs: np.ndarray) -> np.ndarray:
+    def wrench_rows(
+        self, Ss: np.ndarray, loop_signs: np.ndarray, reduced: bool = False
+    ) -> np.ndarray:
         """The legs' combined constraint wrenches as rows of one width, (B, 6 legs, 6), at a
         batch of float configurations (the columns beyond each leg's rank zero): a leg with
         inner loops (``loop_signs``: each loop's crossing signs per coordinate) over the
-        solutions of those loops at the highest rank they take in the batch."""
+        solutions of those loops at the highest rank they take in the batch.
+
+        ``reduced`` (where the legs share a :attr:`subalgebra` h of dimension d): each
+        leg's twists in h's coordinates and its wrenches within h, (B, d legs, d); the
+        six-row system's singular values are :meth:`combined_values` of theirs."""
         B = Ss.shape[0]
+        Qt = self.subalgebra.T if reduced and self.subalgebra is not None else None
+        D = 6 if Qt is None else Qt.shape[0]
         blocks = []
         for leg in self.legs:
             Tl = (Ss * leg.path_signs[None, None, :])[:, :, leg.columns]
@@ -196,14 +238,22 @@ class ConstraintTest(Criterion):
                 _, s, Vt = np.linalg.svd(Mi, full_matrices=True)
                 r = int(np.max(self.ranks(s).hi))
                 Tl = Tl @ np.swapaxes(Vt[:, r:, :], 1, 2)
+            if Qt is not None:
+                Tl = Qt @ Tl  # an isometry of h: the same singular values
             k = Tl.shape[2]
-            if 0 < k < 6:
+            if 0 < k < D:
                 # a leg clearly of full rank: its wrenches are the complement of its
                 # twists' span from their QR (the same span as U's last columns below)
                 clear, K = clear_complements(Tl)
-                W = np.zeros((B, 6, 6))
+                W = np.zeros((B, D, D))
                 W[:, k:, :] = np.swapaxes(K, 1, 2)
                 rest = np.flatnonzero(~clear)
+                if len(rest):
+                    W[rest] = self._wrenches_by_svd(Tl[rest])
+            elif k:
+                # a leg whose twists clearly span the whole space resists nothing in it
+                W = np.zeros((B, D, D))
+                rest = np.flatnonzero(~clear_row_rank(Tl))
                 if len(rest):
                     W[rest] = self._wrenches_by_svd(Tl[rest])
             else:
@@ -212,9 +262,23 @@ class ConstraintTest(Criterion):
         return np.concatenate(blocks, axis=1)
 
     def _wrenches_by_svd(self, Tl: np.ndarray) -> np.ndarray:
-        """A leg's wrenches as rows (B, 6, 6) at the rank each matrix of its twists ``Tl``
-        (B, 6, k) takes: the left singular vectors beyond it (rows before it zero)."""
+        """A leg's wrenches as rows (B, D, D) at the rank each matrix of its twists ``Tl``
+        (B, D, k) takes: the left singular vectors beyond it (rows before it zero)."""
         U, s, _ = np.linalg.svd(Tl, full_matrices=True)
         hi = self.ranks(s).hi
-        mask = np.arange(6)[None, :] >= hi[:, None]
+        mask = np.arange(Tl.shape[1])[None, :] >= hi[:, None]
         return np.swapaxes(U * mask[:, None, :], 1, 2)
+
+    def combined_values(self, s: np.ndarray) -> np.ndarray:
+        """The singular values (B, 6), descending, of the six-row combined wrenches
+        (:meth:`wrench_rows`) from those ``s`` (B, d) of the reduced rows.  Each leg's
+        twists lie in h, so its wrenches are h's annihilator (6 - d of them) beside its
+        wrenches within h, orthogonal to them: the Gram matrix of all the legs' rows is
+        ``legs`` times the projector on the annihilator plus the reduced rows' own, and
+        the values are sqrt(legs), 6 - d times, and ``s`` (none above it: a sum of
+        ``legs`` projectors)."""
+        assert self.subalgebra is not None
+        d = self.subalgebra.shape[1]
+        fixed = np.full((s.shape[0], 6 - d), np.sqrt(len(self.legs)))
+        both: np.ndarray = np.sort(np.concatenate([fixed, s], axis=1), axis=1)[:, ::-1]
+        return both
