@@ -279,9 +279,12 @@ class BatchClosure:
                 break
             idx = np.flatnonzero(active)
             its[idx] += 1
-            Qa = Q[idx]
-            Pa = {k: v[idx] for k, v in P.items()}
-            r = self.residual_twists(D[idx])
+            if len(idx) == len(Q):  # every row: the arrays themselves, not copies
+                Qa, Pa, r = Q, P, self.residual_twists(D)
+            else:
+                Qa = Q[idx]
+                Pa = {k: v[idx] for k, v in P.items()}
+                r = self.residual_twists(D[idx])
             if split is not None and solve is None:
                 du = split.step(self.screws(Qa, Pa), r)
             else:

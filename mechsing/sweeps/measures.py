@@ -396,7 +396,7 @@ class Measures:
             A, g, unit = mats[t], self.generic[t], t in _UNIT_REFERENCE
             done = self._closure_svd if t == "closure" else None
             # the vectors deferred where they are not read at every configuration
-            later = not (t in SIGNED and self.vectors_everywhere)
+            later = not (t in SIGNED and self.vectors_everywhere and not self._square_rows(t))
             if t == "constraint" and self.constraint.subalgebra is not None:
                 # the rows reduced to the legs' subalgebra: their values alone (the test
                 # has no sign; its vectors, read where a point is placed again, are the
@@ -440,6 +440,15 @@ class Measures:
             and g == self.model.n - gc
         )
 
+    def _square_rows(self, t: str) -> bool:
+        """Whether the bordered determinant of test ``t`` reads its rows X as they are:
+        X N has as many rows as its generic rank (the output test of as many inputs as
+        the motion has degrees of freedom), so U_t is square (:meth:`_bordered`)."""
+        if not self._bordered_test(t):
+            return False
+        rows = self.E.shape[0] if t == "output" and self.E is not None else None
+        return rows is not None and rows == self.generic[t]
+
     def _bordered(
         self, t: str, a: PointMeasures, ia: np.ndarray, mats: dict[str, Any]
     ) -> np.ndarray:
@@ -450,13 +459,15 @@ class Measures:
         no basis of the kernel: it is continuous from a to b, so its sign is a sure test.
         Where the closure has full row rank, U_c is square and orthogonal: it only
         multiplies the determinant by det U_c = +-1 at every b of one a, which the sign's
-        reading against a itself (:meth:`_compressed`) removes, so C is taken as it is."""
-        Ut = a.basis(t, ia)[0]
+        reading against a itself (:meth:`_compressed`) removes, so C is taken as it is; so
+        are the rows X where U_t is square (:meth:`_square_rows`)."""
         if self._full_row_rank():
             top = mats["closure"]
         else:
             top = np.swapaxes(a.basis("closure", ia)[0], 1, 2) @ mats["closure"]
-        low = np.swapaxes(Ut, 1, 2) @ mats[f"{t}_rows"]
+        low = mats[f"{t}_rows"]
+        if not self._square_rows(t):
+            low = np.swapaxes(a.basis(t, ia)[0], 1, 2) @ low
         det: np.ndarray = np.linalg.det(np.concatenate([top, low], axis=1))
         return det
 
