@@ -297,6 +297,8 @@ def block_svd(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | np.ndarray:
     """:func:`numpy.linalg.svd` of a float matrix (dense or sparse), block by block when it
     splits (module docstring)."""
+    if type(A) is np.ndarray and A.dtype == np.float64 and dense(A.size):
+        return dense_svd(A, full_matrices, compute_uv)  # a small one: whole, at once
     m, n = A.shape
     if issparse(A):
         if dense(m * n) or not np.isfinite(A.data).all():

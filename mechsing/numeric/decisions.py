@@ -345,8 +345,12 @@ def decide_rank(
         sigma = tuple(values)
         # the entries' rounding: of F itself, or of the factors of a product decided
         # against the norm of its first factor (``reference``)
-        sparse_data = cast(Any, F).data  # a sparse matrix's stored entries
-        norm = float(np.sqrt(np.sum(sparse_data**2))) if issparse(F) else float(np.linalg.norm(F))
+        if issparse(F):
+            sparse_data = cast(Any, F).data  # a sparse matrix's stored entries
+            norm = float(np.sqrt(np.sum(sparse_data**2)))
+        else:  # numpy.linalg.norm's Frobenius norm (the root of the entries' dot
+            entries = np.asarray(F).ravel(order="K")  # product), without its checks
+            norm = math.sqrt(float(entries.dot(entries)))
         rounding = FLOAT.eps * max(norm, float(reference or 0.0))
     rank, bounds = _split_rank(rel, tol)
     r_eff = rank if rank is not None else bounds[0]
