@@ -357,8 +357,7 @@ class Measures:
     def unkept(self, Q: np.ndarray) -> dict[str, np.ndarray]:
         """The matrices a measured batch of a closure of full row rank does not keep
         (:class:`_Recomputed`), at the rows of Q: the closure and the bordered tests'
-        rows, computed as :meth:`matrices` computes them (the same numbers), and the
-        six-row constraint wrenches where the batch measured them reduced."""
+        rows, computed as :meth:`matrices` computes them (the same numbers)."""
         P, S, Ss = self._screws(Q)
         out = {"closure": self._closure(Ss)}
         if "input" in self.tests:
@@ -367,10 +366,6 @@ class Measures:
         if "output" in self.tests:
             E = self._selection()
             out["output_rows"] = np.broadcast_to(E, (Q.shape[0], *E.shape))
-        if "constraint" in self.tests and self.constraint.subalgebra is not None:
-            # the six-row wrenches, whose vectors are the test's (a batch holds the rows
-            # reduced to the legs' subalgebra, for their values)
-            out["constraint"] = self.constraint.wrench_rows(Ss, self.closure.loop_signs)
         return out
 
     def _selection(self) -> np.ndarray:
@@ -399,8 +394,7 @@ class Measures:
             later = not (t in SIGNED and self.vectors_everywhere and not self._square_rows(t))
             if t == "constraint" and self.constraint.subalgebra is not None:
                 # the rows reduced to the legs' subalgebra: their values alone (the test
-                # has no sign; its vectors, read where a point is placed again, are the
-                # six-row ones, computed there: _kept)
+                # has no sign: no one reads its vectors)
                 s = self.constraint.combined_values(np.linalg.svd(A, compute_uv=False))
                 vectors = None
             else:
@@ -689,13 +683,6 @@ def _kept(
     for t in thin:
         if t in SIGNED and not (t in ("input", "output") and kernel is not None):
             steps[t] = _steps(mats[t])  # screened by Weyl's bound (_screened_pairs)
-    sources: list[_Source] = []
-
-    def recomputed(t: str) -> _Recomputed:
-        if not sources:
-            sources.append(_Source(measures, Q))
-        return _Recomputed(sources[0], t)
-
     if deferred.keys() - thin:
         # the closure of full row rank (its rows' neighbours are read only through the
         # screen's norms); where it is large, its matrices, and the bordered tests' rows,
@@ -703,13 +690,15 @@ def _kept(
         for t in deferred.keys() - thin:
             steps[t] = _steps(mats[t])
         if mats["closure"][0].nbytes > _KEPT_CLOSURE_BYTES:
+            source = _Source(measures, Q)
             for t in signed:
-                if t in _Source.keys:
-                    signed[t] = recomputed(t)
-    if "constraint" in signed and measures.constraint.subalgebra is not None:
-        # the batch measured the rows reduced to the legs' subalgebra: the six-row ones,
-        # whose vectors are the test's, are computed where they are read
-        signed["constraint"] = recomputed("constraint")
+                if t in source.keys:
+                    signed[t] = _Recomputed(source, t)
+    if measures.constraint.subalgebra is not None:
+        # the rows reduced to the legs' subalgebra are not the test's matrix, and no one
+        # reads the vectors of a test with no sign (its located points are not placed
+        # again: mechsing.sweeps.relocate)
+        signed.pop("constraint", None)
     return signed, steps
 
 

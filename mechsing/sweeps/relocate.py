@@ -124,9 +124,10 @@ class Relocator:
 
     def relocate(self, z: np.ndarray, test: str, kind: str) -> np.ndarray | None:
         """The located point ``z`` (float, the sweep's coordinates) again at N digits: its
-        joints (object array), or None when it does not converge.  ``test``: the test
-        whose crossing it is (a fold is placed by its own conditions, whatever vanishes
-        there); ``kind``: ``fold``, or the edge (``row``, ``column``) it was found on."""
+        joints (object array), or None when it does not converge or its test has no sign
+        (the constraint test's minimum).  ``test``: the test whose crossing it is (a fold
+        is placed by its own conditions, whatever vanishes there); ``kind``: ``fold``, or
+        the edge (``row``, ``column``) it was found on."""
         sw = self.sweep
         nb = sw.model.n
         if kind == "fold":
@@ -135,6 +136,8 @@ class Relocator:
             q = self.bifurcation(z)
             if q is not None:
                 return q
+        if test not in ("closure", "input", "output"):
+            return None  # a test with no sign (the constraint's, located at a minimum)
         # the float point's closure kernel (the closure is regular there)
         pm = sw.measures(np.asarray(z[:nb], dtype=float)[None, :])
         if test not in pm.rank:
