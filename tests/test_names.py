@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import yaml
 
-from mechsing.singularity.names import LEG, NAMES, singularity_name
+from mechsing.singularity.names import DISTAL, LEG, NAMES, singularity_name
 from tests.cli import run_cli_subprocess
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -117,3 +117,59 @@ def test_a_positioning_arm_stretched_is_an_elbow(tmp_path: Path) -> None:
     cond = json.loads(_run("condition", str(path), "--config", "stretched", "--format", "json"))
     named = {f["expression"]: f["name"] for c in cond["conditions"] for f in c["factors"]}
     assert named.get("sin(J3)") == "elbow", named
+
+
+def _five_bar_pivots(a1: float, b1: float, a2: float, b2: float) -> dict[str, np.ndarray]:
+    """The five-bar's pivots (examples/five_bar.yaml: A1 (-3/2, 0), B1 (-3/2, 2), P (0, 4),
+    B2 (3/2, 2), A2 (3/2, 0), all axes z) turned by plane rotations, by hand."""
+
+    def rot(t: float, v: np.ndarray) -> np.ndarray:
+        c, s = np.cos(t), np.sin(t)
+        return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+
+    A1, B1, P, B2, A2 = (
+        np.array(p, dtype=float) for p in [(-1.5, 0), (-1.5, 2), (0, 4), (1.5, 2), (1.5, 0)]
+    )
+    b1p = A1 + rot(a1, B1 - A1)
+    b2p = A2 + rot(a2, B2 - A2)
+    return {"A1": A1, "B1": b1p, "P": b1p + rot(a1 + b1, P - B1), "B2": b2p, "A2": A2}
+
+
+def test_a_five_bar_type_ii_is_named_for_its_distal_links_a_slider_crank_s_dead_centre_for_its_leg():
+    """At the five-bar's Type II configuration (its file's `type2`) the distal links are in
+    line (B1, P, B2 collinear, worked out here from the file's angles) and neither crank is
+    stretched: the output singularity's moving joints B1, P and B2 touch no ground pivot,
+    so it is named for the distal links, not a leg.  The slider-crank driven by its slider
+    keeps its dead centre's name: the crank's ground pivot A is among the moving joints."""
+    a1, a2 = np.pi / 6, -np.pi / 6
+    b1 = 2 * np.arctan(2 - 5 * np.sqrt(3) / 3)
+    b2 = 2 * np.arctan(-2 + 5 * np.sqrt(3) / 3)
+    p = _five_bar_pivots(a1, b1, a2, b2)
+
+    def cross(u: np.ndarray, v: np.ndarray) -> float:
+        return float(u[0] * v[1] - u[1] * v[0])
+
+    assert abs(cross(p["P"] - p["B1"], p["B2"] - p["B1"])) < 1e-12  # distal links in line
+    assert abs(cross(p["B1"] - p["A1"], p["P"] - p["B1"])) > 0.5  # leg 1 not stretched
+    assert abs(cross(p["B2"] - p["A2"], p["P"] - p["B2"])) > 0.5  # leg 2 not stretched
+    doc = json.loads(
+        _run("analyze", "examples/five_bar.yaml", "--config", "type2", "--format", "json")
+    )
+    (conf,) = doc["configurations"]
+    out = [f for f in conf["singularities"] if f["class"] == "output"]
+    assert [(f["joints"], f["name"]) for f in out] == [(["B1", "P", "B2"], DISTAL)]
+    assert f"output: {DISTAL} ({NAMES[DISTAL]})" in _run(
+        "analyze", "examples/five_bar.yaml", "--config", "type2"
+    )
+    doc = json.loads(
+        _run(
+            "analyze",
+            "examples/slider_crank_slider_input.yaml",
+            "--config",
+            "dead-centre",
+            "--format",
+            "json",
+        )
+    )
+    (conf,) = doc["configurations"]
+    assert [f["name"] for f in conf["singularities"] if f["class"] == "output"] == [LEG]

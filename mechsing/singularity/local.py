@@ -568,7 +568,9 @@ def _zfb(
             # a dead centre of the output (a slider-crank driven by its slider): named as
             # the leg of a crank's is (an input singularity's leg has its serial finding)
             generic_screws = None if named_by[1] is None else fm.current_screws(named_by[1])
-            name = moving_name(joints, names, named_by[0], generic_screws, float(L))
+            base = mech.output.relative_to
+            on_base = [jt.name for jt in mech.joints if base in jt.between]
+            name = moving_name(joints, names, named_by[0], generic_screws, float(L), on_base)
         findings.append(
             MotionFinding(
                 cls,

@@ -8,7 +8,9 @@ One place for the words: ``condition`` names the factors of its formulas with th
   become parallel, or the three lie in one plane;
 - ``elbow`` (an arm) or ``leg fully stretched or folded`` (a leg of a parallel mechanism):
   parallel axes (a planar chain's pivots) come to lie in one plane (in line), or the wrist
-  centre comes into the plane of two parallel axes;
+  centre comes into the plane of two parallel axes; an output singularity whose moving
+  joints, in line, include none on the base (a five-bar's three joints beyond its two
+  cranks) is ``distal links stretched or folded``;
 - ``shoulder``: the wrist centre (or, for an arm without one, the point where its last two
   axes meet) comes into the plane through one axis parallel to another.
 
@@ -29,6 +31,7 @@ import numpy as np
 from mechsing.numeric import CONDITION_GEOMETRY_RTOL
 
 __all__ = [
+    "DISTAL",
     "ELBOW",
     "LEG",
     "NAMES",
@@ -47,6 +50,7 @@ WRIST = "wrist"
 ELBOW = "elbow"
 SHOULDER = "shoulder"
 LEG = "leg fully stretched or folded"
+DISTAL = "distal links stretched or folded"
 
 #: each name with what it means: the one source of these words in every command
 NAMES = {
@@ -57,6 +61,7 @@ NAMES = {
         "on the first axis for an arm without shoulder offset"
     ),
     LEG: "its pivots in line",
+    DISTAL: "the pivots of its moving joints in line, none of them on the base",
 }
 
 #: a joint line: its name, a point on it (None for a prismatic joint), its unit direction

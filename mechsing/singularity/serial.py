@@ -50,7 +50,7 @@ from mechsing.numeric.scaling import cross3
 from mechsing.screws.readable import echelon, reduced_echelon, simplest
 from mechsing.singularity.criteria.serial import ChainSystem
 from mechsing.singularity.findings import SerialFinding
-from mechsing.singularity.names import lines_of_screws, singularity_name
+from mechsing.singularity.names import DISTAL, LEG, lines_of_screws, singularity_name
 
 #: random configurations sampled to find a chain's generic rank
 GENERIC_SAMPLES = 8
@@ -221,19 +221,29 @@ def serial_finding(
 
 
 def moving_name(
-    joints: Sequence[str], columns: list[str], here: Any, generic: Any, scale: float
+    joints: Sequence[str],
+    columns: list[str],
+    here: Any,
+    generic: Any,
+    scale: float,
+    on_base: Sequence[str] = (),
 ) -> str | None:
     """The name of an output singularity whose moving ``joints`` (each one column
     of the screws ``here`` and at a generic configuration, named ``columns``) show a
     pattern, as a leg's would: a dead centre, the pivots of the moving joints come in
-    line (:data:`~mechsing.singularity.names.LEG`); None where none fits."""
+    line (:data:`~mechsing.singularity.names.LEG`; where none of them is one of the
+    joints ``on_base``, those on the base body, they are the distal links of two legs,
+    a five-bar's: :data:`~mechsing.singularity.names.DISTAL`); None where none fits."""
     cols = [i for i, n in enumerate(columns) if n in joints]
     if generic is None or len(cols) != len(joints) or len(cols) < 3:
         return None
     moving = [columns[i] for i in cols]
     here_lines = lines_of_screws(moving, np.asarray(to_float(here), dtype=float)[:, cols])
     generic_lines = lines_of_screws(moving, np.asarray(generic, dtype=float)[:, cols])
-    return singularity_name(here_lines, generic_lines, scale, leg=True, moving=joints)
+    name = singularity_name(here_lines, generic_lines, scale, leg=True, moving=joints)
+    if name == LEG and on_base and not set(joints) & set(on_base):
+        return DISTAL
+    return name
 
 
 def named(
