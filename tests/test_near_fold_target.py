@@ -205,3 +205,33 @@ def test_solve_says_what_the_closure_notes(tmp_path: Path) -> None:
     assert f"  note: {note}" in out
     rc, out, err = run_cli(["solve", str(f), "--config", "inside-1e-9", "--format", "json"])
     assert rc == 0 and json.loads(out)["notes"] == [], err
+
+
+NEAR_BEYOND = {"just-beyond": 0.8128, "beyond": 0.85, "beyond-negative": -0.9}
+
+
+@pytest.mark.parametrize("name", sorted(NEAR_BEYOND))
+def test_a_target_beyond_the_limit_is_said_to_be_so_with_its_excess(
+    tmp_path: Path, name: str
+) -> None:
+    """A crank 4.5e-5 to 0.09 rad beyond its limit acos(11/16), either way: continuation
+    stalls just short of the limit, and the least squares at the target lands too far
+    from the fold to say anything.  The error still says the target is beyond a limit of
+    travel, by how much (|target| - acos(11/16), to 0.5%) and where the limit is
+    (acos(11/16), to within one unit of the last digit written: a first-order estimate
+    from a landing just past the fold), never 'add an intermediate configuration'."""
+    import re
+
+    f = tmp_path / "four_bar_limit.yaml"
+    f.write_text(FOUR_BAR + "".join(f"  {k}: {{A: {v}}}\n" for k, v in NEAR_BEYOND.items()))
+    target = NEAR_BEYOND[name]
+    limit = math.copysign(math.acos(11 / 16), target)
+    rc, _out, err = run_cli(["solve", str(f), "--config", name])
+    assert rc != 0
+    assert "intermediate configuration" not in err, err
+    said = re.search(r"A is ([0-9.e+-]+) rad beyond its limit at about A = (-?[0-9.]+) rad", err)
+    assert said is not None, err
+    assert float(said.group(1)) == pytest.approx(abs(target - limit), rel=5e-3)
+    shown = said.group(2)
+    digits = len(shown.split(".")[1])
+    assert abs(float(shown) - limit) <= 10.0**-digits, err

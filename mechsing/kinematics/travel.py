@@ -11,8 +11,14 @@ The estimate is sound only near the fold.  A continuation that stalls short of a
 far beyond a limit (:func:`beyond_target`) lands the unknowns by least squares with the
 given values at the target, far from the fold, where the first-order limit can be
 anywhere (a rocker's limit 2 pi/3 read as -2.0): such a limit is kept only when it lies
-between the value continuation reached and the target, where the fold must be; else the
-sentence says that interval instead.
+between the value continuation reached and the target, where the fold must be.  Else the
+given values are moved only a little past the value reached (a millionth of the way
+left, then ten times more, up to a tenth), where the first landing that does not close
+is near the fold again and places it (the target's excess is then measured from it);
+where none does, the sentence says the interval instead.  The estimate is first order
+in where the landing stops along the unknowns' weak direction, which converges slowly
+at a fold: right to about a fifth of the distance past the limit it was read at, which
+the digits it is written to allow for.
 
 Owns :func:`fold_excess` (which given value is nearest to bringing the configuration
 back, the one the residual is most sensitive to, how far beyond its limit it is and where
@@ -25,6 +31,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -88,13 +95,17 @@ def beyond_travel(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> str | No
     return None if fold is None else fold.sentence
 
 
-def fold_excess(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> Fold | None:
+def fold_excess(
+    m: ClosureModel, q: np.ndarray, gmask: np.ndarray, gate: bool = True
+) -> Fold | None:
     """Why configuration ``q`` of model ``m`` (its given coordinates ``gmask``, the others
     solved as far as they go) does not close, when it is beyond a limit of travel: the
     unknown joints' Jacobian is singular there (relative smallest singular value at most
     CONTINUATION_SINGULAR_RTOL), or the residual left lies along the direction they
     cannot correct (at least TRAVEL_RESIDUAL_ALIGNMENT of it along the left singular
-    vector of their smallest singular value).  None otherwise (or without unknowns)."""
+    vector of their smallest singular value).  None otherwise (or without unknowns).
+    ``gate=False``: the estimate along that direction whatever the two tests say, for a
+    caller with its own evidence of a fold (:func:`_fold_past`)."""
     free = ~np.asarray(gmask, dtype=bool)
     if not np.any(free) or not np.any(~free) or not m.chords:
         return None
@@ -118,7 +129,7 @@ def fold_excess(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> Fold | Non
     # (float's least squares stopping short of the fold)
     at_fold = sv[-1] <= CONTINUATION_SINGULAR_RTOL * sv[0]
     stuck = abs(r) >= TRAVEL_RESIDUAL_ALIGNMENT * float(np.linalg.norm(F))
-    if not np.any(g) or not (at_fold or stuck):
+    if not np.any(g) or (gate and not (at_fold or stuck)):
         return None
     i = int(np.argmax(np.abs(g)))  # the given value the fold is most sensitive to
     col = int(np.flatnonzero(~free)[i])
@@ -129,14 +140,21 @@ def fold_excess(m: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> Fold | Non
     with m.precision.context():  # the limit at the model's digits (q is given to them)
         limit_si = mpmath.mpf(q[col]) - mpmath.mpf(r / g[i] * scale)
         limit = limit_si / mpmath.mpf(factor)
-    # first order: the limit is known to about the square of the distance beyond it
-    rel = max(beyond / max(abs(float(limit)), 1e-300), 1e-16)
+    return Fold(
+        col, float(beyond_si), _sentence(label, unit, beyond, beyond, limit), float(limit_si)
+    )
+
+
+def _sentence(label: str, unit: str, beyond: float, known: float, limit: Any) -> str:
+    """The sentence of a value ``beyond`` its ``limit`` (the file's units), the limit
+    written to the digits a first-order estimate made ``known`` beyond it gives: it is
+    known to about the square of that distance."""
+    rel = max(known / max(abs(float(limit)), 1e-300), 1e-16)
     shown = mpmath.nstr(limit, max(3, min(16, int(-math.log10(rel)))))
-    sentence = (
+    return (
         f"{_LEAD}: {label} is {beyond:.3g} {unit} beyond its limit "
         f"at about {label} = {shown} {unit}; give {label} within its travel"
     )
-    return Fold(col, float(beyond_si), sentence, float(limit_si))
 
 
 def beyond_target(
@@ -154,11 +172,22 @@ def beyond_target(
         fm, qn, ~gmask, solve=damped_least_squares, max_steps=POLISH_MAX_STEPS, doubling=True
     )
     fold = fold_excess(fm, landed.q, gmask)
+    if fold is not None:
+        reached, goal = float(q[fold.col]), float(qn[fold.col])
+        if min(reached, goal) <= fold.limit <= max(reached, goal):
+            return fold.sentence
+    # the least squares at a target far beyond the fold need not land near it: the fold
+    # placed again from just past the value reached (where the estimate is sound), the
+    # target's excess measured from it
+    near = _fold_past(fm, np.asarray(q, dtype=float), qn, gmask)
+    if near is not None:
+        label, unit, factor, _ = coordinate_words(fm, near.col)
+        beyond = abs(float(qn[near.col]) - near.limit) / factor
+        limit = mpmath.mpf(near.limit) / mpmath.mpf(factor)
+        return _sentence(label, unit, beyond, near.beyond / factor, limit)
     if fold is None:
         return None
     reached, goal = float(q[fold.col]), float(qn[fold.col])
-    if min(reached, goal) <= fold.limit <= max(reached, goal):
-        return fold.sentence
     label, unit, factor, _ = coordinate_words(fm, fold.col)
     if reached == goal:  # the fold is most sensitive to a value the path does not change
         return f"{_LEAD}, between the given values continuation reached and the target"
@@ -167,3 +196,40 @@ def beyond_target(
         f"limit, which lies past {label} = {reached / factor:.10g} {unit}, the value "
         f"continuation reached; give {label} within its travel"
     )
+
+
+#: the fractions of the way from the value continuation reached to its target at which
+#: :func:`_fold_past` lands, nearest first (continuation stalls within about 1e-5 of a
+#: fold; a probe just past it places the fold to about the square of its distance)
+_PROBES = tuple(10.0**-k for k in range(6, 0, -1))
+
+
+def _fold_past(
+    fm: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray
+) -> Fold | None:
+    """The fold between the configuration ``q`` continuation reached and the given
+    values ``target`` beyond it: the given values moved a fraction of the way
+    (:data:`_PROBES`, nearest first), the unknowns landed by least squares there.  The
+    first landing that does not close is the evidence: its first-order estimate
+    (:func:`fold_excess` ungated: the landing minimises another norm of the residual
+    than the one it is read in, so the residual's alignment with the weakest direction
+    is no sure test this near the fold) gives the fold when it lies between ``q`` and
+    the probe.  None otherwise (a probe that closes is still within the travel)."""
+    tol = fm.precision.closure_tolerance(fm.length_scale)
+    for f in _PROBES:
+        qp = q.copy()
+        qp[gmask] = q[gmask] + f * (target[gmask] - q[gmask])
+        landed = newton_on_group(
+            fm, qp, ~gmask, solve=damped_least_squares, max_steps=POLISH_MAX_STEPS, doubling=True
+        )
+        if landed.residual <= tol:
+            continue
+        fold = fold_excess(fm, landed.q, gmask, gate=False)
+        if fold is None:
+            return None
+        reached, probe = float(q[fold.col]), float(qp[fold.col])
+        goal = float(target[fold.col])
+        between = min(reached, probe) <= fold.limit <= max(reached, probe)
+        ahead = (goal - probe) * (probe - reached) >= 0  # the target lies past the probe
+        return fold if between and ahead else None
+    return None
