@@ -414,10 +414,16 @@ def test_a_redundant_chain_reports_the_gcd_of_its_minors(tmp_path: Path) -> None
     ).replace("[ground, link1, link2]", "[ground, link1, link2, link3]")
     text = text.replace('  bent: {A: 0.3, B: 1}\n  folded: {A: 0.3, B: "pi"}\n', "  {}\n")
     text = text.replace("configurations:\n  {}\n", "")
-    (c,) = condition(_write(tmp_path, text)).conditions
+    result = condition(_write(tmp_path, text))
+    (c,) = result.conditions
     assert c.form == "gcd of maximal minors"
     assert c.factors == ()
     assert "it is 1" in c.note
+    # a constant is no equation: never written "1 = 0", in any format
+    out = result.text()
+    assert "1 = 0" not in out and "no equation: its product is 1, which never vanishes" in out
+    assert "= 0$" not in result.markdown() and "No equation" in result.markdown()
+    assert "= 0" not in result.latex() and r"\text{no equation" in result.latex()
 
 
 def test_cli_formats_and_errors(tmp_path: Path) -> None:

@@ -200,7 +200,12 @@ class ConditionResult:
         for c in self.conditions:
             lines.append("")
             lines.append(f"{c.name} ({c.form}):")
-            lines.append(f"  {c.product_text()} = 0")
+            if c.factors:
+                lines.append(f"  {c.product_text()} = 0")
+            else:  # a constant alone (a redundant chain's gcd 1): no equation to write
+                lines.append(
+                    f"  no equation: its product is {c.product_text()}, which never vanishes"
+                )
             if c.note:
                 lines.append(f"  {c.note}")
             lines.append(f"  constant: {sympy.sstr(c.constant)}")
@@ -222,6 +227,11 @@ class ConditionResult:
             if c.vanishes is not None:
                 verdict = "singular" if c.vanishes else "regular"
                 lines.append(f"  => {self.configuration} is {verdict} for this condition")
+            elif self.configuration is not None and not c.factors:
+                lines.append(
+                    f"  => no equation tells whether {self.configuration} is singular; "
+                    f"mechsing analyze decides it"
+                )
         for n in self.notes:
             lines.append("")
             lines.append(f"Note: {n}")
@@ -247,7 +257,12 @@ class ConditionResult:
             vals = ", ".join(f"{k} = {v:.6g}" for k, v in self.values.items())
             lines.append(f"At configuration `{self.configuration}`: {vals}.")
         for c in self.conditions:
-            lines += ["", f"## {c.name} ({c.form})", "", f"${c.latex()} = 0$", ""]
+            equation = (
+                f"${c.latex()} = 0$"
+                if c.factors
+                else f"No equation: its product is ${c.latex()}$, which never vanishes."
+            )
+            lines += ["", f"## {c.name} ({c.form})", "", equation, ""]
             if c.note:
                 lines += [c.note[0].upper() + c.note[1:] + ".", ""]
             for i, f in enumerate(c.factors, 1):
@@ -276,5 +291,10 @@ class ConditionResult:
         rows = []
         for c in self.conditions:
             expr = c.latex()  # each condition's own form: factors that are sums in parentheses
-            rows.append(rf"  &\text{{{c.name}}}: && {expr} = 0")
+            if c.factors:
+                rows.append(rf"  &\text{{{c.name}}}: && {expr} = 0")
+            else:  # a constant alone: no equation (it never vanishes)
+                rows.append(
+                    rf"  &\text{{{c.name}}}: && \text{{no equation ({expr} never vanishes)}}"
+                )
         return "\\begin{align*}\n" + " \\\\\n".join(rows) + "\n\\end{align*}\n"
