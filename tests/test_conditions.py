@@ -617,3 +617,35 @@ def test_double_rocker_limits_are_its_singular_configurations(
     assert roots["output (type II) in the input A"] == pytest.approx(
         [-2 * math.pi / 3, 2 * math.pi / 3]
     )
+
+
+ORTHOGONAL_3R = """\
+mechanism: orthogonal-3r
+bodies: [base, link1, link2, link3]
+joints:
+  - {name: J1, type: R, between: [base, link1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [link1, link2], axis: [0, 1, 0], point: [1, "3/2", 0]}
+  - {name: J3, type: R, between: [link2, link3], axis: [0, 0, 1], point: [3, "3/2", 0]}
+inputs: [J1, J2, J3]
+output: {body: link3, point: ["9/2", "3/2", 0]}
+"""
+
+
+def test_a_factor_with_no_real_zero_is_said_never_to_vanish(tmp_path: Path) -> None:
+    """An arm whose second axis is orthogonal to the other two: one factor of its output
+    Jacobian's determinant depends on J3 alone and never vanishes (3 cos J3 + 4 >= 1, by
+    hand; checked here on a grid of J3): it says so instead of saying nothing.  A factor
+    with real zeros keeps its geometric meaning or its generic sentence."""
+    result = condition(_write(tmp_path, ORTHOGONAL_3R))
+    factors = [f for c in result.conditions for f in c.factors]
+    alone = [f for f in factors if {s.name for s in f.expression.free_symbols} == {"J3"}]
+    assert len(alone) == 1
+    (f,) = alone
+    fn = sympy.lambdify(sympy.Symbol("J3"), f.expression, "math")
+    grid = [-math.pi + k * 2 * math.pi / 2000 for k in range(2001)]
+    assert min(abs(fn(x)) for x in grid) > 0.5  # no zero anywhere
+    assert f.meaning == "never vanishes: no real value of J3 makes it zero"
+    assert "never vanishes: no real value of J3" in result.text()
+    for other in factors:
+        if other is not f:
+            assert other.meaning is None or "never vanishes" not in other.meaning

@@ -127,7 +127,36 @@ class Explainer:
                 kind = f"{name}: " if name else ""
                 return kind + "vanishes when " + "; ".join(new)
             return f"a condition on {', '.join(joints)} (no parallel axes or aligned pivots there)"
+        if _no_real_zero(f, var, self.params):
+            return f"never vanishes: no real value of {var.q.name} makes it zero"
         return None
+
+
+def _no_real_zero(f: Any, var: JointSymbols, params: list[Any]) -> bool:
+    """Whether ``f``, a function of the one joint angle ``var`` alone (its cosine and
+    sine, the parameters at their values), vanishes at no real angle: at the half angle
+    t = tan(q / 2) its numerator has no real root (within CONDITION_ROOT_RTOL: a double
+    root read as a near pair is a root), and f(pi), the one angle t misses, is not 0."""
+    g = sympy.sympify(f).xreplace({p: p.parameter_value for p in params})
+    if var.c is None or g.free_symbols - {var.c, var.s}:
+        return False
+    t = sympy.Dummy("t")
+    num = sympy.numer(
+        sympy.together(g.xreplace({var.c: (1 - t**2) / (1 + t**2), var.s: 2 * t / (1 + t**2)}))
+    )
+    try:
+        coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(num, t).all_coeffs()]
+    except (sympy.PolynomialError, TypeError):
+        return False
+    if not any(coeffs):
+        return False
+    # f(pi), against the numerator's size (at pi it is the numerator's leading coefficient)
+    at_pi = float(sympy.N(g.xreplace({var.c: -1, var.s: 0}), 30))
+    if abs(at_pi) <= CONDITION_ROOT_RTOL * max(abs(c) for c in coeffs):
+        return False
+    if len(coeffs) < 2:
+        return True
+    return not any(abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r)) for r in np.roots(coeffs))
 
 
 def _root_of(f: Any, var: JointSymbols, pt: dict[Any, Any], params: list[Any]) -> float | None:
