@@ -147,8 +147,9 @@ def fold_excess(
 
 def _sentence(label: str, unit: str, beyond: float, known: float, limit: Any) -> str:
     """The sentence of a value ``beyond`` its ``limit`` (the file's units), the limit
-    written to the digits a first-order estimate made ``known`` beyond it gives: it is
-    known to about the square of that distance."""
+    written to the digits of the distance ``known`` past it that its first-order
+    estimate was read at (it is right to about a fifth of that distance: the module
+    docstring; its last digit may be off by one)."""
     rel = max(known / max(abs(float(limit)), 1e-300), 1e-16)
     shown = mpmath.nstr(limit, max(3, min(16, int(-math.log10(rel)))))
     return (
@@ -200,7 +201,7 @@ def beyond_target(
 
 #: the fractions of the way from the value continuation reached to its target at which
 #: :func:`_fold_past` lands, nearest first (continuation stalls within about 1e-5 of a
-#: fold; a probe just past it places the fold to about the square of its distance)
+#: fold; a probe just past it places the fold to about a fifth of its distance past it)
 _PROBES = tuple(10.0**-k for k in range(6, 0, -1))
 
 
