@@ -25,6 +25,7 @@ import pytest
 from tests.cli import ROOT, WALL_CLOCK
 
 FOURBAR = ROOT / "examples" / "fourbar.yaml"
+FIVE_BAR = ROOT / "examples" / "five_bar.yaml"
 DIETMAIER = ROOT / "examples" / "stewart_dietmaier.yaml"
 PREVIOUS = "the previous output\n"
 STATUS = {signal.SIGINT: 130, signal.SIGTERM: 143}
@@ -86,10 +87,13 @@ def _check_stopped(status: int, err: str, sig: int, out: Path) -> None:
 
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_a_stopped_sweep_exits_130_or_143_and_keeps_the_output(sig: int, tmp_path: Path) -> None:
-    shutil.copy(FOURBAR, tmp_path / "in.yaml")
+    # a five-bar grid of 90,000 samples: some 12 s of CPU, stopped after 2 (a four-bar's
+    # crank turn of 72,000 samples now ends in 1.5)
+    shutil.copy(FIVE_BAR, tmp_path / "in.yaml")
     out = tmp_path / "out.csv"
     out.write_text(PREVIOUS)
-    argv = ["sweep", "in.yaml", "--vary", "A=0:360:0.005", "--quiet", "-o", out.name]
+    grid = ["--vary", "A1=-0.6:0.6:0.004", "--vary", "A2=-0.6:0.6:0.004"]
+    argv = ["sweep", "in.yaml", *grid, "--quiet", "-o", out.name]
     status, err, _ = _interrupted(argv, sig, tmp_path, after_cpu=2.0)
     _check_stopped(status, err, sig, out)
 

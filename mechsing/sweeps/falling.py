@@ -20,9 +20,10 @@ import numpy as np
 
 from mechsing.kinematics.settings import SWEEP_LOCATE_TOL
 from mechsing.numeric import Precision
-from mechsing.sweeps.measures import SIGNED, PointMeasures
+from mechsing.sweeps.measures import PointMeasures
 from mechsing.sweeps.records import Located, RowResult, RowSamples
 from mechsing.sweeps.settings import SWEEP_MERGE_FACTOR, SWEEP_SCREEN_ROUNDING
+from mechsing.sweeps.signs import SIGNED
 
 __all__ = ["column_samples", "others_fall", "singular_samples"]
 

@@ -40,12 +40,10 @@ the same reference as the full analysis: the operator's norm for ``input`` and
 is decided by float's two-threshold rule (``-1``: undecided).  A measure that
 vanishes is a singularity of that test; how close it comes is what a designer plots.
 
-Signs.  A singular value does not change sign, a determinant does.  For consecutive
+Signs.  A singular value does not change sign, a determinant does: for consecutive
 points ``a``, ``b`` of a path (or neighbouring points of a grid),
 :meth:`Measures.compressed` compresses the matrix at ``b`` onto the leading singular
-vectors of the one at ``a``: ``det(U_a^T A_b V_a)`` is positive at ``a`` and changes
-sign where the matrix passes through a rank drop between them (the kernel basis of
-``b`` is first turned to the one of ``a``, so that ``T N`` is continuous).
+vectors of the one at ``a`` (:mod:`.signs`).
 
 Conventions: commensurate matrices (moved to the centroid, v / L, length columns
 times L); twists ``(omega, v)``.
@@ -64,7 +62,14 @@ from mechsing.numeric import relative_singular_values
 from mechsing.numeric.linalg import complement
 from mechsing.singularity.criteria import ClosureTest, ConstraintTest, Criterion, MotionTest
 from mechsing.sweeps.factors import VALUES, largest_singular_value, singular_values
-from mechsing.sweeps.settings import SWEEP_SCREEN_ROUNDING
+from mechsing.sweeps.signs import (
+    SCREEN_CHUNK,
+    SIGNED,
+    UNIT_REFERENCE,
+    compressed_of,
+    pairs,
+    signed_key,
+)
 
 __all__ = ["SIGNED", "TESTS", "Measures", "PointMeasures"]
 
@@ -72,21 +77,10 @@ __all__ = ["SIGNED", "TESTS", "Measures", "PointMeasures"]
 TESTS = ("closure", "input", "output", "constraint")
 
 
-#: tests whose singular values are relative to the operator applied to the motion space
-#: (T N over |T|, E N with |E| = 1), as the full analysis decides them; the others are
-#: relative to their own largest singular value
-_UNIT_REFERENCE = ("input", "output")
-
-#: pairs of samples screened at a time (bounds the working memory of the differences)
-_SCREEN_CHUNK = 512
 #: a closure of full row rank whose matrix is larger than this (bytes per configuration:
 #: the hexapod's 30 x 36 is 8640) is computed again where its sign is read, not kept with
 #: every measured configuration; a planar loop's 3 x n is kept
 _KEPT_CLOSURE_BYTES = 2048
-
-#: tests with a continuous matrix, whose compressed determinant has a meaningful sign
-#: (the constraint wrenches are a basis found afresh at each point)
-SIGNED = ("closure", "input", "output")
 
 
 @dataclass
@@ -294,7 +288,7 @@ class Measures:
         if self.mech.loops:
             out["closure"] = self._closure(Ss)
         kernel = None
-        if self.mech.loops and self._full_row_rank():
+        if self.mech.loops and self.full_row_rank():
             # the kernel is the complement of the row space: C^T = Q R, and C = R^T Q^T
             # has R's singular values
             # (LAPACK's raw form: the Householder vectors below R, not the whole Q)
@@ -374,7 +368,7 @@ class Measures:
         assert self.E is not None, "the output test is measured without inputs"
         return self.E
 
-    def _full_row_rank(self) -> bool:
+    def full_row_rank(self) -> bool:
         """Whether the closure is measured and its generic rank is its number of rows
         (its kernel then needs no singular vectors)."""
         g = self.generic.get("closure")
@@ -388,10 +382,10 @@ class Measures:
         rank, ratio, bases, deferred, top, second = {}, {}, {}, {}, {}, {}
         thin: set[str] = set()
         for t in self.tests:
-            A, g, unit = mats[t], self.generic[t], t in _UNIT_REFERENCE
+            A, g, unit = mats[t], self.generic[t], t in UNIT_REFERENCE
             done = self._closure_svd if t == "closure" else None
             # the vectors deferred where they are not read at every configuration
-            later = not (t in SIGNED and self.vectors_everywhere and not self._square_rows(t))
+            later = not (t in SIGNED and self.vectors_everywhere and not self.square_rows(t))
             if t == "constraint" and self.constraint.subalgebra is not None:
                 # the rows reduced to the legs' subalgebra: their values alone (the test
                 # has no sign: no one reads its vectors)
@@ -421,7 +415,7 @@ class Measures:
             rank, ratio, bases, kernel, signed, deferred, top, steps, frozenset(thin), second
         )
 
-    def _bordered_test(self, t: str) -> bool:
+    def bordered_test(self, t: str) -> bool:
         """Whether the sign of test ``t`` is read from the bordered determinant: an input
         or output test of a closed chain whose generic rank is the dimension of the
         closure kernel (its matrix X N square), with the closure measured too."""
@@ -434,178 +428,29 @@ class Measures:
             and g == self.model.n - gc
         )
 
-    def _square_rows(self, t: str) -> bool:
+    def square_rows(self, t: str) -> bool:
         """Whether the bordered determinant of test ``t`` reads its rows X as they are:
         X N has as many rows as its generic rank (the output test of as many inputs as
-        the motion has degrees of freedom), so U_t is square (:meth:`_bordered`)."""
-        if not self._bordered_test(t):
+        the motion has degrees of freedom), so U_t is square (:func:`.signs.bordered`)."""
+        if not self.bordered_test(t):
             return False
         rows = self.E.shape[0] if t == "output" and self.E is not None else None
         return rows is not None and rows == self.generic[t]
 
-    def _bordered(
-        self, t: str, a: PointMeasures, ia: np.ndarray, mats: dict[str, Any]
-    ) -> np.ndarray:
-        """The determinant of the square matrix [U_c^T C; U_t^T X] at the points of
-        ``mats``: the closure matrix C and the test's rows X (T or E, before the kernel),
-        compressed on the leading left singular vectors of the points ``ia`` of ``a``.  It
-        vanishes exactly where X N loses rank (N the closure kernel), and, unlike X N, needs
-        no basis of the kernel: it is continuous from a to b, so its sign is a sure test.
-        Where the closure has full row rank, U_c is square and orthogonal: it only
-        multiplies the determinant by det U_c = +-1 at every b of one a, which the sign's
-        reading against a itself (:meth:`_compressed`) removes, so C is taken as it is; so
-        are the rows X where U_t is square (:meth:`_square_rows`)."""
-        if self._full_row_rank():
-            top = mats["closure"]
-        else:
-            top = np.swapaxes(a.basis("closure", ia)[0], 1, 2) @ mats["closure"]
-        low = mats[f"{t}_rows"]
-        if not self._square_rows(t):
-            low = np.swapaxes(a.basis(t, ia)[0], 1, 2) @ low
-        det: np.ndarray = np.linalg.det(np.concatenate([top, low], axis=1))
-        return det
-
-    def _bordered_closure(self, a: PointMeasures, ia: np.ndarray, Cb: np.ndarray) -> np.ndarray:
-        """:meth:`compressed` of a closure of full row rank: ``det [C_b; N_a^T]``, N_a
-        the closure kernel at a, signed to be positive at a.  With C_a = U S V^T and
-        Q = [V N_a] orthogonal, ``[C_b; N_a^T] Q = [C_b V, C_b N_a; 0, I]``, so it is
-        ``det(C_b V) det Q`` = ``+-det(U^T C_b V)``, the compressed determinant itself,
-        with no singular vectors (a QR gave N_a)."""
-        Ka = np.swapaxes(a.kernel[ia], 1, 2)
-        Ca = a.matrices["closure"][ia]
-        at_a = np.linalg.det(np.concatenate([Ca, Ka], axis=1))
-        det: np.ndarray = np.linalg.det(np.concatenate([Cb, Ka], axis=1)) * np.sign(at_a)
-        return det
-
     def compressed_pairs(
         self, pm: PointMeasures, ia: np.ndarray, ib: np.ndarray
     ) -> dict[str, np.ndarray]:
-        """The sign test between neighbours of one measured batch (rows ``ia`` and ``ib``),
-        from the matrices it kept: the matrix at b projected on the weakest singular pair
-        at a, ``u_g^T A_b v_g`` (``sigma_g`` at a itself).  It follows the weakest
-        singular value through zero, and costs a product where :meth:`compressed` costs a
-        determinant of the generic rank's size; negative where a rank drop was crossed (the
-        refinement then uses :meth:`compressed`, whose zero is exact).
-
-        A test measured without its singular vectors is screened first: where the matrix
-        moved less from a to b (Frobenius norm) than ``sigma_g`` at a, less the
-        roundings, ``u_g^T A_b v_g >= sigma_g - |A_b - A_a|`` is positive (Weyl), and that
-        bound stands for it; the product is computed at the other pairs only.  So are the
-        input and output tests of a closed chain, by how far the closure kernel moved
-        (:meth:`_turned_pairs`)."""
-        assert pm.matrices is not None
-        out = {}
-        # b's kernel basis turned to a's, for the input and output tests, at the pairs
-        # their screen leaves (the same turn for both)
-        turns: dict[bytes, np.ndarray] = {}
-        for t, M in pm.matrices.items():
-            if t.endswith("_rows") or t not in SIGNED:
-                continue
-            if t in ("input", "output") and pm.kernel is not None:
-                out[t] = self._turned_pairs(pm, t, M, ia, ib, turns)
-                continue
-            if t in pm.deferred:
-                out[t] = self._screened_pairs(pm, t, M, ia, ib)
-                continue
-            U, V = pm.bases[t]
-            u, v = U[ia][:, :, -1], V[ia][:, :, -1]
-            out[t] = np.einsum("ni,nij,nj->n", u, M[ib], v)
-        return out
-
-    def _turned_pairs(
-        self,
-        pm: PointMeasures,
-        t: str,
-        M: np.ndarray,
-        ia: np.ndarray,
-        ib: np.ndarray,
-        turns: dict[bytes, np.ndarray],
-    ) -> np.ndarray:
-        """:meth:`compressed_pairs` of the input or output test of a closed chain, whose
-        matrix ``X N`` reads the closure kernel's basis N (X the output rows over their
-        norm, or the input selection: ``|X| = 1``): ``u_g^T X N_b R v_g``, R the orthogonal
-        factor of ``N_b^T N_a`` (b's basis turned to a's, :func:`_turn`).  It differs from
-        ``sigma_g`` at a by at most ``|N_b R - N_a|``, the largest ``2 sin(theta / 2)``
-        over the principal angles theta between the two kernels.  That is at most
-        ``|N_b - N_a|_F`` (R is the nearest turn, orthogonal Procrustes) and at most
-        ``|P_b - P_a|_F = sqrt(2 k - 2 |N_a^T N_b|_F^2)`` (P the projectors; this one does
-        not depend on the bases, which an SVD picks afresh at each point).  Where the
-        smaller of the two, with the roundings, is below ``sigma_g`` the product is
-        positive and the bound stands for it; the turn and the product are computed at
-        the other pairs only."""
-        assert pm.kernel is not None
-        ia, ib = np.asarray(ia), np.asarray(ib)
-        eps = np.finfo(float).eps
-        rounding = SWEEP_SCREEN_ROUNDING * eps
-        n, k = pm.kernel.shape[1:]
-        # the rounding of |N_a^T N_b|_F^2 (k^2 dot products of length n, of unit vectors)
-        # and of the bases' orthonormality, generously
-        slack = SWEEP_SCREEN_ROUNDING * (n + k) * k * eps
-        d = np.array(pm.ratio[t][ia], dtype=float)  # sigma_g at a (|X| = 1)
-        for lo in range(0, len(ia), _SCREEN_CHUNK):
-            sl = slice(lo, lo + _SCREEN_CHUNK)
-            Na, Nb = pm.kernel[ia[sl]], pm.kernel[ib[sl]]
-            D = Nb - Na
-            W = np.swapaxes(Na, 1, 2) @ Nb
-            apart = 2 * k - 2 * np.einsum("nij,nij->n", W, W)
-            moved = np.minimum(
-                np.sqrt(np.einsum("nij,nij->n", D, D)), np.sqrt(np.maximum(apart, 0.0) + slack)
-            )
-            Aa = M[ia[sl]]
-            size = np.sqrt(np.einsum("nij,nij->n", Aa, Aa))
-            d[sl] -= moved + rounding * size
-        near = np.flatnonzero(~(d > 0))
-        if len(near):
-            key = near.tobytes()
-            if key not in turns:
-                turns.clear()
-                turns[key] = _turn(pm.kernel[ib[near]], pm.kernel[ia[near]])
-            U, V = pm.basis(t, ia[near])
-            u, v = U[:, :, -1], V[:, :, -1]
-            d[near] = np.einsum("ni,nij,nj->n", u, M[ib[near]] @ turns[key], v)
-        return d
-
-    def _screened_pairs(
-        self, pm: PointMeasures, t: str, M: np.ndarray, ia: np.ndarray, ib: np.ndarray
-    ) -> np.ndarray:
-        """:meth:`compressed_pairs` of a test measured without its singular vectors: the
-        Weyl bound where it is positive, the product elsewhere (in chunks: the matrices'
-        differences stay small in memory)."""
-        g = pm.deferred[t]
-        rounding = SWEEP_SCREEN_ROUNDING * np.finfo(float).eps
-        # sigma_g at a (the input and output tests' ratio is sigma_g itself, |X| = 1)
-        d: np.ndarray = pm.ratio[t][ia] * (1.0 if t in _UNIT_REFERENCE else pm.top[t][ia])
-        ia, ib = np.asarray(ia), np.asarray(ib)
-        if t in pm.steps:
-            # the norms the measures kept: of each matrix and of its step to the next row
-            sizes, ahead = pm.steps[t]
-            size = sizes[ia]
-            moved = np.where(ib == ia + 1, ahead[ia], np.nan)
-            known = np.isfinite(moved)
-            d[known] -= moved[known] + rounding * size[known]
-            rest = np.flatnonzero(~known)  # other pairs, and across the measured parts
-        else:
-            rest = np.arange(len(ia))
-        for lo in range(0, len(rest), _SCREEN_CHUNK):
-            sl = rest[lo : lo + _SCREEN_CHUNK]
-            Aa, Ab = M[ia[sl]], M[ib[sl]]
-            D = Ab - Aa
-            moved = np.sqrt(np.einsum("nij,nij->n", D, D))
-            size = np.sqrt(np.einsum("nij,nij->n", Aa, Aa))
-            d[sl] -= moved + rounding * size
-        near = np.flatnonzero(~(d > 0))
-        if len(near):
-            U, V = pm.basis(t, ia[near])
-            u, v = U[:, :, g - 1], V[:, :, g - 1]
-            d[near] = np.einsum("ni,nij,nj->n", u, M[ib[near]], v)
-        return d
+        """The sign test between neighbours of one measured batch (rows ``ia`` and
+        ``ib``), from the matrices it kept (:func:`.signs.pairs`)."""
+        return pairs(pm, ia, ib)
 
     def compressed(self, a: PointMeasures, ia: np.ndarray, Qb: np.ndarray) -> dict[str, np.ndarray]:
         """For pairs of points (row ``ia`` of the measured batch ``a``, row of ``Qb``): per
         test, the determinant of the matrix at b compressed onto a's leading singular
-        vectors.  Positive at a itself; negative where a rank drop was crossed."""
+        vectors.  Positive at a itself; negative where a rank drop was crossed
+        (:func:`.signs.compressed_of`)."""
         mats, kernel = self.matrices(Qb, signed=True)
-        return self._compressed(a, ia, mats, kernel)
+        return compressed_of(self, a, ia, mats, kernel)
 
     def compressed_measured(
         self, a: PointMeasures, ia: np.ndarray, b: PointMeasures, ib: np.ndarray
@@ -614,32 +459,8 @@ class Measures:
         ``b`` (a grid's neighbouring row): b's matrices and kernel are the ones it kept,
         not computed again."""
         assert b.matrices is not None
-        mats = {k: v[ib] for k, v in b.matrices.items() if _signed_key(k)}
-        return self._compressed(a, ia, mats, None if b.kernel is None else b.kernel[ib])
-
-    def _compressed(
-        self, a: PointMeasures, ia: np.ndarray, mats: dict[str, np.ndarray], kernel: Any
-    ) -> dict[str, np.ndarray]:
-        out = {}
-        for t in self.tests:
-            if t not in SIGNED:
-                continue
-            if a.matrices is not None and f"{t}_rows" in a.matrices and f"{t}_rows" in mats:
-                at_a = {k: v[ia] for k, v in a.matrices.items() if _signed_key(k)}
-                out[t] = self._bordered(t, a, ia, mats) * np.sign(self._bordered(t, a, ia, at_a))
-                continue
-            A = mats[t]
-            if t == "closure" and a.kernel is not None and self._full_row_rank():
-                out[t] = self._bordered_closure(a, ia, A)
-                continue
-            if t in ("input", "output") and a.kernel is not None and kernel is not None:
-                # b's kernel basis turned to a's (the orthogonal factor of kb^T ka), so
-                # that the matrix (A = X kb, X the test's map) is continuous from a to b
-                A = A @ _turn(kernel, a.kernel[ia])
-            U, V = a.basis(t, ia)
-            C = np.swapaxes(U, 1, 2) @ A @ V
-            out[t] = np.linalg.det(C)
-        return out
+        mats = {k: v[ib] for k, v in b.matrices.items() if signed_key(k)}
+        return compressed_of(self, a, ia, mats, None if b.kernel is None else b.kernel[ib])
 
 
 def _test_factors(
@@ -677,7 +498,7 @@ def _kept(
     deferred), and the step norms of those its neighbours' screen reads."""
     signed: dict[str, Any] = {t: mats[t] for t in measures.tests if t in SIGNED or t in thin}
     for t in ("input", "output"):
-        if measures._bordered_test(t) and f"{t}_rows" in mats:
+        if measures.bordered_test(t) and f"{t}_rows" in mats:
             signed[f"{t}_rows"] = mats[f"{t}_rows"]
     steps = {}
     for t in thin:
@@ -702,20 +523,6 @@ def _kept(
     return signed, steps
 
 
-def _signed_key(k: str) -> bool:
-    """Whether a kept matrix is read by the sign tests: a signed test's, or the rows a
-    bordered one reads (not a test kept only for its vectors, which may be computed
-    again where indexed)."""
-    return k in SIGNED or k.endswith("_rows")
-
-
-def _turn(kb: np.ndarray, ka: np.ndarray) -> np.ndarray:
-    """The orthogonal factor of ``kb^T ka``: turns the kernel basis kb onto ka."""
-    u, _, vt = np.linalg.svd(np.swapaxes(kb, 1, 2) @ ka)
-    turn: np.ndarray = u @ vt
-    return turn
-
-
 def _max_rank(A: np.ndarray) -> int:
     return int(np.max(Criterion.ranks(np.linalg.svd(A, compute_uv=False)).hi))
 
@@ -726,8 +533,8 @@ def _steps(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     size = np.sqrt(np.einsum("nij,nij->n", M, M))
     ahead = np.full(len(M), np.nan)
     # the differences a block at a time (a small working array, not a second M)
-    for lo in range(0, len(M) - 1, _SCREEN_CHUNK):
-        hi = min(lo + _SCREEN_CHUNK, len(M) - 1)
+    for lo in range(0, len(M) - 1, SCREEN_CHUNK):
+        hi = min(lo + SCREEN_CHUNK, len(M) - 1)
         D = M[lo + 1 : hi + 1] - M[lo:hi]
         ahead[lo:hi] = np.sqrt(np.einsum("nij,nij->n", D, D))
     return size, ahead
