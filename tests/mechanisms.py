@@ -37,6 +37,19 @@ EXAMPLES = ROOT / "examples"
 
 #: crank 10 mm drawn straight down from A = (0, 0), rod 20 mm to the pin C = (10*sqrt(3), 0)
 #: mm on the slide along x (no configurations: a test adds its own)
+#: an orthogonal 3R arm (Baili, Wenger & Chablat, ICRA 2004: modified DH d2 = 1, r2 =
+#: 3/2, d3 = 2, alpha2 = -90 deg, alpha3 = 90 deg, the point at d4 = 3/2 on x3): cuspidal
+ORTHOGONAL_3R = """\
+mechanism: orthogonal-3r
+bodies: [base, link1, link2, link3]
+joints:
+  - {name: J1, type: R, between: [base, link1], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: J2, type: R, between: [link1, link2], axis: [0, 1, 0], point: [1, "3/2", 0]}
+  - {name: J3, type: R, between: [link2, link3], axis: [0, 0, 1], point: [3, "3/2", 0]}
+inputs: [J1, J2, J3]
+output: {body: link3, point: ["9/2", "3/2", 0]}
+"""
+
 CENTRED_SLIDER_CRANK_MM = """\
 mechanism: centred-slider-crank
 units: {length: mm, angle: deg}

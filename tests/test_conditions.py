@@ -15,7 +15,7 @@ import sympy
 
 from mechsing.conditions import condition
 from tests.cli import ROOT, run_cli
-from tests.mechanisms import CENTRED_SLIDER_CRANK_MM
+from tests.mechanisms import CENTRED_SLIDER_CRANK_MM, ORTHOGONAL_3R
 
 EXAMPLES = ROOT / "examples"
 
@@ -617,18 +617,6 @@ def test_double_rocker_limits_are_its_singular_configurations(
     assert roots["output (type II) in the input A"] == pytest.approx(
         [-2 * math.pi / 3, 2 * math.pi / 3]
     )
-
-
-ORTHOGONAL_3R = """\
-mechanism: orthogonal-3r
-bodies: [base, link1, link2, link3]
-joints:
-  - {name: J1, type: R, between: [base, link1], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: J2, type: R, between: [link1, link2], axis: [0, 1, 0], point: [1, "3/2", 0]}
-  - {name: J3, type: R, between: [link2, link3], axis: [0, 0, 1], point: [3, "3/2", 0]}
-inputs: [J1, J2, J3]
-output: {body: link3, point: ["9/2", "3/2", 0]}
-"""
 
 
 def test_a_factor_with_no_real_zero_is_said_never_to_vanish(tmp_path: Path) -> None:

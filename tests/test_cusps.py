@@ -21,6 +21,7 @@ from tests.mechanisms import (
     CUSPIDAL_3RPR_BASE,
     CUSPIDAL_3RPR_PLATFORM,
     CUSPIDAL_3RPR_REST,
+    ORTHOGONAL_3R,
 )
 from tests.reference.cusps_reference import (
     arm_cusps,
@@ -54,16 +55,6 @@ configurations:
 #: 3/2, d3 = 2, alpha2 = -90 deg, alpha3 = 90 deg, the point at d4 = 3/2 on x3): cuspidal
 ORTHOGONAL_DH = [(0, 0, 0), (1, -sympy.pi / 2, sympy.Rational(3, 2)), (2, sympy.pi / 2, 0)]
 ORTHOGONAL_TOOL = (sympy.Rational(3, 2), 0, 0)
-ORTHOGONAL_3R = """\
-mechanism: orthogonal-3r
-bodies: [base, link1, link2, link3]
-joints:
-  - {name: J1, type: R, between: [base, link1], axis: [0, 0, 1], point: [0, 0, 0]}
-  - {name: J2, type: R, between: [link1, link2], axis: [0, 1, 0], point: [1, "3/2", 0]}
-  - {name: J3, type: R, between: [link2, link3], axis: [0, 0, 1], point: [3, "3/2", 0]}
-inputs: [J1, J2, J3]
-output: {body: link3, point: ["9/2", "3/2", 0]}
-"""
 #: a PUMA-like 3R arm: the first two axes meet, the last two parallel
 PUMA_DH = [(0, 0, 0), (0, -sympy.pi / 2, 0), (2, 0, 0)]
 PUMA_3R = """\

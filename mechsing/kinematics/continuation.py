@@ -137,8 +137,10 @@ class Continuation:
                         start_is_fold = fold
                     # values the loops tie together, or a target beyond a limit of travel
                     # (which value, by how much)
+                    # (a start that is itself the fold says so first: the target lies
+                    # beyond the start, whatever the estimate of the excess says)
                     tied = _tied_given(fm, q_start, gmask)
-                    travel = None if tied else beyond_target(fm, q, qt, gmask)
+                    travel = None if tied or start_is_fold else beyond_target(fm, q, qt, gmask)
                     why = tied or travel
                     if not why and start_is_fold:
                         why = (
