@@ -132,31 +132,44 @@ class Explainer:
         return None
 
 
-def _no_real_zero(f: Any, var: JointSymbols, params: list[Any]) -> bool:
-    """Whether ``f``, a function of the one joint angle ``var`` alone (its cosine and
-    sine, the parameters at their values), vanishes at no real angle: at the half angle
-    t = tan(q / 2) its numerator has no real root (within CONDITION_ROOT_RTOL: a double
-    root read as a near pair is a root), and f(pi), the one angle t misses, is not 0."""
-    g = sympy.sympify(f).xreplace({p: p.parameter_value for p in params})
-    if var.c is None or g.free_symbols - {var.c, var.s}:
-        return False
+def _half_angle_coefficients(g: Any, var: JointSymbols) -> list[float] | None:
+    """The coefficients (highest first, float) of the numerator of ``g`` written in the
+    half angle t = tan(q / 2) of the joint ``var`` (its cosine and sine replaced by
+    (1 - t^2) / (1 + t^2) and 2 t / (1 + t^2)); None where it is not a polynomial in t."""
     t = sympy.Dummy("t")
     num = sympy.numer(
         sympy.together(g.xreplace({var.c: (1 - t**2) / (1 + t**2), var.s: 2 * t / (1 + t**2)}))
     )
     try:
-        coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(num, t).all_coeffs()]
+        return [float(sympy.N(c, 30)) for c in sympy.Poly(num, t).all_coeffs()]
     except (sympy.PolynomialError, TypeError):
+        return None
+
+
+def _real_roots(coeffs: list[float]) -> list[float]:
+    """The real roots of the polynomial of ``coeffs`` (within CONDITION_ROOT_RTOL: a double
+    root read as a near pair is a root)."""
+    return [
+        r.real for r in np.roots(coeffs) if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r))
+    ]
+
+
+def _no_real_zero(f: Any, var: JointSymbols, params: list[Any]) -> bool:
+    """Whether ``f``, a function of the one joint angle ``var`` alone (its cosine and
+    sine, the parameters at their values), vanishes at no real angle: at the half angle
+    its numerator has no real root (:func:`_real_roots`), and f(pi), the one angle the
+    half angle misses, is not 0."""
+    g = sympy.sympify(f).xreplace({p: p.parameter_value for p in params})
+    if var.c is None or g.free_symbols - {var.c, var.s}:
         return False
-    if not any(coeffs):
+    coeffs = _half_angle_coefficients(g, var)
+    if not coeffs or not any(coeffs):
         return False
     # f(pi), against the numerator's size (at pi it is the numerator's leading coefficient)
     at_pi = float(sympy.N(g.xreplace({var.c: -1, var.s: 0}), 30))
     if abs(at_pi) <= CONDITION_ROOT_RTOL * max(abs(c) for c in coeffs):
         return False
-    if len(coeffs) < 2:
-        return True
-    return not any(abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r)) for r in np.roots(coeffs))
+    return len(coeffs) < 2 or not _real_roots(coeffs)
 
 
 def _root_of(f: Any, var: JointSymbols, pt: dict[Any, Any], params: list[Any]) -> float | None:
@@ -164,19 +177,12 @@ def _root_of(f: Any, var: JointSymbols, pt: dict[Any, Any], params: list[Any]) -
     sub = {k: v for k, v in pt.items() if k not in (var.c, var.s, var.q)}
     for p in params:
         sub[p] = p.parameter_value
-    t = sympy.Dummy("t")
-    g = sympy.sympify(f).xreplace(sub)
-    g = sympy.together(g.xreplace({var.c: (1 - t**2) / (1 + t**2), var.s: 2 * t / (1 + t**2)}))
-    num = sympy.numer(g)
-    try:
-        coeffs = [float(sympy.N(c, 30)) for c in sympy.Poly(num, t).all_coeffs()]
-    except (sympy.PolynomialError, TypeError):
+    coeffs = _half_angle_coefficients(sympy.sympify(f).xreplace(sub), var)
+    if coeffs is None:
         return None
     if len(coeffs) < 2:
         return math.pi if len(coeffs) == 1 else None
-    roots = [
-        r.real for r in np.roots(coeffs) if abs(r.imag) < CONDITION_ROOT_RTOL * max(1.0, abs(r))
-    ]
+    roots = _real_roots(coeffs)
     if not roots:
         return None
     return 2 * math.atan(roots[0])
