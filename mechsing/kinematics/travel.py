@@ -169,9 +169,7 @@ def beyond_target(
     sentence names that interval."""
     qn = np.asarray(q, dtype=float).copy()
     qn[gmask] = np.asarray(target, dtype=float)[gmask]
-    landed = newton_on_group(
-        fm, qn, ~gmask, solve=damped_least_squares, max_steps=POLISH_MAX_STEPS, doubling=True
-    )
+    landed = _landed(fm, qn, gmask)
     fold = fold_excess(fm, landed.q, gmask)
     if fold is not None:
         reached, goal = float(q[fold.col]), float(qn[fold.col])
@@ -220,9 +218,7 @@ def _fold_past(
     for f in _PROBES:
         qp = q.copy()
         qp[gmask] = q[gmask] + f * (target[gmask] - q[gmask])
-        landed = newton_on_group(
-            fm, qp, ~gmask, solve=damped_least_squares, max_steps=POLISH_MAX_STEPS, doubling=True
-        )
+        landed = _landed(fm, qp, gmask)
         if landed.residual <= tol:
             continue
         fold = fold_excess(fm, landed.q, gmask, gate=False)
@@ -234,3 +230,12 @@ def _fold_past(
         ahead = (goal - probe) * (probe - reached) >= 0  # the target lies past the probe
         return fold if between and ahead else None
     return None
+
+
+def _landed(fm: ClosureModel, q: np.ndarray, gmask: np.ndarray) -> Any:
+    """The unknown joints of ``q`` brought as near closure as they go with its given
+    values held: Newton by damped least squares, a slow step doubled (it stops at the
+    fold when the given values are beyond one)."""
+    return newton_on_group(
+        fm, q, ~gmask, solve=damped_least_squares, max_steps=POLISH_MAX_STEPS, doubling=True
+    )
