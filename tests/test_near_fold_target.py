@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import mpmath
@@ -106,7 +107,6 @@ def test_modes_at_the_limit_count_the_double_root_the_start_reaches(tmp_path: Pa
 def test_no_mode_beyond_the_limit_says_where_the_limit_is(tmp_path: Path) -> None:
     """A crank 1e-9 rad beyond its limit: no mode (proven), and a note saying by how
     much and where the limit is (acos(11/16), to the digits the note gives)."""
-    import re
 
     f = tmp_path / "four_bar_limit.yaml"
     f.write_text(FOUR_BAR)
@@ -153,6 +153,20 @@ def test_a_configuration_started_from_one_beyond_the_limit_is_a_closure_error(
 FAR = {"far": 2.0, "far-negative": -2.5}
 
 
+def _solve_beyond(
+    tmp_path: Path, targets: dict[str, float], name: str
+) -> tuple[Path, float, float, str]:
+    """``solve`` of the four-bar at the crank value ``targets[name]``, beyond its limit:
+    the file, the target, the limit on its side (acos(11/16)) and the error, which it
+    must be."""
+    f = tmp_path / "four_bar_limit.yaml"
+    f.write_text(FOUR_BAR + "".join(f"  {k}: {{A: {v}}}\n" for k, v in targets.items()))
+    target = targets[name]
+    rc, _out, err = run_cli(["solve", str(f), "--config", name])
+    assert rc != 0
+    return f, target, math.copysign(math.acos(11 / 16), target), err
+
+
 @pytest.mark.parametrize("name", sorted(FAR))
 def test_a_target_far_beyond_the_limit_gets_no_limit_outside_the_path(
     tmp_path: Path, name: str
@@ -162,14 +176,7 @@ def test_a_target_far_beyond_the_limit_gets_no_limit_outside_the_path(
     first-order estimate at a least-squares landing far from the fold once put a
     rocker's limit 2 pi/3 at -2.0); it says the value reached, which lies within 1e-4
     short of the limit, and bounds the excess by the rest of the way."""
-    import re
-
-    f = tmp_path / "four_bar_limit.yaml"
-    f.write_text(FOUR_BAR + "".join(f"  {k}: {{A: {v}}}\n" for k, v in FAR.items()))
-    target = FAR[name]
-    limit = math.copysign(math.acos(11 / 16), target)
-    rc, _out, err = run_cli(["solve", str(f), "--config", name])
-    assert rc != 0
+    f, target, limit, err = _solve_beyond(tmp_path, FAR, name)
     reached = float(re.search(r"A reached (-?[0-9.]+) rad", err).group(1))  # type: ignore[union-attr]
     assert abs(reached) < abs(limit) and abs(limit - reached) < 1e-4, err
     estimate = re.search(r"at about A = (-?[0-9.]+) rad", err)
@@ -220,14 +227,7 @@ def test_a_target_beyond_the_limit_is_said_to_be_so_with_its_excess(
     travel, by how much (|target| - acos(11/16), to 0.5%) and where the limit is
     (acos(11/16), to within one unit of the last digit written: a first-order estimate
     from a landing just past the fold), never 'add an intermediate configuration'."""
-    import re
-
-    f = tmp_path / "four_bar_limit.yaml"
-    f.write_text(FOUR_BAR + "".join(f"  {k}: {{A: {v}}}\n" for k, v in NEAR_BEYOND.items()))
-    target = NEAR_BEYOND[name]
-    limit = math.copysign(math.acos(11 / 16), target)
-    rc, _out, err = run_cli(["solve", str(f), "--config", name])
-    assert rc != 0
+    _f, target, limit, err = _solve_beyond(tmp_path, NEAR_BEYOND, name)
     assert "intermediate configuration" not in err, err
     said = re.search(r"A is ([0-9.e+-]+) rad beyond its limit at about A = (-?[0-9.]+) rad", err)
     assert said is not None, err
