@@ -58,6 +58,8 @@ __all__ = [
     "TooManyModes",
     "UserError",
     "YAMLReadError",
+    "note_stop",
+    "raise_if_stopped",
     "current_work",
     "forget_work",
     "work_item",
@@ -221,6 +223,27 @@ class Interrupted(KeyboardInterrupt):
     def __init__(self, signum: int) -> None:
         super().__init__(signum)
         self.signum = signum
+
+
+#: the signal that asked the running command to stop, while it runs (one process, one
+#: command: a signal is the process's, so this is not per context)
+_STOP: dict[str, int | None] = {"signum": None}
+
+
+def note_stop(signum: int | None) -> None:
+    """Record that ``signum`` asked the running command to stop (None: clear the record,
+    as a command starts and ends).  Set by the command line's signal handler."""
+    _STOP["signum"] = signum
+
+
+def raise_if_stopped() -> None:
+    """Raise :class:`Interrupted` if a signal asked the command to stop: the stop is
+    raised where the signal arrived, but code that swallows exceptions (a weak
+    reference's callback, a library's bare ``except``) can lose it there, so what must not
+    happen after a stop (an output file replaced, a success status) asks again."""
+    signum = _STOP["signum"]
+    if signum is not None:
+        raise Interrupted(signum)
 
 
 _WORK: ContextVar[tuple[tuple[str, str], ...]] = ContextVar("mechsing_work", default=())

@@ -41,7 +41,7 @@ from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import IO
 
-from mechsing.errors import InputError, UserError
+from mechsing.errors import InputError, UserError, raise_if_stopped
 
 __all__ = [
     "PIPE_WAIT_SECONDS",
@@ -293,7 +293,9 @@ def open_output(
 ) -> Iterator[IO]:
     """A file object to write the output ``path`` through (text in UTF-8, or ``binary``):
     a temporary file beside it, renamed over ``path`` when the block ends normally and
-    removed when it raises (an interrupt included), so ``path`` is never half written.
+    removed when it raises (an interrupt included), so ``path`` is never half written; nor
+    is it replaced once a signal asked the command to stop
+    (:func:`~mechsing.errors.raise_if_stopped`).
     The rules of :func:`check_output` apply; without ``follow_links``, whatever ``path``
     names (a link included) is replaced."""
     shown = os.fspath(path)
@@ -315,6 +317,7 @@ def open_output(
             yield f
             f.flush()
             os.fsync(f.fileno())
+        raise_if_stopped()  # a stop some code swallowed: the old output stays
         os.replace(tmp, target)
     except BaseException as exc:
         with contextlib.suppress(OSError):

@@ -30,9 +30,12 @@ from typing import TYPE_CHECKING
 from mechsing import __version__
 from mechsing.errors import (
     ConfigurationError,
+    Interrupted,
     MechsingError,
     current_work,
     forget_work,
+    note_stop,
+    raise_if_stopped,
     work_item,
 )
 
@@ -113,38 +116,95 @@ STOP_SIGNALS = {signal.SIGINT: "SIGINT (Ctrl-C)", signal.SIGTERM: "SIGTERM"}
 #: seconds after a stop during which a repeated signal is ignored: the command is removing
 #: its temporary files; later it interrupts again (should some code have swallowed the first)
 STOP_REPEAT_SECONDS = 1.0
+#: seconds after a stop was lost (raised where Python cannot raise, as in a weak
+#: reference's callback) before it is sent again
+LOST_STOP_DELAY = 1e-3
 
 
 class _StopOnSignal:
     """SIGINT and SIGTERM raise :class:`~mechsing.errors.Interrupted` (a KeyboardInterrupt
     that knows its signal) in the main thread, from Python code or from a computation in C
     that lets itself be stopped (:func:`mechsing.timelimit.interruptible`); the temporary
-    files are removed on the way out, and :func:`main` prints one line."""
+    files are removed on the way out, and :func:`main` prints one line.
+
+    The exception is raised wherever the main thread is when the signal arrives, which can
+    be a weak reference's callback or a ``__del__`` run by the garbage collector: Python
+    only reports an exception there ("Exception ignored in ...") and goes on.  Such a lost
+    stop is not reported but sent again, a millisecond later, by a thread of its own
+    (:meth:`_lost`).  And the stop is recorded (:func:`mechsing.errors.note_stop`): an
+    output file is not replaced after it, and the command does not end with success,
+    whatever swallowed it."""
 
     def __init__(self) -> None:
         self.before: dict[int, object] = {}
         self.last = -math.inf
+        self.hook: object = None
+        self.again: list[threading.Thread] = []
+        self.in_hook = False
+        self.closing = False
 
     def __enter__(self) -> _StopOnSignal:
+        note_stop(None)
         if threading.current_thread() is threading.main_thread():
             with contextlib.suppress(ValueError):  # no signals here (an embedded interpreter)
                 for sig in STOP_SIGNALS:
                     self.before[sig] = signal.signal(sig, self._stop)
+            if self.before and hasattr(signal, "pthread_kill"):
+                self.hook = sys.unraisablehook
+                sys.unraisablehook = self._lost
         return self
 
     def _stop(self, signum: int, frame: object) -> None:
-        from mechsing.errors import Interrupted
-
+        if self.in_hook:  # raised here, it would be lost once more: sent again instead
+            self._send_again(signum)
+            return
         now = time.monotonic()
-        if now - self.last < STOP_REPEAT_SECONDS:
+        if self.closing or now - self.last < STOP_REPEAT_SECONDS:
             return
         self.last = now
+        note_stop(signum)
         raise Interrupted(signum)
 
+    def _lost(self, unraisable: object) -> None:
+        """The interpreter could not raise an exception further (it runs this hook, in the
+        main thread for a stop): a stop is sent again, anything else reported as before."""
+        exc = getattr(unraisable, "exc_value", None)
+        if not isinstance(exc, Interrupted):
+            self.hook(unraisable)  # type: ignore[operator]
+            return
+        self.in_hook = True
+        try:
+            self._send_again(exc.signum)
+        finally:
+            self.in_hook = False
+
+    def _send_again(self, signum: int) -> None:
+        """Send ``signum`` to the main thread again in :data:`LOST_STOP_DELAY` seconds,
+        from another thread: sent by the main thread itself, its handler would run at once,
+        where the stop was just lost."""
+        self.last = -math.inf  # not a repeated signal: the first one was lost
+        main = threading.main_thread().ident
+        again = threading.Thread(
+            target=_send_later, args=(main, signum), name="mechsing-stop", daemon=True
+        )
+        self.again.append(again)
+        again.start()
+
     def __exit__(self, *exc: object) -> None:
+        self.closing = True  # a stop sent again now finds the command ending: ignored
+        for again in self.again:
+            again.join()
         for sig, handler in self.before.items():
             # None: the handler was not set from Python; the default is put back
             signal.signal(sig, signal.SIG_DFL if handler is None else handler)  # type: ignore[arg-type]
+        if self.hook is not None:
+            sys.unraisablehook = self.hook  # type: ignore[assignment]
+        note_stop(None)
+
+
+def _send_later(thread: int, signum: int) -> None:
+    time.sleep(LOST_STOP_DELAY)
+    signal.pthread_kill(thread, signum)
 
 
 def _stopped_line(exc: KeyboardInterrupt, args: argparse.Namespace | None) -> tuple[str, int]:
@@ -256,7 +316,9 @@ def main(argv: Sequence[str] | None = None) -> int:
                 return 0
             forget_work()
             with _private_library_files():
-                return int(args._run(args))
+                status = int(args._run(args))
+            raise_if_stopped()  # a stop that some code swallowed is still a stop
+            return status
         except KeyboardInterrupt as exc:  # SIGINT, SIGTERM: one line, 130 / 143
             if args is not None and args.traceback:
                 raise
