@@ -110,6 +110,13 @@ SWEEP_ARC_MIN_STEP = 1e-10
 #: larger correction may have jumped to another assembly mode
 SWEEP_NODE_CORRECTION = 0.3
 
+#: a node of a path is predicted only this far (commensurate, passive joints included):
+#: where the passive joints swing much faster than the given ones (a five-bar's distal
+#: links near their closest approach) the prediction of a whole step can overshoot
+#: towards another assembly mode and Newton close there within the correction allowed;
+#: the step is halved instead
+SWEEP_NODE_SWING = 1.0
+
 #: the rank of a path's closure Jacobian in its unknowns and the swept coordinate (whose
 #: kernel is the curve's tangent, or the branches' directions where branches cross):
 #: singular values above this fraction of the largest count (a regular point of the curve

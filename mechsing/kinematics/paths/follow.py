@@ -47,6 +47,7 @@ from mechsing.errors import ClosureError
 from mechsing.kinematics.paths.arc import Arc
 from mechsing.kinematics.paths.folds import Fold, close_to_fold, near_fold
 from mechsing.kinematics.paths.nodes import (
+    node_bounds,
     node_index,
     polynomial_prediction,
     reach_node,
@@ -56,7 +57,6 @@ from mechsing.kinematics.paths.nodes import (
 from mechsing.kinematics.paths.problem import Problem
 from mechsing.kinematics.paths.segments import close_segments
 from mechsing.kinematics.paths.trace import PathTrace
-from mechsing.kinematics.settings import SWEEP_NODE_CORRECTION
 
 __all__ = [
     "PathTrace",
@@ -98,10 +98,7 @@ def first_nodes_of(
         # the tangents' predictions, every path's in one update
         Z0 = np.array([np.asarray(starts[s][0], dtype=float) for s, _ in which])
         preds = tangent_points(pb, Z0, np.array(steps), col, np.array(targets))
-        bounds = [
-            SWEEP_NODE_CORRECTION * pb.comm(zp - z0) for zp, z0 in zip(preds, Z0, strict=True)
-        ]
-        Q, ok, _ = pb.close_near(preds, np.array(bounds))
+        Q, ok, _ = pb.close_near(preds, node_bounds(pb, preds, Z0))
         for (s, m), q, good in zip(which, Q, ok, strict=True):
             out[s][m] = q if good else None
     return out
@@ -284,13 +281,8 @@ def follow_together(
             preds[secant] = bc.between(zs, zq, -f)
         for s, (m, j) in enumerate(steps):
             preds[s, col] = paths[m][1][j]
-        bounds = np.array(
-            [
-                SWEEP_NODE_CORRECTION * pb.comm(preds[s] - walks[m].z)
-                for s, (m, _) in enumerate(steps)
-            ]
-        )
-        Q, ok, _ = pb.close_near(preds, bounds)
+        Z = np.array([walks[m].z for m, _ in steps])
+        Q, ok, _ = pb.close_near(preds, node_bounds(pb, preds, Z))
         going = []
         for s, (m, j) in enumerate(steps):
             if ok[s]:

@@ -4,7 +4,8 @@ Owns the node step of :func:`~mechsing.kinematics.paths.follow.follow`: which sa
 node (:func:`node_index`: at most :data:`~mechsing.numeric.SWEEP_NODE_STEP` on), its
 prediction (the tangent at a first step, the secant or the polynomial through the last
 nodes after that), and :func:`reach_node`: one batched Newton from the prediction, kept
-when the correction is small next to the step (the step halved when it is not).
+when the correction is small next to the step and the step itself not too long
+(:func:`node_bounds`; the step halved when it is not).
 """
 
 from __future__ import annotations
@@ -15,9 +16,10 @@ import numpy as np
 
 from mechsing.kinematics.paths.problem import Problem
 from mechsing.kinematics.paths.steps import closure_matrix, tangent_increment
-from mechsing.kinematics.settings import SWEEP_NODE_CORRECTION, SWEEP_NODE_STEP
+from mechsing.kinematics.settings import SWEEP_NODE_CORRECTION, SWEEP_NODE_STEP, SWEEP_NODE_SWING
 
 __all__ = [
+    "node_bounds",
     "node_index",
     "polynomial_prediction",
     "reach_node",
@@ -94,7 +96,7 @@ def _node(
         # a first step: the tangent predictor at z (no Newton) predicts it
         zp = _tangent_prediction(pb, z, col, value)
         if zp is not None:
-            Q, ok, _ = pb.close_near(zp[None, :], SWEEP_NODE_CORRECTION * pb.comm(zp - z))
+            Q, ok, _ = pb.close_near(zp[None, :], node_bounds(pb, zp[None, :], z[None, :]))
             if ok[0]:
                 return Q[0]
         # where the tangent's step is not kept: a point a thousandth of it behind,
@@ -111,8 +113,17 @@ def _node(
         f = (value - z[col]) / (z[col] - z_prev[col])
         zp = bc.between(z[None, :], z_prev[None, :], np.array([-f]))[0]
     zp[col] = value
-    Q, ok, _ = pb.close_near(zp[None, :], SWEEP_NODE_CORRECTION * pb.comm(zp - z))
+    Q, ok, _ = pb.close_near(zp[None, :], node_bounds(pb, zp[None, :], z[None, :]))
     return Q[0] if ok[0] else None
+
+
+def node_bounds(pb: Problem, preds: np.ndarray, Z: np.ndarray) -> np.ndarray:
+    """How far Newton may move each predicted node (the rows of ``preds``, predicted from
+    the rows of Z) for it to be kept: SWEEP_NODE_CORRECTION of its predicted step.  A
+    prediction that swings further than SWEEP_NODE_SWING (passive joints included) is not
+    kept at all (bound -1), however small its correction: the step is halved."""
+    swing = np.linalg.norm(pb.cm.float_frame.rates(preds - Z), axis=1)
+    return np.where(swing <= SWEEP_NODE_SWING, SWEEP_NODE_CORRECTION * swing, -1.0)
 
 
 def polynomial_prediction(
