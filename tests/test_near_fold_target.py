@@ -40,6 +40,8 @@ configurations:
   inside-5e-8: {A: 0.8127555164}
   inside-1e-9: {A: "acos(11/16) - 0.000000001"}
   beyond-1e-9: {A: "acos(11/16) + 0.000000001"}
+  inside-1e-13: {A: "acos(11/16) - 0.0000000000001"}
+  beyond-1e-13: {A: "acos(11/16) + 0.0000000000001"}
   at-the-limit: {A: "acos(11/16)"}
   from-beyond: {A: 0.5, start: beyond-1e-9}
 """
@@ -80,6 +82,29 @@ def test_a_crank_just_inside_its_limit_closes_on_the_reference_mode(
     # the other mode's C is 1e-4 to 1e-3 away (its mirror image about BD)
     assert abs(got[0] - float(want[0])) < 1e-9 and abs(got[1] - float(want[1])) < 1e-9
     assert math.hypot(got[0] - 4.0, got[1]) == pytest.approx(1.5, abs=1e-12)
+
+
+def test_a_crank_a_hair_inside_its_limit_closes_at_mp_on_the_reference_mode(
+    tmp_path: Path,
+) -> None:
+    """1e-13 rad inside: float lands on the fold itself (its closure known to about 1e-8,
+    the two modes 1e-6 apart), where Newton at 50 digits finds no direction to either
+    root; the root is reached from further along the branch."""
+    f = tmp_path / "four_bar_limit.yaml"
+    f.write_text(FOUR_BAR)
+    res = solve(load(str(f)), "inside-1e-13", "mp:50")
+    q = {joint: values[0] for joint, values in res.joints_text}
+    with mpmath.workdps(50):
+        a, b = mpmath.mpf(q["A"]), mpmath.mpf(q["B"])
+        assert abs(a - (mpmath.acos(mpmath.mpf(11) / 16) - mpmath.mpf("1e-13"))) < 1e-45
+        want = _rocker_pin(a)
+        phi = mpmath.atan2(mpmath.sqrt(5) / 2, 1) + a + b
+        got = (2 * mpmath.cos(a) + 1.5 * mpmath.cos(phi), 2 * mpmath.sin(a) + 1.5 * mpmath.sin(phi))
+        # the other mode's pin is 2 h = 1.1e-6 away: h = sqrt(9 - |BD|^2) / 2 and
+        # |BD|^2 = 20 - 16 cos A
+        assert abs(got[0] - want[0]) < 1e-30 and abs(got[1] - want[1]) < 1e-30
+    with pytest.raises(Exception, match="beyond a limit of travel"):
+        solve(load(str(f)), "beyond-1e-13", "mp:50")
 
 
 def test_a_crank_just_beyond_its_limit_is_still_refused(tmp_path: Path) -> None:

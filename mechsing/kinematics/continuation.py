@@ -24,7 +24,7 @@ from mechsing.kinematics.model import KinematicModel
 from mechsing.kinematics.newton import finite_system, increment, scaled_jacobian, scaled_system
 from mechsing.kinematics.paths.folds import approach_fold, land_on_fold, leave_fold
 from mechsing.kinematics.paths.steps import closure_matrix, correct, same_branch
-from mechsing.kinematics.polish import MpPolisher, fold_mp
+from mechsing.kinematics.polish import MpPolisher, fold_mp, newton_mp
 from mechsing.kinematics.pose import POSE_COORDINATES, PoseModel
 from mechsing.kinematics.protocol import ClosureModel
 from mechsing.kinematics.settings import CONTINUATION_LEAVE_FRACTION, CONTINUATION_SINGULAR_RTOL
@@ -94,6 +94,7 @@ class Continuation:
         left_fold = start_is_fold = False
         best_rank = None
         attempts = 0
+        behind = None  # the start of the last step
         while t < 1.0:
             attempts += 1
             if attempts > _MAX_ATTEMPTS_PER_STEP * nsteps + 4 * _MAX_HALVINGS:
@@ -185,6 +186,7 @@ class Continuation:
                     )
                 if r is not None:
                     best_rank = r if best_rank is None else max(best_rank, r)
+            behind = q
             q = qn
             t = t_next
             dt = min(dt * 1.5, 1.0 / nsteps)
@@ -210,6 +212,17 @@ class Continuation:
             notes.append(fold_note)
         if m.precision.mode == "mp":  # policy: only mp polishes the float landing
             qm, res = self.polisher.polish(m, q, target, gmask, cfg)
+            if res > self.tolerance and behind is not None:
+                # a target a hair short of a fold (1e-13 rad): float lands on the fold
+                # itself, where the two roots (about the square root of that away) are
+                # not told apart and Newton has no direction to them.  From the start of
+                # the last step (on the branch, far from the fold next to the roots'
+                # distance) plain Newton at N digits goes down the branch to its own root:
+                # on x^2 = c it never crosses to the other sign; the doubled steps for a
+                # double root would throw it across the fold
+                qa, ra, _ = newton_mp(m, behind, target, gmask, doubling=False)
+                if ra <= self.tolerance:  # else the landing on the fold says how far beyond
+                    qm, res = qa, ra
             q_out = qm
         else:
             q_out = q

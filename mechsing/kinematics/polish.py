@@ -102,14 +102,18 @@ class MpPolisher:
         return self._deep
 
 
-def newton_mp(m: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray) -> Polished:
+def newton_mp(
+    m: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np.ndarray, doubling: bool = True
+) -> Polished:
     """Newton on the group at the model's digits: (coordinates, residual, whether a
     step was slow).  A step is slow when it lowers the residual by less than
     POLISH_SLOW_RATIO (Newton at a multiple root halves the distance, so lowers the
     residual by 4); the doubled step is then tried too, which for a double root
     converges quadratically again.  Goes on until the correction itself is below
     working precision (at a multiple root a small residual still leaves d =
-    sqrt(residual)), and stops when a step no longer lowers the residual."""
+    sqrt(residual)), and stops when a step no longer lowers the residual.  Without
+    ``doubling``, plain Newton: near a fold with its roots a hair away (not a double
+    root), a doubled step would cross the fold."""
     import mpmath
 
     with m.precision.context():
@@ -130,7 +134,7 @@ def newton_mp(m: ClosureModel, q: np.ndarray, target: np.ndarray, gmask: np.ndar
             stop=lambda _it, _res: not m.blocks,
             # closed, and what is left to correct is below working precision
             converged=lambda res, du: res <= goal and max((abs(x) for x in du), default=0) <= small,
-            doubling=True,
+            doubling=doubling,
         )
         return Polished(out.q, out.residual, out.slow)
 
