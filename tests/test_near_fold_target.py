@@ -10,6 +10,9 @@ overshoots it.  The configuration closes all the same, on the reference's side o
 closed forms (circles about B and D) are computed here with mpmath, not by mechsing.
 At the limit itself the two modes are one double root, which ``modes`` counts once and
 marks as the mode continuation reaches (float's closure there is known to about 1e-8).
+A crank 1e-13 rad inside is closer to the fold than float can tell: float lands on the
+fold itself, and the configuration is closed (``solve`` at mp:N) and its mode marked
+(``modes``) from more digits.
 """
 
 from __future__ import annotations
@@ -129,13 +132,36 @@ def test_modes_at_the_limit_count_the_double_root_the_start_reaches(tmp_path: Pa
     assert abs(got[0] - float(want[0])) < 1e-9 and abs(got[1] - float(want[1])) < 1e-9
 
 
-def test_no_mode_beyond_the_limit_says_where_the_limit_is(tmp_path: Path) -> None:
+@pytest.mark.parametrize("precision", ["float", "mp:50"])
+def test_modes_a_hair_inside_the_limit_mark_the_mode_the_start_reaches(
+    tmp_path: Path, precision: str
+) -> None:
+    """1e-13 rad inside: two modes 1.1e-6 apart; float's continuation lands on the fold
+    between them, matching neither, and at more digits reaches the reference's."""
+    f = tmp_path / "four_bar_limit.yaml"
+    f.write_text(FOUR_BAR)
+    argv = ["modes", str(f), "--config", "inside-1e-13", "--format", "json"]
+    rc, out, err = run_cli([*argv, "--precision", precision])
+    assert rc == 0, err
+    doc = json.loads(out)
+    assert doc["count"] == 2 and not doc["notes"], doc["notes"]
+    with mpmath.workdps(40):
+        want = _rocker_pin(mpmath.acos(mpmath.mpf(11) / 16) - mpmath.mpf("1e-13"))
+    for mode in doc["modes"]:
+        got = _solved_rocker_pin({k: v[0] for k, v in mode["joints"].items()})
+        ours = abs(got[0] - float(want[0])) < 1e-9 and abs(got[1] - float(want[1])) < 1e-9
+        assert mode["reached_by_continuation"] == ours
+
+
+@pytest.mark.parametrize("name", ["beyond-1e-9", "beyond-1e-13"])
+def test_no_mode_beyond_the_limit_says_where_the_limit_is(tmp_path: Path, name: str) -> None:
     """A crank 1e-9 rad beyond its limit: no mode (proven), and a note saying by how
-    much and where the limit is (acos(11/16), to the digits the note gives)."""
+    much and where the limit is (acos(11/16), to the digits the note gives).  1e-13 rad
+    beyond, float closes the crank to its tolerance; more digits say it is beyond."""
 
     f = tmp_path / "four_bar_limit.yaml"
     f.write_text(FOUR_BAR)
-    rc, out, err = run_cli(["modes", str(f), "--config", "beyond-1e-9", "--format", "json"])
+    rc, out, err = run_cli(["modes", str(f), "--config", name, "--format", "json"])
     assert rc == 0, err
     doc = json.loads(out)
     assert doc["count"] == 0 and doc["complete"] == "proven"

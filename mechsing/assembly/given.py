@@ -17,6 +17,7 @@ from typing import Any
 
 import sympy
 
+from mechsing.assembly.settings import REACHED_DIGITS
 from mechsing.errors import UserError
 from mechsing.model import Mechanism
 from mechsing.numeric import Precision
@@ -158,15 +159,18 @@ def _started_from(mech: Mechanism, config: str, start: str) -> Mechanism:
     return dataclasses.replace(mech, configurations={**mech.configurations, config: cfg})
 
 
-def closure_from_start(mech: Mechanism, config: str) -> tuple[Any, str | None]:
-    """Where continuation from the configuration's start closes it (``solve`` in float),
-    or why it does not: (the SolveResult or None, the reason or None).  Computed once per
-    ``modes``: the formulations test it as a posture, the result marks the mode it is."""
+def closure_from_start(
+    mech: Mechanism, config: str, precision: str = "float"
+) -> tuple[Any, str | None]:
+    """Where continuation from the configuration's start closes it (``solve`` in float,
+    or at ``precision``), or why it does not: (the SolveResult or None, the reason or
+    None).  Computed once per ``modes``: the formulations test it as a posture, the result
+    marks the mode it is."""
     from mechsing.analysis.solve import solve
     from mechsing.errors import ConfigurationError, UserError
 
     try:
-        return solve(mech, config, "float"), None
+        return solve(mech, config, precision), None
     except (ConfigurationError, UserError) as exc:
         return None, str(exc)
 
@@ -180,10 +184,13 @@ def travel_of_start(mech: Mechanism, config: str) -> str | None:
     from mechsing.analysis.solve import solve
     from mechsing.errors import BeyondTravelError, ConfigurationError, UserError
 
-    try:
-        solve(mech, config, "float")
-    except BeyondTravelError as exc:
-        return exc.travel
-    except (ConfigurationError, UserError):
-        return None
+    # float closes values a hair beyond a fold (1e-13 rad) to its tolerance: more digits
+    # tell that they are beyond
+    for precision in ("float", f"mp:{REACHED_DIGITS}"):
+        try:
+            solve(mech, config, precision)
+        except BeyondTravelError as exc:
+            return exc.travel
+        except (ConfigurationError, UserError):
+            return None
     return None

@@ -15,7 +15,7 @@ import numpy as np
 
 from mechsing.assembly.chains import Found
 from mechsing.assembly.given import closure_from_start, travel_of_start
-from mechsing.assembly.settings import MODE_CERTIFY_RADIUS
+from mechsing.assembly.settings import MODE_CERTIFY_RADIUS, REACHED_DIGITS
 from mechsing.kinematics.closed import FLOAT_DIGITS, ClosedValue
 from mechsing.model import Mechanism
 from mechsing.numeric import MODE_FOLD_MATCH_DISTANCE, MODE_MATCH_DISTANCE, Precision
@@ -150,9 +150,15 @@ def _result(mech: Mechanism, config: str, prec: Precision, found: Found, dps: in
     # continuation cannot close, which is all it could say)
     nothing = not rows and found.complete == "proven"
     closure = found.closure or ((None, None) if nothing else closure_from_start(mech, config))
-    reached, notes = _reached(
-        mech, [[float(x) for x in q] for q, _ in rows], [bool(ok) for _, ok in rows], km, closure
-    )
+    qs, certified = [[float(x) for x in q] for q, _ in rows], [bool(ok) for _, ok in rows]
+    reached, notes = _reached(mech, qs, certified, km, closure)
+    if reached is None and qs and closure[0] is not None:
+        # float's closure a hair inside a fold (1e-13 rad) lands on the fold itself,
+        # between the two modes that meet there (1e-6 apart) and matching neither; at
+        # REACHED_DIGITS continuation goes down its branch to its own mode
+        deeper = closure_from_start(mech, config, f"mp:{REACHED_DIGITS}")
+        if deeper[0] is not None:
+            reached, notes = _reached(mech, qs, certified, km, deeper)
     if nothing and mech.configurations[config].values:
         # no mode: where the values given leave the start's assembly mode, if they do
         travel = travel_of_start(mech, config)

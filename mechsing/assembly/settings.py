@@ -14,6 +14,11 @@ from __future__ import annotations
 #: test proves each mode's one true solution; the modes are found to 50 digits or more
 MODE_CERTIFY_RADIUS = 1e-30
 
+#: the digits continuation from the start closes a configuration at when its float
+#: closure matches none of the modes found (a hair inside a fold it lands on the fold
+#: itself, between the two modes that meet there)
+REACHED_DIGITS = 30
+
 #: a continuation endpoint (double precision, Bertini 2) is real when each imaginary part
 #: is below this times ``max(1, |z|)``; a real one is then refined at 50 digits or more,
 #: and only a refined one is a mode
