@@ -100,6 +100,7 @@ inputs: [J1, J2, J3]
 output: {body: link3, point: ["7/2", 0, 1]}
 configurations:
   stretched: {J1: 0.3, J2: 0.5, J3: 0}
+  shoulder: {J1: 0.3, J2: 1.2, J3: "acos(-4*cos(6/5)/3) - 6/5"}
 """
 
 
@@ -117,6 +118,28 @@ def test_a_positioning_arm_stretched_is_an_elbow(tmp_path: Path) -> None:
     cond = json.loads(_run("condition", str(path), "--config", "stretched", "--format", "json"))
     named = {f["expression"]: f["name"] for c in cond["conditions"] for f in c["factors"]}
     assert named.get("sin(J3)") == "elbow", named
+
+
+def test_a_positioning_arm_with_its_point_on_the_first_axis_is_a_shoulder(tmp_path: Path) -> None:
+    """The same arm with its output point on J1's axis: its distance from the axis in the
+    arm's plane, 2 cos J2 + 3/2 cos(J2 + J3) (J2 and J3 turn x towards -z), is zero at
+    the file's ``shoulder``, the factor 4 cos J2 + 3 cos(J2 + J3) of det J.  J1 then
+    turns the arm about the point: the shoulder, named so by analyze and by condition."""
+    j2 = 1.2
+    j3 = np.arccos(-4 * np.cos(6 / 5) / 3) - 6 / 5
+    assert abs(2 * np.cos(j2) + 1.5 * np.cos(j2 + j3)) < 1e-15
+    path = tmp_path / "arm.yaml"
+    path.write_text(ANTHROPOMORPHIC)
+    doc = json.loads(_run("analyze", str(path), "--config", "shoulder", "--format", "json"))
+    (conf,) = doc["configurations"]
+    (serial,) = [f for f in conf["singularities"] if f["class"] == "serial"]
+    assert serial["name"] == "shoulder" and serial["joints"] == ["J1"], serial
+    cond = json.loads(_run("condition", str(path), "--config", "shoulder", "--format", "json"))
+    vanishing = {f["name"] for c in cond["conditions"] for f in c["factors"] if f["vanishes"]}
+    assert vanishing == {"shoulder"}
+    # and stretched, the point is off that plane: no shoulder there
+    doc = json.loads(_run("analyze", str(path), "--config", "stretched", "--format", "json"))
+    assert "shoulder" not in json.dumps(doc["configurations"][0]["singularities"])
 
 
 def _five_bar_pivots(a1: float, b1: float, a2: float, b2: float) -> dict[str, np.ndarray]:

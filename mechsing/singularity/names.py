@@ -12,7 +12,8 @@ One place for the words: ``condition`` names the factors of its formulas with th
   joints, in line, include none on the base (a five-bar's three joints beyond its two
   cranks) is ``distal links stretched or folded``;
 - ``shoulder``: the wrist centre (or, for an arm without one, the point where its last two
-  axes meet) comes into the plane through one axis parallel to another.
+  axes meet; for a positioning task, the output point) comes into the plane through one
+  axis parallel to another.
 
 The facts are tested on the chain's joint lines (a point and a unit direction each; None
 for a prismatic joint's point) at the configuration, and only the facts that do not hold
@@ -57,8 +58,9 @@ NAMES = {
     WRIST: "the wrist's axes become dependent",
     ELBOW: "the arm fully stretched or folded",
     SHOULDER: (
-        "the wrist centre in the plane through the first axis parallel to the second, "
-        "on the first axis for an arm without shoulder offset"
+        "the wrist centre (a positioning arm's output point) in the plane through the "
+        "first axis parallel to the second, on the first axis for an arm without shoulder "
+        "offset"
     ),
     LEG: "its pivots in line",
     DISTAL: "the pivots of its moving joints in line, none of them on the base",
@@ -109,7 +111,7 @@ def line_facts(
         for n, p, u in lines:
             if p is not None and np.linalg.norm(np.cross(P - p, u)) < tol * scale:
                 facts[f"the output point is on the axis of {n}"] = (None, frozenset((n,)))
-    facts.update(_centre_facts(lines, scale))
+    facts.update(_centre_facts(lines, scale, P))
     # three parallel axes (or two and the output point) in one plane
     items = [(n, p, u) for n, p, u in lines if p is not None]
     if P is not None and items:
@@ -170,13 +172,19 @@ def _meet(a: Line, b: Line) -> np.ndarray:
     return p1 + t[0] * u1
 
 
-def _centre_facts(lines: Sequence[Line], scale: float) -> _Facts:
+def _centre_facts(lines: Sequence[Line], scale: float, point: Any = None) -> _Facts:
     """Where axes meet (a wrist centre): are its axes in one plane, is it in the plane of two
-    parallel axes, or in the plane through one axis parallel to another?"""
+    parallel axes, or in the plane through one axis parallel to another?  A positioning
+    task's output ``point`` is its arm's wrist centre for the last (the shoulder); its
+    plane of two parallel axes is :func:`line_facts`' (the elbow)."""
     tol = CONDITION_GEOMETRY_RTOL
     R = [(n, p, u) for n, p, u in lines if p is not None]
     out: _Facts = {}
-    for who, members, W in _centres(R, scale):
+    centres = _centres(R, scale)
+    if point is not None:
+        centres.append(("the output point", [], point))
+    for who, members, W in centres:
+        own = not members  # the output point: not a meet of two of the axes
         trio = [x for x in R if x[0] in members]
         if len(trio) == 3 and abs(np.linalg.det(np.column_stack([u for *_, u in trio]))) < tol:
             out[f"the axes of {who} (meeting at one point) are in one plane"] = (
@@ -188,6 +196,8 @@ def _centre_facts(lines: Sequence[Line], scale: float) -> _Facts:
                 continue
             normal = np.cross(ua, ub)
             if np.linalg.norm(normal) < tol:
+                if own:
+                    continue
                 normal = np.cross(ua, pb - pa)
                 if np.linalg.norm(normal) < tol * scale:
                     continue
@@ -203,13 +213,18 @@ def _centre_facts(lines: Sequence[Line], scale: float) -> _Facts:
             # a centre on the second axis, when that axis lies in the plane, is in it by
             # that alone (a wrist whose first axis coincides with its last puts the point
             # where its last two meet on its first): no fact of the plane; on the first
-            # axis it is one (the shoulder of an arm without shoulder offset)
+            # axis it is one (the shoulder of an arm without shoulder offset); the output
+            # point is on the second axis by no construction
             if (
-                abs(np.dot(pb - pa, normal)) < tol * scale
+                not own
+                and abs(np.dot(pb - pa, normal)) < tol * scale
                 and np.linalg.norm(np.cross(W - pb, ub)) < tol * scale
             ):
                 continue
             if abs(np.dot(W - pa, normal)) < tol * scale:
+                if own:
+                    out[f"the output point is in {where}"] = (kind, about)
+                    continue
                 centre = "the wrist centre" if len(members) == 3 else "the wrist point"
                 out[f"{centre} (where {who} meet) is in {where}"] = (kind, about)
     return out
