@@ -30,7 +30,9 @@ The layers raise these and never decide what a command does with them: only
 the command line (``mechsing.cli.main``) maps them to exit statuses.
 :func:`working_on` names the file and the configuration under analysis, so
 that an exception that escapes everything (a defect of mechsing) can still say
-where it happened (:func:`current_work`).
+where it happened (:func:`current_work`).  :func:`note_stop` records the signal that
+asked the running command to stop, and :func:`raise_if_stopped` raises it again where a
+stop must not be lost (code that swallowed the first :class:`Interrupted`).
 """
 
 from __future__ import annotations
@@ -58,10 +60,10 @@ __all__ = [
     "TooManyModes",
     "UserError",
     "YAMLReadError",
-    "note_stop",
-    "raise_if_stopped",
     "current_work",
     "forget_work",
+    "note_stop",
+    "raise_if_stopped",
     "work_item",
     "working_on",
 ]
