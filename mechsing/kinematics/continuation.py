@@ -212,17 +212,6 @@ class Continuation:
             notes.append(fold_note)
         if m.precision.mode == "mp":  # policy: only mp polishes the float landing
             qm, res = self.polisher.polish(m, q, target, gmask, cfg)
-            if res > self.tolerance and behind is not None:
-                # a target a hair short of a fold (1e-13 rad): float lands on the fold
-                # itself, where the two roots (about the square root of that away) are
-                # not told apart and Newton has no direction to them.  From the start of
-                # the last step (on the branch, far from the fold next to the roots'
-                # distance) plain Newton at N digits goes down the branch to its own root:
-                # on x^2 = c it never crosses to the other sign; the doubled steps for a
-                # double root would throw it across the fold
-                qa, ra, _ = newton_mp(m, behind, target, gmask, doubling=False)
-                if ra <= self.tolerance:  # else the landing on the fold says how far beyond
-                    qm, res = qa, ra
             q_out = qm
         else:
             q_out = q
@@ -237,6 +226,25 @@ class Continuation:
                 if self.at_folds  # joint values or a pose the user gave, at mp:N
                 else None
             )
+            if (
+                at_limit is None
+                and self.at_folds  # not auto's re-decision, which keeps float's analysis
+                and m.precision.mode == "mp"
+                and behind is not None
+            ):
+                down = _down_the_branch(m, behind, target, gmask, self.tolerance)
+                if down is not None:
+                    # a simple root at N digits: the values are not the fold float took
+                    q_out, res = down
+                    return ClosedConfiguration(
+                        cfg.name,
+                        q_out,
+                        float(res),
+                        underdetermined,
+                        steps,
+                        given,
+                        [x for x in notes if x != fold_note],
+                    )
             if at_limit is None and self.at_folds:
                 at_limit = _across_self_motion(
                     self.polisher, self.tolerance, m, cfg, q_out, target, gmask
@@ -261,6 +269,21 @@ class Continuation:
         return ClosedConfiguration(
             cfg.name, q_out, float(res), underdetermined, steps, given, notes, at_fold
         )
+
+
+def _down_the_branch(
+    m: ClosureModel, behind: np.ndarray, target: np.ndarray, gmask: np.ndarray, tolerance: Any
+) -> tuple[np.ndarray, Any] | None:
+    """Given values a hair short of a fold (1e-13 rad): float lands on the fold itself,
+    where the two roots (about the square root of that away) are not told apart and
+    Newton at N digits has no direction to them.  From the start of continuation's last
+    step (``behind``: on the branch, far from the fold next to the roots' distance) plain
+    Newton at N digits goes down the branch to its own root: on x^2 = c it never crosses
+    to the other sign (the doubled steps for a double root would throw it across the
+    fold).  The root and its residual, or None when it does not close (values beyond the
+    fold)."""
+    qa, ra, _ = newton_mp(m, behind, target, gmask, doubling=False)
+    return (qa, ra) if ra <= tolerance else None
 
 
 def _fmt(m: ClosureModel, q: np.ndarray) -> str:
